@@ -1,0 +1,218 @@
+"""Belt, idler and compound catalogues shipped as CSV files in ``engine/data``.
+
+Every row names its source in the file (or says it is an estimate). Unknown ids raise an
+:class:`~engine.conveyor.InputError` listing the valid ids and the nearest one.
+"""
+
+from __future__ import annotations
+
+import csv
+import difflib
+from dataclasses import dataclass
+from functools import cache
+from importlib import resources
+
+__all__ = [
+    "BeltData",
+    "ResolvedBelt",
+    "IdlerData",
+    "belts",
+    "belt",
+    "idlers",
+    "idler",
+    "compounds",
+    "resolve_belt",
+    "idler_set_values",
+    "check_conveyor",
+    "COVER_MASS_KG_M2_PER_MM",
+]
+
+#: Cover rubber mass per square metre per mm of thickness [kg/m2/mm] (PHYSICS section 4).
+COVER_MASS_KG_M2_PER_MM = 1.15
+
+
+def _rows(name: str) -> list[dict[str, str]]:
+    text = resources.files("engine").joinpath("data", name).read_text(encoding="utf-8")
+    lines = [ln for ln in text.splitlines() if ln.strip() and not ln.startswith("#")]
+    return list(csv.DictReader(lines))
+
+
+def _unknown(kind: str, value: str, valid: list[str], field: str = "") -> str:
+    close = difflib.get_close_matches(str(value), valid, n=1, cutoff=0.4)
+    hint = f"; did you mean '{close[0]}'?" if close else ""
+    where = f"{field}: " if field else ""
+    return f"{where}unknown {kind} '{value}'{hint} valid: {', '.join(valid)}"
+
+
+@dataclass(frozen=True)
+class BeltData:
+    """One catalogue belt. Units in the names."""
+
+    id: str
+    kind: str
+    rating_kn_m: float
+    modulus_kn_m: float
+    carcass_mass_kg_m2: float
+    top_cover_mm: float
+    bottom_cover_mm: float
+    source: str
+
+
+@dataclass(frozen=True)
+class ResolvedBelt:
+    """A belt after applying the conveyor file's overrides to the catalogue values."""
+
+    id: str
+    kind: str
+    width_m: float
+    rating_kn_m: float
+    modulus_kn_m: float
+    carcass_mass_kg_m2: float
+    top_cover_mm: float
+    bottom_cover_mm: float
+    compound: str
+
+    @property
+    def mass_kg_m(self) -> float:
+        """Belt mass per metre m'_G = (carcass + covers) x width [kg/m]."""
+        covers = (self.top_cover_mm + self.bottom_cover_mm) * COVER_MASS_KG_M2_PER_MM
+        return (self.carcass_mass_kg_m2 + covers) * self.width_m
+
+    @property
+    def stiffness_n(self) -> float:
+        """Axial stiffness E B [N] (tension per unit strain)."""
+        return self.modulus_kn_m * 1e3 * self.width_m
+
+    @property
+    def rating_n(self) -> float:
+        """Breaking force rating x width [N]."""
+        return self.rating_kn_m * 1e3 * self.width_m
+
+    @property
+    def thickness_m(self) -> float:
+        """Approximate belt thickness [m]: covers plus a carcass of 1 mm per 1.2 kg/m2."""
+        return (self.top_cover_mm + self.bottom_cover_mm + self.carcass_mass_kg_m2 / 1.2) * 1e-3
+
+
+@dataclass(frozen=True)
+class IdlerData:
+    roll_diameter_m: float
+    cema_class: str
+    rotating_mass_kg_m: float
+    seal_drag_n: float
+    source: str
+
+
+@cache
+def belts() -> dict[str, BeltData]:
+    """All catalogue belts by id."""
+    out = {}
+    for r in _rows("belts.csv"):
+        out[r["id"]] = BeltData(
+            id=r["id"],
+            kind=r["kind"],
+            rating_kn_m=float(r["rating_kn_m"]),
+            modulus_kn_m=float(r["modulus_kn_m"]),
+            carcass_mass_kg_m2=float(r["carcass_mass_kg_m2"]),
+            top_cover_mm=float(r["top_cover_mm"]),
+            bottom_cover_mm=float(r["bottom_cover_mm"]),
+            source=r["source"],
+        )
+    return out
+
+
+def belt(belt_id: str, field: str = "belt.type") -> BeltData:
+    table = belts()
+    if belt_id not in table:
+        from engine.conveyor import InputError
+
+        raise InputError(_unknown("belt type", belt_id, list(table), field))
+    return table[belt_id]
+
+
+@cache
+def idlers() -> list[IdlerData]:
+    return [
+        IdlerData(
+            roll_diameter_m=float(r["roll_diameter_m"]),
+            cema_class=r["cema_class"],
+            rotating_mass_kg_m=float(r["rotating_mass_kg_m"]),
+            seal_drag_n=float(r["seal_drag_n"]),
+            source=r["source"],
+        )
+        for r in _rows("idlers.csv")
+    ]
+
+
+def idler(roll_diameter_m: float, cema_class: str | None = None, field: str = "") -> IdlerData:
+    """The catalogue idler nearest in roll diameter (and of the class, when given)."""
+    rows = idlers()
+    if cema_class is not None:
+        classes = sorted({r.cema_class for r in rows})
+        if cema_class not in classes:
+            from engine.conveyor import InputError
+
+            raise InputError(_unknown("CEMA idler class", cema_class, classes, field + "cema_class"))
+        rows = [r for r in rows if r.cema_class == cema_class]
+    best = min(rows, key=lambda r: abs(r.roll_diameter_m - roll_diameter_m))
+    return best
+
+
+def idler_set_values(idler_set, width_m: float) -> tuple[float, float]:
+    """Rotating mass [kg] and seal drag [N] of an idler set, catalogue filling gaps."""
+    row = idler(idler_set.roll_diameter_m, idler_set.cema_class)
+    mass = idler_set.rotating_mass_kg
+    if mass is None:
+        mass = row.rotating_mass_kg_m * width_m
+    drag = idler_set.seal_drag_n
+    if drag is None:
+        drag = row.seal_drag_n
+    return float(mass), float(drag)
+
+
+@cache
+def compounds() -> dict[str, dict[str, str]]:
+    return {r["id"]: r for r in _rows("compounds.csv")}
+
+
+def resolve_belt(b) -> ResolvedBelt:
+    """Apply the conveyor file's belt overrides to the catalogue entry."""
+    base = belt(b.type) if b.type is not None else None
+
+    def pick(name: str) -> float:
+        val = getattr(b, name)
+        if val is not None:
+            return float(val)
+        return float(getattr(base, name))
+
+    return ResolvedBelt(
+        id=b.type or "custom",
+        kind=base.kind if base else ("steel" if (b.modulus_kn_m or 0) > 30000 else "fabric"),
+        width_m=float(b.width_m),
+        rating_kn_m=pick("rating_kn_m"),
+        modulus_kn_m=pick("modulus_kn_m"),
+        carcass_mass_kg_m2=pick("carcass_mass_kg_m2"),
+        top_cover_mm=pick("top_cover_mm") if (b.top_cover_mm is not None or base) else 0.0,
+        bottom_cover_mm=pick("bottom_cover_mm") if (b.bottom_cover_mm is not None or base) else 0.0,
+        compound=b.compound,
+    )
+
+
+def check_conveyor(conv, prefix: str = "") -> None:
+    """Catalogue ids in a conveyor exist (raises InputError naming the field)."""
+    from engine.conveyor import InputError
+
+    if conv.belt.type is not None:
+        belt(conv.belt.type, prefix + "belt.type")
+    if conv.belt.compound not in compounds():
+        raise InputError(
+            _unknown("compound", conv.belt.compound, list(compounds()), prefix + "belt.compound")
+        )
+    for strand in ("carry", "return_"):
+        s = getattr(conv.idlers, strand)
+        if s.cema_class is not None:
+            idler(s.roll_diameter_m, s.cema_class, f"{prefix}idlers.{strand.rstrip('_')}.")
+    if conv.belt.type is None and (conv.belt.top_cover_mm is None or conv.belt.bottom_cover_mm is None):
+        raise InputError(
+            f"{prefix}belt: a custom belt (no 'type') needs top_cover_mm and bottom_cover_mm (0 allowed)"
+        )

@@ -1,0 +1,380 @@
+"""Input models: the conveyor file and the operating scenario (SPEC sections 1 and 2).
+
+These Pydantic models are the one source of truth for the contract. Every key that carries a
+unit ends in that unit. Unknown keys are rejected with the nearest valid key; every error
+names the field path. Everything past :func:`load_conveyor` / :func:`parse_conveyor` trusts
+its types.
+"""
+
+from __future__ import annotations
+
+import difflib
+import json
+from pathlib import Path
+from typing import Annotated, Any, Literal
+
+import yaml
+from pydantic import (
+    BaseModel,
+    ConfigDict,
+    Field,
+    ValidationError,
+    model_validator,
+)
+
+__all__ = [
+    "InputError",
+    "Belt",
+    "Material",
+    "ProfileSection",
+    "IdlerSet",
+    "Idlers",
+    "Drive",
+    "TakeUp",
+    "Brake",
+    "SagLimit",
+    "Accessories",
+    "Conveyor",
+    "StartSpec",
+    "StopSpec",
+    "Scenario",
+    "load_conveyor",
+    "parse_conveyor",
+    "parse_scenario",
+    "load_mapping",
+    "format_validation_error",
+    "load_fraction",
+]
+
+
+class InputError(ValueError):
+    """A user input problem: the message names the field and the fix (one line)."""
+
+
+class _Model(BaseModel):
+    model_config = ConfigDict(extra="forbid", frozen=True, populate_by_name=True)
+
+
+PositiveFloat = Annotated[float, Field(gt=0)]
+NonNegFloat = Annotated[float, Field(ge=0)]
+
+
+class Belt(_Model):
+    """Belt: a catalogue type plus optional overrides (SPEC section 1).
+
+    Overrides replace catalogue values; with ``type`` omitted, ``rating_kn_m``,
+    ``modulus_kn_m`` and ``carcass_mass_kg_m2`` are required. Cover thicknesses may be 0, so a
+    published belt mass per metre can be reproduced with ``carcass_mass_kg_m2 = m'_G / B``.
+    """
+
+    type: str | None = Field(None, description="belt id in the catalogue, e.g. ST2000, EP630/4")
+    width_m: PositiveFloat = Field(..., description="belt width B [m]")
+    top_cover_mm: NonNegFloat | None = Field(None, description="carry-side cover [mm]")
+    bottom_cover_mm: NonNegFloat | None = Field(None, description="pulley-side cover [mm]")
+    compound: str = Field("standard", description="cover rubber compound id (catalogue)")
+    rating_kn_m: PositiveFloat | None = Field(None, description="nominal strength [kN/m]")
+    modulus_kn_m: PositiveFloat | None = Field(None, description="axial modulus E per width [kN/m]")
+    carcass_mass_kg_m2: NonNegFloat | None = Field(None, description="carcass mass [kg/m2]")
+
+    @model_validator(mode="after")
+    def _type_or_fields(self) -> Belt:
+        if self.type is None:
+            missing = [
+                k
+                for k in ("rating_kn_m", "modulus_kn_m", "carcass_mass_kg_m2")
+                if getattr(self, k) is None
+            ]
+            if missing:
+                raise ValueError(
+                    "give a catalogue belt 'type' or all of rating_kn_m, modulus_kn_m, "
+                    f"carcass_mass_kg_m2 (missing: {', '.join(missing)})"
+                )
+        return self
+
+
+class Material(_Model):
+    """Bulk material on the carry strand."""
+
+    capacity_t_h: NonNegFloat = Field(..., description="design capacity [t/h]")
+    density_t_m3: PositiveFloat = Field(1.0, description="bulk density [t/m3]")
+    loading_speed_m_s: float = Field(
+        0.0, description="along-belt speed of the material at the feed point [m/s]"
+    )
+
+
+class ProfileSection(_Model):
+    """One straight section of the carry route, tail -> head."""
+
+    length_m: PositiveFloat = Field(..., description="length along the belt [m]")
+    lift_m: float = Field(0.0, description="rise over the section, negative downhill [m]")
+
+    @model_validator(mode="after")
+    def _lift_fits(self) -> ProfileSection:
+        if abs(self.lift_m) >= self.length_m:
+            raise ValueError(
+                f"lift_m ({self.lift_m}) must be smaller in size than length_m ({self.length_m}): "
+                "length is measured along the belt"
+            )
+        return self
+
+
+class IdlerSet(_Model):
+    """An idler set; rotating mass and seal drag default from the catalogue by roll diameter."""
+
+    spacing_m: PositiveFloat = Field(..., description="idler set pitch S [m]")
+    roll_diameter_m: PositiveFloat = Field(0.152, description="roll diameter [m]")
+    rolls: int = Field(3, ge=1, le=5, description="rolls per set")
+    trough_deg: float = Field(0.0, ge=0, le=60, description="trough angle [deg]")
+    cema_class: str | None = Field(None, description="CEMA idler class B..F (catalogue lookup)")
+    rotating_mass_kg: NonNegFloat | None = Field(None, description="rotating mass per set [kg]")
+    seal_drag_n: NonNegFloat | None = Field(None, description="seal drag per set [N]")
+
+
+class Idlers(_Model):
+    carry: IdlerSet
+    return_: IdlerSet = Field(..., alias="return")
+
+
+class Drive(_Model):
+    """A drive pulley (SPEC section 1)."""
+
+    position: Literal["head", "tail"] = "head"
+    wrap_deg: float = Field(210.0, gt=0, le=500, description="wrap angle [deg]")
+    friction: float = Field(0.35, gt=0, le=1.0, description="belt-pulley friction coefficient")
+    share: float = Field(1.0, gt=0, le=1.0, description="share of the peripheral force")
+    pulley_diameter_m: PositiveFloat = Field(1.0, description="pulley diameter [m]")
+    inertia_kg_m2: NonNegFloat = Field(
+        0.0, description="rotating parts reduced to the pulley shaft [kg m2]"
+    )
+    rated_power_kw: PositiveFloat | None = Field(
+        None, description="rated power [kW]; default: steady power x 1.25"
+    )
+    torque_limit: float = Field(1.5, gt=0, description="max force as a multiple of rated force")
+
+
+class TakeUp(_Model):
+    """Take-up: gravity (counterweight) or fixed (screw/winch at a set pretension)."""
+
+    type: Literal["gravity", "fixed"] = "gravity"
+    position: Literal["tail", "head"] = "tail"
+    mass_kg: PositiveFloat | Literal["auto"] = Field(
+        "auto", description="gravity counterweight [kg] or auto"
+    )
+    pretension_kn: PositiveFloat | Literal["auto"] = Field(
+        "auto", description="fixed take-up: tension at the take-up [kN] or auto"
+    )
+    travel_m: PositiveFloat | None = Field(
+        None, description="carriage travel between end stops [m]; default 1.5 % of length"
+    )
+    carriage_mass_kg: NonNegFloat = Field(
+        0.0, description="carriage and pulley mass in addition to the counterweight [kg]"
+    )
+
+
+class Brake(_Model):
+    position: Literal["head", "tail"] = "head"
+    force_kn: PositiveFloat | Literal["auto"] = "auto"
+    delay_s: NonNegFloat = 0.5
+
+
+class SagLimit(_Model):
+    carry: PositiveFloat = Field(1.5, description="admissible carry sag h/S [%]")
+    return_: PositiveFloat = Field(3.0, alias="return", description="admissible return sag [%]")
+
+
+class Accessories(_Model):
+    head_kn: NonNegFloat = Field(0.0, description="lumped resistance at the head [kN]")
+    tail_kn: NonNegFloat = Field(0.0, description="lumped resistance at the tail [kN]")
+
+
+class Conveyor(_Model):
+    """A belt conveyor (SPEC section 1)."""
+
+    name: str = Field(..., min_length=1, max_length=200)
+    speed_m_s: PositiveFloat = Field(..., description="design belt speed [m/s]")
+    belt: Belt
+    material: Material
+    profile: list[ProfileSection] = Field(..., min_length=1)
+    idlers: Idlers
+    drives: list[Drive] = Field(..., min_length=1)
+    takeup: TakeUp = TakeUp()
+    brakes: list[Brake] = Field(default_factory=list)
+    holdback: bool = False
+    sag_limit_pct: SagLimit = SagLimit()
+    accessories: Accessories = Accessories()
+
+    @model_validator(mode="after")
+    def _shares(self) -> Conveyor:
+        total = sum(d.share for d in self.drives)
+        if abs(total - 1.0) > 1e-6:
+            raise ValueError(f"drives: shares sum to {total:g}; they must sum to 1")
+        return self
+
+    @property
+    def length_m(self) -> float:
+        """Length along the carry strand [m]."""
+        return float(sum(p.length_m for p in self.profile))
+
+    @property
+    def lift_m(self) -> float:
+        """Net lift tail -> head [m]."""
+        return float(sum(p.lift_m for p in self.profile))
+
+
+class StartSpec(_Model):
+    control: Literal["s-curve", "linear", "torque"] = "s-curve"
+    time_s: PositiveFloat = Field(60.0, description="start (acceleration) time [s]")
+
+
+class StopSpec(_Model):
+    mode: Literal["coast", "brake", "controlled"] = "coast"
+    time_s: PositiveFloat = Field(30.0, description="target stop time [s]")
+
+
+def load_fraction(load: str | float) -> float:
+    """Load case as a fraction of the design load: full -> 1, empty -> 0."""
+    if isinstance(load, str):
+        return {"full": 1.0, "empty": 0.0}[load]
+    return float(load)
+
+
+class Scenario(_Model):
+    """Operating scenario for a run (SPEC section 2)."""
+
+    load: Literal["full", "empty"] | Annotated[float, Field(ge=0, le=1)] = "full"
+    temperature_c: float = Field(20.0, ge=-60, le=80, description="ambient temperature [C]")
+    start: StartSpec = StartSpec()
+    run_s: NonNegFloat = Field(30.0, description="steady running between start and stop [s]")
+    stop: StopSpec = StopSpec()
+    formulation: Literal["relative", "support"] = "relative"
+    elements: Literal["auto"] | Annotated[int, Field(ge=8, le=200_000)] = "auto"
+    dt_s: Literal["auto"] | PositiveFloat = "auto"
+    record_dt_s: PositiveFloat = Field(0.1, description="time-series sample spacing [s]")
+
+    @property
+    def load_fraction(self) -> float:
+        return load_fraction(self.load)
+
+
+# --------------------------------------------------------------------------------------
+# Error formatting: one line per problem, naming the field path and the fix.
+
+
+def _model_at(model: type[BaseModel], loc: tuple) -> type[BaseModel] | None:
+    """Walk a location tuple down the model tree; return the model that owns the last key."""
+    current: Any = model
+    for part in loc[:-1]:
+        if isinstance(part, int):
+            continue
+        if not (isinstance(current, type) and issubclass(current, BaseModel)):
+            return None
+        field = None
+        for name, f in current.model_fields.items():
+            if part in (name, f.alias):
+                field = f
+                break
+        if field is None:
+            return None
+        current = _inner_model(field.annotation)
+    return current if isinstance(current, type) and issubclass(current, BaseModel) else None
+
+
+def _inner_model(annotation: Any) -> Any:
+    import typing
+
+    if isinstance(annotation, type) and issubclass(annotation, BaseModel):
+        return annotation
+    for arg in typing.get_args(annotation):
+        found = _inner_model(arg)
+        if found is not None:
+            return found
+    return None
+
+
+def valid_keys(model: type[BaseModel]) -> list[str]:
+    return [f.alias or name for name, f in model.model_fields.items()]
+
+
+def format_validation_error(exc: ValidationError, model: type[BaseModel], prefix: str = "") -> str:
+    """Turn a Pydantic error into short lines naming the field path and the fix."""
+    lines = []
+    for err in exc.errors():
+        loc = tuple(err["loc"])
+        path = prefix + ".".join(str(p) for p in loc if not str(p).startswith("function-"))
+        # Pydantic adds union member tags (e.g. 'literal['auto']', 'float') to locations.
+        clean = tuple(
+            p for p in loc if not (isinstance(p, str) and ("[" in p or p in {"float", "int", "str"}))
+        )
+        path = prefix + ".".join(str(p) for p in clean)
+        if err["type"] == "extra_forbidden":
+            owner = _model_at(model, clean)
+            key = str(clean[-1])
+            hint = ""
+            if owner is not None:
+                keys = valid_keys(owner)
+                close = difflib.get_close_matches(key, keys, n=1, cutoff=0.5)
+                hint = (
+                    f"; did you mean '{close[0]}'?" if close else f"; valid keys: {', '.join(keys)}"
+                )
+            lines.append(f"{path}: unknown key '{key}'{hint}")
+        elif err["type"] == "missing":
+            lines.append(f"{path}: required field is missing")
+        else:
+            msg = err["msg"]
+            if msg.startswith("Value error, "):
+                msg = msg[len("Value error, ") :]
+            got = err.get("input")
+            shown = "" if isinstance(got, dict | list) else f" (got {got!r})"
+            lines.append(f"{path or '(top level)'}: {msg}{shown}")
+    # Union types produce one error per member; keep the distinct lines only.
+    seen: list[str] = []
+    for line in lines:
+        if line not in seen:
+            seen.append(line)
+    return "; ".join(seen)
+
+
+def load_mapping(path: str | Path) -> dict:
+    """Read a YAML or JSON file into a mapping, with a one-line error on failure."""
+    p = Path(path)
+    if not p.is_file():
+        raise InputError(f"{p}: file not found")
+    text = p.read_text(encoding="utf-8")
+    try:
+        data = json.loads(text) if p.suffix.lower() == ".json" else yaml.safe_load(text)
+    except (yaml.YAMLError, json.JSONDecodeError) as exc:
+        first = str(exc).splitlines()[0] if str(exc) else type(exc).__name__
+        mark = getattr(exc, "problem_mark", None)
+        where = f" at line {mark.line + 1}, column {mark.column + 1}" if mark else ""
+        raise InputError(f"{p}: not valid YAML/JSON{where}: {first}") from None
+    if not isinstance(data, dict):
+        raise InputError(f"{p}: expected a mapping of keys at the top level")
+    return data
+
+
+def parse_conveyor(data: dict, prefix: str = "") -> Conveyor:
+    """Validate a mapping as a :class:`Conveyor`; raise :class:`InputError` on problems."""
+    from engine import catalog
+
+    try:
+        conv = Conveyor.model_validate(data)
+    except ValidationError as exc:
+        raise InputError(format_validation_error(exc, Conveyor, prefix)) from None
+    catalog.check_conveyor(conv, prefix)
+    return conv
+
+
+def parse_scenario(data: dict, prefix: str = "") -> Scenario:
+    """Validate a mapping as a :class:`Scenario` (accepts a top-level ``scenario:`` key)."""
+    if set(data) == {"scenario"} and isinstance(data["scenario"], dict):
+        data = data["scenario"]
+        prefix = prefix + "scenario."
+    try:
+        return Scenario.model_validate(data)
+    except ValidationError as exc:
+        raise InputError(format_validation_error(exc, Scenario, prefix)) from None
+
+
+def load_conveyor(path: str | Path) -> Conveyor:
+    """Load a conveyor file (YAML or JSON)."""
+    return parse_conveyor(load_mapping(path))
