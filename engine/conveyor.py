@@ -170,6 +170,14 @@ class TakeUp(_Model):
         0.0, description="carriage and pulley mass in addition to the counterweight [kg]"
     )
 
+    @model_validator(mode="after")
+    def _kind_fields(self) -> TakeUp:
+        if self.type == "fixed" and self.mass_kg != "auto":
+            raise ValueError("a fixed take-up has no counterweight: give pretension_kn, not mass_kg")
+        if self.type == "gravity" and self.pretension_kn != "auto":
+            raise ValueError("a gravity take-up is set by its mass: give mass_kg, not pretension_kn")
+        return self
+
 
 class Brake(_Model):
     position: Literal["head", "tail"] = "head"
@@ -202,6 +210,9 @@ class Conveyor(_Model):
     holdback: bool = False
     sag_limit_pct: SagLimit = SagLimit()
     accessories: Accessories = Accessories()
+    safety_factor_min: PositiveFloat | None = Field(
+        None, description="minimum running belt safety factor [-]; default by belt kind"
+    )
 
     @model_validator(mode="after")
     def _shares(self) -> Conveyor:

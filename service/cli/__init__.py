@@ -1,5 +1,59 @@
-"""Command line entry point (placeholder while the package is assembled)."""
+"""The ``beltstudy`` command line.
+
+Each sub-command lives in its own module with a ``register(subparsers)`` function that adds
+its parser and sets ``func``. User mistakes (:class:`engine.conveyor.InputError`,
+:class:`service.errors.UserError`, ``ValueError`` raised for bad input) print one line and
+exit with status 2; no traceback.
+"""
+
+from __future__ import annotations
+
+import argparse
+import importlib
+import sys
+
+#: Sub-command modules, in the order they appear in ``--help``.
+COMMAND_MODULES = ("static", "sweep", "simulate", "study")
 
 
-def main() -> None:  # pragma: no cover
-    raise SystemExit("beltstudy: not built yet")
+def build_parser() -> argparse.ArgumentParser:
+    parser = argparse.ArgumentParser(
+        prog="beltstudy",
+        description="Belt conveyor friction models, Euler-X transient simulation and "
+        "parameter studies on Dask.",
+    )
+    sub = parser.add_subparsers(dest="command", metavar="COMMAND")
+    for name in COMMAND_MODULES:
+        module = importlib.import_module(f"service.cli.{name}")
+        module.register(sub)
+    return parser
+
+
+def main(argv: list[str] | None = None) -> int:
+    from engine.conveyor import InputError
+
+    parser = build_parser()
+    args = parser.parse_args(argv)
+    if not getattr(args, "func", None):
+        parser.print_help()
+        return 2
+    try:
+        code = args.func(args)
+    except InputError as exc:
+        print(f"error: {exc}", file=sys.stderr)
+        return 2
+    except KeyboardInterrupt:
+        print("interrupted", file=sys.stderr)
+        return 130
+    except Exception as exc:  # user errors from the service layer carry a status
+        if type(exc).__name__ in {"UserError", "ServiceError", "NotFound", "Invalid"} or hasattr(
+            exc, "user_message"
+        ):
+            print(f"error: {getattr(exc, 'user_message', exc)}", file=sys.stderr)
+            return 2
+        raise
+    return int(code or 0)
+
+
+if __name__ == "__main__":  # pragma: no cover
+    sys.exit(main())

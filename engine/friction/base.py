@@ -1,0 +1,64 @@
+"""The friction-model interface: a parameter dataclass and a law builder."""
+
+from __future__ import annotations
+
+import dataclasses
+import difflib
+from collections.abc import Callable
+from dataclasses import dataclass
+from typing import Any
+
+from engine.conveyor import InputError
+
+__all__ = ["FrictionModel", "param"]
+
+
+@dataclass(frozen=True)
+class FrictionModel:
+    """A friction model: name, description, parameter class and law builder."""
+
+    name: str
+    description: str
+    params_class: type
+    build: Callable[..., Any]
+
+    def params(self, overrides: dict[str, Any] | None = None):
+        """Default parameters with overrides applied; unknown names raise InputError."""
+        overrides = dict(overrides or {})
+        fields = {f.name: f for f in dataclasses.fields(self.params_class)}
+        clean = {}
+        for key, value in overrides.items():
+            if key not in fields:
+                close = difflib.get_close_matches(key, list(fields), n=1, cutoff=0.5)
+                hint = f"; did you mean '{close[0]}'?" if close else ""
+                raise InputError(
+                    f"models.{self.name}.{key}: unknown parameter of model '{self.name}'{hint} "
+                    f"valid: {', '.join(fields)}"
+                )
+            if value is None:
+                clean[key] = None
+                continue
+            try:
+                clean[key] = float(value)
+            except (TypeError, ValueError):
+                raise InputError(
+                    f"models.{self.name}.{key}: expected a number, got {value!r}"
+                ) from None
+        p = dataclasses.replace(self.params_class(), **clean)
+        check = getattr(p, "check", None)
+        if check is not None:
+            check()
+        return p
+
+    def parameter_table(self) -> list[dict[str, Any]]:
+        """Name, default and description of every parameter (from the dataclass metadata)."""
+        out = []
+        for f in dataclasses.fields(self.params_class):
+            default = f.default if f.default is not dataclasses.MISSING else None
+            out.append({"name": f.name, "default": default, "doc": f.metadata.get("doc", "")})
+        return out
+
+
+def param(default, doc: str):
+    """A dataclass field with a documented default (units in the doc string)."""
+    return dataclasses.field(default=default, metadata={"doc": doc})

@@ -1,0 +1,62 @@
+"""Pieces shared by the friction models: pulley allowances, accessories, feed."""
+
+from __future__ import annotations
+
+import numpy as np
+
+from engine.conveyor import Conveyor
+from engine.law import LawBuilder
+from engine.loop import CARRY, Loop
+
+#: CEMA pulley allowances T_p [N]: 200 lbf tight side (drive) pulleys, 150 lbf slack-side
+#: pulleys (the take-up pulley), 100 lbf other pulleys (CEMA 6th ed., Table 6-5 allowances as
+#: quoted in PHYSICS section 2; unverified).
+LBF = 4.4482216
+TP_TIGHT_N = 200 * LBF
+TP_SLACK_N = 150 * LBF
+TP_OTHER_N = 100 * LBF
+
+
+def pulley_allowances(loop: Loop, conv: Conveyor) -> np.ndarray:
+    """Per-element pulley resistance allowances [N] at the pulley elements."""
+    out = np.zeros(loop.n)
+    drive_pos = {d.position for d in conv.drives}
+    for idx, pos in ((loop.i_head, "head"), (loop.i_tail, "tail")):
+        out[idx] += TP_TIGHT_N if pos in drive_pos else TP_OTHER_N
+    if loop.i_takeup not in (loop.i_head, loop.i_tail):
+        out[loop.i_takeup] += TP_SLACK_N
+    elif loop.i_takeup == loop.i_tail and "tail" not in drive_pos:
+        out[loop.i_tail] += TP_SLACK_N - TP_OTHER_N
+    return out
+
+
+def add_accessories(b: LawBuilder, loop: Loop, conv: Conveyor) -> None:
+    """Lumped accessory resistances (scrapers, skirts, ploughs) at the head and tail [N]."""
+    acc = np.zeros(loop.n)
+    acc[loop.i_head] += conv.accessories.head_kn * 1e3
+    acc[loop.i_tail] += conv.accessories.tail_kn * 1e3
+    b.add("accessories", acc)
+
+
+def feed_index(loop: Loop) -> int:
+    """The feed point: the first carry element (tail end)."""
+    return 0
+
+
+def add_feed(b: LawBuilder, loop: Loop, conv: Conveyor) -> None:
+    """Force to accelerate the material at the feed, I_m (v - v0) [N] (DIN 22101, CEMA T_am).
+
+    I_m = m'_L v_design is the mass flow [kg/s]; as a law term: I_m |v| - I_m v0 on the feed
+    element, so in transients it scales with the belt speed.
+    """
+    im = loop.design_load_kg_m * loop.load_fraction * loop.speed_m_s  # [kg/s]
+    if im <= 0.0:
+        return
+    coef1 = np.zeros(loop.n)
+    coef0 = np.zeros(loop.n)
+    j = feed_index(loop)
+    assert loop.strand[j] == CARRY
+    coef1[j] = im
+    coef0[j] = -im * conv.material.loading_speed_m_s
+    b.add("feed", coef1, pv=1.0)
+    b.add("feed", coef0)

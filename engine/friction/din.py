@@ -1,0 +1,99 @@
+"""DIN 22101 / ISO 5048 main and secondary resistances (model ``din``, alias ``iso5048``).
+
+Notes
+-----
+Main resistance per idler element j (DIN 22101:2002 eq. for F_H, written per element):
+
+    F_H,j = f g dx_j [m'_R + (m'_G + m'_L) cos(a_j)]                      [N]
+
+with f = ``f_carry`` on the carry strand and ``f_return`` on the return strand. Secondary
+resistances F_N follow from the coefficient C(L) with F_H + F_N = C F_H, so
+F_N = (C - 1) sum F_H; they are placed at the pulleys (split evenly between the head and
+tail pulley elements, and the take-up pulley when it is separate), where they act. For
+L < 80 m DIN asks for explicit secondary resistances: the feed acceleration I_m (v - v0) on
+the feed element and pulley allowances (CEMA T_p values, see ``common``). With the C factor
+the feed is part of ``secondary`` and the ``feed`` part is 0. Speed independent; ignores
+temperature.
+
+References
+----------
+DIN 22101:2002-08 Continuous conveyors - Belt conveyors for loose bulk materials.
+ISO 5048:1989 Continuous mechanical handling equipment - Belt conveyors with carrying idlers.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from engine.conveyor import Conveyor, InputError
+from engine.friction.base import FrictionModel, param
+from engine.friction.common import add_accessories, add_feed, pulley_allowances
+from engine.law import LawBuilder, ResistanceLaw
+from engine.loop import CARRY, RETURN, G, Loop
+
+#: Coefficient C against conveyor length L [m] (DIN 22101 table as quoted in PHYSICS
+#: section 2; *unverified*). Interpolated linearly; 1.03 from 5000 m on.
+C_TABLE_L_M = np.array([80, 100, 150, 200, 300, 400, 500, 600, 800, 1000, 1500, 2000, 2500,
+                        5000], dtype=float)
+C_TABLE_C = np.array([1.92, 1.78, 1.58, 1.45, 1.31, 1.25, 1.20, 1.17, 1.12, 1.09, 1.06, 1.05,
+                      1.04, 1.03])
+
+
+def c_factor(length_m: float) -> float:
+    """DIN 22101 coefficient C for a conveyor of length L [m] (L >= 80 m)."""
+    return float(np.interp(length_m, C_TABLE_L_M, C_TABLE_C))
+
+
+@dataclass(frozen=True)
+class DinParams:
+    """Parameters of the DIN 22101 model."""
+
+    f_carry: float = param(0.020, "fictitious friction factor f, carry strand [-] (DIN 22101 "
+                                  "default 0.020; Harrison's comparison uses 0.010)")
+    f_return: float = param(0.020, "fictitious friction factor f, return strand [-] (0.020; "
+                                   "Harrison's comparison uses 0.008)")
+    c: float | None = param(None, "secondary resistance coefficient C override [-] (default "
+                                  "from the DIN table by length; needs C >= 1)")
+
+    def check(self) -> None:
+        if self.f_carry < 0 or self.f_return < 0:
+            raise InputError("models.din.f_carry/f_return: friction factors must be >= 0")
+        if self.c is not None and self.c < 1.0:
+            raise InputError(f"models.din.c: C must be >= 1 (got {self.c})")
+
+
+def build(loop: Loop, conv: Conveyor, temperature_c: float, params: DinParams) -> ResistanceLaw:
+    """Per-element DIN 22101 resistance law [N] (temperature is ignored)."""
+    b = LawBuilder(loop.n, loop.sag_w_n)
+    mass = loop.mR_kg_m + (loop.mG_kg_m + loop.mL_kg_m) * loop.cos_a
+    fh = G * loop.dx_m * mass
+    carry = np.where(loop.strand == CARRY, params.f_carry * fh, 0.0)
+    ret = np.where(loop.strand == RETURN, params.f_return * fh, 0.0)
+    b.add("main_carry", carry)
+    b.add("main_return", ret)
+    fh_total = float(carry.sum() + ret.sum())
+    c = params.c
+    if c is None and loop.length_m < 80.0:
+        add_feed(b, loop, conv)
+        b.add("secondary", pulley_allowances(loop, conv))
+        c_used = None
+    else:
+        c_used = c if c is not None else c_factor(loop.length_m)
+        idx = sorted({loop.i_head, loop.i_tail, loop.i_takeup})
+        sec = np.zeros(loop.n)
+        sec[idx] = (c_used - 1.0) * fh_total / len(idx)
+        b.add("secondary", sec)
+    add_accessories(b, loop, conv)
+    return b.build(info={"c_factor": c_used, "f_carry": params.f_carry,
+                         "f_return": params.f_return})
+
+
+MODEL = FrictionModel(
+    name="din",
+    description="DIN 22101 / ISO 5048: fictitious friction factor f per strand and the "
+                "secondary-resistance coefficient C(L)",
+    params_class=DinParams,
+    build=build,
+)

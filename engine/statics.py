@@ -1,0 +1,338 @@
+"""Steady running tensions, take-up sizing and design checks (PHYSICS section 1).
+
+The tension is walked round the loop, ``T[j] = T[j-1] + R_j + G_j - D_j``, with ``R_j`` the
+friction model's resistance law at the design speed, ``G_j`` the gravity component and
+``D_j`` the drive forces (their shares of Te = sum(R + G)). The walk fixes tensions up to a
+constant, which the take-up sets: a gravity take-up carries its counterweight on two strands,
+``T_in + T_out = m g``; a fixed take-up holds ``(T_in + T_out) / 2`` at its pretension. With
+``mass_kg: auto`` (or ``pretension_kn: auto``) the constant is the smallest that meets
+
+* slip at every drive at start-up (Euler-Eytelwein, T_tight / T_slack <= e^{mu theta}, with the
+  drive force times the start-up factor 1.5, the slack side held by the take-up), and running;
+* the sag limits on both strands, T >= g (m'_G + m'_L) S / (8 (h/S)_adm).
+
+Tension-dependent laws (nonlin, cmod) make this a fixed point; it is iterated to a relative
+change of 1e-6 and the iteration count is reported.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+
+import numpy as np
+import pandas as pd
+
+from engine.conveyor import Conveyor
+from engine.friction import get_model
+from engine.law import ResistanceLaw
+from engine.loop import CARRY, HEAD, RETURN, TAIL, TAKEUP, G, Loop, build_loop
+
+__all__ = ["SteadyResult", "solve_steady", "STARTUP_FACTOR", "SAFETY_FACTOR_MIN", "SPEC_PARTS"]
+
+#: Start-up force factor for slip sizing of the take-up [-] (PHYSICS section 1).
+STARTUP_FACTOR = 1.5
+#: Minimum running safety factor by belt kind [-]: typical DIN 22101 steady-state values
+#: (about 6.7 for steel cord, 10 for textile plies); estimates, override per conveyor with
+#: ``safety_factor_min``.
+SAFETY_FACTOR_MIN = {"steel": 6.7, "fabric": 10.0}
+#: Parts every model reports in ``te_components_kn`` (SPEC section 4).
+SPEC_PARTS = ("main_carry", "main_return", "lift", "feed", "secondary", "accessories")
+#: Fixed-point tolerance and iteration cap.
+TOL = 1e-6
+MAX_ITER = 200
+STRAND_NAMES = {CARRY: "carry", RETURN: "return", HEAD: "head", TAIL: "tail", TAKEUP: "takeup"}
+
+
+@dataclass
+class SteadyResult:
+    """Steady running solution. Forces in [N] unless the name says otherwise."""
+
+    conveyor: Conveyor
+    loop: Loop
+    law: ResistanceLaw
+    model: str
+    temperature_c: float
+    tension_n: np.ndarray  # boundary tensions, T[j] at the end of element j
+    resistance_n: np.ndarray  # R_j at design speed
+    drive_force_n: np.ndarray  # D_j (driving positive)
+    te_n: float
+    takeup_mass_kg: float | None
+    takeup_tension_n: float  # mean of the two strands at the take-up
+    iterations: int
+    summary: dict
+    warnings: list[str] = field(default_factory=list)
+    status: str = "ok"
+    message: str = ""
+
+    @property
+    def tension_mean_n(self) -> np.ndarray:
+        """Mean tension of each element (T[j-1] + T[j]) / 2 [N]."""
+        return 0.5 * (np.roll(self.tension_n, 1) + self.tension_n)
+
+    def profile(self) -> pd.DataFrame:
+        """Tension along the loop at element ends: s_m, strand, elevation_m, tension_kn, sag_pct."""
+        loop = self.loop
+        sag = np.where(loop.is_idler, 100 * loop.sag_w_n / np.maximum(self.tension_mean_n, 1.0),
+                       0.0)
+        return pd.DataFrame({
+            "s_m": loop.s_end_m,
+            "strand": [STRAND_NAMES[int(s)] for s in loop.strand],
+            "elevation_m": loop.z_end_m,
+            "tension_kn": self.tension_n / 1e3,
+            "sag_pct": sag,
+        })
+
+
+def _drive_elements(conv: Conveyor, loop: Loop) -> list[tuple[int, float, float]]:
+    """(element index, share, e^{mu theta}) per drive."""
+    out = []
+    for d in conv.drives:
+        idx = loop.i_head if d.position == "head" else loop.i_tail
+        out.append((idx, d.share, math.exp(d.friction * math.radians(d.wrap_deg))))
+    return out
+
+
+def _walk(loop: Loop, dF: np.ndarray) -> np.ndarray:
+    """Cumulative tension increments from the start of the loop, W[j] = sum_{i<=j} dF_i."""
+    return np.cumsum(dF)
+
+
+def _required_offset(loop: Loop, conv: Conveyor, W: np.ndarray, drives, d_force: np.ndarray,
+                     hs_adm: np.ndarray) -> tuple[float, dict]:
+    """Smallest constant c (T = c + W) meeting slip at start-up and running, and sag."""
+    bounds = {}
+    Wprev = np.roll(W, 1)
+    idl = loop.is_idler
+    tmin_elem = np.where(idl, loop.sag_w_n / hs_adm, 0.0)
+    lower = np.minimum(W, Wprev)
+    sag_need = np.max(np.where(idl, tmin_elem - lower, -np.inf)) if idl.any() else -np.inf
+    bounds["sag"] = float(sag_need)
+    slip_need = -np.inf
+    for idx, _share, e in drives:
+        d = d_force[idx]
+        w_in, w_out = Wprev[idx], W[idx]
+        # running: max(T_in, T_out) <= e min(T_in, T_out)
+        run = (max(w_in, w_out) - e * min(w_in, w_out)) / (e - 1.0)
+        # start-up: the slack side held by the take-up, the drive force x STARTUP_FACTOR
+        slack_w = w_out if d >= 0 else w_in
+        start = STARTUP_FACTOR * abs(d) / (e - 1.0) - slack_w
+        slip_need = max(slip_need, run, start)
+    bounds["slip"] = float(slip_need)
+    positive = float(np.max(1.0 - W))  # keep every tension above 1 N
+    bounds["positive"] = positive
+    return max(bounds.values()), bounds
+
+
+def solve_steady(
+    conv: Conveyor,
+    *,
+    model: str = "din",
+    params: dict | object | None = None,
+    temperature_c: float = 20.0,
+    load: float | str = 1.0,
+    n_elements: int | None = None,
+    target_dx_m: float | None = None,
+) -> SteadyResult:
+    """Steady running tensions of a conveyor for one friction model.
+
+    Parameters
+    ----------
+    conv : Conveyor
+    model : str
+        Friction model name (registry in :mod:`engine.friction`).
+    params : dict or parameter dataclass, optional
+        Model parameter overrides.
+    temperature_c : float
+        Ambient temperature [C].
+    load : float or 'full' / 'empty'
+        Load case as a fraction of the design load.
+    n_elements, target_dx_m : optional
+        Element count round the loop or target element length [m].
+
+    Returns
+    -------
+    SteadyResult
+        With ``summary`` holding the SPEC section 4 steady fields.
+    """
+    from engine.conveyor import load_fraction
+
+    fm = get_model(model)
+    p = params if (params is not None and not isinstance(params, dict)) else fm.params(params)
+    frac = load_fraction(load)
+    loop = build_loop(conv, frac, n_elements=n_elements, target_dx_m=target_dx_m)
+    law = fm.build(loop, conv, float(temperature_c), p)
+    v = loop.speed_m_s
+    grav = loop.gravity_n
+    drives = _drive_elements(conv, loop)
+    hs_adm = np.where(loop.strand == CARRY, conv.sag_limit_pct.carry / 100.0,
+                      conv.sag_limit_pct.return_ / 100.0)
+    tu = conv.takeup
+    k = loop.i_takeup
+
+    T = None
+    iterations = 0
+    converged = not law.tension_dependent
+    R = law.evaluate(v, None) if not law.tension_dependent else None
+    if R is None:
+        # first guess: tensions from the tension-independent terms at a nominal 1 % sag
+        T = np.full(loop.n, 1.0)
+    for iterations in range(1, MAX_ITER + 1):  # noqa: B007
+        if law.tension_dependent:
+            Tm = 0.5 * (np.roll(T, 1) + T) if iterations > 1 else np.maximum(
+                loop.sag_w_n / 0.01, 1.0)
+            R = law.evaluate(v, Tm)
+        dF = R + grav
+        te = float(dF.sum())
+        d_force = np.zeros(loop.n)
+        for idx, share, _e in drives:
+            d_force[idx] += share * te
+        W = _walk(loop, dF - d_force)
+        w_tu = 0.5 * (W[k - 1] + W[k])
+        if tu.type == "gravity" and tu.mass_kg != "auto":
+            c = float(tu.mass_kg) * G / 2.0 - w_tu
+        elif tu.type == "fixed" and tu.pretension_kn != "auto":
+            c = float(tu.pretension_kn) * 1e3 - w_tu
+        else:
+            c, _ = _required_offset(loop, conv, W, drives, d_force, hs_adm)
+        T_new = c + W
+        if not law.tension_dependent:
+            T = T_new
+            break
+        if T is not None and iterations > 1:
+            change = float(np.max(np.abs(T_new - T)) / max(np.max(np.abs(T_new)), 1.0))
+            T = T_new
+            if change < TOL:
+                converged = True
+                break
+        else:
+            T = T_new
+
+    assert T is not None and R is not None
+    c_need, bounds = _required_offset(loop, conv, W, drives, d_force, hs_adm)
+    takeup_tension = 0.5 * (T[k - 1] + T[k])
+    takeup_mass = float(2.0 * takeup_tension / G) if tu.type == "gravity" else None
+
+    result = SteadyResult(
+        conveyor=conv, loop=loop, law=law, model=fm.name, temperature_c=float(temperature_c),
+        tension_n=T, resistance_n=R, drive_force_n=d_force, te_n=te,
+        takeup_mass_kg=takeup_mass, takeup_tension_n=float(takeup_tension),
+        iterations=iterations, summary={},
+    )
+    _summarise(result, drives, hs_adm, bounds, c_need - (T[0] - W[0]))
+    if not converged:
+        result.status = "failed"
+        result.message = (
+            f"steady solve did not converge in {MAX_ITER} iterations (model {fm.name}); "
+            "the tension-dependent resistance may exceed what the take-up can hold: raise "
+            "takeup.mass_kg or use mass_kg: auto"
+        )
+        result.summary["status"] = result.status
+        result.summary["message"] = result.message
+    return result
+
+
+def _summarise(res: SteadyResult, drives, hs_adm, bounds, shortfall_n: float) -> None:
+    """Fill ``res.summary`` with the SPEC section 4 steady fields and the warnings."""
+    conv, loop, T = res.conveyor, res.loop, res.tension_n
+    belt = loop.belt
+    v = loop.speed_m_s
+    Tprev = np.roll(T, 1)
+    main_idx, _share, _e = max(drives, key=lambda d: d[1])
+    t1, t2 = Tprev[main_idx], T[main_idx]
+    if res.drive_force_n[main_idx] < 0:  # regenerating: tight side outgoing
+        t1, t2 = t2, t1
+    slip_margins, start_margins = [], []
+    for idx, _s, e in drives:
+        tin, tout = Tprev[idx], T[idx]
+        tight, slack = max(tin, tout), min(tin, tout)
+        slip_margins.append(e / (tight / slack) if slack > 0 else 0.0)
+        d = res.drive_force_n[idx]
+        slack_side = tout if d >= 0 else tin
+        tight_start = slack_side + STARTUP_FACTOR * abs(d)
+        start_margins.append(e / (tight_start / slack_side) if slack_side > 0 else 0.0)
+    s_end = loop.s_end_m
+    imax, imin = int(np.argmax(T)), int(np.argmin(T))
+    Tm = res.tension_mean_n
+    idl = loop.is_idler
+    sag = np.where(idl, loop.sag_w_n / np.maximum(Tm, 1.0), 0.0)
+    rating = belt.rating_n
+    parts = res.law.parts(v, Tm)
+    comps = {name: 0.0 for name in SPEC_PARTS}
+    if "idler_rotation" in parts:  # finer models replace main_* by their named parts
+        comps.pop("main_carry")
+        comps.pop("main_return")
+    for name, arr in parts.items():
+        comps[name] = comps.get(name, 0.0) + float(arr.sum()) / 1e3
+    comps["lift"] = float((loop.mL_kg_m * G * loop.dx_m * loop.sin_a).sum()) / 1e3
+    m_carry = belt.mass_kg_m + loop.design_load_kg_m * loop.load_fraction
+    mR_c = float(loop.mR_kg_m[loop.strand == CARRY][0])
+    mR_r = float(loop.mR_kg_m[loop.strand == RETURN][0])
+    eb = belt.stiffness_n
+    res.summary = {
+        "te_kn": res.te_n / 1e3,
+        "power_kw": res.te_n * v / 1e3,
+        "t1_kn": float(t1) / 1e3,
+        "t2_kn": float(t2) / 1e3,
+        "t_max_kn": float(T[imax]) / 1e3,
+        "t_max_at_m": float(s_end[imax]),
+        "t_min_kn": float(T[imin]) / 1e3,
+        "t_min_at_m": float(s_end[imin]),
+        "sag_max_pct": float(sag.max() * 100),
+        "takeup_mass_kg": res.takeup_mass_kg,
+        "takeup_tension_kn": res.takeup_tension_n / 1e3,
+        "slip_margin": float(min(slip_margins)),
+        "slip_margin_start": float(min(start_margins)),
+        "safety_factor": float(rating / T[imax]),
+        "belt_mass_kg_m": belt.mass_kg_m,
+        "load_mass_kg_m": loop.design_load_kg_m * loop.load_fraction,
+        "idler_mass_carry_kg_m": mR_c,
+        "idler_mass_return_kg_m": mR_r,
+        "belt_modulus_kn": eb / 1e3,
+        "belt_rating_kn": rating / 1e3,
+        "wave_speed_carry_m_s": math.sqrt(eb / (m_carry + mR_c)),
+        "wave_speed_return_m_s": math.sqrt(eb / (belt.mass_kg_m + mR_r)),
+        "te_components_kn": comps,
+        "steady_iterations": res.iterations,
+    }
+    warnings: list[str] = []
+    tu = conv.takeup
+    for (idx, _s, e), m_run, m_start in zip(drives, slip_margins, start_margins, strict=True):
+        where = "head" if idx == loop.i_head else "tail"
+        if m_run < 1.0 - 1e-6 or m_start < 1.0 - 1e-6:
+            which = "running" if m_run < 1.0 else f"start-up (force x {STARTUP_FACTOR})"
+            fix = ""
+            if shortfall_n > 0 and tu.type == "gravity":
+                need = (res.takeup_tension_n + shortfall_n) * 2 / G
+                fix = (f"; take-up mass {res.takeup_mass_kg:.0f} kg is below the "
+                       f"{need:.0f} kg needed (use mass_kg: auto)")
+            elif shortfall_n > 0:
+                fix = (f"; pretension {res.takeup_tension_n / 1e3:.1f} kN is below the "
+                       f"{(res.takeup_tension_n + shortfall_n) / 1e3:.1f} kN needed")
+            warnings.append(
+                f"slip at the {where} drive at {which}: slip margin "
+                f"{min(m_run, m_start):.2f} < 1 (e^(mu theta) = {e:.2f}){fix}"
+            )
+    for strand, name in ((CARRY, "carry"), (RETURN, "return")):
+        mask = loop.strand == strand
+        if mask.any():
+            worst = float(sag[mask].max())
+            limit = float(hs_adm[mask][0])
+            if worst > limit * (1 + 1e-9):
+                warnings.append(
+                    f"sag on the {name} strand {worst * 100:.2f} % exceeds "
+                    f"sag_limit_pct.{name} = {limit * 100:.2f} %"
+                )
+    sf_min = conv.safety_factor_min or SAFETY_FACTOR_MIN.get(belt.kind, 6.7)
+    sf = res.summary["safety_factor"]
+    if sf < sf_min:
+        warnings.append(f"belt safety factor {sf:.2f} is below the minimum {sf_min:.2f} "
+                        f"(belt rating {rating / 1e3:.0f} kN, t_max {T[imax] / 1e3:.1f} kN)")
+    if T.min() <= 1.0 + 1e-9:
+        warnings.append("the belt goes slack (tension at or below zero): raise the take-up")
+    res.warnings = warnings
+    res.status = "warning" if warnings else "ok"
+    res.message = "; ".join(warnings)
+    res.summary["status"] = res.status
+    res.summary["message"] = res.message
+

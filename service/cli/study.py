@@ -1,0 +1,5 @@
+"""`beltstudy` sub-commands: placeholder until this module is written."""
+
+
+def register(sub) -> None:
+    return None
