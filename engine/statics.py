@@ -105,7 +105,7 @@ def _required_offset(loop: Loop, conv: Conveyor, W: np.ndarray, drives, d_force:
     Wprev = np.roll(W, 1)
     idl = loop.is_idler
     tmin_elem = np.where(idl, loop.sag_w_n / hs_adm, 0.0)
-    lower = np.minimum(W, Wprev)
+    lower = 0.5 * (W + Wprev)  # sag of a span at its mean tension
     sag_need = np.max(np.where(idl, tmin_elem - lower, -np.inf)) if idl.any() else -np.inf
     bounds["sag"] = float(sag_need)
     slip_need = -np.inf

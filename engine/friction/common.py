@@ -17,12 +17,33 @@ TP_SLACK_N = 150 * LBF
 TP_OTHER_N = 100 * LBF
 
 
+def lumped_index(loop: Loop, conv: Conveyor, position: str) -> int:
+    """Element that carries the lumped resistances of the head or tail pulley.
+
+    On a drive pulley they act on the belt just after it (the head scraper works on the
+    return belt; the drive pulley's own bearing losses are the drive's), so that
+    T1 - T2 equals the drive's share of Te exactly (Harrison 2008: Pe = v (T1 - T2)).
+    """
+    idx = loop.i_head if position == "head" else loop.i_tail
+    if any(d.position == position for d in conv.drives):
+        idx = (idx + 1) % loop.n
+    return idx
+
+
+def lumped_indices(loop: Loop, conv: Conveyor) -> list[int]:
+    """Elements carrying the pulley resistances: head, tail and a separate take-up pulley."""
+    idx = {lumped_index(loop, conv, "head"), lumped_index(loop, conv, "tail")}
+    if loop.i_takeup not in (loop.i_head, loop.i_tail):
+        idx.add(loop.i_takeup)
+    return sorted(idx)
+
+
 def pulley_allowances(loop: Loop, conv: Conveyor) -> np.ndarray:
-    """Per-element pulley resistance allowances [N] at the pulley elements."""
+    """Per-element pulley resistance allowances [N] (CEMA T_p) at the pulleys."""
     out = np.zeros(loop.n)
     drive_pos = {d.position for d in conv.drives}
-    for idx, pos in ((loop.i_head, "head"), (loop.i_tail, "tail")):
-        out[idx] += TP_TIGHT_N if pos in drive_pos else TP_OTHER_N
+    for pos in ("head", "tail"):
+        out[lumped_index(loop, conv, pos)] += TP_TIGHT_N if pos in drive_pos else TP_OTHER_N
     if loop.i_takeup not in (loop.i_head, loop.i_tail):
         out[loop.i_takeup] += TP_SLACK_N
     elif loop.i_takeup == loop.i_tail and "tail" not in drive_pos:
@@ -33,8 +54,8 @@ def pulley_allowances(loop: Loop, conv: Conveyor) -> np.ndarray:
 def add_accessories(b: LawBuilder, loop: Loop, conv: Conveyor) -> None:
     """Lumped accessory resistances (scrapers, skirts, ploughs) at the head and tail [N]."""
     acc = np.zeros(loop.n)
-    acc[loop.i_head] += conv.accessories.head_kn * 1e3
-    acc[loop.i_tail] += conv.accessories.tail_kn * 1e3
+    acc[lumped_index(loop, conv, "head")] += conv.accessories.head_kn * 1e3
+    acc[lumped_index(loop, conv, "tail")] += conv.accessories.tail_kn * 1e3
     b.add("accessories", acc)
 
 

@@ -29,7 +29,12 @@ import numpy as np
 
 from engine.conveyor import Conveyor, InputError
 from engine.friction.base import FrictionModel, param
-from engine.friction.common import add_accessories, add_feed, pulley_allowances
+from engine.friction.common import (
+    add_accessories,
+    add_feed,
+    lumped_indices,
+    pulley_allowances,
+)
 from engine.law import LawBuilder, ResistanceLaw
 from engine.loop import CARRY, RETURN, G, Loop
 
@@ -81,7 +86,7 @@ def build(loop: Loop, conv: Conveyor, temperature_c: float, params: DinParams) -
         c_used = None
     else:
         c_used = c if c is not None else c_factor(loop.length_m)
-        idx = sorted({loop.i_head, loop.i_tail, loop.i_takeup})
+        idx = lumped_indices(loop, conv)
         sec = np.zeros(loop.n)
         sec[idx] = (c_used - 1.0) * fh_total / len(idx)
         b.add("secondary", sec)

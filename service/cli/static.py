@@ -1,0 +1,98 @@
+"""``beltstudy static``: steady running tensions of one conveyor for one friction model."""
+
+from __future__ import annotations
+
+import argparse
+
+FIELDS = [
+    ("te_kn", "peripheral force Te", "kN"),
+    ("power_kw", "power at the drive pulleys", "kW"),
+    ("t1_kn", "T1 tight side, main drive", "kN"),
+    ("t2_kn", "T2 slack side, main drive", "kN"),
+    ("t_max_kn", "maximum tension", "kN"),
+    ("t_max_at_m", "  at (from the tail, carry first)", "m"),
+    ("t_min_kn", "minimum tension", "kN"),
+    ("t_min_at_m", "  at", "m"),
+    ("sag_max_pct", "maximum sag h/S", "%"),
+    ("takeup_mass_kg", "take-up mass", "kg"),
+    ("takeup_tension_kn", "take-up tension per strand", "kN"),
+    ("slip_margin", "slip margin running (>1 safe)", "-"),
+    ("slip_margin_start", "slip margin at start-up", "-"),
+    ("safety_factor", "belt safety factor", "-"),
+    ("belt_mass_kg_m", "belt mass", "kg/m"),
+    ("load_mass_kg_m", "material mass", "kg/m"),
+    ("wave_speed_carry_m_s", "wave speed carry", "m/s"),
+    ("wave_speed_return_m_s", "wave speed return", "m/s"),
+]
+
+
+def register(sub) -> None:
+    p = sub.add_parser(
+        "static",
+        help="steady running tensions, power, take-up and checks of one conveyor",
+        description="Steady running tensions of CONVEYOR for one friction model.",
+    )
+    p.add_argument("conveyor", help="conveyor file (YAML or JSON)")
+    p.add_argument("--model", default="din", help="friction model: din (iso5048), cema, ...")
+    p.add_argument("--temperature-c", type=float, default=20.0, help="ambient temperature [C]")
+    p.add_argument("--param", action="append", metavar="NAME=VALUE",
+                   help="friction model parameter, repeatable (e.g. f_carry=0.010)")
+    p.add_argument("--load", default="full", help="full, empty or a fraction 0..1")
+    p.add_argument("--elements", type=int, default=None, help="belt elements round the loop")
+    p.add_argument("--json", action="store_true", help="print one JSON object")
+    p.add_argument("--profile", metavar="FILE", help="write the tension along the loop "
+                   "(.csv or .parquet)")
+    p.add_argument("--plot", metavar="FILE.png", help="draw the profile with the tensions")
+    p.set_defaults(func=run)
+
+
+def run(args: argparse.Namespace) -> int:
+    from engine.conveyor import InputError, load_conveyor
+    from engine.friction import get_model
+    from engine.statics import solve_steady
+    from service.cli.common import dumps, parse_load, parse_params, write_table
+
+    conv = load_conveyor(args.conveyor)
+    fm = get_model(args.model)
+    params = fm.params(parse_params(args.param, fm.name))
+    load = parse_load(args.load)
+    if args.elements is not None and args.elements < 2:
+        raise InputError("--elements: give at least 2 elements")
+    for path, exts in ((args.profile, (".csv", ".parquet")), (args.plot, (".png",))):
+        if path and not path.endswith(exts):
+            raise InputError(f"{path}: give a file ending in {' or '.join(exts)}")
+    res = solve_steady(conv, model=fm.name, params=params, temperature_c=args.temperature_c,
+                       load=load, n_elements=args.elements)
+    s = dict(res.summary)
+    s = {"conveyor": conv.name, "friction_model": fm.name,
+         "temperature_c": args.temperature_c, "load": load, **s}
+    if args.profile:
+        write_table(res.profile(), args.profile)
+    if args.plot:
+        from service.plots import steady_profile_figure
+
+        fig = steady_profile_figure(res.profile(), title=(
+            f"{conv.name}: {fm.name}, {args.temperature_c:g} C, load {load}"))
+        fig.savefig(args.plot, dpi=110)
+    if args.json:
+        print(dumps(s))
+    else:
+        print(_table(s))
+    return 0 if res.status != "failed" else 1
+
+
+def _table(s: dict) -> str:
+    lines = [f"{s['conveyor']}  model={s['friction_model']}  temperature={s['temperature_c']:g} C"
+             f"  load={s['load']}", ""]
+    for key, label, unit in FIELDS:
+        val = s.get(key)
+        if val is None:
+            continue
+        lines.append(f"  {label:<36} {val:>12.3f} {unit}")
+    lines.append("")
+    lines.append("  Te components [kN]")
+    for name, val in s["te_components_kn"].items():
+        lines.append(f"    {name:<34} {val:>12.3f}")
+    lines.append("")
+    lines.append(f"  status: {s['status']}" + (f"  ({s['message']})" if s["message"] else ""))
+    return "\n".join(lines)

@@ -1,0 +1,129 @@
+"""Tension walk closure, take-up sizing and the checks flipping at their thresholds."""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+from numpy.testing import assert_allclose
+
+from engine.conveyor import parse_conveyor
+from engine.loop import G
+from engine.statics import STARTUP_FACTOR, solve_steady
+from tests.conftest import CONVEYORS, hand_conveyor_dict
+
+
+@pytest.mark.parametrize("model", ["din", "cema"])
+@pytest.mark.parametrize("name", sorted(p.name for p in CONVEYORS.glob("*.yaml")))
+def test_walk_closes(name, model):
+    from engine.conveyor import load_conveyor
+
+    res = solve_steady(load_conveyor(CONVEYORS / name), model=model, n_elements=300)
+    T = res.tension_n
+    dF = res.resistance_n + res.loop.gravity_n
+    # Te is the sum of all element forces; the drives take it all
+    assert_allclose(dF.sum(), res.te_n, rtol=1e-12)
+    assert_allclose(res.drive_force_n.sum(), res.te_n, rtol=1e-12)
+    # every step of the walk: T[j] - T[j-1] = R_j + G_j - D_j, round the closed loop
+    assert_allclose(T - np.roll(T, 1), dF - res.drive_force_n, atol=1e-6 * np.abs(T).max())
+    # the parts of Te add up to Te
+    assert_allclose(sum(res.summary["te_components_kn"].values()), res.te_n / 1e3, rtol=1e-9)
+
+
+def _euler(wrap_deg=200, mu=0.35):
+    return math.exp(mu * math.radians(wrap_deg))
+
+
+def test_auto_takeup_meets_startup_slip_by_hand(hand_conveyor):
+    res = solve_steady(hand_conveyor, model="din")
+    te = res.te_n
+    # head drive, tail take-up, slip governs: T2 = 1.5 Te / (e^{mu theta} - 1)
+    t2_needed = STARTUP_FACTOR * te / (_euler() - 1.0)
+    assert_allclose(res.summary["t2_kn"] * 1e3, t2_needed, rtol=1e-6)
+    assert_allclose(res.summary["t1_kn"] - res.summary["t2_kn"], te / 1e3, rtol=1e-9)
+    assert res.summary["slip_margin_start"] == pytest.approx(1.0, abs=1e-9)
+    # gravity take-up: both strands at the tail carry m g / 2
+    loop = res.loop
+    k = loop.i_takeup
+    assert_allclose(res.tension_n[k - 1] + res.tension_n[k],
+                    res.summary["takeup_mass_kg"] * G, rtol=1e-9)
+    assert res.status == "ok"
+
+
+def test_slip_check_flips_at_threshold(hand_dict):
+    auto = solve_steady(parse_conveyor(hand_dict), model="din")
+    m_auto = auto.summary["takeup_mass_kg"]
+    for factor, expect_slip in ((1.01, False), (0.99, True)):
+        d = hand_conveyor_dict(takeup={"type": "gravity", "position": "tail",
+                                       "mass_kg": m_auto * factor})
+        res = solve_steady(parse_conveyor(d), model="din")
+        slip = any("slip" in w for w in res.warnings)
+        assert slip is expect_slip, res.warnings
+        if expect_slip:
+            assert res.status == "warning"
+            assert "kg needed" in res.message  # names the limit and the fix
+
+
+def test_impossible_fixed_takeup_warns_with_limit(hand_dict):
+    hand_dict["takeup"] = {"type": "fixed", "position": "tail", "pretension_kn": 5.0}
+    res = solve_steady(parse_conveyor(hand_dict), model="din")
+    assert res.status == "warning"
+    assert "slip" in res.message and "kN needed" in res.message
+
+
+def test_sag_check_flips_at_threshold(hand_dict):
+    base = solve_steady(parse_conveyor(hand_dict), model="din")
+    loop, T = base.loop, base.tension_n
+    Tm = 0.5 * (np.roll(T, 1) + T)
+    carry = loop.strand == 0
+    # sag h/S = g (m'_G + m'_L) cos S / (8 T) at the lowest carry tension, by hand
+    jmin = np.argmin(np.where(carry, Tm, np.inf))
+    sag = G * (20 + 50) * loop.cos_a[jmin] * 1.25 / (8 * Tm[jmin])
+    carry_sag = 100 * np.max(np.where(carry, loop.sag_w_n / Tm, 0))
+    assert_allclose(carry_sag, 100 * sag, rtol=1e-9)
+    mass = base.summary["takeup_mass_kg"]
+    for limit, expect in ((carry_sag * 1.01, False), (carry_sag * 0.99, True)):
+        hand_dict["sag_limit_pct"] = {"carry": limit, "return": 50.0}
+        hand_dict["takeup"] = {"type": "gravity", "position": "tail", "mass_kg": mass}
+        res = solve_steady(parse_conveyor(hand_dict), model="din")
+        flagged = any("sag on the carry strand" in w for w in res.warnings)
+        assert flagged is expect
+
+
+def test_auto_takeup_meets_sag_when_sag_governs(hand_dict):
+    hand_dict["sag_limit_pct"] = {"carry": 0.2, "return": 5.0}
+    res = solve_steady(parse_conveyor(hand_dict), model="din")
+    # the smallest carry tension is exactly the sag minimum T = g (m'_G+m'_L) cos S / (8 h/S)
+    assert_allclose(res.summary["sag_max_pct"], 0.2, rtol=1e-6)
+    assert res.summary["slip_margin_start"] > 1.0
+    assert not res.warnings
+
+
+def test_safety_factor_flips_at_threshold(hand_dict):
+    res = solve_steady(parse_conveyor(hand_dict), model="din")
+    sf = res.summary["safety_factor"]
+    # safety factor = rating x width / T_max = 1000 kN/m * 1 m / t_max
+    assert_allclose(sf, 1000.0 / res.summary["t_max_kn"], rtol=1e-12)
+    for sf_min, expect in ((sf * 0.99, False), (sf * 1.01, True)):
+        hand_dict["safety_factor_min"] = sf_min
+        r = solve_steady(parse_conveyor(hand_dict), model="din")
+        assert any("safety factor" in w for w in r.warnings) is expect
+
+
+def test_regenerating_drive_tight_side_outgoing():
+    from engine.conveyor import load_conveyor
+
+    res = solve_steady(load_conveyor(CONVEYORS / "downhill-regen.yaml"), model="din")
+    assert res.te_n < 0  # the drive brakes the belt
+    i = res.loop.i_head
+    t_in, t_out = res.tension_n[i - 1], res.tension_n[i]
+    assert t_out > t_in
+    assert res.summary["t1_kn"] == pytest.approx(t_out / 1e3)
+
+
+def test_elements_do_not_change_din(hand_conveyor):
+    a = solve_steady(hand_conveyor, model="din", n_elements=20).summary
+    b = solve_steady(hand_conveyor, model="din", n_elements=2000).summary
+    assert_allclose(a["te_kn"], b["te_kn"], rtol=1e-9)
+    assert_allclose(a["t_max_kn"], b["t_max_kn"], rtol=1e-9)

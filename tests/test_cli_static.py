@@ -1,0 +1,76 @@
+"""`beltstudy static` as a user runs it: real subprocess, JSON output, clean errors."""
+
+from __future__ import annotations
+
+import json
+import subprocess
+import sys
+
+import pandas as pd
+import pytest
+
+from tests.conftest import CONVEYORS
+
+EXE = [sys.executable, "-m", "service.cli"]
+
+
+def run(*args, check=True):
+    p = subprocess.run([*EXE, *args], capture_output=True, text=True, timeout=120)
+    if check:
+        assert p.returncode == 0, p.stderr
+    return p
+
+
+def test_static_json_and_profile(tmp_path):
+    prof = tmp_path / "profile.csv"
+    plot = tmp_path / "fig.png"
+    p = run("static", str(CONVEYORS / "slope-5pct.yaml"), "--model", "din", "--param",
+            "f_carry=0.010", "--param", "f_return=0.008", "--json", "--profile", str(prof),
+            "--plot", str(plot), "--elements", "200")
+    out = json.loads(p.stdout)
+    for key in ("te_kn", "power_kw", "t1_kn", "t2_kn", "t_max_kn", "t_max_at_m", "t_min_kn",
+                "t_min_at_m", "sag_max_pct", "takeup_mass_kg", "slip_margin", "safety_factor",
+                "belt_mass_kg_m", "load_mass_kg_m", "idler_mass_carry_kg_m",
+                "idler_mass_return_kg_m", "belt_modulus_kn", "belt_rating_kn",
+                "wave_speed_carry_m_s", "wave_speed_return_m_s", "te_components_kn", "status",
+                "message"):
+        assert key in out
+    assert set(out["te_components_kn"]) >= {"main_carry", "main_return", "lift", "feed",
+                                            "secondary", "accessories"}
+    assert out["power_kw"] == pytest.approx(out["te_kn"] * 4.5, rel=1e-9)
+    df = pd.read_csv(prof)
+    assert list(df.columns) == ["s_m", "strand", "elevation_m", "tension_kn", "sag_pct"]
+    assert df["tension_kn"].max() == pytest.approx(out["t_max_kn"], rel=1e-9)
+    assert plot.stat().st_size > 10_000 and plot.read_bytes()[:4] == b"\x89PNG"
+
+
+def test_static_table_output():
+    p = run("static", str(CONVEYORS / "fabric-1km.yaml"), "--model", "cema", "--load", "empty")
+    assert "peripheral force Te" in p.stdout and "status:" in p.stdout
+
+
+@pytest.mark.parametrize("args, needle", [
+    (["--model", "cemx"], "did you mean 'cema'"),
+    (["--param", "f_cary=0.01"], "did you mean 'f_carry'"),
+    (["--param", "f_carry"], "NAME=VALUE"),
+    (["--load", "heavy"], "--load"),
+    (["--profile", "x.txt"], ".csv or .parquet"),
+])
+def test_static_bad_args_one_line(args, needle):
+    p = run("static", str(CONVEYORS / "slope-5pct.yaml"), *args, check=False)
+    assert p.returncode == 2
+    assert needle in p.stderr
+    assert "Traceback" not in p.stderr and len(p.stderr.strip().splitlines()) == 1
+
+
+def test_static_bad_file_one_line(tmp_path):
+    bad = tmp_path / "bad.yaml"
+    bad.write_text("name: x\nspeed_m_s: [1\n")
+    p = run("static", str(bad), check=False)
+    assert p.returncode == 2 and "not valid YAML" in p.stderr and "Traceback" not in p.stderr
+    bad.write_text((CONVEYORS / "slope-5pct.yaml").read_text().replace("speed_m_s: 4.5",
+                                                                        "speed_m_s: 0"))
+    p = run("static", str(bad), check=False)
+    assert p.returncode == 2 and "speed_m_s" in p.stderr and "Traceback" not in p.stderr
+    p = run("static", str(tmp_path / "missing.yaml"), check=False)
+    assert p.returncode == 2 and "file not found" in p.stderr
