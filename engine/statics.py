@@ -41,6 +41,8 @@ SPEC_PARTS = ("main_carry", "main_return", "lift", "feed", "secondary", "accesso
 #: Fixed-point tolerance and iteration cap.
 TOL = 1e-6
 MAX_ITER = 200
+#: Smallest relaxation factor of the fixed-point iteration (Aitken / Irons-Tuck).
+OMEGA_MIN = 0.05
 STRAND_NAMES = {CARRY: "carry", RETURN: "return", HEAD: "head", TAIL: "tail", TAKEUP: "takeup"}
 
 
@@ -172,6 +174,7 @@ def solve_steady(
 
     T = None
     iterations = 0
+    omega, resid_prev = 1.0, None  # relaxation of the fixed point (tension-dependent laws)
     converged = not law.tension_dependent
     R = law.evaluate(v, None) if not law.tension_dependent else None
     if R is None:
@@ -200,11 +203,22 @@ def solve_steady(
             T = T_new
             break
         if T is not None and iterations > 1:
-            change = float(np.max(np.abs(T_new - T)) / max(np.max(np.abs(T_new)), 1.0))
-            T = T_new
+            resid = T_new - T
+            change = float(np.max(np.abs(resid)) / max(np.max(np.abs(T_new)), 1.0))
             if change < TOL:
+                T = T_new
                 converged = True
                 break
+            # Aitken (Irons-Tuck) dynamic relaxation: sag-driven resistance feeds back
+            # negatively (more tension, less resistance, less take-up tension), which makes
+            # the plain iteration oscillate; the factor is fitted from successive residuals.
+            if resid_prev is not None:
+                dr = resid - resid_prev
+                dd = float(dr @ dr)
+                if dd > 0.0:
+                    omega = float(np.clip(-omega * float(resid_prev @ dr) / dd, OMEGA_MIN, 1.0))
+            resid_prev = resid
+            T = T + omega * resid
         else:
             T = T_new
 

@@ -1,5 +1,205 @@
-"""`beltstudy` sub-commands: placeholder until this module is written."""
+"""``beltstudy sweep-temperature``: power against temperature per friction model (Harrison 2008,
+Fig. 2).
+
+For each model and each temperature the steady tensions are solved; the command writes a CSV
+(one row per model and temperature: power, Te and its parts) and a PNG in the style of the
+paper's figure: power against temperature for every model on the left, and on the right the
+Non-Lin parts (idler rotation, indentation, belt and material flexure) against temperature,
+like the figure's right window.
+"""
+
+from __future__ import annotations
+
+import argparse
+import math
+from pathlib import Path
+
+#: Colours of the models in the figure (the same model always gets the same colour).
+COLOURS = {"cema": "tab:red", "din": "tab:blue", "cmod": "tab:orange", "visco": "tab:purple",
+           "nonlin": "black"}
+NONLIN_PARTS = ("idler_rotation", "indentation", "belt_flexure", "material_flexure")
+MAX_POINTS = 1000
 
 
 def register(sub) -> None:
-    return None
+    p = sub.add_parser(
+        "sweep-temperature",
+        help="power against temperature for several friction models (paper Fig. 2)",
+        description="Steady power of CONVEYOR against ambient temperature for each friction "
+                    "model; writes a CSV and a PNG (Harrison 2008, Fig. 2) into --out.",
+    )
+    p.add_argument("conveyor", help="conveyor file (YAML or JSON)")
+    p.add_argument("--models", default="cema,din,nonlin,visco,cmod",
+                   help="comma-separated friction models (default: all five)")
+    p.add_argument("--from", dest="t_from", type=float, default=-40.0,
+                   help="first temperature [C] (default -40)")
+    p.add_argument("--to", dest="t_to", type=float, default=40.0,
+                   help="last temperature [C] (default 40)")
+    p.add_argument("--step", type=float, default=5.0, help="temperature step [K] (default 5)")
+    p.add_argument("--param", action="append", metavar="MODEL.NAME=VALUE",
+                   help="model parameter, repeatable (e.g. din.f_carry=0.010)")
+    p.add_argument("--load", default="full", help="full, empty or a fraction 0..1")
+    p.add_argument("--elements", type=int, default=None, help="belt elements round the loop")
+    p.add_argument("--out", required=True, metavar="DIR", help="output directory")
+    p.set_defaults(func=run)
+
+
+def temperatures(t_from: float, t_to: float, step: float) -> list[float]:
+    """The swept temperatures [C], ``t_from`` to ``t_to`` inclusive."""
+    from engine.conveyor import InputError
+
+    for name, val in (("--from", t_from), ("--to", t_to), ("--step", step)):
+        if not math.isfinite(val):
+            raise InputError(f"{name}: expected a finite number, got {val}")
+    if step <= 0:
+        raise InputError(f"--step: must be > 0 (got {step:g})")
+    if t_to < t_from:
+        raise InputError(f"--to ({t_to:g}) must not be below --from ({t_from:g})")
+    for name, val in (("--from", t_from), ("--to", t_to)):
+        if not -60.0 <= val <= 80.0:
+            raise InputError(f"{name}: temperatures run from -60 to 80 C (got {val:g})")
+    count = int(math.floor((t_to - t_from) / step + 1e-9)) + 1
+    if count > MAX_POINTS:
+        raise InputError(f"--step: {count} temperatures is too many (at most {MAX_POINTS})")
+    return [round(t_from + i * step, 9) for i in range(count)]
+
+
+def _model_list(text: str) -> list:
+    from engine.conveyor import InputError
+    from engine.friction import get_model
+
+    names = [s.strip() for s in text.split(",") if s.strip()]
+    if not names:
+        raise InputError("--models: give at least one model, e.g. --models din,nonlin")
+    out, seen = [], set()
+    for name in names:
+        fm = get_model(name)
+        if fm.name not in seen:
+            seen.add(fm.name)
+            out.append(fm)
+    return out
+
+
+def sweep(conv, models, temps, params: dict, load, n_elements=None):
+    """Solve every (model, temperature); return the long table as a DataFrame."""
+    import pandas as pd
+
+    from engine.statics import solve_steady
+
+    rows = []
+    for fm in models:
+        p = fm.params(params.get(fm.name))
+        for t in temps:
+            res = solve_steady(conv, model=fm.name, params=p, temperature_c=t, load=load,
+                               n_elements=n_elements)
+            s = res.summary
+            row = {"model": fm.name, "temperature_c": t, "power_kw": s["power_kw"],
+                   "te_kn": s["te_kn"], "t_max_kn": s["t_max_kn"], "t_min_kn": s["t_min_kn"],
+                   "sag_max_pct": s["sag_max_pct"], "iterations": res.iterations,
+                   "status": res.status, "message": res.message}
+            for part, val in s["te_components_kn"].items():
+                row[f"te_{part}_kn"] = val
+            rows.append(row)
+    return pd.DataFrame(rows)
+
+
+def figure(df, title: str):
+    """Power against temperature per model, and the Non-Lin parts (paper Fig. 2)."""
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    has_nonlin = (df["model"] == "nonlin").any()
+    ncols = 2 if has_nonlin else 1
+    fig, axes = plt.subplots(1, ncols, figsize=(6.5 * ncols, 4.8), squeeze=False)
+    ax = axes[0, 0]
+    for model, grp in df.groupby("model", sort=False):
+        ax.plot(grp["temperature_c"], grp["power_kw"], marker="o", ms=3,
+                color=COLOURS.get(model), lw=2.2 if model == "nonlin" else 1.5,
+                label=model)
+    ax.set_xlabel("ambient temperature [C]")
+    ax.set_ylabel("power at the drive pulleys [kW]")
+    ax.set_title(title)
+    ax.grid(alpha=0.3)
+    ax.legend(loc="best")
+    if has_nonlin:
+        ax2 = axes[0, 1]
+        nl = df[df["model"] == "nonlin"]
+        for part, style in zip(NONLIN_PARTS, ("-", "--", "-.", ":"), strict=True):
+            col = f"te_{part}_kn"
+            if col in nl:
+                ax2.plot(nl["temperature_c"], nl[col].fillna(0.0), style, lw=1.8,
+                         label=part.replace("_", " "))
+        din = df[df["model"] == "din"]
+        if len(din) and "te_main_carry_kn" in din:
+            main = (din["te_main_carry_kn"] + din["te_main_return_kn"]).to_numpy()
+            ax2.plot(din["temperature_c"], main, color=COLOURS["din"], lw=1.0,
+                     label="din main (carry + return)")
+        ax2.set_xlabel("ambient temperature [C]")
+        ax2.set_ylabel("Non-Lin running resistance parts [kN]")
+        ax2.set_title("Non-Lin parts of Te")
+        ax2.set_ylim(bottom=0.0)
+        ax2.grid(alpha=0.3)
+        ax2.legend(loc="best")
+    fig.tight_layout()
+    return fig
+
+
+def run(args: argparse.Namespace) -> int:
+    from engine.conveyor import InputError, load_conveyor
+    from service.cli.common import parse_load, parse_model_params
+
+    conv = load_conveyor(args.conveyor)
+    models = _model_list(args.models)
+    temps = temperatures(args.t_from, args.t_to, args.step)
+    load = parse_load(args.load)
+    if args.elements is not None and args.elements < 2:
+        raise InputError("--elements: give at least 2 elements")
+    raw = parse_model_params(args.param)
+    from engine.friction import get_model
+
+    params: dict[str, dict] = {}
+    names = {fm.name for fm in models}
+    for model, values in raw.items():
+        fm = get_model(model)
+        if fm.name not in names:
+            raise InputError(f"--param {model}.*: model '{fm.name}' is not in --models "
+                             f"({', '.join(sorted(names))})")
+        fm.params(values)  # validate now: unknown names fail before any solving
+        params[fm.name] = values
+    out = Path(args.out)
+    if out.exists() and not out.is_dir():
+        raise InputError(f"--out {out}: exists and is not a directory")
+    out.mkdir(parents=True, exist_ok=True)
+
+    df = sweep(conv, models, temps, params, load, args.elements)
+    load_tag = load if isinstance(load, str) else f"load{load:g}"
+    stem = f"{_safe(conv.name)}-{load_tag}"
+    csv_path = out / f"{stem}.csv"
+    png_path = out / f"{stem}.png"
+    df.to_csv(csv_path, index=False)
+    title = f"{conv.name}, load {load}"
+    fig = figure(df, title)
+    fig.savefig(png_path, dpi=110)
+    print(_table(df))
+    print(f"\nwrote {csv_path} and {png_path}")
+    failed = df[df["status"] == "failed"]
+    if len(failed):
+        print(f"{len(failed)} runs failed: {failed.iloc[0]['message']}")
+        return 1
+    return 0
+
+
+def _safe(name: str) -> str:
+    return "".join(ch if ch.isalnum() or ch in "-_." else "_" for ch in name) or "conveyor"
+
+
+def _table(df) -> str:
+    wide = df.pivot(index="temperature_c", columns="model", values="power_kw")
+    wide = wide[list(dict.fromkeys(df["model"]))]
+    lines = ["power [kW] against temperature [C]", "",
+             "  T [C] " + "".join(f"{m:>11}" for m in wide.columns)]
+    for t, row in wide.iterrows():
+        lines.append(f"{t:7.1f} " + "".join(f"{v:11.1f}" for v in row))
+    return "\n".join(lines)

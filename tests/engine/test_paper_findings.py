@@ -1,0 +1,112 @@
+"""Harrison (2008), section 2.2 and Fig. 2, on the 5 % slope example with the shipped defaults.
+
+a) CEMA and ViscoAH over-estimate the power (here: by at least 15 % over Non-Lin at 20 C);
+b) Non-Lin is close to DIN with f_carry 0.010, f_return 0.008 (within 15 % at 20 C, full);
+c) empty, Non-Lin needs less power than that DIN case;
+and PHYSICS section 2: Non-Lin rises steeply as it gets colder (-30 C >= 1.3 x +20 C with the
+standard compound), the LRR compound needs less power at every temperature, DIN is flat.
+The ``sweep-temperature`` command that draws the figure is exercised at the end.
+"""
+
+from __future__ import annotations
+
+from functools import cache
+
+import numpy as np
+import pandas as pd
+import pytest
+
+from engine.conveyor import load_conveyor
+from engine.statics import solve_steady
+from service.cli import main
+from tests.conftest import CONVEYORS
+
+SLOPE = CONVEYORS / "slope-5pct.yaml"
+DIN_PAPER = {"f_carry": 0.010, "f_return": 0.008}
+TEMPS = tuple(range(-40, 41, 5))
+
+
+@cache
+def conveyor(compound: str = "standard"):
+    conv = load_conveyor(SLOPE)
+    if compound != conv.belt.compound:
+        conv = conv.model_copy(update={"belt": conv.belt.model_copy(
+            update={"compound": compound})})
+    return conv
+
+
+@cache
+def power(model: str, temperature_c: float = 20.0, load: str = "full",
+          compound: str = "standard") -> float:
+    res = solve_steady(conveyor(compound), model=model,
+                       params=DIN_PAPER if model == "din" else None,
+                       temperature_c=temperature_c, load=load)
+    assert res.status != "failed", res.message
+    return res.summary["power_kw"]
+
+
+def test_nonlin_close_to_din_at_20c_full_load():
+    ratio = power("nonlin") / power("din")
+    assert abs(ratio - 1.0) <= 0.15, ratio
+
+
+def test_nonlin_below_din_when_empty():
+    assert power("nonlin", load="empty") < power("din", load="empty")
+
+
+@pytest.mark.parametrize("model", ["cema", "visco"])
+def test_cema_and_visco_exceed_nonlin(model):
+    assert power(model) >= 1.15 * power("nonlin")
+
+
+def test_nonlin_rises_steeply_when_cold():
+    assert power("nonlin", -30.0) >= 1.3 * power("nonlin", 20.0)
+    warm_to_cold = [power("nonlin", t) for t in range(40, -31, -5)]
+    assert np.all(np.diff(warm_to_cold) > 0)
+
+
+@pytest.mark.parametrize("load", ["full", "empty"])
+def test_lrr_below_standard_at_every_temperature(load):
+    for t in TEMPS:
+        assert power("nonlin", t, load, "lrr") < power("nonlin", t, load, "standard"), t
+
+
+def test_din_flat_in_temperature():
+    values = [power("din", t) for t in TEMPS]
+    assert max(values) - min(values) <= 1e-9 * values[0]
+
+
+def test_sweep_temperature_command(tmp_path, capsys):
+    code = main(["sweep-temperature", str(SLOPE), "--models", "din,nonlin,cema", "--from", "-30",
+                 "--to", "20", "--step", "25", "--param", "din.f_carry=0.010",
+                 "--param", "din.f_return=0.008", "--load", "full", "--out", str(tmp_path)])
+    assert code == 0
+    df = pd.read_csv(tmp_path / "slope-5pct-full.csv")
+    assert list(df["model"].unique()) == ["din", "nonlin", "cema"]
+    assert sorted(df["temperature_c"].unique()) == [-30.0, -5.0, 20.0]
+    nl = df[df["model"] == "nonlin"].set_index("temperature_c")
+    assert nl.loc[20.0, "power_kw"] == pytest.approx(power("nonlin"), rel=1e-12)
+    assert nl.loc[-30.0, "power_kw"] == pytest.approx(power("nonlin", -30.0), rel=1e-12)
+    din = df[df["model"] == "din"].set_index("temperature_c")
+    assert din.loc[20.0, "power_kw"] == pytest.approx(power("din"), rel=1e-12)
+    for part in ("idler_rotation", "indentation", "belt_flexure", "material_flexure"):
+        assert (nl[f"te_{part}_kn"] > 0).all()
+    png = tmp_path / "slope-5pct-full.png"
+    assert png.read_bytes()[:4] == b"\x89PNG" and png.stat().st_size > 20_000
+    assert "power [kW] against temperature" in capsys.readouterr().out
+
+
+@pytest.mark.parametrize("args, needle", [
+    (["--models", "din,nonlni"], "did you mean 'nonlin'"),
+    (["--step", "0"], "--step: must be > 0"),
+    (["--from", "20", "--to", "-20"], "must not be below --from"),
+    (["--param", "din.f_cary=0.01"], "did you mean 'f_carry'"),
+    (["--param", "cema.ky=0.02", "--models", "din"], "not in --models"),
+    (["--param", "f_carry=0.01"], "MODEL.NAME=VALUE"),
+    (["--load", "heavy"], "--load"),
+])
+def test_sweep_temperature_bad_args(tmp_path, capsys, args, needle):
+    code = main(["sweep-temperature", str(SLOPE), "--out", str(tmp_path / "o"), *args])
+    err = capsys.readouterr().err
+    assert code == 2 and needle in err
+    assert len(err.strip().splitlines()) == 1
