@@ -21,7 +21,6 @@ import math
 from dataclasses import dataclass, field
 
 import numpy as np
-import pandas as pd
 
 from engine.conveyor import Conveyor
 from engine.friction import get_model
@@ -72,8 +71,14 @@ class SteadyResult:
         """Mean tension of each element (T[j-1] + T[j]) / 2 [N]."""
         return 0.5 * (np.roll(self.tension_n, 1) + self.tension_n)
 
-    def profile(self) -> pd.DataFrame:
-        """Tension along the loop at element ends: s_m, strand, elevation_m, tension_kn, sag_pct."""
+    def profile(self):
+        """Tension along the loop at element ends: s_m, strand, elevation_m, tension_kn, sag_pct.
+
+        Returns a pandas DataFrame (pandas is imported here, not at module import, to keep the
+        command line quick).
+        """
+        import pandas as pd
+
         loop = self.loop
         sag = np.where(loop.is_idler, 100 * loop.sag_w_n / np.maximum(self.tension_mean_n, 1.0),
                        0.0)
