@@ -15,9 +15,12 @@ $(STAMP): $(BIN)/python pyproject.toml
 	$(BIN)/python -m pip install --quiet -e '.[test]'
 	touch $(STAMP)
 
+# The main job: start the study service (LocalCluster, data in ./data), submit
+# studies/paper-comparison.yaml, show progress, print CEMA vs Non-Lin, stop the service.
 run: $(STAMP)
-	$(BIN)/beltstudy static studies/conveyors/overland-16km.yaml --model nonlin --temperature-c 20
+	$(BIN)/beltstudy demo
 
+# The study service on http://127.0.0.1:8000 (docs at /docs) until Ctrl-C.
 serve: $(STAMP)
 	$(BIN)/beltstudy serve
 

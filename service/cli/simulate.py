@@ -1,5 +1,187 @@
-"""`beltstudy` sub-commands: placeholder until this module is written."""
+"""``beltstudy simulate``: the transient start-run-stop cycle of one conveyor (Euler-X).
+
+Scenario fields given on the command line override the scenario file; everything is
+validated as a SPEC section 2 scenario, so mistakes name the field and exit with status 2.
+"""
+
+from __future__ import annotations
+
+import argparse
+
+import numpy as np
+import pandas as pd
+
+STEADY_FIELDS = [
+    ("te_kn", "peripheral force Te", "kN"),
+    ("power_kw", "power at the drive pulleys", "kW"),
+    ("t1_kn", "T1 tight side, main drive", "kN"),
+    ("t2_kn", "T2 slack side, main drive", "kN"),
+    ("t_max_kn", "maximum tension (steady)", "kN"),
+    ("t_min_kn", "minimum tension (steady)", "kN"),
+    ("takeup_mass_kg", "take-up mass", "kg"),
+]
+TRANSIENT_FIELDS = [
+    ("t_max_dyn_kn", "maximum tension (transient)", "kN"),
+    ("t_max_dyn_at_m", "  at (from the tail, carry first)", "m"),
+    ("t_max_dyn_time_s", "  at time", "s"),
+    ("t_min_dyn_kn", "minimum tension (transient)", "kN"),
+    ("t_min_dyn_at_m", "  at", "m"),
+    ("t_min_dyn_time_s", "  at time", "s"),
+    ("dyn_factor", "dynamic factor t_max_dyn / t_max", "-"),
+    ("drive_force_max_kn", "largest drive force", "kN"),
+    ("drive_power_max_kw", "largest drive power", "kW"),
+    ("velocity_max_m_s", "highest element speed", "m/s"),
+    ("velocity_min_m_s", "lowest element speed (run-back < 0)", "m/s"),
+    ("takeup_travel_m", "take-up carriage travel", "m"),
+    ("start_time_s", "start time achieved", "s"),
+    ("stop_time_s", "stop time achieved", "s"),
+    ("wave_loop_time_s", "wave loop time", "s"),
+    ("stop_wave_ratio", "stop time / wave loop time", "-"),
+    ("sag_max_dyn_pct", "largest sag (transient)", "%"),
+    ("slip_margin_min_dyn", "smallest slip margin (transient)", "-"),
+    ("safety_factor_dyn", "belt safety factor (transient)", "-"),
+    ("dt_s", "time step", "s"),
+    ("elements", "elements", "-"),
+]
 
 
 def register(sub) -> None:
-    return None
+    p = sub.add_parser(
+        "simulate",
+        help="transient start, run and stop of one conveyor (Euler-X)",
+        description="Simulate the rest -> start -> run -> stop -> rest cycle of CONVEYOR "
+                    "(seed paper section 3). Command-line scenario fields override the "
+                    "scenario file.",
+    )
+    p.add_argument("conveyor", help="conveyor file (YAML or JSON)")
+    p.add_argument("--model", default="din", help="friction model: din, cema, cmod, visco, "
+                   "nonlin")
+    p.add_argument("--temperature-c", type=float, default=None,
+                   help="ambient temperature [C] (default: the scenario's, else 20)")
+    p.add_argument("--scenario", metavar="SCENARIO.yaml", help="scenario file (SPEC section 2)")
+    p.add_argument("--param", action="append", metavar="NAME=VALUE",
+                   help="friction model parameter, repeatable (e.g. f_carry=0.010)")
+    p.add_argument("--load", default=None, help="full, empty or a fraction 0..1")
+    p.add_argument("--start-control", choices=["s-curve", "linear", "torque"], default=None)
+    p.add_argument("--start-time-s", type=float, default=None, help="start time [s]")
+    p.add_argument("--run-s", type=float, default=None, help="steady running time [s]")
+    p.add_argument("--stop-mode", choices=["coast", "brake", "controlled"], default=None)
+    p.add_argument("--stop-time-s", type=float, default=None, help="target stop time [s]")
+    p.add_argument("--formulation", choices=["relative", "support"], default=None,
+                   help="relative (drive force from a speed controller) or support (drive "
+                        "pulley motion imposed)")
+    p.add_argument("--elements", type=int, default=None, help="belt elements round the loop")
+    p.add_argument("--dt-s", type=float, default=None, help="fixed time step [s] "
+                   "(default: automatic, half the stability limit)")
+    p.add_argument("--record-dt-s", type=float, default=None, help="time-series spacing [s]")
+    p.add_argument("--json", action="store_true", help="print one JSON object")
+    p.add_argument("--timeseries", metavar="FILE", help="write the SPEC section 5 key-point "
+                   "time series (.parquet or .csv)")
+    p.add_argument("--plot", metavar="FILE.png", help="tension at eight points round the loop "
+                   "against time with the belt speed below (the paper's Fig. 4)")
+    p.set_defaults(func=run)
+
+
+def build_scenario(args: argparse.Namespace):
+    """The scenario file (if any) with the command-line fields on top, validated."""
+    from engine.conveyor import load_mapping, parse_scenario
+    from service.cli.common import parse_load
+
+    data: dict = {}
+    if args.scenario:
+        data = load_mapping(args.scenario)
+        if set(data) == {"scenario"} and isinstance(data["scenario"], dict):
+            data = data["scenario"]
+    data = {k: (dict(v) if isinstance(v, dict) else v) for k, v in data.items()}
+    start = data.setdefault("start", {})
+    stop = data.setdefault("stop", {})
+    over = {
+        ("temperature_c",): args.temperature_c,
+        ("start", "control"): args.start_control,
+        ("start", "time_s"): args.start_time_s,
+        ("run_s",): args.run_s,
+        ("stop", "mode"): args.stop_mode,
+        ("stop", "time_s"): args.stop_time_s,
+        ("formulation",): args.formulation,
+        ("elements",): args.elements,
+        ("dt_s",): args.dt_s,
+        ("record_dt_s",): args.record_dt_s,
+    }
+    for path, value in over.items():
+        if value is None:
+            continue
+        target = {"start": start, "stop": stop}.get(path[0], data) if len(path) == 2 else data
+        target[path[-1]] = value
+    if args.load is not None:
+        data["load"] = parse_load(args.load)
+    if not start:
+        data.pop("start")
+    if not stop:
+        data.pop("stop")
+    return parse_scenario(data, prefix="scenario.")
+
+
+def traces_long(traces: pd.DataFrame) -> pd.DataFrame:
+    """The probe traces (``t_s`` and ``T@<s>m`` columns) as a long table for the figure."""
+    parts = []
+    for col in traces.columns:
+        if not col.startswith("T@"):
+            continue
+        s = float(col[2:-1])
+        parts.append(pd.DataFrame({"t_s": traces["t_s"].to_numpy(), "s_m": s,
+                                   "tension_kn": traces[col].to_numpy()}))
+    return pd.concat(parts, ignore_index=True) if parts else pd.DataFrame(
+        columns=["t_s", "s_m", "tension_kn"])
+
+
+def run(args: argparse.Namespace) -> int:
+    from engine.conveyor import InputError, load_conveyor
+    from engine.friction import get_model
+    from engine.run import run_one
+    from service.cli.common import dumps, parse_params, write_table
+
+    conv = load_conveyor(args.conveyor)
+    fm = get_model(args.model)
+    params = fm.params(parse_params(args.param, fm.name))
+    for path, exts in ((args.timeseries, (".csv", ".parquet")), (args.plot, (".png",))):
+        if path and not path.endswith(exts):
+            raise InputError(f"{path}: give a file ending in {' or '.join(exts)}")
+    scn = build_scenario(args)
+    res = run_one(conv, scn, model=fm.name, params=params, dynamics=True)
+    s = {"conveyor": conv.name, "friction_model": fm.name,
+         "temperature_c": scn.temperature_c, "load": scn.load,
+         "stop_mode": scn.stop.mode, "formulation": scn.formulation, **res.summary}
+    if args.timeseries and res.timeseries is not None:
+        write_table(res.timeseries, args.timeseries)
+    if args.plot:
+        from service.plots import transient_figure
+
+        surface = traces_long(res.transient.traces) if res.transient is not None else None
+        fig = transient_figure(res.timeseries, surface, title=(
+            f"{conv.name}: {fm.name}, {scn.temperature_c:g} C, load {scn.load}, "
+            f"{scn.start.control} start {scn.start.time_s:g} s, {scn.stop.mode} stop"))
+        fig.savefig(args.plot, dpi=110)
+    if args.json:
+        print(dumps(s))
+    else:
+        print(_table(s))
+    return 0 if s["status"] != "failed" else 1
+
+
+def _fmt(val) -> str:
+    if isinstance(val, float | int | np.floating) and not isinstance(val, bool):
+        return f"{float(val):>12.3f}"
+    return f"{val!s:>12}"
+
+
+def _table(s: dict) -> str:
+    lines = [f"{s['conveyor']}  model={s['friction_model']}  temperature={s['temperature_c']:g} C"
+             f"  load={s['load']}  stop={s['stop_mode']}  formulation={s['formulation']}", ""]
+    for title, fields in (("steady", STEADY_FIELDS), ("transient", TRANSIENT_FIELDS)):
+        lines.append(f"  {title}")
+        for key, label, unit in fields:
+            if key in s and s[key] is not None:
+                lines.append(f"    {label:<38} {_fmt(s[key])} {unit}")
+        lines.append("")
+    lines.append(f"  status: {s['status']}" + (f"  ({s['message']})" if s["message"] else ""))
+    return "\n".join(lines)

@@ -1,5 +1,243 @@
-"""`beltstudy` sub-commands: placeholder until this module is written."""
+"""``beltstudy serve | submit | run | status | results | compare | demo``: parameter studies.
+
+``submit``, ``status``, ``results`` and ``compare`` talk to a running service
+(``--url``, default ``BELTSTUDY_URL`` or http://127.0.0.1:8000); ``status``, ``results``
+and ``compare`` read the local store (``BELTSTUDY_DATA_DIR``) when no service answers.
+``run`` uses the same executor and store in-process, without HTTP. ``demo`` is ``make run``.
+"""
+
+from __future__ import annotations
+
+import argparse
+import os
+import sys
+from pathlib import Path
+
+__all__ = ["register"]
+
+DEFAULT_URL = "http://127.0.0.1:8000"
 
 
 def register(sub) -> None:
-    return None
+    p = sub.add_parser(
+        "serve",
+        help="run the study service (REST API, Dask executor)",
+        description="Run the study service; OpenAPI docs at /docs.",
+    )
+    p.add_argument("--host", default="127.0.0.1", help="address to listen on")
+    p.add_argument("--port", type=int, default=8000, help="port to listen on")
+    p.set_defaults(func=cmd_serve)
+
+    p = sub.add_parser("submit", help="submit a study file to a running service")
+    p.add_argument("study", help="study file (YAML or JSON)")
+    p.add_argument("--wait", action="store_true", help="show progress until the study ends")
+    _client_args(p)
+    p.set_defaults(func=cmd_submit)
+
+    p = sub.add_parser("run", help="run a study in this process (same executor and store)")
+    p.add_argument("study", help="study file (YAML or JSON)")
+    p.set_defaults(func=cmd_run)
+
+    p = sub.add_parser("status", help="state and progress of one study or of all")
+    p.add_argument("id", nargs="?", help="study id (all studies when omitted)")
+    _client_args(p)
+    p.set_defaults(func=cmd_status)
+
+    p = sub.add_parser("results", help="write a study's run rows to a file")
+    p.add_argument("id", help="study id")
+    p.add_argument(
+        "-o", "--output", required=True, help="output file: .parquet, .csv or .json (by extension)"
+    )
+    _client_args(p)
+    p.set_defaults(func=cmd_results)
+
+    p = sub.add_parser("compare", help="candidate / baseline friction model ratios of a study")
+    p.add_argument("id", help="study id")
+    p.add_argument("--baseline", default="cema", help="baseline friction model")
+    p.add_argument("--candidate", default="nonlin", help="candidate friction model")
+    p.add_argument(
+        "--metrics", default="power_kw,t_max_dyn_kn", help="comma-separated result columns"
+    )
+    _client_args(p)
+    p.set_defaults(func=cmd_compare)
+
+    p = sub.add_parser(
+        "demo",
+        help="the main job (make run): start the service, submit "
+        "studies/paper-comparison.yaml, show progress and the comparison",
+    )
+    p.add_argument("--study", default="studies/paper-comparison.yaml", help="study file")
+    p.add_argument("--port", type=int, default=0, help="service port (default: a free one)")
+    p.set_defaults(func=cmd_demo)
+
+
+def _client_args(p: argparse.ArgumentParser) -> None:
+    p.add_argument(
+        "--url", default=None, help=f"service address (default: BELTSTUDY_URL or {DEFAULT_URL})"
+    )
+    p.add_argument("--token", default=None, help="bearer token (default: BELTSTUDY_TOKEN)")
+
+
+def _settings():
+    from service.settings import Settings
+
+    return Settings()
+
+
+def _client(args):
+    from service.client import ServiceClient
+
+    url = args.url or os.environ.get("BELTSTUDY_URL") or DEFAULT_URL
+    token = args.token if args.token is not None else _settings().token
+    return ServiceClient(url, token)
+
+
+def _study_body(path: str) -> dict:
+    """A study file as a POST body: the conveyor file inlined, so the server needs no files."""
+    from engine.conveyor import load_mapping
+    from service.study import inline_conveyor
+
+    p = Path(path)
+    return inline_conveyor(load_mapping(p), p.parent)
+
+
+# ------------------------------------------------------------------------------ commands
+def cmd_serve(args) -> int:
+    import uvicorn
+
+    from service.api.app import create_app
+
+    uvicorn.run(create_app(_settings()), host=args.host, port=args.port, log_level="info")
+    return 0
+
+
+def cmd_submit(args) -> int:
+    from service.report import ProgressBar, format_status
+
+    body = _study_body(args.study)
+    with _client(args) as client:
+        st, created = client.submit(body)
+        print(
+            f"{'submitted' if created else 'already submitted'}: {st['id']} "
+            f"({st['total']} runs) {client.url}{st['status_url']}"
+        )
+        if not args.wait:
+            return 0
+        st = _poll(lambda: client.status(st["id"]), ProgressBar())
+        print(format_status(st))
+    return 0 if st["state"] == "done" else 1
+
+
+def _poll(get, progress, poll_s: float = 1.0) -> dict:
+    import time
+
+    while True:
+        st = get()
+        progress(st)
+        if st["state"] not in ("queued", "running"):
+            return st
+        time.sleep(poll_s)
+
+
+def cmd_run(args) -> int:
+    from service.report import ProgressBar, format_status
+    from service.studies import StudyService
+
+    settings = _settings()
+    service = StudyService(settings.model_copy(update={"warm_start": False}))
+    p = Path(args.study)
+    from engine.conveyor import load_mapping
+
+    data = load_mapping(p)
+    try:
+        st, created = service.submit(data, base_dir=p.parent, confine=False)
+        print(
+            f"{'study' if created else 'existing study'} {st['id']} ({st['total']} runs), "
+            f"data in {settings.studies_root / st['id']}",
+            file=sys.stderr,
+        )
+        st = service.wait(st["id"], progress=ProgressBar())
+    finally:
+        service.close()
+    print(format_status(st))
+    return 0 if st["state"] == "done" else 1
+
+
+def _local_service():
+    """Store-only access when no service answers (no Dask is started)."""
+    from service.studies import StudyService
+
+    return StudyService(_settings().model_copy(update={"warm_start": False}))
+
+
+def _with_fallback(args, remote, local):
+    from service.errors import Unavailable
+
+    try:
+        with _client(args) as client:
+            return remote(client)
+    except Unavailable:
+        if args.url:
+            raise
+        return local(_local_service())
+
+
+def cmd_status(args) -> int:
+    from service.report import format_status
+
+    if args.id:
+        st = _with_fallback(args, lambda c: c.status(args.id), lambda s: s.status(args.id))
+        print(format_status(st))
+        if st.get("message"):
+            print(f"  {st['message']}")
+        return 0
+    studies = _with_fallback(args, lambda c: c.list(), lambda s: s.list())
+    if not studies:
+        print("no studies")
+    for st in studies:
+        print(format_status(st))
+    return 0
+
+
+def cmd_results(args) -> int:
+    from service import results
+    from service.errors import Invalid
+
+    out = Path(args.output)
+    fmt = {".parquet": "parquet", ".csv": "csv", ".json": "json"}.get(out.suffix.lower())
+    if fmt is None:
+        raise Invalid(f"-o {out}: use a .parquet, .csv or .json file name")
+
+    def local(service):
+        df = service.runs(args.id)
+        if fmt == "parquet":
+            return results.to_parquet(df)
+        if fmt == "csv":
+            return results.to_csv(df).encode()
+        import json
+
+        return json.dumps({"runs": results.rows_to_json(df)}, indent=1).encode()
+
+    data = _with_fallback(args, lambda c: c.runs(args.id, fmt), local)
+    out.write_bytes(data)
+    print(f"wrote {out} ({len(data)} bytes)")
+    return 0
+
+
+def cmd_compare(args) -> int:
+    from service.report import format_compare
+
+    metrics = [m.strip() for m in args.metrics.split(",") if m.strip()]
+    result = _with_fallback(
+        args,
+        lambda c: c.compare(args.id, args.baseline, args.candidate, metrics),
+        lambda s: s.compare(args.id, args.baseline, args.candidate, metrics),
+    )
+    print(format_compare(result))
+    return 0
+
+
+def cmd_demo(args) -> int:
+    from service.demo import run_demo
+
+    return run_demo(args.study, port=args.port)

@@ -1,0 +1,55 @@
+"""``/health``, ``/models`` and ``/catalog/belts``."""
+
+from __future__ import annotations
+
+import dataclasses
+
+from fastapi import APIRouter, Depends
+
+import engine
+from service.api.deps import ERROR_RESPONSES, get_service, require_token
+from service.api.models import BeltsOut, Health, ModelsOut
+from service.studies import StudyService
+
+__all__ = ["router", "health_router"]
+
+health_router = APIRouter(tags=["meta"])
+router = APIRouter(tags=["meta"], dependencies=[Depends(require_token)], responses=ERROR_RESPONSES)
+
+
+@health_router.get("/health", response_model=Health, summary="Liveness and the Dask executor")
+def health(service: StudyService = Depends(get_service)) -> dict:
+    return {
+        "status": "ok",
+        "version": engine.__version__,
+        "executor": service.executor.info(),
+        "studies_running": service.running_count(),
+    }
+
+
+@router.get("/models", response_model=ModelsOut, summary="Friction models and their parameters")
+def models() -> dict:
+    from engine.friction import ALIASES, MODELS
+
+    out = []
+    for name, model in MODELS.items():
+        table = model.parameter_table()
+        for row in table:
+            if not isinstance(row["default"], int | float) or isinstance(row["default"], bool):
+                row["default"] = None
+        out.append(
+            {
+                "name": name,
+                "description": model.description,
+                "aliases": [a for a, target in ALIASES.items() if target == name],
+                "parameters": table,
+            }
+        )
+    return {"models": out}
+
+
+@router.get("/catalog/belts", response_model=BeltsOut, summary="The belt catalogue")
+def belts() -> dict:
+    from engine import catalog
+
+    return {"belts": [dataclasses.asdict(b) for b in catalog.belts().values()]}

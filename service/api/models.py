@@ -1,0 +1,121 @@
+"""Response bodies of the REST API (they make the OpenAPI schema at ``/openapi.json``)."""
+
+from __future__ import annotations
+
+from typing import Any, Literal
+
+from pydantic import BaseModel, Field
+
+__all__ = [
+    "ErrorOut",
+    "StudyStatus",
+    "StudyList",
+    "RunsPage",
+    "RunDetail",
+    "CompareOut",
+    "Deleted",
+    "ModelInfo",
+    "ModelsOut",
+    "BeltsOut",
+    "Health",
+]
+
+State = Literal["queued", "running", "done", "failed", "cancelled"]
+
+
+class ErrorOut(BaseModel):
+    """Every error: a kind and one line naming the problem (and the field)."""
+
+    error: str = Field(..., description="invalid | not_found | too_large | unauthorized | ...")
+    message: str
+
+
+class StudyStatus(BaseModel):
+    id: str
+    name: str
+    state: State
+    total: int = Field(..., description="runs in the study")
+    done: int = Field(..., description="runs finished (ok, warning or failed)")
+    failed: int = Field(..., description="runs with status failed")
+    elapsed_s: float = Field(..., description="compute wall time so far [s]")
+    eta_s: float | None = Field(None, description="estimated time left [s]")
+    message: str = ""
+    created_at: float | None = Field(None, description="Unix time")
+    started_at: float | None = None
+    finished_at: float | None = None
+    dynamics: bool
+    axes: dict[str, str] = Field(..., description="axis name -> runs column")
+    engine_version: str | None = None
+    status_url: str
+    runs_url: str
+
+
+class StudyList(BaseModel):
+    studies: list[StudyStatus]
+
+
+class RunsPage(BaseModel):
+    study_id: str
+    total: int = Field(..., description="rows matching the filters")
+    offset: int
+    limit: int | None
+    runs: list[dict[str, Any]] = Field(
+        ..., description="SPEC section 4 rows; te_components_kn as an object"
+    )
+
+
+class RunDetail(BaseModel):
+    study_id: str
+    run_id: str
+    summary: dict[str, Any]
+    timeseries: dict[str, list[float | None]] | None = Field(
+        None, description="SPEC section 5 key points, column -> values (null without dynamics)"
+    )
+
+
+class CompareOut(BaseModel):
+    study_id: str
+    baseline: str
+    candidate: str
+    metrics: list[str]
+    pairs: list[dict[str, Any]] = Field(
+        ..., description="axes, run ids and <metric>_baseline/_candidate/_ratio"
+    )
+    failed_pairs: int = Field(0, description="pairs with a failed run (no ratio)")
+    summary: dict[str, Any] = Field(
+        ..., description="metric -> {overall: stats, by_axis: {axis: {value: stats}}}"
+    )
+
+
+class Deleted(BaseModel):
+    id: str
+    state: Literal["cancelled"]
+    deleted: bool
+
+
+class ParamInfo(BaseModel):
+    name: str
+    default: float | None
+    doc: str
+
+
+class ModelInfo(BaseModel):
+    name: str
+    description: str
+    aliases: list[str]
+    parameters: list[ParamInfo]
+
+
+class ModelsOut(BaseModel):
+    models: list[ModelInfo]
+
+
+class BeltsOut(BaseModel):
+    belts: list[dict[str, Any]]
+
+
+class Health(BaseModel):
+    status: Literal["ok"]
+    version: str
+    executor: dict[str, Any]
+    studies_running: int

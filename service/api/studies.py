@@ -1,0 +1,193 @@
+"""``/studies`` routes: thin translations of HTTP to :class:`service.studies.StudyService`."""
+
+from __future__ import annotations
+
+import json
+from typing import Literal
+
+import yaml
+from fastapi import APIRouter, Depends, Query, Request, Response
+from fastapi.concurrency import run_in_threadpool
+
+from service import results
+from service.api.deps import ERROR_RESPONSES, _error, get_service, require_token
+from service.api.models import CompareOut, Deleted, RunDetail, RunsPage, StudyList, StudyStatus
+from service.errors import Invalid, TooLarge
+from service.studies import StudyService
+
+__all__ = ["router", "STUDY_BODY_SCHEMA_REF"]
+
+router = APIRouter(
+    prefix="/studies",
+    tags=["studies"],
+    dependencies=[Depends(require_token)],
+    responses=ERROR_RESPONSES,
+)
+
+STUDY_BODY_SCHEMA_REF = {"$ref": "#/components/schemas/StudyDoc"}
+YAML_TYPES = ("application/yaml", "application/x-yaml", "text/yaml")
+PARQUET_TYPE = "application/vnd.apache.parquet"
+
+
+def _with_urls(status: dict) -> dict:
+    return {
+        **status,
+        "status_url": f"/studies/{status['id']}",
+        "runs_url": f"/studies/{status['id']}/runs",
+    }
+
+
+async def _read_body(request: Request, limit: int) -> bytes:
+    declared = request.headers.get("content-length")
+    if declared and declared.isdigit() and int(declared) > limit:
+        raise TooLarge(f"body: {declared} bytes; the limit is {limit}")
+    chunks, size = [], 0
+    async for chunk in request.stream():
+        size += len(chunk)
+        if size > limit:
+            raise TooLarge(f"body: more than {limit} bytes")
+        chunks.append(chunk)
+    return b"".join(chunks)
+
+
+def _parse_body(body: bytes, content_type: str) -> object:
+    if not body.strip():
+        raise Invalid("body: empty; send a study as JSON or YAML")
+    try:
+        text = body.decode("utf-8")
+    except UnicodeDecodeError:
+        raise Invalid("body: not UTF-8 text") from None
+    if any(t in content_type for t in YAML_TYPES):
+        try:
+            return yaml.safe_load(text)
+        except yaml.YAMLError as exc:
+            mark = getattr(exc, "problem_mark", None)
+            where = f" at line {mark.line + 1}, column {mark.column + 1}" if mark else ""
+            problem = getattr(exc, "problem", None) or str(exc).splitlines()[0]
+            raise Invalid(f"body: not valid YAML{where}: {problem}") from None
+    try:
+        return json.loads(text)
+    except json.JSONDecodeError as exc:
+        raise Invalid(
+            f"body: not valid JSON at line {exc.lineno}, column {exc.colno}: {exc.msg} "
+            "(send YAML with Content-Type: application/yaml)"
+        ) from None
+
+
+@router.post(
+    "",
+    response_model=StudyStatus,
+    status_code=202,
+    summary="Submit a study (SPEC section 3), JSON or YAML",
+    responses={
+        200: {"model": StudyStatus, "description": "the same study was already submitted"},
+        413: _error("body or grid over the limit"),
+    },
+    openapi_extra={
+        "requestBody": {
+            "required": True,
+            "content": {
+                "application/json": {"schema": STUDY_BODY_SCHEMA_REF},
+                "application/yaml": {"schema": STUDY_BODY_SCHEMA_REF},
+            },
+        }
+    },
+)
+async def submit_study(
+    request: Request, response: Response, service: StudyService = Depends(get_service)
+) -> dict:
+    body = await _read_body(request, service.settings.max_body_bytes)
+    data = _parse_body(body, request.headers.get("content-type", "").lower())
+    status, created = await run_in_threadpool(service.submit, data)
+    response.status_code = 202 if created else 200
+    response.headers["Location"] = f"/studies/{status['id']}"
+    return _with_urls(status)
+
+
+@router.get("", response_model=StudyList, summary="All studies, oldest first")
+def list_studies(service: StudyService = Depends(get_service)) -> dict:
+    return {"studies": [_with_urls(s) for s in service.list()]}
+
+
+@router.get("/{study_id}", response_model=StudyStatus, summary="State and progress of a study")
+def get_study(study_id: str, service: StudyService = Depends(get_service)) -> dict:
+    return _with_urls(service.status(study_id))
+
+
+@router.get(
+    "/{study_id}/runs",
+    response_model=RunsPage,
+    summary="Run summary rows (SPEC section 4) as JSON, CSV or Parquet",
+    responses={
+        200: {
+            "content": {
+                "text/csv": {"schema": {"type": "string"}},
+                PARQUET_TYPE: {"schema": {"type": "string", "format": "binary"}},
+            }
+        }
+    },
+)
+def get_runs(
+    study_id: str,
+    format: Literal["json", "csv", "parquet"] = Query("json", description="output format"),
+    status: Literal["ok", "warning", "failed"] | None = Query(None, description="run status"),
+    friction_model: str | None = Query(None, description="keep one friction model"),
+    filter: list[str] = Query(
+        default_factory=list, description="column=value, repeatable (axis or result column)"
+    ),
+    limit: int | None = Query(None, ge=1, le=100_000, description="JSON: rows per page"),
+    offset: int = Query(0, ge=0, le=10_000_000, description="JSON: first row"),
+    service: StudyService = Depends(get_service),
+):
+    df = service.runs(study_id)
+    wanted = list(filter)
+    if status:
+        wanted.append(f"status={status}")
+    if friction_model:
+        wanted.append(f"friction_model={friction_model}")
+    if len(df):
+        df = results.apply_filters(df, wanted)
+    if format == "csv":
+        return Response(results.to_csv(df), media_type="text/csv; charset=utf-8")
+    if format == "parquet":
+        return Response(results.to_parquet(df), media_type=PARQUET_TYPE)
+    page = df.iloc[offset : offset + limit if limit else None]
+    return {
+        "study_id": study_id,
+        "total": int(len(df)),
+        "offset": offset,
+        "limit": limit,
+        "runs": results.rows_to_json(page),
+    }
+
+
+@router.get(
+    "/{study_id}/runs/{run_id}",
+    response_model=RunDetail,
+    summary="One run: summary row and key-point time series",
+)
+def get_run(study_id: str, run_id: str, service: StudyService = Depends(get_service)) -> dict:
+    return service.run_detail(study_id, run_id)
+
+
+@router.get(
+    "/{study_id}/compare",
+    response_model=CompareOut,
+    summary="Runs that differ only in friction model: candidate / baseline ratios",
+)
+def compare(
+    study_id: str,
+    baseline: str = Query("cema", description="baseline friction model"),
+    candidate: str = Query("nonlin", description="candidate friction model"),
+    metrics: str = Query(
+        ",".join(results.DEFAULT_METRICS), description="comma-separated numeric columns"
+    ),
+    service: StudyService = Depends(get_service),
+) -> dict:
+    names = [m.strip() for m in metrics.split(",") if m.strip()]
+    return service.compare(study_id, baseline, candidate, names)
+
+
+@router.delete("/{study_id}", response_model=Deleted, summary="Cancel a study and delete its files")
+def delete_study(study_id: str, service: StudyService = Depends(get_service)) -> dict:
+    return service.delete(study_id)

@@ -1,0 +1,215 @@
+"""Grid axes: which input field an axis name sets, and the Parquet column it becomes.
+
+An axis is one of the five named axes of the design card (``friction_model``,
+``temperature_c``, ``belt_type``, ``stop_time_s``, ``load``) or any dotted field of the
+conveyor (``takeup.mass_kg``, ``belt.width_m``, ``profile.0.lift_m``) or of the scenario
+(``scenario.run_s``, or bare ``run_s``). A ``conveyor.`` prefix is accepted too. Unknown
+paths are rejected with the nearest valid path.
+"""
+
+from __future__ import annotations
+
+import difflib
+import typing
+from dataclasses import dataclass
+from typing import Any
+
+from pydantic import BaseModel
+
+from engine.conveyor import Conveyor, Scenario
+
+__all__ = [
+    "NAMED_AXES",
+    "RESULT_COLUMNS_TAKEN",
+    "Target",
+    "resolve_axis",
+    "axis_column",
+    "set_path",
+    "get_path",
+    "valid_paths",
+]
+
+#: The design card's named axes -> (root, path) they set.
+NAMED_AXES: dict[str, tuple[str, ...]] = {
+    "friction_model": ("model",),
+    "temperature_c": ("scenario", "temperature_c"),
+    "belt_type": ("conveyor", "belt", "type"),
+    "stop_time_s": ("scenario", "stop", "time_s"),
+    "load": ("scenario", "load"),
+}
+
+#: Result columns an axis column must not shadow (SPEC section 4 names the achieved stop
+#: time ``stop_time_s``); such an axis is stored as ``<stem>_target_<unit>``.
+RESULT_COLUMNS_TAKEN = frozenset({"start_time_s", "stop_time_s"})
+
+
+@dataclass(frozen=True)
+class Target:
+    """Where an axis value goes: ``root`` is conveyor, scenario or model."""
+
+    root: str
+    path: tuple[str | int, ...]
+
+    @property
+    def dotted(self) -> str:
+        return ".".join([self.root, *map(str, self.path)])
+
+    def overlaps(self, other: Target) -> bool:
+        if self.root != other.root:
+            return False
+        n = min(len(self.path), len(other.path))
+        return self.path[:n] == other.path[:n]
+
+
+def _field_model(annotation: Any) -> tuple[type[BaseModel] | None, bool]:
+    """The model inside a field annotation and whether it is a list of that model."""
+    origin = typing.get_origin(annotation)
+    if origin is list:
+        inner, _ = _field_model(typing.get_args(annotation)[0])
+        return inner, True
+    if isinstance(annotation, type) and issubclass(annotation, BaseModel):
+        return annotation, False
+    for arg in typing.get_args(annotation):
+        found, is_list = _field_model(arg)
+        if found is not None:
+            return found, is_list
+    return None, False
+
+
+def _lookup(model: type[BaseModel], key: str) -> str | None:
+    """The key as it appears in the dumped mapping (alias when there is one)."""
+    for name, f in model.model_fields.items():
+        if key in (name, f.alias):
+            return f.alias or name
+    return None
+
+
+def _walk(model: type[BaseModel], parts: list[str], data: Any) -> tuple[str | int, ...] | str:
+    """Check ``parts`` against the model tree; return the normalised path or an error."""
+    out: list[str | int] = []
+    current: type[BaseModel] | None = model
+    is_list = False
+    for part in parts:
+        if is_list:
+            if not part.isdigit():
+                return f"expected an index into '{'.'.join(map(str, out))}', got '{part}'"
+            index = int(part)
+            size = len(data) if isinstance(data, list) else 0
+            if index >= size:
+                return (
+                    f"'{'.'.join(map(str, out))}' has {size} entries; index {index} is out of range"
+                )
+            out.append(index)
+            data = data[index]
+            is_list = False
+            continue
+        if current is None:
+            return f"'{'.'.join(map(str, out))}' has no sub-fields"
+        key = _lookup(current, part)
+        if key is None:
+            return "unknown"
+        field = next(f for n, f in current.model_fields.items() if key in (n, f.alias))
+        out.append(key)
+        data = data.get(key) if isinstance(data, dict) else None
+        current, is_list = _field_model(field.annotation)
+    return tuple(out)
+
+
+def _paths(model: type[BaseModel], prefix: str, data: Any) -> list[str]:
+    out = []
+    for name, f in model.model_fields.items():
+        key = f.alias or name
+        path = f"{prefix}{key}"
+        out.append(path)
+        inner, is_list = _field_model(f.annotation)
+        if inner is None:
+            continue
+        sub = data.get(key) if isinstance(data, dict) else None
+        if is_list:
+            items = sub if isinstance(sub, list) and sub else [None]
+            for i, item in enumerate(items):
+                out.append(f"{path}.{i}")
+                out.extend(_paths(inner, f"{path}.{i}.", item))
+        else:
+            out.extend(_paths(inner, f"{path}.", sub))
+    return out
+
+
+def valid_paths(conveyor: dict, scenario: dict) -> list[str]:
+    """Every axis name accepted for this conveyor and scenario (for suggestions)."""
+    return (
+        list(NAMED_AXES) + _paths(Conveyor, "", conveyor) + _paths(Scenario, "scenario.", scenario)
+    )
+
+
+def resolve_axis(name: str, conveyor: dict, scenario: dict) -> Target:
+    """Map an axis name to the field it sets; raise ``ValueError`` naming the nearest path.
+
+    ``conveyor`` and ``scenario`` are the resolved (dumped) base mappings, used for list
+    lengths (``profile.3.lift_m`` needs four sections).
+    """
+    if name in NAMED_AXES:
+        root, *path = NAMED_AXES[name]
+        return Target(root, tuple(path))
+    parts = name.split(".")
+    if any(p == "" for p in parts):
+        raise ValueError(f"grid: axis '{name}' is not a dotted field path")
+    candidates: list[tuple[str, type[BaseModel], list[str], dict]] = []
+    if parts[0] == "scenario":
+        candidates.append(("scenario", Scenario, parts[1:], scenario))
+    elif parts[0] == "conveyor":
+        candidates.append(("conveyor", Conveyor, parts[1:], conveyor))
+    else:
+        candidates.append(("conveyor", Conveyor, parts, conveyor))
+        candidates.append(("scenario", Scenario, parts, scenario))
+    problems = []
+    for root, model, rest, data in candidates:
+        if not rest:
+            continue
+        found = _walk(model, rest, data)
+        if isinstance(found, tuple):
+            return Target(root, found)
+        if found != "unknown":
+            problems.append(found)
+    if problems:
+        raise ValueError(f"grid: axis '{name}': {problems[0]}")
+    close = difflib.get_close_matches(name, valid_paths(conveyor, scenario), n=1, cutoff=0.5)
+    hint = f"; did you mean '{close[0]}'?" if close else ""
+    raise ValueError(
+        f"grid: unknown axis '{name}'{hint} (axes are {', '.join(NAMED_AXES)} or a dotted "
+        "conveyor or scenario field such as takeup.mass_kg or scenario.run_s)"
+    )
+
+
+def axis_column(name: str) -> str:
+    """The Parquet column of an axis: its name, unless a result column has that name."""
+    if name not in RESULT_COLUMNS_TAKEN:
+        return name
+    stem, _, unit = name.rpartition("_")
+    return f"{stem}_target_{unit}"
+
+
+def get_path(data: Any, path: tuple[str | int, ...]) -> Any:
+    """``data[path]`` (None where the path is missing)."""
+    node = data
+    for key in path:
+        try:
+            node = node[key]
+        except (KeyError, IndexError, TypeError):
+            return None
+    return node
+
+
+def set_path(data: dict, path: tuple[str | int, ...], value: Any) -> None:
+    """Set ``data[path]`` in place, creating missing mappings on the way."""
+    node: Any = data
+    for key in path[:-1]:
+        if isinstance(key, int):
+            node = node[key]
+            continue
+        nxt = node.get(key)
+        if nxt is None:
+            nxt = {}
+            node[key] = nxt
+        node = nxt
+    node[path[-1]] = value

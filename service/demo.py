@@ -1,0 +1,155 @@
+"""The main job (``make run``): the service end to end on the embedded defaults.
+
+Starts ``beltstudy serve`` on a free loopback port (LocalCluster, data in ``./data``), submits
+``studies/paper-comparison.yaml`` over HTTP, shows progress, prints the CEMA vs Non-Lin
+comparison of drive power and transient peak tension and where the Parquet files are, and
+stops the service.
+"""
+
+from __future__ import annotations
+
+import os
+import signal
+import socket
+import subprocess
+import sys
+import time
+from pathlib import Path
+
+__all__ = ["run_demo", "free_port", "start_server", "stop_server", "wait_ready"]
+
+METRICS = ["power_kw", "t_max_dyn_kn"]
+
+
+def free_port() -> int:
+    with socket.socket() as s:
+        s.bind(("127.0.0.1", 0))
+        return s.getsockname()[1]
+
+
+def start_server(port: int, env: dict | None = None, log=None) -> subprocess.Popen:
+    """``beltstudy serve`` in a child process (its own process group)."""
+    cmd = [sys.executable, "-m", "service.cli", "serve", "--host", "127.0.0.1", "--port", str(port)]
+    return subprocess.Popen(
+        cmd,
+        env={**os.environ, **(env or {})},
+        stdout=log or subprocess.DEVNULL,
+        stderr=log or subprocess.DEVNULL,
+        start_new_session=True,
+    )
+
+
+def wait_ready(client, proc: subprocess.Popen | None = None, timeout_s: float = 300.0) -> dict:
+    """Poll ``/health`` until the Dask executor is ready (workers started and warmed)."""
+    from service.errors import Unavailable
+
+    t0 = time.monotonic()
+    while time.monotonic() - t0 < timeout_s:
+        if proc is not None and proc.poll() is not None:
+            raise Unavailable(f"the service exited with status {proc.returncode}")
+        try:
+            health = client.health()
+        except Unavailable:
+            health = None  # not listening yet
+        if health is not None:
+            if health["executor"]["state"] == "ready":
+                return health
+            if health["executor"]["state"] == "error":
+                raise Unavailable(f"Dask: {health['executor']['error']}")
+        time.sleep(0.5)
+    raise Unavailable(f"the service was not ready after {timeout_s:.0f} s")
+
+
+def stop_server(proc: subprocess.Popen, timeout_s: float = 30.0) -> None:
+    """SIGTERM (graceful: studies stay resumable), then SIGKILL of the group if needed."""
+    if proc.poll() is not None:
+        return
+    proc.send_signal(signal.SIGTERM)
+    try:
+        proc.wait(timeout_s)
+    except subprocess.TimeoutExpired:
+        os.killpg(proc.pid, signal.SIGKILL)
+        proc.wait(10)
+
+
+def _study_for_registry(body: dict) -> tuple[dict, str]:
+    """Keep the friction models the engine has; the candidate is nonlin when it exists."""
+    from engine.friction import MODELS, get_model
+
+    grid = dict(body.get("grid", {}))
+    models = grid.get("friction_model")
+    candidate = "nonlin"
+    if isinstance(models, list):
+        have = [m for m in models if get_model_name(m, get_model) in MODELS]
+        missing = [m for m in models if m not in have]
+        if missing:
+            print(f"note: friction models not in this engine yet, left out: {', '.join(missing)}")
+            grid["friction_model"] = have
+            body = {**body, "grid": grid}
+        if "nonlin" not in [get_model_name(m, get_model) for m in have]:
+            candidate = next((m for m in have if m != "cema"), "cema")
+            print(f"note: comparing cema with {candidate} instead of nonlin")
+    return body, candidate
+
+
+def get_model_name(name: str, get_model) -> str:
+    from engine.conveyor import InputError
+
+    try:
+        return get_model(name).name
+    except InputError:
+        return name
+
+
+def run_demo(study_path: str = "studies/paper-comparison.yaml", port: int = 0) -> int:
+    from service.cli.study import _study_body
+    from service.client import ServiceClient
+    from service.report import ProgressBar, format_compare, format_duration
+    from service.settings import Settings
+
+    settings = Settings()
+    port = port or free_port()
+    body, candidate = _study_for_registry(_study_body(study_path))
+    data_dir = Path(settings.data_dir).resolve()
+    log_path = data_dir / "service.log"
+    data_dir.mkdir(parents=True, exist_ok=True)
+    print(
+        f"starting the service on http://127.0.0.1:{port} (LocalCluster, data in {data_dir}, "
+        f"log {log_path})"
+    )
+    with open(log_path, "ab") as log:
+        proc = start_server(port, log=log)
+    t0 = time.monotonic()
+    try:
+        with ServiceClient(f"http://127.0.0.1:{port}", settings.token) as client:
+            health = wait_ready(client, proc)
+            print(
+                f"{health['executor']['workers']} Dask workers ready and warmed in "
+                f"{time.monotonic() - t0:.1f} s"
+            )
+            st, created = client.submit(body)
+            print(
+                f"{'submitted' if created else 'already in the store'}: {st['name']} "
+                f"{st['id']} ({st['total']} runs)"
+            )
+            bar = ProgressBar(every_s=3.0)
+            while True:
+                st = client.status(st["id"])
+                bar(st)
+                if st["state"] not in ("queued", "running"):
+                    break
+                time.sleep(1.0)
+            print(
+                f"{st['state']}: {st['done']} runs, {st['failed']} failed, compute time "
+                f"{format_duration(st['elapsed_s'])}"
+            )
+            result = client.compare(st["id"], "cema", candidate, METRICS)
+            print()
+            print(format_compare(result))
+    finally:
+        stop_server(proc)
+    runs = settings.studies_root / st["id"]
+    print()
+    print(f"Parquet files: {runs}/runs (summary rows), {runs}/timeseries, {runs}/surface")
+    print(f'read them with: pandas.read_parquet("{runs}/runs")')
+    return 0 if st["state"] == "done" else 1

@@ -1,0 +1,64 @@
+"""The service's one error hierarchy: each error carries an HTTP status and a one-line message.
+
+Routes raise these; one handler in :mod:`service.api.app` maps them to JSON responses
+``{"error": <kind>, "message": <text>}``. The CLI prints ``user_message`` on one line.
+"""
+
+from __future__ import annotations
+
+__all__ = [
+    "ServiceError",
+    "Invalid",
+    "NotFound",
+    "TooLarge",
+    "Unauthorized",
+    "Unavailable",
+]
+
+
+class ServiceError(Exception):
+    """Base class: ``message`` for people, ``status_code`` for HTTP."""
+
+    status_code = 500
+    kind = "error"
+
+    def __init__(self, message: str, status_code: int | None = None):
+        super().__init__(message)
+        self.message = message
+        if status_code is not None:
+            self.status_code = status_code
+
+    @property
+    def user_message(self) -> str:
+        return self.message
+
+
+class Invalid(ServiceError):
+    """The study or request is invalid (names the field)."""
+
+    status_code = 422
+    kind = "invalid"
+
+
+class NotFound(ServiceError):
+    status_code = 404
+    kind = "not_found"
+
+
+class TooLarge(ServiceError):
+    """A body or a study grid over the configured limit."""
+
+    status_code = 413
+    kind = "too_large"
+
+
+class Unauthorized(ServiceError):
+    status_code = 401
+    kind = "unauthorized"
+
+
+class Unavailable(ServiceError):
+    """The Dask cluster cannot be reached."""
+
+    status_code = 503
+    kind = "unavailable"

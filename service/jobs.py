@@ -1,0 +1,280 @@
+"""One study executing on Dask: batching, streaming results into the store, progress.
+
+A :class:`StudyJob` runs in its own thread. It skips the runs the store already has (so a
+restarted service resumes where it stopped), cuts the rest into batches of about
+``task_seconds`` of work (the first wave is one run per task, to measure), submits them
+with explicit keys, keeps about two tasks per worker in flight, and streams them back with
+``as_completed(..., with_results=True, raise_errors=False)``. A task that errors (a worker
+lost too often) becomes failed rows; the study goes on.
+"""
+
+from __future__ import annotations
+
+import hashlib
+import logging
+import math
+import threading
+import time
+import uuid
+from collections import deque
+
+import pyarrow as pa
+
+from service.errors import Unavailable
+from service.schema import axis_value, failed_row, rows_to_table, runs_schema_for_axes
+from service.store import Store
+from service.study import ResolvedStudy, RunSpec
+from service.tasks import run_batch
+
+__all__ = ["StudyJob", "study_schema", "batch_size"]
+
+log = logging.getLogger("beltstudy.jobs")
+
+#: Tasks kept in flight per worker.
+IN_FLIGHT_PER_WORKER = 2
+#: Largest batch [runs].
+MAX_BATCH = 1000
+#: Smallest work per task once the run time is known [s].
+MIN_TASK_S = 0.2
+#: Runs per task in the first wave, before any run time is measured.
+FIRST_BATCH_STEADY = 8
+FIRST_BATCH_DYNAMIC = 1
+#: How often study.json is rewritten while running [s].
+SAVE_EVERY_S = 1.0
+
+
+def batch_size(
+    per_run_s: float | None, pending: int, cap: int, task_seconds: float, dynamics: bool
+) -> int:
+    """Runs in the next task: about ``task_seconds`` of work, smaller near the end so every
+    worker stays busy, but never under ``MIN_TASK_S`` (a task round trip costs 10-100 ms).
+    Before any run time is measured (``per_run_s`` None): a first wave of small tasks."""
+    if per_run_s is None:
+        return FIRST_BATCH_DYNAMIC if dynamics else FIRST_BATCH_STEADY
+    per_run_s = max(per_run_s, 1e-6)
+    size = int(task_seconds / per_run_s)
+    fair = math.ceil(pending / max(cap, 1))
+    floor = math.ceil(MIN_TASK_S / per_run_s)
+    return max(1, min(size, max(fair, floor), MAX_BATCH))
+
+
+def study_schema(study: ResolvedStudy) -> pa.Schema:
+    """The runs schema of a study (axis column types from the axis values)."""
+    return runs_schema_for_axes([a.to_json() for a in study.axes])
+
+
+class StudyJob:
+    """Executes the missing runs of one study; progress readable from other threads."""
+
+    def __init__(self, study: ResolvedStudy, store: Store, executor, settings):
+        self.study = study
+        self.store = store
+        self.executor = executor
+        self.settings = settings
+        self.state = "queued"
+        self.done = 0
+        self.failed = 0
+        self.session_done = 0
+        self.session_start: float | None = None
+        self.elapsed_before = 0.0
+        self._cancel = threading.Event()
+        self._stop = threading.Event()
+        self._lock = threading.Lock()
+        self._inflight: dict = {}
+        self._thread = threading.Thread(
+            target=self._main, name=f"beltstudy-study-{study.id}", daemon=True
+        )
+        self.schema = study_schema(study)
+        self._types = {f.name: f.type for f in self.schema}
+
+    # ---------------------------------------------------------------- control
+    def start(self) -> None:
+        self._thread.start()
+
+    def is_alive(self) -> bool:
+        return self._thread.is_alive()
+
+    def join(self, timeout: float | None = None) -> None:
+        self._thread.join(timeout)
+
+    def cancel(self) -> None:
+        """Stop for good: cancel the tasks in flight (the caller deletes the study)."""
+        self._cancel.set()
+        self._stop.set()  # also wakes a job waiting for Dask
+        self._abort_inflight()
+
+    def stop(self) -> None:
+        """Stop for a service shutdown: the study stays ``running`` and resumes next start."""
+        self._stop.set()
+        self._abort_inflight()
+
+    def _abort_inflight(self) -> None:
+        with self._lock:
+            futures = list(self._inflight)
+        if futures:
+            try:
+                futures[0].client.cancel(futures)
+            except Exception:  # client already closed: nothing left to cancel
+                pass
+
+    @property
+    def halted(self) -> bool:
+        return self._cancel.is_set() or self._stop.is_set()
+
+    # ---------------------------------------------------------------- progress
+    def elapsed_s(self) -> float:
+        run = time.monotonic() - self.session_start if self.session_start else 0.0
+        return self.elapsed_before + run
+
+    def eta_s(self) -> float | None:
+        remaining = self.study.total - self.done
+        if remaining <= 0:
+            return 0.0
+        if not self.session_start or self.session_done == 0:
+            return None
+        rate = self.session_done / max(time.monotonic() - self.session_start, 1e-9)
+        return remaining / rate
+
+    def _save(self, **extra) -> None:
+        if self._cancel.is_set():
+            return
+        self.store.update(
+            self.study.id,
+            state=self.state,
+            done=self.done,
+            failed=self.failed,
+            elapsed_s=round(self.elapsed_s(), 3),
+            **extra,
+        )
+
+    # ---------------------------------------------------------------- main loop
+    def _main(self) -> None:
+        try:
+            self._execute()
+        except Exception as exc:  # an unexpected error ends this study, not the service
+            log.exception("study %s failed", self.study.id)
+            if not self._cancel.is_set():
+                self.state = "failed"
+                self._save(message=f"{type(exc).__name__}: {exc}", finished_at=time.time())
+
+    def _execute(self) -> None:
+        sid = self.study.id
+        doc = self.store.read(sid)
+        self.elapsed_before = float(doc.get("elapsed_s") or 0.0)
+        self.store.clean(sid)
+        have = self.store.done_runs(sid)
+        done_ids = set(have["run_id"]) if len(have) else set()
+        self.done = len(done_ids)
+        self.failed = int((have["status"] == "failed").sum()) if len(have) else 0
+        todo = deque(r for r in self.study.runs if r.run_id not in done_ids)
+        if todo:
+            client = self._wait_for_client()
+            if client is None:
+                return
+            self.state = "running"
+            self.session_start = time.monotonic()
+            self._save(started_at=doc.get("started_at") or time.time(), message="")
+            self._stream(client, todo)
+        if self.halted:
+            return
+        self.state = "done"
+        self._save(finished_at=time.time(), message=self._final_message())
+
+    def _final_message(self) -> str:
+        if self.failed:
+            return f"{self.failed} of {self.study.total} runs failed"
+        return ""
+
+    def _wait_for_client(self):
+        while not self.halted:
+            try:
+                return self.executor.client()
+            except Unavailable as exc:
+                self._save(message=f"waiting for Dask: {exc}")
+                self._stop.wait(5.0)
+        return None
+
+    def _stream(self, client, todo: deque[RunSpec]) -> None:
+        from distributed import as_completed
+
+        sid = self.study.id
+        nonce = uuid.uuid4().hex[:8]
+        seq = 0
+        per_run_s: float | None = None
+        ac = as_completed([], with_results=True, raise_errors=False, loop=client.loop)
+        last_save = time.monotonic()
+
+        def top_up() -> None:
+            nonlocal seq
+            cap = max(2, IN_FLIGHT_PER_WORKER * self.executor.n_workers())
+            while todo and len(self._inflight) < cap and not self.halted:
+                size = batch_size(
+                    per_run_s, len(todo), cap, self.settings.task_seconds, self.study.dynamics
+                )
+                batch = [todo.popleft() for _ in range(min(size, len(todo)))]
+                key = f"beltstudy-{sid}-{nonce}-{seq:06d}"
+                seq += 1
+                specs = [dict(vars(r)) for r in batch]  # shallow: shared dicts pickle once
+                fut = client.submit(run_batch, sid, specs, self.study.surface, key=key, pure=False)
+                with self._lock:
+                    self._inflight[fut] = batch
+                ac.add(fut)
+
+        top_up()
+        for fut, result in ac:
+            with self._lock:
+                batch = self._inflight.pop(fut, None)
+            if self.halted or batch is None:
+                if not self._inflight:
+                    break
+                continue
+            if fut.status == "finished":
+                self._commit(batch, result)
+                n = len(batch)
+                sample = result["seconds"] / n
+                per_run_s = sample if per_run_s is None else 0.7 * per_run_s + 0.3 * sample
+            elif fut.status == "cancelled":
+                todo.extendleft(reversed(batch))  # cancelled by the scheduler: run again
+            else:
+                exc = result[1] if isinstance(result, tuple) else result
+                message = f"task failed: {type(exc).__name__}: {exc}"[:1000]
+                self._commit(batch, {"rows": [self._failed(r, message) for r in batch]})
+            fut.release()
+            top_up()
+            if time.monotonic() - last_save > SAVE_EVERY_S:
+                self._save()
+                last_save = time.monotonic()
+
+    def _failed(self, spec: RunSpec, message: str) -> dict:
+        import engine
+
+        row = {
+            "study_id": self.study.id,
+            "run_id": spec.run_id,
+            **spec.axes,
+            "friction_model": spec.model,
+            "engine_version": engine.__version__,
+        }
+        row.update(failed_row(message))
+        return row
+
+    def _commit(self, batch: list[RunSpec], result: dict) -> None:
+        """Write one finished batch: time series first, the runs part last."""
+        if self._cancel.is_set():
+            return
+        key = hashlib.sha256("".join(r.run_id for r in batch).encode()).hexdigest()[:16]
+        sid = self.study.id
+        for table in ("surface", "timeseries"):
+            data = result.get(table)
+            if data is not None and data.num_rows:
+                self.store.write_part(sid, table, key, data)
+        rows = result["rows"]
+        for row in rows:
+            for col, value in list(row.items()):
+                typ = self._types.get(col)
+                if typ is not None and col in self.study.columns and value is not None:
+                    row[col] = axis_value(value, typ)
+        self.store.write_part(sid, "runs", key, rows_to_table(rows, self.schema))
+        self.done += len(rows)
+        self.failed += sum(1 for r in rows if r.get("status") == "failed")
+        self.session_done += len(rows)

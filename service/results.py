@@ -1,0 +1,180 @@
+"""Reading results: JSON-safe rows, filters, and the friction-model comparison.
+
+Pure functions of DataFrames read from the store; the API and the CLI share them.
+"""
+
+from __future__ import annotations
+
+import io
+import math
+from typing import Any
+
+import numpy as np
+import pandas as pd
+import pyarrow as pa
+import pyarrow.parquet as pq
+
+from service.errors import Invalid
+from service.schema import TE_PART_COLUMNS, components_from_row
+
+__all__ = [
+    "row_to_json",
+    "rows_to_json",
+    "columns_to_json",
+    "apply_filters",
+    "compare",
+    "to_csv",
+    "to_parquet",
+    "DEFAULT_METRICS",
+]
+
+DEFAULT_METRICS = ("power_kw", "t_max_dyn_kn")
+
+
+def _clean(value: Any) -> Any:
+    if value is None:
+        return None
+    if isinstance(value, np.generic):
+        value = value.item()
+    if isinstance(value, float) and not math.isfinite(value):
+        return None
+    if value is pd.NA or value is pd.NaT:
+        return None
+    return value
+
+
+def row_to_json(row: dict) -> dict:
+    """A flat runs row as REST/CLI output: ``te_<part>_kn`` folded into ``te_components_kn``."""
+    out = {k: _clean(v) for k, v in row.items() if k not in TE_PART_COLUMNS}
+    out["te_components_kn"] = {k: _clean(v) for k, v in components_from_row(row).items()}
+    return out
+
+
+def rows_to_json(df: pd.DataFrame) -> list[dict]:
+    return [row_to_json(r) for r in df.to_dict(orient="records")]
+
+
+def columns_to_json(df: pd.DataFrame) -> dict[str, list]:
+    """A DataFrame as ``{column: [values]}`` with NaN as null."""
+    return {c: [_clean(v) for v in df[c].tolist()] for c in df.columns}
+
+
+def _coerce(series: pd.Series, text: str) -> Any:
+    if pd.api.types.is_bool_dtype(series):
+        if text.lower() not in ("true", "false"):
+            raise ValueError("expected true or false")
+        return text.lower() == "true"
+    if pd.api.types.is_numeric_dtype(series):
+        return float(text)
+    return text
+
+
+def apply_filters(df: pd.DataFrame, filters: list[str]) -> pd.DataFrame:
+    """Keep rows where every ``column=value`` holds (numbers compared as numbers)."""
+    for item in filters:
+        column, sep, text = item.partition("=")
+        if not sep or not column:
+            raise Invalid(f"filter: '{item}' is not column=value")
+        if column not in df.columns:
+            raise Invalid(f"filter: unknown column '{column}'")
+        try:
+            value = _coerce(df[column], text)
+        except ValueError as exc:
+            raise Invalid(f"filter: {column}: {exc} (got '{text}')") from None
+        if isinstance(value, float):
+            df = df[np.isclose(df[column].astype(float), value, rtol=1e-9, atol=1e-12)]
+        else:
+            df = df[df[column] == value]
+    return df
+
+
+def to_csv(df: pd.DataFrame) -> str:
+    return df.to_csv(index=False)
+
+
+def to_parquet(df: pd.DataFrame) -> bytes:
+    buf = io.BytesIO()
+    pq.write_table(pa.Table.from_pandas(df, preserve_index=False), buf)
+    return buf.getvalue()
+
+
+def _stats(values: pd.Series) -> dict:
+    v = values.dropna()
+    if not len(v):
+        return {"n": 0, "mean": None, "min": None, "max": None}
+    return {
+        "n": int(len(v)),
+        "mean": _clean(float(v.mean())),
+        "min": _clean(float(v.min())),
+        "max": _clean(float(v.max())),
+    }
+
+
+def compare(
+    runs: pd.DataFrame,
+    axes: list[str],
+    baseline: str,
+    candidate: str,
+    metrics: list[str],
+    study_id: str = "",
+) -> dict:
+    """Pairs of runs that differ only in the friction model, with candidate / baseline ratios.
+
+    Returns ``{"study_id", "baseline", "candidate", "metrics", "pairs": [...],
+    "failed_pairs", "summary": {metric: {"overall": stats, "by_axis": {axis: {value:
+    stats}}}}}``; stats are n, mean, min and max of the ratio. A pair with a failed run has no
+    ratio (``failed_pairs`` counts them).
+    """
+    metrics = list(metrics) or list(DEFAULT_METRICS)
+    numeric = [c for c in runs.columns if pd.api.types.is_float_dtype(runs[c])]
+    for m in metrics:
+        if m not in runs.columns or m not in numeric:
+            raise Invalid(
+                f"metrics: unknown metric '{m}'; valid: "
+                + ", ".join(c for c in numeric if c not in axes)
+            )
+    models = sorted(set(runs["friction_model"].dropna())) if len(runs) else []
+    for label, name in (("baseline", baseline), ("candidate", candidate)):
+        if len(runs) and name not in models:
+            raise Invalid(
+                f"{label}: model '{name}' is not in this study; it has: {', '.join(models)}"
+            )
+    others = [a for a in axes if a != "friction_model"]
+    keep = ["run_id", "status", *metrics]
+    base = runs[runs["friction_model"] == baseline][others + keep]
+    cand = runs[runs["friction_model"] == candidate][others + keep]
+    if others:
+        merged = base.merge(cand, on=others, suffixes=("_baseline", "_candidate"))
+    else:
+        merged = base.add_suffix("_baseline").join(cand.add_suffix("_candidate"), how="inner")
+    if others and len(merged):
+        merged = merged.sort_values(others, kind="stable").reset_index(drop=True)
+    pairs = []
+    summary: dict[str, dict] = {}
+    usable = (merged["status_baseline"] != "failed") & (merged["status_candidate"] != "failed")
+    for m in metrics:
+        b = merged[f"{m}_baseline"].astype(float)
+        c = merged[f"{m}_candidate"].astype(float)
+        with np.errstate(divide="ignore", invalid="ignore"):
+            merged[f"{m}_ratio"] = np.where(usable & (b != 0), c / b, np.nan)
+        summary[m] = {
+            "overall": _stats(merged[f"{m}_ratio"]),
+            "by_axis": {
+                a: {
+                    str(_clean(value)): _stats(group[f"{m}_ratio"])
+                    for value, group in merged.groupby(a, sort=True)
+                }
+                for a in others
+            },
+        }
+    for rec in merged.to_dict(orient="records"):
+        pairs.append({k: _clean(v) for k, v in rec.items()})
+    return {
+        "study_id": study_id,
+        "baseline": baseline,
+        "candidate": candidate,
+        "metrics": metrics,
+        "pairs": pairs,
+        "failed_pairs": int((~usable).sum()),
+        "summary": summary,
+    }

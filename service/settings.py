@@ -1,0 +1,67 @@
+"""Service settings: one pydantic-settings object, each field also a ``BELTSTUDY_*`` variable.
+
+| variable | default | meaning |
+|---|---|---|
+| ``BELTSTUDY_DATA_DIR`` | ``./data`` | root of the Parquet store |
+| ``BELTSTUDY_SCHEDULER`` | empty | ``tcp://host:port`` of a Dask scheduler; empty = LocalCluster |
+| ``BELTSTUDY_WORKERS`` | cores | LocalCluster worker processes (one thread each) |
+| ``BELTSTUDY_TOKEN`` | empty | bearer token every route but ``/health`` requires when set |
+| ``BELTSTUDY_MAX_RUNS`` | 20000 | largest study accepted |
+"""
+
+from __future__ import annotations
+
+import os
+from functools import lru_cache
+from pathlib import Path
+
+from pydantic import Field, field_validator
+from pydantic_settings import BaseSettings, SettingsConfigDict
+
+__all__ = ["Settings", "get_settings", "ENV_PREFIX"]
+
+ENV_PREFIX = "BELTSTUDY_"
+
+
+class Settings(BaseSettings):
+    """Everything the service reads from its environment."""
+
+    model_config = SettingsConfigDict(env_prefix=ENV_PREFIX, extra="ignore")
+
+    data_dir: Path = Field(Path("./data"), description="root of the Parquet store")
+    scheduler: str = Field(
+        "", description="Dask scheduler address tcp://host:port; empty starts a LocalCluster"
+    )
+    workers: int | None = Field(
+        None, ge=1, le=512, description="LocalCluster worker processes (default: one per core)"
+    )
+    token: str = Field("", description="bearer token required by every route but /health")
+    max_runs: int = Field(20_000, ge=1, description="largest study (runs) accepted")
+    studies_dir: Path = Field(
+        Path("./studies"),
+        description="root for conveyor paths given as strings in POST /studies bodies",
+    )
+    max_body_bytes: int = Field(1_000_000, ge=1024, description="largest request body [bytes]")
+    warm_start: bool = Field(
+        True, description="start and warm the Dask workers when the service starts"
+    )
+    task_seconds: float = Field(1.0, gt=0, description="target work per Dask task [s]")
+
+    @field_validator("workers", mode="before")
+    @classmethod
+    def _empty_is_default(cls, value):
+        return None if value in ("", None) else value
+
+    @property
+    def n_local_workers(self) -> int:
+        return self.workers or os.cpu_count() or 1
+
+    @property
+    def studies_root(self) -> Path:
+        return self.data_dir / "studies"
+
+
+@lru_cache(maxsize=1)
+def get_settings() -> Settings:
+    """The process-wide settings (read once from the environment)."""
+    return Settings()

@@ -1,0 +1,194 @@
+"""The Parquet store: one directory per study under ``<data_dir>/studies``.
+
+::
+
+    <data_dir>/studies/<study_id>/study.json              resolved study, state, counts, times
+    <data_dir>/studies/<study_id>/runs/part-<key>.parquet        SPEC section 4 rows
+    <data_dir>/studies/<study_id>/timeseries/part-<key>.parquet  SPEC section 5 key points
+    <data_dir>/studies/<study_id>/surface/part-<key>.parquet     SPEC section 5 long table
+
+Every file is written under a temporary name starting with ``.`` (which Arrow's dataset
+reader skips) and then renamed, so readers never see half a file. A batch writes its
+``surface`` and ``timeseries`` parts first and its ``runs`` part last, under one part key:
+a run counts as done exactly when its ``runs`` row exists, and :meth:`Store.clean` removes
+the time-series parts of a batch whose ``runs`` part never landed.
+``pd.read_parquet("<data_dir>/studies/<id>/runs")`` reads the runs table.
+"""
+
+from __future__ import annotations
+
+import json
+import os
+import re
+import shutil
+import time
+import uuid
+from pathlib import Path
+from typing import Any
+
+import pandas as pd
+import pyarrow as pa
+import pyarrow.parquet as pq
+
+from service.errors import NotFound
+from service.schema import runs_schema_for_axes, surface_schema, timeseries_schema
+
+__all__ = ["Store", "STATES", "TABLES"]
+
+STATES = ("queued", "running", "done", "failed", "cancelled")
+TABLES = ("runs", "timeseries", "surface")
+_ID_RE = re.compile(r"^[0-9a-f]{16}$")
+
+
+def _write_atomic(path: Path, write) -> None:
+    tmp = path.with_name(f".{path.name}.{uuid.uuid4().hex[:8]}.tmp")
+    try:
+        write(tmp)
+        os.replace(tmp, path)
+    finally:
+        if tmp.exists():
+            tmp.unlink()
+
+
+class Store:
+    """Files of every study under one data directory. Thread-safe for distinct studies."""
+
+    def __init__(self, data_dir: str | Path):
+        self.data_dir = Path(data_dir)
+        self.root = self.data_dir / "studies"
+
+    # ---------------------------------------------------------------- paths and ids
+    def study_dir(self, study_id: str) -> Path:
+        if not isinstance(study_id, str) or not _ID_RE.match(study_id):
+            raise NotFound(f"study '{study_id}' not found")
+        return self.root / study_id
+
+    def table_dir(self, study_id: str, table: str) -> Path:
+        return self.study_dir(study_id) / table
+
+    def exists(self, study_id: str) -> bool:
+        try:
+            return (self.study_dir(study_id) / "study.json").is_file()
+        except NotFound:
+            return False
+
+    # ---------------------------------------------------------------- study.json
+    def create(self, study_id: str, doc: dict) -> None:
+        """Create a study directory with its ``study.json`` (the directory appears complete)."""
+        final = self.study_dir(study_id)
+        self.root.mkdir(parents=True, exist_ok=True)
+        tmp = self.root / f".{study_id}.{uuid.uuid4().hex[:8]}.tmp"
+        tmp.mkdir()
+        try:
+            for table in TABLES:
+                (tmp / table).mkdir()
+            (tmp / "study.json").write_text(json.dumps(doc, indent=1), encoding="utf-8")
+            os.replace(tmp, final)
+        finally:
+            if tmp.exists():
+                shutil.rmtree(tmp, ignore_errors=True)
+
+    def read(self, study_id: str) -> dict:
+        """The study's ``study.json``; :class:`NotFound` for an unknown id."""
+        path = self.study_dir(study_id) / "study.json"
+        try:
+            return json.loads(path.read_text(encoding="utf-8"))
+        except FileNotFoundError:
+            raise NotFound(f"study '{study_id}' not found") from None
+
+    def update(self, study_id: str, **fields: Any) -> dict:
+        """Merge ``fields`` into ``study.json`` (atomic replace); return the new document."""
+        doc = self.read(study_id)
+        doc.update(fields)
+        doc["updated_at"] = time.time()
+        path = self.study_dir(study_id) / "study.json"
+        _write_atomic(path, lambda p: p.write_text(json.dumps(doc, indent=1), encoding="utf-8"))
+        return doc
+
+    def list_studies(self) -> list[dict]:
+        """``study.json`` of every study, oldest first."""
+        out = []
+        if not self.root.is_dir():
+            return out
+        for child in self.root.iterdir():
+            if child.name.startswith(".") or not _ID_RE.match(child.name):
+                continue
+            try:
+                out.append(self.read(child.name))
+            except (NotFound, json.JSONDecodeError):
+                continue
+        return sorted(out, key=lambda d: (d.get("created_at", 0), d.get("id", "")))
+
+    def delete(self, study_id: str) -> None:
+        """Remove a study's directory (renamed away first so it vanishes at once)."""
+        path = self.study_dir(study_id)
+        if not path.exists():
+            raise NotFound(f"study '{study_id}' not found")
+        trash = self.root / f".{study_id}.{uuid.uuid4().hex[:8]}.deleted"
+        os.replace(path, trash)
+        shutil.rmtree(trash, ignore_errors=True)
+
+    # ---------------------------------------------------------------- parts
+    def write_part(self, study_id: str, table: str, key: str, data: pa.Table) -> Path:
+        """Write one part file ``<table>/part-<key>.parquet`` (temporary name, then rename)."""
+        directory = self.table_dir(study_id, table)
+        directory.mkdir(parents=True, exist_ok=True)
+        path = directory / f"part-{key}.parquet"
+        _write_atomic(path, lambda p: pq.write_table(data, p, compression="zstd"))
+        return path
+
+    def parts(self, study_id: str, table: str) -> list[Path]:
+        directory = self.table_dir(study_id, table)
+        if not directory.is_dir():
+            return []
+        return sorted(p for p in directory.glob("part-*.parquet"))
+
+    def clean(self, study_id: str) -> int:
+        """Remove temporary files and time-series parts whose runs part is missing."""
+        removed = 0
+        keys = {p.name for p in self.parts(study_id, "runs")}
+        for table in TABLES:
+            directory = self.table_dir(study_id, table)
+            if not directory.is_dir():
+                continue
+            for p in directory.iterdir():
+                orphan = table != "runs" and p.name.startswith("part-") and p.name not in keys
+                if p.name.startswith(".") or orphan:
+                    p.unlink(missing_ok=True)
+                    removed += 1
+        return removed
+
+    # ---------------------------------------------------------------- reading
+    def _empty(self, study_id: str, table: str) -> pa.Table:
+        if table == "runs":
+            return runs_schema_for_axes(self.read(study_id)["study"]["axes"]).empty_table()
+        return (timeseries_schema() if table == "timeseries" else surface_schema()).empty_table()
+
+    def _read_table(self, study_id: str, table: str, columns=None, filters=None) -> pd.DataFrame:
+        parts = self.parts(study_id, table)
+        if not parts:
+            empty = self._empty(study_id, table)
+            return (empty.select(columns) if columns else empty).to_pandas()
+        data = pq.ParquetDataset(parts, filters=filters).read(columns=columns)
+        return data.to_pandas()
+
+    def read_runs(self, study_id: str, columns: list[str] | None = None) -> pd.DataFrame:
+        """The runs table of a study (one row per finished run)."""
+        self.read(study_id)
+        return self._read_table(study_id, "runs", columns)
+
+    def done_runs(self, study_id: str) -> pd.DataFrame:
+        """``run_id`` and ``status`` of the finished runs."""
+        return self._read_table(study_id, "runs", ["run_id", "status"])
+
+    def read_timeseries(self, study_id: str, run_id: str | None = None) -> pd.DataFrame:
+        """Key-point time series (SPEC section 5), of one run or of all."""
+        self.read(study_id)
+        filters = [("run_id", "=", run_id)] if run_id else None
+        return self._read_table(study_id, "timeseries", filters=filters)
+
+    def read_surface(self, study_id: str, run_id: str | None = None) -> pd.DataFrame:
+        """Tension and velocity at every element (long table), of one run or of all."""
+        self.read(study_id)
+        filters = [("run_id", "=", run_id)] if run_id else None
+        return self._read_table(study_id, "surface", filters=filters)

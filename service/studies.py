@@ -1,0 +1,235 @@
+"""The study service: submit, list, status, results, compare, delete; resume on start.
+
+Routes and the CLI call these methods; they raise :mod:`service.errors` for the caller's
+mistakes. One :class:`StudyService` owns the store, the Dask executor and a thread per
+running study.
+"""
+
+from __future__ import annotations
+
+import logging
+import threading
+import time
+from pathlib import Path
+from typing import Any
+
+import pandas as pd
+
+import engine
+from service import results
+from service.errors import Invalid, NotFound
+from service.executor import Executor
+from service.jobs import StudyJob
+from service.settings import Settings
+from service.store import Store
+from service.study import ResolvedStudy, resolve_study, study_from_json
+
+__all__ = ["StudyService", "ACTIVE_STATES"]
+
+log = logging.getLogger("beltstudy.service")
+
+ACTIVE_STATES = ("queued", "running")
+
+
+class StudyService:
+    """Everything the API and the CLI do with studies."""
+
+    def __init__(self, settings: Settings, executor: Executor | None = None):
+        self.settings = settings
+        self.store = Store(settings.data_dir)
+        self.executor = executor or Executor(settings)
+        self._jobs: dict[str, StudyJob] = {}
+        self._lock = threading.Lock()
+        self.started_at = time.time()
+
+    # ---------------------------------------------------------------- lifecycle
+    def start(self) -> None:
+        """Resume unfinished studies; start (and warm) Dask when configured to."""
+        resumed = 0
+        for doc in self.store.list_studies():
+            if doc.get("state") in ACTIVE_STATES:
+                try:
+                    self._launch(self._load(doc))
+                    resumed += 1
+                except Exception as exc:  # a study that cannot be rebuilt is marked failed
+                    log.warning("cannot resume study %s: %s", doc.get("id"), exc)
+                    self.store.update(doc["id"], state="failed", message=f"cannot resume: {exc}")
+        if resumed:
+            log.info("resuming %d unfinished studies", resumed)
+        if self.settings.warm_start or resumed:
+            self.executor.start_background()
+
+    def close(self) -> None:
+        """Stop the study threads (studies stay resumable) and the Dask client."""
+        with self._lock:
+            jobs = list(self._jobs.values())
+        for job in jobs:
+            job.stop()
+        for job in jobs:
+            job.join(timeout=10)
+        self.executor.close()
+
+    def _load(self, doc: dict) -> ResolvedStudy:
+        if doc.get("engine_version") != engine.__version__:
+            raise Invalid(
+                f"study was made with engine {doc.get('engine_version')}, this is "
+                f"{engine.__version__}; submit it again"
+            )
+        return study_from_json(doc["study"], doc["id"])
+
+    def _launch(self, study: ResolvedStudy) -> StudyJob:
+        with self._lock:
+            job = self._jobs.get(study.id)
+            if job is not None and job.is_alive():
+                return job
+            job = StudyJob(study, self.store, self.executor, self.settings)
+            self._jobs[study.id] = job
+        job.start()
+        return job
+
+    # ---------------------------------------------------------------- submit
+    def submit(
+        self, data: Any, *, base_dir: Path | None = None, confine: bool = True
+    ) -> tuple[dict, bool]:
+        """Validate and store a study, start it; return (status, created).
+
+        ``confine`` keeps conveyor paths inside the studies directory (HTTP bodies);
+        ``base_dir`` resolves them for a local study file. An identical study already in the
+        store is returned as it is (``created`` False).
+        """
+        study = resolve_study(
+            data,
+            base_dir=base_dir,
+            studies_root=self.settings.studies_dir if confine else None,
+            max_runs=self.settings.max_runs,
+        )
+        with self._lock:
+            created = not self.store.exists(study.id)
+            if created:
+                now = time.time()
+                self.store.create(
+                    study.id,
+                    {
+                        "id": study.id,
+                        "name": study.name,
+                        "state": "queued",
+                        "total": study.total,
+                        "done": 0,
+                        "failed": 0,
+                        "elapsed_s": 0.0,
+                        "message": "",
+                        "created_at": now,
+                        "updated_at": now,
+                        "started_at": None,
+                        "finished_at": None,
+                        "engine_version": study.engine_version,
+                        "study": study.to_json(),
+                    },
+                )
+        if created:
+            self._launch(study)
+            return self.status(study.id), True
+        existing = self.store.read(study.id)
+        job = self._jobs.get(study.id)
+        if existing.get("state") in ACTIVE_STATES and not (job and job.is_alive()):
+            self._launch(study)  # interrupted earlier (e.g. `beltstudy run` stopped): carry on
+        return self.status(study.id), False
+
+    # ---------------------------------------------------------------- reading
+    def status(self, study_id: str) -> dict:
+        """State and progress of a study (live while it runs)."""
+        doc = self.store.read(study_id)
+        job = self._jobs.get(study_id)
+        out = {
+            "id": doc["id"],
+            "name": doc["name"],
+            "state": doc["state"],
+            "total": doc["total"],
+            "done": doc.get("done", 0),
+            "failed": doc.get("failed", 0),
+            "elapsed_s": doc.get("elapsed_s", 0.0),
+            "eta_s": 0.0 if doc["state"] == "done" else None,
+            "message": doc.get("message", ""),
+            "created_at": doc.get("created_at"),
+            "started_at": doc.get("started_at"),
+            "finished_at": doc.get("finished_at"),
+            "dynamics": doc["study"]["dynamics"],
+            "axes": {a["name"]: a["column"] for a in doc["study"]["axes"]},
+            "engine_version": doc.get("engine_version"),
+        }
+        if job is not None and job.is_alive():
+            out.update(
+                state=job.state,
+                done=job.done,
+                failed=job.failed,
+                elapsed_s=round(job.elapsed_s(), 3),
+                eta_s=job.eta_s(),
+            )
+        if out["eta_s"] is not None:
+            out["eta_s"] = round(out["eta_s"], 1)
+        return out
+
+    def running_count(self) -> int:
+        with self._lock:
+            return sum(1 for j in self._jobs.values() if j.is_alive())
+
+    def list(self) -> list[dict]:
+        return [self.status(doc["id"]) for doc in self.store.list_studies()]
+
+    def study_doc(self, study_id: str) -> dict:
+        return self.store.read(study_id)
+
+    def runs(self, study_id: str) -> pd.DataFrame:
+        return self.store.read_runs(study_id)
+
+    def run_detail(self, study_id: str, run_id: str) -> dict:
+        """Summary row and time series of one run."""
+        runs = self.store.read_runs(study_id)
+        match = runs[runs["run_id"] == run_id] if len(runs) else runs
+        if not len(match):
+            known = any(r.run_id == run_id for r in self._load(self.store.read(study_id)).runs)
+            state = "not finished yet" if known else "not found"
+            raise NotFound(f"run '{run_id}' of study '{study_id}' {state}")
+        row = results.row_to_json(match.iloc[0].to_dict())
+        ts = self.store.read_timeseries(study_id, run_id)
+        return {
+            "study_id": study_id,
+            "run_id": run_id,
+            "summary": row,
+            "timeseries": results.columns_to_json(ts.drop(columns=["run_id"])) if len(ts) else None,
+        }
+
+    def compare(self, study_id: str, baseline: str, candidate: str, metrics: list[str]) -> dict:
+        doc = self.store.read(study_id)
+        axes = [a["column"] for a in doc["study"]["axes"]]
+        return results.compare(
+            self.store.read_runs(study_id), axes, baseline, candidate, metrics, study_id
+        )
+
+    # ---------------------------------------------------------------- delete
+    def delete(self, study_id: str) -> dict:
+        """Cancel a study's tasks and delete its files."""
+        self.store.read(study_id)
+        with self._lock:
+            job = self._jobs.pop(study_id, None)
+        if job is not None:
+            job.cancel()
+            job.join(timeout=30)
+        self.store.delete(study_id)
+        return {"id": study_id, "state": "cancelled", "deleted": True}
+
+    # ---------------------------------------------------------------- waiting
+    def wait(
+        self, study_id: str, *, poll_s: float = 0.5, timeout_s: float | None = None, progress=None
+    ) -> dict:
+        """Block until the study leaves queued/running; ``progress(status)`` on every poll."""
+        t0 = time.monotonic()
+        while True:
+            st = self.status(study_id)
+            if progress is not None:
+                progress(st)
+            if st["state"] not in ACTIVE_STATES:
+                return st
+            if timeout_s is not None and time.monotonic() - t0 > timeout_s:
+                return st
+            time.sleep(poll_s)

@@ -1,0 +1,170 @@
+"""Figures of a stored study or run: read the Parquet, pick the figure, render PNG or SVG.
+
+The plot routes and notebooks share these. Every figure is drawn under one lock (pyplot
+keeps global state) and closed after rendering.
+"""
+
+from __future__ import annotations
+
+import io
+import threading
+from collections import OrderedDict
+
+import pandas as pd
+
+from service import plots, results
+from service.errors import Invalid, NotFound
+from service.studies import StudyService
+from service.study import ResolvedStudy, study_from_json
+
+__all__ = [
+    "STUDY_PLOTS",
+    "RUN_PLOTS",
+    "FORMATS",
+    "render",
+    "study_figure",
+    "run_figure",
+    "check_name",
+]
+
+#: Plot names of a study, with what they show.
+STUDY_PLOTS = {
+    "power-temperature": "power against temperature per friction model and load (Fig. 2)",
+    "peak-dynamic-tension": "peak dynamic tension against stop time per friction model",
+    "ratio": "candidate / baseline ratio per axis value (default nonlin over cema)",
+}
+#: Plot names of a run.
+RUN_PLOTS = {
+    "steady-profile": "steady tension along the loop with the elevation profile (Fig. 1)",
+    "transient": "tension at eight points round the loop and belt speed against time (Fig. 4)",
+}
+#: Output formats and their media types.
+FORMATS = {"png": "image/png", "svg": "image/svg+xml"}
+
+_lock = threading.Lock()
+_resolved: OrderedDict[str, ResolvedStudy] = OrderedDict()
+
+
+def check_name(name: str, valid: dict) -> None:
+    """:class:`Invalid` naming the valid plot names when ``name`` is not one of them."""
+    if name not in valid:
+        raise Invalid(f"name: unknown plot '{name}'; valid: {', '.join(valid)}")
+
+
+def render(make, fmt: str = "png") -> bytes:
+    """Draw ``make()`` and return the figure as ``fmt`` bytes (the figure is closed)."""
+    if fmt not in FORMATS:
+        raise Invalid(f"format: unknown format '{fmt}'; valid: {', '.join(FORMATS)}")
+    import matplotlib
+    import matplotlib.pyplot as plt
+
+    # SVG keeps its text as text (smaller, searchable); matplotlib escapes it as XML.
+    with _lock, matplotlib.rc_context({"svg.fonttype": "none"}):
+        fig = make()
+        try:
+            buf = io.BytesIO()
+            fig.savefig(buf, format=fmt, dpi=100)
+        finally:
+            plt.close(fig)
+    return buf.getvalue()
+
+
+def _text(value) -> str:
+    """User text safe for matplotlib (no mathtext)."""
+    return str(value).replace("$", r"\$")
+
+
+def resolved_study(service: StudyService, study_id: str) -> ResolvedStudy:
+    """The resolved study of ``study_id`` (a study id is a hash of its content: cached)."""
+    doc = service.store.read(study_id)
+    study = _resolved.get(study_id)
+    if study is None:
+        try:
+            study = study_from_json(doc["study"], study_id)
+        except Exception as exc:  # made by another engine version, or damaged
+            raise NotFound(f"study '{study_id}' cannot be expanded here: {exc}") from None
+        _resolved[study_id] = study
+        while len(_resolved) > 8:
+            _resolved.popitem(last=False)
+    return study
+
+
+def _pick_models(runs: pd.DataFrame, baseline: str | None, candidate: str | None):
+    models = sorted(set(runs["friction_model"].dropna())) if "friction_model" in runs else []
+    if baseline is None:
+        baseline = "cema" if "cema" in models or not models else models[0]
+    if candidate is None:
+        others = [m for m in models if m != baseline]
+        candidate = "nonlin" if "nonlin" in others or not others else others[0]
+    return baseline, candidate
+
+
+def study_figure(
+    service: StudyService,
+    study_id: str,
+    name: str,
+    baseline: str | None = None,
+    candidate: str | None = None,
+):
+    """A callable drawing plot ``name`` of a study (checks the id, then the name)."""
+    doc = service.store.read(study_id)
+    check_name(name, STUDY_PLOTS)
+    runs = service.store.read_runs(study_id)
+    title = _text(doc.get("name", study_id))
+    if name == "power-temperature":
+        temperature = (doc.get("study", {}).get("scenario") or {}).get("temperature_c")
+        return lambda: plots.power_temperature_figure(
+            runs, f"{title}: power against temperature", temperature
+        )
+    if name == "peak-dynamic-tension":
+        if not doc.get("study", {}).get("dynamics", True):
+            return lambda: plots.message_figure(plots.NO_TRANSIENT, f"{title}: peak tension")
+        return lambda: plots.peak_dynamic_tension_figure(runs, f"{title}: peak dynamic tension")
+    base, cand = _pick_models(runs, baseline, candidate)
+    if not len(runs):
+        return lambda: plots.message_figure("no finished runs yet", f"{title}: ratio")
+    if base == cand:
+        return lambda: plots.message_figure(
+            "a ratio needs two friction models in the grid", f"{title}: ratio"
+        )
+    axes = [a["column"] for a in doc["study"]["axes"]]
+    metrics = [m for m in results.DEFAULT_METRICS
+               if m in runs.columns and pd.api.types.is_float_dtype(runs[m])]
+    summary = results.compare(runs, axes, base, cand, metrics, study_id)["summary"]
+    label = f"{title}: {_text(cand)} / {_text(base)} per axis value"
+    return lambda: plots.ratio_figure(summary, _text(base), _text(cand), label)
+
+
+def run_figure(service: StudyService, study_id: str, run_id: str, name: str):
+    """A callable drawing plot ``name`` of one run (checks the study, the name, the run)."""
+    doc = service.store.read(study_id)
+    check_name(name, RUN_PLOTS)
+    study = resolved_study(service, study_id)
+    spec = next((r for r in study.runs if r.run_id == run_id), None)
+    if spec is None:
+        raise NotFound(f"run '{run_id}' of study '{study_id}' not found")
+    axes = ", ".join(f"{k}={v}" for k, v in spec.axes.items() if k != "friction_model")
+    title = _text(f"{doc.get('name', study_id)} · {spec.model}" + (f" · {axes}" if axes else ""))
+    if name == "steady-profile":
+        from engine.conveyor import parse_conveyor, parse_scenario
+        from engine.run import run_one
+
+        try:
+            result = run_one(parse_conveyor(spec.conveyor), parse_scenario(spec.scenario),
+                             model=spec.model, params=spec.params or None, dynamics=False)
+            profile = result.profile
+        except Exception as exc:  # the run itself fails: say so on the figure
+            message = _text(f"no steady solution: {type(exc).__name__}: {exc}")
+            return lambda: plots.message_figure(message, title)
+        if profile is None or not len(profile):
+            return lambda: plots.message_figure(
+                _text(result.summary.get("message") or "no steady profile"), title
+            )
+        return lambda: plots.steady_profile_figure(profile, title)
+    if not study.dynamics:
+        return lambda: plots.message_figure(plots.NO_TRANSIENT, title)
+    ts = service.store.read_timeseries(study_id, run_id)
+    surface = service.store.read_surface(study_id, run_id)
+    if not len(ts) and not len(surface):
+        return lambda: plots.message_figure("no transient data for this run", title)
+    return lambda: plots.transient_figure(ts, surface, title)

@@ -1,0 +1,394 @@
+// beltstudy pages: fetch the JSON API with the session's bearer token and fill the page.
+// Data goes into the page through textContent and DOM properties only, never as markup.
+"use strict";
+
+const TOKEN_KEY = "beltstudy.token";
+const ACTIVE = ["queued", "running"];
+
+function token() { return sessionStorage.getItem(TOKEN_KEY) || ""; }
+
+function authHeaders(extra) {
+  const headers = Object.assign({}, extra || {});
+  const t = token();
+  if (t) headers["Authorization"] = "Bearer " + t;
+  return headers;
+}
+
+class ApiError extends Error {
+  constructor(status, message) { super(message); this.status = status; }
+}
+
+async function request(path, options) {
+  const opts = Object.assign({}, options || {});
+  opts.headers = authHeaders(opts.headers);
+  const res = await fetch(path, opts);
+  if (!res.ok) {
+    let message = res.status + " " + res.statusText;
+    try {
+      const body = await res.json();
+      if (body && body.message) message = body.message;
+    } catch (e) { /* not JSON */ }
+    if (res.status === 401) message += " (enter the service token above)";
+    throw new ApiError(res.status, message);
+  }
+  return res;
+}
+
+async function api(path, options) { return (await request(path, options)).json(); }
+
+function el(tag, props, children) {
+  const node = document.createElement(tag);
+  for (const [k, v] of Object.entries(props || {})) {
+    if (k === "text") node.textContent = v == null ? "" : String(v);
+    else if (k === "class") node.className = v;
+    else if (k === "data") Object.assign(node.dataset, v);
+    else node[k] = v;
+  }
+  for (const child of children || []) node.append(child);
+  return node;
+}
+
+function showError(message) {
+  const box = document.getElementById("error");
+  box.textContent = message || "";
+  box.hidden = !message;
+}
+
+function fmtSeconds(s) {
+  if (s == null) return "–";
+  s = Number(s);
+  if (s < 60) return s.toFixed(1) + " s";
+  if (s < 3600) return Math.floor(s / 60) + " min " + Math.round(s % 60) + " s";
+  return Math.floor(s / 3600) + " h " + Math.round((s % 3600) / 60) + " min";
+}
+
+function fmtValue(v) {
+  if (v == null) return "";
+  if (typeof v === "number") return Number.isInteger(v) ? String(v) : v.toPrecision(4);
+  return String(v);
+}
+
+function setProgress(bar, st) {
+  bar.max = Math.max(st.total || 0, 1);
+  bar.value = st.done || 0;
+  bar.dataset.done = st.done;
+  bar.dataset.total = st.total;
+  bar.dataset.state = st.state;
+}
+
+// Images: fetched with the token, shown from an object URL; the content type and size are
+// kept on the element (data-type, data-bytes) and data-loaded is set once it is drawn.
+async function loadImage(img) {
+  img.dataset.loaded = "";
+  try {
+    const res = await request(img.dataset.src);
+    const blob = await res.blob();
+    const old = img.dataset.url;
+    const url = URL.createObjectURL(blob);
+    img.onload = () => { img.dataset.loaded = "1"; if (old) URL.revokeObjectURL(old); };
+    img.onerror = () => { img.dataset.loaded = "error"; };
+    img.dataset.type = res.headers.get("content-type") || "";
+    img.dataset.bytes = String(blob.size);
+    img.dataset.url = url;
+    img.src = url;
+  } catch (e) {
+    img.dataset.loaded = "error";
+    img.alt = "plot failed: " + e.message;
+    showError(e.message);
+  }
+}
+
+function loadImages() { document.querySelectorAll("img.plot").forEach(loadImage); }
+
+// Downloads: plain links without a token; with a token, fetched and saved from a blob.
+function wireDownloads() {
+  document.querySelectorAll("a.download").forEach((a) => {
+    a.addEventListener("click", async (ev) => {
+      if (!token()) return;
+      ev.preventDefault();
+      try {
+        const blob = await (await request(a.href)).blob();
+        const url = URL.createObjectURL(blob);
+        const tmp = el("a", { href: url, download: a.getAttribute("download") || "" });
+        document.body.append(tmp);
+        tmp.click();
+        tmp.remove();
+        setTimeout(() => URL.revokeObjectURL(url), 10000);
+      } catch (e) { showError(e.message); }
+    });
+  });
+}
+
+function wireLogin(onChange) {
+  const form = document.getElementById("login");
+  const input = document.getElementById("token-input");
+  const state = document.getElementById("token-state");
+  const show = () => { state.textContent = token() ? "token set for this session" : ""; };
+  form.addEventListener("submit", (ev) => {
+    ev.preventDefault();
+    sessionStorage.setItem(TOKEN_KEY, input.value.trim());
+    input.value = "";
+    show();
+    showError("");
+    onChange();
+  });
+  document.getElementById("token-clear").addEventListener("click", () => {
+    sessionStorage.removeItem(TOKEN_KEY);
+    show();
+    onChange();
+  });
+  show();
+}
+
+async function cancelStudy(id, name) {
+  if (!window.confirm("Cancel study '" + name + "' and delete its results?")) return false;
+  await api("/studies/" + encodeURIComponent(id), { method: "DELETE" });
+  return true;
+}
+
+// ---------------------------------------------------------------------------- study list
+function indexPage() {
+  let timer = null;
+  const tbody = document.querySelector("#studies tbody");
+
+  function row(st) {
+    const link = el("a", { href: "/ui/studies/" + encodeURIComponent(st.id), text: st.name });
+    const bar = el("progress", { class: "progress" });
+    setProgress(bar, st);
+    const cancel = el("button", { type: "button", class: "danger",
+      text: ACTIVE.includes(st.state) ? "cancel" : "delete" });
+    cancel.addEventListener("click", async () => {
+      try { if (await cancelStudy(st.id, st.name)) refresh(); } catch (e) { showError(e.message); }
+    });
+    return el("tr", { data: { id: st.id, state: st.state } }, [
+      el("td", {}, [link]),
+      el("td", { class: "state state-" + st.state, text: st.state }),
+      el("td", {}, [bar]),
+      el("td", { class: "counts", text: st.done + " / " + st.failed + " / " + st.total }),
+      el("td", { text: fmtSeconds(st.elapsed_s) }),
+      el("td", { text: ACTIVE.includes(st.state) ? fmtSeconds(st.eta_s) : "–" }),
+      el("td", {}, [cancel]),
+    ]);
+  }
+
+  async function refresh() {
+    clearTimeout(timer);
+    let active = false;
+    try {
+      const data = await api("/studies");
+      tbody.replaceChildren(...data.studies.slice().reverse().map(row));
+      document.getElementById("studies-empty").hidden = data.studies.length > 0;
+      active = data.studies.some((s) => ACTIVE.includes(s.state));
+      showError("");
+    } catch (e) { showError(e.message); }
+    timer = setTimeout(refresh, active ? 1000 : 5000);
+  }
+
+  const text = document.getElementById("study-text");
+  document.getElementById("study-file").addEventListener("change", async (ev) => {
+    const file = ev.target.files[0];
+    if (file) text.value = await file.text();
+  });
+  document.getElementById("submit-form").addEventListener("submit", async (ev) => {
+    ev.preventDefault();
+    const errorBox = document.getElementById("submit-error");
+    const result = document.getElementById("submit-result");
+    errorBox.hidden = true;
+    result.hidden = true;
+    const body = text.value;
+    const isJson = body.trim().startsWith("{");
+    try {
+      const st = await api("/studies", {
+        method: "POST", body,
+        headers: { "Content-Type": isJson ? "application/json" : "application/yaml" },
+      });
+      result.replaceChildren("Submitted ",
+        el("a", { href: "/ui/studies/" + encodeURIComponent(st.id), text: st.name }),
+        " (" + st.total + " runs, " + st.state + ")");
+      result.hidden = false;
+      refresh();
+    } catch (e) {
+      errorBox.textContent = e.message;
+      errorBox.hidden = false;
+    }
+  });
+  wireLogin(refresh);
+  refresh();
+}
+
+// ---------------------------------------------------------------------------- study page
+const RESULT_COLUMNS = ["status", "power_kw", "te_kn", "t_max_kn", "safety_factor",
+  "slip_margin", "sag_max_pct", "t_max_dyn_kn", "dyn_factor", "stop_time_s", "message"];
+
+function studyPage(id) {
+  let timer = null;
+  let axes = [];
+  let runs = [];
+  let sort = { column: null, dir: 1 };
+  let filters = {};
+  let plotsShown = false;
+  let lastDone = -1;
+
+  function columns() {
+    const cols = axes.map((a) => a.column);
+    if (!cols.includes("friction_model")) cols.push("friction_model");
+    return cols.concat(RESULT_COLUMNS);
+  }
+
+  function buildFilters() {
+    const box = document.getElementById("filters");
+    const items = axes.map((a) => ({ column: a.column, values: a.values }));
+    if (!axes.some((a) => a.column === "friction_model")) {
+      items.push({ column: "friction_model", values: [...new Set(runs.map((r) => r.friction_model))] });
+    }
+    items.push({ column: "status", values: ["ok", "warning", "failed"] });
+    box.replaceChildren(...items.map((item) => {
+      const select = el("select", { name: item.column, data: { column: item.column } },
+        [el("option", { value: "", text: "all" })].concat(
+          item.values.map((v) => el("option", { value: String(v), text: String(v) }))));
+      select.addEventListener("change", () => { filters[item.column] = select.value; renderRuns(); });
+      return el("label", { class: "filter" }, [item.column + " ", select]);
+    }));
+  }
+
+  function renderRuns() {
+    const cols = columns();
+    const head = document.querySelector("#runs thead tr");
+    head.replaceChildren(...cols.map((c) => {
+      const th = el("th", { text: c + (sort.column === c ? (sort.dir > 0 ? " ▲" : " ▼") : ""),
+        data: { column: c }, title: "sort by " + c });
+      th.addEventListener("click", () => {
+        sort = { column: c, dir: sort.column === c ? -sort.dir : 1 };
+        renderRuns();
+      });
+      return th;
+    }), el("th", { text: "" }));
+    let shown = runs.filter((r) => Object.entries(filters).every(
+      ([c, v]) => v === "" || String(r[c]) === v));
+    if (sort.column) {
+      const c = sort.column;
+      shown = shown.slice().sort((a, b) => {
+        const x = a[c], y = b[c];
+        if (x == null) return 1;
+        if (y == null) return -1;
+        if (typeof x === "number" && typeof y === "number") return sort.dir * (x - y);
+        return sort.dir * String(x).localeCompare(String(y));
+      });
+    }
+    const tbody = document.querySelector("#runs tbody");
+    tbody.replaceChildren(...shown.map((r) => el("tr",
+      { class: "status-" + r.status, data: { runId: r.run_id } },
+      cols.map((c) => el("td", { text: fmtValue(r[c]), class: c === "message" ? "message" : "" }))
+        .concat([el("td", {}, [el("a", { text: "open",
+          href: "/ui/studies/" + encodeURIComponent(id) + "/runs/" + encodeURIComponent(r.run_id) })])]))));
+    document.getElementById("runs-count").textContent =
+      "(" + shown.length + " of " + runs.length + " shown)";
+  }
+
+  async function loadRuns() {
+    const data = await api("/studies/" + encodeURIComponent(id) + "/runs?format=json");
+    runs = data.runs;
+    if (!document.querySelector("#filters select")) buildFilters();
+    renderRuns();
+  }
+
+  async function loadInfo() {
+    const info = await api("/ui/data/studies/" + encodeURIComponent(id));
+    axes = info.axes;
+    document.title = "beltstudy · " + info.name;
+    document.getElementById("study-name").textContent = info.name;
+    document.getElementById("conveyor-name").textContent = info.conveyor_name;
+    document.getElementById("conveyor-source").textContent =
+      info.conveyor_source ? "(" + info.conveyor_source + ")" : "";
+    document.getElementById("dynamics").textContent = info.dynamics ? "on" : "off";
+    document.getElementById("description").textContent = info.description;
+    document.getElementById("axes").replaceChildren(...axes.flatMap((a) => [
+      el("dt", { text: a.name }), el("dd", { text: a.values.map(String).join(", ") })]));
+  }
+
+  async function poll() {
+    clearTimeout(timer);
+    let active = false;
+    try {
+      const st = await api("/studies/" + encodeURIComponent(id));
+      active = ACTIVE.includes(st.state);
+      const state = document.getElementById("state");
+      state.textContent = st.state;
+      state.className = "state state-" + st.state;
+      setProgress(document.getElementById("progress"), st);
+      document.getElementById("counts").textContent =
+        st.done + " of " + st.total + " done, " + st.failed + " failed";
+      document.getElementById("elapsed").textContent = fmtSeconds(st.elapsed_s);
+      document.getElementById("eta").textContent = active ? fmtSeconds(st.eta_s) : "–";
+      const msg = document.getElementById("study-message");
+      msg.textContent = st.message || "";
+      msg.hidden = !st.message;
+      if (st.done !== lastDone) { lastDone = st.done; await loadRuns(); }
+      if (!active && !plotsShown) { plotsShown = true; loadImages(); }
+      showError("");
+    } catch (e) { showError(e.message); }
+    if (active) timer = setTimeout(poll, 1000);
+  }
+
+  async function start() {
+    try { await loadInfo(); } catch (e) { showError(e.message); return; }
+    lastDone = -1;
+    plotsShown = false;
+    poll();
+  }
+
+  document.getElementById("cancel").addEventListener("click", async () => {
+    try {
+      if (await cancelStudy(id, document.getElementById("study-name").textContent)) {
+        window.location.href = "/";
+      }
+    } catch (e) { showError(e.message); }
+  });
+  wireDownloads();
+  wireLogin(start);
+  start();
+}
+
+// ---------------------------------------------------------------------------- run page
+const HIDDEN_FIELDS = ["study_id", "run_id", "status", "message", "te_components_kn"];
+
+function runPage(studyId, runId) {
+  async function start() {
+    try {
+      const info = await api("/ui/data/studies/" + encodeURIComponent(studyId));
+      document.getElementById("run-study").textContent = "of " + info.name;
+      document.title = "beltstudy · " + info.name + " · " + runId;
+      const detail = await api("/studies/" + encodeURIComponent(studyId) + "/runs/" +
+        encodeURIComponent(runId));
+      const s = detail.summary;
+      const axisCols = info.axes.map((a) => a.column);
+      if (!axisCols.includes("friction_model")) axisCols.push("friction_model");
+      document.getElementById("run-axes").replaceChildren(...axisCols.flatMap((c) => [
+        el("dt", { text: c }), el("dd", { text: fmtValue(s[c]) })]));
+      const status = document.getElementById("run-status");
+      status.textContent = s.status;
+      status.className = "state status-" + s.status;
+      const warnings = (s.message || "").split(/;\s*/).filter((m) => m);
+      document.getElementById("run-warnings").replaceChildren(
+        ...warnings.map((m) => el("li", { text: m })));
+      const rows = Object.entries(s).filter(([k, v]) => !HIDDEN_FIELDS.includes(k) &&
+        !axisCols.includes(k) && v != null);
+      for (const [part, v] of Object.entries(s.te_components_kn || {})) {
+        if (v != null) rows.push(["te_components_kn." + part, v]);
+      }
+      document.querySelector("#run-summary tbody").replaceChildren(...rows.map(([k, v]) =>
+        el("tr", {}, [el("th", { text: k }), el("td", { text: fmtValue(v) })])));
+      loadImages();
+      showError("");
+    } catch (e) { showError(e.message); }
+  }
+  wireLogin(start);
+  start();
+}
+
+document.addEventListener("DOMContentLoaded", () => {
+  const body = document.body.dataset;
+  if (body.page === "index") indexPage();
+  else if (body.page === "study") studyPage(body.studyId);
+  else if (body.page === "run") runPage(body.studyId, body.runId);
+});

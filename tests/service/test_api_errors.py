@@ -1,0 +1,248 @@
+"""Bad input over HTTP: the right 4xx, a message naming the problem, nothing written.
+
+In-process (TestClient without the lifespan): no Dask cluster is started, since nothing valid
+is ever submitted here.
+"""
+
+from __future__ import annotations
+
+import json
+
+import pytest
+import yaml
+from fastapi.testclient import TestClient
+
+from service.api.app import create_app
+
+
+@pytest.fixture
+def api(data_dir, make_settings):
+    def build(**over):
+        return TestClient(create_app(make_settings(data_dir, **over)))
+
+    return build
+
+
+def _written(data_dir) -> list[str]:
+    root = data_dir / "studies"
+    return sorted(p.name for p in root.iterdir()) if root.exists() else []
+
+
+def _post_yaml(client, text: str, **kw):
+    return client.post(
+        "/studies",
+        content=text.encode(),
+        headers={"Content-Type": "application/yaml", **kw.pop("headers", {})},
+        **kw,
+    )
+
+
+CASES = [
+    (
+        "malformed YAML",
+        "name: x\ngrid: {temperature_c: [1, 2\n",
+        422,
+        r"body: not valid YAML at line \d+, column \d+",
+    ),
+    ("wrong type", {"dynamics": "often"}, 422, r"dynamics: Input should be a valid boolean"),
+    (
+        "unknown axis",
+        {"grid": {"temprature_c": [0]}},
+        422,
+        r"unknown axis 'temprature_c'; did you mean 'temperature_c'",
+    ),
+    ("empty grid", {"grid": {}}, 422, r"grid: empty"),
+    ("empty axis", {"grid": {"load": []}}, 422, r"grid.load: empty axis"),
+    (
+        "oversize grid",
+        {"grid": {"temperature_c": {"start": -60, "stop": 80, "step": 0.001}}},
+        413,
+        r"grid.temperature_c: the range has 140001 values; the study limit is 20000 runs",
+    ),
+    (
+        "oversize product",
+        {
+            "grid": {
+                "temperature_c": {"start": -60, "stop": 79, "step": 1},
+                "run_s": {"start": 0, "stop": 199, "step": 1},
+            }
+        },
+        413,
+        r"grid: the study has 28000 runs; the limit is 20000",
+    ),
+    ("path traversal name", {"name": "../../etc"}, 422, r"name: must start with a letter"),
+    (
+        "path traversal conveyor",
+        {"conveyor": "../../../etc/passwd"},
+        422,
+        r"conveyor: path '../../../etc/passwd' must be relative to the studies directory",
+    ),
+    ("absolute conveyor", {"conveyor": "/etc/passwd"}, 422, r"conveyor: path '/etc/passwd'"),
+    (
+        "missing conveyor file",
+        {"conveyor": "conveyors/none.yaml"},
+        422,
+        r"conveyor: file 'conveyors/none.yaml' not found",
+    ),
+    (
+        "bad axis value",
+        {"grid": {"belt_type": ["ST2000", "ST2001"]}},
+        422,
+        r"belt_type='ST2001'.*unknown belt type 'ST2001'",
+    ),
+    (
+        "unknown model",
+        {"grid": {"friction_model": ["din", "magic"]}},
+        422,
+        r"grid.friction_model: unknown model 'magic'",
+    ),
+]
+
+
+@pytest.mark.parametrize(("case", "change", "status", "message"), CASES, ids=[c[0] for c in CASES])
+def test_bad_studies_get_the_right_status_and_write_nothing(
+    api, data_dir, make_study, case, change, status, message
+):
+    client = api()
+    if isinstance(change, str):
+        response = _post_yaml(client, change)
+    else:
+        response = client.post("/studies", json={**make_study(), **change})
+    assert response.status_code == status, response.text
+    body = response.json()
+    assert set(body) == {"error", "message"}
+    import re
+
+    assert re.search(message, body["message"]), body["message"]
+    assert _written(data_dir) == []
+
+
+def test_yaml_body_is_accepted_and_validated(api, data_dir, make_study):
+    text = yaml.safe_dump({**make_study(), "grid": {"tempreture_c": [1]}})
+    response = _post_yaml(api(), text)
+    assert response.status_code == 422
+    assert "did you mean 'temperature_c'" in response.json()["message"]
+
+
+def test_oversize_body_is_413(api, data_dir, make_study):
+    client = api(max_body_bytes=2048)
+    study = make_study(description="x" * 1900)
+    response = client.post(
+        "/studies", content=json.dumps(study).encode(), headers={"Content-Type": "application/json"}
+    )
+    assert response.status_code == 413
+    assert "the limit is 2048" in response.json()["message"]
+    assert _written(data_dir) == []
+
+
+def test_not_json_and_empty_bodies(api, data_dir):
+    client = api()
+    r = client.post("/studies", content=b"{not json", headers={"Content-Type": "application/json"})
+    assert r.status_code == 422 and "not valid JSON at line 1" in r.json()["message"]
+    r = client.post("/studies", content=b"", headers={"Content-Type": "application/json"})
+    assert r.status_code == 422 and "body: empty" in r.json()["message"]
+    r = client.post("/studies", json=[1, 2])
+    assert r.status_code == 422 and "expected a mapping" in r.json()["message"]
+    assert _written(data_dir) == []
+
+
+def test_token_is_required_everywhere_but_health(api, data_dir, make_study):
+    client = api(token="s3cret")
+    for method, path in [
+        ("GET", "/studies"),
+        ("GET", "/models"),
+        ("GET", "/catalog/belts"),
+        ("GET", "/studies/0123456789abcdef"),
+        ("POST", "/studies"),
+        ("DELETE", "/studies/0123456789abcdef"),
+    ]:
+        r = client.request(method, path, json=make_study() if method == "POST" else None)
+        assert r.status_code == 401, (method, path)
+        assert "bearer token" in r.json()["message"]
+        assert r.headers["www-authenticate"] == "Bearer"
+    r = client.get("/studies", headers={"Authorization": "Bearer wrong"})
+    assert r.status_code == 401
+    assert client.get("/health").status_code == 200
+    ok = client.get("/studies", headers={"Authorization": "Bearer s3cret"})
+    assert ok.status_code == 200 and ok.json() == {"studies": []}
+    assert _written(data_dir) == []
+
+
+def test_unknown_ids_are_404(api, data_dir, finished_study, make_study):
+    client = api()
+    for path in [
+        "/studies/0123456789abcdef",
+        "/studies/../../etc/runs",
+        "/studies/0123456789abcdef/runs",
+        "/studies/0123456789abcdef/compare",
+    ]:
+        r = client.get(path)
+        assert r.status_code == 404, path
+    sid = finished_study(data_dir, make_study())
+    r = client.get(f"/studies/{sid}/runs/ffffffffffffffff")
+    assert r.status_code == 404 and "run 'ffffffffffffffff'" in r.json()["message"]
+    assert client.delete("/studies/0123456789abcdef").status_code == 404
+
+
+def test_query_errors_name_the_parameter(api, data_dir, finished_study, make_study):
+    client = api()
+    sid = finished_study(data_dir, make_study())
+    r = client.get(f"/studies/{sid}/runs", params={"format": "xlsx"})
+    assert r.status_code == 422 and r.json()["message"].startswith("query.format:")
+    r = client.get(f"/studies/{sid}/runs", params={"filter": "nope=1"})
+    assert r.status_code == 422 and "unknown column 'nope'" in r.json()["message"]
+    r = client.get(f"/studies/{sid}/compare", params={"baseline": "din", "candidate": "nonlin"})
+    assert r.status_code == 422 and "candidate: model 'nonlin' is not in this study" in r.text
+
+
+def test_reading_a_finished_study(api, data_dir, finished_study, make_study):
+    import io
+
+    import pandas as pd
+
+    client = api()
+    sid = finished_study(data_dir, make_study())
+    st = client.get(f"/studies/{sid}").json()
+    assert st["state"] == "done" and st["total"] == st["done"] == 6
+    assert st["status_url"] == f"/studies/{sid}"
+    page = client.get(f"/studies/{sid}/runs", params={"limit": 2, "offset": 1}).json()
+    assert page["total"] == 6 and len(page["runs"]) == 2
+    assert "te_main_carry_kn" not in page["runs"][0]
+    assert set(page["runs"][0]["te_components_kn"]) >= {"main_carry", "lift", "secondary"}
+    cema = client.get(f"/studies/{sid}/runs", params={"friction_model": "cema"}).json()
+    assert cema["total"] == 3
+    csv = client.get(f"/studies/{sid}/runs", params={"format": "csv", "filter": "temperature_c=0"})
+    assert csv.headers["content-type"].startswith("text/csv")
+    assert len(pd.read_csv(io.StringIO(csv.text))) == 2
+    pq = client.get(f"/studies/{sid}/runs", params={"format": "parquet"})
+    assert len(pd.read_parquet(io.BytesIO(pq.content))) == 6
+    rid = page["runs"][0]["run_id"]
+    detail = client.get(f"/studies/{sid}/runs/{rid}").json()
+    assert detail["summary"]["run_id"] == rid
+    cmp = client.get(
+        f"/studies/{sid}/compare",
+        params={"baseline": "din", "candidate": "cema", "metrics": "power_kw"},
+    ).json()
+    assert len(cmp["pairs"]) == 3 and cmp["summary"]["power_kw"]["overall"]["n"] == 3
+    assert [s["id"] for s in client.get("/studies").json()["studies"]] == [sid]
+    models = client.get("/models").json()["models"]
+    assert {"din", "cema"} <= {m["name"] for m in models}
+    assert "iso5048" in next(m for m in models if m["name"] == "din")["aliases"]
+    belts = client.get("/catalog/belts").json()["belts"]
+    assert any(b["id"] == "ST2000" for b in belts)
+    assert client.delete(f"/studies/{sid}").json() == {
+        "id": sid,
+        "state": "cancelled",
+        "deleted": True,
+    }
+    assert _written(data_dir) == []
+
+
+def test_openapi_documents_the_study_body(api):
+    schema = api().get("/openapi.json").json()
+    body = schema["paths"]["/studies"]["post"]["requestBody"]["content"]
+    assert body["application/json"]["schema"] == {"$ref": "#/components/schemas/StudyDoc"}
+    assert "application/yaml" in body
+    comps = schema["components"]["schemas"]
+    assert {"StudyDoc", "Conveyor", "Scenario", "ErrorOut"} <= set(comps)
+    assert "grid" in comps["StudyDoc"]["properties"]

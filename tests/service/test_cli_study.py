@@ -1,0 +1,112 @@
+"""``beltstudy submit|run|status|results|compare`` (service/cli/study.py, service/report.py)."""
+
+from __future__ import annotations
+
+import json
+
+import pandas as pd
+import pytest
+import yaml
+
+from service.cli import main
+from service.demo import free_port
+from service.report import ProgressBar, format_compare
+
+
+@pytest.fixture
+def env(monkeypatch, data_dir):
+    """No service listens at BELTSTUDY_URL; the store is in a temporary directory."""
+    monkeypatch.setenv("BELTSTUDY_URL", f"http://127.0.0.1:{free_port()}")
+    monkeypatch.setenv("BELTSTUDY_DATA_DIR", str(data_dir))
+    monkeypatch.setenv("BELTSTUDY_WORKERS", "2")
+    return data_dir
+
+
+def test_status_results_compare_read_the_local_store_without_a_service(
+    env, capsys, finished_study, make_study, tmp_path
+):
+    sid = finished_study(env, make_study())
+    assert main(["status"]) == 0
+    out = capsys.readouterr().out
+    assert sid in out and "done" in out and "6/6" in out
+    assert main(["status", sid]) == 0
+    assert main(["results", sid, "-o", str(tmp_path / "r.parquet")]) == 0
+    assert len(pd.read_parquet(tmp_path / "r.parquet")) == 6
+    assert main(["results", sid, "-o", str(tmp_path / "r.csv")]) == 0
+    assert len(pd.read_csv(tmp_path / "r.csv")) == 6
+    assert main(["results", sid, "-o", str(tmp_path / "r.json")]) == 0
+    rows = json.loads((tmp_path / "r.json").read_text())["runs"]
+    assert len(rows) == 6 and "te_components_kn" in rows[0]
+    capsys.readouterr()
+    assert (
+        main(["compare", sid, "--baseline", "din", "--candidate", "cema", "--metrics", "power_kw"])
+        == 0
+    )
+    out = capsys.readouterr().out
+    assert "cema / din" in out and "power_kw: ratio mean" in out and "by temperature_c" in out
+
+
+def test_user_mistakes_print_one_line_and_exit_2(env, capsys, tmp_path, make_study):
+    assert main(["status", "0123456789abcdef"]) == 2
+    assert capsys.readouterr().err.strip() == "error: study '0123456789abcdef' not found"
+    assert main(["results", "0123456789abcdef", "-o", str(tmp_path / "x.xlsx")]) == 2
+    assert "use a .parquet, .csv or .json" in capsys.readouterr().err
+    path = tmp_path / "bad.yaml"
+    path.write_text(yaml.safe_dump(make_study(grid={"temprature_c": [0]})))
+    assert main(["run", str(path)]) == 2
+    err = capsys.readouterr().err
+    assert len(err.strip().splitlines()) == 1 and "did you mean 'temperature_c'" in err
+    assert main(["submit", str(path)]) == 2  # no service: one line naming the address
+    err = capsys.readouterr().err
+    assert "cannot reach the service at http://127.0.0.1:" in err
+    assert not (env / "studies").exists() or not list((env / "studies").iterdir())
+
+
+def test_progress_bar_and_compare_table():
+    bar = ProgressBar(stream=None)
+    line = bar.render({"total": 40, "done": 10, "failed": 1, "eta_s": 95, "state": "running"})
+    assert line.startswith("[" + "#" * 8 + "." * 22 + "] 10/40 runs  1 failed  01:35 left")
+    table = format_compare(
+        {
+            "baseline": "cema",
+            "candidate": "nonlin",
+            "metrics": ["power_kw"],
+            "summary": {
+                "power_kw": {
+                    "overall": {"n": 1, "mean": 0.8, "min": 0.8, "max": 0.8},
+                    "by_axis": {"load": {"full": {"n": 1, "mean": 0.8}}},
+                }
+            },
+            "pairs": [
+                {
+                    "load": "full",
+                    "run_id_baseline": "a",
+                    "status_baseline": "ok",
+                    "power_kw_baseline": 100.0,
+                    "run_id_candidate": "b",
+                    "status_candidate": "ok",
+                    "power_kw_candidate": 80.0,
+                    "power_kw_ratio": 0.8,
+                }
+            ],
+        }
+    )
+    assert "power_kw: ratio mean 0.800" in table
+    assert table.splitlines()[-1].split() == ["full", "100.0", "80.0", "0.800"]
+
+
+@pytest.mark.slow
+def test_run_uses_the_executor_and_store_in_process(env, capsys, tmp_path, make_study):
+    conveyor = tmp_path / "conveyors" / "tiny.yaml"
+    conveyor.parent.mkdir()
+    study = make_study(name="cli-run")
+    conveyor.write_text(yaml.safe_dump(study.pop("conveyor")))
+    path = tmp_path / "study.yaml"
+    path.write_text(yaml.safe_dump({**study, "conveyor": "conveyors/tiny.yaml"}))
+    assert main(["run", str(path)]) == 0
+    out = capsys.readouterr().out
+    assert "done" in out and "6/6" in out
+    (sid,) = [p.name for p in (env / "studies").iterdir()]
+    assert len(pd.read_parquet(env / "studies" / sid / "runs")) == 6
+    assert main(["run", str(path)]) == 0  # already done: nothing is run again
+    assert "existing study" in capsys.readouterr().err

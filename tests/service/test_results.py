@@ -1,0 +1,91 @@
+"""Filters and the friction-model comparison (service/results.py)."""
+
+from __future__ import annotations
+
+import math
+
+import pandas as pd
+import pytest
+
+from service.errors import Invalid
+from service.results import apply_filters, compare, row_to_json
+
+
+def _runs() -> pd.DataFrame:
+    rows = []
+    for model, scale in (("cema", 1.0), ("nonlin", 0.8)):
+        for t in (-20.0, 20.0):
+            for load in ("full", "empty"):
+                power = (100.0 if load == "full" else 40.0) * scale * (1.5 if t < 0 else 1.0)
+                rows.append(
+                    {
+                        "run_id": f"{model}{t}{load}",
+                        "status": "ok",
+                        "friction_model": model,
+                        "temperature_c": t,
+                        "load": load,
+                        "power_kw": power,
+                        "t_max_dyn_kn": float("nan"),
+                    }
+                )
+    return pd.DataFrame(rows)
+
+
+def test_compare_pairs_runs_differing_only_in_model():
+    out = compare(
+        _runs(),
+        ["friction_model", "temperature_c", "load"],
+        "cema",
+        "nonlin",
+        ["power_kw", "t_max_dyn_kn"],
+    )
+    assert len(out["pairs"]) == 4
+    for p in out["pairs"]:
+        assert p["power_kw_ratio"] == pytest.approx(0.8)
+        assert p["t_max_dyn_kn_ratio"] is None
+    s = out["summary"]["power_kw"]
+    assert s["overall"] == {
+        "n": 4,
+        "mean": pytest.approx(0.8),
+        "min": pytest.approx(0.8),
+        "max": pytest.approx(0.8),
+    }
+    assert set(s["by_axis"]) == {"temperature_c", "load"}
+    assert set(s["by_axis"]["load"]) == {"full", "empty"}
+    assert out["summary"]["t_max_dyn_kn"]["overall"]["n"] == 0
+
+
+def test_compare_refuses_unknown_models_and_metrics():
+    runs = _runs()
+    with pytest.raises(Invalid, match="candidate: model 'visco' is not in this study"):
+        compare(runs, ["friction_model"], "cema", "visco", ["power_kw"])
+    with pytest.raises(Invalid, match="metrics: unknown metric 'powr'"):
+        compare(runs, ["friction_model"], "cema", "nonlin", ["powr"])
+
+
+def test_filters_compare_numbers_as_numbers():
+    runs = _runs()
+    assert len(apply_filters(runs, ["temperature_c=20"])) == 4
+    assert len(apply_filters(runs, ["load=full", "friction_model=cema"])) == 2
+    with pytest.raises(Invalid, match="filter: unknown column 'nope'"):
+        apply_filters(runs, ["nope=1"])
+    with pytest.raises(Invalid, match="not column=value"):
+        apply_filters(runs, ["temperature_c"])
+    with pytest.raises(Invalid, match="temperature_c"):
+        apply_filters(runs, ["temperature_c=warm"])
+
+
+def test_rows_fold_parts_into_components_and_nan_into_null():
+    out = row_to_json(
+        {"te_kn": 3.0, "te_lift_kn": 1.0, "te_feed_kn": float("nan"), "power_kw": math.nan}
+    )
+    assert out == {"te_kn": 3.0, "power_kw": None, "te_components_kn": {"lift": 1.0}}
+
+
+def test_pairs_with_a_failed_run_have_no_ratio():
+    runs = _runs()
+    runs.loc[(runs["friction_model"] == "nonlin") & (runs["load"] == "empty"), "status"] = "failed"
+    out = compare(runs, ["friction_model", "temperature_c", "load"], "cema", "nonlin", ["power_kw"])
+    assert out["failed_pairs"] == 2 and len(out["pairs"]) == 4
+    assert out["summary"]["power_kw"]["overall"]["n"] == 2
+    assert out["summary"]["power_kw"]["by_axis"]["load"]["empty"]["n"] == 0

@@ -1,0 +1,200 @@
+"""The service end to end: a real uvicorn server (child process) with a real LocalCluster,
+and with an external ``dask scheduler`` plus two ``dask worker`` processes, all on loopback.
+
+Studies are submitted over HTTP, polled to completion, and read back from Parquet with pandas.
+"""
+
+from __future__ import annotations
+
+import os
+import signal
+import subprocess
+import sys
+import time
+
+import pandas as pd
+import pytest
+import yaml
+
+pytestmark = pytest.mark.slow
+
+
+def _dynamic_study(make_study, name: str, **over) -> dict:
+    """A dynamic study of the 60 m conveyor with few elements (fast runs)."""
+    study = make_study(
+        name=name,
+        dynamics=True,
+        grid={"friction_model": ["din", "cema"], "temperature_c": [-10, 20]},
+    )
+    study.update(over)
+    return study
+
+
+def test_submit_poll_and_read_parquet(live_service, make_study):
+    svc = live_service()
+    assert svc.health["executor"] == {
+        "state": "ready",
+        "error": "",
+        "scheduler": "local",
+        "workers": 2,
+    }
+    body = _dynamic_study(
+        make_study,
+        "live-yaml",
+        grid={
+            "friction_model": ["din", "cema"],
+            "temperature_c": [-10, 20],
+            "load": ["full", "empty"],
+        },
+    )
+    r = svc.client._http.post(
+        "/studies",
+        content=yaml.safe_dump(body).encode(),
+        headers={"Content-Type": "application/yaml"},
+    )
+    assert r.status_code == 202, r.text
+    sub = r.json()
+    assert sub["total"] == 8 and sub["status_url"] == f"/studies/{sub['id']}"
+    st = svc.wait(sub["id"])
+    assert st["state"] == "done" and st["done"] == 8 and st["eta_s"] == 0.0
+    # resubmitting the same study returns it (200), nothing new is run
+    again, created = svc.client.submit(body)
+    assert not created and again["id"] == sub["id"] and again["state"] == "done"
+
+    root = svc.data_dir / "studies" / sub["id"]
+    runs = pd.read_parquet(root / "runs")
+    assert len(runs) == 8 and runs["run_id"].is_unique
+    assert set(runs["status"]) <= {"ok", "warning"}, runs[["status", "message"]]
+    assert runs["t_max_dyn_kn"].notna().all() and runs["power_kw"].notna().all()
+    assert (runs["study_id"] == sub["id"]).all()
+    ts = pd.read_parquet(root / "timeseries")
+    assert set(ts["run_id"]) == set(runs["run_id"])
+    assert {"t_s", "v_drive_m_s", "t_head_in_kn"} <= set(ts.columns)
+    detail = svc.client._http.get(f"/studies/{sub['id']}/runs/{runs['run_id'][0]}").json()
+    assert len(detail["timeseries"]["t_s"]) == (ts["run_id"] == runs["run_id"][0]).sum()
+
+
+def test_two_studies_at_once_and_a_failing_run(live_service, make_study):
+    svc = live_service()
+    # stop.mode brake needs brakes, and the conveyor has none: the engine refuses that run
+    # when it runs (both inputs are valid alone), so those runs become failed rows.
+    a, _ = svc.client.submit(
+        _dynamic_study(
+            make_study,
+            "brake-or-coast",
+            grid={"friction_model": ["din", "cema"], "scenario.stop.mode": ["coast", "brake"]},
+        )
+    )
+    b, _ = svc.client.submit(
+        make_study(
+            name="steady-at-once", grid={"temperature_c": {"start": -40, "stop": 40, "step": 1}}
+        )
+    )
+    sa, sb = svc.wait(a["id"]), svc.wait(b["id"])
+    assert sa["state"] == sb["state"] == "done"
+    assert sb["done"] == 81 and sb["failed"] == 0
+    assert sa["done"] == 4 and sa["failed"] == 2
+    assert sa["message"] == "2 of 4 runs failed"
+    runs = pd.read_parquet(svc.data_dir / "studies" / a["id"] / "runs")
+    failed = runs[runs["status"] == "failed"]
+    assert set(failed["scenario.stop.mode"]) == {"brake"}
+    assert (
+        failed["message"].str.contains("InputError: scenario.stop.mode: 'brake' needs brakes").all()
+    )
+    assert failed["power_kw"].isna().all()
+    assert (runs[runs["status"] != "failed"]["scenario.stop.mode"] == "coast").all()
+
+    # DELETE cancels a running study and removes its files; the service carries on
+    long = _dynamic_study(
+        make_study, "to-delete", grid={"temperature_c": {"start": -40, "stop": 40, "step": 2}}
+    )
+    long["scenario"] = {**long["scenario"], "elements": 200, "run_s": 30}
+    c, _ = svc.client.submit(long)
+    st = svc.wait(c["id"], until=lambda st: st["done"] >= 2)
+    assert st["state"] == "running"
+    assert svc.client.delete(c["id"]) == {"id": c["id"], "state": "cancelled", "deleted": True}
+    assert not (svc.data_dir / "studies" / c["id"]).exists()
+    r = svc.client._http.get(f"/studies/{c['id']}")
+    assert r.status_code == 404
+    assert {s["id"] for s in svc.client.list()} == {a["id"], b["id"]}
+
+
+def test_killing_a_worker_mid_study_still_completes(live_service, make_study):
+    svc = live_service()
+    study = _dynamic_study(
+        make_study,
+        "kill-a-worker",
+        grid={
+            "friction_model": ["din", "cema"],
+            "temperature_c": {"start": -30, "stop": 30, "step": 5},
+        },
+    )
+    study["scenario"] = {**study["scenario"], "elements": 400, "run_s": 30}  # ~0.4 s a run
+    sub, _ = svc.client.submit(study)
+    st = svc.wait(sub["id"], until=lambda st: st["done"] >= 4)
+    assert st["done"] <= 20, "the study is nearly over before the kill; make it longer"
+    pids = svc.worker_pids()
+    assert len(pids) == 2, pids
+    os.kill(pids[0], signal.SIGKILL)
+    st = svc.wait(sub["id"])
+    assert st["state"] == "done" and st["done"] == st["total"] == 26
+    runs = pd.read_parquet(svc.data_dir / "studies" / sub["id"] / "runs")
+    assert len(runs) == 26 and runs["run_id"].is_unique
+
+
+def test_against_an_external_scheduler_and_two_workers(live_service, make_study, tmp_path):
+    from service.demo import free_port
+
+    port = free_port()
+    dask = os.path.join(os.path.dirname(sys.executable), "dask")
+    address = f"tcp://127.0.0.1:{port}"
+    log = open(tmp_path / "dask.log", "ab")  # noqa: SIM115
+    procs = [
+        subprocess.Popen(
+            [dask, "scheduler", "--host", "127.0.0.1", "--port", str(port), "--no-dashboard"],
+            stdout=log,
+            stderr=log,
+        )
+    ]
+    try:
+        time.sleep(1.0)
+        for _ in range(2):
+            procs.append(
+                subprocess.Popen(
+                    [
+                        dask,
+                        "worker",
+                        address,
+                        "--nthreads",
+                        "1",
+                        "--nworkers",
+                        "1",
+                        "--no-dashboard",
+                        "--host",
+                        "127.0.0.1",
+                    ],
+                    stdout=log,
+                    stderr=log,
+                )
+            )
+        svc = live_service(BELTSTUDY_SCHEDULER=address)
+        deadline = time.monotonic() + 60
+        while svc.client.health()["executor"]["workers"] < 2 and time.monotonic() < deadline:
+            time.sleep(0.5)
+        health = svc.client.health()
+        assert health["executor"]["scheduler"] == address and health["executor"]["workers"] == 2
+        sub, created = svc.client.submit(_dynamic_study(make_study, "external"))
+        st = svc.wait(sub["id"])
+        assert st["state"] == "done" and st["done"] == 4 and st["failed"] == 0
+        runs = pd.read_parquet(svc.data_dir / "studies" / sub["id"] / "runs")
+        assert len(runs) == 4 and runs["t_max_dyn_kn"].notna().all()
+        svc.stop()
+    finally:
+        for p in reversed(procs):
+            p.send_signal(signal.SIGTERM)
+        for p in procs:
+            try:
+                p.wait(20)
+            except subprocess.TimeoutExpired:
+                p.kill()
+        log.close()

@@ -1,0 +1,120 @@
+"""The Parquet store: layout, atomic writes, explicit schema, orphan cleaning (service/store.py)."""
+
+from __future__ import annotations
+
+import pandas as pd
+import pyarrow as pa
+import pytest
+
+from service.errors import NotFound
+from service.schema import (
+    RESULT_COLUMNS,
+    TE_PART_COLUMNS,
+    flatten_summary,
+    rows_to_table,
+    runs_schema,
+    timeseries_schema,
+)
+from service.store import Store
+
+
+def test_finished_study_reads_back_with_pandas(data_dir, make_study, finished_study):
+    sid = finished_study(data_dir, make_study())
+    d = data_dir / "studies" / sid
+    assert (d / "study.json").is_file()
+    assert [p.name for p in (d / "runs").iterdir()] == ["part-all.parquet"]
+    df = pd.read_parquet(d / "runs")
+    assert len(df) == 6 and df["run_id"].is_unique
+    assert set(RESULT_COLUMNS) <= set(df.columns)
+    assert df["temperature_c"].dtype == "float64"
+    assert (df["status"] != "failed").all()
+    parts = df[[c for c in TE_PART_COLUMNS]].fillna(0).sum(axis=1)
+    assert parts.to_numpy() == pytest.approx(df["te_kn"].to_numpy(), rel=1e-9)
+    # nonlin's parts are null for din and cema, never zero
+    assert df["te_indentation_kn"].isna().all()
+
+
+def test_empty_study_has_the_full_schema(data_dir, make_study):
+    from service.study import resolve_study
+
+    study = resolve_study(make_study())
+    store = Store(data_dir)
+    store.create(
+        study.id,
+        {"id": study.id, "name": "x", "state": "queued", "total": 6, "study": study.to_json()},
+    )
+    runs = store.read_runs(study.id)
+    assert len(runs) == 0 and {"run_id", "temperature_c", "power_kw"} <= set(runs.columns)
+    assert list(store.read_timeseries(study.id).columns)[:2] == ["run_id", "t_s"]
+
+
+def test_parts_are_written_under_a_temporary_name(tmp_path, monkeypatch):
+    store = Store(tmp_path)
+    store.create("0123456789abcdef", {"id": "0123456789abcdef", "study": {"axes": []}})
+    seen = []
+    import pyarrow.parquet as pq
+
+    real = pq.write_table
+
+    def spy(table, where, **kw):
+        seen.append(where.name)
+        real(table, where, **kw)
+
+    monkeypatch.setattr(pq, "write_table", spy)
+    table = rows_to_table([{"run_id": "r1", "t_s": 0.0}], timeseries_schema())
+    path = store.write_part("0123456789abcdef", "timeseries", "k1", table)
+    assert seen[0].startswith(".part-k1.parquet.") and seen[0].endswith(".tmp")
+    assert path.name == "part-k1.parquet"
+    assert [p.name for p in path.parent.iterdir()] == ["part-k1.parquet"]
+
+
+def test_clean_removes_orphans_and_temporaries(tmp_path):
+    sid = "0123456789abcdef"
+    store = Store(tmp_path)
+    store.create(sid, {"id": sid, "study": {"axes": []}})
+    ts = rows_to_table([{"run_id": "r", "t_s": 0.0}], timeseries_schema())
+    runs = rows_to_table([{"run_id": "r"}], runs_schema([]))
+    store.write_part(sid, "timeseries", "done", ts)
+    store.write_part(sid, "runs", "done", runs)
+    store.write_part(sid, "timeseries", "orphan", ts)  # its runs part never landed
+    (store.table_dir(sid, "runs") / ".part-x.parquet.1234.tmp").write_bytes(b"half")
+    assert store.clean(sid) == 2
+    assert [p.name for p in store.parts(sid, "timeseries")] == ["part-done.parquet"]
+    assert [p.name for p in store.table_dir(sid, "runs").iterdir()] == ["part-done.parquet"]
+
+
+@pytest.mark.parametrize("bad", ["../etc", "0123", "0123456789ABCDEF", "x" * 16, ""])
+def test_ids_that_are_not_hashes_are_not_found(tmp_path, bad):
+    with pytest.raises(NotFound):
+        Store(tmp_path).read(bad)
+
+
+def test_update_list_delete(tmp_path):
+    store = Store(tmp_path)
+    for i, sid in enumerate(["a" * 16, "b" * 16]):
+        store.create(sid, {"id": sid, "created_at": i, "state": "queued"})
+    store.update("a" * 16, state="done")
+    assert [d["state"] for d in store.list_studies()] == ["done", "queued"]
+    store.delete("a" * 16)
+    assert [d["id"] for d in store.list_studies()] == ["b" * 16]
+    assert not list(store.root.glob(".*"))
+    with pytest.raises(NotFound):
+        store.delete("a" * 16)
+
+
+def test_flatten_keeps_unknown_parts_summing_to_te():
+    row = flatten_summary(
+        {
+            "te_kn": 10.0,
+            "te_components_kn": {"main_carry": 6.0, "lift": 3.0, "magic": 1.0},
+            "status": "warning",
+            "message": "sag",
+            "power_kw": float("nan"),
+        }
+    )
+    assert row["te_main_carry_kn"] == 6.0 and row["te_other_kn"] == 1.0
+    assert row["te_indentation_kn"] is None and row["power_kw"] is None
+    assert row["status"] == "warning"
+    table = rows_to_table([{"run_id": "r", **row, "not_a_column": 1}], runs_schema([]))
+    assert table.schema.field("te_kn").type == pa.float64()
+    assert "not_a_column" not in table.column_names

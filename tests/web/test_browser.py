@@ -1,0 +1,336 @@
+"""End to end in Debian's headless Chromium against a real uvicorn server and LocalCluster.
+
+Submits a four-run steady study through the form (after a refused one), watches the progress
+bar reach done, opens the study page and a run page, checks that every plot loads and the
+table shows every run, and saves screenshots of the three pages to ``test-artifacts/`` and
+``docs/img/``. Skipped, saying why, when Chromium, its driver or selenium is missing.
+"""
+
+from __future__ import annotations
+
+import contextlib
+import json
+import os
+import shutil
+import socket
+import subprocess
+import sys
+import tempfile
+import time
+from pathlib import Path
+
+import httpx
+import pytest
+
+pytestmark = [pytest.mark.browser, pytest.mark.slow]
+
+ROOT = Path(__file__).resolve().parents[2]
+ARTIFACTS = ROOT / "test-artifacts"
+DOCS_IMG = ROOT / "docs" / "img"
+CHROMIUM = "/usr/bin/chromium"
+CHROMEDRIVER = "/usr/bin/chromedriver"
+XSS = "<script>alert(1)</script><b>x</b>"
+
+# The app factory with the pages included (also when service.api.app does not list them yet).
+# A file, not ``-c``: Dask's worker processes are spawned and re-import the main module.
+SERVER = """
+import sys
+
+import uvicorn
+
+from service.api.app import create_app
+
+
+def main() -> None:
+    app = create_app()
+    if not any(getattr(r, "path", "") == "/ui/static/{name}" for r in app.routes):
+        from service.web.routes import router
+
+        app.include_router(router)
+    uvicorn.run(app, host="127.0.0.1", port=int(sys.argv[1]), log_level="warning")
+
+
+if __name__ == "__main__":
+    main()
+"""
+
+
+def _missing() -> str:
+    for path in (CHROMIUM, CHROMEDRIVER):
+        if not os.access(path, os.X_OK):
+            return f"{path} not found: install Debian's chromium and chromium-driver"
+    try:
+        import selenium  # noqa: F401
+    except ImportError:
+        return "selenium is not installed"
+    return ""
+
+
+def _free_port() -> int:
+    with socket.socket() as s:
+        s.bind(("127.0.0.1", 0))
+        return s.getsockname()[1]
+
+
+@contextlib.contextmanager
+def _serve(prepare=None, **env_over):
+    """A uvicorn server in a subprocess on a free loopback port; yields its base URL.
+
+    ``prepare(data_dir)`` fills the data directory before the server starts.
+    """
+    tmp = Path(tempfile.mkdtemp(prefix="beltstudy-web-"))
+    data = tmp / "data"
+    data.mkdir()
+    if prepare is not None:
+        prepare(data)
+    port = _free_port()
+    env = dict(os.environ, BELTSTUDY_DATA_DIR=str(data), BELTSTUDY_WORKERS="1",
+               BELTSTUDY_STUDIES_DIR=str(ROOT / "studies"), BELTSTUDY_TOKEN="",
+               BELTSTUDY_SCHEDULER="")
+    env.update(env_over)
+    log = open(tmp / "server.log", "w")
+    script = tmp / "serve_web.py"
+    script.write_text(SERVER)
+    proc = subprocess.Popen([sys.executable, str(script), str(port)], cwd=ROOT, env=env,
+                            stdout=log, stderr=subprocess.STDOUT)
+    base = f"http://127.0.0.1:{port}"
+    try:
+        deadline = time.monotonic() + 90
+        while True:
+            try:
+                if httpx.get(f"{base}/health", timeout=2).status_code == 200:
+                    break
+            except httpx.HTTPError:
+                pass
+            if proc.poll() is not None or time.monotonic() > deadline:
+                raise RuntimeError("server did not start:\n" + (tmp / "server.log").read_text())
+            time.sleep(0.3)
+        yield base
+    finally:
+        proc.terminate()
+        try:
+            proc.wait(timeout=30)
+        except subprocess.TimeoutExpired:
+            proc.kill()
+            proc.wait()
+        log.close()
+        shutil.rmtree(tmp, ignore_errors=True)
+
+
+@pytest.fixture(scope="module")
+def server():
+    reason = _missing()
+    if reason:
+        pytest.skip(f"browser test skipped: {reason}")
+    with _serve() as base:
+        yield base
+
+
+@pytest.fixture(scope="module")
+def browser():
+    reason = _missing()
+    if reason:
+        pytest.skip(f"browser test skipped: {reason}")
+    from selenium import webdriver
+    from selenium.webdriver.chrome.service import Service
+
+    profile = tempfile.mkdtemp(prefix="beltstudy-chromium-")
+    options = webdriver.ChromeOptions()
+    options.binary_location = CHROMIUM
+    for arg in ("--headless", "--no-sandbox", "--disable-gpu", "--disable-quic",
+                "--no-first-run", "--disable-background-networking",
+                "--disable-component-update", "--disable-sync",
+                f"--user-data-dir={profile}", "--window-size=1280,1100"):
+        options.add_argument(arg)
+    driver = webdriver.Chrome(service=Service(CHROMEDRIVER), options=options)
+    driver.set_page_load_timeout(30)
+    try:
+        yield driver
+    finally:
+        driver.quit()
+        shutil.rmtree(profile, ignore_errors=True)
+
+
+def _wait(driver, condition, timeout: float = 30, what: str = ""):
+    from selenium.webdriver.support.ui import WebDriverWait
+
+    return WebDriverWait(driver, timeout, poll_frequency=0.2).until(
+        lambda d: condition(d), message=what
+    )
+
+
+def _screenshot(driver, name: str) -> None:
+    ARTIFACTS.mkdir(exist_ok=True)
+    DOCS_IMG.mkdir(parents=True, exist_ok=True)
+    path = ARTIFACTS / name
+    driver.execute_script("window.scrollTo(0, 0)")
+    height = driver.execute_script("return document.documentElement.scrollHeight")
+    driver.set_window_size(1280, min(max(int(height) + 40, 800), 3000))
+    driver.save_screenshot(str(path))
+    driver.set_window_size(1280, 1100)
+    shutil.copyfile(path, DOCS_IMG / name)
+
+
+def _images_loaded(driver) -> list[dict]:
+    """Every plot image: loaded from a fetched PNG, drawn, non-empty."""
+    script = """
+      return Array.from(document.querySelectorAll('img.plot')).map(img => ({
+        id: img.id, loaded: img.dataset.loaded, type: img.dataset.type,
+        bytes: Number(img.dataset.bytes || 0), width: img.naturalWidth,
+        complete: img.complete}));
+    """
+    return driver.execute_script(script)
+
+
+def _submit(driver, text: str) -> None:
+    from selenium.webdriver.common.by import By
+
+    area = driver.find_element(By.ID, "study-text")
+    driver.execute_script("arguments[0].value = arguments[1];", area, text)
+    driver.find_element(By.ID, "submit-button").click()
+
+
+def _no_alert(driver) -> None:
+    from selenium.common.exceptions import NoAlertPresentException
+
+    with pytest.raises(NoAlertPresentException):
+        driver.switch_to.alert  # noqa: B018  (the script in the conveyor name never ran)
+
+
+def test_submit_watch_and_read_a_study_in_chromium(server, browser):
+    from selenium.webdriver.common.by import By
+    from selenium.webdriver.support.ui import Select
+
+    driver = browser
+    driver.get(server + "/")
+    _wait(driver, lambda d: d.find_element(By.ID, "studies-empty").is_displayed(),
+          what="empty study list")
+
+    # 1. a refused study: the field is named and nothing is stored
+    conveyor = {
+        "name": XSS, "speed_m_s": 2.5, "belt": {"type": "EP630/4", "width_m": 0.8},
+        "material": {"capacity_t_h": 300, "density_t_m3": 1.0},
+        "profile": [{"length_m": 150, "lift_m": 4}, {"length_m": 150, "lift_m": 8}],
+        "idlers": {"carry": {"spacing_m": 1.2, "trough_deg": 30},
+                   "return": {"spacing_m": 3.0, "rolls": 1}},
+        "drives": [{"position": "head", "pulley_diameter_m": 0.6, "inertia_kg_m2": 20}],
+    }
+    bad = {"name": "refused", "conveyor": conveyor, "grid": {"tempreature_c": [0, 10]}}
+    _submit(driver, json.dumps(bad))
+    error = _wait(driver, lambda d: d.find_element(By.ID, "submit-error").is_displayed()
+                  and d.find_element(By.ID, "submit-error"), what="validation error")
+    assert "grid" in error.text and "tempreature_c" in error.text
+    assert httpx.get(server + "/studies").json()["studies"] == []
+
+    # 2. a good one, in YAML: 2 models x 2 temperatures, steady only
+    import yaml
+
+    study = {"name": "web-e2e", "description": "two models, two temperatures",
+             "conveyor": conveyor,
+             "grid": {"friction_model": ["din", "cema"], "temperature_c": [-20, 20]},
+             "dynamics": False}
+    _submit(driver, yaml.safe_dump(study, sort_keys=False))
+    _wait(driver, lambda d: d.find_element(By.ID, "submit-result").is_displayed(),
+          what="submitted")
+    assert not driver.find_element(By.ID, "submit-error").is_displayed()
+
+    seen = []
+
+    def progress_done(d):
+        # one script call: the rows are rebuilt on every poll
+        bar = d.execute_script("""
+          const b = document.querySelector('#studies tbody progress');
+          return b && {state: b.dataset.state, value: b.value, max: b.max};""")
+        if not bar:
+            return False
+        seen.append(bar)
+        return bar["state"] == "done" and bar["value"] == 4 and bar["max"] == 4
+
+    _wait(driver, progress_done, timeout=150, what="progress bar reaching done")
+    assert seen and seen[-1]["state"] == "done"
+    assert driver.find_element(By.CSS_SELECTOR, "#studies tbody td.counts").text == "4 / 0 / 4"
+    assert len(driver.find_elements(By.CSS_SELECTOR, "#studies tbody tr")) == 1
+    _screenshot(driver, "web-studies.png")
+
+    # 3. the study page: table, filters, plots, the conveyor name shown as text
+    driver.find_element(By.LINK_TEXT, "web-e2e").click()
+    _wait(driver, lambda d: len(d.find_elements(By.CSS_SELECTOR, "#runs tbody tr")) == 4,
+          what="four runs in the table")
+    _wait(driver, lambda d: all(i["loaded"] == "1" for i in _images_loaded(d)),
+          timeout=60, what="plots loaded")
+    images = _images_loaded(driver)
+    assert len(images) == 3
+    for img in images:
+        assert img["type"] == "image/png" and img["bytes"] > 1000 and img["width"] > 100, img
+    name = driver.find_element(By.ID, "conveyor-name")
+    assert name.text == XSS
+    assert name.find_elements(By.CSS_SELECTOR, "*") == []  # no <b>, no <script> element
+    assert driver.find_elements(By.CSS_SELECTOR, "main b, main script") == []
+    _no_alert(driver)
+    axes = driver.find_element(By.ID, "axes").text
+    assert "friction_model" in axes and "temperature_c" in axes and "-20, 20" in axes
+    Select(driver.find_element(By.CSS_SELECTOR, "select[name=friction_model]")).select_by_value(
+        "din")
+    assert len(driver.find_elements(By.CSS_SELECTOR, "#runs tbody tr")) == 2
+    Select(driver.find_element(By.CSS_SELECTOR, "select[name=friction_model]")).select_by_value(
+        "")
+    driver.find_element(By.CSS_SELECTOR, "#runs th[data-column=power_kw]").click()
+    cells = driver.find_elements(By.CSS_SELECTOR, "#runs tbody tr")
+    assert len(cells) == 4
+    for fmt, kind in (("csv", "text/csv"), ("parquet", "parquet"), ("json", "json")):
+        href = driver.find_element(By.ID, f"download-{fmt}").get_attribute("href")
+        r = httpx.get(href)
+        assert r.status_code == 200 and kind in r.headers["content-type"] and r.content
+    assert len(httpx.get(href).json()["runs"]) == 4
+    _screenshot(driver, "web-study.png")
+
+    # 4. a run page: Fig. 1 and the transient figure (no dynamics here), results, warnings
+    driver.find_element(By.CSS_SELECTOR, "#runs tbody tr a").click()
+    _wait(driver, lambda d: d.find_element(By.ID, "run-status").text != "", what="run status")
+    _wait(driver, lambda d: all(i["loaded"] == "1" for i in _images_loaded(d)),
+          timeout=60, what="run plots loaded")
+    images = _images_loaded(driver)
+    assert [i["id"] for i in images] == ["plot-steady-profile", "plot-transient"]
+    for img in images:
+        assert img["type"] == "image/png" and img["bytes"] > 1000 and img["width"] > 100, img
+    assert driver.find_element(By.ID, "run-status").text in ("ok", "warning")
+    assert "power_kw" in driver.find_element(By.ID, "run-summary").text
+    assert driver.find_element(By.ID, "run-study").text == "of web-e2e"
+    _no_alert(driver)
+    _screenshot(driver, "web-run.png")
+
+
+def test_token_login_field_unlocks_data_and_plots(browser, web):
+    """With BELTSTUDY_TOKEN set, the page asks for it, then fetches data and plots with it."""
+    from selenium.webdriver.common.by import By
+
+    driver = browser
+    holder = {}
+
+    def prepare(data: Path) -> None:
+        holder["id"] = web.finished_study(data, web.tiny_study(name="token-study"))
+
+    with _serve(prepare, BELTSTUDY_TOKEN="e2e-token", BELTSTUDY_WARM_START="false") as base:
+        sid = holder["id"]
+        driver.get(f"{base}/ui/studies/{sid}")
+        error = _wait(driver, lambda d: d.find_element(By.ID, "error").is_displayed()
+                      and d.find_element(By.ID, "error"), what="401 shown")
+        assert "token" in error.text
+        assert driver.find_elements(By.CSS_SELECTOR, "#runs tbody tr") == []
+        driver.find_element(By.ID, "token-input").send_keys("e2e-token")
+        driver.find_element(By.CSS_SELECTOR, "#login button[type=submit]").click()
+        _wait(driver, lambda d: len(d.find_elements(By.CSS_SELECTOR, "#runs tbody tr")) == 4,
+              what="runs after login")
+        _wait(driver, lambda d: all(i["loaded"] == "1" for i in _images_loaded(d)),
+              timeout=60, what="plots loaded with the token")
+        assert all(i["type"] == "image/png" and i["bytes"] > 1000
+                   for i in _images_loaded(driver))
+        assert not driver.find_element(By.ID, "error").is_displayed()
+        assert driver.execute_script(
+            "return sessionStorage.getItem('beltstudy.token')") == "e2e-token"
+        assert driver.find_element(By.ID, "study-name").text == "token-study"
+        # the same tab keeps the token on the next page
+        driver.get(f"{base}/")
+        _wait(driver, lambda d: len(d.find_elements(By.CSS_SELECTOR, "#studies tbody tr")) == 1,
+              what="study list with the token")
+        driver.execute_script("sessionStorage.clear()")

@@ -1,0 +1,148 @@
+"""Pages, page data and plot routes through FastAPI's TestClient (no server, no Dask)."""
+
+from __future__ import annotations
+
+import pytest
+
+from service.web import figures
+
+PNG = b"\x89PNG\r\n\x1a\n"
+
+
+@pytest.fixture
+def done(web, tmp_path):
+    """A finished four-run steady study whose conveyor name is HTML; (client, id, run ids)."""
+    sid = web.finished_study(tmp_path, web.tiny_study(conveyor_name=web.XSS))
+    c = web.client(tmp_path)
+    runs = c.get(f"/studies/{sid}/runs").json()["runs"]
+    return c, sid, [r["run_id"] for r in runs]
+
+
+def test_pages_are_served_with_a_strict_policy(done):
+    c, sid, runs = done
+    for path in ("/", f"/ui/studies/{sid}", f"/ui/studies/{sid}/runs/{runs[0]}"):
+        r = c.get(path)
+        assert r.status_code == 200, path
+        assert r.headers["content-type"].startswith("text/html")
+        csp = r.headers["content-security-policy"]
+        assert "script-src 'self'" in csp and "default-src 'self'" in csp
+        assert '<script src="/ui/static/app.js"></script>' in r.text
+        assert "http://" not in r.text and "https://" not in r.text  # nothing from elsewhere
+    assert f'data-study-id="{sid}"' in c.get(f"/ui/studies/{sid}").text
+    js = c.get("/ui/static/app.js")
+    assert js.status_code == 200 and "javascript" in js.headers["content-type"]
+    assert "innerHTML" not in js.text and "insertAdjacentHTML" not in js.text
+    assert c.get("/ui/static/style.css").headers["content-type"].startswith("text/css")
+    assert c.get("/ui/static/..%2Fsettings.py").status_code == 404
+
+
+def test_pages_refuse_malformed_ids(done):
+    c, sid, _ = done
+    for path in ("/ui/studies/ABCDEF0123456789", "/ui/studies/%3Cb%3E", f"/ui/studies/{sid}/runs/x%3Cy"):
+        r = c.get(path)
+        assert r.status_code == 404
+        assert r.json()["error"] == "not_found"
+
+
+def test_html_in_names_is_never_markup_in_the_served_pages(web, tmp_path):
+    sid = web.finished_study(tmp_path, web.tiny_study(conveyor_name=web.XSS), name=web.XSS)
+    c = web.client(tmp_path)
+    run_id = c.get(f"/studies/{sid}/runs").json()["runs"][0]["run_id"]
+    for path in ("/", f"/ui/studies/{sid}", f"/ui/studies/{sid}/runs/{run_id}"):
+        text = c.get(path).text
+        assert "<script>alert" not in text and "<b>x</b>" not in text, path
+    info = c.get(f"/ui/data/studies/{sid}").json()
+    # the page data carries the text as it is; the script shows it with textContent
+    assert info["name"] == web.XSS and info["conveyor_name"] == web.XSS
+    assert c.get(f"/studies/{sid}/plots/power-temperature").status_code == 200
+
+
+@pytest.mark.parametrize("name", list(figures.STUDY_PLOTS))
+def test_study_plots_as_png_and_svg(done, name):
+    c, sid, _ = done
+    r = c.get(f"/studies/{sid}/plots/{name}")
+    assert r.status_code == 200
+    assert r.headers["content-type"] == "image/png"
+    assert r.content.startswith(PNG) and len(r.content) > 1000
+    r = c.get(f"/studies/{sid}/plots/{name}", params={"format": "svg"})
+    assert r.status_code == 200 and r.headers["content-type"] == "image/svg+xml"
+    assert b"<svg" in r.content[:1000]
+
+
+def test_steady_only_study_says_so_on_the_transient_plots(done):
+    c, sid, runs = done
+    svg = c.get(f"/studies/{sid}/plots/peak-dynamic-tension", params={"format": "svg"}).text
+    assert "no transient data (dynamics: false)" in svg
+    svg = c.get(f"/studies/{sid}/runs/{runs[0]}/plots/transient", params={"format": "svg"}).text
+    assert "no transient data (dynamics: false)" in svg
+
+
+def test_ratio_falls_back_to_the_models_present(done):
+    c, sid, _ = done
+    svg = c.get(f"/studies/{sid}/plots/ratio", params={"format": "svg"}).text
+    assert "din / cema" in svg  # no nonlin in this study: the other model over cema
+    svg = c.get(f"/studies/{sid}/plots/ratio",
+                params={"format": "svg", "baseline": "din", "candidate": "cema"}).text
+    assert "cema / din" in svg
+    r = c.get(f"/studies/{sid}/plots/ratio", params={"candidate": "nonlin"})
+    assert r.status_code == 422 and "nonlin" in r.json()["message"]
+
+
+@pytest.mark.parametrize("name", list(figures.RUN_PLOTS))
+def test_run_plots(done, name):
+    c, sid, runs = done
+    for run_id in runs[:2]:
+        r = c.get(f"/studies/{sid}/runs/{run_id}/plots/{name}")
+        assert r.status_code == 200 and r.headers["content-type"] == "image/png"
+        assert r.content.startswith(PNG) and len(r.content) > 1000
+
+
+def test_plot_routes_404_for_unknown_ids(done):
+    c, sid, runs = done
+    for path in (
+        "/studies/0123456789abcdef/plots/ratio",
+        "/studies/not-an-id/plots/ratio",
+        "/studies/0123456789abcdef/runs/0123456789abcdef/plots/transient",
+        f"/studies/{sid}/runs/0123456789abcdef/plots/transient",
+    ):
+        r = c.get(path)
+        assert r.status_code == 404, path
+        body = r.json()
+        assert body["error"] == "not_found" and "not found" in body["message"]
+
+
+def test_plot_routes_422_for_unknown_names_name_the_valid_ones(done):
+    c, sid, runs = done
+    r = c.get(f"/studies/{sid}/plots/fig99")
+    assert r.status_code == 422
+    body = r.json()
+    assert body["error"] == "invalid"
+    assert "fig99" in body["message"]
+    assert all(n in body["message"] for n in figures.STUDY_PLOTS)
+    r = c.get(f"/studies/{sid}/runs/{runs[0]}/plots/power-temperature")
+    assert r.status_code == 422
+    assert all(n in r.json()["message"] for n in figures.RUN_PLOTS)
+    r = c.get(f"/studies/{sid}/plots/ratio", params={"format": "gif"})
+    assert r.status_code == 422 and "format" in r.json()["message"]
+
+
+def test_token_guards_plots_and_data_but_not_the_page_shells(web, tmp_path):
+    sid = web.finished_study(tmp_path, web.tiny_study())
+    c = web.client(tmp_path, token="s3cret")
+    assert c.get("/").status_code == 200  # the login field must be reachable
+    assert c.get("/ui/static/app.js").status_code == 200
+    for path in (f"/studies/{sid}/plots/ratio", f"/ui/data/studies/{sid}"):
+        r = c.get(path)
+        assert r.status_code == 401 and r.json()["error"] == "unauthorized"
+        assert c.get(path, headers={"Authorization": "Bearer wrong"}).status_code == 401
+        assert c.get(path, headers={"Authorization": "Bearer s3cret"}).status_code == 200
+
+
+def test_page_data_names_the_axes(done):
+    c, sid, _ = done
+    info = c.get(f"/ui/data/studies/{sid}").json()
+    assert [a["column"] for a in info["axes"]] == ["friction_model", "temperature_c"]
+    assert info["axes"][1]["values"] == [-20, 20]
+    assert info["dynamics"] is False
+    assert set(info["study_plots"]) == set(figures.STUDY_PLOTS)
+    assert c.get("/ui/data/studies/0123456789abcdef").status_code == 404
