@@ -134,7 +134,12 @@ class Store:
         directory = self.table_dir(study_id, table)
         directory.mkdir(parents=True, exist_ok=True)
         path = directory / f"part-{key}.parquet"
-        _write_atomic(path, lambda p: pq.write_table(data, p, compression="zstd"))
+        # dictionary-encode the text columns only: floats rarely repeat, and encoding them
+        # costs several times the compression
+        text = [f.name for f in data.schema if pa.types.is_string(f.type)]
+        _write_atomic(
+            path, lambda p: pq.write_table(data, p, compression="zstd", use_dictionary=text)
+        )
         return path
 
     def parts(self, study_id: str, table: str) -> list[Path]:

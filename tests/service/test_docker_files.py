@@ -45,7 +45,7 @@ def test_compose_runs_service_scheduler_and_two_workers_on_one_volume():
 
 
 def test_settings_table_in_the_docs_matches_the_settings():
-    text = (ROOT / "docs" / "service.md").read_text()
+    text = (ROOT / "README.md").read_text()
     for name in ("DATA_DIR", "SCHEDULER", "WORKERS", "TOKEN", "MAX_RUNS"):
         assert f"BELTSTUDY_{name}" in text
         assert name.lower() in Settings.model_fields

@@ -1,0 +1,188 @@
+"""Benchmark of the Euler-X transient kernel (issue 5).
+
+Prints, with the date and the machine:
+
+1. kernel throughput (element-steps per second, one core, full physics: Ernst stiffness,
+   standard-linear-solid damping, gravity take-up, PI drives, the friction model's laws) on
+   the 16.8 km example with 1 000 elements, for DIN (constant resistances) and Non-Lin
+   (speed and sag exponents);
+2. the whole start-run-stop cycle of that example (kernel time, and run_one with statics);
+3. the baseline measured in the same run: the numpy reference of the same equations, and
+   the speed ratio of the kernel to it;
+4. the same equations integrated by scipy.integrate.solve_ivp (RK45, rtol 1e-6) on a small,
+   short case: speed ratio and difference in peak tension;
+5. the time step against element length with damping on: the kernel's damper (standard
+   linear solid, exact exponential) keeps dt ~ dx, an explicit Kelvin-Voigt term gives
+   dt ~ dx^2 on fine meshes.
+
+Run: ``.venv/bin/python benchmarks/bench_dynamics.py`` (about a minute after compilation).
+"""
+
+from __future__ import annotations
+
+import datetime
+import platform
+import subprocess
+import time
+from pathlib import Path
+
+import numpy as np
+
+from engine.conveyor import Scenario, load_conveyor
+from engine.dynamics import DynamicsOptions, build_system
+from engine.dynamics.model import stability_limit_s
+from engine.dynamics.reference import run_reference
+from engine.dynamics.simulate import run_kernel
+from engine.run import run_one
+from engine.statics import solve_steady
+
+ROOT = Path(__file__).resolve().parents[1]
+CONVEYORS = ROOT / "studies" / "conveyors"
+OVERLAND = dict(start={"control": "s-curve", "time_s": 120}, run_s=30,
+                stop={"mode": "controlled", "time_s": 60})
+
+
+def machine() -> str:
+    try:
+        cpu = subprocess.run(["lscpu"], capture_output=True, text=True).stdout.splitlines()
+        cpu = [ln for ln in cpu if ln.startswith(("Model name", "CPU(s):", "L1d", "L2"))]
+    except OSError:
+        cpu = [platform.processor()]
+    return "; ".join(" ".join(ln.split()) for ln in cpu)
+
+
+def best_of(fn, repeat=3):
+    best, out = float("inf"), None
+    for _ in range(repeat):
+        t0 = time.perf_counter()
+        out = fn()
+        best = min(best, time.perf_counter() - t0)
+    return best, out
+
+
+def kernel_throughput(model: str, n: int = 1000):
+    conv = load_conveyor(CONVEYORS / "overland-16km.yaml")
+    st = solve_steady(conv, model=model, n_elements=n)
+    system = build_system(conv, Scenario(**OVERLAND), st)
+    run_kernel(system)  # compile / load the cache
+    wall, (ki, _) = best_of(lambda: run_kernel(system))
+    res = ki.args["res"]
+    from engine.dynamics.kernel import RES
+
+    steps = res[RES.STEPS]
+    return system, wall, steps, res[RES.T_END], int(res[RES.STATUS])
+
+
+def reference_throughput(system, seconds: float):
+    t0 = time.perf_counter()
+    out = run_reference(system, t_end_s=system.pre_rest_s + seconds)
+    wall = time.perf_counter() - t0
+    return out["steps"] * system.n / wall
+
+
+def rk45_comparison():
+    """Kernel against solve_ivp (RK45, rtol 1e-6) on the 1 km fabric belt, 40 elements,
+    a 10 s s-curve start from rest, 14 s simulated."""
+    from scipy.integrate import solve_ivp
+
+    from engine.dynamics import ode
+
+    conv = load_conveyor(CONVEYORS / "fabric-1km.yaml")
+    st = solve_steady(conv, model="din", n_elements=40)
+    scn = Scenario(start={"control": "s-curve", "time_s": 10}, run_s=60)
+    system = build_system(conv, scn, st, DynamicsOptions(pre_rest_s=0.0))
+    t_end = 14.0
+    run_kernel(system, t_end)
+    k_wall, (ki, _) = best_of(lambda: run_kernel(system, t_end))
+    peak_k = float(ki.args["t_max"].max())
+    y0 = ode.initial_state(system)
+    scale = np.concatenate([np.full(system.n, system.v_design),
+                            np.full(2 * system.n, float(np.abs(system.tension_rest_n).max())),
+                            [1.0, 1.0, abs(system.te_n) + 1.0]])
+    t0 = time.perf_counter()
+    sol = solve_ivp(ode.rhs, (0.0, t_end), y0, method="RK45", rtol=1e-6, atol=1e-6 * scale,
+                    args=(system,), dense_output=True)
+    r_wall = time.perf_counter() - t0
+    ts = np.linspace(0.0, t_end, 20001)
+    ys = sol.sol(ts)
+    tension = np.maximum(ys[system.n:2 * system.n] + ys[2 * system.n:3 * system.n], 0.0)
+    peak_r = float(tension.max())
+    # the kernel at a tenth of its step, to show the first-order convergence of the peak
+    fine = build_system(conv, scn.model_copy(update={"dt_s": system.dt_s / 10}), st,
+                        DynamicsOptions(pre_rest_s=0.0))
+    kf, _ = run_kernel(fine, t_end)
+    peak_f = float(kf.args["t_max"].max())
+    return dict(k_wall=k_wall, r_wall=r_wall, nfev=sol.nfev, ok=sol.success, peak_k=peak_k,
+                peak_r=peak_r, peak_f=peak_f, dt=system.dt_s, n=system.n)
+
+
+def dt_scaling():
+    conv = load_conveyor(CONVEYORS / "overland-16km.yaml")
+    rows = []
+    for n in (125, 250, 500, 1000, 2000, 4000, 8000):
+        st = solve_steady(conv, model="din", n_elements=n)
+        sls = build_system(conv, Scenario(**OVERLAND), st)
+        kv_lim = stability_limit_s(sls.mass_kg, sls.len_m, sls.stiffness_n, 1.0, sls.implicit,
+                                   c_visc_ns=2.0 * 0.05 * sls.stiffness_n
+                                   / (0.5 * np.pi / sls.wave_loop_time_s))
+        rows.append((n, float(np.median(sls.dx_m)), sls.dt_s, 0.5 * kv_lim))
+    return rows
+
+
+def main() -> None:
+    print("# bench_dynamics")
+    print(f"date: {datetime.datetime.now().isoformat(timespec='seconds')}")
+    print(f"machine: {machine()}")
+    print(f"python {platform.python_version()}, numpy {np.__version__}")
+    print()
+    print("## 1-2. Kernel throughput and the 16.8 km cycle (1 000 elements, one core)")
+    results = {}
+    for model in ("din", "cema", "nonlin"):
+        system, wall, steps, t_end, status = kernel_throughput(model)
+        rate = steps * system.n / wall
+        results[model] = (system, rate)
+        print(f"  {model:7s} n={system.n} dt={system.dt_s * 1e3:.2f} ms steps={int(steps)} "
+              f"simulated={t_end:.1f} s  kernel wall={wall:.4f} s  "
+              f"{rate:.3g} element-steps/s  status={status}")
+    conv = load_conveyor(CONVEYORS / "overland-16km.yaml")
+    for label, scn in (("120 s s-curve start, 30 s run, 60 s controlled stop",
+                        Scenario(elements=1000, **OVERLAND)),
+                       ("60 s s-curve start, 30 s run, 40 s controlled stop",
+                        Scenario(elements=1000, stop={"mode": "controlled", "time_s": 40}))):
+        run_one(conv, scn, model="din")
+        wall_run, r = best_of(lambda scn=scn: run_one(conv, scn, model="din"))
+        t_end = r.transient.raw["T_END"]
+        print(f"  run_one din, {label}: {t_end:.0f} s simulated in {wall_run:.3f} s (kernel "
+              f"{r.transient.raw['wall_s']:.3f} s), status {r.summary['status']}")
+    print()
+    print("## 3. Baseline in the same run: the numpy reference of the same equations")
+    for model in ("din", "nonlin"):
+        system, rate = results[model]
+        ref_rate = reference_throughput(system, seconds=3.0)
+        print(f"  {model:7s} reference {ref_rate:.3g} element-steps/s; kernel / reference = "
+              f"{rate / ref_rate:.0f} x")
+    print()
+    print("## 4. RK45 (scipy solve_ivp, rtol 1e-6) on the same equations")
+    c = rk45_comparison()
+    print(f"  fabric-1km, n={c['n']}, 10 s s-curve start, 14 s simulated")
+    print(f"  kernel: dt={c['dt'] * 1e3:.2f} ms, wall {c['k_wall'] * 1e3:.2f} ms, "
+          f"peak tension {c['peak_k'] / 1e3:.4f} kN (dt/10: {c['peak_f'] / 1e3:.4f} kN)")
+    print(f"  RK45:   {c['nfev']} evaluations, wall {c['r_wall']:.2f} s, "
+          f"peak tension {c['peak_r'] / 1e3:.4f} kN, success={c['ok']}")
+    print(f"  speed ratio RK45 / kernel = {c['r_wall'] / c['k_wall']:.0f} x; peak tension "
+          f"difference {100 * abs(c['peak_k'] / c['peak_r'] - 1):.3f} % "
+          f"(dt/10: {100 * abs(c['peak_f'] / c['peak_r'] - 1):.3f} %)")
+    print()
+    print("## 5. Time step against element length, damping on (16.8 km, zeta 5 %)")
+    print("  elements  dx [m]   dt kernel [ms]  dt explicit Kelvin-Voigt [ms]")
+    rows = dt_scaling()
+    for n, dx, dt, dt_kv in rows:
+        print(f"  {n:8d} {dx:7.2f} {dt * 1e3:13.4f} {dt_kv * 1e3:22.5f}")
+    print("  halving dx: kernel dt ratios " + ", ".join(
+        f"{rows[i][2] / rows[i + 1][2]:.2f}" for i in range(len(rows) - 1)))
+    print("              Kelvin-Voigt ratios " + ", ".join(
+        f"{rows[i][3] / rows[i + 1][3]:.2f}" for i in range(len(rows) - 1)))
+
+
+if __name__ == "__main__":
+    main()

@@ -1,0 +1,167 @@
+"""The numba kernel against the slow numpy reference of the same equations (STYLE: a kernel
+and a reference path tested against each other), its building blocks, records and failure
+handling."""
+
+from __future__ import annotations
+
+import time
+
+import numpy as np
+import pytest
+from numpy.testing import assert_allclose
+
+from engine.conveyor import Scenario, load_conveyor
+from engine.dynamics import DynamicsOptions, build_system, simulate
+from engine.dynamics import kernel as K
+from engine.dynamics.model import implicit_blocks
+from engine.dynamics.reference import run_reference
+from engine.dynamics.simulate import SURFACE_COLUMNS, TIMESERIES_COLUMNS, prepare
+from engine.statics import solve_steady
+from tests.conftest import CONVEYORS
+
+# every formulation, start control, stop mode, friction model, take-up position and a
+# two-drive conveyor; small meshes so the reference stays quick
+CASES = [
+    ("fabric-1km", "nonlin", dict(start={"control": "s-curve", "time_s": 20}, run_s=10,
+                                  stop={"mode": "coast"})),
+    ("overland-16km", "din", dict(start={"control": "linear", "time_s": 60}, run_s=10,
+                                  stop={"mode": "brake", "time_s": 40})),
+    ("slope-5pct", "cmod", dict(start={"control": "torque", "time_s": 20}, run_s=10,
+                                stop={"mode": "controlled", "time_s": 15})),
+    ("slope-5pct", "visco", dict(start={"control": "s-curve", "time_s": 20}, run_s=5,
+                                 stop={"mode": "controlled", "time_s": 15},
+                                 formulation="support")),
+    ("overland-16km", "cema", dict(load="empty", start={"control": "s-curve", "time_s": 60},
+                                   run_s=5, stop={"mode": "coast"})),
+]
+
+
+@pytest.mark.parametrize("name,model,scenario", CASES)
+def test_kernel_matches_numpy_reference(name, model, scenario):
+    """Whole cycles: final state, envelopes, carriage and drive work agree to 1e-9 of the
+    largest tension (the kernel's vectorised log/exp differ from numpy's in the last bits)."""
+    conv = load_conveyor(CONVEYORS / f"{name}.yaml")
+    scn = Scenario(**scenario)
+    st = solve_steady(conv, model=model, load=scn.load, n_elements=24)
+    sys = build_system(conv, scn, st)
+    ki = prepare(sys)
+    ki.call()
+    a = ki.args
+    ref = run_reference(sys)
+    scale = float(np.abs(ref["tension"]).max())
+    assert int(a["res"][K.RES.STEPS]) == ref["steps"]
+    assert int(a["res"][K.RES.STATUS]) == ref["status"] == 0
+    assert_allclose(a["tt"], ref["tension"], atol=1e-9 * scale, rtol=0)
+    assert_allclose(a["te"], ref["te"], atol=1e-9 * scale, rtol=0)
+    assert_allclose(a["v"], ref["v"], atol=1e-9 * sys.v_design, rtol=0)
+    assert_allclose(a["t_max"], ref["t_max"], atol=1e-9 * scale, rtol=0)
+    assert_allclose(a["t_min"], ref["t_min"], atol=1e-9 * scale, rtol=0)
+    assert a["state"][0] == pytest.approx(ref["x_takeup"], abs=1e-9)
+    assert a["res"][K.RES.W_DRIVE] == pytest.approx(ref["w_drive"], rel=1e-9)
+    assert a["res"][K.RES.STOP_ACH] == pytest.approx(ref["stop_ach"], abs=1e-9)
+
+
+def test_vectorised_log_and_exp():
+    x = np.concatenate([[1e-300, 1e-12, 1.0, 2.0], np.exp(np.linspace(-20, 20, 997))])
+    out = np.empty_like(x)
+    ib = np.empty(len(x), dtype=np.int64)
+    K.vlog(x, out, ib)
+    err = np.abs(out - np.log(x)) / np.maximum(1.0, np.abs(np.log(x)))
+    assert err.max() < 2e-15
+    y = np.linspace(-700, 700, 1001)
+    K.vexp(y, out[:1001], ib[:1001])
+    assert_allclose(out[:1001], np.exp(y), rtol=5e-15)
+    for p in (0.3, 0.039, 1.7):  # the powers the friction laws use
+        z = np.exp(np.linspace(-5, 3, 500))
+        lz, pz = np.empty(500), np.empty(500)
+        K.vlog(z, lz, ib[:500])
+        K.vexp(p * lz, pz, ib[:500])
+        assert_allclose(pz, z**p, rtol=1e-14)
+
+
+def test_blocks_cover_the_pulleys_and_wrap_at_the_tail():
+    conv = load_conveyor(CONVEYORS / "overland-16km.yaml")
+    st = solve_steady(conv, n_elements=40)
+    loop = st.loop
+    implicit, blocks = implicit_blocks(loop.strand)
+    n = loop.n
+    # head pulley, head take-up pulley, tail pulley: their springs on both sides are implicit
+    for p in (loop.i_head, loop.i_takeup, loop.i_tail):
+        assert implicit[p] and implicit[p - 1]
+    assert [loop.i_head - 1, loop.i_head, loop.i_takeup, loop.i_takeup + 1] in blocks
+    assert [n - 2, n - 1, 0] in blocks
+    assert implicit.sum() == 5
+
+
+def test_divergence_ends_the_run_failed_quickly():
+    """A step three times the stability limit (bypassing the input check) diverges, and a
+    non-finite value in the state is caught: the run ends with status failed and a message
+    naming the divergence and the step; it neither hangs nor raises."""
+    conv = load_conveyor(CONVEYORS / "fabric-1km.yaml")
+    st = solve_steady(conv, n_elements=60)
+    sys = build_system(conv, Scenario(), st, DynamicsOptions(damping="off"))
+    sys.dt_s = 3.0 * sys.dt_limit_s
+    t0 = time.perf_counter()
+    res = simulate(sys)
+    assert time.perf_counter() - t0 < 5.0
+    assert res.status == "failed"
+    assert "diverged" in res.message and "dt" in res.message
+    sys = build_system(conv, Scenario(), st)
+    sys.gravity_n[5] = np.nan
+    res = simulate(sys)
+    assert res.status == "failed" and "diverged" in res.message
+    assert res.raw["T_END"] < 1.0
+
+
+def test_records_and_envelopes_are_consistent():
+    conv = load_conveyor(CONVEYORS / "slope-5pct.yaml")
+    st = solve_steady(conv, model="din", n_elements=60)
+    scn = Scenario(start={"time_s": 20}, run_s=10, stop={"mode": "controlled", "time_s": 20},
+                   record_dt_s=0.25)
+    sys = build_system(conv, scn, st)
+    res = simulate(sys, steady_summary=st.summary, conveyor=conv)
+    ts = res.timeseries
+    assert tuple(ts.columns[: len(TIMESERIES_COLUMNS)]) == TIMESERIES_COLUMNS
+    assert tuple(res.surface.columns) == SURFACE_COLUMNS
+    # samples at record_dt (the step nearest each multiple), starting at rest
+    assert ts["t_s"].iloc[0] == 0.0
+    assert_allclose(np.diff(ts["t_s"].to_numpy())[:-1], 0.25, atol=sys.dt_s)
+    # starts and ends at rest; sampled extremes inside the envelope; the peak is the
+    # envelope's
+    assert ts["v_mean_m_s"].iloc[0] == 0.0 and abs(ts["v_mean_m_s"].iloc[-1]) < 0.01 * 4.5
+    env = res.envelope
+    assert ts["t_max_kn"].max() <= env["t_max_kn"].max() + 1e-9
+    assert ts["t_min_kn"].min() >= env["t_min_kn"].min() - 1e-9
+    s = res.summary
+    assert s["t_max_dyn_kn"] == pytest.approx(env["t_max_kn"].max())
+    assert 0.0 < s["t_max_dyn_time_s"] <= ts["t_s"].iloc[-1]
+    # the envelope's times are within one record interval of the peak time
+    j = int(env["t_max_kn"].idxmax())
+    assert abs(env["t_max_time_s"][j] - s["t_max_dyn_time_s"]) <= 0.25 + sys.dt_s
+    assert s["dyn_factor"] == pytest.approx(s["t_max_dyn_kn"] / st.summary["t_max_kn"])
+    # surface rows: every sampled time with every sampled spring
+    n_t = res.surface["t_s"].nunique()
+    assert len(res.surface) == n_t * len(sys.surface_springs)
+
+
+def test_rk45_on_the_same_equations_agrees():
+    """scipy's RK45 (rtol 1e-6) on the continuous-time equations and the kernel agree on
+    the peak tension of a start within 0.5 %."""
+    from scipy.integrate import solve_ivp
+
+    from engine.dynamics import ode
+
+    conv = load_conveyor(CONVEYORS / "fabric-1km.yaml")
+    st = solve_steady(conv, model="nonlin", n_elements=20)
+    scn = Scenario(start={"control": "s-curve", "time_s": 8}, run_s=60)
+    sys = build_system(conv, scn, st, DynamicsOptions(pre_rest_s=0.0))
+    res = simulate(sys, t_end_s=9.0)
+    y0 = ode.initial_state(sys)
+    scale = np.concatenate([np.full(sys.n, sys.v_design),
+                            np.full(2 * sys.n, float(sys.tension_rest_n.max())), [1, 1, 1e4]])
+    sol = solve_ivp(ode.rhs, (0.0, 9.0), y0, method="RK45", rtol=1e-6, atol=1e-6 * scale,
+                    args=(sys,), dense_output=True)
+    assert sol.success
+    ys = sol.sol(np.linspace(0, 9.0, 9001))
+    peak = float(np.maximum(ys[sys.n:2 * sys.n] + ys[2 * sys.n:3 * sys.n], 0).max())
+    assert res.envelope["t_max_kn"].max() * 1e3 == pytest.approx(peak, rel=0.005)

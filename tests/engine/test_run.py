@@ -1,0 +1,160 @@
+"""One run (engine/run.py) and the ``beltstudy simulate`` command: the SPEC fields, the time
+series, bad input rejected before any transient computing, one-line CLI errors."""
+
+from __future__ import annotations
+
+import importlib
+import json
+
+import pandas as pd
+import pytest
+
+from engine.conveyor import (
+    InputError,
+    Scenario,
+    load_conveyor,
+    load_mapping,
+    parse_conveyor,
+    parse_scenario,
+)
+from engine.dynamics.simulate import TIMESERIES_COLUMNS
+from engine.run import run_one
+from tests.conftest import CONVEYORS
+from tests.engine.test_dynamics_examples import TRANSIENT_FIELDS
+
+SLOPE = CONVEYORS / "slope-5pct.yaml"
+sim_mod = importlib.import_module("engine.dynamics.simulate")
+
+
+@pytest.fixture
+def no_kernel(monkeypatch):
+    """Fail the test if the transient kernel is reached."""
+    def boom(*a, **k):
+        raise AssertionError("the kernel ran before the input was rejected")
+
+    monkeypatch.setattr(sim_mod, "run_kernel", boom)
+
+
+def test_run_one_returns_every_spec_field():
+    conv = load_conveyor(SLOPE)
+    scn = Scenario(elements=60, start={"time_s": 20}, run_s=5,
+                   stop={"mode": "controlled", "time_s": 15})
+    r = run_one(conv, scn, model="din")
+    s = r.summary
+    for key in TRANSIENT_FIELDS + ("te_kn", "t1_kn", "t_max_kn", "status", "message",
+                                   "elapsed_s", "te_components_kn"):
+        assert key in s, key
+    assert s["status"] in ("ok", "warning")
+    assert tuple(r.timeseries.columns[: len(TIMESERIES_COLUMNS)]) == TIMESERIES_COLUMNS
+    assert list(r.surface.columns) == ["t_s", "s_m", "tension_kn", "velocity_m_s"]
+    assert {"s_m", "strand", "elevation_m", "tension_kn", "sag_pct", "t_max_dyn_kn",
+            "t_min_dyn_kn"} <= set(r.profile.columns)
+    assert (r.profile["t_max_dyn_kn"] >= r.profile["t_min_dyn_kn"]).all()
+    assert s["wave_loop_time_s"] > 0 and s["stop_wave_ratio"] == pytest.approx(
+        s["stop_time_s"] / s["wave_loop_time_s"])
+    steady = run_one(conv, scn, model="din", dynamics=False)
+    assert steady.timeseries is None and steady.surface is None
+    assert "t_max_dyn_kn" not in steady.summary
+    assert steady.summary["te_kn"] == pytest.approx(s["te_kn"])
+
+
+def test_warnings_name_the_limit():
+    """A 6 s controlled stop of a belt whose wave loop takes 5 s is faster than 5 wave loops;
+    the run says so and is a warning, not a failure."""
+    conv = load_conveyor(CONVEYORS / "fabric-1km.yaml")
+    scn = Scenario(elements=60, start={"time_s": 20}, run_s=5,
+                   stop={"mode": "controlled", "time_s": 6})
+    r = run_one(conv, scn, model="din")
+    assert r.summary["status"] == "warning"
+    assert "faster than 5 wave loop times" in r.summary["message"]
+
+
+def test_negative_time_rejected_naming_the_field(no_kernel):
+    with pytest.raises(InputError, match=r"scenario\.run_s"):
+        parse_scenario({"run_s": -5}, prefix="scenario.")
+    with pytest.raises(InputError, match=r"scenario\.start\.time_s"):
+        parse_scenario({"start": {"time_s": -1}}, prefix="scenario.")
+    # a scenario built without validation is still checked before any computing
+    bad = Scenario.model_construct(**{**Scenario().__dict__, "run_s": -5.0})
+    with pytest.raises(InputError, match=r"scenario\.run_s"):
+        run_one(load_conveyor(SLOPE), bad, model="din")
+
+
+def test_stop_mode_the_conveyor_cannot_do(no_kernel):
+    conv = load_conveyor(SLOPE)  # no brakes
+    with pytest.raises(InputError, match=r"scenario\.stop\.mode: 'brake' needs brakes"):
+        run_one(conv, Scenario(stop={"mode": "brake", "time_s": 20}), model="din")
+    with pytest.raises(InputError, match=r"scenario\.start\.control: 'torque'"):
+        run_one(conv, Scenario(start={"control": "torque"}, formulation="support"),
+                model="din")
+    data = load_mapping(SLOPE)
+    data["brakes"] = [{"position": "head", "force_kn": "auto", "delay_s": 3.0}]
+    with pytest.raises(InputError, match=r"scenario\.stop\.time_s"):
+        run_one(parse_conveyor(data), Scenario(stop={"mode": "brake", "time_s": 2}),
+                model="din")
+
+
+def test_fixed_step_above_the_limit(no_kernel):
+    conv = load_conveyor(SLOPE)
+    with pytest.raises(InputError, match=r"scenario\.dt_s: 0\.5 s is above the stability "
+                                         r"limit [0-9.e-]+ s"):
+        run_one(conv, Scenario(elements=60, dt_s=0.5), model="din")
+
+
+def test_fixed_step_below_the_limit_runs():
+    conv = load_conveyor(SLOPE)
+    r = run_one(conv, Scenario(elements=60, dt_s=0.004, start={"time_s": 10}, run_s=2,
+                               stop={"mode": "controlled", "time_s": 8}), model="din")
+    assert r.summary["dt_s"] == 0.004
+    assert r.summary["status"] != "failed"
+
+
+def test_cli_simulate_json_timeseries_plot(tmp_path, capsys):
+    from service.cli import main
+
+    ts_path = tmp_path / "ts.parquet"
+    png = tmp_path / "fig4.png"
+    code = main(["simulate", str(SLOPE), "--model", "din", "--elements", "40",
+                 "--start-time-s", "15", "--run-s", "5", "--stop-mode", "controlled",
+                 "--stop-time-s", "10", "--json", "--timeseries", str(ts_path),
+                 "--plot", str(png)])
+    out = capsys.readouterr().out
+    assert code == 0
+    s = json.loads(out)
+    assert s["stop_mode"] == "controlled" and s["elements"] == 42
+    for key in TRANSIENT_FIELDS + ("status", "message"):
+        assert key in s
+    ts = pd.read_parquet(ts_path)
+    assert tuple(ts.columns[: len(TIMESERIES_COLUMNS)]) == TIMESERIES_COLUMNS
+    assert png.stat().st_size > 10_000
+
+
+def test_cli_scenario_file_with_overrides(tmp_path, capsys):
+    from service.cli import main
+
+    scn = tmp_path / "scn.yaml"
+    scn.write_text("scenario:\n  load: empty\n  start: {control: linear, time_s: 12}\n"
+                   "  run_s: 3\n  stop: {mode: coast}\n  elements: 40\n")
+    code = main(["simulate", str(SLOPE), "--scenario", str(scn), "--stop-mode", "controlled",
+                 "--stop-time-s", "30", "--start-control", "s-curve", "--start-time-s", "60",
+                 "--json"])
+    s = json.loads(capsys.readouterr().out)
+    assert code == 0
+    assert s["load"] == "empty" and s["stop_mode"] == "controlled"
+    assert s["elements"] == 42 and s["status"] != "failed"
+
+
+@pytest.mark.parametrize("argv,expect", [
+    (["--stop-mode", "brake"], "scenario.stop.mode"),
+    (["--run-s", "-3"], "scenario.run_s"),
+    (["--dt-s", "2", "--elements", "40"], "scenario.dt_s"),
+    (["--model", "nonlinn"], "unknown model"),
+])
+def test_cli_bad_input_one_line_exit_2(argv, expect, capsys):
+    from service.cli import main
+
+    code = main(["simulate", str(SLOPE), *argv])
+    err = capsys.readouterr().err
+    assert code == 2
+    assert err.startswith("error: ") and expect in err
+    assert err.count("\n") == 1
