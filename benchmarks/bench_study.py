@@ -3,7 +3,7 @@
 Each study is timed twice:
 
 * **service**: ``beltstudy serve`` in a child process (LocalCluster, one worker process per
-  core, warmed before timing), the study POSTed over HTTP and polled every 50 ms until it is
+  core, warmed before timing), the study POSTed over HTTP and polled every 0.2 s until it is
   done; the time runs from the POST to the first poll that sees ``done``, so it includes
   validation, batching, Dask, result transfer and the Parquet writes.
 * **loop**: the same runs (same resolved inputs) one after another in this process:
@@ -61,6 +61,10 @@ DYNAMIC = {
 }
 
 
+#: Status polling interval [s] (each poll costs a few ms of CPU on the shared cores).
+POLL_S = 0.2
+
+
 def plain_loop(study) -> float:
     """Wall time of the study's runs one after another in this process [s]."""
     from engine.conveyor import parse_conveyor, parse_scenario
@@ -82,15 +86,21 @@ def plain_loop(study) -> float:
     return time.perf_counter() - t0
 
 
-def through_service(client, body: dict) -> tuple[float, dict]:
+def through_service(client, body: dict, server_pid: int) -> tuple[float, dict, float]:
+    """Wall time from the POST to the first poll that sees the study done, the final status,
+    and the CPU time the service process (API, scheduler, store writes) spent meanwhile."""
+    import psutil
+
+    server = psutil.Process(server_pid)
+    cpu0 = sum(server.cpu_times()[:2])
     t0 = time.perf_counter()
     st, created = client.submit(body)
     if not created:
         raise SystemExit(f"study {st['id']} already in the store: use a fresh data directory")
     while st["state"] in ("queued", "running"):
-        time.sleep(0.05)
+        time.sleep(POLL_S)
         st = client.status(st["id"])
-    return time.perf_counter() - t0, st
+    return time.perf_counter() - t0, st, sum(server.cpu_times()[:2]) - cpu0
 
 
 def _cpu_model() -> str:
@@ -142,19 +152,19 @@ def main() -> int:
                 results = {}
                 for label, body in cases:
                     study = resolve_study(body, studies_root=ROOT / "studies")
-                    t_service, st = through_service(client, body)
-                    results[label] = (study.total, t_service, st)
+                    results[label] = (study.total, *through_service(client, body, proc.pid))
                 # the plain loops run after the service studies, with the workers idle
                 for label, body in cases:
                     study = resolve_study(body, studies_root=ROOT / "studies")
-                    n, t_service, st = results[label]
+                    n, t_service, st, cpu = results[label]
                     t_loop = plain_loop(study)
                     speedup = t_loop / t_service
                     overhead_ms = (t_service - t_loop / args.workers) / n * 1e3
                     print(
                         f"{label:>7}: {n:5d} runs  loop {t_loop:7.2f} s ({t_loop / n * 1e3:7.2f} "
                         f"ms/run)  service {t_service:7.2f} s  speed-up {speedup:4.2f}x  "
-                        f"overhead {overhead_ms:6.2f} ms/run  ({st['failed']} failed)"
+                        f"overhead {overhead_ms:6.2f} ms/run  service-process CPU "
+                        f"{cpu / n * 1e3:5.2f} ms/run  ({st['failed']} failed)"
                     )
         finally:
             stop_server(proc)

@@ -41,6 +41,15 @@ FIRST_BATCH_STEADY = 8
 FIRST_BATCH_DYNAMIC = 1
 #: How often study.json is rewritten while running [s].
 SAVE_EVERY_S = 1.0
+#: Finished batches are written together: at least this often [s] or this many runs. Runs
+#: not yet written when the service dies are simply run again.
+FLUSH_S = 1.0
+FLUSH_RUNS = 1000
+
+
+def _part_key(batch: list[RunSpec]) -> str:
+    """Part file key of a set of runs (the same runs always give the same key)."""
+    return hashlib.sha256("".join(r.run_id for r in batch).encode()).hexdigest()[:16]
 
 
 def batch_size(
@@ -81,6 +90,9 @@ class StudyJob:
         self._stop = threading.Event()
         self._lock = threading.Lock()
         self._inflight: dict = {}
+        self._buffer: list[tuple[list[RunSpec], dict]] = []
+        self._buffered = 0
+        self._last_flush = time.monotonic()
         self._thread = threading.Thread(
             target=self._main, name=f"beltstudy-study-{study.id}", daemon=True
         )
@@ -161,6 +173,13 @@ class StudyJob:
         sid = self.study.id
         doc = self.store.read(sid)
         self.elapsed_before = float(doc.get("elapsed_s") or 0.0)
+        # a new token per session: workers still finishing tasks of an earlier session (an
+        # external cluster outlives a killed service) can no longer write into this study
+        doc = self.store.update(sid, store_token=uuid.uuid4().hex)
+        self._sink = {
+            "dir": str(self.store.study_dir(sid).resolve()),
+            "token": doc["store_token"],
+        }
         self.store.clean(sid)
         have = self.store.done_runs(sid)
         done_ids = set(have["run_id"]) if len(have) else set()
@@ -215,7 +234,10 @@ class StudyJob:
                 key = f"beltstudy-{sid}-{nonce}-{seq:06d}"
                 seq += 1
                 specs = [dict(vars(r)) for r in batch]  # shallow: shared dicts pickle once
-                fut = client.submit(run_batch, sid, specs, self.study.surface, key=key, pure=False)
+                sink = {**self._sink, "key": _part_key(batch)}
+                fut = client.submit(
+                    run_batch, sid, specs, self.study.surface, sink, key=key, pure=False
+                )
                 with self._lock:
                     self._inflight[fut] = batch
                 ac.add(fut)
@@ -229,7 +251,7 @@ class StudyJob:
                     break
                 continue
             if fut.status == "finished":
-                self._commit(batch, result)
+                self._add(batch, result)
                 n = len(batch)
                 sample = result["seconds"] / n
                 per_run_s = sample if per_run_s is None else 0.7 * per_run_s + 0.3 * sample
@@ -238,12 +260,33 @@ class StudyJob:
             else:
                 exc = result[1] if isinstance(result, tuple) else result
                 message = f"task failed: {type(exc).__name__}: {exc}"[:1000]
-                self._commit(batch, {"rows": [self._failed(r, message) for r in batch]})
+                self._add(batch, {"rows": [self._failed(r, message) for r in batch]})
             fut.release()
             top_up()
             if time.monotonic() - last_save > SAVE_EVERY_S:
                 self._save()
                 last_save = time.monotonic()
+        if not self._cancel.is_set():
+            self._flush()  # also on a shutdown: what finished is kept
+
+    def _add(self, batch: list[RunSpec], result: dict) -> None:
+        """Buffer a finished batch; write the buffer every ``FLUSH_S`` or ``FLUSH_RUNS``."""
+        self._buffer.append((batch, result))
+        self._buffered += len(batch)
+        if self._buffered >= FLUSH_RUNS or time.monotonic() - self._last_flush >= FLUSH_S:
+            self._flush()
+
+    def _flush(self) -> None:
+        if not self._buffer:
+            return
+        runs = [r for batch, _ in self._buffer for r in batch]
+        merged: dict = {"rows": [row for _, res in self._buffer for row in res["rows"]]}
+        for table in ("surface", "timeseries"):
+            parts = [res[table] for _, res in self._buffer if res.get(table) is not None]
+            merged[table] = pa.concat_tables(parts) if parts else None
+        self._buffer, self._buffered = [], 0
+        self._last_flush = time.monotonic()
+        self._commit(runs, merged)
 
     def _failed(self, spec: RunSpec, message: str) -> dict:
         import engine
@@ -259,10 +302,10 @@ class StudyJob:
         return row
 
     def _commit(self, batch: list[RunSpec], result: dict) -> None:
-        """Write one finished batch: time series first, the runs part last."""
+        """Write finished runs: time series first, the runs part last (the commit point)."""
         if self._cancel.is_set():
             return
-        key = hashlib.sha256("".join(r.run_id for r in batch).encode()).hexdigest()[:16]
+        key = _part_key(batch)
         sid = self.study.id
         for table in ("surface", "timeseries"):
             data = result.get(table)

@@ -33,7 +33,7 @@ import pyarrow.parquet as pq
 from service.errors import NotFound
 from service.schema import runs_schema_for_axes, surface_schema, timeseries_schema
 
-__all__ = ["Store", "STATES", "TABLES"]
+__all__ = ["Store", "STATES", "TABLES", "write_part_to"]
 
 STATES = ("queued", "running", "done", "failed", "cancelled")
 TABLES = ("runs", "timeseries", "surface")
@@ -48,6 +48,33 @@ def _write_atomic(path: Path, write) -> None:
     finally:
         if tmp.exists():
             tmp.unlink()
+
+
+def _write_parquet(path: Path, data: pa.Table) -> None:
+    # dictionary-encode the text columns only: floats rarely repeat, and encoding them costs
+    # several times the compression
+    text = [f.name for f in data.schema if pa.types.is_string(f.type)]
+    _write_atomic(path, lambda p: pq.write_table(data, p, compression="zstd", use_dictionary=text))
+
+
+def write_part_to(study_dir: str | Path, token: str, table: str, key: str, data: pa.Table) -> bool:
+    """Write a part straight into a study directory if this process sees it (shared disk).
+
+    Used by workers: ``token`` must match the study's ``store_token`` (so a worker on another
+    machine with a look-alike path never writes there). Returns False when it cannot.
+    """
+    directory = Path(study_dir)
+    try:
+        doc = json.loads((directory / "study.json").read_text(encoding="utf-8"))
+    except (OSError, ValueError):
+        return False
+    if not token or doc.get("store_token") != token:
+        return False
+    target = directory / table
+    if not target.is_dir():
+        return False
+    _write_parquet(target / f"part-{key}.parquet", data)
+    return True
 
 
 class Store:
@@ -77,6 +104,8 @@ class Store:
         """Create a study directory with its ``study.json`` (the directory appears complete)."""
         final = self.study_dir(study_id)
         self.root.mkdir(parents=True, exist_ok=True)
+        if final.exists() and not (final / "study.json").exists():
+            shutil.rmtree(final, ignore_errors=True)  # leftovers of a deleted study
         tmp = self.root / f".{study_id}.{uuid.uuid4().hex[:8]}.tmp"
         tmp.mkdir()
         try:
@@ -134,12 +163,7 @@ class Store:
         directory = self.table_dir(study_id, table)
         directory.mkdir(parents=True, exist_ok=True)
         path = directory / f"part-{key}.parquet"
-        # dictionary-encode the text columns only: floats rarely repeat, and encoding them
-        # costs several times the compression
-        text = [f.name for f in data.schema if pa.types.is_string(f.type)]
-        _write_atomic(
-            path, lambda p: pq.write_table(data, p, compression="zstd", use_dictionary=text)
-        )
+        _write_parquet(path, data)
         return path
 
     def parts(self, study_id: str, table: str) -> list[Path]:
@@ -149,15 +173,23 @@ class Store:
         return sorted(p for p in directory.glob("part-*.parquet"))
 
     def clean(self, study_id: str) -> int:
-        """Remove temporary files and time-series parts whose runs part is missing."""
+        """Remove temporary files, and time-series parts holding runs without a runs row.
+
+        Time-series parts are written before the runs rows that commit them (by the service
+        or, on a shared disk, by the workers); a part whose runs never got their rows is
+        removed, and those runs are run again.
+        """
         removed = 0
-        keys = {p.name for p in self.parts(study_id, "runs")}
+        done = set(self.done_runs(study_id)["run_id"])
         for table in TABLES:
             directory = self.table_dir(study_id, table)
             if not directory.is_dir():
                 continue
             for p in directory.iterdir():
-                orphan = table != "runs" and p.name.startswith("part-") and p.name not in keys
+                orphan = False
+                if table != "runs" and p.name.startswith("part-"):
+                    ids = pq.read_table(p, columns=["run_id"]).column("run_id").unique()
+                    orphan = not set(ids.to_pylist()) <= done
                 if p.name.startswith(".") or orphan:
                     p.unlink(missing_ok=True)
                     removed += 1

@@ -105,8 +105,15 @@ def run_spec(spec: dict, study_id: str = "") -> tuple[dict, Any]:
     return row, result
 
 
-def run_batch(study_id: str, specs: list[dict], surface: bool = True) -> dict:
+def run_batch(
+    study_id: str, specs: list[dict], surface: bool = True, sink: dict | None = None
+) -> dict:
     """Run ``specs`` one after another; return rows and the time-series tables.
+
+    With ``sink`` (``{"dir", "token", "key"}``) and the study directory visible here (a
+    LocalCluster, or workers sharing the data volume), the time-series tables are written
+    straight to ``<dir>/<table>/part-<key>.parquet`` instead of being sent back; the runs
+    rows always go back to the service, which writes them last (the commit).
 
     Returns ``{"rows": [...], "timeseries": Table | None, "surface": Table | None,
     "seconds": float, "pid": int}``.
@@ -131,13 +138,23 @@ def run_batch(study_id: str, specs: list[dict], surface: bool = True) -> dict:
                     surfaces.append(table)
         except Exception as exc:  # a malformed result is reported on the run's row
             row.update(failed_row(f"time series: {_message(exc)}", row.get("elapsed_s")))
-    return {
+    out = {
         "rows": rows,
         "timeseries": pa.concat_tables(series) if series else None,
         "surface": pa.concat_tables(surfaces) if surfaces else None,
         "seconds": time.perf_counter() - t0,
         "pid": os.getpid(),
     }
+    if sink is not None:
+        from service.store import write_part_to
+
+        for table in ("surface", "timeseries"):
+            data = out[table]
+            if data is not None and write_part_to(
+                sink["dir"], sink["token"], table, sink["key"], data
+            ):
+                out[table] = None
+    return out
 
 
 def warm_up() -> dict:

@@ -76,7 +76,8 @@ def test_clean_removes_orphans_and_temporaries(tmp_path):
     runs = rows_to_table([{"run_id": "r"}], runs_schema([]))
     store.write_part(sid, "timeseries", "done", ts)
     store.write_part(sid, "runs", "done", runs)
-    store.write_part(sid, "timeseries", "orphan", ts)  # its runs part never landed
+    lost = rows_to_table([{"run_id": "r2", "t_s": 0.0}], timeseries_schema())
+    store.write_part(sid, "timeseries", "orphan", lost)  # run r2's row never landed
     (store.table_dir(sid, "runs") / ".part-x.parquet.1234.tmp").write_bytes(b"half")
     assert store.clean(sid) == 2
     assert [p.name for p in store.parts(sid, "timeseries")] == ["part-done.parquet"]
@@ -118,3 +119,21 @@ def test_flatten_keeps_unknown_parts_summing_to_te():
     table = rows_to_table([{"run_id": "r", **row, "not_a_column": 1}], runs_schema([]))
     assert table.schema.field("te_kn").type == pa.float64()
     assert "not_a_column" not in table.column_names
+
+
+def test_workers_write_parts_only_into_the_study_they_were_given(tmp_path):
+    from service.store import write_part_to
+
+    sid = "0123456789abcdef"
+    store = Store(tmp_path)
+    store.create(sid, {"id": sid, "store_token": "t0k", "study": {"axes": []}})
+    ts = rows_to_table([{"run_id": "r", "t_s": 0.0}], timeseries_schema())
+    d = store.study_dir(sid)
+    assert not write_part_to(d, "wrong", "timeseries", "k", ts)
+    assert not write_part_to(tmp_path / "elsewhere", "t0k", "timeseries", "k", ts)
+    assert store.parts(sid, "timeseries") == []
+    assert write_part_to(d, "t0k", "timeseries", "k", ts)
+    assert [p.name for p in store.parts(sid, "timeseries")] == ["part-k.parquet"]
+    store.delete(sid)  # a worker finishing after a delete must not bring the study back
+    assert not write_part_to(d, "t0k", "timeseries", "k", ts)
+    assert not d.exists()
