@@ -9,7 +9,14 @@ constant, which the take-up sets: a gravity take-up carries its counterweight on
 
 * slip at every drive at start-up (Euler-Eytelwein, T_tight / T_slack <= e^{mu theta}, with the
   drive force times the start-up factor 1.5, the slack side held by the take-up), and running;
-* the sag limits on both strands, T >= g (m'_G + m'_L) S / (8 (h/S)_adm).
+* the sag limits on both strands, T >= g (m'_G + m'_L) S / (8 (h/S)_adm), running and, for a
+  gravity take-up, also held at rest (take-up plus gravity, the net pull of the loaded belt
+  taken by the brake or the master drive: :func:`rest_walk`); this project reads the
+  minimum-tension rule as applying in every operating state, standstill included.
+
+The counterweight is installed once: its auto mass is the larger of what the run's load case
+needs and what the full design load needs (same model and temperature), so an empty or part-
+load run keeps the full-load counterweight instead of a lighter one of its own.
 
 Tension-dependent laws (nonlin, cmod) make this a fixed point; it is iterated to a relative
 change of 1e-6 and the iteration count is reported.
@@ -27,7 +34,8 @@ from engine.friction import get_model
 from engine.law import ResistanceLaw
 from engine.loop import CARRY, HEAD, RETURN, TAIL, TAKEUP, G, Loop, build_loop
 
-__all__ = ["SteadyResult", "solve_steady", "STARTUP_FACTOR", "SAFETY_FACTOR_MIN", "SPEC_PARTS"]
+__all__ = ["SteadyResult", "solve_steady", "STARTUP_FACTOR", "SAFETY_FACTOR_MIN", "SPEC_PARTS",
+           "rest_hold_element", "rest_walk"]
 
 #: Start-up force factor for slip sizing of the take-up [-] (PHYSICS section 1).
 STARTUP_FACTOR = 1.5
@@ -105,16 +113,65 @@ def _walk(loop: Loop, dF: np.ndarray) -> np.ndarray:
     return np.cumsum(dF)
 
 
+def rest_hold_element(conv: Conveyor, loop: Loop) -> int:
+    """Element that holds the stopped belt: the first brake's pulley, else the master drive's
+    (the drive element with the largest share; a friction drive alone could not hold a loaded
+    incline or decline, a brake can)."""
+    if conv.brakes:
+        return int(loop.i_head if conv.brakes[0].position == "head" else loop.i_tail)
+    shares: dict[int, float] = {}
+    for d in conv.drives:
+        node = loop.i_head if d.position == "head" else loop.i_tail
+        shares[node] = shares.get(node, 0.0) + d.share
+    return max(shares, key=lambda node: shares[node])  # first of equals: the file's order
+
+
+def rest_walk(loop: Loop, hold: int, gravity_n: np.ndarray) -> np.ndarray:
+    """At-rest tensions relative to the one entering the take-up, ``T[i_takeup - 1] = 0`` [N].
+
+    Held at rest there is no running resistance: walking from the take-up, each element adds
+    its gravity component ``G_j`` and the holding element takes the net pull ``sum G`` (the
+    loaded lift; the belt's own weight cancels round the loop), so the walk closes.
+    """
+    n = loop.n
+    itu = loop.i_takeup
+    order = (itu + np.arange(n - 1)) % n  # every element but itu - 1, in walking order
+    inc = gravity_n[order] - np.where(order == hold, float(gravity_n.sum()), 0.0)
+    out = np.zeros(n)
+    out[order] = np.cumsum(inc)
+    return out
+
+
+def _sag_need(loop: Loop, W: np.ndarray, hs_adm: np.ndarray, at_ends: bool = False) -> float:
+    """Smallest constant c with every idler element of ``c + W`` at or above its sag minimum.
+
+    Running, the sag of an element is taken at its mean tension; with ``at_ends`` at its lower
+    end (the at-rest walk is linear in each element, so that is its least tension, and the
+    bound does not depend on the element length).
+    """
+    idl = loop.is_idler
+    if not idl.any():
+        return -np.inf
+    tmin_elem = loop.sag_w_n / hs_adm
+    prev = np.roll(W, 1)
+    lower = np.minimum(W, prev) if at_ends else 0.5 * (W + prev)
+    return float(np.max(np.where(idl, tmin_elem - lower, -np.inf)))
+
+
 def _required_offset(loop: Loop, conv: Conveyor, W: np.ndarray, drives, d_force: np.ndarray,
                      hs_adm: np.ndarray) -> tuple[float, dict]:
-    """Smallest constant c (T = c + W) meeting slip at start-up and running, and sag."""
+    """Smallest constant c (T = c + W) meeting slip at start-up and running, and sag (running
+    and, for a gravity take-up, held at rest)."""
     bounds = {}
     Wprev = np.roll(W, 1)
-    idl = loop.is_idler
-    tmin_elem = np.where(idl, loop.sag_w_n / hs_adm, 0.0)
-    lower = 0.5 * (W + Wprev)  # sag of a span at its mean tension
-    sag_need = np.max(np.where(idl, tmin_elem - lower, -np.inf)) if idl.any() else -np.inf
-    bounds["sag"] = float(sag_need)
+    bounds["sag"] = _sag_need(loop, W, hs_adm)
+    if conv.takeup.type == "gravity":
+        # the counterweight holds the same mean tension at the take-up at rest as running:
+        # T_rest = T_tu - w_rest_tu + W_rest with T_tu = c + w_tu
+        k = loop.i_takeup
+        Wr = rest_walk(loop, rest_hold_element(conv, loop), loop.gravity_n)
+        shift = 0.5 * (Wr[k - 1] + Wr[k]) - 0.5 * (W[k - 1] + W[k])
+        bounds["sag_at_rest"] = _sag_need(loop, Wr, hs_adm, at_ends=True) + shift
     slip_need = -np.inf
     for idx, _share, e in drives:
         d = d_force[idx]
@@ -177,6 +234,15 @@ def solve_steady(
     tu = conv.takeup
     k = loop.i_takeup
 
+    # the installed take-up: at least what the full design load needs
+    tu_floor_n = -np.inf
+    auto = (tu.type == "gravity" and tu.mass_kg == "auto") or (
+        tu.type == "fixed" and tu.pretension_kn == "auto")
+    if auto and frac < 1.0:
+        design = solve_steady(conv, model=model, params=p, temperature_c=temperature_c,
+                              load=1.0, n_elements=n_elements, target_dx_m=target_dx_m)
+        tu_floor_n = design.takeup_tension_n
+
     T = None
     iterations = 0
     omega, resid_prev = 1.0, None  # relaxation of the fixed point (tension-dependent laws)
@@ -203,6 +269,7 @@ def solve_steady(
             c = float(tu.pretension_kn) * 1e3 - w_tu
         else:
             c, _ = _required_offset(loop, conv, W, drives, d_force, hs_adm)
+            c = max(c, tu_floor_n - w_tu)
         T_new = c + W
         if not law.tension_dependent:
             T = T_new

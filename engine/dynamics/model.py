@@ -46,6 +46,7 @@ from engine.conveyor import Conveyor, InputError, Scenario
 from engine.dynamics import profiles
 from engine.law import ResistanceLaw
 from engine.loop import G, Loop
+from engine.statics import rest_hold_element, rest_walk
 
 __all__ = [
     "DynamicsOptions",
@@ -550,16 +551,10 @@ def build_system(conv: Conveyor, scn: Scenario, steady, options: DynamicsOptions
     # ---- hold at rest and the at-rest tensions: the brakes hold a stopped belt when it has
     # any (a friction drive could not hold a loaded incline or decline by itself), else the
     # master drive
-    hold = int(loop.i_head if conv.brakes[0].position == "head" else loop.i_tail) \
-        if conv.brakes else int(d_node[0])
+    hold = rest_hold_element(conv, loop)
+    assert conv.brakes or hold == d_node[0]
     hold_force = float(gravity.sum())
-    T_rest = np.empty(n)
-    T_rest[itu - 1] = 0.0
-    j = itu
-    for _ in range(n - 1):
-        T_rest[j] = T_rest[j - 1] + gravity[j] - (hold_force if j == hold else 0.0)
-        j = (j + 1) % n
-    # T_rest now relative to T[itu - 1] = 0; fix the level
+    T_rest = rest_walk(loop, hold, gravity)  # relative to T[itu - 1] = 0; fix the level
     if gravity_tu:
         # the carriage carries both strands: T_in + T_out = m g (the element holding the belt
         # at rest may be the take-up pulley itself)
