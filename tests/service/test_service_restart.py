@@ -28,21 +28,35 @@ def test_sigkill_mid_study_then_restart_resumes_without_duplicates(
     live_service, make_study, tmp_path
 ):
     data_dir = tmp_path / "data"
-    body = make_study(
-        name="restart",
-        dynamics=True,
-        grid={
-            "friction_model": ["din", "cema"],
-            "temperature_c": {"start": -40, "stop": 40, "step": 4},
-        },
-    )
-    body["scenario"] = {**body["scenario"], "elements": 200, "run_s": 30}  # ~0.15 s a run
+
+    def body_with(n_temps: int) -> dict:
+        body = make_study(
+            name="restart",
+            dynamics=True,
+            grid={
+                "friction_model": ["din", "cema"],
+                "temperature_c": [round(-40.0 + 80.0 * i / (n_temps - 1), 6)
+                                  for i in range(n_temps)],
+            },
+        )
+        body["scenario"] = {**body["scenario"], "elements": 200, "run_s": 30}
+        return body
+
+    # size the study from this machine's measured run time: about 8 s of work for each of the
+    # two workers, so the kill (at the first stored rows, about a second in) lands mid-study
+    probe = resolve_study(body_with(2))
+    specs = [dataclasses.asdict(r) for r in probe.runs[:2]]
+    run_batch(probe.id, specs[:1])  # compiled and warm
+    per_run_s = max(run_batch(probe.id, specs)["seconds"] / 2, 1e-3)
+    n_temps = min(max(int(8.0 * 2 / per_run_s / 2), 20), 400)
+    body = body_with(n_temps)
+
     svc = live_service(data_dir)
     sub, _ = svc.client.submit(body)
     total = sub["total"]
-    assert total == 42
-    st = svc.wait(sub["id"], until=lambda s: s["done"] >= 6)
-    assert st["done"] < total - 6, "the study is nearly over before the kill; make it longer"
+    assert total == 2 * n_temps
+    st = svc.wait(sub["id"], until=lambda s: s["done"] >= 1)
+    assert st["done"] < total // 2, f"the study is half over before the kill: {st}"
     svc.kill()
 
     doc = json.loads((data_dir / "studies" / sub["id"] / "study.json").read_text())
