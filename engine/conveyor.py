@@ -158,7 +158,8 @@ class TakeUp(_Model):
     type: Literal["gravity", "fixed"] = "gravity"
     position: Literal["tail", "head"] = "tail"
     mass_kg: PositiveFloat | Literal["auto"] = Field(
-        "auto", description="gravity counterweight [kg] or auto"
+        "auto", description="gravity counterweight [kg] or auto (the smallest meeting slip at "
+        "start-up and the sag limits, running and held at rest, at the full design load)"
     )
     pretension_kn: PositiveFloat | Literal["auto"] = Field(
         "auto", description="fixed take-up: tension at the take-up [kN] or auto"
