@@ -27,6 +27,15 @@ elastic tension continues below zero with it: a negative value is the slack stra
 that modulus, so a slack span must be taken up before it pulls again), the damper force by
 its exact exponential, total tension ``max(elastic + damper, 0)``, and the envelopes.
 
+Speed (the same equations; each pass checked to vectorise, 4 x double on AVX2): min/max
+reductions and envelopes use LLVM's ``minnum``/``maxnum`` (numba's ``min``/``max`` become
+compare-and-select, which LLVM neither vectorises as a reduction nor stores
+unconditionally); the velocity pass takes the friction solve's division from old values
+only, off the path from the old state to the new velocity; ``exp``/``log`` are written on
+the IEEE bits with Chebyshev-interpolated polynomials evaluated by Estrin's scheme (numba
+without SVML calls scalar libm, and long Horner chains leave these loops latency-bound),
+and each resistance term is one loop compiled for its exponents.
+
 The numpy implementation of the same equations is :mod:`engine.dynamics.reference`.
 """
 
@@ -35,7 +44,10 @@ from __future__ import annotations
 import math
 
 import numpy as np
-from numba import njit, uintp
+from llvmlite import ir as llir
+from numba import njit, types, uintp
+from numba.core import cgutils
+from numba.extending import intrinsic
 
 from engine.dynamics.profiles import FORCE, TORQUE, start_reference, stop_reference
 
@@ -95,6 +107,106 @@ _SUPPORT = 1
 
 
 # --------------------------------------------------------------------------------------
+# bit-level helpers: LLVM operations numba does not expose
+
+
+_I64 = llir.IntType(64)
+_F64 = llir.DoubleType()
+
+
+@intrinsic
+def _bits(typingctx, x):
+    """The IEEE-754 bits of a float64 as an int64 (a free bitcast)."""
+    sig = types.int64(types.float64)
+
+    def codegen(context, builder, signature, args):
+        return builder.bitcast(args[0], _I64)
+
+    return sig, codegen
+
+
+@intrinsic
+def _from_bits(typingctx, i):
+    """The float64 with the IEEE-754 bits of an int64 (a free bitcast)."""
+    sig = types.float64(types.int64)
+
+    def codegen(context, builder, signature, args):
+        return builder.bitcast(args[0], _F64)
+
+    return sig, codegen
+
+
+def _binary(name):
+    @intrinsic
+    def impl(typingctx, a, b):
+        sig = types.float64(types.float64, types.float64)
+
+        def codegen(context, builder, signature, args):
+            fnty = llir.FunctionType(_F64, [_F64, _F64])
+            fn = cgutils.get_or_insert_function(builder.module, fnty, name)
+            return builder.call(fn, args, fastmath=("nnan", "nsz"))
+
+        return sig, codegen
+
+    return impl
+
+
+#: min / max for the envelopes and reductions: LLVM's minnum/maxnum (NaN semantics dropped
+#: on these calls only: numba's min/max become compare-and-select, which LLVM neither
+#: vectorises as a reduction nor stores unconditionally). Divergence is checked on the
+#: velocity sum, which keeps NaN.
+_fmin = _binary("llvm.minnum.f64")
+_fmax = _binary("llvm.maxnum.f64")
+
+
+def _flagged(builder, op, a, b, flags):
+    inst = getattr(builder, op)(a, b)
+    inst.flags.extend(flags)  # non-empty flags: numba's fast-math pass leaves them alone
+    return inst
+
+
+@intrinsic
+def _round(typingctx, x):
+    """x rounded to the nearest integer (|x| < 2^51) as ``(x + 1.5 2^52) - 1.5 2^52``,
+    emitted without 'reassoc' so fast-math cannot fold it away."""
+    sig = types.float64(types.float64)
+
+    def codegen(context, builder, signature, args):
+        c = llir.Constant(_F64, MAGIC)
+        return _flagged(builder, "fsub", _flagged(builder, "fadd", args[0], c, ["nsz"]), c,
+                        ["nsz"])
+
+    return sig, codegen
+
+
+@intrinsic
+def _reduce_ln2(typingctx, y, k):
+    """``(y - k LN2_HI) - k LN2_LO`` (Cody and Waite), without 'reassoc'."""
+    sig = types.float64(types.float64, types.float64)
+
+    def codegen(context, builder, signature, args):
+        y_, k_ = args
+        fl = ["nsz", "contract"]
+        hi = _flagged(builder, "fmul", k_, llir.Constant(_F64, LN2_HI), fl)
+        lo = _flagged(builder, "fmul", k_, llir.Constant(_F64, LN2_LO), fl)
+        return _flagged(builder, "fsub", _flagged(builder, "fsub", y_, hi, fl), lo, fl)
+
+    return sig, codegen
+
+
+@intrinsic
+def _mul_strict(typingctx, a, b):
+    """a * b emitted without 'reassoc': fast-math cannot turn ``x * (y / z)`` back into
+    ``(x * y) / z`` (which would put a division on the critical path)."""
+    sig = types.float64(types.float64, types.float64)
+
+    def codegen(context, builder, signature, args):
+        return _flagged(builder, "fmul", args[0], args[1], ["nsz", "contract"])
+
+    return sig, codegen
+
+
+# --------------------------------------------------------------------------------------
 # resistance
 
 
@@ -106,74 +218,88 @@ SQRT2 = math.sqrt(2.0)
 #: 1.5 * 2**52: adding it rounds a double to an integer held in the low mantissa bits.
 MAGIC = 6755399441055744.0
 MAGIC_BITS = int(np.array([MAGIC]).view(np.int64)[0])
+#: 2**52 as bits: OR-ing an integer below 2**52 into them gives 2**52 + that integer.
+TWO52_BITS = 0x4330000000000000
+MANT_MASK = 0x000FFFFFFFFFFFFF
+ONE_BITS = 0x3FF0000000000000
+#: ln of |v| or of the sag ratio when it is zero: any positive power of it is exp(-700).
+LN_ZERO = -1e300
+#: below this a speed or sag ratio counts as zero (its powers vanish, as np.power(0, p)).
+TINY = 1e-300
+
+
+#: ln m = 2 f P(f^2), f = (m - 1) / (m + 1), |f| <= 0.1716: P interpolated at Chebyshev
+#: points (relative error of ln m below 3e-16).
+LN_P = (1.0, 0.3333333333333383, 0.19999999999646884, 0.14285714381291126,
+        0.11111098424786409, 0.09091821468161111, 0.07656113501554195, 0.07406428274258672)
+#: exp r on |r| <= ln2 / 2, interpolated at Chebyshev points (relative error 2.2e-16).
+EXP_P = (1.0, 1.0, 0.5000000000000019, 0.1666666666666668, 0.04166666666648666,
+         0.00833333333331949, 0.0013888888952696516, 0.00019841269890340666,
+         2.4801485074105115e-05, 2.7557240604663896e-06, 2.763279054211718e-07,
+         2.511015364692893e-08)
+
+
+@njit(inline="always", **OPTS)
+def _ln(x):
+    """ln x for x > 0 (no libm call): exponent and mantissa split on the IEEE bits,
+    ``ln m = 2 atanh((m - 1) / (m + 1))`` on [sqrt(1/2), sqrt(2)] by a polynomial in
+    ((m - 1) / (m + 1))^2, evaluated by Estrin's scheme (short dependency chains: the loops
+    are latency-bound otherwise). Relative error below 1e-15; x = 0 gives about -709."""
+    xb = _bits(x)
+    m = _from_bits((xb & MANT_MASK) | ONE_BITS)
+    e = _from_bits((xb >> 52) | TWO52_BITS) - (4503599627370496.0 + 1023.0)
+    big = m > SQRT2
+    m = m * 0.5 if big else m
+    e = e + 1.0 if big else e
+    f = (m - 1.0) / (m + 1.0)
+    q = f * f
+    q2 = q * q
+    q4 = q2 * q2
+    c = LN_P
+    p = ((c[0] + c[1] * q) + (c[2] + c[3] * q) * q2) + \
+        ((c[4] + c[5] * q) + (c[6] + c[7] * q) * q2) * q4
+    return e * LN2 + 2.0 * f * p
+
+
+@njit(inline="always", **OPTS)
+def _exp(y):
+    """exp(y), y clipped to [-700, 700] (no libm call): ``y = k ln 2 + r`` (ln 2 in two
+    parts), ``exp(r)`` by a polynomial of degree 11 evaluated by Estrin's scheme (relative
+    error below 1e-15), ``2^k`` added to the exponent bits."""
+    y = min(max(y, -700.0), 700.0)
+    k = _round(y * (1.0 / LN2))
+    r = _reduce_ln2(y, k)
+    r2 = r * r
+    r4 = r2 * r2
+    r8 = r4 * r4
+    c = EXP_P
+    p = (((c[0] + c[1] * r) + (c[2] + c[3] * r) * r2)
+         + ((c[4] + c[5] * r) + (c[6] + c[7] * r) * r2) * r4) \
+        + ((c[8] + c[9] * r) + (c[10] + c[11] * r) * r2) * r8
+    return _from_bits(_bits(p) + ((_bits(k + MAGIC) - MAGIC_BITS) << 52))
+
+
+@njit(inline="always", **OPTS)
+def _ln0(x):
+    """ln x, or LN_ZERO for x <= TINY (so that x^p = exp(p ln x) vanishes for p > 0)."""
+    return _ln(x) if x > TINY else LN_ZERO
 
 
 @njit(**OPTS)
-def vlog(x, out, ib):
-    """``out = ln(x)`` for x >= 0, vectorised (no libm call): exponent and mantissa split on
-    the IEEE bits, ``ln m = 2 atanh((m - 1) / (m + 1))`` by its series on [sqrt(1/2),
-    sqrt(2)] (relative error below 1e-15; x = 0 gives about -709). ``ib`` is int64 scratch."""
-    xb = x.view(np.int64)
-    mf = ib.view(np.float64)
+def vlog(x, out):
+    """``out = ln(x)`` for x >= 0, vectorised (see :func:`_ln`)."""
     for jj in range(x.shape[0]):
         j = uintp(jj)
-        ib[j] = (xb[j] & 0x000FFFFFFFFFFFFF) | 0x3FF0000000000000
-    for jj in range(x.shape[0]):
-        j = uintp(jj)
-        e = float((xb[j] >> 52) - 1023)
-        m = mf[j]
-        big = m > SQRT2
-        m = m * 0.5 if big else m
-        e = e + 1.0 if big else e
-        f = (m - 1.0) / (m + 1.0)
-        q = f * f
-        p = 1.0 / 19.0
-        p = p * q + 1.0 / 17.0
-        p = p * q + 1.0 / 15.0
-        p = p * q + 1.0 / 13.0
-        p = p * q + 1.0 / 11.0
-        p = p * q + 1.0 / 9.0
-        p = p * q + 1.0 / 7.0
-        p = p * q + 1.0 / 5.0
-        p = p * q + 1.0 / 3.0
-        p = p * q + 1.0
-        out[j] = e * LN2 + 2.0 * f * p
+        out[j] = _ln(x[j])
 
 
-@njit(cache=True, nogil=True, fastmath={"contract", "nsz", "arcp"}, error_model="numpy")
-def vexp(y, out, ib):
-    """``out = exp(y)`` for y in [-700, 700], vectorised: ``y = k ln 2 + r`` (ln 2 in two
-    parts), ``exp(r)`` by its Taylor series to r^14 (relative error below 5e-15), ``2^k``
-    added to the exponent bits. No reassociation here: it would fold the rounding trick away. ``out`` may be
+@njit(**OPTS)
+def vexp(y, out):
+    """``out = exp(y)`` for y in [-700, 700], vectorised (see :func:`_exp`). ``out`` may be
     ``y``."""
-    ob = out.view(np.int64)
-    kf = ib.view(np.float64)
     for jj in range(y.shape[0]):
         j = uintp(jj)
-        yj = y[j]
-        kd = yj * (1.0 / LN2) + MAGIC
-        k = kd - MAGIC
-        r = (yj - k * LN2_HI) - k * LN2_LO
-        p = 1.0 / 87178291200.0
-        p = p * r + 1.0 / 6227020800.0
-        p = p * r + 1.0 / 479001600.0
-        p = p * r + 1.0 / 39916800.0
-        p = p * r + 1.0 / 3628800.0
-        p = p * r + 1.0 / 362880.0
-        p = p * r + 1.0 / 40320.0
-        p = p * r + 1.0 / 5040.0
-        p = p * r + 1.0 / 720.0
-        p = p * r + 1.0 / 120.0
-        p = p * r + 1.0 / 24.0
-        p = p * r + 1.0 / 6.0
-        p = p * r + 0.5
-        p = p * r + 1.0
-        p = p * r + 1.0
-        kf[j] = kd
-        out[j] = p
-    for jj in range(y.shape[0]):
-        j = uintp(jj)
-        ob[j] = ob[j] + ((ib[j] - MAGIC_BITS) << 52)
+        out[j] = _exp(y[j])
 
 
 @njit(inline="always", **OPTS)
@@ -192,112 +318,125 @@ def _power(x, code, p):
     return math.exp(p * math.log(x)) if x > 0.0 else 0.0
 
 
+@njit(inline="always", **OPTS)
+def _speed(v, lnv, code, p):
+    """|v|^p inside a term pass: code 0 (p = 0), 2 (p = 1), else exp(p ln|v|)."""
+    if code == 0:
+        return 1.0
+    if code == 2:
+        return abs(v)
+    return _exp(p * lnv)
+
+
+@njit(inline="always", **OPTS)
+def _term(r0, c, v, lnv, phi, lnphi, sc, p, qc, q):
+    """``r0 += c |v|^p phi^q`` over all elements; ``sc``/``qc`` are literal codes at every
+    call, so each call compiles to its own branch-free loop."""
+    for jj in range(r0.shape[0]):
+        j = uintp(jj)
+        r0[j] += c[j] * _speed(v[j], lnv[j], sc, p) * (
+            1.0 if qc == 0 else
+            (_power(phi[j], qc, q) if qc != 5 else _exp(q * lnphi[j])))
+
+
 @njit(**OPTS)
-def resistance(r0, v, tt, coef, pvc, pvv, psc, psv, sw, hs_ref, hs_max, any_ps, phi, fac,
-               lnv, lnphi, tmp, ib, t_sparse, t_ptr, t_idx):
+def resistance(r0, v, tt, coef, pvc, pvv, psc, psv, sw, hs_ref, hs_max, any_ps, phi,
+               lnv, lnphi, t_sparse, t_ptr, t_idx):
     """Resistance magnitude ``R0_j = sum_k coef[k, j] |v_j|^pv[k] phi_j^ps[k]`` into r0 [N].
 
-    One vectorised pass per term, specialised on the exponents (0, 0.5, 1, 1.5, 2 need no
-    power); other exponents use ``exp(p ln x)`` with the vectorised :func:`vlog` and
-    :func:`vexp`, the logarithms computed once per step. ``phi`` is the sag ratio over the
-    reference from the element's mean tension; the rest are scratch arrays.
+    One vectorised pass per term, compiled for its exponents: speed exponents 0 and 1 need
+    no power, others ``exp(p ln|v|)``; sag exponents 0, 0.5, 1, 1.5 and 2 use sqrt and
+    products, others ``exp(q ln phi)``. The logarithms are computed once per step; the
+    constant term initialises r0. ``phi`` is the sag ratio over the reference from the
+    element's mean tension; ``phi``, ``lnv`` and ``lnphi`` are scratch arrays.
     """
     n = r0.shape[0]
     if any_ps:
-        tp = tt[n - 1]
-        phi[0] = min(sw[0] / max(0.5 * (tp + tt[0]), 1.0), hs_max) / hs_ref
+        phi[0] = min(sw[0] / max(0.5 * (tt[n - 1] + tt[0]), 1.0), hs_max) / hs_ref
         for jj in range(1, n):
             j = uintp(jj)
             phi[j] = min(sw[j] / max(0.5 * (tt[uintp(jj - 1)] + tt[j]), 1.0), hs_max) / hs_ref
     need_lnv = False
     need_lnphi = False
+    first = -1
     for k in range(coef.shape[0]):
-        dense = t_sparse[k] == 0
-        need_lnv = need_lnv or (dense and pvc[k] == 5)
-        need_lnphi = need_lnphi or (dense and psc[k] == 5)
+        if t_sparse[k] == 0:
+            need_lnv = need_lnv or (pvc[k] != 0 and pvc[k] != 2)
+            need_lnphi = need_lnphi or psc[k] == 5
+            if first < 0 and pvc[k] == 0 and psc[k] == 0:
+                first = k
     if need_lnv:
         for jj in range(n):
             j = uintp(jj)
-            tmp[j] = abs(v[j])
-        vlog(tmp, lnv, ib)
+            lnv[j] = _ln0(abs(v[j]))
     if need_lnphi:
-        vlog(phi, lnphi, ib)
-    for jj in range(n):
-        r0[uintp(jj)] = 0.0
+        for jj in range(n):
+            j = uintp(jj)
+            lnphi[j] = _ln0(phi[j])
+    if first >= 0:
+        c = coef[first]
+        for jj in range(n):
+            j = uintp(jj)
+            r0[j] = c[j]
+    else:
+        for jj in range(n):
+            r0[uintp(jj)] = 0.0
     for k in range(coef.shape[0]):
-        c = pvc[k]
-        q = psc[k]
+        if k == first:
+            continue
+        pc = pvc[k]
+        sc = 0 if pc == 0 else (2 if pc == 2 else 5)
+        qc = psc[k]
+        p = pvv[k]
+        q = psv[k]
         if t_sparse[k] == 1:
             # a sparse term (a few elements: feed, pulleys, accessories): its elements only
             for i in range(t_ptr[k], t_ptr[k + 1]):
                 j = t_idx[i]
-                r0[j] += coef[k, j] * _power(abs(v[j]), c, pvv[k]) * (
-                    _power(phi[j], q, psv[k]) if any_ps else 1.0)
+                r0[j] += coef[k, j] * _power(abs(v[j]), pc, p) * (
+                    _power(phi[j], qc, q) if any_ps else 1.0)
             continue
-        if c == 0 and q == 0:
-            for jj in range(n):
-                j = uintp(jj)
-                r0[j] += coef[k, j]
-            continue
-        if c == 0:
-            for jj in range(n):
-                j = uintp(jj)
-                fac[j] = coef[k, j]
-        elif c == 1:
-            for jj in range(n):
-                j = uintp(jj)
-                fac[j] = coef[k, j] * math.sqrt(abs(v[j]))
-        elif c == 2:
-            for jj in range(n):
-                j = uintp(jj)
-                fac[j] = coef[k, j] * abs(v[j])
-        elif c == 3:
-            for jj in range(n):
-                j = uintp(jj)
-                a = abs(v[j])
-                fac[j] = coef[k, j] * a * math.sqrt(a)
-        elif c == 4:
-            for jj in range(n):
-                j = uintp(jj)
-                fac[j] = coef[k, j] * v[j] * v[j]
+        c = coef[k]
+        # one literal (speed code, sag code) pair per call: a specialised loop each
+        if sc == 0:
+            if qc == 0:
+                _term(r0, c, v, lnv, phi, lnphi, 0, p, 0, q)
+            elif qc == 1:
+                _term(r0, c, v, lnv, phi, lnphi, 0, p, 1, q)
+            elif qc == 2:
+                _term(r0, c, v, lnv, phi, lnphi, 0, p, 2, q)
+            elif qc == 3:
+                _term(r0, c, v, lnv, phi, lnphi, 0, p, 3, q)
+            elif qc == 4:
+                _term(r0, c, v, lnv, phi, lnphi, 0, p, 4, q)
+            else:
+                _term(r0, c, v, lnv, phi, lnphi, 0, p, 5, q)
+        elif sc == 2:
+            if qc == 0:
+                _term(r0, c, v, lnv, phi, lnphi, 2, p, 0, q)
+            elif qc == 1:
+                _term(r0, c, v, lnv, phi, lnphi, 2, p, 1, q)
+            elif qc == 2:
+                _term(r0, c, v, lnv, phi, lnphi, 2, p, 2, q)
+            elif qc == 3:
+                _term(r0, c, v, lnv, phi, lnphi, 2, p, 3, q)
+            elif qc == 4:
+                _term(r0, c, v, lnv, phi, lnphi, 2, p, 4, q)
+            else:
+                _term(r0, c, v, lnv, phi, lnphi, 2, p, 5, q)
         else:
-            p = pvv[k]
-            for jj in range(n):
-                j = uintp(jj)
-                tmp[j] = p * lnv[j]
-            vexp(tmp, fac, ib)
-            for jj in range(n):
-                j = uintp(jj)
-                fac[j] *= coef[k, j]
-        if q == 0:
-            for jj in range(n):
-                j = uintp(jj)
-                r0[j] += fac[j]
-        elif q == 1:
-            for jj in range(n):
-                j = uintp(jj)
-                r0[j] += fac[j] * math.sqrt(phi[j])
-        elif q == 2:
-            for jj in range(n):
-                j = uintp(jj)
-                r0[j] += fac[j] * phi[j]
-        elif q == 3:
-            for jj in range(n):
-                j = uintp(jj)
-                r0[j] += fac[j] * phi[j] * math.sqrt(phi[j])
-        elif q == 4:
-            for jj in range(n):
-                j = uintp(jj)
-                r0[j] += fac[j] * phi[j] * phi[j]
-        else:
-            p = psv[k]
-            for jj in range(n):
-                j = uintp(jj)
-                tmp[j] = p * lnphi[j]
-            vexp(tmp, tmp, ib)
-            for jj in range(n):
-                j = uintp(jj)
-                r0[j] += fac[j] * tmp[j]
+            if qc == 0:
+                _term(r0, c, v, lnv, phi, lnphi, 5, p, 0, q)
+            elif qc == 1:
+                _term(r0, c, v, lnv, phi, lnphi, 5, p, 1, q)
+            elif qc == 2:
+                _term(r0, c, v, lnv, phi, lnphi, 5, p, 2, q)
+            elif qc == 3:
+                _term(r0, c, v, lnv, phi, lnphi, 5, p, 3, q)
+            elif qc == 4:
+                _term(r0, c, v, lnv, phi, lnphi, 5, p, 4, q)
+            else:
+                _term(r0, c, v, lnv, phi, lnphi, 5, p, 5, q)
 
 
 @njit(inline="always", **OPTS)
@@ -327,7 +466,13 @@ def node_pass(a, b, v, tt, hm, grav, r0, v_eps, w):
         rn = min(r, 0.0)
         vj = v[j]
         vs = vj + h * (tt[j] - tt[jm] - grav[j] - rn * min(max(vj / v_eps, -1.0), 1.0))
-        vn = _friction(vs, h * rp, v_eps)
+        # _friction, with its division computed from old values only (off the path from
+        # the old state to the new velocity)
+        e = h * rp
+        den = v_eps + e
+        a1 = _mul_strict(vs, v_eps / den)
+        a2 = vs - math.copysign(e, vs)
+        vn = a1 if abs(vs) <= den else a2
         v[j] = vn
         s += w[j] * vn
     return s
@@ -373,12 +518,13 @@ def observe(tt, v, t_max, t_min):
     for jj in range(tt.shape[0]):
         j = uintp(jj)
         t1 = tt[j]
-        t_max[j] = max(t_max[j], t1)
-        t_min[j] = min(t_min[j], t1)
-        lo = min(lo, t1)
-        hi = max(hi, t1)
-        vlo = min(vlo, v[j])
-        vhi = max(vhi, v[j])
+        vj = v[j]
+        t_max[j] = _fmax(t_max[j], t1)
+        t_min[j] = _fmin(t_min[j], t1)
+        lo = _fmin(lo, t1)
+        hi = _fmax(hi, t1)
+        vlo = _fmin(vlo, vj)
+        vhi = _fmax(vhi, vj)
     return lo, hi, vlo, vhi
 
 
@@ -387,10 +533,21 @@ def extremes(x):
     """(min, max) of an array."""
     lo = x[0]
     hi = x[0]
-    for j in range(1, x.shape[0]):
-        lo = min(lo, x[j])
-        hi = max(hi, x[j])
+    for jj in range(1, x.shape[0]):
+        j = uintp(jj)
+        lo = _fmin(lo, x[j])
+        hi = _fmax(hi, x[j])
     return lo, hi
+
+
+@njit(**OPTS)
+def slack_min(te, inv_kfl):
+    """min(0, min_j te_j / k_floor_j): the largest slack strain (negative)."""
+    worst = 0.0
+    for jj in range(te.shape[0]):
+        j = uintp(jj)
+        worst = _fmin(worst, te[j] * inv_kfl[j])
+    return worst
 
 
 # --------------------------------------------------------------------------------------
@@ -499,11 +656,8 @@ def run_cycle(fp, ip, mass, hm, gravity, sw, coef, pvc, pvv, psc, psv, w_mean,
 
     r0 = np.empty(n)
     phi = np.empty(n)
-    fac = np.empty(n)
     lnv = np.empty(n)
     lnphi = np.empty(n)
-    tmp = np.empty(n)
-    ib = np.empty(n, dtype=np.int64)
     if law_const:
         for j in range(n):
             r0[j] = coef[0, j]
@@ -617,8 +771,7 @@ def run_cycle(fp, ip, mass, hm, gravity, sw, coef, pvc, pvv, psc, psv, w_mean,
         # ---------------------------------------------------------------- resistances
         if not law_const:
             resistance(r0, v, tt, coef, pvc, pvv, psc, psv, sw, fp[FP_HS_REF], fp[FP_HS_MAX],
-                       any_ps, phi, fac, lnv, lnphi, tmp, ib, t_sparse, t_ptr,
-                       t_idx)
+                       any_ps, phi, lnv, lnphi, t_sparse, t_ptr, t_idx)
 
         # ---------------------------------------------------------------- free elements
         vsum = 0.0
@@ -933,14 +1086,13 @@ def run_cycle(fp, ip, mass, hm, gravity, sw, coef, pvc, pvv, psc, psv, w_mean,
 
         # ---------------------------------------------------------------- records
         if t_new + 0.5 * dt >= nrec * rec_dt:
-            worst = 0.0
-            worst_j = -1
-            for j in range(n):
-                sj = te[j] * inv_kfl[j]
-                if sj < worst:
-                    worst = sj
-                    worst_j = j
+            worst = slack_min(te, inv_kfl)
             if worst < -SLACK_LIMIT:
+                worst_j = 0
+                for j in range(n):
+                    if te[j] * inv_kfl[j] == worst:
+                        worst_j = j
+                        break
                 # physical slack grows a few percent per record interval; far beyond the
                 # limit at the first look means a numerical blow-up
                 status = SLACK if worst > -SLACK_DIVERGED else DIVERGED
@@ -999,13 +1151,16 @@ def run_cycle(fp, ip, mass, hm, gravity, sw, coef, pvc, pvv, psc, psv, w_mean,
 @njit(**OPTS)
 def _envelope_times(t, t_max, t_min, snap_max, snap_min, t_max_t, t_min_t):
     """Stamp the springs whose envelope grew since the last record with time t."""
-    for j in range(t_max.shape[0]):
-        if t_max[j] > snap_max[j]:
-            t_max_t[j] = t
-            snap_max[j] = t_max[j]
-        if t_min[j] < snap_min[j]:
-            t_min_t[j] = t
-            snap_min[j] = t_min[j]
+    for jj in range(t_max.shape[0]):
+        # the envelopes only grow, so the snapshots can be copied unconditionally (selects
+        # and plain stores: LLVM vectorises them)
+        j = uintp(jj)
+        hi = t_max[j]
+        lo = t_min[j]
+        t_max_t[j] = t if hi > snap_max[j] else t_max_t[j]
+        t_min_t[j] = t if lo < snap_min[j] else t_min_t[j]
+        snap_max[j] = hi
+        snap_min[j] = lo
 
 
 @njit(**OPTS)
