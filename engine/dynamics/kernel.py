@@ -94,11 +94,13 @@ REC = _namespace("REC_")
 
 # status codes
 OK, DIVERGED, SLACK = 0, 1, 2
+#: Fastest rate [x design speed] at which the belt's own motion can store slack in one span:
+#: both its ends moving apart at up to twice the design speed. Slack that grew faster between
+#: two looks is a numerical blow-up (a step above the stability limit), not the belt.
+SLACK_RATE_MAX = 4.0
 #: Slack strain (belt length stored as slack over a span's length) beyond which the 1-D model
 #: no longer holds: the belt would pile up or leave the idlers. The run ends as failed.
 SLACK_LIMIT = 0.05
-#: Slack strain that no physical motion reaches between two records: divergence.
-SLACK_DIVERGED = 1.0
 # drive modes of one step
 FREE, HOLD, IMPOSED, PI, OPEN = 0, 1, 2, 3, 4
 # stop modes and formulation codes (model.py)
@@ -479,26 +481,32 @@ def node_pass(a, b, v, tt, hm, grav, r0, v_eps, w):
 
 
 @njit(inline="always", **OPTS)
-def _spring(e0, d0, dv, dlj, cdt, tfl, aeb, eb, e_damp, g_damp):
+def _spring(e0, d0, dv, dlj, cdt, tfl, kfl, aeb, eb, e_damp, g_damp):
     """One spring: elastic and damper tension after the strain increment
-    ``dv * dl + cdt`` (dl = dt / len, cdt = carriage term). Returns (elastic, damper, total)."""
+    ``dv * dl + cdt`` (dl = dt / len, cdt = carriage term). Returns (elastic, damper, total).
+
+    An increment that carries the elastic tension from above the floor ``tfl`` to below it
+    continues there with the floor modulus ``kfl``: the tangent law followed along the path,
+    so a sudden unloading (a take-up carriage hitting its end stop) stores the slack strain
+    the motion made, not that strain times the stiff modulus it started from."""
     de = dv * dlj + cdt
     tc = max(e0, tfl)
     t3 = tc * tc * tc
     kt = eb * t3 / (t3 + aeb)
     e1 = e0 + kt * de
+    e1 = tfl + (e1 - tfl) * (kfl / kt) if (e1 < tfl and e0 > tfl) else e1
     d1 = e_damp * d0 + g_damp * kt * de
     d1 = d1 if e1 >= 0.0 else 0.0
     return e1, d1, max(e1 + d1, 0.0)
 
 
 @njit(**OPTS)
-def spring_pass(a, b, v, te, td, tt, dl, t_floor, a_eb, eb, e_damp, g_damp):
+def spring_pass(a, b, v, te, td, tt, dl, t_floor, k_floor, a_eb, eb, e_damp, g_damp):
     """Update springs a..b-1 (b <= n - 1) from the new velocities."""
     for jj in range(a, b):
         j = uintp(jj)
         e1, d1, t1 = _spring(te[j], td[j], v[uintp(jj + 1)] - v[j], dl[j], 0.0, t_floor[j],
-                             a_eb[j], eb, e_damp, g_damp)
+                             k_floor[j], a_eb[j], eb, e_damp, g_damp)
         te[j] = e1
         td[j] = d1
         tt[j] = t1
@@ -591,7 +599,8 @@ def solve_dense(A, b, m):
 
 @njit(**OPTS)
 def run_cycle(fp, ip, mass, hm, gravity, sw, coef, pvc, pvv, psc, psv, w_mean,
-              t_sparse, t_ptr, t_idx, dl, a_eb, t_floor, inv_kfl, car_ind, seg_node, seg_spring, blk_ptr, blk_nodes, blk_car,
+              t_sparse, t_ptr, t_idx, dl, a_eb, t_floor, k_floor, inv_kfl, car_ind, seg_node,
+              seg_spring, blk_ptr, blk_nodes, blk_car,
               node_drive, node_hb, d_node, d_share, d_lim, d_euler, b_node, b_force, b_delay,
               v, te, td, tt, state, probes, surf_idx,
               rec, rec_t, rec_v, surf_t, surf_v, t_max, t_min, t_max_t, t_min_t, d_force, res):
@@ -1023,7 +1032,7 @@ def run_cycle(fp, ip, mass, hm, gravity, sw, coef, pvc, pvv, psc, psv, w_mean,
                 s1 = blk_nodes[p0 + k + 1]
                 e1, d1, t1 = _spring(te[s], td[s], v[s1] - v[s], dl[s],
                                      car_ind[s] * u_new * dl[s] if car else 0.0, t_floor[s],
-                                     a_eb[s], eb, e_damp, g_damp)
+                                     k_floor[s], a_eb[s], eb, e_damp, g_damp)
                 te[s] = e1
                 td[s] = d1
                 tt[s] = t1
@@ -1038,8 +1047,8 @@ def run_cycle(fp, ip, mass, hm, gravity, sw, coef, pvc, pvv, psc, psv, w_mean,
 
         # ---------------------------------------------------------------- free springs
         for k in range(seg_spring.shape[0]):
-            spring_pass(seg_spring[k, 0], seg_spring[k, 1], v, te, td, tt, dl, t_floor, a_eb,
-                        eb, e_damp, g_damp)
+            spring_pass(seg_spring[k, 0], seg_spring[k, 1], v, te, td, tt, dl, t_floor,
+                        k_floor, a_eb, eb, e_damp, g_damp)
 
         # ---------------------------------------------------------------- checks
         v_mean = vsum * inv_w_sum
@@ -1093,9 +1102,11 @@ def run_cycle(fp, ip, mass, hm, gravity, sw, coef, pvc, pvv, psc, psv, w_mean,
                     if te[j] * inv_kfl[j] == worst:
                         worst_j = j
                         break
-                # physical slack grows a few percent per record interval; far beyond the
-                # limit at the first look means a numerical blow-up
-                status = SLACK if worst > -SLACK_DIVERGED else DIVERGED
+                # slack of a span's length plus what the belt's motion could add since the
+                # last look is beyond any physical motion: a numerical blow-up
+                span = dt / dl[worst_j]
+                reach = span + SLACK_RATE_MAX * v_d * (rec_dt + dt)
+                status = SLACK if -worst * span <= reach else DIVERGED
                 res[RES_SLACK] = -worst
                 res[RES_SLACK_AT] = worst_j
                 break

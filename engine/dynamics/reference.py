@@ -17,6 +17,8 @@ from engine.dynamics.model import BRAKE, CONTROLLED, SUPPORT, System
 __all__ = ["ReferenceResult", "run_reference"]
 
 SLACK_LIMIT = 0.05
+#: Fastest slack storage of the belt's own motion [x design speed] (as in the kernel).
+SLACK_RATE_MAX = 4.0
 V_FAIL_FACTOR = 100.0
 
 
@@ -301,6 +303,9 @@ def run_reference(sys: System, t_end_s: float | None = None) -> ReferenceResult:
         de = (np.roll(v_new, -1) - v_new) * dl + car_ind * (u_tu if sys.takeup_gravity else 0.0) * dl
         kt = _tangent(sys, te)
         e1 = te + kt * de
+        # crossing the floor in one step: the rest of the increment at the floor modulus
+        tfl = sys.t_floor_n
+        e1 = np.where((e1 < tfl) & (te > tfl), tfl + (e1 - tfl) * sys.k_floor_n / kt, e1)
         d1 = np.where(e1 >= 0.0, e_damp * td + g_damp * kt * de, 0.0)
         te, td = e1, d1
         T = np.maximum(e1 + d1, 0.0)
@@ -319,7 +324,10 @@ def run_reference(sys: System, t_end_s: float | None = None) -> ReferenceResult:
             stop_ach = t_new - t_stopcmd
             t_limit = min(t_limit, t_new + sys.post_rest_s)
         if float(np.min(te / sys.k_floor_n)) < -SLACK_LIMIT:
-            status = 2 if float(np.min(te / sys.k_floor_n)) > -1.0 else 1
+            j = int(np.argmin(te / sys.k_floor_n))
+            slack_m = -te[j] / sys.k_floor_n[j] * sys.len_m[j]
+            reach = sys.len_m[j] + SLACK_RATE_MAX * v_d * dt
+            status = 2 if slack_m <= reach else 1
             break
         if t_new >= t_limit:
             break

@@ -202,3 +202,35 @@ def test_resistance_every_exponent_code_matches_the_reference_law():
         ref = _law(sys, v, tt)
         assert_allclose(r0, ref, rtol=1e-13, atol=1e-12 * np.abs(ref).max())
 
+
+
+def test_unloading_past_the_floor_stores_the_geometric_slack():
+    """A strain increment that takes a spring from running tension to below the floor in one
+    step continues at the floor modulus. By hand: the part (e0 - tfl) / kt(e0) of the
+    increment brings the tension to the floor, the remaining 10 % of strain continues at the
+    floor modulus kfl = EB tfl^3 / (tfl^3 + a EB)."""
+    eb, a_eb, tfl = 3.456e8, 1.97e14, 3.3e3
+    kfl = eb * tfl**3 / (tfl**3 + a_eb)
+    e0 = 2.0e5
+    kt = eb * e0**3 / (e0**3 + a_eb)
+    de = -(e0 - tfl) / kt - 0.1
+    e1, d1, t1 = K._spring(e0, 0.0, de, 1.0, 0.0, tfl, kfl, a_eb, eb, 1.0, 0.0)
+    assert e1 == pytest.approx(tfl - 0.1 * kfl, rel=1e-9)
+    assert e1 < 0.0 and t1 == 0.0 and d1 == 0.0  # slack: the belt does not push
+    # a small increment above the floor is the plain tangent update
+    e1, _, _ = K._spring(e0, 0.0, -1e-5, 1.0, 0.0, tfl, kfl, a_eb, eb, 1.0, 0.0)
+    assert e1 == pytest.approx(e0 - 1e-5 * kt, rel=1e-12)
+
+
+def test_carriage_hitting_its_end_stop_is_slack_not_divergence():
+    """Power failure of the 16.8 km overland (Non-Lin, 20 C): the tail half goes slack, the
+    head take-up's counterweight falls and pulls the return strand back until the carriage
+    hits its end stop at several m/s. The belt piles up at the take-up: a physical failure
+    the run names, never a numerical divergence."""
+    conv = load_conveyor(CONVEYORS / "overland-16km.yaml")
+    st = solve_steady(conv, model="nonlin", n_elements=300)
+    res = simulate(build_system(conv, Scenario(elements=300), st))
+    assert res.raw["ENDSTOP_T"] > 0.0  # the carriage reached its stop
+    assert res.status == "failed"
+    assert "slack beyond the model's range" in res.message
+    assert "diverged" not in res.message
