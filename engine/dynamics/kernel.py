@@ -481,32 +481,36 @@ def node_pass(a, b, v, tt, hm, grav, r0, v_eps, w):
 
 
 @njit(inline="always", **OPTS)
-def _spring(e0, d0, dv, dlj, cdt, tfl, kfl, aeb, eb, e_damp, g_damp):
+def _spring(e0, d0, dv, dlj, cdt, tfl, kfl_eb, aeb, eb, e_damp, g_damp):
     """One spring: elastic and damper tension after the strain increment
     ``dv * dl + cdt`` (dl = dt / len, cdt = carriage term). Returns (elastic, damper, total).
 
     An increment that carries the elastic tension from above the floor ``tfl`` to below it
-    continues there with the floor modulus ``kfl``: the tangent law followed along the path,
+    continues there with the floor modulus ``kfl = kfl_eb EB``: the tangent law followed along the path,
     so a sudden unloading (a take-up carriage hitting its end stop) stores the slack strain
     the motion made, not that strain times the stiff modulus it started from."""
     de = dv * dlj + cdt
     tc = max(e0, tfl)
     t3 = tc * tc * tc
-    kt = eb * t3 / (t3 + aeb)
+    sm = t3 + aeb
+    q = 1.0 / (t3 * sm)  # the one division: kt = EB t3 / sm and kfl / kt = kfl sm / (EB t3)
+    kt = eb * (t3 * t3 * q)
     e1 = e0 + kt * de
-    e1 = tfl + (e1 - tfl) * (kfl / kt) if (e1 < tfl and e0 > tfl) else e1
+    # below the floor the rest of the increment at kfl; kfl <= kt, so the larger of the two
+    # is right on both sides of the floor (and kfl / kt = 1 when e0 is at or below it)
+    e1 = max(e1, tfl + (e1 - tfl) * (kfl_eb * (sm * sm * q)))
     d1 = e_damp * d0 + g_damp * kt * de
     d1 = d1 if e1 >= 0.0 else 0.0
     return e1, d1, max(e1 + d1, 0.0)
 
 
 @njit(**OPTS)
-def spring_pass(a, b, v, te, td, tt, dl, t_floor, k_floor, a_eb, eb, e_damp, g_damp):
+def spring_pass(a, b, v, te, td, tt, dl, t_floor, kfl_eb, a_eb, eb, e_damp, g_damp):
     """Update springs a..b-1 (b <= n - 1) from the new velocities."""
     for jj in range(a, b):
         j = uintp(jj)
         e1, d1, t1 = _spring(te[j], td[j], v[uintp(jj + 1)] - v[j], dl[j], 0.0, t_floor[j],
-                             k_floor[j], a_eb[j], eb, e_damp, g_damp)
+                             kfl_eb[j], a_eb[j], eb, e_damp, g_damp)
         te[j] = e1
         td[j] = d1
         tt[j] = t1
@@ -599,7 +603,7 @@ def solve_dense(A, b, m):
 
 @njit(**OPTS)
 def run_cycle(fp, ip, mass, hm, gravity, sw, coef, pvc, pvv, psc, psv, w_mean,
-              t_sparse, t_ptr, t_idx, dl, a_eb, t_floor, k_floor, inv_kfl, car_ind, seg_node,
+              t_sparse, t_ptr, t_idx, dl, a_eb, t_floor, kfl_eb, inv_kfl, car_ind, seg_node,
               seg_spring, blk_ptr, blk_nodes, blk_car,
               node_drive, node_hb, d_node, d_share, d_lim, d_euler, b_node, b_force, b_delay,
               v, te, td, tt, state, probes, surf_idx,
@@ -1032,7 +1036,7 @@ def run_cycle(fp, ip, mass, hm, gravity, sw, coef, pvc, pvv, psc, psv, w_mean,
                 s1 = blk_nodes[p0 + k + 1]
                 e1, d1, t1 = _spring(te[s], td[s], v[s1] - v[s], dl[s],
                                      car_ind[s] * u_new * dl[s] if car else 0.0, t_floor[s],
-                                     k_floor[s], a_eb[s], eb, e_damp, g_damp)
+                                     kfl_eb[s], a_eb[s], eb, e_damp, g_damp)
                 te[s] = e1
                 td[s] = d1
                 tt[s] = t1
@@ -1048,7 +1052,7 @@ def run_cycle(fp, ip, mass, hm, gravity, sw, coef, pvc, pvv, psc, psv, w_mean,
         # ---------------------------------------------------------------- free springs
         for k in range(seg_spring.shape[0]):
             spring_pass(seg_spring[k, 0], seg_spring[k, 1], v, te, td, tt, dl, t_floor,
-                        k_floor, a_eb, eb, e_damp, g_damp)
+                        kfl_eb, a_eb, eb, e_damp, g_damp)
 
         # ---------------------------------------------------------------- checks
         v_mean = vsum * inv_w_sum

@@ -164,7 +164,7 @@ def prepare(sys: System, t_end_s: float | None = None) -> KernelInput:
         t_ptr=arr(t_ptr, np.int64), t_idx=arr(t_idx or [0], np.int64),
         dl=arr(sys.dt_s / sys.len_m),
         a_eb=arr(sys.a_ernst * sys.stiffness_n), t_floor=arr(sys.t_floor_n),
-        k_floor=arr(sys.k_floor_n), inv_kfl=arr(1.0 / sys.k_floor_n),
+        kfl_eb=arr(sys.k_floor_n / sys.stiffness_n), inv_kfl=arr(1.0 / sys.k_floor_n),
         car_ind=arr(sys.carriage_coupling),
         seg_node=_ranges(~in_block), seg_spring=_ranges(~sys.implicit),
         blk_ptr=blk_ptr, blk_nodes=blk_nodes, blk_car=blk_car,

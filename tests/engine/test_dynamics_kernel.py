@@ -214,11 +214,11 @@ def test_unloading_past_the_floor_stores_the_geometric_slack():
     e0 = 2.0e5
     kt = eb * e0**3 / (e0**3 + a_eb)
     de = -(e0 - tfl) / kt - 0.1
-    e1, d1, t1 = K._spring(e0, 0.0, de, 1.0, 0.0, tfl, kfl, a_eb, eb, 1.0, 0.0)
+    e1, d1, t1 = K._spring(e0, 0.0, de, 1.0, 0.0, tfl, kfl / eb, a_eb, eb, 1.0, 0.0)
     assert e1 == pytest.approx(tfl - 0.1 * kfl, rel=1e-9)
     assert e1 < 0.0 and t1 == 0.0 and d1 == 0.0  # slack: the belt does not push
     # a small increment above the floor is the plain tangent update
-    e1, _, _ = K._spring(e0, 0.0, -1e-5, 1.0, 0.0, tfl, kfl, a_eb, eb, 1.0, 0.0)
+    e1, _, _ = K._spring(e0, 0.0, -1e-5, 1.0, 0.0, tfl, kfl / eb, a_eb, eb, 1.0, 0.0)
     assert e1 == pytest.approx(e0 - 1e-5 * kt, rel=1e-12)
 
 
