@@ -142,6 +142,17 @@ def rest_walk(loop: Loop, hold: int, gravity_n: np.ndarray) -> np.ndarray:
     return out
 
 
+def _rest_need(conv: Conveyor, loop: Loop, hs_adm: np.ndarray) -> float | None:
+    """Smallest mean tension at a gravity take-up that keeps the belt held at rest within
+    its sag limits [N] (None for a fixed take-up). The counterweight holds the same mean
+    tension at rest as running: ``T_rest = T_tu - w_rest_tu + W_rest``."""
+    if conv.takeup.type != "gravity":
+        return None
+    k = loop.i_takeup
+    Wr = rest_walk(loop, rest_hold_element(conv, loop), loop.gravity_n)
+    return _sag_need(loop, Wr, hs_adm, at_ends=True) + 0.5 * (Wr[k - 1] + Wr[k])
+
+
 def _sag_need(loop: Loop, W: np.ndarray, hs_adm: np.ndarray, at_ends: bool = False) -> float:
     """Smallest constant c with every idler element of ``c + W`` at or above its sag minimum.
 
@@ -158,20 +169,16 @@ def _sag_need(loop: Loop, W: np.ndarray, hs_adm: np.ndarray, at_ends: bool = Fal
     return float(np.max(np.where(idl, tmin_elem - lower, -np.inf)))
 
 
-def _required_offset(loop: Loop, conv: Conveyor, W: np.ndarray, drives, d_force: np.ndarray,
-                     hs_adm: np.ndarray) -> tuple[float, dict]:
+def _required_offset(loop: Loop, W: np.ndarray, drives, d_force: np.ndarray,
+                     hs_adm: np.ndarray, rest_need: float | None) -> tuple[float, dict]:
     """Smallest constant c (T = c + W) meeting slip at start-up and running, and sag (running
-    and, for a gravity take-up, held at rest)."""
+    and, with ``rest_need`` from :func:`_rest_need`, held at rest)."""
     bounds = {}
     Wprev = np.roll(W, 1)
     bounds["sag"] = _sag_need(loop, W, hs_adm)
-    if conv.takeup.type == "gravity":
-        # the counterweight holds the same mean tension at the take-up at rest as running:
-        # T_rest = T_tu - w_rest_tu + W_rest with T_tu = c + w_tu
+    if rest_need is not None:
         k = loop.i_takeup
-        Wr = rest_walk(loop, rest_hold_element(conv, loop), loop.gravity_n)
-        shift = 0.5 * (Wr[k - 1] + Wr[k]) - 0.5 * (W[k - 1] + W[k])
-        bounds["sag_at_rest"] = _sag_need(loop, Wr, hs_adm, at_ends=True) + shift
+        bounds["sag_at_rest"] = rest_need - 0.5 * (W[k - 1] + W[k])
     slip_need = -np.inf
     for idx, _share, e in drives:
         d = d_force[idx]
@@ -234,6 +241,7 @@ def solve_steady(
     tu = conv.takeup
     k = loop.i_takeup
 
+    rest_need = _rest_need(conv, loop, hs_adm)
     # the installed take-up: at least what the full design load needs
     tu_floor_n = -np.inf
     auto = (tu.type == "gravity" and tu.mass_kg == "auto") or (
@@ -268,7 +276,7 @@ def solve_steady(
         elif tu.type == "fixed" and tu.pretension_kn != "auto":
             c = float(tu.pretension_kn) * 1e3 - w_tu
         else:
-            c, _ = _required_offset(loop, conv, W, drives, d_force, hs_adm)
+            c, _ = _required_offset(loop, W, drives, d_force, hs_adm, rest_need)
             c = max(c, tu_floor_n - w_tu)
         T_new = c + W
         if not law.tension_dependent:
@@ -295,7 +303,7 @@ def solve_steady(
             T = T_new
 
     assert T is not None and R is not None
-    c_need, bounds = _required_offset(loop, conv, W, drives, d_force, hs_adm)
+    c_need, bounds = _required_offset(loop, W, drives, d_force, hs_adm, rest_need)
     takeup_tension = 0.5 * (T[k - 1] + T[k])
     takeup_mass = float(2.0 * takeup_tension / G) if tu.type == "gravity" else None
 
