@@ -12,7 +12,7 @@ Each study is timed twice:
 Printed: both wall times, the speed-up (loop / service), and the service overhead per run,
 ``(service - loop / workers) / runs``: what the service costs beyond a perfect split of the
 loop over the workers. Targets: speed-up >= 1.7 on 2 cores for the dynamic study, overhead
-< 5 ms per steady run. Figures are printed, never asserted (see docs/benchmarks-study.md).
+< 5 ms per steady run. Figures are printed, never asserted (see BENCHMARKS.md).
 
     .venv/bin/python benchmarks/bench_study.py [--workers N] [--only steady|dynamic]
 """
