@@ -20,7 +20,8 @@ from engine.dynamics import DynamicsOptions, TransientResult, build_system, simu
 from engine.dynamics.model import check_scenario
 from engine.statics import SAFETY_FACTOR_MIN, SteadyResult, solve_steady
 
-__all__ = ["RunResult", "run_one", "TRANSIENT_SAFETY_RATIO", "transient_safety_min"]
+__all__ = ["RunResult", "run_one", "check_scenario", "TRANSIENT_SAFETY_RATIO",
+           "transient_safety_min"]
 
 #: Minimum belt safety factor during starting and stopping as a fraction of the running
 #: minimum [-]. Standards allow a lower factor for short non-steady loads than for steady

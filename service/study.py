@@ -292,10 +292,18 @@ def _axis_values(name: str, spec: AxisValues, max_runs: int) -> list[Any]:
     return values
 
 
+def _where(axes: list[Axis], indices: list[int], combo: tuple[int, ...]) -> str:
+    """``name=value, ...`` of one grid point on the axes ``indices``."""
+    return ", ".join(
+        f"{axes[i].name}={axes[i].values[j]!r}" for i, j in zip(indices, combo, strict=True)
+    )
+
+
 def _validate_variants(
-    axes: list[Axis], base: dict, parse, root: str
+    axes: list[Axis], base: dict, parse, root: str, parsed: dict | None = None
 ) -> dict[tuple[int, ...], dict]:
-    """Apply every combination of the axes on ``root`` to ``base`` and validate each result."""
+    """Apply every combination of the axes on ``root`` to ``base`` and validate each result
+    (the validated models also go into ``parsed`` when given)."""
     mine = [i for i, a in enumerate(axes) if a.target.root == root]
     out: dict[tuple[int, ...], dict] = {}
     for combo in itertools.product(*[range(len(axes[i].values)) for i in mine]):
@@ -305,12 +313,31 @@ def _validate_variants(
         try:
             model = parse(data)
         except InputError as exc:
-            where = ", ".join(
-                f"{axes[i].name}={axes[i].values[j]!r}" for i, j in zip(mine, combo, strict=True)
-            )
-            raise Invalid(f"grid ({where}): {_err(exc)}") from None
+            raise Invalid(f"grid ({_where(axes, mine, combo)}): {_err(exc)}") from None
         out[combo] = model.model_dump(mode="json", by_alias=True)
+        if parsed is not None:
+            parsed[combo] = model
     return out
+
+
+def _check_scenarios(axes: list[Axis], conveyors: dict, scenarios: dict) -> None:
+    """Every conveyor variant with every scenario variant: a scenario the conveyor cannot do
+    (a brake stop without brakes, a stop shorter than the brake delay) is refused at the door,
+    naming the grid point, before any run is computed."""
+    from engine.run import check_scenario  # the transient engine loads only when needed
+
+    i_conv = [i for i, a in enumerate(axes) if a.target.root == "conveyor"]
+    i_scen = [i for i, a in enumerate(axes) if a.target.root == "scenario"]
+    for ck, conv in conveyors.items():
+        for sk, scn in scenarios.items():
+            try:
+                check_scenario(scn, conv)
+            except InputError as exc:
+                where = ", ".join(
+                    w for w in (_where(axes, i_conv, ck), _where(axes, i_scen, sk)) if w
+                )
+                raise Invalid(f"{_err(exc)} (at grid point {where})" if where
+                              else _err(exc)) from None
 
 
 def resolve_study(
@@ -469,8 +496,12 @@ def _params_for(model: str, overrides: dict) -> dict:
 def _expand(study: ResolvedStudy) -> tuple[list[RunSpec], list[list[Any]]]:
     """Runs of the Cartesian product, and each axis's values as validated (canonical)."""
     axes = study.axes
-    conveyors = _validate_variants(axes, study.conveyor, _parse_conveyor, "conveyor")
-    scenarios = _validate_variants(axes, study.scenario, _parse_scenario, "scenario")
+    conv_models: dict = {}
+    scen_models: dict = {}
+    conveyors = _validate_variants(axes, study.conveyor, _parse_conveyor, "conveyor", conv_models)
+    scenarios = _validate_variants(axes, study.scenario, _parse_scenario, "scenario", scen_models)
+    if study.dynamics:
+        _check_scenarios(axes, conv_models, scen_models)
     conv_json = {k: canonical_json(v) for k, v in conveyors.items()}
     scen_json = {k: canonical_json(v) for k, v in scenarios.items()}
     i_conv = [i for i, a in enumerate(axes) if a.target.root == "conveyor"]

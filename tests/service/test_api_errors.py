@@ -96,6 +96,12 @@ CASES = [
         422,
         r"grid.friction_model: unknown model 'magic'",
     ),
+    (
+        "stop mode the conveyor cannot do",
+        {"dynamics": True, "grid": {"scenario.stop.mode": ["coast", "brake"]}},
+        422,
+        r"scenario.stop.mode: 'brake' needs brakes.*grid point scenario.stop.mode='brake'",
+    ),
 ]
 
 

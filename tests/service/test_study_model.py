@@ -122,6 +122,29 @@ def test_bad_grids_are_refused_naming_the_axis(make_study, grid, message):
         resolve_study(make_study(grid=grid))
 
 
+def test_scenarios_the_conveyor_cannot_do_are_refused_before_any_run(make_study):
+    """A dynamic study whose grid asks for a brake stop of a conveyor without brakes (or one
+    whose brakes an axis removes) is refused at the door, naming the field and the grid point;
+    the same scenario is fine for a steady-only study, which never stops the belt."""
+    conv = make_study()["conveyor"]
+    assert not conv.get("brakes")
+    body = make_study(dynamics=True, grid={"scenario.stop.mode": ["coast", "brake"]})
+    with pytest.raises(Invalid, match=r"scenario\.stop\.mode: 'brake' needs brakes.*"
+                                      r"grid point scenario\.stop\.mode='brake'"):
+        resolve_study(body)
+    steady = make_study(scenario={"stop": {"mode": "brake"}}, grid={"temperature_c": [0]})
+    assert resolve_study(steady).total == 1
+    braked = {**conv, "brakes": [{"position": "head", "force_kn": "auto", "delay_s": 2.0}]}
+    body = make_study(conveyor=braked, dynamics=True, scenario={"stop": {"mode": "brake"}},
+                      grid={"stop_time_s": [1.0, 20.0]})
+    with pytest.raises(Invalid, match=r"scenario\.stop\.time_s: 1 s is not longer than the "
+                                      r"brake delay.*grid point stop_time_s=1\.0"):
+        resolve_study(body)
+    body["grid"] = {"brakes": [braked["brakes"], []]}
+    with pytest.raises(Invalid, match=r"needs brakes.*grid point brakes=\[\]"):
+        resolve_study(body)
+
+
 def test_oversize_grids_are_refused_with_the_count(make_study):
     grid = {"temperature_c": {"start": -50, "stop": 50, "step": 1}, "scenario.run_s": [1, 2]}
     with pytest.raises(TooLarge, match=r"the study has 202 runs; the limit is 150"):
