@@ -76,13 +76,14 @@ def test_submit_poll_and_read_parquet(live_service, make_study):
 
 def test_two_studies_at_once_and_a_failing_run(live_service, make_study):
     svc = live_service()
-    # stop.mode brake needs brakes, and the conveyor has none: the engine refuses that run
-    # when it runs (both inputs are valid alone), so those runs become failed rows.
+    # a fixed step of 5 s is above the stability limit of this conveyor's loop: the engine
+    # refuses that run when it runs (the limit needs the loop cut into elements), so those
+    # runs become failed rows naming the field.
     a, _ = svc.client.submit(
         _dynamic_study(
             make_study,
-            "brake-or-coast",
-            grid={"friction_model": ["din", "cema"], "scenario.stop.mode": ["coast", "brake"]},
+            "auto-or-huge-step",
+            grid={"friction_model": ["din", "cema"], "scenario.dt_s": ["auto", 5.0]},
         )
     )
     b, _ = svc.client.submit(
@@ -97,12 +98,11 @@ def test_two_studies_at_once_and_a_failing_run(live_service, make_study):
     assert sa["message"] == "2 of 4 runs failed"
     runs = pd.read_parquet(svc.data_dir / "studies" / a["id"] / "runs")
     failed = runs[runs["status"] == "failed"]
-    assert set(failed["scenario.stop.mode"]) == {"brake"}
-    assert (
-        failed["message"].str.contains("InputError: scenario.stop.mode: 'brake' needs brakes").all()
-    )
+    assert set(failed["scenario.dt_s"]) == {"5.0"}
+    assert failed["message"].str.contains(
+        "InputError: scenario.dt_s: 5 s is above the stability limit").all()
     assert failed["power_kw"].isna().all()
-    assert (runs[runs["status"] != "failed"]["scenario.stop.mode"] == "coast").all()
+    assert (runs[runs["status"] != "failed"]["scenario.dt_s"] == "auto").all()
 
     # DELETE cancels a running study and removes its files; the service carries on
     long = _dynamic_study(
