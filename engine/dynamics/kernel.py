@@ -14,7 +14,8 @@ fall in two groups:
   at their far ends (and the gravity take-up carriage when its pulley is in the block). The
   block's springs are taken implicitly (their tension at the new step, linearised with the
   same tangent stiffness the spring update uses) and its velocities come from one small
-  dense solve, together with the PI controller's proportional part, imposed velocities
+  solve (tridiagonal plus the carriage's row and column, eliminated without fill-in),
+  together with the PI controller's proportional part, imposed velocities
   (moving support, holding at rest), the torque limit and the carriage end stops. Short,
   stiff springs round light pulleys would otherwise set the step (a 1.9 m spring between a
   head drive and a head take-up pulley needs a step ten times below the belt's ``dx / c``).
@@ -598,6 +599,152 @@ def solve_dense(A, b, m):
         b[k] = s / A[k, k]
 
 
+@njit(inline="always", **OPTS)
+def solve_arrow(d, lo, up, cl, rw, x, m, car, car_free):
+    """Solve a block's system in place (x holds the right-hand side, then the solution).
+
+    The block matrix is tridiagonal over the ``m`` element rows (``lo[k] = A[k, k-1]``,
+    ``d[k] = A[k, k]``, ``up[k] = A[k, k+1]``) with, when ``car``, the carriage column
+    ``cl[k] = A[k, m]`` and row ``rw[k] = A[m, k]``, ``d[m] = A[m, m]``; ``car_free`` False
+    means the carriage row is the identity (``x[m]`` already holds its imposed speed).
+    Eliminating the element unknowns from both ends of the chain inwards, then the
+    carriage, makes no fill-in. No pivoting: the free rows are symmetric
+    positive definite (mass, controller gain and resistance slope on the diagonal plus each
+    implicit spring's ``B g g^T`` with ``g = e_{k+1} - e_k (+ e_m)``, B >= 0), and an
+    identity row of an imposed or stuck unknown only moves its value to the right-hand
+    side, leaving a principal submatrix: every pivot is positive. Returns False if one is
+    not (nothing then is reliable in x, use :func:`solve_dense`).
+    """
+    # eliminate from both ends towards the middle row (halves the chain of dependent
+    # divisions); the carriage row collects from each side separately
+    mid = m // 2
+    dml = 0.0
+    xml = 0.0
+    for k in range(mid):  # unknown k out of row k + 1 (and the carriage row)
+        piv = d[k]
+        if not piv > 0.0:
+            return False
+        ip = 1.0 / piv
+        d[k] = ip  # the back substitution multiplies by the pivot's reciprocal
+        f = lo[k + 1] * ip
+        d[k + 1] -= f * up[k]
+        x[k + 1] -= f * x[k]
+        if car:
+            cl[k + 1] -= f * cl[k]
+        if car_free:
+            g = rw[k] * ip
+            rw[k + 1] -= g * up[k]
+            dml -= g * cl[k]
+            xml -= g * x[k]
+    dmr = 0.0
+    xmr = 0.0
+    for k in range(m - 1, mid, -1):  # unknown k out of row k - 1 (and the carriage row)
+        piv = d[k]
+        if not piv > 0.0:
+            return False
+        ip = 1.0 / piv
+        d[k] = ip
+        f = up[k - 1] * ip
+        d[k - 1] -= f * lo[k]
+        x[k - 1] -= f * x[k]
+        if car:
+            cl[k - 1] -= f * cl[k]
+        if car_free:
+            g = rw[k] * ip
+            rw[k - 1] -= g * lo[k]
+            dmr -= g * cl[k]
+            xmr -= g * x[k]
+    piv = d[mid]
+    if not piv > 0.0:
+        return False
+    ip = 1.0 / piv
+    d[mid] = ip
+    if car_free:
+        g = rw[mid] * ip
+        dm = (d[m] + (dml + dmr)) - g * cl[mid]
+        if not dm > 0.0:
+            return False
+        x[m] = ((x[m] + (xml + xmr)) - g * x[mid]) / dm
+    s = x[mid]
+    if car:
+        s -= cl[mid] * x[m]
+    x[mid] = s * ip
+    for k in range(mid - 1, -1, -1):
+        s = x[k] - up[k] * x[k + 1]
+        if car:
+            s -= cl[k] * x[m]
+        x[k] = s * d[k]
+    for k in range(mid + 1, m):
+        s = x[k] - lo[k] * x[k - 1]
+        if car:
+            s -= cl[k] * x[m]
+        x[k] = s * d[k]
+    return True
+
+
+@njit(inline="always", **OPTS)
+def _constrain(dg, lo, up, cl, rw, rhs, fixed, fixv, stuck, car, car_fixed, car_v, m,
+               wd, wl, wu, wc, wr, sol):
+    """Working copy of a block's band for the solve: imposed velocities, stuck elements and
+    a carriage at its end stop get identity rows."""
+    for k in range(m):
+        if fixed[k] == 1.0 or stuck[k] == 1.0:
+            wd[k] = 1.0
+            wl[k] = 0.0
+            wu[k] = 0.0
+            wc[k] = 0.0
+            sol[k] = fixv[k] if fixed[k] == 1.0 else 0.0
+        else:
+            wd[k] = dg[k]
+            wl[k] = lo[k]
+            wu[k] = up[k]
+            wc[k] = cl[k]
+            sol[k] = rhs[k]
+        wr[k] = rw[k]
+    if car:
+        if car_fixed:
+            wd[m] = 1.0
+            sol[m] = car_v
+        else:
+            wd[m] = dg[m]
+            sol[m] = rhs[m]
+
+
+@njit(inline="always", **OPTS)
+def _offdiag(lo, up, cl, x, k, m, car):
+    """Sum of A[k, c] x[c] over c != k for an element row of a block's band."""
+    s = 0.0
+    if k > 0:
+        s += lo[k] * x[k - 1]
+    if k + 1 < m:
+        s += up[k] * x[k + 1]
+    if car:
+        s += cl[k] * x[m]
+    return s
+
+
+@njit(**OPTS)
+def _solve_band_dense(wd, wl, wu, wc, wr, sol, m, car, car_fixed, Ac):
+    """Fallback of :func:`solve_arrow`: the same band system, dense with partial pivoting."""
+    mu = m + 1 if car else m
+    for r in range(mu):
+        for c in range(mu):
+            Ac[r, c] = 0.0
+    for k in range(m):
+        Ac[k, k] = wd[k]
+        if k > 0:
+            Ac[k, k - 1] = wl[k]
+        if k + 1 < m:
+            Ac[k, k + 1] = wu[k]
+        if car:
+            Ac[k, m] = wc[k]
+            if not car_fixed:
+                Ac[m, k] = wr[k]
+    if car:
+        Ac[m, m] = wd[m]
+    solve_dense(Ac, sol, mu)
+
+
 # --------------------------------------------------------------------------------------
 
 
@@ -683,8 +830,20 @@ def run_cycle(fp, ip, mass, hm, gravity, sw, coef, pvc, pvv, psc, psv, w_mean,
         t_min_t[j] = 0.0
         t_max_snap[j] = tt[j]
         t_min_snap[j] = tt[j]
-    A = np.zeros((BLOCK_MAX, BLOCK_MAX))
-    Ac = np.zeros((BLOCK_MAX, BLOCK_MAX))
+    Ac = np.zeros((BLOCK_MAX, BLOCK_MAX))  # dense fallback of the band solve
+    # block matrix as a band: tridiagonal element rows plus the carriage column and row
+    dg = np.zeros(BLOCK_MAX)  # A[k, k] (A[m, m] for the carriage)
+    lo = np.zeros(BLOCK_MAX)  # A[k, k-1]
+    up = np.zeros(BLOCK_MAX)  # A[k, k+1]
+    cl = np.zeros(BLOCK_MAX)  # A[k, m]
+    rw = np.zeros(BLOCK_MAX)  # A[m, k]
+    dg0 = np.zeros(BLOCK_MAX)  # the parts of A[k, k] and rhs[k] the active set leaves alone
+    rhs0 = np.zeros(BLOCK_MAX)
+    wd = np.zeros(BLOCK_MAX)  # working copy of the band for the solve
+    wl = np.zeros(BLOCK_MAX)
+    wu = np.zeros(BLOCK_MAX)
+    wc = np.zeros(BLOCK_MAX)
+    wr = np.zeros(BLOCK_MAX)
     rpos = np.zeros(BLOCK_MAX)  # resistance magnitude per block element
     fexp = np.zeros(BLOCK_MAX)  # explicit forces (gravity, negative resistance)
     fz = np.zeros(BLOCK_MAX)  # resistance zone: -1, 0 (linear), +1
@@ -702,6 +861,16 @@ def run_cycle(fp, ip, mass, hm, gravity, sw, coef, pvc, pvv, psc, psv, w_mean,
     fixv = np.zeros(BLOCK_MAX)
     fdrv = np.zeros(BLOCK_MAX)  # explicit drive force per block element
     p_diag = np.zeros(BLOCK_MAX)  # implicit controller gain per block element
+    # per block-element constants
+    nbe = blk_nodes.shape[0]
+    be_mdt = np.empty(nbe)  # M / dt
+    be_left = np.empty(nbe, np.int64)  # spring on the element's left
+    for p in range(nbe):
+        j = blk_nodes[p]
+        be_mdt[p] = mass[j] / dt
+        be_left[p] = j - 1 if j > 0 else n - 1
+    inv_veps = 1.0 / v_eps
+    tu_mdt = tu_m / dt
 
     status = OK
     vmax = 0.0
@@ -809,24 +978,22 @@ def run_cycle(fp, ip, mass, hm, gravity, sw, coef, pvc, pvv, psc, psv, w_mean,
             p0 = blk_ptr[bk]
             m = blk_ptr[bk + 1] - p0
             car = blk_car[bk] == 1
-            mu = m + 1 if car else m  # unknowns
-            # implicit springs k = 0..m-2 between block elements k and k+1
-            for k in range(m - 1):
-                s = blk_nodes[p0 + k]
-                e0 = te[s]
-                if e0 < 0.0:
-                    bA[k] = 0.0
-                    bB[k] = 0.0
-                else:
-                    tc = max(e0, t_floor[s])
-                    t3 = tc * tc * tc
-                    f = eb * t3 / (t3 + a_eb[s]) * (1.0 + g_damp)
-                    bA[k] = e0 + e_damp * td[s]
-                    bB[k] = f * dl[s]
             # element setup
             master_k = -1
             for k in range(m):
                 j = blk_nodes[p0 + k]
+                if k < m - 1:
+                    # implicit spring k between block elements k and k+1 (spring index j)
+                    e0 = te[j]
+                    if e0 < 0.0:
+                        bA[k] = 0.0
+                        bB[k] = 0.0
+                    else:
+                        tc = max(e0, t_floor[j])
+                        t3 = tc * tc * tc
+                        f = eb * t3 / (t3 + a_eb[j]) * (1.0 + g_damp)
+                        bA[k] = e0 + e_damp * td[j]
+                        bB[k] = f * dl[j]
                 vo = v[j]
                 v_old[k] = vo
                 fixed[k] = 0.0
@@ -850,6 +1017,33 @@ def run_cycle(fp, ip, mass, hm, gravity, sw, coef, pvc, pvv, psc, psv, w_mean,
                     else 0.0
                 bdir[k] = 1.0 if vo >= 0.0 else -1.0
                 bforce[k] = fb
+                # the parts of the row the active set does not change
+                mdt = be_mdt[p0 + k]
+                d = mdt
+                r = mdt * vo + fexp[k]
+                c_k = 0.0
+                if k == 0:
+                    r -= tt[be_left[p0]]
+                    lo[k] = 0.0
+                else:
+                    d += bB[k - 1]
+                    lo[k] = -bB[k - 1]
+                    r -= bA[k - 1]
+                    if car:
+                        c_k += bB[k - 1] * car_ind[blk_nodes[p0 + k - 1]]
+                if k == m - 1:
+                    r += tt[j]
+                    up[k] = 0.0
+                else:
+                    d += bB[k]
+                    up[k] = -bB[k]
+                    r += bA[k]
+                    if car:
+                        c_k -= bB[k] * car_ind[j]
+                cl[k] = c_k
+                dg0[k] = d
+                rhs0[k] = r
+                rw[k] = 0.0
                 if mode == HOLD and j == hold_node:
                     fixed[k] = 1.0
                     fixv[k] = 0.0
@@ -871,69 +1065,60 @@ def run_cycle(fp, ip, mass, hm, gravity, sw, coef, pvc, pvv, psc, psv, w_mean,
                         fdrv[k] = min(max(d_share[dk] * (f_ff + integ), -lim), lim)
                 elif mode == OPEN:
                     fdrv[k] = d_share[dk] * f_const
+            if car:
+                d = tu_mdt
+                r = tu_mdt * u_tu + tu_w
+                for k in range(m - 1):
+                    if car_ind[blk_nodes[p0 + k]] != 0.0:
+                        # T' = A + B (v'_{k+1} - v'_k + u'): the carriage stretches
+                        # both take-up springs
+                        rw[k + 1] += bB[k]
+                        rw[k] -= bB[k]
+                        d += bB[k]
+                        r -= bA[k]
+                dg[m] = d
+                rhs[m] = r
             car_fixed = False
             car_v = 0.0
             sat = False
             for _it in range(16):
-                # assemble the free rows
-                for r in range(mu):
-                    rhs[r] = 0.0
-                    for c in range(mu):
-                        A[r, c] = 0.0
+                # the diagonal and right-hand side the active set changes
                 for k in range(m):
-                    j = blk_nodes[p0 + k]
-                    A[k, k] = mass[j] / dt + p_diag[k]
-                    rhs[k] = mass[j] / dt * v_old[k] + fexp[k] + fdrv[k]
+                    d = dg0[k] + p_diag[k]
+                    r = rhs0[k] + fdrv[k]
                     if fz[k] == 0.0:
-                        A[k, k] += rpos[k] / v_eps
+                        d += rpos[k] * inv_veps
                     else:
-                        rhs[k] -= fz[k] * rpos[k]
+                        r -= fz[k] * rpos[k]
                     if bforce[k] > 0.0 and stuck[k] == 0.0:
-                        rhs[k] -= bdir[k] * bforce[k]
-                    if k == 0:
-                        rhs[k] -= tt[j - 1 if j > 0 else n - 1]
-                    else:
-                        A[k, k] += bB[k - 1]
-                        A[k, k - 1] -= bB[k - 1]
-                        rhs[k] -= bA[k - 1]
-                        if car:
-                            A[k, m] += bB[k - 1] * car_ind[blk_nodes[p0 + k - 1]]
-                    if k == m - 1:
-                        rhs[k] += tt[j]
-                    else:
-                        A[k, k] += bB[k]
-                        A[k, k + 1] -= bB[k]
-                        rhs[k] += bA[k]
-                        if car:
-                            A[k, m] -= bB[k] * car_ind[j]
-                if car:
-                    A[m, m] = tu_m / dt
-                    rhs[m] = tu_m / dt * u_tu + tu_w
-                    for k in range(m - 1):
-                        if car_ind[blk_nodes[p0 + k]] != 0.0:
-                            # T' = A + B (v'_{k+1} - v'_k + u'): the carriage stretches
-                            # both take-up springs
-                            A[m, k + 1] += bB[k]
-                            A[m, k] -= bB[k]
-                            A[m, m] += bB[k]
-                            rhs[m] -= bA[k]
-                # constrained copy: imposed velocities, stuck elements, carriage at a stop
-                for r in range(mu):
-                    for c in range(mu):
-                        Ac[r, c] = A[r, c]
-                    sol[r] = rhs[r]
-                for k in range(m):
+                        r -= bdir[k] * bforce[k]
+                    dg[k] = d
+                    rhs[k] = r
+                    # constrained copy: imposed velocities and stuck elements
                     if fixed[k] == 1.0 or stuck[k] == 1.0:
-                        for c in range(mu):
-                            Ac[k, c] = 0.0
-                        Ac[k, k] = 1.0
+                        wd[k] = 1.0
+                        wl[k] = 0.0
+                        wu[k] = 0.0
+                        wc[k] = 0.0
                         sol[k] = fixv[k] if fixed[k] == 1.0 else 0.0
-                if car and car_fixed:
-                    for c in range(mu):
-                        Ac[m, c] = 0.0
-                    Ac[m, m] = 1.0
-                    sol[m] = car_v
-                solve_dense(Ac, sol, mu)
+                    else:
+                        wd[k] = d
+                        wl[k] = lo[k]
+                        wu[k] = up[k]
+                        wc[k] = cl[k]
+                        sol[k] = r
+                    wr[k] = rw[k]
+                if car:  # the carriage at an end stop
+                    if car_fixed:
+                        wd[m] = 1.0
+                        sol[m] = car_v
+                    else:
+                        wd[m] = dg[m]
+                        sol[m] = rhs[m]
+                if not solve_arrow(wd, wl, wu, wc, wr, sol, m, car, car and not car_fixed):
+                    _constrain(dg, lo, up, cl, rw, rhs, fixed, fixv, stuck, car, car_fixed,
+                               car_v, m, wd, wl, wu, wc, wr, sol)
+                    _solve_band_dense(wd, wl, wu, wc, wr, sol, m, car, car_fixed, Ac)
                 # consistency checks
                 again = False
                 if master_k >= 0 and not sat:
@@ -960,10 +1145,7 @@ def run_cycle(fp, ip, mass, hm, gravity, sw, coef, pvc, pvv, psc, psv, w_mean,
                     vk = sol[k]
                     if stuck[k] == 1.0:
                         # reaction the stick must give: row residual at v' = 0
-                        c_r = -rhs[k]
-                        for c in range(mu):
-                            if c != k:
-                                c_r += A[k, c] * sol[c]
+                        c_r = _offdiag(lo, up, cl, sol, k, m, car) - rhs[k]
                         if c_r > c_hi[k] or c_r < c_lo[k]:
                             stuck[k] = 0.0
                             bdir[k] = -1.0 if c_r > c_hi[k] else 1.0
@@ -990,31 +1172,23 @@ def run_cycle(fp, ip, mass, hm, gravity, sw, coef, pvc, pvv, psc, psv, w_mean,
                 j = blk_nodes[p0 + k]
                 vn = sol[k]
                 v[j] = vn
+                vsum += w_mean[j] * vn
                 if bforce[k] > 0.0:
                     if stuck[k] == 1.0:
-                        c_r = -rhs[k]
-                        for c in range(mu):
-                            if c != k:
-                                c_r += A[k, c] * sol[c]
+                        c_r = _offdiag(lo, up, cl, sol, k, m, car) - rhs[k]
                         f_brake += abs(c_r)
                     else:
                         f_brake += bforce[k]
                 dk = node_drive[j]
                 if mode == HOLD and j == hold_node:
                     # the force that holds the belt at rest: residual of the element's free row
-                    f = A[k, k] * vn - rhs[k]
-                    for c in range(mu):
-                        if c != k:
-                            f += A[k, c] * sol[c]
+                    f = dg[k] * vn - rhs[k] + _offdiag(lo, up, cl, sol, k, m, car)
                     hold_f = f
                 if dk < 0:
                     continue
                 if fixed[k] == 1.0 and mode != HOLD:
                     # the force the drive gives: residual of the element's free row
-                    f = A[k, k] * vn - rhs[k]
-                    for c in range(mu):
-                        if c != k:
-                            f += A[k, c] * sol[c]
+                    f = dg[k] * vn - rhs[k] + _offdiag(lo, up, cl, sol, k, m, car)
                     f += fdrv[k] - p_diag[k] * vn
                 elif k == master_k and not sat:
                     f = d_share[0] * (f_ff + integ) + kp * (v_ref - vn)
@@ -1040,8 +1214,6 @@ def run_cycle(fp, ip, mass, hm, gravity, sw, coef, pvc, pvv, psc, psv, w_mean,
                 te[s] = e1
                 td[s] = d1
                 tt[s] = t1
-            for k in range(m):
-                vsum += w_mean[blk_nodes[p0 + k]] * v[blk_nodes[p0 + k]]
         if ip[IP_TU_GRAVITY] == 1:
             u_tu = u_new
             x_tu += dt * u_tu
