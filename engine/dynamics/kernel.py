@@ -342,6 +342,23 @@ def _term(r0, c, v, lnv, phi, lnphi, sc, p, qc, q):
             (_power(phi[j], qc, q) if qc != 5 else _exp(q * lnphi[j])))
 
 
+@njit(inline="always", **OPTS)
+def _term_sag(r0, c, v, lnv, phi, lnphi, sc, p, qc, q):
+    """:func:`_term` with the sag code ``qc`` turned into a literal (``sc`` is one already)."""
+    if qc == 0:
+        _term(r0, c, v, lnv, phi, lnphi, sc, p, 0, q)
+    elif qc == 1:
+        _term(r0, c, v, lnv, phi, lnphi, sc, p, 1, q)
+    elif qc == 2:
+        _term(r0, c, v, lnv, phi, lnphi, sc, p, 2, q)
+    elif qc == 3:
+        _term(r0, c, v, lnv, phi, lnphi, sc, p, 3, q)
+    elif qc == 4:
+        _term(r0, c, v, lnv, phi, lnphi, sc, p, 4, q)
+    else:
+        _term(r0, c, v, lnv, phi, lnphi, sc, p, 5, q)
+
+
 @njit(**OPTS)
 def resistance(r0, v, tt, coef, pvc, pvv, psc, psv, sw, hs_ref, hs_max, any_ps, phi,
                lnv, lnphi, t_sparse, t_ptr, t_idx):
@@ -400,46 +417,14 @@ def resistance(r0, v, tt, coef, pvc, pvv, psc, psv, sw, hs_ref, hs_max, any_ps, 
                     _power(phi[j], qc, q) if any_ps else 1.0)
             continue
         c = coef[k]
-        # one literal (speed code, sag code) pair per call: a specialised loop each
+        # literal speed codes here and literal sag codes in _term_sag: one specialised loop
+        # per (speed, sag) pair
         if sc == 0:
-            if qc == 0:
-                _term(r0, c, v, lnv, phi, lnphi, 0, p, 0, q)
-            elif qc == 1:
-                _term(r0, c, v, lnv, phi, lnphi, 0, p, 1, q)
-            elif qc == 2:
-                _term(r0, c, v, lnv, phi, lnphi, 0, p, 2, q)
-            elif qc == 3:
-                _term(r0, c, v, lnv, phi, lnphi, 0, p, 3, q)
-            elif qc == 4:
-                _term(r0, c, v, lnv, phi, lnphi, 0, p, 4, q)
-            else:
-                _term(r0, c, v, lnv, phi, lnphi, 0, p, 5, q)
+            _term_sag(r0, c, v, lnv, phi, lnphi, 0, p, qc, q)
         elif sc == 2:
-            if qc == 0:
-                _term(r0, c, v, lnv, phi, lnphi, 2, p, 0, q)
-            elif qc == 1:
-                _term(r0, c, v, lnv, phi, lnphi, 2, p, 1, q)
-            elif qc == 2:
-                _term(r0, c, v, lnv, phi, lnphi, 2, p, 2, q)
-            elif qc == 3:
-                _term(r0, c, v, lnv, phi, lnphi, 2, p, 3, q)
-            elif qc == 4:
-                _term(r0, c, v, lnv, phi, lnphi, 2, p, 4, q)
-            else:
-                _term(r0, c, v, lnv, phi, lnphi, 2, p, 5, q)
+            _term_sag(r0, c, v, lnv, phi, lnphi, 2, p, qc, q)
         else:
-            if qc == 0:
-                _term(r0, c, v, lnv, phi, lnphi, 5, p, 0, q)
-            elif qc == 1:
-                _term(r0, c, v, lnv, phi, lnphi, 5, p, 1, q)
-            elif qc == 2:
-                _term(r0, c, v, lnv, phi, lnphi, 5, p, 2, q)
-            elif qc == 3:
-                _term(r0, c, v, lnv, phi, lnphi, 5, p, 3, q)
-            elif qc == 4:
-                _term(r0, c, v, lnv, phi, lnphi, 5, p, 4, q)
-            else:
-                _term(r0, c, v, lnv, phi, lnphi, 5, p, 5, q)
+            _term_sag(r0, c, v, lnv, phi, lnphi, 5, p, qc, q)
 
 
 @njit(inline="always", **OPTS)
@@ -554,12 +539,13 @@ def extremes(x):
 
 
 @njit(**OPTS)
-def slack_min(te, inv_kfl):
-    """min(0, min_j te_j / k_floor_j): the largest slack strain (negative)."""
+def slack_min(te, kfl_eb, eb):
+    """min(0, min_j te_j / k_floor_j) with k_floor = kfl_eb EB: the largest slack strain
+    (negative). Called at the records only, so the division costs little."""
     worst = 0.0
     for jj in range(te.shape[0]):
         j = uintp(jj)
-        worst = _fmin(worst, te[j] * inv_kfl[j])
+        worst = _fmin(worst, te[j] / (kfl_eb[j] * eb))
     return worst
 
 
@@ -750,7 +736,7 @@ def _solve_band_dense(wd, wl, wu, wc, wr, sol, m, car, car_fixed, Ac):
 
 @njit(**OPTS)
 def run_cycle(fp, ip, mass, hm, gravity, sw, coef, pvc, pvv, psc, psv, w_mean,
-              t_sparse, t_ptr, t_idx, dl, a_eb, t_floor, kfl_eb, inv_kfl, car_ind, seg_node,
+              t_sparse, t_ptr, t_idx, dl, a_eb, t_floor, kfl_eb, car_ind, seg_node,
               seg_spring, blk_ptr, blk_nodes, blk_car,
               node_drive, node_hb, d_node, d_share, d_lim, d_euler, b_node, b_force, b_delay,
               v, te, td, tt, state, probes, surf_idx,
@@ -1271,11 +1257,11 @@ def run_cycle(fp, ip, mass, hm, gravity, sw, coef, pvc, pvv, psc, psv, w_mean,
 
         # ---------------------------------------------------------------- records
         if t_new + 0.5 * dt >= nrec * rec_dt:
-            worst = slack_min(te, inv_kfl)
+            worst = slack_min(te, kfl_eb, eb)
             if worst < -SLACK_LIMIT:
                 worst_j = 0
                 for j in range(n):
-                    if te[j] * inv_kfl[j] == worst:
+                    if te[j] / (kfl_eb[j] * eb) == worst:
                         worst_j = j
                         break
                 # slack of a span's length plus what the belt's motion could add since the
