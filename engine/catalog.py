@@ -52,10 +52,20 @@ class BeltData:
     kind: str
     rating_kn_m: float
     modulus_kn_m: float
+    dynamic_modulus_kn_m: float
     carcass_mass_kg_m2: float
     top_cover_mm: float
     bottom_cover_mm: float
     source: str
+
+
+#: Dynamic over static modulus by belt kind, for belts without a catalogue row (the
+#: catalogue's own ratios: ``engine/data/belts.csv``, source [DYN]).
+DYNAMIC_RATIO = {"steel": 1.0, "fabric": 1.5}
+#: Relaxation time of the belt from its dynamic to its static modulus [s]: the dynamic modulus
+#: is the one measured under ISO 9856 cycling at 0.1 Hz, so relaxation is taken to act over
+#: one test period (an estimate; PHYSICS section 5.1).
+RELAXATION_S = 10.0
 
 
 @dataclass(frozen=True)
@@ -71,6 +81,17 @@ class ResolvedBelt:
     top_cover_mm: float
     bottom_cover_mm: float
     compound: str
+    dynamic_modulus_kn_m: float = 0.0
+
+    @property
+    def dynamic_stiffness_n(self) -> float:
+        """Dynamic axial stiffness E_dyn B [N]: the modulus of wave fronts (SPEC 6.1)."""
+        return self.dynamic_modulus_kn_m * 1e3 * self.width_m
+
+    @property
+    def relaxation_s(self) -> float:
+        """Relaxation time from the dynamic to the static modulus [s] (estimate)."""
+        return RELAXATION_S
 
     @property
     def mass_kg_m(self) -> float:
@@ -113,6 +134,7 @@ def belts() -> dict[str, BeltData]:
             kind=r["kind"],
             rating_kn_m=float(r["rating_kn_m"]),
             modulus_kn_m=float(r["modulus_kn_m"]),
+            dynamic_modulus_kn_m=float(r["dynamic_modulus_kn_m"]),
             carcass_mass_kg_m2=float(r["carcass_mass_kg_m2"]),
             top_cover_mm=float(r["top_cover_mm"]),
             bottom_cover_mm=float(r["bottom_cover_mm"]),
@@ -185,16 +207,24 @@ def resolve_belt(b) -> ResolvedBelt:
             return float(val)
         return float(getattr(base, name))
 
+    kind = base.kind if base else ("steel" if (b.modulus_kn_m or 0) > 30000 else "fabric")
+    static = pick("modulus_kn_m")
+    if b.dynamic_modulus_kn_m is not None:
+        dynamic = float(b.dynamic_modulus_kn_m)
+    else:
+        ratio = (base.dynamic_modulus_kn_m / base.modulus_kn_m) if base else DYNAMIC_RATIO[kind]
+        dynamic = static * ratio
     return ResolvedBelt(
         id=b.type or "custom",
-        kind=base.kind if base else ("steel" if (b.modulus_kn_m or 0) > 30000 else "fabric"),
+        kind=kind,
         width_m=float(b.width_m),
         rating_kn_m=pick("rating_kn_m"),
-        modulus_kn_m=pick("modulus_kn_m"),
+        modulus_kn_m=static,
         carcass_mass_kg_m2=pick("carcass_mass_kg_m2"),
         top_cover_mm=pick("top_cover_mm") if (b.top_cover_mm is not None or base) else 0.0,
         bottom_cover_mm=pick("bottom_cover_mm") if (b.bottom_cover_mm is not None or base) else 0.0,
         compound=b.compound,
+        dynamic_modulus_kn_m=dynamic,
     )
 
 

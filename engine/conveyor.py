@@ -30,6 +30,8 @@ __all__ = [
     "IdlerSet",
     "Idlers",
     "Drive",
+    "DEFAULT_MOTOR_CURVE",
+    "check_motor_curve",
     "TakeUp",
     "Brake",
     "SagLimit",
@@ -73,7 +75,11 @@ class Belt(_Model):
     bottom_cover_mm: NonNegFloat | None = Field(None, description="pulley-side cover [mm]")
     compound: str = Field("standard", description="cover rubber compound id (catalogue)")
     rating_kn_m: PositiveFloat | None = Field(None, description="nominal strength [kN/m]")
-    modulus_kn_m: PositiveFloat | None = Field(None, description="axial modulus E per width [kN/m]")
+    modulus_kn_m: PositiveFloat | None = Field(
+        None, description="static axial modulus E per width [kN/m] (elongation, take-up travel)")
+    dynamic_modulus_kn_m: PositiveFloat | None = Field(
+        None, description="dynamic axial modulus per width [kN/m] (wave fronts); default: the "
+        "static modulus times the catalogue's dynamic/static ratio (steel cord 1, fabric 1.5)")
     carcass_mass_kg_m2: NonNegFloat | None = Field(None, description="carcass mass [kg/m2]")
 
     @model_validator(mode="after")
@@ -135,12 +141,28 @@ class Idlers(_Model):
     return_: IdlerSet = Field(..., alias="return")
 
 
+#: Typical induction-motor torque-speed curve (SPEC 6.1 ``motor_curve`` default): torque over
+#: rated torque against pulley speed over the pulley speed at design belt speed. Shape of a
+#: NEMA MG 1 design B / IEC 60034-12 design N cage motor: locked-rotor torque 1.6, pull-up 1.4
+#: near half speed, breakdown 2.2 at about 87 % of synchronous speed, rated torque at the
+#: design speed (rated slip 1.5 %), zero at synchronous speed. Typical values, not a maker's
+#: curve: give the motor's own curve when it is known (docs/dynamics.md).
+DEFAULT_MOTOR_CURVE = ((0.0, 1.6), (0.25, 1.5), (0.5, 1.4), (0.7, 1.6), (0.87, 2.2),
+                       (0.95, 1.9), (1.0, 1.0), (1.015, 0.0))
+
+
 class Drive(_Model):
-    """A drive pulley (SPEC section 1)."""
+    """A drive pulley (SPEC sections 1 and 6.1).
+
+    Several drives at one end are separate pulleys, met by the belt in the order of the file.
+    """
 
     position: Literal["head", "tail"] = "head"
     wrap_deg: float = Field(210.0, gt=0, le=500, description="wrap angle [deg]")
     friction: float = Field(0.35, gt=0, le=1.0, description="belt-pulley friction coefficient")
+    friction_kinetic: float | None = Field(
+        None, gt=0, le=1.0, description="sliding friction while the belt slips [-] "
+        "(default: friction)")
     share: float = Field(1.0, gt=0, le=1.0, description="share of the peripheral force")
     pulley_diameter_m: PositiveFloat = Field(1.0, description="pulley diameter [m]")
     inertia_kg_m2: NonNegFloat = Field(
@@ -150,6 +172,61 @@ class Drive(_Model):
         None, description="rated power [kW]; default: steady power x 1.25"
     )
     torque_limit: float = Field(1.5, gt=0, description="max force as a multiple of rated force")
+    control: Literal["vfd", "dol"] = Field(
+        "vfd", description="vfd: speed loop with a torque limit; dol: motor on the line")
+    motor_curve: list[tuple[float, float]] | None = Field(
+        None, description="dol: torque / rated torque against pulley speed / pulley speed at "
+        "design belt speed (default: a typical induction-motor curve)")
+    motor_inertia_kg_m2: NonNegFloat | None = Field(
+        None, description="motor rotor inertia reduced to the pulley shaft [kg m2], part of "
+        "inertia_kg_m2; used with a fluid coupling (default: 2/3 of inertia_kg_m2)")
+    coupling: Literal["none", "fluid", "fluid_fill_controlled"] = Field(
+        "none", description="coupling between motor and pulley (dol only)")
+    coupling_fill_s: PositiveFloat = Field(
+        20.0, description="fill-controlled coupling: time from empty to full [s]")
+    flywheel_kg_m2: NonNegFloat = Field(
+        0.0, description="extra inertia reduced to the pulley shaft [kg m2]")
+    trip_s: NonNegFloat = Field(
+        0.0, description="power failure: motor torque falls to zero over this time [s]")
+
+    @model_validator(mode="after")
+    def _curve_and_coupling(self) -> Drive:
+        if self.coupling != "none" and self.control != "dol":
+            raise ValueError(f"coupling '{self.coupling}' needs control: dol (a vfd drive "
+                             "controls its torque itself); use coupling: none")
+        if self.motor_curve is not None:
+            check_motor_curve(self.motor_curve)
+        return self
+
+    @property
+    def curve(self) -> tuple[tuple[float, float], ...]:
+        """The motor curve used: the file's or the default."""
+        return tuple(self.motor_curve) if self.motor_curve is not None else DEFAULT_MOTOR_CURVE
+
+    @property
+    def mu_kinetic(self) -> float:
+        return self.friction if self.friction_kinetic is None else self.friction_kinetic
+
+
+def check_motor_curve(curve) -> None:
+    """A motor curve rises strictly in speed, starts at standstill and has a zero-torque point
+    (synchronous speed) at its end; raises ValueError naming what is wrong."""
+    xs = [float(p[0]) for p in curve]
+    ys = [float(p[1]) for p in curve]
+    if len(xs) < 2:
+        raise ValueError("motor_curve needs at least two [speed, torque] points")
+    if any(b <= a for a, b in zip(xs, xs[1:], strict=False)):
+        raise ValueError("motor_curve speeds must increase strictly from point to point "
+                         f"(got {xs})")
+    if xs[0] != 0.0:
+        raise ValueError(f"motor_curve must start at speed 0 (locked rotor), got {xs[0]:g}")
+    if ys[-1] != 0.0 or any(y <= 0.0 for y in ys[:-1]):
+        raise ValueError("motor_curve needs a zero-torque point (synchronous speed) as its "
+                         "last point and positive torque below it "
+                         f"(got torques {ys})")
+    if not 0.9 <= xs[-1] <= 1.2:
+        raise ValueError(f"motor_curve: the zero-torque point at speed {xs[-1]:g} is not near "
+                         "the design speed (expected 0.9-1.2 of it)")
 
 
 class TakeUp(_Model):
@@ -181,9 +258,47 @@ class TakeUp(_Model):
 
 
 class Brake(_Model):
-    position: Literal["head", "tail"] = "head"
+    """A brake (SPEC sections 1 and 6.1): on the head or tail pulley, or on a drive's shaft.
+
+    The force builds over ``ramp_s`` after ``delay_s`` (or follows ``force_curve``, the fraction
+    of the force against the time since the brake was applied) and acts through the pulley's
+    friction (capstan-limited). ``hold`` sets the brake once the belt has stopped, in every
+    stop mode, and keeps it set; a brake without ``hold`` is released once the belt has
+    stopped.
+    """
+
+    position: Literal["head", "tail"] | None = Field(
+        None, description="head | tail pulley (default head when no drive is given)")
+    drive: int | None = Field(None, ge=1, description="1-based drive whose shaft is braked")
     force_kn: PositiveFloat | Literal["auto"] = "auto"
     delay_s: NonNegFloat = 0.5
+    ramp_s: NonNegFloat = Field(
+        1.0, description="from application to full force [s] (disc brakes build in 0.2-2 s)")
+    force_curve: list[tuple[float, float]] | None = Field(
+        None, description="fraction of the force against time since applied [s, -]")
+    hold: bool = Field(True, description="set once the belt has stopped and stay set")
+
+    @model_validator(mode="after")
+    def _where(self) -> Brake:
+        if self.position is not None and self.drive is not None:
+            raise ValueError("give either position (head | tail) or drive (N), not both")
+        if self.force_curve is not None:
+            ts = [float(p[0]) for p in self.force_curve]
+            fs = [float(p[1]) for p in self.force_curve]
+            if len(ts) < 1 or any(b <= a for a, b in zip(ts, ts[1:], strict=False)):
+                raise ValueError("force_curve times must increase strictly (got "
+                                 f"{ts})")
+            if ts[0] < 0.0 or any(not 0.0 <= f <= 1.0 for f in fs):
+                raise ValueError("force_curve: times from 0 up and fractions of the force in "
+                                 f"0..1 (got {list(self.force_curve)})")
+        return self
+
+    @property
+    def where(self) -> str:
+        """'head', 'tail' or 'drive N'."""
+        if self.drive is not None:
+            return f"drive {self.drive}"
+        return self.position or "head"
 
 
 class SagLimit(_Model):
@@ -219,7 +334,19 @@ class Conveyor(_Model):
     def _shares(self) -> Conveyor:
         total = sum(d.share for d in self.drives)
         if abs(total - 1.0) > 1e-6:
-            raise ValueError(f"drives: shares sum to {total:g}; they must sum to 1")
+            parts = " + ".join(f"drives[{i}] ({d.position}) {d.share:g}"
+                               for i, d in enumerate(self.drives))
+            raise ValueError(f"drives: shares sum to {total:g} ({parts}); they must sum to 1")
+        controls = {d.control for d in self.drives}
+        if len(controls) > 1:
+            raise ValueError("drives: every drive of a conveyor has the same control (vfd "
+                             "drives share one speed loop, dol motors run on the line); got "
+                             + ", ".join(f"drives[{i}].control = {d.control}"
+                                         for i, d in enumerate(self.drives)))
+        for i, b in enumerate(self.brakes):
+            if b.drive is not None and b.drive > len(self.drives):
+                raise ValueError(f"brakes[{i}].drive: there is no drive {b.drive} (the conveyor "
+                                 f"has {len(self.drives)} drive(s), numbered from 1)")
         return self
 
     @property

@@ -4,9 +4,12 @@ Every friction model returns a :class:`ResistanceLaw`: a sum of K named terms, p
 
     R_j(v, T) = reg(v) * sum_k coef[k, j] * |v|^pv[k] * phi_j(T)^ps[k]
 
-with phi_j(T) = min(sag_w_n[j] / max(T, 1 N), hs_max) / hs_ref the local sag ratio h/S over a
+with phi_j(T) = min(sag_w_n[j] / max(T, 1 N), hs_max_j) / hs_ref the local sag ratio h/S over a
 reference sag (so a term equals ``coef`` at the reference sag) and T the element's mean
-tension. Statics evaluates it at the design speed (reg = 1); the numba kernel evaluates the
+tension. The cap ``hs_max_j`` is the admissible sag of the element's strand (the conveyor's
+``sag_limit_pct``, DIN 22101's running limits): the sag-dependent laws are calibrated on belts
+running within those limits and are not extrapolated beyond them, so a slack or nearly slack
+span keeps the resistance it has at its sag limit. Statics evaluates it at the design speed (reg = 1); the numba kernel evaluates the
 same arrays every step.
 """
 
@@ -20,13 +23,15 @@ __all__ = ["ResistanceLaw", "LawBuilder", "sag_phi"]
 
 #: Default reference sag ratio h/S for tension-dependent terms (1 %).
 HS_REF = 0.01
-#: Cap on the sag ratio used in the law (10 %): a slack span's resistance stays finite.
+#: Cap on the sag ratio of a law built without per-element caps (friction models pass the
+#: loop's ``sag_limit``, the admissible sag of each element's strand).
 HS_MAX = 0.10
 
 
 def sag_phi(sag_w_n: np.ndarray, tension_n: np.ndarray, hs_ref: float = HS_REF,
-            hs_max: float = HS_MAX) -> np.ndarray:
-    """Local sag ratio h/S relative to ``hs_ref`` (dimensionless), capped at ``hs_max``."""
+            hs_max=HS_MAX) -> np.ndarray:
+    """Local sag ratio h/S relative to ``hs_ref`` (dimensionless), capped at ``hs_max`` (a
+    number or one cap per element)."""
     hs = sag_w_n / np.maximum(tension_n, 1.0)
     return np.minimum(hs, hs_max) / hs_ref
 
@@ -41,7 +46,7 @@ class ResistanceLaw:
     ps: np.ndarray  # (K,) sag exponents
     sag_w_n: np.ndarray  # (n,) g (m'_G + m'_L) cos(a) S / 8 [N]
     hs_ref: float = HS_REF
-    hs_max: float = HS_MAX
+    hs_max: float | np.ndarray = HS_MAX
     info: dict = field(default_factory=dict)
 
     @property
@@ -83,7 +88,7 @@ class LawBuilder:
     """Collect terms; terms with the same (name, pv, ps) are merged."""
 
     def __init__(self, n: int, sag_w_n: np.ndarray, hs_ref: float = HS_REF,
-                 hs_max: float = HS_MAX):
+                 hs_max: float | np.ndarray = HS_MAX):
         self.n = n
         self.sag_w_n = np.asarray(sag_w_n, dtype=np.float64)
         self.hs_ref = hs_ref

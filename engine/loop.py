@@ -1,9 +1,13 @@
 """The belt loop cut into elements (PHYSICS section 1, docs/ARCHITECTURE.md).
 
-Order in the direction of travel: carry elements tail -> head, the head pulley element, a
-take-up pulley element when the take-up sits at the head, return elements head -> tail, and
-the tail pulley element last. Boundary tension ``T[j]`` is the tension at the end of element
-``j``. Build once per conveyor and load case; every later step reads these arrays.
+Order in the direction of travel: carry elements tail -> head, the head pulleys (every head
+drive its own pulley element, in the order of the file, which is the order the belt meets
+them; one plain head pulley when the head has no drive), a take-up pulley element when the
+take-up sits at the head, return elements head -> tail, then the tail pulleys (a separate
+take-up pulley first when the take-up sits at a driven tail, then the tail drives in file
+order; one plain tail pulley, which is also the take-up pulley of a tail take-up, when the tail
+has no drive). Boundary tension ``T[j]`` is the tension at the end of element ``j``. Build
+once per conveyor and load case; every later step reads these arrays.
 """
 
 from __future__ import annotations
@@ -16,7 +20,7 @@ import numpy as np
 from engine import catalog
 from engine.conveyor import Conveyor
 
-__all__ = ["G", "Loop", "build_loop", "CARRY", "RETURN", "HEAD", "TAIL", "TAKEUP"]
+__all__ = ["G", "Loop", "Pulley", "build_loop", "CARRY", "RETURN", "HEAD", "TAIL", "TAKEUP"]
 
 #: Gravitational acceleration [m/s2].
 G = 9.81
@@ -27,15 +31,67 @@ CARRY, RETURN, HEAD, TAIL, TAKEUP = 0, 1, 2, 3, 4
 DEFAULT_PULLEY_DIAMETER_M = 0.8
 
 
+#: Wrap of a plain (non-drive) head or tail pulley [deg] and the belt-pulley friction used when
+#: such a pulley carries a brake (a lagged pulley's typical dry value, as the drives' default).
+PLAIN_WRAP_DEG = 180.0
+PLAIN_FRICTION = 0.35
+
+
+@dataclass(frozen=True)
+class Pulley:
+    """A pulley element of the loop.
+
+    Attributes
+    ----------
+    element : int
+        Element index.
+    position : str
+        ``head`` or ``tail``.
+    drive : int
+        Index of the drive in the conveyor file (0-based), -1 for a plain or take-up pulley.
+    diameter_m, wrap_deg, friction, friction_kinetic : float
+        Geometry and belt-pulley friction (static, sliding) [m, deg, -].
+    takeup : bool
+        The take-up pulley (its carriage moves).
+    """
+
+    element: int
+    position: str
+    drive: int
+    diameter_m: float
+    wrap_deg: float
+    friction: float
+    friction_kinetic: float
+    takeup: bool = False
+
+    @property
+    def euler(self) -> float:
+        """e^(mu theta) with the static friction [-]."""
+        return math.exp(self.friction * math.radians(self.wrap_deg))
+
+    @property
+    def euler_kinetic(self) -> float:
+        """e^(mu_k theta) with the sliding friction [-]."""
+        return math.exp(self.friction_kinetic * math.radians(self.wrap_deg))
+
+
 @dataclass(frozen=True, eq=False)
 class Loop:
-    """Per-element arrays of the belt loop. Units are in the field names."""
+    """Per-element arrays of the belt loop. Units are in the field names.
+
+    ``i_head`` is the first head pulley (T1 = ``T[i_head - 1]``), ``i_tail`` the last element
+    (the tail pulley the carry strand leaves), ``i_takeup`` the take-up pulley;
+    ``pulleys`` lists every pulley element in loop order and ``drive_elements`` the element of
+    each drive in file order.
+    """
 
     n: int
     nc: int
     i_head: int
     i_tail: int
     i_takeup: int
+    pulleys: tuple
+    drive_elements: tuple
     strand: np.ndarray
     dx_m: np.ndarray
     s_m: np.ndarray
@@ -51,12 +107,24 @@ class Loop:
     mL_kg_m: np.ndarray
     mR_kg_m: np.ndarray
     seal_drag_n: np.ndarray
+    sag_limit: np.ndarray
     length_m: float
     lift_m: float
     load_fraction: float
     speed_m_s: float
     belt: catalog.ResolvedBelt
     design_load_kg_m: float
+
+    def brake_element(self, brake) -> int:
+        """Element of a brake's pulley: a drive's pulley (``drive: N``), the first head pulley
+        (the discharge pulley) or the tail pulley the carry strand leaves."""
+        if brake.drive is not None:
+            return int(self.drive_elements[brake.drive - 1])
+        return int(self.i_head if brake.where == "head" else self.i_tail)
+
+    def pulley_at(self, element: int) -> Pulley:
+        """The pulley of a pulley element."""
+        return next(p for p in self.pulleys if p.element == element)
 
     @property
     def mass_kg(self) -> np.ndarray:
@@ -105,11 +173,6 @@ def _split(n: int, lengths: list[float]) -> list[int]:
         if counts[i] > 1:
             counts[i] -= 1
     return counts
-
-
-def _pulley_diameter(conv: Conveyor, position: str) -> float:
-    ds = [d.pulley_diameter_m for d in conv.drives if d.position == position]
-    return max(ds) if ds else DEFAULT_PULLEY_DIAMETER_M
 
 
 def build_loop(
@@ -168,15 +231,29 @@ def build_loop(
             z += dx * sin
     z_head = z
     nc = len(cols["dx"])
-    d_head = _pulley_diameter(conv, "head")
-    add(HEAD, math.pi * d_head / 2, z_head, 0.0, 1.0, math.inf, 0.0, 0, 0.0, 0.0, 0.0, 0.0)
+    pulleys: list[Pulley] = []
+
+    def add_pulley(code, position, drive, diameter, wrap, mu, mu_k, takeup, z_at):
+        pulleys.append(Pulley(len(cols["dx"]), position, drive, diameter, wrap, mu, mu_k,
+                              takeup))
+        add(code, math.radians(wrap) * diameter / 2, z_at, 0.0, 1.0, math.inf, 0.0, 0, 0.0,
+            0.0, 0.0, 0.0)
+
+    def add_end(position, code, z_at, takeup_here):
+        drives = [(i, d) for i, d in enumerate(conv.drives) if d.position == position]
+        for i, d in drives:
+            add_pulley(code, position, i, d.pulley_diameter_m, d.wrap_deg, d.friction,
+                       d.mu_kinetic, False, z_at)
+        if not drives:
+            add_pulley(code, position, -1, DEFAULT_PULLEY_DIAMETER_M, PLAIN_WRAP_DEG,
+                       PLAIN_FRICTION, PLAIN_FRICTION, takeup_here, z_at)
+
+    # head end: the drives in file order (or one plain pulley), then a head take-up pulley
+    add_end("head", HEAD, z_head, False)
     i_head = nc
     if conv.takeup.position == "head":
-        add(TAKEUP, math.pi * DEFAULT_PULLEY_DIAMETER_M / 2, z_head, 0.0, 1.0, math.inf, 0.0, 0,
-            0.0, 0.0, 0.0, 0.0)
-        i_takeup = nc + 1
-    else:
-        i_takeup = -1
+        add_pulley(TAKEUP, "head", -1, DEFAULT_PULLEY_DIAMETER_M, PLAIN_WRAP_DEG,
+                   PLAIN_FRICTION, PLAIN_FRICTION, True, z_head)
     # return strand, head -> tail: the profile backwards, slope negated
     z = z_head
     for sec, k in zip(reversed(conv.profile), reversed(counts), strict=True):
@@ -187,12 +264,17 @@ def build_loop(
             add(RETURN, dx, z, sin, cos, ir.spacing_m, ir.roll_diameter_m, ir.rolls,
                 ir.trough_deg, 0.0, ret_mass / ir.spacing_m, ret_drag)
             z += dx * sin
-    d_tail = _pulley_diameter(conv, "tail")
-    add(TAIL, math.pi * d_tail / 2, 0.0, 0.0, 1.0, math.inf, 0.0, 0, 0.0, 0.0, 0.0, 0.0)
+    # tail end: a take-up pulley before the tail drives, or the plain tail pulley as take-up
+    tail_driven = any(d.position == "tail" for d in conv.drives)
+    if conv.takeup.position == "tail" and tail_driven:
+        add_pulley(TAKEUP, "tail", -1, DEFAULT_PULLEY_DIAMETER_M, PLAIN_WRAP_DEG,
+                   PLAIN_FRICTION, PLAIN_FRICTION, True, 0.0)
+    add_end("tail", TAIL, 0.0, conv.takeup.position == "tail")
     n = len(cols["dx"])
     i_tail = n - 1
-    if i_takeup < 0:
-        i_takeup = i_tail
+    i_takeup = next(p.element for p in pulleys if p.takeup)
+    drive_elements = tuple(next(p.element for p in pulleys if p.drive == i)
+                           for i in range(len(conv.drives)))
 
     arr = {k: np.asarray(v, dtype=np.float64) for k, v in cols.items()}
     dx_arr = arr["dx"]
@@ -206,6 +288,8 @@ def build_loop(
         i_head=i_head,
         i_tail=i_tail,
         i_takeup=i_takeup,
+        pulleys=tuple(pulleys),
+        drive_elements=drive_elements,
         strand=np.asarray(cols["strand"], dtype=np.int8),
         dx_m=dx_arr,
         s_m=s,
@@ -221,6 +305,9 @@ def build_loop(
         mL_kg_m=arr["mL"],
         mR_kg_m=arr["mR"],
         seal_drag_n=arr["drag"],
+        sag_limit=np.where(np.asarray(cols["strand"]) == CARRY, conv.sag_limit_pct.carry / 100,
+                           np.where(np.asarray(cols["strand"]) == RETURN,
+                                    conv.sag_limit_pct.return_ / 100, 1.0)),
         length_m=L,
         lift_m=conv.lift_m,
         load_fraction=float(load_fraction),

@@ -88,8 +88,8 @@ class SteadyResult:
         import pandas as pd
 
         loop = self.loop
-        sag = np.where(loop.is_idler, 100 * loop.sag_w_n / np.maximum(self.tension_mean_n, 1.0),
-                       0.0)
+        low = np.minimum(self.tension_n, np.roll(self.tension_n, 1))
+        sag = np.where(loop.is_idler, 100 * loop.sag_w_n / np.maximum(low, 1.0), 0.0)
         return pd.DataFrame({
             "s_m": loop.s_end_m,
             "strand": [STRAND_NAMES[int(s)] for s in loop.strand],
@@ -100,30 +100,56 @@ class SteadyResult:
 
 
 def _drive_elements(conv: Conveyor, loop: Loop) -> list[tuple[int, float, float]]:
-    """(element index, share, e^{mu theta}) per drive."""
+    """(element index, share, e^{mu theta}) per drive, in file order: every drive is its own
+    pulley element with its own wrap and friction."""
     out = []
-    for d in conv.drives:
-        idx = loop.i_head if d.position == "head" else loop.i_tail
-        out.append((idx, d.share, math.exp(d.friction * math.radians(d.wrap_deg))))
+    for i, d in enumerate(conv.drives):
+        idx = loop.drive_elements[i]
+        out.append((idx, d.share, loop.pulley_at(idx).euler))
     return out
 
 
-def _walk(loop: Loop, dF: np.ndarray) -> np.ndarray:
-    """Cumulative tension increments from the start of the loop, W[j] = sum_{i<=j} dF_i."""
-    return np.cumsum(dF)
+def shaft_mass_kg(drive) -> float:
+    """Rotating parts of a drive reduced to the belt line, (J + J_flywheel) (2 / D)^2 [kg]."""
+    return (drive.inertia_kg_m2 + drive.flywheel_kg_m2) * (2.0 / drive.pulley_diameter_m) ** 2
+
+
+def master_drive(conv: Conveyor) -> int:
+    """Index of the master drive: the largest share, the first of equals in file order."""
+    return max(range(len(conv.drives)), key=lambda i: (conv.drives[i].share, -i))
 
 
 def rest_hold_element(conv: Conveyor, loop: Loop) -> int:
     """Element that holds the stopped belt: the first brake's pulley, else the master drive's
-    (the drive element with the largest share; a friction drive alone could not hold a loaded
-    incline or decline, a brake can)."""
+    (a friction drive alone could not hold a loaded incline or decline, a brake can)."""
     if conv.brakes:
-        return int(loop.i_head if conv.brakes[0].position == "head" else loop.i_tail)
-    shares: dict[int, float] = {}
-    for d in conv.drives:
-        node = loop.i_head if d.position == "head" else loop.i_tail
-        shares[node] = shares.get(node, 0.0) + d.share
-    return max(shares, key=lambda node: shares[node])  # first of equals: the file's order
+        return loop.brake_element(conv.brakes[0])
+    return int(loop.drive_elements[master_drive(conv)])
+
+
+def _startup_walk(conv: Conveyor, loop: Loop, dF: np.ndarray, te: float) -> np.ndarray:
+    """Tension increments at start-up, walked like the running ones [N].
+
+    The drives give ``STARTUP_FACTOR`` x their running force (of |Te| above the running
+    force for a regenerative belt), which accelerates every moving mass at ``a = (f - 1)
+    |Te| / M`` (DIN 22101's start-up peripheral force, the acceleration force shared out by
+    mass): each belt element adds its inertia force ``M_j a``, each drive pulley receives its
+    share of the start-up force less what accelerates its own rotating parts, so the walk
+    closes round the loop.
+    """
+    shafts = [shaft_mass_kg(d) for d in conv.drives]
+    m_total = float(loop.mass_kg.sum()) + sum(shafts)
+    extra = (STARTUP_FACTOR - 1.0) * abs(te)
+    a = extra / m_total
+    d_start = np.zeros(loop.n)
+    for i, d in enumerate(conv.drives):
+        d_start[loop.drive_elements[i]] += d.share * (te + extra) - shafts[i] * a
+    return np.cumsum(dF + loop.mass_kg * a - d_start)
+
+
+def _slip_need(w_in: float, w_out: float, e: float) -> float:
+    """Smallest constant c with max(T_in, T_out) <= e min(T_in, T_out), T = c + w [N]."""
+    return (max(w_in, w_out) - e * min(w_in, w_out)) / (e - 1.0)
 
 
 def rest_walk(loop: Loop, hold: int, gravity_n: np.ndarray) -> np.ndarray:
@@ -150,46 +176,42 @@ def _rest_need(conv: Conveyor, loop: Loop, hs_adm: np.ndarray) -> float | None:
         return None
     k = loop.i_takeup
     Wr = rest_walk(loop, rest_hold_element(conv, loop), loop.gravity_n)
-    return _sag_need(loop, Wr, hs_adm, at_ends=True) + 0.5 * (Wr[k - 1] + Wr[k])
+    return _sag_need(loop, Wr, hs_adm) + 0.5 * (Wr[k - 1] + Wr[k])
 
 
-def _sag_need(loop: Loop, W: np.ndarray, hs_adm: np.ndarray, at_ends: bool = False) -> float:
+def _sag_need(loop: Loop, W: np.ndarray, hs_adm: np.ndarray) -> float:
     """Smallest constant c with every idler element of ``c + W`` at or above its sag minimum.
 
-    Running, the sag of an element is taken at its mean tension; with ``at_ends`` at its lower
-    end (the at-rest walk is linear in each element, so that is its least tension, and the
-    bound does not depend on the element length).
+    The sag of a span is taken at its lowest tension, the lower end of the element (tension
+    is linear along an element, so that is its least tension and the bound does not depend
+    on the element length): a take-up sized to a sag limit then reports that limit.
     """
     idl = loop.is_idler
     if not idl.any():
         return -np.inf
     tmin_elem = loop.sag_w_n / hs_adm
-    prev = np.roll(W, 1)
-    lower = np.minimum(W, prev) if at_ends else 0.5 * (W + prev)
+    lower = np.minimum(W, np.roll(W, 1))
     return float(np.max(np.where(idl, tmin_elem - lower, -np.inf)))
 
 
-def _required_offset(loop: Loop, W: np.ndarray, drives, d_force: np.ndarray,
+def _required_offset(loop: Loop, W: np.ndarray, W_start: np.ndarray, drives,
                      hs_adm: np.ndarray, rest_need: float | None) -> tuple[float, dict]:
-    """Smallest constant c (T = c + W) meeting slip at start-up and running, and sag (running
-    and, with ``rest_need`` from :func:`_rest_need`, held at rest)."""
+    """Smallest constant c (T = c + W) meeting slip at every drive pulley running and at
+    start-up (``W_start`` from :func:`_startup_walk`), and sag (running and, with
+    ``rest_need`` from :func:`_rest_need`, held at rest)."""
     bounds = {}
     Wprev = np.roll(W, 1)
+    Sprev = np.roll(W_start, 1)
     bounds["sag"] = _sag_need(loop, W, hs_adm)
     if rest_need is not None:
         k = loop.i_takeup
         bounds["sag_at_rest"] = rest_need - 0.5 * (W[k - 1] + W[k])
-    slip_need = -np.inf
-    for idx, _share, e in drives:
-        d = d_force[idx]
-        w_in, w_out = Wprev[idx], W[idx]
-        # running: max(T_in, T_out) <= e min(T_in, T_out)
-        run = (max(w_in, w_out) - e * min(w_in, w_out)) / (e - 1.0)
-        # start-up: the slack side held by the take-up, the drive force x STARTUP_FACTOR
-        slack_w = w_out if d >= 0 else w_in
-        start = STARTUP_FACTOR * abs(d) / (e - 1.0) - slack_w
-        slip_need = max(slip_need, run, start)
-    bounds["slip"] = float(slip_need)
+    run = max(_slip_need(Wprev[idx], W[idx], e) for idx, _s, e in drives)
+    # the start-up walk has its own level: the take-up holds the same mean tension
+    k = loop.i_takeup
+    shift = 0.5 * (W[k - 1] + W[k]) - 0.5 * (W_start[k - 1] + W_start[k])
+    start = max(_slip_need(Sprev[idx], W_start[idx], e) for idx, _s, e in drives) - shift
+    bounds["slip"] = float(max(run, start))
     positive = float(np.max(1.0 - W))  # keep every tension above 1 N
     bounds["positive"] = positive
     return max(bounds.values()), bounds
@@ -269,14 +291,15 @@ def solve_steady(
         d_force = np.zeros(loop.n)
         for idx, share, _e in drives:
             d_force[idx] += share * te
-        W = _walk(loop, dF - d_force)
+        W = np.cumsum(dF - d_force)
+        W_start = _startup_walk(conv, loop, dF, te)
         w_tu = 0.5 * (W[k - 1] + W[k])
         if tu.type == "gravity" and tu.mass_kg != "auto":
             c = float(tu.mass_kg) * G / 2.0 - w_tu
         elif tu.type == "fixed" and tu.pretension_kn != "auto":
             c = float(tu.pretension_kn) * 1e3 - w_tu
         else:
-            c, _ = _required_offset(loop, W, drives, d_force, hs_adm, rest_need)
+            c, _ = _required_offset(loop, W, W_start, drives, hs_adm, rest_need)
             c = max(c, tu_floor_n - w_tu)
         T_new = c + W
         if not law.tension_dependent:
@@ -303,7 +326,7 @@ def solve_steady(
             T = T_new
 
     assert T is not None and R is not None
-    c_need, bounds = _required_offset(loop, W, drives, d_force, hs_adm, rest_need)
+    c_need, bounds = _required_offset(loop, W, W_start, drives, hs_adm, rest_need)
     takeup_tension = 0.5 * (T[k - 1] + T[k])
     takeup_mass = float(2.0 * takeup_tension / G) if tu.type == "gravity" else None
 
@@ -313,7 +336,7 @@ def solve_steady(
         takeup_mass_kg=takeup_mass, takeup_tension_n=float(takeup_tension),
         iterations=iterations, summary={},
     )
-    _summarise(result, drives, hs_adm, bounds, c_need - (T[0] - W[0]))
+    _summarise(result, drives, hs_adm, bounds, c_need - (T[0] - W[0]), W_start - W)
     if not converged:
         result.status = "failed"
         result.message = (
@@ -326,30 +349,40 @@ def solve_steady(
     return result
 
 
-def _summarise(res: SteadyResult, drives, hs_adm, bounds, shortfall_n: float) -> None:
-    """Fill ``res.summary`` with the SPEC section 4 steady fields and the warnings."""
+def _summarise(res: SteadyResult, drives, hs_adm, bounds, shortfall_n: float,
+               start_delta: np.ndarray) -> None:
+    """Fill ``res.summary`` with the SPEC section 4 and 6.4 steady fields and the warnings.
+
+    ``start_delta`` is the start-up walk less the running one (:func:`_startup_walk`); the
+    take-up holds the same mean tension at start-up as running.
+    """
     conv, loop, T = res.conveyor, res.loop, res.tension_n
     belt = loop.belt
     v = loop.speed_m_s
     Tprev = np.roll(T, 1)
-    main_idx, _share, _e = max(drives, key=lambda d: d[1])
+    k = loop.i_takeup
+    T_start = T + start_delta - 0.5 * (start_delta[k - 1] + start_delta[k])
+    Sprev = np.roll(T_start, 1)
+    main_idx = loop.drive_elements[master_drive(conv)]
     t1, t2 = Tprev[main_idx], T[main_idx]
     if res.drive_force_n[main_idx] < 0:  # regenerating: tight side outgoing
         t1, t2 = t2, t1
-    slip_margins, start_margins = [], []
-    for idx, _s, e in drives:
+    slip_margins, start_margins, per_drive = [], [], {}
+    for i, (idx, _s, e) in enumerate(drives, start=1):
         tin, tout = Tprev[idx], T[idx]
         tight, slack = max(tin, tout), min(tin, tout)
-        slip_margins.append(e / (tight / slack) if slack > 0 else 0.0)
-        d = res.drive_force_n[idx]
-        slack_side = tout if d >= 0 else tin
-        tight_start = slack_side + STARTUP_FACTOR * abs(d)
-        start_margins.append(e / (tight_start / slack_side) if slack_side > 0 else 0.0)
+        margin = e / (tight / slack) if slack > 0 else 0.0
+        slip_margins.append(margin)
+        s_tight, s_slack = max(Sprev[idx], T_start[idx]), min(Sprev[idx], T_start[idx])
+        start_margins.append(e / (s_tight / s_slack) if s_slack > 0 else 0.0)
+        per_drive[f"drive{i}_t_tight_kn"] = float(tight) / 1e3
+        per_drive[f"drive{i}_t_slack_kn"] = float(slack) / 1e3
+        per_drive[f"drive{i}_slip_margin"] = float(margin)
     s_end = loop.s_end_m
     imax, imin = int(np.argmax(T)), int(np.argmin(T))
     Tm = res.tension_mean_n
     idl = loop.is_idler
-    sag = np.where(idl, loop.sag_w_n / np.maximum(Tm, 1.0), 0.0)
+    sag = np.where(idl, loop.sag_w_n / np.maximum(np.minimum(T, Tprev), 1.0), 0.0)
     rating = belt.rating_n
     parts = res.law.parts(v, Tm)
     comps = {name: 0.0 for name in SPEC_PARTS}
@@ -363,6 +396,7 @@ def _summarise(res: SteadyResult, drives, hs_adm, bounds, shortfall_n: float) ->
     mR_c = float(loop.mR_kg_m[loop.strand == CARRY][0])
     mR_r = float(loop.mR_kg_m[loop.strand == RETURN][0])
     eb = belt.stiffness_n
+    eb_dyn = belt.dynamic_stiffness_n
     res.summary = {
         "te_kn": res.te_n / 1e3,
         "power_kw": res.te_n * v / 1e3,
@@ -383,16 +417,19 @@ def _summarise(res: SteadyResult, drives, hs_adm, bounds, shortfall_n: float) ->
         "idler_mass_carry_kg_m": mR_c,
         "idler_mass_return_kg_m": mR_r,
         "belt_modulus_kn": eb / 1e3,
+        "belt_modulus_dyn_kn": eb_dyn / 1e3,
         "belt_rating_kn": rating / 1e3,
-        "wave_speed_carry_m_s": math.sqrt(eb / (m_carry + mR_c)),
-        "wave_speed_return_m_s": math.sqrt(eb / (belt.mass_kg_m + mR_r)),
+        "wave_speed_carry_m_s": math.sqrt(eb_dyn / (m_carry + mR_c)),
+        "wave_speed_return_m_s": math.sqrt(eb_dyn / (belt.mass_kg_m + mR_r)),
+        **per_drive,
         "te_components_kn": comps,
         "steady_iterations": res.iterations,
     }
     warnings: list[str] = []
     tu = conv.takeup
-    for (idx, _s, e), m_run, m_start in zip(drives, slip_margins, start_margins, strict=True):
-        where = "head" if idx == loop.i_head else "tail"
+    for i, ((idx, _s, e), m_run, m_start) in enumerate(
+            zip(drives, slip_margins, start_margins, strict=True), start=1):
+        where = f"drive {i} ({conv.drives[i - 1].position})"
         if m_run < 1.0 - 1e-6 or m_start < 1.0 - 1e-6:
             which = "running" if m_run < 1.0 else f"start-up (force x {STARTUP_FACTOR})"
             fix = ""
@@ -404,7 +441,7 @@ def _summarise(res: SteadyResult, drives, hs_adm, bounds, shortfall_n: float) ->
                 fix = (f"; pretension {res.takeup_tension_n / 1e3:.1f} kN is below the "
                        f"{(res.takeup_tension_n + shortfall_n) / 1e3:.1f} kN needed")
             warnings.append(
-                f"slip at the {where} drive at {which}: slip margin "
+                f"slip at {where} at {which}: slip margin "
                 f"{min(m_run, m_start):.2f} < 1 (e^(mu theta) = {e:.2f}){fix}"
             )
     for strand, name in ((CARRY, "carry"), (RETURN, "return")):

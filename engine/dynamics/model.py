@@ -3,36 +3,43 @@
 The loop's elements are the masses, the element boundaries are the springs: spring ``j``
 joins element ``j`` and ``j + 1`` (cyclic), has length ``(dx_j + dx_{j+1}) / 2`` and carries
 the boundary tension ``T[j]`` of statics. Everything the kernel needs is computed here as
-plain float64 arrays (:class:`System`); the kernel and the numpy reference only read them.
+plain arrays (:class:`System`); the kernel and the numpy reference only read them.
 
 Design decisions (documented in ``docs/dynamics.md``):
 
-* **Masses**: ``M_j = (m'_G + m'_L + m'_R) dx_j``; drive pulley elements add the drive
-  inertia ``J (2 / D)^2``; other pulley elements add an estimate of the pulley's own
-  reduced mass (:func:`pulley_reduced_mass_kg`, override with
-  ``DynamicsOptions.pulley_mass_kg``).
-* **Belt segments**: elastic tension advanced with the Ernst *tangent* modulus
-  ``EB_eq = EB / (1 + (w S)^2 EB / (12 T^3))`` (the chord law ``eps = T / EB - (w S)^2 /
-  (24 T^2)`` integrated incrementally); below the tension where the sag ratio reaches the
-  law's cap ``hs_max`` the modulus is held constant, and a belt never pushes (slack strain
-  is remembered so a slack span must first be taken up before it pulls again).
-* **Damping**: a standard linear solid. The viscous part of the Kelvin-Voigt element is a
-  dashpot ``C'`` in series with a stiff spring ``EB / mu``: at low frequencies it is the
-  Kelvin-Voigt damper, and its force is advanced by the exact exponential of its relaxation
-  time ``tau = mu C' / EB``, so the step stays proportional to ``dx / c`` on any mesh (an
-  explicit Kelvin-Voigt term forces ``dt ~ dx^2``: see ``benchmarks/bench_dynamics.py``).
-  ``C'`` gives the loop's lowest mode (estimated ``pi / (2 t_loop)``) the modal damping ratio
-  ``damping_ratio``. ``damping="kv"`` gives the plain explicit Kelvin-Voigt term (with its
-  smaller step), ``damping="off"`` none.
+* **Masses**: ``M_j = (m'_G + m'_L + m'_R) dx_j``; a plain pulley element adds an estimate of
+  the pulley's own reduced mass (:func:`pulley_reduced_mass_kg`). Every drive pulley (and a
+  braked or holdback pulley) has a **shaft** with its own mass, the rotating parts reduced to
+  the belt line ``(J + J_flywheel) (2 / D)^2`` (with a fluid coupling, the motor's share
+  ``J_motor (2 / D)^2`` is a separate mass behind the coupling), joined to the belt by
+  capstan friction: it sticks while the force it passes stays within ``T_slack (e^(mu theta)
+  - 1)`` and slips beyond (:mod:`engine.dynamics.blocks`).
+* **Belt segments**: the static modulus E B (elongation, take-up travel) advanced with the
+  Ernst *tangent* modulus ``EB_eq = EB / (1 + (w S)^2 EB / (12 T^3))`` (the chord law
+  ``eps = T / EB - (w S)^2 / (24 T^2)`` integrated incrementally); below the tension where
+  the sag ratio reaches ``HS_FLOOR`` the modulus is held constant; a belt never pushes, and
+  a slack span stores its slack length and must be taken up before it pulls again.
+* **Dynamic modulus and damping from belt data**: a standard linear solid whose relaxed
+  modulus is the static one and whose instantaneous modulus is the belt's dynamic modulus
+  (``dynamic_modulus_kn_m``, catalogue): a relaxing arm of stiffness ``(E_dyn - E) B`` with the
+  belt's relaxation time, advanced by its exact exponential. Fronts travel at ``c = sqrt(E_dyn
+  B / rho')`` with height ``Z dv``, ``Z = sqrt(E_dyn B rho')``; the static modulus governs the
+  settled elongation. A **mesh viscosity** ``alpha Z dv`` per spring (``alpha`` =
+  ``DynamicsOptions.mesh_viscosity``) damps the modes the mesh cannot resolve (damping ratio
+  ``alpha`` at the mesh's highest mode, vanishing in proportion to the element length on the
+  resolved waves), so peaks after sudden events converge with the mesh instead of ringing.
 * **Implicit blocks**: the springs on both sides of every pulley element are solved
-  implicitly together with the pulley and its neighbouring elements (and the take-up
-  carriage): short springs round light pulleys would otherwise set the step.
-* **Step**: ``dt = dt_safety x 2 / omega_max`` with the per-element (Gershgorin) bound
-  ``omega_max^2 = max_j 2 (K_{j-1} + K_j) / M_j`` over the explicit springs,
-  ``K = EB (1 + 1/mu) / len`` unsoftened; for a uniform chain ``2 / omega_max = dx / c``.
-* **At rest**: the belt is held by its brakes (or the master drive when it has none) with
-  the at-rest tensions (take-up plus gravity, no resistance); a fixed take-up's at-rest
-  level keeps the loop length of statics' running state.
+  implicitly together with the pulleys, their shafts and neighbouring elements (and the
+  take-up carriage): short springs round light pulleys would otherwise set the step.
+* **Step**: ``dt = dt_safety x`` the explicit stability limit (:func:`stability_limit_s`: the
+  per-element Gershgorin bound with the instantaneous stiffness and the mesh viscosity);
+  ``dt`` stays proportional to ``dx / c``.
+* **Drives**: ``vfd`` drives run one speed loop on the master drive's own shaft speed (the
+  largest share) with torque following (every vfd drive gives its share of the loop's
+  output); ``dol`` drives follow their motor curve, through a fluid coupling when fitted.
+* **At rest**: the belt is held by its brakes (or the master drive when it has none) with the
+  at-rest tensions (take-up plus gravity, no resistance); a fixed take-up's at-rest level
+  keeps the loop length of statics' running state.
 """
 
 from __future__ import annotations
@@ -44,9 +51,21 @@ import numpy as np
 
 from engine.conveyor import Conveyor, InputError, Scenario
 from engine.dynamics import profiles
+from engine.dynamics.codes import (
+    BRAKE,
+    COAST,
+    CONTROLLED,
+    COUPLING_FILL,
+    COUPLING_FLUID,
+    COUPLING_NONE,
+    DOL,
+    RELATIVE,
+    SUPPORT,
+    VFD,
+)
 from engine.law import ResistanceLaw
 from engine.loop import G, Loop
-from engine.statics import rest_hold_element, rest_walk
+from engine.statics import master_drive, rest_hold_element, rest_walk
 
 __all__ = [
     "DynamicsOptions",
@@ -58,21 +77,34 @@ __all__ = [
     "check_scenario",
     "implicit_blocks",
     "brake_force_auto",
+    "brake_stop_time",
+    "speed_loop_bandwidth",
     "COAST",
     "BRAKE",
     "CONTROLLED",
     "RELATIVE",
     "SUPPORT",
+    "HS_FLOOR",
 ]
 
-COAST, BRAKE, CONTROLLED = 0, 1, 2
-RELATIVE, SUPPORT = 0, 1
 STOP_CODES = {"coast": COAST, "brake": BRAKE, "controlled": CONTROLLED}
 START_CODES = {"s-curve": profiles.S_CURVE, "linear": profiles.LINEAR,
                "torque": profiles.TORQUE}
+COUPLING_CODES = {"none": COUPLING_NONE, "fluid": COUPLING_FLUID,
+                  "fluid_fill_controlled": COUPLING_FILL}
 
 #: Steel density for the pulley estimate [kg/m3].
 STEEL_KG_M3 = 7850.0
+#: Sag ratio h/S below whose tension the Ernst tangent modulus is held constant: the range of
+#: the parabolic sag model (10 %).
+HS_FLOOR = 0.10
+#: Share of a drive's reduced inertia taken as the motor's when a fluid coupling separates it
+#: and ``motor_inertia_kg_m2`` is not given [-]: the motor rotor dominates the reduced
+#: inertia through the square of the gear ratio (an estimate; give the motor's data).
+MOTOR_INERTIA_SHARE = 2.0 / 3.0
+#: Minimum holding force of an auto-sized brake as a multiple of the net gravity pull of the
+#: loaded belt [-] (the holding margin of the previous engine, an estimate).
+HOLD_MARGIN = 1.2
 
 
 @dataclass(frozen=True)
@@ -82,15 +114,11 @@ class DynamicsOptions:
     Attributes
     ----------
     damping : str
-        ``"sls"`` (default: Kelvin-Voigt damper relaxed as a standard linear solid, exact
-        exponential update), ``"kv"`` (plain explicit Kelvin-Voigt) or ``"off"``.
-    damping_ratio : float
-        Modal damping ratio of the loop's lowest mode [-] (PHYSICS 5: a few percent), taken
-        as the quarter-wave mode over the whole loop, ``pi / (2 t_loop)``.
-    glassy_ratio : float
-        ``mu``: the series spring of the damper is ``EB / mu`` [-]; the high-frequency
-        stiffness is ``EB (1 + 1 / mu)``. Lowered automatically to ``0.2 / damping_ratio``
-        when needed (the SLS cannot reach a damping ratio above ``1 / (4 mu)``).
+        ``"belt"`` (default: the belt's standard linear solid from its static and dynamic
+        moduli and relaxation time, plus the mesh viscosity) or ``"off"`` (verification).
+    mesh_viscosity : float
+        ``alpha``: Kelvin-Voigt viscosity ``alpha Z dv`` per spring [-], the damping ratio of the
+        mesh's highest mode (0.1: the step shrinks by 10 %).
     ernst : bool
         Sag-dependent tangent stiffness (on by default, PHYSICS 5).
     resistances : bool
@@ -101,37 +129,41 @@ class DynamicsOptions:
         Regularisation speed of the resistances: ``R = R0 clip(v / v_eps, -1, 1)`` [m/s].
     dt_safety : float
         Automatic step as a fraction of the stability limit (0.5: half the limit).
-    controller_bandwidth_rad_s : float
-        Rigid-body bandwidth ``omega_c`` of the PI speed controller [rad/s], capped at half
-        the loop's fundamental ``2 pi / t_loop``: ``Kp = 2 omega_c M``, ``Ki = omega_c^2 M``
-        with M the loop's moving mass. A rigid-body feedforward ``M a_ref + (Te - sum G)``
-        carries the known forces.
+    controller_bandwidth_rad_s : float or None
+        Bandwidth ``omega_c`` of the vfd speed loop [rad/s]; None = :func:`speed_loop_bandwidth`
+        (a quarter of the loop's wave frequency ``2 pi / t_loop``). ``Kp = 2 omega_c M``,
+        ``Ki = omega_c^2 M`` with M all moving mass; a rigid-body feedforward ``M a_ref + (Te -
+        sum G)`` carries the known forces.
     pre_rest_s, post_rest_s : float
         Rest before the start command and after the belt has stopped [s]; post-rest
-        ``None`` = max(5 s, one wave loop time).
+        ``None`` = max(5 s, one wave loop time), plus the time holding brakes and the drives'
+        trip take.
     pulley_mass_kg : float or None
-        Reduced mass of each non-drive pulley [kg]; None = :func:`pulley_reduced_mass_kg`.
+        Reduced mass of each plain pulley [kg]; None = :func:`pulley_reduced_mass_kg`.
     force_start_n : float or None
         Open-loop constant drive force during the start and run [N] (verification).
+    slip : bool
+        Capstan friction with slip at the drive pulleys (on); off = every shaft sticks to the
+        belt whatever force it passes (verification).
     probes : int
         Number of springs recorded at ``record_dt_s`` round the loop (Fig. 4 traces).
     surface_points, surface_samples : int
         Size of the tension/velocity surface: at most this many springs and time samples.
     """
 
-    damping: str = "sls"
-    damping_ratio: float = 0.05
-    glassy_ratio: float = 4.0
+    damping: str = "belt"
+    mesh_viscosity: float = 0.1
     ernst: bool = True
     resistances: bool = True
     gravity: bool = True
-    v_eps_m_s: float = 0.01
+    v_eps_m_s: float = 1e-5
     dt_safety: float = 0.5
-    controller_bandwidth_rad_s: float = 0.5
+    controller_bandwidth_rad_s: float | None = None
     pre_rest_s: float = 2.0
     post_rest_s: float | None = None
     pulley_mass_kg: float | None = None
     force_start_n: float | None = None
+    slip: bool = True
     probes: int = 8
     surface_points: int = 200
     surface_samples: int = 300
@@ -142,7 +174,7 @@ class System:
     """Everything the kernel reads, as plain arrays and numbers. SI units throughout.
 
     Node (element) arrays have length n; spring arrays have length n, spring j joining
-    element j and j + 1 (cyclic).
+    element j and j + 1 (cyclic). Shafts, drives and brakes are listed in their own arrays.
     """
 
     n: int
@@ -151,29 +183,30 @@ class System:
     i_takeup: int
     strand: np.ndarray  # int8 strand codes of the loop (engine.loop)
     # nodes
-    mass_kg: np.ndarray  # moving mass incl. drive / pulley inertia
+    mass_kg: np.ndarray  # moving mass of the belt element (and a plain pulley's own mass)
     belt_mass_kg: np.ndarray  # (m'_G + m'_L + m'_R) dx: weights of the mean speed
     gravity_n: np.ndarray  # (m'_G + m'_L) g dx sin(a)
     sag_w_n: np.ndarray
+    hs_cap: np.ndarray  # sag ratio cap of the resistance law per element
     coef: np.ndarray  # (K, n) merged resistance terms [N]
     pv: np.ndarray  # (K,)
     ps: np.ndarray  # (K,)
     hs_ref: float
-    hs_max: float
     # springs
     len_m: np.ndarray
-    stiffness_n: float  # EB
+    stiffness_n: float  # static E B
+    stiffness_dyn_n: float  # dynamic E_dyn B
     a_ernst: np.ndarray  # (w S)^2 / 12 per spring [N^2]
     t_floor_n: np.ndarray  # tangent modulus held constant below this tension
     k_floor_n: np.ndarray  # tangent modulus at the floor [N]
     carriage_coupling: np.ndarray  # 1 on the two springs beside the gravity take-up, else 0
     implicit: np.ndarray  # bool per spring: solved implicitly (beside a pulley)
     blocks: list  # element indices of each implicit block
+    impedance_ns_m: np.ndarray  # Z = sqrt(E_dyn B rho') per spring [N s/m]
     # damping
     damping: str
-    c_visc_ns: float  # C' [N s] (tension per unit strain rate)
-    tau_s: float  # relaxation time of the damper [s] (0 for "kv")
-    glassy_factor: float  # high-frequency stiffness / EB
+    relaxation_s: float  # relaxation time of the arm [s] (inf without an arm)
+    mesh_viscosity: float  # alpha
     # initial state
     tension_rest_n: np.ndarray
     hold_node: int
@@ -182,22 +215,40 @@ class System:
     dt_s: float
     dt_limit_s: float
     wave_loop_time_s: float
-    wave_speed_m_s: np.ndarray  # per element, unsoftened
-    # drives (slots: one per drive element; slot 0 is the master)
+    wave_speed_m_s: np.ndarray  # per element, dynamic modulus, unsoftened
+    # shafts (one per drive, braked or holdback pulley)
+    shaft_node: np.ndarray
+    shaft_mass_kg: np.ndarray
+    shaft_euler: np.ndarray  # e^(mu theta) static
+    shaft_euler_kinetic: np.ndarray  # e^(mu_k theta) sliding
+    shaft_drive: np.ndarray  # drive index or -1
+    shaft_holdback: np.ndarray  # 1 with a holdback
+    # drives (file order)
     drive_node: np.ndarray
+    drive_shaft: np.ndarray
     drive_share: np.ndarray
-    drive_limit_n: np.ndarray
-    drive_euler: np.ndarray  # e^{mu theta}
     drive_rated_n: np.ndarray
+    drive_limit_n: np.ndarray
+    drive_control: np.ndarray
+    drive_coupling: np.ndarray
+    drive_curves: list  # motor curve per drive: ((x, y), ...)
+    drive_fill_s: np.ndarray
+    drive_motor_mass_kg: np.ndarray
+    drive_trip_s: np.ndarray
+    master: int
     kp: float
     ki: float
+    bandwidth_rad_s: float
     v_ff_m_s: float  # reference speed at which the resistance feedforward is complete
     total_mass_kg: float
-    # brakes (slots)
+    # brakes (file order)
+    brake_shaft: np.ndarray
     brake_node: np.ndarray
     brake_force_n: np.ndarray
     brake_delay_s: np.ndarray
-    holdback_node: int
+    brake_ramp_s: np.ndarray
+    brake_curves: list  # force curve per brake, () for a linear ramp
+    brake_hold: np.ndarray
     # take-up
     takeup_gravity: bool
     takeup_weight_n: float
@@ -226,7 +277,9 @@ class System:
     te_n: float
     dx_m: np.ndarray
     s_end_m: np.ndarray  # position of each spring (element end) from the tail [m]
-    notes: list[str] = field(default_factory=list)  # informational
+    spring_head_in: int  # spring entering the first head pulley (T1)
+    spring_head_out: int  # spring leaving the last head drive pulley (T2)
+    notes: list[str] = field(default_factory=list)  # informational, for the message
     warnings: list[str] = field(default_factory=list)  # limits crossed before the start
 
     @property
@@ -237,6 +290,9 @@ class System:
     def t_max_s(self) -> float:
         return self.stop_command_s + self.stop_max_s + self.post_rest_s
 
+    @property
+    def shaft_mass_total_kg(self) -> float:
+        return float(self.shaft_mass_kg.sum() + self.drive_motor_mass_kg.sum())
 
 
 # --------------------------------------------------------------------------------------
@@ -244,7 +300,7 @@ class System:
 
 
 def pulley_reduced_mass_kg(diameter_m: float, belt_width_m: float) -> float:
-    """Estimated reduced mass of a non-drive pulley at the belt line [kg].
+    """Estimated reduced mass of a pulley at the belt line [kg].
 
     A welded drum pulley is modelled as a thin steel shell of diameter D, face B + 0.2 m and
     wall 12 mm + 1 % of D, plus 30 % for the end discs (a thin shell has J (2/D)^2 = m).
@@ -276,17 +332,30 @@ def chord_strain(tension_n, a_ernst, stiffness_n, t_floor_n, k_floor_n):
     return np.where(T >= tf, e, e_floor - (tf - T) / k_floor_n)
 
 
-def _merge_law(law: ResistanceLaw) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+def speed_loop_bandwidth(wave_loop_time_s: float) -> float:
+    """Default bandwidth of the vfd speed loop [rad/s]: a quarter of the loop's wave frequency,
+    ``omega_c = pi / (2 t_loop)``.
+
+    A speed loop that controls a flexible load through a colocated sensor must stay below the
+    load's first anti-resonance, the frequency at which the belt held at the drive pulley
+    rings (Ellis, Control System Design Guide, on resonance in servo loops; PHYSICS 5.1: the
+    speed loop's bandwidth is bounded by the wave loop time). Held at the drive, the loop
+    rings as a string of its whole length, ``omega_a = pi / t_loop``; the bandwidth is half
+    of that.
+    """
+    return 0.5 * math.pi / wave_loop_time_s
+
+
+def _merge_law(coef, pv, ps) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """Merge terms with the same (pv, ps) exponents: the kernel evaluates each pair once."""
     keys: dict[tuple[float, float], np.ndarray] = {}
-    for k in range(law.coef.shape[0]):
-        key = (float(law.pv[k]), float(law.ps[k]))
-        keys[key] = keys.get(key, 0.0) + law.coef[k]
-    items = [(k, c) for k, c in keys.items() if np.any(c != 0.0)] or [((0.0, 0.0), law.coef[0] * 0)]
-    coef = np.ascontiguousarray(np.vstack([c for _, c in items]), dtype=np.float64)
-    pv = np.array([k[0] for k, _ in items], dtype=np.float64)
-    ps = np.array([k[1] for k, _ in items], dtype=np.float64)
-    return coef, pv, ps
+    for k in range(coef.shape[0]):
+        key = (float(pv[k]), float(ps[k]))
+        keys[key] = keys.get(key, 0.0) + coef[k]
+    items = [(k, c) for k, c in keys.items() if np.any(c != 0.0)] or [((0.0, 0.0), coef[0] * 0)]
+    merged = np.ascontiguousarray(np.vstack([c for _, c in items]), dtype=np.float64)
+    return (merged, np.array([k[0] for k, _ in items], dtype=np.float64),
+            np.array([k[1] for k, _ in items], dtype=np.float64))
 
 
 def implicit_blocks(strand: np.ndarray) -> tuple[np.ndarray, list[list[int]]]:
@@ -326,28 +395,28 @@ def implicit_blocks(strand: np.ndarray) -> tuple[np.ndarray, list[list[int]]]:
     return implicit, blocks
 
 
-def stability_limit_s(mass_kg, len_m, stiffness_n, glassy_factor=1.0, implicit=None,
-                      c_visc_ns=0.0) -> float:
+def stability_limit_s(mass_kg, len_m, stiffness_n, implicit=None, viscosity_ns=None) -> float:
     """Step limit ``2 / omega_max`` of the explicit part of the scheme [s].
 
     ``omega_max^2 = max_j 2 (K_{j-1} + K_j) / M_j`` over the explicit springs (``K =
-    EB glassy_factor / len``, unsoftened; a Gershgorin bound, exactly ``dx / c`` for a uniform
-    chain). Springs marked ``implicit`` (beside pulleys) are solved implicitly and do not
-    limit the step. With ``c_visc_ns > 0`` the explicit Kelvin-Voigt limit per element,
-    ``(2 / omega_j) (sqrt(1 + zeta_j^2) - zeta_j)``, ``zeta_j = (c_{j-1} + c_j) / (M_j omega_j)``
-    with ``c = C' / len``.
+    stiffness / len`` with the instantaneous, unsoftened stiffness; a Gershgorin bound,
+    exactly ``dx / c`` for a uniform chain). Springs marked ``implicit`` (beside pulleys) are
+    solved implicitly and do not limit the step. With ``viscosity_ns`` (the Kelvin-Voigt
+    coefficient per spring, tension per relative speed [N s/m]) the explicit Kelvin-Voigt
+    limit per element, ``(2 / omega_j) (sqrt(1 + zeta_j^2) - zeta_j)``, ``zeta_j =
+    (c_{j-1} + c_j) / (M_j omega_j)``.
     """
     n = len(mass_kg)
     exp_ = np.ones(n) if implicit is None else (~np.asarray(implicit)).astype(float)
-    K = stiffness_n * glassy_factor / len_m * exp_
+    K = stiffness_n / len_m * exp_
     Ksum = K + np.roll(K, 1)
     w = np.sqrt(2.0 * Ksum / mass_kg)
     ok = w > 0.0
     if not ok.any():
         return math.inf
     w = w[ok]
-    if c_visc_ns > 0.0:
-        c = c_visc_ns / len_m * exp_
+    if viscosity_ns is not None:
+        c = np.asarray(viscosity_ns) * exp_
         zeta = ((c + np.roll(c, 1))[ok]) / (mass_kg[ok] * w)
         lim = (2.0 / w) * (np.sqrt(1.0 + zeta * zeta) - zeta)
     else:
@@ -379,11 +448,85 @@ def check_scenario(scn: Scenario, conv: Conveyor, opts: DynamicsOptions | None =
                 f"scenario.stop.time_s: {scn.stop.time_s:g} s is not longer than the brake "
                 f"delay ({max(delays):g} s, brakes[].delay_s); an auto-sized brake cannot stop "
                 "the belt in that time")
+    dol = [i for i, d in enumerate(conv.drives) if d.control == "dol"]
+    if dol and scn.stop.mode == "controlled":
+        raise InputError(
+            f"scenario.stop.mode: 'controlled' needs vfd drives (drives[{dol[0]}].control is "
+            "'dol': a motor on the line cannot follow a stopping curve); use 'coast' or "
+            "'brake'")
+    if dol and scn.formulation == "support":
+        raise InputError("scenario.formulation: 'support' imposes the drive pulleys' speed, "
+                         f"which needs vfd drives (drives[{dol[0]}].control is 'dol')")
     if scn.formulation == "support" and scn.start.control == "torque":
         raise InputError("scenario.start.control: 'torque' needs formulation 'relative' (the "
                          "moving-support formulation imposes the drive pulley's motion)")
-    if opts.damping not in ("sls", "kv", "off"):
-        raise InputError(f"damping: unknown '{opts.damping}'; valid: sls, kv, off")
+    if opts.damping not in ("belt", "off"):
+        raise InputError(f"damping: unknown '{opts.damping}'; valid: belt, off")
+
+
+def brake_force_auto(total_mass_kg: float, v_d: float, te_n: float, stop_s: float,
+                     delay_s: float, ramp_s: float = 0.0) -> float:
+    """Total brake force for a rigid-body stop in ``stop_s`` [N] (no holding minimum).
+
+    The belt coasts for ``delay_s`` decelerating at ``Te / M`` (accelerating when Te < 0, a
+    regenerative belt), then the brake force builds linearly over ``ramp_s`` to ``F_b`` and,
+    with the running resistance, stops it: ``M v_1 = Te t_b + F_b (t_b - r / 2)`` with
+    ``t_b = t_stop - t_delay`` and ``v_1 = v - Te t_delay / M`` (for ``t_b >= r``).
+
+    Parameters
+    ----------
+    total_mass_kg : float
+        All moving mass reduced to the belt line [kg].
+    v_d : float
+        Design speed [m/s].
+    te_n : float
+        Steady peripheral force (resistance + gravity) [N].
+    stop_s, delay_s, ramp_s : float
+        Target stop time, brake delay and ramp [s].
+    """
+    v1 = v_d - te_n * delay_s / total_mass_kg
+    if v1 <= 0.0:
+        return 0.0
+    t_b = stop_s - delay_s
+    r = min(ramp_s, t_b)
+    return max((total_mass_kg * v1 - te_n * t_b) / (t_b - 0.5 * r), 0.0)
+
+
+def brake_stop_time(total_mass_kg: float, v_d: float, te_n: float, force_n: float,
+                    delay_s: float, ramp_s: float = 0.0) -> float:
+    """Rigid-body stop time with a brake force ``force_n`` [s] (inverse of
+    :func:`brake_force_auto` for a stop past the ramp; inf if the belt does not stop)."""
+    v1 = v_d - te_n * delay_s / total_mass_kg
+    if v1 <= 0.0:
+        return delay_s
+    if te_n + force_n <= 0.0:
+        return math.inf
+    t_b = (total_mass_kg * v1 + 0.5 * force_n * ramp_s) / (te_n + force_n)
+    return delay_s + max(t_b, ramp_s)
+
+
+def _fixed_takeup_level(T_rel, T_run, len_m, a_el, EB, t_floor, k_floor) -> float:
+    """Level of the at-rest tensions of a fixed take-up: the belt has the same length at rest
+    as in the running state of statics (the loop length is fixed), found by bisection [N]."""
+    target = float(np.sum(len_m * chord_strain(T_run, a_el, EB, t_floor, k_floor)))
+
+    def excess(level):
+        return float(np.sum(len_m * chord_strain(T_rel + level, a_el, EB, t_floor, k_floor))) \
+            - target
+
+    lo = -float(T_rel.max()) - abs(target) * EB - 1.0
+    hi = float(np.abs(T_run).max()) + abs(float(T_rel.min())) + 1.0
+    while excess(hi) < 0.0:
+        hi *= 2.0
+    for _ in range(200):
+        mid = 0.5 * (lo + hi)
+        if excess(mid) < 0.0:
+            lo = mid
+        else:
+            hi = mid
+        if hi - lo < 1e-9 * max(1.0, abs(hi)):
+            break
+    return 0.5 * (lo + hi)
 
 
 # --------------------------------------------------------------------------------------
@@ -406,7 +549,8 @@ def build_system(conv: Conveyor, scn: Scenario, steady, options: DynamicsOptions
     ------
     InputError
         Impossible scenario (names the field): brake stop without brakes, fixed step above
-        the stability limit, torque start with the support formulation, non-positive times.
+        the stability limit, torque start with the support formulation, non-positive times,
+        a controlled stop with dol drives.
     """
     opts = options or DynamicsOptions()
     check_scenario(scn, conv, opts)
@@ -415,37 +559,64 @@ def build_system(conv: Conveyor, scn: Scenario, steady, options: DynamicsOptions
     n = loop.n
     notes: list[str] = []
     v_d = float(loop.speed_m_s)
-    EB = float(loop.belt.stiffness_n)
+    belt = loop.belt
+    EB = float(belt.stiffness_n)
+    EBd = float(belt.dynamic_stiffness_n)
     dx = loop.dx_m
     nxt = np.roll(np.arange(n), -1)
 
-    # ---- masses
-    belt_mass = loop.mass_kg.copy()
-    mass = belt_mass.copy()
-    drive_inertia = np.zeros(n)
-    drive_nodes: dict[int, list] = {}
-    for d in conv.drives:
-        node = loop.i_head if d.position == "head" else loop.i_tail
-        drive_nodes.setdefault(node, []).append(d)
-        drive_inertia[node] += d.inertia_kg_m2 * (2.0 / d.pulley_diameter_m) ** 2
-    mass += drive_inertia
-    for node in sorted({loop.i_head, loop.i_tail, loop.i_takeup}):
-        if node in drive_nodes:
-            continue  # the drive's inertia already includes its pulley
+    # ---- shafts: every drive pulley, and the braked and holdback pulleys
+    mass = loop.mass_kg.copy()
+    belt_mass = mass.copy()
+    shafts: dict[int, dict] = {}
+
+    def plain_mass(node: int) -> float:
         if opts.pulley_mass_kg is not None:
-            mass[node] += float(opts.pulley_mass_kg)
-        else:
-            diam = 2.0 * dx[node] / math.pi  # pulley elements are half a circumference
-            mass[node] += pulley_reduced_mass_kg(diam, loop.belt.width_m)
-    total_mass = float(mass.sum())
+            return float(opts.pulley_mass_kg)
+        return pulley_reduced_mass_kg(loop.pulley_at(node).diameter_m, belt.width_m)
+
+    drive_motor = np.zeros(len(conv.drives))
+    for i, d in enumerate(conv.drives):
+        node = loop.drive_elements[i]
+        red = (2.0 / d.pulley_diameter_m) ** 2
+        total = (d.inertia_kg_m2 + d.flywheel_kg_m2) * red
+        if d.coupling != "none":
+            j_m = (d.motor_inertia_kg_m2 if d.motor_inertia_kg_m2 is not None
+                   else MOTOR_INERTIA_SHARE * d.inertia_kg_m2)
+            drive_motor[i] = max(j_m * red, 1e-6 * total + 1.0)
+            total = max(total - j_m * red, 0.0)
+        # a drive pulley has at least its own shell
+        total = max(total, pulley_reduced_mass_kg(d.pulley_diameter_m, belt.width_m))
+        p = loop.pulley_at(node)
+        shafts[node] = dict(mass=total, euler=p.euler, euler_k=p.euler_kinetic, drive=i, hb=0)
+    extra_nodes = [loop.brake_element(b) for b in conv.brakes]
+    if conv.holdback:
+        extra_nodes.append(loop.i_head)
+    for node in extra_nodes:
+        if node not in shafts:
+            p = loop.pulley_at(node)
+            shafts[node] = dict(mass=plain_mass(node), euler=p.euler, euler_k=p.euler_kinetic,
+                                drive=-1, hb=0)
+    if conv.holdback:
+        shafts[loop.i_head]["hb"] = 1
+    for p in loop.pulleys:
+        if p.element not in shafts:
+            mass[p.element] += plain_mass(p.element)
+    shaft_nodes = sorted(shafts)
+    shaft_index = {node: k for k, node in enumerate(shaft_nodes)}
+    sh_mass = np.array([shafts[s]["mass"] for s in shaft_nodes], dtype=float)
+    sh_eu = np.array([shafts[s]["euler"] for s in shaft_nodes], dtype=float)
+    sh_euk = np.array([shafts[s]["euler_k"] for s in shaft_nodes], dtype=float)
+    if not opts.slip:
+        sh_eu[:] = 1e12
+    total_mass = float(mass.sum() + sh_mass.sum() + drive_motor.sum())
 
     # ---- forces
     gravity = loop.gravity_n.copy() if opts.gravity else np.zeros(n)
-    coef, pv, ps = _merge_law(law)
+    coef, pv, ps = _merge_law(law.coef, law.pv, law.ps)
     if not opts.resistances:
-        coef = np.zeros((1, n))
-        pv = np.zeros(1)
-        ps = np.zeros(1)
+        coef, pv, ps = np.zeros((1, n)), np.zeros(1), np.zeros(1)
+    hs_cap = np.broadcast_to(np.asarray(law.hs_max, dtype=float), (n,)).copy()
 
     # ---- springs
     len_m = 0.5 * (dx + dx[nxt])
@@ -453,7 +624,7 @@ def build_system(conv: Conveyor, scn: Scenario, steady, options: DynamicsOptions
     a_el = (dx * wS2 + dx[nxt] * wS2[nxt]) / (dx + dx[nxt]) / 12.0
     if not opts.ernst:
         a_el = np.zeros(n)
-    t_floor = np.maximum(np.sqrt(12.0 * a_el) / (8.0 * law.hs_max), 1.0)
+    t_floor = np.maximum(np.sqrt(12.0 * a_el) / (8.0 * HS_FLOOR), 1.0)
     k_floor = EB * t_floor**3 / (t_floor**3 + a_el * EB)
     carriage = np.zeros(n)
     gravity_tu = conv.takeup.type == "gravity"
@@ -462,32 +633,20 @@ def build_system(conv: Conveyor, scn: Scenario, steady, options: DynamicsOptions
         carriage[itu - 1] = 1.0
         carriage[itu] = 1.0
 
-    # ---- waves
-    rho = (loop.mG_kg_m + loop.mL_kg_m + loop.mR_kg_m)
-    c_wave = np.sqrt(EB / rho)
+    # ---- waves (dynamic modulus)
+    rho = loop.mG_kg_m + loop.mL_kg_m + loop.mR_kg_m
+    c_wave = np.sqrt(EBd / rho)
     t_loop = float(np.sum(dx / c_wave))
+    rho_spring = (rho * dx + rho[nxt] * dx[nxt]) / (dx + dx[nxt])
+    impedance = np.sqrt(EBd * rho_spring)
 
-    # ---- damping (C' so that the loop's lowest mode has damping_ratio). The lowest mode is
-    # estimated as the quarter wave over the whole loop, pi / (2 t_loop): the master drive
-    # pins the belt and a gravity take-up is a free end (the closed ring's 2 pi / t_loop is
-    # four times higher); Kelvin-Voigt-like damping falls with frequency, so the ratio is
-    # set where it is smallest.
-    zeta = float(opts.damping_ratio)
-    w1 = 0.5 * math.pi / t_loop
-    mu = float(opts.glassy_ratio)
-    if opts.damping == "off" or zeta <= 0.0:
-        damping, c_visc, tau, glassy = "off", 0.0, 0.0, 1.0
-    elif opts.damping == "kv":
-        damping, c_visc, tau, glassy = "kv", 2.0 * zeta * EB / w1, 0.0, 1.0
+    # ---- damping: the belt's standard linear solid and the mesh viscosity
+    if opts.damping == "off":
+        damping, tau, alpha = "off", math.inf, 0.0
     else:
-        if mu * zeta > 0.2:
-            mu = 0.2 / zeta
-            notes.append(f"glassy_ratio lowered to {mu:.3g} for damping_ratio {zeta:g}")
-        # zeta = (y / 2) / (1 + mu^2 y^2), y = C' w1 / EB; the smaller root
-        y = (0.5 - math.sqrt(0.25 - 4.0 * mu * mu * zeta * zeta)) / (2.0 * mu * mu * zeta)
-        damping, c_visc = "sls", y * EB / w1
-        tau = mu * c_visc / EB
-        glassy = 1.0 + 1.0 / mu
+        damping, tau, alpha = "belt", float(belt.relaxation_s), float(opts.mesh_viscosity)
+    glassy = EBd if damping == "belt" else EB
+    viscosity = alpha * impedance  # [N s/m] per spring
 
     # ---- take-up
     tu_weight = 0.0
@@ -499,8 +658,7 @@ def build_system(conv: Conveyor, scn: Scenario, steady, options: DynamicsOptions
 
     # ---- step
     implicit, blocks = implicit_blocks(loop.strand)
-    dt_lim = stability_limit_s(mass, len_m, EB, glassy, implicit,
-                               c_visc if damping == "kv" else 0.0)
+    dt_lim = stability_limit_s(mass, len_m, glassy, implicit, viscosity)
     if scn.dt_s == "auto":
         dt = opts.dt_safety * dt_lim
     else:
@@ -517,27 +675,12 @@ def build_system(conv: Conveyor, scn: Scenario, steady, options: DynamicsOptions
         else law.evaluate(v_d)
     te = float(np.sum(steady.drive_force_n))
     r_sum = float(np.sum(R_run))
-    slots = sorted(drive_nodes.items(), key=lambda kv: -sum(d.share for d in kv[1]))
-    d_node, d_share, d_lim, d_eut, d_rated = [], [], [], [], []
-    for node, ds in slots:
-        share = sum(d.share for d in ds)
-        rated = 0.0
-        lim = 0.0
-        for d in ds:
-            if d.rated_power_kw is not None:
-                r = d.rated_power_kw * 1e3 / v_d
-            else:
-                r = 1.25 * d.share * max(abs(te), r_sum)
-            rated += r
-            lim += d.torque_limit * r
-        d_node.append(node)
-        d_share.append(share)
-        d_lim.append(lim)
-        d_rated.append(rated)
-        d_eut.append(math.exp(sum(d.friction * math.radians(d.wrap_deg) for d in ds)))
-    # the speed loop stays below the loop's lowest elastic mode (a rigid-body design above
-    # it would let the drive ring against the belt)
-    wc = min(float(opts.controller_bandwidth_rad_s), 0.5 * w1)
+    rated = np.array([d.rated_power_kw * 1e3 / v_d if d.rated_power_kw is not None
+                      else 1.25 * d.share * max(abs(te), r_sum) for d in conv.drives])
+    limit = np.array([d.torque_limit for d in conv.drives]) * rated
+    master = master_drive(conv)
+    wc = (float(opts.controller_bandwidth_rad_s) if opts.controller_bandwidth_rad_s is not None
+          else speed_loop_bandwidth(t_loop))
     # the feedforward of the running resistance ramps in with the reference speed, reaching
     # full when the reference has run for one wave loop time (the time the motion needs to
     # spread round the belt)
@@ -552,7 +695,6 @@ def build_system(conv: Conveyor, scn: Scenario, steady, options: DynamicsOptions
     # any (a friction drive could not hold a loaded incline or decline by itself), else the
     # master drive
     hold = rest_hold_element(conv, loop)
-    assert conv.brakes or hold == d_node[0]
     hold_force = float(gravity.sum())
     T_rest = rest_walk(loop, hold, gravity)  # relative to T[itu - 1] = 0; fix the level
     if gravity_tu:
@@ -581,25 +723,35 @@ def build_system(conv: Conveyor, scn: Scenario, steady, options: DynamicsOptions
     tu_lo, tu_hi = mid - 0.5 * travel, mid + 0.5 * travel
 
     # ---- brakes
-    b_node, b_force, b_delay = [], [], []
-    stop_mode = STOP_CODES[scn.stop.mode]
+    b_force = []
     if conv.brakes:
         auto = [b for b in conv.brakes if b.force_kn == "auto"]
         fixed_total = sum(b.force_kn * 1e3 for b in conv.brakes if b.force_kn != "auto")
         auto_each = 0.0
         if auto:
             delay = max(b.delay_s for b in auto)
-            f_total = brake_force_auto(total_mass, v_d, te, float(gravity.sum()),
-                                       scn.stop.time_s, delay)
+            ramp = max(b.ramp_s for b in auto)
+            f_stop = brake_force_auto(total_mass, v_d, te, scn.stop.time_s, delay, ramp)
+            f_hold = HOLD_MARGIN * abs(float(gravity.sum()))
+            f_total = max(f_stop, f_hold)
+            if f_hold > f_stop:
+                t_gives = brake_stop_time(total_mass, v_d, te, f_hold, delay, ramp)
+                notes.append(
+                    f"auto brake force {f_hold / 1e3:.4g} kN is set by holding the loaded belt "
+                    f"at rest ({HOLD_MARGIN:g} x the net gravity pull {abs(gravity.sum()) / 1e3:.4g}"
+                    f" kN), not by the stop time {scn.stop.time_s:g} s (which needs "
+                    f"{f_stop / 1e3:.4g} kN): the rigid-body brake stop then takes about "
+                    f"{t_gives:.3g} s")
             auto_each = max(f_total - fixed_total, 0.0) / len(auto)
         for b in conv.brakes:
-            b_node.append(loop.i_head if b.position == "head" else loop.i_tail)
             b_force.append(auto_each if b.force_kn == "auto" else b.force_kn * 1e3)
-            b_delay.append(b.delay_s)
-    holdback = loop.i_head if conv.holdback else -1
 
     # ---- durations
-    post = opts.post_rest_s if opts.post_rest_s is not None else max(5.0, t_loop)
+    hold_time = max([b.delay_s + (b.force_curve[-1][0] if b.force_curve else b.ramp_s)
+                     for b in conv.brakes if b.hold] or [0.0])
+    trip = max(d.trip_s for d in conv.drives)
+    post = opts.post_rest_s if opts.post_rest_s is not None else (
+        max(5.0, t_loop) + hold_time + trip)
     coast_est = total_mass * v_d / te if te > 0 else scn.stop.time_s
     stop_max = 3.0 * max(scn.stop.time_s, coast_est) + 2.0 * t_loop + 10.0
     start_s = float(scn.start.time_s)
@@ -619,89 +771,58 @@ def build_system(conv: Conveyor, scn: Scenario, steady, options: DynamicsOptions
     probes = np.unique(np.clip(np.searchsorted(s_end, targets), 0, n - 1))
     stride = max(1, int(math.ceil(n / max(opts.surface_points, 1))))
     surf = np.arange(0, n, stride)
+    head_drives = [loop.drive_elements[i] for i, d in enumerate(conv.drives)
+                   if d.position == "head"]
+    s_head_out = max(head_drives) if head_drives else loop.i_head
 
-    sys = System(
+    return System(
         n=n, i_head=loop.i_head, i_tail=loop.i_tail, i_takeup=itu, strand=loop.strand.copy(),
         mass_kg=mass, belt_mass_kg=belt_mass, gravity_n=gravity, sag_w_n=loop.sag_w_n.copy(),
-        coef=coef, pv=pv, ps=ps, hs_ref=float(law.hs_ref), hs_max=float(law.hs_max),
-        len_m=len_m, stiffness_n=EB, a_ernst=a_el, t_floor_n=t_floor, k_floor_n=k_floor,
-        carriage_coupling=carriage, implicit=implicit, blocks=blocks,
-        damping=damping, c_visc_ns=c_visc, tau_s=tau, glassy_factor=glassy,
+        hs_cap=hs_cap, coef=coef, pv=pv, ps=ps, hs_ref=float(law.hs_ref),
+        len_m=len_m, stiffness_n=EB, stiffness_dyn_n=EBd, a_ernst=a_el, t_floor_n=t_floor,
+        k_floor_n=k_floor, carriage_coupling=carriage, implicit=implicit, blocks=blocks,
+        impedance_ns_m=impedance, damping=damping, relaxation_s=tau, mesh_viscosity=alpha,
         tension_rest_n=T_rest, hold_node=hold, hold_force_n=hold_force,
         dt_s=dt, dt_limit_s=dt_lim, wave_loop_time_s=t_loop, wave_speed_m_s=c_wave,
-        drive_node=np.array(d_node, dtype=np.int64), drive_share=np.array(d_share),
-        drive_limit_n=np.array(d_lim), drive_euler=np.array(d_eut),
-        drive_rated_n=np.array(d_rated), kp=kp, ki=ki, v_ff_m_s=v_ff,
+        shaft_node=np.array(shaft_nodes, dtype=np.int64), shaft_mass_kg=sh_mass,
+        shaft_euler=sh_eu, shaft_euler_kinetic=sh_euk,
+        shaft_drive=np.array([shafts[s]["drive"] for s in shaft_nodes], dtype=np.int64),
+        shaft_holdback=np.array([shafts[s]["hb"] for s in shaft_nodes], dtype=np.int64),
+        drive_node=np.array(loop.drive_elements, dtype=np.int64),
+        drive_shaft=np.array([shaft_index[e] for e in loop.drive_elements], dtype=np.int64),
+        drive_share=np.array([d.share for d in conv.drives]), drive_rated_n=rated,
+        drive_limit_n=limit,
+        drive_control=np.array([VFD if d.control == "vfd" else DOL for d in conv.drives],
+                               dtype=np.int64),
+        drive_coupling=np.array([COUPLING_CODES[d.coupling] for d in conv.drives],
+                                dtype=np.int64),
+        drive_curves=[tuple(d.curve) for d in conv.drives],
+        drive_fill_s=np.array([d.coupling_fill_s for d in conv.drives]),
+        drive_motor_mass_kg=drive_motor,
+        drive_trip_s=np.array([d.trip_s for d in conv.drives]),
+        master=master, kp=kp, ki=ki, bandwidth_rad_s=wc, v_ff_m_s=v_ff,
         total_mass_kg=total_mass,
-        brake_node=np.array(b_node, dtype=np.int64), brake_force_n=np.array(b_force, dtype=float),
-        brake_delay_s=np.array(b_delay, dtype=float), holdback_node=holdback,
+        brake_shaft=np.array([shaft_index[loop.brake_element(b)] for b in conv.brakes],
+                             dtype=np.int64),
+        brake_node=np.array([loop.brake_element(b) for b in conv.brakes], dtype=np.int64),
+        brake_force_n=np.array(b_force, dtype=float),
+        brake_delay_s=np.array([b.delay_s for b in conv.brakes], dtype=float),
+        brake_ramp_s=np.array([b.ramp_s for b in conv.brakes], dtype=float),
+        brake_curves=[tuple(b.force_curve or ()) for b in conv.brakes],
+        brake_hold=np.array([1 if b.hold else 0 for b in conv.brakes], dtype=np.int64),
         takeup_gravity=gravity_tu, takeup_weight_n=tu_weight, takeup_inertia_kg=tu_inertia,
         takeup_lo_m=tu_lo, takeup_hi_m=tu_hi, takeup_run_m=x_run,
         v_design=v_d, v_eps=float(opts.v_eps_m_s),
         start_control=(profiles.FORCE if opts.force_start_n is not None
                        else START_CODES[scn.start.control]),
-        start_s=start_s, run_s=float(scn.run_s), stop_mode=stop_mode,
+        start_s=start_s, run_s=float(scn.run_s), stop_mode=STOP_CODES[scn.stop.mode],
         stop_s=float(scn.stop.time_s),
         formulation=RELATIVE if scn.formulation == "relative" else SUPPORT,
         force_start_n=float(opts.force_start_n or 0.0),
         pre_rest_s=float(opts.pre_rest_s), post_rest_s=float(post), stop_max_s=stop_max,
         record_dt_s=float(scn.record_dt_s), surface_dt_s=surf_dt,
         probe_springs=probes.astype(np.int64), surface_springs=surf.astype(np.int64),
-        steady_tension_n=T_run.copy(), te_n=te, dx_m=dx.copy(), s_end_m=s_end, notes=notes,
-        warnings=warns,
+        steady_tension_n=T_run.copy(), te_n=te, dx_m=dx.copy(), s_end_m=s_end,
+        spring_head_in=(loop.i_head - 1) % n, spring_head_out=int(s_head_out),
+        notes=notes, warnings=warns,
     )
-    return sys
-
-
-def brake_force_auto(total_mass_kg: float, v_d: float, te_n: float, gravity_sum_n: float,
-                     stop_s: float, delay_s: float) -> float:
-    """Total brake force for a rigid-body stop in ``stop_s`` [N].
-
-    The belt coasts for ``delay_s`` decelerating at ``Te / M`` (accelerating when Te < 0,
-    a regenerative belt), then the brake ``F_b`` and the running resistance stop it:
-    ``F_b = M v_1 / (t_stop - t_delay) - Te`` with ``v_1 = v - Te t_delay / M``. At least
-    1.2 x the net gravity pull of the loaded loop, so the brake holds the belt at rest.
-
-    Parameters
-    ----------
-    total_mass_kg : float
-        All moving mass reduced to the belt line [kg].
-    v_d : float
-        Design speed [m/s].
-    te_n : float
-        Steady peripheral force (resistance + gravity) [N].
-    gravity_sum_n : float
-        Net gravity force round the loop (material lift) [N].
-    stop_s, delay_s : float
-        Target stop time and brake delay [s].
-    """
-    v1 = v_d - te_n * delay_s / total_mass_kg
-    if v1 <= 0.0:
-        f = 0.0
-    else:
-        f = total_mass_kg * v1 / (stop_s - delay_s) - te_n
-    return max(f, 1.2 * abs(gravity_sum_n), 0.0)
-
-
-def _fixed_takeup_level(T_rel, T_run, len_m, a_el, EB, t_floor, k_floor) -> float:
-    """Level of the at-rest tensions of a fixed take-up: the belt has the same length at rest
-    as in the running state of statics (the loop length is fixed), found by bisection [N]."""
-    target = float(np.sum(len_m * chord_strain(T_run, a_el, EB, t_floor, k_floor)))
-
-    def excess(level):
-        return float(np.sum(len_m * chord_strain(T_rel + level, a_el, EB, t_floor, k_floor))) \
-            - target
-
-    lo = -float(T_rel.max()) - abs(target) * EB - 1.0
-    hi = float(np.abs(T_run).max()) + abs(float(T_rel.min())) + 1.0
-    while excess(hi) < 0.0:
-        hi *= 2.0
-    for _ in range(200):
-        mid = 0.5 * (lo + hi)
-        if excess(mid) < 0.0:
-            lo = mid
-        else:
-            hi = mid
-        if hi - lo < 1e-9 * max(1.0, abs(hi)):
-            break
-    return 0.5 * (lo + hi)

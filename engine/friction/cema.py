@@ -100,7 +100,7 @@ class CemaParams:
 
 def build(loop: Loop, conv: Conveyor, temperature_c: float, params: CemaParams) -> ResistanceLaw:
     """Per-element CEMA resistance law [N]."""
-    b = LawBuilder(loop.n, loop.sag_w_n)
+    b = LawBuilder(loop.n, loop.sag_w_n, hs_max=loop.sag_limit)
     kt = params.kt if params.kt is not None else kt_factor(temperature_c)
     carry = loop.strand == CARRY
     ret = loop.strand == RETURN

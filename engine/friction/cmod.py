@@ -95,7 +95,7 @@ def build(loop: Loop, conv: Conveyor, temperature_c: float, params: CmodParams) 
         ``feed``, ``secondary``, ``accessories``.
     """
     p = params
-    b = LawBuilder(loop.n, loop.sag_w_n)
+    b = LawBuilder(loop.n, loop.sag_w_n, hs_max=loop.sag_limit)
     kt = p.kt if p.kt is not None else kt_factor(temperature_c)
     carry = loop.strand == CARRY
     ret = loop.strand == RETURN

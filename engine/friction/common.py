@@ -18,36 +18,43 @@ TP_OTHER_N = 100 * LBF
 
 
 def lumped_index(loop: Loop, conv: Conveyor, position: str) -> int:
-    """Element that carries the lumped resistances of the head or tail pulley.
+    """Element that carries the lumped resistances of the head or tail pulleys.
 
-    On a drive pulley they act on the belt just after it (the head scraper works on the
-    return belt; the drive pulley's own bearing losses are the drive's), so that
-    T1 - T2 equals the drive's share of Te exactly (Harrison 2008: Pe = v (T1 - T2)).
+    At a driven end they act on the belt just after its last drive pulley (the head scraper
+    works on the return belt; the drive pulleys' own bearing losses are the drives'), so that
+    the drive pulleys' T_in - T_out add up to their shares of Te exactly (Harrison 2008:
+    Pe = v (T1 - T2)); at an end without a drive, on its plain pulley.
     """
-    idx = loop.i_head if position == "head" else loop.i_tail
-    if any(d.position == position for d in conv.drives):
-        idx = (idx + 1) % loop.n
-    return idx
+    own = [p for p in loop.pulleys if p.position == position and not p.takeup]
+    driven = [p for p in own if p.drive >= 0]
+    if driven:
+        return (driven[-1].element + 1) % loop.n
+    if own:
+        return own[0].element
+    # a tail take-up pulley is the tail pulley of an undriven tail
+    return next(p.element for p in loop.pulleys if p.position == position)
 
 
 def lumped_indices(loop: Loop, conv: Conveyor) -> list[int]:
     """Elements carrying the pulley resistances: head, tail and a separate take-up pulley."""
     idx = {lumped_index(loop, conv, "head"), lumped_index(loop, conv, "tail")}
-    if loop.i_takeup not in (loop.i_head, loop.i_tail):
+    if loop.i_takeup not in idx:
         idx.add(loop.i_takeup)
     return sorted(idx)
 
 
 def pulley_allowances(loop: Loop, conv: Conveyor) -> np.ndarray:
-    """Per-element pulley resistance allowances [N] (CEMA T_p) at the pulleys."""
+    """Per-element pulley resistance allowances [N] (CEMA T_p): 200 lbf per drive pulley and
+    150 lbf for the take-up pulley (slack side), 100 lbf for other pulleys, each drive's at its
+    end's lumped element."""
     out = np.zeros(loop.n)
-    drive_pos = {d.position for d in conv.drives}
-    for pos in ("head", "tail"):
-        out[lumped_index(loop, conv, pos)] += TP_TIGHT_N if pos in drive_pos else TP_OTHER_N
-    if loop.i_takeup not in (loop.i_head, loop.i_tail):
-        out[loop.i_takeup] += TP_SLACK_N
-    elif loop.i_takeup == loop.i_tail and "tail" not in drive_pos:
-        out[loop.i_tail] += TP_SLACK_N - TP_OTHER_N
+    for p in loop.pulleys:
+        if p.drive >= 0:
+            out[lumped_index(loop, conv, p.position)] += TP_TIGHT_N
+        elif p.takeup:
+            out[p.element] += TP_SLACK_N
+        else:
+            out[p.element] += TP_OTHER_N
     return out
 
 

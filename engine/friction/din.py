@@ -71,7 +71,7 @@ class DinParams:
 
 def build(loop: Loop, conv: Conveyor, temperature_c: float, params: DinParams) -> ResistanceLaw:
     """Per-element DIN 22101 resistance law [N] (temperature is ignored)."""
-    b = LawBuilder(loop.n, loop.sag_w_n)
+    b = LawBuilder(loop.n, loop.sag_w_n, hs_max=loop.sag_limit)
     mass = loop.mR_kg_m + (loop.mG_kg_m + loop.mL_kg_m) * loop.cos_a
     fh = G * loop.dx_m * mass
     carry = np.where(loop.strand == CARRY, params.f_carry * fh, 0.0)

@@ -316,7 +316,7 @@ def build(loop: Loop, conv: Conveyor, temperature_c: float, params: NonlinParams
         ``feed``, ``secondary``, ``accessories``.
     """
     p = params
-    b = LawBuilder(loop.n, loop.sag_w_n)
+    b = LawBuilder(loop.n, loop.sag_w_n, hs_max=loop.sag_limit)
     idl = loop.is_idler
     carry = loop.strand == CARRY
     v = loop.speed_m_s

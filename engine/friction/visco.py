@@ -129,7 +129,7 @@ def build(loop: Loop, conv: Conveyor, temperature_c: float, params: ViscoParams)
         ``feed``, ``secondary``, ``accessories``.
     """
     p = params
-    b = LawBuilder(loop.n, loop.sag_w_n)
+    b = LawBuilder(loop.n, loop.sag_w_n, hs_max=loop.sag_limit)
     idl = loop.is_idler
     carry = loop.strand == CARRY
     ret = loop.strand == RETURN

@@ -1,0 +1,218 @@
+"""The kernel's arguments, grouped by what they describe (plain float64 / int64 arrays).
+
+Named tuples that numba compiles as structs: the kernel is called by keyword with one of each
+(:func:`engine.dynamics.kernel.run_cycle`), and its passes take the groups they need. Built
+by :func:`engine.dynamics.simulate.prepare` from a :class:`~engine.dynamics.model.System`.
+Units SI; per-element arrays have length n, per-spring arrays length n (spring j joins
+elements j and j + 1).
+"""
+
+from __future__ import annotations
+
+from typing import NamedTuple
+
+import numpy as np
+
+__all__ = ["Nodes", "Law", "Springs", "Blocks", "Shafts", "Drives", "Brakes", "State", "Out",
+           "Work"]
+
+
+class Nodes(NamedTuple):
+    """Belt elements: moving mass [kg], dt / mass [s/kg], gravity along the belt [N], weight
+    of the mean speed [kg], sag weight and sag cap over the reference sag [N, -]."""
+
+    mass: np.ndarray
+    hm: np.ndarray
+    gravity: np.ndarray
+    w_mean: np.ndarray
+    sw_ref: np.ndarray
+    hsm_ref: np.ndarray
+
+
+class Law(NamedTuple):
+    """The resistance law (``engine.law``), terms merged by exponents, with exponent codes
+    and the elements of sparse terms."""
+
+    coef: np.ndarray
+    pvc: np.ndarray
+    pvv: np.ndarray
+    psc: np.ndarray
+    psv: np.ndarray
+    t_sparse: np.ndarray
+    t_ptr: np.ndarray
+    t_idx: np.ndarray
+
+
+class Springs(NamedTuple):
+    """Springs: dt / length, Ernst constant times EB, floor tension and floor modulus over EB,
+    mesh viscosity per strain increment [N], carriage coupling (1 beside the gravity take-up),
+    length [m]; free element and spring ranges ([start, end) rows)."""
+
+    dl: np.ndarray
+    a_eb: np.ndarray
+    t_floor: np.ndarray
+    kfl_eb: np.ndarray
+    kvs: np.ndarray
+    car_ind: np.ndarray
+    len_m: np.ndarray
+    seg_node: np.ndarray
+    seg_spring: np.ndarray
+
+
+class Blocks(NamedTuple):
+    """Implicit blocks: element ranges ``ptr``, their elements, carriage flag, each block
+    element's left spring and mass / dt; the shaft of every element (-1 none)."""
+
+    ptr: np.ndarray
+    nodes: np.ndarray
+    car: np.ndarray
+    left: np.ndarray
+    mdt: np.ndarray
+    node_shaft: np.ndarray
+
+
+class Shafts(NamedTuple):
+    """Pulley shafts (every drive pulley and braked or holdback pulley): element, reduced
+    mass [kg], e^(mu theta) - 1 static and sliding, drive (-1 none), holdback flag; state:
+    speed at the rim [m/s], slip direction (0 stuck, +1 shaft faster, -1 belt faster); per
+    step: brake force on the shaft [N] and the brake force it gave [N]."""
+
+    node: np.ndarray
+    mass: np.ndarray
+    cs: np.ndarray
+    ck: np.ndarray
+    drive: np.ndarray
+    hb: np.ndarray
+    vs: np.ndarray
+    slip: np.ndarray
+    fb: np.ndarray
+    fb_out: np.ndarray
+
+
+class Drives(NamedTuple):
+    """Drives in file order: shaft, share, force limit [N] (and the one in force this step),
+    rated force [N], control and
+    coupling codes, motor curve (points per drive), fill time, motor mass [kg], trip time;
+    per step: force law mode (0 linear ``f0 + f1 v``, 1 share of the speed loop's output,
+    2 imposed shaft speed), ``f0``, ``f1``, saturation; coupling linearisation ``(P, D, c_s)``
+    and the motor speed; outputs: force at the rim and force passed to the belt."""
+
+    shaft: np.ndarray
+    share: np.ndarray
+    lim0: np.ndarray
+    lim: np.ndarray
+    rated: np.ndarray
+    control: np.ndarray
+    coupling: np.ndarray
+    curve_x: np.ndarray
+    curve_y: np.ndarray
+    curve_n: np.ndarray
+    fill_s: np.ndarray
+    motor_mass: np.ndarray
+    trip_s: np.ndarray
+    mode: np.ndarray
+    f0: np.ndarray
+    f1: np.ndarray
+    sat: np.ndarray
+    lin_p: np.ndarray
+    lin_d: np.ndarray
+    lin_cs: np.ndarray
+    vm: np.ndarray
+    force: np.ndarray
+    ft: np.ndarray
+    f_trip: np.ndarray
+
+
+class Brakes(NamedTuple):
+    """Brakes: shaft, full force [N], delay and ramp [s], force curve (points per brake),
+    hold flag; state: command time (-1 not commanded), released flag."""
+
+    shaft: np.ndarray
+    force: np.ndarray
+    delay: np.ndarray
+    ramp: np.ndarray
+    curve_t: np.ndarray
+    curve_f: np.ndarray
+    curve_n: np.ndarray
+    hold: np.ndarray
+    t_cmd: np.ndarray
+    released: np.ndarray
+
+
+class State(NamedTuple):
+    """Belt state: velocity [m/s], elastic, arm and total tension [N]; ``misc`` = take-up
+    position [m] and speed [m/s], speed-loop integrator [N], holding force [N]."""
+
+    v: np.ndarray
+    te: np.ndarray
+    td: np.ndarray
+    tt: np.ndarray
+    misc: np.ndarray
+
+
+class Out(NamedTuple):
+    """Outputs: records (key points, probes, per drive), surface, envelopes of the current
+    segment and the finished segments, per-drive results and run scalars."""
+
+    rec: np.ndarray
+    rec_t: np.ndarray
+    rec_v: np.ndarray
+    rec_d: np.ndarray
+    surf_t: np.ndarray
+    surf_v: np.ndarray
+    probes: np.ndarray
+    surf_idx: np.ndarray
+    t_max: np.ndarray
+    t_min: np.ndarray
+    t_max_t: np.ndarray
+    t_min_t: np.ndarray
+    seg_env: np.ndarray
+    seg_time: np.ndarray
+    drv: np.ndarray
+    res: np.ndarray
+
+
+class Work(NamedTuple):
+    """Scratch arrays of the block solve (length BLOCK_MAX) and of the resistance pass."""
+
+    dg: np.ndarray
+    lo: np.ndarray
+    up: np.ndarray
+    cl: np.ndarray
+    rw: np.ndarray
+    rhs: np.ndarray
+    crhs: np.ndarray
+    cuc: np.ndarray
+    kd: np.ndarray
+    kc: np.ndarray
+    kr: np.ndarray
+    wd: np.ndarray
+    wl: np.ndarray
+    wu: np.ndarray
+    wc: np.ndarray
+    wr: np.ndarray
+    sol: np.ndarray
+    sol2: np.ndarray
+    ucoef: np.ndarray
+    bA: np.ndarray
+    bB: np.ndarray
+    v_old: np.ndarray
+    rpos: np.ndarray
+    fexp: np.ndarray
+    fz: np.ndarray
+    stuck: np.ndarray
+    bdir: np.ndarray
+    bforce: np.ndarray
+    c_lo: np.ndarray
+    c_hi: np.ndarray
+    fixed: np.ndarray
+    fixv: np.ndarray
+    shk: np.ndarray
+    vsn: np.ndarray
+    Ac: np.ndarray
+    r0: np.ndarray
+    phi: np.ndarray
+    lnv: np.ndarray
+    lnphi: np.ndarray
+    t_max_snap: np.ndarray
+    t_min_snap: np.ndarray

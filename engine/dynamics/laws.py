@@ -1,0 +1,122 @@
+"""Drive, coupling and brake laws of the transient model (PHYSICS section 5.1).
+
+Small scalar functions compiled for the kernel and called as they are by the numpy reference,
+so both integrate the same laws. Forces are at the pulley rim (torque over the pulley radius)
+and speeds at the belt line (shaft speed times the pulley radius), both in SI.
+
+* **Induction motor on the line** (``dol``): force ``F_r y(v / v_d)`` with ``y`` the motor
+  curve (torque over rated torque against speed over the design speed, piecewise linear,
+  :data:`engine.conveyor.DEFAULT_MOTOR_CURVE` by default) and ``F_r`` the rated force, rated
+  power over design speed. Below standstill the locked-rotor value holds; above the last
+  point (synchronous speed) the last segment continues (the motor generates).
+* **Fluid coupling** between motor and pulley: a hydrodynamic coupling's torque follows the
+  similarity law ``T ~ rho n_in^2 D^5`` (the square of the input speed), rising with slip
+  ``s = 1 - n_out / n_in``. The characteristic used is a smooth one through the rated point
+  and the stall point: ``T = T_r (v_m / v_d)^2 STALL (1 - e^{-s/s0}) / (1 - e^{-1/s0})``,
+  rated torque at ``RATED_SLIP`` = 3 % slip (constant-fill couplings run at 1.5-4 % slip at
+  rated torque) and ``STALL`` = 1.6 x rated torque at full slip (constant-fill couplings limit
+  the starting torque to roughly 1.2-2 x rated, PHYSICS 5.1; Voith's and Nordell's starting
+  papers). A fill-controlled coupling's torque is that times its fill, rising from empty to
+  full over ``coupling_fill_s``.
+* **Brake**: the force builds linearly over ``ramp_s`` after the delay, or follows the brake's
+  ``force_curve`` (fraction of the force against the time since it was applied, linear between
+  the points, the last value held).
+"""
+
+from __future__ import annotations
+
+import math
+
+from numba import njit
+
+from engine.dynamics.fastmath import OPTS
+
+__all__ = ["curve", "motor_force", "coupling_torque", "brake_fraction", "STALL", "RATED_SLIP",
+           "SLIP_SCALE"]
+
+#: Stall torque of a constant-fill fluid coupling over its rated torque [-].
+STALL = 1.6
+#: Slip of a fluid coupling at rated torque and full input speed [-].
+RATED_SLIP = 0.03
+
+
+def _slip_scale() -> float:
+    """s0 with STALL (1 - e^{-RATED_SLIP/s0}) / (1 - e^{-1/s0}) = 1, by bisection."""
+    lo, hi = 1e-4, 1.0
+    for _ in range(200):
+        mid = 0.5 * (lo + hi)
+        val = STALL * (1.0 - math.exp(-RATED_SLIP / mid)) / (1.0 - math.exp(-1.0 / mid))
+        if val > 1.0:
+            lo = mid
+        else:
+            hi = mid
+    return 0.5 * (lo + hi)
+
+
+#: Slip scale s0 of the coupling characteristic [-].
+SLIP_SCALE = _slip_scale()
+_NORM = STALL / (1.0 - math.exp(-1.0 / SLIP_SCALE))
+
+
+@njit(inline="always", **OPTS)
+def curve(xs, ys, n, x):
+    """Piecewise linear ``y(x)`` through ``n`` points and its slope: the first value below the
+    first point, the last segment continued above the last point."""
+    if x <= xs[0]:
+        return ys[0], 0.0
+    k = 1
+    while k < n - 1 and x > xs[k]:
+        k += 1
+    slope = (ys[k] - ys[k - 1]) / (xs[k] - xs[k - 1])
+    return ys[k - 1] + slope * (x - xs[k - 1]), slope
+
+
+@njit(inline="always", **OPTS)
+def motor_force(xs, ys, n, f_rated, v_d, v):
+    """Motor force at the rim [N] and its slope in speed [N s/m] at rim speed ``v``."""
+    y, dy = curve(xs, ys, n, v / v_d)
+    return f_rated * y, f_rated * dy / v_d
+
+
+@njit(inline="always", **OPTS)
+def coupling_torque(t_rated, v_d, vm, vs, fill):
+    """Fluid coupling force at the rim [N] with input (motor) speed ``vm`` and output (pulley)
+    speed ``vs`` [m/s], and its derivatives in ``vm`` and ``vs``."""
+    if fill <= 0.0 or vm == 0.0:
+        return 0.0, 0.0, 0.0
+    k = t_rated * fill / (v_d * v_d)
+    d = vm - vs
+    avm = abs(vm)
+    s = abs(d) / avm
+    sg = 1.0 if d >= 0.0 else -1.0
+    if s >= 1.0:
+        phi = _NORM * (1.0 - math.exp(-1.0 / SLIP_SCALE))
+        dphi = 0.0
+    else:
+        e = math.exp(-s / SLIP_SCALE)
+        phi = _NORM * (1.0 - e)
+        dphi = _NORM * e / SLIP_SCALE
+    t = sg * k * vm * vm * phi
+    # s = |vm - vs| / |vm|: ds/dvs = -sg / |vm|, ds/dvm = sg vs / (vm |vm|)
+    dt_dvs = -k * vm * vm * dphi / avm
+    dt_dvm = sg * k * (2.0 * vm * phi) + k * vm * vm * dphi * vs / (vm * avm)
+    return t, dt_dvm, dt_dvs
+
+
+@njit(inline="always", **OPTS)
+def brake_fraction(tau, ramp, ct, cf, nc):
+    """Fraction of a brake's force ``tau`` seconds after it was applied (past its delay)."""
+    if tau < 0.0:
+        return 0.0
+    if nc > 0:
+        if tau <= ct[0]:
+            return cf[0] if tau >= ct[0] else 0.0
+        k = 1
+        while k < nc and tau > ct[k]:
+            k += 1
+        if k >= nc:
+            return cf[nc - 1]
+        return cf[k - 1] + (cf[k] - cf[k - 1]) * (tau - ct[k - 1]) / (ct[k] - ct[k - 1])
+    if ramp <= 0.0 or tau >= ramp:
+        return 1.0
+    return tau / ramp

@@ -1,0 +1,294 @@
+"""The vectorised passes of one step over the free belt (explicit) elements and springs.
+
+Each pass is one loop over contiguous elements or springs, written so LLVM vectorises it
+(unsigned indices, no branches in the body but selects, reductions through ``_fmin`` /
+``_fmax``): the resistance law term by term, the velocity update of free elements, the spring
+update, the envelopes and extremes. The implicit blocks round the pulleys are in
+:mod:`engine.dynamics.blocks`.
+"""
+
+from __future__ import annotations
+
+import math
+
+from numba import njit, uintp
+
+from engine.dynamics.fastmath import (
+    OPTS,
+    OPTS_RED,
+    _exp,
+    _fmax,
+    _fmin,
+    _ln0,
+    _mul_strict,
+    _power,
+    _speed,
+)
+
+__all__ = ["resistance", "node_pass", "spring", "spring_pass", "observe", "extremes",
+           "slack_zones"]
+
+
+@njit(inline="always", **OPTS)
+def _term(r0, c, v, lnv, phi, lnphi, sc, p, qc, q):
+    """``r0 += c |v|^p phi^q`` over all elements; ``sc``/``qc`` are literal codes at every
+    call, so each call compiles to its own branch-free loop."""
+    for jj in range(r0.shape[0]):
+        j = uintp(jj)
+        r0[j] += c[j] * _speed(v[j], lnv[j], sc, p) * (
+            1.0 if qc == 0 else
+            (_power(phi[j], qc, q) if qc != 5 else _exp(q * lnphi[j])))
+
+
+@njit(inline="always", **OPTS)
+def _term_sag(r0, c, v, lnv, phi, lnphi, sc, p, qc, q):
+    """:func:`_term` with the sag code ``qc`` turned into a literal (``sc`` is one already)."""
+    if qc == 0:
+        _term(r0, c, v, lnv, phi, lnphi, sc, p, 0, q)
+    elif qc == 1:
+        _term(r0, c, v, lnv, phi, lnphi, sc, p, 1, q)
+    elif qc == 2:
+        _term(r0, c, v, lnv, phi, lnphi, sc, p, 2, q)
+    elif qc == 3:
+        _term(r0, c, v, lnv, phi, lnphi, sc, p, 3, q)
+    elif qc == 4:
+        _term(r0, c, v, lnv, phi, lnphi, sc, p, 4, q)
+    else:
+        _term(r0, c, v, lnv, phi, lnphi, sc, p, 5, q)
+
+
+@njit(**OPTS)
+def resistance(r0, v, tt, coef, pvc, pvv, psc, psv, sw_ref, hsm_ref, any_ps, phi,
+               lnv, lnphi, t_sparse, t_ptr, t_idx):
+    """Resistance magnitude ``R0_j = sum_k coef[k, j] |v_j|^pv[k] phi_j^ps[k]`` into r0 [N].
+
+    One vectorised pass per term, compiled for its exponents: speed exponents 0 and 1 need
+    no power, others ``exp(p ln|v|)``; sag exponents 0, 0.5, 1, 1.5 and 2 use sqrt and
+    products, others ``exp(q ln phi)``. The logarithms are computed once per step; the
+    constant term initialises r0. ``phi`` is the sag ratio over the reference from the
+    element's mean tension, ``phi_j = min(sw_ref_j / T, hsm_ref_j)`` with the sag weight and
+    the element's sag cap both over the reference sag; ``phi``, ``lnv`` and ``lnphi`` are
+    scratch arrays.
+    """
+    n = r0.shape[0]
+    if any_ps:
+        phi[0] = min(sw_ref[0] / max(0.5 * (tt[n - 1] + tt[0]), 1.0), hsm_ref[0])
+        for jj in range(1, n):
+            j = uintp(jj)
+            phi[j] = min(sw_ref[j] / max(0.5 * (tt[uintp(jj - 1)] + tt[j]), 1.0), hsm_ref[j])
+    need_lnv = False
+    need_lnphi = False
+    first = -1
+    for k in range(coef.shape[0]):
+        if t_sparse[k] == 0:
+            need_lnv = need_lnv or (pvc[k] != 0 and pvc[k] != 2)
+            need_lnphi = need_lnphi or psc[k] == 5
+            if first < 0 and pvc[k] == 0 and psc[k] == 0:
+                first = k
+    if need_lnv:
+        for jj in range(n):
+            j = uintp(jj)
+            lnv[j] = _ln0(abs(v[j]))
+    if need_lnphi:
+        for jj in range(n):
+            j = uintp(jj)
+            lnphi[j] = _ln0(phi[j])
+    if first >= 0:
+        c = coef[first]
+        for jj in range(n):
+            j = uintp(jj)
+            r0[j] = c[j]
+    else:
+        for jj in range(n):
+            r0[uintp(jj)] = 0.0
+    for k in range(coef.shape[0]):
+        if k == first:
+            continue
+        pc = pvc[k]
+        sc = 0 if pc == 0 else (2 if pc == 2 else 5)
+        qc = psc[k]
+        p = pvv[k]
+        q = psv[k]
+        if t_sparse[k] == 1:
+            # a sparse term (a few elements: feed, pulleys, accessories): its elements only
+            for i in range(t_ptr[k], t_ptr[k + 1]):
+                j = t_idx[i]
+                r0[j] += coef[k, j] * _power(abs(v[j]), pc, p) * (
+                    _power(phi[j], qc, q) if any_ps else 1.0)
+            continue
+        c = coef[k]
+        # literal speed codes here and literal sag codes in _term_sag: one specialised loop
+        # per (speed, sag) pair
+        if sc == 0:
+            _term_sag(r0, c, v, lnv, phi, lnphi, 0, p, qc, q)
+        elif sc == 2:
+            _term_sag(r0, c, v, lnv, phi, lnphi, 2, p, qc, q)
+        else:
+            _term_sag(r0, c, v, lnv, phi, lnphi, 5, p, qc, q)
+
+
+@njit(inline="always", **OPTS)
+def _friction(vs, e, v_eps):
+    """Solve ``v = vs - e clip(v / v_eps, -1, 1)`` for v exactly (e >= 0: e = dt R0 / M)."""
+    a1 = vs * v_eps / (v_eps + e)
+    a2 = vs - math.copysign(e, vs)
+    return a1 if abs(vs) <= v_eps + e else a2
+
+
+# --------------------------------------------------------------------------------------
+# vectorised passes
+
+
+@njit(**OPTS)
+def node_pass(a, b, v, tt, hm, grav, r0, v_eps, w):
+    """Explicit velocity update of free elements a..b-1 (b <= n - 1, a >= 1); returns
+    ``sum w_j v_j`` over them. ``hm = dt / M``."""
+    s = 0.0
+    for jj in range(a, b):
+        # unsigned indices: numba then drops the negative-index wraparound and LLVM vectorises
+        j = uintp(jj)
+        jm = uintp(jj - 1)
+        h = hm[j]
+        r = r0[j]
+        rp = max(r, 0.0)
+        rn = min(r, 0.0)
+        vj = v[j]
+        vs = vj + h * (tt[j] - tt[jm] - grav[j] - rn * min(max(vj / v_eps, -1.0), 1.0))
+        # _friction, with its division computed from old values only (off the path from
+        # the old state to the new velocity)
+        e = h * rp
+        den = v_eps + e
+        a1 = _mul_strict(vs, v_eps / den)
+        a2 = vs - math.copysign(e, vs)
+        vn = a1 if abs(vs) <= den else a2
+        v[j] = vn
+        s += w[j] * vn
+    return s
+
+
+@njit(inline="always", **OPTS)
+def spring(e0, d0, dv, dlj, cdt, tfl, kfl_eb, aeb, eb, e_damp, g_damp, kvs):
+    """One spring: elastic, relaxing-arm and total tension after the strain increment
+    ``de = dv * dl + cdt`` (dl = dt / len, cdt = carriage term). Returns (elastic, arm, total).
+
+    Elastic part: the static modulus softened by sag (Ernst tangent ``kt``). An increment that
+    carries it from above the floor ``tfl`` to below continues there with the floor modulus
+    ``kfl = kfl_eb EB``: the tangent law followed along the path, so a sudden unloading stores
+    the slack strain the motion made, not that strain times the stiff modulus it started from.
+    Arm: the standard linear solid's relaxing arm (dynamic less static modulus, relaxation by
+    its exact exponential: ``e_damp``, ``g_damp``). Mesh viscosity ``kvs de`` (``kvs = alpha Z
+    len / dt``): a Kelvin-Voigt term acting on the modes the mesh cannot resolve. A slack
+    span (elastic part below zero) carries neither arm nor viscous tension."""
+    de = dv * dlj + cdt
+    tc = max(e0, tfl)
+    t3 = tc * tc * tc
+    sm = t3 + aeb
+    q = 1.0 / (t3 * sm)  # the one division: kt = EB t3 / sm and kfl / kt = kfl sm / (EB t3)
+    kt = eb * (t3 * t3 * q)
+    e1 = e0 + kt * de
+    # below the floor the rest of the increment at kfl; kfl <= kt, so the larger of the two
+    # is right on both sides of the floor (and kfl / kt = 1 when e0 is at or below it)
+    e1 = max(e1, tfl + (e1 - tfl) * (kfl_eb * (sm * sm * q)))
+    d1 = e_damp * d0 + g_damp * kt * de
+    taut = e1 >= 0.0
+    d1 = d1 if taut else 0.0
+    kv = kvs * de if taut else 0.0
+    return e1, d1, max(e1 + d1 + kv, 0.0)
+
+
+@njit(**OPTS)
+def spring_pass(a, b, v, te, td, tt, dl, t_floor, kfl_eb, a_eb, eb, e_damp, g_damp, kvs):
+    """Update springs a..b-1 (b <= n - 1) from the new velocities."""
+    for jj in range(a, b):
+        j = uintp(jj)
+        e1, d1, t1 = spring(te[j], td[j], v[uintp(jj + 1)] - v[j], dl[j], 0.0, t_floor[j],
+                            kfl_eb[j], a_eb[j], eb, e_damp, g_damp, kvs[j])
+        te[j] = e1
+        td[j] = d1
+        tt[j] = t1
+
+
+@njit(**OPTS_RED)
+def observe(tt, v, t_max, t_min):
+    """Envelopes of every spring and the extremes of tension and speed, in one pass.
+
+    Returns (min tension, max tension, min speed, max speed). A separate function: the
+    reductions may drop NaN semantics here (divergence is checked on the speed sum).
+    """
+    lo = tt[0]
+    hi = tt[0]
+    vlo = v[0]
+    vhi = v[0]
+    for jj in range(tt.shape[0]):
+        j = uintp(jj)
+        t1 = tt[j]
+        vj = v[j]
+        t_max[j] = _fmax(t_max[j], t1)
+        t_min[j] = _fmin(t_min[j], t1)
+        lo = _fmin(lo, t1)
+        hi = _fmax(hi, t1)
+        vlo = _fmin(vlo, vj)
+        vhi = _fmax(vhi, vj)
+    return lo, hi, vlo, vhi
+
+
+@njit(**OPTS_RED)
+def extremes(x):
+    """(min, max) of an array."""
+    lo = x[0]
+    hi = x[0]
+    for jj in range(1, x.shape[0]):
+        j = uintp(jj)
+        lo = _fmin(lo, x[j])
+        hi = _fmax(hi, x[j])
+    return lo, hi
+
+
+@njit(**OPTS)
+def slack_zones(te, kfl_eb, eb, len_m):
+    """Belt length stored as slack [m]: in the whole loop, in the largest zone of consecutive
+    slack springs (cyclic), and the spring of that zone with the largest slack strain.
+
+    A slack spring's elastic tension is below zero: its slack strain is ``-te / k_floor`` and
+    the belt length it stores that strain times the spring's length, so the lengths add up
+    the same on any mesh. Returns (total [m], largest zone [m], deepest spring or -1)."""
+    n = te.shape[0]
+    start = -1
+    for j in range(n):
+        if te[j] >= 0.0:
+            start = j
+            break
+    if start < 0:  # the whole loop slack
+        total = 0.0
+        deep = 0
+        worst = 0.0
+        for j in range(n):
+            s = -te[j] / (kfl_eb[j] * eb)
+            total += s * len_m[j]
+            if s > worst:
+                worst = s
+                deep = j
+        return total, total, deep
+    total = 0.0
+    best = 0.0
+    best_deep = -1
+    zone = 0.0
+    zone_deep = -1
+    zone_worst = 0.0
+    for k in range(1, n + 1):
+        j = (start + k) % n
+        if te[j] < 0.0:
+            s = -te[j] / (kfl_eb[j] * eb)
+            zone += s * len_m[j]
+            total += s * len_m[j]
+            if s > zone_worst:
+                zone_worst = s
+                zone_deep = j
+        elif zone > 0.0:
+            if zone > best:
+                best = zone
+                best_deep = zone_deep
+            zone = 0.0
+            zone_worst = 0.0
+            zone_deep = -1
+    return total, best, best_deep
