@@ -543,26 +543,27 @@ def run_cycle(fp, ip, nodes, law, sp, blocks, shafts, drives, brakes, st, out, w
             t_end_limit = min(t_end_limit, t_new + post_rest)
             if fp[C.FP_T_END] > 0.0:
                 t_end_limit = min(t_end_limit, fp[C.FP_T_END])
-        # slack: time with a slack span, and the envelope cut when it first happens
+        # slack: the belt length stored in the largest slack zone, the time with a slack span,
+        # and the envelope cut when the belt first goes slack
         if tlo <= 0.0 and started:
             slack_dur += dt
+            total, zone, deep = slack_zones(te, sp.kfl_eb, eb, sp.len_m)
+            slack_m = total
+            if zone > slack_max:
+                slack_max = zone
+                slack_at = deep
+                slack_time = t_new
             if slack_first < 0.0:
                 slack_first = t_new
                 if seg + 1 < out.seg_time.shape[0]:
                     seg = _cut_segment(seg, t_new, tt, out, wk)
+        elif slack_m > 0.0:
+            slack_m = 0.0
         if stopping and t_new - dt <= t_stopcmd and seg + 1 < out.seg_time.shape[0]:
             seg = _cut_segment(seg, t_new, tt, out, wk)
 
         # ---------------------------------------------------------------- records
         if t_new + 0.5 * dt >= nrec * rec_dt:
-            slack_m = 0.0
-            if tlo <= 0.0:
-                total, zone, deep = slack_zones(te, sp.kfl_eb, eb, sp.len_m)
-                slack_m = total
-                if zone > slack_max:
-                    slack_max = zone
-                    slack_at = deep
-                    slack_time = t_new
             nrec = _record(nrec, t_new, st, ip, shafts, drives, x_tu, f_tot, v_mean, f_brake,
                            v_ref, p_tot, tlo, thi, max(vhi, -vlo), slack_m, out)
             _envelope_times(t_new, out.t_max, out.t_min, wk.t_max_snap, wk.t_min_snap,
