@@ -1,11 +1,7 @@
 """Every example conveyor runs the whole cycle for every friction model at -30 C and +20 C,
-loaded and empty, with every stop mode it can do, without divergence (issue 5 acceptance).
-
-A run may end ``failed`` only for a physical reason the engine names: the belt goes slack
-beyond the range of a one-dimensional model (it would pile up), for example a loaded downhill
-belt held at rest by a counterweight sized for running. Those are design findings, listed in
-the message; a numerical divergence is never acceptable. 60 elements keep the 200 runs to a
-few seconds.
+loaded and empty, with every stop mode it can do, and ends ``ok`` or ``warning``: slack, slip
+and the other physical limits are warnings that name them, ``failed`` is kept for a diverged
+integration, which is never acceptable. 60 elements keep the 200 runs to a few seconds.
 """
 
 from __future__ import annotations
@@ -41,10 +37,7 @@ def test_example_runs_every_case_without_divergence(name, model):
         r = run_one(conv, scn, model=model)
         s = r.summary
         where = f"{name} {model} {temp} C {load} {stop}: {s['message']}"
-        assert "diverged" not in s["message"], where
-        if s["status"] == "failed":
-            assert "slack beyond the model's range" in s["message"], where
-            continue
+        assert s["status"] in ("ok", "warning"), where
         for key in TRANSIENT_FIELDS:
             assert key in s, key
             val = s[key]
