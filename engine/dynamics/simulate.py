@@ -203,7 +203,8 @@ def prepare(sys: System, t_end_s: float | None = None) -> KernelInput:
     cx, cy, cn = _curves(sys.drive_curves, C.CURVE_MAX)
     drives = A.Drives(
         shaft=arr(sys.drive_shaft, np.int64), share=arr(sys.drive_share),
-        lim0=arr(sys.drive_limit_n), lim=arr(sys.drive_limit_n), rated=arr(sys.drive_rated_n),
+        lim0=arr(sys.drive_limit_n), lim=np.array(sys.drive_limit_n, dtype=f64),  # a copy: per step
+        rated=arr(sys.drive_rated_n),
         control=arr(sys.drive_control, np.int64), coupling=arr(sys.drive_coupling, np.int64),
         curve_x=cx, curve_y=cy, curve_n=cn, fill_s=arr(sys.drive_fill_s),
         motor_mass=arr(np.maximum(sys.drive_motor_mass_kg, 1.0)), trip_s=arr(sys.drive_trip_s),
