@@ -109,9 +109,9 @@ def _viscosity(sys: System) -> np.ndarray:
     return sys.mesh_viscosity * sys.impedance_ns_m * sys.len_m / sys.dt_s
 
 
-def _zone(x, v_eps):
-    """Zone of the regularised resistance: -1, 0 (linear, ``|x| <= v_eps``) or +1."""
-    return np.where(x > v_eps, 1.0, np.where(x < -v_eps, -1.0, 0.0))
+def _zone(x: float, v_eps: float) -> float:
+    """Zone of the regularised resistance at speed x: -1, 0 (linear, ``|x| <= v_eps``) or +1."""
+    return 1.0 if x > v_eps else (-1.0 if x < -v_eps else 0.0)
 
 
 def _free_elements(sys, v, T, R0):
@@ -153,6 +153,7 @@ def _brake_forces(sys, brk, sh, t, t_stopcmd, stopping, stopped, t_stopped):
     latest, pending = -1.0, False
     for b in range(len(sys.brake_shaft)):
         hold = sys.brake_hold[b] == 1
+        ct, cf, nc = brk.curve[b]
         if stopping and brk.t_cmd[b] < 0.0 and not brk.released[b]:
             if sys.stop_mode == C.BRAKE:
                 brk.t_cmd[b] = t_stopcmd
@@ -163,12 +164,12 @@ def _brake_forces(sys, brk, sh, t, t_stopcmd, stopping, stopped, t_stopped):
         if brk.t_cmd[b] >= 0.0 and not brk.released[b]:
             tau = t - brk.t_cmd[b] - sys.brake_delay_s[b]
             sh.fb[sys.brake_shaft[b]] += sys.brake_force_n[b] * brake_fraction(
-                tau, sys.brake_ramp_s[b], brk.ct[b], brk.cf[b], brk.nc[b])
+                tau, sys.brake_ramp_s[b], ct, cf, nc)
         if hold:
             if brk.t_cmd[b] < 0.0:
                 pending = True
             else:
-                full = brk.ct[b][brk.nc[b] - 1] if brk.nc[b] > 0 else sys.brake_ramp_s[b]
+                full = ct[nc - 1] if nc > 0 else sys.brake_ramp_s[b]
                 latest = max(latest, brk.t_cmd[b] + sys.brake_delay_s[b] + full)
     if not sys.brake_hold.any() or pending or t < latest:
         return -1.0
@@ -286,7 +287,7 @@ def _block_step(sys, blk, ctx, st, sh, dr, R0, U, u_known):
     sj = nodes[:-1]
     taut = st.te[sj] >= 0.0
     sA = np.where(taut, st.te[sj] + e_damp * st.td[sj], 0.0)
-    sB = np.where(taut, (_tangent(sys, st.te[sj], sj) * (1.0 + g_damp) + _viscosity(sys)[sj])
+    sB = np.where(taut, (_tangent(sys, st.te[sj], sj) * (1.0 + g_damp) + ctx.visc[sj])
                   * dt / sys.len_m[sj], 0.0)
     cj = sys.carriage_coupling[sj] if car else np.zeros(m - 1)
     t_in, t_out = st.tt[(nodes[0] - 1) % n], st.tt[nodes[-1]]
@@ -294,7 +295,7 @@ def _block_step(sys, blk, ctx, st, sh, dr, R0, U, u_known):
     mass = sys.mass_kg[nodes]
     rpos = np.maximum(R0[nodes], 0.0)
     fexp = -np.minimum(R0[nodes], 0.0) * np.clip(vo / v_eps, -1.0, 1.0) - sys.gravity_n[nodes]
-    zone = _zone(vo, v_eps)
+    zone = np.array([_zone(x, v_eps) for x in vo])
     shaft = ctx.node_shaft[nodes]
     fixed = nodes == ctx.hold_node
     fixv = np.zeros(m)
@@ -541,12 +542,9 @@ def _shaft_speed(sys, ctx, sh, dr, s, U, f_slide):
 # the cycle
 
 
-def _curve(points):
-    """A point list as (x array, y array, count) for the scalar laws."""
-    pts = np.array(points, dtype=np.float64).reshape(-1, 2)
-    if len(pts) == 0:
-        pts = np.zeros((1, 2))
-        return pts[:, 0].copy(), pts[:, 1].copy(), 0
+def _curve(points) -> tuple[np.ndarray, np.ndarray, int]:
+    """A list of (x, y) points as the scalar laws take it: x array, y array, point count."""
+    pts = np.array(list(points) or [(0.0, 0.0)], dtype=np.float64)
     return pts[:, 0].copy(), pts[:, 1].copy(), len(points)
 
 
@@ -572,6 +570,7 @@ def run_reference(sys: System, t_end_s: float | None = None) -> ReferenceResult:
     support = sys.formulation == C.SUPPORT
     nd, ns = len(sys.drive_share), len(sys.shaft_node)
     f_res = sys.te_n - float(sys.gravity_n.sum())
+    damp, visc = _damper(sys), _viscosity(sys)
     free = np.ones(n, dtype=bool)
     for blk in sys.blocks:
         free[blk] = False
@@ -588,9 +587,8 @@ def run_reference(sys: System, t_end_s: float | None = None) -> ReferenceResult:
                          force=np.zeros(nd), ft=np.zeros(nd), f_trip=np.zeros(nd),
                          curve=[_curve(c) for c in sys.drive_curves])
     brk = SimpleNamespace(t_cmd=np.full(len(sys.brake_shaft), -1.0),
-                          released=np.zeros(len(sys.brake_shaft), dtype=bool))
-    brk.ct, brk.cf, brk.nc = zip(*[_curve(c) for c in sys.brake_curves]) if len(
-        sys.brake_curves) else ((), (), ())
+                          released=np.zeros(len(sys.brake_shaft), dtype=bool),
+                          curve=[_curve(c) for c in sys.brake_curves])
     x_tu, u_tu, integ, hold_f = 0.0, 0.0, 0.0, sys.hold_force_n
     t_max, t_min = st.tt.copy(), st.tt.copy()
     slip_s, slip_m = np.zeros(nd), np.zeros(nd)
@@ -632,7 +630,7 @@ def run_reference(sys: System, t_end_s: float | None = None) -> ReferenceResult:
             dr.lim[:] = sys.drive_limit_n * ramp + sys.drive_share * abs(hold_f) * (1.0 - ramp)
         # speed loop output U = f0u + f1u v_master: rigid-body feedforward, integrator, gain
         f_ff = sys.total_mass_kg * a_ref + f_res * min(max(v_ref / sys.v_ff_m_s, 0.0), 1.0)
-        ctx = SimpleNamespace(damp=_damper(sys), node_shaft=node_shaft, v_ref=v_ref,
+        ctx = SimpleNamespace(damp=damp, visc=visc, node_shaft=node_shaft, v_ref=v_ref,
                               window=C.SPEED_WINDOW * v_d, f0u=f_ff + integ + sys.kp * v_ref,
                               f1u=-sys.kp, hold_node=sys.hold_node if phase == C.HOLD else -1,
                               x_tu=x_tu, u_tu=u_tu)
@@ -660,7 +658,7 @@ def run_reference(sys: System, t_end_s: float | None = None) -> ReferenceResult:
 
         # ---- springs from the new velocities (the carriage lengthens its two springs)
         de = (np.roll(st.v, -1) - st.v + sys.carriage_coupling * u_tu) * dt / sys.len_m
-        st.te, st.td, st.tt = _springs(sys, st.te, st.td, de, ctx.damp)
+        st.te, st.td, st.tt = _springs(sys, st.te, st.td, de, damp)
 
         # ---- observe
         t_max, t_min = np.fmax(t_max, st.tt), np.fmin(t_min, st.tt)
