@@ -61,11 +61,12 @@ class BeltData:
 
 #: Dynamic over static modulus by belt kind, for belts without a catalogue row (the
 #: catalogue's own ratios: ``engine/data/belts.csv``, source [DYN]).
-DYNAMIC_RATIO = {"steel": 1.0, "fabric": 1.5}
-#: Relaxation time of the belt from its dynamic to its static modulus [s]: the dynamic modulus
-#: is the one measured under ISO 9856 cycling at 0.1 Hz, so relaxation is taken to act over
-#: one test period (an estimate; PHYSICS section 5.1).
-RELAXATION_S = 10.0
+DYNAMIC_RATIO = {"steel": 1.1, "fabric": 1.5}
+#: Relaxation time of the belt from its dynamic to its static modulus [s] (an estimate; PHYSICS
+#: section 5.1). It puts the relaxing arm's loss peak near 0.16 Hz, among a conveyor's low
+#: modes (take-up bounce, the loop's first modes), where belt hysteresis is what damps them;
+#: wave fronts (well under a second) see the dynamic modulus, settling (minutes) the static.
+RELAXATION_S = 1.0
 
 
 @dataclass(frozen=True)

@@ -152,7 +152,8 @@ class State(NamedTuple):
 
 class Out(NamedTuple):
     """Outputs: records (key points, probes, per drive), surface, envelopes of the current
-    segment and the finished segments, per-drive results and run scalars."""
+    segment and the finished segments, per-drive results, per-shaft slip (time [s], belt
+    length [m], first and last time [s]) and run scalars."""
 
     rec: np.ndarray
     rec_t: np.ndarray
@@ -169,6 +170,7 @@ class Out(NamedTuple):
     seg_env: np.ndarray
     seg_time: np.ndarray
     drv: np.ndarray
+    shs: np.ndarray
     res: np.ndarray
 
 

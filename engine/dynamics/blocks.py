@@ -593,6 +593,8 @@ def block_step(bk, blocks, shafts, drives, sp, nodes, st, wk, dt, v_eps, eb, e_d
             if sl == 0.0:
                 if j == hold_node:
                     continue
+                if shafts.cs[s] < 0.0:
+                    continue  # slip switched off (verification)
                 ft = _belt_force(wk, blocks, x, p0, k, inv_veps, tl, tr)
                 cap = shafts.cs[s] * max(min(tl, tr), 0.0)
                 if abs(ft) > cap * (1.0 + 1e-9) + 1e-9:

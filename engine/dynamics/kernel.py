@@ -52,7 +52,7 @@ HOLD, RUN, OFF = C.HOLD, C.RUN, C.OFF
 
 
 @njit(inline="always", **OPTS)
-def _drive_laws(drives, shafts, fp, ip, phase, t, t_pre, t_trip, stopping):
+def _drive_laws(drives, shafts, fp, ip, phase, t, t_pre, t_trip, stopping, first_off):
     """Each drive's force law for this step (modes of :class:`~engine.dynamics.arrays.Drives`):
     the speed loop's share (vfd running, relative formulation), an imposed shaft speed (vfd
     running, moving support), the motor curve through its coupling linearised in the shaft
@@ -70,7 +70,7 @@ def _drive_laws(drives, shafts, fp, ip, phase, t, t_pre, t_trip, stopping):
         fac = 1.0
         if phase == OFF:
             # power off: the motor's torque falls to zero over its trip time
-            if t - t_trip <= dt:
+            if first_off:
                 drives.f_trip[dk] = drives.force[dk]
             ts = drives.trip_s[dk]
             fac = 0.0 if ts <= 0.0 else max(0.0, 1.0 - (t - t_trip) / ts)
@@ -330,6 +330,11 @@ def run_cycle(fp, ip, nodes, law, sp, blocks, shafts, drives, brakes, st, out, w
         drv[dk, C.DRV_SLIP_LAST] = -1.0
     out.seg_time[0, 0] = 0.0
     seg = 0
+    for s in range(shafts.node.shape[0]):
+        out.shs[s, 0] = 0.0
+        out.shs[s, 1] = 0.0
+        out.shs[s, 2] = -1.0
+        out.shs[s, 3] = -1.0
 
     status = C.OK
     vmax = 0.0
@@ -366,6 +371,7 @@ def run_cycle(fp, ip, nodes, law, sp, blocks, shafts, drives, brakes, st, out, w
     if fp[C.FP_T_END] > 0.0:
         t_end_limit = min(t_end_limit, fp[C.FP_T_END])
     pi_started = False
+    was_off = False
     f_tot = 0.0
     p_tot = 0.0
     f_brake = 0.0
@@ -411,7 +417,9 @@ def run_cycle(fp, ip, nodes, law, sp, blocks, shafts, drives, brakes, st, out, w
             phase = RUN
         hold_set = _brake_forces(brakes, shafts, t_new, t_stopcmd, stopping,
                                  stop_mode == C.BRAKE, stopped, t_stopped)
-        _drive_laws(drives, shafts, fp, ip, phase, t_new, t_pre, t_trip, stopping)
+        _drive_laws(drives, shafts, fp, ip, phase, t_new, t_pre, t_trip, stopping,
+                    phase == OFF and not was_off)
+        was_off = phase == OFF
         pi = phase == RUN and vfd and not support and (start_ctrl != FORCE or stopping)
         if pi and not pi_started:
             integ = hold_f
@@ -533,6 +541,13 @@ def run_cycle(fp, ip, nodes, law, sp, blocks, shafts, drives, brakes, st, out, w
                     if drv[dk, C.DRV_SLIP_FIRST] < 0.0:
                         drv[dk, C.DRV_SLIP_FIRST] = t_new
                     drv[dk, C.DRV_SLIP_LAST] = t_new
+            for s in range(shafts.node.shape[0]):
+                if shafts.slip[s] != 0.0:
+                    out.shs[s, 0] += dt
+                    out.shs[s, 1] += abs(shafts.vs[s] - v[shafts.node[s]]) * dt
+                    if out.shs[s, 2] < 0.0:
+                        out.shs[s, 2] = t_new
+                    out.shs[s, 3] = t_new
             if start_ach < 0.0 and v_mean >= 0.99 * v_d:
                 start_ach = t_new - t_pre
         if stopping and not stopped and v_mean < 0.01 * v_d and (

@@ -156,7 +156,7 @@ class DynamicsOptions:
     ernst: bool = True
     resistances: bool = True
     gravity: bool = True
-    v_eps_m_s: float = 1e-5
+    v_eps_m_s: float = 1e-4
     dt_safety: float = 0.5
     controller_bandwidth_rad_s: float | None = None
     pre_rest_s: float = 2.0
@@ -608,7 +608,7 @@ def build_system(conv: Conveyor, scn: Scenario, steady, options: DynamicsOptions
     sh_eu = np.array([shafts[s]["euler"] for s in shaft_nodes], dtype=float)
     sh_euk = np.array([shafts[s]["euler_k"] for s in shaft_nodes], dtype=float)
     if not opts.slip:
-        sh_eu[:] = 1e12
+        sh_eu[:] = 0.0  # e^(mu theta) - 1 < 0: the kernel's code for a shaft that never slips
     total_mass = float(mass.sum() + sh_mass.sum() + drive_motor.sum())
 
     # ---- forces

@@ -234,7 +234,8 @@ def prepare(sys: System, t_end_s: float | None = None) -> KernelInput:
                 surf_idx=arr(sys.surface_springs, np.int64), t_max=np.zeros(n),
                 t_min=np.zeros(n), t_max_t=np.zeros(n), t_min_t=np.zeros(n),
                 seg_env=np.zeros((C.SEG_MAX, 4, n)), seg_time=np.zeros((C.SEG_MAX, 2)),
-                drv=np.zeros((nd, C.DRV.SIZE)), res=np.zeros(C.RES.SIZE))
+                drv=np.zeros((nd, C.DRV.SIZE)), shs=np.zeros((max(ns, 1), 4)),
+                res=np.zeros(C.RES.SIZE))
     bm = C.BLOCK_MAX
 
     def z():
@@ -564,6 +565,16 @@ def transient_summary(sys: System, r: dict, out, segs, *, steady_summary=None, c
                      f"to {t1:.1f} s, {slip_s:.2f} s in all, {drv[i, C.DRV.SLIP_M]:.3g} m of belt "
                      f"slipped (lowest slip margin {drv[i, C.DRV.SLIP_MIN]:.2f}); {fix} would "
                      "avoid it")
+    shs = out.shs
+    for b in range(len(sys.brake_shaft)):
+        k = int(sys.brake_shaft[b])
+        if sys.shaft_drive[k] >= 0 or shs[k, 0] <= 0.0:
+            continue  # a drive's slip is reported with the drive
+        name = conveyor.brakes[b].where if conveyor is not None else f"brake {b + 1}"
+        w.append(f"the {name} brake's pulley slipped: the brake held it while the belt slid "
+                 f"over it from t = {shs[k, 2]:.1f} to {shs[k, 3]:.1f} s, {shs[k, 0]:.2f} s in "
+                 f"all, {shs[k, 1]:.3g} m of belt slipped; more tension on that pulley (take-up "
+                 "position or mass) or a smaller brake force would avoid it")
     if r["SLACK_MAX"] > 0.0 or r["SLACK_FIRST"] >= 0.0:
         j = int(r["SLACK_AT"]) if r["SLACK_AT"] >= 0 else jmin
         w.append(

@@ -8,7 +8,7 @@ Per belt element j of length dx (Harrison 2008, Eq. 1; PHYSICS section 2):
 
 with every bracketed term in [kg/m]:
 
-* Idler rotation, R = Kta [Ks + A_z (v / v_r)^b e^{-c (T - T_r)} / S]: Ks = mu_b (d_b / D)
+* Idler rotation, R = Kta Ks + A_z (v / v_r)^b e^{-c (T - T_r)} / S: Ks = mu_b (d_b / D)
   (m'_G + m'_L) cos(a) the load-dependent bearing part, A_z = A_i / g the seal drag of an idler
   set [kg] (the conveyor file's ``seal_drag_n`` when given, else ``drag_per_roll_n`` x rolls;
   the idler catalogue's CEMA A_i is a design allowance of CEMA's method and is not used), S the
@@ -16,7 +16,10 @@ with every bracketed term in [kg/m]:
   and T_r = 0 C. Kta is read as CEMA's ambient temperature factor Kt (1 from 0 C up): in
   Eq. 1 it multiplies idler rotation and belt flexure, the terms CEMA's Kt multiplies
   (L Kt (Kx + Ky Wb + 0.015 Wb)); the material terms and the indentation (with its own
-  tan(delta)(T)) carry no Kta.
+  tan(delta)(T)) carry no Kta. The seal drag has its own temperature law in Eq. 1,
+  e^{-c T} (c ~ 0.017 /C: the drag doubles between +20 and -20 C), so Kta is not applied to
+  it a second time: one temperature law per term (engine 0.3; before, the cold counted twice
+  on the seal drag, 2.45 x at -30 C against 0 C instead of the paper's e^{0.017 x 30} = 1.66).
 * Indentation, BI = (sum over the rolls of a set of F_ir) / (g S), per roll the Winkler-layer
   law of Jonkers, F_ir = kappa tan(delta) F_v^{4/3} h^{1/3} / (b^{1/3} E'^{1/3} D^{2/3}), with
   F_v the roll's share of the set load g (m'_G + m'_L) cos(a) S, h the bottom cover, b the
@@ -86,8 +89,9 @@ class NonlinParams:
     kta: float | None = param(
         None, "Kta [-], the paper's factor on idler rotation R and belt flexure BF (default: "
               "CEMA's ambient temperature factor Kt at the run temperature, 1 at 0 C and "
-              "above, 1.45 at -29 C; Kta multiplies the terms CEMA's Kt multiplies, idler "
-              "friction and belt flexure)")
+              "above, 1.45 at -29 C; Kta multiplies the terms CEMA's Kt multiplies, the "
+              "bearing part of idler friction and belt flexure; the seal drag has its own "
+              "law e^(-c T))")
     mu_b: float = param(
         0.0015, "bearing friction coefficient mu_b [-] (deep-groove ball bearings, about "
                 "0.0015; PHYSICS section 2)")
@@ -324,11 +328,12 @@ def build(loop: Loop, conv: Conveyor, temperature_c: float, params: NonlinParams
     spacing = np.where(idl, loop.spacing_m, 1.0)
     dx = loop.dx_m
 
-    # R: idler rotation = bearing part + seal drag (v / v_r)^b e^{-c (T - T_r)} / S
+    # R: idler rotation = Kta x bearing part + seal drag (v / v_r)^b e^{-c (T - T_r)} / S
     b.add("idler_rotation", bearing_term_n(loop, p.mu_b, p.bearing_diameter_m, kta))
     drag = idler_drag_n(loop, conv, p.drag_per_set_n, p.drag_per_roll_n)
     temp = math.exp(-p.drag_temp_coef * (temperature_c - p.drag_ref_temp_c))
-    drag_coef = kta * drag * temp / spacing * dx / p.drag_ref_speed_m_s ** p.drag_speed_exp
+    # the seal drag carries its own temperature law e^{-c (T - T_r)}, not Kta as well
+    drag_coef = drag * temp / spacing * dx / p.drag_ref_speed_m_s ** p.drag_speed_exp
     b.add("idler_rotation", drag_coef, pv=p.drag_speed_exp)
 
     # BI: indentation, per-roll 4/3 law summed over the set, per metre / S

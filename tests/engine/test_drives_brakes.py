@@ -1,0 +1,327 @@
+"""Drives and brakes that behave like the machines (SPEC 6.1, PHYSICS 5.1): capstan slip,
+each drive pulley on its own, torque following, dol motors, brake ramps and holding.
+
+Every check is against a hand calculation or a law, with its tolerance in the assertion."""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+from numpy.testing import assert_allclose
+
+from engine.conveyor import InputError, Scenario, load_conveyor, parse_conveyor
+from engine.dynamics import DynamicsOptions, build_system, simulate
+from engine.dynamics.laws import brake_fraction
+from engine.run import run_one
+from engine.statics import solve_steady
+from tests.conftest import CONVEYORS, hand_conveyor_dict
+
+G = 9.81
+
+
+def _conv(**over):
+    return parse_conveyor(hand_conveyor_dict(**over))
+
+
+def _drive(**over):
+    d = {"position": "head", "wrap_deg": 200, "friction": 0.35, "share": 1.0,
+         "pulley_diameter_m": 1.0, "inertia_kg_m2": 50.0}
+    d.update(over)
+    return d
+
+
+def _euler(mu=0.35, wrap_deg=200.0):
+    return math.exp(mu * math.radians(wrap_deg))
+
+
+# --------------------------------------------------------------------------------------
+# capstan friction with slip
+
+
+def test_slipping_pulley_transmits_the_capstan_limit_motoring():
+    """An open-loop drive force far above what the slack side allows: the pulley slips and
+    passes T_slack (e^(mu_k theta) - 1) to the belt, T_slack the outgoing side (1 %)."""
+    conv = _conv(drives=[_drive(friction=0.35, friction_kinetic=0.25)],
+                 takeup={"type": "gravity", "position": "tail", "mass_kg": 3000})
+    st = solve_steady(conv, model="din", n_elements=60)
+    sysm = build_system(conv, Scenario(run_s=30), st, DynamicsOptions(force_start_n=150e3))
+    r = simulate(sysm, t_end_s=sysm.pre_rest_s + 6.0)
+    ts = r.timeseries
+    slipping = ts["v_drive1_m_s"] - ts["v_mean_m_s"] > 0.05  # the shaft runs ahead
+    assert slipping.sum() > 10
+    capstan = ts["t_head_out_kn"] * (_euler(0.25) - 1.0)
+    assert_allclose(ts["f_belt1_kn"][slipping], capstan[slipping], rtol=0.01)
+    assert r.summary["drive1_slip_s"] > 1.0
+
+
+def test_slipping_pulley_transmits_the_capstan_limit_braking():
+    """A brake on the drive's shaft far stronger than the capstan allows: the shaft stops,
+    the belt slides over it and receives T_slack (e^(mu_k theta) - 1) against its motion,
+    T_slack the incoming side (1 %)."""
+    conv = _conv(drives=[_drive(friction_kinetic=0.25)],
+                 brakes=[{"drive": 1, "force_kn": 400, "delay_s": 0.0, "ramp_s": 0.2}],
+                 takeup={"type": "gravity", "position": "tail", "mass_kg": 8000})
+    r = run_one(conv, Scenario(start={"time_s": 20}, run_s=5, record_dt_s=0.02,
+                               stop={"mode": "brake", "time_s": 5}, elements=60),
+                model="din")
+    ts = r.timeseries
+    sliding = (ts["v_drive1_m_s"].abs() < 1e-9) & (ts["v_mean_m_s"] > 0.3)
+    assert sliding.sum() > 5
+    capstan = -ts["t_head_in_kn"] * (_euler(0.25) - 1.0)
+    assert_allclose(ts["f_belt1_kn"][sliding], capstan[sliding], rtol=0.01)
+    assert r.summary["drive1_slip_m"] > 0.5
+
+
+def test_below_the_limit_a_pulley_does_not_slip():
+    conv = _conv(drives=[_drive()], takeup={"type": "gravity", "position": "tail",
+                                              "mass_kg": 8000})
+    r = run_one(conv, Scenario(start={"time_s": 30}, run_s=10, elements=60), model="din")
+    assert r.summary["drive1_slip_s"] == 0.0
+    assert r.summary["drive1_slip_margin_min"] > 1.0
+    assert "slipped" not in r.summary["message"]
+
+
+def test_slip_can_be_switched_off_for_verification():
+    conv = _conv(drives=[_drive()], takeup={"type": "gravity", "position": "tail",
+                                              "mass_kg": 3000})
+    st = solve_steady(conv, model="din", n_elements=60)
+    sysm = build_system(conv, Scenario(run_s=30), st,
+                        DynamicsOptions(force_start_n=150e3, slip=False))
+    r = simulate(sysm, t_end_s=sysm.pre_rest_s + 3.0)
+    assert r.summary["drive1_slip_s"] == 0.0
+
+
+# --------------------------------------------------------------------------------------
+# drives
+
+
+def _rigid_time_to(fraction, mass, rated, te, v_d, curve, dt=1e-4):
+    """Rigid body M dv/dt = F_r y(v / v_d) - Te from rest (y piecewise linear), by hand
+    (explicit midpoint steps): time to reach fraction x v_d [s]."""
+    xs = np.array([p[0] for p in curve])
+    ys = np.array([p[1] for p in curve])
+
+    def acc(v):
+        return (rated * np.interp(v / v_d, xs, ys) - te) / mass
+
+    v, t = 0.0, 0.0
+    while v < fraction * v_d:
+        vm = v + 0.5 * dt * acc(v)
+        v += dt * acc(vm)
+        t += dt
+    return t
+
+
+def test_dol_start_matches_the_rigid_body_within_3_percent():
+    """Motor on the line (default induction-motor curve), a short stiff belt that does not
+    slip: the time to 90 % speed equals the rigid-body integration of the motor curve
+    against the moving mass and Te (3 %)."""
+    conv = _conv(drives=[_drive(control="dol", rated_power_kw=240, inertia_kg_m2=100)],
+                 takeup={"type": "gravity", "position": "tail", "mass_kg": 16000},
+                 belt={"width_m": 1.0, "rating_kn_m": 1000, "modulus_kn_m": 600000,
+                       "carcass_mass_kg_m2": 20.0, "top_cover_mm": 0, "bottom_cover_mm": 0})
+    st = solve_steady(conv, model="din", n_elements=60)
+    sysm = build_system(conv, Scenario(start={"time_s": 30}, run_s=10, elements=60), st)
+    r = simulate(sysm, t_end_s=sysm.pre_rest_s + 25.0)
+    assert r.summary["drive1_slip_s"] == 0.0
+    ts = r.timeseries
+    t = ts["t_s"].to_numpy() - sysm.pre_rest_s
+    t90 = float(t[np.argmax(ts["v_mean_m_s"].to_numpy() >= 0.9 * 4.0)])
+    expected = _rigid_time_to(0.9, sysm.total_mass_kg, 240e3 / 4.0, st.te_n, 4.0,
+                              conv.drives[0].curve)
+    assert t90 == pytest.approx(expected, rel=0.03)
+
+
+def test_dol_fluid_coupling_lets_the_motor_run_up_first():
+    """With a constant-fill fluid coupling the motor is at speed before the belt is: its
+    torque grows with the square of the input speed, so the motor runs up nearly unloaded."""
+    conv = _conv(drives=[_drive(control="dol", rated_power_kw=240, inertia_kg_m2=300,
+                                coupling="fluid")],
+                 takeup={"type": "gravity", "position": "tail", "mass_kg": 16000})
+    st = solve_steady(conv, model="din", n_elements=60)
+    sysm = build_system(conv, Scenario(start={"time_s": 30}, run_s=10, elements=60), st)
+    ki_r = simulate(sysm, t_end_s=sysm.pre_rest_s + 40.0)
+    ts = ki_r.timeseries
+    assert ki_r.summary["start_time_s"] is not None
+    # the coupling's stall torque bounds the force at the belt: 1.6 x rated
+    assert ts["f_drive1_kn"].max() <= 1.6 * 60.0 * 1.01
+    assert ts["v_mean_m_s"].iloc[-1] == pytest.approx(4.0, rel=0.05)
+
+
+def _dual_head(**over):
+    d = hand_conveyor_dict(drives=[_drive(share=0.5, inertia_kg_m2=20),
+                                   _drive(share=0.5, inertia_kg_m2=20)], **over)
+    return parse_conveyor(d)
+
+
+def test_dual_head_drive_statics_by_hand():
+    """Two head pulleys of 200 deg, shares 0.5 / 0.5: T1 - T2 = Te, the tension between them
+    T2 + Te / 2, and each pulley's margin e^(mu theta) with its own tensions (1e-9)."""
+    conv = _dual_head()
+    st = solve_steady(conv, model="din", n_elements=80)
+    s = st.summary
+    t1, tb, t2 = s["drive1_t_tight_kn"], s["drive1_t_slack_kn"], s["drive2_t_slack_kn"]
+    assert s["drive2_t_tight_kn"] == pytest.approx(tb, rel=1e-12)
+    te = s["te_kn"]
+    assert t1 - t2 == pytest.approx(te, rel=1e-9)
+    assert tb == pytest.approx(t2 + 0.5 * te, rel=1e-9)
+    e = _euler()
+    assert s["drive1_slip_margin"] == pytest.approx(e * tb / t1, rel=1e-9)
+    assert s["drive2_slip_margin"] == pytest.approx(e * t2 / tb, rel=1e-9)
+    # one lumped 400 deg pulley would report e^(2 mu theta) T2 / T1 instead
+    assert min(s["drive1_slip_margin"], s["drive2_slip_margin"]) < e * e * t2 / t1
+
+
+def test_dual_head_drive_running_equals_statics_and_shares_equally():
+    """Torque following: the two drives give equal force within 2 % during the start and
+    running; the running tensions in, between and out equal the statics within 1 %."""
+    conv = _dual_head(takeup={"type": "gravity", "position": "tail", "mass_kg": 9000})
+    st = solve_steady(conv, model="din", n_elements=80)
+    sysm = build_system(conv, Scenario(start={"time_s": 40}, run_s=40, elements=80), st)
+    r = simulate(sysm, t_end_s=sysm.stop_command_s - sysm.dt_s)
+    assert r.summary["drive1_slip_s"] == 0.0 and r.summary["drive2_slip_s"] == 0.0
+    ts = r.timeseries
+    moving = ts["t_s"] > sysm.pre_rest_s + 1.0
+    f1, f2 = ts["f_drive1_kn"][moving], ts["f_drive2_kn"][moving]
+    assert_allclose(f1, f2, rtol=0.02, atol=0.02 * f1.abs().max())
+    T = r.raw["tension"]
+    e1, e2 = st.loop.drive_elements
+    for j in (e1 - 1, e1, e2):
+        assert T[j] == pytest.approx(st.tension_n[j], rel=0.01)
+
+
+def test_vfd_start_tracks_the_reference():
+    """A vfd start inside the torque limit: after the first wave loop time the belt's mean
+    speed is within 2 % of the reference, the overshoot under 2 %, on the example conveyors
+    whose belt is set in motion within the start (the 16.8 km overland: overshoot and the
+    second half of the start, see docs/dynamics.md on pre-tensioning)."""
+    for name, start_s in (("slope-5pct", 180), ("fabric-1km", 180), ("downhill-regen", 180),
+                          ("overland-16km", 300)):
+        conv = load_conveyor(CONVEYORS / f"{name}.yaml")
+        st = solve_steady(conv, model="din", n_elements=80)
+        sysm = build_system(conv, Scenario(start={"time_s": start_s}, run_s=30, elements=80),
+                            st)
+        r = simulate(sysm, t_end_s=sysm.stop_command_s - sysm.dt_s)
+        ts = r.timeseries
+        t = ts["t_s"].to_numpy() - sysm.pre_rest_s
+        lim = float(sysm.drive_limit_n.sum())
+        assert ts["f_drive_kn"].abs().max() * 1e3 < lim, name  # inside the torque limit
+        err = np.abs(ts["v_mean_m_s"] - ts["v_ref_m_s"]).to_numpy() / sysm.v_design
+        since = sysm.wave_loop_time_s if name != "overland-16km" else 0.5 * start_s
+        assert err[t >= since].max() < 0.02, name
+        assert ts["v_mean_m_s"].max() < 1.02 * sysm.v_design, name
+
+
+def test_overland_60s_start_names_the_slipping_drive():
+    conv = load_conveyor(CONVEYORS / "overland-16km.yaml")
+    r = run_one(conv, Scenario(start={"time_s": 60}, run_s=30,
+                               stop={"mode": "controlled", "time_s": 40}), model="din")
+    s = r.summary
+    assert s["status"] == "warning"
+    slipped = [i for i in (1, 2) if s[f"drive{i}_slip_s"] > 0.0]
+    assert slipped
+    for i in slipped:
+        assert s[f"drive{i}_slip_m"] > 0.0
+        pos = conv.drives[i - 1].position
+        assert f"drive {i} ({pos}) slipped on its pulley" in s["message"]
+    assert "m of belt slipped" in s["message"] and "s in all" in s["message"]
+
+
+# --------------------------------------------------------------------------------------
+# brakes
+
+
+def test_brake_fraction_ramp_and_curve():
+    """The ramp reaches the full force at ramp_s; a force curve is followed between its
+    points and held after the last."""
+    ct = np.zeros(16)
+    cf = np.zeros(16)
+    assert brake_fraction(0.5, 1.0, ct, cf, 0) == pytest.approx(0.5)
+    assert brake_fraction(1.0, 1.0, ct, cf, 0) == 1.0
+    assert brake_fraction(-0.1, 1.0, ct, cf, 0) == 0.0
+    ct[:2] = [0.0, 3.0]
+    cf[:2] = [0.5, 1.0]
+    assert brake_fraction(0.0, 1.0, ct, cf, 2) == 0.5
+    assert brake_fraction(1.5, 1.0, ct, cf, 2) == pytest.approx(0.75)
+    assert brake_fraction(10.0, 1.0, ct, cf, 2) == 1.0
+
+
+@pytest.mark.parametrize("curve", [None, [[0.0, 0.5], [3.0, 1.0]]])
+def test_brake_force_builds_over_its_ramp_or_curve(curve):
+    """A tail brake (plain pulley) on a brake stop: while it slides, its force follows the ramp
+    (full at ramp_s after the delay) or the force curve, within 1 %."""
+    brake = {"position": "tail", "force_kn": 10, "delay_s": 0.5, "ramp_s": 2.0}
+    if curve:
+        brake["force_curve"] = curve
+    conv = _conv(drives=[_drive()], brakes=[brake],
+                 takeup={"type": "gravity", "position": "tail", "mass_kg": 12000})
+    r = run_one(conv, Scenario(start={"time_s": 20}, run_s=5, elements=60, record_dt_s=0.05,
+                               stop={"mode": "brake", "time_s": 10}), model="din")
+    ts = r.timeseries
+    t_cmd = 2.0 + 20.0 + 5.0
+    tau = ts["t_s"] - t_cmd - 0.5
+    moving = ts["v_tail_m_s"] > 0.3
+    window = moving & (tau > 0.0) & (tau < 4.0)
+    assert window.sum() > 20
+    if curve:
+        expected = 10.0 * np.interp(tau[window], [0.0, 3.0], [0.5, 1.0])
+    else:
+        expected = 10.0 * np.clip(tau[window] / 2.0, 0.0, 1.0)
+    assert "slipped" not in r.summary["message"]
+    assert_allclose(ts["f_brake_kn"][window], expected, rtol=0.01, atol=0.2)
+
+
+def test_controlled_stop_with_a_holding_brake_stays_at_rest():
+    """A controlled stop on the inclined hand conveyor with a holding brake at the head (40 kN
+    against a net gravity pull of 24.5 kN): the brake sets once the belt has stopped, the drive
+    switches off, and every element's speed stays below 1 mm/s from one wave loop time after
+    the stop to the end."""
+    conv = _conv(brakes=[{"position": "head", "force_kn": 40, "delay_s": 0.5,
+                          "ramp_s": 1.0, "hold": True}],
+                 takeup={"type": "gravity", "position": "tail", "mass_kg": 8000})
+    r = run_one(conv, Scenario(start={"time_s": 30}, run_s=10, elements=60,
+                               stop={"mode": "controlled", "time_s": 15}), model="din")
+    s = r.summary
+    ts = r.timeseries
+    stopped_at = 2.0 + 30.0 + 10.0 + s["stop_time_s"]
+    late = ts["t_s"] >= stopped_at + s["wave_loop_time_s"]
+    assert late.sum() > 20
+    assert ts["v_abs_max_m_s"][late].max() < 1e-3
+    assert ts["f_drive_kn"].iloc[-1] == 0.0  # the drive is off, the brake holds
+    assert ts["f_brake_kn"].iloc[-1] > 0.0
+
+
+def test_auto_brake_force_set_by_holding_is_said():
+    conv = _conv(brakes=[{"position": "head", "force_kn": "auto", "delay_s": 0.5}])
+    r = run_one(conv, Scenario(start={"time_s": 20}, run_s=5, elements=60,
+                               stop={"mode": "brake", "time_s": 30}), model="din")
+    msg = r.summary["message"]
+    assert "set by holding" in msg and "stop then takes about" in msg
+
+
+# --------------------------------------------------------------------------------------
+# bad input
+
+
+@pytest.mark.parametrize("over, field", [
+    ({"brakes": [{"drive": 3}]}, "brakes[0].drive"),
+    ({"drives": [_drive(control="dol", motor_curve=[[0.0, 1.5], [0.5, 1.2], [0.4, 1.0],
+                                                    [1.0, 0.0]])]}, "increase"),
+    ({"drives": [_drive(control="dol", motor_curve=[[0.0, 1.5], [0.9, 2.0], [1.0, 0.4]])]},
+     "zero-torque point"),
+    ({"drives": [_drive(coupling="fluid")]}, "needs control: dol"),
+    ({"drives": [_drive(share=0.6), _drive(share=0.6, position="tail")]},
+     "drives[0] (head) 0.6 + drives[1] (tail) 0.6"),
+])
+def test_bad_drive_and_brake_input_names_the_field(over, field):
+    with pytest.raises(InputError) as exc:
+        _conv(**over)
+    assert field in str(exc.value)
+
+
+def test_controlled_stop_with_dol_drives_is_refused():
+    conv = _conv(drives=[_drive(control="dol")])
+    with pytest.raises(InputError, match="scenario.stop.mode"):
+        run_one(conv, Scenario(stop={"mode": "controlled", "time_s": 20}), model="din")
