@@ -45,6 +45,7 @@ class ReferenceResult(dict):
     (per-spring envelopes of the whole cycle), ``steps``, ``t_end`` [s], ``status`` (0 ok,
     1 diverged), ``w_drive`` [J], ``start_ach``, ``stop_ach`` [s] (-1 not reached),
     ``slip_s`` [s] and ``slip_m`` [m] per drive (time slipping, belt length slipped),
+    ``shaft_slip_s`` [s] and ``shaft_slip_m`` [m] the same per shaft,
     ``slack_s`` [s] (time with a slack span), ``t_trip`` and ``hold_set`` [s].
     """
 
@@ -176,12 +177,12 @@ def _brake_forces(sys, brk, sh, t, t_stopcmd, stopping, stopped, t_stopped):
     return latest
 
 
-def _drive_laws(sys, dr, sh, phase, t, t_trip, stopping):
+def _drive_laws(sys, dr, sh, phase, t, t_trip, stopping, first_off):
     """Each drive's force law for the step, in ``dr.mode``: 0 a force ``f0 + f1 v`` linear in
     its shaft speed (held at rest: zero; dol: the motor curve, through the fluid coupling with
     the motor's own inertia eliminated; power off: the force at the trip decaying over the
     trip time; open-loop start), 1 its share of the speed loop's output, 2 the shaft speed
-    imposed (moving support)."""
+    imposed (moving support). ``first_off``: the first step with the power off."""
     dt, v_d = sys.dt_s, sys.v_design
     for k in range(len(sys.drive_share)):
         dr.sat[k] = False
@@ -190,7 +191,7 @@ def _drive_laws(sys, dr, sh, phase, t, t_trip, stopping):
         vs = sh.vs[sys.drive_shaft[k]]
         fac = 1.0
         if phase == C.OFF:
-            if t - t_trip <= dt:
+            if first_off:
                 dr.f_trip[k] = dr.force[k]
             ts = sys.drive_trip_s[k]
             fac = 0.0 if ts <= 0.0 else max(0.0, 1.0 - (t - t_trip) / ts)
@@ -461,8 +462,8 @@ def _block_step(sys, blk, ctx, st, sh, dr, R0, U, u_known):
             tl, tr = side_tensions(x, k)
             sl = sh.slip[s]
             if sl == 0.0:
-                if nodes[k] == ctx.hold_node:
-                    continue
+                if nodes[k] == ctx.hold_node or sys.shaft_euler[s] < 1.0:
+                    continue  # holding the belt at rest, or slip switched off (verification)
                 # capstan: what the pulley passes within T_slack (e^(mu theta) - 1)
                 ft = belt_force(x, k, tl, tr)
                 cap = (sys.shaft_euler[s] - 1.0) * max(min(tl, tr), 0.0)
@@ -592,9 +593,10 @@ def run_reference(sys: System, t_end_s: float | None = None) -> ReferenceResult:
     x_tu, u_tu, integ, hold_f = 0.0, 0.0, 0.0, sys.hold_force_n
     t_max, t_min = st.tt.copy(), st.tt.copy()
     slip_s, slip_m = np.zeros(nd), np.zeros(nd)
+    shaft_slip_s, shaft_slip_m = np.zeros(ns), np.zeros(ns)
     w_drive, slack_s = 0.0, 0.0
     start_ach = stop_ach = t_stopped = t_trip = hold_set = -1.0
-    stopped = pi_started = False
+    stopped = pi_started = was_off = False
     status = C.OK
     t_limit = t_stopcmd + sys.stop_max_s + sys.post_rest_s
     if t_end_s:
@@ -620,7 +622,8 @@ def run_reference(sys: System, t_end_s: float | None = None) -> ReferenceResult:
                 t_trip = hold_set  # a controlled stop: off once the holding brakes are set
         phase = C.HOLD if not started else (C.OFF if 0.0 <= t_trip < t_new else C.RUN)
         hold_set = _brake_forces(sys, brk, sh, t_new, t_stopcmd, stopping, stopped, t_stopped)
-        _drive_laws(sys, dr, sh, phase, t_new, t_trip, stopping)
+        _drive_laws(sys, dr, sh, phase, t_new, t_trip, stopping, phase == C.OFF and not was_off)
+        was_off = phase == C.OFF
         pi = phase == C.RUN and vfd and not support and (sys.start_control != FORCE
                                                           or stopping)
         if pi and not pi_started:
@@ -667,6 +670,9 @@ def run_reference(sys: System, t_end_s: float | None = None) -> ReferenceResult:
             break
         v_mean = float(sys.belt_mass_kg @ st.v) / float(sys.belt_mass_kg.sum())
         if started:
+            slipping = sh.slip != 0.0
+            shaft_slip_s += np.where(slipping, dt, 0.0)
+            shaft_slip_m += np.where(slipping, np.abs(sh.vs - st.v[sys.shaft_node]) * dt, 0.0)
             for k in range(nd):
                 s = sys.drive_shaft[k]
                 if sh.slip[s] != 0.0:
@@ -687,4 +693,5 @@ def run_reference(sys: System, t_end_s: float | None = None) -> ReferenceResult:
         integrator=integ, shaft_speed=sh.vs, shaft_slip=sh.slip, drive_force=dr.force,
         t_max=t_max, t_min=t_min, steps=step, t_end=t_new, status=status, w_drive=w_drive,
         start_ach=start_ach, stop_ach=stop_ach, slip_s=slip_s, slip_m=slip_m,
-        slack_s=slack_s, t_trip=t_trip, hold_set=hold_set)
+        shaft_slip_s=shaft_slip_s, shaft_slip_m=shaft_slip_m, slack_s=slack_s, t_trip=t_trip,
+        hold_set=hold_set)

@@ -149,6 +149,8 @@ def test_kernel_matches_numpy_reference(name, changes, model, scenario, exercise
     assert res[C.RES.SLACK_DUR] == pytest.approx(ref["slack_s"], abs=1e-9)
     assert_allclose(out.drv[:, C.DRV.SLIP_S], ref["slip_s"], atol=1e-9, rtol=0)
     assert_allclose(out.drv[:, C.DRV.SLIP_M], ref["slip_m"], atol=1e-9, rtol=1e-9)
+    assert_allclose(out.shs[:, 0], ref["shaft_slip_s"], atol=1e-9, rtol=0)
+    assert_allclose(out.shs[:, 1], ref["shaft_slip_m"], atol=1e-9, rtol=1e-9)
 
 
 def test_vectorised_log_and_exp():
