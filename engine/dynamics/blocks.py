@@ -566,7 +566,8 @@ def block_step(bk, blocks, shafts, drives, sp, nodes, st, wk, dt, v_eps, eb, e_d
             else:
                 xk = x[k]
                 if wk.stuck[k] == 1.0:
-                    c_r = _reaction(wk, x, k, m, car)
+                    # a follower's share of U is not in rhs when U comes by superposition
+                    c_r = _reaction(wk, x, k, m, car) - wk.ucoef[k] * U
                     if c_r > wk.c_hi[k] or c_r < wk.c_lo[k]:
                         wk.stuck[k] = 0.0
                         wk.bdir[k] = -1.0 if c_r > wk.c_hi[k] else 1.0
@@ -630,7 +631,8 @@ def block_step(bk, blocks, shafts, drives, sp, nodes, st, wk, dt, v_eps, eb, e_d
         v[j] = xk
         vsum += nodes.w_mean[j] * xk
         if wk.bforce[k] > 0.0:
-            f_brake += abs(_reaction(wk, x, k, m, car)) if wk.stuck[k] == 1.0 else wk.bforce[k]
+            f_brake += abs(_reaction(wk, x, k, m, car) - wk.ucoef[k] * U) if wk.stuck[k] == 1.0 \
+                else wk.bforce[k]
         s = wk.shk[k]
         if s < 0:
             continue

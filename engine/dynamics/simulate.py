@@ -203,7 +203,8 @@ def prepare(sys: System, t_end_s: float | None = None) -> KernelInput:
     cx, cy, cn = _curves(sys.drive_curves, C.CURVE_MAX)
     drives = A.Drives(
         shaft=arr(sys.drive_shaft, np.int64), share=arr(sys.drive_share),
-        lim0=arr(sys.drive_limit_n), lim=arr(sys.drive_limit_n), rated=arr(sys.drive_rated_n),
+        lim0=arr(sys.drive_limit_n), lim=np.array(sys.drive_limit_n, dtype=f64),  # a copy: per step
+        rated=arr(sys.drive_rated_n),
         control=arr(sys.drive_control, np.int64), coupling=arr(sys.drive_coupling, np.int64),
         curve_x=cx, curve_y=cy, curve_n=cn, fill_s=arr(sys.drive_fill_s),
         motor_mass=arr(np.maximum(sys.drive_motor_mass_kg, 1.0)), trip_s=arr(sys.drive_trip_s),
@@ -349,18 +350,24 @@ def _segments(sys: System, out, r: dict):
 
 
 def _extremes(sys: System, segs) -> dict | None:
-    """Largest and lowest tension over a set of segments: value [N], spring, time [s]."""
+    """Largest and lowest tension over a set of segments: value [N], spring, time [s], and per
+    spring the envelopes and their times (from the first segment holding each extreme). A
+    diverged run's envelopes may hold NaN: the extremes are of the finite values."""
     if not segs:
         return None
-    tmax = np.max([s[2] for s in segs], axis=0)
-    tmin = np.min([s[4] for s in segs], axis=0)
-    jmax = int(np.argmax(tmax))
-    jmin = int(np.argmin(tmin))
-    tmax_t = next(s[3][jmax] for s in segs if s[2][jmax] == tmax[jmax])
-    tmin_t = next(s[5][jmin] for s in segs if s[4][jmin] == tmin[jmin])
-    return dict(t_max=float(tmax[jmax]), j_max=jmax, t_max_t=float(tmax_t),
-                t_min=float(tmin[jmin]), j_min=jmin, t_min_t=float(tmin_t), env_min=tmin,
-                env_max=tmax)
+    hi = np.array([s[2] for s in segs])
+    lo = np.array([s[4] for s in segs])
+    cols = np.arange(hi.shape[1])
+    kmax = np.argmax(np.where(np.isnan(hi), -np.inf, hi), axis=0)
+    kmin = np.argmin(np.where(np.isnan(lo), np.inf, lo), axis=0)
+    tmax, tmin = hi[kmax, cols], lo[kmin, cols]
+    tmax_t = np.array([s[3] for s in segs])[kmax, cols]
+    tmin_t = np.array([s[5] for s in segs])[kmin, cols]
+    jmax = int(np.nanargmax(tmax)) if np.isfinite(tmax).any() else 0
+    jmin = int(np.nanargmin(tmin)) if np.isfinite(tmin).any() else 0
+    return dict(t_max=float(tmax[jmax]), j_max=jmax, t_max_t=float(tmax_t[jmax]),
+                t_min=float(tmin[jmin]), j_min=jmin, t_min_t=float(tmin_t[jmin]), env_min=tmin,
+                env_max=tmax, env_max_t=tmax_t, env_min_t=tmin_t)
 
 
 def decode(sys: System, ki: KernelInput, wall_s: float, *, steady_summary=None, conveyor=None,
@@ -414,9 +421,9 @@ def decode(sys: System, ki: KernelInput, wall_s: float, *, steady_summary=None, 
     segs = _segments(sys, out, r)
     whole = _extremes(sys, segs)
     envelope = pd.DataFrame({"s_m": s_end, "t_max_kn": whole["env_max"] / 1e3,
-                             "t_max_time_s": np.max([s[3] for s in segs], axis=0),
+                             "t_max_time_s": whole["env_max_t"],
                              "t_min_kn": whole["env_min"] / 1e3,
-                             "t_min_time_s": np.max([s[5] for s in segs], axis=0)})
+                             "t_min_time_s": whole["env_min_t"]})
     summary, warnings = transient_summary(sys, r, out, segs, steady_summary=steady_summary,
                                           conveyor=conveyor,
                                           safety_factor_min=safety_factor_min)
