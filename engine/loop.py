@@ -14,7 +14,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from engine import catalog
-from engine.conveyor import Conveyor
+from engine.conveyor import Conveyor, section_loads
 
 __all__ = ["G", "Loop", "build_loop", "CARRY", "RETURN", "HEAD", "TAIL", "TAKEUP"]
 
@@ -53,10 +53,17 @@ class Loop:
     seal_drag_n: np.ndarray
     length_m: float
     lift_m: float
-    load_fraction: float
+    load_fraction: float  # carry-length-weighted mean of section_load
     speed_m_s: float
     belt: catalog.ResolvedBelt
     design_load_kg_m: float
+    section_load: tuple[float, ...] = ()  # load fraction per carry profile section
+
+    @property
+    def load_max_kg_m(self) -> float:
+        """Largest material mass per metre on the carry strand [kg/m] (the loaded sections)."""
+        carry = self.strand == CARRY
+        return float(self.mL_kg_m[carry].max()) if carry.any() else 0.0
 
     @property
     def mass_kg(self) -> np.ndarray:
@@ -90,6 +97,23 @@ class Loop:
     def total_length_m(self) -> float:
         return float(self.dx_m.sum())
 
+    def where(self, s_m: float) -> tuple[str, float]:
+        """Strand and distance from the tail along the conveyor of a loop position [m].
+
+        ``s_m`` is measured round the loop from the tail, carry first. Returns ``("carry",
+        x)``, ``("return", x)`` with x the distance from the tail of the point the belt passes
+        over, or ``("head", L)`` / ``("tail", 0)`` / ``("takeup", L)`` on a pulley.
+        """
+        j = int(np.clip(np.searchsorted(self.s_end_m, s_m, side="left"), 0, self.n - 1))
+        code = int(self.strand[j])
+        if code == CARRY:
+            return "carry", float(min(max(s_m, 0.0), self.length_m))
+        if code == RETURN:
+            start = float(self.s_m[self.strand == RETURN].min())
+            return "return", float(min(max(self.length_m - (s_m - start), 0.0), self.length_m))
+        return {HEAD: "head", TAIL: "tail", TAKEUP: "takeup"}[code], (
+            0.0 if code == TAIL else self.length_m)
+
 
 def _split(n: int, lengths: list[float]) -> list[int]:
     """Split n elements over sections proportionally to length, at least one each."""
@@ -114,7 +138,7 @@ def _pulley_diameter(conv: Conveyor, position: str) -> float:
 
 def build_loop(
     conv: Conveyor,
-    load_fraction: float = 1.0,
+    load_fraction: float | str | list = 1.0,
     n_elements: int | None = None,
     target_dx_m: float | None = None,
 ) -> Loop:
@@ -123,8 +147,11 @@ def build_loop(
     Parameters
     ----------
     conv : Conveyor
-    load_fraction : float
-        Material load as a fraction of the design load (1 full, 0 empty).
+    load_fraction : float, str or list
+        Material load as a fraction of the design load (1 full, 0 empty, up to 1.3 a surge),
+        or a load case of SPEC 6.2 (``full``, ``empty``, ``inclines``, ``declines``, one
+        fraction per carry profile section): see :func:`engine.conveyor.section_loads`. Each
+        carry element gets its section's material mass.
     n_elements : int, optional
         Number of belt (idler) elements round the loop, split evenly between the strands;
         pulley elements come on top. Default 200, or from ``target_dx_m``.
@@ -142,7 +169,7 @@ def build_loop(
     belt = catalog.resolve_belt(conv.belt)
     mG = belt.mass_kg_m
     design_mL = conv.material.capacity_t_h / (3.6 * conv.speed_m_s)
-    mL = design_mL * load_fraction
+    loads = section_loads(load_fraction, conv)
     w = belt.width_m
     carry_mass, carry_drag = catalog.idler_set_values(conv.idlers.carry, w)
     ret_mass, ret_drag = catalog.idler_set_values(conv.idlers.return_, w)
@@ -158,13 +185,13 @@ def build_loop(
 
     # carry strand, tail -> head
     z = 0.0
-    for sec, k in zip(conv.profile, counts, strict=True):
+    for sec, k, frac in zip(conv.profile, counts, loads, strict=True):
         dx = sec.length_m / k
         sin = sec.lift_m / sec.length_m
         cos = math.sqrt(1.0 - sin * sin)
         for _ in range(k):
             add(CARRY, dx, z, sin, cos, ic.spacing_m, ic.roll_diameter_m, ic.rolls,
-                ic.trough_deg, mL, carry_mass / ic.spacing_m, carry_drag)
+                ic.trough_deg, design_mL * frac, carry_mass / ic.spacing_m, carry_drag)
             z += dx * sin
     z_head = z
     nc = len(cols["dx"])
@@ -223,8 +250,10 @@ def build_loop(
         seal_drag_n=arr["drag"],
         length_m=L,
         lift_m=conv.lift_m,
-        load_fraction=float(load_fraction),
+        load_fraction=float(sum(f * p.length_m for f, p in zip(loads, conv.profile,
+                                                                strict=True)) / L),
         speed_m_s=float(conv.speed_m_s),
         belt=belt,
         design_load_kg_m=design_mL,
+        section_load=loads,
     )
