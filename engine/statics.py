@@ -11,8 +11,15 @@ constant, which the take-up sets: a gravity take-up carries its counterweight on
   drive force times the start-up factor 1.5, the slack side held by the take-up), and running;
 * the sag limits on both strands, T >= g (m'_G + m'_L) S / (8 (h/S)_adm), running and, for a
   gravity take-up, also held at rest (take-up plus gravity, the net pull of the loaded belt
-  taken by the brake or the master drive: :func:`rest_walk`); this project reads the
-  minimum-tension rule as applying in every operating state, standstill included.
+  taken by the brake or the master drive: :func:`rest_walk`). The held-at-rest rule is this
+  project's conservative reading (DIN 22101 checks the minimum tensions in its running and
+  starting / stopping states only); it is on by default because a stopped, loaded belt sags
+  most where the brake leaves it least tension, and it is switched off per conveyor with
+  ``takeup.sag_at_rest: false``.
+
+The constraint that sets an auto take-up is reported as ``takeup_governed_by``: ``slip_start``,
+``slip_running``, ``sag_running``, ``sag_at_rest`` (or ``positive``, the belt kept in tension);
+``given`` when the take-up is not auto.
 
 The counterweight is installed once: its auto mass is the larger of what the run's load case
 needs and what the full design load needs (same model and temperature), so an empty or part-
@@ -29,13 +36,14 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from engine.conveyor import Conveyor
+from engine.capacity import capacity as capacity_check
+from engine.conveyor import Conveyor, section_loads
 from engine.friction import get_model
 from engine.law import ResistanceLaw
 from engine.loop import CARRY, HEAD, RETURN, TAIL, TAKEUP, G, Loop, build_loop
 
 __all__ = ["SteadyResult", "solve_steady", "STARTUP_FACTOR", "SAFETY_FACTOR_MIN", "SPEC_PARTS",
-           "rest_hold_element", "rest_walk"]
+           "rest_hold_element", "rest_walk", "TAKEUP_CONSTRAINTS"]
 
 #: Start-up force factor for slip sizing of the take-up [-] (PHYSICS section 1).
 STARTUP_FACTOR = 1.5
@@ -51,6 +59,8 @@ MAX_ITER = 200
 #: Smallest relaxation factor of the fixed-point iteration (Aitken / Irons-Tuck).
 OMEGA_MIN = 0.05
 STRAND_NAMES = {CARRY: "carry", RETURN: "return", HEAD: "head", TAIL: "tail", TAKEUP: "takeup"}
+#: Constraints an auto take-up is sized by (``takeup_governed_by``), in the order of ties.
+TAKEUP_CONSTRAINTS = ("slip_start", "slip_running", "sag_running", "sag_at_rest", "positive")
 
 
 @dataclass
@@ -73,6 +83,7 @@ class SteadyResult:
     warnings: list[str] = field(default_factory=list)
     status: str = "ok"
     message: str = ""
+    takeup_governed_by: str = "given"  # the constraint that set an auto take-up
 
     @property
     def tension_mean_n(self) -> np.ndarray:
@@ -144,9 +155,10 @@ def rest_walk(loop: Loop, hold: int, gravity_n: np.ndarray) -> np.ndarray:
 
 def _rest_need(conv: Conveyor, loop: Loop, hs_adm: np.ndarray) -> float | None:
     """Smallest mean tension at a gravity take-up that keeps the belt held at rest within
-    its sag limits [N] (None for a fixed take-up). The counterweight holds the same mean
-    tension at rest as running: ``T_rest = T_tu - w_rest_tu + W_rest``."""
-    if conv.takeup.type != "gravity":
+    its sag limits [N] (None for a fixed take-up, or with ``takeup.sag_at_rest`` off). The
+    counterweight holds the same mean tension at rest as running: ``T_rest = T_tu - w_rest_tu
+    + W_rest``."""
+    if conv.takeup.type != "gravity" or not conv.takeup.sag_at_rest:
         return None
     k = loop.i_takeup
     Wr = rest_walk(loop, rest_hold_element(conv, loop), loop.gravity_n)
@@ -175,24 +187,30 @@ def _required_offset(loop: Loop, W: np.ndarray, drives, d_force: np.ndarray,
     and, with ``rest_need`` from :func:`_rest_need`, held at rest)."""
     bounds = {}
     Wprev = np.roll(W, 1)
-    bounds["sag"] = _sag_need(loop, W, hs_adm)
-    if rest_need is not None:
-        k = loop.i_takeup
-        bounds["sag_at_rest"] = rest_need - 0.5 * (W[k - 1] + W[k])
-    slip_need = -np.inf
+    run_need, start_need = -np.inf, -np.inf
     for idx, _share, e in drives:
         d = d_force[idx]
         w_in, w_out = Wprev[idx], W[idx]
         # running: max(T_in, T_out) <= e min(T_in, T_out)
-        run = (max(w_in, w_out) - e * min(w_in, w_out)) / (e - 1.0)
+        run_need = max(run_need, (max(w_in, w_out) - e * min(w_in, w_out)) / (e - 1.0))
         # start-up: the slack side held by the take-up, the drive force x STARTUP_FACTOR
         slack_w = w_out if d >= 0 else w_in
-        start = STARTUP_FACTOR * abs(d) / (e - 1.0) - slack_w
-        slip_need = max(slip_need, run, start)
-    bounds["slip"] = float(slip_need)
-    positive = float(np.max(1.0 - W))  # keep every tension above 1 N
-    bounds["positive"] = positive
+        start_need = max(start_need, STARTUP_FACTOR * abs(d) / (e - 1.0) - slack_w)
+    bounds["slip_start"] = float(start_need)
+    bounds["slip_running"] = float(run_need)
+    bounds["sag_running"] = _sag_need(loop, W, hs_adm)
+    if rest_need is not None:
+        k = loop.i_takeup
+        bounds["sag_at_rest"] = rest_need - 0.5 * (W[k - 1] + W[k])
+    bounds["positive"] = float(np.max(1.0 - W))  # keep every tension above 1 N
     return max(bounds.values()), bounds
+
+
+def _governing(bounds: dict) -> str:
+    """The constraint with the largest need (the first of :data:`TAKEUP_CONSTRAINTS` on a
+    tie)."""
+    return max(TAKEUP_CONSTRAINTS, key=lambda k: (bounds.get(k, -np.inf),
+                                                  -TAKEUP_CONSTRAINTS.index(k)))
 
 
 def solve_steady(
@@ -226,12 +244,10 @@ def solve_steady(
     SteadyResult
         With ``summary`` holding the SPEC section 4 steady fields.
     """
-    from engine.conveyor import load_fraction
-
     fm = get_model(model)
     p = params if (params is not None and not isinstance(params, dict)) else fm.params(params)
-    frac = load_fraction(load)
-    loop = build_loop(conv, frac, n_elements=n_elements, target_dx_m=target_dx_m)
+    loads = section_loads(load, conv)
+    loop = build_loop(conv, list(loads), n_elements=n_elements, target_dx_m=target_dx_m)
     law = fm.build(loop, conv, float(temperature_c), p)
     v = loop.speed_m_s
     grav = loop.gravity_n
@@ -244,9 +260,10 @@ def solve_steady(
     rest_need = _rest_need(conv, loop, hs_adm)
     # the installed take-up: at least what the full design load needs
     tu_floor_n = -np.inf
+    design = None
     auto = (tu.type == "gravity" and tu.mass_kg == "auto") or (
         tu.type == "fixed" and tu.pretension_kn == "auto")
-    if auto and frac < 1.0:
+    if auto and any(f != 1.0 for f in loads):
         design = solve_steady(conv, model=model, params=p, temperature_c=temperature_c,
                               load=1.0, n_elements=n_elements, target_dx_m=target_dx_m)
         tu_floor_n = design.takeup_tension_n
@@ -313,6 +330,10 @@ def solve_steady(
         takeup_mass_kg=takeup_mass, takeup_tension_n=float(takeup_tension),
         iterations=iterations, summary={},
     )
+    if auto:
+        floor_governs = design is not None and tu_floor_n - w_tu > c_need
+        result.takeup_governed_by = (design.takeup_governed_by if floor_governs
+                                     else _governing(bounds))
     _summarise(result, drives, hs_adm, bounds, c_need - (T[0] - W[0]))
     if not converged:
         result.status = "failed"
@@ -359,7 +380,7 @@ def _summarise(res: SteadyResult, drives, hs_adm, bounds, shortfall_n: float) ->
     for name, arr in parts.items():
         comps[name] = comps.get(name, 0.0) + float(arr.sum()) / 1e3
     comps["lift"] = float((loop.mL_kg_m * G * loop.dx_m * loop.sin_a).sum()) / 1e3
-    m_carry = belt.mass_kg_m + loop.design_load_kg_m * loop.load_fraction
+    m_carry = belt.mass_kg_m + loop.load_max_kg_m  # the loaded sections of a load pattern
     mR_c = float(loop.mR_kg_m[loop.strand == CARRY][0])
     mR_r = float(loop.mR_kg_m[loop.strand == RETURN][0])
     eb = belt.stiffness_n
@@ -375,11 +396,13 @@ def _summarise(res: SteadyResult, drives, hs_adm, bounds, shortfall_n: float) ->
         "sag_max_pct": float(sag.max() * 100),
         "takeup_mass_kg": res.takeup_mass_kg,
         "takeup_tension_kn": res.takeup_tension_n / 1e3,
+        "takeup_pretension_kn": res.takeup_tension_n / 1e3,
+        "takeup_governed_by": res.takeup_governed_by,
         "slip_margin": float(min(slip_margins)),
         "slip_margin_start": float(min(start_margins)),
         "safety_factor": float(rating / T[imax]),
         "belt_mass_kg_m": belt.mass_kg_m,
-        "load_mass_kg_m": loop.design_load_kg_m * loop.load_fraction,
+        "load_mass_kg_m": loop.load_max_kg_m,
         "idler_mass_carry_kg_m": mR_c,
         "idler_mass_return_kg_m": mR_r,
         "belt_modulus_kn": eb / 1e3,
@@ -390,6 +413,19 @@ def _summarise(res: SteadyResult, drives, hs_adm, bounds, shortfall_n: float) ->
         "steady_iterations": res.iterations,
     }
     warnings: list[str] = []
+    # ---- load case and capacity (SPEC 6.2, 6.4)
+    surge = max(loop.section_load) if loop.section_load else loop.load_fraction
+    if surge > 1.0:
+        warnings.append(f"surge: load {surge:g} x the design load (material.capacity_t_h) "
+                        "is above the design capacity")
+    cap = capacity_check(conv)
+    res.summary["fill_pct"] = cap.fill_pct
+    if cap.fill_pct > 100.0:
+        warnings.append(
+            f"fill_pct {cap.fill_pct:.0f} %: the design volume flow "
+            f"({cap.volume_flow_m3_h:.0f} m3/h) exceeds what the belt's cross-section carries "
+            f"at {v:g} m/s ({cap.capacity_m3_h:.0f} m3/h, ISO 5048); widen or trough the belt "
+            "deeper, or run faster")
     tu = conv.takeup
     for (idx, _s, e), m_run, m_start in zip(drives, slip_margins, start_margins, strict=True):
         where = "head" if idx == loop.i_head else "tail"
