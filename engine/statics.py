@@ -323,6 +323,12 @@ def solve_steady(
     c_need, bounds = _required_offset(loop, W, drives, d_force, hs_adm, rest_need)
     takeup_tension = 0.5 * (T[k - 1] + T[k])
     takeup_mass = float(2.0 * takeup_tension / G) if tu.type == "gravity" else None
+    if not auto:  # a given take-up is reported as given (not as its round trip through T)
+        if tu.type == "gravity":
+            takeup_mass = float(tu.mass_kg)
+            takeup_tension = takeup_mass * G / 2.0
+        else:
+            takeup_tension = float(tu.pretension_kn) * 1e3
 
     result = SteadyResult(
         conveyor=conv, loop=loop, law=law, model=fm.name, temperature_c=float(temperature_c),
