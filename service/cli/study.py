@@ -119,13 +119,21 @@ def cmd_submit(args) -> int:
         st, created = client.submit(body)
         print(
             f"{'submitted' if created else 'already submitted'}: {st['id']} "
-            f"({st['total']} runs) {client.url}{st['status_url']}"
+            f"({_runs_text(st)}) {client.url}{st['status_url']}"
         )
         if not args.wait:
             return 0
         st = _poll(lambda: client.status(st["id"]), ProgressBar())
         print(format_status(st))
     return 0 if st["state"] == "done" else 1
+
+
+def _runs_text(st: dict) -> str:
+    """``12 runs`` or ``12 runs; 4 of 16 grid points merged into identical runs``."""
+    text = f"{st['total']} runs"
+    if st.get("merged"):
+        text += f"; {st['merged']} of {st['grid_points']} grid points merged into identical runs"
+    return text
 
 
 def _poll(get, progress, poll_s: float = 1.0) -> dict:
@@ -152,7 +160,7 @@ def cmd_run(args) -> int:
     try:
         st, created = service.submit(data, base_dir=p.parent, confine=False)
         print(
-            f"{'study' if created else 'existing study'} {st['id']} ({st['total']} runs), "
+            f"{'study' if created else 'existing study'} {st['id']} ({_runs_text(st)}), "
             f"data in {settings.studies_root / st['id']}",
             file=sys.stderr,
         )
