@@ -43,7 +43,7 @@ def steady_profile_figure(profile, title: str = ""):
     ax1.set_ylabel("elevation [m]")
     ax1.grid(alpha=0.3)
     if title:
-        ax1.set_title(title)
+        ax1.set_title(wrap_title(title))
     ax2.plot(x_carry, t[carry], label="carry", color="tab:red")
     ax2.plot(x_ret, t[ret], label="return", color="tab:blue")
     ax2.set_xlabel("distance from the tail along the conveyor [m]")
@@ -60,6 +60,17 @@ def steady_profile_figure(profile, title: str = ""):
 
 #: Message of the figures drawn for a study or run without transient results.
 NO_TRANSIENT = "no transient data (dynamics: false)"
+#: Lines in one panel before a comparison figure is split into small multiples.
+MAX_LINES = 8
+#: Characters per line of a figure title (longer titles wrap instead of being cut off).
+TITLE_WIDTH = 72
+
+
+def wrap_title(text: str, width: int = TITLE_WIDTH) -> str:
+    """A figure title wrapped onto several lines (no part of it is cut off)."""
+    import textwrap
+
+    return "\n".join(textwrap.wrap(str(text), width=width, break_long_words=True)) or ""
 
 
 def message_figure(message: str, title: str = "", figsize=(8, 4.5)):
@@ -70,7 +81,7 @@ def message_figure(message: str, title: str = "", figsize=(8, 4.5)):
     ax.text(0.5, 0.5, message, ha="center", va="center", fontsize=13, color="0.3",
             wrap=True, transform=ax.transAxes)
     if title:
-        ax.set_title(title)
+        ax.set_title(wrap_title(title))
     return fig
 
 
@@ -89,81 +100,198 @@ def _ok_rows(runs):
     return runs
 
 
-def power_temperature_figure(runs, title: str = "", temperature_c: float | None = None):
-    """Power at the drive pulleys against temperature, per friction model and load (Fig. 2).
+def _text(value) -> str:
+    """An axis value in a legend: numbers short, a merged (null) value as 'any'."""
+    import math
 
-    ``runs`` is the runs table (SPEC section 4). A line per (``friction_model``, ``load``);
-    where other axes vary, each point is the mean over them. Without a ``temperature_c``
-    axis every run sits at ``temperature_c`` [deg C] (the scenario's).
+    if value is None or (isinstance(value, float) and math.isnan(value)):
+        return "any"
+    if isinstance(value, float):
+        return f"{value:g}"
+    return str(value)
+
+
+def default_axis_columns(runs) -> list[str]:
+    """The input columns of a runs table when the study's axes are not given: the design
+    card's named axes and every dotted axis column present."""
+    named = ("friction_model", "temperature_c", "load", "belt_type", "stop_time_target_s")
+    return [c for c in runs.columns if c in named or "." in c]
+
+
+def varying(df, columns: list[str]) -> list[str]:
+    """The columns of ``columns`` with more than one value in ``df`` (null counts as one)."""
+    out = []
+    for c in columns:
+        if c in df.columns and df[c].astype(str).nunique(dropna=False) > 1:
+            out.append(c)
+    return out
+
+
+def series(df, x: str, y: str, others: list[str]):
+    """The points of ``df`` as lines: one per combination of the ``others`` columns, sorted
+    by ``x``. Returns ``[(key dict, x array, y array)]``; points with another value of any
+    of ``others`` are never on one line."""
+    df = df.dropna(subset=[x, y])
+    if not others:
+        part = df.sort_values(x, kind="stable")
+        return [({}, part[x].to_numpy(float), part[y].to_numpy(float))] if len(part) else []
+    keyed = df.assign(**{f"__{c}": df[c].astype(str) for c in others})
+    out = []
+    for _, part in keyed.groupby([f"__{c}" for c in others], sort=True, dropna=False):
+        part = part.sort_values(x, kind="stable")
+        key = {c: part[c].iloc[0] for c in others}
+        out.append((key, part[x].to_numpy(float), part[y].to_numpy(float)))
+    return out
+
+
+def _label(key: dict, skip: tuple[str, ...] = ()) -> str:
+    parts = []
+    for c, v in key.items():
+        if c in skip:
+            continue
+        parts.append(_text(v) if c == "friction_model" else f"{c} {_text(v)}")
+    return ", ".join(parts) or "all runs"
+
+
+def _panels(df, others: list[str]):
+    """Small multiples: one panel per value of the first of ``others`` when a single panel
+    would hold more than :data:`MAX_LINES` lines; else one panel. Returns ``[(title part,
+    rows, the others drawn as lines in it)]``."""
+    combos = df[others].astype(str).drop_duplicates().shape[0] if others else 1
+    if combos <= MAX_LINES or len(others) < 2:
+        return [("", df, others)]
+    first, rest = others[0], others[1:]
+    out = []
+    for _value, part in df.groupby(df[first].astype(str), sort=True, dropna=False):
+        label = _text(part[first].iloc[0])
+        out.append((label if first == "friction_model" else f"{first} {label}", part, rest))
+    return out
+
+
+def comparison_figure(df, x: str, y: str, others: list[str], xlabel: str, ylabel: str,
+                      title: str, y2: str | None = None, y2label: str = "", ymin0=False):
+    """Lines of ``y`` (and ``y2`` below it) against ``x``, one per combination of
+    ``others``, in small multiples when there are many."""
+    import math
+
+    plt = _plt()
+    panels = _panels(df, others)
+    ncols = min(len(panels), 3)
+    nrows_p = math.ceil(len(panels) / ncols)
+    rows = nrows_p * (2 if y2 else 1)
+    wide = 3.8 if len(panels) == 1 else 0.0  # room for the legend beside a single panel
+    fig, grid = plt.subplots(rows, ncols, figsize=(5.4 * ncols + 1.4 + wide, 3.6 * rows + 0.9),
+                             squeeze=False, sharex=True)
+    cmap = plt.get_cmap("tab10")
+    styles = ("-", "--", ":", "-.")
+    for k, (ptitle, part, lines) in enumerate(panels):
+        r, c = divmod(k, ncols)
+        targets = [(grid[r * (2 if y2 else 1)][c], y, ylabel)]
+        if y2:
+            targets.append((grid[r * 2 + 1][c], y2, y2label))
+        for ax, col, lab in targets:
+            for i, (key, xs, ys) in enumerate(series(part, x, col, lines)):
+                ax.plot(xs, ys, marker="o", ms=4, color=cmap(i % 10),
+                        linestyle=styles[(i // 10) % len(styles)], label=_label(key))
+                ax.lines[-1].set_gid(repr(sorted((kk, _text(vv)) for kk, vv in key.items())))
+            ax.set_ylabel(lab)
+            ax.grid(alpha=0.3)
+            if ymin0:
+                ax.set_ylim(bottom=0.0)
+            if ptitle and col == y:
+                ax.set_title(wrap_title(ptitle, 40), fontsize=10)
+        targets[-1][0].set_xlabel(xlabel)
+    for k in range(len(panels), nrows_p * ncols):  # unused panels of the last row
+        r, c = divmod(k, ncols)
+        for rr in range(r * (2 if y2 else 1), (r + 1) * (2 if y2 else 1)):
+            grid[rr][c].set_axis_off()
+    if len(panels) == 1:  # one legend beside the panel, clear of the lines
+        grid[0][0].legend(loc="upper left", bbox_to_anchor=(1.01, 1.0), fontsize=8)
+    else:  # a legend in each panel (its lines), not repeated under it
+        for k in range(len(panels)):
+            r, c = divmod(k, ncols)
+            ax = grid[r * (2 if y2 else 1)][c]
+            if ax.lines:
+                ax.legend(loc="best", fontsize=7)
+    fig.suptitle(wrap_title(title, int(TITLE_WIDTH * max(ncols, 1) / 1.4)))
+    fig.tight_layout()
+    return fig
+
+
+def power_temperature_figure(runs, title: str = "", temperature_c: float | None = None,
+                             axes: list[str] | None = None):
+    """Power at the drive pulleys against temperature (Harrison's Fig. 2).
+
+    A line per combination of the other axes that vary in the study (friction model, load,
+    belt type, ...), never joined across them and never averaged; small multiples (a panel per
+    value of the first of them) when that would be more than :data:`MAX_LINES` lines. Without
+    a ``temperature_c`` axis every run sits at ``temperature_c`` [deg C] (the scenario's).
+    ``axes`` are the study's axis columns (default: every input column of ``runs``).
     """
     import pandas as pd
 
-    plt = _plt()
+    title = title or "power against temperature"
     df = _ok_rows(runs).copy()
     power = _numeric(df, "power_kw")
     if not len(df) or power is None:
-        return message_figure("no steady results yet", title or "power against temperature")
+        return message_figure("no steady results yet", title)
     df["power_kw"] = power
     if "temperature_c" not in df.columns:
         df["temperature_c"] = float(temperature_c if temperature_c is not None else 20.0)
     df["temperature_c"] = pd.to_numeric(df["temperature_c"], errors="coerce")
     if "friction_model" not in df.columns:
         df["friction_model"] = "model"
-    groups = ["friction_model"] + (["load"] if "load" in df.columns else [])
-    fig, ax = plt.subplots(figsize=(8, 4.8))
-    styles = ("-", "--", ":", "-.")
-    loads = sorted(df["load"].astype(str).unique()) if "load" in df.columns else [""]
-    for key, group in df.groupby(groups, sort=True):
-        key = key if isinstance(key, tuple) else (key,)
-        model = str(key[0])
-        load = str(key[1]) if len(key) > 1 else ""
-        curve = group.groupby("temperature_c")["power_kw"].mean().sort_index()
-        label = f"{model}, load {load}" if load else model
-        ax.plot(curve.index, curve.values, marker="o", label=label,
-                linestyle=styles[loads.index(load) % len(styles)] if load else "-")
-    ax.set_xlabel("temperature [°C]")
-    ax.set_ylabel("power at the drive pulleys [kW]")
-    ax.set_title(title or "power against temperature per friction model and load")
-    ax.grid(alpha=0.3)
-    ax.legend(loc="best", fontsize=8)
-    fig.tight_layout()
-    return fig
+    cols = list(axes) if axes is not None else default_axis_columns(df)
+    if "friction_model" not in cols:
+        cols.insert(0, "friction_model")
+    others = varying(df, [c for c in cols if c != "temperature_c"])
+    return comparison_figure(df, "temperature_c", "power_kw", others, "temperature [°C]",
+                             "power at the drive pulleys [kW]", title)
 
 
-def peak_dynamic_tension_figure(runs, title: str = ""):
-    """Peak dynamic tension ``t_max_dyn_kn`` [kN] against the achieved ``stop_time_s`` [s].
+def stop_tension_columns(runs) -> tuple[str, str | None]:
+    """The peak and lowest tension columns of a stop: the stop-phase ones (``t_max_stop_kn``,
+    ``t_min_stop_kn``) where the runs have them, else the whole transient's."""
+    peak = "t_max_stop_kn" if _numeric(runs, "t_max_stop_kn") is not None else "t_max_dyn_kn"
+    low = "t_min_stop_kn" if _numeric(runs, "t_min_stop_kn") is not None else (
+        "t_min_dyn_kn" if _numeric(runs, "t_min_dyn_kn") is not None else None)
+    return peak, low
 
-    One series per friction model; a :data:`NO_TRANSIENT` figure when the study has no
-    transient results (``dynamics: false``, or no dynamic run finished yet).
+
+def peak_dynamic_tension_figure(runs, title: str = "", axes: list[str] | None = None):
+    """Peak tension [kN] against the achieved ``stop_time_s`` [s], the lowest tension below.
+
+    Stop-phase columns (``t_max_stop_kn``, ``t_min_stop_kn``) when the runs have them, else
+    ``t_max_dyn_kn`` / ``t_min_dyn_kn``. A line per combination of the other varying axes (the
+    stop-time axis itself is the x axis); a :data:`NO_TRANSIENT` figure when the study has no
+    transient results.
     """
-    plt = _plt()
-    title = title or "peak dynamic tension against stop time"
+    title = title or "peak tension against stop time"
     df = _ok_rows(runs).copy()
-    peak = _numeric(df, "t_max_dyn_kn")
-    stop = _numeric(df, "stop_time_s")
+    peak_col, low_col = stop_tension_columns(df)
+    peak = _numeric(df, peak_col)
     if not len(df) or peak is None:
         return message_figure(NO_TRANSIENT, title)
-    df["t_max_dyn_kn"] = peak
+    df[peak_col] = peak
+    if low_col:
+        df[low_col] = _numeric(df, low_col)
+    stop = _numeric(df, "stop_time_s")
     if stop is None:  # the achieved stop time is missing: fall back to the commanded one
         stop = _numeric(df, "stop_time_target_s")
     if stop is None:
         return message_figure("no stop times in the results", title)
     df["x"] = stop
-    df = df.dropna(subset=["x", "t_max_dyn_kn"])
     if "friction_model" not in df.columns:
         df["friction_model"] = "model"
-    fig, ax = plt.subplots(figsize=(8, 4.8))
-    for model, group in df.groupby("friction_model", sort=True):
-        curve = group.groupby("x")["t_max_dyn_kn"].max().sort_index()
-        ax.plot(curve.index, curve.values, marker="o", label=str(model))
-    ax.set_xlabel("stop time [s]")
-    ax.set_ylabel("peak dynamic tension [kN]")
-    ax.set_ylim(bottom=0.0)
-    ax.set_title(title)
-    ax.grid(alpha=0.3)
-    ax.legend(loc="best", fontsize=8)
-    fig.tight_layout()
-    return fig
+    cols = list(axes) if axes is not None else default_axis_columns(df)
+    if "friction_model" not in cols:
+        cols.insert(0, "friction_model")
+    others = varying(df, [c for c in cols if c not in ("stop_time_target_s", "stop_time_s",
+                                                       "x")])
+    phase = "stop phase" if peak_col == "t_max_stop_kn" else "whole transient"
+    return comparison_figure(df, "x", peak_col, others, "stop time achieved [s]",
+                             f"peak tension [kN] ({phase})", title, y2=low_col,
+                             y2label=f"lowest tension [kN] ({phase})", ymin0=True)
 
 
 def ratio_figure(summary: dict, baseline: str = "cema", candidate: str = "nonlin", title: str = ""):
@@ -203,23 +331,38 @@ def ratio_figure(summary: dict, baseline: str = "cema", candidate: str = "nonlin
                 ax.set_xlabel(axis)
             if j == 0:
                 ax.set_ylabel(f"{metric} ratio")
-    fig.suptitle(title)
+    fig.suptitle(wrap_title(title))
     fig.tight_layout()
     return fig
 
 
-def _eight_points(surface):
+def _positions(surface) -> np.ndarray:
+    return np.unique(np.asarray(surface["s_m"], dtype=float))
+
+
+def _trace(surface, s: float):
+    part = surface[np.isclose(surface["s_m"].astype(float), s)].sort_values("t_s")
+    return part["t_s"].to_numpy(float), part["tension_kn"].to_numpy(float)
+
+
+def _where_text(s: float, locate=None) -> str:
+    """``carry, 1200 m from the tail`` for a loop position, with ``locate(s) -> (strand,
+    distance from the tail)``; else the loop position."""
+    if locate is None:
+        return f"{s:.0f} m round the loop"
+    strand, x = locate(s)
+    if strand in ("carry", "return"):
+        return f"{strand}, {x:.0f} m from the tail"
+    return f"{strand} pulley"
+
+
+def _eight_points(surface, locate=None):
     """Tension against time at eight positions spread evenly round the loop (long table)."""
-    positions = np.unique(np.asarray(surface["s_m"], dtype=float))
+    positions = _positions(surface)
     if len(positions) == 0:
         return []
     picks = positions[np.unique(np.linspace(0, len(positions) - 1, 8).round().astype(int))]
-    out = []
-    for s in picks:
-        part = surface[np.isclose(surface["s_m"].astype(float), s)].sort_values("t_s")
-        out.append((f"s = {s:.0f} m", part["t_s"].to_numpy(float),
-                    part["tension_kn"].to_numpy(float)))
-    return out
+    return [(_where_text(s, locate), *_trace(surface, s)) for s in picks]
 
 
 _KEY_POINTS = (
@@ -229,12 +372,17 @@ _KEY_POINTS = (
 )  # fmt: skip
 
 
-def transient_figure(timeseries, surface=None, title: str = ""):
+def transient_figure(timeseries, surface=None, title: str = "", extremes: dict | None = None,
+                     locate=None, extremes_surface=None):
     """Tension at eight points round the loop against time, belt speed below (Fig. 4).
 
     ``surface`` is the long table (``t_s``, ``s_m``, ``tension_kn``): eight positions spread
-    evenly round the loop. Without it the key points of ``timeseries`` (SPEC section 5) are
-    drawn. A :data:`NO_TRANSIENT` figure when there is no time series.
+    evenly round the loop, named by strand and distance from the tail when ``locate(s_m) ->
+    (strand, distance from the tail [m])`` is given. ``extremes`` (``{"highest": s_m,
+    "lowest": s_m}``, e.g. ``t_max_dyn_at_m`` and ``t_min_dyn_at_m``) add a probe at each of
+    those positions (nearest point of ``extremes_surface``, default ``surface``), drawn bold.
+    Without a surface the key points of ``timeseries`` (SPEC section 5) are drawn. A
+    :data:`NO_TRANSIENT` figure when there is no time series.
     """
     plt = _plt()
     title = title or "transient tensions and belt speed"
@@ -242,11 +390,22 @@ def transient_figure(timeseries, surface=None, title: str = ""):
     has_sf = surface is not None and len(surface) and "s_m" in surface.columns
     if not has_ts and not has_sf:
         return message_figure(NO_TRANSIENT, title)
-    fig, (ax1, ax2) = plt.subplots(2, 1, sharex=True, figsize=(9, 6.5),
+    fig, (ax1, ax2) = plt.subplots(2, 1, sharex=True, figsize=(9, 7.0),
                                    gridspec_kw={"height_ratios": [2, 1]})
     if has_sf:
-        for label, t, tension in _eight_points(surface):
+        for label, t, tension in _eight_points(surface, locate):
             ax1.plot(t, tension, label=label, linewidth=1.0)
+        pool = extremes_surface if extremes_surface is not None and len(extremes_surface) \
+            else surface
+        positions = _positions(pool)
+        for (name, at), color in zip((extremes or {}).items(), ("black", "tab:red"),
+                                     strict=False):
+            if at is None or not np.isfinite(at) or not len(positions):
+                continue
+            s = float(positions[np.argmin(np.abs(positions - float(at)))])
+            t, tension = _trace(pool, s)
+            ax1.plot(t, tension, color=color, linewidth=2.0, linestyle="--",
+                     label=f"{name}: {_where_text(s, locate)}")
     else:
         ts = timeseries.sort_values("t_s")
         for column, label in _KEY_POINTS:
@@ -255,19 +414,19 @@ def transient_figure(timeseries, surface=None, title: str = ""):
                 ax1.plot(ts["t_s"], values, label=label, linewidth=1.0)
     ax1.set_ylabel("belt tension [kN]")
     ax1.grid(alpha=0.3)
-    ax1.legend(loc="upper right", fontsize=7, ncol=2)
-    ax1.set_title(title)
+    ax1.legend(loc="upper left", bbox_to_anchor=(1.01, 1.0), fontsize=7)
+    ax1.set_title(wrap_title(title, 90))
     if has_ts:
         ts = timeseries.sort_values("t_s")
         for column, label in (("v_drive_m_s", "drive pulley"), ("v_tail_m_s", "tail pulley")):
             values = _numeric(ts, column)
             if values is not None:
                 ax2.plot(ts["t_s"], values, label=label)
-        ax2.legend(loc="upper right", fontsize=7)
+        ax2.legend(loc="upper left", bbox_to_anchor=(1.01, 1.0), fontsize=7)
     elif "velocity_m_s" in surface.columns:
         mean = surface.groupby("t_s")["velocity_m_s"].mean()
         ax2.plot(mean.index, mean.values, label="mean belt speed")
-        ax2.legend(loc="upper right", fontsize=7)
+        ax2.legend(loc="upper left", bbox_to_anchor=(1.01, 1.0), fontsize=7)
     ax2.set_xlabel("time [s]")
     ax2.set_ylabel("belt speed [m/s]")
     ax2.grid(alpha=0.3)

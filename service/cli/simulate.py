@@ -82,7 +82,8 @@ def register(sub) -> None:
     p.add_argument("--timeseries", metavar="FILE", help="write the SPEC section 5 key-point "
                    "time series (.parquet or .csv)")
     p.add_argument("--plot", metavar="FILE.png", help="tension at eight points round the loop "
-                   "against time with the belt speed below (the paper's Fig. 4)")
+                   "and where it is highest and lowest, against time, with the belt speed "
+                   "below (the paper's Fig. 4)")
     p.set_defaults(func=run)
 
 
@@ -161,9 +162,13 @@ def run(args: argparse.Namespace) -> int:
         from service.plots import transient_figure
 
         surface = traces_long(res.transient.traces) if res.transient is not None else None
+        extremes = {"highest tension": s.get("t_max_dyn_at_m"),
+                    "lowest tension": s.get("t_min_dyn_at_m")}
+        locate = res.steady.loop.where if res.steady is not None else None
         fig = transient_figure(res.timeseries, surface, title=(
             f"{conv.name}: {fm.name}, {scn.temperature_c:g} C, load {scn.load}, "
-            f"{scn.start.control} start {scn.start.time_s:g} s, {scn.stop.mode} stop"))
+            f"{scn.start.control} start {scn.start.time_s:g} s, {scn.stop.mode} stop"),
+            extremes=extremes, locate=locate, extremes_surface=res.surface)
         fig.savefig(args.plot, dpi=110)
     if args.json:
         print(dumps(s))
