@@ -127,6 +127,48 @@ def varying(df, columns: list[str]) -> list[str]:
     return out
 
 
+def unchanging(df, inputs: list[str], y: str, others: list[str], rtol: float = 1e-9
+               ) -> list[str]:
+    """The columns of ``others`` that never change ``y``: runs that differ only in such a
+    column (all ``inputs`` and the other columns equal) have the same ``y`` (a stop time in a
+    steady result, say). Their lines would lie on top of each other, so they are drawn once;
+    the figure says which axes those are. ``inputs`` are the input columns behind the x axis
+    (not the x values themselves: an achieved stop time is a result)."""
+    import numpy as np
+
+    out: list[str] = []
+    keep = list(others)
+    data = df.dropna(subset=[y])
+    if not len(data):
+        return out
+    text = {k: data[k].astype(str) for k in [*inputs, *others] if k in data.columns}
+    changed = True
+    while changed:  # dropping one axis can make another comparable (a merged null value)
+        changed = False
+        for c in list(keep):
+            rest = [k for k in (*inputs, *keep) if k != c and k in text]
+            if rest:
+                spread = data.assign(**{f"__{k}": text[k] for k in rest}).groupby(
+                    [f"__{k}" for k in rest], dropna=False)[y].agg(["min", "max", "count"])
+            else:
+                spread = pd_frame(data[y])
+            compared = spread["count"] >= 2
+            scale = np.maximum(np.abs(spread["max"]), 1e-12)
+            if compared.any() and ((spread["max"] - spread["min"]) <= rtol * scale).all():
+                out.append(c)
+                keep = [k for k in keep if k != c]
+                changed = True
+    return [c for c in others if c in out]
+
+
+def pd_frame(values):
+    """min, max and count of one series as a one-row frame."""
+    import pandas as pd
+
+    return pd.DataFrame({"min": [values.min()], "max": [values.max()],
+                         "count": [values.count()]})
+
+
 def series(df, x: str, y: str, others: list[str]):
     """The points of ``df`` as lines: one per combination of the ``others`` columns, sorted
     by ``x``. Returns ``[(key dict, x array, y array)]``; points with another value of any
@@ -169,12 +211,20 @@ def _panels(df, others: list[str]):
 
 
 def comparison_figure(df, x: str, y: str, others: list[str], xlabel: str, ylabel: str,
-                      title: str, y2: str | None = None, y2label: str = "", ymin0=False):
+                      title: str, y2: str | None = None, y2label: str = "", ymin0=False,
+                      inputs: list[str] | None = None):
     """Lines of ``y`` (and ``y2`` below it) against ``x``, one per combination of
-    ``others``, in small multiples when there are many."""
+    ``others``, in small multiples when there are many. Axes that change neither ``y`` nor
+    ``y2`` (:func:`unchanging`, with ``inputs`` the input columns behind ``x``, default ``x``
+    itself) are drawn once and named under the figure."""
     import math
 
     plt = _plt()
+    inputs = [x] if inputs is None else [c for c in inputs if c in df.columns]
+    same = [c for c in unchanging(df, inputs, y, others)
+            if not y2 or c in unchanging(df, inputs, y2, others)]
+    others = [c for c in others if c not in same]
+    df = df.drop_duplicates(subset=[x, *others], keep="first") if same else df
     panels = _panels(df, others)
     ncols = min(len(panels), 3)
     nrows_p = math.ceil(len(panels) / ncols)
@@ -214,7 +264,10 @@ def comparison_figure(df, x: str, y: str, others: list[str], xlabel: str, ylabel
             if ax.lines:
                 ax.legend(loc="best", fontsize=7)
     fig.suptitle(wrap_title(title, int(TITLE_WIDTH * max(ncols, 1) / 1.4)))
-    fig.tight_layout()
+    if same:
+        note = "the same for every value of " + ", ".join(same)
+        fig.text(0.01, 0.005, wrap_title(note, 110), fontsize=8, color="0.35", va="bottom")
+    fig.tight_layout(rect=(0, 0.04 if same else 0, 1, 1))
     return fig
 
 
@@ -291,7 +344,8 @@ def peak_dynamic_tension_figure(runs, title: str = "", axes: list[str] | None = 
     phase = "stop phase" if peak_col == "t_max_stop_kn" else "whole transient"
     return comparison_figure(df, "x", peak_col, others, "stop time achieved [s]",
                              f"peak tension [kN] ({phase})", title, y2=low_col,
-                             y2label=f"lowest tension [kN] ({phase})", ymin0=True)
+                             y2label=f"lowest tension [kN] ({phase})", ymin0=True,
+                             inputs=[c for c in cols if c not in others])
 
 
 def ratio_figure(summary: dict, baseline: str = "cema", candidate: str = "nonlin", title: str = ""):

@@ -148,7 +148,8 @@ def run_figure(service: StudyService, study_id: str, run_id: str, name: str):
     spec = next((r for r in study.runs if r.run_id == run_id), None)
     if spec is None:
         raise NotFound(f"run '{run_id}' of study '{study_id}' not found")
-    axes = ", ".join(f"{k}={v}" for k, v in spec.axes.items() if k != "friction_model")
+    axes = ", ".join(f"{k}={plots._text(v)}" for k, v in spec.axes.items()
+                     if k != "friction_model")
     title = _text(f"{doc.get('name', study_id)} · {spec.model}" + (f" · {axes}" if axes else ""))
     if name == "steady-profile":
         from engine.conveyor import parse_conveyor, parse_scenario

@@ -209,3 +209,18 @@ def test_transient_figure_probes_the_extremes_and_names_carry_and_return():
     assert "highest tension: carry, 1000 m from the tail" in labels
     assert "lowest tension: return, 400 m from the tail" in labels
     assert "\n" in fig.axes[0].get_title()  # the long title wraps
+
+
+def test_an_axis_that_changes_nothing_is_drawn_once_and_named():
+    """Steady power does not depend on the stop time: one line per model and load, not two
+    identical ones on top of each other, and the figure says so."""
+    runs = _runs()
+    runs["power_kw"] = runs["power_kw"] - runs["stop_time_target_s"] / 100 * np.where(
+        runs["friction_model"] == "cema", 1.0, 0.8)
+    fig = plots.power_temperature_figure(runs, axes=AXES)
+    lines = [ln for ax in fig.axes for ln in ax.get_lines()]
+    assert len(lines) == 4
+    assert "the same for every value of stop_time_target_s" in _texts(fig)
+    assert assert_lines_never_join_other_axis_values(
+        fig, runs.drop_duplicates(["friction_model", "load", "temperature_c"]),
+        "temperature_c", "power_kw", ["friction_model", "load"]) == 12
