@@ -158,11 +158,11 @@ def run_plot(
 @api.get(
     "/studies/{study_id}/report",
     summary="The design report of a study: one self-contained HTML page (prints to PDF)",
-    response_class=HTMLResponse,
+    response_class=Response,
     responses={200: {"content": {"text/html": {"schema": {"type": "string"}}},
                      "description": "the report"}},
 )
-def study_report(study_id: str, service: StudyService = Depends(get_service)) -> HTMLResponse:
+def study_report(study_id: str, service: StudyService = Depends(get_service)) -> Response:
     from service.web.report import REPORT_CSP, build_report
 
     return HTMLResponse(build_report(service, study_id), headers={
