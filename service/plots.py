@@ -147,12 +147,14 @@ def unchanging(df, inputs: list[str], y: str, others: list[str], rtol: float = 1
         changed = False
         for c in list(keep):
             rest = [k for k in (*inputs, *keep) if k != c and k in text]
+            # a group compares c only where it holds two or more values of c
+            grouped = data.assign(__c=text[c], **{f"__{k}": text[k] for k in rest})
             if rest:
-                spread = data.assign(**{f"__{k}": text[k] for k in rest}).groupby(
-                    [f"__{k}" for k in rest], dropna=False)[y].agg(["min", "max", "count"])
+                g = grouped.groupby([f"__{k}" for k in rest], dropna=False)
+                spread = g[y].agg(["min", "max"]).assign(values=g["__c"].nunique())
             else:
-                spread = pd_frame(data[y])
-            compared = spread["count"] >= 2
+                spread = pd_frame(data[y]).assign(values=grouped["__c"].nunique())
+            compared = spread["values"] >= 2
             scale = np.maximum(np.abs(spread["max"]), 1e-12)
             if compared.any() and ((spread["max"] - spread["min"]) <= rtol * scale).all():
                 out.append(c)
@@ -162,11 +164,10 @@ def unchanging(df, inputs: list[str], y: str, others: list[str], rtol: float = 1
 
 
 def pd_frame(values):
-    """min, max and count of one series as a one-row frame."""
+    """min and max of one series as a one-row frame."""
     import pandas as pd
 
-    return pd.DataFrame({"min": [values.min()], "max": [values.max()],
-                         "count": [values.count()]})
+    return pd.DataFrame({"min": [values.min()], "max": [values.max()]})
 
 
 def series(df, x: str, y: str, others: list[str]):
@@ -195,28 +196,43 @@ def _label(key: dict, skip: tuple[str, ...] = ()) -> str:
     return ", ".join(parts) or "all runs"
 
 
+#: Most panels of one comparison figure.
+MAX_PANELS = 12
+
+
 def _panels(df, others: list[str]):
-    """Small multiples: one panel per value of the first of ``others`` when a single panel
-    would hold more than :data:`MAX_LINES` lines; else one panel. Returns ``[(title part,
-    rows, the others drawn as lines in it)]``."""
-    combos = df[others].astype(str).drop_duplicates().shape[0] if others else 1
-    if combos <= MAX_LINES or len(others) < 2:
+    """Small multiples: when one panel would hold more than :data:`MAX_LINES` lines, a panel
+    per combination of the first of ``others`` (then the first two, ...) until each panel's
+    lines fit or :data:`MAX_PANELS` would be passed. Returns ``[(title part, rows, the others
+    drawn as lines in it)]``."""
+    def combos(cols):
+        return df[cols].astype(str).drop_duplicates().shape[0] if cols else 1
+
+    k = 0
+    while (k < len(others) - 1 and combos(others) > MAX_LINES * combos(others[:k])
+           and combos(others[:k + 1]) <= MAX_PANELS):
+        k += 1
+    if k == 0:
         return [("", df, others)]
-    first, rest = others[0], others[1:]
+    split, rest = others[:k], others[k:]
     out = []
-    for _value, part in df.groupby(df[first].astype(str), sort=True, dropna=False):
-        label = _text(part[first].iloc[0])
-        out.append((label if first == "friction_model" else f"{first} {label}", part, rest))
+    keys = [df[c].astype(str) for c in split]
+    for _value, part in df.groupby(keys, sort=True, dropna=False):
+        first = part.iloc[0]
+        label = ", ".join(_text(first[c]) if c == "friction_model" else f"{c} {_text(first[c])}"
+                          for c in split)
+        out.append((label, part, rest))
     return out
 
 
 def comparison_figure(df, x: str, y: str, others: list[str], xlabel: str, ylabel: str,
                       title: str, y2: str | None = None, y2label: str = "", ymin0=False,
-                      inputs: list[str] | None = None):
+                      inputs: list[str] | None = None, notes: list[str] | None = None):
     """Lines of ``y`` (and ``y2`` below it) against ``x``, one per combination of
-    ``others``, in small multiples when there are many. Axes that change neither ``y`` nor
-    ``y2`` (:func:`unchanging`, with ``inputs`` the input columns behind ``x``, default ``x``
-    itself) are drawn once and named under the figure."""
+    ``others``, in small multiples when there are many (one colour per combination in every
+    panel, one legend). Axes that change neither ``y`` nor ``y2`` (:func:`unchanging`, with
+    ``inputs`` the input columns behind ``x``, default ``x`` itself) are drawn once and named
+    under the figure with the ``notes``."""
     import math
 
     plt = _plt()
@@ -226,24 +242,34 @@ def comparison_figure(df, x: str, y: str, others: list[str], xlabel: str, ylabel
     others = [c for c in others if c not in same]
     df = df.drop_duplicates(subset=[x, *others], keep="first") if same else df
     panels = _panels(df, others)
+    lines = panels[0][2]
+    keys = sorted({tuple(str(v) for v in row) for row in df[lines].itertuples(index=False)}
+                  ) if lines else [()]
+    colour = {k: i for i, k in enumerate(keys)}
     ncols = min(len(panels), 3)
     nrows_p = math.ceil(len(panels) / ncols)
     rows = nrows_p * (2 if y2 else 1)
-    wide = 3.8 if len(panels) == 1 else 0.0  # room for the legend beside a single panel
-    fig, grid = plt.subplots(rows, ncols, figsize=(5.4 * ncols + 1.4 + wide, 3.6 * rows + 0.9),
+    longest = max((len(_label({c: v for c, v in zip(lines, k, strict=True)})) for k in keys),
+                  default=10)
+    legend_in = min(0.06 * longest + 0.9, 5.0)  # the legend's column beside the panels
+    fig, grid = plt.subplots(rows, ncols, figsize=(5.4 * ncols + 1.0 + legend_in,
+                                                   3.6 * rows + 0.9),
                              squeeze=False, sharex=True)
     cmap = plt.get_cmap("tab10")
     styles = ("-", "--", ":", "-.")
-    for k, (ptitle, part, lines) in enumerate(panels):
+    handles: dict[str, tuple] = {}
+    for k, (ptitle, part, cols) in enumerate(panels):
         r, c = divmod(k, ncols)
         targets = [(grid[r * (2 if y2 else 1)][c], y, ylabel)]
         if y2:
             targets.append((grid[r * 2 + 1][c], y2, y2label))
         for ax, col, lab in targets:
-            for i, (key, xs, ys) in enumerate(series(part, x, col, lines)):
-                ax.plot(xs, ys, marker="o", ms=4, color=cmap(i % 10),
-                        linestyle=styles[(i // 10) % len(styles)], label=_label(key))
-                ax.lines[-1].set_gid(repr(sorted((kk, _text(vv)) for kk, vv in key.items())))
+            for key, xs, ys in series(part, x, col, cols):
+                i = colour.get(tuple(str(key[c]) for c in cols), 0)
+                (line,) = ax.plot(xs, ys, marker="o", ms=4, color=cmap(i % 10),
+                                  linestyle=styles[(i // 10) % len(styles)], label=_label(key))
+                line.set_gid(repr(sorted((kk, _text(vv)) for kk, vv in key.items())))
+                handles.setdefault(line.get_label(), (i, line))
             ax.set_ylabel(lab)
             ax.grid(alpha=0.3)
             if ymin0:
@@ -255,31 +281,56 @@ def comparison_figure(df, x: str, y: str, others: list[str], xlabel: str, ylabel
         r, c = divmod(k, ncols)
         for rr in range(r * (2 if y2 else 1), (r + 1) * (2 if y2 else 1)):
             grid[rr][c].set_axis_off()
-    if len(panels) == 1:  # one legend beside the panel, clear of the lines
-        grid[0][0].legend(loc="upper left", bbox_to_anchor=(1.01, 1.0), fontsize=8)
-    else:  # a legend in each panel (its lines), not repeated under it
-        for k in range(len(panels)):
-            r, c = divmod(k, ncols)
-            ax = grid[r * (2 if y2 else 1)][c]
-            if ax.lines:
-                ax.legend(loc="best", fontsize=7)
-    fig.suptitle(wrap_title(title, int(TITLE_WIDTH * max(ncols, 1) / 1.4)))
+    order = sorted(handles, key=lambda label: handles[label][0])
+    fig.legend([handles[k][1] for k in order], order, loc="upper right", fontsize=8,
+               bbox_to_anchor=(0.995, 0.93), frameon=True)
+    fig.suptitle(wrap_title(title, int(TITLE_WIDTH * max(ncols, 1) / 1.2)))
+    note_lines = list(notes or [])
     if same:
-        note = "the same for every value of " + ", ".join(same)
-        fig.text(0.01, 0.005, wrap_title(note, 110), fontsize=8, color="0.35", va="bottom")
-    fig.tight_layout(rect=(0, 0.04 if same else 0, 1, 1))
+        note_lines.append("the same for every value of " + ", ".join(same))
+    if note_lines:
+        fig.text(0.01, 0.005, wrap_title("; ".join(note_lines), 120), fontsize=8,
+                 color="0.35", va="bottom")
+    width, height = fig.get_size_inches()
+    right = 1.0 - legend_in / width
+    top = 1.0 - (0.25 + 0.22 * fig._suptitle.get_text().count("\n")) / height
+    fig.tight_layout(rect=(0, 0.3 / height if note_lines else 0, right, top))
     return fig
 
 
+def _one_per_zip_group(others: list[str], groups: list[list[str]] | None
+                       ) -> tuple[list[str], list[str]]:
+    """``others`` with only the first axis of each zip group (its partners vary with it, so
+    they add no lines), and notes naming the partners."""
+    out, notes = [], []
+    for c in others:
+        group = next((g for g in groups or [] if c in g), None)
+        if group is not None:
+            first = next(g for g in group if g in others)
+            if first != c:
+                continue
+            partners = [g for g in group if g != c and g in others]
+            if partners:
+                notes.append(f"{c} with {', '.join(partners)} (zip)")
+        out.append(c)
+    return out, notes
+
+
+def _tied_label(label: str, tied: list[str]) -> str:
+    return label + (f" (with {', '.join(tied)})" if tied else "")
+
+
 def power_temperature_figure(runs, title: str = "", temperature_c: float | None = None,
-                             axes: list[str] | None = None):
+                             axes: list[str] | None = None, groups: list[list[str]] | None = None):
     """Power at the drive pulleys against temperature (Harrison's Fig. 2).
 
     A line per combination of the other axes that vary in the study (friction model, load,
     belt type, ...), never joined across them and never averaged; small multiples (a panel per
     value of the first of them) when that would be more than :data:`MAX_LINES` lines. Without
     a ``temperature_c`` axis every run sits at ``temperature_c`` [deg C] (the scenario's).
-    ``axes`` are the study's axis columns (default: every input column of ``runs``).
+    ``axes`` are the study's axis columns (default: every input column of ``runs``);
+    ``groups`` its zip groups (columns): axes zipped with the temperature vary along the x axis
+    with it and are named in its label.
     """
     import pandas as pd
 
@@ -297,9 +348,21 @@ def power_temperature_figure(runs, title: str = "", temperature_c: float | None 
     cols = list(axes) if axes is not None else default_axis_columns(df)
     if "friction_model" not in cols:
         cols.insert(0, "friction_model")
-    others = varying(df, [c for c in cols if c != "temperature_c"])
-    return comparison_figure(df, "temperature_c", "power_kw", others, "temperature [°C]",
-                             "power at the drive pulleys [kW]", title)
+    tied = _tied(groups, "temperature_c")
+    others = varying(df, [c for c in cols if c != "temperature_c" and c not in tied])
+    others, notes = _one_per_zip_group(others, groups)
+    return comparison_figure(df, "temperature_c", "power_kw", others,
+                             _tied_label("temperature [°C]", tied),
+                             "power at the drive pulleys [kW]", title,
+                             inputs=["temperature_c", *tied], notes=notes)
+
+
+def _tied(groups: list[list[str]] | None, column: str) -> list[str]:
+    """The columns zipped with ``column`` (they vary together with it)."""
+    for group in groups or []:
+        if column in group:
+            return [c for c in group if c != column]
+    return []
 
 
 def stop_tension_columns(runs) -> tuple[str, str | None]:
@@ -311,7 +374,8 @@ def stop_tension_columns(runs) -> tuple[str, str | None]:
     return peak, low
 
 
-def peak_dynamic_tension_figure(runs, title: str = "", axes: list[str] | None = None):
+def peak_dynamic_tension_figure(runs, title: str = "", axes: list[str] | None = None,
+                                groups: list[list[str]] | None = None):
     """Peak tension [kN] against the achieved ``stop_time_s`` [s], the lowest tension below.
 
     Stop-phase columns (``t_max_stop_kn``, ``t_min_stop_kn``) when the runs have them, else
@@ -339,13 +403,19 @@ def peak_dynamic_tension_figure(runs, title: str = "", axes: list[str] | None = 
     cols = list(axes) if axes is not None else default_axis_columns(df)
     if "friction_model" not in cols:
         cols.insert(0, "friction_model")
+    tied = _tied(groups, "stop_time_target_s")
     others = varying(df, [c for c in cols if c not in ("stop_time_target_s", "stop_time_s",
-                                                       "x")])
+                                                       "x", *tied)])
+    others, notes = _one_per_zip_group(others, groups)
+    unstopped = int(df["x"].isna().sum())
+    if unstopped:
+        notes.append(f"{unstopped} runs that did not stop have no stop time and are not drawn")
     phase = "stop phase" if peak_col == "t_max_stop_kn" else "whole transient"
-    return comparison_figure(df, "x", peak_col, others, "stop time achieved [s]",
+    return comparison_figure(df, "x", peak_col, others,
+                             _tied_label("stop time achieved [s]", tied),
                              f"peak tension [kN] ({phase})", title, y2=low_col,
                              y2label=f"lowest tension [kN] ({phase})", ymin0=True,
-                             inputs=[c for c in cols if c not in others])
+                             inputs=[c for c in cols if c not in others], notes=notes)
 
 
 def ratio_figure(summary: dict, baseline: str = "cema", candidate: str = "nonlin", title: str = ""):
@@ -444,7 +514,7 @@ def transient_figure(timeseries, surface=None, title: str = "", extremes: dict |
     has_sf = surface is not None and len(surface) and "s_m" in surface.columns
     if not has_ts and not has_sf:
         return message_figure(NO_TRANSIENT, title)
-    fig, (ax1, ax2) = plt.subplots(2, 1, sharex=True, figsize=(9, 7.0),
+    fig, (ax1, ax2) = plt.subplots(2, 1, sharex=True, figsize=(11, 7.0),
                                    gridspec_kw={"height_ratios": [2, 1]})
     if has_sf:
         for label, t, tension in _eight_points(surface, locate):
@@ -469,7 +539,7 @@ def transient_figure(timeseries, surface=None, title: str = "", extremes: dict |
     ax1.set_ylabel("belt tension [kN]")
     ax1.grid(alpha=0.3)
     ax1.legend(loc="upper left", bbox_to_anchor=(1.01, 1.0), fontsize=7)
-    ax1.set_title(wrap_title(title, 90))
+    fig.suptitle(wrap_title(title, 100))
     if has_ts:
         ts = timeseries.sort_values("t_s")
         for column, label in (("v_drive_m_s", "drive pulley"), ("v_tail_m_s", "tail pulley")):

@@ -115,16 +115,22 @@ def study_figure(
     runs = service.store.read_runs(study_id)
     title = _text(doc.get("name", study_id))
     axes = [a["column"] for a in doc.get("study", {}).get("axes", [])]
+    zips: dict[int, list[str]] = {}
+    for a in doc.get("study", {}).get("axes", []):
+        if a.get("group") is not None:
+            zips.setdefault(a["group"], []).append(a["column"])
+    groups = list(zips.values())
     if name == "power-temperature":
         temperature = (doc.get("study", {}).get("scenario") or {}).get("temperature_c")
         return lambda: plots.power_temperature_figure(
-            runs, f"{title}: power against temperature", temperature, axes=axes
+            runs, f"{title}: power against temperature", temperature, axes=axes, groups=groups
         )
     if name == "peak-dynamic-tension":
         if not doc.get("study", {}).get("dynamics", True):
             return lambda: plots.message_figure(plots.NO_TRANSIENT, f"{title}: peak tension")
         return lambda: plots.peak_dynamic_tension_figure(
-            runs, f"{title}: peak and lowest tension against stop time", axes=axes)
+            runs, f"{title}: peak and lowest tension against stop time", axes=axes,
+            groups=groups)
     base, cand = _pick_models(runs, baseline, candidate)
     if not len(runs):
         return lambda: plots.message_figure("no finished runs yet", f"{title}: ratio")

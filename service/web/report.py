@@ -31,20 +31,16 @@ REPORT_CSP = ("default-src 'none'; img-src data:; style-src 'unsafe-inline'; bas
               "form-action 'none'; frame-ancestors 'none'")
 
 #: The governing cases: (label, transient column, steady column, largest or smallest, unit,
-#: position column of the transient, position column of the steady state, the limit).
+#: position column of the transient, position column of the steady state).
 GOVERNING = (
     ("largest belt tension", "t_max_dyn_kn", "t_max_kn", "max", "kN", "t_max_dyn_at_m",
-     "t_max_at_m", "belt rating / safety factor"),
+     "t_max_at_m"),
     ("lowest belt tension", "t_min_dyn_kn", "t_min_kn", "min", "kN", "t_min_dyn_at_m",
-     "t_min_at_m", "above 0 and the sag minimum"),
-    ("drive slip margin", "slip_margin_min_dyn", "slip_margin", "min", "-", None, None,
-     "> 1"),
-    ("largest sag", "sag_max_dyn_pct", "sag_max_pct", "max", "%", None, None,
-     "sag_limit_pct"),
-    ("belt safety factor", "safety_factor_dyn", "safety_factor", "min", "-", None, None,
-     "safety_factor_min"),
-    ("take-up carriage travel", "takeup_travel_m", None, "max", "m", None, None,
-     "takeup.travel_m"),
+     "t_min_at_m"),
+    ("drive slip margin", "slip_margin_min_dyn", "slip_margin", "min", "-", None, None),
+    ("largest sag", "sag_max_dyn_pct", "sag_max_pct", "max", "%", None, None),
+    ("belt safety factor", "safety_factor_dyn", "safety_factor", "min", "-", None, None),
+    ("take-up carriage travel", "takeup_travel_m", None, "max", "m", None, None),
 )
 
 CSS = """
@@ -64,14 +60,16 @@ figure { margin: 0.8em 0; }
 figure img { max-width: 100%; height: auto; border: 1px solid #ddd; }
 figcaption { font-size: 9pt; color: #444; }
 code { font-size: 9.5pt; }
-.runs { font-size: 8.5pt; }
+.runs, .governing { font-size: 8.5pt; }
+table.governing { width: 100%; }
+td.num { white-space: nowrap; }
 @page { size: A4; margin: 15mm 12mm; }
 @media print {
   body { margin: 0; max-width: none; font-size: 9.5pt; }
   h2 { break-after: avoid; page-break-after: avoid; }
   table, figure, tr { break-inside: avoid; page-break-inside: avoid; }
   thead { display: table-header-group; }
-  .runs { font-size: 7.5pt; }
+  .runs, .governing { font-size: 7.5pt; }
 }
 """
 
@@ -143,7 +141,7 @@ def _conveyor_section(conv: dict, fill: dict | None) -> str:
                     f"{belt.get('compound', 'standard')}")],
         ["design capacity", f"{_num(mat['capacity_t_h'])} t/h at "
                             f"{_num(mat['density_t_m3'])} t/m³, surcharge "
-                            f"{_num(mat.get('surcharge_deg', 20))}°"],
+                            f"{mat.get('surcharge_deg', 20):g}°"],
         ["carry idlers", _e(f"{conv['idlers']['carry'].get('rolls', 3)} rolls, trough "
                             f"{conv['idlers']['carry'].get('trough_deg', 0):g}°, spacing "
                             f"{conv['idlers']['carry']['spacing_m']:g} m")],
@@ -267,14 +265,46 @@ def _where_on_loop(locate, at) -> str:
     return f"{strand} pulley"
 
 
+def _limits(study: dict, runs: pd.DataFrame) -> dict[str, str]:
+    """The limit each governing case is judged against, in numbers where the study has them."""
+    from engine.run import TRANSIENT_SAFETY_RATIO
+    from engine.statics import SAFETY_FACTOR_MIN
+
+    conv = study["conveyor"]
+    sag = conv["sag_limit_pct"]
+    rating = pd.to_numeric(runs.get("belt_rating_kn"), errors="coerce") if len(runs) else None
+    try:
+        from engine.catalog import resolve_belt
+        from engine.conveyor import parse_conveyor
+
+        kind = resolve_belt(parse_conveyor(conv).belt).kind
+    except Exception:  # a conveyor this engine cannot read
+        kind = "steel"
+    sf = conv.get("safety_factor_min") or SAFETY_FACTOR_MIN.get(kind, 6.7)
+    length = sum(p["length_m"] for p in conv["profile"])
+    travel = conv["takeup"].get("travel_m") or 0.015 * length
+    out = {
+        "largest belt tension": (f"belt rating {rating.max():,.0f} kN" if rating is not None
+                                 and rating.notna().any() else "belt rating"),
+        "lowest belt tension": "above 0 (no slack) and the sag minimum",
+        "drive slip margin": "at least 1",
+        "largest sag": f"carry {sag['carry']:g} %, return {sag['return']:g} %",
+        "belt safety factor": f"{sf:g} running, {TRANSIENT_SAFETY_RATIO * sf:.3g} transient",
+        "take-up carriage travel": f"{travel:g} m of travel",
+    }
+    return out
+
+
 def _governing_section(study: dict, runs: pd.DataFrame) -> str:
     ok = runs[runs["status"] != "failed"] if "status" in runs else runs
     axes = [a["column"] for a in study.get("axes", [])]
     if "friction_model" not in axes:
         axes.insert(0, "friction_model")
+    axes = [a for a in axes if a in ok.columns]
+    limits = _limits(study, runs)
     rows = []
     locate = _locator(study)
-    for label, dyn, steady, pick, unit, at_dyn, at_steady, limit in GOVERNING:
+    for label, dyn, steady, pick, unit, at_dyn, at_steady in GOVERNING:
         col, at_col = dyn, at_dyn
         values = pd.to_numeric(ok[col], errors="coerce") if col in ok else None
         if values is None or not values.notna().any():
@@ -284,15 +314,19 @@ def _governing_section(study: dict, runs: pd.DataFrame) -> str:
             continue
         idx = values.idxmax() if pick == "max" else values.idxmin()
         row = ok.loc[idx]
-        where = ", ".join(f"{a}={_text(row.get(a))}" for a in axes if a in row.index)
         at = row.get(at_col) if at_col else None
-        rows.append([_e(label), _n(values.loc[idx], 5) + f" {unit}", _e(col),
-                     _e(_where_on_loop(locate, at)), f"<code>{_e(row['run_id'])}</code>",
-                     _e(where), _e(limit), _e(row.get("status"))])
+        point = "<br>".join(f"{_e(a)} = {_e(_text(row.get(a)))}" for a in axes)
+        rows.append([_e(label), _n(values.loc[idx], 5) + f" {unit}",
+                     _e(_where_on_loop(locate, at)), _e(limits.get(label, "")),
+                     f"<code>{_e(row['run_id'])}</code><br>{_e(row.get('status'))}", point])
     if not rows:
         return "<p>No finished runs yet.</p>"
-    return _table(["case", "value", "column", "where", "run", "its axis values", "limit",
-                   "status"], rows)
+    return (_table(["case", "value", "where", "limit", "run", "its grid point"], rows,
+                   "governing")
+            + "<p class=muted>Values from the column of the transient where the study ran it "
+            "(t_max_dyn_kn, t_min_dyn_kn, slip_margin_min_dyn, sag_max_dyn_pct, "
+            "safety_factor_dyn, takeup_travel_m), else the steady one; an axis shown as "
+            "<i>any</i> does not change that run.</p>")
 
 
 def _text(value: Any) -> str:

@@ -208,7 +208,7 @@ def test_transient_figure_probes_the_extremes_and_names_carry_and_return():
     assert "carry, 0 m from the tail" in labels
     assert "highest tension: carry, 1000 m from the tail" in labels
     assert "lowest tension: return, 400 m from the tail" in labels
-    assert "\n" in fig.axes[0].get_title()  # the long title wraps
+    assert "\n" in fig._suptitle.get_text()  # the long title wraps
 
 
 def test_an_axis_that_changes_nothing_is_drawn_once_and_named():
@@ -224,3 +224,20 @@ def test_an_axis_that_changes_nothing_is_drawn_once_and_named():
     assert assert_lines_never_join_other_axis_values(
         fig, runs.drop_duplicates(["friction_model", "load", "temperature_c"]),
         "temperature_c", "power_kw", ["friction_model", "load"]) == 12
+
+
+def test_an_axis_zipped_with_the_temperature_runs_along_the_x_axis():
+    """DIN's f zipped with the temperature changes with it: one line per model and load
+    through all temperatures (not one dot per f), the x label names the zipped axis."""
+    runs = _runs()
+    runs = runs[runs["stop_time_target_s"] == 10.0].drop(columns=["stop_time_target_s"])
+    runs["models.din.f_carry"] = runs["temperature_c"].map({-20.0: 0.025, 0.0: 0.02,
+                                                            20.0: 0.017})
+    fig = plots.power_temperature_figure(
+        runs, axes=["friction_model", "load", "temperature_c", "models.din.f_carry"],
+        groups=[["temperature_c", "models.din.f_carry"]])
+    lines = [ln for ax in fig.axes for ln in ax.get_lines()]
+    assert len(lines) == 4 and all(len(ln.get_xdata()) == 3 for ln in lines)
+    assert "with models.din.f_carry" in fig.axes[0].get_xlabel()
+    assert_lines_never_join_other_axis_values(fig, runs, "temperature_c", "power_kw",
+                                              ["friction_model", "load"])

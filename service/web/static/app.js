@@ -408,7 +408,8 @@ function runPage(studyId, runId) {
       const axisCols = info.axes.map((a) => a.column);
       if (!axisCols.includes("friction_model")) axisCols.push("friction_model");
       document.getElementById("run-axes").replaceChildren(...axisCols.flatMap((c) => [
-        el("dt", { text: c }), el("dd", { text: fmtValue(s[c]) })]));
+        el("dt", { text: c }), el("dd", { text: s[c] == null
+          ? "any (grid points that differ only here are this one run)" : fmtValue(s[c]) })]));
       const status = document.getElementById("run-status");
       status.textContent = s.status;
       status.className = "state status-" + s.status;
