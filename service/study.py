@@ -691,20 +691,32 @@ def _expand(
     sized = _design_basis(study, points, i_conv, i_scen, conveyors, conv_models, scenarios,
                           model_of, params_of, designs)
 
-    by_id: dict[str, RunSpec] = {}
+    by_id: dict[str, dict] = {}
+    run_scenarios: dict[tuple, tuple[dict, str]] = {}
+    run_conveyors: dict[tuple, tuple[dict, dict, str]] = {}
     for p in points:
         ck = tuple(p[i] for i in i_conv)
         sk = tuple(p[i] for i in i_scen)
         model = model_of(p)
         overrides, params_json = params_of(p)
-        scenario = run_scenario(scenarios[sk], study.dynamics)
-        entry = sized.get(ck)
-        conveyor, governed = apply_sizes(conveyors[ck], entry["sizes"] if entry else None,
-                                         scenario, study.dynamics)
+        if sk not in run_scenarios:
+            scenario = run_scenario(scenarios[sk], study.dynamics)
+            run_scenarios[sk] = (scenario, canonical_json(scenario))
+        scenario, scenario_json = run_scenarios[sk]
+        # the sizes a run gets depend on its conveyor design and, for brakes, its stop
+        stop = scenario.get("stop") or {}
+        braked = study.dynamics and stop.get("mode") == "brake"
+        ckey = (ck, stop.get("time_s") if braked else None)
+        if ckey not in run_conveyors:
+            entry = sized.get(ck)
+            conveyor, governed = apply_sizes(conveyors[ck], entry["sizes"] if entry else None,
+                                             scenario, study.dynamics)
+            run_conveyors[ckey] = (conveyor, governed, canonical_json(conveyor))
+        conveyor, governed, conveyor_json = run_conveyors[ckey]
         key = "\x1f".join(
             [
-                canonical_json(conveyor),
-                canonical_json(scenario),
+                conveyor_json,
+                scenario_json,
                 model,
                 params_json,
                 str(study.dynamics),
