@@ -56,7 +56,7 @@ def test_one_takeup_per_belt_type_the_largest_over_models_and_temperatures(
     assert runs.groupby("belt_type")["takeup_mass_kg"].first().nunique() == 2
 
 
-def test_a_given_design_case_sizes_every_run(make_study):
+def test_a_given_design_case_sizes_every_run(make_study, finished_study, data_dir):
     design = {"friction_model": "din", "temperature_c": -20, "load": "full"}
     grid = {"friction_model": ["cema", "nonlin"], "temperature_c": [-30, 0, 20]}
     study = resolve_study(make_study(grid=grid, design=design))
@@ -65,6 +65,9 @@ def test_a_given_design_case_sizes_every_run(make_study):
                         n_elements=12).summary
     masses = {r.conveyor["takeup"]["mass_kg"] for r in study.runs}
     assert masses == {round_up(case["takeup_mass_kg"])}
+    runs = _runs(data_dir, finished_study(data_dir, make_study(grid=grid, design=design)))
+    assert len(runs) == 6 and runs["takeup_mass_kg"].nunique() == 1
+    assert runs["takeup_mass_kg"].iloc[0] == pytest.approx(case["takeup_mass_kg"], rel=1e-5)
     (entry,) = study.designs
     assert entry["sizes"]["takeup"]["case"] == "din, -20 C"
     assert all(r.design["takeup_governed_by"] == case["takeup_governed_by"] for r in study.runs)
@@ -139,11 +142,19 @@ def test_model_parameters_as_axes_and_identical_runs_merged(make_study, finished
 
 def test_a_coast_crossed_with_four_stop_times_stores_one_coast_run(make_study, finished_study,
                                                                    data_dir):
-    """The stop time is no input of a coast stop: one coast run per temperature. The auto
-    brake is sized per stop time and held over the temperatures (the largest of them)."""
+    """The stop time is no input of a coast stop: a coast crossed with four stop times stores
+    one coast run (one per temperature with a temperature axis). The auto brake is sized per
+    stop time and held over the temperatures (the largest of them)."""
     braked = tiny_conveyor(brakes=[{"position": "head", "force_kn": "auto", "delay_s": 0.5}])
-    grid = {"scenario.stop.mode": ["coast", "brake"], "stop_time_s": [20, 30, 40, 60],
-            "temperature_c": [-20, 20]}
+    stops = {"scenario.stop.mode": ["coast", "brake"], "stop_time_s": [20, 30, 40, 60]}
+    sid = finished_study(data_dir, make_study(name="coast-x-4", conveyor=braked, dynamics=True,
+                                              grid=stops))
+    runs = _runs(data_dir, sid)
+    assert len(runs) == 5
+    coast = runs[runs["scenario.stop.mode"] == "coast"]
+    assert len(coast) == 1 and coast["stop_time_target_s"].isna().all()
+
+    grid = {**stops, "temperature_c": [-20, 20]}
     body = make_study(conveyor=braked, dynamics=True, grid=grid)
     study = resolve_study(body)
     assert study.grid_points == 16 and study.total == 2 + 8 and study.merged == 6
