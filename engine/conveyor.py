@@ -46,6 +46,10 @@ __all__ = [
     "load_mapping",
     "format_validation_error",
     "load_fraction",
+    "section_loads",
+    "LOAD_MAX",
+    "TEMPERATURE_MIN_C",
+    "TEMPERATURE_MAX_C",
 ]
 
 
@@ -106,6 +110,14 @@ class Material(_Model):
     loading_speed_m_s: float = Field(
         0.0, description="along-belt speed of the material at the feed point [m/s]"
     )
+    surcharge_deg: float = Field(
+        20.0, ge=0, lt=90, description="surcharge angle of the material on the moving belt "
+        "[deg] (capacity check, ISO 5048; 20 deg is the usual default for free-flowing bulk)"
+    )
+    edge_distance_m: NonNegFloat | None = Field(
+        None, description="unloaded belt edge on each side [m]; default ISO 5048 / DIN 22101: "
+        "usable width 0.9 B - 0.05 m up to B = 2 m, B - 0.25 m above"
+    )
 
 
 class ProfileSection(_Model):
@@ -134,6 +146,10 @@ class IdlerSet(_Model):
     cema_class: str | None = Field(None, description="CEMA idler class B..F (catalogue lookup)")
     rotating_mass_kg: NonNegFloat | None = Field(None, description="rotating mass per set [kg]")
     seal_drag_n: NonNegFloat | None = Field(None, description="seal drag per set [N]")
+    roll_length_m: PositiveFloat | None = Field(
+        None, description="length of the middle (horizontal) roll [m], capacity check; "
+        "default by belt width (DIN 22107, engine/data/trough.csv)"
+    )
 
 
 class Idlers(_Model):
@@ -240,6 +256,10 @@ class TakeUp(_Model):
     )
     pretension_kn: PositiveFloat | Literal["auto"] = Field(
         "auto", description="fixed take-up: tension at the take-up [kN] or auto"
+    )
+    sag_at_rest: bool = Field(
+        True, description="auto sizing also meets the sag limits with the belt held at rest "
+        "(conservative: DIN 22101 checks sag only running); false sizes for running only"
     )
     travel_m: PositiveFloat | None = Field(
         None, description="carriage travel between end stops [m]; default 1.5 % of length"
@@ -370,18 +390,83 @@ class StopSpec(_Model):
     time_s: PositiveFloat = Field(30.0, description="target stop time [s]")
 
 
+#: Largest load as a fraction of the design load: a surge up to 30 % above the design
+#: capacity (SPEC 6.2); anything above 1 is reported as a warning.
+LOAD_MAX = 1.3
+#: Ambient temperature range of every entry point (files, studies, the command line) [C]: the
+#: range the cover-rubber data of engine/data/compounds.csv are meant for.
+TEMPERATURE_MIN_C = -60.0
+TEMPERATURE_MAX_C = 80.0
+
+LoadFraction = Annotated[float, Field(ge=0, le=LOAD_MAX)]
+#: A load case (SPEC 6.2): full | empty | a fraction (a surge above 1) | one fraction per carry
+#: profile section | inclines (loaded where a section rises) | declines (where it falls).
+LoadCase = (
+    Literal["full", "empty", "inclines", "declines"]
+    | LoadFraction
+    | Annotated[list[LoadFraction], Field(min_length=1)]
+)
+
+
 def load_fraction(load: str | float) -> float:
-    """Load case as a fraction of the design load: full -> 1, empty -> 0."""
+    """A uniform load case as a fraction of the design load: full -> 1, empty -> 0.
+
+    Patterns (``inclines``, ``declines``, a list per section) have no single fraction: use
+    :func:`section_loads`.
+    """
     if isinstance(load, str):
+        if load not in ("full", "empty"):
+            raise ValueError(f"load '{load}' is a pattern, not one fraction: use section_loads")
         return {"full": 1.0, "empty": 0.0}[load]
+    if isinstance(load, list | tuple):
+        raise ValueError("a load per section is not one fraction: use section_loads")
     return float(load)
+
+
+def section_loads(load, conveyor: Conveyor) -> tuple[float, ...]:
+    """The load case as one fraction of the design load per carry profile section.
+
+    ``full`` 1, ``empty`` 0, a number that number everywhere, a list one value per section
+    (tail to head, as in ``profile``), ``inclines`` 1 on sections that rise (``lift_m > 0``)
+    and 0 elsewhere, ``declines`` 1 on sections that fall (``lift_m < 0``): the loaded-uphill
+    and loaded-downhill cases of DIN 22101 and CEMA for undulating profiles.
+
+    Raises
+    ------
+    InputError
+        A list whose length is not the number of profile sections (names ``scenario.load``).
+    """
+    sections = conveyor.profile
+    if isinstance(load, str):
+        if load == "inclines":
+            return tuple(1.0 if p.lift_m > 0 else 0.0 for p in sections)
+        if load == "declines":
+            return tuple(1.0 if p.lift_m < 0 else 0.0 for p in sections)
+        return (load_fraction(load),) * len(sections)
+    if isinstance(load, list | tuple):
+        if len(load) != len(sections):
+            raise InputError(
+                f"scenario.load: {len(load)} fractions for {len(sections)} profile sections; "
+                "give one per carry section, tail to head")
+        for x in load:
+            if not (0.0 <= float(x) <= LOAD_MAX):
+                raise InputError(f"scenario.load: {x!r} is outside 0..{LOAD_MAX:g}")
+        return tuple(float(x) for x in load)
+    frac = float(load)
+    if not (0.0 <= frac <= LOAD_MAX):
+        raise InputError(f"scenario.load: {frac:g} is outside 0..{LOAD_MAX:g} of the design load")
+    return (frac,) * len(sections)
 
 
 class Scenario(_Model):
     """Operating scenario for a run (SPEC section 2)."""
 
-    load: Literal["full", "empty"] | Annotated[float, Field(ge=0, le=1)] = "full"
-    temperature_c: float = Field(20.0, ge=-60, le=80, description="ambient temperature [C]")
+    load: LoadCase = Field(
+        "full", description="full | empty | a fraction of the design load up to 1.3 (above 1 a "
+        "surge, warned) | a list, one fraction per carry profile section | inclines | declines"
+    )
+    temperature_c: float = Field(20.0, ge=TEMPERATURE_MIN_C, le=TEMPERATURE_MAX_C,
+                                 description="ambient temperature [C]")
     start: StartSpec = StartSpec()
     run_s: NonNegFloat = Field(30.0, description="steady running between start and stop [s]")
     stop: StopSpec = StopSpec()
@@ -442,7 +527,9 @@ def format_validation_error(exc: ValidationError, model: type[BaseModel], prefix
         path = prefix + ".".join(str(p) for p in loc if not str(p).startswith("function-"))
         # Pydantic adds union member tags (e.g. 'literal['auto']', 'float') to locations.
         clean = tuple(
-            p for p in loc if not (isinstance(p, str) and ("[" in p or p in {"float", "int", "str"}))
+            p for p in loc
+            if not (isinstance(p, str) and ("[" in p or p in {"float", "int", "str", "list"}
+                                            or p.startswith("constrained-")))
         )
         path = prefix + ".".join(str(p) for p in clean)
         if err["type"] == "extra_forbidden":
@@ -464,13 +551,31 @@ def format_validation_error(exc: ValidationError, model: type[BaseModel], prefix
                 msg = msg[len("Value error, ") :]
             got = err.get("input")
             shown = "" if isinstance(got, dict | list) else f" (got {got!r})"
-            lines.append(f"{path or '(top level)'}: {msg}{shown}")
-    # Union types produce one error per member; keep the distinct lines only.
-    seen: list[str] = []
+            lines.append((path or "(top level)", msg, shown))
+    # Union types produce one error per member: one line per field, the members' conditions
+    # joined by "or" ("Input should be 'auto' or greater than or equal to 8").
+    merged: dict[str, list] = {}
     for line in lines:
-        if line not in seen:
-            seen.append(line)
-    return "; ".join(seen)
+        if isinstance(line, str):
+            merged.setdefault(line, [])
+            continue
+        path, msg, shown = line
+        key = f"\x00{path}"
+        if key not in merged:
+            merged[key] = [path, [msg], shown]
+        elif msg not in merged[key][1]:
+            merged[key][1].append(msg)
+    out = []
+    for key, item in merged.items():
+        if not item:
+            out.append(key)
+            continue
+        path, msgs, shown = item
+        text = msgs[0] + "".join(
+            " or " + (m[len("Input should be "):] if m.startswith("Input should be ") else m)
+            for m in msgs[1:])
+        out.append(f"{path}: {text}{shown}")
+    return "; ".join(out)
 
 
 def load_mapping(path: str | Path) -> dict:

@@ -18,9 +18,10 @@ from dataclasses import dataclass
 import numpy as np
 
 from engine import catalog
-from engine.conveyor import Conveyor
+from engine.conveyor import Conveyor, section_loads
 
-__all__ = ["G", "Loop", "Pulley", "build_loop", "CARRY", "RETURN", "HEAD", "TAIL", "TAKEUP"]
+__all__ = ["G", "Loop", "Pulley", "build_loop", "CARRY", "RETURN", "HEAD", "TAIL", "TAKEUP",
+           "RotatingParts", "rotating_parts", "pulley_reduced_mass_kg", "MOTOR_INERTIA_SHARE"]
 
 #: Gravitational acceleration [m/s2].
 G = 9.81
@@ -110,10 +111,17 @@ class Loop:
     sag_limit: np.ndarray
     length_m: float
     lift_m: float
-    load_fraction: float
+    load_fraction: float  # carry-length-weighted mean of section_load
     speed_m_s: float
     belt: catalog.ResolvedBelt
     design_load_kg_m: float
+    section_load: tuple[float, ...] = ()  # load fraction per carry profile section
+
+    @property
+    def load_max_kg_m(self) -> float:
+        """Largest material mass per metre on the carry strand [kg/m] (the loaded sections)."""
+        carry = self.strand == CARRY
+        return float(self.mL_kg_m[carry].max()) if carry.any() else 0.0
 
     def brake_element(self, brake) -> int:
         """Element of a brake's pulley: a drive's pulley (``drive: N``), the first head pulley
@@ -158,6 +166,23 @@ class Loop:
     def total_length_m(self) -> float:
         return float(self.dx_m.sum())
 
+    def where(self, s_m: float) -> tuple[str, float]:
+        """Strand and distance from the tail along the conveyor of a loop position [m].
+
+        ``s_m`` is measured round the loop from the tail, carry first. Returns ``("carry",
+        x)``, ``("return", x)`` with x the distance from the tail of the point the belt passes
+        over, or ``("head", L)`` / ``("tail", 0)`` / ``("takeup", L)`` on a pulley.
+        """
+        j = int(np.clip(np.searchsorted(self.s_end_m, s_m, side="left"), 0, self.n - 1))
+        code = int(self.strand[j])
+        if code == CARRY:
+            return "carry", float(min(max(s_m, 0.0), self.length_m))
+        if code == RETURN:
+            start = float(self.s_m[self.strand == RETURN].min())
+            return "return", float(min(max(self.length_m - (s_m - start), 0.0), self.length_m))
+        return {HEAD: "head", TAIL: "tail", TAKEUP: "takeup"}[code], (
+            0.0 if code == TAIL else self.length_m)
+
 
 def _split(n: int, lengths: list[float]) -> list[int]:
     """Split n elements over sections proportionally to length, at least one each."""
@@ -177,7 +202,7 @@ def _split(n: int, lengths: list[float]) -> list[int]:
 
 def build_loop(
     conv: Conveyor,
-    load_fraction: float = 1.0,
+    load_fraction: float | str | list = 1.0,
     n_elements: int | None = None,
     target_dx_m: float | None = None,
 ) -> Loop:
@@ -186,8 +211,11 @@ def build_loop(
     Parameters
     ----------
     conv : Conveyor
-    load_fraction : float
-        Material load as a fraction of the design load (1 full, 0 empty).
+    load_fraction : float, str or list
+        Material load as a fraction of the design load (1 full, 0 empty, up to 1.3 a surge),
+        or a load case of SPEC 6.2 (``full``, ``empty``, ``inclines``, ``declines``, one
+        fraction per carry profile section): see :func:`engine.conveyor.section_loads`. Each
+        carry element gets its section's material mass.
     n_elements : int, optional
         Number of belt (idler) elements round the loop, split evenly between the strands;
         pulley elements come on top. Default 200, or from ``target_dx_m``.
@@ -205,7 +233,7 @@ def build_loop(
     belt = catalog.resolve_belt(conv.belt)
     mG = belt.mass_kg_m
     design_mL = conv.material.capacity_t_h / (3.6 * conv.speed_m_s)
-    mL = design_mL * load_fraction
+    loads = section_loads(load_fraction, conv)
     w = belt.width_m
     carry_mass, carry_drag = catalog.idler_set_values(conv.idlers.carry, w)
     ret_mass, ret_drag = catalog.idler_set_values(conv.idlers.return_, w)
@@ -221,13 +249,13 @@ def build_loop(
 
     # carry strand, tail -> head
     z = 0.0
-    for sec, k in zip(conv.profile, counts, strict=True):
+    for sec, k, frac in zip(conv.profile, counts, loads, strict=True):
         dx = sec.length_m / k
         sin = sec.lift_m / sec.length_m
         cos = math.sqrt(1.0 - sin * sin)
         for _ in range(k):
             add(CARRY, dx, z, sin, cos, ic.spacing_m, ic.roll_diameter_m, ic.rolls,
-                ic.trough_deg, mL, carry_mass / ic.spacing_m, carry_drag)
+                ic.trough_deg, design_mL * frac, carry_mass / ic.spacing_m, carry_drag)
             z += dx * sin
     z_head = z
     nc = len(cols["dx"])
@@ -310,8 +338,96 @@ def build_loop(
                                     conv.sag_limit_pct.return_ / 100, 1.0)),
         length_m=L,
         lift_m=conv.lift_m,
-        load_fraction=float(load_fraction),
+        load_fraction=float(sum(f * p.length_m for f, p in zip(loads, conv.profile,
+                                                                strict=True)) / L),
         speed_m_s=float(conv.speed_m_s),
         belt=belt,
         design_load_kg_m=design_mL,
+        section_load=loads,
     )
+
+
+#: Share of a drive's reduced inertia taken as the motor's when a fluid coupling separates it
+#: and ``motor_inertia_kg_m2`` is not given [-]: the motor rotor dominates the reduced inertia
+#: through the square of the gear ratio (an estimate; give the motor's data).
+MOTOR_INERTIA_SHARE = 2.0 / 3.0
+#: Steel density for the pulley estimate [kg/m3].
+STEEL_KG_M3 = 7850.0
+
+
+def pulley_reduced_mass_kg(diameter_m: float, belt_width_m: float) -> float:
+    """Estimated reduced mass of a pulley at the belt line [kg].
+
+    A welded drum pulley is modelled as a thin steel shell of diameter D, face B + 0.2 m and
+    wall 12 mm + 1 % of D, plus 30 % for the end discs (a thin shell has J (2/D)^2 = m).
+    An estimate, not a catalogue value: give ``DynamicsOptions.pulley_mass_kg`` when the
+    pulley data are known.
+
+    Parameters
+    ----------
+    diameter_m : float
+        Pulley diameter D [m].
+    belt_width_m : float
+        Belt width B [m].
+    """
+    wall = 0.012 + 0.01 * diameter_m
+    return 1.3 * STEEL_KG_M3 * math.pi * diameter_m * (belt_width_m + 0.2) * wall
+
+
+@dataclass(frozen=True)
+class RotatingParts:
+    """Rotating parts reduced to the belt line [kg]: the mass of each shaft (by pulley
+    element: every drive pulley, and the braked and holdback pulleys), the drive of each
+    shaft, each drive's motor mass behind a fluid coupling (0 without), and the own mass of
+    each plain pulley that turns with the belt."""
+
+    shaft_mass: dict
+    shaft_drive: dict
+    motor_mass: list
+    plain_mass: dict
+
+    @property
+    def total_kg(self) -> float:
+        return float(sum(self.shaft_mass.values()) + sum(self.motor_mass)
+                     + sum(self.plain_mass.values()))
+
+
+def rotating_parts(conv: Conveyor, loop: Loop, pulley_mass_kg: float | None = None
+                   ) -> RotatingParts:
+    """The rotating parts of a conveyor (:class:`RotatingParts`).
+
+    A drive's shaft carries ``(J + J_flywheel) (2 / D)^2`` (at least the pulley's own shell,
+    :func:`pulley_reduced_mass_kg`); with a fluid coupling the motor's part ``J_motor (2 /
+    D)^2`` (``motor_inertia_kg_m2``, default ``MOTOR_INERTIA_SHARE`` of ``inertia_kg_m2``) is
+    a separate mass behind the coupling. A braked or holdback pulley without a drive is a
+    shaft of its own shell; every other plain pulley's shell turns with the belt.
+    """
+    width = loop.belt.width_m
+
+    def shell(node: int) -> float:
+        if pulley_mass_kg is not None:
+            return float(pulley_mass_kg)
+        return pulley_reduced_mass_kg(loop.pulley_at(node).diameter_m, width)
+
+    shaft_mass, shaft_drive, motor = {}, {}, []
+    for i, d in enumerate(conv.drives):
+        node = int(loop.drive_elements[i])
+        red = (2.0 / d.pulley_diameter_m) ** 2
+        total = (d.inertia_kg_m2 + d.flywheel_kg_m2) * red
+        m_motor = 0.0
+        if d.coupling != "none":
+            j_m = (d.motor_inertia_kg_m2 if d.motor_inertia_kg_m2 is not None
+                   else MOTOR_INERTIA_SHARE * d.inertia_kg_m2)
+            m_motor = max(j_m * red, 1.0)
+            total = max(total - j_m * red, 0.0)
+        shaft_mass[node] = max(total, pulley_reduced_mass_kg(d.pulley_diameter_m, width))
+        shaft_drive[node] = i
+        motor.append(m_motor)
+    extra = [loop.brake_element(b) for b in conv.brakes]
+    if conv.holdback:
+        extra.append(loop.i_head)
+    for node in extra:
+        if node not in shaft_mass:
+            shaft_mass[node] = shell(node)
+    plain = {p.element: shell(p.element) for p in loop.pulleys if p.element not in shaft_mass}
+    return RotatingParts(shaft_mass, shaft_drive, motor, plain)

@@ -16,6 +16,7 @@ from dataclasses import dataclass
 import pandas as pd
 
 from engine.conveyor import Conveyor, Scenario
+from engine.design import auto_sizes, summary_fields
 from engine.dynamics import DynamicsOptions, TransientResult, build_system, simulate
 from engine.dynamics.model import check_scenario
 from engine.statics import SAFETY_FACTOR_MIN, SteadyResult, solve_steady
@@ -36,8 +37,10 @@ class RunResult:
     Attributes
     ----------
     summary : dict
-        SPEC section 4 fields (steady, and transient when dynamics ran), ``status``,
-        ``message``, ``elapsed_s`` [s], ``te_components_kn`` as a dict [kN].
+        SPEC section 4 fields (steady, and transient when dynamics ran), the design fields of
+        SPEC 6.4 (``takeup_mass_kg``, ``takeup_pretension_kn``, ``brake_force_kn``,
+        ``rated_power_kw`` and their ``*_governed_by``, :mod:`engine.design`), ``fill_pct``,
+        ``status``, ``message``, ``elapsed_s`` [s], ``te_components_kn`` as a dict [kN].
     timeseries : DataFrame or None
         SPEC section 5 key points at ``record_dt_s`` (``t_s``, ``v_drive_m_s``,
         ``v_tail_m_s``, ``f_drive_kn``, ``t_head_in_kn``, ``t_head_out_kn``, ``t_tail_kn``,
@@ -112,6 +115,9 @@ def run_one(
         n_elements=n,
     )
     summary = dict(steady.summary)
+    # the sizes this run used (take-up, rated power, brakes) and what set each auto one
+    summary.update(summary_fields(auto_sizes(conveyor, scenario, model=model, params=params,
+                                             steady=steady)))
     profile = steady.profile()
     if not dynamics or steady.status == "failed":
         summary["elapsed_s"] = time.perf_counter() - t0

@@ -11,8 +11,15 @@ constant, which the take-up sets: a gravity take-up carries its counterweight on
   drive force times the start-up factor 1.5, the slack side held by the take-up), and running;
 * the sag limits on both strands, T >= g (m'_G + m'_L) S / (8 (h/S)_adm), running and, for a
   gravity take-up, also held at rest (take-up plus gravity, the net pull of the loaded belt
-  taken by the brake or the master drive: :func:`rest_walk`); this project reads the
-  minimum-tension rule as applying in every operating state, standstill included.
+  taken by the brake or the master drive: :func:`rest_walk`). The held-at-rest rule is this
+  project's conservative reading (DIN 22101 checks the minimum tensions in its running and
+  starting / stopping states only); it is on by default because a stopped, loaded belt sags
+  most where the brake leaves it least tension, and it is switched off per conveyor with
+  ``takeup.sag_at_rest: false``.
+
+The constraint that sets an auto take-up is reported as ``takeup_governed_by``: ``slip_start``,
+``slip_running``, ``sag_running``, ``sag_at_rest`` (or ``positive``, the belt kept in tension);
+``given`` when the take-up is not auto.
 
 The counterweight is installed once: its auto mass is the larger of what the run's load case
 needs and what the full design load needs (same model and temperature), so an empty or part-
@@ -29,13 +36,14 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from engine.conveyor import Conveyor
+from engine.capacity import capacity as capacity_check
+from engine.conveyor import Conveyor, section_loads
 from engine.friction import get_model
 from engine.law import ResistanceLaw
-from engine.loop import CARRY, HEAD, RETURN, TAIL, TAKEUP, G, Loop, build_loop
+from engine.loop import CARRY, HEAD, RETURN, TAIL, TAKEUP, G, Loop, build_loop, rotating_parts
 
 __all__ = ["SteadyResult", "solve_steady", "STARTUP_FACTOR", "SAFETY_FACTOR_MIN", "SPEC_PARTS",
-           "rest_hold_element", "rest_walk"]
+           "rest_hold_element", "rest_walk", "TAKEUP_CONSTRAINTS"]
 
 #: Start-up force factor for slip sizing of the take-up [-] (PHYSICS section 1).
 STARTUP_FACTOR = 1.5
@@ -51,6 +59,8 @@ MAX_ITER = 200
 #: Smallest relaxation factor of the fixed-point iteration (Aitken / Irons-Tuck).
 OMEGA_MIN = 0.05
 STRAND_NAMES = {CARRY: "carry", RETURN: "return", HEAD: "head", TAIL: "tail", TAKEUP: "takeup"}
+#: Constraints an auto take-up is sized by (``takeup_governed_by``), in the order of ties.
+TAKEUP_CONSTRAINTS = ("slip_start", "slip_running", "sag_running", "sag_at_rest", "positive")
 
 
 @dataclass
@@ -73,6 +83,7 @@ class SteadyResult:
     warnings: list[str] = field(default_factory=list)
     status: str = "ok"
     message: str = ""
+    takeup_governed_by: str = "given"  # the constraint that set an auto take-up
 
     @property
     def tension_mean_n(self) -> np.ndarray:
@@ -109,11 +120,6 @@ def _drive_elements(conv: Conveyor, loop: Loop) -> list[tuple[int, float, float]
     return out
 
 
-def shaft_mass_kg(drive) -> float:
-    """Rotating parts of a drive reduced to the belt line, (J + J_flywheel) (2 / D)^2 [kg]."""
-    return (drive.inertia_kg_m2 + drive.flywheel_kg_m2) * (2.0 / drive.pulley_diameter_m) ** 2
-
-
 def master_drive(conv: Conveyor) -> int:
     """Index of the master drive: the largest share, the first of equals in file order."""
     return max(range(len(conv.drives)), key=lambda i: (conv.drives[i].share, -i))
@@ -133,18 +139,25 @@ def _startup_walk(conv: Conveyor, loop: Loop, dF: np.ndarray, te: float) -> np.n
     The drives give ``STARTUP_FACTOR`` x their running force (of |Te| above the running
     force for a regenerative belt), which accelerates every moving mass at ``a = (f - 1)
     |Te| / M`` (DIN 22101's start-up peripheral force, the acceleration force shared out by
-    mass): each belt element adds its inertia force ``M_j a``, each drive pulley receives its
-    share of the start-up force less what accelerates its own rotating parts, so the walk
-    closes round the loop.
+    mass; M with the rotating parts of :func:`engine.loop.rotating_parts`): each element adds
+    its inertia force (its own pulley shell included), each drive pulley receives its share of
+    the start-up force less what accelerates its own rotating parts, so the walk closes round
+    the loop.
     """
-    shafts = [shaft_mass_kg(d) for d in conv.drives]
-    m_total = float(loop.mass_kg.sum()) + sum(shafts)
+    parts = rotating_parts(conv, loop)
+    inertia = loop.mass_kg.copy()
+    for node, m in list(parts.plain_mass.items()) + [
+            (node, m) for node, m in parts.shaft_mass.items() if node not in parts.shaft_drive]:
+        inertia[node] += m
     extra = (STARTUP_FACTOR - 1.0) * abs(te)
-    a = extra / m_total
+    a = extra / (float(inertia.sum()) + sum(parts.shaft_mass[n] for n in parts.shaft_drive)
+                 + sum(parts.motor_mass))
     d_start = np.zeros(loop.n)
-    for i, d in enumerate(conv.drives):
-        d_start[loop.drive_elements[i]] += d.share * (te + extra) - shafts[i] * a
-    return np.cumsum(dF + loop.mass_kg * a - d_start)
+    for node, i in parts.shaft_drive.items():
+        d = conv.drives[i]
+        d_start[node] += (d.share * (te + extra)
+                          - (parts.shaft_mass[node] + parts.motor_mass[i]) * a)
+    return np.cumsum(dF + inertia * a - d_start)
 
 
 def _slip_need(w_in: float, w_out: float, e: float) -> float:
@@ -170,9 +183,10 @@ def rest_walk(loop: Loop, hold: int, gravity_n: np.ndarray) -> np.ndarray:
 
 def _rest_need(conv: Conveyor, loop: Loop, hs_adm: np.ndarray) -> float | None:
     """Smallest mean tension at a gravity take-up that keeps the belt held at rest within
-    its sag limits [N] (None for a fixed take-up). The counterweight holds the same mean
-    tension at rest as running: ``T_rest = T_tu - w_rest_tu + W_rest``."""
-    if conv.takeup.type != "gravity":
+    its sag limits [N] (None for a fixed take-up, or with ``takeup.sag_at_rest`` off). The
+    counterweight holds the same mean tension at rest as running: ``T_rest = T_tu - w_rest_tu
+    + W_rest``."""
+    if conv.takeup.type != "gravity" or not conv.takeup.sag_at_rest:
         return None
     k = loop.i_takeup
     Wr = rest_walk(loop, rest_hold_element(conv, loop), loop.gravity_n)
@@ -202,19 +216,25 @@ def _required_offset(loop: Loop, W: np.ndarray, W_start: np.ndarray, drives,
     bounds = {}
     Wprev = np.roll(W, 1)
     Sprev = np.roll(W_start, 1)
-    bounds["sag"] = _sag_need(loop, W, hs_adm)
-    if rest_need is not None:
-        k = loop.i_takeup
-        bounds["sag_at_rest"] = rest_need - 0.5 * (W[k - 1] + W[k])
-    run = max(_slip_need(Wprev[idx], W[idx], e) for idx, _s, e in drives)
+    bounds["slip_running"] = float(max(_slip_need(Wprev[idx], W[idx], e)
+                                       for idx, _s, e in drives))
     # the start-up walk has its own level: the take-up holds the same mean tension
     k = loop.i_takeup
     shift = 0.5 * (W[k - 1] + W[k]) - 0.5 * (W_start[k - 1] + W_start[k])
-    start = max(_slip_need(Sprev[idx], W_start[idx], e) for idx, _s, e in drives) - shift
-    bounds["slip"] = float(max(run, start))
-    positive = float(np.max(1.0 - W))  # keep every tension above 1 N
-    bounds["positive"] = positive
+    bounds["slip_start"] = float(max(_slip_need(Sprev[idx], W_start[idx], e)
+                                     for idx, _s, e in drives) - shift)
+    bounds["sag_running"] = _sag_need(loop, W, hs_adm)
+    if rest_need is not None:
+        bounds["sag_at_rest"] = rest_need - 0.5 * (W[k - 1] + W[k])
+    bounds["positive"] = float(np.max(1.0 - W))  # keep every tension above 1 N
     return max(bounds.values()), bounds
+
+
+def _governing(bounds: dict) -> str:
+    """The constraint with the largest need (the first of :data:`TAKEUP_CONSTRAINTS` on a
+    tie)."""
+    return max(TAKEUP_CONSTRAINTS, key=lambda k: (bounds.get(k, -np.inf),
+                                                  -TAKEUP_CONSTRAINTS.index(k)))
 
 
 def solve_steady(
@@ -248,12 +268,10 @@ def solve_steady(
     SteadyResult
         With ``summary`` holding the SPEC section 4 steady fields.
     """
-    from engine.conveyor import load_fraction
-
     fm = get_model(model)
     p = params if (params is not None and not isinstance(params, dict)) else fm.params(params)
-    frac = load_fraction(load)
-    loop = build_loop(conv, frac, n_elements=n_elements, target_dx_m=target_dx_m)
+    loads = section_loads(load, conv)
+    loop = build_loop(conv, list(loads), n_elements=n_elements, target_dx_m=target_dx_m)
     law = fm.build(loop, conv, float(temperature_c), p)
     v = loop.speed_m_s
     grav = loop.gravity_n
@@ -266,9 +284,10 @@ def solve_steady(
     rest_need = _rest_need(conv, loop, hs_adm)
     # the installed take-up: at least what the full design load needs
     tu_floor_n = -np.inf
+    design = None
     auto = (tu.type == "gravity" and tu.mass_kg == "auto") or (
         tu.type == "fixed" and tu.pretension_kn == "auto")
-    if auto and frac < 1.0:
+    if auto and any(f != 1.0 for f in loads):
         design = solve_steady(conv, model=model, params=p, temperature_c=temperature_c,
                               load=1.0, n_elements=n_elements, target_dx_m=target_dx_m)
         tu_floor_n = design.takeup_tension_n
@@ -329,6 +348,12 @@ def solve_steady(
     c_need, bounds = _required_offset(loop, W, W_start, drives, hs_adm, rest_need)
     takeup_tension = 0.5 * (T[k - 1] + T[k])
     takeup_mass = float(2.0 * takeup_tension / G) if tu.type == "gravity" else None
+    if not auto:  # a given take-up is reported as given (not as its round trip through T)
+        if tu.type == "gravity":
+            takeup_mass = float(tu.mass_kg)
+            takeup_tension = takeup_mass * G / 2.0
+        else:
+            takeup_tension = float(tu.pretension_kn) * 1e3
 
     result = SteadyResult(
         conveyor=conv, loop=loop, law=law, model=fm.name, temperature_c=float(temperature_c),
@@ -336,6 +361,10 @@ def solve_steady(
         takeup_mass_kg=takeup_mass, takeup_tension_n=float(takeup_tension),
         iterations=iterations, summary={},
     )
+    if auto:
+        floor_governs = design is not None and tu_floor_n - w_tu > c_need
+        result.takeup_governed_by = (design.takeup_governed_by if floor_governs
+                                     else _governing(bounds))
     _summarise(result, drives, hs_adm, bounds, c_need - (T[0] - W[0]), W_start - W)
     if not converged:
         result.status = "failed"
@@ -392,7 +421,7 @@ def _summarise(res: SteadyResult, drives, hs_adm, bounds, shortfall_n: float,
     for name, arr in parts.items():
         comps[name] = comps.get(name, 0.0) + float(arr.sum()) / 1e3
     comps["lift"] = float((loop.mL_kg_m * G * loop.dx_m * loop.sin_a).sum()) / 1e3
-    m_carry = belt.mass_kg_m + loop.design_load_kg_m * loop.load_fraction
+    m_carry = belt.mass_kg_m + loop.load_max_kg_m  # the loaded sections of a load pattern
     mR_c = float(loop.mR_kg_m[loop.strand == CARRY][0])
     mR_r = float(loop.mR_kg_m[loop.strand == RETURN][0])
     eb = belt.stiffness_n
@@ -409,11 +438,13 @@ def _summarise(res: SteadyResult, drives, hs_adm, bounds, shortfall_n: float,
         "sag_max_pct": float(sag.max() * 100),
         "takeup_mass_kg": res.takeup_mass_kg,
         "takeup_tension_kn": res.takeup_tension_n / 1e3,
+        "takeup_pretension_kn": res.takeup_tension_n / 1e3,
+        "takeup_governed_by": res.takeup_governed_by,
         "slip_margin": float(min(slip_margins)),
         "slip_margin_start": float(min(start_margins)),
         "safety_factor": float(rating / T[imax]),
         "belt_mass_kg_m": belt.mass_kg_m,
-        "load_mass_kg_m": loop.design_load_kg_m * loop.load_fraction,
+        "load_mass_kg_m": loop.load_max_kg_m,
         "idler_mass_carry_kg_m": mR_c,
         "idler_mass_return_kg_m": mR_r,
         "belt_modulus_kn": eb / 1e3,
@@ -426,8 +457,21 @@ def _summarise(res: SteadyResult, drives, hs_adm, bounds, shortfall_n: float,
         "steady_iterations": res.iterations,
     }
     warnings: list[str] = []
+    # ---- load case and capacity (SPEC 6.2, 6.4)
+    surge = max(loop.section_load) if loop.section_load else loop.load_fraction
+    if surge > 1.0:
+        warnings.append(f"surge: load {surge:g} x the design load (material.capacity_t_h) "
+                        "is above the design capacity")
+    cap = capacity_check(conv)
+    res.summary["fill_pct"] = cap.fill_pct
+    if cap.fill_pct > 100.0:
+        warnings.append(
+            f"fill_pct {cap.fill_pct:.0f} %: the design volume flow "
+            f"({cap.volume_flow_m3_h:.0f} m3/h) exceeds what the belt's cross-section carries "
+            f"at {v:g} m/s ({cap.capacity_m3_h:.0f} m3/h, ISO 5048); widen or trough the belt "
+            "deeper, or run faster")
     tu = conv.takeup
-    for i, ((idx, _s, e), m_run, m_start) in enumerate(
+    for i, ((_idx, _s, e), m_run, m_start) in enumerate(
             zip(drives, slip_margins, start_margins, strict=True), start=1):
         where = f"drive {i} ({conv.drives[i - 1].position})"
         if m_run < 1.0 - 1e-6 or m_start < 1.0 - 1e-6:

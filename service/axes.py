@@ -1,10 +1,11 @@
 """Grid axes: which input field an axis name sets, and the Parquet column it becomes.
 
 An axis is one of the five named axes of the design card (``friction_model``,
-``temperature_c``, ``belt_type``, ``stop_time_s``, ``load``) or any dotted field of the
+``temperature_c``, ``belt_type``, ``stop_time_s``, ``load``), any dotted field of the
 conveyor (``takeup.mass_kg``, ``belt.width_m``, ``profile.0.lift_m``) or of the scenario
-(``scenario.run_s``, or bare ``run_s``). A ``conveyor.`` prefix is accepted too. Unknown
-paths are rejected with the nearest valid path.
+(``scenario.run_s``, or bare ``run_s``), or a friction model parameter
+(``models.din.f_carry``: root ``model_param``, path ``(model, parameter)``). A ``conveyor.``
+prefix is accepted too. Unknown paths are rejected with the nearest valid path.
 """
 
 from __future__ import annotations
@@ -137,8 +138,15 @@ def _paths(model: type[BaseModel], prefix: str, data: Any) -> list[str]:
 
 def valid_paths(conveyor: dict, scenario: dict) -> list[str]:
     """Every axis name accepted for this conveyor and scenario (for suggestions)."""
+    import dataclasses
+
+    from engine.friction import MODELS
+
+    models = [f"models.{m}.{f.name}" for m, fm in MODELS.items()
+              for f in dataclasses.fields(fm.params_class)]
     return (
         list(NAMED_AXES) + _paths(Conveyor, "", conveyor) + _paths(Scenario, "scenario.", scenario)
+        + models
     )
 
 
@@ -154,6 +162,8 @@ def resolve_axis(name: str, conveyor: dict, scenario: dict) -> Target:
     parts = name.split(".")
     if any(p == "" for p in parts):
         raise ValueError(f"grid: axis '{name}' is not a dotted field path")
+    if parts[0] == "models":
+        return _model_param(name, parts)
     candidates: list[tuple[str, type[BaseModel], list[str], dict]] = []
     if parts[0] == "scenario":
         candidates.append(("scenario", Scenario, parts[1:], scenario))
@@ -177,8 +187,32 @@ def resolve_axis(name: str, conveyor: dict, scenario: dict) -> Target:
     hint = f"; did you mean '{close[0]}'?" if close else ""
     raise ValueError(
         f"grid: unknown axis '{name}'{hint} (axes are {', '.join(NAMED_AXES)} or a dotted "
-        "conveyor or scenario field such as takeup.mass_kg or scenario.run_s)"
+        "conveyor or scenario field such as takeup.mass_kg or scenario.run_s, or a model "
+        "parameter such as models.din.f_carry)"
     )
+
+
+def _model_param(name: str, parts: list[str]) -> Target:
+    """``models.<model>.<parameter>``: a friction model parameter as an axis."""
+    import dataclasses
+
+    from engine.conveyor import InputError
+    from engine.friction import get_model
+
+    if len(parts) != 3:
+        raise ValueError(f"grid: axis '{name}': a model parameter axis is "
+                         "models.<model>.<parameter>, e.g. models.din.f_carry")
+    try:
+        fm = get_model(parts[1])
+    except InputError as exc:
+        raise ValueError(f"grid: axis '{name}': {str(exc).split(': ', 1)[-1]}") from None
+    fields = [f.name for f in dataclasses.fields(fm.params_class)]
+    if parts[2] not in fields:
+        close = difflib.get_close_matches(parts[2], fields, n=1, cutoff=0.5)
+        hint = f"; did you mean 'models.{fm.name}.{close[0]}'?" if close else ""
+        raise ValueError(f"grid: axis '{name}': unknown parameter of model '{fm.name}'{hint} "
+                         f"valid: {', '.join(fields)}")
+    return Target("model_param", (fm.name, parts[2]))
 
 
 def axis_column(name: str) -> str:

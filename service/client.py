@@ -68,5 +68,9 @@ class ServiceClient:
         params = {"baseline": baseline, "candidate": candidate, "metrics": ",".join(metrics)}
         return self._request("GET", f"/studies/{study_id}/compare", params=params).json()
 
+    def report(self, study_id: str) -> str:
+        """The study's design report (self-contained HTML)."""
+        return self._request("GET", f"/studies/{study_id}/report").text
+
     def delete(self, study_id: str) -> dict:
         return self._request("DELETE", f"/studies/{study_id}").json()

@@ -26,7 +26,7 @@ from service.store import Store
 from service.study import ResolvedStudy, RunSpec
 from service.tasks import run_batch
 
-__all__ = ["StudyJob", "study_schema", "batch_size"]
+__all__ = ["StudyJob", "study_schema", "batch_size", "RunRate"]
 
 log = logging.getLogger("beltstudy.jobs")
 
@@ -67,6 +67,47 @@ def batch_size(
     return max(1, min(size, max(fair, floor), MAX_BATCH))
 
 
+class RunRate:
+    """The run rate measured from finished tasks, for the time left.
+
+    Until a task finishes nothing is known (no ETA: start-up, warm-up and numba compiling are
+    not runs). From the first finished task on, the rate is the runs finished since then over
+    the time since then, once that window is at least two tasks long; before that, the
+    measured compute time per run spread over the workers.
+    """
+
+    def __init__(self, clock=time.monotonic):
+        self.clock = clock
+        self.first_t: float | None = None
+        self.first_runs = 0
+        self.runs = 0
+        self.tasks = 0
+        self.seconds = 0.0
+
+    def finished(self, runs: int, seconds: float) -> None:
+        """A task with ``runs`` runs finished after ``seconds`` of compute."""
+        if self.first_t is None:
+            self.first_t = self.clock()
+            self.first_runs = runs
+        self.runs += runs
+        self.tasks += 1
+        self.seconds += seconds
+
+    def eta_s(self, remaining: int, workers: int) -> float | None:
+        """Seconds left for ``remaining`` runs on ``workers`` workers (None: not known yet)."""
+        if remaining <= 0:
+            return 0.0
+        if self.first_t is None or self.runs == 0:
+            return None
+        since = self.runs - self.first_runs
+        span = self.clock() - self.first_t
+        if since > 0 and span > 0 and span >= 2.0 * self.seconds / self.tasks:
+            rate = since / span
+        else:
+            rate = max(workers, 1) * self.runs / max(self.seconds, 1e-9)
+        return remaining / rate
+
+
 def study_schema(study: ResolvedStudy) -> pa.Schema:
     """The runs schema of a study (axis column types from the axis values)."""
     return runs_schema_for_axes([a.to_json() for a in study.axes])
@@ -92,6 +133,7 @@ class StudyJob:
         self._inflight: dict = {}
         self._buffer: list[tuple[list[RunSpec], dict]] = []
         self._buffered = 0
+        self.rate = RunRate()
         self._last_flush = time.monotonic()
         self._thread = threading.Thread(
             target=self._main, name=f"beltstudy-study-{study.id}", daemon=True
@@ -139,13 +181,14 @@ class StudyJob:
         return self.elapsed_before + run
 
     def eta_s(self) -> float | None:
-        remaining = self.study.total - self.done
-        if remaining <= 0:
-            return 0.0
-        if not self.session_start or self.session_done == 0:
-            return None
-        rate = self.session_done / max(time.monotonic() - self.session_start, 1e-9)
-        return remaining / rate
+        """Time left from the measured run rate (:class:`RunRate`); None until a task of this
+        session has finished."""
+        remaining = self.study.total - self.done - self._buffered
+        try:
+            workers = self.executor.n_workers()
+        except Exception:  # the cluster is gone: the measured rate alone
+            workers = 1
+        return self.rate.eta_s(remaining, workers)
 
     def _save(self, **extra) -> None:
         if self._cancel.is_set():
@@ -251,8 +294,9 @@ class StudyJob:
                     break
                 continue
             if fut.status == "finished":
-                self._add(batch, result)
                 n = len(batch)
+                self.rate.finished(n, float(result["seconds"]))
+                self._add(batch, result)
                 sample = result["seconds"] / n
                 per_run_s = sample if per_run_s is None else 0.7 * per_run_s + 0.3 * sample
             elif fut.status == "cancelled":

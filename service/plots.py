@@ -43,7 +43,7 @@ def steady_profile_figure(profile, title: str = ""):
     ax1.set_ylabel("elevation [m]")
     ax1.grid(alpha=0.3)
     if title:
-        ax1.set_title(title)
+        ax1.set_title(wrap_title(title))
     ax2.plot(x_carry, t[carry], label="carry", color="tab:red")
     ax2.plot(x_ret, t[ret], label="return", color="tab:blue")
     ax2.set_xlabel("distance from the tail along the conveyor [m]")
@@ -60,6 +60,17 @@ def steady_profile_figure(profile, title: str = ""):
 
 #: Message of the figures drawn for a study or run without transient results.
 NO_TRANSIENT = "no transient data (dynamics: false)"
+#: Lines in one panel before a comparison figure is split into small multiples.
+MAX_LINES = 8
+#: Characters per line of a figure title (longer titles wrap instead of being cut off).
+TITLE_WIDTH = 72
+
+
+def wrap_title(text: str, width: int = TITLE_WIDTH) -> str:
+    """A figure title wrapped onto several lines (no part of it is cut off)."""
+    import textwrap
+
+    return "\n".join(textwrap.wrap(str(text), width=width, break_long_words=True)) or ""
 
 
 def message_figure(message: str, title: str = "", figsize=(8, 4.5)):
@@ -70,7 +81,7 @@ def message_figure(message: str, title: str = "", figsize=(8, 4.5)):
     ax.text(0.5, 0.5, message, ha="center", va="center", fontsize=13, color="0.3",
             wrap=True, transform=ax.transAxes)
     if title:
-        ax.set_title(title)
+        ax.set_title(wrap_title(title))
     return fig
 
 
@@ -89,81 +100,322 @@ def _ok_rows(runs):
     return runs
 
 
-def power_temperature_figure(runs, title: str = "", temperature_c: float | None = None):
-    """Power at the drive pulleys against temperature, per friction model and load (Fig. 2).
+def _text(value) -> str:
+    """An axis value in a legend: numbers short, a merged (null) value as 'any'."""
+    import math
 
-    ``runs`` is the runs table (SPEC section 4). A line per (``friction_model``, ``load``);
-    where other axes vary, each point is the mean over them. Without a ``temperature_c``
-    axis every run sits at ``temperature_c`` [deg C] (the scenario's).
+    if value is None or (isinstance(value, float) and math.isnan(value)):
+        return "any"
+    if isinstance(value, float):
+        return f"{value:g}"
+    return str(value)
+
+
+def default_axis_columns(runs) -> list[str]:
+    """The input columns of a runs table when the study's axes are not given: the design
+    card's named axes and every dotted axis column present."""
+    named = ("friction_model", "temperature_c", "load", "belt_type", "stop_time_target_s")
+    return [c for c in runs.columns if c in named or "." in c]
+
+
+def varying(df, columns: list[str]) -> list[str]:
+    """The columns of ``columns`` with more than one value in ``df`` (null counts as one)."""
+    out = []
+    for c in columns:
+        if c in df.columns and df[c].astype(str).nunique(dropna=False) > 1:
+            out.append(c)
+    return out
+
+
+def unchanging(df, inputs: list[str], y: str, others: list[str], rtol: float = 1e-9
+               ) -> list[str]:
+    """The columns of ``others`` that never change ``y``: runs that differ only in such a
+    column (all ``inputs`` and the other columns equal) have the same ``y`` (a stop time in a
+    steady result, say). Their lines would lie on top of each other, so they are drawn once;
+    the figure says which axes those are. ``inputs`` are the input columns behind the x axis
+    (not the x values themselves: an achieved stop time is a result)."""
+    import numpy as np
+
+    out: list[str] = []
+    keep = list(others)
+    data = df.dropna(subset=[y])
+    if not len(data):
+        return out
+    text = {k: data[k].astype(str) for k in [*inputs, *others] if k in data.columns}
+    changed = True
+    while changed:  # dropping one axis can make another comparable (a merged null value)
+        changed = False
+        for c in list(keep):
+            rest = [k for k in (*inputs, *keep) if k != c and k in text]
+            # a group compares c only where it holds two or more values of c
+            grouped = data.assign(__c=text[c], **{f"__{k}": text[k] for k in rest})
+            if rest:
+                g = grouped.groupby([f"__{k}" for k in rest], dropna=False)
+                spread = g[y].agg(["min", "max"]).assign(values=g["__c"].nunique())
+            else:
+                spread = pd_frame(data[y]).assign(values=grouped["__c"].nunique())
+            compared = spread["values"] >= 2
+            scale = np.maximum(np.abs(spread["max"]), 1e-12)
+            if compared.any() and ((spread["max"] - spread["min"]) <= rtol * scale).all():
+                out.append(c)
+                keep = [k for k in keep if k != c]
+                changed = True
+    return [c for c in others if c in out]
+
+
+def pd_frame(values):
+    """min and max of one series as a one-row frame."""
+    import pandas as pd
+
+    return pd.DataFrame({"min": [values.min()], "max": [values.max()]})
+
+
+def series(df, x: str, y: str, others: list[str]):
+    """The points of ``df`` as lines: one per combination of the ``others`` columns, sorted
+    by ``x``. Returns ``[(key dict, x array, y array)]``; points with another value of any
+    of ``others`` are never on one line."""
+    df = df.dropna(subset=[x, y])
+    if not others:
+        part = df.sort_values(x, kind="stable")
+        return [({}, part[x].to_numpy(float), part[y].to_numpy(float))] if len(part) else []
+    keyed = df.assign(**{f"__{c}": df[c].astype(str) for c in others})
+    out = []
+    for _, part in keyed.groupby([f"__{c}" for c in others], sort=True, dropna=False):
+        part = part.sort_values(x, kind="stable")
+        key = {c: part[c].iloc[0] for c in others}
+        out.append((key, part[x].to_numpy(float), part[y].to_numpy(float)))
+    return out
+
+
+def _label(key: dict, skip: tuple[str, ...] = ()) -> str:
+    parts = []
+    for c, v in key.items():
+        if c in skip:
+            continue
+        parts.append(_text(v) if c == "friction_model" else f"{c} {_text(v)}")
+    return ", ".join(parts) or "all runs"
+
+
+#: Most panels of one comparison figure.
+MAX_PANELS = 12
+
+
+def _panels(df, others: list[str]):
+    """Small multiples: when one panel would hold more than :data:`MAX_LINES` lines, a panel
+    per combination of the first of ``others`` (then the first two, ...) until each panel's
+    lines fit or :data:`MAX_PANELS` would be passed. Returns ``[(title part, rows, the others
+    drawn as lines in it)]``."""
+    def combos(cols):
+        return df[cols].astype(str).drop_duplicates().shape[0] if cols else 1
+
+    k = 0
+    while (k < len(others) - 1 and combos(others) > MAX_LINES * combos(others[:k])
+           and combos(others[:k + 1]) <= MAX_PANELS):
+        k += 1
+    if k == 0:
+        return [("", df, others)]
+    split, rest = others[:k], others[k:]
+    out = []
+    keys = [df[c].astype(str) for c in split]
+    for _value, part in df.groupby(keys, sort=True, dropna=False):
+        first = part.iloc[0]
+        label = ", ".join(_text(first[c]) if c == "friction_model" else f"{c} {_text(first[c])}"
+                          for c in split)
+        out.append((label, part, rest))
+    return out
+
+
+def comparison_figure(df, x: str, y: str, others: list[str], xlabel: str, ylabel: str,
+                      title: str, y2: str | None = None, y2label: str = "", ymin0=False,
+                      inputs: list[str] | None = None, notes: list[str] | None = None):
+    """Lines of ``y`` (and ``y2`` below it) against ``x``, one per combination of
+    ``others``, in small multiples when there are many (one colour per combination in every
+    panel, one legend). Axes that change neither ``y`` nor ``y2`` (:func:`unchanging`, with
+    ``inputs`` the input columns behind ``x``, default ``x`` itself) are drawn once and named
+    under the figure with the ``notes``."""
+    import math
+
+    plt = _plt()
+    inputs = [x] if inputs is None else [c for c in inputs if c in df.columns]
+    same = [c for c in unchanging(df, inputs, y, others)
+            if not y2 or c in unchanging(df, inputs, y2, others)]
+    others = [c for c in others if c not in same]
+    df = df.drop_duplicates(subset=[x, *others], keep="first") if same else df
+    panels = _panels(df, others)
+    lines = panels[0][2]
+    keys = sorted({tuple(str(v) for v in row) for row in df[lines].itertuples(index=False)}
+                  ) if lines else [()]
+    colour = {k: i for i, k in enumerate(keys)}
+    ncols = min(len(panels), 3)
+    nrows_p = math.ceil(len(panels) / ncols)
+    rows = nrows_p * (2 if y2 else 1)
+    longest = max((len(_label({c: v for c, v in zip(lines, k, strict=True)})) for k in keys),
+                  default=10)
+    legend_in = min(0.06 * longest + 0.9, 5.0)  # the legend's column beside the panels
+    fig, grid = plt.subplots(rows, ncols, figsize=(5.4 * ncols + 1.0 + legend_in,
+                                                   3.6 * rows + 0.9),
+                             squeeze=False, sharex=True)
+    cmap = plt.get_cmap("tab10")
+    styles = ("-", "--", ":", "-.")
+    handles: dict[str, tuple] = {}
+    for k, (ptitle, part, cols) in enumerate(panels):
+        r, c = divmod(k, ncols)
+        targets = [(grid[r * (2 if y2 else 1)][c], y, ylabel)]
+        if y2:
+            targets.append((grid[r * 2 + 1][c], y2, y2label))
+        for ax, col, lab in targets:
+            for key, xs, ys in series(part, x, col, cols):
+                i = colour.get(tuple(str(key[c]) for c in cols), 0)
+                (line,) = ax.plot(xs, ys, marker="o", ms=4, color=cmap(i % 10),
+                                  linestyle=styles[(i // 10) % len(styles)], label=_label(key))
+                line.set_gid(repr(sorted((kk, _text(vv)) for kk, vv in key.items())))
+                handles.setdefault(line.get_label(), (i, line))
+            ax.set_ylabel(lab)
+            ax.grid(alpha=0.3)
+            if ymin0:
+                ax.set_ylim(bottom=0.0)
+            if ptitle and col == y:
+                ax.set_title(wrap_title(ptitle, 40), fontsize=10)
+        targets[-1][0].set_xlabel(xlabel)
+    for k in range(len(panels), nrows_p * ncols):  # unused panels of the last row
+        r, c = divmod(k, ncols)
+        for rr in range(r * (2 if y2 else 1), (r + 1) * (2 if y2 else 1)):
+            grid[rr][c].set_axis_off()
+    order = sorted(handles, key=lambda label: handles[label][0])
+    fig.legend([handles[k][1] for k in order], order, loc="upper right", fontsize=8,
+               bbox_to_anchor=(0.995, 0.93), frameon=True)
+    fig.suptitle(wrap_title(title, int(TITLE_WIDTH * max(ncols, 1) / 1.2)))
+    note_lines = list(notes or [])
+    if same:
+        note_lines.append("the same for every value of " + ", ".join(same))
+    if note_lines:
+        fig.text(0.01, 0.005, wrap_title("; ".join(note_lines), 120), fontsize=8,
+                 color="0.35", va="bottom")
+    width, height = fig.get_size_inches()
+    right = 1.0 - legend_in / width
+    top = 1.0 - (0.25 + 0.22 * fig._suptitle.get_text().count("\n")) / height
+    fig.tight_layout(rect=(0, 0.3 / height if note_lines else 0, right, top))
+    return fig
+
+
+def _one_per_zip_group(others: list[str], groups: list[list[str]] | None
+                       ) -> tuple[list[str], list[str]]:
+    """``others`` with only the first axis of each zip group (its partners vary with it, so
+    they add no lines), and notes naming the partners."""
+    out, notes = [], []
+    for c in others:
+        group = next((g for g in groups or [] if c in g), None)
+        if group is not None:
+            first = next(g for g in group if g in others)
+            if first != c:
+                continue
+            partners = [g for g in group if g != c and g in others]
+            if partners:
+                notes.append(f"{c} with {', '.join(partners)} (zip)")
+        out.append(c)
+    return out, notes
+
+
+def _tied_label(label: str, tied: list[str]) -> str:
+    return label + (f" (with {', '.join(tied)})" if tied else "")
+
+
+def power_temperature_figure(runs, title: str = "", temperature_c: float | None = None,
+                             axes: list[str] | None = None, groups: list[list[str]] | None = None):
+    """Power at the drive pulleys against temperature (Harrison's Fig. 2).
+
+    A line per combination of the other axes that vary in the study (friction model, load,
+    belt type, ...), never joined across them and never averaged; small multiples (a panel per
+    value of the first of them) when that would be more than :data:`MAX_LINES` lines. Without
+    a ``temperature_c`` axis every run sits at ``temperature_c`` [deg C] (the scenario's).
+    ``axes`` are the study's axis columns (default: every input column of ``runs``);
+    ``groups`` its zip groups (columns): axes zipped with the temperature vary along the x axis
+    with it and are named in its label.
     """
     import pandas as pd
 
-    plt = _plt()
+    title = title or "power against temperature"
     df = _ok_rows(runs).copy()
     power = _numeric(df, "power_kw")
     if not len(df) or power is None:
-        return message_figure("no steady results yet", title or "power against temperature")
+        return message_figure("no steady results yet", title)
     df["power_kw"] = power
     if "temperature_c" not in df.columns:
         df["temperature_c"] = float(temperature_c if temperature_c is not None else 20.0)
     df["temperature_c"] = pd.to_numeric(df["temperature_c"], errors="coerce")
     if "friction_model" not in df.columns:
         df["friction_model"] = "model"
-    groups = ["friction_model"] + (["load"] if "load" in df.columns else [])
-    fig, ax = plt.subplots(figsize=(8, 4.8))
-    styles = ("-", "--", ":", "-.")
-    loads = sorted(df["load"].astype(str).unique()) if "load" in df.columns else [""]
-    for key, group in df.groupby(groups, sort=True):
-        key = key if isinstance(key, tuple) else (key,)
-        model = str(key[0])
-        load = str(key[1]) if len(key) > 1 else ""
-        curve = group.groupby("temperature_c")["power_kw"].mean().sort_index()
-        label = f"{model}, load {load}" if load else model
-        ax.plot(curve.index, curve.values, marker="o", label=label,
-                linestyle=styles[loads.index(load) % len(styles)] if load else "-")
-    ax.set_xlabel("temperature [°C]")
-    ax.set_ylabel("power at the drive pulleys [kW]")
-    ax.set_title(title or "power against temperature per friction model and load")
-    ax.grid(alpha=0.3)
-    ax.legend(loc="best", fontsize=8)
-    fig.tight_layout()
-    return fig
+    cols = list(axes) if axes is not None else default_axis_columns(df)
+    if "friction_model" not in cols:
+        cols.insert(0, "friction_model")
+    tied = _tied(groups, "temperature_c")
+    others = varying(df, [c for c in cols if c != "temperature_c" and c not in tied])
+    others, notes = _one_per_zip_group(others, groups)
+    return comparison_figure(df, "temperature_c", "power_kw", others,
+                             _tied_label("temperature [°C]", tied),
+                             "power at the drive pulleys [kW]", title,
+                             inputs=["temperature_c", *tied], notes=notes)
 
 
-def peak_dynamic_tension_figure(runs, title: str = ""):
-    """Peak dynamic tension ``t_max_dyn_kn`` [kN] against the achieved ``stop_time_s`` [s].
+def _tied(groups: list[list[str]] | None, column: str) -> list[str]:
+    """The columns zipped with ``column`` (they vary together with it)."""
+    for group in groups or []:
+        if column in group:
+            return [c for c in group if c != column]
+    return []
 
-    One series per friction model; a :data:`NO_TRANSIENT` figure when the study has no
-    transient results (``dynamics: false``, or no dynamic run finished yet).
+
+def stop_tension_columns(runs) -> tuple[str, str | None]:
+    """The peak and lowest tension columns of a stop: the stop-phase ones (``t_max_stop_kn``,
+    ``t_min_stop_kn``) where the runs have them, else the whole transient's."""
+    peak = "t_max_stop_kn" if _numeric(runs, "t_max_stop_kn") is not None else "t_max_dyn_kn"
+    low = "t_min_stop_kn" if _numeric(runs, "t_min_stop_kn") is not None else (
+        "t_min_dyn_kn" if _numeric(runs, "t_min_dyn_kn") is not None else None)
+    return peak, low
+
+
+def peak_dynamic_tension_figure(runs, title: str = "", axes: list[str] | None = None,
+                                groups: list[list[str]] | None = None):
+    """Peak tension [kN] against the achieved ``stop_time_s`` [s], the lowest tension below.
+
+    Stop-phase columns (``t_max_stop_kn``, ``t_min_stop_kn``) when the runs have them, else
+    ``t_max_dyn_kn`` / ``t_min_dyn_kn``. A line per combination of the other varying axes (the
+    stop-time axis itself is the x axis); a :data:`NO_TRANSIENT` figure when the study has no
+    transient results.
     """
-    plt = _plt()
-    title = title or "peak dynamic tension against stop time"
+    title = title or "peak tension against stop time"
     df = _ok_rows(runs).copy()
-    peak = _numeric(df, "t_max_dyn_kn")
-    stop = _numeric(df, "stop_time_s")
+    peak_col, low_col = stop_tension_columns(df)
+    peak = _numeric(df, peak_col)
     if not len(df) or peak is None:
         return message_figure(NO_TRANSIENT, title)
-    df["t_max_dyn_kn"] = peak
+    df[peak_col] = peak
+    if low_col:
+        df[low_col] = _numeric(df, low_col)
+    stop = _numeric(df, "stop_time_s")
     if stop is None:  # the achieved stop time is missing: fall back to the commanded one
         stop = _numeric(df, "stop_time_target_s")
     if stop is None:
         return message_figure("no stop times in the results", title)
     df["x"] = stop
-    df = df.dropna(subset=["x", "t_max_dyn_kn"])
     if "friction_model" not in df.columns:
         df["friction_model"] = "model"
-    fig, ax = plt.subplots(figsize=(8, 4.8))
-    for model, group in df.groupby("friction_model", sort=True):
-        curve = group.groupby("x")["t_max_dyn_kn"].max().sort_index()
-        ax.plot(curve.index, curve.values, marker="o", label=str(model))
-    ax.set_xlabel("stop time [s]")
-    ax.set_ylabel("peak dynamic tension [kN]")
-    ax.set_ylim(bottom=0.0)
-    ax.set_title(title)
-    ax.grid(alpha=0.3)
-    ax.legend(loc="best", fontsize=8)
-    fig.tight_layout()
-    return fig
+    cols = list(axes) if axes is not None else default_axis_columns(df)
+    if "friction_model" not in cols:
+        cols.insert(0, "friction_model")
+    tied = _tied(groups, "stop_time_target_s")
+    others = varying(df, [c for c in cols if c not in ("stop_time_target_s", "stop_time_s",
+                                                       "x", *tied)])
+    others, notes = _one_per_zip_group(others, groups)
+    unstopped = int(df["x"].isna().sum())
+    if unstopped:
+        notes.append(f"{unstopped} runs that did not stop have no stop time and are not drawn")
+    phase = "stop phase" if peak_col == "t_max_stop_kn" else "whole transient"
+    return comparison_figure(df, "x", peak_col, others,
+                             _tied_label("stop time achieved [s]", tied),
+                             f"peak tension [kN] ({phase})", title, y2=low_col,
+                             y2label=f"lowest tension [kN] ({phase})", ymin0=True,
+                             inputs=[c for c in cols if c not in others], notes=notes)
 
 
 def ratio_figure(summary: dict, baseline: str = "cema", candidate: str = "nonlin", title: str = ""):
@@ -203,23 +455,38 @@ def ratio_figure(summary: dict, baseline: str = "cema", candidate: str = "nonlin
                 ax.set_xlabel(axis)
             if j == 0:
                 ax.set_ylabel(f"{metric} ratio")
-    fig.suptitle(title)
+    fig.suptitle(wrap_title(title))
     fig.tight_layout()
     return fig
 
 
-def _eight_points(surface):
+def _positions(surface) -> np.ndarray:
+    return np.unique(np.asarray(surface["s_m"], dtype=float))
+
+
+def _trace(surface, s: float):
+    part = surface[np.isclose(surface["s_m"].astype(float), s)].sort_values("t_s")
+    return part["t_s"].to_numpy(float), part["tension_kn"].to_numpy(float)
+
+
+def _where_text(s: float, locate=None) -> str:
+    """``carry, 1200 m from the tail`` for a loop position, with ``locate(s) -> (strand,
+    distance from the tail)``; else the loop position."""
+    if locate is None:
+        return f"{s:.0f} m round the loop"
+    strand, x = locate(s)
+    if strand in ("carry", "return"):
+        return f"{strand}, {x:.0f} m from the tail"
+    return f"{strand} pulley"
+
+
+def _eight_points(surface, locate=None):
     """Tension against time at eight positions spread evenly round the loop (long table)."""
-    positions = np.unique(np.asarray(surface["s_m"], dtype=float))
+    positions = _positions(surface)
     if len(positions) == 0:
         return []
     picks = positions[np.unique(np.linspace(0, len(positions) - 1, 8).round().astype(int))]
-    out = []
-    for s in picks:
-        part = surface[np.isclose(surface["s_m"].astype(float), s)].sort_values("t_s")
-        out.append((f"s = {s:.0f} m", part["t_s"].to_numpy(float),
-                    part["tension_kn"].to_numpy(float)))
-    return out
+    return [(_where_text(s, locate), *_trace(surface, s)) for s in picks]
 
 
 _KEY_POINTS = (
@@ -229,12 +496,17 @@ _KEY_POINTS = (
 )  # fmt: skip
 
 
-def transient_figure(timeseries, surface=None, title: str = ""):
+def transient_figure(timeseries, surface=None, title: str = "", extremes: dict | None = None,
+                     locate=None, extremes_surface=None):
     """Tension at eight points round the loop against time, belt speed below (Fig. 4).
 
     ``surface`` is the long table (``t_s``, ``s_m``, ``tension_kn``): eight positions spread
-    evenly round the loop. Without it the key points of ``timeseries`` (SPEC section 5) are
-    drawn. A :data:`NO_TRANSIENT` figure when there is no time series.
+    evenly round the loop, named by strand and distance from the tail when ``locate(s_m) ->
+    (strand, distance from the tail [m])`` is given. ``extremes`` (``{"highest": s_m,
+    "lowest": s_m}``, e.g. ``t_max_dyn_at_m`` and ``t_min_dyn_at_m``) add a probe at each of
+    those positions (nearest point of ``extremes_surface``, default ``surface``), drawn bold.
+    Without a surface the key points of ``timeseries`` (SPEC section 5) are drawn. A
+    :data:`NO_TRANSIENT` figure when there is no time series.
     """
     plt = _plt()
     title = title or "transient tensions and belt speed"
@@ -242,11 +514,22 @@ def transient_figure(timeseries, surface=None, title: str = ""):
     has_sf = surface is not None and len(surface) and "s_m" in surface.columns
     if not has_ts and not has_sf:
         return message_figure(NO_TRANSIENT, title)
-    fig, (ax1, ax2) = plt.subplots(2, 1, sharex=True, figsize=(9, 6.5),
+    fig, (ax1, ax2) = plt.subplots(2, 1, sharex=True, figsize=(11, 7.0),
                                    gridspec_kw={"height_ratios": [2, 1]})
     if has_sf:
-        for label, t, tension in _eight_points(surface):
+        for label, t, tension in _eight_points(surface, locate):
             ax1.plot(t, tension, label=label, linewidth=1.0)
+        pool = extremes_surface if extremes_surface is not None and len(extremes_surface) \
+            else surface
+        positions = _positions(pool)
+        for (name, at), color in zip((extremes or {}).items(), ("black", "tab:red"),
+                                     strict=False):
+            if at is None or not np.isfinite(at) or not len(positions):
+                continue
+            s = float(positions[np.argmin(np.abs(positions - float(at)))])
+            t, tension = _trace(pool, s)
+            ax1.plot(t, tension, color=color, linewidth=2.0, linestyle="--",
+                     label=f"{name}: {_where_text(s, locate)}")
     else:
         ts = timeseries.sort_values("t_s")
         for column, label in _KEY_POINTS:
@@ -255,19 +538,19 @@ def transient_figure(timeseries, surface=None, title: str = ""):
                 ax1.plot(ts["t_s"], values, label=label, linewidth=1.0)
     ax1.set_ylabel("belt tension [kN]")
     ax1.grid(alpha=0.3)
-    ax1.legend(loc="upper right", fontsize=7, ncol=2)
-    ax1.set_title(title)
+    ax1.legend(loc="upper left", bbox_to_anchor=(1.01, 1.0), fontsize=7)
+    fig.suptitle(wrap_title(title, 100))
     if has_ts:
         ts = timeseries.sort_values("t_s")
         for column, label in (("v_drive_m_s", "drive pulley"), ("v_tail_m_s", "tail pulley")):
             values = _numeric(ts, column)
             if values is not None:
                 ax2.plot(ts["t_s"], values, label=label)
-        ax2.legend(loc="upper right", fontsize=7)
+        ax2.legend(loc="upper left", bbox_to_anchor=(1.01, 1.0), fontsize=7)
     elif "velocity_m_s" in surface.columns:
         mean = surface.groupby("t_s")["velocity_m_s"].mean()
         ax2.plot(mean.index, mean.values, label="mean belt speed")
-        ax2.legend(loc="upper right", fontsize=7)
+        ax2.legend(loc="upper left", bbox_to_anchor=(1.01, 1.0), fontsize=7)
     ax2.set_xlabel("time [s]")
     ax2.set_ylabel("belt speed [m/s]")
     ax2.grid(alpha=0.3)

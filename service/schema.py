@@ -16,6 +16,8 @@ import pyarrow as pa
 
 __all__ = [
     "STEADY_COLUMNS",
+    "DESIGN_COLUMNS",
+    "DESIGN_TEXT_COLUMNS",
     "TRANSIENT_COLUMNS",
     "TE_PARTS",
     "TE_PART_COLUMNS",
@@ -53,7 +55,14 @@ TE_PARTS = (
     "idler_rotation", "indentation", "belt_flexure", "material_flexure", "other",
 )  # fmt: skip
 TE_PART_COLUMNS = tuple(f"te_{p}_kn" for p in TE_PARTS)
-RESULT_COLUMNS = STEADY_COLUMNS + TE_PART_COLUMNS + TRANSIENT_COLUMNS
+#: SPEC 6.4 design and capacity columns: the sizes the run used (totals over drives and
+#: brakes) and the capacity check.
+DESIGN_COLUMNS = ("takeup_pretension_kn", "rated_power_kw", "brake_force_kn", "fill_pct")
+#: What set each auto size (text): take-up ``slip_start`` | ``slip_running`` | ``sag_running``
+#: | ``sag_at_rest``; rated power ``peripheral_force`` | ``running_resistance``; brakes
+#: ``stop_time`` | ``holding``; ``given`` when the file gives the size.
+DESIGN_TEXT_COLUMNS = ("takeup_governed_by", "rated_power_governed_by", "brake_governed_by")
+RESULT_COLUMNS = STEADY_COLUMNS + DESIGN_COLUMNS + TE_PART_COLUMNS + TRANSIENT_COLUMNS
 BOOKKEEPING_COLUMNS = ("status", "message", "elapsed_s")
 INPUT_COLUMNS = ("study_id", "run_id", "friction_model", "engine_version")
 
@@ -95,6 +104,7 @@ def runs_schema(axis_columns: list[tuple[str, pa.DataType]]) -> pa.Schema:
         if name not in names:
             fields.append(pa.field(name, pa.string()))
     fields += [pa.field(c, pa.float64()) for c in RESULT_COLUMNS]
+    fields += [pa.field(c, pa.string()) for c in DESIGN_TEXT_COLUMNS]
     fields += [
         pa.field("status", pa.string()),
         pa.field("message", pa.string()),
@@ -135,7 +145,10 @@ def flatten_summary(summary: dict) -> dict:
     ``te_components_kn`` becomes ``te_<part>_kn`` columns; parts outside :data:`TE_PARTS`
     are summed into ``te_other_kn`` so the parts still add up to ``te_kn``.
     """
-    row: dict[str, Any] = {c: _number(summary.get(c)) for c in STEADY_COLUMNS + TRANSIENT_COLUMNS}
+    row: dict[str, Any] = {c: _number(summary.get(c))
+                           for c in STEADY_COLUMNS + DESIGN_COLUMNS + TRANSIENT_COLUMNS}
+    for c in DESIGN_TEXT_COLUMNS:
+        row[c] = str(summary[c]) if summary.get(c) is not None else None
     parts = summary.get("te_components_kn") or {}
     other = None
     for part, value in parts.items():
@@ -155,14 +168,19 @@ def flatten_summary(summary: dict) -> dict:
 
 def failed_row(message: str, elapsed_s: float | None = None) -> dict:
     """Result values of a run that raised: every result null, status failed."""
-    row: dict[str, Any] = dict.fromkeys(RESULT_COLUMNS)
+    row: dict[str, Any] = dict.fromkeys(RESULT_COLUMNS + DESIGN_TEXT_COLUMNS)
     row.update(status="failed", message=message, elapsed_s=elapsed_s)
     return row
 
 
 def rows_to_table(rows: list[dict], schema: pa.Schema) -> pa.Table:
-    """Rows (dicts) to a table of exactly ``schema`` (missing keys null, extra keys dropped)."""
+    """Rows (dicts) to a table of exactly ``schema`` (missing keys null, extra keys dropped;
+    a non-text value in a text column, such as a load given per section, as its JSON)."""
     columns = {f.name: [r.get(f.name) for r in rows] for f in schema}
+    for f in schema:
+        if pa.types.is_string(f.type):
+            columns[f.name] = [v if v is None or isinstance(v, str) else axis_value(v, f.type)
+                               for v in columns[f.name]]
     return pa.Table.from_pydict(columns, schema=schema)
 
 

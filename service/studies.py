@@ -154,6 +154,8 @@ class StudyService:
             "started_at": doc.get("started_at"),
             "finished_at": doc.get("finished_at"),
             "dynamics": doc["study"]["dynamics"],
+            "grid_points": doc["study"].get("grid_points", doc["total"]),
+            "merged": doc["study"].get("merged", 0),
             "axes": {a["name"]: a["column"] for a in doc["study"]["axes"]},
             "engine_version": doc.get("engine_version"),
         }

@@ -1,9 +1,18 @@
-"""The study file (SPEC section 3): parsing at the door, grid expansion and stable ids.
+"""The study file (SPEC sections 3 and 6.3): parsing at the door, expansion and stable ids.
 
 :func:`resolve_study` validates a study mapping once (conveyor by path or inline, scenario,
-grid, per-model parameters) and returns a :class:`ResolvedStudy`; everything after it trusts
-its types. :func:`expand_runs` turns a resolved study into :class:`RunSpec` objects, each with
-a ``run_id`` that is a stable hash of its fully resolved inputs and the engine version.
+grid, zip groups, per-model parameters, design case) and returns a :class:`ResolvedStudy`;
+everything after it trusts its types. :func:`expand_runs` turns a resolved study into
+:class:`RunSpec` objects, each with a ``run_id`` that is a stable hash of its fully resolved
+inputs and the engine version.
+
+Expansion: the grid points are the Cartesian product of the grid axes and the zip groups (the
+axes of a group vary together). Each point's conveyor and scenario are validated (every point
+that makes the conveyor invalid is named), its ``auto`` sizes are replaced by its conveyor
+design's (:mod:`service.basis`), and the inputs a run does not use are set to their defaults
+(a steady-only run keeps only ``load``, ``temperature_c`` and ``elements`` of the scenario; a
+coast stop does not use ``stop.time_s``). Points whose resolved runs are then identical are one
+run; an axis whose value differs between the points of one run is null in its row.
 """
 
 from __future__ import annotations
@@ -33,6 +42,7 @@ from engine.conveyor import (
 )
 from engine.friction import get_model
 from service.axes import Target, axis_column, get_path, resolve_axis, set_path
+from service.basis import Case, DesignIn, apply_sizes, design_scenario, has_auto, size_design
 from service.errors import Invalid, TooLarge
 
 __all__ = [
@@ -119,7 +129,17 @@ class StudyIn(BaseModel):
     )
     scenario: dict[str, Any] = Field(default_factory=dict, description="SPEC section 2")
     grid: dict[str, AxisValues] = Field(
-        ..., description="axis -> list of values or {start, stop, step}; Cartesian product"
+        default_factory=dict,
+        description="axis -> list of values or {start, stop, step}; Cartesian product",
+    )
+    zip: list[dict[str, AxisValues]] = Field(
+        default_factory=list,
+        description="groups of axes that vary together (equal lengths), crossed with the grid",
+    )
+    design: DesignIn | None = Field(
+        None,
+        description="design case of every auto size, {friction_model, temperature_c, load}; "
+        "default: the largest requirement over the study's models and temperatures at full load",
     )
     models: dict[str, dict[str, float | None]] = Field(
         default_factory=dict, description="friction model -> parameter overrides"
@@ -174,14 +194,18 @@ class Axis:
     column: str
     target: Target
     values: tuple[Any, ...]
+    group: int | None = None  # zip group index; None for a grid axis
 
     def to_json(self) -> dict:
-        return {
+        out = {
             "name": self.name,
             "column": self.column,
             "target": self.target.dotted,
             "values": list(self.values),
         }
+        if self.group is not None:
+            out["group"] = self.group
+        return out
 
 
 @dataclass(frozen=True)
@@ -196,6 +220,8 @@ class RunSpec:
     params: dict
     dynamics: bool
     engine_version: str
+    design: dict = field(default_factory=dict)  # *_governed_by of the design's auto sizes
+    points: int = 1  # grid points this run stands for
 
 
 @dataclass
@@ -216,23 +242,41 @@ class ResolvedStudy:
     id: str = ""
     surface: bool = True
     runs: list[RunSpec] = field(default_factory=list, repr=False)
+    design: dict | None = None  # the study's design case as given (None: the default)
+    grid_points: int = 0  # points of the grid before identical runs were merged
+    designs: list[dict] = field(default_factory=list)  # the design basis per conveyor design
+
+    @property
+    def merged(self) -> int:
+        """Grid points that were merged into another point's identical run."""
+        return max(self.grid_points - self.total, 0)
 
     def to_json(self) -> dict:
         """The resolved study as stored in ``study.json`` (enough to expand it again)."""
-        return {
+        out = {
             "name": self.name,
             "description": self.description,
             "conveyor": self.conveyor,
             "conveyor_source": self.conveyor_source,
             "scenario": self.scenario,
-            "grid": {a.name: list(a.values) for a in self.axes},
+            "grid": {a.name: list(a.values) for a in self.axes if a.group is None},
             "axes": [a.to_json() for a in self.axes],
             "models": self.models,
             "model": self.model,
             "dynamics": self.dynamics,
             "surface": self.surface,
             "engine_version": self.engine_version,
+            "grid_points": self.grid_points,
+            "merged": self.merged,
+            "designs": self.designs,
         }
+        groups = sorted({a.group for a in self.axes if a.group is not None})
+        if groups:
+            out["zip"] = [{a.name: list(a.values) for a in self.axes if a.group == g}
+                          for g in groups]
+        if self.design is not None:
+            out["design"] = self.design
+        return out
 
     @property
     def columns(self) -> list[str]:
@@ -268,26 +312,27 @@ def _resolve_conveyor_path(ref: str, base_dir: Path | None, root: Path | None) -
         raise Invalid(f"conveyor: {ref}: {_err(exc).split(': ', 1)[-1]}") from None
 
 
-def _axis_values(name: str, spec: AxisValues, max_runs: int) -> list[Any]:
+def _axis_values(name: str, spec: AxisValues, max_runs: int, where: str = "grid") -> list[Any]:
+    label = f"{where}.{name}"
     if isinstance(spec, RangeSpec):
         try:
             n = spec.count()
         except ValueError as exc:
-            raise Invalid(f"grid.{name}: {exc}") from None
+            raise Invalid(f"{label}: {exc}") from None
         if n > max_runs:
             raise TooLarge(
-                f"grid.{name}: the range has {n} values; the study limit is {max_runs} runs"
+                f"{label}: the range has {n} values; the study limit is {max_runs} runs"
             )
         values = spec.values()
     else:
         values = list(spec)
     if not values:
-        raise Invalid(f"grid.{name}: empty axis; give at least one value")
+        raise Invalid(f"{label}: empty axis; give at least one value")
     seen: set[str] = set()
     for v in values:
         key = canonical_json(v)
         if key in seen:
-            raise Invalid(f"grid.{name}: value {v!r} appears twice")
+            raise Invalid(f"{label}: value {v!r} appears twice")
         seen.add(key)
     return values
 
@@ -299,45 +344,52 @@ def _where(axes: list[Axis], indices: list[int], combo: tuple[int, ...]) -> str:
     )
 
 
-def _validate_variants(
-    axes: list[Axis], base: dict, parse, root: str, parsed: dict | None = None
-) -> dict[tuple[int, ...], dict]:
-    """Apply every combination of the axes on ``root`` to ``base`` and validate each result
-    (the validated models also go into ``parsed`` when given)."""
-    mine = [i for i, a in enumerate(axes) if a.target.root == root]
-    out: dict[tuple[int, ...], dict] = {}
-    for combo in itertools.product(*[range(len(axes[i].values)) for i in mine]):
-        data = copy.deepcopy(base)
-        for i, j in zip(mine, combo, strict=True):
-            set_path(data, axes[i].target.path, copy.deepcopy(axes[i].values[j]))
-        try:
-            model = parse(data)
-        except InputError as exc:
-            raise Invalid(f"grid ({_where(axes, mine, combo)}): {_err(exc)}") from None
-        out[combo] = model.model_dump(mode="json", by_alias=True)
-        if parsed is not None:
-            parsed[combo] = model
-    return out
+#: Invalid points named in one error message; the rest are counted.
+MAX_NAMED_POINTS = 5
 
 
-def _check_scenarios(axes: list[Axis], conveyors: dict, scenarios: dict) -> None:
-    """Every conveyor variant with every scenario variant: a scenario the conveyor cannot do
-    (a brake stop without brakes, a stop shorter than the brake delay) is refused at the door,
-    naming the grid point, before any run is computed."""
-    from engine.run import check_scenario  # the transient engine loads only when needed
+def _refuse_points(kind: str, bad: list[tuple[str, str]], total: int) -> None:
+    """Raise :class:`Invalid` naming every grid point in ``bad`` (``(where, message)``)."""
+    if not bad:
+        return
+    if len(bad) == 1:
+        where, msg = bad[0]
+        raise Invalid(f"grid ({where}): {msg}" if where else msg)
+    named = "; ".join(f"({w}): {m}" for w, m in bad[:MAX_NAMED_POINTS])
+    more = len(bad) - MAX_NAMED_POINTS
+    tail = f"; and {more} more" if more > 0 else ""
+    raise Invalid(f"grid: {len(bad)} of {total} {kind} variants are invalid: {named}{tail}")
 
-    i_conv = [i for i, a in enumerate(axes) if a.target.root == "conveyor"]
-    i_scen = [i for i, a in enumerate(axes) if a.target.root == "scenario"]
-    for ck, conv in conveyors.items():
-        for sk, scn in scenarios.items():
-            try:
-                check_scenario(scn, conv)
-            except InputError as exc:
-                where = ", ".join(
-                    w for w in (_where(axes, i_conv, ck), _where(axes, i_scen, sk)) if w
-                )
-                raise Invalid(f"{_err(exc)} (at grid point {where})" if where
-                              else _err(exc)) from None
+
+def _dimensions(axes: list[Axis]) -> list[list[int]]:
+    """Axis indices of each dimension of the grid: one per grid axis, one per zip group."""
+    dims: list[list[int]] = []
+    groups: dict[int, list[int]] = {}
+    for i, a in enumerate(axes):
+        if a.group is None:
+            dims.append([i])
+        elif a.group in groups:
+            groups[a.group].append(i)
+        else:
+            groups[a.group] = [i]
+            dims.append(groups[a.group])
+    return dims
+
+
+def _points(axes: list[Axis]):
+    """Every grid point as a tuple of value indices, one per axis (grid x zip groups)."""
+    dims = _dimensions(axes)
+    for combo in itertools.product(*[range(len(axes[d[0]].values)) for d in dims]):
+        point = [0] * len(axes)
+        for dim, j in zip(dims, combo, strict=True):
+            for i in dim:
+                point[i] = j
+        yield tuple(point)
+
+
+def grid_points(axes: list[Axis]) -> int:
+    """Number of grid points (before identical runs are merged)."""
+    return math.prod(len(axes[d[0]].values) for d in _dimensions(axes))
 
 
 def resolve_study(
@@ -386,16 +438,23 @@ def resolve_study(
             raise Invalid(f"models.{name}: model '{fm.name}' is given twice")
         models[fm.name] = dict(overrides)
 
-    if not study.grid:
+    if not study.grid and not study.zip:
         raise Invalid("grid: empty; give at least one axis, e.g. temperature_c: [-20, 0, 20]")
+    specs: list[tuple[str, AxisValues, int | None, str]] = [
+        (name, spec, None, "grid") for name, spec in study.grid.items()
+    ]
+    for g, group in enumerate(study.zip):
+        if not group:
+            raise Invalid(f"zip.{g}: empty group; give two or more axes of equal length")
+        specs += [(name, spec, g, f"zip.{g}") for name, spec in group.items()]
     axes: list[Axis] = []
-    total = 1
-    for name, spec in study.grid.items():
-        values = _axis_values(name, spec, max_runs)
+    for name, spec, group, where in specs:
+        values = _axis_values(name, spec, max_runs, where)
         try:
             target = resolve_axis(name, conveyor, scenario)
         except ValueError as exc:
-            raise Invalid(_err(exc)) from None
+            raise Invalid(_err(exc) if group is None
+                          else _err(exc).replace("grid:", f"{where}:", 1)) from None
         for other in axes:
             if other.target.overlaps(target):
                 raise Invalid(
@@ -410,15 +469,31 @@ def resolve_study(
                 try:
                     canon.append(get_model(str(v)).name)
                 except InputError as exc:
-                    raise Invalid(f"grid.{name}: {_err(exc).split(': ', 1)[-1]}") from None
+                    raise Invalid(f"{where}.{name}: {_err(exc).split(': ', 1)[-1]}") from None
             if len(set(canon)) != len(canon):
-                raise Invalid(f"grid.{name}: a model is listed twice (aliases count as the same)")
+                raise Invalid(f"{where}.{name}: a model is listed twice (aliases count as the "
+                              "same)")
             values = canon
-        axes.append(Axis(name, axis_column(name), target, tuple(values)))
-        total *= len(values)
+        elif target.root == "model_param":
+            model, param = target.path
+            canon = []
+            for v in values:
+                try:
+                    p = get_model(model).params({**models.get(model, {}), param: v})
+                except InputError as exc:
+                    raise Invalid(f"{where}.{name}: value {v!r}: {_err(exc)}") from None
+                canon.append(getattr(p, param))
+            values = canon
+        axes.append(Axis(name, axis_column(name), target, tuple(values), group))
+    for g in range(len(study.zip)):
+        lengths = {a.name: len(a.values) for a in axes if a.group == g}
+        if len(set(lengths.values())) > 1:
+            raise Invalid(f"zip.{g}: the axes of a zip group vary together and need equal "
+                          "lengths; got " + ", ".join(f"{k} {n}" for k, n in lengths.items()))
     columns = [a.column for a in axes]
     if len(set(columns)) != len(columns):
         raise Invalid("grid: two axes map to the same column")
+    total = grid_points(axes)
     if total > max_runs:
         raise TooLarge(f"grid: the study has {total} runs; the limit is {max_runs}")
 
@@ -431,6 +506,27 @@ def resolve_study(
             ).name
         except InputError as exc:
             raise Invalid(f"model: {_err(exc).split(': ', 1)[-1]}") from None
+    run_models = set(next((a.values for a in axes if a.target.root == "model"),
+                          (default_model,)))
+    for a in axes:
+        if a.target.root == "model_param" and a.target.path[0] not in run_models:
+            raise Invalid(f"grid: axis '{a.name}': model '{a.target.path[0]}' is not run by "
+                          f"this study (its models: {', '.join(sorted(run_models))})")
+
+    design = None
+    if study.design is not None:
+        design = study.design.model_dump(exclude_none=True)
+        if "friction_model" in design:
+            try:
+                design["friction_model"] = get_model(design["friction_model"]).name
+            except InputError as exc:
+                raise Invalid(f"design.friction_model: {_err(exc).split(': ', 1)[-1]}") from None
+        if "temperature_c" in design:
+            try:
+                parse_scenario({"temperature_c": design["temperature_c"]}, prefix="design.")
+            except InputError as exc:
+                raise Invalid(_err(exc)) from None
+        design_scenario(study.design, {})  # the load is a load case
 
     resolved = ResolvedStudy(
         name=study.name,
@@ -445,20 +541,18 @@ def resolve_study(
         conveyor_source=source,
         total=total,
         surface=study.surface,
+        design=design,
+        grid_points=total,
     )
-    resolved.runs, canon = _expand(resolved)
+    resolved.runs, canon, resolved.designs = _expand(resolved)
+    resolved.total = len(resolved.runs)
     for i, axis in enumerate(axes):
         keys = [canonical_json(v) for v in canon[i]]
         if len(set(keys)) != len(keys):
             dup = next(v for v, k in zip(canon[i], keys, strict=True) if keys.count(k) > 1)
-            raise Invalid(f"grid.{axis.name}: value {dup!r} appears twice (after validation)")
+            where = "grid" if axis.group is None else f"zip.{axis.group}"
+            raise Invalid(f"{where}.{axis.name}: value {dup!r} appears twice (after validation)")
         axes[i] = dataclasses.replace(axis, values=tuple(canon[i]))
-    ids = {r.run_id for r in resolved.runs}
-    if len(ids) != len(resolved.runs):
-        raise Invalid(
-            "grid: two grid points give identical runs (values equal after validation, "
-            "e.g. 20 and 20.0); remove the duplicate"
-        )
     resolved.id = study_hash(resolved)
     return resolved
 
@@ -477,7 +571,9 @@ def study_hash(study: ResolvedStudy) -> str:
         "surface",
         "engine_version",
     )
-    return stable_hash({k: doc[k] for k in keys})
+    # zip groups and the design case count only when given, so a study without them keeps
+    # the id it had before they existed
+    return stable_hash({k: doc[k] for k in (*keys, "zip", "design") if k in doc})
 
 
 def _parse_conveyor(data: dict) -> Conveyor:
@@ -493,65 +589,210 @@ def _params_for(model: str, overrides: dict) -> dict:
     return dataclasses.asdict(get_model(model).params(overrides))
 
 
-def _expand(study: ResolvedStudy) -> tuple[list[RunSpec], list[list[Any]]]:
-    """Runs of the Cartesian product, and each axis's values as validated (canonical)."""
+#: Scenario fields a steady-only run uses; the others are set to their defaults.
+STEADY_FIELDS = ("load", "temperature_c", "elements")
+
+
+def run_scenario(scenario: dict, dynamics: bool) -> dict:
+    """The scenario as a run uses it: fields it does not read set to their defaults.
+
+    A steady-only run reads ``load``, ``temperature_c`` and ``elements``; a coast stop does
+    not read ``stop.time_s`` (the belt stops on its own). Points that differ only there are
+    then the same run.
+    """
+    if not dynamics:
+        defaults = Scenario().model_dump(mode="json", by_alias=True)
+        return {**defaults, **{k: scenario[k] for k in STEADY_FIELDS}}
+    if (scenario.get("stop") or {}).get("mode") == "coast":
+        default = Scenario().stop.time_s
+        if scenario["stop"].get("time_s") != default:
+            return {**scenario, "stop": {**scenario["stop"], "time_s": default}}
+    return scenario
+
+
+def _expand(
+    study: ResolvedStudy, designs: list[dict] | None = None
+) -> tuple[list[RunSpec], list[list[Any]], list[dict]]:
+    """Runs of the study (identical points merged), each axis's validated values, and the
+    design basis of each conveyor design. ``designs`` (from ``study.json``) are reused
+    instead of sized again when they match."""
     axes = study.axes
-    conv_models: dict = {}
-    scen_models: dict = {}
-    conveyors = _validate_variants(axes, study.conveyor, _parse_conveyor, "conveyor", conv_models)
-    scenarios = _validate_variants(axes, study.scenario, _parse_scenario, "scenario", scen_models)
-    if study.dynamics:
-        _check_scenarios(axes, conv_models, scen_models)
-    conv_json = {k: canonical_json(v) for k, v in conveyors.items()}
-    scen_json = {k: canonical_json(v) for k, v in scenarios.items()}
+    points = list(_points(axes))
     i_conv = [i for i, a in enumerate(axes) if a.target.root == "conveyor"]
     i_scen = [i for i, a in enumerate(axes) if a.target.root == "scenario"]
     i_model = [i for i, a in enumerate(axes) if a.target.root == "model"]
+    i_param = [i for i, a in enumerate(axes) if a.target.root == "model_param"]
     canon: list[list[Any]] = [list(a.values) for a in axes]
-    for indices, variants in ((i_conv, conveyors), (i_scen, scenarios)):
-        for combo, variant in variants.items():
-            for i, j in zip(indices, combo, strict=True):
+
+    def variants(indices, base, parse, kind):
+        keys = list(dict.fromkeys(tuple(p[i] for i in indices) for p in points))
+        out, models, bad = {}, {}, []
+        for key in keys:
+            data = copy.deepcopy(base)
+            for i, j in zip(indices, key, strict=True):
+                set_path(data, axes[i].target.path, copy.deepcopy(axes[i].values[j]))
+            try:
+                model = parse(data)
+            except InputError as exc:
+                bad.append((_where(axes, indices, key), _err(exc)))
+                continue
+            out[key] = model.model_dump(mode="json", by_alias=True)
+            models[key] = model
+        _refuse_points(kind, bad, len(keys))
+        for key, variant in out.items():
+            for i, j in zip(indices, key, strict=True):
                 canon[i][j] = get_path(variant, axes[i].target.path)
-    params: dict[str, tuple[dict, str]] = {}
-    runs = []
-    for combo in itertools.product(*[range(len(a.values)) for a in axes]):
-        ck = tuple(combo[i] for i in i_conv)
-        sk = tuple(combo[i] for i in i_scen)
-        model = axes[i_model[0]].values[combo[i_model[0]]] if i_model else study.model
-        if model not in params:
-            overrides = study.models.get(model, {})
-            params[model] = (overrides, canonical_json(_params_for(model, overrides)))
-        overrides, params_json = params[model]
+        return out, models
+
+    conveyors, conv_models = variants(i_conv, study.conveyor, _parse_conveyor, "conveyor")
+    scenarios, scen_models = variants(i_scen, study.scenario, _parse_scenario, "scenario")
+
+    # every realised pair: a per-section load must match the profile; a dynamic study's
+    # scenario must be one the conveyor can do
+    from engine.conveyor import section_loads
+
+    pairs = list(dict.fromkeys((tuple(p[i] for i in i_conv), tuple(p[i] for i in i_scen))
+                               for p in points))
+    bad = []
+    for ck, sk in pairs:
+        conv, scn = conv_models[ck], scen_models[sk]
+        try:
+            section_loads(scn.load, conv)
+            if study.dynamics:
+                from engine.run import check_scenario  # the transient engine loads when needed
+
+                check_scenario(scn, conv)
+        except InputError as exc:
+            where = ", ".join(w for w in (_where(axes, i_conv, ck), _where(axes, i_scen, sk))
+                              if w)
+            bad.append((where, _err(exc)))
+    if bad:
+        where, msg = bad[0]
+        raise Invalid(f"{msg} (at grid point {where})" if where else msg)
+
+    # the model and its parameter overrides of each point
+    def model_of(p) -> str:
+        return axes[i_model[0]].values[p[i_model[0]]] if i_model else study.model
+
+    params: dict[tuple, tuple[dict, str]] = {}
+
+    def params_of(p) -> tuple[dict, str]:
+        model = model_of(p)
+        key = (model, *(p[i] for i in i_param if axes[i].target.path[0] == model))
+        if key not in params:
+            overrides = dict(study.models.get(model, {}))
+            for i in i_param:
+                if axes[i].target.path[0] == model:
+                    overrides[axes[i].target.path[1]] = axes[i].values[p[i]]
+            params[key] = (overrides, canonical_json(_params_for(model, overrides)))
+        return params[key]
+
+    # the design basis: one per conveyor design
+    sized = _design_basis(study, points, i_conv, i_scen, conveyors, conv_models, scenarios,
+                          model_of, params_of, designs)
+
+    by_id: dict[str, dict] = {}
+    run_scenarios: dict[tuple, tuple[dict, str]] = {}
+    run_conveyors: dict[tuple, tuple[dict, dict, str]] = {}
+    for p in points:
+        ck = tuple(p[i] for i in i_conv)
+        sk = tuple(p[i] for i in i_scen)
+        model = model_of(p)
+        overrides, params_json = params_of(p)
+        if sk not in run_scenarios:
+            scenario = run_scenario(scenarios[sk], study.dynamics)
+            run_scenarios[sk] = (scenario, canonical_json(scenario))
+        scenario, scenario_json = run_scenarios[sk]
+        # the sizes a run gets depend on its conveyor design and, for brakes, its stop
+        stop = scenario.get("stop") or {}
+        braked = study.dynamics and stop.get("mode") == "brake"
+        ckey = (ck, stop.get("time_s") if braked else None)
+        if ckey not in run_conveyors:
+            entry = sized.get(ck)
+            conveyor, governed = apply_sizes(conveyors[ck], entry["sizes"] if entry else None,
+                                             scenario, study.dynamics)
+            run_conveyors[ckey] = (conveyor, governed, canonical_json(conveyor))
+        conveyor, governed, conveyor_json = run_conveyors[ckey]
         key = "\x1f".join(
             [
-                conv_json[ck],
-                scen_json[sk],
+                conveyor_json,
+                scenario_json,
                 model,
                 params_json,
                 str(study.dynamics),
                 study.engine_version,
             ]
         )
-        runs.append(
-            RunSpec(
-                run_id=hashlib.sha256(key.encode()).hexdigest()[:_HASH_LEN],
-                axes={
-                    a.column: canon[i][j] for i, (a, j) in enumerate(zip(axes, combo, strict=True))
-                },
-                conveyor=conveyors[ck],
-                scenario=scenarios[sk],
-                model=model,
-                params=overrides,
-                dynamics=study.dynamics,
-                engine_version=study.engine_version,
-            )
+        run_id = hashlib.sha256(key.encode()).hexdigest()[:_HASH_LEN]
+        values = {a.column: canon[i][j] for i, (a, j) in enumerate(zip(axes, p, strict=True))}
+        if run_id in by_id:  # an identical run: axes that differ are null in its row
+            run = by_id[run_id]
+            run["points"] += 1
+            for column, value in values.items():
+                if canonical_json(run["axes"][column]) != canonical_json(value):
+                    run["axes"][column] = None
+            continue
+        by_id[run_id] = dict(
+            run_id=run_id,
+            axes=values,
+            conveyor=conveyor,
+            scenario=scenario,
+            model=model,
+            params=overrides,
+            dynamics=study.dynamics,
+            engine_version=study.engine_version,
+            design=governed,
+            points=1,
         )
-    return runs, canon
+    table = [{"axes": entry["axes"], "key": entry["key"], "sizes": entry["sizes"]}
+             for entry in sized.values()]
+    return [RunSpec(**r) for r in by_id.values()], canon, table
+
+
+def _design_basis(study, points, i_conv, i_scen, conveyors, conv_models, scenarios, model_of,
+                  params_of, stored) -> dict:
+    """``{conveyor key: {"axes", "key", "sizes"}}`` for every conveyor design with auto
+    sizes (:mod:`service.basis`)."""
+    axes = study.axes
+    design = study.design or {}
+    design_load = design_scenario(DesignIn(**design) if design else None, {}).load
+    known = {d["key"]: d["sizes"] for d in stored or []}
+    out: dict = {}
+    for ck in dict.fromkeys(tuple(p[i] for i in i_conv) for p in points):
+        conv = conveyors[ck]
+        if not has_auto(conv):
+            continue
+        key = stable_hash({"conveyor": conv, "design": design, "models": study.models,
+                           "scenario": study.scenario})
+        mine = [p for p in points if tuple(p[i] for i in i_conv) == ck]
+        where = _where(axes, i_conv, ck)
+        if key in known:
+            sizes = known[key]
+        else:
+            cases: dict[Case, None] = {}
+            stops: set[float] = set()
+            for p in mine:
+                scn = scenarios[tuple(p[i] for i in i_scen)]
+                model = model_of(p)
+                overrides = params_of(p)[0]
+                if "friction_model" in design and model != design["friction_model"]:
+                    model = design["friction_model"]
+                    overrides = dict(study.models.get(model, {}))
+                temp = float(design.get("temperature_c", scn["temperature_c"]))
+                cases[Case(model, tuple(sorted(overrides.items())), temp, scn["elements"])] = None
+                if study.dynamics and scn["stop"]["mode"] == "brake":
+                    stops.add(float(scn["stop"]["time_s"]))
+            sizes = size_design(conv_models[ck], list(cases), design_load, sorted(stops), where)
+        out[ck] = {"axes": {axes[i].name: axes[i].values[j]
+                            for i, j in zip(i_conv, ck, strict=True)},
+                   "key": key, "sizes": sizes}
+    return out
 
 
 def expand_runs(study: ResolvedStudy) -> list[RunSpec]:
-    """The Cartesian product of the axes as :class:`RunSpec` objects (validated variants)."""
-    return _expand(study)[0]
+    """The study's runs as :class:`RunSpec` objects (validated variants, identical grid points
+    merged, the design basis applied)."""
+    return _expand(study, study.designs)[0]
 
 
 def study_from_json(doc: dict, study_id: str) -> ResolvedStudy:
@@ -564,6 +805,7 @@ def study_from_json(doc: dict, study_id: str) -> ResolvedStudy:
             a["column"],
             _resolve(a["name"], doc["conveyor"], doc["scenario"]),
             tuple(a["values"]),
+            a.get("group"),
         )
         for a in doc["axes"]
     ]
@@ -578,11 +820,15 @@ def study_from_json(doc: dict, study_id: str) -> ResolvedStudy:
         dynamics=bool(doc["dynamics"]),
         engine_version=doc["engine_version"],
         conveyor_source=doc.get("conveyor_source", "inline"),
-        total=math.prod(len(a.values) for a in axes),
+        total=grid_points(axes),
         id=study_id,
         surface=bool(doc.get("surface", True)),
+        design=doc.get("design"),
+        grid_points=grid_points(axes),
+        designs=list(doc.get("designs") or []),
     )
-    study.runs = expand_runs(study)
+    study.runs, _, study.designs = _expand(study, study.designs)
+    study.total = len(study.runs)
     return study
 
 

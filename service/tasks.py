@@ -100,6 +100,9 @@ def run_spec(spec: dict, study_id: str = "") -> tuple[dict, Any]:
         row.update(failed_row(_message(exc), time.perf_counter() - t0))
         return row, None
     row.update(flatten_summary(result.summary))
+    # what set each size the study held for this run's conveyor design (service.basis): the
+    # run itself only sees the numbers
+    row.update(spec.get("design") or {})
     if row["elapsed_s"] is None:
         row["elapsed_s"] = time.perf_counter() - t0
     return row, result

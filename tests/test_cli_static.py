@@ -74,3 +74,48 @@ def test_static_bad_file_one_line(tmp_path):
     assert p.returncode == 2 and "speed_m_s" in p.stderr and "Traceback" not in p.stderr
     p = run("static", str(tmp_path / "missing.yaml"), check=False)
     assert p.returncode == 2 and "file not found" in p.stderr
+
+
+@pytest.mark.parametrize("args, needle", [
+    (["--temperature-c", "-70"], "--temperature-c: Input should be greater than or equal to -60"),
+    (["--load", "1.4"], "--load: fractions run from 0 to 1.3"),
+    (["--load", "1,0"], "--load: 2 fractions for 1 profile sections"),
+    (["--elements", "4"], "--elements: Input should be 'auto' or greater than or equal to 8"),
+])
+def test_static_refuses_what_a_scenario_refuses(args, needle, capsys):
+    from service.cli import main
+
+    assert main(["static", str(CONVEYORS / "slope-5pct.yaml"), *args]) == 2
+    err = capsys.readouterr().err
+    assert needle in err and len(err.strip().splitlines()) == 1
+
+
+def test_static_simulate_and_sweep_share_the_scenario_bounds(tmp_path, capsys):
+    """The temperature range is the scenario model's in every command (-60 to 80 C)."""
+    from service.cli import main
+
+    conveyor = str(CONVEYORS / "slope-5pct.yaml")
+    for args in (["static", conveyor, "--temperature-c", "-70"],
+                 ["simulate", conveyor, "--temperature-c", "-70"],
+                 ["sweep-temperature", conveyor, "--from", "-70", "--to", "0",
+                  "--out", str(tmp_path)]):
+        assert main(args) == 2, args
+        assert "-60" in capsys.readouterr().err
+
+
+def test_static_prints_what_set_each_size_and_the_rest_sag_switch(capsys):
+    from service.cli import main
+
+    conveyor = str(CONVEYORS / "downhill-regen.yaml")
+    assert main(["static", conveyor, "--json"]) == 0
+    on = json.loads(capsys.readouterr().out)
+    assert main(["static", conveyor, "--json", "--no-sag-at-rest"]) == 0
+    off = json.loads(capsys.readouterr().out)
+    assert on["takeup_governed_by"] == "sag_at_rest"
+    assert off["takeup_governed_by"] != "sag_at_rest"
+    assert off["takeup_mass_kg"] < on["takeup_mass_kg"]
+    assert on["brake_governed_by"] == "holding" and on["rated_power_governed_by"] == "given"
+    assert main(["static", conveyor]) == 0
+    table = capsys.readouterr().out
+    assert "sizes and what set them" in table and "sag_at_rest" in table
+    assert "fill (design flow / cross-section)" in table

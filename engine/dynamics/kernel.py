@@ -550,11 +550,14 @@ def run_cycle(fp, ip, nodes, law, sp, blocks, shafts, drives, brakes, st, out, w
                     out.shs[s, 3] = t_new
             if start_ach < 0.0 and v_mean >= 0.99 * v_d:
                 start_ach = t_new - t_pre
+        if stopping and stop_ach < 0.0 and v_mean < 0.01 * v_d:
+            stop_ach = t_new - t_stopcmd
+        # stopped (holding brakes set, the rest begins): at 1 % of design speed, and on a
+        # controlled stop once its reference has run out
         if stopping and not stopped and v_mean < 0.01 * v_d and (
                 stop_mode != C.CONTROLLED or t_new >= t_stopcmd + t_stopdur):
             stopped = True
             t_stopped = t_new
-            stop_ach = t_new - t_stopcmd
             t_end_limit = min(t_end_limit, t_new + post_rest)
             if fp[C.FP_T_END] > 0.0:
                 t_end_limit = min(t_end_limit, fp[C.FP_T_END])

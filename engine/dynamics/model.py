@@ -49,6 +49,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from engine import design
 from engine.conveyor import Conveyor, InputError, Scenario
 from engine.dynamics import profiles
 from engine.dynamics.codes import (
@@ -64,20 +65,17 @@ from engine.dynamics.codes import (
     VFD,
 )
 from engine.law import ResistanceLaw
-from engine.loop import G, Loop
+from engine.loop import G, Loop, rotating_parts
 from engine.statics import master_drive, rest_hold_element, rest_walk
 
 __all__ = [
     "DynamicsOptions",
     "System",
     "build_system",
-    "pulley_reduced_mass_kg",
     "stability_limit_s",
     "chord_strain",
     "check_scenario",
     "implicit_blocks",
-    "brake_force_auto",
-    "brake_stop_time",
     "speed_loop_bandwidth",
     "COAST",
     "BRAKE",
@@ -93,18 +91,9 @@ START_CODES = {"s-curve": profiles.S_CURVE, "linear": profiles.LINEAR,
 COUPLING_CODES = {"none": COUPLING_NONE, "fluid": COUPLING_FLUID,
                   "fluid_fill_controlled": COUPLING_FILL}
 
-#: Steel density for the pulley estimate [kg/m3].
-STEEL_KG_M3 = 7850.0
 #: Sag ratio h/S below whose tension the Ernst tangent modulus is held constant: the range of
 #: the parabolic sag model (10 %).
 HS_FLOOR = 0.10
-#: Share of a drive's reduced inertia taken as the motor's when a fluid coupling separates it
-#: and ``motor_inertia_kg_m2`` is not given [-]: the motor rotor dominates the reduced
-#: inertia through the square of the gear ratio (an estimate; give the motor's data).
-MOTOR_INERTIA_SHARE = 2.0 / 3.0
-#: Minimum holding force of an auto-sized brake as a multiple of the net gravity pull of the
-#: loaded belt [-] (the holding margin of the previous engine, an estimate).
-HOLD_MARGIN = 1.2
 
 
 @dataclass(frozen=True)
@@ -299,25 +288,6 @@ class System:
 # Helpers
 
 
-def pulley_reduced_mass_kg(diameter_m: float, belt_width_m: float) -> float:
-    """Estimated reduced mass of a pulley at the belt line [kg].
-
-    A welded drum pulley is modelled as a thin steel shell of diameter D, face B + 0.2 m and
-    wall 12 mm + 1 % of D, plus 30 % for the end discs (a thin shell has J (2/D)^2 = m).
-    An estimate, not a catalogue value: give ``DynamicsOptions.pulley_mass_kg`` when the
-    pulley data are known.
-
-    Parameters
-    ----------
-    diameter_m : float
-        Pulley diameter D [m].
-    belt_width_m : float
-        Belt width B [m].
-    """
-    wall = 0.012 + 0.01 * diameter_m
-    return 1.3 * STEEL_KG_M3 * math.pi * diameter_m * (belt_width_m + 0.2) * wall
-
-
 def chord_strain(tension_n, a_ernst, stiffness_n, t_floor_n, k_floor_n):
     """Elastic strain of a span from the Ernst chord law, up to a constant [-].
 
@@ -464,47 +434,6 @@ def check_scenario(scn: Scenario, conv: Conveyor, opts: DynamicsOptions | None =
         raise InputError(f"damping: unknown '{opts.damping}'; valid: belt, off")
 
 
-def brake_force_auto(total_mass_kg: float, v_d: float, te_n: float, stop_s: float,
-                     delay_s: float, ramp_s: float = 0.0) -> float:
-    """Total brake force for a rigid-body stop in ``stop_s`` [N] (no holding minimum).
-
-    The belt coasts for ``delay_s`` decelerating at ``Te / M`` (accelerating when Te < 0, a
-    regenerative belt), then the brake force builds linearly over ``ramp_s`` to ``F_b`` and,
-    with the running resistance, stops it: ``M v_1 = Te t_b + F_b (t_b - r / 2)`` with
-    ``t_b = t_stop - t_delay`` and ``v_1 = v - Te t_delay / M`` (for ``t_b >= r``).
-
-    Parameters
-    ----------
-    total_mass_kg : float
-        All moving mass reduced to the belt line [kg].
-    v_d : float
-        Design speed [m/s].
-    te_n : float
-        Steady peripheral force (resistance + gravity) [N].
-    stop_s, delay_s, ramp_s : float
-        Target stop time, brake delay and ramp [s].
-    """
-    v1 = v_d - te_n * delay_s / total_mass_kg
-    if v1 <= 0.0:
-        return 0.0
-    t_b = stop_s - delay_s
-    r = min(ramp_s, t_b)
-    return max((total_mass_kg * v1 - te_n * t_b) / (t_b - 0.5 * r), 0.0)
-
-
-def brake_stop_time(total_mass_kg: float, v_d: float, te_n: float, force_n: float,
-                    delay_s: float, ramp_s: float = 0.0) -> float:
-    """Rigid-body stop time with a brake force ``force_n`` [s] (inverse of
-    :func:`brake_force_auto` for a stop past the ramp; inf if the belt does not stop)."""
-    v1 = v_d - te_n * delay_s / total_mass_kg
-    if v1 <= 0.0:
-        return delay_s
-    if te_n + force_n <= 0.0:
-        return math.inf
-    t_b = (total_mass_kg * v1 + 0.5 * force_n * ramp_s) / (te_n + force_n)
-    return delay_s + max(t_b, ramp_s)
-
-
 def _fixed_takeup_level(T_rel, T_run, len_m, a_el, EB, t_floor, k_floor) -> float:
     """Level of the at-rest tensions of a fixed take-up: the belt has the same length at rest
     as in the running state of statics (the loop length is fixed), found by bisection [N]."""
@@ -568,40 +497,16 @@ def build_system(conv: Conveyor, scn: Scenario, steady, options: DynamicsOptions
     # ---- shafts: every drive pulley, and the braked and holdback pulleys
     mass = loop.mass_kg.copy()
     belt_mass = mass.copy()
+    parts = rotating_parts(conv, loop, opts.pulley_mass_kg)
     shafts: dict[int, dict] = {}
-
-    def plain_mass(node: int) -> float:
-        if opts.pulley_mass_kg is not None:
-            return float(opts.pulley_mass_kg)
-        return pulley_reduced_mass_kg(loop.pulley_at(node).diameter_m, belt.width_m)
-
-    drive_motor = np.zeros(len(conv.drives))
-    for i, d in enumerate(conv.drives):
-        node = loop.drive_elements[i]
-        red = (2.0 / d.pulley_diameter_m) ** 2
-        total = (d.inertia_kg_m2 + d.flywheel_kg_m2) * red
-        if d.coupling != "none":
-            j_m = (d.motor_inertia_kg_m2 if d.motor_inertia_kg_m2 is not None
-                   else MOTOR_INERTIA_SHARE * d.inertia_kg_m2)
-            drive_motor[i] = max(j_m * red, 1e-6 * total + 1.0)
-            total = max(total - j_m * red, 0.0)
-        # a drive pulley has at least its own shell
-        total = max(total, pulley_reduced_mass_kg(d.pulley_diameter_m, belt.width_m))
+    for node, m in parts.shaft_mass.items():
         p = loop.pulley_at(node)
-        shafts[node] = dict(mass=total, euler=p.euler, euler_k=p.euler_kinetic, drive=i, hb=0)
-    extra_nodes = [loop.brake_element(b) for b in conv.brakes]
-    if conv.holdback:
-        extra_nodes.append(loop.i_head)
-    for node in extra_nodes:
-        if node not in shafts:
-            p = loop.pulley_at(node)
-            shafts[node] = dict(mass=plain_mass(node), euler=p.euler, euler_k=p.euler_kinetic,
-                                drive=-1, hb=0)
-    if conv.holdback:
-        shafts[loop.i_head]["hb"] = 1
-    for p in loop.pulleys:
-        if p.element not in shafts:
-            mass[p.element] += plain_mass(p.element)
+        shafts[node] = dict(mass=m, euler=p.euler, euler_k=p.euler_kinetic,
+                            drive=parts.shaft_drive.get(node, -1),
+                            hb=1 if (conv.holdback and node == loop.i_head) else 0)
+    for node, m in parts.plain_mass.items():
+        mass[node] += m
+    drive_motor = np.array(parts.motor_mass, dtype=float)
     shaft_nodes = sorted(shafts)
     shaft_index = {node: k for k, node in enumerate(shaft_nodes)}
     sh_mass = np.array([shafts[s]["mass"] for s in shaft_nodes], dtype=float)
@@ -675,8 +580,7 @@ def build_system(conv: Conveyor, scn: Scenario, steady, options: DynamicsOptions
         else law.evaluate(v_d)
     te = float(np.sum(steady.drive_force_n))
     r_sum = float(np.sum(R_run))
-    rated = np.array([d.rated_power_kw * 1e3 / v_d if d.rated_power_kw is not None
-                      else 1.25 * d.share * max(abs(te), r_sum) for d in conv.drives])
+    rated = np.array(design.rated_power_kw(conv, te, r_sum)[0]) * 1e3 / v_d
     limit = np.array([d.torque_limit for d in conv.drives]) * rated
     master = master_drive(conv)
     wc = (float(opts.controller_bandwidth_rad_s) if opts.controller_bandwidth_rad_s is not None
@@ -725,26 +629,10 @@ def build_system(conv: Conveyor, scn: Scenario, steady, options: DynamicsOptions
     # ---- brakes
     b_force = []
     if conv.brakes:
-        auto = [b for b in conv.brakes if b.force_kn == "auto"]
-        fixed_total = sum(b.force_kn * 1e3 for b in conv.brakes if b.force_kn != "auto")
-        auto_each = 0.0
-        if auto:
-            delay = max(b.delay_s for b in auto)
-            ramp = max(b.ramp_s for b in auto)
-            f_stop = brake_force_auto(total_mass, v_d, te, scn.stop.time_s, delay, ramp)
-            f_hold = HOLD_MARGIN * abs(float(gravity.sum()))
-            f_total = max(f_stop, f_hold)
-            if f_hold > f_stop:
-                t_gives = brake_stop_time(total_mass, v_d, te, f_hold, delay, ramp)
-                notes.append(
-                    f"auto brake force {f_hold / 1e3:.4g} kN is set by holding the loaded belt "
-                    f"at rest ({HOLD_MARGIN:g} x the net gravity pull {abs(gravity.sum()) / 1e3:.4g}"
-                    f" kN), not by the stop time {scn.stop.time_s:g} s (which needs "
-                    f"{f_stop / 1e3:.4g} kN): the rigid-body brake stop then takes about "
-                    f"{t_gives:.3g} s")
-            auto_each = max(f_total - fixed_total, 0.0) / len(auto)
-        for b in conv.brakes:
-            b_force.append(auto_each if b.force_kn == "auto" else b.force_kn * 1e3)
+        kn, _why, note = design.brake_forces(conv, scn, total_mass, te, float(gravity.sum()))
+        b_force = [f * 1e3 for f in kn]
+        if note:
+            notes.append(note)
 
     # ---- durations
     hold_time = max([b.delay_s + (b.force_curve[-1][0] if b.force_curve else b.ramp_s)

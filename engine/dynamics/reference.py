@@ -682,9 +682,11 @@ def run_reference(sys: System, t_end_s: float | None = None) -> ReferenceResult:
                 start_ach = t_new - t_pre
             if st.tt.min() <= 0.0:
                 slack_s += dt
+        if stopping and stop_ach < 0.0 and v_mean < 0.01 * v_d:
+            stop_ach = t_new - t_stopcmd
         if stopping and not stopped and v_mean < 0.01 * v_d and (
                 sys.stop_mode != C.CONTROLLED or t_new >= t_stopcmd + sys.stop_s):
-            stopped, t_stopped, stop_ach = True, t_new, t_new - t_stopcmd
+            stopped, t_stopped = True, t_new
             t_limit = min(t_limit, t_new + sys.post_rest_s)
         if t_new >= t_limit:
             break

@@ -74,10 +74,11 @@ def feed_index(loop: Loop) -> int:
 def add_feed(b: LawBuilder, loop: Loop, conv: Conveyor) -> None:
     """Force to accelerate the material at the feed, I_m (v - v0) [N] (DIN 22101, CEMA T_am).
 
-    I_m = m'_L v_design is the mass flow [kg/s]; as a law term: I_m |v| - I_m v0 on the feed
-    element, so in transients it scales with the belt speed.
+    I_m = m'_L v_design is the mass flow [kg/s], with m'_L the material on the feed element
+    (the first carry section's share of a load pattern); as a law term: I_m |v| - I_m v0 on
+    the feed element, so in transients it scales with the belt speed.
     """
-    im = loop.design_load_kg_m * loop.load_fraction * loop.speed_m_s  # [kg/s]
+    im = float(loop.mL_kg_m[feed_index(loop)]) * loop.speed_m_s  # [kg/s]
     if im <= 0.0:
         return
     coef1 = np.zeros(loop.n)

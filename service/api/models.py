@@ -44,6 +44,8 @@ class StudyStatus(BaseModel):
     started_at: float | None = None
     finished_at: float | None = None
     dynamics: bool
+    grid_points: int | None = Field(None, description="grid points (grid x zip groups)")
+    merged: int = Field(0, description="grid points merged into an identical run")
     axes: dict[str, str] = Field(..., description="axis name -> runs column")
     engine_version: str | None = None
     status_url: str

@@ -6,20 +6,81 @@ import json
 import math
 from typing import Any
 
-from engine.conveyor import InputError
+from engine.conveyor import LOAD_MAX, InputError
+
+LOAD_HELP = ("full, empty, inclines, declines, a fraction of the design load up to 1.3 (a "
+             "surge above 1), or one fraction per carry profile section: 1,0,0.5")
 
 
-def parse_load(text: str) -> str | float:
-    """``full``, ``empty`` or a fraction 0..1 of the design load."""
-    if text in ("full", "empty"):
+def parse_load(text: str) -> str | float | list[float]:
+    """A load case (SPEC 6.2) from the command line: a name, a fraction or a comma list.
+
+    The value is checked by the same scenario model as scenario files and studies
+    (:func:`check_scenario_fields`)."""
+    text = text.strip()
+    if text in ("full", "empty", "inclines", "declines"):
         return text
     try:
-        val = float(text)
+        values = [float(v) for v in text.split(",")]
     except ValueError:
-        raise InputError(f"--load: expected full, empty or a fraction 0..1, got {text!r}") from None
-    if not 0.0 <= val <= 1.0:
-        raise InputError(f"--load: the fraction must be between 0 and 1, got {val}")
-    return val
+        raise InputError(f"--load: expected {LOAD_HELP}; got {text!r}") from None
+    for val in values:
+        if not 0.0 <= val <= LOAD_MAX:
+            raise InputError(f"--load: fractions run from 0 to {LOAD_MAX:g} of the design load "
+                             f"(got {val:g})")
+    return values if "," in text else values[0]
+
+
+def check_scenario_fields(conveyor=None, **fields):
+    """Validate command-line scenario fields with the scenario model (one set of bounds for
+    ``static``, ``simulate``, ``sweep-temperature`` and studies); the error names the option.
+    With ``conveyor``, a load given per section must match its profile."""
+    from engine.conveyor import parse_scenario, section_loads
+
+    given = {k: v for k, v in fields.items() if v is not None}
+    try:
+        scn = parse_scenario(given, prefix="")
+        if conveyor is not None:
+            section_loads(scn.load, conveyor)
+        return scn
+    except InputError as exc:
+        text = str(exc)
+        for key in given:
+            text = text.replace(f"scenario.{key}:", f"{key}:", 1)
+            text = text.replace(f"{key}:", f"--{key.replace('_', '-')}:", 1)
+        raise InputError(text) from None
+
+
+def with_sag_at_rest(conv, on: bool):
+    """The conveyor with ``takeup.sag_at_rest`` set (the CLI switch ``--no-sag-at-rest``)."""
+    if conv.takeup.sag_at_rest == on:
+        return conv
+    return conv.model_copy(update={"takeup": conv.takeup.model_copy(update={"sag_at_rest": on})})
+
+
+def design_lines(s: dict, indent: str = "  ") -> list[str]:
+    """Where the run's sizes came from: each size with its governing constraint, then the
+    capacity check."""
+    rows = []
+    if s.get("takeup_mass_kg") is not None:
+        rows.append(("take-up mass", s["takeup_mass_kg"], "kg", s.get("takeup_governed_by")))
+    rows.append(("take-up tension per strand", s.get("takeup_pretension_kn"), "kN",
+                 None if s.get("takeup_mass_kg") is not None else s.get("takeup_governed_by")))
+    for i, kw in enumerate(s.get("drive_rated_power_kw") or [], start=1):
+        rows.append((f"rated power, drive {i}", kw, "kW", s.get("rated_power_governed_by")))
+    if s.get("brake_force_kn") is not None:
+        rows.append(("brake force (all brakes)", s["brake_force_kn"], "kN",
+                     s.get("brake_governed_by")))
+    lines = [f"{indent}sizes and what set them"]
+    for label, value, unit, why in rows:
+        if value is None:
+            continue
+        tail = f"  {why}" if why else ""
+        lines.append(f"{indent}  {label:<36} {value:>12.3f} {unit:<3}{tail}".rstrip())
+    if s.get("fill_pct") is not None:
+        lines.append(f"{indent}  {'fill (design flow / cross-section)':<36} "
+                     f"{s['fill_pct']:>12.1f} %")
+    return lines
 
 
 def parse_params(items: list[str] | None, model: str | None = None) -> dict[str, Any]:

@@ -11,6 +11,8 @@ import argparse
 import numpy as np
 import pandas as pd
 
+from service.cli.common import LOAD_HELP
+
 STEADY_FIELDS = [
     ("te_kn", "peripheral force Te", "kN"),
     ("power_kw", "power at the drive pulleys", "kW"),
@@ -18,7 +20,6 @@ STEADY_FIELDS = [
     ("t2_kn", "T2 slack side, main drive", "kN"),
     ("t_max_kn", "maximum tension (steady)", "kN"),
     ("t_min_kn", "minimum tension (steady)", "kN"),
-    ("takeup_mass_kg", "take-up mass", "kg"),
 ]
 TRANSIENT_FIELDS = [
     ("t_max_dyn_kn", "maximum tension (transient)", "kN"),
@@ -61,7 +62,7 @@ def register(sub) -> None:
     p.add_argument("--scenario", metavar="SCENARIO.yaml", help="scenario file (SPEC section 2)")
     p.add_argument("--param", action="append", metavar="NAME=VALUE",
                    help="friction model parameter, repeatable (e.g. f_carry=0.010)")
-    p.add_argument("--load", default=None, help="full, empty or a fraction 0..1")
+    p.add_argument("--load", default=None, help=LOAD_HELP)
     p.add_argument("--start-control", choices=["s-curve", "linear", "torque"], default=None)
     p.add_argument("--start-time-s", type=float, default=None, help="start time [s]")
     p.add_argument("--run-s", type=float, default=None, help="steady running time [s]")
@@ -74,11 +75,15 @@ def register(sub) -> None:
     p.add_argument("--dt-s", type=float, default=None, help="fixed time step [s] "
                    "(default: automatic, half the stability limit)")
     p.add_argument("--record-dt-s", type=float, default=None, help="time-series spacing [s]")
+    p.add_argument("--no-sag-at-rest", dest="sag_at_rest", action="store_false",
+                   help="size an auto take-up for the sag limits running only (default: also "
+                   "held at rest; the file's takeup.sag_at_rest)")
     p.add_argument("--json", action="store_true", help="print one JSON object")
     p.add_argument("--timeseries", metavar="FILE", help="write the SPEC section 5 key-point "
                    "time series (.parquet or .csv)")
     p.add_argument("--plot", metavar="FILE.png", help="tension at eight points round the loop "
-                   "against time with the belt speed below (the paper's Fig. 4)")
+                   "and where it is highest and lowest, against time, with the belt speed "
+                   "below (the paper's Fig. 4)")
     p.set_defaults(func=run)
 
 
@@ -138,9 +143,9 @@ def run(args: argparse.Namespace) -> int:
     from engine.conveyor import InputError, load_conveyor
     from engine.friction import get_model
     from engine.run import run_one
-    from service.cli.common import dumps, parse_params, write_table
+    from service.cli.common import dumps, parse_params, with_sag_at_rest, write_table
 
-    conv = load_conveyor(args.conveyor)
+    conv = with_sag_at_rest(load_conveyor(args.conveyor), args.sag_at_rest)
     fm = get_model(args.model)
     params = fm.params(parse_params(args.param, fm.name))
     for path, exts in ((args.timeseries, (".csv", ".parquet")), (args.plot, (".png",))):
@@ -157,9 +162,13 @@ def run(args: argparse.Namespace) -> int:
         from service.plots import transient_figure
 
         surface = traces_long(res.transient.traces) if res.transient is not None else None
+        extremes = {"highest tension": s.get("t_max_dyn_at_m"),
+                    "lowest tension": s.get("t_min_dyn_at_m")}
+        locate = res.steady.loop.where if res.steady is not None else None
         fig = transient_figure(res.timeseries, surface, title=(
             f"{conv.name}: {fm.name}, {scn.temperature_c:g} C, load {scn.load}, "
-            f"{scn.start.control} start {scn.start.time_s:g} s, {scn.stop.mode} stop"))
+            f"{scn.start.control} start {scn.start.time_s:g} s, {scn.stop.mode} stop"),
+            extremes=extremes, locate=locate, extremes_surface=res.surface)
         fig.savefig(args.plot, dpi=110)
     if args.json:
         print(dumps(s))
@@ -177,11 +186,16 @@ def _fmt(val) -> str:
 def _table(s: dict) -> str:
     lines = [f"{s['conveyor']}  model={s['friction_model']}  temperature={s['temperature_c']:g} C"
              f"  load={s['load']}  stop={s['stop_mode']}  formulation={s['formulation']}", ""]
+    from service.cli.common import design_lines
+
     for title, fields in (("steady", STEADY_FIELDS), ("transient", TRANSIENT_FIELDS)):
         lines.append(f"  {title}")
         for key, label, unit in fields:
             if key in s and s[key] is not None:
                 lines.append(f"    {label:<38} {_fmt(s[key])} {unit}")
         lines.append("")
+        if title == "steady":
+            lines += design_lines(s)
+            lines.append("")
     lines.append(f"  status: {s['status']}" + (f"  ({s['message']})" if s["message"] else ""))
     return "\n".join(lines)

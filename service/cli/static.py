@@ -4,6 +4,8 @@ from __future__ import annotations
 
 import argparse
 
+from service.cli.common import LOAD_HELP
+
 FIELDS = [
     ("te_kn", "peripheral force Te", "kN"),
     ("power_kw", "power at the drive pulleys", "kW"),
@@ -14,8 +16,6 @@ FIELDS = [
     ("t_min_kn", "minimum tension", "kN"),
     ("t_min_at_m", "  at", "m"),
     ("sag_max_pct", "maximum sag h/S", "%"),
-    ("takeup_mass_kg", "take-up mass", "kg"),
-    ("takeup_tension_kn", "take-up tension per strand", "kN"),
     ("slip_margin", "slip margin running (>1 safe)", "-"),
     ("slip_margin_start", "slip margin at start-up", "-"),
     ("safety_factor", "belt safety factor", "-"),
@@ -37,8 +37,12 @@ def register(sub) -> None:
     p.add_argument("--temperature-c", type=float, default=20.0, help="ambient temperature [C]")
     p.add_argument("--param", action="append", metavar="NAME=VALUE",
                    help="friction model parameter, repeatable (e.g. f_carry=0.010)")
-    p.add_argument("--load", default="full", help="full, empty or a fraction 0..1")
+    p.add_argument("--load", default="full", help=LOAD_HELP)
     p.add_argument("--elements", type=int, default=None, help="belt elements round the loop")
+    p.add_argument("--no-sag-at-rest", dest="sag_at_rest", action="store_false",
+                   help="size an auto take-up for the sag limits running only (default: also "
+                   "held at rest, a conservative reading beyond DIN 22101's running checks; "
+                   "the file's takeup.sag_at_rest)")
     p.add_argument("--json", action="store_true", help="print one JSON object")
     p.add_argument("--profile", metavar="FILE", help="write the tension along the loop "
                    "(.csv or .parquet)")
@@ -48,22 +52,31 @@ def register(sub) -> None:
 
 def run(args: argparse.Namespace) -> int:
     from engine.conveyor import InputError, load_conveyor
+    from engine.design import auto_sizes, summary_fields
     from engine.friction import get_model
     from engine.statics import solve_steady
-    from service.cli.common import dumps, parse_load, parse_params, write_table
+    from service.cli.common import (
+        check_scenario_fields,
+        dumps,
+        parse_load,
+        parse_params,
+        with_sag_at_rest,
+        write_table,
+    )
 
-    conv = load_conveyor(args.conveyor)
+    conv = with_sag_at_rest(load_conveyor(args.conveyor), args.sag_at_rest)
     fm = get_model(args.model)
     params = fm.params(parse_params(args.param, fm.name))
     load = parse_load(args.load)
-    if args.elements is not None and args.elements < 2:
-        raise InputError("--elements: give at least 2 elements")
+    scn = check_scenario_fields(conv, temperature_c=args.temperature_c, load=load,
+                                elements=args.elements)
     for path, exts in ((args.profile, (".csv", ".parquet")), (args.plot, (".png",))):
         if path and not path.endswith(exts):
             raise InputError(f"{path}: give a file ending in {' or '.join(exts)}")
     res = solve_steady(conv, model=fm.name, params=params, temperature_c=args.temperature_c,
                        load=load, n_elements=args.elements)
     s = dict(res.summary)
+    s.update(summary_fields(auto_sizes(conv, scn, model=fm.name, params=params, steady=res)))
     s = {"conveyor": conv.name, "friction_model": fm.name,
          "temperature_c": args.temperature_c, "load": load, **s}
     if args.profile:
@@ -82,6 +95,8 @@ def run(args: argparse.Namespace) -> int:
 
 
 def _table(s: dict) -> str:
+    from service.cli.common import design_lines
+
     lines = [f"{s['conveyor']}  model={s['friction_model']}  temperature={s['temperature_c']:g} C"
              f"  load={s['load']}", ""]
     for key, label, unit in FIELDS:
@@ -89,6 +104,8 @@ def _table(s: dict) -> str:
         if val is None:
             continue
         lines.append(f"  {label:<36} {val:>12.3f} {unit}")
+    lines.append("")
+    lines += design_lines(s)
     lines.append("")
     lines.append("  Te components [kN]")
     for name, val in s["te_components_kn"].items():

@@ -1,8 +1,9 @@
-"""``beltstudy serve | submit | run | status | results | compare | demo``: parameter studies.
+"""``beltstudy serve | submit | run | status | results | report | compare | demo``: studies.
 
-``submit``, ``status``, ``results`` and ``compare`` talk to a running service
-(``--url``, default ``BELTSTUDY_URL`` or http://127.0.0.1:8000); ``status``, ``results``
-and ``compare`` read the local store (``BELTSTUDY_DATA_DIR``) when no service answers.
+``submit``, ``status``, ``results``, ``report`` and ``compare`` talk to a running service
+(``--url``, default ``BELTSTUDY_URL`` or http://127.0.0.1:8000); ``status``, ``results``,
+``report`` and ``compare`` read the local store (``BELTSTUDY_DATA_DIR``) when no service
+answers.
 ``run`` uses the same executor and store in-process, without HTTP. ``demo`` is ``make run``.
 """
 
@@ -50,6 +51,15 @@ def register(sub) -> None:
     )
     _client_args(p)
     p.set_defaults(func=cmd_results)
+
+    p = sub.add_parser(
+        "report",
+        help="write a study's design report: one self-contained HTML page (prints to PDF)",
+    )
+    p.add_argument("id", help="study id")
+    p.add_argument("-o", "--output", required=True, help="output file (.html)")
+    _client_args(p)
+    p.set_defaults(func=cmd_report)
 
     p = sub.add_parser("compare", help="candidate / baseline friction model ratios of a study")
     p.add_argument("id", help="study id")
@@ -119,13 +129,21 @@ def cmd_submit(args) -> int:
         st, created = client.submit(body)
         print(
             f"{'submitted' if created else 'already submitted'}: {st['id']} "
-            f"({st['total']} runs) {client.url}{st['status_url']}"
+            f"({_runs_text(st)}) {client.url}{st['status_url']}"
         )
         if not args.wait:
             return 0
         st = _poll(lambda: client.status(st["id"]), ProgressBar())
         print(format_status(st))
     return 0 if st["state"] == "done" else 1
+
+
+def _runs_text(st: dict) -> str:
+    """``12 runs`` or ``12 runs; 4 of 16 grid points merged into identical runs``."""
+    text = f"{st['total']} runs"
+    if st.get("merged"):
+        text += f"; {st['merged']} of {st['grid_points']} grid points merged into identical runs"
+    return text
 
 
 def _poll(get, progress, poll_s: float = 1.0) -> dict:
@@ -152,7 +170,7 @@ def cmd_run(args) -> int:
     try:
         st, created = service.submit(data, base_dir=p.parent, confine=False)
         print(
-            f"{'study' if created else 'existing study'} {st['id']} ({st['total']} runs), "
+            f"{'study' if created else 'existing study'} {st['id']} ({_runs_text(st)}), "
             f"data in {settings.studies_root / st['id']}",
             file=sys.stderr,
         )
@@ -221,6 +239,24 @@ def cmd_results(args) -> int:
     data = _with_fallback(args, lambda c: c.runs(args.id, fmt), local)
     out.write_bytes(data)
     print(f"wrote {out} ({len(data)} bytes)")
+    return 0
+
+
+def cmd_report(args) -> int:
+    from service.errors import Invalid
+
+    out = Path(args.output)
+    if out.suffix.lower() not in (".html", ".htm"):
+        raise Invalid(f"-o {out}: the report is HTML; use a .html file name")
+
+    def local(service):
+        from service.web.report import build_report
+
+        return build_report(service, args.id)
+
+    text = _with_fallback(args, lambda c: c.report(args.id), local)
+    out.write_text(text, encoding="utf-8")
+    print(f"wrote {out} ({len(text.encode())} bytes): open it in a browser, print to PDF")
     return 0
 
 

@@ -38,7 +38,8 @@ def register(sub) -> None:
     p.add_argument("--step", type=float, default=5.0, help="temperature step [K] (default 5)")
     p.add_argument("--param", action="append", metavar="MODEL.NAME=VALUE",
                    help="model parameter, repeatable (e.g. din.f_carry=0.010)")
-    p.add_argument("--load", default="full", help="full, empty or a fraction 0..1")
+    p.add_argument("--load", default="full", help="full, empty, inclines, declines, a "
+                   "fraction up to 1.3 or one fraction per carry section (1,0,0.5)")
     p.add_argument("--elements", type=int, default=None, help="belt elements round the loop")
     p.add_argument("--out", required=True, metavar="DIR", help="output directory")
     p.set_defaults(func=run)
@@ -46,7 +47,7 @@ def register(sub) -> None:
 
 def temperatures(t_from: float, t_to: float, step: float) -> list[float]:
     """The swept temperatures [C], ``t_from`` to ``t_to`` inclusive."""
-    from engine.conveyor import InputError
+    from engine.conveyor import TEMPERATURE_MAX_C, TEMPERATURE_MIN_C, InputError
 
     for name, val in (("--from", t_from), ("--to", t_to), ("--step", step)):
         if not math.isfinite(val):
@@ -56,8 +57,9 @@ def temperatures(t_from: float, t_to: float, step: float) -> list[float]:
     if t_to < t_from:
         raise InputError(f"--to ({t_to:g}) must not be below --from ({t_from:g})")
     for name, val in (("--from", t_from), ("--to", t_to)):
-        if not -60.0 <= val <= 80.0:
-            raise InputError(f"{name}: temperatures run from -60 to 80 C (got {val:g})")
+        if not TEMPERATURE_MIN_C <= val <= TEMPERATURE_MAX_C:
+            raise InputError(f"{name}: temperatures run from {TEMPERATURE_MIN_C:g} to "
+                             f"{TEMPERATURE_MAX_C:g} C, as in every scenario (got {val:g})")
     count = int(math.floor((t_to - t_from) / step + 1e-9)) + 1
     if count > MAX_POINTS:
         raise InputError(f"--step: {count} temperatures is too many (at most {MAX_POINTS})")
@@ -148,14 +150,13 @@ def figure(df, title: str):
 
 def run(args: argparse.Namespace) -> int:
     from engine.conveyor import InputError, load_conveyor
-    from service.cli.common import parse_load, parse_model_params
+    from service.cli.common import check_scenario_fields, parse_load, parse_model_params
 
     conv = load_conveyor(args.conveyor)
     models = _model_list(args.models)
     temps = temperatures(args.t_from, args.t_to, args.step)
     load = parse_load(args.load)
-    if args.elements is not None and args.elements < 2:
-        raise InputError("--elements: give at least 2 elements")
+    check_scenario_fields(load=load, elements=args.elements)
     raw = parse_model_params(args.param)
     from engine.friction import get_model
 
@@ -174,7 +175,8 @@ def run(args: argparse.Namespace) -> int:
     out.mkdir(parents=True, exist_ok=True)
 
     df = sweep(conv, models, temps, params, load, args.elements)
-    load_tag = load if isinstance(load, str) else f"load{load:g}"
+    load_tag = (load if isinstance(load, str) else
+                "load" + "-".join(f"{x:g}" for x in (load if isinstance(load, list) else [load])))
     stem = f"{_safe(conv.name)}-{load_tag}"
     csv_path = out / f"{stem}.csv"
     png_path = out / f"{stem}.png"

@@ -29,14 +29,17 @@ __all__ = [
 
 #: Plot names of a study, with what they show.
 STUDY_PLOTS = {
-    "power-temperature": "power against temperature per friction model and load (Fig. 2)",
-    "peak-dynamic-tension": "peak dynamic tension against stop time per friction model",
+    "power-temperature": "power against temperature, a line per combination of the other "
+    "varying axes (Fig. 2)",
+    "peak-dynamic-tension": "peak and lowest tension of the stop against the stop time, a line "
+    "per combination of the other varying axes",
     "ratio": "candidate / baseline ratio per axis value (default nonlin over cema)",
 }
 #: Plot names of a run.
 RUN_PLOTS = {
     "steady-profile": "steady tension along the loop with the elevation profile (Fig. 1)",
-    "transient": "tension at eight points round the loop and belt speed against time (Fig. 4)",
+    "transient": "tension at eight points round the loop and at the highest and lowest tension, "
+    "belt speed below (Fig. 4)",
 }
 #: Output formats and their media types.
 FORMATS = {"png": "image/png", "svg": "image/svg+xml"}
@@ -111,15 +114,23 @@ def study_figure(
     check_name(name, STUDY_PLOTS)
     runs = service.store.read_runs(study_id)
     title = _text(doc.get("name", study_id))
+    axes = [a["column"] for a in doc.get("study", {}).get("axes", [])]
+    zips: dict[int, list[str]] = {}
+    for a in doc.get("study", {}).get("axes", []):
+        if a.get("group") is not None:
+            zips.setdefault(a["group"], []).append(a["column"])
+    groups = list(zips.values())
     if name == "power-temperature":
         temperature = (doc.get("study", {}).get("scenario") or {}).get("temperature_c")
         return lambda: plots.power_temperature_figure(
-            runs, f"{title}: power against temperature", temperature
+            runs, f"{title}: power against temperature", temperature, axes=axes, groups=groups
         )
     if name == "peak-dynamic-tension":
         if not doc.get("study", {}).get("dynamics", True):
             return lambda: plots.message_figure(plots.NO_TRANSIENT, f"{title}: peak tension")
-        return lambda: plots.peak_dynamic_tension_figure(runs, f"{title}: peak dynamic tension")
+        return lambda: plots.peak_dynamic_tension_figure(
+            runs, f"{title}: peak and lowest tension against stop time", axes=axes,
+            groups=groups)
     base, cand = _pick_models(runs, baseline, candidate)
     if not len(runs):
         return lambda: plots.message_figure("no finished runs yet", f"{title}: ratio")
@@ -143,7 +154,8 @@ def run_figure(service: StudyService, study_id: str, run_id: str, name: str):
     spec = next((r for r in study.runs if r.run_id == run_id), None)
     if spec is None:
         raise NotFound(f"run '{run_id}' of study '{study_id}' not found")
-    axes = ", ".join(f"{k}={v}" for k, v in spec.axes.items() if k != "friction_model")
+    axes = ", ".join(f"{k}={plots._text(v)}" for k, v in spec.axes.items()
+                     if k != "friction_model")
     title = _text(f"{doc.get('name', study_id)} · {spec.model}" + (f" · {axes}" if axes else ""))
     if name == "steady-profile":
         from engine.conveyor import parse_conveyor, parse_scenario
@@ -167,4 +179,27 @@ def run_figure(service: StudyService, study_id: str, run_id: str, name: str):
     surface = service.store.read_surface(study_id, run_id)
     if not len(ts) and not len(surface):
         return lambda: plots.message_figure("no transient data for this run", title)
-    return lambda: plots.transient_figure(ts, surface, title)
+    runs = service.store.read_runs(study_id)
+    row = runs[runs["run_id"] == run_id]
+    extremes = {}
+    if len(row):
+        for label, column in (("highest tension", "t_max_dyn_at_m"),
+                              ("lowest tension", "t_min_dyn_at_m")):
+            value = row[column].iloc[0] if column in row else None
+            extremes[label] = None if pd.isna(value) else float(value)
+    locate = _locator(spec)
+    return lambda: plots.transient_figure(ts, surface, title, extremes=extremes, locate=locate)
+
+
+def _locator(spec):
+    """``s_m -> (strand, distance from the tail)`` on the run's own loop (None if it cannot
+    be cut: the figure then names loop positions)."""
+    from engine.conveyor import parse_conveyor, parse_scenario
+    from engine.loop import build_loop
+
+    try:
+        scenario = parse_scenario(spec.scenario)
+        n = None if scenario.elements == "auto" else int(scenario.elements)
+        return build_loop(parse_conveyor(spec.conveyor), scenario.load, n_elements=n).where
+    except Exception:  # a run that cannot even be cut into elements
+        return None

@@ -104,8 +104,13 @@ def study_data(study_id: str, service: StudyService = Depends(get_service)) -> d
         "conveyor_source": study.get("conveyor_source", ""),
         "dynamics": bool(study.get("dynamics", False)),
         "model": study.get("model"),
-        "axes": [{"name": a["name"], "column": a["column"], "values": a["values"]}
+        "axes": [{"name": a["name"], "column": a["column"], "values": a["values"],
+                  "group": a.get("group")}
                  for a in study.get("axes", [])],
+        "grid_points": study.get("grid_points"),
+        "merged": study.get("merged", 0),
+        "design": study.get("design"),
+        "designs": study.get("designs") or [],
         "study_plots": figures.STUDY_PLOTS,
         "run_plots": figures.RUN_PLOTS,
     }
@@ -148,6 +153,22 @@ def run_plot(
     make = figures.run_figure(service, study_id, run_id, name)
     return Response(figures.render(make, format), media_type=figures.FORMATS[format],
                     headers={"Cache-Control": "no-store"})
+
+
+@api.get(
+    "/studies/{study_id}/report",
+    summary="The design report of a study: one self-contained HTML page (prints to PDF)",
+    response_class=Response,
+    responses={200: {"content": {"text/html": {"schema": {"type": "string"}}},
+                     "description": "the report"}},
+)
+def study_report(study_id: str, service: StudyService = Depends(get_service)) -> Response:
+    from service.web.report import REPORT_CSP, build_report
+
+    return HTMLResponse(build_report(service, study_id), headers={
+        "Content-Security-Policy": REPORT_CSP, "X-Content-Type-Options": "nosniff",
+        "Referrer-Policy": "no-referrer", "Cache-Control": "no-store",
+        "Content-Disposition": f'inline; filename="report-{study_id}.html"'})
 
 
 #: The router the app factory includes (pages, static files, page data, plots).

@@ -275,9 +275,10 @@ def test_brake_force_builds_over_its_ramp_or_curve(curve):
 
 def test_controlled_stop_with_a_holding_brake_stays_at_rest():
     """A controlled stop on the inclined hand conveyor with a holding brake at the head (40 kN
-    against a net gravity pull of 24.5 kN): the brake sets once the belt has stopped, the drive
-    switches off, and every element's speed stays below 1 mm/s from one wave loop time after
-    the stop to the end."""
+    against a net gravity pull of 24.5 kN): the brake sets once the belt has stopped (the stop
+    reference has run out and the mean speed is below 1 % of design), the drive switches off,
+    and every element's speed stays below 1 mm/s from one wave loop time after the stop to
+    the end."""
     conv = _conv(brakes=[{"position": "head", "force_kn": 40, "delay_s": 0.5,
                           "ramp_s": 1.0, "hold": True}],
                  takeup={"type": "gravity", "position": "tail", "mass_kg": 8000})
@@ -285,7 +286,7 @@ def test_controlled_stop_with_a_holding_brake_stays_at_rest():
                                stop={"mode": "controlled", "time_s": 15}), model="din")
     s = r.summary
     ts = r.timeseries
-    stopped_at = 2.0 + 30.0 + 10.0 + s["stop_time_s"]
+    stopped_at = 2.0 + 30.0 + 10.0 + max(s["stop_time_s"], 15.0)  # the reference has run out
     late = ts["t_s"] >= stopped_at + s["wave_loop_time_s"]
     assert late.sum() > 20
     assert ts["v_abs_max_m_s"][late].max() < 1e-3

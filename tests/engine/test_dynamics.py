@@ -115,19 +115,21 @@ def test_energy_balance_over_a_start(ernst):
     scn = Scenario(start={"control": "s-curve", "time_s": 20}, run_s=100)
     sys = build_system(conv, scn, st, DynamicsOptions(**{**BARE, "ernst": ernst}))
 
-    def energy(v, te, x, u):
-        # elastic energy of the tangent law: len * (T^2 / 2EB - a / T) (a = 0: linear)
+    def energy(v, te, x, u, vs):
+        # elastic energy of the tangent law: len * (T^2 / 2EB - a / T) (a = 0: linear); the
+        # shafts (drive and pulley rotating parts) turn with the belt
         a = sys.a_ernst
         elastic = np.sum(sys.len_m * (te**2 / (2.0 * sys.stiffness_n)
                                       - np.where(a > 0, a / np.maximum(te, 1e-9), 0.0)))
-        return (0.5 * np.sum(sys.mass_kg * v**2) + elastic - sys.takeup_weight_n * x
-                + 0.5 * sys.takeup_inertia_kg * u**2)
+        return (0.5 * np.sum(sys.mass_kg * v**2) + 0.5 * np.sum(sys.shaft_mass_kg * vs**2)
+                + elastic - sys.takeup_weight_n * x + 0.5 * sys.takeup_inertia_kg * u**2)
 
-    e0 = energy(np.zeros(sys.n), np.maximum(sys.tension_rest_n, 0.0), 0.0, 0.0)
+    e0 = energy(np.zeros(sys.n), np.maximum(sys.tension_rest_n, 0.0), 0.0, 0.0,
+                np.zeros(len(sys.shaft_node)))
     res = simulate(sys, t_end_s=sys.pre_rest_s + 20.0)
     r = res.raw
     assert r["tension"].min() > sys.t_floor_n.max()  # the energy formula's range
-    e1 = energy(r["v"], r["te"], r["x_takeup"], r["u_takeup"])
+    e1 = energy(r["v"], r["te"], r["x_takeup"], r["u_takeup"], r["shaft_speed"])
     work = r["W_DRIVE"]
     assert work > 0.4 * 0.5 * sys.total_mass_kg * 9.0  # the belt is moving
     assert e1 - e0 == pytest.approx(work, rel=0.01)
@@ -233,7 +235,7 @@ def test_step_is_half_the_wave_limit_and_scales_with_dx():
     dts = []
     for n_el in (200, 400, 800):
         sys = build_system(conv, Scenario(), solve_steady(conv, n_elements=n_el))
-        assert sys.damping == "sls"
+        assert sys.damping == "belt"
         assert sys.dt_s == pytest.approx(0.5 * sys.dt_limit_s)
         dts.append(sys.dt_s)
     assert dts[0] / dts[1] == pytest.approx(2.0, rel=0.1)
@@ -272,20 +274,23 @@ def _cycloid_time(fraction):
 
 
 def test_controlled_stop_follows_the_reverse_s_curve():
-    """The speed controller tracks Harrison's cycloid on the start and its reverse on a
-    controlled stop: the mean belt speed stays within 5 % of design speed of the reference
-    (measured 3.9 %, at breakaway). The achieved start and stop times (99 % and 1 % of design
-    speed) are where the reference's are within 10 %: the cycloid is flat at its ends, so a
-    speed error of 2 % of design speed moves the crossing by several percent of the time."""
+    """The speed loop tracks the reverse of Harrison's cycloid on a controlled stop: the mean
+    belt speed stays within 2 % of design speed of the reference from the stop command on,
+    and the achieved stop time (1 % of design speed) is where the reference's is within 10 %
+    (the cycloid is flat at its ends, so a small speed error moves the crossing). The start
+    is 120 s: on a short start the fabric belt's pre-tensioning lags the reference (see
+    test_drives_brakes.test_vfd_start_tracks_the_reference)."""
     conv = load_conveyor(CONVEYORS / "fabric-1km.yaml")
-    scn = Scenario(elements=100, start={"time_s": 30}, run_s=10,
+    scn = Scenario(elements=100, start={"time_s": 120}, run_s=10,
                    stop={"mode": "controlled", "time_s": 40})
     r = run_one(conv, scn, model="din")
     ts = r.timeseries
-    assert np.max(np.abs(ts["v_mean_m_s"] - ts["v_ref_m_s"])) < 0.05 * conv.speed_m_s
+    stopping = ts["t_s"] > 2.0 + 120.0 + 10.0
+    err = np.abs(ts["v_mean_m_s"] - ts["v_ref_m_s"])[stopping]
+    assert err.max() < 0.02 * conv.speed_m_s
     x = _cycloid_time(0.99)
     assert r.summary["stop_time_s"] == pytest.approx(x * 40.0, rel=0.10)
-    assert r.summary["start_time_s"] == pytest.approx(x * 30.0, rel=0.10)
+    assert r.summary["start_time_s"] == pytest.approx(x * 120.0, rel=0.10)
 
 
 def test_holdback_prevents_run_back_at_the_head():

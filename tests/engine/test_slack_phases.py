@@ -13,7 +13,7 @@ from engine.conveyor import Scenario, load_conveyor, parse_conveyor
 from engine.dynamics import DynamicsOptions, build_system, simulate
 from engine.dynamics.model import chord_strain
 from engine.friction import get_model
-from engine.loop import G, build_loop
+from engine.loop import build_loop
 from engine.run import run_one
 from engine.statics import solve_steady
 from tests.conftest import CONVEYORS, hand_conveyor_dict

@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+import pytest
+
 from service.jobs import MAX_BATCH, MIN_TASK_S, batch_size
 
 
@@ -23,3 +25,35 @@ def test_near_the_end_batches_shrink_but_not_below_the_latency_floor():
     assert batch_size(0.004, 40, 4, 1.0, False) == round(MIN_TASK_S / 0.004) == 50
     assert batch_size(0.004, 400, 4, 1.0, False) == 100
     assert batch_size(0.05, 3, 4, 1.0, True) == 4  # 0.2 s of work; the caller takes the 3 left
+
+
+class Clock:
+    def __init__(self):
+        self.t = 0.0
+
+    def __call__(self):
+        return self.t
+
+
+def test_eta_comes_from_the_measured_run_rate_not_the_start_up():
+    """A study of 100 runs of 0.1 s on 2 workers (about 5 s of work) whose first task lands
+    after 20 s of cluster start and numba compiling: the time left is about 5 s, not the
+    20 s of start-up stretched over the runs."""
+    from service.jobs import RunRate
+
+    clock = Clock()
+    rate = RunRate(clock)
+    assert rate.eta_s(100, 2) is None  # nothing finished yet: no guess
+    clock.t = 20.0
+    rate.finished(1, 0.1)  # the first task: compute per run spread over the workers
+    assert rate.eta_s(99, 2) == pytest.approx(99 * 0.1 / 2, rel=1e-9)
+    clock.t = 20.05
+    rate.finished(1, 0.1)  # a second task a moment later: the window is too short to trust
+    assert rate.eta_s(98, 2) == pytest.approx(98 * 0.1 / 2, rel=1e-9)
+    for k in range(1, 21):  # then 2 runs every 0.1 s: 20 runs/s
+        clock.t = 20.05 + 0.1 * k
+        rate.finished(2, 0.2)
+    remaining = 100 - 42
+    assert rate.eta_s(remaining, 2) == pytest.approx(remaining / (41 / 2.05), rel=1e-9)
+    assert abs(rate.eta_s(remaining, 2) - remaining / 20.0) < 0.2
+    assert rate.eta_s(0, 2) == 0.0

@@ -67,6 +67,18 @@ def test_submit_poll_and_read_parquet(live_service, make_study):
     assert set(runs["status"]) <= {"ok", "warning"}, runs[["status", "message"]]
     assert runs["t_max_dyn_kn"].notna().all() and runs["power_kw"].notna().all()
     assert (runs["study_id"] == sub["id"]).all()
+    # one installed design: every run has the counterweight the largest requirement over the
+    # study's models and temperatures at full load asks for (empty runs included)
+    from engine.conveyor import parse_conveyor
+    from engine.statics import solve_steady
+
+    conv = parse_conveyor(body["conveyor"])
+    need = max(solve_steady(conv, model=m, temperature_c=t, load="full",
+                            n_elements=body["scenario"]["elements"]).summary["takeup_mass_kg"]
+               for m in ("din", "cema") for t in (-10, 20))
+    assert runs["takeup_mass_kg"].nunique() == 1
+    assert runs["takeup_mass_kg"].iloc[0] == pytest.approx(need, rel=1e-5)
+    assert runs["takeup_governed_by"].notna().all() and runs["fill_pct"].notna().all()
     ts = pd.read_parquet(root / "timeseries")
     assert set(ts["run_id"]) == set(runs["run_id"])
     assert {"t_s", "v_drive_m_s", "t_head_in_kn"} <= set(ts.columns)

@@ -17,6 +17,7 @@ ROOT = Path(__file__).resolve().parents[2]
 
 def test_grid_is_the_cartesian_product_with_named_and_dotted_axes(make_study):
     data = make_study(
+        dynamics=True,
         grid={
             "friction_model": ["din", "cema"],
             "temperature_c": {"start": -20, "stop": 20, "step": 20},
@@ -44,13 +45,22 @@ def test_run_ids_are_stable_and_depend_on_inputs_and_engine_version(make_study):
     b = resolve_study(copy.deepcopy(make_study()))
     assert [r.run_id for r in a.runs] == [r.run_id for r in b.runs]
     assert a.id == b.id
-    # the same run in another study (other name, other grid) keeps its id
+    # the same run in another study (other name, other grid) keeps its id when the conveyor
+    # has no auto sizes
+    sized = dict(make_study()["conveyor"], takeup={"type": "gravity", "mass_kg": 3000},
+                 drives=[{"position": "head", "pulley_diameter_m": 0.6, "rated_power_kw": 60}])
+    full = resolve_study(make_study(conveyor=sized))
+    c = resolve_study(make_study(name="other", conveyor=sized,
+                                 grid={"temperature_c": [20], "friction_model": ["cema"]}))
+    same = [r for r in full.runs if r.model == "cema" and r.axes["temperature_c"] == 20.0]
+    assert c.runs[0].run_id == same[0].run_id
+    assert c.id != full.id
+    # with auto sizes the id follows the design basis: this study sizes at cema, 20 C only
     c = resolve_study(
         make_study(name="other", grid={"temperature_c": [20], "friction_model": ["cema"]})
     )
     same = [r for r in a.runs if r.model == "cema" and r.axes["temperature_c"] == 20.0]
-    assert c.runs[0].run_id == same[0].run_id
-    assert c.id != a.id
+    assert c.runs[0].run_id != same[0].run_id
     # model parameters and dynamics change the id
     d = resolve_study(make_study(models={"din": {"f_carry": 0.03}}))
     assert {r.run_id for r in d.runs} != {r.run_id for r in a.runs}

@@ -2,8 +2,10 @@
 
 Submits a four-run steady study through the form (after a refused one), watches the progress
 bar reach done, opens the study page and a run page, checks that every plot loads and the
-table shows every run, and saves screenshots of the three pages to ``test-artifacts/`` and
-``docs/img/``. Skipped, saying why, when Chromium, its driver or selenium is missing.
+table shows every run, and saves screenshots of the three pages to ``test-artifacts/``. Opens
+the design report of a dynamic study, checks that it is self-contained and prints it to PDF.
+Skipped, saying why, when Chromium, its driver or selenium is missing. (The README's
+screenshots come from a real study: ``docs/screenshots.py``.)
 """
 
 from __future__ import annotations
@@ -26,7 +28,6 @@ pytestmark = [pytest.mark.browser, pytest.mark.slow]
 
 ROOT = Path(__file__).resolve().parents[2]
 ARTIFACTS = ROOT / "test-artifacts"
-DOCS_IMG = ROOT / "docs" / "img"
 CHROMIUM = "/usr/bin/chromium"
 CHROMEDRIVER = "/usr/bin/chromedriver"
 XSS = "<script>alert(1)</script><b>x</b>"
@@ -161,14 +162,12 @@ def _wait(driver, condition, timeout: float = 30, what: str = ""):
 
 def _screenshot(driver, name: str) -> None:
     ARTIFACTS.mkdir(exist_ok=True)
-    DOCS_IMG.mkdir(parents=True, exist_ok=True)
     path = ARTIFACTS / name
     driver.execute_script("window.scrollTo(0, 0)")
     height = driver.execute_script("return document.documentElement.scrollHeight")
     driver.set_window_size(1280, min(max(int(height) + 40, 800), 3000))
     driver.save_screenshot(str(path))
     driver.set_window_size(1280, 1100)
-    shutil.copyfile(path, DOCS_IMG / name)
 
 
 def _images_loaded(driver) -> list[dict]:
@@ -334,3 +333,74 @@ def test_token_login_field_unlocks_data_and_plots(browser, web):
         _wait(driver, lambda d: len(d.find_elements(By.CSS_SELECTOR, "#studies tbody tr")) == 1,
               what="study list with the token")
         driver.execute_script("sessionStorage.clear()")
+
+
+def test_design_report_and_the_changed_plots_in_chromium(browser, web):
+    """A dynamic study with an auto brake, a coast crossed with stop times and two models:
+    the study page shows the design basis, the merged points and its plots; the run page's
+    transient figure loads; the report opens from the service with every figure drawn from
+    a data: URI, nothing fetched, and prints to a PDF."""
+    import base64
+
+    from selenium.webdriver.common.by import By
+
+    driver = browser
+    holder = {}
+    braked = dict(web.tiny_conveyor("report-conveyor"),
+                  brakes=[{"position": "head", "force_kn": "auto", "delay_s": 0.5}])
+    body = {"name": "report-e2e", "conveyor": braked, "dynamics": True,
+            "scenario": {"elements": 24, "start": {"time_s": 4}, "run_s": 2,
+                         "record_dt_s": 0.5},
+            "grid": {"friction_model": ["din", "cema"], "scenario.stop.mode": ["coast", "brake"],
+                     "stop_time_s": [6, 9]}}
+
+    def prepare(data: Path) -> None:
+        holder["id"] = web.finished_study(data, body)
+
+    with _serve(prepare, BELTSTUDY_WARM_START="false") as base:
+        sid = holder["id"]
+        driver.get(f"{base}/ui/studies/{sid}")
+        _wait(driver, lambda d: len(d.find_elements(By.CSS_SELECTOR, "#runs tbody tr")) == 6,
+              what="six runs (two coast points merged per model)")
+        _wait(driver, lambda d: all(i["loaded"] == "1" for i in _images_loaded(d)),
+              timeout=60, what="study plots loaded")
+        assert all(i["type"] == "image/png" and i["bytes"] > 1000
+                   for i in _images_loaded(driver))
+        assert "2 of 8 grid points merged" in driver.find_element(By.ID, "merged").text
+        designs = driver.find_element(By.ID, "designs").text
+        assert "take-up mass" in designs and "brake force, brake stop in 6 s" in designs
+        link = driver.find_element(By.ID, "download-report")
+        assert link.get_attribute("href").endswith(f"/studies/{sid}/report")
+
+        run = driver.find_element(By.CSS_SELECTOR, "#runs tbody tr").get_attribute(
+            "data-run-id")
+        driver.get(f"{base}/ui/studies/{sid}/runs/{run}")
+        _wait(driver, lambda d: all(i["loaded"] == "1" for i in _images_loaded(d)),
+              timeout=60, what="run plots loaded")
+        assert [i["id"] for i in _images_loaded(driver)] == ["plot-steady-profile",
+                                                             "plot-transient"]
+
+        driver.get(f"{base}/studies/{sid}/report")
+        _wait(driver, lambda d: d.execute_script(
+            "return Array.from(document.images).every(i => i.complete && i.naturalWidth > 0)"
+            " && document.images.length >= 3"), timeout=30, what="report figures drawn")
+        sources = driver.execute_script(
+            "return Array.from(document.querySelectorAll('[src],[href]'))"
+            ".map(e => e.getAttribute('src') || e.getAttribute('href'))")
+        assert sources and all(x.startswith("data:image/png;base64,") for x in sources)
+        fetched = driver.execute_script(
+            "return performance.getEntriesByType('resource').map(e => e.name)")
+        assert fetched == []  # the page asked the server for nothing
+        assert driver.execute_script("return document.scripts.length") == 0
+        text = driver.find_element(By.TAG_NAME, "body").text
+        for heading in ("1. Conveyor", "2. Design basis", "3. The grid", "4. Governing cases",
+                        "5. Comparison", "6. Runs"):
+            assert heading in text
+        for case in ("largest belt tension", "lowest belt tension", "drive slip margin",
+                     "largest sag", "belt safety factor", "take-up carriage travel"):
+            assert case in text
+        _screenshot(driver, "report.png")
+        pdf = base64.b64decode(driver.print_page())
+        assert pdf.startswith(b"%PDF") and pdf.count(b"/Type /Page") >= 2
+        ARTIFACTS.mkdir(exist_ok=True)
+        (ARTIFACTS / "report.pdf").write_bytes(pdf)

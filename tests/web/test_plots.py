@@ -25,7 +25,9 @@ def _runs(dynamic: bool = True) -> pd.DataFrame:
         for load in ("full", "empty"):
             for temp in (-20.0, 0.0, 20.0):
                 for stop in (10.0, 20.0):
-                    power = scale * (100 - temp) * (1.0 if load == "full" else 0.4)
+                    # a small stop-time term keeps every row's power distinct, so each point
+                    # of a figure can be traced back to exactly one row
+                    power = scale * ((100 - temp) * (1.0 if load == "full" else 0.4) + stop / 100)
                     rows.append({
                         "run_id": f"{model}{load}{temp}{stop}", "friction_model": model,
                         "load": load, "temperature_c": temp, "stop_time_target_s": stop,
@@ -36,28 +38,115 @@ def _runs(dynamic: bool = True) -> pd.DataFrame:
     return pd.DataFrame(rows)
 
 
-def test_power_temperature_draws_a_line_per_model_and_load():
-    fig = plots.power_temperature_figure(_runs())
-    lines = fig.axes[0].get_lines()
-    assert len(lines) == 4  # 2 models x 2 loads
-    # each point is the mean over the stop-time axis
-    cema_full = next(ln for ln in lines if ln.get_label() == "cema, load full")
+AXES = ["friction_model", "load", "temperature_c", "stop_time_target_s"]
+
+
+def assert_lines_never_join_other_axis_values(fig, runs, x, y, others):
+    """Every point of every line is one row of ``runs``, and all points of a line share the
+    values of every other varying axis: a line joining (or averaging) points of different
+    axis values fails here."""
+    keys_seen = []
+    n_points = 0
+    for ax in fig.axes:
+        for line in ax.get_lines():
+            keys = set()
+            for xv, yv in zip(line.get_xdata(), line.get_ydata(), strict=True):
+                match = runs[np.isclose(runs[x].astype(float), xv)
+                             & np.isclose(runs[y].astype(float), yv, rtol=1e-12)]
+                assert len(match) == 1, f"point ({xv}, {yv}) of '{line.get_label()}' is no row"
+                keys.add(tuple(str(match.iloc[0][c]) for c in others))
+                n_points += 1
+            assert len(keys) == 1, f"line '{line.get_label()}' joins {sorted(keys)}"
+            keys_seen.append(keys.pop())
+    assert len(keys_seen) == len(set(keys_seen)), "two lines for one combination"
+    return n_points
+
+
+def test_power_temperature_draws_a_line_per_combination_of_the_other_axes():
+    runs = _runs()
+    fig = plots.power_temperature_figure(runs, axes=AXES)
+    lines = [ln for ax in fig.axes for ln in ax.get_lines()]
+    assert len(lines) == 2 * 2 * 2  # models x loads x stop times, no averaging
+    others = ["friction_model", "load", "stop_time_target_s"]
+    assert assert_lines_never_join_other_axis_values(
+        fig, runs, "temperature_c", "power_kw", others) == len(runs)
+    cema_full = next(ln for ln in lines if ln.get_label() == "cema, load full, "
+                     "stop_time_target_s 10")
     np.testing.assert_allclose(cema_full.get_xdata(), [-20, 0, 20])
-    np.testing.assert_allclose(cema_full.get_ydata(), [120, 100, 80], rtol=1e-12)
+    np.testing.assert_allclose(cema_full.get_ydata(), [120.1, 100.1, 80.1], rtol=1e-12)
+
+
+def test_many_combinations_become_small_multiples():
+    runs = _runs()
+    runs = pd.concat([runs.assign(belt_type=b) for b in ("ST1600", "ST2000")],
+                     ignore_index=True)
+    runs["power_kw"] += np.where(runs["belt_type"] == "ST2000", 1000.0, 0.0)
+    fig = plots.power_temperature_figure(runs, axes=[*AXES, "belt_type"])
+    panels = [ax for ax in fig.axes if ax.get_lines()]
+    assert len(panels) == 2  # one per friction model, 8 lines each
+    assert {ax.get_title() for ax in panels} == {"cema", "nonlin"}
+    assert assert_lines_never_join_other_axis_values(
+        fig, runs, "temperature_c", "power_kw",
+        ["friction_model", "load", "stop_time_target_s", "belt_type"]) == len(runs)
+
+
+def test_the_join_check_catches_a_joined_line():
+    """The check above is not vacuous: a figure averaging over the stop times (as this page
+    drew before) fails it."""
+    plt = plots._plt()
+    runs = _runs()
+    fig, ax = plt.subplots()
+    part = runs[(runs["friction_model"] == "cema") & (runs["load"] == "full")]
+    curve = part.groupby("temperature_c")["power_kw"].mean()
+    ax.plot(curve.index, curve.values)
+    with pytest.raises(AssertionError, match="is no row"):
+        assert_lines_never_join_other_axis_values(fig, runs, "temperature_c", "power_kw",
+                                                  ["friction_model", "load"])
+    fig, ax = plt.subplots()
+    part = part[part["temperature_c"] == 0.0]
+    ax.plot(part["temperature_c"], part["power_kw"], marker="o")  # two stop times, one line
+    with pytest.raises(AssertionError, match="joins"):
+        assert_lines_never_join_other_axis_values(
+            fig, runs, "temperature_c", "power_kw", ["friction_model", "stop_time_target_s"])
 
 
 def test_power_temperature_without_a_temperature_axis_uses_the_scenario_value():
     runs = _runs().drop(columns=["temperature_c"])
-    fig = plots.power_temperature_figure(runs, temperature_c=5.0)
-    assert all(set(ln.get_xdata()) == {5.0} for ln in fig.axes[0].get_lines())
+    fig = plots.power_temperature_figure(runs, temperature_c=5.0,
+                                         axes=["friction_model", "load"])
+    assert all(set(ln.get_xdata()) == {5.0} for ax in fig.axes for ln in ax.get_lines())
 
 
-def test_peak_dynamic_tension_per_model_against_achieved_stop_time():
-    fig = plots.peak_dynamic_tension_figure(_runs())
-    lines = {ln.get_label(): ln for ln in fig.axes[0].get_lines()}
-    assert set(lines) == {"cema", "nonlin"}
-    np.testing.assert_allclose(lines["cema"].get_xdata(), [10.5, 21.0])
-    np.testing.assert_allclose(lines["cema"].get_ydata(), [20.0, 10.0])
+def test_peak_tension_against_achieved_stop_time_a_line_per_other_combination():
+    runs = _runs()
+    runs["t_max_dyn_kn"] += runs["temperature_c"] / 1000 + np.where(runs["load"] == "full",
+                                                                    0.5, 0.0)
+    fig = plots.peak_dynamic_tension_figure(runs, axes=AXES)
+    assert assert_lines_never_join_other_axis_values(
+        fig, runs.assign(x=runs["stop_time_s"]), "x", "t_max_dyn_kn",
+        ["friction_model", "load", "temperature_c"]) == len(runs)
+    labels = {ln.get_label() for ax in fig.axes for ln in ax.get_lines()}
+    assert "load full, temperature_c -20" in labels  # panels by model: 12 lines
+    panel = next(ax for ax in fig.axes if ax.get_lines())
+    assert "whole transient" in panel.get_ylabel()
+
+
+def test_peak_tension_uses_the_stop_phase_columns_when_the_runs_have_them():
+    runs = _runs()
+    runs["t_max_stop_kn"] = runs["t_max_dyn_kn"] * 0.9 + runs["temperature_c"] / 1000 + \
+        np.where(runs["load"] == "full", 0.5, 0.0)
+    runs["t_min_stop_kn"] = 5.0 + runs["temperature_c"] / 1000 + runs["stop_time_s"] / 1000 + \
+        np.where(runs["load"] == "full", 0.5, 0.0) + np.where(
+            runs["friction_model"] == "cema", 0.25, 0.0)
+    fig = plots.peak_dynamic_tension_figure(runs, axes=AXES)
+    tops = [ax for ax in fig.axes if ax.get_lines() and "peak" in ax.get_ylabel()]
+    lows = [ax for ax in fig.axes if ax.get_lines() and "lowest" in ax.get_ylabel()]
+    assert tops and lows and all("stop phase" in ax.get_ylabel() for ax in tops + lows)
+    data = runs.assign(x=runs["stop_time_s"])
+    for y, axes_ in (("t_max_stop_kn", tops), ("t_min_stop_kn", lows)):
+        fig_part = type("F", (), {"axes": axes_})()
+        assert assert_lines_never_join_other_axis_values(
+            fig_part, data, "x", y, ["friction_model", "load", "temperature_c"]) == len(runs)
 
 
 def test_steady_only_results_give_the_no_transient_figure():
@@ -91,9 +180,64 @@ def test_transient_figure_eight_points_round_the_loop_and_speed_below():
     fig = plots.transient_figure(ts, surface, "fig4")
     top, bottom = fig.axes
     assert len(top.get_lines()) == 8
-    assert [ln.get_label() for ln in top.get_lines()][0] == "s = 0 m"
-    assert [ln.get_label() for ln in top.get_lines()][-1] == "s = 2000 m"
+    assert [ln.get_label() for ln in top.get_lines()][0] == "0 m round the loop"
+    assert [ln.get_label() for ln in top.get_lines()][-1] == "2000 m round the loop"
     assert {ln.get_label() for ln in bottom.get_lines()} == {"drive pulley", "tail pulley"}
     # without the long table, the key points are drawn
     fig = plots.transient_figure(ts, None)
     assert [ln.get_label() for ln in fig.axes[0].get_lines()] == ["head in (T1)"]
+
+
+def test_transient_figure_probes_the_extremes_and_names_carry_and_return():
+    """Probes at the highest and lowest tension, every probe named by strand and distance
+    from the tail: on a 1 km conveyor the return strand runs from the head (s = 1000 m) back
+    to the tail, so s = 1600 m round the loop is the return at 400 m from the tail."""
+    t = np.arange(0.0, 10.0, 0.5)
+    s = np.linspace(0.0, 2000.0, 41)
+    surface = pd.DataFrame([{"t_s": ti, "s_m": si, "tension_kn": 50 + si / 100 + ti}
+                            for ti in t for si in s])
+
+    def locate(x):
+        return ("carry", x) if x <= 1000 else ("return", 2000 - x)
+
+    fig = plots.transient_figure(None, surface, "a long title " * 12,
+                                 extremes={"highest tension": 1012.0,
+                                           "lowest tension": 1590.0}, locate=locate)
+    labels = [ln.get_label() for ln in fig.axes[0].get_lines()]
+    assert len(labels) == 10
+    assert "carry, 0 m from the tail" in labels
+    assert "highest tension: carry, 1000 m from the tail" in labels
+    assert "lowest tension: return, 400 m from the tail" in labels
+    assert "\n" in fig._suptitle.get_text()  # the long title wraps
+
+
+def test_an_axis_that_changes_nothing_is_drawn_once_and_named():
+    """Steady power does not depend on the stop time: one line per model and load, not two
+    identical ones on top of each other, and the figure says so."""
+    runs = _runs()
+    runs["power_kw"] = runs["power_kw"] - runs["stop_time_target_s"] / 100 * np.where(
+        runs["friction_model"] == "cema", 1.0, 0.8)
+    fig = plots.power_temperature_figure(runs, axes=AXES)
+    lines = [ln for ax in fig.axes for ln in ax.get_lines()]
+    assert len(lines) == 4
+    assert "the same for every value of stop_time_target_s" in _texts(fig)
+    assert assert_lines_never_join_other_axis_values(
+        fig, runs.drop_duplicates(["friction_model", "load", "temperature_c"]),
+        "temperature_c", "power_kw", ["friction_model", "load"]) == 12
+
+
+def test_an_axis_zipped_with_the_temperature_runs_along_the_x_axis():
+    """DIN's f zipped with the temperature changes with it: one line per model and load
+    through all temperatures (not one dot per f), the x label names the zipped axis."""
+    runs = _runs()
+    runs = runs[runs["stop_time_target_s"] == 10.0].drop(columns=["stop_time_target_s"])
+    runs["models.din.f_carry"] = runs["temperature_c"].map({-20.0: 0.025, 0.0: 0.02,
+                                                            20.0: 0.017})
+    fig = plots.power_temperature_figure(
+        runs, axes=["friction_model", "load", "temperature_c", "models.din.f_carry"],
+        groups=[["temperature_c", "models.din.f_carry"]])
+    lines = [ln for ax in fig.axes for ln in ax.get_lines()]
+    assert len(lines) == 4 and all(len(ln.get_xdata()) == 3 for ln in lines)
+    assert "with models.din.f_carry" in fig.axes[0].get_xlabel()
+    assert_lines_never_join_other_axis_values(fig, runs, "temperature_c", "power_kw",
+                                              ["friction_model", "load"])

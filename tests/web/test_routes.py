@@ -146,3 +146,47 @@ def test_page_data_names_the_axes(done):
     assert info["dynamics"] is False
     assert set(info["study_plots"]) == set(figures.STUDY_PLOTS)
     assert c.get("/ui/data/studies/0123456789abcdef").status_code == 404
+
+
+def test_the_design_report_is_one_self_contained_page(web, tmp_path):
+    """No script, nothing fetched (every image a data: URI), user text escaped, the governing
+    cases with their runs, the design basis with what set each size."""
+    import re
+
+    sid = web.finished_study(tmp_path, web.tiny_study(conveyor_name=web.XSS), name=web.XSS)
+    c = web.client(tmp_path)
+    r = c.get(f"/studies/{sid}/report")
+    assert r.status_code == 200 and r.headers["content-type"].startswith("text/html")
+    assert "default-src 'none'" in r.headers["content-security-policy"]
+    text = r.text
+    assert "<script" not in text.lower()
+    assert "http://" not in text and "https://" not in text
+    srcs = re.findall(r'src="([^"]*)"', text)
+    assert len(srcs) >= 2 and all(s.startswith("data:image/png;base64,") for s in srcs)
+    assert not re.findall(r'href="(?!#)', text)  # no links out, no stylesheets
+    assert "<b>x</b>" not in text and "&lt;script&gt;alert(1)&lt;/script&gt;" in text
+    runs = c.get(f"/studies/{sid}/runs").json()["runs"]
+    for label in ("largest belt tension", "lowest belt tension", "drive slip margin",
+                  "largest sag", "belt safety factor"):
+        assert label in text
+    governing = max(runs, key=lambda row: row["t_max_kn"])
+    assert governing["run_id"] in text
+    assert "take-up mass" in text and governing["takeup_governed_by"] in text
+    assert "@media print" in text and "@page" in text
+    assert c.get("/studies/0123456789abcdef/report").status_code == 404
+
+
+def test_report_command_writes_the_page_from_the_local_store(web, tmp_path, monkeypatch,
+                                                             capsys):
+    from service.cli import main
+    from service.demo import free_port
+
+    sid = web.finished_study(tmp_path, web.tiny_study(name="cli-report"))
+    monkeypatch.setenv("BELTSTUDY_URL", f"http://127.0.0.1:{free_port()}")
+    monkeypatch.setenv("BELTSTUDY_DATA_DIR", str(tmp_path))
+    out = tmp_path / "report.html"
+    assert main(["report", sid, "-o", str(out)]) == 0
+    assert "wrote" in capsys.readouterr().out
+    assert out.read_text().startswith("<!doctype html>") and "cli-report" in out.read_text()
+    assert main(["report", sid, "-o", str(tmp_path / "report.pdf")]) == 2
+    assert "use a .html file name" in capsys.readouterr().err

@@ -218,7 +218,37 @@ function indexPage() {
 
 // ---------------------------------------------------------------------------- study page
 const RESULT_COLUMNS = ["status", "power_kw", "te_kn", "t_max_kn", "safety_factor",
-  "slip_margin", "sag_max_pct", "t_max_dyn_kn", "dyn_factor", "stop_time_s", "message"];
+  "slip_margin", "sag_max_pct", "t_max_dyn_kn", "dyn_factor", "stop_time_s",
+  "takeup_mass_kg", "fill_pct", "message"];
+
+// The design basis as table rows: one per auto size of each conveyor design.
+function designRows(designs) {
+  const rows = [];
+  const fmt = (v) => fmtValue(v);
+  for (const d of designs) {
+    const where = Object.entries(d.axes).map(([k, v]) => k + "=" + v).join(", ") || "the conveyor";
+    const s = d.sizes;
+    if (s.takeup) {
+      rows.push([where, "take-up " + (s.takeup.unit === "kg" ? "mass" : "pretension"),
+        fmt(s.takeup.value) + " " + s.takeup.unit, s.takeup.governed_by, s.takeup.case]);
+    }
+    (s.drives || []).forEach((dr, i) => {
+      if (dr) rows.push([where, "rated power, drive " + (i + 1), fmt(dr.rated_power_kw) + " kW",
+        dr.governed_by, dr.case]);
+    });
+    if (s.brakes) {
+      const sum = (e) => e.force_kn.reduce((a, b) => a + b, 0);
+      const reasons = (e) => [...new Set(e.governed_by)].join("+");
+      rows.push([where, "brake force, held at rest", fmt(sum(s.brakes.holding)) + " kN",
+        reasons(s.brakes.holding), s.brakes.holding.case]);
+      for (const [t, e] of Object.entries(s.brakes.stop_time_s)) {
+        rows.push([where, "brake force, brake stop in " + t + " s", fmt(sum(e)) + " kN",
+          reasons(e), e.case]);
+      }
+    }
+  }
+  return rows;
+}
 
 function studyPage(id) {
   let timer = null;
@@ -303,7 +333,21 @@ function studyPage(id) {
     document.getElementById("dynamics").textContent = info.dynamics ? "on" : "off";
     document.getElementById("description").textContent = info.description;
     document.getElementById("axes").replaceChildren(...axes.flatMap((a) => [
-      el("dt", { text: a.name }), el("dd", { text: a.values.map(String).join(", ") })]));
+      el("dt", { text: a.name }), el("dd", { text: a.values.map(String).join(", ") +
+        (a.group == null ? "" : "  (zip group " + (a.group + 1) + ")") })]));
+    const merged = document.getElementById("merged");
+    merged.textContent = info.merged ? info.merged + " of " + info.grid_points +
+      " grid points merged into identical runs (an axis that does not change them)" : "";
+    merged.hidden = !info.merged;
+    document.getElementById("design-case").textContent = info.design
+      ? "Auto sizes computed at the design case " + Object.entries(info.design)
+        .map(([k, v]) => k + " " + v).join(", ") + " and held for every run of a conveyor design."
+      : "Auto sizes: the largest requirement over the study's models and temperatures at full " +
+        "load, computed once per conveyor design and held for every run of it.";
+    const rows = designRows(info.designs || []);
+    document.querySelector("#designs tbody").replaceChildren(...(rows.length ? rows.map((r) =>
+      el("tr", {}, r.map((c) => el("td", { text: c })))) : [el("tr", {}, [el("td", {
+        text: "no auto sizes: every size is given in the conveyor file", colSpan: 5 })])]));
   }
 
   async function poll() {
@@ -364,7 +408,8 @@ function runPage(studyId, runId) {
       const axisCols = info.axes.map((a) => a.column);
       if (!axisCols.includes("friction_model")) axisCols.push("friction_model");
       document.getElementById("run-axes").replaceChildren(...axisCols.flatMap((c) => [
-        el("dt", { text: c }), el("dd", { text: fmtValue(s[c]) })]));
+        el("dt", { text: c }), el("dd", { text: s[c] == null
+          ? "any (grid points that differ only here are this one run)" : fmtValue(s[c]) })]));
       const status = document.getElementById("run-status");
       status.textContent = s.status;
       status.className = "state status-" + s.status;

@@ -1,0 +1,218 @@
+"""Capacity check: the material cross-section a troughed belt carries (ISO 5048, DIN 22101).
+
+``fill_pct`` is the design volume flow over the volume flow the belt's cross-section carries at
+the design speed, in percent; above 100 % the design load does not fit on the belt.
+
+Notes
+-----
+Usable width (the loaded part of the belt, an unloaded edge on each side), ISO 5048 clause 6 /
+DIN 22101 section 5::
+
+    b = 0.9 B - 0.05 m      for B <= 2 m
+    b = B - 0.25 m          for B > 2 m
+
+The cross-section is the trough part below the line joining the loaded edges, ``S2``, plus the
+surcharge heaped above it, ``S1``, a parabola meeting the edges at the surcharge angle theta.
+For a three-roll set with middle roll length ``l`` and trough angle lambda (ISO 5048)::
+
+    S1 = [l + (b - l) cos(lambda)]^2 tan(theta) / 6
+    S2 = [l + (b - l) cos(lambda) / 2] [(b - l) sin(lambda) / 2]
+
+A flat belt (one roll) is ``l >= b`` or lambda = 0: ``S1 = b^2 tan(theta) / 6``, ``S2 = 0``; a
+V trough (two rolls) is ``l = 0``. Both are the same polygon computed here: the half-section
+from the belt centre as straight segments (length, angle), ``S2`` the area between the
+segments and the edge line, ``S1 = w^2 tan(theta) / 6`` over the edge-to-edge width ``w``.
+Four- and five-roll (garland) sets are not in ISO 5048: they are taken as equal rolls of
+``roll_length_m`` (default B / rolls, an estimate) whose angles rise in equal steps to the
+trough angle, the outer rolls taking the rest of the usable width.
+
+On an incline the surcharge part carries less (ISO 5048)::
+
+    k = 1 - (S1 / S) (1 - k1),   k1 = sqrt((cos^2(delta) - cos^2(theta)) / (1 - cos^2(theta)))
+
+taken at the steepest carry section (k1 = 0 where delta >= theta). The capacity is then
+``Q_V = 3600 S v k`` [m3/h].
+
+References
+----------
+ISO 5048:1989 Continuous mechanical handling equipment - Belt conveyors with carrying idlers -
+Calculation of operating power and tensile forces, clause 6 (capacity and cross-section).
+DIN 22101:2002-08 Continuous conveyors - Belt conveyors for loose bulk materials, section 5.
+DIN 22107 / ISO 1537 roll lengths of troughed idler sets (``engine/data/trough.csv``).
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+from functools import cache
+
+import numpy as np
+
+from engine.conveyor import Conveyor
+
+__all__ = [
+    "usable_width_m",
+    "middle_roll_length_m",
+    "trough_segments",
+    "cross_section_m2",
+    "slope_factor",
+    "Capacity",
+    "capacity",
+    "fill_pct",
+]
+
+
+def usable_width_m(belt_width_m: float, edge_distance_m: float | None = None) -> float:
+    """Loaded width b of a belt of width B [m] (ISO 5048, DIN 22101).
+
+    ``b = 0.9 B - 0.05`` up to ``B = 2 m``, ``B - 0.25`` above; with an edge distance e given,
+    ``b = B - 2 e`` (never below 0).
+    """
+    if edge_distance_m is not None:
+        return max(belt_width_m - 2.0 * edge_distance_m, 0.0)
+    if belt_width_m <= 2.0:
+        return max(0.9 * belt_width_m - 0.05, 0.0)
+    return belt_width_m - 0.25
+
+
+@cache
+def _roll_table() -> tuple[np.ndarray, np.ndarray]:
+    from engine.catalog import _rows
+
+    rows = _rows("trough.csv")
+    return (np.array([float(r["belt_width_m"]) for r in rows]),
+            np.array([float(r["roll_length_m"]) for r in rows]))
+
+
+def middle_roll_length_m(belt_width_m: float, rolls: int = 3) -> float:
+    """Default roll length of a carrying set [m].
+
+    Three rolls: DIN 22107 by belt width (``engine/data/trough.csv``, interpolated, held at the
+    table's ends). Four or five rolls: ``B / rolls`` (an estimate). One or two rolls have no
+    middle roll (0).
+    """
+    if rolls <= 2:
+        return 0.0
+    if rolls >= 4:
+        return belt_width_m / rolls
+    widths, lengths = _roll_table()
+    return float(np.interp(belt_width_m, widths, lengths))
+
+
+def trough_segments(b_m: float, rolls: int, trough_deg: float, roll_length_m: float
+                    ) -> list[tuple[float, float]]:
+    """Half the loaded belt from its centre as straight segments ``(length [m], angle [rad])``.
+
+    One roll: flat. Two: one wing at the trough angle. Three: half the middle roll flat, then a
+    wing at the trough angle taking the rest of ``b / 2``. Four and five: rolls of
+    ``roll_length_m`` at angles rising in equal steps to the trough angle, the outer roll taking
+    the rest of ``b / 2``.
+    """
+    lam = math.radians(trough_deg)
+    half = 0.5 * b_m
+    if rolls <= 1 or trough_deg == 0.0:
+        return [(half, 0.0)]
+    if rolls == 2:
+        return [(half, lam)]
+    if rolls % 2 == 1:  # a horizontal middle roll, then (rolls - 1) / 2 rolls per side
+        steps = (rolls - 1) // 2
+        first = min(0.5 * roll_length_m, half)
+        segs = [(first, 0.0)]
+    else:  # two middle rolls meeting at the centre
+        steps = rolls // 2
+        segs = []
+    used = sum(s[0] for s in segs)
+    for i in range(1, steps + 1):
+        angle = lam * i / steps
+        length = half - used if i == steps else min(roll_length_m, half - used)
+        segs.append((max(length, 0.0), angle))
+        used += segs[-1][0]
+    return segs
+
+
+def cross_section_m2(b_m: float, rolls: int, trough_deg: float, roll_length_m: float,
+                     surcharge_deg: float) -> tuple[float, float]:
+    """Surcharge part S1 and trough part S2 of the material cross-section [m2].
+
+    Parameters
+    ----------
+    b_m : float
+        Usable (loaded) width b [m].
+    rolls : int
+        Rolls per carrying set.
+    trough_deg : float
+        Trough angle lambda [deg].
+    roll_length_m : float
+        Middle roll length l [m] (three rolls), roll length (four, five).
+    surcharge_deg : float
+        Surcharge angle theta [deg].
+    """
+    x = y = 0.0
+    s2_half = 0.0
+    pts = [(0.0, 0.0)]
+    for length, angle in trough_segments(b_m, rolls, trough_deg, roll_length_m):
+        x += length * math.cos(angle)
+        y += length * math.sin(angle)
+        pts.append((x, y))
+    top = pts[-1][1]
+    for (x0, y0), (x1, y1) in zip(pts[:-1], pts[1:], strict=True):
+        s2_half += (x1 - x0) * (top - 0.5 * (y0 + y1))
+    width = 2.0 * pts[-1][0]
+    s1 = width * width * math.tan(math.radians(surcharge_deg)) / 6.0
+    return s1, 2.0 * s2_half
+
+
+def slope_factor(s1_m2: float, s2_m2: float, slope_deg: float, surcharge_deg: float) -> float:
+    """ISO 5048 reduction k of the cross-section on a slope delta [-] (1 on the level)."""
+    s = s1_m2 + s2_m2
+    if s <= 0.0 or s1_m2 <= 0.0:
+        return 1.0
+    cd2 = math.cos(math.radians(slope_deg)) ** 2
+    ct2 = math.cos(math.radians(surcharge_deg)) ** 2
+    k1 = math.sqrt(max(cd2 - ct2, 0.0) / (1.0 - ct2))
+    return 1.0 - (s1_m2 / s) * (1.0 - k1)
+
+
+@dataclass(frozen=True)
+class Capacity:
+    """The capacity check of a conveyor. Units in the names."""
+
+    usable_width_m: float
+    roll_length_m: float
+    s1_m2: float
+    s2_m2: float
+    slope_deg: float
+    slope_factor: float
+    volume_flow_m3_h: float  # design volume flow, capacity / density
+    capacity_m3_h: float  # what the cross-section carries at the design speed
+    fill_pct: float
+
+
+def capacity(conv: Conveyor) -> Capacity:
+    """Cross-section, capacity and ``fill_pct`` of a conveyor at its design speed."""
+    from engine.catalog import resolve_belt
+
+    belt = resolve_belt(conv.belt)
+    ic = conv.idlers.carry
+    mat = conv.material
+    b = usable_width_m(belt.width_m, mat.edge_distance_m)
+    roll = ic.roll_length_m if ic.roll_length_m is not None else middle_roll_length_m(
+        belt.width_m, ic.rolls)
+    s1, s2 = cross_section_m2(b, ic.rolls, ic.trough_deg, roll, mat.surcharge_deg)
+    slope = max(math.degrees(math.asin(abs(p.lift_m) / p.length_m)) for p in conv.profile)
+    k = slope_factor(s1, s2, slope, mat.surcharge_deg)
+    q_design = mat.capacity_t_h / mat.density_t_m3
+    q_belt = 3600.0 * (s1 + s2) * conv.speed_m_s * k
+    if q_design <= 0.0:
+        fill = 0.0
+    else:
+        fill = 100.0 * q_design / q_belt if q_belt > 0.0 else math.inf
+    return Capacity(usable_width_m=b, roll_length_m=roll, s1_m2=s1, s2_m2=s2, slope_deg=slope,
+                    slope_factor=k, volume_flow_m3_h=q_design, capacity_m3_h=q_belt,
+                    fill_pct=fill)
+
+
+def fill_pct(conv: Conveyor) -> float:
+    """Design volume flow over the belt's cross-section capacity at design speed [%]."""
+    return capacity(conv).fill_pct

@@ -1,0 +1,240 @@
+"""The auto sizes of a conveyor at one operating case: take-up, rated power, brakes.
+
+:func:`auto_sizes` is the one place that says what an ``auto`` field of the conveyor file
+becomes, and which constraint set it. A study calls it once per design case and holds the
+largest values for all runs of a conveyor design (``service.study``); ``run_one`` calls it on
+the run's own steady solution to report the sizes it used.
+
+* **Take-up** (gravity ``mass_kg: auto``, fixed ``pretension_kn: auto``): the steady solve's
+  sizing (:mod:`engine.statics`): the smallest take-up meeting slip at start-up and running
+  and the sag limits running and, unless ``takeup.sag_at_rest`` is off, held at rest.
+  Governing constraint: ``slip_start``, ``slip_running``, ``sag_running``, ``sag_at_rest``.
+* **Rated power** (``rated_power_kw`` omitted): ``RATED_POWER_FACTOR`` x the drive's share of
+  the larger of the steady peripheral force |Te| and the running resistance (a regenerating
+  decline's motors must still overcome the resistance of the empty belt's start). Governing:
+  ``peripheral_force`` or ``running_resistance``.
+* **Brakes** (``force_kn: auto``): the total brake force for a rigid-body stop in the
+  scenario's stop time after the brake delay and over its ramp (:func:`brake_force_auto`), at
+  least ``HOLD_MARGIN`` x the net downhill pull of the loaded belt, less the fixed brakes,
+  shared evenly by the auto brakes. Its sizing input is the stop time: a run that stops on its
+  brakes (``stop.mode: brake``) sizes them for its stop time (``stop_time``, or ``holding``
+  where the holding floor is larger); any other run uses no stop time and installs the
+  holding size (``holding``).
+
+The rotating parts (:func:`rotating_parts`) and these rules are the ones the transient model
+builds with (:func:`engine.dynamics.model.build_system`), so a size reported here is the size
+a run used.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from engine.conveyor import Conveyor, Scenario
+from engine.loop import (
+    MOTOR_INERTIA_SHARE,
+    G,
+    RotatingParts,
+    pulley_reduced_mass_kg,
+    rotating_parts,
+)
+from engine.statics import SteadyResult, solve_steady
+
+__all__ = ["auto_sizes", "summary_fields", "RATED_POWER_FACTOR", "HOLD_MARGIN",
+           "MOTOR_INERTIA_SHARE", "moving_mass_kg", "rotating_parts", "RotatingParts",
+           "pulley_reduced_mass_kg", "rated_power_kw", "brake_forces", "brake_force_auto",
+           "brake_stop_time", "GIVEN"]
+
+#: Installed drive power as a multiple of the steady power at the drive [-] (the engine's
+#: default of ``drives[].rated_power_kw``: steady power x 1.25, SPEC section 1).
+RATED_POWER_FACTOR = 1.25
+#: Minimum holding force of an auto-sized brake as a multiple of the net gravity pull of the
+#: loaded belt [-] (a holding margin, an estimate).
+HOLD_MARGIN = 1.2
+#: ``*_governed_by`` of a size given in the conveyor file.
+GIVEN = "given"
+
+
+def moving_mass_kg(conv: Conveyor, steady: SteadyResult) -> float:
+    """All moving mass reduced to the belt line [kg], as the transient model builds it: belt,
+    material and idler rolls ``(m'_G + m'_L + m'_R) dx`` round the loop and the rotating
+    parts (:func:`rotating_parts`)."""
+    loop = steady.loop
+    return float(loop.mass_kg.sum()) + rotating_parts(conv, loop).total_kg
+
+
+def rated_power_kw(conv: Conveyor, te_n: float, resistance_n: float
+                   ) -> tuple[list[float], list[str]]:
+    """Rated power of each drive [kW] and what set it: the file's value (``given``), else
+    ``RATED_POWER_FACTOR`` x the drive's share of the larger of |Te| and the running
+    resistance [N] at the design speed."""
+    basis, why = (abs(te_n), "peripheral_force") if abs(te_n) >= resistance_n else (
+        resistance_n, "running_resistance")
+    v = float(conv.speed_m_s)
+    kw, gov = [], []
+    for d in conv.drives:
+        if d.rated_power_kw is not None:
+            kw.append(float(d.rated_power_kw))
+            gov.append(GIVEN)
+        else:
+            kw.append(RATED_POWER_FACTOR * d.share * basis * v / 1e3)
+            gov.append(why)
+    return kw, gov
+
+
+def brake_force_auto(total_mass_kg: float, v_d: float, te_n: float, stop_s: float,
+                     delay_s: float, ramp_s: float = 0.0) -> float:
+    """Total brake force for a rigid-body stop in ``stop_s`` [N] (no holding minimum).
+
+    The belt coasts for ``delay_s`` decelerating at ``Te / M`` (accelerating when Te < 0, a
+    regenerative belt), then the brake force builds linearly over ``ramp_s`` to ``F_b`` and,
+    with the running resistance, stops it: ``M v_1 = Te t_b + F_b (t_b - r / 2)`` with
+    ``t_b = t_stop - t_delay`` and ``v_1 = v - Te t_delay / M`` (for ``t_b >= r``).
+
+    Parameters
+    ----------
+    total_mass_kg : float
+        All moving mass reduced to the belt line [kg].
+    v_d : float
+        Design speed [m/s].
+    te_n : float
+        Steady peripheral force (resistance + gravity) [N].
+    stop_s, delay_s, ramp_s : float
+        Target stop time, brake delay and ramp [s].
+    """
+    if not math.isfinite(stop_s):
+        return 0.0
+    v1 = v_d - te_n * delay_s / total_mass_kg
+    if v1 <= 0.0:
+        return 0.0
+    t_b = stop_s - delay_s
+    r = min(ramp_s, t_b)
+    return max((total_mass_kg * v1 - te_n * t_b) / (t_b - 0.5 * r), 0.0)
+
+
+def brake_stop_time(total_mass_kg: float, v_d: float, te_n: float, force_n: float,
+                    delay_s: float, ramp_s: float = 0.0) -> float:
+    """Rigid-body stop time with a brake force ``force_n`` [s] (inverse of
+    :func:`brake_force_auto` for a stop past the ramp; inf if the belt does not stop)."""
+    v1 = v_d - te_n * delay_s / total_mass_kg
+    if v1 <= 0.0:
+        return delay_s
+    if te_n + force_n <= 0.0:
+        return math.inf
+    t_b = (total_mass_kg * v1 + 0.5 * force_n * ramp_s) / (te_n + force_n)
+    return delay_s + max(t_b, ramp_s)
+
+
+def brake_forces(conv: Conveyor, scenario: Scenario, total_mass_kg: float, te_n: float,
+                 gravity_sum_n: float) -> tuple[list[float], list[str], str]:
+    """Force of each brake [kN], what set it, and a note when holding set an auto force.
+
+    Auto brakes share ``max(stop force, holding force) - fixed brakes`` evenly: the stop
+    force of :func:`brake_force_auto` for a run that stops on its brakes (none otherwise),
+    the holding force ``HOLD_MARGIN`` x the net gravity pull ``gravity_sum_n`` [N].
+    """
+    if not conv.brakes:
+        return [], [], ""
+    auto = [b for b in conv.brakes if b.force_kn == "auto"]
+    each, why, note = 0.0, GIVEN, ""
+    if auto:
+        fixed_n = sum(b.force_kn * 1e3 for b in conv.brakes if b.force_kn != "auto")
+        delay = max(b.delay_s for b in auto)
+        ramp = max(b.ramp_s for b in auto)
+        v = float(conv.speed_m_s)
+        hold_n = HOLD_MARGIN * abs(gravity_sum_n)
+        stop_n = 0.0
+        if scenario.stop.mode == "brake":
+            stop_n = brake_force_auto(total_mass_kg, v, te_n, float(scenario.stop.time_s),
+                                      delay, ramp)
+        if stop_n >= hold_n:
+            total_n, why = stop_n, "stop_time"
+        else:
+            total_n, why = hold_n, "holding"
+            if scenario.stop.mode == "brake":
+                t_gives = brake_stop_time(total_mass_kg, v, te_n, hold_n, delay, ramp)
+                note = (f"auto brake force {hold_n / 1e3:.4g} kN is set by holding the loaded "
+                        f"belt at rest ({HOLD_MARGIN:g} x the net gravity pull "
+                        f"{abs(gravity_sum_n) / 1e3:.4g} kN), not by the stop time "
+                        f"{scenario.stop.time_s:g} s (which needs {stop_n / 1e3:.4g} kN): the "
+                        f"rigid-body brake stop then takes about {t_gives:.3g} s")
+        each = max(total_n - fixed_n, 0.0) / len(auto)
+    kn = [each / 1e3 if b.force_kn == "auto" else float(b.force_kn) for b in conv.brakes]
+    gov = [why if b.force_kn == "auto" else GIVEN for b in conv.brakes]
+    return kn, gov, note
+
+
+def auto_sizes(conveyor: Conveyor, scenario: Scenario, *, model: str,
+               params: dict | object | None = None, steady: SteadyResult | None = None) -> dict:
+    """The take-up, rated power and brake forces of ``conveyor`` at one operating case.
+
+    Parameters
+    ----------
+    conveyor : Conveyor
+    scenario : Scenario
+        The case: ``load``, ``temperature_c``, ``elements`` (mesh of the steady solve) and, for
+        auto brakes, ``stop.mode`` and ``stop.time_s``.
+    model : str
+        Friction model name.
+    params : dict or parameter dataclass, optional
+        Friction model parameter overrides.
+    steady : SteadyResult, optional
+        The steady solution of this case when the caller has it (no second solve).
+
+    Returns
+    -------
+    dict
+        ``takeup_mass_kg`` (gravity, else None) [kg], ``takeup_pretension_kn`` (tension per
+        strand at the take-up) [kN], ``takeup_governed_by``; ``drive_rated_power_kw`` and
+        ``drive_rated_power_governed_by`` (lists, one per drive, file order) [kW];
+        ``brake_force_kn`` and ``brake_governed_by`` (lists, one per brake) [kN]; ``status``
+        of the steady solve (a failed solve sizes nothing reliable).
+    """
+    if steady is None:
+        n = None if scenario.elements == "auto" else int(scenario.elements)
+        steady = solve_steady(conveyor, model=model, params=params,
+                              temperature_c=scenario.temperature_c, load=scenario.load,
+                              n_elements=n)
+    tu = conveyor.takeup
+    rated, rated_gov = rated_power_kw(conveyor, float(steady.te_n),
+                                      float(np.sum(steady.resistance_n)))
+    brakes, brakes_gov, _note = brake_forces(conveyor, scenario,
+                                             moving_mass_kg(conveyor, steady),
+                                             float(steady.te_n),
+                                             float(steady.loop.gravity_n.sum()))
+    return {
+        "takeup_mass_kg": (float(2.0 * steady.takeup_tension_n / G)
+                           if tu.type == "gravity" else None),
+        "takeup_pretension_kn": float(steady.takeup_tension_n) / 1e3,
+        "takeup_governed_by": steady.takeup_governed_by,
+        "drive_rated_power_kw": rated,
+        "drive_rated_power_governed_by": rated_gov,
+        "brake_force_kn": brakes,
+        "brake_governed_by": brakes_gov,
+        "status": steady.status,
+    }
+
+
+def summary_fields(sizes: dict) -> dict:
+    """The design columns of a run summary (SPEC 6.4) from :func:`auto_sizes`' answer.
+
+    ``rated_power_kw`` and ``brake_force_kn`` are totals over the drives and brakes (None
+    without brakes); ``*_governed_by`` name the constraint (several distinct ones joined by
+    ``+``).
+    """
+    def join(names: list[str]) -> str | None:
+        return "+".join(dict.fromkeys(names)) or None
+
+    return {
+        "takeup_mass_kg": sizes["takeup_mass_kg"],
+        "takeup_pretension_kn": sizes["takeup_pretension_kn"],
+        "takeup_governed_by": sizes["takeup_governed_by"],
+        "rated_power_kw": float(sum(sizes["drive_rated_power_kw"])),
+        "rated_power_governed_by": join(sizes["drive_rated_power_governed_by"]),
+        "drive_rated_power_kw": list(sizes["drive_rated_power_kw"]),
+        "brake_force_kn": (float(sum(sizes["brake_force_kn"])) if sizes["brake_force_kn"]
+                           else None),
+        "brake_governed_by": join(sizes["brake_governed_by"]),
+    }

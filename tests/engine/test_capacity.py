@@ -1,0 +1,99 @@
+"""The capacity check (engine/capacity.py) against ISO 5048 by hand, within 1 %."""
+
+from __future__ import annotations
+
+import math
+
+import pytest
+
+from engine.capacity import capacity, cross_section_m2, slope_factor, usable_width_m
+from engine.conveyor import parse_conveyor
+from engine.statics import solve_steady
+from tests.conftest import hand_conveyor_dict
+
+
+def conveyor(width_m, rolls, trough_deg, capacity_t_h, density_t_m3, speed_m_s, **over):
+    d = hand_conveyor_dict(speed_m_s=speed_m_s,
+                           material={"capacity_t_h": capacity_t_h, "density_t_m3": density_t_m3})
+    d["belt"] = {**d["belt"], "width_m": width_m}
+    d["idlers"]["carry"] = {**d["idlers"]["carry"], "rolls": rolls, "trough_deg": trough_deg}
+    d["profile"] = [{"length_m": 1000, "lift_m": 0.0}]
+    d.update(over)
+    return parse_conveyor(d)
+
+
+def test_three_roll_35_deg_trough_by_hand():
+    """1 200 mm belt, three rolls at 35 deg, middle roll 465 mm (DIN 22107), surcharge 20 deg,
+    3 000 t/h of coal at 0.85 t/m3 and 4.5 m/s: the issue's belt, about 130 % full."""
+    b = 0.9 * 1.2 - 0.05  # usable width [m] = 1.03
+    lm = 0.465  # middle roll [m]
+    wing = (b - lm) / 2  # 0.2825 m on each side
+    lam, theta = math.radians(35), math.radians(20)
+    s1 = (lm + 2 * wing * math.cos(lam)) ** 2 * math.tan(theta) / 6  # surcharge parabola
+    s2 = (lm + wing * math.cos(lam)) * wing * math.sin(lam)  # trapezoid under the edges
+    # the same by hand, rounded: (0.465 + 0.4628)^2 x 0.3640 / 6 = 0.05222 m2;
+    # (0.465 + 0.2314) x 0.2825 x 0.5736 = 0.11285 m2
+    assert s1 == pytest.approx(0.05222, rel=1e-3)
+    assert s2 == pytest.approx(0.11285, rel=1e-3)
+    q_belt = 3600 * (s1 + s2) * 4.5  # [m3/h] = 2 674
+    fill_hand = 100 * (3000 / 0.85) / q_belt  # = 132 %
+    assert fill_hand == pytest.approx(132.0, rel=0.01)
+
+    conv = conveyor(1.2, 3, 35, 3000, 0.85, 4.5)
+    cap = capacity(conv)
+    assert cap.usable_width_m == pytest.approx(b, rel=1e-12)
+    assert cap.roll_length_m == pytest.approx(lm, rel=1e-12)
+    assert cap.s1_m2 == pytest.approx(s1, rel=0.01)
+    assert cap.s2_m2 == pytest.approx(s2, rel=0.01)
+    assert cap.fill_pct == pytest.approx(fill_hand, rel=0.01)
+    # and the run says so
+    res = solve_steady(conv, model="din")
+    assert res.summary["fill_pct"] == pytest.approx(fill_hand, rel=0.01)
+    assert res.status == "warning" and "fill_pct 132 %" in res.message
+
+
+def test_flat_belt_by_hand():
+    """800 mm flat belt (one roll): only the surcharge, S = b^2 tan(theta) / 6."""
+    b = 0.9 * 0.8 - 0.05  # 0.67 m
+    s = b * b * math.tan(math.radians(20)) / 6  # 0.4489 x 0.3640 / 6 = 0.02723 m2
+    assert s == pytest.approx(0.02723, rel=1e-3)
+    q_belt = 3600 * s * 2.0  # at 2 m/s: 196 m3/h
+    fill_hand = 100 * (150 / 1.0) / q_belt  # 150 t/h at 1 t/m3: 76.5 %
+    conv = conveyor(0.8, 1, 0, 150, 1.0, 2.0)
+    cap = capacity(conv)
+    assert cap.s2_m2 == 0.0
+    assert cap.s1_m2 == pytest.approx(s, rel=0.01)
+    assert cap.fill_pct == pytest.approx(fill_hand, rel=0.01)
+    res = solve_steady(conv, model="din")
+    assert not any("fill_pct" in w for w in res.warnings)
+
+
+def test_usable_width_and_the_edge_distance():
+    assert usable_width_m(1.0) == pytest.approx(0.85)
+    assert usable_width_m(2.0) == pytest.approx(1.75)
+    assert usable_width_m(2.4) == pytest.approx(2.15)  # B - 0.25 above 2 m
+    assert usable_width_m(1.0, edge_distance_m=0.1) == pytest.approx(0.8)
+
+
+def test_two_roll_v_trough_is_iso_with_no_middle_roll():
+    b, lam, th = 0.85, math.radians(30), math.radians(20)
+    s1, s2 = cross_section_m2(b, 2, 30, 0.0, 20)
+    assert s1 == pytest.approx((b * math.cos(lam)) ** 2 * math.tan(th) / 6, rel=1e-12)
+    assert s2 == pytest.approx((b / 2 * math.cos(lam)) * (b / 2 * math.sin(lam)), rel=1e-12)
+
+
+def test_incline_reduces_the_surcharge_part_iso_5048():
+    s1, s2 = 0.05, 0.11
+    cd2, ct2 = math.cos(math.radians(10)) ** 2, math.cos(math.radians(20)) ** 2
+    k1 = math.sqrt((cd2 - ct2) / (1 - ct2))  # 0.8616
+    assert k1 == pytest.approx(0.8616, rel=1e-3)
+    assert slope_factor(s1, s2, 10, 20) == pytest.approx(1 - s1 / (s1 + s2) * (1 - k1), rel=1e-12)
+    assert slope_factor(s1, s2, 0, 20) == 1.0
+    assert slope_factor(s1, s2, 25, 20) == pytest.approx(s2 / (s1 + s2))  # nothing heaped
+
+
+def test_five_roll_garland_fills_more_than_three_rolls_at_the_same_angle():
+    three = sum(cross_section_m2(1.03, 3, 45, 0.465, 20))
+    five = sum(cross_section_m2(1.03, 5, 45, 1.2 / 5, 20))
+    flat = sum(cross_section_m2(1.03, 1, 0, 0.0, 20))
+    assert flat < three and five > flat

@@ -1,0 +1,248 @@
+"""Studies that compare one installed design: the design basis, zip groups, model parameters
+as axes, identical runs merged, points that break the conveyor named, load patterns.
+
+Runs are computed in this process (service.tasks.run_batch, the workers' code) and read back
+from Parquet with pandas; the live test in test_service_live.py does the same on Dask.
+"""
+
+from __future__ import annotations
+
+import pandas as pd
+import pytest
+
+from engine.conveyor import Scenario, parse_conveyor
+from engine.design import auto_sizes
+from engine.statics import solve_steady
+from service.basis import round_up
+from service.errors import Invalid
+from service.study import resolve_study
+from tests.service.conftest import ROOT, tiny_conveyor
+
+
+def _runs(data_dir, sid) -> pd.DataFrame:
+    return pd.read_parquet(data_dir / "studies" / sid / "runs")
+
+
+def _belt(belt_type: str):
+    return parse_conveyor(tiny_conveyor(belt={"type": belt_type, "width_m": 0.8}))
+
+
+def test_one_takeup_per_belt_type_the_largest_over_models_and_temperatures(
+        make_study, finished_study, data_dir):
+    """Every row of one belt type has the same counterweight, the largest any model and
+    temperature of the study needs at full load (rounded up to six digits); empty runs keep
+    it. The same holds for the motors' rated power."""
+    grid = {"belt_type": ["EP630/4", "EP1000/5"], "friction_model": ["din", "cema", "nonlin"],
+            "temperature_c": [-30, 20], "load": ["full", "empty"]}
+    sid = finished_study(data_dir, make_study(name="basis", grid=grid))
+    runs = _runs(data_dir, sid)
+    assert len(runs) == 2 * 3 * 2 * 2
+    assert set(runs["status"]) <= {"ok", "warning"}, runs["message"].tolist()
+    for belt, rows in runs.groupby("belt_type"):
+        conv = _belt(belt)
+        need = {(m, t): solve_steady(conv, model=m, temperature_c=t, load="full",
+                                     n_elements=12).summary  # the study's scenario mesh
+                for m in grid["friction_model"] for t in grid["temperature_c"]}
+        largest = max(need.values(), key=lambda s: s["takeup_mass_kg"])
+        assert rows["takeup_mass_kg"].nunique() == 1
+        assert rows["takeup_mass_kg"].iloc[0] == pytest.approx(largest["takeup_mass_kg"],
+                                                               rel=1e-5)
+        assert rows["takeup_mass_kg"].iloc[0] >= largest["takeup_mass_kg"]
+        assert set(rows["takeup_governed_by"]) == {largest["takeup_governed_by"]}
+        assert rows["rated_power_kw"].nunique() == 1
+        rated = max(1.25 * s["power_kw"] for s in need.values())
+        assert rows["rated_power_kw"].iloc[0] == pytest.approx(rated, rel=1e-5)
+        assert set(rows["rated_power_governed_by"]) == {"peripheral_force"}
+    assert runs.groupby("belt_type")["takeup_mass_kg"].first().nunique() == 2
+
+
+def test_a_given_design_case_sizes_every_run(make_study, finished_study, data_dir):
+    design = {"friction_model": "din", "temperature_c": -20, "load": "full"}
+    grid = {"friction_model": ["cema", "nonlin"], "temperature_c": [-30, 0, 20]}
+    study = resolve_study(make_study(grid=grid, design=design))
+    conv = parse_conveyor(tiny_conveyor())
+    case = solve_steady(conv, model="din", temperature_c=-20, load="full",
+                        n_elements=12).summary
+    masses = {r.conveyor["takeup"]["mass_kg"] for r in study.runs}
+    assert masses == {round_up(case["takeup_mass_kg"])}
+    runs = _runs(data_dir, finished_study(data_dir, make_study(grid=grid, design=design)))
+    assert len(runs) == 6 and runs["takeup_mass_kg"].nunique() == 1
+    assert runs["takeup_mass_kg"].iloc[0] == pytest.approx(case["takeup_mass_kg"], rel=1e-5)
+    (entry,) = study.designs
+    assert entry["sizes"]["takeup"]["case"] == "din, -20 C"
+    assert all(r.design["takeup_governed_by"] == case["takeup_governed_by"] for r in study.runs)
+    with pytest.raises(Invalid, match=r"design.friction_model: unknown model 'dinn'"):
+        resolve_study(make_study(grid=grid, design={"friction_model": "dinn"}))
+    with pytest.raises(Invalid, match=r"design.temperature: unknown key 'temperature'; did you mean "
+                                      r"'temperature_c'"):
+        resolve_study(make_study(grid=grid, design={"temperature": -20}))
+    with pytest.raises(Invalid, match=r"design.temperature_c: .*greater than or equal to -60"):
+        resolve_study(make_study(grid=grid, design={"temperature_c": -70}))
+
+
+def test_zip_lets_din_f_follow_the_temperature(make_study, finished_study, data_dir):
+    zipped = [{"temperature_c": [-30, 0, 20], "models.din.f_carry": [0.025, 0.020, 0.017]}]
+    study = resolve_study(make_study(grid={"load": ["full", "empty"]}, zip=zipped,
+                                     model="din"))
+    assert study.total == study.grid_points == 2 * 3
+    pairs = {(r.axes["temperature_c"], r.params["f_carry"]) for r in study.runs}
+    assert pairs == {(-30.0, 0.025), (0.0, 0.020), (20.0, 0.017)}
+    sid = finished_study(data_dir, make_study(grid={"load": ["full"]}, zip=zipped,
+                                              model="din"))
+    runs = _runs(data_dir, sid).sort_values("temperature_c")
+    assert list(runs["models.din.f_carry"]) == [0.025, 0.020, 0.017]
+    conv = parse_conveyor(tiny_conveyor())
+    for _, row in runs.iterrows():
+        s = solve_steady(conv, model="din", params={"f_carry": row["models.din.f_carry"]},
+                         temperature_c=row["temperature_c"], n_elements=12).summary
+        assert row["power_kw"] == pytest.approx(s["power_kw"], rel=1e-9)
+    # a stop time that varies with a brake force
+    braked = tiny_conveyor(brakes=[{"position": "head", "force_kn": 5.0, "delay_s": 0.5}])
+    study = resolve_study(make_study(
+        conveyor=braked, dynamics=True, scenario={"stop": {"mode": "brake"}},
+        grid={"temperature_c": [20]},
+        zip=[{"stop_time_s": [5, 10], "brakes.0.force_kn": [8.0, 4.0]}]))
+    assert {(r.scenario["stop"]["time_s"], r.conveyor["brakes"][0]["force_kn"])
+            for r in study.runs} == {(5.0, 8.0), (10.0, 4.0)}
+
+
+@pytest.mark.parametrize("zipped, message", [
+    ([{"temperature_c": [0, 10], "models.din.f_carry": [0.02]}], r"zip.0: .*equal lengths"),
+    ([{}], r"zip.0: empty group"),
+    ([{"temprature_c": [0]}], r"zip.0: unknown axis 'temprature_c'"),
+])
+def test_bad_zip_groups_are_refused(make_study, zipped, message):
+    with pytest.raises(Invalid, match=message):
+        resolve_study(make_study(grid={"load": ["full"]}, zip=zipped))
+
+
+def test_model_parameters_as_axes_and_identical_runs_merged(make_study, finished_study,
+                                                            data_dir):
+    """``models.din.f_carry`` does not change a cema run: the two cema points are one run,
+    whose row has the axis null; the study says it merged one point."""
+    grid = {"friction_model": ["din", "cema"], "models.din.f_carry": [0.010, 0.016]}
+    study = resolve_study(make_study(grid=grid))
+    assert study.grid_points == 4 and study.total == 3 and study.merged == 1
+    sid = finished_study(data_dir, make_study(grid=grid))
+    runs = _runs(data_dir, sid)
+    assert len(runs) == 3 and runs["run_id"].is_unique
+    cema = runs[runs["friction_model"] == "cema"]
+    assert len(cema) == 1 and cema["models.din.f_carry"].isna().all()
+    din = runs[runs["friction_model"] == "din"].sort_values("models.din.f_carry")
+    assert list(din["models.din.f_carry"]) == [0.010, 0.016]
+    assert din["power_kw"].iloc[1] > din["power_kw"].iloc[0]
+    with pytest.raises(Invalid, match=r"unknown parameter of model 'din'; did you mean "
+                                      r"'models.din.f_carry'"):
+        resolve_study(make_study(grid={"models.din.f_cary": [0.01]}))
+    with pytest.raises(Invalid, match=r"model 'nonlin' is not run by this study"):
+        resolve_study(make_study(grid={"models.nonlin.p_mf": [1.0]}))
+    with pytest.raises(Invalid, match=r"models.din.f_carry: value -1.*>= 0"):
+        resolve_study(make_study(grid={"models.din.f_carry": [-1]}))
+
+
+def test_a_coast_crossed_with_four_stop_times_stores_one_coast_run(make_study, finished_study,
+                                                                   data_dir):
+    """The stop time is no input of a coast stop: a coast crossed with four stop times stores
+    one coast run (one per temperature with a temperature axis). The auto brake is sized per
+    stop time and held over the temperatures (the largest of them)."""
+    braked = tiny_conveyor(brakes=[{"position": "head", "force_kn": "auto", "delay_s": 0.5}])
+    stops = {"scenario.stop.mode": ["coast", "brake"], "stop_time_s": [20, 30, 40, 60]}
+    sid = finished_study(data_dir, make_study(name="coast-x-4", conveyor=braked, dynamics=True,
+                                              grid=stops))
+    runs = _runs(data_dir, sid)
+    assert len(runs) == 5
+    coast = runs[runs["scenario.stop.mode"] == "coast"]
+    assert len(coast) == 1 and coast["stop_time_target_s"].isna().all()
+
+    grid = {**stops, "temperature_c": [-20, 20]}
+    body = make_study(conveyor=braked, dynamics=True, grid=grid)
+    study = resolve_study(body)
+    assert study.grid_points == 16 and study.total == 2 + 8 and study.merged == 6
+    sid = finished_study(data_dir, body)
+    runs = _runs(data_dir, sid)
+    assert len(runs) == 10
+    coast = runs[runs["scenario.stop.mode"] == "coast"]
+    assert len(coast) == 2 and coast["stop_time_target_s"].isna().all()
+    assert set(coast["brake_governed_by"]) == {"holding"}
+    brake = runs[runs["scenario.stop.mode"] == "brake"]
+    conv = parse_conveyor(braked)
+    for stop, rows in brake.groupby("stop_time_target_s"):
+        assert rows["brake_force_kn"].nunique() == 1
+        scn = {t: Scenario(temperature_c=t, elements=12, stop={"mode": "brake",
+                                                                "time_s": stop})
+               for t in (-20, 20)}
+        need = max(auto_sizes(conv, s, model="din")["brake_force_kn"][0] for s in scn.values())
+        assert rows["brake_force_kn"].iloc[0] == pytest.approx(need, rel=1e-5)
+    assert brake.groupby("stop_time_target_s")["brake_force_kn"].first().is_monotonic_decreasing
+
+
+def test_a_conveyor_axis_that_breaks_the_conveyor_is_refused_naming_the_points(make_study):
+    grid = {"profile.0.lift_m": [3, 70, 80], "temperature_c": [0, 20]}
+    with pytest.raises(Invalid) as err:
+        resolve_study(make_study(grid=grid))
+    text = str(err.value)
+    assert "2 of 3 conveyor variants are invalid" in text
+    assert "profile.0.lift_m=70" in text and "profile.0.lift_m=80" in text
+    assert "profile.0.lift_m=3" not in text
+    assert "lift_m (70" in text and "\n" not in text
+    grid = {"drives.0.share": [1.0, 0.5]}
+    with pytest.raises(Invalid, match=r"grid \(drives.0.share=0.5\): .*shares sum to 0.5"):
+        resolve_study(make_study(grid=grid))
+
+
+def test_the_refusal_is_a_422_and_exit_2(make_study, make_settings, data_dir, capsys,
+                                         tmp_path, monkeypatch):
+    from fastapi.testclient import TestClient
+
+    from service.api.app import create_app
+    from service.cli import main
+
+    body = make_study(grid={"profile.0.lift_m": [3, 70, 80]})
+    app = create_app(make_settings(data_dir))
+    r = TestClient(app).post("/studies", json=body)
+    assert r.status_code == 422 and "profile.0.lift_m=70" in r.json()["message"]
+    import yaml
+
+    path = tmp_path / "study.yaml"
+    path.write_text(yaml.safe_dump(body))
+    monkeypatch.setenv("BELTSTUDY_DATA_DIR", str(data_dir))
+    assert main(["run", str(path)]) == 2
+    err = capsys.readouterr().err.strip()
+    assert len(err.splitlines()) == 1 and "profile.0.lift_m=80" in err
+
+
+def test_load_patterns_and_surge_in_a_study(make_study, finished_study, data_dir):
+    conveyor = tiny_conveyor(profile=[{"length_m": 30, "lift_m": 2},
+                                      {"length_m": 30, "lift_m": -1}])
+    grid = {"load": ["full", "inclines", "declines", [1.0, 0.5], 1.2]}
+    sid = finished_study(data_dir, make_study(conveyor=conveyor, grid=grid))
+    runs = _runs(data_dir, sid)
+    assert len(runs) == 5
+    by_load = {row["load"]: row for _, row in runs.iterrows()}
+    assert set(by_load) == {"full", "inclines", "declines", "[1.0, 0.5]", "1.2"}
+    assert by_load["1.2"]["status"] == "warning" and "surge" in by_load["1.2"]["message"]
+    assert by_load["inclines"]["te_lift_kn"] > 0 > by_load["declines"]["te_lift_kn"]
+    assert runs["takeup_mass_kg"].nunique() == 1  # one installed counterweight
+    with pytest.raises(Invalid, match=r"scenario.load: 3 fractions for 2 profile sections.*"
+                                      r"grid point load=\[1, 1, 1\]"):
+        resolve_study(make_study(conveyor=conveyor, grid={"load": [[1, 1, 1]]}))
+
+
+def test_design_basis_survives_the_round_trip_through_study_json(make_study):
+    from service.study import study_from_json
+
+    study = resolve_study(make_study(zip=[{"temperature_c": [-20, 20],
+                                           "models.din.f_carry": [0.03, 0.02]}],
+                                     grid={"belt_type": ["EP630/4", "EP800/4"]}))
+    doc = study.to_json()
+    assert len(doc["designs"]) == 2 and doc["zip"]
+    again = study_from_json(doc, study.id)
+    assert [r.run_id for r in again.runs] == [r.run_id for r in study.runs]
+    assert again.designs == study.designs
+
+
+def test_example_design_study_resolves():
+    from service.study import load_study_file
+
+    for path in sorted((ROOT / "studies").glob("*.yaml")):
+        load_study_file(path)
