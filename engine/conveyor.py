@@ -340,7 +340,8 @@ class Conveyor(_Model):
     material: Material
     profile: list[ProfileSection] = Field(..., min_length=1)
     idlers: Idlers
-    drives: list[Drive] = Field(..., min_length=1)
+    drives: list[Drive] = Field(..., min_length=1, max_length=6,
+                                description="drive pulleys, at most 6 (head and tail)")
     takeup: TakeUp = TakeUp()
     brakes: list[Brake] = Field(default_factory=list)
     holdback: bool = False

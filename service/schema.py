@@ -15,6 +15,8 @@ from typing import Any
 import pyarrow as pa
 
 __all__ = [
+    "MAX_DRIVES",
+    "PHASE_COLUMNS",
     "STEADY_COLUMNS",
     "DESIGN_COLUMNS",
     "DESIGN_TEXT_COLUMNS",
@@ -36,19 +38,34 @@ __all__ = [
     "components_from_row",
 ]
 
+#: Most drives a conveyor may have: the per-drive columns ``drive{i}_*`` run from 1 to it
+#: (null where a conveyor has fewer drives).
+MAX_DRIVES = 6
+STEADY_DRIVE_FIELDS = ("t_tight_kn", "t_slack_kn", "slip_margin")
+TRANSIENT_DRIVE_FIELDS = ("force_max_kn", "power_max_kw", "slip_margin_min", "slip_s", "slip_m")
 STEADY_COLUMNS = (
     "te_kn", "power_kw", "t1_kn", "t2_kn", "t_max_kn", "t_max_at_m", "t_min_kn", "t_min_at_m",
-    "sag_max_pct", "takeup_mass_kg", "slip_margin", "safety_factor", "belt_mass_kg_m",
-    "load_mass_kg_m", "idler_mass_carry_kg_m", "idler_mass_return_kg_m", "belt_modulus_kn",
-    "belt_rating_kn", "wave_speed_carry_m_s", "wave_speed_return_m_s",
-)  # fmt: skip
+    "sag_max_pct", "takeup_mass_kg", "takeup_tension_kn", "slip_margin", "slip_margin_start",
+    "safety_factor", "belt_mass_kg_m", "load_mass_kg_m", "idler_mass_carry_kg_m",
+    "idler_mass_return_kg_m", "belt_modulus_kn", "belt_modulus_dyn_kn", "belt_rating_kn",
+    "wave_speed_carry_m_s", "wave_speed_return_m_s",
+) + tuple(f"drive{i}_{f}" for i in range(1, MAX_DRIVES + 1)
+          for f in STEADY_DRIVE_FIELDS)  # fmt: skip
+#: SPEC 6.4 per phase: start (start command to stop command) and stop (stop command on).
+PHASE_COLUMNS = tuple(f"t_{m}_{p}_{k}" for p in ("start", "stop") for m in ("max", "min")
+                      for k in ("kn", "at_m", "time_s"))
 TRANSIENT_COLUMNS = (
     "t_max_dyn_kn", "t_max_dyn_at_m", "t_max_dyn_time_s", "t_min_dyn_kn", "t_min_dyn_at_m",
     "t_min_dyn_time_s", "dyn_factor", "drive_force_max_kn", "drive_power_max_kw",
     "velocity_max_m_s", "velocity_min_m_s", "takeup_travel_m", "start_time_s", "stop_time_s",
     "wave_loop_time_s", "stop_wave_ratio", "sag_max_dyn_pct", "slip_margin_min_dyn",
     "safety_factor_dyn",
-)  # fmt: skip
+) + PHASE_COLUMNS + (
+    "t_max_pre_slack_kn", "t_max_post_slack_kn", "t_max_post_slack_at_m",
+    "t_max_post_slack_time_s", "slack_max_m", "slack_at_m", "slack_time_s", "slack_duration_s",
+    "takeup_endstop_speed_m_s",
+) + tuple(f"drive{i}_{f}" for i in range(1, MAX_DRIVES + 1)
+          for f in TRANSIENT_DRIVE_FIELDS)  # fmt: skip
 #: Parts of ``te_components_kn``: the six every model reports, then nonlin's finer split.
 TE_PARTS = (
     "main_carry", "main_return", "lift", "feed", "secondary", "accessories",
@@ -68,8 +85,11 @@ INPUT_COLUMNS = ("study_id", "run_id", "friction_model", "engine_version")
 
 TIMESERIES_COLUMNS = (
     "t_s", "v_drive_m_s", "v_tail_m_s", "f_drive_kn", "t_head_in_kn", "t_head_out_kn",
-    "t_tail_kn", "t_takeup_kn", "x_takeup_m", "t_min_kn", "t_max_kn",
-)  # fmt: skip
+    "t_tail_kn", "t_takeup_kn", "x_takeup_m", "t_min_kn", "t_max_kn", "v_mean_m_s",
+    "v_ref_m_s", "f_brake_kn", "p_drive_kw", "v_abs_max_m_s", "slack_m",
+) + tuple(f"{q}{i}_{u}" for i in range(1, MAX_DRIVES + 1)
+          for q, u in (("f_drive", "kn"), ("v_drive", "m_s"), ("f_belt", "kn"))
+          )  # fmt: skip
 SURFACE_COLUMNS = ("t_s", "s_m", "tension_kn", "velocity_m_s")
 
 
