@@ -147,6 +147,9 @@ class Executor:
             processes=True,
             host="127.0.0.1",
             dashboard_address=dashboard,
+            # without the dashboard the scheduler still serves /health and metrics over
+            # HTTP: on loopback, on a free port
+            scheduler_kwargs=None if dashboard else {"dashboard_address": "127.0.0.1:0"},
             silence_logs=logging.ERROR,
         )
         try:

@@ -256,6 +256,8 @@ def _loads_yaml(text: str, what: str, loader_class: type | None = None) -> Any:
             mark = getattr(exc, "problem_mark", None)
             where = f" at line {mark.line + 1}, column {mark.column + 1}" if mark else ""
             problem = getattr(exc, "problem", None) or str(exc).splitlines()[0]
+            if "nesting depth" in problem:  # libyaml's own limit, met while it reads ahead
+                raise Invalid(f"{what}: nested deeper than {MAX_DEPTH} levels{where}") from None
             raise Invalid(f"{what}: not valid YAML{where}: {problem}") from None
         finally:
             loader.dispose()
