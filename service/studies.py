@@ -161,6 +161,12 @@ class StudyService:
         created = self._admit(study)
         return self.status(study.id), created
 
+    def check(self, data: Any) -> ResolvedStudy:
+        """Validate a POSTed study as :meth:`submit` would, without storing or running it."""
+        return resolve_study(
+            data, studies_root=self.settings.studies_dir, max_runs=self.settings.max_runs
+        )
+
     # ---------------------------------------------------------------- reading
     def status(self, study_id: str) -> dict:
         """State and progress of a study (live while it runs)."""

@@ -28,6 +28,8 @@ from starlette.routing import Match
 
 import engine
 from service.errors import ServiceError
+from service.openapi import BodyChecker
+from service.openapi import install as install_openapi
 from service.settings import Settings, get_settings
 from service.studies import StudyService
 
@@ -132,29 +134,6 @@ class ErrorGuard:
             await send({"type": "http.response.body", "body": body})
 
 
-def _install_openapi(app: FastAPI) -> None:
-    """Add the study body schema (StudyDoc and the conveyor/scenario models) to components."""
-    from fastapi.openapi.utils import get_openapi
-
-    from service.study import StudyDoc
-
-    def openapi() -> dict:
-        if app.openapi_schema:
-            return app.openapi_schema
-        schema = get_openapi(
-            title=app.title, version=app.version, description=app.description, routes=app.routes
-        )
-        doc = StudyDoc.model_json_schema(ref_template="#/components/schemas/{model}")
-        defs = doc.pop("$defs", {})
-        components = schema.setdefault("components", {}).setdefault("schemas", {})
-        components.update(defs)
-        components["StudyDoc"] = doc
-        app.openapi_schema = schema
-        return schema
-
-    app.openapi = openapi
-
-
 def create_app(settings: Settings | None = None, service: StudyService | None = None) -> FastAPI:
     """Build the app; the lifespan starts the service (resume, Dask) and stops it."""
     import importlib
@@ -189,7 +168,8 @@ def create_app(settings: Settings | None = None, service: StudyService | None = 
             router = getattr(module, attr, None)
             if router is not None:
                 app.include_router(router)
-    _install_openapi(app)
+    app.state.body_checker = BodyChecker(settings.studies_dir)
+    install_openapi(app, app.state.body_checker)
     _install_docs(app)
     return app
 

@@ -11,6 +11,7 @@ from service import results
 from service.api.deps import ERROR_RESPONSES, _error, get_service, require_token
 from service.api.models import CompareOut, Deleted, RunDetail, RunsPage, StudyList, StudyStatus
 from service.errors import TooLarge
+from service.openapi import check_body
 from service.parse import parse_body
 from service.studies import StudyService
 
@@ -74,6 +75,7 @@ async def submit_study(
     # parsing (within its budget) and resolving run in a worker thread: the event loop,
     # and so /health, keeps answering meanwhile
     data = await run_in_threadpool(parse_body, body, request.headers.get("content-type", ""))
+    await run_in_threadpool(check_body, request.app.state.body_checker, data, service.check)
     status, created = await run_in_threadpool(service.submit, data)
     response.status_code = 202 if created else 200
     response.headers["Location"] = f"/studies/{status['id']}"
@@ -160,7 +162,7 @@ def compare(
     ),
     service: StudyService = Depends(get_service),
 ) -> dict:
-    names = [m.strip() for m in metrics.split(",") if m.strip()]
+    names = metrics.split(",") if metrics else []
     return service.compare(study_id, baseline, candidate, names)
 
 

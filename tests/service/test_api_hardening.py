@@ -209,3 +209,40 @@ def test_api_description_needs_the_token_like_every_route_but_health(api):
     assert client.get("/openapi.json", headers=auth).json()["info"]["title"] == "beltstudy"
     assert "swagger" in client.get("/docs", headers=auth).text.lower()
     assert client.get("/health").status_code == 200
+
+
+def test_the_body_is_held_to_its_published_schema(api, data_dir, make_study):
+    client = api()
+    for change, where in [
+        ({"dynamics": "true"}, "dynamics"),
+        ({"scenario": {"elements": "12"}}, "scenario.elements"),
+        ({"grid": {"temperature_c": ["20"]}}, "grid.temperature_c"),
+        ({"models": {"din": {"f_carry": "0.01"}}}, "models.din.f_carry"),
+    ]:
+        r = client.post("/studies", json={**make_study(), **change})
+        assert r.status_code == 422, (change, r.text)
+        assert where in r.json()["message"], (change, r.json()["message"])
+    assert _written(data_dir) == []
+
+
+def test_the_published_schema_says_what_is_accepted(api):
+    from service.openapi import NOT_IN_SCHEMA, metric_names
+
+    schema = api().get("/openapi.json").json()
+    comps = schema["components"]["schemas"]
+    body = comps["StudyDoc"]
+    conveyor = body["properties"]["conveyor"]["anyOf"][0]
+    assert "conveyors/slope-5pct.yaml" in conveyor["enum"]
+    assert "ST2000" in comps["Belt"]["properties"]["type"]["anyOf"][0]["enum"]
+    grid = body["properties"]["grid"]
+    assert {"temperature_c", "takeup.mass_kg", "scenario.run_s"} <= set(grid["properties"])
+    assert grid["properties"]["temperature_c"]["anyOf"][0]["items"]["maximum"] == 80
+    din = body["properties"]["models"]["properties"]["din"]["properties"]
+    assert din["c"]["anyOf"][0]["minimum"] == 1.0 and din["f_carry"]["minimum"] == 0.0
+    assert all(rule in body["description"] for rule in NOT_IN_SCHEMA)
+    params = {p["name"]: p for p in
+              schema["paths"]["/studies/{study_id}/compare"]["get"]["parameters"]}
+    metrics = params["metrics"]
+    assert metrics["explode"] is False and metrics["schema"]["uniqueItems"] is True
+    assert set(metrics["schema"]["items"]["enum"]) == set(metric_names())
+    assert params["study_id"]["schema"]["pattern"] == "^[0-9a-f]{16}$"
