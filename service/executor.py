@@ -38,6 +38,8 @@ LOCAL_DASK_CONFIG = {
     "distributed.admin.system-monitor.gil.enabled": False,
     "distributed.admin.tick.interval": "200ms",
 }
+#: CPU niceness of the LocalCluster's worker processes: below the API, which shares the cores.
+LOCAL_WORKER_NICE = 10
 #: Client states in which futures still make progress (``connecting``: reconnecting).
 LIVE_CLIENT_STATES = ("running", "connecting")
 
@@ -164,8 +166,10 @@ class Executor:
         return client, cluster
 
     def _warm_up(self, client) -> None:
-        from service.tasks import warm_up
+        from service.tasks import LowerPriority, warm_up
 
+        if not self.settings.scheduler:  # our own workers, on the API's cores
+            client.register_plugin(LowerPriority(LOCAL_WORKER_NICE))
         workers = list(client.scheduler_info(n_workers=-1)["workers"])
         nonce = uuid.uuid4().hex[:8]
         futures = {
