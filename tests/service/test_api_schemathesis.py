@@ -44,7 +44,8 @@ def run_schemathesis(url: str, token: str, max_examples: int, seed: int, log: Pa
     ]
     env = {**os.environ, "SCHEMATHESIS_HOOKS": "tests.service.schemathesis_hooks",
            "PYTHONPATH": str(ROOT)}
-    out = subprocess.run(cmd, cwd=ROOT, env=env, capture_output=True, text=True, timeout=900)
+    out = subprocess.run(cmd, cwd=log.parent, env=env, capture_output=True, text=True,
+                         timeout=900)
     text = out.stdout + out.stderr
     log.write_text(text)
     return text
