@@ -10,6 +10,7 @@ __all__ = [
     "ServiceError",
     "Invalid",
     "NotFound",
+    "Conflict",
     "TooLarge",
     "Unauthorized",
     "Unavailable",
@@ -43,6 +44,13 @@ class Invalid(ServiceError):
 class NotFound(ServiceError):
     status_code = 404
     kind = "not_found"
+
+
+class Conflict(ServiceError):
+    """The request clashes with what the service is doing (a study being deleted)."""
+
+    status_code = 409
+    kind = "conflict"
 
 
 class TooLarge(ServiceError):

@@ -4,6 +4,12 @@ With ``BELTSTUDY_SCHEDULER`` empty the service starts a :class:`distributed.Loca
 worker processes, one thread each (``BELTSTUDY_WORKERS``, default one per core); with
 ``tcp://host:port`` it connects to that scheduler. Once connected every worker runs
 :func:`service.tasks.warm_up` (imports, numba compile) before any study is timed.
+
+Connecting happens in one background thread that retries until it succeeds or the executor
+is closed; nobody else ever waits on it while holding a lock. Callers wait for the client
+with a timeout (:meth:`Executor.client`), and :meth:`Executor.close` waits on Dask at most
+``BELTSTUDY_DASK_TIMEOUT_S`` per step, so a scheduler that is gone never holds up a request
+or a shutdown.
 """
 
 from __future__ import annotations
@@ -22,6 +28,8 @@ log = logging.getLogger("beltstudy.executor")
 
 #: How long to wait for workers to appear and warm up [s].
 WARM_TIMEOUT_S = 600.0
+#: Pause between two attempts to reach Dask [s].
+RETRY_S = 5.0
 #: Dask settings of the LocalCluster (inherited by its worker processes): no statistical
 #: profiler sampling every worker each 10 ms, no GIL monitor, a slower event-loop tick.
 #: An idle cluster then costs a few % of a core instead of ~15 %: on 2 cores that matters.
@@ -30,6 +38,21 @@ LOCAL_DASK_CONFIG = {
     "distributed.admin.system-monitor.gil.enabled": False,
     "distributed.admin.tick.interval": "200ms",
 }
+#: CPU niceness of the LocalCluster's worker processes: below the API, which shares the cores.
+LOCAL_WORKER_NICE = 10
+#: Client states in which futures still make progress (``connecting``: reconnecting).
+LIVE_CLIENT_STATES = ("running", "connecting")
+
+
+def _close_quietly(client, cluster, timeout_s: float) -> None:
+    """Close a client and a cluster, waiting at most ``timeout_s`` on each."""
+    for obj in (client, cluster):
+        if obj is None:
+            continue
+        try:
+            obj.close(timeout=timeout_s)
+        except Exception:  # a half-started cluster or a scheduler that is gone: nothing to keep
+            pass
 
 
 class Executor:
@@ -40,68 +63,113 @@ class Executor:
         self.state = "idle"  # idle | starting | ready | error | closed
         self.error = ""
         self.warm: dict[str, dict] = {}
+        self.dashboard: str | None = None
         self._client = None
         self._cluster = None
-        self._lock = threading.Lock()
+        self._lock = threading.Lock()  # guards the fields; never held while talking to Dask
         self._ready = threading.Event()
-        self._workers_cache = (0.0, 1)
+        self._closed = threading.Event()
+        self._thread: threading.Thread | None = None
 
     # ---------------------------------------------------------------- lifecycle
     def start_background(self) -> None:
-        """Connect and warm up in a thread (the API answers meanwhile)."""
-        threading.Thread(target=self._start_quietly, name="beltstudy-executor", daemon=True).start()
-
-    def _start_quietly(self) -> None:
-        try:
-            self.client()
-        except Unavailable as exc:
-            log.warning("%s", exc)
-
-    def client(self):
-        """The connected, warmed client; connects on first use. Raises :class:`Unavailable`."""
-        if self._ready.is_set():
-            return self._client
+        """Connect and warm up in a thread (the API answers meanwhile); no-op if under way."""
         with self._lock:
-            if self._ready.is_set():
-                return self._client
-            if self.state == "closed":
-                raise Unavailable("the service is shutting down")
+            if self._closed.is_set() or (self._thread is not None and self._thread.is_alive()):
+                return
+            self._thread = threading.Thread(
+                target=self._connect_loop, name="beltstudy-executor", daemon=True
+            )
+            self._thread.start()
+
+    def _connect_loop(self) -> None:
+        where = self.settings.scheduler or "a LocalCluster"
+        last_error = ""
+        while not self._closed.is_set():
             self.state = "starting"
             try:
-                self._connect()
-                self._warm_up()
+                client, cluster = self._connect()
             except Exception as exc:
-                self.state, self.error = "error", f"{type(exc).__name__}: {exc}"
-                self._close_quietly()
-                where = self.settings.scheduler or "a LocalCluster"
-                raise Unavailable(f"cannot start Dask on {where}: {self.error}") from exc
-            self.state, self.error = "ready", ""
-            self._ready.set()
-            return self._client
+                last_error = self._failed(exc, where, last_error)
+                self._closed.wait(RETRY_S)
+                continue
+            with self._lock:
+                closed = self._closed.is_set()
+                if not closed:
+                    self._client, self._cluster = client, cluster
+            if closed:  # closed while connecting: close what was made here
+                _close_quietly(client, cluster, self.settings.dask_timeout_s)
+                return
+            try:
+                self._warm_up(client)
+            except Exception as exc:
+                last_error = self._failed(exc, where, last_error)
+                self._drop()
+                self._closed.wait(RETRY_S)
+                continue
+            with self._lock:
+                if self._closed.is_set():
+                    return
+                self.state, self.error = "ready", ""
+                self._ready.set()
+            return
 
-    def _connect(self) -> None:
+    def _failed(self, exc: Exception, where: str, last_error: str) -> str:
+        error = f"{type(exc).__name__}: {exc}"
+        if not self._closed.is_set():
+            self.state, self.error = "error", error
+            if error != last_error:  # once per distinct failure, not every retry
+                log.warning("cannot start Dask on %s: %s (retrying every %.0f s)",
+                            where, error, RETRY_S)
+        return error
+
+    def _connect(self):
         from distributed import Client, LocalCluster
 
+        timeout = f"{self.settings.dask_timeout_s}s"
         if self.settings.scheduler:
-            self._client = Client(self.settings.scheduler, timeout="30s", set_as_default=False)
-            self._client.wait_for_workers(1, timeout=WARM_TIMEOUT_S)
-        else:
-            import dask
+            client = Client(self.settings.scheduler, timeout=timeout, set_as_default=False)
+            try:
+                client.wait_for_workers(1, timeout=WARM_TIMEOUT_S)
+            except Exception:
+                _close_quietly(client, None, self.settings.dask_timeout_s)
+                raise
+            return client, None
+        import dask
 
-            dask.config.set(LOCAL_DASK_CONFIG)
-            self._cluster = LocalCluster(
-                n_workers=self.settings.n_local_workers,
-                threads_per_worker=1,
-                processes=True,
-                dashboard_address=":0",
-                silence_logs=logging.ERROR,
-            )
-            self._client = Client(self._cluster, set_as_default=False)
+        dask.config.set(LOCAL_DASK_CONFIG)
+        dashboard = (
+            f"{self.settings.host}:{self.settings.dashboard_port}"
+            if self.settings.dashboard
+            else None
+        )
+        cluster = LocalCluster(
+            n_workers=self.settings.n_local_workers,
+            threads_per_worker=1,
+            processes=True,
+            host="127.0.0.1",
+            dashboard_address=dashboard,
+            # without the dashboard the scheduler still serves /health and metrics over
+            # HTTP: on loopback, on a free port
+            scheduler_kwargs=None if dashboard else {"dashboard_address": "127.0.0.1:0"},
+            silence_logs=logging.ERROR,
+        )
+        try:
+            client = Client(cluster, set_as_default=False, timeout=timeout)
+        except Exception:
+            _close_quietly(None, cluster, self.settings.dask_timeout_s)
+            raise
+        if dashboard is not None:
+            self.dashboard = cluster.dashboard_link
+            log.info("Dask dashboard at %s (no token: keep it on a trusted network)",
+                     self.dashboard)
+        return client, cluster
 
-    def _warm_up(self) -> None:
-        from service.tasks import warm_up
+    def _warm_up(self, client) -> None:
+        from service.tasks import LowerPriority, warm_up
 
-        client = self._client
+        if not self.settings.scheduler:  # our own workers, on the API's cores
+            client.register_plugin(LowerPriority(LOCAL_WORKER_NICE))
         workers = list(client.scheduler_info(n_workers=-1)["workers"])
         nonce = uuid.uuid4().hex[:8]
         futures = {
@@ -116,22 +184,77 @@ class Executor:
         }
         t0 = time.monotonic()
         for addr, fut in futures.items():
+            if self._closed.is_set():
+                return
             try:
                 self.warm[addr] = fut.result(timeout=WARM_TIMEOUT_S)
             except Exception as exc:  # a worker that cannot warm up still gets work
                 self.warm[addr] = {"errors": [f"{type(exc).__name__}: {exc}"]}
         log.info("warmed %d workers in %.1f s", len(futures), time.monotonic() - t0)
 
+    def _drop(self) -> None:
+        """Forget a client that is no longer usable (closing it in the background)."""
+        with self._lock:
+            client, cluster = self._client, self._cluster
+            self._client = self._cluster = None
+            self._ready.clear()
+        if client is not None or cluster is not None:
+            threading.Thread(
+                target=_close_quietly,
+                args=(client, cluster, self.settings.dask_timeout_s),
+                name="beltstudy-executor-close",
+                daemon=True,
+            ).start()
+
+    # ---------------------------------------------------------------- use
+    def _live_client(self):
+        """The ready client, or None; a client that closed itself (its scheduler was gone
+        longer than the connect timeout) is dropped and a new connection started."""
+        if not self._ready.is_set():
+            return None
+        client = self._client
+        if client is not None and client.status in LIVE_CLIENT_STATES:
+            return client
+        if self._closed.is_set():
+            return None
+        log.warning("lost the Dask scheduler; reconnecting")
+        self.state, self.error = "error", "lost the Dask scheduler; reconnecting"
+        self._drop()
+        self.start_background()
+        return None
+
+    def client(self, timeout: float | None = None, halt: threading.Event | None = None):
+        """The connected, warmed client; starts connecting on first use.
+
+        Waits at most ``timeout`` seconds (None: until ready), and returns None as soon as
+        ``halt`` is set. Raises :class:`Unavailable` when closed or out of time.
+        """
+        deadline = None if timeout is None else time.monotonic() + timeout
+        while True:
+            client = self._live_client()
+            if client is not None:
+                return client
+            if self._closed.is_set():
+                raise Unavailable("the service is shutting down")
+            self.start_background()
+            if halt is not None and halt.is_set():
+                return None
+            left = None if deadline is None else deadline - time.monotonic()
+            if left is not None and left <= 0:
+                where = self.settings.scheduler or "a LocalCluster"
+                detail = self.error or "still starting"
+                raise Unavailable(f"Dask on {where} is not ready: {detail}")
+            self._ready.wait(0.1 if left is None else min(0.1, left))
+
     def n_workers(self) -> int:
-        """Workers connected now (cached for two seconds)."""
-        stamp, n = self._workers_cache
-        if time.monotonic() - stamp > 2.0 and self._client is not None:
-            try:
-                n = max(1, len(self._client.scheduler_info(n_workers=-1)["workers"]))
-            except Exception:  # scheduler briefly unreachable: keep the last count
-                pass
-            self._workers_cache = (time.monotonic(), n)
-        return n
+        """Workers connected now, from the client's cached scheduler information (refreshed
+        by the client every few seconds; never a call to the scheduler)."""
+        client = self._client
+        info = getattr(client, "_scheduler_identity", None) or {}
+        n = info.get("n_workers")
+        if n is None:
+            n = len(info.get("workers") or {})
+        return max(1, int(n))
 
     def info(self) -> dict:
         return {
@@ -139,20 +262,15 @@ class Executor:
             "error": self.error,
             "scheduler": self.settings.scheduler or "local",
             "workers": self.n_workers() if self._ready.is_set() else 0,
+            "dashboard": self.dashboard,
         }
 
-    def _close_quietly(self) -> None:
-        for obj in (self._client, self._cluster):
-            if obj is None:
-                continue
-            try:
-                obj.close()
-            except Exception:  # closing a half-started cluster may fail: nothing to keep
-                pass
-        self._client = self._cluster = None
-
     def close(self) -> None:
+        """Stop connecting; close the client and the cluster, at most ``dask_timeout_s`` each."""
         with self._lock:
+            self._closed.set()
             self.state = "closed"
             self._ready.clear()
-            self._close_quietly()
+            client, cluster = self._client, self._cluster
+            self._client = self._cluster = None
+        _close_quietly(client, cluster, self.settings.dask_timeout_s)

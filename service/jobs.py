@@ -6,6 +6,11 @@ restarted service resumes where it stopped), cuts the rest into batches of about
 with explicit keys, keeps about two tasks per worker in flight, and streams them back with
 ``as_completed(..., with_results=True, raise_errors=False)``. A task that errors (a worker
 lost too often) becomes failed rows; the study goes on.
+
+The thread never blocks on the scheduler: it waits for the client with a timeout, polls for
+finished tasks, and leaves as soon as the study is cancelled or the service stops (tasks in
+flight are released, not waited for). When the client is lost, the tasks in flight go back
+into the queue and the job waits for Dask again.
 """
 
 from __future__ import annotations
@@ -45,6 +50,10 @@ SAVE_EVERY_S = 1.0
 #: not yet written when the service dies are simply run again.
 FLUSH_S = 1.0
 FLUSH_RUNS = 1000
+#: How often a running job looks for finished tasks and for a stop [s].
+POLL_S = 0.02
+#: How long a job waits for Dask before noting it in ``message`` and waiting again [s].
+WAIT_FOR_DASK_S = 5.0
 
 
 def _part_key(batch: list[RunSpec]) -> str:
@@ -116,8 +125,9 @@ def study_schema(study: ResolvedStudy) -> pa.Schema:
 class StudyJob:
     """Executes the missing runs of one study; progress readable from other threads."""
 
-    def __init__(self, study: ResolvedStudy, store: Store, executor, settings):
+    def __init__(self, study: ResolvedStudy, store: Store, executor, settings, on_exit=None):
         self.study = study
+        self._on_exit = on_exit  # called with the job when its thread ends
         self.store = store
         self.executor = executor
         self.settings = settings
@@ -131,10 +141,12 @@ class StudyJob:
         self._stop = threading.Event()
         self._lock = threading.Lock()
         self._inflight: dict = {}
+        self._ac = None
         self._buffer: list[tuple[list[RunSpec], dict]] = []
         self._buffered = 0
         self.rate = RunRate()
         self._last_flush = time.monotonic()
+        self._per_run_s: float | None = None
         self._thread = threading.Thread(
             target=self._main, name=f"beltstudy-study-{study.id}", daemon=True
         )
@@ -152,24 +164,29 @@ class StudyJob:
         self._thread.join(timeout)
 
     def cancel(self) -> None:
-        """Stop for good: cancel the tasks in flight (the caller deletes the study)."""
+        """Stop for good (the caller deletes the study); returns at once, never waits on Dask:
+        the job thread releases its tasks in flight on its way out."""
         self._cancel.set()
-        self._stop.set()  # also wakes a job waiting for Dask
-        self._abort_inflight()
+        self.stop()
 
     def stop(self) -> None:
-        """Stop for a service shutdown: the study stays ``running`` and resumes next start."""
-        self._stop.set()
-        self._abort_inflight()
+        """Stop for a service shutdown: the study stays ``running`` and resumes next start.
+        Returns at once; the thread leaves within about ``POLL_S``."""
+        self._stop.set()  # also wakes a job waiting for Dask
+        ac = self._ac
+        if ac is not None:
+            ac.clear()  # wakes the job if it waits on finished tasks
 
-    def _abort_inflight(self) -> None:
+    def _release_inflight(self) -> list[list[RunSpec]]:
+        """Forget the tasks in flight (the scheduler drops them; non-blocking); their runs."""
         with self._lock:
-            futures = list(self._inflight)
-        if futures:
+            inflight, self._inflight = self._inflight, {}
+        for fut in inflight:
             try:
-                futures[0].client.cancel(futures)
-            except Exception:  # client already closed: nothing left to cancel
+                fut.release()
+            except Exception:  # client already closed: nothing left to release
                 pass
+        return list(inflight.values())
 
     @property
     def halted(self) -> bool:
@@ -211,32 +228,48 @@ class StudyJob:
             if not self._cancel.is_set():
                 self.state = "failed"
                 self._save(message=f"{type(exc).__name__}: {exc}", finished_at=time.time())
+        finally:
+            self._release_inflight()
+            self._buffer, self._ac = [], None
+            if self._on_exit is not None:
+                self._on_exit(self)
 
-    def _execute(self) -> None:
+    def _new_session(self) -> dict:
+        """A new store token: workers still finishing tasks of an earlier session (an external
+        cluster outlives a killed service, a lost client) can no longer write into this study;
+        then the parts such tasks left without their runs part are removed."""
         sid = self.study.id
-        doc = self.store.read(sid)
-        self.elapsed_before = float(doc.get("elapsed_s") or 0.0)
-        # a new token per session: workers still finishing tasks of an earlier session (an
-        # external cluster outlives a killed service) can no longer write into this study
         doc = self.store.update(sid, store_token=uuid.uuid4().hex)
         self._sink = {
             "dir": str(self.store.study_dir(sid).resolve()),
             "token": doc["store_token"],
         }
         self.store.clean(sid)
+        return doc
+
+    def _execute(self) -> None:
+        sid = self.study.id
+        doc = self.store.read(sid)
+        self.elapsed_before = float(doc.get("elapsed_s") or 0.0)
+        doc = self._new_session()
         have = self.store.done_runs(sid)
         done_ids = set(have["run_id"]) if len(have) else set()
         self.done = len(done_ids)
         self.failed = int((have["status"] == "failed").sum()) if len(have) else 0
         todo = deque(r for r in self.study.runs if r.run_id not in done_ids)
-        if todo:
+        del have, done_ids
+        lost = False
+        while todo and not self.halted:
             client = self._wait_for_client()
             if client is None:
                 return
-            self.state = "running"
-            self.session_start = time.monotonic()
-            self._save(started_at=doc.get("started_at") or time.time(), message="")
-            self._stream(client, todo)
+            if lost:
+                self._new_session()
+            if self.state != "running":
+                self.state = "running"
+                self.session_start = time.monotonic()
+                self._save(started_at=doc.get("started_at") or time.time(), message="")
+            lost = self._stream(client, todo)
         if self.halted:
             return
         self.state = "done"
@@ -248,22 +281,31 @@ class StudyJob:
         return ""
 
     def _wait_for_client(self):
+        """The executor's client, or None once the job is halted (never blocks longer)."""
         while not self.halted:
+            t0 = time.monotonic()
             try:
-                return self.executor.client()
+                return self.executor.client(timeout=WAIT_FOR_DASK_S, halt=self._stop)
             except Unavailable as exc:
+                if self.halted:
+                    break
                 self._save(message=f"waiting for Dask: {exc}")
-                self._stop.wait(5.0)
+                self._stop.wait(max(0.0, WAIT_FOR_DASK_S - (time.monotonic() - t0)))
         return None
 
-    def _stream(self, client, todo: deque[RunSpec]) -> None:
+    def _stream(self, client, todo: deque[RunSpec]) -> bool:
+        """Run ``todo`` on ``client`` until it is empty, the job is halted, or the client is
+        lost (then the batches in flight go back into ``todo`` and this returns True)."""
         from distributed import as_completed
+
+        from service.executor import LIVE_CLIENT_STATES
 
         sid = self.study.id
         nonce = uuid.uuid4().hex[:8]
         seq = 0
-        per_run_s: float | None = None
+        per_run_s: float | None = self._per_run_s
         ac = as_completed([], with_results=True, raise_errors=False, loop=client.loop)
+        self._ac = ac
         last_save = time.monotonic()
 
         def top_up() -> None:
@@ -278,40 +320,60 @@ class StudyJob:
                 seq += 1
                 specs = [dict(vars(r)) for r in batch]  # shallow: shared dicts pickle once
                 sink = {**self._sink, "key": _part_key(batch)}
-                fut = client.submit(
-                    run_batch, sid, specs, self.study.surface, sink, key=key, pure=False
-                )
+                try:
+                    fut = client.submit(
+                        run_batch, sid, specs, self.study.surface, sink, key=key, pure=False
+                    )
+                except Exception:
+                    if client.status in LIVE_CLIENT_STATES:
+                        raise
+                    todo.extendleft(reversed(batch))  # the client is gone: the caller sees it
+                    return
                 with self._lock:
                     self._inflight[fut] = batch
                 ac.add(fut)
 
+        lost = False
         top_up()
-        for fut, result in ac:
-            with self._lock:
-                batch = self._inflight.pop(fut, None)
-            if self.halted or batch is None:
-                if not self._inflight:
+        while self._inflight and not self.halted:
+            if not ac.has_ready():
+                if client.status not in LIVE_CLIENT_STATES:
+                    lost = True
                     break
+                self._stop.wait(POLL_S)
                 continue
-            if fut.status == "finished":
-                n = len(batch)
-                self.rate.finished(n, float(result["seconds"]))
-                self._add(batch, result)
-                sample = result["seconds"] / n
-                per_run_s = sample if per_run_s is None else 0.7 * per_run_s + 0.3 * sample
-            elif fut.status == "cancelled":
-                todo.extendleft(reversed(batch))  # cancelled by the scheduler: run again
-            else:
-                exc = result[1] if isinstance(result, tuple) else result
-                message = f"task failed: {type(exc).__name__}: {exc}"[:1000]
-                self._add(batch, {"rows": [self._failed(r, message) for r in batch]})
-            fut.release()
+            for fut, result in ac.next_batch(block=False):
+                with self._lock:
+                    batch = self._inflight.pop(fut, None)
+                if self.halted or batch is None:
+                    continue
+                if fut.status == "finished":
+                    n = len(batch)
+                    self.rate.finished(n, float(result["seconds"]))
+                    self._add(batch, result)
+                    sample = result["seconds"] / n
+                    per_run_s = sample if per_run_s is None else 0.7 * per_run_s + 0.3 * sample
+                elif fut.status == "cancelled":
+                    todo.extendleft(reversed(batch))  # cancelled by the scheduler: run again
+                else:
+                    exc = result[1] if isinstance(result, tuple) else result
+                    message = f"task failed: {type(exc).__name__}: {exc}"[:1000]
+                    self._add(batch, {"rows": [self._failed(r, message) for r in batch]})
+                fut.release()
             top_up()
             if time.monotonic() - last_save > SAVE_EVERY_S:
                 self._save()
                 last_save = time.monotonic()
+        self._per_run_s = per_run_s
+        self._ac = None
+        lost = lost or (not self.halted and client.status not in LIVE_CLIENT_STATES)
+        if lost:
+            log.warning("study %s: lost the Dask client; its tasks in flight will run again", sid)
+            for batch in self._release_inflight():
+                todo.extendleft(reversed(batch))
         if not self._cancel.is_set():
             self._flush()  # also on a shutdown: what finished is kept
+        return lost
 
     def _add(self, batch: list[RunSpec], result: dict) -> None:
         """Buffer a finished batch; write the buffer every ``FLUSH_S`` or ``FLUSH_RUNS``."""

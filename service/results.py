@@ -14,7 +14,7 @@ import pandas as pd
 import pyarrow as pa
 import pyarrow.parquet as pq
 
-from service.errors import Invalid
+from service.errors import Invalid, NotFound
 from service.schema import TE_PART_COLUMNS, components_from_row
 
 __all__ = [
@@ -59,28 +59,43 @@ def columns_to_json(df: pd.DataFrame) -> dict[str, list]:
     return {c: [_clean(v) for v in df[c].tolist()] for c in df.columns}
 
 
+class _NoMatch(Exception):
+    """A filter value no row of that column can equal (text for a number column)."""
+
+
 def _coerce(series: pd.Series, text: str) -> Any:
     if pd.api.types.is_bool_dtype(series):
         if text.lower() not in ("true", "false"):
-            raise ValueError("expected true or false")
+            raise _NoMatch
         return text.lower() == "true"
     if pd.api.types.is_numeric_dtype(series):
-        return float(text)
+        try:
+            value = float(text)
+        except ValueError:
+            raise _NoMatch from None
+        if not math.isfinite(value):
+            raise _NoMatch
+        return value
     return text
 
 
 def apply_filters(df: pd.DataFrame, filters: list[str]) -> pd.DataFrame:
-    """Keep rows where every ``column=value`` holds (numbers compared as numbers)."""
+    """Keep rows where every ``column=value`` holds (numbers compared as numbers; a value
+    that no row of the column can have, like text for a number, keeps no row).
+    A column the study does not have is :class:`NotFound` listing the columns."""
     for item in filters:
         column, sep, text = item.partition("=")
         if not sep or not column:
             raise Invalid(f"filter: '{item}' is not column=value")
         if column not in df.columns:
-            raise Invalid(f"filter: unknown column '{column}'")
+            raise NotFound(
+                f"filter: this study has no column '{column}'; columns: {', '.join(df.columns)}"
+            )
         try:
             value = _coerce(df[column], text)
-        except ValueError as exc:
-            raise Invalid(f"filter: {column}: {exc} (got '{text}')") from None
+        except _NoMatch:
+            df = df.iloc[0:0]
+            continue
         if isinstance(value, float):
             df = df[np.isclose(df[column].astype(float), value, rtol=1e-9, atol=1e-12)]
         else:
@@ -126,17 +141,21 @@ def compare(
     ratio (``failed_pairs`` counts them).
     """
     metrics = list(metrics) or list(DEFAULT_METRICS)
-    numeric = [c for c in runs.columns if pd.api.types.is_float_dtype(runs[c])]
-    for m in metrics:
-        if m not in runs.columns or m not in numeric:
+    valid = [c for c in runs.columns if pd.api.types.is_float_dtype(runs[c]) and c not in axes]
+    for i, m in enumerate(metrics):
+        if m in metrics[:i]:
+            raise Invalid(f"metrics: '{m}' is listed twice; give each metric once")
+        if m in axes:
             raise Invalid(
-                f"metrics: unknown metric '{m}'; valid: "
-                + ", ".join(c for c in numeric if c not in axes)
+                f"metrics: '{m}' is an axis of this study, not a result; valid: "
+                + ", ".join(valid)
             )
+        if m not in valid:
+            raise Invalid(f"metrics: unknown metric '{m}'; valid: " + ", ".join(valid))
     models = sorted(set(runs["friction_model"].dropna())) if len(runs) else []
     for label, name in (("baseline", baseline), ("candidate", candidate)):
         if len(runs) and name not in models:
-            raise Invalid(
+            raise NotFound(
                 f"{label}: model '{name}' is not in this study; it has: {', '.join(models)}"
             )
     others = [a for a in axes if a != "friction_model"]

@@ -7,6 +7,11 @@
 | ``BELTSTUDY_WORKERS`` | cores | LocalCluster worker processes (one thread each) |
 | ``BELTSTUDY_TOKEN`` | empty | bearer token every route but ``/health`` requires when set |
 | ``BELTSTUDY_MAX_RUNS`` | 20000 | largest study accepted |
+| ``BELTSTUDY_HOST`` | 127.0.0.1 | address ``beltstudy serve`` listens on (``--host``) |
+| ``BELTSTUDY_DASHBOARD`` | false | serve the LocalCluster's Dask dashboard on the host |
+| ``BELTSTUDY_DASK_TIMEOUT_S`` | 5 | longest wait on the Dask scheduler (connect, cancel, close) |
+
+The full table is in the README.
 """
 
 from __future__ import annotations
@@ -46,6 +51,26 @@ class Settings(BaseSettings):
         True, description="start and warm the Dask workers when the service starts"
     )
     task_seconds: float = Field(1.0, gt=0, description="target work per Dask task [s]")
+    host: str = Field(
+        "127.0.0.1",
+        description="address `beltstudy serve` listens on; the Dask dashboard (when on) binds "
+        "to it too",
+    )
+    dashboard: bool = Field(
+        False,
+        description="serve the Dask dashboard of the LocalCluster (no token: it shows task "
+        "names, worker addresses and logs) on the service's host, port dashboard_port",
+    )
+    dashboard_port: int = Field(
+        8787, ge=0, le=65535, description="dashboard port (0 or a taken port: a free one)"
+    )
+    dask_timeout_s: float = Field(
+        5.0,
+        gt=0,
+        le=300,
+        description="longest the service waits on the Dask scheduler: to connect, and when it "
+        "deletes a study or shuts down [s]",
+    )
 
     @field_validator("workers", mode="before")
     @classmethod

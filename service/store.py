@@ -21,6 +21,7 @@ import json
 import os
 import re
 import shutil
+import threading
 import time
 import uuid
 from pathlib import Path
@@ -38,6 +39,8 @@ __all__ = ["Store", "STATES", "TABLES", "write_part_to"]
 STATES = ("queued", "running", "done", "failed", "cancelled")
 TABLES = ("runs", "timeseries", "surface")
 _ID_RE = re.compile(r"^[0-9a-f]{16}$")
+#: Studies whose runs table :meth:`Store.read_runs` keeps for reuse.
+RUNS_CACHE_STUDIES = 4
 
 
 def _write_atomic(path: Path, write) -> None:
@@ -83,6 +86,9 @@ class Store:
     def __init__(self, data_dir: str | Path):
         self.data_dir = Path(data_dir)
         self.root = self.data_dir / "studies"
+        self._runs_cache: dict[str, tuple[tuple, pa.Table]] = {}
+        self._runs_reading: dict[str, threading.Lock] = {}
+        self._runs_lock = threading.Lock()
 
     # ---------------------------------------------------------------- paths and ids
     def study_dir(self, study_id: str) -> Path:
@@ -210,9 +216,32 @@ class Store:
         return data.to_pandas()
 
     def read_runs(self, study_id: str, columns: list[str] | None = None) -> pd.DataFrame:
-        """The runs table of a study (one row per finished run)."""
+        """The runs table of a study (one row per finished run). The table read last for the
+        same part files is reused (a few studies are kept): status pages and downloads read
+        it far more often than a running study adds a part."""
         self.read(study_id)
-        return self._read_table(study_id, "runs", columns)
+        if columns is not None:
+            return self._read_table(study_id, "runs", columns)
+        parts = self.parts(study_id, "runs")
+        if not parts:
+            return self._read_table(study_id, "runs")
+        key = tuple((p.name, st.st_mtime_ns, st.st_size) for p in parts for st in [p.stat()])
+        with self._runs_lock:
+            reading = self._runs_reading.setdefault(study_id, threading.Lock())
+        with reading:  # one reader per study: the others wait for its table
+            with self._runs_lock:
+                hit = self._runs_cache.get(study_id)
+            if hit is not None and hit[0] == key:
+                return hit[1].to_pandas()
+            table = pq.ParquetDataset(parts).read()
+            with self._runs_lock:
+                self._runs_cache.pop(study_id, None)
+                self._runs_cache[study_id] = (key, table)
+                while len(self._runs_cache) > RUNS_CACHE_STUDIES:
+                    gone = next(iter(self._runs_cache))
+                    self._runs_cache.pop(gone)
+                    self._runs_reading.pop(gone, None)
+        return table.to_pandas()
 
     def done_runs(self, study_id: str) -> pd.DataFrame:
         """``run_id`` and ``status`` of the finished runs."""

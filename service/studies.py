@@ -3,6 +3,12 @@
 Routes and the CLI call these methods; they raise :mod:`service.errors` for the caller's
 mistakes. One :class:`StudyService` owns the store, the Dask executor and a thread per
 running study.
+
+Every way a study gets started (a new submission, a repeated one, a resume on start) goes
+through :meth:`StudyService._admit`, which decides and starts under one lock: however many
+requests carry the same study at once, it is stored once and runs in one job. A job removes
+itself when its thread ends, so a finished study holds no memory here. Deleting and closing
+never wait on Dask longer than ``BELTSTUDY_DASK_TIMEOUT_S``.
 """
 
 from __future__ import annotations
@@ -17,7 +23,7 @@ import pandas as pd
 
 import engine
 from service import results
-from service.errors import Invalid, NotFound
+from service.errors import Conflict, Invalid, NotFound
 from service.executor import Executor
 from service.jobs import StudyJob
 from service.settings import Settings
@@ -38,18 +44,22 @@ class StudyService:
         self.settings = settings
         self.store = Store(settings.data_dir)
         self.executor = executor or Executor(settings)
-        self._jobs: dict[str, StudyJob] = {}
+        self._jobs: dict[str, StudyJob] = {}  # studies with a job thread not yet ended
+        self._deleting: set[str] = set()
+        self._closing = False
         self._lock = threading.Lock()
         self.started_at = time.time()
 
     # ---------------------------------------------------------------- lifecycle
     def start(self) -> None:
         """Resume unfinished studies; start (and warm) Dask when configured to."""
+        with self._lock:
+            self._closing = False
         resumed = 0
         for doc in self.store.list_studies():
             if doc.get("state") in ACTIVE_STATES:
                 try:
-                    self._launch(self._load(doc))
+                    self._admit(self._load(doc))
                     resumed += 1
                 except Exception as exc:  # a study that cannot be rebuilt is marked failed
                     log.warning("cannot resume study %s: %s", doc.get("id"), exc)
@@ -60,13 +70,19 @@ class StudyService:
             self.executor.start_background()
 
     def close(self) -> None:
-        """Stop the study threads (studies stay resumable) and the Dask client."""
+        """Stop the study threads (studies stay resumable) and the Dask client; waits at most
+        ``dask_timeout_s`` for the threads, then for the client and the cluster."""
         with self._lock:
+            self._closing = True
             jobs = list(self._jobs.values())
         for job in jobs:
             job.stop()
+        deadline = time.monotonic() + self.settings.dask_timeout_s
         for job in jobs:
-            job.join(timeout=10)
+            job.join(timeout=max(0.0, deadline - time.monotonic()))
+        left = [job.study.id for job in jobs if job.is_alive()]
+        if left:
+            log.warning("study threads still busy at shutdown: %s", ", ".join(left))
         self.executor.close()
 
     def _load(self, doc: dict) -> ResolvedStudy:
@@ -77,15 +93,54 @@ class StudyService:
             )
         return study_from_json(doc["study"], doc["id"])
 
-    def _launch(self, study: ResolvedStudy) -> StudyJob:
+    def _admit(self, study: ResolvedStudy) -> bool:
+        """Store ``study`` unless it is stored, and run it unless it is finished or running:
+        the one way a study starts, decided and done under the lock. Returns whether it was
+        new to the store."""
         with self._lock:
-            job = self._jobs.get(study.id)
-            if job is not None and job.is_alive():
-                return job
-            job = StudyJob(study, self.store, self.executor, self.settings)
-            self._jobs[study.id] = job
-        job.start()
-        return job
+            if study.id in self._deleting:
+                raise Conflict(
+                    f"study '{study.id}' is being deleted; submit it again when that is done"
+                )
+            created = not self.store.exists(study.id)
+            if created:
+                self.store.create(study.id, self._new_doc(study))
+                active = True
+            else:
+                active = self.store.read(study.id).get("state") in ACTIVE_STATES
+            if active and study.id not in self._jobs and not self._closing:
+                # a study interrupted earlier (`beltstudy run` stopped) carries on; during a
+                # shutdown it stays queued in the store and starts with the service
+                job = StudyJob(study, self.store, self.executor, self.settings, self._job_ended)
+                self._jobs[study.id] = job
+                job.start()
+        return created
+
+    def _job_ended(self, job: StudyJob) -> None:
+        """Called by a job's thread as it ends: forget it (and its resolved runs)."""
+        with self._lock:
+            if self._jobs.get(job.study.id) is job:
+                del self._jobs[job.study.id]
+
+    @staticmethod
+    def _new_doc(study: ResolvedStudy) -> dict:
+        now = time.time()
+        return {
+            "id": study.id,
+            "name": study.name,
+            "state": "queued",
+            "total": study.total,
+            "done": 0,
+            "failed": 0,
+            "elapsed_s": 0.0,
+            "message": "",
+            "created_at": now,
+            "updated_at": now,
+            "started_at": None,
+            "finished_at": None,
+            "engine_version": study.engine_version,
+            "study": study.to_json(),
+        }
 
     # ---------------------------------------------------------------- submit
     def submit(
@@ -103,37 +158,14 @@ class StudyService:
             studies_root=self.settings.studies_dir if confine else None,
             max_runs=self.settings.max_runs,
         )
-        with self._lock:
-            created = not self.store.exists(study.id)
-            if created:
-                now = time.time()
-                self.store.create(
-                    study.id,
-                    {
-                        "id": study.id,
-                        "name": study.name,
-                        "state": "queued",
-                        "total": study.total,
-                        "done": 0,
-                        "failed": 0,
-                        "elapsed_s": 0.0,
-                        "message": "",
-                        "created_at": now,
-                        "updated_at": now,
-                        "started_at": None,
-                        "finished_at": None,
-                        "engine_version": study.engine_version,
-                        "study": study.to_json(),
-                    },
-                )
-        if created:
-            self._launch(study)
-            return self.status(study.id), True
-        existing = self.store.read(study.id)
-        job = self._jobs.get(study.id)
-        if existing.get("state") in ACTIVE_STATES and not (job and job.is_alive()):
-            self._launch(study)  # interrupted earlier (e.g. `beltstudy run` stopped): carry on
-        return self.status(study.id), False
+        created = self._admit(study)
+        return self.status(study.id), created
+
+    def check(self, data: Any) -> ResolvedStudy:
+        """Validate a POSTed study as :meth:`submit` would, without storing or running it."""
+        return resolve_study(
+            data, studies_root=self.settings.studies_dir, max_runs=self.settings.max_runs
+        )
 
     # ---------------------------------------------------------------- reading
     def status(self, study_id: str) -> dict:
@@ -175,6 +207,11 @@ class StudyService:
         with self._lock:
             return sum(1 for j in self._jobs.values() if j.is_alive())
 
+    def job_count(self) -> int:
+        """Jobs held in memory (a job leaves when its thread ends)."""
+        with self._lock:
+            return len(self._jobs)
+
     def list(self) -> list[dict]:
         return [self.status(doc["id"]) for doc in self.store.list_studies()]
 
@@ -210,14 +247,24 @@ class StudyService:
 
     # ---------------------------------------------------------------- delete
     def delete(self, study_id: str) -> dict:
-        """Cancel a study's tasks and delete its files."""
+        """Cancel a study's tasks and delete its files; waits at most ``dask_timeout_s`` for
+        its job to leave (the job never waits on Dask: its tasks are released, not awaited)."""
         self.store.read(study_id)
         with self._lock:
+            if study_id in self._deleting:
+                raise Conflict(f"study '{study_id}' is already being deleted")
+            self._deleting.add(study_id)
             job = self._jobs.pop(study_id, None)
-        if job is not None:
-            job.cancel()
-            job.join(timeout=30)
-        self.store.delete(study_id)
+        try:
+            if job is not None:
+                job.cancel()
+                job.join(timeout=self.settings.dask_timeout_s)
+                if job.is_alive():
+                    log.warning("study %s: its job is still busy; deleting its files", study_id)
+            self.store.delete(study_id)
+        finally:
+            with self._lock:
+                self._deleting.discard(study_id)
         return {"id": study_id, "state": "cancelled", "deleted": True}
 
     # ---------------------------------------------------------------- waiting

@@ -36,7 +36,6 @@ from engine.conveyor import (
     InputError,
     Scenario,
     format_validation_error,
-    load_mapping,
     parse_conveyor,
     parse_scenario,
 )
@@ -44,6 +43,7 @@ from engine.friction import get_model
 from service.axes import Target, axis_column, get_path, resolve_axis, set_path
 from service.basis import Case, DesignIn, apply_sizes, design_scenario, has_auto, size_design
 from service.errors import Invalid, TooLarge
+from service.parse import check_tree, load_mapping
 
 __all__ = [
     "RangeSpec",
@@ -91,6 +91,8 @@ class RangeSpec(BaseModel):
         if self.step == 0 or not math.isfinite(self.step):
             raise ValueError("step must be a non-zero number")
         span = (self.stop - self.start) / self.step
+        if not math.isfinite(span):  # start, stop or step beyond float range
+            return 2**63
         if span < -1e-9:
             raise ValueError(
                 f"step {self.step:g} does not lead from start {self.start:g} to stop {self.stop:g}"
@@ -289,6 +291,8 @@ def _err(exc: Exception) -> str:
 
 def _resolve_conveyor_path(ref: str, base_dir: Path | None, root: Path | None) -> tuple[dict, str]:
     """Load a conveyor given by path. With ``root`` (the service), stay inside it."""
+    if not ref.isprintable():
+        raise Invalid(f"conveyor: path {ref!r} contains control characters")
     rel = Path(ref)
     if root is not None:
         if rel.is_absolute() or ".." in rel.parts or "\\" in ref or ref.startswith("~"):
@@ -306,10 +310,7 @@ def _resolve_conveyor_path(ref: str, base_dir: Path | None, root: Path | None) -
         path = (base_dir or Path.cwd()) / rel
         if not path.is_file():
             raise Invalid(f"conveyor: file '{path}' not found")
-    try:
-        return load_mapping(path), ref
-    except InputError as exc:
-        raise Invalid(f"conveyor: {ref}: {_err(exc).split(': ', 1)[-1]}") from None
+    return load_mapping(path, what=f"conveyor: {ref}"), ref
 
 
 def _axis_values(name: str, spec: AxisValues, max_runs: int, where: str = "grid") -> list[Any]:
@@ -406,6 +407,7 @@ def resolve_study(
     """
     if not isinstance(data, dict):
         raise Invalid("study: expected a mapping with name, conveyor, scenario, grid")
+    check_tree(data)  # depth, size, finite numbers, JSON types: before anything is expanded
     try:
         study = StudyIn.model_validate(data)
     except ValidationError as exc:
@@ -835,11 +837,7 @@ def study_from_json(doc: dict, study_id: str) -> ResolvedStudy:
 def load_study_file(path: str | Path, *, max_runs: int = 20_000) -> ResolvedStudy:
     """Read and resolve a study file (YAML or JSON); the conveyor path is relative to it."""
     p = Path(path)
-    try:
-        data = load_mapping(p)
-    except InputError as exc:
-        raise Invalid(_err(exc)) from None
-    return resolve_study(data, base_dir=p.parent, max_runs=max_runs)
+    return resolve_study(load_mapping(p), base_dir=p.parent, max_runs=max_runs)
 
 
 def inline_conveyor(data: dict, base_dir: Path) -> dict:

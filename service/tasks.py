@@ -12,6 +12,7 @@ import time
 from typing import Any
 
 import pyarrow as pa
+from distributed import WorkerPlugin
 
 from service.schema import (
     SURFACE_COLUMNS,
@@ -22,7 +23,15 @@ from service.schema import (
     timeseries_schema,
 )
 
-__all__ = ["run_batch", "run_spec", "warm_up", "TINY_CONVEYOR", "TINY_SCENARIO"]
+__all__ = [
+    "run_batch",
+    "run_spec",
+    "warm_up",
+    "lower_priority",
+    "LowerPriority",
+    "TINY_CONVEYOR",
+    "TINY_SCENARIO",
+]
 
 #: A 60 m conveyor with a handful of elements: compiles every code path in well under a second
 #: once numba's cache is warm.
@@ -190,3 +199,26 @@ def warm_up() -> dict:
         "seconds": time.perf_counter() - t0,
         "errors": errors,
     }
+
+
+def lower_priority(niceness: int) -> int:
+    """Run this worker process at ``niceness`` (absolute, so calling it twice is harmless);
+    returns the niceness in force. The LocalCluster's workers share the machine with the API:
+    at a lower priority they leave it the CPU it needs to answer at once."""
+    try:
+        os.setpriority(os.PRIO_PROCESS, 0, niceness)
+        return os.getpriority(os.PRIO_PROCESS, 0)
+    except (AttributeError, OSError):  # not on this platform, or not allowed
+        return 0
+
+
+class LowerPriority(WorkerPlugin):
+    """A worker plugin: every worker, restarted ones too, at :func:`lower_priority`."""
+
+    name = "beltstudy-lower-priority"
+
+    def __init__(self, niceness: int):
+        self.niceness = niceness
+
+    def setup(self, worker) -> None:
+        lower_priority(self.niceness)

@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import dataclasses
 import difflib
+import typing
 from collections.abc import Callable
 from dataclasses import dataclass
 from typing import Any
@@ -36,6 +37,11 @@ class FrictionModel:
                     f"valid: {', '.join(fields)}"
                 )
             if value is None:
+                if type(None) not in typing.get_args(typing.get_type_hints(self.params_class)[key]):
+                    raise InputError(
+                        f"models.{self.name}.{key}: expected a number, got null (only "
+                        "parameters whose default is computed may be null)"
+                    )
                 clean[key] = None
                 continue
             try:

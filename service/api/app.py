@@ -5,19 +5,31 @@
 mapping :class:`~service.errors.ServiceError` to JSON, and the OpenAPI schema of the study
 body. Further pages (``service/web/``) are a router module included with one line in
 :data:`ROUTERS`.
+
+Every error is JSON ``{"error", "message"}``: the service's own errors, request validation,
+unknown routes and methods (405 with the ``Allow`` header of every method of that path), and,
+through :class:`ErrorGuard`, any exception nothing else caught: a logged 500 whose message
+gives a reference to the log line and never the exception's text.
 """
 
 from __future__ import annotations
 
+import json
 import logging
+import uuid
 from contextlib import asynccontextmanager
 
-from fastapi import FastAPI, Request
+from fastapi import Depends, FastAPI, Request
 from fastapi.exceptions import RequestValidationError
-from fastapi.responses import JSONResponse
+from fastapi.openapi.docs import get_swagger_ui_html
+from fastapi.responses import HTMLResponse, JSONResponse
+from starlette.exceptions import HTTPException as StarletteHTTPException
+from starlette.routing import Match
 
 import engine
 from service.errors import ServiceError
+from service.openapi import BodyChecker
+from service.openapi import install as install_openapi
 from service.settings import Settings, get_settings
 from service.studies import StudyService
 
@@ -51,33 +63,75 @@ def _install_handlers(app: FastAPI) -> None:
     async def request_invalid(request: Request, exc: RequestValidationError) -> JSONResponse:
         return _error("invalid", _validation_message(exc), 422)
 
-    @app.exception_handler(Exception)
-    async def unexpected(request: Request, exc: Exception) -> JSONResponse:
-        log.exception("unhandled error on %s %s", request.method, request.url.path)
-        return _error("internal", f"{type(exc).__name__}: {exc}", 500)
+    @app.exception_handler(StarletteHTTPException)
+    async def http_error(request: Request, exc: StarletteHTTPException) -> JSONResponse:
+        path, method = request.url.path, request.method
+        if exc.status_code == 404:
+            return _error("not_found", f"no route {method} {path}", 404)
+        if exc.status_code == 405:
+            allowed = _allowed_methods(request)
+            return _error(
+                "method_not_allowed",
+                f"{method} is not allowed on {path}; allowed: {', '.join(allowed)}",
+                405,
+                {"Allow": ", ".join(allowed)},
+            )
+        return _error("error", str(exc.detail), exc.status_code, exc.headers)
 
 
-def _install_openapi(app: FastAPI) -> None:
-    """Add the study body schema (StudyDoc and the conveyor/scenario models) to components."""
-    from fastapi.openapi.utils import get_openapi
+_METHODS = ("GET", "HEAD", "POST", "PUT", "PATCH", "DELETE")
 
-    from service.study import StudyDoc
 
-    def openapi() -> dict:
-        if app.openapi_schema:
-            return app.openapi_schema
-        schema = get_openapi(
-            title=app.title, version=app.version, description=app.description, routes=app.routes
-        )
-        doc = StudyDoc.model_json_schema(ref_template="#/components/schemas/{model}")
-        defs = doc.pop("$defs", {})
-        components = schema.setdefault("components", {}).setdefault("schemas", {})
-        components.update(defs)
-        components["StudyDoc"] = doc
-        app.openapi_schema = schema
-        return schema
+def _allowed_methods(request: Request) -> list[str]:
+    """The methods some route answers on the request's path (for ``Allow``)."""
+    routes = request.app.router.routes
+    return [
+        method
+        for method in _METHODS
+        if any(r.matches({**request.scope, "method": method})[0] == Match.FULL for r in routes)
+    ]
 
-    app.openapi = openapi
+
+class ErrorGuard:
+    """ASGI middleware: an exception that reaches it becomes a logged 500 ``{error,
+    message}`` with a reference to the log line, never the exception's text; the connection
+    stays usable. (After the response has started, nothing can be sent: it re-raises.)"""
+
+    def __init__(self, app):
+        self.app = app
+
+    async def __call__(self, scope, receive, send):
+        if scope["type"] != "http":
+            await self.app(scope, receive, send)
+            return
+        started = False
+
+        async def watch(message):
+            nonlocal started
+            if message["type"] == "http.response.start":
+                started = True
+            await send(message)
+
+        try:
+            await self.app(scope, receive, watch)
+        except Exception:
+            ref = uuid.uuid4().hex[:12]
+            log.exception("unexpected error %s on %s %s", ref, scope.get("method"),
+                          scope.get("path"))
+            if started:
+                raise
+            body = json.dumps({
+                "error": "internal",
+                "message": f"internal error (reference {ref} in the service log); the request "
+                "was not completed",
+            }).encode()
+            await send({
+                "type": "http.response.start",
+                "status": 500,
+                "headers": [(b"content-type", b"application/json"),
+                            (b"content-length", str(len(body)).encode())],
+            })
+            await send({"type": "http.response.body", "body": body})
 
 
 def create_app(settings: Settings | None = None, service: StudyService | None = None) -> FastAPI:
@@ -101,14 +155,33 @@ def create_app(settings: Settings | None = None, service: StudyService | None = 
         description="Parameter studies of belt conveyors on Dask: submit a grid, read "
         "every run back as Parquet. Errors are JSON {error, message}.",
         lifespan=lifespan,
+        openapi_url=None,  # served below, behind the token like the rest of the API
+        docs_url=None,
+        redoc_url=None,
     )
     app.state.service = service
     _install_handlers(app)
+    app.add_middleware(ErrorGuard)
     for name in ROUTERS:
         module = importlib.import_module(name)
         for attr in ("health_router", "router"):
             router = getattr(module, attr, None)
             if router is not None:
                 app.include_router(router)
-    _install_openapi(app)
+    app.state.body_checker = BodyChecker(settings.studies_dir)
+    install_openapi(app, app.state.body_checker)
+    _install_docs(app)
     return app
+
+
+def _install_docs(app: FastAPI) -> None:
+    """``/openapi.json`` and ``/docs`` (Swagger UI), both needing the token when one is set."""
+    from service.api.deps import require_token
+
+    @app.get("/openapi.json", include_in_schema=False, dependencies=[Depends(require_token)])
+    def openapi_json() -> JSONResponse:
+        return JSONResponse(app.openapi())
+
+    @app.get("/docs", include_in_schema=False, dependencies=[Depends(require_token)])
+    def docs() -> HTMLResponse:
+        return get_swagger_ui_html(openapi_url="/openapi.json", title="beltstudy API")

@@ -2,17 +2,17 @@
 
 from __future__ import annotations
 
-import json
 from typing import Literal
 
-import yaml
 from fastapi import APIRouter, Depends, Query, Request, Response
 from fastapi.concurrency import run_in_threadpool
 
 from service import results
 from service.api.deps import ERROR_RESPONSES, _error, get_service, require_token
 from service.api.models import CompareOut, Deleted, RunDetail, RunsPage, StudyList, StudyStatus
-from service.errors import Invalid, TooLarge
+from service.errors import TooLarge
+from service.openapi import check_body
+from service.parse import parse_body
 from service.studies import StudyService
 
 __all__ = ["router", "STUDY_BODY_SCHEMA_REF"]
@@ -25,7 +25,6 @@ router = APIRouter(
 )
 
 STUDY_BODY_SCHEMA_REF = {"$ref": "#/components/schemas/StudyDoc"}
-YAML_TYPES = ("application/yaml", "application/x-yaml", "text/yaml")
 PARQUET_TYPE = "application/vnd.apache.parquet"
 
 
@@ -48,30 +47,6 @@ async def _read_body(request: Request, limit: int) -> bytes:
             raise TooLarge(f"body: more than {limit} bytes")
         chunks.append(chunk)
     return b"".join(chunks)
-
-
-def _parse_body(body: bytes, content_type: str) -> object:
-    if not body.strip():
-        raise Invalid("body: empty; send a study as JSON or YAML")
-    try:
-        text = body.decode("utf-8")
-    except UnicodeDecodeError:
-        raise Invalid("body: not UTF-8 text") from None
-    if any(t in content_type for t in YAML_TYPES):
-        try:
-            return yaml.safe_load(text)
-        except yaml.YAMLError as exc:
-            mark = getattr(exc, "problem_mark", None)
-            where = f" at line {mark.line + 1}, column {mark.column + 1}" if mark else ""
-            problem = getattr(exc, "problem", None) or str(exc).splitlines()[0]
-            raise Invalid(f"body: not valid YAML{where}: {problem}") from None
-    try:
-        return json.loads(text)
-    except json.JSONDecodeError as exc:
-        raise Invalid(
-            f"body: not valid JSON at line {exc.lineno}, column {exc.colno}: {exc.msg} "
-            "(send YAML with Content-Type: application/yaml)"
-        ) from None
 
 
 @router.post(
@@ -97,7 +72,10 @@ async def submit_study(
     request: Request, response: Response, service: StudyService = Depends(get_service)
 ) -> dict:
     body = await _read_body(request, service.settings.max_body_bytes)
-    data = _parse_body(body, request.headers.get("content-type", "").lower())
+    # parsing (within its budget) and resolving run in a worker thread: the event loop,
+    # and so /health, keeps answering meanwhile
+    data = await run_in_threadpool(parse_body, body, request.headers.get("content-type", ""))
+    await run_in_threadpool(check_body, request.app.state.body_checker, data, service.check)
     status, created = await run_in_threadpool(service.submit, data)
     response.status_code = 202 if created else 200
     response.headers["Location"] = f"/studies/{status['id']}"
@@ -184,7 +162,7 @@ def compare(
     ),
     service: StudyService = Depends(get_service),
 ) -> dict:
-    names = [m.strip() for m in metrics.split(",") if m.strip()]
+    names = metrics.split(",") if metrics else []
     return service.compare(study_id, baseline, candidate, names)
 
 

@@ -25,7 +25,9 @@ def register(sub) -> None:
         help="run the study service (REST API, Dask executor)",
         description="Run the study service; OpenAPI docs at /docs.",
     )
-    p.add_argument("--host", default="127.0.0.1", help="address to listen on")
+    p.add_argument(
+        "--host", default=None, help="address to listen on (default: BELTSTUDY_HOST, 127.0.0.1)"
+    )
     p.add_argument("--port", type=int, default=8000, help="port to listen on")
     p.set_defaults(func=cmd_serve)
 
@@ -104,7 +106,7 @@ def _client(args):
 
 def _study_body(path: str) -> dict:
     """A study file as a POST body: the conveyor file inlined, so the server needs no files."""
-    from engine.conveyor import load_mapping
+    from service.parse import load_mapping
     from service.study import inline_conveyor
 
     p = Path(path)
@@ -112,12 +114,25 @@ def _study_body(path: str) -> dict:
 
 
 # ------------------------------------------------------------------------------ commands
+#: Longest wait for requests still being answered when the service is stopped [s].
+GRACEFUL_SHUTDOWN_S = 5
+
+
 def cmd_serve(args) -> int:
     import uvicorn
 
     from service.api.app import create_app
 
-    uvicorn.run(create_app(_settings()), host=args.host, port=args.port, log_level="info")
+    settings = _settings()
+    host = args.host or settings.host
+    app = create_app(settings.model_copy(update={"host": host}))
+    uvicorn.run(
+        app,
+        host=host,
+        port=args.port,
+        log_level="info",
+        timeout_graceful_shutdown=GRACEFUL_SHUTDOWN_S,
+    )
     return 0
 
 
@@ -164,7 +179,7 @@ def cmd_run(args) -> int:
     settings = _settings()
     service = StudyService(settings.model_copy(update={"warm_start": False}))
     p = Path(args.study)
-    from engine.conveyor import load_mapping
+    from service.parse import load_mapping
 
     data = load_mapping(p)
     try:

@@ -7,7 +7,7 @@ import math
 import pandas as pd
 import pytest
 
-from service.errors import Invalid
+from service.errors import Invalid, NotFound
 from service.results import apply_filters, compare, row_to_json
 
 
@@ -57,22 +57,32 @@ def test_compare_pairs_runs_differing_only_in_model():
 
 def test_compare_refuses_unknown_models_and_metrics():
     runs = _runs()
-    with pytest.raises(Invalid, match="candidate: model 'visco' is not in this study"):
+    with pytest.raises(NotFound, match="candidate: model 'visco' is not in this study"):
         compare(runs, ["friction_model"], "cema", "visco", ["power_kw"])
     with pytest.raises(Invalid, match="metrics: unknown metric 'powr'"):
         compare(runs, ["friction_model"], "cema", "nonlin", ["powr"])
+
+
+def test_compare_refuses_a_metric_twice_and_an_axis_as_metric():
+    runs = _runs()
+    axes = ["friction_model", "temperature_c", "load"]
+    with pytest.raises(Invalid, match="metrics: 'power_kw' is listed twice"):
+        compare(runs, axes, "cema", "nonlin", ["power_kw", "power_kw"])
+    with pytest.raises(Invalid, match="metrics: 'temperature_c' is an axis of this study"):
+        compare(runs, axes, "cema", "nonlin", ["temperature_c"])
 
 
 def test_filters_compare_numbers_as_numbers():
     runs = _runs()
     assert len(apply_filters(runs, ["temperature_c=20"])) == 4
     assert len(apply_filters(runs, ["load=full", "friction_model=cema"])) == 2
-    with pytest.raises(Invalid, match="filter: unknown column 'nope'"):
+    with pytest.raises(NotFound, match="this study has no column 'nope'"):
         apply_filters(runs, ["nope=1"])
     with pytest.raises(Invalid, match="not column=value"):
         apply_filters(runs, ["temperature_c"])
-    with pytest.raises(Invalid, match="temperature_c"):
-        apply_filters(runs, ["temperature_c=warm"])
+    # a value no number can equal keeps no row
+    assert len(apply_filters(runs, ["temperature_c=warm"])) == 0
+    assert len(apply_filters(runs, ["temperature_c=nan"])) == 0
 
 
 def test_rows_fold_parts_into_components_and_nan_into_null():

@@ -37,6 +37,7 @@ def test_submit_poll_and_read_parquet(live_service, make_study):
         "error": "",
         "scheduler": "local",
         "workers": 2,
+        "dashboard": None,
     }
     body = _dynamic_study(
         make_study,

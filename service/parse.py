@@ -1,0 +1,438 @@
+"""Reading studies at the door: YAML or JSON text within a size and depth budget.
+
+A request body, a study file or a conveyor file is parsed with its limits checked while it is
+parsed, before anything is expanded, copied or validated:
+
+* nesting at most :data:`MAX_DEPTH` levels (YAML: counted while the parser builds the node
+  graph, so a deep body is refused where it gets too deep; JSON: the decoder's own recursion
+  guard, then the same limit on the result);
+* at most :data:`MAX_VALUES` values and :data:`MAX_TEXT` characters of text once YAML aliases
+  are expanded, counted on the alias graph with every anchor counted once, so an alias bomb
+  of a few hundred bytes is refused without being expanded; an alias inside its own anchor
+  (a cycle) is refused;
+* every key once per mapping (the error names the key);
+* JSON types only: text, numbers, true/false, null, lists and mappings with text keys (a YAML
+  date stays text; ``!!binary``, ``!!set`` and the other tags are refused);
+* numbers finite (no NaN or infinity) and of at most :data:`MAX_DIGITS` digits.
+
+:func:`check_tree` checks the same limits on data built any other way (a Python mapping passed
+to :func:`service.study.resolve_study`); its errors name the path of the value
+(``grid.temperature_c.1: ...``). Problems raise :class:`~service.errors.Invalid` (422), a body
+over the size budget :class:`~service.errors.TooLarge` (413).
+"""
+
+from __future__ import annotations
+
+import json
+import math
+from pathlib import Path
+from typing import Any
+
+import yaml
+
+from service.errors import Invalid, TooLarge
+
+__all__ = [
+    "MAX_DEPTH",
+    "MAX_VALUES",
+    "MAX_TEXT",
+    "MAX_DIGITS",
+    "YAML_TYPES",
+    "parse_body",
+    "loads",
+    "load_mapping",
+    "check_tree",
+    "tree_size",
+]
+
+#: Deepest nesting of lists and mappings (a study needs about 8).
+MAX_DEPTH = 32
+#: Most values (scalars, lists, mappings) in one document once aliases are expanded.
+MAX_VALUES = 200_000
+#: Most characters of text (keys and values) in one document once aliases are expanded.
+MAX_TEXT = 4_000_000
+#: Most digits of an integer (a float holds no more than 309).
+MAX_DIGITS = 309
+#: Content types read as YAML; everything else is read as JSON.
+YAML_TYPES = ("application/yaml", "application/x-yaml", "text/yaml")
+
+
+class _Huge(str):
+    """An integer literal with more than :data:`MAX_DIGITS` digits (reported with its path)."""
+
+
+class _Duplicate(dict):
+    """A JSON object that had a key twice (reported with its path)."""
+
+    duplicate: str = ""
+
+
+# ------------------------------------------------------------------------------------ YAML
+_MERGE = "tag:yaml.org,2002:merge"
+
+
+class _Constructor(yaml.constructor.SafeConstructor):
+    """PyYAML's safe constructor for JSON types only: dates stay text, other tags refused,
+    integers too long for a float kept as a marker that :func:`check_tree` reports."""
+
+    what = "body"
+
+    def construct_yaml_int(self, node):
+        text = str(node.value)
+        if sum(c.isdigit() for c in text) > MAX_DIGITS:
+            return _Huge(text)
+        return super().construct_yaml_int(node)
+
+    def refuse_tag(self, node):
+        tag = node.tag.replace("tag:yaml.org,2002:", "!!")
+        raise Invalid(
+            f"{self.what}: YAML tag {tag} at line {node.start_mark.line + 1} is not allowed; "
+            "use plain text, numbers, lists and mappings"
+        )
+
+
+_Constructor.yaml_constructors = dict(yaml.constructor.SafeConstructor.yaml_constructors)
+_Constructor.add_constructor("tag:yaml.org,2002:int", _Constructor.construct_yaml_int)
+_Constructor.add_constructor(
+    "tag:yaml.org,2002:timestamp", yaml.constructor.SafeConstructor.construct_yaml_str
+)
+for _tag in ("binary", "set", "omap", "pairs"):
+    _Constructor.add_constructor(f"tag:yaml.org,2002:{_tag}", _Constructor.refuse_tag)
+
+
+class _PyLoader(
+    yaml.reader.Reader,
+    yaml.scanner.Scanner,
+    yaml.parser.Parser,
+    yaml.composer.Composer,
+    _Constructor,
+    yaml.resolver.Resolver,
+):
+    """PyYAML's pure-Python parser with the constructor above."""
+
+    def __init__(self, stream: str, what: str):
+        yaml.reader.Reader.__init__(self, stream)
+        yaml.scanner.Scanner.__init__(self)
+        yaml.parser.Parser.__init__(self)
+        yaml.composer.Composer.__init__(self)
+        _Constructor.__init__(self)
+        yaml.resolver.Resolver.__init__(self)
+        self.what = what
+
+
+if yaml.__with_libyaml__:
+    from yaml.cyaml import CParser
+
+    class _CLoader(CParser, _Constructor, yaml.resolver.Resolver):
+        """libyaml's parser and composer (several times faster) with the constructor above."""
+
+        def __init__(self, stream: str, what: str):
+            CParser.__init__(self, stream)
+            _Constructor.__init__(self)
+            yaml.resolver.Resolver.__init__(self)
+            self.what = what
+
+    _Loader: type = _CLoader
+else:  # PyYAML built without libyaml
+    _Loader = _PyLoader
+
+
+class _Frame:
+    """A list or mapping still open while the parser's events stream past."""
+
+    __slots__ = ("path", "anchor", "mapping", "values", "text", "items", "key", "keys")
+
+    def __init__(self, path: str, anchor: str | None, mapping: bool):
+        self.path, self.anchor, self.mapping = path, anchor, mapping
+        self.values, self.text = 1, 0
+        self.items = 0  # children so far (a mapping's keys and values both count)
+        self.key = "?"  # label of the value that comes next (mappings)
+        self.keys: dict[tuple[str, str], int] = {}  # (tag, text) of each key -> its line
+
+    def child_path(self) -> str:
+        label = self.key if self.mapping else str(self.items)
+        return f"{self.path}.{label}" if self.path else label
+
+
+def _check_events(loader, what: str) -> None:
+    """One pass over the parser's events, before anything is composed or constructed:
+    nesting depth; values and characters with every alias expanded (each anchor's size is
+    recorded once, so this costs what the text costs); aliases inside their own anchor;
+    duplicate anchors and keys."""
+    top = _Frame("", None, False)  # holds the document
+    stack = [top]
+    sizes: dict[str, tuple[int, int]] = {}  # closed anchors -> (values, text)
+    open_anchors: set[str] = set()
+
+    def take(values: int, text: int) -> None:
+        frame = stack[-1]
+        frame.values += values
+        frame.text += text
+        frame.items += 1
+        if frame.values > MAX_VALUES or frame.text > MAX_TEXT:
+            raise TooLarge(
+                f"{frame.path or what}: more than {MAX_VALUES} values or {MAX_TEXT} "
+                "characters (YAML aliases expanded); send a smaller study"
+            )
+
+    def line(event) -> int:
+        return event.start_mark.line + 1
+
+    def anchor(event) -> None:
+        name = event.anchor
+        if name is None:
+            return
+        if name in sizes or name in open_anchors:
+            raise Invalid(f"{what}: anchor &{name} at line {line(event)} is defined twice")
+        open_anchors.add(name)
+
+    while loader.check_event():
+        event = loader.get_event()
+        frame = stack[-1]
+        is_key = frame.mapping and frame.items % 2 == 0
+        if isinstance(event, yaml.ScalarEvent):
+            if is_key:
+                tag = event.tag
+                if tag is None or tag == "!":
+                    tag = loader.resolve(yaml.ScalarNode, event.value, event.implicit)
+                if tag != _MERGE:
+                    first = frame.keys.get((tag, event.value))
+                    if first is not None:
+                        raise Invalid(
+                            f"{frame.path or what}: key '{event.value}' appears twice (lines "
+                            f"{first} and {line(event)}); give each key once"
+                        )
+                    frame.keys[(tag, event.value)] = line(event)
+                frame.key = event.value
+            anchor(event)
+            if event.anchor:
+                open_anchors.discard(event.anchor)
+                sizes[event.anchor] = (1, len(event.value))
+            take(1, len(event.value))
+        elif isinstance(event, yaml.AliasEvent):
+            size = sizes.get(event.anchor)
+            if size is None:
+                where = frame.child_path() if frame is not top else what
+                if event.anchor in open_anchors:
+                    raise Invalid(
+                        f"{where}: the alias *{event.anchor} at line {line(event)} is inside "
+                        "its own anchor; YAML aliases may not form a loop"
+                    )
+                raise Invalid(f"{where}: alias *{event.anchor} at line {line(event)} has no anchor")
+            if is_key:
+                frame.key = f"*{event.anchor}"
+            take(*size)
+        elif isinstance(event, yaml.SequenceStartEvent | yaml.MappingStartEvent):
+            if len(stack) > MAX_DEPTH:
+                raise Invalid(
+                    f"{what}: nested deeper than {MAX_DEPTH} levels at line {line(event)}, "
+                    f"column {event.start_mark.column + 1}"
+                )
+            if is_key:
+                frame.key = "?"
+            anchor(event)
+            path = frame.child_path() if frame is not top else ""
+            stack.append(_Frame(path, event.anchor, isinstance(event, yaml.MappingStartEvent)))
+        elif isinstance(event, yaml.SequenceEndEvent | yaml.MappingEndEvent):
+            done = stack.pop()
+            if done.anchor:
+                open_anchors.discard(done.anchor)
+                sizes[done.anchor] = (done.values, done.text)
+            take(done.values, done.text)
+
+
+def _loads_yaml(text: str, what: str, loader_class: type | None = None) -> Any:
+    """Check the events (:func:`_check_events`), then compose and construct (the composer's
+    recursion is bounded by the depth checked before)."""
+    loader_class = loader_class or _Loader
+    for step in ("check", "load"):
+        loader = loader_class(text, what)
+        try:
+            if step == "check":
+                _check_events(loader, what)
+            else:
+                return loader.get_single_data()
+        except yaml.YAMLError as exc:
+            mark = getattr(exc, "problem_mark", None)
+            where = f" at line {mark.line + 1}, column {mark.column + 1}" if mark else ""
+            problem = getattr(exc, "problem", None) or str(exc).splitlines()[0]
+            if "nesting depth" in problem:  # libyaml's own limit, met while it reads ahead
+                raise Invalid(f"{what}: nested deeper than {MAX_DEPTH} levels{where}") from None
+            raise Invalid(f"{what}: not valid YAML{where}: {problem}") from None
+        finally:
+            loader.dispose()
+    return None
+
+
+# ------------------------------------------------------------------------------------ JSON
+def _json_int(text: str) -> int | _Huge:
+    if len(text) - text.startswith("-") > MAX_DIGITS:
+        return _Huge(text)
+    return int(text)
+
+
+def _json_object(pairs: list[tuple[str, Any]]) -> dict:
+    out = dict(pairs)
+    if len(out) == len(pairs):
+        return out
+    seen: set[str] = set()
+    dup = next(k for k, _ in pairs if k in seen or seen.add(k))
+    marked = _Duplicate(out)
+    marked.duplicate = dup
+    return marked
+
+
+def _loads_json(text: str, what: str) -> Any:
+    try:
+        return json.loads(
+            text,
+            parse_int=_json_int,
+            parse_constant=float,  # NaN / Infinity: refused with their path by check_tree
+            object_pairs_hook=_json_object,
+        )
+    except json.JSONDecodeError as exc:
+        raise Invalid(
+            f"{what}: not valid JSON at line {exc.lineno}, column {exc.colno}: {exc.msg} "
+            "(send YAML with Content-Type: application/yaml)"
+        ) from None
+    except RecursionError:
+        raise Invalid(f"{what}: nested deeper than {MAX_DEPTH} levels") from None
+
+
+# ------------------------------------------------------------------------------------ both
+def loads(text: str, *, yaml_text: bool, what: str = "body") -> Any:
+    """Parse YAML (``yaml_text``) or JSON within the budget; the result passed
+    :func:`check_tree`."""
+    data = _loads_yaml(text, what) if yaml_text else _loads_json(text, what)
+    check_tree(data, what)
+    return data
+
+
+def parse_body(body: bytes, content_type: str) -> Any:
+    """A request body as data: YAML for the YAML content types, JSON otherwise."""
+    if not body.strip():
+        raise Invalid("body: empty; send a study as JSON or YAML")
+    try:
+        text = body.decode("utf-8")
+    except UnicodeDecodeError:
+        raise Invalid("body: not UTF-8 text") from None
+    content_type = content_type.lower()
+    return loads(text, yaml_text=any(t in content_type for t in YAML_TYPES))
+
+
+def load_mapping(path: str | Path, what: str | None = None) -> dict:
+    """A YAML or JSON file (JSON by its ``.json`` suffix) as a mapping, within the budget;
+    errors start with ``what`` (default: the path)."""
+    p = Path(path)
+    what = what or str(p)
+    if not p.is_file():
+        raise Invalid(f"{what}: file not found")
+    try:
+        text = p.read_text(encoding="utf-8")
+    except (OSError, UnicodeDecodeError) as exc:
+        raise Invalid(f"{what}: cannot read it as UTF-8 text ({type(exc).__name__})") from None
+    data = loads(text, yaml_text=p.suffix.lower() != ".json", what=what)
+    if not isinstance(data, dict):
+        raise Invalid(f"{what}: expected a mapping of keys at the top level")
+    return data
+
+
+def _describe(value: float) -> str:
+    if math.isnan(value):
+        return "NaN is not a number"
+    return "infinity is not a finite number"
+
+
+def check_tree(data: Any, what: str = "") -> None:
+    """Check parsed data against the budget and JSON's types; :class:`Invalid` naming the
+    path of the first bad value, :class:`TooLarge` when it is over the size budget.
+
+    Shared lists and mappings (YAML aliases) are walked once and counted every time they are
+    used, so the cost is that of the data as written, not as expanded.
+    """
+    memo: dict[int, tuple[int, int, int]] = {}  # id -> (values, text, height)
+    active: set[int] = set()
+
+    def where(path: str) -> str:
+        return path or what or "(top level)"
+
+    def visit(value: Any, path: str, depth: int) -> tuple[int, int, int]:
+        if isinstance(value, _Huge):
+            raise Invalid(
+                f"{where(path)}: a number with {sum(c.isdigit() for c in value)} digits is out "
+                f"of range (at most {MAX_DIGITS} digits)"
+            )
+        if value is None or isinstance(value, bool | int):
+            return 1, 0, 0
+        if isinstance(value, float):
+            if not math.isfinite(value):
+                raise Invalid(f"{where(path)}: {_describe(value)}; give a finite value")
+            return 1, 0, 0
+        if isinstance(value, str):
+            return 1, len(value), 0
+        if not isinstance(value, dict | list | tuple):
+            raise Invalid(
+                f"{where(path)}: a {type(value).__name__} is not a valid value; use text, "
+                "numbers, true/false, null, lists or mappings"
+            )
+        key = id(value)
+        if key in memo:
+            if depth + memo[key][2] > MAX_DEPTH:  # a shared part used deeper than before
+                raise Invalid(f"{where(path)}: nested deeper than {MAX_DEPTH} levels")
+            return memo[key]
+        if key in active:
+            raise Invalid(f"{where(path)}: contains itself")
+        if depth >= MAX_DEPTH:
+            raise Invalid(f"{where(path)}: nested deeper than {MAX_DEPTH} levels")
+        active.add(key)
+        values, text, height = 1, 0, 0
+        if isinstance(value, dict):
+            if isinstance(value, _Duplicate):
+                raise Invalid(
+                    f"{where(path)}: key '{value.duplicate}' appears twice; give each key once"
+                )
+            items = []
+            for k, v in value.items():
+                if not isinstance(k, str):
+                    raise Invalid(
+                        f"{where(path)}: key {k!r} is not text; quote it ('{k}') or use a "
+                        "field name"
+                    )
+                items.append((f"{path}.{k}" if path else k, v))
+                text += len(k)
+        else:
+            items = [(f"{path}.{i}" if path else str(i), v) for i, v in enumerate(value)]
+        for sub, v in items:
+            n, t, h = visit(v, sub, depth + 1)
+            values, text, height = values + n, text + t, max(height, h + 1)
+        active.discard(key)
+        if height > MAX_DEPTH:
+            raise Invalid(f"{where(path)}: nested deeper than {MAX_DEPTH} levels")
+        if values > MAX_VALUES or text > MAX_TEXT:
+            raise TooLarge(
+                f"{where(path)}: {values} values and {text} characters; the limit is "
+                f"{MAX_VALUES} values and {MAX_TEXT} characters"
+            )
+        memo[key] = (values, text, height)
+        return values, text, height
+
+    visit(data, "", 0)
+
+
+def tree_size(data: Any) -> int:
+    """Values in ``data`` with shared parts counted every time they are used."""
+    memo: dict[int, int] = {}
+
+    def visit(value: Any) -> int:
+        if isinstance(value, dict):
+            children = value.values()
+        elif isinstance(value, list | tuple):
+            children = value
+        else:
+            return 1
+        key = id(value)
+        if key not in memo:
+            memo[key] = 1 + sum(visit(v) for v in children)
+        return memo[key]
+
+    return visit(data)

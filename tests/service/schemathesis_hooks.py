@@ -1,0 +1,161 @@
+"""Schemathesis hooks: keep generated *valid* studies to the rules JSON Schema cannot state.
+
+The study schema (``service.openapi.study_schema``) states everything JSON Schema can; the
+few rules it cannot (``service.openapi.NOT_IN_SCHEMA``: sums, comparisons between fields,
+products over the grid) are written out here, independently of the service's code, and
+generated positive bodies that break one are skipped (negative ones are left alone: they are
+refused anyway). Used by ``tests/service/test_api_schemathesis.py`` and by hand with
+``SCHEMATHESIS_HOOKS=tests.service.schemathesis_hooks``.
+"""
+
+from __future__ import annotations
+
+import math
+from typing import Any
+
+import schemathesis
+
+#: The service's BELTSTUDY_MAX_RUNS in the schemathesis runs.
+MAX_RUNS = 50
+
+_NAMED = {
+    "friction_model": "model",
+    "temperature_c": "scenario.temperature_c",
+    "belt_type": "conveyor.belt.type",
+    "stop_time_s": "scenario.stop.time_s",
+    "load": "scenario.load",
+}
+_CONVEYOR_TOP = {
+    "name", "speed_m_s", "belt", "material", "profile", "idlers", "drives", "takeup",
+    "brakes", "holdback", "sag_limit_pct", "accessories", "safety_factor_min",
+}
+_ALIASES = {"iso5048": "din", "din22101": "din", "viscoah": "visco", "non-lin": "nonlin"}
+
+
+def _target(axis: str) -> str:
+    if axis in _NAMED:
+        return _NAMED[axis]
+    if axis.startswith(("conveyor.", "scenario.")):
+        return axis
+    head = axis.split(".")[0]
+    return f"conveyor.{axis}" if head in _CONVEYOR_TOP else f"scenario.{axis}"
+
+
+def _range_values(spec: dict) -> list[float] | None:
+    start, stop, step = spec["start"], spec["stop"], spec["step"]
+    span = (stop - start) / step
+    if not math.isfinite(span) or span < -1e-9 or span > MAX_RUNS:
+        return None
+    n = int(math.floor(span + 1e-9)) + 1
+    values = [float(f"{start + i * step:.12g}") for i in range(n)]
+    return values if len(set(values)) == len(values) else None
+
+
+def _conveyor_ok(conv: Any) -> bool:
+    if not isinstance(conv, dict):
+        return True  # a file from the studies directory: valid as shipped
+    drives = conv.get("drives", [])
+    if abs(sum(d.get("share", 1.0) for d in drives) - 1.0) > 1e-6:
+        return False
+    return all(abs(p.get("lift_m", 0.0)) < p["length_m"] for p in conv.get("profile", []))
+
+
+def _list_len(conv: Any, name: str) -> int | None:
+    if not isinstance(conv, dict):
+        return None
+    return len(conv.get(name, []))
+
+
+def _study_ok(body: dict) -> bool:
+    conv = body.get("conveyor")
+    if not _conveyor_ok(conv):
+        return False
+    grid = body.get("grid", {})
+    total = 1
+    targets = []
+    for axis, values in grid.items():
+        if isinstance(values, dict):
+            values = _range_values(values)
+            if values is None:
+                return False
+        total *= len(values)
+        target = _target(axis)
+        parts = target.split(".")
+        if len(parts) > 2 and parts[0] == "conveyor" and parts[2].isdigit():
+            size = _list_len(conv, parts[1])
+            if size is None or int(parts[2]) >= size:
+                return False  # the index must exist in an inline base conveyor
+        if parts[0] == "conveyor" and len(parts) > 1 and isinstance(conv, dict):
+            # a conveyor axis changes the conveyor: each variant must stay valid
+            for value in values:
+                variant = _with(conv, parts[1:], value)
+                if variant is None or not _conveyor_ok(variant):
+                    return False
+        targets.append(target)
+        if axis in ("friction_model",):
+            canon = [_ALIASES.get(v, v) for v in values]
+            if len(set(canon)) != len(canon):
+                return False
+    if total > MAX_RUNS:
+        return False
+    for i, a in enumerate(targets):
+        for b in targets[i + 1:]:
+            if a == b or a.startswith(b + ".") or b.startswith(a + "."):
+                return False
+    models = [_ALIASES.get(m, m) for m in body.get("models", {})]
+    if len(set(models)) != len(models):
+        return False
+    if body.get("dynamics", True) and not _scenario_fits(body, grid):
+        return False
+    return True
+
+
+def _with(conv: dict, path: list[str], value: Any) -> dict | None:
+    import copy
+
+    out = copy.deepcopy(conv)
+    node: Any = out
+    for key in path[:-1]:
+        if isinstance(node, list):
+            if not key.isdigit() or int(key) >= len(node):
+                return None
+            node = node[int(key)]
+        else:
+            node = node.setdefault(key, {})
+    if isinstance(node, list):
+        return None
+    node[path[-1]] = value
+    return out
+
+
+def _scenario_fits(body: dict, grid: dict) -> bool:
+    """With dynamics: a brake stop needs brakes and must be longer than the delay of every
+    auto-sized brake; a torque start needs the relative formulation. (Grids with an axis that
+    could change one of these are skipped: too many cases to follow here.)"""
+    touchy = ("scenario.stop", "scenario.start", "scenario.formulation", "conveyor.brakes")
+    if any(_target(a).startswith(touchy) or _target(a) == "scenario" for a in grid):
+        return False
+    scenario = body.get("scenario") or {}
+    if scenario.get("formulation") == "support" and \
+            (scenario.get("start") or {}).get("control") == "torque":
+        return False
+    conv = body.get("conveyor")
+    stop = scenario.get("stop") or {}
+    if stop.get("mode", "coast") != "brake":
+        return True
+    if not isinstance(conv, dict):
+        return False
+    brakes = conv.get("brakes", [])
+    delays = [b.get("delay_s", 0.5) for b in brakes if b.get("force_kn", "auto") == "auto"]
+    return bool(brakes) and (not delays or stop.get("time_s", 30.0) > max(delays))
+
+
+@schemathesis.hook
+def filter_body(ctx, body):
+    """Skip generated valid studies that break a rule outside the schema."""
+    if not isinstance(body, dict) or "grid" not in body or "name" not in body:
+        return True
+    try:
+        return _study_ok(body)
+    except (TypeError, KeyError, AttributeError, ZeroDivisionError, ValueError):
+        return True  # not a well-formed study: it is a negative case, refused anyway
