@@ -12,7 +12,7 @@ from engine.conveyor import Scenario, load_conveyor, parse_conveyor
 from engine.design import RATED_POWER_FACTOR, auto_sizes, moving_mass_kg
 from engine.dynamics import build_system
 from engine.loop import CARRY, G
-from engine.statics import STARTUP_FACTOR, TAKEUP_CONSTRAINTS, solve_steady
+from engine.statics import TAKEUP_CONSTRAINTS, solve_steady
 from tests.conftest import CONVEYORS, hand_conveyor_dict
 from tests.engine.test_statics import startup_t2_by_hand
 
