@@ -26,9 +26,9 @@ FASTMATH = {"nsz", "arcp", "contract", "afn", "reassoc"}
 FASTMATH_RED = FASTMATH | {"nnan", "ninf"}
 #: numba options of every kernel function: error_model="numpy" drops the zero-division
 #: checks that would stop LLVM from vectorising the passes.
-OPTS = dict(cache=True, nogil=True, fastmath=FASTMATH, error_model="numpy")
+OPTS = dict(cache=True, nogil=True, fastmath=FASTMATH, error_model="numpy", _nrt=False)
 #: Options of the reductions.
-OPTS_RED = dict(cache=True, nogil=True, fastmath=FASTMATH_RED, error_model="numpy")
+OPTS_RED = dict(cache=True, nogil=True, fastmath=FASTMATH_RED, error_model="numpy", _nrt=False)
 
 
 # --------------------------------------------------------------------------------------

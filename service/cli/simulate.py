@@ -44,6 +44,31 @@ TRANSIENT_FIELDS = [
     ("dt_s", "time step", "s"),
     ("elements", "elements", "-"),
 ]
+PHASE_FIELDS = [
+    (f"t_{m}_{p}_{k}", label, unit)
+    for p in ("start", "stop")
+    for m, word in (("max", "highest"), ("min", "lowest"))
+    for k, label, unit in (("kn", f"{word} tension, {p}", "kN"), ("at_m", "  at", "m"),
+                           ("time_s", "  at time", "s"))
+]
+SLACK_FIELDS = [
+    ("slack_max_m", "belt length stored as slack (largest)", "m"),
+    ("slack_at_m", "  at", "m"),
+    ("slack_time_s", "  at time", "s"),
+    ("slack_duration_s", "time with a slack span", "s"),
+    ("t_max_pre_slack_kn", "highest tension before slack", "kN"),
+    ("t_max_post_slack_kn", "highest tension after slack", "kN"),
+    ("t_max_post_slack_at_m", "  at", "m"),
+    ("t_max_post_slack_time_s", "  at time", "s"),
+    ("takeup_endstop_speed_m_s", "take-up speed at an end stop", "m/s"),
+]
+#: per drive i: (field, column title, unit)
+DRIVE_COLUMNS = [
+    ("t_tight_kn", "tight", "kN"), ("t_slack_kn", "slack", "kN"),
+    ("slip_margin", "margin", "-"), ("force_max_kn", "F max", "kN"),
+    ("power_max_kw", "P max", "kW"), ("slip_margin_min", "margin min", "-"),
+    ("slip_s", "slip", "s"), ("slip_m", "slipped", "m"),
+]
 
 
 def register(sub) -> None:
@@ -197,5 +222,36 @@ def _table(s: dict) -> str:
         if title == "steady":
             lines += design_lines(s)
             lines.append("")
+    for title, fields in (("per phase (start: start command to stop command; stop: from "
+                           "the stop command)", PHASE_FIELDS), ("slack", SLACK_FIELDS)):
+        lines.append(f"  {title}")
+        for key, label, unit in fields:
+            if key in s and s[key] is not None:
+                lines.append(f"    {label:<38} {_fmt(s[key])} {unit}")
+        lines.append("")
+    lines += drive_lines(s)
     lines.append(f"  status: {s['status']}" + (f"  ({s['message']})" if s["message"] else ""))
     return "\n".join(lines)
+
+
+def drive_lines(s: dict) -> list[str]:
+    """The per-drive table (SPEC 6.4): steady tight and slack side and slip margin, transient
+    largest force and power, smallest slip margin, time slipping and belt length slipped."""
+    drives = []
+    i = 1
+    while f"drive{i}_t_tight_kn" in s:
+        drives.append(i)
+        i += 1
+    if not drives:
+        return []
+    head = "    drive " + "".join(f"{t:>11}" for _k, t, _u in DRIVE_COLUMNS)
+    units = "          " + "".join(f"{'[' + u + ']':>11}" for _k, _t, u in DRIVE_COLUMNS)
+    lines = ["  per drive (steady: tight, slack, margin; transient: the rest)", head, units]
+    for i in drives:
+        cells = []
+        for key, _t, _u in DRIVE_COLUMNS:
+            val = s.get(f"drive{i}_{key}")
+            cells.append(f"{val:>11.3f}" if isinstance(val, float | int) else f"{'-':>11}")
+        lines.append(f"    {i:>5} " + "".join(cells))
+    lines.append("")
+    return lines

@@ -111,5 +111,14 @@ def _table(s: dict) -> str:
     for name, val in s["te_components_kn"].items():
         lines.append(f"    {name:<34} {val:>12.3f}")
     lines.append("")
+    drives = []
+    while f"drive{len(drives) + 1}_t_tight_kn" in s:
+        drives.append(len(drives) + 1)
+    if drives:
+        lines.append("  per drive pulley          tight [kN]   slack [kN]   slip margin [-]")
+        for i in drives:
+            lines.append(f"    drive {i:<16} {s[f'drive{i}_t_tight_kn']:>12.3f} "
+                         f"{s[f'drive{i}_t_slack_kn']:>12.3f} {s[f'drive{i}_slip_margin']:>14.3f}")
+        lines.append("")
     lines.append(f"  status: {s['status']}" + (f"  ({s['message']})" if s["message"] else ""))
     return "\n".join(lines)
