@@ -260,6 +260,15 @@ def _grid_schema() -> dict:
     props["temperature_c"] = props["scenario.temperature_c"]
     props["stop_time_s"] = props["scenario.stop.time_s"]
     props["load"] = props["scenario.load"]
+    # a friction model's parameter as an axis: models.<model>.<parameter> (numbers, or null
+    # for a parameter whose default is computed)
+    from engine.friction import ALIASES, MODELS
+
+    for name, model in {**MODELS, **{a: MODELS[t] for a, t in ALIASES.items()}}.items():
+        hints = typing.get_type_hints(model.params_class)
+        for f in dataclasses.fields(model.params_class):
+            optional = type(None) in typing.get_args(hints[f.name])
+            props[f"models.{name}.{f.name}"] = _axis_values(_bounds(model, f.name, optional))
     return {
         "type": "object",
         "minProperties": 1,
@@ -323,7 +332,12 @@ def study_schema(studies_dir: Path | None = None) -> dict:
     }
     props["scenario"] = {"$ref": "#/$defs/Scenario"}
     props["name"]["pattern"] = NAME_PATTERN
-    props["grid"] = _grid_schema()
+    grid = _grid_schema()
+    props["grid"] = grid
+    props["zip"] = {"type": "array", "items": {**grid, "description": "axes that vary "
+                    "together (lists of one length), crossed with the grid"}}
+    study["anyOf"] = [{"required": ["grid"]},
+                      {"required": ["zip"], "properties": {"zip": {"minItems": 1}}}]
     props["models"] = _models_schema()
     names, aliases = _model_names()
     props["model"] = {"anyOf": [{"type": "string", "enum": names + aliases}, {"type": "null"}],

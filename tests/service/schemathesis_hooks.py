@@ -35,6 +35,9 @@ _ALIASES = {"iso5048": "din", "din22101": "din", "viscoah": "visco", "non-lin": 
 def _target(axis: str) -> str:
     if axis in _NAMED:
         return _NAMED[axis]
+    if axis.startswith("models."):
+        _, model, param = axis.split(".")
+        return f"models.{_ALIASES.get(model, model)}.{param}"
     if axis.startswith(("conveyor.", "scenario.")):
         return axis
     head = axis.split(".")[0]
@@ -71,14 +74,30 @@ def _study_ok(body: dict) -> bool:
     if not _conveyor_ok(conv):
         return False
     grid = body.get("grid", {})
+    groups = [dict(grid)] + [dict(g) for g in body.get("zip", [])]
+    axes: dict = {}
     total = 1
+    for g, group in enumerate(groups):
+        lengths = set()
+        for axis, values in group.items():
+            if axis in axes:
+                return False  # one axis in two places
+            if isinstance(values, dict):
+                values = _range_values(values)
+                if values is None:
+                    return False
+            axes[axis] = values
+            lengths.add(len(values))
+            if g == 0:
+                total *= len(values)
+        if g > 0:
+            if len(lengths) != 1:
+                return False  # a zip group's axes vary together: one length
+            total *= lengths.pop()
+        if total > MAX_RUNS:
+            return False
     targets = []
-    for axis, values in grid.items():
-        if isinstance(values, dict):
-            values = _range_values(values)
-            if values is None:
-                return False
-        total *= len(values)
+    for axis, values in axes.items():
         target = _target(axis)
         parts = target.split(".")
         if len(parts) > 2 and parts[0] == "conveyor" and parts[2].isdigit():
@@ -105,7 +124,7 @@ def _study_ok(body: dict) -> bool:
     models = [_ALIASES.get(m, m) for m in body.get("models", {})]
     if len(set(models)) != len(models):
         return False
-    if body.get("dynamics", True) and not _scenario_fits(body, grid):
+    if body.get("dynamics", True) and not _scenario_fits(body, axes):
         return False
     return True
 
@@ -153,7 +172,8 @@ def _scenario_fits(body: dict, grid: dict) -> bool:
 @schemathesis.hook
 def filter_body(ctx, body):
     """Skip generated valid studies that break a rule outside the schema."""
-    if not isinstance(body, dict) or "grid" not in body or "name" not in body:
+    if not isinstance(body, dict) or "name" not in body or \
+            ("grid" not in body and "zip" not in body):
         return True
     try:
         return _study_ok(body)
