@@ -198,7 +198,7 @@ def test_vfd_start_tracks_the_reference():
     whose belt is set in motion within the start (the 16.8 km overland: overshoot and the
     second half of the start, see docs/dynamics.md on pre-tensioning)."""
     for name, start_s in (("slope-5pct", 180), ("fabric-1km", 180), ("downhill-regen", 180),
-                          ("overland-16km", 300)):
+                          ("overland-4km", 180), ("overland-16km", 300)):
         conv = load_conveyor(CONVEYORS / f"{name}.yaml")
         st = solve_steady(conv, model="din", n_elements=80)
         sysm = build_system(conv, Scenario(start={"time_s": start_s}, run_s=30, elements=80),
