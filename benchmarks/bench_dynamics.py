@@ -1,4 +1,4 @@
-"""Benchmark of the Euler-X transient kernel (issue 5).
+"""Benchmark of the Euler-X transient kernel.
 
 Prints, with the date and the machine:
 
@@ -7,8 +7,9 @@ Prints, with the date and the machine:
    the 16.8 km example with 1 000 elements, for DIN (constant resistances) and Non-Lin
    (speed and sag exponents);
 2. the whole start-run-stop cycle of that example (kernel time, and run_one with statics);
-3. the baseline measured in the same run: the numpy reference of the same equations, and
-   the speed ratio of the kernel to it;
+3. the baselines measured in the same run: the numpy reference of the same equations (the
+   speed ratio of the kernel to it), and engine 0.2's kernel on the same case, checked out
+   from its commit (``BASELINE_REV``);
 4. the same equations integrated by scipy.integrate.solve_ivp (RK45, rtol 1e-6) on a small,
    short case: speed ratio and difference in peak tension;
 5. the time step against element length with damping on: the kernel's damper (standard
@@ -79,6 +80,51 @@ def reference_throughput(system, seconds: float):
     return out["steps"] * system.n / wall
 
 
+#: Engine 0.2 (the release before drive pulleys with slip, brakes on shafts and slack carried
+#: through): its kernel is measured in the same run, from its own commit.
+BASELINE_REV = "d505d3f"
+
+_BASELINE_SNIPPET = """
+import json, sys
+sys.path.insert(0, {root!r})
+from benchmarks.bench_dynamics import kernel_throughput
+out = {{}}
+for model in ("din", "nonlin"):
+    system, wall, steps, t_end, status = kernel_throughput(model)
+    out[model] = dict(rate=steps * system.n / wall, dt=system.dt_s, steps=int(steps),
+                      t_end=float(t_end), wall=wall)
+print(json.dumps(out))
+"""
+
+
+def baseline_throughput(rev: str = BASELINE_REV) -> dict | None:
+    """Element-steps/s of engine ``rev``'s kernel on the same case, in this run: its engine,
+    benchmark and example conveyors checked out from git into a temporary directory and run
+    in a subprocess. None (with the reason printed) if the commit is not in this clone."""
+    import json
+    import sys
+    import tarfile
+    import tempfile
+
+    with tempfile.TemporaryDirectory(prefix="beltstudy-base-") as tmp:
+        archive = subprocess.run(
+            ["git", "-C", str(ROOT), "archive", "--format=tar", rev, "engine", "benchmarks",
+             "studies/conveyors"], capture_output=True)
+        if archive.returncode != 0:
+            print(f"  baseline {rev} not in this clone: {archive.stderr.decode().strip()}")
+            return None
+        tar_path = Path(tmp) / "base.tar"
+        tar_path.write_bytes(archive.stdout)
+        with tarfile.open(tar_path) as tar:
+            tar.extractall(tmp, filter="data")
+        proc = subprocess.run([sys.executable, "-c", _BASELINE_SNIPPET.format(root=tmp)],
+                              capture_output=True, text=True, cwd=tmp)
+        if proc.returncode != 0:
+            print(f"  baseline {rev} did not run: {proc.stderr.strip().splitlines()[-1:]}")
+            return None
+        return json.loads(proc.stdout.strip().splitlines()[-1])
+
+
 def rk45_comparison():
     """Kernel against solve_ivp (RK45, rtol 1e-6) on the 1 km fabric belt, 40 elements,
     a 10 s s-curve start from rest, 14 s simulated; shafts stuck on their pulleys, no holdback,
@@ -136,7 +182,7 @@ def main() -> None:
     print(f"machine: {machine()}")
     print(f"python {platform.python_version()}, numpy {np.__version__}")
     print()
-    print("## 1-2. Kernel throughput and the 16.8 km cycle (1 000 elements, one core)")
+    print("## 1-2. Kernel throughput and the 16.8 km cycle (1 000 elements, one core, slip on)")
     results = {}
     for model in ("din", "cema", "nonlin"):
         system, wall, steps, t_end, status = kernel_throughput(model)
@@ -169,6 +215,16 @@ def main() -> None:
         ref_rate = reference_throughput(system, seconds=3.0)
         print(f"  {model:7s} reference {ref_rate:.3g} element-steps/s; kernel / reference = "
               f"{rate / ref_rate:.0f} x")
+    print()
+    print(f"## 3b. Engine 0.2 (commit {BASELINE_REV}) in the same run, same case")
+    base = baseline_throughput()
+    if base is not None:
+        for model in ("din", "nonlin"):
+            system, rate = results[model]
+            b = base[model]
+            print(f"  {model:7s} 0.2: dt={b['dt'] * 1e3:.2f} ms steps={b['steps']} "
+                  f"{b['rate']:.3g} element-steps/s; 0.3 (slip on): dt={system.dt_s * 1e3:.2f}"
+                  f" ms {rate:.3g} element-steps/s; ratio 0.3 / 0.2 = {rate / b['rate']:.2f}")
     print()
     print("## 4. RK45 (scipy solve_ivp, rtol 1e-6) on the same equations")
     c = rk45_comparison()

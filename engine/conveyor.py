@@ -83,7 +83,7 @@ class Belt(_Model):
         None, description="static axial modulus E per width [kN/m] (elongation, take-up travel)")
     dynamic_modulus_kn_m: PositiveFloat | None = Field(
         None, description="dynamic axial modulus per width [kN/m] (wave fronts); default: the "
-        "static modulus times the catalogue's dynamic/static ratio (steel cord 1, fabric 1.5)")
+        "static modulus times the catalogue's dynamic/static ratio (steel cord 1.1, fabric 1.5)")
     carcass_mass_kg_m2: NonNegFloat | None = Field(None, description="carcass mass [kg/m2]")
 
     @model_validator(mode="after")
@@ -157,6 +157,9 @@ class Idlers(_Model):
     return_: IdlerSet = Field(..., alias="return")
 
 
+#: Most points in a motor or brake curve (the transient kernel's fixed curve arrays).
+CURVE_POINTS_MAX = 16
+
 #: Typical induction-motor torque-speed curve (SPEC 6.1 ``motor_curve`` default): torque over
 #: rated torque against pulley speed over the pulley speed at design belt speed. Shape of a
 #: NEMA MG 1 design B / IEC 60034-12 design N cage motor: locked-rotor torque 1.6, pull-up 1.4
@@ -191,7 +194,7 @@ class Drive(_Model):
     control: Literal["vfd", "dol"] = Field(
         "vfd", description="vfd: speed loop with a torque limit; dol: motor on the line")
     motor_curve: list[tuple[float, float]] | None = Field(
-        None, description="dol: torque / rated torque against pulley speed / pulley speed at "
+        None, max_length=CURVE_POINTS_MAX, description="dol: torque / rated torque against pulley speed / pulley speed at "
         "design belt speed (default: a typical induction-motor curve)")
     motor_inertia_kg_m2: NonNegFloat | None = Field(
         None, description="motor rotor inertia reduced to the pulley shaft [kg m2], part of "
@@ -295,7 +298,8 @@ class Brake(_Model):
     ramp_s: NonNegFloat = Field(
         1.0, description="from application to full force [s] (disc brakes build in 0.2-2 s)")
     force_curve: list[tuple[float, float]] | None = Field(
-        None, description="fraction of the force against time since applied [s, -]")
+        None, max_length=CURVE_POINTS_MAX,
+        description="fraction of the force against time since applied [s, -]")
     hold: bool = Field(True, description="set once the belt has stopped and stay set")
 
     @model_validator(mode="after")

@@ -9,6 +9,8 @@ place those layouts are defined; Python callers read them through the namespaces
 
 from __future__ import annotations
 
+from engine.conveyor import CURVE_POINTS_MAX
+
 __all__ = ["FP", "IP", "RES", "DRV", "REC", "RECD", "OK", "DIVERGED", "V_FAIL_FACTOR",
            "BLOCK_MAX", "CURVE_MAX", "SEG_MAX", "VFD", "DOL", "COUPLING_NONE", "COUPLING_FLUID",
            "COUPLING_FILL", "COAST", "BRAKE", "CONTROLLED", "RELATIVE", "SUPPORT"]
@@ -20,7 +22,7 @@ V_FAIL_FACTOR = 100.0
 #: Largest implicit block (elements + carriage) the solver takes.
 BLOCK_MAX = 16
 #: Most points of a motor curve or a brake force curve.
-CURVE_MAX = 16
+CURVE_MAX = CURVE_POINTS_MAX  # engine.conveyor refuses longer curves at the door
 #: Envelope segments: the cycle is cut at the stop command and when the belt first goes
 #: slack, so per-phase and before/after-slack extremes come from whole segments.
 SEG_MAX = 3

@@ -4,7 +4,7 @@ Notes
 -----
 Per belt element j of length dx, in [N]:
 
-    idler rotation  g Kta [Ks + A_i e^{-c (T - T_r)} / (g S)] dx     (Kta: CEMA's Kt)
+    idler rotation  g Kta Ks dx + A_i e^{-c (T - T_r)} / S dx     (Kta: CEMA's Kt)
     indentation     (sum over the rolls of F_ir) / S dx,
                     F_ir = kappa tan(delta) F_v^{4/3} h^{1/3} / (b^{1/3} E'^{1/3} D^{2/3})
     belt flexure    g m* Kta (m'_G + m'_L) cos(a) (h_d / h_ref)^n dx
@@ -14,7 +14,8 @@ The indentation is the same per-roll Winkler law as ``nonlin``, but tan(delta) a
 at a fixed reference frequency (``frequency_hz``, the frequency of a standard dynamic test)
 at the ambient temperature, not at the running contact frequency. The idler drag is the
 conveyor's seal drag A_i (the idler catalogue's CEMA value when the file gives none),
-independent of speed, with the same temperature law as ``nonlin``. Belt and material flexure
+independent of speed, with the same temperature law as ``nonlin``: its own e^{-c (T - T_r)}
+and not Kta as well (the cold counted once). Belt and material flexure
 are constant allowances: the Non-Lin expressions evaluated at a fixed design sag h_d, by
 default the conveyor's admissible sag of each strand (``sag_limit_pct``), which is the sag a
 design without tension coupling has to assume. There is no sag coupling, so the law does not
@@ -66,8 +67,8 @@ class ViscoParams:
         0.65, "share of the material load on the centre roll of a three-roll set [-] (as "
               "nonlin)")
     kta: float | None = param(
-        None, "factor Kta on idler rotation and belt flexure [-] (default: CEMA's Kt at the "
-              "run temperature, as nonlin)")
+        None, "factor Kta on the bearing part of idler rotation and on belt flexure [-] "
+              "(default: CEMA's Kt at the run temperature, as nonlin)")
     mu_b: float = param(0.0015, "bearing friction coefficient mu_b [-] (as nonlin)")
     bearing_diameter_m: float = param(0.045, "mean bearing diameter d_b [m] (as nonlin)")
     drag_per_set_n: float | None = param(
@@ -140,7 +141,8 @@ def build(loop: Loop, conv: Conveyor, temperature_c: float, params: ViscoParams)
     b.add("idler_rotation", bearing_term_n(loop, p.mu_b, p.bearing_diameter_m, kta))
     temp = math.exp(-p.drag_temp_coef * (temperature_c - p.drag_ref_temp_c))
     drag = idler_drag_n(loop, conv, p.drag_per_set_n, None)
-    b.add("idler_rotation", kta * drag * temp / spacing * dx)
+    # the seal drag carries its own temperature law e^{-c (T - T_r)}, not Kta as well
+    b.add("idler_rotation", drag * temp / spacing * dx)
 
     comp = rubber.compound(loop.belt.compound)
     tan, e_st = rubber.loss_and_modulus(temperature_c, p.frequency_hz, comp)

@@ -313,6 +313,10 @@ def test_auto_brake_force_set_by_holding_is_said():
     ({"drives": [_drive(control="dol", motor_curve=[[0.0, 1.5], [0.9, 2.0], [1.0, 0.4]])]},
      "zero-torque point"),
     ({"drives": [_drive(coupling="fluid")]}, "needs control: dol"),
+    ({"drives": [_drive(control="dol", motor_curve=[[i / 20, 2.0 - i / 10] for i in range(21)])]},
+     "motor_curve: List should have at most 16 items"),
+    ({"brakes": [{"position": "head", "force_curve": [[0.1 * i, 0.05 * i] for i in range(17)]}]},
+     "force_curve: List should have at most 16 items"),
     ({"drives": [_drive(share=0.6), _drive(share=0.6, position="tail")]},
      "drives[0] (head) 0.6 + drives[1] (tail) 0.6"),
 ])
