@@ -18,7 +18,7 @@ from pathlib import Path
 
 __all__ = ["run_demo", "free_port", "start_server", "stop_server", "wait_ready"]
 
-METRICS = ["power_kw", "t_max_dyn_kn"]
+METRICS = ["power_kw", "t_max_stop_kn", "t_min_stop_kn"]
 
 
 def free_port() -> int:

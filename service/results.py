@@ -28,7 +28,8 @@ __all__ = [
     "DEFAULT_METRICS",
 ]
 
-DEFAULT_METRICS = ("power_kw", "t_max_dyn_kn")
+#: power, and the peak and lowest tension of the stop (the phase a stop-time axis changes)
+DEFAULT_METRICS = ("power_kw", "t_max_stop_kn", "t_min_stop_kn")
 
 
 def _clean(value: Any) -> Any:

@@ -68,7 +68,9 @@ def register(sub) -> None:
     p.add_argument("--baseline", default="cema", help="baseline friction model")
     p.add_argument("--candidate", default="nonlin", help="candidate friction model")
     p.add_argument(
-        "--metrics", default="power_kw,t_max_dyn_kn", help="comma-separated result columns"
+        "--metrics", default="",
+        help="comma-separated result columns (default: power_kw and the stop's peak and "
+        "lowest tension, t_max_stop_kn and t_min_stop_kn)"
     )
     _client_args(p)
     p.set_defaults(func=cmd_compare)
