@@ -46,7 +46,8 @@ class Law(NamedTuple):
 class Springs(NamedTuple):
     """Springs: dt / length, Ernst constant times EB, floor tension and floor modulus over EB,
     mesh viscosity per strain increment [N], carriage coupling (1 beside the gravity take-up),
-    length [m]; free element and spring ranges ([start, end) rows)."""
+    length [m], chord strain at the running tension (the reference of the belt length a slack
+    span gathers); free element and spring ranges ([start, end) rows)."""
 
     dl: np.ndarray
     a_eb: np.ndarray
@@ -55,6 +56,7 @@ class Springs(NamedTuple):
     kvs: np.ndarray
     car_ind: np.ndarray
     len_m: np.ndarray
+    eps_run: np.ndarray
     seg_node: np.ndarray
     seg_spring: np.ndarray
 

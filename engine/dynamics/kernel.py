@@ -561,14 +561,15 @@ def run_cycle(fp, ip, nodes, law, sp, blocks, shafts, drives, brakes, st, out, w
             t_end_limit = min(t_end_limit, t_new + post_rest)
             if fp[C.FP_T_END] > 0.0:
                 t_end_limit = min(t_end_limit, fp[C.FP_T_END])
-        # slack: the belt length stored in the largest slack zone, the time with a slack span,
+        # slack: the belt length gathered by the slack spans, the time with a slack span,
         # and the envelope cut when the belt first goes slack
         if tlo <= 0.0 and started:
             slack_dur += dt
-            total, zone, deep = slack_zones(te, sp.kfl_eb, eb, sp.len_m)
+            total, deep = slack_zones(te, tt, sp.t_floor, sp.kfl_eb, sp.a_eb, eb, sp.len_m,
+                                      sp.eps_run)
             slack_m = total
-            if zone > slack_max:
-                slack_max = zone
+            if total > slack_max:
+                slack_max = total
                 slack_at = deep
                 slack_time = t_new
             if slack_first < 0.0:

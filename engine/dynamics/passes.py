@@ -244,51 +244,35 @@ def extremes(x):
     return lo, hi
 
 
-@njit(**OPTS)
-def slack_zones(te, kfl_eb, eb, len_m):
-    """Belt length stored as slack [m]: in the whole loop, in the largest zone of consecutive
-    slack springs (cyclic), and the spring of that zone with the largest slack strain.
+@njit(inline="always", **OPTS)
+def _chord(te, tfl, kfl_eb, a_eb, eb):
+    """Chord strain of a spring at elastic tension ``te`` (Ernst's law, the floor modulus
+    below ``tfl``), as :func:`engine.dynamics.model.chord_strain` [-]."""
+    a = a_eb / eb
+    if te >= tfl:
+        return te / eb - a / (2.0 * te * te)
+    return tfl / eb - a / (2.0 * tfl * tfl) - (tfl - te) / (kfl_eb * eb)
 
-    A slack spring's elastic tension is below zero: its slack strain is ``-te / k_floor`` and
-    the belt length it stores that strain times the spring's length, so the lengths add up
-    the same on any mesh. Returns (total [m], largest zone [m], deepest spring or -1)."""
-    n = te.shape[0]
-    start = -1
-    for j in range(n):
-        if te[j] >= 0.0:
-            start = j
-            break
-    if start < 0:  # the whole loop slack
-        total = 0.0
-        deep = 0
-        worst = 0.0
-        for j in range(n):
-            s = -te[j] / (kfl_eb[j] * eb)
-            total += s * len_m[j]
-            if s > worst:
-                worst = s
-                deep = j
-        return total, total, deep
+
+@njit(**OPTS)
+def slack_zones(te, tt, t_floor, kfl_eb, a_eb, eb, len_m, eps_run):
+    """Belt length gathered by the slack spans [m] and the spring that gathered most.
+
+    A span is slack when its tension is zero; the belt length it has gathered is its chord
+    shortening since running, ``(eps_run - eps) len``: the sag it has taken up and the slack
+    beyond. Summed over the slack spans this is the belt they have drawn in, the same on any
+    mesh: a coarse mesh puts it in one spring, a fine one spreads it over several, and may
+    leave a spring in the middle of a slack stretch momentarily taut, so the sum is over every
+    slack span, not one run of consecutive ones. Returns (total [m], deepest spring or -1)."""
     total = 0.0
-    best = 0.0
-    best_deep = -1
-    zone = 0.0
-    zone_deep = -1
-    zone_worst = 0.0
-    for k in range(1, n + 1):
-        j = (start + k) % n
-        if te[j] < 0.0:
-            s = -te[j] / (kfl_eb[j] * eb)
-            zone += s * len_m[j]
-            total += s * len_m[j]
-            if s > zone_worst:
-                zone_worst = s
-                zone_deep = j
-        elif zone > 0.0:
-            if zone > best:
-                best = zone
-                best_deep = zone_deep
-            zone = 0.0
-            zone_worst = 0.0
-            zone_deep = -1
-    return total, best, best_deep
+    deep = -1
+    worst = 0.0
+    for j in range(te.shape[0]):
+        if tt[j] <= 0.0:
+            g = (eps_run[j] - _chord(te[j], t_floor[j], kfl_eb[j], a_eb[j], eb)) * len_m[j]
+            if g > 0.0:
+                total += g
+                if g > worst:
+                    worst = g
+                    deep = j
+    return total, deep

@@ -19,7 +19,7 @@ import pandas as pd
 from engine.dynamics import arrays as A
 from engine.dynamics import codes as C
 from engine.dynamics.kernel import run_cycle
-from engine.dynamics.model import System
+from engine.dynamics.model import System, chord_strain
 
 __all__ = ["TransientResult", "KernelInput", "prepare", "simulate", "decode",
            "TIMESERIES_COLUMNS", "SURFACE_COLUMNS", "V_FAIL_FACTOR", "exponent_codes"]
@@ -192,6 +192,8 @@ def prepare(sys: System, t_end_s: float | None = None) -> KernelInput:
         t_floor=arr(sys.t_floor_n), kfl_eb=arr(sys.k_floor_n / sys.stiffness_n),
         kvs=arr(sys.mesh_viscosity * sys.impedance_ns_m * sys.len_m / dt),
         car_ind=arr(sys.carriage_coupling), len_m=arr(sys.len_m),
+        eps_run=arr(chord_strain(sys.steady_tension_n, sys.a_ernst, sys.stiffness_n,
+                                 sys.t_floor_n, sys.k_floor_n)),
         seg_node=_ranges(~in_block), seg_spring=_ranges(~sys.implicit))
     ns = len(sys.shaft_node)
     shafts = A.Shafts(node=arr(sys.shaft_node, np.int64), mass=arr(sys.shaft_mass_kg),
@@ -578,7 +580,7 @@ def transient_summary(sys: System, r: dict, out, segs, *, steady_summary=None, c
     if r["SLACK_MAX"] > 0.0 or r["SLACK_FIRST"] >= 0.0:
         j = int(r["SLACK_AT"]) if r["SLACK_AT"] >= 0 else jmin
         w.append(
-            f"the belt goes slack: up to {r['SLACK_MAX']:.3g} m of belt stored as slack near "
+            f"the belt goes slack: its slack spans gather up to {r['SLACK_MAX']:.3g} m of belt near "
             f"{where(sys, j)} at t = {max(r['SLACK_TIME'], r['SLACK_FIRST']):.1f} s, slack "
             f"for {r['SLACK_DUR']:.1f} s in "
             "all (the one-dimensional model does not follow the belt leaving the idlers or "

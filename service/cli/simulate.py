@@ -52,7 +52,7 @@ PHASE_FIELDS = [
                            ("time_s", "  at time", "s"))
 ]
 SLACK_FIELDS = [
-    ("slack_max_m", "belt length stored as slack (largest)", "m"),
+    ("slack_max_m", "belt gathered by slack spans (largest)", "m"),
     ("slack_at_m", "  at", "m"),
     ("slack_time_s", "  at time", "s"),
     ("slack_duration_s", "time with a slack span", "s"),

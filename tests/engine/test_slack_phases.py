@@ -34,6 +34,8 @@ CASES = {
     "fabric coast": ("fabric-1km", {}),
     "overland head brake, stop under 5 wave loops": (
         "overland-16km", {"stop": {"mode": "brake", "time_s": 60}}),
+    # a stop that goes slack (the carry behind the head, 2.5 m of belt gathered)
+    "fabric 3 s controlled stop": ("fabric-1km", {"stop": {"mode": "controlled", "time_s": 3}}),
 }
 
 
@@ -51,6 +53,7 @@ def test_stops_carry_on_and_verdicts_converge_with_the_mesh(case):
             assert s[key] is not None and math.isfinite(s[key]), key
         runs[n] = s
     assert len({s["status"] for s in runs.values()}) == 1
+    assert len({s["slack_max_m"] > 0.0 for s in runs.values()}) == 1  # slack on every mesh
     for key in ("slack_max_m", "t_max_stop_kn", "t_min_stop_kn"):
         a, b = runs[400][key], runs[800][key]
         assert a == pytest.approx(b, rel=0.10, abs=0.02 * runs[800]["t_max_stop_kn"]), key
@@ -72,7 +75,7 @@ def test_a_slack_stop_reports_where_when_and_how_much():
     assert s["t_min_stop_kn"] == 0.0
     assert s["t_max_post_slack_kn"] is not None and s["t_max_pre_slack_kn"] is not None
     msg = s["message"]
-    assert "m of belt stored as slack near" in msg and "from the tail on the carry" in msg
+    assert "slack spans gather up to" in msg and "m of belt near" in msg and "from the tail on the carry" in msg
     assert "heavier take-up" in msg
     assert r.timeseries["slack_m"].max() > 0.0
 
