@@ -10,6 +10,7 @@ from __future__ import annotations
 
 import difflib
 import json
+import re
 from pathlib import Path
 from typing import Annotated, Any, Literal
 
@@ -556,7 +557,14 @@ def format_validation_error(exc: ValidationError, model: type[BaseModel], prefix
                 msg = msg[len("Value error, ") :]
             got = err.get("input")
             shown = "" if isinstance(got, dict | list) else f" (got {got!r})"
-            lines.append((path or "(top level)", msg, shown))
+            if not clean:
+                # A check across fields names its own field first ("drives: shares sum ...").
+                m = re.match(r"([A-Za-z_][\w\[\]\.]*): (.*)$", msg, re.S)
+                if m:
+                    path, msg = prefix + m.group(1), m.group(2)
+                else:
+                    path = prefix.rstrip(".") or "(top level)"
+            lines.append((path, msg, shown))
     # Union types produce one error per member: one line per field, the members' conditions
     # joined by "or" ("Input should be 'auto' or greater than or equal to 8").
     merged: dict[str, list] = {}
