@@ -140,15 +140,22 @@ class ProfileSection(_Model):
 class IdlerSet(_Model):
     """An idler set; rotating mass and seal drag default from the catalogue by roll diameter."""
 
-    spacing_m: PositiveFloat = Field(..., description="idler set pitch S [m]")
-    roll_diameter_m: PositiveFloat = Field(0.152, description="roll diameter [m]")
+    # bounds far beyond practice (CEMA's pitch tables run 0.6-3 m carry and up to 6 m
+    # return; rolls are 0.1-0.22 m across, sets weigh tens of kg and drag a few N): they
+    # only keep nonsense out of the sag, capacity and auto-size checks
+    spacing_m: float = Field(..., ge=0.1, le=20.0,
+                             description="idler set pitch S [m] (0.1 to 20)")
+    roll_diameter_m: PositiveFloat = Field(
+        0.152, le=1.0, description="roll diameter [m] (at most 1)")
     rolls: int = Field(3, ge=1, le=5, description="rolls per set")
     trough_deg: float = Field(0.0, ge=0, le=60, description="trough angle [deg]")
     cema_class: str | None = Field(None, description="CEMA idler class B..F (catalogue lookup)")
-    rotating_mass_kg: NonNegFloat | None = Field(None, description="rotating mass per set [kg]")
-    seal_drag_n: NonNegFloat | None = Field(None, description="seal drag per set [N]")
+    rotating_mass_kg: NonNegFloat | None = Field(
+        None, le=500.0, description="rotating mass per set [kg] (at most 500)")
+    seal_drag_n: NonNegFloat | None = Field(
+        None, le=500.0, description="seal drag per set [N] (at most 500)")
     roll_length_m: PositiveFloat | None = Field(
-        None, description="length of the middle (horizontal) roll [m], capacity check; "
+        None, le=5.0, description="length of the middle (horizontal) roll [m], capacity check; "
         "default by belt width (DIN 22107, engine/data/trough.csv)"
     )
 

@@ -10,11 +10,15 @@ refused anyway). Used by ``tests/service/test_api_schemathesis.py`` and by hand 
 
 from __future__ import annotations
 
+import json
 import math
+from pathlib import Path
 from typing import Any
 
 import schemathesis
 
+#: The studies directory the live service is given (conveyor files named by path).
+STUDIES = Path(__file__).resolve().parents[2] / "studies"
 #: The service's BELTSTUDY_MAX_RUNS in the schemathesis runs.
 MAX_RUNS = 50
 
@@ -110,6 +114,9 @@ def _study_ok(body: dict) -> bool:
                 variant = _with(conv, parts[1:], value)
                 if variant is None or not _conveyor_ok(variant):
                     return False
+        if any(isinstance(v, (dict, list)) for v in values) and not _distinct(conv, parts,
+                                                                             values):
+            return False  # two values that are one once defaults are filled in
         targets.append(target)
         if axis in ("friction_model",):
             canon = [_ALIASES.get(v, v) for v in values]
@@ -124,9 +131,49 @@ def _study_ok(body: dict) -> bool:
     models = [_ALIASES.get(m, m) for m in body.get("models", {})]
     if len(set(models)) != len(models):
         return False
+    if "friction_model" in axes:
+        run = {_ALIASES.get(m, m) for m in axes["friction_model"]}
+    else:
+        one = body.get("model") or (models[0] if len(models) == 1 else "din")
+        run = {_ALIASES.get(one, one)}
+    for target in targets:
+        if target.startswith("models.") and target.split(".")[1] not in run:
+            return False  # a parameter of a model the study does not run
     if body.get("dynamics", True) and not _scenario_fits(body, axes):
         return False
     return True
+
+
+def _distinct(conv: Any, parts: list[str], values: list) -> bool:
+    """Whether the object values of a conveyor or scenario axis stay distinct once validated
+    (``{}`` and ``{"head_kn": 0}`` are one accessories value); the engine's own models fill
+    the defaults."""
+    from engine.conveyor import InputError, Scenario, parse_conveyor
+
+    if parts[0] == "conveyor":
+        if isinstance(conv, str):
+            import yaml
+
+            conv = yaml.safe_load((STUDIES / conv).read_text())
+        if not isinstance(conv, dict):
+            return True
+    else:
+        conv = {}
+    keys = set()
+    for value in values:
+        variant = _with(conv, parts[1:], value)
+        if variant is None:
+            return True
+        try:
+            model = (parse_conveyor(variant) if parts[0] == "conveyor" else
+                     Scenario.model_validate(variant))
+        except (InputError, ValueError):
+            return True  # an invalid value: refused anyway
+        node: Any = model.model_dump(mode="json", by_alias=True)
+        for key in parts[1:]:
+            node = node[int(key)] if isinstance(node, list) else node.get(key)
+        keys.add(json.dumps(node, sort_keys=True))
+    return len(keys) == len(values)
 
 
 def _with(conv: dict, path: list[str], value: Any) -> dict | None:
