@@ -75,7 +75,8 @@ class Belt(_Model):
     """
 
     type: str | None = Field(None, description="belt id in the catalogue, e.g. ST2000, EP630/4")
-    width_m: PositiveFloat = Field(..., description="belt width B [m]")
+    # bounds beyond the standard widths (DIN 22102 / ISO 251: 0.3 to 3.2 m)
+    width_m: float = Field(..., ge=0.1, le=5.0, description="belt width B [m] (0.1 to 5)")
     top_cover_mm: NonNegFloat | None = Field(None, description="carry-side cover [mm]")
     bottom_cover_mm: NonNegFloat | None = Field(None, description="pulley-side cover [mm]")
     compound: str = Field("standard", description="cover rubber compound id (catalogue)")
@@ -107,7 +108,8 @@ class Material(_Model):
     """Bulk material on the carry strand."""
 
     capacity_t_h: NonNegFloat = Field(..., description="design capacity [t/h]")
-    density_t_m3: PositiveFloat = Field(1.0, description="bulk density [t/m3]")
+    density_t_m3: float = Field(1.0, ge=0.01, le=25.0,
+                                description="bulk density [t/m3] (0.01 to 25)")
     loading_speed_m_s: float = Field(
         0.0, description="along-belt speed of the material at the feed point [m/s]"
     )
@@ -347,7 +349,9 @@ class Conveyor(_Model):
     """A belt conveyor (SPEC section 1)."""
 
     name: str = Field(..., min_length=1, max_length=200)
-    speed_m_s: PositiveFloat = Field(..., description="design belt speed [m/s]")
+    # bounds beyond practice (belt conveyors run about 0.1 to 10 m/s)
+    speed_m_s: float = Field(..., ge=0.01, le=30.0,
+                             description="design belt speed [m/s] (0.01 to 30)")
     belt: Belt
     material: Material
     profile: list[ProfileSection] = Field(..., min_length=1)
