@@ -62,6 +62,13 @@ class _Model(BaseModel):
     model_config = ConfigDict(extra="forbid", frozen=True, populate_by_name=True)
 
 
+def _compound_enum(schema: dict) -> None:
+    """The catalogue's compounds as the JSON Schema's enum (read when a schema is made)."""
+    from engine.catalog import compounds
+
+    schema["enum"] = sorted(compounds())
+
+
 PositiveFloat = Annotated[float, Field(gt=0)]
 NonNegFloat = Annotated[float, Field(ge=0)]
 
@@ -79,7 +86,8 @@ class Belt(_Model):
     width_m: float = Field(..., ge=0.1, le=5.0, description="belt width B [m] (0.1 to 5)")
     top_cover_mm: NonNegFloat | None = Field(None, description="carry-side cover [mm]")
     bottom_cover_mm: NonNegFloat | None = Field(None, description="pulley-side cover [mm]")
-    compound: str = Field("standard", description="cover rubber compound id (catalogue)")
+    compound: str = Field("standard", description="cover rubber compound id (catalogue)",
+                          json_schema_extra=_compound_enum)
     rating_kn_m: PositiveFloat | None = Field(None, description="nominal strength [kN/m]")
     modulus_kn_m: PositiveFloat | None = Field(
         None, description="static axial modulus E per width [kN/m] (elongation, take-up travel)")

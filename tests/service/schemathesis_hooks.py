@@ -108,10 +108,11 @@ def _study_ok(body: dict) -> bool:
             size = _list_len(conv, parts[1])
             if size is None or int(parts[2]) >= size:
                 return False  # the index must exist in an inline base conveyor
-        if parts[0] == "conveyor" and len(parts) > 1 and isinstance(conv, dict):
+        base = _base_conveyor(conv)
+        if parts[0] == "conveyor" and len(parts) > 1 and isinstance(base, dict):
             # a conveyor axis changes the conveyor: each variant must stay valid
             for value in values:
-                variant = _with(conv, parts[1:], value)
+                variant = _with(base, parts[1:], value)
                 if variant is None or not _conveyor_ok(variant):
                     return False
         if any(isinstance(v, (dict, list)) for v in values) and not _distinct(conv, parts,
@@ -144,6 +145,15 @@ def _study_ok(body: dict) -> bool:
     return True
 
 
+def _base_conveyor(conv: Any) -> Any:
+    """The study's base conveyor as a mapping: inline, or the shipped file it names."""
+    if isinstance(conv, str):
+        import yaml
+
+        return yaml.safe_load((STUDIES / conv).read_text())
+    return conv
+
+
 def _distinct(conv: Any, parts: list[str], values: list) -> bool:
     """Whether the object values of a conveyor or scenario axis stay distinct once validated
     (``{}`` and ``{"head_kn": 0}`` are one accessories value); the engine's own models fill
@@ -151,10 +161,7 @@ def _distinct(conv: Any, parts: list[str], values: list) -> bool:
     from engine.conveyor import InputError, Scenario, parse_conveyor
 
     if parts[0] == "conveyor":
-        if isinstance(conv, str):
-            import yaml
-
-            conv = yaml.safe_load((STUDIES / conv).read_text())
+        conv = _base_conveyor(conv)
         if not isinstance(conv, dict):
             return True
     else:
@@ -224,5 +231,5 @@ def filter_body(ctx, body):
         return True
     try:
         return _study_ok(body)
-    except (TypeError, KeyError, AttributeError, ZeroDivisionError, ValueError):
+    except (TypeError, KeyError, AttributeError, ZeroDivisionError, ValueError, OSError):
         return True  # not a well-formed study: it is a negative case, refused anyway
