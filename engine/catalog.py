@@ -247,8 +247,3 @@ def check_conveyor(conv, prefix: str = "") -> None:
         raise InputError(
             f"{prefix}belt: a custom belt (no 'type') needs top_cover_mm and bottom_cover_mm (0 allowed)"
         )
-    if resolve_belt(conv.belt).mass_kg_m <= 0.0:
-        raise InputError(
-            f"{prefix}belt: the belt has no mass (carcass_mass_kg_m2 and both covers are 0); "
-            "give its carcass mass or cover thicknesses"
-        )

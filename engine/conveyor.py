@@ -94,7 +94,7 @@ class Belt(_Model):
     dynamic_modulus_kn_m: PositiveFloat | None = Field(
         None, description="dynamic axial modulus per width [kN/m] (wave fronts); default: the "
         "static modulus times the catalogue's dynamic/static ratio (steel cord 1.1, fabric 1.5)")
-    carcass_mass_kg_m2: NonNegFloat | None = Field(None, description="carcass mass [kg/m2]")
+    carcass_mass_kg_m2: PositiveFloat | None = Field(None, description="carcass mass [kg/m2]")
 
     @model_validator(mode="after")
     def _type_or_fields(self) -> Belt:
