@@ -84,17 +84,24 @@ class Belt(_Model):
     type: str | None = Field(None, description="belt id in the catalogue, e.g. ST2000, EP630/4")
     # bounds beyond the standard widths (DIN 22102 / ISO 251: 0.3 to 3.2 m)
     width_m: float = Field(..., ge=0.1, le=5.0, description="belt width B [m] (0.1 to 5)")
-    top_cover_mm: NonNegFloat | None = Field(None, description="carry-side cover [mm]")
-    bottom_cover_mm: NonNegFloat | None = Field(None, description="pulley-side cover [mm]")
+    top_cover_mm: NonNegFloat | None = Field(None, le=100.0,
+                                             description="carry-side cover [mm] (at most 100)")
+    bottom_cover_mm: NonNegFloat | None = Field(
+        None, le=100.0, description="pulley-side cover [mm] (at most 100)")
     compound: str = Field("standard", description="cover rubber compound id (catalogue)",
                           json_schema_extra=_compound_enum)
-    rating_kn_m: PositiveFloat | None = Field(None, description="nominal strength [kN/m]")
-    modulus_kn_m: PositiveFloat | None = Field(
-        None, description="static axial modulus E per width [kN/m] (elongation, take-up travel)")
-    dynamic_modulus_kn_m: PositiveFloat | None = Field(
-        None, description="dynamic axial modulus per width [kN/m] (wave fronts); default: the "
+    # bounds far beyond the catalogues (EP 250 to ST 10 000; carcasses of a few to about
+    # 60 kg/m2): they keep the belt's mass, stiffness and strength physical numbers
+    rating_kn_m: float | None = Field(None, ge=1.0, le=1e5,
+                                      description="nominal strength [kN/m] (1 to 1e5)")
+    modulus_kn_m: float | None = Field(
+        None, ge=1.0, le=1e9,
+        description="static axial modulus E per width [kN/m] (elongation, take-up travel)")
+    dynamic_modulus_kn_m: float | None = Field(
+        None, ge=1.0, le=1e9, description="dynamic axial modulus per width [kN/m] (wave fronts); default: the "
         "static modulus times the catalogue's dynamic/static ratio (steel cord 1.1, fabric 1.5)")
-    carcass_mass_kg_m2: PositiveFloat | None = Field(None, description="carcass mass [kg/m2]")
+    carcass_mass_kg_m2: float | None = Field(None, ge=0.1, le=1000.0,
+                                             description="carcass mass [kg/m2] (0.1 to 1000)")
 
     @model_validator(mode="after")
     def _type_or_fields(self) -> Belt:
@@ -119,7 +126,8 @@ class Material(_Model):
     density_t_m3: float = Field(1.0, ge=0.01, le=25.0,
                                 description="bulk density [t/m3] (0.01 to 25)")
     loading_speed_m_s: float = Field(
-        0.0, description="along-belt speed of the material at the feed point [m/s]"
+        0.0, ge=-30.0, le=30.0,
+        description="along-belt speed of the material at the feed point [m/s] (-30 to 30)"
     )
     surcharge_deg: float = Field(
         20.0, ge=0, lt=90, description="surcharge angle of the material on the moving belt "
@@ -134,7 +142,8 @@ class Material(_Model):
 class ProfileSection(_Model):
     """One straight section of the carry route, tail -> head."""
 
-    length_m: PositiveFloat = Field(..., description="length along the belt [m]")
+    length_m: float = Field(..., gt=0.0, le=1e5,
+                            description="length along the belt [m] (at most 100 km)")
     lift_m: float = Field(0.0, description="rise over the section, negative downhill [m]")
 
     @model_validator(mode="after")
