@@ -142,7 +142,23 @@ def _study_ok(body: dict) -> bool:
             return False  # a parameter of a model the study does not run
     if body.get("dynamics", True) and not _scenario_fits(body, axes):
         return False
-    return True
+    return _section_loads_fit(body, axes)
+
+
+def _section_loads_fit(body: dict, axes: dict) -> bool:
+    """A load given as a list has one fraction per carry profile section of the conveyor."""
+    base = _base_conveyor(body.get("conveyor"))
+    profiles = [base.get("profile")] if isinstance(base, dict) else []
+    for axis, values in axes.items():
+        if _target(axis) == "conveyor.profile":
+            profiles = list(values)
+    counts = {len(p) for p in profiles if isinstance(p, list)}
+    loads = [v for axis, values in axes.items() if _target(axis) == "scenario.load"
+             for v in values]
+    scenario = body.get("scenario")
+    if not loads and isinstance(scenario, dict) and "load" in scenario:
+        loads = [scenario["load"]]
+    return all(not isinstance(v, list) or {len(v)} == counts or not counts for v in loads)
 
 
 def _base_conveyor(conv: Any) -> Any:
