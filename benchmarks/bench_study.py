@@ -289,6 +289,71 @@ def worker_split(study, surface: bool) -> dict[str, float]:
     return res
 
 
+def around_kernel(study, repeats: int = 20) -> dict[str, dict[str, float]]:
+    """What surrounds the kernel in a run and its storing, per friction model (the study's
+    first run of each), as the least CPU time over ``repeats`` [s]: the least is what the
+    code costs, whatever else the machine does. ``kernel``: one call; ``decode``: kernel
+    outputs to the summary and arrays; ``timeseries`` and ``surface``: the worker's Arrow
+    tables; ``write timeseries`` and ``write surface``: a part of 32 runs of the model, per
+    run."""
+    import importlib
+
+    import pyarrow as pa
+
+    from engine.conveyor import parse_conveyor, parse_scenario
+    from engine.dynamics import DynamicsOptions, build_system
+    from engine.run import run_one, transient_safety_min
+    from engine.statics import solve_steady
+    from service.store import _write_parquet
+    from service.tasks import surface_table, timeseries_table
+
+    sim = importlib.import_module("engine.dynamics.simulate")
+
+    def least(fn, n=repeats) -> float:
+        best = float("inf")
+        for _ in range(n):
+            c0 = time.process_time()
+            fn()
+            best = min(best, time.process_time() - c0)
+        return best
+
+    # parts of 32 different runs of the model, as a task writes them
+    parts: dict[str, list] = defaultdict(list)
+    for spec in study.runs:
+        if len(parts[spec.model]) < 32:
+            result = _one(spec)
+            parts[spec.model].append((timeseries_table(spec.run_id, result),
+                                      surface_table(spec.run_id, result)))
+    out: dict[str, dict[str, float]] = {}
+    with tempfile.TemporaryDirectory(prefix="bench-around-") as tmp:
+        for spec in study.runs:
+            if spec.model in out:
+                continue
+            conv, scn = parse_conveyor(spec.conveyor), parse_scenario(spec.scenario)
+            n = None if scn.elements == "auto" else int(scn.elements)
+            steady = solve_steady(conv, model=spec.model, params=spec.params or None,
+                                  temperature_c=scn.temperature_c, load=scn.load, n_elements=n)
+            system = build_system(conv, scn, steady, DynamicsOptions())
+            ki = sim.prepare(system)
+            ki.call()
+            kw = {"steady_summary": steady.summary, "conveyor": conv,
+                  "safety_factor_min": transient_safety_min(conv, steady.loop.belt.kind)}
+            result = run_one(conv, scn, model=spec.model, params=spec.params or None)
+            path = Path(tmp) / "part.parquet"
+            ts = pa.concat_tables([t for t, _ in parts[spec.model]])
+            sf = pa.concat_tables([t for _, t in parts[spec.model]])
+            k = len(parts[spec.model])
+            out[spec.model] = {
+                "kernel": least(ki.call, 5),
+                "decode": least(lambda: sim.decode(system, ki, 0.0, **kw)),  # noqa: B023
+                "timeseries": least(lambda: timeseries_table(spec.run_id, result)),  # noqa: B023
+                "surface": least(lambda: surface_table(spec.run_id, result)),  # noqa: B023
+                "write timeseries": least(lambda: _write_parquet(path, ts), 5) / k,  # noqa: B023
+                "write surface": least(lambda: _write_parquet(path, sf), 5) / k,  # noqa: B023
+            }
+    return out
+
+
 class Service:
     """``beltstudy serve`` in a child process (LocalCluster), warmed: its workers by the
     service itself, its API and study path by one tiny dynamic study before any timing."""
@@ -399,6 +464,14 @@ def _ms(x: float) -> str:
 def _best(items: list[dict]) -> dict:
     """The round with the shortest wall time (the least disturbed by other load)."""
     return min(items, key=lambda r: r["wall"])
+
+
+def report_around(around: dict[str, dict[str, float]]) -> None:
+    keys = list(next(iter(around.values())))
+    print("  around the kernel, least CPU per run [ms] (first run of each model):")
+    print("    " + f"{'':<8}" + "".join(f"{k:>18}" for k in keys))
+    for model, row in around.items():
+        print("    " + f"{model:<8}" + "".join(f"{row[k] * 1e3:18.3f}" for k in keys))
 
 
 def report_study288(n, workers, rounds: dict, per_model, split, wsplit) -> None:
@@ -567,6 +640,7 @@ def main() -> int:
         split = engine_split(study)
         wsplit = worker_split(study, surface=False)
         report_study288(study.total, args.workers, rounds, per_model, split, wsplit)
+        report_around(around_kernel(study))
     print(f"# load average after: {' '.join(f'{x:.2f}' for x in os.getloadavg())}")
     return 0
 
