@@ -26,9 +26,9 @@ from collections import deque
 import pyarrow as pa
 
 from service.errors import Unavailable
+from service.grid import ResolvedStudy, RunSpec
 from service.schema import axis_value, failed_row, rows_to_table, runs_schema_for_axes
 from service.store import Store
-from service.study import ResolvedStudy, RunSpec
 from service.tasks import Specs, run_batch
 
 __all__ = ["StudyJob", "study_schema", "batch_size", "RunRate"]

@@ -27,10 +27,11 @@ import engine
 from service import results
 from service.errors import Conflict, Invalid, NotFound
 from service.executor import Executor
+from service.grid import ResolvedStudy, RunSpec, study_from_json
 from service.jobs import StudyJob
 from service.settings import Settings
 from service.store import Store
-from service.study import ResolvedStudy, RunSpec, resolve_study, study_from_json
+from service.studyfile import resolve_study
 
 __all__ = ["StudyService", "ACTIVE_STATES", "RESOLVED_CACHE", "SURFACE_CACHE"]
 
@@ -165,7 +166,7 @@ class StudyService:
         study = resolve_study(
             data,
             base_dir=base_dir,
-            studies_root=self.settings.studies_dir if confine else None,
+            studies_dir=self.settings.studies_dir if confine else None,
             max_runs=self.settings.max_runs,
         )
         created = self._admit(study)
@@ -174,7 +175,7 @@ class StudyService:
     def check(self, data: Any) -> ResolvedStudy:
         """Validate a POSTed study as :meth:`submit` would, without storing or running it."""
         return resolve_study(
-            data, studies_root=self.settings.studies_dir, max_runs=self.settings.max_runs
+            data, studies_dir=self.settings.studies_dir, max_runs=self.settings.max_runs
         )
 
     # ---------------------------------------------------------------- reading

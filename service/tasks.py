@@ -117,7 +117,7 @@ def surface_table(run_id: str, result) -> pa.Table | None:
 
 
 def run_spec(spec: dict, study_id: str = "") -> tuple[dict, Any]:
-    """One run: (row, result or None). ``spec`` is a :class:`~service.study.RunSpec` as a dict."""
+    """One run: (row, result or None). ``spec`` is a :class:`~service.grid.RunSpec` as a dict."""
     import engine
     from engine.conveyor import parse_conveyor, parse_scenario
 

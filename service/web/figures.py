@@ -13,8 +13,8 @@ import pandas as pd
 
 from service import plots, results
 from service.errors import Invalid, NotFound
+from service.grid import ResolvedStudy
 from service.studies import StudyService
-from service.study import ResolvedStudy
 
 __all__ = [
     "STUDY_PLOTS",

@@ -14,7 +14,7 @@ from service.jobs import study_schema
 from service.schema import rows_to_table
 from service.settings import Settings
 from service.store import Store
-from service.study import resolve_study
+from service.studyfile import resolve_study
 from service.tasks import run_batch
 
 ROOT = Path(__file__).resolve().parents[2]
@@ -70,7 +70,7 @@ def finished_study(data_dir: Path, data: dict, name: str | None = None) -> str:
 
     ``name`` overrides the stored name (to store names the validator would refuse).
     """
-    study = resolve_study(data, studies_root=ROOT / "studies")
+    study = resolve_study(data, studies_dir=ROOT / "studies")
     store = Store(data_dir)
     now = time.time()
     store.create(study.id, {

@@ -1,0 +1,511 @@
+"""The study grid: axes, grid points, expansion into runs and stable ids (SPEC 3 and 6.3).
+
+Everything here trusts its input: a :class:`ResolvedStudy` comes from the door
+(:func:`service.studyfile.resolve_study`) or from a stored ``study.json``
+(:func:`study_from_json`). :func:`expand_runs` turns it into :class:`RunSpec` objects, each
+with a ``run_id`` that is a stable hash of its fully resolved inputs and the engine version.
+
+Expansion: the grid points are the Cartesian product of the grid axes and the zip groups (the
+axes of a group vary together). Each point's conveyor and scenario are validated (every point
+that makes the conveyor invalid is named), its ``auto`` sizes are replaced by its conveyor
+design's (:mod:`service.basis`), and the inputs a run does not use are set to their defaults
+(a steady-only run keeps only ``load``, ``temperature_c`` and ``elements`` of the scenario; a
+coast stop does not use ``stop.time_s``). Points whose resolved runs are then identical are one
+run; an axis whose value differs between the points of one run is null in its row.
+"""
+
+from __future__ import annotations
+
+import copy
+import dataclasses
+import hashlib
+import itertools
+import json
+import math
+from dataclasses import dataclass, field
+from typing import Any
+
+from engine.conveyor import Conveyor, InputError, Scenario, parse_conveyor, parse_scenario
+from engine.friction import get_model
+from service.axes import Target, get_path, resolve_axis, set_path
+from service.basis import Case, DesignIn, apply_sizes, design_scenario, has_auto, size_design
+from service.errors import Invalid
+
+__all__ = [
+    "Axis",
+    "ResolvedStudy",
+    "RunSpec",
+    "expand_runs",
+    "finish",
+    "grid_points",
+    "run_scenario",
+    "study_from_json",
+    "study_hash",
+    "canonical_json",
+    "stable_hash",
+    "DEFAULT_MODEL",
+]
+
+#: Friction model used when the grid has no ``friction_model`` axis and ``model`` is not set.
+DEFAULT_MODEL = "din"
+#: Hex digits of a run or study id.
+_HASH_LEN = 16
+
+
+def canonical_json(value: Any) -> str:
+    """JSON with sorted keys and no spaces: the text stable ids are hashed from."""
+    return json.dumps(value, sort_keys=True, separators=(",", ":"), allow_nan=False)
+
+
+def stable_hash(value: Any) -> str:
+    """First 16 hex digits of the SHA-256 of the canonical JSON of ``value``."""
+    return hashlib.sha256(canonical_json(value).encode()).hexdigest()[:_HASH_LEN]
+
+
+@dataclass(frozen=True)
+class Axis:
+    """One grid axis after validation."""
+
+    name: str
+    column: str
+    target: Target
+    values: tuple[Any, ...]
+    group: int | None = None  # zip group index; None for a grid axis
+
+    def to_json(self) -> dict:
+        out = {
+            "name": self.name,
+            "column": self.column,
+            "target": self.target.dotted,
+            "values": list(self.values),
+        }
+        if self.group is not None:
+            out["group"] = self.group
+        return out
+
+
+@dataclass(frozen=True)
+class RunSpec:
+    """One run: everything a worker needs, plus the axis values for the row."""
+
+    run_id: str
+    axes: dict[str, Any]
+    conveyor: dict
+    scenario: dict
+    model: str
+    params: dict
+    dynamics: bool
+    engine_version: str
+    design: dict = field(default_factory=dict)  # *_governed_by of the design's auto sizes
+    points: int = 1  # grid points this run stands for
+
+
+@dataclass
+class ResolvedStudy:
+    """A validated study: base conveyor and scenario (dumped, defaults filled), axes, models."""
+
+    name: str
+    description: str
+    conveyor: dict
+    scenario: dict
+    axes: list[Axis]
+    models: dict[str, dict[str, float | None]]
+    model: str
+    dynamics: bool
+    engine_version: str
+    conveyor_source: str
+    total: int
+    id: str = ""
+    surface: bool = False
+    runs: list[RunSpec] = field(default_factory=list, repr=False)
+    design: dict | None = None  # the study's design case as given (None: the default)
+    grid_points: int = 0  # points of the grid before identical runs were merged
+    designs: list[dict] = field(default_factory=list)  # the design basis per conveyor design
+
+    @property
+    def merged(self) -> int:
+        """Grid points that were merged into another point's identical run."""
+        return max(self.grid_points - self.total, 0)
+
+    def to_json(self) -> dict:
+        """The resolved study as stored in ``study.json`` (enough to expand it again)."""
+        out = {
+            "name": self.name,
+            "description": self.description,
+            "conveyor": self.conveyor,
+            "conveyor_source": self.conveyor_source,
+            "scenario": self.scenario,
+            "grid": {a.name: list(a.values) for a in self.axes if a.group is None},
+            "axes": [a.to_json() for a in self.axes],
+            "models": self.models,
+            "model": self.model,
+            "dynamics": self.dynamics,
+            "surface": self.surface,
+            "engine_version": self.engine_version,
+            "grid_points": self.grid_points,
+            "merged": self.merged,
+            "designs": self.designs,
+        }
+        groups = sorted({a.group for a in self.axes if a.group is not None})
+        if groups:
+            out["zip"] = [{a.name: list(a.values) for a in self.axes if a.group == g}
+                          for g in groups]
+        if self.design is not None:
+            out["design"] = self.design
+        return out
+
+    @property
+    def columns(self) -> list[str]:
+        return [a.column for a in self.axes]
+
+
+def _err(exc: Exception) -> str:
+    return str(exc).strip() or type(exc).__name__
+
+
+def _where(axes: list[Axis], indices: list[int], combo: tuple[int, ...]) -> str:
+    """``name=value, ...`` of one grid point on the axes ``indices``."""
+    return ", ".join(
+        f"{axes[i].name}={axes[i].values[j]!r}" for i, j in zip(indices, combo, strict=True)
+    )
+
+
+#: Invalid points named in one error message; the rest are counted.
+MAX_NAMED_POINTS = 5
+
+
+def _refuse_points(kind: str, bad: list[tuple[str, str]], total: int) -> None:
+    """Raise :class:`Invalid` naming every grid point in ``bad`` (``(where, message)``)."""
+    if not bad:
+        return
+    if len(bad) == 1:
+        where, msg = bad[0]
+        raise Invalid(f"grid ({where}): {msg}" if where else msg)
+    named = "; ".join(f"({w}): {m}" for w, m in bad[:MAX_NAMED_POINTS])
+    more = len(bad) - MAX_NAMED_POINTS
+    tail = f"; and {more} more" if more > 0 else ""
+    raise Invalid(f"grid: {len(bad)} of {total} {kind} variants are invalid: {named}{tail}")
+
+
+def _dimensions(axes: list[Axis]) -> list[list[int]]:
+    """Axis indices of each dimension of the grid: one per grid axis, one per zip group."""
+    dims: list[list[int]] = []
+    groups: dict[int, list[int]] = {}
+    for i, a in enumerate(axes):
+        if a.group is None:
+            dims.append([i])
+        elif a.group in groups:
+            groups[a.group].append(i)
+        else:
+            groups[a.group] = [i]
+            dims.append(groups[a.group])
+    return dims
+
+
+def _points(axes: list[Axis]):
+    """Every grid point as a tuple of value indices, one per axis (grid x zip groups)."""
+    dims = _dimensions(axes)
+    for combo in itertools.product(*[range(len(axes[d[0]].values)) for d in dims]):
+        point = [0] * len(axes)
+        for dim, j in zip(dims, combo, strict=True):
+            for i in dim:
+                point[i] = j
+        yield tuple(point)
+
+
+def grid_points(axes: list[Axis]) -> int:
+    """Number of grid points (before identical runs are merged)."""
+    return math.prod(len(axes[d[0]].values) for d in _dimensions(axes))
+
+
+def finish(study: ResolvedStudy) -> ResolvedStudy:
+    """Expand a study built at the door: its runs (identical points merged), the design
+    basis, each axis's values as validated, and the study id. Returns ``study``."""
+    study.runs, canon, study.designs = _expand(study)
+    axes = study.axes
+    study.total = len(study.runs)
+    for i, axis in enumerate(axes):
+        keys = [canonical_json(v) for v in canon[i]]
+        if len(set(keys)) != len(keys):
+            dup = next(v for v, k in zip(canon[i], keys, strict=True) if keys.count(k) > 1)
+            where = "grid" if axis.group is None else f"zip.{axis.group}"
+            raise Invalid(f"{where}.{axis.name}: value {dup!r} appears twice (after validation)")
+        axes[i] = dataclasses.replace(axis, values=tuple(canon[i]))
+    study.id = study_hash(study)
+    return study
+
+
+
+
+def study_hash(study: ResolvedStudy) -> str:
+    """The study id: a stable hash of what decides its runs (and its name)."""
+    doc = study.to_json()
+    keys = (
+        "name",
+        "conveyor",
+        "scenario",
+        "grid",
+        "models",
+        "model",
+        "dynamics",
+        "surface",
+        "engine_version",
+    )
+    # zip groups and the design case count only when given, so a study without them keeps
+    # the id it had before they existed
+    return stable_hash({k: doc[k] for k in (*keys, "zip", "design") if k in doc})
+
+
+def _parse_conveyor(data: dict) -> Conveyor:
+    return parse_conveyor(data, prefix="conveyor.")
+
+
+def _parse_scenario(data: dict) -> Scenario:
+    return parse_scenario(data, prefix="scenario.")
+
+
+def _params_for(model: str, overrides: dict) -> dict:
+    """The model's full parameter set (defaults filled) for the run id."""
+    return dataclasses.asdict(get_model(model).params(overrides))
+
+
+#: Scenario fields a steady-only run uses; the others are set to their defaults.
+STEADY_FIELDS = ("load", "temperature_c", "elements")
+
+
+def run_scenario(scenario: dict, dynamics: bool) -> dict:
+    """The scenario as a run uses it: fields it does not read set to their defaults.
+
+    A steady-only run reads ``load``, ``temperature_c`` and ``elements``; a coast stop does
+    not read ``stop.time_s`` (the belt stops on its own). Points that differ only there are
+    then the same run.
+    """
+    if not dynamics:
+        defaults = Scenario().model_dump(mode="json", by_alias=True)
+        return {**defaults, **{k: scenario[k] for k in STEADY_FIELDS}}
+    if (scenario.get("stop") or {}).get("mode") == "coast":
+        default = Scenario().stop.time_s
+        if scenario["stop"].get("time_s") != default:
+            return {**scenario, "stop": {**scenario["stop"], "time_s": default}}
+    return scenario
+
+
+def _expand(
+    study: ResolvedStudy, designs: list[dict] | None = None
+) -> tuple[list[RunSpec], list[list[Any]], list[dict]]:
+    """Runs of the study (identical points merged), each axis's validated values, and the
+    design basis of each conveyor design. ``designs`` (from ``study.json``) are reused
+    instead of sized again when they match."""
+    axes = study.axes
+    points = list(_points(axes))
+    i_conv = [i for i, a in enumerate(axes) if a.target.root == "conveyor"]
+    i_scen = [i for i, a in enumerate(axes) if a.target.root == "scenario"]
+    i_model = [i for i, a in enumerate(axes) if a.target.root == "model"]
+    i_param = [i for i, a in enumerate(axes) if a.target.root == "model_param"]
+    canon: list[list[Any]] = [list(a.values) for a in axes]
+
+    def variants(indices, base, parse, kind):
+        keys = list(dict.fromkeys(tuple(p[i] for i in indices) for p in points))
+        out, models, bad = {}, {}, []
+        for key in keys:
+            data = copy.deepcopy(base)
+            for i, j in zip(indices, key, strict=True):
+                set_path(data, axes[i].target.path, copy.deepcopy(axes[i].values[j]))
+            try:
+                model = parse(data)
+            except InputError as exc:
+                bad.append((_where(axes, indices, key), _err(exc)))
+                continue
+            out[key] = model.model_dump(mode="json", by_alias=True)
+            models[key] = model
+        _refuse_points(kind, bad, len(keys))
+        for key, variant in out.items():
+            for i, j in zip(indices, key, strict=True):
+                canon[i][j] = get_path(variant, axes[i].target.path)
+        return out, models
+
+    conveyors, conv_models = variants(i_conv, study.conveyor, _parse_conveyor, "conveyor")
+    scenarios, scen_models = variants(i_scen, study.scenario, _parse_scenario, "scenario")
+
+    # every realised pair: a per-section load must match the profile; a dynamic study's
+    # scenario must be one the conveyor can do
+    from engine.conveyor import section_loads
+
+    pairs = list(dict.fromkeys((tuple(p[i] for i in i_conv), tuple(p[i] for i in i_scen))
+                               for p in points))
+    bad = []
+    for ck, sk in pairs:
+        conv, scn = conv_models[ck], scen_models[sk]
+        try:
+            section_loads(scn.load, conv)
+            if study.dynamics:
+                from engine.run import check_scenario  # the transient engine loads when needed
+
+                check_scenario(scn, conv)
+        except InputError as exc:
+            where = ", ".join(w for w in (_where(axes, i_conv, ck), _where(axes, i_scen, sk))
+                              if w)
+            bad.append((where, _err(exc)))
+    if bad:
+        where, msg = bad[0]
+        raise Invalid(f"{msg} (at grid point {where})" if where else msg)
+
+    # the model and its parameter overrides of each point
+    def model_of(p) -> str:
+        return axes[i_model[0]].values[p[i_model[0]]] if i_model else study.model
+
+    params: dict[tuple, tuple[dict, str]] = {}
+
+    def params_of(p) -> tuple[dict, str]:
+        model = model_of(p)
+        key = (model, *(p[i] for i in i_param if axes[i].target.path[0] == model))
+        if key not in params:
+            overrides = dict(study.models.get(model, {}))
+            for i in i_param:
+                if axes[i].target.path[0] == model:
+                    overrides[axes[i].target.path[1]] = axes[i].values[p[i]]
+            params[key] = (overrides, canonical_json(_params_for(model, overrides)))
+        return params[key]
+
+    # the design basis: one per conveyor design
+    sized = _design_basis(study, points, i_conv, i_scen, conveyors, conv_models, scenarios,
+                          model_of, params_of, designs)
+
+    by_id: dict[str, dict] = {}
+    run_scenarios: dict[tuple, tuple[dict, str]] = {}
+    run_conveyors: dict[tuple, tuple[dict, dict, str]] = {}
+    for p in points:
+        ck = tuple(p[i] for i in i_conv)
+        sk = tuple(p[i] for i in i_scen)
+        model = model_of(p)
+        overrides, params_json = params_of(p)
+        if sk not in run_scenarios:
+            scenario = run_scenario(scenarios[sk], study.dynamics)
+            run_scenarios[sk] = (scenario, canonical_json(scenario))
+        scenario, scenario_json = run_scenarios[sk]
+        # the sizes a run gets depend on its conveyor design and, for brakes, its stop
+        stop = scenario.get("stop") or {}
+        braked = study.dynamics and stop.get("mode") == "brake"
+        ckey = (ck, stop.get("time_s") if braked else None)
+        if ckey not in run_conveyors:
+            entry = sized.get(ck)
+            conveyor, governed = apply_sizes(conveyors[ck], entry["sizes"] if entry else None,
+                                             scenario, study.dynamics)
+            run_conveyors[ckey] = (conveyor, governed, canonical_json(conveyor))
+        conveyor, governed, conveyor_json = run_conveyors[ckey]
+        key = "\x1f".join(
+            [
+                conveyor_json,
+                scenario_json,
+                model,
+                params_json,
+                str(study.dynamics),
+                study.engine_version,
+            ]
+        )
+        run_id = hashlib.sha256(key.encode()).hexdigest()[:_HASH_LEN]
+        values = {a.column: canon[i][j] for i, (a, j) in enumerate(zip(axes, p, strict=True))}
+        if run_id in by_id:  # an identical run: axes that differ are null in its row
+            run = by_id[run_id]
+            run["points"] += 1
+            for column, value in values.items():
+                if canonical_json(run["axes"][column]) != canonical_json(value):
+                    run["axes"][column] = None
+            continue
+        by_id[run_id] = dict(
+            run_id=run_id,
+            axes=values,
+            conveyor=conveyor,
+            scenario=scenario,
+            model=model,
+            params=overrides,
+            dynamics=study.dynamics,
+            engine_version=study.engine_version,
+            design=governed,
+            points=1,
+        )
+    table = [{"axes": entry["axes"], "key": entry["key"], "sizes": entry["sizes"]}
+             for entry in sized.values()]
+    return [RunSpec(**r) for r in by_id.values()], canon, table
+
+
+def _design_basis(study, points, i_conv, i_scen, conveyors, conv_models, scenarios, model_of,
+                  params_of, stored) -> dict:
+    """``{conveyor key: {"axes", "key", "sizes"}}`` for every conveyor design with auto
+    sizes (:mod:`service.basis`)."""
+    axes = study.axes
+    design = study.design or {}
+    design_load = design_scenario(DesignIn(**design) if design else None, {}).load
+    known = {d["key"]: d["sizes"] for d in stored or []}
+    out: dict = {}
+    for ck in dict.fromkeys(tuple(p[i] for i in i_conv) for p in points):
+        conv = conveyors[ck]
+        if not has_auto(conv):
+            continue
+        key = stable_hash({"conveyor": conv, "design": design, "models": study.models,
+                           "scenario": study.scenario})
+        mine = [p for p in points if tuple(p[i] for i in i_conv) == ck]
+        where = _where(axes, i_conv, ck)
+        if key in known:
+            sizes = known[key]
+        else:
+            cases: dict[Case, None] = {}
+            stops: set[float] = set()
+            for p in mine:
+                scn = scenarios[tuple(p[i] for i in i_scen)]
+                model = model_of(p)
+                overrides = params_of(p)[0]
+                if "friction_model" in design and model != design["friction_model"]:
+                    model = design["friction_model"]
+                    overrides = dict(study.models.get(model, {}))
+                temp = float(design.get("temperature_c", scn["temperature_c"]))
+                cases[Case(model, tuple(sorted(overrides.items())), temp, scn["elements"])] = None
+                if study.dynamics and scn["stop"]["mode"] == "brake":
+                    stops.add(float(scn["stop"]["time_s"]))
+            sizes = size_design(conv_models[ck], list(cases), design_load, sorted(stops), where)
+        out[ck] = {"axes": {axes[i].name: axes[i].values[j]
+                            for i, j in zip(i_conv, ck, strict=True)},
+                   "key": key, "sizes": sizes}
+    return out
+
+
+def expand_runs(study: ResolvedStudy) -> list[RunSpec]:
+    """The study's runs as :class:`RunSpec` objects (validated variants, identical grid points
+    merged, the design basis applied)."""
+    return _expand(study, study.designs)[0]
+
+
+def study_from_json(doc: dict, study_id: str) -> ResolvedStudy:
+    """Rebuild a resolved study from ``study.json`` (for resuming)."""
+    axes = [
+        Axis(
+            a["name"],
+            a["column"],
+            resolve_axis(a["name"], doc["conveyor"], doc["scenario"]),
+            tuple(a["values"]),
+            a.get("group"),
+        )
+        for a in doc["axes"]
+    ]
+    study = ResolvedStudy(
+        name=doc["name"],
+        description=doc.get("description", ""),
+        conveyor=doc["conveyor"],
+        scenario=doc["scenario"],
+        axes=axes,
+        models=doc.get("models", {}),
+        model=doc.get("model", DEFAULT_MODEL),
+        dynamics=bool(doc["dynamics"]),
+        engine_version=doc["engine_version"],
+        conveyor_source=doc.get("conveyor_source", "inline"),
+        total=grid_points(axes),
+        id=study_id,
+        # a study stored before the field existed stored every surface
+        surface=bool(doc.get("surface", True)),
+        design=doc.get("design"),
+        grid_points=grid_points(axes),
+        designs=list(doc.get("designs") or []),
+    )
+    study.runs, _, study.designs = _expand(study, study.designs)
+    study.total = len(study.runs)
+    return study
