@@ -24,6 +24,7 @@ from pydantic import (
 )
 
 from engine.errors import InputError
+from engine.results import MAX_DRIVES
 
 __all__ = [
     "InputError",
@@ -371,7 +372,7 @@ class Conveyor(_Model):
     material: Material
     profile: list[ProfileSection] = Field(..., min_length=1)
     idlers: Idlers
-    drives: list[Drive] = Field(..., min_length=1, max_length=6,
+    drives: list[Drive] = Field(..., min_length=1, max_length=MAX_DRIVES,
                                 description="drive pulleys, at most 6 (head and tail)")
     takeup: TakeUp = TakeUp()
     brakes: list[Brake] = Field(default_factory=list)

@@ -17,6 +17,7 @@ from typing import Any
 
 from pydantic import BaseModel
 
+from engine import results
 from engine.conveyor import Conveyor, Scenario
 from engine.errors import InputError
 
@@ -40,9 +41,10 @@ NAMED_AXES: dict[str, tuple[str, ...]] = {
     "load": ("scenario", "load"),
 }
 
-#: Result columns an axis column must not shadow (SPEC section 4 names the achieved stop
-#: time ``stop_time_s``); such an axis is stored as ``<stem>_target_<unit>``.
-RESULT_COLUMNS_TAKEN = frozenset({"start_time_s", "stop_time_s"})
+#: Result columns an axis column must not shadow (every column of :mod:`engine.results`;
+#: SPEC section 4 names the achieved stop time ``stop_time_s``); such an axis is stored as
+#: ``<stem>_target_<unit>``.
+RESULT_COLUMNS_TAKEN = frozenset(results.columns())
 
 
 @dataclass(frozen=True)
