@@ -276,6 +276,23 @@ class StudyService:
             raise NotFound(f"run '{run_id}' of study '{study_id}' not found")
         return spec
 
+    def run_profile(self, study_id: str, run_id: str) -> tuple[pd.DataFrame, str]:
+        """The steady tension along the loop of one run (``run_id`` + ``PROFILE_COLUMNS``) and
+        where it came from: ``stored`` by the worker that ran it, or ``recomputed`` (the
+        steady solve only) for a run stored before profiles were. Empty for a run that
+        raised."""
+        from service.schema import profile_schema
+        from service.tasks import profile_table, run_spec
+
+        spec = self.run_spec(study_id, run_id)
+        stored = self.store.read_profile(study_id, run_id)
+        if len(stored):
+            return stored, "stored"
+        _, result = run_spec({**vars(spec), "dynamics": False}, study_id)
+        table = profile_table(run_id, result) if result is not None else None
+        return (table if table is not None else profile_schema().empty_table()).to_pandas(), \
+            "recomputed"
+
     def run_surface(self, study_id: str, run_id: str) -> tuple[pd.DataFrame, str]:
         """Tension and velocity at every sampled spring and time of one finished run
         (``run_id, t_s, s_m, tension_kn, velocity_m_s``), and where it came from: ``stored``

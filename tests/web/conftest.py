@@ -13,7 +13,7 @@ from service.api.app import create_app
 from service.jobs import study_schema
 from service.schema import rows_to_table
 from service.settings import Settings
-from service.store import Store
+from service.store import PART_TABLES, Store
 from service.studyfile import resolve_study
 from service.tasks import run_batch
 
@@ -80,7 +80,7 @@ def finished_study(data_dir: Path, data: dict, name: str | None = None) -> str:
         "engine_version": study.engine_version, "study": study.to_json(),
     })
     out = run_batch(study.id, [dataclasses.asdict(r) for r in study.runs], study.surface)
-    for table in ("timeseries", "surface"):
+    for table in PART_TABLES:
         if out[table] is not None:
             store.write_part(study.id, table, "0", out[table])
     store.write_part(study.id, "runs", "0", rows_to_table(out["rows"], study_schema(study)))
