@@ -56,6 +56,7 @@ NOT_IN_SCHEMA = (
     "axis, else model, else the one model under models, else din)",
     "with dynamics, a scenario the conveyor can do (brake stop needs brakes, stop after the "
     "brake delay)",
+    "every auto size of a conveyor design is finite (no take-up meets a sag limit near zero)",
 )
 
 
