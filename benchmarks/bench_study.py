@@ -152,10 +152,10 @@ def plain_loop(study) -> tuple[float, dict, float]:
 
 
 def _loop_child(body: dict, part: int, parts: int, nice: int, ready, go, out) -> None:
-    from service.study import resolve_study
+    from service.studyfile import resolve_study
 
     os.setpriority(os.PRIO_PROCESS, 0, max(nice, os.getpriority(os.PRIO_PROCESS, 0)))
-    study = resolve_study(body, studies_root=ROOT / "studies")
+    study = resolve_study(body, studies_dir=ROOT / "studies")
     _warm(study)
     mine = study.runs[part::parts]
     ready.put(part)
@@ -576,7 +576,7 @@ def study288_rounds(args, nice: int) -> dict:
 
 def main() -> int:
     from service.executor import LOCAL_WORKER_NICE
-    from service.study import resolve_study
+    from service.studyfile import resolve_study
 
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--workers", type=int, default=os.cpu_count() or 1)
@@ -603,7 +603,7 @@ def main() -> int:
         f"python {platform.python_version()}  workers={args.workers}  "
         f"load average {' '.join(f'{x:.2f}' for x in os.getloadavg())}"
     )
-    studies = {label: resolve_study(body, studies_root=ROOT / "studies") for label, body in cases}
+    studies = {label: resolve_study(body, studies_dir=ROOT / "studies") for label, body in cases}
     nice = max(args.loop_nice, os.getpriority(os.PRIO_PROCESS, 0))
     print(f"loops at nice {nice} (the LocalCluster workers run at nice {LOCAL_WORKER_NICE})")
     others = [(label, body) for label, body in cases if label != "study288"]

@@ -1,7 +1,7 @@
 """Belt, idler and compound catalogues shipped as CSV files in ``engine/data``.
 
 Every row names its source in the file (or says it is an estimate). Unknown ids raise an
-:class:`~engine.conveyor.InputError` listing the valid ids and the nearest one.
+:class:`~engine.errors.InputError` listing the valid ids and the nearest one.
 """
 
 from __future__ import annotations
@@ -11,6 +11,8 @@ import difflib
 from dataclasses import dataclass
 from functools import cache
 from importlib import resources
+
+from engine.errors import InputError
 
 __all__ = [
     "BeltData",
@@ -147,8 +149,6 @@ def belts() -> dict[str, BeltData]:
 def belt(belt_id: str, field: str = "belt.type") -> BeltData:
     table = belts()
     if belt_id not in table:
-        from engine.conveyor import InputError
-
         raise InputError(_unknown("belt type", belt_id, list(table), field))
     return table[belt_id]
 
@@ -173,8 +173,6 @@ def idler(roll_diameter_m: float, cema_class: str | None = None, field: str = ""
     if cema_class is not None:
         classes = sorted({r.cema_class for r in rows})
         if cema_class not in classes:
-            from engine.conveyor import InputError
-
             raise InputError(_unknown("CEMA idler class", cema_class, classes, field + "cema_class"))
         rows = [r for r in rows if r.cema_class == cema_class]
     best = min(rows, key=lambda r: abs(r.roll_diameter_m - roll_diameter_m))
@@ -231,8 +229,6 @@ def resolve_belt(b) -> ResolvedBelt:
 
 def check_conveyor(conv, prefix: str = "") -> None:
     """Catalogue ids in a conveyor exist (raises InputError naming the field)."""
-    from engine.conveyor import InputError
-
     if conv.belt.type is not None:
         belt(conv.belt.type, prefix + "belt.type")
     if conv.belt.compound not in compounds():

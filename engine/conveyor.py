@@ -23,6 +23,9 @@ from pydantic import (
     model_validator,
 )
 
+from engine.errors import InputError
+from engine.results import MAX_DRIVES
+
 __all__ = [
     "InputError",
     "Belt",
@@ -52,10 +55,6 @@ __all__ = [
     "TEMPERATURE_MIN_C",
     "TEMPERATURE_MAX_C",
 ]
-
-
-class InputError(ValueError):
-    """A user input problem: the message names the field and the fix (one line)."""
 
 
 class _Model(BaseModel):
@@ -373,7 +372,7 @@ class Conveyor(_Model):
     material: Material
     profile: list[ProfileSection] = Field(..., min_length=1)
     idlers: Idlers
-    drives: list[Drive] = Field(..., min_length=1, max_length=6,
+    drives: list[Drive] = Field(..., min_length=1, max_length=MAX_DRIVES,
                                 description="drive pulleys, at most 6 (head and tail)")
     takeup: TakeUp = TakeUp()
     brakes: list[Brake] = Field(default_factory=list)
@@ -480,15 +479,16 @@ def section_loads(load, conveyor: Conveyor) -> tuple[float, ...]:
     if isinstance(load, list | tuple):
         if len(load) != len(sections):
             raise InputError(
-                f"scenario.load: {len(load)} fractions for {len(sections)} profile sections; "
-                "give one per carry section, tail to head")
+                f"{len(load)} fractions for {len(sections)} profile sections; "
+                "give one per carry section, tail to head", field="scenario.load")
         for x in load:
             if not (0.0 <= float(x) <= LOAD_MAX):
-                raise InputError(f"scenario.load: {x!r} is outside 0..{LOAD_MAX:g}")
+                raise InputError(f"{x!r} is outside 0..{LOAD_MAX:g}", field="scenario.load")
         return tuple(float(x) for x in load)
     frac = float(load)
     if not (0.0 <= frac <= LOAD_MAX):
-        raise InputError(f"scenario.load: {frac:g} is outside 0..{LOAD_MAX:g} of the design load")
+        raise InputError(f"{frac:g} is outside 0..{LOAD_MAX:g} of the design load",
+                         field="scenario.load")
     return (frac,) * len(sections)
 
 

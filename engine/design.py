@@ -2,7 +2,7 @@
 
 :func:`auto_sizes` is the one place that says what an ``auto`` field of the conveyor file
 becomes, and which constraint set it. A study calls it once per design case and holds the
-largest values for all runs of a conveyor design (``service.study``); ``run_one`` calls it on
+largest values for all runs of a conveyor design (``service.grid``); ``run_one`` calls it on
 the run's own steady solution to report the sizes it used.
 
 * **Take-up** (gravity ``mass_kg: auto``, fixed ``pretension_kn: auto``): the steady solve's
@@ -221,8 +221,8 @@ def summary_fields(sizes: dict) -> dict:
     """The design columns of a run summary (SPEC 6.4) from :func:`auto_sizes`' answer.
 
     ``rated_power_kw`` and ``brake_force_kn`` are totals over the drives and brakes (None
-    without brakes); ``*_governed_by`` name the constraint (several distinct ones joined by
-    ``+``).
+    without brakes), ``drive{i}_rated_power_kw`` each drive's; ``*_governed_by`` name the
+    constraint (several distinct ones joined by ``+``). Fields: :mod:`engine.results`.
     """
     def join(names: list[str]) -> str | None:
         return "+".join(dict.fromkeys(names)) or None
@@ -233,7 +233,8 @@ def summary_fields(sizes: dict) -> dict:
         "takeup_governed_by": sizes["takeup_governed_by"],
         "rated_power_kw": float(sum(sizes["drive_rated_power_kw"])),
         "rated_power_governed_by": join(sizes["drive_rated_power_governed_by"]),
-        "drive_rated_power_kw": list(sizes["drive_rated_power_kw"]),
+        **{f"drive{i}_rated_power_kw": kw
+           for i, kw in enumerate(sizes["drive_rated_power_kw"], start=1)},
         "brake_force_kn": (float(sum(sizes["brake_force_kn"])) if sizes["brake_force_kn"]
                            else None),
         "brake_governed_by": join(sizes["brake_governed_by"]),

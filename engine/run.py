@@ -19,6 +19,7 @@ from engine.conveyor import Conveyor, Scenario
 from engine.design import auto_sizes, summary_fields
 from engine.dynamics import DynamicsOptions, TransientResult, build_system, simulate
 from engine.dynamics.model import check_scenario
+from engine.results import check_summary
 from engine.statics import SAFETY_FACTOR_MIN, SteadyResult, solve_steady
 
 __all__ = ["RunResult", "run_one", "check_scenario", "TRANSIENT_SAFETY_RATIO",
@@ -44,7 +45,7 @@ class RunResult:
     Attributes
     ----------
     summary : dict
-        SPEC section 4 fields (steady, and transient when dynamics ran), the design fields of
+        The fields of :mod:`engine.results` (every key is one of them): SPEC section 4 fields (steady, and transient when dynamics ran), the design fields of
         SPEC 6.4 (``takeup_mass_kg``, ``takeup_pretension_kn``, ``brake_force_kn``,
         ``rated_power_kw`` and their ``*_governed_by``, :mod:`engine.design`), ``fill_pct``,
         ``status``, ``message``, ``elapsed_s`` [s], ``te_components_kn`` as a dict [kN].
@@ -121,6 +122,11 @@ class RunResult:
             return None
         return {c: self._timeseries[c].to_numpy() for c in self._timeseries.columns}
 
+    def profile_arrays(self) -> dict[str, np.ndarray] | None:
+        """The steady profile's columns ``s_m``, ``strand``, ``elevation_m``, ``tension_kn``,
+        ``sag_pct`` as arrays (None without a steady solution; no DataFrame is built)."""
+        return None if self.steady is None else self.steady.profile_arrays()
+
     def surface_arrays(self) -> dict[str, np.ndarray] | None:
         """The surface columns ``t_s``, ``s_m``, ``tension_kn``, ``velocity_m_s`` as arrays."""
         if self._surface is _DERIVED:
@@ -184,7 +190,7 @@ def run_one(
                                              steady=steady)))
     if not dynamics or steady.status == "failed":
         summary["elapsed_s"] = time.perf_counter() - t0
-        return RunResult(summary=summary, steady=steady)
+        return RunResult(summary=check_summary(summary), steady=steady)
 
     system = build_system(conveyor, scenario, steady, opts)
     tr = simulate(system, steady_summary=steady.summary, conveyor=conveyor,
@@ -200,4 +206,4 @@ def run_one(
     summary["status"] = status
     summary["message"] = "; ".join(messages)
     summary["elapsed_s"] = time.perf_counter() - t0
-    return RunResult(summary=summary, steady=steady, transient=tr)
+    return RunResult(summary=check_summary(summary), steady=steady, transient=tr)

@@ -90,6 +90,22 @@ class SteadyResult:
         """Mean tension of each element (T[j-1] + T[j]) / 2 [N]."""
         return 0.5 * (np.roll(self.tension_n, 1) + self.tension_n)
 
+    def profile_arrays(self) -> dict[str, np.ndarray]:
+        """Tension along the loop at element ends as arrays: ``s_m``, ``strand`` (text),
+        ``elevation_m``, ``tension_kn``, ``sag_pct`` (no DataFrame is built)."""
+        loop = self.loop
+        low = np.minimum(self.tension_n, np.roll(self.tension_n, 1))
+        sag = np.where(loop.is_idler, 100 * loop.sag_w_n / np.maximum(low, 1.0), 0.0)
+        names = np.array([STRAND_NAMES.get(k, str(k)) for k in range(max(STRAND_NAMES) + 1)],
+                         dtype=object)
+        return {
+            "s_m": loop.s_end_m,
+            "strand": names[loop.strand.astype(np.int64)],
+            "elevation_m": loop.z_end_m,
+            "tension_kn": self.tension_n / 1e3,
+            "sag_pct": sag,
+        }
+
     def profile(self):
         """Tension along the loop at element ends: s_m, strand, elevation_m, tension_kn, sag_pct.
 
@@ -98,16 +114,7 @@ class SteadyResult:
         """
         import pandas as pd
 
-        loop = self.loop
-        low = np.minimum(self.tension_n, np.roll(self.tension_n, 1))
-        sag = np.where(loop.is_idler, 100 * loop.sag_w_n / np.maximum(low, 1.0), 0.0)
-        return pd.DataFrame({
-            "s_m": loop.s_end_m,
-            "strand": [STRAND_NAMES[int(s)] for s in loop.strand],
-            "elevation_m": loop.z_end_m,
-            "tension_kn": self.tension_n / 1e3,
-            "sag_pct": sag,
-        })
+        return pd.DataFrame(self.profile_arrays())
 
 
 def _drive_elements(conv: Conveyor, loop: Loop) -> list[tuple[int, float, float]]:

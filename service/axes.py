@@ -17,7 +17,9 @@ from typing import Any
 
 from pydantic import BaseModel
 
+from engine import results
 from engine.conveyor import Conveyor, Scenario
+from engine.errors import InputError
 
 __all__ = [
     "NAMED_AXES",
@@ -39,9 +41,10 @@ NAMED_AXES: dict[str, tuple[str, ...]] = {
     "load": ("scenario", "load"),
 }
 
-#: Result columns an axis column must not shadow (SPEC section 4 names the achieved stop
-#: time ``stop_time_s``); such an axis is stored as ``<stem>_target_<unit>``.
-RESULT_COLUMNS_TAKEN = frozenset({"start_time_s", "stop_time_s"})
+#: Result columns an axis column must not shadow (every column of :mod:`engine.results`;
+#: SPEC section 4 names the achieved stop time ``stop_time_s``); such an axis is stored as
+#: ``<stem>_target_<unit>``.
+RESULT_COLUMNS_TAKEN = frozenset(results.columns())
 
 
 @dataclass(frozen=True)
@@ -150,8 +153,9 @@ def valid_paths(conveyor: dict, scenario: dict) -> list[str]:
     )
 
 
-def resolve_axis(name: str, conveyor: dict, scenario: dict) -> Target:
-    """Map an axis name to the field it sets; raise ``ValueError`` naming the nearest path.
+def resolve_axis(name: str, conveyor: dict, scenario: dict, where: str = "grid") -> Target:
+    """Map an axis name to the field it sets; raise :class:`InputError` naming the nearest
+    path, with ``where`` (``grid`` or ``zip.<n>``) as its field.
 
     ``conveyor`` and ``scenario`` are the resolved (dumped) base mappings, used for list
     lengths (``profile.3.lift_m`` needs four sections).
@@ -161,9 +165,9 @@ def resolve_axis(name: str, conveyor: dict, scenario: dict) -> Target:
         return Target(root, tuple(path))
     parts = name.split(".")
     if any(p == "" for p in parts):
-        raise ValueError(f"grid: axis '{name}' is not a dotted field path")
+        raise InputError(f"axis '{name}' is not a dotted field path", field=where)
     if parts[0] == "models":
-        return _model_param(name, parts)
+        return _model_param(name, parts, where)
     candidates: list[tuple[str, type[BaseModel], list[str], dict]] = []
     if parts[0] == "scenario":
         candidates.append(("scenario", Scenario, parts[1:], scenario))
@@ -182,36 +186,34 @@ def resolve_axis(name: str, conveyor: dict, scenario: dict) -> Target:
         if found != "unknown":
             problems.append(found)
     if problems:
-        raise ValueError(f"grid: axis '{name}': {problems[0]}")
+        raise InputError(f"axis '{name}': {problems[0]}", field=where)
     close = difflib.get_close_matches(name, valid_paths(conveyor, scenario), n=1, cutoff=0.5)
     hint = f"; did you mean '{close[0]}'?" if close else ""
-    raise ValueError(
-        f"grid: unknown axis '{name}'{hint} (axes are {', '.join(NAMED_AXES)} or a dotted "
+    raise InputError(
+        f"unknown axis '{name}'{hint} (axes are {', '.join(NAMED_AXES)} or a dotted "
         "conveyor or scenario field such as takeup.mass_kg or scenario.run_s, or a model "
-        "parameter such as models.din.f_carry)"
-    )
+        "parameter such as models.din.f_carry)", field=where)
 
 
-def _model_param(name: str, parts: list[str]) -> Target:
+def _model_param(name: str, parts: list[str], where: str) -> Target:
     """``models.<model>.<parameter>``: a friction model parameter as an axis."""
     import dataclasses
 
-    from engine.conveyor import InputError
     from engine.friction import get_model
 
     if len(parts) != 3:
-        raise ValueError(f"grid: axis '{name}': a model parameter axis is "
-                         "models.<model>.<parameter>, e.g. models.din.f_carry")
+        raise InputError(f"axis '{name}': a model parameter axis is "
+                         "models.<model>.<parameter>, e.g. models.din.f_carry", field=where)
     try:
         fm = get_model(parts[1])
     except InputError as exc:
-        raise ValueError(f"grid: axis '{name}': {str(exc).split(': ', 1)[-1]}") from None
+        raise InputError(f"axis '{name}': {exc.reason}", field=where) from None
     fields = [f.name for f in dataclasses.fields(fm.params_class)]
     if parts[2] not in fields:
         close = difflib.get_close_matches(parts[2], fields, n=1, cutoff=0.5)
         hint = f"; did you mean 'models.{fm.name}.{close[0]}'?" if close else ""
-        raise ValueError(f"grid: axis '{name}': unknown parameter of model '{fm.name}'{hint} "
-                         f"valid: {', '.join(fields)}")
+        raise InputError(f"axis '{name}': unknown parameter of model '{fm.name}'{hint} "
+                         f"valid: {', '.join(fields)}", field=where)
     return Target("model_param", (fm.name, parts[2]))
 
 

@@ -126,7 +126,7 @@ def size_design(conv: Conveyor, cases: list[Case], load, stop_times: list[float]
     try:
         section_loads(load, conv)
     except InputError as exc:
-        raise Invalid(f"design.load: {str(exc).split(': ', 1)[-1]}"
+        raise Invalid(f"design.load: {exc.reason}"
                       + (f" (conveyor design {where})" if where else "")) from None
 
     takeups, rated, holding = [], [[] for _ in drive_auto], []

@@ -19,6 +19,8 @@ from pathlib import Path
 __all__ = ["run_demo", "free_port", "start_server", "stop_server", "wait_ready"]
 
 METRICS = ["power_kw", "t_max_stop_kn", "t_min_stop_kn"]
+#: The friction models compared: the paper's Non-Lin against CEMA.
+BASELINE, CANDIDATE = "cema", "nonlin"
 
 
 def free_port() -> int:
@@ -72,44 +74,16 @@ def stop_server(proc: subprocess.Popen, timeout_s: float = 30.0) -> None:
         proc.wait(10)
 
 
-def _study_for_registry(body: dict) -> tuple[dict, str]:
-    """Keep the friction models the engine has; the candidate is nonlin when it exists."""
-    from engine.friction import MODELS, get_model
-
-    grid = dict(body.get("grid", {}))
-    models = grid.get("friction_model")
-    candidate = "nonlin"
-    if isinstance(models, list):
-        have = [m for m in models if get_model_name(m, get_model) in MODELS]
-        missing = [m for m in models if m not in have]
-        if missing:
-            print(f"note: friction models not in this engine yet, left out: {', '.join(missing)}")
-            grid["friction_model"] = have
-            body = {**body, "grid": grid}
-        if "nonlin" not in [get_model_name(m, get_model) for m in have]:
-            candidate = next((m for m in have if m != "cema"), "cema")
-            print(f"note: comparing cema with {candidate} instead of nonlin")
-    return body, candidate
-
-
-def get_model_name(name: str, get_model) -> str:
-    from engine.conveyor import InputError
-
-    try:
-        return get_model(name).name
-    except InputError:
-        return name
-
-
 def run_demo(study_path: str = "studies/paper-comparison.yaml", port: int = 0) -> int:
-    from service.cli.study import _study_body
     from service.client import ServiceClient
     from service.report import ProgressBar, format_compare, format_duration
     from service.settings import Settings
+    from service.store import Store
+    from service.studyfile import study_body
 
     settings = Settings()
     port = port or free_port()
-    body, candidate = _study_for_registry(_study_body(study_path))
+    body = study_body(study_path)
     data_dir = Path(settings.data_dir).resolve()
     log_path = data_dir / "service.log"
     data_dir.mkdir(parents=True, exist_ok=True)
@@ -143,12 +117,12 @@ def run_demo(study_path: str = "studies/paper-comparison.yaml", port: int = 0) -
                 f"{st['state']}: {st['done']} runs, {st['failed']} failed, compute time "
                 f"{format_duration(st['elapsed_s'])}"
             )
-            result = client.compare(st["id"], "cema", candidate, METRICS)
+            result = client.compare(st["id"], BASELINE, CANDIDATE, METRICS)
             print()
             print(format_compare(result))
     finally:
         stop_server(proc)
-    runs = settings.studies_root / st["id"]
+    runs = Store(data_dir).study_dir(st["id"])
     print()
     print(f"Parquet files: {runs}/runs (summary rows), {runs}/timeseries (key points; a run's "
           "surface is recomputed when asked for unless the study says surface: true)")

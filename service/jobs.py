@@ -26,9 +26,9 @@ from collections import deque
 import pyarrow as pa
 
 from service.errors import Unavailable
+from service.grid import ResolvedStudy, RunSpec
 from service.schema import axis_value, failed_row, rows_to_table, runs_schema_for_axes
-from service.store import Store
-from service.study import ResolvedStudy, RunSpec
+from service.store import PART_TABLES, Store
 from service.tasks import Specs, run_batch
 
 __all__ = ["StudyJob", "study_schema", "batch_size", "RunRate"]
@@ -404,7 +404,7 @@ class StudyJob:
             return
         runs = [r for batch, _ in self._buffer for r in batch]
         merged: dict = {"rows": [row for _, res in self._buffer for row in res["rows"]]}
-        for table in ("surface", "timeseries"):
+        for table in PART_TABLES:
             parts = [res[table] for _, res in self._buffer if res.get(table) is not None]
             merged[table] = pa.concat_tables(parts) if parts else None
         self._buffer, self._buffered = [], 0
@@ -430,7 +430,7 @@ class StudyJob:
             return
         key = _part_key(batch)
         sid = self.study.id
-        for table in ("surface", "timeseries"):
+        for table in PART_TABLES:
             data = result.get(table)
             if data is not None and data.num_rows:
                 self.store.write_part(sid, table, key, data)

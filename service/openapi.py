@@ -39,7 +39,7 @@ __all__ = [
 
 #: Study and run ids: 16 hex digits.
 ID_PATTERN = "^[0-9a-f]{16}$"
-#: A study name (``service.study.NAME_RE`` without ``..``).
+#: A study name (``service.studyfile.NAME_RE`` without ``..``).
 NAME_PATTERN = r"^(?!.*\.\.)[A-Za-z0-9][A-Za-z0-9 ._+\-]{0,119}$"
 #: Rules of a valid study that JSON Schema cannot state (checked after the schema).
 NOT_IN_SCHEMA = (
@@ -56,6 +56,7 @@ NOT_IN_SCHEMA = (
     "axis, else model, else the one model under models, else din)",
     "with dynamics, a scenario the conveyor can do (brake stop needs brakes, stop after the "
     "brake delay)",
+    "every auto size of a conveyor design is finite (no take-up meets a sag limit near zero)",
 )
 
 
@@ -316,7 +317,7 @@ def _refine_conveyor(defs: dict) -> None:
 def study_schema(studies_dir: Path | None = None) -> dict:
     """The JSON Schema (draft 2020-12) of a POSTed study, with its definitions in ``$defs``."""
     from engine.conveyor import Conveyor, Scenario
-    from service.study import StudyIn
+    from service.studyfile import StudyIn
     from service.tasks import TINY_CONVEYOR, TINY_SCENARIO
 
     conv = Conveyor.model_json_schema(ref_template="#/$defs/{model}")

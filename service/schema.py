@@ -1,9 +1,10 @@
 """Arrow schemas of the stored tables (SPEC sections 4 and 5) and row flattening.
 
 The runs schema is fixed per study: the inputs (``study_id``, ``run_id``, one column per
-grid axis, ``friction_model``, ``engine_version``), every SPEC section 4 result column, the
-``te_<part>_kn`` columns of every part any model reports (null where a model has no such
-part; ``te_other_kn`` sums parts outside the SPEC list), and the bookkeeping columns.
+grid axis, ``friction_model``, ``engine_version``), then every result of
+:mod:`engine.results` in its order: the ``te_<part>_kn`` columns of every part any model
+reports (null where a model has no such part; ``te_other_kn`` sums parts outside the SPEC
+list) and the per-drive columns for drives 1 to ``MAX_DRIVES``.
 """
 
 from __future__ import annotations
@@ -13,6 +14,9 @@ import math
 from typing import Any
 
 import pyarrow as pa
+
+from engine import results as R
+from engine.results import MAX_DRIVES
 
 __all__ = [
     "MAX_DRIVES",
@@ -27,6 +31,8 @@ __all__ = [
     "BOOKKEEPING_COLUMNS",
     "TIMESERIES_COLUMNS",
     "SURFACE_COLUMNS",
+    "PROFILE_COLUMNS",
+    "profile_schema",
     "runs_schema",
     "runs_schema_for_axes",
     "axis_type",
@@ -38,49 +44,21 @@ __all__ = [
     "components_from_row",
 ]
 
-#: Most drives a conveyor may have: the per-drive columns ``drive{i}_*`` run from 1 to it
-#: (null where a conveyor has fewer drives).
-MAX_DRIVES = 6
-STEADY_DRIVE_FIELDS = ("t_tight_kn", "t_slack_kn", "slip_margin")
-TRANSIENT_DRIVE_FIELDS = ("force_max_kn", "power_max_kw", "slip_margin_min", "slip_s", "slip_m")
-STEADY_COLUMNS = (
-    "te_kn", "power_kw", "t1_kn", "t2_kn", "t_max_kn", "t_max_at_m", "t_min_kn", "t_min_at_m",
-    "sag_max_pct", "takeup_mass_kg", "takeup_tension_kn", "slip_margin", "slip_margin_start",
-    "safety_factor", "belt_mass_kg_m", "load_mass_kg_m", "idler_mass_carry_kg_m",
-    "idler_mass_return_kg_m", "belt_modulus_kn", "belt_modulus_dyn_kn", "belt_rating_kn",
-    "wave_speed_carry_m_s", "wave_speed_return_m_s",
-) + tuple(f"drive{i}_{f}" for i in range(1, MAX_DRIVES + 1)
-          for f in STEADY_DRIVE_FIELDS)  # fmt: skip
+#: Every result column is derived from :mod:`engine.results` (name, unit, meaning): a field
+#: defined there is a column here, and nothing else is.
+STEADY_COLUMNS = R.columns((R.STEADY, R.STEADY_DRIVE))
 #: SPEC 6.4 per phase: start (start command to stop command) and stop (stop command on).
-PHASE_COLUMNS = tuple(f"t_{m}_{p}_{k}" for p in ("start", "stop") for m in ("max", "min")
-                      for k in ("kn", "at_m", "time_s"))
-TRANSIENT_COLUMNS = (
-    "t_max_dyn_kn", "t_max_dyn_at_m", "t_max_dyn_time_s", "t_min_dyn_kn", "t_min_dyn_at_m",
-    "t_min_dyn_time_s", "dyn_factor", "drive_force_max_kn", "drive_power_max_kw",
-    "velocity_max_m_s", "velocity_min_m_s", "takeup_travel_m", "start_time_s", "stop_time_s",
-    "wave_loop_time_s", "stop_wave_ratio", "sag_max_dyn_pct", "slip_margin_min_dyn",
-    "safety_factor_dyn",
-) + PHASE_COLUMNS + (
-    "t_max_pre_slack_kn", "t_max_post_slack_kn", "t_max_post_slack_at_m",
-    "t_max_post_slack_time_s", "slack_max_m", "slack_at_m", "slack_time_s", "slack_duration_s",
-    "takeup_endstop_speed_m_s",
-) + tuple(f"drive{i}_{f}" for i in range(1, MAX_DRIVES + 1)
-          for f in TRANSIENT_DRIVE_FIELDS)  # fmt: skip
-#: Parts of ``te_components_kn``: the six every model reports, then nonlin's finer split.
-TE_PARTS = (
-    "main_carry", "main_return", "lift", "feed", "secondary", "accessories",
-    "idler_rotation", "indentation", "belt_flexure", "material_flexure", "other",
-)  # fmt: skip
-TE_PART_COLUMNS = tuple(f"te_{p}_kn" for p in TE_PARTS)
+PHASE_COLUMNS = R.columns((R.PHASE,))
+TRANSIENT_COLUMNS = R.columns((R.TRANSIENT, R.PHASE, R.SLACK, R.TRANSIENT_DRIVE))
+TE_PARTS = R.TE_PARTS
+TE_PART_COLUMNS = R.columns((R.TE_COMPONENTS,))
 #: SPEC 6.4 design and capacity columns: the sizes the run used (totals over drives and
-#: brakes) and the capacity check.
-DESIGN_COLUMNS = ("takeup_pretension_kn", "rated_power_kw", "brake_force_kn", "fill_pct")
-#: What set each auto size (text): take-up ``slip_start`` | ``slip_running`` | ``sag_running``
-#: | ``sag_at_rest``; rated power ``peripheral_force`` | ``running_resistance``; brakes
-#: ``stop_time`` | ``holding``; ``given`` when the file gives the size.
-DESIGN_TEXT_COLUMNS = ("takeup_governed_by", "rated_power_governed_by", "brake_governed_by")
+#: brakes, and per drive) and the capacity check.
+DESIGN_COLUMNS = R.columns((R.DESIGN, R.DESIGN_DRIVE))
+#: What set each auto size (text).
+DESIGN_TEXT_COLUMNS = R.columns((R.DESIGN_BASIS,))
 RESULT_COLUMNS = STEADY_COLUMNS + DESIGN_COLUMNS + TE_PART_COLUMNS + TRANSIENT_COLUMNS
-BOOKKEEPING_COLUMNS = ("status", "message", "elapsed_s")
+BOOKKEEPING_COLUMNS = R.columns((R.BOOKKEEPING,))
 INPUT_COLUMNS = ("study_id", "run_id", "friction_model", "engine_version")
 
 TIMESERIES_COLUMNS = (
@@ -91,6 +69,8 @@ TIMESERIES_COLUMNS = (
           for q, u in (("f_drive", "kn"), ("v_drive", "m_s"), ("f_belt", "kn"))
           )  # fmt: skip
 SURFACE_COLUMNS = ("t_s", "s_m", "tension_kn", "velocity_m_s")
+#: The steady tension along the loop at element ends (``RunResult.profile``).
+PROFILE_COLUMNS = ("s_m", "strand", "elevation_m", "tension_kn", "sag_pct")
 
 
 def axis_type(values: list[Any]) -> pa.DataType:
@@ -124,12 +104,8 @@ def runs_schema(axis_columns: list[tuple[str, pa.DataType]]) -> pa.Schema:
         if name not in names:
             fields.append(pa.field(name, pa.string()))
     fields += [pa.field(c, pa.float64()) for c in RESULT_COLUMNS]
-    fields += [pa.field(c, pa.string()) for c in DESIGN_TEXT_COLUMNS]
-    fields += [
-        pa.field("status", pa.string()),
-        pa.field("message", pa.string()),
-        pa.field("elapsed_s", pa.float64()),
-    ]
+    fields += [pa.field(c, pa.string() if R.field(c).text else pa.float64())
+               for c in DESIGN_TEXT_COLUMNS + BOOKKEEPING_COLUMNS]
     return pa.schema(fields)
 
 
@@ -141,6 +117,14 @@ def runs_schema_for_axes(axes: list[dict]) -> pa.Schema:
 def timeseries_schema() -> pa.Schema:
     return pa.schema(
         [pa.field("run_id", pa.string())] + [pa.field(c, pa.float64()) for c in TIMESERIES_COLUMNS]
+    )
+
+
+def profile_schema() -> pa.Schema:
+    """The steady profile table: one row per element end, ``strand`` as text."""
+    return pa.schema(
+        [pa.field("run_id", pa.string())]
+        + [pa.field(c, pa.string() if c == "strand" else pa.float64()) for c in PROFILE_COLUMNS]
     )
 
 

@@ -44,7 +44,9 @@ class Settings(BaseSettings):
     max_runs: int = Field(20_000, ge=1, description="largest study (runs) accepted")
     studies_dir: Path = Field(
         Path("./studies"),
-        description="root for conveyor paths given as strings in POST /studies bodies",
+        description="the study files directory (the repository's studies/): conveyor paths "
+        "given as strings in POST /studies bodies are read from inside it; not the store's "
+        "study data, which is under data_dir/studies",
     )
     max_body_bytes: int = Field(1_000_000, ge=1024, description="largest request body [bytes]")
     warm_start: bool = Field(
@@ -80,10 +82,6 @@ class Settings(BaseSettings):
     @property
     def n_local_workers(self) -> int:
         return self.workers or os.cpu_count() or 1
-
-    @property
-    def studies_root(self) -> Path:
-        return self.data_dir / "studies"
 
 
 @lru_cache(maxsize=1)

@@ -5,12 +5,14 @@
     <data_dir>/studies/<study_id>/study.json              resolved study, state, counts, times
     <data_dir>/studies/<study_id>/runs/part-<key>.parquet        SPEC section 4 rows
     <data_dir>/studies/<study_id>/timeseries/part-<key>.parquet  SPEC section 5 key points
+    <data_dir>/studies/<study_id>/profile/part-<key>.parquet     steady tension along the loop
     <data_dir>/studies/<study_id>/surface/part-<key>.parquet     SPEC section 5 long table
                                                                  (studies with surface: true)
 
 Every file is written under a temporary name starting with ``.`` (which Arrow's dataset
 reader skips) and then renamed, so readers never see half a file. A batch writes its
-``surface`` and ``timeseries`` parts first and its ``runs`` part last, under one part key:
+``surface``, ``timeseries`` and ``profile`` parts first and its ``runs`` part last, under one
+part key:
 a run counts as done exactly when its ``runs`` row exists, and :meth:`Store.clean` removes
 the time-series parts of a batch whose ``runs`` part never landed.
 ``pd.read_parquet("<data_dir>/studies/<id>/runs")`` reads the runs table.
@@ -33,12 +35,19 @@ import pyarrow as pa
 import pyarrow.parquet as pq
 
 from service.errors import NotFound
-from service.schema import runs_schema_for_axes, surface_schema, timeseries_schema
+from service.schema import (
+    profile_schema,
+    runs_schema_for_axes,
+    surface_schema,
+    timeseries_schema,
+)
 
-__all__ = ["Store", "STATES", "TABLES", "write_part_to"]
+__all__ = ["Store", "STATES", "TABLES", "PART_TABLES", "write_part_to"]
 
 STATES = ("queued", "running", "done", "failed", "cancelled")
-TABLES = ("runs", "timeseries", "surface")
+TABLES = ("runs", "timeseries", "surface", "profile")
+#: The tables a batch writes before its ``runs`` part (which commits them).
+PART_TABLES = ("surface", "timeseries", "profile")
 _ID_RE = re.compile(r"^[0-9a-f]{16}$")
 #: Studies whose runs table :meth:`Store.read_runs` keeps for reuse.
 RUNS_CACHE_STUDIES = 4
@@ -206,7 +215,9 @@ class Store:
     def _empty(self, study_id: str, table: str) -> pa.Table:
         if table == "runs":
             return runs_schema_for_axes(self.read(study_id)["study"]["axes"]).empty_table()
-        return (timeseries_schema() if table == "timeseries" else surface_schema()).empty_table()
+        schemas = {"timeseries": timeseries_schema, "surface": surface_schema,
+                   "profile": profile_schema}
+        return schemas[table]().empty_table()
 
     def _read_table(self, study_id: str, table: str, columns=None, filters=None) -> pd.DataFrame:
         parts = self.parts(study_id, table)
@@ -253,6 +264,13 @@ class Store:
         self.read(study_id)
         filters = [("run_id", "=", run_id)] if run_id else None
         return self._read_table(study_id, "timeseries", filters=filters)
+
+    def read_profile(self, study_id: str, run_id: str | None = None) -> pd.DataFrame:
+        """Steady tension along the loop (``run_id`` + ``PROFILE_COLUMNS``), of one run or of
+        all; empty for runs stored before profiles were."""
+        self.read(study_id)
+        filters = [("run_id", "=", run_id)] if run_id else None
+        return self._read_table(study_id, "profile", filters=filters)
 
     def read_surface(self, study_id: str, run_id: str | None = None) -> pd.DataFrame:
         """Tension and velocity at every element (long table), of one run or of all."""

@@ -27,10 +27,11 @@ import engine
 from service import results
 from service.errors import Conflict, Invalid, NotFound
 from service.executor import Executor
+from service.grid import ResolvedStudy, RunSpec, study_from_json
 from service.jobs import StudyJob
 from service.settings import Settings
 from service.store import Store
-from service.study import ResolvedStudy, RunSpec, resolve_study, study_from_json
+from service.studyfile import resolve_study
 
 __all__ = ["StudyService", "ACTIVE_STATES", "RESOLVED_CACHE", "SURFACE_CACHE"]
 
@@ -165,7 +166,7 @@ class StudyService:
         study = resolve_study(
             data,
             base_dir=base_dir,
-            studies_root=self.settings.studies_dir if confine else None,
+            studies_dir=self.settings.studies_dir if confine else None,
             max_runs=self.settings.max_runs,
         )
         created = self._admit(study)
@@ -174,7 +175,7 @@ class StudyService:
     def check(self, data: Any) -> ResolvedStudy:
         """Validate a POSTed study as :meth:`submit` would, without storing or running it."""
         return resolve_study(
-            data, studies_root=self.settings.studies_dir, max_runs=self.settings.max_runs
+            data, studies_dir=self.settings.studies_dir, max_runs=self.settings.max_runs
         )
 
     # ---------------------------------------------------------------- reading
@@ -274,6 +275,23 @@ class StudyService:
         if spec is None:
             raise NotFound(f"run '{run_id}' of study '{study_id}' not found")
         return spec
+
+    def run_profile(self, study_id: str, run_id: str) -> tuple[pd.DataFrame, str]:
+        """The steady tension along the loop of one run (``run_id`` + ``PROFILE_COLUMNS``) and
+        where it came from: ``stored`` by the worker that ran it, or ``recomputed`` (the
+        steady solve only) for a run stored before profiles were. Empty for a run that
+        raised."""
+        from service.schema import profile_schema
+        from service.tasks import profile_table, run_spec
+
+        spec = self.run_spec(study_id, run_id)
+        stored = self.store.read_profile(study_id, run_id)
+        if len(stored):
+            return stored, "stored"
+        _, result = run_spec({**vars(spec), "dynamics": False}, study_id)
+        table = profile_table(run_id, result) if result is not None else None
+        return (table if table is not None else profile_schema().empty_table()).to_pandas(), \
+            "recomputed"
 
     def run_surface(self, study_id: str, run_id: str) -> tuple[pd.DataFrame, str]:
         """Tension and velocity at every sampled spring and time of one finished run

@@ -16,10 +16,12 @@ import pyarrow as pa
 from distributed import WorkerPlugin
 
 from service.schema import (
+    PROFILE_COLUMNS,
     SURFACE_COLUMNS,
     TIMESERIES_COLUMNS,
     failed_row,
     flatten_summary,
+    profile_schema,
     surface_schema,
     timeseries_schema,
 )
@@ -30,6 +32,7 @@ __all__ = [
     "arrays_table",
     "timeseries_table",
     "surface_table",
+    "profile_table",
     "run_spec",
     "warm_up",
     "lower_priority",
@@ -103,11 +106,18 @@ _TS_SCHEMA = timeseries_schema()
 _TS_LAYOUT = _layout(_TS_SCHEMA, TIMESERIES_COLUMNS)
 _SF_SCHEMA = surface_schema()
 _SF_LAYOUT = _layout(_SF_SCHEMA, SURFACE_COLUMNS)
+_PF_SCHEMA = profile_schema()
+_PF_LAYOUT = _layout(_PF_SCHEMA, PROFILE_COLUMNS)
 
 
 def timeseries_table(run_id: str, result) -> pa.Table | None:
     """The stored time series (SPEC section 5 key points) of a run's result."""
     return _arrays_table(run_id, result.timeseries_arrays(), _TS_LAYOUT, _TS_SCHEMA)
+
+
+def profile_table(run_id: str, result) -> pa.Table | None:
+    """The steady profile of a run's result (the table the run page draws)."""
+    return _arrays_table(run_id, result.profile_arrays(), _PF_LAYOUT, _PF_SCHEMA)
 
 
 def surface_table(run_id: str, result) -> pa.Table | None:
@@ -117,7 +127,7 @@ def surface_table(run_id: str, result) -> pa.Table | None:
 
 
 def run_spec(spec: dict, study_id: str = "") -> tuple[dict, Any]:
-    """One run: (row, result or None). ``spec`` is a :class:`~service.study.RunSpec` as a dict."""
+    """One run: (row, result or None). ``spec`` is a :class:`~service.grid.RunSpec` as a dict."""
     import engine
     from engine.conveyor import parse_conveyor, parse_scenario
 
@@ -174,7 +184,7 @@ class Specs:
 def run_batch(
     study_id: str, specs: list[dict] | Specs, surface: bool = False, sink: dict | None = None
 ) -> dict:
-    """Run ``specs`` one after another; return rows and the time-series tables.
+    """Run ``specs`` one after another; return rows, the time series and steady profiles.
 
     ``surface``: also return (or write) each dynamic run's tension/velocity surface; without
     it the surface is never built (it is recomputed from the run's inputs when asked for).
@@ -184,7 +194,8 @@ def run_batch(
     being sent back; the runs rows always go back to the service, which writes them last (the
     commit).
 
-    Returns ``{"rows": [...], "timeseries": Table | None, "surface": Table | None,
+    Returns ``{"rows": [...], "timeseries": Table | None, "profile": Table | None,
+    "surface": Table | None,
     "seconds": float, "pid": int, "split": {"run_s", "tables_s", "write_s", "cpu_s"}}``: the
     split is the task's wall time in running the runs, in building the Arrow tables and in
     writing parts, and the CPU time of the whole task.
@@ -193,7 +204,7 @@ def run_batch(
     cpu0 = time.thread_time()
     if isinstance(specs, Specs):
         specs = specs.items
-    rows, series, surfaces = [], [], []
+    rows, series, profiles, surfaces = [], [], [], []
     t_run = t_tables = t_write = 0.0
     for spec in specs:
         t1 = time.perf_counter()
@@ -207,6 +218,9 @@ def run_batch(
             table = timeseries_table(spec["run_id"], result)
             if table is not None:
                 series.append(table)
+            table = profile_table(spec["run_id"], result)
+            if table is not None:
+                profiles.append(table)
             if surface:
                 table = surface_table(spec["run_id"], result)
                 if table is not None:
@@ -218,15 +232,16 @@ def run_batch(
     out = {
         "rows": rows,
         "timeseries": pa.concat_tables(series) if series else None,
+        "profile": pa.concat_tables(profiles) if profiles else None,
         "surface": pa.concat_tables(surfaces) if surfaces else None,
         "pid": os.getpid(),
     }
     t_tables += time.perf_counter() - t2
     if sink is not None:
-        from service.store import write_part_to
+        from service.store import PART_TABLES, write_part_to
 
         t2 = time.perf_counter()
-        for table in ("surface", "timeseries"):
+        for table in PART_TABLES:
             data = out[table]
             if data is not None and write_part_to(
                 sink["dir"], sink["token"], table, sink["key"], data

@@ -581,8 +581,8 @@ def transient_summary(sys: System, r: dict, out, segs, *, steady_summary=None, c
         "brake_force_kn": float(sys.brake_force_n.sum()) / 1e3 if len(sys.brake_force_n)
         else None,
         "rated_power_kw": float(sys.drive_rated_n.sum()) * sys.v_design / 1e3,
-        "dt_s": sys.dt_s,
-        "elements": sys.n,
+        "dt_used_s": sys.dt_s,
+        "elements_used": sys.n,
     }
     drv = out.drv
     for i in range(len(sys.drive_share)):

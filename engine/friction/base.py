@@ -9,7 +9,7 @@ from collections.abc import Callable
 from dataclasses import dataclass
 from typing import Any
 
-from engine.conveyor import InputError
+from engine.errors import InputError
 
 __all__ = ["FrictionModel", "param"]
 
@@ -33,23 +33,20 @@ class FrictionModel:
                 close = difflib.get_close_matches(key, list(fields), n=1, cutoff=0.5)
                 hint = f"; did you mean '{close[0]}'?" if close else ""
                 raise InputError(
-                    f"models.{self.name}.{key}: unknown parameter of model '{self.name}'{hint} "
-                    f"valid: {', '.join(fields)}"
-                )
+                    f"unknown parameter of model '{self.name}'{hint} valid: {', '.join(fields)}",
+                    field=f"models.{self.name}.{key}")
             if value is None:
                 if type(None) not in typing.get_args(typing.get_type_hints(self.params_class)[key]):
                     raise InputError(
-                        f"models.{self.name}.{key}: expected a number, got null (only "
-                        "parameters whose default is computed may be null)"
-                    )
+                        "expected a number, got null (only parameters whose default is "
+                        "computed may be null)", field=f"models.{self.name}.{key}")
                 clean[key] = None
                 continue
             try:
                 clean[key] = float(value)
             except (TypeError, ValueError):
-                raise InputError(
-                    f"models.{self.name}.{key}: expected a number, got {value!r}"
-                ) from None
+                raise InputError(f"expected a number, got {value!r}",
+                                 field=f"models.{self.name}.{key}") from None
         p = dataclasses.replace(self.params_class(), **clean)
         check = getattr(p, "check", None)
         if check is not None:

@@ -66,11 +66,6 @@ def add_accessories(b: LawBuilder, loop: Loop, conv: Conveyor) -> None:
     b.add("accessories", acc)
 
 
-def feed_index(loop: Loop) -> int:
-    """The feed point: the first carry element (tail end)."""
-    return 0
-
-
 def add_feed(b: LawBuilder, loop: Loop, conv: Conveyor) -> None:
     """Force to accelerate the material at the feed, I_m (v - v0) [N] (DIN 22101, CEMA T_am).
 
@@ -78,12 +73,12 @@ def add_feed(b: LawBuilder, loop: Loop, conv: Conveyor) -> None:
     (the first carry section's share of a load pattern); as a law term: I_m |v| - I_m v0 on
     the feed element, so in transients it scales with the belt speed.
     """
-    im = float(loop.mL_kg_m[feed_index(loop)]) * loop.speed_m_s  # [kg/s]
+    j = 0  # the feed point: the first carry element (tail end)
+    im = float(loop.mL_kg_m[j]) * loop.speed_m_s  # [kg/s]
     if im <= 0.0:
         return
     coef1 = np.zeros(loop.n)
     coef0 = np.zeros(loop.n)
-    j = feed_index(loop)
     assert loop.strand[j] == CARRY
     coef1[j] = im
     coef0[j] = -im * conv.material.loading_speed_m_s

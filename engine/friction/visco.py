@@ -31,6 +31,7 @@ Jonkers, C.O.: The indentation rolling resistance of belt conveyors. Fördern un
 
 from __future__ import annotations
 
+import dataclasses
 import math
 from dataclasses import dataclass
 
@@ -42,6 +43,7 @@ from engine.friction.base import FrictionModel, param
 from engine.friction.cema import kt_factor
 from engine.friction.common import add_accessories, add_feed, pulley_allowances
 from engine.friction.nonlin import (
+    NonlinParams,
     bearing_term_n,
     idler_drag_n,
     indentation_per_set,
@@ -54,38 +56,41 @@ from engine.loop import CARRY, RETURN, G, Loop
 __all__ = ["ViscoParams", "build", "MODEL"]
 
 
+_NONLIN_FIELDS = {f.name: f for f in dataclasses.fields(NonlinParams)}
+
+
+def _as_nonlin(name: str):
+    """The Non-Lin parameter ``name``: its default and meaning, defined once in
+    :class:`~engine.friction.nonlin.NonlinParams`."""
+    f = _NONLIN_FIELDS[name]
+    return param(f.default, f"{f.metadata['doc']} (as nonlin)")
+
+
 @dataclass(frozen=True)
 class ViscoParams:
-    """Parameters of the viscoelastic model (units in brackets)."""
+    """Parameters of the viscoelastic model (units in brackets); the ones it shares with
+    Non-Lin take their default and meaning from :class:`NonlinParams`."""
 
     frequency_hz: float = param(
         10.0, "reference frequency of tan(delta) and E' [Hz] (10 Hz, the usual frequency of "
               "dynamic mechanical tests of cover rubber)")
-    kappa_ir: float = param(
-        1.16, "indentation constant kappa [-] of the per-roll Winkler law (as nonlin)")
-    centre_share: float = param(
-        0.65, "share of the material load on the centre roll of a three-roll set [-] (as "
-              "nonlin)")
-    kta: float | None = param(
-        None, "factor Kta on the bearing part of idler rotation and on belt flexure [-] "
-              "(default: CEMA's Kt at the run temperature, as nonlin)")
-    mu_b: float = param(0.0015, "bearing friction coefficient mu_b [-] (as nonlin)")
-    bearing_diameter_m: float = param(0.045, "mean bearing diameter d_b [m] (as nonlin)")
+    kappa_ir: float = _as_nonlin("kappa_ir")
+    centre_share: float = _as_nonlin("centre_share")
+    kta: float | None = _as_nonlin("kta")
+    mu_b: float = _as_nonlin("mu_b")
+    bearing_diameter_m: float = _as_nonlin("bearing_diameter_m")
     drag_per_set_n: float | None = param(
         None, "idler drag A_i per set [N] (default: the conveyor's seal_drag_n, from the "
               "idler catalogue's CEMA A_i when the file gives none)")
-    drag_temp_coef: float = param(
-        0.017, "drag temperature coefficient c [1/C] (as nonlin)")
-    drag_ref_temp_c: float = param(
-        0.0, "temperature at which A_i applies [C] (as nonlin)")
-    m_star: float = param(
-        0.0035, "belt flexure constant m* [-] (as nonlin; paper range 0.003-0.008)")
-    bf_sag_exp: float = param(1.5, "belt flexure sag exponent n [-] (paper: 3/2)")
-    p_mf: float = param(0.4, "material flexure constant p [kg/m] (as nonlin)")
-    q_mf: float = param(0.08, "material flexure speed constant q [kg s/m2] (as nonlin)")
-    s_mf: float = param(1.5, "material flexure spacing exponent s [-] (as nonlin)")
-    mf_ref_load_kg_m: float = param(100.0, "line load m_ref of p + q v [kg/m] (as nonlin)")
-    mf_sag_exp: float = param(1.0, "material flexure sag exponent [-] (as nonlin)")
+    drag_temp_coef: float = _as_nonlin("drag_temp_coef")
+    drag_ref_temp_c: float = _as_nonlin("drag_ref_temp_c")
+    m_star: float = _as_nonlin("m_star")
+    bf_sag_exp: float = _as_nonlin("bf_sag_exp")
+    p_mf: float = _as_nonlin("p_mf")
+    q_mf: float = _as_nonlin("q_mf")
+    s_mf: float = _as_nonlin("s_mf")
+    mf_ref_load_kg_m: float = _as_nonlin("mf_ref_load_kg_m")
+    mf_sag_exp: float = _as_nonlin("mf_sag_exp")
     sag_carry_pct: float | None = param(
         None, "design sag h_d of the carry strand for the flexure allowances [%] (default: "
               "the conveyor's sag_limit_pct.carry)")

@@ -13,6 +13,7 @@ __all__ = [
     "RunsPage",
     "RunDetail",
     "RunSurface",
+    "RunProfile",
     "CompareOut",
     "Deleted",
     "ModelInfo",
@@ -87,6 +88,20 @@ class RunSurface(BaseModel):
     surface: dict[str, list[float | None]] | None = Field(
         None, description="column -> values: t_s, s_m, tension_kn, velocity_m_s (null "
         "without a transient)"
+    )
+
+
+class RunProfile(BaseModel):
+    study_id: str
+    run_id: str
+    source: Literal["stored", "recomputed"] = Field(
+        ..., description="stored with the run, or recomputed from the run's inputs (a run "
+        "stored before profiles were)"
+    )
+    rows: int = Field(..., description="rows: one per element end round the loop")
+    profile: dict[str, list[float | str | None]] | None = Field(
+        None, description="column -> values: s_m, strand, elevation_m, tension_kn, sag_pct "
+        "(null for a run that raised)"
     )
 
 

@@ -13,6 +13,7 @@ from service.api.models import (
     CompareOut,
     Deleted,
     RunDetail,
+    RunProfile,
     RunsPage,
     RunSurface,
     StudyList,
@@ -191,6 +192,44 @@ def get_run_surface(
         "source": source,
         "rows": int(len(df)),
         "surface": results.columns_to_json(df.drop(columns=["run_id"])) if len(df) else None,
+    }
+
+
+@router.get(
+    "/{study_id}/runs/{run_id}/profile",
+    response_model=RunProfile,
+    summary="One run's steady tension along the loop (the run page's steady figure)",
+    description="Stored with the run by the worker; recomputed from the run's inputs (the "
+    "steady solve only) for a run stored before profiles were. JSON, CSV or Parquet "
+    "(`run_id, s_m, strand, elevation_m, tension_kn, sag_pct`).",
+    responses={
+        200: {
+            "content": {
+                "text/csv": {"schema": {"type": "string"}},
+                PARQUET_TYPE: {"schema": {"type": "string", "format": "binary"}},
+            }
+        }
+    },
+)
+def get_run_profile(
+    study_id: str,
+    run_id: str,
+    format: Literal["json", "csv", "parquet"] = Query("json", description="output format"),
+    service: StudyService = Depends(get_service),
+):
+    df, source = service.run_profile(study_id, run_id)
+    headers = {"X-Beltstudy-Profile": source}
+    if format == "csv":
+        return Response(results.to_csv(df), media_type="text/csv; charset=utf-8",
+                        headers=headers)
+    if format == "parquet":
+        return Response(results.to_parquet(df), media_type=PARQUET_TYPE, headers=headers)
+    return {
+        "study_id": study_id,
+        "run_id": run_id,
+        "source": source,
+        "rows": int(len(df)),
+        "profile": results.columns_to_json(df.drop(columns=["run_id"])) if len(df) else None,
     }
 
 

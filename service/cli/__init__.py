@@ -1,9 +1,9 @@
 """The ``beltstudy`` command line.
 
 Each sub-command lives in its own module with a ``register(subparsers)`` function that adds
-its parser and sets ``func``. User mistakes (:class:`engine.conveyor.InputError`,
-:class:`service.errors.UserError`, ``ValueError`` raised for bad input) print one line and
-exit with status 2; no traceback.
+its parser and sets ``func``. User mistakes (:class:`engine.errors.InputError` and every
+:class:`service.errors.ServiceError`: an invalid study, an unknown id, a service that does
+not answer) print one line and exit with status 2; no traceback.
 """
 
 from __future__ import annotations
@@ -30,7 +30,8 @@ def build_parser() -> argparse.ArgumentParser:
 
 
 def main(argv: list[str] | None = None) -> int:
-    from engine.conveyor import InputError
+    from engine.errors import InputError
+    from service.errors import ServiceError
 
     parser = build_parser()
     args = parser.parse_args(argv)
@@ -42,19 +43,15 @@ def main(argv: list[str] | None = None) -> int:
     except InputError as exc:
         print(f"error: {exc}", file=sys.stderr)
         return 2
+    except ServiceError as exc:
+        print(f"error: {exc.user_message}", file=sys.stderr)
+        return 2
     except BrokenPipeError:  # output piped into head, less, ...
         sys.stderr.close()
         return 0
     except KeyboardInterrupt:
         print("interrupted", file=sys.stderr)
         return 130
-    except Exception as exc:  # user errors from the service layer carry a status
-        if type(exc).__name__ in {"UserError", "ServiceError", "NotFound", "Invalid"} or hasattr(
-            exc, "user_message"
-        ):
-            print(f"error: {getattr(exc, 'user_message', exc)}", file=sys.stderr)
-            return 2
-        raise
     return int(code or 0)
 
 

@@ -66,8 +66,11 @@ def design_lines(s: dict, indent: str = "  ") -> list[str]:
         rows.append(("take-up mass", s["takeup_mass_kg"], "kg", s.get("takeup_governed_by")))
     rows.append(("take-up tension per strand", s.get("takeup_pretension_kn"), "kN",
                  None if s.get("takeup_mass_kg") is not None else s.get("takeup_governed_by")))
-    for i, kw in enumerate(s.get("drive_rated_power_kw") or [], start=1):
-        rows.append((f"rated power, drive {i}", kw, "kW", s.get("rated_power_governed_by")))
+    i = 1
+    while f"drive{i}_rated_power_kw" in s:
+        rows.append((f"rated power, drive {i}", s[f"drive{i}_rated_power_kw"], "kW",
+                     s.get("rated_power_governed_by")))
+        i += 1
     if s.get("brake_force_kn") is not None:
         rows.append(("brake force (all brakes)", s["brake_force_kn"], "kN",
                      s.get("brake_governed_by")))

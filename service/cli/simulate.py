@@ -11,64 +11,27 @@ import argparse
 import numpy as np
 import pandas as pd
 
+from engine import results as R
 from service.cli.common import LOAD_HELP
 
-STEADY_FIELDS = [
-    ("te_kn", "peripheral force Te", "kN"),
-    ("power_kw", "power at the drive pulleys", "kW"),
-    ("t1_kn", "T1 tight side, main drive", "kN"),
-    ("t2_kn", "T2 slack side, main drive", "kN"),
-    ("t_max_kn", "maximum tension (steady)", "kN"),
-    ("t_min_kn", "minimum tension (steady)", "kN"),
-]
-TRANSIENT_FIELDS = [
-    ("t_max_dyn_kn", "maximum tension (transient)", "kN"),
-    ("t_max_dyn_at_m", "  at (from the tail, carry first)", "m"),
-    ("t_max_dyn_time_s", "  at time", "s"),
-    ("t_min_dyn_kn", "minimum tension (transient)", "kN"),
-    ("t_min_dyn_at_m", "  at", "m"),
-    ("t_min_dyn_time_s", "  at time", "s"),
-    ("dyn_factor", "dynamic factor t_max_dyn / t_max", "-"),
-    ("drive_force_max_kn", "largest drive force", "kN"),
-    ("drive_power_max_kw", "largest drive power", "kW"),
-    ("velocity_max_m_s", "highest element speed", "m/s"),
-    ("velocity_min_m_s", "lowest element speed (run-back < 0)", "m/s"),
-    ("takeup_travel_m", "take-up carriage travel", "m"),
-    ("start_time_s", "start time achieved", "s"),
-    ("stop_time_s", "stop time achieved", "s"),
-    ("wave_loop_time_s", "wave loop time", "s"),
-    ("stop_wave_ratio", "stop time / wave loop time", "-"),
-    ("sag_max_dyn_pct", "largest sag (transient)", "%"),
-    ("slip_margin_min_dyn", "smallest slip margin (transient)", "-"),
-    ("safety_factor_dyn", "belt safety factor (transient)", "-"),
-    ("dt_s", "time step", "s"),
-    ("elements", "elements", "-"),
-]
-PHASE_FIELDS = [
-    (f"t_{m}_{p}_{k}", label, unit)
-    for p in ("start", "stop")
-    for m, word in (("max", "highest"), ("min", "lowest"))
-    for k, label, unit in (("kn", f"{word} tension, {p}", "kN"), ("at_m", "  at", "m"),
-                           ("time_s", "  at time", "s"))
-]
-SLACK_FIELDS = [
-    ("slack_max_m", "belt gathered by slack spans (largest)", "m"),
-    ("slack_at_m", "  at", "m"),
-    ("slack_time_s", "  at time", "s"),
-    ("slack_duration_s", "time with a slack span", "s"),
-    ("t_max_pre_slack_kn", "highest tension before slack", "kN"),
-    ("t_max_post_slack_kn", "highest tension after slack", "kN"),
-    ("t_max_post_slack_at_m", "  at", "m"),
-    ("t_max_post_slack_time_s", "  at time", "s"),
-    ("takeup_endstop_speed_m_s", "take-up speed at an end stop", "m/s"),
-]
-#: per drive i: (field, column title, unit)
-DRIVE_COLUMNS = [
-    ("t_tight_kn", "tight", "kN"), ("t_slack_kn", "slack", "kN"),
-    ("slip_margin", "margin", "-"), ("force_max_kn", "F max", "kN"),
-    ("power_max_kw", "P max", "kW"), ("slip_margin_min", "margin min", "-"),
-    ("slip_s", "slip", "s"), ("slip_m", "slipped", "m"),
-]
+#: Steady fields of the table (labels and units: :mod:`engine.results`, the two tensions
+#: marked steady); the transient, per phase, slack and per-drive blocks show every field of
+#: their groups. ``--json`` prints every field.
+STEADY_TABLE = ("te_kn", "power_kw", "t1_kn", "t2_kn", "t_max_kn", "t_min_kn")
+STEADY_LABELS = {"t_max_kn": "maximum tension (steady)", "t_min_kn": "minimum tension (steady)"}
+#: per drive i: the steady then the transient per-drive fields
+DRIVE_FIELDS = R.STEADY_DRIVE.fields + R.TRANSIENT_DRIVE.fields
+
+
+def _rows(fields) -> list[tuple[str, str, str]]:
+    return [(f.name, f.label, f.unit) for f in fields]
+
+
+STEADY_FIELDS = [(k, STEADY_LABELS.get(k, R.field(k).label), R.field(k).unit)
+                 for k in STEADY_TABLE]
+TRANSIENT_FIELDS = _rows(R.TRANSIENT)
+PHASE_FIELDS = _rows(R.PHASE)
+SLACK_FIELDS = _rows(R.SLACK)
 
 
 def register(sub) -> None:
@@ -244,13 +207,13 @@ def drive_lines(s: dict) -> list[str]:
         i += 1
     if not drives:
         return []
-    head = "    drive " + "".join(f"{t:>11}" for _k, t, _u in DRIVE_COLUMNS)
-    units = "          " + "".join(f"{'[' + u + ']':>11}" for _k, _t, u in DRIVE_COLUMNS)
+    head = "    drive " + "".join(f"{f.label:>11}" for f in DRIVE_FIELDS)
+    units = "          " + "".join(f"{'[' + f.unit + ']':>11}" for f in DRIVE_FIELDS)
     lines = ["  per drive (steady: tight, slack, margin; transient: the rest)", head, units]
     for i in drives:
         cells = []
-        for key, _t, _u in DRIVE_COLUMNS:
-            val = s.get(f"drive{i}_{key}")
+        for f in DRIVE_FIELDS:
+            val = s.get(f.name.format(i=i))
             cells.append(f"{val:>11.3f}" if isinstance(val, float | int) else f"{'-':>11}")
         lines.append(f"    {i:>5} " + "".join(cells))
     lines.append("")

@@ -3,27 +3,15 @@
 from __future__ import annotations
 
 import argparse
+import time
 
 from service.cli.common import LOAD_HELP
 
-FIELDS = [
-    ("te_kn", "peripheral force Te", "kN"),
-    ("power_kw", "power at the drive pulleys", "kW"),
-    ("t1_kn", "T1 tight side, main drive", "kN"),
-    ("t2_kn", "T2 slack side, main drive", "kN"),
-    ("t_max_kn", "maximum tension", "kN"),
-    ("t_max_at_m", "  at (from the tail, carry first)", "m"),
-    ("t_min_kn", "minimum tension", "kN"),
-    ("t_min_at_m", "  at", "m"),
-    ("sag_max_pct", "maximum sag h/S", "%"),
-    ("slip_margin", "slip margin running (>1 safe)", "-"),
-    ("slip_margin_start", "slip margin at start-up", "-"),
-    ("safety_factor", "belt safety factor", "-"),
-    ("belt_mass_kg_m", "belt mass", "kg/m"),
-    ("load_mass_kg_m", "material mass", "kg/m"),
-    ("wave_speed_carry_m_s", "wave speed carry", "m/s"),
-    ("wave_speed_return_m_s", "wave speed return", "m/s"),
-]
+#: The steady fields of the table, in order (labels and units: :mod:`engine.results`; every
+#: field is in ``--json``).
+TABLE = ("te_kn", "power_kw", "t1_kn", "t2_kn", "t_max_kn", "t_max_at_m", "t_min_kn",
+         "t_min_at_m", "sag_max_pct", "slip_margin", "slip_margin_start", "safety_factor",
+         "belt_mass_kg_m", "load_mass_kg_m", "wave_speed_carry_m_s", "wave_speed_return_m_s")
 
 
 def register(sub) -> None:
@@ -54,6 +42,7 @@ def run(args: argparse.Namespace) -> int:
     from engine.conveyor import InputError, load_conveyor
     from engine.design import auto_sizes, summary_fields
     from engine.friction import get_model
+    from engine.results import check_summary
     from engine.statics import solve_steady
     from service.cli.common import (
         check_scenario_fields,
@@ -73,10 +62,13 @@ def run(args: argparse.Namespace) -> int:
     for path, exts in ((args.profile, (".csv", ".parquet")), (args.plot, (".png",))):
         if path and not path.endswith(exts):
             raise InputError(f"{path}: give a file ending in {' or '.join(exts)}")
+    t0 = time.perf_counter()
     res = solve_steady(conv, model=fm.name, params=params, temperature_c=args.temperature_c,
                        load=load, n_elements=args.elements)
     s = dict(res.summary)
     s.update(summary_fields(auto_sizes(conv, scn, model=fm.name, params=params, steady=res)))
+    s["elapsed_s"] = time.perf_counter() - t0
+    check_summary(s)
     s = {"conveyor": conv.name, "friction_model": fm.name,
          "temperature_c": args.temperature_c, "load": load, **s}
     if args.profile:
@@ -94,16 +86,22 @@ def run(args: argparse.Namespace) -> int:
     return 0 if res.status != "failed" else 1
 
 
+def _unit(f) -> str:
+    return "-" if f.unit == "text" else f.unit
+
+
 def _table(s: dict) -> str:
+    from engine import results
     from service.cli.common import design_lines
 
     lines = [f"{s['conveyor']}  model={s['friction_model']}  temperature={s['temperature_c']:g} C"
              f"  load={s['load']}", ""]
-    for key, label, unit in FIELDS:
+    for key in TABLE:
         val = s.get(key)
         if val is None:
             continue
-        lines.append(f"  {label:<36} {val:>12.3f} {unit}")
+        f = results.field(key)
+        lines.append(f"  {f.label:<36} {val:>12.3f} {_unit(f)}")
     lines.append("")
     lines += design_lines(s)
     lines.append("")

@@ -106,15 +106,6 @@ def _client(args):
     return ServiceClient(url, token)
 
 
-def _study_body(path: str) -> dict:
-    """A study file as a POST body: the conveyor file inlined, so the server needs no files."""
-    from service.parse import load_mapping
-    from service.study import inline_conveyor
-
-    p = Path(path)
-    return inline_conveyor(load_mapping(p), p.parent)
-
-
 # ------------------------------------------------------------------------------ commands
 #: Longest wait for requests still being answered when the service is stopped [s].
 GRACEFUL_SHUTDOWN_S = 5
@@ -140,8 +131,9 @@ def cmd_serve(args) -> int:
 
 def cmd_submit(args) -> int:
     from service.report import ProgressBar, format_status
+    from service.studyfile import study_body
 
-    body = _study_body(args.study)
+    body = study_body(args.study)
     with _client(args) as client:
         st, created = client.submit(body)
         print(
@@ -176,6 +168,7 @@ def _poll(get, progress, poll_s: float = 1.0) -> dict:
 
 def cmd_run(args) -> int:
     from service.report import ProgressBar, format_status
+    from service.store import Store
     from service.studies import StudyService
 
     settings = _settings()
@@ -188,7 +181,7 @@ def cmd_run(args) -> int:
         st, created = service.submit(data, base_dir=p.parent, confine=False)
         print(
             f"{'study' if created else 'existing study'} {st['id']} ({_runs_text(st)}), "
-            f"data in {settings.studies_root / st['id']}",
+            f"data in {Store(settings.data_dir).study_dir(st['id'])}",
             file=sys.stderr,
         )
         st = service.wait(st["id"], progress=ProgressBar())

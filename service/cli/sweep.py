@@ -1,7 +1,9 @@
 """``beltstudy sweep-temperature``: power against temperature per friction model (Harrison 2008,
 Fig. 2).
 
-For each model and each temperature the steady tensions are solved; the command writes a CSV
+Every model at every temperature is one run of a steady study (``friction_model`` x
+``temperature_c``), run on the service's Dask executor like ``beltstudy run`` (every core, the
+conveyor's auto sizes held as one installed design); the command writes a CSV
 (one row per model and temperature: power, Te and its parts) and a PNG in the style of the
 paper's figure: power against temperature for every model on the left, and on the right the
 Non-Lin parts (idler rotation, indentation, belt and material flexure) against temperature,
@@ -82,24 +84,62 @@ def _model_list(text: str) -> list:
     return out
 
 
+def sweep_study(conv, models, temps, params: dict, load, n_elements=None) -> dict:
+    """The sweep as a steady study: a ``friction_model`` x ``temperature_c`` grid over the
+    conveyor (inline), with the models' parameters."""
+    scenario: dict = {"load": load}
+    if n_elements is not None:
+        scenario["elements"] = n_elements
+    return {
+        "name": "sweep-temperature",
+        "conveyor": conv.model_dump(mode="json", by_alias=True),
+        "scenario": scenario,
+        "grid": {"friction_model": [fm.name for fm in models], "temperature_c": list(temps)},
+        "models": {name: dict(values) for name, values in params.items()},
+        "dynamics": False,
+    }
+
+
 def sweep(conv, models, temps, params: dict, load, n_elements=None):
-    """Solve every (model, temperature); return the long table as a DataFrame."""
+    """Solve every (model, temperature) as one study on the service's Dask executor (every
+    core, or ``BELTSTUDY_SCHEDULER``; the store in a temporary directory); return the long
+    table as a DataFrame, models in the given order, temperatures ascending.
+
+    As in every study, the conveyor's ``auto`` sizes (take-up, motors, brakes) are one
+    installed design, the largest requirement over the swept models and temperatures."""
+    import tempfile
+
     import pandas as pd
 
-    from engine.statics import solve_steady
+    from service.schema import components_from_row
+    from service.settings import Settings
+    from service.studies import StudyService
 
+    body = sweep_study(conv, models, temps, params, load, n_elements)
+    with tempfile.TemporaryDirectory(prefix="beltstudy-sweep-") as tmp:
+        settings = Settings().model_copy(update={"data_dir": Path(tmp), "warm_start": False})
+        service = StudyService(settings)
+        try:
+            st, _ = service.submit(body, confine=False)
+            st = service.wait(st["id"], poll_s=0.1)
+            runs = service.runs(st["id"])
+        finally:
+            service.close()
+    if st["state"] != "done" or len(runs) != len(models) * len(temps):
+        raise RuntimeError(f"the sweep study ended {st['state']}: {st.get('message') or ''}")
+    by_case = {(r["friction_model"], float(r["temperature_c"])): r
+               for r in runs.to_dict(orient="records")}
     rows = []
     for fm in models:
-        p = fm.params(params.get(fm.name))
         for t in temps:
-            res = solve_steady(conv, model=fm.name, params=p, temperature_c=t, load=load,
-                               n_elements=n_elements)
-            s = res.summary
-            row = {"model": fm.name, "temperature_c": t, "power_kw": s["power_kw"],
-                   "te_kn": s["te_kn"], "t_max_kn": s["t_max_kn"], "t_min_kn": s["t_min_kn"],
-                   "sag_max_pct": s["sag_max_pct"], "iterations": res.iterations,
-                   "status": res.status, "message": res.message}
-            for part, val in s["te_components_kn"].items():
+            r = by_case[(fm.name, float(t))]
+            iterations = r["steady_iterations"]
+            row = {"model": fm.name, "temperature_c": t, "power_kw": r["power_kw"],
+                   "te_kn": r["te_kn"], "t_max_kn": r["t_max_kn"], "t_min_kn": r["t_min_kn"],
+                   "sag_max_pct": r["sag_max_pct"],
+                   "iterations": None if pd.isna(iterations) else int(iterations),
+                   "status": r["status"], "message": r["message"]}
+            for part, val in components_from_row(r).items():
                 row[f"te_{part}_kn"] = val
             rows.append(row)
     return pd.DataFrame(rows)

@@ -13,8 +13,8 @@ import pandas as pd
 
 from service import plots, results
 from service.errors import Invalid, NotFound
+from service.grid import ResolvedStudy
 from service.studies import StudyService
-from service.study import ResolvedStudy
 
 __all__ = [
     "STUDY_PLOTS",
@@ -146,20 +146,15 @@ def run_figure(service: StudyService, study_id: str, run_id: str, name: str):
                      if k != "friction_model")
     title = _text(f"{doc.get('name', study_id)} · {spec.model}" + (f" · {axes}" if axes else ""))
     if name == "steady-profile":
-        from engine.conveyor import parse_conveyor, parse_scenario
-        from engine.run import run_one
-
-        try:
-            result = run_one(parse_conveyor(spec.conveyor), parse_scenario(spec.scenario),
-                             model=spec.model, params=spec.params or None, dynamics=False)
-            profile = result.profile
-        except Exception as exc:  # the run itself fails: say so on the figure
-            message = _text(f"no steady solution: {type(exc).__name__}: {exc}")
-            return lambda: plots.message_figure(message, title)
-        if profile is None or not len(profile):
+        # stored with the run; recomputed (steady solve only) for runs stored before
+        profile, _source = service.run_profile(study_id, run_id)
+        if not len(profile):
+            runs = service.store.read_runs(study_id, columns=["run_id", "message"])
+            row = runs[runs["run_id"] == run_id]
+            message = row["message"].iloc[0] if len(row) else ""
             return lambda: plots.message_figure(
-                _text(result.summary.get("message") or "no steady profile"), title
-            )
+                _text(f"no steady solution: {message}" if message else "no steady profile"),
+                title)
         return lambda: plots.steady_profile_figure(profile, title)
     if not study.dynamics:
         return lambda: plots.message_figure(plots.NO_TRANSIENT, title)

@@ -16,9 +16,13 @@ import numpy as np
 import pandas as pd
 import pytest
 
-from engine.conveyor import load_conveyor
+from engine.conveyor import load_conveyor, parse_conveyor, parse_scenario
+from engine.friction import get_model
+from engine.run import run_one
 from engine.statics import solve_steady
 from service.cli import main
+from service.cli.sweep import sweep_study
+from service.studyfile import resolve_study
 from tests.conftest import CONVEYORS
 
 SLOPE = CONVEYORS / "slope-5pct.yaml"
@@ -76,7 +80,17 @@ def test_din_flat_in_temperature():
     assert max(values) - min(values) <= 1e-9 * values[0]
 
 
-def test_sweep_temperature_command(tmp_path, capsys):
+def test_sweep_temperature_command(tmp_path, capsys, monkeypatch):
+    from service.studies import StudyService
+
+    submitted = []
+    submit = StudyService.submit
+
+    def spy(self, data, **kw):  # the sweep is one study on the service's Dask executor
+        submitted.append((data, self.settings.n_local_workers))
+        return submit(self, data, **kw)
+
+    monkeypatch.setattr(StudyService, "submit", spy)
     code = main(["sweep-temperature", str(SLOPE), "--models", "din,nonlin,cema", "--from", "-30",
                  "--to", "20", "--step", "25", "--param", "din.f_carry=0.010",
                  "--param", "din.f_return=0.008", "--load", "full", "--out", str(tmp_path)])
@@ -85,15 +99,30 @@ def test_sweep_temperature_command(tmp_path, capsys):
     assert list(df["model"].unique()) == ["din", "nonlin", "cema"]
     assert sorted(df["temperature_c"].unique()) == [-30.0, -5.0, 20.0]
     nl = df[df["model"] == "nonlin"].set_index("temperature_c")
-    assert nl.loc[20.0, "power_kw"] == pytest.approx(power("nonlin"), rel=1e-12)
-    assert nl.loc[-30.0, "power_kw"] == pytest.approx(power("nonlin", -30.0), rel=1e-12)
-    din = df[df["model"] == "din"].set_index("temperature_c")
+    # a study: the auto take-up is one installed design over the sweep, so Non-Lin (whose
+    # resistance follows the sag) gives the power of the study's run at that design ...
+    study = resolve_study(sweep_study(load_conveyor(SLOPE),
+                                      [get_model(m) for m in ("din", "nonlin", "cema")],
+                                      [-30.0, -5.0, 20.0], {"din": DIN_PAPER}, "full"))
+    for t in (20.0, -30.0):
+        spec = next(r for r in study.runs
+                    if r.model == "nonlin" and r.axes["temperature_c"] == t)
+        run = run_one(parse_conveyor(spec.conveyor), parse_scenario(spec.scenario),
+                      model="nonlin", params=spec.params or None, dynamics=False)
+        assert nl.loc[t, "power_kw"] == pytest.approx(run.summary["power_kw"], rel=1e-12)
+    # ... within a few per cent of the case sized on its own
+    assert nl.loc[20.0, "power_kw"] == pytest.approx(power("nonlin"), rel=0.03)
+    din = df[df["model"] == "din"].set_index("temperature_c")  # DIN: no tension in the law
     assert din.loc[20.0, "power_kw"] == pytest.approx(power("din"), rel=1e-12)
     for part in ("idler_rotation", "indentation", "belt_flexure", "material_flexure"):
         assert (nl[f"te_{part}_kn"] > 0).all()
     png = tmp_path / "slope-5pct-full.png"
     assert png.read_bytes()[:4] == b"\x89PNG" and png.stat().st_size > 20_000
     assert "power [kW] against temperature" in capsys.readouterr().out
+    [(body, workers)] = submitted
+    assert body["grid"] == {"friction_model": ["din", "nonlin", "cema"],
+                            "temperature_c": [-30.0, -5.0, 20.0]}
+    assert body["dynamics"] is False and workers >= 1
 
 
 @pytest.mark.parametrize("args, needle", [

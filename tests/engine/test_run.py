@@ -105,7 +105,7 @@ def test_fixed_step_below_the_limit_runs():
     conv = load_conveyor(SLOPE)
     r = run_one(conv, Scenario(elements=60, dt_s=0.004, start={"time_s": 10}, run_s=2,
                                stop={"mode": "controlled", "time_s": 8}), model="din")
-    assert r.summary["dt_s"] == 0.004
+    assert r.summary["dt_used_s"] == 0.004
     assert r.summary["status"] != "failed"
 
 
@@ -121,7 +121,7 @@ def test_cli_simulate_json_timeseries_plot(tmp_path, capsys):
     out = capsys.readouterr().out
     assert code == 0
     s = json.loads(out)
-    assert s["stop_mode"] == "controlled" and s["elements"] == 42
+    assert s["stop_mode"] == "controlled" and s["elements_used"] == 42
     for key in TRANSIENT_FIELDS + ("status", "message"):
         assert key in s
     ts = pd.read_parquet(ts_path)
@@ -141,7 +141,7 @@ def test_cli_scenario_file_with_overrides(tmp_path, capsys):
     s = json.loads(capsys.readouterr().out)
     assert code == 0
     assert s["load"] == "empty" and s["stop_mode"] == "controlled"
-    assert s["elements"] == 42 and s["status"] != "failed"
+    assert s["elements_used"] == 42 and s["status"] != "failed"
 
 
 @pytest.mark.parametrize("argv,expect", [

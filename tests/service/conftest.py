@@ -11,8 +11,8 @@ import pytest
 from service.jobs import study_schema
 from service.schema import rows_to_table
 from service.settings import Settings
-from service.store import Store
-from service.study import resolve_study
+from service.store import PART_TABLES, Store
+from service.studyfile import resolve_study
 from service.tasks import TINY_CONVEYOR, TINY_SCENARIO, run_batch
 
 ROOT = Path(__file__).resolve().parents[2]
@@ -44,7 +44,7 @@ def settings_for(data_dir: Path, **over) -> Settings:
 
 def store_finished(data_dir: Path, data: dict) -> str:
     """Resolve ``data``, run it in this process and store it as a done study; return the id."""
-    study = resolve_study(data, studies_root=ROOT / "studies")
+    study = resolve_study(data, studies_dir=ROOT / "studies")
     store = Store(data_dir)
     now = time.time()
     store.create(
@@ -67,7 +67,7 @@ def store_finished(data_dir: Path, data: dict) -> str:
         },
     )
     out = run_batch(study.id, [dataclasses.asdict(r) for r in study.runs], study.surface)
-    for table in ("timeseries", "surface"):  # before the runs part, as the service does
+    for table in PART_TABLES:  # before the runs part, as the service does
         if out[table] is not None:
             store.write_part(study.id, table, "all", out[table])
     store.write_part(study.id, "runs", "all", rows_to_table(out["rows"], study_schema(study)))

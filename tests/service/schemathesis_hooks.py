@@ -64,6 +64,9 @@ def _conveyor_ok(conv: Any) -> bool:
     drives = conv.get("drives", [])
     if abs(sum(d.get("share", 1.0) for d in drives) - 1.0) > 1e-6:
         return False
+    limits = (conv.get("sag_limit_pct") or {}).values()
+    if any(isinstance(v, int | float) and v < 1e-100 for v in limits):
+        return False  # no finite auto take-up meets a sag limit this close to zero
     return all(abs(p.get("lift_m", 0.0)) < p["length_m"] for p in conv.get("profile", []))
 
 

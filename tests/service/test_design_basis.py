@@ -15,7 +15,7 @@ from engine.design import auto_sizes
 from engine.statics import solve_steady
 from service.basis import round_up
 from service.errors import Invalid
-from service.study import resolve_study
+from service.studyfile import resolve_study
 from tests.service.conftest import ROOT, tiny_conveyor
 
 
@@ -229,7 +229,7 @@ def test_load_patterns_and_surge_in_a_study(make_study, finished_study, data_dir
 
 
 def test_design_basis_survives_the_round_trip_through_study_json(make_study):
-    from service.study import study_from_json
+    from service.grid import study_from_json
 
     study = resolve_study(make_study(zip=[{"temperature_c": [-20, 20],
                                            "models.din.f_carry": [0.03, 0.02]}],
@@ -242,7 +242,7 @@ def test_design_basis_survives_the_round_trip_through_study_json(make_study):
 
 
 def test_example_design_study_resolves():
-    from service.study import load_study_file
+    from service.studyfile import load_study_file
 
     for path in sorted((ROOT / "studies").glob("*.yaml")):
         load_study_file(path)

@@ -250,7 +250,7 @@ def _runs_alive() -> int:
     """RunSpec objects alive in this process (every resolved run is one)."""
     import gc
 
-    from service.study import RunSpec
+    from service.grid import RunSpec
 
     gc.collect()
     return sum(1 for o in gc.get_objects() if isinstance(o, RunSpec))
@@ -262,7 +262,7 @@ def test_a_finished_study_releases_its_job_memory(data_dir, make_settings, make_
     import tracemalloc
 
     from service.studies import StudyService
-    from service.study import resolve_study
+    from service.studyfile import resolve_study
 
     body = {
         "name": "memory",

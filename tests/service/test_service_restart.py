@@ -12,7 +12,7 @@ import pytest
 
 from service.jobs import study_schema
 from service.schema import rows_to_table
-from service.study import resolve_study
+from service.studyfile import resolve_study
 from service.tasks import run_batch
 
 pytestmark = pytest.mark.slow

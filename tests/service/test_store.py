@@ -35,7 +35,7 @@ def test_finished_study_reads_back_with_pandas(data_dir, make_study, finished_st
 
 
 def test_empty_study_has_the_full_schema(data_dir, make_study):
-    from service.study import resolve_study
+    from service.studyfile import resolve_study
 
     study = resolve_study(make_study())
     store = Store(data_dir)

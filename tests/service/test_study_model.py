@@ -1,4 +1,4 @@
-"""Study parsing, grid expansion and stable ids (service/study.py, service/axes.py)."""
+"""Study parsing, grid expansion and stable ids (service/studyfile.py, service/grid.py, service/axes.py)."""
 
 from __future__ import annotations
 
@@ -10,7 +10,8 @@ import pytest
 import engine
 from service.axes import axis_column, resolve_axis
 from service.errors import Invalid, TooLarge
-from service.study import RangeSpec, expand_runs, load_study_file, resolve_study, study_from_json
+from service.grid import expand_runs, study_from_json
+from service.studyfile import RangeSpec, load_study_file, resolve_study
 
 ROOT = Path(__file__).resolve().parents[2]
 
@@ -175,17 +176,17 @@ def test_unsafe_study_names_are_refused(make_study, name):
 )
 def test_conveyor_paths_cannot_leave_the_studies_directory(make_study, ref):
     with pytest.raises(Invalid, match=r"conveyor: path .* (without '..'|leaves)"):
-        resolve_study(make_study(conveyor=ref), studies_root=ROOT / "studies")
+        resolve_study(make_study(conveyor=ref), studies_dir=ROOT / "studies")
 
 
 def test_conveyor_by_path_is_resolved_and_inlined(make_study):
     study = resolve_study(
-        make_study(conveyor="conveyors/slope-5pct.yaml"), studies_root=ROOT / "studies"
+        make_study(conveyor="conveyors/slope-5pct.yaml"), studies_dir=ROOT / "studies"
     )
     assert study.conveyor["name"] == "slope-5pct"
     assert study.conveyor_source == "conveyors/slope-5pct.yaml"
     with pytest.raises(Invalid, match="not found"):
-        resolve_study(make_study(conveyor="conveyors/nope.yaml"), studies_root=ROOT / "studies")
+        resolve_study(make_study(conveyor="conveyors/nope.yaml"), studies_dir=ROOT / "studies")
 
 
 def test_wrong_types_and_unknown_keys_name_the_field(make_study):

@@ -21,7 +21,7 @@ from service.api.app import create_app
 from service.schema import MAX_DRIVES, SURFACE_COLUMNS, TIMESERIES_COLUMNS
 from service.store import Store
 from service.studies import StudyService
-from service.study import resolve_study
+from service.studyfile import resolve_study
 from service.tasks import TINY_CONVEYOR, TINY_SCENARIO, surface_table, timeseries_table
 
 

@@ -13,8 +13,8 @@ from service.api.app import create_app
 from service.jobs import study_schema
 from service.schema import rows_to_table
 from service.settings import Settings
-from service.store import Store
-from service.study import resolve_study
+from service.store import PART_TABLES, Store
+from service.studyfile import resolve_study
 from service.tasks import run_batch
 
 ROOT = Path(__file__).resolve().parents[2]
@@ -70,7 +70,7 @@ def finished_study(data_dir: Path, data: dict, name: str | None = None) -> str:
 
     ``name`` overrides the stored name (to store names the validator would refuse).
     """
-    study = resolve_study(data, studies_root=ROOT / "studies")
+    study = resolve_study(data, studies_dir=ROOT / "studies")
     store = Store(data_dir)
     now = time.time()
     store.create(study.id, {
@@ -80,7 +80,7 @@ def finished_study(data_dir: Path, data: dict, name: str | None = None) -> str:
         "engine_version": study.engine_version, "study": study.to_json(),
     })
     out = run_batch(study.id, [dataclasses.asdict(r) for r in study.runs], study.surface)
-    for table in ("timeseries", "surface"):
+    for table in PART_TABLES:
         if out[table] is not None:
             store.write_part(study.id, table, "0", out[table])
     store.write_part(study.id, "runs", "0", rows_to_table(out["rows"], study_schema(study)))

@@ -1,0 +1,362 @@
+"""Every result of a run, defined once: name, unit and meaning (SPEC sections 4 and 6.4).
+
+A run's summary (``RunResult.summary``, the ``--json`` of ``beltstudy static`` and
+``simulate``) holds these fields and no others (:func:`check_summary`); the service's Parquet
+``runs`` schema, its REST rows, the CLI tables and the table in ``docs/results.md``
+(:func:`markdown`, ``python -m engine.results``) are derived from them. A field added here is
+stored, printed and documented; a key a run computes without a field here is an error, so a
+result cannot be computed and silently dropped.
+
+Groups, in the order of the runs table: :data:`STEADY`, :data:`STEADY_DRIVE`,
+:data:`DESIGN`, :data:`DESIGN_DRIVE`, :data:`TE_COMPONENTS`, :data:`TRANSIENT`,
+:data:`PHASE`, :data:`SLACK`, :data:`TRANSIENT_DRIVE`, :data:`DESIGN_BASIS`,
+:data:`BOOKKEEPING`. Per-drive fields are named with ``{i}``, the drive's 1-based number in
+file order (``drive{i}_slip_m``), and stored for drives 1 to :data:`MAX_DRIVES`.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+__all__ = [
+    "ResultField",
+    "ResultGroup",
+    "MAX_DRIVES",
+    "TE_PARTS",
+    "STEADY",
+    "STEADY_DRIVE",
+    "DESIGN",
+    "DESIGN_DRIVE",
+    "TE_COMPONENTS",
+    "TRANSIENT",
+    "PHASE",
+    "SLACK",
+    "TRANSIENT_DRIVE",
+    "DESIGN_BASIS",
+    "BOOKKEEPING",
+    "GROUPS",
+    "FIELDS",
+    "field",
+    "columns",
+    "check_summary",
+    "summary_columns",
+    "markdown",
+]
+
+#: Most drive pulleys a conveyor may have (``drives`` in the conveyor file); the per-drive
+#: columns run from ``drive1_*`` to this.
+MAX_DRIVES = 6
+
+
+@dataclass(frozen=True)
+class ResultField:
+    """One result: its column name, unit (``-`` for a ratio or count, ``text``), meaning and
+    the short label the CLI tables print."""
+
+    name: str
+    unit: str
+    meaning: str
+    label: str = ""
+
+    @property
+    def text(self) -> bool:
+        return self.unit == "text"
+
+    @property
+    def per_drive(self) -> bool:
+        return "{i}" in self.name
+
+    def columns(self, drives: int = MAX_DRIVES) -> tuple[str, ...]:
+        """The column names: one, or one per drive 1 .. ``drives``."""
+        if self.per_drive:
+            return tuple(self.name.format(i=i) for i in range(1, drives + 1))
+        return (self.name,)
+
+
+@dataclass(frozen=True)
+class ResultGroup:
+    """Fields that belong together (the steady summary, one drive's transient, ...)."""
+
+    key: str
+    title: str
+    fields: tuple[ResultField, ...]
+
+    def __iter__(self):
+        return iter(self.fields)
+
+    def names(self) -> tuple[str, ...]:
+        return tuple(f.name for f in self.fields)
+
+
+def _f(name: str, unit: str, meaning: str, label: str = "") -> ResultField:
+    return ResultField(name, unit, meaning, label or meaning)
+
+
+# -------------------------------------------------------------------------- steady (SPEC 4)
+STEADY = ResultGroup("steady", "Steady state (the friction model at design speed)", (
+    _f("te_kn", "kN", "total peripheral force Te, the sum of te_components_kn",
+       "peripheral force Te"),
+    _f("power_kw", "kW", "power at the drive pulleys, Te x design speed (drive efficiency "
+       "excluded)", "power at the drive pulleys"),
+    _f("t1_kn", "kN", "tight-side tension at the main drive", "T1 tight side, main drive"),
+    _f("t2_kn", "kN", "slack-side tension at the main drive", "T2 slack side, main drive"),
+    _f("t_max_kn", "kN", "highest steady belt tension", "maximum tension"),
+    _f("t_max_at_m", "m", "where t_max_kn is, along the loop from the tail, carry first",
+       "  at (from the tail, carry first)"),
+    _f("t_min_kn", "kN", "lowest steady belt tension", "minimum tension"),
+    _f("t_min_at_m", "m", "where t_min_kn is, along the loop from the tail, carry first",
+       "  at"),
+    _f("sag_max_pct", "%", "largest sag ratio h/S of a span, running", "maximum sag h/S"),
+    _f("takeup_mass_kg", "kg", "gravity take-up mass as used (the auto size when auto; null "
+       "for a fixed take-up)", "take-up mass"),
+    _f("takeup_tension_kn", "kN", "tension the take-up holds in each of its two strands, "
+       "running", "take-up tension per strand"),
+    _f("slip_margin", "-", "smallest running slip margin of the drive pulleys, "
+       "e^(mu theta) / (T_tight / T_slack); above 1 is safe", "slip margin running (>1 safe)"),
+    _f("slip_margin_start", "-", "smallest slip margin of the drive pulleys at start-up "
+       "(DIN 22101's start-up force, 1.5 x Te)", "slip margin at start-up"),
+    _f("safety_factor", "-", "belt safety factor, belt_rating_kn / t_max_kn",
+       "belt safety factor"),
+    _f("belt_mass_kg_m", "kg/m", "belt mass per metre", "belt mass"),
+    _f("load_mass_kg_m", "kg/m", "material mass per metre on a loaded carry section",
+       "material mass"),
+    _f("idler_mass_carry_kg_m", "kg/m", "rotating idler mass per metre, carry strand",
+       "idler mass carry"),
+    _f("idler_mass_return_kg_m", "kg/m", "rotating idler mass per metre, return strand",
+       "idler mass return"),
+    _f("belt_modulus_kn", "kN", "static axial stiffness of the belt, E x B (force per unit "
+       "strain)", "belt stiffness E B (static)"),
+    _f("belt_modulus_dyn_kn", "kN", "dynamic axial stiffness of the belt (the wave speeds and "
+       "wave_loop_time_s use it)", "belt stiffness E B (dynamic)"),
+    _f("belt_rating_kn", "kN", "belt breaking strength, rating x width", "belt rating"),
+    _f("wave_speed_carry_m_s", "m/s", "longitudinal wave speed on the loaded carry strand",
+       "wave speed carry"),
+    _f("wave_speed_return_m_s", "m/s", "longitudinal wave speed on the return strand",
+       "wave speed return"),
+    _f("steady_iterations", "-", "fixed-point iterations of the steady solve (1 for models "
+       "whose resistance does not depend on tension)", "steady solve iterations"),
+))
+
+STEADY_DRIVE = ResultGroup("steady_drive", "Per drive pulley, steady (SPEC 6.4)", (
+    _f("drive{i}_t_tight_kn", "kN", "tight-side tension at drive i", "tight"),
+    _f("drive{i}_t_slack_kn", "kN", "slack-side tension at drive i", "slack"),
+    _f("drive{i}_slip_margin", "-", "running slip margin of drive i, e^(mu theta) / "
+       "(T_tight / T_slack)", "margin"),
+))
+
+# ---------------------------------------------------------------- design and capacity (6.4)
+DESIGN = ResultGroup("design", "Design and capacity: the sizes the run used (SPEC 6.4)", (
+    _f("takeup_pretension_kn", "kN", "tension per strand the take-up holds (fixed take-up: "
+       "its pretension)", "take-up tension per strand"),
+    _f("rated_power_kw", "kW", "rated power of all drives together, as the run used it",
+       "rated power (all drives)"),
+    _f("brake_force_kn", "kN", "brake force of all brakes together, as the run used it "
+       "(null without brakes)", "brake force (all brakes)"),
+    _f("fill_pct", "%", "design volume flow over the belt cross-section's capacity at design "
+       "speed (ISO 5048 / DIN 22101)", "fill (design flow / cross-section)"),
+))
+
+DESIGN_DRIVE = ResultGroup("design_drive", "Per drive pulley, design", (
+    _f("drive{i}_rated_power_kw", "kW", "rated power of drive i, as the run used it",
+       "rated power"),
+))
+
+# ------------------------------------------------------------ Te breakdown (SPEC 4)
+#: Parts of ``te_components_kn``: the six every model reports, then Non-Lin's finer split of
+#: the main resistances, then ``other`` (in a stored row: the sum of parts outside the list).
+TE_PARTS = (
+    "main_carry", "main_return", "lift", "feed", "secondary", "accessories",
+    "idler_rotation", "indentation", "belt_flexure", "material_flexure", "other",
+)  # fmt: skip
+_TE_MEANING = {
+    "main_carry": "main resistance of the carry strand (the friction model's running "
+                  "resistance)",
+    "main_return": "main resistance of the return strand",
+    "lift": "lifting the material (the belt's own lift cancels round the loop)",
+    "feed": "accelerating the material at the feed point",
+    "secondary": "pulleys and other secondary resistances (DIN's C factor included)",
+    "accessories": "scrapers, skirts and ploughs (lumped)",
+    "idler_rotation": "idler rotation: bearings and seals (nonlin, visco)",
+    "indentation": "indentation rolling resistance of the cover (nonlin, visco)",
+    "belt_flexure": "belt flexure between idlers (nonlin, visco)",
+    "material_flexure": "material flexure between idlers (nonlin, visco)",
+    "other": "parts outside this list, summed",
+}
+TE_COMPONENTS = ResultGroup(
+    "te_components",
+    "Te breakdown: te_components_kn (an object in JSON, te_<part>_kn columns in Parquet; "
+    "null where a model has no such part)",
+    tuple(_f(f"te_{p}_kn", "kN", f"part of te_kn: {_TE_MEANING[p]}", p) for p in TE_PARTS),
+)
+
+# ------------------------------------------------------------------- transient (SPEC 4)
+TRANSIENT = ResultGroup("transient", "Transient: the start, run and stop cycle (dynamics on)", (
+    _f("t_max_dyn_kn", "kN", "highest belt tension of the cycle", "maximum tension (transient)"),
+    _f("t_max_dyn_at_m", "m", "where t_max_dyn_kn is, from the tail, carry first",
+       "  at (from the tail, carry first)"),
+    _f("t_max_dyn_time_s", "s", "when t_max_dyn_kn is, from the start command", "  at time"),
+    _f("t_min_dyn_kn", "kN", "lowest belt tension of the cycle", "minimum tension (transient)"),
+    _f("t_min_dyn_at_m", "m", "where t_min_dyn_kn is", "  at"),
+    _f("t_min_dyn_time_s", "s", "when t_min_dyn_kn is", "  at time"),
+    _f("dyn_factor", "-", "t_max_dyn_kn / t_max_kn", "dynamic factor t_max_dyn / t_max"),
+    _f("drive_force_max_kn", "kN", "largest total drive force", "largest drive force"),
+    _f("drive_power_max_kw", "kW", "largest total drive power", "largest drive power"),
+    _f("velocity_max_m_s", "m/s", "highest element speed (overshoot)", "highest element speed"),
+    _f("velocity_min_m_s", "m/s", "lowest element speed (run-back shows as negative)",
+       "lowest element speed (run-back < 0)"),
+    _f("takeup_travel_m", "m", "take-up carriage travel, largest less smallest position",
+       "take-up carriage travel"),
+    _f("start_time_s", "s", "start time achieved: start command until the mass-weighted mean "
+       "speed first reaches 99 % of design speed (null if never)", "start time achieved"),
+    _f("stop_time_s", "s", "stop time achieved: stop command until the mean speed falls below "
+       "1 % of design speed (null if never)", "stop time achieved"),
+    _f("wave_loop_time_s", "s", "time a stress wave takes once round the loop",
+       "wave loop time"),
+    _f("stop_wave_ratio", "-", "stop_time_s / wave_loop_time_s", "stop time / wave loop time"),
+    _f("sag_max_dyn_pct", "%", "largest sag ratio of a span during the cycle",
+       "largest sag (transient)"),
+    _f("slip_margin_min_dyn", "-", "smallest slip margin of any drive pulley during the cycle",
+       "smallest slip margin (transient)"),
+    _f("safety_factor_dyn", "-", "belt safety factor at the cycle's highest tension, "
+       "belt_rating_kn / t_max_dyn_kn", "belt safety factor (transient)"),
+    _f("dt_used_s", "s", "time step the integration used (the scenario's dt_s, or the "
+       "automatic one)", "time step"),
+    _f("elements_used", "-", "belt elements round the loop the run used (the scenario's "
+       "elements, or the automatic count)", "elements"),
+))
+
+_PHASE_WORDS = {"max": "highest", "min": "lowest"}
+_PHASE_SPAN = {"start": "from the start command to the stop command",
+               "stop": "from the stop command to the end"}
+PHASE = ResultGroup(
+    "phase", "Per phase (SPEC 6.4): start = start command to stop command; stop = stop "
+    "command to the end",
+    tuple(
+        field_
+        for p in ("start", "stop")
+        for m in ("max", "min")
+        for field_ in (
+            _f(f"t_{m}_{p}_kn", "kN", f"{_PHASE_WORDS[m]} belt tension {_PHASE_SPAN[p]}",
+               f"{_PHASE_WORDS[m]} tension, {p}"),
+            _f(f"t_{m}_{p}_at_m", "m", f"where t_{m}_{p}_kn is", "  at"),
+            _f(f"t_{m}_{p}_time_s", "s", f"when t_{m}_{p}_kn is", "  at time"),
+        )
+    ),
+)
+
+SLACK = ResultGroup("slack", "Slack (SPEC 6.4)", (
+    _f("slack_max_m", "m", "largest belt length gathered by slack spans (0 when never slack)",
+       "belt gathered by slack spans (largest)"),
+    _f("slack_at_m", "m", "where the belt went slack first", "  at"),
+    _f("slack_time_s", "s", "when the belt went slack first", "  at time"),
+    _f("slack_duration_s", "s", "time with a slack span", "time with a slack span"),
+    _f("t_max_pre_slack_kn", "kN", "highest tension before the belt first went slack (the "
+       "whole cycle when it never did)", "highest tension before slack"),
+    _f("t_max_post_slack_kn", "kN", "highest tension after the belt first went slack (null "
+       "when it never did)", "highest tension after slack"),
+    _f("t_max_post_slack_at_m", "m", "where t_max_post_slack_kn is", "  at"),
+    _f("t_max_post_slack_time_s", "s", "when t_max_post_slack_kn is", "  at time"),
+    _f("takeup_endstop_speed_m_s", "m/s", "take-up carriage speed when it hit an end stop (0 "
+       "when it never did)", "take-up speed at an end stop"),
+))
+
+TRANSIENT_DRIVE = ResultGroup("transient_drive", "Per drive pulley, transient (SPEC 6.4)", (
+    _f("drive{i}_force_max_kn", "kN", "largest force of drive i", "F max"),
+    _f("drive{i}_power_max_kw", "kW", "largest power of drive i", "P max"),
+    _f("drive{i}_slip_margin_min", "-", "smallest slip margin of drive i during the cycle",
+       "margin min"),
+    _f("drive{i}_slip_s", "s", "total time drive i slipped on the belt", "slip"),
+    _f("drive{i}_slip_m", "m", "belt length that slipped over drive i", "slipped"),
+))
+
+# ------------------------------------------------------------------ the design basis
+DESIGN_BASIS = ResultGroup("design_basis", "What set each auto size (text)", (
+    _f("takeup_governed_by", "text", "the take-up: slip_start, slip_running, sag_running, "
+       "sag_at_rest or positive; given when the file gives it"),
+    _f("rated_power_governed_by", "text", "the rated power: peripheral_force or "
+       "running_resistance; given when the file gives it (several joined by +)"),
+    _f("brake_governed_by", "text", "the brakes: stop_time or holding; given when the file "
+       "gives them (null without brakes)"),
+))
+
+BOOKKEEPING = ResultGroup("bookkeeping", "Bookkeeping", (
+    _f("status", "text", "ok, warning or failed"),
+    _f("message", "text", "why, in words: every crossed limit, or the failure"),
+    _f("elapsed_s", "s", "wall time of the run"),
+))
+
+#: Every group, in the order of the runs table.
+GROUPS = (STEADY, STEADY_DRIVE, DESIGN, DESIGN_DRIVE, TE_COMPONENTS, TRANSIENT, PHASE, SLACK,
+          TRANSIENT_DRIVE, DESIGN_BASIS, BOOKKEEPING)
+#: Every field by name (per-drive fields under their ``{i}`` name).
+FIELDS: dict[str, ResultField] = {f.name: f for g in GROUPS for f in g}
+#: The one key of a summary that is not a column: the Te parts as an object.
+TE_COMPONENTS_KEY = "te_components_kn"
+
+
+def field(name: str) -> ResultField:
+    """The field of a column name (``drive2_slip_m`` -> ``drive{i}_slip_m``)."""
+    if name in FIELDS:
+        return FIELDS[name]
+    if name.startswith("drive"):
+        head, _, rest = name.partition("_")
+        if head[5:].isdigit():
+            return FIELDS[f"drive{{i}}_{rest}"]
+    raise KeyError(name)
+
+
+def columns(groups=GROUPS, drives: int = MAX_DRIVES) -> tuple[str, ...]:
+    """Every column of these groups, per-drive fields for drives 1 .. ``drives``."""
+    return tuple(c for g in groups for f in g for c in f.columns(drives))
+
+
+def summary_columns(summary: dict) -> list[str]:
+    """The columns a summary holds (``te_components_kn`` as ``te_<part>_kn``)."""
+    out = [k for k in summary if k != TE_COMPONENTS_KEY]
+    for part in summary.get(TE_COMPONENTS_KEY) or {}:
+        out.append(f"te_{part if part in TE_PARTS else 'other'}_kn")
+    return list(dict.fromkeys(out))
+
+
+def check_summary(summary: dict) -> dict:
+    """Raise ``KeyError`` naming every key of ``summary`` that is not a defined result (a
+    computed result would otherwise be dropped by the store); return ``summary``."""
+    unknown = []
+    for key in summary:
+        if key == TE_COMPONENTS_KEY:
+            continue
+        try:
+            f = field(key)
+        except KeyError:
+            unknown.append(key)
+            continue
+        if f.per_drive and not 1 <= int(key[5:key.index("_")]) <= MAX_DRIVES:
+            unknown.append(key)
+    if unknown:
+        raise KeyError(f"results not defined in engine.results: {', '.join(unknown)}")
+    return summary
+
+
+def markdown() -> str:
+    """The results table of ``docs/results.md`` (regenerate: ``python -m engine.results``)."""
+    lines = [
+        "# Results of a run",
+        "",
+        "Generated from `engine/results.py` by `python -m engine.results > docs/results.md`;",
+        "a test checks that this table, the Parquet `runs` schema and the `--json` output of",
+        "`beltstudy static` / `simulate` hold the same fields. Besides these, a `runs` row has",
+        "its inputs: `study_id`, `run_id`, one column per grid axis, `friction_model` and",
+        "`engine_version`. Per-drive fields are stored for drives 1 to "
+        f"{MAX_DRIVES} (`{{i}}` is",
+        "the drive's number in file order; null beyond the conveyor's drives).",
+        "",
+    ]
+    for g in GROUPS:
+        lines += [f"## {g.title}", "", "| column | unit | meaning |", "|---|---|---|"]
+        lines += [f"| `{f.name}` | {f.unit} | {f.meaning} |" for f in g]
+        lines.append("")
+    return "\n".join(lines)
+
+
+if __name__ == "__main__":  # pragma: no cover
+    print(markdown(), end="")
