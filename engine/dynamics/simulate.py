@@ -578,6 +578,10 @@ def transient_summary(sys: System, r: dict, out, segs, *, steady_summary=None, c
         "slack_time_s": r["SLACK_TIME"] if r["SLACK_TIME"] >= 0 else None,
         "slack_duration_s": r["SLACK_DUR"],
         "takeup_endstop_speed_m_s": r["ENDSTOP_SPEED"],
+        # filled by engine.remedy when a run asks for them (run_one(remedy=True))
+        "slip_free_takeup_mass_kg": None,
+        "slip_free_takeup_kn": None,
+        "slip_free_start_time_s": None,
         "brake_force_kn": float(sys.brake_force_n.sum()) / 1e3 if len(sys.brake_force_n)
         else None,
         "rated_power_kw": float(sys.drive_rated_n.sum()) * sys.v_design / 1e3,
