@@ -258,6 +258,15 @@ SLACK = ResultGroup("slack", "Slack (SPEC 6.4)", (
     _f("t_max_post_slack_time_s", "s", "when t_max_post_slack_kn is", "  at time"),
     _f("takeup_endstop_speed_m_s", "m/s", "take-up carriage speed when it hit an end stop (0 "
        "when it never did)", "take-up speed at an end stop"),
+    _f("slip_free_takeup_mass_kg", "kg", "gravity take-up with which no drive slips in the "
+       "start, found by rerunning it (engine.remedy, 2 %; beltstudy simulate; null when not "
+       "searched, not found within 4 x or the start did not slip)", "take-up without slip"),
+    _f("slip_free_takeup_kn", "kN", "fixed take-up pretension with which no drive slips in "
+       "the start, found by rerunning it (as slip_free_takeup_mass_kg)",
+       "pretension without slip"),
+    _f("slip_free_start_time_s", "s", "start time with which no drive slips, the take-up "
+       "unchanged, found by rerunning the start (2 %; null when not searched, not found "
+       "within 6 x or the start did not slip)", "start time without slip"),
 ))
 
 TRANSIENT_DRIVE = ResultGroup("transient_drive", "Per drive pulley, transient (SPEC 6.4)", (

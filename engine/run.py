@@ -150,6 +150,7 @@ def run_one(
     params: dict | None = None,
     dynamics: bool = True,
     options: DynamicsOptions | None = None,
+    remedy: bool = False,
 ) -> RunResult:
     """Steady solve and, with ``dynamics``, the rest -> start -> run -> stop -> rest cycle.
 
@@ -165,6 +166,10 @@ def run_one(
         Run the transient cycle (default) or the steady state only.
     options : DynamicsOptions, optional
         Transient engine settings (damping, Ernst law, step safety, ...).
+    remedy : bool
+        When a drive slips in the start, find the take-up and the start time that avoid it
+        by rerunning the start (:mod:`engine.remedy`: about a dozen reruns each); the
+        ``slip_free_*`` fields and a sentence in the message. Off by default (studies).
 
     Raises
     ------
@@ -197,6 +202,12 @@ def run_one(
                   safety_factor_min=transient_safety_min(conveyor, steady.loop.belt.kind))
     summary.update(tr.summary)
     messages = [m for m in (steady.message, tr.message) if m]
+    if remedy and tr.status != "failed" and any(
+            (summary.get(f"drive{i + 1}_slip_s") or 0.0) > 0.0
+            for i in range(len(conveyor.drives))):
+        found = _slip_remedy(conveyor, scenario, model, params, opts, summary)
+        if found:
+            messages.append(found)
     if "failed" in (steady.status, tr.status):
         status = "failed"
     elif steady.status == "warning" or tr.status == "warning":
@@ -207,3 +218,31 @@ def run_one(
     summary["message"] = "; ".join(messages)
     summary["elapsed_s"] = time.perf_counter() - t0
     return RunResult(summary=check_summary(summary), steady=steady, transient=tr)
+
+
+def _slip_remedy(conveyor, scenario, model, params, opts, summary) -> str:
+    """Search what avoids a start's slip (:func:`engine.remedy.slip_remedy`), put the figures
+    into ``summary`` and return the sentence for the message ("" when the start did not
+    slip)."""
+    from engine.remedy import GROW, START_MAX, TAKEUP_MAX, slip_remedy
+
+    gravity = conveyor.takeup.type == "gravity"
+    rem = slip_remedy(conveyor, scenario, model=model, params=params, options=opts,
+                      elements=int(summary["elements_used"]),
+                      takeup_mass_kg=summary.get("takeup_mass_kg") if gravity else None,
+                      takeup_tension_kn=None if gravity else summary.get("takeup_tension_kn"))
+    if rem is None:
+        return ""
+    summary["slip_free_takeup_mass_kg"] = rem.takeup_mass_kg
+    summary["slip_free_takeup_kn"] = rem.takeup_tension_kn
+    summary["slip_free_start_time_s"] = rem.start_time_s
+    if gravity:
+        tu = (f"a take-up of {rem.takeup_mass_kg:,.0f} kg" if rem.takeup_mass_kg is not None
+              else f"no take-up up to {TAKEUP_MAX:g} x this one")
+    else:
+        tu = (f"a pretension of {rem.takeup_tension_kn:,.0f} kN" if rem.takeup_tension_kn
+              is not None else f"no pretension up to {TAKEUP_MAX:g} x this one")
+    st = (f"a start of {rem.start_time_s:.0f} s" if rem.start_time_s is not None
+          else f"no start up to {START_MAX:g} x this one")
+    return (f"slip in the start avoided by {tu} or by {st} (each alone, found by rerunning "
+            f"the start {rem.reruns} times on the same mesh, to 2 %; steps of x {GROW:g})")

@@ -44,7 +44,8 @@ class Law(NamedTuple):
 
 
 class Springs(NamedTuple):
-    """Springs: dt / length, Ernst constant times EB, floor tension and floor modulus over EB,
+    """Springs: dt / length, Ernst constant times EB, floor tension, strain tension at the floor
+    (EB times the chord strain there) and floor modulus over EB,
     mesh viscosity per strain increment [N], carriage coupling (1 beside the gravity take-up),
     length [m], chord strain at the running tension (the reference of the belt length a slack
     span gathers); free element and spring ranges ([start, end) rows)."""
@@ -52,6 +53,7 @@ class Springs(NamedTuple):
     dl: np.ndarray
     a_eb: np.ndarray
     t_floor: np.ndarray
+    s_floor: np.ndarray
     kfl_eb: np.ndarray
     kvs: np.ndarray
     car_ind: np.ndarray
@@ -142,11 +144,13 @@ class Brakes(NamedTuple):
 
 
 class State(NamedTuple):
-    """Belt state: velocity [m/s], elastic, arm and total tension [N]; ``misc`` = take-up
+    """Belt state: velocity [m/s], elastic tension, strain tension (EB times the chord strain),
+    arm and total tension [N]; ``misc`` = take-up
     position [m] and speed [m/s], speed-loop integrator [N], holding force [N]."""
 
     v: np.ndarray
     te: np.ndarray
+    ts: np.ndarray
     td: np.ndarray
     tt: np.ndarray
     misc: np.ndarray
@@ -177,7 +181,8 @@ class Out(NamedTuple):
 
 
 class Work(NamedTuple):
-    """Scratch arrays of the block solve (length BLOCK_MAX) and of the resistance pass."""
+    """Scratch arrays of the block solve (length BLOCK_MAX), of the resistance pass and the
+    springs' marks for more Newton steps (length n)."""
 
     dg: np.ndarray
     lo: np.ndarray
@@ -220,3 +225,4 @@ class Work(NamedTuple):
     lnphi: np.ndarray
     t_max_snap: np.ndarray
     t_min_snap: np.ndarray
+    more: np.ndarray

@@ -35,6 +35,7 @@ from numba import njit
 
 from engine.dynamics.fastmath import OPTS
 from engine.dynamics.passes import spring as _spring_impl
+from engine.dynamics.passes import spring_rest as _spring_rest
 
 __all__ = ["block_step", "solve_arrow", "solve_dense", "coulomb"]
 
@@ -365,6 +366,7 @@ def block_step(bk, blocks, shafts, drives, sp, nodes, st, wk, dt, v_eps, eb, e_d
     car = tu_gravity and blocks.car[bk] == 1
     v = st.v
     te = st.te
+    tsn = st.ts
     td = st.td
     tt = st.tt
     r0 = wk.r0
@@ -378,11 +380,9 @@ def block_step(bk, blocks, shafts, drives, sp, nodes, st, wk, dt, v_eps, eb, e_d
                 wk.bA[k] = 0.0
                 wk.bB[k] = 0.0
             else:
-                tc = max(e0, sp.t_floor[j])
-                t3 = tc * tc * tc
-                kt = eb * t3 / (t3 + sp.a_eb[j])
-                wk.bA[k] = e0 + e_damp * td[j]
-                wk.bB[k] = (kt * (1.0 + g_damp) + sp.kvs[j]) * sp.dl[j]
+                er, r = _spring_rest(e0, tsn[j], sp.t_floor[j], sp.a_eb[j])
+                wk.bA[k] = er + e_damp * td[j]
+                wk.bB[k] = (eb * r * (1.0 + g_damp) + sp.kvs[j]) * sp.dl[j]
         vo = v[j]
         wk.v_old[k] = vo
         r = r0[j]
@@ -679,9 +679,11 @@ def block_step(bk, blocks, shafts, drives, sp, nodes, st, wk, dt, v_eps, eb, e_d
         s_ = blocks.nodes[p0 + k]
         s1 = blocks.nodes[p0 + k + 1]
         cdt = sp.car_ind[s_] * u_new * sp.dl[s_] if car else 0.0
-        e1, d1, t1 = _spring_impl(te[s_], td[s_], v[s1] - v[s_], sp.dl[s_], cdt, sp.t_floor[s_],
-                                  sp.kfl_eb[s_], sp.a_eb[s_], eb, e_damp, g_damp, sp.kvs[s_])
+        e1, ts1, d1, t1 = _spring_impl(te[s_], tsn[s_], td[s_], v[s1] - v[s_], sp.dl[s_], cdt,
+                                       sp.t_floor[s_], sp.s_floor[s_], sp.kfl_eb[s_],
+                                       sp.a_eb[s_], eb, e_damp, g_damp, sp.kvs[s_])
         te[s_] = e1
+        tsn[s_] = ts1
         td[s_] = d1
         tt[s_] = t1
     known = have_u or km >= 0

@@ -297,6 +297,7 @@ def run_cycle(fp, ip, nodes, law, sp, blocks, shafts, drives, brakes, st, out, w
     drv = out.drv
     v = st.v
     te = st.te
+    ts = st.ts
     td = st.td
     tt = st.tt
     r0 = wk.r0
@@ -488,8 +489,9 @@ def run_cycle(fp, ip, nodes, law, sp, blocks, shafts, drives, brakes, st, out, w
 
         # ---------------------------------------------------------------- free springs
         for k in range(sp.seg_spring.shape[0]):
-            spring_pass(sp.seg_spring[k, 0], sp.seg_spring[k, 1], v, te, td, tt, sp.dl,
-                        sp.t_floor, sp.kfl_eb, sp.a_eb, eb, e_damp, g_damp, sp.kvs)
+            spring_pass(sp.seg_spring[k, 0], sp.seg_spring[k, 1], v, te, ts, td, tt, sp.dl,
+                        sp.t_floor, sp.s_floor, sp.kfl_eb, sp.a_eb, eb, e_damp, g_damp, sp.kvs,
+                        wk.more)
 
         # ---------------------------------------------------------------- observe
         v_mean = vsum * inv_w_sum
@@ -565,8 +567,7 @@ def run_cycle(fp, ip, nodes, law, sp, blocks, shafts, drives, brakes, st, out, w
         # and the envelope cut when the belt first goes slack
         if tlo <= 0.0 and started:
             slack_dur += dt
-            total, deep = slack_zones(te, tt, sp.t_floor, sp.kfl_eb, sp.a_eb, eb, sp.len_m,
-                                      sp.eps_run)
+            total, deep = slack_zones(ts, tt, eb, sp.len_m, sp.eps_run)
             slack_m = total
             if total > slack_max:
                 slack_max = total

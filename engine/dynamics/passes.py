@@ -166,46 +166,134 @@ def node_pass(a, b, v, tt, hm, grav, r0, v_eps, w):
     return s
 
 
-@njit(inline="always", **OPTS)
-def spring(e0, d0, dv, dlj, cdt, tfl, kfl_eb, aeb, eb, e_damp, g_damp, kvs):
-    """One spring: elastic, relaxing-arm and total tension after the strain increment
-    ``de = dv * dl + cdt`` (dl = dt / len, cdt = carriage term). Returns (elastic, arm, total).
+#: Curvature bound of one Newton step on Ernst's chord law: a spring whose first step's
+#: estimated error exceeds this fraction of its strain increment (``1.5 u r^3 |ds| / T``,
+#: the law's second derivative, ``u = a EB / T^3``, ``r = 1 / (1 + u)``) takes
+#: :data:`NEWTON_MORE` more steps. A step left a step late to the next step's correction acts
+#: as a delayed stiffness that feeds energy into springs near the floor tension, where the law
+#: bends hardest (a slack belt being taken up diverged with one step for every spring, and
+#: with two on a take-up a little heavier); running springs need one.
+NEWTON_CURVE = 1e-3
+NEWTON_MORE = 2
 
-    Elastic part: the static modulus softened by sag (Ernst tangent ``kt``). An increment that
-    carries it from above the floor ``tfl`` to below continues there with the floor modulus
-    ``kfl = kfl_eb EB``: the tangent law followed along the path, so a sudden unloading stores
-    the slack strain the motion made, not that strain times the stiff modulus it started from.
-    Arm: the standard linear solid's relaxing arm (dynamic less static modulus, relaxation by
-    its exact exponential: ``e_damp``, ``g_damp``). Mesh viscosity ``kvs de`` (``kvs = alpha Z
-    len / dt``): a Kelvin-Voigt term acting on the modes the mesh cannot resolve. A slack
-    span (elastic part below zero) carries neither arm nor viscous tension."""
-    de = dv * dlj + cdt
+
+@njit(inline="always", **OPTS)
+def _newton(e0, s1, tfl, aeb):
+    """One Newton step of Ernst's chord law ``s(T) = T - aeb / (2 T^2)`` towards the strain
+    tension ``s1`` from the tension ``e0`` (held at the floor ``tfl`` below it). Returns the
+    step's tension, the tangent modulus over EB at its start (``r = t^3 / (t^3 + aeb)``) and
+    whether its estimated error exceeds :data:`NEWTON_CURVE` of the increment."""
     tc = max(e0, tfl)
     t3 = tc * tc * tc
     sm = t3 + aeb
-    q = 1.0 / (t3 * sm)  # the one division: kt = EB t3 / sm and kfl / kt = kfl sm / (EB t3)
-    kt = eb * (t3 * t3 * q)
-    e1 = e0 + kt * de
-    # below the floor the rest of the increment at kfl; kfl <= kt, so the larger of the two
-    # is right on both sides of the floor (and kfl / kt = 1 when e0 is at or below it)
-    e1 = max(e1, tfl + (e1 - tfl) * (kfl_eb * (sm * sm * q)))
-    d1 = e_damp * d0 + g_damp * kt * de
-    taut = e1 >= 0.0
-    d1 = d1 if taut else 0.0
+    q = 1.0 / (t3 * sm)  # the one division: r = t3 / sm, aeb / T^2 = aeb T sm q, 1 / T = T^2 sm q
+    r = t3 * t3 * q
+    ds = s1 - (tc - 0.5 * aeb * tc * sm * q)
+    # estimated error over |ds|: 1.5 u r^3 |ds| / T with u = aeb sm q, 1 / T = tc^2 sm q
+    curve = 1.5 * (aeb * sm * q) * (r * r * r) * abs(ds) * (tc * tc * sm * q)
+    return tc + r * ds, r, curve > NEWTON_CURVE
+
+
+@njit(inline="always", **OPTS)
+def spring_first(e0, s0, d0, de, tfl, sfl, kfl_eb, aeb, eb, e_damp, g_damp, kvs):
+    """One spring after the strain increment ``de`` [-], the chord law by one Newton step.
+    Returns (elastic, strain, arm, total tension, whether it needs :func:`spring_refine`).
+
+    Strain tension ``s = EB eps`` (eps the chord strain, :func:`engine.dynamics.model.
+    chord_strain`) is the state the motion integrates exactly: ``s1 = s0 + EB de``. The
+    elastic tension is its inverse under the static modulus softened by sag (Ernst's chord
+    law ``s = T - a EB / (2 T^2)``, held linear at the floor modulus ``kfl = kfl_eb EB`` below
+    the floor tension ``tfl``, ``s = sfl`` there, and on into slack below zero tension):
+    Newton from the old tension, ``e1 = tc + (kt / EB) (s1 - s(tc))``, the larger of it and
+    the floor line (each undershoots the law where the other holds). Its error does not
+    accumulate (the next step starts from the exact strain), so the elastic energy is a
+    function of the strain and a cycle through low tension or slack gives back what it took;
+    ``e0 + kt de`` piles its path error up where the tangent modulus changes fast.
+
+    The spring is slack (no arm, no viscous tension) when its strain is below the floor line's
+    zero, ``s1 < sfl - tfl / kfl_eb``: the same whatever the Newton steps.
+    Arm: the standard linear solid's relaxing arm (dynamic less static modulus, relaxation by
+    its exact exponential: ``e_damp``, ``g_damp``). Mesh viscosity ``kvs de`` (``kvs = alpha Z
+    len / dt``): a Kelvin-Voigt term acting on the modes the mesh cannot resolve."""
+    s1 = s0 + eb * de
+    fl = tfl + (s1 - sfl) * kfl_eb
+    e1, r, more = _newton(e0, s1, tfl, aeb)
+    e1 = max(e1, fl)
+    taut = fl >= 0.0
+    d1 = e_damp * d0 + g_damp * (eb * r) * de if taut else 0.0
     kv = kvs * de if taut else 0.0
-    return e1, d1, max(e1 + d1 + kv, 0.0)
+    return e1, s1, d1, max(e1 + d1 + kv, 0.0), more
+
+
+@njit(inline="always", **OPTS)
+def fl_taut(s1, tfl, sfl, kfl_eb):
+    """Whether a spring at strain tension s1 is taut (above the floor line's zero)."""
+    return tfl + (s1 - sfl) * kfl_eb >= 0.0
+
+
+@njit(inline="always", **OPTS)
+def spring_refine(e1, s1, tfl, sfl, kfl_eb, aeb):
+    """:data:`NEWTON_MORE` further Newton steps of the chord law at the strain tension s1."""
+    fl = tfl + (s1 - sfl) * kfl_eb
+    for _ in range(NEWTON_MORE):
+        e1 = max(_newton(e1, s1, tfl, aeb)[0], fl)
+    return e1
+
+
+@njit(inline="always", **OPTS)
+def spring(e0, s0, d0, dv, dlj, cdt, tfl, sfl, kfl_eb, aeb, eb, e_damp, g_damp, kvs):
+    """One spring after the strain increment ``de = dv * dl + cdt`` (dl = dt / len, cdt =
+    carriage term): :func:`spring_first`, refined where it needs it. Returns (elastic,
+    strain, arm, total)."""
+    de = dv * dlj + cdt
+    e1, s1, d1, t1, more = spring_first(e0, s0, d0, de, tfl, sfl, kfl_eb, aeb, eb, e_damp,
+                                        g_damp, kvs)
+    if more:
+        e1 = spring_refine(e1, s1, tfl, sfl, kfl_eb, aeb)
+        kv = kvs * de if fl_taut(s1, tfl, sfl, kfl_eb) else 0.0
+        t1 = max(e1 + d1 + kv, 0.0)
+    return e1, s1, d1, t1
+
+
+@njit(inline="always", **OPTS)
+def spring_rest(e0, s0, tfl, aeb):
+    """The elastic tension a spring holds at its strain before the step's increment (the
+    constant part of :func:`spring`'s Newton step) and its tangent modulus over EB; (e0 up to
+    rounding when the state is consistent)."""
+    e, r, _ = _newton(e0, s0, tfl, aeb)
+    return e, r
 
 
 @njit(**OPTS)
-def spring_pass(a, b, v, te, td, tt, dl, t_floor, kfl_eb, a_eb, eb, e_damp, g_damp, kvs):
-    """Update springs a..b-1 (b <= n - 1) from the new velocities."""
+def spring_pass(a, b, v, te, ts, td, tt, dl, t_floor, s_floor, kfl_eb, a_eb, eb, e_damp,
+                g_damp, kvs, more):
+    """Update springs a..b-1 (b <= n - 1) from the new velocities: the first Newton step of
+    every spring in one vectorised loop (``more`` [0/1] marks the springs whose step bends too
+    much), then the marked ones refined (:func:`spring_refine`) in a second loop, only when
+    there are any."""
+    cnt = 0
     for jj in range(a, b):
         j = uintp(jj)
-        e1, d1, t1 = spring(te[j], td[j], v[uintp(jj + 1)] - v[j], dl[j], 0.0, t_floor[j],
-                            kfl_eb[j], a_eb[j], eb, e_damp, g_damp, kvs[j])
+        de = (v[uintp(jj + 1)] - v[j]) * dl[j]
+        e1, s1, d1, t1, m = spring_first(te[j], ts[j], td[j], de, t_floor[j], s_floor[j],
+                                         kfl_eb[j], a_eb[j], eb, e_damp, g_damp, kvs[j])
         te[j] = e1
+        ts[j] = s1
         td[j] = d1
         tt[j] = t1
+        more[j] = 1.0 if m else 0.0
+        cnt += 1 if m else 0
+    if cnt > 0:
+        for jj in range(a, b):
+            j = uintp(jj)
+            if more[j] != 0.0:
+                e1 = te[j]
+                s1 = ts[j]
+                e2 = spring_refine(e1, s1, t_floor[j], s_floor[j], kfl_eb[j], a_eb[j])
+                de = (v[uintp(jj + 1)] - v[j]) * dl[j]
+                taut = fl_taut(s1, t_floor[j], s_floor[j], kfl_eb[j])
+                te[j] = e2
+                tt[j] = max(e2 + td[j] + (kvs[j] * de if taut else 0.0), 0.0)
 
 
 @njit(**OPTS_RED)
@@ -244,22 +332,13 @@ def extremes(x):
     return lo, hi
 
 
-@njit(inline="always", **OPTS)
-def _chord(te, tfl, kfl_eb, a_eb, eb):
-    """Chord strain of a spring at elastic tension ``te`` (Ernst's law, the floor modulus
-    below ``tfl``), as :func:`engine.dynamics.model.chord_strain` [-]."""
-    a = a_eb / eb
-    if te >= tfl:
-        return te / eb - a / (2.0 * te * te)
-    return tfl / eb - a / (2.0 * tfl * tfl) - (tfl - te) / (kfl_eb * eb)
-
-
 @njit(**OPTS)
-def slack_zones(te, tt, t_floor, kfl_eb, a_eb, eb, len_m, eps_run):
+def slack_zones(ts, tt, eb, len_m, eps_run):
     """Belt length gathered by the slack spans [m] and the spring that gathered most.
 
     A span is slack when its tension is zero; the belt length it has gathered is its chord
-    shortening since running, ``(eps_run - eps) len``: the sag it has taken up and the slack
+    shortening since running, ``(eps_run - eps) len`` (``eps = ts / EB``, the strain tension
+    ``ts`` of :func:`spring`): the sag it has taken up and the slack
     beyond. Summed over the slack spans this is the belt they have drawn in, the same on any
     mesh: a coarse mesh puts it in one spring, a fine one spreads it over several, and may
     leave a spring in the middle of a slack stretch momentarily taut, so the sum is over every
@@ -267,9 +346,10 @@ def slack_zones(te, tt, t_floor, kfl_eb, a_eb, eb, len_m, eps_run):
     total = 0.0
     deep = -1
     worst = 0.0
-    for j in range(te.shape[0]):
+    inv_eb = 1.0 / eb
+    for j in range(ts.shape[0]):
         if tt[j] <= 0.0:
-            g = (eps_run[j] - _chord(te[j], t_floor[j], kfl_eb[j], a_eb[j], eb)) * len_m[j]
+            g = (eps_run[j] - ts[j] * inv_eb) * len_m[j]
             if g > 0.0:
                 total += g
                 if g > worst:

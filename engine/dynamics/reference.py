@@ -27,7 +27,8 @@ import numpy as np
 
 from engine.dynamics import codes as C
 from engine.dynamics.laws import brake_fraction, coupling_torque, motor_force
-from engine.dynamics.model import System
+from engine.dynamics.model import System, chord_strain
+from engine.dynamics.passes import NEWTON_CURVE, NEWTON_MORE
 from engine.dynamics.profiles import FORCE, TORQUE, start_reference, stop_reference
 
 __all__ = ["ReferenceResult", "run_reference"]
@@ -39,7 +40,7 @@ ACTIVE_SET_PASSES = 24
 class ReferenceResult(dict):
     """Final state and run quantities of :func:`run_reference`, SI units.
 
-    Keys: ``v`` [m/s], ``te``, ``td``, ``tension`` [N] (elastic, relaxing arm and total tension
+    Keys: ``v`` [m/s], ``te``, ``ts``, ``td``, ``tension`` [N] (elastic, strain, relaxing arm and total tension
     per spring), ``x_takeup`` [m], ``u_takeup`` [m/s], ``integrator`` [N], ``shaft_speed``
     [m/s], ``shaft_slip`` [-1, 0, 1], ``drive_force`` [N], ``t_max``, ``t_min`` [N]
     (per-spring envelopes of the whole cycle), ``steps``, ``t_end`` [s], ``status`` (0 ok,
@@ -86,23 +87,54 @@ def _damper(sys: System) -> tuple[float, float]:
     return e, (sys.stiffness_dyn_n - sys.stiffness_n) / sys.stiffness_n * (1.0 - e) / h
 
 
-def _springs(sys, te, td, de, damp):
-    """Every spring after the strain increment ``de`` [-]: (elastic, arm, total) tension [N].
+def _newton(sys, te, ts, j=slice(None)):
+    """One Newton step of Ernst's chord law ``s(T) = T - a EB / (2 T^2)`` towards the strain
+    tension ts from the elastic tension te (held at the floor below it) for springs j: (the
+    step's tension, the tangent modulus [N] at its start, whether its estimated error,
+    ``1.5 u r^3 |ds| / T`` of the increment with ``u = a EB / T^3``, ``r = 1 / (1 + u)``,
+    exceeds ``NEWTON_CURVE``)."""
+    tc = np.maximum(te, sys.t_floor_n[j])
+    aeb = sys.a_ernst[j] * sys.stiffness_n
+    kt = _tangent(sys, te, j)
+    r = kt / sys.stiffness_n
+    ds = ts - (tc - aeb / (2.0 * tc * tc))
+    curve = 1.5 * (aeb / tc**3) * r**3 * np.abs(ds) / tc
+    return tc + r * ds, kt, curve > NEWTON_CURVE
 
-    Elastic: the Ernst tangent modulus at the old tension; an increment that crosses the floor
-    tension downwards continues at the floor modulus. Arm: ``e d + g kt de``. Mesh viscosity
-    ``alpha Z len / dt x de``. A slack span (elastic tension below zero) has neither; a belt
-    never pushes.
+
+def _strain_rest(sys, te, ts, j=slice(None)):
+    """Elastic tension of springs j at their strain before the increment (the constant part
+    of the Newton step in :func:`_springs`) and their tangent modulus [N]."""
+    e, kt, _ = _newton(sys, te, ts, j)
+    return e, kt
+
+
+def _springs(sys, te, ts, td, de, damp):
+    """Every spring after the strain increment ``de`` [-]: (elastic, strain, arm, total)
+    tension [N].
+
+    Strain tension ``ts = EB eps`` (chord strain) integrates the increment exactly; elastic
+    tension is its inverse under Ernst's chord law by a Newton step from the old tension, the
+    larger of that and the floor line (the floor modulus below the floor tension, on into
+    slack); springs whose step bends more than ``NEWTON_CURVE`` of the increment take
+    ``NEWTON_MORE`` further steps. Slack (below the floor line's zero): no arm, no mesh
+    viscosity. Arm: ``e d + g kt de``. Mesh viscosity ``alpha Z len / dt x de``. A belt never
+    pushes.
     """
     e_damp, g_damp = damp
-    kt = _tangent(sys, te)
+    eb = sys.stiffness_n
+    s1 = ts + eb * de
     tfl = sys.t_floor_n
-    e1 = te + kt * de
-    e1 = np.maximum(e1, tfl + (e1 - tfl) * sys.k_floor_n / kt)
-    taut = e1 >= 0.0
+    sfl = eb * chord_strain(tfl, sys.a_ernst, eb, tfl, sys.k_floor_n)
+    fl = tfl + (s1 - sfl) * sys.k_floor_n / eb
+    e1, kt, more = _newton(sys, te, s1)
+    e1 = np.maximum(e1, fl)
+    for _ in range(NEWTON_MORE):
+        e1 = np.where(more, np.maximum(_newton(sys, e1, s1)[0], fl), e1)
+    taut = fl >= 0.0
     d1 = np.where(taut, e_damp * td + g_damp * kt * de, 0.0)
     visc = np.where(taut, _viscosity(sys) * de, 0.0)
-    return e1, d1, np.maximum(e1 + d1 + visc, 0.0)
+    return e1, s1, d1, np.maximum(e1 + d1 + visc, 0.0)
 
 
 def _viscosity(sys: System) -> np.ndarray:
@@ -287,8 +319,9 @@ def _block_step(sys, blk, ctx, st, sh, dr, R0, U, u_known):
     # linearised block springs (spring nodes[k] joins nodes[k] and nodes[k + 1])
     sj = nodes[:-1]
     taut = st.te[sj] >= 0.0
-    sA = np.where(taut, st.te[sj] + e_damp * st.td[sj], 0.0)
-    sB = np.where(taut, (_tangent(sys, st.te[sj], sj) * (1.0 + g_damp) + ctx.visc[sj])
+    er, kt = _strain_rest(sys, st.te[sj], st.ts[sj], sj)
+    sA = np.where(taut, er + e_damp * st.td[sj], 0.0)
+    sB = np.where(taut, (kt * (1.0 + g_damp) + ctx.visc[sj])
                   * dt / sys.len_m[sj], 0.0)
     cj = sys.carriage_coupling[sj] if car else np.zeros(m - 1)
     t_in, t_out = st.tt[(nodes[0] - 1) % n], st.tt[nodes[-1]]
@@ -581,7 +614,9 @@ def run_reference(sys: System, t_end_s: float | None = None) -> ReferenceResult:
     node_shaft[sys.shaft_node] = np.arange(ns)
 
     te = np.maximum(sys.tension_rest_n, 0.0)
-    st = SimpleNamespace(v=np.zeros(n), te=te.copy(), td=np.zeros(n), tt=te.copy())
+    ts = sys.stiffness_n * chord_strain(te, sys.a_ernst, sys.stiffness_n, sys.t_floor_n,
+                                        sys.k_floor_n)
+    st = SimpleNamespace(v=np.zeros(n), te=te.copy(), ts=ts, td=np.zeros(n), tt=te.copy())
     sh = SimpleNamespace(vs=np.zeros(ns), slip=np.zeros(ns), fb=np.zeros(ns))
     dr = SimpleNamespace(mode=[0] * nd, f0=np.zeros(nd), f1=np.zeros(nd), sat=[False] * nd,
                          lim=np.zeros(nd), lin=[None] * nd, vm=np.zeros(nd),
@@ -661,7 +696,7 @@ def run_reference(sys: System, t_end_s: float | None = None) -> ReferenceResult:
 
         # ---- springs from the new velocities (the carriage lengthens its two springs)
         de = (np.roll(st.v, -1) - st.v + sys.carriage_coupling * u_tu) * dt / sys.len_m
-        st.te, st.td, st.tt = _springs(sys, st.te, st.td, de, damp)
+        st.te, st.ts, st.td, st.tt = _springs(sys, st.te, st.ts, st.td, de, damp)
 
         # ---- observe
         t_max, t_min = np.fmax(t_max, st.tt), np.fmin(t_min, st.tt)
@@ -691,7 +726,7 @@ def run_reference(sys: System, t_end_s: float | None = None) -> ReferenceResult:
         if t_new >= t_limit:
             break
     return ReferenceResult(
-        v=st.v, te=st.te, td=st.td, tension=st.tt, x_takeup=x_tu, u_takeup=u_tu,
+        v=st.v, te=st.te, ts=st.ts, td=st.td, tension=st.tt, x_takeup=x_tu, u_takeup=u_tu,
         integrator=integ, shaft_speed=sh.vs, shaft_slip=sh.slip, drive_force=dr.force,
         t_max=t_max, t_min=t_min, steps=step, t_end=t_new, status=status, w_drive=w_drive,
         start_ach=start_ach, stop_ach=stop_ach, slip_s=slip_s, slip_m=slip_m,

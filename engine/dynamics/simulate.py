@@ -190,7 +190,10 @@ def prepare(sys: System, t_end_s: float | None = None) -> KernelInput:
         mdt=arr(sys.mass_kg[blk_nodes] / dt), node_shaft=node_shaft)
     springs = A.Springs(
         dl=arr(dt / sys.len_m), a_eb=arr(sys.a_ernst * sys.stiffness_n),
-        t_floor=arr(sys.t_floor_n), kfl_eb=arr(sys.k_floor_n / sys.stiffness_n),
+        t_floor=arr(sys.t_floor_n),
+        s_floor=arr(sys.stiffness_n * chord_strain(sys.t_floor_n, sys.a_ernst, sys.stiffness_n,
+                                                   sys.t_floor_n, sys.k_floor_n)),
+        kfl_eb=arr(sys.k_floor_n / sys.stiffness_n),
         kvs=arr(sys.mesh_viscosity * sys.impedance_ns_m * sys.len_m / dt),
         car_ind=arr(sys.carriage_coupling), len_m=arr(sys.len_m),
         eps_run=arr(chord_strain(sys.steady_tension_n, sys.a_ernst, sys.stiffness_n,
@@ -224,7 +227,9 @@ def prepare(sys: System, t_end_s: float | None = None) -> KernelInput:
         t_cmd=np.full(max(nb, 0), -1.0), released=np.zeros(nb, dtype=np.int64))
 
     t0 = np.maximum(sys.tension_rest_n, 0.0)
-    state = A.State(v=np.zeros(n), te=t0.copy(), td=np.zeros(n), tt=t0.copy(),
+    s0 = sys.stiffness_n * chord_strain(t0, sys.a_ernst, sys.stiffness_n, sys.t_floor_n,
+                                        sys.k_floor_n)
+    state = A.State(v=np.zeros(n), te=t0.copy(), ts=s0, td=np.zeros(n), tt=t0.copy(),
                     misc=np.array([0.0, 0.0, 0.0, sys.hold_force_n]))
     nrec = int(math.ceil(sys.t_max_s / sys.record_dt_s)) + 3
     nsurf = int(math.ceil(sys.t_max_s / sys.surface_dt_s)) + 3
@@ -250,7 +255,7 @@ def prepare(sys: System, t_end_s: float | None = None) -> KernelInput:
                   bdir=z(), bforce=z(), c_lo=z(), c_hi=z(), fixed=z(), fixv=z(),
                   shk=np.zeros(bm, dtype=np.int64), vsn=z(), Ac=np.zeros((bm, bm)),
                   r0=np.zeros(n), phi=np.zeros(n), lnv=np.zeros(n), lnphi=np.zeros(n),
-                  t_max_snap=np.zeros(n), t_min_snap=np.zeros(n))
+                  t_max_snap=np.zeros(n), t_min_snap=np.zeros(n), more=np.zeros(n))
     return KernelInput(args=dict(fp=fp, ip=ip, nodes=nodes, law=law, sp=springs, blocks=bl,
                                  shafts=shafts, drives=drives, brakes=brakes, st=state, out=out,
                                  wk=work))
@@ -481,7 +486,7 @@ def decode(sys: System, ki: KernelInput, wall_s: float, *, steady_summary=None, 
     if notes:
         message = "; ".join([m for m in (message, "note: " + "; ".join(notes)) if m])
     raw = dict(r)
-    raw.update(v=st.v.copy(), te=st.te.copy(), td=st.td.copy(), tension=st.tt.copy(),
+    raw.update(v=st.v.copy(), te=st.te.copy(), ts=st.ts.copy(), td=st.td.copy(), tension=st.tt.copy(),
                x_takeup=float(st.misc[0]), u_takeup=float(st.misc[1]),
                integrator=float(st.misc[2]), drive_force=a["drives"].force.copy(),
                shaft_speed=a["shafts"].vs.copy(), shaft_slip=a["shafts"].slip.copy(),
@@ -573,6 +578,10 @@ def transient_summary(sys: System, r: dict, out, segs, *, steady_summary=None, c
         "slack_time_s": r["SLACK_TIME"] if r["SLACK_TIME"] >= 0 else None,
         "slack_duration_s": r["SLACK_DUR"],
         "takeup_endstop_speed_m_s": r["ENDSTOP_SPEED"],
+        # filled by engine.remedy when a run asks for them (run_one(remedy=True))
+        "slip_free_takeup_mass_kg": None,
+        "slip_free_takeup_kn": None,
+        "slip_free_start_time_s": None,
         "brake_force_kn": float(sys.brake_force_n.sum()) / 1e3 if len(sys.brake_force_n)
         else None,
         "rated_power_kw": float(sys.drive_rated_n.sum()) * sys.v_design / 1e3,

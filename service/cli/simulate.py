@@ -66,6 +66,8 @@ def register(sub) -> None:
     p.add_argument("--no-sag-at-rest", dest="sag_at_rest", action="store_false",
                    help="size an auto take-up for the sag limits running only (default: also "
                    "held at rest; the file's takeup.sag_at_rest)")
+    p.add_argument("--no-remedy", action="store_true", help="when a drive slips in the start, "
+                   "do not rerun the start to find the take-up and start time that avoid it")
     p.add_argument("--json", action="store_true", help="print one JSON object")
     p.add_argument("--timeseries", metavar="FILE", help="write the SPEC section 5 key-point "
                    "time series (.parquet or .csv)")
@@ -140,7 +142,8 @@ def run(args: argparse.Namespace) -> int:
         if path and not path.endswith(exts):
             raise InputError(f"{path}: give a file ending in {' or '.join(exts)}")
     scn = build_scenario(args)
-    res = run_one(conv, scn, model=fm.name, params=params, dynamics=True)
+    res = run_one(conv, scn, model=fm.name, params=params, dynamics=True,
+                  remedy=not args.no_remedy)
     s = {"conveyor": conv.name, "friction_model": fm.name,
          "temperature_c": scn.temperature_c, "load": scn.load,
          "stop_mode": scn.stop.mode, "formulation": scn.formulation, **res.summary}

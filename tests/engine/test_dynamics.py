@@ -135,6 +135,51 @@ def test_energy_balance_over_a_start(ernst):
     assert e1 - e0 == pytest.approx(work, rel=0.01)
 
 
+def _elastic_energy(sys, te):
+    """Elastic energy of the springs at elastic tension te [J]: the work of Ernst's chord law,
+    ``len (T^2 / 2EB - a / T)`` (a = 0: linear) above the floor tension, the floor line
+    ``(T^2 - tfl^2) / 2 kfl`` below it and nothing more once slack (T < 0)."""
+    a, tf, kf, eb = sys.a_ernst, sys.t_floor_n, sys.k_floor_n, sys.stiffness_n
+
+    def law(t):
+        return t**2 / (2.0 * eb) - np.where(a > 0, a / np.maximum(t, 1e-9), 0.0)
+
+    tp = np.maximum(te, 0.0)
+    return float(np.sum(sys.len_m * np.where(te >= tf, law(np.maximum(te, tf)),
+                                             law(tf) + (tp**2 - tf**2) / (2.0 * kf))))
+
+
+@pytest.mark.parametrize("ernst", [False, True])
+def test_energy_balance_over_a_stop_through_slack(ernst):
+    """Resistances, gravity, damping and slip off: a controlled stop in 2 s on a light take-up
+    (2.2 t, running tension 11 kN) brakes the carry strand into slack at the head; the take-up
+    then draws the slack in and the belt is taut again. Kinetic + elastic + take-up energy
+    changes by the drive's work within 2 % of the kinetic energy the stop removes, through the
+    slack and its take-up (a tension that lagged the strain, or slack taken up inelastically,
+    would lose energy at the snap)."""
+    conv = flat_conveyor(length_m=1000.0, speed_m_s=3.0, takeup_kg=2200.0)
+    st = solve_steady(conv, model="din", n_elements=100)
+    scn = Scenario(start={"control": "s-curve", "time_s": 20}, run_s=10,
+                   stop={"mode": "controlled", "time_s": 2})
+    sys = build_system(conv, scn, st, DynamicsOptions(**{**BARE, "ernst": ernst, "slip": False}))
+
+    def energy(r):
+        return (0.5 * np.sum(sys.mass_kg * r["v"]**2)
+                + 0.5 * np.sum(sys.shaft_mass_kg * r["shaft_speed"]**2)
+                + _elastic_energy(sys, r["te"]) - sys.takeup_weight_n * r["x_takeup"]
+                + 0.5 * sys.takeup_inertia_kg * r["u_takeup"]**2)
+
+    e0 = energy({"v": np.zeros(sys.n), "te": np.maximum(sys.tension_rest_n, 0.0),
+                 "x_takeup": 0.0, "u_takeup": 0.0, "shaft_speed": np.zeros(len(sys.shaft_node))})
+    running = simulate(sys, t_end_s=sys.stop_command_s).raw
+    kinetic = 0.5 * np.sum(sys.mass_kg * running["v"]**2)
+    res = simulate(sys, t_end_s=sys.stop_command_s + 13.0)
+    r = res.raw
+    assert r["SLACK_DUR"] > 0.5  # the belt went slack ...
+    assert r["tension"].min() > 0.0  # ... and is taut again
+    assert energy(r) - e0 == pytest.approx(r["W_DRIVE"], abs=0.02 * kinetic)
+
+
 @pytest.mark.parametrize("name,model,takeup", [
     ("fabric-1km", "din", None),
     ("slope-5pct", "nonlin", None),  # tension-dependent resistances

@@ -132,6 +132,7 @@ def test_kernel_matches_numpy_reference(name, changes, model, scenario, exercise
     assert int(res[C.RES.STATUS]) == ref["status"] == C.OK
     assert_allclose(state.tt, ref["tension"], atol=t_tol, rtol=0)
     assert_allclose(state.te, ref["te"], atol=t_tol, rtol=0)
+    assert_allclose(state.ts, ref["ts"], atol=1e-9 * float(np.abs(ref["ts"]).max()), rtol=0)
     assert_allclose(state.td, ref["td"], atol=t_tol, rtol=0)
     assert_allclose(state.v, ref["v"], atol=v_tol, rtol=0)
     assert_allclose(out.seg_env[:nseg, 0].max(axis=0), ref["t_max"], atol=t_tol, rtol=0)
@@ -294,22 +295,62 @@ def test_resistance_every_exponent_code_matches_the_reference_law():
         assert_allclose(r0, ref, rtol=1e-13, atol=1e-12 * np.abs(ref).max())
 
 
+def _chord_s(t, eb, a_eb, tfl, kfl):
+    """Strain tension EB eps of Ernst's chord law by hand, linear at kfl below the floor."""
+    sf = tfl - a_eb / (2.0 * tfl**2)
+    return t - a_eb / (2.0 * t**2) if t >= tfl else sf - (tfl - t) * eb / kfl
+
+
 def test_unloading_past_the_floor_stores_the_geometric_slack():
     """A strain increment that takes a spring from running tension to below the floor in one
-    step continues at the floor modulus. By hand: the part (e0 - tfl) / kt(e0) of the
-    increment brings the tension to the floor, the remaining 10 % of strain continues at the
-    floor modulus kfl = EB tfl^3 / (tfl^3 + a EB)."""
+    step ends on the floor line: by hand, the chord strain 0.1 below the floor's gives
+    ``tfl - 0.1 kfl`` (kfl = EB tfl^3 / (tfl^3 + a EB)), slack, and the belt does not push.
+    A small increment above the floor lands on the chord law itself (the tension whose chord
+    strain is the new strain, solved by bisection, 1e-9)."""
     eb, a_eb, tfl = 3.456e8, 1.97e14, 3.3e3
     kfl = eb * tfl**3 / (tfl**3 + a_eb)
+    sf = _chord_s(tfl, eb, a_eb, tfl, kfl)
     e0 = 2.0e5
-    kt = eb * e0**3 / (e0**3 + a_eb)
-    de = -(e0 - tfl) / kt - 0.1
-    e1, d1, t1 = spring(e0, 0.0, de, 1.0, 0.0, tfl, kfl / eb, a_eb, eb, 0.0, 0.0, 0.0)
+    s0 = _chord_s(e0, eb, a_eb, tfl, kfl)
+    de = (sf - s0) / eb - 0.1
+    e1, s1, d1, t1 = spring(e0, s0, 0.0, de, 1.0, 0.0, tfl, sf, kfl / eb, a_eb, eb, 0.0, 0.0,
+                            0.0)
+    assert s1 == pytest.approx(s0 + eb * de, rel=1e-12)
     assert e1 == pytest.approx(tfl - 0.1 * kfl, rel=1e-9)
     assert e1 < 0.0 and t1 == 0.0 and d1 == 0.0  # slack: the belt does not push
-    # a small increment above the floor is the plain tangent update
-    e1, _, _ = spring(e0, 0.0, -1e-5, 1.0, 0.0, tfl, kfl / eb, a_eb, eb, 0.0, 0.0, 0.0)
-    assert e1 == pytest.approx(e0 - 1e-5 * kt, rel=1e-12)
+    e1, s1, _, _ = spring(e0, s0, 0.0, -1e-4, 1.0, 0.0, tfl, sf, kfl / eb, a_eb, eb, 0.0, 0.0,
+                          0.0)
+    lo, hi = tfl, e0
+    for _ in range(200):
+        mid = 0.5 * (lo + hi)
+        lo, hi = (mid, hi) if _chord_s(mid, eb, a_eb, tfl, kfl) < s1 else (lo, mid)
+    assert e1 == pytest.approx(0.5 * (lo + hi), rel=1e-9)
+
+
+def test_a_strain_cycle_through_slack_returns_the_tension_it_started_from():
+    """The elastic tension is a function of the strain (Ernst's chord law, the floor line,
+    slack): a cycle of increments from running tension down through the floor into slack and
+    back to the starting strain, in uneven steps, returns the starting tension (1e-9), and the
+    elastic work round the cycle, sum of T de, is zero to the order of the steps (a tension
+    that lagged the strain would leave work behind)."""
+    eb, a_eb, tfl = 3.456e8, 1.97e14, 3.3e3
+    kfl = eb * tfl**3 / (tfl**3 + a_eb)
+    sf = _chord_s(tfl, eb, a_eb, tfl, kfl)
+    e0 = 2.0e5
+    s0 = _chord_s(e0, eb, a_eb, tfl, kfl)
+    rng = np.random.default_rng(7)
+    down = -rng.uniform(0.5, 1.5, 400)
+    down *= ((sf - s0) / eb - 2e-3) / down.sum()  # to 2e-3 of strain below the floor
+    steps = np.concatenate([down, -down[::-1][rng.permutation(400)]])
+    e, s, work, work_scale = e0, s0, 0.0, 0.0
+    for de in steps:
+        e1, s, _, _ = spring(e, s, 0.0, de, 1.0, 0.0, tfl, sf, kfl / eb, a_eb, eb, 0.0, 0.0, 0.0)
+        work += 0.5 * (max(e, 0.0) + max(e1, 0.0)) * de
+        work_scale += 0.5 * (max(e, 0.0) + max(e1, 0.0)) * abs(de)
+        e = e1
+    assert s == pytest.approx(s0, rel=1e-12)
+    assert e == pytest.approx(e0, rel=1e-9)
+    assert abs(work) < 1e-3 * work_scale
 
 
 def test_carriage_at_its_end_stop_is_a_warning_not_divergence():

@@ -1,0 +1,136 @@
+"""What avoids a drive's slip in the start: the take-up and the start time, found by rerunning.
+
+A pulley slips in a start when the force its drive asks for exceeds what its slack-side
+tension lets it pass, ``T_slack (e^(mu theta) - 1)``. Both sides of that inequality are
+dynamic: the accelerating force and the slack-side tension's dip as the start's stress wave
+runs round the loop (a follower at the tail sees the take-up's tension only a wave time
+later), so statics does not give the take-up or the start time that avoids the slip (on the
+16.8 km overland a take-up sized by statics for start-up slip slips in a 60 s start, and one
+half again as heavy still slips at the tail drive). The figures here come from the transient
+model itself: the start (and the run, up to the stop command) is rerun on the same mesh with
+a heavier take-up, or a longer start, grown by steps until no drive slips and then bisected.
+
+Each figure is the smallest value found with no slip, to :data:`REL_TOL` of itself, searched
+up to :data:`TAKEUP_MAX` times the take-up and :data:`START_MAX` times the start time; beyond
+that the figure is None ("not within ... x"). A rerun costs about a run's start; the search
+takes up to about a dozen each.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+from engine.conveyor import Conveyor, Scenario
+from engine.dynamics import DynamicsOptions, build_system, simulate
+from engine.statics import solve_steady
+
+#: Bisection tolerance of each figure (relative).
+REL_TOL = 0.02
+#: Search limits: the take-up (mass or pretension) and the start time, times the run's own.
+TAKEUP_MAX = 4.0
+START_MAX = 6.0
+#: Growth factor of the bracketing steps.
+GROW = 1.3
+
+
+@dataclass(frozen=True)
+class SlipRemedy:
+    """Figures that avoid the slip of a start (None: not found within the search limit).
+
+    takeup_mass_kg : gravity take-up counterweight [kg] (None for a fixed take-up)
+    takeup_tension_kn : fixed take-up pretension [kN] (None for a gravity take-up)
+    start_time_s : start time [s] with the run's take-up
+    reruns : int, how many starts were rerun
+    """
+
+    takeup_mass_kg: float | None
+    takeup_tension_kn: float | None
+    start_time_s: float | None
+    reruns: int
+
+
+def _slips(conveyor: Conveyor, scenario: Scenario, model: str, params, options) -> bool:
+    """Whether any drive slips between the start command and the stop command."""
+    n = None if scenario.elements == "auto" else int(scenario.elements)
+    steady = solve_steady(conveyor, model=model, params=params,
+                          temperature_c=scenario.temperature_c, load=scenario.load,
+                          n_elements=n)
+    if steady.status == "failed":
+        return True
+    system = build_system(conveyor, scenario, steady, options)
+    tr = simulate(system, t_end_s=system.stop_command_s)
+    return any(tr.summary.get(f"drive{i + 1}_slip_s", 0.0) > 0.0
+               for i in range(len(system.drive_share)))
+
+
+def _smallest(ok, x0: float, x_max: float) -> tuple[float | None, int]:
+    """Smallest x in (x0, x_max] with ok(x), assuming ok is monotone: grow by GROW until ok,
+    then bisect to REL_TOL. Returns (x or None, calls)."""
+    lo, x, calls = x0, x0 * GROW, 0
+    while True:
+        calls += 1
+        if ok(x):
+            break
+        lo = x
+        if x >= x_max:
+            return None, calls
+        x = min(x * GROW, x_max)
+    hi = x
+    while hi - lo > REL_TOL * hi:
+        mid = 0.5 * (lo + hi)
+        calls += 1
+        if ok(mid):
+            hi = mid
+        else:
+            lo = mid
+    return hi, calls
+
+
+def slip_remedy(conveyor: Conveyor, scenario: Scenario, *, model: str, params=None,
+                options: DynamicsOptions | None = None, elements: int,
+                takeup_mass_kg: float | None = None,
+                takeup_tension_kn: float | None = None) -> SlipRemedy | None:
+    """The take-up and the start time that avoid a start's slip (see the module docstring).
+
+    Parameters
+    ----------
+    conveyor, scenario, model, params, options
+        The run whose start slipped.
+    elements : int
+        The run's element count (the reruns use the same mesh).
+    takeup_mass_kg, takeup_tension_kn : float, optional
+        The take-up the run used (gravity counterweight [kg], fixed pretension [kN]), as its
+        summary gives them (auto sizes resolved).
+
+    Returns None when the start does not slip on the rerun (the slip was in the stop).
+    """
+    opts = options or DynamicsOptions()
+    scn = scenario.model_copy(update={"elements": int(elements)})
+    gravity = conveyor.takeup.type == "gravity"
+    base = takeup_mass_kg if gravity else takeup_tension_kn
+    field = "mass_kg" if gravity else "pretension_kn"
+
+    def with_takeup(x: float) -> Conveyor:
+        return conveyor.model_copy(update={"takeup": conveyor.takeup.model_copy(
+            update={field: float(x)})})
+
+    fixed = conveyor if base is None else with_takeup(base)
+    if not _slips(fixed, scn, model, params, opts):
+        return None
+    reruns = 1
+    tu = None
+    if base is not None and base > 0.0:
+        tu, k = _smallest(lambda x: not _slips(with_takeup(x), scn, model, params, opts),
+                          float(base), TAKEUP_MAX * float(base))
+        reruns += k
+    t0 = float(scenario.start.time_s)
+
+    def with_start(t: float) -> Scenario:
+        return scn.model_copy(update={"start": scn.start.model_copy(update={"time_s": t})})
+
+    st, k = _smallest(lambda t: not _slips(fixed, with_start(t), model, params, opts),
+                      t0, START_MAX * t0)
+    reruns += k
+    return SlipRemedy(takeup_mass_kg=tu if gravity else None,
+                      takeup_tension_kn=None if gravity else tu, start_time_s=st,
+                      reruns=reruns)
