@@ -46,8 +46,8 @@ class Law(NamedTuple):
 class Lin(NamedTuple):
     """The resistance law's expansion per element (:mod:`engine.dynamics.linlaw`): ``R0 = k +
     gu u + guu u^2 + gx T + gxx T^2 + gux u T`` [N] (``u = |v|``, T the mean tension); the
-    window round the state it was last evaluated at as bounds on the speed (``ulo``, ``uhi``
-    [m/s]) and the mean tension (``tlo``, ``thi`` [N]); all float32.
+    window round the expansion point as bounds on the speed (``ulo``, ``uhi`` [m/s]) and the
+    mean tension (``tlo``, ``thi`` [N]); all float32.
 
     The law for its element-wise evaluation (:func:`engine.dynamics.passes.law_refresh`): the
     coefficients by element padded to ``K_LIN`` terms (``cpad``, zero in the padding); each

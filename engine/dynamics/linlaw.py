@@ -16,7 +16,8 @@ only for the elements whose state has left the window round their expansion poin
 ``G_u = sum_k p_k t_k / u_c``, ``H_uu = sum_k p_k (p_k - 1) t_k / (2 u_c^2)``, ``G_T = -sum_k
 q_k t_k / T_c``, ``H_TT = sum_k q_k (q_k + 1) t_k / (2 T_c^2)``, ``H_uT = -sum_k p_k q_k t_k /
 (u_c T_c)`` (``t_k`` the exact terms at the expansion point, ``phi = sw / T``), kept as a
-polynomial in u and T [N] (:func:`expansion`). The windows, per element:
+polynomial in u and T [N] (:func:`expansion`; six float32 numbers per element, their rounding
+included in the bounds below). The windows, per element:
 
 * speed: ``|u - u_c| <= du u_c`` where that is wider than the creep window ``d0 v_eps``;
   below (creep, ``u_c < d0 v_eps / du``, where the law acts as ``R0 v / v_eps``, the
@@ -67,11 +68,14 @@ import numpy as np
 
 __all__ = ["LawWindows", "law_windows", "element_windows", "sparse_terms", "x_cap",
            "expansion", "remainder_bound", "creep_bound", "BIG", "DU_MAX", "K_LIN", "N_POW",
-           "PREDICT"]
+           "PREDICT", "F32"]
 
 #: The window size (and bound) of a quantity the law does not depend on: never crossed (finite:
-#: the kernel's reductions are compiled without infinities).
+#: the kernel's reductions are compiled without infinities, and float32 holds it).
 BIG = 1e38
+#: Unit roundoff of float32, in which the expansion's coefficients and the windows' edges are
+#: stored: the bounds include it.
+F32 = 2.0**-24
 #: Most terms (merged by exponents) of a law the kernel expands: the kernel's element-wise
 #: evaluation is unrolled over them (:func:`engine.dynamics.passes.law_refresh`).
 K_LIN = 8
@@ -147,26 +151,39 @@ def _grid(d: float, k: int = 65) -> np.ndarray:
     return np.linspace(-d, d, k) if 0.0 < d < BIG else np.zeros(1)
 
 
+def _storage(p, q, su, sv):
+    """The polynomial's monomials' sizes, ``sum_i |c_i| U^a_i V^b_i`` at ``U = u / u_c = su``,
+    ``V = T / T_c = sv``, for one term in units of its value at the expansion point: each
+    coefficient is stored in float32, so the expansion is off by at most F32 times this."""
+    a = 0.5 * p * (p - 1.0)
+    b = 0.5 * q * (q + 1.0)
+    return (abs(1.0 - p + a + q + b - p * q) + abs(p - 2.0 * a + p * q) * su + abs(a) * su * su
+            + abs(-q - 2.0 * b + p * q) * sv + abs(b) * sv * sv + abs(p * q) * su * sv)
+
+
 def remainder_bound(pairs, du: float, dx: float) -> float:
-    """Largest relative remainder of the expansion over the windows: the maximum over the
-    terms ``(p, q)`` and ``|x| <= du``, ``|y| <= dx`` of ``|f - taylor| / f``, ``f = (1 +
-    x)^p (1 + y)^-q``, ``taylor = 1 + p x + p (p - 1) x^2 / 2 - q y + q (q + 1) y^2 / 2 - p q
-    x y`` [-] (on a 65 x 65 grid with the box's edges; the remainder is smooth and largest at
-    the corners)."""
-    x = _grid(du)[:, None]
-    y = _grid(dx)[None, :]
+    """Largest relative error of the expansion over the windows: the maximum over the terms
+    ``(p, q)`` and ``|x| <= du``, ``|y| <= dx`` of ``(|f - taylor| + F32 storage) / f``, ``f =
+    (1 + x)^p (1 + y)^-q``, ``taylor = 1 + p x + p (p - 1) x^2 / 2 - q y + q (q + 1) y^2 / 2 -
+    p q x y``, storage the float32 rounding of the stored polynomial and of the window's edges
+    (:func:`_storage`) [-] (on a 65 x 65 grid with the box's edges; the remainder is smooth
+    and largest at the corners)."""
+    x = _grid(du * (1.0 + 2.0 * F32))[:, None]
+    y = _grid(dx * (1.0 + 2.0 * F32))[None, :]
     worst = 0.0
     for p, q in pairs:
         f = (1.0 + x) ** p * (1.0 + y) ** (-q)
         taylor = (1.0 + p * x + 0.5 * p * (p - 1.0) * x * x - q * y + 0.5 * q * (q + 1.0) * y * y
                   - p * q * x * y)
-        worst = max(worst, float(np.max(np.abs(f - taylor) / f)))
+        err = np.abs(f - taylor) + F32 * _storage(p, q, 1.0 + x, 1.0 + y)
+        worst = max(worst, float(np.max(err / f)))
     return worst
 
 
 def _tension_remainder(pairs, dx: float) -> float:
-    y = _grid(dx)
-    return max(float(np.max(np.abs((1.0 + y) ** (-q) - 1.0 + q * y - 0.5 * q * (q + 1.0) * y * y)))
+    y = _grid(dx * (1.0 + 2.0 * F32))
+    return max(float(np.max(np.abs((1.0 + y) ** (-q) - 1.0 + q * y - 0.5 * q * (q + 1.0) * y * y)
+                            + F32 * _storage(0.0, q, 1.0, 1.0 + y)))
                for _, q in pairs)
 
 

@@ -165,8 +165,8 @@ N_F = 6 + 2 * N_POW
 #: reference sag, xcap, window sizes, then the K_LIN coefficients.
 G_U, G_T, G_UN, G_TN, G_SW, G_HSM, G_XC, G_DU, G_D0, G_DX, G_C = range(11)
 N_G = 10 + K_LIN
-#: Output rows: the polynomial's six coefficients, the four window bounds, the law now.
-N_O = 11
+#: Output rows: the polynomial's six coefficients, the four window bounds.
+N_O = 10
 
 
 @njit(**OPTS)
@@ -271,8 +271,8 @@ def _refresh_eval(m, rs, rq, wk, g, f, o):
     """The exact law and its expansion over the gathered elements (one vectorised loop): the
     terms ``c u^p phi^q`` from the factor rows (``rs``, ``rq``: each term's rows), the sums
     ``R``, ``sum p t``, ``sum p (p - 1) t``, ``sum q t``, ``sum q (q + 1) t``, ``sum p q t``
-    (weights ``wk``, one row of K_LIN each), the polynomial's coefficients, the window's bounds
-    and the law at the state into the rows of o."""
+    (weights ``wk``, one row of K_LIN each), the polynomial's coefficients and the window's
+    bounds into the rows of o."""
     c = CHUNK
     s0, s1, s2, s3 = uintp(rs[0] * c), uintp(rs[1] * c), uintp(rs[2] * c), uintp(rs[3] * c)
     s4, s5, s6, s7 = uintp(rs[4] * c), uintp(rs[5] * c), uintp(rs[6] * c), uintp(rs[7] * c)
@@ -329,8 +329,6 @@ def _refresh_eval(m, rs, rq, wk, g, f, o):
         o[7 * CHUNK + i] = big if du >= big else u + wu
         o[8 * CHUNK + i] = -big if (dx >= big or not uncapped) else max(tm - dx * tm, xc)
         o[9 * CHUNK + i] = big if dx >= big else (tm + dx * tm if uncapped else xc)
-        o[10 * CHUNK + i] = _lin(g[G_UN * CHUNK + i], g[G_TN * CHUNK + i], k0, k1, h_uu, k3,
-                                 h_tt, h_ut)
 
 
 @njit(inline="always", **OPTS)
@@ -341,9 +339,9 @@ def _wsum(w, t0, t1, t2, t3, t4, t5, t6, t7):
 
 
 @njit(**OPTS)
-def _refresh_scatter(idx, i0, m, o, lin, r0):
-    """The expansion, the windows and the law now of the evaluated chunk into the elements'
-    arrays."""
+def _refresh_scatter(idx, i0, m, g, o, lin, r0):
+    """The expansion and the windows of the evaluated chunk into the elements' (float32)
+    arrays, and r0 from the stored expansion at their state."""
     for ii in range(m):
         i = uintp(ii)
         j = uintp(idx[i0 + ii])
@@ -357,24 +355,27 @@ def _refresh_scatter(idx, i0, m, o, lin, r0):
         lin.uhi[j] = o[7 * CHUNK + i]
         lin.tlo[j] = o[8 * CHUNK + i]
         lin.thi[j] = o[9 * CHUNK + i]
-        r0[j] = o[10 * CHUNK + i]
+        r0[j] = _lin(g[G_UN * CHUNK + i], g[G_TN * CHUNK + i], lin.k[j], lin.gu[j], lin.guu[j],
+                     lin.gx[j], lin.gxx[j], lin.gux[j])
 
 
 @njit(**OPTS)
 def law_refresh(idx, m, v, tt, lin, r0):
-    """Evaluate the exact law on the elements ``idx[:m]`` and expand it about their state.
+    """Evaluate the exact law for the elements ``idx[:m]`` at their new expansion points and
+    expand it there (:mod:`engine.dynamics.linlaw`); r0 [N] from the expansion at their state.
 
-    For each element j, with ``u = |v_j|`` and ``T`` its mean tension: the terms ``t_k =
-    coef[k, j] u^pv[k] phi^ps[k]`` (the law of :func:`resistance`; ``lin.cpad`` the
-    coefficients by element, padded to K_LIN terms with zero ones, each term a product of a
-    speed factor and a sag factor, ``lin.rs`` / ``lin.rq`` their rows, ``lin.upow`` /
-    ``lin.qpow`` the exponents taken by exp and log); the expansion about this state
-    (:func:`engine.dynamics.linlaw.expansion`) as the polynomial ``R0 = k + gu u + guu u^2 +
-    gx T + gxx T^2 + gux u T``; the window round the state as bounds on u and T (float32;
-    +-BIG where the law does not depend on it); r0 from the polynomial at the state. The
-    speed is expanded where its relative window ``du u`` is wider than the creep window
-    ``d0``, and held within ``d0`` below. A sag ratio at its cap stays there while ``T <=
-    xcap``; an uncapped one while ``T >= xcap``, so the expansion is in T on either side.
+    For each element j, with ``u = |v_j|`` [m/s] and ``T`` its mean tension [N]: the expansion
+    point is the state moved by PREDICT of its window the way it was moving
+    (:func:`_refresh_gather`); there the terms ``t_k = coef[k, j] u^pv[k] phi^ps[k]`` (the law
+    of :func:`resistance`; ``lin.cpad`` the coefficients by element, padded to K_LIN terms with
+    zero ones, each term a product of a speed and a sag factor, ``lin.rs`` / ``lin.rq`` their
+    rows, ``lin.upow`` / ``lin.qpow`` the exponents taken by exp and log); the second-order
+    expansion (:func:`engine.dynamics.linlaw.expansion`) as the polynomial ``R0 = k + gu u +
+    guu u^2 + gx T + gxx T^2 + gux u T`` and the window round the point as bounds on u and T
+    (+-BIG where the law does not depend on it), stored in float32. The speed is expanded
+    where its relative window ``du u`` is wider than the creep window ``d0``, and held within
+    ``d0`` below. A sag ratio at its cap stays there while ``T <= xcap``; an uncapped one
+    while ``T >= xcap``, so the expansion is in T on either side.
 
     In chunks of CHUNK elements (padded to whole vectors with the last one again): gathered
     into contiguous rows, evaluated in vectorised loops, scattered back.
@@ -391,7 +392,7 @@ def law_refresh(idx, m, v, tt, lin, r0):
                         lin.thi, lin.sg)
         _refresh_factors(mc, lin.sg, lin.sf, lin.upow, lin.qpow, nup, nqp, need_sqrt)
         _refresh_eval(mc, lin.rs, lin.rq, lin.wk, lin.sg, lin.sf, lin.so)
-        _refresh_scatter(idx, i0, mc, lin.so, lin, r0)
+        _refresh_scatter(idx, i0, mc, lin.sg, lin.so, lin, r0)
 
 
 @njit(inline="always", **OPTS)

@@ -148,13 +148,14 @@ class ExpandedLaw:
             e += p * q * t
         moving = du * uc >= w0
         uncapped = tc >= xc
-        self.poly[:, j] = expansion(r, a, aa, b, bb, e, uc, tc, moving, uncapped)
+        f32 = np.float32  # the kernel stores the expansion and the windows in float32
+        self.poly[:, j] = f32(expansion(r, a, aa, b, bb, e, uc, tc, moving, uncapped))
         wu = np.where(moving, du * uc, w0)
-        self.bounds[0, j] = np.where(du >= BIG, -BIG, uc - wu)
-        self.bounds[1, j] = np.where(du >= BIG, BIG, uc + wu)
-        self.bounds[2, j] = np.where((dx >= BIG) | ~uncapped, -BIG,
-                                     np.maximum(tc - dx * tc, xc))
-        self.bounds[3, j] = np.where(dx >= BIG, BIG, np.where(uncapped, tc + dx * tc, xc))
+        self.bounds[0, j] = f32(np.where(du >= BIG, -BIG, uc - wu))
+        self.bounds[1, j] = f32(np.where(du >= BIG, BIG, uc + wu))
+        self.bounds[2, j] = f32(np.where((dx >= BIG) | ~uncapped, -BIG,
+                                         np.maximum(tc - dx * tc, xc)))
+        self.bounds[3, j] = f32(np.where(dx >= BIG, BIG, np.where(uncapped, tc + dx * tc, xc)))
 
 
 def _tangent(sys: System, te: np.ndarray, j=slice(None)) -> np.ndarray:

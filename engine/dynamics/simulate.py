@@ -135,7 +135,7 @@ def linear_law_arrays(sys: System, windows) -> A.Lin:
     flag = np.zeros(n8, dtype=np.uint8)
 
     def z():
-        return np.zeros(n, dtype=np.float64)
+        return np.zeros(n, dtype=np.float32)
 
     return A.Lin(k=z(), gu=z(), guu=z(), gx=z(), gxx=z(), gux=z(), ulo=z(), uhi=z(), tlo=z(),
                  thi=z(), cpad=cpad, rs=rs, rq=rq, wk=wk, upow=upow, qpow=qpow, npow=npow,
