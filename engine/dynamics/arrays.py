@@ -49,14 +49,14 @@ class Lin(NamedTuple):
     window round the expansion point as bounds on the speed (``ulo``, ``uhi`` [m/s]) and the
     mean tension (``tlo``, ``thi`` [N]); all float32.
 
-    The law for its element-wise evaluation (:func:`engine.dynamics.passes.law_refresh`): the
-    coefficients by element padded to ``K_LIN`` terms (``cpad``, zero in the padding); each
-    term's speed and sag factor rows (``rs``, ``rq``); the weights of the sums over the terms
-    (``wk``, rows 1, p, p (p - 1), q, q (q + 1), p q); the speed and sag exponents taken by
-    exp and log (``upow``, ``qpow``) and ``npow`` = their numbers and whether a sag exponent
-    is 0.5 or 1.5; per element ``cel`` = sag weight and sag cap over the reference sag, the
-    tension below which the sag ratio is at its cap [N], the window sizes (relative speed,
-    creep [m/s], relative tension; ``linlaw.BIG`` where no term depends on it). Scratch: the
+    The law for its element-wise evaluation (:func:`engine.dynamics.passes.law_refresh`): per
+    element a row of 16 (``erow``): sag weight and sag cap over the reference sag, the tension
+    below which the sag ratio is at its cap [N], the window sizes (relative speed, creep
+    [m/s], relative tension; ``linlaw.BIG`` where no term depends on it), two zeros, the
+    coefficients padded to ``K_LIN`` terms with zero ones; each term's speed and sag factor
+    rows (``rs``, ``rq``); the weights of the sums over the terms (``wk``, rows 1, p, p (p -
+    1), q, q (q + 1), p q); the speed and sag exponents taken by exp and log (``upow``,
+    ``qpow``) and ``npow`` = their numbers and whether a sag exponent is 0.5 or 1.5. Scratch: the
     flags of the elements outside their windows (``flag``, padded to whole words, ``flag64``
     its view by words), their indices (room for padding), the gathered, factor and output
     rows of the evaluation (``sg``, ``sf``, ``so``)."""
@@ -71,14 +71,13 @@ class Lin(NamedTuple):
     uhi: np.ndarray
     tlo: np.ndarray
     thi: np.ndarray
-    cpad: np.ndarray
+    erow: np.ndarray
     rs: np.ndarray
     rq: np.ndarray
     wk: np.ndarray
     upow: np.ndarray
     qpow: np.ndarray
     npow: np.ndarray
-    cel: np.ndarray
     flag: np.ndarray
     flag64: np.ndarray
     idx: np.ndarray

@@ -135,13 +135,13 @@ def expansion(r, a, aa, b, bb, e, u, t, moving, uncapped):
     t_k``, ``bb = sum q (q + 1) t_k``, ``e = sum p q t_k``; ``moving``: the speed is expanded
     (else held), ``uncapped``: the sag ratio follows the tension (else held). Returns ``(k,
     gu, guu, gx, gxx, gux)``."""
-    su = np.where(moving, u, 1.0)
-    st = np.where(uncapped, t, 1.0)
-    g_u = np.where(moving, a / su, 0.0)
-    h_uu = np.where(moving, 0.5 * aa / (su * su), 0.0)
-    g_t = np.where(uncapped, -b / st, 0.0)
-    h_tt = np.where(uncapped, 0.5 * bb / (st * st), 0.0)
-    h_ut = np.where(moving & uncapped, -e / (su * st), 0.0)
+    iu = np.where(moving, 1.0 / np.where(moving, u, 1.0), 0.0)
+    it = np.where(uncapped, 1.0 / np.where(uncapped, t, 1.0), 0.0)
+    g_u = a * iu
+    h_uu = 0.5 * aa * iu * iu
+    g_t = -b * it
+    h_tt = 0.5 * bb * it * it
+    h_ut = -e * iu * it
     k = r - g_u * u + h_uu * u * u - g_t * t + h_tt * t * t + h_ut * u * t
     return (k, g_u - 2.0 * h_uu * u - h_ut * t, h_uu, g_t - 2.0 * h_tt * t - h_ut * u, h_tt,
             h_ut)

@@ -170,14 +170,15 @@ N_O = 10
 
 
 @njit(**OPTS)
-def _refresh_gather(idx, i0, m, v, tt, cpad, cel, ulo, uhi, tlo, thi, g):
+def _refresh_gather(idx, i0, m, v, tt, erow, ulo, uhi, tlo, thi, g):
     """The state, the expansion point, the per-element constants and the coefficients of the
-    elements ``idx[i0:i0 + m]`` into the rows of g.
+    elements ``idx[i0:i0 + m]`` into the rows of g (``erow``: each element's constants and
+    coefficients in one row of 16).
 
     The expansion point is the state moved by PREDICT of its window towards the side of the
     old window the state is on (the way it has been moving), where the speed is expanded and
     the sag ratio follows the tension; the state stays inside the new window (see
-    :mod:`engine.dynamics.linlaw`)."""
+    :mod:`engine.dynamics.linlaw`). Without branches on the data (selects)."""
     n = tt.shape[0]
     big = BIG
     for ii in range(m):
@@ -187,31 +188,28 @@ def _refresh_gather(idx, i0, m, v, tt, cpad, cel, ulo, uhi, tlo, thi, g):
         jm = uintp(jj - 1 + (n if jj == 0 else 0))
         u = abs(v[j])
         tm = 0.5 * (tt[jm] + tt[j])
-        xc = cel[j, 2]
-        du = cel[j, 3]
-        w0 = cel[j, 4]
-        dx = cel[j, 5]
-        uc = u
-        if du < big and du * u >= w0:
-            uc = u + PREDICT * du * u * (1.0 if u >= 0.5 * (ulo[j] + uhi[j]) else -1.0)
-            if du * uc < w0:
-                uc = u
-        tc = tm
-        if dx < big and tm >= xc:
-            tc = max(tm + PREDICT * dx * tm * (1.0 if tm >= 0.5 * (tlo[j] + thi[j]) else -1.0),
-                     xc)
+        xc = erow[j, 2]
+        du = erow[j, 3]
+        w0 = erow[j, 4]
+        dx = erow[j, 5]
+        su = 1.0 if u >= 0.5 * (ulo[j] + uhi[j]) else -1.0
+        uc = u + PREDICT * du * u * su
+        uc = uc if ((du < big) & (du * u >= w0) & (du * uc >= w0)) else u
+        st = 1.0 if tm >= 0.5 * (tlo[j] + thi[j]) else -1.0
+        tc = max(tm + PREDICT * dx * tm * st, xc)
+        tc = tc if ((dx < big) & (tm >= xc)) else tm
         g[G_U * CHUNK + i] = uc
         g[G_T * CHUNK + i] = tc
         g[G_UN * CHUNK + i] = u
         g[G_TN * CHUNK + i] = tm
-        g[G_SW * CHUNK + i] = cel[j, 0]
-        g[G_HSM * CHUNK + i] = cel[j, 1]
+        g[G_SW * CHUNK + i] = erow[j, 0]
+        g[G_HSM * CHUNK + i] = erow[j, 1]
         g[G_XC * CHUNK + i] = xc
         g[G_DU * CHUNK + i] = du
         g[G_D0 * CHUNK + i] = w0
         g[G_DX * CHUNK + i] = dx
         for k in range(K_LIN):
-            g[(G_C + k) * CHUNK + i] = cpad[j, k]
+            g[(G_C + k) * CHUNK + i] = erow[j, 8 + k]
 
 
 @njit(**OPTS)
@@ -308,13 +306,13 @@ def _refresh_eval(m, rs, rq, wk, g, f, o):
         dx = g[G_DX * CHUNK + i]
         moving = du * u >= w0
         uncapped = tm >= xc
-        su = u if moving else 1.0
-        st = tm if uncapped else 1.0
-        g_u = a / su if moving else 0.0
-        h_uu = 0.5 * aa / (su * su) if moving else 0.0
-        g_t = -b / st if uncapped else 0.0
-        h_tt = 0.5 * bb / (st * st) if uncapped else 0.0
-        h_ut = -e / (su * st) if (moving and uncapped) else 0.0
+        iu = 1.0 / u if moving else 0.0
+        it = 1.0 / tm if uncapped else 0.0
+        g_u = a * iu
+        h_uu = 0.5 * aa * iu * iu
+        g_t = -b * it
+        h_tt = 0.5 * bb * it * it
+        h_ut = -e * iu * it
         k0 = r - g_u * u + h_uu * u * u - g_t * tm + h_tt * tm * tm + h_ut * u * tm
         k1 = g_u - 2.0 * h_uu * u - h_ut * tm
         k3 = g_t - 2.0 * h_tt * tm - h_ut * u
@@ -367,8 +365,8 @@ def law_refresh(idx, m, v, tt, lin, r0):
     For each element j, with ``u = |v_j|`` [m/s] and ``T`` its mean tension [N]: the expansion
     point is the state moved by PREDICT of its window the way it was moving
     (:func:`_refresh_gather`); there the terms ``t_k = coef[k, j] u^pv[k] phi^ps[k]`` (the law
-    of :func:`resistance`; ``lin.cpad`` the coefficients by element, padded to K_LIN terms with
-    zero ones, each term a product of a speed and a sag factor, ``lin.rs`` / ``lin.rq`` their
+    of :func:`resistance`; ``lin.erow`` the coefficients by element, padded to K_LIN terms
+    with zero ones, each term a product of a speed and a sag factor, ``lin.rs`` / ``lin.rq`` their
     rows, ``lin.upow`` / ``lin.qpow`` the exponents taken by exp and log); the second-order
     expansion (:func:`engine.dynamics.linlaw.expansion`) as the polynomial ``R0 = k + gu u +
     guu u^2 + gx T + gxx T^2 + gux u T`` and the window round the point as bounds on u and T
@@ -388,8 +386,8 @@ def law_refresh(idx, m, v, tt, lin, r0):
     need_sqrt = lin.npow[2] == 1
     for i0 in range(0, m, CHUNK):
         mc = min(CHUNK, m - i0)
-        _refresh_gather(idx, i0, mc, v, tt, lin.cpad, lin.cel, lin.ulo, lin.uhi, lin.tlo,
-                        lin.thi, lin.sg)
+        _refresh_gather(idx, i0, mc, v, tt, lin.erow, lin.ulo, lin.uhi, lin.tlo, lin.thi,
+                        lin.sg)
         _refresh_factors(mc, lin.sg, lin.sf, lin.upow, lin.qpow, nup, nqp, need_sqrt)
         _refresh_eval(mc, lin.rs, lin.rq, lin.wk, lin.sg, lin.sf, lin.so)
         _refresh_scatter(idx, i0, mc, lin.sg, lin.so, lin, r0)

@@ -121,16 +121,15 @@ def linear_law_arrays(sys: System, windows) -> A.Lin:
                                      windows)
         pv, ps = sys.pv, sys.ps
     rs, rq, upow, qpow, npow, wk = law_rows(pv, ps)
-    cpad = np.zeros((n, K_LIN))
+    erow = np.zeros((n, 8 + K_LIN))
+    erow[:, 0] = sw_ref
+    erow[:, 1] = hsm_ref
+    erow[:, 2] = x_cap(sw_ref, hsm_ref)
+    erow[:, 3] = du
+    erow[:, 4] = d0
+    erow[:, 5] = dx
     if windows is not None:
-        cpad[:, :nk] = sys.coef.T
-    cel = np.zeros((n, 8))
-    cel[:, 0] = sw_ref
-    cel[:, 1] = hsm_ref
-    cel[:, 2] = x_cap(sw_ref, hsm_ref)
-    cel[:, 3] = du
-    cel[:, 4] = d0
-    cel[:, 5] = dx
+        erow[:, 8:8 + nk] = sys.coef.T
     n8 = 8 * ((n + 7) // 8)
     flag = np.zeros(n8, dtype=np.uint8)
 
@@ -138,8 +137,8 @@ def linear_law_arrays(sys: System, windows) -> A.Lin:
         return np.zeros(n, dtype=np.float32)
 
     return A.Lin(k=z(), gu=z(), guu=z(), gx=z(), gxx=z(), gux=z(), ulo=z(), uhi=z(), tlo=z(),
-                 thi=z(), cpad=cpad, rs=rs, rq=rq, wk=wk, upow=upow, qpow=qpow, npow=npow,
-                 cel=cel, flag=flag, flag64=flag.view(np.uint64),
+                 thi=z(), erow=erow, rs=rs, rq=rq, wk=wk, upow=upow, qpow=qpow, npow=npow,
+                 flag=flag, flag64=flag.view(np.uint64),
                  idx=np.zeros(n + 8, dtype=np.int64), sg=np.zeros(N_G * CHUNK),
                  sf=np.zeros(N_F * CHUNK), so=np.zeros(N_O * CHUNK))
 
