@@ -213,38 +213,30 @@ def _refresh_gather(idx, i0, m, v, tt, erow, ulo, uhi, tlo, thi, g):
 
 
 @njit(**OPTS)
-def _refresh_factors(m, g, f, upow, qpow, nup, nqp, need_sqrt):
-    """The factors of the terms over the gathered elements into the rows of f: 1, u,
-    ``u^upow[x] = exp(upow[x] ln u)``, phi, phi^2, sqrt(phi), phi^1.5, ``phi^qpow[x]``; each
-    row only when a term uses it (row offsets unsigned: no negative-index wraparound, so each
-    loop vectorises)."""
+def _refresh_factors(m, g, f, upow, qpow, nqp):
+    """The factors of the terms over the gathered elements into the rows of f, in one
+    vectorised loop: 1, u, ``u^upow[x] = exp(upow[x] ln u)`` (all N_POW, padded exponents
+    0), phi, phi^2, sqrt(phi), phi^1.5; then ``phi^qpow[x]`` when a sag exponent takes exp
+    and log (row offsets unsigned: no negative-index wraparound)."""
+    p0 = upow[0]
+    p1 = upow[1]
+    p2 = upow[2]
     for ii in range(m):
         i = uintp(ii)
         u = g[G_U * CHUNK + i]
         tm = g[G_T * CHUNK + i]
         phi = min(g[G_SW * CHUNK + i] / max(tm, 1.0), g[G_HSM * CHUNK + i])
+        ln = _ln0(u)
+        r = math.sqrt(phi)
         f[F_ONE * CHUNK + i] = 1.0
         f[F_U * CHUNK + i] = u
+        f[F_UP * CHUNK + i] = _exp(p0 * ln)
+        f[(F_UP + 1) * CHUNK + i] = _exp(p1 * ln)
+        f[(F_UP + 2) * CHUNK + i] = _exp(p2 * ln)
         f[F_PHI * CHUNK + i] = phi
         f[F_PHI2 * CHUNK + i] = phi * phi
-    if nup > 0:
-        # ln u into the first power's row, then each power from it (the first last)
-        for ii in range(m):
-            i = uintp(ii)
-            f[F_UP * CHUNK + i] = _ln0(g[G_U * CHUNK + i])
-        for x in range(nup - 1, -1, -1):
-            base = uintp((F_UP + x) * CHUNK)
-            p = upow[x]
-            for ii in range(m):
-                i = uintp(ii)
-                f[base + i] = _exp(p * f[F_UP * CHUNK + i])
-    if need_sqrt:
-        for ii in range(m):
-            i = uintp(ii)
-            phi = f[F_PHI * CHUNK + i]
-            r = math.sqrt(phi)
-            f[F_SQRT * CHUNK + i] = r
-            f[F_PHI15 * CHUNK + i] = phi * r
+        f[F_SQRT * CHUNK + i] = r
+        f[F_PHI15 * CHUNK + i] = phi * r
     if nqp > 0:
         for ii in range(m):
             i = uintp(ii)
@@ -381,14 +373,12 @@ def law_refresh(idx, m, v, tt, lin, r0):
     while m % 4 != 0:
         idx[m] = idx[m - 1]
         m += 1
-    nup = lin.npow[0]
     nqp = lin.npow[1]
-    need_sqrt = lin.npow[2] == 1
     for i0 in range(0, m, CHUNK):
         mc = min(CHUNK, m - i0)
         _refresh_gather(idx, i0, mc, v, tt, lin.erow, lin.ulo, lin.uhi, lin.tlo, lin.thi,
                         lin.sg)
-        _refresh_factors(mc, lin.sg, lin.sf, lin.upow, lin.qpow, nup, nqp, need_sqrt)
+        _refresh_factors(mc, lin.sg, lin.sf, lin.upow, lin.qpow, nqp)
         _refresh_eval(mc, lin.rs, lin.rq, lin.wk, lin.sg, lin.sf, lin.so)
         _refresh_scatter(idx, i0, mc, lin.sg, lin.so, lin, r0)
 
