@@ -62,6 +62,13 @@ class _Model(BaseModel):
     model_config = ConfigDict(extra="forbid", frozen=True, populate_by_name=True)
 
 
+def _compound_enum(schema: dict) -> None:
+    """The catalogue's compounds as the JSON Schema's enum (read when a schema is made)."""
+    from engine.catalog import compounds
+
+    schema["enum"] = sorted(compounds())
+
+
 PositiveFloat = Annotated[float, Field(gt=0)]
 NonNegFloat = Annotated[float, Field(ge=0)]
 
@@ -75,17 +82,26 @@ class Belt(_Model):
     """
 
     type: str | None = Field(None, description="belt id in the catalogue, e.g. ST2000, EP630/4")
-    width_m: PositiveFloat = Field(..., description="belt width B [m]")
-    top_cover_mm: NonNegFloat | None = Field(None, description="carry-side cover [mm]")
-    bottom_cover_mm: NonNegFloat | None = Field(None, description="pulley-side cover [mm]")
-    compound: str = Field("standard", description="cover rubber compound id (catalogue)")
-    rating_kn_m: PositiveFloat | None = Field(None, description="nominal strength [kN/m]")
-    modulus_kn_m: PositiveFloat | None = Field(
-        None, description="static axial modulus E per width [kN/m] (elongation, take-up travel)")
-    dynamic_modulus_kn_m: PositiveFloat | None = Field(
-        None, description="dynamic axial modulus per width [kN/m] (wave fronts); default: the "
+    # bounds beyond the standard widths (DIN 22102 / ISO 251: 0.3 to 3.2 m)
+    width_m: float = Field(..., ge=0.1, le=5.0, description="belt width B [m] (0.1 to 5)")
+    top_cover_mm: NonNegFloat | None = Field(None, le=100.0,
+                                             description="carry-side cover [mm] (at most 100)")
+    bottom_cover_mm: NonNegFloat | None = Field(
+        None, le=100.0, description="pulley-side cover [mm] (at most 100)")
+    compound: str = Field("standard", description="cover rubber compound id (catalogue)",
+                          json_schema_extra=_compound_enum)
+    # bounds far beyond the catalogues (EP 250 to ST 10 000; carcasses of a few to about
+    # 60 kg/m2): they keep the belt's mass, stiffness and strength physical numbers
+    rating_kn_m: float | None = Field(None, ge=1.0, le=1e5,
+                                      description="nominal strength [kN/m] (1 to 1e5)")
+    modulus_kn_m: float | None = Field(
+        None, ge=1.0, le=1e9,
+        description="static axial modulus E per width [kN/m] (elongation, take-up travel)")
+    dynamic_modulus_kn_m: float | None = Field(
+        None, ge=1.0, le=1e9, description="dynamic axial modulus per width [kN/m] (wave fronts); default: the "
         "static modulus times the catalogue's dynamic/static ratio (steel cord 1.1, fabric 1.5)")
-    carcass_mass_kg_m2: NonNegFloat | None = Field(None, description="carcass mass [kg/m2]")
+    carcass_mass_kg_m2: float | None = Field(None, ge=0.1, le=1000.0,
+                                             description="carcass mass [kg/m2] (0.1 to 1000)")
 
     @model_validator(mode="after")
     def _type_or_fields(self) -> Belt:
@@ -107,9 +123,11 @@ class Material(_Model):
     """Bulk material on the carry strand."""
 
     capacity_t_h: NonNegFloat = Field(..., description="design capacity [t/h]")
-    density_t_m3: PositiveFloat = Field(1.0, description="bulk density [t/m3]")
+    density_t_m3: float = Field(1.0, ge=0.01, le=25.0,
+                                description="bulk density [t/m3] (0.01 to 25)")
     loading_speed_m_s: float = Field(
-        0.0, description="along-belt speed of the material at the feed point [m/s]"
+        0.0, ge=-30.0, le=30.0,
+        description="along-belt speed of the material at the feed point [m/s] (-30 to 30)"
     )
     surcharge_deg: float = Field(
         20.0, ge=0, lt=90, description="surcharge angle of the material on the moving belt "
@@ -124,7 +142,8 @@ class Material(_Model):
 class ProfileSection(_Model):
     """One straight section of the carry route, tail -> head."""
 
-    length_m: PositiveFloat = Field(..., description="length along the belt [m]")
+    length_m: float = Field(..., gt=0.0, le=1e5,
+                            description="length along the belt [m] (at most 100 km)")
     lift_m: float = Field(0.0, description="rise over the section, negative downhill [m]")
 
     @model_validator(mode="after")
@@ -140,15 +159,22 @@ class ProfileSection(_Model):
 class IdlerSet(_Model):
     """An idler set; rotating mass and seal drag default from the catalogue by roll diameter."""
 
-    spacing_m: PositiveFloat = Field(..., description="idler set pitch S [m]")
-    roll_diameter_m: PositiveFloat = Field(0.152, description="roll diameter [m]")
+    # bounds far beyond practice (CEMA's pitch tables run 0.6-3 m carry and up to 6 m
+    # return; rolls are 0.1-0.22 m across, sets weigh tens of kg and drag a few N): they
+    # only keep nonsense out of the sag, capacity and auto-size checks
+    spacing_m: float = Field(..., ge=0.1, le=20.0,
+                             description="idler set pitch S [m] (0.1 to 20)")
+    roll_diameter_m: PositiveFloat = Field(
+        0.152, le=1.0, description="roll diameter [m] (at most 1)")
     rolls: int = Field(3, ge=1, le=5, description="rolls per set")
     trough_deg: float = Field(0.0, ge=0, le=60, description="trough angle [deg]")
     cema_class: str | None = Field(None, description="CEMA idler class B..F (catalogue lookup)")
-    rotating_mass_kg: NonNegFloat | None = Field(None, description="rotating mass per set [kg]")
-    seal_drag_n: NonNegFloat | None = Field(None, description="seal drag per set [N]")
+    rotating_mass_kg: NonNegFloat | None = Field(
+        None, le=500.0, description="rotating mass per set [kg] (at most 500)")
+    seal_drag_n: NonNegFloat | None = Field(
+        None, le=500.0, description="seal drag per set [N] (at most 500)")
     roll_length_m: PositiveFloat | None = Field(
-        None, description="length of the middle (horizontal) roll [m], capacity check; "
+        None, le=5.0, description="length of the middle (horizontal) roll [m], capacity check; "
         "default by belt width (DIN 22107, engine/data/trough.csv)"
     )
 
@@ -340,7 +366,9 @@ class Conveyor(_Model):
     """A belt conveyor (SPEC section 1)."""
 
     name: str = Field(..., min_length=1, max_length=200)
-    speed_m_s: PositiveFloat = Field(..., description="design belt speed [m/s]")
+    # bounds beyond practice (belt conveyors run about 0.1 to 10 m/s)
+    speed_m_s: float = Field(..., ge=0.01, le=30.0,
+                             description="design belt speed [m/s] (0.01 to 30)")
     belt: Belt
     material: Material
     profile: list[ProfileSection] = Field(..., min_length=1)

@@ -242,10 +242,24 @@ def build_loop(
     cols: dict[str, list] = {k: [] for k in (
         "strand", "dx", "z", "sin", "cos", "S", "D", "rolls", "trough", "mL", "mR", "drag")}
 
-    def add(strand, dx, z, sin, cos, S, D, rolls, trough, mL_, mR, drag):
-        for k, v in zip(cols, (strand, dx, z, sin, cos, S, D, rolls, trough, mL_, mR, drag),
-                        strict=True):
-            cols[k].append(v)
+    def add(strand, dx, z, sin, cos, S, D, rolls, trough, mL_, mR, drag, k=None):
+        """One element, or ``k`` equal elements at the heights in the list ``z``."""
+        values = (strand, dx, z, sin, cos, S, D, rolls, trough, mL_, mR, drag)
+        if k is None:
+            for key, v in zip(cols, values, strict=True):
+                cols[key].append(v)
+            return
+        for key, v in zip(cols, values, strict=True):
+            cols[key].extend(v if key == "z" else [v] * k)
+
+    def heights(z: float, dz: float, k: int) -> tuple[list[float], float]:
+        """Heights of ``k`` elements from ``z`` rising ``dz`` each (summed one by one), and
+        the height after them."""
+        out = []
+        for _ in range(k):
+            out.append(z)
+            z += dz
+        return out, z
 
     # carry strand, tail -> head
     z = 0.0
@@ -253,10 +267,9 @@ def build_loop(
         dx = sec.length_m / k
         sin = sec.lift_m / sec.length_m
         cos = math.sqrt(1.0 - sin * sin)
-        for _ in range(k):
-            add(CARRY, dx, z, sin, cos, ic.spacing_m, ic.roll_diameter_m, ic.rolls,
-                ic.trough_deg, design_mL * frac, carry_mass / ic.spacing_m, carry_drag)
-            z += dx * sin
+        zs, z = heights(z, dx * sin, k)
+        add(CARRY, dx, zs, sin, cos, ic.spacing_m, ic.roll_diameter_m, ic.rolls,
+            ic.trough_deg, design_mL * frac, carry_mass / ic.spacing_m, carry_drag, k=k)
     z_head = z
     nc = len(cols["dx"])
     pulleys: list[Pulley] = []
@@ -288,10 +301,9 @@ def build_loop(
         dx = sec.length_m / k
         sin = -sec.lift_m / sec.length_m
         cos = math.sqrt(1.0 - sin * sin)
-        for _ in range(k):
-            add(RETURN, dx, z, sin, cos, ir.spacing_m, ir.roll_diameter_m, ir.rolls,
-                ir.trough_deg, 0.0, ret_mass / ir.spacing_m, ret_drag)
-            z += dx * sin
+        zs, z = heights(z, dx * sin, k)
+        add(RETURN, dx, zs, sin, cos, ir.spacing_m, ir.roll_diameter_m, ir.rolls,
+            ir.trough_deg, 0.0, ret_mass / ir.spacing_m, ret_drag, k=k)
     # tail end: a take-up pulley before the tail drives, or the plain tail pulley as take-up
     tail_driven = any(d.position == "tail" for d in conv.drives)
     if conv.takeup.position == "tail" and tail_driven:

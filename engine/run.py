@@ -11,8 +11,8 @@ step above the stability limit.
 from __future__ import annotations
 
 import time
-from dataclasses import dataclass
 
+import numpy as np
 import pandas as pd
 
 from engine.conveyor import Conveyor, Scenario
@@ -30,9 +30,16 @@ __all__ = ["RunResult", "run_one", "check_scenario", "TRANSIENT_SAFETY_RATIO",
 TRANSIENT_SAFETY_RATIO = 2.0 / 3.0
 
 
-@dataclass
+#: A table of :class:`RunResult` not given to its constructor: derived from the results.
+_DERIVED = object()
+
+
 class RunResult:
     """Result of one run.
+
+    The tables are built on first access from the steady and transient results (a caller
+    that needs only the summary, or stores the arrays, never builds them); a table given to
+    the constructor is kept as it is.
 
     Attributes
     ----------
@@ -58,12 +65,69 @@ class RunResult:
         final state).
     """
 
-    summary: dict
-    timeseries: pd.DataFrame | None
-    profile: pd.DataFrame
-    surface: pd.DataFrame | None
-    steady: SteadyResult | None = None
-    transient: TransientResult | None = None
+    def __init__(self, summary: dict, timeseries=_DERIVED, profile=_DERIVED, surface=_DERIVED,
+                 steady: SteadyResult | None = None, transient: TransientResult | None = None):
+        self.summary = summary
+        self.steady = steady
+        self.transient = transient
+        self._timeseries = timeseries
+        self._profile = profile
+        self._surface = surface
+
+    def __repr__(self) -> str:
+        return (f"RunResult(status={self.summary.get('status')!r}, "
+                f"dynamics={self.transient is not None})")
+
+    @property
+    def timeseries(self) -> pd.DataFrame | None:
+        if self._timeseries is _DERIVED:
+            self._timeseries = None if self.transient is None else self.transient.timeseries
+        return self._timeseries
+
+    @timeseries.setter
+    def timeseries(self, value: pd.DataFrame | None) -> None:
+        self._timeseries = value
+
+    @property
+    def surface(self) -> pd.DataFrame | None:
+        if self._surface is _DERIVED:
+            self._surface = None if self.transient is None else self.transient.surface
+        return self._surface
+
+    @surface.setter
+    def surface(self, value: pd.DataFrame | None) -> None:
+        self._surface = value
+
+    @property
+    def profile(self) -> pd.DataFrame | None:
+        if self._profile is _DERIVED:
+            profile = None if self.steady is None else self.steady.profile()
+            if profile is not None and self.transient is not None:
+                t_max, t_min = self.transient.envelope_kn()
+                profile["t_max_dyn_kn"] = t_max
+                profile["t_min_dyn_kn"] = t_min
+            self._profile = profile
+        return self._profile
+
+    @profile.setter
+    def profile(self, value: pd.DataFrame | None) -> None:
+        self._profile = value
+
+    def timeseries_arrays(self) -> dict[str, np.ndarray] | None:
+        """The time-series columns as arrays (no DataFrame is built unless one was given)."""
+        if self._timeseries is _DERIVED:
+            return None if self.transient is None else dict(self.transient.series)
+        if self._timeseries is None:
+            return None
+        return {c: self._timeseries[c].to_numpy() for c in self._timeseries.columns}
+
+    def surface_arrays(self) -> dict[str, np.ndarray] | None:
+        """The surface columns ``t_s``, ``s_m``, ``tension_kn``, ``velocity_m_s`` as arrays."""
+        if self._surface is _DERIVED:
+            return None if self.transient is None else self.transient.surface_arrays()
+        if self._surface is None:
+            return None
+        return {c: self._surface[c].to_numpy() for c in self._surface.columns}
 
 
 def transient_safety_min(conveyor: Conveyor, belt_kind: str) -> float:
@@ -118,11 +182,9 @@ def run_one(
     # the sizes this run used (take-up, rated power, brakes) and what set each auto one
     summary.update(summary_fields(auto_sizes(conveyor, scenario, model=model, params=params,
                                              steady=steady)))
-    profile = steady.profile()
     if not dynamics or steady.status == "failed":
         summary["elapsed_s"] = time.perf_counter() - t0
-        return RunResult(summary=summary, timeseries=None, profile=profile, surface=None,
-                         steady=steady)
+        return RunResult(summary=summary, steady=steady)
 
     system = build_system(conveyor, scenario, steady, opts)
     tr = simulate(system, steady_summary=steady.summary, conveyor=conveyor,
@@ -137,8 +199,5 @@ def run_one(
         status = "ok"
     summary["status"] = status
     summary["message"] = "; ".join(messages)
-    profile["t_max_dyn_kn"] = tr.envelope["t_max_kn"].to_numpy()
-    profile["t_min_dyn_kn"] = tr.envelope["t_min_kn"].to_numpy()
     summary["elapsed_s"] = time.perf_counter() - t0
-    return RunResult(summary=summary, timeseries=tr.timeseries, profile=profile,
-                     surface=tr.surface, steady=steady, transient=tr)
+    return RunResult(summary=summary, steady=steady, transient=tr)

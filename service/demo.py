@@ -150,6 +150,7 @@ def run_demo(study_path: str = "studies/paper-comparison.yaml", port: int = 0) -
         stop_server(proc)
     runs = settings.studies_root / st["id"]
     print()
-    print(f"Parquet files: {runs}/runs (summary rows), {runs}/timeseries, {runs}/surface")
+    print(f"Parquet files: {runs}/runs (summary rows), {runs}/timeseries (key points; a run's "
+          "surface is recomputed when asked for unless the study says surface: true)")
     print(f'read them with: pandas.read_parquet("{runs}/runs")')
     return 0 if st["state"] == "done" else 1

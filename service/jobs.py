@@ -29,7 +29,7 @@ from service.errors import Unavailable
 from service.schema import axis_value, failed_row, rows_to_table, runs_schema_for_axes
 from service.store import Store
 from service.study import ResolvedStudy, RunSpec
-from service.tasks import run_batch
+from service.tasks import Specs, run_batch
 
 __all__ = ["StudyJob", "study_schema", "batch_size", "RunRate"]
 
@@ -39,8 +39,10 @@ log = logging.getLogger("beltstudy.jobs")
 IN_FLIGHT_PER_WORKER = 2
 #: Largest batch [runs].
 MAX_BATCH = 1000
-#: Smallest work per task once the run time is known [s].
-MIN_TASK_S = 0.2
+#: Smallest work per task once the run time is known [s]: a task costs a few ms beyond its
+#: runs (the scheduler's round trip, which the tasks in flight hide, and a part file); the last
+#: tasks of a study are cut down to it so no worker idles long while another finishes.
+MIN_TASK_S = 0.05
 #: Runs per task in the first wave, before any run time is measured.
 FIRST_BATCH_STEADY = 8
 FIRST_BATCH_DYNAMIC = 1
@@ -65,7 +67,7 @@ def batch_size(
     per_run_s: float | None, pending: int, cap: int, task_seconds: float, dynamics: bool
 ) -> int:
     """Runs in the next task: about ``task_seconds`` of work, smaller near the end so every
-    worker stays busy, but never under ``MIN_TASK_S`` (a task round trip costs 10-100 ms).
+    worker stays busy, but never under ``MIN_TASK_S`` of work.
     Before any run time is measured (``per_run_s`` None): a first wave of small tasks."""
     if per_run_s is None:
         return FIRST_BATCH_DYNAMIC if dynamics else FIRST_BATCH_STEADY
@@ -145,6 +147,8 @@ class StudyJob:
         self._buffer: list[tuple[list[RunSpec], dict]] = []
         self._buffered = 0
         self.rate = RunRate()
+        #: where the workers' time went in this session (sums over finished tasks [s])
+        self.worker_s: dict[str, float] = {}
         self._last_flush = time.monotonic()
         self._per_run_s: float | None = None
         self._thread = threading.Thread(
@@ -216,6 +220,7 @@ class StudyJob:
             done=self.done,
             failed=self.failed,
             elapsed_s=round(self.elapsed_s(), 3),
+            worker_s={k: round(v, 4) for k, v in self.worker_s.items()},
             **extra,
         )
 
@@ -322,7 +327,8 @@ class StudyJob:
                 sink = {**self._sink, "key": _part_key(batch)}
                 try:
                     fut = client.submit(
-                        run_batch, sid, specs, self.study.surface, sink, key=key, pure=False
+                        run_batch, sid, Specs(specs), self.study.surface, sink, key=key,
+                        pure=False,
                     )
                 except Exception:
                     if client.status in LIVE_CLIENT_STATES:
@@ -350,6 +356,7 @@ class StudyJob:
                 if fut.status == "finished":
                     n = len(batch)
                     self.rate.finished(n, float(result["seconds"]))
+                    self._account(n, result)
                     self._add(batch, result)
                     sample = result["seconds"] / n
                     per_run_s = sample if per_run_s is None else 0.7 * per_run_s + 0.3 * sample
@@ -374,6 +381,16 @@ class StudyJob:
         if not self._cancel.is_set():
             self._flush()  # also on a shutdown: what finished is kept
         return lost
+
+    def _account(self, runs: int, result: dict) -> None:
+        """Add a finished task's time to ``worker_s``: runs, tasks, task wall time and its
+        split (running the runs, building tables, writing parts, CPU)."""
+        acc = self.worker_s
+        acc["runs"] = acc.get("runs", 0) + runs
+        acc["tasks"] = acc.get("tasks", 0) + 1
+        acc["task_s"] = acc.get("task_s", 0.0) + float(result.get("seconds") or 0.0)
+        for key, value in (result.get("split") or {}).items():
+            acc[key] = acc.get(key, 0.0) + float(value)
 
     def _add(self, batch: list[RunSpec], result: dict) -> None:
         """Buffer a finished batch; write the buffer every ``FLUSH_S`` or ``FLUSH_RUNS``."""

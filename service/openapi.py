@@ -48,8 +48,12 @@ NOT_IN_SCHEMA = (
     "a range's step leads from start to stop, and its values stay within the study limit",
     "the grid's runs (the product of its axes) stay within BELTSTUDY_MAX_RUNS",
     "no two grid axes set the same field or one inside the other",
+    "an axis's values stay distinct once their defaults are filled in ({} and "
+    "{head_kn: 0} are one accessories value)",
     "a list index in an axis (profile.3.lift_m) exists in the base conveyor",
     "a friction model appears once counting aliases (din and iso5048 are one)",
+    "a models.<model>.<parameter> axis names a model the study runs (its friction_model "
+    "axis, else model, else the one model under models, else din)",
     "with dynamics, a scenario the conveyor can do (brake stop needs brakes, stop after the "
     "brake delay)",
 )

@@ -6,6 +6,7 @@
     <data_dir>/studies/<study_id>/runs/part-<key>.parquet        SPEC section 4 rows
     <data_dir>/studies/<study_id>/timeseries/part-<key>.parquet  SPEC section 5 key points
     <data_dir>/studies/<study_id>/surface/part-<key>.parquet     SPEC section 5 long table
+                                                                 (studies with surface: true)
 
 Every file is written under a temporary name starting with ``.`` (which Arrow's dataset
 reader skips) and then renamed, so readers never see half a file. A batch writes its

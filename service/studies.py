@@ -16,10 +16,12 @@ from __future__ import annotations
 import logging
 import threading
 import time
+from collections import OrderedDict
 from pathlib import Path
 from typing import Any
 
 import pandas as pd
+import pyarrow as pa
 
 import engine
 from service import results
@@ -28,13 +30,18 @@ from service.executor import Executor
 from service.jobs import StudyJob
 from service.settings import Settings
 from service.store import Store
-from service.study import ResolvedStudy, resolve_study, study_from_json
+from service.study import ResolvedStudy, RunSpec, resolve_study, study_from_json
 
-__all__ = ["StudyService", "ACTIVE_STATES"]
+__all__ = ["StudyService", "ACTIVE_STATES", "RESOLVED_CACHE", "SURFACE_CACHE"]
 
 log = logging.getLogger("beltstudy.service")
 
 ACTIVE_STATES = ("queued", "running")
+#: Expanded studies kept for run pages and surfaces (a study id is a hash of its content).
+RESOLVED_CACHE = 8
+#: Recomputed surfaces kept (a run id is a hash of the run's inputs: the surface is the same
+#: every time).
+SURFACE_CACHE = 4
 
 
 class StudyService:
@@ -49,6 +56,9 @@ class StudyService:
         self._closing = False
         self._lock = threading.Lock()
         self.started_at = time.time()
+        self._resolved: OrderedDict[str, ResolvedStudy] = OrderedDict()
+        self._surfaces: OrderedDict[str, pa.Table | None] = OrderedDict()
+        self._cache_lock = threading.Lock()
 
     # ---------------------------------------------------------------- lifecycle
     def start(self) -> None:
@@ -237,6 +247,74 @@ class StudyService:
             "summary": row,
             "timeseries": results.columns_to_json(ts.drop(columns=["run_id"])) if len(ts) else None,
         }
+
+    def resolved(self, study_id: str) -> ResolvedStudy:
+        """The study of ``study_id`` expanded into its runs again (cached: a study id is a hash
+        of its content); :class:`NotFound` for a study this engine cannot expand."""
+        doc = self.store.read(study_id)
+        with self._cache_lock:
+            study = self._resolved.get(study_id)
+            if study is not None:
+                self._resolved.move_to_end(study_id)
+                return study
+        try:
+            study = study_from_json(doc["study"], study_id)
+        except Exception as exc:  # made by another engine version, or damaged
+            raise NotFound(f"study '{study_id}' cannot be expanded here: {exc}") from None
+        with self._cache_lock:
+            self._resolved[study_id] = study
+            while len(self._resolved) > RESOLVED_CACHE:
+                self._resolved.popitem(last=False)
+        return study
+
+    def run_spec(self, study_id: str, run_id: str) -> RunSpec:
+        """The resolved inputs of one run (conveyor with the design basis, scenario, model,
+        parameters), as the workers ran it."""
+        spec = next((r for r in self.resolved(study_id).runs if r.run_id == run_id), None)
+        if spec is None:
+            raise NotFound(f"run '{run_id}' of study '{study_id}' not found")
+        return spec
+
+    def run_surface(self, study_id: str, run_id: str) -> tuple[pd.DataFrame, str]:
+        """Tension and velocity at every sampled spring and time of one finished run
+        (``run_id, t_s, s_m, tension_kn, velocity_m_s``), and where it came from: ``stored``
+        (a study with ``surface: true``) or ``recomputed`` from the run's stored inputs (runs
+        are deterministic: the same table the worker would have stored). Empty for a run
+        without a transient (steady only, or a run that raised)."""
+        from service.schema import surface_schema
+
+        doc = self.store.read(study_id)
+        runs = self.store.read_runs(study_id)
+        if not len(runs) or not (runs["run_id"] == run_id).any():
+            known = any(r.run_id == run_id for r in self.resolved(study_id).runs)
+            state = "not finished yet" if known else "not found"
+            raise NotFound(f"run '{run_id}' of study '{study_id}' {state}")
+        study = doc.get("study") or {}
+        if not study.get("dynamics", True):
+            return surface_schema().empty_table().to_pandas(), "recomputed"
+        if study.get("surface", True):
+            stored = self.store.read_surface(study_id, run_id)
+            if len(stored):
+                return stored, "stored"
+        return self._recomputed_surface(study_id, run_id).to_pandas(), "recomputed"
+
+    def _recomputed_surface(self, study_id: str, run_id: str) -> pa.Table:
+        from service.schema import surface_schema
+        from service.tasks import run_spec, surface_table
+
+        with self._cache_lock:
+            if run_id in self._surfaces:
+                self._surfaces.move_to_end(run_id)
+                table = self._surfaces[run_id]
+                return table if table is not None else surface_schema().empty_table()
+        spec = self.run_spec(study_id, run_id)
+        _, result = run_spec(vars(spec), study_id)
+        table = surface_table(run_id, result) if result is not None else None
+        with self._cache_lock:
+            self._surfaces[run_id] = table
+            while len(self._surfaces) > SURFACE_CACHE:
+                self._surfaces.popitem(last=False)
+        return table if table is not None else surface_schema().empty_table()
 
     def compare(self, study_id: str, baseline: str, candidate: str, metrics: list[str]) -> dict:
         doc = self.store.read(study_id)

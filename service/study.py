@@ -151,9 +151,10 @@ class StudyIn(BaseModel):
     )
     dynamics: bool = Field(True, description="false = steady tensions only")
     surface: bool = Field(
-        True,
+        False,
         description="store the tension/velocity surface of every dynamic run (SPEC section 5); "
-        "false keeps the key-point time series only",
+        "false (the default) stores the key-point time series only and recomputes a run's "
+        "surface from its inputs when it is asked for",
     )
 
     @field_validator("name")
@@ -242,7 +243,7 @@ class ResolvedStudy:
     conveyor_source: str
     total: int
     id: str = ""
-    surface: bool = True
+    surface: bool = False
     runs: list[RunSpec] = field(default_factory=list, repr=False)
     design: dict | None = None  # the study's design case as given (None: the default)
     grid_points: int = 0  # points of the grid before identical runs were merged
@@ -824,6 +825,7 @@ def study_from_json(doc: dict, study_id: str) -> ResolvedStudy:
         conveyor_source=doc.get("conveyor_source", "inline"),
         total=grid_points(axes),
         id=study_id,
+        # a study stored before the field existed stored every surface
         surface=bool(doc.get("surface", True)),
         design=doc.get("design"),
         grid_points=grid_points(axes),

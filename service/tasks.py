@@ -11,6 +11,7 @@ import os
 import time
 from typing import Any
 
+import numpy as np
 import pyarrow as pa
 from distributed import WorkerPlugin
 
@@ -25,6 +26,10 @@ from service.schema import (
 
 __all__ = [
     "run_batch",
+    "Specs",
+    "arrays_table",
+    "timeseries_table",
+    "surface_table",
     "run_spec",
     "warm_up",
     "lower_priority",
@@ -65,14 +70,50 @@ def _message(exc: BaseException) -> str:
     return msg[:_MAX_MESSAGE]
 
 
-def _frame_table(df, run_id: str, columns: tuple[str, ...], schema: pa.Schema) -> pa.Table | None:
-    if df is None or len(df) == 0:
+def _layout(schema: pa.Schema, columns: tuple[str, ...]) -> list[tuple[str, pa.DataType, Any]]:
+    return [(c, schema.field(c).type, schema.field(c).type.to_pandas_dtype()) for c in columns]
+
+
+def arrays_table(
+    run_id: str, arrays: dict | None, columns: tuple[str, ...], schema: pa.Schema
+) -> pa.Table | None:
+    """One run's columns (name -> 1-D array) as a table of ``schema``: ``run_id`` first, then
+    ``columns`` cast to their types (a column the run does not have is null). None when the
+    run has no rows. No DataFrame is built on the way."""
+    return _arrays_table(run_id, arrays, _layout(schema, columns), schema)
+
+
+def _arrays_table(run_id: str, arrays: dict | None, layout, schema: pa.Schema):
+    if not arrays:
         return None
-    data = {"run_id": [run_id] * len(df)}
-    for col in columns:
-        dtype = schema.field(col).type.to_pandas_dtype()
-        data[col] = df[col].to_numpy(dtype=dtype) if col in df else [None] * len(df)
-    return pa.Table.from_pydict(data, schema=schema)
+    n = len(next(iter(arrays.values())))
+    if n == 0:
+        return None
+    data = [pa.repeat(run_id, n)]
+    for col, typ, dtype in layout:
+        values = arrays.get(col)
+        if values is None:
+            data.append(pa.nulls(n, typ))
+        else:
+            data.append(pa.array(np.ascontiguousarray(values, dtype=dtype), type=typ))
+    return pa.Table.from_arrays(data, schema=schema)
+
+
+_TS_SCHEMA = timeseries_schema()
+_TS_LAYOUT = _layout(_TS_SCHEMA, TIMESERIES_COLUMNS)
+_SF_SCHEMA = surface_schema()
+_SF_LAYOUT = _layout(_SF_SCHEMA, SURFACE_COLUMNS)
+
+
+def timeseries_table(run_id: str, result) -> pa.Table | None:
+    """The stored time series (SPEC section 5 key points) of a run's result."""
+    return _arrays_table(run_id, result.timeseries_arrays(), _TS_LAYOUT, _TS_SCHEMA)
+
+
+def surface_table(run_id: str, result) -> pa.Table | None:
+    """The surface table (float32) of a run's result: the same whether a worker stores it or
+    the service recomputes it for a run whose study did not store surfaces."""
+    return _arrays_table(run_id, result.surface_arrays(), _SF_LAYOUT, _SF_SCHEMA)
 
 
 def run_spec(spec: dict, study_id: str = "") -> tuple[dict, Any]:
@@ -117,55 +158,84 @@ def run_spec(spec: dict, study_id: str = "") -> tuple[dict, Any]:
     return row, result
 
 
+class Specs:
+    """The runs of one task. Dask walks every list and dict among a task's arguments looking
+    for futures; wrapped, a batch of runs with their nested conveyors is passed as it is."""
+
+    __slots__ = ("items",)
+
+    def __init__(self, items: list[dict]):
+        self.items = items
+
+    def __len__(self) -> int:
+        return len(self.items)
+
+
 def run_batch(
-    study_id: str, specs: list[dict], surface: bool = True, sink: dict | None = None
+    study_id: str, specs: list[dict] | Specs, surface: bool = False, sink: dict | None = None
 ) -> dict:
     """Run ``specs`` one after another; return rows and the time-series tables.
 
+    ``surface``: also return (or write) each dynamic run's tension/velocity surface; without
+    it the surface is never built (it is recomputed from the run's inputs when asked for).
     With ``sink`` (``{"dir", "token", "key"}``) and the study directory visible here (a
     LocalCluster, or workers sharing the data volume), the time-series tables are written
-    straight to ``<dir>/<table>/part-<key>.parquet`` instead of being sent back; the runs
-    rows always go back to the service, which writes them last (the commit).
+    straight to ``<dir>/<table>/part-<key>.parquet`` (one part per table and task) instead of
+    being sent back; the runs rows always go back to the service, which writes them last (the
+    commit).
 
     Returns ``{"rows": [...], "timeseries": Table | None, "surface": Table | None,
-    "seconds": float, "pid": int}``.
+    "seconds": float, "pid": int, "split": {"run_s", "tables_s", "write_s", "cpu_s"}}``: the
+    split is the task's wall time in running the runs, in building the Arrow tables and in
+    writing parts, and the CPU time of the whole task.
     """
     t0 = time.perf_counter()
+    cpu0 = time.thread_time()
+    if isinstance(specs, Specs):
+        specs = specs.items
     rows, series, surfaces = [], [], []
-    ts_schema, sf_schema = timeseries_schema(), surface_schema()
+    t_run = t_tables = t_write = 0.0
     for spec in specs:
+        t1 = time.perf_counter()
         row, result = run_spec(spec, study_id)
+        t2 = time.perf_counter()
+        t_run += t2 - t1
         rows.append(row)
         if result is None:
             continue
         try:
-            table = _frame_table(result.timeseries, spec["run_id"], TIMESERIES_COLUMNS, ts_schema)
+            table = timeseries_table(spec["run_id"], result)
             if table is not None:
                 series.append(table)
             if surface:
-                table = _frame_table(
-                    getattr(result, "surface", None), spec["run_id"], SURFACE_COLUMNS, sf_schema
-                )
+                table = surface_table(spec["run_id"], result)
                 if table is not None:
                     surfaces.append(table)
         except Exception as exc:  # a malformed result is reported on the run's row
             row.update(failed_row(f"time series: {_message(exc)}", row.get("elapsed_s")))
+        t_tables += time.perf_counter() - t2
+    t2 = time.perf_counter()
     out = {
         "rows": rows,
         "timeseries": pa.concat_tables(series) if series else None,
         "surface": pa.concat_tables(surfaces) if surfaces else None,
-        "seconds": time.perf_counter() - t0,
         "pid": os.getpid(),
     }
+    t_tables += time.perf_counter() - t2
     if sink is not None:
         from service.store import write_part_to
 
+        t2 = time.perf_counter()
         for table in ("surface", "timeseries"):
             data = out[table]
             if data is not None and write_part_to(
                 sink["dir"], sink["token"], table, sink["key"], data
             ):
                 out[table] = None
+        t_write = time.perf_counter() - t2
+    out["seconds"] = time.perf_counter() - t0
+    out["split"] = {"run_s": t_run, "tables_s": t_tables, "write_s": t_write,
+                    "cpu_s": time.thread_time() - cpu0}
     return out
 
 

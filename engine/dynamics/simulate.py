@@ -12,6 +12,7 @@ from __future__ import annotations
 import math
 import time
 from dataclasses import dataclass, field
+from functools import cached_property
 
 import numpy as np
 import pandas as pd
@@ -311,6 +312,10 @@ def prepare(sys: System, t_end_s: float | None = None) -> KernelInput:
 class TransientResult:
     """Outputs of one transient cycle. Forces in the DataFrames in [kN], SI elsewhere.
 
+    The tables are decoded into plain arrays (``series``, :meth:`surface_arrays`); the pandas
+    DataFrames below are built from them on first access, so a caller that stores arrays
+    (the study service's workers) never pays for them.
+
     Attributes
     ----------
     status : str
@@ -321,6 +326,8 @@ class TransientResult:
         Every limit crossed during the transient.
     summary : dict
         SPEC section 4 and 6.4 transient fields.
+    series : dict of str to ndarray
+        The columns of ``timeseries`` as float64 arrays, in order.
     timeseries : pandas.DataFrame
         SPEC section 5 key points at ``record_dt_s``, then ``v_mean_m_s``, ``v_ref_m_s``,
         ``f_brake_kn``, ``p_drive_kw``, ``v_abs_max_m_s``, ``slack_m`` and per drive
@@ -330,7 +337,8 @@ class TransientResult:
         ``t_s`` and the tension [kN] at the probe springs round the loop (Fig. 4), columns
         named ``T@<s>m``.
     surface : pandas.DataFrame
-        Long table ``t_s, s_m, tension_kn, velocity_m_s`` at a coarser spacing.
+        Long table ``t_s, s_m, tension_kn, velocity_m_s`` at a coarser spacing (the columns
+        of :meth:`surface_arrays`).
     envelope : pandas.DataFrame
         Per spring: ``s_m``, ``t_max_kn``, ``t_max_time_s``, ``t_min_kn``, ``t_min_time_s``.
     system : System
@@ -342,12 +350,55 @@ class TransientResult:
     message: str
     warnings: list[str]
     summary: dict
-    timeseries: pd.DataFrame
-    traces: pd.DataFrame
-    surface: pd.DataFrame
-    envelope: pd.DataFrame
+    series: dict
     system: System
     raw: dict = field(default_factory=dict)
+    #: (times [s], probe tensions [N] per time and probe, column names)
+    trace_data: tuple = field(default=(), repr=False)
+    #: (times [s], spring positions [m], tension [N] and speed [m/s] per time and spring)
+    surface_data: tuple = field(default=(), repr=False)
+    #: per spring: positions [m] and the whole-cycle extremes (``_extremes``)
+    envelope_data: tuple = field(default=(), repr=False)
+
+    @cached_property
+    def timeseries(self) -> pd.DataFrame:
+        return pd.DataFrame(self.series)
+
+    @cached_property
+    def traces(self) -> pd.DataFrame:
+        t, tension, names = self.trace_data
+        cols = {"t_s": t}
+        for k, name in enumerate(names):
+            cols[name] = tension[:, k] / 1e3
+        return pd.DataFrame(cols)
+
+    def surface_arrays(self) -> dict[str, np.ndarray]:
+        """The surface as long float64 columns ``t_s``, ``s_m``, ``tension_kn``,
+        ``velocity_m_s``: every sampled time with every sampled spring, time-major."""
+        t, s, tension, velocity = self.surface_data
+        return {
+            "t_s": np.repeat(t, len(s)),
+            "s_m": np.tile(s, len(t)),
+            "tension_kn": tension.ravel() / 1e3,
+            "velocity_m_s": velocity.ravel(),
+        }
+
+    @cached_property
+    def surface(self) -> pd.DataFrame:
+        return pd.DataFrame(self.surface_arrays(), copy=False)
+
+    @cached_property
+    def envelope(self) -> pd.DataFrame:
+        s_end, whole = self.envelope_data
+        return pd.DataFrame({"s_m": s_end, "t_max_kn": whole["env_max"] / 1e3,
+                             "t_max_time_s": whole["env_max_t"],
+                             "t_min_kn": whole["env_min"] / 1e3,
+                             "t_min_time_s": whole["env_min_t"]})
+
+    def envelope_kn(self) -> tuple[np.ndarray, np.ndarray]:
+        """Highest and lowest tension of every spring over the cycle [kN]."""
+        whole = self.envelope_data[1]
+        return whole["env_max"] / 1e3, whole["env_min"] / 1e3
 
 
 def run_kernel(sys: System, t_end_s: float | None = None) -> tuple[KernelInput, float]:
@@ -460,24 +511,12 @@ def decode(sys: System, ki: KernelInput, wall_s: float, *, steady_summary=None, 
         cols[f"f_drive{i + 1}_kn"] = rec_d[:nrec, i, C.RECD.F] / 1e3
         cols[f"v_drive{i + 1}_m_s"] = rec_d[:nrec, i, C.RECD.V]
         cols[f"f_belt{i + 1}_kn"] = rec_d[:nrec, i, C.RECD.FT] / 1e3
-    timeseries = pd.DataFrame(cols)
-    traces = pd.DataFrame({"t_s": rec[:nrec, C.REC.T]})
-    for k, j in enumerate(sys.probe_springs):
-        traces[f"T@{s_end[j]:.0f}m"] = out.rec_t[:nrec, k] / 1e3
+    trace_data = (cols["t_s"], out.rec_t[:nrec],
+                  [f"T@{s_end[j]:.0f}m" for j in sys.probe_springs])
     idx = sys.surface_springs
-    ts = out.surf_t[:nsurf, 0]
-    surface = pd.DataFrame({
-        "t_s": np.repeat(ts, len(idx)),
-        "s_m": np.tile(s_end[idx], nsurf),
-        "tension_kn": out.surf_t[:nsurf, 1:].ravel() / 1e3,
-        "velocity_m_s": out.surf_v[:nsurf].ravel(),
-    })
+    surface_data = (out.surf_t[:nsurf, 0], s_end[idx], out.surf_t[:nsurf, 1:], out.surf_v[:nsurf])
     segs = _segments(sys, out, r)
     whole = _extremes(sys, segs)
-    envelope = pd.DataFrame({"s_m": s_end, "t_max_kn": whole["env_max"] / 1e3,
-                             "t_max_time_s": whole["env_max_t"],
-                             "t_min_kn": whole["env_min"] / 1e3,
-                             "t_min_time_s": whole["env_min_t"]})
     summary, warnings = transient_summary(sys, r, out, segs, steady_summary=steady_summary,
                                           conveyor=conveyor,
                                           safety_factor_min=safety_factor_min)
@@ -500,8 +539,8 @@ def decode(sys: System, ki: KernelInput, wall_s: float, *, steady_summary=None, 
                shaft_speed=a["shafts"].vs.copy(), shaft_slip=a["shafts"].slip.copy(),
                wall_s=wall_s, element_steps=float(r["STEPS"]) * sys.n, segments=segs)
     return TransientResult(status=status, message=message, warnings=warnings, summary=summary,
-                           timeseries=timeseries, traces=traces, surface=surface,
-                           envelope=envelope, system=sys, raw=raw)
+                           series=cols, system=sys, raw=raw, trace_data=trace_data,
+                           surface_data=surface_data, envelope_data=(s_end, whole))
 
 
 def _phase_fields(sys: System, prefix: str, ext: dict | None) -> dict:

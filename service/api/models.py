@@ -12,6 +12,7 @@ __all__ = [
     "StudyList",
     "RunsPage",
     "RunDetail",
+    "RunSurface",
     "CompareOut",
     "Deleted",
     "ModelInfo",
@@ -72,6 +73,20 @@ class RunDetail(BaseModel):
     summary: dict[str, Any]
     timeseries: dict[str, list[float | None]] | None = Field(
         None, description="SPEC section 5 key points, column -> values (null without dynamics)"
+    )
+
+
+class RunSurface(BaseModel):
+    study_id: str
+    run_id: str
+    source: Literal["stored", "recomputed"] = Field(
+        ..., description="stored (a study with surface: true) or recomputed from the run's "
+        "inputs (runs are deterministic)"
+    )
+    rows: int = Field(..., description="rows of the long table (sampled times x springs)")
+    surface: dict[str, list[float | None]] | None = Field(
+        None, description="column -> values: t_s, s_m, tension_kn, velocity_m_s (null "
+        "without a transient)"
     )
 
 

@@ -9,7 +9,15 @@ from fastapi.concurrency import run_in_threadpool
 
 from service import results
 from service.api.deps import ERROR_RESPONSES, _error, get_service, require_token
-from service.api.models import CompareOut, Deleted, RunDetail, RunsPage, StudyList, StudyStatus
+from service.api.models import (
+    CompareOut,
+    Deleted,
+    RunDetail,
+    RunsPage,
+    RunSurface,
+    StudyList,
+    StudyStatus,
+)
 from service.errors import TooLarge
 from service.openapi import check_body
 from service.parse import parse_body
@@ -146,6 +154,44 @@ def get_runs(
 )
 def get_run(study_id: str, run_id: str, service: StudyService = Depends(get_service)) -> dict:
     return service.run_detail(study_id, run_id)
+
+
+@router.get(
+    "/{study_id}/runs/{run_id}/surface",
+    response_model=RunSurface,
+    summary="One run's tension and velocity at every sampled spring and time (SPEC section 5)",
+    description="Stored when the study has `surface: true`; otherwise recomputed from the "
+    "run's stored inputs on request (runs are deterministic: the same table). JSON, CSV or "
+    "Parquet (`run_id, t_s, s_m, tension_kn, velocity_m_s`, float32 values).",
+    responses={
+        200: {
+            "content": {
+                "text/csv": {"schema": {"type": "string"}},
+                PARQUET_TYPE: {"schema": {"type": "string", "format": "binary"}},
+            }
+        }
+    },
+)
+def get_run_surface(
+    study_id: str,
+    run_id: str,
+    format: Literal["json", "csv", "parquet"] = Query("json", description="output format"),
+    service: StudyService = Depends(get_service),
+):
+    df, source = service.run_surface(study_id, run_id)
+    headers = {"X-Beltstudy-Surface": source}
+    if format == "csv":
+        return Response(results.to_csv(df), media_type="text/csv; charset=utf-8",
+                        headers=headers)
+    if format == "parquet":
+        return Response(results.to_parquet(df), media_type=PARQUET_TYPE, headers=headers)
+    return {
+        "study_id": study_id,
+        "run_id": run_id,
+        "source": source,
+        "rows": int(len(df)),
+        "surface": results.columns_to_json(df.drop(columns=["run_id"])) if len(df) else None,
+    }
 
 
 @router.get(

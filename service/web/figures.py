@@ -8,14 +8,13 @@ from __future__ import annotations
 
 import io
 import threading
-from collections import OrderedDict
 
 import pandas as pd
 
 from service import plots, results
 from service.errors import Invalid, NotFound
 from service.studies import StudyService
-from service.study import ResolvedStudy, study_from_json
+from service.study import ResolvedStudy
 
 __all__ = [
     "STUDY_PLOTS",
@@ -45,7 +44,6 @@ RUN_PLOTS = {
 FORMATS = {"png": "image/png", "svg": "image/svg+xml"}
 
 _lock = threading.Lock()
-_resolved: OrderedDict[str, ResolvedStudy] = OrderedDict()
 
 
 def check_name(name: str, valid: dict) -> None:
@@ -79,17 +77,7 @@ def _text(value) -> str:
 
 def resolved_study(service: StudyService, study_id: str) -> ResolvedStudy:
     """The resolved study of ``study_id`` (a study id is a hash of its content: cached)."""
-    doc = service.store.read(study_id)
-    study = _resolved.get(study_id)
-    if study is None:
-        try:
-            study = study_from_json(doc["study"], study_id)
-        except Exception as exc:  # made by another engine version, or damaged
-            raise NotFound(f"study '{study_id}' cannot be expanded here: {exc}") from None
-        _resolved[study_id] = study
-        while len(_resolved) > 8:
-            _resolved.popitem(last=False)
-    return study
+    return service.resolved(study_id)
 
 
 def _pick_models(runs: pd.DataFrame, baseline: str | None, candidate: str | None):
@@ -175,12 +163,13 @@ def run_figure(service: StudyService, study_id: str, run_id: str, name: str):
         return lambda: plots.steady_profile_figure(profile, title)
     if not study.dynamics:
         return lambda: plots.message_figure(plots.NO_TRANSIENT, title)
+    runs = service.store.read_runs(study_id)
+    row = runs[runs["run_id"] == run_id] if len(runs) else runs
     ts = service.store.read_timeseries(study_id, run_id)
-    surface = service.store.read_surface(study_id, run_id)
+    # the surface: stored, or recomputed from the run's inputs (a finished run only)
+    surface = service.run_surface(study_id, run_id)[0] if len(row) else ts.iloc[0:0]
     if not len(ts) and not len(surface):
         return lambda: plots.message_figure("no transient data for this run", title)
-    runs = service.store.read_runs(study_id)
-    row = runs[runs["run_id"] == run_id]
     extremes = {}
     if len(row):
         for label, column in (("highest tension", "t_max_dyn_at_m"),

@@ -56,6 +56,23 @@ def test_shares_must_sum_to_one():
     assert "shares sum to 0.6" in _err(d)
 
 
+def test_a_belt_without_mass_is_refused():
+    d = hand_conveyor_dict()
+    d["belt"] = {"width_m": 1.0, "rating_kn_m": 500, "modulus_kn_m": 6000,
+                 "carcass_mass_kg_m2": 0.0, "top_cover_mm": 0, "bottom_cover_mm": 0}
+    msg = _err(d)
+    assert "belt.carcass_mass_kg_m2" in msg and "greater than or equal to 0.1" in msg
+
+
+def test_bounds_beyond_practice_name_the_field():
+    d = hand_conveyor_dict()
+    d["idlers"]["carry"]["spacing_m"] = 9e15
+    assert "idlers.carry.spacing_m" in _err(d)
+    d = hand_conveyor_dict()
+    d["belt"]["width_m"] = 5e-324
+    assert "belt.width_m" in _err(d)
+
+
 def test_lift_longer_than_length():
     assert "lift_m" in _err(hand_conveyor_dict(profile=[{"length_m": 10, "lift_m": 12}]))
 

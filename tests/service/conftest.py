@@ -66,10 +66,11 @@ def store_finished(data_dir: Path, data: dict) -> str:
             "study": study.to_json(),
         },
     )
-    out = run_batch(study.id, [dataclasses.asdict(r) for r in study.runs])
+    out = run_batch(study.id, [dataclasses.asdict(r) for r in study.runs], study.surface)
+    for table in ("timeseries", "surface"):  # before the runs part, as the service does
+        if out[table] is not None:
+            store.write_part(study.id, table, "all", out[table])
     store.write_part(study.id, "runs", "all", rows_to_table(out["rows"], study_schema(study)))
-    if out["timeseries"] is not None:
-        store.write_part(study.id, "timeseries", "all", out["timeseries"])
     return study.id
 
 

@@ -10,11 +10,15 @@ refused anyway). Used by ``tests/service/test_api_schemathesis.py`` and by hand 
 
 from __future__ import annotations
 
+import json
 import math
+from pathlib import Path
 from typing import Any
 
 import schemathesis
 
+#: The studies directory the live service is given (conveyor files named by path).
+STUDIES = Path(__file__).resolve().parents[2] / "studies"
 #: The service's BELTSTUDY_MAX_RUNS in the schemathesis runs.
 MAX_RUNS = 50
 
@@ -104,12 +108,16 @@ def _study_ok(body: dict) -> bool:
             size = _list_len(conv, parts[1])
             if size is None or int(parts[2]) >= size:
                 return False  # the index must exist in an inline base conveyor
-        if parts[0] == "conveyor" and len(parts) > 1 and isinstance(conv, dict):
+        base = _base_conveyor(conv)
+        if parts[0] == "conveyor" and len(parts) > 1 and isinstance(base, dict):
             # a conveyor axis changes the conveyor: each variant must stay valid
             for value in values:
-                variant = _with(conv, parts[1:], value)
+                variant = _with(base, parts[1:], value)
                 if variant is None or not _conveyor_ok(variant):
                     return False
+        if any(isinstance(v, (dict, list)) for v in values) and not _distinct(conv, parts,
+                                                                             values):
+            return False  # two values that are one once defaults are filled in
         targets.append(target)
         if axis in ("friction_model",):
             canon = [_ALIASES.get(v, v) for v in values]
@@ -124,9 +132,71 @@ def _study_ok(body: dict) -> bool:
     models = [_ALIASES.get(m, m) for m in body.get("models", {})]
     if len(set(models)) != len(models):
         return False
+    if "friction_model" in axes:
+        run = {_ALIASES.get(m, m) for m in axes["friction_model"]}
+    else:
+        one = body.get("model") or (models[0] if len(models) == 1 else "din")
+        run = {_ALIASES.get(one, one)}
+    for target in targets:
+        if target.startswith("models.") and target.split(".")[1] not in run:
+            return False  # a parameter of a model the study does not run
     if body.get("dynamics", True) and not _scenario_fits(body, axes):
         return False
-    return True
+    return _section_loads_fit(body, axes)
+
+
+def _section_loads_fit(body: dict, axes: dict) -> bool:
+    """A load given as a list has one fraction per carry profile section of the conveyor."""
+    base = _base_conveyor(body.get("conveyor"))
+    profiles = [base.get("profile")] if isinstance(base, dict) else []
+    for axis, values in axes.items():
+        if _target(axis) == "conveyor.profile":
+            profiles = list(values)
+    counts = {len(p) for p in profiles if isinstance(p, list)}
+    loads = [v for axis, values in axes.items() if _target(axis) == "scenario.load"
+             for v in values]
+    scenario = body.get("scenario")
+    if not loads and isinstance(scenario, dict) and "load" in scenario:
+        loads = [scenario["load"]]
+    return all(not isinstance(v, list) or {len(v)} == counts or not counts for v in loads)
+
+
+def _base_conveyor(conv: Any) -> Any:
+    """The study's base conveyor as a mapping: inline, or the shipped file it names."""
+    if isinstance(conv, str):
+        import yaml
+
+        return yaml.safe_load((STUDIES / conv).read_text())
+    return conv
+
+
+def _distinct(conv: Any, parts: list[str], values: list) -> bool:
+    """Whether the object values of a conveyor or scenario axis stay distinct once validated
+    (``{}`` and ``{"head_kn": 0}`` are one accessories value); the engine's own models fill
+    the defaults."""
+    from engine.conveyor import InputError, Scenario, parse_conveyor
+
+    if parts[0] == "conveyor":
+        conv = _base_conveyor(conv)
+        if not isinstance(conv, dict):
+            return True
+    else:
+        conv = {}
+    keys = set()
+    for value in values:
+        variant = _with(conv, parts[1:], value)
+        if variant is None:
+            return True
+        try:
+            model = (parse_conveyor(variant) if parts[0] == "conveyor" else
+                     Scenario.model_validate(variant))
+        except (InputError, ValueError):
+            return True  # an invalid value: refused anyway
+        node: Any = model.model_dump(mode="json", by_alias=True)
+        for key in parts[1:]:
+            node = node[int(key)] if isinstance(node, list) else node.get(key)
+        keys.add(json.dumps(node, sort_keys=True))
+    return len(keys) == len(values)
 
 
 def _with(conv: dict, path: list[str], value: Any) -> dict | None:
@@ -177,5 +247,5 @@ def filter_body(ctx, body):
         return True
     try:
         return _study_ok(body)
-    except (TypeError, KeyError, AttributeError, ZeroDivisionError, ValueError):
+    except (TypeError, KeyError, AttributeError, ZeroDivisionError, ValueError, OSError):
         return True  # not a well-formed study: it is a negative case, refused anyway

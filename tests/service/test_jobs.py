@@ -19,12 +19,15 @@ def test_batches_hold_about_task_seconds_of_work():
     assert batch_size(1e-7, 10**9, 4, 1.0, False) == MAX_BATCH
 
 
-def test_near_the_end_batches_shrink_but_not_below_the_latency_floor():
-    # 40 runs of 4 ms left for 4 slots: not 250 in one task, nor 10 per task (0.04 s of work,
-    # less than a round trip), but 0.2 s of work each
-    assert batch_size(0.004, 40, 4, 1.0, False) == round(MIN_TASK_S / 0.004) == 50
+def test_near_the_end_batches_shrink_but_not_below_the_floor():
+    # 40 runs of 1 ms left for 4 slots: not 250 in one task, nor 10 per task (0.01 s of work,
+    # less than a task costs), but 0.05 s of work each
+    assert batch_size(0.001, 40, 4, 1.0, False) == round(MIN_TASK_S / 0.001) == 50
     assert batch_size(0.004, 400, 4, 1.0, False) == 100
-    assert batch_size(0.05, 3, 4, 1.0, True) == 4  # 0.2 s of work; the caller takes the 3 left
+    # 40 dynamic runs of 30 ms left: a fair share each (0.3 s), not 1 s of work in one task
+    assert batch_size(0.03, 40, 4, 1.0, True) == 10
+    # the last runs: 0.05 s of work at least; the caller takes the 3 left
+    assert batch_size(0.01, 3, 4, 1.0, True) == 5
 
 
 class Clock:

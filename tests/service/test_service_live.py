@@ -87,6 +87,38 @@ def test_submit_poll_and_read_parquet(live_service, make_study):
     assert len(detail["timeseries"]["t_s"]) == (ts["run_id"] == runs["run_id"][0]).sum()
 
 
+def test_surface_is_stored_on_request_and_recomputed_otherwise(live_service, make_study):
+    """The same four runs in two studies: with ``surface: true`` the workers store every
+    run's surface; without it nothing is stored and the API recomputes each run's surface
+    from its stored inputs, equal to the stored one."""
+    import io
+
+    svc = live_service()
+    plain, _ = svc.client.submit(_dynamic_study(make_study, "surface-off"))
+    kept, _ = svc.client.submit(_dynamic_study(make_study, "surface-on", surface=True))
+    assert plain["id"] != kept["id"]
+    assert svc.wait(plain["id"])["state"] == svc.wait(kept["id"])["state"] == "done"
+    root = svc.data_dir / "studies"
+    assert not list((root / plain["id"] / "surface").glob("*.parquet"))
+    assert list((root / plain["id"] / "timeseries").glob("*.parquet"))
+    stored = pd.read_parquet(root / kept["id"] / "surface")
+    runs = pd.read_parquet(root / plain["id"] / "runs")
+    assert set(runs["run_id"]) == set(stored["run_id"]) and len(runs) == 4
+    for run_id in runs["run_id"]:
+        want = stored[stored["run_id"] == run_id].reset_index(drop=True)
+        assert len(want) > 100
+        for sid, source in ((plain["id"], "recomputed"), (kept["id"], "stored")):
+            r = svc.client._http.get(f"/studies/{sid}/runs/{run_id}/surface",
+                                     params={"format": "parquet"})
+            assert r.status_code == 200 and r.headers["x-beltstudy-surface"] == source
+            got = pd.read_parquet(io.BytesIO(r.content))
+            pd.testing.assert_frame_equal(got, want, check_exact=True)
+    body = svc.client._http.get(f"/studies/{plain['id']}/runs/{run_id}/surface").json()
+    assert body["source"] == "recomputed" and body["rows"] == len(want)
+    assert body["surface"]["s_m"][: 3] == pytest.approx(want["s_m"][:3].tolist())
+    assert not list((root / plain["id"] / "surface").glob("*.parquet"))
+
+
 def test_two_studies_at_once_and_a_failing_run(live_service, make_study):
     svc = live_service()
     # a fixed step of 5 s is above the stability limit of this conveyor's loop: the engine

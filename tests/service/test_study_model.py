@@ -120,7 +120,7 @@ def test_without_a_model_axis_the_single_model_or_din_is_used(make_study):
         ({"takeup.mas_kg": [1]}, r"unknown axis 'takeup.mas_kg'.*did you mean 'takeup.mass_kg'"),
         ({"profile.3.lift_m": [1]}, r"'profile' has 1 entries; index 3 is out of range"),
         ({"temperature_c": ["hot"]}, r"temperature_c='hot'.*scenario.temperature_c"),
-        ({"belt.width_m": [-1]}, r"belt.width_m=-1.*greater than 0"),
+        ({"belt.width_m": [-1]}, r"belt.width_m=-1.*greater than or equal to 0.1"),
         ({"belt_type": ["ST9999"]}, r"unknown belt type 'ST9999'"),
         ({"stop_time_s": [10], "stop": [{"mode": "coast"}]}, r"overlap"),
         ({"temperature_c": [1], "scenario.temperature_c": [2]}, r"both set"),

@@ -79,7 +79,7 @@ def finished_study(data_dir: Path, data: dict, name: str | None = None) -> str:
         "created_at": now, "updated_at": now, "started_at": now, "finished_at": now,
         "engine_version": study.engine_version, "study": study.to_json(),
     })
-    out = run_batch(study.id, [dataclasses.asdict(r) for r in study.runs])
+    out = run_batch(study.id, [dataclasses.asdict(r) for r in study.runs], study.surface)
     for table in ("timeseries", "surface"):
         if out[table] is not None:
             store.write_part(study.id, table, "0", out[table])
