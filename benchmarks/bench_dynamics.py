@@ -4,8 +4,11 @@ Prints, with the date and the machine:
 
 1. kernel throughput (element-steps per second, one core, full physics: Ernst stiffness,
    standard-linear-solid damping, gravity take-up, PI drives, the friction model's laws) on
-   the 16.8 km example with 1 000 elements, for DIN (constant resistances) and Non-Lin
-   (speed and sag exponents);
+   the 16.8 km example with 1 000 elements, for DIN (constant resistances), CEMA and Non-Lin
+   (speed and sag exponents, its law expanded between exact evaluations: the share of
+   element-steps it was evaluated exactly is printed), measured in alternating rounds, best of
+   five each; and Non-Lin's throughput over DIN's in the same run (acceptance: at least
+   0.67, i.e. Non-Lin at no more than 1.5 x DIN's cost per element-step);
 2. the whole start-run-stop cycle of that example (kernel time, and run_one with statics);
 3. the baselines measured in the same run: the numpy reference of the same equations (the
    speed ratio of the kernel to it), and engine 0.2's kernel on the same case, checked out
@@ -71,6 +74,36 @@ def kernel_throughput(model: str, n: int = 1000):
     res = ki.args["out"].res
     steps = res[RES.STEPS]
     return system, wall, steps, res[RES.T_END], int(res[RES.STATUS])
+
+
+#: Throughput acceptance: Non-Lin's element-steps per second over DIN's (1 / 1.5).
+NONLIN_OVER_DIN_MIN = 0.67
+
+
+def kernel_throughputs(models, n: int = 1000, rounds: int = 5) -> dict:
+    """Kernel wall time of each model on the 16.8 km example, best of ``rounds`` taken in
+    alternating rounds (each round runs every model once), so a slower spell of a shared
+    machine falls on all of them. Returns model -> (system, wall, steps, t_end, status,
+    share of element-steps whose law was evaluated exactly after the first)."""
+    conv = load_conveyor(CONVEYORS / "overland-16km.yaml")
+    systems = {}
+    for model in models:
+        st = solve_steady(conv, model=model, n_elements=n)
+        systems[model] = build_system(conv, Scenario(**OVERLAND), st)
+        run_kernel(systems[model])  # compile / load the cache
+    best = {model: (float("inf"), None) for model in models}
+    for _ in range(rounds):
+        for model in models:
+            ki, wall = run_kernel(systems[model])
+            if wall < best[model][0]:
+                best[model] = (wall, ki)
+    out = {}
+    for model, (wall, ki) in best.items():
+        res = ki.args["out"].res
+        steps = res[RES.STEPS]
+        out[model] = (systems[model], wall, steps, res[RES.T_END], int(res[RES.STATUS]),
+                      res[RES.LAW_EVALS] / (steps * systems[model].n))
+    return out
 
 
 def reference_throughput(system, seconds: float):
@@ -184,13 +217,18 @@ def main() -> None:
     print()
     print("## 1-2. Kernel throughput and the 16.8 km cycle (1 000 elements, one core, slip on)")
     results = {}
-    for model in ("din", "cema", "nonlin"):
-        system, wall, steps, t_end, status = kernel_throughput(model)
+    for model, (system, wall, steps, t_end, status, evals) in kernel_throughputs(
+            ("din", "cema", "nonlin")).items():
         rate = steps * system.n / wall
         results[model] = (system, rate)
+        law = f"  law evaluated exactly for {100 * evals:.2f} % of element-steps" if evals else ""
         print(f"  {model:7s} n={system.n} dt={system.dt_s * 1e3:.2f} ms steps={int(steps)} "
               f"simulated={t_end:.1f} s  kernel wall={wall:.4f} s  "
-              f"{rate:.3g} element-steps/s  status={status}")
+              f"{rate:.3g} element-steps/s  status={status}{law}")
+    ratio = results["nonlin"][1] / results["din"][1]
+    print(f"  nonlin / din element-steps/s in this run = {ratio:.3f} (acceptance >= "
+          f"{NONLIN_OVER_DIN_MIN}: {'met' if ratio >= NONLIN_OVER_DIN_MIN else 'not met'}; "
+          f"Non-Lin at {1 / ratio:.2f} x DIN's cost per element-step)")
     conv = load_conveyor(CONVEYORS / "overland-16km.yaml")
     # the default start (60 s s-curve) and run (30 s) with a controlled stop: the example's
     # power-failure coast ends early, slack at the head take-up (a design finding)

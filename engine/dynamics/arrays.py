@@ -13,7 +13,7 @@ from typing import NamedTuple
 
 import numpy as np
 
-__all__ = ["Nodes", "Law", "Springs", "Blocks", "Shafts", "Drives", "Brakes", "State", "Out",
+__all__ = ["Nodes", "Law", "Lin", "Springs", "Blocks", "Shafts", "Drives", "Brakes", "State", "Out",
            "Work"]
 
 
@@ -41,6 +41,49 @@ class Law(NamedTuple):
     t_sparse: np.ndarray
     t_ptr: np.ndarray
     t_idx: np.ndarray
+
+
+class Lin(NamedTuple):
+    """The resistance law's expansion per element (:mod:`engine.dynamics.linlaw`): ``R0 = k +
+    gu u + guu u^2 + gx T + gxx T^2 + gux u T`` [N] (``u = |v|``, T the mean tension); the
+    window round the expansion point as bounds on the speed (``ulo``, ``uhi`` [m/s]) and the
+    mean tension (``tlo``, ``thi`` [N]); all float32.
+
+    The law for its element-wise evaluation (:func:`engine.dynamics.passes.law_refresh`): per
+    element a row of 16 (``erow``): sag weight and sag cap over the reference sag, the tension
+    below which the sag ratio is at its cap [N], the window sizes (relative speed, creep
+    [m/s], relative tension; ``linlaw.BIG`` where no term depends on it), two zeros, the
+    coefficients padded to ``K_LIN`` terms with zero ones; each term's speed and sag factor
+    rows (``rs``, ``rq``); the weights of the sums over the terms (``wk``, rows 1, p, p (p -
+    1), q, q (q + 1), p q); the speed and sag exponents taken by exp and log (``upow``,
+    ``qpow``) and ``npow`` = their numbers and whether a sag exponent is 0.5 or 1.5. Scratch: the
+    flags of the elements outside their windows (``flag``, padded to whole words, ``flag64``
+    its view by words), their indices (room for padding), the gathered, factor and output
+    rows of the evaluation (``sg``, ``sf``, ``so``)."""
+
+    k: np.ndarray
+    gu: np.ndarray
+    guu: np.ndarray
+    gx: np.ndarray
+    gxx: np.ndarray
+    gux: np.ndarray
+    ulo: np.ndarray
+    uhi: np.ndarray
+    tlo: np.ndarray
+    thi: np.ndarray
+    erow: np.ndarray
+    rs: np.ndarray
+    rq: np.ndarray
+    wk: np.ndarray
+    upow: np.ndarray
+    qpow: np.ndarray
+    npow: np.ndarray
+    flag: np.ndarray
+    flag64: np.ndarray
+    idx: np.ndarray
+    sg: np.ndarray
+    sf: np.ndarray
+    so: np.ndarray
 
 
 class Springs(NamedTuple):

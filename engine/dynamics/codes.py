@@ -48,13 +48,16 @@ HOLD, RUN, OFF = 0, 1, 2
  FP_HS_REF, FP_SIZE) = range(28)
 (IP_N, IP_START_CTRL, IP_STOP_MODE, IP_FORMULATION, IP_TU_GRAVITY, IP_I_TU, IP_I_TAIL,
  IP_ANY_PS, IP_M_DRIVE, IP_HOLD_NODE, IP_CONTROL, IP_S_HEAD_IN, IP_S_HEAD_OUT,
- IP_SIZE) = range(14)
+ IP_LAW_MODE, IP_SIZE) = range(15)
+#: how the kernel evaluates the resistance law (IP_LAW_MODE): once (one constant term), exactly
+#: every step, or expanded between exact evaluations (engine.dynamics.linlaw)
+LAW_CONST, LAW_EXACT, LAW_LINEAR = 0, 1, 2
 (RES_STATUS, RES_T_END, RES_STEPS, RES_START_ACH, RES_STOP_ACH, RES_VMAX, RES_VMAX_T, RES_VMIN,
  RES_VMIN_T, RES_XMIN, RES_XMAX, RES_FMAX, RES_FMAX_T, RES_PMAX, RES_SLIP_MIN, RES_SLIP_MIN_T,
  RES_ENDSTOP, RES_ENDSTOP_T, RES_ENDSTOP_SPEED, RES_NREC, RES_NSURF, RES_W_DRIVE,
  RES_T_STOPCMD, RES_STOPPED, RES_T_STOPPED, RES_V_MEAN_END, RES_I_END, RES_TMAX, RES_TMAX_T,
  RES_TMIN, RES_TMIN_T, RES_SLACK_MAX, RES_SLACK_AT, RES_SLACK_TIME, RES_SLACK_DUR,
- RES_SLACK_FIRST, RES_NSEG, RES_HOLD_SET, RES_TRIP, RES_SIZE) = range(40)
+ RES_SLACK_FIRST, RES_NSEG, RES_HOLD_SET, RES_TRIP, RES_LAW_EVALS, RES_SIZE) = range(41)
 #: per drive: largest |force| at the rim and |power| after the start command, smallest slip
 #: margin and when, time slipping, belt length slipped, first and last time slipping
 (DRV_FMAX, DRV_PMAX, DRV_SLIP_MIN, DRV_SLIP_MIN_T, DRV_SLIP_S, DRV_SLIP_M, DRV_SLIP_FIRST,

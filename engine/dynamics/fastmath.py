@@ -91,6 +91,19 @@ def _flagged(builder, op, a, b, flags):
 
 
 @intrinsic
+def _cttz(typingctx, x):
+    """The number of trailing zero bits of a uint64 (LLVM's cttz; 64 for zero)."""
+    sig = types.uint64(types.uint64)
+
+    def codegen(context, builder, signature, args):
+        fnty = llir.FunctionType(_I64, [_I64, llir.IntType(1)])
+        fn = cgutils.get_or_insert_function(builder.module, fnty, "llvm.cttz.i64")
+        return builder.call(fn, [args[0], llir.Constant(llir.IntType(1), 0)])
+
+    return sig, codegen
+
+
+@intrinsic
 def _round(typingctx, x):
     """x rounded to the nearest integer (|x| < 2^51) as ``(x + 1.5 2^52) - 1.5 2^52``,
     emitted without 'reassoc' so fast-math cannot fold it away."""

@@ -10,7 +10,12 @@ One step is a short sequence of named passes:
    failure or once the holding brakes have set), the brakes' forces (applied after their
    delay, ramped or along their force curve; holding brakes set once the belt has stopped)
    and each drive's force law for the step (:func:`_drive_laws`);
-2. **resistance**: the friction model's law per element (:func:`passes.resistance`);
+2. **resistance**: the friction model's law per element, exactly (:func:`passes.resistance`)
+   or, for a law with fractional exponents (Non-Lin), its second-order expansion about each
+   element's expansion point, which the last observe evaluated at the state; the elements
+   whose speed or tension has left the window round that point are evaluated exactly and
+   expanded again (:func:`passes.law_refresh`; the windows and the accuracy they give, 0.1 %
+   of the law by default: :mod:`engine.dynamics.linlaw`);
 3. **free elements**: explicit velocity update with the resistance implicit in closed form
    (:func:`passes.node_pass`);
 4. **blocks**: the pulleys with their springs, shafts, drives, brakes and the take-up
@@ -18,9 +23,10 @@ One step is a short sequence of named passes:
    the speed loop's output is known to the others; then the speed loop's integrator;
 5. **free springs**: elastic (Ernst tangent), relaxing arm and mesh viscosity
    (:func:`passes.spring_pass`);
-6. **observe**: envelopes, extremes, divergence, per-drive slip and margins, the stop, slack,
-   the envelope segments (cut at the stop command and when the belt first goes slack) and the
-   records.
+6. **observe**: envelopes, extremes (with the expanded law also the law at the new state and
+   the elements outside their windows, :func:`passes.observe_lin`), divergence, per-drive slip
+   and margins, the stop, slack, the envelope segments (cut at the stop command and when the
+   belt first goes slack) and the records.
 
 The numpy implementation of the same equations is :mod:`engine.dynamics.reference`.
 """
@@ -37,8 +43,11 @@ from engine.dynamics.fastmath import OPTS
 from engine.dynamics.laws import brake_fraction, coupling_torque, motor_force
 from engine.dynamics.passes import (
     extremes,
+    law_flagged,
+    law_refresh,
     node_pass,
     observe,
+    observe_lin,
     resistance,
     slack_zones,
     spring_pass,
@@ -252,7 +261,7 @@ def _brake_forces(brakes, shafts, t, t_stopcmd, stopping, brake_mode, stopped, t
 
 
 @njit(**OPTS)
-def run_cycle(fp, ip, nodes, law, sp, blocks, shafts, drives, brakes, st, out, wk):
+def run_cycle(fp, ip, nodes, law, lin, sp, blocks, shafts, drives, brakes, st, out, wk):
     """Integrate the whole cycle (see the module docstring for one step).
 
     Arrays are prepared by :func:`engine.dynamics.simulate.prepare` (groups in
@@ -292,7 +301,7 @@ def run_cycle(fp, ip, nodes, law, sp, blocks, shafts, drives, brakes, st, out, w
     window = C.SPEED_WINDOW * v_d
     nd = drives.share.shape[0]
     nblk = blocks.ptr.shape[0] - 1
-    law_const = law.pvc.shape[0] == 1 and law.pvc[0] == 0 and law.psc[0] == 0
+    law_mode = ip[C.IP_LAW_MODE]
     res = out.res
     drv = out.drv
     v = st.v
@@ -310,9 +319,16 @@ def run_cycle(fp, ip, nodes, law, sp, blocks, shafts, drives, brakes, st, out, w
     for j in range(n):
         w_sum += nodes.w_mean[j]
     inv_w_sum = 1.0 / w_sum
-    if law_const:
+    if law_mode == C.LAW_CONST:
         for j in range(n):
             r0[j] = law.coef[0, j]
+    elif law_mode == C.LAW_LINEAR:
+        # the exact law at the initial state, and its expansion about it, for every element
+        for j in range(n):
+            lin.idx[j] = j
+        law_refresh(lin.idx, n, v, tt, lin, r0)
+    n_out = 0  # elements outside their windows (expanded law), found by the last observe
+    law_evals = 0  # exact evaluations of an element's law after the first
     for j in range(n):
         out.t_max[j] = tt[j]
         out.t_min[j] = tt[j]
@@ -437,10 +453,16 @@ def run_cycle(fp, ip, nodes, law, sp, blocks, shafts, drives, brakes, st, out, w
         f1u = -kp
 
         # ---------------------------------------------------------------- resistances
-        if not law_const:
+        if law_mode == C.LAW_EXACT:
             resistance(r0, v, tt, law.coef, law.pvc, law.pvv, law.psc, law.psv, nodes.sw_ref,
                        nodes.hsm_ref, any_ps, wk.phi, wk.lnv, wk.lnphi, law.t_sparse,
                        law.t_ptr, law.t_idx)
+        elif law_mode == C.LAW_LINEAR and n_out > 0:
+            # r0 holds the expanded law at this state (the last observe); the elements outside
+            # their windows are evaluated exactly and expanded again
+            m = law_flagged(lin.flag64, lin.idx, n_out)
+            law_evals += m
+            law_refresh(lin.idx, m, v, tt, lin, r0)
 
         # ---------------------------------------------------------------- free elements
         vsum = 0.0
@@ -495,7 +517,13 @@ def run_cycle(fp, ip, nodes, law, sp, blocks, shafts, drives, brakes, st, out, w
 
         # ---------------------------------------------------------------- observe
         v_mean = vsum * inv_w_sum
-        tlo, thi, vlo, vhi = observe(tt, v, out.t_max, out.t_min)
+        if law_mode == C.LAW_LINEAR:
+            tlo, thi, vlo, vhi, n_out = observe_lin(tt, v, out.t_max, out.t_min, lin.ulo,
+                                                    lin.uhi, lin.tlo, lin.thi, lin.flag, lin.k,
+                                                    lin.gu, lin.guu, lin.gx, lin.gxx, lin.gux,
+                                                    r0)
+        else:
+            tlo, thi, vlo, vhi = observe(tt, v, out.t_max, out.t_min)
         if not math.isfinite(vsum) or vhi > v_fail or vlo < -v_fail:
             status = C.DIVERGED
             break
@@ -650,4 +678,5 @@ def run_cycle(fp, ip, nodes, law, sp, blocks, shafts, drives, brakes, st, out, w
     res[C.RES_NSEG] = seg + 1
     res[C.RES_HOLD_SET] = hold_set
     res[C.RES_TRIP] = t_trip
+    res[C.RES_LAW_EVALS] = law_evals
     return status

@@ -116,6 +116,13 @@ class DynamicsOptions:
         Gravity along the belt on (verification runs only).
     v_eps_m_s : float
         Regularisation speed of the resistances: ``R = R0 clip(v / v_eps, -1, 1)`` [m/s].
+    resistance_rtol : float
+        Accuracy of the resistance law between its exact evaluations [-] (0 to 0.01): a law
+        with fractional exponents (Non-Lin) is evaluated exactly for an element when its
+        speed or mean tension leaves the window round its expansion point, and expanded to
+        second order about that point in between, the windows sized so the resistance stays
+        within this fraction of the exact law at every step (:mod:`engine.dynamics.linlaw`).
+        0 evaluates the exact law every step.
     dt_safety : float
         Automatic step as a fraction of the stability limit (0.5: half the limit).
     controller_bandwidth_rad_s : float or None
@@ -146,6 +153,7 @@ class DynamicsOptions:
     resistances: bool = True
     gravity: bool = True
     v_eps_m_s: float = 1e-4
+    resistance_rtol: float = 1e-3
     dt_safety: float = 0.5
     controller_bandwidth_rad_s: float | None = None
     pre_rest_s: float = 2.0
@@ -270,6 +278,7 @@ class System:
     spring_head_out: int  # spring leaving the last head drive pulley (T2)
     notes: list[str] = field(default_factory=list)  # informational, for the message
     warnings: list[str] = field(default_factory=list)  # limits crossed before the start
+    resistance_rtol: float = 1e-3  # accuracy of the law between exact evaluations (linlaw)
 
     @property
     def stop_command_s(self) -> float:
@@ -432,6 +441,9 @@ def check_scenario(scn: Scenario, conv: Conveyor, opts: DynamicsOptions | None =
                          "moving-support formulation imposes the drive pulley's motion)")
     if opts.damping not in ("belt", "off"):
         raise InputError(f"damping: unknown '{opts.damping}'; valid: belt, off")
+    if not (0.0 <= opts.resistance_rtol <= 0.01):
+        raise InputError(f"resistance_rtol: must be between 0 (the exact law every step) and "
+                         f"0.01 (got {opts.resistance_rtol!r})")
 
 
 def _fixed_takeup_level(T_rel, T_run, len_m, a_el, EB, t_floor, k_floor) -> float:
@@ -712,5 +724,5 @@ def build_system(conv: Conveyor, scn: Scenario, steady, options: DynamicsOptions
         probe_springs=probes.astype(np.int64), surface_springs=surf.astype(np.int64),
         steady_tension_n=T_run.copy(), te_n=te, dx_m=dx.copy(), s_end_m=s_end,
         spring_head_in=(loop.i_head - 1) % n, spring_head_out=int(s_head_out),
-        notes=notes, warnings=warns,
+        notes=notes, warnings=warns, resistance_rtol=float(opts.resistance_rtol),
     )

@@ -11,11 +11,12 @@ from __future__ import annotations
 
 import math
 
-from numba import njit, uintp
+from numba import njit, uint64, uintp
 
 from engine.dynamics.fastmath import (
     OPTS,
     OPTS_RED,
+    _cttz,
     _exp,
     _fmax,
     _fmin,
@@ -24,9 +25,10 @@ from engine.dynamics.fastmath import (
     _power,
     _speed,
 )
+from engine.dynamics.linlaw import BIG, K_LIN, N_POW, PREDICT
 
-__all__ = ["resistance", "node_pass", "spring", "spring_pass", "observe", "extremes",
-           "slack_zones"]
+__all__ = ["resistance", "law_flagged", "law_refresh", "node_pass", "spring", "spring_pass",
+           "observe", "observe_lin", "extremes", "slack_zones", "law_rows"]
 
 
 @njit(inline="always", **OPTS)
@@ -127,16 +129,283 @@ def resistance(r0, v, tt, coef, pvc, pvv, psc, psv, sw_ref, hsm_ref, any_ps, phi
             _term_sag(r0, c, v, lnv, phi, lnphi, 5, p, qc, q)
 
 
+# --------------------------------------------------------------------------------------
+# the law expanded between exact evaluations (engine.dynamics.linlaw)
+
+
+@njit(**OPTS)
+def law_flagged(flag64, idx, count):
+    """The indices of the ``count`` flagged elements into idx, word by word (a word of eight
+    flags that is not zero is taken apart by its trailing zero count); returns their
+    number."""
+    m = 0
+    zero = uint64(0)
+    one = uint64(1)
+    for w in range(flag64.shape[0]):
+        x = flag64[w]
+        while x != zero:
+            idx[m] = 8 * w + (_cttz(x) >> 3)
+            m += 1
+            x &= x - one
+        if m >= count:
+            break
+    return m
+
+
+#: Elements per chunk of the element-wise evaluation: its scratch rows are CHUNK long, at
+#: offsets known when compiling, so LLVM vectorises its loops without alias checks between
+#: rows.
+CHUNK = 64
+#: Rows of the factors of the terms (:func:`law_refresh`): 1, u, the N_POW powers of u, phi,
+#: phi^2, sqrt(phi), phi^1.5, the N_POW powers of phi.
+F_ONE, F_U, F_UP, F_PHI, F_PHI2, F_SQRT, F_PHI15, F_PHIP = 0, 1, 2, 2 + N_POW, 3 + N_POW, \
+    4 + N_POW, 5 + N_POW, 6 + N_POW
+N_F = 6 + 2 * N_POW
+#: Gathered rows: the expansion point (u, T), the state (u, T), sag weight and cap over the
+#: reference sag, xcap, window sizes, then the K_LIN coefficients.
+G_U, G_T, G_UN, G_TN, G_SW, G_HSM, G_XC, G_DU, G_D0, G_DX, G_C = range(11)
+N_G = 10 + K_LIN
+#: Output rows: the polynomial's six coefficients, the four window bounds.
+N_O = 10
+
+
+@njit(**OPTS)
+def _refresh_gather(idx, i0, m, v, tt, erow, ulo, uhi, tlo, thi, g):
+    """The state, the expansion point, the per-element constants and the coefficients of the
+    elements ``idx[i0:i0 + m]`` into the rows of g (``erow``: each element's constants and
+    coefficients in one row of 16).
+
+    The expansion point is the state moved by PREDICT of its window towards the side of the
+    old window the state is on (the way it has been moving), where the speed is expanded and
+    the sag ratio follows the tension; the state stays inside the new window (see
+    :mod:`engine.dynamics.linlaw`). Without branches on the data (selects)."""
+    n = tt.shape[0]
+    big = BIG
+    for ii in range(m):
+        i = uintp(ii)
+        jj = idx[i0 + ii]
+        j = uintp(jj)
+        jm = uintp(jj - 1 + (n if jj == 0 else 0))
+        u = abs(v[j])
+        tm = 0.5 * (tt[jm] + tt[j])
+        xc = erow[j, 2]
+        du = erow[j, 3]
+        w0 = erow[j, 4]
+        dx = erow[j, 5]
+        su = 1.0 if u >= 0.5 * (ulo[j] + uhi[j]) else -1.0
+        uc = u + PREDICT * du * u * su
+        uc = uc if ((du < big) & (du * u >= w0) & (du * uc >= w0)) else u
+        st = 1.0 if tm >= 0.5 * (tlo[j] + thi[j]) else -1.0
+        tc = max(tm + PREDICT * dx * tm * st, xc)
+        tc = tc if ((dx < big) & (tm >= xc)) else tm
+        g[G_U * CHUNK + i] = uc
+        g[G_T * CHUNK + i] = tc
+        g[G_UN * CHUNK + i] = u
+        g[G_TN * CHUNK + i] = tm
+        g[G_SW * CHUNK + i] = erow[j, 0]
+        g[G_HSM * CHUNK + i] = erow[j, 1]
+        g[G_XC * CHUNK + i] = xc
+        g[G_DU * CHUNK + i] = du
+        g[G_D0 * CHUNK + i] = w0
+        g[G_DX * CHUNK + i] = dx
+        for k in range(K_LIN):
+            g[(G_C + k) * CHUNK + i] = erow[j, 8 + k]
+
+
+@njit(**OPTS)
+def _refresh_factors(m, g, f, upow, qpow, nqp):
+    """The factors of the terms over the gathered elements into the rows of f, in one
+    vectorised loop: 1, u, ``u^upow[x] = exp(upow[x] ln u)`` (all N_POW, padded exponents
+    0), phi, phi^2, sqrt(phi), phi^1.5; then ``phi^qpow[x]`` when a sag exponent takes exp
+    and log (row offsets unsigned: no negative-index wraparound)."""
+    p0 = upow[0]
+    p1 = upow[1]
+    p2 = upow[2]
+    for ii in range(m):
+        i = uintp(ii)
+        u = g[G_U * CHUNK + i]
+        tm = g[G_T * CHUNK + i]
+        phi = min(g[G_SW * CHUNK + i] / max(tm, 1.0), g[G_HSM * CHUNK + i])
+        ln = _ln0(u)
+        r = math.sqrt(phi)
+        f[F_ONE * CHUNK + i] = 1.0
+        f[F_U * CHUNK + i] = u
+        f[F_UP * CHUNK + i] = _exp(p0 * ln)
+        f[(F_UP + 1) * CHUNK + i] = _exp(p1 * ln)
+        f[(F_UP + 2) * CHUNK + i] = _exp(p2 * ln)
+        f[F_PHI * CHUNK + i] = phi
+        f[F_PHI2 * CHUNK + i] = phi * phi
+        f[F_SQRT * CHUNK + i] = r
+        f[F_PHI15 * CHUNK + i] = phi * r
+    if nqp > 0:
+        for ii in range(m):
+            i = uintp(ii)
+            f[F_PHIP * CHUNK + i] = _ln0(f[F_PHI * CHUNK + i])
+        for x in range(nqp - 1, -1, -1):
+            base = uintp((F_PHIP + x) * CHUNK)
+            q = qpow[x]
+            for ii in range(m):
+                i = uintp(ii)
+                f[base + i] = _exp(q * f[F_PHIP * CHUNK + i])
+
+
 @njit(inline="always", **OPTS)
-def _friction(vs, e, v_eps):
-    """Solve ``v = vs - e clip(v / v_eps, -1, 1)`` for v exactly (e >= 0: e = dt R0 / M)."""
-    a1 = vs * v_eps / (v_eps + e)
-    a2 = vs - math.copysign(e, vs)
-    return a1 if abs(vs) <= v_eps + e else a2
+def _tk(g, f, i, k, bs, bq):
+    """Term k of the gathered element i: its coefficient times its speed and sag factors
+    (``bs``, ``bq``: the unsigned offsets of their rows)."""
+    return g[(G_C + k) * CHUNK + i] * f[bs + i] * f[bq + i]
+
+
+@njit(**OPTS)
+def _refresh_eval(m, rs, rq, wk, g, f, o):
+    """The exact law and its expansion over the gathered elements (one vectorised loop): the
+    terms ``c u^p phi^q`` from the factor rows (``rs``, ``rq``: each term's rows), the sums
+    ``R``, ``sum p t``, ``sum p (p - 1) t``, ``sum q t``, ``sum q (q + 1) t``, ``sum p q t``
+    (weights ``wk``, one row of K_LIN each), the polynomial's coefficients and the window's
+    bounds into the rows of o."""
+    c = CHUNK
+    s0, s1, s2, s3 = uintp(rs[0] * c), uintp(rs[1] * c), uintp(rs[2] * c), uintp(rs[3] * c)
+    s4, s5, s6, s7 = uintp(rs[4] * c), uintp(rs[5] * c), uintp(rs[6] * c), uintp(rs[7] * c)
+    q0, q1, q2, q3 = uintp(rq[0] * c), uintp(rq[1] * c), uintp(rq[2] * c), uintp(rq[3] * c)
+    q4, q5, q6, q7 = uintp(rq[4] * c), uintp(rq[5] * c), uintp(rq[6] * c), uintp(rq[7] * c)
+    w1 = (wk[1, 0], wk[1, 1], wk[1, 2], wk[1, 3], wk[1, 4], wk[1, 5], wk[1, 6], wk[1, 7])
+    w2 = (wk[2, 0], wk[2, 1], wk[2, 2], wk[2, 3], wk[2, 4], wk[2, 5], wk[2, 6], wk[2, 7])
+    w3 = (wk[3, 0], wk[3, 1], wk[3, 2], wk[3, 3], wk[3, 4], wk[3, 5], wk[3, 6], wk[3, 7])
+    w4 = (wk[4, 0], wk[4, 1], wk[4, 2], wk[4, 3], wk[4, 4], wk[4, 5], wk[4, 6], wk[4, 7])
+    w5 = (wk[5, 0], wk[5, 1], wk[5, 2], wk[5, 3], wk[5, 4], wk[5, 5], wk[5, 6], wk[5, 7])
+    big = BIG
+    for ii in range(m):
+        i = uintp(ii)
+        t0 = _tk(g, f, i, 0, s0, q0)
+        t1 = _tk(g, f, i, 1, s1, q1)
+        t2 = _tk(g, f, i, 2, s2, q2)
+        t3 = _tk(g, f, i, 3, s3, q3)
+        t4 = _tk(g, f, i, 4, s4, q4)
+        t5 = _tk(g, f, i, 5, s5, q5)
+        t6 = _tk(g, f, i, 6, s6, q6)
+        t7 = _tk(g, f, i, 7, s7, q7)
+        r = ((t0 + t1) + (t2 + t3)) + ((t4 + t5) + (t6 + t7))
+        a = _wsum(w1, t0, t1, t2, t3, t4, t5, t6, t7)
+        aa = _wsum(w2, t0, t1, t2, t3, t4, t5, t6, t7)
+        b = _wsum(w3, t0, t1, t2, t3, t4, t5, t6, t7)
+        bb = _wsum(w4, t0, t1, t2, t3, t4, t5, t6, t7)
+        e = _wsum(w5, t0, t1, t2, t3, t4, t5, t6, t7)
+        u = g[G_U * CHUNK + i]
+        tm = g[G_T * CHUNK + i]
+        xc = g[G_XC * CHUNK + i]
+        du = g[G_DU * CHUNK + i]
+        w0 = g[G_D0 * CHUNK + i]
+        dx = g[G_DX * CHUNK + i]
+        moving = du * u >= w0
+        uncapped = tm >= xc
+        iu = 1.0 / u if moving else 0.0
+        it = 1.0 / tm if uncapped else 0.0
+        g_u = a * iu
+        h_uu = 0.5 * aa * iu * iu
+        g_t = -b * it
+        h_tt = 0.5 * bb * it * it
+        h_ut = -e * iu * it
+        k0 = r - g_u * u + h_uu * u * u - g_t * tm + h_tt * tm * tm + h_ut * u * tm
+        k1 = g_u - 2.0 * h_uu * u - h_ut * tm
+        k3 = g_t - 2.0 * h_tt * tm - h_ut * u
+        o[i] = k0
+        o[CHUNK + i] = k1
+        o[2 * CHUNK + i] = h_uu
+        o[3 * CHUNK + i] = k3
+        o[4 * CHUNK + i] = h_tt
+        o[5 * CHUNK + i] = h_ut
+        wu = du * u if moving else w0
+        o[6 * CHUNK + i] = -big if du >= big else u - wu
+        o[7 * CHUNK + i] = big if du >= big else u + wu
+        o[8 * CHUNK + i] = -big if (dx >= big or not uncapped) else max(tm - dx * tm, xc)
+        o[9 * CHUNK + i] = big if dx >= big else (tm + dx * tm if uncapped else xc)
+
+
+@njit(inline="always", **OPTS)
+def _wsum(w, t0, t1, t2, t3, t4, t5, t6, t7):
+    """``sum_k w[k] t_k``."""
+    return ((w[0] * t0 + w[1] * t1) + (w[2] * t2 + w[3] * t3)) \
+        + ((w[4] * t4 + w[5] * t5) + (w[6] * t6 + w[7] * t7))
+
+
+@njit(**OPTS)
+def _refresh_scatter(idx, i0, m, g, o, lin, r0):
+    """The expansion and the windows of the evaluated chunk into the elements' (float32)
+    arrays, and r0 from the stored expansion at their state."""
+    for ii in range(m):
+        i = uintp(ii)
+        j = uintp(idx[i0 + ii])
+        lin.k[j] = o[i]
+        lin.gu[j] = o[CHUNK + i]
+        lin.guu[j] = o[2 * CHUNK + i]
+        lin.gx[j] = o[3 * CHUNK + i]
+        lin.gxx[j] = o[4 * CHUNK + i]
+        lin.gux[j] = o[5 * CHUNK + i]
+        lin.ulo[j] = o[6 * CHUNK + i]
+        lin.uhi[j] = o[7 * CHUNK + i]
+        lin.tlo[j] = o[8 * CHUNK + i]
+        lin.thi[j] = o[9 * CHUNK + i]
+        r0[j] = _lin(g[G_UN * CHUNK + i], g[G_TN * CHUNK + i], lin.k[j], lin.gu[j], lin.guu[j],
+                     lin.gx[j], lin.gxx[j], lin.gux[j])
+
+
+@njit(**OPTS)
+def law_refresh(idx, m, v, tt, lin, r0):
+    """Evaluate the exact law for the elements ``idx[:m]`` at their new expansion points and
+    expand it there (:mod:`engine.dynamics.linlaw`); r0 [N] from the expansion at their state.
+
+    For each element j, with ``u = |v_j|`` [m/s] and ``T`` its mean tension [N]: the expansion
+    point is the state moved by PREDICT of its window the way it was moving
+    (:func:`_refresh_gather`); there the terms ``t_k = coef[k, j] u^pv[k] phi^ps[k]`` (the law
+    of :func:`resistance`; ``lin.erow`` the coefficients by element, padded to K_LIN terms
+    with zero ones, each term a product of a speed and a sag factor, ``lin.rs`` / ``lin.rq`` their
+    rows, ``lin.upow`` / ``lin.qpow`` the exponents taken by exp and log); the second-order
+    expansion (:func:`engine.dynamics.linlaw.expansion`) as the polynomial ``R0 = k + gu u +
+    guu u^2 + gx T + gxx T^2 + gux u T`` and the window round the point as bounds on u and T
+    (+-BIG where the law does not depend on it), stored in float32. The speed is expanded
+    where its relative window ``du u`` is wider than the creep window ``d0``, and held within
+    ``d0`` below. A sag ratio at its cap stays there while ``T <= xcap``; an uncapped one
+    while ``T >= xcap``, so the expansion is in T on either side.
+
+    In chunks of CHUNK elements (padded to whole vectors with the last one again): gathered
+    into contiguous rows, evaluated in vectorised loops, scattered back.
+    """
+    while m % 4 != 0:
+        idx[m] = idx[m - 1]
+        m += 1
+    nqp = lin.npow[1]
+    for i0 in range(0, m, CHUNK):
+        mc = min(CHUNK, m - i0)
+        _refresh_gather(idx, i0, mc, v, tt, lin.erow, lin.ulo, lin.uhi, lin.tlo, lin.thi,
+                        lin.sg)
+        _refresh_factors(mc, lin.sg, lin.sf, lin.upow, lin.qpow, nqp)
+        _refresh_eval(mc, lin.rs, lin.rq, lin.wk, lin.sg, lin.sf, lin.so)
+        _refresh_scatter(idx, i0, mc, lin.sg, lin.so, lin, r0)
+
+
+@njit(inline="always", **OPTS)
+def _lin(u, tm, k, gu, guu, gx, gxx, gux):
+    """The expanded law ``k + gu u + guu u^2 + gx T + gxx T^2 + gux u T`` [N]."""
+    return k + u * (gu + guu * u + gux * tm) + tm * (gx + gxx * tm)
 
 
 # --------------------------------------------------------------------------------------
 # vectorised passes
+
+
+@njit(inline="always", **OPTS)
+def _node(vj, h, r, dtj, gj, v_eps):
+    """New velocity of one free element: ``vs`` from the forces with a negative resistance
+    explicit, then :func:`_friction` with its division computed from old values only (off the
+    path from the old state to the new velocity)."""
+    rp = max(r, 0.0)
+    rn = min(r, 0.0)
+    vs = vj + h * (dtj - gj - rn * min(max(vj / v_eps, -1.0), 1.0))
+    e = h * rp
+    den = v_eps + e
+    a1 = _mul_strict(vs, v_eps / den)
+    a2 = vs - math.copysign(e, vs)
+    return a1 if abs(vs) <= den else a2
 
 
 @njit(**OPTS)
@@ -148,19 +417,7 @@ def node_pass(a, b, v, tt, hm, grav, r0, v_eps, w):
         # unsigned indices: numba then drops the negative-index wraparound and LLVM vectorises
         j = uintp(jj)
         jm = uintp(jj - 1)
-        h = hm[j]
-        r = r0[j]
-        rp = max(r, 0.0)
-        rn = min(r, 0.0)
-        vj = v[j]
-        vs = vj + h * (tt[j] - tt[jm] - grav[j] - rn * min(max(vj / v_eps, -1.0), 1.0))
-        # _friction, with its division computed from old values only (off the path from
-        # the old state to the new velocity)
-        e = h * rp
-        den = v_eps + e
-        a1 = _mul_strict(vs, v_eps / den)
-        a2 = vs - math.copysign(e, vs)
-        vn = a1 if abs(vs) <= den else a2
+        vn = _node(v[j], hm[j], r0[j], tt[j] - tt[jm], grav[j], v_eps)
         v[j] = vn
         s += w[j] * vn
     return s
@@ -320,6 +577,53 @@ def observe(tt, v, t_max, t_min):
     return lo, hi, vlo, vhi
 
 
+@njit(inline="always", **OPTS_RED)
+def _next_law(vj, ta, tb, ulo, uhi, tlo, thi, k, gu, guu, gx, gxx, gux):
+    """An element's expanded law at its state and whether the state is outside its window."""
+    u = abs(vj)
+    tm = 0.5 * (ta + tb)
+    return (_lin(u, tm, k, gu, guu, gx, gxx, gux),
+            (u < ulo) | (u > uhi) | (tm < tlo) | (tm > thi))
+
+
+@njit(**OPTS_RED)
+def observe_lin(tt, v, t_max, t_min, ulo, uhi, tlo, thi, flag, k, gu, guu, gx, gxx, gux, r0):
+    """:func:`observe`, and the law for the next step: the expanded law at the state the step
+    ends in, into r0 [N], and the flags (1) of the elements whose speed or mean tension is
+    outside the window of the expansion (:func:`law_refresh`): their law is evaluated exactly
+    before the next step. Returns (min tension, max tension, min speed, max speed, number
+    flagged)."""
+    n = tt.shape[0]
+    lo = tt[0]
+    hi = tt[0]
+    vlo = v[0]
+    vhi = v[0]
+    r, f = _next_law(v[0], tt[n - 1], tt[0], ulo[0], uhi[0], tlo[0], thi[0], k[0], gu[0],
+                     guu[0], gx[0], gxx[0], gux[0])
+    r0[0] = r
+    flag[0] = f
+    cnt = 1 if f else 0
+    t_max[0] = _fmax(t_max[0], tt[0])
+    t_min[0] = _fmin(t_min[0], tt[0])
+    for jj in range(1, n):
+        j = uintp(jj)
+        jm = uintp(jj - 1)
+        t1 = tt[j]
+        vj = v[j]
+        t_max[j] = _fmax(t_max[j], t1)
+        t_min[j] = _fmin(t_min[j], t1)
+        lo = _fmin(lo, t1)
+        hi = _fmax(hi, t1)
+        vlo = _fmin(vlo, vj)
+        vhi = _fmax(vhi, vj)
+        r, f = _next_law(vj, tt[jm], t1, ulo[j], uhi[j], tlo[j], thi[j], k[j], gu[j], guu[j],
+                         gx[j], gxx[j], gux[j])
+        r0[j] = r
+        flag[j] = f
+        cnt += 1 if f else 0
+    return lo, hi, vlo, vhi, cnt
+
+
 @njit(**OPTS_RED)
 def extremes(x):
     """(min, max) of an array."""
@@ -356,3 +660,33 @@ def slack_zones(ts, tt, eb, len_m, eps_run):
                     worst = g
                     deep = j
     return total, deep
+
+
+def law_rows(pv, ps):
+    """Each term's speed and sag factor rows for :func:`law_refresh`, the exponents taken by
+    exp and log, and the weights of the sums over the terms (padded to K_LIN terms); plain
+    Python, for :func:`engine.dynamics.simulate.prepare`. Returns ``(rs, rq, upow, qpow,
+    npow, wk)``."""
+    import numpy as np
+
+    ups = sorted({float(p) for p in pv} - {0.0, 1.0})
+    qps = sorted({float(q) for q in ps} - {0.0, 0.5, 1.0, 1.5, 2.0})
+    srow = {0.0: F_ONE, 1.0: F_U} | {p: F_UP + x for x, p in enumerate(ups)}
+    qrow = {0.0: F_ONE, 1.0: F_PHI, 2.0: F_PHI2, 0.5: F_SQRT, 1.5: F_PHI15} | {
+        q: F_PHIP + x for x, q in enumerate(qps)}
+    nk = len(pv)
+    rs = np.full(K_LIN, F_ONE, dtype=np.int64)
+    rq = np.full(K_LIN, F_ONE, dtype=np.int64)
+    wk = np.zeros((6, K_LIN))
+    for k in range(nk):
+        p, q = float(pv[k]), float(ps[k])
+        rs[k] = srow[p]
+        rq[k] = qrow[q]
+        wk[:, k] = (1.0, p, p * (p - 1.0), q, q * (q + 1.0), p * q)
+    upow = np.zeros(N_POW)
+    qpow = np.zeros(N_POW)
+    upow[:len(ups)] = ups
+    qpow[:len(qps)] = qps
+    npow = np.array([len(ups), len(qps), 1 if any(float(q) in (0.5, 1.5) for q in ps) else 0],
+                    dtype=np.int64)
+    return rs, rq, upow, qpow, npow, wk

@@ -5,7 +5,9 @@ Same model (:class:`~engine.dynamics.model.System`) and same scheme as
 :mod:`engine.dynamics.kernel`, written for reading rather than speed, and sharing with it only
 the scalar laws (:mod:`engine.dynamics.laws`, :mod:`engine.dynamics.profiles`):
 
-* the resistance law with exact ``np.power``;
+* the resistance law with exact ``np.power``, every step (``resistance_rtol = 0``) or, as the
+  kernel, expanded between exact evaluations (:mod:`engine.dynamics.linlaw`, the same windows
+  and expansion points; :class:`ExpandedLaw`);
 * the free elements and the springs as whole-array numpy operations;
 * every implicit block (a pulley with the springs on both its sides, the elements at their
   far ends, the pulley shafts and the take-up carriage) as a dense matrix assembled from the
@@ -27,11 +29,19 @@ import numpy as np
 
 from engine.dynamics import codes as C
 from engine.dynamics.laws import brake_fraction, coupling_torque, motor_force
+from engine.dynamics.linlaw import (
+    BIG,
+    PREDICT,
+    element_windows,
+    expansion,
+    law_windows,
+    x_cap,
+)
 from engine.dynamics.model import System, chord_strain
 from engine.dynamics.passes import NEWTON_CURVE, NEWTON_MORE
 from engine.dynamics.profiles import FORCE, TORQUE, start_reference, stop_reference
 
-__all__ = ["ReferenceResult", "run_reference"]
+__all__ = ["ReferenceResult", "ExpandedLaw", "run_reference"]
 
 #: Most passes over a block's active set in one step (as in the kernel).
 ACTIVE_SET_PASSES = 24
@@ -47,7 +57,8 @@ class ReferenceResult(dict):
     1 diverged), ``w_drive`` [J], ``start_ach``, ``stop_ach`` [s] (-1 not reached),
     ``slip_s`` [s] and ``slip_m`` [m] per drive (time slipping, belt length slipped),
     ``shaft_slip_s`` [s] and ``shaft_slip_m`` [m] the same per shaft,
-    ``slack_s`` [s] (time with a slack span), ``t_trip`` and ``hold_set`` [s].
+    ``slack_s`` [s] (time with a slack span), ``t_trip`` and ``hold_set`` [s], ``law_evals``
+    (exact evaluations of an element's law after the first, with the expanded law).
     """
 
 
@@ -68,6 +79,84 @@ def _law(sys: System, v: np.ndarray, T: np.ndarray) -> np.ndarray:
     for c, p, q in zip(sys.coef, sys.pv, sys.ps, strict=True):
         total += c * np.power(av, p) * np.power(phi, q)
     return total
+
+
+class ExpandedLaw:
+    """The resistance law as the kernel takes it with ``resistance_rtol > 0``
+    (:mod:`engine.dynamics.linlaw`): each element's law evaluated exactly (``np.power``) when
+    its speed or mean tension has left the window round its expansion point, and its
+    second-order expansion about that point otherwise. Call with the state for R0 [N].
+
+    The expansion point is the state moved by ``PREDICT`` of the window towards the side of
+    the old window the state is on (where the speed is expanded and the sag ratio follows the
+    tension; the old window starts at zero); the expansion and the windows are
+    :func:`linlaw.expansion` and :func:`linlaw.element_windows`, as in the kernel's
+    :func:`engine.dynamics.passes.law_refresh`.
+    """
+
+    def __init__(self, sys: System):
+        self.sys = sys
+        self.w = law_windows(sys.coef, sys.pv, sys.ps, sys.resistance_rtol)
+        self.sw = sys.sag_w_n / sys.hs_ref
+        self.hsm = sys.hs_cap / sys.hs_ref
+        self.xc = x_cap(self.sw, self.hsm)
+        self.du, self.d0, self.dx = element_windows(sys.coef, sys.pv, sys.ps, self.sw, self.hsm,
+                                                    sys.v_eps, self.w)
+        n = sys.n
+        self.poly = np.zeros((6, n))
+        self.bounds = np.zeros((4, n))  # u low, u high, T low, T high
+        self.started = False
+        self.evaluations = 0  # exact evaluations of an element's law after the first
+
+    def __call__(self, v: np.ndarray, T: np.ndarray) -> np.ndarray:
+        u = np.abs(v)
+        tm = 0.5 * (np.roll(T, 1) + T)
+        lo_u, hi_u, lo_t, hi_t = self.bounds
+        if not self.started:
+            out = np.ones(self.sys.n, dtype=bool)
+            self.started = True
+        else:
+            out = (u < lo_u) | (u > hi_u) | (tm < lo_t) | (tm > hi_t)
+            self.evaluations += int(out.sum())
+        if out.any():
+            self._evaluate(np.flatnonzero(out), u, tm)
+        k, gu, guu, gx, gxx, gux = self.poly
+        return k + u * (gu + guu * u + gux * tm) + tm * (gx + gxx * tm)
+
+    def _evaluate(self, j, u, tm):
+        sys = self.sys
+        u, tm = u[j], tm[j]
+        du, w0, dx, xc = self.du[j], self.d0[j], self.dx[j], self.xc[j]
+        lo_u, hi_u, lo_t, hi_t = self.bounds[:, j]
+        # the expansion point
+        expand_u = (du < BIG) & (du * u >= w0)
+        uc = np.where(expand_u, u + PREDICT * du * u * np.where(u >= 0.5 * (lo_u + hi_u), 1.0,
+                                                                -1.0), u)
+        uc = np.where(du * uc < w0, u, uc)
+        follow_t = (dx < BIG) & (tm >= xc)
+        tc = np.where(follow_t, np.maximum(
+            tm + PREDICT * dx * tm * np.where(tm >= 0.5 * (lo_t + hi_t), 1.0, -1.0), xc), tm)
+        # the exact law's terms there and the sums of the expansion
+        phi = np.minimum(self.sw[j] / np.maximum(tc, 1.0), self.hsm[j])
+        r, a, aa, b, bb, e = (np.zeros(len(j)) for _ in range(6))
+        for c, p, q in zip(sys.coef[:, j], sys.pv, sys.ps, strict=True):
+            t = c * np.power(uc, p) * np.power(phi, q)
+            r += t
+            a += p * t
+            aa += p * (p - 1.0) * t
+            b += q * t
+            bb += q * (q + 1.0) * t
+            e += p * q * t
+        moving = du * uc >= w0
+        uncapped = tc >= xc
+        f32 = np.float32  # the kernel stores the expansion and the windows in float32
+        self.poly[:, j] = f32(expansion(r, a, aa, b, bb, e, uc, tc, moving, uncapped))
+        wu = np.where(moving, du * uc, w0)
+        self.bounds[0, j] = f32(np.where(du >= BIG, -BIG, uc - wu))
+        self.bounds[1, j] = f32(np.where(du >= BIG, BIG, uc + wu))
+        self.bounds[2, j] = f32(np.where((dx >= BIG) | ~uncapped, -BIG,
+                                         np.maximum(tc - dx * tc, xc)))
+        self.bounds[3, j] = f32(np.where(dx >= BIG, BIG, np.where(uncapped, tc + dx * tc, xc)))
 
 
 def _tangent(sys: System, te: np.ndarray, j=slice(None)) -> np.ndarray:
@@ -605,6 +694,8 @@ def run_reference(sys: System, t_end_s: float | None = None) -> ReferenceResult:
     nd, ns = len(sys.drive_share), len(sys.shaft_node)
     f_res = sys.te_n - float(sys.gravity_n.sum())
     damp, visc = _damper(sys), _viscosity(sys)
+    law = ExpandedLaw(sys) if law_windows(sys.coef, sys.pv, sys.ps,
+                                          sys.resistance_rtol) is not None else None
     free = np.ones(n, dtype=bool)
     for blk in sys.blocks:
         free[blk] = False
@@ -674,7 +765,7 @@ def run_reference(sys: System, t_end_s: float | None = None) -> ReferenceResult:
                               x_tu=x_tu, u_tu=u_tu)
 
         # ---- free elements, then the blocks
-        R0 = _law(sys, st.v, st.tt)
+        R0 = law(st.v, st.tt) if law is not None else _law(sys, st.v, st.tt)
         v_free = _free_elements(sys, st.v, st.tt, R0)
         st.v[free] = v_free[free]
         U, u_known, u_new = 0.0, not pi, u_tu
@@ -731,4 +822,4 @@ def run_reference(sys: System, t_end_s: float | None = None) -> ReferenceResult:
         t_max=t_max, t_min=t_min, steps=step, t_end=t_new, status=status, w_drive=w_drive,
         start_ach=start_ach, stop_ach=stop_ach, slip_s=slip_s, slip_m=slip_m,
         shaft_slip_s=shaft_slip_s, shaft_slip_m=shaft_slip_m, slack_s=slack_s, t_trip=t_trip,
-        hold_set=hold_set)
+        hold_set=hold_set, law_evals=law.evaluations if law is not None else 0)

@@ -20,7 +20,16 @@ import pandas as pd
 from engine.dynamics import arrays as A
 from engine.dynamics import codes as C
 from engine.dynamics.kernel import run_cycle
+from engine.dynamics.linlaw import (
+    BIG,
+    K_LIN,
+    element_windows,
+    law_windows,
+    sparse_terms,
+    x_cap,
+)
 from engine.dynamics.model import System, chord_strain
+from engine.dynamics.passes import CHUNK, N_F, N_G, N_O, law_rows
 
 __all__ = ["TransientResult", "KernelInput", "prepare", "simulate", "decode",
            "TIMESERIES_COLUMNS", "SURFACE_COLUMNS", "V_FAIL_FACTOR", "exponent_codes"]
@@ -97,6 +106,44 @@ def damper_coefficients(sys: System) -> tuple[float, float]:
     return e, ratio * (1.0 - e) / h
 
 
+def linear_law_arrays(sys: System, windows) -> A.Lin:
+    """The arrays of the law's expansion (:class:`~engine.dynamics.arrays.Lin`), filled by
+    the kernel; per-element window sizes from ``windows`` (:func:`linlaw.law_windows`; None:
+    the law is evaluated exactly and the arrays are not used)."""
+    n = sys.n
+    nk = sys.coef.shape[0]
+    sw_ref = sys.sag_w_n / sys.hs_ref
+    hsm_ref = sys.hs_cap / sys.hs_ref
+    if windows is None:
+        du = d0 = dx = np.full(n, BIG)
+        pv, ps = np.zeros(1), np.zeros(1)
+    else:
+        du, d0, dx = element_windows(sys.coef, sys.pv, sys.ps, sw_ref, hsm_ref, sys.v_eps,
+                                     windows)
+        pv, ps = sys.pv, sys.ps
+    rs, rq, upow, qpow, npow, wk = law_rows(pv, ps)
+    erow = np.zeros((n, 8 + K_LIN))
+    erow[:, 0] = sw_ref
+    erow[:, 1] = hsm_ref
+    erow[:, 2] = x_cap(sw_ref, hsm_ref)
+    erow[:, 3] = du
+    erow[:, 4] = d0
+    erow[:, 5] = dx
+    if windows is not None:
+        erow[:, 8:8 + nk] = sys.coef.T
+    n8 = 8 * ((n + 7) // 8)
+    flag = np.zeros(n8, dtype=np.uint8)
+
+    def z():
+        return np.zeros(n, dtype=np.float32)
+
+    return A.Lin(k=z(), gu=z(), guu=z(), gx=z(), gxx=z(), gux=z(), ulo=z(), uhi=z(), tlo=z(),
+                 thi=z(), erow=erow, rs=rs, rq=rq, wk=wk, upow=upow, qpow=qpow, npow=npow,
+                 flag=flag, flag64=flag.view(np.uint64),
+                 idx=np.zeros(n + 8, dtype=np.int64), sg=np.zeros(N_G * CHUNK),
+                 sf=np.zeros(N_F * CHUNK), so=np.zeros(N_O * CHUNK))
+
+
 def prepare(sys: System, t_end_s: float | None = None) -> KernelInput:
     """Convert a System to the kernel's arrays (fresh state: the belt at rest).
 
@@ -151,6 +198,11 @@ def prepare(sys: System, t_end_s: float | None = None) -> KernelInput:
     ip[C.IP.CONTROL] = int(sys.drive_control[0])
     ip[C.IP.S_HEAD_IN] = sys.spring_head_in
     ip[C.IP.S_HEAD_OUT] = sys.spring_head_out
+    windows = law_windows(sys.coef, sys.pv, sys.ps, sys.resistance_rtol)
+    if sys.coef.shape[0] == 1 and sys.pv[0] == 0.0 and sys.ps[0] == 0.0:
+        ip[C.IP.LAW_MODE] = C.LAW_CONST
+    else:
+        ip[C.IP.LAW_MODE] = C.LAW_EXACT if windows is None else C.LAW_LINEAR
 
     nodes = A.Nodes(mass=arr(sys.mass_kg), hm=arr(dt / sys.mass_kg), gravity=arr(sys.gravity_n),
                     w_mean=arr(sys.belt_mass_kg), sw_ref=arr(sys.sag_w_n / sys.hs_ref),
@@ -158,16 +210,16 @@ def prepare(sys: System, t_end_s: float | None = None) -> KernelInput:
     # terms with few non-zero elements (feed, pulleys, accessories) are evaluated on those
     # elements only: t_idx[t_ptr[k]:t_ptr[k + 1]] for a term with t_sparse[k] == 1
     t_sparse, t_ptr, t_idx = [], [0], []
-    for k in range(sys.coef.shape[0]):
-        nz = np.flatnonzero(sys.coef[k])
-        sparse = len(nz) <= max(8, n // 16)
+    for k, sparse in enumerate(sparse_terms(sys.coef)):
         t_sparse.append(1 if sparse else 0)
         if sparse:
-            t_idx.extend(int(j) for j in nz)
+            t_idx.extend(int(j) for j in np.flatnonzero(sys.coef[k]))
         t_ptr.append(len(t_idx))
     law = A.Law(coef=arr(sys.coef), pvc=exponent_codes(sys.pv), pvv=arr(sys.pv),
                 psc=exponent_codes(sys.ps), psv=arr(sys.ps), t_sparse=arr(t_sparse, np.int64),
                 t_ptr=arr(t_ptr, np.int64), t_idx=arr(t_idx or [0], np.int64))
+
+    lin = linear_law_arrays(sys, windows)
 
     # blocks: the master drive's block first (the others use the speed loop's output)
     m_node = int(sys.drive_node[sys.master])
@@ -256,9 +308,9 @@ def prepare(sys: System, t_end_s: float | None = None) -> KernelInput:
                   shk=np.zeros(bm, dtype=np.int64), vsn=z(), Ac=np.zeros((bm, bm)),
                   r0=np.zeros(n), phi=np.zeros(n), lnv=np.zeros(n), lnphi=np.zeros(n),
                   t_max_snap=np.zeros(n), t_min_snap=np.zeros(n), more=np.zeros(n))
-    return KernelInput(args=dict(fp=fp, ip=ip, nodes=nodes, law=law, sp=springs, blocks=bl,
-                                 shafts=shafts, drives=drives, brakes=brakes, st=state, out=out,
-                                 wk=work))
+    return KernelInput(args=dict(fp=fp, ip=ip, nodes=nodes, law=law, lin=lin, sp=springs,
+                                 blocks=bl, shafts=shafts, drives=drives, brakes=brakes,
+                                 st=state, out=out, wk=work))
 
 
 @dataclass(eq=False)
