@@ -32,14 +32,14 @@ from pathlib import Path
 
 import numpy as np
 
-from engine.conveyor import Scenario, load_conveyor
-from engine.dynamics import DynamicsOptions, build_system
-from engine.dynamics.codes import RES
-from engine.dynamics.model import stability_limit_s
-from engine.dynamics.reference import run_reference
-from engine.dynamics.simulate import run_kernel
-from engine.run import run_one
-from engine.statics import solve_steady
+from beltstudy.engine.conveyor import Scenario, load_conveyor
+from beltstudy.engine.dynamics import DynamicsOptions, build_system
+from beltstudy.engine.dynamics.codes import RES
+from beltstudy.engine.dynamics.model import stability_limit_s
+from beltstudy.engine.dynamics.reference import run_reference
+from beltstudy.engine.dynamics.simulate import run_kernel
+from beltstudy.engine.run import run_one
+from beltstudy.engine.statics import solve_steady
 
 ROOT = Path(__file__).resolve().parents[1]
 CONVEYORS = ROOT / "studies" / "conveyors"
@@ -164,7 +164,7 @@ def rk45_comparison():
     the resistance regularised over 1 cm/s (the ODE's scope, engine/dynamics/ode.py)."""
     from scipy.integrate import solve_ivp
 
-    from engine.dynamics import ode
+    from beltstudy.engine.dynamics import ode
 
     conv = load_conveyor(CONVEYORS / "fabric-1km.yaml").model_copy(update={"holdback": False})
     st = solve_steady(conv, model="din", n_elements=40)

@@ -18,8 +18,8 @@ from pathlib import Path
 ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT))
 
-from engine.conveyor import load_conveyor  # noqa: E402
-from engine.statics import solve_steady  # noqa: E402
+from beltstudy.engine.conveyor import load_conveyor  # noqa: E402
+from beltstudy.engine.statics import solve_steady  # noqa: E402
 
 MODELS = ("din", "cema", "cmod", "visco", "nonlin")
 CONVEYOR = ROOT / "studies" / "conveyors" / "overland-16km.yaml"

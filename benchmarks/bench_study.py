@@ -35,7 +35,7 @@ compared (every round is printed).
 
 For study288 it then splits a run's time (statics, build and prepare, kernel, decode, the rest
 of ``run_one``, measured in this process; the Arrow tables and Parquet writes of
-:func:`service.tasks.run_batch`) and the service study's worker time (the workers' own split,
+:func:`beltstudy.service.tasks.run_batch`) and the service study's worker time (the workers' own split,
 summed by the service into ``study.json`` as ``worker_s``, and the time outside tasks: Dask
 round trips, waiting, start and tail), and the CPU time per run of the loop, of the service's
 workers and of the service process. Figures are printed, never asserted (see BENCHMARKS.md).
@@ -115,8 +115,8 @@ POLL_S = 1.0
 
 
 def _one(spec):
-    from engine.conveyor import parse_conveyor, parse_scenario
-    from engine.run import run_one
+    from beltstudy.engine.conveyor import parse_conveyor, parse_scenario
+    from beltstudy.engine.run import run_one
 
     return run_one(
         parse_conveyor(spec.conveyor),
@@ -152,7 +152,7 @@ def plain_loop(study) -> tuple[float, dict, float]:
 
 
 def _loop_child(body: dict, part: int, parts: int, nice: int, ready, go, out) -> None:
-    from service.studyfile import resolve_study
+    from beltstudy.service.studyfile import resolve_study
 
     os.setpriority(os.PRIO_PROCESS, 0, max(nice, os.getpriority(os.PRIO_PROCESS, 0)))
     study = resolve_study(body, studies_dir=ROOT / "studies")
@@ -222,10 +222,10 @@ def engine_split(study) -> dict[str, float]:
     and the rest of run_one."""
     import importlib
 
-    import engine.conveyor
-    import engine.run as er
+    import beltstudy.engine.conveyor as conveyor_mod
+    import beltstudy.engine.run as er
 
-    sim = importlib.import_module("engine.dynamics.simulate")  # the package exports a function
+    sim = importlib.import_module("beltstudy.engine.dynamics.simulate")  # the package exports a function
 
     timers = _Timers()
     timers.wrap(er, "solve_steady", "statics")
@@ -233,12 +233,12 @@ def engine_split(study) -> dict[str, float]:
     timers.wrap(er, "build_system", "build")
     timers.wrap(sim, "prepare", "build")
     timers.wrap(sim, "decode", "decode")
-    timers.wrap(engine.conveyor, "parse_conveyor", "parse")
-    timers.wrap(engine.conveyor, "parse_scenario", "parse")
+    timers.wrap(conveyor_mod, "parse_conveyor", "parse")
+    timers.wrap(conveyor_mod, "parse_scenario", "parse")
     kernel = 0.0
     t0 = time.perf_counter()
     try:
-        from engine.conveyor import parse_conveyor, parse_scenario
+        from beltstudy.engine.conveyor import parse_conveyor, parse_scenario
 
         for spec in study.runs:
             result = er.run_one(
@@ -263,10 +263,10 @@ def engine_split(study) -> dict[str, float]:
 
 
 def worker_split(study, surface: bool) -> dict[str, float]:
-    """Mean seconds per run of :func:`service.tasks.run_batch` writing into a scratch study
+    """Mean seconds per run of :func:`beltstudy.service.tasks.run_batch` writing into a scratch study
     (batches of about the service's size), and what it reports of its own split."""
-    from service.store import Store
-    from service.tasks import run_batch
+    from beltstudy.service.store import Store
+    from beltstudy.service.tasks import run_batch
 
     specs = [dict(vars(r)) for r in study.runs]
     total = 0.0
@@ -300,14 +300,14 @@ def around_kernel(study, repeats: int = 20) -> dict[str, dict[str, float]]:
 
     import pyarrow as pa
 
-    from engine.conveyor import parse_conveyor, parse_scenario
-    from engine.dynamics import DynamicsOptions, build_system
-    from engine.run import run_one, transient_safety_min
-    from engine.statics import solve_steady
-    from service.store import _write_parquet
-    from service.tasks import surface_table, timeseries_table
+    from beltstudy.engine.conveyor import parse_conveyor, parse_scenario
+    from beltstudy.engine.dynamics import DynamicsOptions, build_system
+    from beltstudy.engine.run import run_one, transient_safety_min
+    from beltstudy.engine.statics import solve_steady
+    from beltstudy.service.store import _write_parquet
+    from beltstudy.service.tasks import surface_table, timeseries_table
 
-    sim = importlib.import_module("engine.dynamics.simulate")
+    sim = importlib.import_module("beltstudy.engine.dynamics.simulate")
 
     def least(fn, n=repeats) -> float:
         best = float("inf")
@@ -359,8 +359,8 @@ class Service:
     service itself, its API and study path by one tiny dynamic study before any timing."""
 
     def __init__(self, workers: int, data_dir: str):
-        from service.client import ServiceClient
-        from service.demo import free_port, start_server, wait_ready
+        from beltstudy.service.client import ServiceClient
+        from beltstudy.service.demo import free_port, start_server, wait_ready
 
         port = free_port()
         env = {
@@ -376,7 +376,7 @@ class Service:
         t0 = time.perf_counter()
         wait_ready(self.client, self.proc)
         self.ready_s = time.perf_counter() - t0
-        from service.tasks import TINY_CONVEYOR, TINY_SCENARIO
+        from beltstudy.service.tasks import TINY_CONVEYOR, TINY_SCENARIO
 
         self.run({"name": "bench-warm-up", "conveyor": TINY_CONVEYOR, "scenario": TINY_SCENARIO,
                   "grid": {"friction_model": ["din", "cema"]}, "dynamics": True})
@@ -415,7 +415,7 @@ class Service:
                 "service_cpu": svc1 - svc0, "worker_cpu": wrk1 - wrk0, "doc": doc}
 
     def stop(self) -> None:
-        from service.demo import stop_server
+        from beltstudy.service.demo import stop_server
 
         self.client.close()
         stop_server(self.proc)
@@ -436,7 +436,7 @@ def through_run_command(body: dict, workers: int) -> dict:
         }
         t0 = time.perf_counter()
         proc = subprocess.run(
-            [sys.executable, "-m", "service.cli", "run", str(path)],
+            [sys.executable, "-m", "beltstudy.service.cli", "run", str(path)],
             env=env, capture_output=True, text=True, check=False,
         )
         wall = time.perf_counter() - t0
@@ -575,8 +575,8 @@ def study288_rounds(args, nice: int) -> dict:
 
 
 def main() -> int:
-    from service.executor import LOCAL_WORKER_NICE
-    from service.studyfile import resolve_study
+    from beltstudy.service.executor import LOCAL_WORKER_NICE
+    from beltstudy.service.studyfile import resolve_study
 
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--workers", type=int, default=os.cpu_count() or 1)

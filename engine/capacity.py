@@ -49,7 +49,7 @@ from functools import cache
 
 import numpy as np
 
-from engine.conveyor import Conveyor
+from beltstudy.engine.conveyor import Conveyor
 
 __all__ = [
     "usable_width_m",
@@ -78,7 +78,7 @@ def usable_width_m(belt_width_m: float, edge_distance_m: float | None = None) ->
 
 @cache
 def _roll_table() -> tuple[np.ndarray, np.ndarray]:
-    from engine.catalog import _rows
+    from beltstudy.engine.catalog import _rows
 
     rows = _rows("trough.csv")
     return (np.array([float(r["belt_width_m"]) for r in rows]),
@@ -191,7 +191,7 @@ class Capacity:
 
 def capacity(conv: Conveyor) -> Capacity:
     """Cross-section, capacity and ``fill_pct`` of a conveyor at its design speed."""
-    from engine.catalog import resolve_belt
+    from beltstudy.engine.catalog import resolve_belt
 
     belt = resolve_belt(conv.belt)
     ic = conv.idlers.carry

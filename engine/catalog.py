@@ -1,7 +1,7 @@
 """Belt, idler and compound catalogues shipped as CSV files in ``engine/data``.
 
 Every row names its source in the file (or says it is an estimate). Unknown ids raise an
-:class:`~engine.errors.InputError` listing the valid ids and the nearest one.
+:class:`~beltstudy.engine.errors.InputError` listing the valid ids and the nearest one.
 """
 
 from __future__ import annotations
@@ -12,7 +12,7 @@ from dataclasses import dataclass
 from functools import cache
 from importlib import resources
 
-from engine.errors import InputError
+from beltstudy.engine.errors import InputError
 
 __all__ = [
     "BeltData",
@@ -34,7 +34,7 @@ COVER_MASS_KG_M2_PER_MM = 1.15
 
 
 def _rows(name: str) -> list[dict[str, str]]:
-    text = resources.files("engine").joinpath("data", name).read_text(encoding="utf-8")
+    text = resources.files("beltstudy.engine").joinpath("data", name).read_text(encoding="utf-8")
     lines = [ln for ln in text.splitlines() if ln.strip() and not ln.startswith("#")]
     return list(csv.DictReader(lines))
 

@@ -23,8 +23,8 @@ from pydantic import (
     model_validator,
 )
 
-from engine.errors import InputError
-from engine.results import MAX_DRIVES
+from beltstudy.engine.errors import InputError
+from beltstudy.engine.results import MAX_DRIVES
 
 __all__ = [
     "InputError",
@@ -63,7 +63,7 @@ class _Model(BaseModel):
 
 def _compound_enum(schema: dict) -> None:
     """The catalogue's compounds as the JSON Schema's enum (read when a schema is made)."""
-    from engine.catalog import compounds
+    from beltstudy.engine.catalog import compounds
 
     schema["enum"] = sorted(compounds())
 
@@ -639,7 +639,7 @@ def load_mapping(path: str | Path) -> dict:
 
 def parse_conveyor(data: dict, prefix: str = "") -> Conveyor:
     """Validate a mapping as a :class:`Conveyor`; raise :class:`InputError` on problems."""
-    from engine import catalog
+    from beltstudy.engine import catalog
 
     try:
         conv = Conveyor.model_validate(data)

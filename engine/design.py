@@ -2,11 +2,11 @@
 
 :func:`auto_sizes` is the one place that says what an ``auto`` field of the conveyor file
 becomes, and which constraint set it. A study calls it once per design case and holds the
-largest values for all runs of a conveyor design (``service.grid``); ``run_one`` calls it on
+largest values for all runs of a conveyor design (``beltstudy.service.grid``); ``run_one`` calls it on
 the run's own steady solution to report the sizes it used.
 
 * **Take-up** (gravity ``mass_kg: auto``, fixed ``pretension_kn: auto``): the steady solve's
-  sizing (:mod:`engine.statics`): the smallest take-up meeting slip at start-up and running
+  sizing (:mod:`beltstudy.engine.statics`): the smallest take-up meeting slip at start-up and running
   and the sag limits running and, unless ``takeup.sag_at_rest`` is off, held at rest.
   Governing constraint: ``slip_start``, ``slip_running``, ``sag_running``, ``sag_at_rest``.
 * **Rated power** (``rated_power_kw`` omitted): ``RATED_POWER_FACTOR`` x the drive's share of
@@ -22,7 +22,7 @@ the run's own steady solution to report the sizes it used.
   holding size (``holding``).
 
 The rotating parts (:func:`rotating_parts`) and these rules are the ones the transient model
-builds with (:func:`engine.dynamics.model.build_system`), so a size reported here is the size
+builds with (:func:`beltstudy.engine.dynamics.model.build_system`), so a size reported here is the size
 a run used.
 """
 
@@ -32,15 +32,15 @@ import math
 
 import numpy as np
 
-from engine.conveyor import Conveyor, Scenario
-from engine.loop import (
+from beltstudy.engine.conveyor import Conveyor, Scenario
+from beltstudy.engine.loop import (
     MOTOR_INERTIA_SHARE,
     G,
     RotatingParts,
     pulley_reduced_mass_kg,
     rotating_parts,
 )
-from engine.statics import SteadyResult, solve_steady
+from beltstudy.engine.statics import SteadyResult, solve_steady
 
 __all__ = ["auto_sizes", "summary_fields", "RATED_POWER_FACTOR", "HOLD_MARGIN",
            "MOTOR_INERTIA_SHARE", "moving_mass_kg", "rotating_parts", "RotatingParts",
@@ -222,7 +222,7 @@ def summary_fields(sizes: dict) -> dict:
 
     ``rated_power_kw`` and ``brake_force_kn`` are totals over the drives and brakes (None
     without brakes), ``drive{i}_rated_power_kw`` each drive's; ``*_governed_by`` name the
-    constraint (several distinct ones joined by ``+``). Fields: :mod:`engine.results`.
+    constraint (several distinct ones joined by ``+``). Fields: :mod:`beltstudy.engine.results`.
     """
     def join(names: list[str]) -> str | None:
         return "+".join(dict.fromkeys(names)) or None

@@ -17,8 +17,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from engine import catalog
-from engine.conveyor import Conveyor, section_loads
+from beltstudy.engine import catalog
+from beltstudy.engine.conveyor import Conveyor, section_loads
 
 __all__ = ["G", "Loop", "Pulley", "build_loop", "CARRY", "RETURN", "HEAD", "TAIL", "TAKEUP",
            "RotatingParts", "rotating_parts", "pulley_reduced_mass_kg", "MOTOR_INERTIA_SHARE"]
@@ -214,7 +214,7 @@ def build_loop(
     load_fraction : float, str or list
         Material load as a fraction of the design load (1 full, 0 empty, up to 1.3 a surge),
         or a load case of SPEC 6.2 (``full``, ``empty``, ``inclines``, ``declines``, one
-        fraction per carry profile section): see :func:`engine.conveyor.section_loads`. Each
+        fraction per carry profile section): see :func:`beltstudy.engine.conveyor.section_loads`. Each
         carry element gets its section's material mass.
     n_elements : int, optional
         Number of belt (idler) elements round the loop, split evenly between the strands;

@@ -20,9 +20,9 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
-from engine.conveyor import Conveyor, Scenario
-from engine.dynamics import DynamicsOptions, build_system, simulate
-from engine.statics import solve_steady
+from beltstudy.engine.conveyor import Conveyor, Scenario
+from beltstudy.engine.dynamics import DynamicsOptions, build_system, simulate
+from beltstudy.engine.statics import solve_steady
 
 #: Bisection tolerance of each figure (relative).
 REL_TOL = 0.02

@@ -3,7 +3,7 @@
 A run's summary (``RunResult.summary``, the ``--json`` of ``beltstudy static`` and
 ``simulate``) holds these fields and no others (:func:`check_summary`); the service's Parquet
 ``runs`` schema, its REST rows, the CLI tables and the table in ``docs/results.md``
-(:func:`markdown`, ``python -m engine.results``) are derived from them. A field added here is
+(:func:`markdown`, ``python -m beltstudy.engine.results``) are derived from them. A field added here is
 stored, printed and documented; a key a run computes without a field here is an error, so a
 result cannot be computed and silently dropped.
 
@@ -259,7 +259,7 @@ SLACK = ResultGroup("slack", "Slack (SPEC 6.4)", (
     _f("takeup_endstop_speed_m_s", "m/s", "take-up carriage speed when it hit an end stop (0 "
        "when it never did)", "take-up speed at an end stop"),
     _f("slip_free_takeup_mass_kg", "kg", "gravity take-up with which no drive slips in the "
-       "start, found by rerunning it (engine.remedy, 2 %; beltstudy simulate; null when not "
+       "start, found by rerunning it (beltstudy.engine.remedy, 2 %; beltstudy simulate; null when not "
        "searched, not found within 4 x or the start did not slip)", "take-up without slip"),
     _f("slip_free_takeup_kn", "kN", "fixed take-up pretension with which no drive slips in "
        "the start, found by rerunning it (as slip_free_takeup_mass_kg)",
@@ -342,16 +342,16 @@ def check_summary(summary: dict) -> dict:
         if f.per_drive and not 1 <= int(key[5:key.index("_")]) <= MAX_DRIVES:
             unknown.append(key)
     if unknown:
-        raise KeyError(f"results not defined in engine.results: {', '.join(unknown)}")
+        raise KeyError(f"results not defined in beltstudy.engine.results: {', '.join(unknown)}")
     return summary
 
 
 def markdown() -> str:
-    """The results table of ``docs/results.md`` (regenerate: ``python -m engine.results``)."""
+    """The results table of ``docs/results.md`` (regenerate: ``python -m beltstudy.engine.results``)."""
     lines = [
         "# Results of a run",
         "",
-        "Generated from `engine/results.py` by `python -m engine.results > docs/results.md`;",
+        "Generated from `engine/results.py` by `python -m beltstudy.engine.results > docs/results.md`;",
         "a test checks that this table, the Parquet `runs` schema and the `--json` output of",
         "`beltstudy static` / `simulate` hold the same fields. Besides these, a `runs` row has",
         "its inputs: `study_id`, `run_id`, one column per grid axis, `friction_model` and",

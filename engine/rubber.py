@@ -46,7 +46,7 @@ from functools import cache
 
 import numpy as np
 
-from engine import catalog
+from beltstudy.engine import catalog
 
 __all__ = [
     "Compound",
@@ -108,7 +108,7 @@ def compound(compound_id: str) -> Compound:
     """The catalogue compound ``compound_id`` (InputError listing the valid ids if unknown)."""
     rows = catalog.compounds()
     if compound_id not in rows:
-        from engine.conveyor import InputError
+        from beltstudy.engine.conveyor import InputError
 
         raise InputError(catalog._unknown("compound", compound_id, list(rows), "belt.compound"))
     r = rows[compound_id]

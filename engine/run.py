@@ -3,7 +3,7 @@
 ``run_one`` is a pure function of its inputs: the conveyor, the scenario, the friction model
 name and its parameters. It never raises for physics problems: a run that cannot be solved
 returns ``status='failed'`` with the reason in ``message``. Invalid inputs raise
-:class:`~engine.conveyor.InputError` before the transient is computed: scenario fields first
+:class:`~beltstudy.engine.conveyor.InputError` before the transient is computed: scenario fields first
 (negative times, a stop mode the conveyor cannot do), then, once the loop is cut, a fixed
 step above the stability limit.
 """
@@ -15,12 +15,12 @@ import time
 import numpy as np
 import pandas as pd
 
-from engine.conveyor import Conveyor, Scenario
-from engine.design import auto_sizes, summary_fields
-from engine.dynamics import DynamicsOptions, TransientResult, build_system, simulate
-from engine.dynamics.model import check_scenario
-from engine.results import check_summary
-from engine.statics import SAFETY_FACTOR_MIN, SteadyResult, solve_steady
+from beltstudy.engine.conveyor import Conveyor, Scenario
+from beltstudy.engine.design import auto_sizes, summary_fields
+from beltstudy.engine.dynamics import DynamicsOptions, TransientResult, build_system, simulate
+from beltstudy.engine.dynamics.model import check_scenario
+from beltstudy.engine.results import check_summary
+from beltstudy.engine.statics import SAFETY_FACTOR_MIN, SteadyResult, solve_steady
 
 __all__ = ["RunResult", "run_one", "check_scenario", "TRANSIENT_SAFETY_RATIO",
            "transient_safety_min"]
@@ -45,9 +45,9 @@ class RunResult:
     Attributes
     ----------
     summary : dict
-        The fields of :mod:`engine.results` (every key is one of them): SPEC section 4 fields (steady, and transient when dynamics ran), the design fields of
+        The fields of :mod:`beltstudy.engine.results` (every key is one of them): SPEC section 4 fields (steady, and transient when dynamics ran), the design fields of
         SPEC 6.4 (``takeup_mass_kg``, ``takeup_pretension_kn``, ``brake_force_kn``,
-        ``rated_power_kw`` and their ``*_governed_by``, :mod:`engine.design`), ``fill_pct``,
+        ``rated_power_kw`` and their ``*_governed_by``, :mod:`beltstudy.engine.design`), ``fill_pct``,
         ``status``, ``message``, ``elapsed_s`` [s], ``te_components_kn`` as a dict [kN].
     timeseries : DataFrame or None
         SPEC section 5 key points at ``record_dt_s`` (``t_s``, ``v_drive_m_s``,
@@ -168,7 +168,7 @@ def run_one(
         Transient engine settings (damping, Ernst law, step safety, ...).
     remedy : bool
         When a drive slips in the start, find the take-up and the start time that avoid it
-        by rerunning the start (:mod:`engine.remedy`: about a dozen reruns each); the
+        by rerunning the start (:mod:`beltstudy.engine.remedy`: about a dozen reruns each); the
         ``slip_free_*`` fields and a sentence in the message. Off by default (studies).
 
     Raises
@@ -221,10 +221,10 @@ def run_one(
 
 
 def _slip_remedy(conveyor, scenario, model, params, opts, summary) -> str:
-    """Search what avoids a start's slip (:func:`engine.remedy.slip_remedy`), put the figures
+    """Search what avoids a start's slip (:func:`beltstudy.engine.remedy.slip_remedy`), put the figures
     into ``summary`` and return the sentence for the message ("" when the start did not
     slip)."""
-    from engine.remedy import GROW, START_MAX, TAKEUP_MAX, slip_remedy
+    from beltstudy.engine.remedy import GROW, START_MAX, TAKEUP_MAX, slip_remedy
 
     gravity = conveyor.takeup.type == "gravity"
     rem = slip_remedy(conveyor, scenario, model=model, params=params, options=opts,

@@ -36,11 +36,21 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from engine.capacity import capacity as capacity_check
-from engine.conveyor import Conveyor, section_loads
-from engine.friction import get_model
-from engine.law import ResistanceLaw
-from engine.loop import CARRY, HEAD, RETURN, TAIL, TAKEUP, G, Loop, build_loop, rotating_parts
+from beltstudy.engine.capacity import capacity as capacity_check
+from beltstudy.engine.conveyor import Conveyor, section_loads
+from beltstudy.engine.friction import get_model
+from beltstudy.engine.law import ResistanceLaw
+from beltstudy.engine.loop import (
+    CARRY,
+    HEAD,
+    RETURN,
+    TAIL,
+    TAKEUP,
+    G,
+    Loop,
+    build_loop,
+    rotating_parts,
+)
 
 __all__ = ["SteadyResult", "solve_steady", "STARTUP_FACTOR", "SAFETY_FACTOR_MIN", "SPEC_PARTS",
            "rest_hold_element", "rest_walk", "TAKEUP_CONSTRAINTS"]
@@ -146,7 +156,7 @@ def _startup_walk(conv: Conveyor, loop: Loop, dF: np.ndarray, te: float) -> np.n
     The drives give ``STARTUP_FACTOR`` x their running force (of |Te| above the running
     force for a regenerative belt), which accelerates every moving mass at ``a = (f - 1)
     |Te| / M`` (DIN 22101's start-up peripheral force, the acceleration force shared out by
-    mass; M with the rotating parts of :func:`engine.loop.rotating_parts`): each element adds
+    mass; M with the rotating parts of :func:`beltstudy.engine.loop.rotating_parts`): each element adds
     its inertia force (its own pulley shell included), each drive pulley receives its share of
     the start-up force less what accelerates its own rotating parts, so the walk closes round
     the loop.
@@ -260,7 +270,7 @@ def solve_steady(
     ----------
     conv : Conveyor
     model : str
-        Friction model name (registry in :mod:`engine.friction`).
+        Friction model name (registry in :mod:`beltstudy.engine.friction`).
     params : dict or parameter dataclass, optional
         Model parameter overrides.
     temperature_c : float

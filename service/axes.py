@@ -17,9 +17,9 @@ from typing import Any
 
 from pydantic import BaseModel
 
-from engine import results
-from engine.conveyor import Conveyor, Scenario
-from engine.errors import InputError
+from beltstudy.engine import results
+from beltstudy.engine.conveyor import Conveyor, Scenario
+from beltstudy.engine.errors import InputError
 
 __all__ = [
     "NAMED_AXES",
@@ -41,7 +41,7 @@ NAMED_AXES: dict[str, tuple[str, ...]] = {
     "load": ("scenario", "load"),
 }
 
-#: Result columns an axis column must not shadow (every column of :mod:`engine.results`;
+#: Result columns an axis column must not shadow (every column of :mod:`beltstudy.engine.results`;
 #: SPEC section 4 names the achieved stop time ``stop_time_s``); such an axis is stored as
 #: ``<stem>_target_<unit>``.
 RESULT_COLUMNS_TAKEN = frozenset(results.columns())
@@ -143,7 +143,7 @@ def valid_paths(conveyor: dict, scenario: dict) -> list[str]:
     """Every axis name accepted for this conveyor and scenario (for suggestions)."""
     import dataclasses
 
-    from engine.friction import MODELS
+    from beltstudy.engine.friction import MODELS
 
     models = [f"models.{m}.{f.name}" for m, fm in MODELS.items()
               for f in dataclasses.fields(fm.params_class)]
@@ -199,7 +199,7 @@ def _model_param(name: str, parts: list[str], where: str) -> Target:
     """``models.<model>.<parameter>``: a friction model parameter as an axis."""
     import dataclasses
 
-    from engine.friction import get_model
+    from beltstudy.engine.friction import get_model
 
     if len(parts) != 3:
         raise InputError(f"axis '{name}': a model parameter axis is "

@@ -3,7 +3,7 @@
 A study compares one installed design, so an ``auto`` field of the conveyor file (take-up
 ``mass_kg`` or ``pretension_kn``, a drive's ``rated_power_kw``, a brake's ``force_kn``) must not
 be sized again in every run. A *conveyor design* is one combination of the study's conveyor
-axes (one resolved conveyor). Its sizes come from :func:`engine.design.auto_sizes` at its
+axes (one resolved conveyor). Its sizes come from :func:`beltstudy.engine.design.auto_sizes` at its
 *design cases*, the largest requirement kept:
 
 * default: every friction model (with its parameters) and temperature the study runs on that
@@ -30,9 +30,9 @@ from typing import Any
 
 from pydantic import BaseModel, ConfigDict, Field
 
-from engine.conveyor import Conveyor, InputError, Scenario, parse_scenario, section_loads
-from engine.friction import get_model
-from service.errors import Invalid
+from beltstudy.engine.conveyor import Conveyor, InputError, Scenario, parse_scenario, section_loads
+from beltstudy.engine.friction import get_model
+from beltstudy.service.errors import Invalid
 
 __all__ = ["DesignIn", "Case", "has_auto", "size_design", "apply_sizes", "round_up",
            "SIG_DIGITS"]
@@ -114,8 +114,8 @@ def size_design(conv: Conveyor, cases: list[Case], load, stop_times: list[float]
     ``brakes`` (``{"holding": {...}, "stop_time_s": {"<t>": {...}}}`` with ``force_kn`` per
     brake, ``governed_by`` and ``case``) or None.
     """
-    from engine.design import auto_sizes
-    from engine.statics import solve_steady
+    from beltstudy.engine.design import auto_sizes
+    from beltstudy.engine.statics import solve_steady
 
     data = conv.model_dump(mode="json", by_alias=True)
     tu = data["takeup"]

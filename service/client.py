@@ -6,7 +6,7 @@ from typing import Any
 
 import httpx
 
-from service.errors import ServiceError, Unavailable
+from beltstudy.service.errors import ServiceError, Unavailable
 
 __all__ = ["ServiceClient"]
 

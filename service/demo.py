@@ -31,7 +31,7 @@ def free_port() -> int:
 
 def start_server(port: int, env: dict | None = None, log=None) -> subprocess.Popen:
     """``beltstudy serve`` in a child process (its own process group)."""
-    cmd = [sys.executable, "-m", "service.cli", "serve", "--host", "127.0.0.1", "--port", str(port)]
+    cmd = [sys.executable, "-m", "beltstudy.service.cli", "serve", "--host", "127.0.0.1", "--port", str(port)]
     return subprocess.Popen(
         cmd,
         env={**os.environ, **(env or {})},
@@ -43,7 +43,7 @@ def start_server(port: int, env: dict | None = None, log=None) -> subprocess.Pop
 
 def wait_ready(client, proc: subprocess.Popen | None = None, timeout_s: float = 300.0) -> dict:
     """Poll ``/health`` until the Dask executor is ready (workers started and warmed)."""
-    from service.errors import Unavailable
+    from beltstudy.service.errors import Unavailable
 
     t0 = time.monotonic()
     while time.monotonic() - t0 < timeout_s:
@@ -75,17 +75,17 @@ def stop_server(proc: subprocess.Popen, timeout_s: float = 30.0) -> None:
 
 
 def run_demo(study_path: str = "studies/paper-comparison.yaml", port: int = 0) -> int:
-    from service.client import ServiceClient
-    from service.report import ProgressBar, format_compare, format_duration
-    from service.settings import Settings
-    from service.store import Store
-    from service.studyfile import study_body
+    from beltstudy.service.client import ServiceClient
+    from beltstudy.service.report import ProgressBar, format_compare, format_duration
+    from beltstudy.service.settings import Settings
+    from beltstudy.service.store import Store
+    from beltstudy.service.studyfile import study_body
 
     settings = Settings()
     port = port or free_port()
     body = study_body(study_path)
     data_dir = Path(settings.data_dir).resolve()
-    log_path = data_dir / "service.log"
+    log_path = data_dir / "beltstudy.service.log"
     data_dir.mkdir(parents=True, exist_ok=True)
     print(
         f"starting the service on http://127.0.0.1:{port} (LocalCluster, data in {data_dir}, "

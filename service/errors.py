@@ -1,6 +1,6 @@
 """The service's one error hierarchy: each error carries an HTTP status and a one-line message.
 
-Routes raise these; one handler in :mod:`service.api.app` maps them to JSON responses
+Routes raise these; one handler in :mod:`beltstudy.service.api.app` maps them to JSON responses
 ``{"error": <kind>, "message": <text>}``. The CLI prints ``user_message`` on one line.
 """
 

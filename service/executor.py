@@ -3,7 +3,7 @@
 With ``BELTSTUDY_SCHEDULER`` empty the service starts a :class:`distributed.LocalCluster` of
 worker processes, one thread each (``BELTSTUDY_WORKERS``, default one per core); with
 ``tcp://host:port`` it connects to that scheduler. Once connected every worker runs
-:func:`service.tasks.warm_up` (imports, numba compile) before any study is timed.
+:func:`beltstudy.service.tasks.warm_up` (imports, numba compile) before any study is timed.
 
 Connecting happens in one background thread that retries until it succeeds or the executor
 is closed; nobody else ever waits on it while holding a lock. Callers wait for the client
@@ -19,8 +19,8 @@ import threading
 import time
 import uuid
 
-from service.errors import Unavailable
-from service.settings import Settings
+from beltstudy.service.errors import Unavailable
+from beltstudy.service.settings import Settings
 
 __all__ = ["Executor"]
 
@@ -172,7 +172,7 @@ class Executor:
         return client, cluster
 
     def _warm_up(self, client) -> None:
-        from service.tasks import LowerPriority, warm_up
+        from beltstudy.service.tasks import LowerPriority, warm_up
 
         if not self.settings.scheduler:  # our own workers, on the API's cores
             client.register_plugin(LowerPriority(LOCAL_WORKER_NICE))

@@ -25,11 +25,11 @@ from collections import deque
 
 import pyarrow as pa
 
-from service.errors import Unavailable
-from service.grid import ResolvedStudy, RunSpec
-from service.schema import axis_value, failed_row, rows_to_table, runs_schema_for_axes
-from service.store import PART_TABLES, Store
-from service.tasks import Specs, run_batch
+from beltstudy.service.errors import Unavailable
+from beltstudy.service.grid import ResolvedStudy, RunSpec
+from beltstudy.service.schema import axis_value, failed_row, rows_to_table, runs_schema_for_axes
+from beltstudy.service.store import PART_TABLES, Store
+from beltstudy.service.tasks import Specs, run_batch
 
 __all__ = ["StudyJob", "study_schema", "batch_size", "RunRate"]
 
@@ -303,7 +303,7 @@ class StudyJob:
         lost (then the batches in flight go back into ``todo`` and this returns True)."""
         from distributed import as_completed
 
-        from service.executor import LIVE_CLIENT_STATES
+        from beltstudy.service.executor import LIVE_CLIENT_STATES
 
         sid = self.study.id
         nonce = uuid.uuid4().hex[:8]
@@ -412,8 +412,7 @@ class StudyJob:
         self._commit(runs, merged)
 
     def _failed(self, spec: RunSpec, message: str) -> dict:
-        import engine
-
+        from beltstudy import engine
         row = {
             "study_id": self.study.id,
             "run_id": spec.run_id,

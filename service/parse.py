@@ -16,9 +16,9 @@ parsed, before anything is expanded, copied or validated:
 * numbers finite (no NaN or infinity) and of at most :data:`MAX_DIGITS` digits.
 
 :func:`check_tree` checks the same limits on data built any other way (a Python mapping passed
-to :func:`service.studyfile.resolve_study`); its errors name the path of the value
-(``grid.temperature_c.1: ...``). Problems raise :class:`~service.errors.Invalid` (422), a body
-over the size budget :class:`~service.errors.TooLarge` (413).
+to :func:`beltstudy.service.studyfile.resolve_study`); its errors name the path of the value
+(``grid.temperature_c.1: ...``). Problems raise :class:`~beltstudy.service.errors.Invalid` (422), a body
+over the size budget :class:`~beltstudy.service.errors.TooLarge` (413).
 """
 
 from __future__ import annotations
@@ -30,7 +30,7 @@ from typing import Any
 
 import yaml
 
-from service.errors import Invalid, TooLarge
+from beltstudy.service.errors import Invalid, TooLarge
 
 __all__ = [
     "MAX_DEPTH",

@@ -421,7 +421,7 @@ def peak_dynamic_tension_figure(runs, title: str = "", axes: list[str] | None = 
 def ratio_figure(summary: dict, baseline: str = "cema", candidate: str = "nonlin", title: str = ""):
     """Candidate / baseline ratio per axis value: mean as a bar, min-max as the whisker.
 
-    ``summary`` is the ``summary`` of :func:`service.results.compare` (``{metric:
+    ``summary`` is the ``summary`` of :func:`beltstudy.service.results.compare` (``{metric:
     {"overall": stats, "by_axis": {axis: {value: stats}}}}``). One row per metric with data,
     one column per axis other than the friction model.
     """

@@ -14,8 +14,8 @@ import pandas as pd
 import pyarrow as pa
 import pyarrow.parquet as pq
 
-from service.errors import Invalid, NotFound
-from service.schema import TE_PART_COLUMNS, components_from_row
+from beltstudy.service.errors import Invalid, NotFound
+from beltstudy.service.schema import TE_PART_COLUMNS, components_from_row
 
 __all__ = [
     "row_to_json",

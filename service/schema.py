@@ -2,7 +2,7 @@
 
 The runs schema is fixed per study: the inputs (``study_id``, ``run_id``, one column per
 grid axis, ``friction_model``, ``engine_version``), then every result of
-:mod:`engine.results` in its order: the ``te_<part>_kn`` columns of every part any model
+:mod:`beltstudy.engine.results` in its order: the ``te_<part>_kn`` columns of every part any model
 reports (null where a model has no such part; ``te_other_kn`` sums parts outside the SPEC
 list) and the per-drive columns for drives 1 to ``MAX_DRIVES``.
 """
@@ -15,8 +15,8 @@ from typing import Any
 
 import pyarrow as pa
 
-from engine import results as R
-from engine.results import MAX_DRIVES
+from beltstudy.engine import results as R
+from beltstudy.engine.results import MAX_DRIVES
 
 __all__ = [
     "MAX_DRIVES",
@@ -44,7 +44,7 @@ __all__ = [
     "components_from_row",
 ]
 
-#: Every result column is derived from :mod:`engine.results` (name, unit, meaning): a field
+#: Every result column is derived from :mod:`beltstudy.engine.results` (name, unit, meaning): a field
 #: defined there is a column here, and nothing else is.
 STEADY_COLUMNS = R.columns((R.STEADY, R.STEADY_DRIVE))
 #: SPEC 6.4 per phase: start (start command to stop command) and stop (stop command on).

@@ -34,8 +34,8 @@ import pandas as pd
 import pyarrow as pa
 import pyarrow.parquet as pq
 
-from service.errors import NotFound
-from service.schema import (
+from beltstudy.service.errors import NotFound
+from beltstudy.service.schema import (
     profile_schema,
     runs_schema_for_axes,
     surface_schema,

@@ -1,6 +1,6 @@
 """The study service: submit, list, status, results, compare, delete; resume on start.
 
-Routes and the CLI call these methods; they raise :mod:`service.errors` for the caller's
+Routes and the CLI call these methods; they raise :mod:`beltstudy.service.errors` for the caller's
 mistakes. One :class:`StudyService` owns the store, the Dask executor and a thread per
 running study.
 
@@ -23,15 +23,15 @@ from typing import Any
 import pandas as pd
 import pyarrow as pa
 
-import engine
-from service import results
-from service.errors import Conflict, Invalid, NotFound
-from service.executor import Executor
-from service.grid import ResolvedStudy, RunSpec, study_from_json
-from service.jobs import StudyJob
-from service.settings import Settings
-from service.store import Store
-from service.studyfile import resolve_study
+from beltstudy import engine
+from beltstudy.service import results
+from beltstudy.service.errors import Conflict, Invalid, NotFound
+from beltstudy.service.executor import Executor
+from beltstudy.service.grid import ResolvedStudy, RunSpec, study_from_json
+from beltstudy.service.jobs import StudyJob
+from beltstudy.service.settings import Settings
+from beltstudy.service.store import Store
+from beltstudy.service.studyfile import resolve_study
 
 __all__ = ["StudyService", "ACTIVE_STATES", "RESOLVED_CACHE", "SURFACE_CACHE"]
 
@@ -281,8 +281,8 @@ class StudyService:
         where it came from: ``stored`` by the worker that ran it, or ``recomputed`` (the
         steady solve only) for a run stored before profiles were. Empty for a run that
         raised."""
-        from service.schema import profile_schema
-        from service.tasks import profile_table, run_spec
+        from beltstudy.service.schema import profile_schema
+        from beltstudy.service.tasks import profile_table, run_spec
 
         spec = self.run_spec(study_id, run_id)
         stored = self.store.read_profile(study_id, run_id)
@@ -299,7 +299,7 @@ class StudyService:
         (a study with ``surface: true``) or ``recomputed`` from the run's stored inputs (runs
         are deterministic: the same table the worker would have stored). Empty for a run
         without a transient (steady only, or a run that raised)."""
-        from service.schema import surface_schema
+        from beltstudy.service.schema import surface_schema
 
         doc = self.store.read(study_id)
         runs = self.store.read_runs(study_id)
@@ -317,8 +317,8 @@ class StudyService:
         return self._recomputed_surface(study_id, run_id).to_pandas(), "recomputed"
 
     def _recomputed_surface(self, study_id: str, run_id: str) -> pa.Table:
-        from service.schema import surface_schema
-        from service.tasks import run_spec, surface_table
+        from beltstudy.service.schema import surface_schema
+        from beltstudy.service.tasks import run_spec, surface_table
 
         with self._cache_lock:
             if run_id in self._surfaces:

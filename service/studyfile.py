@@ -2,8 +2,8 @@
 
 :func:`resolve_study` checks a study mapping (SPEC sections 3 and 6.3: the conveyor by path or
 inline, scenario, grid and zip axes, per-model parameters, design case) and raises
-:class:`~service.errors.Invalid` / :class:`~service.errors.TooLarge` naming the field; what it
-returns, a :class:`~service.grid.ResolvedStudy` expanded by :mod:`service.grid`, is trusted
+:class:`~beltstudy.service.errors.Invalid` / :class:`~beltstudy.service.errors.TooLarge` naming the field; what it
+returns, a :class:`~beltstudy.service.grid.ResolvedStudy` expanded by :mod:`beltstudy.service.grid`, is trusted
 from then on. A conveyor given as a path is read relative to the study file, or, for a study
 the service receives, only from inside its conveyor directory (:func:`conveyor_from_path`:
 no absolute paths, no ``..``, no way out through a link).
@@ -18,8 +18,8 @@ from typing import Any
 
 from pydantic import BaseModel, ConfigDict, Field, ValidationError, field_validator
 
-import engine
-from engine.conveyor import (
+from beltstudy import engine
+from beltstudy.engine.conveyor import (
     Conveyor,
     InputError,
     Scenario,
@@ -27,11 +27,11 @@ from engine.conveyor import (
     parse_conveyor,
     parse_scenario,
 )
-from engine.friction import get_model
-from service.axes import axis_column, resolve_axis
-from service.basis import DesignIn, design_scenario
-from service.errors import Invalid, TooLarge
-from service.grid import (
+from beltstudy.engine.friction import get_model
+from beltstudy.service.axes import axis_column, resolve_axis
+from beltstudy.service.basis import DesignIn, design_scenario
+from beltstudy.service.errors import Invalid, TooLarge
+from beltstudy.service.grid import (
     DEFAULT_MODEL,
     Axis,
     ResolvedStudy,
@@ -40,7 +40,7 @@ from service.grid import (
     finish,
     grid_points,
 )
-from service.parse import check_tree, load_mapping
+from beltstudy.service.parse import check_tree, load_mapping
 
 __all__ = [
     "RangeSpec",
@@ -144,7 +144,7 @@ class StudyIn(BaseModel):
 
 
 def _example() -> dict:
-    from service.tasks import TINY_CONVEYOR, TINY_SCENARIO
+    from beltstudy.service.tasks import TINY_CONVEYOR, TINY_SCENARIO
 
     return {
         "name": "example-power-vs-temperature",

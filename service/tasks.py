@@ -1,4 +1,4 @@
-"""Worker-side functions: run a batch of runs through ``engine.run.run_one``; warm a worker.
+"""Worker-side functions: run a batch of runs through ``beltstudy.engine.run.run_one``; warm a worker.
 
 These run inside Dask workers (and in the benchmark's plain loop). A run that raises becomes
 a row with ``status=failed`` and the message; the batch itself never raises for a bad run.
@@ -7,6 +7,7 @@ Results travel back as plain rows and Arrow tables.
 
 from __future__ import annotations
 
+import importlib
 import os
 import time
 from typing import Any
@@ -15,7 +16,7 @@ import numpy as np
 import pyarrow as pa
 from distributed import WorkerPlugin
 
-from service.schema import (
+from beltstudy.service.schema import (
     PROFILE_COLUMNS,
     SURFACE_COLUMNS,
     TIMESERIES_COLUMNS,
@@ -127,9 +128,9 @@ def surface_table(run_id: str, result) -> pa.Table | None:
 
 
 def run_spec(spec: dict, study_id: str = "") -> tuple[dict, Any]:
-    """One run: (row, result or None). ``spec`` is a :class:`~service.grid.RunSpec` as a dict."""
-    import engine
-    from engine.conveyor import parse_conveyor, parse_scenario
+    """One run: (row, result or None). ``spec`` is a :class:`~beltstudy.service.grid.RunSpec` as a dict."""
+    from beltstudy import engine
+    from beltstudy.engine.conveyor import parse_conveyor, parse_scenario
 
     row: dict[str, Any] = {
         "study_id": study_id,
@@ -145,7 +146,7 @@ def run_spec(spec: dict, study_id: str = "") -> tuple[dict, Any]:
                 f"this worker runs engine {engine.__version__}, the study needs "
                 f"{spec['engine_version']}"
             )
-        from engine.run import run_one
+        from beltstudy.engine.run import run_one
 
         conveyor = parse_conveyor(spec["conveyor"])
         scenario = parse_scenario(spec["scenario"])
@@ -160,7 +161,7 @@ def run_spec(spec: dict, study_id: str = "") -> tuple[dict, Any]:
         row.update(failed_row(_message(exc), time.perf_counter() - t0))
         return row, None
     row.update(flatten_summary(result.summary))
-    # what set each size the study held for this run's conveyor design (service.basis): the
+    # what set each size the study held for this run's conveyor design (beltstudy.service.basis): the
     # run itself only sees the numbers
     row.update(spec.get("design") or {})
     if row["elapsed_s"] is None:
@@ -238,7 +239,7 @@ def run_batch(
     }
     t_tables += time.perf_counter() - t2
     if sink is not None:
-        from service.store import PART_TABLES, write_part_to
+        from beltstudy.service.store import PART_TABLES, write_part_to
 
         t2 = time.perf_counter()
         for table in PART_TABLES:
@@ -260,7 +261,7 @@ def warm_up() -> dict:
     Returns the process id, the models warmed and the seconds it took.
     """
     t0 = time.perf_counter()
-    from engine.friction import MODELS
+    from beltstudy.engine.friction import MODELS
 
     models = list(MODELS)
     errors = []
@@ -273,7 +274,7 @@ def warm_up() -> dict:
             "model": name,
             "params": {},
             "dynamics": i == 0,
-            "engine_version": __import__("engine").__version__,
+            "engine_version": importlib.import_module("beltstudy.engine").__version__,
         }
         row, _ = run_spec(spec)
         if row["status"] == "failed":

@@ -47,6 +47,6 @@ def hand_dict():
 
 @pytest.fixture
 def hand_conveyor():
-    from engine.conveyor import parse_conveyor
+    from beltstudy.engine.conveyor import parse_conveyor
 
     return parse_conveyor(hand_conveyor_dict())

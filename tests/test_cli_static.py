@@ -11,7 +11,7 @@ import pytest
 
 from tests.conftest import CONVEYORS
 
-EXE = [sys.executable, "-m", "service.cli"]
+EXE = [sys.executable, "-m", "beltstudy.service.cli"]
 
 
 def run(*args, check=True):
@@ -83,7 +83,7 @@ def test_static_bad_file_one_line(tmp_path):
     (["--elements", "4"], "--elements: Input should be 'auto' or greater than or equal to 8"),
 ])
 def test_static_refuses_what_a_scenario_refuses(args, needle, capsys):
-    from service.cli import main
+    from beltstudy.service.cli import main
 
     assert main(["static", str(CONVEYORS / "slope-5pct.yaml"), *args]) == 2
     err = capsys.readouterr().err
@@ -92,7 +92,7 @@ def test_static_refuses_what_a_scenario_refuses(args, needle, capsys):
 
 def test_static_simulate_and_sweep_share_the_scenario_bounds(tmp_path, capsys):
     """The temperature range is the scenario model's in every command (-60 to 80 C)."""
-    from service.cli import main
+    from beltstudy.service.cli import main
 
     conveyor = str(CONVEYORS / "slope-5pct.yaml")
     for args in (["static", conveyor, "--temperature-c", "-70"],
@@ -104,7 +104,7 @@ def test_static_simulate_and_sweep_share_the_scenario_bounds(tmp_path, capsys):
 
 
 def test_static_prints_what_set_each_size_and_the_rest_sag_switch(capsys):
-    from service.cli import main
+    from beltstudy.service.cli import main
 
     conveyor = str(CONVEYORS / "downhill-regen.yaml")
     assert main(["static", conveyor, "--json"]) == 0

@@ -1,4 +1,5 @@
-"""No import cycles among the modules of ``engine/`` and ``service/``.
+"""No import cycles among the modules of ``engine/`` and ``service/`` (installed as
+``beltstudy.engine`` and ``beltstudy.service``).
 
 Every ``import`` and ``from ... import`` counts, at module level and inside functions: a
 cycle hidden in a function is still two modules that need each other. An import of a
@@ -23,7 +24,7 @@ def module_files() -> dict[str, Path]:
             parts = list(path.relative_to(ROOT).with_suffix("").parts)
             if parts[-1] == "__init__":
                 parts.pop()
-            out[".".join(parts)] = path
+            out[".".join(["beltstudy", *parts])] = path
     return out
 
 
@@ -45,7 +46,7 @@ def imports_of(name: str, path: Path, modules: set[str]) -> set[str]:
         else:
             continue
         for target in targets:
-            while target and target not in modules:  # import engine.x.y of a name
+            while target and target not in modules:  # import beltstudy.engine.x.y of a name
                 target = target.rpartition(".")[0]
             if target and target != name:
                 found.add(target)
@@ -117,9 +118,9 @@ def test_the_cycle_finder_finds_a_cycle():
 
 def test_the_graph_sees_function_level_and_relative_imports():
     graph = import_graph()
-    assert "engine.conveyor" in graph["engine.run"]
-    # service.cli.static imports the engine only inside its run() function
-    assert "engine.statics" in graph["service.cli.static"]
+    assert "beltstudy.engine.conveyor" in graph["beltstudy.engine.run"]
+    # beltstudy.service.cli.static imports the engine only inside its run() function
+    assert "beltstudy.engine.statics" in graph["beltstudy.service.cli.static"]
 
 
 def test_no_import_cycles_in_engine_or_service():

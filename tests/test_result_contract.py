@@ -1,4 +1,4 @@
-"""The result contract: ``engine.results`` defines every result of a run, and the Parquet
+"""The result contract: ``beltstudy.engine.results`` defines every result of a run, and the Parquet
 ``runs`` schema, the ``--json`` output of ``beltstudy static`` / ``simulate``, the REST rows
 and the table in ``docs/results.md`` hold exactly those fields: none computed and dropped,
 none stored or printed without a definition."""
@@ -10,10 +10,10 @@ import re
 
 import pytest
 
-from engine import results as R
-from service.cli import main
-from service.results import row_to_json
-from service.schema import INPUT_COLUMNS, flatten_summary, runs_schema_for_axes
+from beltstudy.engine import results as R
+from beltstudy.service.cli import main
+from beltstudy.service.results import row_to_json
+from beltstudy.service.schema import INPUT_COLUMNS, flatten_summary, runs_schema_for_axes
 from tests.conftest import CONVEYORS, ROOT
 
 #: What the CLI's --json echoes of its inputs besides the results.
@@ -115,7 +115,7 @@ def test_docs_table_holds_exactly_the_defined_fields():
     assert len(listed) == len(set(listed))
     assert set(listed) == set(R.FIELDS)
     assert (ROOT / "docs" / "results.md").read_text() == R.markdown(), (
-        "docs/results.md is stale: python -m engine.results > docs/results.md")
+        "docs/results.md is stale: python -m beltstudy.engine.results > docs/results.md")
 
 
 def test_a_result_without_a_definition_is_refused():

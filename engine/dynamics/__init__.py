@@ -11,7 +11,7 @@ vectorised passes), ``blocks`` (the implicit pulley blocks: solver, slip, drives
 step as a sequence of passes), ``simulate`` (prepare and decode).
 """
 
-from engine.dynamics.model import DynamicsOptions, System, build_system
-from engine.dynamics.simulate import TransientResult, simulate
+from beltstudy.engine.dynamics.model import DynamicsOptions, System, build_system
+from beltstudy.engine.dynamics.simulate import TransientResult, simulate
 
 __all__ = ["DynamicsOptions", "System", "build_system", "TransientResult", "simulate"]

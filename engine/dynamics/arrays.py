@@ -1,8 +1,8 @@
 """The kernel's arguments, grouped by what they describe (plain float64 / int64 arrays).
 
 Named tuples that numba compiles as structs: the kernel is called by keyword with one of each
-(:func:`engine.dynamics.kernel.run_cycle`), and its passes take the groups they need. Built
-by :func:`engine.dynamics.simulate.prepare` from a :class:`~engine.dynamics.model.System`.
+(:func:`beltstudy.engine.dynamics.kernel.run_cycle`), and its passes take the groups they need. Built
+by :func:`beltstudy.engine.dynamics.simulate.prepare` from a :class:`~beltstudy.engine.dynamics.model.System`.
 Units SI; per-element arrays have length n, per-spring arrays length n (spring j joins
 elements j and j + 1).
 """
@@ -30,7 +30,7 @@ class Nodes(NamedTuple):
 
 
 class Law(NamedTuple):
-    """The resistance law (``engine.law``), terms merged by exponents, with exponent codes
+    """The resistance law (``beltstudy.engine.law``), terms merged by exponents, with exponent codes
     and the elements of sparse terms."""
 
     coef: np.ndarray
@@ -44,12 +44,12 @@ class Law(NamedTuple):
 
 
 class Lin(NamedTuple):
-    """The resistance law's expansion per element (:mod:`engine.dynamics.linlaw`): ``R0 = k +
+    """The resistance law's expansion per element (:mod:`beltstudy.engine.dynamics.linlaw`): ``R0 = k +
     gu u + guu u^2 + gx T + gxx T^2 + gux u T`` [N] (``u = |v|``, T the mean tension); the
     window round the expansion point as bounds on the speed (``ulo``, ``uhi`` [m/s]) and the
     mean tension (``tlo``, ``thi`` [N]); all float32.
 
-    The law for its element-wise evaluation (:func:`engine.dynamics.passes.law_refresh`): per
+    The law for its element-wise evaluation (:func:`beltstudy.engine.dynamics.passes.law_refresh`): per
     element a row of 16 (``erow``): sag weight and sag cap over the reference sag, the tension
     below which the sag ratio is at its cap [N], the window sizes (relative speed, creep
     [m/s], relative tension; ``linlaw.BIG`` where no term depends on it), two zeros, the

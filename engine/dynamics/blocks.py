@@ -33,9 +33,9 @@ import math
 
 from numba import njit
 
-from engine.dynamics.fastmath import OPTS
-from engine.dynamics.passes import spring as _spring_impl
-from engine.dynamics.passes import spring_rest as _spring_rest
+from beltstudy.engine.dynamics.fastmath import OPTS
+from beltstudy.engine.dynamics.passes import spring as _spring_impl
+from beltstudy.engine.dynamics.passes import spring_rest as _spring_rest
 
 __all__ = ["block_step", "solve_arrow", "solve_dense", "coulomb"]
 

@@ -9,7 +9,7 @@ place those layouts are defined; Python callers read them through the namespaces
 
 from __future__ import annotations
 
-from engine.conveyor import CURVE_POINTS_MAX
+from beltstudy.engine.conveyor import CURVE_POINTS_MAX
 
 __all__ = ["FP", "IP", "RES", "DRV", "REC", "RECD", "OK", "DIVERGED", "V_FAIL_FACTOR",
            "BLOCK_MAX", "CURVE_MAX", "SEG_MAX", "VFD", "DOL", "COUPLING_NONE", "COUPLING_FLUID",
@@ -22,7 +22,7 @@ V_FAIL_FACTOR = 100.0
 #: Largest implicit block (elements + carriage) the solver takes.
 BLOCK_MAX = 16
 #: Most points of a motor curve or a brake force curve.
-CURVE_MAX = CURVE_POINTS_MAX  # engine.conveyor refuses longer curves at the door
+CURVE_MAX = CURVE_POINTS_MAX  # beltstudy.engine.conveyor refuses longer curves at the door
 #: Envelope segments: the cycle is cut at the stop command and when the belt first goes
 #: slack, so per-phase and before/after-slack extremes come from whole segments.
 SEG_MAX = 3
@@ -50,7 +50,7 @@ HOLD, RUN, OFF = 0, 1, 2
  IP_ANY_PS, IP_M_DRIVE, IP_HOLD_NODE, IP_CONTROL, IP_S_HEAD_IN, IP_S_HEAD_OUT,
  IP_LAW_MODE, IP_SIZE) = range(15)
 #: how the kernel evaluates the resistance law (IP_LAW_MODE): once (one constant term), exactly
-#: every step, or expanded between exact evaluations (engine.dynamics.linlaw)
+#: every step, or expanded between exact evaluations (beltstudy.engine.dynamics.linlaw)
 LAW_CONST, LAW_EXACT, LAW_LINEAR = 0, 1, 2
 (RES_STATUS, RES_T_END, RES_STEPS, RES_START_ACH, RES_STOP_ACH, RES_VMAX, RES_VMAX_T, RES_VMIN,
  RES_VMIN_T, RES_XMIN, RES_XMAX, RES_FMAX, RES_FMAX_T, RES_PMAX, RES_SLIP_MIN, RES_SLIP_MIN_T,

@@ -15,7 +15,7 @@ One step is a short sequence of named passes:
    element's expansion point, which the last observe evaluated at the state; the elements
    whose speed or tension has left the window round that point are evaluated exactly and
    expanded again (:func:`passes.law_refresh`; the windows and the accuracy they give, 0.1 %
-   of the law by default: :mod:`engine.dynamics.linlaw`);
+   of the law by default: :mod:`beltstudy.engine.dynamics.linlaw`);
 3. **free elements**: explicit velocity update with the resistance implicit in closed form
    (:func:`passes.node_pass`);
 4. **blocks**: the pulleys with their springs, shafts, drives, brakes and the take-up
@@ -28,7 +28,7 @@ One step is a short sequence of named passes:
    and margins, the stop, slack, the envelope segments (cut at the stop command and when the
    belt first goes slack) and the records.
 
-The numpy implementation of the same equations is :mod:`engine.dynamics.reference`.
+The numpy implementation of the same equations is :mod:`beltstudy.engine.dynamics.reference`.
 """
 
 from __future__ import annotations
@@ -37,11 +37,11 @@ import math
 
 from numba import njit, uintp
 
-from engine.dynamics import codes as C
-from engine.dynamics.blocks import block_step
-from engine.dynamics.fastmath import OPTS
-from engine.dynamics.laws import brake_fraction, coupling_torque, motor_force
-from engine.dynamics.passes import (
+from beltstudy.engine.dynamics import codes as C
+from beltstudy.engine.dynamics.blocks import block_step
+from beltstudy.engine.dynamics.fastmath import OPTS
+from beltstudy.engine.dynamics.laws import brake_fraction, coupling_torque, motor_force
+from beltstudy.engine.dynamics.passes import (
     extremes,
     law_flagged,
     law_refresh,
@@ -52,7 +52,7 @@ from engine.dynamics.passes import (
     slack_zones,
     spring_pass,
 )
-from engine.dynamics.profiles import FORCE, TORQUE, start_reference, stop_reference
+from beltstudy.engine.dynamics.profiles import FORCE, TORQUE, start_reference, stop_reference
 
 __all__ = ["run_cycle"]
 
@@ -62,7 +62,7 @@ HOLD, RUN, OFF = C.HOLD, C.RUN, C.OFF
 
 @njit(inline="always", **OPTS)
 def _drive_laws(drives, shafts, fp, ip, phase, t, t_pre, t_trip, stopping, first_off):
-    """Each drive's force law for this step (modes of :class:`~engine.dynamics.arrays.Drives`):
+    """Each drive's force law for this step (modes of :class:`~beltstudy.engine.dynamics.arrays.Drives`):
     the speed loop's share (vfd running, relative formulation), an imposed shaft speed (vfd
     running, moving support), the motor curve through its coupling linearised in the shaft
     speed (dol), the open-loop force (verification), or the decaying force after a trip."""
@@ -264,11 +264,11 @@ def _brake_forces(brakes, shafts, t, t_stopcmd, stopping, brake_mode, stopped, t
 def run_cycle(fp, ip, nodes, law, lin, sp, blocks, shafts, drives, brakes, st, out, wk):
     """Integrate the whole cycle (see the module docstring for one step).
 
-    Arrays are prepared by :func:`engine.dynamics.simulate.prepare` (groups in
-    :mod:`engine.dynamics.arrays`). The state (``st``, the shafts' speeds and slip, the
+    Arrays are prepared by :func:`beltstudy.engine.dynamics.simulate.prepare` (groups in
+    :mod:`beltstudy.engine.dynamics.arrays`). The state (``st``, the shafts' speeds and slip, the
     drives' motor speeds) is updated in place and holds the final state on return; ``out``
     receives the records, the surface, the envelope segments, the per-drive results and the
-    run scalars of :data:`engine.dynamics.codes.RES`.
+    run scalars of :data:`beltstudy.engine.dynamics.codes.RES`.
     """
     n = ip[C.IP_N]
     dt = fp[C.FP_DT]

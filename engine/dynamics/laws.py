@@ -6,7 +6,7 @@ and speeds at the belt line (shaft speed times the pulley radius), both in SI.
 
 * **Induction motor on the line** (``dol``): force ``F_r y(v / v_d)`` with ``y`` the motor
   curve (torque over rated torque against speed over the design speed, piecewise linear,
-  :data:`engine.conveyor.DEFAULT_MOTOR_CURVE` by default) and ``F_r`` the rated force, rated
+  :data:`beltstudy.engine.conveyor.DEFAULT_MOTOR_CURVE` by default) and ``F_r`` the rated force, rated
   power over design speed. Below standstill the locked-rotor value holds; above the last
   point (synchronous speed) the last segment continues (the motor generates).
 * **Fluid coupling** between motor and pulley: a hydrodynamic coupling's torque follows the
@@ -29,7 +29,7 @@ import math
 
 from numba import njit
 
-from engine.dynamics.fastmath import OPTS
+from beltstudy.engine.dynamics.fastmath import OPTS
 
 __all__ = ["curve", "motor_force", "coupling_torque", "brake_fraction", "STALL", "RATED_SLIP",
            "SLIP_SCALE"]

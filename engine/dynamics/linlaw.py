@@ -3,7 +3,7 @@ expansion point and used while the element's speed and tension stay within windo
 sized for a stated accuracy.
 
 The law ``R0_j = sum_k c_kj u_j^p_k phi_j^q_k`` (``u = |v|`` [m/s], ``phi_j`` the sag ratio
-over the reference from the element's mean tension ``T_j`` [N], ``engine.law``) costs a
+over the reference from the element's mean tension ``T_j`` [N], ``beltstudy.engine.law``) costs a
 logarithm, an exponential per fractional exponent, a division and a square root per element
 and step, more than the rest of the step. Speed and tension change slowly compared with the
 step (set by the wave criterion over one element), so the kernel evaluates the law exactly
@@ -51,10 +51,10 @@ For Non-Lin (``rtol`` 1e-3): ``du`` = 0.23, ``dx`` = 0.052, ``d0`` = 6.3e-4.
 power, logarithm or square root (speed exponents 0 and 1, sag exponents 0, 1 and 2: DIN, CEMA,
 VISCO, C-MOD with its linear sag term), which costs no more than the expansion. The sign and
 the regularisation below ``v_eps`` are applied exactly every step
-(:func:`engine.dynamics.passes.node_pass`).
+(:func:`beltstudy.engine.dynamics.passes.node_pass`).
 
-The kernel (:func:`engine.dynamics.passes.law_refresh`, :func:`~engine.dynamics.passes.
-observe_lin`) and the numpy reference (:class:`engine.dynamics.reference.ExpandedLaw`) apply
+The kernel (:func:`beltstudy.engine.dynamics.passes.law_refresh`, :func:`~beltstudy.engine.dynamics.passes.
+observe_lin`) and the numpy reference (:class:`beltstudy.engine.dynamics.reference.ExpandedLaw`) apply
 the same windows, expansion points and expansion, so they agree to rounding; the exact law is
 ``resistance_rtol = 0``.
 """
@@ -77,7 +77,7 @@ BIG = 1e38
 #: stored: the bounds include it.
 F32 = 2.0**-24
 #: Most terms (merged by exponents) of a law the kernel expands: the kernel's element-wise
-#: evaluation is unrolled over them (:func:`engine.dynamics.passes.law_refresh`).
+#: evaluation is unrolled over them (:func:`beltstudy.engine.dynamics.passes.law_refresh`).
 K_LIN = 8
 #: Most speed exponents other than 0 and 1, and most sag exponents other than 0, 0.5, 1, 1.5
 #: and 2, of a law the kernel expands (each an exponential there).

@@ -13,7 +13,7 @@ Design decisions (documented in ``docs/dynamics.md``):
   the belt line ``(J + J_flywheel) (2 / D)^2`` (with a fluid coupling, the motor's share
   ``J_motor (2 / D)^2`` is a separate mass behind the coupling), joined to the belt by
   capstan friction: it sticks while the force it passes stays within ``T_slack (e^(mu theta)
-  - 1)`` and slips beyond (:mod:`engine.dynamics.blocks`).
+  - 1)`` and slips beyond (:mod:`beltstudy.engine.dynamics.blocks`).
 * **Belt segments**: the static modulus E B (elongation, take-up travel) advanced with the
   Ernst *tangent* modulus ``EB_eq = EB / (1 + (w S)^2 EB / (12 T^3))`` (the chord law
   ``eps = T / EB - (w S)^2 / (24 T^2)`` integrated incrementally); below the tension where
@@ -49,10 +49,10 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from engine import design
-from engine.conveyor import Conveyor, InputError, Scenario
-from engine.dynamics import profiles
-from engine.dynamics.codes import (
+from beltstudy.engine import design
+from beltstudy.engine.conveyor import Conveyor, InputError, Scenario
+from beltstudy.engine.dynamics import profiles
+from beltstudy.engine.dynamics.codes import (
     BRAKE,
     COAST,
     CONTROLLED,
@@ -64,9 +64,9 @@ from engine.dynamics.codes import (
     SUPPORT,
     VFD,
 )
-from engine.law import ResistanceLaw
-from engine.loop import G, Loop, rotating_parts
-from engine.statics import master_drive, rest_hold_element, rest_walk
+from beltstudy.engine.law import ResistanceLaw
+from beltstudy.engine.loop import G, Loop, rotating_parts
+from beltstudy.engine.statics import master_drive, rest_hold_element, rest_walk
 
 __all__ = [
     "DynamicsOptions",
@@ -121,7 +121,7 @@ class DynamicsOptions:
         with fractional exponents (Non-Lin) is evaluated exactly for an element when its
         speed or mean tension leaves the window round its expansion point, and expanded to
         second order about that point in between, the windows sized so the resistance stays
-        within this fraction of the exact law at every step (:mod:`engine.dynamics.linlaw`).
+        within this fraction of the exact law at every step (:mod:`beltstudy.engine.dynamics.linlaw`).
         0 evaluates the exact law every step.
     dt_safety : float
         Automatic step as a fraction of the stability limit (0.5: half the limit).
@@ -178,7 +178,7 @@ class System:
     i_head: int
     i_tail: int
     i_takeup: int
-    strand: np.ndarray  # int8 strand codes of the loop (engine.loop)
+    strand: np.ndarray  # int8 strand codes of the loop (beltstudy.engine.loop)
     # nodes
     mass_kg: np.ndarray  # moving mass of the belt element (and a plain pulley's own mass)
     belt_mass_kg: np.ndarray  # (m'_G + m'_L + m'_R) dx: weights of the mean speed

@@ -1,7 +1,7 @@
 """The kernel's equations as a continuous-time ODE, for a general-purpose integrator.
 
 Used to check the Euler-X kernel against ``scipy.integrate.solve_ivp`` (RK45): same model
-arrays (:class:`~engine.dynamics.model.System`), same laws (resistance regularised with
+arrays (:class:`~beltstudy.engine.dynamics.model.System`), same laws (resistance regularised with
 ``clip(v / v_eps)``, Ernst tangent stiffness, the standard linear solid's relaxing arm and the
 mesh viscosity, vfd drives on one speed loop with torque following, feedforward, torque limits
 and conditional integration, the gravity take-up carriage), without the parts that are not
@@ -15,9 +15,9 @@ from __future__ import annotations
 
 import numpy as np
 
-from engine.dynamics import profiles
-from engine.dynamics.model import System
-from engine.dynamics.reference import _law
+from beltstudy.engine.dynamics import profiles
+from beltstudy.engine.dynamics.model import System
+from beltstudy.engine.dynamics.reference import _law
 
 __all__ = ["initial_state", "rhs", "tension"]
 

@@ -4,7 +4,7 @@ Each pass is one loop over contiguous elements or springs, written so LLVM vecto
 (unsigned indices, no branches in the body but selects, reductions through ``_fmin`` /
 ``_fmax``): the resistance law term by term, the velocity update of free elements, the spring
 update, the envelopes and extremes. The implicit blocks round the pulleys are in
-:mod:`engine.dynamics.blocks`.
+:mod:`beltstudy.engine.dynamics.blocks`.
 """
 
 from __future__ import annotations
@@ -13,7 +13,7 @@ import math
 
 from numba import njit, uint64, uintp
 
-from engine.dynamics.fastmath import (
+from beltstudy.engine.dynamics.fastmath import (
     OPTS,
     OPTS_RED,
     _cttz,
@@ -25,7 +25,7 @@ from engine.dynamics.fastmath import (
     _power,
     _speed,
 )
-from engine.dynamics.linlaw import BIG, K_LIN, N_POW, PREDICT
+from beltstudy.engine.dynamics.linlaw import BIG, K_LIN, N_POW, PREDICT
 
 __all__ = ["resistance", "law_flagged", "law_refresh", "node_pass", "spring", "spring_pass",
            "observe", "observe_lin", "extremes", "slack_zones", "law_rows"]
@@ -130,7 +130,7 @@ def resistance(r0, v, tt, coef, pvc, pvv, psc, psv, sw_ref, hsm_ref, any_ps, phi
 
 
 # --------------------------------------------------------------------------------------
-# the law expanded between exact evaluations (engine.dynamics.linlaw)
+# the law expanded between exact evaluations (beltstudy.engine.dynamics.linlaw)
 
 
 @njit(**OPTS)
@@ -178,7 +178,7 @@ def _refresh_gather(idx, i0, m, v, tt, erow, ulo, uhi, tlo, thi, g):
     The expansion point is the state moved by PREDICT of its window towards the side of the
     old window the state is on (the way it has been moving), where the speed is expanded and
     the sag ratio follows the tension; the state stays inside the new window (see
-    :mod:`engine.dynamics.linlaw`). Without branches on the data (selects)."""
+    :mod:`beltstudy.engine.dynamics.linlaw`). Without branches on the data (selects)."""
     n = tt.shape[0]
     big = BIG
     for ii in range(m):
@@ -352,7 +352,7 @@ def _refresh_scatter(idx, i0, m, g, o, lin, r0):
 @njit(**OPTS)
 def law_refresh(idx, m, v, tt, lin, r0):
     """Evaluate the exact law for the elements ``idx[:m]`` at their new expansion points and
-    expand it there (:mod:`engine.dynamics.linlaw`); r0 [N] from the expansion at their state.
+    expand it there (:mod:`beltstudy.engine.dynamics.linlaw`); r0 [N] from the expansion at their state.
 
     For each element j, with ``u = |v_j|`` [m/s] and ``T`` its mean tension [N]: the expansion
     point is the state moved by PREDICT of its window the way it was moving
@@ -360,7 +360,7 @@ def law_refresh(idx, m, v, tt, lin, r0):
     of :func:`resistance`; ``lin.erow`` the coefficients by element, padded to K_LIN terms
     with zero ones, each term a product of a speed and a sag factor, ``lin.rs`` / ``lin.rq`` their
     rows, ``lin.upow`` / ``lin.qpow`` the exponents taken by exp and log); the second-order
-    expansion (:func:`engine.dynamics.linlaw.expansion`) as the polynomial ``R0 = k + gu u +
+    expansion (:func:`beltstudy.engine.dynamics.linlaw.expansion`) as the polynomial ``R0 = k + gu u +
     guu u^2 + gx T + gxx T^2 + gux u T`` and the window round the point as bounds on u and T
     (+-BIG where the law does not depend on it), stored in float32. The speed is expanded
     where its relative window ``du u`` is wider than the creep window ``d0``, and held within
@@ -456,7 +456,7 @@ def spring_first(e0, s0, d0, de, tfl, sfl, kfl_eb, aeb, eb, e_damp, g_damp, kvs)
     """One spring after the strain increment ``de`` [-], the chord law by one Newton step.
     Returns (elastic, strain, arm, total tension, whether it needs :func:`spring_refine`).
 
-    Strain tension ``s = EB eps`` (eps the chord strain, :func:`engine.dynamics.model.
+    Strain tension ``s = EB eps`` (eps the chord strain, :func:`beltstudy.engine.dynamics.model.
     chord_strain`) is the state the motion integrates exactly: ``s1 = s0 + EB de``. The
     elastic tension is its inverse under the static modulus softened by sag (Ernst's chord
     law ``s = T - a EB / (2 T^2)``, held linear at the floor modulus ``kfl = kfl_eb EB`` below
@@ -665,7 +665,7 @@ def slack_zones(ts, tt, eb, len_m, eps_run):
 def law_rows(pv, ps):
     """Each term's speed and sag factor rows for :func:`law_refresh`, the exponents taken by
     exp and log, and the weights of the sums over the terms (padded to K_LIN terms); plain
-    Python, for :func:`engine.dynamics.simulate.prepare`. Returns ``(rs, rq, upow, qpow,
+    Python, for :func:`beltstudy.engine.dynamics.simulate.prepare`. Returns ``(rs, rq, upow, qpow,
     npow, wk)``."""
     import numpy as np
 

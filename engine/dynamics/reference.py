@@ -1,12 +1,12 @@
 """The slow, obvious numpy implementation of the kernel's equations (STYLE: a reference path
 beside the numba kernel, tested against it).
 
-Same model (:class:`~engine.dynamics.model.System`) and same scheme as
-:mod:`engine.dynamics.kernel`, written for reading rather than speed, and sharing with it only
-the scalar laws (:mod:`engine.dynamics.laws`, :mod:`engine.dynamics.profiles`):
+Same model (:class:`~beltstudy.engine.dynamics.model.System`) and same scheme as
+:mod:`beltstudy.engine.dynamics.kernel`, written for reading rather than speed, and sharing with it only
+the scalar laws (:mod:`beltstudy.engine.dynamics.laws`, :mod:`beltstudy.engine.dynamics.profiles`):
 
 * the resistance law with exact ``np.power``, every step (``resistance_rtol = 0``) or, as the
-  kernel, expanded between exact evaluations (:mod:`engine.dynamics.linlaw`, the same windows
+  kernel, expanded between exact evaluations (:mod:`beltstudy.engine.dynamics.linlaw`, the same windows
   and expansion points; :class:`ExpandedLaw`);
 * the free elements and the springs as whole-array numpy operations;
 * every implicit block (a pulley with the springs on both its sides, the elements at their
@@ -27,9 +27,9 @@ from types import SimpleNamespace
 
 import numpy as np
 
-from engine.dynamics import codes as C
-from engine.dynamics.laws import brake_fraction, coupling_torque, motor_force
-from engine.dynamics.linlaw import (
+from beltstudy.engine.dynamics import codes as C
+from beltstudy.engine.dynamics.laws import brake_fraction, coupling_torque, motor_force
+from beltstudy.engine.dynamics.linlaw import (
     BIG,
     PREDICT,
     element_windows,
@@ -37,9 +37,9 @@ from engine.dynamics.linlaw import (
     law_windows,
     x_cap,
 )
-from engine.dynamics.model import System, chord_strain
-from engine.dynamics.passes import NEWTON_CURVE, NEWTON_MORE
-from engine.dynamics.profiles import FORCE, TORQUE, start_reference, stop_reference
+from beltstudy.engine.dynamics.model import System, chord_strain
+from beltstudy.engine.dynamics.passes import NEWTON_CURVE, NEWTON_MORE
+from beltstudy.engine.dynamics.profiles import FORCE, TORQUE, start_reference, stop_reference
 
 __all__ = ["ReferenceResult", "ExpandedLaw", "run_reference"]
 
@@ -83,7 +83,7 @@ def _law(sys: System, v: np.ndarray, T: np.ndarray) -> np.ndarray:
 
 class ExpandedLaw:
     """The resistance law as the kernel takes it with ``resistance_rtol > 0``
-    (:mod:`engine.dynamics.linlaw`): each element's law evaluated exactly (``np.power``) when
+    (:mod:`beltstudy.engine.dynamics.linlaw`): each element's law evaluated exactly (``np.power``) when
     its speed or mean tension has left the window round its expansion point, and its
     second-order expansion about that point otherwise. Call with the state for R0 [N].
 
@@ -91,7 +91,7 @@ class ExpandedLaw:
     the old window the state is on (where the speed is expanded and the sag ratio follows the
     tension; the old window starts at zero); the expansion and the windows are
     :func:`linlaw.expansion` and :func:`linlaw.element_windows`, as in the kernel's
-    :func:`engine.dynamics.passes.law_refresh`.
+    :func:`beltstudy.engine.dynamics.passes.law_refresh`.
     """
 
     def __init__(self, sys: System):
@@ -677,7 +677,7 @@ def run_reference(sys: System, t_end_s: float | None = None) -> ReferenceResult:
     Parameters
     ----------
     sys : System
-        The model (:func:`engine.dynamics.model.build_system`); not changed.
+        The model (:func:`beltstudy.engine.dynamics.model.build_system`); not changed.
     t_end_s : float, optional
         End the run at this time [s] instead of after the stop.
 

@@ -1,8 +1,8 @@
 """Python wrapper: System -> kernel arrays -> run -> TransientResult (SPEC sections 4-6).
 
 :func:`simulate` is the one entry point of the transient engine: it converts the
-:class:`~engine.dynamics.model.System` to the kernel's array groups
-(:mod:`engine.dynamics.arrays`), runs the whole cycle (:func:`engine.dynamics.kernel.run_cycle`,
+:class:`~beltstudy.engine.dynamics.model.System` to the kernel's array groups
+(:mod:`beltstudy.engine.dynamics.arrays`), runs the whole cycle (:func:`beltstudy.engine.dynamics.kernel.run_cycle`,
 called by keyword) and turns the outputs into the SPEC fields (transient summary, per phase,
 per drive, slack), the key-point time series, the surface, the envelopes and the warnings.
 """
@@ -17,10 +17,10 @@ from functools import cached_property
 import numpy as np
 import pandas as pd
 
-from engine.dynamics import arrays as A
-from engine.dynamics import codes as C
-from engine.dynamics.kernel import run_cycle
-from engine.dynamics.linlaw import (
+from beltstudy.engine.dynamics import arrays as A
+from beltstudy.engine.dynamics import codes as C
+from beltstudy.engine.dynamics.kernel import run_cycle
+from beltstudy.engine.dynamics.linlaw import (
     BIG,
     K_LIN,
     element_windows,
@@ -28,8 +28,8 @@ from engine.dynamics.linlaw import (
     sparse_terms,
     x_cap,
 )
-from engine.dynamics.model import System, chord_strain
-from engine.dynamics.passes import CHUNK, N_F, N_G, N_O, law_rows
+from beltstudy.engine.dynamics.model import System, chord_strain
+from beltstudy.engine.dynamics.passes import CHUNK, N_F, N_G, N_O, law_rows
 
 __all__ = ["TransientResult", "KernelInput", "prepare", "simulate", "decode",
            "TIMESERIES_COLUMNS", "SURFACE_COLUMNS", "V_FAIL_FACTOR", "exponent_codes"]
@@ -46,7 +46,7 @@ STRAND_NAMES = {0: "carry", 1: "return", 2: "head pulley", 3: "tail pulley",
 
 @dataclass(eq=False)
 class KernelInput:
-    """The kernel's arguments by name (groups of :mod:`engine.dynamics.arrays`); outputs are
+    """The kernel's arguments by name (groups of :mod:`beltstudy.engine.dynamics.arrays`); outputs are
     filled in place."""
 
     args: dict
@@ -107,7 +107,7 @@ def damper_coefficients(sys: System) -> tuple[float, float]:
 
 
 def linear_law_arrays(sys: System, windows) -> A.Lin:
-    """The arrays of the law's expansion (:class:`~engine.dynamics.arrays.Lin`), filled by
+    """The arrays of the law's expansion (:class:`~beltstudy.engine.dynamics.arrays.Lin`), filled by
     the kernel; per-element window sizes from ``windows`` (:func:`linlaw.law_windows`; None:
     the law is evaluated exactly and the arrays are not used)."""
     n = sys.n
@@ -422,7 +422,7 @@ def simulate(sys: System, *, steady_summary: dict | None = None, conveyor=None,
     Parameters
     ----------
     sys : System
-        From :func:`engine.dynamics.model.build_system`.
+        From :func:`beltstudy.engine.dynamics.model.build_system`.
     steady_summary : dict, optional
         Statics summary (for ``dyn_factor`` = t_max_dyn / t_max).
     conveyor : Conveyor, optional
@@ -586,7 +586,7 @@ def transient_summary(sys: System, r: dict, out, segs, *, steady_summary=None, c
     t_start_ach = r["START_ACH"] if r["START_ACH"] >= 0 else None
     rating = None
     if conveyor is not None:
-        from engine.catalog import resolve_belt
+        from beltstudy.engine.catalog import resolve_belt
 
         rating = resolve_belt(conveyor.belt).rating_n
     # phases: start = start command to stop command, stop = stop command to the end
@@ -630,7 +630,7 @@ def transient_summary(sys: System, r: dict, out, segs, *, steady_summary=None, c
         "slack_time_s": r["SLACK_TIME"] if r["SLACK_TIME"] >= 0 else None,
         "slack_duration_s": r["SLACK_DUR"],
         "takeup_endstop_speed_m_s": r["ENDSTOP_SPEED"],
-        # filled by engine.remedy when a run asks for them (run_one(remedy=True))
+        # filled by beltstudy.engine.remedy when a run asks for them (run_one(remedy=True))
         "slip_free_takeup_mass_kg": None,
         "slip_free_takeup_kn": None,
         "slip_free_start_time_s": None,

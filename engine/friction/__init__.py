@@ -3,16 +3,16 @@
 Each model is a :class:`FrictionModel`: a frozen parameter dataclass with documented
 defaults and a ``build(loop, conveyor, temperature_c, params) -> ResistanceLaw`` function.
 ``get_model(name)`` accepts the canonical names and aliases; an unknown name raises
-:class:`~engine.conveyor.InputError` listing the valid ones.
+:class:`~beltstudy.engine.conveyor.InputError` listing the valid ones.
 """
 
 from __future__ import annotations
 
 import difflib
 
-from engine.errors import InputError
-from engine.friction import cema, cmod, din, nonlin, visco
-from engine.friction.base import FrictionModel, param
+from beltstudy.engine.errors import InputError
+from beltstudy.engine.friction import cema, cmod, din, nonlin, visco
+from beltstudy.engine.friction.base import FrictionModel, param
 
 __all__ = ["FrictionModel", "MODELS", "ALIASES", "get_model", "param"]
 

@@ -9,7 +9,7 @@ from collections.abc import Callable
 from dataclasses import dataclass
 from typing import Any
 
-from engine.errors import InputError
+from beltstudy.engine.errors import InputError
 
 __all__ = ["FrictionModel", "param"]
 

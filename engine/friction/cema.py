@@ -40,11 +40,11 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from engine.conveyor import Conveyor, InputError
-from engine.friction.base import FrictionModel, param
-from engine.friction.common import add_accessories, add_feed, pulley_allowances
-from engine.law import LawBuilder, ResistanceLaw
-from engine.loop import CARRY, RETURN, G, Loop
+from beltstudy.engine.conveyor import Conveyor, InputError
+from beltstudy.engine.friction.base import FrictionModel, param
+from beltstudy.engine.friction.common import add_accessories, add_feed, pulley_allowances
+from beltstudy.engine.law import LawBuilder, ResistanceLaw
+from beltstudy.engine.loop import CARRY, RETURN, G, Loop
 
 #: Kt against ambient temperature [C]: an *unverified* digitisation of CEMA's curve (PHYSICS
 #: section 2); 1.00 at and above 0 C (one reading of the curve puts Kt = 1.0 at and above

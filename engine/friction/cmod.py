@@ -35,12 +35,12 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from engine.conveyor import Conveyor, InputError
-from engine.friction.base import FrictionModel, param
-from engine.friction.cema import kt_factor, ky_fit
-from engine.friction.common import add_accessories, add_feed, pulley_allowances
-from engine.law import HS_REF, LawBuilder, ResistanceLaw
-from engine.loop import CARRY, RETURN, G, Loop
+from beltstudy.engine.conveyor import Conveyor, InputError
+from beltstudy.engine.friction.base import FrictionModel, param
+from beltstudy.engine.friction.cema import kt_factor, ky_fit
+from beltstudy.engine.friction.common import add_accessories, add_feed, pulley_allowances
+from beltstudy.engine.law import HS_REF, LawBuilder, ResistanceLaw
+from beltstudy.engine.loop import CARRY, RETURN, G, Loop
 
 __all__ = ["CmodParams", "build", "MODEL"]
 

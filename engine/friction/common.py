@@ -4,9 +4,9 @@ from __future__ import annotations
 
 import numpy as np
 
-from engine.conveyor import Conveyor
-from engine.law import LawBuilder
-from engine.loop import CARRY, Loop
+from beltstudy.engine.conveyor import Conveyor
+from beltstudy.engine.law import LawBuilder
+from beltstudy.engine.loop import CARRY, Loop
 
 #: CEMA pulley allowances T_p [N]: 200 lbf tight side (drive) pulleys, 150 lbf slack-side
 #: pulleys (the take-up pulley), 100 lbf other pulleys (CEMA 6th ed., Table 6-5 allowances as

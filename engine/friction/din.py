@@ -27,16 +27,16 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from engine.conveyor import Conveyor, InputError
-from engine.friction.base import FrictionModel, param
-from engine.friction.common import (
+from beltstudy.engine.conveyor import Conveyor, InputError
+from beltstudy.engine.friction.base import FrictionModel, param
+from beltstudy.engine.friction.common import (
     add_accessories,
     add_feed,
     lumped_indices,
     pulley_allowances,
 )
-from engine.law import LawBuilder, ResistanceLaw
-from engine.loop import CARRY, RETURN, G, Loop
+from beltstudy.engine.law import LawBuilder, ResistanceLaw
+from beltstudy.engine.loop import CARRY, RETURN, G, Loop
 
 #: Coefficient C against conveyor length L [m] (DIN 22101 table as quoted in PHYSICS
 #: section 2; *unverified*). Interpolated linearly; 1.03 from 5000 m on.

@@ -25,7 +25,7 @@ with every bracketed term in [kg/m]:
   F_v the roll's share of the set load g (m'_G + m'_L) cos(a) S, h the bottom cover, b the
   belt width on the roll (width / rolls), D the roll diameter and tan(delta), E' of the
   compound at the contact frequency f = v / l_c and the ambient temperature
-  (:mod:`engine.rubber`). Per metre of belt BI grows as S^{1/3}, not as the S^{4/3} that the
+  (:mod:`beltstudy.engine.rubber`). Per metre of belt BI grows as S^{1/3}, not as the S^{4/3} that the
   paper's printed form suggests. Speed enters through tan(delta) and E' at f = v / l_c; in
   the law it is the local power v^e, e = d ln(tan(delta) E'^{-1/3}) / d ln f at the design
   speed (the paper's v^e).
@@ -51,7 +51,7 @@ dependence. The paper leaves the constants proprietary; every one is a parameter
 default inside the paper's stated ranges (0.003 < m* < 0.008, n = 3/2, 0.2 < p < 3,
 0.02 < q < 0.6, 1 < s < 3, b 0.3-0.5, c ~ 0.017 /C, mu_b ~ 0.0015).
 
-Law terms (``engine.law``; coef [N] per element, speed exponent pv, sag exponent ps):
+Law terms (``beltstudy.engine.law``; coef [N] per element, speed exponent pv, sag exponent ps):
 ``idler_rotation`` (bearing: pv 0; drag: pv b), ``indentation`` (pv e), ``belt_flexure``
 (ps n), ``material_flexure`` (p: pv 0, q: pv 1, both ps n_m), ``feed``, ``secondary``,
 ``accessories``.
@@ -71,13 +71,13 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from engine import rubber
-from engine.conveyor import Conveyor, InputError
-from engine.friction.base import FrictionModel, param
-from engine.friction.cema import kt_factor
-from engine.friction.common import add_accessories, add_feed, pulley_allowances
-from engine.law import HS_REF, LawBuilder, ResistanceLaw
-from engine.loop import CARRY, RETURN, G, Loop
+from beltstudy.engine import rubber
+from beltstudy.engine.conveyor import Conveyor, InputError
+from beltstudy.engine.friction.base import FrictionModel, param
+from beltstudy.engine.friction.cema import kt_factor
+from beltstudy.engine.friction.common import add_accessories, add_feed, pulley_allowances
+from beltstudy.engine.law import HS_REF, LawBuilder, ResistanceLaw
+from beltstudy.engine.loop import CARRY, RETURN, G, Loop
 
 __all__ = ["NonlinParams", "build", "roll_loads", "indentation_per_set", "MODEL"]
 

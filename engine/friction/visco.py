@@ -37,12 +37,12 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from engine import rubber
-from engine.conveyor import Conveyor, InputError
-from engine.friction.base import FrictionModel, param
-from engine.friction.cema import kt_factor
-from engine.friction.common import add_accessories, add_feed, pulley_allowances
-from engine.friction.nonlin import (
+from beltstudy.engine import rubber
+from beltstudy.engine.conveyor import Conveyor, InputError
+from beltstudy.engine.friction.base import FrictionModel, param
+from beltstudy.engine.friction.cema import kt_factor
+from beltstudy.engine.friction.common import add_accessories, add_feed, pulley_allowances
+from beltstudy.engine.friction.nonlin import (
     NonlinParams,
     bearing_term_n,
     idler_drag_n,
@@ -50,8 +50,8 @@ from engine.friction.nonlin import (
     roll_loads,
     spacing_ratio,
 )
-from engine.law import HS_REF, LawBuilder, ResistanceLaw
-from engine.loop import CARRY, RETURN, G, Loop
+from beltstudy.engine.law import HS_REF, LawBuilder, ResistanceLaw
+from beltstudy.engine.loop import CARRY, RETURN, G, Loop
 
 __all__ = ["ViscoParams", "build", "MODEL"]
 
@@ -61,7 +61,7 @@ _NONLIN_FIELDS = {f.name: f for f in dataclasses.fields(NonlinParams)}
 
 def _as_nonlin(name: str):
     """The Non-Lin parameter ``name``: its default and meaning, defined once in
-    :class:`~engine.friction.nonlin.NonlinParams`."""
+    :class:`~beltstudy.engine.friction.nonlin.NonlinParams`."""
     f = _NONLIN_FIELDS[name]
     return param(f.default, f"{f.metadata['doc']} (as nonlin)")
 

@@ -1,1 +1,1 @@
-"""The REST API: :func:`service.api.app.create_app` builds the FastAPI application."""
+"""The REST API: :func:`beltstudy.service.api.app.create_app` builds the FastAPI application."""

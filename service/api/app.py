@@ -1,8 +1,8 @@
 """The FastAPI application factory.
 
-``create_app(settings)`` builds the app: one :class:`~service.studies.StudyService` on
+``create_app(settings)`` builds the app: one :class:`~beltstudy.service.studies.StudyService` on
 ``app.state.service`` (started and stopped by the lifespan), the routers, the one handler
-mapping :class:`~service.errors.ServiceError` to JSON, and the OpenAPI schema of the study
+mapping :class:`~beltstudy.service.errors.ServiceError` to JSON, and the OpenAPI schema of the study
 body. Further pages (``service/web/``) are a router module included with one line in
 :data:`ROUTERS`.
 
@@ -26,19 +26,19 @@ from fastapi.responses import HTMLResponse, JSONResponse
 from starlette.exceptions import HTTPException as StarletteHTTPException
 from starlette.routing import Match
 
-import engine
-from service.errors import ServiceError
-from service.openapi import BodyChecker
-from service.openapi import install as install_openapi
-from service.settings import Settings, get_settings
-from service.studies import StudyService
+from beltstudy import engine
+from beltstudy.service.errors import ServiceError
+from beltstudy.service.openapi import BodyChecker
+from beltstudy.service.openapi import install as install_openapi
+from beltstudy.service.settings import Settings, get_settings
+from beltstudy.service.studies import StudyService
 
 __all__ = ["create_app", "ROUTERS"]
 
 log = logging.getLogger("beltstudy.api")
 
 #: Router modules, each with a module-level ``router`` (and optionally ``health_router``).
-ROUTERS = ("service.api.meta", "service.api.studies", "service.web.routes")
+ROUTERS = ("beltstudy.service.api.meta", "beltstudy.service.api.studies", "beltstudy.service.web.routes")
 
 
 def _error(kind: str, message: str, status: int, headers: dict | None = None) -> JSONResponse:
@@ -176,7 +176,7 @@ def create_app(settings: Settings | None = None, service: StudyService | None = 
 
 def _install_docs(app: FastAPI) -> None:
     """``/openapi.json`` and ``/docs`` (Swagger UI), both needing the token when one is set."""
-    from service.api.deps import require_token
+    from beltstudy.service.api.deps import require_token
 
     @app.get("/openapi.json", include_in_schema=False, dependencies=[Depends(require_token)])
     def openapi_json() -> JSONResponse:

@@ -7,8 +7,8 @@ import secrets
 from fastapi import Depends, Request
 from fastapi.security import HTTPAuthorizationCredentials, HTTPBearer
 
-from service.errors import Unauthorized
-from service.studies import StudyService
+from beltstudy.service.errors import Unauthorized
+from beltstudy.service.studies import StudyService
 
 __all__ = ["get_service", "require_token", "ERROR_RESPONSES"]
 
@@ -35,7 +35,7 @@ def require_token(
 
 
 def _error(description: str) -> dict:
-    from service.api.models import ErrorOut
+    from beltstudy.service.api.models import ErrorOut
 
     return {"model": ErrorOut, "description": description}
 

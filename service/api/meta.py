@@ -6,10 +6,10 @@ import dataclasses
 
 from fastapi import APIRouter, Depends
 
-import engine
-from service.api.deps import ERROR_RESPONSES, get_service, require_token
-from service.api.models import BeltsOut, Health, ModelsOut
-from service.studies import StudyService
+from beltstudy import engine
+from beltstudy.service.api.deps import ERROR_RESPONSES, get_service, require_token
+from beltstudy.service.api.models import BeltsOut, Health, ModelsOut
+from beltstudy.service.studies import StudyService
 
 __all__ = ["router", "health_router"]
 
@@ -29,7 +29,7 @@ def health(service: StudyService = Depends(get_service)) -> dict:
 
 @router.get("/models", response_model=ModelsOut, summary="Friction models and their parameters")
 def models() -> dict:
-    from engine.friction import ALIASES, MODELS
+    from beltstudy.engine.friction import ALIASES, MODELS
 
     out = []
     for name, model in MODELS.items():
@@ -50,6 +50,6 @@ def models() -> dict:
 
 @router.get("/catalog/belts", response_model=BeltsOut, summary="The belt catalogue")
 def belts() -> dict:
-    from engine import catalog
+    from beltstudy.engine import catalog
 
     return {"belts": [dataclasses.asdict(b) for b in catalog.belts().values()]}

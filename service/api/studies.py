@@ -1,4 +1,4 @@
-"""``/studies`` routes: thin translations of HTTP to :class:`service.studies.StudyService`."""
+"""``/studies`` routes: thin translations of HTTP to :class:`beltstudy.service.studies.StudyService`."""
 
 from __future__ import annotations
 
@@ -7,9 +7,9 @@ from typing import Literal
 from fastapi import APIRouter, Depends, Query, Request, Response
 from fastapi.concurrency import run_in_threadpool
 
-from service import results
-from service.api.deps import ERROR_RESPONSES, _error, get_service, require_token
-from service.api.models import (
+from beltstudy.service import results
+from beltstudy.service.api.deps import ERROR_RESPONSES, _error, get_service, require_token
+from beltstudy.service.api.models import (
     CompareOut,
     Deleted,
     RunDetail,
@@ -19,10 +19,10 @@ from service.api.models import (
     StudyList,
     StudyStatus,
 )
-from service.errors import TooLarge
-from service.openapi import check_body
-from service.parse import parse_body
-from service.studies import StudyService
+from beltstudy.service.errors import TooLarge
+from beltstudy.service.openapi import check_body
+from beltstudy.service.parse import parse_body
+from beltstudy.service.studies import StudyService
 
 __all__ = ["router", "STUDY_BODY_SCHEMA_REF"]
 

@@ -1,8 +1,8 @@
 """The ``beltstudy`` command line.
 
 Each sub-command lives in its own module with a ``register(subparsers)`` function that adds
-its parser and sets ``func``. User mistakes (:class:`engine.errors.InputError` and every
-:class:`service.errors.ServiceError`: an invalid study, an unknown id, a service that does
+its parser and sets ``func``. User mistakes (:class:`beltstudy.engine.errors.InputError` and every
+:class:`beltstudy.service.errors.ServiceError`: an invalid study, an unknown id, a service that does
 not answer) print one line and exit with status 2; no traceback.
 """
 
@@ -24,14 +24,14 @@ def build_parser() -> argparse.ArgumentParser:
     )
     sub = parser.add_subparsers(dest="command", metavar="COMMAND")
     for name in COMMAND_MODULES:
-        module = importlib.import_module(f"service.cli.{name}")
+        module = importlib.import_module(f"beltstudy.service.cli.{name}")
         module.register(sub)
     return parser
 
 
 def main(argv: list[str] | None = None) -> int:
-    from engine.errors import InputError
-    from service.errors import ServiceError
+    from beltstudy.engine.errors import InputError
+    from beltstudy.service.errors import ServiceError
 
     parser = build_parser()
     args = parser.parse_args(argv)

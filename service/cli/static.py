@@ -5,9 +5,9 @@ from __future__ import annotations
 import argparse
 import time
 
-from service.cli.common import LOAD_HELP
+from beltstudy.service.cli.common import LOAD_HELP
 
-#: The steady fields of the table, in order (labels and units: :mod:`engine.results`; every
+#: The steady fields of the table, in order (labels and units: :mod:`beltstudy.engine.results`; every
 #: field is in ``--json``).
 TABLE = ("te_kn", "power_kw", "t1_kn", "t2_kn", "t_max_kn", "t_max_at_m", "t_min_kn",
          "t_min_at_m", "sag_max_pct", "slip_margin", "slip_margin_start", "safety_factor",
@@ -39,12 +39,12 @@ def register(sub) -> None:
 
 
 def run(args: argparse.Namespace) -> int:
-    from engine.conveyor import InputError, load_conveyor
-    from engine.design import auto_sizes, summary_fields
-    from engine.friction import get_model
-    from engine.results import check_summary
-    from engine.statics import solve_steady
-    from service.cli.common import (
+    from beltstudy.engine.conveyor import InputError, load_conveyor
+    from beltstudy.engine.design import auto_sizes, summary_fields
+    from beltstudy.engine.friction import get_model
+    from beltstudy.engine.results import check_summary
+    from beltstudy.engine.statics import solve_steady
+    from beltstudy.service.cli.common import (
         check_scenario_fields,
         dumps,
         parse_load,
@@ -74,7 +74,7 @@ def run(args: argparse.Namespace) -> int:
     if args.profile:
         write_table(res.profile(), args.profile)
     if args.plot:
-        from service.plots import steady_profile_figure
+        from beltstudy.service.plots import steady_profile_figure
 
         fig = steady_profile_figure(res.profile(), title=(
             f"{conv.name}: {fm.name}, {args.temperature_c:g} C, load {load}"))
@@ -91,8 +91,8 @@ def _unit(f) -> str:
 
 
 def _table(s: dict) -> str:
-    from engine import results
-    from service.cli.common import design_lines
+    from beltstudy.engine import results
+    from beltstudy.service.cli.common import design_lines
 
     lines = [f"{s['conveyor']}  model={s['friction_model']}  temperature={s['temperature_c']:g} C"
              f"  load={s['load']}", ""]

@@ -93,13 +93,13 @@ def _client_args(p: argparse.ArgumentParser) -> None:
 
 
 def _settings():
-    from service.settings import Settings
+    from beltstudy.service.settings import Settings
 
     return Settings()
 
 
 def _client(args):
-    from service.client import ServiceClient
+    from beltstudy.service.client import ServiceClient
 
     url = args.url or os.environ.get("BELTSTUDY_URL") or DEFAULT_URL
     token = args.token if args.token is not None else _settings().token
@@ -114,7 +114,7 @@ GRACEFUL_SHUTDOWN_S = 5
 def cmd_serve(args) -> int:
     import uvicorn
 
-    from service.api.app import create_app
+    from beltstudy.service.api.app import create_app
 
     settings = _settings()
     host = args.host or settings.host
@@ -130,8 +130,8 @@ def cmd_serve(args) -> int:
 
 
 def cmd_submit(args) -> int:
-    from service.report import ProgressBar, format_status
-    from service.studyfile import study_body
+    from beltstudy.service.report import ProgressBar, format_status
+    from beltstudy.service.studyfile import study_body
 
     body = study_body(args.study)
     with _client(args) as client:
@@ -167,14 +167,14 @@ def _poll(get, progress, poll_s: float = 1.0) -> dict:
 
 
 def cmd_run(args) -> int:
-    from service.report import ProgressBar, format_status
-    from service.store import Store
-    from service.studies import StudyService
+    from beltstudy.service.report import ProgressBar, format_status
+    from beltstudy.service.store import Store
+    from beltstudy.service.studies import StudyService
 
     settings = _settings()
     service = StudyService(settings.model_copy(update={"warm_start": False}))
     p = Path(args.study)
-    from service.parse import load_mapping
+    from beltstudy.service.parse import load_mapping
 
     data = load_mapping(p)
     try:
@@ -193,13 +193,13 @@ def cmd_run(args) -> int:
 
 def _local_service():
     """Store-only access when no service answers (no Dask is started)."""
-    from service.studies import StudyService
+    from beltstudy.service.studies import StudyService
 
     return StudyService(_settings().model_copy(update={"warm_start": False}))
 
 
 def _with_fallback(args, remote, local):
-    from service.errors import Unavailable
+    from beltstudy.service.errors import Unavailable
 
     try:
         with _client(args) as client:
@@ -211,7 +211,7 @@ def _with_fallback(args, remote, local):
 
 
 def cmd_status(args) -> int:
-    from service.report import format_status
+    from beltstudy.service.report import format_status
 
     if args.id:
         st = _with_fallback(args, lambda c: c.status(args.id), lambda s: s.status(args.id))
@@ -228,8 +228,8 @@ def cmd_status(args) -> int:
 
 
 def cmd_results(args) -> int:
-    from service import results
-    from service.errors import Invalid
+    from beltstudy.service import results
+    from beltstudy.service.errors import Invalid
 
     out = Path(args.output)
     fmt = {".parquet": "parquet", ".csv": "csv", ".json": "json"}.get(out.suffix.lower())
@@ -253,14 +253,14 @@ def cmd_results(args) -> int:
 
 
 def cmd_report(args) -> int:
-    from service.errors import Invalid
+    from beltstudy.service.errors import Invalid
 
     out = Path(args.output)
     if out.suffix.lower() not in (".html", ".htm"):
         raise Invalid(f"-o {out}: the report is HTML; use a .html file name")
 
     def local(service):
-        from service.web.report import build_report
+        from beltstudy.service.web.report import build_report
 
         return build_report(service, args.id)
 
@@ -271,7 +271,7 @@ def cmd_report(args) -> int:
 
 
 def cmd_compare(args) -> int:
-    from service.report import format_compare
+    from beltstudy.service.report import format_compare
 
     metrics = [m.strip() for m in args.metrics.split(",") if m.strip()]
     result = _with_fallback(
@@ -284,6 +284,6 @@ def cmd_compare(args) -> int:
 
 
 def cmd_demo(args) -> int:
-    from service.demo import run_demo
+    from beltstudy.service.demo import run_demo
 
     return run_demo(args.study, port=args.port)

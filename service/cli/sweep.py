@@ -49,7 +49,7 @@ def register(sub) -> None:
 
 def temperatures(t_from: float, t_to: float, step: float) -> list[float]:
     """The swept temperatures [C], ``t_from`` to ``t_to`` inclusive."""
-    from engine.conveyor import TEMPERATURE_MAX_C, TEMPERATURE_MIN_C, InputError
+    from beltstudy.engine.conveyor import TEMPERATURE_MAX_C, TEMPERATURE_MIN_C, InputError
 
     for name, val in (("--from", t_from), ("--to", t_to), ("--step", step)):
         if not math.isfinite(val):
@@ -69,8 +69,8 @@ def temperatures(t_from: float, t_to: float, step: float) -> list[float]:
 
 
 def _model_list(text: str) -> list:
-    from engine.conveyor import InputError
-    from engine.friction import get_model
+    from beltstudy.engine.conveyor import InputError
+    from beltstudy.engine.friction import get_model
 
     names = [s.strip() for s in text.split(",") if s.strip()]
     if not names:
@@ -111,9 +111,9 @@ def sweep(conv, models, temps, params: dict, load, n_elements=None):
 
     import pandas as pd
 
-    from service.schema import components_from_row
-    from service.settings import Settings
-    from service.studies import StudyService
+    from beltstudy.service.schema import components_from_row
+    from beltstudy.service.settings import Settings
+    from beltstudy.service.studies import StudyService
 
     body = sweep_study(conv, models, temps, params, load, n_elements)
     with tempfile.TemporaryDirectory(prefix="beltstudy-sweep-") as tmp:
@@ -189,8 +189,8 @@ def figure(df, title: str):
 
 
 def run(args: argparse.Namespace) -> int:
-    from engine.conveyor import InputError, load_conveyor
-    from service.cli.common import check_scenario_fields, parse_load, parse_model_params
+    from beltstudy.engine.conveyor import InputError, load_conveyor
+    from beltstudy.service.cli.common import check_scenario_fields, parse_load, parse_model_params
 
     conv = load_conveyor(args.conveyor)
     models = _model_list(args.models)
@@ -198,7 +198,7 @@ def run(args: argparse.Namespace) -> int:
     load = parse_load(args.load)
     check_scenario_fields(load=load, elements=args.elements)
     raw = parse_model_params(args.param)
-    from engine.friction import get_model
+    from beltstudy.engine.friction import get_model
 
     params: dict[str, dict] = {}
     names = {fm.name for fm in models}

@@ -1,6 +1,6 @@
-"""Browser pages of the service and the plot routes (``service.web.routes.router``).
+"""Browser pages of the service and the plot routes (``beltstudy.service.web.routes.router``).
 
 The pages are static shells; a small script (``static/app.js``) fills them from the JSON API
 with the bearer token the user typed (kept in ``sessionStorage``), and never through
-``innerHTML``. Plots are matplotlib figures from :mod:`service.plots` served as PNG or SVG.
+``innerHTML``. Plots are matplotlib figures from :mod:`beltstudy.service.plots` served as PNG or SVG.
 """

@@ -11,10 +11,10 @@ import threading
 
 import pandas as pd
 
-from service import plots, results
-from service.errors import Invalid, NotFound
-from service.grid import ResolvedStudy
-from service.studies import StudyService
+from beltstudy.service import plots, results
+from beltstudy.service.errors import Invalid, NotFound
+from beltstudy.service.grid import ResolvedStudy
+from beltstudy.service.studies import StudyService
 
 __all__ = [
     "STUDY_PLOTS",
@@ -178,8 +178,8 @@ def run_figure(service: StudyService, study_id: str, run_id: str, name: str):
 def _locator(spec):
     """``s_m -> (strand, distance from the tail)`` on the run's own loop (None if it cannot
     be cut: the figure then names loop positions)."""
-    from engine.conveyor import parse_conveyor, parse_scenario
-    from engine.loop import build_loop
+    from beltstudy.engine.conveyor import parse_conveyor, parse_scenario
+    from beltstudy.engine.loop import build_loop
 
     try:
         scenario = parse_scenario(spec.scenario)

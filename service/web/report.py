@@ -22,7 +22,7 @@ from typing import Any
 
 import pandas as pd
 
-from service.studies import StudyService
+from beltstudy.service.studies import StudyService
 
 __all__ = ["build_report", "GOVERNING", "REPORT_CSP"]
 
@@ -115,7 +115,7 @@ def _n(value: Any, digits: int = 4) -> str:
 
 
 def _png(make) -> str:
-    from service.web import figures
+    from beltstudy.service.web import figures
 
     data = figures.render(make, "png")
     return "data:image/png;base64," + base64.b64encode(data).decode("ascii")
@@ -247,8 +247,8 @@ def _grid_section(study: dict, status: dict) -> str:
 def _locator(study: dict):
     """``s_m -> (strand, distance from the tail)`` on the study's conveyor (None if the
     conveyor cannot be read here)."""
-    from engine.conveyor import parse_conveyor
-    from engine.loop import build_loop
+    from beltstudy.engine.conveyor import parse_conveyor
+    from beltstudy.engine.loop import build_loop
 
     try:
         return build_loop(parse_conveyor(study["conveyor"]), 1.0).where
@@ -267,15 +267,15 @@ def _where_on_loop(locate, at) -> str:
 
 def _limits(study: dict, runs: pd.DataFrame) -> dict[str, str]:
     """The limit each governing case is judged against, in numbers where the study has them."""
-    from engine.run import TRANSIENT_SAFETY_RATIO
-    from engine.statics import SAFETY_FACTOR_MIN
+    from beltstudy.engine.run import TRANSIENT_SAFETY_RATIO
+    from beltstudy.engine.statics import SAFETY_FACTOR_MIN
 
     conv = study["conveyor"]
     sag = conv["sag_limit_pct"]
     rating = pd.to_numeric(runs.get("belt_rating_kn"), errors="coerce") if len(runs) else None
     try:
-        from engine.catalog import resolve_belt
-        from engine.conveyor import parse_conveyor
+        from beltstudy.engine.catalog import resolve_belt
+        from beltstudy.engine.conveyor import parse_conveyor
 
         kind = resolve_belt(parse_conveyor(conv).belt).kind
     except Exception:  # a conveyor this engine cannot read
@@ -361,9 +361,9 @@ def _runs_section(study: dict, runs: pd.DataFrame) -> str:
 
 def build_report(service: StudyService, study_id: str) -> str:
     """The design report of a study as one self-contained HTML page."""
-    from engine.capacity import capacity
-    from engine.conveyor import parse_conveyor
-    from service.web import figures
+    from beltstudy.engine.capacity import capacity
+    from beltstudy.engine.conveyor import parse_conveyor
+    from beltstudy.service.web import figures
 
     doc = service.store.read(study_id)
     status = service.status(study_id)

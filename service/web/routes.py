@@ -17,10 +17,10 @@ from typing import Literal
 from fastapi import APIRouter, Depends, Query, Response
 from fastapi.responses import HTMLResponse
 
-from service.api.deps import ERROR_RESPONSES, get_service, require_token
-from service.errors import NotFound
-from service.studies import StudyService
-from service.web import figures
+from beltstudy.service.api.deps import ERROR_RESPONSES, get_service, require_token
+from beltstudy.service.errors import NotFound
+from beltstudy.service.studies import StudyService
+from beltstudy.service.web import figures
 
 __all__ = ["router", "pages", "api"]
 
@@ -47,7 +47,7 @@ api = APIRouter(dependencies=[Depends(require_token)], responses=ERROR_RESPONSES
 
 
 def _resource(*parts: str) -> str:
-    return resources.files("service.web").joinpath(*parts).read_text(encoding="utf-8")
+    return resources.files("beltstudy.service.web").joinpath(*parts).read_text(encoding="utf-8")
 
 
 def _page(page: str, title: str, study_id: str = "", run_id: str = "") -> HTMLResponse:
@@ -163,7 +163,7 @@ def run_plot(
                      "description": "the report"}},
 )
 def study_report(study_id: str, service: StudyService = Depends(get_service)) -> Response:
-    from service.web.report import REPORT_CSP, build_report
+    from beltstudy.service.web.report import REPORT_CSP, build_report
 
     return HTMLResponse(build_report(service, study_id), headers={
         "Content-Security-Policy": REPORT_CSP, "X-Content-Type-Options": "nosniff",

@@ -6,9 +6,9 @@ import math
 
 import pytest
 
-from engine.capacity import capacity, cross_section_m2, slope_factor, usable_width_m
-from engine.conveyor import parse_conveyor
-from engine.statics import solve_steady
+from beltstudy.engine.capacity import capacity, cross_section_m2, slope_factor, usable_width_m
+from beltstudy.engine.conveyor import parse_conveyor
+from beltstudy.engine.statics import solve_steady
 from tests.conftest import hand_conveyor_dict
 
 

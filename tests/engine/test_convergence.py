@@ -9,9 +9,9 @@ import numpy as np
 import pytest
 from numpy.testing import assert_allclose
 
-import engine.statics as statics
-from engine.conveyor import load_conveyor, load_mapping, parse_conveyor
-from engine.statics import solve_steady
+import beltstudy.engine.statics as statics
+from beltstudy.engine.conveyor import load_conveyor, load_mapping, parse_conveyor
+from beltstudy.engine.statics import solve_steady
 from tests.conftest import CONVEYORS
 
 FILES = sorted(p.name for p in CONVEYORS.glob("*.yaml"))

@@ -4,9 +4,15 @@ from __future__ import annotations
 
 import pytest
 
-from engine import catalog
-from engine.conveyor import InputError, Scenario, load_conveyor, parse_conveyor, parse_scenario
-from engine.loop import build_loop
+from beltstudy.engine import catalog
+from beltstudy.engine.conveyor import (
+    InputError,
+    Scenario,
+    load_conveyor,
+    parse_conveyor,
+    parse_scenario,
+)
+from beltstudy.engine.loop import build_loop
 from tests.conftest import CONVEYORS, hand_conveyor_dict
 
 

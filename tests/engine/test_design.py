@@ -8,11 +8,11 @@ import numpy as np
 import pytest
 from numpy.testing import assert_allclose
 
-from engine.conveyor import Scenario, load_conveyor, parse_conveyor
-from engine.design import RATED_POWER_FACTOR, auto_sizes, moving_mass_kg
-from engine.dynamics import build_system
-from engine.loop import CARRY, G
-from engine.statics import TAKEUP_CONSTRAINTS, solve_steady
+from beltstudy.engine.conveyor import Scenario, load_conveyor, parse_conveyor
+from beltstudy.engine.design import RATED_POWER_FACTOR, auto_sizes, moving_mass_kg
+from beltstudy.engine.dynamics import build_system
+from beltstudy.engine.loop import CARRY, G
+from beltstudy.engine.statics import TAKEUP_CONSTRAINTS, solve_steady
 from tests.conftest import CONVEYORS, hand_conveyor_dict
 from tests.engine.test_statics import startup_t2_by_hand
 

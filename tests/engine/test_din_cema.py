@@ -8,9 +8,9 @@ import numpy as np
 import pytest
 from numpy.testing import assert_allclose
 
-from engine.friction import cema as cema_mod
-from engine.friction import din as din_mod
-from engine.statics import solve_steady
+from beltstudy.engine.friction import cema as cema_mod
+from beltstudy.engine.friction import din as din_mod
+from beltstudy.engine.statics import solve_steady
 
 G = 9.81
 RTOL = 1e-3  # 0.1 %
@@ -65,7 +65,7 @@ def test_din_temperature_independent(hand_conveyor):
 
 
 def test_din_short_conveyor_explicit_secondary(hand_dict):
-    from engine.conveyor import parse_conveyor
+    from beltstudy.engine.conveyor import parse_conveyor
 
     hand_dict["profile"] = [{"length_m": 60, "lift_m": 3}]
     conv = parse_conveyor(hand_dict)

@@ -11,11 +11,11 @@ import numpy as np
 import pytest
 from numpy.testing import assert_allclose
 
-from engine.conveyor import InputError, Scenario, load_conveyor, parse_conveyor
-from engine.dynamics import DynamicsOptions, build_system, simulate
-from engine.dynamics.laws import brake_fraction
-from engine.run import run_one
-from engine.statics import solve_steady
+from beltstudy.engine.conveyor import InputError, Scenario, load_conveyor, parse_conveyor
+from beltstudy.engine.dynamics import DynamicsOptions, build_system, simulate
+from beltstudy.engine.dynamics.laws import brake_fraction
+from beltstudy.engine.run import run_one
+from beltstudy.engine.statics import solve_steady
 from tests.conftest import CONVEYORS, hand_conveyor_dict
 
 G = 9.81

@@ -21,12 +21,12 @@ import numpy as np
 import pytest
 from numpy.testing import assert_allclose
 
-from engine.conveyor import Scenario, load_conveyor, parse_conveyor
-from engine.dynamics import DynamicsOptions, build_system, simulate
-from engine.dynamics.model import chord_strain, stability_limit_s
-from engine.loop import G
-from engine.run import run_one
-from engine.statics import solve_steady
+from beltstudy.engine.conveyor import Scenario, load_conveyor, parse_conveyor
+from beltstudy.engine.dynamics import DynamicsOptions, build_system, simulate
+from beltstudy.engine.dynamics.model import chord_strain, stability_limit_s
+from beltstudy.engine.loop import G
+from beltstudy.engine.run import run_one
+from beltstudy.engine.statics import solve_steady
 from tests.conftest import CONVEYORS
 
 #: Verification runs: the belt alone, no resistance, gravity, damping or sag stiffness.
@@ -186,7 +186,7 @@ def test_energy_balance_over_a_stop_through_slack(ernst):
     ("slope-5pct", "cema", {"type": "fixed", "position": "tail", "pretension_kn": 120.0}),
 ])
 def test_running_tensions_settle_to_statics(name, model, takeup):
-    from engine.conveyor import load_mapping
+    from beltstudy.engine.conveyor import load_mapping
 
     data = load_mapping(CONVEYORS / f"{name}.yaml")
     if takeup:

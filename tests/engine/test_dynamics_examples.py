@@ -11,9 +11,9 @@ import math
 
 import pytest
 
-from engine.conveyor import Scenario, load_conveyor
-from engine.friction import MODELS
-from engine.run import run_one
+from beltstudy.engine.conveyor import Scenario, load_conveyor
+from beltstudy.engine.friction import MODELS
+from beltstudy.engine.run import run_one
 from tests.conftest import CONVEYORS
 
 TRANSIENT_FIELDS = (

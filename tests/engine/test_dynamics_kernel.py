@@ -10,21 +10,21 @@ import numpy as np
 import pytest
 from numpy.testing import assert_allclose
 
-from engine.conveyor import Scenario, load_conveyor, load_mapping, parse_conveyor
-from engine.dynamics import DynamicsOptions, build_system, simulate
-from engine.dynamics import codes as C
-from engine.dynamics.blocks import solve_arrow
-from engine.dynamics.fastmath import vexp, vlog
-from engine.dynamics.model import implicit_blocks
-from engine.dynamics.passes import resistance, spring
-from engine.dynamics.reference import _law, run_reference
-from engine.dynamics.simulate import (
+from beltstudy.engine.conveyor import Scenario, load_conveyor, load_mapping, parse_conveyor
+from beltstudy.engine.dynamics import DynamicsOptions, build_system, simulate
+from beltstudy.engine.dynamics import codes as C
+from beltstudy.engine.dynamics.blocks import solve_arrow
+from beltstudy.engine.dynamics.fastmath import vexp, vlog
+from beltstudy.engine.dynamics.model import implicit_blocks
+from beltstudy.engine.dynamics.passes import resistance, spring
+from beltstudy.engine.dynamics.reference import _law, run_reference
+from beltstudy.engine.dynamics.simulate import (
     SURFACE_COLUMNS,
     TIMESERIES_COLUMNS,
     exponent_codes,
     prepare,
 )
-from engine.statics import solve_steady
+from beltstudy.engine.statics import solve_steady
 from tests.conftest import CONVEYORS
 
 
@@ -126,7 +126,7 @@ def test_kernel_matches_numpy_reference(name, changes, model, scenario, exercise
     """Whole cycles: final state, whole-cycle envelopes, shafts, drives, carriage, drive work
     and the phase times agree to 1e-9 (of the design speed for speeds, of the largest tension
     for forces; the kernel's exp/log polynomials and band solve differ from numpy's in the
-    last bits only); with an expanded law (Non-Lin, engine.dynamics.linlaw) both evaluate the
+    last bits only); with an expanded law (Non-Lin, beltstudy.engine.dynamics.linlaw) both evaluate the
     same elements' laws exactly at the same steps."""
     conv = conveyor(name, **changes)
     scenario = dict(scenario)
@@ -261,7 +261,7 @@ def test_rk45_on_the_same_equations_agrees():
     first moments of the start, and makes the ODE stiff for an explicit integrator."""
     from scipy.integrate import solve_ivp
 
-    from engine.dynamics import ode
+    from beltstudy.engine.dynamics import ode
 
     conv = conveyor("fabric-1km", holdback=False)
     st = solve_steady(conv, model="nonlin", n_elements=20)

@@ -1,4 +1,4 @@
-"""The resistance law between exact evaluations (engine.dynamics.linlaw): the windows bound the
+"""The resistance law between exact evaluations (beltstudy.engine.dynamics.linlaw): the windows bound the
 expansion's error by the stated tolerance, the kernel's evaluation and expansion are the
 reference's, and the expanded law leaves the results of the example cycles within 0.1 % of the
 exact law's."""
@@ -8,10 +8,10 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from engine.conveyor import InputError, Scenario, load_conveyor
-from engine.dynamics import DynamicsOptions, build_system
-from engine.dynamics import codes as C
-from engine.dynamics.linlaw import (
+from beltstudy.engine.conveyor import InputError, Scenario, load_conveyor
+from beltstudy.engine.dynamics import DynamicsOptions, build_system
+from beltstudy.engine.dynamics import codes as C
+from beltstudy.engine.dynamics.linlaw import (
     BIG,
     PREDICT,
     creep_bound,
@@ -20,10 +20,10 @@ from engine.dynamics.linlaw import (
     law_windows,
     remainder_bound,
 )
-from engine.dynamics.passes import law_refresh
-from engine.dynamics.reference import ExpandedLaw
-from engine.dynamics.simulate import prepare, simulate
-from engine.statics import solve_steady
+from beltstudy.engine.dynamics.passes import law_refresh
+from beltstudy.engine.dynamics.reference import ExpandedLaw
+from beltstudy.engine.dynamics.simulate import prepare, simulate
+from beltstudy.engine.statics import solve_steady
 from tests.conftest import CONVEYORS
 
 RTOL = 1e-3

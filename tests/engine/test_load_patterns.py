@@ -9,11 +9,17 @@ import numpy as np
 import pytest
 from numpy.testing import assert_allclose
 
-from engine.conveyor import InputError, Scenario, parse_conveyor, parse_scenario, section_loads
-from engine.dynamics import build_system, simulate
-from engine.loop import CARRY, G, build_loop
-from engine.run import run_one
-from engine.statics import solve_steady
+from beltstudy.engine.conveyor import (
+    InputError,
+    Scenario,
+    parse_conveyor,
+    parse_scenario,
+    section_loads,
+)
+from beltstudy.engine.dynamics import build_system, simulate
+from beltstudy.engine.loop import CARRY, G, build_loop
+from beltstudy.engine.run import run_one
+from beltstudy.engine.statics import solve_steady
 from tests.conftest import hand_conveyor_dict
 
 #: Hand numbers of the two-section conveyor (tests/conftest.py: hand_conveyor_dict):

@@ -13,13 +13,13 @@ import numpy as np
 import pytest
 from numpy.testing import assert_allclose
 
-import engine.statics as statics
-from engine.conveyor import InputError, parse_conveyor
-from engine.friction import get_model
-from engine.friction import nonlin as nl
-from engine.law import HS_MAX, HS_REF
-from engine.loop import CARRY, RETURN, build_loop
-from engine.statics import solve_steady
+import beltstudy.engine.statics as statics
+from beltstudy.engine.conveyor import InputError, parse_conveyor
+from beltstudy.engine.friction import get_model
+from beltstudy.engine.friction import nonlin as nl
+from beltstudy.engine.law import HS_MAX, HS_REF
+from beltstudy.engine.loop import CARRY, RETURN, build_loop
+from beltstudy.engine.statics import solve_steady
 from tests.conftest import hand_conveyor_dict
 
 G = 9.81

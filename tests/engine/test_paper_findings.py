@@ -16,13 +16,13 @@ import numpy as np
 import pandas as pd
 import pytest
 
-from engine.conveyor import load_conveyor, parse_conveyor, parse_scenario
-from engine.friction import get_model
-from engine.run import run_one
-from engine.statics import solve_steady
-from service.cli import main
-from service.cli.sweep import sweep_study
-from service.studyfile import resolve_study
+from beltstudy.engine.conveyor import load_conveyor, parse_conveyor, parse_scenario
+from beltstudy.engine.friction import get_model
+from beltstudy.engine.run import run_one
+from beltstudy.engine.statics import solve_steady
+from beltstudy.service.cli import main
+from beltstudy.service.cli.sweep import sweep_study
+from beltstudy.service.studyfile import resolve_study
 from tests.conftest import CONVEYORS
 
 SLOPE = CONVEYORS / "slope-5pct.yaml"
@@ -81,7 +81,7 @@ def test_din_flat_in_temperature():
 
 
 def test_sweep_temperature_command(tmp_path, capsys, monkeypatch):
-    from service.studies import StudyService
+    from beltstudy.service.studies import StudyService
 
     submitted = []
     submit = StudyService.submit

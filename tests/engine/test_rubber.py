@@ -9,8 +9,8 @@ import numpy as np
 import pytest
 from numpy.testing import assert_allclose
 
-from engine import catalog, rubber
-from engine.conveyor import InputError
+from beltstudy.engine import catalog, rubber
+from beltstudy.engine.conveyor import InputError
 
 COMPOUNDS = ("standard", "lrr", "cold", "fire-resistant")
 

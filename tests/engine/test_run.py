@@ -9,7 +9,7 @@ import json
 import pandas as pd
 import pytest
 
-from engine.conveyor import (
+from beltstudy.engine.conveyor import (
     InputError,
     Scenario,
     load_conveyor,
@@ -17,13 +17,13 @@ from engine.conveyor import (
     parse_conveyor,
     parse_scenario,
 )
-from engine.dynamics.simulate import TIMESERIES_COLUMNS
-from engine.run import run_one
+from beltstudy.engine.dynamics.simulate import TIMESERIES_COLUMNS
+from beltstudy.engine.run import run_one
 from tests.conftest import CONVEYORS
 from tests.engine.test_dynamics_examples import TRANSIENT_FIELDS
 
 SLOPE = CONVEYORS / "slope-5pct.yaml"
-sim_mod = importlib.import_module("engine.dynamics.simulate")
+sim_mod = importlib.import_module("beltstudy.engine.dynamics.simulate")
 
 
 @pytest.fixture
@@ -110,7 +110,7 @@ def test_fixed_step_below_the_limit_runs():
 
 
 def test_cli_simulate_json_timeseries_plot(tmp_path, capsys):
-    from service.cli import main
+    from beltstudy.service.cli import main
 
     ts_path = tmp_path / "ts.parquet"
     png = tmp_path / "fig4.png"
@@ -130,7 +130,7 @@ def test_cli_simulate_json_timeseries_plot(tmp_path, capsys):
 
 
 def test_cli_scenario_file_with_overrides(tmp_path, capsys):
-    from service.cli import main
+    from beltstudy.service.cli import main
 
     scn = tmp_path / "scn.yaml"
     scn.write_text("scenario:\n  load: empty\n  start: {control: linear, time_s: 12}\n"
@@ -151,7 +151,7 @@ def test_cli_scenario_file_with_overrides(tmp_path, capsys):
     (["--model", "nonlinn"], "unknown model"),
 ])
 def test_cli_bad_input_one_line_exit_2(argv, expect, capsys):
-    from service.cli import main
+    from beltstudy.service.cli import main
 
     code = main(["simulate", str(SLOPE), *argv])
     err = capsys.readouterr().err

@@ -9,13 +9,13 @@ import math
 import numpy as np
 import pytest
 
-from engine.conveyor import Scenario, load_conveyor, parse_conveyor
-from engine.dynamics import DynamicsOptions, build_system, simulate
-from engine.dynamics.model import chord_strain
-from engine.friction import get_model
-from engine.loop import build_loop
-from engine.run import run_one
-from engine.statics import solve_steady
+from beltstudy.engine.conveyor import Scenario, load_conveyor, parse_conveyor
+from beltstudy.engine.dynamics import DynamicsOptions, build_system, simulate
+from beltstudy.engine.dynamics.model import chord_strain
+from beltstudy.engine.friction import get_model
+from beltstudy.engine.loop import build_loop
+from beltstudy.engine.run import run_one
+from beltstudy.engine.statics import solve_steady
 from tests.conftest import CONVEYORS, hand_conveyor_dict
 from tests.engine.test_dynamics import _arrival, flat_conveyor
 

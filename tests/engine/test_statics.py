@@ -8,16 +8,16 @@ import numpy as np
 import pytest
 from numpy.testing import assert_allclose
 
-from engine.conveyor import parse_conveyor
-from engine.loop import G
-from engine.statics import STARTUP_FACTOR, solve_steady
+from beltstudy.engine.conveyor import parse_conveyor
+from beltstudy.engine.loop import G
+from beltstudy.engine.statics import STARTUP_FACTOR, solve_steady
 from tests.conftest import CONVEYORS, hand_conveyor_dict
 
 
 @pytest.mark.parametrize("model", ["din", "cema"])
 @pytest.mark.parametrize("name", sorted(p.name for p in CONVEYORS.glob("*.yaml")))
 def test_walk_closes(name, model):
-    from engine.conveyor import load_conveyor
+    from beltstudy.engine.conveyor import load_conveyor
 
     res = solve_steady(load_conveyor(CONVEYORS / name), model=model, n_elements=300)
     T = res.tension_n
@@ -161,7 +161,7 @@ def test_safety_factor_flips_at_threshold(hand_dict):
 
 
 def test_regenerating_drive_tight_side_outgoing():
-    from engine.conveyor import load_conveyor
+    from beltstudy.engine.conveyor import load_conveyor
 
     res = solve_steady(load_conveyor(CONVEYORS / "downhill-regen.yaml"), model="din")
     assert res.te_n < 0  # the drive brakes the belt

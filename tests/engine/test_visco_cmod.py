@@ -12,12 +12,12 @@ import numpy as np
 import pytest
 from numpy.testing import assert_allclose
 
-from engine.conveyor import InputError, load_conveyor, parse_conveyor
-from engine.friction import cema as cema_mod
-from engine.friction import get_model
-from engine.law import HS_MAX, HS_REF
-from engine.loop import CARRY
-from engine.statics import solve_steady
+from beltstudy.engine.conveyor import InputError, load_conveyor, parse_conveyor
+from beltstudy.engine.friction import cema as cema_mod
+from beltstudy.engine.friction import get_model
+from beltstudy.engine.law import HS_MAX, HS_REF
+from beltstudy.engine.loop import CARRY
+from beltstudy.engine.statics import solve_steady
 from tests.conftest import CONVEYORS
 from tests.engine.test_nonlin import COS, HC, MG, ML, SC, SR, D, G, H, L, V, nl_dict, rubber_by_hand
 

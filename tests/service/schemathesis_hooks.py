@@ -1,7 +1,7 @@
 """Schemathesis hooks: keep generated *valid* studies to the rules JSON Schema cannot state.
 
-The study schema (``service.openapi.study_schema``) states everything JSON Schema can; the
-few rules it cannot (``service.openapi.NOT_IN_SCHEMA``: sums, comparisons between fields,
+The study schema (``beltstudy.service.openapi.study_schema``) states everything JSON Schema can; the
+few rules it cannot (``beltstudy.service.openapi.NOT_IN_SCHEMA``: sums, comparisons between fields,
 products over the grid) are written out here, independently of the service's code, and
 generated positive bodies that break one are skipped (negative ones are left alone: they are
 refused anyway). Used by ``tests/service/test_api_schemathesis.py`` and by hand with
@@ -177,7 +177,7 @@ def _distinct(conv: Any, parts: list[str], values: list) -> bool:
     """Whether the object values of a conveyor or scenario axis stay distinct once validated
     (``{}`` and ``{"head_kn": 0}`` are one accessories value); the engine's own models fill
     the defaults."""
-    from engine.conveyor import InputError, Scenario, parse_conveyor
+    from beltstudy.engine.conveyor import InputError, Scenario, parse_conveyor
 
     if parts[0] == "conveyor":
         conv = _base_conveyor(conv)

@@ -12,7 +12,7 @@ import pytest
 import yaml
 from fastapi.testclient import TestClient
 
-from service.api.app import create_app
+from beltstudy.service.api.app import create_app
 
 
 @pytest.fixture

@@ -57,7 +57,7 @@ def run_schemathesis(url: str, token: str, max_examples: int, seed: int, log: Pa
 def test_every_check_holds_over_the_live_service(tmp_path):
     service = LiveService(
         tmp_path / "data",
-        tmp_path / "service.log",
+        tmp_path / "beltstudy.service.log",
         BELTSTUDY_TOKEN=TOKEN,
         BELTSTUDY_MAX_RUNS=str(schemathesis_hooks.MAX_RUNS),
     )

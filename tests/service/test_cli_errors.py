@@ -6,9 +6,9 @@ import argparse
 
 import pytest
 
-import service.cli as cli
-from engine.errors import InputError
-from service.errors import Conflict, Invalid, NotFound, ServiceError, Unavailable
+import beltstudy.service.cli as cli
+from beltstudy.engine.errors import InputError
+from beltstudy.service.errors import Conflict, Invalid, NotFound, ServiceError, Unavailable
 
 
 def _raising(monkeypatch, exc: BaseException) -> None:
@@ -57,6 +57,6 @@ def test_input_error_keeps_its_field_apart():
     exc = InputError("unknown model 'x'", field="friction_model")
     assert str(exc) == "friction_model: unknown model 'x'"
     assert (exc.field, exc.reason) == ("friction_model", "unknown model 'x'")
-    from engine.conveyor import InputError as FromConveyor
+    from beltstudy.engine.conveyor import InputError as FromConveyor
 
     assert FromConveyor is InputError

@@ -8,9 +8,9 @@ import pandas as pd
 import pytest
 import yaml
 
-from service.cli import main
-from service.demo import free_port
-from service.report import ProgressBar, format_compare
+from beltstudy.service.cli import main
+from beltstudy.service.demo import free_port
+from beltstudy.service.report import ProgressBar, format_compare
 
 
 @pytest.fixture

@@ -6,7 +6,7 @@ from pathlib import Path
 
 import yaml
 
-from service.settings import ENV_PREFIX, Settings
+from beltstudy.service.settings import ENV_PREFIX, Settings
 
 ROOT = Path(__file__).resolve().parents[2]
 

@@ -31,7 +31,7 @@ pytestmark = pytest.mark.slow
 def svc(tmp_path_factory):
     """One service (LocalCluster, two workers) for the tests that need nothing special."""
     tmp = tmp_path_factory.mktemp("hardening")
-    service = LiveService(tmp / "data", tmp / "service.log")
+    service = LiveService(tmp / "data", tmp / "beltstudy.service.log")
     yield service
     service.stop()
 
@@ -161,14 +161,14 @@ def test_delete_and_sigterm_with_the_scheduler_unreachable_finish_within_10_s(
 ):
     """Nothing listens at BELTSTUDY_SCHEDULER: studies stay queued, and deleting them or
     stopping the service does not wait for a connection."""
-    from service.client import ServiceClient
-    from service.demo import free_port, start_server, stop_server
+    from beltstudy.service.client import ServiceClient
+    from beltstudy.service.demo import free_port, start_server, stop_server
 
     port = free_port()
     env = {"BELTSTUDY_DATA_DIR": str(tmp_path / "data"), "BELTSTUDY_TOKEN": "",
            "BELTSTUDY_SCHEDULER": f"tcp://127.0.0.1:{free_port()}",
            "BELTSTUDY_STUDIES_DIR": str(tmp_path)}
-    with open(tmp_path / "service.log", "ab") as log:
+    with open(tmp_path / "beltstudy.service.log", "ab") as log:
         proc = start_server(port, env=env, log=log)
     client = ServiceClient(f"http://127.0.0.1:{port}", timeout=60)
     try:
@@ -200,7 +200,7 @@ def test_delete_and_sigterm_with_the_scheduler_unreachable_finish_within_10_s(
 def test_delete_and_sigterm_with_the_scheduler_gone_finish_within_10_s(
     live_service, make_study, tmp_path
 ):
-    from service.demo import free_port
+    from beltstudy.service.demo import free_port
 
     port = free_port()
     dask = os.path.join(os.path.dirname(sys.executable), "dask")
@@ -250,7 +250,7 @@ def _runs_alive() -> int:
     """RunSpec objects alive in this process (every resolved run is one)."""
     import gc
 
-    from service.grid import RunSpec
+    from beltstudy.service.grid import RunSpec
 
     gc.collect()
     return sum(1 for o in gc.get_objects() if isinstance(o, RunSpec))
@@ -261,8 +261,8 @@ def test_a_finished_study_releases_its_job_memory(data_dir, make_settings, make_
     runs (counted, and their bytes measured with tracemalloc) are freed once it has finished."""
     import tracemalloc
 
-    from service.studies import StudyService
-    from service.studyfile import resolve_study
+    from beltstudy.service.studies import StudyService
+    from beltstudy.service.studyfile import resolve_study
 
     body = {
         "name": "memory",

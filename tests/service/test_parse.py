@@ -6,8 +6,8 @@ import time
 
 import pytest
 
-from service import parse
-from service.errors import Invalid, TooLarge
+from beltstudy.service import parse
+from beltstudy.service.errors import Invalid, TooLarge
 
 LOADERS = [pytest.param(parse._Loader, id="default"), pytest.param(parse._PyLoader, id="pure")]
 

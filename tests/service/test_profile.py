@@ -10,13 +10,13 @@ import numpy as np
 import pandas as pd
 from fastapi.testclient import TestClient
 
-from engine.conveyor import parse_conveyor, parse_scenario
-from engine.run import run_one
-from service.api.app import create_app
-from service.schema import PROFILE_COLUMNS
-from service.store import Store
-from service.studies import StudyService
-from service.tasks import TINY_CONVEYOR, TINY_SCENARIO, profile_table
+from beltstudy.engine.conveyor import parse_conveyor, parse_scenario
+from beltstudy.engine.run import run_one
+from beltstudy.service.api.app import create_app
+from beltstudy.service.schema import PROFILE_COLUMNS
+from beltstudy.service.store import Store
+from beltstudy.service.studies import StudyService
+from beltstudy.service.tasks import TINY_CONVEYOR, TINY_SCENARIO, profile_table
 
 
 def test_profile_table_holds_the_steady_profile_of_the_result():

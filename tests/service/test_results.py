@@ -7,8 +7,8 @@ import math
 import pandas as pd
 import pytest
 
-from service.errors import Invalid, NotFound
-from service.results import apply_filters, compare, row_to_json
+from beltstudy.service.errors import Invalid, NotFound
+from beltstudy.service.results import apply_filters, compare, row_to_json
 
 
 def _runs() -> pd.DataFrame:

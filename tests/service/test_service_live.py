@@ -70,8 +70,8 @@ def test_submit_poll_and_read_parquet(live_service, make_study):
     assert (runs["study_id"] == sub["id"]).all()
     # one installed design: every run has the counterweight the largest requirement over the
     # study's models and temperatures at full load asks for (empty runs included)
-    from engine.conveyor import parse_conveyor
-    from engine.statics import solve_steady
+    from beltstudy.engine.conveyor import parse_conveyor
+    from beltstudy.engine.statics import solve_steady
 
     conv = parse_conveyor(body["conveyor"])
     need = max(solve_steady(conv, model=m, temperature_c=t, load="full",
@@ -188,7 +188,7 @@ def test_killing_a_worker_mid_study_still_completes(live_service, make_study):
 
 
 def test_against_an_external_scheduler_and_two_workers(live_service, make_study, tmp_path):
-    from service.demo import free_port
+    from beltstudy.service.demo import free_port
 
     port = free_port()
     dask = os.path.join(os.path.dirname(sys.executable), "dask")

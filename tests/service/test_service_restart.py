@@ -10,10 +10,10 @@ import json
 import pandas as pd
 import pytest
 
-from service.jobs import study_schema
-from service.schema import rows_to_table
-from service.studyfile import resolve_study
-from service.tasks import run_batch
+from beltstudy.service.jobs import study_schema
+from beltstudy.service.schema import rows_to_table
+from beltstudy.service.studyfile import resolve_study
+from beltstudy.service.tasks import run_batch
 
 pytestmark = pytest.mark.slow
 

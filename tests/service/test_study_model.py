@@ -7,11 +7,11 @@ from pathlib import Path
 
 import pytest
 
-import engine
-from service.axes import axis_column, resolve_axis
-from service.errors import Invalid, TooLarge
-from service.grid import expand_runs, study_from_json
-from service.studyfile import RangeSpec, load_study_file, resolve_study
+from beltstudy import engine
+from beltstudy.service.axes import axis_column, resolve_axis
+from beltstudy.service.errors import Invalid, TooLarge
+from beltstudy.service.grid import expand_runs, study_from_json
+from beltstudy.service.studyfile import RangeSpec, load_study_file, resolve_study
 
 ROOT = Path(__file__).resolve().parents[2]
 
@@ -237,6 +237,6 @@ def test_axis_paths_and_columns():
 
 
 def _conveyor():
-    from service.tasks import TINY_CONVEYOR
+    from beltstudy.service.tasks import TINY_CONVEYOR
 
     return TINY_CONVEYOR

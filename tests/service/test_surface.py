@@ -1,6 +1,6 @@
 """Run tables straight from the engine's arrays, and the surface stored only on request.
 
-In-process: runs go through ``service.tasks.run_batch`` (the workers' code) and are stored
+In-process: runs go through ``beltstudy.service.tasks.run_batch`` (the workers' code) and are stored
 as the service stores them; the API is a TestClient without the lifespan (no Dask). The same
 with a real uvicorn server and LocalCluster is in ``test_service_live.py``.
 """
@@ -15,14 +15,14 @@ import pyarrow as pa
 import pytest
 from fastapi.testclient import TestClient
 
-from engine.conveyor import parse_conveyor, parse_scenario
-from engine.run import run_one
-from service.api.app import create_app
-from service.schema import MAX_DRIVES, SURFACE_COLUMNS, TIMESERIES_COLUMNS
-from service.store import Store
-from service.studies import StudyService
-from service.studyfile import resolve_study
-from service.tasks import TINY_CONVEYOR, TINY_SCENARIO, surface_table, timeseries_table
+from beltstudy.engine.conveyor import parse_conveyor, parse_scenario
+from beltstudy.engine.run import run_one
+from beltstudy.service.api.app import create_app
+from beltstudy.service.schema import MAX_DRIVES, SURFACE_COLUMNS, TIMESERIES_COLUMNS
+from beltstudy.service.store import Store
+from beltstudy.service.studies import StudyService
+from beltstudy.service.studyfile import resolve_study
+from beltstudy.service.tasks import TINY_CONVEYOR, TINY_SCENARIO, surface_table, timeseries_table
 
 
 def _dynamic(make_study, name: str, **over) -> dict:

@@ -9,13 +9,13 @@ from pathlib import Path
 import pytest
 from fastapi.testclient import TestClient
 
-from service.api.app import create_app
-from service.jobs import study_schema
-from service.schema import rows_to_table
-from service.settings import Settings
-from service.store import PART_TABLES, Store
-from service.studyfile import resolve_study
-from service.tasks import run_batch
+from beltstudy.service.api.app import create_app
+from beltstudy.service.jobs import study_schema
+from beltstudy.service.schema import rows_to_table
+from beltstudy.service.settings import Settings
+from beltstudy.service.store import PART_TABLES, Store
+from beltstudy.service.studyfile import resolve_study
+from beltstudy.service.tasks import run_batch
 
 ROOT = Path(__file__).resolve().parents[2]
 XSS = "<script>alert(1)</script><b>x</b>"
@@ -54,7 +54,7 @@ def app_with_pages(data_dir: Path, **settings):
     s = Settings(data_dir=data_dir, warm_start=False, studies_dir=ROOT / "studies", **settings)
     app = create_app(s)
     if not any(getattr(r, "path", "") == "/ui/static/{name}" for r in app.routes):
-        from service.web.routes import router
+        from beltstudy.service.web.routes import router
 
         app.include_router(router)
     return app

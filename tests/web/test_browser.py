@@ -32,20 +32,20 @@ CHROMIUM = "/usr/bin/chromium"
 CHROMEDRIVER = "/usr/bin/chromedriver"
 XSS = "<script>alert(1)</script><b>x</b>"
 
-# The app factory with the pages included (also when service.api.app does not list them yet).
+# The app factory with the pages included (also when beltstudy.service.api.app does not list them yet).
 # A file, not ``-c``: Dask's worker processes are spawned and re-import the main module.
 SERVER = """
 import sys
 
 import uvicorn
 
-from service.api.app import create_app
+from beltstudy.service.api.app import create_app
 
 
 def main() -> None:
     app = create_app()
     if not any(getattr(r, "path", "") == "/ui/static/{name}" for r in app.routes):
-        from service.web.routes import router
+        from beltstudy.service.web.routes import router
 
         app.include_router(router)
     uvicorn.run(app, host="127.0.0.1", port=int(sys.argv[1]), log_level="warning")

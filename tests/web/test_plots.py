@@ -1,4 +1,4 @@
-"""The study and run figures of service.plots on small hand-made tables."""
+"""The study and run figures of beltstudy.service.plots on small hand-made tables."""
 
 from __future__ import annotations
 
@@ -6,7 +6,7 @@ import numpy as np
 import pandas as pd
 import pytest
 
-from service import plots, results
+from beltstudy.service import plots, results
 
 
 @pytest.fixture(autouse=True)

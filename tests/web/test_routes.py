@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import pytest
 
-from service.web import figures
+from beltstudy.service.web import figures
 
 PNG = b"\x89PNG\r\n\x1a\n"
 
@@ -178,8 +178,8 @@ def test_the_design_report_is_one_self_contained_page(web, tmp_path):
 
 def test_report_command_writes_the_page_from_the_local_store(web, tmp_path, monkeypatch,
                                                              capsys):
-    from service.cli import main
-    from service.demo import free_port
+    from beltstudy.service.cli import main
+    from beltstudy.service.demo import free_port
 
     sid = web.finished_study(tmp_path, web.tiny_study(name="cli-report"))
     monkeypatch.setenv("BELTSTUDY_URL", f"http://127.0.0.1:{free_port()}")
