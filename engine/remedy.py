@@ -49,12 +49,17 @@ class SlipRemedy:
     reruns: int
 
 
-def _slips(conveyor: Conveyor, scenario: Scenario, model: str, params, options) -> bool:
-    """Whether any drive slips between the start command and the stop command."""
+def _steady(conveyor: Conveyor, scenario: Scenario, model: str, params):
     n = None if scenario.elements == "auto" else int(scenario.elements)
-    steady = solve_steady(conveyor, model=model, params=params,
-                          temperature_c=scenario.temperature_c, load=scenario.load,
-                          n_elements=n)
+    return solve_steady(conveyor, model=model, params=params,
+                        temperature_c=scenario.temperature_c, load=scenario.load, n_elements=n)
+
+
+def _slips(conveyor: Conveyor, scenario: Scenario, model: str, params, options,
+           steady=None) -> bool:
+    """Whether any drive slips between the start command and the stop command (``steady``:
+    the conveyor's steady solve when known; the start time does not change it)."""
+    steady = steady or _steady(conveyor, scenario, model, params)
     if steady.status == "failed":
         return True
     system = build_system(conveyor, scenario, steady, options)
@@ -115,7 +120,8 @@ def slip_remedy(conveyor: Conveyor, scenario: Scenario, *, model: str, params=No
             update={field: float(x)})})
 
     fixed = conveyor if base is None else with_takeup(base)
-    if not _slips(fixed, scn, model, params, opts):
+    steady = _steady(fixed, scn, model, params)
+    if not _slips(fixed, scn, model, params, opts, steady):
         return None
     reruns = 1
     tu = None
@@ -128,7 +134,7 @@ def slip_remedy(conveyor: Conveyor, scenario: Scenario, *, model: str, params=No
     def with_start(t: float) -> Scenario:
         return scn.model_copy(update={"start": scn.start.model_copy(update={"time_s": t})})
 
-    st, k = _smallest(lambda t: not _slips(fixed, with_start(t), model, params, opts),
+    st, k = _smallest(lambda t: not _slips(fixed, with_start(t), model, params, opts, steady),
                       t0, START_MAX * t0)
     reruns += k
     return SlipRemedy(takeup_mass_kg=tu if gravity else None,

@@ -483,18 +483,15 @@ def spring_first(e0, s0, d0, de, tfl, sfl, kfl_eb, aeb, eb, e_damp, g_damp, kvs)
 
 
 @njit(inline="always", **OPTS)
-def fl_taut(s1, tfl, sfl, kfl_eb):
-    """Whether a spring at strain tension s1 is taut (above the floor line's zero)."""
-    return tfl + (s1 - sfl) * kfl_eb >= 0.0
-
-
-@njit(inline="always", **OPTS)
-def spring_refine(e1, s1, tfl, sfl, kfl_eb, aeb):
-    """:data:`NEWTON_MORE` further Newton steps of the chord law at the strain tension s1."""
+def spring_refine(e1, s1, d1, de, tfl, sfl, kfl_eb, aeb, kvs):
+    """:data:`NEWTON_MORE` further Newton steps of the chord law at the strain tension s1, for
+    a spring whose first step (:func:`spring_first`) left arm tension d1 after the increment
+    de. Returns (elastic, total tension)."""
     fl = tfl + (s1 - sfl) * kfl_eb
     for _ in range(NEWTON_MORE):
         e1 = max(_newton(e1, s1, tfl, aeb)[0], fl)
-    return e1
+    kv = kvs * de if fl >= 0.0 else 0.0
+    return e1, max(e1 + d1 + kv, 0.0)
 
 
 @njit(inline="always", **OPTS)
@@ -506,9 +503,7 @@ def spring(e0, s0, d0, dv, dlj, cdt, tfl, sfl, kfl_eb, aeb, eb, e_damp, g_damp, 
     e1, s1, d1, t1, more = spring_first(e0, s0, d0, de, tfl, sfl, kfl_eb, aeb, eb, e_damp,
                                         g_damp, kvs)
     if more:
-        e1 = spring_refine(e1, s1, tfl, sfl, kfl_eb, aeb)
-        kv = kvs * de if fl_taut(s1, tfl, sfl, kfl_eb) else 0.0
-        t1 = max(e1 + d1 + kv, 0.0)
+        e1, t1 = spring_refine(e1, s1, d1, de, tfl, sfl, kfl_eb, aeb, kvs)
     return e1, s1, d1, t1
 
 
@@ -544,13 +539,9 @@ def spring_pass(a, b, v, te, ts, td, tt, dl, t_floor, s_floor, kfl_eb, a_eb, eb,
         for jj in range(a, b):
             j = uintp(jj)
             if more[j] != 0.0:
-                e1 = te[j]
-                s1 = ts[j]
-                e2 = spring_refine(e1, s1, t_floor[j], s_floor[j], kfl_eb[j], a_eb[j])
                 de = (v[uintp(jj + 1)] - v[j]) * dl[j]
-                taut = fl_taut(s1, t_floor[j], s_floor[j], kfl_eb[j])
-                te[j] = e2
-                tt[j] = max(e2 + td[j] + (kvs[j] * de if taut else 0.0), 0.0)
+                te[j], tt[j] = spring_refine(te[j], ts[j], td[j], de, t_floor[j], s_floor[j],
+                                             kfl_eb[j], a_eb[j], kvs[j])
 
 
 @njit(**OPTS_RED)

@@ -180,19 +180,7 @@ def get_run_surface(
     service: StudyService = Depends(get_service),
 ):
     df, source = service.run_surface(study_id, run_id)
-    headers = {"X-Beltstudy-Surface": source}
-    if format == "csv":
-        return Response(results.to_csv(df), media_type="text/csv; charset=utf-8",
-                        headers=headers)
-    if format == "parquet":
-        return Response(results.to_parquet(df), media_type=PARQUET_TYPE, headers=headers)
-    return {
-        "study_id": study_id,
-        "run_id": run_id,
-        "source": source,
-        "rows": int(len(df)),
-        "surface": results.columns_to_json(df.drop(columns=["run_id"])) if len(df) else None,
-    }
+    return _run_table(df, source, "surface", study_id, run_id, format)
 
 
 @router.get(
@@ -218,7 +206,13 @@ def get_run_profile(
     service: StudyService = Depends(get_service),
 ):
     df, source = service.run_profile(study_id, run_id)
-    headers = {"X-Beltstudy-Profile": source}
+    return _run_table(df, source, "profile", study_id, run_id, format)
+
+
+def _run_table(df, source: str, what: str, study_id: str, run_id: str, format: str):
+    """One run's table (``what``: surface or profile) as CSV, Parquet or JSON columns, with
+    where it came from (stored or recomputed) in ``X-Beltstudy-<What>`` and the JSON."""
+    headers = {f"X-Beltstudy-{what.capitalize()}": source}
     if format == "csv":
         return Response(results.to_csv(df), media_type="text/csv; charset=utf-8",
                         headers=headers)
@@ -229,7 +223,7 @@ def get_run_profile(
         "run_id": run_id,
         "source": source,
         "rows": int(len(df)),
-        "profile": results.columns_to_json(df.drop(columns=["run_id"])) if len(df) else None,
+        what: results.columns_to_json(df.drop(columns=["run_id"])) if len(df) else None,
     }
 
 
