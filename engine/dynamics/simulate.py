@@ -448,6 +448,19 @@ def where(sys: System, j: int) -> str:
     return f"the {STRAND_NAMES.get(code, 'pulley')}"
 
 
+#: How a slip message names the phase it happened in, and a span of phases.
+_PHASE_WORDS = {"start": "during the start", "running": "while running", "stop": "during the stop"}
+_PHASE_NAMES = {"start": "the start", "running": "steady running", "stop": "the stop"}
+
+
+def _run_phase(sys: System, t_s: float, t_stop_cmd: float) -> str:
+    """The phase of the cycle at time ``t_s`` [s]: ``start`` (to the end of the start
+    reference, the rest before it included), ``running`` (to the stop command), ``stop``."""
+    if t_s <= sys.pre_rest_s + sys.start_s:
+        return "start"
+    return "running" if t_s <= t_stop_cmd else "stop"
+
+
 def _segments(sys: System, out, r: dict):
     """The envelope segments as (t0, t1, t_max, t_max_t, t_min, t_min_t)."""
     nseg = int(r["NSEG"])
@@ -659,11 +672,16 @@ def transient_summary(sys: System, r: dict, out, segs, *, steady_summary=None, c
         if slip_s > 0.0:
             t0 = float(drv[i, C.DRV.SLIP_FIRST])
             t1 = float(drv[i, C.DRV.SLIP_LAST])
-            phase = "start" if t0 <= t_stop_cmd else "stop"
-            fix = ("a heavier take-up (more slack-side tension) or a longer start "
-                   "(start.time_s)" if phase == "start" else
-                   "a heavier take-up or a softer stop (stop time, brake force)")
-            w.append(f"{names[i]} slipped on its pulley during the {phase}: from t = {t0:.1f} "
+            p0, p1 = _run_phase(sys, t0, t_stop_cmd), _run_phase(sys, t1, t_stop_cmd)
+            when = _PHASE_WORDS[p0] if p0 == p1 else \
+                f"from {_PHASE_NAMES[p0]} into {_PHASE_NAMES[p1]}"
+            fixes = ["a heavier take-up (more slack-side tension)"]
+            if p0 == "start":
+                fixes.append("a longer start (start.time_s)")
+            if p1 == "stop":
+                fixes.append("a softer stop (stop time, brake force)")
+            fix = ", ".join(fixes[:-1]) + " or " + fixes[-1]
+            w.append(f"{names[i]} slipped on its pulley {when}: from t = {t0:.1f} "
                      f"to {t1:.1f} s, {slip_s:.2f} s in all, {drv[i, C.DRV.SLIP_M]:.3g} m of belt "
                      f"slipped (lowest slip margin {drv[i, C.DRV.SLIP_MIN]:.2f}); {fix} would "
                      "avoid it")

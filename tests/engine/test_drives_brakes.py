@@ -6,6 +6,7 @@ Every check is against a hand calculation or a law, with its tolerance in the as
 from __future__ import annotations
 
 import math
+import re
 
 import numpy as np
 import pytest
@@ -231,6 +232,21 @@ def test_overland_60s_start_names_the_slipping_drive():
         pos = conv.drives[i - 1].position
         assert f"drive {i} ({pos}) slipped on its pulley" in s["message"]
     assert "m of belt slipped" in s["message"] and "s in all" in s["message"]
+    # the phases named are those of the slip's first and last time (2 s at rest, a 60 s
+    # start, 30 s running, then the stop)
+    def phase(t):
+        return "start" if t <= 62.0 else ("running" if t <= 92.0 else "stop")
+
+    words = {"start": "the start", "running": "steady running", "stop": "the stop"}
+    alone = {"start": "during the start", "running": "while running", "stop": "during the stop"}
+    found = list(re.finditer(r"slipped on its pulley (.*?): from t = ([\d.]+) to ([\d.]+) s",
+                             s["message"]))
+    assert len(found) == len(slipped)
+    for m in found:
+        p0, p1 = phase(float(m.group(2))), phase(float(m.group(3)))
+        want = alone[p0] if p0 == p1 else f"from {words[p0]} into {words[p1]}"
+        assert m.group(1) == want, m.group(0)
+    assert "a longer start (start.time_s)" in s["message"]  # the slips began in the start
 
 
 def test_the_take_up_and_start_time_that_avoid_a_start_slip_are_found_and_are_the_least():
