@@ -461,6 +461,21 @@ def _run_phase(sys: System, t_s: float, t_stop_cmd: float) -> str:
     return "running" if t_s <= t_stop_cmd else "stop"
 
 
+def slip_words(first: str, last: str) -> tuple[str, str]:
+    """How a slip message names a slip from phase ``first`` to phase ``last`` (``start``,
+    ``running``, ``stop``), and what would avoid it: a heavier take-up always, a longer start
+    when it began in the start, a softer stop when it reached the stop."""
+    when = _PHASE_WORDS[first] if first == last else \
+        f"from {_PHASE_NAMES[first]} into {_PHASE_NAMES[last]}"
+    fixes = ["a heavier take-up (more slack-side tension)"]
+    if first == "start":
+        fixes.append("a longer start (start.time_s)")
+    if last == "stop":
+        fixes.append("a softer stop (stop time, brake force)")
+    fix = fixes[0] if len(fixes) == 1 else ", ".join(fixes[:-1]) + " or " + fixes[-1]
+    return when, fix
+
+
 def _segments(sys: System, out, r: dict):
     """The envelope segments as (t0, t1, t_max, t_max_t, t_min, t_min_t)."""
     nseg = int(r["NSEG"])
@@ -672,15 +687,8 @@ def transient_summary(sys: System, r: dict, out, segs, *, steady_summary=None, c
         if slip_s > 0.0:
             t0 = float(drv[i, C.DRV.SLIP_FIRST])
             t1 = float(drv[i, C.DRV.SLIP_LAST])
-            p0, p1 = _run_phase(sys, t0, t_stop_cmd), _run_phase(sys, t1, t_stop_cmd)
-            when = _PHASE_WORDS[p0] if p0 == p1 else \
-                f"from {_PHASE_NAMES[p0]} into {_PHASE_NAMES[p1]}"
-            fixes = ["a heavier take-up (more slack-side tension)"]
-            if p0 == "start":
-                fixes.append("a longer start (start.time_s)")
-            if p1 == "stop":
-                fixes.append("a softer stop (stop time, brake force)")
-            fix = ", ".join(fixes[:-1]) + " or " + fixes[-1]
+            when, fix = slip_words(_run_phase(sys, t0, t_stop_cmd),
+                                   _run_phase(sys, t1, t_stop_cmd))
             w.append(f"{names[i]} slipped on its pulley {when}: from t = {t0:.1f} "
                      f"to {t1:.1f} s, {slip_s:.2f} s in all, {drv[i, C.DRV.SLIP_M]:.3g} m of belt "
                      f"slipped (lowest slip margin {drv[i, C.DRV.SLIP_MIN]:.2f}); {fix} would "

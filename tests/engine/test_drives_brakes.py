@@ -15,6 +15,7 @@ from numpy.testing import assert_allclose
 from beltstudy.engine.conveyor import InputError, Scenario, load_conveyor, parse_conveyor
 from beltstudy.engine.dynamics import DynamicsOptions, build_system, simulate
 from beltstudy.engine.dynamics.laws import brake_fraction
+from beltstudy.engine.dynamics.simulate import slip_words
 from beltstudy.engine.run import run_one
 from beltstudy.engine.statics import solve_steady
 from tests.conftest import CONVEYORS, hand_conveyor_dict
@@ -247,6 +248,22 @@ def test_overland_60s_start_names_the_slipping_drive():
         want = alone[p0] if p0 == p1 else f"from {words[p0]} into {words[p1]}"
         assert m.group(1) == want, m.group(0)
     assert "a longer start (start.time_s)" in s["message"]  # the slips began in the start
+
+
+def test_a_slip_message_names_its_phases_and_the_fixes_that_apply():
+    """Every pair of first and last phase: the words, and the fixes that apply to it."""
+    take_up = "a heavier take-up (more slack-side tension)"
+    start = "a longer start (start.time_s)"
+    stop = "a softer stop (stop time, brake force)"
+    assert slip_words("start", "start") == ("during the start", f"{take_up} or {start}")
+    assert slip_words("running", "running") == ("while running", take_up)
+    assert slip_words("stop", "stop") == ("during the stop", f"{take_up} or {stop}")
+    assert slip_words("start", "running") == ("from the start into steady running",
+                                              f"{take_up} or {start}")
+    assert slip_words("start", "stop") == ("from the start into the stop",
+                                           f"{take_up}, {start} or {stop}")
+    assert slip_words("running", "stop") == ("from steady running into the stop",
+                                             f"{take_up} or {stop}")
 
 
 def test_the_take_up_and_start_time_that_avoid_a_start_slip_are_found_and_are_the_least():
