@@ -35,6 +35,11 @@ router = APIRouter(
 
 STUDY_BODY_SCHEMA_REF = {"$ref": "#/components/schemas/StudyDoc"}
 PARQUET_TYPE = "application/vnd.apache.parquet"
+#: The other media types of a route that answers a table as JSON, CSV or Parquet (OpenAPI).
+TABLE_RESPONSES = {200: {"content": {
+    "text/csv": {"schema": {"type": "string"}},
+    PARQUET_TYPE: {"schema": {"type": "string", "format": "binary"}},
+}}}
 
 
 def _with_urls(status: dict) -> dict:
@@ -105,14 +110,7 @@ def get_study(study_id: str, service: StudyService = Depends(get_service)) -> di
     "/{study_id}/runs",
     response_model=RunsPage,
     summary="Run summary rows (SPEC section 4) as JSON, CSV or Parquet",
-    responses={
-        200: {
-            "content": {
-                "text/csv": {"schema": {"type": "string"}},
-                PARQUET_TYPE: {"schema": {"type": "string", "format": "binary"}},
-            }
-        }
-    },
+    responses=TABLE_RESPONSES,
 )
 def get_runs(
     study_id: str,
@@ -164,14 +162,7 @@ def get_run(study_id: str, run_id: str, service: StudyService = Depends(get_serv
     description="Stored when the study has `surface: true`; otherwise recomputed from the "
     "run's stored inputs on request (runs are deterministic: the same table). JSON, CSV or "
     "Parquet (`run_id, t_s, s_m, tension_kn, velocity_m_s`, float32 values).",
-    responses={
-        200: {
-            "content": {
-                "text/csv": {"schema": {"type": "string"}},
-                PARQUET_TYPE: {"schema": {"type": "string", "format": "binary"}},
-            }
-        }
-    },
+    responses=TABLE_RESPONSES,
 )
 def get_run_surface(
     study_id: str,
@@ -190,14 +181,7 @@ def get_run_surface(
     description="Stored with the run by the worker; recomputed from the run's inputs (the "
     "steady solve only) for a run stored before profiles were. JSON, CSV or Parquet "
     "(`run_id, s_m, strand, elevation_m, tension_kn, sag_pct`).",
-    responses={
-        200: {
-            "content": {
-                "text/csv": {"schema": {"type": "string"}},
-                PARQUET_TYPE: {"schema": {"type": "string", "format": "binary"}},
-            }
-        }
-    },
+    responses=TABLE_RESPONSES,
 )
 def get_run_profile(
     study_id: str,
