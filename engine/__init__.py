@@ -5,4 +5,4 @@ from importlib.metadata import PackageNotFoundError, version
 try:
     __version__ = version("beltstudy")
 except PackageNotFoundError:  # pragma: no cover - running from a source tree without install
-    __version__ = "0.4.0"
+    __version__ = "0.4.1"

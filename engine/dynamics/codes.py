@@ -11,14 +11,21 @@ from __future__ import annotations
 
 from beltstudy.engine.conveyor import CURVE_POINTS_MAX
 
-__all__ = ["FP", "IP", "RES", "DRV", "REC", "RECD", "OK", "DIVERGED", "V_FAIL_FACTOR",
+__all__ = ["FP", "IP", "RES", "DRV", "REC", "RECD", "OK", "DIVERGED", "RUNAWAY", "V_FAIL_FACTOR",
+           "RUNAWAY_FACTOR",
            "BLOCK_MAX", "CURVE_MAX", "SEG_MAX", "VFD", "DOL", "COUPLING_NONE", "COUPLING_FLUID",
            "COUPLING_FILL", "COAST", "BRAKE", "CONTROLLED", "RELATIVE", "SUPPORT"]
 
-# run status
-OK, DIVERGED = 0, 1
-#: Speed at which a run counts as diverged, as a multiple of the design speed.
+# run status: ok, diverged (the integration failed), runaway (the belt could not be held)
+OK, DIVERGED, RUNAWAY = 0, 1, 2
+#: Speed at which a run counts as diverged, as a multiple of the design speed: of any element,
+#: pulley shaft or motor (behind a coupling), or any of them not finite.
 V_FAIL_FACTOR = 100.0
+#: Mean belt speed, as a multiple of the design speed either way, at which the belt has run
+#: away (a decline the drives and brakes cannot hold, or a run-back): the run ends there, a
+#: physical result with a warning. Overspeed switches trip conveyors at 110-115 % of the design
+#: speed; twice the design speed is far past anything a held belt does.
+RUNAWAY_FACTOR = 2.0
 #: Largest implicit block (elements + carriage) the solver takes.
 BLOCK_MAX = 16
 #: Most points of a motor curve or a brake force curve.
@@ -57,7 +64,8 @@ LAW_CONST, LAW_EXACT, LAW_LINEAR = 0, 1, 2
  RES_ENDSTOP, RES_ENDSTOP_T, RES_ENDSTOP_SPEED, RES_NREC, RES_NSURF, RES_W_DRIVE,
  RES_T_STOPCMD, RES_STOPPED, RES_T_STOPPED, RES_V_MEAN_END, RES_I_END, RES_TMAX, RES_TMAX_T,
  RES_TMIN, RES_TMIN_T, RES_SLACK_MAX, RES_SLACK_AT, RES_SLACK_TIME, RES_SLACK_DUR,
- RES_SLACK_FIRST, RES_NSEG, RES_HOLD_SET, RES_TRIP, RES_LAW_EVALS, RES_SIZE) = range(41)
+ RES_SLACK_FIRST, RES_NSEG, RES_HOLD_SET, RES_TRIP, RES_LAW_EVALS, RES_DIV_WHERE, RES_SIZE) = range(42)
+#: RES_DIV_WHERE of a diverged run: -1 the belt, s >= 0 pulley shaft s, -2 - k drive k's motor
 #: per drive: largest |force| at the rim and |power| after the start command, smallest slip
 #: margin and when, time slipping, belt length slipped, first and last time slipping
 (DRV_FMAX, DRV_PMAX, DRV_SLIP_MIN, DRV_SLIP_MIN_T, DRV_SLIP_S, DRV_SLIP_M, DRV_SLIP_FIRST,

@@ -298,6 +298,9 @@ def run_cycle(fp, ip, nodes, law, lin, sp, blocks, shafts, drives, brakes, st, o
     master = ip[C.IP_M_DRIVE]
     hold_node = ip[C.IP_HOLD_NODE]
     vfd = ip[C.IP_CONTROL] == C.VFD
+    v_runaway = C.RUNAWAY_FACTOR * v_d
+    n_shaft = shafts.node.shape[0]
+    div_where = 0
     window = C.SPEED_WINDOW * v_d
     nd = drives.share.shape[0]
     nblk = blocks.ptr.shape[0] - 1
@@ -526,6 +529,21 @@ def run_cycle(fp, ip, nodes, law, lin, sp, blocks, shafts, drives, brakes, st, o
             tlo, thi, vlo, vhi = observe(tt, v, out.t_max, out.t_min)
         if not math.isfinite(vsum) or vhi > v_fail or vlo < -v_fail:
             status = C.DIVERGED
+            div_where = -1
+            break
+        # the shafts (a slipping one leaves the belt) and the motors behind couplings
+        for s in range(n_shaft):
+            if not abs(shafts.vs[s]) <= v_fail:  # also NaN
+                status = C.DIVERGED
+                div_where = s
+        for dk in range(nd):
+            if not abs(drives.vm[dk]) <= v_fail:
+                status = C.DIVERGED
+                div_where = -2 - dk
+        if status == C.DIVERGED:
+            break
+        if abs(v_mean) > v_runaway:
+            status = C.RUNAWAY  # a physical result: the belt could not be held
             break
         if vhi > vmax:
             vmax = vhi
@@ -679,4 +697,5 @@ def run_cycle(fp, ip, nodes, law, lin, sp, blocks, shafts, drives, brakes, st, o
     res[C.RES_HOLD_SET] = hold_set
     res[C.RES_TRIP] = t_trip
     res[C.RES_LAW_EVALS] = law_evals
+    res[C.RES_DIV_WHERE] = div_where
     return status

@@ -374,6 +374,35 @@ def implicit_blocks(strand: np.ndarray) -> tuple[np.ndarray, list[list[int]]]:
     return implicit, blocks
 
 
+#: Steps per drive-train time (:func:`drive_train_time_s`) the automatic step takes at least.
+DRIVE_STEPS = 2.0
+
+
+def drive_train_time_s(conv: Conveyor, parts, rated_n: np.ndarray, v_d: float) -> float:
+    """The fastest direct-on-line drive train: the time [s] its lightest rotating body (the
+    pulley shaft with the motor, or behind a fluid coupling the motor and the pulley side each)
+    would take to reach design speed unloaded at the drive's rated force, ``m v_d / F_r``
+    (``inf`` without dol drives).
+
+    A dol drive's force is the motor curve (and the coupling characteristic) linearised in the
+    shaft and motor speeds over one step; the curves have kinks (synchronous speed, the
+    coupling's slip through zero, the capstan limit, a holdback), and a step longer than
+    about half this time lets a light shaft jump across them and back every step instead of
+    settling (a chatter that grows into a runaway). Real drive trains take seconds (a motor's
+    run-up time unloaded), far above the belt's step; a shaft given a few kg m2 for megawatts
+    does not, and then sets the step. VFD drives are held by their speed loop and torque limit.
+    """
+    t = math.inf
+    for node, k in parts.shaft_drive.items():
+        d = conv.drives[k]
+        if d.control != "dol" or rated_n[k] <= 0.0:
+            continue
+        t = min(t, parts.shaft_mass[node] * v_d / rated_n[k])
+        if parts.motor_mass[k] > 0.0:
+            t = min(t, parts.motor_mass[k] * v_d / rated_n[k])
+    return t
+
+
 def stability_limit_s(mass_kg, len_m, stiffness_n, implicit=None, viscosity_ns=None) -> float:
     """Step limit ``2 / omega_max`` of the explicit part of the scheme [s].
 
@@ -594,6 +623,17 @@ def build_system(conv: Conveyor, scn: Scenario, steady, options: DynamicsOptions
     r_sum = float(np.sum(R_run))
     rated = np.array(design.rated_power_kw(conv, te, r_sum)[0]) * 1e3 / v_d
     limit = np.array([d.torque_limit for d in conv.drives]) * rated
+    t_train = drive_train_time_s(conv, parts, rated, v_d)
+    if t_train / DRIVE_STEPS < dt:
+        if scn.dt_s == "auto":
+            notes.append(f"the step is {t_train / DRIVE_STEPS:.3g} s, not {dt:.3g} s: it resolves "
+                         f"the fastest dol drive train ({t_train:.3g} s to reach design speed "
+                         "unloaded at rated force): a heavier inertia_kg_m2 allows a longer step")
+            dt = t_train / DRIVE_STEPS
+        else:
+            notes.append(f"scenario.dt_s {dt:.3g} s is longer than the fastest dol drive train "
+                         f"({t_train:.3g} s to reach design speed unloaded at rated force): its "
+                         "shaft and motor speeds may not be resolved, 'auto' resolves them")
     master = master_drive(conv)
     wc = (float(opts.controller_bandwidth_rad_s) if opts.controller_bandwidth_rad_s is not None
           else speed_loop_bandwidth(t_loop))

@@ -54,7 +54,8 @@ class ReferenceResult(dict):
     per spring), ``x_takeup`` [m], ``u_takeup`` [m/s], ``integrator`` [N], ``shaft_speed``
     [m/s], ``shaft_slip`` [-1, 0, 1], ``drive_force`` [N], ``t_max``, ``t_min`` [N]
     (per-spring envelopes of the whole cycle), ``steps``, ``t_end`` [s], ``status`` (0 ok,
-    1 diverged), ``w_drive`` [J], ``start_ach``, ``stop_ach`` [s] (-1 not reached),
+    1 diverged, 2 the belt ran away), ``div_where`` (of a diverged run: -1 the belt, s >= 0
+    shaft s, -2 - k drive k's motor), ``w_drive`` [J], ``start_ach``, ``stop_ach`` [s] (-1 not reached),
     ``slip_s`` [s] and ``slip_m`` [m] per drive (time slipping, belt length slipped),
     ``shaft_slip_s`` [s] and ``shaft_slip_m`` [m] the same per shaft,
     ``slack_s`` [s] (time with a slack span), ``t_trip`` and ``hold_set`` [s], ``law_evals``
@@ -723,7 +724,7 @@ def run_reference(sys: System, t_end_s: float | None = None) -> ReferenceResult:
     w_drive, slack_s = 0.0, 0.0
     start_ach = stop_ach = t_stopped = t_trip = hold_set = -1.0
     stopped = pi_started = was_off = False
-    status = C.OK
+    status, div_where = C.OK, 0
     t_limit = t_stopcmd + sys.stop_max_s + sys.post_rest_s
     if t_end_s:
         t_limit = min(t_limit, float(t_end_s))
@@ -791,10 +792,21 @@ def run_reference(sys: System, t_end_s: float | None = None) -> ReferenceResult:
 
         # ---- observe
         t_max, t_min = np.fmax(t_max, st.tt), np.fmin(t_min, st.tt)
-        if not np.isfinite(st.v).all() or np.abs(st.v).max() > C.V_FAIL_FACTOR * v_d:
+        v_fail = C.V_FAIL_FACTOR * v_d
+        if not np.isfinite(st.v).all() or np.abs(st.v).max() > v_fail:
+            status, div_where = C.DIVERGED, -1
+            break
+        bad_shaft = ~(np.abs(sh.vs) <= v_fail)  # also NaN
+        bad_motor = ~(np.abs(dr.vm) <= v_fail)
+        if bad_shaft.any() or bad_motor.any():
             status = C.DIVERGED
+            div_where = (-2 - int(np.flatnonzero(bad_motor)[-1]) if bad_motor.any()
+                         else int(np.flatnonzero(bad_shaft)[-1]))
             break
         v_mean = float(sys.belt_mass_kg @ st.v) / float(sys.belt_mass_kg.sum())
+        if abs(v_mean) > C.RUNAWAY_FACTOR * v_d:
+            status = C.RUNAWAY  # the belt could not be held: a physical result
+            break
         if started:
             slipping = sh.slip != 0.0
             shaft_slip_s += np.where(slipping, dt, 0.0)
@@ -822,4 +834,5 @@ def run_reference(sys: System, t_end_s: float | None = None) -> ReferenceResult:
         t_max=t_max, t_min=t_min, steps=step, t_end=t_new, status=status, w_drive=w_drive,
         start_ach=start_ach, stop_ach=stop_ach, slip_s=slip_s, slip_m=slip_m,
         shaft_slip_s=shaft_slip_s, shaft_slip_m=shaft_slip_m, slack_s=slack_s, t_trip=t_trip,
-        hold_set=hold_set, law_evals=law.evaluations if law is not None else 0)
+        hold_set=hold_set, law_evals=law.evaluations if law is not None else 0,
+        div_where=div_where)

@@ -461,6 +461,46 @@ def _run_phase(sys: System, t_s: float, t_stop_cmd: float) -> str:
     return "running" if t_s <= t_stop_cmd else "stop"
 
 
+def diverged_words(sys: System, where_code: int, t_s: float, conveyor=None) -> str:
+    """The message of a diverged run: what left the finite range (the belt, a pulley shaft, a
+    motor behind its coupling), when, with which step, and what avoids it."""
+    def drive_name(k: int) -> str:
+        pos = f" ({conveyor.drives[k].position})" if conveyor is not None else ""
+        return f"drive {k + 1}{pos}"
+
+    fix = "a shorter step (scenario.dt_s: auto, or more elements)"
+    if where_code == -1:
+        what = "the belt's speed"
+    elif where_code >= 0:
+        k = int(sys.shaft_drive[where_code])
+        what = (f"the pulley shaft of {drive_name(k)}" if k >= 0 else
+                f"the shaft of the braked pulley at element {int(sys.shaft_node[where_code])}")
+        fix = ("more inertia on that shaft (inertia_kg_m2, flywheel_kg_m2) or " + fix)
+    else:
+        what = f"the motor of {drive_name(-2 - where_code)} behind its coupling"
+        fix = "more motor inertia (motor_inertia_kg_m2) or " + fix
+    return (f"diverged: {what} became non-finite or passed {V_FAIL_FACTOR:g} x the design speed "
+            f"at t = {t_s:.4g} s with dt = {sys.dt_s:.3g} s; the run was stopped; {fix} may "
+            "avoid it")
+
+
+def runaway_words(sys: System, t_s: float, v_mean: float, t_stop_cmd: float) -> str:
+    """The warning of a run that ended because the belt ran away (mean speed past
+    :data:`~beltstudy.engine.dynamics.codes.RUNAWAY_FACTOR` x design either way at ``t_s``)."""
+    phase = _PHASE_WORDS[_run_phase(sys, t_s, t_stop_cmd)]
+    if v_mean > 0.0:
+        what = ("the belt ran away forwards", "the drives and brakes could not hold it back: "
+                "more brake force, brakes that act in this stop (stop.mode: brake, hold), or, "
+                "where a drive pulley slipped, a heavier take-up")
+    else:
+        what = ("the belt ran back", "nothing held it against the lift: a holdback "
+                "(holdback: true), brakes that hold, or, where a drive pulley slipped, a heavier "
+                "take-up")
+    return (f"{what[0]} {phase}: its mean speed reached {abs(v_mean):.3g} m/s "
+            f"({C.RUNAWAY_FACTOR:g} x the design speed) at t = {t_s:.4g} s and the run was "
+            f"ended there; {what[1]}")
+
+
 def slip_words(first: str, last: str) -> tuple[str, str]:
     """How a slip message names a slip from phase ``first`` to phase ``last`` (``start``,
     ``running``, ``stop``), and what would avoid it: a heavier take-up always, a longer start
@@ -556,8 +596,7 @@ def decode(sys: System, ki: KernelInput, wall_s: float, *, steady_summary=None, 
     notes = list(sys.notes)
     if int(r["STATUS"]) == C.DIVERGED:
         status = "failed"
-        message = (f"diverged: non-finite or runaway speed (> {V_FAIL_FACTOR:g} x design) at "
-                   f"t = {r['T_END']:.4g} s with dt = {sys.dt_s:.3g} s; the run was stopped")
+        message = diverged_words(sys, int(r["DIV_WHERE"]), float(r["T_END"]), conveyor)
     elif warnings:
         status = "warning"
         message = "; ".join(warnings)
@@ -682,6 +721,8 @@ def transient_summary(sys: System, r: dict, out, segs, *, steady_summary=None, c
     names = [f"drive {i + 1}" for i in range(len(sys.drive_share))]
     if conveyor is not None:
         names = [f"drive {i + 1} ({d.position})" for i, d in enumerate(conveyor.drives)]
+    if int(r["STATUS"]) == C.RUNAWAY:
+        w.append(runaway_words(sys, float(r["T_END"]), float(r["V_MEAN_END"]), t_stop_cmd))
     for i in range(len(sys.drive_share)):
         slip_s = float(drv[i, C.DRV.SLIP_S])
         if slip_s > 0.0:
@@ -735,9 +776,10 @@ def transient_summary(sys: System, r: dict, out, segs, *, steady_summary=None, c
         w.append(f"take-up carriage reached its end stop at t = {r['ENDSTOP_T']:.1f} s at "
                  f"{r['ENDSTOP_SPEED']:.2f} m/s (travel {sys.takeup_hi_m - sys.takeup_lo_m:.3g} "
                  "m): more take-up travel or a heavier take-up would avoid it")
-    if t_start_ach is None:
+    ran_away = int(r["STATUS"]) == C.RUNAWAY  # the run ended early: said above
+    if t_start_ach is None and not ran_away:
         w.append("the belt never reached 99 % of design speed during the start")
-    if r["STOPPED"] < 0.5:
+    if r["STOPPED"] < 0.5 and not ran_away:
         w.append(f"the belt did not stop within {sys.stop_max_s:.0f} s of the stop command "
                  f"(mean speed {r['V_MEAN_END']:.2f} m/s at the end)")
     return summary, w

@@ -156,6 +156,79 @@ def test_dol_fluid_coupling_lets_the_motor_run_up_first():
     assert ts["v_mean_m_s"].iloc[-1] == pytest.approx(4.0, rel=0.05)
 
 
+def _light_dol(**over):
+    """The hand conveyor on a 240 kW dol drive through a fluid coupling whose whole drive
+    train is 2 kg m2 at the pulley shaft: it would reach design speed unloaded in well under a
+    millisecond, far below the belt's step."""
+    return _conv(drives=[_drive(control="dol", rated_power_kw=240, inertia_kg_m2=2.0,
+                                coupling="fluid", **over)],
+                 takeup={"type": "gravity", "position": "tail", "mass_kg": 16000})
+
+
+def test_a_light_dol_drive_train_sets_the_step_and_runs_steadily():
+    """The automatic step resolves the fastest dol drive train: at most half the time its
+    lightest body (shaft or motor) takes to reach design speed unloaded at rated force, m v_d /
+    F_r (F_r = 240 kW / 4 m/s by hand), and the message says so. Running, the drive then
+    gives the steady peripheral force (1 %) with a steady shaft (no chatter: its speed varies
+    by under 0.1 % of design)."""
+    conv = _light_dol()
+    st = solve_steady(conv, model="din", n_elements=40)
+    sysm = build_system(conv, Scenario(start={"time_s": 20}, run_s=20, stop={"mode": "coast"},
+                                       elements=40), st)
+    lightest = min(sysm.shaft_mass_kg.min(),
+                   sysm.drive_motor_mass_kg[sysm.drive_motor_mass_kg > 0].min())
+    tau = lightest * 4.0 / (240e3 / 4.0)
+    assert sysm.dt_s <= 0.5 * tau * (1 + 1e-12)
+    assert sysm.dt_s < 0.1 * sysm.dt_limit_s  # the drive train, not the belt, sets it
+    r = simulate(sysm, conveyor=conv)
+    assert r.status != "failed", r.message
+    assert "resolves the fastest dol drive train" in r.message
+    ts = r.timeseries
+    t = ts["t_s"].to_numpy()
+    running = (t > sysm.stop_command_s - 5.0) & (t < sysm.stop_command_s)
+    assert ts["f_drive1_kn"][running].mean() == pytest.approx(st.te_n / 1e3, rel=0.01)
+    assert ts["v_drive1_m_s"][running].std() < 1e-3 * 4.0
+
+
+def test_a_diverged_shaft_is_named():
+    """The same drive train on a fixed step at the belt's own scale (half its stability
+    limit): the shaft cannot follow its coupling within a step. The run fails, and the
+    message names the drive's shaft and what avoids it, instead of carrying a runaway shaft
+    through a result."""
+    conv = _light_dol()
+    st = solve_steady(conv, model="din", n_elements=40)
+    auto = build_system(conv, Scenario(elements=40, stop={"mode": "coast"}), st)
+    scn = Scenario(elements=40, stop={"mode": "coast"}, dt_s=0.5 * auto.dt_limit_s)
+    sysm = build_system(conv, scn, st)
+    assert "is longer than the fastest dol drive train" in "; ".join(sysm.notes)
+    r = simulate(sysm, conveyor=conv)
+    assert r.status == "failed"
+    assert r.message.startswith("diverged: the pulley shaft of drive 1 (head)")
+    assert "inertia_kg_m2" in r.message and "scenario.dt_s" in r.message
+
+
+def test_a_decline_the_drive_cannot_hold_runs_away_as_a_rigid_body():
+    """The hand conveyor falling 150 m (a regenerating belt, Te < 0) coasting after a power
+    failure with no brake: the belt accelerates at -Te / M, M every moving mass (DIN's
+    resistances do not depend on speed), within 1 %; the run ends when the mean speed
+    reaches twice the design speed, as a warning that says so, not a failure."""
+    conv = _conv(profile=[{"length_m": 1000, "lift_m": -150}])
+    st = solve_steady(conv, model="din", n_elements=100)
+    assert st.te_n < 0.0
+    sysm = build_system(conv, Scenario(start={"time_s": 20}, run_s=10, stop={"mode": "coast"},
+                                       elements=100), st)
+    r = simulate(sysm, conveyor=conv)
+    assert r.status == "warning"
+    assert "the belt ran away forwards during the stop" in r.message
+    ts = r.timeseries
+    t, v = ts["t_s"].to_numpy(), ts["v_mean_m_s"].to_numpy()
+    assert v[-1] == pytest.approx(2.0 * 4.0, rel=0.01)
+    fast = (t > sysm.stop_command_s) & (v > 1.1 * 4.0) & (v < 1.8 * 4.0)
+    a = np.polyfit(t[fast], v[fast], 1)[0]
+    assert a == pytest.approx(-st.te_n / sysm.total_mass_kg, rel=0.01)
+    assert r.summary["stop_time_s"] is None
+
+
 def _dual_head(**over):
     d = hand_conveyor_dict(drives=[_drive(share=0.5, inertia_kg_m2=20),
                                    _drive(share=0.5, inertia_kg_m2=20)], **over)

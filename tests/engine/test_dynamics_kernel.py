@@ -25,7 +25,7 @@ from beltstudy.engine.dynamics.simulate import (
     prepare,
 )
 from beltstudy.engine.statics import solve_steady
-from tests.conftest import CONVEYORS
+from tests.conftest import CONVEYORS, hand_conveyor_dict
 
 
 def conveyor(name: str, **changes):
@@ -170,6 +170,35 @@ def test_kernel_matches_numpy_reference(name, changes, model, scenario, exercise
     assert_allclose(out.shs[:, 0], ref["shaft_slip_s"], atol=1e-9, rtol=0)
     assert_allclose(out.shs[:, 1], ref["shaft_slip_m"], atol=1e-9, rtol=1e-9)
     assert res[C.RES.LAW_EVALS] == ref["law_evals"]
+
+
+@pytest.mark.parametrize("changes, scenario, status", [
+    pytest.param(dict(profile=[{"length_m": 1000, "lift_m": -150}]), {}, C.RUNAWAY,
+                 id="a-decline-runs-away"),
+    pytest.param(dict(drives=[{"position": "head", "wrap_deg": 200, "friction": 0.35,
+                               "share": 1.0, "pulley_diameter_m": 1.0, "inertia_kg_m2": 2.0,
+                               "control": "dol", "rated_power_kw": 240, "coupling": "fluid"}],
+                      takeup={"type": "gravity", "position": "tail", "mass_kg": 16000}),
+                 dict(dt_s=0.013), C.DIVERGED, id="a-light-shaft-diverges"),
+])
+def test_kernel_and_reference_end_a_run_alike(changes, scenario, status):
+    """A run that ends early ends at the same step in both, for the same reason: the belt ran
+    away (mean speed past twice the design speed; the final state agrees to 1e-9), or a pulley
+    shaft left the finite range (the same shaft named)."""
+    conv = parse_conveyor(hand_conveyor_dict(**changes))
+    scn = Scenario(elements=40, start={"time_s": 20}, run_s=10, stop={"mode": "coast"},
+                   **scenario)
+    sys = build_system(conv, scn, solve_steady(conv, model="din", n_elements=40))
+    ki = prepare(sys)
+    ki.call()
+    ref = run_reference(sys)
+    res = ki.args["out"].res
+    assert int(res[C.RES.STATUS]) == ref["status"] == status
+    assert int(res[C.RES.STEPS]) == ref["steps"]
+    if status == C.RUNAWAY:
+        assert_allclose(ki.args["st"].v, ref["v"], atol=1e-9 * sys.v_design, rtol=0)
+    else:
+        assert int(res[C.RES.DIV_WHERE]) == ref["div_where"] >= 0
 
 
 def test_vectorised_log_and_exp():
