@@ -144,20 +144,26 @@ def brake_forces(conv: Conveyor, scenario: Scenario, total_mass_kg: float, te_n:
         delay = max(b.delay_s for b in auto)
         ramp = max(b.ramp_s for b in auto)
         v = float(conv.speed_m_s)
-        hold_n = HOLD_MARGIN * abs(gravity_sum_n)
+        # a level loop's pull is zero; summed over its elements it is rounding noise
+        pull_n = abs(gravity_sum_n) if abs(gravity_sum_n) > 1e-9 * G * total_mass_kg else 0.0
+        hold_n = HOLD_MARGIN * pull_n
         stop_n = 0.0
         if scenario.stop.mode == "brake":
             stop_n = brake_force_auto(total_mass_kg, v, te_n, float(scenario.stop.time_s),
                                       delay, ramp)
         if stop_n >= hold_n:
             total_n, why = stop_n, "stop_time"
+            if scenario.stop.mode == "brake" and total_n <= 0.0:
+                note = (f"auto brake force 0 kN: the belt coasts to rest within the stop time "
+                        f"{scenario.stop.time_s:g} s on its own resistances and nothing pulls it "
+                        "once stopped; a shorter stop time or a given force_kn sizes a brake")
         else:
             total_n, why = hold_n, "holding"
             if scenario.stop.mode == "brake":
                 t_gives = brake_stop_time(total_mass_kg, v, te_n, hold_n, delay, ramp)
                 note = (f"auto brake force {hold_n / 1e3:.4g} kN is set by holding the loaded "
                         f"belt at rest ({HOLD_MARGIN:g} x the net gravity pull "
-                        f"{abs(gravity_sum_n) / 1e3:.4g} kN), not by the stop time "
+                        f"{pull_n / 1e3:.4g} kN), not by the stop time "
                         f"{scenario.stop.time_s:g} s (which needs {stop_n / 1e3:.4g} kN): the "
                         f"rigid-body brake stop then takes about {t_gives:.3g} s")
         each = max(total_n - fixed_n, 0.0) / len(auto)

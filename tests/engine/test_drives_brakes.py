@@ -438,6 +438,22 @@ def test_auto_brake_force_set_by_holding_is_said():
     assert "set by holding" in msg and "stop then takes about" in msg
 
 
+def test_auto_brake_on_a_level_belt_that_coasts_within_the_stop_time():
+    """A level loop (no net pull, its sum over the elements rounding noise) whose rigid-body
+    coast, M v / Te by hand, is shorter than the 40 s brake stop asked for: the auto brake
+    needs no force, and the message says why (no noise-sized holding force)."""
+    conv = _conv(profile=[{"length_m": 1000, "lift_m": 0}],
+                 brakes=[{"position": "head", "force_kn": "auto", "delay_s": 0.5}])
+    st = solve_steady(conv, model="din", n_elements=60)
+    sysm = build_system(conv, Scenario(start={"time_s": 20}, run_s=5, elements=60,
+                                       stop={"mode": "brake", "time_s": 40}), st)
+    assert sysm.total_mass_kg * 4.0 / st.te_n < 40.0
+    assert sysm.brake_force_n.tolist() == [0.0]
+    note = "; ".join(sysm.notes)
+    assert "auto brake force 0 kN: the belt coasts to rest within the stop time 40 s" in note
+    assert "e-1" not in note
+
+
 # --------------------------------------------------------------------------------------
 # bad input
 
