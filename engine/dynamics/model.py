@@ -378,11 +378,12 @@ def implicit_blocks(strand: np.ndarray) -> tuple[np.ndarray, list[list[int]]]:
 DRIVE_STEPS = 2.0
 
 
-def drive_train_time_s(conv: Conveyor, parts, rated_n: np.ndarray, v_d: float) -> float:
+def drive_train_time_s(conv: Conveyor, parts, rated_n: np.ndarray, v_d: float
+                       ) -> tuple[float, int]:
     """The fastest direct-on-line drive train: the time [s] its lightest rotating body (the
     pulley shaft with the motor, or behind a fluid coupling the motor and the pulley side each)
-    would take to reach design speed unloaded at the drive's rated force, ``m v_d / F_r``
-    (``inf`` without dol drives).
+    would take to reach design speed unloaded at the drive's rated force, ``m v_d / F_r``, and
+    that drive's index (``inf`` and -1 without dol drives).
 
     A dol drive's force is the motor curve (and the coupling characteristic) linearised in the
     shaft and motor speeds over one step; the curves have kinks (synchronous speed, the
@@ -392,15 +393,17 @@ def drive_train_time_s(conv: Conveyor, parts, rated_n: np.ndarray, v_d: float) -
     run-up time unloaded), far above the belt's step; a shaft given a few kg m2 for megawatts
     does not, and then sets the step. VFD drives are held by their speed loop and torque limit.
     """
-    t = math.inf
+    t, which = math.inf, -1
     for node, k in parts.shaft_drive.items():
         d = conv.drives[k]
         if d.control != "dol" or rated_n[k] <= 0.0:
             continue
-        t = min(t, parts.shaft_mass[node] * v_d / rated_n[k])
+        m = parts.shaft_mass[node]
         if parts.motor_mass[k] > 0.0:
-            t = min(t, parts.motor_mass[k] * v_d / rated_n[k])
-    return t
+            m = min(m, parts.motor_mass[k])
+        if m * v_d / rated_n[k] < t:
+            t, which = m * v_d / rated_n[k], k
+    return t, which
 
 
 def stability_limit_s(mass_kg, len_m, stiffness_n, implicit=None, viscosity_ns=None) -> float:
@@ -623,7 +626,7 @@ def build_system(conv: Conveyor, scn: Scenario, steady, options: DynamicsOptions
     r_sum = float(np.sum(R_run))
     rated = np.array(design.rated_power_kw(conv, te, r_sum)[0]) * 1e3 / v_d
     limit = np.array([d.torque_limit for d in conv.drives]) * rated
-    t_train = drive_train_time_s(conv, parts, rated, v_d)
+    t_train, k_train = drive_train_time_s(conv, parts, rated, v_d)
     if t_train / DRIVE_STEPS < dt:
         if scn.dt_s == "auto":
             notes.append(f"the step is {t_train / DRIVE_STEPS:.3g} s, not {dt:.3g} s: it resolves "
@@ -698,6 +701,12 @@ def build_system(conv: Conveyor, scn: Scenario, steady, options: DynamicsOptions
     t_total = opts.pre_rest_s + start_s + scn.run_s + stop_max + post
     steps = t_total / dt
     if steps * n > 5e10:
+        if scn.dt_s == "auto" and t_train / DRIVE_STEPS <= dt:
+            raise InputError(
+                f"drives[{k_train}].inertia_kg_m2: {steps:.3g} steps of {n} elements is too much work for "
+                f"one run; the step, {dt:.3g} s, resolves the fastest dol drive train "
+                f"({t_train:.3g} s to reach design speed unloaded at rated force): give the drives "
+                "their real inertia (motor, coupling, gear and pulley reduced to the pulley shaft)")
         raise InputError(
             f"scenario.dt_s / scenario.elements: {steps:.3g} steps of {n} elements is too much "
             "work for one run; use fewer elements or a larger step")

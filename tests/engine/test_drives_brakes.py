@@ -207,6 +207,19 @@ def test_a_diverged_shaft_is_named():
     assert "inertia_kg_m2" in r.message and "scenario.dt_s" in r.message
 
 
+def test_too_much_work_set_by_a_drive_train_names_the_inertia():
+    """A motor behind its coupling given no inertia (its mass floored at 1 kg at the rim) on a
+    fine mesh: the step the drive train needs makes the run too much work, and the error names
+    the drives' inertia as the field to fix, not the step or the mesh."""
+    conv = _conv(drives=[_drive(control="dol", rated_power_kw=240, inertia_kg_m2=2.0,
+                                motor_inertia_kg_m2=0.0, coupling="fluid")],
+                 takeup={"type": "gravity", "position": "tail", "mass_kg": 16000})
+    st = solve_steady(conv, model="din", n_elements=10000)
+    with pytest.raises(InputError, match=r"^drives\[0\]\.inertia_kg_m2: .* too much work .* "
+                                         r"fastest dol drive train"):
+        build_system(conv, Scenario(elements=10000), st)
+
+
 def test_a_decline_the_drive_cannot_hold_runs_away_as_a_rigid_body():
     """The hand conveyor falling 150 m (a regenerating belt, Te < 0) coasting after a power
     failure with no brake: the belt accelerates at -Te / M, M every moving mass (DIN's
