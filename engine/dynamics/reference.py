@@ -725,6 +725,7 @@ def run_reference(sys: System, t_end_s: float | None = None) -> ReferenceResult:
     start_ach = stop_ach = t_stopped = t_trip = hold_set = -1.0
     stopped = pi_started = was_off = False
     status, div_where = C.OK, 0
+    v_fail = C.V_FAIL_FACTOR * v_d
     t_limit = t_stopcmd + sys.stop_max_s + sys.post_rest_s
     if t_end_s:
         t_limit = min(t_limit, float(t_end_s))
@@ -792,7 +793,6 @@ def run_reference(sys: System, t_end_s: float | None = None) -> ReferenceResult:
 
         # ---- observe
         t_max, t_min = np.fmax(t_max, st.tt), np.fmin(t_min, st.tt)
-        v_fail = C.V_FAIL_FACTOR * v_d
         if not np.isfinite(st.v).all() or np.abs(st.v).max() > v_fail:
             status, div_where = C.DIVERGED, -1
             break
