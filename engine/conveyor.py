@@ -352,8 +352,11 @@ class Brake(_Model):
 
 
 class SagLimit(_Model):
-    carry: PositiveFloat = Field(1.5, description="admissible carry sag h/S [%]")
-    return_: PositiveFloat = Field(3.0, alias="return", description="admissible return sag [%]")
+    # a limit near zero asks for an unbounded tension (T_min = w S / (8 h/S)): at least 0.1 %,
+    # well below practice (DIN 22101 and CEMA use about 0.5 to 3 %)
+    carry: float = Field(1.5, ge=0.1, description="admissible carry sag h/S [%] (at least 0.1)")
+    return_: float = Field(3.0, ge=0.1, alias="return",
+                           description="admissible return sag [%] (at least 0.1)")
 
 
 class Accessories(_Model):

@@ -392,6 +392,18 @@ def solve_steady(
         )
         result.summary["status"] = result.status
         result.summary["message"] = result.message
+    bad = [k for k in ("te_kn", "power_kw", "t_max_kn", "t_min_kn", "takeup_mass_kg")
+           if isinstance(result.summary.get(k), float) and not math.isfinite(result.summary[k])]
+    if bad and result.status != "failed":
+        # numbers past float range (a friction factor or a capacity far beyond any
+        # conveyor): not a design, and a row of nulls must not read as a warning
+        result.status = "failed"
+        result.message = (
+            f"the steady state is not finite ({', '.join(bad)} overflow): the resistances "
+            "or the load are beyond any conveyor; check the model parameters (models.*) and "
+            "material.capacity_t_h" + (f"; {result.message}" if result.message else ""))
+        result.summary["status"] = result.status
+        result.summary["message"] = result.message
     return result
 
 

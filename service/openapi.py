@@ -20,6 +20,7 @@ from __future__ import annotations
 import copy
 import dataclasses
 import json
+import re
 import typing
 from pathlib import Path
 from typing import Any
@@ -396,11 +397,43 @@ class BodyChecker:
         self.schema()
         out = []
         for err in self._validator.iter_errors(data):
-            path = ".".join(str(p) for p in err.instance_path) or "(top level)"
-            out.append(f"{path}: {_short(err.message)}")
+            for path, message in _explain(err):
+                out.append(f"{'.'.join(str(p) for p in path) or '(top level)'}: "
+                           f"{_short(message)}")
             if len(out) >= 3:
                 break
-        return out
+        return out[:3]
+
+
+def _explain(err) -> list[tuple[list, str]]:
+    """``(path, message)`` of the errors that say what is wrong: for an ``anyOf`` (a value
+    that may take several forms: a number or a range, a file name or a conveyor) the errors
+    of the form the value was meant to have, the one whose errors lie deepest inside it (a
+    mapping with a bad field is meant to be a mapping), instead of "is not valid under any of
+    the schemas"; when every form fails at the value itself, what each form wants."""
+    kind = err.kind
+    if type(kind).__name__ != "AnyOf" or not getattr(kind, "context", None):
+        return [(list(err.instance_path), err.message)]
+    here = len(err.instance_path)
+    branches = [b for b in kind.context if b]
+    if not branches:
+        return [(list(err.instance_path), err.message)]
+    deep = [b for b in branches if min(len(e.instance_path) for e in b) > here]
+    if deep:
+        best = max(deep, key=lambda b: (min(len(e.instance_path) for e in b), -len(b)))
+        return [x for e in best for x in _explain(e)]
+    # every form fails at the value itself: say what each wants ("is not of type ..."),
+    # the value named once
+    value = err.message.split(" is not valid under any", 1)[0]
+    wants = []
+    for b in branches:
+        for e in b:
+            m = e.message
+            if m.startswith(value + " "):
+                m = m[len(value) + 1:]
+            if m not in wants:
+                wants.append(m)
+    return [(list(err.instance_path), f"{value} " + "; and ".join(wants))]
 
 
 def _short(message: str, limit: int = 300) -> str:
@@ -415,6 +448,11 @@ def check_body(checker: BodyChecker, data: Any, resolve) -> None:
     problems = checker.errors(data)
     if not problems:
         return
+    if any(re.fullmatch(r'[^(][^:]*: .* is not of type "(number|integer|boolean)"', p)
+           and "; and " not in p for p in problems):
+        # a value of the wrong JSON type: the schema names it exactly, where the study
+        # validation may first have turned it into something else ("nan" into a number)
+        raise Invalid("; ".join(problems))
     try:
         resolve(data)  # raises with its message when it sees the problem too
     except ServiceError:
@@ -441,6 +479,14 @@ def _patch_operations(schema: dict) -> None:
     for path, ops in schema.get("paths", {}).items():
         for method, op in ops.items():
             for param in op.get("parameters", []):
+                if param["in"] == "query" and param["name"] in ("baseline", "candidate",
+                                                                 "friction_model"):
+                    names, aliases = _model_names()
+                    old = param.get("schema", {})
+                    param["schema"] = {"type": "string", "enum": names + aliases,
+                                       "description": "a friction model or its alias"}
+                    if "default" in old:
+                        param["schema"]["default"] = old["default"]
                 if param["in"] == "path" and param["name"] in ("study_id", "run_id"):
                     param["schema"] = {"type": "string", "pattern": ID_PATTERN}
                 if param["in"] == "path" and param["name"] == "name" and "/plots/" in path:

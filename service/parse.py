@@ -343,6 +343,19 @@ def _describe(value: float) -> str:
     return "infinity is not a finite number"
 
 
+def _check_text(text: str, where: str) -> None:
+    """Refuse text that is not Unicode, such as a JSON escape of half a surrogate pair
+    (``"\\ud800"``): it cannot be stored, written to Parquet or shown."""
+    try:
+        text.encode("utf-8")
+    except UnicodeEncodeError as exc:
+        bad = ord(text[exc.start])
+        raise Invalid(
+            f"{where}: contains U+{bad:04X}, half of a UTF-16 surrogate pair, which is not a "
+            "character; send the whole pair (e.g. \\ud83d\\ude00) or the character itself"
+        ) from None
+
+
 def check_tree(data: Any, what: str = "") -> None:
     """Check parsed data against the budget and JSON's types; :class:`Invalid` naming the
     path of the first bad value, :class:`TooLarge` when it is over the size budget.
@@ -369,6 +382,7 @@ def check_tree(data: Any, what: str = "") -> None:
                 raise Invalid(f"{where(path)}: {_describe(value)}; give a finite value")
             return 1, 0, 0
         if isinstance(value, str):
+            _check_text(value, where(path))
             return 1, len(value), 0
         if not isinstance(value, dict | list | tuple):
             raise Invalid(
@@ -398,6 +412,7 @@ def check_tree(data: Any, what: str = "") -> None:
                         f"{where(path)}: key {k!r} is not text; quote it ('{k}') or use a "
                         "field name"
                     )
+                _check_text(k, f"{where(path)}: key {k.encode('utf-8', 'backslashreplace').decode()!r}")
                 items.append((f"{path}.{k}" if path else k, v))
                 text += len(k)
         else:

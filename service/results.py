@@ -14,6 +14,7 @@ import pandas as pd
 import pyarrow as pa
 import pyarrow.parquet as pq
 
+from beltstudy.engine.friction import ALIASES
 from beltstudy.service.errors import Invalid, NotFound
 from beltstudy.service.schema import TE_PART_COLUMNS, components_from_row
 
@@ -80,6 +81,18 @@ def _coerce(series: pd.Series, text: str) -> Any:
     return text
 
 
+def model_name(text: str, field: str) -> str:
+    """The canonical name of a friction model given by name or alias (``iso5048`` is
+    ``din``, as in study files); :class:`Invalid` naming ``field`` and the valid names."""
+    from beltstudy.engine.conveyor import InputError
+    from beltstudy.engine.friction import get_model
+
+    try:
+        return get_model(text).name
+    except InputError as exc:
+        raise Invalid(f"{field}: {exc.reason}") from None
+
+
 def apply_filters(df: pd.DataFrame, filters: list[str]) -> pd.DataFrame:
     """Keep rows where every ``column=value`` holds (numbers compared as numbers; a value
     that no row of the column can have, like text for a number, keeps no row).
@@ -92,6 +105,8 @@ def apply_filters(df: pd.DataFrame, filters: list[str]) -> pd.DataFrame:
             raise NotFound(
                 f"filter: this study has no column '{column}'; columns: {', '.join(df.columns)}"
             )
+        if column == "friction_model":  # its aliases too; an unknown name keeps no row
+            text = ALIASES.get(text.lower(), text)
         try:
             value = _coerce(df[column], text)
         except _NoMatch:
@@ -153,6 +168,8 @@ def compare(
             )
         if m not in valid:
             raise Invalid(f"metrics: unknown metric '{m}'; valid: " + ", ".join(valid))
+    baseline = model_name(baseline, "baseline")
+    candidate = model_name(candidate, "candidate")
     models = sorted(set(runs["friction_model"].dropna())) if len(runs) else []
     for label, name in (("baseline", baseline), ("candidate", candidate)):
         if len(runs) and name not in models:
@@ -166,7 +183,9 @@ def compare(
     if others:
         merged = base.merge(cand, on=others, suffixes=("_baseline", "_candidate"))
     else:
-        merged = base.add_suffix("_baseline").join(cand.add_suffix("_candidate"), how="inner")
+        # one run per model: the pair is those two rows (their labels in ``runs`` differ)
+        merged = base.reset_index(drop=True).add_suffix("_baseline").join(
+            cand.reset_index(drop=True).add_suffix("_candidate"), how="inner")
     if others and len(merged):
         merged = merged.sort_values(others, kind="stable").reset_index(drop=True)
     pairs = []

@@ -93,7 +93,8 @@ AxisValues = list[Any] | RangeSpec
 def _check_name(value: str) -> str:
     if ".." in value or not NAME_RE.match(value):
         raise ValueError(
-            "must start with a letter or digit and use only letters, digits, spaces and ._+- "
+            "must start with an ASCII letter or digit and use only ASCII letters (a-z, A-Z), "
+            "digits, spaces and ._+- "
             "(no path separators or '..'), at most 120 characters"
         )
     return value

@@ -435,6 +435,11 @@ def stability_limit_s(mass_kg, len_m, stiffness_n, implicit=None, viscosity_ns=N
     return float(lim.min())
 
 
+#: Most time-series samples a run may ask for (``record_dt_s`` over the cycle): a million is
+#: 28 hours at the default 0.1 s, far beyond any start and stop, and 17 columns of float64.
+MAX_SAMPLES = 1e6
+
+
 def check_scenario(scn: Scenario, conv: Conveyor, opts: DynamicsOptions | None = None) -> None:
     """Reject impossible scenarios before any computing; messages name the field."""
     opts = opts or DynamicsOptions()
@@ -446,6 +451,24 @@ def check_scenario(scn: Scenario, conv: Conveyor, opts: DynamicsOptions | None =
     if not (scn.run_s >= 0.0 and math.isfinite(scn.run_s)):
         raise InputError(f"scenario.run_s: must be zero or a positive time in seconds "
                          f"(got {scn.run_s!r})")
+    # the time series: one sample every record_dt_s over the whole cycle (the rests and the
+    # stop's allowance come on top of these times)
+    times = (("scenario.start.time_s", float(scn.start.time_s)),
+             ("scenario.run_s", float(scn.run_s)), ("scenario.stop.time_s", float(scn.stop.time_s)))
+    t_cycle = sum(t for _, t in times)
+    samples = t_cycle / scn.record_dt_s
+    if samples > MAX_SAMPLES:
+        name, longest = max(times, key=lambda x: x[1])
+        if t_cycle / Scenario.model_fields["record_dt_s"].default <= MAX_SAMPLES:
+            raise InputError(
+                f"scenario.record_dt_s: {scn.record_dt_s:g} s over a cycle of {t_cycle:g} s "
+                f"(start, run and stop) is {samples:.3g} time-series samples, more than "
+                f"{MAX_SAMPLES:.0e}; use a spacing of at least {t_cycle / MAX_SAMPLES:.3g} s")
+        raise InputError(
+            f"{name}: {longest:g} s makes a cycle of {t_cycle:g} s, {samples:.3g} time-series "
+            f"samples at scenario.record_dt_s {scn.record_dt_s:g} s, more than "
+            f"{MAX_SAMPLES:.0e}: a transient run simulates every step of it; give the "
+            "start, run and stop times in seconds (a start takes seconds to minutes)")
     if scn.dt_s != "auto" and not (float(scn.dt_s) > 0.0):
         raise InputError(f"scenario.dt_s: must be 'auto' or a positive step (got {scn.dt_s!r})")
     if scn.stop.mode == "brake":
@@ -709,7 +732,10 @@ def build_system(conv: Conveyor, scn: Scenario, steady, options: DynamicsOptions
                 "their real inertia (motor, coupling, gear and pulley reduced to the pulley shaft)")
         raise InputError(
             f"scenario.dt_s / scenario.elements: {steps:.3g} steps of {n} elements is too much "
-            "work for one run; use fewer elements or a larger step")
+            f"work for one run (over 5e10 element-steps): a cycle of {t_total:.4g} s (start "
+            f"{start_s:g} s, run {scn.run_s:g} s, up to {stop_max:.4g} s for the stop, the "
+            f"rests) at a step of {dt:.3g} s; use fewer elements or a larger step, or shorter "
+            "times")
     surf_dt = max(scn.record_dt_s, t_total / max(opts.surface_samples, 1))
 
     # ---- probes and surface springs

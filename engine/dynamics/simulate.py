@@ -283,8 +283,9 @@ def prepare(sys: System, t_end_s: float | None = None) -> KernelInput:
                                         sys.k_floor_n)
     state = A.State(v=np.zeros(n), te=t0.copy(), ts=s0, td=np.zeros(n), tt=t0.copy(),
                     misc=np.array([0.0, 0.0, 0.0, sys.hold_force_n]))
-    nrec = int(math.ceil(sys.t_max_s / sys.record_dt_s)) + 3
-    nsurf = int(math.ceil(sys.t_max_s / sys.surface_dt_s)) + 3
+    # the kernel records at most once a step: a spacing below the step gives one per step
+    nrec = int(math.ceil(sys.t_max_s / max(sys.record_dt_s, sys.dt_s))) + 3
+    nsurf = int(math.ceil(sys.t_max_s / max(sys.surface_dt_s, sys.dt_s))) + 3
     npr = len(sys.probe_springs)
     nsf = len(sys.surface_springs)
     out = A.Out(rec=np.zeros((nrec, C.REC.SIZE)), rec_t=np.zeros((nrec, npr)),

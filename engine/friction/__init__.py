@@ -29,7 +29,7 @@ def get_model(name: str) -> FrictionModel:
     if key not in MODELS:
         valid = list(MODELS) + [f"{a} (= {t})" for a, t in ALIASES.items()]
         close = difflib.get_close_matches(str(name), list(MODELS) + list(ALIASES), n=1)
-        hint = f"; did you mean '{close[0]}'?" if close else ""
-        raise InputError(f"unknown model '{name}'{hint} valid: {', '.join(valid)}",
+        hint = f" (did you mean '{close[0]}'?)" if close else ""
+        raise InputError(f"unknown model '{name}'{hint}; valid: {', '.join(valid)}",
                          field="friction_model")
     return MODELS[key]

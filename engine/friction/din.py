@@ -63,8 +63,13 @@ class DinParams:
                                   "from the DIN table by length; needs C >= 1)")
 
     def check(self) -> None:
-        if self.f_carry < 0 or self.f_return < 0:
-            raise InputError("models.din.f_carry/f_return: friction factors must be >= 0")
+        for name in ("f_carry", "f_return"):
+            f = getattr(self, name)
+            # f = 1 is a resistance equal to the moving weight: far beyond the 0.010 to about
+            # 0.04 of DIN 22101's table
+            if not 0.0 <= f <= 1.0:
+                raise InputError(f"models.din.{name}: a friction factor between 0 and 1 "
+                                 f"(DIN 22101: 0.010 to about 0.04; got {f:g})")
         if self.c is not None and self.c < 1.0:
             raise InputError(f"models.din.c: C must be >= 1 (got {self.c})")
 

@@ -24,6 +24,7 @@ from fastapi.exceptions import RequestValidationError
 from fastapi.openapi.docs import get_swagger_ui_html
 from fastapi.responses import HTMLResponse, JSONResponse
 from starlette.exceptions import HTTPException as StarletteHTTPException
+from starlette.requests import ClientDisconnect
 from starlette.routing import Match
 
 from beltstudy import engine
@@ -114,6 +115,10 @@ class ErrorGuard:
 
         try:
             await self.app(scope, receive, watch)
+        except ClientDisconnect:
+            # the client went away mid-request: nobody to answer, nothing went wrong here
+            log.info("client left during %s %s", scope.get("method"), scope.get("path"))
+            return
         except Exception:
             ref = uuid.uuid4().hex[:12]
             log.exception("unexpected error %s on %s %s", ref, scope.get("method"),

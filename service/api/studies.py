@@ -129,7 +129,7 @@ def get_runs(
     if status:
         wanted.append(f"status={status}")
     if friction_model:
-        wanted.append(f"friction_model={friction_model}")
+        wanted.append(f"friction_model={results.model_name(friction_model, 'friction_model')}")
     if len(df):
         df = results.apply_filters(df, wanted)
     if format == "csv":

@@ -94,6 +94,32 @@ def test_stop_mode_the_conveyor_cannot_do(no_kernel):
                 model="din")
 
 
+def test_cycles_and_samples_past_the_budget_are_refused_naming_the_field(no_kernel):
+    """A cycle or a sample spacing asking for more than a million time-series samples is
+    refused before any computing, naming the time that made it (not the mesh or the step)."""
+    conv = load_conveyor(SLOPE)
+    with pytest.raises(InputError, match=r"^scenario\.run_s: 1e\+308 s makes a cycle"):
+        run_one(conv, Scenario(run_s=1e308), model="din")
+    with pytest.raises(InputError, match=r"^scenario\.start\.time_s: 1e\+09 s"):
+        run_one(conv, Scenario(start={"time_s": 1e9}), model="din")
+    with pytest.raises(InputError, match=r"^scenario\.record_dt_s: 1e-09 s over a cycle of "
+                                         r"120 s .* at least 0\.00012 s"):
+        run_one(conv, Scenario(record_dt_s=1e-9), model="din")
+
+
+def test_samples_finer_than_the_step_are_one_per_step():
+    """record_dt_s below the step: the kernel records once a step (the arrays are sized for
+    that, not for the spacing asked), each sample at its own time."""
+    conv = load_conveyor(SLOPE)
+    r = run_one(conv, Scenario(elements=60, record_dt_s=1e-5, start={"time_s": 4}, run_s=0,
+                               stop={"mode": "controlled", "time_s": 2}), model="din")
+    assert r.summary["status"] != "failed"
+    t = r.timeseries["t_s"].to_numpy()
+    dt = r.summary["dt_used_s"]
+    gaps = t[1:-1] - t[:-2]
+    assert gaps.min() == pytest.approx(dt, rel=1e-9) and gaps.max() == pytest.approx(dt, rel=1e-9)
+
+
 def test_fixed_step_above_the_limit(no_kernel):
     conv = load_conveyor(SLOPE)
     with pytest.raises(InputError, match=r"scenario\.dt_s: 0\.5 s is above the stability "

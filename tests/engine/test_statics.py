@@ -176,3 +176,30 @@ def test_elements_do_not_change_din(hand_conveyor):
     b = solve_steady(hand_conveyor, model="din", n_elements=2000).summary
     assert_allclose(a["te_kn"], b["te_kn"], rtol=1e-9)
     assert_allclose(a["t_max_kn"], b["t_max_kn"], rtol=1e-9)
+
+
+@pytest.mark.filterwarnings("ignore::RuntimeWarning")
+def test_a_steady_state_past_float_range_fails_naming_it(hand_conveyor):
+    """CEMA's ky at 1e308 overflows every tension: the run is failed and says why, not a
+    warning row of nulls."""
+    res = solve_steady(hand_conveyor, model="cema", params={"ky": 1e308})
+    assert res.status == "failed"
+    assert res.message.startswith("the steady state is not finite (te_kn")
+    assert "models.*" in res.message
+    ok = solve_steady(hand_conveyor, model="cema")
+    assert ok.status in ("ok", "warning") and math.isfinite(ok.summary["te_kn"])
+
+
+def test_friction_factor_and_sag_limit_bounds(hand_dict):
+    """f above 1 (resistance past the moving weight) and a sag limit below 0.1 % are refused
+    naming the field; the bounds themselves are accepted."""
+    from beltstudy.engine.conveyor import InputError
+
+    conv = parse_conveyor(hand_dict)
+    with pytest.raises(InputError, match=r"^models.din.f_return: a friction factor between 0"):
+        solve_steady(conv, model="din", params={"f_return": 1.5})
+    assert solve_steady(conv, model="din", params={"f_carry": 1.0}).status in (
+        "ok", "warning", "failed")
+    with pytest.raises(ValueError, match=r"sag_limit_pct.carry"):
+        parse_conveyor({**hand_dict, "sag_limit_pct": {"carry": 0.05, "return": 3.0}})
+    parse_conveyor({**hand_dict, "sag_limit_pct": {"carry": 0.1, "return": 3.0}})

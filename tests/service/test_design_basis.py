@@ -136,7 +136,7 @@ def test_model_parameters_as_axes_and_identical_runs_merged(make_study, finished
         resolve_study(make_study(grid={"models.din.f_cary": [0.01]}))
     with pytest.raises(Invalid, match=r"model 'nonlin' is not run by this study"):
         resolve_study(make_study(grid={"models.nonlin.p_mf": [1.0]}))
-    with pytest.raises(Invalid, match=r"models.din.f_carry: value -1.*>= 0"):
+    with pytest.raises(Invalid, match=r"models.din.f_carry: value -1.*between 0 and 1"):
         resolve_study(make_study(grid={"models.din.f_carry": [-1]}))
 
 

@@ -167,7 +167,7 @@ def test_oversize_grids_are_refused_with_the_count(make_study):
 
 @pytest.mark.parametrize("name", ["../evil", "a/b", "..", "x\\y", "", " lead", "a" * 121])
 def test_unsafe_study_names_are_refused(make_study, name):
-    with pytest.raises(Invalid, match="name: must start with a letter or digit"):
+    with pytest.raises(Invalid, match="name: must start with an ASCII letter or digit"):
         resolve_study(make_study(name=name))
 
 
