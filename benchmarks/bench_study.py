@@ -474,6 +474,10 @@ def report_around(around: dict[str, dict[str, float]]) -> None:
         print("    " + f"{model:<8}" + "".join(f"{row[k] * 1e3:18.3f}" for k in keys))
 
 
+#: Issue 16's throughput target for study288 on this machine [runs/s].
+TARGET_RUNS_S = 80.0
+
+
 def report_study288(n, workers, rounds: dict, per_model, split, wsplit) -> None:
     """``rounds``: per round the loop in one process and at once in ``workers`` processes
     ((rate, CPU per run)), the service study, the ``surface: true`` study and ``beltstudy
@@ -519,6 +523,12 @@ def report_study288(n, workers, rounds: dict, per_model, split, wsplit) -> None:
         value = split.get(key, 0.0)
         print(f"    {key:<24}{_ms(value)}  {value / split['run_one'] * 100:5.1f} %")
     print(f"    {'run_one (with parse)':<24}{_ms(split['run_one'])}")
+    kernel = split.get("kernel", 0.0)
+    if kernel > 0:
+        print(f"  the kernel alone bounds the study: {workers} workers / {_ms(kernel).strip()} "
+              f"= {workers / kernel:.1f} runs/s at most with nothing around the runs "
+              f"({TARGET_RUNS_S:g} runs/s needs a mean kernel of {_ms(workers / TARGET_RUNS_S).strip()}"
+              " at most)")
     print(f"  the worker in one process (run_batch, batches of 32, parts written): "
           f"{_ms(wsplit['run_batch'])}/run: runs {_ms(wsplit.get('run_s', 0))}, tables "
           f"{_ms(wsplit.get('tables_s', 0))}, writes {_ms(wsplit.get('write_s', 0))}")
