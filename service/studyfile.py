@@ -353,6 +353,14 @@ def resolve_study(
             except InputError as exc:
                 raise Invalid(_err(exc)) from None
         design_scenario(study.design, {})  # the load is a load case
+    used = run_models | ({design["friction_model"]} if design and "friction_model" in design
+                         else set())
+    for name, given in zip(models, study.models, strict=True):
+        if name not in used:
+            raise Invalid(
+                f"models.{given}: this study does not run {name} (its models: "
+                f"{', '.join(sorted(run_models))}), so these parameters would be ignored; add "
+                f"{name} to the friction_model axis or remove models.{given}")
 
     resolved = ResolvedStudy(
         name=study.name,

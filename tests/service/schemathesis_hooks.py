@@ -143,6 +143,10 @@ def _study_ok(body: dict) -> bool:
     for target in targets:
         if target.startswith("models.") and target.split(".")[1] not in run:
             return False  # a parameter of a model the study does not run
+    design = body.get("design") if isinstance(body.get("design"), dict) else {}
+    used = run | {_ALIASES.get(design.get("friction_model"), design.get("friction_model"))}
+    if any(m not in used for m in models):
+        return False  # parameters of a model the study neither runs nor designs with
     if body.get("dynamics", True) and not _scenario_fits(body, axes):
         return False
     return _section_loads_fit(body, axes)

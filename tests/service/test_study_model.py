@@ -105,6 +105,22 @@ def test_model_parameters_are_checked_at_the_door(make_study):
         resolve_study(make_study(models={"dinn": {}}))
 
 
+def test_parameters_of_a_model_the_study_does_not_run_are_refused(make_study):
+    """models.<m> for a model neither run nor designed with would be silently ignored."""
+    grid = {"temperature_c": [0, 20]}
+    with pytest.raises(Invalid, match=r"^models.cema: this study does not run cema \(its "
+                                      r"models: din\).*add cema to the friction_model axis"):
+        resolve_study(make_study(grid=grid, models={"din": {}, "cema": {}}))
+    with pytest.raises(Invalid, match=r"^models.viscoah: this study does not run visco"):
+        resolve_study(make_study(grid=grid, model="din", models={"viscoah": {}}))
+    # run, designed with, or the single model given: accepted
+    assert resolve_study(make_study(grid=grid, models={"cema": {}})).model == "cema"
+    resolve_study(make_study(grid={"friction_model": ["din", "cema"]},
+                             models={"cema": {"ky": 0.03}}))
+    resolve_study(make_study(grid=grid, models={"cema": {}}, model="din",
+                             design={"friction_model": "cema"}))
+
+
 def test_without_a_model_axis_the_single_model_or_din_is_used(make_study):
     grid = {"temperature_c": [0, 20]}
     assert resolve_study(make_study(grid=grid)).runs[0].model == "din"
