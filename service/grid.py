@@ -26,7 +26,7 @@ from typing import Any
 
 from beltstudy.engine.conveyor import Conveyor, InputError, Scenario, parse_conveyor, parse_scenario
 from beltstudy.engine.friction import get_model
-from beltstudy.service.axes import Target, get_path, resolve_axis
+from beltstudy.service.axes import Target, get_path, resolve_axis, with_paths
 from beltstudy.service.basis import (
     Case,
     DesignIn,
@@ -262,28 +262,6 @@ def study_hash(study: ResolvedStudy) -> str:
     return stable_hash({k: doc[k] for k in (*keys, "zip", "design") if k in doc})
 
 
-def _with_values(base: dict, sets: list[tuple[tuple, Any]]) -> dict:
-    """``base`` with ``data[path] = value`` for each of ``sets``, ``base`` untouched: the
-    mappings and lists on each path are copied (creating missing mappings), everything else is
-    shared. Parsing never changes its input, so a 20 000-run study need not copy its whole
-    conveyor 20 000 times."""
-    data = dict(base)
-    for path, value in sets:
-        node: Any = data
-        for key in path[:-1]:
-            child = node[key] if isinstance(key, int) else node.get(key)
-            if child is None:
-                child = {}
-            elif isinstance(child, dict):
-                child = dict(child)
-            elif isinstance(child, list):
-                child = list(child)
-            node[key] = child
-            node = child
-        node[path[-1]] = value
-    return data
-
-
 def _parse_conveyor(data: dict) -> Conveyor:
     return parse_conveyor(data, prefix="conveyor.")
 
@@ -336,8 +314,8 @@ def _expand(
         keys = list(dict.fromkeys(tuple(p[i] for i in indices) for p in points))
         out, models, bad = {}, {}, []
         for key in keys:
-            data = _with_values(base, [(axes[i].target.path, axes[i].values[j])
-                                       for i, j in zip(indices, key, strict=True)])
+            data = with_paths(base, [(axes[i].target.path, axes[i].values[j])
+                                     for i, j in zip(indices, key, strict=True)])
             try:
                 model = parse(data)
             except InputError as exc:

@@ -14,7 +14,7 @@ import pandas as pd
 import pyarrow as pa
 import pyarrow.parquet as pq
 
-from beltstudy.engine.friction import ALIASES
+from beltstudy.engine.friction import canonical_name
 from beltstudy.service.errors import Invalid, NotFound
 from beltstudy.service.schema import TE_PART_COLUMNS, components_from_row
 
@@ -106,7 +106,7 @@ def apply_filters(df: pd.DataFrame, filters: list[str]) -> pd.DataFrame:
                 f"filter: this study has no column '{column}'; columns: {', '.join(df.columns)}"
             )
         if column == "friction_model":  # its aliases too; an unknown name keeps no row
-            text = ALIASES.get(text.lower(), text)
+            text = canonical_name(text)
         try:
             value = _coerce(df[column], text)
         except _NoMatch:

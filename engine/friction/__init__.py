@@ -14,7 +14,7 @@ from beltstudy.engine.errors import InputError
 from beltstudy.engine.friction import cema, cmod, din, nonlin, visco
 from beltstudy.engine.friction.base import FrictionModel, param
 
-__all__ = ["FrictionModel", "MODELS", "ALIASES", "get_model", "param"]
+__all__ = ["FrictionModel", "MODELS", "ALIASES", "canonical_name", "get_model", "param"]
 
 
 ALIASES = {"iso5048": "din", "din22101": "din", "viscoah": "visco", "non-lin": "nonlin"}
@@ -24,8 +24,15 @@ MODELS: dict[str, FrictionModel] = {m.name: m for m in (din.MODEL, cema.MODEL, c
                                                          visco.MODEL, nonlin.MODEL)}
 
 
+def canonical_name(name: str) -> str:
+    """A model name as the models are keyed: lower case, an alias replaced by its model
+    (``ISO5048`` is ``din``); an unknown name comes back lower-cased, not refused."""
+    key = str(name).lower()
+    return ALIASES.get(key, key)
+
+
 def get_model(name: str) -> FrictionModel:
-    key = ALIASES.get(str(name).lower(), str(name).lower())
+    key = canonical_name(name)
     if key not in MODELS:
         valid = list(MODELS) + [f"{a} (= {t})" for a, t in ALIASES.items()]
         close = difflib.get_close_matches(str(name), list(MODELS) + list(ALIASES), n=1)
