@@ -94,8 +94,8 @@ def _wait(client, sid: str, poll_s: float = 0.5) -> dict:
 
 
 def main() -> int:
-    from beltstudy.service.client import ServiceClient
-    from beltstudy.service.demo import free_port, start_server, stop_server, wait_ready
+    from beltstudy.service.cli.client import ServiceClient
+    from beltstudy.service.cli.demo import free_port, start_server, stop_server, wait_ready
 
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--clients", type=int, default=50)

@@ -35,7 +35,7 @@ compared (every round is printed).
 
 For study288 it then splits a run's time (statics, build and prepare, kernel, decode, the rest
 of ``run_one``, measured in this process; the Arrow tables and Parquet writes of
-:func:`beltstudy.service.tasks.run_batch`) and the service study's worker time (the workers' own split,
+:func:`beltstudy.service.dask.tasks.run_batch`) and the service study's worker time (the workers' own split,
 summed by the service into ``study.json`` as ``worker_s``, and the time outside tasks: Dask
 round trips, waiting, start and tail), and the CPU time per run of the loop, of the service's
 workers and of the service process. Figures are printed, never asserted (see BENCHMARKS.md).
@@ -152,7 +152,7 @@ def plain_loop(study) -> tuple[float, dict, float]:
 
 
 def _loop_child(body: dict, part: int, parts: int, nice: int, ready, go, out) -> None:
-    from beltstudy.service.studyfile import resolve_study
+    from beltstudy.service.door.studyfile import resolve_study
 
     os.setpriority(os.PRIO_PROCESS, 0, max(nice, os.getpriority(os.PRIO_PROCESS, 0)))
     study = resolve_study(body, studies_dir=ROOT / "studies")
@@ -263,10 +263,10 @@ def engine_split(study) -> dict[str, float]:
 
 
 def worker_split(study, surface: bool) -> dict[str, float]:
-    """Mean seconds per run of :func:`beltstudy.service.tasks.run_batch` writing into a scratch study
+    """Mean seconds per run of :func:`beltstudy.service.dask.tasks.run_batch` writing into a scratch study
     (batches of about the service's size), and what it reports of its own split."""
-    from beltstudy.service.store import Store
-    from beltstudy.service.tasks import run_batch
+    from beltstudy.service.dask.tasks import run_batch
+    from beltstudy.service.store.parquet import Store
 
     specs = [dict(vars(r)) for r in study.runs]
     total = 0.0
@@ -304,8 +304,8 @@ def around_kernel(study, repeats: int = 20) -> dict[str, dict[str, float]]:
     from beltstudy.engine.dynamics import DynamicsOptions, build_system
     from beltstudy.engine.run import run_one, transient_safety_min
     from beltstudy.engine.statics import solve_steady
-    from beltstudy.service.store import _write_parquet
-    from beltstudy.service.tasks import surface_table, timeseries_table
+    from beltstudy.service.dask.tasks import surface_table, timeseries_table
+    from beltstudy.service.store.parquet import _write_parquet
 
     sim = importlib.import_module("beltstudy.engine.dynamics.simulate")
 
@@ -359,8 +359,8 @@ class Service:
     service itself, its API and study path by one tiny dynamic study before any timing."""
 
     def __init__(self, workers: int, data_dir: str):
-        from beltstudy.service.client import ServiceClient
-        from beltstudy.service.demo import free_port, start_server, wait_ready
+        from beltstudy.service.cli.client import ServiceClient
+        from beltstudy.service.cli.demo import free_port, start_server, wait_ready
 
         port = free_port()
         env = {
@@ -376,7 +376,7 @@ class Service:
         t0 = time.perf_counter()
         wait_ready(self.client, self.proc)
         self.ready_s = time.perf_counter() - t0
-        from beltstudy.service.tasks import TINY_CONVEYOR, TINY_SCENARIO
+        from beltstudy.service.examples import TINY_CONVEYOR, TINY_SCENARIO
 
         self.run({"name": "bench-warm-up", "conveyor": TINY_CONVEYOR, "scenario": TINY_SCENARIO,
                   "grid": {"friction_model": ["din", "cema"]}, "dynamics": True})
@@ -415,7 +415,7 @@ class Service:
                 "service_cpu": svc1 - svc0, "worker_cpu": wrk1 - wrk0, "doc": doc}
 
     def stop(self) -> None:
-        from beltstudy.service.demo import stop_server
+        from beltstudy.service.cli.demo import stop_server
 
         self.client.close()
         stop_server(self.proc)
@@ -585,8 +585,8 @@ def study288_rounds(args, nice: int) -> dict:
 
 
 def main() -> int:
-    from beltstudy.service.executor import LOCAL_WORKER_NICE
-    from beltstudy.service.studyfile import resolve_study
+    from beltstudy.service.dask.executor import LOCAL_WORKER_NICE
+    from beltstudy.service.door.studyfile import resolve_study
 
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--workers", type=int, default=os.cpu_count() or 1)

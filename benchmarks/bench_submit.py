@@ -23,9 +23,9 @@ from pathlib import Path
 ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT))
 
-from beltstudy.service import grid  # noqa: E402
-from beltstudy.service.axes import with_paths  # noqa: E402
-from beltstudy.service.studyfile import resolve_study  # noqa: E402
+from beltstudy.service.door.studyfile import resolve_study  # noqa: E402
+from beltstudy.service.grid import expand  # noqa: E402
+from beltstudy.service.grid.axes import with_paths  # noqa: E402
 
 STUDY = {
     "name": "bench-submit-20000",
@@ -67,11 +67,11 @@ def main() -> None:
           f"{platform.machine()}  python {platform.python_version()}  load average {load}")
     resolve_study(STUDY, studies_dir=ROOT / "studies")  # imports and caches warm
     t_new, sid_new, total = best(args.repeats)
-    grid.with_paths = deepcopy_paths
+    expand.with_paths = deepcopy_paths
     try:
         t_old, sid_old, _ = best(args.repeats)
     finally:
-        grid.with_paths = with_paths
+        expand.with_paths = with_paths
     assert sid_new == sid_old, (sid_new, sid_old)
     print(f"  {total} runs, study id {sid_new} (the same both ways)")
     print(f"  copy on write (the service)   {t_new:6.2f} s  {t_new / total * 1e6:6.1f} us/run")

@@ -2,7 +2,7 @@
 
 :func:`auto_sizes` is the one place that says what an ``auto`` field of the conveyor file
 becomes, and which constraint set it. A study calls it once per design case and holds the
-largest values for all runs of a conveyor design (``beltstudy.service.grid``); ``run_one`` calls it on
+largest values for all runs of a conveyor design (``beltstudy.service.grid.expand``); ``run_one`` calls it on
 the run's own steady solution to report the sizes it used.
 
 * **Take-up** (gravity ``mass_kg: auto``, fixed ``pretension_kn: auto``): the steady solve's

@@ -24,14 +24,16 @@ import pandas as pd
 import pyarrow as pa
 
 from beltstudy import engine
-from beltstudy.service import results
+from beltstudy.service.dask.executor import Executor
+from beltstudy.service.dask.jobs import StudyJob
+from beltstudy.service.dask.tasks import profile_table, run_spec, surface_table
+from beltstudy.service.door.studyfile import resolve_study
 from beltstudy.service.errors import Conflict, Invalid, NotFound
-from beltstudy.service.executor import Executor
-from beltstudy.service.grid import ResolvedStudy, RunSpec, study_from_json
-from beltstudy.service.jobs import StudyJob
+from beltstudy.service.grid.expand import ResolvedStudy, RunSpec, study_from_json
 from beltstudy.service.settings import Settings
-from beltstudy.service.store import Store
-from beltstudy.service.studyfile import resolve_study
+from beltstudy.service.store import query
+from beltstudy.service.store.columns import profile_schema, surface_schema
+from beltstudy.service.store.parquet import Store
 
 __all__ = ["StudyService", "ACTIVE_STATES", "RESOLVED_CACHE", "SURFACE_CACHE"]
 
@@ -240,13 +242,13 @@ class StudyService:
             known = any(r.run_id == run_id for r in self._load(self.store.read(study_id)).runs)
             state = "not finished yet" if known else "not found"
             raise NotFound(f"run '{run_id}' of study '{study_id}' {state}")
-        row = results.row_to_json(match.iloc[0].to_dict())
+        row = query.row_to_json(match.iloc[0].to_dict())
         ts = self.store.read_timeseries(study_id, run_id)
         return {
             "study_id": study_id,
             "run_id": run_id,
             "summary": row,
-            "timeseries": results.columns_to_json(ts.drop(columns=["run_id"])) if len(ts) else None,
+            "timeseries": query.columns_to_json(ts.drop(columns=["run_id"])) if len(ts) else None,
         }
 
     def resolved(self, study_id: str) -> ResolvedStudy:
@@ -281,8 +283,6 @@ class StudyService:
         where it came from: ``stored`` by the worker that ran it, or ``recomputed`` (the
         steady solve only) for a run stored before profiles were. Empty for a run that
         raised."""
-        from beltstudy.service.schema import profile_schema
-        from beltstudy.service.tasks import profile_table, run_spec
 
         spec = self.run_spec(study_id, run_id)
         stored = self.store.read_profile(study_id, run_id)
@@ -299,7 +299,6 @@ class StudyService:
         (a study with ``surface: true``) or ``recomputed`` from the run's stored inputs (runs
         are deterministic: the same table the worker would have stored). Empty for a run
         without a transient (steady only, or a run that raised)."""
-        from beltstudy.service.schema import surface_schema
 
         doc = self.store.read(study_id)
         runs = self.store.read_runs(study_id)
@@ -317,9 +316,6 @@ class StudyService:
         return self._recomputed_surface(study_id, run_id).to_pandas(), "recomputed"
 
     def _recomputed_surface(self, study_id: str, run_id: str) -> pa.Table:
-        from beltstudy.service.schema import surface_schema
-        from beltstudy.service.tasks import run_spec, surface_table
-
         with self._cache_lock:
             if run_id in self._surfaces:
                 self._surfaces.move_to_end(run_id)
@@ -337,7 +333,7 @@ class StudyService:
     def compare(self, study_id: str, baseline: str, candidate: str, metrics: list[str]) -> dict:
         doc = self.store.read(study_id)
         axes = [a["column"] for a in doc["study"]["axes"]]
-        return results.compare(
+        return query.compare(
             self.store.read_runs(study_id), axes, baseline, candidate, metrics, study_id
         )
 

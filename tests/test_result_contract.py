@@ -12,8 +12,8 @@ import pytest
 
 from beltstudy.engine import results as R
 from beltstudy.service.cli import main
-from beltstudy.service.results import row_to_json
-from beltstudy.service.schema import INPUT_COLUMNS, flatten_summary, runs_schema_for_axes
+from beltstudy.service.store.columns import INPUT_COLUMNS, flatten_summary, runs_schema_for_axes
+from beltstudy.service.store.query import row_to_json
 from tests.conftest import CONVEYORS, ROOT
 
 #: What the CLI's --json echoes of its inputs besides the results.

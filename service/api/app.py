@@ -14,6 +14,7 @@ gives a reference to the log line and never the exception's text.
 
 from __future__ import annotations
 
+import importlib
 import json
 import logging
 import uuid
@@ -28,9 +29,10 @@ from starlette.requests import ClientDisconnect
 from starlette.routing import Match
 
 from beltstudy import engine
+from beltstudy.service.api.deps import require_token
+from beltstudy.service.door.openapi import BodyChecker
+from beltstudy.service.door.openapi import install as install_openapi
 from beltstudy.service.errors import ServiceError
-from beltstudy.service.openapi import BodyChecker
-from beltstudy.service.openapi import install as install_openapi
 from beltstudy.service.settings import Settings, get_settings
 from beltstudy.service.studies import StudyService
 
@@ -141,7 +143,6 @@ class ErrorGuard:
 
 def create_app(settings: Settings | None = None, service: StudyService | None = None) -> FastAPI:
     """Build the app; the lifespan starts the service (resume, Dask) and stops it."""
-    import importlib
 
     settings = settings or get_settings()
     service = service or StudyService(settings)
@@ -181,7 +182,6 @@ def create_app(settings: Settings | None = None, service: StudyService | None = 
 
 def _install_docs(app: FastAPI) -> None:
     """``/openapi.json`` and ``/docs`` (Swagger UI), both needing the token when one is set."""
-    from beltstudy.service.api.deps import require_token
 
     @app.get("/openapi.json", include_in_schema=False, dependencies=[Depends(require_token)])
     def openapi_json() -> JSONResponse:

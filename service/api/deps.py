@@ -7,6 +7,7 @@ import secrets
 from fastapi import Depends, Request
 from fastapi.security import HTTPAuthorizationCredentials, HTTPBearer
 
+from beltstudy.service.api.models import ErrorOut
 from beltstudy.service.errors import Unauthorized
 from beltstudy.service.studies import StudyService
 
@@ -35,8 +36,6 @@ def require_token(
 
 
 def _error(description: str) -> dict:
-    from beltstudy.service.api.models import ErrorOut
-
     return {"model": ErrorOut, "description": description}
 
 

@@ -7,6 +7,8 @@ import dataclasses
 from fastapi import APIRouter, Depends
 
 from beltstudy import engine
+from beltstudy.engine import catalog
+from beltstudy.engine.friction import ALIASES, MODELS
 from beltstudy.service.api.deps import ERROR_RESPONSES, get_service, require_token
 from beltstudy.service.api.models import BeltsOut, Health, ModelsOut
 from beltstudy.service.studies import StudyService
@@ -29,8 +31,6 @@ def health(service: StudyService = Depends(get_service)) -> dict:
 
 @router.get("/models", response_model=ModelsOut, summary="Friction models and their parameters")
 def models() -> dict:
-    from beltstudy.engine.friction import ALIASES, MODELS
-
     out = []
     for name, model in MODELS.items():
         table = model.parameter_table()
@@ -50,6 +50,4 @@ def models() -> dict:
 
 @router.get("/catalog/belts", response_model=BeltsOut, summary="The belt catalogue")
 def belts() -> dict:
-    from beltstudy.engine import catalog
-
     return {"belts": [dataclasses.asdict(b) for b in catalog.belts().values()]}

@@ -7,7 +7,6 @@ from typing import Literal
 from fastapi import APIRouter, Depends, Query, Request, Response
 from fastapi.concurrency import run_in_threadpool
 
-from beltstudy.service import results
 from beltstudy.service.api.deps import ERROR_RESPONSES, _error, get_service, require_token
 from beltstudy.service.api.models import (
     CompareOut,
@@ -19,9 +18,10 @@ from beltstudy.service.api.models import (
     StudyList,
     StudyStatus,
 )
+from beltstudy.service.door.openapi import check_body
+from beltstudy.service.door.parse import parse_body
 from beltstudy.service.errors import TooLarge
-from beltstudy.service.openapi import check_body
-from beltstudy.service.parse import parse_body
+from beltstudy.service.store import query
 from beltstudy.service.studies import StudyService
 
 __all__ = ["router", "STUDY_BODY_SCHEMA_REF"]
@@ -129,20 +129,20 @@ def get_runs(
     if status:
         wanted.append(f"status={status}")
     if friction_model:
-        wanted.append(f"friction_model={results.model_name(friction_model, 'friction_model')}")
+        wanted.append(f"friction_model={query.model_name(friction_model, 'friction_model')}")
     if len(df):
-        df = results.apply_filters(df, wanted)
+        df = query.apply_filters(df, wanted)
     if format == "csv":
-        return Response(results.to_csv(df), media_type="text/csv; charset=utf-8")
+        return Response(query.to_csv(df), media_type="text/csv; charset=utf-8")
     if format == "parquet":
-        return Response(results.to_parquet(df), media_type=PARQUET_TYPE)
+        return Response(query.to_parquet(df), media_type=PARQUET_TYPE)
     page = df.iloc[offset : offset + limit if limit else None]
     return {
         "study_id": study_id,
         "total": int(len(df)),
         "offset": offset,
         "limit": limit,
-        "runs": results.rows_to_json(page),
+        "runs": query.rows_to_json(page),
     }
 
 
@@ -198,16 +198,16 @@ def _run_table(df, source: str, what: str, study_id: str, run_id: str, format: s
     where it came from (stored or recomputed) in ``X-Beltstudy-<What>`` and the JSON."""
     headers = {f"X-Beltstudy-{what.capitalize()}": source}
     if format == "csv":
-        return Response(results.to_csv(df), media_type="text/csv; charset=utf-8",
+        return Response(query.to_csv(df), media_type="text/csv; charset=utf-8",
                         headers=headers)
     if format == "parquet":
-        return Response(results.to_parquet(df), media_type=PARQUET_TYPE, headers=headers)
+        return Response(query.to_parquet(df), media_type=PARQUET_TYPE, headers=headers)
     return {
         "study_id": study_id,
         "run_id": run_id,
         "source": source,
         "rows": int(len(df)),
-        what: results.columns_to_json(df.drop(columns=["run_id"])) if len(df) else None,
+        what: query.columns_to_json(df.drop(columns=["run_id"])) if len(df) else None,
     }
 
 
@@ -221,7 +221,7 @@ def compare(
     baseline: str = Query("cema", description="baseline friction model"),
     candidate: str = Query("nonlin", description="candidate friction model"),
     metrics: str = Query(
-        ",".join(results.DEFAULT_METRICS), description="comma-separated numeric columns"
+        ",".join(query.DEFAULT_METRICS), description="comma-separated numeric columns"
     ),
     service: StudyService = Depends(get_service),
 ) -> dict:

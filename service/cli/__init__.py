@@ -12,6 +12,9 @@ import argparse
 import importlib
 import sys
 
+from beltstudy.engine.errors import InputError
+from beltstudy.service.errors import ServiceError
+
 #: Sub-command modules, in the order they appear in ``--help``.
 COMMAND_MODULES = ("static", "sweep", "simulate", "study")
 
@@ -30,9 +33,6 @@ def build_parser() -> argparse.ArgumentParser:
 
 
 def main(argv: list[str] | None = None) -> int:
-    from beltstudy.engine.errors import InputError
-    from beltstudy.service.errors import ServiceError
-
     parser = build_parser()
     args = parser.parse_args(argv)
     if not getattr(args, "func", None):

@@ -6,7 +6,7 @@ import json
 import math
 from typing import Any
 
-from beltstudy.engine.conveyor import LOAD_MAX, InputError
+from beltstudy.engine.conveyor import LOAD_MAX, InputError, parse_scenario, section_loads
 
 LOAD_HELP = ("full, empty, inclines, declines, a fraction of the design load up to 1.3 (a "
              "surge above 1), or one fraction per carry profile section: 1,0,0.5")
@@ -35,7 +35,6 @@ def check_scenario_fields(conveyor=None, **fields):
     """Validate command-line scenario fields with the scenario model (one set of bounds for
     ``static``, ``simulate``, ``sweep-temperature`` and studies); the error names the option.
     With ``conveyor``, a load given per section must match its profile."""
-    from beltstudy.engine.conveyor import parse_scenario, section_loads
 
     given = {k: v for k, v in fields.items() if v is not None}
     try:

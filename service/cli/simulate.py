@@ -12,7 +12,18 @@ import numpy as np
 import pandas as pd
 
 from beltstudy.engine import results as R
-from beltstudy.service.cli.common import LOAD_HELP
+from beltstudy.engine.conveyor import InputError, load_conveyor, load_mapping, parse_scenario
+from beltstudy.engine.friction import get_model
+from beltstudy.service.charts import transient_figure
+from beltstudy.service.cli.common import (
+    LOAD_HELP,
+    design_lines,
+    dumps,
+    parse_load,
+    parse_params,
+    with_sag_at_rest,
+    write_table,
+)
 
 #: Steady fields of the table (labels and units: :mod:`beltstudy.engine.results`, the two tensions
 #: marked steady); the transient, per phase, slack and per-drive blocks show every field of
@@ -79,8 +90,6 @@ def register(sub) -> None:
 
 def build_scenario(args: argparse.Namespace):
     """The scenario file (if any) with the command-line fields on top, validated."""
-    from beltstudy.engine.conveyor import load_mapping, parse_scenario
-    from beltstudy.service.cli.common import parse_load
 
     data: dict = {}
     if args.scenario:
@@ -130,10 +139,8 @@ def traces_long(traces: pd.DataFrame) -> pd.DataFrame:
 
 
 def run(args: argparse.Namespace) -> int:
-    from beltstudy.engine.conveyor import InputError, load_conveyor
-    from beltstudy.engine.friction import get_model
+    # deferred: the transient engine (numba) loads only for this command
     from beltstudy.engine.run import run_one
-    from beltstudy.service.cli.common import dumps, parse_params, with_sag_at_rest, write_table
 
     conv = with_sag_at_rest(load_conveyor(args.conveyor), args.sag_at_rest)
     fm = get_model(args.model)
@@ -150,8 +157,6 @@ def run(args: argparse.Namespace) -> int:
     if args.timeseries and res.timeseries is not None:
         write_table(res.timeseries, args.timeseries)
     if args.plot:
-        from beltstudy.service.plots import transient_figure
-
         surface = traces_long(res.transient.traces) if res.transient is not None else None
         extremes = {"highest tension": s.get("t_max_dyn_at_m"),
                     "lowest tension": s.get("t_min_dyn_at_m")}
@@ -177,7 +182,6 @@ def _fmt(val) -> str:
 def _table(s: dict) -> str:
     lines = [f"{s['conveyor']}  model={s['friction_model']}  temperature={s['temperature_c']:g} C"
              f"  load={s['load']}  stop={s['stop_mode']}  formulation={s['formulation']}", ""]
-    from beltstudy.service.cli.common import design_lines
 
     for title, fields in (("steady", STEADY_FIELDS), ("transient", TRANSIENT_FIELDS)):
         lines.append(f"  {title}")

@@ -5,7 +5,23 @@ from __future__ import annotations
 import argparse
 import time
 
-from beltstudy.service.cli.common import LOAD_HELP
+from beltstudy.engine import results
+from beltstudy.engine.conveyor import InputError, load_conveyor
+from beltstudy.engine.design import auto_sizes, summary_fields
+from beltstudy.engine.friction import get_model
+from beltstudy.engine.results import check_summary
+from beltstudy.engine.statics import solve_steady
+from beltstudy.service.charts import steady_profile_figure
+from beltstudy.service.cli.common import (
+    LOAD_HELP,
+    check_scenario_fields,
+    design_lines,
+    dumps,
+    parse_load,
+    parse_params,
+    with_sag_at_rest,
+    write_table,
+)
 
 #: The steady fields of the table, in order (labels and units: :mod:`beltstudy.engine.results`; every
 #: field is in ``--json``).
@@ -39,20 +55,6 @@ def register(sub) -> None:
 
 
 def run(args: argparse.Namespace) -> int:
-    from beltstudy.engine.conveyor import InputError, load_conveyor
-    from beltstudy.engine.design import auto_sizes, summary_fields
-    from beltstudy.engine.friction import get_model
-    from beltstudy.engine.results import check_summary
-    from beltstudy.engine.statics import solve_steady
-    from beltstudy.service.cli.common import (
-        check_scenario_fields,
-        dumps,
-        parse_load,
-        parse_params,
-        with_sag_at_rest,
-        write_table,
-    )
-
     conv = with_sag_at_rest(load_conveyor(args.conveyor), args.sag_at_rest)
     fm = get_model(args.model)
     params = fm.params(parse_params(args.param, fm.name))
@@ -74,8 +76,6 @@ def run(args: argparse.Namespace) -> int:
     if args.profile:
         write_table(res.profile(), args.profile)
     if args.plot:
-        from beltstudy.service.plots import steady_profile_figure
-
         fig = steady_profile_figure(res.profile(), title=(
             f"{conv.name}: {fm.name}, {args.temperature_c:g} C, load {load}"))
         fig.savefig(args.plot, dpi=110)
@@ -91,9 +91,6 @@ def _unit(f) -> str:
 
 
 def _table(s: dict) -> str:
-    from beltstudy.engine import results
-    from beltstudy.service.cli.common import design_lines
-
     lines = [f"{s['conveyor']}  model={s['friction_model']}  temperature={s['temperature_c']:g} C"
              f"  load={s['load']}", ""]
     for key in TABLE:

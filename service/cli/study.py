@@ -10,9 +10,21 @@ answers.
 from __future__ import annotations
 
 import argparse
+import json
 import os
 import sys
+import time
 from pathlib import Path
+
+from beltstudy.service.cli.client import ServiceClient
+from beltstudy.service.cli.console import ProgressBar, format_compare, format_status
+from beltstudy.service.cli.demo import run_demo
+from beltstudy.service.door.parse import load_mapping
+from beltstudy.service.door.studyfile import study_body
+from beltstudy.service.errors import Invalid, Unavailable
+from beltstudy.service.settings import Settings
+from beltstudy.service.store import query
+from beltstudy.service.store.parquet import Store
 
 __all__ = ["register"]
 
@@ -93,14 +105,10 @@ def _client_args(p: argparse.ArgumentParser) -> None:
 
 
 def _settings():
-    from beltstudy.service.settings import Settings
-
     return Settings()
 
 
 def _client(args):
-    from beltstudy.service.client import ServiceClient
-
     url = args.url or os.environ.get("BELTSTUDY_URL") or DEFAULT_URL
     token = args.token if args.token is not None else _settings().token
     return ServiceClient(url, token)
@@ -112,6 +120,7 @@ GRACEFUL_SHUTDOWN_S = 5
 
 
 def cmd_serve(args) -> int:
+    # deferred: uvicorn, FastAPI and Dask load only for the server
     import uvicorn
 
     from beltstudy.service.api.app import create_app
@@ -130,9 +139,6 @@ def cmd_serve(args) -> int:
 
 
 def cmd_submit(args) -> int:
-    from beltstudy.service.report import ProgressBar, format_status
-    from beltstudy.service.studyfile import study_body
-
     body = study_body(args.study)
     with _client(args) as client:
         st, created = client.submit(body)
@@ -156,8 +162,6 @@ def _runs_text(st: dict) -> str:
 
 
 def _poll(get, progress, poll_s: float = 1.0) -> dict:
-    import time
-
     while True:
         st = get()
         progress(st)
@@ -167,15 +171,12 @@ def _poll(get, progress, poll_s: float = 1.0) -> dict:
 
 
 def cmd_run(args) -> int:
-    from beltstudy.service.report import ProgressBar, format_status
-    from beltstudy.service.store import Store
+    # deferred: the service's Dask stack loads only for the commands that use it
     from beltstudy.service.studies import StudyService
 
     settings = _settings()
     service = StudyService(settings.model_copy(update={"warm_start": False}))
     p = Path(args.study)
-    from beltstudy.service.parse import load_mapping
-
     data = load_mapping(p)
     try:
         st, created = service.submit(data, base_dir=p.parent, confine=False)
@@ -193,14 +194,13 @@ def cmd_run(args) -> int:
 
 def _local_service():
     """Store-only access when no service answers (no Dask is started)."""
+    # deferred: the service's Dask stack loads only for the commands that use it
     from beltstudy.service.studies import StudyService
 
     return StudyService(_settings().model_copy(update={"warm_start": False}))
 
 
 def _with_fallback(args, remote, local):
-    from beltstudy.service.errors import Unavailable
-
     try:
         with _client(args) as client:
             return remote(client)
@@ -211,8 +211,6 @@ def _with_fallback(args, remote, local):
 
 
 def cmd_status(args) -> int:
-    from beltstudy.service.report import format_status
-
     if args.id:
         st = _with_fallback(args, lambda c: c.status(args.id), lambda s: s.status(args.id))
         print(format_status(st))
@@ -228,9 +226,6 @@ def cmd_status(args) -> int:
 
 
 def cmd_results(args) -> int:
-    from beltstudy.service import results
-    from beltstudy.service.errors import Invalid
-
     out = Path(args.output)
     fmt = {".parquet": "parquet", ".csv": "csv", ".json": "json"}.get(out.suffix.lower())
     if fmt is None:
@@ -239,12 +234,11 @@ def cmd_results(args) -> int:
     def local(service):
         df = service.runs(args.id)
         if fmt == "parquet":
-            return results.to_parquet(df)
+            return query.to_parquet(df)
         if fmt == "csv":
-            return results.to_csv(df).encode()
-        import json
+            return query.to_csv(df).encode()
 
-        return json.dumps({"runs": results.rows_to_json(df)}, indent=1).encode()
+        return json.dumps({"runs": query.rows_to_json(df)}, indent=1).encode()
 
     data = _with_fallback(args, lambda c: c.runs(args.id, fmt), local)
     out.write_bytes(data)
@@ -253,13 +247,12 @@ def cmd_results(args) -> int:
 
 
 def cmd_report(args) -> int:
-    from beltstudy.service.errors import Invalid
-
     out = Path(args.output)
     if out.suffix.lower() not in (".html", ".htm"):
         raise Invalid(f"-o {out}: the report is HTML; use a .html file name")
 
     def local(service):
+        # deferred: the report's pages load the service's Dask stack
         from beltstudy.service.web.report import build_report
 
         return build_report(service, args.id)
@@ -271,8 +264,6 @@ def cmd_report(args) -> int:
 
 
 def cmd_compare(args) -> int:
-    from beltstudy.service.report import format_compare
-
     metrics = [m.strip() for m in args.metrics.split(",") if m.strip()]
     result = _with_fallback(
         args,
@@ -284,6 +275,4 @@ def cmd_compare(args) -> int:
 
 
 def cmd_demo(args) -> int:
-    from beltstudy.service.demo import run_demo
-
     return run_demo(args.study, port=args.port)

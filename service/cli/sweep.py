@@ -14,7 +14,21 @@ from __future__ import annotations
 
 import argparse
 import math
+import tempfile
 from pathlib import Path
+
+import pandas as pd
+
+from beltstudy.engine.conveyor import (
+    TEMPERATURE_MAX_C,
+    TEMPERATURE_MIN_C,
+    InputError,
+    load_conveyor,
+)
+from beltstudy.engine.friction import get_model
+from beltstudy.service.cli.common import check_scenario_fields, parse_load, parse_model_params
+from beltstudy.service.settings import Settings
+from beltstudy.service.store.columns import components_from_row
 
 #: Colours of the models in the figure (the same model always gets the same colour).
 COLOURS = {"cema": "tab:red", "din": "tab:blue", "cmod": "tab:orange", "visco": "tab:purple",
@@ -49,7 +63,6 @@ def register(sub) -> None:
 
 def temperatures(t_from: float, t_to: float, step: float) -> list[float]:
     """The swept temperatures [C], ``t_from`` to ``t_to`` inclusive."""
-    from beltstudy.engine.conveyor import TEMPERATURE_MAX_C, TEMPERATURE_MIN_C, InputError
 
     for name, val in (("--from", t_from), ("--to", t_to), ("--step", step)):
         if not math.isfinite(val):
@@ -69,9 +82,6 @@ def temperatures(t_from: float, t_to: float, step: float) -> list[float]:
 
 
 def _model_list(text: str) -> list:
-    from beltstudy.engine.conveyor import InputError
-    from beltstudy.engine.friction import get_model
-
     names = [s.strip() for s in text.split(",") if s.strip()]
     if not names:
         raise InputError("--models: give at least one model, e.g. --models din,nonlin")
@@ -107,12 +117,7 @@ def sweep(conv, models, temps, params: dict, load, n_elements=None):
 
     As in every study, the conveyor's ``auto`` sizes (take-up, motors, brakes) are one
     installed design, the largest requirement over the swept models and temperatures."""
-    import tempfile
-
-    import pandas as pd
-
-    from beltstudy.service.schema import components_from_row
-    from beltstudy.service.settings import Settings
+    # deferred: the service's Dask stack loads only for this command
     from beltstudy.service.studies import StudyService
 
     body = sweep_study(conv, models, temps, params, load, n_elements)
@@ -147,6 +152,7 @@ def sweep(conv, models, temps, params: dict, load, n_elements=None):
 
 def figure(df, title: str):
     """Power against temperature per model, and the Non-Lin parts (paper Fig. 2)."""
+    # deferred: matplotlib loads only when a figure is drawn
     import matplotlib
 
     matplotlib.use("Agg")
@@ -189,16 +195,12 @@ def figure(df, title: str):
 
 
 def run(args: argparse.Namespace) -> int:
-    from beltstudy.engine.conveyor import InputError, load_conveyor
-    from beltstudy.service.cli.common import check_scenario_fields, parse_load, parse_model_params
-
     conv = load_conveyor(args.conveyor)
     models = _model_list(args.models)
     temps = temperatures(args.t_from, args.t_to, args.step)
     load = parse_load(args.load)
     check_scenario_fields(load=load, elements=args.elements)
     raw = parse_model_params(args.param)
-    from beltstudy.engine.friction import get_model
 
     params: dict[str, dict] = {}
     names = {fm.name for fm in models}

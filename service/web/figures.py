@@ -11,9 +11,12 @@ import threading
 
 import pandas as pd
 
-from beltstudy.service import plots, results
+from beltstudy.engine.conveyor import parse_conveyor, parse_scenario
+from beltstudy.engine.loop import build_loop
+from beltstudy.service import charts
 from beltstudy.service.errors import Invalid, NotFound
-from beltstudy.service.grid import ResolvedStudy
+from beltstudy.service.grid.expand import ResolvedStudy
+from beltstudy.service.store import query
 from beltstudy.service.studies import StudyService
 
 __all__ = [
@@ -56,6 +59,7 @@ def render(make, fmt: str = "png") -> bytes:
     """Draw ``make()`` and return the figure as ``fmt`` bytes (the figure is closed)."""
     if fmt not in FORMATS:
         raise Invalid(f"format: unknown format '{fmt}'; valid: {', '.join(FORMATS)}")
+    # deferred: matplotlib loads only when a figure is drawn
     import matplotlib
     import matplotlib.pyplot as plt
 
@@ -110,28 +114,28 @@ def study_figure(
     groups = list(zips.values())
     if name == "power-temperature":
         temperature = (doc.get("study", {}).get("scenario") or {}).get("temperature_c")
-        return lambda: plots.power_temperature_figure(
+        return lambda: charts.power_temperature_figure(
             runs, f"{title}: power against temperature", temperature, axes=axes, groups=groups
         )
     if name == "peak-dynamic-tension":
         if not doc.get("study", {}).get("dynamics", True):
-            return lambda: plots.message_figure(plots.NO_TRANSIENT, f"{title}: peak tension")
-        return lambda: plots.peak_dynamic_tension_figure(
+            return lambda: charts.message_figure(charts.NO_TRANSIENT, f"{title}: peak tension")
+        return lambda: charts.peak_dynamic_tension_figure(
             runs, f"{title}: peak and lowest tension against stop time", axes=axes,
             groups=groups)
     base, cand = _pick_models(runs, baseline, candidate)
     if not len(runs):
-        return lambda: plots.message_figure("no finished runs yet", f"{title}: ratio")
+        return lambda: charts.message_figure("no finished runs yet", f"{title}: ratio")
     if base == cand:
-        return lambda: plots.message_figure(
+        return lambda: charts.message_figure(
             "a ratio needs two friction models in the grid", f"{title}: ratio"
         )
     axes = [a["column"] for a in doc["study"]["axes"]]
-    metrics = [m for m in results.DEFAULT_METRICS
+    metrics = [m for m in query.DEFAULT_METRICS
                if m in runs.columns and pd.api.types.is_float_dtype(runs[m])]
-    summary = results.compare(runs, axes, base, cand, metrics, study_id)["summary"]
+    summary = query.compare(runs, axes, base, cand, metrics, study_id)["summary"]
     label = f"{title}: {_text(cand)} / {_text(base)} per axis value"
-    return lambda: plots.ratio_figure(summary, _text(base), _text(cand), label)
+    return lambda: charts.ratio_figure(summary, _text(base), _text(cand), label)
 
 
 def run_figure(service: StudyService, study_id: str, run_id: str, name: str):
@@ -142,7 +146,7 @@ def run_figure(service: StudyService, study_id: str, run_id: str, name: str):
     spec = next((r for r in study.runs if r.run_id == run_id), None)
     if spec is None:
         raise NotFound(f"run '{run_id}' of study '{study_id}' not found")
-    axes = ", ".join(f"{k}={plots._text(v)}" for k, v in spec.axes.items()
+    axes = ", ".join(f"{k}={charts._text(v)}" for k, v in spec.axes.items()
                      if k != "friction_model")
     title = _text(f"{doc.get('name', study_id)} · {spec.model}" + (f" · {axes}" if axes else ""))
     if name == "steady-profile":
@@ -152,19 +156,19 @@ def run_figure(service: StudyService, study_id: str, run_id: str, name: str):
             runs = service.store.read_runs(study_id, columns=["run_id", "message"])
             row = runs[runs["run_id"] == run_id]
             message = row["message"].iloc[0] if len(row) else ""
-            return lambda: plots.message_figure(
+            return lambda: charts.message_figure(
                 _text(f"no steady solution: {message}" if message else "no steady profile"),
                 title)
-        return lambda: plots.steady_profile_figure(profile, title)
+        return lambda: charts.steady_profile_figure(profile, title)
     if not study.dynamics:
-        return lambda: plots.message_figure(plots.NO_TRANSIENT, title)
+        return lambda: charts.message_figure(charts.NO_TRANSIENT, title)
     runs = service.store.read_runs(study_id)
     row = runs[runs["run_id"] == run_id] if len(runs) else runs
     ts = service.store.read_timeseries(study_id, run_id)
     # the surface: stored, or recomputed from the run's inputs (a finished run only)
     surface = service.run_surface(study_id, run_id)[0] if len(row) else ts.iloc[0:0]
     if not len(ts) and not len(surface):
-        return lambda: plots.message_figure("no transient data for this run", title)
+        return lambda: charts.message_figure("no transient data for this run", title)
     extremes = {}
     if len(row):
         for label, column in (("highest tension", "t_max_dyn_at_m"),
@@ -172,14 +176,12 @@ def run_figure(service: StudyService, study_id: str, run_id: str, name: str):
             value = row[column].iloc[0] if column in row else None
             extremes[label] = None if pd.isna(value) else float(value)
     locate = _locator(spec)
-    return lambda: plots.transient_figure(ts, surface, title, extremes=extremes, locate=locate)
+    return lambda: charts.transient_figure(ts, surface, title, extremes=extremes, locate=locate)
 
 
 def _locator(spec):
     """``s_m -> (strand, distance from the tail)`` on the run's own loop (None if it cannot
     be cut: the figure then names loop positions)."""
-    from beltstudy.engine.conveyor import parse_conveyor, parse_scenario
-    from beltstudy.engine.loop import build_loop
 
     try:
         scenario = parse_scenario(spec.scenario)

@@ -22,7 +22,13 @@ from typing import Any
 
 import pandas as pd
 
+from beltstudy.engine.capacity import capacity
+from beltstudy.engine.catalog import resolve_belt
+from beltstudy.engine.conveyor import parse_conveyor
+from beltstudy.engine.loop import build_loop
+from beltstudy.engine.statics import SAFETY_FACTOR_MIN
 from beltstudy.service.studies import StudyService
+from beltstudy.service.web import figures
 
 __all__ = ["build_report", "GOVERNING", "REPORT_CSP"]
 
@@ -115,8 +121,6 @@ def _n(value: Any, digits: int = 4) -> str:
 
 
 def _png(make) -> str:
-    from beltstudy.service.web import figures
-
     data = figures.render(make, "png")
     return "data:image/png;base64," + base64.b64encode(data).decode("ascii")
 
@@ -247,8 +251,6 @@ def _grid_section(study: dict, status: dict) -> str:
 def _locator(study: dict):
     """``s_m -> (strand, distance from the tail)`` on the study's conveyor (None if the
     conveyor cannot be read here)."""
-    from beltstudy.engine.conveyor import parse_conveyor
-    from beltstudy.engine.loop import build_loop
 
     try:
         return build_loop(parse_conveyor(study["conveyor"]), 1.0).where
@@ -267,16 +269,13 @@ def _where_on_loop(locate, at) -> str:
 
 def _limits(study: dict, runs: pd.DataFrame) -> dict[str, str]:
     """The limit each governing case is judged against, in numbers where the study has them."""
+    # deferred: engine.run loads the transient engine (numba)
     from beltstudy.engine.run import TRANSIENT_SAFETY_RATIO
-    from beltstudy.engine.statics import SAFETY_FACTOR_MIN
 
     conv = study["conveyor"]
     sag = conv["sag_limit_pct"]
     rating = pd.to_numeric(runs.get("belt_rating_kn"), errors="coerce") if len(runs) else None
     try:
-        from beltstudy.engine.catalog import resolve_belt
-        from beltstudy.engine.conveyor import parse_conveyor
-
         kind = resolve_belt(parse_conveyor(conv).belt).kind
     except Exception:  # a conveyor this engine cannot read
         kind = "steel"
@@ -361,9 +360,6 @@ def _runs_section(study: dict, runs: pd.DataFrame) -> str:
 
 def build_report(service: StudyService, study_id: str) -> str:
     """The design report of a study as one self-contained HTML page."""
-    from beltstudy.engine.capacity import capacity
-    from beltstudy.engine.conveyor import parse_conveyor
-    from beltstudy.service.web import figures
 
     doc = service.store.read(study_id)
     status = service.status(study_id)

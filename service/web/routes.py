@@ -21,6 +21,7 @@ from beltstudy.service.api.deps import ERROR_RESPONSES, get_service, require_tok
 from beltstudy.service.errors import NotFound
 from beltstudy.service.studies import StudyService
 from beltstudy.service.web import figures
+from beltstudy.service.web.report import REPORT_CSP, build_report
 
 __all__ = ["router", "pages", "api"]
 
@@ -163,8 +164,6 @@ def run_plot(
                      "description": "the report"}},
 )
 def study_report(study_id: str, service: StudyService = Depends(get_service)) -> Response:
-    from beltstudy.service.web.report import REPORT_CSP, build_report
-
     return HTMLResponse(build_report(service, study_id), headers={
         "Content-Security-Policy": REPORT_CSP, "X-Content-Type-Options": "nosniff",
         "Referrer-Policy": "no-referrer", "Cache-Control": "no-store",

@@ -22,7 +22,7 @@ from beltstudy.engine.run import run_one
 from beltstudy.engine.statics import solve_steady
 from beltstudy.service.cli import main
 from beltstudy.service.cli.sweep import sweep_study
-from beltstudy.service.studyfile import resolve_study
+from beltstudy.service.door.studyfile import resolve_study
 from tests.conftest import CONVEYORS
 
 SLOPE = CONVEYORS / "slope-5pct.yaml"

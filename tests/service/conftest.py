@@ -8,12 +8,13 @@ from pathlib import Path
 
 import pytest
 
-from beltstudy.service.jobs import study_schema
-from beltstudy.service.schema import rows_to_table
+from beltstudy.service.dask.jobs import study_schema
+from beltstudy.service.dask.tasks import run_batch
+from beltstudy.service.door.studyfile import resolve_study
+from beltstudy.service.examples import TINY_CONVEYOR, TINY_SCENARIO
 from beltstudy.service.settings import Settings
-from beltstudy.service.store import PART_TABLES, Store
-from beltstudy.service.studyfile import resolve_study
-from beltstudy.service.tasks import TINY_CONVEYOR, TINY_SCENARIO, run_batch
+from beltstudy.service.store.columns import rows_to_table
+from beltstudy.service.store.parquet import PART_TABLES, Store
 
 ROOT = Path(__file__).resolve().parents[2]
 
@@ -107,8 +108,8 @@ class LiveService:
     """``beltstudy serve`` in a child process on a free loopback port."""
 
     def __init__(self, data_dir: Path, log_path: Path, **env: str):
-        from beltstudy.service.client import ServiceClient
-        from beltstudy.service.demo import free_port, start_server, wait_ready
+        from beltstudy.service.cli.client import ServiceClient
+        from beltstudy.service.cli.demo import free_port, start_server, wait_ready
 
         self.data_dir = data_dir
         self.port = free_port()
@@ -166,7 +167,7 @@ class LiveService:
         self._close()
 
     def stop(self) -> None:
-        from beltstudy.service.demo import stop_server
+        from beltstudy.service.cli.demo import stop_server
 
         stop_server(self.proc)
         self._close()

@@ -1,7 +1,7 @@
 """Schemathesis hooks: keep generated *valid* studies to the rules JSON Schema cannot state.
 
-The study schema (``beltstudy.service.openapi.study_schema``) states everything JSON Schema can; the
-few rules it cannot (``beltstudy.service.openapi.NOT_IN_SCHEMA``: sums, comparisons between fields,
+The study schema (``beltstudy.service.door.openapi.study_schema``) states everything JSON Schema can; the
+few rules it cannot (``beltstudy.service.door.openapi.NOT_IN_SCHEMA``: sums, comparisons between fields,
 products over the grid) are written out here, independently of the service's code, and
 generated positive bodies that break one are skipped (negative ones are left alone: they are
 refused anyway). Used by ``tests/service/test_api_schemathesis.py`` and by hand with

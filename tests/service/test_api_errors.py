@@ -13,7 +13,7 @@ import yaml
 from fastapi.testclient import TestClient
 
 from beltstudy.service.api.app import create_app
-from beltstudy.service.tasks import TINY_CONVEYOR, TINY_SCENARIO
+from beltstudy.service.examples import TINY_CONVEYOR, TINY_SCENARIO
 
 
 @pytest.fixture

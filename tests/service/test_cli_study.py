@@ -1,4 +1,4 @@
-"""``beltstudy submit|run|status|results|compare`` (service/cli/study.py, service/report.py)."""
+"""``beltstudy submit|run|status|results|compare`` (service/cli/study.py, service/cli/console.py)."""
 
 from __future__ import annotations
 
@@ -9,8 +9,8 @@ import pytest
 import yaml
 
 from beltstudy.service.cli import main
-from beltstudy.service.demo import free_port
-from beltstudy.service.report import ProgressBar, format_compare
+from beltstudy.service.cli.console import ProgressBar, format_compare
+from beltstudy.service.cli.demo import free_port
 
 
 @pytest.fixture

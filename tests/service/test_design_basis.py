@@ -1,7 +1,7 @@
 """Studies that compare one installed design: the design basis, zip groups, model parameters
 as axes, identical runs merged, points that break the conveyor named, load patterns.
 
-Runs are computed in this process (beltstudy.service.tasks.run_batch, the workers' code) and read back
+Runs are computed in this process (beltstudy.service.dask.tasks.run_batch, the workers' code) and read back
 from Parquet with pandas; the live test in test_service_live.py does the same on Dask.
 """
 
@@ -13,9 +13,9 @@ import pytest
 from beltstudy.engine.conveyor import Scenario, parse_conveyor
 from beltstudy.engine.design import auto_sizes
 from beltstudy.engine.statics import solve_steady
-from beltstudy.service.basis import round_up
+from beltstudy.service.door.studyfile import resolve_study
 from beltstudy.service.errors import Invalid
-from beltstudy.service.studyfile import resolve_study
+from beltstudy.service.grid.basis import round_up
 from tests.service.conftest import ROOT, tiny_conveyor
 
 
@@ -229,7 +229,7 @@ def test_load_patterns_and_surge_in_a_study(make_study, finished_study, data_dir
 
 
 def test_design_basis_survives_the_round_trip_through_study_json(make_study):
-    from beltstudy.service.grid import study_from_json
+    from beltstudy.service.grid.expand import study_from_json
 
     study = resolve_study(make_study(zip=[{"temperature_c": [-20, 20],
                                            "models.din.f_carry": [0.03, 0.02]}],
@@ -242,7 +242,7 @@ def test_design_basis_survives_the_round_trip_through_study_json(make_study):
 
 
 def test_example_design_study_resolves():
-    from beltstudy.service.studyfile import load_study_file
+    from beltstudy.service.door.studyfile import load_study_file
 
     for path in sorted((ROOT / "studies").glob("*.yaml")):
         load_study_file(path)

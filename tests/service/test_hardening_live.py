@@ -161,8 +161,8 @@ def test_delete_and_sigterm_with_the_scheduler_unreachable_finish_within_10_s(
 ):
     """Nothing listens at BELTSTUDY_SCHEDULER: studies stay queued, and deleting them or
     stopping the service does not wait for a connection."""
-    from beltstudy.service.client import ServiceClient
-    from beltstudy.service.demo import free_port, start_server, stop_server
+    from beltstudy.service.cli.client import ServiceClient
+    from beltstudy.service.cli.demo import free_port, start_server, stop_server
 
     port = free_port()
     env = {"BELTSTUDY_DATA_DIR": str(tmp_path / "data"), "BELTSTUDY_TOKEN": "",
@@ -200,7 +200,7 @@ def test_delete_and_sigterm_with_the_scheduler_unreachable_finish_within_10_s(
 def test_delete_and_sigterm_with_the_scheduler_gone_finish_within_10_s(
     live_service, make_study, tmp_path
 ):
-    from beltstudy.service.demo import free_port
+    from beltstudy.service.cli.demo import free_port
 
     port = free_port()
     dask = os.path.join(os.path.dirname(sys.executable), "dask")
@@ -250,7 +250,7 @@ def _runs_alive() -> int:
     """RunSpec objects alive in this process (every resolved run is one)."""
     import gc
 
-    from beltstudy.service.grid import RunSpec
+    from beltstudy.service.grid.expand import RunSpec
 
     gc.collect()
     return sum(1 for o in gc.get_objects() if isinstance(o, RunSpec))
@@ -261,8 +261,8 @@ def test_a_finished_study_releases_its_job_memory(data_dir, make_settings, make_
     runs (counted, and their bytes measured with tracemalloc) are freed once it has finished."""
     import tracemalloc
 
+    from beltstudy.service.door.studyfile import resolve_study
     from beltstudy.service.studies import StudyService
-    from beltstudy.service.studyfile import resolve_study
 
     body = {
         "name": "memory",

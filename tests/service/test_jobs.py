@@ -1,10 +1,10 @@
-"""Batch sizing of a study's Dask tasks (service/jobs.py)."""
+"""Batch sizing of a study's Dask tasks (service/dask/jobs.py)."""
 
 from __future__ import annotations
 
 import pytest
 
-from beltstudy.service.jobs import MAX_BATCH, MIN_TASK_S, batch_size
+from beltstudy.service.dask.jobs import MAX_BATCH, MIN_TASK_S, batch_size
 
 
 def test_first_wave_is_small():
@@ -42,7 +42,7 @@ def test_eta_comes_from_the_measured_run_rate_not_the_start_up():
     """A study of 100 runs of 0.1 s on 2 workers (about 5 s of work) whose first task lands
     after 20 s of cluster start and numba compiling: the time left is about 5 s, not the
     20 s of start-up stretched over the runs."""
-    from beltstudy.service.jobs import RunRate
+    from beltstudy.service.dask.jobs import RunRate
 
     clock = Clock()
     rate = RunRate(clock)

@@ -6,7 +6,7 @@ import time
 
 import pytest
 
-from beltstudy.service import parse
+from beltstudy.service.door import parse
 from beltstudy.service.errors import Invalid, TooLarge
 
 LOADERS = [pytest.param(parse._Loader, id="default"), pytest.param(parse._PyLoader, id="pure")]

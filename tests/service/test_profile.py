@@ -13,10 +13,11 @@ from fastapi.testclient import TestClient
 from beltstudy.engine.conveyor import parse_conveyor, parse_scenario
 from beltstudy.engine.run import run_one
 from beltstudy.service.api.app import create_app
-from beltstudy.service.schema import PROFILE_COLUMNS
-from beltstudy.service.store import Store
+from beltstudy.service.dask.tasks import profile_table
+from beltstudy.service.examples import TINY_CONVEYOR, TINY_SCENARIO
+from beltstudy.service.store.columns import PROFILE_COLUMNS
+from beltstudy.service.store.parquet import Store
 from beltstudy.service.studies import StudyService
-from beltstudy.service.tasks import TINY_CONVEYOR, TINY_SCENARIO, profile_table
 
 
 def test_profile_table_holds_the_steady_profile_of_the_result():

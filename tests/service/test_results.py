@@ -1,4 +1,4 @@
-"""Filters and the friction-model comparison (service/results.py)."""
+"""Filters and the friction-model comparison (service/store/query.py)."""
 
 from __future__ import annotations
 
@@ -8,7 +8,7 @@ import pandas as pd
 import pytest
 
 from beltstudy.service.errors import Invalid, NotFound
-from beltstudy.service.results import apply_filters, compare, row_to_json
+from beltstudy.service.store.query import apply_filters, compare, row_to_json
 
 
 def _runs() -> pd.DataFrame:

@@ -188,7 +188,7 @@ def test_killing_a_worker_mid_study_still_completes(live_service, make_study):
 
 
 def test_against_an_external_scheduler_and_two_workers(live_service, make_study, tmp_path):
-    from beltstudy.service.demo import free_port
+    from beltstudy.service.cli.demo import free_port
 
     port = free_port()
     dask = os.path.join(os.path.dirname(sys.executable), "dask")

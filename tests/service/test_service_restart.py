@@ -10,10 +10,10 @@ import json
 import pandas as pd
 import pytest
 
-from beltstudy.service.jobs import study_schema
-from beltstudy.service.schema import rows_to_table
-from beltstudy.service.studyfile import resolve_study
-from beltstudy.service.tasks import run_batch
+from beltstudy.service.dask.jobs import study_schema
+from beltstudy.service.dask.tasks import run_batch
+from beltstudy.service.door.studyfile import resolve_study
+from beltstudy.service.store.columns import rows_to_table
 
 pytestmark = pytest.mark.slow
 

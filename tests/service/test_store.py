@@ -1,4 +1,4 @@
-"""The Parquet store: layout, atomic writes, explicit schema, orphan cleaning (service/store.py)."""
+"""The Parquet store: layout, atomic writes, explicit schema, orphan cleaning (service/store/parquet.py)."""
 
 from __future__ import annotations
 
@@ -7,7 +7,7 @@ import pyarrow as pa
 import pytest
 
 from beltstudy.service.errors import NotFound
-from beltstudy.service.schema import (
+from beltstudy.service.store.columns import (
     RESULT_COLUMNS,
     TE_PART_COLUMNS,
     flatten_summary,
@@ -15,7 +15,7 @@ from beltstudy.service.schema import (
     runs_schema,
     timeseries_schema,
 )
-from beltstudy.service.store import Store
+from beltstudy.service.store.parquet import Store
 
 
 def test_finished_study_reads_back_with_pandas(data_dir, make_study, finished_study):
@@ -35,7 +35,7 @@ def test_finished_study_reads_back_with_pandas(data_dir, make_study, finished_st
 
 
 def test_empty_study_has_the_full_schema(data_dir, make_study):
-    from beltstudy.service.studyfile import resolve_study
+    from beltstudy.service.door.studyfile import resolve_study
 
     study = resolve_study(make_study())
     store = Store(data_dir)
@@ -122,7 +122,7 @@ def test_flatten_keeps_unknown_parts_summing_to_te():
 
 
 def test_workers_write_parts_only_into_the_study_they_were_given(tmp_path):
-    from beltstudy.service.store import write_part_to
+    from beltstudy.service.store.parquet import write_part_to
 
     sid = "0123456789abcdef"
     store = Store(tmp_path)

@@ -1,4 +1,4 @@
-"""Study parsing, grid expansion and stable ids (service/studyfile.py, service/grid.py, service/axes.py)."""
+"""Study parsing, grid expansion and stable ids (service/door/studyfile.py, service/grid/expand.py, service/grid/axes.py)."""
 
 from __future__ import annotations
 
@@ -8,10 +8,10 @@ from pathlib import Path
 import pytest
 
 from beltstudy import engine
-from beltstudy.service.axes import axis_column, resolve_axis
+from beltstudy.service.door.studyfile import RangeSpec, load_study_file, resolve_study
 from beltstudy.service.errors import Invalid, TooLarge
-from beltstudy.service.grid import expand_runs, study_from_json
-from beltstudy.service.studyfile import RangeSpec, load_study_file, resolve_study
+from beltstudy.service.grid.axes import axis_column, resolve_axis
+from beltstudy.service.grid.expand import expand_runs, study_from_json
 
 ROOT = Path(__file__).resolve().parents[2]
 
@@ -253,6 +253,6 @@ def test_axis_paths_and_columns():
 
 
 def _conveyor():
-    from beltstudy.service.tasks import TINY_CONVEYOR
+    from beltstudy.service.examples import TINY_CONVEYOR
 
     return TINY_CONVEYOR

@@ -1,6 +1,6 @@
 """Run tables straight from the engine's arrays, and the surface stored only on request.
 
-In-process: runs go through ``beltstudy.service.tasks.run_batch`` (the workers' code) and are stored
+In-process: runs go through ``beltstudy.service.dask.tasks.run_batch`` (the workers' code) and are stored
 as the service stores them; the API is a TestClient without the lifespan (no Dask). The same
 with a real uvicorn server and LocalCluster is in ``test_service_live.py``.
 """
@@ -18,11 +18,12 @@ from fastapi.testclient import TestClient
 from beltstudy.engine.conveyor import parse_conveyor, parse_scenario
 from beltstudy.engine.run import run_one
 from beltstudy.service.api.app import create_app
-from beltstudy.service.schema import MAX_DRIVES, SURFACE_COLUMNS, TIMESERIES_COLUMNS
-from beltstudy.service.store import Store
+from beltstudy.service.dask.tasks import surface_table, timeseries_table
+from beltstudy.service.door.studyfile import resolve_study
+from beltstudy.service.examples import TINY_CONVEYOR, TINY_SCENARIO
+from beltstudy.service.store.columns import MAX_DRIVES, SURFACE_COLUMNS, TIMESERIES_COLUMNS
+from beltstudy.service.store.parquet import Store
 from beltstudy.service.studies import StudyService
-from beltstudy.service.studyfile import resolve_study
-from beltstudy.service.tasks import TINY_CONVEYOR, TINY_SCENARIO, surface_table, timeseries_table
 
 
 def _dynamic(make_study, name: str, **over) -> dict:

@@ -10,12 +10,12 @@ import pytest
 from fastapi.testclient import TestClient
 
 from beltstudy.service.api.app import create_app
-from beltstudy.service.jobs import study_schema
-from beltstudy.service.schema import rows_to_table
+from beltstudy.service.dask.jobs import study_schema
+from beltstudy.service.dask.tasks import run_batch
+from beltstudy.service.door.studyfile import resolve_study
 from beltstudy.service.settings import Settings
-from beltstudy.service.store import PART_TABLES, Store
-from beltstudy.service.studyfile import resolve_study
-from beltstudy.service.tasks import run_batch
+from beltstudy.service.store.columns import rows_to_table
+from beltstudy.service.store.parquet import PART_TABLES, Store
 
 ROOT = Path(__file__).resolve().parents[2]
 XSS = "<script>alert(1)</script><b>x</b>"

@@ -1,4 +1,4 @@
-"""The study and run figures of beltstudy.service.plots on small hand-made tables."""
+"""The study and run figures of beltstudy.service.charts on small hand-made tables."""
 
 from __future__ import annotations
 
@@ -6,13 +6,14 @@ import numpy as np
 import pandas as pd
 import pytest
 
-from beltstudy.service import plots, results
+from beltstudy.service import charts
+from beltstudy.service.store import query
 
 
 @pytest.fixture(autouse=True)
 def _close_figures():
     yield
-    plots._plt().close("all")
+    charts._plt().close("all")
 
 
 def _texts(fig) -> str:
@@ -64,7 +65,7 @@ def assert_lines_never_join_other_axis_values(fig, runs, x, y, others):
 
 def test_power_temperature_draws_a_line_per_combination_of_the_other_axes():
     runs = _runs()
-    fig = plots.power_temperature_figure(runs, axes=AXES)
+    fig = charts.power_temperature_figure(runs, axes=AXES)
     lines = [ln for ax in fig.axes for ln in ax.get_lines()]
     assert len(lines) == 2 * 2 * 2  # models x loads x stop times, no averaging
     others = ["friction_model", "load", "stop_time_target_s"]
@@ -81,7 +82,7 @@ def test_many_combinations_become_small_multiples():
     runs = pd.concat([runs.assign(belt_type=b) for b in ("ST1600", "ST2000")],
                      ignore_index=True)
     runs["power_kw"] += np.where(runs["belt_type"] == "ST2000", 1000.0, 0.0)
-    fig = plots.power_temperature_figure(runs, axes=[*AXES, "belt_type"])
+    fig = charts.power_temperature_figure(runs, axes=[*AXES, "belt_type"])
     panels = [ax for ax in fig.axes if ax.get_lines()]
     assert len(panels) == 2  # one per friction model, 8 lines each
     assert {ax.get_title() for ax in panels} == {"cema", "nonlin"}
@@ -93,7 +94,7 @@ def test_many_combinations_become_small_multiples():
 def test_the_join_check_catches_a_joined_line():
     """The check above is not vacuous: a figure averaging over the stop times (as this page
     drew before) fails it."""
-    plt = plots._plt()
+    plt = charts._plt()
     runs = _runs()
     fig, ax = plt.subplots()
     part = runs[(runs["friction_model"] == "cema") & (runs["load"] == "full")]
@@ -112,7 +113,7 @@ def test_the_join_check_catches_a_joined_line():
 
 def test_power_temperature_without_a_temperature_axis_uses_the_scenario_value():
     runs = _runs().drop(columns=["temperature_c"])
-    fig = plots.power_temperature_figure(runs, temperature_c=5.0,
+    fig = charts.power_temperature_figure(runs, temperature_c=5.0,
                                          axes=["friction_model", "load"])
     assert all(set(ln.get_xdata()) == {5.0} for ax in fig.axes for ln in ax.get_lines())
 
@@ -121,7 +122,7 @@ def test_peak_tension_against_achieved_stop_time_a_line_per_other_combination():
     runs = _runs()
     runs["t_max_dyn_kn"] += runs["temperature_c"] / 1000 + np.where(runs["load"] == "full",
                                                                     0.5, 0.0)
-    fig = plots.peak_dynamic_tension_figure(runs, axes=AXES)
+    fig = charts.peak_dynamic_tension_figure(runs, axes=AXES)
     assert assert_lines_never_join_other_axis_values(
         fig, runs.assign(x=runs["stop_time_s"]), "x", "t_max_dyn_kn",
         ["friction_model", "load", "temperature_c"]) == len(runs)
@@ -138,7 +139,7 @@ def test_peak_tension_uses_the_stop_phase_columns_when_the_runs_have_them():
     runs["t_min_stop_kn"] = 5.0 + runs["temperature_c"] / 1000 + runs["stop_time_s"] / 1000 + \
         np.where(runs["load"] == "full", 0.5, 0.0) + np.where(
             runs["friction_model"] == "cema", 0.25, 0.0)
-    fig = plots.peak_dynamic_tension_figure(runs, axes=AXES)
+    fig = charts.peak_dynamic_tension_figure(runs, axes=AXES)
     tops = [ax for ax in fig.axes if ax.get_lines() and "peak" in ax.get_ylabel()]
     lows = [ax for ax in fig.axes if ax.get_lines() and "lowest" in ax.get_ylabel()]
     assert tops and lows and all("stop phase" in ax.get_ylabel() for ax in tops + lows)
@@ -150,22 +151,22 @@ def test_peak_tension_uses_the_stop_phase_columns_when_the_runs_have_them():
 
 
 def test_steady_only_results_give_the_no_transient_figure():
-    fig = plots.peak_dynamic_tension_figure(_runs(dynamic=False))
-    assert plots.NO_TRANSIENT in _texts(fig)
-    fig = plots.transient_figure(pd.DataFrame(), None)
-    assert plots.NO_TRANSIENT in _texts(fig)
+    fig = charts.peak_dynamic_tension_figure(_runs(dynamic=False))
+    assert charts.NO_TRANSIENT in _texts(fig)
+    fig = charts.transient_figure(pd.DataFrame(), None)
+    assert charts.NO_TRANSIENT in _texts(fig)
 
 
 def test_ratio_figure_from_the_compare_summary():
     runs = _runs()
     axes = ["friction_model", "load", "temperature_c", "stop_time_target_s"]
-    summary = results.compare(runs, axes, "cema", "nonlin", ["power_kw", "t_max_dyn_kn"])
-    fig = plots.ratio_figure(summary["summary"])
+    summary = query.compare(runs, axes, "cema", "nonlin", ["power_kw", "t_max_dyn_kn"])
+    fig = charts.ratio_figure(summary["summary"])
     assert len(fig.axes) == 2 * 3  # two metrics x three axes
     heights = [p.get_height() for ax in fig.axes for p in ax.patches]
     np.testing.assert_allclose(heights, 0.8, rtol=1e-12)
-    empty = results.compare(_runs(dynamic=False), axes, "cema", "nonlin", ["t_max_dyn_kn"])
-    assert "no pairs" in _texts(plots.ratio_figure(empty["summary"]))
+    empty = query.compare(_runs(dynamic=False), axes, "cema", "nonlin", ["t_max_dyn_kn"])
+    assert "no pairs" in _texts(charts.ratio_figure(empty["summary"]))
 
 
 def test_transient_figure_eight_points_round_the_loop_and_speed_below():
@@ -177,14 +178,14 @@ def test_transient_figure_eight_points_round_the_loop_and_speed_below():
     )
     ts = pd.DataFrame({"t_s": t, "v_drive_m_s": t / 4, "v_tail_m_s": t / 4 - 0.1,
                        "t_head_in_kn": 60 + t})
-    fig = plots.transient_figure(ts, surface, "fig4")
+    fig = charts.transient_figure(ts, surface, "fig4")
     top, bottom = fig.axes
     assert len(top.get_lines()) == 8
     assert [ln.get_label() for ln in top.get_lines()][0] == "0 m round the loop"
     assert [ln.get_label() for ln in top.get_lines()][-1] == "2000 m round the loop"
     assert {ln.get_label() for ln in bottom.get_lines()} == {"drive pulley", "tail pulley"}
     # without the long table, the key points are drawn
-    fig = plots.transient_figure(ts, None)
+    fig = charts.transient_figure(ts, None)
     assert [ln.get_label() for ln in fig.axes[0].get_lines()] == ["head in (T1)"]
 
 
@@ -200,7 +201,7 @@ def test_transient_figure_probes_the_extremes_and_names_carry_and_return():
     def locate(x):
         return ("carry", x) if x <= 1000 else ("return", 2000 - x)
 
-    fig = plots.transient_figure(None, surface, "a long title " * 12,
+    fig = charts.transient_figure(None, surface, "a long title " * 12,
                                  extremes={"highest tension": 1012.0,
                                            "lowest tension": 1590.0}, locate=locate)
     labels = [ln.get_label() for ln in fig.axes[0].get_lines()]
@@ -217,7 +218,7 @@ def test_an_axis_that_changes_nothing_is_drawn_once_and_named():
     runs = _runs()
     runs["power_kw"] = runs["power_kw"] - runs["stop_time_target_s"] / 100 * np.where(
         runs["friction_model"] == "cema", 1.0, 0.8)
-    fig = plots.power_temperature_figure(runs, axes=AXES)
+    fig = charts.power_temperature_figure(runs, axes=AXES)
     lines = [ln for ax in fig.axes for ln in ax.get_lines()]
     assert len(lines) == 4
     assert "the same for every value of stop_time_target_s" in _texts(fig)
@@ -233,7 +234,7 @@ def test_an_axis_zipped_with_the_temperature_runs_along_the_x_axis():
     runs = runs[runs["stop_time_target_s"] == 10.0].drop(columns=["stop_time_target_s"])
     runs["models.din.f_carry"] = runs["temperature_c"].map({-20.0: 0.025, 0.0: 0.02,
                                                             20.0: 0.017})
-    fig = plots.power_temperature_figure(
+    fig = charts.power_temperature_figure(
         runs, axes=["friction_model", "load", "temperature_c", "models.din.f_carry"],
         groups=[["temperature_c", "models.din.f_carry"]])
     lines = [ln for ax in fig.axes for ln in ax.get_lines()]

@@ -179,7 +179,7 @@ def test_the_design_report_is_one_self_contained_page(web, tmp_path):
 def test_report_command_writes_the_page_from_the_local_store(web, tmp_path, monkeypatch,
                                                              capsys):
     from beltstudy.service.cli import main
-    from beltstudy.service.demo import free_port
+    from beltstudy.service.cli.demo import free_port
 
     sid = web.finished_study(tmp_path, web.tiny_study(name="cli-report"))
     monkeypatch.setenv("BELTSTUDY_URL", f"http://127.0.0.1:{free_port()}")

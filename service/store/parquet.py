@@ -35,7 +35,7 @@ import pyarrow as pa
 import pyarrow.parquet as pq
 
 from beltstudy.service.errors import NotFound
-from beltstudy.service.schema import (
+from beltstudy.service.store.columns import (
     profile_schema,
     runs_schema_for_axes,
     surface_schema,

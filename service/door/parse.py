@@ -16,7 +16,7 @@ parsed, before anything is expanded, copied or validated:
 * numbers finite (no NaN or infinity) and of at most :data:`MAX_DIGITS` digits.
 
 :func:`check_tree` checks the same limits on data built any other way (a Python mapping passed
-to :func:`beltstudy.service.studyfile.resolve_study`); its errors name the path of the value
+to :func:`beltstudy.service.door.studyfile.resolve_study`); its errors name the path of the value
 (``grid.temperature_c.1: ...``). Problems raise :class:`~beltstudy.service.errors.Invalid` (422), a body
 over the size budget :class:`~beltstudy.service.errors.TooLarge` (413).
 """

@@ -14,9 +14,10 @@ import pandas as pd
 import pyarrow as pa
 import pyarrow.parquet as pq
 
-from beltstudy.engine.friction import canonical_name
+from beltstudy.engine.conveyor import InputError
+from beltstudy.engine.friction import canonical_name, get_model
 from beltstudy.service.errors import Invalid, NotFound
-from beltstudy.service.schema import TE_PART_COLUMNS, components_from_row
+from beltstudy.service.store.columns import TE_PART_COLUMNS, components_from_row
 
 __all__ = [
     "row_to_json",
@@ -84,8 +85,6 @@ def _coerce(series: pd.Series, text: str) -> Any:
 def model_name(text: str, field: str) -> str:
     """The canonical name of a friction model given by name or alias (``iso5048`` is
     ``din``, as in study files); :class:`Invalid` naming ``field`` and the valid names."""
-    from beltstudy.engine.conveyor import InputError
-    from beltstudy.engine.friction import get_model
 
     try:
         return get_model(text).name

@@ -1,14 +1,14 @@
 """The study grid: axes, grid points, expansion into runs and stable ids (SPEC 3 and 6.3).
 
 Everything here trusts its input: a :class:`ResolvedStudy` comes from the door
-(:func:`beltstudy.service.studyfile.resolve_study`) or from a stored ``study.json``
+(:func:`beltstudy.service.door.studyfile.resolve_study`) or from a stored ``study.json``
 (:func:`study_from_json`). :func:`expand_runs` turns it into :class:`RunSpec` objects, each
 with a ``run_id`` that is a stable hash of its fully resolved inputs and the engine version.
 
 Expansion: the grid points are the Cartesian product of the grid axes and the zip groups (the
 axes of a group vary together). Each point's conveyor and scenario are validated (every point
 that makes the conveyor invalid is named), its ``auto`` sizes are replaced by its conveyor
-design's (:mod:`beltstudy.service.basis`), and the inputs a run does not use are set to their defaults
+design's (:mod:`beltstudy.service.grid.basis`), and the inputs a run does not use are set to their defaults
 (a steady-only run keeps only ``load``, ``temperature_c`` and ``elements`` of the scenario; a
 coast stop does not use ``stop.time_s``). Points whose resolved runs are then identical are one
 run; an axis whose value differs between the points of one run is null in its row.
@@ -24,10 +24,18 @@ import math
 from dataclasses import dataclass, field
 from typing import Any
 
-from beltstudy.engine.conveyor import Conveyor, InputError, Scenario, parse_conveyor, parse_scenario
+from beltstudy.engine.conveyor import (
+    Conveyor,
+    InputError,
+    Scenario,
+    parse_conveyor,
+    parse_scenario,
+    section_loads,
+)
 from beltstudy.engine.friction import get_model
-from beltstudy.service.axes import Target, get_path, resolve_axis, with_paths
-from beltstudy.service.basis import (
+from beltstudy.service.errors import Invalid
+from beltstudy.service.grid.axes import Target, get_path, resolve_axis, with_paths
+from beltstudy.service.grid.basis import (
     Case,
     DesignIn,
     apply_sizes,
@@ -35,7 +43,6 @@ from beltstudy.service.basis import (
     has_auto,
     size_design,
 )
-from beltstudy.service.errors import Invalid
 
 __all__ = [
     "Axis",
@@ -334,7 +341,6 @@ def _expand(
 
     # every realised pair: a per-section load must match the profile; a dynamic study's
     # scenario must be one the conveyor can do
-    from beltstudy.engine.conveyor import section_loads
 
     pairs = list(dict.fromkeys((tuple(p[i] for i in i_conv), tuple(p[i] for i in i_scen))
                                for p in points))
@@ -344,9 +350,8 @@ def _expand(
         try:
             section_loads(scn.load, conv)
             if study.dynamics:
-                from beltstudy.engine.run import (
-                    check_scenario,  # the transient engine loads when needed
-                )
+                # deferred: the transient engine (numba) loads only for a dynamic study
+                from beltstudy.engine.run import check_scenario
 
                 check_scenario(scn, conv)
         except InputError as exc:
@@ -439,7 +444,7 @@ def _expand(
 def _design_basis(study, points, i_conv, i_scen, conveyors, conv_models, scenarios, model_of,
                   params_of, stored) -> dict:
     """``{conveyor key: {"axes", "key", "sizes"}}`` for every conveyor design with auto
-    sizes (:mod:`beltstudy.service.basis`)."""
+    sizes (:mod:`beltstudy.service.grid.basis`)."""
     axes = study.axes
     design = study.design or {}
     design_load = design_scenario(DesignIn(**design) if design else None, {}).load

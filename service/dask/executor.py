@@ -3,7 +3,7 @@
 With ``BELTSTUDY_SCHEDULER`` empty the service starts a :class:`distributed.LocalCluster` of
 worker processes, one thread each (``BELTSTUDY_WORKERS``, default one per core); with
 ``tcp://host:port`` it connects to that scheduler. Once connected every worker runs
-:func:`beltstudy.service.tasks.warm_up` (imports, numba compile) before any study is timed.
+:func:`beltstudy.service.dask.tasks.warm_up` (imports, numba compile) before any study is timed.
 
 Connecting happens in one background thread that retries until it succeeds or the executor
 is closed; nobody else ever waits on it while holding a lock. Callers wait for the client
@@ -19,6 +19,10 @@ import threading
 import time
 import uuid
 
+import dask
+from distributed import Client, LocalCluster
+
+from beltstudy.service.dask.tasks import LowerPriority, warm_up
 from beltstudy.service.errors import Unavailable
 from beltstudy.service.settings import Settings
 
@@ -130,8 +134,6 @@ class Executor:
         return error
 
     def _connect(self):
-        from distributed import Client, LocalCluster
-
         timeout = f"{self.settings.dask_timeout_s}s"
         if self.settings.scheduler:
             client = Client(self.settings.scheduler, timeout=timeout, set_as_default=False)
@@ -141,7 +143,6 @@ class Executor:
                 _close_quietly(client, None, self.settings.dask_timeout_s)
                 raise
             return client, None
-        import dask
 
         dask.config.set(LOCAL_DASK_CONFIG)
         dashboard = (
@@ -172,8 +173,6 @@ class Executor:
         return client, cluster
 
     def _warm_up(self, client) -> None:
-        from beltstudy.service.tasks import LowerPriority, warm_up
-
         if not self.settings.scheduler:  # our own workers, on the API's cores
             client.register_plugin(LowerPriority(LOCAL_WORKER_NICE))
         workers = list(client.scheduler_info(n_workers=-1)["workers"])

@@ -20,12 +20,28 @@ from __future__ import annotations
 import copy
 import dataclasses
 import json
+import math
 import re
 import typing
 from pathlib import Path
 from typing import Any
 
+import jsonschema_rs
+import pyarrow as pa
+from fastapi.openapi.utils import get_openapi
 from pydantic import BaseModel
+
+from beltstudy.engine import catalog
+from beltstudy.engine.conveyor import Conveyor, InputError, Scenario, parse_conveyor
+from beltstudy.engine.friction import ALIASES, MODELS
+from beltstudy.service.door.parse import load_mapping
+from beltstudy.service.door.studyfile import StudyIn
+from beltstudy.service.errors import Invalid, ServiceError
+from beltstudy.service.examples import TINY_CONVEYOR, TINY_SCENARIO
+from beltstudy.service.grid.axes import _field_model
+from beltstudy.service.store.columns import runs_schema_for_axes
+from beltstudy.service.store.query import DEFAULT_METRICS
+from beltstudy.service.web import figures
 
 __all__ = [
     "NOT_IN_SCHEMA",
@@ -40,7 +56,7 @@ __all__ = [
 
 #: Study and run ids: 16 hex digits.
 ID_PATTERN = "^[0-9a-f]{16}$"
-#: A study name (``beltstudy.service.studyfile.NAME_RE`` without ``..``).
+#: A study name (``beltstudy.service.door.studyfile.NAME_RE`` without ``..``).
 NAME_PATTERN = r"^(?!.*\.\.)[A-Za-z0-9][A-Za-z0-9 ._+\-]{0,119}$"
 #: Rules of a valid study that JSON Schema cannot state (checked after the schema).
 NOT_IN_SCHEMA = (
@@ -62,16 +78,11 @@ NOT_IN_SCHEMA = (
 
 
 def _model_names() -> tuple[list[str], list[str]]:
-    from beltstudy.engine.friction import ALIASES, MODELS
-
     return list(MODELS), list(ALIASES)
 
 
 def _bounds(model, name: str, optional: bool) -> dict:
     """A parameter's schema, its bounds found by asking the model's ``check``."""
-    import math
-
-    from beltstudy.engine.conveyor import InputError
 
     def ok(value: float) -> bool:
         try:
@@ -97,7 +108,6 @@ def _bounds(model, name: str, optional: bool) -> dict:
 
 def _alias_groups() -> list[list[str]]:
     """Names that mean one friction model (the model and its aliases), groups of two or more."""
-    from beltstudy.engine.friction import ALIASES, MODELS
 
     groups = [[name, *[a for a, t in ALIASES.items() if t == name]] for name in MODELS]
     return [g for g in groups if len(g) > 1]
@@ -111,8 +121,6 @@ def _not_together(names: list[str]) -> dict:
 
 
 def _models_schema() -> dict:
-    from beltstudy.engine.friction import ALIASES, MODELS
-
     props = {}
     for name, model in {**MODELS, **{a: MODELS[t] for a, t in ALIASES.items()}}.items():
         hints = typing.get_type_hints(model.params_class)
@@ -138,9 +146,6 @@ def _models_schema() -> dict:
 def conveyor_files(studies_dir: Path) -> list[str]:
     """Conveyor files a POSTed study may name: YAML or JSON under the studies directory that
     read as valid conveyors, as paths relative to it."""
-    from beltstudy.engine.conveyor import InputError, parse_conveyor
-    from beltstudy.service.errors import ServiceError
-    from beltstudy.service.parse import load_mapping
 
     root = Path(studies_dir)
     if not root.is_dir():
@@ -222,15 +227,10 @@ def _re(text: str) -> str:
 
 
 def _sub_model(annotation: Any) -> tuple[type[BaseModel] | None, bool]:
-    from beltstudy.service.axes import _field_model
-
     return _field_model(annotation)
 
 
 def _grid_schema() -> dict:
-    from beltstudy.engine import catalog
-    from beltstudy.engine.conveyor import Conveyor, Scenario
-
     props: dict[str, dict] = {}
     patterns: dict[str, dict] = {}
     conv_axes: dict[str, dict] = {}
@@ -268,7 +268,6 @@ def _grid_schema() -> dict:
     props["load"] = props["scenario.load"]
     # a friction model's parameter as an axis: models.<model>.<parameter> (numbers, or null
     # for a parameter whose default is computed)
-    from beltstudy.engine.friction import ALIASES, MODELS
 
     for name, model in {**MODELS, **{a: MODELS[t] for a, t in ALIASES.items()}}.items():
         hints = typing.get_type_hints(model.params_class)
@@ -290,7 +289,6 @@ def _grid_schema() -> dict:
 # ---------------------------------------------------------------------------------- study
 def _refine_conveyor(defs: dict) -> None:
     """Catalogue ids and the either-or rules of belt and take-up."""
-    from beltstudy.engine import catalog
 
     belt = defs["Belt"]
     ids = sorted(catalog.belts())
@@ -317,9 +315,6 @@ def _refine_conveyor(defs: dict) -> None:
 
 def study_schema(studies_dir: Path | None = None) -> dict:
     """The JSON Schema (draft 2020-12) of a POSTed study, with its definitions in ``$defs``."""
-    from beltstudy.engine.conveyor import Conveyor, Scenario
-    from beltstudy.service.studyfile import StudyIn
-    from beltstudy.service.tasks import TINY_CONVEYOR, TINY_SCENARIO
 
     conv = Conveyor.model_json_schema(ref_template="#/$defs/{model}")
     defs = conv.pop("$defs")
@@ -385,8 +380,6 @@ class BodyChecker:
     def schema(self) -> dict:
         key = self._files_key()
         if self._schema is None or key != self._key:
-            import jsonschema_rs
-
             self._schema = study_schema(self.studies_dir)
             self._validator = jsonschema_rs.Draft202012Validator(self._schema)
             self._key = key
@@ -443,7 +436,6 @@ def _short(message: str, limit: int = 300) -> str:
 def check_body(checker: BodyChecker, data: Any, resolve) -> None:
     """Refuse a study the schema refuses. The message is the study validation's own when it
     finds the problem (it names the field and the fix), else the schema's."""
-    from beltstudy.service.errors import Invalid, ServiceError
 
     problems = checker.errors(data)
     if not problems:
@@ -465,17 +457,11 @@ def check_body(checker: BodyChecker, data: Any, resolve) -> None:
 # --------------------------------------------------------------------------------- openapi
 def metric_names() -> list[str]:
     """Result columns ``/compare`` can take as metrics (the float columns of a run row)."""
-    import pyarrow as pa
-
-    from beltstudy.service.schema import runs_schema_for_axes
 
     return [f.name for f in runs_schema_for_axes([]) if pa.types.is_floating(f.type)]
 
 
 def _patch_operations(schema: dict) -> None:
-    from beltstudy.service.results import DEFAULT_METRICS
-    from beltstudy.service.web import figures
-
     for path, ops in schema.get("paths", {}).items():
         for method, op in ops.items():
             for param in op.get("parameters", []):
@@ -523,7 +509,6 @@ def _patch_operations(schema: dict) -> None:
 
 def install(app, checker: BodyChecker) -> None:
     """``app.openapi()``: FastAPI's description with the study body and the patches above."""
-    from fastapi.openapi.utils import get_openapi
 
     cache: dict[str, Any] = {}
 

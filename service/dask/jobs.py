@@ -24,12 +24,20 @@ import uuid
 from collections import deque
 
 import pyarrow as pa
+from distributed import as_completed
 
+from beltstudy import engine
+from beltstudy.service.dask.executor import LIVE_CLIENT_STATES
+from beltstudy.service.dask.tasks import Specs, run_batch
 from beltstudy.service.errors import Unavailable
-from beltstudy.service.grid import ResolvedStudy, RunSpec
-from beltstudy.service.schema import axis_value, failed_row, rows_to_table, runs_schema_for_axes
-from beltstudy.service.store import PART_TABLES, Store
-from beltstudy.service.tasks import Specs, run_batch
+from beltstudy.service.grid.expand import ResolvedStudy, RunSpec
+from beltstudy.service.store.columns import (
+    axis_value,
+    failed_row,
+    rows_to_table,
+    runs_schema_for_axes,
+)
+from beltstudy.service.store.parquet import PART_TABLES, Store
 
 __all__ = ["StudyJob", "study_schema", "batch_size", "RunRate"]
 
@@ -301,9 +309,6 @@ class StudyJob:
     def _stream(self, client, todo: deque[RunSpec]) -> bool:
         """Run ``todo`` on ``client`` until it is empty, the job is halted, or the client is
         lost (then the batches in flight go back into ``todo`` and this returns True)."""
-        from distributed import as_completed
-
-        from beltstudy.service.executor import LIVE_CLIENT_STATES
 
         sid = self.study.id
         nonce = uuid.uuid4().hex[:8]
@@ -412,7 +417,6 @@ class StudyJob:
         self._commit(runs, merged)
 
     def _failed(self, spec: RunSpec, message: str) -> dict:
-        from beltstudy import engine
         row = {
             "study_id": self.study.id,
             "run_id": spec.run_id,

@@ -10,6 +10,7 @@ prefix is accepted too. Unknown paths are rejected with the nearest valid path.
 
 from __future__ import annotations
 
+import dataclasses
 import difflib
 import typing
 from dataclasses import dataclass
@@ -20,6 +21,7 @@ from pydantic import BaseModel
 from beltstudy.engine import results
 from beltstudy.engine.conveyor import Conveyor, Scenario
 from beltstudy.engine.errors import InputError
+from beltstudy.engine.friction import MODELS, get_model
 
 __all__ = [
     "NAMED_AXES",
@@ -141,9 +143,6 @@ def _paths(model: type[BaseModel], prefix: str, data: Any) -> list[str]:
 
 def valid_paths(conveyor: dict, scenario: dict) -> list[str]:
     """Every axis name accepted for this conveyor and scenario (for suggestions)."""
-    import dataclasses
-
-    from beltstudy.engine.friction import MODELS
 
     models = [f"models.{m}.{f.name}" for m, fm in MODELS.items()
               for f in dataclasses.fields(fm.params_class)]
@@ -197,9 +196,6 @@ def resolve_axis(name: str, conveyor: dict, scenario: dict, where: str = "grid")
 
 def _model_param(name: str, parts: list[str], where: str) -> Target:
     """``models.<model>.<parameter>``: a friction model parameter as an axis."""
-    import dataclasses
-
-    from beltstudy.engine.friction import get_model
 
     if len(parts) != 3:
         raise InputError(f"axis '{name}': a model parameter axis is "

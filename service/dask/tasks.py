@@ -16,7 +16,11 @@ import numpy as np
 import pyarrow as pa
 from distributed import WorkerPlugin
 
-from beltstudy.service.schema import (
+from beltstudy import engine
+from beltstudy.engine.conveyor import parse_conveyor, parse_scenario
+from beltstudy.engine.friction import MODELS
+from beltstudy.service.examples import TINY_CONVEYOR, TINY_SCENARIO
+from beltstudy.service.store.columns import (
     PROFILE_COLUMNS,
     SURFACE_COLUMNS,
     TIMESERIES_COLUMNS,
@@ -26,6 +30,7 @@ from beltstudy.service.schema import (
     surface_schema,
     timeseries_schema,
 )
+from beltstudy.service.store.parquet import PART_TABLES, write_part_to
 
 __all__ = [
     "run_batch",
@@ -38,31 +43,7 @@ __all__ = [
     "warm_up",
     "lower_priority",
     "LowerPriority",
-    "TINY_CONVEYOR",
-    "TINY_SCENARIO",
 ]
-
-#: A 60 m conveyor with a handful of elements: compiles every code path in well under a second
-#: once numba's cache is warm.
-TINY_CONVEYOR: dict[str, Any] = {
-    "name": "warm-up",
-    "speed_m_s": 2.0,
-    "belt": {"type": "EP630/4", "width_m": 0.8},
-    "material": {"capacity_t_h": 200, "density_t_m3": 1.0},
-    "profile": [{"length_m": 60, "lift_m": 3}],
-    "idlers": {
-        "carry": {"spacing_m": 1.2, "trough_deg": 30},
-        "return": {"spacing_m": 3.0, "rolls": 1},
-    },
-    "drives": [{"position": "head", "pulley_diameter_m": 0.6, "inertia_kg_m2": 20}],
-}
-TINY_SCENARIO: dict[str, Any] = {
-    "elements": 12,
-    "start": {"time_s": 2.0},
-    "run_s": 1.0,
-    "stop": {"mode": "coast", "time_s": 2.0},
-    "record_dt_s": 0.5,
-}
 
 _MAX_MESSAGE = 1000
 
@@ -128,9 +109,7 @@ def surface_table(run_id: str, result) -> pa.Table | None:
 
 
 def run_spec(spec: dict, study_id: str = "") -> tuple[dict, Any]:
-    """One run: (row, result or None). ``spec`` is a :class:`~beltstudy.service.grid.RunSpec` as a dict."""
-    from beltstudy import engine
-    from beltstudy.engine.conveyor import parse_conveyor, parse_scenario
+    """One run: (row, result or None). ``spec`` is a :class:`~beltstudy.service.grid.expand.RunSpec` as a dict."""
 
     row: dict[str, Any] = {
         "study_id": study_id,
@@ -146,6 +125,8 @@ def run_spec(spec: dict, study_id: str = "") -> tuple[dict, Any]:
                 f"this worker runs engine {engine.__version__}, the study needs "
                 f"{spec['engine_version']}"
             )
+        # deferred: the transient engine (numba) loads on the worker's first run, not
+        # in the API process that imports this module for its table builders
         from beltstudy.engine.run import run_one
 
         conveyor = parse_conveyor(spec["conveyor"])
@@ -161,7 +142,7 @@ def run_spec(spec: dict, study_id: str = "") -> tuple[dict, Any]:
         row.update(failed_row(_message(exc), time.perf_counter() - t0))
         return row, None
     row.update(flatten_summary(result.summary))
-    # what set each size the study held for this run's conveyor design (beltstudy.service.basis): the
+    # what set each size the study held for this run's conveyor design (beltstudy.service.grid.basis): the
     # run itself only sees the numbers
     row.update(spec.get("design") or {})
     if row["elapsed_s"] is None:
@@ -239,8 +220,6 @@ def run_batch(
     }
     t_tables += time.perf_counter() - t2
     if sink is not None:
-        from beltstudy.service.store import PART_TABLES, write_part_to
-
         t2 = time.perf_counter()
         for table in PART_TABLES:
             data = out[table]
@@ -261,7 +240,6 @@ def warm_up() -> dict:
     Returns the process id, the models warmed and the seconds it took.
     """
     t0 = time.perf_counter()
-    from beltstudy.engine.friction import MODELS
 
     models = list(MODELS)
     errors = []

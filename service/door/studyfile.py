@@ -3,7 +3,7 @@
 :func:`resolve_study` checks a study mapping (SPEC sections 3 and 6.3: the conveyor by path or
 inline, scenario, grid and zip axes, per-model parameters, design case) and raises
 :class:`~beltstudy.service.errors.Invalid` / :class:`~beltstudy.service.errors.TooLarge` naming the field; what it
-returns, a :class:`~beltstudy.service.grid.ResolvedStudy` expanded by :mod:`beltstudy.service.grid`, is trusted
+returns, a :class:`~beltstudy.service.grid.expand.ResolvedStudy` expanded by :mod:`beltstudy.service.grid.expand`, is trusted
 from then on. A conveyor given as a path is read relative to the study file, or, for a study
 the service receives, only from inside its conveyor directory (:func:`conveyor_from_path`:
 no absolute paths, no ``..``, no way out through a link).
@@ -28,10 +28,12 @@ from beltstudy.engine.conveyor import (
     parse_scenario,
 )
 from beltstudy.engine.friction import get_model
-from beltstudy.service.axes import axis_column, resolve_axis
-from beltstudy.service.basis import DesignIn, design_scenario
+from beltstudy.service.door.parse import check_tree, load_mapping
 from beltstudy.service.errors import Invalid, TooLarge
-from beltstudy.service.grid import (
+from beltstudy.service.examples import TINY_CONVEYOR, TINY_SCENARIO
+from beltstudy.service.grid.axes import axis_column, resolve_axis
+from beltstudy.service.grid.basis import DesignIn, design_scenario
+from beltstudy.service.grid.expand import (
     DEFAULT_MODEL,
     Axis,
     ResolvedStudy,
@@ -40,7 +42,6 @@ from beltstudy.service.grid import (
     finish,
     grid_points,
 )
-from beltstudy.service.parse import check_tree, load_mapping
 
 __all__ = [
     "RangeSpec",
@@ -145,8 +146,6 @@ class StudyIn(BaseModel):
 
 
 def _example() -> dict:
-    from beltstudy.service.tasks import TINY_CONVEYOR, TINY_SCENARIO
-
     return {
         "name": "example-power-vs-temperature",
         "conveyor": TINY_CONVEYOR,

@@ -31,7 +31,9 @@ from typing import Any
 from pydantic import BaseModel, ConfigDict, Field
 
 from beltstudy.engine.conveyor import Conveyor, InputError, Scenario, parse_scenario, section_loads
+from beltstudy.engine.design import auto_sizes
 from beltstudy.engine.friction import get_model
+from beltstudy.engine.statics import solve_steady
 from beltstudy.service.errors import Invalid
 
 __all__ = ["DesignIn", "Case", "has_auto", "size_design", "apply_sizes", "round_up",
@@ -114,8 +116,6 @@ def size_design(conv: Conveyor, cases: list[Case], load, stop_times: list[float]
     ``brakes`` (``{"holding": {...}, "stop_time_s": {"<t>": {...}}}`` with ``force_kn`` per
     brake, ``governed_by`` and ``case``) or None.
     """
-    from beltstudy.engine.design import auto_sizes
-    from beltstudy.engine.statics import solve_steady
 
     data = conv.model_dump(mode="json", by_alias=True)
     tu = data["takeup"]

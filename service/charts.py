@@ -5,10 +5,15 @@ Every function returns a matplotlib Figure; callers save it as PNG or SVG.
 
 from __future__ import annotations
 
+import math
+import textwrap
+
 import numpy as np
+import pandas as pd
 
 
 def _plt():
+    # deferred: matplotlib loads only when a figure is drawn
     import matplotlib
 
     matplotlib.use("Agg")
@@ -68,7 +73,6 @@ TITLE_WIDTH = 72
 
 def wrap_title(text: str, width: int = TITLE_WIDTH) -> str:
     """A figure title wrapped onto several lines (no part of it is cut off)."""
-    import textwrap
 
     return "\n".join(textwrap.wrap(str(text), width=width, break_long_words=True)) or ""
 
@@ -86,8 +90,6 @@ def message_figure(message: str, title: str = "", figsize=(8, 4.5)):
 
 
 def _numeric(df, column: str):
-    import pandas as pd
-
     if column not in df.columns:
         return None
     values = pd.to_numeric(df[column], errors="coerce")
@@ -102,7 +104,6 @@ def _ok_rows(runs):
 
 def _text(value) -> str:
     """An axis value in a legend: numbers short, a merged (null) value as 'any'."""
-    import math
 
     if value is None or (isinstance(value, float) and math.isnan(value)):
         return "any"
@@ -134,7 +135,6 @@ def unchanging(df, inputs: list[str], y: str, others: list[str], rtol: float = 1
     steady result, say). Their lines would lie on top of each other, so they are drawn once;
     the figure says which axes those are. ``inputs`` are the input columns behind the x axis
     (not the x values themselves: an achieved stop time is a result)."""
-    import numpy as np
 
     out: list[str] = []
     keep = list(others)
@@ -165,7 +165,6 @@ def unchanging(df, inputs: list[str], y: str, others: list[str], rtol: float = 1
 
 def pd_frame(values):
     """min and max of one series as a one-row frame."""
-    import pandas as pd
 
     return pd.DataFrame({"min": [values.min()], "max": [values.max()]})
 
@@ -233,7 +232,6 @@ def comparison_figure(df, x: str, y: str, others: list[str], xlabel: str, ylabel
     panel, one legend). Axes that change neither ``y`` nor ``y2`` (:func:`unchanging`, with
     ``inputs`` the input columns behind ``x``, default ``x`` itself) are drawn once and named
     under the figure with the ``notes``."""
-    import math
 
     plt = _plt()
     inputs = [x] if inputs is None else [c for c in inputs if c in df.columns]
@@ -332,7 +330,6 @@ def power_temperature_figure(runs, title: str = "", temperature_c: float | None 
     ``groups`` its zip groups (columns): axes zipped with the temperature vary along the x axis
     with it and are named in its label.
     """
-    import pandas as pd
 
     title = title or "power against temperature"
     df = _ok_rows(runs).copy()
@@ -421,7 +418,7 @@ def peak_dynamic_tension_figure(runs, title: str = "", axes: list[str] | None = 
 def ratio_figure(summary: dict, baseline: str = "cema", candidate: str = "nonlin", title: str = ""):
     """Candidate / baseline ratio per axis value: mean as a bar, min-max as the whisker.
 
-    ``summary`` is the ``summary`` of :func:`beltstudy.service.results.compare` (``{metric:
+    ``summary`` is the ``summary`` of :func:`beltstudy.service.store.query.compare` (``{metric:
     {"overall": stats, "by_axis": {axis: {value: stats}}}}``). One row per metric with data,
     one column per axis other than the friction model.
     """

@@ -16,6 +16,13 @@ import sys
 import time
 from pathlib import Path
 
+from beltstudy.service.cli.client import ServiceClient
+from beltstudy.service.cli.console import ProgressBar, format_compare, format_duration
+from beltstudy.service.door.studyfile import study_body
+from beltstudy.service.errors import Unavailable
+from beltstudy.service.settings import Settings
+from beltstudy.service.store.parquet import Store
+
 __all__ = ["run_demo", "free_port", "start_server", "stop_server", "wait_ready"]
 
 METRICS = ["power_kw", "t_max_stop_kn", "t_min_stop_kn"]
@@ -43,7 +50,6 @@ def start_server(port: int, env: dict | None = None, log=None) -> subprocess.Pop
 
 def wait_ready(client, proc: subprocess.Popen | None = None, timeout_s: float = 300.0) -> dict:
     """Poll ``/health`` until the Dask executor is ready (workers started and warmed)."""
-    from beltstudy.service.errors import Unavailable
 
     t0 = time.monotonic()
     while time.monotonic() - t0 < timeout_s:
@@ -75,12 +81,6 @@ def stop_server(proc: subprocess.Popen, timeout_s: float = 30.0) -> None:
 
 
 def run_demo(study_path: str = "studies/paper-comparison.yaml", port: int = 0) -> int:
-    from beltstudy.service.client import ServiceClient
-    from beltstudy.service.report import ProgressBar, format_compare, format_duration
-    from beltstudy.service.settings import Settings
-    from beltstudy.service.store import Store
-    from beltstudy.service.studyfile import study_body
-
     settings = Settings()
     port = port or free_port()
     body = study_body(study_path)

@@ -1,0 +1,1 @@
+"""What a study keeps: the Parquet store, the Arrow column schemas, reading rows back."""
