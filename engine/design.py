@@ -1,9 +1,10 @@
 """The auto sizes of a conveyor at one operating case: take-up, rated power, brakes.
 
 :func:`auto_sizes` is the one place that says what an ``auto`` field of the conveyor file
-becomes, and which constraint set it. A study calls it once per design case and holds the
-largest values for all runs of a conveyor design (``beltstudy.service.grid.expand``); ``run_one`` calls it on
-the run's own steady solution to report the sizes it used.
+becomes, and which constraint set it. :func:`beltstudy.engine.sizing.size_over_cases` calls it
+once per design case and keeps the largest values (a study holds them for all runs of a
+conveyor design); ``run_one`` calls it on the run's own steady solution to report the sizes it
+used.
 
 * **Take-up** (gravity ``mass_kg: auto``, fixed ``pretension_kn: auto``): the steady solve's
   sizing (:mod:`beltstudy.engine.statics`): the smallest take-up meeting slip at start-up and running

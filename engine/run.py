@@ -20,16 +20,15 @@ from beltstudy.engine.design import auto_sizes, summary_fields
 from beltstudy.engine.dynamics import DynamicsOptions, TransientResult, build_system, simulate
 from beltstudy.engine.dynamics.model import check_scenario
 from beltstudy.engine.results import check_summary
-from beltstudy.engine.statics import SAFETY_FACTOR_MIN, SteadyResult, solve_steady
+from beltstudy.engine.statics import (
+    SAFETY_FACTOR_MIN,
+    TRANSIENT_SAFETY_RATIO,
+    SteadyResult,
+    solve_steady,
+)
 
 __all__ = ["RunResult", "run_one", "check_scenario", "TRANSIENT_SAFETY_RATIO",
            "transient_safety_min"]
-
-#: Minimum belt safety factor during starting and stopping as a fraction of the running
-#: minimum [-]. Standards allow a lower factor for short non-steady loads than for steady
-#: running; two thirds is this project's estimate (unverified), used only for the warning.
-TRANSIENT_SAFETY_RATIO = 2.0 / 3.0
-
 
 #: A table of :class:`RunResult` not given to its constructor: derived from the results.
 _DERIVED = object()

@@ -52,8 +52,9 @@ from beltstudy.engine.loop import (
     rotating_parts,
 )
 
-__all__ = ["SteadyResult", "solve_steady", "STARTUP_FACTOR", "SAFETY_FACTOR_MIN", "SPEC_PARTS",
-           "rest_hold_element", "rest_walk", "TAKEUP_CONSTRAINTS"]
+__all__ = ["SteadyResult", "solve_steady", "STARTUP_FACTOR", "SAFETY_FACTOR_MIN",
+           "TRANSIENT_SAFETY_RATIO", "SPEC_PARTS", "rest_hold_element", "rest_walk",
+           "TAKEUP_CONSTRAINTS"]
 
 #: Start-up force factor for slip sizing of the take-up [-] (PHYSICS section 1).
 STARTUP_FACTOR = 1.5
@@ -61,6 +62,10 @@ STARTUP_FACTOR = 1.5
 #: (about 6.7 for steel cord, 10 for textile plies); estimates, override per conveyor with
 #: ``safety_factor_min``.
 SAFETY_FACTOR_MIN = {"steel": 6.7, "fabric": 10.0}
+#: Minimum belt safety factor during starting and stopping as a fraction of the running
+#: minimum [-]. Standards allow a lower factor for short non-steady loads than for steady
+#: running; two thirds is this project's estimate (unverified), used only for the warning.
+TRANSIENT_SAFETY_RATIO = 2.0 / 3.0
 #: Parts every model reports in ``te_components_kn`` (SPEC section 4).
 SPEC_PARTS = ("main_carry", "main_return", "lift", "feed", "secondary", "accessories")
 #: Fixed-point tolerance and iteration cap.

@@ -119,8 +119,8 @@ def test_the_cycle_finder_finds_a_cycle():
 def test_the_graph_sees_function_level_and_relative_imports():
     graph = import_graph()
     assert "beltstudy.engine.conveyor" in graph["beltstudy.engine.run"]
-    # beltstudy.service.cli.static imports the engine only inside its run() function
-    assert "beltstudy.engine.statics" in graph["beltstudy.service.cli.static"]
+    # beltstudy.service.dask.tasks imports the engine's run module only inside run_spec()
+    assert "beltstudy.engine.run" in graph["beltstudy.service.dask.tasks"]
 
 
 def test_no_import_cycles_in_engine_or_service():

@@ -7,8 +7,7 @@ import dataclasses
 from fastapi import APIRouter, Depends
 
 from beltstudy import engine
-from beltstudy.engine import catalog
-from beltstudy.engine.friction import ALIASES, MODELS
+from beltstudy.engine import ALIASES, MODELS, catalog
 from beltstudy.service.api.deps import ERROR_RESPONSES, get_service, require_token
 from beltstudy.service.api.models import BeltsOut, Health, ModelsOut
 from beltstudy.service.studies import StudyService

@@ -12,7 +12,7 @@ import argparse
 import importlib
 import sys
 
-from beltstudy.engine.errors import InputError
+from beltstudy.engine import InputError
 from beltstudy.service.errors import ServiceError
 
 #: Sub-command modules, in the order they appear in ``--help``.

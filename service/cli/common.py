@@ -6,7 +6,7 @@ import json
 import math
 from typing import Any
 
-from beltstudy.engine.conveyor import LOAD_MAX, InputError, parse_scenario, section_loads
+from beltstudy.engine import LOAD_MAX, InputError, parse_scenario, section_loads
 
 LOAD_HELP = ("full, empty, inclines, declines, a fraction of the design load up to 1.3 (a "
              "surge above 1), or one fraction per carry profile section: 1,0,0.5")

@@ -11,9 +11,8 @@ import argparse
 import numpy as np
 import pandas as pd
 
+from beltstudy.engine import InputError, get_model, load_conveyor, load_mapping, parse_scenario
 from beltstudy.engine import results as R
-from beltstudy.engine.conveyor import InputError, load_conveyor, load_mapping, parse_scenario
-from beltstudy.engine.friction import get_model
 from beltstudy.service.charts import transient_figure
 from beltstudy.service.cli.common import (
     LOAD_HELP,

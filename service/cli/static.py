@@ -5,12 +5,16 @@ from __future__ import annotations
 import argparse
 import time
 
-from beltstudy.engine import results
-from beltstudy.engine.conveyor import InputError, load_conveyor
-from beltstudy.engine.design import auto_sizes, summary_fields
-from beltstudy.engine.friction import get_model
-from beltstudy.engine.results import check_summary
-from beltstudy.engine.statics import solve_steady
+from beltstudy.engine import (
+    InputError,
+    auto_sizes,
+    check_summary,
+    get_model,
+    load_conveyor,
+    results,
+    solve_steady,
+    summary_fields,
+)
 from beltstudy.service.charts import steady_profile_figure
 from beltstudy.service.cli.common import (
     LOAD_HELP,

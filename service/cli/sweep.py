@@ -19,13 +19,13 @@ from pathlib import Path
 
 import pandas as pd
 
-from beltstudy.engine.conveyor import (
+from beltstudy.engine import (
     TEMPERATURE_MAX_C,
     TEMPERATURE_MIN_C,
     InputError,
+    get_model,
     load_conveyor,
 )
-from beltstudy.engine.friction import get_model
 from beltstudy.service.cli.common import check_scenario_fields, parse_load, parse_model_params
 from beltstudy.service.settings import Settings
 from beltstudy.service.store.columns import components_from_row

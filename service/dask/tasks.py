@@ -17,8 +17,7 @@ import pyarrow as pa
 from distributed import WorkerPlugin
 
 from beltstudy import engine
-from beltstudy.engine.conveyor import parse_conveyor, parse_scenario
-from beltstudy.engine.friction import MODELS
+from beltstudy.engine import MODELS, parse_conveyor, parse_scenario
 from beltstudy.service.examples import TINY_CONVEYOR, TINY_SCENARIO
 from beltstudy.service.store.columns import (
     PROFILE_COLUMNS,

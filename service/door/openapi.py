@@ -31,9 +31,15 @@ import pyarrow as pa
 from fastapi.openapi.utils import get_openapi
 from pydantic import BaseModel
 
-from beltstudy.engine import catalog
-from beltstudy.engine.conveyor import Conveyor, InputError, Scenario, parse_conveyor
-from beltstudy.engine.friction import ALIASES, MODELS
+from beltstudy.engine import (
+    ALIASES,
+    MODELS,
+    Conveyor,
+    InputError,
+    Scenario,
+    catalog,
+    parse_conveyor,
+)
 from beltstudy.service.door.parse import load_mapping
 from beltstudy.service.door.studyfile import StudyIn
 from beltstudy.service.errors import Invalid, ServiceError

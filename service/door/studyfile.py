@@ -19,15 +19,15 @@ from typing import Any
 from pydantic import BaseModel, ConfigDict, Field, ValidationError, field_validator
 
 from beltstudy import engine
-from beltstudy.engine.conveyor import (
+from beltstudy.engine import (
     Conveyor,
     InputError,
     Scenario,
     format_validation_error,
+    get_model,
     parse_conveyor,
     parse_scenario,
 )
-from beltstudy.engine.friction import get_model
 from beltstudy.service.door.parse import check_tree, load_mapping
 from beltstudy.service.errors import Invalid, TooLarge
 from beltstudy.service.examples import TINY_CONVEYOR, TINY_SCENARIO

@@ -18,10 +18,7 @@ from typing import Any
 
 from pydantic import BaseModel
 
-from beltstudy.engine import results
-from beltstudy.engine.conveyor import Conveyor, Scenario
-from beltstudy.engine.errors import InputError
-from beltstudy.engine.friction import MODELS, get_model
+from beltstudy.engine import MODELS, Conveyor, InputError, Scenario, get_model, results
 
 __all__ = [
     "NAMED_AXES",

@@ -3,8 +3,10 @@
 A study compares one installed design, so an ``auto`` field of the conveyor file (take-up
 ``mass_kg`` or ``pretension_kn``, a drive's ``rated_power_kw``, a brake's ``force_kn``) must not
 be sized again in every run. A *conveyor design* is one combination of the study's conveyor
-axes (one resolved conveyor). Its sizes come from :func:`beltstudy.engine.design.auto_sizes` at its
-*design cases*, the largest requirement kept:
+axes (one resolved conveyor). Its sizes come from the engine's
+:func:`beltstudy.engine.size_over_cases` at its *design cases*, the largest requirement kept
+(this module says which cases a study's ``design:`` names, and writes the sizes into each run's
+conveyor):
 
 * default: every friction model (with its parameters) and temperature the study runs on that
   design, at full load;
@@ -23,21 +25,25 @@ size never falls short by rounding), so a run id reflects the design it ran.
 from __future__ import annotations
 
 import copy
-import dataclasses
 import math
-from dataclasses import dataclass
 from typing import Any
 
 from pydantic import BaseModel, ConfigDict, Field
 
-from beltstudy.engine.conveyor import Conveyor, InputError, Scenario, parse_scenario, section_loads
-from beltstudy.engine.design import auto_sizes
-from beltstudy.engine.friction import get_model
-from beltstudy.engine.statics import solve_steady
+from beltstudy.engine import (
+    BrakeSizes,
+    Conveyor,
+    DesignCase,
+    InputError,
+    Scenario,
+    SizingError,
+    brake_sizing_stop_time,
+    parse_scenario,
+    size_over_cases,
+)
 from beltstudy.service.errors import Invalid
 
-__all__ = ["DesignIn", "Case", "has_auto", "size_design", "apply_sizes", "round_up",
-           "SIG_DIGITS"]
+__all__ = ["DesignIn", "has_auto", "size_design", "apply_sizes", "round_up", "SIG_DIGITS"]
 
 #: Significant digits of a size written into a run's conveyor (rounded up).
 SIG_DIGITS = 6
@@ -51,23 +57,6 @@ class DesignIn(BaseModel):
     friction_model: str | None = Field(None, description="friction model of the design case")
     temperature_c: float | None = Field(None, description="temperature of the design case [C]")
     load: Any = Field(None, description="load case of the design case (default full)")
-
-
-@dataclass(frozen=True)
-class Case:
-    """One design case: a friction model with its parameter overrides and a scenario."""
-
-    model: str
-    params: tuple[tuple[str, float | None], ...]
-    temperature_c: float
-    elements: Any
-
-    def label(self) -> str:
-        defaults = dataclasses.asdict(get_model(self.model).params())
-        changed = [f"{k}={v:g}" for k, v in self.params
-                   if v is not None and defaults.get(k) != v]
-        model = self.model + (f" ({', '.join(changed)})" if changed else "")
-        return f"{model}, {self.temperature_c:g} C"
 
 
 def round_up(x: float, digits: int = SIG_DIGITS) -> float:
@@ -99,102 +88,43 @@ def design_scenario(design: DesignIn | None, base: dict) -> Scenario:
         raise Invalid(str(exc)) from None
 
 
-def _largest(items: list[tuple[float, str, Case]]) -> tuple[float, str, Case]:
-    best = items[0]
-    for item in items[1:]:
-        if item[0] > best[0]:
-            best = item
-    return best
-
-
-def size_design(conv: Conveyor, cases: list[Case], load, stop_times: list[float],
+def size_design(conv: Conveyor, cases: list[DesignCase], load, stop_times: list[float],
                 where: str = "") -> dict:
-    """The auto sizes of one conveyor design: the largest over ``cases`` at ``load``.
+    """The auto sizes of one conveyor design: the largest over ``cases`` at ``load``
+    (:func:`beltstudy.engine.size_over_cases`), rounded up as a run's conveyor holds them.
 
     Returns a JSON-able mapping: ``takeup`` (``{value, unit, field, governed_by, case}``) or
     None, ``drives`` (one entry per drive, None where the file gives the rated power),
     ``brakes`` (``{"holding": {...}, "stop_time_s": {"<t>": {...}}}`` with ``force_kn`` per
-    brake, ``governed_by`` and ``case``) or None.
+    brake, ``governed_by`` and ``case``) or None, ``failed_cases``.
     """
-
-    data = conv.model_dump(mode="json", by_alias=True)
-    tu = data["takeup"]
-    tu_auto = (tu["type"] == "gravity" and tu["mass_kg"] == "auto") or (
-        tu["type"] == "fixed" and tu["pretension_kn"] == "auto")
-    drive_auto = [d["rated_power_kw"] is None for d in data["drives"]]
-    brake_auto = any(b["force_kn"] == "auto" for b in data.get("brakes") or [])
     try:
-        section_loads(load, conv)
-    except InputError as exc:
-        raise Invalid(f"design.load: {exc.reason}"
-                      + (f" (conveyor design {where})" if where else "")) from None
-
-    takeups, rated, holding = [], [[] for _ in drive_auto], []
-    by_stop: dict[float, list] = {t: [] for t in stop_times}
-    failures = []
-    for case in cases:
-        scn = Scenario(load=load, temperature_c=case.temperature_c, elements=case.elements)
-        n = None if case.elements == "auto" else int(case.elements)
-        params = dict(case.params)
-        steady = solve_steady(conv, model=case.model, params=params,
-                              temperature_c=case.temperature_c, load=load, n_elements=n)
-        if steady.status == "failed":
-            failures.append(f"{case.label()}: {steady.message}")
-            continue
-        sizes = auto_sizes(conv, scn, model=case.model, params=params, steady=steady)
-        if tu_auto:
-            value = (sizes["takeup_mass_kg"] if tu["type"] == "gravity"
-                     else sizes["takeup_pretension_kn"])
-            takeups.append((value, sizes["takeup_governed_by"], case))
-        for i, auto in enumerate(drive_auto):
-            if auto:
-                rated[i].append((sizes["drive_rated_power_kw"][i],
-                                 sizes["drive_rated_power_governed_by"][i], case))
-        if brake_auto:
-            holding.append((sum(sizes["brake_force_kn"]), sizes, case))
-            for t in stop_times:
-                braked = auto_sizes(conv, scn.model_copy(update={
-                    "stop": scn.stop.model_copy(update={"mode": "brake", "time_s": t})}),
-                    model=case.model, params=params, steady=steady)
-                by_stop[t].append((sum(braked["brake_force_kn"]), braked, case))
-    if len(failures) == len(cases):
-        where_text = f" of conveyor design {where}" if where else ""
-        raise Invalid(f"design: the steady solve failed at every design case{where_text}, so "
-                      f"nothing can be sized: {failures[0]}")
-
-    where_text = f" (conveyor design {where})" if where else ""
-    for name, items in (("takeup", takeups), *((f"drives.{i}.rated_power_kw", r)
-                                              for i, r in enumerate(rated)),
-                        ("brakes", holding), *(("brakes", v) for v in by_stop.values())):
-        for value, _why, case in items:
-            if not math.isfinite(value):
-                raise Invalid(f"design: the auto size of {name} is not finite at "
-                              f"{case.label()}{where_text}; check sag_limit_pct, the drives' "
-                              "friction and wrap")
-    out: dict[str, Any] = {"takeup": None, "drives": [None] * len(drive_auto), "brakes": None,
-                           "failed_cases": failures}
-    if tu_auto:
-        value, why, case = _largest(takeups)
-        gravity = tu["type"] == "gravity"
+        sized = size_over_cases(conv, cases, load=load, stop_times=stop_times, design=where)
+    except SizingError as exc:  # named as the study's design case
+        raise Invalid(f"design.{exc.field}: {exc.reason}" if exc.field
+                      else f"design: {exc.reason}") from None
+    out: dict[str, Any] = {"takeup": None, "drives": [None] * len(sized.drives),
+                           "brakes": None, "failed_cases": list(sized.failed_cases)}
+    if sized.takeup is not None:
+        gravity = conv.takeup.type == "gravity"
         out["takeup"] = {"field": "mass_kg" if gravity else "pretension_kn",
-                         "value": round_up(value), "unit": "kg" if gravity else "kN",
-                         "governed_by": why, "case": case.label()}
-    for i, items in enumerate(rated):
-        if items:
-            value, why, case = _largest(items)
-            out["drives"][i] = {"rated_power_kw": round_up(value), "governed_by": why,
-                                "case": case.label()}
-    if brake_auto:
-        def brake_entry(items):
-            _total, sizes, case = _largest(items)
-            return {"force_kn": [max(round_up(f), 1e-3) for f in sizes["brake_force_kn"]],
-                    "governed_by": [g for g in sizes["brake_governed_by"]],
-                    "case": case.label()}
-
-        out["brakes"] = {"holding": brake_entry(holding),
-                         "stop_time_s": {f"{t:g}": brake_entry(items)
-                                         for t, items in by_stop.items()}}
+                         "value": round_up(sized.takeup.value), "unit": "kg" if gravity else "kN",
+                         "governed_by": sized.takeup.governed_by,
+                         "case": sized.takeup.case.label()}
+    for i, drive in enumerate(sized.drives):
+        if drive is not None:
+            out["drives"][i] = {"rated_power_kw": round_up(drive.value),
+                                "governed_by": drive.governed_by, "case": drive.case.label()}
+    if sized.brakes_holding is not None:
+        out["brakes"] = {"holding": _brake_entry(sized.brakes_holding),
+                         "stop_time_s": {f"{t:g}": _brake_entry(b)
+                                         for t, b in sized.brakes_by_stop.items()}}
     return out
+
+
+def _brake_entry(brakes: BrakeSizes) -> dict:
+    return {"force_kn": [max(round_up(f), 1e-3) for f in brakes.force_kn],
+            "governed_by": list(brakes.governed_by), "case": brakes.case.label()}
 
 
 def apply_sizes(conv: dict, sizes: dict | None, scenario: dict, dynamics: bool
@@ -225,9 +155,9 @@ def apply_sizes(conv: dict, sizes: dict | None, scenario: dict, dynamics: bool
     brakes = sizes.get("brakes")
     if brakes is not None:
         entry = brakes["holding"]
-        stop = scenario.get("stop") or {}
-        if dynamics and stop.get("mode") == "brake":
-            entry = brakes["stop_time_s"].get(f"{float(stop.get('time_s')):g}", entry)
+        stop_s = brake_sizing_stop_time(scenario, dynamics=dynamics)
+        if stop_s is not None:
+            entry = brakes["stop_time_s"].get(f"{stop_s:g}", entry)
         why = []
         for brake, force, reason in zip(out["brakes"], entry["force_kn"], entry["governed_by"],
                                         strict=True):

@@ -8,10 +8,10 @@ with a ``run_id`` that is a stable hash of its fully resolved inputs and the eng
 Expansion: the grid points are the Cartesian product of the grid axes and the zip groups (the
 axes of a group vary together). Each point's conveyor and scenario are validated (every point
 that makes the conveyor invalid is named), its ``auto`` sizes are replaced by its conveyor
-design's (:mod:`beltstudy.service.grid.basis`), and the inputs a run does not use are set to their defaults
-(a steady-only run keeps only ``load``, ``temperature_c`` and ``elements`` of the scenario; a
-coast stop does not use ``stop.time_s``). Points whose resolved runs are then identical are one
-run; an axis whose value differs between the points of one run is null in its row.
+design's (:mod:`beltstudy.service.grid.basis`), and the scenario fields the run does not read
+are set to their defaults (the engine says which: :func:`beltstudy.engine.scenario_as_read`).
+Points whose resolved runs are then identical are one run; an axis whose value differs between
+the points of one run is null in its row.
 """
 
 from __future__ import annotations
@@ -24,19 +24,21 @@ import math
 from dataclasses import dataclass, field
 from typing import Any
 
-from beltstudy.engine.conveyor import (
+from beltstudy.engine import (
     Conveyor,
+    DesignCase,
     InputError,
     Scenario,
+    brake_sizing_stop_time,
+    get_model,
     parse_conveyor,
     parse_scenario,
+    scenario_as_read,
     section_loads,
 )
-from beltstudy.engine.friction import get_model
 from beltstudy.service.errors import Invalid
 from beltstudy.service.grid.axes import Target, get_path, resolve_axis, with_paths
 from beltstudy.service.grid.basis import (
-    Case,
     DesignIn,
     apply_sizes,
     design_scenario,
@@ -51,7 +53,6 @@ __all__ = [
     "expand_runs",
     "finish",
     "grid_points",
-    "run_scenario",
     "study_from_json",
     "study_hash",
     "canonical_json",
@@ -282,27 +283,6 @@ def _params_for(model: str, overrides: dict) -> dict:
     return dataclasses.asdict(get_model(model).params(overrides))
 
 
-#: Scenario fields a steady-only run uses; the others are set to their defaults.
-STEADY_FIELDS = ("load", "temperature_c", "elements")
-
-
-def run_scenario(scenario: dict, dynamics: bool) -> dict:
-    """The scenario as a run uses it: fields it does not read set to their defaults.
-
-    A steady-only run reads ``load``, ``temperature_c`` and ``elements``; a coast stop does
-    not read ``stop.time_s`` (the belt stops on its own). Points that differ only there are
-    then the same run.
-    """
-    if not dynamics:
-        defaults = Scenario().model_dump(mode="json", by_alias=True)
-        return {**defaults, **{k: scenario[k] for k in STEADY_FIELDS}}
-    if (scenario.get("stop") or {}).get("mode") == "coast":
-        default = Scenario().stop.time_s
-        if scenario["stop"].get("time_s") != default:
-            return {**scenario, "stop": {**scenario["stop"], "time_s": default}}
-    return scenario
-
-
 def _expand(
     study: ResolvedStudy, designs: list[dict] | None = None
 ) -> tuple[list[RunSpec], list[list[Any]], list[dict]]:
@@ -392,13 +372,13 @@ def _expand(
         model = model_of(p)
         overrides, params_json = params_of(p)
         if sk not in run_scenarios:
-            scenario = run_scenario(scenarios[sk], study.dynamics)
+            # what the engine reads of the scenario: points that differ only in fields the
+            # run does not read are one run
+            scenario = scenario_as_read(scenarios[sk], dynamics=study.dynamics)
             run_scenarios[sk] = (scenario, canonical_json(scenario))
         scenario, scenario_json = run_scenarios[sk]
         # the sizes a run gets depend on its conveyor design and, for brakes, its stop
-        stop = scenario.get("stop") or {}
-        braked = study.dynamics and stop.get("mode") == "brake"
-        ckey = (ck, stop.get("time_s") if braked else None)
+        ckey = (ck, brake_sizing_stop_time(scenario, dynamics=study.dynamics))
         if ckey not in run_conveyors:
             entry = sized.get(ck)
             conveyor, governed = apply_sizes(conveyors[ck], entry["sizes"] if entry else None,
@@ -461,7 +441,7 @@ def _design_basis(study, points, i_conv, i_scen, conveyors, conv_models, scenari
         if key in known:
             sizes = known[key]
         else:
-            cases: dict[Case, None] = {}
+            cases: dict[DesignCase, None] = {}
             stops: set[float] = set()
             for p in mine:
                 scn = scenarios[tuple(p[i] for i in i_scen)]
@@ -471,9 +451,11 @@ def _design_basis(study, points, i_conv, i_scen, conveyors, conv_models, scenari
                     model = design["friction_model"]
                     overrides = dict(study.models.get(model, {}))
                 temp = float(design.get("temperature_c", scn["temperature_c"]))
-                cases[Case(model, tuple(sorted(overrides.items())), temp, scn["elements"])] = None
-                if study.dynamics and scn["stop"]["mode"] == "brake":
-                    stops.add(float(scn["stop"]["time_s"]))
+                cases[DesignCase(model, tuple(sorted(overrides.items())), temp,
+                                 scn["elements"])] = None
+                stop_s = brake_sizing_stop_time(scn, dynamics=study.dynamics)
+                if stop_s is not None:
+                    stops.add(stop_s)
             sizes = size_design(conv_models[ck], list(cases), design_load, sorted(stops), where)
         out[ck] = {"axes": {axes[i].name: axes[i].values[j]
                             for i, j in zip(i_conv, ck, strict=True)},

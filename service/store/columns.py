@@ -15,8 +15,8 @@ from typing import Any
 
 import pyarrow as pa
 
+from beltstudy.engine import MAX_DRIVES
 from beltstudy.engine import results as R
-from beltstudy.engine.results import MAX_DRIVES
 
 __all__ = [
     "MAX_DRIVES",

@@ -14,8 +14,7 @@ import pandas as pd
 import pyarrow as pa
 import pyarrow.parquet as pq
 
-from beltstudy.engine.conveyor import InputError
-from beltstudy.engine.friction import canonical_name, get_model
+from beltstudy.engine import InputError, canonical_name, get_model
 from beltstudy.service.errors import Invalid, NotFound
 from beltstudy.service.store.columns import TE_PART_COLUMNS, components_from_row
 

@@ -11,8 +11,7 @@ import threading
 
 import pandas as pd
 
-from beltstudy.engine.conveyor import parse_conveyor, parse_scenario
-from beltstudy.engine.loop import build_loop
+from beltstudy.engine import build_loop, parse_conveyor, parse_scenario
 from beltstudy.service import charts
 from beltstudy.service.errors import Invalid, NotFound
 from beltstudy.service.grid.expand import ResolvedStudy

@@ -22,11 +22,14 @@ from typing import Any
 
 import pandas as pd
 
-from beltstudy.engine.capacity import capacity
-from beltstudy.engine.catalog import resolve_belt
-from beltstudy.engine.conveyor import parse_conveyor
-from beltstudy.engine.loop import build_loop
-from beltstudy.engine.statics import SAFETY_FACTOR_MIN
+from beltstudy.engine import (
+    SAFETY_FACTOR_MIN,
+    TRANSIENT_SAFETY_RATIO,
+    build_loop,
+    capacity,
+    parse_conveyor,
+    resolve_belt,
+)
 from beltstudy.service.studies import StudyService
 from beltstudy.service.web import figures
 
@@ -269,9 +272,6 @@ def _where_on_loop(locate, at) -> str:
 
 def _limits(study: dict, runs: pd.DataFrame) -> dict[str, str]:
     """The limit each governing case is judged against, in numbers where the study has them."""
-    # deferred: engine.run loads the transient engine (numba)
-    from beltstudy.engine.run import TRANSIENT_SAFETY_RATIO
-
     conv = study["conveyor"]
     sag = conv["sag_limit_pct"]
     rating = pd.to_numeric(runs.get("belt_rating_kn"), errors="coerce") if len(runs) else None

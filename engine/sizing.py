@@ -1,0 +1,223 @@
+"""The auto sizes of one conveyor design over a list of design cases: the largest of each.
+
+An installed conveyor has one take-up, one motor per drive and one set of brakes, however many
+operating cases it meets. :func:`size_over_cases` solves the steady state at every
+:class:`DesignCase` (friction model with its parameters, temperature, mesh) at one load, sizes
+each ``auto`` field there with :func:`beltstudy.engine.design.auto_sizes`, and keeps the
+largest requirement of each size with what set it (``governed_by``) and at which case.
+
+Brakes: their sizing input is the stop time (:mod:`beltstudy.engine.design`). The holding size
+(no stop time) is the largest over the cases; for each stop time of ``stop_times`` the size
+for a brake stop in that time is the largest over the same cases.
+
+A case whose steady solve fails is skipped and named in ``failed_cases``; when every case
+fails, or a size is not finite, nothing can be sized and :class:`SizingError` says why.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import math
+from collections.abc import Sequence
+from dataclasses import dataclass
+from typing import Any
+
+from beltstudy.engine.conveyor import Conveyor, Scenario, section_loads
+from beltstudy.engine.design import auto_sizes
+from beltstudy.engine.errors import InputError
+from beltstudy.engine.friction import get_model
+from beltstudy.engine.statics import solve_steady
+
+__all__ = ["DesignCase", "Largest", "BrakeSizes", "DesignSizes", "SizingError",
+           "size_over_cases"]
+
+
+class SizingError(InputError):
+    """A design that cannot be sized over its cases: its load does not fit the profile
+    (``field="load"``), the steady solve failed at every case, or a size is not finite."""
+
+
+@dataclass(frozen=True)
+class DesignCase:
+    """One design case: a friction model with its parameter overrides, a temperature and the
+    mesh of the steady solve."""
+
+    model: str
+    params: tuple[tuple[str, float | None], ...] = ()  # (name, value) overrides, sorted
+    temperature_c: float = 20.0  # [C]
+    elements: Any = "auto"  # element count, or "auto"
+
+    def label(self) -> str:
+        """``model (changed parameters), T C``: the case as messages and reports name it."""
+        defaults = dataclasses.asdict(get_model(self.model).params())
+        changed = [f"{k}={v:g}" for k, v in self.params
+                   if v is not None and defaults.get(k) != v]
+        model = self.model + (f" ({', '.join(changed)})" if changed else "")
+        return f"{model}, {self.temperature_c:g} C"
+
+
+@dataclass(frozen=True)
+class Largest:
+    """The largest requirement of one size over the cases, what set it and at which case."""
+
+    value: float
+    governed_by: str
+    case: DesignCase
+
+
+@dataclass(frozen=True)
+class BrakeSizes:
+    """The brake forces [kN] (one per brake, file order) of the case that needs the largest
+    total, with what set each and that case."""
+
+    force_kn: tuple[float, ...]
+    governed_by: tuple[str, ...]
+    case: DesignCase
+
+
+@dataclass(frozen=True)
+class DesignSizes:
+    """The auto sizes of one conveyor design (None where the conveyor file gives the size).
+
+    ``takeup``: ``mass_kg`` of a gravity take-up [kg] or ``pretension_kn`` of a fixed one
+    [kN]; ``drives``: ``rated_power_kw`` per drive [kW]; ``brakes_holding``: the holding size;
+    ``brakes_by_stop``: per stop time [s], the size for a brake stop in that time;
+    ``failed_cases``: ``label: message`` of every case whose steady solve failed.
+    """
+
+    takeup: Largest | None
+    drives: tuple[Largest | None, ...]
+    brakes_holding: BrakeSizes | None
+    brakes_by_stop: dict[float, BrakeSizes]
+    failed_cases: tuple[str, ...]
+
+
+@dataclass
+class _Needs:
+    """What each case needs, gathered before the largest is kept."""
+
+    takeup: list = dataclasses.field(default_factory=list)
+    rated: list = dataclasses.field(default_factory=list)
+    holding: list = dataclasses.field(default_factory=list)
+    by_stop: dict = dataclasses.field(default_factory=dict)
+    failures: list = dataclasses.field(default_factory=list)
+
+
+def _auto_fields(conveyor: Conveyor) -> tuple[bool, list[bool], bool]:
+    """Which sizes are ``auto``: the take-up, each drive's rated power, any brake."""
+    data = conveyor.model_dump(mode="json", by_alias=True)
+    tu = data["takeup"]
+    tu_auto = (tu["type"] == "gravity" and tu["mass_kg"] == "auto") or (
+        tu["type"] == "fixed" and tu["pretension_kn"] == "auto")
+    drive_auto = [d["rated_power_kw"] is None for d in data["drives"]]
+    brake_auto = any(b["force_kn"] == "auto" for b in data.get("brakes") or [])
+    return tu_auto, drive_auto, brake_auto
+
+
+def _gather(conveyor: Conveyor, cases: Sequence[DesignCase], load: Any,
+            stop_times: Sequence[float], auto: tuple[bool, list[bool], bool]) -> _Needs:
+    """Solve and size every case; each requirement with what set it and the case."""
+    tu_auto, drive_auto, brake_auto = auto
+    gravity = conveyor.takeup.type == "gravity"
+    needs = _Needs(rated=[[] for _ in drive_auto], by_stop={t: [] for t in stop_times})
+    for case in cases:
+        scn = Scenario(load=load, temperature_c=case.temperature_c, elements=case.elements)
+        n = None if case.elements == "auto" else int(case.elements)
+        params = dict(case.params)
+        steady = solve_steady(conveyor, model=case.model, params=params,
+                              temperature_c=case.temperature_c, load=load, n_elements=n)
+        if steady.status == "failed":
+            needs.failures.append(f"{case.label()}: {steady.message}")
+            continue
+        sizes = auto_sizes(conveyor, scn, model=case.model, params=params, steady=steady)
+        if tu_auto:
+            value = sizes["takeup_mass_kg"] if gravity else sizes["takeup_pretension_kn"]
+            needs.takeup.append((value, sizes["takeup_governed_by"], case))
+        for i, auto in enumerate(drive_auto):
+            if auto:
+                needs.rated[i].append((sizes["drive_rated_power_kw"][i],
+                                       sizes["drive_rated_power_governed_by"][i], case))
+        if brake_auto:
+            needs.holding.append((sum(sizes["brake_force_kn"]), sizes, case))
+            for t in stop_times:
+                braked = auto_sizes(conveyor, scn.model_copy(update={
+                    "stop": scn.stop.model_copy(update={"mode": "brake", "time_s": t})}),
+                    model=case.model, params=params, steady=steady)
+                needs.by_stop[t].append((sum(braked["brake_force_kn"]), braked, case))
+    return needs
+
+
+def _check_finite(needs: _Needs, design: str) -> None:
+    where = f" (conveyor design {design})" if design else ""
+    for name, items in (("takeup", needs.takeup),
+                        *((f"drives.{i}.rated_power_kw", r) for i, r in enumerate(needs.rated)),
+                        ("brakes", needs.holding), *(("brakes", v) for v in needs.by_stop.values())):
+        for value, _why, case in items:
+            if not math.isfinite(value):
+                raise SizingError(f"the auto size of {name} is not finite at {case.label()}"
+                                  f"{where}; check sag_limit_pct, the drives' friction and wrap")
+
+
+def _largest(items: list[tuple[float, Any, DesignCase]]) -> tuple[float, Any, DesignCase]:
+    """The item of the largest value (the first of equals)."""
+    best = items[0]
+    for item in items[1:]:
+        if item[0] > best[0]:
+            best = item
+    return best
+
+
+def _brakes(items: list) -> BrakeSizes:
+    _total, sizes, case = _largest(items)
+    return BrakeSizes(tuple(sizes["brake_force_kn"]), tuple(sizes["brake_governed_by"]), case)
+
+
+def size_over_cases(conveyor: Conveyor, cases: Sequence[DesignCase], *, load: Any = "full",
+                    stop_times: Sequence[float] = (), design: str = "") -> DesignSizes:
+    """The auto sizes of one conveyor design: the largest of each over ``cases`` at ``load``.
+
+    Parameters
+    ----------
+    conveyor : Conveyor
+        The design, with its ``auto`` fields.
+    cases : sequence of DesignCase
+        The design cases (at least one).
+    load : load case
+        The load of every case (SPEC 6.2: a fraction, ``full``, ``empty``, ...).
+    stop_times : sequence of float
+        The stop times [s] the brakes are sized for, besides the holding size.
+    design : str
+        Names the conveyor design in messages (``conveyor design <design>``).
+
+    Returns
+    -------
+    DesignSizes
+        Unrounded sizes: take-up [kg or kN], rated power per drive [kW], brake forces [kN].
+
+    Raises
+    ------
+    SizingError
+        ``load`` does not fit the conveyor's profile (``field="load"``), the steady solve
+        failed at every case, or a size is not finite.
+    """
+    try:
+        section_loads(load, conveyor)
+    except InputError as exc:
+        raise SizingError(exc.reason + (f" (conveyor design {design})" if design else ""),
+                          field="load") from None
+    auto = _auto_fields(conveyor)
+    needs = _gather(conveyor, cases, load, stop_times, auto)
+    if len(needs.failures) == len(cases):
+        where = f" of conveyor design {design}" if design else ""
+        raise SizingError(f"the steady solve failed at every design case{where}, so nothing "
+                          f"can be sized: {needs.failures[0]}")
+    _check_finite(needs, design)
+    tu_auto, _drive_auto, brake_auto = auto
+    return DesignSizes(
+        takeup=Largest(*_largest(needs.takeup)) if tu_auto else None,
+        drives=tuple(Largest(*_largest(items)) if items else None for items in needs.rated),
+        brakes_holding=_brakes(needs.holding) if brake_auto else None,
+        brakes_by_stop={t: _brakes(items) for t, items in needs.by_stop.items()}
+        if brake_auto else {},
+        failed_cases=tuple(needs.failures),
+    )
