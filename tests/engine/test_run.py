@@ -20,7 +20,7 @@ from beltstudy.engine.conveyor import (
 from beltstudy.engine.dynamics.simulate import TIMESERIES_COLUMNS
 from beltstudy.engine.run import run_one
 from tests.conftest import CONVEYORS
-from tests.engine.test_dynamics_examples import TRANSIENT_FIELDS
+from tests.engine.integration.test_run_examples import TRANSIENT_FIELDS
 
 SLOPE = CONVEYORS / "slope-5pct.yaml"
 sim_mod = importlib.import_module("beltstudy.engine.dynamics.simulate")

@@ -17,7 +17,7 @@ from beltstudy.engine.loop import build_loop
 from beltstudy.engine.run import run_one
 from beltstudy.engine.statics import solve_steady
 from tests.conftest import CONVEYORS, hand_conveyor_dict
-from tests.engine.test_dynamics import _arrival, flat_conveyor
+from tests.engine.integration.test_dynamics_physics import _arrival, flat_conveyor
 
 PHASE_FIELDS = [f"t_{m}_{p}_{k}" for p in ("start", "stop") for m in ("max", "min")
                 for k in ("kn", "at_m", "time_s")]

@@ -19,7 +19,21 @@ from beltstudy.engine.law import HS_MAX, HS_REF
 from beltstudy.engine.loop import CARRY
 from beltstudy.engine.statics import solve_steady
 from tests.conftest import CONVEYORS
-from tests.engine.test_nonlin import COS, HC, MG, ML, SC, SR, D, G, H, L, V, nl_dict, rubber_by_hand
+from tests.engine.friction.test_nonlin import (
+    COS,
+    HC,
+    MG,
+    ML,
+    SC,
+    SR,
+    D,
+    G,
+    H,
+    L,
+    V,
+    nl_dict,
+    rubber_by_hand,
+)
 
 RTOL = 1e-9
 
