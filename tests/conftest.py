@@ -1,4 +1,5 @@
-"""Shared fixtures: paths to the example conveyors and a small hand-calculable conveyor."""
+"""Shared fixtures: paths to the example conveyors, a small hand-calculable conveyor and the
+transient fields of a run's summary."""
 
 from __future__ import annotations
 
@@ -8,6 +9,15 @@ import pytest
 
 ROOT = Path(__file__).resolve().parents[1]
 CONVEYORS = ROOT / "studies" / "conveyors"
+
+#: The transient fields every run with dynamics reports (SPEC section 4).
+TRANSIENT_FIELDS = (
+    "t_max_dyn_kn", "t_max_dyn_at_m", "t_max_dyn_time_s", "t_min_dyn_kn", "t_min_dyn_at_m",
+    "t_min_dyn_time_s", "dyn_factor", "drive_force_max_kn", "drive_power_max_kw",
+    "velocity_max_m_s", "velocity_min_m_s", "takeup_travel_m", "start_time_s", "stop_time_s",
+    "wave_loop_time_s", "stop_wave_ratio", "sag_max_dyn_pct", "slip_margin_min_dyn",
+    "safety_factor_dyn",
+)
 
 
 def hand_conveyor_dict(**over) -> dict:

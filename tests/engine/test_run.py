@@ -19,8 +19,8 @@ from beltstudy.engine.conveyor import (
 )
 from beltstudy.engine.dynamics.simulate import TIMESERIES_COLUMNS
 from beltstudy.engine.run import run_one
-from tests.conftest import CONVEYORS
-from tests.engine.integration.test_run_examples import TRANSIENT_FIELDS
+from tests.conftest import CONVEYORS, TRANSIENT_FIELDS
+from tests.engine.conftest import DIN, hand_conv, hand_drive, two_sections
 
 SLOPE = CONVEYORS / "slope-5pct.yaml"
 sim_mod = importlib.import_module("beltstudy.engine.dynamics.simulate")
@@ -184,3 +184,20 @@ def test_cli_bad_input_one_line_exit_2(argv, expect, capsys):
     assert code == 2
     assert err.startswith("error: ") and expect in err
     assert err.count("\n") == 1
+
+
+@pytest.mark.parametrize("load", ["inclines", "declines", [0.5, 1.0], 1.2])
+def test_a_transient_run_with_each_pattern(load):
+    conv = two_sections()
+    scn = Scenario(load=load, elements=40, start={"time_s": 15}, run_s=5,
+                   stop={"mode": "coast"})
+    r = run_one(conv, scn, model="din", params=DIN)
+    assert r.summary["status"] in ("ok", "warning"), r.summary["message"]
+    assert r.summary["t_max_dyn_kn"] >= r.summary["t_max_kn"] * 0.99
+    assert ("surge" in r.summary["message"]) is (load == 1.2)
+
+
+def test_controlled_stop_with_dol_drives_is_refused():
+    conv = hand_conv(drives=[hand_drive(control="dol")])
+    with pytest.raises(InputError, match="scenario.stop.mode"):
+        run_one(conv, Scenario(stop={"mode": "controlled", "time_s": 20}), model="din")
