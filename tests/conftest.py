@@ -1,13 +1,25 @@
-"""Shared fixtures: paths to the example conveyors and a small hand-calculable conveyor."""
+"""Shared fixtures: paths to the example conveyors, a small hand-calculable conveyor, the
+transient fields of a run's summary, and the transient kernel compiled once per session."""
 
 from __future__ import annotations
 
+import sys
+import time
 from pathlib import Path
 
 import pytest
 
 ROOT = Path(__file__).resolve().parents[1]
 CONVEYORS = ROOT / "studies" / "conveyors"
+
+#: The transient fields every run with dynamics reports (SPEC section 4).
+TRANSIENT_FIELDS = (
+    "t_max_dyn_kn", "t_max_dyn_at_m", "t_max_dyn_time_s", "t_min_dyn_kn", "t_min_dyn_at_m",
+    "t_min_dyn_time_s", "dyn_factor", "drive_force_max_kn", "drive_power_max_kw",
+    "velocity_max_m_s", "velocity_min_m_s", "takeup_travel_m", "start_time_s", "stop_time_s",
+    "wave_loop_time_s", "stop_wave_ratio", "sag_max_dyn_pct", "slip_margin_min_dyn",
+    "safety_factor_dyn",
+)
 
 
 def hand_conveyor_dict(**over) -> dict:
@@ -50,3 +62,68 @@ def hand_conveyor():
     from beltstudy.engine.conveyor import parse_conveyor
 
     return parse_conveyor(hand_conveyor_dict())
+
+
+# --------------------------------------------------------------------------------------------
+# The numba kernel, compiled once per session before the first test
+
+#: The warm-up run: the hand conveyor on a dozen elements through a short cycle (a fraction of
+#: a second once compiled). Every run's kernel has the same argument types, so this one
+#: compile serves them all.
+WARM_UP_SCENARIO = {"elements": 12, "start": {"time_s": 2.0}, "run_s": 0.5,
+                    "stop": {"mode": "coast"}}
+
+#: What the warm-up did, for the terminal summary.
+_warm_up: dict = {}
+
+
+def _kernel_dispatchers() -> list:
+    """The numba functions of the loaded engine modules (each once); their ``stats`` say
+    whether they were compiled or loaded from numba's cache."""
+    from numba.core.dispatcher import Dispatcher
+
+    found = {}
+    for name, module in list(sys.modules.items()):
+        if name.startswith("beltstudy.engine.") and module is not None:
+            for value in vars(module).values():
+                if isinstance(value, Dispatcher):
+                    found[id(value)] = value
+    return list(found.values())
+
+
+@pytest.fixture(scope="session", autouse=True)
+def numba_kernel_compiled():
+    """Compile the transient kernel once, before the first test, so its cost shows as its own
+    line (the setup of the first test in ``--durations``, and the terminal summary) instead of
+    inside whichever dynamic test comes first. numba's ``cache=True`` keeps the compiled code
+    beside the sources: a fresh clone compiles for a minute or more, later sessions load it in
+    well under a second. A failure here is reported, not raised: the tests that run the
+    kernel fail on their own. Runs in each process (pytest-xdist workers too); imports the
+    engine only."""
+    t0 = time.perf_counter()
+    try:
+        from beltstudy.engine.conveyor import Scenario, parse_conveyor
+        from beltstudy.engine.run import run_one
+
+        run = run_one(parse_conveyor(hand_conveyor_dict()), Scenario(**WARM_UP_SCENARIO),
+                      model="din")
+        if run.summary["status"] == "failed":
+            _warm_up["error"] = run.summary["message"]
+        _warm_up["compiled"] = any(d.stats.cache_misses for d in _kernel_dispatchers())
+    except Exception as exc:  # reported in the summary; the kernel's own tests will fail
+        _warm_up["error"] = f"{type(exc).__name__}: {exc}"
+    _warm_up["seconds"] = time.perf_counter() - t0
+    yield
+
+
+def pytest_terminal_summary(terminalreporter):
+    if "seconds" not in _warm_up:
+        return
+    w = _warm_up
+    how = ("compiled (numba's cache was cold)" if w.get("compiled")
+           else "loaded from numba's on-disk cache")
+    line = f"transient kernel warm-up: {w['seconds']:.1f} s, {how}, once before the first test"
+    if "error" in w:
+        line += f"; the warm-up run failed: {w['error']}"
+    terminalreporter.write_sep("-", "numba compile")
+    terminalreporter.write_line(line)

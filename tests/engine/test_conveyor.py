@@ -1,19 +1,20 @@
-"""The conveyor contract: validation errors name the field and the fix."""
+"""The conveyor and scenario contract: validation errors name the field and the fix; the
+scenario's load patterns per profile section."""
 
 from __future__ import annotations
 
 import pytest
 
-from beltstudy.engine import catalog
 from beltstudy.engine.conveyor import (
     InputError,
     Scenario,
     load_conveyor,
     parse_conveyor,
     parse_scenario,
+    section_loads,
 )
-from beltstudy.engine.loop import build_loop
 from tests.conftest import CONVEYORS, hand_conveyor_dict
+from tests.engine.conftest import hand_conv, hand_drive, two_sections
 
 
 @pytest.mark.parametrize("path", sorted(CONVEYORS.glob("*.yaml")), ids=lambda p: p.name)
@@ -94,30 +95,6 @@ def test_custom_belt_needs_fields():
     assert "modulus_kn_m" in _err(d)
 
 
-def test_belt_overrides_replace_catalogue():
-    d = hand_conveyor_dict()
-    d["belt"] = {"type": "ST2000", "width_m": 1.0, "top_cover_mm": 0, "bottom_cover_mm": 0,
-                 "carcass_mass_kg_m2": 30.0, "modulus_kn_m": 100000}
-    conv = parse_conveyor(d)
-    b = catalog.resolve_belt(conv.belt)
-    assert b.mass_kg_m == pytest.approx(30.0)  # covers 0: exactly the given mass per metre
-    assert b.modulus_kn_m == 100000 and b.rating_kn_m == 2000
-
-
-def test_catalogue_sources_and_ids():
-    ids = set(catalog.belts())
-    for want in ("ST1000", "ST1250", "ST1600", "ST2000", "ST2500", "ST3150", "ST4000", "ST5400",
-                 "EP400/3", "EP630/4", "EP800/4", "EP1000/5", "EP1250/5", "EP1600/4"):
-        assert want in ids
-    for b in catalog.belts().values():
-        assert b.source.strip()
-        if b.kind == "steel":  # PHYSICS section 4: modulus 72 x rating
-            assert b.modulus_kn_m == pytest.approx(72 * b.rating_kn_m)
-    for i in catalog.idlers():
-        assert i.source.strip()
-    assert set(catalog.compounds()) >= {"standard", "lrr", "cold", "fire-resistant"}
-
-
 def test_scenario_errors():
     with pytest.raises(InputError, match="stop.mode"):
         parse_scenario({"stop": {"mode": "slam", "time_s": 3}})
@@ -129,17 +106,38 @@ def test_scenario_errors():
     assert Scenario(load="empty").load_fraction == 0.0
 
 
-def test_loop_layout(hand_conveyor):
-    loop = build_loop(hand_conveyor, 1.0, n_elements=40)
-    assert loop.nc == 20 and loop.strand[loop.i_head] == 2 and loop.strand[-1] == 3
-    assert loop.dx_m[:20].sum() == pytest.approx(1000.0)
-    # return strand runs the profile backwards: its slope is negated, it ends at the tail
-    assert loop.sin_a[0] == pytest.approx(0.05) and loop.sin_a[loop.i_head + 1] == -0.05
-    assert loop.z_end_m[loop.nc - 1] == pytest.approx(50.0)
-    assert abs(loop.z_end_m[-2]) < 1e-9
-    # element count from a target length
-    assert build_loop(hand_conveyor, 1.0, target_dx_m=10.0).nc == 100
-    # masses per metre (PHYSICS 1)
-    assert loop.mL_kg_m[0] == pytest.approx(50.0) and loop.mL_kg_m[loop.i_head + 1] == 0
-    assert loop.mR_kg_m[0] == pytest.approx(10.0)
-    assert loop.mR_kg_m[loop.i_head + 1] == pytest.approx(3.0)
+def test_section_loads_of_each_pattern():
+    conv = two_sections()
+    assert section_loads("full", conv) == (1.0, 1.0)
+    assert section_loads("empty", conv) == (0.0, 0.0)
+    assert section_loads("inclines", conv) == (1.0, 0.0)
+    assert section_loads("declines", conv) == (0.0, 1.0)
+    assert section_loads([0.5, 1.2], conv) == (0.5, 1.2)
+    assert section_loads(1.2, conv) == (1.2, 1.2)
+    with pytest.raises(InputError, match=r"scenario.load: 3 fractions for 2 profile sections"):
+        section_loads([1, 1, 1], conv)
+    with pytest.raises(InputError, match=r"less than or equal to 1.3"):
+        parse_scenario({"load": 1.4})
+    assert parse_scenario({"load": "inclines"}).load == "inclines"
+    assert parse_scenario({"load": [0, 1]}).load == [0.0, 1.0]
+
+
+@pytest.mark.parametrize("over, field", [
+    ({"brakes": [{"drive": 3}]}, "brakes[0].drive"),
+    ({"drives": [hand_drive(control="dol", motor_curve=[[0.0, 1.5], [0.5, 1.2], [0.4, 1.0],
+                                                        [1.0, 0.0]])]}, "increase"),
+    ({"drives": [hand_drive(control="dol", motor_curve=[[0.0, 1.5], [0.9, 2.0], [1.0, 0.4]])]},
+     "zero-torque point"),
+    ({"drives": [hand_drive(coupling="fluid")]}, "needs control: dol"),
+    ({"drives": [hand_drive(control="dol",
+                            motor_curve=[[i / 20, 2.0 - i / 10] for i in range(21)])]},
+     "motor_curve: List should have at most 16 items"),
+    ({"brakes": [{"position": "head", "force_curve": [[0.1 * i, 0.05 * i] for i in range(17)]}]},
+     "force_curve: List should have at most 16 items"),
+    ({"drives": [hand_drive(share=0.6), hand_drive(share=0.6, position="tail")]},
+     "drives[0] (head) 0.6 + drives[1] (tail) 0.6"),
+])
+def test_bad_drive_and_brake_input_names_the_field(over, field):
+    with pytest.raises(InputError) as exc:
+        hand_conv(**over)
+    assert field in str(exc.value)

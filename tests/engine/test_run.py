@@ -1,12 +1,11 @@
-"""One run (engine/run.py) and the ``beltstudy simulate`` command: the SPEC fields, the time
-series, bad input rejected before any transient computing, one-line CLI errors."""
+"""One run (engine/run.py): the SPEC fields, the time series, a run with each load pattern, bad
+input rejected before any transient computing. The ``beltstudy simulate`` command is
+tests/service/test_cli_simulate.py."""
 
 from __future__ import annotations
 
 import importlib
-import json
 
-import pandas as pd
 import pytest
 
 from beltstudy.engine.conveyor import (
@@ -19,8 +18,8 @@ from beltstudy.engine.conveyor import (
 )
 from beltstudy.engine.dynamics.simulate import TIMESERIES_COLUMNS
 from beltstudy.engine.run import run_one
-from tests.conftest import CONVEYORS
-from tests.engine.test_dynamics_examples import TRANSIENT_FIELDS
+from tests.conftest import CONVEYORS, TRANSIENT_FIELDS
+from tests.engine.conftest import DIN, hand_conv, hand_drive, two_sections
 
 SLOPE = CONVEYORS / "slope-5pct.yaml"
 sim_mod = importlib.import_module("beltstudy.engine.dynamics.simulate")
@@ -135,52 +134,18 @@ def test_fixed_step_below_the_limit_runs():
     assert r.summary["status"] != "failed"
 
 
-def test_cli_simulate_json_timeseries_plot(tmp_path, capsys):
-    from beltstudy.service.cli import main
-
-    ts_path = tmp_path / "ts.parquet"
-    png = tmp_path / "fig4.png"
-    code = main(["simulate", str(SLOPE), "--model", "din", "--elements", "40",
-                 "--start-time-s", "15", "--run-s", "5", "--stop-mode", "controlled",
-                 "--stop-time-s", "10", "--json", "--timeseries", str(ts_path),
-                 "--plot", str(png)])
-    out = capsys.readouterr().out
-    assert code == 0
-    s = json.loads(out)
-    assert s["stop_mode"] == "controlled" and s["elements_used"] == 42
-    for key in TRANSIENT_FIELDS + ("status", "message"):
-        assert key in s
-    ts = pd.read_parquet(ts_path)
-    assert tuple(ts.columns[: len(TIMESERIES_COLUMNS)]) == TIMESERIES_COLUMNS
-    assert png.stat().st_size > 10_000
+@pytest.mark.parametrize("load", ["inclines", "declines", [0.5, 1.0], 1.2])
+def test_a_transient_run_with_each_pattern(load):
+    conv = two_sections()
+    scn = Scenario(load=load, elements=40, start={"time_s": 15}, run_s=5,
+                   stop={"mode": "coast"})
+    r = run_one(conv, scn, model="din", params=DIN)
+    assert r.summary["status"] in ("ok", "warning"), r.summary["message"]
+    assert r.summary["t_max_dyn_kn"] >= r.summary["t_max_kn"] * 0.99
+    assert ("surge" in r.summary["message"]) is (load == 1.2)
 
 
-def test_cli_scenario_file_with_overrides(tmp_path, capsys):
-    from beltstudy.service.cli import main
-
-    scn = tmp_path / "scn.yaml"
-    scn.write_text("scenario:\n  load: empty\n  start: {control: linear, time_s: 12}\n"
-                   "  run_s: 3\n  stop: {mode: coast}\n  elements: 40\n")
-    code = main(["simulate", str(SLOPE), "--scenario", str(scn), "--stop-mode", "controlled",
-                 "--stop-time-s", "30", "--start-control", "s-curve", "--start-time-s", "60",
-                 "--json"])
-    s = json.loads(capsys.readouterr().out)
-    assert code == 0
-    assert s["load"] == "empty" and s["stop_mode"] == "controlled"
-    assert s["elements_used"] == 42 and s["status"] != "failed"
-
-
-@pytest.mark.parametrize("argv,expect", [
-    (["--stop-mode", "brake"], "scenario.stop.mode"),
-    (["--run-s", "-3"], "scenario.run_s"),
-    (["--dt-s", "2", "--elements", "40"], "scenario.dt_s"),
-    (["--model", "nonlinn"], "unknown model"),
-])
-def test_cli_bad_input_one_line_exit_2(argv, expect, capsys):
-    from beltstudy.service.cli import main
-
-    code = main(["simulate", str(SLOPE), *argv])
-    err = capsys.readouterr().err
-    assert code == 2
-    assert err.startswith("error: ") and expect in err
-    assert err.count("\n") == 1
+def test_controlled_stop_with_dol_drives_is_refused():
+    conv = hand_conv(drives=[hand_drive(control="dol")])
+    with pytest.raises(InputError, match="scenario.stop.mode"):
+        run_one(conv, Scenario(stop={"mode": "controlled", "time_s": 20}), model="din")

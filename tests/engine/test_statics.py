@@ -1,4 +1,6 @@
-"""Tension walk closure, take-up sizing and the checks flipping at their thresholds."""
+"""Tension walk closure, take-up sizing and what sets it, the checks flipping at their
+thresholds, two head drives, load patterns and surge, and the fixed point of a
+tension-dependent law."""
 
 from __future__ import annotations
 
@@ -8,10 +10,13 @@ import numpy as np
 import pytest
 from numpy.testing import assert_allclose
 
+import beltstudy.engine.statics as statics
 from beltstudy.engine.conveyor import parse_conveyor
-from beltstudy.engine.loop import G
-from beltstudy.engine.statics import STARTUP_FACTOR, solve_steady
+from beltstudy.engine.loop import CARRY, G
+from beltstudy.engine.statics import STARTUP_FACTOR, TAKEUP_CONSTRAINTS, solve_steady
 from tests.conftest import CONVEYORS, hand_conveyor_dict
+from tests.engine.conftest import DIN, H1, H2, L1, L2, MG, ML, MRC, MRR, F, dual_head, two_sections
+from tests.engine.friction.conftest import nl_dict
 
 
 @pytest.mark.parametrize("model", ["din", "cema"])
@@ -203,3 +208,170 @@ def test_friction_factor_and_sag_limit_bounds(hand_dict):
     with pytest.raises(ValueError, match=r"sag_limit_pct.carry"):
         parse_conveyor({**hand_dict, "sag_limit_pct": {"carry": 0.05, "return": 3.0}})
     parse_conveyor({**hand_dict, "sag_limit_pct": {"carry": 0.1, "return": 3.0}})
+
+
+# --------------------------------------------------------------------------------------
+# what sets the take-up
+
+
+def test_start_up_slip_governs_the_hand_conveyor():
+    res = solve_steady(parse_conveyor(hand_conveyor_dict()), model="din")
+    assert res.summary["takeup_governed_by"] == "slip_start"
+    assert_allclose(res.summary["t2_kn"] * 1e3, startup_t2_by_hand(res.te_n), rtol=1e-6)
+
+
+def test_sag_at_rest_governs_and_the_switch_turns_it_off():
+    """Carry sag limit 0.2 %: held at rest the counterweight's m g / 2 is the sag minimum
+    g (m'_G + m'_L) cos(a) S / (8 h/S) (governs: ``sag_at_rest``). With the rule off, the
+    lowest running carry tension (the low end of the first carry span) is that minimum instead
+    (``sag_running``), and the counterweight is lighter."""
+    d = hand_conveyor_dict(sag_limit_pct={"carry": 0.2, "return": 5.0})
+    cos_a = math.sqrt(1.0 - (50.0 / 1000.0) ** 2)
+    t_min_sag = G * (20 + 50) * cos_a * 1.25 / (8 * 0.002)
+    rest = solve_steady(parse_conveyor(d), model="din")
+    assert rest.summary["takeup_governed_by"] == "sag_at_rest"
+    assert_allclose(rest.summary["takeup_mass_kg"] * G / 2, t_min_sag, rtol=1e-6)
+
+    d["takeup"] = {**d["takeup"], "sag_at_rest": False}
+    run = solve_steady(parse_conveyor(d), model="din")
+    assert run.summary["takeup_governed_by"] == "sag_running"
+    T = run.tension_n
+    low = np.minimum(np.roll(T, 1), T)
+    carry = run.loop.strand == CARRY
+    assert_allclose(low[carry].min(), t_min_sag, rtol=1e-6)
+    assert run.summary["takeup_mass_kg"] < rest.summary["takeup_mass_kg"]
+    assert not run.warnings
+
+
+def test_a_given_takeup_is_reported_as_given():
+    d = hand_conveyor_dict(takeup={"type": "gravity", "position": "tail", "mass_kg": 9000})
+    s = solve_steady(parse_conveyor(d), model="din").summary
+    assert s["takeup_governed_by"] == "given" and s["takeup_mass_kg"] == pytest.approx(9000)
+    assert set(TAKEUP_CONSTRAINTS) >= {"slip_start", "slip_running", "sag_running",
+                                       "sag_at_rest"}
+
+
+def test_takeup_sized_to_the_sag_limit_reports_that_limit():
+    """A flat belt whose take-up is set by the carry sag limit: the lowest carry tension is
+    g (m'_G + m'_L) S / (8 (h/S)_adm) at the low end of a span, so sag_max_pct reports the
+    limit within 0.5 % (by hand: 9.81 x 70 x 3.0 / (8 x 0.03) = 8 583.75 N)."""
+    d = hand_conveyor_dict(profile=[{"length_m": 143.0, "lift_m": 0.0}],
+                           sag_limit_pct={"carry": 3.0, "return": 20.0})
+    d["idlers"]["carry"].update(spacing_m=3.0, rotating_mass_kg=30.0)
+    d["drives"][0].update(wrap_deg=420, friction=0.45)  # slip far from governing
+    d["takeup"] = {"type": "gravity", "position": "tail", "mass_kg": "auto",
+                   "sag_at_rest": False}  # the running sag governs
+    conv = parse_conveyor(d)
+    st = solve_steady(conv, model="din", n_elements=40)
+    t_min_carry = 9.81 * (20.0 + 50.0) * 3.0 / (8 * 0.03)
+    carry = st.loop.strand == 0
+    low = np.minimum(st.tension_n, np.roll(st.tension_n, 1))[carry].min()
+    assert low == pytest.approx(t_min_carry, rel=0.005)
+    assert st.summary["sag_max_pct"] == pytest.approx(3.0, rel=0.005)
+
+
+# --------------------------------------------------------------------------------------
+# two drive pulleys at the head
+
+
+def test_dual_head_drive_statics_by_hand():
+    """Two head pulleys of 200 deg, shares 0.5 / 0.5: T1 - T2 = Te, the tension between them
+    T2 + Te / 2, and each pulley's margin e^(mu theta) with its own tensions (1e-9)."""
+    conv = dual_head()
+    st = solve_steady(conv, model="din", n_elements=80)
+    s = st.summary
+    t1, tb, t2 = s["drive1_t_tight_kn"], s["drive1_t_slack_kn"], s["drive2_t_slack_kn"]
+    assert s["drive2_t_tight_kn"] == pytest.approx(tb, rel=1e-12)
+    te = s["te_kn"]
+    assert t1 - t2 == pytest.approx(te, rel=1e-9)
+    assert tb == pytest.approx(t2 + 0.5 * te, rel=1e-9)
+    e = _euler()
+    assert s["drive1_slip_margin"] == pytest.approx(e * tb / t1, rel=1e-9)
+    assert s["drive2_slip_margin"] == pytest.approx(e * t2 / tb, rel=1e-9)
+    # one lumped 400 deg pulley would report e^(2 mu theta) T2 / T1 instead
+    assert min(s["drive1_slip_margin"], s["drive2_slip_margin"]) < e * e * t2 / t1
+
+
+# --------------------------------------------------------------------------------------
+# load patterns and surge (SPEC 6.2): the two-section hand conveyor by hand
+
+
+def te_by_hand(m1: float, m2: float) -> dict:
+    """DIN 22101 Te of the two-section conveyor with material m1, m2 [kg/m] per section,
+    term by term [N]: F_H = f g L [m'_R + (m'_G + m'_L) cos a] per strand, lift g m'_L H."""
+    c1 = math.sqrt(1.0 - (H1 / L1) ** 2)
+    c2 = math.sqrt(1.0 - (H2 / L2) ** 2)
+    carry = F * G * (L1 * (MRC + (MG + m1) * c1) + L2 * (MRC + (MG + m2) * c2))
+    ret = F * G * ((L1 + L2) * MRR + MG * (L1 * c1 + L2 * c2))
+    lift = G * (m1 * H1 + m2 * H2)  # the belt's own lift cancels round the loop
+    return {"main_carry": carry, "main_return": ret, "lift": lift, "te": carry + ret + lift}
+
+
+@pytest.mark.parametrize("load, m1, m2", [
+    ("full", ML, ML),
+    ("inclines", ML, 0.0),
+    ("declines", 0.0, ML),
+    ([0.5, 1.0], 0.5 * ML, ML),
+])
+def test_two_section_statics_by_hand(load, m1, m2):
+    conv = two_sections()
+    res = solve_steady(conv, model="din", params=DIN, load=load, n_elements=100)
+    loop = res.loop
+    carry = loop.strand == CARRY
+    first = carry & (loop.s_m < L1)
+    assert_allclose(loop.mL_kg_m[first], m1, rtol=1e-12)
+    assert_allclose(loop.mL_kg_m[carry & ~first], m2, rtol=1e-12)
+    assert_allclose(loop.mL_kg_m[~carry], 0.0)
+    hand = te_by_hand(m1, m2)
+    parts = res.summary["te_components_kn"]
+    for name in ("main_carry", "main_return", "lift"):
+        assert_allclose(parts[name] * 1e3, hand[name], rtol=1e-9)
+    assert_allclose(res.te_n, hand["te"], rtol=1e-9)
+    assert_allclose(res.summary["t1_kn"] - res.summary["t2_kn"], hand["te"] / 1e3, rtol=1e-9)
+    assert res.summary["load_mass_kg_m"] == pytest.approx(max(m1, m2))
+
+
+def test_the_counterweight_of_a_pattern_is_at_least_the_full_load_one():
+    conv = two_sections()
+    full = solve_steady(conv, model="din", params=DIN, load="full").summary
+    for load in ("inclines", "declines", [0.5, 1.0]):
+        s = solve_steady(conv, model="din", params=DIN, load=load).summary
+        assert s["takeup_mass_kg"] >= full["takeup_mass_kg"] * (1 - 1e-9)
+
+
+def test_surge_above_the_design_load_warns():
+    conv = two_sections()
+    ok = solve_steady(conv, model="din", params=DIN, load=1.0)
+    assert not any("surge" in w for w in ok.warnings)
+    surge = solve_steady(conv, model="din", params=DIN, load=1.2)
+    assert surge.status == "warning" and "surge: load 1.2" in surge.message
+    hand = te_by_hand(1.2 * ML, 1.2 * ML)
+    assert_allclose(surge.te_n, hand["te"], rtol=1e-9)
+    per_section = solve_steady(conv, model="din", params=DIN, load=[1.0, 1.2])
+    assert "surge" in per_section.message
+
+
+# --------------------------------------------------------------------------------------
+# the fixed point of a tension-dependent law (Non-Lin)
+
+
+@pytest.fixture
+def conv():
+    return parse_conveyor(nl_dict())
+
+
+def test_fixed_point_is_consistent(conv):
+    res = solve_steady(conv, model="nonlin", temperature_c=-20.0, load="full", n_elements=100)
+    assert res.summary["steady_iterations"] == res.iterations > 1
+    # the resistance re-evaluated at the final tensions reproduces Te
+    r = res.law.evaluate(res.loop.speed_m_s, res.tension_mean_n)
+    te = r.sum() + res.loop.gravity_n.sum()
+    assert_allclose(te, res.te_n, rtol=1e-5)
+
+
+def test_non_convergence_fails_with_a_message(conv, monkeypatch):
+    monkeypatch.setattr(statics, "MAX_ITER", 2)
+    res = solve_steady(conv, model="nonlin", n_elements=50)
+    assert res.status == "failed"
+    assert "did not converge in 2 iterations" in res.message
+    assert res.summary["status"] == "failed"

@@ -14,15 +14,8 @@ import pytest
 from beltstudy.engine.conveyor import Scenario, load_conveyor
 from beltstudy.engine.friction import MODELS
 from beltstudy.engine.run import run_one
-from tests.conftest import CONVEYORS
+from tests.conftest import CONVEYORS, TRANSIENT_FIELDS
 
-TRANSIENT_FIELDS = (
-    "t_max_dyn_kn", "t_max_dyn_at_m", "t_max_dyn_time_s", "t_min_dyn_kn", "t_min_dyn_at_m",
-    "t_min_dyn_time_s", "dyn_factor", "drive_force_max_kn", "drive_power_max_kw",
-    "velocity_max_m_s", "velocity_min_m_s", "takeup_travel_m", "start_time_s", "stop_time_s",
-    "wave_loop_time_s", "stop_wave_ratio", "sag_max_dyn_pct", "slip_margin_min_dyn",
-    "safety_factor_dyn",
-)
 EXAMPLES = sorted(p.stem for p in CONVEYORS.glob("*.yaml"))
 
 

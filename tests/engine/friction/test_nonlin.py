@@ -1,7 +1,7 @@
-"""Non-Lin (Harrison 2008, Eq. 1) term by term against hand calculations, and its scaling laws.
+"""Non-Lin (Harrison 2008, Eq. 1) term by term against hand calculations, its scaling laws,
+its one seal-drag temperature law and the flexure cap at the sag limit.
 
-Tolerances: hand calculations 1e-9 relative (the same arithmetic in another order); the fixed
-point to 1e-5 relative (solved to 1e-6 in tension).
+Tolerances: hand calculations 1e-9 relative (the same arithmetic in another order).
 """
 
 from __future__ import annotations
@@ -13,51 +13,30 @@ import numpy as np
 import pytest
 from numpy.testing import assert_allclose
 
-import beltstudy.engine.statics as statics
-from beltstudy.engine.conveyor import InputError, parse_conveyor
+from beltstudy.engine.conveyor import InputError, load_conveyor, parse_conveyor
 from beltstudy.engine.friction import get_model
 from beltstudy.engine.friction import nonlin as nl
 from beltstudy.engine.law import HS_MAX, HS_REF
 from beltstudy.engine.loop import CARRY, RETURN, build_loop
 from beltstudy.engine.statics import solve_steady
-from tests.conftest import hand_conveyor_dict
+from tests.conftest import CONVEYORS
+from tests.engine.friction.conftest import (
+    COS,
+    HC,
+    MG,
+    ML,
+    SC,
+    SR,
+    D,
+    G,
+    H,
+    L,
+    V,
+    nl_dict,
+    rubber_by_hand,
+)
 
-G = 9.81
 RTOL = 1e-9
-# The hand conveyor of tests/conftest.py with a 5 mm bottom cover of standard rubber:
-# m'_G = (14.25 + 5 x 1.15) x 1.0 = 20 kg/m, m'_L = 720 / (3.6 x 4) = 50 kg/m
-L, H, V = 1000.0, 50.0, 4.0
-SIN = H / L
-COS = math.sqrt(1 - SIN**2)
-MG, ML = 20.0, 50.0
-SC, SR = 1.25, 2.5
-D = 0.133
-HC = 0.005  # bottom cover [m]
-
-
-def nl_dict(**over):
-    d = hand_conveyor_dict()
-    d["belt"] = {"width_m": 1.0, "rating_kn_m": 1000, "modulus_kn_m": 60000,
-                 "carcass_mass_kg_m2": 14.25, "top_cover_mm": 0, "bottom_cover_mm": 5,
-                 "compound": "standard"}
-    d.update(over)
-    return d
-
-
-@pytest.fixture
-def conv():
-    return parse_conveyor(nl_dict())
-
-
-def rubber_by_hand(temperature_c: float, f_hz: float):
-    """tan(delta) and E' of the standard compound (catalogue constants, module equations)."""
-    dt = temperature_c + 50.0
-    x = math.log10(f_hz) - 17.44 * dt / (51.6 + dt) + 0.25
-    u = x / 1.75
-    tan = 0.105 + 0.85 / math.cosh(u)
-    gd = 2 * math.atan(math.tanh(u / 2))
-    e = 5.0e6 * math.exp((2 / math.pi) * math.log(10) * 0.85 * 1.75 * (gd + math.pi / 2))
-    return tan, e
 
 
 def test_every_term_by_hand(conv):
@@ -112,23 +91,6 @@ def test_every_term_by_hand(conv):
     # parts at the final tensions, Te at the last iterate: equal to the fixed-point tolerance
     assert_allclose(sum(c.values()), res.summary["te_kn"], rtol=1e-6)
     assert_allclose(res.summary["power_kw"], res.summary["te_kn"] * V, rtol=1e-12)
-
-
-def test_fixed_point_is_consistent(conv):
-    res = solve_steady(conv, model="nonlin", temperature_c=-20.0, load="full", n_elements=100)
-    assert res.summary["steady_iterations"] == res.iterations > 1
-    # the resistance re-evaluated at the final tensions reproduces Te
-    r = res.law.evaluate(res.loop.speed_m_s, res.tension_mean_n)
-    te = r.sum() + res.loop.gravity_n.sum()
-    assert_allclose(te, res.te_n, rtol=1e-5)
-
-
-def test_non_convergence_fails_with_a_message(conv, monkeypatch):
-    monkeypatch.setattr(statics, "MAX_ITER", 2)
-    res = solve_steady(conv, model="nonlin", n_elements=50)
-    assert res.status == "failed"
-    assert "did not converge in 2 iterations" in res.message
-    assert res.summary["status"] == "failed"
 
 
 def test_kta_is_cema_kt_below_zero(conv):
@@ -314,3 +276,39 @@ def test_empty_belt_reports_every_part(conv):
                       "indentation", "belt_flexure", "material_flexure"}
     assert c["material_flexure"] == 0.0 and c["lift"] == 0.0 and c["feed"] == 0.0
     assert c["indentation"] > 0 and c["belt_flexure"] > 0
+
+
+# ---------------------------------------------------------------------------------------------
+# One seal-drag temperature law, the flexure cap
+
+
+def test_nonlin_seal_drag_has_one_temperature_law():
+    """The seal drag follows the paper's e^{-c T} alone: from 0 C to -30 C it grows by
+    e^{0.017 x 30} = 1.665, not by CEMA's Kt on top (1.665 x 1.47)."""
+    conv = load_conveyor(CONVEYORS / "slope-5pct.yaml")
+    loop = build_loop(conv, 1.0, n_elements=40)
+    fm = get_model("nonlin")
+
+    def seal(temp):
+        law = fm.build(loop, conv, temp, fm.params())
+        k = [i for i, name in enumerate(law.names) if name == "idler_rotation"
+             and law.pv[i] != 0.0]
+        return float(law.coef[k].sum())
+
+    assert seal(-30.0) / seal(0.0) == pytest.approx(math.exp(0.017 * 30.0), rel=1e-9)
+
+
+def test_sag_dependent_resistance_is_capped_at_the_strands_sag_limit():
+    """A slack span keeps the resistance the law gives at its strand's admissible sag (the
+    conveyor's sag_limit_pct): belt flexure at zero tension equals it at the limit."""
+    conv = load_conveyor(CONVEYORS / "slope-5pct.yaml")
+    loop = build_loop(conv, 1.0, n_elements=40)
+    law = get_model("nonlin").build(loop, conv, 20.0, get_model("nonlin").params())
+    carry = loop.strand == 0
+    t_at_limit = loop.sag_w_n / (conv.sag_limit_pct.carry / 100.0)
+    slack = law.parts(4.5, np.full(loop.n, 1.0))["belt_flexure"][carry]
+    at_limit = law.parts(4.5, t_at_limit)["belt_flexure"][carry]
+    np.testing.assert_allclose(slack, at_limit, rtol=1e-12)
+    # by hand: (1.5 % / 1 %)^1.5 times the reference-sag value
+    ref = law.parts(4.5, loop.sag_w_n / 0.01)["belt_flexure"][carry]
+    np.testing.assert_allclose(slack, ref * 1.5**1.5, rtol=1e-12)

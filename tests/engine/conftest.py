@@ -1,0 +1,46 @@
+"""Conveyors shared by the engine tests: the hand conveyor over two sections (load patterns)
+and the hand conveyor with its drives changed."""
+
+from __future__ import annotations
+
+from beltstudy.engine.conveyor import parse_conveyor
+from tests.conftest import hand_conveyor_dict
+
+#: Hand numbers of the two-section conveyor (tests/conftest.py: hand_conveyor_dict):
+#: m'_G = 20, m'_L = 50 (design), m'_R = 10 carry, 3 return [kg/m]; f = 0.020 both strands.
+MG, ML, MRC, MRR, F = 20.0, 50.0, 10.0, 3.0, 0.020
+L1, H1, L2, H2 = 500.0, 25.0, 500.0, -20.0
+
+
+def two_sections(**over):
+    """The hand conveyor over a rise then a fall, secondary resistances and accessories off
+    (C = 1 is passed to the model), so Te is main resistances plus material lift."""
+    d = hand_conveyor_dict(profile=[{"length_m": L1, "lift_m": H1},
+                                    {"length_m": L2, "lift_m": H2}],
+                           accessories={"head_kn": 0.0, "tail_kn": 0.0})
+    d.update(over)
+    return parse_conveyor(d)
+
+
+DIN = {"f_carry": F, "f_return": F, "c": 1.0}
+
+
+def hand_conv(**over):
+    """The hand conveyor with top-level fields replaced, parsed."""
+    return parse_conveyor(hand_conveyor_dict(**over))
+
+
+def hand_drive(**over):
+    """The hand conveyor's head drive (200 deg, mu 0.35, 1 m pulley, 50 kg m2) as a dict, with
+    fields replaced."""
+    d = {"position": "head", "wrap_deg": 200, "friction": 0.35, "share": 1.0,
+         "pulley_diameter_m": 1.0, "inertia_kg_m2": 50.0}
+    d.update(over)
+    return d
+
+
+def dual_head(**over):
+    """The hand conveyor on two head drives sharing the force half and half."""
+    d = hand_conveyor_dict(drives=[hand_drive(share=0.5, inertia_kg_m2=20),
+                                   hand_drive(share=0.5, inertia_kg_m2=20)], **over)
+    return parse_conveyor(d)

@@ -1,0 +1,26 @@
+"""The kernel's fast scalar maths (engine/dynamics/fastmath.py): vectorised log and exp
+against numpy."""
+
+from __future__ import annotations
+
+import numpy as np
+from numpy.testing import assert_allclose
+
+from beltstudy.engine.dynamics.fastmath import vexp, vlog
+
+
+def test_vectorised_log_and_exp():
+    x = np.concatenate([[1e-300, 1e-12, 1.0, 2.0], np.exp(np.linspace(-20, 20, 997))])
+    out = np.empty_like(x)
+    vlog(x, out)
+    err = np.abs(out - np.log(x)) / np.maximum(1.0, np.abs(np.log(x)))
+    assert err.max() < 2e-15
+    y = np.linspace(-700, 700, 1001)
+    vexp(y, out[:1001])
+    assert_allclose(out[:1001], np.exp(y), rtol=5e-15)
+    for p in (0.3, 0.039, 1.7):  # the powers the friction laws use
+        z = np.exp(np.linspace(-5, 3, 500))
+        lz, pz = np.empty(500), np.empty(500)
+        vlog(z, lz)
+        vexp(p * lz, pz)
+        assert_allclose(pz, z**p, rtol=1e-14)

@@ -1,0 +1,65 @@
+"""The ``beltstudy simulate`` command: the JSON summary, the time series and the plot, a scenario
+file with overrides, one-line errors for bad input (exit 2)."""
+
+from __future__ import annotations
+
+import json
+
+import pandas as pd
+import pytest
+
+from beltstudy.engine.dynamics.simulate import TIMESERIES_COLUMNS
+from tests.conftest import CONVEYORS, TRANSIENT_FIELDS
+
+SLOPE = CONVEYORS / "slope-5pct.yaml"
+
+
+def test_cli_simulate_json_timeseries_plot(tmp_path, capsys):
+    from beltstudy.service.cli import main
+
+    ts_path = tmp_path / "ts.parquet"
+    png = tmp_path / "fig4.png"
+    code = main(["simulate", str(SLOPE), "--model", "din", "--elements", "40",
+                 "--start-time-s", "15", "--run-s", "5", "--stop-mode", "controlled",
+                 "--stop-time-s", "10", "--json", "--timeseries", str(ts_path),
+                 "--plot", str(png)])
+    out = capsys.readouterr().out
+    assert code == 0
+    s = json.loads(out)
+    assert s["stop_mode"] == "controlled" and s["elements_used"] == 42
+    for key in TRANSIENT_FIELDS + ("status", "message"):
+        assert key in s
+    ts = pd.read_parquet(ts_path)
+    assert tuple(ts.columns[: len(TIMESERIES_COLUMNS)]) == TIMESERIES_COLUMNS
+    assert png.stat().st_size > 10_000
+
+
+def test_cli_scenario_file_with_overrides(tmp_path, capsys):
+    from beltstudy.service.cli import main
+
+    scn = tmp_path / "scn.yaml"
+    scn.write_text("scenario:\n  load: empty\n  start: {control: linear, time_s: 12}\n"
+                   "  run_s: 3\n  stop: {mode: coast}\n  elements: 40\n")
+    code = main(["simulate", str(SLOPE), "--scenario", str(scn), "--stop-mode", "controlled",
+                 "--stop-time-s", "30", "--start-control", "s-curve", "--start-time-s", "60",
+                 "--json"])
+    s = json.loads(capsys.readouterr().out)
+    assert code == 0
+    assert s["load"] == "empty" and s["stop_mode"] == "controlled"
+    assert s["elements_used"] == 42 and s["status"] != "failed"
+
+
+@pytest.mark.parametrize("argv,expect", [
+    (["--stop-mode", "brake"], "scenario.stop.mode"),
+    (["--run-s", "-3"], "scenario.run_s"),
+    (["--dt-s", "2", "--elements", "40"], "scenario.dt_s"),
+    (["--model", "nonlinn"], "unknown model"),
+])
+def test_cli_bad_input_one_line_exit_2(argv, expect, capsys):
+    from beltstudy.service.cli import main
+
+    code = main(["simulate", str(SLOPE), *argv])
+    err = capsys.readouterr().err
+    assert code == 2
+    assert err.startswith("error: ") and expect in err
+    assert err.count("\n") == 1
