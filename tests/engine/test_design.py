@@ -106,7 +106,7 @@ def test_auto_sizes_are_what_the_transient_model_uses(name):
     st = solve_steady(conv, model="din", n_elements=60)
     sizes = auto_sizes(conv, scn, model="din", steady=st)
     sys = build_system(conv, scn, st)
-    assert_allclose(sys.total_mass_kg, moving_mass_kg(conv, st), rtol=1e-12)
-    assert_allclose(np.sum(sys.drive_rated_n) * conv.speed_m_s / 1e3,
+    assert_allclose(sys.model.control.m_tot, moving_mass_kg(conv, st), rtol=1e-12)
+    assert_allclose(np.sum(sys.model.drives.rated) * conv.speed_m_s / 1e3,
                     sum(sizes["drive_rated_power_kw"]), rtol=1e-6)
-    assert_allclose(sys.brake_force_n / 1e3, sizes["brake_force_kn"], rtol=1e-9)
+    assert_allclose(sys.model.brakes.force / 1e3, sizes["brake_force_kn"], rtol=1e-9)

@@ -11,7 +11,7 @@ import pytest
 
 from beltstudy.engine.conveyor import Scenario, load_conveyor, parse_conveyor
 from beltstudy.engine.dynamics import DynamicsOptions, build_system, simulate
-from beltstudy.engine.dynamics.model import chord_strain
+from beltstudy.engine.dynamics.model import chord_strain, with_probes
 from beltstudy.engine.friction import get_model
 from beltstudy.engine.loop import build_loop
 from beltstudy.engine.run import run_one
@@ -101,7 +101,7 @@ def test_fronts_travel_at_the_dynamic_wave_speed_with_damping_on(modulus, dynami
                                                        ernst=False, pulley_mass_kg=0.0))
     assert sysm.damping == "belt" and sysm.mesh_viscosity > 0.0
     eb = (dynamic or 1.1 * modulus) * 1e3  # custom steel-kind belt: the catalogue ratio 1.1
-    assert sysm.stiffness_dyn_n == pytest.approx(eb, rel=1e-12)
+    assert sysm.model.springs.eb_dyn == pytest.approx(eb, rel=1e-12)
     rho, dv = 30.0, 1.0
     c, z = math.sqrt(eb / rho), math.sqrt(eb * rho)
     loop = st.loop
@@ -111,9 +111,9 @@ def test_fronts_travel_at_the_dynamic_wave_speed_with_damping_on(modulus, dynami
     s = sysm.s_end_m
     head = s[sysm.i_head - 1]
     near, far = (int(np.argmin(np.abs(s - (head - d)))) for d in (100.0, 1100.0))
-    sysm.probe_springs = np.array([near, far])
-    r = simulate(sysm, t_end_s=sysm.pre_rest_s + (head - s[far]) / c + 0.5)
-    t = r.traces["t_s"].to_numpy() - sysm.pre_rest_s
+    sysm = with_probes(sysm, [near, far])
+    r = simulate(sysm, t_end_s=sysm.model.cycle.t_pre + (head - s[far]) / c + 0.5)
+    t = r.traces["t_s"].to_numpy() - sysm.model.cycle.t_pre
     d_near = r.traces.iloc[:, 1].to_numpy() * 1e3 - sysm.tension_rest_n[near]
     d_far = r.traces.iloc[:, 2].to_numpy() * 1e3 - sysm.tension_rest_n[far]
     t1, t2 = _arrival(t, d_near, 0.5 * z * dv), _arrival(t, d_far, 0.5 * z * dv)
@@ -133,11 +133,11 @@ def test_the_static_modulus_governs_the_settled_stretch():
     st = solve_steady(conv, model="din", n_elements=80)
     sysm = build_system(conv, Scenario(start={"time_s": 20}, run_s=40, elements=80), st)
     r = simulate(sysm, t_end_s=sysm.stop_command_s - sysm.dt_s)
-    eps_rest = chord_strain(np.maximum(sysm.tension_rest_n, 0.0), sysm.a_ernst,
-                            sysm.stiffness_n, sysm.t_floor_n, sysm.k_floor_n)
-    eps_run = chord_strain(sysm.steady_tension_n, sysm.a_ernst, sysm.stiffness_n,
-                           sysm.t_floor_n, sysm.k_floor_n)
-    x_static = 0.5 * float(np.sum(sysm.len_m * (eps_run - eps_rest)))
+    eps_rest = chord_strain(np.maximum(sysm.tension_rest_n, 0.0), sysm.model.springs.a_ernst,
+                            sysm.model.springs.eb, sysm.model.springs.t_floor, sysm.model.springs.k_floor)
+    eps_run = chord_strain(sysm.steady_tension_n, sysm.model.springs.a_ernst, sysm.model.springs.eb,
+                           sysm.model.springs.t_floor, sysm.model.springs.k_floor)
+    x_static = 0.5 * float(np.sum(sysm.model.springs.len_m * (eps_run - eps_rest)))
     assert r.raw["x_takeup"] == pytest.approx(x_static, rel=0.02)
     # the dynamic modulus would give 2/3 of that
     assert abs(r.raw["x_takeup"] - x_static * 6000 / 9000) > 0.1 * x_static
