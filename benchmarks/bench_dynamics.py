@@ -201,9 +201,9 @@ def dt_scaling():
         sls = build_system(conv, Scenario(**OVERLAND), st)
         # an explicit Kelvin-Voigt term with 5 % damping on the fundamental mode instead:
         # viscosity per spring (tension per relative speed) = c / len
-        c = 2.0 * 0.05 * sls.stiffness_n / (0.5 * np.pi / sls.wave_loop_time_s)
-        kv_lim = stability_limit_s(sls.mass_kg, sls.len_m, sls.stiffness_n, sls.implicit,
-                                   c / sls.len_m)
+        c = 2.0 * 0.05 * sls.model.springs.eb / (0.5 * np.pi / sls.wave_loop_time_s)
+        kv_lim = stability_limit_s(sls.model.nodes.mass, sls.model.springs.len_m, sls.model.springs.eb, sls.implicit,
+                                   c / sls.model.springs.len_m)
         rows.append((n, float(np.median(sls.dx_m)), sls.dt_s, 0.5 * kv_lim))
     return rows
 
