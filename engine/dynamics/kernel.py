@@ -39,8 +39,9 @@ from numba import njit, uintp
 
 from beltstudy.engine.dynamics import codes as C
 from beltstudy.engine.dynamics.blocks import block_step
+from beltstudy.engine.dynamics.brakes import brake_force, set_at
 from beltstudy.engine.dynamics.fastmath import OPTS
-from beltstudy.engine.dynamics.laws import brake_fraction, coupling_torque, motor_force
+from beltstudy.engine.dynamics.laws import coupling_torque, motor_force
 from beltstudy.engine.dynamics.passes import (
     extremes,
     law_flagged,
@@ -152,7 +153,8 @@ def _drive_laws(model, rs, first_off):
 
 @njit(inline="always", **OPTS)
 def _brake_forces(model, rs):
-    """Command, release and current force of every brake; the force on each shaft. Returns
+    """Command, release and current force of every brake (its law:
+    :func:`beltstudy.engine.dynamics.brakes.brake_force`); the force on each shaft. Returns
     the time the last holding brake is fully set (-1 while one is not)."""
     brakes = model.brakes
     shafts = model.shafts
@@ -173,19 +175,16 @@ def _brake_forces(model, rs):
         if brakes.hold[b] == 0 and stopped and brakes.t_cmd[b] >= 0.0:
             brakes.released[b] = 1  # a brake without hold is released once the belt stopped
         f = 0.0
+        s = brakes.shaft[b]
         if brakes.t_cmd[b] >= 0.0 and brakes.released[b] == 0:
-            tau = t - brakes.t_cmd[b] - brakes.delay[b]
-            f = brakes.force[b] * brake_fraction(tau, brakes.ramp[b], brakes.curve_t[b],
-                                                  brakes.curve_f[b], brakes.curve_n[b])
-        shafts.fb[brakes.shaft[b]] += f
+            f = brake_force(brakes, b, t - brakes.t_cmd[b] - brakes.delay[b], shafts.vs[s])
+        shafts.fb[s] += f
         if brakes.hold[b] == 1:
             any_hold = True
             if brakes.t_cmd[b] < 0.0:
                 pending = True
             else:
-                nc = brakes.curve_n[b]
-                full = brakes.curve_t[b, nc - 1] if nc > 0 else brakes.ramp[b]
-                latest = max(latest, brakes.t_cmd[b] + brakes.delay[b] + full)
+                latest = max(latest, set_at(brakes, b))
     if not any_hold or pending or t < latest:
         return -1.0
     return latest

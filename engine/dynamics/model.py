@@ -53,6 +53,7 @@ import numpy as np
 from beltstudy.engine import design
 from beltstudy.engine.conveyor import Conveyor, InputError, Scenario
 from beltstudy.engine.dynamics import profiles
+from beltstudy.engine.dynamics.brakes import build_brakes
 from beltstudy.engine.dynamics.codes import (
     BLOCK_MAX,
     BRAKE,
@@ -61,7 +62,6 @@ from beltstudy.engine.dynamics.codes import (
     COUPLING_FILL,
     COUPLING_FLUID,
     COUPLING_NONE,
-    CURVE_MAX,
     DOL,
     LAW_CONST,
     LAW_EXACT,
@@ -72,6 +72,7 @@ from beltstudy.engine.dynamics.codes import (
     V_FAIL_FACTOR,
     VFD,
 )
+from beltstudy.engine.dynamics.laws import padded_curves
 from beltstudy.engine.dynamics.linlaw import (
     BIG,
     K_LIN,
@@ -83,7 +84,6 @@ from beltstudy.engine.dynamics.linlaw import (
 from beltstudy.engine.dynamics.passes import CHUNK, N_F, N_G, N_O, law_rows
 from beltstudy.engine.dynamics.records import (
     Blocks,
-    Brakes,
     Control,
     Cycle,
     Drives,
@@ -515,22 +515,6 @@ def _ranges(mask: np.ndarray) -> np.ndarray:
     return np.ascontiguousarray(np.column_stack([starts, ends]), dtype=np.int64)
 
 
-def _curves(curves, width: int = CURVE_MAX) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    """Pad a list of point lists to arrays (k, width) and their lengths."""
-    k = max(len(curves), 1)
-    xs = np.zeros((k, width))
-    ys = np.zeros((k, width))
-    ns = np.zeros(k, dtype=np.int64)
-    for i, c in enumerate(curves):
-        if len(c) > width:
-            raise ValueError(f"a curve has more than {width} points")
-        ns[i] = len(c)
-        for p, (x, y) in enumerate(c):
-            xs[i, p] = x
-            ys[i, p] = y
-    return xs, ys, ns
-
-
 def _i64(x) -> np.ndarray:
     return np.ascontiguousarray(x, dtype=np.int64)
 
@@ -788,7 +772,7 @@ def _drives(conv: Conveyor, loop: Loop, shaft_index: dict, rated: np.ndarray,
     curve, fill and trip times, the motor's mass behind a coupling."""
     nd = len(conv.drives)
     limit = np.array([d.torque_limit for d in conv.drives]) * rated
-    cx, cy, cn = _curves([tuple(d.curve) for d in conv.drives])
+    cx, cy, cn = padded_curves([tuple(d.curve) for d in conv.drives])
     z = np.zeros(nd)
     return Drives(
         shaft=_i64([shaft_index[e] for e in loop.drive_elements]),
@@ -867,25 +851,6 @@ def _takeup(conv, loop, steady, springs: Springs, T_rest, T_run) -> Takeup:
     mid = 0.5 * min(max(x_run, -travel), travel)
     return Takeup(gravity=gravity_tu, node=int(loop.i_takeup), weight=weight, mass=inertia,
                   lo=mid - 0.5 * travel, hi=mid + 0.5 * travel, x_run=x_run)
-
-
-def _brakes(conv, scn, loop, shaft_index, total_mass, te, gravity_sum, notes) -> Brakes:
-    """The brakes in file order with their forces (auto ones sized by
-    :func:`beltstudy.engine.design.brake_forces`)."""
-    force = []
-    if conv.brakes:
-        kn, _why, note = design.brake_forces(conv, scn, total_mass, te, gravity_sum)
-        force = [f * 1e3 for f in kn]
-        if note:
-            notes.append(note)
-    nb = len(conv.brakes)
-    bt, bf, bn = _curves([tuple(b.force_curve or ()) for b in conv.brakes])
-    return Brakes(
-        shaft=_i64([shaft_index[loop.brake_element(b)] for b in conv.brakes]),
-        node=_i64([loop.brake_element(b) for b in conv.brakes]), force=_f64(force),
-        delay=_f64([b.delay_s for b in conv.brakes]), ramp=_f64([b.ramp_s for b in conv.brakes]),
-        curve_t=bt, curve_f=bf, curve_n=bn, hold=_i64([1 if b.hold else 0 for b in conv.brakes]),
-        t_cmd=np.full(nb, -1.0), released=np.zeros(nb, dtype=np.int64))
 
 
 def _cycle(conv, scn, opts, n, dt, t_loop, total_mass, te, v_d, hold, drive_train):
@@ -1004,7 +969,7 @@ def build_system(conv: Conveyor, scn: Scenario, steady, options: DynamicsOptions
     tu_weight = float(steady.takeup_mass_kg) * G if conv.takeup.type == "gravity" else 0.0
     hold, T_rest, warns = _rest(conv, loop, springs, nodes.gravity, T_run, tu_weight)
     takeup = _takeup(conv, loop, steady, springs, T_rest, T_run)
-    brakes = _brakes(conv, scn, loop, shaft_index, total_mass, te, gravity_sum, notes)
+    brakes = build_brakes(conv, scn, loop, shaft_index, total_mass, te, gravity_sum, notes)
     cycle = _cycle(conv, scn, opts, n, dt, t_loop, total_mass, te, v_d, hold, train)
     model = Model(
         cycle=cycle, nodes=nodes, law=law, lin=_lin(law, nodes, cycle.v_eps), springs=springs,

@@ -10,7 +10,8 @@ fresh :class:`State`, :class:`Out` and :class:`Work` and calls the kernel
 (:mod:`beltstudy.engine.dynamics.reference`) reads the same records.
 
 Records are named tuples of float64 / int64 arrays and scalars, which numba compiles as
-structs; the run's scalars, the per-drive and per-shaft results and the time-series records are
+structs (the brakes' record is defined with their law in
+:mod:`beltstudy.engine.dynamics.brakes`); the run's scalars, the per-drive and per-shaft results and the time-series records are
 numpy structured arrays (:data:`RUN`, :data:`DRIVE_RESULT`, :data:`SHAFT_SLIP`,
 :data:`RECORD`, :data:`DRIVE_RECORD`): fields by name in the kernel (``rs.vmax``) and in
 Python (``out.run["vmax"]``). Units SI; per-element arrays have length n, per-spring arrays
@@ -23,6 +24,8 @@ from __future__ import annotations
 from typing import NamedTuple
 
 import numpy as np
+
+from beltstudy.engine.dynamics.brakes import Brakes
 
 __all__ = ["Cycle", "Nodes", "Law", "Lin", "Springs", "Blocks", "Shafts", "Drives", "Brakes",
            "Takeup", "Control", "Probes", "Model", "State", "Out", "Work", "RUN",
@@ -243,24 +246,6 @@ class Drives(NamedTuple):
     force: np.ndarray
     ft: np.ndarray
     f_trip: np.ndarray
-
-
-class Brakes(NamedTuple):
-    """Brakes in file order: shaft, element, full force [N], delay and ramp [s], force curve
-    (points per brake: time [s], fraction of the full force), hold flag; *state*: command time
-    (-1 not commanded), released flag."""
-
-    shaft: np.ndarray
-    node: np.ndarray
-    force: np.ndarray
-    delay: np.ndarray
-    ramp: np.ndarray
-    curve_t: np.ndarray
-    curve_f: np.ndarray
-    curve_n: np.ndarray
-    hold: np.ndarray
-    t_cmd: np.ndarray
-    released: np.ndarray
 
 
 class Takeup(NamedTuple):

@@ -14,7 +14,7 @@ from numpy.testing import assert_allclose
 
 from beltstudy.engine.conveyor import InputError, Scenario, load_conveyor, parse_conveyor
 from beltstudy.engine.dynamics import DynamicsOptions, build_system, simulate
-from beltstudy.engine.dynamics.laws import brake_fraction
+from beltstudy.engine.dynamics.brakes import brake_fraction
 from beltstudy.engine.dynamics.simulate import slip_words
 from beltstudy.engine.run import run_one
 from beltstudy.engine.statics import solve_steady
