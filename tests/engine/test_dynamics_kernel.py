@@ -15,15 +15,11 @@ from beltstudy.engine.dynamics import DynamicsOptions, build_system, simulate
 from beltstudy.engine.dynamics import codes as C
 from beltstudy.engine.dynamics.blocks import solve_arrow
 from beltstudy.engine.dynamics.fastmath import vexp, vlog
-from beltstudy.engine.dynamics.model import implicit_blocks
+from beltstudy.engine.dynamics.model import exponent_codes, implicit_blocks, with_law, with_step
 from beltstudy.engine.dynamics.passes import resistance, spring
+from beltstudy.engine.dynamics.records import Springs
 from beltstudy.engine.dynamics.reference import _law, run_reference
-from beltstudy.engine.dynamics.simulate import (
-    SURFACE_COLUMNS,
-    TIMESERIES_COLUMNS,
-    exponent_codes,
-    prepare,
-)
+from beltstudy.engine.dynamics.simulate import SURFACE_COLUMNS, TIMESERIES_COLUMNS, fresh_run
 from beltstudy.engine.statics import solve_steady
 from tests.conftest import CONVEYORS, hand_conveyor_dict
 
@@ -49,10 +45,9 @@ FOLLOWER_BRAKE = [dict(drive=2, force_kn=300, delay_s=0.3, ramp_s=0.5, hold=True
 SHORT_TRAVEL = dict(type="gravity", position="head", mass_kg="auto", travel_m=1.0)
 
 
-def _slipped_in_start(ki):
-    drv = ki.args["out"].drv
-    return (drv[:, C.DRV.SLIP_S] > 0).any() and drv[:, C.DRV.SLIP_FIRST].min() < \
-        ki.args["out"].res[C.RES.T_STOPCMD]
+def _slipped_in_start(kr):
+    drv = kr.out.drv
+    return (drv["slip_s"] > 0).any() and drv["slip_first"].min() < kr.run["t_stopcmd"]
 
 
 # each case: conveyor and changes, friction model, scenario, and what the case must exercise
@@ -62,13 +57,12 @@ CASES = [
     pytest.param("fabric-1km", {}, "nonlin",
                  dict(start={"control": "s-curve", "time_s": 12}, run_s=3,
                       stop={"mode": "coast"}),
-                 lambda ki: ki.args["ip"][C.IP.LAW_MODE] == C.LAW_LINEAR
-                 and ki.args["out"].res[C.RES.LAW_EVALS] > 0,
+                 lambda kr: kr.model.law.mode == C.LAW_LINEAR and kr.run["law_evals"] > 0,
                  id="fabric-nonlin-holdback-coast"),
     pytest.param("overland-16km", {}, "din",
                  dict(start={"control": "linear", "time_s": 30}, run_s=3,
                       stop={"mode": "brake", "time_s": 20}),
-                 lambda ki: ki.args["out"].res[C.RES.HOLD_SET] >= 0.0,
+                 lambda kr: kr.run["hold_set"] >= 0.0,
                  id="overland-head-tail-drives-head-takeup-brake-stop"),
     pytest.param("slope-5pct", {}, "cmod",
                  dict(start={"control": "torque", "time_s": 12}, run_s=3,
@@ -84,28 +78,28 @@ CASES = [
     pytest.param("slope-5pct", dict(drives=HEAD_PAIR), "din",
                  dict(start={"control": "s-curve", "time_s": 12}, run_s=3,
                       stop={"mode": "controlled", "time_s": 10}),
-                 lambda ki: len(ki.args["drives"].share) == 2, id="dual-head-half-shares"),
+                 lambda kr: len(kr.model.drives.share) == 2, id="dual-head-half-shares"),
     pytest.param("fabric-1km", dict(drives=LOW_FRICTION), "din",
                  dict(start={"control": "s-curve", "time_s": 6}, run_s=3,
                       stop={"mode": "coast"}), _slipped_in_start, id="drive-slips-in-start"),
     pytest.param("fabric-1km", dict(drives=DOL_FLUID), "din",
                  dict(start={"time_s": 12}, run_s=3, stop={"mode": "coast"}),
-                 lambda ki: ki.args["drives"].vm.max() > 0.0 or ki.args["out"].res[
-                     C.RES.TRIP] > 0.0, id="dol-fluid-coupling-trip"),
+                 lambda kr: kr.model.drives.vm.max() > 0.0 or kr.run["t_trip"] > 0.0,
+                 id="dol-fluid-coupling-trip"),
     pytest.param("downhill-regen", dict(brakes=HOLDING_BRAKES), "din",
                  dict(start={"control": "linear", "time_s": 12}, run_s=3,
                       stop={"mode": "brake", "time_s": 12}),
-                 lambda ki: ki.args["out"].res[C.RES.HOLD_SET] >= 0.0,
+                 lambda kr: kr.run["hold_set"] >= 0.0,
                  id="brake-stop-ramp-curve-holding-brake"),
     pytest.param("slope-5pct", dict(drives=HEAD_PAIR, holdback=False, brakes=FOLLOWER_BRAKE),
                  "din", dict(start={"control": "s-curve", "time_s": 12}, run_s=3,
                              stop={"mode": "controlled", "time_s": 10}),
-                 lambda ki: ki.args["out"].res[C.RES.HOLD_SET] >= 0.0,
+                 lambda kr: kr.run["hold_set"] >= 0.0,
                  id="holding-brake-on-a-torque-follower"),
     pytest.param("overland-16km", dict(takeup=SHORT_TRAVEL), "din",
                  dict(start={"control": "linear", "time_s": 20}, run_s=3,
                       stop={"mode": "coast"}),
-                 lambda ki: ki.args["out"].res[C.RES.ENDSTOP] > 0,
+                 lambda kr: kr.run["endstop"] > 0,
                  id="carriage-at-its-end-stop"),
 ]
 
@@ -114,12 +108,12 @@ CASES = [
     pytest.param("fabric-1km", {}, "nonlin",
                  dict(start={"control": "s-curve", "time_s": 12}, run_s=3,
                       stop={"mode": "coast"}, options=dict(resistance_rtol=0.0)),
-                 lambda ki: ki.args["ip"][C.IP.LAW_MODE] == C.LAW_EXACT,
+                 lambda kr: kr.model.law.mode == C.LAW_EXACT,
                  id="fabric-nonlin-exact-law"),
     pytest.param("slope-5pct", {}, "nonlin",
                  dict(start={"control": "s-curve", "time_s": 12}, run_s=3,
                       stop={"mode": "controlled", "time_s": 10}),
-                 lambda ki: ki.args["out"].res[C.RES.LAW_EVALS] > 0,
+                 lambda kr: kr.run["law_evals"] > 0,
                  id="slope-nonlin-controlled-stop"),
 ])
 def test_kernel_matches_numpy_reference(name, changes, model, scenario, exercised):
@@ -134,19 +128,18 @@ def test_kernel_matches_numpy_reference(name, changes, model, scenario, exercise
     scn = Scenario(**scenario)
     st = solve_steady(conv, model=model, load=scn.load, n_elements=40)
     sys = build_system(conv, scn, st, opts)
-    ki = prepare(sys)
-    ki.call()
+    kr = fresh_run(sys)
+    kr.call()
     ref = run_reference(sys)
-    a = ki.args
-    out, state, shafts, drives = a["out"], a["st"], a["shafts"], a["drives"]
-    res = out.res
-    nseg = int(res[C.RES.NSEG])
+    out, state, shafts, drives = kr.out, kr.state, kr.model.shafts, kr.model.drives
+    res = kr.run
+    nseg = int(res["seg"]) + 1
     if exercised is not None:
-        assert exercised(ki)
+        assert exercised(kr)
     t_tol = 1e-9 * float(np.abs(ref["tension"]).max())
     v_tol = 1e-9 * sys.v_design
-    assert int(res[C.RES.STEPS]) == ref["steps"]
-    assert int(res[C.RES.STATUS]) == ref["status"] == C.OK
+    assert int(res["steps"]) == ref["steps"]
+    assert int(res["status"]) == ref["status"] == C.OK
     assert_allclose(state.tt, ref["tension"], atol=t_tol, rtol=0)
     assert_allclose(state.te, ref["te"], atol=t_tol, rtol=0)
     assert_allclose(state.ts, ref["ts"], atol=1e-9 * float(np.abs(ref["ts"]).max()), rtol=0)
@@ -154,22 +147,21 @@ def test_kernel_matches_numpy_reference(name, changes, model, scenario, exercise
     assert_allclose(state.v, ref["v"], atol=v_tol, rtol=0)
     assert_allclose(out.seg_env[:nseg, 0].max(axis=0), ref["t_max"], atol=t_tol, rtol=0)
     assert_allclose(out.seg_env[:nseg, 2].min(axis=0), ref["t_min"], atol=t_tol, rtol=0)
-    assert state.misc[0] == pytest.approx(ref["x_takeup"], abs=1e-9)
-    assert state.misc[1] == pytest.approx(ref["u_takeup"], abs=v_tol)
-    assert state.misc[2] == pytest.approx(ref["integrator"], abs=t_tol)
+    assert res["x_tu"] == pytest.approx(ref["x_takeup"], abs=1e-9)
+    assert res["u_tu"] == pytest.approx(ref["u_takeup"], abs=v_tol)
+    assert res["integ"] == pytest.approx(ref["integrator"], abs=t_tol)
     assert_allclose(shafts.vs, ref["shaft_speed"], atol=v_tol, rtol=0)
     assert_allclose(shafts.slip, ref["shaft_slip"], atol=0, rtol=0)
     assert_allclose(drives.force, ref["drive_force"], atol=t_tol, rtol=0)
-    assert res[C.RES.W_DRIVE] == pytest.approx(ref["w_drive"], rel=1e-9)
-    for key, name in (("START_ACH", "start_ach"), ("STOP_ACH", "stop_ach"), ("TRIP", "t_trip"),
-                      ("HOLD_SET", "hold_set")):
-        assert res[getattr(C.RES, key)] == pytest.approx(ref[name], abs=1e-9), key
-    assert res[C.RES.SLACK_DUR] == pytest.approx(ref["slack_s"], abs=1e-9)
-    assert_allclose(out.drv[:, C.DRV.SLIP_S], ref["slip_s"], atol=1e-9, rtol=0)
-    assert_allclose(out.drv[:, C.DRV.SLIP_M], ref["slip_m"], atol=1e-9, rtol=1e-9)
-    assert_allclose(out.shs[:, 0], ref["shaft_slip_s"], atol=1e-9, rtol=0)
-    assert_allclose(out.shs[:, 1], ref["shaft_slip_m"], atol=1e-9, rtol=1e-9)
-    assert res[C.RES.LAW_EVALS] == ref["law_evals"]
+    assert res["w_drive"] == pytest.approx(ref["w_drive"], rel=1e-9)
+    for key in ("start_ach", "stop_ach", "t_trip", "hold_set"):
+        assert res[key] == pytest.approx(ref[key], abs=1e-9), key
+    assert res["slack_dur"] == pytest.approx(ref["slack_s"], abs=1e-9)
+    assert_allclose(out.drv["slip_s"], ref["slip_s"], atol=1e-9, rtol=0)
+    assert_allclose(out.drv["slip_m"], ref["slip_m"], atol=1e-9, rtol=1e-9)
+    assert_allclose(out.shs["slip_s"], ref["shaft_slip_s"], atol=1e-9, rtol=0)
+    assert_allclose(out.shs["slip_m"], ref["shaft_slip_m"], atol=1e-9, rtol=1e-9)
+    assert res["law_evals"] == ref["law_evals"]
 
 
 @pytest.mark.parametrize("changes, scenario, status", [
@@ -189,16 +181,16 @@ def test_kernel_and_reference_end_a_run_alike(changes, scenario, status):
     scn = Scenario(elements=40, start={"time_s": 20}, run_s=10, stop={"mode": "coast"},
                    **scenario)
     sys = build_system(conv, scn, solve_steady(conv, model="din", n_elements=40))
-    ki = prepare(sys)
-    ki.call()
+    kr = fresh_run(sys)
+    kr.call()
     ref = run_reference(sys)
-    res = ki.args["out"].res
-    assert int(res[C.RES.STATUS]) == ref["status"] == status
-    assert int(res[C.RES.STEPS]) == ref["steps"]
+    res = kr.run
+    assert int(res["status"]) == ref["status"] == status
+    assert int(res["steps"]) == ref["steps"]
     if status == C.RUNAWAY:
-        assert_allclose(ki.args["st"].v, ref["v"], atol=1e-9 * sys.v_design, rtol=0)
+        assert_allclose(kr.state.v, ref["v"], atol=1e-9 * sys.v_design, rtol=0)
     else:
-        assert int(res[C.RES.DIV_WHERE]) == ref["div_where"] >= 0
+        assert int(res["div_where"]) == ref["div_where"] >= 0
 
 
 def test_vectorised_log_and_exp():
@@ -239,17 +231,17 @@ def test_divergence_ends_the_run_failed_quickly():
     conv = load_conveyor(CONVEYORS / "fabric-1km.yaml")
     st = solve_steady(conv, n_elements=60)
     sys = build_system(conv, Scenario(), st, DynamicsOptions(damping="off"))
-    sys.dt_s = 3.0 * sys.dt_limit_s
+    sys = with_step(sys, 3.0 * sys.dt_limit_s)
     t0 = time.perf_counter()
     res = simulate(sys)
     assert time.perf_counter() - t0 < 5.0
     assert res.status == "failed"
     assert "diverged" in res.message and "dt" in res.message
     sys = build_system(conv, Scenario(), st)
-    sys.gravity_n[5] = np.nan
+    sys.model.nodes.gravity[5] = np.nan
     res = simulate(sys)
     assert res.status == "failed" and "diverged" in res.message
-    assert res.raw["T_END"] < 1.0
+    assert res.raw["t_end"] < 1.0
 
 
 def test_records_and_envelopes_are_consistent():
@@ -280,7 +272,7 @@ def test_records_and_envelopes_are_consistent():
     assert s["dyn_factor"] == pytest.approx(s["t_max_dyn_kn"] / st.summary["t_max_kn"])
     # surface rows: every sampled time with every sampled spring
     n_t = res.surface["t_s"].nunique()
-    assert len(res.surface) == n_t * len(sys.surface_springs)
+    assert len(res.surface) == n_t * len(sys.model.probes.surface)
 
 
 def test_rk45_on_the_same_equations_agrees():
@@ -327,19 +319,32 @@ def test_resistance_every_exponent_code_matches_the_reference_law():
     coef = np.array(coef)
     coef[-1, :] = 0.0
     coef[-1, [3, 17]] = 5.0  # a sparse term
-    sys.coef, sys.pv, sys.ps = coef, np.array(pv), np.array(ps)
-    a = prepare(sys).args
-    law, nodes = a["law"], a["nodes"]
+    pv, ps = np.array(pv), np.array(ps)
+    kr = fresh_run(with_law(sys, coef, pv, ps))
+    law, nodes, wk = kr.model.law, kr.model.nodes, kr.work
+    assert law.any_ps
     assert law.t_sparse[-1] == 1 and law.t_sparse[:-1].sum() == 0
-    assert set(exponent_codes(sys.pv)) | set(exponent_codes(sys.ps)) == {0, 1, 2, 3, 4, 5}
+    assert set(exponent_codes(pv)) | set(exponent_codes(ps)) == {0, 1, 2, 3, 4, 5}
     for v in (np.zeros(n), rng.normal(0.0, 3.0, n)):
         tt = np.maximum(rng.normal(5e4, 3e4, n), 0.0)
-        r0 = np.empty(n)
-        resistance(r0, v, tt, law.coef, law.pvc, law.pvv, law.psc, law.psv, nodes.sw_ref,
-                   nodes.hsm_ref, True, np.empty(n), np.empty(n), np.empty(n), law.t_sparse,
-                   law.t_ptr, law.t_idx)
-        ref = _law(sys, v, tt)
-        assert_allclose(r0, ref, rtol=1e-13, atol=1e-12 * np.abs(ref).max())
+        resistance(law, nodes, kr.state._replace(v=v, tt=tt), wk)
+        ref = _law(law, nodes, v, tt)
+        assert_allclose(wk.r0, ref, rtol=1e-13, atol=1e-12 * np.abs(ref).max())
+
+
+def _spring(e0, s0, de, tfl, sfl, kfl_eb, a_eb, eb):
+    """The kernel's update of one spring (:func:`passes.spring`) from elastic tension e0 and
+    strain tension s0 after the strain increment de: no arm, no viscosity, no carriage."""
+    def one(x):
+        return np.array([float(x)])
+
+    none = np.zeros((0, 2), dtype=np.int64)
+    sp = Springs(len_m=one(1.0), a_ernst=one(a_eb / eb), t_floor=one(tfl),
+                 k_floor=one(kfl_eb * eb), viscosity=one(0.0), car_ind=one(0.0),
+                 eps_run=one(0.0), eb=float(eb), eb_dyn=float(eb), dl=one(1.0), a_eb=one(a_eb),
+                 s_floor=one(sfl), kfl_eb=one(kfl_eb), kvs=one(0.0), e_damp=0.0, g_damp=0.0,
+                 seg_node=none, seg_spring=none)
+    return spring(sp, 0, e0, s0, 0.0, de, 0.0)
 
 
 def _chord_s(t, eb, a_eb, tfl, kfl):
@@ -360,13 +365,11 @@ def test_unloading_past_the_floor_stores_the_geometric_slack():
     e0 = 2.0e5
     s0 = _chord_s(e0, eb, a_eb, tfl, kfl)
     de = (sf - s0) / eb - 0.1
-    e1, s1, d1, t1 = spring(e0, s0, 0.0, de, 1.0, 0.0, tfl, sf, kfl / eb, a_eb, eb, 0.0, 0.0,
-                            0.0)
+    e1, s1, d1, t1 = _spring(e0, s0, de, tfl, sf, kfl / eb, a_eb, eb)
     assert s1 == pytest.approx(s0 + eb * de, rel=1e-12)
     assert e1 == pytest.approx(tfl - 0.1 * kfl, rel=1e-9)
     assert e1 < 0.0 and t1 == 0.0 and d1 == 0.0  # slack: the belt does not push
-    e1, s1, _, _ = spring(e0, s0, 0.0, -1e-4, 1.0, 0.0, tfl, sf, kfl / eb, a_eb, eb, 0.0, 0.0,
-                          0.0)
+    e1, s1, _, _ = _spring(e0, s0, -1e-4, tfl, sf, kfl / eb, a_eb, eb)
     lo, hi = tfl, e0
     for _ in range(200):
         mid = 0.5 * (lo + hi)
@@ -391,7 +394,7 @@ def test_a_strain_cycle_through_slack_returns_the_tension_it_started_from():
     steps = np.concatenate([down, -down[::-1][rng.permutation(400)]])
     e, s, work, work_scale = e0, s0, 0.0, 0.0
     for de in steps:
-        e1, s, _, _ = spring(e, s, 0.0, de, 1.0, 0.0, tfl, sf, kfl / eb, a_eb, eb, 0.0, 0.0, 0.0)
+        e1, s, _, _ = _spring(e, s, de, tfl, sf, kfl / eb, a_eb, eb)
         work += 0.5 * (max(e, 0.0) + max(e1, 0.0)) * de
         work_scale += 0.5 * (max(e, 0.0) + max(e1, 0.0)) * abs(de)
         e = e1
@@ -408,7 +411,7 @@ def test_carriage_at_its_end_stop_is_a_warning_not_divergence():
     conv = conveyor("overland-16km", takeup=SHORT_TRAVEL)
     st = solve_steady(conv, model="nonlin", n_elements=80)
     res = simulate(build_system(conv, Scenario(elements=80, run_s=5), st), conveyor=conv)
-    assert res.raw["ENDSTOP_T"] > 0.0 and res.raw["ENDSTOP_SPEED"] > 0.0
+    assert res.raw["endstop_t"] > 0.0 and res.raw["endstop_speed"] > 0.0
     assert res.summary["takeup_travel_m"] == pytest.approx(SHORT_TRAVEL["travel_m"])
     assert res.status == "warning"
     assert "end stop" in res.message and "diverged" not in res.message
