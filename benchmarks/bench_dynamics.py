@@ -34,7 +34,6 @@ import numpy as np
 
 from beltstudy.engine.conveyor import Scenario, load_conveyor
 from beltstudy.engine.dynamics import DynamicsOptions, build_system
-from beltstudy.engine.dynamics.codes import RES
 from beltstudy.engine.dynamics.model import stability_limit_s
 from beltstudy.engine.dynamics.reference import run_reference
 from beltstudy.engine.dynamics.simulate import run_kernel
@@ -71,9 +70,9 @@ def kernel_throughput(model: str, n: int = 1000):
     system = build_system(conv, Scenario(**OVERLAND), st)
     run_kernel(system)  # compile / load the cache
     wall, (ki, _) = best_of(lambda: run_kernel(system))
-    res = ki.args["out"].res
-    steps = res[RES.STEPS]
-    return system, wall, steps, res[RES.T_END], int(res[RES.STATUS])
+    res = ki.run
+    steps = int(res["steps"])
+    return system, wall, steps, float(res["t"]), int(res["status"])
 
 
 #: Throughput acceptance: Non-Lin's element-steps per second over DIN's (1 / 1.5).
@@ -99,16 +98,16 @@ def kernel_throughputs(models, n: int = 1000, rounds: int = 5) -> dict:
                 best[model] = (wall, ki)
     out = {}
     for model, (wall, ki) in best.items():
-        res = ki.args["out"].res
-        steps = res[RES.STEPS]
-        out[model] = (systems[model], wall, steps, res[RES.T_END], int(res[RES.STATUS]),
-                      res[RES.LAW_EVALS] / (steps * systems[model].n))
+        res = ki.run
+        steps = int(res["steps"])
+        out[model] = (systems[model], wall, steps, float(res["t"]), int(res["status"]),
+                      int(res["law_evals"]) / (steps * systems[model].n))
     return out
 
 
 def reference_throughput(system, seconds: float):
     t0 = time.perf_counter()
-    out = run_reference(system, t_end_s=system.pre_rest_s + seconds)
+    out = run_reference(system, t_end_s=system.model.cycle.t_pre + seconds)
     wall = time.perf_counter() - t0
     return out["steps"] * system.n / wall
 
@@ -174,7 +173,7 @@ def rk45_comparison():
     t_end = 14.0
     run_kernel(system, t_end)
     k_wall, (ki, _) = best_of(lambda: run_kernel(system, t_end))
-    peak_k = float(ki.args["out"].res[RES.TMAX])
+    peak_k = float(ki.run["tmax"])
     y0 = ode.initial_state(system)
     scale = np.concatenate([np.full(system.n, system.v_design),
                             np.full(2 * system.n, float(np.abs(system.tension_rest_n).max())),
@@ -189,7 +188,7 @@ def rk45_comparison():
     # the kernel at a tenth of its step, to show the first-order convergence of the peak
     fine = build_system(conv, scn.model_copy(update={"dt_s": system.dt_s / 10}), st, opts)
     kf, _ = run_kernel(fine, t_end)
-    peak_f = float(kf.args["out"].res[RES.TMAX])
+    peak_f = float(kf.run["tmax"])
     return dict(k_wall=k_wall, r_wall=r_wall, nfev=sol.nfev, ok=sol.success, peak_k=peak_k,
                 peak_r=peak_r, peak_f=peak_f, dt=system.dt_s, n=system.n)
 
@@ -202,9 +201,9 @@ def dt_scaling():
         sls = build_system(conv, Scenario(**OVERLAND), st)
         # an explicit Kelvin-Voigt term with 5 % damping on the fundamental mode instead:
         # viscosity per spring (tension per relative speed) = c / len
-        c = 2.0 * 0.05 * sls.stiffness_n / (0.5 * np.pi / sls.wave_loop_time_s)
-        kv_lim = stability_limit_s(sls.mass_kg, sls.len_m, sls.stiffness_n, sls.implicit,
-                                   c / sls.len_m)
+        c = 2.0 * 0.05 * sls.model.springs.eb / (0.5 * np.pi / sls.wave_loop_time_s)
+        kv_lim = stability_limit_s(sls.model.nodes.mass, sls.model.springs.len_m, sls.model.springs.eb, sls.implicit,
+                                   c / sls.model.springs.len_m)
         rows.append((n, float(np.median(sls.dx_m)), sls.dt_s, 0.5 * kv_lim))
     return rows
 
@@ -243,7 +242,7 @@ def main() -> None:
             run_one(conv, scn, model=model)
             wall_run, r = best_of(lambda scn=scn, model=model: run_one(conv, scn, model=model),
                                   repeat=5)
-            t_end = r.transient.raw["T_END"]
+            t_end = r.transient.raw["t_end"]
             print(f"  run_one {model}, {label}: {t_end:.0f} s simulated in {wall_run:.3f} s "
                   f"(kernel {r.transient.raw['wall_s']:.3f} s), status {r.summary['status']}")
     print()

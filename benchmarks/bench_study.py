@@ -33,7 +33,7 @@ service with the study (and with ``surface: true``), ``beltstudy run``, the loop
 interleaved, so each meets the machine's other load alike, and the best round of each is
 compared (every round is printed).
 
-For study288 it then splits a run's time (statics, build and prepare, kernel, decode, the rest
+For study288 it then splits a run's time (statics, build and fresh state, kernel, decode, the rest
 of ``run_one``, measured in this process; the Arrow tables and Parquet writes of
 :func:`beltstudy.service.dask.tasks.run_batch`) and the service study's worker time (the workers' own split,
 summed by the service into ``study.json`` as ``worker_s``, and the time outside tasks: Dask
@@ -218,7 +218,7 @@ class _Timers:
 
 def engine_split(study) -> dict[str, float]:
     """Mean seconds per run of the stages of ``run_one`` over the study, in this process:
-    parse, statics (steady solve and the design sizes), build and prepare, kernel, decode,
+    parse, statics (steady solve and the design sizes), build and fresh state, kernel, decode,
     and the rest of run_one."""
     import importlib
 
@@ -231,7 +231,7 @@ def engine_split(study) -> dict[str, float]:
     timers.wrap(er, "solve_steady", "statics")
     timers.wrap(er, "auto_sizes", "statics")
     timers.wrap(er, "build_system", "build")
-    timers.wrap(sim, "prepare", "build")
+    timers.wrap(sim, "fresh_run", "build")
     timers.wrap(sim, "decode", "decode")
     timers.wrap(conveyor_mod, "parse_conveyor", "parse")
     timers.wrap(conveyor_mod, "parse_scenario", "parse")
@@ -334,7 +334,7 @@ def around_kernel(study, repeats: int = 20) -> dict[str, dict[str, float]]:
             steady = solve_steady(conv, model=spec.model, params=spec.params or None,
                                   temperature_c=scn.temperature_c, load=scn.load, n_elements=n)
             system = build_system(conv, scn, steady, DynamicsOptions())
-            ki = sim.prepare(system)
+            ki = sim.fresh_run(system)
             ki.call()
             kw = {"steady_summary": steady.summary, "conveyor": conv,
                   "safety_factor_min": transient_safety_min(conv, steady.loop.belt.kind)}

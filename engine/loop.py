@@ -242,14 +242,15 @@ def build_loop(
     cols: dict[str, list] = {k: [] for k in (
         "strand", "dx", "z", "sin", "cos", "S", "D", "rolls", "trough", "mL", "mR", "drag")}
 
-    def add(strand, dx, z, sin, cos, S, D, rolls, trough, mL_, mR, drag, k=None):
-        """One element, or ``k`` equal elements at the heights in the list ``z``."""
-        values = (strand, dx, z, sin, cos, S, D, rolls, trough, mL_, mR, drag)
+    def add(k=None, **values):
+        """One element, or ``k`` equal elements at the heights in the list ``z``; a value for
+        every column, by name."""
         if k is None:
-            for key, v in zip(cols, values, strict=True):
-                cols[key].append(v)
+            for key in cols:
+                cols[key].append(values[key])
             return
-        for key, v in zip(cols, values, strict=True):
+        for key in cols:
+            v = values[key]
             cols[key].extend(v if key == "z" else [v] * k)
 
     def heights(z: float, dz: float, k: int) -> tuple[list[float], float]:
@@ -268,8 +269,9 @@ def build_loop(
         sin = sec.lift_m / sec.length_m
         cos = math.sqrt(1.0 - sin * sin)
         zs, z = heights(z, dx * sin, k)
-        add(CARRY, dx, zs, sin, cos, ic.spacing_m, ic.roll_diameter_m, ic.rolls,
-            ic.trough_deg, design_mL * frac, carry_mass / ic.spacing_m, carry_drag, k=k)
+        add(k, strand=CARRY, dx=dx, z=zs, sin=sin, cos=cos, S=ic.spacing_m,
+            D=ic.roll_diameter_m, rolls=ic.rolls, trough=ic.trough_deg, mL=design_mL * frac,
+            mR=carry_mass / ic.spacing_m, drag=carry_drag)
     z_head = z
     nc = len(cols["dx"])
     pulleys: list[Pulley] = []
@@ -277,8 +279,8 @@ def build_loop(
     def add_pulley(code, position, drive, diameter, wrap, mu, mu_k, takeup, z_at):
         pulleys.append(Pulley(len(cols["dx"]), position, drive, diameter, wrap, mu, mu_k,
                               takeup))
-        add(code, math.radians(wrap) * diameter / 2, z_at, 0.0, 1.0, math.inf, 0.0, 0, 0.0,
-            0.0, 0.0, 0.0)
+        add(strand=code, dx=math.radians(wrap) * diameter / 2, z=z_at, sin=0.0, cos=1.0,
+            S=math.inf, D=0.0, rolls=0, trough=0.0, mL=0.0, mR=0.0, drag=0.0)
 
     def add_end(position, code, z_at, takeup_here):
         drives = [(i, d) for i, d in enumerate(conv.drives) if d.position == position]
@@ -302,8 +304,9 @@ def build_loop(
         sin = -sec.lift_m / sec.length_m
         cos = math.sqrt(1.0 - sin * sin)
         zs, z = heights(z, dx * sin, k)
-        add(RETURN, dx, zs, sin, cos, ir.spacing_m, ir.roll_diameter_m, ir.rolls,
-            ir.trough_deg, 0.0, ret_mass / ir.spacing_m, ret_drag, k=k)
+        add(k, strand=RETURN, dx=dx, z=zs, sin=sin, cos=cos, S=ir.spacing_m,
+            D=ir.roll_diameter_m, rolls=ir.rolls, trough=ir.trough_deg, mL=0.0,
+            mR=ret_mass / ir.spacing_m, drag=ret_drag)
     # tail end: a take-up pulley before the tail drives, or the plain tail pulley as take-up
     tail_driven = any(d.position == "tail" for d in conv.drives)
     if conv.takeup.position == "tail" and tail_driven:

@@ -65,7 +65,7 @@ def _slips(conveyor: Conveyor, scenario: Scenario, model: str, params, options,
     system = build_system(conveyor, scenario, steady, options)
     tr = simulate(system, t_end_s=system.stop_command_s)
     return any(tr.summary.get(f"drive{i + 1}_slip_s", 0.0) > 0.0
-               for i in range(len(system.drive_share)))
+               for i in range(len(system.model.drives.share)))
 
 
 def _smallest(ok, x0: float, x_max: float) -> tuple[float | None, int]:

@@ -310,9 +310,11 @@ def _belt_force(wk, blocks, x, p0, k, inv_veps, tl, tr):
 
 
 @njit(inline="always", **OPTS)
-def _shaft_push(shafts, drives, s, master, U, dt, sl, ft):
+def _shaft_push(model, s, U, sl, ft):
     """Momentum over dt plus the forces on a slipping shaft but its brake [N]."""
-    p = shafts.mass[s] / dt * shafts.vs[s] - ft
+    shafts = model.shafts
+    drives = model.drives
+    p = shafts.mass[s] / model.cycle.dt * shafts.vs[s] - ft
     dk = shafts.drive[s]
     if dk >= 0:
         md = drives.mode[dk]
@@ -324,11 +326,14 @@ def _shaft_push(shafts, drives, s, master, U, dt, sl, ft):
 
 
 @njit(inline="always", **OPTS)
-def _shaft_speed(shafts, drives, s, master, U, v_ref, window, dt, sl, ts):
+def _shaft_speed(model, s, U, v_ref, sl, ts):
     """New speed of a slipping shaft: its inertia under its drive and brake forces less the
     sliding force ``sl (e^(mu_k theta) - 1) ts`` it gives the belt. A torque-following drive
-    keeps its shaft within ``window`` of the speed reference (its speed-window control)."""
-    ms = shafts.mass[s] / dt
+    keeps its shaft within the speed window (``Control.window``) of the speed reference (its
+    speed-window control)."""
+    shafts = model.shafts
+    drives = model.drives
+    ms = shafts.mass[s] / model.cycle.dt
     f = -sl * shafts.ck[s] * ts
     dd = ms
     dk = shafts.drive[s]
@@ -339,55 +344,48 @@ def _shaft_speed(shafts, drives, s, master, U, v_ref, window, dt, sl, ts):
             return v_ref
         if md == 1:
             f += drives.f0[dk] if drives.sat[dk] == 1 else drives.share[dk] * U
-            follower = dk != master
+            follower = dk != model.control.master
         else:
             f += drives.f0[dk]
             dd -= drives.f1[dk]
     v = coulomb(ms * shafts.vs[s] + f, dd, shafts.fb[s], shafts.hb[s] == 1)
     if follower:
+        window = model.control.window
         v = min(max(v, v_ref - window), v_ref + window)
     return v
 
 
 @njit(inline="always", **OPTS)
-def block_step(bk, blocks, shafts, drives, sp, nodes, st, wk, dt, v_eps, eb, e_damp, g_damp,
-               hold_node, v_ref, window, f0u, f1u, u_in, u_known, master, tu_gravity, x_tu,
-               u_tu, tu_lo, tu_hi, tu_w, tu_m):
-    """Advance the velocities of block ``bk`` by one step (see the module docstring).
-
-    Updates ``st.v``, the shafts' speeds and slip states, the drives' forces (``force`` at the
-    rim, ``ft`` passed to the belt), motor speeds and saturation, and the block's implicit
-    springs. Returns ``(U, U known, carriage speed, carriage speed at an end stop or -1,
-    holding force or nan, brake force, sum w v, sum of drive forces, drive power, drive
-    work)``.
-    """
-    p0 = blocks.ptr[bk]
-    m = blocks.ptr[bk + 1] - p0
-    car = tu_gravity and blocks.car[bk] == 1
-    v = st.v
-    te = st.te
-    tsn = st.ts
-    td = st.td
-    tt = st.tt
-    r0 = wk.r0
+def _block_setup(model, st, wk, p0, m, hold_node):
+    """The block's rows before the active set: each implicit spring's tension at the step's
+    start and its stiffness over the step (``bA``, ``bB``), each element's old speed, its
+    resistance (the positive part implicit, ``rpos``; the negative part and gravity explicit,
+    ``fexp``), its resistance zone, shaft, the held element, and the brakes of shafts that
+    stick. Returns the row of the master drive's shaft (-1 none)."""
+    blocks = model.blocks
+    shafts = model.shafts
+    sp = model.springs
+    v_eps = model.cycle.v_eps
     inv_veps = 1.0 / v_eps
+    master = model.control.master
+    r0 = wk.r0
     km = -1
     for k in range(m):
         j = blocks.nodes[p0 + k]
         if k < m - 1:
-            e0 = te[j]
+            e0 = st.te[j]
             if e0 < 0.0:
                 wk.bA[k] = 0.0
                 wk.bB[k] = 0.0
             else:
-                er, r = _spring_rest(e0, tsn[j], sp.t_floor[j], sp.a_eb[j])
-                wk.bA[k] = er + e_damp * td[j]
-                wk.bB[k] = (eb * r * (1.0 + g_damp) + sp.kvs[j]) * sp.dl[j]
-        vo = v[j]
+                er, r = _spring_rest(e0, st.ts[j], sp.t_floor[j], sp.a_eb[j])
+                wk.bA[k] = er + sp.e_damp * st.td[j]
+                wk.bB[k] = (sp.eb * r * (1.0 + sp.g_damp) + sp.kvs[j]) * sp.dl[j]
+        vo = st.v[j]
         wk.v_old[k] = vo
         r = r0[j]
         wk.rpos[k] = max(r, 0.0)
-        wk.fexp[k] = -min(r, 0.0) * min(max(vo * inv_veps, -1.0), 1.0) - nodes.gravity[j]
+        wk.fexp[k] = -min(r, 0.0) * min(max(vo * inv_veps, -1.0), 1.0) - model.nodes.gravity[j]
         wk.fz[k] = 1.0 if vo > v_eps else (-1.0 if vo < -v_eps else 0.0)
         s = blocks.node_shaft[j]
         wk.shk[k] = s
@@ -404,221 +402,308 @@ def block_step(bk, blocks, shafts, drives, sp, nodes, st, wk, dt, v_eps, eb, e_d
                 _row_brake(wk, k, shafts.fb[s], shafts.hb[s] == 1, vo, v_eps)
             if shafts.drive[s] == master:
                 km = k
-    U = u_in
-    have_u = u_known
-    car_fixed = False
-    car_v = 0.0
-    car_hit = -1.0
-    two = False
+    return km
+
+
+@njit(inline="always", **OPTS)
+def _master_output(model, st, wk, rs, p0, km, U, have_u):
+    """The speed loop's output U for this pass when the master's row gives it directly (a
+    slipping master predicted with the tension at the step start, a held or stuck master at
+    its imposed speed), within the master's limit. Returns (U, two): ``two`` when U must come
+    by superposition of two solves (the master's speed is an unknown of the block)."""
+    shafts = model.shafts
+    drives = model.drives
+    master = model.control.master
+    f0u = rs.f0u
+    f1u = rs.f1u
+    if km >= 0 and not have_u and drives.mode[master] == 1 and drives.sat[master] == 0:
+        s_m = wk.shk[km]
+        if shafts.slip[s_m] != 0.0:
+            # a slipping master: its shaft predicted with the tension at the step start
+            jm = model.blocks.nodes[p0 + km]
+            sl = shafts.slip[s_m]
+            ts = st.tt[jm] if sl > 0.0 else st.tt[model.blocks.left[p0 + km]]
+            ms = shafts.mass[s_m] / model.cycle.dt
+            sh = drives.share[master]
+            vp = (ms * shafts.vs[s_m] + sh * f0u - sl * shafts.ck[s_m] * ts) / (ms - sh * f1u)
+            U = f0u + f1u * vp
+        elif wk.fixed[km] == 1.0 or wk.stuck[km] == 1.0:
+            U = f0u + f1u * wk.fixv[km]
+        else:
+            return U, True
+        U = _saturate_master(drives, master, U)
+    return U, False
+
+
+@njit(inline="always", **OPTS)
+def _shaft_row(model, wk, rs, k, s, d, r, U, two):
+    """A block row's shaft: its slip factors on the two sides (``ml``, ``mr``), and while it
+    sticks its mass and drive force added to the row. Returns (d, r, ml, mr, coefficient of
+    U)."""
+    shafts = model.shafts
+    drives = model.drives
+    ml = 1.0
+    mr = 1.0
+    uc = 0.0
+    sl = shafts.slip[s]
+    if sl > 0.0:
+        mr = 1.0 + shafts.ck[s]
+    elif sl < 0.0:
+        ml = 1.0 + shafts.ck[s]
+    else:
+        msd = shafts.mass[s] / model.cycle.dt
+        d += msd
+        r += msd * shafts.vs[s]
+        dk = shafts.drive[s]
+        if dk >= 0:
+            md = drives.mode[dk]
+            if md == 2:
+                if wk.fixed[k] == 0.0:
+                    wk.fixed[k] = 1.0
+                    wk.fixv[k] = rs.v_ref
+            elif md == 1:
+                if drives.sat[dk] == 1:
+                    r += drives.f0[dk]
+                elif two:
+                    uc = drives.share[dk]
+                else:
+                    r += _share_force(drives, dk, U)
+            else:
+                d -= drives.f1[dk]
+                r += drives.f0[dk]
+    return d, r, ml, mr, uc
+
+
+@njit(inline="always", **OPTS)
+def _block_rows(model, st, wk, rs, p0, m, car, U, two):
+    """Assemble the block's band (``dg``, ``lo``, ``up``, ``cl``, ``rhs``) and the working
+    copy the solve takes, with held and stuck rows replaced by their imposed speeds."""
+    blocks = model.blocks
+    sp = model.springs
+    tt = st.tt
+    inv_veps = 1.0 / model.cycle.v_eps
+    for k in range(m):
+        j = blocks.nodes[p0 + k]
+        s = wk.shk[k]
+        d = blocks.mdt[p0 + k]
+        r = d * wk.v_old[k] + wk.fexp[k]
+        ml = 1.0
+        mr = 1.0
+        uc = 0.0
+        if s >= 0:
+            d, r, ml, mr, uc = _shaft_row(model, wk, rs, k, s, d, r, U, two)
+        if wk.fz[k] == 0.0:
+            d += wk.rpos[k] * inv_veps
+        else:
+            r -= wk.fz[k] * wk.rpos[k]
+        if wk.bforce[k] > 0.0 and wk.stuck[k] == 0.0:
+            r -= wk.bdir[k] * wk.bforce[k]
+        c_k = 0.0
+        if k == 0:
+            r -= ml * tt[blocks.left[p0]]
+            wk.lo[k] = 0.0
+        else:
+            b_ = ml * wk.bB[k - 1]
+            d += b_
+            wk.lo[k] = -b_
+            r -= ml * wk.bA[k - 1]
+            if car:
+                c_k += b_ * sp.car_ind[blocks.nodes[p0 + k - 1]]
+        if k == m - 1:
+            r += mr * tt[j]
+            wk.up[k] = 0.0
+        else:
+            b_ = mr * wk.bB[k]
+            d += b_
+            wk.up[k] = -b_
+            r += mr * wk.bA[k]
+            if car:
+                c_k -= b_ * sp.car_ind[j]
+        wk.dg[k] = d
+        wk.rhs[k] = r
+        wk.cl[k] = c_k
+        wk.ucoef[k] = uc
+        wk.rw[k] = 0.0
+        if wk.fixed[k] == 1.0 or wk.stuck[k] == 1.0:
+            wk.wd[k] = 1.0
+            wk.wl[k] = 0.0
+            wk.wu[k] = 0.0
+            wk.wc[k] = 0.0
+            wk.crhs[k] = wk.fixv[k] if wk.fixed[k] == 1.0 else 0.0
+            wk.cuc[k] = 0.0
+        else:
+            wk.wd[k] = d
+            wk.wl[k] = wk.lo[k]
+            wk.wu[k] = wk.up[k]
+            wk.wc[k] = c_k
+            wk.crhs[k] = r
+            wk.cuc[k] = uc
+
+
+@njit(inline="always", **OPTS)
+def _carriage_row(model, wk, rs, p0, m, car_fixed, car_v):
+    """The gravity take-up carriage's row: its inertia and weight, and the springs beside
+    its pulley (or its imposed speed at an end stop)."""
+    tu = model.takeup
+    dt = model.cycle.dt
+    d = tu.mass / dt
+    r = tu.mass / dt * rs.u_tu + tu.weight
+    for k in range(m - 1):
+        if model.springs.car_ind[model.blocks.nodes[p0 + k]] != 0.0:
+            wk.rw[k + 1] += wk.bB[k]
+            wk.rw[k] -= wk.bB[k]
+            d += wk.bB[k]
+            r -= wk.bA[k]
+    wk.dg[m] = d
+    wk.rhs[m] = r
+    wk.wd[m] = 1.0 if car_fixed else d
+    wk.crhs[m] = car_v if car_fixed else r
+    wk.cuc[m] = 0.0
+
+
+@njit(inline="always", **OPTS)
+def _block_solution(model, wk, rs, m, car, car_fixed, two, km, U):
+    """Solve the block's band for its speeds (``wk.sol``); with ``two`` also the response to
+    U and U from the master's row, within its limit. Returns U."""
     mu = m + 1 if car else m
-    for _it in range(24):
-        # ------------------------------------------------ the speed loop's output U
-        two = False
-        if km >= 0 and not have_u and drives.mode[master] == 1 and drives.sat[master] == 0:
-            s_m = wk.shk[km]
-            if shafts.slip[s_m] != 0.0:
-                # a slipping master: its shaft predicted with the tension at the step start
-                jm = blocks.nodes[p0 + km]
-                sl = shafts.slip[s_m]
-                ts = tt[jm] if sl > 0.0 else tt[blocks.left[p0 + km]]
-                ms = shafts.mass[s_m] / dt
-                sh = drives.share[master]
-                vp = (ms * shafts.vs[s_m] + sh * f0u - sl * shafts.ck[s_m] * ts) / (ms - sh * f1u)
-                U = f0u + f1u * vp
-            elif wk.fixed[km] == 1.0 or wk.stuck[km] == 1.0:
-                U = f0u + f1u * wk.fixv[km]
-            else:
-                two = True
-            if not two:
-                U = _saturate_master(drives, master, U)
-        # ------------------------------------------------ rows
-        for k in range(m):
-            j = blocks.nodes[p0 + k]
-            s = wk.shk[k]
-            d = blocks.mdt[p0 + k]
-            r = d * wk.v_old[k] + wk.fexp[k]
-            ml = 1.0
-            mr = 1.0
-            uc = 0.0
-            if s >= 0:
-                sl = shafts.slip[s]
-                if sl > 0.0:
-                    mr = 1.0 + shafts.ck[s]
-                elif sl < 0.0:
-                    ml = 1.0 + shafts.ck[s]
-                else:
-                    msd = shafts.mass[s] / dt
-                    d += msd
-                    r += msd * shafts.vs[s]
-                    dk = shafts.drive[s]
-                    if dk >= 0:
-                        md = drives.mode[dk]
-                        if md == 2:
-                            if wk.fixed[k] == 0.0:
-                                wk.fixed[k] = 1.0
-                                wk.fixv[k] = v_ref
-                        elif md == 1:
-                            if drives.sat[dk] == 1:
-                                r += drives.f0[dk]
-                            elif two:
-                                uc = drives.share[dk]
-                            else:
-                                r += _share_force(drives, dk, U)
-                        else:
-                            d -= drives.f1[dk]
-                            r += drives.f0[dk]
-            if wk.fz[k] == 0.0:
-                d += wk.rpos[k] * inv_veps
-            else:
-                r -= wk.fz[k] * wk.rpos[k]
-            if wk.bforce[k] > 0.0 and wk.stuck[k] == 0.0:
-                r -= wk.bdir[k] * wk.bforce[k]
-            c_k = 0.0
-            if k == 0:
-                r -= ml * tt[blocks.left[p0]]
-                wk.lo[k] = 0.0
-            else:
-                b_ = ml * wk.bB[k - 1]
-                d += b_
-                wk.lo[k] = -b_
-                r -= ml * wk.bA[k - 1]
-                if car:
-                    c_k += b_ * sp.car_ind[blocks.nodes[p0 + k - 1]]
-            if k == m - 1:
-                r += mr * tt[j]
-                wk.up[k] = 0.0
-            else:
-                b_ = mr * wk.bB[k]
-                d += b_
-                wk.up[k] = -b_
-                r += mr * wk.bA[k]
-                if car:
-                    c_k -= b_ * sp.car_ind[j]
-            wk.dg[k] = d
-            wk.rhs[k] = r
-            wk.cl[k] = c_k
-            wk.ucoef[k] = uc
-            wk.rw[k] = 0.0
-            if wk.fixed[k] == 1.0 or wk.stuck[k] == 1.0:
-                wk.wd[k] = 1.0
-                wk.wl[k] = 0.0
-                wk.wu[k] = 0.0
-                wk.wc[k] = 0.0
-                wk.crhs[k] = wk.fixv[k] if wk.fixed[k] == 1.0 else 0.0
-                wk.cuc[k] = 0.0
-            else:
-                wk.wd[k] = d
-                wk.wl[k] = wk.lo[k]
-                wk.wu[k] = wk.up[k]
-                wk.wc[k] = c_k
-                wk.crhs[k] = r
-                wk.cuc[k] = uc
-        if car:
-            d = tu_m / dt
-            r = tu_m / dt * u_tu + tu_w
-            for k in range(m - 1):
-                if sp.car_ind[blocks.nodes[p0 + k]] != 0.0:
-                    wk.rw[k + 1] += wk.bB[k]
-                    wk.rw[k] -= wk.bB[k]
-                    d += wk.bB[k]
-                    r -= wk.bA[k]
-            wk.dg[m] = d
-            wk.rhs[m] = r
-            wk.wd[m] = 1.0 if car_fixed else d
-            wk.crhs[m] = car_v if car_fixed else r
-            wk.cuc[m] = 0.0
-        for k in range(m):
-            wk.wr[k] = wk.rw[k]
+    for k in range(m):
+        wk.wr[k] = wk.rw[k]
+    for k in range(mu):
+        wk.sol[k] = wk.crhs[k]
+        wk.sol2[k] = wk.cuc[k]
+    _solve(wk, m, car, car_fixed, two)
+    if two:
+        den = 1.0 - rs.f1u * wk.sol2[km]
+        U = (rs.f0u + rs.f1u * wk.sol[km]) / den
+        U = _saturate_master(model.drives, model.control.master, U)
         for k in range(mu):
-            wk.sol[k] = wk.crhs[k]
-            wk.sol2[k] = wk.cuc[k]
-        _solve(wk, m, car, car_fixed, two)
-        if two:
-            den = 1.0 - f1u * wk.sol2[km]
-            U = (f0u + f1u * wk.sol[km]) / den
-            U = _saturate_master(drives, master, U)
-            for k in range(mu):
-                wk.sol[k] += U * wk.sol2[k]
-        x = wk.sol
-        # ------------------------------------------------ consistency
-        again = False
-        if car and not car_fixed:
-            x_try = x_tu + dt * x[m]
-            if x_try > tu_hi or x_try < tu_lo:
-                car_fixed = True
-                car_v = ((tu_hi if x_try > tu_hi else tu_lo) - x_tu) / dt
-                car_hit = abs(x[m])
-                again = True
-        for k in range(m):
-            s = wk.shk[k]
-            if s >= 0 and shafts.drive[s] >= 0:
-                dk = shafts.drive[s]
-                if drives.mode[dk] == 1 and drives.sat[dk] == 0 and dk != master:
-                    f = drives.share[dk] * U
-                    if abs(f) > drives.lim[dk]:
-                        drives.sat[dk] = 1
-                        drives.f0[dk] = math.copysign(drives.lim[dk], f)
-                        again = True
-            if wk.fixed[k] == 1.0:
-                z = 1.0 if wk.fixv[k] > v_eps else (-1.0 if wk.fixv[k] < -v_eps else 0.0)
-                if z != wk.fz[k]:
-                    wk.fz[k] = z
-            else:
-                xk = x[k]
-                if wk.stuck[k] == 1.0:
-                    # a follower's share of U is not in rhs when U comes by superposition
-                    c_r = _reaction(wk, x, k, m, car) - wk.ucoef[k] * U
-                    if c_r > wk.c_hi[k] or c_r < wk.c_lo[k]:
-                        wk.stuck[k] = 0.0
-                        wk.bdir[k] = -1.0 if c_r > wk.c_hi[k] else 1.0
-                        again = True
-                else:
-                    if wk.c_hi[k] > 1e299 and xk < 0.0:
-                        wk.stuck[k] = 1.0  # holdback engages
-                        again = True
-                    elif wk.bforce[k] > 0.0 and xk * wk.bdir[k] < 0.0:
-                        wk.stuck[k] = 1.0  # the brake stops the element
-                        again = True
-                z = 1.0 if xk > v_eps else (-1.0 if xk < -v_eps else 0.0)
-                if wk.stuck[k] == 1.0:
-                    z = 0.0
-                if z != wk.fz[k]:
-                    wk.fz[k] = z
-                    again = True
-            if s < 0:
-                continue
-            j = blocks.nodes[p0 + k]
-            tl, tr = _side_tensions(wk, sp, blocks, tt, x, p0, k, m, car)
-            sl = shafts.slip[s]
-            if sl == 0.0:
-                if j == hold_node:
-                    continue
-                if shafts.cs[s] < 0.0:
-                    continue  # slip switched off (verification)
-                ft = _belt_force(wk, blocks, x, p0, k, inv_veps, tl, tr)
-                cap = shafts.cs[s] * max(min(tl, tr), 0.0)
-                if abs(ft) > cap * (1.0 + 1e-9) + 1e-9:
-                    shafts.slip[s] = 1.0 if ft > 0.0 else -1.0
-                    wk.stuck[k] = 0.0
-                    wk.bforce[k] = 0.0
-                    wk.c_lo[k] = 0.0
-                    wk.c_hi[k] = 0.0
-                    if wk.fixed[k] == 1.0 and j != hold_node:
-                        wk.fixed[k] = 0.0  # an imposed speed now holds the shaft, not the belt
-                    again = True
-            else:
-                ts = max(tr if sl > 0.0 else tl, 0.0)
-                vsn = _shaft_speed(shafts, drives, s, master, U, v_ref, window, dt, sl, ts)
-                wk.vsn[k] = vsn
-                if sl * (vsn - x[k]) <= 0.0:
-                    shafts.slip[s] = 0.0
-                    _row_brake(wk, k, shafts.fb[s], shafts.hb[s] == 1, wk.v_old[k], v_eps)
-                    again = True
-        if not again:
-            break
-    # ---------------------------------------------------- write back
+            wk.sol[k] += U * wk.sol2[k]
+    return U
+
+
+@njit(inline="always", **OPTS)
+def _row_consistent(model, wk, k, m, car, U):
+    """The active set of row ``k`` against the solution: a follower at its force limit, a
+    stuck element whose reaction left its range, a holdback or brake that now holds, the
+    resistance zone. Returns whether anything changed."""
+    shafts = model.shafts
+    drives = model.drives
+    v_eps = model.cycle.v_eps
     x = wk.sol
-    u_new = x[m] if car else u_tu
+    again = False
+    s = wk.shk[k]
+    if s >= 0 and shafts.drive[s] >= 0:
+        dk = shafts.drive[s]
+        if drives.mode[dk] == 1 and drives.sat[dk] == 0 and dk != model.control.master:
+            f = drives.share[dk] * U
+            if abs(f) > drives.lim[dk]:
+                drives.sat[dk] = 1
+                drives.f0[dk] = math.copysign(drives.lim[dk], f)
+                again = True
+    if wk.fixed[k] == 1.0:
+        z = 1.0 if wk.fixv[k] > v_eps else (-1.0 if wk.fixv[k] < -v_eps else 0.0)
+        if z != wk.fz[k]:
+            wk.fz[k] = z
+        return again
+    xk = x[k]
+    if wk.stuck[k] == 1.0:
+        # a follower's share of U is not in rhs when U comes by superposition
+        c_r = _reaction(wk, x, k, m, car) - wk.ucoef[k] * U
+        if c_r > wk.c_hi[k] or c_r < wk.c_lo[k]:
+            wk.stuck[k] = 0.0
+            wk.bdir[k] = -1.0 if c_r > wk.c_hi[k] else 1.0
+            again = True
+    else:
+        if wk.c_hi[k] > 1e299 and xk < 0.0:
+            wk.stuck[k] = 1.0  # holdback engages
+            again = True
+        elif wk.bforce[k] > 0.0 and xk * wk.bdir[k] < 0.0:
+            wk.stuck[k] = 1.0  # the brake stops the element
+            again = True
+    z = 1.0 if xk > v_eps else (-1.0 if xk < -v_eps else 0.0)
+    if wk.stuck[k] == 1.0:
+        z = 0.0
+    if z != wk.fz[k]:
+        wk.fz[k] = z
+        again = True
+    return again
+
+
+@njit(inline="always", **OPTS)
+def _shaft_consistent(model, st, wk, rs, p0, k, m, car, U):
+    """Row ``k``'s shaft against the solution: a sticking shaft that would pass more than its
+    capstan grip starts to slip; a slipping one whose speed crosses the belt's sticks again.
+    Returns whether anything changed."""
+    shafts = model.shafts
+    blocks = model.blocks
+    hold_node = rs.hold
+    x = wk.sol
+    s = wk.shk[k]
+    j = blocks.nodes[p0 + k]
+    tl, tr = _side_tensions(wk, model.springs, blocks, st.tt, x, p0, k, m, car)
+    sl = shafts.slip[s]
+    if sl == 0.0:
+        if j == hold_node or shafts.cs[s] < 0.0:
+            return False  # held at rest, or slip switched off (verification)
+        ft = _belt_force(wk, blocks, x, p0, k, 1.0 / model.cycle.v_eps, tl, tr)
+        cap = shafts.cs[s] * max(min(tl, tr), 0.0)
+        if abs(ft) > cap * (1.0 + 1e-9) + 1e-9:
+            shafts.slip[s] = 1.0 if ft > 0.0 else -1.0
+            wk.stuck[k] = 0.0
+            wk.bforce[k] = 0.0
+            wk.c_lo[k] = 0.0
+            wk.c_hi[k] = 0.0
+            if wk.fixed[k] == 1.0 and j != hold_node:
+                wk.fixed[k] = 0.0  # an imposed speed now holds the shaft, not the belt
+            return True
+        return False
+    ts = max(tr if sl > 0.0 else tl, 0.0)
+    vsn = _shaft_speed(model, s, U, rs.v_ref, sl, ts)
+    wk.vsn[k] = vsn
+    if sl * (vsn - x[k]) <= 0.0:
+        shafts.slip[s] = 0.0
+        _row_brake(wk, k, shafts.fb[s], shafts.hb[s] == 1, wk.v_old[k], model.cycle.v_eps)
+        return True
+    return False
+
+
+@njit(inline="always", **OPTS)
+def _drive_output(model, rs, s, ft, vs_old, vsn, U):
+    """A drive's force at the rim after the step [N] (mode 2: what moved its shaft; mode 1:
+    its share of U, a slipping follower only what holds it in its window; mode 0: its linear
+    law), and its motor's speed behind a coupling."""
+    shafts = model.shafts
+    drives = model.drives
+    dt = model.cycle.dt
+    dk = shafts.drive[s]
+    md = drives.mode[dk]
+    sl = shafts.slip[s]
+    if md == 2:
+        f = ft + shafts.mass[s] / dt * (vsn - vs_old)
+    elif md == 1:
+        f = drives.f0[dk] if drives.sat[dk] == 1 else drives.share[dk] * U
+        if sl != 0.0 and dk != model.control.master:
+            # a follower in its speed window gives what holds its shaft there
+            f = min(f, shafts.mass[s] / dt * (vsn - vs_old) + ft) if f > 0.0 else \
+                max(f, shafts.mass[s] / dt * (vsn - vs_old) + ft)
+    else:
+        f = drives.f0[dk] + drives.f1[dk] * vsn
+    if drives.coupling[dk] != 0 and drives.lin_d[dk] > 0.0:
+        drives.vm[dk] = (drives.lin_p[dk] - drives.lin_cs[dk] * vsn) / drives.lin_d[dk]
+    drives.force[dk] = f
+    return f
+
+
+@njit(inline="always", **OPTS)
+def _write_back(model, st, wk, rs, p0, m, car, U):
+    """The solution into the belt, the shafts and the drives. Returns (holding force or nan,
+    brake force, sum w v, sum of drive forces, drive power, drive work) of the block."""
+    blocks = model.blocks
+    shafts = model.shafts
+    drives = model.drives
+    dt = model.cycle.dt
+    inv_veps = 1.0 / model.cycle.v_eps
+    x = wk.sol
     hold_f = math.nan
     f_brake = 0.0
     vsum = 0.0
@@ -628,15 +713,15 @@ def block_step(bk, blocks, shafts, drives, sp, nodes, st, wk, dt, v_eps, eb, e_d
     for k in range(m):
         j = blocks.nodes[p0 + k]
         xk = x[k]
-        v[j] = xk
-        vsum += nodes.w_mean[j] * xk
+        st.v[j] = xk
+        vsum += model.nodes.w_mean[j] * xk
         if wk.bforce[k] > 0.0:
             f_brake += abs(_reaction(wk, x, k, m, car) - wk.ucoef[k] * U) if wk.stuck[k] == 1.0 \
                 else wk.bforce[k]
         s = wk.shk[k]
         if s < 0:
             continue
-        tl, tr = _side_tensions(wk, sp, blocks, tt, x, p0, k, m, car)
+        tl, tr = _side_tensions(wk, model.springs, blocks, st.tt, x, p0, k, m, car)
         vs_old = shafts.vs[s]
         sl = shafts.slip[s]
         if sl == 0.0:
@@ -649,42 +734,87 @@ def block_step(bk, blocks, shafts, drives, sp, nodes, st, wk, dt, v_eps, eb, e_d
             fb = shafts.fb[s]
             if fb > 0.0:
                 f_brake += fb if vsn != 0.0 else min(fb, abs(_shaft_push(
-                    shafts, drives, s, master, U, dt, sl, ft)))
-        if j == hold_node:
+                    model, s, U, sl, ft)))
+        if j == rs.hold:
             hold_f = ft
         shafts.vs[s] = vsn
         dk = shafts.drive[s]
         if dk < 0:
             continue
-        md = drives.mode[dk]
-        if md == 2:
-            f = ft + shafts.mass[s] / dt * (vsn - vs_old)
-        elif md == 1:
-            f = drives.f0[dk] if drives.sat[dk] == 1 else drives.share[dk] * U
-            if sl != 0.0 and dk != master:
-                # a follower in its speed window gives what holds its shaft there
-                f = min(f, shafts.mass[s] / dt * (vsn - vs_old) + ft) if f > 0.0 else \
-                    max(f, shafts.mass[s] / dt * (vsn - vs_old) + ft)
-        else:
-            f = drives.f0[dk] + drives.f1[dk] * vsn
-        if drives.coupling[dk] != 0 and drives.lin_d[dk] > 0.0:
-            drives.vm[dk] = (drives.lin_p[dk] - drives.lin_cs[dk] * vsn) / drives.lin_d[dk]
-        drives.force[dk] = f
+        f = _drive_output(model, rs, s, ft, vs_old, vsn, U)
         drives.ft[dk] = ft
         f_tot += f
         p_tot += f * vsn
         w_drv += f * 0.5 * (vs_old + vsn) * dt
-    # implicit springs of the block
+    return hold_f, f_brake, vsum, f_tot, p_tot, w_drv
+
+
+@njit(inline="always", **OPTS)
+def _block_springs(model, st, p0, m, car, u_new):
+    """The block's implicit springs from the new velocities (and the carriage's speed)."""
+    blocks = model.blocks
+    sp = model.springs
     for k in range(m - 1):
         s_ = blocks.nodes[p0 + k]
         s1 = blocks.nodes[p0 + k + 1]
         cdt = sp.car_ind[s_] * u_new * sp.dl[s_] if car else 0.0
-        e1, ts1, d1, t1 = _spring_impl(te[s_], tsn[s_], td[s_], v[s1] - v[s_], sp.dl[s_], cdt,
-                                       sp.t_floor[s_], sp.s_floor[s_], sp.kfl_eb[s_],
-                                       sp.a_eb[s_], eb, e_damp, g_damp, sp.kvs[s_])
-        te[s_] = e1
-        tsn[s_] = ts1
-        td[s_] = d1
-        tt[s_] = t1
-    known = have_u or km >= 0
-    return U, known, u_new, car_hit, hold_f, f_brake, vsum, f_tot, p_tot, w_drv
+        e1, ts1, d1, t1 = _spring_impl(sp, s_, st.te[s_], st.ts[s_], st.td[s_],
+                                       st.v[s1] - st.v[s_], cdt)
+        st.te[s_] = e1
+        st.ts[s_] = ts1
+        st.td[s_] = d1
+        st.tt[s_] = t1
+
+
+@njit(inline="always", **OPTS)
+def block_step(bk, model, st, wk, rs):
+    """Advance the velocities of block ``bk`` by one step (see the module docstring).
+
+    Reads the step's phase from the run record ``rs`` (the held element ``hold``, the speed
+    reference ``v_ref``, the speed loop's law ``f0u + f1u v``) with the loop's output ``U`` and
+    whether it is known (``rs.U``, ``rs.u_known``, updated), and the carriage's position and
+    speed. Updates ``st.v``, the shafts' speeds and slip states, the drives' forces (``force``
+    at the rim, ``ft`` passed to the belt), motor speeds and saturation, and the block's
+    implicit springs. Returns ``(carriage speed, carriage speed at an end stop or -1, holding
+    force or nan, brake force, sum w v, sum of drive forces, drive power, drive work)``.
+    """
+    blocks = model.blocks
+    p0 = blocks.ptr[bk]
+    m = blocks.ptr[bk + 1] - p0
+    car = model.takeup.gravity and blocks.car[bk] == 1
+    tu = model.takeup
+    km = _block_setup(model, st, wk, p0, m, rs.hold)
+    U = rs.U
+    have_u = rs.u_known
+    car_fixed = False
+    car_v = 0.0
+    car_hit = -1.0
+    for _it in range(24):
+        U, two = _master_output(model, st, wk, rs, p0, km, U, have_u)
+        _block_rows(model, st, wk, rs, p0, m, car, U, two)
+        if car:
+            _carriage_row(model, wk, rs, p0, m, car_fixed, car_v)
+        U = _block_solution(model, wk, rs, m, car, car_fixed, two, km, U)
+        x = wk.sol
+        # ------------------------------------------------ consistency
+        again = False
+        if car and not car_fixed:
+            x_try = rs.x_tu + model.cycle.dt * x[m]
+            if x_try > tu.hi or x_try < tu.lo:
+                car_fixed = True
+                car_v = ((tu.hi if x_try > tu.hi else tu.lo) - rs.x_tu) / model.cycle.dt
+                car_hit = abs(x[m])
+                again = True
+        for k in range(m):
+            if _row_consistent(model, wk, k, m, car, U):
+                again = True
+            if wk.shk[k] >= 0 and _shaft_consistent(model, st, wk, rs, p0, k, m, car, U):
+                again = True
+        if not again:
+            break
+    u_new = wk.sol[m] if car else rs.u_tu
+    hold_f, f_brake, vsum, f_tot, p_tot, w_drv = _write_back(model, st, wk, rs, p0, m, car, U)
+    _block_springs(model, st, p0, m, car, u_new)
+    rs.U = U
+    rs.u_known = have_u or km >= 0
+    return u_new, car_hit, hold_f, f_brake, vsum, f_tot, p_tot, w_drv

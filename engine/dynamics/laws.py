@@ -1,4 +1,4 @@
-"""Drive, coupling and brake laws of the transient model (PHYSICS section 5.1).
+"""Drive and coupling laws of the transient model (PHYSICS section 5.1).
 
 Small scalar functions compiled for the kernel and called as they are by the numpy reference,
 so both integrate the same laws. Forces are at the pulley rim (torque over the pulley radius)
@@ -18,20 +18,21 @@ and speeds at the belt line (shaft speed times the pulley radius), both in SI.
   the starting torque to roughly 1.2-2 x rated, PHYSICS 5.1; Voith's and Nordell's starting
   papers). A fill-controlled coupling's torque is that times its fill, rising from empty to
   full over ``coupling_fill_s``.
-* **Brake**: the force builds linearly over ``ramp_s`` after the delay, or follows the brake's
-  ``force_curve`` (fraction of the force against the time since it was applied, linear between
-  the points, the last value held).
+
+The brakes' law is with their record in :mod:`beltstudy.engine.dynamics.brakes`.
 """
 
 from __future__ import annotations
 
 import math
 
+import numpy as np
 from numba import njit
 
+from beltstudy.engine.dynamics.codes import CURVE_MAX
 from beltstudy.engine.dynamics.fastmath import OPTS
 
-__all__ = ["curve", "motor_force", "coupling_torque", "brake_fraction", "STALL", "RATED_SLIP",
+__all__ = ["curve", "padded_curves", "motor_force", "coupling_torque", "STALL", "RATED_SLIP",
            "SLIP_SCALE"]
 
 #: Stall torque of a constant-fill fluid coupling over its rated torque [-].
@@ -103,20 +104,18 @@ def coupling_torque(t_rated, v_d, vm, vs, fill):
     return t, dt_dvm, dt_dvs
 
 
-@njit(inline="always", **OPTS)
-def brake_fraction(tau, ramp, ct, cf, nc):
-    """Fraction of a brake's force ``tau`` seconds after it was applied (past its delay)."""
-    if tau < 0.0:
-        return 0.0
-    if nc > 0:
-        if tau <= ct[0]:
-            return cf[0] if tau >= ct[0] else 0.0
-        k = 1
-        while k < nc and tau > ct[k]:
-            k += 1
-        if k >= nc:
-            return cf[nc - 1]
-        return cf[k - 1] + (cf[k] - cf[k - 1]) * (tau - ct[k - 1]) / (ct[k] - ct[k - 1])
-    if ramp <= 0.0 or tau >= ramp:
-        return 1.0
-    return tau / ramp
+def padded_curves(curves, width: int = CURVE_MAX) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """A list of point lists ``[(x, y), ...]`` as the kernel takes curves: arrays (k, width)
+    of the x and y values, padded with zeros, and each curve's number of points."""
+    k = max(len(curves), 1)
+    xs = np.zeros((k, width))
+    ys = np.zeros((k, width))
+    ns = np.zeros(k, dtype=np.int64)
+    for i, c in enumerate(curves):
+        if len(c) > width:
+            raise ValueError(f"a curve has more than {width} points")
+        ns[i] = len(c)
+        for p, (x, y) in enumerate(c):
+            xs[i, p] = x
+            ys[i, p] = y
+    return xs, ys, ns

@@ -2,8 +2,9 @@
 
 The loop's elements are the masses, the element boundaries are the springs: spring ``j``
 joins element ``j`` and ``j + 1`` (cyclic), has length ``(dx_j + dx_{j+1}) / 2`` and carries
-the boundary tension ``T[j]`` of statics. Everything the kernel needs is computed here as
-plain arrays (:class:`System`); the kernel and the numpy reference only read them.
+the boundary tension ``T[j]`` of statics. Everything the kernel needs is computed here, section
+by section, as the named records of :mod:`beltstudy.engine.dynamics.records` (held by
+:class:`System`); the kernel and the numpy reference only read them.
 
 Design decisions (documented in ``docs/dynamics.md``):
 
@@ -45,14 +46,16 @@ Design decisions (documented in ``docs/dynamics.md``):
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 
 import numpy as np
 
 from beltstudy.engine import design
 from beltstudy.engine.conveyor import Conveyor, InputError, Scenario
 from beltstudy.engine.dynamics import profiles
+from beltstudy.engine.dynamics.brakes import build_brakes
 from beltstudy.engine.dynamics.codes import (
+    BLOCK_MAX,
     BRAKE,
     COAST,
     CONTROLLED,
@@ -60,9 +63,38 @@ from beltstudy.engine.dynamics.codes import (
     COUPLING_FLUID,
     COUPLING_NONE,
     DOL,
+    LAW_CONST,
+    LAW_EXACT,
+    LAW_LINEAR,
     RELATIVE,
+    SPEED_WINDOW,
     SUPPORT,
+    V_FAIL_FACTOR,
     VFD,
+)
+from beltstudy.engine.dynamics.laws import padded_curves
+from beltstudy.engine.dynamics.linlaw import (
+    BIG,
+    K_LIN,
+    element_windows,
+    law_windows,
+    sparse_terms,
+    x_cap,
+)
+from beltstudy.engine.dynamics.passes import CHUNK, N_F, N_G, N_O, law_rows
+from beltstudy.engine.dynamics.records import (
+    Blocks,
+    Control,
+    Cycle,
+    Drives,
+    Law,
+    Lin,
+    Model,
+    Nodes,
+    Probes,
+    Shafts,
+    Springs,
+    Takeup,
 )
 from beltstudy.engine.law import ResistanceLaw
 from beltstudy.engine.loop import G, Loop, rotating_parts
@@ -72,6 +104,11 @@ __all__ = [
     "DynamicsOptions",
     "System",
     "build_system",
+    "with_step",
+    "with_law",
+    "with_probes",
+    "law_record",
+    "exponent_codes",
     "stability_limit_s",
     "chord_strain",
     "check_scenario",
@@ -168,129 +205,61 @@ class DynamicsOptions:
 
 @dataclass(eq=False)
 class System:
-    """Everything the kernel reads, as plain arrays and numbers. SI units throughout.
+    """The transient model of one conveyor and scenario (PHYSICS section 5).
 
-    Node (element) arrays have length n; spring arrays have length n, spring j joining
-    element j and j + 1 (cyclic). Shafts, drives and brakes are listed in their own arrays.
+    ``model`` holds the kernel's records (:class:`~beltstudy.engine.dynamics.records.Model`:
+    the cycle, elements, springs, law, blocks, shafts, drives, brakes, take-up, speed loop and
+    the recorded springs); the other fields describe the model to a reader (where each element
+    lies, the rest and running tensions, the waves, what the build noted). SI units
+    throughout; per-element arrays have length n.
     """
 
-    n: int
-    i_head: int
-    i_tail: int
-    i_takeup: int
-    strand: np.ndarray  # int8 strand codes of the loop (beltstudy.engine.loop)
-    # nodes
-    mass_kg: np.ndarray  # moving mass of the belt element (and a plain pulley's own mass)
-    belt_mass_kg: np.ndarray  # (m'_G + m'_L + m'_R) dx: weights of the mean speed
-    gravity_n: np.ndarray  # (m'_G + m'_L) g dx sin(a)
-    sag_w_n: np.ndarray
-    hs_cap: np.ndarray  # sag ratio cap of the resistance law per element
-    coef: np.ndarray  # (K, n) merged resistance terms [N]
-    pv: np.ndarray  # (K,)
-    ps: np.ndarray  # (K,)
-    hs_ref: float
-    # springs
-    len_m: np.ndarray
-    stiffness_n: float  # static E B
-    stiffness_dyn_n: float  # dynamic E_dyn B
-    a_ernst: np.ndarray  # (w S)^2 / 12 per spring [N^2]
-    t_floor_n: np.ndarray  # tangent modulus held constant below this tension
-    k_floor_n: np.ndarray  # tangent modulus at the floor [N]
-    carriage_coupling: np.ndarray  # 1 on the two springs beside the gravity take-up, else 0
+    model: Model
+    strand: np.ndarray  # int8 strand codes per element (beltstudy.engine.loop)
+    s_end_m: np.ndarray  # position of each spring (element end) from the tail [m]
+    dx_m: np.ndarray  # element length [m]
+    i_head: int  # the first head pulley element
+    blocks: list  # element indices of each implicit block, in loop order
     implicit: np.ndarray  # bool per spring: solved implicitly (beside a pulley)
-    blocks: list  # element indices of each implicit block
-    impedance_ns_m: np.ndarray  # Z = sqrt(E_dyn B rho') per spring [N s/m]
-    # damping
-    damping: str
+    tension_rest_n: np.ndarray  # at-rest tensions, the initial state [N]
+    hold_force_n: float  # force holding the belt at rest [N]
+    steady_tension_n: np.ndarray  # running tensions of statics [N]
+    te_n: float  # effective tension of statics [N]
+    wave_loop_time_s: float  # time a front takes round the loop [s]
+    wave_speed_m_s: np.ndarray  # per element, dynamic modulus, unsoftened [m/s]
+    dt_limit_s: float  # stability limit of the explicit part [s]
+    damping: str  # "belt" or "off"
     relaxation_s: float  # relaxation time of the arm [s] (inf without an arm)
     mesh_viscosity: float  # alpha
-    # initial state
-    tension_rest_n: np.ndarray
-    hold_node: int
-    hold_force_n: float
-    # step
-    dt_s: float
-    dt_limit_s: float
-    wave_loop_time_s: float
-    wave_speed_m_s: np.ndarray  # per element, dynamic modulus, unsoftened
-    # shafts (one per drive, braked or holdback pulley)
-    shaft_node: np.ndarray
-    shaft_mass_kg: np.ndarray
-    shaft_euler: np.ndarray  # e^(mu theta) static
-    shaft_euler_kinetic: np.ndarray  # e^(mu_k theta) sliding
-    shaft_drive: np.ndarray  # drive index or -1
-    shaft_holdback: np.ndarray  # 1 with a holdback
-    # drives (file order)
-    drive_node: np.ndarray
-    drive_shaft: np.ndarray
-    drive_share: np.ndarray
-    drive_rated_n: np.ndarray
-    drive_limit_n: np.ndarray
-    drive_control: np.ndarray
-    drive_coupling: np.ndarray
-    drive_curves: list  # motor curve per drive: ((x, y), ...)
-    drive_fill_s: np.ndarray
-    drive_motor_mass_kg: np.ndarray
-    drive_trip_s: np.ndarray
-    master: int
-    kp: float
-    ki: float
-    bandwidth_rad_s: float
-    v_ff_m_s: float  # reference speed at which the resistance feedforward is complete
-    total_mass_kg: float
-    # brakes (file order)
-    brake_shaft: np.ndarray
-    brake_node: np.ndarray
-    brake_force_n: np.ndarray
-    brake_delay_s: np.ndarray
-    brake_ramp_s: np.ndarray
-    brake_curves: list  # force curve per brake, () for a linear ramp
-    brake_hold: np.ndarray
-    # take-up
-    takeup_gravity: bool
-    takeup_weight_n: float
-    takeup_inertia_kg: float
-    takeup_lo_m: float
-    takeup_hi_m: float
-    takeup_run_m: float
-    # scenario
-    v_design: float
-    v_eps: float
-    start_control: int
-    start_s: float
-    run_s: float
-    stop_mode: int
-    stop_s: float
-    formulation: int
-    force_start_n: float
-    pre_rest_s: float
-    post_rest_s: float
-    stop_max_s: float
-    record_dt_s: float
-    surface_dt_s: float
-    probe_springs: np.ndarray
-    surface_springs: np.ndarray
-    steady_tension_n: np.ndarray
-    te_n: float
-    dx_m: np.ndarray
-    s_end_m: np.ndarray  # position of each spring (element end) from the tail [m]
-    spring_head_in: int  # spring entering the first head pulley (T1)
-    spring_head_out: int  # spring leaving the last head drive pulley (T2)
     notes: list[str] = field(default_factory=list)  # informational, for the message
     warnings: list[str] = field(default_factory=list)  # limits crossed before the start
-    resistance_rtol: float = 1e-3  # accuracy of the law between exact evaluations (linlaw)
+
+    @property
+    def n(self) -> int:
+        """Number of elements (and springs)."""
+        return int(self.model.nodes.mass.shape[0])
+
+    @property
+    def dt_s(self) -> float:
+        """The step [s]."""
+        return self.model.cycle.dt
+
+    @property
+    def v_design(self) -> float:
+        """The design speed [m/s]."""
+        return self.model.cycle.v_d
 
     @property
     def stop_command_s(self) -> float:
-        return self.pre_rest_s + self.start_s + self.run_s
+        """Time of the stop command [s]."""
+        c = self.model.cycle
+        return c.t_pre + c.t_start + c.t_run
 
     @property
     def t_max_s(self) -> float:
-        return self.stop_command_s + self.stop_max_s + self.post_rest_s
-
-    @property
-    def shaft_mass_total_kg(self) -> float:
-        return float(self.shaft_mass_kg.sum() + self.drive_motor_mass_kg.sum())
+        """The longest the cycle may last [s]."""
+        c = self.model.cycle
+        return self.stop_command_s + c.stop_max + c.post_rest
 
 
 # --------------------------------------------------------------------------------------
@@ -526,11 +495,436 @@ def _fixed_takeup_level(T_rel, T_run, len_m, a_el, EB, t_floor, k_floor) -> floa
 
 
 # --------------------------------------------------------------------------------------
+# The records, section by section
+
+
+def exponent_codes(values: np.ndarray) -> np.ndarray:
+    """Exponent codes: 0 -> 0, 0.5 -> 1, 1 -> 2, 1.5 -> 3, 2 -> 4, other -> 5 (pow)."""
+    table = {0.0: 0, 0.5: 1, 1.0: 2, 1.5: 3, 2.0: 4}
+    return np.array([table.get(float(x), 5) for x in values], dtype=np.int64)
+
+
+def _ranges(mask: np.ndarray) -> np.ndarray:
+    """Contiguous [start, end) index ranges where mask is true, shape (k, 2)."""
+    idx = np.flatnonzero(mask)
+    if idx.size == 0:
+        return np.zeros((0, 2), dtype=np.int64)
+    cuts = np.flatnonzero(np.diff(idx) > 1)
+    starts = np.concatenate(([idx[0]], idx[cuts + 1]))
+    ends = np.concatenate((idx[cuts] + 1, [idx[-1] + 1]))
+    return np.ascontiguousarray(np.column_stack([starts, ends]), dtype=np.int64)
+
+
+def _i64(x) -> np.ndarray:
+    return np.ascontiguousarray(x, dtype=np.int64)
+
+
+def _f64(x) -> np.ndarray:
+    return np.ascontiguousarray(x, dtype=np.float64)
+
+
+def _shafts(conv: Conveyor, loop: Loop, opts: DynamicsOptions):
+    """The pulley shafts (every drive pulley, and the braked and holdback pulleys) with their
+    reduced masses and capstan factors; the element masses with the plain pulleys' own. Returns
+    (element mass [kg], Shafts, shaft of each pulley element, rotating parts)."""
+    mass = loop.mass_kg.copy()
+    parts = rotating_parts(conv, loop, opts.pulley_mass_kg)
+    nodes = sorted(parts.shaft_mass)
+    for node, m in parts.plain_mass.items():
+        mass[node] += m
+    euler = np.array([loop.pulley_at(s).euler for s in nodes], dtype=float)
+    euler_k = np.array([loop.pulley_at(s).euler_kinetic for s in nodes], dtype=float)
+    if not opts.slip:
+        euler[:] = 0.0  # e^(mu theta) - 1 < 0: the kernel's code for a shaft that never slips
+    ns = len(nodes)
+    shafts = Shafts(
+        node=_i64(nodes), mass=_f64([parts.shaft_mass[s] for s in nodes]), cs=_f64(euler - 1.0),
+        ck=_f64(euler_k - 1.0), drive=_i64([parts.shaft_drive.get(s, -1) for s in nodes]),
+        hb=_i64([1 if (conv.holdback and s == loop.i_head) else 0 for s in nodes]),
+        vs=np.zeros(ns), slip=np.zeros(ns), fb=np.zeros(ns), fb_out=np.zeros(ns))
+    return mass, shafts, {node: k for k, node in enumerate(nodes)}, parts
+
+
+def law_record(coef: np.ndarray, pv: np.ndarray, ps: np.ndarray, hs_ref: float,
+               rtol: float) -> Law:
+    """The law's record for terms of coefficients (K, n) [N] and speed and sag exponents:
+    its sparse terms, whether any term depends on the tension, and how the kernel evaluates it
+    (once for one constant term; expanded between exact evaluations to ``rtol`` where
+    :func:`linlaw.law_windows` gives windows; exactly every step otherwise)."""
+    coef = _f64(coef)
+    pv = _f64(pv)
+    ps = _f64(ps)
+    # terms with few non-zero elements (feed, pulleys, accessories) are evaluated on those
+    # elements only: t_idx[t_ptr[k]:t_ptr[k + 1]] for a term with t_sparse[k] == 1
+    t_sparse, t_ptr, t_idx = [], [0], []
+    for k, sparse in enumerate(sparse_terms(coef)):
+        t_sparse.append(1 if sparse else 0)
+        if sparse:
+            t_idx.extend(int(j) for j in np.flatnonzero(coef[k]))
+        t_ptr.append(len(t_idx))
+    if coef.shape[0] == 1 and pv[0] == 0.0 and ps[0] == 0.0:
+        mode = LAW_CONST
+    else:
+        mode = LAW_EXACT if law_windows(coef, pv, ps, rtol) is None else LAW_LINEAR
+    return Law(coef=coef, pvc=exponent_codes(pv), pvv=pv, psc=exponent_codes(ps), psv=ps,
+               t_sparse=_i64(t_sparse), t_ptr=_i64(t_ptr), t_idx=_i64(t_idx or [0]),
+               hs_ref=float(hs_ref), any_ps=bool(np.any(ps != 0.0)), rtol=float(rtol),
+               mode=mode)
+
+
+def _law(n: int, law: ResistanceLaw, opts: DynamicsOptions) -> Law:
+    """The friction model's law with terms of equal exponents merged (the kernel evaluates
+    each pair once), or none (verification)."""
+    coef, pv, ps = _merge_law(law.coef, law.pv, law.ps)
+    if not opts.resistances:
+        coef, pv, ps = np.zeros((1, n)), np.zeros(1), np.zeros(1)
+    return law_record(coef, pv, ps, law.hs_ref, opts.resistance_rtol)
+
+
+def _lin(law: Law, nodes: Nodes, v_eps: float) -> Lin:
+    """The arrays of the law's expansion (:class:`~beltstudy.engine.dynamics.records.Lin`),
+    filled by the kernel; the per-element window sizes of :func:`linlaw.law_windows` (none when
+    the law is evaluated exactly: the arrays are then not used)."""
+    n = nodes.mass.shape[0]
+    nk = law.coef.shape[0]
+    sw_ref, hsm_ref = nodes.sw_ref, nodes.hsm_ref
+    windows = law_windows(law.coef, law.pvv, law.psv, law.rtol)
+    if windows is None:
+        du = d0 = dx = np.full(n, BIG)
+        pv, ps = np.zeros(1), np.zeros(1)
+    else:
+        du, d0, dx = element_windows(law.coef, law.pvv, law.psv, sw_ref, hsm_ref, v_eps,
+                                     windows)
+        pv, ps = law.pvv, law.psv
+    rs, rq, upow, qpow, npow, wk = law_rows(pv, ps)
+    erow = np.zeros((n, 8 + K_LIN))
+    erow[:, 0] = sw_ref
+    erow[:, 1] = hsm_ref
+    erow[:, 2] = x_cap(sw_ref, hsm_ref)
+    erow[:, 3] = du
+    erow[:, 4] = d0
+    erow[:, 5] = dx
+    if windows is not None:
+        erow[:, 8:8 + nk] = law.coef.T
+    n8 = 8 * ((n + 7) // 8)
+    flag = np.zeros(n8, dtype=np.uint8)
+
+    def z():
+        return np.zeros(n, dtype=np.float32)
+
+    return Lin(k=z(), gu=z(), guu=z(), gx=z(), gxx=z(), gux=z(), ulo=z(), uhi=z(), tlo=z(),
+               thi=z(), erow=erow, rs=rs, rq=rq, wk=wk, upow=upow, qpow=qpow, npow=npow,
+               flag=flag, flag64=flag.view(np.uint64), idx=np.zeros(n + 8, dtype=np.int64),
+               sg=np.zeros(N_G * CHUNK), sf=np.zeros(N_F * CHUNK), so=np.zeros(N_O * CHUNK))
+
+
+def _nodes(loop: Loop, mass: np.ndarray, law: ResistanceLaw, opts: DynamicsOptions,
+           hs_ref: float) -> Nodes:
+    """The elements' masses, gravity and sag (``hm`` is set with the step)."""
+    n = loop.n
+    gravity = loop.gravity_n.copy() if opts.gravity else np.zeros(n)
+    hs_cap = np.broadcast_to(np.asarray(law.hs_max, dtype=float), (n,)).copy()
+    return Nodes(mass=_f64(mass), hm=np.zeros(n), gravity=_f64(gravity),
+                 w_mean=_f64(loop.mass_kg), sag_w=_f64(loop.sag_w_n), hs_cap=_f64(hs_cap),
+                 sw_ref=_f64(loop.sag_w_n / hs_ref), hsm_ref=_f64(hs_cap / hs_ref))
+
+
+def _springs(loop: Loop, conv: Conveyor, opts: DynamicsOptions, T_run: np.ndarray,
+             implicit: np.ndarray, in_block: np.ndarray) -> tuple[Springs, np.ndarray]:
+    """The springs' physical data (length, Ernst's sag term, floor, the mesh viscosity of the
+    dynamic modulus, the carriage coupling, the running strain); the step's forms are set by
+    :func:`_step_forms`. Returns the record and the wave speed per element [m/s]."""
+    n = loop.n
+    dx = loop.dx_m
+    nxt = np.roll(np.arange(n), -1)
+    EB = float(loop.belt.stiffness_n)
+    EBd = float(loop.belt.dynamic_stiffness_n)
+    len_m = 0.5 * (dx + dx[nxt])
+    wS2 = (8.0 * loop.sag_w_n) ** 2  # (w S)^2 per element [N^2]
+    a_el = (dx * wS2 + dx[nxt] * wS2[nxt]) / (dx + dx[nxt]) / 12.0
+    if not opts.ernst:
+        a_el = np.zeros(n)
+    t_floor = np.maximum(np.sqrt(12.0 * a_el) / (8.0 * HS_FLOOR), 1.0)
+    k_floor = EB * t_floor**3 / (t_floor**3 + a_el * EB)
+    carriage = np.zeros(n)
+    if conv.takeup.type == "gravity":
+        carriage[loop.i_takeup - 1] = 1.0
+        carriage[loop.i_takeup] = 1.0
+    # waves (dynamic modulus) and the mesh viscosity alpha Z per spring [N s/m]
+    rho = loop.mG_kg_m + loop.mL_kg_m + loop.mR_kg_m
+    c_wave = np.sqrt(EBd / rho)
+    rho_spring = (rho * dx + rho[nxt] * dx[nxt]) / (dx + dx[nxt])
+    alpha = 0.0 if opts.damping == "off" else float(opts.mesh_viscosity)
+    viscosity = alpha * np.sqrt(EBd * rho_spring)
+    z = np.zeros(n)
+    return Springs(
+        len_m=_f64(len_m), a_ernst=_f64(a_el), t_floor=_f64(t_floor), k_floor=_f64(k_floor),
+        viscosity=_f64(viscosity), car_ind=_f64(carriage),
+        eps_run=_f64(chord_strain(T_run, a_el, EB, t_floor, k_floor)), eb=EB, eb_dyn=EBd,
+        dl=z, a_eb=_f64(a_el * EB),
+        s_floor=_f64(EB * chord_strain(t_floor, a_el, EB, t_floor, k_floor)),
+        kfl_eb=_f64(k_floor / EB), kvs=z, e_damp=0.0, g_damp=0.0,
+        seg_node=_ranges(~in_block), seg_spring=_ranges(~implicit)), c_wave
+
+
+def _blocks(blocks_list: list, master_node: int, n: int, shaft_index: dict,
+            takeup_gravity: bool, i_takeup: int) -> Blocks:
+    """The implicit blocks, the master drive's block first (the others use the speed loop's
+    output); ``mdt`` is set with the step."""
+    blocks = sorted(blocks_list, key=lambda b: 0 if master_node in b else 1)
+    if max(len(b) for b in blocks) + 1 > BLOCK_MAX:
+        raise ValueError("implicit block larger than the kernel's BLOCK_MAX")
+    nodes = np.concatenate([np.asarray(b, dtype=np.int64) for b in blocks])
+    node_shaft = np.full(n, -1, dtype=np.int64)
+    for node, k in shaft_index.items():
+        node_shaft[int(node)] = k
+    return Blocks(
+        ptr=np.concatenate(([0], np.cumsum([len(b) for b in blocks]))).astype(np.int64),
+        nodes=nodes,
+        car=_i64([1 if (takeup_gravity and i_takeup in b) else 0 for b in blocks]),
+        left=_i64([(j - 1) % n for j in nodes]), mdt=np.zeros(len(nodes)),
+        node_shaft=node_shaft)
+
+
+def _damper(damping: str, springs: Springs, relaxation_s: float, dt: float
+            ) -> tuple[float, float]:
+    """(decay of the relaxing arm over a step, its gain per unit tangent stiffness and strain
+    increment): the arm's tension ``d`` advances as ``d' = e d + g kt de`` (exact exponential
+    of the standard linear solid's arm of stiffness ``(E_dyn - E) B``, relaxation time tau)."""
+    if damping != "belt" or not springs.eb_dyn > springs.eb:
+        return 0.0, 0.0
+    h = dt / relaxation_s
+    e = math.exp(-h)
+    ratio = (springs.eb_dyn - springs.eb) / springs.eb
+    return e, ratio * (1.0 - e) / h
+
+
+def _step_forms(model: Model, dt: float, damping: str, relaxation_s: float) -> Model:
+    """The records' forms for the step dt: dt / mass, dt / length, the mesh viscosity per
+    strain increment, the arm's decay and gain, the blocks' mass / dt."""
+    sp = model.springs
+    e_damp, g_damp = _damper(damping, sp, relaxation_s, dt)
+    springs = sp._replace(dl=_f64(dt / sp.len_m), kvs=_f64(sp.viscosity * sp.len_m / dt),
+                          e_damp=e_damp, g_damp=g_damp)
+    nodes = model.nodes._replace(hm=_f64(dt / model.nodes.mass))
+    blocks = model.blocks._replace(mdt=_f64(model.nodes.mass[model.blocks.nodes] / dt))
+    return model._replace(cycle=model.cycle._replace(dt=dt), nodes=nodes, springs=springs,
+                          blocks=blocks)
+
+
+def with_step(sys: System, dt: float) -> System:
+    """The same model with the step dt [s] (no stability check: verification)."""
+    return replace(sys, model=_step_forms(sys.model, float(dt), sys.damping, sys.relaxation_s))
+
+
+def with_law(sys: System, coef: np.ndarray, pv: np.ndarray, ps: np.ndarray) -> System:
+    """The same model with another resistance law (terms of coefficients (K, n) [N], speed
+    and sag exponents, taken as they are), evaluated the way the kernel chooses for it
+    (verification)."""
+    m = sys.model
+    law = law_record(coef, pv, ps, m.law.hs_ref, m.law.rtol)
+    return replace(sys, model=m._replace(law=law, lin=_lin(law, m.nodes, m.cycle.v_eps)))
+
+
+def with_probes(sys: System, probes) -> System:
+    """The same model recording the springs ``probes`` at every record."""
+    m = sys.model
+    return replace(sys, model=m._replace(probes=m.probes._replace(probes=_i64(probes))))
+
+
+def _step(mass, springs, implicit, damping, scn, opts, n) -> tuple[float, float]:
+    """The stability limit of the explicit part with the instantaneous stiffness and the mesh
+    viscosity, and the step: ``dt_safety`` of it, or the scenario's (refused above it)."""
+    glassy = springs.eb_dyn if damping == "belt" else springs.eb
+    dt_lim = stability_limit_s(mass, springs.len_m, glassy, implicit, springs.viscosity)
+    if scn.dt_s == "auto":
+        return opts.dt_safety * dt_lim, dt_lim
+    dt = float(scn.dt_s)
+    if dt > dt_lim:
+        raise InputError(
+            f"scenario.dt_s: {dt:g} s is above the stability limit {dt_lim:.4g} s of this "
+            f"model ({n} elements, shortest spring {springs.len_m.min():.3g} m); use 'auto' or a "
+            f"step below {dt_lim:.4g} s")
+    return dt, dt_lim
+
+
+def _drive_train_step(conv, scn, parts, rated, v_d, dt, notes) -> tuple[float, float, int]:
+    """The step resolving the fastest dol drive train (:func:`drive_train_time_s`): an
+    automatic step is shortened to it, a given one kept with a note. Returns (dt, the train's
+    time [s], its drive)."""
+    t_train, k_train = drive_train_time_s(conv, parts, rated, v_d)
+    if t_train / DRIVE_STEPS < dt:
+        if scn.dt_s == "auto":
+            notes.append(f"the step is {t_train / DRIVE_STEPS:.3g} s, not {dt:.3g} s: it resolves "
+                         f"the fastest dol drive train ({t_train:.3g} s to reach design speed "
+                         "unloaded at rated force): a heavier inertia_kg_m2 allows a longer step")
+            dt = t_train / DRIVE_STEPS
+        else:
+            notes.append(f"scenario.dt_s {dt:.3g} s is longer than the fastest dol drive train "
+                         f"({t_train:.3g} s to reach design speed unloaded at rated force): its "
+                         "shaft and motor speeds may not be resolved, 'auto' resolves them")
+    return dt, t_train, k_train
+
+
+def _drives(conv: Conveyor, loop: Loop, shaft_index: dict, rated: np.ndarray,
+            motor_mass: np.ndarray) -> Drives:
+    """The drives in file order: shaft, share, rated force and limit, control, coupling, motor
+    curve, fill and trip times, the motor's mass behind a coupling."""
+    nd = len(conv.drives)
+    limit = np.array([d.torque_limit for d in conv.drives]) * rated
+    cx, cy, cn = padded_curves([tuple(d.curve) for d in conv.drives])
+    z = np.zeros(nd)
+    return Drives(
+        shaft=_i64([shaft_index[e] for e in loop.drive_elements]),
+        node=_i64(loop.drive_elements), share=_f64([d.share for d in conv.drives]),
+        lim0=_f64(limit), lim=np.array(limit, dtype=np.float64), rated=_f64(rated),
+        control=_i64([VFD if d.control == "vfd" else DOL for d in conv.drives]),
+        coupling=_i64([COUPLING_CODES[d.coupling] for d in conv.drives]),
+        curve_x=cx, curve_y=cy, curve_n=cn, fill_s=_f64([d.coupling_fill_s for d in conv.drives]),
+        motor_mass=_f64(np.maximum(motor_mass, 1.0)),
+        trip_s=_f64([d.trip_s for d in conv.drives]), mode=np.zeros(nd, dtype=np.int64), f0=z,
+        f1=z.copy(), sat=np.zeros(nd, dtype=np.int64), lin_p=z.copy(), lin_d=z.copy(),
+        lin_cs=z.copy(), vm=z.copy(), force=z.copy(), ft=z.copy(), f_trip=z.copy())
+
+
+def _control(conv, scn, opts, drives: Drives, total_mass, te, gravity_sum, t_loop, v_d
+             ) -> Control:
+    """The speed loop on the master drive's shaft: bandwidth (:func:`speed_loop_bandwidth`
+    unless given), gains, the rigid-body feedforward's running resistance and the reference
+    speed at which it is complete, the followers' speed window."""
+    wc = (float(opts.controller_bandwidth_rad_s) if opts.controller_bandwidth_rad_s is not None
+          else speed_loop_bandwidth(t_loop))
+    # the feedforward of the running resistance ramps in with the reference speed, reaching
+    # full when the reference has run for one wave loop time (the time the motion needs to
+    # spread round the belt)
+    v_ff, _ = profiles.start_reference(START_CODES[scn.start.control],
+                                       min(t_loop, float(scn.start.time_s)),
+                                       float(scn.start.time_s), v_d)
+    v_ff = max(float(v_ff), float(opts.v_eps_m_s))
+    return Control(vfd=bool(drives.control[0] == VFD), master=master_drive(conv),
+                   kp=2.0 * wc * total_mass, ki=wc * wc * total_mass, bandwidth=wc,
+                   m_tot=total_mass, f_res=te - gravity_sum, v_ff=v_ff,
+                   f_const=float(opts.force_start_n or 0.0), window=SPEED_WINDOW * v_d)
+
+
+def _rest(conv, loop, springs: Springs, gravity, T_run, tu_weight) -> tuple[int, np.ndarray,
+                                                                            list[str]]:
+    """The element holding the belt at rest and the at-rest tensions: the brakes hold a
+    stopped belt when it has any (a friction drive could not hold a loaded incline or decline
+    by itself), else the master drive; the take-up sets their level. Returns (element,
+    tensions [N], warnings)."""
+    hold = rest_hold_element(conv, loop)
+    itu = loop.i_takeup
+    T_rest = rest_walk(loop, hold, gravity)  # relative to T[itu - 1] = 0; fix the level
+    if conv.takeup.type == "gravity":
+        # the carriage carries both strands: T_in + T_out = m g (the element holding the belt
+        # at rest may be the take-up pulley itself)
+        T_rest += 0.5 * (tu_weight - T_rest[itu - 1] - T_rest[itu])
+    else:
+        T_rest += _fixed_takeup_level(T_rest, T_run, springs.len_m, springs.a_ernst,
+                                      springs.eb, springs.t_floor, springs.k_floor)
+    warns: list[str] = []
+    if T_rest.min() < 0.0:
+        k = int(np.argmin(T_rest))
+        warns.append(f"held at rest the belt is slack at {loop.s_m[k] + loop.dx_m[k]:.0f} m "
+                     f"(the take-up leaves {T_rest[k] / 1e3:.3g} kN there): raise the take-up "
+                     "tension")
+    return hold, T_rest, warns
+
+
+def _takeup(conv, loop, steady, springs: Springs, T_rest, T_run) -> Takeup:
+    """The take-up: a gravity take-up's counterweight and carriage, its travel centred between
+    the rest position (x = 0) and the running one (the belt stretches while running and the
+    counterweight drops to take up the extra length: x grows by half the stretch, two
+    strands), the rest position always inside the travel."""
+    gravity_tu = conv.takeup.type == "gravity"
+    weight, inertia, x_run = 0.0, 1.0, 0.0
+    if gravity_tu:
+        m_tu = float(steady.takeup_mass_kg)
+        weight = m_tu * G
+        inertia = m_tu + float(conv.takeup.carriage_mass_kg)
+        args = (springs.a_ernst, springs.eb, springs.t_floor, springs.k_floor)
+        eps_rest = chord_strain(np.maximum(T_rest, 0.0), *args)
+        eps_run = chord_strain(T_run, *args)
+        x_run = 0.5 * float(np.sum(springs.len_m * (eps_run - eps_rest)))
+    travel = conv.takeup.travel_m if conv.takeup.travel_m is not None else 0.015 * loop.length_m
+    mid = 0.5 * min(max(x_run, -travel), travel)
+    return Takeup(gravity=gravity_tu, node=int(loop.i_takeup), weight=weight, mass=inertia,
+                  lo=mid - 0.5 * travel, hi=mid + 0.5 * travel, x_run=x_run)
+
+
+def _cycle(conv, scn, opts, n, dt, t_loop, total_mass, te, v_d, hold, drive_train):
+    """The cycle's times: the rest after the stop (one wave loop time at least, plus what
+    holding brakes and the drives' trip take), the longest a stop may take, the records'
+    spacing; the work limit of one run (refused beyond, naming what to change)."""
+    t_train, k_train = drive_train
+    hold_time = max([b.delay_s + (b.force_curve[-1][0] if b.force_curve else b.ramp_s)
+                     for b in conv.brakes if b.hold] or [0.0])
+    trip = max(d.trip_s for d in conv.drives)
+    post = opts.post_rest_s if opts.post_rest_s is not None else (
+        max(5.0, t_loop) + hold_time + trip)
+    coast_est = total_mass * v_d / te if te > 0 else scn.stop.time_s
+    stop_max = 3.0 * max(scn.stop.time_s, coast_est) + 2.0 * t_loop + 10.0
+    start_s = float(scn.start.time_s)
+    t_total = opts.pre_rest_s + start_s + scn.run_s + stop_max + post
+    steps = t_total / dt
+    if steps * n > 5e10:
+        if scn.dt_s == "auto" and t_train / DRIVE_STEPS <= dt:
+            raise InputError(
+                f"drives[{k_train}].inertia_kg_m2: {steps:.3g} steps of {n} elements is too much "
+                f"work for one run; the step, {dt:.3g} s, resolves the fastest dol drive train "
+                f"({t_train:.3g} s to reach design speed unloaded at rated force): give the "
+                "drives their real inertia (motor, coupling, gear and pulley reduced to the "
+                "pulley shaft)")
+        raise InputError(
+            f"scenario.dt_s / scenario.elements: {steps:.3g} steps of {n} elements is too much "
+            f"work for one run (over 5e10 element-steps): a cycle of {t_total:.4g} s (start "
+            f"{start_s:g} s, run {scn.run_s:g} s, up to {stop_max:.4g} s for the stop, the "
+            f"rests) at a step of {dt:.3g} s; use fewer elements or a larger step, or shorter "
+            "times")
+    return Cycle(
+        dt=dt, t_pre=float(opts.pre_rest_s), t_start=start_s, t_run=float(scn.run_s),
+        t_stop=float(scn.stop.time_s), stop_max=stop_max, post_rest=float(post), t_end=0.0,
+        rec_dt=float(scn.record_dt_s),
+        surf_dt=max(scn.record_dt_s, t_total / max(opts.surface_samples, 1)), v_d=v_d,
+        v_eps=float(opts.v_eps_m_s), v_fail=V_FAIL_FACTOR * v_d,
+        start_ctrl=(profiles.FORCE if opts.force_start_n is not None
+                    else START_CODES[scn.start.control]),
+        stop_mode=STOP_CODES[scn.stop.mode],
+        formulation=RELATIVE if scn.formulation == "relative" else SUPPORT, hold_node=int(hold))
+
+
+def _probes(conv, loop, opts) -> Probes:
+    """The recorded springs: head in and out, the tail pulley, ``probes`` springs spread round
+    the loop, at most ``surface_points`` springs of the surface."""
+    n = loop.n
+    s_end = loop.s_m + loop.dx_m
+    k = max(int(opts.probes), 1)
+    targets = (np.arange(k) + 0.5) * float(s_end[-1]) / k
+    probes = np.unique(np.clip(np.searchsorted(s_end, targets), 0, n - 1))
+    stride = max(1, int(math.ceil(n / max(opts.surface_points, 1))))
+    head_drives = [loop.drive_elements[i] for i, d in enumerate(conv.drives)
+                   if d.position == "head"]
+    s_head_out = max(head_drives) if head_drives else loop.i_head
+    return Probes(s_head_in=int((loop.i_head - 1) % n), s_head_out=int(s_head_out),
+                  i_tail=int(loop.i_tail), probes=_i64(probes),
+                  surface=_i64(np.arange(0, n, stride)))
+
+
+def _running(conv, steady, law: ResistanceLaw, v_d) -> tuple[np.ndarray, float, np.ndarray]:
+    """Statics' running tensions [N], its effective tension [N] and the drives' rated forces
+    [N] (:func:`beltstudy.engine.design.rated_power_kw`)."""
+    T_run = np.asarray(steady.tension_n, dtype=np.float64)
+    R_run = law.evaluate(v_d, 0.5 * (np.roll(T_run, 1) + T_run)) if law.tension_dependent \
+        else law.evaluate(v_d)
+    te = float(np.sum(steady.drive_force_n))
+    rated = np.array(design.rated_power_kw(conv, te, float(np.sum(R_run)))[0]) * 1e3 / v_d
+    return T_run, te, rated
 
 
 def build_system(conv: Conveyor, scn: Scenario, steady, options: DynamicsOptions | None = None
                  ) -> System:
-    """Build the transient model from a steady solution.
+    """Build the transient model from a steady solution, section by section.
 
     Parameters
     ----------
@@ -551,253 +945,43 @@ def build_system(conv: Conveyor, scn: Scenario, steady, options: DynamicsOptions
     opts = options or DynamicsOptions()
     check_scenario(scn, conv, opts)
     loop: Loop = steady.loop
-    law: ResistanceLaw = steady.law
     n = loop.n
     notes: list[str] = []
     v_d = float(loop.speed_m_s)
-    belt = loop.belt
-    EB = float(belt.stiffness_n)
-    EBd = float(belt.dynamic_stiffness_n)
-    dx = loop.dx_m
-    nxt = np.roll(np.arange(n), -1)
-
-    # ---- shafts: every drive pulley, and the braked and holdback pulleys
-    mass = loop.mass_kg.copy()
-    belt_mass = mass.copy()
-    parts = rotating_parts(conv, loop, opts.pulley_mass_kg)
-    shafts: dict[int, dict] = {}
-    for node, m in parts.shaft_mass.items():
-        p = loop.pulley_at(node)
-        shafts[node] = dict(mass=m, euler=p.euler, euler_k=p.euler_kinetic,
-                            drive=parts.shaft_drive.get(node, -1),
-                            hb=1 if (conv.holdback and node == loop.i_head) else 0)
-    for node, m in parts.plain_mass.items():
-        mass[node] += m
-    drive_motor = np.array(parts.motor_mass, dtype=float)
-    shaft_nodes = sorted(shafts)
-    shaft_index = {node: k for k, node in enumerate(shaft_nodes)}
-    sh_mass = np.array([shafts[s]["mass"] for s in shaft_nodes], dtype=float)
-    sh_eu = np.array([shafts[s]["euler"] for s in shaft_nodes], dtype=float)
-    sh_euk = np.array([shafts[s]["euler_k"] for s in shaft_nodes], dtype=float)
-    if not opts.slip:
-        sh_eu[:] = 0.0  # e^(mu theta) - 1 < 0: the kernel's code for a shaft that never slips
-    total_mass = float(mass.sum() + sh_mass.sum() + drive_motor.sum())
-
-    # ---- forces
-    gravity = loop.gravity_n.copy() if opts.gravity else np.zeros(n)
-    coef, pv, ps = _merge_law(law.coef, law.pv, law.ps)
-    if not opts.resistances:
-        coef, pv, ps = np.zeros((1, n)), np.zeros(1), np.zeros(1)
-    hs_cap = np.broadcast_to(np.asarray(law.hs_max, dtype=float), (n,)).copy()
-
-    # ---- springs
-    len_m = 0.5 * (dx + dx[nxt])
-    wS2 = (8.0 * loop.sag_w_n) ** 2  # (w S)^2 per element [N^2]
-    a_el = (dx * wS2 + dx[nxt] * wS2[nxt]) / (dx + dx[nxt]) / 12.0
-    if not opts.ernst:
-        a_el = np.zeros(n)
-    t_floor = np.maximum(np.sqrt(12.0 * a_el) / (8.0 * HS_FLOOR), 1.0)
-    k_floor = EB * t_floor**3 / (t_floor**3 + a_el * EB)
-    carriage = np.zeros(n)
-    gravity_tu = conv.takeup.type == "gravity"
-    itu = loop.i_takeup
-    if gravity_tu:
-        carriage[itu - 1] = 1.0
-        carriage[itu] = 1.0
-
-    # ---- waves (dynamic modulus)
-    rho = loop.mG_kg_m + loop.mL_kg_m + loop.mR_kg_m
-    c_wave = np.sqrt(EBd / rho)
-    t_loop = float(np.sum(dx / c_wave))
-    rho_spring = (rho * dx + rho[nxt] * dx[nxt]) / (dx + dx[nxt])
-    impedance = np.sqrt(EBd * rho_spring)
-
-    # ---- damping: the belt's standard linear solid and the mesh viscosity
-    if opts.damping == "off":
-        damping, tau, alpha = "off", math.inf, 0.0
-    else:
-        damping, tau, alpha = "belt", float(belt.relaxation_s), float(opts.mesh_viscosity)
-    glassy = EBd if damping == "belt" else EB
-    viscosity = alpha * impedance  # [N s/m] per spring
-
-    # ---- take-up
-    tu_weight = 0.0
-    tu_inertia = 1.0
-    if gravity_tu:
-        m_tu = float(steady.takeup_mass_kg)
-        tu_weight = m_tu * G
-        tu_inertia = m_tu + float(conv.takeup.carriage_mass_kg)
-
-    # ---- step
-    implicit, blocks = implicit_blocks(loop.strand)
-    dt_lim = stability_limit_s(mass, len_m, glassy, implicit, viscosity)
-    if scn.dt_s == "auto":
-        dt = opts.dt_safety * dt_lim
-    else:
-        dt = float(scn.dt_s)
-        if dt > dt_lim:
-            raise InputError(
-                f"scenario.dt_s: {dt:g} s is above the stability limit {dt_lim:.4g} s of this "
-                f"model ({n} elements, shortest spring {len_m.min():.3g} m); use 'auto' or a "
-                f"step below {dt_lim:.4g} s")
-
-    # ---- drives
-    T_run = np.asarray(steady.tension_n, dtype=np.float64)
-    R_run = law.evaluate(v_d, 0.5 * (np.roll(T_run, 1) + T_run)) if law.tension_dependent \
-        else law.evaluate(v_d)
-    te = float(np.sum(steady.drive_force_n))
-    r_sum = float(np.sum(R_run))
-    rated = np.array(design.rated_power_kw(conv, te, r_sum)[0]) * 1e3 / v_d
-    limit = np.array([d.torque_limit for d in conv.drives]) * rated
-    t_train, k_train = drive_train_time_s(conv, parts, rated, v_d)
-    if t_train / DRIVE_STEPS < dt:
-        if scn.dt_s == "auto":
-            notes.append(f"the step is {t_train / DRIVE_STEPS:.3g} s, not {dt:.3g} s: it resolves "
-                         f"the fastest dol drive train ({t_train:.3g} s to reach design speed "
-                         "unloaded at rated force): a heavier inertia_kg_m2 allows a longer step")
-            dt = t_train / DRIVE_STEPS
-        else:
-            notes.append(f"scenario.dt_s {dt:.3g} s is longer than the fastest dol drive train "
-                         f"({t_train:.3g} s to reach design speed unloaded at rated force): its "
-                         "shaft and motor speeds may not be resolved, 'auto' resolves them")
-    master = master_drive(conv)
-    wc = (float(opts.controller_bandwidth_rad_s) if opts.controller_bandwidth_rad_s is not None
-          else speed_loop_bandwidth(t_loop))
-    # the feedforward of the running resistance ramps in with the reference speed, reaching
-    # full when the reference has run for one wave loop time (the time the motion needs to
-    # spread round the belt)
-    v_ff, _ = profiles.start_reference(START_CODES[scn.start.control],
-                                       min(t_loop, float(scn.start.time_s)),
-                                       float(scn.start.time_s), v_d)
-    v_ff = max(float(v_ff), float(opts.v_eps_m_s))
-    kp = 2.0 * wc * total_mass
-    ki = wc * wc * total_mass
-
-    # ---- hold at rest and the at-rest tensions: the brakes hold a stopped belt when it has
-    # any (a friction drive could not hold a loaded incline or decline by itself), else the
-    # master drive
-    hold = rest_hold_element(conv, loop)
-    hold_force = float(gravity.sum())
-    T_rest = rest_walk(loop, hold, gravity)  # relative to T[itu - 1] = 0; fix the level
-    if gravity_tu:
-        # the carriage carries both strands: T_in + T_out = m g (the element holding the belt
-        # at rest may be the take-up pulley itself)
-        T_rest += 0.5 * (tu_weight - T_rest[itu - 1] - T_rest[itu])
-    else:
-        T_rest += _fixed_takeup_level(T_rest, T_run, len_m, a_el, EB, t_floor, k_floor)
-    warns: list[str] = []
-    if T_rest.min() < 0.0:
-        k = int(np.argmin(T_rest))
-        warns.append(f"held at rest the belt is slack at {loop.s_m[k] + dx[k]:.0f} m (the "
-                     f"take-up leaves {T_rest[k] / 1e3:.3g} kN there): raise the take-up "
-                     "tension")
-
-    # carriage travel: centred between the rest position (x = 0) and the running one (the
-    # belt stretches while running and the counterweight drops to take up the extra length:
-    # x grows by half the stretch, two strands), the rest position always inside the travel
-    travel = conv.takeup.travel_m if conv.takeup.travel_m is not None else 0.015 * loop.length_m
-    x_run = 0.0
-    if gravity_tu:
-        eps_rest = chord_strain(np.maximum(T_rest, 0.0), a_el, EB, t_floor, k_floor)
-        eps_run = chord_strain(T_run, a_el, EB, t_floor, k_floor)
-        x_run = 0.5 * float(np.sum(len_m * (eps_run - eps_rest)))
-    mid = 0.5 * min(max(x_run, -travel), travel)
-    tu_lo, tu_hi = mid - 0.5 * travel, mid + 0.5 * travel
-
-    # ---- brakes
-    b_force = []
-    if conv.brakes:
-        kn, _why, note = design.brake_forces(conv, scn, total_mass, te, float(gravity.sum()))
-        b_force = [f * 1e3 for f in kn]
-        if note:
-            notes.append(note)
-
-    # ---- durations
-    hold_time = max([b.delay_s + (b.force_curve[-1][0] if b.force_curve else b.ramp_s)
-                     for b in conv.brakes if b.hold] or [0.0])
-    trip = max(d.trip_s for d in conv.drives)
-    post = opts.post_rest_s if opts.post_rest_s is not None else (
-        max(5.0, t_loop) + hold_time + trip)
-    coast_est = total_mass * v_d / te if te > 0 else scn.stop.time_s
-    stop_max = 3.0 * max(scn.stop.time_s, coast_est) + 2.0 * t_loop + 10.0
-    start_s = float(scn.start.time_s)
-    t_total = opts.pre_rest_s + start_s + scn.run_s + stop_max + post
-    steps = t_total / dt
-    if steps * n > 5e10:
-        if scn.dt_s == "auto" and t_train / DRIVE_STEPS <= dt:
-            raise InputError(
-                f"drives[{k_train}].inertia_kg_m2: {steps:.3g} steps of {n} elements is too much work for "
-                f"one run; the step, {dt:.3g} s, resolves the fastest dol drive train "
-                f"({t_train:.3g} s to reach design speed unloaded at rated force): give the drives "
-                "their real inertia (motor, coupling, gear and pulley reduced to the pulley shaft)")
-        raise InputError(
-            f"scenario.dt_s / scenario.elements: {steps:.3g} steps of {n} elements is too much "
-            f"work for one run (over 5e10 element-steps): a cycle of {t_total:.4g} s (start "
-            f"{start_s:g} s, run {scn.run_s:g} s, up to {stop_max:.4g} s for the stop, the "
-            f"rests) at a step of {dt:.3g} s; use fewer elements or a larger step, or shorter "
-            "times")
-    surf_dt = max(scn.record_dt_s, t_total / max(opts.surface_samples, 1))
-
-    # ---- probes and surface springs
-    s_end = loop.s_m + dx
-    L_tot = float(s_end[-1])
-    k = max(int(opts.probes), 1)
-    targets = (np.arange(k) + 0.5) * L_tot / k
-    probes = np.unique(np.clip(np.searchsorted(s_end, targets), 0, n - 1))
-    stride = max(1, int(math.ceil(n / max(opts.surface_points, 1))))
-    surf = np.arange(0, n, stride)
-    head_drives = [loop.drive_elements[i] for i, d in enumerate(conv.drives)
-                   if d.position == "head"]
-    s_head_out = max(head_drives) if head_drives else loop.i_head
-
+    mass, shafts, shaft_index, parts = _shafts(conv, loop, opts)
+    total_mass = float(mass.sum() + shafts.mass.sum() + np.sum(parts.motor_mass))
+    law = _law(n, steady.law, opts)
+    nodes = _nodes(loop, mass, steady.law, opts, law.hs_ref)
+    T_run, te, rated = _running(conv, steady, steady.law, v_d)
+    implicit, blocks_list = implicit_blocks(loop.strand)
+    in_block = np.zeros(n, dtype=bool)
+    for b in blocks_list:
+        in_block[b] = True
+    springs, c_wave = _springs(loop, conv, opts, T_run, implicit, in_block)
+    t_loop = float(np.sum(loop.dx_m / c_wave))
+    damping = "off" if opts.damping == "off" else "belt"
+    tau = math.inf if damping == "off" else float(loop.belt.relaxation_s)
+    dt, dt_lim = _step(mass, springs, implicit, damping, scn, opts, n)
+    dt, *train = _drive_train_step(conv, scn, parts, rated, v_d, dt, notes)
+    drives = _drives(conv, loop, shaft_index, rated, np.array(parts.motor_mass, dtype=float))
+    gravity_sum = float(nodes.gravity.sum())
+    control = _control(conv, scn, opts, drives, total_mass, te, gravity_sum, t_loop, v_d)
+    tu_weight = float(steady.takeup_mass_kg) * G if conv.takeup.type == "gravity" else 0.0
+    hold, T_rest, warns = _rest(conv, loop, springs, nodes.gravity, T_run, tu_weight)
+    takeup = _takeup(conv, loop, steady, springs, T_rest, T_run)
+    brakes = build_brakes(conv, scn, loop, shaft_index, total_mass, te, gravity_sum, notes)
+    cycle = _cycle(conv, scn, opts, n, dt, t_loop, total_mass, te, v_d, hold, train)
+    model = Model(
+        cycle=cycle, nodes=nodes, law=law, lin=_lin(law, nodes, cycle.v_eps), springs=springs,
+        blocks=_blocks(blocks_list, int(drives.node[control.master]), n, shaft_index,
+                       takeup.gravity, takeup.node),
+        shafts=shafts, drives=drives, brakes=brakes, takeup=takeup, control=control,
+        probes=_probes(conv, loop, opts))
     return System(
-        n=n, i_head=loop.i_head, i_tail=loop.i_tail, i_takeup=itu, strand=loop.strand.copy(),
-        mass_kg=mass, belt_mass_kg=belt_mass, gravity_n=gravity, sag_w_n=loop.sag_w_n.copy(),
-        hs_cap=hs_cap, coef=coef, pv=pv, ps=ps, hs_ref=float(law.hs_ref),
-        len_m=len_m, stiffness_n=EB, stiffness_dyn_n=EBd, a_ernst=a_el, t_floor_n=t_floor,
-        k_floor_n=k_floor, carriage_coupling=carriage, implicit=implicit, blocks=blocks,
-        impedance_ns_m=impedance, damping=damping, relaxation_s=tau, mesh_viscosity=alpha,
-        tension_rest_n=T_rest, hold_node=hold, hold_force_n=hold_force,
-        dt_s=dt, dt_limit_s=dt_lim, wave_loop_time_s=t_loop, wave_speed_m_s=c_wave,
-        shaft_node=np.array(shaft_nodes, dtype=np.int64), shaft_mass_kg=sh_mass,
-        shaft_euler=sh_eu, shaft_euler_kinetic=sh_euk,
-        shaft_drive=np.array([shafts[s]["drive"] for s in shaft_nodes], dtype=np.int64),
-        shaft_holdback=np.array([shafts[s]["hb"] for s in shaft_nodes], dtype=np.int64),
-        drive_node=np.array(loop.drive_elements, dtype=np.int64),
-        drive_shaft=np.array([shaft_index[e] for e in loop.drive_elements], dtype=np.int64),
-        drive_share=np.array([d.share for d in conv.drives]), drive_rated_n=rated,
-        drive_limit_n=limit,
-        drive_control=np.array([VFD if d.control == "vfd" else DOL for d in conv.drives],
-                               dtype=np.int64),
-        drive_coupling=np.array([COUPLING_CODES[d.coupling] for d in conv.drives],
-                                dtype=np.int64),
-        drive_curves=[tuple(d.curve) for d in conv.drives],
-        drive_fill_s=np.array([d.coupling_fill_s for d in conv.drives]),
-        drive_motor_mass_kg=drive_motor,
-        drive_trip_s=np.array([d.trip_s for d in conv.drives]),
-        master=master, kp=kp, ki=ki, bandwidth_rad_s=wc, v_ff_m_s=v_ff,
-        total_mass_kg=total_mass,
-        brake_shaft=np.array([shaft_index[loop.brake_element(b)] for b in conv.brakes],
-                             dtype=np.int64),
-        brake_node=np.array([loop.brake_element(b) for b in conv.brakes], dtype=np.int64),
-        brake_force_n=np.array(b_force, dtype=float),
-        brake_delay_s=np.array([b.delay_s for b in conv.brakes], dtype=float),
-        brake_ramp_s=np.array([b.ramp_s for b in conv.brakes], dtype=float),
-        brake_curves=[tuple(b.force_curve or ()) for b in conv.brakes],
-        brake_hold=np.array([1 if b.hold else 0 for b in conv.brakes], dtype=np.int64),
-        takeup_gravity=gravity_tu, takeup_weight_n=tu_weight, takeup_inertia_kg=tu_inertia,
-        takeup_lo_m=tu_lo, takeup_hi_m=tu_hi, takeup_run_m=x_run,
-        v_design=v_d, v_eps=float(opts.v_eps_m_s),
-        start_control=(profiles.FORCE if opts.force_start_n is not None
-                       else START_CODES[scn.start.control]),
-        start_s=start_s, run_s=float(scn.run_s), stop_mode=STOP_CODES[scn.stop.mode],
-        stop_s=float(scn.stop.time_s),
-        formulation=RELATIVE if scn.formulation == "relative" else SUPPORT,
-        force_start_n=float(opts.force_start_n or 0.0),
-        pre_rest_s=float(opts.pre_rest_s), post_rest_s=float(post), stop_max_s=stop_max,
-        record_dt_s=float(scn.record_dt_s), surface_dt_s=surf_dt,
-        probe_springs=probes.astype(np.int64), surface_springs=surf.astype(np.int64),
-        steady_tension_n=T_run.copy(), te_n=te, dx_m=dx.copy(), s_end_m=s_end,
-        spring_head_in=(loop.i_head - 1) % n, spring_head_out=int(s_head_out),
-        notes=notes, warnings=warns, resistance_rtol=float(opts.resistance_rtol),
-    )
+        model=_step_forms(model, dt, damping, tau), strand=loop.strand.copy(),
+        s_end_m=loop.s_m + loop.dx_m, dx_m=loop.dx_m.copy(), i_head=int(loop.i_head),
+        blocks=blocks_list, implicit=implicit, tension_rest_n=T_rest, hold_force_n=gravity_sum,
+        steady_tension_n=T_run.copy(), te_n=te, wave_loop_time_s=t_loop, wave_speed_m_s=c_wave,
+        dt_limit_s=dt_lim, damping=damping, relaxation_s=tau,
+        mesh_viscosity=0.0 if damping == "off" else float(opts.mesh_viscosity), notes=notes,
+        warnings=warns)

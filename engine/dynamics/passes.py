@@ -60,18 +60,24 @@ def _term_sag(r0, c, v, lnv, phi, lnphi, sc, p, qc, q):
 
 
 @njit(**OPTS)
-def resistance(r0, v, tt, coef, pvc, pvv, psc, psv, sw_ref, hsm_ref, any_ps, phi,
-               lnv, lnphi, t_sparse, t_ptr, t_idx):
-    """Resistance magnitude ``R0_j = sum_k coef[k, j] |v_j|^pv[k] phi_j^ps[k]`` into r0 [N].
+def resistance(law, nodes, st, wk):
+    """Resistance magnitude ``R0_j = sum_k coef[k, j] |v_j|^pv[k] phi_j^ps[k]`` into
+    ``wk.r0`` [N] (:class:`~beltstudy.engine.dynamics.records.Law`) at the state ``st``.
 
     One vectorised pass per term, compiled for its exponents: speed exponents 0 and 1 need
     no power, others ``exp(p ln|v|)``; sag exponents 0, 0.5, 1, 1.5 and 2 use sqrt and
     products, others ``exp(q ln phi)``. The logarithms are computed once per step; the
     constant term initialises r0. ``phi`` is the sag ratio over the reference from the
     element's mean tension, ``phi_j = min(sw_ref_j / T, hsm_ref_j)`` with the sag weight and
-    the element's sag cap both over the reference sag; ``phi``, ``lnv`` and ``lnphi`` are
-    scratch arrays.
+    the element's sag cap both over the reference sag (``nodes``); ``wk.phi``, ``wk.lnv`` and
+    ``wk.lnphi`` are scratch arrays.
     """
+    r0, phi, lnv, lnphi = wk.r0, wk.phi, wk.lnv, wk.lnphi
+    v, tt = st.v, st.tt
+    sw_ref, hsm_ref = nodes.sw_ref, nodes.hsm_ref
+    coef, pvc, pvv, psc, psv = law.coef, law.pvc, law.pvv, law.psc, law.psv
+    t_sparse, t_ptr, t_idx = law.t_sparse, law.t_ptr, law.t_idx
+    any_ps = law.any_ps
     n = r0.shape[0]
     if any_ps:
         phi[0] = min(sw_ref[0] / max(0.5 * (tt[n - 1] + tt[0]), 1.0), hsm_ref[0])
@@ -495,15 +501,18 @@ def spring_refine(e1, s1, d1, de, tfl, sfl, kfl_eb, aeb, kvs):
 
 
 @njit(inline="always", **OPTS)
-def spring(e0, s0, d0, dv, dlj, cdt, tfl, sfl, kfl_eb, aeb, eb, e_damp, g_damp, kvs):
-    """One spring after the strain increment ``de = dv * dl + cdt`` (dl = dt / len, cdt =
-    carriage term): :func:`spring_first`, refined where it needs it. Returns (elastic,
-    strain, arm, total)."""
-    de = dv * dlj + cdt
-    e1, s1, d1, t1, more = spring_first(e0, s0, d0, de, tfl, sfl, kfl_eb, aeb, eb, e_damp,
-                                        g_damp, kvs)
+def spring(sp, j, e0, s0, d0, dv, cdt):
+    """Spring j (:class:`~beltstudy.engine.dynamics.records.Springs`) from its elastic, strain
+    and arm tension ``e0``, ``s0``, ``d0`` after the strain increment ``de = dv * dl + cdt``
+    (dl = dt / len, cdt = carriage term): :func:`spring_first`, refined where it needs it.
+    Returns (elastic, strain, arm, total)."""
+    de = dv * sp.dl[j] + cdt
+    e1, s1, d1, t1, more = spring_first(e0, s0, d0, de, sp.t_floor[j], sp.s_floor[j],
+                                        sp.kfl_eb[j], sp.a_eb[j], sp.eb, sp.e_damp, sp.g_damp,
+                                        sp.kvs[j])
     if more:
-        e1, t1 = spring_refine(e1, s1, d1, de, tfl, sfl, kfl_eb, aeb, kvs)
+        e1, t1 = spring_refine(e1, s1, d1, de, sp.t_floor[j], sp.s_floor[j], sp.kfl_eb[j],
+                               sp.a_eb[j], sp.kvs[j])
     return e1, s1, d1, t1
 
 
@@ -517,12 +526,15 @@ def spring_rest(e0, s0, tfl, aeb):
 
 
 @njit(**OPTS)
-def spring_pass(a, b, v, te, ts, td, tt, dl, t_floor, s_floor, kfl_eb, a_eb, eb, e_damp,
-                g_damp, kvs, more):
-    """Update springs a..b-1 (b <= n - 1) from the new velocities: the first Newton step of
-    every spring in one vectorised loop (``more`` [0/1] marks the springs whose step bends too
-    much), then the marked ones refined (:func:`spring_refine`) in a second loop, only when
-    there are any."""
+def spring_pass(a, b, st, sp, more):
+    """Update springs a..b-1 (b <= n - 1) of the state ``st`` from the new velocities: the
+    first Newton step of every spring in one vectorised loop (``more`` [0/1] marks the springs
+    whose step bends too much), then the marked ones refined (:func:`spring_refine`) in a
+    second loop, only when there are any."""
+    v, te, ts, td, tt = st.v, st.te, st.ts, st.td, st.tt
+    dl, t_floor, s_floor, kfl_eb, a_eb, kvs = sp.dl, sp.t_floor, sp.s_floor, sp.kfl_eb, \
+        sp.a_eb, sp.kvs
+    eb, e_damp, g_damp = sp.eb, sp.e_damp, sp.g_damp
     cnt = 0
     for jj in range(a, b):
         j = uintp(jj)
@@ -569,28 +581,30 @@ def observe(tt, v, t_max, t_min):
 
 
 @njit(inline="always", **OPTS_RED)
-def _next_law(vj, ta, tb, ulo, uhi, tlo, thi, k, gu, guu, gx, gxx, gux):
-    """An element's expanded law at its state and whether the state is outside its window."""
+def _next_law(lin, j, vj, ta, tb):
+    """Element j's expanded law (:class:`~beltstudy.engine.dynamics.records.Lin`) at its speed
+    ``vj`` and the mean of its springs' tensions ``ta``, ``tb``, and whether that state is
+    outside its window."""
     u = abs(vj)
     tm = 0.5 * (ta + tb)
-    return (_lin(u, tm, k, gu, guu, gx, gxx, gux),
-            (u < ulo) | (u > uhi) | (tm < tlo) | (tm > thi))
+    return (_lin(u, tm, lin.k[j], lin.gu[j], lin.guu[j], lin.gx[j], lin.gxx[j], lin.gux[j]),
+            (u < lin.ulo[j]) | (u > lin.uhi[j]) | (tm < lin.tlo[j]) | (tm > lin.thi[j]))
 
 
 @njit(**OPTS_RED)
-def observe_lin(tt, v, t_max, t_min, ulo, uhi, tlo, thi, flag, k, gu, guu, gx, gxx, gux, r0):
-    """:func:`observe`, and the law for the next step: the expanded law at the state the step
-    ends in, into r0 [N], and the flags (1) of the elements whose speed or mean tension is
-    outside the window of the expansion (:func:`law_refresh`): their law is evaluated exactly
-    before the next step. Returns (min tension, max tension, min speed, max speed, number
-    flagged)."""
+def observe_lin(st, t_max, t_min, lin, r0):
+    """:func:`observe` of the state ``st``, and the law for the next step: the expanded law
+    at the state the step ends in, into r0 [N], and the flags (1, ``lin.flag``) of the
+    elements whose speed or mean tension is outside the window of the expansion
+    (:func:`law_refresh`): their law is evaluated exactly before the next step. Returns (min
+    tension, max tension, min speed, max speed, number flagged)."""
+    tt, v, flag = st.tt, st.v, lin.flag
     n = tt.shape[0]
     lo = tt[0]
     hi = tt[0]
     vlo = v[0]
     vhi = v[0]
-    r, f = _next_law(v[0], tt[n - 1], tt[0], ulo[0], uhi[0], tlo[0], thi[0], k[0], gu[0],
-                     guu[0], gx[0], gxx[0], gux[0])
+    r, f = _next_law(lin, 0, v[0], tt[n - 1], tt[0])
     r0[0] = r
     flag[0] = f
     cnt = 1 if f else 0
@@ -607,8 +621,7 @@ def observe_lin(tt, v, t_max, t_min, ulo, uhi, tlo, thi, flag, k, gu, guu, gx, g
         hi = _fmax(hi, t1)
         vlo = _fmin(vlo, vj)
         vhi = _fmax(vhi, vj)
-        r, f = _next_law(vj, tt[jm], t1, ulo[j], uhi[j], tlo[j], thi[j], k[j], gu[j], guu[j],
-                         gx[j], gxx[j], gux[j])
+        r, f = _next_law(lin, j, vj, tt[jm], t1)
         r0[j] = r
         flag[j] = f
         cnt += 1 if f else 0
@@ -656,7 +669,7 @@ def slack_zones(ts, tt, eb, len_m, eps_run):
 def law_rows(pv, ps):
     """Each term's speed and sag factor rows for :func:`law_refresh`, the exponents taken by
     exp and log, and the weights of the sums over the terms (padded to K_LIN terms); plain
-    Python, for :func:`beltstudy.engine.dynamics.simulate.prepare`. Returns ``(rs, rq, upow, qpow,
+    Python, for :func:`beltstudy.engine.dynamics.model.build_system`. Returns ``(rs, rq, upow, qpow,
     npow, wk)``."""
     import numpy as np
 

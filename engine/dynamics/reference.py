@@ -1,13 +1,18 @@
 """The slow, obvious numpy implementation of the kernel's equations (STYLE: a reference path
 beside the numba kernel, tested against it).
 
-Same model (:class:`~beltstudy.engine.dynamics.model.System`) and same scheme as
-:mod:`beltstudy.engine.dynamics.kernel`, written for reading rather than speed, and sharing with it only
-the scalar laws (:mod:`beltstudy.engine.dynamics.laws`, :mod:`beltstudy.engine.dynamics.profiles`):
+Same model (the records of :class:`~beltstudy.engine.dynamics.model.System`, ``sys.model``:
+:mod:`beltstudy.engine.dynamics.records`) and same scheme as
+:mod:`beltstudy.engine.dynamics.kernel`, written for reading rather than speed, and sharing with
+it only the scalar laws (:mod:`beltstudy.engine.dynamics.laws`,
+:mod:`beltstudy.engine.dynamics.profiles`, the brakes' force law in
+:mod:`beltstudy.engine.dynamics.brakes`). It reads the records' physical quantities (lengths,
+masses, stiffness, viscosity, Ernst's sag term) and computes from them what the kernel keeps in
+per-step forms (``dt / len``, ``dt / mass``, ``a EB``, the arm's decay and gain):
 
-* the resistance law with exact ``np.power``, every step (``resistance_rtol = 0``) or, as the
-  kernel, expanded between exact evaluations (:mod:`beltstudy.engine.dynamics.linlaw`, the same windows
-  and expansion points; :class:`ExpandedLaw`);
+* the resistance law with exact ``np.power``, every step (``Law.rtol = 0``) or, as the
+  kernel, expanded between exact evaluations (:mod:`beltstudy.engine.dynamics.linlaw`, the same
+  windows and expansion points; :class:`ExpandedLaw`);
 * the free elements and the springs as whole-array numpy operations;
 * every implicit block (a pulley with the springs on both its sides, the elements at their
   far ends, the pulley shafts and the take-up carriage) as a dense matrix assembled from the
@@ -16,8 +21,17 @@ the scalar laws (:mod:`beltstudy.engine.dynamics.laws`, :mod:`beltstudy.engine.d
   or slipping on it (capstan friction), torque limits, the carriage at an end stop; the speed
   loop's output ``U`` found by superposition of two solves.
 
-The decision rules (thresholds, the order of the checks) are the kernel's, so both take the
-same branches. Use it on small models and short times: a step costs milliseconds.
+One step is the kernel's sequence of phases, each a function of the same name
+(:func:`_phase` with :func:`_brake_forces` and :func:`_drive_laws`, :func:`_resistances`,
+:func:`_free_elements`, :func:`_blocks` with :func:`_block_step`, :func:`_spring_step`,
+:func:`_observe`, :func:`_switches`), over the belt state, the shafts', drives' and brakes'
+state and a run record of the step's scalars (``rs``, the kernel's
+:data:`~beltstudy.engine.dynamics.records.RUN`); the kernel's block functions have their
+counterparts here (:func:`_block_setup`, :func:`_master_output`, :func:`_block_rows`,
+:func:`_block_solution`, :func:`_row_consistent`, :func:`_shaft_consistent`,
+:func:`_write_back`). The decision rules (thresholds, the order of the checks) are the
+kernel's, so both take the same branches. Use it on small models and short times: a step costs
+milliseconds.
 """
 
 from __future__ import annotations
@@ -28,7 +42,8 @@ from types import SimpleNamespace
 import numpy as np
 
 from beltstudy.engine.dynamics import codes as C
-from beltstudy.engine.dynamics.laws import brake_fraction, coupling_torque, motor_force
+from beltstudy.engine.dynamics.brakes import brake_force, set_at
+from beltstudy.engine.dynamics.laws import coupling_torque, motor_force
 from beltstudy.engine.dynamics.linlaw import (
     BIG,
     PREDICT,
@@ -40,6 +55,7 @@ from beltstudy.engine.dynamics.linlaw import (
 from beltstudy.engine.dynamics.model import System, chord_strain
 from beltstudy.engine.dynamics.passes import NEWTON_CURVE, NEWTON_MORE
 from beltstudy.engine.dynamics.profiles import FORCE, TORQUE, start_reference, stop_reference
+from beltstudy.engine.dynamics.records import Law, Model, Nodes, Springs
 
 __all__ = ["ReferenceResult", "ExpandedLaw", "run_reference"]
 
@@ -67,23 +83,23 @@ class ReferenceResult(dict):
 # laws of the belt
 
 
-def _law(sys: System, v: np.ndarray, T: np.ndarray) -> np.ndarray:
+def _law(law: Law, nodes: Nodes, v: np.ndarray, T: np.ndarray) -> np.ndarray:
     """Resistance magnitude per element before regularisation [N].
 
     ``R0_j = sum_k coef[k, j] |v_j|^pv[k] phi_j^ps[k]``, with ``phi_j`` the sag ratio over the
     reference from the element's mean tension (its two springs), capped at ``hs_cap``.
     """
     tm = 0.5 * (np.roll(T, 1) + T)
-    phi = np.minimum(sys.sag_w_n / sys.hs_ref / np.maximum(tm, 1.0), sys.hs_cap / sys.hs_ref)
+    phi = np.minimum(nodes.sag_w / law.hs_ref / np.maximum(tm, 1.0), nodes.hs_cap / law.hs_ref)
     av = np.abs(v)
-    total = np.zeros(sys.n)
-    for c, p, q in zip(sys.coef, sys.pv, sys.ps, strict=True):
+    total = np.zeros(len(v))
+    for c, p, q in zip(law.coef, law.pvv, law.psv, strict=True):
         total += c * np.power(av, p) * np.power(phi, q)
     return total
 
 
 class ExpandedLaw:
-    """The resistance law as the kernel takes it with ``resistance_rtol > 0``
+    """The resistance law as the kernel takes it with ``Law.rtol > 0``
     (:mod:`beltstudy.engine.dynamics.linlaw`): each element's law evaluated exactly (``np.power``) when
     its speed or mean tension has left the window round its expansion point, and its
     second-order expansion about that point otherwise. Call with the state for R0 [N].
@@ -96,14 +112,17 @@ class ExpandedLaw:
     """
 
     def __init__(self, sys: System):
-        self.sys = sys
-        self.w = law_windows(sys.coef, sys.pv, sys.ps, sys.resistance_rtol)
-        self.sw = sys.sag_w_n / sys.hs_ref
-        self.hsm = sys.hs_cap / sys.hs_ref
+        model = sys.model
+        law, nodes = model.law, model.nodes
+        self.law = law
+        self.w = law_windows(law.coef, law.pvv, law.psv, law.rtol)
+        self.sw = nodes.sag_w / law.hs_ref
+        self.hsm = nodes.hs_cap / law.hs_ref
         self.xc = x_cap(self.sw, self.hsm)
-        self.du, self.d0, self.dx = element_windows(sys.coef, sys.pv, sys.ps, self.sw, self.hsm,
-                                                    sys.v_eps, self.w)
-        n = sys.n
+        self.du, self.d0, self.dx = element_windows(law.coef, law.pvv, law.psv, self.sw,
+                                                    self.hsm, model.cycle.v_eps, self.w)
+        n = nodes.mass.shape[0]
+        self.n = n
         self.poly = np.zeros((6, n))
         self.bounds = np.zeros((4, n))  # u low, u high, T low, T high
         self.started = False
@@ -114,7 +133,7 @@ class ExpandedLaw:
         tm = 0.5 * (np.roll(T, 1) + T)
         lo_u, hi_u, lo_t, hi_t = self.bounds
         if not self.started:
-            out = np.ones(self.sys.n, dtype=bool)
+            out = np.ones(self.n, dtype=bool)
             self.started = True
         else:
             out = (u < lo_u) | (u > hi_u) | (tm < lo_t) | (tm > hi_t)
@@ -125,7 +144,7 @@ class ExpandedLaw:
         return k + u * (gu + guu * u + gux * tm) + tm * (gx + gxx * tm)
 
     def _evaluate(self, j, u, tm):
-        sys = self.sys
+        law = self.law
         u, tm = u[j], tm[j]
         du, w0, dx, xc = self.du[j], self.d0[j], self.dx[j], self.xc[j]
         lo_u, hi_u, lo_t, hi_t = self.bounds[:, j]
@@ -140,7 +159,7 @@ class ExpandedLaw:
         # the exact law's terms there and the sums of the expansion
         phi = np.minimum(self.sw[j] / np.maximum(tc, 1.0), self.hsm[j])
         r, a, aa, b, bb, e = (np.zeros(len(j)) for _ in range(6))
-        for c, p, q in zip(sys.coef[:, j], sys.pv, sys.ps, strict=True):
+        for c, p, q in zip(law.coef[:, j], law.pvv, law.psv, strict=True):
             t = c * np.power(uc, p) * np.power(phi, q)
             r += t
             a += p * t
@@ -160,76 +179,79 @@ class ExpandedLaw:
         self.bounds[3, j] = f32(np.where(dx >= BIG, BIG, np.where(uncapped, tc + dx * tc, xc)))
 
 
-def _tangent(sys: System, te: np.ndarray, j=slice(None)) -> np.ndarray:
+def _tangent(sp: Springs, te: np.ndarray, j=slice(None)) -> np.ndarray:
     """Ernst tangent modulus ``EB T^3 / (T^3 + a EB)`` of springs j [N], held at the floor
     tension below it."""
-    t3 = np.maximum(te, sys.t_floor_n[j]) ** 3
-    return sys.stiffness_n * t3 / (t3 + sys.a_ernst[j] * sys.stiffness_n)
+    t3 = np.maximum(te, sp.t_floor[j]) ** 3
+    return sp.eb * t3 / (t3 + sp.a_ernst[j] * sp.eb)
 
 
 def _damper(sys: System) -> tuple[float, float]:
     """The relaxing arm of the standard linear solid: (decay over a step, gain per unit tangent
     stiffness and strain increment), ``d' = e d + g kt de``; (0, 0) without an arm."""
-    if sys.damping != "belt" or not sys.stiffness_dyn_n > sys.stiffness_n:
+    sp = sys.model.springs
+    if sys.damping != "belt" or not sp.eb_dyn > sp.eb:
         return 0.0, 0.0
     h = sys.dt_s / sys.relaxation_s
     e = math.exp(-h)
-    return e, (sys.stiffness_dyn_n - sys.stiffness_n) / sys.stiffness_n * (1.0 - e) / h
+    return e, (sp.eb_dyn - sp.eb) / sp.eb * (1.0 - e) / h
 
 
-def _newton(sys, te, ts, j=slice(None)):
+def _viscosity(model: Model) -> np.ndarray:
+    """Mesh viscosity per spring as tension per strain increment over a step [N]:
+    ``alpha Z len / dt``."""
+    sp = model.springs
+    return sp.viscosity * sp.len_m / model.cycle.dt
+
+
+def _newton(sp: Springs, te, ts, j=slice(None)):
     """One Newton step of Ernst's chord law ``s(T) = T - a EB / (2 T^2)`` towards the strain
     tension ts from the elastic tension te (held at the floor below it) for springs j: (the
     step's tension, the tangent modulus [N] at its start, whether its estimated error,
     ``1.5 u r^3 |ds| / T`` of the increment with ``u = a EB / T^3``, ``r = 1 / (1 + u)``,
     exceeds ``NEWTON_CURVE``)."""
-    tc = np.maximum(te, sys.t_floor_n[j])
-    aeb = sys.a_ernst[j] * sys.stiffness_n
-    kt = _tangent(sys, te, j)
-    r = kt / sys.stiffness_n
+    tc = np.maximum(te, sp.t_floor[j])
+    aeb = sp.a_ernst[j] * sp.eb
+    kt = _tangent(sp, te, j)
+    r = kt / sp.eb
     ds = ts - (tc - aeb / (2.0 * tc * tc))
     curve = 1.5 * (aeb / tc**3) * r**3 * np.abs(ds) / tc
     return tc + r * ds, kt, curve > NEWTON_CURVE
 
 
-def _strain_rest(sys, te, ts, j=slice(None)):
+def _strain_rest(sp: Springs, te, ts, j=slice(None)):
     """Elastic tension of springs j at their strain before the increment (the constant part
     of the Newton step in :func:`_springs`) and their tangent modulus [N]."""
-    e, kt, _ = _newton(sys, te, ts, j)
+    e, kt, _ = _newton(sp, te, ts, j)
     return e, kt
 
 
-def _springs(sys, te, ts, td, de, damp):
-    """Every spring after the strain increment ``de`` [-]: (elastic, strain, arm, total)
-    tension [N].
+def _springs(sp: Springs, st, de, damp, visc):
+    """Every spring of the belt state ``st`` after the strain increment ``de`` [-]: (elastic,
+    strain, arm, total) tension [N].
 
     Strain tension ``ts = EB eps`` (chord strain) integrates the increment exactly; elastic
     tension is its inverse under Ernst's chord law by a Newton step from the old tension, the
     larger of that and the floor line (the floor modulus below the floor tension, on into
     slack); springs whose step bends more than ``NEWTON_CURVE`` of the increment take
     ``NEWTON_MORE`` further steps. Slack (below the floor line's zero): no arm, no mesh
-    viscosity. Arm: ``e d + g kt de``. Mesh viscosity ``alpha Z len / dt x de``. A belt never
-    pushes.
+    viscosity. Arm: ``e d + g kt de`` (``damp = (e, g)``). Mesh viscosity ``visc x de``
+    (``alpha Z len / dt``). A belt never pushes.
     """
     e_damp, g_damp = damp
-    eb = sys.stiffness_n
-    s1 = ts + eb * de
-    tfl = sys.t_floor_n
-    sfl = eb * chord_strain(tfl, sys.a_ernst, eb, tfl, sys.k_floor_n)
-    fl = tfl + (s1 - sfl) * sys.k_floor_n / eb
-    e1, kt, more = _newton(sys, te, s1)
+    eb = sp.eb
+    s1 = st.ts + eb * de
+    tfl = sp.t_floor
+    sfl = eb * chord_strain(tfl, sp.a_ernst, eb, tfl, sp.k_floor)
+    fl = tfl + (s1 - sfl) * sp.k_floor / eb
+    e1, kt, more = _newton(sp, st.te, s1)
     e1 = np.maximum(e1, fl)
     for _ in range(NEWTON_MORE):
-        e1 = np.where(more, np.maximum(_newton(sys, e1, s1)[0], fl), e1)
+        e1 = np.where(more, np.maximum(_newton(sp, e1, s1)[0], fl), e1)
     taut = fl >= 0.0
-    d1 = np.where(taut, e_damp * td + g_damp * kt * de, 0.0)
-    visc = np.where(taut, _viscosity(sys) * de, 0.0)
-    return e1, s1, d1, np.maximum(e1 + d1 + visc, 0.0)
-
-
-def _viscosity(sys: System) -> np.ndarray:
-    """Mesh viscosity per spring as tension per strain increment over a step [N]."""
-    return sys.mesh_viscosity * sys.impedance_ns_m * sys.len_m / sys.dt_s
+    d1 = np.where(taut, e_damp * st.td + g_damp * kt * de, 0.0)
+    vis = np.where(taut, visc * de, 0.0)
+    return e1, s1, d1, np.maximum(e1 + d1 + vis, 0.0)
 
 
 def _zone(x: float, v_eps: float) -> float:
@@ -237,18 +259,18 @@ def _zone(x: float, v_eps: float) -> float:
     return 1.0 if x > v_eps else (-1.0 if x < -v_eps else 0.0)
 
 
-def _free_elements(sys, v, T, R0):
+def _free_velocities(model: Model, v, T, R0):
     """New velocity of every element as a free (explicit) one [m/s].
 
     ``M (v' - v) / dt = T_j - T_{j-1} - G_j - R0_j clip(v' / v_eps, -1, 1)``, the resistance
     implicit (solved in closed form); a negative resistance term is taken explicitly.
     """
-    h = sys.dt_s / sys.mass_kg
+    nodes, v_eps = model.nodes, model.cycle.v_eps
+    h = model.cycle.dt / nodes.mass
     rp, rn = np.maximum(R0, 0.0), np.minimum(R0, 0.0)
-    vs = v + h * (T - np.roll(T, 1) - sys.gravity_n - rn * np.clip(v / sys.v_eps, -1.0, 1.0))
+    vs = v + h * (T - np.roll(T, 1) - nodes.gravity - rn * np.clip(v / v_eps, -1.0, 1.0))
     e = h * rp
-    return np.where(np.abs(vs) <= sys.v_eps + e, vs * (sys.v_eps / (sys.v_eps + e)),
-                    vs - np.copysign(e, vs))
+    return np.where(np.abs(vs) <= v_eps + e, vs * (v_eps / (v_eps + e)), vs - np.copysign(e, vs))
 
 
 def _coulomb(p, dd, fb, hb):
@@ -262,11 +284,14 @@ def _coulomb(p, dd, fb, hb):
 
 
 # --------------------------------------------------------------------------------------
-# phase: brakes and drive laws
+# phase: the speed reference, brakes and drive laws of the step
 
 
-def _brake_forces(sys, brk, sh, t, t_stopcmd, stopping, stopped, t_stopped):
-    """Command, release and force of every brake, summed per shaft into ``sh.fb`` [N].
+def _brake_forces(model: Model, rs, sh, brk) -> float:
+    """Command, release and force of every brake (its law:
+    :func:`beltstudy.engine.dynamics.brakes.brake_force`, with the shaft's speed at the step's
+    start), summed per shaft into ``sh.fb`` [N]; ``brk`` is the brakes' record with this run's
+    command times and released flags.
 
     A brake stop commands every brake at the stop command; a holding brake is commanded when
     the belt has stopped and stays set, others are released then. Returns the time the last
@@ -274,95 +299,169 @@ def _brake_forces(sys, brk, sh, t, t_stopcmd, stopping, stopped, t_stopped):
     """
     sh.fb[:] = 0.0
     latest, pending = -1.0, False
-    for b in range(len(sys.brake_shaft)):
-        hold = sys.brake_hold[b] == 1
-        ct, cf, nc = brk.curve[b]
-        if stopping and brk.t_cmd[b] < 0.0 and not brk.released[b]:
-            if sys.stop_mode == C.BRAKE:
-                brk.t_cmd[b] = t_stopcmd
-            elif hold and stopped:
-                brk.t_cmd[b] = t_stopped
-        if not hold and stopped and brk.t_cmd[b] >= 0.0:
-            brk.released[b] = True
+    for b in range(len(brk.shaft)):
+        hold = brk.hold[b] == 1
+        s = brk.shaft[b]
+        if rs.stopping and brk.t_cmd[b] < 0.0 and not brk.released[b]:
+            if model.cycle.stop_mode == C.BRAKE:
+                brk.t_cmd[b] = rs.t_stopcmd
+            elif hold and rs.stopped:
+                brk.t_cmd[b] = rs.t_stopped
+        if not hold and rs.stopped and brk.t_cmd[b] >= 0.0:
+            brk.released[b] = 1
         if brk.t_cmd[b] >= 0.0 and not brk.released[b]:
-            tau = t - brk.t_cmd[b] - sys.brake_delay_s[b]
-            sh.fb[sys.brake_shaft[b]] += sys.brake_force_n[b] * brake_fraction(
-                tau, sys.brake_ramp_s[b], ct, cf, nc)
+            sh.fb[s] += brake_force(brk, b, rs.t - brk.t_cmd[b] - brk.delay[b], sh.vs[s])
         if hold:
             if brk.t_cmd[b] < 0.0:
                 pending = True
             else:
-                full = ct[nc - 1] if nc > 0 else sys.brake_ramp_s[b]
-                latest = max(latest, brk.t_cmd[b] + sys.brake_delay_s[b] + full)
-    if not sys.brake_hold.any() or pending or t < latest:
+                latest = max(latest, set_at(brk, b))
+    if not (brk.hold == 1).any() or pending or rs.t < latest:
         return -1.0
     return latest
 
 
-def _drive_laws(sys, dr, sh, phase, t, t_trip, stopping, first_off):
+def _dol_law(model: Model, dr, k, vs, fac, t):
+    """Dol drive k's force law ``f0 + f1 v`` for the step: its motor curve linearised in the
+    shaft speed vs, or through its fluid coupling with the motor's own inertia eliminated
+    (``dr.lin``: ``(P, D, c_s)`` for the motor's new speed); ``fac`` scales the motor's torque
+    (1, or falling after a trip)."""
+    drives, v_d = model.drives, model.cycle.v_d
+    rated = drives.rated[k]
+    cx, cy, cn = drives.curve_x[k], drives.curve_y[k], int(drives.curve_n[k])
+    if drives.coupling[k] == C.COUPLING_NONE:
+        f, df = motor_force(cx, cy, cn, rated, v_d, vs)
+        f1 = min(df * fac, 0.0)
+        dr.f0[k], dr.f1[k] = f * fac - f1 * vs, f1
+        return
+    # motor (mass mm, force a0 + a1 vm) -> coupling (c0 + cm vm + cs vs) -> shaft:
+    # the motor's new speed eliminated, vm' = (p - cs vs') / den
+    vm = dr.vm[k]
+    fm, dfm = motor_force(cx, cy, cn, rated, v_d, vm)
+    a1 = min(dfm * fac, 0.0)
+    a0 = fm * fac - a1 * vm
+    fill = 1.0
+    if drives.coupling[k] == C.COUPLING_FILL:
+        fill = min(max((t - model.cycle.t_pre) / drives.fill_s[k], 0.0), 1.0)
+    tc, dtm, dts = coupling_torque(rated, v_d, vm, vs, fill)
+    cm, cs = max(dtm, 0.0), min(dts, 0.0)
+    c0 = tc - cm * vm - cs * vs
+    mm = max(drives.motor_mass[k], 1.0) / model.cycle.dt
+    den = mm - a1 + cm
+    p = mm * vm + a0 - c0
+    dr.f0[k], dr.f1[k] = c0 + cm * p / den, cs * (mm - a1) / den
+    dr.lin[k] = (p, den, cs)
+
+
+def _drive_laws(model: Model, rs, sh, dr, first_off):
     """Each drive's force law for the step, in ``dr.mode``: 0 a force ``f0 + f1 v`` linear in
     its shaft speed (held at rest: zero; dol: the motor curve, through the fluid coupling with
-    the motor's own inertia eliminated; power off: the force at the trip decaying over the
-    trip time; open-loop start), 1 its share of the speed loop's output, 2 the shaft speed
-    imposed (moving support). ``first_off``: the first step with the power off."""
-    dt, v_d = sys.dt_s, sys.v_design
-    for k in range(len(sys.drive_share)):
+    the motor's own inertia eliminated, :func:`_dol_law`; power off: the force at the trip
+    decaying over the trip time; open-loop start), 1 its share of the speed loop's output, 2
+    the shaft speed imposed (moving support). ``first_off``: the first step with the power
+    off."""
+    drives, cyc = model.drives, model.cycle
+    for k in range(len(drives.share)):
         dr.sat[k] = False
-        dr.lim[k] = sys.drive_limit_n[k]
+        dr.lim[k] = drives.lim0[k]
         dr.lin[k] = None
-        vs = sh.vs[sys.drive_shaft[k]]
+        vs = sh.vs[drives.shaft[k]]
         fac = 1.0
-        if phase == C.OFF:
+        if rs.phase == C.OFF:
             if first_off:
                 dr.f_trip[k] = dr.force[k]
-            ts = sys.drive_trip_s[k]
-            fac = 0.0 if ts <= 0.0 else max(0.0, 1.0 - (t - t_trip) / ts)
+            ts = drives.trip_s[k]
+            fac = 0.0 if ts <= 0.0 else max(0.0, 1.0 - (rs.t - rs.t_trip) / ts)
         dr.mode[k], dr.f0[k], dr.f1[k] = 0, 0.0, 0.0
-        if phase == C.HOLD:
+        if rs.phase == C.HOLD:
             continue
-        if sys.drive_control[k] == C.DOL:
-            rated = sys.drive_rated_n[k]
-            cx, cy, cn = dr.curve[k]
-            if sys.drive_coupling[k] == C.COUPLING_NONE:
-                f, df = motor_force(cx, cy, cn, rated, v_d, vs)
-                f1 = min(df * fac, 0.0)
-                dr.f0[k], dr.f1[k] = f * fac - f1 * vs, f1
-                continue
-            # motor (mass mm, force a0 + a1 vm) -> coupling (c0 + cm vm + cs vs) -> shaft:
-            # the motor's new speed eliminated, vm' = (p - cs vs') / den
-            vm = dr.vm[k]
-            fm, dfm = motor_force(cx, cy, cn, rated, v_d, vm)
-            a1 = min(dfm * fac, 0.0)
-            a0 = fm * fac - a1 * vm
-            fill = 1.0
-            if sys.drive_coupling[k] == C.COUPLING_FILL:
-                fill = min(max((t - sys.pre_rest_s) / sys.drive_fill_s[k], 0.0), 1.0)
-            tc, dtm, dts = coupling_torque(rated, v_d, vm, vs, fill)
-            cm, cs = max(dtm, 0.0), min(dts, 0.0)
-            c0 = tc - cm * vm - cs * vs
-            mm = max(sys.drive_motor_mass_kg[k], 1.0) / dt
-            den = mm - a1 + cm
-            p = mm * vm + a0 - c0
-            dr.f0[k], dr.f1[k] = c0 + cm * p / den, cs * (mm - a1) / den
-            dr.lin[k] = (p, den, cs)
-        elif phase == C.OFF:
+        if drives.control[k] == C.DOL:
+            _dol_law(model, dr, k, vs, fac, rs.t)
+        elif rs.phase == C.OFF:
             dr.f0[k] = dr.f_trip[k] * fac
-        elif sys.formulation == C.SUPPORT:
+        elif cyc.formulation == C.SUPPORT:
             dr.mode[k] = 2
-        elif sys.start_control == FORCE and not stopping:
-            dr.f0[k] = sys.drive_share[k] * sys.force_start_n
+        elif cyc.start_ctrl == FORCE and not rs.stopping:
+            dr.f0[k] = drives.share[k] * model.control.f_const
         else:
             dr.mode[k] = 1
+
+
+def _phase(model: Model, rs, sh, dr, brk):
+    """The step's phase into ``rs``: the speed reference (start or controlled stop), the
+    drives' trip, what the drives do (hold at rest, run, off), the brakes' forces
+    (:func:`_brake_forces`), each drive's law (:func:`_drive_laws`), whether the speed loop
+    runs (its integrator starts from the holding force), a torque start's ramped limits, and
+    the speed loop's law ``U = f0u + f1u v_master`` (rigid-body feedforward, integrator,
+    proportional gain)."""
+    cyc, ctl, drives = model.cycle, model.control, model.drives
+    t = rs.t
+    rs.started, rs.stopping = t > cyc.t_pre, t > rs.t_stopcmd
+    rs.a_ref = 0.0
+    if not rs.stopping:
+        rs.v_ref, rs.a_ref = start_reference(cyc.start_ctrl, t - cyc.t_pre, cyc.t_start, cyc.v_d)
+    elif cyc.stop_mode == C.CONTROLLED:
+        rs.v_ref, rs.a_ref = stop_reference(t - rs.t_stopcmd, cyc.t_stop, cyc.v_d)
+    else:
+        rs.v_ref = 0.0
+    if rs.stopping and rs.t_trip < 0.0:
+        if cyc.stop_mode != C.CONTROLLED:
+            rs.t_trip = rs.t_stopcmd  # coast and brake stops: the power is cut
+        elif rs.hold_set >= 0.0:
+            rs.t_trip = rs.hold_set  # a controlled stop: off once the holding brakes are set
+    rs.phase = C.HOLD if not rs.started else (C.OFF if 0.0 <= rs.t_trip < t else C.RUN)
+    rs.hold_set = _brake_forces(model, rs, sh, brk)
+    _drive_laws(model, rs, sh, dr, rs.phase == C.OFF and not rs.was_off)
+    rs.was_off = rs.phase == C.OFF
+    rs.pi = rs.phase == C.RUN and ctl.vfd and cyc.formulation != C.SUPPORT and (
+        cyc.start_ctrl != FORCE or rs.stopping)
+    if rs.pi and not rs.pi_started:
+        rs.integ, rs.pi_started = rs.hold_f, True
+    if cyc.start_ctrl == TORQUE and not rs.stopping and rs.phase == C.RUN:
+        ramp = min(max((t - cyc.t_pre) / cyc.t_start, 0.0), 1.0)
+        dr.lim[:] = drives.lim0 * ramp + drives.share * abs(rs.hold_f) * (1.0 - ramp)
+    # speed loop output U = f0u + f1u v_master: rigid-body feedforward, integrator, gain
+    f_ff = ctl.m_tot * rs.a_ref + ctl.f_res * min(max(rs.v_ref / ctl.v_ff, 0.0), 1.0)
+    rs.f0u = f_ff + rs.integ + ctl.kp * rs.v_ref
+    rs.f1u = -ctl.kp
+    rs.hold = cyc.hold_node if rs.phase == C.HOLD else -1
+
+
+# --------------------------------------------------------------------------------------
+# the passes of one step: resistances, free elements (the blocks below), springs
+
+
+def _resistances(model: Model, ref, st) -> np.ndarray:
+    """The resistance law per element for this step [N]: exactly, or expanded between exact
+    evaluations (:class:`ExpandedLaw`)."""
+    if ref.law is not None:
+        return ref.law(st.v, st.tt)
+    return _law(model.law, model.nodes, st.v, st.tt)
+
+
+def _free_elements(model: Model, ref, st, R0):
+    """The free elements' new velocities (:func:`_free_velocities`) into ``st.v``."""
+    v_free = _free_velocities(model, st.v, st.tt, R0)
+    st.v[ref.free] = v_free[ref.free]
+
+
+def _spring_step(model: Model, ref, st, rs):
+    """Every spring from the new velocities, the blocks' springs with the free ones (the
+    carriage lengthens its two springs); the kernel takes them in two parts
+    (``blocks._block_springs`` and ``kernel._free_springs``) with the same law."""
+    sp = model.springs
+    de = (np.roll(st.v, -1) - st.v + sp.car_ind * rs.u_tu) * model.cycle.dt / sp.len_m
+    st.te, st.ts, st.td, st.tt = _springs(sp, st, de, ref.damp, ref.visc)
 
 
 # --------------------------------------------------------------------------------------
 # implicit blocks
 
 
-def _share_force(sys, dr, k, U):
+def _share_force(model: Model, dr, k, U):
     """Drive k's share of the speed loop's output within its force limit [N] (a drive found
     beyond it is saturated for the rest of the step)."""
-    f = sys.drive_share[k] * U
+    f = model.drives.share[k] * U
     if abs(f) > dr.lim[k]:
         dr.sat[k] = True
         dr.f0[k] = math.copysign(dr.lim[k], f)
@@ -370,25 +469,358 @@ def _share_force(sys, dr, k, U):
     return f
 
 
-def _saturate_master(sys, dr, U):
+def _saturate_master(model: Model, dr, U):
     """The speed loop's output ``U`` within the master drive's limit (``share x U``)."""
-    k = sys.master
-    if abs(sys.drive_share[k] * U) > dr.lim[k]:
+    k = model.control.master
+    share = model.drives.share[k]
+    if abs(share * U) > dr.lim[k]:
         dr.sat[k] = True
-        dr.f0[k] = math.copysign(dr.lim[k], sys.drive_share[k] * U)
-        return dr.f0[k] / sys.drive_share[k]
+        dr.f0[k] = math.copysign(dr.lim[k], share * U)
+        return dr.f0[k] / share
     return U
 
 
-def _shaft_drive_force(sys, dr, k, U):
+def _shaft_drive_force(model: Model, dr, k, U):
     """Force of drive k on its shaft with the loop output U (mode 0 without its speed part)."""
     if dr.mode[k] == 1:
-        return dr.f0[k] if dr.sat[k] else sys.drive_share[k] * U
+        return dr.f0[k] if dr.sat[k] else model.drives.share[k] * U
     return dr.f0[k]
 
 
-def _block_step(sys, blk, ctx, st, sh, dr, R0, U, u_known):
-    """Velocities of one implicit block at the end of the step.
+def _row_brake(model: Model, bk, sh, k, v_was):
+    """A brake and/or holdback on block element k's sticking shaft: the reaction range of a
+    stick, tried when the element moves slower than v_eps (or backwards onto a holdback)."""
+    s = bk.shaft[k]
+    fb, hb = sh.fb[s], model.shafts.hb[s] == 1
+    bk.bforce[k], bk.c_lo[k], bk.c_hi[k] = fb, -fb, (1e300 if hb else fb)
+    bk.stuck[k] = (fb > 0.0 or hb) and (abs(v_was) <= bk.v_eps or (hb and v_was < 0.0))
+
+
+def _side_tensions(bk, x, k):
+    """Tensions of the springs left and right of block element k at the solution x [N]."""
+    sA, sB, cj, m = bk.sA, bk.sB, bk.cj, bk.m
+    tl = bk.t_in if k == 0 else sA[k - 1] + sB[k - 1] * (x[k] - x[k - 1] + cj[k - 1] * x[-1])
+    tr = bk.t_out if k == m - 1 else sA[k] + sB[k] * (x[k + 1] - x[k] + cj[k] * x[-1])
+    return tl, tr
+
+
+def _belt_force(bk, x, k, tl, tr):
+    """Force the pulley passes to belt element k: its momentum balance's remainder [N]."""
+    rk = bk.rpos[k] * (x[k] / bk.v_eps if bk.zone[k] == 0.0 else bk.zone[k])
+    return bk.mass[k] / bk.dt * (x[k] - bk.vo[k]) - (tr - tl) + rk - bk.fexp[k]
+
+
+def _block_setup(model: Model, ref, nodes, st, sh, rs, R0):
+    """The block of elements ``nodes`` before its active set: its springs linearised at the
+    step's start (``T = sA + sB (x_{k+1} - x_k (+ cj x_car))``, their tangent stiffness, arm
+    and viscosity), the outer springs' tensions, each element's old speed, mass, resistance
+    (the positive part implicit, ``rpos``; the negative part and gravity explicit, ``fexp``)
+    and zone, its shaft, the held element, the brakes of shafts that stick, the master
+    drive's row ``km`` (-1 none). Returns the block's working namespace."""
+    sp, tu, dt = model.springs, model.takeup, model.cycle.dt
+    v_eps = model.cycle.v_eps
+    n, e_damp, g_damp = len(st.v), *ref.damp
+    nodes = np.asarray(nodes)
+    m = len(nodes)
+    car = bool(tu.gravity) and tu.node in nodes
+    # linearised block springs (spring nodes[k] joins nodes[k] and nodes[k + 1])
+    sj = nodes[:-1]
+    taut = st.te[sj] >= 0.0
+    er, kt = _strain_rest(sp, st.te[sj], st.ts[sj], sj)
+    vo = st.v[nodes].copy()
+    R = R0[nodes]
+    bk = SimpleNamespace(
+        nodes=nodes, m=m, car=car, mu=m + 1 if car else m, dt=dt, v_eps=v_eps,
+        sA=np.where(taut, er + e_damp * st.td[sj], 0.0),
+        sB=np.where(taut, (kt * (1.0 + g_damp) + ref.visc[sj]) * dt / sp.len_m[sj], 0.0),
+        cj=sp.car_ind[sj] if car else np.zeros(m - 1),
+        t_in=st.tt[(nodes[0] - 1) % n], t_out=st.tt[nodes[-1]], vo=vo,
+        mass=model.nodes.mass[nodes], rpos=np.maximum(R, 0.0),
+        fexp=-np.minimum(R, 0.0) * np.clip(vo / v_eps, -1.0, 1.0) - model.nodes.gravity[nodes],
+        zone=np.array([_zone(x, v_eps) for x in vo]), shaft=ref.node_shaft[nodes],
+        fixed=nodes == rs.hold, fixv=np.zeros(m), stuck=np.zeros(m, dtype=bool),
+        bforce=np.zeros(m), c_lo=np.zeros(m), c_hi=np.zeros(m),
+        bdir=np.where(vo >= 0.0, 1.0, -1.0), vsn=np.zeros(m), km=-1,
+        car_fixed=False, car_v=0.0, car_hit=-1.0)
+    for k in range(m):
+        s = bk.shaft[k]
+        if s >= 0:
+            if sh.slip[s] == 0.0:
+                _row_brake(model, bk, sh, k, vo[k])
+            if model.shafts.drive[s] == model.control.master:
+                bk.km = k
+    return bk
+
+
+def _master_output(model: Model, bk, st, sh, dr, rs, U):
+    """The speed loop's output for this pass: known (from an earlier block), from a slipping
+    master's shaft predicted with the slack side at the step's start, from a held master row,
+    or unknown (``two``: found from the solution by superposition). Returns (U, two)."""
+    master, km = model.control.master, bk.km
+    if km < 0 or rs.u_known or dr.mode[master] != 1 or dr.sat[master]:
+        return U, False
+    s = bk.shaft[km]
+    sl = sh.slip[s]
+    if sl != 0.0:
+        # the slipping master's shaft predicted with the slack side at the step start
+        j = bk.nodes[km]
+        ts = st.tt[j] if sl > 0.0 else st.tt[(j - 1) % len(st.tt)]
+        ms, share = model.shafts.mass[s] / bk.dt, model.drives.share[master]
+        ck = model.shafts.ck[s]
+        vp = (ms * sh.vs[s] + share * rs.f0u - sl * ck * ts) / (ms - share * rs.f1u)
+        return _saturate_master(model, dr, rs.f0u + rs.f1u * vp), False
+    if bk.fixed[km] or bk.stuck[km]:
+        return _saturate_master(model, dr, rs.f0u + rs.f1u * bk.fixv[km]), False
+    return U, True
+
+
+def _shaft_row(model: Model, bk, sh, dr, rs, k, U, two):
+    """Block row k's shaft: a slipping shaft's sliding force ``ck T_slack`` on the side the
+    slip unloads (``bk.ml``, ``bk.mr``); a sticking one's mass, its drive's force (an imposed
+    speed fixes the row, a follower's share is U's coefficient ``bu`` when ``two``)."""
+    shafts = model.shafts
+    s = bk.shaft[k]
+    if sh.slip[s] != 0.0:
+        if sh.slip[s] > 0.0:
+            bk.mr[k] += shafts.ck[s]
+        else:
+            bk.ml[k] += shafts.ck[s]
+        return
+    ms = shafts.mass[s] / bk.dt
+    bk.A[k, k] += ms
+    bk.b[k] += ms * sh.vs[s]
+    d = shafts.drive[s]
+    if d >= 0 and dr.mode[d] == 2:
+        if not bk.fixed[k]:
+            bk.fixed[k], bk.fixv[k] = True, rs.v_ref
+    elif d >= 0 and dr.mode[d] == 1:
+        if dr.sat[d]:
+            bk.b[k] += dr.f0[d]
+        elif two:
+            bk.bu[k] += model.drives.share[d]
+        else:
+            bk.b[k] += _share_force(model, dr, d, U)
+    elif d >= 0:
+        bk.A[k, k] -= dr.f1[d]
+        bk.b[k] += dr.f0[d]
+
+
+def _block_rows(model: Model, bk, sh, dr, rs, U, two):
+    """The block's momentum balances ``A x = b + U bu`` (``bk.A``, ``bk.b``, ``bk.bu``): each
+    element's mass over the step, its shaft (:func:`_shaft_row`), its resistance in its zone,
+    a sliding brake, the springs (the outer ones at the step start), and the carriage's row
+    (its inertia and weight, the springs beside its pulley)."""
+    m, mu, dt, v_eps = bk.m, bk.mu, bk.dt, bk.v_eps
+    bk.A, bk.b, bk.bu = np.zeros((mu, mu)), np.zeros(mu), np.zeros(mu)
+    bk.ml, bk.mr = np.ones(m), np.ones(m)
+    A, b = bk.A, bk.b
+    for k in range(m):
+        A[k, k] += bk.mass[k] / dt
+        b[k] += bk.mass[k] / dt * bk.vo[k] + bk.fexp[k]
+        if bk.shaft[k] >= 0:
+            _shaft_row(model, bk, sh, dr, rs, k, U, two)
+        if bk.zone[k] == 0.0:
+            A[k, k] += bk.rpos[k] / v_eps
+        else:
+            b[k] -= bk.zone[k] * bk.rpos[k]
+        if bk.bforce[k] > 0.0 and not bk.stuck[k]:
+            b[k] -= bk.bdir[k] * bk.bforce[k]
+    b[0] -= bk.ml[0] * bk.t_in
+    b[m - 1] += bk.mr[m - 1] * bk.t_out
+    for i in range(m - 1):
+        # spring i pulls element i forward, element i + 1 back, the carriage back
+        for row, f in ((i, bk.mr[i]), (i + 1, -bk.ml[i + 1]), (m, -1.0 if bk.cj[i] else 0.0)):
+            if f != 0.0:
+                A[row, i] += f * bk.sB[i]
+                A[row, i + 1] -= f * bk.sB[i]
+                if bk.car:
+                    A[row, m] -= f * bk.sB[i] * bk.cj[i]
+                b[row] += f * bk.sA[i]
+    if bk.car:
+        tu = model.takeup
+        A[m, m] += tu.mass / dt
+        b[m] += tu.mass / dt * rs.u_tu + tu.weight
+
+
+def _block_solution(model: Model, bk, dr, rs, U, two):
+    """Solve the block with the rows held at a speed as identities (an imposed or held
+    element, a brake or holdback holding, the carriage at an end stop) for its speeds
+    (``bk.x``); with ``two`` also its response to U, and U from the master's row (within its
+    limit). Returns U."""
+    m = bk.m
+    Ah, bh, buh = bk.A.copy(), bk.b.copy(), bk.bu.copy()
+    for k in np.flatnonzero(bk.fixed | bk.stuck):
+        Ah[k] = 0.0
+        Ah[k, k] = 1.0
+        bh[k] = bk.fixv[k] if bk.fixed[k] else 0.0
+        buh[k] = 0.0
+    if bk.car and bk.car_fixed:
+        Ah[m] = 0.0
+        Ah[m, m] = 1.0
+        bh[m], buh[m] = bk.car_v, 0.0
+    bk.two = two
+    if two:
+        # U = f0u + f1u x_master with x = x0 + U xu: two solves
+        x0, xu = np.linalg.solve(Ah, np.column_stack([bh, buh])).T
+        km = bk.km
+        U = _saturate_master(model, dr, (rs.f0u + rs.f1u * x0[km]) / (1.0 - rs.f1u * xu[km]))
+        bk.x = x0 + U * xu
+    else:
+        bk.x = np.linalg.solve(Ah, bh)
+    return U
+
+
+def _carriage_consistent(model: Model, bk, rs):
+    """The carriage against the solution: a position past an end of its travel fixes it at
+    the end stop. Returns whether it changed."""
+    if not bk.car or bk.car_fixed:
+        return False
+    tu, m = model.takeup, bk.m
+    x_try = rs.x_tu + bk.dt * bk.x[m]
+    if x_try > tu.hi or x_try < tu.lo:
+        bk.car_fixed = True
+        bk.car_v = ((tu.hi if x_try > tu.hi else tu.lo) - rs.x_tu) / bk.dt
+        bk.car_hit = abs(bk.x[m])
+        return True
+    return False
+
+
+def _row_consistent(model: Model, bk, dr, k, U):
+    """Row k's active set against the solution: a follower past its force limit, a stuck
+    element whose reaction left its range, a holdback or brake that now holds, the resistance
+    zone. Returns whether anything changed."""
+    x, v_eps = bk.x, bk.v_eps
+    again = False
+    s = bk.shaft[k]
+    d = model.shafts.drive[s] if s >= 0 else -1
+    if d >= 0 and d != model.control.master and dr.mode[d] == 1 and not dr.sat[d]:
+        f = model.drives.share[d] * U
+        if abs(f) > dr.lim[d]:
+            dr.sat[d], dr.f0[d], again = True, math.copysign(dr.lim[d], f), True
+    if bk.fixed[k]:
+        bk.zone[k] = _zone(bk.fixv[k], v_eps)
+        return again
+    if bk.stuck[k]:
+        # the reaction the brake or holdback must give to hold the element
+        react = bk.A[k] @ x - bk.b[k] - (U * bk.bu[k] if bk.two else 0.0)
+        if not bk.c_lo[k] <= react <= bk.c_hi[k]:
+            bk.stuck[k], again = False, True
+            bk.bdir[k] = -1.0 if react > bk.c_hi[k] else 1.0
+    elif bk.c_hi[k] > 1e299 and x[k] < 0.0:
+        bk.stuck[k], again = True, True  # the holdback engages
+    elif bk.bforce[k] > 0.0 and x[k] * bk.bdir[k] < 0.0:
+        bk.stuck[k], again = True, True  # the brake stops the element
+    z = 0.0 if bk.stuck[k] else _zone(x[k], v_eps)
+    if z != bk.zone[k]:
+        bk.zone[k], again = z, True
+    return again
+
+
+def _shaft_speed(model: Model, sh, dr, rs, s, U, f_slide):
+    """New speed of slipping shaft s [m/s]: its inertia under its drive and brake less the
+    sliding force ``ck T_slack`` (``f_slide = slip x T_slack``); an imposed speed holds it at
+    the reference, a torque follower stays within its speed window."""
+    shafts = model.shafts
+    ms = shafts.mass[s] / model.cycle.dt
+    f = -shafts.ck[s] * f_slide
+    dd = ms
+    d = shafts.drive[s]
+    if d >= 0:
+        if dr.mode[d] == 2:
+            return rs.v_ref
+        f += _shaft_drive_force(model, dr, d, U)
+        if dr.mode[d] == 0:
+            dd -= dr.f1[d]
+    v = _coulomb(ms * sh.vs[s] + f, dd, sh.fb[s], shafts.hb[s] == 1)
+    if d >= 0 and dr.mode[d] == 1 and d != model.control.master:
+        window = model.control.window
+        v = min(max(v, rs.v_ref - window), rs.v_ref + window)
+    return v
+
+
+def _shaft_consistent(model: Model, bk, sh, dr, rs, k, U):
+    """Row k's shaft against the solution: a sticking shaft that would pass more than its
+    capstan grip ``T_slack (e^(mu theta) - 1)`` starts to slip; a slipping one whose speed
+    crosses the belt's sticks again. Returns whether anything changed."""
+    s = bk.shaft[k]
+    if s < 0:
+        return False
+    x = bk.x
+    tl, tr = _side_tensions(bk, x, k)
+    sl = sh.slip[s]
+    if sl == 0.0:
+        cs = model.shafts.cs[s]
+        if bk.nodes[k] == rs.hold or cs < 0.0:
+            return False  # holding the belt at rest, or slip switched off (verification)
+        # capstan: what the pulley passes within T_slack (e^(mu theta) - 1)
+        ft = _belt_force(bk, x, k, tl, tr)
+        cap = cs * max(min(tl, tr), 0.0)
+        if abs(ft) > cap * (1.0 + 1e-9) + 1e-9:
+            sh.slip[s] = 1.0 if ft > 0.0 else -1.0
+            bk.stuck[k], bk.bforce[k], bk.c_lo[k], bk.c_hi[k] = False, 0.0, 0.0, 0.0
+            bk.fixed[k] = False  # an imposed speed now holds the shaft, not the belt
+            return True
+        return False
+    bk.vsn[k] = _shaft_speed(model, sh, dr, rs, s, U, sl * max(tr if sl > 0 else tl, 0))
+    if sl * (bk.vsn[k] - x[k]) <= 0.0:
+        sh.slip[s] = 0.0  # the speeds crossed: the shaft sticks again
+        _row_brake(model, bk, sh, k, bk.vo[k])
+        return True
+    return False
+
+
+def _drive_output(model: Model, dr, s, sl, ft, vs_old, vs_new, U):
+    """Force at the rim of the drive on shaft s after the step [N] (an imposed speed: what
+    moved its shaft; a share of U, a slipping follower only what holds it in its window; a
+    linear law at the new speed), and its motor's speed behind a coupling."""
+    shafts = model.shafts
+    d = shafts.drive[s]
+    inertia = shafts.mass[s] / model.cycle.dt * (vs_new - vs_old)
+    if dr.mode[d] == 2:
+        f = ft + inertia
+    elif dr.mode[d] == 1:
+        f = _shaft_drive_force(model, dr, d, U)
+        if sl != 0.0 and d != model.control.master:
+            # a follower in its speed window gives what holds its shaft there
+            f = min(f, inertia + ft) if f > 0.0 else max(f, inertia + ft)
+    else:
+        f = dr.f0[d] + dr.f1[d] * vs_new
+    if dr.lin[d] is not None:
+        p, den, cs = dr.lin[d]
+        dr.vm[d] = (p - cs * vs_new) / den
+    return f
+
+
+def _write_back(model: Model, bk, st, sh, dr, rs, U):
+    """The solution into the belt, the shafts and the drives. Returns (holding force or nan,
+    drive work over the step [J])."""
+    x = bk.x
+    st.v[bk.nodes] = x[:bk.m]
+    hold_f = math.nan
+    w_drive = 0.0
+    for k in np.flatnonzero(bk.shaft >= 0):
+        s = bk.shaft[k]
+        tl, tr = _side_tensions(bk, x, k)
+        vs_old, sl = sh.vs[s], sh.slip[s]
+        if sl == 0.0:
+            vs_new, ft = x[k], _belt_force(bk, x, k, tl, tr)
+        else:
+            vs_new = bk.vsn[k]
+            ft = sl * model.shafts.ck[s] * max(tr if sl > 0.0 else tl, 0.0)
+        if bk.nodes[k] == rs.hold:
+            hold_f = ft
+        sh.vs[s] = vs_new
+        d = model.shafts.drive[s]
+        if d < 0:
+            continue
+        f = _drive_output(model, dr, s, sl, ft, vs_old, vs_new, U)
+        dr.force[d], dr.ft[d] = f, ft
+        w_drive += f * 0.5 * (vs_old + vs_new) * bk.dt
+    return hold_f, w_drive
+
+
+def _block_step(model: Model, ref, nodes, st, sh, dr, rs, R0):
+    """Velocities of one implicit block (elements ``nodes``) at the end of the step.
 
     Unknowns: the block's element velocities (and the carriage's speed). Each element row is
     its momentum balance over the step, ``M (x - v) / dt = T_right - T_left - R - G + F``, with
@@ -398,278 +830,182 @@ def _block_step(sys, blk, ctx, st, sh, dr, R0, U, u_known):
     added to its element, a slipping shaft's sliding force ``ck T_slack`` added to the slack
     side. Rows held at a speed (the element holding the belt at rest, an imposed shaft speed,
     a brake or holdback holding) are identities. The active set is updated from the solution
-    until consistent. Updates ``st.v``, the shafts, the drives; returns ``(U, U known,
-    carriage speed, carriage speed at an end stop or -1, holding force or nan, drive work)``.
+    until consistent. Updates ``st.v``, the shafts, the drives and the speed loop's output
+    (``rs.U``, ``rs.u_known``); returns ``(carriage speed, carriage speed at an end stop or
+    -1, holding force or nan, drive work)``.
     """
-    n, dt, v_eps, e_damp, g_damp = sys.n, sys.dt_s, sys.v_eps, *ctx.damp
-    nodes = np.asarray(blk)
-    m = len(nodes)
-    car = sys.takeup_gravity and sys.i_takeup in blk
-    mu = m + 1 if car else m
-    # linearised block springs (spring nodes[k] joins nodes[k] and nodes[k + 1])
-    sj = nodes[:-1]
-    taut = st.te[sj] >= 0.0
-    er, kt = _strain_rest(sys, st.te[sj], st.ts[sj], sj)
-    sA = np.where(taut, er + e_damp * st.td[sj], 0.0)
-    sB = np.where(taut, (kt * (1.0 + g_damp) + ctx.visc[sj])
-                  * dt / sys.len_m[sj], 0.0)
-    cj = sys.carriage_coupling[sj] if car else np.zeros(m - 1)
-    t_in, t_out = st.tt[(nodes[0] - 1) % n], st.tt[nodes[-1]]
-    vo = st.v[nodes].copy()
-    mass = sys.mass_kg[nodes]
-    rpos = np.maximum(R0[nodes], 0.0)
-    fexp = -np.minimum(R0[nodes], 0.0) * np.clip(vo / v_eps, -1.0, 1.0) - sys.gravity_n[nodes]
-    zone = np.array([_zone(x, v_eps) for x in vo])
-    shaft = ctx.node_shaft[nodes]
-    fixed = nodes == ctx.hold_node
-    fixv = np.zeros(m)
-    stuck = np.zeros(m, dtype=bool)
-    bforce, c_lo, c_hi = np.zeros(m), np.zeros(m), np.zeros(m)
-    bdir = np.where(vo >= 0.0, 1.0, -1.0)
-    vsn = np.zeros(m)
-    km = -1
-
-    def brake_row(k, v_was):
-        """A brake and/or holdback on element k's sticking shaft: the reaction range of a stick,
-        tried when the element moves slower than v_eps (or backwards onto a holdback)."""
-        s = shaft[k]
-        fb, hb = sh.fb[s], sys.shaft_holdback[s] == 1
-        bforce[k], c_lo[k], c_hi[k] = fb, -fb, (1e300 if hb else fb)
-        stuck[k] = (fb > 0.0 or hb) and (abs(v_was) <= v_eps or (hb and v_was < 0.0))
-
-    for k in range(m):
-        s = shaft[k]
-        if s >= 0:
-            if sh.slip[s] == 0.0:
-                brake_row(k, vo[k])
-            if sys.shaft_drive[s] == sys.master:
-                km = k
-
-    def side_tensions(x, k):
-        """Tensions of the springs left and right of block element k at the solution [N]."""
-        tl = t_in if k == 0 else sA[k - 1] + sB[k - 1] * (x[k] - x[k - 1] + cj[k - 1] * x[-1])
-        tr = t_out if k == m - 1 else sA[k] + sB[k] * (x[k + 1] - x[k] + cj[k] * x[-1])
-        return tl, tr
-
-    def belt_force(x, k, tl, tr):
-        """Force the pulley passes to belt element k: its momentum balance's remainder [N]."""
-        rk = rpos[k] * (x[k] / v_eps if zone[k] == 0.0 else zone[k])
-        return mass[k] / dt * (x[k] - vo[k]) - (tr - tl) + rk - fexp[k]
-
-    car_fixed, car_v, car_hit = False, 0.0, -1.0
+    bk = _block_setup(model, ref, nodes, st, sh, rs, R0)
+    U = rs.U
     for _ in range(ACTIVE_SET_PASSES):
-        # ---- the speed loop's output: known, from a held or slipping master, or unknown
-        two = False
-        if km >= 0 and not u_known and dr.mode[sys.master] == 1 and not dr.sat[sys.master]:
-            s = shaft[km]
-            if sh.slip[s] != 0.0:
-                # the slipping master's shaft predicted with the slack side at the step start
-                sl = sh.slip[s]
-                ts = st.tt[nodes[km]] if sl > 0.0 else st.tt[(nodes[km] - 1) % n]
-                ms, share = sys.shaft_mass_kg[s] / dt, sys.drive_share[sys.master]
-                ck = sys.shaft_euler_kinetic[s] - 1.0
-                vp = (ms * sh.vs[s] + share * ctx.f0u - sl * ck * ts) / (ms - share * ctx.f1u)
-                U = _saturate_master(sys, dr, ctx.f0u + ctx.f1u * vp)
-            elif fixed[km] or stuck[km]:
-                U = _saturate_master(sys, dr, ctx.f0u + ctx.f1u * fixv[km])
-            else:
-                two = True
-        # ---- momentum balances: A x = b + U bu
-        A = np.zeros((mu, mu))
-        b = np.zeros(mu)
-        bu = np.zeros(mu)
-        ml, mr = np.ones(m), np.ones(m)
-        for k in range(m):
-            A[k, k] += mass[k] / dt
-            b[k] += mass[k] / dt * vo[k] + fexp[k]
-            s = shaft[k]
-            if s >= 0 and sh.slip[s] != 0.0:
-                # the sliding force ck T_slack on the side the slip unloads
-                ck = sys.shaft_euler_kinetic[s] - 1.0
-                if sh.slip[s] > 0.0:
-                    mr[k] += ck
-                else:
-                    ml[k] += ck
-            elif s >= 0:
-                ms = sys.shaft_mass_kg[s] / dt
-                A[k, k] += ms
-                b[k] += ms * sh.vs[s]
-                d = sys.shaft_drive[s]
-                if d >= 0 and dr.mode[d] == 2:
-                    if not fixed[k]:
-                        fixed[k], fixv[k] = True, ctx.v_ref
-                elif d >= 0 and dr.mode[d] == 1:
-                    if dr.sat[d]:
-                        b[k] += dr.f0[d]
-                    elif two:
-                        bu[k] += sys.drive_share[d]
-                    else:
-                        b[k] += _share_force(sys, dr, d, U)
-                elif d >= 0:
-                    A[k, k] -= dr.f1[d]
-                    b[k] += dr.f0[d]
-            if zone[k] == 0.0:
-                A[k, k] += rpos[k] / v_eps
-            else:
-                b[k] -= zone[k] * rpos[k]
-            if bforce[k] > 0.0 and not stuck[k]:
-                b[k] -= bdir[k] * bforce[k]
-        b[0] -= ml[0] * t_in
-        b[m - 1] += mr[m - 1] * t_out
-        for i in range(m - 1):
-            # spring i pulls element i forward, element i + 1 back, the carriage back
-            for row, f in ((i, mr[i]), (i + 1, -ml[i + 1]), (m, -1.0 if cj[i] else 0.0)):
-                if f != 0.0:
-                    A[row, i] += f * sB[i]
-                    A[row, i + 1] -= f * sB[i]
-                    if car:
-                        A[row, m] -= f * sB[i] * cj[i]
-                    b[row] += f * sA[i]
-        if car:
-            A[m, m] += sys.takeup_inertia_kg / dt
-            b[m] += sys.takeup_inertia_kg / dt * ctx.u_tu + sys.takeup_weight_n
-        # rows held at a speed
-        Ah, bh, buh = A.copy(), b.copy(), bu.copy()
-        for k in np.flatnonzero(fixed | stuck):
-            Ah[k] = 0.0
-            Ah[k, k] = 1.0
-            bh[k] = fixv[k] if fixed[k] else 0.0
-            buh[k] = 0.0
-        if car and car_fixed:
-            Ah[m] = 0.0
-            Ah[m, m] = 1.0
-            bh[m], buh[m] = car_v, 0.0
-        if two:
-            # U = f0u + f1u x_master with x = x0 + U xu: two solves
-            x0, xu = np.linalg.solve(Ah, np.column_stack([bh, buh])).T
-            U = _saturate_master(sys, dr, (ctx.f0u + ctx.f1u * x0[km])
-                                 / (1.0 - ctx.f1u * xu[km]))
-            x = x0 + U * xu
-        else:
-            x = np.linalg.solve(Ah, bh)
-
-        # ---- consistency of the active set with the solution
-        again = False
-        if car and not car_fixed:
-            x_try = ctx.x_tu + dt * x[m]
-            if x_try > sys.takeup_hi_m or x_try < sys.takeup_lo_m:
-                car_fixed, again = True, True
-                car_v = ((sys.takeup_hi_m if x_try > sys.takeup_hi_m else sys.takeup_lo_m)
-                         - ctx.x_tu) / dt
-                car_hit = abs(x[m])
-        for k in range(m):
-            s = shaft[k]
-            d = sys.shaft_drive[s] if s >= 0 else -1
-            if d >= 0 and d != sys.master and dr.mode[d] == 1 and not dr.sat[d]:
-                f = sys.drive_share[d] * U
-                if abs(f) > dr.lim[d]:
-                    dr.sat[d], dr.f0[d], again = True, math.copysign(dr.lim[d], f), True
-            if fixed[k]:
-                zone[k] = _zone(fixv[k], v_eps)
-            else:
-                if stuck[k]:
-                    # the reaction the brake or holdback must give to hold the element
-                    react = A[k] @ x - b[k] - (U * bu[k] if two else 0.0)
-                    if not c_lo[k] <= react <= c_hi[k]:
-                        stuck[k], again = False, True
-                        bdir[k] = -1.0 if react > c_hi[k] else 1.0
-                elif c_hi[k] > 1e299 and x[k] < 0.0:
-                    stuck[k], again = True, True  # the holdback engages
-                elif bforce[k] > 0.0 and x[k] * bdir[k] < 0.0:
-                    stuck[k], again = True, True  # the brake stops the element
-                z = 0.0 if stuck[k] else _zone(x[k], v_eps)
-                if z != zone[k]:
-                    zone[k], again = z, True
-            if s < 0:
-                continue
-            tl, tr = side_tensions(x, k)
-            sl = sh.slip[s]
-            if sl == 0.0:
-                if nodes[k] == ctx.hold_node or sys.shaft_euler[s] < 1.0:
-                    continue  # holding the belt at rest, or slip switched off (verification)
-                # capstan: what the pulley passes within T_slack (e^(mu theta) - 1)
-                ft = belt_force(x, k, tl, tr)
-                cap = (sys.shaft_euler[s] - 1.0) * max(min(tl, tr), 0.0)
-                if abs(ft) > cap * (1.0 + 1e-9) + 1e-9:
-                    sh.slip[s] = 1.0 if ft > 0.0 else -1.0
-                    stuck[k], bforce[k], c_lo[k], c_hi[k] = False, 0.0, 0.0, 0.0
-                    fixed[k] = False  # an imposed speed now holds the shaft, not the belt
-                    again = True
-            else:
-                vsn[k] = _shaft_speed(sys, ctx, sh, dr, s, U, sl * max(tr if sl > 0 else tl, 0))
-                if sl * (vsn[k] - x[k]) <= 0.0:
-                    sh.slip[s] = 0.0  # the speeds crossed: the shaft sticks again
-                    brake_row(k, vo[k])
-                    again = True
+        U, two = _master_output(model, bk, st, sh, dr, rs, U)
+        _block_rows(model, bk, sh, dr, rs, U, two)
+        U = _block_solution(model, bk, dr, rs, U, two)
+        # the active set against the solution
+        again = _carriage_consistent(model, bk, rs)
+        for k in range(bk.m):
+            if _row_consistent(model, bk, dr, k, U):
+                again = True
+            if _shaft_consistent(model, bk, sh, dr, rs, k, U):
+                again = True
         if not again:
             break
-
-    # ---- write back: velocities, shafts, drive forces and work
-    st.v[nodes] = x[:m]
-    hold_f = math.nan
-    w_drive = 0.0
-    for k in np.flatnonzero(shaft >= 0):
-        s = shaft[k]
-        tl, tr = side_tensions(x, k)
-        vs_old, sl = sh.vs[s], sh.slip[s]
-        if sl == 0.0:
-            vs_new, ft = x[k], belt_force(x, k, tl, tr)
-        else:
-            vs_new = vsn[k]
-            ft = sl * (sys.shaft_euler_kinetic[s] - 1.0) * max(tr if sl > 0.0 else tl, 0.0)
-        if nodes[k] == ctx.hold_node:
-            hold_f = ft
-        sh.vs[s] = vs_new
-        d = sys.shaft_drive[s]
-        if d < 0:
-            continue
-        inertia = sys.shaft_mass_kg[s] / dt * (vs_new - vs_old)
-        if dr.mode[d] == 2:
-            f = ft + inertia
-        elif dr.mode[d] == 1:
-            f = _shaft_drive_force(sys, dr, d, U)
-            if sl != 0.0 and d != sys.master:
-                # a follower in its speed window gives what holds its shaft there
-                f = min(f, inertia + ft) if f > 0.0 else max(f, inertia + ft)
-        else:
-            f = dr.f0[d] + dr.f1[d] * vs_new
-        if dr.lin[d] is not None:
-            p, den, cs = dr.lin[d]
-            dr.vm[d] = (p - cs * vs_new) / den
-        dr.force[d], dr.ft[d] = f, ft
-        w_drive += f * 0.5 * (vs_old + vs_new) * dt
-    u_new = x[m] if car else ctx.u_tu
-    return U, u_known or km >= 0, u_new, car_hit, hold_f, w_drive
+    hold_f, w_drive = _write_back(model, bk, st, sh, dr, rs, U)
+    rs.U, rs.u_known = U, rs.u_known or bk.km >= 0
+    u_new = bk.x[bk.m] if bk.car else rs.u_tu
+    return u_new, bk.car_hit, hold_f, w_drive
 
 
-def _shaft_speed(sys, ctx, sh, dr, s, U, f_slide):
-    """New speed of slipping shaft s [m/s]: its inertia under its drive and brake less the
-    sliding force ``ck T_slack`` (``f_slide = slip x T_slack``); an imposed speed holds it at
-    the reference, a torque follower stays within its speed window."""
-    ms = sys.shaft_mass_kg[s] / sys.dt_s
-    f = -(sys.shaft_euler_kinetic[s] - 1.0) * f_slide
-    dd = ms
-    d = sys.shaft_drive[s]
-    if d >= 0:
-        if dr.mode[d] == 2:
-            return ctx.v_ref
-        f += _shaft_drive_force(sys, dr, d, U)
-        if dr.mode[d] == 0:
-            dd -= dr.f1[d]
-    v = _coulomb(ms * sh.vs[s] + f, dd, sh.fb[s], sys.shaft_holdback[s] == 1)
-    if d >= 0 and dr.mode[d] == 1 and d != sys.master:
-        v = min(max(v, ctx.v_ref - ctx.window), ctx.v_ref + ctx.window)
-    return v
+def _blocks(model: Model, ref, st, sh, dr, rs, R0):
+    """Every implicit block (the master drive's first, so the speed loop's output is known to
+    the others), the drives' work; then the speed loop's integrator and the carriage."""
+    tu = model.takeup
+    rs.U, rs.u_known = 0.0, not rs.pi
+    u_new = rs.u_tu
+    for nodes in ref.blocks:
+        u_b, _hit, hf, w = _block_step(model, ref, nodes, st, sh, dr, rs, R0)
+        if tu.gravity and tu.node in nodes:
+            u_new = u_b
+        if not math.isnan(hf):
+            rs.hold_f = hf
+        rs.w_drive += w
+    if rs.pi:
+        master = model.control.master
+        e_v = rs.v_ref - sh.vs[model.drives.shaft[master]]
+        if not dr.sat[master] or e_v * dr.f0[master] < 0.0:
+            rs.integ += model.cycle.dt * model.control.ki * e_v  # not further into the limit
+    if tu.gravity:
+        rs.u_tu = u_new
+        rs.x_tu = min(max(rs.x_tu + model.cycle.dt * rs.u_tu, tu.lo), tu.hi)
 
 
 # --------------------------------------------------------------------------------------
-# the cycle
+# observe and the phase switches after a step
 
 
-def _curve(points) -> tuple[np.ndarray, np.ndarray, int]:
-    """A list of (x, y) points as the scalar laws take it: x array, y array, point count."""
-    pts = np.array(list(points) or [(0.0, 0.0)], dtype=np.float64)
-    return pts[:, 0].copy(), pts[:, 1].copy(), len(points)
+def _diverged(model: Model, st, sh, dr, rs) -> bool:
+    """Whether the belt, a pulley shaft or a motor behind a coupling left the finite range or
+    passed ``v_fail``; sets the status and what diverged (``div_where``)."""
+    v_fail = model.cycle.v_fail
+    if not np.isfinite(st.v).all() or np.abs(st.v).max() > v_fail:
+        rs.status, rs.div_where = C.DIVERGED, -1
+        return True
+    bad_shaft = ~(np.abs(sh.vs) <= v_fail)  # also NaN
+    bad_motor = ~(np.abs(dr.vm) <= v_fail)
+    if bad_shaft.any() or bad_motor.any():
+        rs.status = C.DIVERGED
+        rs.div_where = (-2 - int(np.flatnonzero(bad_motor)[-1]) if bad_motor.any()
+                        else int(np.flatnonzero(bad_shaft)[-1]))
+        return True
+    return False
+
+
+def _drive_results(model: Model, st, sh, out):
+    """Per drive and per shaft after the start command: time and belt length slipped."""
+    dt, shafts = model.cycle.dt, model.shafts
+    slipping = sh.slip != 0.0
+    out.shaft_slip_s += np.where(slipping, dt, 0.0)
+    out.shaft_slip_m += np.where(slipping, np.abs(sh.vs - st.v[shafts.node]) * dt, 0.0)
+    for k in range(len(model.drives.share)):
+        s = model.drives.shaft[k]
+        if sh.slip[s] != 0.0:
+            out.slip_s[k] += dt
+            out.slip_m[k] += abs(sh.vs[s] - st.v[shafts.node[s]]) * dt
+
+
+def _observe(model: Model, st, sh, dr, rs, out) -> bool:
+    """Envelopes of the new state, divergence (:func:`_diverged`) and runaway, the mean speed
+    and, after the start command, the drives' slip (:func:`_drive_results`) and when the start
+    was achieved. Returns False when the run ends here (diverged or ran away)."""
+    out.t_max, out.t_min = np.fmax(out.t_max, st.tt), np.fmin(out.t_min, st.tt)
+    if _diverged(model, st, sh, dr, rs):
+        return False
+    w = model.nodes.w_mean
+    rs.v_mean = float(w @ st.v) / float(w.sum())
+    v_d = model.cycle.v_d
+    if abs(rs.v_mean) > C.RUNAWAY_FACTOR * v_d:
+        rs.status = C.RUNAWAY  # the belt could not be held: a physical result
+        return False
+    if rs.started:
+        _drive_results(model, st, sh, out)
+        if rs.start_ach < 0.0 and rs.v_mean >= 0.99 * v_d:
+            rs.start_ach = rs.t - model.cycle.t_pre
+    return True
+
+
+def _switches(model: Model, st, rs):
+    """After the step: the stop achieved, the belt stopped (holding brakes set, the rest
+    begins: at 1 % of design speed, and on a controlled stop once its reference has run out;
+    the run then ends after the rest), the time with a slack span."""
+    cyc, t = model.cycle, rs.t
+    if rs.stopping and rs.stop_ach < 0.0 and rs.v_mean < 0.01 * cyc.v_d:
+        rs.stop_ach = t - rs.t_stopcmd
+    if rs.stopping and not rs.stopped and rs.v_mean < 0.01 * cyc.v_d and (
+            cyc.stop_mode != C.CONTROLLED or t >= rs.t_stopcmd + cyc.t_stop):
+        rs.stopped, rs.t_stopped = True, t
+        rs.t_limit = min(rs.t_limit, t + cyc.post_rest)
+    if rs.started and st.tt.min() <= 0.0:
+        rs.slack_s += cyc.dt
+
+
+# --------------------------------------------------------------------------------------
+# start and finish; the cycle
+
+
+def _start(sys: System, t_end_s: float | None):
+    """The run's constants (``ref``: the law, the free elements, the blocks with the master
+    drive's first, each element's shaft, the arm and the mesh viscosity) and its state from
+    rest: the belt (``st``), the shafts (``sh``), the drives (``dr``), the brakes (``brk``),
+    the run record (``rs``: the take-up at its rest position, the integrator and the holding
+    force, the end of the run) and the results (``out``: envelopes, slip)."""
+    model = sys.model
+    n, cyc, sp = sys.n, model.cycle, model.springs
+    nd, ns, nb = len(model.drives.share), len(model.shafts.node), len(model.brakes.shaft)
+    law = model.law
+    free = np.ones(n, dtype=bool)
+    for blk in sys.blocks:
+        free[blk] = False
+    m_node = int(model.drives.node[model.control.master])
+    node_shaft = np.full(n, -1)
+    node_shaft[model.shafts.node] = np.arange(ns)
+    ref = SimpleNamespace(
+        law=ExpandedLaw(sys) if law_windows(law.coef, law.pvv, law.psv, law.rtol) is not None
+        else None, free=free, node_shaft=node_shaft, damp=_damper(sys), visc=_viscosity(model),
+        blocks=sorted(sys.blocks, key=lambda b: 0 if m_node in b else 1))  # master's first
+    te = np.maximum(sys.tension_rest_n, 0.0)
+    ts = sp.eb * chord_strain(te, sp.a_ernst, sp.eb, sp.t_floor, sp.k_floor)
+    st = SimpleNamespace(v=np.zeros(n), te=te.copy(), ts=ts, td=np.zeros(n), tt=te.copy())
+    sh = SimpleNamespace(vs=np.zeros(ns), slip=np.zeros(ns), fb=np.zeros(ns))
+    dr = SimpleNamespace(mode=[0] * nd, f0=np.zeros(nd), f1=np.zeros(nd), sat=[False] * nd,
+                         lim=np.zeros(nd), lin=[None] * nd, vm=np.zeros(nd),
+                         force=np.zeros(nd), ft=np.zeros(nd), f_trip=np.zeros(nd))
+    brk = model.brakes._replace(t_cmd=np.full(nb, -1.0), released=np.zeros(nb, dtype=np.int64))
+    t_stopcmd = cyc.t_pre + cyc.t_start + cyc.t_run
+    t_limit = t_stopcmd + cyc.stop_max + cyc.post_rest
+    if t_end_s:
+        t_limit = min(t_limit, float(t_end_s))
+    rs = SimpleNamespace(
+        step=0, t=0.0, t_stopcmd=t_stopcmd, t_limit=t_limit, status=C.OK, div_where=0,
+        phase=C.HOLD, started=False, stopping=False, was_off=False, pi=False, pi_started=False,
+        hold=-1, v_ref=0.0, a_ref=0.0, f0u=0.0, f1u=0.0, U=0.0, u_known=False,
+        x_tu=0.0, u_tu=0.0, integ=0.0, hold_f=sys.hold_force_n, v_mean=0.0, w_drive=0.0,
+        start_ach=-1.0, stop_ach=-1.0, stopped=False, t_stopped=-1.0, t_trip=-1.0,
+        hold_set=-1.0, slack_s=0.0)
+    out = SimpleNamespace(t_max=st.tt.copy(), t_min=st.tt.copy(), slip_s=np.zeros(nd),
+                          slip_m=np.zeros(nd), shaft_slip_s=np.zeros(ns),
+                          shaft_slip_m=np.zeros(ns))
+    return ref, st, sh, dr, brk, rs, out
+
+
+def _finish(ref, st, sh, dr, rs, out) -> ReferenceResult:
+    """The final state and the run's quantities."""
+    return ReferenceResult(
+        v=st.v, te=st.te, ts=st.ts, td=st.td, tension=st.tt, x_takeup=rs.x_tu, u_takeup=rs.u_tu,
+        integrator=rs.integ, shaft_speed=sh.vs, shaft_slip=sh.slip, drive_force=dr.force,
+        t_max=out.t_max, t_min=out.t_min, steps=rs.step, t_end=rs.t, status=rs.status,
+        w_drive=rs.w_drive, start_ach=rs.start_ach, stop_ach=rs.stop_ach, slip_s=out.slip_s,
+        slip_m=out.slip_m, shaft_slip_s=out.shaft_slip_s, shaft_slip_m=out.shaft_slip_m,
+        slack_s=rs.slack_s, t_trip=rs.t_trip, hold_set=rs.hold_set,
+        law_evals=ref.law.evaluations if ref.law is not None else 0, div_where=rs.div_where)
 
 
 def run_reference(sys: System, t_end_s: float | None = None) -> ReferenceResult:
@@ -687,152 +1023,21 @@ def run_reference(sys: System, t_end_s: float | None = None) -> ReferenceResult:
     ReferenceResult
         The final state and the run quantities (see :class:`ReferenceResult`).
     """
-    n, dt, v_d = sys.n, sys.dt_s, sys.v_design
-    t_pre, t_start = sys.pre_rest_s, sys.start_s
-    t_stopcmd = t_pre + t_start + sys.run_s
-    vfd = sys.drive_control[0] == C.VFD
-    support = sys.formulation == C.SUPPORT
-    nd, ns = len(sys.drive_share), len(sys.shaft_node)
-    f_res = sys.te_n - float(sys.gravity_n.sum())
-    damp, visc = _damper(sys), _viscosity(sys)
-    law = ExpandedLaw(sys) if law_windows(sys.coef, sys.pv, sys.ps,
-                                          sys.resistance_rtol) is not None else None
-    free = np.ones(n, dtype=bool)
-    for blk in sys.blocks:
-        free[blk] = False
-    m_node = int(sys.drive_node[sys.master])
-    blocks = sorted(sys.blocks, key=lambda b: 0 if m_node in b else 1)  # master's first
-    node_shaft = np.full(n, -1)
-    node_shaft[sys.shaft_node] = np.arange(ns)
-
-    te = np.maximum(sys.tension_rest_n, 0.0)
-    ts = sys.stiffness_n * chord_strain(te, sys.a_ernst, sys.stiffness_n, sys.t_floor_n,
-                                        sys.k_floor_n)
-    st = SimpleNamespace(v=np.zeros(n), te=te.copy(), ts=ts, td=np.zeros(n), tt=te.copy())
-    sh = SimpleNamespace(vs=np.zeros(ns), slip=np.zeros(ns), fb=np.zeros(ns))
-    dr = SimpleNamespace(mode=[0] * nd, f0=np.zeros(nd), f1=np.zeros(nd), sat=[False] * nd,
-                         lim=np.zeros(nd), lin=[None] * nd, vm=np.zeros(nd),
-                         force=np.zeros(nd), ft=np.zeros(nd), f_trip=np.zeros(nd),
-                         curve=[_curve(c) for c in sys.drive_curves])
-    brk = SimpleNamespace(t_cmd=np.full(len(sys.brake_shaft), -1.0),
-                          released=np.zeros(len(sys.brake_shaft), dtype=bool),
-                          curve=[_curve(c) for c in sys.brake_curves])
-    x_tu, u_tu, integ, hold_f = 0.0, 0.0, 0.0, sys.hold_force_n
-    t_max, t_min = st.tt.copy(), st.tt.copy()
-    slip_s, slip_m = np.zeros(nd), np.zeros(nd)
-    shaft_slip_s, shaft_slip_m = np.zeros(ns), np.zeros(ns)
-    w_drive, slack_s = 0.0, 0.0
-    start_ach = stop_ach = t_stopped = t_trip = hold_set = -1.0
-    stopped = pi_started = was_off = False
-    status, div_where = C.OK, 0
-    v_fail = C.V_FAIL_FACTOR * v_d
-    t_limit = t_stopcmd + sys.stop_max_s + sys.post_rest_s
-    if t_end_s:
-        t_limit = min(t_limit, float(t_end_s))
-    max_steps = int(t_limit / dt) + 2
-    step, t_new = 0, 0.0
-    while step < max_steps:
-        step += 1
-        t_new = step * dt
-        # ---- phase: reference, what the drives do, brakes, drive laws, speed loop
-        started, stopping = t_new > t_pre, t_new > t_stopcmd
-        a_ref = 0.0
-        if not stopping:
-            v_ref, a_ref = start_reference(sys.start_control, t_new - t_pre, t_start, v_d)
-        elif sys.stop_mode == C.CONTROLLED:
-            v_ref, a_ref = stop_reference(t_new - t_stopcmd, sys.stop_s, v_d)
-        else:
-            v_ref = 0.0
-        if stopping and t_trip < 0.0:
-            if sys.stop_mode != C.CONTROLLED:
-                t_trip = t_stopcmd  # coast and brake stops: the power is cut
-            elif hold_set >= 0.0:
-                t_trip = hold_set  # a controlled stop: off once the holding brakes are set
-        phase = C.HOLD if not started else (C.OFF if 0.0 <= t_trip < t_new else C.RUN)
-        hold_set = _brake_forces(sys, brk, sh, t_new, t_stopcmd, stopping, stopped, t_stopped)
-        _drive_laws(sys, dr, sh, phase, t_new, t_trip, stopping, phase == C.OFF and not was_off)
-        was_off = phase == C.OFF
-        pi = phase == C.RUN and vfd and not support and (sys.start_control != FORCE
-                                                          or stopping)
-        if pi and not pi_started:
-            integ, pi_started = hold_f, True
-        if sys.start_control == TORQUE and not stopping and phase == C.RUN:
-            ramp = min(max((t_new - t_pre) / t_start, 0.0), 1.0)
-            dr.lim[:] = sys.drive_limit_n * ramp + sys.drive_share * abs(hold_f) * (1.0 - ramp)
-        # speed loop output U = f0u + f1u v_master: rigid-body feedforward, integrator, gain
-        f_ff = sys.total_mass_kg * a_ref + f_res * min(max(v_ref / sys.v_ff_m_s, 0.0), 1.0)
-        ctx = SimpleNamespace(damp=damp, visc=visc, node_shaft=node_shaft, v_ref=v_ref,
-                              window=C.SPEED_WINDOW * v_d, f0u=f_ff + integ + sys.kp * v_ref,
-                              f1u=-sys.kp, hold_node=sys.hold_node if phase == C.HOLD else -1,
-                              x_tu=x_tu, u_tu=u_tu)
-
-        # ---- free elements, then the blocks
-        R0 = law(st.v, st.tt) if law is not None else _law(sys, st.v, st.tt)
-        v_free = _free_elements(sys, st.v, st.tt, R0)
-        st.v[free] = v_free[free]
-        U, u_known, u_new = 0.0, not pi, u_tu
-        for blk in blocks:
-            U, u_known, u_b, hit, hf, w = _block_step(sys, blk, ctx, st, sh, dr, R0, U,
-                                                      u_known)
-            if sys.takeup_gravity and sys.i_takeup in blk:
-                u_new = u_b
-            if not math.isnan(hf):
-                hold_f = hf
-            w_drive += w
-        if pi:
-            e_v = v_ref - sh.vs[sys.drive_shaft[sys.master]]
-            if not dr.sat[sys.master] or e_v * dr.f0[sys.master] < 0.0:
-                integ += dt * sys.ki * e_v  # not further into the torque limit
-        if sys.takeup_gravity:
-            u_tu = u_new
-            x_tu = min(max(x_tu + dt * u_tu, sys.takeup_lo_m), sys.takeup_hi_m)
-
-        # ---- springs from the new velocities (the carriage lengthens its two springs)
-        de = (np.roll(st.v, -1) - st.v + sys.carriage_coupling * u_tu) * dt / sys.len_m
-        st.te, st.ts, st.td, st.tt = _springs(sys, st.te, st.ts, st.td, de, damp)
-
-        # ---- observe
-        t_max, t_min = np.fmax(t_max, st.tt), np.fmin(t_min, st.tt)
-        if not np.isfinite(st.v).all() or np.abs(st.v).max() > v_fail:
-            status, div_where = C.DIVERGED, -1
+    model = sys.model
+    dt = model.cycle.dt
+    ref, st, sh, dr, brk, rs, out = _start(sys, t_end_s)
+    max_steps = int(rs.t_limit / dt) + 2
+    while rs.step < max_steps:
+        rs.step += 1
+        rs.t = rs.step * dt
+        _phase(model, rs, sh, dr, brk)
+        R0 = _resistances(model, ref, st)
+        _free_elements(model, ref, st, R0)
+        _blocks(model, ref, st, sh, dr, rs, R0)
+        _spring_step(model, ref, st, rs)
+        if not _observe(model, st, sh, dr, rs, out):
             break
-        bad_shaft = ~(np.abs(sh.vs) <= v_fail)  # also NaN
-        bad_motor = ~(np.abs(dr.vm) <= v_fail)
-        if bad_shaft.any() or bad_motor.any():
-            status = C.DIVERGED
-            div_where = (-2 - int(np.flatnonzero(bad_motor)[-1]) if bad_motor.any()
-                         else int(np.flatnonzero(bad_shaft)[-1]))
+        _switches(model, st, rs)
+        if rs.t >= rs.t_limit:
             break
-        v_mean = float(sys.belt_mass_kg @ st.v) / float(sys.belt_mass_kg.sum())
-        if abs(v_mean) > C.RUNAWAY_FACTOR * v_d:
-            status = C.RUNAWAY  # the belt could not be held: a physical result
-            break
-        if started:
-            slipping = sh.slip != 0.0
-            shaft_slip_s += np.where(slipping, dt, 0.0)
-            shaft_slip_m += np.where(slipping, np.abs(sh.vs - st.v[sys.shaft_node]) * dt, 0.0)
-            for k in range(nd):
-                s = sys.drive_shaft[k]
-                if sh.slip[s] != 0.0:
-                    slip_s[k] += dt
-                    slip_m[k] += abs(sh.vs[s] - st.v[sys.shaft_node[s]]) * dt
-            if start_ach < 0.0 and v_mean >= 0.99 * v_d:
-                start_ach = t_new - t_pre
-            if st.tt.min() <= 0.0:
-                slack_s += dt
-        if stopping and stop_ach < 0.0 and v_mean < 0.01 * v_d:
-            stop_ach = t_new - t_stopcmd
-        if stopping and not stopped and v_mean < 0.01 * v_d and (
-                sys.stop_mode != C.CONTROLLED or t_new >= t_stopcmd + sys.stop_s):
-            stopped, t_stopped = True, t_new
-            t_limit = min(t_limit, t_new + sys.post_rest_s)
-        if t_new >= t_limit:
-            break
-    return ReferenceResult(
-        v=st.v, te=st.te, ts=st.ts, td=st.td, tension=st.tt, x_takeup=x_tu, u_takeup=u_tu,
-        integrator=integ, shaft_speed=sh.vs, shaft_slip=sh.slip, drive_force=dr.force,
-        t_max=t_max, t_min=t_min, steps=step, t_end=t_new, status=status, w_drive=w_drive,
-        start_ach=start_ach, stop_ach=stop_ach, slip_s=slip_s, slip_m=slip_m,
-        shaft_slip_s=shaft_slip_s, shaft_slip_m=shaft_slip_m, slack_s=slack_s, t_trip=t_trip,
-        hold_set=hold_set, law_evals=law.evaluations if law is not None else 0,
-        div_where=div_where)
+    return _finish(ref, st, sh, dr, rs, out)

@@ -70,10 +70,10 @@ def test_auto_sizes_are_what_the_transient_model_uses(name):
     st = solve_steady(conv, model="din", n_elements=60)
     sizes = auto_sizes(conv, scn, model="din", steady=st)
     sys = build_system(conv, scn, st)
-    assert_allclose(sys.total_mass_kg, moving_mass_kg(conv, st), rtol=1e-12)
-    assert_allclose(np.sum(sys.drive_rated_n) * conv.speed_m_s / 1e3,
+    assert_allclose(sys.model.control.m_tot, moving_mass_kg(conv, st), rtol=1e-12)
+    assert_allclose(np.sum(sys.model.drives.rated) * conv.speed_m_s / 1e3,
                     sum(sizes["drive_rated_power_kw"]), rtol=1e-6)
-    assert_allclose(sys.brake_force_n / 1e3, sizes["brake_force_kn"], rtol=1e-9)
+    assert_allclose(sys.model.brakes.force / 1e3, sizes["brake_force_kn"], rtol=1e-9)
 
 
 def test_auto_brake_force_set_by_holding_is_said():
@@ -93,8 +93,8 @@ def test_auto_brake_on_a_level_belt_that_coasts_within_the_stop_time():
     st = solve_steady(conv, model="din", n_elements=60)
     sysm = build_system(conv, Scenario(start={"time_s": 20}, run_s=5, elements=60,
                                        stop={"mode": "brake", "time_s": 40}), st)
-    assert sysm.total_mass_kg * 4.0 / st.te_n < 40.0
-    assert sysm.brake_force_n.tolist() == [0.0]
+    assert sysm.model.control.m_tot * 4.0 / st.te_n < 40.0
+    assert sysm.model.brakes.force.tolist() == [0.0]
     note = "; ".join(sysm.notes)
     assert "auto brake force 0 kN: the belt coasts to rest within the stop time 40 s" in note
     assert "e-1" not in note

@@ -1,6 +1,6 @@
 """The numba kernel against the slow numpy reference of the same equations (STYLE: a kernel
-and a reference path tested against each other) and against RK45 on the same equations, its
-records and failure handling."""
+and a reference path tested against each other), its building blocks, records and failure
+handling."""
 
 from __future__ import annotations
 
@@ -13,12 +13,9 @@ from numpy.testing import assert_allclose
 from beltstudy.engine.conveyor import Scenario, load_conveyor, load_mapping, parse_conveyor
 from beltstudy.engine.dynamics import DynamicsOptions, build_system, simulate
 from beltstudy.engine.dynamics import codes as C
+from beltstudy.engine.dynamics.model import with_step
 from beltstudy.engine.dynamics.reference import run_reference
-from beltstudy.engine.dynamics.simulate import (
-    SURFACE_COLUMNS,
-    TIMESERIES_COLUMNS,
-    prepare,
-)
+from beltstudy.engine.dynamics.simulate import SURFACE_COLUMNS, TIMESERIES_COLUMNS, fresh_run
 from beltstudy.engine.statics import solve_steady
 from tests.conftest import CONVEYORS, hand_conveyor_dict
 
@@ -44,10 +41,9 @@ FOLLOWER_BRAKE = [dict(drive=2, force_kn=300, delay_s=0.3, ramp_s=0.5, hold=True
 SHORT_TRAVEL = dict(type="gravity", position="head", mass_kg="auto", travel_m=1.0)
 
 
-def _slipped_in_start(ki):
-    drv = ki.args["out"].drv
-    return (drv[:, C.DRV.SLIP_S] > 0).any() and drv[:, C.DRV.SLIP_FIRST].min() < \
-        ki.args["out"].res[C.RES.T_STOPCMD]
+def _slipped_in_start(kr):
+    drv = kr.out.drv
+    return (drv["slip_s"] > 0).any() and drv["slip_first"].min() < kr.run["t_stopcmd"]
 
 
 # each case: conveyor and changes, friction model, scenario, and what the case must exercise
@@ -57,13 +53,12 @@ CASES = [
     pytest.param("fabric-1km", {}, "nonlin",
                  dict(start={"control": "s-curve", "time_s": 12}, run_s=3,
                       stop={"mode": "coast"}),
-                 lambda ki: ki.args["ip"][C.IP.LAW_MODE] == C.LAW_LINEAR
-                 and ki.args["out"].res[C.RES.LAW_EVALS] > 0,
+                 lambda kr: kr.model.law.mode == C.LAW_LINEAR and kr.run["law_evals"] > 0,
                  id="fabric-nonlin-holdback-coast"),
     pytest.param("overland-16km", {}, "din",
                  dict(start={"control": "linear", "time_s": 30}, run_s=3,
                       stop={"mode": "brake", "time_s": 20}),
-                 lambda ki: ki.args["out"].res[C.RES.HOLD_SET] >= 0.0,
+                 lambda kr: kr.run["hold_set"] >= 0.0,
                  id="overland-head-tail-drives-head-takeup-brake-stop"),
     pytest.param("slope-5pct", {}, "cmod",
                  dict(start={"control": "torque", "time_s": 12}, run_s=3,
@@ -79,28 +74,28 @@ CASES = [
     pytest.param("slope-5pct", dict(drives=HEAD_PAIR), "din",
                  dict(start={"control": "s-curve", "time_s": 12}, run_s=3,
                       stop={"mode": "controlled", "time_s": 10}),
-                 lambda ki: len(ki.args["drives"].share) == 2, id="dual-head-half-shares"),
+                 lambda kr: len(kr.model.drives.share) == 2, id="dual-head-half-shares"),
     pytest.param("fabric-1km", dict(drives=LOW_FRICTION), "din",
                  dict(start={"control": "s-curve", "time_s": 6}, run_s=3,
                       stop={"mode": "coast"}), _slipped_in_start, id="drive-slips-in-start"),
     pytest.param("fabric-1km", dict(drives=DOL_FLUID), "din",
                  dict(start={"time_s": 12}, run_s=3, stop={"mode": "coast"}),
-                 lambda ki: ki.args["drives"].vm.max() > 0.0 or ki.args["out"].res[
-                     C.RES.TRIP] > 0.0, id="dol-fluid-coupling-trip"),
+                 lambda kr: kr.model.drives.vm.max() > 0.0 or kr.run["t_trip"] > 0.0,
+                 id="dol-fluid-coupling-trip"),
     pytest.param("downhill-regen", dict(brakes=HOLDING_BRAKES), "din",
                  dict(start={"control": "linear", "time_s": 12}, run_s=3,
                       stop={"mode": "brake", "time_s": 12}),
-                 lambda ki: ki.args["out"].res[C.RES.HOLD_SET] >= 0.0,
+                 lambda kr: kr.run["hold_set"] >= 0.0,
                  id="brake-stop-ramp-curve-holding-brake"),
     pytest.param("slope-5pct", dict(drives=HEAD_PAIR, holdback=False, brakes=FOLLOWER_BRAKE),
                  "din", dict(start={"control": "s-curve", "time_s": 12}, run_s=3,
                              stop={"mode": "controlled", "time_s": 10}),
-                 lambda ki: ki.args["out"].res[C.RES.HOLD_SET] >= 0.0,
+                 lambda kr: kr.run["hold_set"] >= 0.0,
                  id="holding-brake-on-a-torque-follower"),
     pytest.param("overland-16km", dict(takeup=SHORT_TRAVEL), "din",
                  dict(start={"control": "linear", "time_s": 20}, run_s=3,
                       stop={"mode": "coast"}),
-                 lambda ki: ki.args["out"].res[C.RES.ENDSTOP] > 0,
+                 lambda kr: kr.run["endstop"] > 0,
                  id="carriage-at-its-end-stop"),
 ]
 
@@ -109,12 +104,12 @@ CASES = [
     pytest.param("fabric-1km", {}, "nonlin",
                  dict(start={"control": "s-curve", "time_s": 12}, run_s=3,
                       stop={"mode": "coast"}, options=dict(resistance_rtol=0.0)),
-                 lambda ki: ki.args["ip"][C.IP.LAW_MODE] == C.LAW_EXACT,
+                 lambda kr: kr.model.law.mode == C.LAW_EXACT,
                  id="fabric-nonlin-exact-law"),
     pytest.param("slope-5pct", {}, "nonlin",
                  dict(start={"control": "s-curve", "time_s": 12}, run_s=3,
                       stop={"mode": "controlled", "time_s": 10}),
-                 lambda ki: ki.args["out"].res[C.RES.LAW_EVALS] > 0,
+                 lambda kr: kr.run["law_evals"] > 0,
                  id="slope-nonlin-controlled-stop"),
 ])
 def test_kernel_matches_numpy_reference(name, changes, model, scenario, exercised):
@@ -129,19 +124,18 @@ def test_kernel_matches_numpy_reference(name, changes, model, scenario, exercise
     scn = Scenario(**scenario)
     st = solve_steady(conv, model=model, load=scn.load, n_elements=40)
     sys = build_system(conv, scn, st, opts)
-    ki = prepare(sys)
-    ki.call()
+    kr = fresh_run(sys)
+    kr.call()
     ref = run_reference(sys)
-    a = ki.args
-    out, state, shafts, drives = a["out"], a["st"], a["shafts"], a["drives"]
-    res = out.res
-    nseg = int(res[C.RES.NSEG])
+    out, state, shafts, drives = kr.out, kr.state, kr.model.shafts, kr.model.drives
+    res = kr.run
+    nseg = int(res["seg"]) + 1
     if exercised is not None:
-        assert exercised(ki)
+        assert exercised(kr)
     t_tol = 1e-9 * float(np.abs(ref["tension"]).max())
     v_tol = 1e-9 * sys.v_design
-    assert int(res[C.RES.STEPS]) == ref["steps"]
-    assert int(res[C.RES.STATUS]) == ref["status"] == C.OK
+    assert int(res["steps"]) == ref["steps"]
+    assert int(res["status"]) == ref["status"] == C.OK
     assert_allclose(state.tt, ref["tension"], atol=t_tol, rtol=0)
     assert_allclose(state.te, ref["te"], atol=t_tol, rtol=0)
     assert_allclose(state.ts, ref["ts"], atol=1e-9 * float(np.abs(ref["ts"]).max()), rtol=0)
@@ -149,22 +143,21 @@ def test_kernel_matches_numpy_reference(name, changes, model, scenario, exercise
     assert_allclose(state.v, ref["v"], atol=v_tol, rtol=0)
     assert_allclose(out.seg_env[:nseg, 0].max(axis=0), ref["t_max"], atol=t_tol, rtol=0)
     assert_allclose(out.seg_env[:nseg, 2].min(axis=0), ref["t_min"], atol=t_tol, rtol=0)
-    assert state.misc[0] == pytest.approx(ref["x_takeup"], abs=1e-9)
-    assert state.misc[1] == pytest.approx(ref["u_takeup"], abs=v_tol)
-    assert state.misc[2] == pytest.approx(ref["integrator"], abs=t_tol)
+    assert res["x_tu"] == pytest.approx(ref["x_takeup"], abs=1e-9)
+    assert res["u_tu"] == pytest.approx(ref["u_takeup"], abs=v_tol)
+    assert res["integ"] == pytest.approx(ref["integrator"], abs=t_tol)
     assert_allclose(shafts.vs, ref["shaft_speed"], atol=v_tol, rtol=0)
     assert_allclose(shafts.slip, ref["shaft_slip"], atol=0, rtol=0)
     assert_allclose(drives.force, ref["drive_force"], atol=t_tol, rtol=0)
-    assert res[C.RES.W_DRIVE] == pytest.approx(ref["w_drive"], rel=1e-9)
-    for key, name in (("START_ACH", "start_ach"), ("STOP_ACH", "stop_ach"), ("TRIP", "t_trip"),
-                      ("HOLD_SET", "hold_set")):
-        assert res[getattr(C.RES, key)] == pytest.approx(ref[name], abs=1e-9), key
-    assert res[C.RES.SLACK_DUR] == pytest.approx(ref["slack_s"], abs=1e-9)
-    assert_allclose(out.drv[:, C.DRV.SLIP_S], ref["slip_s"], atol=1e-9, rtol=0)
-    assert_allclose(out.drv[:, C.DRV.SLIP_M], ref["slip_m"], atol=1e-9, rtol=1e-9)
-    assert_allclose(out.shs[:, 0], ref["shaft_slip_s"], atol=1e-9, rtol=0)
-    assert_allclose(out.shs[:, 1], ref["shaft_slip_m"], atol=1e-9, rtol=1e-9)
-    assert res[C.RES.LAW_EVALS] == ref["law_evals"]
+    assert res["w_drive"] == pytest.approx(ref["w_drive"], rel=1e-9)
+    for key in ("start_ach", "stop_ach", "t_trip", "hold_set"):
+        assert res[key] == pytest.approx(ref[key], abs=1e-9), key
+    assert res["slack_dur"] == pytest.approx(ref["slack_s"], abs=1e-9)
+    assert_allclose(out.drv["slip_s"], ref["slip_s"], atol=1e-9, rtol=0)
+    assert_allclose(out.drv["slip_m"], ref["slip_m"], atol=1e-9, rtol=1e-9)
+    assert_allclose(out.shs["slip_s"], ref["shaft_slip_s"], atol=1e-9, rtol=0)
+    assert_allclose(out.shs["slip_m"], ref["shaft_slip_m"], atol=1e-9, rtol=1e-9)
+    assert res["law_evals"] == ref["law_evals"]
 
 
 @pytest.mark.parametrize("changes, scenario, status", [
@@ -184,16 +177,16 @@ def test_kernel_and_reference_end_a_run_alike(changes, scenario, status):
     scn = Scenario(elements=40, start={"time_s": 20}, run_s=10, stop={"mode": "coast"},
                    **scenario)
     sys = build_system(conv, scn, solve_steady(conv, model="din", n_elements=40))
-    ki = prepare(sys)
-    ki.call()
+    kr = fresh_run(sys)
+    kr.call()
     ref = run_reference(sys)
-    res = ki.args["out"].res
-    assert int(res[C.RES.STATUS]) == ref["status"] == status
-    assert int(res[C.RES.STEPS]) == ref["steps"]
+    res = kr.run
+    assert int(res["status"]) == ref["status"] == status
+    assert int(res["steps"]) == ref["steps"]
     if status == C.RUNAWAY:
-        assert_allclose(ki.args["st"].v, ref["v"], atol=1e-9 * sys.v_design, rtol=0)
+        assert_allclose(kr.state.v, ref["v"], atol=1e-9 * sys.v_design, rtol=0)
     else:
-        assert int(res[C.RES.DIV_WHERE]) == ref["div_where"] >= 0
+        assert int(res["div_where"]) == ref["div_where"] >= 0
 
 
 def test_divergence_ends_the_run_failed_quickly():
@@ -203,17 +196,17 @@ def test_divergence_ends_the_run_failed_quickly():
     conv = load_conveyor(CONVEYORS / "fabric-1km.yaml")
     st = solve_steady(conv, n_elements=60)
     sys = build_system(conv, Scenario(), st, DynamicsOptions(damping="off"))
-    sys.dt_s = 3.0 * sys.dt_limit_s
+    sys = with_step(sys, 3.0 * sys.dt_limit_s)
     t0 = time.perf_counter()
     res = simulate(sys)
     assert time.perf_counter() - t0 < 5.0
     assert res.status == "failed"
     assert "diverged" in res.message and "dt" in res.message
     sys = build_system(conv, Scenario(), st)
-    sys.gravity_n[5] = np.nan
+    sys.model.nodes.gravity[5] = np.nan
     res = simulate(sys)
     assert res.status == "failed" and "diverged" in res.message
-    assert res.raw["T_END"] < 1.0
+    assert res.raw["t_end"] < 1.0
 
 
 def test_records_and_envelopes_are_consistent():
@@ -244,7 +237,7 @@ def test_records_and_envelopes_are_consistent():
     assert s["dyn_factor"] == pytest.approx(s["t_max_dyn_kn"] / st.summary["t_max_kn"])
     # surface rows: every sampled time with every sampled spring
     n_t = res.surface["t_s"].nunique()
-    assert len(res.surface) == n_t * len(sys.surface_springs)
+    assert len(res.surface) == n_t * len(sys.model.probes.surface)
 
 
 def test_rk45_on_the_same_equations_agrees():
@@ -280,7 +273,9 @@ def test_carriage_at_its_end_stop_is_a_warning_not_divergence():
     conv = conveyor("overland-16km", takeup=SHORT_TRAVEL)
     st = solve_steady(conv, model="nonlin", n_elements=80)
     res = simulate(build_system(conv, Scenario(elements=80, run_s=5), st), conveyor=conv)
-    assert res.raw["ENDSTOP_T"] > 0.0 and res.raw["ENDSTOP_SPEED"] > 0.0
+    assert res.raw["endstop_t"] > 0.0 and res.raw["endstop_speed"] > 0.0
     assert res.summary["takeup_travel_m"] == pytest.approx(SHORT_TRAVEL["travel_m"])
     assert res.status == "warning"
     assert "end stop" in res.message and "diverged" not in res.message
+
+

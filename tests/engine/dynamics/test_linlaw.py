@@ -20,9 +20,10 @@ from beltstudy.engine.dynamics.linlaw import (
     law_windows,
     remainder_bound,
 )
+from beltstudy.engine.dynamics.model import with_law
 from beltstudy.engine.dynamics.passes import law_refresh
 from beltstudy.engine.dynamics.reference import ExpandedLaw
-from beltstudy.engine.dynamics.simulate import prepare, simulate
+from beltstudy.engine.dynamics.simulate import fresh_run, simulate
 from beltstudy.engine.statics import solve_steady
 from tests.conftest import CONVEYORS
 
@@ -55,8 +56,9 @@ def test_windows_meet_the_tolerance_for_non_lin_and_other_exponents():
     the creep window the regularised force's error; a sag-only law has no speed window, a law
     without powers is evaluated exactly."""
     _, _, sys = _system()
-    w = law_windows(sys.coef, sys.pv, sys.ps, RTOL)
-    pairs = sorted(set(zip(sys.pv.tolist(), sys.ps.tolist(), strict=True)))
+    law = sys.model.law
+    w = law_windows(law.coef, law.pvv, law.psv, RTOL)
+    pairs = sorted(set(zip(law.pvv.tolist(), law.psv.tolist(), strict=True)))
     assert 0.1 < w.du < 0.5 and 0.02 < w.dx < 0.2 and 0.0 < w.d0 < 0.01
     assert remainder_bound(pairs, w.du, w.dx) <= RTOL
     assert creep_bound(pairs, w.d0, w.dx) <= RTOL
@@ -65,7 +67,7 @@ def test_windows_meet_the_tolerance_for_non_lin_and_other_exponents():
     sag = law_windows(coef, np.array([0.0, 0.0]), np.array([0.0, 1.7]), RTOL)
     assert sag.du == BIG and sag.d0 == BIG and sag.bound <= RTOL
     assert law_windows(coef, np.array([0.0, 1.0]), np.array([0.0, 1.0]), RTOL) is None
-    assert law_windows(sys.coef, sys.pv, sys.ps, 0.0) is None
+    assert law_windows(law.coef, law.pvv, law.psv, 0.0) is None
 
 
 @pytest.mark.parametrize("pv,ps", [
@@ -79,13 +81,16 @@ def test_expansion_stays_within_rtol_of_the_exact_law_over_its_windows(pv, ps):
     the regularised force is within rtol of the law's value at v_eps."""
     _, _, sys = _system()
     rng = np.random.default_rng(7)
+    law = sys.model.law
+    coef_all, pv_, ps_ = law.coef, law.pvv, law.psv
     if pv is not None:
-        sys.pv, sys.ps = np.array(pv), np.array(ps)
-        sys.coef = rng.uniform(0.5, 2.0, (len(pv), sys.n))
-    w = law_windows(sys.coef, sys.pv, sys.ps, RTOL)
-    sw = sys.sag_w_n / sys.hs_ref
-    hsm = sys.hs_cap / sys.hs_ref
-    du, d0, dx = element_windows(sys.coef, sys.pv, sys.ps, sw, hsm, sys.v_eps, w)
+        pv_, ps_ = np.array(pv), np.array(ps)
+        coef_all = rng.uniform(0.5, 2.0, (len(pv), sys.n))
+    v_eps = sys.model.cycle.v_eps
+    w = law_windows(coef_all, pv_, ps_, RTOL)
+    sw = sys.model.nodes.sag_w / law.hs_ref
+    hsm = sys.model.nodes.hs_cap / law.hs_ref
+    du, d0, dx = element_windows(coef_all, pv_, ps_, sw, hsm, v_eps, w)
     m = 20000
     j = rng.integers(0, sys.n, m)
     j = j[(du[j] < BIG) & (dx[j] < BIG)]
@@ -93,17 +98,17 @@ def test_expansion_stays_within_rtol_of_the_exact_law_over_its_windows(pv, ps):
     xcap = np.maximum(1.0, sw[j] / hsm[j])
     uc = 10.0 ** rng.uniform(-7, 1, m)
     tc = xcap * 10.0 ** rng.uniform(0, 4, m)
-    coef = sys.coef[:, j]
+    coef = coef_all[:, j]
     tc_phi = np.minimum(sw[j] / tc, hsm[j])
     moving = du[j] * uc >= d0[j]
-    r, a, aa, b, bb, e = _sums(_terms(coef, sys.pv, sys.ps, uc, tc_phi), sys.pv, sys.ps)
+    r, a, aa, b, bb, e = _sums(_terms(coef, pv_, ps_, uc, tc_phi), pv_, ps_)
     poly = expansion(r, a, aa, b, bb, e, uc, tc, moving, np.ones(m, dtype=bool))
     corners = rng.integers(0, 2, (2, m)) * 2 - 1
     for x, y in [(rng.uniform(-1, 1, m), rng.uniform(-1, 1, m)), corners]:
         u = np.where(moving, uc * (1 + x * du[j]), np.maximum(uc + x * d0[j], 0.0))
         t = np.maximum(tc * (1 + y * dx[j]), xcap)
         phi = np.minimum(sw[j] / t, hsm[j])
-        tk = _terms(coef, sys.pv, sys.ps, u, phi)
+        tk = _terms(coef, pv_, ps_, u, phi)
         k, gu, guu, gx, gxx, gux = poly
         approx = k + u * (gu + guu * u + gux * t) + t * (gx + gxx * t)
         err = np.abs(approx - tk.sum(0))
@@ -111,8 +116,8 @@ def test_expansion_stays_within_rtol_of_the_exact_law_over_its_windows(pv, ps):
         assert np.all(err[moving] <= RTOL * scale[moving] * (1 + 1e-9))
         # creep: the force R0 min(u / v_eps, 1), against the law at v_eps (and phi at T)
         creep = ~moving
-        at_veps = np.abs(_terms(coef, sys.pv, sys.ps, np.full(m, sys.v_eps), phi)).sum(0)
-        force_err = err * np.minimum(u / sys.v_eps, 1.0)
+        at_veps = np.abs(_terms(coef, pv_, ps_, np.full(m, v_eps), phi)).sum(0)
+        force_err = err * np.minimum(u / v_eps, 1.0)
         assert np.all(force_err[creep] <= RTOL * at_veps[creep] * (1 + 1e-9))
         assert creep.sum() > 100 and moving.sum() > 1000
 
@@ -123,14 +128,15 @@ def test_kernel_evaluation_and_expansion_are_the_references():
     factor: powers by exp and log, square roots, squares, the sag cap and the creep window."""
     _, _, sys = _system(n=200)
     rng = np.random.default_rng(3)
-    sys.pv = np.array([0.0, 0.3, 1.0, 2.0, 0.3, 0.039, 0.0, 1.0])
-    sys.ps = np.array([0.0, 1.5, 1.0, 0.5, 2.0, 0.0, 1.7, 0.0])
-    sys.coef = rng.uniform(0.5, 2.0, (8, sys.n))
-    sys.coef[7] = 0.0
-    sys.coef[7, [5, 50]] = 3.0  # a sparse term
-    ki = prepare(sys)
-    assert ki.args["ip"][C.IP.LAW_MODE] == C.LAW_LINEAR
-    lin = ki.args["lin"]
+    pv = np.array([0.0, 0.3, 1.0, 2.0, 0.3, 0.039, 0.0, 1.0])
+    ps = np.array([0.0, 1.5, 1.0, 0.5, 2.0, 0.0, 1.7, 0.0])
+    coef = rng.uniform(0.5, 2.0, (8, sys.n))
+    coef[7] = 0.0
+    coef[7, [5, 50]] = 3.0  # a sparse term
+    sys = with_law(sys, coef, pv, ps)
+    kr = fresh_run(sys)
+    assert kr.model.law.mode == C.LAW_LINEAR
+    lin = kr.model.lin
     ref = ExpandedLaw(sys)
     n = sys.n
     v = rng.choice([-1.0, 1.0], n) * 10.0 ** rng.uniform(-9, 1, n)
@@ -161,9 +167,9 @@ def test_modes_and_the_tolerance_option():
     resistance_rtol 0 evaluates Non-Lin's exactly; out-of-range tolerances are refused."""
     for model, mode in (("din", C.LAW_CONST), ("cema", C.LAW_EXACT), ("nonlin", C.LAW_LINEAR)):
         _, _, sys = _system(model=model, n=40)
-        assert prepare(sys).args["ip"][C.IP.LAW_MODE] == mode, model
+        assert sys.model.law.mode == mode, model
     _, _, sys = _system(n=40, rtol=0.0)
-    assert prepare(sys).args["ip"][C.IP.LAW_MODE] == C.LAW_EXACT
+    assert sys.model.law.mode == C.LAW_EXACT
     conv, st, _ = _system(n=40)
     for bad in (-1e-3, 0.05):
         with pytest.raises(InputError, match="resistance_rtol"):
@@ -191,8 +197,8 @@ def test_expanded_law_results_within_a_tenth_of_a_percent_of_the_exact_law(name,
     expanded = build_system(conv, Scenario(**scenario), st)
     a = simulate(exact, steady_summary=st.summary, conveyor=conv)
     b = simulate(expanded, steady_summary=st.summary, conveyor=conv)
-    assert a.status == b.status and a.raw["STEPS"] == b.raw["STEPS"]
-    assert b.raw["LAW_EVALS"] < 0.02 * b.raw["STEPS"] * expanded.n
+    assert a.status == b.status and a.raw["steps"] == b.raw["steps"]
+    assert b.raw["law_evals"] < 0.02 * b.raw["steps"] * expanded.n
     sa, sb = a.summary, b.summary
     t_peak = sa["t_max_dyn_kn"]
     for key in KEYS:
@@ -202,4 +208,4 @@ def test_expanded_law_results_within_a_tenth_of_a_percent_of_the_exact_law(name,
         scale = t_peak if key.startswith("t_min") else (1.0 if key == "slack_max_m"
                                                          else abs(sa[key]))
         assert abs(sb[key] - sa[key]) <= 1e-3 * scale, (key, sa[key], sb[key])
-    assert b.raw["W_DRIVE"] == pytest.approx(a.raw["W_DRIVE"], rel=1e-3)
+    assert b.raw["w_drive"] == pytest.approx(a.raw["w_drive"], rel=1e-3)

@@ -88,8 +88,8 @@ def test_transient_model_runs_on_the_same_per_element_masses(load):
     scn = Scenario(load=load, elements=60, start={"time_s": 20}, run_s=40)
     sys = build_system(conv, scn, st)
     loop = st.loop
-    assert_allclose(sys.gravity_n, loop.gravity_n, rtol=1e-12)
-    assert_allclose(sys.belt_mass_kg, loop.mass_kg, rtol=1e-12)
+    assert_allclose(sys.model.nodes.gravity, loop.gravity_n, rtol=1e-12)
+    assert_allclose(sys.model.nodes.w_mean, loop.mass_kg, rtol=1e-12)
     res = simulate(sys, t_end_s=sys.stop_command_s - sys.dt_s)
     assert res.status != "failed", res.message
     T = res.raw["tension"]

@@ -10,11 +10,28 @@ from numpy.testing import assert_allclose
 
 from beltstudy.engine.conveyor import Scenario, load_conveyor
 from beltstudy.engine.dynamics import build_system
+from beltstudy.engine.dynamics.model import exponent_codes, with_law
 from beltstudy.engine.dynamics.passes import resistance, spring
+from beltstudy.engine.dynamics.records import Springs
 from beltstudy.engine.dynamics.reference import _law
-from beltstudy.engine.dynamics.simulate import exponent_codes, prepare
+from beltstudy.engine.dynamics.simulate import fresh_run
 from beltstudy.engine.statics import solve_steady
 from tests.conftest import CONVEYORS
+
+
+def _spring(e0, s0, de, tfl, sfl, kfl_eb, a_eb, eb):
+    """The kernel's update of one spring (:func:`passes.spring`) from elastic tension e0 and
+    strain tension s0 after the strain increment de: no arm, no viscosity, no carriage."""
+    def one(x):
+        return np.array([float(x)])
+
+    none = np.zeros((0, 2), dtype=np.int64)
+    sp = Springs(len_m=one(1.0), a_ernst=one(a_eb / eb), t_floor=one(tfl),
+                 k_floor=one(kfl_eb * eb), viscosity=one(0.0), car_ind=one(0.0),
+                 eps_run=one(0.0), eb=float(eb), eb_dyn=float(eb), dl=one(1.0), a_eb=one(a_eb),
+                 s_floor=one(sfl), kfl_eb=one(kfl_eb), kvs=one(0.0), e_damp=0.0, g_damp=0.0,
+                 seg_node=none, seg_spring=none)
+    return spring(sp, 0, e0, s0, 0.0, de, 0.0)
 
 
 def test_resistance_every_exponent_code_matches_the_reference_law():
@@ -36,19 +53,17 @@ def test_resistance_every_exponent_code_matches_the_reference_law():
     coef = np.array(coef)
     coef[-1, :] = 0.0
     coef[-1, [3, 17]] = 5.0  # a sparse term
-    sys.coef, sys.pv, sys.ps = coef, np.array(pv), np.array(ps)
-    a = prepare(sys).args
-    law, nodes = a["law"], a["nodes"]
+    pv, ps = np.array(pv), np.array(ps)
+    kr = fresh_run(with_law(sys, coef, pv, ps))
+    law, nodes, wk = kr.model.law, kr.model.nodes, kr.work
+    assert law.any_ps
     assert law.t_sparse[-1] == 1 and law.t_sparse[:-1].sum() == 0
-    assert set(exponent_codes(sys.pv)) | set(exponent_codes(sys.ps)) == {0, 1, 2, 3, 4, 5}
+    assert set(exponent_codes(pv)) | set(exponent_codes(ps)) == {0, 1, 2, 3, 4, 5}
     for v in (np.zeros(n), rng.normal(0.0, 3.0, n)):
         tt = np.maximum(rng.normal(5e4, 3e4, n), 0.0)
-        r0 = np.empty(n)
-        resistance(r0, v, tt, law.coef, law.pvc, law.pvv, law.psc, law.psv, nodes.sw_ref,
-                   nodes.hsm_ref, True, np.empty(n), np.empty(n), np.empty(n), law.t_sparse,
-                   law.t_ptr, law.t_idx)
-        ref = _law(sys, v, tt)
-        assert_allclose(r0, ref, rtol=1e-13, atol=1e-12 * np.abs(ref).max())
+        resistance(law, nodes, kr.state._replace(v=v, tt=tt), wk)
+        ref = _law(law, nodes, v, tt)
+        assert_allclose(wk.r0, ref, rtol=1e-13, atol=1e-12 * np.abs(ref).max())
 
 
 def _chord_s(t, eb, a_eb, tfl, kfl):
@@ -69,13 +84,11 @@ def test_unloading_past_the_floor_stores_the_geometric_slack():
     e0 = 2.0e5
     s0 = _chord_s(e0, eb, a_eb, tfl, kfl)
     de = (sf - s0) / eb - 0.1
-    e1, s1, d1, t1 = spring(e0, s0, 0.0, de, 1.0, 0.0, tfl, sf, kfl / eb, a_eb, eb, 0.0, 0.0,
-                            0.0)
+    e1, s1, d1, t1 = _spring(e0, s0, de, tfl, sf, kfl / eb, a_eb, eb)
     assert s1 == pytest.approx(s0 + eb * de, rel=1e-12)
     assert e1 == pytest.approx(tfl - 0.1 * kfl, rel=1e-9)
     assert e1 < 0.0 and t1 == 0.0 and d1 == 0.0  # slack: the belt does not push
-    e1, s1, _, _ = spring(e0, s0, 0.0, -1e-4, 1.0, 0.0, tfl, sf, kfl / eb, a_eb, eb, 0.0, 0.0,
-                          0.0)
+    e1, s1, _, _ = _spring(e0, s0, -1e-4, tfl, sf, kfl / eb, a_eb, eb)
     lo, hi = tfl, e0
     for _ in range(200):
         mid = 0.5 * (lo + hi)
@@ -100,7 +113,7 @@ def test_a_strain_cycle_through_slack_returns_the_tension_it_started_from():
     steps = np.concatenate([down, -down[::-1][rng.permutation(400)]])
     e, s, work, work_scale = e0, s0, 0.0, 0.0
     for de in steps:
-        e1, s, _, _ = spring(e, s, 0.0, de, 1.0, 0.0, tfl, sf, kfl / eb, a_eb, eb, 0.0, 0.0, 0.0)
+        e1, s, _, _ = _spring(e, s, de, tfl, sf, kfl / eb, a_eb, eb)
         work += 0.5 * (max(e, 0.0) + max(e1, 0.0)) * de
         work_scale += 0.5 * (max(e, 0.0) + max(e1, 0.0)) * abs(de)
         e = e1

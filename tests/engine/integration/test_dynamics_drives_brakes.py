@@ -37,7 +37,7 @@ def test_slipping_pulley_transmits_the_capstan_limit_motoring():
                      takeup={"type": "gravity", "position": "tail", "mass_kg": 3000})
     st = solve_steady(conv, model="din", n_elements=60)
     sysm = build_system(conv, Scenario(run_s=30), st, DynamicsOptions(force_start_n=150e3))
-    r = simulate(sysm, t_end_s=sysm.pre_rest_s + 6.0)
+    r = simulate(sysm, t_end_s=sysm.model.cycle.t_pre + 6.0)
     ts = r.timeseries
     slipping = ts["v_drive1_m_s"] - ts["v_mean_m_s"] > 0.05  # the shaft runs ahead
     assert slipping.sum() > 10
@@ -83,7 +83,7 @@ def test_slip_can_be_switched_off_for_verification():
     st = solve_steady(conv, model="din", n_elements=60)
     sysm = build_system(conv, Scenario(run_s=30), st,
                         DynamicsOptions(force_start_n=150e3, slip=False))
-    r = simulate(sysm, t_end_s=sysm.pre_rest_s + 3.0)
+    r = simulate(sysm, t_end_s=sysm.model.cycle.t_pre + 3.0)
     assert r.summary["drive1_slip_s"] == 0.0
 
 
@@ -118,12 +118,12 @@ def test_dol_start_matches_the_rigid_body_within_3_percent():
                            "carcass_mass_kg_m2": 20.0, "top_cover_mm": 0, "bottom_cover_mm": 0})
     st = solve_steady(conv, model="din", n_elements=60)
     sysm = build_system(conv, Scenario(start={"time_s": 30}, run_s=10, elements=60), st)
-    r = simulate(sysm, t_end_s=sysm.pre_rest_s + 25.0)
+    r = simulate(sysm, t_end_s=sysm.model.cycle.t_pre + 25.0)
     assert r.summary["drive1_slip_s"] == 0.0
     ts = r.timeseries
-    t = ts["t_s"].to_numpy() - sysm.pre_rest_s
+    t = ts["t_s"].to_numpy() - sysm.model.cycle.t_pre
     t90 = float(t[np.argmax(ts["v_mean_m_s"].to_numpy() >= 0.9 * 4.0)])
-    expected = _rigid_time_to(0.9, sysm.total_mass_kg, 240e3 / 4.0, st.te_n, 4.0,
+    expected = _rigid_time_to(0.9, sysm.model.control.m_tot, 240e3 / 4.0, st.te_n, 4.0,
                               conv.drives[0].curve)
     assert t90 == pytest.approx(expected, rel=0.03)
 
@@ -136,7 +136,7 @@ def test_dol_fluid_coupling_lets_the_motor_run_up_first():
                      takeup={"type": "gravity", "position": "tail", "mass_kg": 16000})
     st = solve_steady(conv, model="din", n_elements=60)
     sysm = build_system(conv, Scenario(start={"time_s": 30}, run_s=10, elements=60), st)
-    ki_r = simulate(sysm, t_end_s=sysm.pre_rest_s + 40.0)
+    ki_r = simulate(sysm, t_end_s=sysm.model.cycle.t_pre + 40.0)
     ts = ki_r.timeseries
     assert ki_r.summary["start_time_s"] is not None
     # the coupling's stall torque bounds the force at the belt: 1.6 x rated
@@ -163,8 +163,8 @@ def test_a_light_dol_drive_train_sets_the_step_and_runs_steadily():
     st = solve_steady(conv, model="din", n_elements=40)
     sysm = build_system(conv, Scenario(start={"time_s": 20}, run_s=20, stop={"mode": "coast"},
                                        elements=40), st)
-    lightest = min(sysm.shaft_mass_kg.min(),
-                   sysm.drive_motor_mass_kg[sysm.drive_motor_mass_kg > 0].min())
+    lightest = min(sysm.model.shafts.mass.min(),
+                   sysm.model.drives.motor_mass[sysm.model.drives.motor_mass > 1.0].min())
     tau = lightest * 4.0 / (240e3 / 4.0)
     assert sysm.dt_s <= 0.5 * tau * (1 + 1e-12)
     assert sysm.dt_s < 0.1 * sysm.dt_limit_s  # the drive train, not the belt, sets it
@@ -213,7 +213,7 @@ def test_a_decline_the_drive_cannot_hold_runs_away_as_a_rigid_body():
     assert v[-1] == pytest.approx(2.0 * 4.0, rel=0.01)
     fast = (t > sysm.stop_command_s) & (v > 1.1 * 4.0) & (v < 1.8 * 4.0)
     a = np.polyfit(t[fast], v[fast], 1)[0]
-    assert a == pytest.approx(-st.te_n / sysm.total_mass_kg, rel=0.01)
+    assert a == pytest.approx(-st.te_n / sysm.model.control.m_tot, rel=0.01)
     assert r.summary["stop_time_s"] is None
 
 
@@ -226,7 +226,7 @@ def test_dual_head_drive_running_equals_statics_and_shares_equally():
     r = simulate(sysm, t_end_s=sysm.stop_command_s - sysm.dt_s)
     assert r.summary["drive1_slip_s"] == 0.0 and r.summary["drive2_slip_s"] == 0.0
     ts = r.timeseries
-    moving = ts["t_s"] > sysm.pre_rest_s + 1.0
+    moving = ts["t_s"] > sysm.model.cycle.t_pre + 1.0
     f1, f2 = ts["f_drive1_kn"][moving], ts["f_drive2_kn"][moving]
     assert_allclose(f1, f2, rtol=0.02, atol=0.02 * f1.abs().max())
     T = r.raw["tension"]
@@ -248,8 +248,8 @@ def test_vfd_start_tracks_the_reference():
                             st)
         r = simulate(sysm, t_end_s=sysm.stop_command_s - sysm.dt_s)
         ts = r.timeseries
-        t = ts["t_s"].to_numpy() - sysm.pre_rest_s
-        lim = float(sysm.drive_limit_n.sum())
+        t = ts["t_s"].to_numpy() - sysm.model.cycle.t_pre
+        lim = float(sysm.model.drives.lim0.sum())
         assert ts["f_drive_kn"].abs().max() * 1e3 < lim, name  # inside the torque limit
         err = np.abs(ts["v_mean_m_s"] - ts["v_ref_m_s"]).to_numpy() / sysm.v_design
         since = sysm.wave_loop_time_s if name != "overland-16km" else 0.5 * start_s

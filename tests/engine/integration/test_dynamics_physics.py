@@ -27,7 +27,7 @@ from numpy.testing import assert_allclose
 
 from beltstudy.engine.conveyor import Scenario, load_conveyor, parse_conveyor
 from beltstudy.engine.dynamics import DynamicsOptions, build_system, simulate
-from beltstudy.engine.dynamics.model import chord_strain
+from beltstudy.engine.dynamics.model import chord_strain, with_probes
 from beltstudy.engine.loop import G
 from beltstudy.engine.run import run_one
 from beltstudy.engine.statics import solve_steady
@@ -79,9 +79,9 @@ def test_tension_front_speed_and_height():
     s = sys.s_end_m
     far = int(np.argmin(np.abs(s - 200.0)))  # 10 % of the carry from the tail
     mid = int(np.argmin(np.abs(s - 1000.0)))
-    sys.probe_springs = np.array([far, mid])
-    res = simulate(sys, t_end_s=sys.pre_rest_s + 2.0)
-    t = res.traces["t_s"].to_numpy() - sys.pre_rest_s
+    sys = with_probes(sys, [far, mid])
+    res = simulate(sys, t_end_s=sys.model.cycle.t_pre + 2.0)
+    t = res.traces["t_s"].to_numpy() - sys.model.cycle.t_pre
     d_far = res.traces.iloc[:, 1].to_numpy() * 1e3 - sys.tension_rest_n[far]
     d_mid = res.traces.iloc[:, 2].to_numpy() * 1e3 - sys.tension_rest_n[mid]
     # the ramp's middle leaves the head at 0.05 s; the front's middle is half its height
@@ -101,9 +101,9 @@ def test_stiff_belt_accelerates_as_rigid_body():
     sys = build_system(conv, Scenario(run_s=100), st,
                        DynamicsOptions(force_start_n=force, damping="off"))
     resistance = float(st.law.evaluate(2.0).sum())  # DIN: speed independent
-    a = (force - resistance) / sys.total_mass_kg
-    res = simulate(sys, t_end_s=sys.pre_rest_s + 4.0)
-    t = res.timeseries["t_s"].to_numpy() - sys.pre_rest_s
+    a = (force - resistance) / sys.model.control.m_tot
+    res = simulate(sys, t_end_s=sys.model.cycle.t_pre + 4.0)
+    t = res.timeseries["t_s"].to_numpy() - sys.model.cycle.t_pre
     v = res.timeseries["v_mean_m_s"].to_numpy()
     late = t > 1.0  # after the release transient
     slope = np.polyfit(t[late], v[late], 1)[0]
@@ -122,20 +122,20 @@ def test_energy_balance_over_a_start(ernst):
     def energy(v, te, x, u, vs):
         # elastic energy of the tangent law: len * (T^2 / 2EB - a / T) (a = 0: linear); the
         # shafts (drive and pulley rotating parts) turn with the belt
-        a = sys.a_ernst
-        elastic = np.sum(sys.len_m * (te**2 / (2.0 * sys.stiffness_n)
+        a = sys.model.springs.a_ernst
+        elastic = np.sum(sys.model.springs.len_m * (te**2 / (2.0 * sys.model.springs.eb)
                                       - np.where(a > 0, a / np.maximum(te, 1e-9), 0.0)))
-        return (0.5 * np.sum(sys.mass_kg * v**2) + 0.5 * np.sum(sys.shaft_mass_kg * vs**2)
-                + elastic - sys.takeup_weight_n * x + 0.5 * sys.takeup_inertia_kg * u**2)
+        return (0.5 * np.sum(sys.model.nodes.mass * v**2) + 0.5 * np.sum(sys.model.shafts.mass * vs**2)
+                + elastic - sys.model.takeup.weight * x + 0.5 * sys.model.takeup.mass * u**2)
 
     e0 = energy(np.zeros(sys.n), np.maximum(sys.tension_rest_n, 0.0), 0.0, 0.0,
-                np.zeros(len(sys.shaft_node)))
-    res = simulate(sys, t_end_s=sys.pre_rest_s + 20.0)
+                np.zeros(len(sys.model.shafts.node)))
+    res = simulate(sys, t_end_s=sys.model.cycle.t_pre + 20.0)
     r = res.raw
-    assert r["tension"].min() > sys.t_floor_n.max()  # the energy formula's range
+    assert r["tension"].min() > sys.model.springs.t_floor.max()  # the energy formula's range
     e1 = energy(r["v"], r["te"], r["x_takeup"], r["u_takeup"], r["shaft_speed"])
-    work = r["W_DRIVE"]
-    assert work > 0.4 * 0.5 * sys.total_mass_kg * 9.0  # the belt is moving
+    work = r["w_drive"]
+    assert work > 0.4 * 0.5 * sys.model.control.m_tot * 9.0  # the belt is moving
     assert e1 - e0 == pytest.approx(work, rel=0.01)
 
 
@@ -143,13 +143,13 @@ def _elastic_energy(sys, te):
     """Elastic energy of the springs at elastic tension te [J]: the work of Ernst's chord law,
     ``len (T^2 / 2EB - a / T)`` (a = 0: linear) above the floor tension, the floor line
     ``(T^2 - tfl^2) / 2 kfl`` below it and nothing more once slack (T < 0)."""
-    a, tf, kf, eb = sys.a_ernst, sys.t_floor_n, sys.k_floor_n, sys.stiffness_n
+    a, tf, kf, eb = sys.model.springs.a_ernst, sys.model.springs.t_floor, sys.model.springs.k_floor, sys.model.springs.eb
 
     def law(t):
         return t**2 / (2.0 * eb) - np.where(a > 0, a / np.maximum(t, 1e-9), 0.0)
 
     tp = np.maximum(te, 0.0)
-    return float(np.sum(sys.len_m * np.where(te >= tf, law(np.maximum(te, tf)),
+    return float(np.sum(sys.model.springs.len_m * np.where(te >= tf, law(np.maximum(te, tf)),
                                              law(tf) + (tp**2 - tf**2) / (2.0 * kf))))
 
 
@@ -168,20 +168,20 @@ def test_energy_balance_over_a_stop_through_slack(ernst):
     sys = build_system(conv, scn, st, DynamicsOptions(**{**BARE, "ernst": ernst, "slip": False}))
 
     def energy(r):
-        return (0.5 * np.sum(sys.mass_kg * r["v"]**2)
-                + 0.5 * np.sum(sys.shaft_mass_kg * r["shaft_speed"]**2)
-                + _elastic_energy(sys, r["te"]) - sys.takeup_weight_n * r["x_takeup"]
-                + 0.5 * sys.takeup_inertia_kg * r["u_takeup"]**2)
+        return (0.5 * np.sum(sys.model.nodes.mass * r["v"]**2)
+                + 0.5 * np.sum(sys.model.shafts.mass * r["shaft_speed"]**2)
+                + _elastic_energy(sys, r["te"]) - sys.model.takeup.weight * r["x_takeup"]
+                + 0.5 * sys.model.takeup.mass * r["u_takeup"]**2)
 
     e0 = energy({"v": np.zeros(sys.n), "te": np.maximum(sys.tension_rest_n, 0.0),
-                 "x_takeup": 0.0, "u_takeup": 0.0, "shaft_speed": np.zeros(len(sys.shaft_node))})
+                 "x_takeup": 0.0, "u_takeup": 0.0, "shaft_speed": np.zeros(len(sys.model.shafts.node))})
     running = simulate(sys, t_end_s=sys.stop_command_s).raw
-    kinetic = 0.5 * np.sum(sys.mass_kg * running["v"]**2)
+    kinetic = 0.5 * np.sum(sys.model.nodes.mass * running["v"]**2)
     res = simulate(sys, t_end_s=sys.stop_command_s + 13.0)
     r = res.raw
-    assert r["SLACK_DUR"] > 0.5  # the belt went slack ...
+    assert r["slack_dur"] > 0.5  # the belt went slack ...
     assert r["tension"].min() > 0.0  # ... and is taut again
-    assert energy(r) - e0 == pytest.approx(r["W_DRIVE"], abs=0.02 * kinetic)
+    assert energy(r) - e0 == pytest.approx(r["w_drive"], abs=0.02 * kinetic)
 
 
 @pytest.mark.parametrize("name,model,takeup", [
@@ -204,7 +204,7 @@ def test_running_tensions_settle_to_statics(name, model, takeup):
     assert res.status != "failed"
     assert np.max(np.abs(T - st.tension_n) / st.tension_n) < 0.01
     if takeup:  # a fixed take-up: the loop length is conserved, statics holds its tension
-        tu = 0.5 * (T[sys.i_takeup - 1] + T[sys.i_takeup])
+        tu = 0.5 * (T[sys.model.takeup.node - 1] + T[sys.model.takeup.node])
         assert tu == pytest.approx(takeup["pretension_kn"] * 1e3, rel=0.01)
 
 
@@ -240,20 +240,20 @@ def test_ernst_law_slows_the_wave_in_a_low_tension_strand():
                                                           pulley_mass_kg=0.0))
         ret = np.flatnonzero(sys.strand == 1)
         probe = ret[int(0.9 * len(ret))]
-        sys.probe_springs = np.array([probe])
+        sys = with_probes(sys, [probe])
         path = ret[ret <= probe]
-        T = np.maximum(sys.tension_rest_n[path], sys.t_floor_n[path])
-        kt = sys.stiffness_n / (1.0 + sys.a_ernst[path] * sys.stiffness_n / T**3)
+        T = np.maximum(sys.tension_rest_n[path], sys.model.springs.t_floor[path])
+        kt = sys.model.springs.eb / (1.0 + sys.model.springs.a_ernst[path] * sys.model.springs.eb / T**3)
         rho = 30.0
-        predicted = float(np.sum(sys.len_m[path] / np.sqrt(kt / rho)))
+        predicted = float(np.sum(sys.model.springs.len_m[path] / np.sqrt(kt / rho)))
         z = math.sqrt(float(kt.mean()) * rho)
-        res = simulate(sys, t_end_s=sys.pre_rest_s + 1.5 * predicted)
-        t = res.traces["t_s"].to_numpy() - sys.pre_rest_s
+        res = simulate(sys, t_end_s=sys.model.cycle.t_pre + 1.5 * predicted)
+        t = res.traces["t_s"].to_numpy() - sys.model.cycle.t_pre
         d = res.traces.iloc[:, 1].to_numpy() * 1e3 - sys.tension_rest_n[probe]
         arrivals[ernst] = _arrival(t, d, -0.5 * z * 0.01) - 0.05
         assert arrivals[ernst] == pytest.approx(predicted, rel=0.05)
         if ernst:
-            assert kt.mean() / sys.stiffness_n == pytest.approx(0.5, rel=0.01)
+            assert kt.mean() / sys.model.springs.eb == pytest.approx(0.5, rel=0.01)
     assert arrivals[True] / arrivals[False] == pytest.approx(math.sqrt(2.0), rel=0.05)
 
 
@@ -273,7 +273,7 @@ def test_brake_stop_takes_the_sized_time():
                     model="din")
     sys = r.transient.system
     assert coast.summary["stop_time_s"] == pytest.approx(
-        0.99 * sys.total_mass_kg * 4.0 / r.steady.te_n, rel=0.10)
+        0.99 * sys.model.control.m_tot * 4.0 / r.steady.te_n, rel=0.10)
 
 
 def _cycloid_time(fraction):
@@ -326,10 +326,10 @@ def test_gravity_takeup_carriage_takes_in_the_running_stretch():
     st = solve_steady(conv, model="din", n_elements=100)
     sys = build_system(conv, Scenario(start={"time_s": 30}, run_s=60), st)
     res = simulate(sys, t_end_s=sys.stop_command_s - sys.dt_s)
-    assert res.raw["x_takeup"] == pytest.approx(sys.takeup_run_m, rel=0.02)
-    assert sys.takeup_run_m > 0.0
-    assert_allclose(res.raw["tension"][sys.i_takeup - 1] + res.raw["tension"][sys.i_takeup],
-                    sys.takeup_weight_n, rtol=1e-4)
+    assert res.raw["x_takeup"] == pytest.approx(sys.model.takeup.x_run, rel=0.02)
+    assert sys.model.takeup.x_run > 0.0
+    assert_allclose(res.raw["tension"][sys.model.takeup.node - 1] + res.raw["tension"][sys.model.takeup.node],
+                    sys.model.takeup.weight, rtol=1e-4)
 
 
 # --------------------------------------------------------------------------------------
@@ -392,7 +392,7 @@ def test_fronts_travel_at_the_dynamic_wave_speed_with_damping_on(modulus, dynami
                                                        ernst=False, pulley_mass_kg=0.0))
     assert sysm.damping == "belt" and sysm.mesh_viscosity > 0.0
     eb = (dynamic or 1.1 * modulus) * 1e3  # custom steel-kind belt: the catalogue ratio 1.1
-    assert sysm.stiffness_dyn_n == pytest.approx(eb, rel=1e-12)
+    assert sysm.model.springs.eb_dyn == pytest.approx(eb, rel=1e-12)
     rho, dv = 30.0, 1.0
     c, z = math.sqrt(eb / rho), math.sqrt(eb * rho)
     loop = st.loop
@@ -402,9 +402,9 @@ def test_fronts_travel_at_the_dynamic_wave_speed_with_damping_on(modulus, dynami
     s = sysm.s_end_m
     head = s[sysm.i_head - 1]
     near, far = (int(np.argmin(np.abs(s - (head - d)))) for d in (100.0, 1100.0))
-    sysm.probe_springs = np.array([near, far])
-    r = simulate(sysm, t_end_s=sysm.pre_rest_s + (head - s[far]) / c + 0.5)
-    t = r.traces["t_s"].to_numpy() - sysm.pre_rest_s
+    sysm = with_probes(sysm, [near, far])
+    r = simulate(sysm, t_end_s=sysm.model.cycle.t_pre + (head - s[far]) / c + 0.5)
+    t = r.traces["t_s"].to_numpy() - sysm.model.cycle.t_pre
     d_near = r.traces.iloc[:, 1].to_numpy() * 1e3 - sysm.tension_rest_n[near]
     d_far = r.traces.iloc[:, 2].to_numpy() * 1e3 - sysm.tension_rest_n[far]
     t1, t2 = _arrival(t, d_near, 0.5 * z * dv), _arrival(t, d_far, 0.5 * z * dv)
@@ -424,11 +424,11 @@ def test_the_static_modulus_governs_the_settled_stretch():
     st = solve_steady(conv, model="din", n_elements=80)
     sysm = build_system(conv, Scenario(start={"time_s": 20}, run_s=40, elements=80), st)
     r = simulate(sysm, t_end_s=sysm.stop_command_s - sysm.dt_s)
-    eps_rest = chord_strain(np.maximum(sysm.tension_rest_n, 0.0), sysm.a_ernst,
-                            sysm.stiffness_n, sysm.t_floor_n, sysm.k_floor_n)
-    eps_run = chord_strain(sysm.steady_tension_n, sysm.a_ernst, sysm.stiffness_n,
-                           sysm.t_floor_n, sysm.k_floor_n)
-    x_static = 0.5 * float(np.sum(sysm.len_m * (eps_run - eps_rest)))
+    eps_rest = chord_strain(np.maximum(sysm.tension_rest_n, 0.0), sysm.model.springs.a_ernst,
+                            sysm.model.springs.eb, sysm.model.springs.t_floor, sysm.model.springs.k_floor)
+    eps_run = chord_strain(sysm.steady_tension_n, sysm.model.springs.a_ernst, sysm.model.springs.eb,
+                           sysm.model.springs.t_floor, sysm.model.springs.k_floor)
+    x_static = 0.5 * float(np.sum(sysm.model.springs.len_m * (eps_run - eps_rest)))
     assert r.raw["x_takeup"] == pytest.approx(x_static, rel=0.02)
     # the dynamic modulus would give 2/3 of that
     assert abs(r.raw["x_takeup"] - x_static * 6000 / 9000) > 0.1 * x_static
