@@ -533,20 +533,19 @@ def _switches(model, st, out, wk, rs):
 
 
 @njit(**OPTS)
-def _record(model, st, out, rs, vabs):
+def _record(pr, shafts, drives, master, i_tu, st, out, rs, vabs):
     """One record of the key points (:data:`~beltstudy.engine.dynamics.records.RECORD`), the
-    probe springs and the drives at ``rs.t``; ``vabs`` the largest |speed| [m/s]."""
+    probe springs (``pr``, :class:`~beltstudy.engine.dynamics.records.Probes`) and the drives
+    at ``rs.t``: the master drive's shaft speed, the take-up pulley ``i_tu``'s tension;
+    ``vabs`` the largest |speed| [m/s]. (A separate function taking the records it reads: the
+    kernel calls it at the start, every record and at the end.)"""
     if rs.nrec >= out.rec.shape[0]:
         return
     tt = st.tt
     v = st.v
-    shafts = model.shafts
-    drives = model.drives
-    pr = model.probes
-    i_tu = model.takeup.node
     r = out.rec[rs.nrec]
     r.t = rs.t
-    r.v_drive = shafts.vs[drives.shaft[model.control.master]]
+    r.v_drive = shafts.vs[drives.shaft[master]]
     r.v_tail = v[pr.i_tail]
     r.f_drive = rs.f_tot
     r.t_head_in = tt[pr.s_head_in]
@@ -573,13 +572,20 @@ def _record(model, st, out, rs, vabs):
     rs.nrec += 1
 
 
+@njit(inline="always", **OPTS)
+def _record_now(model, st, out, rs, vabs):
+    """:func:`_record` with the records it reads."""
+    _record(model.probes, model.shafts, model.drives, model.control.master, model.takeup.node,
+            st, out, rs, vabs)
+
+
 @njit(**OPTS)
-def _record_surface(model, st, out, rs):
+def _record_surface(probes, st, out, rs):
     """One row of the surface: the tension and speed of the surface springs at ``rs.t``."""
     if rs.nsurf >= out.surf_t.shape[0]:
         return
     out.surf_t[rs.nsurf, 0] = rs.t
-    idx = model.probes.surface
+    idx = probes.surface
     for k in range(idx.shape[0]):
         out.surf_t[rs.nsurf, k + 1] = st.tt[idx[k]]
         out.surf_v[rs.nsurf, k] = st.v[idx[k]]
@@ -592,18 +598,18 @@ def _records(model, st, out, wk, rs):
     dt = model.cycle.dt
     t = rs.t
     if t + 0.5 * dt >= rs.nrec * model.cycle.rec_dt:
-        _record(model, st, out, rs, max(rs.vhi, -rs.vlo))
+        _record_now(model, st, out, rs, max(rs.vhi, -rs.vlo))
         _envelope_times(t, out.t_max, out.t_min, wk.t_max_snap, wk.t_min_snap, out.t_max_t,
                         out.t_min_t)
     if t + 0.5 * dt >= rs.nsurf * model.cycle.surf_dt:
-        _record_surface(model, st, out, rs)
+        _record_surface(model.probes, st, out, rs)
 
 
 # --------------------------------------------------------------------------------------
 # start and finish
 
 
-@njit(**OPTS)
+@njit(inline="always", **OPTS)
 def _start(model, st, out, wk, rs):
     """The run's initial values: the law at the initial state, envelopes from the rest
     tensions, empty results, the end of the run, the first record. The take-up, the speed
@@ -666,11 +672,11 @@ def _start(model, st, out, wk, rs):
     rs.v_mean = v_mean * rs.inv_w_sum
     rs.tlo = rs.tmin
     rs.thi = rs.tmax
-    _record(model, st, out, rs, 0.0)
-    _record_surface(model, st, out, rs)
+    _record_now(model, st, out, rs, 0.0)
+    _record_surface(model.probes, st, out, rs)
 
 
-@njit(**OPTS)
+@njit(inline="always", **OPTS)
 def _finish(model, st, out, wk, rs):
     """After the last step: a last record at the end time, the envelopes' times, the last
     envelope segment archived."""
@@ -679,7 +685,7 @@ def _finish(model, st, out, wk, rs):
     if rs.status != C.DIVERGED and rs.nrec > 0 and out.rec[rs.nrec - 1].t < t - 0.5 * dt:
         rs.tlo, rs.thi = extremes(st.tt)
         vlo, vhi = extremes(st.v)
-        _record(model, st, out, rs, max(vhi, -vlo))
+        _record_now(model, st, out, rs, max(vhi, -vlo))
     _envelope_times(t, out.t_max, out.t_min, wk.t_max_snap, wk.t_min_snap, out.t_max_t,
                     out.t_min_t)
     _archive_segment(rs.seg, t, out)
