@@ -157,28 +157,25 @@ class StudyService:
 
     # ---------------------------------------------------------------- submit
     def submit(
-        self, data: Any, *, base_dir: Path | None = None, confine: bool = True
+        self, data: Any, *, base_dir: Path | None = None, confine: bool = True,
+        strict: bool = False,
     ) -> tuple[dict, bool]:
         """Validate and store a study, start it; return (status, created).
 
         ``confine`` keeps conveyor paths inside the studies directory (HTTP bodies);
-        ``base_dir`` resolves them for a local study file. An identical study already in the
-        store is returned as it is (``created`` False).
+        ``base_dir`` resolves them for a local study file; ``strict`` holds every value to its
+        JSON type (HTTP bodies, held to the published schema). An identical study already in
+        the store is returned as it is (``created`` False).
         """
         study = resolve_study(
             data,
             base_dir=base_dir,
             studies_dir=self.settings.studies_dir if confine else None,
             max_runs=self.settings.max_runs,
+            strict=strict,
         )
         created = self._admit(study)
         return self.status(study.id), created
-
-    def check(self, data: Any) -> ResolvedStudy:
-        """Validate a POSTed study as :meth:`submit` would, without storing or running it."""
-        return resolve_study(
-            data, studies_dir=self.settings.studies_dir, max_runs=self.settings.max_runs
-        )
 
     # ---------------------------------------------------------------- reading
     def status(self, study_id: str) -> dict:
