@@ -13,6 +13,7 @@ never wait on Dask longer than ``BELTSTUDY_DASK_TIMEOUT_S``.
 
 from __future__ import annotations
 
+import dataclasses
 import logging
 import threading
 import time
@@ -285,7 +286,7 @@ class StudyService:
         stored = self.store.read_profile(study_id, run_id)
         if len(stored):
             return stored, "stored"
-        _, result = run_spec({**vars(spec), "dynamics": False}, study_id)
+        _, result = run_spec(dataclasses.replace(spec, dynamics=False), study_id)
         table = profile_table(run_id, result) if result is not None else None
         return (table if table is not None else profile_schema().empty_table()).to_pandas(), \
             "recomputed"
@@ -319,7 +320,7 @@ class StudyService:
                 table = self._surfaces[run_id]
                 return table if table is not None else surface_schema().empty_table()
         spec = self.run_spec(study_id, run_id)
-        _, result = run_spec(vars(spec), study_id)
+        _, result = run_spec(spec, study_id)
         table = surface_table(run_id, result) if result is not None else None
         with self._cache_lock:
             self._surfaces[run_id] = table
