@@ -22,7 +22,6 @@ from collections import defaultdict
 from typing import Any
 
 from pydantic import BaseModel, ValidationError
-from pydantic_core import ValidationError as CoreValidationError
 
 from beltstudy.engine import Conveyor, Scenario, format_validation_error
 from beltstudy.service.door.study import AXIS_TARGETS, StudyIn, unfold_axis
@@ -39,7 +38,8 @@ JSON_TYPES = {
     "tuple_type": "array", "dict_type": "object", "model_type": "object",
     "model_attributes_type": "object", "none_required": "null",
 }
-#: Of those, the ones that say a container is not of another shape (a union member).
+#: Error types of a union member that does not take the value's shape at all (a mapping for a
+#: text): not reported when another member looked inside the value.
 SHAPE_TYPES = {"string_type", "float_type", "int_type", "bool_type", "list_type", "dict_type",
                "model_type", "model_attributes_type", "none_required", "literal_error"}
 _ROOTS: dict[str, type[BaseModel]] = {"conveyor": Conveyor, "scenario": Scenario}
@@ -118,7 +118,7 @@ def _engine_lines(errors: list[dict], model: type[BaseModel], prefix: str, skip:
     """The errors as the engine says them for ``model`` (paths from ``skip`` on)."""
     details = [{"type": e["type"], "loc": _unfolded(e["path"])[skip:], "input": e["input"],
                 **({"ctx": e["ctx"]} if "ctx" in e else {})} for e in errors]
-    exc = CoreValidationError.from_exception_data(model.__name__, details)
+    exc = ValidationError.from_exception_data(model.__name__, details)
     return format_validation_error(exc, model, prefix)
 
 

@@ -536,11 +536,13 @@ OWN_PARTS: tuple[type[BaseModel], ...] = (
 
 
 def given_models(models: BaseModel) -> dict[str, dict[str, Any]]:
-    """``{model as written: {parameter: value}}`` of a validated ``models`` mapping."""
-    aliases = {name: info.alias for name, info in type(models).model_fields.items()}
-    return {aliases.get(name, name): (value if isinstance(value, dict) else
-                                      value.model_dump(exclude_unset=True))
-            for name, value in models if name in models.model_fields_set or name not in aliases}
+    """``{model as written: {parameter: value}}`` of a validated ``models`` mapping (the
+    parameters given, unknown ones too: the model names them)."""
+    fields = type(models).model_fields
+    out = {fields[name].alias: getattr(models, name).model_dump(exclude_unset=True)
+           for name in fields if name in models.model_fields_set}
+    out.update({name: dict(value) for name, value in (models.__pydantic_extra__ or {}).items()})
+    return out
 
 
 # ----------------------------------------------------------------------------------- study
