@@ -79,10 +79,28 @@ def read_study(data: Any, *, strict: bool = False) -> StudyIn:
             # Pydantic's strict mode takes JSON's types exactly on JSON text (on Python data it
             # would also refuse a list for a pair, a motor curve's point): the tree checked
             # above goes to it as JSON
-            return StudyIn.model_validate_json(json.dumps(folded), strict=True)
+            return StudyIn.model_validate_json(json.dumps(_integers(folded)), strict=True)
         return StudyIn.model_validate(folded)
     except ValidationError as exc:
         raise Invalid(describe(exc, folded, json_types=strict)) from None
+
+
+def _integers(data: dict) -> dict:
+    """A study with its integral numbers written as integers, as JSON Schema counts them
+    (``12.0`` is an integer; Pydantic's strict mode would refuse it for one): those from 1 to
+    2**53 in size (0 keeps its sign, a larger number is meant as a float). The design case
+    stays as written: it is stored as given."""
+
+    def walk(value: Any) -> Any:
+        if isinstance(value, float) and value.is_integer() and 1 <= abs(value) <= 2**53:
+            return int(value)
+        if isinstance(value, dict):
+            return {k: walk(v) for k, v in value.items()}
+        if isinstance(value, list):
+            return [walk(v) for v in value]
+        return value
+
+    return {k: v if k == "design" else walk(v) for k, v in data.items()}
 
 
 def conveyor_from_path(ref: str, base_dir: Path | None, root: Path | None) -> tuple[dict, str]:
