@@ -47,7 +47,7 @@ from pydantic_core import core_schema
 
 from beltstudy.engine import ALIASES, MODELS, Conveyor, InputError, Scenario, catalog
 from beltstudy.service.examples import TINY_CONVEYOR, TINY_SCENARIO
-from beltstudy.service.grid.axes import NAMED_AXES
+from beltstudy.service.grid.axes import NAMED_AXES, field_model
 from beltstudy.service.grid.basis import DesignIn
 
 __all__ = [
@@ -301,20 +301,6 @@ def _item(owner: type[BaseModel], name: str, info) -> Any:
     return Annotated[(info.annotation, *meta)] if meta else info.annotation
 
 
-def _sub_model(annotation: Any) -> tuple[type[BaseModel] | None, bool]:
-    """The model inside a field annotation and whether it is a list of that model."""
-    if typing.get_origin(annotation) is list:
-        inner, _ = _sub_model(typing.get_args(annotation)[0])
-        return inner, True
-    if isinstance(annotation, type) and issubclass(annotation, BaseModel):
-        return annotation, False
-    for arg in typing.get_args(annotation):
-        found, is_list = _sub_model(arg)
-        if found is not None:
-            return found, is_list
-    return None, False
-
-
 def _field_axes(model: type[BaseModel], prefix: str) -> Iterable[tuple[str, Any, bool]]:
     """``(path, item type, numeric)`` of every field of ``model`` and of its sub-models; a
     list of models adds its items' fields under ``<path>.N.``."""
@@ -322,7 +308,7 @@ def _field_axes(model: type[BaseModel], prefix: str) -> Iterable[tuple[str, Any,
         key = info.alias or name
         path = f"{prefix}{key}"
         yield path, _item(model, name, info), _numeric(info.annotation)
-        inner, is_list = _sub_model(info.annotation)
+        inner, is_list = field_model(info.annotation)
         if inner is None:
             continue
         if is_list:
