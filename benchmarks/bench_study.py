@@ -268,7 +268,7 @@ def worker_split(study, surface: bool) -> dict[str, float]:
     from beltstudy.service.dask.tasks import run_batch
     from beltstudy.service.store.parquet import Store
 
-    specs = [dict(vars(r)) for r in study.runs]
+    specs = study.runs
     total = 0.0
     split: dict[str, float] = defaultdict(float)
     with tempfile.TemporaryDirectory(prefix="bench-split-") as tmp:

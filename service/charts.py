@@ -1,6 +1,8 @@
 """Figures shared by the CLI, the REST routes and the pages (matplotlib, Agg backend).
 
 Every function returns a matplotlib Figure; callers save it as PNG or SVG.
+:data:`STUDY_PLOTS` and :data:`RUN_PLOTS` name the figures of a study and of a run (the names
+the plot routes take).
 """
 
 from __future__ import annotations
@@ -10,6 +12,21 @@ import textwrap
 
 import numpy as np
 import pandas as pd
+
+#: Plot names of a study, with what they show.
+STUDY_PLOTS = {
+    "power-temperature": "power against temperature, a line per combination of the other "
+    "varying axes (Fig. 2)",
+    "peak-dynamic-tension": "peak and lowest tension of the stop against the stop time, a line "
+    "per combination of the other varying axes",
+    "ratio": "candidate / baseline ratio per axis value (default nonlin over cema)",
+}
+#: Plot names of a run.
+RUN_PLOTS = {
+    "steady-profile": "steady tension along the loop with the elevation profile (Fig. 1)",
+    "transient": "tension at eight points round the loop and at the highest and lowest tension, "
+    "belt speed below (Fig. 4)",
+}
 
 
 def _plt():

@@ -13,6 +13,7 @@ never wait on Dask longer than ``BELTSTUDY_DASK_TIMEOUT_S``.
 
 from __future__ import annotations
 
+import dataclasses
 import logging
 import threading
 import time
@@ -157,28 +158,25 @@ class StudyService:
 
     # ---------------------------------------------------------------- submit
     def submit(
-        self, data: Any, *, base_dir: Path | None = None, confine: bool = True
+        self, data: Any, *, base_dir: Path | None = None, confine: bool = True,
+        strict: bool = False,
     ) -> tuple[dict, bool]:
         """Validate and store a study, start it; return (status, created).
 
         ``confine`` keeps conveyor paths inside the studies directory (HTTP bodies);
-        ``base_dir`` resolves them for a local study file. An identical study already in the
-        store is returned as it is (``created`` False).
+        ``base_dir`` resolves them for a local study file; ``strict`` holds every value to its
+        JSON type (HTTP bodies, held to the published schema). An identical study already in
+        the store is returned as it is (``created`` False).
         """
         study = resolve_study(
             data,
             base_dir=base_dir,
             studies_dir=self.settings.studies_dir if confine else None,
             max_runs=self.settings.max_runs,
+            strict=strict,
         )
         created = self._admit(study)
         return self.status(study.id), created
-
-    def check(self, data: Any) -> ResolvedStudy:
-        """Validate a POSTed study as :meth:`submit` would, without storing or running it."""
-        return resolve_study(
-            data, studies_dir=self.settings.studies_dir, max_runs=self.settings.max_runs
-        )
 
     # ---------------------------------------------------------------- reading
     def status(self, study_id: str) -> dict:
@@ -288,7 +286,7 @@ class StudyService:
         stored = self.store.read_profile(study_id, run_id)
         if len(stored):
             return stored, "stored"
-        _, result = run_spec({**vars(spec), "dynamics": False}, study_id)
+        _, result = run_spec(dataclasses.replace(spec, dynamics=False), study_id)
         table = profile_table(run_id, result) if result is not None else None
         return (table if table is not None else profile_schema().empty_table()).to_pandas(), \
             "recomputed"
@@ -322,7 +320,7 @@ class StudyService:
                 table = self._surfaces[run_id]
                 return table if table is not None else surface_schema().empty_table()
         spec = self.run_spec(study_id, run_id)
-        _, result = run_spec(vars(spec), study_id)
+        _, result = run_spec(spec, study_id)
         table = surface_table(run_id, result) if result is not None else None
         with self._cache_lock:
             self._surfaces[run_id] = table

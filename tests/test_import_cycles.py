@@ -126,3 +126,29 @@ def test_the_graph_sees_function_level_and_relative_imports():
 def test_no_import_cycles_in_engine_or_service():
     cycles = find_cycles(import_graph())
     assert not cycles, "import cycles: " + "; ".join(" -> ".join(c) for c in cycles)
+
+
+def reachable(graph: dict[str, set[str]], start: str) -> set[str]:
+    """Every module ``start`` imports, directly or through others."""
+    seen: set[str] = set()
+    todo = [start]
+    while todo:
+        for w in graph.get(todo.pop(), ()):
+            if w not in seen:
+                seen.add(w)
+                todo.append(w)
+    return seen
+
+
+def test_the_door_reaches_neither_the_workers_nor_the_faces():
+    """The study door (parse, study model, study file, schema) stands before the Dask side
+    and the faces: none of its modules imports, even through others, the executor, jobs or
+    worker tasks, the study service, the API, the CLI or the web pages."""
+    graph = import_graph()
+    beyond = ("beltstudy.service.dask", "beltstudy.service.api", "beltstudy.service.cli",
+              "beltstudy.service.web", "beltstudy.service.studies")
+    door = [m for m in graph if m.startswith("beltstudy.service.door")]
+    assert door
+    for module in door:
+        reached = sorted(m for m in reachable(graph, module) if m.startswith(beyond))
+        assert not reached, f"{module} reaches {', '.join(reached)}"

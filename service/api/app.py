@@ -30,7 +30,6 @@ from starlette.routing import Match
 
 from beltstudy import engine
 from beltstudy.service.api.deps import require_token
-from beltstudy.service.door.openapi import BodyChecker
 from beltstudy.service.door.openapi import install as install_openapi
 from beltstudy.service.errors import ServiceError
 from beltstudy.service.settings import Settings, get_settings
@@ -174,8 +173,7 @@ def create_app(settings: Settings | None = None, service: StudyService | None = 
             router = getattr(module, attr, None)
             if router is not None:
                 app.include_router(router)
-    app.state.body_checker = BodyChecker(settings.studies_dir)
-    install_openapi(app, app.state.body_checker)
+    install_openapi(app, settings.studies_dir)
     _install_docs(app)
     return app
 

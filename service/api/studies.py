@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+from functools import partial
 from typing import Literal
 
 from fastapi import APIRouter, Depends, Query, Request, Response
@@ -18,7 +19,6 @@ from beltstudy.service.api.models import (
     StudyList,
     StudyStatus,
 )
-from beltstudy.service.door.openapi import check_body
 from beltstudy.service.door.parse import parse_body
 from beltstudy.service.errors import TooLarge
 from beltstudy.service.store import query
@@ -89,8 +89,7 @@ async def submit_study(
     # parsing (within its budget) and resolving run in a worker thread: the event loop,
     # and so /health, keeps answering meanwhile
     data = await run_in_threadpool(parse_body, body, request.headers.get("content-type", ""))
-    await run_in_threadpool(check_body, request.app.state.body_checker, data, service.check)
-    status, created = await run_in_threadpool(service.submit, data)
+    status, created = await run_in_threadpool(partial(service.submit, data, strict=True))
     response.status_code = 202 if created else 200
     response.headers["Location"] = f"/studies/{status['id']}"
     return _with_urls(status)

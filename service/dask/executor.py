@@ -48,6 +48,10 @@ LOCAL_DASK_CONFIG = {
     "distributed.admin.system-monitor.disk": False,
     "distributed.worker.memory.monitor-interval": "500ms",
 }
+#: Dask settings of this process, for either kind of cluster: its batched comms (the client's
+#: and an in-process scheduler's) keep no log of their last 1000 messages (a debugging aid):
+#: those hold the tasks sent, so the runs of a finished study, with their conveyors.
+PROCESS_DASK_CONFIG = {"distributed.admin.low-level-log-length": 0}
 #: CPU niceness of the LocalCluster's worker processes: below the API, which shares the cores.
 LOCAL_WORKER_NICE = 10
 #: Client states in which futures still make progress (``connecting``: reconnecting).
@@ -135,6 +139,7 @@ class Executor:
 
     def _connect(self):
         timeout = f"{self.settings.dask_timeout_s}s"
+        dask.config.set(PROCESS_DASK_CONFIG)
         if self.settings.scheduler:
             client = Client(self.settings.scheduler, timeout=timeout, set_as_default=False)
             try:

@@ -328,11 +328,10 @@ class StudyJob:
                 batch = [todo.popleft() for _ in range(min(size, len(todo)))]
                 key = f"beltstudy-{sid}-{nonce}-{seq:06d}"
                 seq += 1
-                specs = [dict(vars(r)) for r in batch]  # shallow: shared dicts pickle once
                 sink = {**self._sink, "key": _part_key(batch)}
                 try:
                     fut = client.submit(
-                        run_batch, sid, Specs(specs), self.study.surface, sink, key=key,
+                        run_batch, sid, Specs(batch), self.study.surface, sink, key=key,
                         pure=False,
                     )
                 except Exception:

@@ -1,13 +1,15 @@
 """Worker-side functions: run a batch of runs through ``beltstudy.engine.run.run_one``; warm a worker.
 
-These run inside Dask workers (and in the benchmark's plain loop). A run that raises becomes
-a row with ``status=failed`` and the message; the batch itself never raises for a bad run.
-Results travel back as plain rows and Arrow tables.
+These run inside Dask workers (and in the benchmark's plain loop). A batch is a list of
+:class:`~beltstudy.service.grid.expand.RunSpec` records as the grid made them, sent to the
+worker as they are (pickled once with the task, in a :class:`Specs`); a run's conveyor and
+scenario mappings become the engine's models here, where the engine runs them. A run that
+raises becomes a row with ``status=failed`` and the message; the batch itself never raises
+for a bad run. Results travel back as plain rows and Arrow tables.
 """
 
 from __future__ import annotations
 
-import importlib
 import os
 import time
 from typing import Any
@@ -19,6 +21,7 @@ from distributed import WorkerPlugin
 from beltstudy import engine
 from beltstudy.engine import MODELS, parse_conveyor, parse_scenario
 from beltstudy.service.examples import TINY_CONVEYOR, TINY_SCENARIO
+from beltstudy.service.grid.expand import RunSpec
 from beltstudy.service.store.columns import (
     PROFILE_COLUMNS,
     SURFACE_COLUMNS,
@@ -107,35 +110,33 @@ def surface_table(run_id: str, result) -> pa.Table | None:
     return _arrays_table(run_id, result.surface_arrays(), _SF_LAYOUT, _SF_SCHEMA)
 
 
-def run_spec(spec: dict, study_id: str = "") -> tuple[dict, Any]:
-    """One run: (row, result or None). ``spec`` is a :class:`~beltstudy.service.grid.expand.RunSpec` as a dict."""
+def run_spec(spec: RunSpec, study_id: str = "") -> tuple[dict, Any]:
+    """One run: (row, result or None)."""
 
     row: dict[str, Any] = {
         "study_id": study_id,
-        "run_id": spec["run_id"],
-        **spec["axes"],
-        "friction_model": spec["model"],
+        "run_id": spec.run_id,
+        **spec.axes,
+        "friction_model": spec.model,
         "engine_version": engine.__version__,
     }
     t0 = time.perf_counter()
     try:
-        if engine.__version__ != spec["engine_version"]:
+        if engine.__version__ != spec.engine_version:
             raise RuntimeError(
                 f"this worker runs engine {engine.__version__}, the study needs "
-                f"{spec['engine_version']}"
+                f"{spec.engine_version}"
             )
         # deferred: the transient engine (numba) loads on the worker's first run, not
         # in the API process that imports this module for its table builders
         from beltstudy.engine.run import run_one
 
-        conveyor = parse_conveyor(spec["conveyor"])
-        scenario = parse_scenario(spec["scenario"])
         result = run_one(
-            conveyor,
-            scenario,
-            model=spec["model"],
-            params=spec["params"] or None,
-            dynamics=spec["dynamics"],
+            parse_conveyor(spec.conveyor),
+            parse_scenario(spec.scenario),
+            model=spec.model,
+            params=spec.params or None,
+            dynamics=spec.dynamics,
         )
     except Exception as exc:  # a run that raises is data, not an aborted study
         row.update(failed_row(_message(exc), time.perf_counter() - t0))
@@ -143,7 +144,7 @@ def run_spec(spec: dict, study_id: str = "") -> tuple[dict, Any]:
     row.update(flatten_summary(result.summary))
     # what set each size the study held for this run's conveyor design (beltstudy.service.grid.basis): the
     # run itself only sees the numbers
-    row.update(spec.get("design") or {})
+    row.update(spec.design)
     if row["elapsed_s"] is None:
         row["elapsed_s"] = time.perf_counter() - t0
     return row, result
@@ -151,11 +152,12 @@ def run_spec(spec: dict, study_id: str = "") -> tuple[dict, Any]:
 
 class Specs:
     """The runs of one task. Dask walks every list and dict among a task's arguments looking
-    for futures; wrapped, a batch of runs with their nested conveyors is passed as it is."""
+    for futures; wrapped, a batch of runs with their nested conveyors is passed as it is
+    (pickled once: runs that share a conveyor mapping share it in the pickle too)."""
 
     __slots__ = ("items",)
 
-    def __init__(self, items: list[dict]):
+    def __init__(self, items: list[RunSpec]):
         self.items = items
 
     def __len__(self) -> int:
@@ -163,7 +165,7 @@ class Specs:
 
 
 def run_batch(
-    study_id: str, specs: list[dict] | Specs, surface: bool = False, sink: dict | None = None
+    study_id: str, specs: list[RunSpec] | Specs, surface: bool = False, sink: dict | None = None
 ) -> dict:
     """Run ``specs`` one after another; return rows, the time series and steady profiles.
 
@@ -196,14 +198,14 @@ def run_batch(
         if result is None:
             continue
         try:
-            table = timeseries_table(spec["run_id"], result)
+            table = timeseries_table(spec.run_id, result)
             if table is not None:
                 series.append(table)
-            table = profile_table(spec["run_id"], result)
+            table = profile_table(spec.run_id, result)
             if table is not None:
                 profiles.append(table)
             if surface:
-                table = surface_table(spec["run_id"], result)
+                table = surface_table(spec.run_id, result)
                 if table is not None:
                     surfaces.append(table)
         except Exception as exc:  # a malformed result is reported on the run's row
@@ -243,16 +245,9 @@ def warm_up() -> dict:
     models = list(MODELS)
     errors = []
     for i, name in enumerate(models):
-        spec = {
-            "run_id": f"warm-up-{name}",
-            "axes": {},
-            "conveyor": TINY_CONVEYOR,
-            "scenario": TINY_SCENARIO,
-            "model": name,
-            "params": {},
-            "dynamics": i == 0,
-            "engine_version": importlib.import_module("beltstudy.engine").__version__,
-        }
+        spec = RunSpec(run_id=f"warm-up-{name}", axes={}, conveyor=TINY_CONVEYOR,
+                       scenario=TINY_SCENARIO, model=name, params={}, dynamics=i == 0,
+                       engine_version=engine.__version__)
         row, _ = run_spec(spec)
         if row["status"] == "failed":
             errors.append(f"{name}: {row['message']}")

@@ -1,38 +1,39 @@
 """The door of the study service: a submitted study file or POST body, validated once.
 
-:func:`resolve_study` checks a study mapping (SPEC sections 3 and 6.3: the conveyor by path or
-inline, scenario, grid and zip axes, per-model parameters, design case) and raises
-:class:`~beltstudy.service.errors.Invalid` / :class:`~beltstudy.service.errors.TooLarge` naming the field; what it
-returns, a :class:`~beltstudy.service.grid.expand.ResolvedStudy` expanded by :mod:`beltstudy.service.grid.expand`, is trusted
-from then on. A conveyor given as a path is read relative to the study file, or, for a study
-the service receives, only from inside its conveyor directory (:func:`conveyor_from_path`:
-no absolute paths, no ``..``, no way out through a link).
+:func:`resolve_study` holds a study mapping to the study model
+(:class:`~beltstudy.service.door.study.StudyIn`, SPEC sections 3 and 6.3: the conveyor by path
+or inline, scenario, grid and zip axes, per-model parameters, design case), then checks what
+the types leave open (axis paths, model names and parameters, grid sizes) and expands it. It
+raises :class:`~beltstudy.service.errors.Invalid` / :class:`~beltstudy.service.errors.TooLarge`
+naming the field; what it returns, a :class:`~beltstudy.service.grid.expand.ResolvedStudy`
+expanded by :mod:`beltstudy.service.grid.expand`, is trusted from then on. A conveyor given as a
+path is read relative to the study file, or, for a study the service receives, only from
+inside its conveyor directory (:func:`conveyor_from_path`: no absolute paths, no ``..``, no
+way out through a link).
 """
 
 from __future__ import annotations
 
-import math
-import re
+import json
 from pathlib import Path
 from typing import Any
 
-from pydantic import BaseModel, ConfigDict, Field, ValidationError, field_validator
+from pydantic import ValidationError
 
 from beltstudy import engine
-from beltstudy.engine import (
-    Conveyor,
-    InputError,
-    Scenario,
-    format_validation_error,
-    get_model,
-    parse_conveyor,
-    parse_scenario,
-)
+from beltstudy.engine import InputError, catalog, get_model, parse_conveyor, parse_scenario
+from beltstudy.service.door.messages import describe
 from beltstudy.service.door.parse import check_tree, load_mapping
+from beltstudy.service.door.study import (
+    NAME_RE,
+    RangeSpec,
+    StudyIn,
+    fold_axes,
+    given_models,
+)
 from beltstudy.service.errors import Invalid, TooLarge
-from beltstudy.service.examples import TINY_CONVEYOR, TINY_SCENARIO
 from beltstudy.service.grid.axes import axis_column, resolve_axis
-from beltstudy.service.grid.basis import DesignIn, design_scenario
+from beltstudy.service.grid.basis import design_scenario
 from beltstudy.service.grid.expand import (
     DEFAULT_MODEL,
     Axis,
@@ -46,7 +47,7 @@ from beltstudy.service.grid.expand import (
 __all__ = [
     "RangeSpec",
     "StudyIn",
-    "StudyDoc",
+    "read_study",
     "resolve_study",
     "load_study_file",
     "study_body",
@@ -55,118 +56,51 @@ __all__ = [
     "NAME_RE",
 ]
 
-#: A study name: letters, digits and `` ._+-`` (no path separators, no ``..``).
-NAME_RE = re.compile(r"^[A-Za-z0-9][A-Za-z0-9 ._+\-]{0,119}$")
+
+def read_study(data: Any, *, strict: bool = False) -> StudyIn:
+    """``data`` as a :class:`StudyIn`: the one validation of a study's types, names and
+    bounds; :class:`Invalid` naming each problem's field.
+
+    ``strict`` holds every value to its JSON type, as the published schema does (a POSTed
+    body: ``"1"`` is no number, ``"true"`` no boolean); without it (study files, mappings built
+    in Python) Pydantic's conversions apply. Axes into lists are read as their fields
+    (:func:`~beltstudy.service.door.study.fold_axes`).
+    """
+    if not isinstance(data, dict):
+        raise Invalid("study: expected a mapping with name, conveyor, scenario, grid")
+    check_tree(data)  # depth, size, finite numbers, JSON types: before anything is expanded
+    folded = {**data}
+    if "grid" in data:
+        folded["grid"] = fold_axes(data["grid"])
+    if isinstance(data.get("zip"), list):
+        folded["zip"] = [fold_axes(g) for g in data["zip"]]
+    try:
+        if strict:
+            # Pydantic's strict mode takes JSON's types exactly on JSON text (on Python data it
+            # would also refuse a list for a pair, a motor curve's point): the tree checked
+            # above goes to it as JSON
+            return StudyIn.model_validate_json(json.dumps(_integers(folded)), strict=True)
+        return StudyIn.model_validate(folded)
+    except ValidationError as exc:
+        raise Invalid(describe(exc, folded, json_types=strict)) from None
 
 
-class RangeSpec(BaseModel):
-    """An axis given as a range: ``start``, ``start + step``, ... up to and including ``stop``."""
+def _integers(data: dict) -> dict:
+    """A study with its integral numbers written as integers, as JSON Schema counts them
+    (``12.0`` is an integer; Pydantic's strict mode would refuse it for one): those from 1 to
+    2**53 in size (0 keeps its sign, a larger number is meant as a float). The design case
+    stays as written: it is stored as given."""
 
-    model_config = ConfigDict(extra="forbid")
+    def walk(value: Any) -> Any:
+        if isinstance(value, float) and value.is_integer() and 1 <= abs(value) <= 2**53:
+            return int(value)
+        if isinstance(value, dict):
+            return {k: walk(v) for k, v in value.items()}
+        if isinstance(value, list):
+            return [walk(v) for v in value]
+        return value
 
-    start: float
-    stop: float
-    step: float = Field(..., description="increment; its sign must lead from start to stop")
-
-    def count(self) -> int:
-        if self.step == 0 or not math.isfinite(self.step):
-            raise ValueError("step must be a non-zero number")
-        span = (self.stop - self.start) / self.step
-        if not math.isfinite(span):  # start, stop or step beyond float range
-            return 2**63
-        if span < -1e-9:
-            raise ValueError(
-                f"step {self.step:g} does not lead from start {self.start:g} to stop {self.stop:g}"
-            )
-        return int(math.floor(span + 1e-9)) + 1
-
-    def values(self) -> list[float | int]:
-        n = self.count()
-        out = [float(f"{self.start + i * self.step:.12g}") for i in range(n)]
-        if all(v.is_integer() for v in out) and float(self.step).is_integer():
-            return [int(v) for v in out]
-        return out
-
-
-AxisValues = list[Any] | RangeSpec
-
-
-def _check_name(value: str) -> str:
-    if ".." in value or not NAME_RE.match(value):
-        raise ValueError(
-            "must start with an ASCII letter or digit and use only ASCII letters (a-z, A-Z), "
-            "digits, spaces and ._+- "
-            "(no path separators or '..'), at most 120 characters"
-        )
-    return value
-
-
-class StudyIn(BaseModel):
-    """A study as written in a file or POSTed (SPEC section 3); validated at the door."""
-
-    model_config = ConfigDict(extra="forbid")
-
-    name: str = Field(..., description="study name (letters, digits, spaces, ._+-)")
-    description: str = Field("", max_length=2000, description="free text")
-    conveyor: str | dict[str, Any] = Field(
-        ..., description="conveyor file path (relative to the study file) or inline mapping"
-    )
-    scenario: dict[str, Any] = Field(default_factory=dict, description="SPEC section 2")
-    grid: dict[str, AxisValues] = Field(
-        default_factory=dict,
-        description="axis -> list of values or {start, stop, step}; Cartesian product",
-    )
-    zip: list[dict[str, AxisValues]] = Field(
-        default_factory=list,
-        description="groups of axes that vary together (equal lengths), crossed with the grid",
-    )
-    design: DesignIn | None = Field(
-        None,
-        description="design case of every auto size, {friction_model, temperature_c, load}; "
-        "default: the largest requirement over the study's models and temperatures at full load",
-    )
-    models: dict[str, dict[str, float | None]] = Field(
-        default_factory=dict, description="friction model -> parameter overrides"
-    )
-    model: str | None = Field(
-        None, description="friction model when the grid has no friction_model axis (default din)"
-    )
-    dynamics: bool = Field(True, description="false = steady tensions only")
-    surface: bool = Field(
-        False,
-        description="store the tension/velocity surface of every dynamic run (SPEC section 5); "
-        "false (the default) stores the key-point time series only and recomputes a run's "
-        "surface from its inputs when it is asked for",
-    )
-
-    @field_validator("name")
-    @classmethod
-    def _name_is_safe(cls, value: str) -> str:
-        return _check_name(value)
-
-
-def _example() -> dict:
-    return {
-        "name": "example-power-vs-temperature",
-        "conveyor": TINY_CONVEYOR,
-        "scenario": TINY_SCENARIO,
-        "grid": {
-            "friction_model": ["din", "cema"],
-            "temperature_c": {"start": -20, "stop": 20, "step": 20},
-        },
-        "dynamics": False,
-    }
-
-
-class StudyDoc(StudyIn):
-    """The same study with the conveyor and scenario schemas spelled out (OpenAPI only)."""
-
-    model_config = ConfigDict(extra="forbid", json_schema_extra={"examples": [_example()]})
-
-    conveyor: str | Conveyor = Field(  # type: ignore[assignment]
-        ..., description="conveyor file path under the service's studies directory, or inline"
-    )
-    scenario: Scenario = Field(default_factory=Scenario)  # type: ignore[assignment]
+    return {k: v if k == "design" else walk(v) for k, v in data.items()}
 
 
 def conveyor_from_path(ref: str, base_dir: Path | None, root: Path | None) -> tuple[dict, str]:
@@ -193,7 +127,7 @@ def conveyor_from_path(ref: str, base_dir: Path | None, root: Path | None) -> tu
     return load_mapping(path, what=f"conveyor: {ref}"), ref
 
 
-def _axis_values(name: str, spec: AxisValues, max_runs: int, where: str = "grid") -> list[Any]:
+def _axis_values(name: str, spec: list | RangeSpec, max_runs: int, where: str) -> list[Any]:
     label = f"{where}.{name}"
     if isinstance(spec, RangeSpec):
         try:
@@ -218,42 +152,27 @@ def _axis_values(name: str, spec: AxisValues, max_runs: int, where: str = "grid"
     return values
 
 
-def resolve_study(
-    data: Any,
-    *,
-    base_dir: Path | None = None,
-    studies_dir: Path | None = None,
-    max_runs: int = 20_000,
-) -> ResolvedStudy:
-    """Validate a study mapping; raise :class:`Invalid` / :class:`TooLarge` naming the field.
-
-    ``base_dir`` resolves a conveyor path given in a local study file; ``studies_dir`` (the
-    service's study files directory, ``Settings.studies_dir``) confines such paths to it.
-    """
-    if not isinstance(data, dict):
-        raise Invalid("study: expected a mapping with name, conveyor, scenario, grid")
-    check_tree(data)  # depth, size, finite numbers, JSON types: before anything is expanded
+def _conveyor(study: StudyIn, base_dir: Path | None, studies_dir: Path | None
+              ) -> tuple[dict, str]:
+    """The study's conveyor, dumped, and where it came from (a path, or ``inline``)."""
     try:
-        study = StudyIn.model_validate(data)
-    except ValidationError as exc:
-        raise Invalid(format_validation_error(exc, StudyIn)) from None
-
-    if isinstance(study.conveyor, str):
-        conv_data, source = conveyor_from_path(study.conveyor, base_dir, studies_dir)
-        prefix = "conveyor: "
-    else:
-        conv_data, source = study.conveyor, "inline"
-        prefix = "conveyor."
-    try:
-        conveyor = parse_conveyor(conv_data, prefix=prefix).model_dump(mode="json", by_alias=True)
-        scenario = parse_scenario(study.scenario, prefix="scenario.").model_dump(
-            mode="json", by_alias=True
-        )
+        if isinstance(study.conveyor, str):
+            conv_data, source = conveyor_from_path(study.conveyor, base_dir, studies_dir)
+            conveyor = parse_conveyor(conv_data, prefix="conveyor: ")
+        else:
+            conveyor, source = study.conveyor, "inline"
+            catalog.check_conveyor(conveyor, "conveyor.")
     except InputError as exc:
         raise Invalid(_err(exc)) from None
+    return conveyor.model_dump(mode="json", by_alias=True), source
 
+
+def _models(study: StudyIn) -> tuple[dict[str, dict[str, float | None]], dict[str, str]]:
+    """``{model: parameter overrides}`` (each checked by its model) and the name each model
+    was given by."""
     models: dict[str, dict[str, float | None]] = {}
-    for name, overrides in study.models.items():
+    given: dict[str, str] = {}
+    for name, overrides in given_models(study.models).items():
         try:
             fm = get_model(name)
             fm.params(overrides)
@@ -263,54 +182,70 @@ def resolve_study(
         if fm.name in models:
             raise Invalid(f"models.{name}: model '{fm.name}' is given twice")
         models[fm.name] = dict(overrides)
+        given[fm.name] = name
+    return models, given
 
-    if not study.grid and not study.zip:
+
+def _axis(name: str, spec, group: int | None, where: str, bases: tuple[dict, dict],
+          models: dict, max_runs: int) -> Axis:
+    """One axis: its values (a range counted out), the field it sets, its values canonical
+    (model names, model parameters)."""
+    values = _axis_values(name, spec, max_runs, where)
+    try:
+        target = resolve_axis(name, *bases, where)
+    except InputError as exc:
+        raise Invalid(str(exc)) from None
+    if target.root == "model":
+        canon = []
+        for v in values:
+            try:
+                canon.append(get_model(str(v)).name)
+            except InputError as exc:
+                raise Invalid(f"{where}.{name}: {exc.reason}") from None
+        if len(set(canon)) != len(canon):
+            raise Invalid(f"{where}.{name}: a model is listed twice (aliases count as the same)")
+        values = canon
+    elif target.root == "model_param":
+        model, param = target.path
+        canon = []
+        for v in values:
+            try:
+                p = get_model(model).params({**models.get(model, {}), param: v})
+            except InputError as exc:
+                raise Invalid(f"{where}.{name}: value {v!r}: {_err(exc)}") from None
+            canon.append(getattr(p, param))
+        values = canon
+    return Axis(name, axis_column(name), target, tuple(values), group)
+
+
+def _axes(study: StudyIn, data: dict, bases: tuple[dict, dict], models: dict,
+          max_runs: int) -> list[Axis]:
+    """The grid's and the zip groups' axes, in the order written; no two set one field."""
+    groups = [(None, "grid", study.grid, data.get("grid") or {})]
+    groups += [(g, f"zip.{g}", grid, data["zip"][g]) for g, grid in enumerate(study.zip)]
+    if len(groups) == 1 and not groups[0][3]:
         raise Invalid("grid: empty; give at least one axis, e.g. temperature_c: [-20, 0, 20]")
-    specs: list[tuple[str, AxisValues, int | None, str]] = [
-        (name, spec, None, "grid") for name, spec in study.grid.items()
-    ]
-    for g, group in enumerate(study.zip):
-        if not group:
-            raise Invalid(f"zip.{g}: empty group; give two or more axes of equal length")
-        specs += [(name, spec, g, f"zip.{g}") for name, spec in group.items()]
     axes: list[Axis] = []
-    for name, spec, group, where in specs:
-        values = _axis_values(name, spec, max_runs, where)
-        try:
-            target = resolve_axis(name, conveyor, scenario, where)
-        except InputError as exc:
-            raise Invalid(str(exc)) from None
-        for other in axes:
-            if other.target.overlaps(target):
-                raise Invalid(
-                    f"grid: axes '{other.name}' and '{name}' both set {other.target.dotted}"
-                    if other.target == target
-                    else f"grid: axes '{other.name}' and '{name}' overlap "
-                    f"({other.target.dotted} / {target.dotted})"
-                )
-        if target.root == "model":
-            canon = []
-            for v in values:
-                try:
-                    canon.append(get_model(str(v)).name)
-                except InputError as exc:
-                    raise Invalid(f"{where}.{name}: {exc.reason}") from None
-            if len(set(canon)) != len(canon):
-                raise Invalid(f"{where}.{name}: a model is listed twice (aliases count as the "
-                              "same)")
-            values = canon
-        elif target.root == "model_param":
-            model, param = target.path
-            canon = []
-            for v in values:
-                try:
-                    p = get_model(model).params({**models.get(model, {}), param: v})
-                except InputError as exc:
-                    raise Invalid(f"{where}.{name}: value {v!r}: {_err(exc)}") from None
-                canon.append(getattr(p, param))
-            values = canon
-        axes.append(Axis(name, axis_column(name), target, tuple(values), group))
-    for g in range(len(study.zip)):
+    for group, where, grid, written in groups:
+        if group is not None and not written:
+            raise Invalid(f"{where}: empty group; give two or more axes of equal length")
+        for name, spec in grid.axes(written):
+            axis = _axis(name, spec, group, where, bases, models, max_runs)
+            for other in axes:
+                if other.target.overlaps(axis.target):
+                    raise Invalid(
+                        f"grid: axes '{other.name}' and '{name}' both set {other.target.dotted}"
+                        if other.target == axis.target
+                        else f"grid: axes '{other.name}' and '{name}' overlap "
+                        f"({other.target.dotted} / {axis.target.dotted})"
+                    )
+            axes.append(axis)
+    _check_zip_lengths(axes, len(study.zip))
+    return axes
+
+
+def _check_zip_lengths(axes: list[Axis], groups: int) -> None:
+    for g in range(groups):
         lengths = {a.name: len(a.values) for a in axes if a.group == g}
         if len(set(lengths.values())) > 1:
             raise Invalid(f"zip.{g}: the axes of a zip group vary together and need equal "
@@ -318,10 +253,11 @@ def resolve_study(
     columns = [a.column for a in axes]
     if len(set(columns)) != len(columns):
         raise Invalid("grid: two axes map to the same column")
-    total = grid_points(axes)
-    if total > max_runs:
-        raise TooLarge(f"grid: the study has {total} runs; the limit is {max_runs}")
 
+
+def _run_models(study: StudyIn, axes: list[Axis], models: dict) -> tuple[str, set[str]]:
+    """The default model (no friction_model axis) and the models the study runs; a model
+    parameter axis of a model it does not run is refused."""
     if any(a.target.root == "model" for a in axes):
         default_model = DEFAULT_MODEL
     else:
@@ -337,30 +273,67 @@ def resolve_study(
         if a.target.root == "model_param" and a.target.path[0] not in run_models:
             raise Invalid(f"grid: axis '{a.name}': model '{a.target.path[0]}' is not run by "
                           f"this study (its models: {', '.join(sorted(run_models))})")
+    return default_model, run_models
 
-    design = None
-    if study.design is not None:
-        design = study.design.model_dump(exclude_none=True)
-        if "friction_model" in design:
-            try:
-                design["friction_model"] = get_model(design["friction_model"]).name
-            except InputError as exc:
-                raise Invalid(f"design.friction_model: {exc.reason}") from None
-        if "temperature_c" in design:
-            try:
-                parse_scenario({"temperature_c": design["temperature_c"]}, prefix="design.")
-            except InputError as exc:
-                raise Invalid(_err(exc)) from None
-        design_scenario(study.design, {})  # the load is a load case
+
+def _design(study: StudyIn) -> dict | None:
+    """The design case as given, its model canonical; its temperature and load checked."""
+    if study.design is None:
+        return None
+    design = study.design.model_dump(exclude_none=True)
+    if "friction_model" in design:
+        try:
+            design["friction_model"] = get_model(design["friction_model"]).name
+        except InputError as exc:
+            raise Invalid(f"design.friction_model: {exc.reason}") from None
+    if "temperature_c" in design:
+        try:
+            parse_scenario({"temperature_c": design["temperature_c"]}, prefix="design.")
+        except InputError as exc:
+            raise Invalid(_err(exc)) from None
+    design_scenario(study.design, {})  # the load is a load case
+    return design
+
+
+def _check_models_used(given: dict[str, str], run_models: set[str], design: dict | None
+                       ) -> None:
+    """Parameters of a model the study neither runs nor designs with would be ignored."""
     used = run_models | ({design["friction_model"]} if design and "friction_model" in design
                          else set())
-    for name, given in zip(models, study.models, strict=True):
+    for name, as_given in given.items():
         if name not in used:
             raise Invalid(
-                f"models.{given}: this study does not run {name} (its models: "
+                f"models.{as_given}: this study does not run {name} (its models: "
                 f"{', '.join(sorted(run_models))}), so these parameters would be ignored; add "
-                f"{name} to the friction_model axis or remove models.{given}")
+                f"{name} to the friction_model axis or remove models.{as_given}")
 
+
+def resolve_study(
+    data: Any,
+    *,
+    base_dir: Path | None = None,
+    studies_dir: Path | None = None,
+    max_runs: int = 20_000,
+    strict: bool = False,
+) -> ResolvedStudy:
+    """Validate a study mapping and expand it; raise :class:`Invalid` / :class:`TooLarge`
+    naming the field.
+
+    ``base_dir`` resolves a conveyor path given in a local study file; ``studies_dir`` (the
+    service's study files directory, ``Settings.studies_dir``) confines such paths to it.
+    ``strict``: a POSTed body, held to JSON's types (:func:`read_study`).
+    """
+    study = read_study(data, strict=strict)
+    conveyor, source = _conveyor(study, base_dir, studies_dir)
+    scenario = study.scenario.model_dump(mode="json", by_alias=True)
+    models, given = _models(study)
+    axes = _axes(study, data, (conveyor, scenario), models, max_runs)
+    total = grid_points(axes)
+    if total > max_runs:
+        raise TooLarge(f"grid: the study has {total} runs; the limit is {max_runs}")
+    default_model, run_models = _run_models(study, axes, models)
+    design = _design(study)
+    _check_models_used(given, run_models, design)
     resolved = ResolvedStudy(
         name=study.name,
         description=study.description,

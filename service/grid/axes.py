@@ -29,6 +29,7 @@ __all__ = [
     "with_paths",
     "get_path",
     "valid_paths",
+    "field_model",
 ]
 
 #: The design card's named axes -> (root, path) they set.
@@ -64,16 +65,16 @@ class Target:
         return self.path[:n] == other.path[:n]
 
 
-def _field_model(annotation: Any) -> tuple[type[BaseModel] | None, bool]:
+def field_model(annotation: Any) -> tuple[type[BaseModel] | None, bool]:
     """The model inside a field annotation and whether it is a list of that model."""
     origin = typing.get_origin(annotation)
     if origin is list:
-        inner, _ = _field_model(typing.get_args(annotation)[0])
+        inner, _ = field_model(typing.get_args(annotation)[0])
         return inner, True
     if isinstance(annotation, type) and issubclass(annotation, BaseModel):
         return annotation, False
     for arg in typing.get_args(annotation):
-        found, is_list = _field_model(arg)
+        found, is_list = field_model(arg)
         if found is not None:
             return found, is_list
     return None, False
@@ -114,7 +115,7 @@ def _walk(model: type[BaseModel], parts: list[str], data: Any) -> tuple[str | in
         field = next(f for n, f in current.model_fields.items() if key in (n, f.alias))
         out.append(key)
         data = data.get(key) if isinstance(data, dict) else None
-        current, is_list = _field_model(field.annotation)
+        current, is_list = field_model(field.annotation)
     return tuple(out)
 
 
@@ -124,7 +125,7 @@ def _paths(model: type[BaseModel], prefix: str, data: Any) -> list[str]:
         key = f.alias or name
         path = f"{prefix}{key}"
         out.append(path)
-        inner, is_list = _field_model(f.annotation)
+        inner, is_list = field_model(f.annotation)
         if inner is None:
             continue
         sub = data.get(key) if isinstance(data, dict) else None

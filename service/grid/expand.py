@@ -98,9 +98,15 @@ class Axis:
         return out
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, slots=True)
 class RunSpec:
-    """One run: everything a worker needs, plus the axis values for the row."""
+    """One run: everything a worker needs, plus the axis values for the row.
+
+    The grid makes it (:func:`expand_runs`) and the worker reads it
+    (:func:`beltstudy.service.dask.tasks.run_batch`): it travels to Dask as itself, pickled once
+    with its task. ``conveyor`` and ``scenario`` are the run's validated, dumped mappings
+    (hashed into ``run_id``); the worker turns them into the engine's models.
+    """
 
     run_id: str
     axes: dict[str, Any]

@@ -13,6 +13,7 @@ import pandas as pd
 
 from beltstudy.engine import build_loop, parse_conveyor, parse_scenario
 from beltstudy.service import charts
+from beltstudy.service.charts import RUN_PLOTS, STUDY_PLOTS
 from beltstudy.service.errors import Invalid, NotFound
 from beltstudy.service.grid.expand import ResolvedStudy
 from beltstudy.service.store import query
@@ -28,20 +29,6 @@ __all__ = [
     "check_name",
 ]
 
-#: Plot names of a study, with what they show.
-STUDY_PLOTS = {
-    "power-temperature": "power against temperature, a line per combination of the other "
-    "varying axes (Fig. 2)",
-    "peak-dynamic-tension": "peak and lowest tension of the stop against the stop time, a line "
-    "per combination of the other varying axes",
-    "ratio": "candidate / baseline ratio per axis value (default nonlin over cema)",
-}
-#: Plot names of a run.
-RUN_PLOTS = {
-    "steady-profile": "steady tension along the loop with the elevation profile (Fig. 1)",
-    "transient": "tension at eight points round the loop and at the highest and lowest tension, "
-    "belt speed below (Fig. 4)",
-}
 #: Output formats and their media types.
 FORMATS = {"png": "image/png", "svg": "image/svg+xml"}
 

@@ -2,7 +2,6 @@
 
 from __future__ import annotations
 
-import dataclasses
 import time
 from pathlib import Path
 
@@ -67,7 +66,7 @@ def store_finished(data_dir: Path, data: dict) -> str:
             "study": study.to_json(),
         },
     )
-    out = run_batch(study.id, [dataclasses.asdict(r) for r in study.runs], study.surface)
+    out = run_batch(study.id, study.runs, study.surface)
     for table in PART_TABLES:  # before the runs part, as the service does
         if out[table] is not None:
             store.write_part(study.id, table, "all", out[table])

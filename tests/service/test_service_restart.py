@@ -4,7 +4,6 @@ data directory; the study completes with exactly one row per run, equal to an un
 
 from __future__ import annotations
 
-import dataclasses
 import json
 
 import pandas as pd
@@ -20,7 +19,7 @@ pytestmark = pytest.mark.slow
 
 def _uninterrupted(study) -> pd.DataFrame:
     """The same runs one after another in this process (no Dask, no store)."""
-    out = run_batch(study.id, [dataclasses.asdict(r) for r in study.runs])
+    out = run_batch(study.id, study.runs)
     return rows_to_table(out["rows"], study_schema(study)).to_pandas(), out["timeseries"]
 
 
@@ -45,7 +44,7 @@ def test_sigkill_mid_study_then_restart_resumes_without_duplicates(
     # size the study from this machine's measured run time: about 8 s of work for each of the
     # two workers, so the kill (at the first stored rows, about a second in) lands mid-study
     probe = resolve_study(body_with(2))
-    specs = [dataclasses.asdict(r) for r in probe.runs[:2]]
+    specs = probe.runs[:2]
     run_batch(probe.id, specs[:1])  # compiled and warm
     per_run_s = max(run_batch(probe.id, specs)["seconds"] / 2, 1e-3)
     n_temps = min(max(int(8.0 * 2 / per_run_s / 2), 20), 400)

@@ -2,7 +2,6 @@
 
 from __future__ import annotations
 
-import dataclasses
 import time
 from pathlib import Path
 
@@ -79,7 +78,7 @@ def finished_study(data_dir: Path, data: dict, name: str | None = None) -> str:
         "created_at": now, "updated_at": now, "started_at": now, "finished_at": now,
         "engine_version": study.engine_version, "study": study.to_json(),
     })
-    out = run_batch(study.id, [dataclasses.asdict(r) for r in study.runs], study.surface)
+    out = run_batch(study.id, study.runs, study.surface)
     for table in PART_TABLES:
         if out[table] is not None:
             store.write_part(study.id, table, "0", out[table])

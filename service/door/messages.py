@@ -1,0 +1,197 @@
+"""The door's messages: a study's one validation error, said the way the door says it.
+
+:func:`describe` turns the :class:`pydantic.ValidationError` of :class:`~beltstudy.service.door.study.StudyIn`
+into one line per problem, each naming the field by its path in the study as written:
+
+* a conveyor's or scenario's problem as the engine says it (``conveyor.speed_m_s: ...``,
+  :func:`beltstudy.engine.format_validation_error`), the rest of the study likewise;
+* a grid value as the expansion says a bad grid point (``grid (belt.width_m=-1):
+  conveyor.belt.width_m: ...``): the axis, the value and the field it sets;
+* with ``json_types`` (a POSTed body, held to its published schema), a value of the wrong JSON
+  type as JSON Schema says it: ``conveyor.speed_m_s: "4.5" is not of type "number"``.
+
+Pydantic's locations carry the members of unions (``str``, ``inline``, ``values``); they are
+dropped by walking the location through the data, and a member the value does not have the
+shape of (a mapping is no text) is not reported when another member looked inside it.
+"""
+
+from __future__ import annotations
+
+import json
+from collections import defaultdict
+from typing import Any
+
+from pydantic import BaseModel, ValidationError
+
+from beltstudy.engine import Conveyor, Scenario, format_validation_error
+from beltstudy.service.door.study import AXIS_TARGETS, StudyIn, unfold_axis
+
+__all__ = ["describe", "MAX_PROBLEMS"]
+
+#: Problems named in one message; the rest are counted.
+MAX_PROBLEMS = 5
+#: Pydantic error types that say a value has the wrong JSON type -> the type it should have.
+JSON_TYPES = {
+    "float_type": "number", "float_parsing": "number", "int_type": "integer",
+    "int_parsing": "integer", "int_from_float": "integer", "bool_type": "boolean",
+    "bool_parsing": "boolean", "string_type": "string", "list_type": "array",
+    "tuple_type": "array", "dict_type": "object", "model_type": "object",
+    "model_attributes_type": "object", "none_required": "null",
+}
+#: Error types of a union member that does not take the value's shape at all (a mapping for a
+#: text): not reported when another member looked inside the value.
+SHAPE_TYPES = {"string_type", "float_type", "int_type", "bool_type", "list_type", "dict_type",
+               "model_type", "model_attributes_type", "none_required", "literal_error"}
+_ROOTS: dict[str, type[BaseModel]] = {"conveyor": Conveyor, "scenario": Scenario}
+
+
+def _walk(loc: tuple, data: Any, error_type: str) -> tuple:
+    """``loc`` without the union members: the keys and indices found in ``data``."""
+    out: list = []
+    node = data
+    for i, part in enumerate(loc):
+        if isinstance(node, dict) and isinstance(part, str) and part in node:
+            node = node[part]
+        elif isinstance(node, list) and isinstance(part, int) and 0 <= part < len(node):
+            node = node[part]
+        elif i == len(loc) - 1 and error_type == "missing":
+            pass
+        else:
+            continue
+        out.append(part)
+    return tuple(out)
+
+
+def _located(exc: ValidationError, data: Any) -> list[dict]:
+    """The errors with their paths in ``data``, less the union members the value is not."""
+    errors = [{**e, "path": _walk(tuple(e["loc"]), data, e["type"])} for e in exc.errors()]
+    paths = [e["path"] for e in errors]
+
+    def outshone(e: dict) -> bool:
+        return (e["type"] in SHAPE_TYPES and isinstance(e["input"], dict | list)
+                and any(p[:len(e["path"])] == e["path"] and len(p) > len(e["path"])
+                        for p in paths))
+
+    return [e for e in errors if not outshone(e)]
+
+
+def _axis_at(path: tuple) -> int | None:
+    """Where the axis name is in a path into a grid or zip group (None: not there)."""
+    if path[:1] == ("grid",) and len(path) > 1:
+        return 1
+    if path[:1] == ("zip",) and len(path) > 2:
+        return 2
+    return None
+
+
+def _unfolded(path: tuple) -> tuple:
+    """A path with an axis into a list as written (``grid.profile.3.lift_m.0``)."""
+    at = _axis_at(path)
+    if at is None or ".N" not in str(path[at]) or len(path) <= at + 1:
+        return path
+    return (*path[:at], unfold_axis(path[at], path[at + 1]), *path[at + 2:])
+
+
+def _dotted(path: tuple) -> str:
+    return ".".join(str(p) for p in _unfolded(path)) or "(top level)"
+
+
+def _json(value: Any) -> str:
+    try:
+        return json.dumps(value, ensure_ascii=False, separators=(",", ":"))
+    except (TypeError, ValueError):
+        return repr(value)
+
+
+def _as_json_type(errors: list[dict]) -> str:
+    """``"4.5" is not of type "number"`` for the errors at one path (the members of a union
+    each add what they want)."""
+    types = list(dict.fromkeys(JSON_TYPES[e["type"]] for e in errors if e["type"] in JSON_TYPES))
+    others = [e["ctx"]["expected"] for e in errors
+              if e["type"] == "literal_error" and "ctx" in e]
+    text = f'{_json(errors[0]["input"])} is not of type "{types[0]}"'
+    text += "".join(f' or "{t}"' for t in types[1:]) + "".join(f" or {o}" for o in others)
+    return f"{_dotted(errors[0]['path'])}: {text}"
+
+
+def _engine_lines(errors: list[dict], model: type[BaseModel], prefix: str, skip: int) -> str:
+    """The errors as the engine says them for ``model`` (paths from ``skip`` on)."""
+    details = [{"type": e["type"], "loc": _unfolded(e["path"])[skip:], "input": e["input"],
+                **({"ctx": e["ctx"]} if "ctx" in e else {})} for e in errors]
+    exc = ValidationError.from_exception_data(model.__name__, details)
+    return format_validation_error(exc, model, prefix)
+
+
+def _value_key(path: tuple) -> tuple | None:
+    """The path of the axis value an error lies in (None: not inside an axis's values)."""
+    at = _axis_at(path)
+    if at is None:
+        return None
+    index = at + 2 if ".N" in str(path[at]) else at + 1
+    if len(path) <= index or not isinstance(path[index], int):
+        return None
+    return path[:index + 1]
+
+
+def _target(path: tuple) -> tuple[type[BaseModel], str, tuple]:
+    """The model, prefix and location of the field an axis value sets (``path``: the axis
+    value's, as :func:`_value_key` gives it)."""
+    at = _axis_at(path)
+    folded = path[at]
+    target = AXIS_TARGETS[folded]
+    if ".N" in folded:
+        target = unfold_axis(target, path[at + 1])
+    parts = tuple(int(p) if p.isdigit() else p for p in target.split("."))
+    if parts[0] in _ROOTS:
+        return _ROOTS[parts[0]], f"{parts[0]}.", parts[1:]
+    return StudyIn, "", parts
+
+
+def _grid_value(key: tuple, errors: list[dict], data: dict) -> str:
+    """Errors inside one value of one axis, said as a bad grid point is: ``grid (axis=value):
+    <the field it sets>: <problem>``."""
+    at = _axis_at(key)
+    where = "grid" if at == 1 else f"zip.{key[1]}"
+    name = _unfolded(key)[at]
+    value: Any = data
+    for part in key:
+        value = value[part]
+    model, prefix, lead = _target(key)
+    moved = [{**e, "path": lead + e["path"][len(key):]} for e in errors]
+    return f"{where} ({name}={value!r}): {_engine_lines(moved, model, prefix, 0)}"
+
+
+def _part(e: dict) -> str:
+    """Which model says an error: ``conveyor`` or ``scenario`` (inside one), else the study."""
+    path = e["path"]
+    inside = len(path) > 1 or e["type"] == "value_error"
+    return path[0] if path and path[0] in _ROOTS and inside else ""
+
+
+def describe(exc: ValidationError, data: Any, *, json_types: bool = False) -> str:
+    """One line per problem of ``data`` (the study as validated: its axes into lists folded)
+    named by its path; ``json_types``: a wrong JSON type said as JSON Schema says it."""
+    errors = _located(exc, data)
+    lines: list[str] = []
+    by_path: dict[tuple, list[dict]] = defaultdict(list)
+    for e in errors:
+        by_path[e["path"]].append(e)
+    typed = [p for p, es in by_path.items()
+             if json_types and any(e["type"] in JSON_TYPES for e in es)]
+    lines += [_as_json_type(by_path[p]) for p in typed]
+    values: dict[tuple, list[dict]] = defaultdict(list)
+    parts: dict[str, list[dict]] = defaultdict(list)
+    for e in errors:
+        if e["path"] in typed:
+            continue
+        key = _value_key(e["path"])
+        if key is not None:
+            values[key].append(e)
+        else:
+            parts[_part(e)].append(e)
+    lines += [_grid_value(key, es, data) for key, es in values.items()]
+    for part, es in parts.items():
+        model = _ROOTS.get(part, StudyIn)
+        lines.append(_engine_lines(es, model, f"{part}." if part else "", 1 if part else 0))
+    more = len(lines) - MAX_PROBLEMS
+    return "; ".join(lines[:MAX_PROBLEMS]) + (f"; and {more} more" if more > 0 else "")
