@@ -335,7 +335,7 @@ RUN = np.dtype([
     ("v_ref", np.float64), ("a_ref", np.float64), ("f0u", np.float64), ("f1u", np.float64),
     ("U", np.float64), ("u_known", np.bool_),
     # take-up, speed loop, holding force
-    ("x_tu", np.float64), ("u_tu", np.float64), ("u_new", np.float64),
+    ("x_tu", np.float64), ("u_tu", np.float64),
     ("integ", np.float64), ("hold_f", np.float64),
     # this step's totals and the state's extremes
     ("vsum", np.float64), ("v_mean", np.float64), ("f_tot", np.float64),
