@@ -453,6 +453,44 @@ def _phase_fields(sys: System, prefix: str, ext: dict | None) -> dict:
     }
 
 
+def _slip_warnings(sys: System, r: dict, out, conveyor=None) -> list[str]:
+    """The run's events in words: a runaway, each drive's slip on its pulley (when, how long,
+    how much belt, what avoids it), each braked plain pulley's slip."""
+    w: list[str] = []
+    t_stop_cmd = sys.stop_command_s
+    drv = out.drv
+    nd = drv.shape[0]
+    brakes = sys.model.brakes
+    names = [f"drive {i + 1}" for i in range(nd)]
+    if conveyor is not None:
+        names = [f"drive {i + 1} ({d.position})" for i, d in enumerate(conveyor.drives)]
+    if int(r["status"]) == C.RUNAWAY:
+        w.append(runaway_words(sys, float(r["t"]), float(r["v_mean"]), t_stop_cmd))
+    for i in range(nd):
+        slip_s = float(drv[i]["slip_s"])
+        if slip_s > 0.0:
+            t0 = float(drv[i]["slip_first"])
+            t1 = float(drv[i]["slip_last"])
+            when, fix = slip_words(_run_phase(sys, t0, t_stop_cmd),
+                                   _run_phase(sys, t1, t_stop_cmd))
+            w.append(f"{names[i]} slipped on its pulley {when}: from t = {t0:.1f} "
+                     f"to {t1:.1f} s, {slip_s:.2f} s in all, {drv[i]['slip_m']:.3g} m of belt "
+                     f"slipped (lowest slip margin {drv[i]['slip_min']:.2f}); {fix} would "
+                     "avoid it")
+    shs = out.shs
+    for b in range(brakes.shaft.shape[0]):
+        k = int(brakes.shaft[b])
+        if sys.model.shafts.drive[k] >= 0 or shs[k]["slip_s"] <= 0.0:
+            continue  # a drive's slip is reported with the drive
+        name = conveyor.brakes[b].where if conveyor is not None else f"brake {b + 1}"
+        h = shs[k]
+        w.append(f"the {name} brake's pulley slipped: the brake held it while the belt slid "
+                 f"over it from t = {h['first']:.1f} to {h['last']:.1f} s, {h['slip_s']:.2f} s "
+                 f"in all, {h['slip_m']:.3g} m of belt slipped; more tension on that pulley "
+                 "(take-up position or mass) or a smaller brake force would avoid it")
+    return w
+
+
 def transient_summary(sys: System, r: dict, out, segs, *, steady_summary=None, conveyor=None,
                       safety_factor_min=None):
     """SPEC section 4 and 6.4 transient fields and the warnings."""
@@ -542,33 +580,7 @@ def transient_summary(sys: System, r: dict, out, segs, *, steady_summary=None, c
     w: list[str] = list(sys.warnings)
     if int(r["status"]) == C.DIVERGED:
         return summary, w
-    names = [f"drive {i + 1}" for i in range(nd)]
-    if conveyor is not None:
-        names = [f"drive {i + 1} ({d.position})" for i, d in enumerate(conveyor.drives)]
-    if int(r["status"]) == C.RUNAWAY:
-        w.append(runaway_words(sys, float(r["t"]), float(r["v_mean"]), t_stop_cmd))
-    for i in range(nd):
-        slip_s = float(drv[i]["slip_s"])
-        if slip_s > 0.0:
-            t0 = float(drv[i]["slip_first"])
-            t1 = float(drv[i]["slip_last"])
-            when, fix = slip_words(_run_phase(sys, t0, t_stop_cmd),
-                                   _run_phase(sys, t1, t_stop_cmd))
-            w.append(f"{names[i]} slipped on its pulley {when}: from t = {t0:.1f} "
-                     f"to {t1:.1f} s, {slip_s:.2f} s in all, {drv[i]['slip_m']:.3g} m of belt "
-                     f"slipped (lowest slip margin {drv[i]['slip_min']:.2f}); {fix} would "
-                     "avoid it")
-    shs = out.shs
-    for b in range(brakes.shaft.shape[0]):
-        k = int(brakes.shaft[b])
-        if sys.model.shafts.drive[k] >= 0 or shs[k]["slip_s"] <= 0.0:
-            continue  # a drive's slip is reported with the drive
-        name = conveyor.brakes[b].where if conveyor is not None else f"brake {b + 1}"
-        w.append(f"the {name} brake's pulley slipped: the brake held it while the belt slid "
-                 f"over it from t = {shs[k]['first']:.1f} to {shs[k]['last']:.1f} s, "
-                 f"{shs[k]['slip_s']:.2f} s in "
-                 f"all, {shs[k]['slip_m']:.3g} m of belt slipped; more tension on that pulley (take-up "
-                 "position or mass) or a smaller brake force would avoid it")
+    w += _slip_warnings(sys, r, out, conveyor)
     if r["slack_max"] > 0.0 or r["slack_first"] >= 0.0:
         j = int(r["slack_at"]) if r["slack_at"] >= 0 else jmin
         w.append(
