@@ -54,10 +54,8 @@ def _walk(loc: tuple, data: Any, error_type: str) -> tuple:
             node = node[part]
         elif isinstance(node, list) and isinstance(part, int) and 0 <= part < len(node):
             node = node[part]
-        elif i == len(loc) - 1 and error_type == "missing":
-            pass
-        else:
-            continue
+        elif not (i == len(loc) - 1 and error_type == "missing"):
+            continue  # a union member's label, not in the data (a missing last key is kept)
         out.append(part)
     return tuple(out)
 
