@@ -156,20 +156,6 @@ def solve_arrow(d, lo, up, cl, rw, x, m, car, car_free):
 
 
 @njit(inline="always", **OPTS)
-def _offdiag(lo, up, cl, x, k, m, car):
-    """Sum of A[k, c] x[c] over c != k for an element row of a block's band."""
-    s = 0.0
-    if k > 0:
-        s += lo[k] * x[k - 1]
-    if k + 1 < m:
-        s += up[k] * x[k + 1]
-    if car:
-        s += cl[k] * x[m]
-    return s
-
-
-
-@njit(inline="always", **OPTS)
 def coulomb(p, dd, fb, hb):
     """Velocity of a mass under ``dd v = p - fb sign(v)`` (a Coulomb brake of force ``fb``,
     holding when ``|p| <= fb``) and, with a holdback ``hb``, never below zero. ``dd > 0``."""

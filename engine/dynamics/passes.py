@@ -11,6 +11,7 @@ from __future__ import annotations
 
 import math
 
+import numpy as np
 from numba import njit, uint64, uintp
 
 from beltstudy.engine.dynamics.fastmath import (
@@ -671,8 +672,6 @@ def law_rows(pv, ps):
     exp and log, and the weights of the sums over the terms (padded to K_LIN terms); plain
     Python, for :func:`beltstudy.engine.dynamics.model.build_system`. Returns ``(rs, rq, upow, qpow,
     npow, wk)``."""
-    import numpy as np
-
     ups = sorted({float(p) for p in pv} - {0.0, 1.0})
     qps = sorted({float(q) for q in ps} - {0.0, 0.5, 1.0, 1.5, 2.0})
     srow = {0.0: F_ONE, 1.0: F_U} | {p: F_UP + x for x, p in enumerate(ups)}

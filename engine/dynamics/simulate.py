@@ -620,8 +620,3 @@ def transient_summary(sys: System, r: dict, out, segs, *, steady_summary=None, c
         w.append(f"the belt did not stop within {sys.model.cycle.stop_max:.0f} s of the stop command "
                  f"(mean speed {r['v_mean']:.2f} m/s at the end)")
     return summary, w
-
-
-def sys_strand_mask(sys: System, code: int) -> np.ndarray:
-    """Elements of a strand (0 carry, 1 return) with idlers."""
-    return (sys.strand == code) & (sys.model.nodes.sag_w > 0.0)
