@@ -42,6 +42,7 @@ from beltstudy.engine.loop import (
     rotating_parts,
 )
 from beltstudy.engine.statics import SteadyResult, solve_steady
+from beltstudy.engine.stopgrip import StopWalk, grip_limits, grip_remedies, pulley_name
 
 __all__ = ["auto_sizes", "summary_fields", "RATED_POWER_FACTOR", "HOLD_MARGIN",
            "MOTOR_INERTIA_SHARE", "moving_mass_kg", "rotating_parts", "RotatingParts",
@@ -129,17 +130,23 @@ def brake_stop_time(total_mass_kg: float, v_d: float, te_n: float, force_n: floa
 
 
 def brake_forces(conv: Conveyor, scenario: Scenario, total_mass_kg: float, te_n: float,
-                 gravity_sum_n: float) -> tuple[list[float], list[str], str]:
-    """Force of each brake [kN], what set it, and a note when holding set an auto force.
+                 gravity_sum_n: float, steady: SteadyResult | None = None
+                 ) -> tuple[list[float], list[str], str]:
+    """Force of each brake [kN], what set it, and a note when holding or the grip set an auto
+    force.
 
     Auto brakes share ``max(stop force, holding force) - fixed brakes`` evenly: the stop
     force of :func:`brake_force_auto` for a run that stops on its brakes (none otherwise),
-    the holding force ``HOLD_MARGIN`` x the net gravity pull ``gravity_sum_n`` [N].
+    the holding force ``HOLD_MARGIN`` x the net gravity pull ``gravity_sum_n`` [N]. With the
+    ``steady`` solution, a stop force is held within what each braked pulley can pass in the
+    stop (:mod:`beltstudy.engine.stopgrip`): where that is below the stop force, the brakes
+    are ``grip``-governed and the note gives the stop time they make and what would meet the
+    asked one.
     """
     if not conv.brakes:
         return [], [], ""
     auto = [b for b in conv.brakes if b.force_kn == "auto"]
-    each, why, note = 0.0, GIVEN, ""
+    each, why, note = [0.0] * len(auto), GIVEN, ""
     if auto:
         fixed_n = sum(b.force_kn * 1e3 for b in conv.brakes if b.force_kn != "auto")
         delay = max(b.delay_s for b in auto)
@@ -154,12 +161,17 @@ def brake_forces(conv: Conveyor, scenario: Scenario, total_mass_kg: float, te_n:
                                       delay, ramp)
         if stop_n >= hold_n:
             total_n, why = stop_n, "stop_time"
+            each = [max(total_n - fixed_n, 0.0) / len(auto)] * len(auto)
             if scenario.stop.mode == "brake" and total_n <= 0.0:
                 note = (f"auto brake force 0 kN: the belt coasts to rest within the stop time "
                         f"{scenario.stop.time_s:g} s on its own resistances and nothing pulls it "
                         "once stopped; a shorter stop time or a given force_kn sizes a brake")
+            elif steady is not None and total_n > fixed_n:
+                each, why, note = _within_grip(conv, scenario, steady, each, hold_n,
+                                               (total_mass_kg, v, te_n, delay, ramp))
         else:
             total_n, why = hold_n, "holding"
+            each = [max(total_n - fixed_n, 0.0) / len(auto)] * len(auto)
             if scenario.stop.mode == "brake":
                 t_gives = brake_stop_time(total_mass_kg, v, te_n, hold_n, delay, ramp)
                 note = (f"auto brake force {hold_n / 1e3:.4g} kN is set by holding the loaded "
@@ -167,12 +179,76 @@ def brake_forces(conv: Conveyor, scenario: Scenario, total_mass_kg: float, te_n:
                         f"{pull_n / 1e3:.4g} kN), not by the stop time "
                         f"{scenario.stop.time_s:g} s (which needs {stop_n / 1e3:.4g} kN): the "
                         f"rigid-body brake stop then takes about {t_gives:.3g} s")
-        each = max(total_n - fixed_n, 0.0) / len(auto)
-    kn = [each / 1e3 if b.force_kn == "auto" else float(b.force_kn) for b in conv.brakes]
+                if steady is not None:
+                    note += _holding_grip(conv, steady, each)
+    shares = iter(each)
+    kn = [next(shares) / 1e3 if b.force_kn == "auto" else float(b.force_kn)
+          for b in conv.brakes]
     gov = [why if b.force_kn == "auto" else GIVEN for b in conv.brakes]
     return kn, gov, note
 
 
+def _brake_nodes(conv: Conveyor, loop) -> tuple[list[int], dict]:
+    """The pulley element of each auto brake, and the fixed brakes' forces by element [N]."""
+    nodes, fixed = [], {}
+    for b in conv.brakes:
+        node = loop.brake_element(b)
+        if b.force_kn == "auto":
+            nodes.append(node)
+        else:
+            fixed[node] = fixed.get(node, 0.0) + float(b.force_kn) * 1e3
+    return nodes, fixed
+
+
+def _within_grip(conv: Conveyor, scenario: Scenario, steady: SteadyResult, each: list[float],
+                 hold_n: float, rigid: tuple) -> tuple[list[float], str, str]:
+    """The auto brakes' forces [N] within their pulleys' grip in the stop
+    (:func:`beltstudy.engine.stopgrip.grip_limits`), ``grip`` or ``stop_time``, and the note
+    when the grip held them below the stop time's need (``rigid``: mass, speed, Te, delay,
+    ramp of :func:`brake_stop_time`)."""
+    walk = StopWalk.of(conv, steady)
+    nodes, fixed = _brake_nodes(conv, steady.loop)
+    wanted = sum(each)
+    forces, capped = grip_limits(walk, nodes, fixed, wanted)
+    if not capped or sum(forces) >= wanted * (1.0 - 1e-6):
+        return each, "stop_time", ""
+    total = sum(forces) + sum(fixed.values())
+    m, v, te, delay, ramp = rigid
+    if total < hold_n:  # the holding floor stays; the pulley then slides in the stop
+        forces = [f + (hold_n - total) / len(forces) for f in forces]
+        where = ", ".join(dict.fromkeys(pulley_name(conv, steady.loop, n) for n in nodes))
+        return forces, "holding", (
+            f"auto brake force {hold_n / 1e3:.4g} kN is set by holding the loaded belt at rest "
+            f"({HOLD_MARGIN:g} x the net gravity pull), not by the stop time "
+            f"{scenario.stop.time_s:g} s; it is beyond the grip of {where} in the stop "
+            f"({total / 1e3:.4g} kN), which slides: a holdback to hold the belt at rest, or "
+            "a heavier take-up, would avoid it")
+    t_gives = brake_stop_time(m, v, te, total, delay, ramp)
+    asked = float(scenario.stop.time_s)
+    where = ", ".join(dict.fromkeys(pulley_name(conv, steady.loop, n) for n in nodes))
+    note = (f"auto brake force {total / 1e3:.4g} kN is set by the grip of {where} in the "
+            f"stop (the capstan limit at the slack-side tension of the stop, its fall "
+            f"doubled for the stop's fronts), not by the stop time {asked:g} s (which needs "
+            f"{(wanted + sum(fixed.values())) / 1e3:.4g} kN): the rigid-body brake stop then "
+            f"takes about {t_gives:.3g} s; the stop time {asked:g} s would be met by "
+            + grip_remedies(conv, steady, walk, nodes, fixed, each, forces))
+    return forces, "grip", note
+
+
+def _holding_grip(conv: Conveyor, steady: SteadyResult, each: list[float]) -> str:
+    """The clause a holding-set note gains when the holding force is beyond the braked
+    pulleys' grip in the stop ("" when within)."""
+    walk = StopWalk.of(conv, steady)
+    nodes, fixed = _brake_nodes(conv, steady.loop)
+    acting = dict(fixed)
+    for node, f in zip(nodes, each):
+        acting[node] = acting.get(node, 0.0) + f
+    short = [n for n in dict.fromkeys(nodes) if walk.room_n(n, acting) < 0.0]
+    if not short:
+        return ""
+    where = ", ".join(pulley_name(conv, steady.loop, n) for n in short)
+    return (f"; this force is beyond the grip of {where} in the stop, which slides: a "
+            "holdback to hold the belt at rest, or a heavier take-up, would avoid it")
 def auto_sizes(conveyor: Conveyor, scenario: Scenario, *, model: str,
                params: dict | object | None = None, steady: SteadyResult | None = None) -> dict:
     """The take-up, rated power and brake forces of ``conveyor`` at one operating case.
@@ -207,10 +283,10 @@ def auto_sizes(conveyor: Conveyor, scenario: Scenario, *, model: str,
     tu = conveyor.takeup
     rated, rated_gov = rated_power_kw(conveyor, float(steady.te_n),
                                       float(np.sum(steady.resistance_n)))
-    brakes, brakes_gov, _note = brake_forces(conveyor, scenario,
-                                             moving_mass_kg(conveyor, steady),
-                                             float(steady.te_n),
-                                             float(steady.loop.gravity_n.sum()))
+    brakes, brakes_gov, brake_note = brake_forces(conveyor, scenario,
+                                                  moving_mass_kg(conveyor, steady),
+                                                  float(steady.te_n),
+                                                  float(steady.loop.gravity_n.sum()), steady)
     return {
         "takeup_mass_kg": (float(2.0 * steady.takeup_tension_n / G)
                            if tu.type == "gravity" else None),
@@ -220,6 +296,7 @@ def auto_sizes(conveyor: Conveyor, scenario: Scenario, *, model: str,
         "drive_rated_power_governed_by": rated_gov,
         "brake_force_kn": brakes,
         "brake_governed_by": brakes_gov,
+        "brake_note": brake_note,
         "status": steady.status,
     }
 

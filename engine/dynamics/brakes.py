@@ -44,14 +44,15 @@ class Brakes(NamedTuple):
 
 
 def build_brakes(conv, scn, loop, shaft_index: dict, total_mass: float, te: float,
-                 gravity_sum: float, notes: list[str]) -> Brakes:
+                 gravity_sum: float, notes: list[str], steady=None) -> Brakes:
     """The brakes of a conveyor in file order, on the shafts of ``shaft_index`` (element ->
     shaft), with their forces (auto ones sized for the scenario's stop by
     :func:`beltstudy.engine.design.brake_forces` from the moving mass [kg], Te [N] and the net
-    gravity pull [N]; a sizing note is added to ``notes``)."""
+    gravity pull [N], within the braked pulleys' grip in the stop with the ``steady``
+    solution; a sizing note is added to ``notes``)."""
     force = []
     if conv.brakes:
-        kn, _why, note = design.brake_forces(conv, scn, total_mass, te, gravity_sum)
+        kn, _why, note = design.brake_forces(conv, scn, total_mass, te, gravity_sum, steady)
         force = [f * 1e3 for f in kn]
         if note:
             notes.append(note)

@@ -969,7 +969,8 @@ def build_system(conv: Conveyor, scn: Scenario, steady, options: DynamicsOptions
     tu_weight = float(steady.takeup_mass_kg) * G if conv.takeup.type == "gravity" else 0.0
     hold, T_rest, warns = _rest(conv, loop, springs, nodes.gravity, T_run, tu_weight)
     takeup = _takeup(conv, loop, steady, springs, T_rest, T_run)
-    brakes = build_brakes(conv, scn, loop, shaft_index, total_mass, te, gravity_sum, notes)
+    brakes = build_brakes(conv, scn, loop, shaft_index, total_mass, te, gravity_sum, notes,
+                          steady)
     cycle = _cycle(conv, scn, opts, n, dt, t_loop, total_mass, te, v_d, hold, train)
     model = Model(
         cycle=cycle, nodes=nodes, law=law, lin=_lin(law, nodes, cycle.v_eps), springs=springs,

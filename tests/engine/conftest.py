@@ -44,3 +44,16 @@ def dual_head(**over):
     d = hand_conveyor_dict(drives=[hand_drive(share=0.5, inertia_kg_m2=20),
                                    hand_drive(share=0.5, inertia_kg_m2=20)], **over)
     return parse_conveyor(d)
+
+
+def steep_incline(brake_force="auto", **over):
+    """The hand conveyor over 1.5 km rising 150 m (10 %), a 50 t gravity take-up at the tail,
+    a head brake (0.5 s delay, 0.5 s ramp) on the head drive's pulley, a 2 500 kN belt."""
+    belt = {"width_m": 1.0, "rating_kn_m": 2500, "modulus_kn_m": 60000,
+            "carcass_mass_kg_m2": 20.0, "top_cover_mm": 0, "bottom_cover_mm": 0}
+    d = hand_conveyor_dict(profile=[{"length_m": 1500, "lift_m": 150}], belt=belt,
+                           brakes=[{"position": "head", "force_kn": brake_force,
+                                    "delay_s": 0.5, "ramp_s": 0.5}],
+                           takeup={"type": "gravity", "position": "tail", "mass_kg": 50000})
+    d.update(over)
+    return parse_conveyor(d)

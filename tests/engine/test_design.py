@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import math
+import re
 
 import numpy as np
 import pytest
@@ -11,11 +12,11 @@ from numpy.testing import assert_allclose
 from beltstudy.engine.conveyor import Scenario, load_conveyor, parse_conveyor
 from beltstudy.engine.design import RATED_POWER_FACTOR, auto_sizes, moving_mass_kg
 from beltstudy.engine.dynamics import build_system
-from beltstudy.engine.loop import G
+from beltstudy.engine.loop import G, rotating_parts
 from beltstudy.engine.run import run_one
 from beltstudy.engine.statics import solve_steady
 from tests.conftest import CONVEYORS, hand_conveyor_dict
-from tests.engine.conftest import hand_conv
+from tests.engine.conftest import hand_conv, steep_incline
 
 
 def _euler(wrap_deg=200, mu=0.35):
@@ -38,8 +39,10 @@ def test_rated_power_by_hand():
 def test_brake_sized_by_the_stop_time_or_held_by_the_holding_floor():
     """Rigid body: M v_1 = Te t_b + F_b (t_b - r / 2), t_b = t_stop - t_delay, v_1 = v - Te
     t_delay / M, r the ramp (1 s by default); at least 1.2 x the net pull of the loaded belt.
-    A coast run uses no stop time: holding size."""
-    d = hand_conveyor_dict(brakes=[{"position": "head", "force_kn": "auto", "delay_s": 0.5}])
+    A coast run uses no stop time: holding size. The 60 t take-up lets the head pulley pass
+    the 3 s stop's force (test_auto_brake_held_within_its_pulleys_grip covers the grip)."""
+    d = hand_conveyor_dict(brakes=[{"position": "head", "force_kn": "auto", "delay_s": 0.5}],
+                           takeup={"type": "gravity", "position": "tail", "mass_kg": 60000})
     conv = parse_conveyor(d)
     st = solve_steady(conv, model="din")
     m = moving_mass_kg(conv, st)
@@ -98,3 +101,58 @@ def test_auto_brake_on_a_level_belt_that_coasts_within_the_stop_time():
     note = "; ".join(sysm.notes)
     assert "auto brake force 0 kN: the belt coasts to rest within the stop time 40 s" in note
     assert "e-1" not in note
+
+
+def _note_stop_time(note: str) -> float:
+    return float(re.search(r"brake stop then takes about ([0-9.]+) s", note).group(1))
+
+
+def test_auto_brake_held_within_its_pulleys_grip():
+    """A 3 s stop on the 10 % incline needs more than the head pulley passes. By hand (PHYSICS
+    5.1, capstan): rigid-body deceleration d = (Te + F) / M; the slack side is the head's
+    incoming carry, walked from the tail take-up: T_in = T_run_in - d m_carry (the steady
+    walk less the inertia of the carry and half the tail pulley with its shell); doubled fall for the
+    fronts, T_slack = T_run_in - 2 (T_run_in - T_in); the pulley passes F - m_p d, m_p its
+    shaft's reduced mass: F - m_p d = (e^(mu theta) - 1) T_slack at the sized force (1 %)."""
+    conv = steep_incline()
+    st = solve_steady(conv, model="din")
+    sizes = auto_sizes(conv, Scenario(stop={"mode": "brake", "time_s": 3.0}), model="din")
+    assert sizes["brake_governed_by"] == ["grip"]
+    f = sizes["brake_force_kn"][0] * 1e3
+    loop = st.loop
+    parts = rotating_parts(conv, loop)
+    m_total = moving_mass_kg(conv, st)
+    d = (st.te_n + f) / m_total
+    head = loop.i_head
+    tail = loop.i_takeup  # the tail pulley, its shell turning with the belt
+    m_carry = float(loop.mass_kg[:head].sum()) + 0.5 * (float(loop.mass_kg[tail])
+                                                       + parts.plain_mass[tail])
+    t_run = float(st.tension_n[head - 1])
+    t_in = t_run - d * m_carry
+    t_slack = t_run - 2.0 * (t_run - t_in)
+    m_p = parts.shaft_mass[head]
+    assert f - m_p * d == pytest.approx((_euler() - 1.0) * t_slack, rel=0.01)
+    # the stop time it makes, and what would meet 3 s
+    note = sizes["brake_note"]
+    t_b = (m_total * (4.0 - st.te_n * 0.5 / m_total) + 0.5 * f * 0.5) / (st.te_n + f)
+    assert _note_stop_time(note) == pytest.approx(0.5 + t_b, rel=0.01)
+    assert "not by the stop time 3 s" in note and "take-up of" in note
+    heavier = re.search(r"take-up of ([0-9,]+) kg", note).group(1).replace(",", "")
+    big = steep_incline(takeup={"type": "gravity", "position": "tail",
+                                "mass_kg": float(heavier) * 1.01})
+    again = auto_sizes(big, Scenario(stop={"mode": "brake", "time_s": 3.0}), model="din")
+    assert again["brake_governed_by"] == ["stop_time"]
+
+
+def test_auto_brake_within_its_grip_is_set_by_the_stop_time():
+    """A 3.5 s stop on the same incline is within the head pulley's grip: the rigid-body
+    force of the stop time, above the holding floor (1.2 x 50 kg/m x g x 150 m)."""
+    conv = steep_incline()
+    st = solve_steady(conv, model="din")
+    sizes = auto_sizes(conv, Scenario(stop={"mode": "brake", "time_s": 3.5}), model="din")
+    m = moving_mass_kg(conv, st)
+    v1 = 4.0 - st.te_n * 0.5 / m
+    f_stop = (m * v1 - st.te_n * 3.0) / (3.0 - 0.5 * 0.5)
+    assert f_stop > 1.2 * 50.0 * G * 150.0
+    assert sizes["brake_governed_by"] == ["stop_time"]
+    assert sizes["brake_force_kn"] == pytest.approx([f_stop / 1e3], rel=1e-9)

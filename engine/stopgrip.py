@@ -1,0 +1,282 @@
+"""What a braked pulley can pass in a brake stop (PHYSICS 5.1, capstan).
+
+A brake acts on a pulley shaft, so the belt receives the brake force only through the pulley's
+friction: ``|T_out - T_in| <= T_slack (e^(mu theta) - 1)``, ``T_slack`` the lower of the
+pulley's two tensions *during the stop*. A brake holds the belt back, so its pulley's slack
+side is the incoming one (on a head pulley the carry strand at the head), and that tension
+falls as the brake decelerates the belt.
+
+The tensions of the stop are walked like statics' running ones (:mod:`beltstudy.engine.statics`),
+with the belt as a rigid body decelerating at ``d = (Te + sum F_b) / M`` (the deceleration
+the auto force is sized for, :func:`beltstudy.engine.design.brake_force_auto`): each element
+adds its running resistance and gravity component and loses its inertia force ``m_j d``
+(``m_j`` with the idler rolls and the plain pulleys' shells), each shaft (drive pulley, braked
+pulley) takes ``f_k = F_k - m_k d`` from the belt (its brake force less what decelerates its
+own rotating parts, motor included), and the walk starts at the take-up, whose carriage holds
+the mean of its two strands at the running value (a gravity take-up's weight; a fixed
+take-up's pretension, held here as well: the loop-length change of a stop is not walked). The
+walk from the take-up to a braked pulley's incoming side crosses the strands between them, so
+the position of the take-up and of the brake set the slack side: a head brake with a tail
+take-up loses the whole carry strand's inertia force, ``T_in = T_tu + sum (R + G) - d sum m``.
+
+Everything is linear in the brake forces, so the largest force a pulley passes,
+``f = T_in (e^(mu theta) - 1) / BRAKE_GRIP_MARGIN``, is found exactly from two walks.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+from beltstudy.engine.loop import G, Loop, rotating_parts
+
+__all__ = ["BRAKE_GRIP_MARGIN", "FRONT_FACTOR", "StopWalk", "grip_limits", "grip_remedies",
+           "pulley_name"]
+
+#: Dynamic factor on the fall of a braked pulley's slack-side tension [-]. The walk above is
+#: quasi-static; the stop's fronts (the drives' trip, the brake) are suddenly applied loads,
+#: and the response of an undamped elastic system to a suddenly applied load reaches twice its
+#: static change (the dynamic load factor of a step, Biggs, *Introduction to Structural
+#: Dynamics*, 1964, ch. 2; Clough and Penzien, *Dynamics of Structures*, ch. 4). The slack side
+#: is therefore taken at ``T_run - 2 (T_run - T_stop)``: the margin kept is the whole
+#: overshoot an undamped belt could make (the belt's damping keeps the real dip above it).
+FRONT_FACTOR = 2.0
+#: Extra margin on the capstan limit itself [-]: none, the friction is the file's static one
+#: and the front factor above is the margin.
+BRAKE_GRIP_MARGIN = 1.0
+
+
+@dataclass(frozen=True, eq=False)
+class StopWalk:
+    """The tensions of a rigid-body brake stop as linear functions of the brake forces.
+
+    Attributes
+    ----------
+    loop : Loop
+    base : ndarray
+        Running resistance plus gravity component per element [N].
+    inertia : ndarray
+        Mass per element decelerating with the belt (belt, material, idler rolls, plain
+        pulley shells) [kg].
+    shaft : dict
+        Element -> reduced mass of each shaft (drive pulleys with their motors, braked
+        pulleys) [kg].
+    takeup_n : float
+        Mean tension of the take-up's two strands [N].
+    running : ndarray
+        Steady running boundary tensions [N], the level the stop's fronts start from.
+    """
+
+    loop: Loop
+    base: np.ndarray
+    inertia: np.ndarray
+    shaft: dict
+    takeup_n: float
+    running: np.ndarray
+
+    @classmethod
+    def of(cls, conv, steady) -> StopWalk:
+        """The walk of a conveyor's brake stop from its steady solution."""
+        loop = steady.loop
+        parts = rotating_parts(conv, loop)
+        inertia = loop.mass_kg.copy()
+        for node, m in parts.plain_mass.items():
+            inertia[node] += m
+        shaft = dict(parts.shaft_mass)
+        for node, i in parts.shaft_drive.items():
+            shaft[node] += parts.motor_mass[i]
+        base = np.asarray(steady.resistance_n, dtype=float) + loop.gravity_n
+        return cls(loop, base, inertia, shaft, float(steady.takeup_tension_n),
+                   np.asarray(steady.tension_n, dtype=float))
+
+    @property
+    def mass_kg(self) -> float:
+        """All moving mass at the belt line [kg]."""
+        return float(self.inertia.sum()) + float(sum(self.shaft.values()))
+
+    @property
+    def te_n(self) -> float:
+        """Resistances plus gravity, the force that decelerates the belt unbraked [N]."""
+        return float(self.base.sum())
+
+    def decel(self, forces: dict) -> float:
+        """Rigid-body deceleration with the brake forces ``{element: N}`` [m/s2]."""
+        return (self.te_n + sum(forces.values())) / self.mass_kg
+
+    def tensions(self, forces: dict, takeup_n: float | None = None) -> np.ndarray:
+        """Boundary tensions of the stop (``T[j]`` at the end of element ``j``) [N], with the
+        brake forces ``{element: N}`` at full force and the take-up at ``takeup_n``."""
+        loop = self.loop
+        d = self.decel(forces)
+        inc = self.base - self.inertia * d
+        for node in set(self.shaft) | set(forces):
+            inc[node] += forces.get(node, 0.0) - self.shaft.get(node, 0.0) * d
+        n = loop.n
+        k = loop.i_takeup
+        order = (k + np.arange(n)) % n  # from the take-up element round to the one entering it
+        out = np.empty(n)
+        out[order] = np.cumsum(inc[order])  # T[j] - T[k-1]; the walk closes: out[k-1] = 0
+        # the carriage holds the mean of the take-up's two strands: T[k-1] + T[k] = 2 T_tu
+        t_tu = self.takeup_n if takeup_n is None else takeup_n
+        return out - out[k - 1] + t_tu - 0.5 * inc[k]
+
+    def pulley(self, node: int, forces: dict, takeup_n: float | None = None
+               ) -> tuple[float, float, float]:
+        """``(T_in, T_out, f)`` at a pulley element [N]: its two tensions and the force the
+        belt passes to it against the motion (``T_out - T_in``)."""
+        t = self.tensions(forces, takeup_n)
+        t_in, t_out = float(t[node - 1]), float(t[node])
+        return t_in, t_out, t_out - t_in
+
+    def slack_n(self, node: int, forces: dict, takeup_n: float | None = None,
+                front: float = FRONT_FACTOR) -> tuple[float, float]:
+        """``(T_slack, f)`` at a pulley [N]: the lower of its two tensions in the stop, where it
+        falls below the running one lowered by ``front`` x that fall (:data:`FRONT_FACTOR`),
+        and the force it passes against the motion."""
+        t_in, t_out, f = self.pulley(node, forces, takeup_n)
+        shift = 0.0 if takeup_n is None else takeup_n - self.takeup_n
+        r_in = float(self.running[node - 1]) + shift
+        r_out = float(self.running[node]) + shift
+        low_in = t_in - (front - 1.0) * max(r_in - t_in, 0.0)
+        low_out = t_out - (front - 1.0) * max(r_out - t_out, 0.0)
+        return min(low_in, low_out), f
+
+    def room_n(self, node: int, forces: dict, *, euler: float | None = None,
+               takeup_n: float | None = None, margin: float = BRAKE_GRIP_MARGIN) -> float:
+        """What the pulley at ``node`` could pass beyond what it passes with ``forces`` [N]:
+        ``T_slack (e^(mu theta) - 1) / margin - |f|`` (negative: it slides)."""
+        e = self.loop.pulley_at(node).euler if euler is None else euler
+        low, f = self.slack_n(node, forces, takeup_n)
+        return max(low, 0.0) * (e - 1.0) / margin - abs(f)
+
+    def grip_n(self, node: int, forces: dict, margin: float = BRAKE_GRIP_MARGIN) -> float:
+        """The largest brake force at ``node`` [N] its pulley passes in the stop
+        (:meth:`room_n` >= 0), the other brakes at ``forces`` (``node``'s entry replaced):
+        bisection, the room falls as the force grows; 0 when even no brake force fits."""
+        others = {n: f for n, f in forces.items() if n != node}
+
+        def room(force: float) -> float:
+            return self.room_n(node, {**others, node: force}, margin=margin)
+
+        if room(0.0) < 0.0:
+            return 0.0
+        hi = max(self.te_n, 1e3)
+        while room(hi) >= 0.0:
+            hi *= 2.0
+            if hi > 1e12:
+                return math.inf
+        lo = 0.0
+        for _ in range(60):
+            mid = 0.5 * (lo + hi)
+            lo, hi = (mid, hi) if room(mid) >= 0.0 else (lo, mid)
+        return lo
+
+
+def grip_limits(walk: StopWalk, nodes: list[int], fixed: dict, wanted: float,
+                margin: float = BRAKE_GRIP_MARGIN) -> tuple[list[float], bool]:
+    """Forces [N] of auto brakes on ``nodes`` sharing ``wanted`` [N] evenly, each within its
+    pulley's grip beside the others and the fixed brakes ``fixed`` ``{element: N}``; a
+    brake held at its grip hands the rest to the others. Returns the forces and whether the
+    grip held any of them below its share (then their sum is below ``wanted``)."""
+    n = len(nodes)
+    force = [wanted / n] * n
+    capped = [False] * n
+    for _ in range(4 * n + 4):
+        changed = False
+        for i, node in enumerate(nodes):
+            acting = dict(fixed)
+            for j, other in enumerate(nodes):
+                if j != i:
+                    acting[other] = acting.get(other, 0.0) + force[j]
+            cap = walk.grip_n(node, acting, margin) - (acting.get(node, 0.0))
+            if force[i] > cap * (1.0 + 1e-9):
+                force[i], capped[i], changed = max(cap, 0.0), True, True
+        free = [i for i in range(n) if not capped[i]]
+        short = wanted - sum(force)
+        if free and short > 1e-6 * max(wanted, 1.0):
+            for i in free:
+                force[i] += short / len(free)
+            changed = True
+        if not changed:
+            break
+    return force, any(capped)
+
+
+def pulley_name(conv, loop: Loop, node: int) -> str:
+    """A pulley in words: ``drive N's pulley (head)``, ``the head pulley``, ``the tail
+    pulley``."""
+    p = loop.pulley_at(node)
+    if p.drive >= 0:
+        return f"drive {p.drive + 1}'s pulley ({p.position})"
+    return f"the {p.position} pulley"
+
+
+def _bisect_up(ok, lo: float, hi: float) -> float | None:
+    """The least x in [lo, hi] with ``ok(x)`` (monotone), None when ``ok(hi)`` fails."""
+    if not ok(hi):
+        return None
+    for _ in range(60):
+        mid = 0.5 * (lo + hi)
+        lo, hi = (lo, mid) if ok(mid) else (mid, hi)
+    return hi
+
+
+def grip_remedies(conv, steady, walk: StopWalk, nodes: list[int], fixed: dict,
+                  asked: list[float], sized: list[float]) -> str:
+    """What would let the brakes pass the forces ``asked`` [N] (one per auto brake on
+    ``nodes``; ``sized``: the grip-limited ones), in words: a brake on another pulley, a
+    heavier take-up (its mass or pretension), more wrap on the braked pulleys."""
+    loop = walk.loop
+    acting = dict(fixed)
+    for node, f in zip(nodes, asked):
+        acting[node] = acting.get(node, 0.0) + f
+    out = []
+    # another pulley beside the sized brakes
+    held = dict(fixed)
+    for node, f in zip(nodes, sized):
+        held[node] = held.get(node, 0.0) + f
+    short = sum(asked) - sum(sized)
+    best: tuple | str | None = None
+    for node in dict.fromkeys([loop.i_head, *loop.drive_elements, loop.i_tail]):
+        if node in nodes:
+            continue
+        p = loop.pulley_at(node)
+        name = (f"a brake on drive {p.drive + 1}'s shaft ({p.position})" if p.drive >= 0
+                else f"a brake on the {p.position} pulley")
+        extra = walk.grip_n(node, held)
+        if extra >= short:
+            out.append(f"{name} of {short / 1e3:.4g} kN beside these (its pulley passes up "
+                       f"to {extra / 1e3:.4g} kN)")
+            break
+        if best is None or extra > best[1]:
+            best = (name, extra)
+    else:
+        best = best and (f" (not by a brake on another pulley alone: {best[0]} passes at "
+                         f"most {best[1] / 1e3:.4g} kN beside these, {short / 1e3:.4g} kN "
+                         "short)")
+    # a heavier take-up: every tension rises with it
+    t0 = walk.takeup_n
+    t_need = _bisect_up(lambda t: all(walk.room_n(n, acting, takeup_n=t) >= 0.0
+                                      for n in dict.fromkeys(nodes)), t0, 100.0 * t0 + 1e6)
+    if t_need is not None:
+        if conv.takeup.type == "gravity":
+            out.append(f"a take-up of {2.0 * t_need / G:,.0f} kg (takeup.mass_kg)")
+        else:
+            out.append(f"a take-up pretension of {t_need / 1e3:.4g} kN")
+    # more wrap on each braked pulley
+    wraps = []
+    for node in dict.fromkeys(nodes):
+        p = loop.pulley_at(node)
+        low, f = walk.slack_n(node, acting)
+        if low <= 0.0:
+            wraps = []
+            break
+        e = 1.0 + abs(f) * BRAKE_GRIP_MARGIN / low
+        wraps.append(f"{math.degrees(math.log(e) / p.friction):.0f} deg on "
+                     f"{pulley_name(conv, loop, node)} (now {p.wrap_deg:g})")
+    if wraps:
+        out.append("a wrap of " + ", ".join(wraps))
+    said = "; or ".join(out) if out else "none of a heavier take-up or more wrap"
+    return said + (best if isinstance(best, str) else "")
