@@ -241,7 +241,7 @@ def _holding_grip(conv: Conveyor, steady: SteadyResult, each: list[float]) -> st
     walk = StopWalk.of(conv, steady)
     nodes, fixed = _brake_nodes(conv, steady.loop)
     acting = dict(fixed)
-    for node, f in zip(nodes, each):
+    for node, f in zip(nodes, each, strict=True):
         acting[node] = acting.get(node, 0.0) + f
     short = [n for n in dict.fromkeys(nodes) if walk.room_n(n, acting) < 0.0]
     if not short:

@@ -284,8 +284,11 @@ DESIGN_BASIS = ResultGroup("design_basis", "What set each auto size (text)", (
        "sag_at_rest or positive; given when the file gives it"),
     _f("rated_power_governed_by", "text", "the rated power: peripheral_force or "
        "running_resistance; given when the file gives it (several joined by +)"),
-    _f("brake_governed_by", "text", "the brakes: stop_time or holding; given when the file "
-       "gives them (null without brakes)"),
+    _f("brake_governed_by", "text", "the brakes: stop_time, holding, or grip (the stop time "
+       "asked needs more than the braked pulley passes in the stop: held at its grip, the "
+       "message gives the stop time it makes and what would meet the asked one, "
+       "docs/dynamics.md *Brakes within their grip*); given when the file gives them (null "
+       "without brakes)"),
 ))
 
 BOOKKEEPING = ResultGroup("bookkeeping", "Bookkeeping", (

@@ -19,8 +19,10 @@ walk from the take-up to a braked pulley's incoming side crosses the strands bet
 the position of the take-up and of the brake set the slack side: a head brake with a tail
 take-up loses the whole carry strand's inertia force, ``T_in = T_tu + sum (R + G) - d sum m``.
 
-Everything is linear in the brake forces, so the largest force a pulley passes,
-``f = T_in (e^(mu theta) - 1) / BRAKE_GRIP_MARGIN``, is found exactly from two walks.
+The stop's fronts (the drives' trip, the brake's application) are suddenly applied loads: the
+slack side is taken at the running tension less :data:`FRONT_FACTOR` x its quasi-static fall,
+and the largest force a pulley passes, ``f = T_slack (e^(mu theta) - 1)``, is found by
+bisection on the brake force (the slack side falls as the force grows).
 """
 
 from __future__ import annotations
@@ -230,12 +232,12 @@ def grip_remedies(conv, steady, walk: StopWalk, nodes: list[int], fixed: dict,
     heavier take-up (its mass or pretension), more wrap on the braked pulleys."""
     loop = walk.loop
     acting = dict(fixed)
-    for node, f in zip(nodes, asked):
+    for node, f in zip(nodes, asked, strict=True):
         acting[node] = acting.get(node, 0.0) + f
     out = []
     # another pulley beside the sized brakes
     held = dict(fixed)
-    for node, f in zip(nodes, sized):
+    for node, f in zip(nodes, sized, strict=True):
         held[node] = held.get(node, 0.0) + f
     short = sum(asked) - sum(sized)
     best: tuple | str | None = None
