@@ -47,7 +47,7 @@ from beltstudy.engine.stopgrip import StopWalk, grip_limits, grip_remedies, pull
 __all__ = ["auto_sizes", "summary_fields", "RATED_POWER_FACTOR", "HOLD_MARGIN",
            "MOTOR_INERTIA_SHARE", "moving_mass_kg", "rotating_parts", "RotatingParts",
            "pulley_reduced_mass_kg", "rated_power_kw", "brake_forces", "brake_force_auto",
-           "brake_stop_time", "GIVEN"]
+           "brake_stop_time", "brake_grip_kn", "brake_kn_within_grip", "GIVEN"]
 
 #: Installed drive power as a multiple of the steady power at the drive [-] (the engine's
 #: default of ``drives[].rated_power_kw``: steady power x 1.25, SPEC section 1).
@@ -235,6 +235,31 @@ def _within_grip(conv: Conveyor, scenario: Scenario, steady: SteadyResult, each:
     return forces, "grip", note
 
 
+def brake_grip_kn(conv: Conveyor, steady: SteadyResult) -> float | None:
+    """The largest total brake force [kN] (fixed brakes included) the braked pulleys pass in
+    a brake stop at this case, the auto brakes sharing it as :func:`brake_forces` does
+    (None without auto brakes)."""
+    if not any(b.force_kn == "auto" for b in conv.brakes):
+        return None
+    walk = StopWalk.of(conv, steady)
+    nodes, fixed = _brake_nodes(conv, steady.loop)
+    forces, _capped = grip_limits(walk, nodes, fixed, 1e3 * walk.te_n + 1e9)
+    return (sum(forces) + sum(fixed.values())) / 1e3
+
+
+def brake_kn_within_grip(conv: Conveyor, steady: SteadyResult, total_kn: float
+                         ) -> list[float]:
+    """Each brake's force [kN] (file order) when the auto brakes share ``total_kn`` less the
+    fixed ones within their pulleys' grip at this case (:func:`brake_grip_kn` at most)."""
+    walk = StopWalk.of(conv, steady)
+    nodes, fixed = _brake_nodes(conv, steady.loop)
+    wanted = max(total_kn * 1e3 - sum(fixed.values()), 0.0)
+    forces, _capped = grip_limits(walk, nodes, fixed, wanted)
+    shares = iter(forces)
+    return [next(shares) / 1e3 if b.force_kn == "auto" else float(b.force_kn)
+            for b in conv.brakes]
+
+
 def _holding_grip(conv: Conveyor, steady: SteadyResult, each: list[float]) -> str:
     """The clause a holding-set note gains when the holding force is beyond the braked
     pulleys' grip in the stop ("" when within)."""
@@ -272,8 +297,10 @@ def auto_sizes(conveyor: Conveyor, scenario: Scenario, *, model: str,
         ``takeup_mass_kg`` (gravity, else None) [kg], ``takeup_pretension_kn`` (tension per
         strand at the take-up) [kN], ``takeup_governed_by``; ``drive_rated_power_kw`` and
         ``drive_rated_power_governed_by`` (lists, one per drive, file order) [kW];
-        ``brake_force_kn`` and ``brake_governed_by`` (lists, one per brake) [kN]; ``status``
-        of the steady solve (a failed solve sizes nothing reliable).
+        ``brake_force_kn`` and ``brake_governed_by`` (lists, one per brake) [kN],
+        ``brake_note`` (why an auto brake is not the stop time's size, "" otherwise),
+        ``brake_grip_kn`` (a brake stop: the most the braked pulleys pass, None otherwise)
+        [kN]; ``status`` of the steady solve (a failed solve sizes nothing reliable).
     """
     if steady is None:
         n = None if scenario.elements == "auto" else int(scenario.elements)
@@ -297,6 +324,8 @@ def auto_sizes(conveyor: Conveyor, scenario: Scenario, *, model: str,
         "brake_force_kn": brakes,
         "brake_governed_by": brakes_gov,
         "brake_note": brake_note,
+        "brake_grip_kn": (brake_grip_kn(conveyor, steady) if scenario.stop.mode == "brake"
+                          else None),
         "status": steady.status,
     }
 

@@ -8,7 +8,9 @@ largest requirement of each size with what set it (``governed_by``) and at which
 
 Brakes: their sizing input is the stop time (:mod:`beltstudy.engine.design`). The holding size
 (no stop time) is the largest over the cases; for each stop time of ``stop_times`` the size
-for a brake stop in that time is the largest over the same cases.
+for a brake stop in that time is the largest over the same cases, held within what the braked
+pulleys pass in the stop at every case (``grip`` at the case of the least,
+:mod:`beltstudy.engine.stopgrip`).
 
 A case whose steady solve fails is skipped and named in ``failed_cases``; when every case
 fails, or a size is not finite, nothing can be sized and :class:`SizingError` says why.
@@ -23,7 +25,7 @@ from dataclasses import dataclass
 from typing import Any
 
 from beltstudy.engine.conveyor import Conveyor, Scenario, section_loads
-from beltstudy.engine.design import auto_sizes
+from beltstudy.engine.design import GIVEN, auto_sizes, brake_kn_within_grip
 from beltstudy.engine.errors import InputError
 from beltstudy.engine.friction import get_model
 from beltstudy.engine.statics import solve_steady
@@ -101,6 +103,7 @@ class _Needs:
     holding: list = dataclasses.field(default_factory=list)
     by_stop: dict = dataclasses.field(default_factory=dict)
     failures: list = dataclasses.field(default_factory=list)
+    steady: dict = dataclasses.field(default_factory=dict)  # id(case) -> its steady solution
 
 
 def _auto_fields(conveyor: Conveyor) -> tuple[bool, list[bool], bool]:
@@ -129,6 +132,7 @@ def _gather(conveyor: Conveyor, cases: Sequence[DesignCase], load: Any,
         if steady.status == "failed":
             needs.failures.append(f"{case.label()}: {steady.message}")
             continue
+        needs.steady[id(case)] = steady
         sizes = auto_sizes(conveyor, scn, model=case.model, params=params, steady=steady)
         if tu_auto:
             value = sizes["takeup_mass_kg"] if gravity else sizes["takeup_pretension_kn"]
@@ -167,8 +171,23 @@ def _largest(items: list[tuple[float, Any, DesignCase]]) -> tuple[float, Any, De
     return best
 
 
-def _brakes(items: list) -> BrakeSizes:
-    _total, sizes, case = _largest(items)
+def _brakes(items: list, conveyor: Conveyor | None = None, steady: dict | None = None
+            ) -> BrakeSizes:
+    """The largest need over the cases, held within the braked pulleys' grip at every case of
+    a brake stop: a total above the least grip (``brake_grip_kn``) is that grip, shared at
+    its case (``grip`` at that case), unless holding needs more at some case (then that
+    holding size, whose note says its pulley slides in the stop)."""
+    total, sizes, case = _largest(items)
+    grips = [(s["brake_grip_kn"], c) for _t, s, c in items if s.get("brake_grip_kn") is not None]
+    holding = [it for it in items if "holding" in it[1]["brake_governed_by"]]
+    if conveyor is not None and grips:
+        grip, at = min(grips, key=lambda g: g[0])
+        if holding and _largest(holding)[0] >= grip:  # the holding floor stays
+            _t, sizes, case = _largest(holding)
+        elif total > grip * (1.0 + 1e-9):
+            kn = brake_kn_within_grip(conveyor, steady[id(at)], grip)
+            gov = [GIVEN if b.force_kn != "auto" else "grip" for b in conveyor.brakes]
+            return BrakeSizes(tuple(kn), tuple(gov), at)
     return BrakeSizes(tuple(sizes["brake_force_kn"]), tuple(sizes["brake_governed_by"]), case)
 
 
@@ -217,7 +236,8 @@ def size_over_cases(conveyor: Conveyor, cases: Sequence[DesignCase], *, load: An
         takeup=Largest(*_largest(needs.takeup)) if tu_auto else None,
         drives=tuple(Largest(*_largest(items)) if items else None for items in needs.rated),
         brakes_holding=_brakes(needs.holding) if brake_auto else None,
-        brakes_by_stop={t: _brakes(items) for t, items in needs.by_stop.items()}
+        brakes_by_stop={t: _brakes(items, conveyor, needs.steady)
+                        for t, items in needs.by_stop.items()}
         if brake_auto else {},
         failed_cases=tuple(needs.failures),
     )

@@ -10,6 +10,7 @@ from beltstudy.engine.design import auto_sizes
 from beltstudy.engine.errors import InputError
 from beltstudy.engine.sizing import DesignCase, SizingError, size_over_cases
 from tests.conftest import hand_conveyor_dict
+from tests.engine.conftest import steep_incline
 
 BRAKED = hand_conveyor_dict(brakes=[{"position": "head", "force_kn": "auto", "delay_s": 0.5}])
 CASES = [
@@ -87,3 +88,25 @@ def test_a_load_that_does_not_fit_the_profile_is_a_sizing_error_naming_the_load(
     assert isinstance(info.value, InputError)
     assert info.value.field == "load"
     assert info.value.reason.endswith("(conveyor design belt=EP630)")
+
+
+def test_a_brake_beyond_its_grip_is_held_at_the_least_grip_over_the_cases():
+    """The 10 % incline's 3 s stop needs more than its head pulley passes at every case: the
+    design's brake is the least of the cases' grips (a force every case's pulley passes), at
+    that case, ``grip``; a 3.5 s stop is within every case's grip and stays the largest
+    need (stop_time)."""
+    conv = steep_incline()
+    sized = size_over_cases(conv, CASES, load="full", stop_times=[3.0, 3.5])
+    braked = _each(conv, CASES, stop_s=3.0)
+    grips = [s["brake_grip_kn"] for s in braked]
+    k = min(range(len(grips)), key=lambda i: grips[i])
+    assert all(s["brake_governed_by"] == ["grip"] for s in braked)
+    assert sized.brakes_by_stop[3.0].force_kn == pytest.approx((grips[k],), rel=1e-6)
+    assert sized.brakes_by_stop[3.0].governed_by == ("grip",)
+    assert sized.brakes_by_stop[3.0].case == CASES[k]
+    within = _each(conv, CASES, stop_s=3.5)
+    totals = [sum(s["brake_force_kn"]) for s in within]
+    j = _first_largest(totals)
+    assert totals[j] < min(s["brake_grip_kn"] for s in within)
+    assert sized.brakes_by_stop[3.5].force_kn == tuple(within[j]["brake_force_kn"])
+    assert sized.brakes_by_stop[3.5].governed_by == ("stop_time",)
