@@ -220,9 +220,10 @@ def _within_grip(conv: Conveyor, scenario: Scenario, steady: SteadyResult, each:
         return forces, "holding", (
             f"auto brake force {hold_n / 1e3:.4g} kN is set by holding the loaded belt at rest "
             f"({HOLD_MARGIN:g} x the net gravity pull), not by the stop time "
-            f"{scenario.stop.time_s:g} s; it is beyond the grip of {where} in the stop "
-            f"({total / 1e3:.4g} kN), which slides: a holdback to hold the belt at rest, or "
-            "a heavier take-up, would avoid it")
+            f"{scenario.stop.time_s:g} s (which needs "
+            f"{(wanted + sum(fixed.values())) / 1e3:.4g} kN); it is beyond the grip of "
+            f"{where} in the stop ({total / 1e3:.4g} kN), which slides: "
+            + _hold_fix(steady))
     t_gives = brake_stop_time(m, v, te, total, delay, ramp)
     asked = float(scenario.stop.time_s)
     where = ", ".join(dict.fromkeys(pulley_name(conv, steady.loop, n) for n in nodes))
@@ -272,8 +273,18 @@ def _holding_grip(conv: Conveyor, steady: SteadyResult, each: list[float]) -> st
     if not short:
         return ""
     where = ", ".join(pulley_name(conv, steady.loop, n) for n in short)
-    return (f"; this force is beyond the grip of {where} in the stop, which slides: a "
-            "holdback to hold the belt at rest, or a heavier take-up, would avoid it")
+    return f"; this force is beyond the grip of {where} in the stop, which slides: " + (
+        _hold_fix(steady))
+
+
+def _hold_fix(steady: SteadyResult) -> str:
+    """What lets a holding-sized brake's pulley keep its grip in the stop, in words: on an
+    incline a holdback holds the belt at rest instead; on a decline only more tension or
+    another braked pulley do."""
+    if float(steady.loop.gravity_n.sum()) > 0.0:
+        return ("a holdback to hold the belt at rest with a smaller given brake, a "
+                "heavier take-up or a brake on another pulley would avoid it")
+    return "a heavier take-up or part of the force on a brake on another pulley would avoid it"
 def auto_sizes(conveyor: Conveyor, scenario: Scenario, *, model: str,
                params: dict | object | None = None, steady: SteadyResult | None = None) -> dict:
     """The take-up, rated power and brake forces of ``conveyor`` at one operating case.

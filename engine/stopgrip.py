@@ -179,31 +179,39 @@ class StopWalk:
 def grip_limits(walk: StopWalk, nodes: list[int], fixed: dict, wanted: float,
                 margin: float = BRAKE_GRIP_MARGIN) -> tuple[list[float], bool]:
     """Forces [N] of auto brakes on ``nodes`` sharing ``wanted`` [N] evenly, each within its
-    pulley's grip beside the others and the fixed brakes ``fixed`` ``{element: N}``; a
-    brake held at its grip hands the rest to the others. Returns the forces and whether the
-    grip held any of them below its share (then their sum is below ``wanted``)."""
+    pulley's grip beside the others and the fixed brakes ``fixed`` ``{element: N}``: a brake
+    held at its grip hands the rest to the others (water-filling ``f_i = min(cap_i, L)``,
+    ``sum f = wanted``, the caps recomputed with the others' forces until they settle).
+    Returns the forces and whether the grip held any of them below the even share."""
     n = len(nodes)
     force = [wanted / n] * n
-    capped = [False] * n
-    for _ in range(4 * n + 4):
-        changed = False
+    caps = [math.inf] * n
+    for _ in range(50):
         for i, node in enumerate(nodes):
             acting = dict(fixed)
             for j, other in enumerate(nodes):
                 if j != i:
                     acting[other] = acting.get(other, 0.0) + force[j]
-            cap = walk.grip_n(node, acting, margin) - (acting.get(node, 0.0))
-            if force[i] > cap * (1.0 + 1e-9):
-                force[i], capped[i], changed = max(cap, 0.0), True, True
-        free = [i for i in range(n) if not capped[i]]
-        short = wanted - sum(force)
-        if free and short > 1e-6 * max(wanted, 1.0):
-            for i in free:
-                force[i] += short / len(free)
-            changed = True
-        if not changed:
+            caps[i] = max(walk.grip_n(node, acting, margin) - acting.get(node, 0.0), 0.0)
+        new = _water_fill(caps, wanted)
+        moved = max(abs(a - b) for a, b in zip(new, force, strict=True))
+        force = new
+        if moved <= 1e-6 * max(wanted, 1.0):
             break
-    return force, any(capped)
+    return force, any(f < wanted / n * (1.0 - 1e-9) for f in force)
+
+
+def _water_fill(caps: list[float], wanted: float) -> list[float]:
+    """``min(cap_i, L)`` with the level L that sums to ``wanted`` (every cap when they sum to
+    less)."""
+    finite = [c for c in caps if math.isfinite(c)]
+    if len(finite) == len(caps) and sum(finite) <= wanted:
+        return list(caps)
+    lo, hi = 0.0, wanted
+    for _ in range(100):
+        mid = 0.5 * (lo + hi)
+        lo, hi = (mid, hi) if sum(min(c, mid) for c in caps) < wanted else (lo, mid)
+    return [min(c, hi) for c in caps]
 
 
 def pulley_name(conv, loop: Loop, node: int) -> str:

@@ -156,3 +156,39 @@ def test_auto_brake_within_its_grip_is_set_by_the_stop_time():
     assert f_stop > 1.2 * 50.0 * G * 150.0
     assert sizes["brake_governed_by"] == ["stop_time"]
     assert sizes["brake_force_kn"] == pytest.approx([f_stop / 1e3], rel=1e-9)
+
+
+def test_a_holding_force_beyond_the_grip_is_said():
+    """On the 12 t take-up the head pulley passes about 11 kN in the stop, below the holding
+    floor (1.2 x 50 kg/m x g x 150 m = 88.3 kN): holding sets the brake, and the note says the
+    pulley slides in the stop and what would avoid it (an incline: a holdback)."""
+    conv = steep_incline(takeup={"type": "gravity", "position": "tail", "mass_kg": 12000})
+    sizes = auto_sizes(conv, Scenario(stop={"mode": "brake", "time_s": 3.0}), model="din")
+    assert sizes["brake_governed_by"] == ["holding"]
+    assert sizes["brake_force_kn"] == pytest.approx([1.2 * 50.0 * G * 150.0 / 1e3], rel=1e-9)
+    note = sizes["brake_note"]
+    assert "beyond the grip of drive 1's pulley (head) in the stop" in note
+    assert "holdback" in note
+    assert sizes["brake_grip_kn"] < 0.5 * sizes["brake_force_kn"][0]
+
+
+def test_two_auto_brakes_share_within_each_pulleys_grip():
+    """A head and a tail auto brake: each passes what its own pulley allows beside the other
+    (the capstan room of each >= 0), and together the asked force of a stop within both."""
+    from beltstudy.engine.stopgrip import StopWalk, grip_limits
+
+    conv = steep_incline(brakes=[{"position": "head", "force_kn": "auto", "delay_s": 0.5,
+                                  "ramp_s": 0.5},
+                                 {"position": "tail", "force_kn": "auto", "delay_s": 0.5,
+                                  "ramp_s": 0.5}])
+    st = solve_steady(conv, model="din")
+    walk = StopWalk.of(conv, st)
+    nodes = [st.loop.i_head, st.loop.i_tail]
+    forces, capped = grip_limits(walk, nodes, {}, 400e3)  # far beyond both
+    assert capped
+    acting = dict(zip(nodes, forces, strict=True))
+    for node in nodes:
+        assert walk.room_n(node, acting) == pytest.approx(0.0, abs=1e-3 * max(forces))
+    sizes = auto_sizes(conv, Scenario(stop={"mode": "brake", "time_s": 3.0}), model="din")
+    assert sizes["brake_governed_by"] == ["stop_time", "stop_time"]
+    assert sum(sizes["brake_force_kn"]) < sizes["brake_grip_kn"]
