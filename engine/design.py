@@ -214,7 +214,7 @@ def _within_grip(conv: Conveyor, scenario: Scenario, steady: SteadyResult, each:
         return each, "stop_time", ""
     total = sum(forces) + sum(fixed.values())
     m, v, te, delay, ramp = rigid
-    if total < hold_n:  # the holding floor stays; the pulley then slides in the stop
+    if total < hold_n:  # the holding floor stays; the pulley may slide in the stop
         forces = [f + (hold_n - total) / len(forces) for f in forces]
         where = ", ".join(dict.fromkeys(pulley_name(conv, steady.loop, n) for n in nodes))
         return forces, "holding", (
@@ -222,7 +222,8 @@ def _within_grip(conv: Conveyor, scenario: Scenario, steady: SteadyResult, each:
             f"({HOLD_MARGIN:g} x the net gravity pull), not by the stop time "
             f"{scenario.stop.time_s:g} s (which needs "
             f"{(wanted + sum(fixed.values())) / 1e3:.4g} kN); it is beyond the grip of "
-            f"{where} in the stop ({total / 1e3:.4g} kN), which slides: "
+            f"{where} in the stop ({total / 1e3:.4g} kN with the fall of its slack side "
+            "doubled, the undamped bound), which may slide (the run's slip check says): "
             + _hold_fix(steady))
     t_gives = brake_stop_time(m, v, te, total, delay, ramp)
     asked = float(scenario.stop.time_s)
@@ -273,8 +274,10 @@ def _holding_grip(conv: Conveyor, steady: SteadyResult, each: list[float]) -> st
     if not short:
         return ""
     where = ", ".join(pulley_name(conv, steady.loop, n) for n in short)
-    return f"; this force is beyond the grip of {where} in the stop, which slides: " + (
-        _hold_fix(steady))
+    grip = brake_grip_kn(conv, steady)
+    return (f"; this force is beyond the grip of {where} in the stop ({grip:.4g} kN with the "
+            "fall of its slack side doubled, the undamped bound), which may slide (the run's "
+            "slip check says): " + _hold_fix(steady))
 
 
 def _hold_fix(steady: SteadyResult) -> str:
