@@ -231,8 +231,10 @@ def _within_grip(conv: Conveyor, scenario: Scenario, steady: SteadyResult, each:
     note = (f"auto brake force {total / 1e3:.4g} kN is set by the grip of {where} in the "
             f"stop (the capstan limit at the slack-side tension of the stop, its fall "
             f"doubled for the stop's fronts), not by the stop time {asked:g} s (which needs "
-            f"{(wanted + sum(fixed.values())) / 1e3:.4g} kN): the rigid-body brake stop then "
-            f"takes about {t_gives:.3g} s; the stop time {asked:g} s would be met by "
+            f"{(wanted + sum(fixed.values())) / 1e3:.4g} kN): "
+            + (f"the rigid-body brake stop then takes about {t_gives:.3g} s"
+               if math.isfinite(t_gives) else "the belt does not stop on it")
+            + f"; the stop time {asked:g} s would be met by "
             + grip_remedies(conv, steady, walk, nodes, fixed, each, forces))
     return forces, "grip", note
 
@@ -245,7 +247,7 @@ def brake_grip_kn(conv: Conveyor, steady: SteadyResult) -> float | None:
         return None
     walk = StopWalk.of(conv, steady)
     nodes, fixed = _brake_nodes(conv, steady.loop)
-    forces, _capped = grip_limits(walk, nodes, fixed, 1e3 * walk.te_n + 1e9)
+    forces, _capped = grip_limits(walk, nodes, fixed, 1e12)  # beyond any pulley's grip
     return (sum(forces) + sum(fixed.values())) / 1e3
 
 
