@@ -192,3 +192,16 @@ def test_two_auto_brakes_share_within_each_pulleys_grip():
     sizes = auto_sizes(conv, Scenario(stop={"mode": "brake", "time_s": 3.0}), model="din")
     assert sizes["brake_governed_by"] == ["stop_time", "stop_time"]
     assert sum(sizes["brake_force_kn"]) < sizes["brake_grip_kn"]
+
+
+def test_a_shaft_brake_behind_a_drive_acts_through_its_pulley():
+    """A brake on the head drive's shaft (``drive: 1``) passes through the same pulley as a
+    head brake (the head drive's pulley is the first head pulley): the same grip, the same
+    force, named by that pulley."""
+    scn = Scenario(stop={"mode": "brake", "time_s": 3.0})
+    head = auto_sizes(steep_incline(), scn, model="din")
+    shaft = auto_sizes(steep_incline(brakes=[{"drive": 1, "force_kn": "auto", "delay_s": 0.5,
+                                              "ramp_s": 0.5}]), scn, model="din")
+    assert shaft["brake_force_kn"] == pytest.approx(head["brake_force_kn"], rel=1e-12)
+    assert shaft["brake_governed_by"] == ["grip"]
+    assert "drive 1's pulley (head)" in shaft["brake_note"]
