@@ -65,6 +65,9 @@ class RunResult:
         final state).
     """
 
+    #: The error bars when the run was checked (:func:`beltstudy.engine.accuracy.check_run`).
+    accuracy = None
+
     def __init__(self, summary: dict, timeseries=_DERIVED, profile=_DERIVED, surface=_DERIVED,
                  steady: SteadyResult | None = None, transient: TransientResult | None = None):
         self.summary = summary

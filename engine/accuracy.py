@@ -1,0 +1,331 @@
+"""Error bars of a transient run's deciding figures, by systematic mesh refinement.
+
+The practice of code verification (Roache 1994, "Perspective: a method for uniform reporting
+of grid refinement studies", J. Fluids Eng. 116; ASME V&V 20-2009, section 2-4; Celik et al.
+2008, "Procedure for estimation and reporting of uncertainty due to discretization in CFD
+applications", J. Fluids Eng. 130, 078001): the run is repeated on a coarser and a finer mesh
+(ratio :data:`RATIO`, ``n/2, n, 2n`` elements with ``n`` the run's own), the automatic step
+following the mesh so the Courant number stays (a fixed ``dt_s`` is scaled with it). For
+each deciding figure ``f`` (``f3, f2, f1`` on the coarse, the run's and the fine mesh):
+
+- ``e32 = f3 - f2`` and ``e21 = f2 - f1`` of one sign: the observed order
+  ``p = ln(e32 / e21) / ln r`` (Celik's fixed point for unequal ratios), the Richardson
+  estimate ``f1 + (f1 - f2) / (r^p - 1)`` (``<figure>_converged``). With ``p`` in
+  [:data:`P_MIN`, :data:`P_MAX`] (the asymptotic range of this scheme: ``sqrt(dx)`` for an
+  extreme read behind a smeared front, PHYSICS 5.2, up to the second order of the undamped
+  leapfrog-equivalent update) the bar of the run's figure ``f2`` is the grid convergence
+  index of the coarser of the two meshes, ``Fs |f2 - f1| r^p / (r^p - 1)`` with
+  ``Fs = 1.25`` (method ``richardson``); outside it, or with two meshes only, ``p`` is
+  assumed (:data:`P_ASSUMED`, the slowest rate of PHYSICS 5.2) and ``Fs = 3`` (method
+  ``gci2``).
+- differences of opposite signs (or a zero difference next to a non-zero one): the figure
+  is not in the asymptotic range; the bar is the spread, ``Fs`` x the largest distance of
+  the other meshes' values from ``f2`` (method ``spread``), with no converged estimate.
+- all three equal: no bar (method ``unchanged``).
+
+The bar is of the figure the run reports, at the run's own mesh, in its unit
+(``<figure>_err``); it is meant to contain the value a mesh 4 x as fine (and a quarter of the
+step) gives, which ``benchmarks/check_error_bars.py`` checks on the example conveyors.
+
+A verdict whose figure lies within its bar of the limit (slack, sag, slip margin, transient
+safety factor) is *marginal* (PHYSICS 5.2): :func:`marginal_verdicts` says so, with the
+figure, the limit and the error, in the run's message.
+"""
+
+from __future__ import annotations
+
+import math
+import re
+from dataclasses import dataclass, field
+
+from beltstudy.engine.conveyor import Conveyor, InputError, Scenario
+from beltstudy.engine.dynamics import DynamicsOptions
+from beltstudy.engine.results import DECIDING
+
+__all__ = [
+    "RATIO", "FS_THREE", "FS_TWO", "FS_SPREAD", "P_MIN", "P_MAX", "P_ASSUMED",
+    "DECIDING", "FigureError", "Accuracy", "deciding_figures", "figure_error",
+    "error_bars", "marginal_verdicts", "check_run",
+]
+
+#: Refinement ratio of the meshes (Roache: 2 is usual; at least 1.3).
+RATIO = 2
+#: Safety factors of the grid convergence index (Roache 1994): three meshes with an observed
+#: order in the asymptotic range; two meshes, or an assumed order.
+FS_THREE = 1.25
+FS_TWO = 3.0
+#: Safety factor on the spread of a figure outside the asymptotic range (as three meshes).
+FS_SPREAD = 1.25
+#: Asymptotic range of the observed order: an extreme behind a front converges as sqrt(dx)
+#: (PHYSICS 5.2); the undamped update is second order.
+P_MIN = 0.5
+P_MAX = 2.0
+#: The order assumed where it is not observed: the slowest of PHYSICS 5.2.
+P_ASSUMED = 0.5
+#: Fewest elements of a mesh the refinement uses (the transient model's own floor is 8).
+ELEMENTS_MIN = 8
+
+_DRIVE = re.compile(r"^drive(\d+)_(.+)$")
+
+
+def deciding_figures(summary: dict) -> list[str]:
+    """The deciding figures ``summary`` holds as finite numbers, in :data:`DECIDING` order."""
+    names = []
+    for pattern in DECIDING:
+        if "{i}" in pattern:
+            tail = pattern.split("_", 1)[1]
+            keys = sorted((k for k in summary if (m := _DRIVE.match(k)) and m.group(2) == tail),
+                          key=lambda k: int(_DRIVE.match(k).group(1)))
+        else:
+            keys = [pattern]
+        names += [k for k in keys if _finite(summary.get(k))]
+    return names
+
+
+def _finite(x) -> bool:
+    return isinstance(x, int | float) and not isinstance(x, bool) and math.isfinite(x)
+
+
+@dataclass(frozen=True)
+class FigureError:
+    """The error bar of one figure.
+
+    name : the figure (a result name)
+    value : the figure at the run's own mesh
+    err : the bar, same unit: the value at a finer mesh is expected in value +- err
+    converged : the Richardson estimate (None where not extrapolated)
+    method : ``richardson`` (three meshes, observed order, Fs 1.25), ``gci2`` (assumed order,
+        Fs 3), ``spread`` (not in the asymptotic range) or ``unchanged``
+    order : the observed order p (None where not observed)
+    values : the figure on each mesh, coarse to fine (None where a mesh gave none)
+    """
+
+    name: str
+    value: float
+    err: float
+    converged: float | None
+    method: str
+    order: float | None
+    values: tuple
+
+
+def _order(e32: float, e21: float, r21: float, r32: float) -> float:
+    """Observed order from differences of one sign, meshes in ratios r21 (fine / run) and
+    r32 (run / coarse) (Celik et al. 2008, Eq. 3, fixed point; exact for r21 == r32)."""
+    ratio = e32 / e21
+    p = math.log(ratio) / math.log(r21)
+    if abs(r21 - r32) < 1e-9:
+        return p
+    for _ in range(50):
+        q = math.log((r21 ** p - 1.0) / (r32 ** p - 1.0)) if p > 0 else 0.0
+        p_new = (math.log(ratio) + q) / math.log(r21)
+        if abs(p_new - p) < 1e-10:
+            return p_new
+        p = p_new
+    return p
+
+
+def figure_error(name: str, values: tuple, elements: tuple[int, int, int]) -> FigureError | None:
+    """The bar of one figure from its ``values`` on three meshes of ``elements`` (coarse, the
+    run's, fine; a value may be None where that mesh gave none). None when the run's own
+    value is missing."""
+    f3, f2, f1 = values
+    n3, n2, n1 = elements
+    if not _finite(f2):
+        return None
+    have3, have1 = _finite(f3), _finite(f1)
+    tiny = 1e-12 * max(1.0, abs(f2))
+
+    def gci2(fa: float, fb: float, r: float) -> FigureError:
+        """Two meshes, assumed order, Fs 3: ``fa`` the coarser, ``fb`` the finer value."""
+        rp = r ** P_ASSUMED - 1.0
+        conv = fb + (fb - fa) / rp
+        return FigureError(name, f2, FS_TWO * abs(f2 - conv), conv, "gci2", None, values)
+
+    if have3 and have1:
+        e32, e21 = f3 - f2, f2 - f1
+        if abs(e32) <= tiny and abs(e21) <= tiny:
+            return FigureError(name, f2, 0.0, f2, "unchanged", None, values)
+        if abs(e32) <= tiny or abs(e21) <= tiny or (e32 > 0) != (e21 > 0):
+            spread = max(abs(e32), abs(e21))
+            return FigureError(name, f2, FS_SPREAD * spread, None, "spread", None, values)
+        r21, r32 = n1 / n2, n2 / n3
+        p = _order(e32, e21, r21, r32)
+        if P_MIN <= p <= P_MAX:
+            conv = f1 + (f1 - f2) / (r21 ** p - 1.0)
+            return FigureError(name, f2, FS_THREE * abs(f2 - conv), conv, "richardson", p,
+                               values)
+        return gci2(f2, f1, r21)
+    if have1:
+        if abs(f2 - f1) <= tiny:
+            return FigureError(name, f2, 0.0, f2, "unchanged", None, values)
+        return gci2(f2, f1, n1 / n2)
+    if have3:
+        if abs(f3 - f2) <= tiny:
+            return FigureError(name, f2, 0.0, f2, "unchanged", None, values)
+        return gci2(f3, f2, n2 / n3)
+    return FigureError(name, f2, math.nan, None, "none", None, values)
+
+
+@dataclass
+class Accuracy:
+    """The error bars of a run.
+
+    elements : the meshes, coarse to fine (the run's in the middle)
+    figures : the bar of each deciding figure, by name
+    marginal : the marginal verdicts in words (``marginal: ...``)
+    notes : meshes that could not be run, and why
+    """
+
+    elements: tuple
+    figures: dict = field(default_factory=dict)
+    marginal: list = field(default_factory=list)
+    notes: list = field(default_factory=list)
+
+    def fields(self) -> dict:
+        """``<figure>_err`` and ``<figure>_converged`` of every figure, ``accuracy_elements``
+        and ``accuracy_methods`` (the result fields of :data:`beltstudy.engine.results.ACCURACY`)."""
+        out: dict = {"accuracy_elements": "/".join(str(n) for n in self.elements),
+                     "accuracy_methods": self.methods()}
+        for name, fe in self.figures.items():
+            out[f"{name}_err"] = None if math.isnan(fe.err) else fe.err
+            out[f"{name}_converged"] = fe.converged
+        return out
+
+    def methods(self) -> str:
+        """Each figure's method, grouped: ``richardson: a (p 0.8), b (p 1.1); spread: c``."""
+        groups: dict[str, list[str]] = {}
+        for name, fe in self.figures.items():
+            words = name if fe.order is None else f"{name} (p {fe.order:.2g})"
+            groups.setdefault(fe.method, []).append(words)
+        return "; ".join(f"{m}: {', '.join(v)}" for m, v in groups.items())
+
+
+def _mesh_scenario(scenario: Scenario, n_run: int, n: int) -> Scenario:
+    """The scenario on ``n`` elements; a fixed step scaled with the mesh (same Courant
+    number), the automatic one following it by itself."""
+    update: dict = {"elements": int(n)}
+    if scenario.dt_s != "auto":
+        update["dt_s"] = float(scenario.dt_s) * n_run / n
+    return scenario.model_copy(update=update)
+
+
+def error_bars(conveyor: Conveyor, scenario: Scenario, summary: dict, *, model: str,
+               params=None, options: DynamicsOptions | None = None,
+               safety_factor_min: float | None = None) -> Accuracy:
+    """The error bars of the run whose summary is ``summary`` (``run_one`` of ``conveyor``,
+    ``scenario``, ``model``, ``params``, ``options``): reruns on ``n / RATIO`` and
+    ``n x RATIO`` elements, ``n`` the run's ``elements_used``.
+
+    ``safety_factor_min`` is the transient safety factor limit (for the marginal verdict;
+    :func:`beltstudy.engine.run.transient_safety_min`).
+    """
+    from beltstudy.engine.run import run_one
+
+    n = int(summary["elements_used"])
+    meshes = (max(ELEMENTS_MIN, n // RATIO), n, n * RATIO)
+    names = deciding_figures(summary)
+    runs: list[dict | None] = []
+    acc = Accuracy(elements=meshes)
+    for m in meshes:
+        if m == n:
+            runs.append(summary)
+            continue
+        if m == meshes[0] and m >= n:
+            runs.append(None)
+            acc.notes.append(f"no coarser mesh than {n} elements")
+            continue
+        try:
+            res = run_one(conveyor, _mesh_scenario(scenario, n, m), model=model, params=params,
+                          options=options)
+        except InputError as exc:
+            runs.append(None)
+            acc.notes.append(f"{m} elements: {exc}")
+            continue
+        if res.summary.get("status") == "failed":
+            runs.append(None)
+            acc.notes.append(f"{m} elements: {res.summary.get('message')}")
+            continue
+        runs.append(res.summary)
+    # the mesh a run used (the loop's cut may add an element or two to the asked count)
+    used = tuple(int(s["elements_used"]) if s is not None and s.get("elements_used") else m
+                 for s, m in zip(runs, meshes, strict=True))
+    acc.elements = used
+    for name in names:
+        vals = tuple(None if s is None else s.get(name) for s in runs)
+        fe = figure_error(name, vals, used)
+        if fe is not None:
+            acc.figures[name] = fe
+    acc.marginal = marginal_verdicts(summary, acc.figures, conveyor=conveyor,
+                                     safety_factor_min=safety_factor_min)
+    return acc
+
+
+def _marginal(fe: FigureError | None, limit: float, unit: str) -> str | None:
+    if fe is None or not math.isfinite(fe.err) or fe.err <= 0.0:
+        return None
+    if abs(fe.value - limit) > fe.err:
+        return None
+    return (f"marginal: {fe.name} {fe.value:.4g} against limit {limit:g} +- {fe.err:.3g}"
+            f"{(' ' + unit) if unit else ''} (the verdict may flip with the mesh)")
+
+
+def marginal_verdicts(summary: dict, figures: dict, *, conveyor: Conveyor | None = None,
+                      safety_factor_min: float | None = None) -> list[str]:
+    """The verdicts whose figure lies within its error bar of the limit (PHYSICS 5.2):
+
+    - slack: a belt that went slack by less than the error of ``slack_max_m`` (limit 0 m),
+      or one that did not by less than the error of its lowest tension ``t_min_dyn_kn``
+      (limit 0 kN);
+    - sag: ``sag_max_dyn_pct`` against each strand's limit (``conveyor.sag_limit_pct``);
+    - slip: ``slip_margin_min_dyn`` against 1;
+    - safety factor: ``safety_factor_dyn`` against ``safety_factor_min``.
+    """
+    out = []
+    slack = (summary.get("slack_max_m") or 0.0) > 0.0
+    words = (_marginal(figures.get("slack_max_m"), 0.0, "m") if slack
+             else _marginal(figures.get("t_min_dyn_kn"), 0.0, "kN"))
+    if words:
+        out.append(words)
+    if conveyor is not None:
+        lim = conveyor.sag_limit_pct
+        for limit in sorted({float(lim.carry), float(lim.return_)}):
+            words = _marginal(figures.get("sag_max_dyn_pct"), limit, "%")
+            if words:
+                out.append(words)
+    words = _marginal(figures.get("slip_margin_min_dyn"), 1.0, "")
+    if words:
+        out.append(words)
+    if safety_factor_min is not None:
+        words = _marginal(figures.get("safety_factor_dyn"), float(safety_factor_min), "")
+        if words:
+            out.append(words)
+    return out
+
+
+def check_run(conveyor: Conveyor, scenario: Scenario, result, *, model: str, params=None,
+              options: DynamicsOptions | None = None) -> Accuracy | None:
+    """Error bars of a :class:`~beltstudy.engine.run.RunResult` and its marginal verdicts,
+    written into it: the :data:`~beltstudy.engine.results.ACCURACY` fields into its summary,
+    the marginal verdicts appended to its message (a run ``ok`` before becomes
+    ``warning``). Returns the :class:`Accuracy`, or None for a run without a transient (or a
+    failed one)."""
+    from beltstudy.engine.results import check_summary
+    from beltstudy.engine.run import transient_safety_min
+
+    s = result.summary
+    if result.transient is None or s.get("status") == "failed" or not s.get("elements_used"):
+        return None
+    sf_min = None
+    if result.steady is not None:
+        sf_min = transient_safety_min(conveyor, result.steady.loop.belt.kind)
+    acc = error_bars(conveyor, scenario, s, model=model, params=params, options=options,
+                     safety_factor_min=sf_min)
+    s.update(acc.fields())
+    result.accuracy = acc
+    if acc.marginal:
+        s["message"] = "; ".join(m for m in (s.get("message"), *acc.marginal) if m)
+        if s.get("status") == "ok":
+            s["status"] = "warning"
+    check_summary(s)
+    return acc
