@@ -104,7 +104,8 @@ def _summary(res) -> dict:
 def run_case(path: Path, stop: str, args, cache: Cache, log) -> list[dict] | None:
     """The figures of one conveyor and stop: per figure its bar and the 4n value."""
     from beltstudy.engine import load_conveyor, parse_scenario
-    from beltstudy.engine.accuracy import ELEMENTS_MIN, RATIO, deciding_figures, figure_error
+    from beltstudy.engine.accuracy import ELEMENTS_MIN, RATIO, bars
+    from beltstudy.engine.dynamics import DynamicsOptions
     from beltstudy.engine.run import run_one
 
     text = path.read_text()
@@ -144,11 +145,9 @@ def run_case(path: Path, stop: str, args, cache: Cache, log) -> list[dict] | Non
     used = tuple(int(s["elements_used"]) if s else m
                  for s, m in ((coarse, asked[0]), (base, n), (fine, asked[1])))
     out = []
-    for name in deciding_figures(base):
-        fe = figure_error(name, tuple(None if s is None else s.get(name)
-                                      for s in (coarse, base, fine)), used)
+    for name, fe in bars([coarse, base, fine], used, DynamicsOptions().resistance_rtol).items():
         v4 = ref.get(name)
-        if fe is None or not isinstance(v4, int | float) or not math.isfinite(v4):
+        if not isinstance(v4, int | float) or not math.isfinite(v4):
             continue
         miss = abs(v4 - fe.value) - fe.err
         holds = miss <= REL_SLACK * max(1.0, abs(v4))

@@ -44,7 +44,8 @@ from beltstudy.engine.results import DECIDING
 
 __all__ = [
     "RATIO", "FS_THREE", "FS_TWO", "FS_SPREAD", "P_MIN", "P_MAX", "P_ASSUMED",
-    "DECIDING", "FigureError", "Accuracy", "deciding_figures", "figure_error",
+    "DECIDING", "FigureError", "Accuracy", "deciding_figures", "figure_error", "resolution",
+    "bars",
     "error_bars", "marginal_verdicts", "check_run",
 ]
 
@@ -54,8 +55,9 @@ RATIO = 2
 #: order in the asymptotic range; two meshes, or an assumed order.
 FS_THREE = 1.25
 FS_TWO = 3.0
-#: Safety factor on the spread of a figure outside the asymptotic range (as three meshes).
-FS_SPREAD = 1.25
+#: Safety factor on the spread of a figure outside the asymptotic range: its order is not
+#: established, which is Roache's case for Fs = 3.
+FS_SPREAD = 3.0
 #: Asymptotic range of the observed order: an extreme behind a front converges as sqrt(dx)
 #: (PHYSICS 5.2); the undamped update is second order.
 P_MIN = 0.5
@@ -125,10 +127,45 @@ def _order(e32: float, e21: float, r21: float, r32: float) -> float:
     return p
 
 
-def figure_error(name: str, values: tuple, elements: tuple[int, int, int]) -> FigureError | None:
+def figure_error(name: str, values: tuple, elements: tuple[int, int, int],
+                 floor: float = 0.0) -> FigureError | None:
     """The bar of one figure from its ``values`` on three meshes of ``elements`` (coarse, the
-    run's, fine; a value may be None where that mesh gave none). None when the run's own
-    value is missing."""
+    run's, fine; a value may be None where that mesh gave none), at least ``floor`` (the
+    run's resolution of that figure, :func:`resolution`). None when the run's own value is
+    missing."""
+    fe = _figure_error(name, values, elements)
+    if fe is not None and fe.err < floor:
+        fe = FigureError(fe.name, fe.value, float(floor), fe.converged, fe.method, fe.order,
+                         fe.values)
+    return fe
+
+
+def resolution(name: str, summary: dict, rtol: float) -> float:
+    """What a run resolves of a figure, the floor of its bar: a time is read at a step
+    (``dt_used_s``); any other figure carries the relative accuracy ``rtol`` of the
+    resistance law between its exact evaluations (``DynamicsOptions.resistance_rtol``)."""
+    value = summary.get(name)
+    if not _finite(value):
+        return 0.0
+    if name.endswith("_time_s") or name == "stop_time_s":
+        return float(summary.get("dt_used_s") or 0.0)
+    return rtol * abs(float(value))
+
+
+def bars(runs: list, elements: tuple, rtol: float) -> dict:
+    """The bar of every deciding figure of the run ``runs[1]`` from its summaries on three
+    meshes (coarse, the run's, fine; None for a mesh that gave none) of ``elements``."""
+    out = {}
+    for name in deciding_figures(runs[1]):
+        vals = tuple(None if s is None else s.get(name) for s in runs)
+        fe = figure_error(name, vals, elements, resolution(name, runs[1], rtol))
+        if fe is not None:
+            out[name] = fe
+    return out
+
+
+def _figure_error(name: str, values: tuple, elements: tuple[int, int, int]
+                  ) -> FigureError | None:
     f3, f2, f1 = values
     n3, n2, n1 = elements
     if not _finite(f2):
@@ -155,6 +192,9 @@ def figure_error(name: str, values: tuple, elements: tuple[int, int, int]) -> Fi
             conv = f1 + (f1 - f2) / (r21 ** p - 1.0)
             return FigureError(name, f2, FS_THREE * abs(f2 - conv), conv, "richardson", p,
                                values)
+        if p > P_MAX:  # shrinking faster than the scheme can: the last difference is luck
+            spread = max(abs(e32), abs(e21))
+            return FigureError(name, f2, FS_SPREAD * spread, None, "spread", None, values)
         return gci2(f2, f1, r21)
     if have1:
         if abs(f2 - f1) <= tiny:
@@ -224,7 +264,6 @@ def error_bars(conveyor: Conveyor, scenario: Scenario, summary: dict, *, model: 
 
     n = int(summary["elements_used"])
     meshes = (max(ELEMENTS_MIN, n // RATIO), n, n * RATIO)
-    names = deciding_figures(summary)
     runs: list[dict | None] = []
     acc = Accuracy(elements=meshes)
     for m in meshes:
@@ -251,11 +290,7 @@ def error_bars(conveyor: Conveyor, scenario: Scenario, summary: dict, *, model: 
     used = tuple(int(s["elements_used"]) if s is not None and s.get("elements_used") else m
                  for s, m in zip(runs, meshes, strict=True))
     acc.elements = used
-    for name in names:
-        vals = tuple(None if s is None else s.get(name) for s in runs)
-        fe = figure_error(name, vals, used)
-        if fe is not None:
-            acc.figures[name] = fe
+    acc.figures = bars(runs, used, (options or DynamicsOptions()).resistance_rtol)
     acc.marginal = marginal_verdicts(summary, acc.figures, conveyor=conveyor,
                                      safety_factor_min=safety_factor_min)
     return acc

@@ -1,0 +1,95 @@
+"""Error bars by mesh refinement (beltstudy.engine.accuracy): the observed order, the
+Richardson estimate and the grid convergence index against hand calculations on sequences
+of known order (Roache 1994), the spread of a figure outside the asymptotic range, the
+marginal verdicts, and a run close to slack named marginal."""
+
+from __future__ import annotations
+
+import math
+
+import pytest
+
+from beltstudy.engine import accuracy as A
+
+
+def _seq(f_inf: float, c: float, p: float, meshes=(50, 100, 200, 400)) -> tuple:
+    """f(n) = f_inf + c n^-p: a figure converging at order p."""
+    return tuple(f_inf + c * n ** -p for n in meshes)
+
+
+def test_richardson_on_a_first_order_sequence():
+    f3, f2, f1, f4 = _seq(100.0, 500.0, 1.0)  # 110, 105, 102.5; 101.25 at 4n
+    fe = A.figure_error("t_max_dyn_kn", (f3, f2, f1), (50, 100, 200))
+    assert fe.method == "richardson"
+    assert fe.order == pytest.approx(1.0, abs=1e-12)  # ln(5 / 2.5) / ln 2
+    assert fe.converged == pytest.approx(100.0, abs=1e-9)  # 102.5 + (102.5 - 105) / (2 - 1)
+    assert fe.err == pytest.approx(1.25 * 5.0, abs=1e-9)  # Fs |f2 - f_inf|
+    assert abs(f4 - fe.value) <= fe.err  # the bar holds the 4n value (3.75 of 6.25)
+
+
+def test_order_below_the_asymptotic_range_uses_the_assumed_order_and_fs_3():
+    f3, f2, f1, f4 = _seq(20.0, 40.0, 0.3)
+    fe = A.figure_error("t_min_stop_kn", (f3, f2, f1), (50, 100, 200))
+    assert fe.method == "gci2" and fe.order is None
+    rp = 2.0 ** A.P_ASSUMED - 1.0
+    conv = f1 + (f1 - f2) / rp
+    assert fe.converged == pytest.approx(conv, rel=1e-12)
+    assert fe.err == pytest.approx(3.0 * abs(f2 - conv), rel=1e-12)
+    assert abs(f4 - f2) <= fe.err
+
+
+def test_unequal_ratios_give_the_order_by_celik_s_fixed_point():
+    meshes = (21, 42, 86)
+    f3, f2, f1 = _seq(7.0, 30.0, 1.5, meshes[:3] + (1,))[:3]
+    fe = A.figure_error("stop_time_s", (f3, f2, f1), meshes)
+    assert fe.order == pytest.approx(1.5, abs=1e-6)
+    assert fe.converged == pytest.approx(7.0, abs=1e-6)
+
+
+def test_differences_of_opposite_sign_give_the_spread():
+    fe = A.figure_error("slip_margin_min_dyn", (1.30, 1.20, 1.26), (50, 100, 200))
+    assert fe.method == "spread" and fe.converged is None and fe.order is None
+    assert fe.err == pytest.approx(1.25 * 0.10)
+
+
+def test_unchanged_and_missing_meshes():
+    fe = A.figure_error("slack_max_m", (0.0, 0.0, 0.0), (50, 100, 200))
+    assert fe.method == "unchanged" and fe.err == 0.0
+    # the fine mesh missing: two meshes, the run's the finer, assumed order, Fs 3
+    fe = A.figure_error("t_max_dyn_kn", (110.0, 105.0, None), (50, 100, 200))
+    assert fe.method == "gci2"
+    assert fe.err == pytest.approx(3.0 * 5.0 / (math.sqrt(2.0) - 1.0))
+    assert A.figure_error("t_max_dyn_kn", (110.0, None, 100.0), (50, 100, 200)) is None
+
+
+def test_deciding_figures_are_those_the_run_reports():
+    s = {"t_max_dyn_kn": 5.0, "t_min_dyn_kn": 1.0, "drive2_force_max_kn": 3.0,
+         "drive1_force_max_kn": 2.0, "drive1_slip_s": 0.0, "stop_time_s": None,
+         "takeup_travel_start_m": 0.2, "velocity_max_m_s": 4.0}
+    assert A.deciding_figures(s) == ["t_max_dyn_kn", "t_min_dyn_kn", "drive1_force_max_kn",
+                                     "drive2_force_max_kn", "takeup_travel_start_m"]
+
+
+def _fe(name, value, err):
+    return A.FigureError(name, value, err, None, "spread", None, (value, value, value))
+
+
+def test_a_verdict_within_its_error_of_the_limit_is_marginal():
+    # not slack, lowest tension 0.8 kN +- 1.5 kN: slack within the error
+    words = A.marginal_verdicts({"slack_max_m": 0.0}, {"t_min_dyn_kn": _fe("t_min_dyn_kn", 0.8,
+                                                                            1.5)})
+    assert words == ["marginal: t_min_dyn_kn 0.8 against limit 0 +- 1.5 kN (the verdict may "
+                     "flip with the mesh)"]
+    assert A.marginal_verdicts({"slack_max_m": 0.0},
+                               {"t_min_dyn_kn": _fe("t_min_dyn_kn", 0.8, 0.5)}) == []
+    # slack by 2 cm of belt +- 5 cm
+    words = A.marginal_verdicts({"slack_max_m": 0.02},
+                                {"slack_max_m": _fe("slack_max_m", 0.02, 0.05)})
+    assert words and words[0].startswith("marginal: slack_max_m 0.02 against limit 0 +- 0.05")
+    # slip margin 1.03 +- 0.05 against 1; safety factor 5.9 +- 0.2 against 6
+    words = A.marginal_verdicts({}, {"slip_margin_min_dyn": _fe("slip_margin_min_dyn", 1.03,
+                                                                 0.05),
+                                     "safety_factor_dyn": _fe("safety_factor_dyn", 5.9, 0.2)},
+                                safety_factor_min=6.0)
+    assert [w.split(" against")[0] for w in words] == [
+        "marginal: slip_margin_min_dyn 1.03", "marginal: safety_factor_dyn 5.9"]
