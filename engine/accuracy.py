@@ -312,8 +312,10 @@ def marginal_verdicts(summary: dict, figures: dict, *, conveyor: Conveyor | None
     - slack: a belt that went slack by less than the error of ``slack_max_m`` (limit 0 m),
       or one that did not by less than the error of its lowest tension ``t_min_dyn_kn``
       (limit 0 kN);
-    - sag: ``sag_max_dyn_pct`` against each strand's limit (``conveyor.sag_limit_pct``);
-    - slip: ``slip_margin_min_dyn`` against 1;
+    - sag: ``sag_max_dyn_pct`` against the nearer of the strands' limits
+      (``conveyor.sag_limit_pct``);
+    - slip: ``slip_margin_min_dyn`` against 1, when no drive slipped (a slip is reported
+      by itself);
     - safety factor: ``safety_factor_dyn`` against ``safety_factor_min``.
     """
     out = []
@@ -322,15 +324,19 @@ def marginal_verdicts(summary: dict, figures: dict, *, conveyor: Conveyor | None
              else _marginal(figures.get("t_min_dyn_kn"), 0.0, "kN"))
     if words:
         out.append(words)
-    if conveyor is not None:
+    sag = figures.get("sag_max_dyn_pct")
+    if conveyor is not None and sag is not None:
         lim = conveyor.sag_limit_pct
-        for limit in sorted({float(lim.carry), float(lim.return_)}):
-            words = _marginal(figures.get("sag_max_dyn_pct"), limit, "%")
-            if words:
-                out.append(words)
-    words = _marginal(figures.get("slip_margin_min_dyn"), 1.0, "")
-    if words:
-        out.append(words)
+        nearest = min((float(lim.carry), float(lim.return_)), key=lambda x: abs(x - sag.value))
+        words = _marginal(sag, nearest, "%")
+        if words:
+            out.append(words)
+    slipped = any((v or 0.0) > 0.0 for k, v in summary.items()
+                  if k.startswith("drive") and k.endswith("_slip_s"))
+    if not slipped:  # a slip that happened is its own verdict, the margin then at its floor
+        words = _marginal(figures.get("slip_margin_min_dyn"), 1.0, "")
+        if words:
+            out.append(words)
     if safety_factor_min is not None:
         words = _marginal(figures.get("safety_factor_dyn"), float(safety_factor_min), "")
         if words:
