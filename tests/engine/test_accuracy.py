@@ -27,11 +27,11 @@ def test_richardson_on_a_first_order_sequence():
     assert abs(f4 - fe.value) <= fe.err  # the bar holds the 4n value (3.75 of 6.25)
 
 
-def test_order_below_the_asymptotic_range_uses_the_assumed_order_and_fs_3():
+def test_order_below_the_asymptotic_range_is_bounded_with_fs_3():
     f3, f2, f1, f4 = _seq(20.0, 40.0, 0.3)
     fe = A.figure_error("t_min_stop_kn", (f3, f2, f1), (50, 100, 200))
-    assert fe.method == "gci2" and fe.order is None
-    rp = 2.0 ** A.P_ASSUMED - 1.0
+    assert fe.method == "gci3" and fe.order == pytest.approx(0.3, abs=1e-12)
+    rp = 2.0 ** 0.5 - 1.0  # the order used: at least sqrt(dx)'s
     conv = f1 + (f1 - f2) / rp
     assert fe.converged == pytest.approx(conv, rel=1e-12)
     assert fe.err == pytest.approx(3.0 * abs(f2 - conv), rel=1e-12)
@@ -40,10 +40,18 @@ def test_order_below_the_asymptotic_range_uses_the_assumed_order_and_fs_3():
 
 def test_unequal_ratios_give_the_order_by_celik_s_fixed_point():
     meshes = (21, 42, 86)
-    f3, f2, f1 = _seq(7.0, 30.0, 1.5, meshes[:3] + (1,))[:3]
+    f3, f2, f1 = _seq(7.0, 30.0, 1.05, meshes + (1,))[:3]
     fe = A.figure_error("stop_time_s", (f3, f2, f1), meshes)
-    assert fe.order == pytest.approx(1.5, abs=1e-6)
+    assert fe.method == "richardson" and fe.order == pytest.approx(1.05, abs=1e-6)
     assert fe.converged == pytest.approx(7.0, abs=1e-6)
+
+
+def test_an_order_above_the_formal_one_is_not_credited():
+    f3, f2, f1, f4 = _seq(50.0, 2.0e4, 2.0)  # 58, 52, 50.5
+    fe = A.figure_error("t_max_stop_kn", (f3, f2, f1), (50, 100, 200))
+    assert fe.method == "gci3" and fe.order == pytest.approx(2.0)
+    # p used 1 (the formal order), Fs 3: converged 50.5 - 1.5 = 49, bar 3 x |52 - 49|
+    assert fe.converged == pytest.approx(49.0) and fe.err == pytest.approx(9.0)
 
 
 def test_differences_of_opposite_sign_give_the_spread():
