@@ -50,8 +50,6 @@ def test_cli_scenario_file_with_overrides(tmp_path, capsys):
     s = json.loads(capsys.readouterr().out)
     assert code == 0
     assert "accuracy_elements" not in s and "t_max_dyn_kn_err" not in s
-    s = json.loads(capsys.readouterr().out)
-    assert code == 0
     assert s["load"] == "empty" and s["stop_mode"] == "controlled"
     assert s["elements_used"] == 42 and s["status"] != "failed"
 
