@@ -90,6 +90,7 @@ NOT_IN_SCHEMA = (
     "with dynamics, a scenario the conveyor can do (brake stop needs brakes, stop after the "
     "brake delay)",
     "every auto size of a conveyor design is finite (no take-up meets a sag limit near zero)",
+    "accuracy (error bars of a sample) only with dynamics",
 )
 
 
