@@ -372,9 +372,10 @@ def check_run(conveyor: Conveyor, scenario: Scenario, result, *, model: str, par
                      safety_factor_min=sf_min)
     s.update(acc.fields())
     result.accuracy = acc
-    if acc.marginal:
-        s["message"] = "; ".join(m for m in (s.get("message"), *acc.marginal) if m)
-        if s.get("status") == "ok":
-            s["status"] = "warning"
+    notes = [f"note: error bars without the mesh of {n}" for n in acc.notes]
+    if acc.marginal or notes:
+        s["message"] = "; ".join(m for m in (s.get("message"), *acc.marginal, *notes) if m)
+    if acc.marginal and s.get("status") == "ok":
+        s["status"] = "warning"
     check_summary(s)
     return acc
