@@ -219,7 +219,7 @@ def _figure_error(name: str, values: tuple, elements: tuple[int, int, int]
 class Accuracy:
     """The error bars of a run.
 
-    elements : the meshes, coarse to fine (the run's in the middle)
+    elements : the meshes, coarse to fine (the run's in the middle; None for one not run)
     figures : the bar of each deciding figure, by name
     marginal : the marginal verdicts in words (``marginal: ...``)
     notes : meshes that could not be run, and why
@@ -233,7 +233,8 @@ class Accuracy:
     def fields(self) -> dict:
         """``<figure>_err`` and ``<figure>_converged`` of every figure, ``accuracy_elements``
         and ``accuracy_methods`` (the result fields of :data:`beltstudy.engine.results.ACCURACY`)."""
-        out: dict = {"accuracy_elements": "/".join(str(n) for n in self.elements),
+        out: dict = {"accuracy_elements": "/".join("-" if n is None else str(n)
+                                                   for n in self.elements),
                      "accuracy_methods": self.methods()}
         for name, fe in self.figures.items():
             out[f"{name}_err"] = None if math.isnan(fe.err) else fe.err
@@ -274,29 +275,33 @@ def error_bars(conveyor: Conveyor, scenario: Scenario, summary: dict, *, model: 
     meshes = (max(ELEMENTS_MIN, n // RATIO), n, n * RATIO)
     runs: list[dict | None] = []
     acc = Accuracy(elements=meshes)
-    for m in meshes:
-        if m == n:
-            runs.append(summary)
-            continue
-        if m == meshes[0] and m >= n:
+    for k, m in enumerate(meshes):
+        if k == 0 and m >= n:
             runs.append(None)
-            acc.notes.append(f"no coarser mesh than {n} elements")
+            acc.notes.append(f"no mesh coarser than {n} elements (the fewest is {ELEMENTS_MIN})")
+            continue
+        if k == 1:
+            runs.append(summary)
             continue
         try:
             res = run_one(conveyor, _mesh_scenario(scenario, n, m), model=model, params=params,
                           options=options)
         except InputError as exc:
             runs.append(None)
-            acc.notes.append(f"{m} elements: {exc}")
+            acc.notes.append(f"{m} elements not run: {exc}")
             continue
         if res.summary.get("status") == "failed":
             runs.append(None)
-            acc.notes.append(f"{m} elements: {res.summary.get('message')}")
+            acc.notes.append(f"{m} elements failed: {res.summary.get('message')}")
             continue
         runs.append(res.summary)
     # the mesh a run used (the loop's cut may add an element or two to the asked count)
     used = tuple(int(s["elements_used"]) if s is not None and s.get("elements_used") else m
                  for s, m in zip(runs, meshes, strict=True))
+    if runs[0] is not None and used[0] >= used[1]:
+        runs[0] = None
+        acc.notes.append(f"no mesh coarser than {n} elements (the fewest is {ELEMENTS_MIN})")
+    used = tuple(None if s is None else u for s, u in zip(runs, used, strict=True))
     acc.elements = used
     acc.figures = bars(runs, used, (options or DynamicsOptions()).resistance_rtol)
     acc.marginal = marginal_verdicts(summary, acc.figures, conveyor=conveyor,
@@ -372,7 +377,7 @@ def check_run(conveyor: Conveyor, scenario: Scenario, result, *, model: str, par
                      safety_factor_min=sf_min)
     s.update(acc.fields())
     result.accuracy = acc
-    notes = [f"note: error bars without the mesh of {n}" for n in acc.notes]
+    notes = [f"note: error bars from two meshes, {n}" for n in acc.notes]
     if acc.marginal or notes:
         s["message"] = "; ".join(m for m in (s.get("message"), *acc.marginal, *notes) if m)
     if acc.marginal and s.get("status") == "ok":
