@@ -33,7 +33,8 @@ step) gives, which ``benchmarks/check_error_bars.py`` checks on the example conv
 
 A verdict whose figure lies within its bar of the limit (slack, sag, slip margin, transient
 safety factor) is *marginal* (PHYSICS 5.2): :func:`marginal_verdicts` says so, with the
-figure, the limit and the error, in the run's message.
+figure, the limit and the error, in the run's message. A run is checked with
+``beltstudy.engine.run.run_one(..., check=True)``.
 """
 
 from __future__ import annotations
@@ -50,7 +51,7 @@ __all__ = [
     "RATIO", "FS_THREE", "FS_TWO", "FS_SPREAD", "P_FORMAL", "P_CLOSE", "P_MIN", "P_ASSUMED",
     "DECIDING", "FigureError", "Accuracy", "deciding_figures", "figure_error", "resolution",
     "bars",
-    "error_bars", "marginal_verdicts", "check_run",
+    "error_bars", "marginal_verdicts",
 ]
 
 #: Refinement ratio of the meshes (Roache: 2 is usual; at least 1.3).
@@ -241,6 +242,19 @@ class Accuracy:
             out[f"{name}_converged"] = fe.converged
         return out
 
+    def apply(self, summary: dict) -> dict:
+        """Write the bars into a run's ``summary``: the :meth:`fields`, the marginal verdicts
+        and the meshes that could not be run appended to its message (a run ``ok`` with a
+        marginal verdict becomes ``warning``). Returns ``summary``."""
+        summary.update(self.fields())
+        notes = [f"note: error bars from two meshes, {n}" for n in self.notes]
+        if self.marginal or notes:
+            summary["message"] = "; ".join(
+                m for m in (summary.get("message"), *self.marginal, *notes) if m)
+        if self.marginal and summary.get("status") == "ok":
+            summary["status"] = "warning"
+        return summary
+
     def methods(self) -> str:
         """Each figure's method, grouped: ``richardson: a (p 0.8), b (p 1.1); spread: c``."""
         groups: dict[str, list[str]] = {}
@@ -259,18 +273,31 @@ def _mesh_scenario(scenario: Scenario, n_run: int, n: int) -> Scenario:
     return scenario.model_copy(update=update)
 
 
-def error_bars(conveyor: Conveyor, scenario: Scenario, summary: dict, *, model: str,
-               params=None, options: DynamicsOptions | None = None,
+def error_bars(scenario: Scenario, summary: dict, rerun, *, conveyor: Conveyor | None = None,
+               rtol: float = DynamicsOptions.resistance_rtol,
                safety_factor_min: float | None = None) -> Accuracy:
-    """The error bars of the run whose summary is ``summary`` (``run_one`` of ``conveyor``,
-    ``scenario``, ``model``, ``params``, ``options``): reruns on ``n / RATIO`` and
-    ``n x RATIO`` elements, ``n`` the run's ``elements_used``.
+    """The error bars of the run of ``scenario`` whose summary is ``summary``: reruns on
+    ``n / RATIO`` and ``n x RATIO`` elements, ``n`` the run's ``elements_used``.
 
-    ``safety_factor_min`` is the transient safety factor limit (for the marginal verdict;
-    :func:`beltstudy.engine.run.transient_safety_min`).
+    Parameters
+    ----------
+    scenario : Scenario
+        The run's scenario (its ``elements`` and a fixed ``dt_s`` are changed per mesh).
+    summary : dict
+        The run's summary.
+    rerun : callable
+        ``rerun(scenario) -> summary`` of the same conveyor, model and options
+        (:func:`beltstudy.engine.run.run_one`); it may raise ``InputError`` (that mesh is
+        left out).
+    conveyor : Conveyor, optional
+        For the sag limits of the marginal verdicts.
+    rtol : float
+        The resistance law's relative accuracy (``DynamicsOptions.resistance_rtol``), the
+        floor of a bar (:func:`resolution`) [-].
+    safety_factor_min : float, optional
+        The transient safety factor limit (for the marginal verdict;
+        :func:`beltstudy.engine.run.transient_safety_min`).
     """
-    from beltstudy.engine.run import run_one
-
     n = int(summary["elements_used"])
     meshes = (max(ELEMENTS_MIN, n // RATIO), n, n * RATIO)
     runs: list[dict | None] = []
@@ -284,17 +311,16 @@ def error_bars(conveyor: Conveyor, scenario: Scenario, summary: dict, *, model: 
             runs.append(summary)
             continue
         try:
-            res = run_one(conveyor, _mesh_scenario(scenario, n, m), model=model, params=params,
-                          options=options)
+            other = rerun(_mesh_scenario(scenario, n, m))
         except InputError as exc:
             runs.append(None)
             acc.notes.append(f"{m} elements not run: {exc}")
             continue
-        if res.summary.get("status") == "failed":
+        if other.get("status") == "failed":
             runs.append(None)
-            acc.notes.append(f"{m} elements failed: {res.summary.get('message')}")
+            acc.notes.append(f"{m} elements failed: {other.get('message')}")
             continue
-        runs.append(res.summary)
+        runs.append(other)
     # the mesh a run used (the loop's cut may add an element or two to the asked count)
     used = tuple(int(s["elements_used"]) if s is not None and s.get("elements_used") else m
                  for s, m in zip(runs, meshes, strict=True))
@@ -303,7 +329,7 @@ def error_bars(conveyor: Conveyor, scenario: Scenario, summary: dict, *, model: 
         acc.notes.append(f"no mesh coarser than {n} elements (the fewest is {ELEMENTS_MIN})")
     used = tuple(None if s is None else u for s, u in zip(runs, used, strict=True))
     acc.elements = used
-    acc.figures = bars(runs, used, (options or DynamicsOptions()).resistance_rtol)
+    acc.figures = bars(runs, used, rtol)
     acc.marginal = marginal_verdicts(summary, acc.figures, conveyor=conveyor,
                                      safety_factor_min=safety_factor_min)
     return acc
@@ -355,32 +381,3 @@ def marginal_verdicts(summary: dict, figures: dict, *, conveyor: Conveyor | None
         if words:
             out.append(words)
     return out
-
-
-def check_run(conveyor: Conveyor, scenario: Scenario, result, *, model: str, params=None,
-              options: DynamicsOptions | None = None) -> Accuracy | None:
-    """Error bars of a :class:`~beltstudy.engine.run.RunResult` and its marginal verdicts,
-    written into it: the :data:`~beltstudy.engine.results.ACCURACY` fields into its summary,
-    the marginal verdicts appended to its message (a run ``ok`` before becomes
-    ``warning``). Returns the :class:`Accuracy`, or None for a run without a transient (or a
-    failed one)."""
-    from beltstudy.engine.results import check_summary
-    from beltstudy.engine.run import transient_safety_min
-
-    s = result.summary
-    if result.transient is None or s.get("status") == "failed" or not s.get("elements_used"):
-        return None
-    sf_min = None
-    if result.steady is not None:
-        sf_min = transient_safety_min(conveyor, result.steady.loop.belt.kind)
-    acc = error_bars(conveyor, scenario, s, model=model, params=params, options=options,
-                     safety_factor_min=sf_min)
-    s.update(acc.fields())
-    result.accuracy = acc
-    notes = [f"note: error bars from two meshes, {n}" for n in acc.notes]
-    if acc.marginal or notes:
-        s["message"] = "; ".join(m for m in (s.get("message"), *acc.marginal, *notes) if m)
-    if acc.marginal and s.get("status") == "ok":
-        s["status"] = "warning"
-    check_summary(s)
-    return acc

@@ -154,11 +154,7 @@ def run(args: argparse.Namespace) -> int:
             raise InputError(f"{path}: give a file ending in {' or '.join(exts)}")
     scn = build_scenario(args)
     res = run_one(conv, scn, model=fm.name, params=params, dynamics=True,
-                  remedy=not args.no_remedy)
-    if args.check:
-        from beltstudy.engine.accuracy import check_run
-
-        check_run(conv, scn, res, model=fm.name, params=params)
+                  remedy=not args.no_remedy, check=args.check)
     s = {"conveyor": conv.name, "friction_model": fm.name,
          "temperature_c": scn.temperature_c, "load": scn.load,
          "stop_mode": scn.stop.mode, "formulation": scn.formulation, **res.summary}

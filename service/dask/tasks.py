@@ -150,10 +150,7 @@ def run_spec(spec: RunSpec, study_id: str = "") -> tuple[dict, Any]:
         from beltstudy.engine.run import run_one
 
         conveyor, scenario = parse_conveyor(spec.conveyor), parse_scenario(spec.scenario)
-        result = run_one(conveyor, scenario, model=spec.model, params=spec.params or None,
-                         dynamics=spec.dynamics)
-        if spec.check and spec.dynamics:
-            _check(conveyor, scenario, result, spec)
+        result = _run(run_one, conveyor, scenario, spec)
     except Exception as exc:  # a run that raises is data, not an aborted study
         row.update(failed_row(_message(exc), time.perf_counter() - t0))
         return row, None
@@ -166,17 +163,20 @@ def run_spec(spec: RunSpec, study_id: str = "") -> tuple[dict, Any]:
     return row, result
 
 
-def _check(conveyor, scenario, result, spec: RunSpec) -> None:
-    """The error bars of a run of the accuracy sample (beltstudy.engine.accuracy); a check
-    that raises leaves the run as it was, with a note in its message."""
-    from beltstudy.engine.accuracy import check_run
-
+def _run(run_one, conveyor, scenario, spec: RunSpec):
+    """``run_one`` of a spec, with error bars for a run of the accuracy sample; a check that
+    raises leaves the run without them, with a note in its message."""
+    kw = {"model": spec.model, "params": spec.params or None, "dynamics": spec.dynamics}
+    if not (spec.check and spec.dynamics):
+        return run_one(conveyor, scenario, **kw)
     try:
-        check_run(conveyor, scenario, result, model=spec.model, params=spec.params or None)
+        return run_one(conveyor, scenario, check=True, **kw)
     except Exception as exc:  # the run stands; only its error bars are missing
+        result = run_one(conveyor, scenario, **kw)
         s = result.summary
         s["message"] = "; ".join(m for m in (s.get("message"),
                                              f"note: no error bars: {_message(exc)}") if m)
+        return result
 
 
 class Specs:

@@ -117,14 +117,14 @@ def test_a_brake_stop_close_to_slack_is_named_marginal():
     conv = base.model_copy(update={"brakes": [base.brakes[0].model_copy(
         update={"force_kn": 50.0})]})
     scn = parse_scenario({"elements": 40, "run_s": 5, "stop": {"mode": "brake"}})
-    res = run_one(conv, scn, model="din")
+    res = run_one(conv, scn, model="din", check=True)
     s = res.summary
     assert s["slack_max_m"] == 0.0 and s["t_min_dyn_kn"] > 0.0  # not slack on its own mesh
-    acc = A.check_run(conv, scn, res, model="din")
+    acc = res.accuracy
     fe = acc.figures["t_min_dyn_kn"]
     f3, f2, f1 = fe.values
     assert f3 > f2 > f1 > 0.0  # converging from above, towards slack
     assert fe.err >= f2  # slack within the bar
-    assert s["t_min_dyn_kn_err"] == fe.err and res.accuracy is acc
+    assert s["t_min_dyn_kn_err"] == fe.err
     assert f"marginal: t_min_dyn_kn {f2:.4g} against limit 0 +- {fe.err:.3g} kN" in s["message"]
     assert s["status"] == "warning"
