@@ -43,7 +43,7 @@ import math
 import re
 from dataclasses import dataclass, field
 
-from beltstudy.engine.conveyor import Conveyor, InputError, Scenario
+from beltstudy.engine.conveyor import InputError, Scenario
 from beltstudy.engine.dynamics import DynamicsOptions
 from beltstudy.engine.results import DECIDING
 
@@ -273,8 +273,9 @@ def _mesh_scenario(scenario: Scenario, n_run: int, n: int) -> Scenario:
     return scenario.model_copy(update=update)
 
 
-def error_bars(scenario: Scenario, summary: dict, rerun, *, conveyor: Conveyor | None = None,
+def error_bars(scenario: Scenario, summary: dict, rerun, *,
                rtol: float = DynamicsOptions.resistance_rtol,
+               sag_limit_pct: float | None = None,
                safety_factor_min: float | None = None) -> Accuracy:
     """The error bars of the run of ``scenario`` whose summary is ``summary``: reruns on
     ``n / RATIO`` and ``n x RATIO`` elements, ``n`` the run's ``elements_used``.
@@ -289,14 +290,13 @@ def error_bars(scenario: Scenario, summary: dict, rerun, *, conveyor: Conveyor |
         ``rerun(scenario) -> summary`` of the same conveyor, model and options
         (:func:`beltstudy.engine.run.run_one`); it may raise ``InputError`` (that mesh is
         left out).
-    conveyor : Conveyor, optional
-        For the sag limits of the marginal verdicts.
     rtol : float
         The resistance law's relative accuracy (``DynamicsOptions.resistance_rtol``), the
         floor of a bar (:func:`resolution`) [-].
-    safety_factor_min : float, optional
-        The transient safety factor limit (for the marginal verdict;
-        :func:`beltstudy.engine.run.transient_safety_min`).
+    sag_limit_pct, safety_factor_min : float, optional
+        The limits of the marginal verdicts: the sag limit of the strand where the run's sag
+        is largest [%], the transient safety factor limit
+        (:func:`beltstudy.engine.run.transient_safety_min`) [-].
     """
     n = int(summary["elements_used"])
     meshes = (max(ELEMENTS_MIN, n // RATIO), n, n * RATIO)
@@ -330,7 +330,7 @@ def error_bars(scenario: Scenario, summary: dict, rerun, *, conveyor: Conveyor |
     used = tuple(None if s is None else u for s, u in zip(runs, used, strict=True))
     acc.elements = used
     acc.figures = bars(runs, used, rtol)
-    acc.marginal = marginal_verdicts(summary, acc.figures, conveyor=conveyor,
+    acc.marginal = marginal_verdicts(summary, acc.figures, sag_limit_pct=sag_limit_pct,
                                      safety_factor_min=safety_factor_min)
     return acc
 
@@ -344,15 +344,15 @@ def _marginal(fe: FigureError | None, limit: float, unit: str) -> str | None:
             f"{(' ' + unit) if unit else ''} (the verdict may flip with the mesh)")
 
 
-def marginal_verdicts(summary: dict, figures: dict, *, conveyor: Conveyor | None = None,
+def marginal_verdicts(summary: dict, figures: dict, *, sag_limit_pct: float | None = None,
                       safety_factor_min: float | None = None) -> list[str]:
     """The verdicts whose figure lies within its error bar of the limit (PHYSICS 5.2):
 
     - slack: a belt that went slack by less than the error of ``slack_max_m`` (limit 0 m),
       or one that did not by less than the error of its lowest tension ``t_min_dyn_kn``
       (limit 0 kN);
-    - sag: ``sag_max_dyn_pct`` against the nearer of the strands' limits
-      (``conveyor.sag_limit_pct``);
+    - sag: ``sag_max_dyn_pct`` against ``sag_limit_pct``, the limit of the strand where the
+      sag is largest;
     - slip: ``slip_margin_min_dyn`` against 1, when no drive slipped (a slip is reported
       by itself);
     - safety factor: ``safety_factor_dyn`` against ``safety_factor_min``.
@@ -363,11 +363,8 @@ def marginal_verdicts(summary: dict, figures: dict, *, conveyor: Conveyor | None
              else _marginal(figures.get("t_min_dyn_kn"), 0.0, "kN"))
     if words:
         out.append(words)
-    sag = figures.get("sag_max_dyn_pct")
-    if conveyor is not None and sag is not None:
-        lim = conveyor.sag_limit_pct
-        nearest = min((float(lim.carry), float(lim.return_)), key=lambda x: abs(x - sag.value))
-        words = _marginal(sag, nearest, "%")
+    if sag_limit_pct is not None:
+        words = _marginal(figures.get("sag_max_dyn_pct"), float(sag_limit_pct), "%")
         if words:
             out.append(words)
     slipped = any((v or 0.0) > 0.0 for k, v in summary.items()

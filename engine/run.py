@@ -241,12 +241,24 @@ def _error_bars(conveyor, scenario, result, model, params, opts):
     def rerun(scn: Scenario) -> dict:
         return run_one(conveyor, scn, model=model, params=params, options=opts).summary
 
-    acc = error_bars(scenario, result.summary, rerun, conveyor=conveyor,
-                     rtol=opts.resistance_rtol,
+    acc = error_bars(scenario, result.summary, rerun, rtol=opts.resistance_rtol,
+                     sag_limit_pct=_sag_limit(conveyor, result.transient),
                      safety_factor_min=transient_safety_min(conveyor,
                                                             result.steady.loop.belt.kind))
     acc.apply(result.summary)
     return acc
+
+
+def _sag_limit(conveyor: Conveyor, tr: TransientResult) -> float:
+    """The sag limit [%] of the strand where the transient sag is largest (the sag at each
+    span's low end from the lowest tension of the cycle, as ``sag_max_dyn_pct``)."""
+    env_min = tr.envelope_kn()[1] * 1e3
+    t_low = np.minimum(np.roll(env_min, 1), env_min)
+    sag_w = tr.system.model.nodes.sag_w
+    sag = np.where(sag_w > 0.0, sag_w / np.maximum(t_low, 1.0), 0.0)
+    strand = int(tr.system.strand[int(np.argmax(sag))])
+    lim = conveyor.sag_limit_pct
+    return float(lim.return_ if strand == 1 else lim.carry)
 
 
 def _slip_remedy(conveyor, scenario, model, params, opts, summary) -> str:
