@@ -106,7 +106,7 @@ def test_a_verdict_within_its_error_of_the_limit_is_marginal():
 def test_a_brake_stop_close_to_slack_is_named_marginal():
     """A 450 m incline (benchmarks/conveyors/steep-incline.yaml) stopped by a 50 kN head
     brake on 42 elements: its lowest tension, behind the brake on the carry, falls with the
-    mesh (about 19, 15 and 10 kN on 21, 42 and 84 elements, an order below one), so 0 kN
+    mesh (about 19, 15 and 10 kN on 22, 42 and 86 elements, differences that do not shrink), so 0 kN
     (slack) lies within the bar of the run's 15 kN: the run is not slack on its mesh and
     says that the verdict is marginal instead of leaving it to flip on a finer one."""
     from beltstudy.engine import load_conveyor, parse_scenario
