@@ -128,3 +128,6 @@ def test_a_brake_stop_close_to_slack_is_named_marginal():
     assert s["t_min_dyn_kn_err"] == fe.err
     assert f"marginal: t_min_dyn_kn {f2:.4g} against limit 0 +- {fe.err:.3g} kN" in s["message"]
     assert s["status"] == "warning"
+    # the bar holds the value at 4 x the elements (a quarter of the step), still falling
+    fine = run_one(conv, scn.model_copy(update={"elements": 4 * 42}), model="din").summary
+    assert fine["t_min_dyn_kn"] < f1 and abs(fine["t_min_dyn_kn"] - f2) <= fe.err
