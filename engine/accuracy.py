@@ -50,8 +50,7 @@ from beltstudy.engine.results import DECIDING
 __all__ = [
     "RATIO", "FS_THREE", "FS_TWO", "FS_SPREAD", "P_FORMAL", "P_CLOSE", "P_MIN", "P_ASSUMED",
     "DECIDING", "FigureError", "Accuracy", "deciding_figures", "figure_error", "resolution",
-    "bars",
-    "error_bars", "marginal_verdicts",
+    "bars", "error_bars", "marginal_verdicts",
 ]
 
 #: Refinement ratio of the meshes (Roache: 2 is usual; at least 1.3).
@@ -107,8 +106,9 @@ class FigureError:
     value : the figure at the run's own mesh
     err : the bar, same unit: the value at a finer mesh is expected in value +- err
     converged : the Richardson estimate (None where not extrapolated)
-    method : ``richardson`` (three meshes, observed order, Fs 1.25), ``gci2`` (assumed order,
-        Fs 3), ``spread`` (not in the asymptotic range) or ``unchanged``
+    method : ``richardson`` (three meshes, observed order near the formal one, Fs 1.25),
+        ``gci3`` (three meshes, order bounded, Fs 3), ``gci2`` (two meshes, assumed order,
+        Fs 3), ``spread`` (not in the asymptotic range), ``unchanged`` or ``none``
     order : the observed order p (None where not observed)
     values : the figure on each mesh, coarse to fine (None where a mesh gave none)
     """
@@ -130,7 +130,8 @@ def _order(e32: float, e21: float, r21: float, r32: float) -> float:
     if abs(r21 - r32) < 1e-9:
         return p
     for _ in range(50):
-        q = math.log((r21 ** p - 1.0) / (r32 ** p - 1.0)) if p > 0 else 0.0
+        p = min(p, 50.0)  # far outside any range used; keeps r^p finite
+        q = math.log((r21 ** p - 1.0) / (r32 ** p - 1.0)) if p > 1e-9 else 0.0
         p_new = (math.log(ratio) + q) / math.log(r21)
         if abs(p_new - p) < 1e-10:
             return p_new
