@@ -35,6 +35,9 @@ __all__ = [
     "DESIGN_BASIS",
     "BOOKKEEPING",
     "GROUPS",
+    "DECIDING",
+    "ACCURACY",
+    "ALL_GROUPS",
     "FIELDS",
     "field",
     "columns",
@@ -300,8 +303,61 @@ BOOKKEEPING = ResultGroup("bookkeeping", "Bookkeeping", (
 #: Every group, in the order of the runs table.
 GROUPS = (STEADY, STEADY_DRIVE, DESIGN, DESIGN_DRIVE, TE_COMPONENTS, TRANSIENT, PHASE, SLACK,
           TRANSIENT_DRIVE, DESIGN_BASIS, BOOKKEEPING)
+
+# ------------------------------------------------------------- error bars (SPEC 7.4)
+#: The deciding figures of a transient run that get an error bar (SPEC 7.4; per-drive ones
+#: with ``{i}``); :mod:`beltstudy.engine.accuracy` bars those a run reports.
+DECIDING = (
+    "t_max_dyn_kn", "t_min_dyn_kn",
+    "t_max_start_kn", "t_min_start_kn", "t_max_stop_kn", "t_min_stop_kn",
+    "drive_force_max_kn", "drive_power_max_kw",
+    "drive{i}_force_max_kn", "drive{i}_power_max_kw",
+    "takeup_travel_m", "takeup_travel_start_m", "takeup_travel_stop_m",
+    "stop_time_s", "stop_distance_m", "slack_max_m",
+    "slip_margin_min_dyn", "safety_factor_dyn", "sag_max_dyn_pct",
+)
+_SUFFIX_UNIT = (("_kn", "kN"), ("_kw", "kW"), ("_m_s", "m/s"), ("_pct", "%"), ("_m", "m"),
+                ("_s", "s"))
+
+
+def _unit_of(name: str) -> str:
+    """The unit of a result name: its field's, else the one its suffix names (a figure
+    another part of the engine may add), else ``-``."""
+    for g in GROUPS:
+        for f in g:
+            if f.name == name:
+                return f.unit
+    return next((u for sfx, u in _SUFFIX_UNIT if name.endswith(sfx)), "-")
+
+
+#: Not a runs column: the error bars of a run whose accuracy was checked (``beltstudy
+#: simulate`` by default, a study's ``accuracy: {sample: ...}`` runs, stored as the
+#: ``accuracy`` table), :mod:`beltstudy.engine.accuracy`.
+ACCURACY = ResultGroup(
+    "accuracy",
+    "Error bars (SPEC 7.4): not in the runs table; beltstudy simulate (unless --no-check) "
+    "and the accuracy table of a study with accuracy: {sample: ...}",
+    (
+        _f("accuracy_elements", "text", "the meshes of the check, coarse/the run's/fine "
+           "(elements; the step follows the mesh)"),
+        _f("accuracy_methods", "text", "how each figure's bar was found: richardson (three "
+           "meshes, observed order p, Fs 1.25), gci2 (order assumed, Fs 3), spread (not in "
+           "the asymptotic range), unchanged"),
+    ) + tuple(
+        field_
+        for fig in DECIDING
+        for field_ in (
+            _f(f"{fig}_err", _unit_of(fig), f"error bar of {fig} at the run's mesh: a finer "
+               "mesh's value lies within it", "+-"),
+            _f(f"{fig}_converged", _unit_of(fig), f"Richardson estimate of {fig} on an "
+               "infinitely fine mesh (null where not extrapolated)", "converged"),
+        )
+    ),
+)
+#: Every group that defines a result: the runs table's, then the error bars.
+ALL_GROUPS = GROUPS + (ACCURACY,)
 #: Every field by name (per-drive fields under their ``{i}`` name).
-FIELDS: dict[str, ResultField] = {f.name: f for g in GROUPS for f in g}
+FIELDS: dict[str, ResultField] = {f.name: f for g in ALL_GROUPS for f in g}
 #: The one key of a summary that is not a column: the Te parts as an object.
 TE_COMPONENTS_KEY = "te_components_kn"
 
@@ -363,7 +419,7 @@ def markdown() -> str:
         "the drive's number in file order; null beyond the conveyor's drives).",
         "",
     ]
-    for g in GROUPS:
+    for g in ALL_GROUPS:
         lines += [f"## {g.title}", "", "| column | unit | meaning |", "|---|---|---|"]
         lines += [f"| `{f.name}` | {f.unit} | {f.meaning} |" for f in g]
         lines.append("")

@@ -65,6 +65,10 @@ class RunResult:
         final state).
     """
 
+    #: The error bars (:class:`beltstudy.engine.accuracy.Accuracy`) of a run checked with
+    #: ``run_one(..., check=True)``.
+    accuracy = None
+
     def __init__(self, summary: dict, timeseries=_DERIVED, profile=_DERIVED, surface=_DERIVED,
                  steady: SteadyResult | None = None, transient: TransientResult | None = None):
         self.summary = summary
@@ -150,6 +154,7 @@ def run_one(
     dynamics: bool = True,
     options: DynamicsOptions | None = None,
     remedy: bool = False,
+    check: bool = False,
 ) -> RunResult:
     """Steady solve and, with ``dynamics``, the rest -> start -> run -> stop -> rest cycle.
 
@@ -169,6 +174,11 @@ def run_one(
         When a drive slips in the start, find the take-up and the start time that avoid it
         by rerunning the start (:mod:`beltstudy.engine.remedy`: about a dozen reruns each); the
         ``slip_free_*`` fields and a sentence in the message. Off by default (studies).
+    check : bool
+        Error bars of the deciding figures by rerunning the cycle on a mesh half and twice as
+        fine (:func:`beltstudy.engine.accuracy.error_bars`: the ``<figure>_err`` and
+        ``<figure>_converged`` fields, ``RunResult.accuracy``, the marginal verdicts in the
+        message). Off by default (a study checks a sample of its runs).
 
     Raises
     ------
@@ -215,8 +225,40 @@ def run_one(
         status = "ok"
     summary["status"] = status
     summary["message"] = "; ".join(messages)
+    result = RunResult(summary=summary, steady=steady, transient=tr)
+    if check and status != "failed":
+        result.accuracy = _error_bars(conveyor, scenario, result, model, params, opts)
     summary["elapsed_s"] = time.perf_counter() - t0
-    return RunResult(summary=check_summary(summary), steady=steady, transient=tr)
+    check_summary(summary)
+    return result
+
+
+def _error_bars(conveyor, scenario, result, model, params, opts):
+    """The error bars of a run (:func:`beltstudy.engine.accuracy.error_bars`, reruns on a
+    coarser and a finer mesh) written into its summary and message."""
+    from beltstudy.engine.accuracy import error_bars
+
+    def rerun(scn: Scenario) -> dict:
+        return run_one(conveyor, scn, model=model, params=params, options=opts).summary
+
+    acc = error_bars(scenario, result.summary, rerun, rtol=opts.resistance_rtol,
+                     sag_limit_pct=_sag_limit(conveyor, result.transient),
+                     safety_factor_min=transient_safety_min(conveyor,
+                                                            result.steady.loop.belt.kind))
+    acc.apply(result.summary)
+    return acc
+
+
+def _sag_limit(conveyor: Conveyor, tr: TransientResult) -> float:
+    """The sag limit [%] of the strand where the transient sag is largest (the sag at each
+    span's low end from the lowest tension of the cycle, as ``sag_max_dyn_pct``)."""
+    env_min = tr.envelope_kn()[1] * 1e3
+    t_low = np.minimum(np.roll(env_min, 1), env_min)
+    sag_w = tr.system.model.nodes.sag_w
+    sag = np.where(sag_w > 0.0, sag_w / np.maximum(t_low, 1.0), 0.0)
+    strand = int(tr.system.strand[int(np.argmax(sag))])
+    lim = conveyor.sag_limit_pct
+    return float(lim.return_ if strand == 1 else lim.carry)
 
 
 def _slip_remedy(conveyor, scenario, model, params, opts, summary) -> str:

@@ -232,6 +232,12 @@ class StudyService:
     def runs(self, study_id: str) -> pd.DataFrame:
         return self.store.read_runs(study_id)
 
+    def accuracy(self, study_id: str) -> tuple[pd.DataFrame, pd.DataFrame]:
+        """The study's accuracy table (error bars of its sampled runs) and the error of each
+        column over them (:func:`beltstudy.service.store.query.accuracy_columns`)."""
+        acc = self.store.read_accuracy(study_id)
+        return acc, query.accuracy_columns(self.store.read_runs(study_id), acc)
+
     def run_detail(self, study_id: str, run_id: str) -> dict:
         """Summary row and time series of one run."""
         runs = self.store.read_runs(study_id)
@@ -286,7 +292,7 @@ class StudyService:
         stored = self.store.read_profile(study_id, run_id)
         if len(stored):
             return stored, "stored"
-        _, result = run_spec(dataclasses.replace(spec, dynamics=False), study_id)
+        _, result = run_spec(dataclasses.replace(spec, dynamics=False, check=False), study_id)
         table = profile_table(run_id, result) if result is not None else None
         return (table if table is not None else profile_schema().empty_table()).to_pandas(), \
             "recomputed"
@@ -320,7 +326,8 @@ class StudyService:
                 table = self._surfaces[run_id]
                 return table if table is not None else surface_schema().empty_table()
         spec = self.run_spec(study_id, run_id)
-        _, result = run_spec(spec, study_id)
+        # the surface only: no error bars again
+        _, result = run_spec(dataclasses.replace(spec, check=False), study_id)
         table = surface_table(run_id, result) if result is not None else None
         with self._cache_lock:
             self._surfaces[run_id] = table

@@ -68,6 +68,19 @@ class RunsPage(BaseModel):
     )
 
 
+class AccuracyOut(BaseModel):
+    study_id: str
+    sample: dict[str, Any] | None = Field(
+        None, description="the study's accuracy: {sample, seed} (null: none asked)")
+    total: int = Field(..., description="sampled runs with error bars so far")
+    columns: list[dict[str, Any]] = Field(
+        ..., description="the error of each result column over the sample: column, unit, "
+        "runs, value_median, err_median, err_max, err_rel_max_pct")
+    runs: list[dict[str, Any]] = Field(
+        ..., description="the accuracy table: run_id, <figure>_err, <figure>_converged, "
+        "accuracy_elements, accuracy_methods")
+
+
 class RunDetail(BaseModel):
     study_id: str
     run_id: str

@@ -10,6 +10,7 @@ from fastapi.concurrency import run_in_threadpool
 
 from beltstudy.service.api.deps import ERROR_RESPONSES, _error, get_service, require_token
 from beltstudy.service.api.models import (
+    AccuracyOut,
     CompareOut,
     Deleted,
     RunDetail,
@@ -207,6 +208,35 @@ def _run_table(df, source: str, what: str, study_id: str, run_id: str, format: s
         "source": source,
         "rows": int(len(df)),
         what: query.columns_to_json(df.drop(columns=["run_id"])) if len(df) else None,
+    }
+
+
+@router.get(
+    "/{study_id}/accuracy",
+    response_model=AccuracyOut,
+    summary="Error bars of the study's sampled runs (accuracy: {sample}) and of each column",
+    description="The accuracy table (one row per sampled run: `<figure>_err` in the "
+    "figure's unit, `<figure>_converged`, the meshes and methods) as JSON, CSV or Parquet; "
+    "the JSON also gives the error of each result column over the sample.",
+    responses=TABLE_RESPONSES,
+)
+def get_accuracy(
+    study_id: str,
+    format: Literal["json", "csv", "parquet"] = Query("json", description="output format"),
+    service: StudyService = Depends(get_service),
+):
+    acc, cols = service.accuracy(study_id)
+    if format == "csv":
+        return Response(query.to_csv(acc), media_type="text/csv; charset=utf-8")
+    if format == "parquet":
+        return Response(query.to_parquet(acc), media_type=PARQUET_TYPE)
+    study = service.study_doc(study_id).get("study") or {}
+    return {
+        "study_id": study_id,
+        "sample": study.get("accuracy"),
+        "total": int(len(acc)),
+        "columns": query.records_to_json(cols),
+        "runs": query.records_to_json(acc),
     }
 
 

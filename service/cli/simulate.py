@@ -78,6 +78,11 @@ def register(sub) -> None:
                    "held at rest; the file's takeup.sag_at_rest)")
     p.add_argument("--no-remedy", action="store_true", help="when a drive slips in the start, "
                    "do not rerun the start to find the take-up and start time that avoid it")
+    p.add_argument("--no-check", dest="check", action="store_false",
+                   help="skip the error bars (by default the run is repeated on a mesh half "
+                   "and twice as fine, about 5 x the run's time, and each deciding figure "
+                   "gets <figure>_err; a verdict within its error of the limit says "
+                   "marginal)")
     p.add_argument("--json", action="store_true", help="print one JSON object")
     p.add_argument("--timeseries", metavar="FILE", help="write the SPEC section 5 key-point "
                    "time series (.parquet or .csv)")
@@ -149,7 +154,7 @@ def run(args: argparse.Namespace) -> int:
             raise InputError(f"{path}: give a file ending in {' or '.join(exts)}")
     scn = build_scenario(args)
     res = run_one(conv, scn, model=fm.name, params=params, dynamics=True,
-                  remedy=not args.no_remedy)
+                  remedy=not args.no_remedy, check=args.check)
     s = {"conveyor": conv.name, "friction_model": fm.name,
          "temperature_c": scn.temperature_c, "load": scn.load,
          "stop_mode": scn.stop.mode, "formulation": scn.formulation, **res.summary}
@@ -199,6 +204,7 @@ def _table(s: dict) -> str:
                 lines.append(f"    {label:<38} {_fmt(s[key])} {unit}")
         lines.append("")
     lines += drive_lines(s)
+    lines += error_lines(s)
     lines.append(f"  status: {s['status']}" + (f"  ({s['message']})" if s["message"] else ""))
     return "\n".join(lines)
 
@@ -222,5 +228,26 @@ def drive_lines(s: dict) -> list[str]:
             val = s.get(f.name.format(i=i))
             cells.append(f"{val:>11.3f}" if isinstance(val, float | int) else f"{'-':>11}")
         lines.append(f"    {i:>5} " + "".join(cells))
+    lines.append("")
+    return lines
+
+
+def error_lines(s: dict) -> list[str]:
+    """The error bars (``<figure>_err``, ``<figure>_converged``) of a checked run: each figure,
+    its bar and the converged estimate, then the meshes and the methods."""
+    if "accuracy_elements" not in s:
+        return []
+    lines = [f"  error bars (meshes {s['accuracy_elements']} elements; the value at a finer "
+             "mesh lies within +-)",
+             f"    {'figure':<26} {'value':>12} {'+-':>10} {'converged':>12}"]
+    for key in s:
+        if not key.endswith("_err") or s[key] is None:
+            continue
+        name = key[:-4]
+        conv = s.get(f"{name}_converged")
+        unit = R.field(key).unit
+        lines.append(f"    {name:<26} {s.get(name, float('nan')):>12.4g} {s[key]:>10.3g} "
+                     f"{'-' if conv is None else format(conv, '.4g'):>12} {unit}")
+    lines.append(f"    methods: {s['accuracy_methods']}")
     lines.append("")
     return lines

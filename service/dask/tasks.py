@@ -23,9 +23,11 @@ from beltstudy.engine import MODELS, parse_conveyor, parse_scenario
 from beltstudy.service.examples import TINY_CONVEYOR, TINY_SCENARIO
 from beltstudy.service.grid.expand import RunSpec
 from beltstudy.service.store.columns import (
+    ACCURACY_COLUMNS,
     PROFILE_COLUMNS,
     SURFACE_COLUMNS,
     TIMESERIES_COLUMNS,
+    accuracy_schema,
     failed_row,
     flatten_summary,
     profile_schema,
@@ -41,6 +43,7 @@ __all__ = [
     "timeseries_table",
     "surface_table",
     "profile_table",
+    "accuracy_table",
     "run_spec",
     "warm_up",
     "lower_priority",
@@ -110,6 +113,21 @@ def surface_table(run_id: str, result) -> pa.Table | None:
     return _arrays_table(run_id, result.surface_arrays(), _SF_LAYOUT, _SF_SCHEMA)
 
 
+_AC_SCHEMA = accuracy_schema()
+
+
+def accuracy_table(run_id: str, result) -> pa.Table | None:
+    """The error bars of a checked run (one row; None for a run without them)."""
+    if getattr(result, "accuracy", None) is None:
+        return None
+    fields = result.accuracy.fields()
+    data = {"run_id": [run_id]}
+    for c in ACCURACY_COLUMNS:
+        v = fields.get(c)
+        data[c] = [v if v is None or isinstance(v, str) else float(v)]
+    return pa.Table.from_pydict(data, schema=_AC_SCHEMA)
+
+
 def run_spec(spec: RunSpec, study_id: str = "") -> tuple[dict, Any]:
     """One run: (row, result or None)."""
 
@@ -131,13 +149,8 @@ def run_spec(spec: RunSpec, study_id: str = "") -> tuple[dict, Any]:
         # in the API process that imports this module for its table builders
         from beltstudy.engine.run import run_one
 
-        result = run_one(
-            parse_conveyor(spec.conveyor),
-            parse_scenario(spec.scenario),
-            model=spec.model,
-            params=spec.params or None,
-            dynamics=spec.dynamics,
-        )
+        conveyor, scenario = parse_conveyor(spec.conveyor), parse_scenario(spec.scenario)
+        result = _run(run_one, conveyor, scenario, spec)
     except Exception as exc:  # a run that raises is data, not an aborted study
         row.update(failed_row(_message(exc), time.perf_counter() - t0))
         return row, None
@@ -148,6 +161,22 @@ def run_spec(spec: RunSpec, study_id: str = "") -> tuple[dict, Any]:
     if row["elapsed_s"] is None:
         row["elapsed_s"] = time.perf_counter() - t0
     return row, result
+
+
+def _run(run_one, conveyor, scenario, spec: RunSpec):
+    """``run_one`` of a spec, with error bars for a run of the accuracy sample; a check that
+    raises leaves the run without them, with a note in its message."""
+    kw = {"model": spec.model, "params": spec.params or None, "dynamics": spec.dynamics}
+    if not (spec.check and spec.dynamics):
+        return run_one(conveyor, scenario, **kw)
+    try:
+        return run_one(conveyor, scenario, check=True, **kw)
+    except Exception as exc:  # the run stands; only its error bars are missing
+        result = run_one(conveyor, scenario, **kw)
+        s = result.summary
+        s["message"] = "; ".join(m for m in (s.get("message"),
+                                             f"note: no error bars: {_message(exc)}") if m)
+        return result
 
 
 class Specs:
@@ -178,7 +207,8 @@ def run_batch(
     commit).
 
     Returns ``{"rows": [...], "timeseries": Table | None, "profile": Table | None,
-    "surface": Table | None,
+    "surface": Table | None, "accuracy": Table | None (the error bars of the runs in the
+    study's accuracy sample),
     "seconds": float, "pid": int, "split": {"run_s", "tables_s", "write_s", "cpu_s"}}``: the
     split is the task's wall time in running the runs, in building the Arrow tables and in
     writing parts, and the CPU time of the whole task.
@@ -187,7 +217,7 @@ def run_batch(
     cpu0 = time.thread_time()
     if isinstance(specs, Specs):
         specs = specs.items
-    rows, series, profiles, surfaces = [], [], [], []
+    rows, series, profiles, surfaces, accuracy = [], [], [], [], []
     t_run = t_tables = t_write = 0.0
     for spec in specs:
         t1 = time.perf_counter()
@@ -208,6 +238,9 @@ def run_batch(
                 table = surface_table(spec.run_id, result)
                 if table is not None:
                     surfaces.append(table)
+            table = accuracy_table(spec.run_id, result)
+            if table is not None:
+                accuracy.append(table)
         except Exception as exc:  # a malformed result is reported on the run's row
             row.update(failed_row(f"time series: {_message(exc)}", row.get("elapsed_s")))
         t_tables += time.perf_counter() - t2
@@ -217,6 +250,7 @@ def run_batch(
         "timeseries": pa.concat_tables(series) if series else None,
         "profile": pa.concat_tables(profiles) if profiles else None,
         "surface": pa.concat_tables(surfaces) if surfaces else None,
+        "accuracy": pa.concat_tables(accuracy) if accuracy else None,
         "pid": os.getpid(),
     }
     t_tables += time.perf_counter() - t2

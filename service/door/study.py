@@ -58,6 +58,7 @@ __all__ = [
     "Grid",
     "FrictionModels",
     "StudyIn",
+    "AccuracyIn",
     "StudySchema",
     "AXIS_TARGETS",
     "fold_axes",
@@ -89,6 +90,7 @@ NOT_IN_SCHEMA = (
     "with dynamics, a scenario the conveyor can do (brake stop needs brakes, stop after the "
     "brake delay)",
     "every auto size of a conveyor design is finite (no take-up meets a sag limit near zero)",
+    "accuracy (error bars of a sample) only with dynamics",
 )
 
 
@@ -574,6 +576,17 @@ ConveyorRef = Annotated[
     Discriminator(_conveyor_kind)]
 
 
+class AccuracyIn(BaseModel):
+    """Error bars of a sample of the study's runs (SPEC 7.2; beltstudy.engine.accuracy)."""
+
+    model_config = ConfigDict(extra="forbid")
+
+    sample: float = Field(..., gt=0.0, le=1.0, description="fraction of the runs that get "
+                          "error bars (at least one run; each costs about 5 runs: a mesh "
+                          "half and one twice as fine)")
+    seed: int = Field(0, ge=0, description="seed of the sample: the same seed, the same runs")
+
+
 class StudyIn(BaseModel):
     """A study as written in a file or POSTed (SPEC section 3); validated at the door."""
 
@@ -608,6 +621,11 @@ class StudyIn(BaseModel):
         description="store the tension/velocity surface of every dynamic run (SPEC section 5); "
         "false (the default) stores the key-point time series only and recomputes a run's "
         "surface from its inputs when it is asked for",
+    )
+    accuracy: AccuracyIn | None = Field(
+        None,
+        description="error bars of a seeded sample of the runs ({sample: 0.05}), stored as "
+        "the study's accuracy table (dynamic studies only)",
     )
 
     @field_validator("name")

@@ -334,6 +334,9 @@ def resolve_study(
     default_model, run_models = _run_models(study, axes, models)
     design = _design(study)
     _check_models_used(given, run_models, design)
+    if study.accuracy is not None and not study.dynamics:
+        raise Invalid("accuracy: error bars are those of the transient runs; this study has "
+                      "dynamics: false (set dynamics: true or remove accuracy)")
     resolved = ResolvedStudy(
         name=study.name,
         description=study.description,
@@ -349,6 +352,7 @@ def resolve_study(
         surface=study.surface,
         design=design,
         grid_points=total,
+        accuracy=(study.accuracy.model_dump() if study.accuracy is not None else None),
     )
     return finish(resolved)
 

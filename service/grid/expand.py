@@ -55,6 +55,8 @@ __all__ = [
     "grid_points",
     "study_from_json",
     "study_hash",
+    "accuracy_sample",
+    "mark_accuracy_sample",
     "canonical_json",
     "stable_hash",
     "DEFAULT_MODEL",
@@ -118,6 +120,7 @@ class RunSpec:
     engine_version: str
     design: dict = field(default_factory=dict)  # *_governed_by of the design's auto sizes
     points: int = 1  # grid points this run stands for
+    check: bool = False  # in the study's accuracy sample: error bars (beltstudy.engine.accuracy)
 
 
 @dataclass
@@ -141,6 +144,7 @@ class ResolvedStudy:
     design: dict | None = None  # the study's design case as given (None: the default)
     grid_points: int = 0  # points of the grid before identical runs were merged
     designs: list[dict] = field(default_factory=list)  # the design basis per conveyor design
+    accuracy: dict | None = None  # {sample, seed}: the runs that get error bars
 
     @property
     def merged(self) -> int:
@@ -172,6 +176,8 @@ class ResolvedStudy:
                           for g in groups]
         if self.design is not None:
             out["design"] = self.design
+        if self.accuracy is not None:
+            out["accuracy"] = self.accuracy
         return out
 
     @property
@@ -252,7 +258,28 @@ def finish(study: ResolvedStudy) -> ResolvedStudy:
             raise Invalid(f"{where}.{axis.name}: value {dup!r} appears twice (after validation)")
         axes[i] = dataclasses.replace(axis, values=tuple(canon[i]))
     study.id = study_hash(study)
+    mark_accuracy_sample(study)
     return study
+
+
+def accuracy_sample(run_ids: list[str], sample: float, seed: int = 0) -> set[str]:
+    """The runs that get error bars: ``ceil(sample x runs)`` of them (at least one), those
+    whose hash of ``(seed, run_id)`` is smallest. Deterministic and seeded; it depends on the
+    runs alone, not on their order or on how they are batched."""
+    if not run_ids:
+        return set()
+    k = min(len(run_ids), max(1, math.ceil(sample * len(run_ids) - 1e-9)))
+    return set(sorted(run_ids, key=lambda r: stable_hash([int(seed), r]))[:k])
+
+
+def mark_accuracy_sample(study: ResolvedStudy) -> None:
+    """Mark the runs of a dynamic study's accuracy sample (``RunSpec.check``)."""
+    if not study.accuracy or not study.dynamics:
+        return
+    chosen = accuracy_sample([r.run_id for r in study.runs], float(study.accuracy["sample"]),
+                             int(study.accuracy.get("seed", 0)))
+    study.runs = [dataclasses.replace(r, check=True) if r.run_id in chosen else r
+                  for r in study.runs]
 
 
 
@@ -273,7 +300,7 @@ def study_hash(study: ResolvedStudy) -> str:
     )
     # zip groups and the design case count only when given, so a study without them keeps
     # the id it had before they existed
-    return stable_hash({k: doc[k] for k in (*keys, "zip", "design") if k in doc})
+    return stable_hash({k: doc[k] for k in (*keys, "zip", "design", "accuracy") if k in doc})
 
 
 def _parse_conveyor(data: dict) -> Conveyor:
@@ -505,7 +532,9 @@ def study_from_json(doc: dict, study_id: str) -> ResolvedStudy:
         design=doc.get("design"),
         grid_points=grid_points(axes),
         designs=list(doc.get("designs") or []),
+        accuracy=doc.get("accuracy"),
     )
     study.runs, _, study.designs = _expand(study, study.designs)
     study.total = len(study.runs)
+    mark_accuracy_sample(study)
     return study

@@ -33,6 +33,8 @@ __all__ = [
     "SURFACE_COLUMNS",
     "PROFILE_COLUMNS",
     "profile_schema",
+    "accuracy_schema",
+    "ACCURACY_COLUMNS",
     "runs_schema",
     "runs_schema_for_axes",
     "axis_type",
@@ -117,6 +119,21 @@ def runs_schema_for_axes(axes: list[dict]) -> pa.Schema:
 def timeseries_schema() -> pa.Schema:
     return pa.schema(
         [pa.field("run_id", pa.string())] + [pa.field(c, pa.float64()) for c in TIMESERIES_COLUMNS]
+    )
+
+
+#: The accuracy table (a study's ``accuracy: {sample: ...}``): per sampled run, the error
+#: bars of :data:`beltstudy.engine.results.ACCURACY` (``<figure>_err``, ``<figure>_converged``,
+#: per-drive ones for drives 1 to MAX_DRIVES, the meshes and methods).
+ACCURACY_COLUMNS = R.columns((R.ACCURACY,))
+
+
+def accuracy_schema() -> pa.Schema:
+    """The accuracy table: ``run_id``, then :data:`ACCURACY_COLUMNS` (text or float64)."""
+    return pa.schema(
+        [pa.field("run_id", pa.string())]
+        + [pa.field(c, pa.string() if R.field(c).text else pa.float64())
+           for c in ACCURACY_COLUMNS]
     )
 
 

@@ -8,6 +8,8 @@
     <data_dir>/studies/<study_id>/profile/part-<key>.parquet     steady tension along the loop
     <data_dir>/studies/<study_id>/surface/part-<key>.parquet     SPEC section 5 long table
                                                                  (studies with surface: true)
+    <data_dir>/studies/<study_id>/accuracy/part-<key>.parquet    error bars of the sampled
+                                                                 runs (accuracy: {sample})
 
 Every file is written under a temporary name starting with ``.`` (which Arrow's dataset
 reader skips) and then renamed, so readers never see half a file. A batch writes its
@@ -36,6 +38,7 @@ import pyarrow.parquet as pq
 
 from beltstudy.service.errors import NotFound
 from beltstudy.service.store.columns import (
+    accuracy_schema,
     profile_schema,
     runs_schema_for_axes,
     surface_schema,
@@ -45,9 +48,9 @@ from beltstudy.service.store.columns import (
 __all__ = ["Store", "STATES", "TABLES", "PART_TABLES", "write_part_to"]
 
 STATES = ("queued", "running", "done", "failed", "cancelled")
-TABLES = ("runs", "timeseries", "surface", "profile")
+TABLES = ("runs", "timeseries", "surface", "profile", "accuracy")
 #: The tables a batch writes before its ``runs`` part (which commits them).
-PART_TABLES = ("surface", "timeseries", "profile")
+PART_TABLES = ("surface", "timeseries", "profile", "accuracy")
 _ID_RE = re.compile(r"^[0-9a-f]{16}$")
 #: Studies whose runs table :meth:`Store.read_runs` keeps for reuse.
 RUNS_CACHE_STUDIES = 4
@@ -216,7 +219,7 @@ class Store:
         if table == "runs":
             return runs_schema_for_axes(self.read(study_id)["study"]["axes"]).empty_table()
         schemas = {"timeseries": timeseries_schema, "surface": surface_schema,
-                   "profile": profile_schema}
+                   "profile": profile_schema, "accuracy": accuracy_schema}
         return schemas[table]().empty_table()
 
     def _read_table(self, study_id: str, table: str, columns=None, filters=None) -> pd.DataFrame:
@@ -271,6 +274,13 @@ class Store:
         self.read(study_id)
         filters = [("run_id", "=", run_id)] if run_id else None
         return self._read_table(study_id, "profile", filters=filters)
+
+    def read_accuracy(self, study_id: str, run_id: str | None = None) -> pd.DataFrame:
+        """The error bars of the study's sampled runs (``run_id`` + the ``<figure>_err`` and
+        ``<figure>_converged`` columns; empty without ``accuracy:``)."""
+        self.read(study_id)
+        filters = [("run_id", "=", run_id)] if run_id else None
+        return self._read_table(study_id, "accuracy", filters=filters)
 
     def read_surface(self, study_id: str, run_id: str | None = None) -> pd.DataFrame:
         """Tension and velocity at every element (long table), of one run or of all."""

@@ -22,10 +22,12 @@ __all__ = [
     "row_to_json",
     "rows_to_json",
     "columns_to_json",
+    "records_to_json",
     "apply_filters",
     "compare",
     "to_csv",
     "to_parquet",
+    "accuracy_columns",
     "DEFAULT_METRICS",
 ]
 
@@ -54,6 +56,11 @@ def row_to_json(row: dict) -> dict:
 
 def rows_to_json(df: pd.DataFrame) -> list[dict]:
     return [row_to_json(r) for r in df.to_dict(orient="records")]
+
+
+def records_to_json(df: pd.DataFrame) -> list[dict]:
+    """A DataFrame as a list of ``{column: value}`` with NaN as null (no folding)."""
+    return [{k: _clean(v) for k, v in r.items()} for r in df.to_dict(orient="records")]
 
 
 def columns_to_json(df: pd.DataFrame) -> dict[str, list]:
@@ -215,3 +222,42 @@ def compare(
         "failed_pairs": int((~usable).sum()),
         "summary": summary,
     }
+
+
+def accuracy_columns(runs: pd.DataFrame, accuracy: pd.DataFrame) -> pd.DataFrame:
+    """The error of each result column over a study's accuracy sample: one row per column
+    with a bar (``column``, ``unit``, ``runs`` sampled, the median ``value`` of the column on
+    those runs, the median and largest ``err``, and the largest ``err`` over its value
+    ``err_rel_max_pct`` [%]), in the order of the results."""
+    from beltstudy.engine import results as R
+
+    out = []
+    if not len(accuracy):
+        return pd.DataFrame(columns=["column", "unit", "runs", "value_median", "err_median",
+                                     "err_max", "err_rel_max_pct"])
+    values = runs.set_index("run_id") if len(runs) else None
+    for col in accuracy.columns:
+        if not col.endswith("_err"):
+            continue
+        errs = accuracy[["run_id", col]].dropna()
+        if not len(errs):
+            continue
+        name = col[:-4]
+        if values is not None and name in values.columns:
+            vals = values[name].reindex(errs["run_id"]).to_numpy(dtype=float)
+        else:
+            vals = np.full(len(errs), np.nan)
+        err = errs[col].to_numpy(dtype=float)
+        with np.errstate(divide="ignore", invalid="ignore"):
+            rel = np.where(np.abs(vals) > 0, 100.0 * err / np.abs(vals), np.nan)
+        out.append({
+            "column": name,
+            "unit": R.field(col).unit,
+            "runs": int(len(errs)),
+            "value_median": float(np.nanmedian(vals)) if np.isfinite(vals).any() else None,
+            "err_median": float(np.median(err)),
+            "err_max": float(np.max(err)),
+            "err_rel_max_pct": float(np.nanmax(rel)) if np.isfinite(rel).any() else None,
+        })
+    return pd.DataFrame(out, columns=["column", "unit", "runs", "value_median", "err_median",
+                                      "err_max", "err_rel_max_pct"])

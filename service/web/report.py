@@ -30,6 +30,7 @@ from beltstudy.engine import (
     parse_conveyor,
     resolve_belt,
 )
+from beltstudy.service.store import query
 from beltstudy.service.studies import StudyService
 from beltstudy.service.web import figures
 
@@ -358,6 +359,29 @@ def _runs_section(study: dict, runs: pd.DataFrame) -> str:
     return "".join(out)
 
 
+def _accuracy_section(study: dict, service: StudyService, study_id: str) -> str:
+    """The error of each result column over the study's accuracy sample (the error bars of
+    ``accuracy: {sample: ...}``), or why there is none."""
+    asked = study.get("accuracy")
+    if not asked:
+        return ("<p class=muted>No error bars: the study has no <code>accuracy: {sample: "
+                "...}</code> (beltstudy simulate checks a single run by default).</p>")
+    acc, cols = service.accuracy(study_id)
+    if not len(cols):
+        return "<p class=muted>No sampled run has finished yet.</p>"
+    rows = [[f"<code>{_e(r['column'])}</code>", _e(r["unit"]), _n(r["runs"]),
+             _n(r["value_median"]), _n(r["err_median"]), _n(r["err_max"]),
+             _n(r["err_rel_max_pct"], 3)] for r in query.records_to_json(cols)]
+    return (f"<p>Error bars of {len(acc)} sampled runs (sample {_e(asked.get('sample'))}, "
+            f"seed {_e(asked.get('seed', 0))}): each run repeated on a mesh half and one "
+            "twice as fine, the step following the mesh; Richardson extrapolation where the "
+            "observed order allows, else the spread (docs/dynamics.md, Error bars). The "
+            "value at a finer mesh lies within value +- error. The accuracy table is "
+            "<code>GET /studies/{id}/accuracy</code>.</p>"
+            + _table(["column", "unit", "runs", "value (median)", "error (median)",
+                      "error (largest)", "largest error / value [%]"], rows, "runs"))
+
+
 def build_report(service: StudyService, study_id: str) -> str:
     """The design report of a study as one self-contained HTML page."""
 
@@ -416,6 +440,8 @@ def build_report(service: StudyService, study_id: str) -> str:
         "".join(figs) or "<p>No figures: no finished runs yet.</p>",
         "<h2>6. Runs</h2>",
         _runs_section(study, runs),
+        "<h2>7. Error of each column</h2>",
+        _accuracy_section(study, service, study_id),
         "</body></html>",
     ]
     return "".join(parts)

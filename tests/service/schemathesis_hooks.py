@@ -149,6 +149,8 @@ def _study_ok(body: dict) -> bool:
         return False  # parameters of a model the study neither runs nor designs with
     if body.get("dynamics", True) and not _scenario_fits(body, axes):
         return False
+    if body.get("accuracy") is not None and body.get("dynamics") is False:
+        return False  # error bars are those of the transient
     return _section_loads_fit(body, axes)
 
 

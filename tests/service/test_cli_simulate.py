@@ -29,6 +29,10 @@ def test_cli_simulate_json_timeseries_plot(tmp_path, capsys):
     assert s["stop_mode"] == "controlled" and s["elements_used"] == 42
     for key in TRANSIENT_FIELDS + ("status", "message"):
         assert key in s
+    # checked by default: meshes of about half and twice the run's, a bar on each figure
+    coarse, run, fine = (int(x) for x in s["accuracy_elements"].split("/"))
+    assert run == 42 and abs(coarse - 21) <= 2 and abs(fine - 84) <= 2
+    assert s["t_max_dyn_kn_err"] >= 0.0 and s["stop_time_s_err"] >= 0.0
     ts = pd.read_parquet(ts_path)
     assert tuple(ts.columns[: len(TIMESERIES_COLUMNS)]) == TIMESERIES_COLUMNS
     assert png.stat().st_size > 10_000
@@ -42,9 +46,10 @@ def test_cli_scenario_file_with_overrides(tmp_path, capsys):
                    "  run_s: 3\n  stop: {mode: coast}\n  elements: 40\n")
     code = main(["simulate", str(SLOPE), "--scenario", str(scn), "--stop-mode", "controlled",
                  "--stop-time-s", "30", "--start-control", "s-curve", "--start-time-s", "60",
-                 "--json"])
+                 "--json", "--no-check"])
     s = json.loads(capsys.readouterr().out)
     assert code == 0
+    assert "accuracy_elements" not in s and "t_max_dyn_kn_err" not in s
     assert s["load"] == "empty" and s["stop_mode"] == "controlled"
     assert s["elements_used"] == 42 and s["status"] != "failed"
 

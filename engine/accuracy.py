@@ -1,0 +1,381 @@
+"""Error bars of a transient run's deciding figures, by systematic mesh refinement.
+
+The practice of code verification (Roache 1994, "Perspective: a method for uniform reporting
+of grid refinement studies", J. Fluids Eng. 116; ASME V&V 20-2009, section 2-4; Celik et al.
+2008, "Procedure for estimation and reporting of uncertainty due to discretization in CFD
+applications", J. Fluids Eng. 130, 078001): the run is repeated on a coarser and a finer mesh
+(ratio :data:`RATIO`, ``n/2, n, 2n`` elements with ``n`` the run's own), the automatic step
+following the mesh so the Courant number stays (a fixed ``dt_s`` is scaled with it). For
+each deciding figure ``f`` (``f3, f2, f1`` on the coarse, the run's and the fine mesh):
+
+- ``e32 = f3 - f2`` and ``e21 = f2 - f1`` of one sign: the observed order
+  ``p = ln(e32 / e21) / ln r`` (Celik's fixed point for unequal ratios) and the Richardson
+  estimate ``f1 + (f1 - f2) / (r^p - 1)`` (``<figure>_converged``). The bar of the run's
+  figure ``f2`` is the grid convergence index of the coarser of the two meshes,
+  ``Fs |f2 - f1| r^p / (r^p - 1)``: with ``p`` within :data:`P_CLOSE` of the scheme's formal
+  order :data:`P_FORMAL` (the asymptotic range) ``Fs = 1.25`` and the observed ``p`` (method
+  ``richardson``); otherwise ``Fs = 3`` with ``p`` bounded to [:data:`P_MIN`,
+  :data:`P_FORMAL`] (method ``gci3``; Oberkampf & Roy 2010, section 8.6.3: an observed
+  order above the formal one is not credited, and an extreme behind a front converges as
+  ``sqrt(dx)``, PHYSICS 5.2). With two meshes only (one failed, or too coarse), ``p`` is
+  assumed (:data:`P_ASSUMED`) and ``Fs = 3`` (method ``gci2``).
+- differences of opposite signs (or a zero difference next to a non-zero one): the figure
+  is not in the asymptotic range; the bar is the spread, ``Fs = 3`` x the largest distance
+  of the other meshes' values from ``f2`` (method ``spread``), with no converged estimate.
+- all three equal: method ``unchanged``.
+
+No bar is below what the run resolves of the figure (:func:`resolution`: the step for a
+time, the resistance law's relative accuracy for the rest).
+
+The bar is of the figure the run reports, at the run's own mesh, in its unit
+(``<figure>_err``); it is meant to contain the value a mesh 4 x as fine (and a quarter of the
+step) gives, which ``benchmarks/check_error_bars.py`` checks on the example conveyors.
+
+A verdict whose figure lies within its bar of the limit (slack, sag, slip margin, transient
+safety factor) is *marginal* (PHYSICS 5.2): :func:`marginal_verdicts` says so, with the
+figure, the limit and the error, in the run's message. A run is checked with
+``beltstudy.engine.run.run_one(..., check=True)``.
+"""
+
+from __future__ import annotations
+
+import math
+import re
+from dataclasses import dataclass, field
+
+from beltstudy.engine.conveyor import InputError, Scenario
+from beltstudy.engine.dynamics import DynamicsOptions
+from beltstudy.engine.results import DECIDING
+
+__all__ = [
+    "RATIO", "FS_THREE", "FS_TWO", "FS_SPREAD", "P_FORMAL", "P_CLOSE", "P_MIN", "P_ASSUMED",
+    "DECIDING", "FigureError", "Accuracy", "deciding_figures", "figure_error", "resolution",
+    "bars", "error_bars", "marginal_verdicts",
+]
+
+#: Refinement ratio of the meshes (Roache: 2 is usual; at least 1.3).
+RATIO = 2
+#: Safety factors of the grid convergence index (Roache 1994): three meshes with an observed
+#: order in the asymptotic range; two meshes, or an assumed order.
+FS_THREE = 1.25
+FS_TWO = 3.0
+#: Safety factor on the spread of a figure outside the asymptotic range: its order is not
+#: established, which is Roache's case for Fs = 3.
+FS_SPREAD = 3.0
+#: The formal order of the transient scheme: semi-implicit Euler is first order in time
+#: with the explicit Kelvin-Voigt damping and the speed-dependent resistances (second order
+#: only on the undamped chain), and the step follows the mesh.
+P_FORMAL = 1.0
+#: An observed order within this fraction of the formal one is in the asymptotic range
+#: (Oberkampf & Roy 2010, Verification and Validation in Scientific Computing, 8.6.3).
+P_CLOSE = 0.1
+#: The lowest order used: an extreme read behind a smeared front converges as sqrt(dx)
+#: (PHYSICS 5.2).
+P_MIN = 0.5
+#: The order assumed where it is not observed: the slowest of PHYSICS 5.2.
+P_ASSUMED = 0.5
+#: Fewest elements of a mesh the refinement uses (the transient model's own floor is 8).
+ELEMENTS_MIN = 8
+
+_DRIVE = re.compile(r"^drive(\d+)_(.+)$")
+
+
+def deciding_figures(summary: dict) -> list[str]:
+    """The deciding figures ``summary`` holds as finite numbers, in :data:`DECIDING` order."""
+    names = []
+    for pattern in DECIDING:
+        if "{i}" in pattern:
+            tail = pattern.split("_", 1)[1]
+            keys = sorted((k for k in summary if (m := _DRIVE.match(k)) and m.group(2) == tail),
+                          key=lambda k: int(_DRIVE.match(k).group(1)))
+        else:
+            keys = [pattern]
+        names += [k for k in keys if _finite(summary.get(k))]
+    return names
+
+
+def _finite(x) -> bool:
+    return isinstance(x, int | float) and not isinstance(x, bool) and math.isfinite(x)
+
+
+@dataclass(frozen=True)
+class FigureError:
+    """The error bar of one figure.
+
+    name : the figure (a result name)
+    value : the figure at the run's own mesh
+    err : the bar, same unit: the value at a finer mesh is expected in value +- err
+    converged : the Richardson estimate (None where not extrapolated)
+    method : ``richardson`` (three meshes, observed order near the formal one, Fs 1.25),
+        ``gci3`` (three meshes, order bounded, Fs 3), ``gci2`` (two meshes, assumed order,
+        Fs 3), ``spread`` (not in the asymptotic range), ``unchanged`` or ``none``
+    order : the observed order p (None where not observed)
+    values : the figure on each mesh, coarse to fine (None where a mesh gave none)
+    """
+
+    name: str
+    value: float
+    err: float
+    converged: float | None
+    method: str
+    order: float | None
+    values: tuple
+
+
+def _order(e32: float, e21: float, r21: float, r32: float) -> float:
+    """Observed order from differences of one sign, meshes in ratios r21 (fine / run) and
+    r32 (run / coarse) (Celik et al. 2008, Eq. 3, fixed point; exact for r21 == r32)."""
+    ratio = e32 / e21
+    p = math.log(ratio) / math.log(r21)
+    if abs(r21 - r32) < 1e-9:
+        return p
+    for _ in range(50):
+        p = min(p, 50.0)  # far outside any range used; keeps r^p finite
+        q = math.log((r21 ** p - 1.0) / (r32 ** p - 1.0)) if p > 1e-9 else 0.0
+        p_new = (math.log(ratio) + q) / math.log(r21)
+        if abs(p_new - p) < 1e-10:
+            return p_new
+        p = p_new
+    return p
+
+
+def figure_error(name: str, values: tuple, elements: tuple[int, int, int],
+                 floor: float = 0.0) -> FigureError | None:
+    """The bar of one figure from its ``values`` on three meshes of ``elements`` (coarse, the
+    run's, fine; a value may be None where that mesh gave none), at least ``floor`` (the
+    run's resolution of that figure, :func:`resolution`). None when the run's own value is
+    missing."""
+    fe = _figure_error(name, values, elements)
+    if fe is not None and fe.err < floor:
+        fe = FigureError(fe.name, fe.value, float(floor), fe.converged, fe.method, fe.order,
+                         fe.values)
+    return fe
+
+
+def resolution(name: str, summary: dict, rtol: float) -> float:
+    """What a run resolves of a figure, the floor of its bar: a time is read at a step
+    (``dt_used_s``); any other figure carries the relative accuracy ``rtol`` of the
+    resistance law between its exact evaluations (``DynamicsOptions.resistance_rtol``)."""
+    value = summary.get(name)
+    if not _finite(value):
+        return 0.0
+    if name.endswith("_time_s") or name == "stop_time_s":
+        return float(summary.get("dt_used_s") or 0.0)
+    return rtol * abs(float(value))
+
+
+def bars(runs: list, elements: tuple, rtol: float) -> dict:
+    """The bar of every deciding figure of the run ``runs[1]`` from its summaries on three
+    meshes (coarse, the run's, fine; None for a mesh that gave none) of ``elements``."""
+    out = {}
+    for name in deciding_figures(runs[1]):
+        vals = tuple(None if s is None else s.get(name) for s in runs)
+        fe = figure_error(name, vals, elements, resolution(name, runs[1], rtol))
+        if fe is not None:
+            out[name] = fe
+    return out
+
+
+def _figure_error(name: str, values: tuple, elements: tuple[int, int, int]
+                  ) -> FigureError | None:
+    f3, f2, f1 = values
+    n3, n2, n1 = elements
+    if not _finite(f2):
+        return None
+    have3, have1 = _finite(f3), _finite(f1)
+    tiny = 1e-12 * max(1.0, abs(f2))
+
+    def gci2(fa: float, fb: float, r: float) -> FigureError:
+        """Two meshes, assumed order, Fs 3: ``fa`` the coarser, ``fb`` the finer value."""
+        rp = r ** P_ASSUMED - 1.0
+        conv = fb + (fb - fa) / rp
+        return FigureError(name, f2, FS_TWO * abs(f2 - conv), conv, "gci2", None, values)
+
+    if have3 and have1:
+        e32, e21 = f3 - f2, f2 - f1
+        if abs(e32) <= tiny and abs(e21) <= tiny:
+            return FigureError(name, f2, 0.0, f2, "unchanged", None, values)
+        if abs(e32) <= tiny or abs(e21) <= tiny or (e32 > 0) != (e21 > 0):
+            spread = max(abs(e32), abs(e21))
+            return FigureError(name, f2, FS_SPREAD * spread, None, "spread", None, values)
+        r21, r32 = n1 / n2, n2 / n3
+        p = _order(e32, e21, r21, r32)
+        if abs(p - P_FORMAL) <= P_CLOSE * P_FORMAL:
+            fs, p_used, method = FS_THREE, p, "richardson"
+        else:  # not shown to be asymptotic: Fs 3, the order bounded (Oberkampf & Roy 2010)
+            fs, p_used, method = FS_TWO, min(max(P_MIN, p), P_FORMAL), "gci3"
+        conv = f1 + (f1 - f2) / (r21 ** p_used - 1.0)
+        return FigureError(name, f2, fs * abs(f2 - conv), conv, method, p, values)
+    if have1:
+        if abs(f2 - f1) <= tiny:
+            return FigureError(name, f2, 0.0, f2, "unchanged", None, values)
+        return gci2(f2, f1, n1 / n2)
+    if have3:
+        if abs(f3 - f2) <= tiny:
+            return FigureError(name, f2, 0.0, f2, "unchanged", None, values)
+        return gci2(f3, f2, n2 / n3)
+    return FigureError(name, f2, math.nan, None, "none", None, values)
+
+
+@dataclass
+class Accuracy:
+    """The error bars of a run.
+
+    elements : the meshes, coarse to fine (the run's in the middle; None for one not run)
+    figures : the bar of each deciding figure, by name
+    marginal : the marginal verdicts in words (``marginal: ...``)
+    notes : meshes that could not be run, and why
+    """
+
+    elements: tuple
+    figures: dict = field(default_factory=dict)
+    marginal: list = field(default_factory=list)
+    notes: list = field(default_factory=list)
+
+    def fields(self) -> dict:
+        """``<figure>_err`` and ``<figure>_converged`` of every figure, ``accuracy_elements``
+        and ``accuracy_methods`` (the result fields of :data:`beltstudy.engine.results.ACCURACY`)."""
+        out: dict = {"accuracy_elements": "/".join("-" if n is None else str(n)
+                                                   for n in self.elements),
+                     "accuracy_methods": self.methods()}
+        for name, fe in self.figures.items():
+            out[f"{name}_err"] = None if math.isnan(fe.err) else fe.err
+            out[f"{name}_converged"] = fe.converged
+        return out
+
+    def apply(self, summary: dict) -> dict:
+        """Write the bars into a run's ``summary``: the :meth:`fields`, the marginal verdicts
+        and the meshes that could not be run appended to its message (a run ``ok`` with a
+        marginal verdict becomes ``warning``). Returns ``summary``."""
+        summary.update(self.fields())
+        notes = [f"note: error bars from two meshes, {n}" for n in self.notes]
+        if self.marginal or notes:
+            summary["message"] = "; ".join(
+                m for m in (summary.get("message"), *self.marginal, *notes) if m)
+        if self.marginal and summary.get("status") == "ok":
+            summary["status"] = "warning"
+        return summary
+
+    def methods(self) -> str:
+        """Each figure's method, grouped: ``richardson: a (p 0.8), b (p 1.1); spread: c``."""
+        groups: dict[str, list[str]] = {}
+        for name, fe in self.figures.items():
+            words = name if fe.order is None else f"{name} (p {fe.order:.2g})"
+            groups.setdefault(fe.method, []).append(words)
+        return "; ".join(f"{m}: {', '.join(v)}" for m, v in groups.items())
+
+
+def _mesh_scenario(scenario: Scenario, n_run: int, n: int) -> Scenario:
+    """The scenario on ``n`` elements; a fixed step scaled with the mesh (same Courant
+    number), the automatic one following it by itself."""
+    update: dict = {"elements": int(n)}
+    if scenario.dt_s != "auto":
+        update["dt_s"] = float(scenario.dt_s) * n_run / n
+    return scenario.model_copy(update=update)
+
+
+def error_bars(scenario: Scenario, summary: dict, rerun, *,
+               rtol: float = DynamicsOptions.resistance_rtol,
+               sag_limit_pct: float | None = None,
+               safety_factor_min: float | None = None) -> Accuracy:
+    """The error bars of the run of ``scenario`` whose summary is ``summary``: reruns on
+    ``n / RATIO`` and ``n x RATIO`` elements, ``n`` the run's ``elements_used``.
+
+    Parameters
+    ----------
+    scenario : Scenario
+        The run's scenario (its ``elements`` and a fixed ``dt_s`` are changed per mesh).
+    summary : dict
+        The run's summary.
+    rerun : callable
+        ``rerun(scenario) -> summary`` of the same conveyor, model and options
+        (:func:`beltstudy.engine.run.run_one`); it may raise ``InputError`` (that mesh is
+        left out).
+    rtol : float
+        The resistance law's relative accuracy (``DynamicsOptions.resistance_rtol``), the
+        floor of a bar (:func:`resolution`) [-].
+    sag_limit_pct, safety_factor_min : float, optional
+        The limits of the marginal verdicts: the sag limit of the strand where the run's sag
+        is largest [%], the transient safety factor limit
+        (:func:`beltstudy.engine.run.transient_safety_min`) [-].
+    """
+    n = int(summary["elements_used"])
+    meshes = (max(ELEMENTS_MIN, n // RATIO), n, n * RATIO)
+    runs: list[dict | None] = []
+    acc = Accuracy(elements=meshes)
+    for k, m in enumerate(meshes):
+        if k == 0 and m >= n:
+            runs.append(None)
+            acc.notes.append(f"no mesh coarser than {n} elements (the fewest is {ELEMENTS_MIN})")
+            continue
+        if k == 1:
+            runs.append(summary)
+            continue
+        try:
+            other = rerun(_mesh_scenario(scenario, n, m))
+        except InputError as exc:
+            runs.append(None)
+            acc.notes.append(f"{m} elements not run: {exc}")
+            continue
+        if other.get("status") == "failed":
+            runs.append(None)
+            acc.notes.append(f"{m} elements failed: {other.get('message')}")
+            continue
+        runs.append(other)
+    # the mesh a run used (the loop's cut may add an element or two to the asked count)
+    used = tuple(int(s["elements_used"]) if s is not None and s.get("elements_used") else m
+                 for s, m in zip(runs, meshes, strict=True))
+    if runs[0] is not None and used[0] >= used[1]:
+        runs[0] = None
+        acc.notes.append(f"no mesh coarser than {n} elements (the fewest is {ELEMENTS_MIN})")
+    used = tuple(None if s is None else u for s, u in zip(runs, used, strict=True))
+    acc.elements = used
+    acc.figures = bars(runs, used, rtol)
+    acc.marginal = marginal_verdicts(summary, acc.figures, sag_limit_pct=sag_limit_pct,
+                                     safety_factor_min=safety_factor_min)
+    return acc
+
+
+def _marginal(fe: FigureError | None, limit: float, unit: str) -> str | None:
+    if fe is None or not math.isfinite(fe.err) or fe.err <= 0.0:
+        return None
+    if abs(fe.value - limit) > fe.err:
+        return None
+    return (f"marginal: {fe.name} {fe.value:.4g} against limit {limit:g} +- {fe.err:.3g}"
+            f"{(' ' + unit) if unit else ''} (the verdict may flip with the mesh)")
+
+
+def marginal_verdicts(summary: dict, figures: dict, *, sag_limit_pct: float | None = None,
+                      safety_factor_min: float | None = None) -> list[str]:
+    """The verdicts whose figure lies within its error bar of the limit (PHYSICS 5.2):
+
+    - slack: a belt that went slack by less than the error of ``slack_max_m`` (limit 0 m),
+      or one that did not by less than the error of its lowest tension ``t_min_dyn_kn``
+      (limit 0 kN);
+    - sag: ``sag_max_dyn_pct`` against ``sag_limit_pct``, the limit of the strand where the
+      sag is largest;
+    - slip: ``slip_margin_min_dyn`` against 1, when no drive slipped (a slip is reported
+      by itself);
+    - safety factor: ``safety_factor_dyn`` against ``safety_factor_min``.
+    """
+    out = []
+    slack = (summary.get("slack_max_m") or 0.0) > 0.0
+    words = (_marginal(figures.get("slack_max_m"), 0.0, "m") if slack
+             else _marginal(figures.get("t_min_dyn_kn"), 0.0, "kN"))
+    if words:
+        out.append(words)
+    if sag_limit_pct is not None:
+        words = _marginal(figures.get("sag_max_dyn_pct"), float(sag_limit_pct), "%")
+        if words:
+            out.append(words)
+    slipped = any((v or 0.0) > 0.0 for k, v in summary.items()
+                  if k.startswith("drive") and k.endswith("_slip_s"))
+    if not slipped:  # a slip that happened is its own verdict, the margin then at its floor
+        words = _marginal(figures.get("slip_margin_min_dyn"), 1.0, "")
+        if words:
+            out.append(words)
+    if safety_factor_min is not None:
+        words = _marginal(figures.get("safety_factor_dyn"), float(safety_factor_min), "")
+        if words:
+            out.append(words)
+    return out

@@ -1,0 +1,133 @@
+"""Error bars by mesh refinement (beltstudy.engine.accuracy): the observed order, the
+Richardson estimate and the grid convergence index against hand calculations on sequences
+of known order (Roache 1994), the spread of a figure outside the asymptotic range, the
+marginal verdicts, and a run close to slack named marginal."""
+
+from __future__ import annotations
+
+import math
+
+import pytest
+
+from beltstudy.engine import accuracy as A
+
+
+def _seq(f_inf: float, c: float, p: float, meshes=(50, 100, 200, 400)) -> tuple:
+    """f(n) = f_inf + c n^-p: a figure converging at order p."""
+    return tuple(f_inf + c * n ** -p for n in meshes)
+
+
+def test_richardson_on_a_first_order_sequence():
+    f3, f2, f1, f4 = _seq(100.0, 500.0, 1.0)  # 110, 105, 102.5; 101.25 at 4n
+    fe = A.figure_error("t_max_dyn_kn", (f3, f2, f1), (50, 100, 200))
+    assert fe.method == "richardson"
+    assert fe.order == pytest.approx(1.0, abs=1e-12)  # ln(5 / 2.5) / ln 2
+    assert fe.converged == pytest.approx(100.0, abs=1e-9)  # 102.5 + (102.5 - 105) / (2 - 1)
+    assert fe.err == pytest.approx(1.25 * 5.0, abs=1e-9)  # Fs |f2 - f_inf|
+    assert abs(f4 - fe.value) <= fe.err  # the bar holds the 4n value (3.75 of 6.25)
+
+
+def test_order_below_the_asymptotic_range_is_bounded_with_fs_3():
+    f3, f2, f1, f4 = _seq(20.0, 40.0, 0.3)
+    fe = A.figure_error("t_min_stop_kn", (f3, f2, f1), (50, 100, 200))
+    assert fe.method == "gci3" and fe.order == pytest.approx(0.3, abs=1e-12)
+    rp = 2.0 ** 0.5 - 1.0  # the order used: at least sqrt(dx)'s
+    conv = f1 + (f1 - f2) / rp
+    assert fe.converged == pytest.approx(conv, rel=1e-12)
+    assert fe.err == pytest.approx(3.0 * abs(f2 - conv), rel=1e-12)
+    assert abs(f4 - f2) <= fe.err
+
+
+def test_unequal_ratios_give_the_order_by_celik_s_fixed_point():
+    meshes = (21, 42, 86)
+    f3, f2, f1 = _seq(7.0, 30.0, 1.05, meshes + (1,))[:3]
+    fe = A.figure_error("stop_time_s", (f3, f2, f1), meshes)
+    assert fe.method == "richardson" and fe.order == pytest.approx(1.05, abs=1e-6)
+    assert fe.converged == pytest.approx(7.0, abs=1e-6)
+
+
+def test_an_order_above_the_formal_one_is_not_credited():
+    f3, f2, f1, f4 = _seq(50.0, 2.0e4, 2.0)  # 58, 52, 50.5
+    fe = A.figure_error("t_max_stop_kn", (f3, f2, f1), (50, 100, 200))
+    assert fe.method == "gci3" and fe.order == pytest.approx(2.0)
+    # p used 1 (the formal order), Fs 3: converged 50.5 - 1.5 = 49, bar 3 x |52 - 49|
+    assert fe.converged == pytest.approx(49.0) and fe.err == pytest.approx(9.0)
+
+
+def test_differences_of_opposite_sign_give_the_spread():
+    fe = A.figure_error("slip_margin_min_dyn", (1.30, 1.20, 1.26), (50, 100, 200))
+    assert fe.method == "spread" and fe.converged is None and fe.order is None
+    assert fe.err == pytest.approx(3.0 * 0.10)  # Fs 3: the order is not established
+
+
+def test_unchanged_and_missing_meshes():
+    fe = A.figure_error("slack_max_m", (0.0, 0.0, 0.0), (50, 100, 200))
+    assert fe.method == "unchanged" and fe.err == 0.0
+    # the fine mesh missing: two meshes, the run's the finer, assumed order, Fs 3
+    fe = A.figure_error("t_max_dyn_kn", (110.0, 105.0, None), (50, 100, 200))
+    assert fe.method == "gci2"
+    assert fe.err == pytest.approx(3.0 * 5.0 / (math.sqrt(2.0) - 1.0))
+    assert A.figure_error("t_max_dyn_kn", (110.0, None, 100.0), (50, 100, 200)) is None
+
+
+def test_deciding_figures_are_those_the_run_reports():
+    s = {"t_max_dyn_kn": 5.0, "t_min_dyn_kn": 1.0, "drive2_force_max_kn": 3.0,
+         "drive1_force_max_kn": 2.0, "drive1_slip_s": 0.0, "stop_time_s": None,
+         "takeup_travel_start_m": 0.2, "velocity_max_m_s": 4.0}
+    assert A.deciding_figures(s) == ["t_max_dyn_kn", "t_min_dyn_kn", "drive1_force_max_kn",
+                                     "drive2_force_max_kn", "takeup_travel_start_m"]
+
+
+def _fe(name, value, err):
+    return A.FigureError(name, value, err, None, "spread", None, (value, value, value))
+
+
+def test_a_verdict_within_its_error_of_the_limit_is_marginal():
+    # not slack, lowest tension 0.8 kN +- 1.5 kN: slack within the error
+    words = A.marginal_verdicts({"slack_max_m": 0.0}, {"t_min_dyn_kn": _fe("t_min_dyn_kn", 0.8,
+                                                                            1.5)})
+    assert words == ["marginal: t_min_dyn_kn 0.8 against limit 0 +- 1.5 kN (the verdict may "
+                     "flip with the mesh)"]
+    assert A.marginal_verdicts({"slack_max_m": 0.0},
+                               {"t_min_dyn_kn": _fe("t_min_dyn_kn", 0.8, 0.5)}) == []
+    # slack by 2 cm of belt +- 5 cm
+    words = A.marginal_verdicts({"slack_max_m": 0.02},
+                                {"slack_max_m": _fe("slack_max_m", 0.02, 0.05)})
+    assert words and words[0].startswith("marginal: slack_max_m 0.02 against limit 0 +- 0.05")
+    # slip margin 1.03 +- 0.05 against 1; safety factor 5.9 +- 0.2 against 6
+    words = A.marginal_verdicts({}, {"slip_margin_min_dyn": _fe("slip_margin_min_dyn", 1.03,
+                                                                 0.05),
+                                     "safety_factor_dyn": _fe("safety_factor_dyn", 5.9, 0.2)},
+                                safety_factor_min=6.0)
+    assert [w.split(" against")[0] for w in words] == [
+        "marginal: slip_margin_min_dyn 1.03", "marginal: safety_factor_dyn 5.9"]
+
+
+def test_a_brake_stop_close_to_slack_is_named_marginal():
+    """A 450 m incline (benchmarks/conveyors/steep-incline.yaml) stopped by a 50 kN head
+    brake on 42 elements: its lowest tension, behind the brake on the carry, falls with the
+    mesh (about 19, 15 and 10 kN on 22, 42 and 86 elements, differences that do not shrink), so 0 kN
+    (slack) lies within the bar of the run's 15 kN: the run is not slack on its mesh and
+    says that the verdict is marginal instead of leaving it to flip on a finer one."""
+    from beltstudy.engine import load_conveyor, parse_scenario
+    from beltstudy.engine.run import run_one
+    from tests.conftest import ROOT
+
+    base = load_conveyor(ROOT / "benchmarks" / "conveyors" / "steep-incline.yaml")
+    conv = base.model_copy(update={"brakes": [base.brakes[0].model_copy(
+        update={"force_kn": 50.0})]})
+    scn = parse_scenario({"elements": 40, "run_s": 5, "stop": {"mode": "brake"}})
+    res = run_one(conv, scn, model="din", check=True)
+    s = res.summary
+    assert s["slack_max_m"] == 0.0 and s["t_min_dyn_kn"] > 0.0  # not slack on its own mesh
+    acc = res.accuracy
+    fe = acc.figures["t_min_dyn_kn"]
+    f3, f2, f1 = fe.values
+    assert f3 > f2 > f1 > 0.0  # converging from above, towards slack
+    assert fe.err >= f2  # slack within the bar
+    assert s["t_min_dyn_kn_err"] == fe.err
+    assert f"marginal: t_min_dyn_kn {f2:.4g} against limit 0 +- {fe.err:.3g} kN" in s["message"]
+    assert s["status"] == "warning"
+    # the bar holds the value at 4 x the elements (a quarter of the step), still falling
+    fine = run_one(conv, scn.model_copy(update={"elements": 4 * 42}), model="din").summary
+    assert fine["t_min_dyn_kn"] < f1 and abs(fine["t_min_dyn_kn"] - f2) <= fe.err
