@@ -553,25 +553,35 @@ def _block_setup(model: Model, ref, nodes, st, sh, rs, R0):
 
 
 def _master_output(model: Model, bk, st, sh, dr, rs, U):
-    """The speed loop's output for this pass: known (from an earlier block), from a slipping
-    master's shaft predicted with the slack side at the step's start, from a held master row,
-    or unknown (``two``: found from the solution by superposition). Returns (U, two)."""
+    """The speed loop's output for this pass: known (from an earlier block), from a held or
+    stuck master row, or unknown (``two``: found from the solution by superposition, with the
+    master's new shaft speed, :func:`_master_speed`). Returns (U, two)."""
     master, km = model.control.master, bk.km
     if km < 0 or rs.u_known or dr.mode[master] != 1 or dr.sat[master]:
         return U, False
-    s = bk.shaft[km]
-    sl = sh.slip[s]
-    if sl != 0.0:
-        # the slipping master's shaft predicted with the slack side at the step start
-        j = bk.nodes[km]
-        ts = st.tt[j] if sl > 0.0 else st.tt[(j - 1) % len(st.tt)]
-        ms, share = model.shafts.mass[s] / bk.dt, model.drives.share[master]
-        ck = model.shafts.ck[s]
-        vp = (ms * sh.vs[s] + share * rs.f0u - sl * ck * ts) / (ms - share * rs.f1u)
-        return _saturate_master(model, dr, rs.f0u + rs.f1u * vp), False
-    if bk.fixed[km] or bk.stuck[km]:
+    if sh.slip[bk.shaft[km]] == 0.0 and (bk.fixed[km] or bk.stuck[km]):
         return _saturate_master(model, dr, rs.f0u + rs.f1u * bk.fixv[km]), False
     return U, True
+
+
+def _master_speed(model: Model, bk, sh, x0, xu):
+    """The master's new shaft speed ``g0 + gu U`` from the solution ``x0`` and its response
+    ``xu`` to U: the belt's speed at its row while it sticks; while it slips, its momentum
+    balance over the step under its share of U less the sliding force ``ck T_s`` at the new
+    tensions (as :func:`_shaft_speed`)."""
+    km = bk.km
+    s = bk.shaft[km]
+    sl = sh.slip[s]
+    if sl == 0.0:
+        return x0[km], xu[km]
+    side = 1 if sl > 0.0 else 0  # the side the slip unloads (outgoing, incoming)
+    t0 = _side_tensions(bk, x0, km)[side]
+    tu = _side_tensions(bk, x0 + xu, km)[side] - t0
+    ms = model.shafts.mass[s] / bk.dt
+    ck = model.shafts.ck[s]
+    g0 = sh.vs[s] - sl * ck * t0 / ms
+    gu = (model.drives.share[model.control.master] - sl * ck * tu) / ms
+    return g0, gu
 
 
 def _shaft_row(model: Model, bk, sh, dr, rs, k, U, two):
@@ -642,7 +652,7 @@ def _block_rows(model: Model, bk, sh, dr, rs, U, two):
         b[m] += tu.mass / dt * rs.u_tu + tu.weight
 
 
-def _block_solution(model: Model, bk, dr, rs, U, two):
+def _block_solution(model: Model, bk, sh, dr, rs, U, two):
     """Solve the block with the rows held at a speed as identities (an imposed or held
     element, a brake or holdback holding, the carriage at an end stop) for its speeds
     (``bk.x``); with ``two`` also its response to U, and U from the master's row (within its
@@ -662,8 +672,8 @@ def _block_solution(model: Model, bk, dr, rs, U, two):
     if two:
         # U = f0u + f1u x_master with x = x0 + U xu: two solves
         x0, xu = np.linalg.solve(Ah, np.column_stack([bh, buh])).T
-        km = bk.km
-        U = _saturate_master(model, dr, (rs.f0u + rs.f1u * x0[km]) / (1.0 - rs.f1u * xu[km]))
+        g0, gu = _master_speed(model, bk, sh, x0, xu)
+        U = _saturate_master(model, dr, (rs.f0u + rs.f1u * g0) / (1.0 - rs.f1u * gu))
         bk.x = x0 + U * xu
     else:
         bk.x = np.linalg.solve(Ah, bh)
@@ -839,7 +849,7 @@ def _block_step(model: Model, ref, nodes, st, sh, dr, rs, R0):
     for _ in range(ACTIVE_SET_PASSES):
         U, two = _master_output(model, bk, st, sh, dr, rs, U)
         _block_rows(model, bk, sh, dr, rs, U, two)
-        U = _block_solution(model, bk, dr, rs, U, two)
+        U = _block_solution(model, bk, sh, dr, rs, U, two)
         # the active set against the solution
         again = _carriage_consistent(model, bk, rs)
         for k in range(bk.m):
