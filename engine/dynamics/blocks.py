@@ -383,6 +383,7 @@ def _block_setup(model, st, wk, p0, m, hold_node):
         wk.c_hi[k] = 0.0
         wk.bdir[k] = 1.0 if vo >= 0.0 else -1.0
         wk.vsn[k] = 0.0
+        wk.crossed[k] = 0.0
         if s >= 0:
             if shafts.slip[s] == 0.0:
                 _row_brake(wk, k, shafts.fb[s], shafts.hb[s] == 1, vo, v_eps)
@@ -441,8 +442,8 @@ def _master_speed(model, st, wk, p0, km, m, car):
     shafts = model.shafts
     s = wk.shk[km]
     sl = shafts.slip[s]
-    if sl == 0.0:
-        return wk.sol[km], wk.sol2[km]
+    if sl == 0.0 or abs(wk.crossed[km]) == 2.0:
+        return wk.sol[km], wk.sol2[km]  # at the belt's speed
     c0, l0 = _slack_side(wk, model.springs, model.blocks, st.tt, wk.sol, p0, km, m, car, sl)
     _c, lu = _slack_side(wk, model.springs, model.blocks, st.tt, wk.sol2, p0, km, m, car, sl)
     ms = shafts.mass[s] / model.cycle.dt
@@ -639,7 +640,10 @@ def _row_consistent(model, wk, k, m, car, U):
             wk.stuck[k] = 1.0  # the brake stops the element
             again = True
     z = 1.0 if xk > v_eps else (-1.0 if xk < -v_eps else 0.0)
-    if wk.stuck[k] == 1.0:
+    if wk.stuck[k] == 1.0 or z * wk.fz[k] < 0.0:
+        # a resistance that would turn round within the step goes through its linear band
+        # (the speed at which it balances; from one side to the other the two zones give
+        # each other's speeds and alternate to the last pass)
         z = 0.0
     if z != wk.fz[k]:
         wk.fz[k] = z
@@ -650,7 +654,12 @@ def _row_consistent(model, wk, k, m, car, U):
 @njit(inline="always", **OPTS)
 def _shaft_consistent(model, st, wk, rs, p0, k, m, car, U):
     """Row ``k``'s shaft against the solution: a sticking shaft that would pass more than its
-    capstan grip starts to slip; a slipping one whose speed crosses the belt's sticks again.
+    capstan grip starts to slip; a slipping one whose speed crosses the belt's sticks again
+    (the exact outcome of the step, as in time stepping of friction at the velocity level,
+    Moreau 1988: the relative speed at the step's end is zero, or has the sign of the sliding
+    force). A shaft that sticks again this way and would then need more than its grip in the
+    direction it slipped slides on at the belt's speed to the step's end, with the sliding
+    force: without it the pair of states alternates to the last pass of the active set.
     Returns whether anything changed."""
     shafts = model.shafts
     blocks = model.blocks
@@ -667,6 +676,11 @@ def _shaft_consistent(model, st, wk, rs, p0, k, m, car, U):
         cap = shafts.cs[s] * max(min(tl, tr), 0.0)
         if abs(ft) > cap * (1.0 + 1e-9) + 1e-9:
             shafts.slip[s] = 1.0 if ft > 0.0 else -1.0
+            if wk.crossed[k] == shafts.slip[s]:
+                # it slipped this way, its speed crossed the belt's within the step, and
+                # sticking needs more than its grip the same way: the step ends sliding at
+                # the belt's speed (no relative speed, the sliding force)
+                wk.crossed[k] = 2.0 * shafts.slip[s]
             wk.stuck[k] = 0.0
             wk.bforce[k] = 0.0
             wk.c_lo[k] = 0.0
@@ -675,10 +689,14 @@ def _shaft_consistent(model, st, wk, rs, p0, k, m, car, U):
                 wk.fixed[k] = 0.0  # an imposed speed now holds the shaft, not the belt
             return True
         return False
+    if abs(wk.crossed[k]) == 2.0:
+        wk.vsn[k] = x[k]
+        return False
     ts = max(tr if sl > 0.0 else tl, 0.0)
     vsn = _shaft_speed(model, s, U, rs.v_ref, sl, ts)
     wk.vsn[k] = vsn
     if sl * (vsn - x[k]) <= 0.0:
+        wk.crossed[k] = sl
         shafts.slip[s] = 0.0
         _row_brake(wk, k, shafts.fb[s], shafts.hb[s] == 1, wk.v_old[k], model.cycle.v_eps)
         return True

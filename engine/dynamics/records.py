@@ -419,7 +419,9 @@ class Out(NamedTuple):
 class Work(NamedTuple):
     """Scratch arrays of the block solve (length BLOCK_MAX), of the resistance pass and the
     springs' marks for more Newton steps (length n), the envelope snapshots of the last record
-    (length n)."""
+    (length n); per block row the slip a shaft left in this step when its speed crossed the
+    belt's (``crossed``: its direction, twice it once the shaft slides on at the belt's speed;
+    0 none)."""
 
     dg: np.ndarray
     lo: np.ndarray
@@ -463,3 +465,4 @@ class Work(NamedTuple):
     t_max_snap: np.ndarray
     t_min_snap: np.ndarray
     more: np.ndarray
+    crossed: np.ndarray

@@ -540,7 +540,7 @@ def _block_setup(model: Model, ref, nodes, st, sh, rs, R0):
         zone=np.array([_zone(x, v_eps) for x in vo]), shaft=ref.node_shaft[nodes],
         fixed=nodes == rs.hold, fixv=np.zeros(m), stuck=np.zeros(m, dtype=bool),
         bforce=np.zeros(m), c_lo=np.zeros(m), c_hi=np.zeros(m),
-        bdir=np.where(vo >= 0.0, 1.0, -1.0), vsn=np.zeros(m), km=-1,
+        bdir=np.where(vo >= 0.0, 1.0, -1.0), vsn=np.zeros(m), crossed=np.zeros(m), km=-1,
         car_fixed=False, car_v=0.0, car_hit=-1.0)
     for k in range(m):
         s = bk.shaft[k]
@@ -572,8 +572,8 @@ def _master_speed(model: Model, bk, sh, x0, xu):
     km = bk.km
     s = bk.shaft[km]
     sl = sh.slip[s]
-    if sl == 0.0:
-        return x0[km], xu[km]
+    if sl == 0.0 or abs(bk.crossed[km]) == 2.0:
+        return x0[km], xu[km]  # at the belt's speed
     side = 1 if sl > 0.0 else 0  # the side the slip unloads (outgoing, incoming)
     t0 = _side_tensions(bk, x0, km)[side]
     tu = _side_tensions(bk, x0 + xu, km)[side] - t0
@@ -721,6 +721,8 @@ def _row_consistent(model: Model, bk, dr, k, U):
     elif bk.bforce[k] > 0.0 and x[k] * bk.bdir[k] < 0.0:
         bk.stuck[k], again = True, True  # the brake stops the element
     z = 0.0 if bk.stuck[k] else _zone(x[k], v_eps)
+    if z * bk.zone[k] < 0.0:
+        z = 0.0  # turning round within the step: through the linear band
     if z != bk.zone[k]:
         bk.zone[k], again = z, True
     return again
@@ -751,7 +753,9 @@ def _shaft_speed(model: Model, sh, dr, rs, s, U, f_slide):
 def _shaft_consistent(model: Model, bk, sh, dr, rs, k, U):
     """Row k's shaft against the solution: a sticking shaft that would pass more than its
     capstan grip ``T_slack (e^(mu theta) - 1)`` starts to slip; a slipping one whose speed
-    crosses the belt's sticks again. Returns whether anything changed."""
+    crosses the belt's sticks again, and if it then needs more than its grip the way it
+    slipped, slides on at the belt's speed (``bk.crossed``). Returns whether anything
+    changed."""
     s = bk.shaft[k]
     if s < 0:
         return False
@@ -767,12 +771,20 @@ def _shaft_consistent(model: Model, bk, sh, dr, rs, k, U):
         cap = cs * max(min(tl, tr), 0.0)
         if abs(ft) > cap * (1.0 + 1e-9) + 1e-9:
             sh.slip[s] = 1.0 if ft > 0.0 else -1.0
+            if bk.crossed[k] == sh.slip[s]:
+                # slipped this way, crossed the belt's speed in this step, and sticking needs
+                # more than the grip the same way: slide on at the belt's speed
+                bk.crossed[k] = 2.0 * sh.slip[s]
             bk.stuck[k], bk.bforce[k], bk.c_lo[k], bk.c_hi[k] = False, 0.0, 0.0, 0.0
             bk.fixed[k] = False  # an imposed speed now holds the shaft, not the belt
             return True
         return False
+    if abs(bk.crossed[k]) == 2.0:
+        bk.vsn[k] = x[k]  # sliding on at the belt's speed
+        return False
     bk.vsn[k] = _shaft_speed(model, sh, dr, rs, s, U, sl * max(tr if sl > 0 else tl, 0))
     if sl * (bk.vsn[k] - x[k]) <= 0.0:
+        bk.crossed[k] = sl
         sh.slip[s] = 0.0  # the speeds crossed: the shaft sticks again
         _row_brake(model, bk, sh, k, bk.vo[k])
         return True

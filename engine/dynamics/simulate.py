@@ -142,7 +142,8 @@ def work_arrays(n: int) -> R.Work:
                   bdir=z(), bforce=z(), c_lo=z(), c_hi=z(), fixed=z(), fixv=z(),
                   shk=np.zeros(bm, dtype=np.int64), vsn=z(), Ac=np.zeros((bm, bm)),
                   r0=np.zeros(n), phi=np.zeros(n), lnv=np.zeros(n), lnphi=np.zeros(n),
-                  t_max_snap=np.zeros(n), t_min_snap=np.zeros(n), more=np.zeros(n))
+                  t_max_snap=np.zeros(n), t_min_snap=np.zeros(n), more=np.zeros(n),
+                  crossed=z())
 
 
 def fresh_run(sys: System, t_end_s: float | None = None) -> KernelRun:
