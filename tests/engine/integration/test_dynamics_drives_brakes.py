@@ -129,6 +129,23 @@ def test_the_drive_force_of_a_start_that_slips_from_rest_does_not_depend_on_the_
             abs(sysm.hold_force_n) / 1e3, rel=0.01)
 
 
+def test_a_pulley_at_its_grip_passes_no_more_than_its_grip_at_any_step():
+    """The 16.8 km overland's tail drive (a torque follower) slips for about 48 s in the
+    start; for part of it (near t = 75 s at half the limit) it is at its grip with its belt
+    above the follower's speed window: sticking needs a little more than T_slack
+    (e^(mu theta) - 1), sliding lets the shaft fall back behind the belt. Within the step the pulley then slides at the belt's speed with the sliding force
+    (PHYSICS 5.2), so at no step does a drive pulley pass more than its grip: the lowest
+    tension ratio margin e^(mu theta) / (T_tight / T_slack) over the whole cycle stays at 1
+    within 0.1 % (the pulley element's own inertia and resistance, which the capstan does not
+    carry, are the rest), at 1/4, 1/2 and 0.9 of the stability limit. (Ending the step in
+    whichever of the two states the last pass of the active set left gave 0.955 to 0.961.)"""
+    conv = load_conveyor(CONVEYORS / "overland-16km.yaml")
+    for f in (0.25, 0.5, 0.9):
+        s = run_one(conv, Scenario(), model="din", options=DynamicsOptions(dt_safety=f)).summary
+        assert s["drive2_slip_s"] > 10.0
+        assert s["slip_margin_min_dyn"] > 0.999
+
+
 def test_below_the_limit_a_pulley_does_not_slip():
     conv = hand_conv(drives=[hand_drive()], takeup={"type": "gravity", "position": "tail",
                                                       "mass_kg": 8000})
