@@ -383,6 +383,7 @@ def _block_setup(model, st, wk, p0, m, hold_node):
         wk.c_hi[k] = 0.0
         wk.bdir[k] = 1.0 if vo >= 0.0 else -1.0
         wk.vsn[k] = 0.0
+        wk.crossed[k] = 0.0
         if s >= 0:
             if shafts.slip[s] == 0.0:
                 _row_brake(wk, k, shafts.fb[s], shafts.hb[s] == 1, vo, v_eps)
@@ -392,33 +393,64 @@ def _block_setup(model, st, wk, p0, m, hold_node):
 
 
 @njit(inline="always", **OPTS)
-def _master_output(model, st, wk, rs, p0, km, U, have_u):
+def _master_output(model, wk, rs, km, U, have_u):
     """The speed loop's output U for this pass when the master's row gives it directly (a
-    slipping master predicted with the tension at the step start, a held or stuck master at
-    its imposed speed), within the master's limit. Returns (U, two): ``two`` when U must come
-    by superposition of two solves (the master's speed is an unknown of the block)."""
-    shafts = model.shafts
+    held or stuck master at its imposed speed), within the master's limit. Returns (U, two):
+    ``two`` when U must come by superposition of two solves (the master's new shaft speed
+    depends on the block's unknowns: a free row, or a slipping shaft, whose speed follows
+    from the sliding force at the new tensions, :func:`_master_speed`)."""
     drives = model.drives
     master = model.control.master
-    f0u = rs.f0u
-    f1u = rs.f1u
     if km >= 0 and not have_u and drives.mode[master] == 1 and drives.sat[master] == 0:
-        s_m = wk.shk[km]
-        if shafts.slip[s_m] != 0.0:
-            # a slipping master: its shaft predicted with the tension at the step start
-            jm = model.blocks.nodes[p0 + km]
-            sl = shafts.slip[s_m]
-            ts = st.tt[jm] if sl > 0.0 else st.tt[model.blocks.left[p0 + km]]
-            ms = shafts.mass[s_m] / model.cycle.dt
-            sh = drives.share[master]
-            vp = (ms * shafts.vs[s_m] + sh * f0u - sl * shafts.ck[s_m] * ts) / (ms - sh * f1u)
-            U = f0u + f1u * vp
-        elif wk.fixed[km] == 1.0 or wk.stuck[km] == 1.0:
-            U = f0u + f1u * wk.fixv[km]
-        else:
-            return U, True
-        U = _saturate_master(drives, master, U)
+        if model.shafts.slip[wk.shk[km]] == 0.0 and (wk.fixed[km] == 1.0
+                                                      or wk.stuck[km] == 1.0):
+            U = _saturate_master(drives, master, rs.f0u + rs.f1u * wk.fixv[km])
+            return U, False
+        return U, True
     return U, False
+
+
+@njit(inline="always", **OPTS)
+def _slack_side(wk, sp, blocks, tt, x, p0, k, m, car, sl):
+    """The tension of the side a slip of direction ``sl`` unloads at block element ``k`` (the
+    outgoing spring when ``sl > 0``, the incoming one when ``sl < 0``) as its constant part
+    and its part linear in the solution ``x`` [N] (:func:`_side_tensions`' springs)."""
+    if sl > 0.0:
+        j = blocks.nodes[p0 + k]
+        if k < m - 1:
+            dv = x[k + 1] - x[k]
+            if car:
+                dv += sp.car_ind[j] * x[m]
+            return wk.bA[k], wk.bB[k] * dv
+        return tt[j], 0.0
+    if k > 0:
+        jl = blocks.nodes[p0 + k - 1]
+        dv = x[k] - x[k - 1]
+        if car:
+            dv += sp.car_ind[jl] * x[m]
+        return wk.bA[k - 1], wk.bB[k - 1] * dv
+    return tt[blocks.left[p0]], 0.0
+
+
+@njit(inline="always", **OPTS)
+def _master_speed(model, st, wk, p0, km, m, car):
+    """The master's new shaft speed as ``g0 + gu U`` from the two solves (``sol``, the
+    response ``sol2`` to U): the belt's speed at its row while it sticks; while it slips, its
+    own momentum balance over the step under its share of U less the sliding force ``ck T_s``
+    at the new tensions, the same balance :func:`_shaft_speed` takes (implicit: the force and
+    the shaft's speed at the step's end, consistent with the belt's)."""
+    shafts = model.shafts
+    s = wk.shk[km]
+    sl = shafts.slip[s]
+    if sl == 0.0 or abs(wk.crossed[km]) == 2.0:
+        return wk.sol[km], wk.sol2[km]  # at the belt's speed
+    c0, l0 = _slack_side(wk, model.springs, model.blocks, st.tt, wk.sol, p0, km, m, car, sl)
+    _c, lu = _slack_side(wk, model.springs, model.blocks, st.tt, wk.sol2, p0, km, m, car, sl)
+    ms = shafts.mass[s] / model.cycle.dt
+    ck = shafts.ck[s]
+    g0 = shafts.vs[s] - sl * ck * (c0 + l0) / ms
+    gu = (model.drives.share[model.control.master] - sl * ck * lu) / ms
+    return g0, gu
 
 
 @njit(inline="always", **OPTS)
@@ -548,9 +580,10 @@ def _carriage_row(model, wk, rs, p0, m, car_fixed, car_v):
 
 
 @njit(inline="always", **OPTS)
-def _block_solution(model, wk, rs, m, car, car_fixed, two, km, U):
+def _block_solution(model, st, wk, rs, p0, m, car, car_fixed, two, km, U):
     """Solve the block's band for its speeds (``wk.sol``); with ``two`` also the response to
-    U and U from the master's row, within its limit. Returns U."""
+    U and U from the master's new shaft speed (:func:`_master_speed`), within its limit.
+    Returns U."""
     mu = m + 1 if car else m
     for k in range(m):
         wk.wr[k] = wk.rw[k]
@@ -559,8 +592,8 @@ def _block_solution(model, wk, rs, m, car, car_fixed, two, km, U):
         wk.sol2[k] = wk.cuc[k]
     _solve(wk, m, car, car_fixed, two)
     if two:
-        den = 1.0 - rs.f1u * wk.sol2[km]
-        U = (rs.f0u + rs.f1u * wk.sol[km]) / den
+        g0, gu = _master_speed(model, st, wk, p0, km, m, car)
+        U = (rs.f0u + rs.f1u * g0) / (1.0 - rs.f1u * gu)
         U = _saturate_master(model.drives, model.control.master, U)
         for k in range(mu):
             wk.sol[k] += U * wk.sol2[k]
@@ -607,7 +640,10 @@ def _row_consistent(model, wk, k, m, car, U):
             wk.stuck[k] = 1.0  # the brake stops the element
             again = True
     z = 1.0 if xk > v_eps else (-1.0 if xk < -v_eps else 0.0)
-    if wk.stuck[k] == 1.0:
+    if wk.stuck[k] == 1.0 or z * wk.fz[k] < 0.0:
+        # a resistance that would turn round within the step goes through its linear band
+        # (the speed at which it balances; from one side to the other the two zones give
+        # each other's speeds and alternate to the last pass)
         z = 0.0
     if z != wk.fz[k]:
         wk.fz[k] = z
@@ -618,7 +654,12 @@ def _row_consistent(model, wk, k, m, car, U):
 @njit(inline="always", **OPTS)
 def _shaft_consistent(model, st, wk, rs, p0, k, m, car, U):
     """Row ``k``'s shaft against the solution: a sticking shaft that would pass more than its
-    capstan grip starts to slip; a slipping one whose speed crosses the belt's sticks again.
+    capstan grip starts to slip; a slipping one whose speed crosses the belt's sticks again
+    (the exact outcome of the step, as in time stepping of friction at the velocity level,
+    Moreau 1988: the relative speed at the step's end is zero, or has the sign of the sliding
+    force). A shaft that sticks again this way and would then need more than its grip in the
+    direction it slipped slides on at the belt's speed to the step's end, with the sliding
+    force: without it the pair of states alternates to the last pass of the active set.
     Returns whether anything changed."""
     shafts = model.shafts
     blocks = model.blocks
@@ -635,6 +676,11 @@ def _shaft_consistent(model, st, wk, rs, p0, k, m, car, U):
         cap = shafts.cs[s] * max(min(tl, tr), 0.0)
         if abs(ft) > cap * (1.0 + 1e-9) + 1e-9:
             shafts.slip[s] = 1.0 if ft > 0.0 else -1.0
+            if wk.crossed[k] == shafts.slip[s]:
+                # it slipped this way, its speed crossed the belt's within the step, and
+                # sticking needs more than its grip the same way: the step ends sliding at
+                # the belt's speed (no relative speed, the sliding force)
+                wk.crossed[k] = 2.0 * shafts.slip[s]
             wk.stuck[k] = 0.0
             wk.bforce[k] = 0.0
             wk.c_lo[k] = 0.0
@@ -643,10 +689,14 @@ def _shaft_consistent(model, st, wk, rs, p0, k, m, car, U):
                 wk.fixed[k] = 0.0  # an imposed speed now holds the shaft, not the belt
             return True
         return False
+    if abs(wk.crossed[k]) == 2.0:
+        wk.vsn[k] = x[k]
+        return False
     ts = max(tr if sl > 0.0 else tl, 0.0)
     vsn = _shaft_speed(model, s, U, rs.v_ref, sl, ts)
     wk.vsn[k] = vsn
     if sl * (vsn - x[k]) <= 0.0:
+        wk.crossed[k] = sl
         shafts.slip[s] = 0.0
         _row_brake(wk, k, shafts.fb[s], shafts.hb[s] == 1, wk.v_old[k], model.cycle.v_eps)
         return True
@@ -657,7 +707,8 @@ def _shaft_consistent(model, st, wk, rs, p0, k, m, car, U):
 def _drive_output(model, rs, s, ft, vs_old, vsn, U):
     """A drive's force at the rim after the step [N] (mode 2: what moved its shaft; mode 1:
     its share of U, a slipping follower only what holds it in its window; mode 0: its linear
-    law), and its motor's speed behind a coupling."""
+    law), the force at the step's start (``f_start``), and its motor's speed behind a
+    coupling."""
     shafts = model.shafts
     drives = model.drives
     dt = model.cycle.dt
@@ -674,6 +725,17 @@ def _drive_output(model, rs, s, ft, vs_old, vsn, U):
                 max(f, shafts.mass[s] / dt * (vsn - vs_old) + ft)
     else:
         f = drives.f0[dk] + drives.f1[dk] * vsn
+    # the force at the step's start: the step's law at the shaft's speed before it (a share
+    # of the loop's output at the master's speed before it); a slipping follower's window
+    # and an imposed speed have no law, their force is the step's
+    fs = f
+    if md == 0:
+        fs = drives.f0[dk] + drives.f1[dk] * vs_old
+    elif md == 1 and (sl == 0.0 or dk == model.control.master):
+        fs = drives.share[dk] * rs.u0
+        if abs(fs) > drives.lim[dk]:
+            fs = math.copysign(drives.lim[dk], fs)
+    drives.f_start[dk] = fs
     if drives.coupling[dk] != 0 and drives.lin_d[dk] > 0.0:
         drives.vm[dk] = (drives.lin_p[dk] - drives.lin_cs[dk] * vsn) / drives.lin_d[dk]
     drives.force[dk] = f
@@ -772,15 +834,18 @@ def block_step(bk, model, st, wk, rs):
     km = _block_setup(model, st, wk, p0, m, rs.hold)
     U = rs.U
     have_u = rs.u_known
+    if km >= 0 and not have_u:
+        # the loop's output at the step's start (the master's block comes first)
+        rs.u0 = rs.f0u + rs.f1u * model.shafts.vs[wk.shk[km]]
     car_fixed = False
     car_v = 0.0
     car_hit = -1.0
     for _it in range(24):
-        U, two = _master_output(model, st, wk, rs, p0, km, U, have_u)
+        U, two = _master_output(model, wk, rs, km, U, have_u)
         _block_rows(model, st, wk, rs, p0, m, car, U, two)
         if car:
             _carriage_row(model, wk, rs, p0, m, car_fixed, car_v)
-        U = _block_solution(model, wk, rs, m, car, car_fixed, two, km, U)
+        U = _block_solution(model, st, wk, rs, p0, m, car, car_fixed, two, km, U)
         x = wk.sol
         # ------------------------------------------------ consistency
         again = False

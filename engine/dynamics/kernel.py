@@ -369,7 +369,9 @@ def _drive_results(model, st, out, rs):
         s = drives.shaft[dk]
         j = shafts.node[s]
         jm = j - 1 if j > 0 else n - 1
-        f = abs(drives.force[dk])
+        # the force's extremes over the step are at its ends (it is linear in the shaft's
+        # speed, monotone over the step): the start of a step matters after a switch
+        f = max(abs(drives.force[dk]), abs(drives.f_start[dk]))
         if f > d.fmax:
             d.fmax = f
         pw = abs(drives.force[dk] * shafts.vs[s])
@@ -431,7 +433,10 @@ def _observe(model, st, out, wk, rs):
         rs.tmin = rs.tlo
         rs.tmin_t = t
     if rs.started:
-        af = abs(rs.f_tot)
+        f_start = 0.0
+        for dk in range(model.drives.share.shape[0]):
+            f_start += model.drives.f_start[dk]
+        af = max(abs(rs.f_tot), abs(f_start))
         if af > rs.fmax:
             rs.fmax = af
             rs.fmax_t = t

@@ -784,7 +784,8 @@ def _drives(conv: Conveyor, loop: Loop, shaft_index: dict, rated: np.ndarray,
         motor_mass=_f64(np.maximum(motor_mass, 1.0)),
         trip_s=_f64([d.trip_s for d in conv.drives]), mode=np.zeros(nd, dtype=np.int64), f0=z,
         f1=z.copy(), sat=np.zeros(nd, dtype=np.int64), lin_p=z.copy(), lin_d=z.copy(),
-        lin_cs=z.copy(), vm=z.copy(), force=z.copy(), ft=z.copy(), f_trip=z.copy())
+        lin_cs=z.copy(), vm=z.copy(), force=z.copy(), ft=z.copy(), f_trip=z.copy(),
+        f_start=z.copy())
 
 
 def _control(conv, scn, opts, drives: Drives, total_mass, te, gravity_sum, t_loop, v_d

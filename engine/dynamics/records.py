@@ -219,7 +219,10 @@ class Drives(NamedTuple):
     *state* per step: force law mode (0 linear ``f0 + f1 v``, 1 share of the speed loop's
     output, 2 imposed shaft speed), ``f0``, ``f1``, saturation; coupling linearisation
     ``(P, D, c_s)`` and the motor speed; outputs: force at the rim and force passed to the
-    belt, the force when the power went off."""
+    belt, the force when the power went off, the force at the rim at the step's start (the
+    law of the step at the shaft's speed before it: with the force linear in the shaft speed
+    and that speed monotone over the step, the force's extremes over a step are at its
+    ends)."""
 
     shaft: np.ndarray
     node: np.ndarray
@@ -246,6 +249,7 @@ class Drives(NamedTuple):
     force: np.ndarray
     ft: np.ndarray
     f_trip: np.ndarray
+    f_start: np.ndarray
 
 
 class Takeup(NamedTuple):
@@ -356,6 +360,8 @@ RUN = np.dtype([
     ("slack_dur", np.float64), ("slack_first", np.float64), ("slack_m", np.float64),
     # records and envelope segments
     ("nrec", np.int64), ("nsurf", np.int64), ("seg", np.int64),
+    # the speed loop's output at the step's start (the master's shaft speed before the step)
+    ("u0", np.float64),
 ], align=True)
 
 #: Per drive: largest |force| at the rim [N] and |power| [W] after the start command, smallest
@@ -413,7 +419,9 @@ class Out(NamedTuple):
 class Work(NamedTuple):
     """Scratch arrays of the block solve (length BLOCK_MAX), of the resistance pass and the
     springs' marks for more Newton steps (length n), the envelope snapshots of the last record
-    (length n)."""
+    (length n); per block row the slip a shaft left in this step when its speed crossed the
+    belt's (``crossed``: its direction, twice it once the shaft slides on at the belt's speed;
+    0 none)."""
 
     dg: np.ndarray
     lo: np.ndarray
@@ -457,3 +465,4 @@ class Work(NamedTuple):
     t_max_snap: np.ndarray
     t_min_snap: np.ndarray
     more: np.ndarray
+    crossed: np.ndarray

@@ -540,7 +540,7 @@ def _block_setup(model: Model, ref, nodes, st, sh, rs, R0):
         zone=np.array([_zone(x, v_eps) for x in vo]), shaft=ref.node_shaft[nodes],
         fixed=nodes == rs.hold, fixv=np.zeros(m), stuck=np.zeros(m, dtype=bool),
         bforce=np.zeros(m), c_lo=np.zeros(m), c_hi=np.zeros(m),
-        bdir=np.where(vo >= 0.0, 1.0, -1.0), vsn=np.zeros(m), km=-1,
+        bdir=np.where(vo >= 0.0, 1.0, -1.0), vsn=np.zeros(m), crossed=np.zeros(m), km=-1,
         car_fixed=False, car_v=0.0, car_hit=-1.0)
     for k in range(m):
         s = bk.shaft[k]
@@ -553,25 +553,35 @@ def _block_setup(model: Model, ref, nodes, st, sh, rs, R0):
 
 
 def _master_output(model: Model, bk, st, sh, dr, rs, U):
-    """The speed loop's output for this pass: known (from an earlier block), from a slipping
-    master's shaft predicted with the slack side at the step's start, from a held master row,
-    or unknown (``two``: found from the solution by superposition). Returns (U, two)."""
+    """The speed loop's output for this pass: known (from an earlier block), from a held or
+    stuck master row, or unknown (``two``: found from the solution by superposition, with the
+    master's new shaft speed, :func:`_master_speed`). Returns (U, two)."""
     master, km = model.control.master, bk.km
     if km < 0 or rs.u_known or dr.mode[master] != 1 or dr.sat[master]:
         return U, False
-    s = bk.shaft[km]
-    sl = sh.slip[s]
-    if sl != 0.0:
-        # the slipping master's shaft predicted with the slack side at the step start
-        j = bk.nodes[km]
-        ts = st.tt[j] if sl > 0.0 else st.tt[(j - 1) % len(st.tt)]
-        ms, share = model.shafts.mass[s] / bk.dt, model.drives.share[master]
-        ck = model.shafts.ck[s]
-        vp = (ms * sh.vs[s] + share * rs.f0u - sl * ck * ts) / (ms - share * rs.f1u)
-        return _saturate_master(model, dr, rs.f0u + rs.f1u * vp), False
-    if bk.fixed[km] or bk.stuck[km]:
+    if sh.slip[bk.shaft[km]] == 0.0 and (bk.fixed[km] or bk.stuck[km]):
         return _saturate_master(model, dr, rs.f0u + rs.f1u * bk.fixv[km]), False
     return U, True
+
+
+def _master_speed(model: Model, bk, sh, x0, xu):
+    """The master's new shaft speed ``g0 + gu U`` from the solution ``x0`` and its response
+    ``xu`` to U: the belt's speed at its row while it sticks; while it slips, its momentum
+    balance over the step under its share of U less the sliding force ``ck T_s`` at the new
+    tensions (as :func:`_shaft_speed`)."""
+    km = bk.km
+    s = bk.shaft[km]
+    sl = sh.slip[s]
+    if sl == 0.0 or abs(bk.crossed[km]) == 2.0:
+        return x0[km], xu[km]  # at the belt's speed
+    side = 1 if sl > 0.0 else 0  # the side the slip unloads (outgoing, incoming)
+    t0 = _side_tensions(bk, x0, km)[side]
+    tu = _side_tensions(bk, x0 + xu, km)[side] - t0
+    ms = model.shafts.mass[s] / bk.dt
+    ck = model.shafts.ck[s]
+    g0 = sh.vs[s] - sl * ck * t0 / ms
+    gu = (model.drives.share[model.control.master] - sl * ck * tu) / ms
+    return g0, gu
 
 
 def _shaft_row(model: Model, bk, sh, dr, rs, k, U, two):
@@ -642,7 +652,7 @@ def _block_rows(model: Model, bk, sh, dr, rs, U, two):
         b[m] += tu.mass / dt * rs.u_tu + tu.weight
 
 
-def _block_solution(model: Model, bk, dr, rs, U, two):
+def _block_solution(model: Model, bk, sh, dr, rs, U, two):
     """Solve the block with the rows held at a speed as identities (an imposed or held
     element, a brake or holdback holding, the carriage at an end stop) for its speeds
     (``bk.x``); with ``two`` also its response to U, and U from the master's row (within its
@@ -662,8 +672,8 @@ def _block_solution(model: Model, bk, dr, rs, U, two):
     if two:
         # U = f0u + f1u x_master with x = x0 + U xu: two solves
         x0, xu = np.linalg.solve(Ah, np.column_stack([bh, buh])).T
-        km = bk.km
-        U = _saturate_master(model, dr, (rs.f0u + rs.f1u * x0[km]) / (1.0 - rs.f1u * xu[km]))
+        g0, gu = _master_speed(model, bk, sh, x0, xu)
+        U = _saturate_master(model, dr, (rs.f0u + rs.f1u * g0) / (1.0 - rs.f1u * gu))
         bk.x = x0 + U * xu
     else:
         bk.x = np.linalg.solve(Ah, bh)
@@ -711,6 +721,8 @@ def _row_consistent(model: Model, bk, dr, k, U):
     elif bk.bforce[k] > 0.0 and x[k] * bk.bdir[k] < 0.0:
         bk.stuck[k], again = True, True  # the brake stops the element
     z = 0.0 if bk.stuck[k] else _zone(x[k], v_eps)
+    if z * bk.zone[k] < 0.0:
+        z = 0.0  # turning round within the step: through the linear band
     if z != bk.zone[k]:
         bk.zone[k], again = z, True
     return again
@@ -741,7 +753,9 @@ def _shaft_speed(model: Model, sh, dr, rs, s, U, f_slide):
 def _shaft_consistent(model: Model, bk, sh, dr, rs, k, U):
     """Row k's shaft against the solution: a sticking shaft that would pass more than its
     capstan grip ``T_slack (e^(mu theta) - 1)`` starts to slip; a slipping one whose speed
-    crosses the belt's sticks again. Returns whether anything changed."""
+    crosses the belt's sticks again, and if it then needs more than its grip the way it
+    slipped, slides on at the belt's speed (``bk.crossed``). Returns whether anything
+    changed."""
     s = bk.shaft[k]
     if s < 0:
         return False
@@ -757,12 +771,20 @@ def _shaft_consistent(model: Model, bk, sh, dr, rs, k, U):
         cap = cs * max(min(tl, tr), 0.0)
         if abs(ft) > cap * (1.0 + 1e-9) + 1e-9:
             sh.slip[s] = 1.0 if ft > 0.0 else -1.0
+            if bk.crossed[k] == sh.slip[s]:
+                # slipped this way, crossed the belt's speed in this step, and sticking needs
+                # more than the grip the same way: slide on at the belt's speed
+                bk.crossed[k] = 2.0 * sh.slip[s]
             bk.stuck[k], bk.bforce[k], bk.c_lo[k], bk.c_hi[k] = False, 0.0, 0.0, 0.0
             bk.fixed[k] = False  # an imposed speed now holds the shaft, not the belt
             return True
         return False
+    if abs(bk.crossed[k]) == 2.0:
+        bk.vsn[k] = x[k]  # sliding on at the belt's speed
+        return False
     bk.vsn[k] = _shaft_speed(model, sh, dr, rs, s, U, sl * max(tr if sl > 0 else tl, 0))
     if sl * (bk.vsn[k] - x[k]) <= 0.0:
+        bk.crossed[k] = sl
         sh.slip[s] = 0.0  # the speeds crossed: the shaft sticks again
         _row_brake(model, bk, sh, k, bk.vo[k])
         return True
@@ -839,7 +861,7 @@ def _block_step(model: Model, ref, nodes, st, sh, dr, rs, R0):
     for _ in range(ACTIVE_SET_PASSES):
         U, two = _master_output(model, bk, st, sh, dr, rs, U)
         _block_rows(model, bk, sh, dr, rs, U, two)
-        U = _block_solution(model, bk, dr, rs, U, two)
+        U = _block_solution(model, bk, sh, dr, rs, U, two)
         # the active set against the solution
         again = _carriage_consistent(model, bk, rs)
         for k in range(bk.m):

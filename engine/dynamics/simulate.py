@@ -81,7 +81,7 @@ def fresh_model(model: R.Model, t_end_s: float | None = None) -> R.Model:
     shafts = sh._replace(vs=z(ns), slip=z(ns), fb=z(ns), fb_out=z(ns))
     drives = dr._replace(lim=dr.lim0.copy(), mode=np.zeros(nd, dtype=np.int64), f0=z(), f1=z(),
                          sat=np.zeros(nd, dtype=np.int64), lin_p=z(), lin_d=z(), lin_cs=z(),
-                         vm=z(), force=z(), ft=z(), f_trip=z())
+                         vm=z(), force=z(), ft=z(), f_trip=z(), f_start=z())
     brakes = br._replace(t_cmd=np.full(br.shaft.shape[0], -1.0),
                          released=np.zeros(br.shaft.shape[0], dtype=np.int64))
     flag = np.zeros_like(lin.flag)
@@ -142,7 +142,8 @@ def work_arrays(n: int) -> R.Work:
                   bdir=z(), bforce=z(), c_lo=z(), c_hi=z(), fixed=z(), fixv=z(),
                   shk=np.zeros(bm, dtype=np.int64), vsn=z(), Ac=np.zeros((bm, bm)),
                   r0=np.zeros(n), phi=np.zeros(n), lnv=np.zeros(n), lnphi=np.zeros(n),
-                  t_max_snap=np.zeros(n), t_min_snap=np.zeros(n), more=np.zeros(n))
+                  t_max_snap=np.zeros(n), t_min_snap=np.zeros(n), more=np.zeros(n),
+                  crossed=z())
 
 
 def fresh_run(sys: System, t_end_s: float | None = None) -> KernelRun:
