@@ -182,6 +182,10 @@ class DynamicsOptions:
         Number of springs recorded at ``record_dt_s`` round the loop (Fig. 4 traces).
     surface_points, surface_samples : int
         Size of the tension/velocity surface: at most this many springs and time samples.
+    viscosity_limiter : bool
+        The free springs' mesh viscosity limited where the strain rate varies smoothly
+        (:func:`beltstudy.engine.dynamics.passes.visc_limiter`: Christensen's monotonised
+        central limiter, on by default); off = the plain Kelvin-Voigt term of engine 0.4.
     """
 
     damping: str = "belt"
@@ -201,6 +205,7 @@ class DynamicsOptions:
     probes: int = 8
     surface_points: int = 200
     surface_samples: int = 300
+    viscosity_limiter: bool = True
 
 
 @dataclass(eq=False)
@@ -664,7 +669,8 @@ def _springs(loop: Loop, conv: Conveyor, opts: DynamicsOptions, T_run: np.ndarra
         dl=z, a_eb=_f64(a_el * EB),
         s_floor=_f64(EB * chord_strain(t_floor, a_el, EB, t_floor, k_floor)),
         kfl_eb=_f64(k_floor / EB), kvs=z, e_damp=0.0, g_damp=0.0,
-        seg_node=_ranges(~in_block), seg_spring=_ranges(~implicit)), c_wave
+        seg_node=_ranges(~in_block), seg_spring=_ranges(~implicit),
+        limited=1 if (opts.viscosity_limiter and alpha > 0.0) else 0), c_wave
 
 
 def _blocks(blocks_list: list, master_node: int, n: int, shaft_index: dict,
