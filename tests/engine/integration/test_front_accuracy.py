@@ -11,7 +11,6 @@ import math
 
 import numpy as np
 import pytest
-
 import yaml
 
 from beltstudy.engine.conveyor import Scenario, parse_conveyor
