@@ -28,7 +28,10 @@ Design decisions (documented in ``docs/dynamics.md``):
   settled elongation. A **mesh viscosity** ``alpha Z dv`` per spring (``alpha`` =
   ``DynamicsOptions.mesh_viscosity``) damps the modes the mesh cannot resolve (damping ratio
   ``alpha`` at the mesh's highest mode, vanishing in proportion to the element length on the
-  resolved waves), so peaks after sudden events converge with the mesh instead of ringing.
+  resolved waves), so peaks after sudden events converge with the mesh instead of ringing;
+  on the free springs it is limited (Christensen's monotonised central limiter,
+  :func:`beltstudy.engine.dynamics.passes.visc_limiter`): off where the strain rate varies
+  smoothly, so it does not diffuse a front over ``sqrt(alpha dx L)`` as it runs.
 * **Implicit blocks**: the springs on both sides of every pulley element are solved
   implicitly together with the pulleys, their shafts and neighbouring elements (and the
   take-up carriage): short springs round light pulleys would otherwise set the step.

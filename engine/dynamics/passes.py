@@ -478,7 +478,8 @@ def spring_first(e0, s0, d0, de, tfl, sfl, kfl_eb, aeb, eb, e_damp, g_damp, kvs)
     zero, ``s1 < sfl - tfl / kfl_eb``: the same whatever the Newton steps.
     Arm: the standard linear solid's relaxing arm (dynamic less static modulus, relaxation by
     its exact exponential: ``e_damp``, ``g_damp``). Mesh viscosity ``kvs de`` (``kvs = alpha Z
-    len / dt``): a Kelvin-Voigt term acting on the modes the mesh cannot resolve."""
+    len / dt``): a Kelvin-Voigt term acting on the modes the mesh cannot resolve (``kvs`` is
+    the free springs' limited one in :func:`spring_pass`, :func:`visc_limiter`)."""
     s1 = s0 + eb * de
     fl = tfl + (s1 - sfl) * kfl_eb
     e1, r, more = _newton(e0, s1, tfl, aeb)
@@ -526,8 +527,8 @@ def spring_rest(e0, s0, tfl, aeb):
     return e, r
 
 
-#: Ceiling of the limiter of the mesh viscosity (the monotonised central limiter's ``2 r``
-#: branches and its cap of 1: Christensen 1990; Caramana, Shashkov & Whalen 1998, eq. 30).
+#: Added to the square of a spring's strain increment in :func:`visc_limiter`'s ratios, so a
+#: spring at rest (``de = 0``) divides by no zero (its viscous force is zero anyway).
 LIMIT_TINY = 1e-300
 
 

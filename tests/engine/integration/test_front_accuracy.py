@@ -85,9 +85,9 @@ def _trough_kn(conv, n) -> float:
 
 @pytest.mark.xfail(strict=True, reason=(
     "open (issue 26, item 3): on this 500 m incline the automatic mesh's coast-stop trough is "
-    "21.70 kN against 20.97 kN extrapolated from 400/800/1 600 elements (3.5 %); the trough "
-    "is the foot of a loading front steepened by the sag law, which the chain spreads over a "
-    "few elements"))
+    "21.70 kN against 20.97 kN extrapolated from 400/800/1 600 elements (3.5 %): the foot of "
+    "a rising front, which the chain spreads over a few elements (docs/dynamics.md, the "
+    "accuracy of the lowest tension behind a front)"))
 def test_coast_stop_trough_at_the_default_mesh_within_3_percent_of_the_extrapolated_one():
     """slope-5pct's belt shortened to 500 m: the lowest tension of a coast stop on the
     automatic mesh within 3 % of the Richardson estimate from 400, 800 and 1 600 elements
