@@ -665,6 +665,9 @@ def _springs(loop: Loop, conv: Conveyor, opts: DynamicsOptions, T_run: np.ndarra
     alpha = 0.0 if opts.damping == "off" else float(opts.mesh_viscosity)
     viscosity = alpha * np.sqrt(EBd * rho_spring)
     z = np.zeros(n)
+    if implicit[n - 2] == 0 or implicit[n - 1] == 0:
+        # the limiter of a free spring reads the next spring's increment without wraparound
+        raise ValueError("the springs beside the last element (the tail pulley) must be implicit")
     return Springs(
         len_m=_f64(len_m), a_ernst=_f64(a_el), t_floor=_f64(t_floor), k_floor=_f64(k_floor),
         viscosity=_f64(viscosity), car_ind=_f64(carriage),

@@ -592,7 +592,7 @@ def _spring_more(j, jm, jp, jq, st, sp, limited):
 
 @njit(**OPTS)
 def spring_pass(a, b, st, sp, more):
-    """Update springs a..b-1 (b <= n - 1) of the state ``st`` from the new velocities: the
+    """Update springs a..b-1 (b <= n - 2) of the state ``st`` from the new velocities: the
     first Newton step of every spring in one vectorised loop (``more`` [0/1] marks the springs
     whose step bends too much), then the marked ones refined (:func:`spring_refine`) in a
     second loop, only when there are any. The mesh viscosity of a free spring is limited by
