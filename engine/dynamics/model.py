@@ -28,7 +28,10 @@ Design decisions (documented in ``docs/dynamics.md``):
   settled elongation. A **mesh viscosity** ``alpha Z dv`` per spring (``alpha`` =
   ``DynamicsOptions.mesh_viscosity``) damps the modes the mesh cannot resolve (damping ratio
   ``alpha`` at the mesh's highest mode, vanishing in proportion to the element length on the
-  resolved waves), so peaks after sudden events converge with the mesh instead of ringing.
+  resolved waves), so peaks after sudden events converge with the mesh instead of ringing;
+  on the free springs it is limited (Christensen's monotonised central limiter,
+  :func:`beltstudy.engine.dynamics.passes.visc_limiter`): off where the strain rate varies
+  smoothly, so it does not diffuse a front over ``sqrt(alpha dx L)`` as it runs.
 * **Implicit blocks**: the springs on both sides of every pulley element are solved
   implicitly together with the pulleys, their shafts and neighbouring elements (and the
   take-up carriage): short springs round light pulleys would otherwise set the step.
@@ -182,6 +185,10 @@ class DynamicsOptions:
         Number of springs recorded at ``record_dt_s`` round the loop (Fig. 4 traces).
     surface_points, surface_samples : int
         Size of the tension/velocity surface: at most this many springs and time samples.
+    viscosity_limiter : bool
+        The free springs' mesh viscosity limited where the strain rate varies smoothly
+        (:func:`beltstudy.engine.dynamics.passes.visc_limiter`: Christensen's monotonised
+        central limiter, on by default); off = the plain Kelvin-Voigt term of engine 0.4.
     """
 
     damping: str = "belt"
@@ -201,6 +208,7 @@ class DynamicsOptions:
     probes: int = 8
     surface_points: int = 200
     surface_samples: int = 300
+    viscosity_limiter: bool = True
 
 
 @dataclass(eq=False)
@@ -657,6 +665,9 @@ def _springs(loop: Loop, conv: Conveyor, opts: DynamicsOptions, T_run: np.ndarra
     alpha = 0.0 if opts.damping == "off" else float(opts.mesh_viscosity)
     viscosity = alpha * np.sqrt(EBd * rho_spring)
     z = np.zeros(n)
+    if implicit[n - 2] == 0 or implicit[n - 1] == 0:
+        # the limiter of a free spring reads the next spring's increment without wraparound
+        raise ValueError("the springs beside the last element (the tail pulley) must be implicit")
     return Springs(
         len_m=_f64(len_m), a_ernst=_f64(a_el), t_floor=_f64(t_floor), k_floor=_f64(k_floor),
         viscosity=_f64(viscosity), car_ind=_f64(carriage),
@@ -664,7 +675,8 @@ def _springs(loop: Loop, conv: Conveyor, opts: DynamicsOptions, T_run: np.ndarra
         dl=z, a_eb=_f64(a_el * EB),
         s_floor=_f64(EB * chord_strain(t_floor, a_el, EB, t_floor, k_floor)),
         kfl_eb=_f64(k_floor / EB), kvs=z, e_damp=0.0, g_damp=0.0,
-        seg_node=_ranges(~in_block), seg_spring=_ranges(~implicit)), c_wave
+        seg_node=_ranges(~in_block), seg_spring=_ranges(~implicit),
+        limited=1 if (opts.viscosity_limiter and alpha > 0.0) else 0), c_wave
 
 
 def _blocks(blocks_list: list, master_node: int, n: int, shaft_index: dict,

@@ -478,7 +478,8 @@ def spring_first(e0, s0, d0, de, tfl, sfl, kfl_eb, aeb, eb, e_damp, g_damp, kvs)
     zero, ``s1 < sfl - tfl / kfl_eb``: the same whatever the Newton steps.
     Arm: the standard linear solid's relaxing arm (dynamic less static modulus, relaxation by
     its exact exponential: ``e_damp``, ``g_damp``). Mesh viscosity ``kvs de`` (``kvs = alpha Z
-    len / dt``): a Kelvin-Voigt term acting on the modes the mesh cannot resolve."""
+    len / dt``): a Kelvin-Voigt term acting on the modes the mesh cannot resolve (``kvs`` is
+    the free springs' limited one in :func:`spring_pass`, :func:`visc_limiter`)."""
     s1 = s0 + eb * de
     fl = tfl + (s1 - sfl) * kfl_eb
     e1, r, more = _newton(e0, s1, tfl, aeb)
@@ -526,35 +527,95 @@ def spring_rest(e0, s0, tfl, aeb):
     return e, r
 
 
+#: Added to the square of a spring's strain increment in :func:`visc_limiter`'s ratios, so a
+#: spring at rest (``de = 0``) divides by no zero (its viscous force is zero anyway).
+LIMIT_TINY = 1e-300
+
+
+@njit(inline="always", **OPTS)
+def visc_limiter(dem, de, dep):
+    """The share ``1 - psi`` of the mesh viscosity a free spring keeps, from its strain
+    increment ``de`` and its neighbours' ``dem``, ``dep`` [-].
+
+    The limited artificial viscosity of Lagrangian shock codes (Christensen 1990, "Godunov
+    methods on a staggered mesh: an improved artificial viscosity", UCRL-JC-105269; Caramana,
+    Shashkov & Whalen 1998, J. Comput. Phys. 144, 70-97, sec. 4): with the ratios of the
+    neighbours' strain rates to the spring's own, ``r_l = dem / de`` and ``r_r = dep / de``
+    (the strain rates of a step are the increments over dt), the monotonised central limiter
+    ``psi = max(0, min((r_l + r_r) / 2, 2 r_l, 2 r_r, 1))`` is 1 where the strain rate varies
+    smoothly (the viscosity off: a resolved wave, or a front already spread over a few
+    elements, is not diffused further) and 0 at a jump or at an extremum of the strain rate
+    (the chain's dispersive ringing behind a front: the full viscosity). The ratios without
+    a division by zero: ``de / (de^2 + tiny)``; at ``de = 0`` the viscous force is zero
+    anyway."""
+    inv = de / (de * de + LIMIT_TINY)
+    rl = dem * inv
+    rr = dep * inv
+    psi = max(min(min(0.5 * (rl + rr), 2.0 * rl), min(2.0 * rr, 1.0)), 0.0)
+    return 1.0 - psi
+
+
+@njit(inline="always", **OPTS)
+def _spring_free(j, jm, jp, jq, st, sp, more, limited):
+    """Free spring j (between elements j and jp; jm before j, jq after jp) from the new
+    velocities into the state; returns whether it needs :func:`spring_refine` (``more[j]``
+    marks it)."""
+    v = st.v
+    dl = sp.dl
+    de = (v[jp] - v[j]) * dl[j]
+    kvs = sp.kvs[j]
+    if limited:
+        kvs *= visc_limiter((v[j] - v[jm]) * dl[jm], de, (v[jq] - v[jp]) * dl[jp])
+    e1, s1, d1, t1, m = spring_first(st.te[j], st.ts[j], st.td[j], de, sp.t_floor[j],
+                                     sp.s_floor[j], sp.kfl_eb[j], sp.a_eb[j], sp.eb,
+                                     sp.e_damp, sp.g_damp, kvs)
+    st.te[j] = e1
+    st.ts[j] = s1
+    st.td[j] = d1
+    st.tt[j] = t1
+    more[j] = 1.0 if m else 0.0
+    return m
+
+
+@njit(inline="always", **OPTS)
+def _spring_more(j, jm, jp, jq, st, sp, limited):
+    """:func:`spring_refine` of free spring j (indices as :func:`_spring_free`)."""
+    v = st.v
+    dl = sp.dl
+    de = (v[jp] - v[j]) * dl[j]
+    kvs = sp.kvs[j]
+    if limited:
+        kvs *= visc_limiter((v[j] - v[jm]) * dl[jm], de, (v[jq] - v[jp]) * dl[jp])
+    st.te[j], st.tt[j] = spring_refine(st.te[j], st.ts[j], st.td[j], de, sp.t_floor[j],
+                                       sp.s_floor[j], sp.kfl_eb[j], sp.a_eb[j], kvs)
+
+
 @njit(**OPTS)
 def spring_pass(a, b, st, sp, more):
-    """Update springs a..b-1 (b <= n - 1) of the state ``st`` from the new velocities: the
+    """Update springs a..b-1 (b <= n - 2) of the state ``st`` from the new velocities: the
     first Newton step of every spring in one vectorised loop (``more`` [0/1] marks the springs
     whose step bends too much), then the marked ones refined (:func:`spring_refine`) in a
-    second loop, only when there are any."""
-    v, te, ts, td, tt = st.v, st.te, st.ts, st.td, st.tt
-    dl, t_floor, s_floor, kfl_eb, a_eb, kvs = sp.dl, sp.t_floor, sp.s_floor, sp.kfl_eb, \
-        sp.a_eb, sp.kvs
-    eb, e_damp, g_damp = sp.eb, sp.e_damp, sp.g_damp
+    second loop, only when there are any. The mesh viscosity of a free spring is limited by
+    :func:`visc_limiter` when ``sp.limited`` (its neighbours' strain increments from the new
+    velocities: every element is updated before the free springs); spring 0's left neighbour
+    is spring n - 1 (taken before the loop, which then has no wraparound)."""
+    n = st.v.shape[0]
+    limited = sp.limited != 0
     cnt = 0
-    for jj in range(a, b):
+    a1 = a
+    if a == 0:
+        cnt += 1 if _spring_free(0, n - 1, 1, 2, st, sp, more, limited) else 0
+        a1 = 1
+    for jj in range(a1, b):
         j = uintp(jj)
-        de = (v[uintp(jj + 1)] - v[j]) * dl[j]
-        e1, s1, d1, t1, m = spring_first(te[j], ts[j], td[j], de, t_floor[j], s_floor[j],
-                                         kfl_eb[j], a_eb[j], eb, e_damp, g_damp, kvs[j])
-        te[j] = e1
-        ts[j] = s1
-        td[j] = d1
-        tt[j] = t1
-        more[j] = 1.0 if m else 0.0
-        cnt += 1 if m else 0
+        cnt += 1 if _spring_free(j, uintp(jj - 1), uintp(jj + 1), uintp(jj + 2), st, sp, more,
+                                 limited) else 0
     if cnt > 0:
         for jj in range(a, b):
             j = uintp(jj)
             if more[j] != 0.0:
-                de = (v[uintp(jj + 1)] - v[j]) * dl[j]
-                te[j], tt[j] = spring_refine(te[j], ts[j], td[j], de, t_floor[j], s_floor[j],
-                                             kfl_eb[j], a_eb[j], kvs[j])
+                _spring_more(j, uintp(jj - 1 + (n if jj == 0 else 0)), uintp(jj + 1),
+                             uintp(jj + 2), st, sp, limited)
 
 
 @njit(**OPTS_RED)

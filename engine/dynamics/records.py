@@ -158,7 +158,8 @@ class Springs(NamedTuple):
     chord strain there) and the floor modulus over EB, the mesh viscosity per strain increment
     ``alpha Z len / dt`` [N], the relaxing arm's decay over a step and gain per unit tangent
     stiffness and strain increment (``e_damp``, ``g_damp``); the free element and spring
-    ranges ([start, end) rows)."""
+    ranges ([start, end) rows); ``limited`` (1/0): the free springs' mesh viscosity limited
+    (:func:`beltstudy.engine.dynamics.passes.visc_limiter`)."""
 
     len_m: np.ndarray
     a_ernst: np.ndarray
@@ -178,6 +179,7 @@ class Springs(NamedTuple):
     g_damp: float
     seg_node: np.ndarray
     seg_spring: np.ndarray
+    limited: int = 0
 
 
 class Blocks(NamedTuple):

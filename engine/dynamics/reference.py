@@ -451,7 +451,26 @@ def _spring_step(model: Model, ref, st, rs):
     (``blocks._block_springs`` and ``kernel._free_springs``) with the same law."""
     sp = model.springs
     de = (np.roll(st.v, -1) - st.v + sp.car_ind * rs.u_tu) * model.cycle.dt / sp.len_m
-    st.te, st.ts, st.td, st.tt = _springs(sp, st, de, ref.damp, ref.visc)
+    st.te, st.ts, st.td, st.tt = _springs(sp, st, de, ref.damp, ref.visc * _limiter(sp, st.v))
+
+
+def _limiter(sp: Springs, v) -> np.ndarray:
+    """The share of the mesh viscosity each spring keeps: on the free springs (when
+    ``sp.limited``) Christensen's monotonised central limiter of the ratios of the
+    neighbours' strain increments to the spring's own, ``1 - max(0, min((r_l + r_r) / 2,
+    2 r_l, 2 r_r, 1))`` (:func:`beltstudy.engine.dynamics.passes.visc_limiter`), 1 on the
+    blocks' springs."""
+    keep = np.ones(v.shape[0])
+    if not sp.limited:
+        return keep
+    de = (np.roll(v, -1) - v) * sp.dl
+    inv = de / (de * de + 1e-300)
+    rl, rr = np.roll(de, 1) * inv, np.roll(de, -1) * inv
+    psi = np.maximum(np.minimum(np.minimum(0.5 * (rl + rr), 2.0 * rl),
+                                np.minimum(2.0 * rr, 1.0)), 0.0)
+    for a, b in sp.seg_spring:
+        keep[a:b] = 1.0 - psi[a:b]
+    return keep
 
 
 # --------------------------------------------------------------------------------------
