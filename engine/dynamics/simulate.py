@@ -465,11 +465,13 @@ def _travel(r: dict, phase: str) -> float:
 #: Plant overspeed protection trips at this fraction of design speed (docs/dynamics.md,
 #: "Settling and overspeed", gives the source).
 OVERSPEED_FRACTION = 1.10
-#: The running phase has settled when its mean belt speed swings (highest less lowest) by no
-#: more than this fraction of design speed ...
+#: The running phase has settled when its mean belt speed over the judged window swings
+#: (highest less lowest) by no more than this fraction of design speed: +-1 %, the tracking
+#: criterion of docs/dynamics.md (PHYSICS 5.2).
 SETTLE_SWING = 0.02
-#: ... from this many wave loop times after the start's reference reached design speed to the
-#: stop command (PHYSICS 5.2).
+#: The judged window: the running phase's last half, and at least its last this many wave loop
+#: times (a take-up's swing can be slower than a wave loop); judged when it begins at least
+#: one wave loop time after the start's reference reached design speed.
 SETTLE_LOOPS = 3.0
 
 
@@ -488,8 +490,8 @@ def swing_and_period(t: np.ndarray, v: np.ndarray) -> tuple[float, float | None]
 def running_warnings(sys: System, r: dict, out) -> list[str]:
     """The start's overspeed (the mean belt speed above :data:`OVERSPEED_FRACTION` of design
     speed before the stop command) and a running phase that has not settled (its mean speed
-    swinging by more than :data:`SETTLE_SWING` of design speed from :data:`SETTLE_LOOPS` wave
-    loop times after the reference reached design speed to the stop command), in words."""
+    swinging by more than :data:`SETTLE_SWING` of design speed over its last
+    :data:`SETTLE_LOOPS` wave loop times), in words."""
     w: list[str] = []
     v_d = sys.v_design
     cyc = sys.model.cycle
@@ -497,23 +499,23 @@ def running_warnings(sys: System, r: dict, out) -> list[str]:
         w.append(f"overspeed in the start: the mean belt speed reached {r['vmean_hi']:.3g} m/s, "
                  f"{100.0 * r['vmean_hi'] / v_d:.0f} % of design speed, at t = "
                  f"{r['vmean_hi_t']:.1f} s (plant overspeed switches trip at "
-                 f"{100.0 * OVERSPEED_FRACTION:.0f} %); a slower speed loop on the master "
-                 "(drives[i].speed_loop_rad_s), a longer start or drives at one end would "
-                 "avoid it")
-    t0 = cyc.t_pre + cyc.t_start + SETTLE_LOOPS * sys.wave_loop_time_s
+                 f"{100.0 * OVERSPEED_FRACTION:.0f} %); a longer start, drives at one end, or "
+                 "for vfd drives a slower speed loop on the master "
+                 "(drives[i].speed_loop_rad_s) would avoid it")
     t1 = sys.stop_command_s
-    if t1 - t0 < sys.wave_loop_time_s or int(r["status"]) != C.OK:
-        return w
+    t0 = t1 - max(SETTLE_LOOPS * sys.wave_loop_time_s, 0.5 * cyc.t_run)
+    if t0 < cyc.t_pre + cyc.t_start + sys.wave_loop_time_s or int(r["status"]) != C.OK:
+        return w  # the running phase is too short to judge
     rec = out.rec[:int(r["nrec"])]
     m = (rec["t"] >= t0) & (rec["t"] <= t1)
     swing, period = swing_and_period(rec["t"][m], rec["v_mean"][m])
     if swing > SETTLE_SWING * v_d:
-        per = f"a period of {period:.3g} s" if period else "no full period in the window"
+        per = (f"a period of {period:.3g} s" if period
+               else "a period longer than the window")
         w.append(f"not settled while running: the mean belt speed still swings by {swing:.3g} "
                  f"m/s ({100.0 * swing / v_d:.1f} % of design speed, {per}) from t = "
-                 f"{t0:.0f} s ({SETTLE_LOOPS:g} wave loop times after the start) to the stop "
-                 f"command at {t1:.0f} s; drives at one end, a slower speed loop "
-                 "(drives[i].speed_loop_rad_s) or more damping would settle it")
+                 f"{t0:.0f} s to the stop command at {t1:.0f} s; drives at one end, for vfd drives at both ends a slower speed "
+                 "loop (drives[i].speed_loop_rad_s), or more take-up mass would settle it")
     return w
 
 

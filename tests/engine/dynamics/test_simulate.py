@@ -102,7 +102,7 @@ def test_results_per_phase():
 def _running(t_loop=10.0, v_d=4.0, t_pre=2.0, t_start=60.0, t_run=300.0):
     """A stand-in for a System as running_warnings reads it."""
     from types import SimpleNamespace
-    cyc = SimpleNamespace(t_pre=t_pre, t_start=t_start)
+    cyc = SimpleNamespace(t_pre=t_pre, t_start=t_start, t_run=t_run)
     return SimpleNamespace(v_design=v_d, wave_loop_time_s=t_loop, model=SimpleNamespace(
         cycle=cyc), stop_command_s=t_pre + t_start + t_run)
 
@@ -116,8 +116,8 @@ def _records(t, v):
 
 @pytest.mark.parametrize("amp, period, warned", [(0.6, 30.0, True), (0.03, 30.0, False)])
 def test_a_running_phase_that_swings_is_named_with_its_swing_and_period(amp, period, warned):
-    """PHYSICS 5.2: a mean belt speed swinging by more than SETTLE_SWING of design speed from
-    SETTLE_LOOPS wave loop times after the start to the stop command is reported as not
+    """PHYSICS 5.2: a mean belt speed swinging by more than SETTLE_SWING of design speed over
+    the running phase's last half (at least SETTLE_LOOPS wave loop times) is reported as not
     settled, with the swing (highest less lowest: 2 x the amplitude, to the record spacing)
     and the period (from the crossings of the mean, 2 %); a small swing is not."""
     from types import SimpleNamespace
