@@ -8,6 +8,7 @@ from __future__ import annotations
 
 import functools
 import math
+import re
 
 import numpy as np
 import pytest
@@ -390,3 +391,39 @@ def test_controlled_stop_with_a_holding_brake_stays_at_rest():
     assert ts["f_drive_kn"].iloc[-1] == 0.0  # the drive is off, the brake holds
     assert ts["f_brake_kn"].iloc[-1] > 0.0
 
+
+
+def test_tail_followers_settle_or_the_run_says_so():
+    """The running-phase fuzz's limit-cycle conveyor (benchmarks/fuzz_running.py): a vfd head
+    drive with two tail drives following its torque a wave's travel away, EP1000/5, 2.9 km.
+    Over the running phase's last half its mean belt speed either stays within 2 % of design
+    speed, or the run says ``not settled while running`` with that swing (to 1 %) and a
+    period from the crossings of the mean (10 %) (PHYSICS 5.2)."""
+    tail = {"position": "tail", "wrap_deg": 200, "share": 0.3, "inertia_kg_m2": 1500.0,
+            "pulley_diameter_m": 1.0}
+    conv = hand_conv(
+        speed_m_s=4.0, belt={"type": "EP1000/5", "width_m": 1.2},
+        material={"capacity_t_h": 1500, "density_t_m3": 1.6},
+        profile=[{"length_m": 1500.0, "lift_m": 30.0}, {"length_m": 1400.0, "lift_m": -20.0}],
+        drives=[hand_drive(share=0.4, wrap_deg=210, inertia_kg_m2=4000.0), hand_drive(**tail),
+                hand_drive(**tail)],
+        takeup={"type": "gravity", "position": "tail", "mass_kg": "auto"})
+    r = run_one(conv, Scenario(start={"time_s": 60}, run_s=300, stop={"mode": "coast"},
+                               elements=40), model="din")
+    ts, msg = r.timeseries, r.summary["message"]
+    t_cmd = r.transient.system.stop_command_s
+    half = (ts["t_s"] >= t_cmd - 150.0) & (ts["t_s"] <= t_cmd)
+    v = ts["v_mean_m_s"][half].to_numpy()
+    swing = float(np.ptp(v))
+    if swing <= 0.02 * 4.0:
+        assert "not settled while running" not in msg
+        return
+    m = re.search(r"not settled while running: the mean belt speed still swings by ([\d.]+) "
+                  r"m/s \(([\d.]+) % of design speed, a period of ([\d.]+) s\)", msg)
+    assert m, msg
+    assert float(m.group(1)) == pytest.approx(swing, rel=0.01)
+    t = ts["t_s"][half].to_numpy()
+    d = v - v.mean()
+    cross = np.flatnonzero(np.signbit(d[:-1]) != np.signbit(d[1:]))
+    crossings_per_s = (len(cross) - 1) / (t[cross[-1]] - t[cross[0]])
+    assert float(m.group(3)) == pytest.approx(2.0 / crossings_per_s, rel=0.1)
