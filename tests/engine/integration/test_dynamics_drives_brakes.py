@@ -291,7 +291,7 @@ VFD_STARTS = (("slope-5pct", 180), ("fabric-1km", 180), ("downhill-regen", 180),
               ("overland-4km", 180), ("overland-16km", 300))
 
 
-@functools.lru_cache(maxsize=None)
+@functools.cache
 def _vfd_start(name: str, start_s: float):
     """A vfd s-curve start of an example conveyor inside its torque limit (80 elements), run
     to just before the stop command: (system, result)."""
@@ -323,8 +323,8 @@ def test_vfd_master_pulley_tracks_its_reference(name, start_s):
 @pytest.mark.parametrize("name,start_s", [
     pytest.param(*c, marks=pytest.mark.xfail(
         strict=True, reason="the mean belt speed swings about +-3 % with the gravity take-up "
-        "(period about 57 s) while the tail drive follows the master's torque; the pulley "
-        "tracks (test above), the mean-speed criteria are not met (docs/dynamics.md)"))
+        "(period about 57 s), a mode the pulley held to its reference does not damp; the "
+        "pulley tracks (test above), the mean-speed criteria are not met (docs/dynamics.md)"))
     if c[0] == "overland-16km" else c for c in VFD_STARTS])
 def test_vfd_mean_belt_speed_follows_once_the_stretch_is_paid_in(name, start_s):
     """docs/dynamics.md, *Tracking*: the mean belt speed within 2 % of design speed of the
