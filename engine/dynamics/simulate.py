@@ -499,9 +499,9 @@ def running_warnings(sys: System, r: dict, out) -> list[str]:
         w.append(f"overspeed in the start: the mean belt speed reached {r['vmean_hi']:.3g} m/s, "
                  f"{100.0 * r['vmean_hi'] / v_d:.0f} % of design speed, at t = "
                  f"{r['vmean_hi_t']:.1f} s (plant overspeed switches trip at "
-                 f"{100.0 * OVERSPEED_FRACTION:.0f} %); a longer start, drives at one end, or "
-                 "for vfd drives a slower speed loop on the master "
-                 "(drives[i].speed_loop_rad_s) would avoid it")
+                 f"{100.0 * OVERSPEED_FRACTION:.0f} %): the belt released the stretch of "
+                 "its acceleration; a gentler start (a longer vfd start.time_s, a fluid "
+                 "coupling on a dol drive) stretches it less")
     t1 = sys.stop_command_s
     t0 = t1 - max(SETTLE_LOOPS * sys.wave_loop_time_s, 0.5 * cyc.t_run)
     if t0 < cyc.t_pre + cyc.t_start + sys.wave_loop_time_s or int(r["status"]) != C.OK:
@@ -514,8 +514,9 @@ def running_warnings(sys: System, r: dict, out) -> list[str]:
                else "a period longer than the window")
         w.append(f"not settled while running: the mean belt speed still swings by {swing:.3g} "
                  f"m/s ({100.0 * swing / v_d:.1f} % of design speed, {per}) from t = "
-                 f"{t0:.0f} s to the stop command at {t1:.0f} s; drives at one end, for vfd drives at both ends a slower speed "
-                 "loop (drives[i].speed_loop_rad_s), or more take-up mass would settle it")
+                 f"{t0:.0f} s to the stop command at {t1:.0f} s; drives at one end with a "
+                 "slower speed loop (drives[i].speed_loop_rad_s) swing less (docs/dynamics.md, "
+                 "Settling and overspeed)")
     return w
 
 
