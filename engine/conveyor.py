@@ -196,6 +196,11 @@ DEFAULT_MOTOR_CURVE = ((0.0, 1.6), (0.25, 1.5), (0.5, 1.4), (0.7, 1.6), (0.87, 2
                        (0.95, 1.9), (1.0, 1.0), (1.015, 0.0))
 
 
+#: Range accepted for a drive's speed-loop bandwidth [rad/s]: from a loop slower than any
+#: start to one near the inner torque loop of a large drive.
+SPEED_LOOP_RAD_S = (0.1, 50.0)
+
+
 class Drive(_Model):
     """A drive pulley (SPEC sections 1 and 6.1).
 
@@ -233,12 +238,26 @@ class Drive(_Model):
         0.0, description="extra inertia reduced to the pulley shaft [kg m2]")
     trip_s: NonNegFloat = Field(
         0.0, description="power failure: motor torque falls to zero over this time [s]")
+    speed_loop_rad_s: float | None = Field(
+        None, description="vfd: bandwidth of the speed loop closed on this pulley's own speed "
+        "[rad/s], 0.1 to 50 (the master drive's is used; default: "
+        "beltstudy.engine.dynamics.model.DEFAULT_SPEED_LOOP_RAD_S)")
 
     @model_validator(mode="after")
     def _curve_and_coupling(self) -> Drive:
         if self.coupling != "none" and self.control != "dol":
             raise ValueError(f"coupling '{self.coupling}' needs control: dol (a vfd drive "
                              "controls its torque itself); use coupling: none")
+        if self.speed_loop_rad_s is not None:
+            bw = float(self.speed_loop_rad_s)
+            if self.control != "vfd":
+                raise ValueError(f"speed_loop_rad_s {bw:g} needs control: vfd (a dol motor "
+                                 "runs on the line without a speed loop)")
+            if not SPEED_LOOP_RAD_S[0] <= bw <= SPEED_LOOP_RAD_S[1]:
+                raise ValueError(
+                    f"speed_loop_rad_s {bw:g} is outside {SPEED_LOOP_RAD_S[0]:g} to "
+                    f"{SPEED_LOOP_RAD_S[1]:g} rad/s (large conveyor drives run their speed "
+                    "loops at a few rad/s)")
         if self.motor_curve is not None:
             check_motor_curve(self.motor_curve)
         return self
@@ -399,6 +418,13 @@ class Conveyor(_Model):
                              "drives share one speed loop, dol motors run on the line); got "
                              + ", ".join(f"drives[{i}].control = {d.control}"
                                          for i, d in enumerate(self.drives)))
+        master = max(range(len(self.drives)), key=lambda i: (self.drives[i].share, -i))
+        for i, d in enumerate(self.drives):
+            if d.speed_loop_rad_s is not None and i != master:
+                raise ValueError(
+                    f"drives[{i}].speed_loop_rad_s: drive {i + 1} follows the master's torque "
+                    f"(drive {master + 1}, the largest share) and runs no speed loop of its "
+                    f"own; set speed_loop_rad_s on drives[{master}]")
         for i, b in enumerate(self.brakes):
             if b.drive is not None and b.drive > len(self.drives):
                 raise ValueError(f"brakes[{i}].drive: there is no drive {b.drive} (the conveyor "

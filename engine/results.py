@@ -209,6 +209,10 @@ TRANSIENT = ResultGroup("transient", "Transient: the start, run and stop cycle (
        "lowest element speed (run-back < 0)"),
     _f("takeup_travel_m", "m", "take-up carriage travel, largest less smallest position",
        "take-up carriage travel"),
+    _f("takeup_travel_start_m", "m", "take-up carriage travel within the start phase (start "
+       "command to stop command), largest less smallest position", "  in the start"),
+    _f("takeup_travel_stop_m", "m", "take-up carriage travel within the stop phase (stop "
+       "command to the end), largest less smallest position", "  in the stop"),
     _f("start_time_s", "s", "start time achieved: start command until the mass-weighted mean "
        "speed first reaches 99 % of design speed (null if never)", "start time achieved"),
     _f("stop_time_s", "s", "stop time achieved: stop command until the mean speed falls below "
@@ -279,6 +283,9 @@ TRANSIENT_DRIVE = ResultGroup("transient_drive", "Per drive pulley, transient (S
        "margin min"),
     _f("drive{i}_slip_s", "s", "total time drive i slipped on the belt", "slip"),
     _f("drive{i}_slip_m", "m", "belt length that slipped over drive i", "slipped"),
+    _f("drive{i}_speed_error_max_pct", "%", "vfd master drive only (null for the others): "
+       "largest |reference - pulley speed| of its speed loop from one wave loop time after the "
+       "start command to the stop command, in % of design speed", "speed err"),
 ))
 
 # ------------------------------------------------------------------ the design basis

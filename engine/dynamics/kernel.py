@@ -236,7 +236,8 @@ def _phase(model, rs):
                 1.0 - ramp)
     # rigid-body feedforward: inertia plus the running resistance (Te less the net gravity,
     # which the integrator already holds from rest), regularised like the belt
-    f_ff = ctl.m_tot * rs.a_ref + ctl.f_res * min(max(rs.v_ref / ctl.v_ff, 0.0), 1.0)
+    f_ff = ctl.ff * (ctl.m_tot * rs.a_ref + ctl.f_res * min(max(rs.v_ref / ctl.v_ff, 0.0),
+                                                             1.0))
     rs.f0u = f_ff + rs.integ + ctl.kp * rs.v_ref
     rs.f1u = -ctl.kp
     rs.hold = cyc.hold_node if rs.phase == HOLD else -1
@@ -310,12 +311,23 @@ def _blocks(model, st, wk, rs):
         e_v = rs.v_ref - model.shafts.vs[drives.shaft[master]]
         if drives.sat[master] == 0 or e_v * drives.f0[master] < 0.0:
             rs.integ += model.cycle.dt * model.control.ki * e_v
+        # the master's tracking after the first wave loop time of the start, until the stop
+        if not rs.stopping and rs.t - model.cycle.t_pre > model.control.t_track and abs(
+                e_v) > rs.verr_max:
+            rs.verr_max = abs(e_v)
+            rs.verr_t = rs.t
     if tu.gravity:
         rs.u_tu = u_new
         rs.x_tu += model.cycle.dt * rs.u_tu
         rs.x_tu = min(max(rs.x_tu, tu.lo), tu.hi)
         rs.xmin = min(rs.xmin, rs.x_tu)
         rs.xmax = max(rs.xmax, rs.x_tu)
+        if rs.stopping:
+            rs.xlo_stop = min(rs.xlo_stop, rs.x_tu)
+            rs.xhi_stop = max(rs.xhi_stop, rs.x_tu)
+        elif rs.started:
+            rs.xlo_start = min(rs.xlo_start, rs.x_tu)
+            rs.xhi_start = max(rs.xhi_start, rs.x_tu)
 
 
 @njit(inline="always", **OPTS)
@@ -445,6 +457,9 @@ def _observe(model, st, out, wk, rs):
         _drive_results(model, st, out, rs)
         if rs.start_ach < 0.0 and rs.v_mean >= 0.99 * model.cycle.v_d:
             rs.start_ach = t - model.cycle.t_pre
+        if not rs.stopping and rs.v_mean > rs.vmean_hi:
+            rs.vmean_hi = rs.v_mean
+            rs.vmean_hi_t = t
     return True
 
 
@@ -574,6 +589,7 @@ def _record(pr, shafts, drives, master, i_tu, st, out, rs, vabs):
         d.f = drives.force[dk]
         d.v = shafts.vs[drives.shaft[dk]]
         d.ft = drives.ft[dk]
+        d.vm = drives.vm[dk] if drives.coupling[dk] != 0 else shafts.vs[drives.shaft[dk]]
     rs.nrec += 1
 
 
@@ -664,6 +680,12 @@ def _start(model, st, out, wk, rs):
     rs.tmin, rs.tmax = extremes(tt)
     rs.xmin = rs.x_tu
     rs.xmax = rs.x_tu
+    rs.xlo_start = 1e300
+    rs.xhi_start = -1e300
+    rs.xlo_stop = 1e300
+    rs.xhi_stop = -1e300
+    rs.verr_t = -1.0
+    rs.vmean_hi_t = -1.0
     rs.t_stopcmd = cyc.t_pre + cyc.t_start + cyc.t_run
     rs.t_end_limit = rs.t_stopcmd + cyc.stop_max + cyc.post_rest
     if cyc.t_end > 0.0:

@@ -166,10 +166,15 @@ class DynamicsOptions:
     dt_safety : float
         Automatic step as a fraction of the stability limit (0.5: half the limit).
     controller_bandwidth_rad_s : float or None
-        Bandwidth ``omega_c`` of the vfd speed loop [rad/s]; None = :func:`speed_loop_bandwidth`
-        (a quarter of the loop's wave frequency ``2 pi / t_loop``). ``Kp = 2 omega_c M``,
-        ``Ki = omega_c^2 M`` with M all moving mass; a rigid-body feedforward ``M a_ref + (Te -
-        sum G)`` carries the known forces.
+        Bandwidth ``omega_c`` of the vfd speed loop [rad/s], closed on the master pulley's own
+        speed; overrides the master drive's ``speed_loop_rad_s``; None =
+        :func:`speed_loop_bandwidth` (the drive's, else :data:`DEFAULT_SPEED_LOOP_RAD_S`).
+        ``Kp = 2 omega_c M``, ``Ki = omega_c^2 M`` with M the mass the loop sees within its
+        bandwidth (:func:`loop_inertia`).
+    speed_feedforward : bool
+        Add the rigid-body feedforward ``M a_ref + (Te - sum G)`` (M all moving mass) to the
+        speed loop's output. Off: a long belt does not move as one body while the reference
+        rises, and on the example conveyors the loop tracks better without it.
     pre_rest_s, post_rest_s : float
         Rest before the start command and after the belt has stopped [s]; post-rest
         ``None`` = max(5 s, one wave loop time), plus the time holding brakes and the drives'
@@ -200,6 +205,7 @@ class DynamicsOptions:
     resistance_rtol: float = 1e-3
     dt_safety: float = 0.5
     controller_bandwidth_rad_s: float | None = None
+    speed_feedforward: bool = False
     pre_rest_s: float = 2.0
     post_rest_s: float | None = None
     pulley_mass_kg: float | None = None
@@ -288,18 +294,53 @@ def chord_strain(tension_n, a_ernst, stiffness_n, t_floor_n, k_floor_n):
     return np.where(T >= tf, e, e_floor - (tf - T) / k_floor_n)
 
 
-def speed_loop_bandwidth(wave_loop_time_s: float) -> float:
-    """Default bandwidth of the vfd speed loop [rad/s]: a quarter of the loop's wave frequency,
-    ``omega_c = pi / (2 t_loop)``.
+#: Default bandwidth of the vfd speed loop closed on the master pulley's own speed [rad/s]
+#: (PHYSICS 5.1): plant drives of large conveyors run it at a few rad/s (docs/dynamics.md,
+#: "Speed loop", gives the sources).
+DEFAULT_SPEED_LOOP_RAD_S = 5.0
 
-    A speed loop that controls a flexible load through a colocated sensor must stay below the
-    load's first anti-resonance, the frequency at which the belt held at the drive pulley
-    rings (Ellis, Control System Design Guide, on resonance in servo loops; PHYSICS 5.1: the
-    speed loop's bandwidth is bounded by the wave loop time). Held at the drive, the loop
-    rings as a string of its whole length, ``omega_a = pi / t_loop``; the bandwidth is half
-    of that.
+
+def speed_loop_bandwidth(conv=None, opts: DynamicsOptions | None = None) -> float:
+    """Bandwidth ``omega_c`` of the vfd speed loop [rad/s]: the options' override, else the
+    master drive's ``speed_loop_rad_s``, else :data:`DEFAULT_SPEED_LOOP_RAD_S`.
+
+    The loop is closed on the master pulley's own speed (colocated): it stays stable above the
+    belt's first anti-resonance, so its bandwidth is set by the drive (plant practice, a few
+    rad/s), not by the wave loop time; only a loop closed on belt speed far from the drive is
+    bounded by the wave loop time (PHYSICS 5.1).
     """
-    return 0.5 * math.pi / wave_loop_time_s
+    if opts is not None and opts.controller_bandwidth_rad_s is not None:
+        return float(opts.controller_bandwidth_rad_s)
+    if conv is not None:
+        bw = conv.drives[master_drive(conv)].speed_loop_rad_s
+        if bw is not None:
+            return float(bw)
+    return DEFAULT_SPEED_LOOP_RAD_S
+
+
+def loop_inertia(conv, loop: Loop, shafts: Shafts, shaft_index: dict, c_wave: np.ndarray,
+                 wc: float, total_mass: float) -> float:
+    """The mass the speed loop sees within its bandwidth, per unit of its output ``U`` [kg].
+
+    At ``omega_c`` the master pulley feels its own shaft and those of the drives beside it at
+    the same end (their force is the same ``U`` in shares), and the belt on each side as far
+    as a wave runs in ``1 / omega_c``: ``(Z_in + Z_out) / omega_c`` with ``Z = rho' c``. Those
+    drives pass ``s_end U`` (their shares' sum), so the gains on ``U`` are sized on
+    ``(m_shafts + sum Z / omega_c) / s_end``; never more than all moving mass (a short, stiff
+    belt moves as one body within the bandwidth, PHYSICS 6).
+    """
+    m = master_drive(conv)
+    pos = conv.drives[m].position
+    ends = [i for i, d in enumerate(conv.drives) if d.position == pos]
+    s_end = sum(conv.drives[i].share for i in ends)
+    m_sh = sum(float(shafts.mass[shaft_index[int(loop.drive_elements[i])]]) for i in ends)
+    n = loop.n
+    rho = loop.mass_kg / loop.dx_m
+    z = rho * c_wave
+    lo = min(int(loop.drive_elements[i]) for i in ends)
+    hi = max(int(loop.drive_elements[i]) for i in ends)
+    z_sum = float(z[(lo - 1) % n] + z[(hi + 1) % n])
+    return min(total_mass, (m_sh + z_sum / wc) / max(s_end, 1e-9))
 
 
 def _merge_law(coef, pv, ps) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
@@ -800,13 +841,15 @@ def _drives(conv: Conveyor, loop: Loop, shaft_index: dict, rated: np.ndarray,
         f_start=z.copy())
 
 
-def _control(conv, scn, opts, drives: Drives, total_mass, te, gravity_sum, t_loop, v_d
-             ) -> Control:
-    """The speed loop on the master drive's shaft: bandwidth (:func:`speed_loop_bandwidth`
-    unless given), gains, the rigid-body feedforward's running resistance and the reference
-    speed at which it is complete, the followers' speed window."""
-    wc = (float(opts.controller_bandwidth_rad_s) if opts.controller_bandwidth_rad_s is not None
-          else speed_loop_bandwidth(t_loop))
+def _control(conv, scn, opts, drives: Drives, total_mass, m_loop, te, gravity_sum, t_loop,
+             v_d) -> Control:
+    """The speed loop on the master drive's shaft: bandwidth (:func:`speed_loop_bandwidth`),
+    gains on the mass the loop sees (``m_loop``, :func:`loop_inertia`), the rigid-body
+    feedforward (off unless ``opts.speed_feedforward``: measured on the example conveyors it
+    makes the colocated loop track worse, docs/dynamics.md) with the reference speed at which
+    its running resistance is complete, the followers' speed window."""
+    wc = speed_loop_bandwidth(conv, opts)
+    ff = bool(opts.speed_feedforward)
     # the feedforward of the running resistance ramps in with the reference speed, reaching
     # full when the reference has run for one wave loop time (the time the motion needs to
     # spread round the belt)
@@ -815,9 +858,10 @@ def _control(conv, scn, opts, drives: Drives, total_mass, te, gravity_sum, t_loo
                                        float(scn.start.time_s), v_d)
     v_ff = max(float(v_ff), float(opts.v_eps_m_s))
     return Control(vfd=bool(drives.control[0] == VFD), master=master_drive(conv),
-                   kp=2.0 * wc * total_mass, ki=wc * wc * total_mass, bandwidth=wc,
+                   kp=2.0 * wc * m_loop, ki=wc * wc * m_loop, bandwidth=wc,
                    m_tot=total_mass, f_res=te - gravity_sum, v_ff=v_ff,
-                   f_const=float(opts.force_start_n or 0.0), window=SPEED_WINDOW * v_d)
+                   f_const=float(opts.force_start_n or 0.0), window=SPEED_WINDOW * v_d,
+                   t_track=float(t_loop), ff=1.0 if ff else 0.0)
 
 
 def _rest(conv, loop, springs: Springs, gravity, T_run, tu_weight) -> tuple[int, np.ndarray,
@@ -978,7 +1022,10 @@ def build_system(conv: Conveyor, scn: Scenario, steady, options: DynamicsOptions
     dt, *train = _drive_train_step(conv, scn, parts, rated, v_d, dt, notes)
     drives = _drives(conv, loop, shaft_index, rated, np.array(parts.motor_mass, dtype=float))
     gravity_sum = float(nodes.gravity.sum())
-    control = _control(conv, scn, opts, drives, total_mass, te, gravity_sum, t_loop, v_d)
+    m_loop = loop_inertia(conv, loop, shafts, shaft_index, c_wave,
+                          speed_loop_bandwidth(conv, opts), total_mass)
+    control = _control(conv, scn, opts, drives, total_mass, m_loop, te, gravity_sum, t_loop,
+                       v_d)
     tu_weight = float(steady.takeup_mass_kg) * G if conv.takeup.type == "gravity" else 0.0
     hold, T_rest, warns = _rest(conv, loop, springs, nodes.gravity, T_run, tu_weight)
     takeup = _takeup(conv, loop, steady, springs, T_rest, T_run)

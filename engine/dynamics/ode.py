@@ -62,7 +62,7 @@ def rhs(t: float, y: np.ndarray, sys: System) -> np.ndarray:
     T = tension(sys, y)
     # the speed loop on the master's shaft, every drive giving its share of the output U
     v_ref, a_ref = profiles.start_reference(cyc.start_ctrl, t, cyc.t_start, cyc.v_d)
-    f_ff = ctl.m_tot * a_ref + ctl.f_res * min(max(v_ref / ctl.v_ff, 0.0), 1.0)
+    f_ff = ctl.ff * (ctl.m_tot * a_ref + ctl.f_res * min(max(v_ref / ctl.v_ff, 0.0), 1.0))
     master = ctl.master
     e_v = v_ref - v[drives.node[master]]
     U = f_ff + integ + ctl.kp * e_v

@@ -270,10 +270,13 @@ class Takeup(NamedTuple):
 
 class Control(NamedTuple):
     """The drives' control: all vfd (``vfd``) or dol, the master drive (the speed loop's),
-    the loop's gains ``Kp = 2 omega_c M`` [N s/m] and ``Ki = omega_c^2 M`` [N/m] and bandwidth
-    [rad/s], all moving mass M [kg], the running resistance the feedforward carries (Te less
+    the loop's gains ``Kp = 2 omega_c M`` [N s/m] and ``Ki = omega_c^2 M`` [N/m] on the mass
+    the loop sees (``model.loop_inertia``) and its bandwidth [rad/s], all moving mass
+    (``m_tot``) [kg], the running resistance the feedforward carries (Te less
     the net gravity) [N] and the reference speed at which it is complete [m/s], the open-loop
-    force of a verification start [N], the followers' speed window [m/s]."""
+    force of a verification start [N], the followers' speed window [m/s], the time after the
+    start command from which the master's tracking error counts (one wave loop time) [s], the
+    rigid-body feedforward ``ff x (m_tot a_ref + f_res ...)`` on (1.0) or off (0.0)."""
 
     vfd: bool
     master: int
@@ -285,6 +288,8 @@ class Control(NamedTuple):
     v_ff: float
     f_const: float
     window: float
+    t_track: float
+    ff: float
 
 
 class Probes(NamedTuple):
@@ -364,6 +369,12 @@ RUN = np.dtype([
     ("nrec", np.int64), ("nsurf", np.int64), ("seg", np.int64),
     # the speed loop's output at the step's start (the master's shaft speed before the step)
     ("u0", np.float64),
+    # the master's tracking (largest |v_ref - v_master| after Control.t_track, when), the
+    # carriage's range in the start (start to stop command) and in the stop, the highest
+    # mean belt speed in the start and when
+    ("verr_max", np.float64), ("verr_t", np.float64), ("xlo_start", np.float64),
+    ("xhi_start", np.float64), ("xlo_stop", np.float64), ("xhi_stop", np.float64),
+    ("vmean_hi", np.float64), ("vmean_hi_t", np.float64),
 ], align=True)
 
 #: Per drive: largest |force| at the rim [N] and |power| [W] after the start command, smallest
@@ -390,8 +401,10 @@ RECORD = np.dtype([
     ("p_drive", np.float64), ("v_abs", np.float64), ("slack_m", np.float64)], align=True)
 
 #: Per drive and record: force at the rim (drive side) [N], shaft speed at the rim [m/s],
-#: force the pulley passes to the belt [N].
-DRIVE_RECORD = np.dtype([("f", np.float64), ("v", np.float64), ("ft", np.float64)], align=True)
+#: force the pulley passes to the belt [N], the motor's speed at the rim [m/s] (behind a fluid
+#: coupling its own, else the shaft's).
+DRIVE_RECORD = np.dtype([("f", np.float64), ("v", np.float64), ("ft", np.float64),
+                         ("vm", np.float64)], align=True)
 
 
 class Out(NamedTuple):

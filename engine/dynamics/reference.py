@@ -75,7 +75,11 @@ class ReferenceResult(dict):
     ``slip_s`` [s] and ``slip_m`` [m] per drive (time slipping, belt length slipped),
     ``shaft_slip_s`` [s] and ``shaft_slip_m`` [m] the same per shaft,
     ``slack_s`` [s] (time with a slack span), ``t_trip`` and ``hold_set`` [s], ``law_evals``
-    (exact evaluations of an element's law after the first, with the expanded law).
+    (exact evaluations of an element's law after the first, with the expanded law),
+    ``verr_max`` [m/s] and ``verr_t`` [s] (the master's largest tracking error after the first
+    wave loop time of the start, and when), ``vmean_hi`` [m/s] and ``vmean_hi_t`` [s] (the
+    highest mean belt speed before the stop command), ``takeup_travel_start`` and
+    ``takeup_travel_stop`` [m] (the carriage's range in each phase).
     """
 
 
@@ -421,7 +425,8 @@ def _phase(model: Model, rs, sh, dr, brk):
         ramp = min(max((t - cyc.t_pre) / cyc.t_start, 0.0), 1.0)
         dr.lim[:] = drives.lim0 * ramp + drives.share * abs(rs.hold_f) * (1.0 - ramp)
     # speed loop output U = f0u + f1u v_master: rigid-body feedforward, integrator, gain
-    f_ff = ctl.m_tot * rs.a_ref + ctl.f_res * min(max(rs.v_ref / ctl.v_ff, 0.0), 1.0)
+    f_ff = ctl.ff * (ctl.m_tot * rs.a_ref + ctl.f_res * min(max(rs.v_ref / ctl.v_ff, 0.0),
+                                                             1.0))
     rs.f0u = f_ff + rs.integ + ctl.kp * rs.v_ref
     rs.f1u = -ctl.kp
     rs.hold = cyc.hold_node if rs.phase == C.HOLD else -1
@@ -914,9 +919,17 @@ def _blocks(model: Model, ref, st, sh, dr, rs, R0):
         e_v = rs.v_ref - sh.vs[model.drives.shaft[master]]
         if not dr.sat[master] or e_v * dr.f0[master] < 0.0:
             rs.integ += model.cycle.dt * model.control.ki * e_v  # not further into the limit
+        # the master's tracking after the first wave loop time of the start, until the stop
+        if not rs.stopping and rs.t - model.cycle.t_pre > model.control.t_track and abs(
+                e_v) > rs.verr_max:
+            rs.verr_max, rs.verr_t = abs(e_v), rs.t
     if tu.gravity:
         rs.u_tu = u_new
         rs.x_tu = min(max(rs.x_tu + model.cycle.dt * rs.u_tu, tu.lo), tu.hi)
+        phase = "stop" if rs.stopping else ("start" if rs.started else None)
+        if phase is not None:  # the carriage's range per phase
+            lo, hi = rs.x_range[phase]
+            rs.x_range[phase] = (min(lo, rs.x_tu), max(hi, rs.x_tu))
 
 
 # --------------------------------------------------------------------------------------
@@ -970,6 +983,8 @@ def _observe(model: Model, st, sh, dr, rs, out) -> bool:
         _drive_results(model, st, sh, out)
         if rs.start_ach < 0.0 and rs.v_mean >= 0.99 * v_d:
             rs.start_ach = rs.t - model.cycle.t_pre
+        if not rs.stopping and rs.v_mean > rs.vmean_hi:
+            rs.vmean_hi, rs.vmean_hi_t = rs.v_mean, rs.t
     return True
 
 
@@ -1030,7 +1045,8 @@ def _start(sys: System, t_end_s: float | None):
         hold=-1, v_ref=0.0, a_ref=0.0, f0u=0.0, f1u=0.0, U=0.0, u_known=False,
         x_tu=0.0, u_tu=0.0, integ=0.0, hold_f=sys.hold_force_n, v_mean=0.0, w_drive=0.0,
         start_ach=-1.0, stop_ach=-1.0, stopped=False, t_stopped=-1.0, t_trip=-1.0,
-        hold_set=-1.0, slack_s=0.0)
+        hold_set=-1.0, slack_s=0.0, verr_max=0.0, verr_t=-1.0, vmean_hi=0.0, vmean_hi_t=-1.0,
+        x_range={"start": (math.inf, -math.inf), "stop": (math.inf, -math.inf)})
     out = SimpleNamespace(t_max=st.tt.copy(), t_min=st.tt.copy(), slip_s=np.zeros(nd),
                           slip_m=np.zeros(nd), shaft_slip_s=np.zeros(ns),
                           shaft_slip_m=np.zeros(ns))
@@ -1046,7 +1062,10 @@ def _finish(ref, st, sh, dr, rs, out) -> ReferenceResult:
         w_drive=rs.w_drive, start_ach=rs.start_ach, stop_ach=rs.stop_ach, slip_s=out.slip_s,
         slip_m=out.slip_m, shaft_slip_s=out.shaft_slip_s, shaft_slip_m=out.shaft_slip_m,
         slack_s=rs.slack_s, t_trip=rs.t_trip, hold_set=rs.hold_set,
-        law_evals=ref.law.evaluations if ref.law is not None else 0, div_where=rs.div_where)
+        law_evals=ref.law.evaluations if ref.law is not None else 0, div_where=rs.div_where,
+        verr_max=rs.verr_max, verr_t=rs.verr_t, vmean_hi=rs.vmean_hi, vmean_hi_t=rs.vmean_hi_t,
+        takeup_travel_start=max(rs.x_range["start"][1] - rs.x_range["start"][0], 0.0),
+        takeup_travel_stop=max(rs.x_range["stop"][1] - rs.x_range["stop"][0], 0.0))
 
 
 def run_reference(sys: System, t_end_s: float | None = None) -> ReferenceResult:

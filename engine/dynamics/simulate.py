@@ -178,7 +178,8 @@ class TransientResult:
         SPEC section 5 key points at ``record_dt_s``, then ``v_mean_m_s``, ``v_ref_m_s``,
         ``f_brake_kn``, ``p_drive_kw``, ``v_abs_max_m_s``, ``slack_m`` and per drive
         ``f_drive{i}_kn``, ``v_drive{i}_m_s``, ``f_belt{i}_kn`` (force the pulley passes to
-        the belt).
+        the belt), ``v_motor{i}_m_s`` (the motor's speed at the rim: behind a fluid coupling its
+        own, else the shaft's).
     traces : pandas.DataFrame
         ``t_s`` and the tension [kN] at the probe springs round the loop (Fig. 4), columns
         named ``T@<s>m``.
@@ -407,6 +408,7 @@ def decode(sys: System, kr: KernelRun, wall_s: float, *, steady_summary=None, co
         cols[f"f_drive{i + 1}_kn"] = np.ascontiguousarray(rec_d["f"][:, i]) / 1e3
         cols[f"v_drive{i + 1}_m_s"] = np.ascontiguousarray(rec_d["v"][:, i])
         cols[f"f_belt{i + 1}_kn"] = np.ascontiguousarray(rec_d["ft"][:, i]) / 1e3
+        cols[f"v_motor{i + 1}_m_s"] = np.ascontiguousarray(rec_d["vm"][:, i])
     probes = sys.model.probes
     trace_data = (cols["t_s"], out.rec_t[:nrec],
                   [f"T@{s_end[j]:.0f}m" for j in probes.probes])
@@ -452,6 +454,71 @@ def _phase_fields(sys: System, prefix: str, ext: dict | None) -> dict:
         f"t_min_{prefix}_at_m": float(sys.s_end_m[ext["j_min"]]),
         f"t_min_{prefix}_time_s": ext["t_min_t"],
     }
+
+
+def _travel(r: dict, phase: str) -> float:
+    """The carriage's travel within a phase (``start``: start to stop command; ``stop``: stop
+    command to the end) [m]; 0 when the phase did not run."""
+    lo, hi = float(r[f"xlo_{phase}"]), float(r[f"xhi_{phase}"])
+    return hi - lo if hi >= lo else 0.0
+
+
+#: Plant overspeed protection trips at this fraction of design speed (docs/dynamics.md,
+#: "Settling and overspeed", gives the source).
+OVERSPEED_FRACTION = 1.10
+#: The running phase has settled when its mean belt speed over the judged window swings
+#: (highest less lowest) by no more than this fraction of design speed: +-1 %, the tracking
+#: criterion of docs/dynamics.md (PHYSICS 5.2).
+SETTLE_SWING = 0.02
+#: The judged window: the running phase's last half, and at least its last this many wave loop
+#: times (a take-up's swing can be slower than a wave loop); judged when it begins at least
+#: one wave loop time after the start's reference reached design speed.
+SETTLE_LOOPS = 3.0
+
+
+def swing_and_period(t: np.ndarray, v: np.ndarray) -> tuple[float, float | None]:
+    """Highest less lowest of ``v`` and the period of its swing from the crossings of its mean
+    [s] (None with fewer than three crossings)."""
+    if len(v) < 2:
+        return 0.0, None
+    d = v - float(v.mean())
+    cross = np.flatnonzero(np.signbit(d[:-1]) != np.signbit(d[1:]))
+    period = (2.0 * float(t[cross[-1]] - t[cross[0]]) / (len(cross) - 1)
+              if len(cross) >= 3 else None)
+    return float(v.max() - v.min()), period
+
+
+def running_warnings(sys: System, r: dict, out) -> list[str]:
+    """The start's overspeed (the mean belt speed above :data:`OVERSPEED_FRACTION` of design
+    speed before the stop command) and a running phase that has not settled (its mean speed
+    swinging by more than :data:`SETTLE_SWING` of design speed over its last
+    :data:`SETTLE_LOOPS` wave loop times), in words."""
+    w: list[str] = []
+    v_d = sys.v_design
+    cyc = sys.model.cycle
+    if float(r["vmean_hi"]) > OVERSPEED_FRACTION * v_d:
+        w.append(f"overspeed in the start: the mean belt speed reached {r['vmean_hi']:.3g} m/s, "
+                 f"{100.0 * r['vmean_hi'] / v_d:.0f} % of design speed, at t = "
+                 f"{r['vmean_hi_t']:.1f} s (plant overspeed switches trip at "
+                 f"{100.0 * OVERSPEED_FRACTION:.0f} %): the belt released the stretch of "
+                 "its acceleration; a gentler start (a longer vfd start.time_s, a fluid "
+                 "coupling on a dol drive) stretches it less")
+    t1 = sys.stop_command_s
+    t0 = t1 - max(SETTLE_LOOPS * sys.wave_loop_time_s, 0.5 * cyc.t_run)
+    if t0 < cyc.t_pre + cyc.t_start + sys.wave_loop_time_s or int(r["status"]) != C.OK:
+        return w  # the running phase is too short to judge
+    rec = out.rec[:int(r["nrec"])]
+    m = (rec["t"] >= t0) & (rec["t"] <= t1)
+    swing, period = swing_and_period(rec["t"][m], rec["v_mean"][m])
+    if swing > SETTLE_SWING * v_d:
+        per = (f"a period of {period:.3g} s" if period
+               else "a period longer than the window")
+        w.append(f"not settled while running: the mean belt speed still swings by {swing:.3g} "
+                 f"m/s ({100.0 * swing / v_d:.1f} % of design speed, {per}) from t = "
+                 f"{t0:.0f} s to the stop command at {t1:.0f} s; drives at one end with a "
+                 "slower speed loop (drives[i].speed_loop_rad_s) swing less (docs/dynamics.md, "
+                 "Settling and overspeed)")
+    return w
 
 
 def _slip_warnings(sys: System, r: dict, out, conveyor=None) -> list[str]:
@@ -541,6 +608,8 @@ def transient_summary(sys: System, r: dict, out, segs, *, steady_summary=None, c
         "velocity_max_m_s": r["vmax"],
         "velocity_min_m_s": r["vmin"],
         "takeup_travel_m": r["xmax"] - r["xmin"],
+        "takeup_travel_start_m": _travel(r, "start") if tu.gravity else 0.0,
+        "takeup_travel_stop_m": _travel(r, "stop") if tu.gravity else 0.0,
         "start_time_s": t_start_ach,
         "stop_time_s": t_stop_ach,
         "wave_loop_time_s": sys.wave_loop_time_s,
@@ -578,10 +647,14 @@ def transient_summary(sys: System, r: dict, out, segs, *, steady_summary=None, c
         summary[f"drive{i + 1}_slip_margin_min"] = sm if sm < 1e299 else None
         summary[f"drive{i + 1}_slip_s"] = float(drv[i]["slip_s"])
         summary[f"drive{i + 1}_slip_m"] = float(drv[i]["slip_m"])
+        summary[f"drive{i + 1}_speed_error_max_pct"] = (
+            100.0 * float(r["verr_max"]) / sys.v_design
+            if i == sys.model.control.master and sys.model.control.vfd else None)
     w: list[str] = list(sys.warnings)
     if int(r["status"]) == C.DIVERGED:
         return summary, w
     w += _slip_warnings(sys, r, out, conveyor)
+    w += running_warnings(sys, r, out)
     if r["slack_max"] > 0.0 or r["slack_first"] >= 0.0:
         j = int(r["slack_at"]) if r["slack_at"] >= 0 else jmin
         w.append(

@@ -68,7 +68,8 @@ TIMESERIES_COLUMNS = (
     "t_tail_kn", "t_takeup_kn", "x_takeup_m", "t_min_kn", "t_max_kn", "v_mean_m_s",
     "v_ref_m_s", "f_brake_kn", "p_drive_kw", "v_abs_max_m_s", "slack_m",
 ) + tuple(f"{q}{i}_{u}" for i in range(1, MAX_DRIVES + 1)
-          for q, u in (("f_drive", "kn"), ("v_drive", "m_s"), ("f_belt", "kn"))
+          for q, u in (("f_drive", "kn"), ("v_drive", "m_s"), ("f_belt", "kn"),
+                       ("v_motor", "m_s"))
           )  # fmt: skip
 SURFACE_COLUMNS = ("t_s", "s_m", "tension_kn", "velocity_m_s")
 #: The steady tension along the loop at element ends (``RunResult.profile``).

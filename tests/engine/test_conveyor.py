@@ -141,3 +141,15 @@ def test_bad_drive_and_brake_input_names_the_field(over, field):
     with pytest.raises(InputError) as exc:
         hand_conv(**over)
     assert field in str(exc.value)
+
+
+def test_speed_loop_bandwidth_is_checked_where_it_is_set():
+    """``drives[i].speed_loop_rad_s``: accepted on the vfd master, refused with a reason on a
+    dol drive, outside 0.1-50 rad/s, and on a drive that follows the master's torque."""
+    assert hand_conv(drives=[hand_drive(speed_loop_rad_s=3.0)]).drives[0].speed_loop_rad_s == 3.0
+    with pytest.raises(InputError, match="needs control: vfd"):
+        hand_conv(drives=[hand_drive(control="dol", speed_loop_rad_s=3.0)])
+    with pytest.raises(InputError, match=r"outside 0.1 to 50 rad/s"):
+        hand_conv(drives=[hand_drive(speed_loop_rad_s=0.01)])
+    with pytest.raises(InputError, match=r"drives\[1\].speed_loop_rad_s: drive 2 follows"):
+        hand_conv(drives=[hand_drive(share=0.6), hand_drive(share=0.4, speed_loop_rad_s=3.0)])

@@ -246,3 +246,14 @@ def test_example_design_study_resolves():
 
     for path in sorted((ROOT / "studies").glob("*.yaml")):
         load_study_file(path)
+
+
+def test_a_drive_speed_loop_is_a_grid_axis_checked_like_the_file(make_study):
+    """``drives.0.speed_loop_rad_s`` varies like any drive field: each run's conveyor carries
+    its value; a value outside 0.1-50 rad/s is refused naming the grid point and the range."""
+    from beltstudy.service.grid.expand import expand_runs
+
+    runs = expand_runs(resolve_study(make_study(grid={"drives.0.speed_loop_rad_s": [2.0, 8.0]})))
+    assert sorted({r.conveyor["drives"][0]["speed_loop_rad_s"] for r in runs}) == [2.0, 8.0]
+    with pytest.raises(Invalid, match=r"drives.0.speed_loop_rad_s=90.*outside 0.1 to 50 rad/s"):
+        resolve_study(make_study(grid={"drives.0.speed_loop_rad_s": [2.0, 90.0]}))

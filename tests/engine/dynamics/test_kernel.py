@@ -150,8 +150,13 @@ def test_kernel_matches_numpy_reference(name, changes, model, scenario, exercise
     assert_allclose(shafts.slip, ref["shaft_slip"], atol=0, rtol=0)
     assert_allclose(drives.force, ref["drive_force"], atol=t_tol, rtol=0)
     assert res["w_drive"] == pytest.approx(ref["w_drive"], rel=1e-9)
-    for key in ("start_ach", "stop_ach", "t_trip", "hold_set"):
+    for key in ("start_ach", "stop_ach", "t_trip", "hold_set", "verr_t", "vmean_hi_t"):
         assert res[key] == pytest.approx(ref[key], abs=1e-9), key
+    assert res["verr_max"] == pytest.approx(ref["verr_max"], abs=v_tol)
+    assert res["vmean_hi"] == pytest.approx(ref["vmean_hi"], abs=v_tol)
+    for phase in ("start", "stop"):
+        travel = max(res[f"xhi_{phase}"] - res[f"xlo_{phase}"], 0.0)
+        assert travel == pytest.approx(ref[f"takeup_travel_{phase}"], abs=1e-9), phase
     assert res["slack_dur"] == pytest.approx(ref["slack_s"], abs=1e-9)
     assert_allclose(out.drv["slip_s"], ref["slip_s"], atol=1e-9, rtol=0)
     assert_allclose(out.drv["slip_m"], ref["slip_m"], atol=1e-9, rtol=1e-9)

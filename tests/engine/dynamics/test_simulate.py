@@ -5,6 +5,7 @@ from __future__ import annotations
 
 import re
 
+import numpy as np
 import pytest
 
 from beltstudy.engine.conveyor import Scenario, load_conveyor
@@ -96,3 +97,66 @@ def test_results_per_phase():
     ts = r.timeseries
     start = ts[ts["t_s"] <= t_stop]
     assert s["t_max_start_kn"] >= start["t_max_kn"].max() * 0.999
+
+
+def _running(t_loop=10.0, v_d=4.0, t_pre=2.0, t_start=60.0, t_run=300.0):
+    """A stand-in for a System as running_warnings reads it."""
+    from types import SimpleNamespace
+    cyc = SimpleNamespace(t_pre=t_pre, t_start=t_start, t_run=t_run)
+    return SimpleNamespace(v_design=v_d, wave_loop_time_s=t_loop, model=SimpleNamespace(
+        cycle=cyc), stop_command_s=t_pre + t_start + t_run)
+
+
+def _records(t, v):
+    from beltstudy.engine.dynamics import records as R
+    rec = np.zeros(len(t), dtype=R.RECORD)
+    rec["t"], rec["v_mean"] = t, v
+    return rec
+
+
+@pytest.mark.parametrize("amp, period, warned", [(0.6, 30.0, True), (0.03, 30.0, False)])
+def test_a_running_phase_that_swings_is_named_with_its_swing_and_period(amp, period, warned):
+    """PHYSICS 5.2: a mean belt speed swinging by more than SETTLE_SWING of design speed over
+    the running phase's last half (at least SETTLE_LOOPS wave loop times) is reported as not
+    settled, with the swing (highest less lowest: 2 x the amplitude, to the record spacing)
+    and the period (from the crossings of the mean, 2 %); a small swing is not."""
+    from types import SimpleNamespace
+
+    from beltstudy.engine.dynamics import codes as C
+    from beltstudy.engine.dynamics.simulate import SETTLE_SWING, running_warnings
+
+    sysm = _running()
+    t = np.arange(0.0, sysm.stop_command_s, 0.1)
+    v = sysm.v_design + amp * np.sin(2 * np.pi * t / period)
+    r = {"vmean_hi": sysm.v_design, "vmean_hi_t": 50.0, "status": C.OK, "nrec": len(t)}
+    w = running_warnings(sysm, r, SimpleNamespace(rec=_records(t, v)))
+    assert (2 * amp > SETTLE_SWING * sysm.v_design) == warned
+    if not warned:
+        assert w == []
+        return
+    (msg,) = w
+    m = re.search(r"not settled while running: the mean belt speed still swings by ([\d.]+) "
+                  r"m/s .* a period of ([\d.]+) s", msg)
+    assert m, msg
+    assert float(m.group(1)) == pytest.approx(2 * amp, rel=0.01)
+    assert float(m.group(2)) == pytest.approx(period, rel=0.02)
+
+
+def test_an_overspeed_in_the_start_is_named_above_the_switch_setting():
+    """The highest mean belt speed before the stop command above OVERSPEED_FRACTION of design
+    speed is named with its value, its share of design speed and its time; at the setting
+    exactly it is not."""
+    from types import SimpleNamespace
+
+    from beltstudy.engine.dynamics import codes as C
+    from beltstudy.engine.dynamics.simulate import OVERSPEED_FRACTION, running_warnings
+
+    sysm = _running(t_run=0.0)  # no running phase to judge
+    out = SimpleNamespace(rec=_records(np.array([0.0]), np.array([0.0])))
+    hi = 1.2 * sysm.v_design
+    (msg,) = running_warnings(sysm, {"vmean_hi": hi, "vmean_hi_t": 41.5, "status": C.OK,
+                                     "nrec": 1}, out)
+    assert "overspeed in the start" in msg and "4.8 m/s, 120 % of design speed" in msg
+    assert "t = 41.5 s" in msg
+    assert running_warnings(sysm, {"vmean_hi": OVERSPEED_FRACTION * sysm.v_design,
+                                   "vmean_hi_t": 41.5, "status": C.OK, "nrec": 1}, out) == []

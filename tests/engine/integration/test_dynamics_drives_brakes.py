@@ -6,6 +6,7 @@ Every check is against a hand calculation or a law, with its tolerance in the as
 
 from __future__ import annotations
 
+import functools
 import math
 import re
 
@@ -225,6 +226,47 @@ def test_dol_fluid_coupling_lets_the_motor_run_up_first():
     # the coupling's stall torque bounds the force at the belt: 1.6 x rated
     assert ts["f_drive1_kn"].max() <= 1.6 * 60.0 * 1.01
     assert ts["v_mean_m_s"].iloc[-1] == pytest.approx(4.0, rel=0.05)
+    # the motor's own speed behind the coupling (v_motor1_m_s): ahead of the pulley while
+    # it runs up, and running with a small positive slip (a constant-fill coupling slips a
+    # few percent at its rated torque)
+    vm, vs = ts["v_motor1_m_s"].to_numpy(), ts["v_drive1_m_s"].to_numpy()
+    assert (vm >= vs - 1e-6).all()
+    half = int(np.argmax(vs >= 0.5 * 4.0))
+    assert vm[half] > 0.9 * 4.0
+    slip = (vm[-1] - vs[-1]) / vm[-1]
+    assert 0.0 < slip < 0.1
+
+
+def test_vfd_motor_speed_is_the_shaft_speed():
+    """Without a coupling the motor turns with its pulley: ``v_motor1_m_s`` is the shaft's."""
+    conv = hand_conv(drives=[hand_drive()],
+                     takeup={"type": "gravity", "position": "tail", "mass_kg": 16000})
+    r = run_one(conv, Scenario(start={"time_s": 10}, run_s=2, elements=40), model="din")
+    ts = r.timeseries
+    assert_allclose(ts["v_motor1_m_s"], ts["v_drive1_m_s"], rtol=0, atol=0)
+
+
+def test_takeup_travel_is_reported_per_phase():
+    """``takeup_travel_start_m`` and ``takeup_travel_stop_m`` are the carriage's range within
+    the start (start to stop command) and the stop (stop command to the end): each equals the
+    range of the recorded positions in its phase to within what the carriage moves between
+    two records, neither exceeds the whole cycle's travel, and together they cover it."""
+    conv = hand_conv(drives=[hand_drive()],
+                     takeup={"type": "gravity", "position": "tail", "mass_kg": 16000})
+    scn = Scenario(start={"time_s": 10}, run_s=5, elements=40, record_dt_s=0.02,
+                   stop={"mode": "coast"})
+    r = run_one(conv, scn, model="din")
+    s, ts = r.summary, r.timeseries
+    t, x = ts["t_s"].to_numpy(), ts["x_takeup_m"].to_numpy()
+    t_cmd = r.transient.system.stop_command_s
+    t_pre = r.transient.system.model.cycle.t_pre
+    step = np.abs(np.diff(x)).max()  # most the carriage moves between two records
+    for phase, m in (("start", (t >= t_pre) & (t <= t_cmd)), ("stop", t >= t_cmd)):
+        assert s[f"takeup_travel_{phase}_m"] == pytest.approx(np.ptp(x[m]), abs=step + 1e-9)
+        assert s[f"takeup_travel_{phase}_m"] <= s["takeup_travel_m"] + 1e-12
+    assert s["takeup_travel_start_m"] > 0.0 and s["takeup_travel_stop_m"] > 0.0
+    assert s["takeup_travel_m"] <= (s["takeup_travel_start_m"] + s["takeup_travel_stop_m"]
+                                    + step + 1e-9)
 
 
 def _light_dol(**over):
@@ -318,26 +360,68 @@ def test_dual_head_drive_running_equals_statics_and_shares_equally():
         assert T[j] == pytest.approx(st.tension_n[j], rel=0.01)
 
 
-def test_vfd_start_tracks_the_reference():
-    """A vfd start inside the torque limit: after the first wave loop time the belt's mean
-    speed is within 2 % of the reference, the overshoot under 2 %, on the example conveyors
-    whose belt is set in motion within the start (the 16.8 km overland: overshoot and the
-    second half of the start, see docs/dynamics.md on pre-tensioning)."""
-    for name, start_s in (("slope-5pct", 180), ("fabric-1km", 180), ("downhill-regen", 180),
-                          ("overland-4km", 180), ("overland-16km", 300)):
-        conv = load_conveyor(CONVEYORS / f"{name}.yaml")
-        st = solve_steady(conv, model="din", n_elements=80)
-        sysm = build_system(conv, Scenario(start={"time_s": start_s}, run_s=30, elements=80),
-                            st)
-        r = simulate(sysm, t_end_s=sysm.stop_command_s - sysm.dt_s)
-        ts = r.timeseries
-        t = ts["t_s"].to_numpy() - sysm.model.cycle.t_pre
-        lim = float(sysm.model.drives.lim0.sum())
-        assert ts["f_drive_kn"].abs().max() * 1e3 < lim, name  # inside the torque limit
-        err = np.abs(ts["v_mean_m_s"] - ts["v_ref_m_s"]).to_numpy() / sysm.v_design
-        since = sysm.wave_loop_time_s if name != "overland-16km" else 0.5 * start_s
-        assert err[t >= since].max() < 0.02, name
-        assert ts["v_mean_m_s"].max() < 1.02 * sysm.v_design, name
+def running_stretch_m(sysm) -> float:
+    """The belt length the start must move past the drive to change the at-rest strains into
+    the running ones [m]: the sum over the springs of |T_run - T_rest| / EB x their length
+    (where the running tension is the lower, belt flows the other way: it counts too)."""
+    sp = sysm.model.springs
+    return float(np.sum(np.abs(sysm.steady_tension_n - sysm.tension_rest_n) / sp.eb
+                        * sp.len_m))
+
+
+VFD_STARTS = (("slope-5pct", 180), ("fabric-1km", 180), ("downhill-regen", 180),
+              ("overland-4km", 180), ("overland-16km", 300))
+
+
+@functools.cache
+def _vfd_start(name: str, start_s: float):
+    """A vfd s-curve start of an example conveyor inside its torque limit (80 elements), run
+    to just before the stop command: (system, result)."""
+    conv = load_conveyor(CONVEYORS / f"{name}.yaml")
+    st = solve_steady(conv, model="din", n_elements=80)
+    sysm = build_system(conv, Scenario(start={"time_s": start_s}, run_s=30, elements=80), st)
+    return sysm, simulate(sysm, t_end_s=sysm.stop_command_s - sysm.dt_s)
+
+
+@pytest.mark.parametrize("name,start_s", VFD_STARTS)
+def test_vfd_master_pulley_tracks_its_reference(name, start_s):
+    """docs/dynamics.md, *Tracking*: inside the torque limit, the master pulley is within 2 %
+    of design speed of its reference from one wave loop time after the start command on, on
+    every example conveyor; the run's ``drive{i}_speed_error_max_pct`` says the same (every
+    step against the records' samples, 0.2 % of design speed)."""
+    sysm, r = _vfd_start(name, start_s)
+    ts = r.timeseries
+    t = ts["t_s"].to_numpy() - sysm.model.cycle.t_pre
+    assert ts["f_drive_kn"].abs().max() * 1e3 < float(sysm.model.drives.lim0.sum())
+    m = sysm.model.control.master + 1
+    v_ref = ts["v_ref_m_s"].to_numpy()
+    after = t > sysm.wave_loop_time_s
+    pulley = np.abs(ts[f"v_drive{m}_m_s"].to_numpy() - v_ref)[after].max() / sysm.v_design
+    assert pulley < 0.02
+    reported = r.summary[f"drive{m}_speed_error_max_pct"]
+    assert 100 * pulley - 1e-9 <= reported <= 100 * pulley + 0.2
+
+
+@pytest.mark.parametrize("name,start_s", [
+    pytest.param(*c, marks=pytest.mark.xfail(
+        strict=True, reason="the mean belt speed swings about +-3 % with the gravity take-up "
+        "(period about 57 s), a mode the pulley held to its reference does not damp; the "
+        "pulley tracks (test above), the mean-speed criteria are not met (docs/dynamics.md)"))
+    if c[0] == "overland-16km" else c for c in VFD_STARTS])
+def test_vfd_mean_belt_speed_follows_once_the_stretch_is_paid_in(name, start_s):
+    """docs/dynamics.md, *Tracking*: the mean belt speed within 2 % of design speed of the
+    reference once the reference has travelled twice the running stretch (the belt a start
+    must move past the drive to change the at-rest strains into the running ones), and within
+    1 % from one wave loop time after the ramp ends."""
+    sysm, r = _vfd_start(name, start_s)
+    ts = r.timeseries
+    t = ts["t_s"].to_numpy() - sysm.model.cycle.t_pre
+    v_ref = ts["v_ref_m_s"].to_numpy()
+    travelled = np.concatenate([[0.0], np.cumsum(0.5 * (v_ref[1:] + v_ref[:-1])
+                                                 * np.diff(t))])
+    err = np.abs(ts["v_mean_m_s"].to_numpy() - v_ref) / sysm.v_design
+    assert err[travelled >= 2.0 * running_stretch_m(sysm)].max() < 0.02
+    assert err[t >= start_s + sysm.wave_loop_time_s].max() < 0.01
 
 
 # --------------------------------------------------------------------------------------
@@ -410,3 +494,39 @@ def test_auto_brake_stop_within_the_grip(stop_s, governed):
     assert s["stop_time_s"] == pytest.approx(said, rel=0.10)
     assert s["drive1_slip_s"] == 0.0
     assert "slipped" not in s["message"]
+
+
+def test_tail_followers_settle_or_the_run_says_so():
+    """The running-phase fuzz's limit-cycle conveyor (benchmarks/fuzz_running.py): a vfd head
+    drive with two tail drives following its torque a wave's travel away, EP1000/5, 2.9 km.
+    Over the running phase's last half its mean belt speed either stays within 2 % of design
+    speed, or the run says ``not settled while running`` with that swing (to 1 %) and a
+    period from the crossings of the mean (10 %) (PHYSICS 5.2)."""
+    tail = {"position": "tail", "wrap_deg": 200, "share": 0.3, "inertia_kg_m2": 1500.0,
+            "pulley_diameter_m": 1.0}
+    conv = hand_conv(
+        speed_m_s=4.0, belt={"type": "EP1000/5", "width_m": 1.2},
+        material={"capacity_t_h": 1500, "density_t_m3": 1.6},
+        profile=[{"length_m": 1500.0, "lift_m": 30.0}, {"length_m": 1400.0, "lift_m": -20.0}],
+        drives=[hand_drive(share=0.4, wrap_deg=210, inertia_kg_m2=4000.0), hand_drive(**tail),
+                hand_drive(**tail)],
+        takeup={"type": "gravity", "position": "tail", "mass_kg": "auto"})
+    r = run_one(conv, Scenario(start={"time_s": 60}, run_s=300, stop={"mode": "coast"},
+                               elements=40), model="din")
+    ts, msg = r.timeseries, r.summary["message"]
+    t_cmd = r.transient.system.stop_command_s
+    half = (ts["t_s"] >= t_cmd - 150.0) & (ts["t_s"] <= t_cmd)
+    v = ts["v_mean_m_s"][half].to_numpy()
+    swing = float(np.ptp(v))
+    if swing <= 0.02 * 4.0:
+        assert "not settled while running" not in msg
+        return
+    m = re.search(r"not settled while running: the mean belt speed still swings by ([\d.]+) "
+                  r"m/s \(([\d.]+) % of design speed, a period of ([\d.]+) s\)", msg)
+    assert m, msg
+    assert float(m.group(1)) == pytest.approx(swing, rel=0.01)
+    t = ts["t_s"][half].to_numpy()
+    d = v - v.mean()
+    cross = np.flatnonzero(np.signbit(d[:-1]) != np.signbit(d[1:]))
+    crossings_per_s = (len(cross) - 1) / (t[cross[-1]] - t[cross[0]])
+    assert float(m.group(3)) == pytest.approx(2.0 / crossings_per_s, rel=0.1)

@@ -415,14 +415,18 @@ def test_fronts_travel_at_the_dynamic_wave_speed_with_damping_on(modulus, dynami
 
 def test_the_static_modulus_governs_the_settled_stretch():
     """After the relaxation the take-up carriage sits where the static modulus puts it:
-    half the belt's running stretch (chord law with E B static) within 2 %."""
+    half the belt's running stretch (chord law with E B static) within 2 %. (120 s of
+    running: on this very soft belt the carriage swings +-0.6 m against the belt after the
+    start, and the speed loop, holding its pulley to the reference, does not damp that swing;
+    it has decayed to +-0.03 m after 120 s, and a shorter run says `not settled while
+    running`.)"""
     conv = parse_conveyor(hand_conveyor_dict(
         belt={"width_m": 1.0, "rating_kn_m": 500, "modulus_kn_m": 6000,
               "dynamic_modulus_kn_m": 9000, "carcass_mass_kg_m2": 20.0, "top_cover_mm": 0,
               "bottom_cover_mm": 0},
         takeup={"type": "gravity", "position": "tail", "mass_kg": 12000, "travel_m": 40}))
     st = solve_steady(conv, model="din", n_elements=80)
-    sysm = build_system(conv, Scenario(start={"time_s": 20}, run_s=40, elements=80), st)
+    sysm = build_system(conv, Scenario(start={"time_s": 20}, run_s=120, elements=80), st)
     r = simulate(sysm, t_end_s=sysm.stop_command_s - sysm.dt_s)
     eps_rest = chord_strain(np.maximum(sysm.tension_rest_n, 0.0), sysm.model.springs.a_ernst,
                             sysm.model.springs.eb, sysm.model.springs.t_floor, sysm.model.springs.k_floor)
