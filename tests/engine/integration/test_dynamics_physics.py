@@ -197,7 +197,10 @@ def test_running_tensions_settle_to_statics(name, model, takeup):
         data["takeup"] = takeup
     conv = parse_conveyor(data)
     st = solve_steady(conv, model=model, n_elements=80)
-    scn = Scenario(start={"control": "s-curve", "time_s": 30}, run_s=60)
+    # 120 s of running: the limited mesh viscosity no longer damps the belt's lowest modes
+    # (only the belt's own damping does), so the swing the start leaves behind dies out more
+    # slowly (slope-5pct, cema, fixed take-up: 2.2 % off after 60 s, 0.05 % after 120 s)
+    scn = Scenario(start={"control": "s-curve", "time_s": 30}, run_s=120)
     sys = build_system(conv, scn, st)
     res = simulate(sys, t_end_s=sys.stop_command_s - sys.dt_s)
     T = res.raw["tension"]
