@@ -886,7 +886,30 @@ def _rest(conv, loop, springs: Springs, gravity, T_run, tu_weight) -> tuple[int,
         warns.append(f"held at rest the belt is slack at {loop.s_m[k] + loop.dx_m[k]:.0f} m "
                      f"(the take-up leaves {T_rest[k] / 1e3:.3g} kN there): raise the take-up "
                      "tension")
+    warns += _rest_grip(loop, hold, T_rest)
     return hold, T_rest, warns
+
+
+def _rest_grip(loop, hold: int, T_rest: np.ndarray) -> list[str]:
+    """The pulley holding the belt at rest passes at most ``T_slack (e^(mu theta) - 1)``
+    (Euler-Eytelwein, PHYSICS 5.1, static friction): a rest state that asks more of it cannot
+    stand (the belt would creep over the held pulley). The transient model starts from it
+    all the same (the hold is taken as given), so the run says so."""
+    pulley = next((p for p in loop.pulleys if p.element == hold), None)
+    if pulley is None:
+        return []
+    t_in, t_out = float(T_rest[hold - 1]), float(T_rest[hold])
+    slack = max(min(t_in, t_out), 0.0)
+    grip = slack * math.expm1(pulley.friction * math.radians(pulley.wrap_deg))
+    held = abs(t_out - t_in)
+    if held <= grip:
+        return []
+    need = held / math.expm1(pulley.friction * math.radians(pulley.wrap_deg))
+    return [f"at rest the {pulley.position} pulley holding the belt passes {held / 1e3:.4g} kN, "
+            f"beyond its grip of {grip / 1e3:.4g} kN (slack side {slack / 1e3:.4g} kN, mu "
+            f"{pulley.friction:g}, wrap {pulley.wrap_deg:g} deg): the belt would creep over it; "
+            f"a slack-side tension of {need / 1e3:.4g} kN (a heavier take-up) or a brake or "
+            "holdback on another pulley would hold it"]
 
 
 def _takeup(conv, loop, steady, springs: Springs, T_rest, T_run) -> Takeup:

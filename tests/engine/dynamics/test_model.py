@@ -5,6 +5,7 @@ refuses."""
 from __future__ import annotations
 
 import math
+import re
 
 import numpy as np
 import pytest
@@ -145,3 +146,29 @@ def test_speed_loop_sees_the_shaft_and_the_belt_a_wave_reaches():
                         total) == pytest.approx(by_hand, rel=1e-9)
     assert loop_inertia(conv, loop, sysm.model.shafts, index, sysm.wave_speed_m_s, wc,
                         0.5 * by_hand) == 0.5 * by_hand  # capped at all moving mass
+
+
+@pytest.mark.parametrize("name, beyond", [("downhill-regen", True), ("slope-5pct", False)])
+def test_a_rest_state_beyond_the_held_pulleys_grip_is_said(name, beyond):
+    """The pulley holding the belt at rest (the first brake's, else the master drive's)
+    passes at most T_slack (e^(mu theta) - 1) (Euler-Eytelwein, static friction). The loaded
+    decline's head brake holds the whole downhill pull on a pulley whose slack side the
+    take-up keeps low: the system says so, with the grip computed here by hand from the rest
+    tensions; the incline's rest state is within its grip and says nothing."""
+    conv = load_conveyor(CONVEYORS / f"{name}.yaml")
+    st = solve_steady(conv, model="din", n_elements=40)
+    sys = build_system(conv, Scenario(elements=40), st)
+    said = [w for w in sys.warnings if w.startswith("at rest the")]
+    T = sys.tension_rest_n
+    if not beyond:
+        assert said == []
+        return
+    assert len(said) == 1, sys.warnings
+    pulley = next(d for d in conv.drives if d.position == "head")
+    held = float(re.search(r"passes ([\d.]+) kN", said[0]).group(1))
+    grip = float(re.search(r"grip of ([\d.]+) kN", said[0]).group(1))
+    slack = float(re.search(r"slack side ([\d.]+) kN", said[0]).group(1))
+    assert grip == pytest.approx(slack * math.expm1(pulley.friction
+                                                    * math.radians(pulley.wrap_deg)), rel=1e-3)
+    assert held > grip
+    assert held * 1e3 == pytest.approx(np.max(np.abs(np.diff(T))), rel=1e-3)
