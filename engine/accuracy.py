@@ -358,24 +358,15 @@ def marginal_verdicts(summary: dict, figures: dict, *, sag_limit_pct: float | No
       by itself);
     - safety factor: ``safety_factor_dyn`` against ``safety_factor_min``.
     """
-    out = []
     slack = (summary.get("slack_max_m") or 0.0) > 0.0
-    words = (_marginal(figures.get("slack_max_m"), 0.0, "m") if slack
-             else _marginal(figures.get("t_min_dyn_kn"), 0.0, "kN"))
-    if words:
-        out.append(words)
+    checks = [("slack_max_m", 0.0, "m") if slack else ("t_min_dyn_kn", 0.0, "kN")]
     if sag_limit_pct is not None:
-        words = _marginal(figures.get("sag_max_dyn_pct"), float(sag_limit_pct), "%")
-        if words:
-            out.append(words)
+        checks.append(("sag_max_dyn_pct", float(sag_limit_pct), "%"))
     slipped = any((v or 0.0) > 0.0 for k, v in summary.items()
                   if k.startswith("drive") and k.endswith("_slip_s"))
     if not slipped:  # a slip that happened is its own verdict, the margin then at its floor
-        words = _marginal(figures.get("slip_margin_min_dyn"), 1.0, "")
-        if words:
-            out.append(words)
+        checks.append(("slip_margin_min_dyn", 1.0, ""))
     if safety_factor_min is not None:
-        words = _marginal(figures.get("safety_factor_dyn"), float(safety_factor_min), "")
-        if words:
-            out.append(words)
-    return out
+        checks.append(("safety_factor_dyn", float(safety_factor_min), ""))
+    said = (_marginal(figures.get(name), limit, unit) for name, limit, unit in checks)
+    return [words for words in said if words]

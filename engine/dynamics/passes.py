@@ -556,16 +556,25 @@ def visc_limiter(dem, de, dep):
 
 
 @njit(inline="always", **OPTS)
-def _spring_free(j, jm, jp, jq, st, sp, more, limited):
-    """Free spring j (between elements j and jp; jm before j, jq after jp) from the new
-    velocities into the state; returns whether it needs :func:`spring_refine` (``more[j]``
-    marks it)."""
+def _rate_and_viscosity(j, jm, jp, jq, st, sp, limited):
+    """Free spring j's strain increment over the step from the new velocities and its mesh
+    viscosity per strain increment, limited when ``limited`` (:func:`visc_limiter` on the
+    neighbours' increments; indices as :func:`_spring_free`)."""
     v = st.v
     dl = sp.dl
     de = (v[jp] - v[j]) * dl[j]
     kvs = sp.kvs[j]
     if limited:
         kvs *= visc_limiter((v[j] - v[jm]) * dl[jm], de, (v[jq] - v[jp]) * dl[jp])
+    return de, kvs
+
+
+@njit(inline="always", **OPTS)
+def _spring_free(j, jm, jp, jq, st, sp, more, limited):
+    """Free spring j (between elements j and jp; jm before j, jq after jp) from the new
+    velocities into the state; returns whether it needs :func:`spring_refine` (``more[j]``
+    marks it)."""
+    de, kvs = _rate_and_viscosity(j, jm, jp, jq, st, sp, limited)
     e1, s1, d1, t1, m = spring_first(st.te[j], st.ts[j], st.td[j], de, sp.t_floor[j],
                                      sp.s_floor[j], sp.kfl_eb[j], sp.a_eb[j], sp.eb,
                                      sp.e_damp, sp.g_damp, kvs)
@@ -580,12 +589,7 @@ def _spring_free(j, jm, jp, jq, st, sp, more, limited):
 @njit(inline="always", **OPTS)
 def _spring_more(j, jm, jp, jq, st, sp, limited):
     """:func:`spring_refine` of free spring j (indices as :func:`_spring_free`)."""
-    v = st.v
-    dl = sp.dl
-    de = (v[jp] - v[j]) * dl[j]
-    kvs = sp.kvs[j]
-    if limited:
-        kvs *= visc_limiter((v[j] - v[jm]) * dl[jm], de, (v[jq] - v[jp]) * dl[jp])
+    de, kvs = _rate_and_viscosity(j, jm, jp, jq, st, sp, limited)
     st.te[j], st.tt[j] = spring_refine(st.te[j], st.ts[j], st.td[j], de, sp.t_floor[j],
                                        sp.s_floor[j], sp.kfl_eb[j], sp.a_eb[j], kvs)
 
