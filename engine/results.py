@@ -217,6 +217,9 @@ TRANSIENT = ResultGroup("transient", "Transient: the start, run and stop cycle (
        "speed first reaches 99 % of design speed (null if never)", "start time achieved"),
     _f("stop_time_s", "s", "stop time achieved: stop command until the mean speed falls below "
        "1 % of design speed (null if never)", "stop time achieved"),
+    _f("stop_distance_m", "m", "stopping distance: the belt's travel (the mass-weighted mean "
+       "speed integrated) from the stop command until the stop is achieved (null if never)",
+       "stopping distance"),
     _f("wave_loop_time_s", "s", "time a stress wave takes once round the loop",
        "wave loop time"),
     _f("stop_wave_ratio", "-", "stop_time_s / wave_loop_time_s", "stop time / wave loop time"),

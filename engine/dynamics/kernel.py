@@ -519,6 +519,8 @@ def _switches(model, st, out, wk, rs):
     envelope cut when the belt first goes slack and at the stop command."""
     cyc = model.cycle
     t = rs.t
+    if rs.stopping and rs.stop_ach < 0.0:
+        rs.stop_dist += rs.v_mean * cyc.dt  # the belt's travel in the stop [m]
     if rs.stopping and rs.stop_ach < 0.0 and rs.v_mean < 0.01 * cyc.v_d:
         rs.stop_ach = t - rs.t_stopcmd
     if rs.stopping and not rs.stopped and rs.v_mean < 0.01 * cyc.v_d and (
@@ -671,6 +673,7 @@ def _start(model, st, out, wk, rs):
     rs.endstop_t = -1.0
     rs.start_ach = -1.0
     rs.stop_ach = -1.0
+    rs.stop_dist = 0.0
     rs.t_stopped = -1.0
     rs.t_trip = -1.0
     rs.hold_set = -1.0

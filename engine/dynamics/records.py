@@ -361,6 +361,8 @@ RUN = np.dtype([
     # events
     ("endstop", np.int64), ("endstop_t", np.float64), ("endstop_speed", np.float64),
     ("start_ach", np.float64), ("stop_ach", np.float64), ("stopped", np.bool_),
+    # the mass-weighted mean speed integrated from the stop command until the stop is achieved
+    ("stop_dist", np.float64),
     ("t_stopped", np.float64), ("t_trip", np.float64), ("hold_set", np.float64),
     # slack
     ("slack_max", np.float64), ("slack_at", np.int64), ("slack_time", np.float64),

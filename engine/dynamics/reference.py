@@ -72,6 +72,7 @@ class ReferenceResult(dict):
     (per-spring envelopes of the whole cycle), ``steps``, ``t_end`` [s], ``status`` (0 ok,
     1 diverged, 2 the belt ran away), ``div_where`` (of a diverged run: -1 the belt, s >= 0
     shaft s, -2 - k drive k's motor), ``w_drive`` [J], ``start_ach``, ``stop_ach`` [s] (-1 not reached),
+    ``stop_dist`` [m] (the belt's travel from the stop command until the stop is achieved),
     ``slip_s`` [s] and ``slip_m`` [m] per drive (time slipping, belt length slipped),
     ``shaft_slip_s`` [s] and ``shaft_slip_m`` [m] the same per shaft,
     ``slack_s`` [s] (time with a slack span), ``t_trip`` and ``hold_set`` [s], ``law_evals``
@@ -993,6 +994,8 @@ def _switches(model: Model, st, rs):
     begins: at 1 % of design speed, and on a controlled stop once its reference has run out;
     the run then ends after the rest), the time with a slack span."""
     cyc, t = model.cycle, rs.t
+    if rs.stopping and rs.stop_ach < 0.0:
+        rs.stop_dist += rs.v_mean * cyc.dt
     if rs.stopping and rs.stop_ach < 0.0 and rs.v_mean < 0.01 * cyc.v_d:
         rs.stop_ach = t - rs.t_stopcmd
     if rs.stopping and not rs.stopped and rs.v_mean < 0.01 * cyc.v_d and (
@@ -1044,7 +1047,7 @@ def _start(sys: System, t_end_s: float | None):
         phase=C.HOLD, started=False, stopping=False, was_off=False, pi=False, pi_started=False,
         hold=-1, v_ref=0.0, a_ref=0.0, f0u=0.0, f1u=0.0, U=0.0, u_known=False,
         x_tu=0.0, u_tu=0.0, integ=0.0, hold_f=sys.hold_force_n, v_mean=0.0, w_drive=0.0,
-        start_ach=-1.0, stop_ach=-1.0, stopped=False, t_stopped=-1.0, t_trip=-1.0,
+        start_ach=-1.0, stop_ach=-1.0, stop_dist=0.0, stopped=False, t_stopped=-1.0, t_trip=-1.0,
         hold_set=-1.0, slack_s=0.0, verr_max=0.0, verr_t=-1.0, vmean_hi=0.0, vmean_hi_t=-1.0,
         x_range={"start": (math.inf, -math.inf), "stop": (math.inf, -math.inf)})
     out = SimpleNamespace(t_max=st.tt.copy(), t_min=st.tt.copy(), slip_s=np.zeros(nd),
@@ -1059,7 +1062,8 @@ def _finish(ref, st, sh, dr, rs, out) -> ReferenceResult:
         v=st.v, te=st.te, ts=st.ts, td=st.td, tension=st.tt, x_takeup=rs.x_tu, u_takeup=rs.u_tu,
         integrator=rs.integ, shaft_speed=sh.vs, shaft_slip=sh.slip, drive_force=dr.force,
         t_max=out.t_max, t_min=out.t_min, steps=rs.step, t_end=rs.t, status=rs.status,
-        w_drive=rs.w_drive, start_ach=rs.start_ach, stop_ach=rs.stop_ach, slip_s=out.slip_s,
+        w_drive=rs.w_drive, start_ach=rs.start_ach, stop_ach=rs.stop_ach, stop_dist=rs.stop_dist,
+        slip_s=out.slip_s,
         slip_m=out.slip_m, shaft_slip_s=out.shaft_slip_s, shaft_slip_m=out.shaft_slip_m,
         slack_s=rs.slack_s, t_trip=rs.t_trip, hold_set=rs.hold_set,
         law_evals=ref.law.evaluations if ref.law is not None else 0, div_where=rs.div_where,

@@ -612,6 +612,7 @@ def transient_summary(sys: System, r: dict, out, segs, *, steady_summary=None, c
         "takeup_travel_stop_m": _travel(r, "stop") if tu.gravity else 0.0,
         "start_time_s": t_start_ach,
         "stop_time_s": t_stop_ach,
+        "stop_distance_m": float(r["stop_dist"]) if t_stop_ach is not None else None,
         "wave_loop_time_s": sys.wave_loop_time_s,
         "stop_wave_ratio": (t_stop_ach / sys.wave_loop_time_s
                             if t_stop_ach is not None else None),

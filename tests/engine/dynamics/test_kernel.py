@@ -150,6 +150,7 @@ def test_kernel_matches_numpy_reference(name, changes, model, scenario, exercise
     assert_allclose(shafts.slip, ref["shaft_slip"], atol=0, rtol=0)
     assert_allclose(drives.force, ref["drive_force"], atol=t_tol, rtol=0)
     assert res["w_drive"] == pytest.approx(ref["w_drive"], rel=1e-9)
+    assert res["stop_dist"] == pytest.approx(ref["stop_dist"], rel=1e-9, abs=1e-9)
     for key in ("start_ach", "stop_ach", "t_trip", "hold_set", "verr_t", "vmean_hi_t"):
         assert res[key] == pytest.approx(ref[key], abs=1e-9), key
     assert res["verr_max"] == pytest.approx(ref["verr_max"], abs=v_tol)

@@ -263,7 +263,9 @@ def test_ernst_law_slows_the_wave_in_a_low_tension_strand():
 def test_brake_stop_takes_the_sized_time():
     """A flat loaded belt that would coast for about 20 s, with a brake sized for a 10 s
     rigid-body stop: it stops in 10 s (within 10 %, the belt is elastic); the stop time is
-    from the command to 1 % of design speed. Without the brake it takes M v / Te."""
+    from the command to 1 % of design speed. Without the brake it takes M v / Te, and its
+    stopping distance is that of a uniform deceleration a = Te / M from v to 1 % of v,
+    (v^2 - (0.01 v)^2) / (2 a) (within 10 %)."""
     conv = flat_conveyor(length_m=1000.0, speed_m_s=4.0, takeup_kg=20000.0,
                          material={"capacity_t_h": 720.0},
                          brakes=[{"position": "head", "force_kn": "auto", "delay_s": 0.5}])
@@ -277,6 +279,9 @@ def test_brake_stop_takes_the_sized_time():
     sys = r.transient.system
     assert coast.summary["stop_time_s"] == pytest.approx(
         0.99 * sys.model.control.m_tot * 4.0 / r.steady.te_n, rel=0.10)
+    a = r.steady.te_n / sys.model.control.m_tot
+    assert coast.summary["stop_distance_m"] == pytest.approx((4.0**2 - 0.04**2) / (2.0 * a),
+                                                             rel=0.10)
 
 
 def _cycloid_time(fraction):
