@@ -19,6 +19,7 @@ from beltstudy.engine.conveyor import Conveyor, Scenario
 from beltstudy.engine.design import auto_sizes, summary_fields
 from beltstudy.engine.dynamics import DynamicsOptions, TransientResult, build_system, simulate
 from beltstudy.engine.dynamics.model import check_scenario
+from beltstudy.engine.dynamics.simulate import span_sag_pct
 from beltstudy.engine.results import check_summary
 from beltstudy.engine.statics import (
     SAFETY_FACTOR_MIN,
@@ -252,10 +253,7 @@ def _error_bars(conveyor, scenario, result, model, params, opts):
 def _sag_limit(conveyor: Conveyor, tr: TransientResult) -> float:
     """The sag limit [%] of the strand where the transient sag is largest (the sag at each
     span's low end from the lowest tension of the cycle, as ``sag_max_dyn_pct``)."""
-    env_min = tr.envelope_kn()[1] * 1e3
-    t_low = np.minimum(np.roll(env_min, 1), env_min)
-    sag_w = tr.system.model.nodes.sag_w
-    sag = np.where(sag_w > 0.0, sag_w / np.maximum(t_low, 1.0), 0.0)
+    sag, _ = span_sag_pct(tr.system, tr.envelope_kn()[1] * 1e3)
     strand = int(tr.system.strand[int(np.argmax(sag))])
     lim = conveyor.sag_limit_pct
     return float(lim.return_ if strand == 1 else lim.carry)

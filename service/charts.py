@@ -357,11 +357,7 @@ def power_temperature_figure(runs, title: str = "", temperature_c: float | None 
     if "temperature_c" not in df.columns:
         df["temperature_c"] = float(temperature_c if temperature_c is not None else 20.0)
     df["temperature_c"] = pd.to_numeric(df["temperature_c"], errors="coerce")
-    if "friction_model" not in df.columns:
-        df["friction_model"] = "model"
-    cols = list(axes) if axes is not None else default_axis_columns(df)
-    if "friction_model" not in cols:
-        cols.insert(0, "friction_model")
+    cols = _model_first_axes(df, axes)
     tied = _tied(groups, "temperature_c")
     others = varying(df, [c for c in cols if c != "temperature_c" and c not in tied])
     others, notes = _one_per_zip_group(others, groups)
@@ -369,6 +365,17 @@ def power_temperature_figure(runs, title: str = "", temperature_c: float | None 
                              _tied_label("temperature [°C]", tied),
                              "power at the drive pulleys [kW]", title,
                              inputs=["temperature_c", *tied], notes=notes)
+
+
+def _model_first_axes(df: pd.DataFrame, axes) -> list[str]:
+    """The axis columns of a figure, the friction model first (``df`` gets a one-value
+    ``friction_model`` column when it has none): the given ``axes`` or the varying ones."""
+    if "friction_model" not in df.columns:
+        df["friction_model"] = "model"
+    cols = list(axes) if axes is not None else default_axis_columns(df)
+    if "friction_model" not in cols:
+        cols.insert(0, "friction_model")
+    return cols
 
 
 def _tied(groups: list[list[str]] | None, column: str) -> list[str]:
@@ -412,11 +419,7 @@ def peak_dynamic_tension_figure(runs, title: str = "", axes: list[str] | None = 
     if stop is None:
         return message_figure("no stop times in the results", title)
     df["x"] = stop
-    if "friction_model" not in df.columns:
-        df["friction_model"] = "model"
-    cols = list(axes) if axes is not None else default_axis_columns(df)
-    if "friction_model" not in cols:
-        cols.insert(0, "friction_model")
+    cols = _model_first_axes(df, axes)
     tied = _tied(groups, "stop_time_target_s")
     others = varying(df, [c for c in cols if c not in ("stop_time_target_s", "stop_time_s",
                                                        "x", *tied)])

@@ -25,6 +25,7 @@ from beltstudy.engine.dynamics.kernel import run_cycle
 from beltstudy.engine.dynamics.model import System, chord_strain
 
 __all__ = ["TransientResult", "KernelRun", "fresh_run", "fresh_model", "simulate", "decode",
+           "span_sag_pct",
            "TIMESERIES_COLUMNS", "SURFACE_COLUMNS", "V_FAIL_FACTOR"]
 
 #: SPEC section 5 key-point columns, in order (extra and per-drive columns follow them).
@@ -559,6 +560,15 @@ def _slip_warnings(sys: System, r: dict, out, conveyor=None) -> list[str]:
     return w
 
 
+def span_sag_pct(sys: System, env_min_n: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """Sag at each span's low end [%] (0 off the idlers, at most 100) from a minimum tension
+    envelope [N], and that low-end tension [N] (the lower of the span's two springs)."""
+    t_low = np.minimum(np.roll(env_min_n, 1), env_min_n)
+    sag_w = sys.model.nodes.sag_w
+    sag = np.where(sag_w > 0.0, 100.0 * sag_w / np.maximum(t_low, 1.0), 0.0)
+    return np.minimum(sag, 100.0), t_low
+
+
 def transient_summary(sys: System, r: dict, out, segs, *, steady_summary=None, conveyor=None,
                       safety_factor_min=None):
     """SPEC section 4 and 6.4 transient fields and the warnings."""
@@ -573,13 +583,8 @@ def transient_summary(sys: System, r: dict, out, segs, *, steady_summary=None, c
     steady_tmax = (float(steady_summary["t_max_kn"]) * 1e3
                    if steady_summary and steady_summary.get("t_max_kn")
                    else float(np.max(sys.steady_tension_n)))
-    # sag at each span's low end, from the minimum envelope
-    t_min_env = whole["env_min"]
-    t_low = np.minimum(np.roll(t_min_env, 1), t_min_env)
-    sag_w = sys.model.nodes.sag_w
-    idler = sag_w > 0.0
-    sag = np.where(idler, 100.0 * sag_w / np.maximum(t_low, 1.0), 0.0)
-    sag = np.minimum(sag, 100.0)
+    sag, t_low = span_sag_pct(sys, whole["env_min"])
+    idler = sys.model.nodes.sag_w > 0.0
     t_stop_cmd = sys.stop_command_s
     t_stop_ach = r["stop_ach"] if r["stop_ach"] >= 0 else None
     t_start_ach = r["start_ach"] if r["start_ach"] >= 0 else None

@@ -227,20 +227,13 @@ def run_batch(
         rows.append(row)
         if result is None:
             continue
+        builders = [(timeseries_table, series), (profile_table, profiles),
+                    (accuracy_table, accuracy)] + ([(surface_table, surfaces)] if surface else [])
         try:
-            table = timeseries_table(spec.run_id, result)
-            if table is not None:
-                series.append(table)
-            table = profile_table(spec.run_id, result)
-            if table is not None:
-                profiles.append(table)
-            if surface:
-                table = surface_table(spec.run_id, result)
+            for build, tables in builders:
+                table = build(spec.run_id, result)
                 if table is not None:
-                    surfaces.append(table)
-            table = accuracy_table(spec.run_id, result)
-            if table is not None:
-                accuracy.append(table)
+                    tables.append(table)
         except Exception as exc:  # a malformed result is reported on the run's row
             row.update(failed_row(f"time series: {_message(exc)}", row.get("elapsed_s")))
         t_tables += time.perf_counter() - t2
