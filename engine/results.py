@@ -220,6 +220,12 @@ TRANSIENT = ResultGroup("transient", "Transient: the start, run and stop cycle (
     _f("stop_distance_m", "m", "stopping distance: the belt's travel (the mass-weighted mean "
        "speed integrated) from the stop command until the stop is achieved (null if never)",
        "stopping distance"),
+    _f("stop_window_s", "s", "the stop window: a run whose belt is not at rest (stop_time_s) "
+       "this long after the stop command did not stop (the same for every run, "
+       "DynamicsOptions.stop_window_s, docs/dynamics.md)", "stop window"),
+    _f("f_holdback_kn", "kN", "largest force the holdback (holdback: true, at the head drive "
+       "pulley) gives over the run, apart from the brakes' (null without a holdback)",
+       "holdback force (largest)"),
     _f("wave_loop_time_s", "s", "time a stress wave takes once round the loop",
        "wave loop time"),
     _f("stop_wave_ratio", "-", "stop_time_s / wave_loop_time_s", "stop time / wave loop time"),

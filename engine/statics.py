@@ -38,7 +38,7 @@ import numpy as np
 
 from beltstudy.engine.capacity import capacity as capacity_check
 from beltstudy.engine.conveyor import Conveyor, section_loads
-from beltstudy.engine.friction import get_model
+from beltstudy.engine.friction import get_model, temperature_note
 from beltstudy.engine.law import ResistanceLaw
 from beltstudy.engine.loop import (
     CARRY,
@@ -541,7 +541,9 @@ def _summarise(res: SteadyResult, drives, hs_adm, bounds, shortfall_n: float,
         warnings.append("the belt goes slack (tension at or below zero): raise the take-up")
     res.warnings = warnings
     res.status = "warning" if warnings else "ok"
-    res.message = "; ".join(warnings)
+    # a note does not make a warning (as the transient's notes, "note: ..." after them)
+    note = temperature_note(get_model(res.model), res.temperature_c)
+    res.message = "; ".join(warnings + ([note] if note else []))
     res.summary["status"] = res.status
     res.summary["message"] = res.message
 

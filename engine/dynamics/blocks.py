@@ -745,7 +745,8 @@ def _drive_output(model, rs, s, ft, vs_old, vsn, U):
 @njit(inline="always", **OPTS)
 def _write_back(model, st, wk, rs, p0, m, car, U):
     """The solution into the belt, the shafts and the drives. Returns (holding force or nan,
-    brake force, sum w v, sum of drive forces, drive power, drive work) of the block."""
+    brake force, sum w v, sum of drive forces, drive power, drive work) of the block; adds the
+    holdback's force to ``rs.f_hb``."""
     blocks = model.blocks
     shafts = model.shafts
     drives = model.drives
@@ -763,7 +764,13 @@ def _write_back(model, st, wk, rs, p0, m, car, U):
         xk = x[k]
         st.v[j] = xk
         vsum += model.nodes.w_mean[j] * xk
-        if wk.bforce[k] > 0.0:
+        if wk.stuck[k] == 1.0 and wk.c_hi[k] > 1e299:
+            # a holdback holding: the brake on its shaft gives up to its force, the holdback
+            # the rest of the reaction (it engages only past the brake, docs/dynamics.md)
+            c_r = _reaction(wk, x, k, m, car) - wk.ucoef[k] * U
+            f_brake += min(abs(c_r), wk.bforce[k])
+            rs.f_hb += max(c_r - wk.bforce[k], 0.0)
+        elif wk.bforce[k] > 0.0:
             f_brake += abs(_reaction(wk, x, k, m, car) - wk.ucoef[k] * U) if wk.stuck[k] == 1.0 \
                 else wk.bforce[k]
         s = wk.shk[k]
@@ -783,6 +790,9 @@ def _write_back(model, st, wk, rs, p0, m, car, U):
             if fb > 0.0:
                 f_brake += fb if vsn != 0.0 else min(fb, abs(_shaft_push(
                     model, s, U, sl, ft)))
+            if shafts.hb[s] == 1 and vsn == 0.0:
+                # a slipping shaft the holdback holds at rest: what the brake does not
+                rs.f_hb += max(-_shaft_push(model, s, U, sl, ft) - fb, 0.0)
         if j == rs.hold:
             hold_f = ft
         shafts.vs[s] = vsn

@@ -285,6 +285,7 @@ def _blocks(model, st, wk, rs):
     rs.f_tot = 0.0
     rs.p_tot = 0.0
     rs.f_brake = 0.0
+    rs.f_hb = 0.0
     u_new = rs.u_tu
     rs.U = 0.0
     rs.u_known = not rs.pi
@@ -304,6 +305,8 @@ def _blocks(model, st, wk, rs):
         rs.f_tot += ft_b
         rs.p_tot += pt_b
         rs.w_drive += w_b
+    rs.fbr_max = max(rs.fbr_max, rs.f_brake)
+    rs.fhb_max = max(rs.fhb_max, rs.f_hb)
     if rs.pi:
         # conditional integration: not further into the torque limit
         drives = model.drives
@@ -527,7 +530,7 @@ def _switches(model, st, out, wk, rs):
             cyc.stop_mode != C.CONTROLLED or t >= rs.t_stopcmd + cyc.t_stop):
         rs.stopped = True
         rs.t_stopped = t
-        rs.t_end_limit = min(rs.t_end_limit, t + cyc.post_rest)
+        rs.t_end_limit = t + cyc.post_rest  # came to rest within the stop window
         if cyc.t_end > 0.0:
             rs.t_end_limit = min(rs.t_end_limit, cyc.t_end)
     nseg = out.seg_time.shape[0]
@@ -583,6 +586,7 @@ def _record(pr, shafts, drives, master, i_tu, st, out, rs, vabs):
     r.p_drive = rs.p_tot
     r.v_abs = vabs
     r.slack_m = rs.slack_m
+    r.f_holdback = rs.f_hb
     for k in range(pr.probes.shape[0]):
         out.rec_t[rs.nrec, k] = tt[pr.probes[k]]
         out.rec_v[rs.nrec, k] = v[pr.probes[k]]
@@ -690,7 +694,7 @@ def _start(model, st, out, wk, rs):
     rs.verr_t = -1.0
     rs.vmean_hi_t = -1.0
     rs.t_stopcmd = cyc.t_pre + cyc.t_start + cyc.t_run
-    rs.t_end_limit = rs.t_stopcmd + cyc.stop_max + cyc.post_rest
+    rs.t_end_limit = rs.t_stopcmd + cyc.stop_max  # the stop window: not at rest, ends there
     if cyc.t_end > 0.0:
         rs.t_end_limit = min(rs.t_end_limit, cyc.t_end)
     if not model.control.vfd:

@@ -194,6 +194,17 @@ class DynamicsOptions:
         The free springs' mesh viscosity limited where the strain rate varies smoothly
         (:func:`beltstudy.engine.dynamics.passes.visc_limiter`: Christensen's monotonised
         central limiter, on by default); off = the plain Kelvin-Voigt term of engine 0.4.
+    stop_window_s : float
+        The one "did not stop" rule [s]: a run whose belt has not come to rest (mean speed
+        below 1 % of design speed; a controlled stop also past its stop time) within this
+        time of the stop command did not stop, and its simulation ends there; a run whose belt
+        rests ends after the post-rest. The same for every run, so a study compares like with
+        like. 300 s: coming to rest within it takes a mean deceleration of at least
+        ``v / 300 s`` (0.027 m/s^2 at 8 m/s), a retarding force of 0.27 % of the moving
+        weight, a third or less of the rolling resistance of the lightest-running level
+        belts (equivalent friction factor 0.006 to 0.010, docs/dynamics.md *The stop
+        window*); a belt that still moves after it is held on the move by gravity and needs a
+        brake. A controlled or brake stop's ``stop.time_s`` must lie within it.
     """
 
     damping: str = "belt"
@@ -215,6 +226,7 @@ class DynamicsOptions:
     surface_points: int = 200
     surface_samples: int = 300
     viscosity_limiter: bool = True
+    stop_window_s: float = 300.0
 
 
 @dataclass(eq=False)
@@ -512,6 +524,15 @@ def check_scenario(scn: Scenario, conv: Conveyor, opts: DynamicsOptions | None =
     if scn.formulation == "support" and scn.start.control == "torque":
         raise InputError("scenario.start.control: 'torque' needs formulation 'relative' (the "
                          "moving-support formulation imposes the drive pulley's motion)")
+    if not (opts.stop_window_s > 0.0 and math.isfinite(opts.stop_window_s)):
+        raise InputError(f"stop_window_s: must be a positive time in seconds (got "
+                         f"{opts.stop_window_s!r})")
+    if scn.stop.mode in ("controlled", "brake") and scn.stop.time_s >= opts.stop_window_s:
+        raise InputError(
+            f"scenario.stop.time_s: a {scn.stop.mode} stop of {scn.stop.time_s:g} s does not "
+            f"end within the stop window of {opts.stop_window_s:g} s (stop_window_s: a run "
+            "whose belt is not at rest that long after the stop command did not stop, the "
+            "same window for every run); give a shorter stop time")
     if opts.damping not in ("belt", "off"):
         raise InputError(f"damping: unknown '{opts.damping}'; valid: belt, off")
     if not (0.0 <= opts.resistance_rtol <= 0.01):
@@ -935,16 +956,16 @@ def _takeup(conv, loop, steady, springs: Springs, T_rest, T_run) -> Takeup:
 
 def _cycle(conv, scn, opts, n, dt, t_loop, total_mass, te, v_d, hold, drive_train):
     """The cycle's times: the rest after the stop (one wave loop time at least, plus what
-    holding brakes and the drives' trip take), the longest a stop may take, the records'
-    spacing; the work limit of one run (refused beyond, naming what to change)."""
+    holding brakes and the drives' trip take), the stop window
+    (``DynamicsOptions.stop_window_s``, the same for every run), the records' spacing; the work limit of one run (refused beyond, naming what to change)."""
     t_train, k_train = drive_train
     hold_time = max([b.delay_s + (b.force_curve[-1][0] if b.force_curve else b.ramp_s)
                      for b in conv.brakes if b.hold] or [0.0])
     trip = max(d.trip_s for d in conv.drives)
     post = opts.post_rest_s if opts.post_rest_s is not None else (
         max(5.0, t_loop) + hold_time + trip)
-    coast_est = total_mass * v_d / te if te > 0 else scn.stop.time_s
-    stop_max = 3.0 * max(scn.stop.time_s, coast_est) + 2.0 * t_loop + 10.0
+    # the one "did not stop" window (DynamicsOptions.stop_window_s), the same for every run
+    stop_max = float(opts.stop_window_s)
     start_s = float(scn.start.time_s)
     t_total = opts.pre_rest_s + start_s + scn.run_s + stop_max + post
     steps = t_total / dt

@@ -36,8 +36,9 @@ class Cycle(NamedTuple):
     """The cycle: step and phase times [s], speeds [m/s], the scenario's codes.
 
     ``dt`` the step; ``t_pre`` the rest before the start command; ``t_start``, ``t_run``,
-    ``t_stop`` the start, run and stop times of the scenario; ``stop_max`` the longest a stop
-    may take; ``post_rest`` the rest after the belt has stopped; ``t_end`` an earlier end of
+    ``t_stop`` the start, run and stop times of the scenario; ``stop_max`` the stop window
+    (``DynamicsOptions.stop_window_s``: a belt not at rest this long after the stop command
+    did not stop, and the run ends there); ``post_rest`` the rest after the belt has stopped; ``t_end`` an earlier end of
     the run (0: none, verification runs); ``rec_dt`` and ``surf_dt`` the spacing of the records
     and of the surface; ``v_d`` the design speed, ``v_eps`` the resistance's regularisation
     speed, ``v_fail`` the speed taken as divergence; ``start_ctrl``
@@ -377,6 +378,9 @@ RUN = np.dtype([
     ("verr_max", np.float64), ("verr_t", np.float64), ("xlo_start", np.float64),
     ("xhi_start", np.float64), ("xlo_stop", np.float64), ("xhi_stop", np.float64),
     ("vmean_hi", np.float64), ("vmean_hi_t", np.float64),
+    # this step's holdback force (the reaction its brakes do not give), the largest holdback
+    # and brake forces over the run [N]
+    ("f_hb", np.float64), ("fhb_max", np.float64), ("fbr_max", np.float64),
 ], align=True)
 
 #: Per drive: largest |force| at the rim [N] and |power| [W] after the start command, smallest
@@ -394,13 +398,15 @@ SHAFT_SLIP = np.dtype([
 
 #: Key points per record: SPEC section 5 (time, master shaft and tail speed, drive force, head
 #: in and out, tail and take-up tension, take-up position, lowest and highest tension), then
-#: the mean and reference speed, brake force, drive power, largest |speed| and the slack.
+#: the mean and reference speed, brake force, drive power, largest |speed|, the slack and the
+#: holdback's force.
 RECORD = np.dtype([
     ("t", np.float64), ("v_drive", np.float64), ("v_tail", np.float64), ("f_drive", np.float64),
     ("t_head_in", np.float64), ("t_head_out", np.float64), ("t_tail", np.float64),
     ("t_takeup", np.float64), ("x_tu", np.float64), ("t_min", np.float64),
     ("t_max", np.float64), ("v_mean", np.float64), ("f_brake", np.float64), ("v_ref", np.float64),
-    ("p_drive", np.float64), ("v_abs", np.float64), ("slack_m", np.float64)], align=True)
+    ("p_drive", np.float64), ("v_abs", np.float64), ("slack_m", np.float64),
+    ("f_holdback", np.float64)], align=True)
 
 #: Per drive and record: force at the rim (drive side) [N], shaft speed at the rim [m/s],
 #: force the pulley passes to the belt [N], the motor's speed at the rim [m/s] (behind a fluid

@@ -80,7 +80,9 @@ class ReferenceResult(dict):
     ``verr_max`` [m/s] and ``verr_t`` [s] (the master's largest tracking error after the first
     wave loop time of the start, and when), ``vmean_hi`` [m/s] and ``vmean_hi_t`` [s] (the
     highest mean belt speed before the stop command), ``takeup_travel_start`` and
-    ``takeup_travel_stop`` [m] (the carriage's range in each phase).
+    ``takeup_travel_stop`` [m] (the carriage's range in each phase), ``f_brake`` and ``f_hb``
+    [N] (the last step's brake and holdback forces), ``fbr_max`` and ``fhb_max`` [N] (their
+    largest over the run).
     """
 
 
@@ -838,9 +840,37 @@ def _drive_output(model: Model, dr, s, sl, ft, vs_old, vs_new, U):
     return f
 
 
+def _brake_holdback(model: Model, bk, sh, dr, k, U, ft, vs_new):
+    """The brake and holdback forces on block row k's shaft after the solve [N]: a stuck
+    row's reaction (a brake alone gives all of it; with a holdback the brake gives up to its
+    force, the holdback the rest), a sliding brake's force, and on a slipping shaft the
+    brake's and holdback's share of what holds the shaft at rest (its momentum over the step
+    and forces but the brake's, ``p``, at its speed before the step)."""
+    s = bk.shaft[k]
+    fb, hb = bk.bforce[k], model.shafts.hb[s] == 1
+    if sh.slip[s] == 0.0:
+        if not bk.stuck[k]:
+            return fb, 0.0
+        react = bk.A[k] @ bk.x - bk.b[k] - (U * bk.bu[k] if bk.two else 0.0)
+        if hb:
+            return min(abs(react), fb), max(react - fb, 0.0)
+        return abs(react), 0.0
+    fb = sh.fb[s]
+    if vs_new != 0.0:
+        return fb, 0.0
+    p = model.shafts.mass[s] / bk.dt * sh.vs[s] - ft
+    d = model.shafts.drive[s]
+    if d >= 0 and dr.mode[d] == 1:
+        p += dr.f0[d] if dr.sat[d] else model.drives.share[d] * U
+    elif d >= 0 and dr.mode[d] == 0:
+        p += dr.f0[d] + dr.f1[d] * sh.vs[s]
+    return min(fb, abs(p)), (max(-p - fb, 0.0) if hb else 0.0)
+
+
 def _write_back(model: Model, bk, st, sh, dr, rs, U):
-    """The solution into the belt, the shafts and the drives. Returns (holding force or nan,
-    drive work over the step [J])."""
+    """The solution into the belt, the shafts and the drives; the brake and holdback forces
+    into ``rs.f_brake`` and ``rs.f_hb`` (:func:`_brake_holdback`). Returns (holding force or
+    nan, drive work over the step [J])."""
     x = bk.x
     st.v[bk.nodes] = x[:bk.m]
     hold_f = math.nan
@@ -854,6 +884,9 @@ def _write_back(model: Model, bk, st, sh, dr, rs, U):
         else:
             vs_new = bk.vsn[k]
             ft = sl * model.shafts.ck[s] * max(tr if sl > 0.0 else tl, 0.0)
+        fbk, fhb = _brake_holdback(model, bk, sh, dr, k, U, ft, vs_new)
+        rs.f_brake += fbk
+        rs.f_hb += fhb
         if bk.nodes[k] == rs.hold:
             hold_f = ft
         sh.vs[s] = vs_new
@@ -907,6 +940,7 @@ def _blocks(model: Model, ref, st, sh, dr, rs, R0):
     the others), the drives' work; then the speed loop's integrator and the carriage."""
     tu = model.takeup
     rs.U, rs.u_known = 0.0, not rs.pi
+    rs.f_brake, rs.f_hb = 0.0, 0.0
     u_new = rs.u_tu
     for nodes in ref.blocks:
         u_b, _hit, hf, w = _block_step(model, ref, nodes, st, sh, dr, rs, R0)
@@ -915,6 +949,7 @@ def _blocks(model: Model, ref, st, sh, dr, rs, R0):
         if not math.isnan(hf):
             rs.hold_f = hf
         rs.w_drive += w
+    rs.fbr_max, rs.fhb_max = max(rs.fbr_max, rs.f_brake), max(rs.fhb_max, rs.f_hb)
     if rs.pi:
         master = model.control.master
         e_v = rs.v_ref - sh.vs[model.drives.shaft[master]]
@@ -1001,7 +1036,7 @@ def _switches(model: Model, st, rs):
     if rs.stopping and not rs.stopped and rs.v_mean < 0.01 * cyc.v_d and (
             cyc.stop_mode != C.CONTROLLED or t >= rs.t_stopcmd + cyc.t_stop):
         rs.stopped, rs.t_stopped = True, t
-        rs.t_limit = min(rs.t_limit, t + cyc.post_rest)
+        rs.t_limit = min(t + cyc.post_rest, rs.t_end)  # at rest within the stop window
     if rs.started and st.tt.min() <= 0.0:
         rs.slack_s += cyc.dt
 
@@ -1039,16 +1074,18 @@ def _start(sys: System, t_end_s: float | None):
                          force=np.zeros(nd), ft=np.zeros(nd), f_trip=np.zeros(nd))
     brk = model.brakes._replace(t_cmd=np.full(nb, -1.0), released=np.zeros(nb, dtype=np.int64))
     t_stopcmd = cyc.t_pre + cyc.t_start + cyc.t_run
-    t_limit = t_stopcmd + cyc.stop_max + cyc.post_rest
-    if t_end_s:
-        t_limit = min(t_limit, float(t_end_s))
+    t_limit = t_stopcmd + cyc.stop_max  # the stop window: a belt not at rest ends there
+    t_end = float(t_end_s) if t_end_s else math.inf
+    t_limit = min(t_limit, t_end)
     rs = SimpleNamespace(
-        step=0, t=0.0, t_stopcmd=t_stopcmd, t_limit=t_limit, status=C.OK, div_where=0,
+        step=0, t=0.0, t_stopcmd=t_stopcmd, t_limit=t_limit, t_end=t_end, status=C.OK,
+        div_where=0,
         phase=C.HOLD, started=False, stopping=False, was_off=False, pi=False, pi_started=False,
         hold=-1, v_ref=0.0, a_ref=0.0, f0u=0.0, f1u=0.0, U=0.0, u_known=False,
         x_tu=0.0, u_tu=0.0, integ=0.0, hold_f=sys.hold_force_n, v_mean=0.0, w_drive=0.0,
         start_ach=-1.0, stop_ach=-1.0, stop_dist=0.0, stopped=False, t_stopped=-1.0, t_trip=-1.0,
         hold_set=-1.0, slack_s=0.0, verr_max=0.0, verr_t=-1.0, vmean_hi=0.0, vmean_hi_t=-1.0,
+        f_brake=0.0, f_hb=0.0, fbr_max=0.0, fhb_max=0.0,
         x_range={"start": (math.inf, -math.inf), "stop": (math.inf, -math.inf)})
     out = SimpleNamespace(t_max=st.tt.copy(), t_min=st.tt.copy(), slip_s=np.zeros(nd),
                           slip_m=np.zeros(nd), shaft_slip_s=np.zeros(ns),
@@ -1069,7 +1106,8 @@ def _finish(ref, st, sh, dr, rs, out) -> ReferenceResult:
         law_evals=ref.law.evaluations if ref.law is not None else 0, div_where=rs.div_where,
         verr_max=rs.verr_max, verr_t=rs.verr_t, vmean_hi=rs.vmean_hi, vmean_hi_t=rs.vmean_hi_t,
         takeup_travel_start=max(rs.x_range["start"][1] - rs.x_range["start"][0], 0.0),
-        takeup_travel_stop=max(rs.x_range["stop"][1] - rs.x_range["stop"][0], 0.0))
+        takeup_travel_stop=max(rs.x_range["stop"][1] - rs.x_range["stop"][0], 0.0),
+        f_brake=rs.f_brake, f_hb=rs.f_hb, fbr_max=rs.fbr_max, fhb_max=rs.fhb_max)
 
 
 def run_reference(sys: System, t_end_s: float | None = None) -> ReferenceResult:

@@ -25,7 +25,7 @@ from beltstudy.engine.dynamics.kernel import run_cycle
 from beltstudy.engine.dynamics.model import System, chord_strain
 
 __all__ = ["TransientResult", "KernelRun", "fresh_run", "fresh_model", "simulate", "decode",
-           "span_sag_pct",
+           "span_sag_pct", "not_stopped_words",
            "TIMESERIES_COLUMNS", "SURFACE_COLUMNS", "V_FAIL_FACTOR"]
 
 #: SPEC section 5 key-point columns, in order (extra and per-drive columns follow them).
@@ -43,7 +43,8 @@ _SERIES = (("t_s", "t", 1.0), ("v_drive_m_s", "v_drive", 1.0), ("v_tail_m_s", "v
            ("t_min_kn", "t_min", 1e3), ("t_max_kn", "t_max", 1e3),
            ("v_mean_m_s", "v_mean", 1.0), ("v_ref_m_s", "v_ref", 1.0),
            ("f_brake_kn", "f_brake", 1e3), ("p_drive_kw", "p_drive", 1e3),
-           ("v_abs_max_m_s", "v_abs", 1.0), ("slack_m", "slack_m", 1.0))
+           ("v_abs_max_m_s", "v_abs", 1.0), ("slack_m", "slack_m", 1.0),
+           ("f_holdback_kn", "f_holdback", 1e3))
 STRAND_NAMES = {0: "carry", 1: "return", 2: "head pulley", 3: "tail pulley",
                 4: "take-up pulley"}
 
@@ -177,7 +178,8 @@ class TransientResult:
         The columns of ``timeseries`` as float64 arrays, in order.
     timeseries : pandas.DataFrame
         SPEC section 5 key points at ``record_dt_s``, then ``v_mean_m_s``, ``v_ref_m_s``,
-        ``f_brake_kn``, ``p_drive_kw``, ``v_abs_max_m_s``, ``slack_m`` and per drive
+        ``f_brake_kn``, ``p_drive_kw``, ``v_abs_max_m_s``, ``slack_m``, ``f_holdback_kn``
+        (the holdback's force, apart from the brakes' ``f_brake_kn``) and per drive
         ``f_drive{i}_kn``, ``v_drive{i}_m_s``, ``f_belt{i}_kn`` (force the pulley passes to
         the belt), ``v_motor{i}_m_s`` (the motor's speed at the rim: behind a fluid coupling its
         own, else the shaft's).
@@ -618,6 +620,9 @@ def transient_summary(sys: System, r: dict, out, segs, *, steady_summary=None, c
         "start_time_s": t_start_ach,
         "stop_time_s": t_stop_ach,
         "stop_distance_m": float(r["stop_dist"]) if t_stop_ach is not None else None,
+        "stop_window_s": float(sys.model.cycle.stop_max),
+        "f_holdback_kn": (float(r["fhb_max"]) / 1e3 if (sys.model.shafts.hb == 1).any()
+                          else None),
         "wave_loop_time_s": sys.wave_loop_time_s,
         "stop_wave_ratio": (t_stop_ach / sys.wave_loop_time_s
                             if t_stop_ach is not None else None),
@@ -697,6 +702,30 @@ def transient_summary(sys: System, r: dict, out, segs, *, steady_summary=None, c
     if t_start_ach is None and not ran_away:
         w.append("the belt never reached 99 % of design speed during the start")
     if not r["stopped"] and not ran_away:
-        w.append(f"the belt did not stop within {sys.model.cycle.stop_max:.0f} s of the stop command "
-                 f"(mean speed {r['v_mean']:.2f} m/s at the end)")
+        w.append(not_stopped_words(sys, float(r["v_mean"]), conveyor))
     return summary, w
+
+
+def not_stopped_words(sys: System, v_end: float, conveyor=None) -> str:
+    """The warning of a run whose belt did not come to rest within the stop window
+    (``DynamicsOptions.stop_window_s``, the one rule for every run): the window, the mean belt
+    speed at its end [m/s] and what would stop it."""
+    cyc = sys.model.cycle
+    brakes = sys.model.brakes
+    total_kn = float(brakes.force.sum()) / 1e3
+    if v_end < 0.0:
+        fix = ("a holdback (holdback: true) or brakes that hold (brakes[].hold) would hold it "
+               "against the lift")
+    elif not len(brakes.force):
+        fix = ("gravity keeps it moving against its resistance: a brake would stop it (brakes "
+               "with force_kn: auto sizes one for stop.mode brake and its stop.time_s)")
+    elif cyc.stop_mode != C.BRAKE:
+        fix = (f"its brakes ({total_kn:.4g} kN) act only once it rests: a brake stop "
+               "(stop.mode: brake) would stop it")
+    else:
+        fix = (f"its brakes ({total_kn:.4g} kN in all) do not stop it: a larger brake force "
+               "(brakes[].force_kn, auto sizes it for the stop time) would")
+    return (f"the belt did not stop within the stop window of {cyc.stop_max:.0f} s after the "
+            f"stop command (the same for every run, docs/dynamics.md): its mean speed was "
+            f"still {v_end:.3g} m/s ({100.0 * v_end / cyc.v_d:.0f} % of design speed) at the "
+            f"window's end; {fix}")

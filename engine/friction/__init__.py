@@ -14,7 +14,8 @@ from beltstudy.engine.errors import InputError
 from beltstudy.engine.friction import cema, cmod, din, nonlin, visco
 from beltstudy.engine.friction.base import FrictionModel, param
 
-__all__ = ["FrictionModel", "MODELS", "ALIASES", "canonical_name", "get_model", "param"]
+__all__ = ["FrictionModel", "MODELS", "ALIASES", "canonical_name", "get_model", "param",
+           "temperature_note", "REFERENCE_TEMPERATURE_C"]
 
 
 ALIASES = {"iso5048": "din", "din22101": "din", "viscoah": "visco", "non-lin": "nonlin"}
@@ -40,3 +41,21 @@ def get_model(name: str) -> FrictionModel:
         raise InputError(f"unknown model '{name}'{hint}; valid: {', '.join(valid)}",
                          field="friction_model")
     return MODELS[key]
+
+
+#: The temperature a model without a temperature term stands for [C]: the scenario's default
+#: ambient (``Scenario.temperature_c``).
+REFERENCE_TEMPERATURE_C = 20.0
+
+
+def temperature_note(model: FrictionModel, temperature_c: float) -> str:
+    """The note a run of ``model`` at ``temperature_c`` [C] carries when the model has no
+    temperature term (``FrictionModel.temperature_term``) and the temperature is not
+    :data:`REFERENCE_TEMPERATURE_C`: its figures are those of 20 C, and what would bring the
+    temperature in. "" otherwise."""
+    if model.temperature_term or abs(float(temperature_c) - REFERENCE_TEMPERATURE_C) < 1e-9:
+        return ""
+    others = ", ".join(m.name for m in MODELS.values() if m.temperature_term)
+    return (f"note: {model.name} has no temperature term; {float(temperature_c):g} C gives the "
+            f"figures of {REFERENCE_TEMPERATURE_C:g} C (friction factors for that temperature "
+            f"as models.{model.name} parameters, or a model with one: {others})")

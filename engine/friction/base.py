@@ -16,12 +16,16 @@ __all__ = ["FrictionModel", "param"]
 
 @dataclass(frozen=True)
 class FrictionModel:
-    """A friction model: name, description, parameter class and law builder."""
+    """A friction model: name, description, parameter class and law builder;
+    ``temperature_term`` False for a model whose law does not change with the temperature
+    (``din``: one f whatever the ambient; the run's message then says so,
+    :func:`beltstudy.engine.friction.temperature_note`)."""
 
     name: str
     description: str
     params_class: type
     build: Callable[..., Any]
+    temperature_term: bool = True
 
     def params(self, overrides: dict[str, Any] | None = None):
         """Default parameters with overrides applied; unknown names raise InputError."""
@@ -65,3 +69,4 @@ class FrictionModel:
 def param(default, doc: str):
     """A dataclass field with a documented default (units in the doc string)."""
     return dataclasses.field(default=default, metadata={"doc": doc})
+

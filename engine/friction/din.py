@@ -106,4 +106,5 @@ MODEL = FrictionModel(
                 "secondary-resistance coefficient C(L)",
     params_class=DinParams,
     build=build,
+    temperature_term=False,
 )

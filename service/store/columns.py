@@ -66,7 +66,7 @@ INPUT_COLUMNS = ("study_id", "run_id", "friction_model", "engine_version")
 TIMESERIES_COLUMNS = (
     "t_s", "v_drive_m_s", "v_tail_m_s", "f_drive_kn", "t_head_in_kn", "t_head_out_kn",
     "t_tail_kn", "t_takeup_kn", "x_takeup_m", "t_min_kn", "t_max_kn", "v_mean_m_s",
-    "v_ref_m_s", "f_brake_kn", "p_drive_kw", "v_abs_max_m_s", "slack_m",
+    "v_ref_m_s", "f_brake_kn", "p_drive_kw", "v_abs_max_m_s", "slack_m", "f_holdback_kn",
 ) + tuple(f"{q}{i}_{u}" for i in range(1, MAX_DRIVES + 1)
           for q, u in (("f_drive", "kn"), ("v_drive", "m_s"), ("f_belt", "kn"),
                        ("v_motor", "m_s"))
