@@ -1,0 +1,40 @@
+"""A model without a temperature term (``din``: one friction factor f whatever the ambient,
+DIN 22101) says so when it runs at a temperature other than 20 C: its figures are those of
+20 C. A note, not a warning: the status stays what the limits make it."""
+
+from __future__ import annotations
+
+import pytest
+
+from beltstudy.engine.conveyor import parse_conveyor
+from beltstudy.engine.friction import MODELS
+from beltstudy.engine.statics import solve_steady
+from tests.conftest import hand_conveyor_dict
+
+NOTE = "note: din has no temperature term; -20 C gives the figures of 20 C"
+
+
+def test_din_at_minus_20_notes_it_and_gives_the_figures_of_20():
+    conv = parse_conveyor(hand_conveyor_dict())
+    cold = solve_steady(conv, model="din", temperature_c=-20.0)
+    warm = solve_steady(conv, model="din", temperature_c=20.0)
+    assert NOTE in cold.message
+    assert cold.summary["message"] == cold.message
+    # the note does not make a warning, and the figures are those of 20 C
+    assert cold.status == warm.status == "ok"
+    assert cold.summary["te_kn"] == warm.summary["te_kn"]
+    assert "temperature term" not in warm.message
+
+
+@pytest.mark.parametrize("model", ["nonlin", "cema"])
+def test_models_with_a_temperature_term_carry_no_note(model):
+    conv = parse_conveyor(hand_conveyor_dict())
+    cold = solve_steady(conv, model=model, temperature_c=-20.0)
+    warm = solve_steady(conv, model=model, temperature_c=20.0)
+    assert "temperature term" not in cold.message
+    # they have one: the cold changes their figures
+    assert cold.summary["te_kn"] != pytest.approx(warm.summary["te_kn"], rel=1e-3)
+
+
+def test_only_din_lacks_a_temperature_term():
+    assert [m.name for m in MODELS.values() if not m.temperature_term] == ["din"]
