@@ -426,7 +426,12 @@ def peak_dynamic_tension_figure(runs, title: str = "", axes: list[str] | None = 
     others, notes = _one_per_zip_group(others, groups)
     unstopped = int(df["x"].isna().sum())
     if unstopped:
-        notes.append(f"{unstopped} runs that did not stop have no stop time and are not drawn")
+        # the engine's one rule: not at rest within the stop window of the stop command
+        window = _numeric(df, "stop_window_s")
+        within = (f" within {window.max():.0f} s of the stop command"
+                  if window is not None else "")
+        notes.append(f"{unstopped} runs that did not stop{within} have no stop time and are "
+                     "not drawn")
     phase = "stop phase" if peak_col == "t_max_stop_kn" else "whole transient"
     return comparison_figure(df, "x", peak_col, others,
                              _tied_label("stop time achieved [s]", tied),

@@ -202,8 +202,8 @@ class DynamicsOptions:
         like. 300 s: coming to rest within it takes a mean deceleration of at least
         ``v / 300 s`` (0.027 m/s^2 at 8 m/s), a retarding force of 0.27 % of the moving
         weight, a third or less of the rolling resistance of the lightest-running level
-        belts (equivalent friction factor 0.006 to 0.010, docs/dynamics.md *The stop
-        window*); a belt that still moves after it is held on the move by gravity and needs a
+        belts (equivalent friction factor 0.006 to 0.010, the lower end *unverified*;
+        docs/dynamics.md *The stop window*); a belt that still moves after it is held on the move by gravity and needs a
         brake. A controlled or brake stop's ``stop.time_s`` must lie within it.
     """
 

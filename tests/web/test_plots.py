@@ -242,3 +242,13 @@ def test_an_axis_zipped_with_the_temperature_runs_along_the_x_axis():
     assert "with models.din.f_carry" in fig.axes[0].get_xlabel()
     assert_lines_never_join_other_axis_values(fig, runs, "temperature_c", "power_kw",
                                               ["friction_model", "load"])
+
+
+def test_runs_that_did_not_stop_are_counted_by_the_engines_stop_window():
+    """The runs without a stop time are those whose belt was not at rest within the stop
+    window (the engine's one rule, ``stop_window_s``): the note counts them and names it."""
+    runs = _runs()
+    runs["stop_window_s"] = 300.0
+    runs.loc[runs.index[:3], "stop_time_s"] = np.nan
+    fig = charts.peak_dynamic_tension_figure(runs, axes=AXES)
+    assert "3 runs that did not stop within 300 s of the stop command" in _texts(fig)

@@ -131,7 +131,7 @@ def test_no_holdback_no_holdback_force():
 
 def test_one_stop_window_for_every_run():
     """The window in which a run must come to rest is DynamicsOptions.stop_window_s for every
-    run, whatever its stop time or how long it would coast (before engine 0.5.1 it was 3 x the
+    run, whatever its stop time or how long it would coast (engine 0.5.0 took 3 x the
     longer of the two plus two wave loop times: 100 s for one run, 1000 s for another). Two
     runs of very different stops report the same window; with a window shorter than their
     coasts (the lift alone stops the belt in 0.99 v M / (m'_L g H) = 17 s, DIN's resistance
