@@ -702,11 +702,11 @@ def transient_summary(sys: System, r: dict, out, segs, *, steady_summary=None, c
     if t_start_ach is None and not ran_away:
         w.append("the belt never reached 99 % of design speed during the start")
     if not r["stopped"] and not ran_away:
-        w.append(not_stopped_words(sys, float(r["v_mean"]), conveyor))
+        w.append(not_stopped_words(sys, float(r["v_mean"])))
     return summary, w
 
 
-def not_stopped_words(sys: System, v_end: float, conveyor=None) -> str:
+def not_stopped_words(sys: System, v_end: float) -> str:
     """The warning of a run whose belt did not come to rest within the stop window
     (``DynamicsOptions.stop_window_s``, the one rule for every run): the window, the mean belt
     speed at its end [m/s] and what would stop it."""
