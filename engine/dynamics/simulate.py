@@ -702,14 +702,18 @@ def transient_summary(sys: System, r: dict, out, segs, *, steady_summary=None, c
     if t_start_ach is None and not ran_away:
         w.append("the belt never reached 99 % of design speed during the start")
     if not r["stopped"] and not ran_away:
-        w.append(not_stopped_words(sys, float(r["v_mean"])))
+        braked = {int(k) for k in sys.model.brakes.shaft}
+        sliding = any(out.shs[k]["slip_s"] > 0.0 and out.shs[k]["last"] > sys.stop_command_s
+                      for k in braked)
+        w.append(not_stopped_words(sys, float(r["v_mean"]), sliding))
     return summary, w
 
 
-def not_stopped_words(sys: System, v_end: float) -> str:
+def not_stopped_words(sys: System, v_end: float, sliding: bool = False) -> str:
     """The warning of a run whose belt did not come to rest within the stop window
     (``DynamicsOptions.stop_window_s``, the one rule for every run): the window, the mean belt
-    speed at its end [m/s] and what would stop it."""
+    speed at its end [m/s] and what would stop it; ``sliding`` when a braked pulley slipped in
+    the stop (the belt slid over it: more brake force would not help)."""
     cyc = sys.model.cycle
     brakes = sys.model.brakes
     total_kn = float(brakes.force.sum()) / 1e3
@@ -719,6 +723,10 @@ def not_stopped_words(sys: System, v_end: float) -> str:
     elif not len(brakes.force):
         fix = ("gravity keeps it moving against its resistance: a brake would stop it (brakes "
                "with force_kn: auto sizes one for stop.mode brake and its stop.time_s)")
+    elif sliding:
+        fix = (f"its brakes ({total_kn:.4g} kN in all) are beyond the grip of their pulley, "
+               "which slid in the stop: more slack-side tension there (a heavier take-up) or "
+               "part of the brake force on another pulley would let them stop it")
     elif cyc.stop_mode != C.BRAKE:
         fix = (f"its brakes ({total_kn:.4g} kN) act only once it rests: a brake stop "
                "(stop.mode: brake) would stop it")
