@@ -302,6 +302,9 @@ DESIGN_BASIS = ResultGroup("design_basis", "What set each auto size (text)", (
        "message gives the stop time it makes and what would meet the asked one, "
        "docs/dynamics.md *Brakes within their grip*); given when the file gives them (null "
        "without brakes)"),
+    _f("belt_type_used", "text", "the catalogue belt the run used (custom for a belt without a "
+       "type): belt.type: auto picks the lightest of its kind that passes the safety factors "
+       "(docs/belts.md)", "belt type used"),
 ))
 
 BOOKKEEPING = ResultGroup("bookkeeping", "Bookkeeping", (
