@@ -30,6 +30,7 @@ from beltstudy.engine import catalog, results  # noqa: E402
 from beltstudy.engine.beltselect import (  # noqa: E402
     BeltChoice,
     SteadyCase,
+    design_cases,
     resolve_auto_belt,
     run_cases,
     run_message,
@@ -104,7 +105,7 @@ __all__ = [
 ]
 
 # belt selection (belt.type: auto)
-__all__ += ["BeltChoice", "SteadyCase", "resolve_auto_belt", "run_cases", "run_message",
+__all__ += ["BeltChoice", "SteadyCase", "design_cases", "resolve_auto_belt", "run_cases", "run_message",
             "select_belt", "with_belt", "BELT_AUTO", "STARTUP_FACTOR"]
 
 

@@ -47,7 +47,7 @@ from beltstudy.engine.statics import (
 )
 
 __all__ = ["SteadyCase", "Candidate", "BeltChoice", "candidates", "with_belt", "select_belt",
-           "resolve_auto_belt", "safety_minima", "run_message", "run_cases"]
+           "resolve_auto_belt", "safety_minima", "run_message", "run_cases", "design_cases"]
 
 #: Relative tolerance of the pass test (a factor equal to its minimum passes).
 RTOL = 1e-9
@@ -270,6 +270,20 @@ def run_cases(conv: Conveyor, model: str, params: Any, temperature_c: float, loa
     if all(f == 1.0 for f in section_loads(load, conv)):
         return [run]
     return [run, SteadyCase(model, params, float(temperature_c), "full", n_elements)]
+
+
+def design_cases(conv: Conveyor, cases: Sequence[Any], load: Any) -> list[SteadyCase]:
+    """A study's design cases as :class:`SteadyCase` (each with the full load too, as
+    :func:`run_cases`); ``cases`` are :class:`beltstudy.engine.sizing.DesignCase` (model,
+    params as pairs, temperature_c, elements; a case's own ``load`` where it has one)."""
+    out: list[SteadyCase] = []
+    for c in cases:
+        n = None if c.elements == "auto" else int(c.elements)
+        for case in run_cases(conv, c.model, dict(c.params), c.temperature_c,
+                              getattr(c, "load", load), n):
+            if case not in out:
+                out.append(case)
+    return out
 
 
 def resolve_auto_belt(conv: Conveyor, cases: Sequence[SteadyCase]

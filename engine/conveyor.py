@@ -129,14 +129,14 @@ def _check_auto_belt(b: Belt) -> None:
     """``type: auto`` needs ``kind`` and takes no override of the catalogue's values (each
     candidate belt is its catalogue row; covers and compound apply to every candidate)."""
     if b.kind is None:
-        raise ValueError("belt.kind is required with type: auto (the kind of catalogue belt "
-                         "to pick from): give kind: steel_cord or kind: fabric")
+        raise ValueError("type: auto needs belt.kind, the kind of catalogue belt to pick "
+                         "from: give kind: steel_cord or kind: fabric")
     over = [k for k in ("rating_kn_m", "modulus_kn_m", "dynamic_modulus_kn_m",
                         "carcass_mass_kg_m2") if getattr(b, k) is not None]
     if over:
-        raise ValueError(f"belt.{over[0]}: not allowed with type: auto (the overrides "
-                         f"{', '.join(over)} would replace every candidate's catalogue value); "
-                         "give a catalogue type to override its values, or leave them out")
+        raise ValueError(f"type: auto takes no {', '.join(over)} (an override would replace "
+                         "every candidate's catalogue value): leave it out, or give a "
+                         "catalogue type to override its values")
 
 
 class Material(_Model):
