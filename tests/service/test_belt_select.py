@@ -116,3 +116,18 @@ def test_study_holds_the_belt_chosen_over_its_design_cases(finished_study, data_
     assert len(runs) == 4 and set(runs["belt_type_used"]) == {chosen}
     # one take-up for the design, sized on the chosen belt
     assert runs["takeup_mass_kg"].nunique() == 1
+    # the study report's design basis names it
+    from beltstudy.service.web.report import _design_section
+
+    html = _design_section(resolved.to_json())
+    assert "belt (type: auto)" in html and chosen in html
+
+
+def test_report_limits_of_an_auto_fabric_belt():
+    """The report judges a fabric auto belt against the fabric minimum (10), not steel's."""
+    from beltstudy.service.web.report import _limits
+
+    d = _auto()
+    d["belt"] = {**d["belt"], "kind": "fabric"}
+    limits = _limits({"conveyor": d}, pd.DataFrame())
+    assert limits["belt safety factor"].startswith("10 running")
