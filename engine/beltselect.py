@@ -112,6 +112,7 @@ class BeltChoice:
     chosen: Candidate
     lighter: Candidate | None
     passed: bool
+    width_m: float = 0.0
 
     @property
     def belt_id(self) -> str:
@@ -140,8 +141,20 @@ class BeltChoice:
         return (f"belt.type auto ({self.kind}): no catalogue belt passes the safety factors; "
                 f"the heaviest, {c.id} ({c.mass_kg_m:.1f} kg/m, {c.rating_kn:.0f} kN), is used "
                 f"with safety factor {c.factors(self.safety_factor_min, self.safety_factor_start_min)}"
-                "; a wider belt, a stronger kind of belt or less tension (drives nearer the "
-                "load, a lighter take-up where slip allows) would avoid it")
+                + self._remedy())
+
+    def _remedy(self) -> str:
+        """What would avoid a failed choice: the width the heaviest belt needs at these
+        tensions (the factor is proportional to the width, the tensions held), or lower
+        tensions."""
+        c = self.chosen
+        if c.failed or not self.width_m:
+            return "; lower tensions or a stronger belt would avoid it"
+        need = self.width_m * max(self.safety_factor_min / c.safety_factor,
+                                  self.safety_factor_start_min / c.safety_factor_start)
+        return (f"; at these tensions {c.id} would need a width of about {need:.2f} m "
+                f"(not {self.width_m:g} m); lower tensions (drive force shared nearer the load, "
+                "a tail or booster drive) would avoid it too")
 
     def table(self) -> list[dict]:
         """One row per candidate tried: id, mass [kg/m], rating [kN], tensions [kN],
@@ -258,7 +271,8 @@ def select_belt(conv: Conveyor, cases: Sequence[SteadyCase], *, every: bool = Fa
     if chosen is None:
         chosen = len(tried) - 1
     return BeltChoice(catalog.FILE_KIND[kind], minima[0], minima[1], tuple(tried),
-                      tried[chosen], tried[chosen - 1] if chosen > 0 else None, passed)
+                      tried[chosen], tried[chosen - 1] if chosen > 0 else None, passed,
+                      float(conv.belt.width_m))
 
 
 def run_cases(conv: Conveyor, model: str, params: Any, temperature_c: float, load: Any,

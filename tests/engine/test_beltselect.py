@@ -99,6 +99,8 @@ def test_none_passes_uses_the_heaviest_with_a_warning():
     sf, _ = hand_factors(conv, "ST5400", "din")
     assert sf < STEEL_MIN
     assert "no catalogue belt passes" in choice.warning() and choice.note() == ""
+    # the width it would need at these tensions: B x 6.7 / S (the factor is k_N B / T_max)
+    assert f"width of about {1.2 * STEEL_MIN / sf:.2f} m" in choice.warning()
     run = run_one(conv, _scenario(), model="din", dynamics=False)
     assert run.summary["status"] == "warning"
     assert run.summary["belt_type_used"] == "ST5400"
