@@ -131,3 +131,20 @@ def test_report_limits_of_an_auto_fabric_belt():
     d["belt"] = {**d["belt"], "kind": "fabric"}
     limits = _limits({"conveyor": d}, pd.DataFrame())
     assert limits["belt safety factor"].startswith("10 running")
+
+
+def test_sweep_temperature_holds_one_auto_belt(auto_file, tmp_path, capsys):
+    """The sweep is one design: the belt that passes at every model and temperature."""
+    code = main(["sweep-temperature", str(auto_file), "--models", "din,nonlin", "--from", "-30",
+                 "--to", "20", "--step", "50", "--out", str(tmp_path / "out")])
+    assert code == 0
+    text = capsys.readouterr().out
+    assert "belt.type auto (steel_cord)" in text
+    conv = parse_conveyor(_auto())
+    cases = [SteadyCase(m, None, t) for m in ("din", "nonlin") for t in (-30.0, 20.0)]
+    choice = select_belt(conv, cases)
+    assert f"{choice.belt_id} (" in text.splitlines()[0]
+    for m, t in [(c.model, c.temperature_c) for c in cases]:  # passes everywhere, by hand
+        res = solve_steady(with_belt(conv, choice.belt_id), model=m, temperature_c=t)
+        k_n = catalog.belts()[choice.belt_id].rating_kn_m
+        assert k_n * 1.2 / (res.tension_n.max() / 1e3) >= STEEL_MIN
