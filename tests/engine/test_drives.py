@@ -157,3 +157,37 @@ def test_kernel_rms_and_overload_of_a_held_force(rated_kw, overloaded):
     assert res.summary["drive1_overload_s"] == pytest.approx(2.0 if overloaded else 0.0,
                                                             abs=1.5 * dt)
     assert math.isclose(res.summary["drive1_force_max_kn"], 20.0, rel_tol=1e-9)
+
+
+def test_a_start_at_the_torque_limit_warns_and_agrees_with_the_time_series():
+    """Two 650 kW head drives on slope-5pct started in 12 s (s-curve): the master sits at its
+    torque limit in the start. The warning names the drive, the time above its rating and at
+    its limit; drive1_overload_s and drive1_force_rms_kn agree with the recorded force
+    (f_drive1_kn: the time above P_N / v = 650 / 4.5 = 144.4 kN, and the RMS from the start
+    command to the belt at rest, summed over the records) to 0.1 s and 1 %."""
+    from beltstudy.engine.conveyor import Scenario
+    from beltstudy.engine.dynamics import DynamicsOptions, build_system, simulate
+    from tests.engine.dynamics.test_kernel import HEAD_PAIR, conveyor
+
+    conv = conveyor("slope-5pct", drives=HEAD_PAIR)
+    scn = Scenario(start={"control": "s-curve", "time_s": 12}, run_s=3,
+                   stop={"mode": "controlled", "time_s": 10}, record_dt_s=0.01)
+    st = solve_steady(conv, model="din", load=scn.load, n_elements=40)
+    sys_ = build_system(conv, scn, st, DynamicsOptions())
+    res = simulate(sys_, steady_summary=st.summary, conveyor=conv)
+    s = res.summary
+    rated = 650e3 / 4.5
+    assert sys_.model.drives.rated[0] == pytest.approx(rated, rel=1e-12)
+    assert (f"drive 1 (head) was above its rated force ({rated / 1e3:.4g} kN) for "
+            f"{s['drive1_overload_s']:.1f} s") in res.message
+    assert "at its torque limit" in res.message
+    ts = res.timeseries  # recorded every step here (the step is above record_dt_s)
+    t, f = ts["t_s"].to_numpy(), np.abs(ts["f_drive1_kn"].to_numpy()) * 1e3
+    step = np.diff(t, prepend=t[0])  # each record stands for the step that ended at it
+    after = t > sys_.model.cycle.t_pre
+    assert s["drive1_overload_s"] == pytest.approx(float(step[after & (f > rated)].sum()),
+                                                   abs=0.1)
+    window = after & (t <= float(res.raw["t_stopped"]))
+    assert s["drive1_force_rms_kn"] * 1e3 == pytest.approx(
+        math.sqrt(float(np.sum(f[window] ** 2 * step[window]) / step[window].sum())),
+        rel=0.01)
