@@ -52,6 +52,17 @@ def test_steady_checks_utilisation_and_shortfall_by_hand():
     assert "rated 500 kW: short by 100 kW" in warnings[0]
 
 
+def test_a_regenerating_drive_short_of_power_holds_back():
+    """A drive holding back 120 kN at 4.5 m/s passes 120 x 4.5 x 0.95 = 513 kW to its motor
+    (the losses come off the belt's power); rated 400 kW it is short by 113 kW."""
+    conv = parse_conveyor(hand_conveyor_dict(drives=[{"position": "head",
+                                                      "rated_power_kw": 400}]))
+    fields, (w,) = steady_checks(conv, [-120e3], 4.5, -120e3, [400.0])
+    assert fields["drive1_power_required_kw"] == pytest.approx(513.0, rel=1e-12)
+    assert w.startswith("drive 1 (head) holds back 513 kW at 4.5 m/s")
+    assert "regenerating: x efficiency 0.95" in w and "short by 113 kW" in w
+
+
 def test_default_efficiency_is_the_documented_one():
     conv = parse_conveyor(hand_conveyor_dict())
     assert conv.drives[0].efficiency == DRIVE_EFFICIENCY == 0.95
