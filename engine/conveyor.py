@@ -35,6 +35,7 @@ __all__ = [
     "Idlers",
     "Drive",
     "DEFAULT_MOTOR_CURVE",
+    "DRIVE_EFFICIENCY",
     "check_motor_curve",
     "TakeUp",
     "Brake",
@@ -221,6 +222,12 @@ DEFAULT_MOTOR_CURVE = ((0.0, 1.6), (0.25, 1.5), (0.5, 1.4), (0.7, 1.6), (0.87, 2
 #: start to one near the inner torque loop of a large drive.
 SPEED_LOOP_RAD_S = (0.1, 50.0)
 
+#: Default efficiency of a drive train from the motor shaft to the pulley [-]: a helical or
+#: bevel-helical gear unit (about 0.97 for two to three stages) and a coupling (0.98-0.99; a
+#: fluid coupling's slip costs 2-4 % more): 0.95. Belt makers' design manuals following DIN
+#: 22101 quote 0.85-0.95 for drives (*unverified*; docs/drives.md): give the drive's own.
+DRIVE_EFFICIENCY = 0.95
+
 
 class Drive(_Model):
     """A drive pulley (SPEC sections 1 and 6.1).
@@ -263,6 +270,10 @@ class Drive(_Model):
         None, description="vfd: bandwidth of the speed loop closed on this pulley's own speed "
         "[rad/s], 0.1 to 50 (the master drive's is used; default: "
         "beltstudy.engine.dynamics.model.DEFAULT_SPEED_LOOP_RAD_S)")
+    efficiency: float = Field(
+        DRIVE_EFFICIENCY, gt=0, le=1.0, description="drive train efficiency from the motor "
+        "shaft to the pulley (gear unit and coupling) [-]: the motor power a drive needs is "
+        "its pulley power / efficiency (x efficiency regenerating); default 0.95")
 
     @model_validator(mode="after")
     def _curve_and_coupling(self) -> Drive:

@@ -9,8 +9,8 @@ result cannot be computed and silently dropped.
 
 Groups, in the order of the runs table: :data:`STEADY`, :data:`STEADY_DRIVE`,
 :data:`DESIGN`, :data:`DESIGN_DRIVE`, :data:`TE_COMPONENTS`, :data:`TRANSIENT`,
-:data:`PHASE`, :data:`SLACK`, :data:`TRANSIENT_DRIVE`, :data:`DESIGN_BASIS`,
-:data:`BOOKKEEPING`. Per-drive fields are named with ``{i}``, the drive's 1-based number in
+:data:`PHASE`, :data:`SLACK`, :data:`TRANSIENT_DRIVE`, :data:`DRIVE_POWER`,
+:data:`DRIVE_LOAD`, :data:`DESIGN_BASIS`, :data:`BOOKKEEPING`. Per-drive fields are named with ``{i}``, the drive's 1-based number in
 file order (``drive{i}_slip_m``), and stored for drives 1 to :data:`MAX_DRIVES`.
 """
 
@@ -32,6 +32,8 @@ __all__ = [
     "PHASE",
     "SLACK",
     "TRANSIENT_DRIVE",
+    "DRIVE_POWER",
+    "DRIVE_LOAD",
     "DESIGN_BASIS",
     "BOOKKEEPING",
     "GROUPS",
@@ -291,6 +293,28 @@ TRANSIENT_DRIVE = ResultGroup("transient_drive", "Per drive pulley, transient (S
        "start command to the stop command, in % of design speed", "speed err"),
 ))
 
+# --------------------------------------------------------- drive checks (SPEC 7.4)
+DRIVE_POWER = ResultGroup(
+    "drive_power", "Per drive pulley, steady power against the rating (SPEC 7.4; "
+    "docs/drives.md)", (
+        _f("drive{i}_power_required_kw", "kW", "the motor power drive i needs at the steady "
+           "state, its force at the pulley (its share of Te) x design speed / "
+           "drives[i].efficiency (x efficiency when it holds back a regenerating belt; the "
+           "magnitude)", "P req"),
+        _f("drive{i}_utilisation", "-", "drive{i}_power_required_kw / "
+           "drive{i}_rated_power_kw; above 1 the motor is short of power (a warning)", "util"),
+    ))
+
+DRIVE_LOAD = ResultGroup(
+    "drive_load", "Per drive pulley, transient load against the rating (SPEC 7.4; "
+    "docs/drives.md)", (
+        _f("drive{i}_overload_s", "s", "time after the start command with drive i's force at "
+           "the pulley above its rated force (rated power / design speed)", "overload"),
+        _f("drive{i}_force_rms_kn", "kN", "RMS force of drive i from the start command until "
+           "the belt is at rest after the stop (the run's end when it never stops), the "
+           "cycle's thermal equivalent load", "F rms"),
+    ))
+
 # ------------------------------------------------------------------ the design basis
 DESIGN_BASIS = ResultGroup("design_basis", "What set each auto size (text)", (
     _f("takeup_governed_by", "text", "the take-up: slip_start, slip_running, sag_running, "
@@ -315,7 +339,7 @@ BOOKKEEPING = ResultGroup("bookkeeping", "Bookkeeping", (
 
 #: Every group, in the order of the runs table.
 GROUPS = (STEADY, STEADY_DRIVE, DESIGN, DESIGN_DRIVE, TE_COMPONENTS, TRANSIENT, PHASE, SLACK,
-          TRANSIENT_DRIVE, DESIGN_BASIS, BOOKKEEPING)
+          TRANSIENT_DRIVE, DRIVE_POWER, DRIVE_LOAD, DESIGN_BASIS, BOOKKEEPING)
 
 # ------------------------------------------------------------- error bars (SPEC 7.4)
 #: The deciding figures of a transient run that get an error bar (SPEC 7.4; per-drive ones

@@ -38,6 +38,7 @@ import numpy as np
 
 from beltstudy.engine.capacity import capacity as capacity_check
 from beltstudy.engine.conveyor import Conveyor, section_loads
+from beltstudy.engine.drives import steady_checks
 from beltstudy.engine.friction import get_model
 from beltstudy.engine.law import ResistanceLaw
 from beltstudy.engine.loop import (
@@ -523,6 +524,14 @@ def _summarise(res: SteadyResult, drives, hs_adm, bounds, shortfall_n: float,
                 f"slip at {where} at {which}: slip margin "
                 f"{min(m_run, m_start):.2f} < 1 (e^(mu theta) = {e:.2f}){fix}"
             )
+    # ---- each drive's motor power against its rating (SPEC 7.4, beltstudy.engine.drives)
+    from beltstudy.engine.design import rated_power_kw  # design imports this module
+
+    rated_kw, _ = rated_power_kw(conv, res.te_n, float(np.sum(res.resistance_n)))
+    fields, short = steady_checks(conv, [share * res.te_n for _i, share, _e in drives], v,
+                                  res.te_n, rated_kw)
+    res.summary.update(fields)
+    warnings += short
     for strand, name in ((CARRY, "carry"), (RETURN, "return")):
         mask = loop.strand == strand
         if mask.any():

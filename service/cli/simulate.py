@@ -30,7 +30,8 @@ from beltstudy.service.cli.common import (
 STEADY_TABLE = ("te_kn", "power_kw", "t1_kn", "t2_kn", "t_max_kn", "t_min_kn")
 STEADY_LABELS = {"t_max_kn": "maximum tension (steady)", "t_min_kn": "minimum tension (steady)"}
 #: per drive i: the steady then the transient per-drive fields
-DRIVE_FIELDS = R.STEADY_DRIVE.fields + R.TRANSIENT_DRIVE.fields
+DRIVE_FIELDS = (R.STEADY_DRIVE.fields + R.TRANSIENT_DRIVE.fields + R.DRIVE_POWER.fields
+                + R.DRIVE_LOAD.fields)
 
 
 def _rows(fields) -> list[tuple[str, str, str]]:

@@ -177,10 +177,14 @@ def _table(s: dict) -> str:
     while f"drive{len(drives) + 1}_t_tight_kn" in s:
         drives.append(len(drives) + 1)
     if drives:
-        lines.append("  per drive pulley          tight [kN]   slack [kN]   slip margin [-]")
+        lines.append("  per drive pulley          tight [kN]   slack [kN]   slip margin [-]"
+                     "   power needed [kW]   utilisation [-]")
         for i in drives:
+            need, util = s.get(f"drive{i}_power_required_kw"), s.get(f"drive{i}_utilisation")
             lines.append(f"    drive {i:<16} {s[f'drive{i}_t_tight_kn']:>12.3f} "
-                         f"{s[f'drive{i}_t_slack_kn']:>12.3f} {s[f'drive{i}_slip_margin']:>14.3f}")
+                         f"{s[f'drive{i}_t_slack_kn']:>12.3f} {s[f'drive{i}_slip_margin']:>14.3f}"
+                         f" {'-' if need is None else format(need, '.1f'):>19}"
+                         f" {'-' if util is None else format(util, '.3f'):>17}")
         lines.append("")
     lines.append(f"  status: {s['status']}" + (f"  ({s['message']})" if s["message"] else ""))
     return "\n".join(lines)
