@@ -90,16 +90,19 @@ class DesignCase:
         it (``declines, din, -20 C``)."""
         return f"{load_label(self.load)}, {self._model_label()}, {self.temperature_c:g} C"
 
-    def at(self, cases: Sequence[DesignCase]) -> str:
+    def at(self, cases: Sequence[DesignCase], tied: Sequence[DesignCase] = ()) -> str:
         """This case named by what varies among ``cases`` (load, model with its parameters,
-        temperature, in that order), "" when nothing varies (one case)."""
+        temperature, in that order), "" when nothing varies (one case). ``tied``: the cases
+        that need as much as this one; what varies among them is not named (a holding brake
+        needs the same at every temperature: ``holding @ declines``, not ``@ declines, -20
+        C``)."""
+        group = [self, *tied]
         parts = []
-        if len({c.load for c in cases}) > 1:
-            parts.append(load_label(self.load))
-        if len({(c.model, c.params) for c in cases}) > 1:
-            parts.append(self._model_label())
-        if len({c.temperature_c for c in cases}) > 1:
-            parts.append(f"{self.temperature_c:g} C")
+        for key, name in ((lambda c: c.load, load_label(self.load)),
+                          (lambda c: (c.model, c.params), self._model_label()),
+                          (lambda c: c.temperature_c, f"{self.temperature_c:g} C")):
+            if len({key(c) for c in cases}) > 1 and len({key(c) for c in group}) == 1:
+                parts.append(name)
         return ", ".join(parts)
 
 
@@ -289,18 +292,22 @@ def size_over_cases(conveyor: Conveyor, cases: Sequence[DesignCase], *, load: An
     _check_finite(needs, design)
     tu_auto, _drive_auto, brake_auto = auto
 
+    def tied(items, value: float) -> list[DesignCase]:
+        return [c for v, _why, c in items if math.isclose(v, value, rel_tol=1e-9)]
+
     def largest(items) -> Largest:
         value, why, case = _largest(items)
-        return Largest(value, why, case, case.at(cases))
+        return Largest(value, why, case, case.at(cases, tied(items, value)))
 
-    def brakes(sized: BrakeSizes) -> BrakeSizes:
-        return dataclasses.replace(sized, at=sized.case.at(cases))
+    def brakes(sized: BrakeSizes, items) -> BrakeSizes:
+        same = [c for c in tied(items, sum(sized.force_kn)) if c != sized.case]
+        return dataclasses.replace(sized, at=sized.case.at(cases, same))
 
     return DesignSizes(
         takeup=largest(needs.takeup) if tu_auto else None,
         drives=tuple(largest(items) if items else None for items in needs.rated),
-        brakes_holding=brakes(_brakes(needs.holding)) if brake_auto else None,
-        brakes_by_stop={t: brakes(_brakes(items, conveyor, needs.steady))
+        brakes_holding=brakes(_brakes(needs.holding), needs.holding) if brake_auto else None,
+        brakes_by_stop={t: brakes(_brakes(items, conveyor, needs.steady), items)
                         for t, items in needs.by_stop.items()}
         if brake_auto else {},
         failed_cases=tuple(needs.failures),
