@@ -80,7 +80,12 @@ class Belt(_Model):
     published belt mass per metre can be reproduced with ``carcass_mass_kg_m2 = m'_G / B``.
     """
 
-    type: str | None = Field(None, description="belt id in the catalogue, e.g. ST2000, EP630/4")
+    type: str | None = Field(None, description="belt id in the catalogue, e.g. ST2000, EP630/4; "
+                             "auto: the lightest catalogue belt of belt.kind that passes the "
+                             "safety factors (engine/beltselect.py)")
+    kind: Literal["steel_cord", "fabric"] | None = Field(
+        None, description="belt kind, required with type: auto (the catalogue belts it picks "
+        "from); with a catalogue type it must be that belt's kind")
     # bounds beyond the standard widths (DIN 22102 / ISO 251: 0.3 to 3.2 m)
     width_m: float = Field(..., ge=0.1, le=5.0, description="belt width B [m] (0.1 to 5)")
     top_cover_mm: NonNegFloat | None = Field(None, le=100.0,
@@ -104,6 +109,8 @@ class Belt(_Model):
 
     @model_validator(mode="after")
     def _type_or_fields(self) -> Belt:
+        if self.type == "auto":
+            _check_auto_belt(self)
         if self.type is None:
             missing = [
                 k
@@ -116,6 +123,20 @@ class Belt(_Model):
                     f"carcass_mass_kg_m2 (missing: {', '.join(missing)})"
                 )
         return self
+
+
+def _check_auto_belt(b: Belt) -> None:
+    """``type: auto`` needs ``kind`` and takes no override of the catalogue's values (each
+    candidate belt is its catalogue row; covers and compound apply to every candidate)."""
+    if b.kind is None:
+        raise ValueError("type: auto needs belt.kind, the kind of catalogue belt to pick "
+                         "from: give kind: steel_cord or kind: fabric")
+    over = [k for k in ("rating_kn_m", "modulus_kn_m", "dynamic_modulus_kn_m",
+                        "carcass_mass_kg_m2") if getattr(b, k) is not None]
+    if over:
+        raise ValueError(f"type: auto takes no {', '.join(over)} (an override would replace "
+                         "every candidate's catalogue value): leave it out, or give a "
+                         "catalogue type to override its values")
 
 
 class Material(_Model):

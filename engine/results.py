@@ -307,6 +307,9 @@ DESIGN_BASIS = ResultGroup("design_basis", "What set each auto size (text)", (
        "docs/dynamics.md *Brakes within their grip*); given when the file gives them (null "
        "without brakes); in a study with ' @ <case>' as for takeup_governed_by "
        "('stop_time @ declines')"),
+    _f("belt_type_used", "text", "the catalogue belt the run used (custom for a belt without a "
+       "type): belt.type: auto picks the lightest of its kind that passes the safety factors "
+       "(docs/belts.md)", "belt type used"),
 ))
 
 BOOKKEEPING = ResultGroup("bookkeeping", "Bookkeeping", (

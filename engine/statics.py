@@ -539,6 +539,7 @@ def _summarise(res: SteadyResult, drives, hs_adm, bounds, shortfall_n: float,
         "belt_modulus_kn": eb / 1e3,
         "belt_modulus_dyn_kn": eb_dyn / 1e3,
         "belt_rating_kn": rating / 1e3,
+        "belt_type_used": belt.id,
         "wave_speed_carry_m_s": math.sqrt(eb_dyn / (m_carry + mR_c)),
         "wave_speed_return_m_s": math.sqrt(eb_dyn / (belt.mass_kg_m + mR_r)),
         **per_drive,
@@ -604,3 +605,25 @@ def _summarise(res: SteadyResult, drives, hs_adm, bounds, shortfall_n: float,
     res.summary["status"] = res.status
     res.summary["message"] = res.message
 
+
+
+# ------------------------------------------------------------ start-up tensions (issue 27)
+__all__ += ["startup_tensions"]
+
+
+def startup_tensions(res: SteadyResult) -> np.ndarray:
+    """Tensions at start-up with DIN 22101's start-up peripheral force [N].
+
+    The steady solution's own start-up walk (:func:`_startup_walk`: the drives give
+    ``STARTUP_FACTOR`` x Te, the excess accelerating every moving mass), levelled so the
+    take-up holds the same mean tension as running: the tensions the take-up's
+    ``slip_start`` sizing and ``slip_margin_start`` use, at the boundaries of the elements.
+    The largest is the start-up peak of a rigid-body start (no wave fronts, no overshoot of
+    the torque limit), an estimate the transient run's ``t_max_start_kn`` replaces.
+    """
+    conv, loop = res.conveyor, res.loop
+    dF = res.resistance_n + loop.gravity_n
+    W = np.cumsum(dF - res.drive_force_n)
+    delta = _startup_walk(conv, loop, dF, res.te_n) - W
+    k = loop.i_takeup
+    return res.tension_n + delta - 0.5 * (delta[k - 1] + delta[k])

@@ -185,7 +185,8 @@ def _fmt(val) -> str:
 
 def _table(s: dict) -> str:
     lines = [f"{s['conveyor']}  model={s['friction_model']}  temperature={s['temperature_c']:g} C"
-             f"  load={s['load']}  stop={s['stop_mode']}  formulation={s['formulation']}", ""]
+             f"  load={s['load']}  stop={s['stop_mode']}  formulation={s['formulation']}",
+             f"belt {s.get('belt_type_used')}", ""]
 
     for title, fields in (("steady", STEADY_FIELDS), ("transient", TRANSIENT_FIELDS)):
         lines.append(f"  {title}")

@@ -26,6 +26,9 @@ the brake force is the largest over the same cases (models, temperatures) and he
 and over the load cases; a run that does not stop on its brakes (coast, controlled, or steady
 only) installs the holding size, the part of the sizing that needs no stop time.
 
+``belt.type: auto`` is a design value too: the lightest catalogue belt that passes at every
+design case, chosen first (:func:`design_belt`), the other sizes then sized on it.
+
 The numbers are written into each run's conveyor (rounded up to six significant digits, so a
 size never falls short by rounding), so a run id reflects the design it ran.
 """
@@ -39,17 +42,21 @@ from typing import Any
 from pydantic import BaseModel, ConfigDict, Field
 
 from beltstudy.engine import (
+    BELT_AUTO,
     BrakeSizes,
     Conveyor,
     DesignCase,
     InputError,
     SizingError,
     brake_sizing_stop_time,
+    design_cases,
     get_model,
     governed_at,
     parse_scenario,
     section_loads,
+    select_belt,
     size_over_cases,
+    with_belt,
 )
 from beltstudy.engine.design import GIVEN
 from beltstudy.service.errors import Invalid
@@ -92,6 +99,7 @@ def has_auto(conv: dict) -> bool:
         or (tu["type"] == "fixed" and tu["pretension_kn"] == "auto")
         or any(d.get("rated_power_kw") is None for d in conv["drives"])
         or any(b.get("force_kn") == "auto" for b in conv.get("brakes") or [])
+        or conv["belt"].get("type") == BELT_AUTO
     )
 
 
@@ -192,13 +200,15 @@ def size_design(conv: Conveyor, cases: list[DesignCase], stop_times: list[float]
     full case (load, model, temperature), ``at`` the case by what varies among ``cases``
     ("" for one case).
     """
+    conv, belt = design_belt(conv, cases)
     try:
         sized = size_over_cases(conv, cases, stop_times=stop_times, design=where)
     except SizingError as exc:  # named as the study's design case
         raise Invalid(f"design.{exc.field}: {exc.reason}" if exc.field
                       else f"design: {exc.reason}") from None
     out: dict[str, Any] = {"takeup": None, "drives": [None] * len(sized.drives),
-                           "brakes": None, "failed_cases": list(sized.failed_cases)}
+                           "brakes": None, "failed_cases": list(sized.failed_cases),
+                           "belt": belt}
     if sized.takeup is not None:
         gravity = conv.takeup.type == "gravity"
         out["takeup"] = {"field": "mass_kg" if gravity else "pretension_kn",
@@ -215,6 +225,27 @@ def size_design(conv: Conveyor, cases: list[DesignCase], stop_times: list[float]
                          "stop_time_s": {f"{t:g}": _brake_entry(b)
                                          for t, b in sized.brakes_by_stop.items()}}
     return out
+
+
+def design_belt(conv: Conveyor, cases: list[DesignCase]) -> tuple[Conveyor, dict | None]:
+    """The conveyor on its design belt and the choice as JSON (None for a given belt):
+    ``belt.type: auto`` is a design value, the lightest catalogue belt that passes at every
+    design case, each at its own load (and at full load,
+    :func:`beltstudy.engine.design_cases`), chosen once here and held for all the design's
+    runs; the take-up, motors and brakes are sized on it."""
+    if conv.belt.type != BELT_AUTO:
+        return conv, None
+    choice = select_belt(conv, design_cases(conv, cases, "full"))
+    c, lighter = choice.chosen, choice.lighter
+    return with_belt(conv, choice.belt_id), {
+        "type": choice.belt_id, "kind": choice.kind, "passed": choice.passed,
+        "mass_kg_m": c.mass_kg_m, "safety_factor": c.safety_factor,
+        "safety_factor_start": c.safety_factor_start, "case": c.case,
+        "next_lighter": None if lighter is None else {
+            "type": lighter.id, "mass_kg_m": lighter.mass_kg_m,
+            "safety_factor": lighter.safety_factor,
+            "safety_factor_start": lighter.safety_factor_start},
+        "note": choice.note() or choice.warning()}
 
 
 def _brake_entry(brakes: BrakeSizes) -> dict:
@@ -235,6 +266,8 @@ def apply_sizes(conv: dict, sizes: dict | None, scenario: dict, dynamics: bool
         return conv, {}
     out = copy.deepcopy(conv)
     governed: dict[str, str] = {}
+    if sizes.get("belt") is not None and out["belt"].get("type") == BELT_AUTO:
+        out["belt"]["type"] = sizes["belt"]["type"]
     tu = sizes.get("takeup")
     if tu is not None:
         out["takeup"][tu["field"]] = tu["value"]

@@ -27,6 +27,7 @@ from beltstudy.engine import (
     TRANSIENT_SAFETY_RATIO,
     build_loop,
     capacity,
+    catalog,
     governed_at,
     parse_conveyor,
     resolve_belt,
@@ -234,6 +235,11 @@ def _design_section(study: dict) -> str:
                              _e("+".join(dict.fromkeys(governed_at(g, e.get("at", ""))
                                                        for g in e["governed_by"]))),
                              _e(e["case"])])
+        belt = sizes.get("belt")
+        if belt:  # belt.type: auto, chosen once per design (docs/belts.md)
+            rows.append([_e(where), "belt (type: auto)", _e(belt["type"]),
+                         _e("lightest that passes" if belt["passed"] else
+                            "none passes: the heaviest"), _e(belt["case"])])
     out.append(_table(["conveyor design", "size", "value", "governed by", "design case"],
                       rows))
     return "".join(out)
@@ -284,8 +290,8 @@ def _limits(study: dict, runs: pd.DataFrame) -> dict[str, str]:
     rating = pd.to_numeric(runs.get("belt_rating_kn"), errors="coerce") if len(runs) else None
     try:
         kind = resolve_belt(parse_conveyor(conv).belt).kind
-    except Exception:  # a conveyor this engine cannot read
-        kind = "steel"
+    except Exception:  # a conveyor this engine cannot read, or belt.type: auto
+        kind = catalog.KIND_OF_FILE.get(conv["belt"].get("kind") or "", "steel")
     sf = conv.get("safety_factor_min") or SAFETY_FACTOR_MIN.get(kind, 6.7)
     length = sum(p["length_m"] for p in conv["profile"])
     travel = conv["takeup"].get("travel_m") or 0.015 * length
