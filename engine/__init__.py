@@ -70,6 +70,8 @@ from beltstudy.engine.sizing import (  # noqa: E402
     DesignSizes,
     Largest,
     SizingError,
+    governed_at,
+    load_label,
     size_over_cases,
 )
 from beltstudy.engine.statics import (  # noqa: E402
@@ -99,6 +101,7 @@ __all__ = [
     "STEADY_FIELDS", "unread_fields", "scenario_as_read", "brake_sizing_stop_time",
     "auto_sizes", "summary_fields",
     "DesignCase", "DesignSizes", "Largest", "BrakeSizes", "SizingError", "size_over_cases",
+    "governed_at", "load_label",
     "solve_steady", "SteadyResult", "SAFETY_FACTOR_MIN", "TRANSIENT_SAFETY_RATIO",
     "build_loop", "Loop", "capacity", "Capacity",
     "results", "check_summary", "MAX_DRIVES",

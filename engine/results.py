@@ -119,7 +119,8 @@ STEADY = ResultGroup("steady", "Steady state (the friction model at design speed
     _f("slip_margin", "-", "smallest running slip margin of the drive pulleys, "
        "e^(mu theta) / (T_tight / T_slack); above 1 is safe", "slip margin running (>1 safe)"),
     _f("slip_margin_start", "-", "smallest slip margin of the drive pulleys at start-up "
-       "(DIN 22101's start-up force, 1.5 x Te)", "slip margin at start-up"),
+       "(DIN 22101's start-up force, 1.5 x Te, and, with a gravity take-up, breakaway: the "
+       "drives holding the net gravity pull at standstill)", "slip margin at start-up"),
     _f("safety_factor", "-", "belt safety factor, belt_rating_kn / t_max_kn",
        "belt safety factor"),
     _f("belt_mass_kg_m", "kg/m", "belt mass per metre", "belt mass"),
@@ -317,15 +318,19 @@ DRIVE_LOAD = ResultGroup(
 
 # ------------------------------------------------------------------ the design basis
 DESIGN_BASIS = ResultGroup("design_basis", "What set each auto size (text)", (
-    _f("takeup_governed_by", "text", "the take-up: slip_start, slip_running, sag_running, "
-       "sag_at_rest or positive; given when the file gives it"),
+    _f("takeup_governed_by", "text", "the take-up: slip_start, slip_breakaway, slip_running, "
+       "sag_running, sag_at_rest or positive; given when the file gives it; in a study, "
+       "' @ <case>' names the design case that set it by what varies among the design's "
+       "cases (load, model, temperature: 'slip_breakaway @ declines', SPEC 7.2)"),
     _f("rated_power_governed_by", "text", "the rated power: peripheral_force or "
-       "running_resistance; given when the file gives it (several joined by +)"),
+       "running_resistance; given when the file gives it (several joined by +); in a study "
+       "with ' @ <case>' as for takeup_governed_by"),
     _f("brake_governed_by", "text", "the brakes: stop_time, holding, or grip (the stop time "
        "asked needs more than the braked pulley passes in the stop: held at its grip, the "
        "message gives the stop time it makes and what would meet the asked one, "
        "docs/dynamics.md *Brakes within their grip*); given when the file gives them (null "
-       "without brakes)"),
+       "without brakes); in a study with ' @ <case>' as for takeup_governed_by "
+       "('stop_time @ declines')"),
     _f("belt_type_used", "text", "the catalogue belt the run used (custom for a belt without a "
        "type): belt.type: auto picks the lightest of its kind that passes the safety factors "
        "(docs/belts.md)", "belt type used"),
