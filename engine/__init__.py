@@ -27,7 +27,18 @@ except PackageNotFoundError:  # pragma: no cover - running from a source tree wi
     __version__ = "0.5.0"
 
 from beltstudy.engine import catalog, results  # noqa: E402
+from beltstudy.engine.beltselect import (  # noqa: E402
+    BeltChoice,
+    SteadyCase,
+    design_cases,
+    resolve_auto_belt,
+    run_cases,
+    run_message,
+    select_belt,
+    with_belt,
+)
 from beltstudy.engine.capacity import Capacity, capacity  # noqa: E402
+from beltstudy.engine.catalog import AUTO as BELT_AUTO  # noqa: E402
 from beltstudy.engine.catalog import resolve_belt  # noqa: E402
 from beltstudy.engine.conveyor import (  # noqa: E402
     LOAD_MAX,
@@ -59,10 +70,13 @@ from beltstudy.engine.sizing import (  # noqa: E402
     DesignSizes,
     Largest,
     SizingError,
+    governed_at,
+    load_label,
     size_over_cases,
 )
 from beltstudy.engine.statics import (  # noqa: E402
     SAFETY_FACTOR_MIN,
+    STARTUP_FACTOR,
     TRANSIENT_SAFETY_RATIO,
     SteadyResult,
     solve_steady,
@@ -87,10 +101,15 @@ __all__ = [
     "STEADY_FIELDS", "unread_fields", "scenario_as_read", "brake_sizing_stop_time",
     "auto_sizes", "summary_fields",
     "DesignCase", "DesignSizes", "Largest", "BrakeSizes", "SizingError", "size_over_cases",
+    "governed_at", "load_label",
     "solve_steady", "SteadyResult", "SAFETY_FACTOR_MIN", "TRANSIENT_SAFETY_RATIO",
     "build_loop", "Loop", "capacity", "Capacity",
     "results", "check_summary", "MAX_DRIVES",
 ]
+
+# belt selection (belt.type: auto)
+__all__ += ["BeltChoice", "SteadyCase", "design_cases", "resolve_auto_belt", "run_cases", "run_message",
+            "select_belt", "with_belt", "BELT_AUTO", "STARTUP_FACTOR"]
 
 
 def __getattr__(name: str):

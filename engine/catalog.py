@@ -27,10 +27,18 @@ __all__ = [
     "idler_set_values",
     "check_conveyor",
     "COVER_MASS_KG_M2_PER_MM",
+    "AUTO",
+    "KIND_OF_FILE",
+    "FILE_KIND",
 ]
 
 #: Cover rubber mass per square metre per mm of thickness [kg/m2/mm] (PHYSICS section 4).
 COVER_MASS_KG_M2_PER_MM = 1.15
+#: ``belt.type`` that picks the belt (:mod:`beltstudy.engine.beltselect`).
+AUTO = "auto"
+#: ``belt.kind`` of the conveyor file -> the catalogue's ``kind`` column, and back.
+KIND_OF_FILE = {"steel_cord": "steel", "fabric": "fabric"}
+FILE_KIND = {v: k for k, v in KIND_OF_FILE.items()}
 
 
 def _rows(name: str) -> list[dict[str, str]]:
@@ -198,6 +206,9 @@ def compounds() -> dict[str, dict[str, str]]:
 
 def resolve_belt(b) -> ResolvedBelt:
     """Apply the conveyor file's belt overrides to the catalogue entry."""
+    if b.type == AUTO:
+        raise InputError("belt.type: auto is a choice, not a belt: pick it first "
+                         "(beltstudy.engine.beltselect.resolve_auto_belt)")
     base = belt(b.type) if b.type is not None else None
 
     def pick(name: str) -> float:
@@ -229,8 +240,13 @@ def resolve_belt(b) -> ResolvedBelt:
 
 def check_conveyor(conv, prefix: str = "") -> None:
     """Catalogue ids in a conveyor exist (raises InputError naming the field)."""
-    if conv.belt.type is not None:
-        belt(conv.belt.type, prefix + "belt.type")
+    if conv.belt.type is not None and conv.belt.type != AUTO:
+        row = belt(conv.belt.type, prefix + "belt.type")
+        if conv.belt.kind is not None and KIND_OF_FILE[conv.belt.kind] != row.kind:
+            raise InputError(
+                f"{prefix}belt.kind: {conv.belt.kind} does not match {row.id}, a "
+                f"{FILE_KIND[row.kind]} belt in the catalogue; leave kind out or give "
+                f"kind: {FILE_KIND[row.kind]}")
     if conv.belt.compound not in compounds():
         raise InputError(
             _unknown("compound", conv.belt.compound, list(compounds()), prefix + "belt.compound")

@@ -35,6 +35,7 @@ __all__ = [
     "Idlers",
     "Drive",
     "DEFAULT_MOTOR_CURVE",
+    "DRIVE_EFFICIENCY",
     "check_motor_curve",
     "TakeUp",
     "Brake",
@@ -80,7 +81,12 @@ class Belt(_Model):
     published belt mass per metre can be reproduced with ``carcass_mass_kg_m2 = m'_G / B``.
     """
 
-    type: str | None = Field(None, description="belt id in the catalogue, e.g. ST2000, EP630/4")
+    type: str | None = Field(None, description="belt id in the catalogue, e.g. ST2000, EP630/4; "
+                             "auto: the lightest catalogue belt of belt.kind that passes the "
+                             "safety factors (engine/beltselect.py)")
+    kind: Literal["steel_cord", "fabric"] | None = Field(
+        None, description="belt kind, required with type: auto (the catalogue belts it picks "
+        "from); with a catalogue type it must be that belt's kind")
     # bounds beyond the standard widths (DIN 22102 / ISO 251: 0.3 to 3.2 m)
     width_m: float = Field(..., ge=0.1, le=5.0, description="belt width B [m] (0.1 to 5)")
     top_cover_mm: NonNegFloat | None = Field(None, le=100.0,
@@ -104,6 +110,8 @@ class Belt(_Model):
 
     @model_validator(mode="after")
     def _type_or_fields(self) -> Belt:
+        if self.type == "auto":
+            _check_auto_belt(self)
         if self.type is None:
             missing = [
                 k
@@ -116,6 +124,20 @@ class Belt(_Model):
                     f"carcass_mass_kg_m2 (missing: {', '.join(missing)})"
                 )
         return self
+
+
+def _check_auto_belt(b: Belt) -> None:
+    """``type: auto`` needs ``kind`` and takes no override of the catalogue's values (each
+    candidate belt is its catalogue row; covers and compound apply to every candidate)."""
+    if b.kind is None:
+        raise ValueError("type: auto needs belt.kind, the kind of catalogue belt to pick "
+                         "from: give kind: steel_cord or kind: fabric")
+    over = [k for k in ("rating_kn_m", "modulus_kn_m", "dynamic_modulus_kn_m",
+                        "carcass_mass_kg_m2") if getattr(b, k) is not None]
+    if over:
+        raise ValueError(f"type: auto takes no {', '.join(over)} (an override would replace "
+                         "every candidate's catalogue value): leave it out, or give a "
+                         "catalogue type to override its values")
 
 
 class Material(_Model):
@@ -200,6 +222,12 @@ DEFAULT_MOTOR_CURVE = ((0.0, 1.6), (0.25, 1.5), (0.5, 1.4), (0.7, 1.6), (0.87, 2
 #: start to one near the inner torque loop of a large drive.
 SPEED_LOOP_RAD_S = (0.1, 50.0)
 
+#: Default efficiency of a drive train from the motor shaft to the pulley [-]: a helical or
+#: bevel-helical gear unit (about 0.97 for two to three stages) and a coupling (0.98-0.99; a
+#: fluid coupling's slip costs 2-4 % more): 0.95. Belt makers' design manuals following DIN
+#: 22101 quote 0.85-0.95 for drives (*unverified*; docs/drives.md): give the drive's own.
+DRIVE_EFFICIENCY = 0.95
+
 
 class Drive(_Model):
     """A drive pulley (SPEC sections 1 and 6.1).
@@ -242,6 +270,10 @@ class Drive(_Model):
         None, description="vfd: bandwidth of the speed loop closed on this pulley's own speed "
         "[rad/s], 0.1 to 50 (the master drive's is used; default: "
         "beltstudy.engine.dynamics.model.DEFAULT_SPEED_LOOP_RAD_S)")
+    efficiency: float = Field(
+        DRIVE_EFFICIENCY, gt=0, le=1.0, description="drive train efficiency from the motor "
+        "shaft to the pulley (gear unit and coupling) [-]: the motor power a drive needs is "
+        "its pulley power / efficiency (x efficiency regenerating); default 0.95")
 
     @model_validator(mode="after")
     def _curve_and_coupling(self) -> Drive:

@@ -7,9 +7,11 @@ conveyor design); ``run_one`` calls it on the run's own steady solution to repor
 used.
 
 * **Take-up** (gravity ``mass_kg: auto``, fixed ``pretension_kn: auto``): the steady solve's
-  sizing (:mod:`beltstudy.engine.statics`): the smallest take-up meeting slip at start-up and running
-  and the sag limits running and, unless ``takeup.sag_at_rest`` is off, held at rest.
-  Governing constraint: ``slip_start``, ``slip_running``, ``sag_running``, ``sag_at_rest``.
+  sizing (:mod:`beltstudy.engine.statics`): the smallest take-up meeting slip at start-up
+  (the start-up force and, gravity take-ups, breakaway: the drives taking the net gravity pull
+  at standstill, a regenerating belt's start) and running, and the sag limits running and,
+  unless ``takeup.sag_at_rest`` is off, held at rest. Governing constraint: ``slip_start``,
+  ``slip_breakaway``, ``slip_running``, ``sag_running``, ``sag_at_rest``.
 * **Rated power** (``rated_power_kw`` omitted): ``RATED_POWER_FACTOR`` x the drive's share of
   the larger of the steady peripheral force |Te| and the running resistance (a regenerating
   decline's motors must still overcome the resistance of the empty belt's start). Governing:

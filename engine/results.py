@@ -9,8 +9,8 @@ result cannot be computed and silently dropped.
 
 Groups, in the order of the runs table: :data:`STEADY`, :data:`STEADY_DRIVE`,
 :data:`DESIGN`, :data:`DESIGN_DRIVE`, :data:`TE_COMPONENTS`, :data:`TRANSIENT`,
-:data:`PHASE`, :data:`SLACK`, :data:`TRANSIENT_DRIVE`, :data:`DESIGN_BASIS`,
-:data:`BOOKKEEPING`. Per-drive fields are named with ``{i}``, the drive's 1-based number in
+:data:`PHASE`, :data:`SLACK`, :data:`TRANSIENT_DRIVE`, :data:`DRIVE_POWER`,
+:data:`DRIVE_LOAD`, :data:`DESIGN_BASIS`, :data:`BOOKKEEPING`. Per-drive fields are named with ``{i}``, the drive's 1-based number in
 file order (``drive{i}_slip_m``), and stored for drives 1 to :data:`MAX_DRIVES`.
 """
 
@@ -32,6 +32,8 @@ __all__ = [
     "PHASE",
     "SLACK",
     "TRANSIENT_DRIVE",
+    "DRIVE_POWER",
+    "DRIVE_LOAD",
     "DESIGN_BASIS",
     "BOOKKEEPING",
     "GROUPS",
@@ -117,7 +119,8 @@ STEADY = ResultGroup("steady", "Steady state (the friction model at design speed
     _f("slip_margin", "-", "smallest running slip margin of the drive pulleys, "
        "e^(mu theta) / (T_tight / T_slack); above 1 is safe", "slip margin running (>1 safe)"),
     _f("slip_margin_start", "-", "smallest slip margin of the drive pulleys at start-up "
-       "(DIN 22101's start-up force, 1.5 x Te)", "slip margin at start-up"),
+       "(DIN 22101's start-up force, 1.5 x Te, and, with a gravity take-up, breakaway: the "
+       "drives holding the net gravity pull at standstill)", "slip margin at start-up"),
     _f("safety_factor", "-", "belt safety factor, belt_rating_kn / t_max_kn",
        "belt safety factor"),
     _f("belt_mass_kg_m", "kg/m", "belt mass per metre", "belt mass"),
@@ -297,17 +300,46 @@ TRANSIENT_DRIVE = ResultGroup("transient_drive", "Per drive pulley, transient (S
        "start command to the stop command, in % of design speed", "speed err"),
 ))
 
+# --------------------------------------------------------- drive checks (SPEC 7.4)
+DRIVE_POWER = ResultGroup(
+    "drive_power", "Per drive pulley, steady power against the rating (SPEC 7.4; "
+    "docs/drives.md)", (
+        _f("drive{i}_power_required_kw", "kW", "the motor power drive i needs at the steady "
+           "state, its force at the pulley (its share of Te) x design speed / "
+           "drives[i].efficiency (x efficiency when it holds back a regenerating belt; the "
+           "magnitude)", "P req"),
+        _f("drive{i}_utilisation", "-", "drive{i}_power_required_kw / "
+           "drive{i}_rated_power_kw; above 1 the motor is short of power (a warning)", "util"),
+    ))
+
+DRIVE_LOAD = ResultGroup(
+    "drive_load", "Per drive pulley, transient load against the rating (SPEC 7.4; "
+    "docs/drives.md)", (
+        _f("drive{i}_overload_s", "s", "time after the start command with drive i's force at "
+           "the pulley above its rated force (rated power / design speed)", "overload"),
+        _f("drive{i}_force_rms_kn", "kN", "RMS force of drive i from the start command until "
+           "the belt is at rest after the stop (the run's end when it never stops), the "
+           "cycle's thermal equivalent load", "F rms"),
+    ))
+
 # ------------------------------------------------------------------ the design basis
 DESIGN_BASIS = ResultGroup("design_basis", "What set each auto size (text)", (
-    _f("takeup_governed_by", "text", "the take-up: slip_start, slip_running, sag_running, "
-       "sag_at_rest or positive; given when the file gives it"),
+    _f("takeup_governed_by", "text", "the take-up: slip_start, slip_breakaway, slip_running, "
+       "sag_running, sag_at_rest or positive; given when the file gives it; in a study, "
+       "' @ <case>' names the design case that set it by what varies among the design's "
+       "cases (load, model, temperature: 'slip_breakaway @ declines', SPEC 7.2)"),
     _f("rated_power_governed_by", "text", "the rated power: peripheral_force or "
-       "running_resistance; given when the file gives it (several joined by +)"),
+       "running_resistance; given when the file gives it (several joined by +); in a study "
+       "with ' @ <case>' as for takeup_governed_by"),
     _f("brake_governed_by", "text", "the brakes: stop_time, holding, or grip (the stop time "
        "asked needs more than the braked pulley passes in the stop: held at its grip, the "
        "message gives the stop time it makes and what would meet the asked one, "
        "docs/dynamics.md *Brakes within their grip*); given when the file gives them (null "
-       "without brakes)"),
+       "without brakes); in a study with ' @ <case>' as for takeup_governed_by "
+       "('stop_time @ declines')"),
+    _f("belt_type_used", "text", "the catalogue belt the run used (custom for a belt without a "
+       "type): belt.type: auto picks the lightest of its kind that passes the safety factors "
+       "(docs/belts.md)", "belt type used"),
 ))
 
 BOOKKEEPING = ResultGroup("bookkeeping", "Bookkeeping", (
@@ -318,7 +350,7 @@ BOOKKEEPING = ResultGroup("bookkeeping", "Bookkeeping", (
 
 #: Every group, in the order of the runs table.
 GROUPS = (STEADY, STEADY_DRIVE, DESIGN, DESIGN_DRIVE, TE_COMPONENTS, TRANSIENT, PHASE, SLACK,
-          TRANSIENT_DRIVE, DESIGN_BASIS, BOOKKEEPING)
+          TRANSIENT_DRIVE, DRIVE_POWER, DRIVE_LOAD, DESIGN_BASIS, BOOKKEEPING)
 
 # ------------------------------------------------------------- error bars (SPEC 7.4)
 #: The deciding figures of a transient run that get an error bar (SPEC 7.4; per-drive ones

@@ -15,6 +15,7 @@ import time
 import numpy as np
 import pandas as pd
 
+from beltstudy.engine.beltselect import resolve_auto_belt, run_cases, run_message
 from beltstudy.engine.conveyor import Conveyor, Scenario
 from beltstudy.engine.design import auto_sizes, summary_fields
 from beltstudy.engine.dynamics import DynamicsOptions, TransientResult, build_system, simulate
@@ -191,6 +192,9 @@ def run_one(
     if dynamics:
         check_scenario(scenario, conveyor, opts)
     n = None if scenario.elements == "auto" else int(scenario.elements)
+    # belt.type: auto is chosen once, here, at the run's case; the rest runs on that belt
+    conveyor, belt_choice = resolve_auto_belt(conveyor, run_cases(
+        conveyor, model, params, scenario.temperature_c, scenario.load, n))
     steady = solve_steady(
         conveyor,
         model=model,
@@ -204,6 +208,7 @@ def run_one(
     summary.update(summary_fields(auto_sizes(conveyor, scenario, model=model, params=params,
                                              steady=steady)))
     if not dynamics or steady.status == "failed":
+        run_message(summary, belt_choice)
         summary["elapsed_s"] = time.perf_counter() - t0
         return RunResult(summary=check_summary(summary), steady=steady)
 
@@ -226,6 +231,7 @@ def run_one(
         status = "ok"
     summary["status"] = status
     summary["message"] = "; ".join(messages)
+    run_message(summary, belt_choice)
     result = RunResult(summary=summary, steady=steady, transient=tr)
     if check and status != "failed":
         result.accuracy = _error_bars(conveyor, scenario, result, model, params, opts)

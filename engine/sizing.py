@@ -2,9 +2,13 @@
 
 An installed conveyor has one take-up, one motor per drive and one set of brakes, however many
 operating cases it meets. :func:`size_over_cases` solves the steady state at every
-:class:`DesignCase` (friction model with its parameters, temperature, mesh) at one load, sizes
+:class:`DesignCase` (load case, friction model with its parameters, temperature, mesh), sizes
 each ``auto`` field there with :func:`beltstudy.engine.design.auto_sizes`, and keeps the
-largest requirement of each size with what set it (``governed_by``) and at which case.
+largest requirement of each size with what set it (``governed_by``) and at which case: the
+design envelope (SPEC 7.2). ``at`` names that case by what varies among the cases (the load,
+the model, the temperature: ``declines``, ``declines, -20 C``), "" when only one case is
+sized, and :func:`governed_at` joins the two as a run's ``*_governed_by`` states them
+(``stop_time @ declines``).
 
 Brakes: their sizing input is the stop time (:mod:`beltstudy.engine.design`). The holding size
 (no stop time) is the largest over the cases; for each stop time of ``stop_times`` the size
@@ -31,7 +35,7 @@ from beltstudy.engine.friction import get_model
 from beltstudy.engine.statics import solve_steady
 
 __all__ = ["DesignCase", "Largest", "BrakeSizes", "DesignSizes", "SizingError",
-           "size_over_cases"]
+           "size_over_cases", "load_label", "governed_at"]
 
 
 class SizingError(InputError):
@@ -39,23 +43,67 @@ class SizingError(InputError):
     (``field="load"``), the steady solve failed at every case, or a size is not finite."""
 
 
+def load_label(load: Any) -> str:
+    """A load case in words: ``full``, ``declines``, ``load 0.8``, ``load [1, 0.5]``."""
+    if isinstance(load, str):
+        return load
+    if isinstance(load, list | tuple):
+        return "load [" + ", ".join(f"{float(x):g}" for x in load) + "]"
+    return f"load {float(load):g}"
+
+
+def governed_at(governed_by: str, at: str) -> str:
+    """A size's ``*_governed_by`` with its case: ``stop_time @ declines`` (SPEC 7.2); the
+    constraint alone when ``at`` is "" (one design case) or the size is given."""
+    return f"{governed_by} @ {at}" if at and governed_by != GIVEN else governed_by
+
+
 @dataclass(frozen=True)
 class DesignCase:
-    """One design case: a friction model with its parameter overrides, a temperature and the
-    mesh of the steady solve."""
+    """One design case: a friction model with its parameter overrides, a temperature, the
+    mesh of the steady solve and a load case (SPEC 6.2; a per-section list is held as a
+    tuple so the case can be a key)."""
 
     model: str
     params: tuple[tuple[str, float | None], ...] = ()  # (name, value) overrides, sorted
     temperature_c: float = 20.0  # [C]
     elements: Any = "auto"  # element count, or "auto"
+    load: Any = "full"  # full | empty | inclines | declines | a fraction | per-section tuple
 
-    def label(self) -> str:
-        """``model (changed parameters), T C``: the case as messages and reports name it."""
+    def __post_init__(self) -> None:
+        if isinstance(self.load, list):
+            object.__setattr__(self, "load", tuple(self.load))
+
+    @property
+    def load_case(self) -> Any:
+        """The load as a scenario takes it (a per-section load as a list)."""
+        return list(self.load) if isinstance(self.load, tuple) else self.load
+
+    def _model_label(self) -> str:
         defaults = dataclasses.asdict(get_model(self.model).params())
         changed = [f"{k}={v:g}" for k, v in self.params
                    if v is not None and defaults.get(k) != v]
-        model = self.model + (f" ({', '.join(changed)})" if changed else "")
-        return f"{model}, {self.temperature_c:g} C"
+        return self.model + (f" ({', '.join(changed)})" if changed else "")
+
+    def label(self) -> str:
+        """``load, model (changed parameters), T C``: the case as messages and reports name
+        it (``declines, din, -20 C``)."""
+        return f"{load_label(self.load)}, {self._model_label()}, {self.temperature_c:g} C"
+
+    def at(self, cases: Sequence[DesignCase], tied: Sequence[DesignCase] = ()) -> str:
+        """This case named by what varies among ``cases`` (load, model with its parameters,
+        temperature, in that order), "" when nothing varies (one case). ``tied``: the cases
+        that need as much as this one; what varies among them is not named (a holding brake
+        needs the same at every temperature: ``holding @ declines``, not ``@ declines, -20
+        C``)."""
+        group = [self, *tied]
+        parts = []
+        for key, name in ((lambda c: c.load, load_label(self.load)),
+                          (lambda c: (c.model, c.params), self._model_label()),
+                          (lambda c: c.temperature_c, f"{self.temperature_c:g} C")):
+            if len({key(c) for c in cases}) > 1 and len({key(c) for c in group}) == 1:
+                parts.append(name)
+        return ", ".join(parts)
 
 
 @dataclass(frozen=True)
@@ -65,6 +113,7 @@ class Largest:
     value: float
     governed_by: str
     case: DesignCase
+    at: str = ""  # the case by what varies among the design's cases (DesignCase.at)
 
 
 @dataclass(frozen=True)
@@ -75,6 +124,7 @@ class BrakeSizes:
     force_kn: tuple[float, ...]
     governed_by: tuple[str, ...]
     case: DesignCase
+    at: str = ""  # the case by what varies among the design's cases (DesignCase.at)
 
 
 @dataclass(frozen=True)
@@ -117,13 +167,14 @@ def _auto_fields(conveyor: Conveyor) -> tuple[bool, list[bool], bool]:
     return tu_auto, drive_auto, brake_auto
 
 
-def _gather(conveyor: Conveyor, cases: Sequence[DesignCase], load: Any,
+def _gather(conveyor: Conveyor, cases: Sequence[DesignCase],
             stop_times: Sequence[float], auto: tuple[bool, list[bool], bool]) -> _Needs:
     """Solve and size every case; each requirement with what set it and the case."""
     tu_auto, drive_auto, brake_auto = auto
     gravity = conveyor.takeup.type == "gravity"
     needs = _Needs(rated=[[] for _ in drive_auto], by_stop={t: [] for t in stop_times})
     for case in cases:
+        load = case.load_case
         scn = Scenario(load=load, temperature_c=case.temperature_c, elements=case.elements)
         n = None if case.elements == "auto" else int(case.elements)
         params = dict(case.params)
@@ -191,18 +242,20 @@ def _brakes(items: list, conveyor: Conveyor | None = None, steady: dict | None =
     return BrakeSizes(tuple(sizes["brake_force_kn"]), tuple(sizes["brake_governed_by"]), case)
 
 
-def size_over_cases(conveyor: Conveyor, cases: Sequence[DesignCase], *, load: Any = "full",
+def size_over_cases(conveyor: Conveyor, cases: Sequence[DesignCase], *, load: Any = None,
                     stop_times: Sequence[float] = (), design: str = "") -> DesignSizes:
-    """The auto sizes of one conveyor design: the largest of each over ``cases`` at ``load``.
+    """The auto sizes of one conveyor design: the largest of each over ``cases``.
 
     Parameters
     ----------
     conveyor : Conveyor
         The design, with its ``auto`` fields.
     cases : sequence of DesignCase
-        The design cases (at least one).
-    load : load case
-        The load of every case (SPEC 6.2: a fraction, ``full``, ``empty``, ...).
+        The design cases (at least one), each at its own load case: the envelope over loads,
+        models and temperatures.
+    load : load case, optional
+        When given, every case at this load instead of its own (SPEC 6.2: a fraction,
+        ``full``, ``empty``, ...).
     stop_times : sequence of float
         The stop times [s] the brakes are sized for, besides the holding size.
     design : str
@@ -211,32 +264,50 @@ def size_over_cases(conveyor: Conveyor, cases: Sequence[DesignCase], *, load: An
     Returns
     -------
     DesignSizes
-        Unrounded sizes: take-up [kg or kN], rated power per drive [kW], brake forces [kN].
+        Unrounded sizes: take-up [kg or kN], rated power per drive [kW], brake forces [kN],
+        each with the constraint that set it, its case and (``at``) that case named by what
+        varies among ``cases``.
 
     Raises
     ------
     SizingError
-        ``load`` does not fit the conveyor's profile (``field="load"``), the steady solve
-        failed at every case, or a size is not finite.
+        A case's load does not fit the conveyor's profile (``field="load"``), the steady
+        solve failed at every case, or a size is not finite.
     """
-    try:
-        section_loads(load, conveyor)
-    except InputError as exc:
-        raise SizingError(exc.reason + (f" (conveyor design {design})" if design else ""),
-                          field="load") from None
+    if load is not None:
+        cases = [dataclasses.replace(c, load=load) for c in cases]
+    cases = list(dict.fromkeys(cases))
+    for case in cases:
+        try:
+            section_loads(case.load_case, conveyor)
+        except InputError as exc:
+            raise SizingError(exc.reason + (f" (conveyor design {design})" if design else ""),
+                              field="load") from None
     auto = _auto_fields(conveyor)
-    needs = _gather(conveyor, cases, load, stop_times, auto)
+    needs = _gather(conveyor, cases, stop_times, auto)
     if len(needs.failures) == len(cases):
         where = f" of conveyor design {design}" if design else ""
         raise SizingError(f"the steady solve failed at every design case{where}, so nothing "
                           f"can be sized: {needs.failures[0]}")
     _check_finite(needs, design)
     tu_auto, _drive_auto, brake_auto = auto
+
+    def tied(items, value: float) -> list[DesignCase]:
+        return [c for v, _why, c in items if math.isclose(v, value, rel_tol=1e-9)]
+
+    def largest(items) -> Largest:
+        value, why, case = _largest(items)
+        return Largest(value, why, case, case.at(cases, tied(items, value)))
+
+    def brakes(sized: BrakeSizes, items) -> BrakeSizes:
+        same = [c for c in tied(items, sum(sized.force_kn)) if c != sized.case]
+        return dataclasses.replace(sized, at=sized.case.at(cases, same))
+
     return DesignSizes(
-        takeup=Largest(*_largest(needs.takeup)) if tu_auto else None,
-        drives=tuple(Largest(*_largest(items)) if items else None for items in needs.rated),
-        brakes_holding=_brakes(needs.holding) if brake_auto else None,
-        brakes_by_stop={t: _brakes(items, conveyor, needs.steady)
+        takeup=largest(needs.takeup) if tu_auto else None,
+        drives=tuple(largest(items) if items else None for items in needs.rated),
+        brakes_holding=brakes(_brakes(needs.holding), needs.holding) if brake_auto else None,
+        brakes_by_stop={t: brakes(_brakes(items, conveyor, needs.steady), items)
                         for t, items in needs.by_stop.items()}
         if brake_auto else {},
         failed_cases=tuple(needs.failures),

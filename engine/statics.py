@@ -9,6 +9,13 @@ constant, which the take-up sets: a gravity take-up carries its counterweight on
 
 * slip at every drive at start-up (Euler-Eytelwein, T_tight / T_slack <= e^{mu theta}, with the
   drive force times the start-up factor 1.5, the slack side held by the take-up), and running;
+* for a gravity take-up, slip at every drive at breakaway: the drives take the loaded belt's
+  net gravity pull from the brake at standstill, before any running resistance acts
+  (:func:`_breakaway_walk`). This is the start-up of a regenerating belt: there the start-up
+  factor's walk asks the drives for less than running (they hold back ``Te + 0.5 |Te|``, half
+  the running force, while the belt accelerates), but at standstill they must hold the whole
+  net pull, which exceeds the running |Te| by the running resistance, with the at-rest
+  tensions, whose slack side (the carry at a head drive) is lower than running;
 * the sag limits on both strands, T >= g (m'_G + m'_L) S / (8 (h/S)_adm), running and, for a
   gravity take-up, also held at rest (take-up plus gravity, the net pull of the loaded belt
   taken by the brake or the master drive: :func:`rest_walk`). The held-at-rest rule is this
@@ -18,8 +25,12 @@ constant, which the take-up sets: a gravity take-up carries its counterweight on
   ``takeup.sag_at_rest: false``.
 
 The constraint that sets an auto take-up is reported as ``takeup_governed_by``: ``slip_start``,
-``slip_running``, ``sag_running``, ``sag_at_rest`` (or ``positive``, the belt kept in tension);
-``given`` when the take-up is not auto.
+``slip_breakaway``, ``slip_running``, ``sag_running``, ``sag_at_rest`` (or ``positive``, the
+belt kept in tension); ``given`` when the take-up is not auto.
+
+Every slip check is Euler-Eytelwein with ``T_tight = max(T_in, T_out)`` and ``T_slack =
+min(T_in, T_out)`` at the pulley: a regenerating drive (Te < 0, a loaded decline held back)
+has its tight side outgoing, and the check does not depend on the sign of the drive force.
 
 The counterweight is installed once: its auto mass is the larger of what the run's load case
 needs and what the full design load needs (same model and temperature), so an empty or part-
@@ -38,6 +49,7 @@ import numpy as np
 
 from beltstudy.engine.capacity import capacity as capacity_check
 from beltstudy.engine.conveyor import Conveyor, section_loads
+from beltstudy.engine.drives import steady_checks
 from beltstudy.engine.friction import get_model, temperature_note
 from beltstudy.engine.law import ResistanceLaw
 from beltstudy.engine.loop import (
@@ -75,7 +87,8 @@ MAX_ITER = 200
 OMEGA_MIN = 0.05
 STRAND_NAMES = {CARRY: "carry", RETURN: "return", HEAD: "head", TAIL: "tail", TAKEUP: "takeup"}
 #: Constraints an auto take-up is sized by (``takeup_governed_by``), in the order of ties.
-TAKEUP_CONSTRAINTS = ("slip_start", "slip_running", "sag_running", "sag_at_rest", "positive")
+TAKEUP_CONSTRAINTS = ("slip_start", "slip_breakaway", "slip_running", "sag_running",
+                      "sag_at_rest", "positive")
 
 
 @dataclass
@@ -182,6 +195,27 @@ def _startup_walk(conv: Conveyor, loop: Loop, dF: np.ndarray, te: float) -> np.n
     return np.cumsum(dF + inertia * a - d_start)
 
 
+def _breakaway_walk(conv: Conveyor, loop: Loop) -> np.ndarray | None:
+    """Tension increments at breakaway, walked like the running ones [N] (None for a fixed
+    take-up, whose level at rest this walk cannot give).
+
+    At standstill no running resistance acts (idler rolling and indentation resistances are
+    motion resistances): the drives, taking the belt from the brake at the start, hold the
+    net gravity pull ``sum G`` (the loaded lift; the belt's own weight cancels round the
+    loop), each its share, as in the at-rest walk (:func:`rest_walk`) with the drives
+    holding. On a regenerating belt ``|sum G| = |Te| + sum R`` exceeds the running force.
+    The gravity take-up holds the same mean tension as running.
+    """
+    if conv.takeup.type != "gravity":
+        return None
+    grav = loop.gravity_n
+    pull = float(grav.sum())
+    hold = np.zeros(loop.n)
+    for i, d in enumerate(conv.drives):
+        hold[loop.drive_elements[i]] += d.share * pull
+    return np.cumsum(grav - hold)
+
+
 def _slip_need(w_in: float, w_out: float, e: float) -> float:
     """Smallest constant c with max(T_in, T_out) <= e min(T_in, T_out), T = c + w [N]."""
     return (max(w_in, w_out) - e * min(w_in, w_out)) / (e - 1.0)
@@ -231,10 +265,12 @@ def _sag_need(loop: Loop, W: np.ndarray, hs_adm: np.ndarray) -> float:
 
 
 def _required_offset(loop: Loop, W: np.ndarray, W_start: np.ndarray, drives,
-                     hs_adm: np.ndarray, rest_need: float | None) -> tuple[float, dict]:
-    """Smallest constant c (T = c + W) meeting slip at every drive pulley running and at
-    start-up (``W_start`` from :func:`_startup_walk`), and sag (running and, with
-    ``rest_need`` from :func:`_rest_need`, held at rest)."""
+                     hs_adm: np.ndarray, rest_need: float | None,
+                     W_hold: np.ndarray | None = None) -> tuple[float, dict]:
+    """Smallest constant c (T = c + W) meeting slip at every drive pulley running, at
+    start-up (``W_start`` from :func:`_startup_walk`) and at breakaway (``W_hold`` from
+    :func:`_breakaway_walk`, gravity take-ups), and sag (running and, with ``rest_need``
+    from :func:`_rest_need`, held at rest)."""
     bounds = {}
     Wprev = np.roll(W, 1)
     Sprev = np.roll(W_start, 1)
@@ -245,6 +281,11 @@ def _required_offset(loop: Loop, W: np.ndarray, W_start: np.ndarray, drives,
     shift = 0.5 * (W[k - 1] + W[k]) - 0.5 * (W_start[k - 1] + W_start[k])
     bounds["slip_start"] = float(max(_slip_need(Sprev[idx], W_start[idx], e)
                                      for idx, _s, e in drives) - shift)
+    if W_hold is not None:  # the same mean tension at the take-up as running
+        hprev = np.roll(W_hold, 1)
+        shift_h = 0.5 * (W[k - 1] + W[k]) - 0.5 * (W_hold[k - 1] + W_hold[k])
+        bounds["slip_breakaway"] = float(max(_slip_need(hprev[idx], W_hold[idx], e)
+                                             for idx, _s, e in drives) - shift_h)
     bounds["sag_running"] = _sag_need(loop, W, hs_adm)
     if rest_need is not None:
         bounds["sag_at_rest"] = rest_need - 0.5 * (W[k - 1] + W[k])
@@ -304,6 +345,7 @@ def solve_steady(
     k = loop.i_takeup
 
     rest_need = _rest_need(conv, loop, hs_adm)
+    W_hold = _breakaway_walk(conv, loop)
     # the installed take-up: at least what the full design load needs
     tu_floor_n = -np.inf
     design = None
@@ -340,7 +382,7 @@ def solve_steady(
         elif tu.type == "fixed" and tu.pretension_kn != "auto":
             c = float(tu.pretension_kn) * 1e3 - w_tu
         else:
-            c, _ = _required_offset(loop, W, W_start, drives, hs_adm, rest_need)
+            c, _ = _required_offset(loop, W, W_start, drives, hs_adm, rest_need, W_hold)
             c = max(c, tu_floor_n - w_tu)
         T_new = c + W
         if not law.tension_dependent:
@@ -367,7 +409,7 @@ def solve_steady(
             T = T_new
 
     assert T is not None and R is not None
-    c_need, bounds = _required_offset(loop, W, W_start, drives, hs_adm, rest_need)
+    c_need, bounds = _required_offset(loop, W, W_start, drives, hs_adm, rest_need, W_hold)
     takeup_tension = 0.5 * (T[k - 1] + T[k])
     takeup_mass = float(2.0 * takeup_tension / G) if tu.type == "gravity" else None
     if not auto:  # a given take-up is reported as given (not as its round trip through T)
@@ -387,7 +429,8 @@ def solve_steady(
         floor_governs = design is not None and tu_floor_n - w_tu > c_need
         result.takeup_governed_by = (design.takeup_governed_by if floor_governs
                                      else _governing(bounds))
-    _summarise(result, drives, hs_adm, bounds, c_need - (T[0] - W[0]), W_start - W)
+    _summarise(result, drives, hs_adm, bounds, c_need - (T[0] - W[0]), W_start - W,
+               None if W_hold is None else W_hold - W)
     if not converged:
         result.status = "failed"
         result.message = (
@@ -413,11 +456,13 @@ def solve_steady(
 
 
 def _summarise(res: SteadyResult, drives, hs_adm, bounds, shortfall_n: float,
-               start_delta: np.ndarray) -> None:
+               start_delta: np.ndarray, hold_delta: np.ndarray | None = None) -> None:
     """Fill ``res.summary`` with the SPEC section 4 and 6.4 steady fields and the warnings.
 
-    ``start_delta`` is the start-up walk less the running one (:func:`_startup_walk`); the
-    take-up holds the same mean tension at start-up as running.
+    ``start_delta`` is the start-up walk less the running one (:func:`_startup_walk`),
+    ``hold_delta`` the breakaway walk less the running one (:func:`_breakaway_walk`, None
+    for a fixed take-up); the take-up holds the same mean tension at both as running.
+    ``slip_margin_start`` is the lower of the two.
     """
     conv, loop, T = res.conveyor, res.loop, res.tension_n
     belt = loop.belt
@@ -430,14 +475,25 @@ def _summarise(res: SteadyResult, drives, hs_adm, bounds, shortfall_n: float,
     t1, t2 = Tprev[main_idx], T[main_idx]
     if res.drive_force_n[main_idx] < 0:  # regenerating: tight side outgoing
         t1, t2 = t2, t1
-    slip_margins, start_margins, per_drive = [], [], {}
+    T_hold = (None if hold_delta is None
+              else T + hold_delta - 0.5 * (hold_delta[k - 1] + hold_delta[k]))
+    slip_margins, start_margins, per_drive, breakaway = [], [], {}, []
     for i, (idx, _s, e) in enumerate(drives, start=1):
         tin, tout = Tprev[idx], T[idx]
         tight, slack = max(tin, tout), min(tin, tout)
         margin = e / (tight / slack) if slack > 0 else 0.0
         slip_margins.append(margin)
         s_tight, s_slack = max(Sprev[idx], T_start[idx]), min(Sprev[idx], T_start[idx])
-        start_margins.append(e / (s_tight / s_slack) if s_slack > 0 else 0.0)
+        start = e / (s_tight / s_slack) if s_slack > 0 else 0.0
+        if T_hold is not None:  # breakaway: the drives hold the net pull at standstill
+            h_in, h_out = T_hold[idx - 1], T_hold[idx]
+            h_slack = min(h_in, h_out)
+            hold = e / (max(h_in, h_out) / h_slack) if h_slack > 0 else 0.0
+            breakaway.append(hold < start)
+            start = min(start, hold)
+        else:
+            breakaway.append(False)
+        start_margins.append(start)
         per_drive[f"drive{i}_t_tight_kn"] = float(tight) / 1e3
         per_drive[f"drive{i}_t_slack_kn"] = float(slack) / 1e3
         per_drive[f"drive{i}_slip_margin"] = float(margin)
@@ -484,6 +540,7 @@ def _summarise(res: SteadyResult, drives, hs_adm, bounds, shortfall_n: float,
         "belt_modulus_kn": eb / 1e3,
         "belt_modulus_dyn_kn": eb_dyn / 1e3,
         "belt_rating_kn": rating / 1e3,
+        "belt_type_used": belt.id,
         "wave_speed_carry_m_s": math.sqrt(eb_dyn / (m_carry + mR_c)),
         "wave_speed_return_m_s": math.sqrt(eb_dyn / (belt.mass_kg_m + mR_r)),
         **per_drive,
@@ -505,11 +562,15 @@ def _summarise(res: SteadyResult, drives, hs_adm, bounds, shortfall_n: float,
             f"at {v:g} m/s ({cap.capacity_m3_h:.0f} m3/h, ISO 5048); widen or trough the belt "
             "deeper, or run faster")
     tu = conv.takeup
-    for i, ((_idx, _s, e), m_run, m_start) in enumerate(
-            zip(drives, slip_margins, start_margins, strict=True), start=1):
+    pull_kn = float(loop.gravity_n.sum()) / 1e3
+    for i, ((_idx, _s, e), m_run, m_start, at_hold) in enumerate(
+            zip(drives, slip_margins, start_margins, breakaway, strict=True), start=1):
         where = f"drive {i} ({conv.drives[i - 1].position})"
         if m_run < 1.0 - 1e-6 or m_start < 1.0 - 1e-6:
-            which = "running" if m_run < 1.0 else f"start-up (force x {STARTUP_FACTOR})"
+            which = "running" if m_run < 1.0 else (
+                f"breakaway (the drives hold the net gravity pull {abs(pull_kn):.4g} kN at "
+                "standstill, no running resistance yet)" if at_hold
+                else f"start-up (force x {STARTUP_FACTOR})")
             fix = ""
             if shortfall_n > 0 and tu.type == "gravity":
                 need = (res.takeup_tension_n + shortfall_n) * 2 / G
@@ -522,6 +583,14 @@ def _summarise(res: SteadyResult, drives, hs_adm, bounds, shortfall_n: float,
                 f"slip at {where} at {which}: slip margin "
                 f"{min(m_run, m_start):.2f} < 1 (e^(mu theta) = {e:.2f}){fix}"
             )
+    # ---- each drive's motor power against its rating (SPEC 7.4, beltstudy.engine.drives)
+    from beltstudy.engine.design import rated_power_kw  # design imports this module
+
+    rated_kw, _ = rated_power_kw(conv, res.te_n, float(np.sum(res.resistance_n)))
+    fields, short = steady_checks(conv, [share * res.te_n for _i, share, _e in drives], v,
+                                  res.te_n, rated_kw)
+    res.summary.update(fields)
+    warnings += short
     for strand, name in ((CARRY, "carry"), (RETURN, "return")):
         mask = loop.strand == strand
         if mask.any():
@@ -547,3 +616,25 @@ def _summarise(res: SteadyResult, drives, hs_adm, bounds, shortfall_n: float,
     res.summary["status"] = res.status
     res.summary["message"] = res.message
 
+
+
+# ------------------------------------------------------------ start-up tensions (issue 27)
+__all__ += ["startup_tensions"]
+
+
+def startup_tensions(res: SteadyResult) -> np.ndarray:
+    """Tensions at start-up with DIN 22101's start-up peripheral force [N].
+
+    The steady solution's own start-up walk (:func:`_startup_walk`: the drives give
+    ``STARTUP_FACTOR`` x Te, the excess accelerating every moving mass), levelled so the
+    take-up holds the same mean tension as running: the tensions the take-up's
+    ``slip_start`` sizing and ``slip_margin_start`` use, at the boundaries of the elements.
+    The largest is the start-up peak of a rigid-body start (no wave fronts, no overshoot of
+    the torque limit), an estimate the transient run's ``t_max_start_kn`` replaces.
+    """
+    conv, loop = res.conveyor, res.loop
+    dF = res.resistance_n + loop.gravity_n
+    W = np.cumsum(dF - res.drive_force_n)
+    delta = _startup_walk(conv, loop, dF, res.te_n) - W
+    k = loop.i_takeup
+    return res.tension_n + delta - 0.5 * (delta[k - 1] + delta[k])

@@ -103,10 +103,19 @@ def test_static_simulate_and_sweep_share_the_scenario_bounds(tmp_path, capsys):
         assert "-60" in capsys.readouterr().err
 
 
-def test_static_prints_what_set_each_size_and_the_rest_sag_switch(capsys):
+def test_static_prints_what_set_each_size_and_the_rest_sag_switch(capsys, tmp_path):
+    """downhill-regen with a 0.2 % carry sag limit: held at rest by its head brake the carry
+    arriving at the head needs g (m'_G + m'_L) S / (8 x 0.002), about 157 kN, more than the
+    121.5 kN its drive needs to take the loaded belt from the brake (``slip_breakaway``, which
+    sets the take-up of the file as it is), so the rest-sag switch decides the take-up."""
     from beltstudy.service.cli import main
 
-    conveyor = str(CONVEYORS / "downhill-regen.yaml")
+    text = (CONVEYORS / "downhill-regen.yaml").read_text()
+    limit = "sag_limit_pct: {carry: 1.5, return: 3.0}"
+    assert limit in text
+    conveyor = tmp_path / "downhill-regen-sag.yaml"
+    conveyor.write_text(text.replace(limit, "sag_limit_pct: {carry: 0.2, return: 3.0}"))
+    conveyor = str(conveyor)
     assert main(["static", conveyor, "--json"]) == 0
     on = json.loads(capsys.readouterr().out)
     assert main(["static", conveyor, "--json", "--no-sag-at-rest"]) == 0

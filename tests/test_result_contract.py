@@ -100,7 +100,7 @@ def test_static_json_holds_the_steady_fields(capsys):
     s = _json(capsys, "static", str(CONVEYOR), "--json")
     results = set(s) - CLI_INPUTS - {R.TE_COMPONENTS_KEY}
     steady = (R.STEADY, R.STEADY_DRIVE, R.DESIGN, R.DESIGN_DRIVE, R.DESIGN_BASIS,
-              R.BOOKKEEPING)
+              R.BOOKKEEPING, R.DRIVE_POWER)
     assert results == {c for g in steady for f in g for c in f.columns(drives=3)}
 
 

@@ -371,8 +371,9 @@ def _diverged(model, rs):
 @njit(inline="always", **OPTS)
 def _drive_results(model, st, out, rs):
     """Per drive after the start command: largest force and power, the slip margin with the
-    tensions on both sides of its pulley, time and belt length slipped; per shaft the same
-    slip."""
+    tensions on both sides of its pulley, time and belt length slipped, time above the rated
+    force and at the torque limit, the force squared integrated until the belt is at rest; per
+    shaft the same slip."""
     shafts = model.shafts
     drives = model.drives
     dt = model.cycle.dt
@@ -392,6 +393,16 @@ def _drive_results(model, st, out, rs):
         pw = abs(drives.force[dk] * shafts.vs[s])
         if pw > d.pmax:
             d.pmax = pw
+        # the motor's load: time above the rated force, time at the torque limit, the force
+        # squared integrated until the belt is at rest after the stop (the RMS force)
+        fa = abs(drives.force[dk])
+        if fa > drives.rated[dk]:
+            d.over_s += dt
+        if drives.sat[dk] == 1:
+            d.lim_s += dt
+        if not rs.stopped:
+            d.f2_int += fa * fa * dt
+            d.rms_s += dt
         hi_ = max(tt[j], tt[jm])
         lo_ = max(min(tt[j], tt[jm]), 1.0)
         mg = (shafts.cs[s] + 1.0) * lo_ / hi_ if hi_ > 0.0 else 1e300

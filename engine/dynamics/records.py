@@ -385,11 +385,16 @@ RUN = np.dtype([
 
 #: Per drive: largest |force| at the rim [N] and |power| [W] after the start command, smallest
 #: slip margin and when, time slipping [s], belt length slipped [m], first and last time
-#: slipping (-1 never).
+#: slipping (-1 never); after the start command: time with |force| at the rim above the rated
+#: force [s], time at the speed loop's torque limit [s], the force squared integrated [N^2 s]
+#: and the time it was integrated over [s] (until the belt is at rest after the stop: the RMS
+#: force, :mod:`beltstudy.engine.drives`).
 DRIVE_RESULT = np.dtype([
     ("fmax", np.float64), ("pmax", np.float64), ("slip_min", np.float64),
     ("slip_min_t", np.float64), ("slip_s", np.float64), ("slip_m", np.float64),
-    ("slip_first", np.float64), ("slip_last", np.float64)], align=True)
+    ("slip_first", np.float64), ("slip_last", np.float64),
+    ("over_s", np.float64), ("lim_s", np.float64), ("f2_int", np.float64),
+    ("rms_s", np.float64)], align=True)
 
 #: Per shaft: time slipping [s], belt length slipped [m], first and last time (-1 never).
 SHAFT_SLIP = np.dtype([

@@ -80,7 +80,10 @@ class ReferenceResult(dict):
     ``verr_max`` [m/s] and ``verr_t`` [s] (the master's largest tracking error after the first
     wave loop time of the start, and when), ``vmean_hi`` [m/s] and ``vmean_hi_t`` [s] (the
     highest mean belt speed before the stop command), ``takeup_travel_start`` and
-    ``takeup_travel_stop`` [m] (the carriage's range in each phase), ``f_brake`` and ``f_hb``
+    ``takeup_travel_stop`` [m] (the carriage's range in each phase), ``over_s`` and ``lim_s``
+    [s] per drive (time with |force| above the rated force, time at the torque limit),
+    ``f2_int`` [N^2 s] and ``rms_s`` [s] per drive (the force squared integrated from the start
+    command until the belt is at rest after the stop, and that time), ``f_brake`` and ``f_hb``
     [N] (the last step's brake and holdback forces), ``fbr_max`` and ``fhb_max`` [N] (their
     largest over the run).
     """
@@ -989,9 +992,17 @@ def _diverged(model: Model, st, sh, dr, rs) -> bool:
     return False
 
 
-def _drive_results(model: Model, st, sh, out):
-    """Per drive and per shaft after the start command: time and belt length slipped."""
+def _drive_results(model: Model, st, sh, dr, rs, out):
+    """Per drive and per shaft after the start command: time and belt length slipped; per
+    drive the time above its rated force and at its torque limit, and the force squared
+    integrated until the belt is at rest after the stop (the RMS force)."""
     dt, shafts = model.cycle.dt, model.shafts
+    fa = np.abs(dr.force)
+    out.over_s += np.where(fa > model.drives.rated, dt, 0.0)
+    out.lim_s += np.where(np.array(dr.sat, dtype=bool), dt, 0.0)
+    if not rs.stopped:
+        out.f2_int += fa * fa * dt
+        out.rms_s += dt
     slipping = sh.slip != 0.0
     out.shaft_slip_s += np.where(slipping, dt, 0.0)
     out.shaft_slip_m += np.where(slipping, np.abs(sh.vs - st.v[shafts.node]) * dt, 0.0)
@@ -1016,7 +1027,7 @@ def _observe(model: Model, st, sh, dr, rs, out) -> bool:
         rs.status = C.RUNAWAY  # the belt could not be held: a physical result
         return False
     if rs.started:
-        _drive_results(model, st, sh, out)
+        _drive_results(model, st, sh, dr, rs, out)
         if rs.start_ach < 0.0 and rs.v_mean >= 0.99 * v_d:
             rs.start_ach = rs.t - model.cycle.t_pre
         if not rs.stopping and rs.v_mean > rs.vmean_hi:
@@ -1089,7 +1100,8 @@ def _start(sys: System, t_end_s: float | None):
         x_range={"start": (math.inf, -math.inf), "stop": (math.inf, -math.inf)})
     out = SimpleNamespace(t_max=st.tt.copy(), t_min=st.tt.copy(), slip_s=np.zeros(nd),
                           slip_m=np.zeros(nd), shaft_slip_s=np.zeros(ns),
-                          shaft_slip_m=np.zeros(ns))
+                          shaft_slip_m=np.zeros(ns), over_s=np.zeros(nd), lim_s=np.zeros(nd),
+                          f2_int=np.zeros(nd), rms_s=np.zeros(nd))
     return ref, st, sh, dr, brk, rs, out
 
 
@@ -1107,6 +1119,7 @@ def _finish(ref, st, sh, dr, rs, out) -> ReferenceResult:
         verr_max=rs.verr_max, verr_t=rs.verr_t, vmean_hi=rs.vmean_hi, vmean_hi_t=rs.vmean_hi_t,
         takeup_travel_start=max(rs.x_range["start"][1] - rs.x_range["start"][0], 0.0),
         takeup_travel_stop=max(rs.x_range["stop"][1] - rs.x_range["stop"][0], 0.0),
+        over_s=out.over_s, lim_s=out.lim_s, f2_int=out.f2_int, rms_s=out.rms_s,
         f_brake=rs.f_brake, f_hb=rs.f_hb, fbr_max=rs.fbr_max, fhb_max=rs.fhb_max)
 
 

@@ -19,6 +19,7 @@ import numpy as np
 import pandas as pd
 
 from beltstudy.engine.catalog import resolve_belt
+from beltstudy.engine.drives import transient_checks
 from beltstudy.engine.dynamics import codes as C
 from beltstudy.engine.dynamics import records as R
 from beltstudy.engine.dynamics.kernel import run_cycle
@@ -562,6 +563,21 @@ def _slip_warnings(sys: System, r: dict, out, conveyor=None) -> list[str]:
     return w
 
 
+def _drive_loads(sys: System, out, conveyor=None, steady_summary=None
+                 ) -> tuple[dict, list[str]]:
+    """Each drive's time above its rated force and RMS force over the cycle, and the
+    warnings of an overloaded drive (:func:`beltstudy.engine.drives.transient_checks`)."""
+    drives = sys.model.drives
+    nd = out.drv.shape[0]
+    names = ([f"drive {i + 1} ({d.position})" for i, d in enumerate(conveyor.drives)]
+             if conveyor is not None else [f"drive {i + 1}" for i in range(nd)])
+    te = steady_summary.get("te_kn") if steady_summary else None
+    running = drives.share * float(te) * 1e3 if te is not None else None
+    return transient_checks(names, out.drv, drives.rated, drives.lim0,
+                            drives.control == C.VFD, sys.v_design, sys.model.cycle.t_start,
+                            running)
+
+
 def span_sag_pct(sys: System, env_min_n: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     """Sag at each span's low end [%] (0 off the idlers, at most 100) from a minimum tension
     envelope [N], and that low-end tension [N] (the lower of the span's two springs)."""
@@ -661,10 +677,13 @@ def transient_summary(sys: System, r: dict, out, segs, *, steady_summary=None, c
         summary[f"drive{i + 1}_speed_error_max_pct"] = (
             100.0 * float(r["verr_max"]) / sys.v_design
             if i == sys.model.control.master and sys.model.control.vfd else None)
+    loads, overloads = _drive_loads(sys, out, conveyor, steady_summary)
+    summary.update(loads)
     w: list[str] = list(sys.warnings)
     if int(r["status"]) == C.DIVERGED:
         return summary, w
     w += _slip_warnings(sys, r, out, conveyor)
+    w += overloads
     w += running_warnings(sys, r, out)
     if r["slack_max"] > 0.0 or r["slack_first"] >= 0.0:
         j = int(r["slack_at"]) if r["slack_at"] >= 0 else jmin

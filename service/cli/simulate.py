@@ -30,7 +30,8 @@ from beltstudy.service.cli.common import (
 STEADY_TABLE = ("te_kn", "power_kw", "t1_kn", "t2_kn", "t_max_kn", "t_min_kn")
 STEADY_LABELS = {"t_max_kn": "maximum tension (steady)", "t_min_kn": "minimum tension (steady)"}
 #: per drive i: the steady then the transient per-drive fields
-DRIVE_FIELDS = R.STEADY_DRIVE.fields + R.TRANSIENT_DRIVE.fields
+DRIVE_FIELDS = (R.STEADY_DRIVE.fields + R.TRANSIENT_DRIVE.fields + R.DRIVE_POWER.fields
+                + R.DRIVE_LOAD.fields)
 
 
 def _rows(fields) -> list[tuple[str, str, str]]:
@@ -185,7 +186,8 @@ def _fmt(val) -> str:
 
 def _table(s: dict) -> str:
     lines = [f"{s['conveyor']}  model={s['friction_model']}  temperature={s['temperature_c']:g} C"
-             f"  load={s['load']}  stop={s['stop_mode']}  formulation={s['formulation']}", ""]
+             f"  load={s['load']}  stop={s['stop_mode']}  formulation={s['formulation']}",
+             f"belt {s.get('belt_type_used')}", ""]
 
     for title, fields in (("steady", STEADY_FIELDS), ("transient", TRANSIENT_FIELDS)):
         lines.append(f"  {title}")

@@ -6,14 +6,21 @@ import argparse
 import time
 
 from beltstudy.engine import (
+    BELT_AUTO,
+    STARTUP_FACTOR,
     InputError,
     auto_sizes,
     check_summary,
     get_model,
     load_conveyor,
+    resolve_auto_belt,
     results,
+    run_cases,
+    run_message,
+    select_belt,
     solve_steady,
     summary_fields,
+    with_belt,
 )
 from beltstudy.service.charts import steady_profile_figure
 from beltstudy.service.cli.common import (
@@ -51,6 +58,11 @@ def register(sub) -> None:
                    help="size an auto take-up for the sag limits running only (default: also "
                    "held at rest, a conservative reading beyond DIN 22101's running checks; "
                    "the file's takeup.sag_at_rest)")
+    p.add_argument("--suggest-belt", action="store_true",
+                   help="try every catalogue belt of the belt's kind (lightest first) and "
+                   "print the lightest that passes the running and start-up safety factors, "
+                   "with the table of candidates (docs/belts.md); the results are of the "
+                   "file's belt, or of the choice with belt.type: auto")
     p.add_argument("--json", action="store_true", help="print one JSON object")
     p.add_argument("--profile", metavar="FILE", help="write the tension along the loop "
                    "(.csv or .parquet)")
@@ -60,6 +72,7 @@ def register(sub) -> None:
 
 def run(args: argparse.Namespace) -> int:
     conv = with_sag_at_rest(load_conveyor(args.conveyor), args.sag_at_rest)
+    auto = conv.belt.type == BELT_AUTO
     fm = get_model(args.model)
     params = fm.params(parse_params(args.param, fm.name))
     load = parse_load(args.load)
@@ -69,14 +82,19 @@ def run(args: argparse.Namespace) -> int:
         if path and not path.endswith(exts):
             raise InputError(f"{path}: give a file ending in {' or '.join(exts)}")
     t0 = time.perf_counter()
+    conv, choice = _belt(conv, fm.name, params, args, load)
     res = solve_steady(conv, model=fm.name, params=params, temperature_c=args.temperature_c,
                        load=load, n_elements=args.elements)
     s = dict(res.summary)
     s.update(summary_fields(auto_sizes(conv, scn, model=fm.name, params=params, steady=res)))
+    if choice is not None and auto:
+        run_message(s, choice)
     s["elapsed_s"] = time.perf_counter() - t0
     check_summary(s)
     s = {"conveyor": conv.name, "friction_model": fm.name,
          "temperature_c": args.temperature_c, "load": load, **s}
+    if args.suggest_belt:
+        s["belt_selection"] = _selection(choice)
     if args.profile:
         write_table(res.profile(), args.profile)
     if args.plot:
@@ -86,8 +104,53 @@ def run(args: argparse.Namespace) -> int:
     if args.json:
         print(dumps(s))
     else:
+        if args.suggest_belt:
+            print(_selection_table(choice))
         print(_table(s))
     return 0 if res.status != "failed" else 1
+
+
+def _belt(conv, model: str, params, args, load):
+    """The conveyor on the belt the run uses and the selection (None when there was none):
+    ``belt.type: auto`` picks at the run's case (and full load,
+    :func:`beltstudy.engine.beltselect.run_cases`); ``--suggest-belt`` tries every candidate."""
+    cases = run_cases(conv, model, params, args.temperature_c, load, args.elements)
+    if args.suggest_belt:
+        choice = select_belt(conv, cases, every=True)
+        return (with_belt(conv, choice.belt_id) if conv.belt.type == BELT_AUTO else conv), choice
+    return resolve_auto_belt(conv, cases)
+
+
+def _selection(choice) -> dict:
+    """The selection as JSON: minima, choice, next lighter and every candidate."""
+    return {"kind": choice.kind, "safety_factor_min": choice.safety_factor_min,
+            "safety_factor_start_min": choice.safety_factor_start_min,
+            "chosen": choice.belt_id, "passed": choice.passed,
+            "next_lighter": choice.lighter.id if choice.lighter else None,
+            "note": choice.note() or choice.warning(), "candidates": choice.table()}
+
+
+def _selection_table(choice) -> str:
+    lines = [f"belt selection: {choice.kind} belts of the catalogue, lightest first; minimum "
+             f"safety factor {choice.safety_factor_min:.2f} running, "
+             f"{choice.safety_factor_start_min:.2f} at start-up (start-up force "
+             f"{STARTUP_FACTOR:g} x Te)", "",
+             "  belt        mass [kg/m]  rating [kN]  T_max [kN]  T_max start [kN]  "
+             "SF running  SF start-up",
+             ]
+    for r in choice.table():
+        mark = "pass" if r["passes"] else "fail"
+        if r["belt"] == choice.belt_id:
+            mark += "  <- " + ("choice" if choice.passed else "heaviest (none passes)")
+        if r["failed"]:
+            lines.append(f"  {r['belt']:<10} {r['mass_kg_m']:>12.2f} {r['rating_kn']:>12.0f}  "
+                         f"steady solve failed: {r['failed']}")
+            continue
+        lines.append(f"  {r['belt']:<10} {r['mass_kg_m']:>12.2f} {r['rating_kn']:>12.0f} "
+                     f"{r['t_max_kn']:>11.1f} {r['t_max_start_kn']:>17.1f} "
+                     f"{r['safety_factor']:>11.2f} {r['safety_factor_start']:>12.2f}  {mark}")
+    lines += ["", "  " + (choice.note() or choice.warning()), ""]
+    return "\n".join(lines)
 
 
 def _unit(f) -> str:
@@ -96,7 +159,7 @@ def _unit(f) -> str:
 
 def _table(s: dict) -> str:
     lines = [f"{s['conveyor']}  model={s['friction_model']}  temperature={s['temperature_c']:g} C"
-             f"  load={s['load']}", ""]
+             f"  load={s['load']}", f"belt {s.get('belt_type_used')}", ""]
     for key in TABLE:
         val = s.get(key)
         if val is None:
@@ -114,10 +177,14 @@ def _table(s: dict) -> str:
     while f"drive{len(drives) + 1}_t_tight_kn" in s:
         drives.append(len(drives) + 1)
     if drives:
-        lines.append("  per drive pulley          tight [kN]   slack [kN]   slip margin [-]")
+        lines.append("  per drive pulley          tight [kN]   slack [kN]   slip margin [-]"
+                     "   power needed [kW]   utilisation [-]")
         for i in drives:
+            need, util = s.get(f"drive{i}_power_required_kw"), s.get(f"drive{i}_utilisation")
             lines.append(f"    drive {i:<16} {s[f'drive{i}_t_tight_kn']:>12.3f} "
-                         f"{s[f'drive{i}_t_slack_kn']:>12.3f} {s[f'drive{i}_slip_margin']:>14.3f}")
+                         f"{s[f'drive{i}_t_slack_kn']:>12.3f} {s[f'drive{i}_slip_margin']:>14.3f}"
+                         f" {'-' if need is None else format(need, '.1f'):>19}"
+                         f" {'-' if util is None else format(util, '.3f'):>17}")
         lines.append("")
     lines.append(f"  status: {s['status']}" + (f"  ({s['message']})" if s["message"] else ""))
     return "\n".join(lines)

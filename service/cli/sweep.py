@@ -25,6 +25,8 @@ from beltstudy.engine import (
     InputError,
     get_model,
     load_conveyor,
+    resolve_auto_belt,
+    run_cases,
 )
 from beltstudy.service.cli.common import check_scenario_fields, parse_load, parse_model_params
 from beltstudy.service.settings import Settings
@@ -216,6 +218,12 @@ def run(args: argparse.Namespace) -> int:
         raise InputError(f"--out {out}: exists and is not a directory")
     out.mkdir(parents=True, exist_ok=True)
 
+    # belt.type: auto: one belt for the whole sweep, the lightest passing at every case
+    conv, choice = resolve_auto_belt(conv, [
+        c for fm in models for t in temps
+        for c in run_cases(conv, fm.name, params.get(fm.name), t, load, args.elements)])
+    if choice is not None:
+        print(choice.note() or "warning: " + choice.warning())
     df = sweep(conv, models, temps, params, load, args.elements)
     load_tag = (load if isinstance(load, str) else
                 "load" + "-".join(f"{x:g}" for x in (load if isinstance(load, list) else [load])))

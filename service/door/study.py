@@ -605,8 +605,10 @@ class StudyIn(BaseModel):
     )
     design: DesignIn | None = Field(
         None,
-        description="design case of every auto size, {friction_model, temperature_c, load}; "
-        "default: the largest requirement over the study's models and temperatures at full load",
+        description="design cases of every auto size, {friction_model, temperature_c, load}, "
+        "each one value or a list (every combination is a case, each size the largest over "
+        "them); default: the largest requirement over the study's models and temperatures at "
+        "full load",
     )
     models: FrictionModels = Field(  # type: ignore[valid-type]
         default_factory=FrictionModels,

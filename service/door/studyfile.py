@@ -21,7 +21,7 @@ from typing import Any
 from pydantic import ValidationError
 
 from beltstudy import engine
-from beltstudy.engine import InputError, catalog, get_model, parse_conveyor, parse_scenario
+from beltstudy.engine import InputError, catalog, get_model, parse_conveyor
 from beltstudy.service.door.messages import describe
 from beltstudy.service.door.parse import check_tree, load_mapping
 from beltstudy.service.door.study import (
@@ -33,7 +33,7 @@ from beltstudy.service.door.study import (
 )
 from beltstudy.service.errors import Invalid, TooLarge
 from beltstudy.service.grid.axes import axis_column, resolve_axis
-from beltstudy.service.grid.basis import design_scenario
+from beltstudy.service.grid.basis import design_loads, design_models, design_temperatures
 from beltstudy.service.grid.expand import (
     DEFAULT_MODEL,
     Axis,
@@ -277,29 +277,24 @@ def _run_models(study: StudyIn, axes: list[Axis], models: dict) -> tuple[str, se
 
 
 def _design(study: StudyIn) -> dict | None:
-    """The design case as given, its model canonical; its temperature and load checked."""
+    """The design cases as given, their models canonical; every temperature and load checked
+    (a list names its bad entry: ``design.load[1]``)."""
     if study.design is None:
         return None
     design = study.design.model_dump(exclude_none=True)
-    if "friction_model" in design:
-        try:
-            design["friction_model"] = get_model(design["friction_model"]).name
-        except InputError as exc:
-            raise Invalid(f"design.friction_model: {exc.reason}") from None
-    if "temperature_c" in design:
-        try:
-            parse_scenario({"temperature_c": design["temperature_c"]}, prefix="design.")
-        except InputError as exc:
-            raise Invalid(_err(exc)) from None
-    design_scenario(study.design, {})  # the load is a load case
+    models = design_models(study.design)
+    if models is not None:
+        design["friction_model"] = (models if isinstance(design["friction_model"], list)
+                                    else models[0])
+    design_temperatures(study.design)
+    design_loads(study.design)  # each load is a load case
     return design
 
 
 def _check_models_used(given: dict[str, str], run_models: set[str], design: dict | None
                        ) -> None:
     """Parameters of a model the study neither runs nor designs with would be ignored."""
-    used = run_models | ({design["friction_model"]} if design and "friction_model" in design
-                         else set())
+    used = run_models | set(design_models(design) or [])
     for name, as_given in given.items():
         if name not in used:
             raise Invalid(

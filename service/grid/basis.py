@@ -11,12 +11,23 @@ conveyor):
 * default: every friction model (with its parameters) and temperature the study runs on that
   design, at full load;
 * ``design: {friction_model, temperature_c, load}`` pins what it names (the rest is still the
-  largest over the study's values).
+  largest over the study's values). Each may be a list (SPEC 7.2): the design cases are then
+  every combination of the listed loads, models and temperatures (the design envelope), and
+  each size is the largest over them. A run's ``*_governed_by`` names the constraint and the
+  case that set its size, by what varies among the design's cases
+  (``brake: stop_time @ declines``: :func:`beltstudy.engine.governed_at`).
+
+A list of loads is told from one load per profile section (also a list, SPEC 6.2) by its
+entries: a list holding a named load case (``full``, ``empty``, ``inclines``, ``declines``) or
+a per-section list is a list of load cases; a list of numbers only is one load per section.
 
 A brake's sizing input is its stop time: for each stop time of the design's brake-stop runs
 the brake force is the largest over the same cases (models, temperatures) and held over them
 and over the load cases; a run that does not stop on its brakes (coast, controlled, or steady
 only) installs the holding size, the part of the sizing that needs no stop time.
+
+``belt.type: auto`` is a design value too: the lightest catalogue belt that passes at every
+design case, chosen first (:func:`design_belt`), the other sizes then sized on it.
 
 The numbers are written into each run's conveyor (rounded up to six significant digits, so a
 size never falls short by rounding), so a run id reflects the design it ran.
@@ -31,19 +42,27 @@ from typing import Any
 from pydantic import BaseModel, ConfigDict, Field
 
 from beltstudy.engine import (
+    BELT_AUTO,
     BrakeSizes,
     Conveyor,
     DesignCase,
     InputError,
-    Scenario,
     SizingError,
     brake_sizing_stop_time,
+    design_cases,
+    get_model,
+    governed_at,
     parse_scenario,
+    section_loads,
+    select_belt,
     size_over_cases,
+    with_belt,
 )
+from beltstudy.engine.design import GIVEN
 from beltstudy.service.errors import Invalid
 
-__all__ = ["DesignIn", "has_auto", "size_design", "apply_sizes", "round_up", "SIG_DIGITS"]
+__all__ = ["DesignIn", "has_auto", "size_design", "apply_sizes", "round_up", "SIG_DIGITS",
+           "design_loads", "design_models", "design_temperatures", "check_design_loads"]
 
 #: Significant digits of a size written into a run's conveyor (rounded up).
 SIG_DIGITS = 6
@@ -54,9 +73,13 @@ class DesignIn(BaseModel):
 
     model_config = ConfigDict(extra="forbid")
 
-    friction_model: str | None = Field(None, description="friction model of the design case")
-    temperature_c: float | None = Field(None, description="temperature of the design case [C]")
-    load: Any = Field(None, description="load case of the design case (default full)")
+    friction_model: str | list[str] | None = Field(
+        None, description="friction model of the design cases, or a list of them")
+    temperature_c: float | list[float] | None = Field(
+        None, description="temperature of the design cases [C], or a list of them")
+    load: Any = Field(None, description="load case of the design cases (default full), or a "
+                      "list of load cases: full, empty, inclines, declines, a fraction, one "
+                      "fraction per profile section")
 
 
 def round_up(x: float, digits: int = SIG_DIGITS) -> float:
@@ -76,45 +99,127 @@ def has_auto(conv: dict) -> bool:
         or (tu["type"] == "fixed" and tu["pretension_kn"] == "auto")
         or any(d.get("rated_power_kw") is None for d in conv["drives"])
         or any(b.get("force_kn") == "auto" for b in conv.get("brakes") or [])
+        or conv["belt"].get("type") == BELT_AUTO
     )
 
 
-def design_scenario(design: DesignIn | None, base: dict) -> Scenario:
-    """The design load checked as a scenario field (names ``design.load``)."""
-    load = "full" if design is None or design.load is None else design.load
-    try:
-        return parse_scenario({**base, "load": load}, prefix="design.")
-    except InputError as exc:
-        raise Invalid(str(exc)) from None
+def _field(design: DesignIn | dict | None, name: str) -> Any:
+    if design is None:
+        return None
+    return design.get(name) if isinstance(design, dict) else getattr(design, name)
 
 
-def size_design(conv: Conveyor, cases: list[DesignCase], load, stop_times: list[float],
+def _entries(value: Any, name: str) -> list[tuple[str, Any]]:
+    """``(field path, value)`` of each entry of a design field that may be a list."""
+    if isinstance(value, list):
+        if not value:
+            raise Invalid(f"design.{name}: an empty list; give at least one value or leave "
+                          f"{name} out")
+        return [(f"design.{name}[{i}]", v) for i, v in enumerate(value)]
+    return [(f"design.{name}", value)]
+
+
+def _is_case_list(load: Any) -> bool:
+    """A list of load cases (it holds a named case or a per-section list), not one load per
+    profile section (numbers only)."""
+    return isinstance(load, list) and any(isinstance(x, str | list) for x in load)
+
+
+def design_loads(design: DesignIn | dict | None) -> list[tuple[str, Any]]:
+    """The design's load cases as ``(field path, load)``, each checked as a scenario load
+    (default ``[("design.load", "full")]``); a bad entry is refused naming its place
+    (``design.load[1]``)."""
+    load = _field(design, "load")
+    if load is None:
+        return [("design.load", "full")]
+    entries = _entries(load, "load") if _is_case_list(load) or load == [] else [
+        ("design.load", load)]
+    out = []
+    for where, value in entries:
+        try:
+            out.append((where, parse_scenario({"load": value}).load))
+        except InputError as exc:
+            msg = str(exc)
+            raise Invalid(where + msg[len("load"):] if msg.startswith("load") else
+                          f"{where}: {msg}") from None
+    return out
+
+
+def design_models(design: DesignIn | dict | None) -> list[str] | None:
+    """The design's friction models, canonical (None: the study's own)."""
+    value = _field(design, "friction_model")
+    if value is None:
+        return None
+    out = []
+    for where, name in _entries(value, "friction_model"):
+        try:
+            out.append(get_model(name).name)
+        except InputError as exc:
+            raise Invalid(f"{where}: {exc.reason}") from None
+    return list(dict.fromkeys(out))
+
+
+def design_temperatures(design: DesignIn | dict | None) -> list[float] | None:
+    """The design's temperatures [C], each checked as a scenario's (None: the study's own)."""
+    value = _field(design, "temperature_c")
+    if value is None:
+        return None
+    out = []
+    for where, t in _entries(value, "temperature_c"):
+        try:
+            out.append(float(parse_scenario({"temperature_c": t}).temperature_c))
+        except InputError as exc:
+            msg = str(exc)
+            raise Invalid(where + msg[len("temperature_c"):]
+                          if msg.startswith("temperature_c") else f"{where}: {msg}") from None
+    return list(dict.fromkeys(out))
+
+
+def check_design_loads(conv: Conveyor, design: DesignIn | dict | None, where: str = "") -> None:
+    """Refuse a design load that does not fit the conveyor's profile, naming its place."""
+    for path, load in design_loads(design):
+        try:
+            section_loads(load, conv)
+        except InputError as exc:
+            hint = ("; a list of numbers is one load per profile section: a list of load "
+                    "cases names at least one (full, empty, inclines, declines)"
+                    if path == "design.load" and isinstance(load, list) else "")
+            tail = f" (conveyor design {where})" if where else ""
+            raise Invalid(f"{path}: {exc.reason}{hint}{tail}") from None
+
+
+def size_design(conv: Conveyor, cases: list[DesignCase], stop_times: list[float],
                 where: str = "") -> dict:
-    """The auto sizes of one conveyor design: the largest over ``cases`` at ``load``
+    """The auto sizes of one conveyor design: the largest over ``cases``, each at its own load
     (:func:`beltstudy.engine.size_over_cases`), rounded up as a run's conveyor holds them.
 
-    Returns a JSON-able mapping: ``takeup`` (``{value, unit, field, governed_by, case}``) or
-    None, ``drives`` (one entry per drive, None where the file gives the rated power),
+    Returns a JSON-able mapping: ``takeup`` (``{value, unit, field, governed_by, case, at}``)
+    or None, ``drives`` (one entry per drive, None where the file gives the rated power),
     ``brakes`` (``{"holding": {...}, "stop_time_s": {"<t>": {...}}}`` with ``force_kn`` per
-    brake, ``governed_by`` and ``case``) or None, ``failed_cases``.
+    brake, ``governed_by``, ``case`` and ``at``) or None, ``failed_cases``. ``case`` is the
+    full case (load, model, temperature), ``at`` the case by what varies among ``cases``
+    ("" for one case).
     """
+    conv, belt = design_belt(conv, cases)
     try:
-        sized = size_over_cases(conv, cases, load=load, stop_times=stop_times, design=where)
+        sized = size_over_cases(conv, cases, stop_times=stop_times, design=where)
     except SizingError as exc:  # named as the study's design case
         raise Invalid(f"design.{exc.field}: {exc.reason}" if exc.field
                       else f"design: {exc.reason}") from None
     out: dict[str, Any] = {"takeup": None, "drives": [None] * len(sized.drives),
-                           "brakes": None, "failed_cases": list(sized.failed_cases)}
+                           "brakes": None, "failed_cases": list(sized.failed_cases),
+                           "belt": belt}
     if sized.takeup is not None:
         gravity = conv.takeup.type == "gravity"
         out["takeup"] = {"field": "mass_kg" if gravity else "pretension_kn",
                          "value": round_up(sized.takeup.value), "unit": "kg" if gravity else "kN",
                          "governed_by": sized.takeup.governed_by,
-                         "case": sized.takeup.case.label()}
+                         "case": sized.takeup.case.label(), "at": sized.takeup.at}
     for i, drive in enumerate(sized.drives):
         if drive is not None:
             out["drives"][i] = {"rated_power_kw": round_up(drive.value),
-                                "governed_by": drive.governed_by, "case": drive.case.label()}
+                                "governed_by": drive.governed_by, "case": drive.case.label(),
+                                "at": drive.at}
     if sized.brakes_holding is not None:
         out["brakes"] = {"holding": _brake_entry(sized.brakes_holding),
                          "stop_time_s": {f"{t:g}": _brake_entry(b)
@@ -122,9 +227,31 @@ def size_design(conv: Conveyor, cases: list[DesignCase], load, stop_times: list[
     return out
 
 
+def design_belt(conv: Conveyor, cases: list[DesignCase]) -> tuple[Conveyor, dict | None]:
+    """The conveyor on its design belt and the choice as JSON (None for a given belt):
+    ``belt.type: auto`` is a design value, the lightest catalogue belt that passes at every
+    design case, each at its own load (and at full load,
+    :func:`beltstudy.engine.design_cases`), chosen once here and held for all the design's
+    runs; the take-up, motors and brakes are sized on it."""
+    if conv.belt.type != BELT_AUTO:
+        return conv, None
+    choice = select_belt(conv, design_cases(conv, cases, "full"))
+    c, lighter = choice.chosen, choice.lighter
+    return with_belt(conv, choice.belt_id), {
+        "type": choice.belt_id, "kind": choice.kind, "passed": choice.passed,
+        "mass_kg_m": c.mass_kg_m, "safety_factor": c.safety_factor,
+        "safety_factor_start": c.safety_factor_start, "case": c.case,
+        "next_lighter": None if lighter is None else {
+            "type": lighter.id, "mass_kg_m": lighter.mass_kg_m,
+            "safety_factor": lighter.safety_factor,
+            "safety_factor_start": lighter.safety_factor_start},
+        "note": choice.note() or choice.warning()}
+
+
 def _brake_entry(brakes: BrakeSizes) -> dict:
     return {"force_kn": [max(round_up(f), 1e-3) for f in brakes.force_kn],
-            "governed_by": list(brakes.governed_by), "case": brakes.case.label()}
+            "governed_by": list(brakes.governed_by), "case": brakes.case.label(),
+            "at": brakes.at}
 
 
 def apply_sizes(conv: dict, sizes: dict | None, scenario: dict, dynamics: bool
@@ -139,18 +266,20 @@ def apply_sizes(conv: dict, sizes: dict | None, scenario: dict, dynamics: bool
         return conv, {}
     out = copy.deepcopy(conv)
     governed: dict[str, str] = {}
+    if sizes.get("belt") is not None and out["belt"].get("type") == BELT_AUTO:
+        out["belt"]["type"] = sizes["belt"]["type"]
     tu = sizes.get("takeup")
     if tu is not None:
         out["takeup"][tu["field"]] = tu["value"]
-        governed["takeup_governed_by"] = tu["governed_by"]
+        governed["takeup_governed_by"] = governed_at(tu["governed_by"], tu.get("at", ""))
     why = []
     for drive, size in zip(out["drives"], sizes.get("drives") or [], strict=False):
         if size is not None and drive.get("rated_power_kw") is None:
             drive["rated_power_kw"] = size["rated_power_kw"]
-            why.append(size["governed_by"])
+            why.append(governed_at(size["governed_by"], size.get("at", "")))
         else:
-            why.append("given")
-    if any(w != "given" for w in why):
+            why.append(GIVEN)
+    if any(w != GIVEN for w in why):
         governed["rated_power_governed_by"] = "+".join(dict.fromkeys(why))
     brakes = sizes.get("brakes")
     if brakes is not None:
@@ -163,8 +292,8 @@ def apply_sizes(conv: dict, sizes: dict | None, scenario: dict, dynamics: bool
                                         strict=True):
             if brake["force_kn"] == "auto":
                 brake["force_kn"] = force
-                why.append(reason)
+                why.append(governed_at(reason, entry.get("at", "")))
             else:
-                why.append("given")
+                why.append(GIVEN)
         governed["brake_governed_by"] = "+".join(dict.fromkeys(why))
     return out, governed

@@ -39,9 +39,11 @@ from beltstudy.engine import (
 from beltstudy.service.errors import Invalid
 from beltstudy.service.grid.axes import Target, get_path, resolve_axis, with_paths
 from beltstudy.service.grid.basis import (
-    DesignIn,
     apply_sizes,
-    design_scenario,
+    check_design_loads,
+    design_loads,
+    design_models,
+    design_temperatures,
     has_auto,
     size_design,
 )
@@ -457,10 +459,14 @@ def _expand(
 def _design_basis(study, points, i_conv, i_scen, conveyors, conv_models, scenarios, model_of,
                   params_of, stored) -> dict:
     """``{conveyor key: {"axes", "key", "sizes"}}`` for every conveyor design with auto
-    sizes (:mod:`beltstudy.service.grid.basis`)."""
+    sizes (:mod:`beltstudy.service.grid.basis`): its design cases are every listed load x
+    model x temperature of ``design:``, a model or temperature it does not name being the
+    study's own of each run."""
     axes = study.axes
     design = study.design or {}
-    design_load = design_scenario(DesignIn(**design) if design else None, {}).load
+    loads = [load for _where, load in design_loads(design)]
+    models = design_models(design)
+    temps = design_temperatures(design)
     known = {d["key"]: d["sizes"] for d in stored or []}
     out: dict = {}
     for ck in dict.fromkeys(tuple(p[i] for i in i_conv) for p in points):
@@ -474,22 +480,24 @@ def _design_basis(study, points, i_conv, i_scen, conveyors, conv_models, scenari
         if key in known:
             sizes = known[key]
         else:
+            check_design_loads(conv_models[ck], design, where)
             cases: dict[DesignCase, None] = {}
             stops: set[float] = set()
             for p in mine:
                 scn = scenarios[tuple(p[i] for i in i_scen)]
-                model = model_of(p)
-                overrides = params_of(p)[0]
-                if "friction_model" in design and model != design["friction_model"]:
-                    model = design["friction_model"]
-                    overrides = dict(study.models.get(model, {}))
-                temp = float(design.get("temperature_c", scn["temperature_c"]))
-                cases[DesignCase(model, tuple(sorted(overrides.items())), temp,
-                                 scn["elements"])] = None
+                run_model, run_overrides = model_of(p), params_of(p)[0]
+                pinned = [(run_model, run_overrides)] if models is None else [
+                    (m, run_overrides if m == run_model else dict(study.models.get(m, {})))
+                    for m in models]
+                for model, overrides in pinned:
+                    for temp in temps if temps is not None else [scn["temperature_c"]]:
+                        for load in loads:
+                            cases[DesignCase(model, tuple(sorted(overrides.items())),
+                                             float(temp), scn["elements"], load)] = None
                 stop_s = brake_sizing_stop_time(scn, dynamics=study.dynamics)
                 if stop_s is not None:
                     stops.add(stop_s)
-            sizes = size_design(conv_models[ck], list(cases), design_load, sorted(stops), where)
+            sizes = size_design(conv_models[ck], list(cases), sorted(stops), where)
         out[ck] = {"axes": {axes[i].name: axes[i].values[j]
                             for i, j in zip(i_conv, ck, strict=True)},
                    "key": key, "sizes": sizes}

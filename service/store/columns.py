@@ -59,7 +59,11 @@ TE_PART_COLUMNS = R.columns((R.TE_COMPONENTS,))
 DESIGN_COLUMNS = R.columns((R.DESIGN, R.DESIGN_DRIVE))
 #: What set each auto size (text).
 DESIGN_TEXT_COLUMNS = R.columns((R.DESIGN_BASIS,))
-RESULT_COLUMNS = STEADY_COLUMNS + DESIGN_COLUMNS + TE_PART_COLUMNS + TRANSIENT_COLUMNS
+#: SPEC 7.4 per drive: the motor power needed against the rating (steady), the time above
+#: the rated force and the RMS force (transient).
+DRIVE_POWER_COLUMNS = R.columns((R.DRIVE_POWER, R.DRIVE_LOAD))
+RESULT_COLUMNS = (STEADY_COLUMNS + DESIGN_COLUMNS + TE_PART_COLUMNS + TRANSIENT_COLUMNS
+                  + DRIVE_POWER_COLUMNS)
 BOOKKEEPING_COLUMNS = R.columns((R.BOOKKEEPING,))
 INPUT_COLUMNS = ("study_id", "run_id", "friction_model", "engine_version")
 
@@ -168,7 +172,8 @@ def flatten_summary(summary: dict) -> dict:
     are summed into ``te_other_kn`` so the parts still add up to ``te_kn``.
     """
     row: dict[str, Any] = {c: _number(summary.get(c))
-                           for c in STEADY_COLUMNS + DESIGN_COLUMNS + TRANSIENT_COLUMNS}
+                           for c in STEADY_COLUMNS + DESIGN_COLUMNS + TRANSIENT_COLUMNS
+                           + DRIVE_POWER_COLUMNS}
     for c in DESIGN_TEXT_COLUMNS:
         row[c] = str(summary[c]) if summary.get(c) is not None else None
     parts = summary.get("te_components_kn") or {}

@@ -27,6 +27,8 @@ from beltstudy.engine import (
     TRANSIENT_SAFETY_RATIO,
     build_loop,
     capacity,
+    catalog,
+    governed_at,
     parse_conveyor,
     resolve_belt,
 )
@@ -190,10 +192,11 @@ def _conveyor_section(conv: dict, fill: dict | None) -> str:
 def _design_section(study: dict) -> str:
     design = study.get("design")
     if design:
-        case = ", ".join(f"{k} {v}" for k, v in design.items())
-        intro = (f"Every auto size is computed at the design case <b>{_e(case)}</b> "
-                 "(what it does not name: the largest over the study's values) and held for "
-                 "every run of its conveyor design.")
+        case = "; ".join(f"{k} " + (", ".join(str(x) for x in v) if isinstance(v, list)
+                                    else str(v)) for k, v in design.items())
+        intro = (f"Every auto size is computed at the design cases <b>{_e(case)}</b> (every "
+                 "combination of what is listed; what it does not name: the study's values), "
+                 "the largest of each, and held for every run of its conveyor design.")
     else:
         intro = ("Every auto size is the largest requirement over the study's friction models "
                  "and temperatures at full load, computed once per conveyor design and held for "
@@ -213,12 +216,14 @@ def _design_section(study: dict) -> str:
         if tu:
             rows.append([_e(where), "take-up " + ("mass" if tu["unit"] == "kg" else
                                                   "pretension"),
-                         _n(tu["value"], 6) + f" {tu['unit']}", _e(tu["governed_by"]),
+                         _n(tu["value"], 6) + f" {tu['unit']}",
+                         _e(governed_at(tu["governed_by"], tu.get("at", ""))),
                          _e(tu["case"])])
         for i, dr in enumerate(sizes.get("drives") or []):
             if dr:
                 rows.append([_e(where), f"rated power, drive {i + 1}",
-                             _n(dr["rated_power_kw"], 6) + " kW", _e(dr["governed_by"]),
+                             _n(dr["rated_power_kw"], 6) + " kW",
+                             _e(governed_at(dr["governed_by"], dr.get("at", ""))),
                              _e(dr["case"])])
         brakes = sizes.get("brakes")
         if brakes:
@@ -227,7 +232,14 @@ def _design_section(study: dict) -> str:
             for label, e in entries:
                 rows.append([_e(where), f"brake force, {label}",
                              _n(sum(e["force_kn"]), 6) + " kN",
-                             _e("+".join(dict.fromkeys(e["governed_by"]))), _e(e["case"])])
+                             _e("+".join(dict.fromkeys(governed_at(g, e.get("at", ""))
+                                                       for g in e["governed_by"]))),
+                             _e(e["case"])])
+        belt = sizes.get("belt")
+        if belt:  # belt.type: auto, chosen once per design (docs/belts.md)
+            rows.append([_e(where), "belt (type: auto)", _e(belt["type"]),
+                         _e("lightest that passes" if belt["passed"] else
+                            "none passes: the heaviest"), _e(belt["case"])])
     out.append(_table(["conveyor design", "size", "value", "governed by", "design case"],
                       rows))
     return "".join(out)
@@ -278,8 +290,8 @@ def _limits(study: dict, runs: pd.DataFrame) -> dict[str, str]:
     rating = pd.to_numeric(runs.get("belt_rating_kn"), errors="coerce") if len(runs) else None
     try:
         kind = resolve_belt(parse_conveyor(conv).belt).kind
-    except Exception:  # a conveyor this engine cannot read
-        kind = "steel"
+    except Exception:  # a conveyor this engine cannot read, or belt.type: auto
+        kind = catalog.KIND_OF_FILE.get(conv["belt"].get("kind") or "", "steel")
     sf = conv.get("safety_factor_min") or SAFETY_FACTOR_MIN.get(kind, 6.7)
     length = sum(p["length_m"] for p in conv["profile"])
     travel = conv["takeup"].get("travel_m") or 0.015 * length

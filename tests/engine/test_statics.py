@@ -375,3 +375,36 @@ def test_non_convergence_fails_with_a_message(conv, monkeypatch):
     assert res.status == "failed"
     assert "did not converge in 2 iterations" in res.message
     assert res.summary["status"] == "failed"
+
+
+def test_a_regenerating_decline_sizes_its_take_up_for_breakaway():
+    """The hand conveyor turned into a 5 % decline (head drive at the bottom, gravity take-up
+    at the tail, at the top): the drives hold the belt back (Te < 0), and at the start they
+    take the loaded belt's net gravity pull from standstill, where no running resistance
+    helps, with the at-rest tensions (slack side: the carry arriving at the head).
+
+    Hand calculation (Euler-Eytelwein, T_tight = max(T_in, T_out), PHYSICS 1): at rest the
+    carry falls H = 50 m from the tail to the head, T_in(head) = T_tail - (m'_G + m'_L) g H;
+    the drive holds T_out - T_in = |sum G| = m'_L g H (the belt's own weight cancels round the
+    loop) when T_in (e^(mu theta) - 1) >= m'_L g H. The counterweight carries both strands at
+    the tail, m g = 2 T_tail, so m = 2 [(m'_G + m'_L) H + m'_L H / (e^(mu theta) - 1)] with
+    m'_G = 20, m'_L = 50 kg/m, mu = 0.35, theta = 200 deg: 9 089.4 kg. The start-up factor's
+    walk asks less of a regenerating drive (Te + 0.5 |Te|) and cannot set it.
+    """
+    conv = parse_conveyor(hand_conveyor_dict(profile=[{"length_m": 1000, "lift_m": -50}]))
+    res = solve_steady(conv, model="din")
+    assert res.te_n < 0.0
+    e = math.exp(0.35 * math.radians(200.0))
+    hand = 2.0 * ((20.0 + 50.0) * 50.0 + 50.0 * 50.0 / (e - 1.0))
+    assert res.takeup_mass_kg == pytest.approx(hand, rel=1e-9)
+    assert res.takeup_governed_by == "slip_breakaway"
+    assert res.summary["slip_margin_start"] == pytest.approx(1.0, rel=1e-9)
+    assert res.summary["slip_margin"] > 1.0  # running needs less
+    # a given take-up 10 % lighter slips at breakaway, and the warning says so
+    light = parse_conveyor(hand_conveyor_dict(
+        profile=[{"length_m": 1000, "lift_m": -50}],
+        takeup={"type": "gravity", "position": "tail", "mass_kg": 0.9 * hand}))
+    res = solve_steady(light, model="din")
+    assert res.summary["slip_margin_start"] < 1.0
+    assert "slip at drive 1 (head) at breakaway" in res.message
+    assert f"{hand:.0f} kg needed" in res.message

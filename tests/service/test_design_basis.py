@@ -43,16 +43,26 @@ def test_one_takeup_per_belt_type_the_largest_over_models_and_temperatures(
         need = {(m, t): solve_steady(conv, model=m, temperature_c=t, load="full",
                                      n_elements=12).summary  # the study's scenario mesh
                 for m in grid["friction_model"] for t in grid["temperature_c"]}
-        largest = max(need.values(), key=lambda s: s["takeup_mass_kg"])
+        (model, temp), largest = max(need.items(), key=lambda kv: kv[1]["takeup_mass_kg"])
         assert rows["takeup_mass_kg"].nunique() == 1
         assert rows["takeup_mass_kg"].iloc[0] == pytest.approx(largest["takeup_mass_kg"],
                                                                rel=1e-5)
         assert rows["takeup_mass_kg"].iloc[0] >= largest["takeup_mass_kg"]
-        assert set(rows["takeup_governed_by"]) == {largest["takeup_governed_by"]}
+        # the constraint and the case by what varies (model, temperature) and is the same
+        # among the cases that need the largest (a take-up held at rest feels no friction
+        # model nor temperature: then the constraint alone)
+        tied = [k for k, s in need.items()
+                if s["takeup_mass_kg"] == pytest.approx(largest["takeup_mass_kg"], rel=1e-9)]
+        at = ", ".join(([model] if len({m for m, _t in tied}) == 1 else [])
+                       + ([f"{temp:g} C"] if len({t for _m, t in tied}) == 1 else []))
+        gov = largest["takeup_governed_by"]
+        assert set(rows["takeup_governed_by"]) == {f"{gov} @ {at}" if at else gov}
         assert rows["rated_power_kw"].nunique() == 1
-        rated = max(1.25 * s["power_kw"] for s in need.values())
+        (model, temp), rated = max(((k, 1.25 * s["power_kw"]) for k, s in need.items()),
+                                   key=lambda kv: kv[1])
         assert rows["rated_power_kw"].iloc[0] == pytest.approx(rated, rel=1e-5)
-        assert set(rows["rated_power_governed_by"]) == {"peripheral_force"}
+        assert set(rows["rated_power_governed_by"]) == {
+            f"peripheral_force @ {model}, {temp:g} C"}
     assert runs.groupby("belt_type")["takeup_mass_kg"].first().nunique() == 2
 
 
@@ -69,7 +79,8 @@ def test_a_given_design_case_sizes_every_run(make_study, finished_study, data_di
     assert len(runs) == 6 and runs["takeup_mass_kg"].nunique() == 1
     assert runs["takeup_mass_kg"].iloc[0] == pytest.approx(case["takeup_mass_kg"], rel=1e-5)
     (entry,) = study.designs
-    assert entry["sizes"]["takeup"]["case"] == "din, -20 C"
+    assert entry["sizes"]["takeup"]["case"] == "full, din, -20 C"
+    assert entry["sizes"]["takeup"]["at"] == ""  # one design case: the constraint alone
     assert all(r.design["takeup_governed_by"] == case["takeup_governed_by"] for r in study.runs)
     with pytest.raises(Invalid, match=r"design.friction_model: unknown model 'dinn'"):
         resolve_study(make_study(grid=grid, design={"friction_model": "dinn"}))
@@ -257,3 +268,108 @@ def test_a_drive_speed_loop_is_a_grid_axis_checked_like_the_file(make_study):
     assert sorted({r.conveyor["drives"][0]["speed_loop_rad_s"] for r in runs}) == [2.0, 8.0]
     with pytest.raises(Invalid, match=r"drives.0.speed_loop_rad_s=90.*outside 0.1 to 50 rad/s"):
         resolve_study(make_study(grid={"drives.0.speed_loop_rad_s": [2.0, 90.0]}))
+
+
+#: The 60 m warm-up conveyor rising 1 m over 30 m and falling 6 m over the next 30 m, an auto
+#: head brake and a given take-up: loaded declines need more brake than the full belt.
+UNDULATING = tiny_conveyor(
+    profile=[{"length_m": 30, "lift_m": 1.0}, {"length_m": 30, "lift_m": -6.0}],
+    brakes=[{"position": "head", "force_kn": "auto", "delay_s": 0.5}],
+    takeup={"type": "gravity", "position": "tail", "mass_kg": 3000})
+
+
+def _braked_study(make_study, **over):
+    from tests.service.conftest import TINY_SCENARIO
+
+    return make_study(conveyor=UNDULATING, dynamics=True,
+                      scenario={**TINY_SCENARIO, "stop": {"mode": "brake", "time_s": 4.0}},
+                      grid={"load": ["full", "declines", "empty"]}, **over)
+
+
+def test_a_design_over_full_and_declines_sizes_the_brake_from_the_declines_and_says_so(
+        make_study, finished_study, data_dir):
+    """``design: {load: [full, declines]}`` (SPEC 7.2): the brake of every run is the larger
+    of the two loads' needs (the declines': their net downhill pull is larger and the stop
+    time sets both, engine/design.py), and every run's ``brake_governed_by`` says so:
+    ``stop_time @ declines``. The design table names the case in full."""
+    conv = parse_conveyor(UNDULATING)
+    need = {}
+    for load in ("full", "declines"):
+        scn = Scenario(load=load, elements=12, stop={"mode": "brake", "time_s": 4.0})
+        sizes = auto_sizes(conv, scn, model="din")
+        assert sizes["brake_governed_by"] == ["stop_time"]
+        need[load] = sizes["brake_force_kn"][0]
+    assert need["declines"] > 1.05 * need["full"]
+
+    body = _braked_study(make_study, design={"load": ["full", "declines"]})
+    study = resolve_study(body)
+    assert {r.conveyor["brakes"][0]["force_kn"] for r in study.runs} == {
+        round_up(need["declines"])}
+    (entry,) = study.designs
+    stop = entry["sizes"]["brakes"]["stop_time_s"]["4"]
+    assert (stop["case"], stop["at"]) == ("declines, din, 20 C", "declines")
+    runs = _runs(data_dir, finished_study(data_dir, body))
+    assert len(runs) == 3
+    assert set(runs["brake_governed_by"]) == {"stop_time @ declines"}
+    assert runs["brake_force_kn"].iloc[0] == pytest.approx(need["declines"], rel=1e-5)
+    # the rated power: the full belt's running resistance (the declines regenerate)
+    assert set(runs["rated_power_governed_by"]) == {"running_resistance @ full"}
+
+    # a scalar design load still sizes at that one load: the full belt's smaller brake
+    one = resolve_study(_braked_study(make_study, design={"load": "full"}))
+    assert {r.conveyor["brakes"][0]["force_kn"] for r in one.runs} == {round_up(need["full"])}
+    assert {r.design["brake_governed_by"] for r in one.runs} == {"stop_time"}
+
+
+@pytest.mark.parametrize("design, message", [
+    ({"load": ["full", "downhill"]},
+     r"^design.load\[1\]: Input should be 'full', 'empty', 'inclines' or 'declines'"),
+    ({"load": ["full", [1.0, 0.5, 0.2]]},
+     r"^design.load\[1\]: 3 fractions for 2 profile sections"),
+    ({"load": [1.0, 0.5, 0.2]},
+     r"^design.load: 3 fractions for 2 profile sections.*a list of load cases names at "
+     r"least one"),
+    ({"load": []}, r"^design.load: an empty list"),
+    ({"temperature_c": [-20, -70]}, r"^design.temperature_c\[1\]: .*greater than or equal"),
+    ({"friction_model": ["din", "dinn"]}, r"^design.friction_model\[1\]: unknown model"),
+])
+def test_a_bad_design_list_entry_is_refused_naming_it(make_study, design, message):
+    with pytest.raises(Invalid, match=message):
+        resolve_study(_braked_study(make_study, design=design))
+
+
+def test_a_bad_design_load_is_a_422_naming_the_entry(make_study, make_settings, data_dir):
+    from fastapi.testclient import TestClient
+
+    from beltstudy.service.api.app import create_app
+
+    app = create_app(make_settings(data_dir))
+    body = _braked_study(make_study, design={"load": ["full", "downhill"]})
+    r = TestClient(app).post("/studies", json=body)
+    assert r.status_code == 422 and r.json()["message"].startswith("design.load[1]: ")
+    # every list at once is accepted: 2 loads x 2 temperatures x 2 models
+    study = resolve_study(_braked_study(make_study, design={
+        "load": ["full", "declines"], "temperature_c": [-20, 30],
+        "friction_model": ["din", "cema"]}), strict=True)
+    assert study.design["friction_model"] == ["din", "cema"]
+
+
+def test_a_design_over_models_and_temperatures_names_the_governing_one():
+    """Models and temperatures listed in ``design:`` are design cases like loads: the take-up
+    of a study run at one model and temperature is the largest over the listed ones."""
+    from tests.service.conftest import tiny_study
+
+    body = tiny_study(grid={"temperature_c": [20]}, model="din",
+                      design={"friction_model": ["din", "cema"], "temperature_c": [-30, 20]})
+    study = resolve_study(body)
+    conv = parse_conveyor(tiny_conveyor())
+    need = {(m, t): auto_sizes(conv, Scenario(temperature_c=t, elements=12), model=m)
+            for m in ("din", "cema") for t in (-30.0, 20.0)}
+    (model, temp), largest = max(need.items(), key=lambda kv: kv[1]["drive_rated_power_kw"][0])
+    (entry,) = study.designs
+    drive = entry["sizes"]["drives"][0]
+    assert drive["rated_power_kw"] == round_up(largest["drive_rated_power_kw"][0])
+    assert drive["case"] == f"full, {model}, {temp:g} C"
+    gov = largest["drive_rated_power_governed_by"][0]
+    assert {r.design["rated_power_governed_by"] for r in study.runs} == {
+        f"{gov} @ {model}, {temp:g} C"}

@@ -222,6 +222,9 @@ const RESULT_COLUMNS = ["status", "power_kw", "te_kn", "t_max_kn", "safety_facto
   "takeup_mass_kg", "fill_pct", "message"];
 
 // The design basis as table rows: one per auto size of each conveyor design.
+// a size's constraint with its case, as the runs' *_governed_by columns state it (SPEC 7.2)
+const governedAt = (why, at) => (at && why !== "given" ? why + " @ " + at : why);
+
 function designRows(designs) {
   const rows = [];
   const fmt = (v) => fmtValue(v);
@@ -230,15 +233,16 @@ function designRows(designs) {
     const s = d.sizes;
     if (s.takeup) {
       rows.push([where, "take-up " + (s.takeup.unit === "kg" ? "mass" : "pretension"),
-        fmt(s.takeup.value) + " " + s.takeup.unit, s.takeup.governed_by, s.takeup.case]);
+        fmt(s.takeup.value) + " " + s.takeup.unit, governedAt(s.takeup.governed_by, s.takeup.at),
+        s.takeup.case]);
     }
     (s.drives || []).forEach((dr, i) => {
       if (dr) rows.push([where, "rated power, drive " + (i + 1), fmt(dr.rated_power_kw) + " kW",
-        dr.governed_by, dr.case]);
+        governedAt(dr.governed_by, dr.at), dr.case]);
     });
     if (s.brakes) {
       const sum = (e) => e.force_kn.reduce((a, b) => a + b, 0);
-      const reasons = (e) => [...new Set(e.governed_by)].join("+");
+      const reasons = (e) => [...new Set(e.governed_by.map((g) => governedAt(g, e.at)))].join("+");
       rows.push([where, "brake force, held at rest", fmt(sum(s.brakes.holding)) + " kN",
         reasons(s.brakes.holding), s.brakes.holding.case]);
       for (const [t, e] of Object.entries(s.brakes.stop_time_s)) {

@@ -1,0 +1,197 @@
+"""Drive checks: the motor power each drive needs against its rating, and its load in the
+transient cycle (SPEC 7.4; docs/drives.md).
+
+Steady, every run (:func:`steady_checks`, from :func:`beltstudy.engine.statics.solve_steady`):
+
+* ``drive{i}_power_required_kw``: the motor power drive i needs at the run's steady state,
+  its force at the pulley ``F_i`` (its share of the peripheral force Te) times the design speed
+  through the drive train (gear unit and coupling, ``drives[i].efficiency``,
+  :data:`~beltstudy.engine.conveyor.DRIVE_EFFICIENCY` by default):
+  ``P_M = F_i v / eta`` when the motor drives the belt, ``P_M = |F_i v| eta`` when it holds a
+  regenerating belt back (the losses then come off the power the motor takes in);
+* ``drive{i}_utilisation = P_M / P_N`` against the rated power ``P_N`` the run used
+  (``drives[i].rated_power_kw``, or the auto size of :func:`beltstudy.engine.design.
+  rated_power_kw`); above 1 a warning names the drive and the shortfall in kW.
+
+Transient (:func:`transient_checks`, from :mod:`beltstudy.engine.dynamics.simulate`; the
+kernel accumulates them step by step, :data:`beltstudy.engine.dynamics.records.DRIVE_RESULT`):
+
+* ``drive{i}_overload_s``: the time after the start command with the force at the pulley
+  above the drive's rated force ``P_N / v`` (the force the transient model rates the drive
+  at, the one its torque limit multiplies);
+* ``drive{i}_force_rms_kn``: the root mean square of that force from the start command until
+  the belt is at rest after the stop (the end of the run when it never stops), the thermal
+  equivalent load of the cycle (a motor's heating follows its losses, which grow with the
+  square of its current, nearly the square of its torque: the equivalent-torque method of
+  motor selection for a duty cycle, IEC 60034-1's duty types S4-S10).
+
+Warnings name the drive, how long it was above its rating and by how much, whether it sat at
+its torque limit, and what would avoid it (a longer start, a larger motor).
+
+References
+----------
+DIN 22101:2011-12, Continuous conveyors - Belt conveyors for loose bulk materials - Basis for
+calculation and dimensioning: the motor power from the power at the drive pulleys through
+the drive train's efficiency, divided for motoring and multiplied for regenerating operation
+(*unverified*: the standard's text could not be checked here; the rule as quoted in belt
+makers' design manuals that follow it).
+CEMA, Belt Conveyors for Bulk Materials, 7th ed. (2014): motor power from Te V over the drive
+efficiency (*unverified*, as above).
+IEC 60034-1:2017, Rotating electrical machines - Rating and performance: momentary excess
+torque of induction motors, 60 % over rated torque for 15 s (clause 9.4), occasional excess
+current 1.5 x rated for 2 min up to 315 kW (clause 9.3) (*unverified*, as above).
+"""
+
+from __future__ import annotations
+
+import math
+
+__all__ = ["OVERLOAD_S_MAX", "power_required_kw", "steady_checks", "transient_checks"]
+
+#: Longest time a drive may run above its rated force in a cycle without a warning [s]: the
+#: 15 s for which IEC 60034-1 (clause 9.4, *unverified*) has an induction motor withstand
+#: 60 % excess torque. Longer than that the motor's own overload rating decides.
+OVERLOAD_S_MAX = 15.0
+
+
+def power_required_kw(force_n: float, speed_m_s: float, efficiency: float) -> float:
+    """The motor power a drive needs for a force at its pulley [kW].
+
+    Parameters
+    ----------
+    force_n : float
+        Force the pulley passes to the belt, driving positive [N] (negative: the drive holds
+        a regenerating belt back).
+    speed_m_s : float
+        Belt speed [m/s].
+    efficiency : float
+        Drive train efficiency from the motor shaft to the pulley (gear unit, coupling) [-].
+
+    Returns
+    -------
+    float
+        The motor power's magnitude [kW]: ``F v / eta`` motoring, ``|F v| eta`` regenerating.
+
+    Notes
+    -----
+    The motor supplies the pulley's power and the drive train's losses when it drives; when
+    it brakes a regenerating belt the losses are taken from the belt's power before it
+    reaches the motor (DIN 22101, CEMA; *unverified*, see the module's references).
+    """
+    p = force_n * speed_m_s
+    return (p / efficiency if p >= 0.0 else -p * efficiency) / 1e3
+
+
+def steady_checks(conv, forces_n, speed_m_s: float, te_n: float, rated_kw
+                  ) -> tuple[dict, list[str]]:
+    """The steady drive fields and the warnings of a drive short of power.
+
+    Parameters
+    ----------
+    conv : Conveyor
+        For each drive's position, share and efficiency.
+    forces_n : sequence of float
+        Each drive's force at its pulley, file order [N] (driving positive).
+    speed_m_s : float
+        Design speed [m/s].
+    te_n : float
+        Peripheral force Te [N].
+    rated_kw : sequence of float
+        Each drive's rated power as the run uses it [kW].
+
+    Returns
+    -------
+    fields : dict
+        ``drive{i}_power_required_kw`` [kW] and ``drive{i}_utilisation`` [-].
+    warnings : list of str
+    """
+    fields: dict = {}
+    warnings: list[str] = []
+    for i, (d, f, rated) in enumerate(zip(conv.drives, forces_n, rated_kw, strict=True),
+                                      start=1):
+        eta = float(d.efficiency)
+        need = power_required_kw(float(f), speed_m_s, eta)
+        fields[f"drive{i}_power_required_kw"] = need
+        fields[f"drive{i}_utilisation"] = need / rated if rated > 0 else None
+        if need > rated * (1.0 + 1e-9) and math.isfinite(need):
+            how = ("holds back" if f < 0 else "needs")
+            regen = ", regenerating: x efficiency" if f < 0 else " / efficiency"
+            warnings.append(
+                f"drive {i} ({d.position}) {how} {need:.0f} kW at {speed_m_s:g} m/s "
+                f"({d.share:g} x Te {te_n / 1e3:.1f} kN{regen} {eta:g}), rated "
+                f"{rated:.0f} kW: short by {need - rated:.0f} kW (utilisation "
+                f"{need / rated:.2f}); a motor of at least {need:.0f} kW "
+                f"(drives[{i - 1}].rated_power_kw), or the load shared by more drives, "
+                "would avoid it")
+    return fields, warnings
+
+
+def transient_checks(names, drv, rated_n, limit_n, vfd, speed_m_s: float, start_s: float,
+                     running_n=None) -> tuple[dict, list[str]]:
+    """The transient drive fields and the warnings of a drive overloaded in the cycle.
+
+    Parameters
+    ----------
+    names : sequence of str
+        Each drive's name for the warnings (``drive 1 (head)``).
+    drv : numpy structured array
+        The kernel's per-drive results (:data:`~beltstudy.engine.dynamics.records.
+        DRIVE_RESULT`): ``fmax`` [N], ``over_s``, ``lim_s``, ``rms_s`` [s], ``f2_int``
+        [N^2 s].
+    rated_n, limit_n : sequence of float
+        Each drive's rated force ``P_N / v`` and torque limit (as a force at the pulley) [N].
+    vfd : sequence of bool
+        Whether each drive is on a variable-speed drive (its start time is the scenario's).
+    speed_m_s : float
+        Design speed [m/s].
+    start_s : float
+        The scenario's start time [s].
+    running_n : sequence of float, optional
+        Each drive's steady running force [N] (its share of Te): the start time that keeps the
+        force within the rating is estimated from it.
+
+    Returns
+    -------
+    fields : dict
+        ``drive{i}_overload_s`` [s] and ``drive{i}_force_rms_kn`` [kN] (None when the cycle
+        ended at the start command).
+    warnings : list of str
+    """
+    fields: dict = {}
+    warnings: list[str] = []
+    for k, name in enumerate(names):
+        i = k + 1
+        d = drv[k]
+        over_s, lim_s, rms_s = float(d["over_s"]), float(d["lim_s"]), float(d["rms_s"])
+        rms = math.sqrt(float(d["f2_int"]) / rms_s) if rms_s > 0.0 else None
+        fields[f"drive{i}_overload_s"] = over_s
+        fields[f"drive{i}_force_rms_kn"] = rms / 1e3 if rms is not None else None
+        rated = float(rated_n[k])
+        fmax = float(d["fmax"])
+        at_limit = lim_s > 0.0 and fmax >= float(limit_n[k]) * (1.0 - 1e-6)
+        hot = rms is not None and rms > rated
+        if rated <= 0.0 or not (over_s > OVERLOAD_S_MAX or at_limit or hot):
+            continue
+        pct = 100.0 * (fmax / rated - 1.0)
+        said = (f"{name} was above its rated force ({rated / 1e3:.4g} kN) for {over_s:.1f} s "
+                f"of the cycle, at most {pct:.0f} % over its rating ({fmax / 1e3:.4g} kN)")
+        if at_limit:
+            said += (f", at its torque limit ({float(limit_n[k]) / 1e3:.4g} kN) for "
+                     f"{lim_s:.1f} s")
+        if hot:
+            said += (f"; its RMS force over the cycle, {rms / 1e3:.4g} kN, is above the "
+                     "rating (the motor overheats when the cycle repeats)")
+        motor = f"a larger motor (at least {fmax * speed_m_s / 1e3:.0f} kW keeps it within)"
+        if vfd[k]:
+            longer = f"a longer start (start.time_s, now {start_s:g} s"
+            f_run = float(running_n[k]) if running_n is not None else None
+            if f_run is not None and 0.0 <= f_run < rated < fmax:
+                # the acceleration force falls as 1 / start time (rigid body): an estimate
+                longer += (f"; about {start_s * (fmax - f_run) / (rated - f_run):.0f} s keeps "
+                           "the force within the rating, a rigid-body estimate")
+            fix = f"{longer}) or {motor}"
+        else:
+            fix = f"{motor} or a softer start (a fluid coupling, a vfd)"
+        warnings.append(f"{said}; {fix} would avoid it")
+    return fields, warnings
+

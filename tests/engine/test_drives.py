@@ -1,0 +1,204 @@
+"""Drive checks (beltstudy.engine.drives, SPEC 7.4): the motor power a drive needs against
+its rating by hand, the steady warning of a drive short of power (engine and ``beltstudy
+static``), and the transient load (time above the rated force, RMS force) of a drive held at a
+known force."""
+
+from __future__ import annotations
+
+import json
+import math
+import subprocess
+import sys
+
+import numpy as np
+import pytest
+
+from beltstudy.engine.conveyor import DRIVE_EFFICIENCY, load_mapping, parse_conveyor
+from beltstudy.engine.drives import (
+    OVERLOAD_S_MAX,
+    power_required_kw,
+    steady_checks,
+    transient_checks,
+)
+from beltstudy.engine.dynamics.records import DRIVE_RESULT
+from beltstudy.engine.statics import solve_steady
+from tests.conftest import CONVEYORS, hand_conveyor_dict
+
+
+def test_required_power_motoring_and_regenerating_by_hand():
+    """DIN 22101 / CEMA (docs/drives.md): P_M = F v / eta driving, |F v| eta regenerating.
+    Te = 240 kN, share 0.5, v = 4.5 m/s, eta = 0.95: 0.5 x 240 x 4.5 / 0.95 = 568.42 kW;
+    a drive holding back 100 kN at 4 m/s passes 400 kW x 0.95 = 380 kW to its motor."""
+    assert power_required_kw(0.5 * 240e3, 4.5, 0.95) == pytest.approx(568.421052631, rel=1e-9)
+    assert power_required_kw(-100e3, 4.0, 0.95) == pytest.approx(380.0, rel=1e-12)
+    assert power_required_kw(0.0, 4.0, 0.95) == 0.0
+
+
+def test_steady_checks_utilisation_and_shortfall_by_hand():
+    """Two head drives sharing Te = 240 kN at 4.5 m/s, efficiencies 0.95 and 0.9: need
+    0.5 x 240 x 4.5 / 0.95 = 568.42 kW and 0.5 x 240 x 4.5 / 0.9 = 600 kW; rated 700 and
+    500 kW: utilisation 0.8120 and 1.2, the second short by 100 kW (and only it warns)."""
+    d = hand_conveyor_dict(drives=[
+        {"position": "head", "share": 0.5, "rated_power_kw": 700},
+        {"position": "head", "share": 0.5, "rated_power_kw": 500, "efficiency": 0.9}])
+    conv = parse_conveyor(d)
+    fields, warnings = steady_checks(conv, [120e3, 120e3], 4.5, 240e3, [700.0, 500.0])
+    assert fields["drive1_power_required_kw"] == pytest.approx(568.421052631, rel=1e-9)
+    assert fields["drive2_power_required_kw"] == pytest.approx(600.0, rel=1e-12)
+    assert fields["drive1_utilisation"] == pytest.approx(568.421052631 / 700.0, rel=1e-9)
+    assert fields["drive2_utilisation"] == pytest.approx(1.2, rel=1e-12)
+    assert len(warnings) == 1
+    assert warnings[0].startswith("drive 2 (head) needs 600 kW")
+    assert "rated 500 kW: short by 100 kW" in warnings[0]
+
+
+def test_a_regenerating_drive_short_of_power_holds_back():
+    """A drive holding back 120 kN at 4.5 m/s passes 120 x 4.5 x 0.95 = 513 kW to its motor
+    (the losses come off the belt's power); rated 400 kW it is short by 113 kW."""
+    conv = parse_conveyor(hand_conveyor_dict(drives=[{"position": "head",
+                                                      "rated_power_kw": 400}]))
+    fields, (w,) = steady_checks(conv, [-120e3], 4.5, -120e3, [400.0])
+    assert fields["drive1_power_required_kw"] == pytest.approx(513.0, rel=1e-12)
+    assert w.startswith("drive 1 (head) holds back 513 kW at 4.5 m/s")
+    assert "regenerating: x efficiency 0.95" in w and "short by 113 kW" in w
+
+
+def test_default_efficiency_is_the_documented_one():
+    conv = parse_conveyor(hand_conveyor_dict())
+    assert conv.drives[0].efficiency == DRIVE_EFFICIENCY == 0.95
+
+
+def test_solve_steady_warns_a_drive_short_of_power():
+    """The hand conveyor (one head drive, share 1) rated at 100 kW: the steady solve reports
+    P_M = Te v / eta (Te from the same solve) and warns with the shortfall in kW; an auto
+    rated power (1.25 x Te v) leaves the drive at 1 / (1.25 eta) = 0.842."""
+    low = parse_conveyor(hand_conveyor_dict(drives=[{"position": "head",
+                                                     "rated_power_kw": 100}]))
+    st = solve_steady(low, model="din", n_elements=100)
+    need = st.te_n * 4.0 / 0.95 / 1e3
+    assert need > 100.0  # the case is short of power
+    assert st.summary["drive1_power_required_kw"] == pytest.approx(need, rel=1e-9)
+    assert st.summary["drive1_utilisation"] == pytest.approx(need / 100.0, rel=1e-9)
+    assert st.status == "warning"
+    assert f"drive 1 (head) needs {need:.0f} kW" in st.message
+    assert f"rated 100 kW: short by {need - 100:.0f} kW" in st.message
+    auto = solve_steady(parse_conveyor(hand_conveyor_dict()), model="din", n_elements=100)
+    assert auto.summary["drive1_utilisation"] == pytest.approx(1.0 / (1.25 * 0.95), rel=1e-9)
+    assert "short by" not in auto.message
+
+
+def test_static_cli_warns_the_drive_and_the_shortfall(tmp_path):
+    """``beltstudy static`` of slope-5pct with its drive rated at 500 kW (the din model needs
+    about 1 000 kW): status warning, the message names drive 1 (head) and the shortfall in
+    kW, which is the JSON's required power less the rating."""
+    data = load_mapping(CONVEYORS / "slope-5pct.yaml")
+    data["drives"] = [{**data["drives"][0], "rated_power_kw": 500}]
+    path = tmp_path / "short.json"
+    path.write_text(json.dumps(data))
+    p = subprocess.run([sys.executable, "-m", "beltstudy.service.cli", "static", str(path),
+                        "--model", "din", "--json"], capture_output=True, text=True,
+                       timeout=120)
+    assert p.returncode == 0, p.stderr
+    out = json.loads(p.stdout)
+    need = out["drive1_power_required_kw"]
+    assert need == pytest.approx(out["power_kw"] / 0.95, rel=1e-9)  # share 1: Te v / eta
+    assert out["drive1_utilisation"] == pytest.approx(need / 500.0, rel=1e-9)
+    assert out["status"] == "warning"
+    assert f"drive 1 (head) needs {need:.0f} kW" in out["message"]
+    assert f"short by {need - 500.0:.0f} kW" in out["message"]
+
+
+def _drive_result(**values) -> np.ndarray:
+    drv = np.zeros(1, dtype=DRIVE_RESULT)
+    for k, v in values.items():
+        drv[0][k] = v
+    return drv
+
+
+def test_transient_checks_rms_of_a_constant_force_and_the_overload_warning():
+    """A drive held at 30 kN for 20 s (f2_int = 30e3^2 x 20): RMS = 30 kN; rated 24 kN, at
+    its limit (1.25 x rated = 30 kN) for 20 s: 25 % over its rating, and a start time that
+    keeps the force within the rating from the rigid-body estimate t (F_max - F_run) /
+    (F_rated - F_run) = 10 x (30 - 12) / (24 - 12) = 15 s."""
+    drv = _drive_result(fmax=30e3, over_s=20.0, lim_s=20.0, f2_int=30e3**2 * 20.0, rms_s=20.0)
+    fields, warnings = transient_checks(["drive 1 (head)"], drv, [24e3], [30e3], [True], 4.0,
+                                        10.0, running_n=[12e3])
+    assert fields["drive1_force_rms_kn"] == pytest.approx(30.0, rel=1e-12)
+    assert fields["drive1_overload_s"] == 20.0
+    (w,) = warnings
+    assert w.startswith("drive 1 (head) was above its rated force (24 kN) for 20.0 s")
+    assert "at most 25 % over its rating" in w and "at its torque limit (30 kN) for 20.0 s" in w
+    assert "about 15 s keeps the force within the rating" in w
+    assert "at least 120 kW" in w  # 30 kN x 4 m/s
+    assert "RMS force over the cycle, 30 kN, is above the rating" in w
+
+
+def test_transient_checks_quiet_within_the_rating_and_a_short_overload():
+    """Above the rating for less than OVERLOAD_S_MAX, never at the limit, RMS within: no
+    warning; a cycle that never started has no RMS."""
+    drv = _drive_result(fmax=26e3, over_s=OVERLOAD_S_MAX - 1.0, f2_int=20e3**2 * 60.0,
+                        rms_s=60.0)
+    fields, warnings = transient_checks(["drive 1 (head)"], drv, [24e3], [36e3], [True], 4.0,
+                                        10.0)
+    assert warnings == [] and fields["drive1_force_rms_kn"] == pytest.approx(20.0)
+    fields, _ = transient_checks(["drive 1"], _drive_result(), [24e3], [36e3], [True], 4.0,
+                                 10.0)
+    assert fields["drive1_force_rms_kn"] is None and fields["drive1_overload_s"] == 0.0
+
+
+@pytest.mark.parametrize("rated_kw, overloaded", [(30.0, True), (50.0, False)])
+def test_kernel_rms_and_overload_of_a_held_force(rated_kw, overloaded):
+    """A flat belt pulled by a constant open-loop force of 20 kN for 2 s after the start
+    command (the run ends there, the belt below twice its design speed): the RMS force is
+    20 kN (the RMS of a constant), the time above the rated force P_N / v is the whole 2 s
+    when P_N / v = 30 kW / 2 m/s = 15 kN, none when it is 50 / 2 = 25 kN (to a step)."""
+    from beltstudy.engine.conveyor import Scenario
+    from beltstudy.engine.dynamics import DynamicsOptions, build_system, simulate
+    from tests.engine.integration.test_dynamics_physics import flat_conveyor
+
+    conv = flat_conveyor(length_m=200.0, speed_m_s=2.0, takeup_kg=5000.0, drives=[
+        {"position": "head", "wrap_deg": 200, "friction": 0.35, "pulley_diameter_m": 1.0,
+         "rated_power_kw": rated_kw}])
+    st = solve_steady(conv, model="din", n_elements=20)
+    sys_ = build_system(conv, Scenario(run_s=100), st, DynamicsOptions(force_start_n=20e3))
+    res = simulate(sys_, t_end_s=sys_.model.cycle.t_pre + 2.0)
+    assert res.status != "failed" and float(res.raw["v_mean"]) < 2.0 * 2.0  # not run away
+    dt = sys_.dt_s
+    assert res.summary["drive1_force_rms_kn"] == pytest.approx(20.0, rel=1e-9)
+    assert res.summary["drive1_overload_s"] == pytest.approx(2.0 if overloaded else 0.0,
+                                                            abs=1.5 * dt)
+    assert math.isclose(res.summary["drive1_force_max_kn"], 20.0, rel_tol=1e-9)
+
+
+def test_a_start_at_the_torque_limit_warns_and_agrees_with_the_time_series():
+    """Two 650 kW head drives on slope-5pct started in 12 s (s-curve): the master sits at its
+    torque limit in the start. The warning names the drive, the time above its rating and at
+    its limit; drive1_overload_s and drive1_force_rms_kn agree with the recorded force
+    (f_drive1_kn: the time above P_N / v = 650 / 4.5 = 144.4 kN, and the RMS from the start
+    command to the belt at rest, summed over the records) to 0.1 s and 1 %."""
+    from beltstudy.engine.conveyor import Scenario
+    from beltstudy.engine.dynamics import DynamicsOptions, build_system, simulate
+    from tests.engine.dynamics.test_kernel import HEAD_PAIR, conveyor
+
+    conv = conveyor("slope-5pct", drives=HEAD_PAIR)
+    scn = Scenario(start={"control": "s-curve", "time_s": 12}, run_s=3,
+                   stop={"mode": "controlled", "time_s": 10}, record_dt_s=0.01)
+    st = solve_steady(conv, model="din", load=scn.load, n_elements=40)
+    sys_ = build_system(conv, scn, st, DynamicsOptions())
+    res = simulate(sys_, steady_summary=st.summary, conveyor=conv)
+    s = res.summary
+    rated = 650e3 / 4.5
+    assert sys_.model.drives.rated[0] == pytest.approx(rated, rel=1e-12)
+    assert (f"drive 1 (head) was above its rated force ({rated / 1e3:.4g} kN) for "
+            f"{s['drive1_overload_s']:.1f} s") in res.message
+    assert "at its torque limit" in res.message
+    ts = res.timeseries  # recorded every step here (the step is above record_dt_s)
+    t, f = ts["t_s"].to_numpy(), np.abs(ts["f_drive1_kn"].to_numpy()) * 1e3
+    step = np.diff(t, prepend=t[0])  # each record stands for the step that ended at it
+    after = t > sys_.model.cycle.t_pre
+    assert s["drive1_overload_s"] == pytest.approx(float(step[after & (f > rated)].sum()),
+                                                   abs=0.1)
+    window = after & (t <= float(res.raw["t_stopped"]))
+    assert s["drive1_force_rms_kn"] * 1e3 == pytest.approx(
+        math.sqrt(float(np.sum(f[window] ** 2 * step[window]) / step[window].sum())),
+        rel=0.01)

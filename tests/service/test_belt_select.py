@@ -1,0 +1,150 @@
+"""``belt.type: auto`` through the service: ``beltstudy static --suggest-belt`` and a study
+holding the belt as a design value (docs/belts.md).
+
+The verdicts are checked by hand from the definition safety factor = rating k_N [kN/m] x
+width B [m] / largest tension [kN] against the running minimum 6.7 (steel cord) and 2/3 of it
+at start-up.
+"""
+
+from __future__ import annotations
+
+import json
+
+import pandas as pd
+import pytest
+import yaml
+
+from beltstudy.engine import catalog
+from beltstudy.engine.beltselect import SteadyCase, select_belt, with_belt
+from beltstudy.engine.conveyor import load_mapping, parse_conveyor
+from beltstudy.engine.statics import solve_steady
+from beltstudy.service.cli import main
+from beltstudy.service.door.studyfile import resolve_study
+from tests.conftest import CONVEYORS
+from tests.service.conftest import ROOT
+
+STEEL_MIN = 6.7
+
+
+def _auto(name: str = "overland-4km") -> dict:
+    d = load_mapping(CONVEYORS / f"{name}.yaml")
+    d["belt"] = {**d["belt"], "type": "auto", "kind": "steel_cord"}
+    return d
+
+
+@pytest.fixture
+def auto_file(tmp_path):
+    path = tmp_path / "overland-4km-auto.yaml"
+    path.write_text(yaml.safe_dump(_auto()))
+    return path
+
+
+def test_suggest_belt_json_table(auto_file, capsys):
+    assert main(["static", str(auto_file), "--model", "din", "--suggest-belt", "--json"]) == 0
+    out = json.loads(capsys.readouterr().out)
+    sel = out["belt_selection"]
+    rows = {r["belt"]: r for r in sel["candidates"]}
+    assert set(rows) == {k for k, r in catalog.belts().items() if r.kind == "steel"}
+    for r in sel["candidates"]:  # safety factor = k_N B / T_max, each row by hand
+        k_n = catalog.belts()[r["belt"]].rating_kn_m
+        assert r["safety_factor"] == pytest.approx(k_n * 1.2 / r["t_max_kn"], rel=1e-9)
+        assert r["safety_factor_start"] == pytest.approx(k_n * 1.2 / r["t_max_start_kn"],
+                                                         rel=1e-9)
+        assert r["passes"] == (r["safety_factor"] >= STEEL_MIN
+                               and r["safety_factor_start"] >= 2 / 3 * STEEL_MIN)
+    masses = [r["mass_kg_m"] for r in sel["candidates"]]
+    assert masses == sorted(masses)
+    first = next(r["belt"] for r in sel["candidates"] if r["passes"])
+    assert sel["chosen"] == first == out["belt_type_used"] and sel["passed"]
+    i = [r["belt"] for r in sel["candidates"]].index(first)
+    assert sel["next_lighter"] == sel["candidates"][i - 1]["belt"]
+    assert not rows[sel["next_lighter"]]["passes"]
+    # the steady results are of the choice
+    assert out["belt_rating_kn"] == pytest.approx(catalog.belts()[first].rating_kn_m * 1.2)
+    assert "note: belt.type auto" in out["message"] and out["status"] == "ok"
+
+
+def test_suggest_belt_table_for_a_given_belt(capsys):
+    """A file with a belt type: the suggestion is printed, the results stay the file's."""
+    assert main(["static", str(CONVEYORS / "overland-4km.yaml"), "--model", "nonlin",
+                 "--suggest-belt"]) == 0
+    text = capsys.readouterr().out
+    assert "belt selection: steel_cord belts" in text and "<- choice" in text
+    assert "belt ST2000" in text  # the file's belt, used for the results
+    assert "SF running" in text and text.count(" fail") >= 1
+
+
+def test_static_auto_without_suggest_reports_belt_type_used(auto_file, capsys):
+    assert main(["static", str(auto_file), "--model", "nonlin", "--json"]) == 0
+    out = json.loads(capsys.readouterr().out)
+    assert "belt_selection" not in out
+    assert out["belt_type_used"] == select_belt(parse_conveyor(_auto()),
+                                                [SteadyCase("nonlin")]).belt_id
+
+
+def test_static_auto_without_kind_is_one_line(tmp_path, capsys):
+    d = _auto()
+    del d["belt"]["kind"]
+    path = tmp_path / "bad.yaml"
+    path.write_text(yaml.safe_dump(d))
+    assert main(["static", str(path)]) == 2
+    err = capsys.readouterr().err
+    assert "belt.kind" in err and "steel_cord" in err and "fabric" in err
+    assert err.count("\n") == 1
+
+
+def test_study_holds_the_belt_chosen_over_its_design_cases(finished_study, data_dir):
+    """din needs ST2000 on overland-4km, nonlin ST1250: a study over both models holds the
+    belt that passes at both (every case's factors by hand), for every run."""
+    study = {"name": "belt-auto", "conveyor": _auto(), "scenario": {"elements": 60},
+             "grid": {"friction_model": ["din", "nonlin"], "load": ["full", "empty"]},
+             "dynamics": False}
+    resolved = resolve_study(study, studies_dir=ROOT / "studies")
+    (entry,) = resolved.designs
+    chosen = entry["sizes"]["belt"]["type"]
+    lighter = entry["sizes"]["belt"]["next_lighter"]["type"]
+    conv = parse_conveyor(_auto())
+
+    def factor(belt_id: str, model: str) -> float:
+        res = solve_steady(with_belt(conv, belt_id), model=model, n_elements=60)
+        return catalog.belts()[belt_id].rating_kn_m * 1.2 / (res.tension_n.max() / 1e3)
+
+    assert all(factor(chosen, m) >= STEEL_MIN for m in ("din", "nonlin"))
+    assert any(factor(lighter, m) < STEEL_MIN for m in ("din", "nonlin"))
+    assert {r.conveyor["belt"]["type"] for r in resolved.runs} == {chosen}
+    runs = pd.read_parquet(data_dir / "studies" / finished_study(data_dir, study) / "runs")
+    assert len(runs) == 4 and set(runs["belt_type_used"]) == {chosen}
+    # one take-up for the design, sized on the chosen belt
+    assert runs["takeup_mass_kg"].nunique() == 1
+    # the study report's design basis names it
+    from beltstudy.service.web.report import _design_section
+
+    html = _design_section(resolved.to_json())
+    assert "belt (type: auto)" in html and chosen in html
+
+
+def test_report_limits_of_an_auto_fabric_belt():
+    """The report judges a fabric auto belt against the fabric minimum (10), not steel's."""
+    from beltstudy.service.web.report import _limits
+
+    d = _auto()
+    d["belt"] = {**d["belt"], "kind": "fabric"}
+    limits = _limits({"conveyor": d}, pd.DataFrame())
+    assert limits["belt safety factor"].startswith("10 running")
+
+
+def test_sweep_temperature_holds_one_auto_belt(auto_file, tmp_path, capsys):
+    """The sweep is one design: the belt that passes at every model and temperature."""
+    code = main(["sweep-temperature", str(auto_file), "--models", "din,nonlin", "--from", "-30",
+                 "--to", "20", "--step", "50", "--out", str(tmp_path / "out")])
+    assert code == 0
+    text = capsys.readouterr().out
+    assert "belt.type auto (steel_cord)" in text
+    conv = parse_conveyor(_auto())
+    cases = [SteadyCase(m, None, t) for m in ("din", "nonlin") for t in (-30.0, 20.0)]
+    choice = select_belt(conv, cases)
+    assert f"{choice.belt_id} (" in text.splitlines()[0]
+    for m, t in [(c.model, c.temperature_c) for c in cases]:  # passes everywhere, by hand
+        res = solve_steady(with_belt(conv, choice.belt_id), model=m, temperature_c=t)
+        k_n = catalog.belts()[choice.belt_id].rating_kn_m
+        assert k_n * 1.2 / (res.tension_n.max() / 1e3) >= STEEL_MIN
