@@ -377,7 +377,7 @@ def _past(v: Verdict, values: pd.Series, runs: pd.DataFrame, lim: pd.Series | No
         else:  # a lowest tension of 0 is slack: at the limit is past it
             past |= known & ((values <= lim) if v.limit == 0.0 else (values < lim))
     if v.null_worst:
-        past |= not_stopped(runs) & values.isna()
+        past |= transient_ran(runs) & values.isna()
     return past
 
 
@@ -403,9 +403,12 @@ def verdict_rows(runs: pd.DataFrame, limits: dict[str, Limit]) -> list[dict]:
             values = numeric(ok, column)
             if values is None:
                 continue
-            missing = int((not_stopped(ok) & values.isna()).sum()) if v.null_worst else 0
-            if missing:
-                idx = values[values.isna() & not_stopped(ok)].index[0]
+            # a transient without a stop time did not stop (ran away included)
+            unstopped = transient_ran(ok) & values.isna() if v.null_worst else values.isna() & False
+            missing = int(unstopped.sum())
+            if missing:  # the governing run: one that did not stop, before one that ran away
+                first = unstopped & not_stopped(ok)
+                idx = (first if first.any() else unstopped).idxmax()
             else:
                 idx = values.idxmax() if v.worst == "max" else values.idxmin()
             row = ok.loc[idx]
