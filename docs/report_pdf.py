@@ -14,7 +14,7 @@ slipping), waits for it, opens ``GET /studies/{id}/report`` in Debian's headless
 * checks that section 2 lists each failure group the study has (did not stop, overloaded a
   drive, slipped on a drive pulley) with its count;
 * prints the report with Chrome DevTools' ``Page.printToPDF`` (A4 from the page's
-  ``@page`` rule) to ``docs/img/report.pdf`` (``--pdf``), counts its pages (pypdf when
+  ``@page`` rule) to ``test-artifacts/report.pdf`` (``--pdf``), counts its pages (pypdf when
   installed, else the ``/Type /Page`` objects) and checks there are at least two.
 
 Usage::
@@ -155,9 +155,11 @@ def print_pdf(drv, path: Path | None) -> tuple[bytes, int]:
     return pdf, page_count(pdf)
 
 
-def inspect(url: str, pdf_path: Path | None, shots: bool = True) -> list[str]:
-    """Every check of the report at ``url``; the problems found (empty: it passes)."""
-    drv = driver()
+def inspect(url: str, pdf_path: Path | None, shots: bool = True, drv=None) -> list[str]:
+    """Every check of the report at ``url``; the problems found (empty: it passes).
+    ``drv``: a selenium Chrome driver to use (default: a new one, closed at the end)."""
+    own = drv is None
+    drv = driver() if own else drv
     try:
         drv.get(url)
         t0 = time.monotonic()
@@ -178,7 +180,8 @@ def inspect(url: str, pdf_path: Path | None, shots: bool = True) -> list[str]:
             problems.append(f"the PDF has {pages} pages")
         return problems
     finally:
-        drv.quit()
+        if own:
+            drv.quit()
 
 
 def run_study() -> tuple[str, str, object, Path]:
@@ -213,8 +216,8 @@ def run_study() -> tuple[str, str, object, Path]:
 def main(argv: list[str] | None = None) -> int:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--html", type=Path, help="check this saved report instead")
-    parser.add_argument("--pdf", type=Path, default=IMG / "report.pdf",
-                        help="where the PDF goes (default docs/img/report.pdf)")
+    parser.add_argument("--pdf", type=Path, default=ROOT / "test-artifacts" / "report.pdf",
+                        help="where the PDF goes (default test-artifacts/report.pdf)")
     parser.add_argument("--no-screenshots", action="store_true")
     args = parser.parse_args(argv)
     shots = not args.no_screenshots

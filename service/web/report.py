@@ -68,7 +68,10 @@ table { border-collapse: collapse; margin: 0.4em 0 0.8em; max-width: 100%; }
 th, td { border: 1px solid #bbb; padding: 0.15em 0.45em; text-align: left; vertical-align: top;
   overflow-wrap: anywhere; }
 th { background: #eef1f5; }
-td.num { text-align: right; font-variant-numeric: tabular-nums; white-space: nowrap; }
+td.num { text-align: right; font-variant-numeric: tabular-nums; white-space: nowrap;
+  overflow-wrap: normal; }
+td code.id { font-size: 7pt; word-break: break-all; }
+td.ax { white-space: nowrap; overflow-wrap: normal; }
 tr.warning td { background: #fff6da; }
 tr.failed td, td.fails { background: #fde8e8; }
 td.passes { background: #e8f6e8; }
@@ -92,7 +95,6 @@ ul.causes-list { margin: 0.3em 0 0.8em; }
   tr, figure { break-inside: avoid; page-break-inside: avoid; }
   thead { display: table-header-group; }
   .runs, .verdicts, .causes { font-size: 7.5pt; }
-  td.num { white-space: normal; }
   details summary { list-style: none; }
   details summary::-webkit-details-marker { display: none; }
 }
@@ -106,10 +108,13 @@ MAX_RUN_ROWS = 400
 MAX_CAUSE_ROWS = 60
 #: Characters of a message shown before the rest folds into a <details> element.
 MESSAGE_CHARS = 90
-#: Result columns of the runs table, when the runs carry them.
-RUN_COLUMNS = ("power_kw", "t_max_kn", "t_max_start_kn", "t_max_stop_kn", "t_min_stop_kn",
-               "t_max_dyn_kn", "t_min_dyn_kn", "safety_factor", "stop_time_s",
-               "takeup_mass_kg")
+#: Result columns of the runs table (the first six the runs carry, so the table fits a page):
+#: the transient's per phase when the study ran it, else the steady ones.
+RUN_COLUMNS = ("power_kw", "t_max_start_kn", "t_max_stop_kn", "t_min_stop_kn",
+               "t_max_dyn_kn", "t_min_dyn_kn", "stop_time_s", "t_max_kn", "t_min_kn",
+               "safety_factor", "takeup_mass_kg", "fill_pct")
+#: Most result columns of the runs table.
+RUN_COLUMNS_MAX = 6
 
 
 def _e(value: Any) -> str:
@@ -406,8 +411,8 @@ def _verdicts_section(study: dict, runs: pd.DataFrame) -> str:
                      f"<code>{_e(r['column'])}</code></span>",
                      value if r["missing"] else value, limit, _verdict_cell(r),
                      _run_cell(r["row"], axes), _e(where)])
-    return (_table(["quantity", "governing value", "limit", "verdict", "governing run",
-                    "where"], rows, "verdicts")
+    return (_table(["quantity", "value", "limit", "verdict", "governing run", "where"], rows,
+                   "verdicts")
             + "<p class=muted>Over every run that finished (a failed run has no values; it "
             "is listed in section 2). A quantity is shown when the runs carry its column; the "
             "governing run has the worst value (for a stop, a run that did not stop). Limits: "
@@ -428,9 +433,9 @@ def _cause_table(cause, part: pd.DataFrame, cols: list[str], axes: list[str]) ->
         if extra and not any(extra in c for c in said):
             said.insert(0, extra)
         said = said or [r.get("message") or ""]
-        rows.append([f"<code>{_e(r.get('run_id'))}</code>"]
-                    + [_e(_text(r.get(a))) for a in axes]
-                    + [_n(r.get(c), 4) for c in cols] + [_message_cell("; ".join(said))])
+        rows.append([f"<code class=id>{_e(r.get('run_id'))}</code>"]
+                    + ["\x01ax\x01" + _e(_text(r.get(a))) for a in axes]
+                    + [_n(r.get(c), 4) for c in cols] + [_message_cell("; ".join(said), 2 * MESSAGE_CHARS)])
     head = ["run", *axes, *[f"{c} [{_unit(c)}]" if _unit(c) else c for c in cols],
             "what the run says"]
     out = _table(head, rows, "causes")
@@ -464,15 +469,18 @@ def _runs_section(study: dict, runs: pd.DataFrame) -> str:
     axes = _axes(study, runs)
     results = [c for c in RUN_COLUMNS if c in runs
                and pd.to_numeric(runs[c], errors="coerce").notna().any()]
+    if "t_max_start_kn" in results:  # the phases say more than the whole cycle
+        results = [c for c in results if c not in ("t_max_dyn_kn", "t_min_dyn_kn")]
+    results = results[:RUN_COLUMNS_MAX]
     shown = runs.sort_values(axes, kind="stable").head(MAX_RUN_ROWS) if len(runs) else runs
     rows, classes = [], []
     for _, r in shown.iterrows():
-        rows.append([f"<code>{_e(r['run_id'])}</code>"] + [_e(_text(r.get(a))) for a in axes]
+        rows.append([f"<code class=id>{_e(r['run_id'])}</code>"] + ["\x01ax\x01" + _e(_text(r.get(a))) for a in axes]
                     + [_n(r.get(c)) for c in results]
-                    + [_e(r.get("status")), _message_cell(r.get("message"))])
+                    + [f"<b>{_e(r.get('status'))}</b> " + _message_cell(r.get("message"))])
         classes.append(r.get("status"))
     head = ["run", *axes, *[f"{c} [{_unit(c)}]" if _unit(c) else c for c in results],
-            "status", "message"]
+            "status and message"]
     out = [_table(head, rows, "runs",
                   row_cls=lambda i: classes[i] if classes[i] in ("warning", "failed") else "")]
     if len(runs) > MAX_RUN_ROWS:

@@ -90,9 +90,9 @@ def test_every_failure_group_is_listed_with_its_count(web):
         assert heading in s2, heading
     # each group's table holds its runs and no other
     tables = dict(re.findall(r"<h3>([^<:]+): \d+ runs?</h3>.*?<tbody>(.*?)</tbody>", s2, re.S))
-    assert sorted(re.findall(r"<code>(\w+)</code>", tables["Overloaded a drive"])) == ["os", "ov"]
-    assert sorted(re.findall(r"<code>(\w+)</code>", tables["Did not stop"])) == ["ns"]
-    assert sorted(re.findall(r"<code>(\w+)</code>", tables["Slipped on a drive pulley"])) == [
+    assert sorted(re.findall(r"<code class=id>(\w+)</code>", tables["Overloaded a drive"])) == ["os", "ov"]
+    assert sorted(re.findall(r"<code class=id>(\w+)</code>", tables["Did not stop"])) == ["ns"]
+    assert sorted(re.findall(r"<code class=id>(\w+)</code>", tables["Slipped on a drive pulley"])) == [
         "os", "sl"]
     # the overload in words: 36.5 kW needed, 30 kW rated, short by 6.5 kW
     assert f"needs 36.5{UNIT_SPACE}kW at the drive pulleys, 30{UNIT_SPACE}kW rated: short by " \
