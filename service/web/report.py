@@ -385,7 +385,9 @@ def _verdicts_section(study: dict, runs: pd.DataFrame) -> str:
     """The verdict table: every design quantity the runs carry, its worst value over the
     finished runs, its limit, how many runs are past it and the run that governs it."""
     sf = _sf_min(study)
-    rows_ = verdict_rows(runs, study_limits(study, sf, TRANSIENT_SAFETY_RATIO))
+    words = ("the conveyor's minimum" if study["conveyor"].get("safety_factor_min")
+             else "DIN 22101 minimum")
+    rows_ = verdict_rows(runs, study_limits(study, sf, TRANSIENT_SAFETY_RATIO, words))
     if not rows_:
         return "<p>No finished runs yet.</p>"
     axes = _axes(study, runs)
@@ -409,7 +411,7 @@ def _verdicts_section(study: dict, runs: pd.DataFrame) -> str:
         worst = "largest" if v.worst == "max" else "smallest"
         rows.append([f"{_e(r['label'])}<br><span class=muted>{worst} "
                      f"<code>{_e(r['column'])}</code></span>",
-                     value if r["missing"] else value, limit, _verdict_cell(r),
+                     value, limit, _verdict_cell(r),
                      _run_cell(r["row"], axes), _e(where)])
     return (_table(["quantity", "value", "limit", "verdict", "governing run", "where"], rows,
                    "verdicts")

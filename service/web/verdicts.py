@@ -70,6 +70,8 @@ VERDICTS: tuple[Verdict, ...] = (
             "kW"),
     Verdict("Drives", "largest force, drive {i}, transient", "drive{i}_force_max_kn", "max",
             "kN"),
+    Verdict("Drives", "largest power, drive {i}, transient", "drive{i}_power_max_kw", "max",
+            "kW"),
     Verdict("Drives", "holdback torque", "holdback_torque_knm", "max", "kNm"),
     # belt
     Verdict("Belt", "belt type used", "belt_type_used", "text", ""),
@@ -310,7 +312,8 @@ def cause_groups(runs: pd.DataFrame) -> list[tuple[Cause, pd.DataFrame, list[str
 Limit = Callable[[pd.DataFrame], tuple[pd.Series | None, str]]
 
 
-def study_limits(study: dict, sf_min: float, sf_ratio: float) -> dict[str, Limit]:
+def study_limits(study: dict, sf_min: float, sf_ratio: float,
+                 sf_words: str = "DIN 22101 minimum") -> dict[str, Limit]:
     """The study's named limits (:attr:`Verdict.limit` names them): the belt safety factor
     ``sf_min`` steady and ``sf_ratio * sf_min`` transient, the tension they allow
     (``belt_rating_kn`` / safety factor), the sag limits and the take-up travel."""
@@ -339,7 +342,7 @@ def study_limits(study: dict, sf_min: float, sf_ratio: float) -> dict[str, Limit
         return (pd.Series(float(carry), index=runs.index) if carry == ret else None), words
 
     return {
-        "sf_steady": const(sf_min, "DIN 22101 minimum"),
+        "sf_steady": const(sf_min, sf_words),
         "sf_dyn": const(sf_dyn, f"{sf_ratio:.3g} x the minimum, transient"),
         "t_allow_steady": allow(sf_min, f"belt rating / {sf_min:.3g}"),
         "t_allow_dyn": allow(sf_dyn, f"belt rating / {sf_dyn:.3g}"),
