@@ -369,6 +369,14 @@ def test_design_report_and_the_changed_plots_in_chromium(browser, web):
         assert "2 of 8 grid points merged" in driver.find_element(By.ID, "merged").text
         designs = driver.find_element(By.ID, "designs").text
         assert "take-up mass" in designs and "brake force, brake stop in 6 s" in designs
+        # numbers in engineering format (never 1.689e+4) and rows of normal height (a long
+        # message folds into a <details> element)
+        for table in ("designs", "runs"):
+            assert "e+" not in driver.find_element(By.ID, table).text
+        tallest = driver.execute_script(
+            "return Math.max(...Array.from(document.querySelectorAll('#runs tbody tr'))"
+            ".map(tr => tr.getBoundingClientRect().height))")
+        assert tallest < 150, tallest
         link = driver.find_element(By.ID, "download-report")
         assert link.get_attribute("href").endswith(f"/studies/{sid}/report")
 
