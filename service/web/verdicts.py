@@ -384,6 +384,17 @@ def _past(v: Verdict, values: pd.Series, runs: pd.DataFrame, lim: pd.Series | No
     return past
 
 
+def _worst(v: Verdict, values: pd.Series, lim: pd.Series | None) -> tuple[Any, bool]:
+    """The row with the worst value; where the limit differs between runs (a rated power
+    that is a grid axis), the worst against its own limit (value / limit), and True."""
+    if lim is not None and lim.notna().any() and lim.dropna().nunique() > 1 \
+            and (lim.dropna() > 0).all():
+        ratio = values / lim
+        if ratio.notna().any():
+            return (ratio.idxmax() if v.worst == "max" else ratio.idxmin()), True
+    return (values.idxmax() if v.worst == "max" else values.idxmin()), False
+
+
 def verdict_rows(runs: pd.DataFrame, limits: dict[str, Limit]) -> list[dict]:
     """One row per :data:`VERDICTS` entry (and drive / pulley) present in ``runs``:
     ``{"verdict", "label", "column", "row", "value", "limit", "limit_text", "past", "n",
@@ -412,11 +423,12 @@ def verdict_rows(runs: pd.DataFrame, limits: dict[str, Limit]) -> list[dict]:
             if missing:  # the governing run: one that did not stop, before one that ran away
                 first = unstopped & not_stopped(ok)
                 idx = (first if first.any() else unstopped).idxmax()
-            else:
-                idx = values.idxmax() if v.worst == "max" else values.idxmin()
+            lim, text = _limits_of(v, ok, nums, limits)
+            if not missing:
+                idx, relative = _worst(v, values, lim)
+                text = f"{text}; the worst against its own limit" if relative else text
             row = ok.loc[idx]
             ok_col = v.ok.format(**nums) if v.ok else None
-            lim, text = _limits_of(v, ok, nums, limits)
             past = _past(v, values, ok, lim, ok_col)
             limit = None if lim is None or pd.isna(lim.loc[idx]) else float(lim.loc[idx])
             out.append({"verdict": v, "label": v.quantity.format(**nums), "column": column,

@@ -225,3 +225,15 @@ def test_the_stop_figure_legend_names_each_colour_once():
 def test_every_cause_has_a_title_and_words():
     assert len({c.key for c in CAUSES}) == len(CAUSES)
     assert all(c.title and c.words for c in CAUSES)
+
+
+def test_a_limit_that_differs_between_runs_governs_by_value_over_limit(web):
+    """A rated power that is a grid axis: 10 kW on a 5 kW drive (twice its rating) governs
+    over 36.5 kW on a 30 kW drive (1.22 x), though 36.5 kW is the larger power."""
+    runs = _runs(rated_power_kw=[5.0, 30.0, 30.0, 30.0, 30.0, 30.0, np.nan, 30.0])
+    html = report_html(_doc(web), runs, {"state": "done", "done": 8, "total": 8})
+    row = re.search(r"<tr><td>power at the drive pulleys.*?</tr>", _section(html, 1),
+                    re.S).group(0)
+    assert "<code>a1</code>" in row and f"10{UNIT_SPACE}kW" in row
+    assert f"5{UNIT_SPACE}kW" in row and "the worst against its own limit" in row
+    assert "past the limit in 3 of 7 runs" in row  # a1, ov, os
