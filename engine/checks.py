@@ -488,23 +488,31 @@ def steady_checks(conv, loop: Loop, T: np.ndarray, sf_min: float, friction_n: fl
 
 
 def transient_checks(loop: Loop, t_max_n: np.ndarray) -> dict:
-    """Transient design-check fields: ``pulley{j}_resultant_dyn_kn`` from the whole-cycle
-    tension envelope.
+    """Transient design-check fields: ``pulley{j}_resultant_dyn_kn`` from the tension
+    envelopes of the cycle.
 
     Parameters
     ----------
     loop : Loop
         The loop the transient ran on (its springs are the loop's element ends).
     t_max_n : ndarray
-        Highest tension of each spring over the cycle, every time step [N].
+        Highest tension of each spring, every time step [N]: over the whole cycle (one row),
+        or one row per envelope segment of the kernel (cut at the stop command and when the
+        belt first goes slack, ``TransientResult.raw["segments"]``).
 
     Notes
     -----
-    ``R_dyn = R(max T_in, max T_out)`` (:func:`pulley_resultant_n`): the two maxima of the
-    envelope need not fall at the same time, so this is an upper bound on the largest
-    resultant (exact when both peak together, as they nearly do at a plain pulley, whose two
-    tensions differ only by its own drag and inertia); never below the largest sampled value.
+    ``R_dyn = max over segments k of R(max_k T_in, max_k T_out)`` (:func:`pulley_resultant_n`):
+    within a segment the two maxima need not fall at the same time, so this is an upper bound
+    on the largest resultant (exact when both peak together, as they nearly do at a plain
+    pulley, whose two tensions differ only by its own drag and inertia). Per segment it is
+    tighter than over the whole cycle: a drive pulley's tight side peaks in the start, its
+    slack side often in the stop.
     """
-    return {f"pulley{j}_resultant_dyn_kn": float(pulley_resultant_n(
-                t_max_n[p.element - 1], t_max_n[p.element], p.wrap_deg)) / 1e3
-            for j, p in enumerate(loop.pulleys, start=1)}
+    env = np.atleast_2d(np.asarray(t_max_n, dtype=float))
+    out = {}
+    for j, p in enumerate(loop.pulleys, start=1):
+        r = pulley_resultant_n(env[:, p.element - 1], env[:, p.element], p.wrap_deg)
+        out[f"pulley{j}_resultant_dyn_kn"] = (float(np.nanmax(r)) / 1e3 if np.isfinite(r).any()
+                                              else math.nan)
+    return out

@@ -362,8 +362,9 @@ CHECKS = ResultGroup("checks", "Design checks, steady (DIN 22101, ISO 5048, CEMA
 
 CHECKS_TRANSIENT = ResultGroup("checks_transient", "Design checks, transient", (
     _f("pulley{j}_resultant_dyn_kn", "kN", "largest resultant force on pulley j during the "
-       "cycle, from the whole-cycle highest tensions either side of it (every step; an upper "
-       "bound: the two need not peak together)", "resultant max"),
+       "cycle, from the highest tensions either side of it in each envelope segment (every "
+       "step; an upper bound: the two need not peak together; docs/checks.md)",
+       "resultant max"),
 ))
 
 BOOKKEEPING = ResultGroup("bookkeeping", "Bookkeeping", (

@@ -214,7 +214,7 @@ def run_one(
                   safety_factor_min=transient_safety_min(conveyor, steady.loop.belt.kind))
     summary.update(tr.summary)
     summary.update({k: (v if math.isfinite(v) else None) for k, v in transient_checks(
-        steady.loop, tr.envelope_kn()[0] * 1e3).items()})
+        steady.loop, np.array([seg[2] for seg in tr.raw["segments"]])).items()})
     messages = [m for m in (steady.message, tr.message) if m]
     if remedy and tr.status != "failed" and any(
             (summary.get(f"drive{i + 1}_slip_s") or 0.0) > 0.0

@@ -112,6 +112,16 @@ def test_transient_resultant_from_the_envelope():
     assert out["pulley1_resultant_dyn_kn"] == pytest.approx(
         math.sqrt(400**2 + 150**2 - 2 * 400 * 150 * c210), rel=1e-12)
     assert out["pulley2_resultant_dyn_kn"] == pytest.approx(95.0, rel=1e-12)
+    # per envelope segment (start; stop): the head's tight side peaks at 400 kN in the start
+    # with 100 kN slack, its slack side at 150 kN in the stop with 200 kN tight: the bound is
+    # max(R(400, 100), R(200, 150)) = R(400, 100), below the whole cycle's R(400, 150)
+    seg = np.vstack([t_max, t_max])
+    seg[0, head.element] = 100e3
+    seg[1, head.element - 1] = 200e3
+    out = C.transient_checks(loop, seg)
+    r_400_100 = math.sqrt(400**2 + 100**2 - 2 * 400 * 100 * c210)
+    assert r_400_100 > math.sqrt(200**2 + 150**2 - 2 * 200 * 150 * c210)
+    assert out["pulley1_resultant_dyn_kn"] == pytest.approx(r_400_100, rel=1e-12)
 
 
 # ----------------------------------------------------------- idler load and L10
