@@ -231,3 +231,22 @@ def test_idler_rating_and_l10_warn(tmp_path):
     assert out["idler_l10_h"] == pytest.approx(
         (9950 / p) ** 3 * 1e6 / (60 * 60 * 4.5 / (math.pi * 0.152)), rel=1e-9)
     assert "bearing life" not in out["message"]
+
+
+def test_transient_resultant_bounds_the_sampled_head_resultant():
+    # the envelope is kept every step, so R(max T_in, max T_out) per segment is at least the
+    # resultant of every recorded pair (t_head_in_kn, t_head_out_kn) of the first head pulley,
+    # and at least the steady one; a steady-only run has no transient field
+    from beltstudy.engine.conveyor import Scenario
+    from beltstudy.engine.run import run_one
+    from tests.conftest import WARM_UP_SCENARIO
+
+    conv = Conveyor.model_validate(hand_conveyor_dict())
+    r = run_one(conv, Scenario(**WARM_UP_SCENARIO), model="din")
+    s, ts = r.summary, r.transient.series
+    sampled = C.pulley_resultant_n(ts["t_head_in_kn"], ts["t_head_out_kn"], 200.0).max()
+    assert s["pulley1_resultant_dyn_kn"] >= sampled * (1 - 1e-9)
+    assert s["pulley1_resultant_dyn_kn"] >= s["pulley1_resultant_kn"] * (1 - 1e-6)
+    assert s["pulley2_resultant_dyn_kn"] >= s["pulley2_resultant_kn"] * (1 - 1e-6)
+    steady_only = run_one(conv, Scenario(**WARM_UP_SCENARIO), model="din", dynamics=False)
+    assert "pulley1_resultant_dyn_kn" not in steady_only.summary
