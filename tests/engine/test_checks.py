@@ -231,6 +231,17 @@ def test_idler_rating_and_l10_warn(tmp_path):
     assert out["idler_l10_h"] == pytest.approx(
         (9950 / p) ** 3 * 1e6 / (60 * 60 * 4.5 / (math.pi * 0.152)), rel=1e-9)
     assert "bearing life" not in out["message"]
+    # twice the pitch, 3.0 m: twice the load, P = 0.67 x 4647 N / 2 = 1557 N and
+    # L10 = (9950 / 1557)^3 x 10^6 / (60 x 565.4) = 7 700 h, below CEMA's 30 000 h: a warning
+    d["idlers"]["carry"]["spacing_m"] = 3.0
+    path.write_text(yaml.safe_dump(d))
+    out = _static(path)
+    p = 0.67 * out["idler_load_carry_n"] / 2
+    assert p == pytest.approx(0.67 * 9.81 * (m_g + m_l) * 3.0 / 2, rel=1e-9)
+    l10 = (9950 / p) ** 3 * 1e6 / (60 * 60 * 4.5 / (math.pi * 0.152))
+    assert l10 == pytest.approx(7.7e3, rel=0.01)
+    assert out["idler_l10_h"] == pytest.approx(l10, rel=1e-9)
+    assert "is below the CEMA B basis 30000 h" in out["message"]
 
 
 def test_transient_resultant_bounds_the_sampled_head_resultant():
