@@ -10,8 +10,11 @@ result cannot be computed and silently dropped.
 Groups, in the order of the runs table: :data:`STEADY`, :data:`STEADY_DRIVE`,
 :data:`DESIGN`, :data:`DESIGN_DRIVE`, :data:`TE_COMPONENTS`, :data:`TRANSIENT`,
 :data:`PHASE`, :data:`SLACK`, :data:`TRANSIENT_DRIVE`, :data:`DRIVE_POWER`,
-:data:`DRIVE_LOAD`, :data:`DESIGN_BASIS`, :data:`BOOKKEEPING`. Per-drive fields are named with ``{i}``, the drive's 1-based number in
-file order (``drive{i}_slip_m``), and stored for drives 1 to :data:`MAX_DRIVES`.
+:data:`DRIVE_LOAD`, :data:`DESIGN_BASIS`, :data:`CHECKS`, :data:`CHECKS_TRANSIENT`,
+:data:`BOOKKEEPING`. Per-drive fields are named with ``{i}``, the drive's 1-based number in
+file order (``drive{i}_slip_m``), and stored for drives 1 to :data:`MAX_DRIVES`; per-pulley
+fields with ``{j}``, the pulley's 1-based number in loop order (``pulley{j}_resultant_kn``),
+stored for pulleys 1 to :data:`MAX_PULLEYS`.
 """
 
 from __future__ import annotations
@@ -36,6 +39,9 @@ __all__ = [
     "DRIVE_LOAD",
     "DESIGN_BASIS",
     "BOOKKEEPING",
+    "CHECKS",
+    "CHECKS_TRANSIENT",
+    "MAX_PULLEYS",
     "GROUPS",
     "DECIDING",
     "ACCURACY",
@@ -51,6 +57,10 @@ __all__ = [
 #: Most drive pulleys a conveyor may have (``drives`` in the conveyor file); the per-drive
 #: columns run from ``drive1_*`` to this.
 MAX_DRIVES = 6
+#: Most pulleys a loop may have: every drive its own pulley, a plain pulley at an end without
+#: a drive, and a separate take-up pulley (``engine/loop.py``); the per-pulley columns run from
+#: ``pulley1_*`` to this.
+MAX_PULLEYS = MAX_DRIVES + 2
 
 
 @dataclass(frozen=True)
@@ -71,10 +81,23 @@ class ResultField:
     def per_drive(self) -> bool:
         return "{i}" in self.name
 
-    def columns(self, drives: int = MAX_DRIVES) -> tuple[str, ...]:
-        """The column names: one, or one per drive 1 .. ``drives``."""
+    @property
+    def per_pulley(self) -> bool:
+        return "{j}" in self.name
+
+    @property
+    def flag(self) -> bool:
+        """A yes/no verdict (stored as a boolean column)."""
+        return self.unit == "bool"
+
+    def columns(self, drives: int = MAX_DRIVES, pulleys: int = MAX_PULLEYS
+                ) -> tuple[str, ...]:
+        """The column names: one, or one per drive 1 .. ``drives`` (per pulley 1 ..
+        ``pulleys``)."""
         if self.per_drive:
             return tuple(self.name.format(i=i) for i in range(1, drives + 1))
+        if self.per_pulley:
+            return tuple(self.name.format(j=j) for j in range(1, pulleys + 1))
         return (self.name,)
 
 
@@ -342,6 +365,47 @@ DESIGN_BASIS = ResultGroup("design_basis", "What set each auto size (text)", (
        "(docs/belts.md)", "belt type used"),
 ))
 
+# ------------------------------------------------ design checks (SPEC 7.4, docs/checks.md)
+_PULLEY_J = ("pulley j: the pulley's 1-based number in loop order (head drives in file order "
+             "or the plain head pulley, a head take-up pulley, a tail take-up pulley before "
+             "tail drives, tail drives in file order or the plain tail pulley; "
+             "pulley{j}_name says which)")
+CHECKS = ResultGroup("checks", "Design checks, steady (DIN 22101, ISO 5048, CEMA, ISO 281; "
+                     "docs/checks.md)", (
+    _f("pulley{j}_name", "text", f"{_PULLEY_J}: drive i (head|tail), head, tail or take-up "
+       "(head|tail), and its DIN 22101 pulley group A (drive, high tension), B (low tension) "
+       "or C (snub, wrap < 30 deg)", "pulley"),
+    _f("pulley{j}_diameter_min_m", "m", "DIN 22101 minimum diameter of pulley j for its "
+       "group and the belt's utilisation there (null when the belt's carcass thickness is not "
+       "in engine/data/carcass.csv)", "D min"),
+    _f("pulley{j}_diameter_min_ok", "bool", "pulley j's diameter meets "
+       "pulley{j}_diameter_min_m (null when no minimum, and for a plain or take-up pulley, whose diameter the file does not give)", "D ok"),
+    _f("pulley{j}_resultant_kn", "kN", "resultant (shaft) force of the belt on pulley j, "
+       "sqrt(T_in^2 + T_out^2 - 2 T_in T_out cos(wrap)), steady running", "resultant"),
+    _f("transition_head_m", "m", "minimum transition length from the head pulley to the "
+       "first fully troughed idler (CEMA 7th ed. Table 7.29, full trough) for the carry "
+       "trough angle, belt kind and the tension there", "transition length, head (min)"),
+    _f("transition_tail_m", "m", "minimum transition length at the tail (as "
+       "transition_head_m)", "transition length, tail (min)"),
+    _f("idler_load_carry_n", "N", "static load per carry idler set, g (m'_G + m'_L) S at the "
+       "design load (DIN 22101 / ISO 5048)", "carry idler load per set"),
+    _f("idler_load_roll_n", "N", "load on the most loaded roll of a carry set (the middle "
+       "roll's share of idler_load_carry_n by trough angle)", "carry idler load, middle roll"),
+    _f("idler_l10_h", "h", "ISO 281 L10 life of the middle carry roll's bearings (its load "
+       "shared by two; bearing of the CEMA class, engine/data/idler_ratings.csv; null without "
+       "a cema_class)", "carry idler bearing life L10"),
+    _f("holdback_torque_knm", "kNm", "torque a holdback on the first head pulley must hold: "
+       "(net downhill pull of the belt as loaded - 1/2 running friction) x D/2 (CEMA's rule); "
+       "0 when the belt cannot run back", "holdback torque (required)"),
+))
+
+CHECKS_TRANSIENT = ResultGroup("checks_transient", "Design checks, transient", (
+    _f("pulley{j}_resultant_dyn_kn", "kN", "largest resultant force on pulley j during the "
+       "cycle, from the highest tensions either side of it in each envelope segment (every "
+       "step; an upper bound: the two need not peak together; docs/checks.md)",
+       "resultant max"),
+))
+
 BOOKKEEPING = ResultGroup("bookkeeping", "Bookkeeping", (
     _f("status", "text", "ok, warning or failed"),
     _f("message", "text", "why, in words: every crossed limit, or the failure"),
@@ -350,7 +414,8 @@ BOOKKEEPING = ResultGroup("bookkeeping", "Bookkeeping", (
 
 #: Every group, in the order of the runs table.
 GROUPS = (STEADY, STEADY_DRIVE, DESIGN, DESIGN_DRIVE, TE_COMPONENTS, TRANSIENT, PHASE, SLACK,
-          TRANSIENT_DRIVE, DRIVE_POWER, DRIVE_LOAD, DESIGN_BASIS, BOOKKEEPING)
+          TRANSIENT_DRIVE, DRIVE_POWER, DRIVE_LOAD, DESIGN_BASIS, CHECKS, CHECKS_TRANSIENT,
+          BOOKKEEPING)
 
 # ------------------------------------------------------------- error bars (SPEC 7.4)
 #: The deciding figures of a transient run that get an error bar (SPEC 7.4; per-drive ones
@@ -418,12 +483,18 @@ def field(name: str) -> ResultField:
         head, _, rest = name.partition("_")
         if head[5:].isdigit():
             return FIELDS[f"drive{{i}}_{rest}"]
+    if name.startswith("pulley"):
+        head, _, rest = name.partition("_")
+        if head[6:].isdigit() and f"pulley{{j}}_{rest}" in FIELDS:
+            return FIELDS[f"pulley{{j}}_{rest}"]
     raise KeyError(name)
 
 
-def columns(groups=GROUPS, drives: int = MAX_DRIVES) -> tuple[str, ...]:
-    """Every column of these groups, per-drive fields for drives 1 .. ``drives``."""
-    return tuple(c for g in groups for f in g for c in f.columns(drives))
+def columns(groups=GROUPS, drives: int = MAX_DRIVES, pulleys: int = MAX_PULLEYS
+            ) -> tuple[str, ...]:
+    """Every column of these groups, per-drive fields for drives 1 .. ``drives``, per-pulley
+    fields for pulleys 1 .. ``pulleys``."""
+    return tuple(c for g in groups for f in g for c in f.columns(drives, pulleys))
 
 
 def summary_columns(summary: dict) -> list[str]:
@@ -448,6 +519,8 @@ def check_summary(summary: dict) -> dict:
             continue
         if f.per_drive and not 1 <= int(key[5:key.index("_")]) <= MAX_DRIVES:
             unknown.append(key)
+        if f.per_pulley and not 1 <= int(key[6:key.index("_")]) <= MAX_PULLEYS:
+            unknown.append(key)
     if unknown:
         raise KeyError(f"results not defined in beltstudy.engine.results: {', '.join(unknown)}")
     return summary
@@ -464,7 +537,9 @@ def markdown() -> str:
         "its inputs: `study_id`, `run_id`, one column per grid axis, `friction_model` and",
         "`engine_version`. Per-drive fields are stored for drives 1 to "
         f"{MAX_DRIVES} (`{{i}}` is",
-        "the drive's number in file order; null beyond the conveyor's drives).",
+        "the drive's number in file order; null beyond the conveyor's drives), per-pulley",
+        f"fields for pulleys 1 to {MAX_PULLEYS} (`{{j}}`, the pulley's number in loop order,",
+        "docs/checks.md). Unit `bool`: a yes/no verdict, a boolean column.",
         "",
     ]
     for g in ALL_GROUPS:

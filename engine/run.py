@@ -10,12 +10,14 @@ step above the stability limit.
 
 from __future__ import annotations
 
+import math
 import time
 
 import numpy as np
 import pandas as pd
 
 from beltstudy.engine.beltselect import resolve_auto_belt, run_cases, run_message
+from beltstudy.engine.checks import transient_checks
 from beltstudy.engine.conveyor import Conveyor, Scenario
 from beltstudy.engine.design import auto_sizes, summary_fields
 from beltstudy.engine.dynamics import DynamicsOptions, TransientResult, build_system, simulate
@@ -216,6 +218,8 @@ def run_one(
     tr = simulate(system, steady_summary=steady.summary, conveyor=conveyor,
                   safety_factor_min=transient_safety_min(conveyor, steady.loop.belt.kind))
     summary.update(tr.summary)
+    summary.update({k: (v if math.isfinite(v) else None) for k, v in transient_checks(
+        steady.loop, np.array([seg[2] for seg in tr.raw["segments"]])).items()})
     messages = [m for m in (steady.message, tr.message) if m]
     if remedy and tr.status != "failed" and any(
             (summary.get(f"drive{i + 1}_slip_s") or 0.0) > 0.0

@@ -48,8 +48,9 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from beltstudy.engine.capacity import capacity as capacity_check
+from beltstudy.engine.checks import steady_checks as design_checks
 from beltstudy.engine.conveyor import Conveyor, section_loads
-from beltstudy.engine.drives import steady_checks
+from beltstudy.engine.drives import steady_checks as drive_checks
 from beltstudy.engine.friction import get_model, temperature_note
 from beltstudy.engine.law import ResistanceLaw
 from beltstudy.engine.loop import (
@@ -587,7 +588,7 @@ def _summarise(res: SteadyResult, drives, hs_adm, bounds, shortfall_n: float,
     from beltstudy.engine.design import rated_power_kw  # design imports this module
 
     rated_kw, _ = rated_power_kw(conv, res.te_n, float(np.sum(res.resistance_n)))
-    fields, short = steady_checks(conv, [share * res.te_n for _i, share, _e in drives], v,
+    fields, short = drive_checks(conv, [share * res.te_n for _i, share, _e in drives], v,
                                   res.te_n, rated_kw)
     res.summary.update(fields)
     warnings += short
@@ -608,6 +609,11 @@ def _summarise(res: SteadyResult, drives, hs_adm, bounds, shortfall_n: float,
                         f"(belt rating {rating / 1e3:.0f} kN, t_max {T[imax] / 1e3:.1f} kN)")
     if T.min() <= 1.0 + 1e-9:
         warnings.append("the belt goes slack (tension at or below zero): raise the take-up")
+    # ---- design checks: pulleys, transitions, idlers, holdback (beltstudy.engine.checks)
+    friction_n = (sum(comps.values()) - comps["lift"] - comps.get("feed", 0.0)) * 1e3
+    checked, check_warnings = design_checks(conv, loop, T, sf_min, friction_n)
+    res.summary.update(checked)
+    warnings += check_warnings
     res.warnings = warnings
     res.status = "warning" if warnings else "ok"
     # a note does not make a warning (as the transient's notes, "note: ..." after them)

@@ -20,6 +20,8 @@ STUDY_PLOTS = {
     "peak-dynamic-tension": "peak and lowest tension of the stop against the stop time, a line "
     "per combination of the other varying axes",
     "ratio": "candidate / baseline ratio per axis value (default nonlin over cema)",
+    "start-stop-peaks": "peak and lowest tension of the start and of the stop against a study "
+    "axis, a point per run (colour per friction model, marker per other axis values)",
 }
 #: Plot names of a run.
 RUN_PLOTS = {
@@ -260,7 +262,6 @@ def comparison_figure(df, x: str, y: str, others: list[str], xlabel: str, ylabel
     lines = panels[0][2]
     keys = sorted({tuple(str(v) for v in row) for row in df[lines].itertuples(index=False)}
                   ) if lines else [()]
-    colour = {k: i for i, k in enumerate(keys)}
     ncols = min(len(panels), 3)
     nrows_p = math.ceil(len(panels) / ncols)
     rows = nrows_p * (2 if y2 else 1)
@@ -270,9 +271,14 @@ def comparison_figure(df, x: str, y: str, others: list[str], xlabel: str, ylabel
     fig, grid = plt.subplots(rows, ncols, figsize=(5.4 * ncols + 1.0 + legend_in,
                                                    3.6 * rows + 0.9),
                              squeeze=False, sharex=True)
-    cmap = plt.get_cmap("tab10")
+    # colour: one per value of the first line axis; marker and dash: one per combination of
+    # the rest (each colour and each marker one legend entry, none repeated)
+    ckeys = sorted({k[:1] for k in keys})
+    mkeys = sorted({k[1:] for k in keys})
+    colours = dict(zip(ckeys, _palette(len(ckeys)), strict=True))
     styles = ("-", "--", ":", "-.")
-    handles: dict[str, tuple] = {}
+    look = {m: (MARKERS[i % len(MARKERS)], styles[(i // len(MARKERS)) % len(styles)])
+            for i, m in enumerate(mkeys)}
     for k, (ptitle, part, cols) in enumerate(panels):
         r, c = divmod(k, ncols)
         targets = [(grid[r * (2 if y2 else 1)][c], y, ylabel)]
@@ -280,11 +286,11 @@ def comparison_figure(df, x: str, y: str, others: list[str], xlabel: str, ylabel
             targets.append((grid[r * 2 + 1][c], y2, y2label))
         for ax, col, lab in targets:
             for key, xs, ys in series(part, x, col, cols):
-                i = colour.get(tuple(str(key[c]) for c in cols), 0)
-                (line,) = ax.plot(xs, ys, marker="o", ms=4, color=cmap(i % 10),
-                                  linestyle=styles[(i // 10) % len(styles)], label=_label(key))
-                line.set_gid(repr(sorted((kk, _text(vv)) for kk, vv in key.items())))
-                handles.setdefault(line.get_label(), (i, line))
+                kk = tuple(str(key[c]) for c in cols)
+                marker, dash = look.get(kk[1:], ("o", "-"))
+                (line,) = ax.plot(xs, ys, marker=marker, ms=4, color=colours.get(kk[:1], "0.3"),
+                                  linestyle=dash, label=_label(key))
+                line.set_gid(repr(sorted((kk_, _text(vv)) for kk_, vv in key.items())))
             ax.set_ylabel(lab)
             ax.grid(alpha=0.3)
             if ymin0:
@@ -296,9 +302,10 @@ def comparison_figure(df, x: str, y: str, others: list[str], xlabel: str, ylabel
         r, c = divmod(k, ncols)
         for rr in range(r * (2 if y2 else 1), (r + 1) * (2 if y2 else 1)):
             grid[rr][c].set_axis_off()
-    order = sorted(handles, key=lambda label: handles[label][0])
-    fig.legend([handles[k][1] for k in order], order, loc="upper right", fontsize=8,
-               bbox_to_anchor=(0.995, 0.93), frameon=True)
+    handles, labels = _legend_entries(lines, ckeys, mkeys, colours, look)
+    if handles:
+        fig.legend(handles, labels, loc="upper right", fontsize=8,
+                   bbox_to_anchor=(0.995, 0.93), frameon=True)
     fig.suptitle(wrap_title(title, int(TITLE_WIDTH * max(ncols, 1) / 1.2)))
     note_lines = list(notes or [])
     if same:
@@ -311,6 +318,43 @@ def comparison_figure(df, x: str, y: str, others: list[str], xlabel: str, ylabel
     top = 1.0 - (0.25 + 0.22 * fig._suptitle.get_text().count("\n")) / height
     fig.tight_layout(rect=(0, 0.3 / height if note_lines else 0, right, top))
     return fig
+
+
+def _shown(text: str):
+    """An axis value kept as text (a legend key) back as a number where it is one."""
+    try:
+        value = float(text)
+    except ValueError:
+        return text
+    return None if math.isnan(value) else value
+
+
+def _legend_entries(lines: list[str], ckeys, mkeys, colours: dict, look: dict):
+    """The legend of :func:`comparison_figure`: one entry per colour (the first line axis)
+    and, under a heading, one per marker and dash (the others); one entry per line when
+    there is a single line axis."""
+    from matplotlib.lines import Line2D
+
+    handles, labels = [], []
+    if not lines:
+        return handles, labels
+    if len(lines) == 1:
+        for c in ckeys:
+            handles.append(Line2D([], [], color=colours[c], marker="o", ms=4))
+            labels.append(_label({lines[0]: _shown(c[0])}))
+        return handles, labels
+    handles.append(Line2D([], [], linestyle="none"))
+    labels.append(f"colour: {lines[0]}")
+    for c in ckeys:
+        handles.append(Line2D([], [], color=colours[c], linewidth=3))
+        labels.append(_text(_shown(c[0])))
+    handles.append(Line2D([], [], linestyle="none"))
+    labels.append("marker: " + ", ".join(lines[1:]))
+    for m in mkeys:
+        marker, dash = look[m]
+        handles.append(Line2D([], [], color="0.35", marker=marker, ms=5, linestyle=dash))
+        labels.append(_label({k: _shown(v) for k, v in zip(lines[1:], m, strict=True)}))
+    return handles, labels
 
 
 def _one_per_zip_group(others: list[str], groups: list[list[str]] | None
@@ -438,6 +482,187 @@ def peak_dynamic_tension_figure(runs, title: str = "", axes: list[str] | None = 
                              f"peak tension [kN] ({phase})", title, y2=low_col,
                              y2label=f"lowest tension [kN] ({phase})", ymin0=True,
                              inputs=[c for c in cols if c not in others], notes=notes)
+
+
+#: Markers of :func:`phase_peaks_figure`, one per combination of the marker axes (then hollow).
+MARKERS = ("o", "s", "^", "v", "D", "P", "X", "*", "<", ">")
+
+
+def _palette(n: int):
+    """``n`` distinct colours: tab10 up to 10, tab20 up to 20, else evenly along viridis."""
+    plt = _plt()
+    if n <= 10:
+        return [plt.get_cmap("tab10")(i) for i in range(n)]
+    if n <= 20:
+        return [plt.get_cmap("tab20")(i) for i in range(n)]
+    return [plt.get_cmap("viridis")(i / max(n - 1, 1)) for i in range(n)]
+
+
+def _x_axis(df: pd.DataFrame, cols: list[str]) -> str | None:
+    """The x axis of :func:`phase_peaks_figure`: the temperature, the stop time asked, the
+    load, else the first varying axis (None: a single point per series)."""
+    moving = varying(df, cols)
+    for c in ("temperature_c", "stop_time_target_s", "load"):
+        if c in moving:
+            return c
+    numeric = [c for c in moving if c != "friction_model" and _numeric(df, c) is not None
+               and df[c].notna().all()]
+    if numeric:
+        return numeric[0]
+    rest = [c for c in moving if c != "friction_model"]
+    return rest[0] if rest else (moving[0] if moving else None)
+
+
+def _phase_panels(df: pd.DataFrame) -> list[tuple[str, str]]:
+    """``[(column, panel title)]``: per phase where the runs have them, else the cycle's."""
+    out = [(c, t) for c, t in (("t_max_start_kn", "peak tension, start"),
+                               ("t_max_stop_kn", "peak tension, stop"),
+                               ("t_min_start_kn", "lowest tension, start"),
+                               ("t_min_stop_kn", "lowest tension, stop"))
+           if _numeric(df, c) is not None]
+    if not out:
+        out = [(c, t) for c, t in (("t_max_dyn_kn", "peak tension, whole transient"),
+                                   ("t_min_dyn_kn", "lowest tension, whole transient"))
+               if _numeric(df, c) is not None]
+    return out
+
+
+def phase_peaks_figure(runs, title: str = "", axes: list[str] | None = None,
+                       groups: list[list[str]] | None = None,
+                       allowed_kn: float | None = None):
+    """Peak and lowest belt tension [kN] of the start and of the stop against a study axis.
+
+    One point per run, never joined: runs with different values of the other axes are
+    unrelated. Panels: the peak of the start and of the stop above, the lowest below
+    (``t_max_start_kn``, ``t_max_stop_kn``, ``t_min_start_kn``, ``t_min_stop_kn``; the whole
+    transient's ``t_max_dyn_kn`` / ``t_min_dyn_kn`` for runs without the phase columns). The x
+    axis is the temperature, else the stop time asked, the load or the first varying axis
+    (categories side by side, points of one category spread a little so none hides another).
+    Colour: one per value of the friction model (or of the first other varying axis); marker:
+    one per combination of the remaining varying axes (hollow after ten). Each colour and each
+    marker has one legend entry. A red ring marks a run whose belt did not stop; a dashed line
+    the tension the belt allows (``allowed_kn``: rating over the transient safety factor) and
+    zero (slack).
+    """
+    plt = _plt()
+    from matplotlib.lines import Line2D
+
+    title = title or "peak and lowest tension of the start and the stop"
+    df = _ok_rows(runs).copy()
+    panels = _phase_panels(df)
+    if not len(df) or not panels:
+        return message_figure(NO_TRANSIENT, title)
+    cols = _model_first_axes(df, axes)
+    x = _x_axis(df, cols)
+    others = varying(df, [c for c in cols if c != x and c not in _tied(groups, x or "")])
+    others, notes = _one_per_zip_group(others, groups)
+    colour_by, marker_by = (others[:1], others[1:])
+    ckeys = sorted({tuple(_text(v) for v in r) for r in df[colour_by].itertuples(index=False)}
+                   ) if colour_by else [()]
+    mkeys = sorted({tuple(_text(v) for v in r) for r in df[marker_by].itertuples(index=False)}
+                   ) if marker_by else [()]
+    colours = dict(zip(ckeys, _palette(len(ckeys)), strict=True))
+    marks = {k: (MARKERS[i % len(MARKERS)], (i // len(MARKERS)) % 2 == 1)
+             for i, k in enumerate(mkeys)}
+    if len(mkeys) > 2 * len(MARKERS):
+        notes.append(f"{len(mkeys)} marker combinations: markers repeat after "
+                     f"{2 * len(MARKERS)}")
+    # x positions: numbers as they are, categories side by side; a small spread per series
+    if x is None:
+        xs_base, ticks = pd.Series(0.0, index=df.index), None
+    elif _numeric(df, x) is not None and df[x].notna().all():
+        xs_base, ticks = pd.to_numeric(df[x]), None
+    else:
+        cats = sorted(df[x].map(_text).unique())
+        xs_base, ticks = df[x].map(_text).map({c: i for i, c in enumerate(cats)}), cats
+    span = float(xs_base.max() - xs_base.min()) or 1.0
+    n_series = len(ckeys) * len(mkeys)
+    step = min(0.5 / max(n_series, 1), 0.08) * (span if ticks is None else 1.0)
+    series_index = {(c, m): i for i, (c, m) in enumerate((c, m) for c in ckeys for m in mkeys)}
+    ckey = df[colour_by].apply(lambda r: tuple(_text(v) for v in r), axis=1) if colour_by \
+        else pd.Series([()] * len(df), index=df.index)
+    mkey = df[marker_by].apply(lambda r: tuple(_text(v) for v in r), axis=1) if marker_by \
+        else pd.Series([()] * len(df), index=df.index)
+    offset = pd.Series([(series_index[(c, m)] - (n_series - 1) / 2) * step
+                        for c, m in zip(ckey, mkey, strict=True)], index=df.index)
+    stopped = df["stop_time_s"].notna() if "stop_time_s" in df.columns else None
+    ncols = 2 if len(panels) > 2 else len(panels)
+    nrows = math.ceil(len(panels) / ncols)
+    longest = max([len(", ".join(k)) for k in (*ckeys, *mkeys)]
+                  + [len(", ".join(marker_by)) + 8, len("".join(colour_by)) + 8, 16])
+    legend_in = min(0.065 * longest + 0.8, 5.0)  # the legend's column beside the panels
+    fig, grid = plt.subplots(nrows, ncols,
+                             figsize=(5.2 * ncols + legend_in + 0.3, 3.4 * nrows + 1.0),
+                             squeeze=False, sharex=True)
+    unstopped_drawn = False
+    for k, (col, ptitle) in enumerate(panels):
+        ax = grid[k // ncols][k % ncols]
+        values = _numeric(df, col)
+        for (c, m), part in df.groupby([ckey, mkey], sort=False):
+            idx = part.index[values.loc[part.index].notna()]
+            if not len(idx):
+                continue
+            marker, hollow = marks[m]
+            colour = colours[c]
+            ax.scatter(xs_base.loc[idx] + offset.loc[idx], values.loc[idx], s=30,
+                       marker=marker, edgecolors=colour,
+                       facecolors="none" if hollow else [colour], linewidths=1.2,
+                       zorder=3, gid=repr((c, m)))
+            if stopped is not None and "stop" in col:
+                bad = [i for i in idx if not stopped.loc[i]]
+                if bad:
+                    ax.scatter(xs_base.loc[bad] + offset.loc[bad], values.loc[bad], s=150,
+                               marker="o", facecolors="none", edgecolors="red",
+                               linewidths=1.4, zorder=2)
+                    unstopped_drawn = True
+        if col.startswith("t_max") and allowed_kn:
+            ax.axhline(allowed_kn, color="0.3", linestyle="--", linewidth=0.9)
+        if col.startswith("t_min"):
+            ax.axhline(0.0, color="0.3", linestyle="--", linewidth=0.9)
+        ax.set_title(ptitle, fontsize=10)
+        ax.set_ylabel("belt tension [kN]")
+        ax.grid(alpha=0.3)
+        if ticks is not None:
+            ax.set_xticks(range(len(ticks)), ticks)
+        if k // ncols == nrows - 1 or k + ncols >= len(panels):
+            ax.set_xlabel(_tied_label(f"{x}", _tied(groups, x or "")) if x else "all runs")
+    for k in range(len(panels), nrows * ncols):
+        grid[k // ncols][k % ncols].set_axis_off()
+    handles, labels = [], []
+    if colour_by:
+        handles.append(Line2D([], [], linestyle="none"))
+        labels.append(f"colour: {colour_by[0]}")
+        for c in ckeys:
+            handles.append(Line2D([], [], linestyle="none", marker="s", markersize=8,
+                                  markerfacecolor=colours[c], markeredgecolor=colours[c]))
+            labels.append(", ".join(c))
+    if marker_by:
+        handles.append(Line2D([], [], linestyle="none"))
+        labels.append("marker: " + ", ".join(marker_by))
+        for m in mkeys:
+            marker, hollow = marks[m]
+            handles.append(Line2D([], [], linestyle="none", marker=marker, markersize=7,
+                                  markerfacecolor="none" if hollow else "0.35",
+                                  markeredgecolor="0.35"))
+            labels.append(", ".join(m))
+    if unstopped_drawn:
+        handles.append(Line2D([], [], linestyle="none", marker="o", markersize=11,
+                              markerfacecolor="none", markeredgecolor="red"))
+        labels.append("did not stop")
+    if allowed_kn:
+        handles.append(Line2D([], [], color="0.3", linestyle="--"))
+        labels.append(f"allowed {allowed_kn:.0f} kN / slack 0")
+    if handles:
+        fig.legend(handles, labels, loc="upper right", fontsize=8, frameon=True,
+                   bbox_to_anchor=(0.995, 0.93))
+    fig.suptitle(wrap_title(title, 90))
+    if notes:
+        fig.text(0.01, 0.005, wrap_title("; ".join(notes), 120), fontsize=8, color="0.35",
+                 va="bottom")
+    width, height = fig.get_size_inches()
+    fig.tight_layout(rect=(0, 0.3 / height if notes else 0, 1.0 - legend_in / width,
+                           1.0 - 0.45 / height))
+    return fig
 
 
 def ratio_figure(summary: dict, baseline: str = "cema", candidate: str = "nonlin", title: str = ""):

@@ -20,6 +20,8 @@ from tests.conftest import CONVEYORS, ROOT
 CLI_INPUTS = {"conveyor", "friction_model", "temperature_c", "load", "stop_mode", "formulation"}
 #: Two drives, one brake: per-drive and brake fields are all filled.
 CONVEYOR = CONVEYORS / "overland-4km.yaml"
+#: Its pulleys: two head drives, the tail take-up pulley, the tail drive (docs/checks.md).
+PULLEYS = 4
 NON_TE = [g for g in R.GROUPS if g is not R.TE_COMPONENTS]
 
 
@@ -63,7 +65,8 @@ def test_every_field_has_a_unit_and_a_meaning():
     for f in R.FIELDS.values():
         assert f.unit and f.meaning and f.label, f
         suffix = {"kN": "_kn", "kW": "_kw", "m": "_m", "s": "_s", "%": "_pct", "kg": "_kg",
-                  "kg/m": "_kg_m", "m/s": "_m_s"}.get(f.unit)
+                  "kg/m": "_kg_m", "m/s": "_m_s", "N": "_n", "h": "_h",
+                  "kNm": "_knm"}.get(f.unit)
         # SPEC: every key that carries a unit ends in it (an error bar: its figure's name,
         # then _err or _converged, SPEC 7.4)
         name = f.name.removesuffix("_err").removesuffix("_converged")
@@ -82,13 +85,14 @@ def test_parquet_runs_schema_holds_exactly_the_defined_fields():
     for name in results:
         text = R.field(name).text
         assert (schema.field(name).type == "string") == text, name
+        assert (schema.field(name).type == "bool") == R.field(name).flag, name
 
 
 def test_simulate_json_holds_exactly_the_defined_fields(capsys, simulate_json):
     s = simulate_json(capsys)
     assert s["status"] != "failed", s["message"]
     results = set(s) - CLI_INPUTS - {R.TE_COMPONENTS_KEY}
-    expected = {c for g in NON_TE for f in g for c in f.columns(drives=3)}
+    expected = {c for g in NON_TE for f in g for c in f.columns(drives=3, pulleys=PULLEYS)}
     assert results == expected
     assert set(s[R.TE_COMPONENTS_KEY]) <= set(R.TE_PARTS)
     assert set(s[R.TE_COMPONENTS_KEY]) == {"idler_rotation", "indentation", "belt_flexure",
@@ -100,8 +104,9 @@ def test_static_json_holds_the_steady_fields(capsys):
     s = _json(capsys, "static", str(CONVEYOR), "--json")
     results = set(s) - CLI_INPUTS - {R.TE_COMPONENTS_KEY}
     steady = (R.STEADY, R.STEADY_DRIVE, R.DESIGN, R.DESIGN_DRIVE, R.DESIGN_BASIS,
-              R.BOOKKEEPING, R.DRIVE_POWER)
-    assert results == {c for g in steady for f in g for c in f.columns(drives=3)}
+              R.CHECKS, R.BOOKKEEPING, R.DRIVE_POWER)
+    assert results == {c for g in steady for f in g
+                       for c in f.columns(drives=3, pulleys=PULLEYS)}
 
 
 def test_rest_rows_hold_the_stored_fields(capsys, simulate_json):
@@ -127,3 +132,8 @@ def test_a_result_without_a_definition_is_refused():
         R.check_summary({"te_kn": 1.0, "te_new_part_kn": 2.0})
     with pytest.raises(KeyError, match="drive7_slip_m"):
         R.check_summary({"drive7_slip_m": 0.0})
+    R.check_summary({f"pulley{R.MAX_PULLEYS}_resultant_kn": 1.0})
+    with pytest.raises(KeyError, match="pulley9_resultant_kn"):
+        R.check_summary({"pulley9_resultant_kn": 1.0})
+    with pytest.raises(KeyError, match="pulley1_new_kn"):
+        R.check_summary({"pulley1_new_kn": 1.0})

@@ -545,10 +545,12 @@ def _slip_warnings(sys: System, r: dict, out, conveyor=None) -> list[str]:
             t1 = float(drv[i]["slip_last"])
             when, fix = slip_words(_run_phase(sys, t0, t_stop_cmd),
                                    _run_phase(sys, t1, t_stop_cmd))
+            sm = float(drv[i]["slip_min"])
+            margin = (f"lowest slip margin {sm:.2f}" if sm < 1e299 else
+                      "the belt slack on both sides of the pulley while it slipped")
             w.append(f"{names[i]} slipped on its pulley {when}: from t = {t0:.1f} "
                      f"to {t1:.1f} s, {slip_s:.2f} s in all, {drv[i]['slip_m']:.3g} m of belt "
-                     f"slipped (lowest slip margin {drv[i]['slip_min']:.2f}); {fix} would "
-                     "avoid it")
+                     f"slipped ({margin}); {fix} would avoid it")
     shs = out.shs
     for b in range(brakes.shaft.shape[0]):
         k = int(brakes.shaft[b])

@@ -186,5 +186,29 @@ def _table(s: dict) -> str:
                          f" {'-' if need is None else format(need, '.1f'):>19}"
                          f" {'-' if util is None else format(util, '.3f'):>17}")
         lines.append("")
+    lines += _check_lines(s)
     lines.append(f"  status: {s['status']}" + (f"  ({s['message']})" if s["message"] else ""))
     return "\n".join(lines)
+
+
+def _check_lines(s: dict) -> list[str]:
+    """The design checks (docs/checks.md): each pulley's minimum diameter and resultant, then
+    the transitions, the carry idlers and the holdback."""
+    lines, j = [], 1
+    if "pulley1_name" not in s:
+        return lines
+    lines.append("  design checks (docs/checks.md)   D min [m]   D ok   resultant [kN]")
+    while f"pulley{j}_name" in s:
+        d_min, ok = s[f"pulley{j}_diameter_min_m"], s[f"pulley{j}_diameter_min_ok"]
+        lines.append(f"    pulley {j}: {s[f'pulley{j}_name']:<24} "
+                     f"{'-' if d_min is None else f'{d_min:.3f}':>7} "
+                     f"{'-' if ok is None else ('yes' if ok else 'NO'):>6} "
+                     f"{s[f'pulley{j}_resultant_kn']:>14.1f}")
+        j += 1
+    for key in ("transition_head_m", "transition_tail_m", "idler_load_carry_n",
+                "idler_load_roll_n", "idler_l10_h", "holdback_torque_knm"):
+        if s.get(key) is not None:
+            f = results.field(key)
+            lines.append(f"    {f.label:<34} {s[key]:>12.3f} {_unit(f)}")
+    lines.append("")
+    return lines

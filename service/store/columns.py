@@ -28,6 +28,7 @@ __all__ = [
     "TE_PARTS",
     "TE_PART_COLUMNS",
     "RESULT_COLUMNS",
+    "CHECK_COLUMNS",
     "BOOKKEEPING_COLUMNS",
     "TIMESERIES_COLUMNS",
     "SURFACE_COLUMNS",
@@ -57,13 +58,17 @@ TE_PART_COLUMNS = R.columns((R.TE_COMPONENTS,))
 #: SPEC 6.4 design and capacity columns: the sizes the run used (totals over drives and
 #: brakes, and per drive) and the capacity check.
 DESIGN_COLUMNS = R.columns((R.DESIGN, R.DESIGN_DRIVE))
-#: What set each auto size (text).
-DESIGN_TEXT_COLUMNS = R.columns((R.DESIGN_BASIS,))
+#: What set each auto size, and the pulleys' names (text).
+DESIGN_TEXT_COLUMNS = R.columns((R.DESIGN_BASIS,)) + tuple(
+    c for c in R.columns((R.CHECKS,)) if R.field(c).text)
 #: SPEC 7.4 per drive: the motor power needed against the rating (steady), the time above
 #: the rated force and the RMS force (transient).
 DRIVE_POWER_COLUMNS = R.columns((R.DRIVE_POWER, R.DRIVE_LOAD))
+#: Design checks (docs/checks.md): numbers, the per-pulley names (text) and verdicts (bool).
+CHECK_COLUMNS = tuple(c for c in R.columns((R.CHECKS, R.CHECKS_TRANSIENT))
+                      if not R.field(c).text)
 RESULT_COLUMNS = (STEADY_COLUMNS + DESIGN_COLUMNS + TE_PART_COLUMNS + TRANSIENT_COLUMNS
-                  + DRIVE_POWER_COLUMNS)
+                  + DRIVE_POWER_COLUMNS + CHECK_COLUMNS)
 BOOKKEEPING_COLUMNS = R.columns((R.BOOKKEEPING,))
 INPUT_COLUMNS = ("study_id", "run_id", "friction_model", "engine_version")
 
@@ -110,7 +115,8 @@ def runs_schema(axis_columns: list[tuple[str, pa.DataType]]) -> pa.Schema:
     for name in ("friction_model", "engine_version"):
         if name not in names:
             fields.append(pa.field(name, pa.string()))
-    fields += [pa.field(c, pa.float64()) for c in RESULT_COLUMNS]
+    fields += [pa.field(c, pa.bool_() if R.field(c).flag else pa.float64())
+               for c in RESULT_COLUMNS]
     fields += [pa.field(c, pa.string() if R.field(c).text else pa.float64())
                for c in DESIGN_TEXT_COLUMNS + BOOKKEEPING_COLUMNS]
     return pa.schema(fields)
@@ -174,6 +180,9 @@ def flatten_summary(summary: dict) -> dict:
     row: dict[str, Any] = {c: _number(summary.get(c))
                            for c in STEADY_COLUMNS + DESIGN_COLUMNS + TRANSIENT_COLUMNS
                            + DRIVE_POWER_COLUMNS}
+    for c in CHECK_COLUMNS:
+        value = summary.get(c)
+        row[c] = (None if value is None else bool(value)) if R.field(c).flag else _number(value)
     for c in DESIGN_TEXT_COLUMNS:
         row[c] = str(summary[c]) if summary.get(c) is not None else None
     parts = summary.get("te_components_kn") or {}

@@ -25,6 +25,7 @@ __all__ = [
     "FORMATS",
     "render",
     "study_figure",
+    "figure_of",
     "run_figure",
     "check_name",
 ]
@@ -90,7 +91,16 @@ def study_figure(
     """A callable drawing plot ``name`` of a study (checks the id, then the name)."""
     doc = service.store.read(study_id)
     check_name(name, STUDY_PLOTS)
-    runs = service.store.read_runs(study_id)
+    return figure_of(doc, service.store.read_runs(study_id), name, baseline, candidate,
+                     study_id)
+
+
+def figure_of(doc: dict, runs: pd.DataFrame, name: str, baseline: str | None = None,
+              candidate: str | None = None, study_id: str = ""):
+    """A callable drawing plot ``name`` of a stored study document ``doc`` and its runs
+    table (the design report draws from these without asking the store again)."""
+    check_name(name, STUDY_PLOTS)
+    study_id = study_id or doc.get("id", "")
     title = _text(doc.get("name", study_id))
     axes = [a["column"] for a in doc.get("study", {}).get("axes", [])]
     zips: dict[int, list[str]] = {}
@@ -103,9 +113,13 @@ def study_figure(
         return lambda: charts.power_temperature_figure(
             runs, f"{title}: power against temperature", temperature, axes=axes, groups=groups
         )
-    if name == "peak-dynamic-tension":
+    if name in ("peak-dynamic-tension", "start-stop-peaks"):
         if not doc.get("study", {}).get("dynamics", True):
             return lambda: charts.message_figure(charts.NO_TRANSIENT, f"{title}: peak tension")
+        if name == "start-stop-peaks":
+            return lambda: charts.phase_peaks_figure(
+                runs, f"{title}: peak and lowest tension of the start and the stop",
+                axes=axes, groups=groups)
         return lambda: charts.peak_dynamic_tension_figure(
             runs, f"{title}: peak and lowest tension against stop time", axes=axes,
             groups=groups)
@@ -116,7 +130,6 @@ def study_figure(
         return lambda: charts.message_figure(
             "a ratio needs two friction models in the grid", f"{title}: ratio"
         )
-    axes = [a["column"] for a in doc["study"]["axes"]]
     metrics = [m for m in query.DEFAULT_METRICS
                if m in runs.columns and pd.api.types.is_float_dtype(runs[m])]
     summary = query.compare(runs, axes, base, cand, metrics, study_id)["summary"]

@@ -6,10 +6,15 @@ inside the page as ``data:`` URIs, it has no script and links nowhere, so it ope
 and prints cleanly to PDF from a browser (A4, tables and figures kept whole). Every value taken
 from the study is escaped.
 
-Contents: the conveyor and its capacity check; the design basis (every auto size, what set it
-and at which case); the grid (axes, zip groups, merged points, model parameters); the
-governing cases (largest and lowest tension, slip, sag, belt safety factor, take-up travel)
-with the run that governs each; the comparison figures; the runs.
+Contents, verdicts first: (1) the verdicts, a governing case for every design quantity the
+runs carry (:data:`beltstudy.service.web.verdicts.VERDICTS`: power and utilisation per drive,
+belt safety factor, T_max and T_min per phase, take-up, brakes, the stop, slip, sag, pulleys,
+idlers) with its limit and how many runs are past it; (2) every run that did not pass, grouped
+by cause (:data:`~beltstudy.service.web.verdicts.CAUSES`: failed, ran away, did not stop,
+overloaded a drive, slipped, ...), each group with its count and the figures that show it;
+(3) the start and stop peaks against the study's axes; then the conveyor and its capacity
+check, the design basis, the grid, the comparison figures, the runs and the error bars.
+Every number goes through :func:`beltstudy.service.web.numbers.eng` (``16 886 kg``).
 """
 
 from __future__ import annotations
@@ -32,56 +37,68 @@ from beltstudy.engine import (
     parse_conveyor,
     resolve_belt,
 )
+from beltstudy.engine import results as result_fields
+from beltstudy.service import charts
 from beltstudy.service.store import query
 from beltstudy.service.studies import StudyService
 from beltstudy.service.web import figures
+from beltstudy.service.web.numbers import eng
+from beltstudy.service.web.verdicts import (
+    cause_groups,
+    clauses,
+    study_limits,
+    verdict_rows,
+)
 
-__all__ = ["build_report", "GOVERNING", "REPORT_CSP"]
+__all__ = ["build_report", "report_html", "REPORT_CSP", "CSS"]
 
 #: Content security policy of the report: no script, no fetches, images only from the page.
 REPORT_CSP = ("default-src 'none'; img-src data:; style-src 'unsafe-inline'; base-uri 'none'; "
               "form-action 'none'; frame-ancestors 'none'")
 
-#: The governing cases: (label, transient column, steady column, largest or smallest, unit,
-#: position column of the transient, position column of the steady state).
-GOVERNING = (
-    ("largest belt tension", "t_max_dyn_kn", "t_max_kn", "max", "kN", "t_max_dyn_at_m",
-     "t_max_at_m"),
-    ("lowest belt tension", "t_min_dyn_kn", "t_min_kn", "min", "kN", "t_min_dyn_at_m",
-     "t_min_at_m"),
-    ("drive slip margin", "slip_margin_min_dyn", "slip_margin", "min", "-", None, None),
-    ("largest sag", "sag_max_dyn_pct", "sag_max_pct", "max", "%", None, None),
-    ("belt safety factor", "safety_factor_dyn", "safety_factor", "min", "-", None, None),
-    ("take-up carriage travel", "takeup_travel_m", None, "max", "m", None, None),
-)
-
+#: The page's style: A4 in print, each numbered section from a new page, table headers
+#: repeated on every page, rows never split, cells that wrap rather than widen a table past
+#: the page (docs/report_pdf.py checks every table against the page width).
 CSS = """
 body { font-family: "DejaVu Sans", Arial, sans-serif; font-size: 10.5pt; color: #111;
-  margin: 1.5em auto; max-width: 60em; padding: 0 1em; }
+  margin: 1.5em auto; max-width: 64em; padding: 0 1em; }
 h1 { font-size: 17pt; margin-bottom: 0.2em; }
 h2 { font-size: 13pt; border-bottom: 1px solid #888; margin-top: 1.6em; }
-h3 { font-size: 11pt; margin-bottom: 0.3em; }
+h3 { font-size: 11pt; margin: 1em 0 0.3em; }
 .muted { color: #555; }
-table { border-collapse: collapse; margin: 0.4em 0 0.8em; }
-th, td { border: 1px solid #bbb; padding: 0.15em 0.5em; text-align: left; vertical-align: top; }
+table { border-collapse: collapse; margin: 0.4em 0 0.8em; max-width: 100%; }
+th, td { border: 1px solid #bbb; padding: 0.15em 0.45em; text-align: left; vertical-align: top;
+  overflow-wrap: anywhere; }
 th { background: #eef1f5; }
-td.num { text-align: right; font-variant-numeric: tabular-nums; }
+td.num { text-align: right; font-variant-numeric: tabular-nums; white-space: nowrap;
+  overflow-wrap: normal; }
+td code.id { font-size: 7pt; word-break: break-all; }
+td.ax { white-space: nowrap; overflow-wrap: normal; }
 tr.warning td { background: #fff6da; }
-tr.failed td { background: #fde8e8; }
+tr.failed td, td.fails { background: #fde8e8; }
+td.passes { background: #e8f6e8; }
+tr.group th { background: #dde3ea; text-align: left; }
 figure { margin: 0.8em 0; }
-figure img { max-width: 100%; height: auto; border: 1px solid #ddd; }
+figure img { max-width: 100%; height: auto; border: 1px solid #ddd; box-sizing: border-box; }
 figcaption { font-size: 9pt; color: #444; }
-code { font-size: 9.5pt; }
-.runs, .governing { font-size: 8.5pt; }
-table.governing { width: 100%; }
-td.num { white-space: nowrap; }
-@page { size: A4; margin: 15mm 12mm; }
+code { font-size: 9pt; }
+.runs, .verdicts, .causes { font-size: 8.5pt; }
+table.verdicts, table.causes, table.runs { width: 100%; }
+.run { font-size: 7.5pt; color: #444; }
+details summary { cursor: pointer; }
+ul.causes-list { margin: 0.3em 0 0.8em; }
+@page { size: A4; margin: 14mm 12mm; }
 @media print {
-  body { margin: 0; max-width: none; font-size: 9.5pt; }
+  body { margin: 0; max-width: none; padding: 0; font-size: 9pt; }
   h2 { break-after: avoid; page-break-after: avoid; }
-  table, figure, tr { break-inside: avoid; page-break-inside: avoid; }
+  h2.section { break-before: page; page-break-before: always; }
+  h3 { break-after: avoid; page-break-after: avoid; }
+  table { break-inside: auto; }
+  tr, figure { break-inside: avoid; page-break-inside: avoid; }
   thead { display: table-header-group; }
-  .runs, .governing { font-size: 7.5pt; }
+  .runs, .verdicts, .causes { font-size: 7.5pt; }
+  details summary { list-style: none; }
+  details summary::-webkit-details-marker { display: none; }
 }
 """
 
@@ -89,41 +106,84 @@ td.num { white-space: nowrap; }
 NUM = "\x00"
 #: Runs listed in the report's runs table (the Parquet has them all).
 MAX_RUN_ROWS = 400
+#: Runs listed per failure group (the runs table and the Parquet have them all).
+MAX_CAUSE_ROWS = 60
+#: Characters of a message shown before the rest folds into a <details> element.
+MESSAGE_CHARS = 90
+#: Result columns of the runs table (the first six the runs carry, so the table fits a page):
+#: the transient's per phase when the study ran it, else the steady ones.
+RUN_COLUMNS = ("power_kw", "t_max_start_kn", "t_max_stop_kn", "t_min_stop_kn",
+               "t_max_dyn_kn", "t_min_dyn_kn", "stop_time_s", "t_max_kn", "t_min_kn",
+               "safety_factor", "takeup_mass_kg", "fill_pct")
+#: Most result columns of the runs table.
+RUN_COLUMNS_MAX = 6
 
 
 def _e(value: Any) -> str:
     return html.escape("" if value is None else str(value), quote=True)
 
 
-def _num(value: Any, digits: int = 4) -> str:
-    if value is None or (isinstance(value, float) and not math.isfinite(value)):
-        return "–"
-    if isinstance(value, bool) or not isinstance(value, int | float):
-        return _e(value)
-    x = float(value)
-    if x != 0 and (abs(x) >= 1e5 or abs(x) < 1e-3):
-        return f"{x:.{digits}g}"
-    return f"{x:,.{max(digits - len(str(int(abs(x)))), 0)}f}" if abs(x) >= 1 else f"{x:.{digits}g}"
+def _num(value: Any, digits: int = 4, unit: str = "") -> str:
+    """A number in engineering format (:func:`eng`), escaped."""
+    return _e(eng(value, unit, digits))
 
 
 def _table(head: list[str], rows: list[list[str]], cls: str = "", row_cls=None) -> str:
+    """An HTML table: ``head`` is text (escaped), ``rows`` are cells of markup (a cell
+    starting with :data:`NUM` is a right-aligned number, one holding ``\x01CLASS\x01`` at
+    its start gets that class)."""
     out = [f'<table class="{cls}">' if cls else "<table>", "<thead><tr>"]
     out += [f"<th>{_e(h)}</th>" for h in head]
     out.append("</tr></thead><tbody>")
     for i, row in enumerate(rows):
+        if isinstance(row, str):  # a group heading spanning the table
+            out.append(f'<tr class="group"><th colspan="{len(head)}">{row}</th></tr>')
+            continue
         rc = row_cls(i) if row_cls else ""
         out.append(f'<tr class="{rc}">' if rc else "<tr>")
         for c in row:
-            num = c.startswith(NUM)
-            out.append(f"<td class=num>{c[1:]}</td>" if num else f"<td>{c}</td>")
+            cls_ = ""
+            if c.startswith("\x01"):
+                cls_, c = c[1:].split("\x01", 1)
+            if c.startswith(NUM):
+                out.append(f'<td class="num {cls_}">{c[1:]}</td>')
+            else:
+                out.append(f'<td class="{cls_}">{c}</td>' if cls_ else f"<td>{c}</td>")
         out.append("</tr>")
     out.append("</tbody></table>")
     return "".join(out)
 
 
-def _n(value: Any, digits: int = 4) -> str:
+def _n(value: Any, digits: int = 4, unit: str = "") -> str:
     """A number cell (right-aligned)."""
-    return NUM + _num(value, digits)
+    return NUM + _num(value, digits, unit)
+
+
+def _unit(column: str) -> str:
+    """The unit of a result column (its field in engine/results.py, else its name's end)."""
+    try:
+        unit = result_fields.field(column).unit
+        return "" if unit in ("-", "text") else unit
+    except KeyError:
+        pass
+    for end, unit in (("_kn", "kN"), ("_kw", "kW"), ("_knm", "kNm"), ("_kg", "kg"),
+                      ("_m_s", "m/s"), ("_m", "m"), ("_s", "s"), ("_pct", "%"), ("_h", "h"),
+                      ("_n", "N")):
+        if column.endswith(end):
+            return unit
+    return ""
+
+
+def _message_cell(message: Any, chars: int = MESSAGE_CHARS) -> str:
+    """A message that keeps its row short: the first ``chars`` characters, the rest folded
+    into a ``<details>`` element."""
+    text = "" if message is None or (isinstance(message, float) and math.isnan(message)) \
+        else str(message)
+    if len(text) <= chars:
+        return _e(text)
+    cut = text.rfind(" ", 0, chars)
+    cut = cut if cut > chars // 2 else chars
+    return (f"<details><summary>{_e(text[:cut])} …</summary>{_e(text[cut:])}</details>")
 
 
 def _png(make) -> str:
@@ -144,13 +204,13 @@ def _conveyor_section(conv: dict, fill: dict | None) -> str:
     lift = sum(p["lift_m"] for p in conv["profile"])
     rows = [
         ["name", _e(conv["name"])],
-        ["length along the carry strand", f"{_num(length)} m"],
-        ["net lift, tail to head", f"{_num(lift)} m"],
-        ["design speed", f"{_num(conv['speed_m_s'])} m/s"],
+        ["length along the carry strand", _num(length, unit="m")],
+        ["net lift, tail to head", _num(lift, unit="m")],
+        ["design speed", _num(conv['speed_m_s'], unit="m/s")],
         ["belt", _e(f"{belt.get('type') or 'custom'}, {belt['width_m']:g} m wide, compound "
                     f"{belt.get('compound', 'standard')}")],
-        ["design capacity", f"{_num(mat['capacity_t_h'])} t/h at "
-                            f"{_num(mat['density_t_m3'])} t/m³, surcharge "
+        ["design capacity", f"{_num(mat['capacity_t_h'], unit='t/h')} at "
+                            f"{_num(mat['density_t_m3'], unit='t/m³')}, surcharge "
                             f"{mat.get('surcharge_deg', 20):g}°"],
         ["carry idlers", _e(f"{conv['idlers']['carry'].get('rolls', 3)} rolls, trough "
                             f"{conv['idlers']['carry'].get('trough_deg', 0):g}°, spacing "
@@ -167,8 +227,8 @@ def _conveyor_section(conv: dict, fill: dict | None) -> str:
     ]
     if fill is not None:
         rows.append(["capacity check (ISO 5048)",
-                     f"fill {_num(fill['fill_pct'], 3)} % of the cross-section at design speed "
-                     f"({_num(fill['volume_flow_m3_h'])} of {_num(fill['capacity_m3_h'])} m³/h"
+                     f"fill {_num(fill['fill_pct'], 3, '%')} of the cross-section at design speed "
+                     f"({_num(fill['volume_flow_m3_h'])} of {_num(fill['capacity_m3_h'], unit='m³/h')}"
                      f"{', over 100 %: the design load does not fit' if fill['fill_pct'] > 100 else ''})"])
     out = [_table(["", ""], rows)]
     out.append("<h3>Profile (tail to head)</h3>")
@@ -177,14 +237,14 @@ def _conveyor_section(conv: dict, fill: dict | None) -> str:
         for i, p in enumerate(conv["profile"])]))
     out.append("<h3>Drives and brakes</h3>")
     drows = [[f"drive {i + 1}", _e(d["position"]), _n(d["wrap_deg"]), _n(d["friction"]),
-              _n(d["share"]), _e("auto" if d.get("rated_power_kw") is None
-                                 else f"{d['rated_power_kw']:g}")]
+              _n(d["share"]), _e("auto") if d.get("rated_power_kw") is None
+              else _n(d["rated_power_kw"])]
              for i, d in enumerate(conv["drives"])]
     out.append(_table(["", "position", "wrap [°]", "friction", "share", "rated power [kW]"],
                       drows))
     if conv.get("brakes"):
         out.append(_table(["brake", "position", "force [kN]", "delay [s]"], [
-            [str(i + 1), _e(b["position"]), _e(b["force_kn"]), _n(b["delay_s"])]
+            [str(i + 1), _e(b["position"]), _n(b["force_kn"]), _n(b["delay_s"])]
             for i, b in enumerate(conv["brakes"])]))
     return "".join(out)
 
@@ -216,13 +276,13 @@ def _design_section(study: dict) -> str:
         if tu:
             rows.append([_e(where), "take-up " + ("mass" if tu["unit"] == "kg" else
                                                   "pretension"),
-                         _n(tu["value"], 6) + f" {tu['unit']}",
+                         _n(tu["value"], 5, tu["unit"]),
                          _e(governed_at(tu["governed_by"], tu.get("at", ""))),
                          _e(tu["case"])])
         for i, dr in enumerate(sizes.get("drives") or []):
             if dr:
                 rows.append([_e(where), f"rated power, drive {i + 1}",
-                             _n(dr["rated_power_kw"], 6) + " kW",
+                             _n(dr["rated_power_kw"], 5, "kW"),
                              _e(governed_at(dr["governed_by"], dr.get("at", ""))),
                              _e(dr["case"])])
         brakes = sizes.get("brakes")
@@ -231,7 +291,7 @@ def _design_section(study: dict) -> str:
                 (f"brake stop in {t} s", e) for t, e in brakes["stop_time_s"].items()]
             for label, e in entries:
                 rows.append([_e(where), f"brake force, {label}",
-                             _n(sum(e["force_kn"]), 6) + " kN",
+                             _n(sum(e["force_kn"]), 5, "kN"),
                              _e("+".join(dict.fromkeys(governed_at(g, e.get("at", ""))
                                                        for g in e["governed_by"]))),
                              _e(e["case"])])
@@ -277,93 +337,165 @@ def _locator(study: dict):
 def _where_on_loop(locate, at) -> str:
     if locate is None or at is None or (isinstance(at, float) and not math.isfinite(at)):
         return ""
-    strand, x = locate(float(at))
+    try:
+        strand, x = locate(float(at))
+    except (TypeError, ValueError):
+        return ""
     if strand in ("carry", "return"):
-        return f"{strand}, {x:,.0f} m from the tail"
+        return f"{strand}, {eng(x, 'm', 3)} from the tail"
     return f"{strand} pulley"
 
 
-def _limits(study: dict, runs: pd.DataFrame) -> dict[str, str]:
-    """The limit each governing case is judged against, in numbers where the study has them."""
+def _sf_min(study: dict) -> float:
+    """The belt safety factor the study is judged against (the conveyor's, else DIN 22101's
+    for its belt kind)."""
     conv = study["conveyor"]
-    sag = conv["sag_limit_pct"]
-    rating = pd.to_numeric(runs.get("belt_rating_kn"), errors="coerce") if len(runs) else None
     try:
         kind = resolve_belt(parse_conveyor(conv).belt).kind
     except Exception:  # a conveyor this engine cannot read, or belt.type: auto
         kind = catalog.KIND_OF_FILE.get(conv["belt"].get("kind") or "", "steel")
-    sf = conv.get("safety_factor_min") or SAFETY_FACTOR_MIN.get(kind, 6.7)
-    length = sum(p["length_m"] for p in conv["profile"])
-    travel = conv["takeup"].get("travel_m") or 0.015 * length
-    out = {
-        "largest belt tension": (f"belt rating {rating.max():,.0f} kN" if rating is not None
-                                 and rating.notna().any() else "belt rating"),
-        "lowest belt tension": "above 0 (no slack) and the sag minimum",
-        "drive slip margin": "at least 1",
-        "largest sag": f"carry {sag['carry']:g} %, return {sag['return']:g} %",
-        "belt safety factor": f"{sf:g} running, {TRANSIENT_SAFETY_RATIO * sf:.3g} transient",
-        "take-up carriage travel": f"{travel:g} m of travel",
-    }
-    return out
+    return float(conv.get("safety_factor_min") or SAFETY_FACTOR_MIN.get(kind, 6.7))
 
 
-def _governing_section(study: dict, runs: pd.DataFrame) -> str:
-    ok = runs[runs["status"] != "failed"] if "status" in runs else runs
+def _axes(study: dict, runs: pd.DataFrame) -> list[str]:
+    """The axis columns that name a run: the study's axes, the friction model first."""
     axes = [a["column"] for a in study.get("axes", [])]
     if "friction_model" not in axes:
         axes.insert(0, "friction_model")
-    axes = [a for a in axes if a in ok.columns]
-    limits = _limits(study, runs)
-    rows = []
-    locate = _locator(study)
-    for label, dyn, steady, pick, unit, at_dyn, at_steady in GOVERNING:
-        col, at_col = dyn, at_dyn
-        values = pd.to_numeric(ok[col], errors="coerce") if col in ok else None
-        if values is None or not values.notna().any():
-            col, at_col = steady, at_steady
-            values = pd.to_numeric(ok[col], errors="coerce") if col and col in ok else None
-        if values is None or not values.notna().any():
-            continue
-        idx = values.idxmax() if pick == "max" else values.idxmin()
-        row = ok.loc[idx]
-        at = row.get(at_col) if at_col else None
-        point = "<br>".join(f"{_e(a)} = {_e(_text(row.get(a)))}" for a in axes)
-        rows.append([_e(label), _n(values.loc[idx], 5) + f" {unit}",
-                     _e(_where_on_loop(locate, at)), _e(limits.get(label, "")),
-                     f"<code>{_e(row['run_id'])}</code><br>{_e(row.get('status'))}", point])
-    if not rows:
-        return "<p>No finished runs yet.</p>"
-    return (_table(["case", "value", "where", "limit", "run", "its grid point"], rows,
-                   "governing")
-            + "<p class=muted>Values from the column of the transient where the study ran it "
-            "(t_max_dyn_kn, t_min_dyn_kn, slip_margin_min_dyn, sag_max_dyn_pct, "
-            "safety_factor_dyn, takeup_travel_m), else the steady one; an axis shown as "
-            "<i>any</i> does not change that run.</p>")
+    return [a for a in axes if a in runs.columns]
 
 
 def _text(value: Any) -> str:
     if value is None or (isinstance(value, float) and math.isnan(value)):
         return "any"
-    if isinstance(value, float):
-        return f"{value:g}"
+    if isinstance(value, float | int) and not isinstance(value, bool):
+        return eng(value, "", 6)
     return str(value)
 
 
+def _run_cell(row: pd.Series, axes: list[str]) -> str:
+    """A run as the report names it: its axis values, then its id."""
+    point = " · ".join(f"{_e(a)} {_e(_text(row.get(a)))}" for a in axes)
+    return f"{point}<br><span class=run>run <code>{_e(row.get('run_id'))}</code></span>"
+
+
+def _verdict_cell(r: dict) -> str:
+    """Within the limit, past it in some runs, or no limit to judge against."""
+    v = r["verdict"]
+    if r["missing"]:
+        return f"\x01fails\x01{r['missing']} of {r['n']} runs {_e(v.null_worst)}"
+    if r["limit"] is None and not r.get("ok_col") and v.limit != "sag":
+        return "<span class=muted>no limit</span>"
+    if r["past"]:
+        return f"\x01fails\x01past the limit in {r['past']} of {r['n']} runs"
+    if r["limit"] is None and v.limit == "sag" and not r.get("ok_col"):
+        return "\x01passes\x01within the limits of each strand (no run warns)"
+    return f"\x01passes\x01within ({r['n']} runs)"
+
+
+def _verdicts_section(study: dict, runs: pd.DataFrame) -> str:
+    """The verdict table: every design quantity the runs carry, its worst value over the
+    finished runs, its limit, how many runs are past it and the run that governs it."""
+    sf = _sf_min(study)
+    words = ("the conveyor's minimum" if study["conveyor"].get("safety_factor_min")
+             else "DIN 22101 minimum")
+    rows_ = verdict_rows(runs, study_limits(study, sf, TRANSIENT_SAFETY_RATIO, words))
+    if not rows_:
+        return "<p>No finished runs yet.</p>"
+    axes = _axes(study, runs)
+    locate = _locator(study)
+    rows, group = [], None
+    for r in rows_:
+        v = r["verdict"]
+        if v.group != group:
+            group = v.group
+            rows.append(_e(group))
+        if v.worst == "text":
+            rows.append([_e(r["label"]), _e(r["value"]), "", "<span class=muted>–</span>",
+                         _run_cell(r["row"], axes), ""])
+            continue
+        value = (_e(v.null_worst) if r["missing"] else _n(r["value"], 4, v.unit))
+        limit = (_n(r["limit"], 4, v.unit) if r["limit"] is not None else "")
+        if r["limit_text"]:
+            limit += (f"<br><span class=muted>{_e(r['limit_text'])}</span>" if limit
+                      else f"<span class=muted>{_e(r['limit_text'])}</span>")
+        where = _where_on_loop(locate, r["row"].get(v.at)) if v.at else ""
+        worst = "largest" if v.worst == "max" else "smallest"
+        rows.append([f"{_e(r['label'])}<br><span class=muted>{worst} "
+                     f"<code>{_e(r['column'])}</code></span>",
+                     value, limit, _verdict_cell(r),
+                     _run_cell(r["row"], axes), _e(where)])
+    return (_table(["quantity", "value", "limit", "verdict", "governing run", "where"], rows,
+                   "verdicts")
+            + "<p class=muted>Over every run that finished (a failed run has no values; it "
+            "is listed in section 2). A quantity is shown when the runs carry its column; the "
+            "governing run has the worst value (for a stop, a run that did not stop). Limits: "
+            f"belt safety factor {eng(sf, '', 3)} running and "
+            f"{eng(TRANSIENT_SAFETY_RATIO * sf, '', 3)} transient (DIN 22101), the tension "
+            "they allow from the belt's rating, no slack (lowest tension above 0), a slip "
+            "margin of at least 1, the rated power of the drives, the conveyor's sag limits "
+            "and take-up travel.</p>")
+
+
+def _cause_table(cause, part: pd.DataFrame, cols: list[str], axes: list[str]) -> str:
+    shown = part.sort_values(axes, kind="stable").head(MAX_CAUSE_ROWS) if axes else \
+        part.head(MAX_CAUSE_ROWS)
+    rows = []
+    for _, r in shown.iterrows():
+        said = clauses(r.get("message"), cause.words)
+        extra = cause.explain(r) if cause.explain else ""
+        if extra and not any(extra in c for c in said):
+            said.insert(0, extra)
+        said = said or [r.get("message") or ""]
+        rows.append([f"<code class=id>{_e(r.get('run_id'))}</code>"]
+                    + ["\x01ax\x01" + _e(_text(r.get(a))) for a in axes]
+                    + [_n(r.get(c), 4) for c in cols] + [_message_cell("; ".join(said), 2 * MESSAGE_CHARS)])
+    head = ["run", *axes, *[f"{c} [{_unit(c)}]" if _unit(c) else c for c in cols],
+            "what the run says"]
+    out = _table(head, rows, "causes")
+    if len(part) > MAX_CAUSE_ROWS:
+        out += (f"<p class=muted>The first {MAX_CAUSE_ROWS} of {len(part)}; section 8 and "
+                "the study's Parquet have them all.</p>")
+    return out
+
+
+def _causes_section(study: dict, runs: pd.DataFrame) -> str:
+    """Every run that did not pass, grouped by cause, each group with its count."""
+    groups = cause_groups(runs)
+    if not groups:
+        return (f"<p>Every one of the {len(runs)} runs finished, stopped, stayed within its "
+                "drives' rating and did not slip.</p>")
+    axes = _axes(study, runs)
+    items = "".join(f"<li><b>{len(part)}</b> of {len(runs)} runs {_e(cause.title)}</li>"
+                    for cause, part, _ in groups)
+    out = [f"<ul class=causes-list>{items}</ul>",
+           "<p class=muted>A run with several causes is listed under each.</p>"]
+    for cause, part, cols in groups:
+        out.append(f"<h3>{_e(cause.title[0].upper() + cause.title[1:])}: {len(part)} "
+                   f"run{'s' if len(part) != 1 else ''}</h3>")
+        if cause.note:
+            out.append(f"<p class=muted>{_e(cause.note)}</p>")
+        out.append(_cause_table(cause, part, cols, axes))
+    return "".join(out)
+
+
 def _runs_section(study: dict, runs: pd.DataFrame) -> str:
-    axes = [a["column"] for a in study.get("axes", [])]
-    if "friction_model" not in axes:
-        axes.insert(0, "friction_model")
-    results = [c for c in ("power_kw", "t_max_kn", "t_min_kn", "t_max_dyn_kn", "t_min_dyn_kn",
-                           "safety_factor", "takeup_mass_kg", "fill_pct") if c in runs
+    axes = _axes(study, runs)
+    results = [c for c in RUN_COLUMNS if c in runs
                and pd.to_numeric(runs[c], errors="coerce").notna().any()]
+    if "t_max_start_kn" in results:  # the phases say more than the whole cycle
+        results = [c for c in results if c not in ("t_max_dyn_kn", "t_min_dyn_kn")]
+    results = results[:RUN_COLUMNS_MAX]
     shown = runs.sort_values(axes, kind="stable").head(MAX_RUN_ROWS) if len(runs) else runs
     rows, classes = [], []
     for _, r in shown.iterrows():
-        rows.append([f"<code>{_e(r['run_id'])}</code>"] + [_e(_text(r.get(a))) for a in axes]
-                    + [_n(r.get(c)) for c in results] + [_e(r.get("status")),
-                                                         _e(r.get("message"))])
+        rows.append([f"<code class=id>{_e(r['run_id'])}</code>"] + ["\x01ax\x01" + _e(_text(r.get(a))) for a in axes]
+                    + [_n(r.get(c)) for c in results]
+                    + [f"<b>{_e(r.get('status'))}</b> " + _message_cell(r.get("message"))])
         classes.append(r.get("status"))
-    out = [_table(["run", *axes, *results, "status", "message"], rows, "runs",
+    head = ["run", *axes, *[f"{c} [{_unit(c)}]" if _unit(c) else c for c in results],
+            "status and message"]
+    out = [_table(head, rows, "runs",
                   row_cls=lambda i: classes[i] if classes[i] in ("warning", "failed") else "")]
     if len(runs) > MAX_RUN_ROWS:
         out.append(f"<p class=muted>The first {MAX_RUN_ROWS} of {len(runs)} runs; all of them "
@@ -394,13 +526,50 @@ def _accuracy_section(study: dict, service: StudyService, study_id: str) -> str:
                       "error (largest)", "largest error / value [%]"], rows, "runs"))
 
 
-def build_report(service: StudyService, study_id: str) -> str:
-    """The design report of a study as one self-contained HTML page."""
+def _figures(doc: dict, runs: pd.DataFrame, study: dict) -> tuple[str, str]:
+    """The start and stop peaks (section 3) and the comparison figures (section 7)."""
+    peaks = ""
+    if study.get("dynamics"):
+        sf = _sf_min(study)
+        rating = pd.to_numeric(runs.get("belt_rating_kn"), errors="coerce") \
+            if "belt_rating_kn" in runs else None
+        allowed = (float(rating.min()) / (TRANSIENT_SAFETY_RATIO * sf)
+                   if rating is not None and rating.notna().any() else None)
+        axes = [a["column"] for a in study.get("axes", [])]
+        groups: dict[int, list[str]] = {}
+        for a in study.get("axes", []):
+            if a.get("group") is not None:
+                groups.setdefault(a["group"], []).append(a["column"])
+        def make():
+            return charts.phase_peaks_figure(
+                runs, f"{doc.get('name', '')}: peak and lowest tension of the start and the "
+                "stop", axes=axes, groups=list(groups.values()), allowed_kn=allowed)
 
-    doc = service.store.read(study_id)
-    status = service.status(study_id)
+        peaks = _figure(_png(make), "Peak and lowest belt tension of the start and of the "
+                        "stop, a point per run (never joined): colour and marker name the run's "
+                        "axis values, a red ring a run whose belt did not stop; dashed: the "
+                        "tension the belt allows (rating over the transient safety factor) "
+                        "and zero (slack).", "start and stop peaks")
+    figs = []
+    for plot, caption in (
+        ("power-temperature", "Power at the drive pulleys against temperature: a line per "
+                              "combination of the other axes."),
+        ("ratio", "Candidate / baseline friction model ratio per axis value (bar: mean, "
+                  "whisker: smallest to largest)."),
+    ):
+        if plot == "ratio" and ("friction_model" not in runs or
+                                runs["friction_model"].nunique() < 2):
+            continue
+        figs.append(_figure(_png(figures.figure_of(doc, runs, plot)), caption, plot))
+    return peaks, "".join(figs)
+
+
+def report_html(doc: dict, runs: pd.DataFrame, status: dict, accuracy: str = "") -> str:
+    """The design report of a stored study document ``doc`` (as the store keeps it: name,
+    ``study``, engine version, times) and its ``runs`` table, as one HTML page. ``status``:
+    ``state``, ``done``, ``total``; ``accuracy``: the error bars section's markup."""
+    study_id = doc.get("id", "")
     study = doc["study"]
-    runs = service.store.read_runs(study_id)
     try:
         cap = capacity(parse_conveyor(study["conveyor"]))
         fill = {"fill_pct": cap.fill_pct, "volume_flow_m3_h": cap.volume_flow_m3_h,
@@ -410,50 +579,50 @@ def build_report(service: StudyService, study_id: str) -> str:
     name = doc.get("name", study_id)
     when = time.strftime("%Y-%m-%d %H:%M", time.gmtime(doc.get("finished_at")
                                                         or doc.get("updated_at") or time.time()))
-    figs = []
-    for plot, caption in (
-        ("power-temperature", "Power at the drive pulleys against temperature: a line per "
-                              "combination of the other axes."),
-        ("peak-dynamic-tension", "Peak and lowest belt tension of the stop against the stop "
-                                 "time achieved."),
-        ("ratio", "Candidate / baseline friction model ratio per axis value (bar: mean, "
-                  "whisker: smallest to largest)."),
-    ):
-        if plot == "peak-dynamic-tension" and not study.get("dynamics"):
-            continue
-        if plot == "ratio" and ("friction_model" not in runs or
-                                runs["friction_model"].nunique() < 2):
-            continue
-        figs.append(_figure(_png(figures.study_figure(service, study_id, plot)), caption, plot))
+    peaks, figs = _figures(doc, runs, study) if len(runs) else ("", "")
     counts = runs["status"].value_counts().to_dict() if len(runs) else {}
     state = (f"{status['state']}, {status['done']} of {status['total']} runs finished"
              + (f" ({', '.join(f'{v} {k}' for k, v in counts.items())})" if counts else ""))
+
+    no_runs = "<p>No finished runs yet.</p>"
+    sections = [
+        ("Verdicts", "<p>The run that governs each design quantity, its value against the "
+         "limit, and how many runs are past that limit.</p>"
+         + (_verdicts_section(study, runs) if len(runs) else no_runs)),
+        ("Runs that did not pass", _causes_section(study, runs) if len(runs) else no_runs),
+        ("Start and stop peaks", peaks or (
+            "<p>No transient: the study ran the steady state only (dynamics: false).</p>"
+            if not study.get("dynamics") else no_runs)),
+        ("Conveyor", f"<p class=muted>from {_e(study.get('conveyor_source', 'inline'))}; "
+         "conveyor axes of the grid change it per design (section 5).</p>"
+         + _conveyor_section(study["conveyor"], fill)),
+        ("Design basis", _design_section(study)),
+        ("The grid", _grid_section(study, status)),
+        ("Comparison", figs or "<p>No figures: no finished runs yet.</p>"),
+        ("Runs", _runs_section(study, runs)),
+        ("Error of each column", accuracy),
+    ]
     parts = [
         "<!doctype html><html lang=en><head><meta charset=utf-8>",
         f'<meta http-equiv="Content-Security-Policy" content="{REPORT_CSP}">',
         f"<title>Design report · {_e(name)}</title><style>{CSS}</style></head><body>",
         f"<h1>Design report: {_e(name)}</h1>",
         f"<p class=muted>study <code>{_e(study_id)}</code> · {_e(state)} · engine "
-        f"{_e(doc.get('engine_version'))} · {_e(when)} UTC</p>",
+        f"{_e(doc.get('engine_version'))} · {_e(when)} UTC · conveyor "
+        f"{_e(study['conveyor'].get('name'))}</p>",
         f"<p>{_e(study.get('description', ''))}</p>" if study.get("description") else "",
-        "<h2>1. Conveyor</h2>",
-        f"<p class=muted>from {_e(study.get('conveyor_source', 'inline'))}; conveyor axes of "
-        "the grid change it per design (section 2).</p>",
-        _conveyor_section(study["conveyor"], fill),
-        "<h2>2. Design basis</h2>",
-        _design_section(study),
-        "<h2>3. The grid</h2>",
-        _grid_section(study, status),
-        "<h2>4. Governing cases</h2>",
-        "<p>The run that sets each design quantity, over every finished run (transient values "
-        "where the study ran the transient, else steady ones).</p>",
-        _governing_section(study, runs),
-        "<h2>5. Comparison</h2>",
-        "".join(figs) or "<p>No figures: no finished runs yet.</p>",
-        "<h2>6. Runs</h2>",
-        _runs_section(study, runs),
-        "<h2>7. Error of each column</h2>",
-        _accuracy_section(study, service, study_id),
-        "</body></html>",
     ]
+    for k, (title, body) in enumerate(sections, start=1):
+        cls = "" if k == 1 else ' class="section"'
+        parts.append(f'<section id="s{k}"><h2{cls}>{k}. {_e(title)}</h2>{body}</section>')
+    parts.append("</body></html>")
     return "".join(parts)
+
+
+def build_report(service: StudyService, study_id: str) -> str:
+    """The design report of a study as one self-contained HTML page."""
+
+    doc = dict(service.store.read(study_id))
+    doc.setdefault("id", study_id)
+    return report_html(doc, service.store.read_runs(study_id), service.status(study_id),
+                       _accuracy_section(doc["study"], service, study_id))

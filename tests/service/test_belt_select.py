@@ -125,12 +125,11 @@ def test_study_holds_the_belt_chosen_over_its_design_cases(finished_study, data_
 
 def test_report_limits_of_an_auto_fabric_belt():
     """The report judges a fabric auto belt against the fabric minimum (10), not steel's."""
-    from beltstudy.service.web.report import _limits
+    from beltstudy.service.web.report import _sf_min
 
     d = _auto()
     d["belt"] = {**d["belt"], "kind": "fabric"}
-    limits = _limits({"conveyor": d}, pd.DataFrame())
-    assert limits["belt safety factor"].startswith("10 running")
+    assert _sf_min({"conveyor": d}) == 10.0
 
 
 def test_sweep_temperature_holds_one_auto_belt(auto_file, tmp_path, capsys):

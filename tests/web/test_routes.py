@@ -149,8 +149,8 @@ def test_page_data_names_the_axes(done):
 
 
 def test_the_design_report_is_one_self_contained_page(web, tmp_path):
-    """No script, nothing fetched (every image a data: URI), user text escaped, the governing
-    cases with their runs, the design basis with what set each size."""
+    """No script, nothing fetched (every image a data: URI), user text escaped, the verdicts
+    with their governing runs, the design basis with what set each size."""
     import re
 
     sid = web.finished_study(tmp_path, web.tiny_study(conveyor_name=web.XSS), name=web.XSS)
@@ -166,8 +166,9 @@ def test_the_design_report_is_one_self_contained_page(web, tmp_path):
     assert not re.findall(r'href="(?!#)', text)  # no links out, no stylesheets
     assert "<b>x</b>" not in text and "&lt;script&gt;alert(1)&lt;/script&gt;" in text
     runs = c.get(f"/studies/{sid}/runs").json()["runs"]
-    for label in ("largest belt tension", "lowest belt tension", "drive slip margin",
-                  "largest sag", "belt safety factor"):
+    for label in ("largest tension, steady", "lowest tension, steady", "slip margin, running",
+                  "largest sag, steady", "belt safety factor, steady",
+                  "power at the drive pulleys, steady"):
         assert label in text
     governing = max(runs, key=lambda row: row["t_max_kn"])
     assert governing["run_id"] in text

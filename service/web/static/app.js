@@ -62,10 +62,41 @@ function fmtSeconds(s) {
   return Math.floor(s / 3600) + " h " + Math.round((s % 3600) / 60) + " min";
 }
 
+// Numbers as service/web/numbers.py writes them: four significant digits but never fewer than
+// the integer part has, thousands grouped by a narrow no-break space, no exponent
+// (16 886, not 1.689e+4); below 1e-4 as 1.2 × 10⁻⁵.
+function fmtNumber(x, digits = 4) {
+  if (!Number.isFinite(x)) return "–";
+  if (x === 0) return "0";
+  const sign = x < 0 ? "-" : "";
+  const a = Math.abs(x);
+  if (a < 1e-4) {
+    const e = Math.floor(Math.log10(a));
+    const m = (a / 10 ** e).toFixed(digits - 1).replace(/\.?0+$/, "");
+    const sup = String(e).replace(/[-0-9]/g, (c) => "⁻⁰¹²³⁴⁵⁶⁷⁸⁹"["-0123456789".indexOf(c)]);
+    return sign + m + " × 10" + sup;
+  }
+  const decimals = Math.max(digits - 1 - Math.floor(Math.log10(a)), 0);
+  const [whole, frac = ""] = a.toFixed(decimals).split(".");
+  const kept = frac.replace(/0+$/, "");
+  return sign + whole.replace(/\B(?=(\d{3})+(?!\d))/g, "\u202f") + (kept ? "." + kept : "");
+}
+
 function fmtValue(v) {
   if (v == null) return "";
-  if (typeof v === "number") return Number.isInteger(v) ? String(v) : v.toPrecision(4);
+  if (typeof v === "number") return fmtNumber(v);
   return String(v);
+}
+
+// A message cell that keeps its row short: the first 90 characters, the rest folded into a
+// <details> element (text nodes only).
+function messageCell(text) {
+  const s = text == null ? "" : String(text);
+  if (s.length <= 90) return el("td", { text: s, class: "message" });
+  let cut = s.lastIndexOf(" ", 90);
+  if (cut < 45) cut = 90;
+  return el("td", { class: "message" }, [el("details", {}, [
+    el("summary", { text: s.slice(0, cut) + " …" }), s.slice(cut)])]);
 }
 
 function setProgress(bar, st) {
@@ -312,7 +343,7 @@ function studyPage(id) {
     const tbody = document.querySelector("#runs tbody");
     tbody.replaceChildren(...shown.map((r) => el("tr",
       { class: "status-" + r.status, data: { runId: r.run_id } },
-      cols.map((c) => el("td", { text: fmtValue(r[c]), class: c === "message" ? "message" : "" }))
+      cols.map((c) => c === "message" ? messageCell(r[c]) : el("td", { text: fmtValue(r[c]) }))
         .concat([el("td", {}, [el("a", { text: "open",
           href: "/ui/studies/" + encodeURIComponent(id) + "/runs/" + encodeURIComponent(r.run_id) })])]))));
     document.getElementById("runs-count").textContent =

@@ -1,0 +1,518 @@
+"""Design checks of a steady solution: DIN 22101, ISO 5048, CEMA and ISO 281 (docs/checks.md).
+
+Pure functions in SI, one per check, and :func:`steady_checks` / :func:`transient_checks`
+that apply them to a run's loop and tensions and return the summary fields of
+:data:`beltstudy.engine.results.CHECKS` and :data:`~beltstudy.engine.results.CHECKS_TRANSIENT`
+with the warnings:
+
+* the minimum pulley diameter by DIN 22101 (groups A, B, C; reduced with the belt's
+  utilisation at the pulley): ``pulley{j}_diameter_min_m``, ``pulley{j}_diameter_min_ok``;
+* the minimum transition lengths at the head and tail (CEMA 7th ed. Table 7.29):
+  ``transition_head_m``, ``transition_tail_m``;
+* the pulley resultant (shaft) force, the vector sum of the two belt tensions:
+  ``pulley{j}_resultant_kn`` and, from the transient tension envelope,
+  ``pulley{j}_resultant_dyn_kn``;
+* the carry idler load per set and per roll (DIN 22101 / ISO 5048) against the CEMA class
+  rating, and the roll bearings' L10 life (ISO 281): ``idler_load_carry_n``,
+  ``idler_load_roll_n``, ``idler_l10_h``;
+* the holdback torque at the head pulley (CEMA's rule: the lift less half the friction):
+  ``holdback_torque_knm``.
+
+Pulley ``j`` is the pulley's 1-based number in loop order (:attr:`Loop.pulleys`): the head
+pulleys first (the head drives in file order, or one plain head pulley), a head take-up
+pulley, then at the tail a take-up pulley before the tail drives, the tail drives in file
+order, or one plain tail pulley (the take-up pulley of a tail take-up). ``pulley{j}_name``
+says which it is.
+
+The catalogue data (``engine/data/pulleys.csv``, ``carcass.csv``, ``transitions.csv``,
+``idler_ratings.csv``) name their sources in their headers; values not checked against the
+primary source are marked unverified there.
+"""
+
+from __future__ import annotations
+
+import bisect
+import math
+from dataclasses import dataclass
+from functools import cache
+
+import numpy as np
+
+from beltstudy.engine.catalog import _rows
+from beltstudy.engine.loop import G, Loop, Pulley
+
+__all__ = [
+    "C_TR",
+    "GROUP_A_TENSION_SHARE",
+    "SNUB_WRAP_DEG",
+    "MIDDLE_ROLL_SHARE",
+    "BEARING_LIFE_EXPONENT",
+    "HOLDBACK_FRICTION_SHARE",
+    "PulleyCheck",
+    "pulley_group",
+    "pulley_diameter_min_m",
+    "transition_length_m",
+    "pulley_resultant_n",
+    "idler_load_set_n",
+    "middle_roll_share",
+    "bearing_l10_h",
+    "holdback_torque_nm",
+    "pulley_name",
+    "steady_checks",
+    "transient_checks",
+]
+
+#: DIN 22101's factor C_Tr of the carcass material [-]: D_A = C_Tr x d_Gk. Steel cord 145,
+#: polyester warp (EP) 108. The manufacturer's reprint of the DIN table (engine/data/pulleys.csv
+#: [DIN-TAB]) prints 145 for steel and 106 for polyester; 108 is the value usually quoted
+#: from DIN 22101 (unverified: the standard was not at hand).
+C_TR = {"steel": 145.0, "fabric": 108.0}
+#: A plain pulley whose highest tension is at least this share of the way from the loop's
+#: lowest to its highest steady tension is in the "range of high belt tension" (group A),
+#: below it group B [-]. DIN 22101 names the ranges without a number: this line is the
+#: project's reading (unverified).
+GROUP_A_TENSION_SHARE = 0.5
+#: A pulley with less wrap than this is a snub pulley, group C [deg] (DIN 22101).
+SNUB_WRAP_DEG = 30.0
+#: Share of a three-roll troughing set's load carried by its middle roll, by trough angle
+#: [deg -> -]: the "participation factor" of the most loaded roll as idler makers' handbooks
+#: tabulate it (Rulmeca's 20 deg 0.60, 30 deg 0.65, 35 deg 0.67, 45 deg 0.72), interpolated,
+#: held at the end values outside 20-45 deg. Quoted from memory of the handbook, not read
+#: here: unverified.
+MIDDLE_ROLL_SHARE = ((20.0, 0.60), (30.0, 0.65), (35.0, 0.67), (45.0, 0.72))
+#: ISO 281 life exponent of ball bearings [-].
+BEARING_LIFE_EXPONENT = 3.0
+#: Share of the running friction counted against the run-back pull when sizing a holdback
+#: [-]: CEMA's rule as Belt Analyst documents it ("the force required to lift the load
+#: vertically minus one-half the force required to move the belt and load horizontally",
+#: support.overlandconveyor.com, Backstops). DIN 22101's reduced friction for the holding case
+#: was not checked (unverified).
+HOLDBACK_FRICTION_SHARE = 0.5
+#: Utilisation bands of the DIN pulley table (upper bounds, columns of pulleys.csv).
+_DIN_BANDS = ((0.3, "30"), (0.6, "60"), (math.inf, "100"))
+
+
+@cache
+def _pulley_table() -> list[dict[str, float]]:
+    return [{k: float(v) for k, v in r.items()} for r in _rows("pulleys.csv")]
+
+
+@cache
+def _carcass_mm() -> dict[str, float]:
+    return {r["id"]: float(r["carcass_mm"]) for r in _rows("carcass.csv")}
+
+
+@cache
+def _transitions() -> dict[tuple[str, str], list[tuple[float, float]]]:
+    out: dict[tuple[str, str], list[tuple[float, float]]] = {}
+    for r in _rows("transitions.csv"):
+        for kind in ("fabric", "steel"):
+            out.setdefault((kind, r["band"]), []).append((float(r["trough_deg"]),
+                                                          float(r[kind])))
+    return {k: sorted(v) for k, v in out.items()}
+
+
+@cache
+def _idler_ratings() -> dict[str, dict[str, float]]:
+    return {r["cema_class"]: {k: float(r[k]) for k in ("carry_rating_n", "return_rating_n",
+                                                       "bearing_c_n", "l10_min_h")}
+            for r in _rows("idler_ratings.csv")}
+
+
+# ------------------------------------------------------------------ pulley diameters
+def pulley_group(wrap_deg: float, drive: bool, tension_n: float, t_low_n: float,
+                 t_high_n: float) -> str:
+    """DIN 22101 pulley group of a pulley: ``A``, ``B`` or ``C``.
+
+    Parameters
+    ----------
+    wrap_deg : float
+        Wrap of the belt round the pulley [deg].
+    drive : bool
+        A drive pulley.
+    tension_n : float
+        Highest steady belt tension at the pulley [N].
+    t_low_n, t_high_n : float
+        Lowest and highest steady tension round the loop [N].
+
+    Notes
+    -----
+    C: wrap < 30 deg (snub); A: drive pulleys, and pulleys whose tension is in the upper
+    range, ``T >= T_low + GROUP_A_TENSION_SHARE (T_high - T_low)``; B: the others (tail,
+    take-up and bend pulleys at low tension).
+
+    References
+    ----------
+    DIN 22101:2011, pulley diameters (groups A, B, C).
+    """
+    if wrap_deg < SNUB_WRAP_DEG and not drive:
+        return "C"
+    if drive or tension_n >= t_low_n + GROUP_A_TENSION_SHARE * (t_high_n - t_low_n):
+        return "A"
+    return "B"
+
+
+def pulley_diameter_min_m(kind: str, carcass_m: float, group: str, utilisation: float
+                          ) -> float:
+    """Minimum pulley diameter by DIN 22101 [m].
+
+    Parameters
+    ----------
+    kind : str
+        ``steel`` (steel cord) or ``fabric`` (polyester warp).
+    carcass_m : float
+        d_Gk: cord diameter (steel cord) or carcass thickness without covers (fabric) [m].
+    group : str
+        Pulley group ``A``, ``B`` or ``C`` (:func:`pulley_group`).
+    utilisation : float
+        Belt tension at the pulley over the admissible steady tension (belt rating / minimum
+        safety factor) [-].
+
+    Returns
+    -------
+    float
+        The minimum diameter without lagging [m].
+
+    Notes
+    -----
+    ``D_A = C_Tr d_Gk`` (C_Tr: :data:`C_TR`), rounded up to the next diameter of the DIN
+    table; the table gives the group's minimum in the utilisation band: over 60 % to 100 %,
+    over 30 % to 60 % (one step down), up to 30 % (two steps down for group A). Above the
+    table's 2000 mm the group A value is D_A itself and the others keep the ratio of the
+    table's last row.
+
+    References
+    ----------
+    DIN 22101:2011, minimum pulley diameters; table in engine/data/pulleys.csv [DIN-TAB].
+    """
+    d_a_mm = C_TR[kind] * carcass_m * 1e3
+    band = next(b for top, b in _DIN_BANDS if utilisation <= top)
+    col = f"{group.lower()}_{band}"
+    table = _pulley_table()
+    sizes = [r["d_a_mm"] for r in table]
+    k = bisect.bisect_left(sizes, d_a_mm - 1e-9)
+    if k < len(table):
+        return table[k][col] / 1e3
+    last = table[-1]
+    return d_a_mm * last[col] / last["d_a_mm"] / 1e3
+
+
+# ------------------------------------------------------------------ transitions
+def transition_length_m(kind: str, trough_deg: float, width_m: float, utilisation: float
+                        ) -> float:
+    """Minimum transition length from a terminal pulley to the first fully troughed idler [m].
+
+    Parameters
+    ----------
+    kind : str
+        ``steel`` (steel cord) or ``fabric``.
+    trough_deg : float
+        Trough angle of the carry idlers [deg].
+    width_m : float
+        Belt width B [m].
+    utilisation : float
+        Belt tension at the pulley over the belt's rated (working) tension, the rating over
+        the minimum safety factor [-].
+
+    Notes
+    -----
+    ``L = k(trough, band, kind) B``, full-trough transition, k from CEMA's table in the bands
+    over 90 %, 60 % to 90 % and under 60 % of the rated tension, linear in the trough angle
+    between the table's 20, 35 and 45 deg, from 0 at a flat belt to the 20 deg value, and
+    beyond 45 deg continued with the 35-45 deg slope (outside the table).
+
+    References
+    ----------
+    CEMA, Belt Conveyors for Bulk Materials, 7th ed., Table 7.29 (engine/data/transitions.csv).
+    """
+    band = "high" if utilisation > 0.9 else ("mid" if utilisation >= 0.6 else "low")
+    pts = [(0.0, 0.0)] + _transitions()[(kind, band)]
+    ang = [a for a, _ in pts]
+    fac = [f for _, f in pts]
+    if trough_deg <= ang[-1]:
+        k = float(np.interp(trough_deg, ang, fac))
+    else:
+        k = fac[-1] + (fac[-1] - fac[-2]) / (ang[-1] - ang[-2]) * (trough_deg - ang[-1])
+    return k * width_m
+
+
+# ------------------------------------------------------------------ pulley resultant
+def pulley_resultant_n(t_in_n, t_out_n, wrap_deg: float):
+    """Resultant (shaft) force of the belt on a pulley [N].
+
+    Parameters
+    ----------
+    t_in_n, t_out_n : float or ndarray
+        Belt tension running on and off the pulley [N].
+    wrap_deg : float
+        Wrap angle [deg].
+
+    Notes
+    -----
+    The two tensions pull along the tangents, at ``180 - wrap`` to each other:
+    ``R = sqrt(T_in^2 + T_out^2 - 2 T_in T_out cos(wrap))``; ``T_in + T_out`` at 180 deg.
+    The pulley's own weight is not included.
+
+    References
+    ----------
+    DIN 22101:2011 (forces on pulleys); the law of cosines.
+    """
+    c = math.cos(math.radians(wrap_deg))
+    return np.sqrt(np.maximum(t_in_n * t_in_n + t_out_n * t_out_n - 2.0 * t_in_n * t_out_n * c,
+                              0.0))
+
+
+# ------------------------------------------------------------------ idlers
+def idler_load_set_n(belt_kg_m: float, load_kg_m: float, spacing_m: float) -> float:
+    """Static load on one carry idler set [N].
+
+    Parameters
+    ----------
+    belt_kg_m, load_kg_m : float
+        Belt mass m'_G and material mass m'_L per metre [kg/m].
+    spacing_m : float
+        Idler set pitch S [m].
+
+    Notes
+    -----
+    ``F = g (m'_G + m'_L) S``; no impact, misalignment or uneven-height load (CEMA's IML
+    needs the idler's height deviation, which the conveyor file does not give).
+
+    References
+    ----------
+    DIN 22101:2011 and ISO 5048:1989, idler loads.
+    """
+    return G * (belt_kg_m + load_kg_m) * spacing_m
+
+
+def middle_roll_share(rolls: int, trough_deg: float) -> float:
+    """Share of an idler set's load carried by its most loaded roll [-].
+
+    One roll: 1; two rolls (a V set): 1/2; three or more: the middle roll's share by trough
+    angle (:data:`MIDDLE_ROLL_SHARE`, the three-roll values; a five-roll garland's middle
+    roll carries less, so this is an upper estimate there).
+    """
+    if rolls <= 1:
+        return 1.0
+    if rolls == 2:
+        return 0.5
+    ang = [a for a, _ in MIDDLE_ROLL_SHARE]
+    return float(np.interp(trough_deg, ang, [s for _, s in MIDDLE_ROLL_SHARE]))
+
+
+def bearing_l10_h(c_n: float, p_n: float, speed_m_s: float, roll_diameter_m: float) -> float:
+    """Basic rating life L10 of an idler roll bearing [h].
+
+    Parameters
+    ----------
+    c_n : float
+        Basic dynamic load rating C of the bearing [N].
+    p_n : float
+        Equivalent dynamic load P on the bearing (a roll's load shared by its two bearings)
+        [N].
+    speed_m_s : float
+        Belt speed [m/s].
+    roll_diameter_m : float
+        Roll diameter [m].
+
+    Notes
+    -----
+    ``L10 = (C / P)^3 10^6 / (60 n)`` hours, ``n = 60 v / (pi D)`` rpm (ball bearings,
+    exponent 3).
+
+    References
+    ----------
+    ISO 281:2007, basic rating life.
+    """
+    if p_n <= 0.0:
+        return math.inf
+    n_rpm = 60.0 * speed_m_s / (math.pi * roll_diameter_m)
+    return (c_n / p_n) ** BEARING_LIFE_EXPONENT * 1e6 / (60.0 * n_rpm)
+
+
+# ------------------------------------------------------------------ holdback
+def holdback_torque_nm(pull_n: float, friction_n: float, diameter_m: float) -> float:
+    """Torque a holdback at a pulley must hold against the loaded belt running back [N m].
+
+    Parameters
+    ----------
+    pull_n : float
+        Net downhill pull of the loaded belt at rest, sum of the gravity components round the
+        loop (the material's lift; the belt's own weight cancels) [N]; positive pulls the belt
+        back.
+    friction_n : float
+        Running resistance of the belt and load (main and secondary resistances and
+        accessories; not the feed) [N].
+    diameter_m : float
+        Diameter of the pulley carrying the holdback [m].
+
+    Notes
+    -----
+    ``M = max(pull - HOLDBACK_FRICTION_SHARE x friction, 0) D / 2``: 0 when the belt cannot
+    run back. No service factor: the holdback maker applies its own.
+
+    References
+    ----------
+    CEMA, Belt Conveyors for Bulk Materials (backstops), as Belt Analyst documents it
+    (support.overlandconveyor.com, "Backstops").
+    """
+    return max(pull_n - HOLDBACK_FRICTION_SHARE * friction_n, 0.0) * diameter_m / 2.0
+
+
+# ------------------------------------------------------------------ applied to a run
+def pulley_name(conv, p: Pulley) -> str:
+    """How a message names a pulley: ``drive 2 (head)``, ``head``, ``take-up (tail)``."""
+    if p.drive >= 0:
+        return f"drive {p.drive + 1} ({p.position})"
+    return f"take-up ({p.position})" if p.takeup else p.position
+
+
+@dataclass(frozen=True)
+class PulleyCheck:
+    """One pulley's steady check: number, name, a drive pulley or not, group, diameter and
+    minimum [m], highest tension [N], utilisation [-], resultant [N]."""
+
+    j: int
+    name: str
+    drive: bool
+    group: str
+    diameter_m: float
+    diameter_min_m: float | None
+    tension_n: float
+    utilisation: float
+    resultant_n: float
+
+
+def _pulleys(conv, loop: Loop, T: np.ndarray, sf_min: float) -> list[PulleyCheck]:
+    belt = loop.belt
+    admissible = belt.rating_n / sf_min
+    carcass = _carcass_mm().get(belt.id)
+    t_low, t_high = float(T.min()), float(T.max())
+    out = []
+    for j, p in enumerate(loop.pulleys, start=1):
+        t_in, t_out = float(T[p.element - 1]), float(T[p.element])
+        t = max(t_in, t_out)
+        group = pulley_group(p.wrap_deg, p.drive >= 0, t, t_low, t_high)
+        u = t / admissible
+        d_min = (pulley_diameter_min_m(belt.kind, carcass * 1e-3, group, u)
+                 if carcass is not None and belt.kind in C_TR else None)
+        name = pulley_name(conv, p)
+        out.append(PulleyCheck(j, f"{name}, group {group}", p.drive >= 0, group, p.diameter_m,
+                               d_min, t, u,
+                               float(pulley_resultant_n(t_in, t_out, p.wrap_deg))))
+    return out
+
+
+def _idlers(conv, loop: Loop) -> tuple[dict, list[str]]:
+    ic = conv.idlers.carry
+    belt = loop.belt
+    m_load = max(loop.design_load_kg_m, loop.load_max_kg_m)
+    f_set = idler_load_set_n(belt.mass_kg_m, m_load, ic.spacing_m)
+    f_roll = middle_roll_share(ic.rolls, ic.trough_deg) * f_set
+    out = {"idler_load_carry_n": f_set, "idler_load_roll_n": f_roll, "idler_l10_h": None}
+    warnings = []
+    rating = _idler_ratings().get(ic.cema_class) if ic.cema_class else None
+    if rating is None:
+        return out, warnings
+    l10 = bearing_l10_h(rating["bearing_c_n"], f_roll / 2.0, loop.speed_m_s, ic.roll_diameter_m)
+    out["idler_l10_h"] = l10
+    if f_set > rating["carry_rating_n"]:
+        warnings.append(
+            f"carry idler load {f_set:.0f} N per set (belt and design load over "
+            f"{ic.spacing_m:g} m) exceeds the CEMA {ic.cema_class} rating "
+            f"{rating['carry_rating_n']:.0f} N: a heavier class or a closer pitch "
+            f"({ic.spacing_m * rating['carry_rating_n'] / f_set:.2f} m)")
+    if l10 < rating["l10_min_h"]:
+        warnings.append(
+            f"carry idler bearing life L10 {l10:.0f} h (middle roll {f_roll:.0f} N, two "
+            f"bearings, ISO 281) is below the CEMA {ic.cema_class} basis "
+            f"{rating['l10_min_h']:.0f} h: a heavier class, larger rolls or a closer pitch")
+    return out, warnings
+
+
+def steady_checks(conv, loop: Loop, T: np.ndarray, sf_min: float, friction_n: float
+                  ) -> tuple[dict, list[str]]:
+    """The steady design-check fields and their warnings.
+
+    Parameters
+    ----------
+    conv : Conveyor
+    loop : Loop
+    T : ndarray
+        Steady boundary tensions, ``T[j]`` at the end of element j [N].
+    sf_min : float
+        Minimum belt safety factor in steady running [-]: the admissible tension is the
+        rating over it.
+    friction_n : float
+        Running resistance without the feed [N] (:func:`holdback_torque_nm`).
+
+    Returns
+    -------
+    dict, list of str
+        Fields of :data:`beltstudy.engine.results.CHECKS`; warnings naming the pulley or
+        idler, how much and what would avoid it.
+    """
+    belt = loop.belt
+    out: dict = {}
+    warnings: list[str] = []
+    for pc in _pulleys(conv, loop, T, sf_min):
+        # a plain or take-up pulley's diameter is the loop's estimate (engine/loop.py), not
+        # a given: its minimum is reported, not judged
+        ok = None if pc.diameter_min_m is None or not pc.drive else bool(
+            pc.diameter_m >= pc.diameter_min_m - 1e-9)
+        out[f"pulley{pc.j}_name"] = pc.name
+        out[f"pulley{pc.j}_diameter_min_m"] = pc.diameter_min_m
+        out[f"pulley{pc.j}_diameter_min_ok"] = ok
+        out[f"pulley{pc.j}_resultant_kn"] = pc.resultant_n / 1e3
+        if ok is False:
+            warnings.append(
+                f"pulley {pc.j} ({pc.name}) diameter {pc.diameter_m:g} m is below the DIN "
+                f"22101 minimum {pc.diameter_min_m:g} m for {belt.id} at "
+                f"{pc.utilisation * 100:.0f} % of the admissible tension: a pulley of at least "
+                f"{pc.diameter_min_m:g} m")
+    ic = conv.idlers.carry
+    sf = sf_min
+    t_head = float(T[loop.i_head - 1])  # the carry arriving at the head
+    t_tail = float(T[loop.i_tail])  # the carry leaving the tail
+    for where, t in (("head", t_head), ("tail", t_tail)):
+        out[f"transition_{where}_m"] = (
+            transition_length_m(belt.kind, ic.trough_deg, belt.width_m, t * sf / belt.rating_n)
+            if belt.kind in ("steel", "fabric") else None)
+    idl, w = _idlers(conv, loop)
+    out.update(idl)
+    warnings += w
+    hb = loop.pulley_at(loop.i_head)
+    out["holdback_torque_knm"] = holdback_torque_nm(
+        float(loop.gravity_n.sum()), friction_n, hb.diameter_m) / 1e3
+    return out, warnings
+
+
+def transient_checks(loop: Loop, t_max_n: np.ndarray) -> dict:
+    """Transient design-check fields: ``pulley{j}_resultant_dyn_kn`` from the tension
+    envelopes of the cycle.
+
+    Parameters
+    ----------
+    loop : Loop
+        The loop the transient ran on (its springs are the loop's element ends).
+    t_max_n : ndarray
+        Highest tension of each spring, every time step [N]: over the whole cycle (one row),
+        or one row per envelope segment of the kernel (cut at the stop command and when the
+        belt first goes slack, ``TransientResult.raw["segments"]``).
+
+    Notes
+    -----
+    ``R_dyn = max over segments k of R(max_k T_in, max_k T_out)`` (:func:`pulley_resultant_n`):
+    within a segment the two maxima need not fall at the same time, so this is an upper bound
+    on the largest resultant (exact when both peak together, as they nearly do at a plain
+    pulley, whose two tensions differ only by its own drag and inertia). Per segment it is
+    tighter than over the whole cycle: a drive pulley's tight side peaks in the start, its
+    slack side often in the stop.
+    """
+    env = np.atleast_2d(np.asarray(t_max_n, dtype=float))
+    out = {}
+    for j, p in enumerate(loop.pulleys, start=1):
+        r = pulley_resultant_n(env[:, p.element - 1], env[:, p.element], p.wrap_deg)
+        out[f"pulley{j}_resultant_dyn_kn"] = (float(np.nanmax(r)) / 1e3 if np.isfinite(r).any()
+                                              else math.nan)
+    return out

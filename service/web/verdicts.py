@@ -1,0 +1,439 @@
+"""The verdicts of a study and the runs that did not pass, from its runs table alone.
+
+Two declarative lists drive the design report's first two sections
+(:mod:`beltstudy.service.web.report`):
+
+* :data:`VERDICTS`: one :class:`Verdict` per design quantity (power and utilisation per drive,
+  belt safety factor, T_max and T_min per phase, take-up, brakes, the stop, slip, sag,
+  pulleys, idlers). A row is shown only when its column is in the runs table with a value, so
+  a column a newer engine adds (``drive{i}_utilisation``, ``pulley{j}_resultant_kn``, ...)
+  gets its row as soon as the runs carry it. ``{i}`` and ``{j}`` stand for the drive and
+  pulley numbers found in the table.
+* :data:`CAUSES`: one :class:`Cause` per way a run can fail to pass (failed, ran away, did not
+  stop, overloaded a drive, slipped, went slack, sagged past its limit, ...), each detected
+  from the columns (and, where the engine says it only in words, from the run's message).
+
+Everything here is a pure function of a pandas DataFrame and the study's JSON.
+"""
+
+from __future__ import annotations
+
+import math
+import re
+from collections.abc import Callable
+from dataclasses import dataclass, field
+from typing import Any
+
+import pandas as pd
+
+from beltstudy.service.web.numbers import eng
+
+__all__ = ["Verdict", "VERDICTS", "Cause", "CAUSES", "verdict_rows", "cause_groups",
+           "expand", "numeric", "transient_ran", "not_stopped", "clauses"]
+
+
+@dataclass(frozen=True)
+class Verdict:
+    """One design quantity of the verdict table.
+
+    ``column`` may hold ``{i}`` (drives) or ``{j}`` (pulleys): one row per number present.
+    ``worst`` is ``max`` or ``min``. ``limit`` is a number, a column of the same run (with the
+    same ``{i}``/``{j}``), or a key of the study's limits (:func:`study_limits`); None: no limit
+    to judge against (the value is shown). ``ok``: a boolean column that is the run's own
+    verdict (a run with it false is past the limit). ``null_worst``: a missing value in a run
+    whose transient ran is the worst of all (a stop time of a run that did not stop).
+    """
+
+    group: str
+    quantity: str
+    column: str
+    worst: str
+    unit: str
+    limit: float | str | None = None
+    ok: str | None = None
+    at: str | None = None
+    null_worst: str = ""
+
+
+#: The verdict table, in its order. Columns a run does not carry are left out.
+VERDICTS: tuple[Verdict, ...] = (
+    # drives
+    Verdict("Drives", "power required, drive {i}", "drive{i}_power_required_kw", "max", "kW",
+            "drive{i}_rated_power_kw"),
+    Verdict("Drives", "utilisation, drive {i} (required / rated)", "drive{i}_utilisation",
+            "max", "-", 1.0),
+    Verdict("Drives", "time over rating, drive {i}", "drive{i}_overload_s", "max", "s", 0.0),
+    Verdict("Drives", "RMS (thermal) force, drive {i}", "drive{i}_force_rms_kn", "max", "kN"),
+    Verdict("Drives", "power at the drive pulleys, steady (all drives)", "power_kw", "max", "kW",
+            "rated_power_kw"),
+    Verdict("Drives", "largest drive power, transient (all drives)", "drive_power_max_kw", "max",
+            "kW"),
+    Verdict("Drives", "largest force, drive {i}, transient", "drive{i}_force_max_kn", "max",
+            "kN"),
+    Verdict("Drives", "largest power, drive {i}, transient", "drive{i}_power_max_kw", "max",
+            "kW"),
+    Verdict("Drives", "holdback torque", "holdback_torque_knm", "max", "kNm"),
+    # belt
+    Verdict("Belt", "belt type used", "belt_type_used", "text", ""),
+    Verdict("Belt", "belt safety factor, steady", "safety_factor", "min", "-", "sf_steady"),
+    Verdict("Belt", "belt safety factor, transient", "safety_factor_dyn", "min", "-",
+            "sf_dyn"),
+    Verdict("Belt", "largest tension, steady", "t_max_kn", "max", "kN", "t_allow_steady",
+            at="t_max_at_m"),
+    Verdict("Belt", "largest tension, start", "t_max_start_kn", "max", "kN", "t_allow_dyn",
+            at="t_max_start_at_m"),
+    Verdict("Belt", "largest tension, stop", "t_max_stop_kn", "max", "kN", "t_allow_dyn",
+            at="t_max_stop_at_m"),
+    Verdict("Belt", "largest tension, transient", "t_max_dyn_kn", "max", "kN", "t_allow_dyn",
+            at="t_max_dyn_at_m"),
+    Verdict("Belt", "lowest tension, steady", "t_min_kn", "min", "kN", 0.0, at="t_min_at_m"),
+    Verdict("Belt", "lowest tension, start", "t_min_start_kn", "min", "kN", 0.0,
+            at="t_min_start_at_m"),
+    Verdict("Belt", "lowest tension, stop", "t_min_stop_kn", "min", "kN", 0.0,
+            at="t_min_stop_at_m"),
+    Verdict("Belt", "lowest tension, transient", "t_min_dyn_kn", "min", "kN", 0.0,
+            at="t_min_dyn_at_m"),
+    Verdict("Belt", "belt gathered by slack spans", "slack_max_m", "max", "m", 0.0,
+            at="slack_at_m"),
+    Verdict("Belt", "largest sag, steady", "sag_max_pct", "max", "%", "sag"),
+    Verdict("Belt", "largest sag, transient", "sag_max_dyn_pct", "max", "%", "sag"),
+    # take-up
+    Verdict("Take-up", "take-up mass", "takeup_mass_kg", "max", "kg"),
+    Verdict("Take-up", "take-up pretension", "takeup_pretension_kn", "max", "kN"),
+    Verdict("Take-up", "take-up travel, whole cycle", "takeup_travel_m", "max", "m", "travel"),
+    Verdict("Take-up", "take-up travel, start", "takeup_travel_start_m", "max", "m", "travel"),
+    Verdict("Take-up", "take-up travel, stop", "takeup_travel_stop_m", "max", "m", "travel"),
+    # stop
+    Verdict("Stop", "brake force (all brakes)", "brake_force_kn", "max", "kN"),
+    Verdict("Stop", "holdback force", "f_holdback_kn", "max", "kN"),
+    Verdict("Stop", "stop time achieved", "stop_time_s", "max", "s",
+            null_worst="did not stop"),
+    Verdict("Stop", "stopping distance", "stop_distance_m", "max", "m",
+            null_worst="did not stop"),
+    # slip
+    Verdict("Slip", "slip margin, running", "slip_margin", "min", "-", 1.0),
+    Verdict("Slip", "slip margin, start-up (DIN 22101)", "slip_margin_start", "min", "-", 1.0),
+    Verdict("Slip", "slip margin, transient", "slip_margin_min_dyn", "min", "-", 1.0),
+    Verdict("Slip", "time slipping, drive {i}", "drive{i}_slip_s", "max", "s", 0.0),
+    # pulleys and idlers
+    Verdict("Pulleys", "minimum diameter, pulley {j}", "pulley{j}_diameter_min_m", "max", "m",
+            ok="pulley{j}_diameter_min_ok"),
+    Verdict("Pulleys", "resultant (shaft) force, pulley {j}, steady", "pulley{j}_resultant_kn",
+            "max", "kN"),
+    Verdict("Pulleys", "resultant (shaft) force, pulley {j}, transient",
+            "pulley{j}_resultant_dyn_kn", "max", "kN"),
+    Verdict("Pulleys", "transition length, head", "transition_head_m", "max", "m"),
+    Verdict("Pulleys", "transition length, tail", "transition_tail_m", "max", "m"),
+    Verdict("Idlers", "idler load per carry set", "idler_load_carry_n", "max", "N"),
+    Verdict("Idlers", "idler bearing life L10", "idler_l10_h", "min", "h"),
+)
+
+
+def numeric(runs: pd.DataFrame, column: str) -> pd.Series | None:
+    """``runs[column]`` as floats, or None when the table lacks it or has no value in it."""
+    if column not in runs.columns:
+        return None
+    values = pd.to_numeric(runs[column], errors="coerce")
+    return values if values.notna().any() else None
+
+
+def expand(pattern: str, columns) -> list[tuple[str, dict[str, str]]]:
+    """The columns matching ``pattern`` (``drive{i}_utilisation``), with the numbers found:
+    ``[("drive1_utilisation", {"i": "1"}), ...]`` in number order; ``[(pattern, {})]`` for a
+    plain column name present."""
+    if "{" not in pattern:
+        return [(pattern, {})] if pattern in columns else []
+    regex = re.compile("^" + re.escape(pattern).replace(r"\{i\}", r"(?P<i>\d+)")
+                       .replace(r"\{j\}", r"(?P<j>\d+)") + "$")
+    found = []
+    for c in columns:
+        m = regex.match(str(c))
+        if m:
+            found.append((c, m.groupdict()))
+    return sorted(found, key=lambda cm: [int(v) for v in cm[1].values()])
+
+
+def transient_ran(runs: pd.DataFrame) -> pd.Series:
+    """Rows whose transient ran (a transient column has a value)."""
+    for c in ("t_max_dyn_kn", "wave_loop_time_s", "dt_used_s"):
+        if c in runs.columns:
+            return pd.to_numeric(runs[c], errors="coerce").notna()
+    return pd.Series(False, index=runs.index)
+
+
+def _message(runs: pd.DataFrame) -> pd.Series:
+    if "message" not in runs.columns:
+        return pd.Series("", index=runs.index)
+    return runs["message"].fillna("").astype(str)
+
+
+def _status(runs: pd.DataFrame) -> pd.Series:
+    if "status" not in runs.columns:
+        return pd.Series("ok", index=runs.index)
+    return runs["status"].fillna("").astype(str)
+
+
+def _ran_away(runs: pd.DataFrame) -> pd.Series:
+    return _message(runs).str.contains(r"\bran (?:away|back)\b", regex=True)
+
+
+def not_stopped(runs: pd.DataFrame) -> pd.Series:
+    """Runs whose belt did not stop: a transient that ran without a stop time, or the message
+    says so; runs that ran away or failed are their own causes."""
+    msg = _message(runs)
+    no_time = (transient_ran(runs) & pd.to_numeric(runs.get("stop_time_s"), errors="coerce")
+               .isna()) if "stop_time_s" in runs.columns else pd.Series(False, index=runs.index)
+    return ((no_time | msg.str.contains("did not stop", regex=False)) & ~_ran_away(runs)
+            & (_status(runs) != "failed"))
+
+
+def _any_over(runs: pd.DataFrame, pattern: str, limit: float) -> pd.Series:
+    out = pd.Series(False, index=runs.index)
+    for c, _ in expand(pattern, runs.columns):
+        out |= pd.to_numeric(runs[c], errors="coerce").fillna(-math.inf) > limit
+    return out
+
+
+def _overloaded(runs: pd.DataFrame) -> pd.Series:
+    msg = _message(runs).str.lower()
+    out = (_any_over(runs, "drive{i}_utilisation", 1.0)
+           | _any_over(runs, "drive{i}_overload_s", 0.0)
+           | msg.str.contains("overload", regex=False) | msg.str.contains("short by", regex=False))
+    power, rated = numeric(runs, "power_kw"), numeric(runs, "rated_power_kw")
+    if power is not None and rated is not None:  # steady power above the installed rating
+        out |= (power > rated).fillna(False)
+    return out
+
+
+def _overload_words(row: pd.Series) -> str:
+    """The steady power against the rating, in words, when the run's message has none."""
+    power = pd.to_numeric(pd.Series([row.get("power_kw")]), errors="coerce").iloc[0]
+    rated = pd.to_numeric(pd.Series([row.get("rated_power_kw")]), errors="coerce").iloc[0]
+    if pd.notna(power) and pd.notna(rated) and power > rated:
+        return (f"steady running needs {eng(power, 'kW')} at the drive pulleys, "
+                f"{eng(rated, 'kW')} rated: short by {eng(power - rated, 'kW')}")
+    return ""
+
+
+def _slipped(runs: pd.DataFrame) -> pd.Series:
+    out = _any_over(runs, "drive{i}_slip_s", 0.0)
+    margin = numeric(runs, "slip_margin")
+    if margin is not None:
+        out |= (margin < 1.0).fillna(False)
+    return out | _message(runs).str.contains(r"slipped on its pulley|pulley slipped", regex=True)
+
+
+def _slack(runs: pd.DataFrame) -> pd.Series:
+    return (_any_over(runs, "slack_max_m", 0.0)
+            | _message(runs).str.contains("goes slack", regex=False))
+
+
+def _sagged(runs: pd.DataFrame) -> pd.Series:
+    return _message(runs).str.contains(r"sag on the \w+ strand [\d.]+ % exceeds", regex=True)
+
+
+def _safety(runs: pd.DataFrame) -> pd.Series:
+    return _message(runs).str.contains("safety factor", regex=False) & _message(
+        runs).str.contains("below", regex=False)
+
+
+def _pulleys(runs: pd.DataFrame) -> pd.Series:
+    out = pd.Series(False, index=runs.index)
+    for c, _ in expand("pulley{j}_diameter_min_ok", runs.columns):
+        out |= runs[c].astype("boolean").fillna(True).eq(False).astype(bool)
+    return out
+
+
+@dataclass(frozen=True)
+class Cause:
+    """One way a run does not pass: ``detect(runs)`` flags its rows; ``columns`` (patterns
+    with ``{i}``) are the figures that show the cause, ``words`` a regular expression picking
+    the clauses of the message that name it."""
+
+    key: str
+    title: str
+    detect: Callable[[pd.DataFrame], pd.Series]
+    columns: tuple[str, ...] = ()
+    words: str = ""
+    note: str = field(default="")
+    explain: Callable[[pd.Series], str] | None = None
+
+
+#: The failure groups, in the report's order. A run is listed in every group it belongs to.
+CAUSES: tuple[Cause, ...] = (
+    Cause("failed", "failed (no result)", lambda r: _status(r) == "failed", (),
+          r".", "the run stopped with an error; its message says where and why"),
+    Cause("ran_away", "ran away", _ran_away, ("velocity_max_m_s", "velocity_min_m_s"),
+          r"ran (?:away|back)"),
+    Cause("not_stopped", "did not stop", not_stopped,
+          ("stop_time_s", "brake_force_kn", "velocity_min_m_s"), r"did not stop|never"),
+    Cause("overload", "overloaded a drive", _overloaded,
+          ("power_kw", "rated_power_kw", "drive{i}_utilisation", "drive{i}_overload_s",
+           "drive{i}_power_required_kw"), r"overload|short by|rated",
+          explain=_overload_words),
+    Cause("slip", "slipped on a drive pulley", _slipped,
+          ("drive{i}_slip_s", "drive{i}_slip_margin_min", "slip_margin", "takeup_mass_kg"),
+          r"slip"),
+    Cause("slack", "went slack", _slack, ("slack_max_m", "slack_duration_s", "t_min_dyn_kn"),
+          r"slack"),
+    Cause("sag", "sagged past its limit", _sagged, ("sag_max_pct", "sag_max_dyn_pct"), r"sag"),
+    Cause("safety", "belt safety factor below its minimum", _safety,
+          ("safety_factor", "safety_factor_dyn"), r"safety factor"),
+    Cause("pulley", "pulley below its minimum diameter", _pulleys,
+          ("pulley{j}_diameter_min_m",), r"pulley"),
+)
+
+
+def clauses(message: Any, words: str) -> list[str]:
+    """The clauses of a run's message (joined by ``; ``) that match ``words``."""
+    if not isinstance(message, str) or not message:
+        return []
+    found = [c for c in message.split("; ") if re.search(words, c, re.IGNORECASE)]
+    return found
+
+
+def cause_groups(runs: pd.DataFrame) -> list[tuple[Cause, pd.DataFrame, list[str]]]:
+    """Every cause with runs in it: ``(cause, its rows, the figure columns present)``."""
+    out = []
+    if not len(runs):
+        return out
+    for cause in CAUSES:
+        mask = cause.detect(runs).fillna(False).astype(bool)
+        if not mask.any():
+            continue
+        cols = [c for p in cause.columns for c, _ in expand(p, runs.columns)
+                if numeric(runs[mask], c) is not None]
+        out.append((cause, runs[mask], cols))
+    return out
+
+
+# ---------------------------------------------------------------------- verdict rows
+#: A named limit: ``runs -> (the limit per row [unit of the quantity] or None, words)``.
+Limit = Callable[[pd.DataFrame], tuple[pd.Series | None, str]]
+
+
+def study_limits(study: dict, sf_min: float, sf_ratio: float,
+                 sf_words: str = "DIN 22101 minimum") -> dict[str, Limit]:
+    """The study's named limits (:attr:`Verdict.limit` names them): the belt safety factor
+    ``sf_min`` steady and ``sf_ratio * sf_min`` transient, the tension they allow
+    (``belt_rating_kn`` / safety factor), the sag limits and the take-up travel."""
+    conv = study.get("conveyor") or {}
+    sag = conv.get("sag_limit_pct") or {}
+    carry, ret = sag.get("carry"), sag.get("return")
+    length = sum(p.get("length_m", 0.0) for p in conv.get("profile", []))
+    travel = (conv.get("takeup") or {}).get("travel_m") or 0.015 * length
+    sf_dyn = sf_ratio * sf_min
+
+    def const(value: float, words: str) -> Limit:
+        return lambda runs: (pd.Series(float(value), index=runs.index), words)
+
+    def allow(sf: float, words: str) -> Limit:
+        def f(runs):
+            rating = numeric(runs, "belt_rating_kn")
+            return (None, "") if rating is None else (rating / sf, words)
+        return f
+
+    def sag_limit(runs):
+        if carry is None or ret is None:
+            return None, ""
+        words = f"carry {carry:g} %, return {ret:g} %"
+        # the column is the larger of both strands: a number to judge against only when the
+        # strands share their limit; else the runs' messages name the strand past its limit
+        return (pd.Series(float(carry), index=runs.index) if carry == ret else None), words
+
+    return {
+        "sf_steady": const(sf_min, sf_words),
+        "sf_dyn": const(sf_dyn, f"{sf_ratio:.3g} x the minimum, transient"),
+        "t_allow_steady": allow(sf_min, f"belt rating / {sf_min:.3g}"),
+        "t_allow_dyn": allow(sf_dyn, f"belt rating / {sf_dyn:.3g}"),
+        "sag": sag_limit,
+        "travel": const(travel, "carriage travel"),
+    }
+
+
+def _limits_of(v: Verdict, runs: pd.DataFrame, nums: dict[str, str], limits: dict[str, Limit]
+               ) -> tuple[pd.Series | None, str]:
+    """The limit of ``v`` for every row of ``runs`` and its words."""
+    if v.limit is None:
+        return None, ""
+    if isinstance(v.limit, int | float):
+        return pd.Series(float(v.limit), index=runs.index), ""
+    name = v.limit.format(**nums) if nums else v.limit
+    if name in limits:
+        return limits[name](runs)
+    return numeric(runs, name), name
+
+
+def _past(v: Verdict, values: pd.Series, runs: pd.DataFrame, lim: pd.Series | None,
+          ok_col: str | None) -> pd.Series:
+    """Rows past the limit: beyond the number, their own verdict column false, the message
+    naming it (sag), or no value where a missing one is the worst (did not stop)."""
+    past = pd.Series(False, index=runs.index)
+    if ok_col and ok_col in runs.columns:
+        past |= runs[ok_col].astype("boolean").fillna(True).eq(False).astype(bool)
+    if v.limit == "sag":
+        past |= _sagged(runs)
+    if lim is not None:
+        known = values.notna() & lim.notna()
+        if v.worst == "max":
+            past |= known & (values > lim)
+        else:  # a lowest tension of 0 is slack: at the limit is past it
+            past |= known & ((values <= lim) if v.limit == 0.0 else (values < lim))
+    if v.null_worst:
+        past |= transient_ran(runs) & values.isna()
+    return past
+
+
+def _worst(v: Verdict, values: pd.Series, lim: pd.Series | None) -> tuple[Any, bool]:
+    """The row with the worst value; where the limit differs between runs (a rated power
+    that is a grid axis), the worst against its own limit (value / limit), and True."""
+    if lim is not None and lim.notna().any() and lim.dropna().nunique() > 1 \
+            and (lim.dropna() > 0).all():
+        ratio = values / lim
+        if ratio.notna().any():
+            return (ratio.idxmax() if v.worst == "max" else ratio.idxmin()), True
+    return (values.idxmax() if v.worst == "max" else values.idxmin()), False
+
+
+def verdict_rows(runs: pd.DataFrame, limits: dict[str, Limit]) -> list[dict]:
+    """One row per :data:`VERDICTS` entry (and drive / pulley) present in ``runs``:
+    ``{"verdict", "label", "column", "row", "value", "limit", "limit_text", "past", "n",
+    "missing"}``; ``row`` is the governing run (the worst value; for ``null_worst`` the first
+    run with the value missing); ``past`` the number of runs past the limit."""
+    ok = runs[_status(runs) != "failed"] if len(runs) else runs
+    out = []
+    for v in VERDICTS:
+        for column, nums in expand(v.column, ok.columns):
+            if v.worst == "text":
+                texts = ok[column].dropna().astype(str)
+                if len(texts):
+                    counts = texts.value_counts()
+                    row = ok.loc[texts.index[0]]
+                    out.append({"verdict": v, "label": v.quantity.format(**nums),
+                                "column": column, "row": row, "value": ", ".join(counts.index),
+                                "limit": None, "limit_text": "", "past": 0, "n": len(texts),
+                                "missing": 0})
+                continue
+            values = numeric(ok, column)
+            if values is None:
+                continue
+            # a transient without a stop time did not stop (ran away included)
+            unstopped = transient_ran(ok) & values.isna() if v.null_worst else values.isna() & False
+            missing = int(unstopped.sum())
+            if missing:  # the governing run: one that did not stop, before one that ran away
+                first = unstopped & not_stopped(ok)
+                idx = (first if first.any() else unstopped).idxmax()
+            lim, text = _limits_of(v, ok, nums, limits)
+            if not missing:
+                idx, relative = _worst(v, values, lim)
+                text = f"{text}; the worst against its own limit" if relative else text
+            row = ok.loc[idx]
+            ok_col = v.ok.format(**nums) if v.ok else None
+            past = _past(v, values, ok, lim, ok_col)
+            limit = None if lim is None or pd.isna(lim.loc[idx]) else float(lim.loc[idx])
+            out.append({"verdict": v, "label": v.quantity.format(**nums), "column": column,
+                        "row": row, "value": None if missing else float(values.loc[idx]),
+                        "limit": limit, "limit_text": text, "past": int(past.sum()),
+                        "n": int(values.notna().sum()) + missing, "missing": missing,
+                        "ok_col": ok_col})
+    return out

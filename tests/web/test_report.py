@@ -1,0 +1,239 @@
+"""The design report built from a runs table (no browser, no Dask): verdicts, failure groups,
+engineering numbers, the start and stop peaks figure."""
+
+from __future__ import annotations
+
+import re
+
+import numpy as np
+import pandas as pd
+import pytest
+
+from beltstudy.service import charts
+from beltstudy.service.door.studyfile import resolve_study
+from beltstudy.service.web.numbers import GROUP, UNIT_SPACE, eng
+from beltstudy.service.web.report import report_html
+from beltstudy.service.web.verdicts import CAUSES, cause_groups
+
+NB = GROUP  # narrow no-break space between groups of three digits
+DID_NOT_STOP = ("the belt did not stop within 103 s of the stop command (mean speed 3.77 m/s "
+                "at the end)")
+SLIP = ("drive 1 (head) slipped on its pulley during the start: from t = 7.8 to 8.7 s, 0.93 s "
+        "in all, 0.0778 m of belt slipped (lowest slip margin 1.00); a heavier take-up (more "
+        "slack-side tension) or a longer start (start.time_s) would avoid it")
+
+
+@pytest.fixture(autouse=True)
+def _close_figures():
+    yield
+    charts._plt().close("all")
+
+
+def _doc(web) -> dict:
+    study = resolve_study(web.tiny_study(name="hides-nothing", dynamics=True),
+                          studies_dir=web.ROOT / "studies")
+    return {"id": study.id, "name": study.name, "engine_version": study.engine_version,
+            "finished_at": 0.0, "study": study.to_json()}
+
+
+def _runs(**extra) -> pd.DataFrame:
+    """Eight runs of the tiny study: two pass, one did not stop, two overload the drive (one
+    of them also slips), one slips, one failed, one ran away. Values chosen by hand."""
+    base = {"status": "ok", "message": "", "power_kw": 10.0, "rated_power_kw": 30.0,
+            "belt_rating_kn": 504.0, "t_max_kn": 20.0, "t_min_kn": 3.0, "safety_factor": 25.2,
+            "t_max_dyn_kn": 25.0, "t_min_dyn_kn": 2.0, "t_max_start_kn": 25.0,
+            "t_min_start_kn": 2.5, "t_max_stop_kn": 18.0, "t_min_stop_kn": 2.0,
+            "safety_factor_dyn": 20.16, "slip_margin": 1.5, "drive1_slip_s": 0.0,
+            "stop_time_s": 8.0, "stop_distance_m": 10.0, "takeup_mass_kg": 16886.3,
+            "takeup_travel_m": 0.5, "drive1_rated_power_kw": 30.0}
+    rows = [
+        {"run_id": "a1", "friction_model": "din", "temperature_c": -20.0},
+        {"run_id": "a2", "friction_model": "cema", "temperature_c": -20.0},
+        {"run_id": "ns", "friction_model": "din", "temperature_c": 20.0, "stop_time_s": np.nan,
+         "stop_distance_m": np.nan, "status": "warning", "message": DID_NOT_STOP},
+        {"run_id": "ov", "friction_model": "cema", "temperature_c": 20.0, "power_kw": 36.5,
+         "status": "warning"},
+        {"run_id": "os", "friction_model": "cema", "temperature_c": 0.0, "power_kw": 31.0,
+         "drive1_slip_s": 0.93, "status": "warning", "message": SLIP},
+        {"run_id": "sl", "friction_model": "din", "temperature_c": 0.0, "drive1_slip_s": 2.5,
+         "status": "warning", "message": SLIP},
+        {"run_id": "fa", "friction_model": "din", "temperature_c": 40.0, "status": "failed",
+         "message": "diverged: the belt became non-finite at t = 3 s"},
+        {"run_id": "ra", "friction_model": "cema", "temperature_c": 40.0, "stop_time_s": np.nan,
+         "status": "warning", "message": "the belt ran away forwards during the stop: its "
+         "mean speed reached 5 m/s (2 x the design speed) at t = 76.12 s"},
+    ]
+    out = pd.DataFrame([{**base, **r} for r in rows])
+    failed = out["status"] == "failed"
+    out.loc[failed, [c for c in base if c not in ("status", "message")]] = np.nan
+    for column, values in extra.items():
+        out[column] = values
+    return out
+
+
+def _section(html: str, k: int) -> str:
+    m = re.search(rf'<section id="s{k}">(.*?)</section>', html, re.S)
+    assert m, f"section {k} missing"
+    return m.group(1)
+
+
+def test_every_failure_group_is_listed_with_its_count(web):
+    runs = _runs()
+    html = report_html(_doc(web), runs, {"state": "done", "done": 8, "total": 8})
+    s2 = _section(html, 2)
+    # the counts by hand from the table above
+    expected = {"failed (no result)": 1, "ran away": 1, "did not stop": 1,
+                "overloaded a drive": 2, "slipped on a drive pulley": 2}
+    for title, n in expected.items():
+        assert f"<li><b>{n}</b> of 8 runs {title}</li>" in s2, title
+        heading = f"{title[0].upper()}{title[1:]}: {n} run{'s' if n != 1 else ''}</h3>"
+        assert heading in s2, heading
+    # each group's table holds its runs and no other
+    tables = dict(re.findall(r"<h3>([^<:]+): \d+ runs?</h3>.*?<tbody>(.*?)</tbody>", s2, re.S))
+    assert sorted(re.findall(r"<code class=id>(\w+)</code>", tables["Overloaded a drive"])) == ["os", "ov"]
+    assert sorted(re.findall(r"<code class=id>(\w+)</code>", tables["Did not stop"])) == ["ns"]
+    assert sorted(re.findall(r"<code class=id>(\w+)</code>", tables["Slipped on a drive pulley"])) == [
+        "os", "sl"]
+    # the overload in words: 36.5 kW needed, 30 kW rated, short by 6.5 kW
+    assert f"needs 36.5{UNIT_SPACE}kW at the drive pulleys, 30{UNIT_SPACE}kW rated: short by " \
+           f"6.5{UNIT_SPACE}kW" in tables["Overloaded a drive"]
+    # the groups come from the columns: no slack, sag or pulley group without such runs
+    assert "went slack" not in s2 and "sagged past" not in s2
+    assert [c.key for c, _, _ in cause_groups(runs)] == [
+        "failed", "ran_away", "not_stopped", "overload", "slip"]
+
+
+def test_the_verdicts_name_the_governing_run_and_the_runs_past_each_limit(web):
+    html = report_html(_doc(web), _runs(), {"state": "done", "done": 8, "total": 8})
+    s1 = _section(html, 1)
+    rows = {re.sub("<.*", "", r): r for r in re.findall(r"<tr><td>(.*?)</tr>", s1, re.S)}
+    power = rows["power at the drive pulleys, steady (all drives)"]
+    assert f"36.5{UNIT_SPACE}kW" in power and "<code>ov</code>" in power  # the largest
+    assert "past the limit in 2 of 7 runs" in power  # 36.5 and 31 kW over 30 kW rated
+    stop = rows["stop time achieved"]
+    assert "did not stop" in stop and "<code>ns</code>" in stop
+    assert "2 of 7 runs did not stop" in stop  # ns, and ra that ran away
+    slip = rows["time slipping, drive 1"]
+    assert f"2.5{UNIT_SPACE}s" in slip and "past the limit in 2 of 7 runs" in slip
+    # 16 886.3 kg in engineering format, never as 1.689e+04
+    assert f"16{NB}886{UNIT_SPACE}kg" in rows["take-up mass"]
+    assert not re.search(r"\d[eE][+-]?\d", re.sub(r"<code>.*?</code>|run_id", "", s1))
+    # the safety factor against DIN 22101's minimum for fabric belts
+    assert "within (7 runs)" in rows["belt safety factor, steady"]
+
+
+def test_a_verdict_row_appears_when_its_column_does(web):
+    """Columns another part of the engine adds (drive utilisation, pulley diameters) get
+    their rows once the runs carry them; without them the rows are absent."""
+    doc = _doc(web)
+    status = {"state": "done", "done": 8, "total": 8}
+    bare = _section(report_html(doc, _runs(), status), 1)
+    assert "utilisation, drive 1" not in bare and "minimum diameter, pulley" not in bare
+    util = [0.5, 0.6, 0.7, 1.22, 1.03, 0.6, np.nan, 0.9]
+    rich = _section(report_html(doc, _runs(**{
+        "drive1_utilisation": util, "pulley2_diameter_min_m": [0.5] * 7 + [0.63],
+        "pulley2_diameter_min_ok": [True] * 7 + [False]}), status), 1)
+    row = re.search(r"<tr><td>utilisation, drive 1.*?</tr>", rich, re.S).group(0)
+    assert "1.22" in row and "<code>ov</code>" in row and "past the limit in 2 of 7" in row
+    row = re.search(r"<tr><td>minimum diameter, pulley 2.*?</tr>", rich, re.S).group(0)
+    assert f"0.63{UNIT_SPACE}m" in row and "<code>ra</code>" in row
+    assert "past the limit in 1 of 7" in row
+    # a utilisation over 1 alone puts a run into the overload group
+    runs = _runs(drive1_utilisation=[0.5, 1.4, 0.7, 1.22, 1.03, 0.6, np.nan, 0.9])
+    over = next(p for c, p, _ in cause_groups(runs) if c.key == "overload")
+    assert sorted(over["run_id"]) == ["a2", "os", "ov"]
+
+
+def test_long_messages_fold_and_rows_stay_short(web):
+    runs = _runs()
+    runs.loc[0, "message"] = "; ".join([SLIP] * 6)
+    html = report_html(_doc(web), runs, {"state": "done", "done": 8, "total": 8})
+    runs_table = _section(html, 8)
+    assert "<details><summary>" in runs_table
+    # a cell before the fold holds at most MESSAGE_CHARS characters of the message
+    summaries = re.findall(r"<summary>(.*?) …</summary>", runs_table)
+    assert summaries and max(len(s) for s in summaries) <= 90
+
+
+@pytest.mark.parametrize("value, text", [
+    (16886.3, f"16{NB}886{UNIT_SPACE}kg"), (1.6886e4, f"16{NB}886{UNIT_SPACE}kg"),
+    (0.012345, f"0.01235{UNIT_SPACE}kg"), (2.0, f"2{UNIT_SPACE}kg"),
+    (123456789.0, f"123{NB}456{NB}789{UNIT_SPACE}kg"), (-1234.56, f"-1{NB}235{UNIT_SPACE}kg"), (1.5e-7, f"1.5 × 10⁻⁷{UNIT_SPACE}kg"),
+    (None, "–"), (float("nan"), "–"),
+])
+def test_engineering_numbers(value, text):
+    assert eng(value, "kg") == text
+
+
+def test_no_exponent_at_any_magnitude():
+    for k in range(-4, 16):
+        for m in (1.0, 1.2345, 9.9996):
+            assert "e" not in eng(m * 10.0 ** k) and "e" not in eng(-m * 10.0 ** k)
+
+
+def test_start_and_stop_peaks_are_points_with_one_legend_entry_each():
+    """A point per run in each phase panel (no line joins runs), a colour per friction model
+    and a marker per other axis value, each named once in the legend; the run that did not
+    stop ringed in the stop panels."""
+    runs = _runs()
+    runs["load"] = ["full", "empty"] * 4
+    fig = charts.phase_peaks_figure(runs, axes=["friction_model", "temperature_c", "load"],
+                                    allowed_kn=75.6)
+    panels = {ax.get_title(): ax for ax in fig.axes if ax.get_title()}
+    assert set(panels) == {"peak tension, start", "peak tension, stop",
+                           "lowest tension, start", "lowest tension, stop"}
+    finished = int((runs["status"] != "failed").sum())
+    for title, ax in panels.items():
+        drawn = [c for c in ax.collections if c.get_gid()]
+        assert sum(len(c.get_offsets()) for c in drawn) == finished, title
+        rings = [c for c in ax.collections if not c.get_gid()]
+        # did not stop: ns and the run that ran away (no stop time) in the stop panels only
+        assert sum(len(c.get_offsets()) for c in rings) == (2 if "stop" in title else 0)
+        for line in ax.get_lines():  # only the reference lines: allowed tension and zero
+            assert len(set(line.get_ydata())) == 1
+    labels = [t.get_text() for t in fig.legends[0].get_texts()]
+    assert len(labels) == len(set(labels))
+    assert labels[:3] == ["colour: friction_model", "cema", "din"]
+    assert "marker: load" in labels and "did not stop" in labels
+
+
+def test_the_stop_figure_legend_names_each_colour_once():
+    """24 combinations of the other axes (the report's stop figure had a 24-entry legend
+    with colours repeated): a colour per value of the first axis, a marker per combination
+    of the rest, every legend entry once, every colour distinct."""
+    rows = []
+    for m in ("din", "cema", "nonlin"):
+        for load in ("full", "declines"):
+            for t in (-20.0, 0.0, 20.0, 40.0):
+                for st in (10.0, 20.0):
+                    rows.append({"run_id": f"{m}{load}{t}{st}", "friction_model": m,
+                                 "load": load, "temperature_c": t, "stop_time_target_s": st,
+                                 "status": "ok", "stop_time_s": st + t / 100,
+                                 "t_max_stop_kn": 100 + st + t / 10 + len(m) + len(load)})
+    fig = charts.peak_dynamic_tension_figure(
+        pd.DataFrame(rows), axes=["friction_model", "load", "temperature_c",
+                                  "stop_time_target_s"])
+    legend = fig.legends[0]
+    labels = [t.get_text() for t in legend.get_texts()]
+    assert len(labels) == len(set(labels))
+    colours = [tuple(h.get_color()) if isinstance(h.get_color(), tuple) else h.get_color()
+               for h, lab in zip(legend.legend_handles, labels, strict=True)
+               if h.get_linewidth() == 3]
+    assert len(colours) == len(set(map(str, colours))) >= 2
+
+
+def test_every_cause_has_a_title_and_words():
+    assert len({c.key for c in CAUSES}) == len(CAUSES)
+    assert all(c.title and c.words for c in CAUSES)
+
+
+def test_a_limit_that_differs_between_runs_governs_by_value_over_limit(web):
+    """A rated power that is a grid axis: 10 kW on a 5 kW drive (twice its rating) governs
+    over 36.5 kW on a 30 kW drive (1.22 x), though 36.5 kW is the larger power."""
+    runs = _runs(rated_power_kw=[5.0, 30.0, 30.0, 30.0, 30.0, 30.0, np.nan, 30.0])
+    html = report_html(_doc(web), runs, {"state": "done", "done": 8, "total": 8})
+    row = re.search(r"<tr><td>power at the drive pulleys.*?</tr>", _section(html, 1),
+                    re.S).group(0)
+    assert "<code>a1</code>" in row and f"10{UNIT_SPACE}kW" in row
+    assert f"5{UNIT_SPACE}kW" in row and "the worst against its own limit" in row
+    assert "past the limit in 3 of 7 runs" in row  # a1, ov, os
