@@ -36,6 +36,7 @@ import math
 import numpy as np
 
 from beltstudy.engine.conveyor import Conveyor, Scenario
+from beltstudy.engine.drives import GIVEN, RATED_POWER_FACTOR, rated_power_kw
 from beltstudy.engine.loop import (
     MOTOR_INERTIA_SHARE,
     G,
@@ -51,14 +52,9 @@ __all__ = ["auto_sizes", "summary_fields", "RATED_POWER_FACTOR", "HOLD_MARGIN",
            "pulley_reduced_mass_kg", "rated_power_kw", "brake_forces", "brake_force_auto",
            "brake_stop_time", "brake_grip_kn", "brake_kn_within_grip", "GIVEN"]
 
-#: Installed drive power as a multiple of the steady power at the drive [-] (the engine's
-#: default of ``drives[].rated_power_kw``: steady power x 1.25, SPEC section 1).
-RATED_POWER_FACTOR = 1.25
 #: Minimum holding force of an auto-sized brake as a multiple of the net gravity pull of the
 #: loaded belt [-] (a holding margin, an estimate).
 HOLD_MARGIN = 1.2
-#: ``*_governed_by`` of a size given in the conveyor file.
-GIVEN = "given"
 
 
 def moving_mass_kg(conv: Conveyor, steady: SteadyResult) -> float:
@@ -67,25 +63,6 @@ def moving_mass_kg(conv: Conveyor, steady: SteadyResult) -> float:
     parts (:func:`rotating_parts`)."""
     loop = steady.loop
     return float(loop.mass_kg.sum()) + rotating_parts(conv, loop).total_kg
-
-
-def rated_power_kw(conv: Conveyor, te_n: float, resistance_n: float
-                   ) -> tuple[list[float], list[str]]:
-    """Rated power of each drive [kW] and what set it: the file's value (``given``), else
-    ``RATED_POWER_FACTOR`` x the drive's share of the larger of |Te| and the running
-    resistance [N] at the design speed."""
-    basis, why = (abs(te_n), "peripheral_force") if abs(te_n) >= resistance_n else (
-        resistance_n, "running_resistance")
-    v = float(conv.speed_m_s)
-    kw, gov = [], []
-    for d in conv.drives:
-        if d.rated_power_kw is not None:
-            kw.append(float(d.rated_power_kw))
-            gov.append(GIVEN)
-        else:
-            kw.append(RATED_POWER_FACTOR * d.share * basis * v / 1e3)
-            gov.append(why)
-    return kw, gov
 
 
 def brake_force_auto(total_mass_kg: float, v_d: float, te_n: float, stop_s: float,

@@ -45,13 +45,43 @@ current 1.5 x rated for 2 min up to 315 kW (clause 9.3) (*unverified*, as above)
 from __future__ import annotations
 
 import math
+from typing import TYPE_CHECKING
 
-__all__ = ["OVERLOAD_S_MAX", "power_required_kw", "steady_checks", "transient_checks"]
+if TYPE_CHECKING:  # the conveyor model, for the annotations only
+    from beltstudy.engine.conveyor import Conveyor
+
+__all__ = ["OVERLOAD_S_MAX", "RATED_POWER_FACTOR", "GIVEN", "rated_power_kw", "power_required_kw",
+           "steady_checks", "transient_checks"]
 
 #: Longest time a drive may run above its rated force in a cycle without a warning [s]: the
 #: 15 s for which IEC 60034-1 (clause 9.4, *unverified*) has an induction motor withstand
 #: 60 % excess torque. Longer than that the motor's own overload rating decides.
 OVERLOAD_S_MAX = 15.0
+
+#: Installed drive power as a multiple of the steady power at the drive [-] (the engine's
+#: default of ``drives[].rated_power_kw``: steady power x 1.25, SPEC section 1).
+RATED_POWER_FACTOR = 1.25
+#: ``*_governed_by`` of a size given in the conveyor file.
+GIVEN = "given"
+
+
+def rated_power_kw(conv: Conveyor, te_n: float, resistance_n: float
+                   ) -> tuple[list[float], list[str]]:
+    """Rated power of each drive [kW] and what set it: the file's value (``given``), else
+    ``RATED_POWER_FACTOR`` x the drive's share of the larger of |Te| and the running
+    resistance [N] at the design speed."""
+    basis, why = (abs(te_n), "peripheral_force") if abs(te_n) >= resistance_n else (
+        resistance_n, "running_resistance")
+    v = float(conv.speed_m_s)
+    kw, gov = [], []
+    for d in conv.drives:
+        if d.rated_power_kw is not None:
+            kw.append(float(d.rated_power_kw))
+            gov.append(GIVEN)
+        else:
+            kw.append(RATED_POWER_FACTOR * d.share * basis * v / 1e3)
+            gov.append(why)
+    return kw, gov
 
 
 def power_required_kw(force_n: float, speed_m_s: float, efficiency: float) -> float:

@@ -50,6 +50,7 @@ import numpy as np
 from beltstudy.engine.capacity import capacity as capacity_check
 from beltstudy.engine.checks import steady_checks as design_checks
 from beltstudy.engine.conveyor import Conveyor, section_loads
+from beltstudy.engine.drives import rated_power_kw
 from beltstudy.engine.drives import steady_checks as drive_checks
 from beltstudy.engine.friction import get_model, temperature_note
 from beltstudy.engine.law import ResistanceLaw
@@ -585,8 +586,6 @@ def _summarise(res: SteadyResult, drives, hs_adm, bounds, shortfall_n: float,
                 f"{min(m_run, m_start):.2f} < 1 (e^(mu theta) = {e:.2f}){fix}"
             )
     # ---- each drive's motor power against its rating (SPEC 7.4, beltstudy.engine.drives)
-    from beltstudy.engine.design import rated_power_kw  # design imports this module
-
     rated_kw, _ = rated_power_kw(conv, res.te_n, float(np.sum(res.resistance_n)))
     fields, short = drive_checks(conv, [share * res.te_n for _i, share, _e in drives], v,
                                   res.te_n, rated_kw)

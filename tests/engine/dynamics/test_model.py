@@ -148,6 +148,18 @@ def test_speed_loop_sees_the_shaft_and_the_belt_a_wave_reaches():
                         0.5 * by_hand) == 0.5 * by_hand  # capped at all moving mass
 
 
+def test_the_breakaway_take_up_keeps_the_rest_state_within_the_grip():
+    """The auto take-up's breakaway constraint (slip_breakaway: the drive takes the loaded
+    decline's whole gravity pull at standstill) and the rest-state grip check are the same
+    Euler-Eytelwein condition on the held pulley: with the auto size the rest state is
+    within the grip, and its slack side is at least pull / (e^(mu theta) - 1)."""
+    conv = load_conveyor(CONVEYORS / "downhill-regen.yaml")
+    st = solve_steady(conv, model="din", n_elements=40)
+    assert st.summary["takeup_governed_by"] == "slip_breakaway"
+    sys = build_system(conv, Scenario(elements=40), st)
+    assert [w for w in sys.warnings if w.startswith("at rest the")] == []
+
+
 @pytest.mark.parametrize("name, beyond", [("downhill-regen", True), ("slope-5pct", False)])
 def test_a_rest_state_beyond_the_held_pulleys_grip_is_said(name, beyond):
     """The pulley holding the belt at rest (the first brake's, else the master drive's)
@@ -156,6 +168,9 @@ def test_a_rest_state_beyond_the_held_pulleys_grip_is_said(name, beyond):
     take-up keeps low: the system says so, with the grip computed here by hand from the rest
     tensions; the incline's rest state is within its grip and says nothing."""
     conv = load_conveyor(CONVEYORS / f"{name}.yaml")
+    if beyond:  # a take-up lighter than the breakaway size (slip_breakaway, 102 t) given
+        conv = conv.model_copy(update={"takeup": conv.takeup.model_copy(
+            update={"mass_kg": 60000.0})})
     st = solve_steady(conv, model="din", n_elements=40)
     sys = build_system(conv, Scenario(elements=40), st)
     said = [w for w in sys.warnings if w.startswith("at rest the")]
