@@ -54,6 +54,7 @@ from beltstudy.engine.conveyor import (  # noqa: E402
     section_loads,
 )
 from beltstudy.engine.design import auto_sizes, summary_fields  # noqa: E402
+from beltstudy.engine.drives import OVERLOAD_S_MAX  # noqa: E402
 from beltstudy.engine.errors import InputError  # noqa: E402
 from beltstudy.engine.friction import ALIASES, MODELS, canonical_name, get_model  # noqa: E402
 from beltstudy.engine.loop import Loop, build_loop  # noqa: E402
@@ -104,7 +105,7 @@ __all__ = [
     "governed_at", "load_label",
     "solve_steady", "SteadyResult", "SAFETY_FACTOR_MIN", "TRANSIENT_SAFETY_RATIO",
     "build_loop", "Loop", "capacity", "Capacity",
-    "results", "check_summary", "MAX_DRIVES",
+    "results", "check_summary", "MAX_DRIVES", "OVERLOAD_S_MAX",
 ]
 
 # belt selection (belt.type: auto)

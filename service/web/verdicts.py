@@ -26,6 +26,7 @@ from typing import Any
 
 import pandas as pd
 
+from beltstudy.engine import OVERLOAD_S_MAX
 from beltstudy.service.web.numbers import eng
 
 __all__ = ["Verdict", "VERDICTS", "Cause", "CAUSES", "verdict_rows", "cause_groups",
@@ -62,7 +63,9 @@ VERDICTS: tuple[Verdict, ...] = (
             "drive{i}_rated_power_kw"),
     Verdict("Drives", "utilisation, drive {i} (required / rated)", "drive{i}_utilisation",
             "max", "-", 1.0),
-    Verdict("Drives", "time over rating, drive {i}", "drive{i}_overload_s", "max", "s", 0.0),
+    # the engine warns beyond OVERLOAD_S_MAX (IEC 60034-1's 15 s of excess torque, docs/drives.md)
+    Verdict("Drives", "time over rating, drive {i}", "drive{i}_overload_s", "max", "s",
+            OVERLOAD_S_MAX),
     Verdict("Drives", "RMS (thermal) force, drive {i}", "drive{i}_force_rms_kn", "max", "kN"),
     Verdict("Drives", "power at the drive pulleys, steady (all drives)", "power_kw", "max", "kW",
             "rated_power_kw"),
@@ -197,7 +200,7 @@ def _any_over(runs: pd.DataFrame, pattern: str, limit: float) -> pd.Series:
 def _overloaded(runs: pd.DataFrame) -> pd.Series:
     msg = _message(runs).str.lower()
     out = (_any_over(runs, "drive{i}_utilisation", 1.0)
-           | _any_over(runs, "drive{i}_overload_s", 0.0)
+           | _any_over(runs, "drive{i}_overload_s", OVERLOAD_S_MAX)
            | msg.str.contains("overload", regex=False) | msg.str.contains("short by", regex=False))
     power, rated = numeric(runs, "power_kw"), numeric(runs, "rated_power_kw")
     if power is not None and rated is not None:  # steady power above the installed rating
