@@ -140,6 +140,38 @@ def _check_auto_belt(b: Belt) -> None:
                          "catalogue type to override its values")
 
 
+#: Skirt-board friction coefficient mu_2 between the material and the skirt plates [-]:
+#: ISO 5048:1989 / DIN 22101 give 0.5 to 0.7; the middle of that range (unverified against
+#: the primary text).
+SKIRT_FRICTION = 0.6
+#: Clear width between the skirt boards as a share of the belt width [-] when
+#: ``skirt_width_m`` is not given: CEMA's rule of thumb, skirt boards two thirds of the belt
+#: width apart (CEMA Belt Conveyors for Bulk Materials, 7th ed., ch. 12; unverified).
+SKIRT_WIDTH_SHARE = 2.0 / 3.0
+
+
+class FeedPoint(_Model):
+    """One feed point on the carry strand (SPEC 7.1 ``material.feed``), with its skirts."""
+
+    at_m: float = Field(..., ge=0.0, description="position along the carry from the tail "
+                        "[m] (0 to the carry length, the head excluded)")
+    share: float = Field(..., gt=0.0, le=1.0,
+                         description="share of the design capacity fed here [-] (0 to 1; "
+                                     "the shares of all feed points sum to 1)")
+    skirt_length_m: NonNegFloat = Field(
+        0.0, description="length of the skirt boards from the feed point downstream [m] "
+        "(0: no skirts)")
+    skirt_width_m: PositiveFloat | None = Field(
+        None, le=5.0, description="clear width b_1 between the skirt boards [m]; default two "
+        "thirds of the belt width (CEMA)")
+    skirt_friction: float = Field(
+        SKIRT_FRICTION, ge=0.0, le=1.5, description="friction coefficient mu_2 material / "
+        "skirt [-] (ISO 5048: 0.5 to 0.7)")
+    loading_speed_m_s: float | None = Field(
+        None, ge=-30.0, le=30.0, description="along-belt speed of the material fed here "
+        "[m/s]; default material.loading_speed_m_s")
+
+
 class Material(_Model):
     """Bulk material on the carry strand."""
 
@@ -158,6 +190,9 @@ class Material(_Model):
         None, description="unloaded belt edge on each side [m]; default ISO 5048 / DIN 22101: "
         "usable width 0.9 B - 0.05 m up to B = 2 m, B - 0.25 m above"
     )
+    feed: list[FeedPoint] | None = Field(
+        None, min_length=1, description="feed points along the carry (SPEC 7.1); default: "
+        "all the material at the tail")
 
 
 class ProfileSection(_Model):
@@ -410,9 +445,41 @@ class SagLimit(_Model):
                            description="admissible return sag [%] (at least 0.1)")
 
 
+#: Belt cleaner friction coefficient mu_3 [-]: ISO 5048:1989 gives 0.5 to 0.7 (middle taken;
+#: unverified against the primary text).
+SCRAPER_FRICTION = 0.6
+#: Plough resistance per metre of belt width k_a [N/m]: ISO 5048:1989, 1500 N/m (unverified).
+PLOUGH_K_N_M = 1500.0
+
+
+class Scraper(_Model):
+    """A belt cleaner (ISO 5048 F_r = A p mu_3) at the head or tail pulley."""
+
+    at: Literal["head", "tail"] = Field("head", description="the pulley it cleans at")
+    contact_area_m2: PositiveFloat = Field(..., le=5.0,
+                                           description="contact area A of the blade [m2]")
+    pressure_n_m2: PositiveFloat = Field(..., le=1e6, description="blade pressure p [N/m2] "
+                                         "(ISO 5048: 3e4 to 1e5)")
+    friction: float = Field(SCRAPER_FRICTION, ge=0.0, le=1.5,
+                            description="friction coefficient mu_3 blade / belt [-] (0.5 to 0.7)")
+
+
+class Plough(_Model):
+    """A discharge plough on the carry (ISO 5048 F_a = B k_a)."""
+
+    at_m: NonNegFloat = Field(..., description="position along the carry from the tail [m]")
+    k_n_m: NonNegFloat = Field(PLOUGH_K_N_M, le=1e5,
+                               description="resistance per metre of belt width k_a [N/m] "
+                                           "(ISO 5048: 1500)")
+
+
 class Accessories(_Model):
     head_kn: NonNegFloat = Field(0.0, description="lumped resistance at the head [kN]")
     tail_kn: NonNegFloat = Field(0.0, description="lumped resistance at the tail [kN]")
+    scrapers: list[Scraper] = Field(default_factory=list,
+                                    description="belt cleaners (ISO 5048 F_r), beside head_kn")
+    ploughs: list[Plough] = Field(default_factory=list,
+                                  description="discharge ploughs (ISO 5048 F_a)")
 
 
 class Conveyor(_Model):
@@ -461,6 +528,7 @@ class Conveyor(_Model):
             if b.drive is not None and b.drive > len(self.drives):
                 raise ValueError(f"brakes[{i}].drive: there is no drive {b.drive} (the conveyor "
                                  f"has {len(self.drives)} drive(s), numbered from 1)")
+        _check_feed(self)
         return self
 
     @property
@@ -472,6 +540,39 @@ class Conveyor(_Model):
     def lift_m(self) -> float:
         """Net lift tail -> head [m]."""
         return float(sum(p.lift_m for p in self.profile))
+
+
+def _check_feed(conv: Conveyor) -> None:
+    """Feed points inside the carry, shares summing to 1, one feed per position, skirts and
+    ploughs on the carry (SPEC 7.1)."""
+    L = conv.length_m
+    feed = conv.material.feed or []
+    for i, f in enumerate(feed):
+        if f.at_m >= L:
+            raise ValueError(f"material.feed[{i}].at_m: {f.at_m:g} m is out of the carry "
+                             f"(0 to {L:g} m from the tail, the head excluded)")
+        if f.at_m + f.skirt_length_m > L + 1e-9:
+            raise ValueError(f"material.feed[{i}].skirt_length_m: skirts of {f.skirt_length_m:g}"
+                             f" m from {f.at_m:g} m run past the head ({L:g} m)")
+        if f.skirt_width_m is not None and f.skirt_length_m == 0.0:
+            raise ValueError(f"material.feed[{i}].skirt_width_m: give skirt_length_m too (no "
+                             "skirts without a length)")
+        for j in range(i):
+            if abs(feed[j].at_m - f.at_m) < 1e-6:
+                raise ValueError(f"material.feed[{i}].at_m: {f.at_m:g} m is also "
+                                 f"material.feed[{j}]'s position; give one feed point per "
+                                 "position with the summed share")
+    if feed:
+        total = sum(f.share for f in feed)
+        if abs(total - 1.0) > 1e-6:
+            parts = " + ".join(f"material.feed[{i}].share {f.share:g}"
+                               for i, f in enumerate(feed))
+            raise ValueError(f"material.feed: shares sum to {total:g} ({parts}); they must "
+                             "sum to 1")
+    for i, p in enumerate(conv.accessories.ploughs):
+        if p.at_m >= L:
+            raise ValueError(f"accessories.ploughs[{i}].at_m: {p.at_m:g} m is out of the "
+                             f"carry (0 to {L:g} m)")
 
 
 class StartSpec(_Model):

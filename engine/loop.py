@@ -200,6 +200,40 @@ def _split(n: int, lengths: list[float]) -> list[int]:
     return counts
 
 
+def feed_cuts(conv: Conveyor, start_m: float, length_m: float, k: int
+              ) -> list[tuple[float, int, float]]:
+    """A carry section cut at the feed points inside it (SPEC 7.1 ``material.feed``).
+
+    Parameters
+    ----------
+    conv : Conveyor
+        With ``material.feed`` given.
+    start_m, length_m : float
+        Where the section starts along the carry from the tail, and its length [m].
+    k : int
+        Elements of the section; each piece between feed points gets at least one, the rest
+        by length (as the sections share the strand's elements).
+
+    Returns
+    -------
+    list of (length [m], elements, share fed upstream [-])
+        The pieces tail -> head; the share is the sum of the shares of the feed points at or
+        upstream of the piece's start (the material line load is the design load times it).
+    """
+    feed = sorted(conv.material.feed, key=lambda f: f.at_m)
+    end = start_m + length_m
+    tol = 1e-9 * max(1.0, end)
+    cuts = [f.at_m for f in feed if start_m + tol < f.at_m < end - tol]
+    bounds = [start_m, *cuts, end]
+    pieces = [b - a for a, b in zip(bounds[:-1], bounds[1:], strict=True)]
+    counts = _split(max(k, len(pieces)), pieces)
+    out = []
+    for a, piece, c in zip(bounds[:-1], pieces, counts, strict=True):
+        fed = sum(f.share for f in feed if f.at_m <= a + tol)
+        out.append((piece, c, min(fed, 1.0)))
+    return out
+
+
 def build_loop(
     conv: Conveyor,
     load_fraction: float | str | list = 1.0,
@@ -264,10 +298,20 @@ def build_loop(
 
     # carry strand, tail -> head
     z = 0.0
+    s0 = 0.0
     for sec, k, frac in zip(conv.profile, counts, loads, strict=True):
         dx = sec.length_m / k
         sin = sec.lift_m / sec.length_m
         cos = math.sqrt(1.0 - sin * sin)
+        if conv.material.feed is not None:  # feed points: no element straddles one
+            for sub_len, sub_k, fed in feed_cuts(conv, s0, sec.length_m, k):
+                zs, z = heights(z, sub_len / sub_k * sin, sub_k)
+                add(sub_k, strand=CARRY, dx=sub_len / sub_k, z=zs, sin=sin, cos=cos,
+                    S=ic.spacing_m, D=ic.roll_diameter_m, rolls=ic.rolls,
+                    trough=ic.trough_deg, mL=design_mL * frac * fed,
+                    mR=carry_mass / ic.spacing_m, drag=carry_drag)
+            s0 += sec.length_m
+            continue
         zs, z = heights(z, dx * sin, k)
         add(k, strand=CARRY, dx=dx, z=zs, sin=sin, cos=cos, S=ic.spacing_m,
             D=ic.roll_diameter_m, rolls=ic.rolls, trough=ic.trough_deg, mL=design_mL * frac,
