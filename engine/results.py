@@ -202,9 +202,10 @@ _TE_MEANING = {
                   "resistance)",
     "main_return": "main resistance of the return strand",
     "lift": "lifting the material (the belt's own lift cancels round the loop)",
-    "feed": "accelerating the material at the feed point",
+    "feed": "accelerating the material at the feed point(s)",
     "secondary": "pulleys and other secondary resistances (DIN's C factor included)",
-    "accessories": "scrapers, skirts and ploughs (lumped)",
+    "accessories": "scrapers, skirts and ploughs: the lumped head_kn and tail_kn, the feed "
+                   "points' skirts (ISO 5048 F_gL), belt cleaners (F_r) and ploughs (F_a)",
     "idler_rotation": "idler rotation: bearings and seals (nonlin, visco)",
     "indentation": "indentation rolling resistance of the cover (nonlin, visco)",
     "belt_flexure": "belt flexure between idlers (nonlin, visco)",

@@ -158,3 +158,30 @@ def test_scrapers_and_ploughs():
 def test_feed_errors_name_the_field(feed, field):
     with pytest.raises(InputError, match=field.replace("[", r"\[").replace("]", r"\]")):
         conv(feed)
+
+
+def test_the_transient_run_settles_onto_the_steady_tensions_with_feed_points():
+    """The transient model reads the same per-element load and resistance law: slope-5pct
+    fed 0.6 at the tail and 0.4 at 1230 m (an element is cut there), skirts at both, a belt
+    cleaner at the head; after a 30 s start and 120 s of running the tensions are the steady
+    ones within 1 % (as tests/engine/integration/test_dynamics_physics.py checks without
+    feed points)."""
+    from beltstudy.engine.conveyor import Scenario, load_mapping
+    from beltstudy.engine.dynamics import build_system, simulate
+    from tests.conftest import CONVEYORS
+
+    data = load_mapping(CONVEYORS / "slope-5pct.yaml")
+    data["material"]["feed"] = [
+        {"at_m": 0, "share": 0.6, "skirt_length_m": 6, "skirt_width_m": 0.8},
+        {"at_m": 1230, "share": 0.4, "skirt_length_m": 40}]
+    data["accessories"]["scrapers"] = [{"at": "head", "contact_area_m2": 0.012,
+                                        "pressure_n_m2": 6e4}]
+    c = parse_conveyor(data)
+    st = solve_steady(c, model="din", n_elements=80)
+    assert np.any(np.isclose(st.loop.s_m, 1230.0))
+    scn = Scenario(start={"control": "s-curve", "time_s": 30}, run_s=120)
+    sys = build_system(c, scn, st)
+    res = simulate(sys, t_end_s=sys.stop_command_s - sys.dt_s)
+    T = res.raw["tension"]
+    assert res.status != "failed"
+    assert np.max(np.abs(T - st.tension_n) / st.tension_n) < 0.01
