@@ -225,6 +225,11 @@ def _conveyor_section(conv: dict, fill: dict | None) -> str:
         ["sag limits", _e(f"carry {conv['sag_limit_pct']['carry']:g} %, return "
                           f"{conv['sag_limit_pct']['return']:g} %")],
     ]
+    if mat.get("feed"):
+        rows.append(["feed points", _e("; ".join(
+            f"{f['share']:g} of the capacity at {f['at_m']:g} m"
+            + (f", skirts {f['skirt_length_m']:g} m" if f.get("skirt_length_m") else "")
+            for f in mat["feed"]))])
     if fill is not None:
         rows.append(["capacity check (ISO 5048)",
                      f"fill {_num(fill['fill_pct'], 3, '%')} of the cross-section at design speed "

@@ -237,3 +237,18 @@ def test_a_limit_that_differs_between_runs_governs_by_value_over_limit(web):
     assert "<code>a1</code>" in row and f"10{UNIT_SPACE}kW" in row
     assert f"5{UNIT_SPACE}kW" in row and "the worst against its own limit" in row
     assert "past the limit in 3 of 7 runs" in row  # a1, ov, os
+
+
+def test_the_conveyor_table_lists_the_feed_points():
+    from beltstudy.engine.conveyor import parse_conveyor
+    from beltstudy.service.web.report import _conveyor_section
+    from tests.conftest import hand_conveyor_dict
+
+    d = hand_conveyor_dict()
+    d["material"] = {"capacity_t_h": 720, "feed": [
+        {"at_m": 0, "share": 0.6, "skirt_length_m": 6}, {"at_m": 500, "share": 0.4}]}
+    conv = parse_conveyor(d).model_dump(mode="json", by_alias=True)
+    html = _conveyor_section(conv, None)
+    assert "0.6 of the capacity at 0 m, skirts 6 m; 0.4 of the capacity at 500 m" in html
+    conv["material"]["feed"] = None
+    assert "feed points" not in _conveyor_section(conv, None)
