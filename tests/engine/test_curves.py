@@ -161,3 +161,14 @@ def test_no_curve_no_change():
     st = solve_steady(conv, model="din")
     assert st.loop.curves == ()
     assert not any(k.startswith("curve") for k in st.summary)
+
+
+def test_curve_fields_are_defined_up_to_max_curves():
+    from beltstudy.engine import results as R
+
+    R.check_summary({f"curve{R.MAX_CURVES}_liftoff": True, "curve1_radius_min_m": 1.0,
+                     "liftoff_max_kn_over": -1.0})
+    with pytest.raises(KeyError, match=f"curve{R.MAX_CURVES + 1}_liftoff"):
+        R.check_summary({f"curve{R.MAX_CURVES + 1}_liftoff": True})
+    with pytest.raises(KeyError, match="curve1_new_m"):
+        R.check_summary({"curve1_new_m": 1.0})
