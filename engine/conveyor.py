@@ -463,11 +463,15 @@ class Conveyor(_Model):
                     f"drives[{i}].speed_loop_rad_s: drive {i + 1} follows the master's torque "
                     f"(drive {master + 1}, the largest share) and runs no speed loop of its "
                     f"own; set speed_loop_rad_s on drives[{master}]")
-        _curves_fit(self.profile)
         for i, b in enumerate(self.brakes):
             if b.drive is not None and b.drive > len(self.drives):
                 raise ValueError(f"brakes[{i}].drive: there is no drive {b.drive} (the conveyor "
                                  f"has {len(self.drives)} drive(s), numbered from 1)")
+        return self
+
+    @model_validator(mode="after")
+    def _curves(self) -> Conveyor:
+        _curves_fit(self.profile)
         return self
 
     @property
