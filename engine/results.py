@@ -573,7 +573,7 @@ def check_summary(summary: dict) -> dict:
             unknown.append(key)
         if f.per_pulley and not 1 <= int(key[6:key.index("_")]) <= MAX_PULLEYS:
             unknown.append(key)
-        if f.per_curve and not 1 <= int(key[5:key.index("_")]) <= MAX_CURVES:
+        if f.per_curve and not 1 <= int(key[f.name.index("{k}"):key.index("_")]) <= MAX_CURVES:
             unknown.append(key)
     if unknown:
         raise KeyError(f"results not defined in beltstudy.engine.results: {', '.join(unknown)}")
