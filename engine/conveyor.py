@@ -10,6 +10,7 @@ from __future__ import annotations
 
 import difflib
 import json
+import math
 import re
 from pathlib import Path
 from typing import Annotated, Any, Literal
@@ -201,6 +202,11 @@ class ProfileSection(_Model):
     length_m: float = Field(..., gt=0.0, le=1e5,
                             description="length along the belt [m] (at most 100 km)")
     lift_m: float = Field(0.0, description="rise over the section, negative downhill [m]")
+    curve_radius_m: float | None = Field(
+        None, gt=0.0, le=1e6,
+        description="radius of the vertical curve joining this section's grade to the next "
+                    "section's [m] (SPEC 7.1; convex or concave by the two grades; its arc "
+                    "takes half its length from each of the two sections: docs/routes.md)")
 
     @model_validator(mode="after")
     def _lift_fits(self) -> ProfileSection:
@@ -531,6 +537,16 @@ class Conveyor(_Model):
         _check_feed(self)
         return self
 
+    @model_validator(mode="after")
+    def _curves(self) -> Conveyor:
+        _curves_fit(self.profile)
+        if self.material.feed is not None and any(
+                p.curve_radius_m is not None for p in self.profile):
+            raise ValueError("material.feed: feed points on a route with vertical curves "
+                             "(profile[i].curve_radius_m) are not built yet; give the feed at "
+                             "the tail (omit material.feed) or the route without curves")
+        return self
+
     @property
     def length_m(self) -> float:
         """Length along the carry strand [m]."""
@@ -573,6 +589,41 @@ def _check_feed(conv: Conveyor) -> None:
         if p.at_m >= L:
             raise ValueError(f"accessories.ploughs[{i}].at_m: {p.at_m:g} m is out of the "
                              f"carry (0 to {L:g} m)")
+
+
+def curve_arc_m(profile: list[ProfileSection], i: int) -> float:
+    """Arc length R |delta| of the vertical curve that ends ``profile[i]`` [m] (0 without one):
+    delta the change of slope angle between section i's grade and section i+1's."""
+    sec = profile[i]
+    if sec.curve_radius_m is None or i + 1 >= len(profile):
+        return 0.0
+    nxt = profile[i + 1]
+    delta = (math.asin(nxt.lift_m / nxt.length_m) - math.asin(sec.lift_m / sec.length_m))
+    return sec.curve_radius_m * abs(delta)
+
+
+def _curves_fit(profile: list[ProfileSection]) -> None:
+    """Refuse a vertical curve that cannot be built (docs/routes.md, part (c)): on the last
+    section (no next grade), between equal grades, or longer than its sections: its arc takes
+    half its length from the end of its section and half from the start of the next, and a
+    section must hold the halves of the curves at both its ends."""
+    for i, sec in enumerate(profile):
+        if sec.curve_radius_m is None:
+            continue
+        name = f"profile[{i}].curve_radius_m"
+        if i + 1 == len(profile):
+            raise ValueError(f"{name}: the last section has no next grade to curve into")
+        if curve_arc_m(profile, i) <= 0.0:
+            raise ValueError(f"{name}: sections {i} and {i + 1} have the same grade; there is "
+                             "no curve to make (drop curve_radius_m)")
+    for i, sec in enumerate(profile):
+        need = 0.5 * curve_arc_m(profile, i) + (0.5 * curve_arc_m(profile, i - 1) if i else 0.0)
+        if need > sec.length_m:
+            j = i if sec.curve_radius_m is not None else i - 1
+            raise ValueError(
+                f"profile[{j}].curve_radius_m: the curve's arcs need {need:.1f} m of "
+                f"profile[{i}] (half of each curve's R |delta| at its ends) but the section "
+                f"is {sec.length_m:g} m long; a smaller radius or longer sections")
 
 
 class StartSpec(_Model):

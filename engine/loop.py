@@ -18,10 +18,10 @@ from dataclasses import dataclass
 import numpy as np
 
 from beltstudy.engine import catalog
-from beltstudy.engine.conveyor import Conveyor, section_loads
+from beltstudy.engine.conveyor import Conveyor, curve_arc_m, section_loads
 
 __all__ = ["G", "Loop", "Pulley", "build_loop", "CARRY", "RETURN", "HEAD", "TAIL", "TAKEUP",
-           "RotatingParts", "rotating_parts", "pulley_reduced_mass_kg", "MOTOR_INERTIA_SHARE"]
+           "Curve", "CURVE_STEP_DEG", "RotatingParts", "rotating_parts", "pulley_reduced_mass_kg", "MOTOR_INERTIA_SHARE"]
 
 #: Gravitational acceleration [m/s2].
 G = 9.81
@@ -76,6 +76,59 @@ class Pulley:
         return math.exp(self.friction_kinetic * math.radians(self.wrap_deg))
 
 
+#: Largest change of slope angle from one element to the next on a vertical curve [deg]: the
+#: mesh on a curve is the automatic element size or finer, so that it follows the arc.
+CURVE_STEP_DEG = 1.0
+
+
+@dataclass(frozen=True, eq=False)
+class Curve:
+    """A vertical curve of the route (``profile[section].curve_radius_m``, docs/routes.md).
+
+    Attributes
+    ----------
+    k : int
+        1-based curve number in profile order.
+    section : int
+        Profile section (0-based) the curve ends; it joins it to section + 1.
+    radius_m : float
+        Radius R [m].
+    angle_in_rad, angle_out_rad : float
+        Slope angle of the two grades it joins, tail -> head [rad].
+    at_m : float
+        The two sections' junction, from the tail along the carry [m].
+    start_m, end_m : float
+        The arc's ends along the carry [m] (at_m -/+ R |delta| / 2).
+    carry, ret : numpy.ndarray
+        Element indices on the arc, carry strand and return strand.
+    """
+
+    k: int
+    section: int
+    radius_m: float
+    angle_in_rad: float
+    angle_out_rad: float
+    at_m: float
+    start_m: float
+    end_m: float
+    carry: np.ndarray
+    ret: np.ndarray
+
+    @property
+    def delta_rad(self) -> float:
+        """Change of slope angle, tail -> head [rad]; positive concave (a valley)."""
+        return self.angle_out_rad - self.angle_in_rad
+
+    @property
+    def concave(self) -> bool:
+        """Grade increasing (a valley): the belt's tension pulls it off its idlers."""
+        return self.delta_rad > 0.0
+
+    @property
+    def kind(self) -> str:
+        return "concave" if self.concave else "convex"
+
+
 @dataclass(frozen=True, eq=False)
 class Loop:
     """Per-element arrays of the belt loop. Units are in the field names.
@@ -116,6 +169,7 @@ class Loop:
     belt: catalog.ResolvedBelt
     design_load_kg_m: float
     section_load: tuple[float, ...] = ()  # load fraction per carry profile section
+    curves: tuple = ()  # the vertical curves (Curve), in profile order
 
     @property
     def load_max_kg_m(self) -> float:
@@ -296,10 +350,18 @@ def build_loop(
             z += dz
         return out, z
 
-    # carry strand, tail -> head
+    # carry strand, tail -> head (on vertical curves element by element, _curve_elements)
     z = 0.0
+    pieces, arcs = _curve_elements(conv, counts)
+    for sec_i, dx, sin, cos in pieces:  # vertical curves (feed points with curves: refused)
+        add(strand=CARRY, dx=dx, z=z, sin=sin, cos=cos, S=ic.spacing_m,
+            D=ic.roll_diameter_m, rolls=ic.rolls, trough=ic.trough_deg,
+            mL=design_mL * loads[sec_i], mR=carry_mass / ic.spacing_m, drag=carry_drag)
+        z += dx * sin
     s0 = 0.0
     for sec, k, frac in zip(conv.profile, counts, loads, strict=True):
+        if pieces:  # straight sections only below
+            break
         dx = sec.length_m / k
         sin = sec.lift_m / sec.length_m
         cos = math.sqrt(1.0 - sin * sin)
@@ -343,14 +405,21 @@ def build_loop(
                    PLAIN_FRICTION, PLAIN_FRICTION, True, z_head)
     # return strand, head -> tail: the profile backwards, slope negated
     z = z_head
-    for sec, k in zip(reversed(conv.profile), reversed(counts), strict=True):
-        dx = sec.length_m / k
-        sin = -sec.lift_m / sec.length_m
-        cos = math.sqrt(1.0 - sin * sin)
-        zs, z = heights(z, dx * sin, k)
-        add(k, strand=RETURN, dx=dx, z=zs, sin=sin, cos=cos, S=ir.spacing_m,
+    i_ret = len(cols["dx"])
+    for _, dx, sin, cos in reversed(pieces):
+        add(strand=RETURN, dx=dx, z=z, sin=-sin, cos=cos, S=ir.spacing_m,
             D=ir.roll_diameter_m, rolls=ir.rolls, trough=ir.trough_deg, mL=0.0,
             mR=ret_mass / ir.spacing_m, drag=ret_drag)
+        z -= dx * sin
+    if not pieces:
+        for sec, k in zip(reversed(conv.profile), reversed(counts), strict=True):
+            dx = sec.length_m / k
+            sin = -sec.lift_m / sec.length_m
+            cos = math.sqrt(1.0 - sin * sin)
+            zs, z = heights(z, dx * sin, k)
+            add(k, strand=RETURN, dx=dx, z=zs, sin=sin, cos=cos, S=ir.spacing_m,
+                D=ir.roll_diameter_m, rolls=ir.rolls, trough=ir.trough_deg, mL=0.0,
+                mR=ret_mass / ir.spacing_m, drag=ret_drag)
     # tail end: a take-up pulley before the tail drives, or the plain tail pulley as take-up
     tail_driven = any(d.position == "tail" for d in conv.drives)
     if conv.takeup.position == "tail" and tail_driven:
@@ -403,7 +472,85 @@ def build_loop(
         belt=belt,
         design_load_kg_m=design_mL,
         section_load=loads,
+        curves=tuple(Curve(carry=np.asarray(c["carry_"], dtype=np.int64),
+                           ret=np.asarray([i_ret + nc - 1 - j for j in c["carry_"]],
+                                          dtype=np.int64),
+                           **{k: v for k, v in c.items() if k != "carry_"})
+                     for c in arcs),
     )
+
+
+def _curve_elements(conv: Conveyor, counts: list[int]) -> tuple[list, list]:
+    """The carry elements of a route with vertical curves, tail -> head, and its curves.
+
+    Each section keeps its automatic element size ``length / count``. A curve at the end of
+    section i takes half its arc R |delta| from the end of section i and half from the start
+    of section i + 1 (no element straddles the junction); each half is cut into elements no
+    longer than its section's automatic size and turning at most :data:`CURVE_STEP_DEG` each;
+    an element's slope is the arc's at its middle. The straight rest of each section keeps
+    its grade, tangent to the arc; the arc rises by a hair less than the two straight halves
+    it replaces (R (cos a1 - cos a2) against R |delta| (sin a1 + sin a2) / 2, a difference of
+    order R delta^4), and that difference goes half to each section's straight rest, so the
+    route keeps its length and its lift. The junction then lies off the grades' intersection
+    by the curve's external distance R (sec(delta / 2) - 1), as on a real curve.
+
+    Returns
+    -------
+    pieces : list of (section, dx_m, sin, cos)
+        One per carry element; empty when no section has a curve (the caller then cuts the
+        straight sections as before, bit for bit).
+    arcs : list of dict
+        Per curve the :class:`Curve` fields, with ``carry_`` its carry elements.
+    """
+    prof = conv.profile
+    if all(sec.curve_radius_m is None for sec in prof):
+        return [], []
+    ang = [math.asin(sec.lift_m / sec.length_m) for sec in prof]
+    step = math.radians(CURVE_STEP_DEG)
+
+    def half_arc(length, a0, a1, dx_auto):
+        m = max(1, math.ceil(length / dx_auto - 1e-9), math.ceil(abs(a1 - a0) / step - 1e-9))
+        da = (a1 - a0) / m
+        return [(length / m, math.sin(a), math.cos(a))
+                for a in (a0 + (j + 0.5) * da for j in range(m))]
+
+    # each curve's two halves (the out half in section i, the in half in section i + 1) and
+    # the lift the straight halves would have had beyond the arc's
+    out_half, in_half, excess = {}, {}, {}
+    for i, sec in enumerate(prof):
+        if sec.curve_radius_m is None:
+            continue
+        h = 0.5 * curve_arc_m(prof, i)
+        mid = 0.5 * (ang[i] + ang[i + 1])
+        out_half[i] = half_arc(h, ang[i], mid, sec.length_m / counts[i])
+        in_half[i + 1] = half_arc(h, mid, ang[i + 1], prof[i + 1].length_m / counts[i + 1])
+        arc = sum(d * s_ for d, s_, _ in out_half[i] + in_half[i + 1])
+        excess[i] = h * (math.sin(ang[i]) + math.sin(ang[i + 1])) - arc
+    pieces: list = []
+    arcs: list = []
+    at = 0.0
+    for i, (sec, k) in enumerate(zip(prof, counts, strict=True)):
+        first, last = in_half.get(i, []), out_half.get(i, [])
+        rest = sec.length_m - sum(d for d, _, _ in first + last)
+        straight = []
+        if rest > 1e-9 * sec.length_m:
+            m = max(1, round(rest / (sec.length_m / k)))
+            lift = (rest * sec.lift_m / sec.length_m
+                    + 0.5 * (excess.get(i - 1, 0.0) + excess.get(i, 0.0)))
+            sin = lift / rest
+            straight = [(rest / m, sin, math.sqrt(1.0 - sin * sin))] * m
+        start = len(pieces)
+        pieces += [(i, d, s_, c_) for d, s_, c_ in first + straight + last]
+        if first:
+            arcs[-1]["carry_"] += list(range(start, start + len(first)))
+        at += sec.length_m
+        if last:
+            h = 0.5 * curve_arc_m(prof, i)
+            arcs.append(dict(k=len(arcs) + 1, section=i, radius_m=float(sec.curve_radius_m),
+                             angle_in_rad=ang[i], angle_out_rad=ang[i + 1], at_m=at,
+                             start_m=at - h, end_m=at + h,
+                             carry_=list(range(len(pieces) - len(last), len(pieces)))))
+    return pieces, arcs
 
 
 #: Share of a drive's reduced inertia taken as the motor's when a fluid coupling separates it

@@ -14,7 +14,9 @@ Groups, in the order of the runs table: :data:`STEADY`, :data:`STEADY_DRIVE`,
 :data:`BOOKKEEPING`. Per-drive fields are named with ``{i}``, the drive's 1-based number in
 file order (``drive{i}_slip_m``), and stored for drives 1 to :data:`MAX_DRIVES`; per-pulley
 fields with ``{j}``, the pulley's 1-based number in loop order (``pulley{j}_resultant_kn``),
-stored for pulleys 1 to :data:`MAX_PULLEYS`.
+stored for pulleys 1 to :data:`MAX_PULLEYS`; per-curve fields with ``{k}``, the vertical
+curve's 1-based number in profile order (``curve{k}_liftoff``), for curves 1 to
+:data:`MAX_CURVES` (group :data:`CURVES`).
 """
 
 from __future__ import annotations
@@ -42,6 +44,9 @@ __all__ = [
     "CHECKS",
     "CHECKS_TRANSIENT",
     "MAX_PULLEYS",
+    "MAX_CURVES",
+    "CURVES",
+    "CURVES_TRANSIENT",
     "GROUPS",
     "DECIDING",
     "ACCURACY",
@@ -61,6 +66,9 @@ MAX_DRIVES = 6
 #: a drive, and a separate take-up pulley (``engine/loop.py``); the per-pulley columns run from
 #: ``pulley1_*`` to this.
 MAX_PULLEYS = MAX_DRIVES + 2
+#: Most vertical curves a route may have (``profile[i].curve_radius_m``); the per-curve
+#: columns run from ``curve1_*`` to this.
+MAX_CURVES = 8
 
 
 @dataclass(frozen=True)
@@ -86,14 +94,20 @@ class ResultField:
         return "{j}" in self.name
 
     @property
+    def per_curve(self) -> bool:
+        return "{k}" in self.name
+
+    @property
     def flag(self) -> bool:
         """A yes/no verdict (stored as a boolean column)."""
         return self.unit == "bool"
 
-    def columns(self, drives: int = MAX_DRIVES, pulleys: int = MAX_PULLEYS
-                ) -> tuple[str, ...]:
+    def columns(self, drives: int = MAX_DRIVES, pulleys: int = MAX_PULLEYS,
+                curves: int = MAX_CURVES) -> tuple[str, ...]:
         """The column names: one, or one per drive 1 .. ``drives`` (per pulley 1 ..
-        ``pulleys``)."""
+        ``pulleys``, per curve 1 .. ``curves``)."""
+        if self.per_curve:
+            return tuple(self.name.format(k=k) for k in range(1, curves + 1))
         if self.per_drive:
             return tuple(self.name.format(i=i) for i in range(1, drives + 1))
         if self.per_pulley:
@@ -407,6 +421,40 @@ CHECKS_TRANSIENT = ResultGroup("checks_transient", "Design checks, transient", (
        "resultant max"),
 ))
 
+# ------------------------------------- vertical curves (SPEC 7.4, docs/routes.md part (c))
+_CURVE_K = "curve k: the vertical curve's 1-based number in profile order"
+CURVES = ResultGroup("curves", "Vertical curves, steady (CEMA, DIN 22101; docs/routes.md)", (
+    _f("curve{k}_kind", "text", f"{_CURVE_K}: concave (the grade increasing, a valley) or "
+       "convex (a crest)", "curve"),
+    _f("curve{k}_at_m", "m", "the junction of the curve's two sections, from the tail along "
+       "the carry", "at"),
+    _f("curve{k}_tension_kn", "kN", "highest steady tension of the carry strand on curve k",
+       "T on the curve"),
+    _f("curve{k}_liftoff_tension_kn", "kN", "concave: the tension at which the empty belt "
+       "leaves its idlers there, R m'_G g cos(a) at the curve's steepest element (the loaded "
+       "belt, m'_G + m'_L, holds more); null for a convex curve", "lift-off tension"),
+    _f("curve{k}_liftoff", "bool", "concave: the steady tension on either strand is above the "
+       "lift-off tension of the empty belt somewhere on curve k (a warning); false for a "
+       "convex curve", "lifts off"),
+    _f("curve{k}_radius_min_m", "m", "the smallest radius curve k needs at the steady "
+       "tension: concave, max T / (m'_G g cos a) over the curve, both strands; convex, the "
+       "troughed belt's edge strain within the admissible (rating / S_min) and its centre in "
+       "tension (null for a flat belt, or when the tension is at or above the admissible)",
+       "R min"),
+    _f("curve{k}_idler_load_extra_n", "N", "load the belt's tension adds to each carry idler "
+       "set on curve k, T S / R (convex; on a concave curve it is taken off)",
+       "idler load from the curve"),
+))
+
+CURVES_TRANSIENT = ResultGroup("curves_transient", "Vertical curves, transient", (
+    _f("liftoff_max_kn_over", "kN", "largest tension over the empty belt's lift-off tension "
+       "(R m'_G g cos a) on the concave curves during the cycle, both strands, every step; "
+       "negative: the margin left; null without a concave curve", "lift-off, most over"),
+    _f("liftoff_at_m", "m", "where liftoff_max_kn_over is, along the loop from the tail, carry "
+       "first (null when the belt never lifts)", "  at"),
+    _f("liftoff_time_s", "s", "when (null when the belt never lifts)", "  time"),
+))
+
 BOOKKEEPING = ResultGroup("bookkeeping", "Bookkeeping", (
     _f("status", "text", "ok, warning or failed"),
     _f("message", "text", "why, in words: every crossed limit, or the failure"),
@@ -416,7 +464,7 @@ BOOKKEEPING = ResultGroup("bookkeeping", "Bookkeeping", (
 #: Every group, in the order of the runs table.
 GROUPS = (STEADY, STEADY_DRIVE, DESIGN, DESIGN_DRIVE, TE_COMPONENTS, TRANSIENT, PHASE, SLACK,
           TRANSIENT_DRIVE, DRIVE_POWER, DRIVE_LOAD, DESIGN_BASIS, CHECKS, CHECKS_TRANSIENT,
-          BOOKKEEPING)
+          CURVES, CURVES_TRANSIENT, BOOKKEEPING)
 
 # ------------------------------------------------------------- error bars (SPEC 7.4)
 #: The deciding figures of a transient run that get an error bar (SPEC 7.4; per-drive ones
@@ -488,14 +536,18 @@ def field(name: str) -> ResultField:
         head, _, rest = name.partition("_")
         if head[6:].isdigit() and f"pulley{{j}}_{rest}" in FIELDS:
             return FIELDS[f"pulley{{j}}_{rest}"]
+    if name.startswith("curve"):
+        head, _, rest = name.partition("_")
+        if head[5:].isdigit() and f"curve{{k}}_{rest}" in FIELDS:
+            return FIELDS[f"curve{{k}}_{rest}"]
     raise KeyError(name)
 
 
-def columns(groups=GROUPS, drives: int = MAX_DRIVES, pulleys: int = MAX_PULLEYS
-            ) -> tuple[str, ...]:
+def columns(groups=GROUPS, drives: int = MAX_DRIVES, pulleys: int = MAX_PULLEYS,
+            curves: int = MAX_CURVES) -> tuple[str, ...]:
     """Every column of these groups, per-drive fields for drives 1 .. ``drives``, per-pulley
-    fields for pulleys 1 .. ``pulleys``."""
-    return tuple(c for g in groups for f in g for c in f.columns(drives, pulleys))
+    fields for pulleys 1 .. ``pulleys``, per-curve fields for curves 1 .. ``curves``."""
+    return tuple(c for g in groups for f in g for c in f.columns(drives, pulleys, curves))
 
 
 def summary_columns(summary: dict) -> list[str]:
@@ -522,6 +574,8 @@ def check_summary(summary: dict) -> dict:
             unknown.append(key)
         if f.per_pulley and not 1 <= int(key[6:key.index("_")]) <= MAX_PULLEYS:
             unknown.append(key)
+        if f.per_curve and not 1 <= int(key[f.name.index("{k}"):key.index("_")]) <= MAX_CURVES:
+            unknown.append(key)
     if unknown:
         raise KeyError(f"results not defined in beltstudy.engine.results: {', '.join(unknown)}")
     return summary
@@ -540,7 +594,10 @@ def markdown() -> str:
         f"{MAX_DRIVES} (`{{i}}` is",
         "the drive's number in file order; null beyond the conveyor's drives), per-pulley",
         f"fields for pulleys 1 to {MAX_PULLEYS} (`{{j}}`, the pulley's number in loop order,",
-        "docs/checks.md). Unit `bool`: a yes/no verdict, a boolean column.",
+        "docs/checks.md), per-curve fields for curves 1 to "
+        f"{MAX_CURVES} (`{{k}}`, the vertical",
+        "curve's number in profile order, docs/routes.md). Unit `bool`: a yes/no verdict, a",
+        "boolean column.",
         "",
     ]
     for g in ALL_GROUPS:

@@ -19,6 +19,7 @@ import pandas as pd
 from beltstudy.engine.beltselect import resolve_auto_belt, run_cases, run_message
 from beltstudy.engine.checks import transient_checks
 from beltstudy.engine.conveyor import Conveyor, Scenario
+from beltstudy.engine.curves import transient_liftoff
 from beltstudy.engine.design import auto_sizes, summary_fields
 from beltstudy.engine.dynamics import DynamicsOptions, TransientResult, build_system, simulate
 from beltstudy.engine.dynamics.model import check_scenario
@@ -221,6 +222,16 @@ def run_one(
     summary.update({k: (v if math.isfinite(v) else None) for k, v in transient_checks(
         steady.loop, np.array([seg[2] for seg in tr.raw["segments"]])).items()})
     messages = [m for m in (steady.message, tr.message) if m]
+    # lift-off at concave curves in the cycle (engine/curves.py; null fields without one)
+    cyc = system.model.cycle
+    lifted, lift_warnings = transient_liftoff(
+        steady.loop, tr.raw["segments"], cyc.t_pre + cyc.t_start, system.stop_command_s,
+        max(cyc.t_start, tr.summary.get("start_time_s") or 0.0), system.steady_tension_n)
+    summary.update(lifted)
+    if lift_warnings:
+        messages.append("; ".join(lift_warnings))
+        tr.warnings.extend(lift_warnings)
+        tr.status = "warning" if tr.status == "ok" else tr.status
     if remedy and tr.status != "failed" and any(
             (summary.get(f"drive{i + 1}_slip_s") or 0.0) > 0.0
             for i in range(len(conveyor.drives))):

@@ -50,6 +50,7 @@ import numpy as np
 from beltstudy.engine.capacity import capacity as capacity_check
 from beltstudy.engine.checks import steady_checks as design_checks
 from beltstudy.engine.conveyor import Conveyor, section_loads
+from beltstudy.engine.curves import steady_checks as curve_checks
 from beltstudy.engine.drives import rated_power_kw
 from beltstudy.engine.drives import steady_checks as drive_checks
 from beltstudy.engine.friction import get_model, temperature_note
@@ -613,6 +614,10 @@ def _summarise(res: SteadyResult, drives, hs_adm, bounds, shortfall_n: float,
     checked, check_warnings = design_checks(conv, loop, T, sf_min, friction_n)
     res.summary.update(checked)
     warnings += check_warnings
+    if loop.curves:  # vertical curves: lift-off, convex radius (beltstudy.engine.curves)
+        checked, check_warnings = curve_checks(conv, loop, T, sf_min)
+        res.summary.update(checked)
+        warnings += check_warnings
     res.warnings = warnings
     res.status = "warning" if warnings else "ok"
     # a note does not make a warning (as the transient's notes, "note: ..." after them)

@@ -43,6 +43,7 @@ STEADY_FIELDS = [(k, STEADY_LABELS.get(k, R.field(k).label), R.field(k).unit)
 TRANSIENT_FIELDS = _rows(R.TRANSIENT)
 PHASE_FIELDS = _rows(R.PHASE)
 SLACK_FIELDS = _rows(R.SLACK)
+CURVE_FIELDS = _rows(R.CURVES_TRANSIENT)
 
 
 def register(sub) -> None:
@@ -204,6 +205,11 @@ def _table(s: dict) -> str:
         for key, label, unit in fields:
             if key in s and s[key] is not None:
                 lines.append(f"    {label:<38} {_fmt(s[key])} {unit}")
+        lines.append("")
+    if s.get("liftoff_max_kn_over") is not None:  # a concave curve (docs/routes.md)
+        lines.append("  lift-off at concave curves (negative: the margin left)")
+        lines += [f"    {label:<38} {_fmt(s[key])} {unit}" for key, label, unit in CURVE_FIELDS
+                  if s.get(key) is not None]
         lines.append("")
     lines += drive_lines(s)
     lines += error_lines(s)

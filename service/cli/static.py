@@ -187,6 +187,7 @@ def _table(s: dict) -> str:
                          f" {'-' if util is None else format(util, '.3f'):>17}")
         lines.append("")
     lines += _check_lines(s)
+    lines += _curve_lines(s)
     lines.append(f"  status: {s['status']}" + (f"  ({s['message']})" if s["message"] else ""))
     return "\n".join(lines)
 
@@ -210,5 +211,25 @@ def _check_lines(s: dict) -> list[str]:
         if s.get(key) is not None:
             f = results.field(key)
             lines.append(f"    {f.label:<34} {s[key]:>12.3f} {_unit(f)}")
+    lines.append("")
+    return lines
+
+
+def _curve_lines(s: dict) -> list[str]:
+    """The vertical curves (docs/routes.md, part (c)): per curve its kind, place, steady
+    tension, lift-off tension (concave) and the radius it needs."""
+    lines, k = [], 1
+    if "curve1_kind" not in s:
+        return lines
+    lines.append("  vertical curves (docs/routes.md)   at [m]   T [kN]   lift-off T [kN]"
+                 "   lifts   R min [m]")
+    while f"curve{k}_kind" in s:
+        lift, r_min = s[f"curve{k}_liftoff_tension_kn"], s[f"curve{k}_radius_min_m"]
+        lines.append(f"    curve {k}: {s[f'curve{k}_kind']:<21} {s[f'curve{k}_at_m']:>8.0f} "
+                     f"{s[f'curve{k}_tension_kn']:>8.1f} "
+                     f"{'-' if lift is None else f'{lift:.1f}':>17} "
+                     f"{'YES' if s[f'curve{k}_liftoff'] else 'no':>7} "
+                     f"{'-' if r_min is None else f'{r_min:.0f}':>11}")
+        k += 1
     lines.append("")
     return lines

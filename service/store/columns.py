@@ -60,15 +60,20 @@ TE_PART_COLUMNS = R.columns((R.TE_COMPONENTS,))
 DESIGN_COLUMNS = R.columns((R.DESIGN, R.DESIGN_DRIVE))
 #: What set each auto size, and the pulleys' names (text).
 DESIGN_TEXT_COLUMNS = R.columns((R.DESIGN_BASIS,)) + tuple(
-    c for c in R.columns((R.CHECKS,)) if R.field(c).text)
+    c for c in R.columns((R.CHECKS,)) if R.field(c).text) + tuple(
+    c for c in R.columns((R.CURVES,)) if R.field(c).text)
 #: SPEC 7.4 per drive: the motor power needed against the rating (steady), the time above
 #: the rated force and the RMS force (transient).
 DRIVE_POWER_COLUMNS = R.columns((R.DRIVE_POWER, R.DRIVE_LOAD))
 #: Design checks (docs/checks.md): numbers, the per-pulley names (text) and verdicts (bool).
 CHECK_COLUMNS = tuple(c for c in R.columns((R.CHECKS, R.CHECKS_TRANSIENT))
                       if not R.field(c).text)
+#: Vertical curves (docs/routes.md, part (c)): numbers and verdicts (bool); curve{k}_kind is
+#: text, with the design text columns.
+CURVE_COLUMNS = tuple(c for c in R.columns((R.CURVES, R.CURVES_TRANSIENT))
+                      if not R.field(c).text)
 RESULT_COLUMNS = (STEADY_COLUMNS + DESIGN_COLUMNS + TE_PART_COLUMNS + TRANSIENT_COLUMNS
-                  + DRIVE_POWER_COLUMNS + CHECK_COLUMNS)
+                  + DRIVE_POWER_COLUMNS + CHECK_COLUMNS + CURVE_COLUMNS)
 BOOKKEEPING_COLUMNS = R.columns((R.BOOKKEEPING,))
 INPUT_COLUMNS = ("study_id", "run_id", "friction_model", "engine_version")
 
@@ -180,7 +185,7 @@ def flatten_summary(summary: dict) -> dict:
     row: dict[str, Any] = {c: _number(summary.get(c))
                            for c in STEADY_COLUMNS + DESIGN_COLUMNS + TRANSIENT_COLUMNS
                            + DRIVE_POWER_COLUMNS}
-    for c in CHECK_COLUMNS:
+    for c in CHECK_COLUMNS + CURVE_COLUMNS:
         value = summary.get(c)
         row[c] = (None if value is None else bool(value)) if R.field(c).flag else _number(value)
     for c in DESIGN_TEXT_COLUMNS:

@@ -1,0 +1,265 @@
+"""Vertical curves: lift-off at concave curves, edge strain at convex ones (docs/routes.md,
+part (c); SPEC 7.1 and 7.4).
+
+The loop puts elements on each curve (:class:`beltstudy.engine.loop.Curve`, the element's
+slope the arc's at its middle); these checks read the tensions there.
+
+Concave curve (a valley, the grade increasing). The belt's tension T bends round the curve and
+presses it outwards (upwards) with T / R per metre; its weight presses it onto the idlers with
+m' g cos(a) per metre. It leaves its idlers where
+
+    T > R m' g cos(a)                                   (lift-off)
+
+(CEMA, *Belt Conveyors for Bulk Materials*, 7th ed., ch. 9 "Concave vertical curves", the
+radius r = T / (w_b cos a) that keeps the empty belt on its idlers; DIN 22101:2011 names the
+same balance for concave curves; both *unverified* against the printed text). m' is the belt's
+own mass m'_G: with material on it (m'_G + m'_L) the limit is higher, so the empty belt, and
+the empty return strand that runs through the same valley, lift first. The check uses the
+empty belt on both strands at the tensions of the load case run.
+
+Convex curve (a crest, the grade decreasing). The trough's wings lie above the belt's centre
+line, so on a curve of radius R a fibre at height z above it runs on radius R + z and is
+stretched by z / R more than the centre. With the mean strain eps = T / (E B) fixed by the
+tension, the centre carries eps - z_mean / R and the edges (height h) eps + (h - z_mean) / R
+(z_mean the height of the trough's cross-section averaged over the belt width). The smallest
+radius keeps the edge within the admissible strain and the centre in tension:
+
+    R_min = max((h - z_mean) / (eps_adm - eps), z_mean / eps)
+
+with eps_adm = (rating / S_min) / (E B), the admissible running tension's strain (DIN 22101's
+edge-strain treatment of transitions and convex curves, CEMA 7th ed. ch. 9 "Convex vertical
+curves": edge tension and centre tension limits; CEMA lets the edge go somewhat above the
+rated tension: this limit is the stricter; *unverified* against the printed texts). The
+trough's cross-section is :func:`beltstudy.engine.capacity.trough_segments` over the whole
+belt width. On a convex curve every idler set carries T S / R more (the belt's tension
+pressing round the curve); on a concave one that much less.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from beltstudy.engine.capacity import middle_roll_length_m, trough_segments
+from beltstudy.engine.loop import CARRY, Curve, G, Loop
+
+__all__ = ["liftoff_tension_n", "liftoff_limits_n", "convex_radius_min_m", "steady_checks",
+           "transient_liftoff"]
+
+
+def liftoff_tension_n(radius_m: float, mass_kg_m: float, angle_rad: float) -> float:
+    """Tension at which a belt leaves its idlers on a concave curve, R m' g cos(a) [N].
+
+    Parameters
+    ----------
+    radius_m : float
+        Curve radius R [m].
+    mass_kg_m : float
+        Mass per metre resting on the idlers m' [kg/m] (the belt's own, m'_G, for the empty
+        belt, which lifts first).
+    angle_rad : float
+        Slope angle a at the point [rad].
+    """
+    return radius_m * mass_kg_m * G * math.cos(angle_rad)
+
+
+def liftoff_limits_n(loop: Loop, curve: Curve) -> tuple[np.ndarray, np.ndarray]:
+    """The curve's elements on both strands (carry then return) and each one's lift-off
+    tension for the empty belt, R m'_G g cos(a) at the element's slope [N]."""
+    el = np.concatenate((curve.carry, curve.ret))
+    return el, curve.radius_m * loop.mG_kg_m[el] * G * loop.cos_a[el]
+
+
+def _trough_heights(width_m: float, rolls: int, trough_deg: float, roll_length_m: float
+                    ) -> tuple[float, float]:
+    """Edge height h and width-mean height z_mean of a troughed belt's cross-section above its
+    centre line [m]."""
+    z = area = 0.0
+    for length, angle in trough_segments(width_m, rolls, trough_deg, roll_length_m):
+        rise = length * math.sin(angle)
+        area += length * (z + 0.5 * rise)  # the segment's height integrated along the belt
+        z += rise
+    return z, area / (0.5 * width_m)
+
+
+def convex_radius_min_m(tension_n: float, stiffness_n: float, admissible_n: float,
+                        width_m: float, rolls: int, trough_deg: float,
+                        roll_length_m: float | None = None) -> float | None:
+    """Smallest radius of a convex curve for the troughed belt's edge and centre strains [m].
+
+    Parameters
+    ----------
+    tension_n : float
+        Belt tension at the curve T [N].
+    stiffness_n : float
+        Axial stiffness E B [N].
+    admissible_n : float
+        Admissible running tension, rating / S_min [N]: the edge strain's limit is its strain.
+    width_m, rolls, trough_deg, roll_length_m
+        Belt width B [m], rolls of the carry set, trough angle [deg], middle-roll length [m]
+        (default by width, :func:`beltstudy.engine.capacity.middle_roll_length_m`).
+
+    Returns
+    -------
+    float or None
+        ``max((h - z_mean) / (eps_adm - eps), z_mean / eps)``; ``inf`` when the tension is at
+        or above the admissible one or not positive (no radius is enough); None for a flat
+        belt (no trough: the edges follow the centre).
+    """
+    roll = middle_roll_length_m(width_m, rolls) if roll_length_m is None else roll_length_m
+    h, z_mean = _trough_heights(width_m, rolls, trough_deg, roll)
+    if h <= 0.0:
+        return None
+    eps, eps_adm = tension_n / stiffness_n, admissible_n / stiffness_n
+    if eps <= 0.0 or eps >= eps_adm:
+        return math.inf
+    return max((h - z_mean) / (eps_adm - eps), z_mean / eps)
+
+
+def steady_checks(conv, loop: Loop, T: np.ndarray, sf_min: float) -> tuple[dict, list[str]]:
+    """Per curve k: ``curve{k}_*`` fields and warnings (concave: lift-off; convex: radius).
+
+    Parameters
+    ----------
+    conv : Conveyor
+    loop : Loop
+    T : ndarray
+        Steady boundary tensions, ``T[j]`` at the end of element j [N]; an element on a curve
+        is judged by the tension at its end.
+    sf_min : float
+        Minimum running belt safety factor [-] (the convex edge limit, rating / S_min).
+    """
+    out: dict = {}
+    warnings: list[str] = []
+    belt = loop.belt
+    ic = conv.idlers.carry
+    for c in loop.curves:
+        k = c.k
+        el, lim = liftoff_limits_n(loop, c)
+        t_carry = float(T[c.carry].max())
+        out[f"curve{k}_kind"] = c.kind
+        out[f"curve{k}_at_m"] = c.at_m
+        out[f"curve{k}_tension_kn"] = t_carry / 1e3
+        out[f"curve{k}_idler_load_extra_n"] = t_carry * ic.spacing_m / c.radius_m
+        if c.concave:
+            over = T[el] - lim
+            j = int(np.argmax(over))
+            lifts = bool(over[j] > 0.0)
+            r_need = float(np.max(T[el] / (loop.mG_kg_m[el] * G * loop.cos_a[el])))
+            out[f"curve{k}_liftoff_tension_kn"] = float(lim.min()) / 1e3
+            out[f"curve{k}_liftoff"] = lifts
+            out[f"curve{k}_radius_min_m"] = r_need
+            if lifts:
+                strand = "carry" if loop.strand[el[j]] == CARRY else "return"
+                warnings.append(
+                    f"curve {k} (concave, R {c.radius_m:g} m at {c.at_m:.0f} m): the empty belt "
+                    f"lifts off its {strand} idlers, steady tension {T[el[j]] / 1e3:.1f} kN "
+                    f"above the lift-off tension {lim[j] / 1e3:.1f} kN (R m'_G g cos a); a "
+                    f"radius of at least {r_need:.0f} m keeps it on them")
+        else:
+            out[f"curve{k}_liftoff_tension_kn"] = None
+            out[f"curve{k}_liftoff"] = False
+            r_min = convex_radius_min_m(
+                t_carry, belt.stiffness_n, belt.rating_n / sf_min, belt.width_m, ic.rolls,
+                ic.trough_deg, ic.roll_length_m)
+            out[f"curve{k}_radius_min_m"] = r_min if r_min is None or math.isfinite(r_min) \
+                else None
+            if r_min is not None and c.radius_m < r_min:
+                need = (f"a radius of at least {r_min:.0f} m" if math.isfinite(r_min)
+                        else "a lower tension there (no radius keeps the edge within it)")
+                warnings.append(
+                    f"curve {k} (convex, R {c.radius_m:g} m at {c.at_m:.0f} m): the troughed "
+                    f"belt's edge strain or centre tension is out of bounds at "
+                    f"{t_carry / 1e3:.1f} kN: {need}")
+    return out, warnings
+
+
+def transient_liftoff(loop: Loop, segs, t_start_end_s: float, t_stop_cmd_s: float,
+                      start_time_s: float, steady_n: np.ndarray) -> tuple[dict, list[str]]:
+    """Lift-off at concave curves during the cycle: ``liftoff_*`` fields and one warning per
+    phase in which the belt leaves its idlers.
+
+    Parameters
+    ----------
+    loop : Loop
+        The loop the transient ran on (its springs are the loop's element ends).
+    segs : list
+        The kernel's envelope segments ``(t0, t1, t_max, t_max_t, t_min, t_min_t)``
+        (``TransientResult.raw["segments"]``): per spring the highest tension of every time
+        step within the segment and its time.
+    t_start_end_s, t_stop_cmd_s : float
+        End of the start (the rest before it and the start reference) and the stop command
+        [s]: a peak up to the first is in the start, up to the second in steady running,
+        later in the stop.
+    start_time_s : float
+        The scenario's start time [s] (the remedy's rigid-body estimate).
+    steady_n : ndarray
+        Steady running tensions per spring [N].
+
+    Returns
+    -------
+    dict, list of str
+        ``liftoff_max_kn_over``: the largest T - R m'_G g cos(a) over the concave curves' elements
+        (both strands) and the cycle [kN], negative when the belt stays on its idlers (the
+        margin left), null without a concave curve; ``liftoff_at_m`` / ``liftoff_time_s``
+        where (loop position of the spring, as ``t_max_dyn_at_m``) and when, null when it
+        never lifts. Exact: the envelopes hold every step's tension and the limit is fixed
+        per element, so max(T - T_lift) = max(T) - T_lift element by element.
+
+    Notes
+    -----
+    Per phase, each element's peak in each segment is put in the phase its time falls in (a
+    segment spans the start and running; a lower excess of an element in one phase behind
+    its higher one in another is not seen, so a phase may be under-reported, never the
+    whole cycle's maximum). The remedy for a start: the start's extra tension at the curve
+    over the steady one scales with the acceleration (rigid body, ~ 1 / start time), so a
+    start time of ``start_time_s x (T_peak - T_steady) / (T_lift - T_steady)`` keeps the belt
+    down when the steady tension is below the limit; else the radius R T_peak / T_lift.
+    """
+    concave = [c for c in loop.curves if c.concave]
+    none = {"liftoff_max_kn_over": None, "liftoff_at_m": None, "liftoff_time_s": None}
+    if not concave or not segs:
+        return none, []
+    els, lims, ks = [], [], []
+    for c in concave:
+        el, lim = liftoff_limits_n(loop, c)
+        els.append(el)
+        lims.append(lim)
+        ks += [c.k] * len(el)
+    el, lim, ks = np.concatenate(els), np.concatenate(lims), np.asarray(ks)
+    hi = np.array([s[2] for s in segs])[:, el]
+    hi_t = np.array([s[3] for s in segs])[:, el]
+    over = np.where(np.isfinite(hi), hi - lim, -np.inf)
+    kseg, j = np.unravel_index(int(np.argmax(over)), over.shape)
+    worst = float(over[kseg, j])
+    s_end = loop.s_end_m
+    out = dict(none, liftoff_max_kn_over=worst / 1e3)
+    if worst > 0.0:
+        out["liftoff_at_m"] = float(s_end[el[j]])
+        out["liftoff_time_s"] = float(hi_t[kseg, j])
+    phase = np.where(hi_t <= t_start_end_s, 0, np.where(hi_t <= t_stop_cmd_s, 1, 2))
+    warnings = []
+    curves = {c.k: c for c in concave}
+    for p, name in enumerate(("the start", "steady running", "the stop")):
+        masked = np.where(phase == p, over, -np.inf)
+        kseg, j = np.unravel_index(int(np.argmax(masked)), masked.shape)
+        if not masked[kseg, j] > 0.0:
+            continue
+        c = curves[int(ks[j])]
+        e = int(el[j])
+        t_peak, t_lim, t_run = float(hi[kseg, j]), float(lim[j]), float(steady_n[e])
+        strand = "carry" if loop.strand[e] == CARRY else "return"
+        fixes = [f"a curve radius of at least {c.radius_m * t_peak / t_lim:.0f} m"]
+        if p == 0 and t_run < t_lim:
+            t_need = start_time_s * (t_peak - t_run) / (t_lim - t_run)
+            fixes.insert(0, f"a start of about {t_need:.0f} s (start.time_s; rigid-body "
+                            "estimate)")
+        elif p == 2:
+            fixes.insert(0, "a softer stop (stop time, brake force)")
+        warnings.append(
+            f"lift-off in {name}: the belt leaves its {strand} idlers at curve {c.k} "
+            f"(concave, R {c.radius_m:g} m, at {s_end[e]:.0f} m round the loop) at "
+            f"t = {hi_t[kseg, j]:.1f} s, {(t_peak - t_lim) / 1e3:.1f} kN over its lift-off "
+            f"tension {t_lim / 1e3:.1f} kN; " + " or ".join(fixes) + " avoids it")
+    return out, warnings

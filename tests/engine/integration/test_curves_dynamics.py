@@ -1,0 +1,91 @@
+"""Vertical curves in the transient engine (docs/routes.md part (c)): lift-off at a concave
+curve in a start, and the wave laws on a profile with a curve."""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+
+from beltstudy.engine.conveyor import Scenario, parse_conveyor
+from beltstudy.engine.dynamics import DynamicsOptions, build_system, simulate
+from beltstudy.engine.dynamics.model import with_probes
+from beltstudy.engine.run import run_one
+from beltstudy.engine.statics import solve_steady
+from tests.conftest import hand_conveyor_dict
+from tests.engine.integration.test_dynamics_physics import BARE, _arrival, flat_conveyor
+
+G = 9.81
+
+
+def valley_conveyor():
+    """The hand conveyor (m'_G = 20 kg/m) as 500 m flat then 500 m rising 50 m, joined by a
+    concave curve of R = 400 m (lift-off tension of the empty belt about R m'_G g = 78 kN);
+    a take-up of 9 t (steady tension at the curve about 54 kN), a drive with the grip and
+    the power for a fast start (240 deg, mu 0.45, 1 MW: assumed, so the start is set by its
+    time and not by the motor)."""
+    d = hand_conveyor_dict(profile=[{"length_m": 500, "lift_m": 0, "curve_radius_m": 400},
+                                    {"length_m": 500, "lift_m": 50}])
+    d["drives"][0].update(rated_power_kw=1000, inertia_kg_m2=200, wrap_deg=240, friction=0.45)
+    d["takeup"]["mass_kg"] = 9000
+    return parse_conveyor(d)
+
+
+def _start(conv, time_s):
+    return run_one(conv, Scenario(start={"control": "s-curve", "time_s": time_s}, run_s=30,
+                                  elements=100), model="din")
+
+
+def test_a_fast_start_lifts_the_belt_at_a_concave_curve_and_a_slow_one_does_not():
+    """Rigid-body estimate: the start adds to the tension at the curve the upstream mass
+    (return strand 1 000 m x (20 + 3) kg/m = 23 t, carry from the tail 500 m x (20 + 50 +
+    10) kg/m = 40 t) times the acceleration, whose peak in an s-curve start is 2 v / T_s
+    (Harrison's cycloid, PHYSICS section 5). The margin at the curve is R m'_G g cos(a) -
+    T_steady = 78 - 54 = 24 kN. A 5 s start: 63 t x 1.6 m/s2 = 100 kN, the belt lifts; a
+    40 s start: 63 t x 0.2 m/s2 = 13 kN, it stays on its idlers."""
+    conv = valley_conveyor()
+    fast = _start(conv, 5.0)
+    s = fast.summary
+    (c,) = fast.steady.loop.curves
+    assert s["curve1_liftoff"] is False  # steady: on its idlers
+    assert s["liftoff_max_kn_over"] > 10.0
+    assert c.start_m - 1e-6 <= s["liftoff_at_m"] <= c.end_m + 1e-6
+    t_pre = fast.transient.system.model.cycle.t_pre
+    assert t_pre < s["liftoff_time_s"] <= t_pre + 5.0 + 2.0  # in the start
+    assert "lift-off in the start" in s["message"] and "curve 1 (concave, R 400 m" in \
+        s["message"]
+    assert "start.time_s" in s["message"]
+    # the excess is the envelope's tension over R m'_G g cos a at that element
+    slow = _start(conv, 40.0)
+    assert slow.summary["liftoff_max_kn_over"] < 0.0
+    assert slow.summary["liftoff_at_m"] is None and slow.summary["liftoff_time_s"] is None
+    assert "lift-off" not in slow.summary["message"]
+
+
+def test_tension_front_speed_and_height_through_a_curve():
+    """As tests/engine/integration/test_dynamics_physics.py::test_tension_front_speed_and_height
+    on a route with a concave curve (R 2 000 m from 0 to 5 % at 1 000 m, an arc of 100 m
+    on finer elements), damping off: the front still runs at c = sqrt(EB / rho') and keeps
+    its height Z dv (within 3 %)."""
+    conv = flat_conveyor(profile=[{"length_m": 1000.0, "lift_m": 0.0, "curve_radius_m": 2000},
+                                  {"length_m": 1000.0, "lift_m": 50.0}])
+    st = solve_steady(conv, model="din", n_elements=400)
+    assert st.loop.curves and len(st.loop.curves[0].carry) >= 10
+    scn = Scenario(start={"control": "linear", "time_s": 0.1}, run_s=100,
+                   formulation="support", record_dt_s=0.002)
+    sys = build_system(conv, scn, st, DynamicsOptions(**BARE, pulley_mass_kg=0.0))
+    eb, rho, dv = 60000e3, 30.0, 1.0
+    c, z = math.sqrt(eb / rho), math.sqrt(eb * rho)
+    s = sys.s_end_m
+    far = int(np.argmin(np.abs(s - 200.0)))  # beyond the curve, seen from the head
+    mid = int(np.argmin(np.abs(s - 700.0)))  # beyond it too, 1 s from the tail's echo
+    sys = with_probes(sys, [far, mid])
+    res = simulate(sys, t_end_s=sys.model.cycle.t_pre + 2.0)
+    t = res.traces["t_s"].to_numpy() - sys.model.cycle.t_pre
+    d_far = res.traces.iloc[:, 1].to_numpy() * 1e3 - sys.tension_rest_n[far]
+    arrival = _arrival(t, d_far, 0.5 * z * dv) - 0.05
+    assert arrival == pytest.approx((s[sys.i_head - 1] - s[far]) / c, rel=0.03)
+    d_mid = res.traces.iloc[:, 2].to_numpy() * 1e3 - sys.tension_rest_n[mid]
+    after = np.argmax(t > (s[sys.i_head - 1] - s[mid]) / c + 0.3)  # plateau behind the front
+    assert d_mid[after] == pytest.approx(z * dv, rel=0.03)
