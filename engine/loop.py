@@ -238,6 +238,8 @@ def build_loop(
     carry_mass, carry_drag = catalog.idler_set_values(conv.idlers.carry, w)
     ret_mass, ret_drag = catalog.idler_set_values(conv.idlers.return_, w)
     ic, ir = conv.idlers.carry, conv.idlers.return_
+    # the pitch: spacing_m, or the conveyor length over the number of sets (count)
+    s_c, s_r = conv.idler_spacing_m("carry"), conv.idler_spacing_m("return")
 
     cols: dict[str, list] = {k: [] for k in (
         "strand", "dx", "z", "sin", "cos", "S", "D", "rolls", "trough", "mL", "mR", "drag")}
@@ -269,9 +271,9 @@ def build_loop(
         sin = sec.lift_m / sec.length_m
         cos = math.sqrt(1.0 - sin * sin)
         zs, z = heights(z, dx * sin, k)
-        add(k, strand=CARRY, dx=dx, z=zs, sin=sin, cos=cos, S=ic.spacing_m,
+        add(k, strand=CARRY, dx=dx, z=zs, sin=sin, cos=cos, S=s_c,
             D=ic.roll_diameter_m, rolls=ic.rolls, trough=ic.trough_deg, mL=design_mL * frac,
-            mR=carry_mass / ic.spacing_m, drag=carry_drag)
+            mR=carry_mass / s_c, drag=carry_drag)
     z_head = z
     nc = len(cols["dx"])
     pulleys: list[Pulley] = []
@@ -304,9 +306,9 @@ def build_loop(
         sin = -sec.lift_m / sec.length_m
         cos = math.sqrt(1.0 - sin * sin)
         zs, z = heights(z, dx * sin, k)
-        add(k, strand=RETURN, dx=dx, z=zs, sin=sin, cos=cos, S=ir.spacing_m,
+        add(k, strand=RETURN, dx=dx, z=zs, sin=sin, cos=cos, S=s_r,
             D=ir.roll_diameter_m, rolls=ir.rolls, trough=ir.trough_deg, mL=0.0,
-            mR=ret_mass / ir.spacing_m, drag=ret_drag)
+            mR=ret_mass / s_r, drag=ret_drag)
     # tail end: a take-up pulley before the tail drives, or the plain tail pulley as take-up
     tail_driven = any(d.position == "tail" for d in conv.drives)
     if conv.takeup.position == "tail" and tail_driven:

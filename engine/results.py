@@ -25,6 +25,8 @@ __all__ = [
     "ResultField",
     "ResultGroup",
     "MAX_DRIVES",
+    "MAX_HCURVES",
+    "HCURVES",
     "TE_PARTS",
     "STEADY",
     "STEADY_DRIVE",
@@ -61,6 +63,9 @@ MAX_DRIVES = 6
 #: a drive, and a separate take-up pulley (``engine/loop.py``); the per-pulley columns run from
 #: ``pulley1_*`` to this.
 MAX_PULLEYS = MAX_DRIVES + 2
+#: Most horizontal curves a conveyor may have (profile sections with
+#: ``horizontal_radius_m``); the per-curve columns run from ``hcurve1_*`` to this.
+MAX_HCURVES = 8
 
 
 @dataclass(frozen=True)
@@ -86,6 +91,10 @@ class ResultField:
         return "{j}" in self.name
 
     @property
+    def per_hcurve(self) -> bool:
+        return "{k}" in self.name
+
+    @property
     def flag(self) -> bool:
         """A yes/no verdict (stored as a boolean column)."""
         return self.unit == "bool"
@@ -98,6 +107,8 @@ class ResultField:
             return tuple(self.name.format(i=i) for i in range(1, drives + 1))
         if self.per_pulley:
             return tuple(self.name.format(j=j) for j in range(1, pulleys + 1))
+        if self.per_hcurve:
+            return tuple(self.name.format(k=k) for k in range(1, MAX_HCURVES + 1))
         return (self.name,)
 
 
@@ -412,10 +423,28 @@ BOOKKEEPING = ResultGroup("bookkeeping", "Bookkeeping", (
     _f("elapsed_s", "s", "wall time of the run"),
 ))
 
+# ------------------------------------------------ horizontal curves (SPEC 7.4, docs/routes.md)
+HCURVES = ResultGroup("hcurves", "Horizontal curves, steady (SPEC 7.1, 7.4; `{k}` is the "
+                      "curve's number in profile order)", (
+    _f("hcurve{k}_tension_min_kn", "kN", "lowest belt tension that keeps the belt in "
+       "horizontal curve k: below it the loaded belt runs down the superelevation out of the "
+       "curve (the larger over the run's load and the empty belt; 0 when there is no lower "
+       "limit; docs/routes.md)", "T min in curve"),
+    _f("hcurve{k}_tension_max_kn", "kN", "highest belt tension the weight of the belt holds "
+       "in horizontal curve k before the belt runs to the inside (the smaller over the run's "
+       "load and the empty belt)", "T max in curve"),
+    _f("hcurve{k}_t_low_kn", "kN", "lowest steady tension of the run along curve k",
+       "tension low"),
+    _f("hcurve{k}_t_high_kn", "kN", "highest steady tension of the run along curve k",
+       "tension high"),
+    _f("hcurve{k}_ok", "bool", "the run's tension along curve k lies within "
+       "hcurve{k}_tension_min_kn and hcurve{k}_tension_max_kn", "in curve"),
+))
+
 #: Every group, in the order of the runs table.
 GROUPS = (STEADY, STEADY_DRIVE, DESIGN, DESIGN_DRIVE, TE_COMPONENTS, TRANSIENT, PHASE, SLACK,
           TRANSIENT_DRIVE, DRIVE_POWER, DRIVE_LOAD, DESIGN_BASIS, CHECKS, CHECKS_TRANSIENT,
-          BOOKKEEPING)
+          HCURVES, BOOKKEEPING)
 
 # ------------------------------------------------------------- error bars (SPEC 7.4)
 #: The deciding figures of a transient run that get an error bar (SPEC 7.4; per-drive ones
@@ -487,6 +516,10 @@ def field(name: str) -> ResultField:
         head, _, rest = name.partition("_")
         if head[6:].isdigit() and f"pulley{{j}}_{rest}" in FIELDS:
             return FIELDS[f"pulley{{j}}_{rest}"]
+    if name.startswith("hcurve"):
+        head, _, rest = name.partition("_")
+        if head[6:].isdigit() and f"hcurve{{k}}_{rest}" in FIELDS:
+            return FIELDS[f"hcurve{{k}}_{rest}"]
     raise KeyError(name)
 
 
@@ -521,6 +554,8 @@ def check_summary(summary: dict) -> dict:
             unknown.append(key)
         if f.per_pulley and not 1 <= int(key[6:key.index("_")]) <= MAX_PULLEYS:
             unknown.append(key)
+        if f.per_hcurve and not 1 <= int(key[6:key.index("_")]) <= MAX_HCURVES:
+            unknown.append(key)
     if unknown:
         raise KeyError(f"results not defined in beltstudy.engine.results: {', '.join(unknown)}")
     return summary
@@ -539,7 +574,10 @@ def markdown() -> str:
         f"{MAX_DRIVES} (`{{i}}` is",
         "the drive's number in file order; null beyond the conveyor's drives), per-pulley",
         f"fields for pulleys 1 to {MAX_PULLEYS} (`{{j}}`, the pulley's number in loop order,",
-        "docs/checks.md). Unit `bool`: a yes/no verdict, a boolean column.",
+        "docs/checks.md), per-curve fields for horizontal curves 1 to "
+        f"{MAX_HCURVES} (`{{k}}`, docs/routes.md).",
+        "Unit `bool`: a yes/no verdict, a boolean column.",
+
         "",
     ]
     for g in ALL_GROUPS:

@@ -67,8 +67,11 @@ DRIVE_POWER_COLUMNS = R.columns((R.DRIVE_POWER, R.DRIVE_LOAD))
 #: Design checks (docs/checks.md): numbers, the per-pulley names (text) and verdicts (bool).
 CHECK_COLUMNS = tuple(c for c in R.columns((R.CHECKS, R.CHECKS_TRANSIENT))
                       if not R.field(c).text)
+#: Horizontal curves (docs/routes.md): per curve 1 to MAX_HCURVES.
+HCURVE_COLUMNS = R.columns((R.HCURVES,))
 RESULT_COLUMNS = (STEADY_COLUMNS + DESIGN_COLUMNS + TE_PART_COLUMNS + TRANSIENT_COLUMNS
-                  + DRIVE_POWER_COLUMNS + CHECK_COLUMNS)
+                  + DRIVE_POWER_COLUMNS + CHECK_COLUMNS + HCURVE_COLUMNS)
+
 BOOKKEEPING_COLUMNS = R.columns((R.BOOKKEEPING,))
 INPUT_COLUMNS = ("study_id", "run_id", "friction_model", "engine_version")
 
