@@ -26,7 +26,6 @@ from pydantic import (
 from beltstudy.engine.errors import InputError
 from beltstudy.engine.results import MAX_DRIVES, MAX_HCURVES
 
-
 __all__ = [
     "InputError",
     "Belt",

@@ -54,7 +54,6 @@ from beltstudy.engine.drives import rated_power_kw
 from beltstudy.engine.drives import steady_checks as drive_checks
 from beltstudy.engine.friction import get_model, temperature_note
 from beltstudy.engine.hcurves import hcurve_checks
-
 from beltstudy.engine.law import ResistanceLaw
 from beltstudy.engine.loop import (
     CARRY,
