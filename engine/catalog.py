@@ -267,7 +267,6 @@ def _carcass_of_mass(mass_kg_m: float, width_m: float, top_mm: float, bottom_mm:
     return carcass
 
 
-
 def check_conveyor(conv, prefix: str = "") -> None:
     """Catalogue ids in a conveyor exist (raises InputError naming the field)."""
     if conv.belt.type is not None and conv.belt.type != AUTO:

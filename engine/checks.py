@@ -423,7 +423,6 @@ def _idlers(conv, loop: Loop) -> tuple[dict, list[str]]:
             f"{pitch:g} m) exceeds the CEMA {ic.cema_class} rating "
             f"{rating['carry_rating_n']:.0f} N: a heavier class or a closer pitch "
             f"({pitch * rating['carry_rating_n'] / f_set:.2f} m)")
-
     if l10 < rating["l10_min_h"]:
         warnings.append(
             f"carry idler bearing life L10 {l10:.0f} h (middle roll {f_roll:.0f} N, two "

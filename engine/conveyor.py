@@ -536,7 +536,6 @@ class Conveyor(_Model):
         s = self.idlers.carry if strand == "carry" else self.idlers.return_
         return s.pitch_m(self.length_m)
 
-
     @property
     def length_m(self) -> float:
         """Length along the carry strand [m]."""
