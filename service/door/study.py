@@ -170,7 +170,6 @@ def _idler_rules(schema: dict) -> None:
                        {"required": ["count"], "properties": {"count": {"type": "integer"}}}]
 
 
-
 def _takeup_rules(schema: dict) -> None:
     schema["anyOf"] = [
         {"properties": {"type": {"const": "gravity"}, "pretension_kn": {"const": "auto"}}},
