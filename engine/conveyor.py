@@ -77,8 +77,9 @@ class Belt(_Model):
     """Belt: a catalogue type plus optional overrides (SPEC section 1).
 
     Overrides replace catalogue values; with ``type`` omitted, ``rating_kn_m``,
-    ``modulus_kn_m`` and ``carcass_mass_kg_m2`` are required. Cover thicknesses may be 0, so a
-    published belt mass per metre can be reproduced with ``carcass_mass_kg_m2 = m'_G / B``.
+    ``modulus_kn_m`` and ``carcass_mass_kg_m2`` (or ``mass_kg_m``) are required. A published
+    belt mass per metre is ``mass_kg_m`` (SPEC 7.1; docs/routes.md): it replaces the mass from
+    carcass and covers, the covers staying for the rubber model.
     """
 
     type: str | None = Field(None, description="belt id in the catalogue, e.g. ST2000, EP630/4; "
@@ -171,7 +172,8 @@ class Material(_Model):
 
 
 class ProfileSection(_Model):
-    """One straight section of the carry route, tail -> head."""
+    """One straight section of the carry route, tail -> head; with ``horizontal_radius_m`` a
+    horizontal curve, checked in statics (:mod:`beltstudy.engine.hcurves`)."""
 
     length_m: float = Field(..., gt=0.0, le=1e5,
                             description="length along the belt [m] (at most 100 km)")

@@ -237,3 +237,11 @@ def test_a_limit_that_differs_between_runs_governs_by_value_over_limit(web):
     assert "<code>a1</code>" in row and f"10{UNIT_SPACE}kW" in row
     assert f"5{UNIT_SPACE}kW" in row and "the worst against its own limit" in row
     assert "past the limit in 3 of 7 runs" in row  # a1, ov, os
+
+
+def test_report_names_the_idler_pitch_as_the_file_gives_it():
+    """docs/routes.md: a carry set by spacing_m or by count."""
+    from beltstudy.service.web.report import _pitch
+
+    assert _pitch({"spacing_m": 1.5, "count": None}) == "spacing 1.5 m"
+    assert _pitch({"count": 1334}) == "1334 sets along the route"
