@@ -175,7 +175,8 @@ def safety_minima(conv: Conveyor, kind: str) -> tuple[float, float]:
 
 #: Belt fields that override a catalogue row: a candidate is its catalogue row, so they are
 #: cleared (``type: auto`` refuses them; a given belt asked for a suggestion drops them).
-OVERRIDES = ("rating_kn_m", "modulus_kn_m", "dynamic_modulus_kn_m", "carcass_mass_kg_m2")
+OVERRIDES = ("rating_kn_m", "modulus_kn_m", "dynamic_modulus_kn_m", "carcass_mass_kg_m2",
+             "mass_kg_m")
 
 
 def with_belt(conv: Conveyor, belt_id: str) -> Conveyor:

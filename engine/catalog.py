@@ -93,6 +93,8 @@ class ResolvedBelt:
     bottom_cover_mm: float
     compound: str
     dynamic_modulus_kn_m: float = 0.0
+    #: m'_G as the conveyor file gives it (``belt.mass_kg_m``) [kg/m]; 0: from carcass and covers
+    given_mass_kg_m: float = 0.0
 
     @property
     def dynamic_stiffness_n(self) -> float:
@@ -106,7 +108,10 @@ class ResolvedBelt:
 
     @property
     def mass_kg_m(self) -> float:
-        """Belt mass per metre m'_G = (carcass + covers) x width [kg/m]."""
+        """Belt mass per metre m'_G [kg/m]: the file's ``belt.mass_kg_m``, else (carcass +
+        covers) x width."""
+        if self.given_mass_kg_m > 0.0:
+            return self.given_mass_kg_m
         covers = (self.top_cover_mm + self.bottom_cover_mm) * COVER_MASS_KG_M2_PER_MM
         return (self.carcass_mass_kg_m2 + covers) * self.width_m
 
@@ -190,7 +195,7 @@ def idler(roll_diameter_m: float, cema_class: str | None = None, field: str = ""
 def idler_set_values(idler_set, width_m: float) -> tuple[float, float]:
     """Rotating mass [kg] and seal drag [N] of an idler set, catalogue filling gaps."""
     row = idler(idler_set.roll_diameter_m, idler_set.cema_class)
-    mass = idler_set.rotating_mass_kg
+    mass = idler_set.set_rotating_mass_kg  # per set, or per roll x rolls
     if mass is None:
         mass = row.rotating_mass_kg_m * width_m
     drag = idler_set.seal_drag_n
@@ -224,18 +229,42 @@ def resolve_belt(b) -> ResolvedBelt:
     else:
         ratio = (base.dynamic_modulus_kn_m / base.modulus_kn_m) if base else DYNAMIC_RATIO[kind]
         dynamic = static * ratio
+    top = pick("top_cover_mm") if (b.top_cover_mm is not None or base) else 0.0
+    bottom = pick("bottom_cover_mm") if (b.bottom_cover_mm is not None or base) else 0.0
+    if b.mass_kg_m is not None:
+        carcass = _carcass_of_mass(float(b.mass_kg_m), float(b.width_m), top, bottom)
+    else:
+        carcass = pick("carcass_mass_kg_m2")
     return ResolvedBelt(
         id=b.type or "custom",
         kind=kind,
         width_m=float(b.width_m),
         rating_kn_m=pick("rating_kn_m"),
         modulus_kn_m=static,
-        carcass_mass_kg_m2=pick("carcass_mass_kg_m2"),
-        top_cover_mm=pick("top_cover_mm") if (b.top_cover_mm is not None or base) else 0.0,
-        bottom_cover_mm=pick("bottom_cover_mm") if (b.bottom_cover_mm is not None or base) else 0.0,
+        carcass_mass_kg_m2=carcass,
+        top_cover_mm=top,
+        bottom_cover_mm=bottom,
         compound=b.compound,
         dynamic_modulus_kn_m=dynamic,
+        given_mass_kg_m=float(b.mass_kg_m or 0.0),
     )
+
+
+def _carcass_of_mass(mass_kg_m: float, width_m: float, top_mm: float, bottom_mm: float
+                     ) -> float:
+    """The carcass mass per square metre a printed belt mass implies [kg/m2]:
+    m'_G / B - (top + bottom cover) x 1.15 kg/m2/mm. Only the belt's thickness estimate reads
+    it (m'_G itself is the printed mass). Raises InputError when the covers alone weigh more
+    than the printed belt."""
+    covers = (top_mm + bottom_mm) * COVER_MASS_KG_M2_PER_MM
+    carcass = mass_kg_m / width_m - covers
+    if carcass <= 0.0:
+        raise InputError(
+            f"belt.mass_kg_m: {mass_kg_m:g} kg/m is no more than the covers alone weigh "
+            f"(top {top_mm:g} + bottom {bottom_mm:g} mm x {COVER_MASS_KG_M2_PER_MM} kg/m2/mm "
+            f"x {width_m:g} m = {covers * width_m:.1f} kg/m): give the covers the catalogue "
+            "prints (top_cover_mm, bottom_cover_mm) or check the mass")
+    return carcass
 
 
 def check_conveyor(conv, prefix: str = "") -> None:

@@ -407,7 +407,8 @@ def _idlers(conv, loop: Loop) -> tuple[dict, list[str]]:
     ic = conv.idlers.carry
     belt = loop.belt
     m_load = max(loop.design_load_kg_m, loop.load_max_kg_m)
-    f_set = idler_load_set_n(belt.mass_kg_m, m_load, ic.spacing_m)
+    pitch = conv.idler_spacing_m("carry")
+    f_set = idler_load_set_n(belt.mass_kg_m, m_load, pitch)
     f_roll = middle_roll_share(ic.rolls, ic.trough_deg) * f_set
     out = {"idler_load_carry_n": f_set, "idler_load_roll_n": f_roll, "idler_l10_h": None}
     warnings = []
@@ -419,9 +420,9 @@ def _idlers(conv, loop: Loop) -> tuple[dict, list[str]]:
     if f_set > rating["carry_rating_n"]:
         warnings.append(
             f"carry idler load {f_set:.0f} N per set (belt and design load over "
-            f"{ic.spacing_m:g} m) exceeds the CEMA {ic.cema_class} rating "
+            f"{pitch:g} m) exceeds the CEMA {ic.cema_class} rating "
             f"{rating['carry_rating_n']:.0f} N: a heavier class or a closer pitch "
-            f"({ic.spacing_m * rating['carry_rating_n'] / f_set:.2f} m)")
+            f"({pitch * rating['carry_rating_n'] / f_set:.2f} m)")
     if l10 < rating["l10_min_h"]:
         warnings.append(
             f"carry idler bearing life L10 {l10:.0f} h (middle roll {f_roll:.0f} N, two "

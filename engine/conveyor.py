@@ -25,7 +25,7 @@ from pydantic import (
 )
 
 from beltstudy.engine.errors import InputError
-from beltstudy.engine.results import MAX_DRIVES
+from beltstudy.engine.results import MAX_DRIVES, MAX_HCURVES
 
 __all__ = [
     "InputError",
@@ -78,8 +78,9 @@ class Belt(_Model):
     """Belt: a catalogue type plus optional overrides (SPEC section 1).
 
     Overrides replace catalogue values; with ``type`` omitted, ``rating_kn_m``,
-    ``modulus_kn_m`` and ``carcass_mass_kg_m2`` are required. Cover thicknesses may be 0, so a
-    published belt mass per metre can be reproduced with ``carcass_mass_kg_m2 = m'_G / B``.
+    ``modulus_kn_m`` and ``carcass_mass_kg_m2`` (or ``mass_kg_m``) are required. A published
+    belt mass per metre is ``mass_kg_m`` (SPEC 7.1; docs/routes.md): it replaces the mass from
+    carcass and covers, the covers staying for the rubber model.
     """
 
     type: str | None = Field(None, description="belt id in the catalogue, e.g. ST2000, EP630/4; "
@@ -108,15 +109,25 @@ class Belt(_Model):
         "static modulus times the catalogue's dynamic/static ratio (steel cord 1.1, fabric 1.5)")
     carcass_mass_kg_m2: float | None = Field(None, ge=0.1, le=1000.0,
                                              description="carcass mass [kg/m2] (0.1 to 1000)")
+    # bound far beyond the catalogues (a 3.2 m ST 10 000 belt weighs about 200 kg/m)
+    mass_kg_m: float | None = Field(
+        None, gt=0.0, le=2000.0, description="belt mass per metre m'_G as the catalogue "
+        "prints it [kg/m] (above 0, at most 2000): replaces (carcass + covers) x width; the "
+        "covers still set the rubber (indentation) model; not with carcass_mass_kg_m2")
 
     @model_validator(mode="after")
     def _type_or_fields(self) -> Belt:
         if self.type == "auto":
             _check_auto_belt(self)
+        if self.mass_kg_m is not None and self.carcass_mass_kg_m2 is not None:
+            raise ValueError(
+                "give the belt's mass per metre (mass_kg_m) or its carcass "
+                "mass per square metre (carcass_mass_kg_m2), not both: each sets m'_G")
         if self.type is None:
+            mass = ("carcass_mass_kg_m2",) if self.mass_kg_m is None else ()
             missing = [
                 k
-                for k in ("rating_kn_m", "modulus_kn_m", "carcass_mass_kg_m2")
+                for k in ("rating_kn_m", "modulus_kn_m") + mass
                 if getattr(self, k) is None
             ]
             if missing:
@@ -134,7 +145,7 @@ def _check_auto_belt(b: Belt) -> None:
         raise ValueError("type: auto needs belt.kind, the kind of catalogue belt to pick "
                          "from: give kind: steel_cord or kind: fabric")
     over = [k for k in ("rating_kn_m", "modulus_kn_m", "dynamic_modulus_kn_m",
-                        "carcass_mass_kg_m2") if getattr(b, k) is not None]
+                        "carcass_mass_kg_m2", "mass_kg_m") if getattr(b, k) is not None]
     if over:
         raise ValueError(f"type: auto takes no {', '.join(over)} (an override would replace "
                          "every candidate's catalogue value): leave it out, or give a "
@@ -197,7 +208,8 @@ class Material(_Model):
 
 
 class ProfileSection(_Model):
-    """One straight section of the carry route, tail -> head."""
+    """One straight section of the carry route, tail -> head; with ``horizontal_radius_m`` a
+    horizontal curve, checked in statics (:mod:`beltstudy.engine.hcurves`)."""
 
     length_m: float = Field(..., gt=0.0, le=1e5,
                             description="length along the belt [m] (at most 100 km)")
@@ -207,6 +219,14 @@ class ProfileSection(_Model):
         description="radius of the vertical curve joining this section's grade to the next "
                     "section's [m] (SPEC 7.1; convex or concave by the two grades; its arc "
                     "takes half its length from each of the two sections: docs/routes.md)")
+    # bounds: a troughed belt needs hundreds of metres of radius (SPEC 7.1; docs/routes.md)
+    horizontal_radius_m: float | None = Field(
+        None, ge=10.0, le=1e6, description="the section is a horizontal curve of this radius "
+        "[m] (10 to 1e6): a statics check of the tension that keeps the belt in the curve "
+        "(hcurve{k}_* results, docs/routes.md)")
+    superelevation_deg: float = Field(
+        0.0, ge=0.0, le=20.0, description="horizontal curve: the idler sets' tilt, raised on "
+        "the inside of the curve [deg] (0 to 20)")
 
     @model_validator(mode="after")
     def _lift_fits(self) -> ProfileSection:
@@ -215,6 +235,10 @@ class ProfileSection(_Model):
                 f"lift_m ({self.lift_m}) must be smaller in size than length_m ({self.length_m}): "
                 "length is measured along the belt"
             )
+        if self.superelevation_deg and self.horizontal_radius_m is None:
+            raise ValueError(
+                f"superelevation_deg ({self.superelevation_deg:g}) belongs to a horizontal "
+                "curve: give horizontal_radius_m too, or leave superelevation_deg out")
         return self
 
 
@@ -224,8 +248,12 @@ class IdlerSet(_Model):
     # bounds far beyond practice (CEMA's pitch tables run 0.6-3 m carry and up to 6 m
     # return; rolls are 0.1-0.22 m across, sets weigh tens of kg and drag a few N): they
     # only keep nonsense out of the sag, capacity and auto-size checks
-    spacing_m: float = Field(..., ge=0.1, le=20.0,
-                             description="idler set pitch S [m] (0.1 to 20)")
+    spacing_m: float | None = Field(
+        None, ge=0.1, le=20.0, description="idler set pitch S [m] (0.1 to 20); or count")
+    count: int | None = Field(
+        None, ge=1, le=1_000_000, description="number of idler sets along the route, as a "
+        "layout drawing counts them: the pitch is the conveyor length / count (the same "
+        "length on the return); give spacing_m or count")
     roll_diameter_m: PositiveFloat = Field(
         0.152, le=1.0, description="roll diameter [m] (at most 1)")
     rolls: int = Field(3, ge=1, le=5, description="rolls per set")
@@ -233,12 +261,41 @@ class IdlerSet(_Model):
     cema_class: str | None = Field(None, description="CEMA idler class B..F (catalogue lookup)")
     rotating_mass_kg: NonNegFloat | None = Field(
         None, le=500.0, description="rotating mass per set [kg] (at most 500)")
+    rotating_mass_per_roll_kg: NonNegFloat | None = Field(
+        None, le=200.0, description="rotating mass per roll [kg] (at most 200), as roll "
+        "catalogues print it: the set's is this x rolls; not with rotating_mass_kg")
     seal_drag_n: NonNegFloat | None = Field(
         None, le=500.0, description="seal drag per set [N] (at most 500)")
     roll_length_m: PositiveFloat | None = Field(
         None, le=5.0, description="length of the middle (horizontal) roll [m], capacity check; "
         "default by belt width (DIN 22107, engine/data/trough.csv)"
     )
+
+    @model_validator(mode="after")
+    def _one_of_each(self) -> IdlerSet:
+        if (self.spacing_m is None) == (self.count is None):
+            raise ValueError(
+                "give the idler pitch spacing_m [m] or the number of sets count along the "
+                "route, " + ("not both" if self.count is not None else "one of them"))
+        if self.rotating_mass_kg is not None and self.rotating_mass_per_roll_kg is not None:
+            raise ValueError(
+                "give the rotating mass per set (rotating_mass_kg) or per roll "
+                "(rotating_mass_per_roll_kg, times rolls), not both")
+        return self
+
+    @property
+    def set_rotating_mass_kg(self) -> float | None:
+        """Rotating mass of one set [kg]: ``rotating_mass_kg``, or ``rotating_mass_per_roll_kg
+        x rolls``; None when neither is given (the catalogue's then)."""
+        if self.rotating_mass_per_roll_kg is not None:
+            return float(self.rotating_mass_per_roll_kg) * self.rolls
+        return self.rotating_mass_kg
+
+    def pitch_m(self, length_m: float) -> float:
+        """Idler set pitch S [m]: ``spacing_m``, or ``length_m / count``."""
+        if self.spacing_m is not None:
+            return float(self.spacing_m)
+        return float(length_m) / self.count
 
 
 class Idlers(_Model):
@@ -535,6 +592,18 @@ class Conveyor(_Model):
                 raise ValueError(f"brakes[{i}].drive: there is no drive {b.drive} (the conveyor "
                                  f"has {len(self.drives)} drive(s), numbered from 1)")
         _check_feed(self)
+        n_curves = sum(p.horizontal_radius_m is not None for p in self.profile)
+        if n_curves > MAX_HCURVES:
+            raise ValueError(f"profile: {n_curves} horizontal curves; at most {MAX_HCURVES} "
+                             "(sections with horizontal_radius_m)")
+        for strand in ("carry", "return"):
+            s = self.idlers.carry if strand == "carry" else self.idlers.return_
+            if s.count is not None and not 0.1 <= s.pitch_m(self.length_m) <= 20.0:
+                raise ValueError(
+                    f"idlers.{strand}.count: {s.count} sets over {self.length_m:g} m is a pitch "
+                    f"of {s.pitch_m(self.length_m):.3g} m, outside 0.1 to 20 m: count the sets "
+                    f"along the whole route ({self.length_m / 20.0:.0f} to "
+                    f"{self.length_m / 0.1:.0f} here)")
         return self
 
     @model_validator(mode="after")
@@ -546,6 +615,12 @@ class Conveyor(_Model):
                              "(profile[i].curve_radius_m) are not built yet; give the feed at "
                              "the tail (omit material.feed) or the route without curves")
         return self
+
+    def idler_spacing_m(self, strand: str) -> float:
+        """Idler set pitch of ``carry`` or ``return`` [m]: ``spacing_m``, or the conveyor
+        length over ``count``."""
+        s = self.idlers.carry if strand == "carry" else self.idlers.return_
+        return s.pitch_m(self.length_m)
 
     @property
     def length_m(self) -> float:

@@ -141,7 +141,8 @@ def steady_checks(conv, loop: Loop, T: np.ndarray, sf_min: float) -> tuple[dict,
         out[f"curve{k}_kind"] = c.kind
         out[f"curve{k}_at_m"] = c.at_m
         out[f"curve{k}_tension_kn"] = t_carry / 1e3
-        out[f"curve{k}_idler_load_extra_n"] = t_carry * ic.spacing_m / c.radius_m
+        out[f"curve{k}_idler_load_extra_n"] = (t_carry * conv.idler_spacing_m("carry")
+                                                / c.radius_m)
         if c.concave:
             over = T[el] - lim
             j = int(np.argmax(over))

@@ -326,6 +326,8 @@ def build_loop(
     carry_mass, carry_drag = catalog.idler_set_values(conv.idlers.carry, w)
     ret_mass, ret_drag = catalog.idler_set_values(conv.idlers.return_, w)
     ic, ir = conv.idlers.carry, conv.idlers.return_
+    # the pitch: spacing_m, or the conveyor length over the number of sets (count)
+    s_c, s_r = conv.idler_spacing_m("carry"), conv.idler_spacing_m("return")
 
     cols: dict[str, list] = {k: [] for k in (
         "strand", "dx", "z", "sin", "cos", "S", "D", "rolls", "trough", "mL", "mR", "drag")}
@@ -354,9 +356,9 @@ def build_loop(
     z = 0.0
     pieces, arcs = _curve_elements(conv, counts)
     for sec_i, dx, sin, cos in pieces:  # vertical curves (feed points with curves: refused)
-        add(strand=CARRY, dx=dx, z=z, sin=sin, cos=cos, S=ic.spacing_m,
+        add(strand=CARRY, dx=dx, z=z, sin=sin, cos=cos, S=s_c,
             D=ic.roll_diameter_m, rolls=ic.rolls, trough=ic.trough_deg,
-            mL=design_mL * loads[sec_i], mR=carry_mass / ic.spacing_m, drag=carry_drag)
+            mL=design_mL * loads[sec_i], mR=carry_mass / s_c, drag=carry_drag)
         z += dx * sin
     s0 = 0.0
     for sec, k, frac in zip(conv.profile, counts, loads, strict=True):
@@ -369,15 +371,15 @@ def build_loop(
             for sub_len, sub_k, fed in feed_cuts(conv, s0, sec.length_m, k):
                 zs, z = heights(z, sub_len / sub_k * sin, sub_k)
                 add(sub_k, strand=CARRY, dx=sub_len / sub_k, z=zs, sin=sin, cos=cos,
-                    S=ic.spacing_m, D=ic.roll_diameter_m, rolls=ic.rolls,
+                    S=s_c, D=ic.roll_diameter_m, rolls=ic.rolls,
                     trough=ic.trough_deg, mL=design_mL * frac * fed,
-                    mR=carry_mass / ic.spacing_m, drag=carry_drag)
+                    mR=carry_mass / s_c, drag=carry_drag)
             s0 += sec.length_m
             continue
         zs, z = heights(z, dx * sin, k)
-        add(k, strand=CARRY, dx=dx, z=zs, sin=sin, cos=cos, S=ic.spacing_m,
+        add(k, strand=CARRY, dx=dx, z=zs, sin=sin, cos=cos, S=s_c,
             D=ic.roll_diameter_m, rolls=ic.rolls, trough=ic.trough_deg, mL=design_mL * frac,
-            mR=carry_mass / ic.spacing_m, drag=carry_drag)
+            mR=carry_mass / s_c, drag=carry_drag)
     z_head = z
     nc = len(cols["dx"])
     pulleys: list[Pulley] = []
@@ -407,9 +409,9 @@ def build_loop(
     z = z_head
     i_ret = len(cols["dx"])
     for _, dx, sin, cos in reversed(pieces):
-        add(strand=RETURN, dx=dx, z=z, sin=-sin, cos=cos, S=ir.spacing_m,
+        add(strand=RETURN, dx=dx, z=z, sin=-sin, cos=cos, S=s_r,
             D=ir.roll_diameter_m, rolls=ir.rolls, trough=ir.trough_deg, mL=0.0,
-            mR=ret_mass / ir.spacing_m, drag=ret_drag)
+            mR=ret_mass / s_r, drag=ret_drag)
         z -= dx * sin
     if not pieces:
         for sec, k in zip(reversed(conv.profile), reversed(counts), strict=True):
@@ -417,9 +419,9 @@ def build_loop(
             sin = -sec.lift_m / sec.length_m
             cos = math.sqrt(1.0 - sin * sin)
             zs, z = heights(z, dx * sin, k)
-            add(k, strand=RETURN, dx=dx, z=zs, sin=sin, cos=cos, S=ir.spacing_m,
+            add(k, strand=RETURN, dx=dx, z=zs, sin=sin, cos=cos, S=s_r,
                 D=ir.roll_diameter_m, rolls=ir.rolls, trough=ir.trough_deg, mL=0.0,
-                mR=ret_mass / ir.spacing_m, drag=ret_drag)
+                mR=ret_mass / s_r, drag=ret_drag)
     # tail end: a take-up pulley before the tail drives, or the plain tail pulley as take-up
     tail_driven = any(d.position == "tail" for d in conv.drives)
     if conv.takeup.position == "tail" and tail_driven:

@@ -27,6 +27,8 @@ __all__ = [
     "ResultField",
     "ResultGroup",
     "MAX_DRIVES",
+    "MAX_HCURVES",
+    "HCURVES",
     "TE_PARTS",
     "STEADY",
     "STEADY_DRIVE",
@@ -69,6 +71,9 @@ MAX_PULLEYS = MAX_DRIVES + 2
 #: Most vertical curves a route may have (``profile[i].curve_radius_m``); the per-curve
 #: columns run from ``curve1_*`` to this.
 MAX_CURVES = 8
+#: Most horizontal curves a conveyor may have (profile sections with
+#: ``horizontal_radius_m``); the per-curve columns run from ``hcurve1_*`` to this.
+MAX_HCURVES = 8
 
 
 @dataclass(frozen=True)
@@ -95,6 +100,13 @@ class ResultField:
 
     @property
     def per_curve(self) -> bool:
+        """A field per vertical curve (``curve{k}_*``)."""
+        return "{k}" in self.name and self.name.startswith("curve")
+
+    @property
+    def per_hcurve(self) -> bool:
+        """A field per horizontal curve (``hcurve{k}_*``)."""
+        return "{k}" in self.name and self.name.startswith("hcurve")
         return "{k}" in self.name
 
     @property
@@ -103,15 +115,18 @@ class ResultField:
         return self.unit == "bool"
 
     def columns(self, drives: int = MAX_DRIVES, pulleys: int = MAX_PULLEYS,
-                curves: int = MAX_CURVES) -> tuple[str, ...]:
+                curves: int = MAX_CURVES, hcurves: int = MAX_HCURVES) -> tuple[str, ...]:
         """The column names: one, or one per drive 1 .. ``drives`` (per pulley 1 ..
-        ``pulleys``, per curve 1 .. ``curves``)."""
+        ``pulleys``, per vertical curve 1 .. ``curves``, per horizontal curve 1 ..
+        ``hcurves``)."""
         if self.per_curve:
             return tuple(self.name.format(k=k) for k in range(1, curves + 1))
         if self.per_drive:
             return tuple(self.name.format(i=i) for i in range(1, drives + 1))
         if self.per_pulley:
             return tuple(self.name.format(j=j) for j in range(1, pulleys + 1))
+        if self.per_hcurve:
+            return tuple(self.name.format(k=k) for k in range(1, hcurves + 1))
         return (self.name,)
 
 
@@ -461,10 +476,28 @@ BOOKKEEPING = ResultGroup("bookkeeping", "Bookkeeping", (
     _f("elapsed_s", "s", "wall time of the run"),
 ))
 
+# ------------------------------------------------ horizontal curves (SPEC 7.4, docs/routes.md)
+HCURVES = ResultGroup("hcurves", "Horizontal curves, steady (SPEC 7.1, 7.4; `{k}` is the "
+                      "curve's number in profile order)", (
+    _f("hcurve{k}_tension_min_kn", "kN", "lowest belt tension that keeps the belt in "
+       "horizontal curve k: below it the loaded belt runs down the superelevation out of the "
+       "curve (the larger over the run's load and the empty belt; 0 when there is no lower "
+       "limit; docs/routes.md)", "T min in curve"),
+    _f("hcurve{k}_tension_max_kn", "kN", "highest belt tension the weight of the belt holds "
+       "in horizontal curve k before the belt runs to the inside (the smaller over the run's "
+       "load and the empty belt)", "T max in curve"),
+    _f("hcurve{k}_t_low_kn", "kN", "lowest steady tension of the run along curve k",
+       "tension low"),
+    _f("hcurve{k}_t_high_kn", "kN", "highest steady tension of the run along curve k",
+       "tension high"),
+    _f("hcurve{k}_ok", "bool", "the run's tension along curve k lies within "
+       "hcurve{k}_tension_min_kn and hcurve{k}_tension_max_kn", "in curve"),
+))
+
 #: Every group, in the order of the runs table.
 GROUPS = (STEADY, STEADY_DRIVE, DESIGN, DESIGN_DRIVE, TE_COMPONENTS, TRANSIENT, PHASE, SLACK,
           TRANSIENT_DRIVE, DRIVE_POWER, DRIVE_LOAD, DESIGN_BASIS, CHECKS, CHECKS_TRANSIENT,
-          CURVES, CURVES_TRANSIENT, BOOKKEEPING)
+          CURVES, CURVES_TRANSIENT, HCURVES, BOOKKEEPING)
 
 # ------------------------------------------------------------- error bars (SPEC 7.4)
 #: The deciding figures of a transient run that get an error bar (SPEC 7.4; per-drive ones
@@ -540,14 +573,20 @@ def field(name: str) -> ResultField:
         head, _, rest = name.partition("_")
         if head[5:].isdigit() and f"curve{{k}}_{rest}" in FIELDS:
             return FIELDS[f"curve{{k}}_{rest}"]
+    if name.startswith("hcurve"):
+        head, _, rest = name.partition("_")
+        if head[6:].isdigit() and f"hcurve{{k}}_{rest}" in FIELDS:
+            return FIELDS[f"hcurve{{k}}_{rest}"]
     raise KeyError(name)
 
 
 def columns(groups=GROUPS, drives: int = MAX_DRIVES, pulleys: int = MAX_PULLEYS,
-            curves: int = MAX_CURVES) -> tuple[str, ...]:
+            curves: int = MAX_CURVES, hcurves: int = MAX_HCURVES) -> tuple[str, ...]:
     """Every column of these groups, per-drive fields for drives 1 .. ``drives``, per-pulley
-    fields for pulleys 1 .. ``pulleys``, per-curve fields for curves 1 .. ``curves``."""
-    return tuple(c for g in groups for f in g for c in f.columns(drives, pulleys, curves))
+    fields for pulleys 1 .. ``pulleys``, per-curve fields for vertical curves 1 .. ``curves``
+    and horizontal curves 1 .. ``hcurves``."""
+    return tuple(c for g in groups for f in g
+                 for c in f.columns(drives, pulleys, curves, hcurves))
 
 
 def summary_columns(summary: dict) -> list[str]:
@@ -576,6 +615,8 @@ def check_summary(summary: dict) -> dict:
             unknown.append(key)
         if f.per_curve and not 1 <= int(key[f.name.index("{k}"):key.index("_")]) <= MAX_CURVES:
             unknown.append(key)
+        if f.per_hcurve and not 1 <= int(key[f.name.index("{k}"):key.index("_")]) <= MAX_HCURVES:
+            unknown.append(key)
     if unknown:
         raise KeyError(f"results not defined in beltstudy.engine.results: {', '.join(unknown)}")
     return summary
@@ -594,10 +635,11 @@ def markdown() -> str:
         f"{MAX_DRIVES} (`{{i}}` is",
         "the drive's number in file order; null beyond the conveyor's drives), per-pulley",
         f"fields for pulleys 1 to {MAX_PULLEYS} (`{{j}}`, the pulley's number in loop order,",
-        "docs/checks.md), per-curve fields for curves 1 to "
-        f"{MAX_CURVES} (`{{k}}`, the vertical",
-        "curve's number in profile order, docs/routes.md). Unit `bool`: a yes/no verdict, a",
-        "boolean column.",
+        "docs/checks.md), per-curve fields for vertical curves 1 to "
+        f"{MAX_CURVES} (`curve{{k}}`, the",
+        "curve's number in profile order) and horizontal curves 1 to "
+        f"{MAX_HCURVES} (`hcurve{{k}}`), docs/routes.md.",
+        "Unit `bool`: a yes/no verdict, a boolean column.",
         "",
     ]
     for g in ALL_GROUPS:

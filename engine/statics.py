@@ -54,6 +54,7 @@ from beltstudy.engine.curves import steady_checks as curve_checks
 from beltstudy.engine.drives import rated_power_kw
 from beltstudy.engine.drives import steady_checks as drive_checks
 from beltstudy.engine.friction import get_model, temperature_note
+from beltstudy.engine.hcurves import hcurve_checks
 from beltstudy.engine.law import ResistanceLaw
 from beltstudy.engine.loop import (
     CARRY,
@@ -618,6 +619,10 @@ def _summarise(res: SteadyResult, drives, hs_adm, bounds, shortfall_n: float,
         checked, check_warnings = curve_checks(conv, loop, T, sf_min)
         res.summary.update(checked)
         warnings += check_warnings
+    # ---- horizontal curves (beltstudy.engine.hcurves; nothing without curves)
+    curved, curve_warnings = hcurve_checks(conv, loop, T)
+    res.summary.update(curved)
+    warnings += curve_warnings
     res.warnings = warnings
     res.status = "warning" if warnings else "ok"
     # a note does not make a warning (as the transient's notes, "note: ..." after them)

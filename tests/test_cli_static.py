@@ -128,3 +128,25 @@ def test_static_prints_what_set_each_size_and_the_rest_sag_switch(capsys, tmp_pa
     table = capsys.readouterr().out
     assert "sizes and what set them" in table and "sag_at_rest" in table
     assert "fill (design flow / cross-section)" in table
+
+
+def test_static_table_shows_the_horizontal_curves(tmp_path):
+    """A curve on slope-5pct's route, its idlers by count and its belt by mass per metre
+    (docs/routes.md): the table has a line per curve, its verdict matches the JSON's."""
+    import yaml
+
+    conv = yaml.safe_load((CONVEYORS / "slope-5pct.yaml").read_text())
+    conv["belt"]["mass_kg_m"] = 38.5
+    conv["idlers"]["carry"].pop("spacing_m")
+    conv["idlers"]["carry"]["count"] = 1334
+    conv["profile"] = [{"length_m": 1000, "lift_m": 50},
+                       {"length_m": 1000, "lift_m": 50, "horizontal_radius_m": 2000,
+                        "superelevation_deg": 3}]
+    path = tmp_path / "curved.yaml"
+    path.write_text(yaml.safe_dump(conv))
+    out = json.loads(run("static", str(path), "--model", "din", "--json", check=False).stdout)
+    assert out["belt_mass_kg_m"] == 38.5
+    table = run("static", str(path), "--model", "din", check=False).stdout
+    line = next(ln for ln in table.splitlines() if ln.strip().startswith("curve 1"))
+    assert line.split()[-1] == ("yes" if out["hcurve1_ok"] else "NO")
+    assert f"{out['hcurve1_tension_max_kn']:.1f}" in line

@@ -296,7 +296,7 @@ def bearing_term_n(loop: Loop, mu_b: float, d_b: float, kta: float) -> np.ndarra
 
 def spacing_ratio(conv: Conveyor) -> float:
     """1.66 S_c / S_r, the paper's spacing factor of material flexure [-]."""
-    return 1.66 * conv.idlers.carry.spacing_m / conv.idlers.return_.spacing_m
+    return 1.66 * conv.idler_spacing_m("carry") / conv.idler_spacing_m("return")
 
 
 # ---------------------------------------------------------------------------------------------

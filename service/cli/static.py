@@ -188,11 +188,30 @@ def _table(s: dict) -> str:
         lines.append("")
     lines += _check_lines(s)
     lines += _curve_lines(s)
+    lines += _hcurve_lines(s)
     lines.append(f"  status: {s['status']}" + (f"  ({s['message']})" if s["message"] else ""))
     return "\n".join(lines)
 
 
+def _hcurve_lines(s: dict) -> list[str]:
+    """The horizontal curves (docs/routes.md): each curve's tension band and the run's."""
+    lines, k = [], 1
+    if "hcurve1_ok" not in s:
+        return lines
+    lines.append(f"  {'horizontal curves (docs/routes.md)':<36}{'T min [kN]':>13}"
+                 f"{'T max [kN]':>13}{'run [kN]':>20}{'in curve':>10}")
+    while f"hcurve{k}_ok" in s:
+        run = f"{s[f'hcurve{k}_t_low_kn']:.1f} to {s[f'hcurve{k}_t_high_kn']:.1f}"
+        lines.append(f"    {'curve ' + str(k):<34}{s[f'hcurve{k}_tension_min_kn']:>13.1f}"
+                     f"{s[f'hcurve{k}_tension_max_kn']:>13.1f}{run:>20}"
+                     f"{'yes' if s[f'hcurve{k}_ok'] else 'NO':>10}")
+        k += 1
+    lines.append("")
+    return lines
+
+
 def _check_lines(s: dict) -> list[str]:
+
     """The design checks (docs/checks.md): each pulley's minimum diameter and resultant, then
     the transitions, the carry idlers and the holdback."""
     lines, j = [], 1

@@ -154,15 +154,20 @@ def _belt_rules(schema: dict) -> None:
                      "default": None, "description": props["type"].get("description", "")}
     custom = ["rating_kn_m", "modulus_kn_m", "carcass_mass_kg_m2", "top_cover_mm",
               "bottom_cover_mm"]
+    printed = [k for k in custom if k != "carcass_mass_kg_m2"] + ["mass_kg_m"]
     schema["anyOf"] = [
         {"required": ["type"], "properties": {"type": {"type": "string"}}},
         {"required": custom, "properties": {k: {"type": "number"} for k in custom}},
+        {"required": printed, "properties": {k: {"type": "number"} for k in printed}},
     ]
 
 
 def _idler_rules(schema: dict) -> None:
     schema["properties"]["cema_class"]["anyOf"] = [
         {"type": "string", "enum": _idler_classes()}, {"type": "null"}]
+    # the pitch or the number of sets along the route, one of them
+    schema["anyOf"] = [{"required": ["spacing_m"], "properties": {"spacing_m": {"type": "number"}}},
+                       {"required": ["count"], "properties": {"count": {"type": "integer"}}}]
 
 
 def _takeup_rules(schema: dict) -> None:

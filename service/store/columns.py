@@ -72,8 +72,10 @@ CHECK_COLUMNS = tuple(c for c in R.columns((R.CHECKS, R.CHECKS_TRANSIENT))
 #: text, with the design text columns.
 CURVE_COLUMNS = tuple(c for c in R.columns((R.CURVES, R.CURVES_TRANSIENT))
                       if not R.field(c).text)
+#: Horizontal curves (docs/routes.md): per curve 1 to MAX_HCURVES.
+HCURVE_COLUMNS = R.columns((R.HCURVES,))
 RESULT_COLUMNS = (STEADY_COLUMNS + DESIGN_COLUMNS + TE_PART_COLUMNS + TRANSIENT_COLUMNS
-                  + DRIVE_POWER_COLUMNS + CHECK_COLUMNS + CURVE_COLUMNS)
+                  + DRIVE_POWER_COLUMNS + CHECK_COLUMNS + CURVE_COLUMNS + HCURVE_COLUMNS)
 BOOKKEEPING_COLUMNS = R.columns((R.BOOKKEEPING,))
 INPUT_COLUMNS = ("study_id", "run_id", "friction_model", "engine_version")
 

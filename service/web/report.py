@@ -123,6 +123,13 @@ def _e(value: Any) -> str:
     return html.escape("" if value is None else str(value), quote=True)
 
 
+def _pitch(idler_set: dict) -> str:
+    """An idler set's pitch as the file gives it: ``spacing S m`` or ``N sets``."""
+    if idler_set.get("spacing_m") is not None:
+        return f"spacing {idler_set['spacing_m']:g} m"
+    return f"{idler_set['count']} sets along the route"
+
+
 def _num(value: Any, digits: int = 4, unit: str = "") -> str:
     """A number in engineering format (:func:`eng`), escaped."""
     return _e(eng(value, unit, digits))
@@ -213,8 +220,9 @@ def _conveyor_section(conv: dict, fill: dict | None) -> str:
                             f"{_num(mat['density_t_m3'], unit='t/m³')}, surcharge "
                             f"{mat.get('surcharge_deg', 20):g}°"],
         ["carry idlers", _e(f"{conv['idlers']['carry'].get('rolls', 3)} rolls, trough "
-                            f"{conv['idlers']['carry'].get('trough_deg', 0):g}°, spacing "
-                            f"{conv['idlers']['carry']['spacing_m']:g} m")],
+                            f"{conv['idlers']['carry'].get('trough_deg', 0):g}°, "
+                            + _pitch(conv['idlers']['carry']))],
+
         ["take-up", _e(f"{tu['type']} at the {tu['position']}, "
                        + (f"mass {tu['mass_kg']}" + (" kg" if tu["mass_kg"] != "auto" else "")
                           if tu["type"] == "gravity" else

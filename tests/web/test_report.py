@@ -252,3 +252,11 @@ def test_the_conveyor_table_lists_the_feed_points():
     assert "0.6 of the capacity at 0 m, skirts 6 m; 0.4 of the capacity at 500 m" in html
     conv["material"]["feed"] = None
     assert "feed points" not in _conveyor_section(conv, None)
+
+
+def test_report_names_the_idler_pitch_as_the_file_gives_it():
+    """docs/routes.md: a carry set by spacing_m or by count."""
+    from beltstudy.service.web.report import _pitch
+
+    assert _pitch({"spacing_m": 1.5, "count": None}) == "spacing 1.5 m"
+    assert _pitch({"count": 1334}) == "1334 sets along the route"

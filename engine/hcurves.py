@@ -1,0 +1,199 @@
+"""Horizontal curves as a statics check (SPEC 7.1, 7.4; docs/routes.md).
+
+A profile section with ``horizontal_radius_m`` R is a horizontal curve of the carry strand,
+its idler sets tilted by ``superelevation_deg`` beta (raised on the inside of the curve).
+The belt's tension T pulls it towards the inside of the curve with T / R per metre; the
+weight of the belt and its load on the troughed, tilted sets pushes it back towards the
+outside. The belt drifts sideways until the two balance; this check asks whether it finds
+that balance before an edge leaves its wing roll:
+
+* too much tension and the belt runs to the inside: ``T <= T_max = R q(+d)``;
+* too little tension and the loaded belt runs down the tilt to the outside:
+  ``T >= T_min = R q(-d)``;
+
+with ``q(d)`` the weight's restoring force per metre with the belt drifted by ``d`` to the
+inside (the conventional method of Grimmer and Kessler, as a secondary source writes it out:
+see :func:`restoring_force_n_m`) and ``d`` the drift at which the belt's edge reaches the
+end of a wing roll (``l_W - b_W``). Lateral friction between belt and rolls and forward-
+tilted (training) idlers are left out: the limits are on the safe side of them.
+
+Evaluated at every load case the run has: its own load on the curve's section and the
+empty belt. The lower limit is the larger of the two cases' (the loaded belt), the upper the
+smaller (the empty belt: it runs to the inside first, as published curve designs observe).
+Both are compared with the steady tension of the run along the curve.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+from beltstudy.engine.capacity import middle_roll_length_m
+from beltstudy.engine.loop import CARRY, G
+
+__all__ = ["restoring_force_n_m", "drift_limit_m", "tension_limits_n", "HCurve",
+           "hcurves", "hcurve_checks"]
+
+
+def restoring_force_n_m(mass_kg_m: float, width_m: float, middle_m: float, trough_deg: float,
+                        superelevation_deg: float, drift_m: float = 0.0,
+                        cos_incline: float = 1.0) -> float:
+    """Restoring force of the weight towards the outside of a horizontal curve [N/m].
+
+    Parameters
+    ----------
+    mass_kg_m : float
+        Belt plus load per metre m'_G + m'_L [kg/m].
+    width_m : float
+        Belt width B [m].
+    middle_m : float
+        Belt width on the middle roll b_M [m] (the middle roll's length, at most B; B for a
+        flat set, 0 for a V set).
+    trough_deg, superelevation_deg : float
+        Trough angle lambda and superelevation (tilt) beta [deg].
+    drift_m : float
+        Sideways drift of the belt towards the inside of the curve d [m] (negative: outwards).
+    cos_incline : float
+        cos(alpha) of the section's slope [-].
+
+    Returns
+    -------
+    float
+        q [N/m]; positive pushes the belt towards the outside.
+
+    Notes
+    -----
+    With the belt's width on the wing rolls ``b_W = (B - b_M) / 2``, on the inside wing
+    ``b_i = b_W + d`` and on the outside wing ``b_o = b_W - d``::
+
+        q = (m'_G + m'_L) g cos(alpha) [ b_i / B sin(lambda + beta) cos(lambda)
+                                         + b_M / B sin(beta)
+                                         - b_o / B sin(lambda - beta) cos(lambda) ]
+
+    The weight is shared between the rolls by the belt's width on each.
+
+    References
+    ----------
+    Grimmer, K.-J., Kessler, F.: Kurvengängige Gurtförderer (Teil I), conventional method,
+    1987 (the inside, middle and outside weight components and their sum), as written out
+    in the open-source library eytelwein (``horizontal_curves``). *Unverified* against the
+    primary text; the balance T l / R against the weight force per idler pitch l is also
+    the one Helix delta-T describes for its horizontal curves.
+    """
+    lam, beta = math.radians(trough_deg), math.radians(superelevation_deg)
+    b_w = 0.5 * (width_m - middle_m)
+    b_i, b_o = b_w + drift_m, b_w - drift_m
+    k = (b_i * math.sin(lam + beta) * math.cos(lam) + middle_m * math.sin(beta)
+         - b_o * math.sin(lam - beta) * math.cos(lam)) / width_m
+    return mass_kg_m * G * cos_incline * k
+
+
+def drift_limit_m(width_m: float, middle_m: float, wing_roll_m: float) -> float:
+    """Sideways drift at which the belt's edge reaches the end of a wing roll [m]:
+    ``l_W - b_W`` with ``b_W = (B - b_M) / 2`` (0 when the belt already overhangs)."""
+    return max(wing_roll_m - 0.5 * (width_m - middle_m), 0.0)
+
+
+def tension_limits_n(mass_kg_m: float, radius_m: float, width_m: float, middle_m: float,
+                     wing_roll_m: float, trough_deg: float, superelevation_deg: float,
+                     cos_incline: float = 1.0) -> tuple[float, float]:
+    """Lowest and highest belt tension that keep the belt in a horizontal curve [N].
+
+    ``T_min = max(R q(-d), 0)`` (below it the belt runs out of the curve),
+    ``T_max = max(R q(+d), 0)`` (above it the belt runs into the curve), ``d`` the drift
+    limit (:func:`drift_limit_m`), ``q`` :func:`restoring_force_n_m`.
+    """
+    d = drift_limit_m(width_m, middle_m, wing_roll_m)
+    args = (mass_kg_m, width_m, middle_m, trough_deg, superelevation_deg)
+    t_min = radius_m * restoring_force_n_m(*args, drift_m=-d, cos_incline=cos_incline)
+    t_max = radius_m * restoring_force_n_m(*args, drift_m=d, cos_incline=cos_incline)
+    return max(t_min, 0.0), max(t_max, 0.0)
+
+
+@dataclass(frozen=True)
+class HCurve:
+    """One horizontal curve: ``number`` (1-based, profile order), ``section`` (0-based
+    profile index), where it starts and ends from the tail [m], its radius [m] and tilt
+    [deg]."""
+
+    number: int
+    section: int
+    start_m: float
+    end_m: float
+    radius_m: float
+    superelevation_deg: float
+
+
+def hcurves(conv) -> list[HCurve]:
+    """The conveyor's horizontal curves in profile order."""
+    out, s = [], 0.0
+    for i, sec in enumerate(conv.profile):
+        if sec.horizontal_radius_m is not None:
+            out.append(HCurve(len(out) + 1, i, s, s + sec.length_m,
+                              float(sec.horizontal_radius_m), float(sec.superelevation_deg)))
+        s += sec.length_m
+    return out
+
+
+def hcurve_checks(conv, loop, T: np.ndarray) -> tuple[dict, list[str]]:
+    """``hcurve{k}_*`` fields and warnings of a steady solution (empty with no curves).
+
+    ``T`` is the steady tension at the element ends [N]; a curve's tensions are those at
+    the ends of its carry elements and at its start.
+    """
+    curves = hcurves(conv)
+    if not curves:
+        return {}, []
+    ic = conv.idlers.carry
+    belt = loop.belt
+    width = belt.width_m
+    if ic.rolls <= 1:
+        middle = width
+    else:
+        roll = ic.roll_length_m or middle_roll_length_m(width, ic.rolls)
+        middle = min(roll, width)
+    wing = middle if ic.rolls >= 3 else 0.5 * width
+    carry = np.flatnonzero(loop.strand == CARRY)
+    s_mid = loop.s_mid_m[carry]
+    out, warnings = {}, []
+    for c in curves:
+        idx = carry[(s_mid >= c.start_m) & (s_mid <= c.end_m)]
+        before = idx[0] - 1 if idx[0] > 0 else loop.n - 1  # the tension entering the curve
+        t_run = np.concatenate((T[idx], [T[before]]))
+        sec = conv.profile[c.section]
+        cos_a = math.sqrt(1.0 - (sec.lift_m / sec.length_m) ** 2)
+        m_load = float(loop.mL_kg_m[idx].max())
+        cases = {"loaded": belt.mass_kg_m + m_load, "empty": belt.mass_kg_m}
+        if m_load <= 0.0:
+            cases.pop("loaded")
+        limits = {name: tension_limits_n(m, c.radius_m, width, middle, wing, ic.trough_deg,
+                                         c.superelevation_deg, cos_a)
+                  for name, m in cases.items()}
+        low_case = max(limits, key=lambda n: limits[n][0])
+        high_case = min(limits, key=lambda n: limits[n][1])
+        t_lo, t_hi = limits[low_case][0], limits[high_case][1]
+        run_lo, run_hi = float(t_run.min()), float(t_run.max())
+        k = c.number
+        ok = run_lo >= t_lo and run_hi <= t_hi
+        out.update({f"hcurve{k}_tension_min_kn": t_lo / 1e3,
+                    f"hcurve{k}_tension_max_kn": t_hi / 1e3,
+                    f"hcurve{k}_t_low_kn": run_lo / 1e3,
+                    f"hcurve{k}_t_high_kn": run_hi / 1e3,
+                    f"hcurve{k}_ok": bool(ok)})
+        where = (f"horizontal curve {k} (profile section {c.section + 1}, {c.start_m:g} to "
+                 f"{c.end_m:g} m from the tail, R {c.radius_m:g} m, superelevation "
+                 f"{c.superelevation_deg:g} deg)")
+        if run_hi > t_hi:
+            warnings.append(
+                f"{where}: the belt runs to the inside of the curve: tension {run_hi / 1e3:.1f} "
+                f"kN above the {t_hi / 1e3:.1f} kN the weight of the {high_case} belt holds; "
+                "a larger radius, more superelevation, a deeper trough or less tension there "
+                "(a take-up with less tension, the curve nearer the slack side)")
+        if run_lo < t_lo:
+            warnings.append(
+                f"{where}: the {low_case} belt runs out of the curve: tension "
+                f"{run_lo / 1e3:.1f} kN below the {t_lo / 1e3:.1f} kN it needs there; less "
+                "superelevation, a larger radius or more take-up tension")
+    return out, warnings

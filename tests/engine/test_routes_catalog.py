@@ -1,0 +1,278 @@
+"""Issue 28 (a): input as catalogues print it (``belt.mass_kg_m``, idler sets by ``count``,
+rotating mass per roll) and horizontal curves as a statics check (``hcurve{k}_*``).
+
+Hand numbers: the hand conveyor of tests/conftest.py (1 km rising 50 m, m'_G 20 kg/m,
+m'_L 50 kg/m, carry sets 12.5 kg at 1.25 m, return 7.5 kg at 2.5 m, B = 1 m).
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+
+from beltstudy.engine.conveyor import InputError, parse_conveyor
+from beltstudy.engine.hcurves import restoring_force_n_m, tension_limits_n
+from beltstudy.engine.loop import CARRY, RETURN, build_loop
+from beltstudy.engine.statics import solve_steady
+from tests.conftest import hand_conveyor_dict
+
+G = 9.81
+#: DIN model with C = 1 and f = 0.02 on both strands: the main resistance alone depends on
+#: the belt's mass (tests/engine/conftest.py).
+DIN = {"f_carry": 0.02, "f_return": 0.02, "c": 1.0}
+
+
+def _belt(**over) -> dict:
+    b = {"width_m": 1.0, "rating_kn_m": 1000, "modulus_kn_m": 60000, "top_cover_mm": 0,
+         "bottom_cover_mm": 0}
+    b.update(over)
+    return b
+
+
+def _idlers(carry: dict | None = None, ret: dict | None = None) -> dict:
+    c = {"spacing_m": 1.25, "roll_diameter_m": 0.133, "rolls": 3, "trough_deg": 35,
+         "rotating_mass_kg": 12.5, "seal_drag_n": 5.0}
+    r = {"spacing_m": 2.5, "roll_diameter_m": 0.133, "rolls": 1, "rotating_mass_kg": 7.5,
+         "seal_drag_n": 3.0}
+    c.update(carry or {})
+    r.update(ret or {})
+    return {"carry": {k: v for k, v in c.items() if v is not None},
+            "return": {k: v for k, v in r.items() if v is not None}}
+
+
+# ------------------------------------------------------------------------ belt.mass_kg_m
+def test_belt_mass_per_metre_is_the_loops_belt_mass():
+    conv = parse_conveyor(hand_conveyor_dict(belt=_belt(mass_kg_m=38.5)))
+    loop = build_loop(conv, "full")
+    # m'_G is the printed mass on every element, pulleys included (it moves with the belt)
+    np.testing.assert_allclose(loop.mG_kg_m, 38.5, rtol=0, atol=0)
+    assert solve_steady(conv, model="din", params=DIN).summary["belt_mass_kg_m"] == 38.5
+
+
+def test_belt_mass_per_metre_moves_te_by_the_main_resistance_of_both_strands():
+    """DIN 22101 (C = 1): F_H = f L g [m'_Ro + m'_Ru + (2 m'_G + m'_L) cos(delta)], so two
+    belts differing by dm in m'_G differ in Te by 2 f L g cos(delta) dm (the belt's own lift
+    cancels round the loop). L = 1000 m, H = 50 m, f = 0.02, dm = 38.5 - 20 kg/m."""
+    light = solve_steady(parse_conveyor(hand_conveyor_dict(belt=_belt(mass_kg_m=20.0))),
+                         model="din", params=DIN)
+    heavy = solve_steady(parse_conveyor(hand_conveyor_dict(belt=_belt(mass_kg_m=38.5))),
+                         model="din", params=DIN)
+    cos_d = math.sqrt(1.0 - (50.0 / 1000.0) ** 2)
+    hand = 2 * 0.02 * 1000.0 * G * cos_d * (38.5 - 20.0)
+    assert heavy.te_n - light.te_n == pytest.approx(hand, rel=1e-9)
+
+
+def test_belt_mass_per_metre_on_a_catalogue_belt_keeps_its_covers():
+    """SPEC 7.1's example: ST1600 at 1.2 m printed at 38.5 kg/m. m'_G is 38.5; the covers
+    (the catalogue's) stay for the rubber model, and the carcass the thickness estimate reads
+    is m'_G / B - covers x 1.15 kg/m2/mm (engine/catalog.py)."""
+    from beltstudy.engine.catalog import COVER_MASS_KG_M2_PER_MM, belt, resolve_belt
+
+    conv = parse_conveyor(hand_conveyor_dict(
+        belt={"type": "ST1600", "width_m": 1.2, "mass_kg_m": 38.5}))
+    b = resolve_belt(conv.belt)
+    row = belt("ST1600")
+    assert b.mass_kg_m == 38.5
+    assert (b.top_cover_mm, b.bottom_cover_mm) == (row.top_cover_mm, row.bottom_cover_mm)
+    covers = (row.top_cover_mm + row.bottom_cover_mm) * COVER_MASS_KG_M2_PER_MM
+    assert b.carcass_mass_kg_m2 == pytest.approx(38.5 / 1.2 - covers, rel=1e-12)
+
+
+@pytest.mark.parametrize("belt, words", [
+    (_belt(mass_kg_m=30.0, carcass_mass_kg_m2=20.0), "not both"),
+    (_belt(mass_kg_m=0.0), "belt.mass_kg_m"),
+    (_belt(mass_kg_m=-3.0), "belt.mass_kg_m"),
+    ({"type": "auto", "kind": "steel_cord", "width_m": 1.2, "mass_kg_m": 30.0}, "mass_kg_m"),
+    (_belt(mass_kg_m=5.0, top_cover_mm=8, bottom_cover_mm=6), "covers alone"),
+])
+def test_belt_mass_per_metre_errors_name_the_field(belt, words):
+    with pytest.raises(InputError, match=words):
+        conv = parse_conveyor(hand_conveyor_dict(belt=belt))
+        build_loop(conv)  # the covers-versus-mass check needs the resolved belt
+
+
+# ------------------------------------------------------------------ idler sets by count
+def test_idler_count_gives_the_pitch_length_over_count():
+    """S = L / count along the carry, the same length on the return: 640 carry sets and 320
+    return sets over 1000 m are 1.5625 m and 3.125 m; m'_R = set mass / S = 12.5 / 1.5625 =
+    8 kg/m and 7.5 / 3.125 = 2.4 kg/m."""
+    conv = parse_conveyor(hand_conveyor_dict(idlers=_idlers(
+        {"spacing_m": None, "count": 640}, {"spacing_m": None, "count": 320})))
+    loop = build_loop(conv)
+    carry, ret = loop.strand == CARRY, loop.strand == RETURN
+    np.testing.assert_allclose(loop.spacing_m[carry], 1000.0 / 640, rtol=1e-15)
+    np.testing.assert_allclose(loop.spacing_m[ret], 1000.0 / 320, rtol=1e-15)
+    np.testing.assert_allclose(loop.mR_kg_m[carry], 8.0, rtol=1e-12)
+    np.testing.assert_allclose(loop.mR_kg_m[ret], 2.4, rtol=1e-12)
+
+
+def test_idler_count_and_the_same_spacing_give_the_same_te():
+    """800 sets over 1000 m are the hand conveyor's 1.25 m pitch (400 return sets its 2.5 m)."""
+    by_spacing = solve_steady(parse_conveyor(hand_conveyor_dict()), model="din", params=DIN)
+    by_count = solve_steady(parse_conveyor(hand_conveyor_dict(idlers=_idlers(
+        {"spacing_m": None, "count": 800}, {"spacing_m": None, "count": 400}))),
+        model="din", params=DIN)
+    assert by_count.te_n == by_spacing.te_n
+
+
+def test_rotating_mass_per_roll_times_rolls():
+    """Three carry rolls of 4 kg: 12 kg per set, m'_R = 12 / 1.25 = 9.6 kg/m; one return roll
+    of 6 kg at 2.5 m: 2.4 kg/m."""
+    conv = parse_conveyor(hand_conveyor_dict(idlers=_idlers(
+        {"rotating_mass_kg": None, "rotating_mass_per_roll_kg": 4.0},
+        {"rotating_mass_kg": None, "rotating_mass_per_roll_kg": 6.0})))
+    loop = build_loop(conv)
+    np.testing.assert_allclose(loop.mR_kg_m[loop.strand == CARRY], 9.6, rtol=1e-12)
+    np.testing.assert_allclose(loop.mR_kg_m[loop.strand == RETURN], 2.4, rtol=1e-12)
+
+
+@pytest.mark.parametrize("carry, words", [
+    ({"count": 800}, "idlers.carry: give the idler pitch spacing_m .* not both"),
+    ({"spacing_m": None}, "idlers.carry: give the idler pitch spacing_m .* one of them"),
+    ({"spacing_m": None, "count": 20}, "idlers.carry.count: 20 sets over 1000 m is a pitch "
+     "of 50 m"),
+    ({"spacing_m": None, "count": 0}, "idlers.carry.count"),
+    ({"rotating_mass_per_roll_kg": 4.0}, "idlers.carry: give the rotating mass per set"),
+    ({"rotating_mass_per_roll_kg": -1.0, "rotating_mass_kg": None},
+     "idlers.carry.rotating_mass_per_roll_kg"),
+])
+def test_idler_errors_name_the_field(carry, words):
+    with pytest.raises(InputError, match=words):
+        parse_conveyor(hand_conveyor_dict(idlers=_idlers(carry)))
+
+
+# ------------------------------------------------------------------- horizontal curves
+#: A horizontal curve on the hand conveyor: 35 deg trough, DIN 22107's 380 mm rolls at
+#: B = 1 m (given, so the test does not lean on the table), the curve over the whole route.
+ROLL = 0.38
+
+
+def _curved(radius: float, tilt: float, **over):
+    d = hand_conveyor_dict(
+        profile=[{"length_m": 1000, "lift_m": 50, "horizontal_radius_m": radius,
+                  "superelevation_deg": tilt}],
+        idlers=_idlers({"roll_length_m": ROLL}), **over)
+    return parse_conveyor(d)
+
+
+def _hand_k(b_i: float, b_m: float, b_o: float, lam: float, beta: float, width: float
+            ) -> float:
+    """Grimmer & Kessler's conventional weight components, over B (engine/hcurves.py)."""
+    lam, beta = math.radians(lam), math.radians(beta)
+    return (b_i * math.sin(lam + beta) * math.cos(lam) + b_m * math.sin(beta)
+            - b_o * math.sin(lam - beta) * math.cos(lam)) / width
+
+
+def test_flat_belt_balance_is_the_banked_plane():
+    """No trough: q = m g cos(alpha) sin(beta), the weight's component down the tilted roll;
+    with 70 kg/m, beta = 4 deg, level: 70 x 9.81 x sin 4 deg = 47.90 N/m."""
+    q = restoring_force_n_m(70.0, 1.0, 1.0, 0.0, 4.0, drift_m=0.0)
+    assert q == pytest.approx(70 * G * math.sin(math.radians(4.0)), rel=1e-12)
+    assert q == pytest.approx(47.90, abs=0.01)
+
+
+def test_horizontal_curve_limits_by_hand():
+    """R = 1500 m, trough 35 deg, superelevation 8 deg, B = 1 m on 0.38 m rolls: the belt
+    has b_W = (1 - 0.38) / 2 = 0.31 m on each wing and may drift d = 0.38 - 0.31 = 0.07 m
+    before its edge leaves a wing roll.
+
+    T_max (running in), belt drifted 0.07 m inwards (b_i 0.38, b_o 0.24), empty belt 20 kg/m:
+      k = 0.38 sin 43 cos 35 + 0.38 sin 8 - 0.24 sin 27 cos 35 = 0.17592
+      T_max = R m'_G g cos(alpha) k = 1500 x 20 x 9.81 x 0.99875 x 0.17592 = 51.71 kN
+    T_min (running out), drifted 0.07 m outwards (b_i 0.24, b_o 0.38), loaded 70 kg/m:
+      k = 0.24 sin 43 cos 35 + 0.38 sin 8 - 0.38 sin 27 cos 35 = 0.04565
+      T_min = 1500 x 70 x 9.81 x 0.99875 x 0.04565 = 46.96 kN
+    """
+    cos_a = math.sqrt(1 - 0.05 ** 2)
+    k_in = _hand_k(0.38, 0.38, 0.24, 35, 8, 1.0)
+    k_out = _hand_k(0.24, 0.38, 0.38, 35, 8, 1.0)
+    assert k_in == pytest.approx(0.17592, abs=1e-5)
+    assert k_out == pytest.approx(0.04565, abs=1e-5)
+    t_min_empty, t_max_empty = tension_limits_n(20.0, 1500, 1.0, ROLL, ROLL, 35, 8, cos_a)
+    t_min_full, t_max_full = tension_limits_n(70.0, 1500, 1.0, ROLL, ROLL, 35, 8, cos_a)
+    assert t_max_empty == pytest.approx(1500 * 20 * G * cos_a * k_in, rel=1e-12)
+    assert t_max_empty / 1e3 == pytest.approx(51.71, abs=0.01)
+    assert t_min_full == pytest.approx(1500 * 70 * G * cos_a * k_out, rel=1e-12)
+    assert t_min_full / 1e3 == pytest.approx(46.96, abs=0.01)
+    # the loaded belt's upper limit is higher, the empty belt's lower limit lower
+    assert t_max_full > t_max_empty and t_min_empty < t_min_full
+
+
+def test_the_run_reports_the_curve_limits_over_its_load_and_empty():
+    """The steady summary's limits are the loaded belt's T_min and the empty belt's T_max
+    (the hand numbers above), and the verdict compares them with the run's tensions."""
+    res = solve_steady(_curved(1500, 8), model="din", params=DIN)
+    s = res.summary
+    assert s["hcurve1_tension_min_kn"] == pytest.approx(46.96, abs=0.01)
+    assert s["hcurve1_tension_max_kn"] == pytest.approx(51.71, abs=0.01)
+    carry = res.loop.strand == CARRY
+    t_run = np.concatenate((res.tension_n[carry], [res.tension_n[-1]]))
+    assert s["hcurve1_t_low_kn"] == pytest.approx(t_run.min() / 1e3, rel=1e-12)
+    assert s["hcurve1_t_high_kn"] == pytest.approx(t_run.max() / 1e3, rel=1e-12)
+    inside = s["hcurve1_t_high_kn"] > 51.71
+    outside = s["hcurve1_t_low_kn"] < 46.96
+    assert s["hcurve1_ok"] is (not inside and not outside)
+    assert inside or outside  # the hand conveyor's tensions (tens of kN) straddle the band
+    curve_warnings = [w for w in res.warnings if w.startswith("horizontal curve 1")]
+    assert curve_warnings and all("profile section 1, 0 to 1000 m from the tail" in w
+                                  for w in curve_warnings)
+    if inside:
+        assert any("runs to the inside" in w and "larger radius" in w for w in curve_warnings)
+    if outside:
+        assert any("runs out of the curve" in w and "loaded" in w for w in curve_warnings)
+
+
+def test_a_wide_untilted_curve_keeps_the_belt():
+    """R = 20 km, no superelevation: T_min = 0 (the belt cannot run out: k < 0 drifted out)
+    and T_max = R m'_G g cos(alpha) (0.38 - 0.24) sin 35 cos 35 = 258 kN, above the hand
+    conveyor's tensions: no warning."""
+    cos_a = math.sqrt(1 - 0.05 ** 2)
+    hand = 20000 * 20 * G * cos_a * (0.38 - 0.24) * math.sin(math.radians(35)) * math.cos(
+        math.radians(35)) / 1e3
+    res = solve_steady(_curved(20000, 0), model="din", params=DIN)
+    s = res.summary
+    assert s["hcurve1_tension_min_kn"] == 0.0
+    assert s["hcurve1_tension_max_kn"] == pytest.approx(hand, rel=1e-9)
+    assert s["hcurve1_ok"] is True
+    assert not [w for w in res.warnings if "horizontal curve" in w]
+
+
+def test_no_curve_no_hcurve_fields(hand_conveyor):
+    s = solve_steady(hand_conveyor, model="din", params=DIN).summary
+    assert not [k for k in s if k.startswith("hcurve")]
+
+
+def test_curves_are_numbered_in_profile_order():
+    d = hand_conveyor_dict(profile=[
+        {"length_m": 300, "lift_m": 0, "horizontal_radius_m": 20000},
+        {"length_m": 400, "lift_m": 50},
+        {"length_m": 300, "lift_m": 0, "horizontal_radius_m": 30000,
+         "superelevation_deg": 2}])
+    s = solve_steady(parse_conveyor(d), model="din", params=DIN).summary
+    assert {k for k in s if k.startswith("hcurve")} == {
+        f"hcurve{k}_{f}" for k in (1, 2)
+        for f in ("tension_min_kn", "tension_max_kn", "t_low_kn", "t_high_kn", "ok")}
+    # the second curve's radius is the larger: its upper limit too (trough and belt alike)
+    assert s["hcurve2_tension_max_kn"] > s["hcurve1_tension_max_kn"]
+
+
+@pytest.mark.parametrize("section, words", [
+    ({"length_m": 1000, "lift_m": 50, "superelevation_deg": 3}, "give horizontal_radius_m"),
+    ({"length_m": 1000, "lift_m": 50, "horizontal_radius_m": 5}, "horizontal_radius_m"),
+    ({"length_m": 1000, "lift_m": 50, "horizontal_radius_m": 500, "superelevation_deg": 30},
+     "superelevation_deg"),
+])
+def test_horizontal_curve_errors_name_the_field(section, words):
+    with pytest.raises(InputError, match=words):
+        parse_conveyor(hand_conveyor_dict(profile=[section]))
+
+
+def test_at_most_max_hcurves_curves():
+    from beltstudy.engine.results import MAX_HCURVES
+
+    profile = [{"length_m": 100, "lift_m": 0, "horizontal_radius_m": 5000}
+               for _ in range(MAX_HCURVES + 1)]
+    with pytest.raises(InputError, match=f"at most {MAX_HCURVES}"):
+        parse_conveyor(hand_conveyor_dict(profile=profile))
