@@ -17,10 +17,11 @@ see :func:`restoring_force_n_m`) and ``d`` the drift at which the belt's edge re
 end of a wing roll (``l_W - b_W``). Lateral friction between belt and rolls and forward-
 tilted (training) idlers are left out: the limits are on the safe side of them.
 
-Evaluated at every load case the run has: its own load on the curve's section and the
-empty belt. The lower limit is the larger of the two cases' (the loaded belt), the upper the
-smaller (the empty belt: it runs to the inside first, as published curve designs observe).
-Both are compared with the steady tension of the run along the curve.
+Evaluated in the run's own state: the belt with the load the run has on the curve's section
+and the steady tension of that same run along the curve (the weight that holds the belt and
+the tension that pulls it come from one state). Every load case is checked by running it: an
+empty run (``load: empty``, or ``design``/grid load cases in a study) has a lighter belt and
+lower tensions, and is where published curve designs find the belt runs to the inside first.
 """
 
 from __future__ import annotations
@@ -165,9 +166,8 @@ def hcurve_checks(conv, loop, T: np.ndarray) -> tuple[dict, list[str]]:
         sec = conv.profile[c.section]
         cos_a = math.sqrt(1.0 - (sec.lift_m / sec.length_m) ** 2)
         m_load = float(loop.mL_kg_m[idx].max())
-        cases = {"loaded": belt.mass_kg_m + m_load, "empty": belt.mass_kg_m}
-        if m_load <= 0.0:
-            cases.pop("loaded")
+        cases = ({"loaded": belt.mass_kg_m + m_load} if m_load > 0.0
+                 else {"empty": belt.mass_kg_m})
         limits = {name: tension_limits_n(m, c.radius_m, width, middle, wing, ic.trough_deg,
                                          c.superelevation_deg, cos_a)
                   for name, m in cases.items()}

@@ -200,18 +200,23 @@ def test_horizontal_curve_limits_by_hand():
     assert t_max_full > t_max_empty and t_min_empty < t_min_full
 
 
-def test_the_run_reports_the_curve_limits_over_its_load_and_empty():
-    """The steady summary's limits are the loaded belt's T_min and the empty belt's T_max
-    (the hand numbers above), and the verdict compares them with the run's tensions."""
+def test_the_run_reports_the_curve_limits_of_its_own_load():
+    """The steady summary's limits are those of the belt as the run loads it (70 kg/m: the
+    hand T_min above, and T_max = R 70 g cos(alpha) k_in), the verdict compares them with the
+    same run's tensions; an empty run gets the empty belt's limits (the hand T_max above)."""
+    cos_a = math.sqrt(1 - 0.05 ** 2)
+    t_max_loaded = 1500 * 70 * G * cos_a * _hand_k(0.38, 0.38, 0.24, 35, 8, 1.0) / 1e3
     res = solve_steady(_curved(1500, 8), model="din", params=DIN)
     s = res.summary
     assert s["hcurve1_tension_min_kn"] == pytest.approx(46.96, abs=0.01)
-    assert s["hcurve1_tension_max_kn"] == pytest.approx(51.71, abs=0.01)
+    assert s["hcurve1_tension_max_kn"] == pytest.approx(t_max_loaded, rel=1e-9)
+    empty = solve_steady(_curved(1500, 8), model="din", params=DIN, load="empty").summary
+    assert empty["hcurve1_tension_max_kn"] == pytest.approx(51.71, abs=0.01)
     carry = res.loop.strand == CARRY
     t_run = np.concatenate((res.tension_n[carry], [res.tension_n[-1]]))
     assert s["hcurve1_t_low_kn"] == pytest.approx(t_run.min() / 1e3, rel=1e-12)
     assert s["hcurve1_t_high_kn"] == pytest.approx(t_run.max() / 1e3, rel=1e-12)
-    inside = s["hcurve1_t_high_kn"] > 51.71
+    inside = s["hcurve1_t_high_kn"] > t_max_loaded
     outside = s["hcurve1_t_low_kn"] < 46.96
     assert s["hcurve1_ok"] is (not inside and not outside)
     assert inside or outside  # the hand conveyor's tensions (tens of kN) straddle the band
@@ -226,10 +231,10 @@ def test_the_run_reports_the_curve_limits_over_its_load_and_empty():
 
 def test_a_wide_untilted_curve_keeps_the_belt():
     """R = 20 km, no superelevation: T_min = 0 (the belt cannot run out: k < 0 drifted out)
-    and T_max = R m'_G g cos(alpha) (0.38 - 0.24) sin 35 cos 35 = 258 kN, above the hand
-    conveyor's tensions: no warning."""
+    and T_max = R (m'_G + m'_L) g cos(alpha) (0.38 - 0.24) sin 35 cos 35 = 902 kN (the
+    loaded belt, 70 kg/m), above the hand conveyor's tensions: no warning."""
     cos_a = math.sqrt(1 - 0.05 ** 2)
-    hand = 20000 * 20 * G * cos_a * (0.38 - 0.24) * math.sin(math.radians(35)) * math.cos(
+    hand = 20000 * 70 * G * cos_a * (0.38 - 0.24) * math.sin(math.radians(35)) * math.cos(
         math.radians(35)) / 1e3
     res = solve_steady(_curved(20000, 0), model="din", params=DIN)
     s = res.summary
