@@ -116,6 +116,7 @@ class SteadyResult:
     status: str = "ok"
     message: str = ""
     takeup_governed_by: str = "given"  # the constraint that set an auto take-up
+    params_given: bool = False  # the friction model's parameters differ from its defaults
 
     @property
     def tension_mean_n(self) -> np.ndarray:
@@ -427,7 +428,7 @@ def solve_steady(
         conveyor=conv, loop=loop, law=law, model=fm.name, temperature_c=float(temperature_c),
         tension_n=T, resistance_n=R, drive_force_n=d_force, te_n=te,
         takeup_mass_kg=takeup_mass, takeup_tension_n=float(takeup_tension),
-        iterations=iterations, summary={},
+        iterations=iterations, summary={}, params_given=p != fm.params(None),
     )
     if auto:
         floor_governs = design is not None and tu_floor_n - w_tu > c_need
@@ -626,7 +627,7 @@ def _summarise(res: SteadyResult, drives, hs_adm, bounds, shortfall_n: float,
     res.warnings = warnings
     res.status = "warning" if warnings else "ok"
     # a note does not make a warning (as the transient's notes, "note: ..." after them)
-    note = temperature_note(get_model(res.model), res.temperature_c)
+    note = temperature_note(get_model(res.model), res.temperature_c, res.params_given)
     res.message = "; ".join(warnings + ([note] if note else []))
     res.summary["status"] = res.status
     res.summary["message"] = res.message

@@ -48,12 +48,15 @@ def get_model(name: str) -> FrictionModel:
 REFERENCE_TEMPERATURE_C = 20.0
 
 
-def temperature_note(model: FrictionModel, temperature_c: float) -> str:
+def temperature_note(model: FrictionModel, temperature_c: float,
+                     params_given: bool = False) -> str:
     """The note a run of ``model`` at ``temperature_c`` [C] carries when the model has no
     temperature term (``FrictionModel.temperature_term``) and the temperature is not
     :data:`REFERENCE_TEMPERATURE_C`: its figures are those of 20 C, and what would bring the
-    temperature in. "" otherwise."""
-    if model.temperature_term or abs(float(temperature_c) - REFERENCE_TEMPERATURE_C) < 1e-9:
+    temperature in. "" otherwise, and "" when the run gives the model's parameters
+    (``params_given``: friction factors for that temperature, the way the note asks for)."""
+    if (model.temperature_term or params_given
+            or abs(float(temperature_c) - REFERENCE_TEMPERATURE_C) < 1e-9):
         return ""
     others = ", ".join(m.name for m in MODELS.values() if m.temperature_term)
     return (f"note: {model.name} has no temperature term; {float(temperature_c):g} C gives the "

@@ -38,3 +38,16 @@ def test_models_with_a_temperature_term_carry_no_note(model):
 
 def test_only_din_lacks_a_temperature_term():
     assert [m.name for m in MODELS.values() if not m.temperature_term] == ["din"]
+
+
+def test_din_with_its_factors_given_for_the_temperature_carries_no_note():
+    """A study that gives DIN's f for each temperature (``models.din.f_carry`` zipped with
+    ``temperature_c``) has brought the temperature in, as the note asks: no note; the
+    defaults at -20 C still carry it."""
+    conv = parse_conveyor(hand_conveyor_dict())
+    given = solve_steady(conv, model="din", temperature_c=-20.0, params={"f_carry": 0.025})
+    assert "temperature term" not in given.message
+    assert given.summary["te_kn"] > solve_steady(conv, model="din").summary["te_kn"]
+    default_f = MODELS["din"].params(None).f_carry
+    same = solve_steady(conv, model="din", temperature_c=-20.0, params={"f_carry": default_f})
+    assert NOTE in same.message  # the default given by name is still the default
