@@ -363,8 +363,8 @@ def holdback_torque_nm(pull_n: float, friction_n: float, diameter_m: float) -> f
 def pulley_name(conv, p: Pulley) -> str:
     """How a message names a pulley: ``drive 2 (head)``, ``head``, ``take-up (tail)``."""
     if p.drive >= 0:
-        return f"drive {p.drive + 1} ({p.position})"
-    return f"take-up ({p.position})" if p.takeup else p.position
+        return f"drive {p.drive + 1} ({p.where})"
+    return f"take-up ({p.where})" if p.takeup else p.position
 
 
 @dataclass(frozen=True)

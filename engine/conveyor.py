@@ -331,9 +331,14 @@ class Drive(_Model):
     """A drive pulley (SPEC sections 1 and 6.1).
 
     Several drives at one end are separate pulleys, met by the belt in the order of the file.
+    A booster (tripper) drive sits along the carry or the return strand (``position: carry``
+    or ``return`` with ``at_m``, SPEC 7.1): its own pulley in the belt's path there.
     """
 
-    position: Literal["head", "tail"] = "head"
+    position: Literal["head", "tail", "carry", "return"] = "head"
+    at_m: NonNegFloat | None = Field(
+        None, description="booster drive (position carry or return): where it sits, from the "
+        "tail along the conveyor [m]")
     wrap_deg: float = Field(210.0, gt=0, le=500, description="wrap angle [deg]")
     friction: float = Field(0.35, gt=0, le=1.0, description="belt-pulley friction coefficient")
     friction_kinetic: float | None = Field(
@@ -375,6 +380,7 @@ class Drive(_Model):
 
     @model_validator(mode="after")
     def _curve_and_coupling(self) -> Drive:
+        _check_at(self.position, self.at_m, "a booster drive")
         if self.coupling != "none" and self.control != "dol":
             raise ValueError(f"coupling '{self.coupling}' needs control: dol (a vfd drive "
                              "controls its torque itself); use coupling: none")
@@ -393,6 +399,11 @@ class Drive(_Model):
         return self
 
     @property
+    def where(self) -> str:
+        """Where the drive sits, for messages: ``head``, ``tail`` or ``carry at 1000 m``."""
+        return place(self.position, self.at_m)
+
+    @property
     def curve(self) -> tuple[tuple[float, float], ...]:
         """The motor curve used: the file's or the default."""
         return tuple(self.motor_curve) if self.motor_curve is not None else DEFAULT_MOTOR_CURVE
@@ -400,6 +411,22 @@ class Drive(_Model):
     @property
     def mu_kinetic(self) -> float:
         return self.friction if self.friction_kinetic is None else self.friction_kinetic
+
+
+def place(position: str, at_m: float | None) -> str:
+    """A position for messages: ``head``, ``tail``, or ``carry at 1000 m`` (along the route
+    from the tail)."""
+    return position if at_m is None else f"{position} at {at_m:g} m"
+
+
+def _check_at(position: str, at_m: float | None, what: str) -> None:
+    """``at_m`` goes with a position along a strand (carry or return) and only with one."""
+    if position in ("carry", "return") and at_m is None:
+        raise ValueError(f"position: {position} places {what} along the {position} strand; "
+                         "give at_m, its distance from the tail along the conveyor [m]")
+    if position in ("head", "tail") and at_m is not None:
+        raise ValueError(f"at_m: {at_m:g} m goes with position carry or return (along a "
+                         f"strand); at the {position} drop at_m")
 
 
 def check_motor_curve(curve) -> None:
@@ -427,7 +454,10 @@ class TakeUp(_Model):
     """Take-up: gravity (counterweight) or fixed (screw/winch at a set pretension)."""
 
     type: Literal["gravity", "fixed"] = "gravity"
-    position: Literal["tail", "head"] = "tail"
+    position: Literal["tail", "head", "return"] = "tail"
+    at_m: NonNegFloat | None = Field(
+        None, description="take-up along the return (position: return): where it sits, from "
+        "the tail along the conveyor [m]")
     mass_kg: PositiveFloat | Literal["auto"] = Field(
         "auto", description="gravity counterweight [kg] or auto (the smallest meeting slip at "
         "start-up and the sag limits, running and held at rest, at the full design load)"
@@ -448,6 +478,10 @@ class TakeUp(_Model):
 
     @model_validator(mode="after")
     def _kind_fields(self) -> TakeUp:
+        _check_at(self.position, self.at_m, "the take-up")
+        if self.position == "carry":
+            raise ValueError("position: carry; a take-up sits on the return (head, tail or "
+                             "return with at_m)")
         if self.type == "fixed" and self.mass_kg != "auto":
             raise ValueError("a fixed take-up has no counterweight: give pretension_kn, not mass_kg")
         if self.type == "gravity" and self.pretension_kn != "auto":
@@ -571,7 +605,7 @@ class Conveyor(_Model):
     def _shares(self) -> Conveyor:
         total = sum(d.share for d in self.drives)
         if abs(total - 1.0) > 1e-6:
-            parts = " + ".join(f"drives[{i}] ({d.position}) {d.share:g}"
+            parts = " + ".join(f"drives[{i}] ({d.where}) {d.share:g}"
                                for i, d in enumerate(self.drives))
             raise ValueError(f"drives: shares sum to {total:g} ({parts}); they must sum to 1")
         controls = {d.control for d in self.drives}
@@ -592,6 +626,7 @@ class Conveyor(_Model):
                 raise ValueError(f"brakes[{i}].drive: there is no drive {b.drive} (the conveyor "
                                  f"has {len(self.drives)} drive(s), numbered from 1)")
         _check_feed(self)
+        _check_along(self)
         n_curves = sum(p.horizontal_radius_m is not None for p in self.profile)
         if n_curves > MAX_HCURVES:
             raise ValueError(f"profile: {n_curves} horizontal curves; at most {MAX_HCURVES} "
@@ -609,11 +644,15 @@ class Conveyor(_Model):
     @model_validator(mode="after")
     def _curves(self) -> Conveyor:
         _curves_fit(self.profile)
-        if self.material.feed is not None and any(
-                p.curve_radius_m is not None for p in self.profile):
-            raise ValueError("material.feed: feed points on a route with vertical curves "
-                             "(profile[i].curve_radius_m) are not built yet; give the feed at "
-                             "the tail (omit material.feed) or the route without curves")
+        arcs = curve_arcs(self.profile)
+        for name, at in route_points(self):
+            for k, (a, b) in enumerate(arcs, start=1):
+                tol = 1e-9 * max(1.0, b)
+                if a + tol < at < b - tol:
+                    raise ValueError(
+                        f"{name}: {at:g} m lies on vertical curve {k} (its arc runs from "
+                        f"{a:.1f} to {b:.1f} m); place it on a straight grade, before {a:.1f} "
+                        f"or after {b:.1f} m")
         return self
 
     def idler_spacing_m(self, strand: str) -> float:
@@ -664,6 +703,44 @@ def _check_feed(conv: Conveyor) -> None:
         if p.at_m >= L:
             raise ValueError(f"accessories.ploughs[{i}].at_m: {p.at_m:g} m is out of the "
                              f"carry (0 to {L:g} m)")
+
+
+def _check_along(conv: Conveyor) -> None:
+    """Booster drives and a take-up along a strand lie inside the route (SPEC 7.1)."""
+    L = conv.length_m
+    for i, d in enumerate(conv.drives):
+        if d.at_m is not None and not 0.0 < d.at_m < L:
+            raise ValueError(f"drives[{i}].at_m: {d.at_m:g} m is not inside the route (0 to "
+                             f"{L:g} m from the tail, both ends excluded: a drive at an end is "
+                             "position: head or tail)")
+    tu = conv.takeup
+    if tu.at_m is not None and not 0.0 < tu.at_m < L:
+        raise ValueError(f"takeup.at_m: {tu.at_m:g} m is not inside the route (0 to {L:g} m "
+                         "from the tail, both ends excluded: a take-up at an end is position: "
+                         "head or tail)")
+
+
+def route_points(conv: Conveyor) -> list[tuple[str, float]]:
+    """The points along the route where the loop is cut (element ends): feed points, booster
+    drives and a take-up along the return; (field name, distance from the tail [m])."""
+    out = [(f"material.feed[{i}].at_m", float(f.at_m))
+           for i, f in enumerate(conv.material.feed or []) if f.at_m > 0.0]
+    out += [(f"drives[{i}].at_m", float(d.at_m)) for i, d in enumerate(conv.drives)
+            if d.at_m is not None]
+    if conv.takeup.at_m is not None:
+        out.append(("takeup.at_m", float(conv.takeup.at_m)))
+    return out
+
+
+def curve_arcs(profile: list[ProfileSection]) -> list[tuple[float, float]]:
+    """Each vertical curve's arc along the route from the tail, (start, end) [m]."""
+    out, at = [], 0.0
+    for i, sec in enumerate(profile):
+        at += sec.length_m
+        h = 0.5 * curve_arc_m(profile, i)
+        if h > 0.0:
+            out.append((at - h, at + h))
+    return out
 
 
 def curve_arc_m(profile: list[ProfileSection], i: int) -> float:

@@ -147,7 +147,7 @@ def steady_checks(conv, forces_n, speed_m_s: float, te_n: float, rated_kw
             how = ("holds back" if f < 0 else "needs")
             regen = ", regenerating: x efficiency" if f < 0 else " / efficiency"
             warnings.append(
-                f"drive {i} ({d.position}) {how} {need:.0f} kW at {speed_m_s:g} m/s "
+                f"drive {i} ({d.where}) {how} {need:.0f} kW at {speed_m_s:g} m/s "
                 f"({d.share:g} x Te {te_n / 1e3:.1f} kN{regen} {eta:g}), rated "
                 f"{rated:.0f} kW: short by {need - rated:.0f} kW (utilisation "
                 f"{need / rated:.2f}); a motor of at least {need:.0f} kW "

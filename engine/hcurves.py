@@ -157,7 +157,7 @@ def hcurve_checks(conv, loop, T: np.ndarray) -> tuple[dict, list[str]]:
         middle = min(roll, width)
     wing = middle if ic.rolls >= 3 else 0.5 * width
     carry = np.flatnonzero(loop.strand == CARRY)
-    s_mid = loop.s_mid_m[carry]
+    s_mid = loop.x_m[carry] + 0.5 * loop.dx_m[carry]
     out, warnings = {}, []
     for c in curves:
         idx = carry[(s_mid >= c.start_m) & (s_mid <= c.end_m)]

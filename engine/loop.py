@@ -6,7 +6,10 @@ them; one plain head pulley when the head has no drive), a take-up pulley elemen
 take-up sits at the head, return elements head -> tail, then the tail pulleys (a separate
 take-up pulley first when the take-up sits at a driven tail, then the tail drives in file
 order; one plain tail pulley, which is also the take-up pulley of a tail take-up, when the tail
-has no drive). Boundary tension ``T[j]`` is the tension at the end of element ``j``. Build
+has no drive). A booster drive along a strand (SPEC 7.1 ``position: carry | return``, ``at_m``)
+and a take-up along the return are pulley elements inside their strand, where the belt
+passes ``at_m``: the strands are cut there (and at the feed points) so that an element ends
+at each (:func:`route_cuts`). Boundary tension ``T[j]`` is the tension at the end of element ``j``. Build
 once per conveyor and load case; every later step reads these arrays.
 """
 
@@ -18,15 +21,18 @@ from dataclasses import dataclass
 import numpy as np
 
 from beltstudy.engine import catalog
-from beltstudy.engine.conveyor import Conveyor, curve_arc_m, section_loads
+from beltstudy.engine.conveyor import Conveyor, curve_arc_m, place, route_points, section_loads
 
 __all__ = ["G", "Loop", "Pulley", "build_loop", "CARRY", "RETURN", "HEAD", "TAIL", "TAKEUP",
+           "BOOSTER", "route_cuts",
            "Curve", "CURVE_STEP_DEG", "RotatingParts", "rotating_parts", "pulley_reduced_mass_kg", "MOTOR_INERTIA_SHARE"]
 
 #: Gravitational acceleration [m/s2].
 G = 9.81
 
 CARRY, RETURN, HEAD, TAIL, TAKEUP = 0, 1, 2, 3, 4
+#: Strand code of a booster drive's pulley along the carry or the return.
+BOOSTER = 5
 
 #: Diameter used for a non-drive pulley when the file does not give one [m] (estimate).
 DEFAULT_PULLEY_DIAMETER_M = 0.8
@@ -47,13 +53,16 @@ class Pulley:
     element : int
         Element index.
     position : str
-        ``head`` or ``tail``.
+        ``head``, ``tail``, or ``carry`` / ``return`` (a booster drive, a take-up along the
+        return).
     drive : int
         Index of the drive in the conveyor file (0-based), -1 for a plain or take-up pulley.
     diameter_m, wrap_deg, friction, friction_kinetic : float
         Geometry and belt-pulley friction (static, sliding) [m, deg, -].
     takeup : bool
         The take-up pulley (its carriage moves).
+    at_m : float or None
+        Along a strand: where, from the tail along the conveyor [m].
     """
 
     element: int
@@ -64,6 +73,12 @@ class Pulley:
     friction: float
     friction_kinetic: float
     takeup: bool = False
+    at_m: float | None = None
+
+    @property
+    def where(self) -> str:
+        """``head``, ``tail`` or ``carry at 1000 m``, for messages."""
+        return place(self.position, self.at_m)
 
     @property
     def euler(self) -> float:
@@ -170,6 +185,7 @@ class Loop:
     design_load_kg_m: float
     section_load: tuple[float, ...] = ()  # load fraction per carry profile section
     curves: tuple = ()  # the vertical curves (Curve), in profile order
+    x_m: np.ndarray | None = None  # where each element starts along the route from the tail [m]
 
     @property
     def load_max_kg_m(self) -> float:
@@ -254,36 +270,49 @@ def _split(n: int, lengths: list[float]) -> list[int]:
     return counts
 
 
-def feed_cuts(conv: Conveyor, start_m: float, length_m: float, k: int
-              ) -> list[tuple[float, int, float]]:
-    """A carry section cut at the feed points inside it (SPEC 7.1 ``material.feed``).
+def route_cuts(conv: Conveyor) -> list[float]:
+    """Where an element must end along the route, from the tail [m], ascending: the feed
+    points, the booster drives and a take-up along the return
+    (:func:`beltstudy.engine.conveyor.route_points`); points closer than a micrometre are one."""
+    out: list[float] = []
+    for at in sorted(at for _, at in route_points(conv)):
+        if not out or at - out[-1] > 1e-6:
+            out.append(at)
+    return out
+
+
+def section_cuts(conv: Conveyor, start_m: float, length_m: float, k: int
+                 ) -> list[tuple[float, int, float]]:
+    """A profile section cut at the points of :func:`route_cuts` inside it (feed points,
+    booster drives, a take-up along the return).
 
     Parameters
     ----------
     conv : Conveyor
-        With ``material.feed`` given.
     start_m, length_m : float
-        Where the section starts along the carry from the tail, and its length [m].
+        Where the section starts along the route from the tail, and its length [m].
     k : int
-        Elements of the section; each piece between feed points gets at least one, the rest
-        by length (as the sections share the strand's elements).
+        Elements of the section; each piece between cuts gets at least one, the rest by length
+        (as the sections share the strand's elements).
 
     Returns
     -------
     list of (length [m], elements, share fed upstream [-])
         The pieces tail -> head; the share is the sum of the shares of the feed points at or
-        upstream of the piece's start (the material line load is the design load times it).
+        upstream of the piece's start (the material line load is the design load times it;
+        1 without ``material.feed``: all fed at the tail).
     """
-    feed = sorted(conv.material.feed, key=lambda f: f.at_m)
+    feed = sorted(conv.material.feed or [], key=lambda f: f.at_m)
     end = start_m + length_m
     tol = 1e-9 * max(1.0, end)
-    cuts = [f.at_m for f in feed if start_m + tol < f.at_m < end - tol]
+    cuts = [c for c in route_cuts(conv) if start_m + tol < c < end - tol]
     bounds = [start_m, *cuts, end]
     pieces = [b - a for a, b in zip(bounds[:-1], bounds[1:], strict=True)]
     counts = _split(max(k, len(pieces)), pieces)
     out = []
     for a, piece, c in zip(bounds[:-1], pieces, counts, strict=True):
-        fed = sum(f.share for f in feed if f.at_m <= a + tol)
+        fed = (sum(f.share for f in feed if f.at_m <= a + tol)
+               if conv.material.feed is not None else 1.0)
         out.append((piece, c, min(fed, 1.0)))
     return out
 
@@ -352,14 +381,58 @@ def build_loop(
             z += dz
         return out, z
 
+    pulleys: list[Pulley] = []
+
+    def add_pulley(code, position, drive, diameter, wrap, mu, mu_k, takeup, z_at, at_m=None):
+        pulleys.append(Pulley(len(cols["dx"]), position, drive, diameter, wrap, mu, mu_k,
+                              takeup, at_m))
+        add(strand=code, dx=math.radians(wrap) * diameter / 2, z=z_at, sin=0.0, cos=1.0,
+            S=math.inf, D=0.0, rolls=0, trough=0.0, mL=0.0, mR=0.0, drag=0.0)
+
+    # the pulleys along the strands: booster drives (file order at one position) and a take-up
+    # along the return (after the drives at its position)
+    tol = 1e-6 * max(1.0, L)
+    on_carry = sorted((float(d.at_m), 0, i) for i, d in enumerate(conv.drives)
+                      if d.position == "carry")
+    on_return = [(float(d.at_m), 0, i) for i, d in enumerate(conv.drives)
+                 if d.position == "return"]
+    if conv.takeup.position == "return":
+        on_return.append((float(conv.takeup.at_m), 1, -1))
+    on_return.sort(key=lambda p: (-p[0], p[1], p[2]))
+    cut_return = bool(on_return)
+    cut_carry = bool(route_cuts(conv))
+
+    def along(pending, x, z_at, reached):
+        """Add the pending strand pulleys the belt has reached at route position x."""
+        while pending and reached(pending[0][0], x):
+            at, _, i = pending.pop(0)
+            if i >= 0:
+                d = conv.drives[i]
+                add_pulley(BOOSTER, d.position, i, d.pulley_diameter_m, d.wrap_deg,
+                           d.friction, d.mu_kinetic, False, z_at, at)
+            else:
+                add_pulley(TAKEUP, "return", -1, DEFAULT_PULLEY_DIAMETER_M, PLAIN_WRAP_DEG,
+                           PLAIN_FRICTION, PLAIN_FRICTION, True, z_at, at)
+
+    def upto(at, x):
+        return at <= x + tol
+
+    def downto(at, x):
+        return at >= x - tol
+
     # carry strand, tail -> head (on vertical curves element by element, _curve_elements)
     z = 0.0
+    x = 0.0
     pieces, arcs = _curve_elements(conv, counts)
-    for sec_i, dx, sin, cos in pieces:  # vertical curves (feed points with curves: refused)
+    carry_el: list[int] = []
+    for sec_i, dx, sin, cos, fed in pieces:  # vertical curves
+        along(on_carry, x, z, upto)
+        carry_el.append(len(cols["dx"]))
         add(strand=CARRY, dx=dx, z=z, sin=sin, cos=cos, S=s_c,
             D=ic.roll_diameter_m, rolls=ic.rolls, trough=ic.trough_deg,
-            mL=design_mL * loads[sec_i], mR=carry_mass / s_c, drag=carry_drag)
+            mL=design_mL * loads[sec_i] * fed, mR=carry_mass / s_c, drag=carry_drag)
         z += dx * sin
+        x += dx
     s0 = 0.0
     for sec, k, frac in zip(conv.profile, counts, loads, strict=True):
         if pieces:  # straight sections only below
@@ -367,28 +440,25 @@ def build_loop(
         dx = sec.length_m / k
         sin = sec.lift_m / sec.length_m
         cos = math.sqrt(1.0 - sin * sin)
-        if conv.material.feed is not None:  # feed points: no element straddles one
-            for sub_len, sub_k, fed in feed_cuts(conv, s0, sec.length_m, k):
+        if cut_carry:  # feed points and pulleys along the route: no element straddles one
+            x = s0
+            for sub_len, sub_k, fed in section_cuts(conv, s0, sec.length_m, k):
+                along(on_carry, x, z, upto)
                 zs, z = heights(z, sub_len / sub_k * sin, sub_k)
                 add(sub_k, strand=CARRY, dx=sub_len / sub_k, z=zs, sin=sin, cos=cos,
                     S=s_c, D=ic.roll_diameter_m, rolls=ic.rolls,
                     trough=ic.trough_deg, mL=design_mL * frac * fed,
                     mR=carry_mass / s_c, drag=carry_drag)
+                x += sub_len
             s0 += sec.length_m
             continue
         zs, z = heights(z, dx * sin, k)
         add(k, strand=CARRY, dx=dx, z=zs, sin=sin, cos=cos, S=s_c,
             D=ic.roll_diameter_m, rolls=ic.rolls, trough=ic.trough_deg, mL=design_mL * frac,
             mR=carry_mass / s_c, drag=carry_drag)
+    along(on_carry, math.inf, z, upto)
     z_head = z
     nc = len(cols["dx"])
-    pulleys: list[Pulley] = []
-
-    def add_pulley(code, position, drive, diameter, wrap, mu, mu_k, takeup, z_at):
-        pulleys.append(Pulley(len(cols["dx"]), position, drive, diameter, wrap, mu, mu_k,
-                              takeup))
-        add(strand=code, dx=math.radians(wrap) * diameter / 2, z=z_at, sin=0.0, cos=1.0,
-            S=math.inf, D=0.0, rolls=0, trough=0.0, mL=0.0, mR=0.0, drag=0.0)
 
     def add_end(position, code, z_at, takeup_here):
         drives = [(i, d) for i, d in enumerate(conv.drives) if d.position == position]
@@ -407,21 +477,36 @@ def build_loop(
                    PLAIN_FRICTION, PLAIN_FRICTION, True, z_head)
     # return strand, head -> tail: the profile backwards, slope negated
     z = z_head
-    i_ret = len(cols["dx"])
-    for _, dx, sin, cos in reversed(pieces):
+    x = L
+    ret_el: dict[int, int] = {}
+    for j in reversed(range(len(pieces))):
+        _, dx, sin, cos, _fed = pieces[j]
+        along(on_return, x, z, downto)
+        ret_el[j] = len(cols["dx"])
         add(strand=RETURN, dx=dx, z=z, sin=-sin, cos=cos, S=s_r,
             D=ir.roll_diameter_m, rolls=ir.rolls, trough=ir.trough_deg, mL=0.0,
             mR=ret_mass / s_r, drag=ret_drag)
         z -= dx * sin
+        x -= dx
     if not pieces:
+        s1 = L
         for sec, k in zip(reversed(conv.profile), reversed(counts), strict=True):
             dx = sec.length_m / k
             sin = -sec.lift_m / sec.length_m
             cos = math.sqrt(1.0 - sin * sin)
-            zs, z = heights(z, dx * sin, k)
-            add(k, strand=RETURN, dx=dx, z=zs, sin=sin, cos=cos, S=s_r,
-                D=ir.roll_diameter_m, rolls=ir.rolls, trough=ir.trough_deg, mL=0.0,
-                mR=ret_mass / s_r, drag=ret_drag)
+            s1 -= sec.length_m
+            parts = (reversed(section_cuts(conv, s1, sec.length_m, k)) if cut_return
+                     else [(sec.length_m, k, 1.0)])
+            x = s1 + sec.length_m
+            for sub_len, sub_k, _fed in parts:
+                along(on_return, x, z, downto)
+                zs, z = heights(z, sub_len / sub_k * sin, sub_k)
+                add(sub_k, strand=RETURN, dx=sub_len / sub_k if cut_return else dx, z=zs,
+                    sin=sin, cos=cos, S=s_r, D=ir.roll_diameter_m, rolls=ir.rolls,
+                    trough=ir.trough_deg, mL=0.0, mR=ret_mass / s_r, drag=ret_drag)
+                x -= sub_len
+    along(on_return, -math.inf, z, downto)
+    i_tail0 = len(cols["dx"])
     # tail end: a take-up pulley before the tail drives, or the plain tail pulley as take-up
     tail_driven = any(d.position == "tail" for d in conv.drives)
     if conv.takeup.position == "tail" and tail_driven:
@@ -440,6 +525,13 @@ def build_loop(
     z_arr = arr["z"]
     z_end = z_arr + dx_arr * arr["sin"]
     z_end[-1] = 0.0
+    strand = np.asarray(cols["strand"], dtype=np.int8)
+    # along the route: the carry from the tail, the return back from the head, pulleys where
+    # they sit (without pulleys along the carry its elements' x is their s, bit for bit)
+    idx = np.arange(n)
+    x_carry = np.concatenate(([0.0], np.cumsum(np.where(strand == CARRY, dx_arr, 0.0))[:-1]))
+    x_ret = L - np.concatenate(([0.0], np.cumsum(np.where(strand == RETURN, dx_arr, 0.0))[:-1]))
+    x_arr = np.where(idx < i_head, x_carry, np.where(idx < i_tail0, x_ret, 0.0))
     return Loop(
         n=n,
         nc=nc,
@@ -448,7 +540,7 @@ def build_loop(
         i_takeup=i_takeup,
         pulleys=tuple(pulleys),
         drive_elements=drive_elements,
-        strand=np.asarray(cols["strand"], dtype=np.int8),
+        strand=strand,
         dx_m=dx_arr,
         s_m=s,
         z_m=z_arr,
@@ -474,11 +566,12 @@ def build_loop(
         belt=belt,
         design_load_kg_m=design_mL,
         section_load=loads,
-        curves=tuple(Curve(carry=np.asarray(c["carry_"], dtype=np.int64),
-                           ret=np.asarray([i_ret + nc - 1 - j for j in c["carry_"]],
-                                          dtype=np.int64),
+        curves=tuple(Curve(carry=np.asarray([carry_el[j] for j in c["carry_"]],
+                                            dtype=np.int64),
+                           ret=np.asarray([ret_el[j] for j in c["carry_"]], dtype=np.int64),
                            **{k: v for k, v in c.items() if k != "carry_"})
                      for c in arcs),
+        x_m=x_arr,
     )
 
 
@@ -498,8 +591,10 @@ def _curve_elements(conv: Conveyor, counts: list[int]) -> tuple[list, list]:
 
     Returns
     -------
-    pieces : list of (section, dx_m, sin, cos)
-        One per carry element; empty when no section has a curve (the caller then cuts the
+    pieces : list of (section, dx_m, sin, cos, fed)
+        One per carry element, ``fed`` the share of the capacity fed at or upstream of its
+        start (1 without ``material.feed``); the straight rests are cut at
+        :func:`route_cuts`; empty when no section has a curve (the caller then cuts the
         straight sections as before, bit for bit).
     arcs : list of dict
         Per curve the :class:`Curve` fields, with ``carry_`` its carry elements.
@@ -528,6 +623,15 @@ def _curve_elements(conv: Conveyor, counts: list[int]) -> tuple[list, list]:
         in_half[i + 1] = half_arc(h, mid, ang[i + 1], prof[i + 1].length_m / counts[i + 1])
         arc = sum(d * s_ for d, s_, _ in out_half[i] + in_half[i + 1])
         excess[i] = h * (math.sin(ang[i]) + math.sin(ang[i + 1])) - arc
+    feed = conv.material.feed
+    cuts = route_cuts(conv)
+
+    def fed(x: float) -> float:
+        """Share of the capacity fed at or upstream of route position x [-]."""
+        if feed is None:
+            return 1.0
+        return min(sum(f.share for f in feed if f.at_m <= x + 1e-9 * max(1.0, x)), 1.0)
+
     pieces: list = []
     arcs: list = []
     at = 0.0
@@ -536,13 +640,23 @@ def _curve_elements(conv: Conveyor, counts: list[int]) -> tuple[list, list]:
         rest = sec.length_m - sum(d for d, _, _ in first + last)
         straight = []
         if rest > 1e-9 * sec.length_m:
-            m = max(1, round(rest / (sec.length_m / k)))
             lift = (rest * sec.lift_m / sec.length_m
                     + 0.5 * (excess.get(i - 1, 0.0) + excess.get(i, 0.0)))
             sin = lift / rest
-            straight = [(rest / m, sin, math.sqrt(1.0 - sin * sin))] * m
+            cos = math.sqrt(1.0 - sin * sin)
+            # cut at the feed points and pulleys along the route (never on an arc: refused)
+            a0 = at + sum(d for d, _, _ in first)
+            tol = 1e-9 * max(1.0, a0 + rest)
+            inner = [c - a0 for c in cuts if a0 + tol < c < a0 + rest - tol]
+            bounds = [0.0, *inner, rest]
+            for a, b in zip(bounds[:-1], bounds[1:], strict=True):
+                m = max(1, round((b - a) / (sec.length_m / k)))
+                straight += [((b - a) / m, sin, cos)] * m
         start = len(pieces)
-        pieces += [(i, d, s_, c_) for d, s_, c_ in first + straight + last]
+        x = at
+        for d, s_, c_ in first + straight + last:
+            pieces.append((i, d, s_, c_, fed(x)))
+            x += d
         if first:
             arcs[-1]["carry_"] += list(range(start, start + len(first)))
         at += sec.length_m

@@ -64,10 +64,11 @@ __all__ = [
 #: Most drive pulleys a conveyor may have (``drives`` in the conveyor file); the per-drive
 #: columns run from ``drive1_*`` to this.
 MAX_DRIVES = 6
-#: Most pulleys a loop may have: every drive its own pulley, a plain pulley at an end without
-#: a drive, and a separate take-up pulley (``engine/loop.py``); the per-pulley columns run from
+#: Most pulleys a loop may have: every drive its own pulley (at an end or along a strand), a
+#: plain pulley at each end without a drive, and a separate take-up pulley (``engine/loop.py``);
+#: the per-pulley columns run from
 #: ``pulley1_*`` to this.
-MAX_PULLEYS = MAX_DRIVES + 2
+MAX_PULLEYS = MAX_DRIVES + 3
 #: Most vertical curves a route may have (``profile[i].curve_radius_m``); the per-curve
 #: columns run from ``curve1_*`` to this.
 MAX_CURVES = 8

@@ -57,6 +57,7 @@ from beltstudy.engine.friction import get_model, temperature_note
 from beltstudy.engine.hcurves import hcurve_checks
 from beltstudy.engine.law import ResistanceLaw
 from beltstudy.engine.loop import (
+    BOOSTER,
     CARRY,
     HEAD,
     RETURN,
@@ -89,7 +90,8 @@ TOL = 1e-6
 MAX_ITER = 200
 #: Smallest relaxation factor of the fixed-point iteration (Aitken / Irons-Tuck).
 OMEGA_MIN = 0.05
-STRAND_NAMES = {CARRY: "carry", RETURN: "return", HEAD: "head", TAIL: "tail", TAKEUP: "takeup"}
+STRAND_NAMES = {CARRY: "carry", RETURN: "return", HEAD: "head", TAIL: "tail", TAKEUP: "takeup",
+                BOOSTER: "booster"}
 #: Constraints an auto take-up is sized by (``takeup_governed_by``), in the order of ties.
 TAKEUP_CONSTRAINTS = ("slip_start", "slip_breakaway", "slip_running", "sag_running",
                       "sag_at_rest", "positive")
@@ -570,7 +572,7 @@ def _summarise(res: SteadyResult, drives, hs_adm, bounds, shortfall_n: float,
     pull_kn = float(loop.gravity_n.sum()) / 1e3
     for i, ((_idx, _s, e), m_run, m_start, at_hold) in enumerate(
             zip(drives, slip_margins, start_margins, breakaway, strict=True), start=1):
-        where = f"drive {i} ({conv.drives[i - 1].position})"
+        where = f"drive {i} ({conv.drives[i - 1].where})"
         if m_run < 1.0 - 1e-6 or m_start < 1.0 - 1e-6:
             which = "running" if m_run < 1.0 else (
                 f"breakaway (the drives hold the net gravity pull {abs(pull_kn):.4g} kN at "

@@ -219,8 +219,8 @@ def pulley_name(conv, loop: Loop, node: int) -> str:
     pulley``."""
     p = loop.pulley_at(node)
     if p.drive >= 0:
-        return f"drive {p.drive + 1}'s pulley ({p.position})"
-    return f"the {p.position} pulley"
+        return f"drive {p.drive + 1}'s pulley ({p.where})"
+    return f"the {p.where} pulley"
 
 
 def _bisect_up(ok, lo: float, hi: float) -> float | None:
@@ -253,8 +253,8 @@ def grip_remedies(conv, steady, walk: StopWalk, nodes: list[int], fixed: dict,
         if node in nodes:
             continue
         p = loop.pulley_at(node)
-        name = (f"a brake on drive {p.drive + 1}'s shaft ({p.position})" if p.drive >= 0
-                else f"a brake on the {p.position} pulley")
+        name = (f"a brake on drive {p.drive + 1}'s shaft ({p.where})" if p.drive >= 0
+                else f"a brake on the {p.where} pulley")
         extra = walk.grip_n(node, held)
         if extra >= short:
             out.append(f"{name} of {short / 1e3:.4g} kN beside these (its pulley passes up "

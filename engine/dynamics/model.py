@@ -342,8 +342,8 @@ def loop_inertia(conv, loop: Loop, shafts: Shafts, shaft_index: dict, c_wave: np
     belt moves as one body within the bandwidth, PHYSICS 6).
     """
     m = master_drive(conv)
-    pos = conv.drives[m].position
-    ends = [i for i, d in enumerate(conv.drives) if d.position == pos]
+    pos = (conv.drives[m].position, conv.drives[m].at_m)  # a booster: its own position
+    ends = [i for i, d in enumerate(conv.drives) if (d.position, d.at_m) == pos]
     s_end = sum(conv.drives[i].share for i in ends)
     m_sh = sum(float(shafts.mass[shaft_index[int(loop.drive_elements[i])]]) for i in ends)
     n = loop.n
@@ -926,7 +926,7 @@ def _rest_grip(loop, hold: int, T_rest: np.ndarray) -> list[str]:
     if held <= grip:
         return []
     need = held / math.expm1(pulley.friction * math.radians(pulley.wrap_deg))
-    return [f"at rest the {pulley.position} pulley holding the belt passes {held / 1e3:.4g} kN, "
+    return [f"at rest the {pulley.where} pulley holding the belt passes {held / 1e3:.4g} kN, "
             f"beyond its grip of {grip / 1e3:.4g} kN (slack side {slack / 1e3:.4g} kN, mu "
             f"{pulley.friction:g}, wrap {pulley.wrap_deg:g} deg): the belt would creep over it; "
             f"a slack-side tension of {need / 1e3:.4g} kN (a heavier take-up) or a brake or "

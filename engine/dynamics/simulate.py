@@ -311,7 +311,7 @@ def diverged_words(sys: System, where_code: int, t_s: float, conveyor=None) -> s
     """The message of a diverged run: what left the finite range (the belt, a pulley shaft, a
     motor behind its coupling), when, with which step, and what avoids it."""
     def drive_name(k: int) -> str:
-        pos = f" ({conveyor.drives[k].position})" if conveyor is not None else ""
+        pos = f" ({conveyor.drives[k].where})" if conveyor is not None else ""
         return f"drive {k + 1}{pos}"
 
     fix = "a shorter step (scenario.dt_s: auto, or more elements)"
@@ -535,7 +535,7 @@ def _slip_warnings(sys: System, r: dict, out, conveyor=None) -> list[str]:
     brakes = sys.model.brakes
     names = [f"drive {i + 1}" for i in range(nd)]
     if conveyor is not None:
-        names = [f"drive {i + 1} ({d.position})" for i, d in enumerate(conveyor.drives)]
+        names = [f"drive {i + 1} ({d.where})" for i, d in enumerate(conveyor.drives)]
     if int(r["status"]) == C.RUNAWAY:
         w.append(runaway_words(sys, float(r["t"]), float(r["v_mean"]), t_stop_cmd))
     for i in range(nd):
@@ -571,7 +571,7 @@ def _drive_loads(sys: System, out, conveyor=None, steady_summary=None
     warnings of an overloaded drive (:func:`beltstudy.engine.drives.transient_checks`)."""
     drives = sys.model.drives
     nd = out.drv.shape[0]
-    names = ([f"drive {i + 1} ({d.position})" for i, d in enumerate(conveyor.drives)]
+    names = ([f"drive {i + 1} ({d.where})" for i, d in enumerate(conveyor.drives)]
              if conveyor is not None else [f"drive {i + 1}" for i in range(nd)])
     te = steady_summary.get("te_kn") if steady_summary else None
     running = drives.share * float(te) * 1e3 if te is not None else None

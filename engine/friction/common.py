@@ -74,11 +74,11 @@ def add_accessories(b: LawBuilder, loop: Loop, conv: Conveyor) -> None:
 
 def carry_element_at(loop: Loop, at_m: float) -> int:
     """The carry element that starts at or contains ``at_m`` along the carry [m] (a feed
-    point starts an element: :func:`beltstudy.engine.loop.feed_cuts`)."""
-    nc = int(np.count_nonzero(loop.strand == CARRY))
-    s = loop.s_m[:nc]
+    point starts an element: :func:`beltstudy.engine.loop.section_cuts`)."""
+    carry = np.flatnonzero(loop.strand == CARRY)
+    s = loop.x_m[carry]
     tol = 1e-6 * max(1.0, loop.length_m)
-    return int(np.searchsorted(s, at_m + tol, side="right") - 1)
+    return int(carry[max(int(np.searchsorted(s, at_m + tol, side="right")) - 1, 0)])
 
 
 def _section_fraction(loop: Loop, conv: Conveyor, at_m: float) -> float:
@@ -120,8 +120,8 @@ def skirt_forces(loop: Loop, conv: Conveyor) -> np.ndarray:
     """
     out = np.zeros(loop.n)
     carry = loop.strand == CARRY
-    start = loop.s_m
-    end = loop.s_m + loop.dx_m
+    start = loop.x_m  # along the route (pulleys along the carry take no route length)
+    end = loop.x_m + loop.dx_m
     rho = conv.material.density_t_m3 * 1e3
     for f in conv.material.feed or []:
         if f.skirt_length_m <= 0.0:

@@ -172,14 +172,3 @@ def test_curve_fields_are_defined_up_to_max_curves():
         R.check_summary({f"curve{R.MAX_CURVES + 1}_liftoff": True})
     with pytest.raises(KeyError, match="curve1_new_m"):
         R.check_summary({"curve1_new_m": 1.0})
-
-
-def test_feed_points_on_a_route_with_curves_are_refused_naming_the_field():
-    """Feed points cut the carry elements as curves do; the two are not combined yet, so the
-    file is refused with the field and the way out, not run with the feed at the tail."""
-    d = hand_conveyor_dict(profile=[{"length_m": 500, "lift_m": 0, "curve_radius_m": 400.0},
-                                    {"length_m": 500, "lift_m": 50.0}])
-    d["material"] = {**d["material"], "feed": [{"at_m": 0, "share": 0.5},
-                                               {"at_m": 300, "share": 0.5}]}
-    with pytest.raises(ValueError, match=r"material\.feed: feed points on a route with vertical"):
-        parse_conveyor(d)
