@@ -241,17 +241,18 @@ class Loop:
 
         ``s_m`` is measured round the loop from the tail, carry first. Returns ``("carry",
         x)``, ``("return", x)`` with x the distance from the tail of the point the belt passes
-        over, or ``("head", L)`` / ``("tail", 0)`` / ``("takeup", L)`` on a pulley.
+        over, or on a pulley its kind (``head``, ``tail``, ``takeup``, ``booster``) and where
+        it sits.
         """
         j = int(np.clip(np.searchsorted(self.s_end_m, s_m, side="left"), 0, self.n - 1))
         code = int(self.strand[j])
+        x0 = float(self.x_m[j]) if self.x_m is not None else float(self.s_m[j])
+        past = float(s_m) - float(self.s_m[j])
         if code == CARRY:
-            return "carry", float(min(max(s_m, 0.0), self.length_m))
+            return "carry", float(min(max(x0 + past, 0.0), self.length_m))
         if code == RETURN:
-            start = float(self.s_m[self.strand == RETURN].min())
-            return "return", float(min(max(self.length_m - (s_m - start), 0.0), self.length_m))
-        return {HEAD: "head", TAIL: "tail", TAKEUP: "takeup"}[code], (
-            0.0 if code == TAIL else self.length_m)
+            return "return", float(min(max(x0 - past, 0.0), self.length_m))
+        return {HEAD: "head", TAIL: "tail", TAKEUP: "takeup", BOOSTER: "booster"}[code], x0
 
 
 def _split(n: int, lengths: list[float]) -> list[int]:

@@ -46,10 +46,12 @@ def lumped_indices(loop: Loop, conv: Conveyor) -> list[int]:
 def pulley_allowances(loop: Loop, conv: Conveyor) -> np.ndarray:
     """Per-element pulley resistance allowances [N] (CEMA T_p): 200 lbf per drive pulley and
     150 lbf for the take-up pulley (slack side), 100 lbf for other pulleys, each drive's at its
-    end's lumped element."""
+    end's lumped element (a booster's just after its own pulley)."""
     out = np.zeros(loop.n)
     for p in loop.pulleys:
-        if p.drive >= 0:
+        if p.drive >= 0 and p.at_m is not None:  # a booster: just after its own pulley
+            out[(p.element + 1) % loop.n] += TP_TIGHT_N
+        elif p.drive >= 0:
             out[lumped_index(loop, conv, p.position)] += TP_TIGHT_N
         elif p.takeup:
             out[p.element] += TP_SLACK_N

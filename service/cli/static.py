@@ -217,10 +217,15 @@ def _check_lines(s: dict) -> list[str]:
     lines, j = [], 1
     if "pulley1_name" not in s:
         return lines
-    lines.append("  design checks (docs/checks.md)   D min [m]   D ok   resultant [kN]")
+    names = []
+    while f"pulley{len(names) + 1}_name" in s:
+        names.append(s[f"pulley{len(names) + 1}_name"])
+    w = max(24, *(len(n) for n in names))  # a booster's name is longer: keep the columns
+    lines.append("  design checks (docs/checks.md)" + " " * (w - 24)
+                 + "   D min [m]   D ok   resultant [kN]")
     while f"pulley{j}_name" in s:
         d_min, ok = s[f"pulley{j}_diameter_min_m"], s[f"pulley{j}_diameter_min_ok"]
-        lines.append(f"    pulley {j}: {s[f'pulley{j}_name']:<24} "
+        lines.append(f"    pulley {j}: {s[f'pulley{j}_name']:<{w}} "
                      f"{'-' if d_min is None else f'{d_min:.3f}':>7} "
                      f"{'-' if ok is None else ('yes' if ok else 'NO'):>6} "
                      f"{s[f'pulley{j}_resultant_kn']:>14.1f}")

@@ -38,6 +38,7 @@ from beltstudy.engine import (
     resolve_belt,
 )
 from beltstudy.engine import results as result_fields
+from beltstudy.engine.conveyor import place
 from beltstudy.service import charts
 from beltstudy.service.store import query
 from beltstudy.service.studies import StudyService
@@ -128,6 +129,11 @@ def _pitch(idler_set: dict) -> str:
     if idler_set.get("spacing_m") is not None:
         return f"spacing {idler_set['spacing_m']:g} m"
     return f"{idler_set['count']} sets along the route"
+
+
+def _place(item: dict) -> str:
+    """A drive's or take-up's position: ``head``, ``tail`` or ``carry at 1000 m``."""
+    return place(item["position"], item.get("at_m"))
 
 
 def _num(value: Any, digits: int = 4, unit: str = "") -> str:
@@ -223,7 +229,7 @@ def _conveyor_section(conv: dict, fill: dict | None) -> str:
                             f"{conv['idlers']['carry'].get('trough_deg', 0):g}°, "
                             + _pitch(conv['idlers']['carry']))],
 
-        ["take-up", _e(f"{tu['type']} at the {tu['position']}, "
+        ["take-up", _e(f"{tu['type']} at the {_place(tu)}, "
                        + (f"mass {tu['mass_kg']}" + (" kg" if tu["mass_kg"] != "auto" else "")
                           if tu["type"] == "gravity" else
                           f"pretension {tu['pretension_kn']}"
@@ -249,7 +255,7 @@ def _conveyor_section(conv: dict, fill: dict | None) -> str:
         [str(i + 1), _n(p["length_m"]), _n(p["lift_m"]), _n(100 * p["lift_m"] / p["length_m"], 3)]
         for i, p in enumerate(conv["profile"])]))
     out.append("<h3>Drives and brakes</h3>")
-    drows = [[f"drive {i + 1}", _e(d["position"]), _n(d["wrap_deg"]), _n(d["friction"]),
+    drows = [[f"drive {i + 1}", _e(_place(d)), _n(d["wrap_deg"]), _n(d["friction"]),
               _n(d["share"]), _e("auto") if d.get("rated_power_kw") is None
               else _n(d["rated_power_kw"])]
              for i, d in enumerate(conv["drives"])]

@@ -66,6 +66,10 @@ def test_tension_walk_with_a_booster_at_mid_carry():
     b = loop.drive_elements[1]
     assert loop.strand[b] == BOOSTER and loop.pulley_at(b).at_m == 500.0
     assert loop.x_m[b] == pytest.approx(500.0, abs=1e-9)
+    # a loop position names the booster, and the carry beyond it by its route position
+    assert loop.where(float(loop.s_m[b]) + 0.1) == ("booster", 500.0)
+    strand, x = loop.where(float(loop.s_m[b + 1]) + 10.0)
+    assert strand == "carry" and x == pytest.approx(510.0, abs=1e-9)
     # the drop across the booster and across the head drive, by their shares
     assert T[b - 1] - T[b] == pytest.approx(0.4 * TE, rel=1e-9)
     h = loop.drive_elements[0]
