@@ -12,6 +12,7 @@ from __future__ import annotations
 
 import math
 import time
+from dataclasses import dataclass
 
 import numpy as np
 import pandas as pd
@@ -32,7 +33,7 @@ from beltstudy.engine.statics import (
     solve_steady,
 )
 
-__all__ = ["RunResult", "run_one", "check_scenario", "TRANSIENT_SAFETY_RATIO",
+__all__ = ["RunResult", "run_one", "run_group", "check_scenario", "TRANSIENT_SAFETY_RATIO",
            "transient_safety_min"]
 
 #: A table of :class:`RunResult` not given to its constructor: derived from the results.
@@ -192,6 +193,83 @@ def run_one(
     """
     t0 = time.perf_counter()
     opts = options or DynamicsOptions()
+    prep = _prepare(conveyor, scenario, model, params, dynamics, opts)
+    if prep.done is not None:
+        prep.done.summary["elapsed_s"] = time.perf_counter() - t0
+        return prep.done
+    system = build_system(prep.conveyor, scenario, prep.steady, opts)
+    tr = simulate(system, steady_summary=prep.steady.summary, conveyor=prep.conveyor,
+                  safety_factor_min=transient_safety_min(prep.conveyor,
+                                                         prep.steady.loop.belt.kind))
+    return _complete(prep, scenario, system, tr, model, params, opts, remedy, check, t0)
+
+
+def run_group(
+    conveyor: Conveyor,
+    scenarios: list[Scenario],
+    *,
+    model: str,
+    params: dict | None = None,
+    options: DynamicsOptions | None = None,
+    remedy: bool = False,
+    check: bool | list[bool] = False,
+) -> list[RunResult]:
+    """:func:`run_one` of each scenario of one conveyor, model and parameters, the runs that
+    agree on everything the transient engine reads up to the stop command sharing one
+    simulated rest, start and run (:mod:`beltstudy.engine.dynamics.shared`: the engine, not the
+    caller, decides which do, from the built models). Each result equals its :func:`run_one`
+    bit for bit but ``elapsed_s`` (the shared stretch counts in full for each run).
+
+    ``check`` may be one flag per scenario (the error bars rerun each checked run's cycle on
+    its own, as :func:`run_one` does). Raises as :func:`run_one` for the first scenario that
+    cannot run; a caller that wants a bad scenario to fail alone runs it with
+    :func:`run_one`."""
+    from beltstudy.engine.dynamics.shared import group_by_start, simulate_group
+
+    checks = check if isinstance(check, list) else [check] * len(scenarios)
+    opts = options or DynamicsOptions()
+    t0 = [time.perf_counter() for _ in scenarios]
+    results: list[RunResult | None] = [None] * len(scenarios)
+    preps, systems, todo = {}, [], []
+    for i, scn in enumerate(scenarios):
+        t0[i] = time.perf_counter()
+        prep = _prepare(conveyor, scn, model, params, True, opts)
+        if prep.done is not None:
+            prep.done.summary["elapsed_s"] = time.perf_counter() - t0[i]
+            results[i] = prep.done
+            continue
+        preps[i] = prep
+        systems.append(build_system(prep.conveyor, scn, prep.steady, opts))
+        todo.append(i)
+    for group in group_by_start(systems):
+        first = preps[todo[group[0]]]
+        trs = simulate_group([systems[g] for g in group],
+                             steady_summary=first.steady.summary, conveyor=first.conveyor,
+                             safety_factor_min=transient_safety_min(
+                                 first.conveyor, first.steady.loop.belt.kind))
+        for g, tr in zip(group, trs, strict=True):
+            i = todo[g]
+            results[i] = _complete(preps[i], scenarios[i], systems[g], tr, model, params, opts,
+                                   remedy, checks[i], t0[i])
+    return results  # type: ignore[return-value]
+
+
+@dataclass
+class _Prepared:
+    """A run up to its transient: the conveyor it runs (an auto belt resolved), the belt
+    choice's words, the steady solution and the summary so far; ``done`` holds the finished
+    result of a run without a transient (steady only, or a failed steady state)."""
+
+    conveyor: Conveyor
+    belt_choice: object
+    steady: object
+    summary: dict
+    done: RunResult | None = None
+
+
+def _prepare(conveyor, scenario, model, params, dynamics, opts) -> _Prepared:
+    """The steady part of :func:`run_one`: the scenario checked, the auto belt chosen, the
+    steady solve and the sizes this run used."""
     if dynamics:
         check_scenario(scenario, conveyor, opts)
     n = None if scenario.elements == "auto" else int(scenario.elements)
@@ -210,14 +288,19 @@ def run_one(
     # the sizes this run used (take-up, rated power, brakes) and what set each auto one
     summary.update(summary_fields(auto_sizes(conveyor, scenario, model=model, params=params,
                                              steady=steady)))
+    prep = _Prepared(conveyor, belt_choice, steady, summary)
     if not dynamics or steady.status == "failed":
         run_message(summary, belt_choice)
-        summary["elapsed_s"] = time.perf_counter() - t0
-        return RunResult(summary=check_summary(summary), steady=steady)
+        check_summary(summary)
+        prep.done = RunResult(summary=summary, steady=steady)
+    return prep
 
-    system = build_system(conveyor, scenario, steady, opts)
-    tr = simulate(system, steady_summary=steady.summary, conveyor=conveyor,
-                  safety_factor_min=transient_safety_min(conveyor, steady.loop.belt.kind))
+
+def _complete(prep: _Prepared, scenario, system, tr, model, params, opts, remedy, check,
+              t0) -> RunResult:
+    """The rest of :func:`run_one` after the transient: its fields, the transient checks,
+    lift-off at concave curves, the slip remedy, the status and message, the error bars."""
+    conveyor, steady, summary = prep.conveyor, prep.steady, prep.summary
     summary.update(tr.summary)
     summary.update({k: (v if math.isfinite(v) else None) for k, v in transient_checks(
         steady.loop, np.array([seg[2] for seg in tr.raw["segments"]])).items()})
@@ -246,7 +329,7 @@ def run_one(
         status = "ok"
     summary["status"] = status
     summary["message"] = "; ".join(messages)
-    run_message(summary, belt_choice)
+    run_message(summary, prep.belt_choice)
     result = RunResult(summary=summary, steady=steady, transient=tr)
     if check and status != "failed":
         result.accuracy = _error_bars(conveyor, scenario, result, model, params, opts)

@@ -736,8 +736,12 @@ def _finish(model, st, out, wk, rs):
     _archive_segment(rs.seg, t, out)
 
 
+#: What :func:`run_cycle` returns when it paused before ``t_pause`` (not a run status).
+PAUSED = -1
+
+
 @njit(**OPTS)
-def run_cycle(model, st, out, wk):
+def run_cycle(model, st, out, wk, t_pause):
     """Integrate the whole cycle (see the module docstring for one step).
 
     ``model`` (:class:`~beltstudy.engine.dynamics.records.Model`) from
@@ -747,12 +751,20 @@ def run_cycle(model, st, out, wk):
     envelope segments, the per-drive and per-shaft results and the run's scalars
     (``out.run[0]``, :data:`~beltstudy.engine.dynamics.records.RUN`); ``wk`` scratch. Returns
     the run's status (:mod:`beltstudy.engine.dynamics.codes`).
+
+    ``t_pause`` >= 0 pauses before the first step whose time is past it and returns
+    :data:`PAUSED` (the stop command: every array then holds the state after the last step
+    at or before it); called again with the same arrays (``out.run[0].steps`` > 0) the run
+    goes on from there, step for step as if it had not paused. ``t_pause`` < 0: no pause.
     """
     rs = out.run[0]
-    _start(model, st, out, wk, rs)
+    if rs.steps == 0:
+        _start(model, st, out, wk, rs)
     dt = model.cycle.dt
     max_steps = int(rs.t_end_limit / dt) + 2
     while rs.steps < max_steps:
+        if t_pause >= 0.0 and (rs.steps + 1) * dt > t_pause:
+            return PAUSED
         rs.steps += 1
         rs.t = rs.steps * dt
         _phase(model, rs)

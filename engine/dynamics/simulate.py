@@ -61,8 +61,10 @@ class KernelRun:
     out: R.Out
     work: R.Work
 
-    def call(self) -> int:
-        return int(run_cycle(self.model, self.state, self.out, self.work))
+    def call(self, t_pause: float = -1.0) -> int:
+        """Run the cycle (on from where it paused); ``t_pause`` >= 0 pauses before the first
+        step past it (:data:`~beltstudy.engine.dynamics.kernel.PAUSED` returned)."""
+        return int(run_cycle(self.model, self.state, self.out, self.work, float(t_pause)))
 
     @property
     def run(self) -> np.void:

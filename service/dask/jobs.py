@@ -28,7 +28,7 @@ from distributed import as_completed
 
 from beltstudy import engine
 from beltstudy.service.dask.executor import LIVE_CLIENT_STATES
-from beltstudy.service.dask.tasks import Specs, run_batch
+from beltstudy.service.dask.tasks import Specs, run_batch, start_candidate
 from beltstudy.service.errors import Unavailable
 from beltstudy.service.grid.expand import ResolvedStudy, RunSpec
 from beltstudy.service.store.columns import (
@@ -69,6 +69,15 @@ WAIT_FOR_DASK_S = 5.0
 def _part_key(batch: list[RunSpec]) -> str:
     """Part file key of a set of runs (the same runs always give the same key)."""
     return hashlib.sha256("".join(r.run_id for r in batch).encode()).hexdigest()[:16]
+
+
+def adjacent_starts(runs: list[RunSpec]) -> list[RunSpec]:
+    """``runs`` with those that may share a start (:func:`start_candidate`) side by side, in
+    the order their first run came (a stable regrouping: a study's other order is kept)."""
+    groups: dict[tuple, list[RunSpec]] = {}
+    for r in runs:
+        groups.setdefault(start_candidate(r), []).append(r)
+    return [r for g in groups.values() for r in g]
 
 
 def batch_size(
@@ -269,7 +278,7 @@ class StudyJob:
         done_ids = set(have["run_id"]) if len(have) else set()
         self.done = len(done_ids)
         self.failed = int((have["status"] == "failed").sum()) if len(have) else 0
-        todo = deque(r for r in self.study.runs if r.run_id not in done_ids)
+        todo = deque(adjacent_starts([r for r in self.study.runs if r.run_id not in done_ids]))
         del have, done_ids
         lost = False
         while todo and not self.halted:
@@ -326,6 +335,9 @@ class StudyJob:
                     per_run_s, len(todo), cap, self.settings.task_seconds, self.study.dynamics
                 )
                 batch = [todo.popleft() for _ in range(min(size, len(todo)))]
+                # runs that may share a start go to one task whole (beltstudy.engine.run.run_group)
+                while todo and start_candidate(todo[0]) == start_candidate(batch[-1]):
+                    batch.append(todo.popleft())
                 key = f"beltstudy-{sid}-{nonce}-{seq:06d}"
                 seq += 1
                 sink = {**self._sink, "key": _part_key(batch)}

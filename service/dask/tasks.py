@@ -10,6 +10,7 @@ for a bad run. Results travel back as plain rows and Arrow tables.
 
 from __future__ import annotations
 
+import json
 import os
 import time
 from typing import Any
@@ -38,6 +39,8 @@ from beltstudy.service.store.parquet import PART_TABLES, write_part_to
 
 __all__ = [
     "run_batch",
+    "run_specs",
+    "start_candidate",
     "Specs",
     "arrays_table",
     "timeseries_table",
@@ -131,13 +134,7 @@ def accuracy_table(run_id: str, result) -> pa.Table | None:
 def run_spec(spec: RunSpec, study_id: str = "") -> tuple[dict, Any]:
     """One run: (row, result or None)."""
 
-    row: dict[str, Any] = {
-        "study_id": study_id,
-        "run_id": spec.run_id,
-        **spec.axes,
-        "friction_model": spec.model,
-        "engine_version": engine.__version__,
-    }
+    row = _row_head(spec, study_id)
     t0 = time.perf_counter()
     try:
         if engine.__version__ != spec.engine_version:
@@ -154,13 +151,76 @@ def run_spec(spec: RunSpec, study_id: str = "") -> tuple[dict, Any]:
     except Exception as exc:  # a run that raises is data, not an aborted study
         row.update(failed_row(_message(exc), time.perf_counter() - t0))
         return row, None
+    return _row_done(row, spec, result, t0), result
+
+
+def _row_head(spec: RunSpec, study_id: str) -> dict[str, Any]:
+    """A run's row before its figures: ids, axis values, model, engine version."""
+    return {"study_id": study_id, "run_id": spec.run_id, **spec.axes,
+            "friction_model": spec.model, "engine_version": engine.__version__}
+
+
+def _row_done(row: dict, spec: RunSpec, result, t0: float) -> dict:
+    """A run's row with its figures and what set each size of its design."""
     row.update(flatten_summary(result.summary))
     # what set each size the study held for this run's conveyor design (beltstudy.service.grid.basis): the
     # run itself only sees the numbers
     row.update(spec.design)
     if row["elapsed_s"] is None:
         row["elapsed_s"] = time.perf_counter() - t0
-    return row, result
+    return row
+
+
+def start_candidate(spec: RunSpec) -> tuple:
+    """Runs that may share one simulated start (one conveyor mapping, model, parameters and
+    scenario but its stop); the engine decides which of them do
+    (:func:`beltstudy.engine.run.run_group`). A steady-only run or one in the accuracy sample
+    (its error bars rerun it) stands alone."""
+    if not spec.dynamics or spec.check:
+        return ("alone", spec.run_id)
+    scn = json.dumps({k: v for k, v in spec.scenario.items() if k != "stop"}, sort_keys=True,
+                     default=str)
+    return (id(spec.conveyor), scn, spec.model, json.dumps(spec.params, sort_keys=True,
+                                                           default=str), spec.engine_version)
+
+
+def run_specs(specs: list[RunSpec], study_id: str = "") -> list[tuple[dict, Any]]:
+    """:func:`run_spec` of each spec, the runs that differ only in their stop sharing one
+    simulated start (:func:`beltstudy.engine.run.run_group`); results and rows as run alone.
+    A group whose shared run raises runs again one run at a time (a bad run fails alone)."""
+    groups: dict[tuple, list[int]] = {}
+    for i, spec in enumerate(specs):
+        groups.setdefault(start_candidate(spec), []).append(i)
+    out: list[tuple[dict, Any] | None] = [None] * len(specs)
+    for idx in groups.values():
+        if len(idx) > 1:
+            shared = _run_shared([specs[i] for i in idx], study_id)
+            if shared is not None:
+                for i, pair in zip(idx, shared, strict=True):
+                    out[i] = pair
+                continue
+        for i in idx:
+            out[i] = run_spec(specs[i], study_id)
+    return out  # type: ignore[return-value]
+
+
+def _run_shared(specs: list[RunSpec], study_id: str) -> list[tuple[dict, Any]] | None:
+    """The rows and results of runs that may share a start, or None when one of them cannot
+    run (the caller then runs each alone, so the bad one fails with its own message)."""
+    from beltstudy.engine.run import run_group
+
+    t0 = time.perf_counter()
+    try:
+        if any(engine.__version__ != s.engine_version for s in specs):
+            return None
+        conveyor = parse_conveyor(specs[0].conveyor)
+        scenarios = [parse_scenario(s.scenario) for s in specs]
+        results = run_group(conveyor, scenarios, model=specs[0].model,
+                            params=specs[0].params or None)
+    except Exception:
+        return None
+    return [(_row_done(_row_head(spec, study_id), spec, result, t0), result)
+            for spec, result in zip(specs, results, strict=True)]
 
 
 def _run(run_one, conveyor, scenario, spec: RunSpec):
@@ -219,11 +279,11 @@ def run_batch(
         specs = specs.items
     rows, series, profiles, surfaces, accuracy = [], [], [], [], []
     t_run = t_tables = t_write = 0.0
-    for spec in specs:
-        t1 = time.perf_counter()
-        row, result = run_spec(spec, study_id)
+    t1 = time.perf_counter()
+    pairs = run_specs(specs, study_id)
+    t_run = time.perf_counter() - t1
+    for spec, (row, result) in zip(specs, pairs, strict=True):
         t2 = time.perf_counter()
-        t_run += t2 - t1
         rows.append(row)
         if result is None:
             continue

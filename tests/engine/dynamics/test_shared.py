@@ -1,0 +1,97 @@
+"""One start, many stops (engine/dynamics/shared.py, issue 29 item 1): runs that differ only in
+their stop share one simulated rest, start and run, and each result equals its own separate run
+bit for bit: every summary figure (but the wall time), every time-series column, the surface and
+the envelopes."""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+
+from beltstudy.engine.conveyor import Scenario
+from beltstudy.engine.dynamics import build_system
+from beltstudy.engine.dynamics.shared import group_by_start, simulate_group, start_key
+from beltstudy.engine.run import run_group, run_one
+from beltstudy.engine.statics import solve_steady
+from tests.engine.conftest import hand_conv, hand_drive, steep_incline
+
+TIMING = {"elapsed_s", "wall_s", "kernel_s"}
+
+
+def assert_same(a, b):
+    """Two run results equal bit for bit (NaN equal to NaN), but their timing."""
+    sa, sb = a.summary, b.summary
+    assert set(sa) == set(sb)
+    for k in sa:
+        if k in TIMING:
+            continue
+        va, vb = sa[k], sb[k]
+        if isinstance(va, float) and isinstance(vb, float) and math.isnan(va):
+            assert math.isnan(vb), k
+        else:
+            assert va == vb, (k, va, vb)
+    if a.transient is None:
+        assert b.transient is None
+        return
+    ta, tb = a.transient.series, b.transient.series
+    assert list(ta) == list(tb)
+    for k in ta:
+        np.testing.assert_array_equal(ta[k], tb[k], err_msg=k)
+    for x, y in zip(a.transient.surface_arrays().values(), b.transient.surface_arrays().values(),
+                    strict=True):
+        np.testing.assert_array_equal(x, y)
+    for x, y in zip(a.transient.envelope_kn(), b.transient.envelope_kn(), strict=True):
+        np.testing.assert_array_equal(x, y)
+
+
+STOPS = [{"mode": "coast"}, {"mode": "brake", "time_s": 3}, {"mode": "brake", "time_s": 8},
+         {"mode": "controlled", "time_s": 20}]
+
+
+def test_a_shared_start_gives_each_stop_its_own_runs_results():
+    """The 10 % incline with a head brake on a 20 t take-up, whose drive slips in a 6 s start:
+    coast, two braked stops (the slip goes on into them) and a controlled stop share one
+    start, and each equals its separate run."""
+    conv = steep_incline(takeup={"type": "gravity", "position": "tail", "mass_kg": 20000})
+    scns = [Scenario(start={"time_s": 6}, run_s=10, stop=s) for s in STOPS]
+    grouped = run_group(conv, scns, model="din")
+    alone = [run_one(conv, s, model="din") for s in scns]
+    assert all(r.summary["drive1_slip_s"] > 0 for r in alone)  # slip in the start
+    assert "into the stop" in alone[1].summary["message"]
+    assert len({r.summary["stop_time_s"] for r in alone}) >= 3  # coast, brake, controlled differ
+    for g, a in zip(grouped, alone, strict=True):
+        assert_same(g, a)
+
+
+def test_runs_that_differ_before_the_stop_are_not_grouped():
+    """A start time, a load or a take-up differ before the stop command: their runs get
+    separate start keys, and simulate_group refuses to share them."""
+    conv = hand_conv(drives=[hand_drive()], brakes=[{"position": "head", "delay_s": 0.2}])
+    st = solve_steady(conv, model="din", n_elements=40)
+    base = Scenario(start={"time_s": 10}, run_s=5, elements=40)
+    systems = [build_system(conv, base, st),
+               build_system(conv, Scenario(start={"time_s": 10}, run_s=5, elements=40,
+                                           stop={"mode": "brake", "time_s": 5}), st),
+               build_system(conv, Scenario(start={"time_s": 12}, run_s=5, elements=40), st)]
+    keys = [start_key(s) for s in systems]
+    assert keys[0] == keys[1] != keys[2]
+    assert group_by_start(systems) == [[0, 1], [2]]
+    with pytest.raises(ValueError, match="differ before the stop command"):
+        simulate_group(systems)
+
+
+def test_a_runaway_before_the_stop_ends_every_run_of_the_group_alike():
+    """A decline the drive cannot hold runs away before the stop command: the shared stretch
+    ends the run, and each stop of the group reports the same runaway as its own run."""
+    conv = hand_conv(profile=[{"length_m": 1000, "lift_m": -150}],
+                     drives=[hand_drive(torque_limit=0.3, rated_power_kw=20)],
+                     takeup={"type": "gravity", "position": "tail", "mass_kg": 20000})
+    scns = [Scenario(start={"time_s": 10}, run_s=30, elements=40, stop=s)
+            for s in ({"mode": "coast"}, {"mode": "controlled", "time_s": 10})]
+    grouped = run_group(conv, scns, model="din")
+    alone = [run_one(conv, s, model="din") for s in scns]
+    assert "runs away" in alone[0].summary["message"] or "ran away" in alone[0].summary["message"]
+    for g, a in zip(grouped, alone, strict=True):
+        assert_same(g, a)

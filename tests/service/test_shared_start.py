@@ -1,0 +1,50 @@
+"""Runs of a study that differ only in their stop share one simulated start in the worker
+(beltstudy.service.dask.tasks.run_specs -> beltstudy.engine.run.run_group), and their rows are
+those of the runs run alone; the job keeps such runs side by side and in one task."""
+
+from __future__ import annotations
+
+import math
+
+from beltstudy.service.dask.jobs import adjacent_starts
+from beltstudy.service.dask.tasks import run_spec, run_specs, start_candidate
+from beltstudy.service.door.studyfile import resolve_study
+
+TIMING = {"elapsed_s"}
+
+
+def _study(make_study):
+    """The 60 m example conveyor, dynamic: two temperatures x three stops (coast, two
+    controlled stop times)."""
+    return resolve_study(make_study(
+        name="stops", dynamics=True,
+        grid={"temperature_c": [-10, 20], "scenario.stop.mode": ["coast", "controlled"],
+              "stop_time_s": [5, 10]}))
+
+
+def test_stops_of_one_start_are_grouped_and_give_the_rows_of_their_own_runs(make_study):
+    runs = _study(make_study).runs
+    keys = {start_candidate(r) for r in runs}
+    assert len(keys) == 2  # one candidate start per temperature
+    pairs = run_specs(runs, "sid")
+    for spec, (row, _result) in zip(runs, pairs, strict=True):
+        alone, _ = run_spec(spec, "sid")
+        assert set(row) == set(alone)
+        for k, v in row.items():
+            if k in TIMING:
+                continue
+            w = alone[k]
+            if isinstance(v, float) and math.isnan(v):
+                assert isinstance(w, float) and math.isnan(w), k
+            else:
+                assert v == w, (spec.run_id, k, v, w)
+
+
+def test_the_job_keeps_the_runs_of_one_start_side_by_side(make_study):
+    runs = _study(make_study).runs
+    ordered = adjacent_starts(list(reversed(runs)))
+    assert sorted(r.run_id for r in ordered) == sorted(r.run_id for r in runs)
+    keys = [start_candidate(r) for r in ordered]
+    # each candidate's runs form one unbroken stretch
+    changes = sum(1 for a, b in zip(keys, keys[1:], strict=False) if a != b)
+    assert changes == len(set(keys)) - 1
