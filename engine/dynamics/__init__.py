@@ -10,10 +10,15 @@ sections), ``brakes`` (the brakes' record, build and force law), ``codes`` (stat
 scenario codes, limits), ``fastmath`` (exp/log and LLVM helpers), ``passes`` (the vectorised
 passes), ``blocks`` (the implicit pulley blocks: solver, slip, drives, brakes), ``laws`` (motor
 and coupling laws), ``profiles`` (speed references), ``kernel`` (one step as a sequence of
-phases), ``simulate`` (fresh state and decode).
+phases), ``simulate`` (fresh state and decode), ``shared`` (one start, many stops), ``cache``
+(numba's cache keyed on the whole package).
 """
 
-from beltstudy.engine.dynamics.model import DynamicsOptions, System, build_system
-from beltstudy.engine.dynamics.simulate import TransientResult, simulate
+from beltstudy.engine.dynamics import cache as _cache
+
+_cache.install()  # before any function of the package is compiled: keys the cache on all of it
+
+from beltstudy.engine.dynamics.model import DynamicsOptions, System, build_system  # noqa: E402
+from beltstudy.engine.dynamics.simulate import TransientResult, simulate  # noqa: E402
 
 __all__ = ["DynamicsOptions", "System", "build_system", "TransientResult", "simulate"]

@@ -16,6 +16,7 @@ from numba import njit, uint64, uintp
 
 from beltstudy.engine.dynamics.fastmath import (
     OPTS,
+    OPTS_ORDERED,
     OPTS_RED,
     _cttz,
     _exp,
@@ -418,16 +419,35 @@ def _node(vj, h, r, dtj, gj, v_eps):
 @njit(**OPTS)
 def node_pass(a, b, v, tt, hm, grav, r0, v_eps, w):
     """Explicit velocity update of free elements a..b-1 (b <= n - 1, a >= 1); returns
-    ``sum w_j v_j`` over them. ``hm = dt / M``."""
-    s = 0.0
+    ``sum w_j v_j`` over them (:func:`weighted_sum`, in a fixed order). ``hm = dt / M``."""
     for jj in range(a, b):
         # unsigned indices: numba then drops the negative-index wraparound and LLVM vectorises
         j = uintp(jj)
         jm = uintp(jj - 1)
-        vn = _node(v[j], hm[j], r0[j], tt[j] - tt[jm], grav[j], v_eps)
-        v[j] = vn
-        s += w[j] * vn
-    return s
+        v[j] = _node(v[j], hm[j], r0[j], tt[j] - tt[jm], grav[j], v_eps)
+    return weighted_sum(w, v, a, b)
+
+
+@njit(**OPTS_ORDERED)
+def weighted_sum(w, v, a, b):
+    """``sum w_j v_j`` over j = a..b-1 in a fixed order: four running sums over j mod 4, joined
+    as ``(s0 + s1) + (s2 + s3)`` (the same bits whatever the memory layout:
+    :data:`~beltstudy.engine.dynamics.fastmath.OPTS_ORDERED`)."""
+    s0 = 0.0
+    s1 = 0.0
+    s2 = 0.0
+    s3 = 0.0
+    j = a
+    while j + 4 <= b:
+        s0 += w[j] * v[j]
+        s1 += w[j + 1] * v[j + 1]
+        s2 += w[j + 2] * v[j + 2]
+        s3 += w[j + 3] * v[j + 3]
+        j += 4
+    while j < b:
+        s0 += w[j] * v[j]
+        j += 1
+    return (s0 + s1) + (s2 + s3)
 
 
 #: Curvature bound of one Newton step on Ernst's chord law: a spring whose first step's
