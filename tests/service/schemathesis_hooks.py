@@ -258,3 +258,38 @@ def filter_body(ctx, body):
         return _study_ok(body)
     except (TypeError, KeyError, AttributeError, ZeroDivisionError, ValueError, OSError):
         return True  # not a well-formed study: it is a negative case, refused anyway
+
+
+def _calibration_ok(body: dict) -> bool:
+    """A calibration body keeps the rules outside its schema (SPEC 7.3): a conveyor file that
+    exists, every row with a measured power_kw or te_kn, fitted names the model's parameters
+    (fixed ones too), a name not both fitted and fixed, a load case the profile takes."""
+    from beltstudy.engine import get_model
+
+    conv = body["conveyor"]
+    if isinstance(conv, str) and not (STUDIES / conv).is_file():
+        return False
+    if not _conveyor_ok(conv):
+        return False
+    if any("power_kw" not in r and "te_kn" not in r for r in body["measured"]):
+        return False
+    if any(r["load"] not in ("full", "empty", "inclines", "declines")
+           and not (isinstance(r["load"], int | float) and 0 <= r["load"] <= 1.3)
+           for r in body["measured"]):
+        return False
+    valid = {f["name"] for f in get_model(body["model"]).parameter_table()}
+    names = [str(f).partition("=")[0] for f in body["fit"]]
+    params = body.get("params") or {}
+    return (set(names) <= valid and len(set(names)) == len(names) and set(params) <= valid
+            and not set(names) & set(params) and len(body["measured"]) <= 8)
+
+
+@schemathesis.hook("filter_body")
+def filter_calibration(ctx, body):
+    """Skip generated valid calibrations that break a rule outside the schema."""
+    if not isinstance(body, dict) or "measured" not in body or "fit" not in body:
+        return True
+    try:
+        return _calibration_ok(body)
+    except (TypeError, KeyError, AttributeError, ValueError, OSError):
+        return True
