@@ -282,6 +282,13 @@ def calibrate(conv: Conveyor, measured: Sequence[Measurement], model: str,
     else:
         notes.append(f"{n} residuals for {p} parameters: no degrees of freedom left, no "
                      "standard errors")
+    for name, v, s in zip(free, sol.x, se, strict=True):
+        if v <= 1e-9 * abs(float(x0[names.index(name)])):
+            notes.append(f"{name} ended at its bound 0: the data would take it below; its "
+                         "standard error is not that of a free estimate")
+        elif s is not None and s > abs(v):
+            notes.append(f"{name} is poorly determined by these data: its standard error "
+                         f"({s:.3g}) exceeds its value ({v:.3g})")
     values = model_values(sol.x, free)
     fitted = {name: {"value": float(v), "se": s, "start": float(x0[names.index(name)])}
               for name, v, s in zip(free, sol.x, se, strict=True)}
