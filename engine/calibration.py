@@ -59,6 +59,9 @@ RCOND = 1e-4
 DIFF_STEP = 1e-4
 #: Measured column -> the steady summary field the model gives for it.
 MEASURED = {"power_kw": "power_kw", "te_kn": "te_kn", "t_tight_kn": "t1_kn"}
+#: Names that set several parameters of a model to one value: DIN 22101's single
+#: fictitious friction factor f for both strands (the table's f; f_carry and f_return split it).
+TIED = {"din": {"f": ("f_carry", "f_return")}}
 #: Start values of parameters whose default is computed (None), read from the law's info.
 _INFO_START = {"c": "c_factor", "ky": "ky_mean", "kt": "kt", "kta": "kta"}
 
@@ -175,6 +178,7 @@ def _conveyor_at(conv: Conveyor, speed_m_s: float | None, cache: dict) -> Convey
 
 def _check_names(model, fit: Sequence[str], fixed: dict) -> list[str]:
     valid = [f.name for f in dataclasses.fields(model.params_class)]
+    valid += list(TIED.get(model.name, {}))
     names = []
     for name in fit:
         if name not in valid:
@@ -184,13 +188,26 @@ def _check_names(model, fit: Sequence[str], fixed: dict) -> list[str]:
                              f"valid: {', '.join(valid)}", field="fit")
         if name in names:
             raise InputError(f"'{name}' is named twice", field="fit")
-        if name in fixed:
+        sets = _sets(model.name, name)
+        if set(sets) & set(fixed):
             raise InputError(f"'{name}' is both fitted and fixed; fit it or fix it", field="fit")
+        if any(set(sets) & set(_sets(model.name, n)) for n in names):
+            raise InputError(f"'{name}' sets a parameter another fitted name sets",
+                             field="fit")
         names.append(name)
     if not names:
         raise InputError(f"name at least one parameter to fit; valid: {', '.join(valid)}",
                          field="fit")
     return names
+
+
+def _sets(model: str, name: str) -> tuple[str, ...]:
+    """The parameters a fitted name sets (itself, or those :data:`TIED` names)."""
+    return TIED.get(model, {}).get(name, (name,))
+
+
+def _expanded(model: str, values: dict[str, float]) -> dict[str, float]:
+    return {p: v for name, v in values.items() for p in _sets(model, name)}
 
 
 def _starts(model, conv, rows, names, fixed, starts) -> np.ndarray:
@@ -199,7 +216,7 @@ def _starts(model, conv, rows, names, fixed, starts) -> np.ndarray:
     info = None
     out = []
     for name in names:
-        value = starts.get(name, getattr(base, name))
+        value = starts.get(name, getattr(base, _sets(model.name, name)[0]))
         if value is None:
             if info is None:
                 m = rows[0]
@@ -227,7 +244,8 @@ def calibrate(conv: Conveyor, measured: Sequence[Measurement], model: str,
     model : str
         Friction model name.
     fit : sequence of str
-        Parameters to fit (names of the model's parameter dataclass).
+        Parameters to fit (names of the model's parameter dataclass, or a name of
+        :data:`TIED`: ``f`` of din sets f_carry and f_return to one value).
     fixed : dict, optional
         Other parameters held at given values.
     starts : dict, optional
@@ -250,7 +268,8 @@ def calibrate(conv: Conveyor, measured: Sequence[Measurement], model: str,
     speeds: dict = {}
 
     def model_values(x: np.ndarray, which: Sequence[str]) -> np.ndarray:
-        p = fm.params({**fixed, **dict(zip(which, map(float, x), strict=True))})
+        p = fm.params({**fixed, **_expanded(fm.name, dict(zip(which, map(float, x),
+                                                               strict=True)))})
         out = {}
         for i, m in enumerate(rows):
             res = solve_steady(_conveyor_at(conv, m.speed_m_s, speeds), model=fm.name,
@@ -264,7 +283,7 @@ def calibrate(conv: Conveyor, measured: Sequence[Measurement], model: str,
     free, held, groups = _identifiable(lambda x: residual(x, names), x0, names)
     x_free = np.array([x0[names.index(n)] for n in free])
     held_values = {n: float(x0[names.index(n)]) for n in held}
-    fixed.update(held_values)
+    fixed.update(_expanded(fm.name, held_values))
     sol = least_squares(residual, x_free, args=(free,), bounds=(0.0, np.inf),
                         x_scale="jac", diff_step=DIFF_STEP, xtol=1e-12, ftol=1e-12)
     r = residual(sol.x, free)
@@ -296,8 +315,9 @@ def calibrate(conv: Conveyor, measured: Sequence[Measurement], model: str,
     residuals = [{"row": i, "measured": col, "value": float(y[k]), "model": float(values[k]),
                   "residual": float(values[k] - y[k]), "relative": float(r[k])}
                  for k, (i, col) in enumerate(cols)]
-    block = {**{k: float(v) for k, v in fixed.items() if k not in held_values},
-             **{name: float(f"{v:.6g}") for name, v in zip(free, sol.x, strict=True)}}
+    block = {**{k: float(v) for k, v in fixed.items()},
+             **_expanded(fm.name, {name: float(f"{v:.6g}")
+                                   for name, v in zip(free, sol.x, strict=True)})}
     sv = np.linalg.svd(_unit_columns(jac), compute_uv=False) if p else np.array([])
     return Calibration(
         model=fm.name, fit=fitted, residuals=residuals,

@@ -73,6 +73,7 @@ def test_product_pair_is_not_identifiable(overland):
     cal = calibrate(overland, rows, "nonlin", ["mu_b", "bearing_diameter_m"])
     assert cal.not_identifiable == ["mu_b", "bearing_diameter_m"]
     assert cal.held == {"bearing_diameter_m": 0.045}
+    assert cal.models["nonlin"]["bearing_diameter_m"] == 0.045  # the block says what it held
     assert cal.fit["bearing_diameter_m"]["se"] is None
     assert "only act together" in cal.notes[0]
     # with d_b held at the value the data were made with, mu_b is found
@@ -89,9 +90,9 @@ def test_din_c_scales_both_factors(overland):
 
 def test_unknown_parameter_names_the_valid_ones(overland):
     rows = _plant(overland, "din", {})
-    with pytest.raises(InputError, match=r"'f' is not a parameter of model din.*valid: "
-                                         r"f_carry, f_return, c"):
-        calibrate(overland, rows, "din", ["f"])
+    with pytest.raises(InputError, match=r"'f_cary' is not a parameter of model din \(did you "
+                                         r"mean 'f_carry'\?\); valid: f_carry, f_return, c, f"):
+        calibrate(overland, rows, "din", ["f_cary"])
     with pytest.raises(InputError, match="fit: 'ky_x' is not a parameter of model cema.*ky, kt"):
         calibrate(overland, rows, "cema", ["ky_x"])
 
@@ -111,3 +112,16 @@ def test_rows_are_checked_by_name():
         measurements_from_rows([{"load": "full", "temperature_c": 5, "power_kw": "lots"}])
     with pytest.raises(InputError, match="unknown column 'power_k'.*did you mean 'power_kw'"):
         measurements_from_rows([{"load": "full", "temperature_c": 5, "power_k": 1}])
+
+
+def test_din_single_f_sets_both_strands(overland):
+    # DIN 22101's one f for both strands: power made with f_carry = f_return = 0.0237
+    rows = _plant(overland, "din", {"f_carry": TRUTH, "f_return": TRUTH})
+    cal = calibrate(overland, rows, "din", ["f"])
+    assert cal.fit["f"]["value"] == pytest.approx(TRUTH, rel=1e-6)
+    assert cal.models["din"] == {"f_carry": pytest.approx(TRUTH, rel=1e-5),
+                                 "f_return": pytest.approx(TRUTH, rel=1e-5)}
+    with pytest.raises(InputError, match="'f' is both fitted and fixed"):
+        calibrate(overland, rows, "din", ["f"], fixed={"f_return": 0.01})
+    with pytest.raises(InputError, match="'f_carry' sets a parameter another fitted name sets"):
+        calibrate(overland, rows, "din", ["f", "f_carry"])
