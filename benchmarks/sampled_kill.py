@@ -1,6 +1,6 @@
 """A sampled study through the service with a worker killed mid-study (docs/uncertainty.md).
 
-    .venv/bin/python benchmarks/sampled_kill.py studies/slope-uncertainty.yaml OUT_DIR
+    .venv/bin/python benchmarks/sampled_kill.py benchmarks/slope-uncertainty.yaml OUT_DIR
 
 Starts ``beltstudy serve`` (LocalCluster, two workers) with its data in ``OUT_DIR/data``,
 submits the study, SIGKILLs one Dask worker once ``--kill-after`` runs are stored, waits for the
@@ -20,26 +20,19 @@ import time
 from pathlib import Path
 
 import pandas as pd
-import psutil
 
 from beltstudy.service.cli.client import ServiceClient
-from beltstudy.service.cli.demo import free_port, start_server, stop_server, wait_ready
+from beltstudy.service.cli.demo import (
+    free_port,
+    start_server,
+    stop_server,
+    wait_ready,
+    worker_pids,
+)
 from beltstudy.service.door.studyfile import load_study_file, study_body
 from beltstudy.service.uncertainty import format_text
 
 ROOT = Path(__file__).resolve().parents[1]
-
-
-def worker_pids(proc) -> list[int]:
-    out = []
-    for child in psutil.Process(proc.pid).children(recursive=True):
-        try:
-            cmd = " ".join(child.cmdline())
-        except psutil.Error:
-            continue
-        if "spawn_main" in cmd or "forkserver" in cmd:
-            out.append(child.pid)
-    return out
 
 
 def main() -> int:

@@ -14,6 +14,8 @@ from pathlib import Path
 from pydantic import BaseModel, ConfigDict, Field
 
 from beltstudy.engine import (
+    TEMPERATURE_MAX_C,
+    TEMPERATURE_MIN_C,
     Conveyor,
     InputError,
     calibrate,
@@ -25,7 +27,12 @@ from beltstudy.service.door.study import ConveyorRef, ModelName
 from beltstudy.service.door.studyfile import conveyor_from_path
 from beltstudy.service.errors import Invalid
 
-__all__ = ["CalibrationIn", "run_calibration", "split_fit"]
+__all__ = ["CalibrationIn", "run_calibration", "split_fit", "MAX_ROWS", "MAX_FIT"]
+
+#: Measurements and fitted names a request may hold (the fit runs in the request: each
+#: measurement is a steady solve per evaluation, about 5 ms on a 2 km conveyor).
+MAX_ROWS = 200
+MAX_FIT = 12
 
 
 class MeasuredRow(BaseModel):
@@ -34,7 +41,8 @@ class MeasuredRow(BaseModel):
     model_config = ConfigDict(extra="forbid")
 
     load: str | float | list[float] = Field(..., description="load case as in a scenario")
-    temperature_c: float = Field(..., description="ambient temperature [C]")
+    temperature_c: float = Field(..., ge=TEMPERATURE_MIN_C, le=TEMPERATURE_MAX_C,
+                                 description="ambient temperature [C]")
     power_kw: float | None = Field(None, gt=0, description="measured drive power [kW]")
     te_kn: float | None = Field(None, gt=0, description="measured peripheral force [kN]")
     t_tight_kn: float | None = Field(None, gt=0, description="measured tight-side tension [kN]")
@@ -50,10 +58,12 @@ class CalibrationIn(BaseModel):
     conveyor: ConveyorRef = Field(
         ..., description="a conveyor file under the studies directory, or inline")
     measured: list[MeasuredRow] = Field(
-        ..., min_length=1, description="one row per measured steady state: load, "
+        ..., min_length=1, max_length=MAX_ROWS, description="one row per measured steady "
+        "state (at most 200: each costs a steady solve per step of the fit): load, "
         "temperature_c, power_kw or te_kn (optional speed_m_s, t_tight_kn)")
     model: ModelName = Field(..., description="friction model to calibrate (din, cema, nonlin, ...)")
-    fit: list[str] = Field(..., min_length=1, description="parameters to fit: NAME or "
+    fit: list[str] = Field(..., min_length=1, max_length=MAX_FIT, description="parameters "
+                           "to fit: NAME or "
                            "NAME=START (e.g. f_carry, mu_b=0.002)")
     params: dict[str, float] = Field(default_factory=dict,
                                      description="other parameters held at these values")

@@ -493,19 +493,8 @@ def _design_basis(study, points, i_conv, i_scen, conveyors, conv_models, scenari
             cases: dict[DesignCase, None] = {}
             stops: set[float] = set()
             for p in mine:
-                scn = scenarios[tuple(p[i] for i in i_scen)]
-                run_model, run_overrides = model_of(p), params_of(p)[0]
-                pinned = [(run_model, run_overrides)] if models is None else [
-                    (m, run_overrides if m == run_model else dict(study.models.get(m, {})))
-                    for m in models]
-                for model, overrides in pinned:
-                    for temp in temps if temps is not None else [scn["temperature_c"]]:
-                        for load in loads:
-                            cases[DesignCase(model, tuple(sorted(overrides.items())),
-                                             float(temp), scn["elements"], load)] = None
-                stop_s = brake_sizing_stop_time(scn, dynamics=study.dynamics)
-                if stop_s is not None:
-                    stops.add(stop_s)
+                _add_cases(cases, stops, study, scenarios[tuple(p[i] for i in i_scen)],
+                           model_of(p), params_of(p)[0], (loads, models, temps))
             sizes = size_design(conv_models[ck], list(cases), sorted(stops), where)
         out[ck] = {"axes": {axes[i].name: axes[i].values[j]
                             for i, j in zip(i_conv, ck, strict=True)},
@@ -561,7 +550,6 @@ def _size_nominal(study, mine, conv_model, grid_scen, grid_param, model_of, case
                   where) -> dict:
     """The sizes of one design of a sampled study over its grid points' nominal cases."""
     axes = study.axes
-    loads, models, temps = cases_of
     cases: dict[DesignCase, None] = {}
     stops: set[float] = set()
     for p in mine:
@@ -573,18 +561,26 @@ def _size_nominal(study, mine, conv_model, grid_scen, grid_param, model_of, case
         for i in grid_param:
             if axes[i].target.path[0] == run_model:
                 overrides[axes[i].target.path[1]] = axes[i].values[p[i]]
-        pinned = [(run_model, overrides)] if models is None else [
-            (m, overrides if m == run_model else dict(study.models.get(m, {})))
-            for m in models]
-        for model, over in pinned:
-            for temp in temps if temps is not None else [scn["temperature_c"]]:
-                for load in loads:
-                    cases[DesignCase(model, tuple(sorted(over.items())), float(temp),
-                                     scn["elements"], load)] = None
-        stop_s = brake_sizing_stop_time(scn, dynamics=study.dynamics)
-        if stop_s is not None:
-            stops.add(stop_s)
+        _add_cases(cases, stops, study, scn, run_model, overrides, cases_of)
     return size_design(conv_model, list(cases), sorted(stops), where)
+
+
+def _add_cases(cases: dict, stops: set, study, scn: dict, run_model: str, overrides: dict,
+               cases_of: tuple) -> None:
+    """Add one grid point's design cases (every listed load x model x temperature, a model
+    or temperature ``design:`` does not name being the point's own) and its brake sizing
+    stop time."""
+    loads, models, temps = cases_of
+    pinned = [(run_model, overrides)] if models is None else [
+        (m, overrides if m == run_model else dict(study.models.get(m, {}))) for m in models]
+    for model, over in pinned:
+        for temp in temps if temps is not None else [scn["temperature_c"]]:
+            for load in loads:
+                cases[DesignCase(model, tuple(sorted(over.items())), float(temp),
+                                 scn["elements"], load)] = None
+    stop_s = brake_sizing_stop_time(scn, dynamics=study.dynamics)
+    if stop_s is not None:
+        stops.add(stop_s)
 
 
 def expand_runs(study: ResolvedStudy) -> list[RunSpec]:
