@@ -93,6 +93,9 @@ NOT_IN_SCHEMA = (
     "brake delay)",
     "every auto size of a conveyor design is finite (no take-up meets a sag limit near zero)",
     "accuracy (error bars of a sample) only with dynamics",
+    "a sample axis is a numeric axis path, set by no grid or zip axis, and its drawn values "
+    "stay within the field's bounds",
+    "a sample of method sobol has n = N (D + 2) points, N a power of two, D its axes",
 )
 
 
@@ -571,7 +574,7 @@ def _example() -> dict:
 def _study_schema(schema: dict) -> None:
     schema["anyOf"] = [{"required": ["grid"]},
                        {"required": ["zip"], "properties": {"zip": {"minItems": 1}}},
-                       {"required": ["sample"]}]
+                       {"required": ["sample"], "properties": {"sample": {"type": "object"}}}]
     schema["description"] = (
         "A study (SPEC section 3). Besides this schema a study must satisfy: "
         + "; ".join(NOT_IN_SCHEMA) + ".")
