@@ -12,7 +12,8 @@ The engine's public API, the one the study service reaches it through:
 * sizing: ``auto_sizes`` (one case), ``size_over_cases`` (a design over its cases);
 * steady state: ``solve_steady`` -> ``SteadyResult``; ``build_loop`` (``Loop.where``),
   ``capacity``; the safety factor limits;
-* results: ``results`` (every result field by group), ``check_summary``.
+* results: ``results`` (every result field by group), ``check_summary``;
+* calibration: ``calibrate``, ``measurements_from_rows`` (SPEC 7.3).
 
 ``run_one``, ``RunResult``, ``check_scenario`` and ``DynamicsOptions`` load the transient
 engine (numba) on first use, not when ``beltstudy.engine`` is imported.
@@ -89,6 +90,8 @@ _DEFERRED = {
     "RunResult": "beltstudy.engine.run",
     "check_scenario": "beltstudy.engine.run",
     "DynamicsOptions": "beltstudy.engine.dynamics",
+    "calibrate": "beltstudy.engine.calibration",
+    "measurements_from_rows": "beltstudy.engine.calibration",
 }
 
 __all__ = [
@@ -111,6 +114,10 @@ __all__ = [
 # belt selection (belt.type: auto)
 __all__ += ["BeltChoice", "SteadyCase", "design_cases", "resolve_auto_belt", "run_cases", "run_message",
             "select_belt", "with_belt", "BELT_AUTO", "STARTUP_FACTOR"]
+
+
+# calibration against measured steady power (SPEC 7.3; scipy loads on first use)
+__all__ += ["calibrate", "measurements_from_rows"]
 
 
 def __getattr__(name: str):

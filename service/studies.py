@@ -238,6 +238,15 @@ class StudyService:
         acc = self.store.read_accuracy(study_id)
         return acc, query.accuracy_columns(self.store.read_runs(study_id), acc)
 
+    def uncertainty(self, study_id: str) -> dict:
+        """What a sampled study's runs say: distributions, exceedance probabilities and the
+        sensitivity ranking (:func:`beltstudy.service.uncertainty.summarise`)."""
+        from beltstudy.service.uncertainty import summarise
+
+        doc = self.store.read(study_id)
+        return {"study_id": study_id, **summarise(doc.get("study") or {},
+                                                  self.store.read_runs(study_id))}
+
     def run_detail(self, study_id: str, run_id: str) -> dict:
         """Summary row and time series of one run."""
         runs = self.store.read_runs(study_id)

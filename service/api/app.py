@@ -40,7 +40,8 @@ __all__ = ["create_app", "ROUTERS"]
 log = logging.getLogger("beltstudy.api")
 
 #: Router modules, each with a module-level ``router`` (and optionally ``health_router``).
-ROUTERS = ("beltstudy.service.api.meta", "beltstudy.service.api.studies", "beltstudy.service.web.routes")
+ROUTERS = ("beltstudy.service.api.meta", "beltstudy.service.api.studies", "beltstudy.service.web.routes",
+           "beltstudy.service.api.calibrations")
 
 
 def _error(kind: str, message: str, status: int, headers: dict | None = None) -> JSONResponse:

@@ -241,6 +241,15 @@ def get_accuracy(
 
 
 @router.get(
+    "/{study_id}/uncertainty",
+    summary="A sampled study's distributions, exceedance probabilities and sensitivity "
+    "ranking (SPEC 7.4; docs/uncertainty.md)",
+)
+def get_uncertainty(study_id: str, service: StudyService = Depends(get_service)) -> dict:
+    return service.uncertainty(study_id)
+
+
+@router.get(
     "/{study_id}/compare",
     response_model=CompareOut,
     summary="Runs that differ only in friction model: candidate / baseline ratios",

@@ -16,7 +16,7 @@ from beltstudy.engine import InputError
 from beltstudy.service.errors import ServiceError
 
 #: Sub-command modules, in the order they appear in ``--help``.
-COMMAND_MODULES = ("static", "sweep", "simulate", "study")
+COMMAND_MODULES = ("static", "sweep", "simulate", "study", "calibrate")
 
 
 def build_parser() -> argparse.ArgumentParser:

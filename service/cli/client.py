@@ -68,6 +68,10 @@ class ServiceClient:
         params = {"baseline": baseline, "candidate": candidate, "metrics": ",".join(metrics)}
         return self._request("GET", f"/studies/{study_id}/compare", params=params).json()
 
+    def uncertainty(self, study_id: str) -> dict:
+        """A sampled study's distributions, exceedance probabilities and ranking."""
+        return self._request("GET", f"/studies/{study_id}/uncertainty").json()
+
     def report(self, study_id: str) -> str:
         """The study's design report (self-contained HTML)."""
         return self._request("GET", f"/studies/{study_id}/report").text

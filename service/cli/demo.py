@@ -23,7 +23,7 @@ from beltstudy.service.errors import Unavailable
 from beltstudy.service.settings import Settings
 from beltstudy.service.store.parquet import Store
 
-__all__ = ["run_demo", "free_port", "start_server", "stop_server", "wait_ready"]
+__all__ = ["run_demo", "free_port", "start_server", "stop_server", "wait_ready", "worker_pids"]
 
 METRICS = ["power_kw", "t_max_stop_kn", "t_min_stop_kn"]
 #: The friction models compared: the paper's Non-Lin against CEMA.
@@ -128,3 +128,19 @@ def run_demo(study_path: str = "studies/paper-comparison.yaml", port: int = 0) -
           "surface is recomputed when asked for unless the study says surface: true)")
     print(f'read them with: pandas.read_parquet("{runs}/runs")')
     return 0 if st["state"] == "done" else 1
+
+
+def worker_pids(proc: subprocess.Popen) -> list[int]:
+    """The Dask worker processes of a service started by :func:`start_server` (its
+    LocalCluster's spawned children)."""
+    import psutil
+
+    out = []
+    for child in psutil.Process(proc.pid).children(recursive=True):
+        try:
+            cmd = " ".join(child.cmdline())
+        except psutil.Error:
+            continue
+        if "spawn_main" in cmd or "forkserver" in cmd:
+            out.append(child.pid)
+    return out

@@ -17,6 +17,7 @@ import time
 from pathlib import Path
 
 from beltstudy.service.cli.client import ServiceClient
+from beltstudy.service.cli.common import dumps
 from beltstudy.service.cli.console import ProgressBar, format_compare, format_status
 from beltstudy.service.cli.demo import run_demo
 from beltstudy.service.door.parse import load_mapping
@@ -25,6 +26,7 @@ from beltstudy.service.errors import Invalid, Unavailable
 from beltstudy.service.settings import Settings
 from beltstudy.service.store import query
 from beltstudy.service.store.parquet import Store
+from beltstudy.service.uncertainty import format_text as format_uncertainty
 
 __all__ = ["register"]
 
@@ -86,6 +88,16 @@ def register(sub) -> None:
     )
     _client_args(p)
     p.set_defaults(func=cmd_compare)
+
+    p = sub.add_parser(
+        "uncertainty",
+        help="a sampled study's distributions, exceedance probabilities and sensitivity "
+        "ranking (docs/uncertainty.md)",
+    )
+    p.add_argument("id", help="study id")
+    p.add_argument("--json", action="store_true", help="print the whole answer as JSON")
+    _client_args(p)
+    p.set_defaults(func=cmd_uncertainty)
 
     p = sub.add_parser(
         "demo",
@@ -271,6 +283,13 @@ def cmd_compare(args) -> int:
         lambda s: s.compare(args.id, args.baseline, args.candidate, metrics),
     )
     print(format_compare(result))
+    return 0
+
+
+def cmd_uncertainty(args) -> int:
+    result = _with_fallback(args, lambda c: c.uncertainty(args.id),
+                            lambda s: s.uncertainty(args.id))
+    print(dumps(result) if args.json else format_uncertainty(result))
     return 0
 
 

@@ -46,6 +46,7 @@ from pydantic.json_schema import GenerateJsonSchema
 from pydantic_core import core_schema
 
 from beltstudy.engine import ALIASES, MODELS, Conveyor, InputError, Scenario, catalog
+from beltstudy.service.door.sample import SampleIn
 from beltstudy.service.examples import TINY_CONVEYOR, TINY_SCENARIO
 from beltstudy.service.grid.axes import NAMED_AXES, field_model
 from beltstudy.service.grid.basis import DesignIn
@@ -68,6 +69,7 @@ __all__ = [
     "model_names",
     "OWN_PARTS",
     "fold_name",
+    "axis_types",
 ]
 
 #: A study name: letters, digits and `` ._+-`` (no path separators, no ``..``).
@@ -91,6 +93,9 @@ NOT_IN_SCHEMA = (
     "brake delay)",
     "every auto size of a conveyor design is finite (no take-up meets a sag limit near zero)",
     "accuracy (error bars of a sample) only with dynamics",
+    "a sample axis is a numeric axis path, set by no grid or zip axis, and its drawn values "
+    "stay within the field's bounds",
+    "a sample of method sobol has n = N (D + 2) points, N a power of two, D its axes",
 )
 
 
@@ -363,7 +368,7 @@ def _axis_field(alias: str, item: Any, numeric: bool, bounds: dict | None) -> tu
             Field(None, alias=alias, json_schema_extra=schema))
 
 
-def _axes() -> dict[str, tuple[str, Any, bool, dict | None]]:
+def axis_types() -> dict[str, tuple[str, Any, bool, dict | None]]:
     """Every axis a grid takes: ``{name: (target, item type, numeric, bounds)}``."""
     axes: dict[str, tuple[str, Any, bool, dict | None]] = {}
     conveyor = {p: (t, n) for p, t, n in _field_axes(Conveyor, "")}
@@ -387,7 +392,7 @@ def _axes() -> dict[str, tuple[str, Any, bool, dict | None]]:
 def _grid_fields() -> dict[str, tuple]:
     """The fields of :data:`Grid`, one per axis (named by the axis as an alias)."""
     fields = {}
-    for i, (alias, (target, item, numeric, bounds)) in enumerate(_axes().items()):
+    for i, (alias, (target, item, numeric, bounds)) in enumerate(axis_types().items()):
         AXIS_TARGETS[alias] = target
         fields[f"axis_{i}"] = _axis_field(alias, item, numeric, bounds)
     return fields
@@ -568,7 +573,8 @@ def _example() -> dict:
 
 def _study_schema(schema: dict) -> None:
     schema["anyOf"] = [{"required": ["grid"]},
-                       {"required": ["zip"], "properties": {"zip": {"minItems": 1}}}]
+                       {"required": ["zip"], "properties": {"zip": {"minItems": 1}}},
+                       {"required": ["sample"], "properties": {"sample": {"type": "object"}}}]
     schema["description"] = (
         "A study (SPEC section 3). Besides this schema a study must satisfy: "
         + "; ".join(NOT_IN_SCHEMA) + ".")
@@ -633,6 +639,12 @@ class StudyIn(BaseModel):
         None,
         description="error bars of a seeded sample of the runs ({sample: 0.05}), stored as "
         "the study's accuracy table (dynamic studies only)",
+    )
+    sample: SampleIn | None = Field(
+        None,
+        description="uncertain inputs drawn from distributions (SPEC 7.2): n points by "
+        "method sobol or lhs with a seed, one more group of axes varying together, crossed "
+        "with the grid",
     )
 
     @field_validator("name")

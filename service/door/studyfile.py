@@ -14,6 +14,7 @@ way out through a link).
 
 from __future__ import annotations
 
+import functools
 import json
 from pathlib import Path
 from typing import Any
@@ -24,11 +25,14 @@ from beltstudy import engine
 from beltstudy.engine import InputError, catalog, get_model, parse_conveyor
 from beltstudy.service.door.messages import describe
 from beltstudy.service.door.parse import check_tree, load_mapping
+from beltstudy.service.door.sample import draw
 from beltstudy.service.door.study import (
     NAME_RE,
     RangeSpec,
     StudyIn,
+    axis_types,
     fold_axes,
+    fold_name,
     given_models,
 )
 from beltstudy.service.errors import Invalid, TooLarge
@@ -223,25 +227,69 @@ def _axes(study: StudyIn, data: dict, bases: tuple[dict, dict], models: dict,
     """The grid's and the zip groups' axes, in the order written; no two set one field."""
     groups = [(None, "grid", study.grid, data.get("grid") or {})]
     groups += [(g, f"zip.{g}", grid, data["zip"][g]) for g, grid in enumerate(study.zip)]
-    if len(groups) == 1 and not groups[0][3]:
+    if len(groups) == 1 and not groups[0][3] and study.sample is None:
         raise Invalid("grid: empty; give at least one axis, e.g. temperature_c: [-20, 0, 20]")
     axes: list[Axis] = []
     for group, where, grid, written in groups:
         if group is not None and not written:
             raise Invalid(f"{where}: empty group; give two or more axes of equal length")
         for name, spec in grid.axes(written):
-            axis = _axis(name, spec, group, where, bases, models, max_runs)
-            for other in axes:
-                if other.target.overlaps(axis.target):
-                    raise Invalid(
-                        f"grid: axes '{other.name}' and '{name}' both set {other.target.dotted}"
-                        if other.target == axis.target
-                        else f"grid: axes '{other.name}' and '{name}' overlap "
-                        f"({other.target.dotted} / {axis.target.dotted})"
-                    )
-            axes.append(axis)
+            _add_axis(axes, _axis(name, spec, group, where, bases, models, max_runs))
+    for axis in _sample_axes(study, bases, models):
+        _add_axis(axes, axis)
     _check_zip_lengths(axes, len(study.zip))
     return axes
+
+
+def _add_axis(axes: list[Axis], axis: Axis) -> None:
+    """Append ``axis``; no two axes set one field or one inside the other."""
+    name = axis.name
+    where = "sample.axes" if axis.sample else "grid"
+    for other in axes:
+        if other.target.overlaps(axis.target):
+            raise Invalid(
+                f"{where}: axes '{other.name}' and '{name}' both set {other.target.dotted}"
+                if other.target == axis.target
+                else f"{where}: axes '{other.name}' and '{name}' overlap "
+                f"({other.target.dotted} / {axis.target.dotted})"
+            )
+    axes.append(axis)
+
+
+@functools.cache
+def _numeric_axes() -> dict[str, bool]:
+    """Axis name (folded) -> whether it takes a number."""
+    return {name: numeric for name, (_t, _item, numeric, _b) in axis_types().items()}
+
+
+def _sample_axes(study: StudyIn, bases: tuple[dict, dict], models: dict) -> list[Axis]:
+    """The ``sample:`` axes (:mod:`beltstudy.service.door.sample`): one more group of axes
+    varying together (the last), their values drawn; each path a numeric axis."""
+    if study.sample is None:
+        return []
+    group = len(study.zip)
+    out = []
+    for name, values in draw(study.sample).items():
+        where = f"sample.axes.{name}"
+        try:
+            target = resolve_axis(name, *bases, "sample.axes")
+        except InputError as exc:
+            raise Invalid(str(exc)) from None
+        if not _numeric_axes().get(fold_name(name)[0], False):
+            raise Invalid(f"{where}: '{name}' does not take a number; a sample axis is a "
+                          "numeric field (temperature_c, takeup.mass_kg, "
+                          "models.nonlin.mu_b, ...)")
+        if target.root == "model_param":
+            model, param = target.path
+            for v in values:
+                try:
+                    get_model(model).params({**models.get(model, {}), param: v})
+                except InputError as exc:
+                    raise Invalid(f"{where}: drawn value {v:g}: {exc.reason} (a distribution "
+                                  "within the parameter's bounds, e.g. lognormal for a "
+                                  "positive one)") from None
+        out.append(Axis(name, axis_column(name), target, tuple(values), group, True))
+    return out
 
 
 def _check_zip_lengths(axes: list[Axis], groups: int) -> None:
@@ -348,6 +396,7 @@ def resolve_study(
         design=design,
         grid_points=total,
         accuracy=(study.accuracy.model_dump() if study.accuracy is not None else None),
+        sample=(study.sample.model_dump(mode="json") if study.sample is not None else None),
     )
     return finish(resolved)
 

@@ -269,7 +269,8 @@ def apply_sizes(conv: dict, sizes: dict | None, scenario: dict, dynamics: bool
     if sizes.get("belt") is not None and out["belt"].get("type") == BELT_AUTO:
         out["belt"]["type"] = sizes["belt"]["type"]
     tu = sizes.get("takeup")
-    if tu is not None:
+    # a sampled study's take-up may be drawn: only an auto field gets the design's size
+    if tu is not None and out["takeup"][tu["field"]] == "auto":
         out["takeup"][tu["field"]] = tu["value"]
         governed["takeup_governed_by"] = governed_at(tu["governed_by"], tu.get("at", ""))
     why = []

@@ -89,6 +89,7 @@ class Axis:
     target: Target
     values: tuple[Any, ...]
     group: int | None = None  # zip group index; None for a grid axis
+    sample: bool = False  # drawn from a distribution (``sample:``; its group is the last)
 
     def to_json(self) -> dict:
         out = {
@@ -99,6 +100,8 @@ class Axis:
         }
         if self.group is not None:
             out["group"] = self.group
+        if self.sample:
+            out["sample"] = True
         return out
 
 
@@ -147,6 +150,7 @@ class ResolvedStudy:
     grid_points: int = 0  # points of the grid before identical runs were merged
     designs: list[dict] = field(default_factory=list)  # the design basis per conveyor design
     accuracy: dict | None = None  # {sample, seed}: the runs that get error bars
+    sample: dict | None = None  # ``sample:`` as validated (n, method, seed, axes)
 
     @property
     def merged(self) -> int:
@@ -172,7 +176,7 @@ class ResolvedStudy:
             "merged": self.merged,
             "designs": self.designs,
         }
-        groups = sorted({a.group for a in self.axes if a.group is not None})
+        groups = sorted({a.group for a in self.axes if a.group is not None and not a.sample})
         if groups:
             out["zip"] = [{a.name: list(a.values) for a in self.axes if a.group == g}
                           for g in groups]
@@ -180,6 +184,8 @@ class ResolvedStudy:
             out["design"] = self.design
         if self.accuracy is not None:
             out["accuracy"] = self.accuracy
+        if self.sample is not None:
+            out["sample"] = self.sample
         return out
 
     @property
@@ -254,7 +260,7 @@ def finish(study: ResolvedStudy) -> ResolvedStudy:
     study.total = len(study.runs)
     for i, axis in enumerate(axes):
         keys = [canonical_json(v) for v in canon[i]]
-        if len(set(keys)) != len(keys):
+        if not axis.sample and len(set(keys)) != len(keys):
             dup = next(v for v, k in zip(canon[i], keys, strict=True) if keys.count(k) > 1)
             where = "grid" if axis.group is None else f"zip.{axis.group}"
             raise Invalid(f"{where}.{axis.name}: value {dup!r} appears twice (after validation)")
@@ -302,7 +308,8 @@ def study_hash(study: ResolvedStudy) -> str:
     )
     # zip groups and the design case count only when given, so a study without them keeps
     # the id it had before they existed
-    return stable_hash({k: doc[k] for k in (*keys, "zip", "design", "accuracy") if k in doc})
+    return stable_hash({k: doc[k] for k in (*keys, "zip", "design", "accuracy", "sample")
+                        if k in doc})
 
 
 def _parse_conveyor(data: dict) -> Conveyor:
@@ -451,8 +458,8 @@ def _expand(
             design=governed,
             points=1,
         )
-    table = [{"axes": entry["axes"], "key": entry["key"], "sizes": entry["sizes"]}
-             for entry in sized.values()]
+    table = list({entry["key"]: {"axes": entry["axes"], "key": entry["key"],
+                                 "sizes": entry["sizes"]} for entry in sized.values()}.values())
     return [RunSpec(**r) for r in by_id.values()], canon, table
 
 
@@ -463,6 +470,8 @@ def _design_basis(study, points, i_conv, i_scen, conveyors, conv_models, scenari
     model x temperature of ``design:``, a model or temperature it does not name being the
     study's own of each run."""
     axes = study.axes
+    if any(a.sample for a in axes):
+        return _nominal_basis(study, points, i_conv, i_scen, model_of, stored)
     design = study.design or {}
     loads = [load for _where, load in design_loads(design)]
     models = design_models(design)
@@ -484,24 +493,94 @@ def _design_basis(study, points, i_conv, i_scen, conveyors, conv_models, scenari
             cases: dict[DesignCase, None] = {}
             stops: set[float] = set()
             for p in mine:
-                scn = scenarios[tuple(p[i] for i in i_scen)]
-                run_model, run_overrides = model_of(p), params_of(p)[0]
-                pinned = [(run_model, run_overrides)] if models is None else [
-                    (m, run_overrides if m == run_model else dict(study.models.get(m, {})))
-                    for m in models]
-                for model, overrides in pinned:
-                    for temp in temps if temps is not None else [scn["temperature_c"]]:
-                        for load in loads:
-                            cases[DesignCase(model, tuple(sorted(overrides.items())),
-                                             float(temp), scn["elements"], load)] = None
-                stop_s = brake_sizing_stop_time(scn, dynamics=study.dynamics)
-                if stop_s is not None:
-                    stops.add(stop_s)
+                _add_cases(cases, stops, study, scenarios[tuple(p[i] for i in i_scen)],
+                           model_of(p), params_of(p)[0], (loads, models, temps))
             sizes = size_design(conv_models[ck], list(cases), sorted(stops), where)
         out[ck] = {"axes": {axes[i].name: axes[i].values[j]
                             for i, j in zip(i_conv, ck, strict=True)},
                    "key": key, "sizes": sizes}
     return out
+
+
+def _nominal_basis(study, points, i_conv, i_scen, model_of, stored) -> dict:
+    """The design basis of a sampled study: a design is sized once, at its nominal inputs
+    (the study's conveyor, scenario and model parameters with the grid's values and none of
+    the sample's), and held for every sample point: the sample then tests that design
+    against the uncertain inputs (a motor sized to each point's own friction would never be
+    overloaded). ``{full conveyor key: entry}`` as :func:`_design_basis` gives it."""
+    axes = study.axes
+    grid_conv = [i for i in i_conv if not axes[i].sample]
+    grid_scen = [i for i in i_scen if not axes[i].sample]
+    grid_param = [i for i, a in enumerate(axes) if a.target.root == "model_param"
+                  and not a.sample]
+    design = study.design or {}
+    loads = [load for _where, load in design_loads(design)]
+    models = design_models(design)
+    temps = design_temperatures(design)
+    known = {d["key"]: d["sizes"] for d in stored or []}
+    by_grid: dict[tuple, dict | None] = {}
+    out: dict = {}
+    for p in points:
+        gk = tuple(p[i] for i in grid_conv)
+        if gk not in by_grid:
+            conv_data = with_paths(study.conveyor, [(axes[i].target.path, axes[i].values[p[i]])
+                                                    for i in grid_conv])
+            conv_model = _parse_conveyor(conv_data)
+            conv = conv_model.model_dump(mode="json", by_alias=True)
+            by_grid[gk] = None
+            if has_auto(conv):
+                key = stable_hash({"conveyor": conv, "design": design, "models": study.models,
+                                   "scenario": study.scenario, "sample": "nominal"})
+                where = _where(axes, grid_conv, gk)
+                sizes = known.get(key)
+                if sizes is None:
+                    check_design_loads(conv_model, design, where)
+                    sizes = _size_nominal(study, [q for q in points if tuple(
+                        q[i] for i in grid_conv) == gk], conv_model, grid_scen, grid_param,
+                        model_of, (loads, models, temps), where)
+                by_grid[gk] = {"axes": {axes[i].name: axes[i].values[j]
+                                        for i, j in zip(grid_conv, gk, strict=True)},
+                               "key": key, "sizes": sizes}
+        if by_grid[gk] is not None:
+            out[tuple(p[i] for i in i_conv)] = by_grid[gk]
+    return out
+
+
+def _size_nominal(study, mine, conv_model, grid_scen, grid_param, model_of, cases_of,
+                  where) -> dict:
+    """The sizes of one design of a sampled study over its grid points' nominal cases."""
+    axes = study.axes
+    cases: dict[DesignCase, None] = {}
+    stops: set[float] = set()
+    for p in mine:
+        scn = parse_scenario(with_paths(study.scenario, [
+            (axes[i].target.path, axes[i].values[p[i]]) for i in grid_scen]),
+            prefix="scenario.").model_dump(mode="json", by_alias=True)
+        run_model = model_of(p)
+        overrides = dict(study.models.get(run_model, {}))
+        for i in grid_param:
+            if axes[i].target.path[0] == run_model:
+                overrides[axes[i].target.path[1]] = axes[i].values[p[i]]
+        _add_cases(cases, stops, study, scn, run_model, overrides, cases_of)
+    return size_design(conv_model, list(cases), sorted(stops), where)
+
+
+def _add_cases(cases: dict, stops: set, study, scn: dict, run_model: str, overrides: dict,
+               cases_of: tuple) -> None:
+    """Add one grid point's design cases (every listed load x model x temperature, a model
+    or temperature ``design:`` does not name being the point's own) and its brake sizing
+    stop time."""
+    loads, models, temps = cases_of
+    pinned = [(run_model, overrides)] if models is None else [
+        (m, overrides if m == run_model else dict(study.models.get(m, {}))) for m in models]
+    for model, over in pinned:
+        for temp in temps if temps is not None else [scn["temperature_c"]]:
+            for load in loads:
+                cases[DesignCase(model, tuple(sorted(over.items())), float(temp),
+                                 scn["elements"], load)] = None
+    stop_s = brake_sizing_stop_time(scn, dynamics=study.dynamics)
+    if stop_s is not None:
+        stops.add(stop_s)
 
 
 def expand_runs(study: ResolvedStudy) -> list[RunSpec]:
@@ -519,6 +598,7 @@ def study_from_json(doc: dict, study_id: str) -> ResolvedStudy:
             resolve_axis(a["name"], doc["conveyor"], doc["scenario"]),
             tuple(a["values"]),
             a.get("group"),
+            bool(a.get("sample", False)),
         )
         for a in doc["axes"]
     ]
@@ -541,6 +621,7 @@ def study_from_json(doc: dict, study_id: str) -> ResolvedStudy:
         grid_points=grid_points(axes),
         designs=list(doc.get("designs") or []),
         accuracy=doc.get("accuracy"),
+        sample=doc.get("sample"),
     )
     study.runs, _, study.designs = _expand(study, study.designs)
     study.total = len(study.runs)

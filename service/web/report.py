@@ -44,6 +44,7 @@ from beltstudy.service.store import query
 from beltstudy.service.studies import StudyService
 from beltstudy.service.web import figures
 from beltstudy.service.web.numbers import eng
+from beltstudy.service.web.uncertainty import uncertainty_section
 from beltstudy.service.web.verdicts import (
     cause_groups,
     clauses,
@@ -621,6 +622,9 @@ def report_html(doc: dict, runs: pd.DataFrame, status: dict, accuracy: str = "")
         ("Runs", _runs_section(study, runs)),
         ("Error of each column", accuracy),
     ]
+    if study.get("sample"):  # a sampled study (SPEC 7.2): what the samples say
+        sections.append(("Uncertainty of the sampled inputs", uncertainty_section(
+            study, runs, _table, _n, _png, _figure) if len(runs) else no_runs))
     parts = [
         "<!doctype html><html lang=en><head><meta charset=utf-8>",
         f'<meta http-equiv="Content-Security-Policy" content="{REPORT_CSP}">',

@@ -132,17 +132,9 @@ class LiveService:
 
     def worker_pids(self) -> list[int]:
         """Dask worker processes of the service's LocalCluster."""
-        import psutil
+        from beltstudy.service.cli.demo import worker_pids
 
-        out = []
-        for child in psutil.Process(self.proc.pid).children(recursive=True):
-            try:
-                cmd = " ".join(child.cmdline())
-            except psutil.Error:
-                continue
-            if "spawn_main" in cmd or "forkserver" in cmd:
-                out.append(child.pid)
-        return out
+        return worker_pids(self.proc)
 
     def wait(self, study_id: str, timeout_s: float = 240.0, until=None) -> dict:
         """Poll until the study ends (or ``until(status)`` holds)."""

@@ -248,9 +248,44 @@ def _scenario_fits(body: dict, grid: dict) -> bool:
     return bool(brakes) and (not delays or stop.get("time_s", 30.0) > max(delays))
 
 
+#: Ambient temperatures a run takes [C] (the scenario's bounds).
+TEMPERATURE_C = (-60.0, 60.0)
+
+
+def _sample_ok(body: dict) -> bool:
+    """A ``sample:`` keeps the rules outside its schema: method sobol's n is N (D + 2) with N
+    a power of two; every axis a numeric field whose drawn values stay within its bounds
+    (here: only bounded temperature distributions, the one axis these hooks can vouch for);
+    n x the grid within MAX_RUNS (checked by :func:`_study_ok` with the sample as one more
+    group of n distinct temperatures)."""
+    sample = body["sample"]
+    axes = sample["axes"]
+    n, d = int(sample["n"]), len(axes)  # 512.0 is an integer to JSON Schema
+    if sample.get("method", "sobol") == "sobol":
+        base = n // (d + 2)
+        if n % (d + 2) or base < 2 or base & (base - 1):
+            return False
+    lo, hi = TEMPERATURE_C
+    for name, dist in axes.items():
+        if name not in ("temperature_c", "scenario.temperature_c"):
+            return False
+        if dist["dist"] not in ("uniform", "triangular") or dist["low"] < lo or dist["high"] > hi:
+            return False
+    if n > MAX_RUNS:
+        return False
+    zips = list(body.get("zip", []))
+    zips.append({"temperature_c": [round(lo + 1 + i * 0.01, 2) for i in range(n)]})
+    return _study_ok({**body, "zip": zips})
+
+
 @schemathesis.hook
 def filter_body(ctx, body):
     """Skip generated valid studies that break a rule outside the schema."""
+    if isinstance(body, dict) and "name" in body and body.get("sample") is not None:
+        try:
+            return _sample_ok(body)
+        except (TypeError, KeyError, AttributeError, ZeroDivisionError, ValueError, OSError):
+            return True
     if not isinstance(body, dict) or "name" not in body or \
             ("grid" not in body and "zip" not in body):
         return True
@@ -258,3 +293,38 @@ def filter_body(ctx, body):
         return _study_ok(body)
     except (TypeError, KeyError, AttributeError, ZeroDivisionError, ValueError, OSError):
         return True  # not a well-formed study: it is a negative case, refused anyway
+
+
+def _calibration_ok(body: dict) -> bool:
+    """A calibration body keeps the rules outside its schema (SPEC 7.3): a conveyor file that
+    exists, every row with a measured power_kw or te_kn, fitted names the model's parameters
+    (fixed ones too), a name not both fitted and fixed, a load case the profile takes."""
+    from beltstudy.engine import get_model
+
+    conv = body["conveyor"]
+    if isinstance(conv, str) and not (STUDIES / conv).is_file():
+        return False
+    if not _conveyor_ok(conv):
+        return False
+    if any("power_kw" not in r and "te_kn" not in r for r in body["measured"]):
+        return False
+    if any(r["load"] not in ("full", "empty", "inclines", "declines")
+           and not (isinstance(r["load"], int | float) and 0 <= r["load"] <= 1.3)
+           for r in body["measured"]):
+        return False
+    valid = {f["name"] for f in get_model(body["model"]).parameter_table()}
+    names = [str(f).partition("=")[0] for f in body["fit"]]
+    params = body.get("params") or {}
+    return (set(names) <= valid and len(set(names)) == len(names) and set(params) <= valid
+            and not set(names) & set(params) and len(body["measured"]) <= 8)
+
+
+@schemathesis.hook("filter_body")
+def filter_calibration(ctx, body):
+    """Skip generated valid calibrations that break a rule outside the schema."""
+    if not isinstance(body, dict) or "measured" not in body or "fit" not in body:
+        return True
+    try:
+        return _calibration_ok(body)
+    except (TypeError, KeyError, AttributeError, ValueError, OSError):
+        return True

@@ -1,0 +1,370 @@
+"""Calibration: a friction model's parameters fitted to measured steady power (SPEC 7.3).
+
+Each measurement is one steady running state of the plant: its load (a load case as in a
+scenario), ambient temperature, optionally its belt speed, and the measured drive power
+``power_kw`` or peripheral force ``te_kn`` (optionally the tight-side tension
+``t_tight_kn``). :func:`calibrate` solves the steady state of every measurement
+(:func:`beltstudy.engine.statics.solve_steady`) and fits the named parameters by least
+squares (``scipy.optimize.least_squares``, trust-region reflective, parameters >= 0).
+
+Notes
+-----
+Residuals are relative, r_i = (y_model,i - y_meas,i) / |y_meas,i|: weighted least squares
+with a measurement error proportional to the reading (a meter's accuracy is a share of its
+reading), which also lets power and tension rows share one fit. With J the Jacobian of r
+at the solution (central differences), n residuals and p fitted parameters, the standard
+errors are the square roots of the diagonal of
+
+    Cov = s^2 (J^T J)^-1,   s^2 = SSR / (n - p)
+
+(the linearised covariance of a nonlinear least-squares estimate; Seber & Wild 2003, section
+2.1). Identifiability: the columns of J (relative sensitivities d r / d ln x, each scaled to
+unit length) must be independent. Their singular values decide it: a named parameter whose
+column adds a singular value below ``RCOND`` times the largest to those named before it cannot
+be told apart from them by these data (the parameters only act together, e.g. as a product
+as ``mu_b`` and ``bearing_diameter_m`` in Non-Lin's bearing term, or it does not act at all).
+It is not fitted: it is held at its start value and named in ``not_identifiable`` together
+with the parameters it only acts with (the null vector of the Jacobian).
+
+References
+----------
+Seber, G.A.F., Wild, C.J.: Nonlinear Regression. Wiley 2003, sections 2.1, 3.4.
+Bates, D.M., Watts, D.G.: Nonlinear Regression Analysis and Its Applications. Wiley 1988.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import difflib
+import math
+from collections.abc import Sequence
+from dataclasses import dataclass, field
+from typing import Any
+
+import numpy as np
+
+from beltstudy.engine.conveyor import Conveyor, parse_conveyor
+from beltstudy.engine.errors import InputError
+from beltstudy.engine.friction import get_model
+from beltstudy.engine.statics import solve_steady
+
+__all__ = ["Measurement", "Calibration", "calibrate", "measurements_from_rows", "RCOND",
+           "MEASURED"]
+
+#: Relative singular value below which a Jacobian column is taken as dependent on the others
+#: (columns scaled to unit length; 1e-4: the fitted pair's estimates would correlate beyond
+#: 1 - 5e-9, far beyond anything 1 % data can resolve).
+RCOND = 1e-4
+#: Relative step of the central differences of the Jacobian.
+DIFF_STEP = 1e-4
+#: Measured column -> the steady summary field the model gives for it.
+MEASURED = {"power_kw": "power_kw", "te_kn": "te_kn", "t_tight_kn": "t1_kn"}
+#: Names that set several parameters of a model to one value: DIN 22101's single
+#: fictitious friction factor f for both strands (the table's f; f_carry and f_return split it).
+TIED = {"din": {"f": ("f_carry", "f_return")}}
+#: Start values of parameters whose default is computed (None), read from the law's info.
+_INFO_START = {"c": "c_factor", "ky": "ky_mean", "kt": "kt", "kta": "kta"}
+
+
+@dataclass(frozen=True)
+class Measurement:
+    """One measured steady state: load case, ambient [C], speed [m/s] (None: the file's) and
+    the measured values by column (``power_kw`` [kW], ``te_kn`` [kN], ``t_tight_kn`` [kN])."""
+
+    load: float | str | list[float]
+    temperature_c: float
+    values: dict[str, float]
+    speed_m_s: float | None = None
+
+
+@dataclass
+class Calibration:
+    """The fit: values and standard errors of the fitted parameters, residuals, the names the
+    data cannot identify, and the ``models:`` block for a study."""
+
+    model: str
+    fit: dict[str, dict[str, float | None]]
+    residuals: list[dict[str, Any]]
+    not_identifiable: list[str]
+    held: dict[str, float]
+    models: dict[str, dict[str, float]]
+    rms_relative: float
+    dof: int
+    singular_values: list[float]
+    status: str
+    message: str
+    notes: list[str] = field(default_factory=list)
+
+    def to_json(self) -> dict:
+        return dataclasses.asdict(self)
+
+
+def _number(value: Any, what: str) -> float | None:
+    if value is None or (isinstance(value, str) and not value.strip()):
+        return None
+    try:
+        out = float(value)
+    except (TypeError, ValueError):
+        raise InputError(f"expected a number, got {value!r}", field=what) from None
+    if isinstance(value, float) and math.isnan(value):
+        return None
+    if not math.isfinite(out):
+        raise InputError(f"expected a finite number, got {value!r}", field=what)
+    return out
+
+
+def _load(value: Any, what: str) -> float | str | list[float]:
+    if isinstance(value, str):
+        text = value.strip()
+        if text in ("full", "empty", "inclines", "declines"):
+            return text
+        try:
+            values = [float(v) for v in text.split(",")]
+        except ValueError:
+            raise InputError(f"a load case: full, empty, inclines, declines, a fraction or "
+                             f"one fraction per carry section; got {value!r}", field=what) from None
+        return values[0] if len(values) == 1 else values
+    if value is None:
+        raise InputError("missing: give the load case of the measurement", field=what)
+    return _number(value, what)
+
+
+def measurements_from_rows(rows: Sequence[dict[str, Any]]) -> list[Measurement]:
+    """Measurements from table rows (CSV columns ``load``, ``temperature_c``, ``power_kw`` or
+    ``te_kn``, optional ``speed_m_s`` and ``t_tight_kn``); a bad cell is named by its row
+    (``measured[2].power_kw``, rows from 0)."""
+    if not rows:
+        raise InputError("no measurements: give one row per measured steady state",
+                         field="measured")
+    out = []
+    known = {"load", "temperature_c", "speed_m_s", *MEASURED}
+    for i, row in enumerate(rows):
+        where = f"measured[{i}]"
+        unknown = [k for k in row if k not in known]
+        if unknown:
+            close = difflib.get_close_matches(unknown[0], sorted(known), n=1)
+            hint = f" (did you mean '{close[0]}'?)" if close else ""
+            raise InputError(f"unknown column '{unknown[0]}'{hint}; columns: "
+                             f"{', '.join(sorted(known))}", field=where)
+        temp = _number(row.get("temperature_c"), f"{where}.temperature_c")
+        if temp is None:
+            raise InputError("missing: give the ambient temperature of the measurement [C]",
+                             field=f"{where}.temperature_c")
+        values = {}
+        for col in MEASURED:
+            val = _number(row.get(col), f"{where}.{col}")
+            if val is not None:
+                if val <= 0:
+                    raise InputError(f"a measured {col} is > 0 (got {val:g})",
+                                     field=f"{where}.{col}")
+                values[col] = val
+        if "power_kw" not in values and "te_kn" not in values:
+            raise InputError("give the measured power_kw or te_kn", field=where)
+        speed = _number(row.get("speed_m_s"), f"{where}.speed_m_s")
+        out.append(Measurement(_load(row.get("load"), f"{where}.load"), temp, values, speed))
+    return out
+
+
+def _conveyor_at(conv: Conveyor, speed_m_s: float | None, cache: dict) -> Conveyor:
+    """The conveyor running at a measured speed (validated like a file's)."""
+    if speed_m_s is None or speed_m_s == conv.speed_m_s:
+        return conv
+    if speed_m_s not in cache:
+        data = conv.model_dump(mode="json", by_alias=True)
+        data["speed_m_s"] = speed_m_s
+        cache[speed_m_s] = parse_conveyor(data, prefix="measured.speed_m_s: ")
+    return cache[speed_m_s]
+
+
+def _check_names(model, fit: Sequence[str], fixed: dict) -> list[str]:
+    valid = [f.name for f in dataclasses.fields(model.params_class)]
+    valid += list(TIED.get(model.name, {}))
+    names = []
+    for name in fit:
+        if name not in valid:
+            close = difflib.get_close_matches(name, valid, n=1, cutoff=0.5)
+            hint = f" (did you mean '{close[0]}'?)" if close else ""
+            raise InputError(f"'{name}' is not a parameter of model {model.name}{hint}; "
+                             f"valid: {', '.join(valid)}", field="fit")
+        if name in names:
+            raise InputError(f"'{name}' is named twice", field="fit")
+        sets = _sets(model.name, name)
+        if set(sets) & set(fixed):
+            raise InputError(f"'{name}' is both fitted and fixed; fit it or fix it", field="fit")
+        if any(set(sets) & set(_sets(model.name, n)) for n in names):
+            raise InputError(f"'{name}' sets a parameter another fitted name sets",
+                             field="fit")
+        names.append(name)
+    if not names:
+        raise InputError(f"name at least one parameter to fit; valid: {', '.join(valid)}",
+                         field="fit")
+    return names
+
+
+def _sets(model: str, name: str) -> tuple[str, ...]:
+    """The parameters a fitted name sets (itself, or those :data:`TIED` names)."""
+    return TIED.get(model, {}).get(name, (name,))
+
+
+def _expanded(model: str, values: dict[str, float]) -> dict[str, float]:
+    return {p: v for name, v in values.items() for p in _sets(model, name)}
+
+
+def _starts(model, conv, rows, names, fixed, starts) -> np.ndarray:
+    """Start values: given, else the model's default, else the law's computed value."""
+    base = model.params(fixed)
+    info = None
+    out = []
+    for name in names:
+        value = starts.get(name, getattr(base, _sets(model.name, name)[0]))
+        if value is None:
+            if info is None:
+                m = rows[0]
+                info = solve_steady(conv, model=model.name, params=base,
+                                    temperature_c=m.temperature_c, load=m.load).law.info
+            value = info.get(_INFO_START.get(name, name))
+        if value is None:
+            raise InputError(f"'{name}' has no default to start from; give one as "
+                             f"{name}=VALUE", field="fit")
+        out.append(float(value))
+    return np.array(out)
+
+
+def calibrate(conv: Conveyor, measured: Sequence[Measurement], model: str,
+              fit: Sequence[str], *, fixed: dict[str, float] | None = None,
+              starts: dict[str, float] | None = None) -> Calibration:
+    """Fit the parameters ``fit`` of friction model ``model`` to the measurements.
+
+    Parameters
+    ----------
+    conv : Conveyor
+        The plant's conveyor.
+    measured : sequence of Measurement
+        One per measured steady state.
+    model : str
+        Friction model name.
+    fit : sequence of str
+        Parameters to fit (names of the model's parameter dataclass, or a name of
+        :data:`TIED`: ``f`` of din sets f_carry and f_return to one value).
+    fixed : dict, optional
+        Other parameters held at given values.
+    starts : dict, optional
+        Start values of fitted parameters (default: the model's defaults).
+
+    Returns
+    -------
+    Calibration
+    """
+    from scipy.optimize import least_squares
+
+    fm = get_model(model)
+    fixed = dict(fixed or {})
+    fm.params(fixed)
+    names = _check_names(fm, fit, fixed)
+    rows = list(measured)
+    x0 = _starts(fm, conv, rows, names, fixed, dict(starts or {}))
+    cols = [(i, col) for i, m in enumerate(rows) for col in m.values]
+    y = np.array([rows[i].values[col] for i, col in cols])
+    speeds: dict = {}
+
+    def model_values(x: np.ndarray, which: Sequence[str]) -> np.ndarray:
+        p = fm.params({**fixed, **_expanded(fm.name, dict(zip(which, map(float, x),
+                                                               strict=True)))})
+        out = {}
+        for i, m in enumerate(rows):
+            res = solve_steady(_conveyor_at(conv, m.speed_m_s, speeds), model=fm.name,
+                               params=p, temperature_c=m.temperature_c, load=m.load)
+            out[i] = res.summary
+        return np.array([out[i][MEASURED[col]] for i, col in cols], dtype=float)
+
+    def residual(x, which):
+        return (model_values(x, which) - y) / np.abs(y)
+
+    free, held, groups = _identifiable(lambda x: residual(x, names), x0, names)
+    x_free = np.array([x0[names.index(n)] for n in free])
+    held_values = {n: float(x0[names.index(n)]) for n in held}
+    fixed.update(_expanded(fm.name, held_values))
+    sol = least_squares(residual, x_free, args=(free,), bounds=(0.0, np.inf),
+                        x_scale="jac", diff_step=DIFF_STEP, xtol=1e-12, ftol=1e-12)
+    r = residual(sol.x, free)
+    jac = _jacobian(lambda x: residual(x, free), sol.x)
+    n, p = len(r), len(free)
+    dof = n - p
+    notes = [f"{', '.join(g)}: only act together on these data; "
+             f"{', '.join(x for x in g if x in held)} held at the start value"
+             for g in groups]
+    se: list[float | None] = [None] * p
+    if dof > 0:
+        s2 = float(r @ r) / dof
+        cov = s2 * np.linalg.pinv(jac.T @ jac)
+        se = [float(math.sqrt(max(cov[k, k], 0.0))) for k in range(p)]
+    else:
+        notes.append(f"{n} residuals for {p} parameters: no degrees of freedom left, no "
+                     "standard errors")
+    for name, v, s in zip(free, sol.x, se, strict=True):
+        if v <= 1e-9 * abs(float(x0[names.index(name)])):
+            notes.append(f"{name} ended at its bound 0: the data would take it below; its "
+                         "standard error is not that of a free estimate")
+        elif s is not None and s > abs(v):
+            notes.append(f"{name} is poorly determined by these data: its standard error "
+                         f"({s:.3g}) exceeds its value ({v:.3g})")
+    values = model_values(sol.x, free)
+    fitted = {name: {"value": float(v), "se": s, "start": float(x0[names.index(name)])}
+              for name, v, s in zip(free, sol.x, se, strict=True)}
+    fitted.update({name: {"value": v, "se": None, "start": v} for name, v in held_values.items()})
+    residuals = [{"row": i, "measured": col, "value": float(y[k]), "model": float(values[k]),
+                  "residual": float(values[k] - y[k]), "relative": float(r[k])}
+                 for k, (i, col) in enumerate(cols)]
+    block = {**{k: float(v) for k, v in fixed.items()},
+             **_expanded(fm.name, {name: float(f"{v:.6g}")
+                                   for name, v in zip(free, sol.x, strict=True)})}
+    sv = np.linalg.svd(_unit_columns(jac), compute_uv=False) if p else np.array([])
+    return Calibration(
+        model=fm.name, fit=fitted, residuals=residuals,
+        not_identifiable=sorted({x for g in groups for x in g}, key=names.index),
+        held=held_values, models={fm.name: block},
+        rms_relative=float(math.sqrt(float(r @ r) / n)), dof=dof,
+        singular_values=[float(s) for s in sv],
+        status="ok" if sol.success else "failed", message=sol.message, notes=notes)
+
+
+def _jacobian(fun, x: np.ndarray) -> np.ndarray:
+    """Central-difference Jacobian of ``fun`` at ``x`` (relative step :data:`DIFF_STEP`)."""
+    cols = []
+    for k in range(len(x)):
+        h = DIFF_STEP * max(abs(x[k]), 1e-6)
+        lo, hi = x.copy(), x.copy()
+        lo[k] = max(x[k] - h, 0.0)
+        hi[k] = x[k] + h
+        cols.append((fun(hi) - fun(lo)) / (hi[k] - lo[k]))
+    return np.column_stack(cols)
+
+
+def _unit_columns(jac: np.ndarray) -> np.ndarray:
+    norms = np.linalg.norm(jac, axis=0)
+    return jac / np.where(norms > 0, norms, 1.0)
+
+
+def _identifiable(fun, x0: np.ndarray, names: list[str]
+                  ) -> tuple[list[str], list[str], list[list[str]]]:
+    """The names the data identify (in the order named), those held, and each held name's
+    group: the named parameters it only acts together with (the Jacobian's null vector)."""
+    jac = _unit_columns(_jacobian(fun, x0) * np.where(x0 != 0, x0, 1.0))
+    free: list[int] = []
+    held: list[str] = []
+    groups: list[list[str]] = []
+    for k, name in enumerate(names):
+        trial = jac[:, [*free, k]]
+        if not np.any(trial[:, -1]):
+            held.append(name)
+            groups.append([name])
+            continue
+        _, s, vt = np.linalg.svd(trial, full_matrices=False)
+        if s[-1] >= RCOND * s[0]:
+            free.append(k)
+            continue
+        null = np.abs(vt[-1])
+        held.append(name)
+        groups.append([names[j] for j, w in zip([*free, k], null, strict=True)
+                       if w > 0.1 * null.max()])
+    return [names[k] for k in free], held, groups

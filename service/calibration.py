@@ -1,0 +1,104 @@
+"""Calibration at the service's door (SPEC 7.3): the request checked, the engine's fit run.
+
+Both ``beltstudy calibrate`` and ``POST /calibrations`` come here: a conveyor (a file or an
+inline mapping), the measured rows, the model and the names to fit (``NAME`` or
+``NAME=START``), optional fixed parameters. The fit itself is
+:func:`beltstudy.engine.calibrate` (:mod:`beltstudy.engine.calibration`) (method, standard errors, identifiability: its module
+notes); an input problem is an :class:`~beltstudy.service.errors.Invalid` naming the field.
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+from pydantic import BaseModel, ConfigDict, Field
+
+from beltstudy.engine import (
+    TEMPERATURE_MAX_C,
+    TEMPERATURE_MIN_C,
+    Conveyor,
+    InputError,
+    calibrate,
+    catalog,
+    measurements_from_rows,
+    parse_conveyor,
+)
+from beltstudy.service.door.study import ConveyorRef, ModelName
+from beltstudy.service.door.studyfile import conveyor_from_path
+from beltstudy.service.errors import Invalid
+
+__all__ = ["CalibrationIn", "run_calibration", "split_fit", "MAX_ROWS", "MAX_FIT"]
+
+#: Measurements and fitted names a request may hold (the fit runs in the request: each
+#: measurement is a steady solve per evaluation, about 5 ms on a 2 km conveyor).
+MAX_ROWS = 200
+MAX_FIT = 12
+
+
+class MeasuredRow(BaseModel):
+    """One measured steady state (a row of the CSV)."""
+
+    model_config = ConfigDict(extra="forbid")
+
+    load: str | float | list[float] = Field(..., description="load case as in a scenario")
+    temperature_c: float = Field(..., ge=TEMPERATURE_MIN_C, le=TEMPERATURE_MAX_C,
+                                 description="ambient temperature [C]")
+    power_kw: float | None = Field(None, gt=0, description="measured drive power [kW]")
+    te_kn: float | None = Field(None, gt=0, description="measured peripheral force [kN]")
+    t_tight_kn: float | None = Field(None, gt=0, description="measured tight-side tension [kN]")
+    speed_m_s: float | None = Field(None, gt=0, description="belt speed [m/s] (default: the "
+                                    "conveyor's)")
+
+
+class CalibrationIn(BaseModel):
+    """The body of ``POST /calibrations``."""
+
+    model_config = ConfigDict(extra="forbid")
+
+    conveyor: ConveyorRef = Field(
+        ..., description="a conveyor file under the studies directory, or inline")
+    measured: list[MeasuredRow] = Field(
+        ..., min_length=1, max_length=MAX_ROWS, description="one row per measured steady "
+        "state (at most 200: each costs a steady solve per step of the fit): load, "
+        "temperature_c, power_kw or te_kn (optional speed_m_s, t_tight_kn)")
+    model: ModelName = Field(..., description="friction model to calibrate (din, cema, nonlin, ...)")
+    fit: list[str] = Field(..., min_length=1, max_length=MAX_FIT, description="parameters "
+                           "to fit: NAME or "
+                           "NAME=START (e.g. f_carry, mu_b=0.002)")
+    params: dict[str, float] = Field(default_factory=dict,
+                                     description="other parameters held at these values")
+
+
+def split_fit(items: list[str]) -> tuple[list[str], dict[str, float]]:
+    """``NAME`` / ``NAME=START`` items into the names and the start values."""
+    names, starts = [], {}
+    for item in items:
+        name, eq, value = str(item).partition("=")
+        name = name.strip()
+        names.append(name)
+        if eq:
+            try:
+                starts[name] = float(value)
+            except ValueError:
+                raise Invalid(f"fit: '{item}': expected NAME or NAME=START with a number") \
+                    from None
+    return names, starts
+
+
+def run_calibration(body: CalibrationIn, *, base_dir: Path | None = None,
+                    studies_dir: Path | None = None) -> dict:
+    """Fit the request; the answer as SPEC 7.3 states it (``fit.<name>.value``, ``.se``,
+    ``residuals``, ``not_identifiable``, ``models``)."""
+    names, starts = split_fit(body.fit)
+    try:
+        if isinstance(body.conveyor, Conveyor):
+            conv = body.conveyor
+            catalog.check_conveyor(conv, "conveyor.")
+        else:
+            data, _ = conveyor_from_path(body.conveyor, base_dir, studies_dir)
+            conv = parse_conveyor(data, prefix="conveyor: ")
+        rows = measurements_from_rows([r.model_dump(exclude_none=True) for r in body.measured])
+        result = calibrate(conv, rows, body.model, names, fixed=body.params, starts=starts)
+    except InputError as exc:
+        raise Invalid(str(exc)) from None
+    return {"conveyor": conv.name, **result.to_json()}

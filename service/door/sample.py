@@ -1,0 +1,192 @@
+"""Sampled studies (SPEC 7.2 ``sample:``): uncertain inputs drawn from distributions.
+
+A study may hold ``sample:`` beside ``grid:``: ``n`` points, a ``method`` and a ``seed``, and per
+axis (any numeric grid axis path: ``temperature_c``, ``takeup.mass_kg``,
+``models.nonlin.mu_b``) a distribution. The points are drawn on the unit hypercube and mapped
+through each distribution's inverse CDF (scipy.stats); together they are one more zip group of
+the study (the sample axes vary together), crossed with the grid, so each point is a run like
+any other (ids, Parquet rows, restart, merging of identical runs).
+
+Methods:
+
+* ``lhs``: a Latin hypercube of ``n`` points (``scipy.stats.qmc.LatinHypercube``, seeded).
+  Its sensitivity measure is a rank correlation (:mod:`beltstudy.service.uncertainty`).
+* ``sobol``: Saltelli's design for Sobol' indices as SALib draws it
+  (``SALib.sample.sobol.sample`` with ``calc_second_order=False``, scrambled Sobol' sequence
+  of dimension 2 D from ``scipy.stats.qmc.Sobol``, seeded): base samples A and B of N points
+  and the D matrices AB_i (A with column i from B), N (D + 2) points in all, in SALib's order.
+  ``n`` is that total: N = n / (D + 2) must be a power of two (the Sobol' sequence's balance),
+  so ``n`` is refused otherwise with the nearest valid values. First-order and total indices
+  then come from ``SALib.analyze.sobol`` on the runs' results.
+
+Distributions (parameters as scipy.stats names them in brackets):
+
+* ``uniform: {low, high}``, low < high;
+* ``normal: {mean, sd}``, sd > 0;
+* ``lognormal: {median, sigma}``: ln X normal with mean ln(median) and sd sigma > 0
+  (``scipy.stats.lognorm(s=sigma, scale=median)``), median > 0;
+* ``triangular: {low, mode, high}``: low <= mode <= high, low < high
+  (``scipy.stats.triang(c=(mode-low)/(high-low), loc=low, scale=high-low)``).
+"""
+
+from __future__ import annotations
+
+import math
+from typing import Annotated, Any, Literal, Union
+
+import numpy as np
+from pydantic import BaseModel, ConfigDict, Field, model_validator
+
+__all__ = ["SampleIn", "Distribution", "draw", "unit_points", "sobol_base", "DISTRIBUTIONS",
+           "MAX_SAMPLE"]
+
+#: Largest sample (runs before crossing with the grid; BELTSTUDY_MAX_RUNS bounds the study).
+MAX_SAMPLE = 1 << 16
+#: The unit-cube values are kept this far inside (0, 1), where the normal's inverse is finite.
+_EDGE = 1e-12
+
+
+class _Dist(BaseModel):
+    model_config = ConfigDict(extra="forbid")
+
+
+class Uniform(_Dist):
+    """Uniform on [low, high]."""
+
+    dist: Literal["uniform"]
+    low: float
+    high: float
+
+    @model_validator(mode="after")
+    def _order(self):
+        if not self.high > self.low:
+            raise ValueError(f"high ({self.high:g}) must be above low ({self.low:g})")
+        return self
+
+    def ppf(self, u: np.ndarray) -> np.ndarray:
+        return self.low + u * (self.high - self.low)
+
+
+class Normal(_Dist):
+    """Normal with mean and standard deviation sd > 0."""
+
+    dist: Literal["normal"]
+    mean: float
+    sd: float = Field(..., gt=0, description="standard deviation (> 0)")
+
+    def ppf(self, u: np.ndarray) -> np.ndarray:
+        from scipy.stats import norm
+
+        return norm.ppf(u, loc=self.mean, scale=self.sd)
+
+
+class Lognormal(_Dist):
+    """ln X normal: median exp(mu) > 0, sigma > 0 the sd of ln X."""
+
+    dist: Literal["lognormal"]
+    median: float = Field(..., gt=0, description="median (> 0)")
+    sigma: float = Field(..., gt=0, description="standard deviation of ln X (> 0)")
+
+    def ppf(self, u: np.ndarray) -> np.ndarray:
+        from scipy.stats import norm
+
+        return self.median * np.exp(self.sigma * norm.ppf(u))
+
+
+class Triangular(_Dist):
+    """Triangular on [low, high] with its mode between."""
+
+    dist: Literal["triangular"]
+    low: float
+    mode: float
+    high: float
+
+    @model_validator(mode="after")
+    def _order(self):
+        if not self.high > self.low:
+            raise ValueError(f"high ({self.high:g}) must be above low ({self.low:g})")
+        if not self.low <= self.mode <= self.high:
+            raise ValueError(f"mode ({self.mode:g}) must lie between low ({self.low:g}) and "
+                             f"high ({self.high:g})")
+        return self
+
+    def ppf(self, u: np.ndarray) -> np.ndarray:
+        from scipy.stats import triang
+
+        width = self.high - self.low
+        return triang.ppf(u, (self.mode - self.low) / width, loc=self.low, scale=width)
+
+
+DISTRIBUTIONS = {"uniform": Uniform, "normal": Normal, "lognormal": Lognormal,
+                 "triangular": Triangular}
+Distribution = Annotated[Union[Uniform, Normal, Lognormal, Triangular],  # noqa: UP007
+                         Field(discriminator="dist")]
+
+
+class SampleIn(BaseModel):
+    """``sample:`` of a study (SPEC 7.2)."""
+
+    model_config = ConfigDict(extra="forbid")
+
+    n: int = Field(..., ge=2, le=MAX_SAMPLE, description="points drawn (runs before the grid "
+                   "crosses them); method sobol: N (D + 2) with N a power of two")
+    method: Literal["sobol", "lhs"] = Field(
+        "sobol", description="sobol: Saltelli's design on a scrambled Sobol' sequence "
+        "(SALib; Sobol' indices) | lhs: Latin hypercube (rank correlations)")
+    seed: int = Field(0, ge=0, description="seed: the same seed, the same points")
+    axes: dict[str, Distribution] = Field(
+        ..., min_length=1, description="axis path (as in grid) -> {dist: uniform|normal|"
+        "lognormal|triangular, and its parameters}")
+
+    @model_validator(mode="after")
+    def _sobol_size(self):
+        if self.method == "sobol":
+            sobol_base(self.n, len(self.axes))
+        return self
+
+
+def sobol_base(n: int, d: int) -> int:
+    """N of a Saltelli design of ``n`` points over ``d`` inputs (n = N (d + 2), N a power of
+    two); ValueError naming the nearest valid sizes otherwise."""
+    per = d + 2
+    base = n // per
+    if n % per == 0 and base >= 2 and base & (base - 1) == 0:
+        return base
+    lo = 1 << max(1, int(math.floor(math.log2(max(n / per, 2)))))
+    hi = lo * 2 if lo * per <= n else lo
+    options = sorted({lo * per, hi * per})
+    raise ValueError(
+        f"n = {n}: method sobol draws N (D + 2) points for D = {d} axes with N a power of two "
+        f"(Saltelli's design for Sobol' indices); use n = {' or '.join(map(str, options))}, "
+        "or method: lhs for any n")
+
+
+def unit_points(sample: SampleIn) -> np.ndarray:
+    """The sample's points on the unit hypercube, shape (n, D), axes in the order given."""
+    d = len(sample.axes)
+    if sample.method == "lhs":
+        from scipy.stats import qmc
+
+        u = qmc.LatinHypercube(d=d, rng=np.random.default_rng(sample.seed)).random(sample.n)
+    else:
+        from SALib.sample import sobol
+
+        problem = {"num_vars": d, "names": list(sample.axes), "bounds": [[0.0, 1.0]] * d}
+        u = sobol.sample(problem, sobol_base(sample.n, d), calc_second_order=False,
+                         scramble=True, seed=sample.seed)
+    return np.clip(u, _EDGE, 1.0 - _EDGE)
+
+
+def draw(sample: SampleIn) -> dict[str, list[float]]:
+    """Each axis's ``n`` values, in the order of the points."""
+    u = unit_points(sample)
+    out = {}
+    for k, (name, dist) in enumerate(sample.axes.items()):
+        values = dist.ppf(u[:, k])
+        out[name] = [float(f"{v:.12g}") for v in values]
+    return out
+
+
+def spec_json(sample: SampleIn) -> dict[str, Any]:
+    """The sample as stored in ``study.json`` (enough to know how it was drawn)."""
+    return sample.model_dump(mode="json")

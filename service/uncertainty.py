@@ -1,0 +1,269 @@
+"""What the samples of a sampled study say (SPEC 7.4, ``GET /studies/{id}/uncertainty``).
+
+For each grid cell (each combination of the study's grid and zip axis values; the sample is
+crossed with them) and each deciding figure of the runs table: its distribution (mean,
+standard deviation, quantiles), the probability that a run is past each design limit with a
+confidence interval, and a ranking of the sampled inputs by their share of the figure's
+variance. Everything is a pure function of the stored study document and its runs table.
+
+Notes
+-----
+*Exceedance.* A run is past a limit when the design report says so
+(:data:`beltstudy.service.web.verdicts.CAUSES`: belt safety factor below its minimum, slip
+margin below 1 or slipping, sag past its limit, slack, a drive over its rating). Of n finished
+runs k are past it: p = k / n with the Wilson score interval (Wilson 1927; recommended over
+the normal approximation by Agresti & Coull 1998, also for k = 0 or k = n):
+
+    (p + z^2 / 2n +- z sqrt(p (1 - p) / n + z^2 / 4n^2)) / (1 + z^2 / n),   z = 1.96 (95 %).
+
+It is the interval of the probability over the sampled distributions, given that the runs are
+an independent random sample of them; a Sobol' or Latin hypercube sample is more even than
+that, so the interval is conservative.
+
+*Sensitivity.* A ``method: sobol`` sample is Saltelli's design
+(:mod:`beltstudy.service.door.sample`): the first-order index S_i = V[E(Y | X_i)] / V(Y) and
+the total index S_Ti = E[V(Y | X_~i)] / V(Y) come from ``SALib.analyze.sobol`` (Saltelli et al.
+2010 estimator for S_i, Jansen 1999 for S_Ti, 95 % bootstrap confidence), when every point of
+the cell has the figure. Otherwise (``method: lhs``, or failed runs in the design) the ranking
+is Spearman's rank correlation rho_i of input and figure (scipy.stats.spearmanr): its sign
+says the direction, rho_i^2 roughly the share of a monotone effect; it is not a variance share
+and interactions do not show in it.
+
+References
+----------
+Saltelli, A. et al.: Variance based sensitivity analysis of model output. Computer Physics
+Communications 181 (2010) 259-270.
+Herman, J., Usher, W.: SALib: An open-source Python library for sensitivity analysis. JOSS 2
+(2017) 97.
+Agresti, A., Coull, B.A.: Approximate is better than "exact" for interval estimation of
+binomial proportions. The American Statistician 52 (1998) 119-126.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Sequence
+from typing import Any
+
+import numpy as np
+import pandas as pd
+
+from beltstudy.engine import results as result_fields
+from beltstudy.service.door.sample import sobol_base
+from beltstudy.service.web.verdicts import CAUSES, expand
+
+__all__ = ["FIGURES", "LIMITS", "QUANTILES", "summarise", "wilson", "distribution",
+           "sensitivity", "CONFIDENCE"]
+
+#: The deciding figures (SPEC issue 30: peak tension per phase, power, stop time, lowest
+#: tension, slip margin, safety factor; with sag and slack, the limits' own figures). A figure
+#: is shown when the runs carry it; ``{i}`` stands for each drive.
+FIGURES = (
+    "t_max_start_kn", "t_max_stop_kn", "t_min_start_kn", "t_min_stop_kn",
+    "t_max_kn", "t_min_kn", "power_kw", "drive{i}_power_required_kw", "drive_power_max_kw",
+    "stop_time_s", "slip_margin", "slip_margin_start", "slip_margin_min_dyn",
+    "safety_factor", "safety_factor_dyn", "sag_max_pct", "sag_max_dyn_pct", "slack_max_m",
+    "takeup_travel_m",
+)
+#: The design limits (keys of :data:`~beltstudy.service.web.verdicts.CAUSES`).
+LIMITS = ("safety", "slip", "sag", "slack", "overload")
+QUANTILES = (0.05, 0.25, 0.5, 0.75, 0.95)
+CONFIDENCE = 0.95
+
+
+def wilson(k: int, n: int, confidence: float = CONFIDENCE) -> tuple[float, float]:
+    """Wilson score interval of a binomial proportion k / n (module notes)."""
+    if n <= 0:
+        return (0.0, 1.0)
+    from scipy.stats import norm
+
+    z = float(norm.ppf(0.5 + confidence / 2))
+    p = k / n
+    centre = p + z * z / (2 * n)
+    half = z * math.sqrt(p * (1 - p) / n + z * z / (4 * n * n))
+    den = 1 + z * z / n
+    return (max(0.0, (centre - half) / den), min(1.0, (centre + half) / den))
+
+
+def distribution(values: pd.Series) -> dict[str, Any] | None:
+    """n, mean, sd (n - 1), min, max and :data:`QUANTILES` of the finite values."""
+    v = pd.to_numeric(values, errors="coerce").astype(float)
+    v = v[np.isfinite(v)]
+    if not len(v):
+        return None
+    q = np.quantile(v.to_numpy(), QUANTILES)
+    return {"n": int(len(v)), "mean": float(v.mean()),
+            "sd": float(v.std(ddof=1)) if len(v) > 1 else 0.0,
+            "min": float(v.min()), "max": float(v.max()),
+            "quantiles": {f"p{round(100 * p):02d}": float(x) for p, x in zip(
+                QUANTILES, q, strict=True)}}
+
+
+def _spearman(x: np.ndarray, y: np.ndarray) -> dict[str, float | None]:
+    from scipy.stats import spearmanr
+
+    ok = np.isfinite(y)
+    if ok.sum() < 3 or np.ptp(y[ok]) == 0 or np.ptp(x[ok]) == 0:
+        return {"rho": None, "rho2": None}
+    rho = float(spearmanr(x[ok], y[ok]).statistic)
+    return {"rho": rho, "rho2": rho * rho}
+
+
+def sensitivity(sample: dict, points: np.ndarray, y: np.ndarray) -> dict[str, Any]:
+    """The ranking of the sampled inputs for one figure.
+
+    Parameters
+    ----------
+    sample : dict
+        The study's ``sample`` (n, method, seed, axes).
+    points : ndarray (n, D)
+        The sampled input values, in the design's order.
+    y : ndarray (n,)
+        The figure at each point (NaN where the run has none).
+
+    Returns
+    -------
+    dict
+        ``method`` and per axis ``{S1, S1_conf, ST, ST_conf}`` (Sobol') or ``{rho, rho2}``
+        (Spearman), ranked by ST or |rho| (largest first), and ``note``.
+    """
+    names = list(sample["axes"])
+    d = len(names)
+    finite = np.isfinite(y)
+    note = ""
+    if sample["method"] == "sobol" and finite.all() and np.ptp(y) > 0:
+        from SALib.analyze import sobol
+
+        problem = {"num_vars": d, "names": names, "bounds": [[0.0, 1.0]] * d}
+        sobol_base(len(y), d)  # the design's size, as drawn
+        si = sobol.analyze(problem, y, calc_second_order=False, conf_level=CONFIDENCE,
+                           seed=int(sample.get("seed", 0)))
+        axes = {n: {"S1": float(si["S1"][k]), "S1_conf": float(si["S1_conf"][k]),
+                    "ST": float(si["ST"][k]), "ST_conf": float(si["ST_conf"][k])}
+                for k, n in enumerate(names)}
+        ranked = sorted(names, key=lambda n: -axes[n]["ST"])
+        return {"method": "sobol (SALib: Saltelli 2010 first-order, Jansen total, "
+                          f"{round(100 * CONFIDENCE)} % bootstrap confidence)",
+                "axes": axes, "ranking": ranked, "note": note}
+    if sample["method"] == "sobol":
+        note = (f"{int((~finite).sum())} of {len(y)} design points have no value: Sobol' "
+                "indices need every point; ranked by rank correlation instead"
+                if not finite.all() else "the figure does not vary")
+    axes = {n: _spearman(points[:, k], y) for k, n in enumerate(names)}
+    ranked = sorted(names, key=lambda n: -(abs(axes[n]["rho"]) if axes[n]["rho"] is not None
+                                           else -1.0))
+    return {"method": "spearman rank correlation (rho; rho^2 a rough share of a monotone "
+                      "effect, not a variance share)", "axes": axes, "ranking": ranked,
+            "note": note}
+
+
+def _figures(runs: pd.DataFrame, figures: Sequence[str]) -> list[str]:
+    out = []
+    for pattern in figures:
+        for col, _ in expand(pattern, runs.columns):
+            v = pd.to_numeric(runs[col], errors="coerce")
+            if v.notna().any():
+                out.append(col)
+    return out
+
+
+def _exceedance(rows: pd.DataFrame) -> list[dict[str, Any]]:
+    done = rows[rows["status"].astype(str) != "failed"] if "status" in rows else rows
+    out = []
+    for cause in CAUSES:
+        if cause.key not in LIMITS:
+            continue
+        mask = cause.detect(done).fillna(False).astype(bool) if len(done) else pd.Series([])
+        k, n = int(mask.sum()), int(len(done))
+        lo, hi = wilson(k, n)
+        out.append({"limit": cause.key, "title": cause.title, "runs_past": k, "runs": n,
+                    "p": (k / n) if n else None, "ci_low": lo, "ci_high": hi,
+                    "interval": f"Wilson score, {round(100 * CONFIDENCE)} %"})
+    return out
+
+
+def _unit(column: str) -> str:
+    try:
+        return result_fields.field(column).unit
+    except KeyError:  # a figure the caller named (not a result field)
+        return "-"
+
+
+def _key(values) -> tuple:
+    return tuple(None if v is None or (isinstance(v, float) and math.isnan(v)) else float(v)
+                 for v in values)
+
+
+def summarise(study: dict, runs: pd.DataFrame, figures: Sequence[str] = FIGURES
+              ) -> dict[str, Any]:
+    """The uncertainty answer of a sampled study (module notes) from its stored study
+    (``study.json``'s ``study``) and runs table. ``figures``: the figure columns (patterns
+    with ``{i}``) to summarise."""
+    sample = study.get("sample")
+    if not sample:
+        return {"sampled": False, "message": "the study has no sample: (SPEC 7.2); its "
+                "uncertainty is that of a grid, see its runs"}
+    axes = study["axes"]
+    s_axes = [a for a in axes if a.get("sample")]
+    g_axes = [a for a in axes if not a.get("sample")]
+    s_cols = [a["column"] for a in s_axes]
+    g_cols = [a["column"] for a in g_axes]
+    points = np.array([a["values"] for a in s_axes], dtype=float).T  # (n, D), design order
+    cols = _figures(runs, figures) if len(runs) else []
+    units = {c: _unit(c) for c in cols}
+    cells = []
+    groups = runs.groupby(g_cols, dropna=False, sort=False) if g_cols and len(runs) else (
+        [((), runs)])
+    for gkey, rows in groups:
+        gkey = gkey if isinstance(gkey, tuple) else (gkey,)
+        index = {_key(r): i for i, r in enumerate(rows[s_cols].itertuples(index=False))}
+        at = [index.get(_key(p)) for p in points]
+        cell = {"grid": dict(zip(g_cols, gkey, strict=False)), "runs": int(len(rows)),
+                "points_missing": int(sum(i is None for i in at)),
+                "figures": {}, "exceedance": _exceedance(rows), "sensitivity": {}}
+        for col in cols:
+            vals = pd.to_numeric(rows[col], errors="coerce").to_numpy(dtype=float)
+            y = np.array([vals[i] if i is not None else np.nan for i in at])
+            dist = distribution(pd.Series(y))
+            if dist is None:
+                continue
+            cell["figures"][col] = {"unit": units[col], **dist}
+            cell["sensitivity"][col] = sensitivity(sample, points, y)
+        cells.append(cell)
+    return {"sampled": True, "method": sample["method"], "n": sample["n"],
+            "seed": sample.get("seed", 0), "axes": sample["axes"],
+            "confidence": CONFIDENCE, "limits": [c.key for c in CAUSES if c.key in LIMITS],
+            "cells": cells}
+
+
+def _g(value: Any) -> str:
+    return "-" if value is None else f"{value:.4g}"
+
+
+def format_text(result: dict) -> str:
+    """The answer as text: per grid cell, each figure's distribution and top-ranked inputs,
+    then the exceedance probabilities."""
+    if not result.get("sampled"):
+        return result.get("message", "not a sampled study")
+    lines = [f"sample: {result['n']} points, method {result['method']}, seed {result['seed']}; "
+             f"axes {', '.join(result['axes'])}"]
+    for cell in result["cells"]:
+        where = ", ".join(f"{k}={v}" for k, v in cell["grid"].items()) or "all runs"
+        lines += ["", f"{where}: {cell['runs']} runs"
+                  + (f" ({cell['points_missing']} sample points without a run yet)"
+                     if cell["points_missing"] else "")]
+        lines.append("  figure                         unit     mean       sd      p05      "
+                     "p50      p95  ranking")
+        for col, d in cell["figures"].items():
+            q = d["quantiles"]
+            sens = cell["sensitivity"][col]
+            key = "ST" if sens["method"].startswith("sobol") else "rho"
+            rank = ", ".join(f"{n} {_g(sens['axes'][n][key])}" for n in sens["ranking"][:3])
+            lines.append(f"  {col:<30} {d['unit']:<5} {d['mean']:>8.4g} {d['sd']:>8.3g} "
+                         f"{q['p05']:>8.4g} {q['p50']:>8.4g} {q['p95']:>8.4g}  {key}: {rank}")
+        lines.append("  limit                                  past / runs        p   "
+                     f"{round(100 * result['confidence'])} % interval")
+        for e in cell["exceedance"]:
+            lines.append(f"  {e['title']:<38} {e['runs_past']:>5} / {e['runs']:<5} "
+                         f"{_g(e['p']):>8}   [{e['ci_low']:.3f}, {e['ci_high']:.3f}]")
+    return "\n".join(lines)

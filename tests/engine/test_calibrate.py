@@ -1,0 +1,127 @@
+"""Calibration (SPEC 7.3): a known parameter recovered from power the engine itself made,
+standard errors that cover it, and parameters that only act together named, not fitted."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+from beltstudy.engine import InputError, load_conveyor, solve_steady
+from beltstudy.engine.calibration import Measurement, calibrate, measurements_from_rows
+from tests.conftest import CONVEYORS
+
+LOADS = (0.2, 0.4, 0.6, 0.8, 1.0)
+TRUTH = 0.0237
+
+
+@pytest.fixture(scope="module")
+def overland():
+    # 4.2 km, net lift 46 m: friction is most of the power, as on the plants one calibrates
+    return load_conveyor(CONVEYORS / "overland-4km.yaml")
+
+
+def _plant(conv, model, params, noise=0.0, seed=0, speed=None, column="power_kw"):
+    """Measurements made by the engine at ``params``, with seeded relative noise."""
+    rng = np.random.default_rng(seed)
+    rows = []
+    for load in LOADS:
+        c = conv if speed is None else conv.model_copy(update={"speed_m_s": speed})
+        value = solve_steady(c, model=model, params=params, temperature_c=10.0,
+                             load=load).summary[column]
+        rows.append(Measurement(load, 10.0, {column: value * (1 + noise * rng.standard_normal())},
+                                speed))
+    return rows
+
+
+def test_din_f_carry_recovered_from_noisy_power(overland):
+    rows = _plant(overland, "din", {"f_carry": TRUTH}, noise=0.01, seed=0)
+    cal = calibrate(overland, rows, "din", ["f_carry"])
+    fit = cal.fit["f_carry"]
+    assert cal.status == "ok" and cal.not_identifiable == []
+    assert abs(fit["value"] - TRUTH) / TRUTH < 0.01
+    # the estimate +- 2 standard errors (about the 95 % interval at 4 degrees of freedom
+    # would be 2.78) covers the truth, and the standard error is of the size 1 % noise on
+    # five points makes (not zero, not the size of the value)
+    assert abs(fit["value"] - TRUTH) <= 2 * fit["se"]
+    assert 1e-5 < fit["se"] < 1e-3
+    assert cal.dof == 4 and len(cal.residuals) == 5
+    assert cal.models == {"din": {"f_carry": pytest.approx(fit["value"], rel=1e-5)}}
+
+
+def test_noise_free_fit_is_exact_and_its_se_vanishes(overland):
+    # DIN's power is linear in f_carry: without noise the least-squares fit is the truth
+    rows = _plant(overland, "din", {"f_carry": TRUTH, "f_return": 0.011})
+    cal = calibrate(overland, rows, "din", ["f_carry", "f_return"])
+    assert cal.fit["f_carry"]["value"] == pytest.approx(TRUTH, rel=1e-6)
+    assert cal.fit["f_return"]["value"] == pytest.approx(0.011, rel=1e-5)
+    assert cal.fit["f_carry"]["se"] < 1e-7
+    assert max(abs(r["relative"]) for r in cal.residuals) < 1e-8
+
+
+def test_measured_speed_is_the_speed_solved(overland):
+    # measured at 3 m/s on a 4.5 m/s conveyor: power = Te v, so fitting at the file's speed
+    # would put f_carry 1.5 x off
+    rows = _plant(overland, "din", {"f_carry": TRUTH}, speed=3.0)
+    cal = calibrate(overland, rows, "din", ["f_carry"])
+    assert cal.fit["f_carry"]["value"] == pytest.approx(TRUTH, rel=1e-6)
+
+
+def test_product_pair_is_not_identifiable(overland):
+    # Non-Lin's bearing term is mu_b d_b / D (m'_G + m'_L): only the product of mu_b and
+    # bearing_diameter_m acts, whatever the loads
+    rows = _plant(overland, "nonlin", {"mu_b": 0.002}, noise=0.01)
+    cal = calibrate(overland, rows, "nonlin", ["mu_b", "bearing_diameter_m"])
+    assert cal.not_identifiable == ["mu_b", "bearing_diameter_m"]
+    assert cal.held == {"bearing_diameter_m": 0.045}
+    assert cal.models["nonlin"]["bearing_diameter_m"] == 0.045  # the block says what it held
+    assert cal.fit["bearing_diameter_m"]["se"] is None
+    assert "only act together" in cal.notes[0]
+    # with d_b held at the value the data were made with, mu_b is found
+    assert cal.fit["mu_b"]["value"] == pytest.approx(0.002, rel=0.05)
+
+
+def test_din_c_scales_both_factors(overland):
+    # F_H + F_N = C (f_carry A + f_return B): C, f_carry and f_return only act together
+    rows = _plant(overland, "din", {"f_carry": TRUTH})
+    cal = calibrate(overland, rows, "din", ["f_carry", "f_return", "c"])
+    assert cal.not_identifiable == ["f_carry", "f_return", "c"]
+    assert list(cal.held) == ["c"]
+
+
+def test_unknown_parameter_names_the_valid_ones(overland):
+    rows = _plant(overland, "din", {})
+    with pytest.raises(InputError, match=r"'f_cary' is not a parameter of model din \(did you "
+                                         r"mean 'f_carry'\?\); valid: f_carry, f_return, c, f"):
+        calibrate(overland, rows, "din", ["f_cary"])
+    with pytest.raises(InputError, match="fit: 'ky_x' is not a parameter of model cema.*ky, kt"):
+        calibrate(overland, rows, "cema", ["ky_x"])
+
+
+def test_cema_start_from_its_computed_factor(overland):
+    # ky's default is computed (None): the fit starts from the law's own mean Ky
+    rows = _plant(overland, "cema", {"ky": 0.02})
+    cal = calibrate(overland, rows, "cema", ["ky"])
+    assert cal.fit["ky"]["value"] == pytest.approx(0.02, rel=1e-5)
+
+
+def test_rows_are_checked_by_name():
+    with pytest.raises(InputError, match=r"measured\[1\]: give the measured power_kw or te_kn"):
+        measurements_from_rows([{"load": 1, "temperature_c": 5, "power_kw": 100},
+                                {"load": 1, "temperature_c": 5}])
+    with pytest.raises(InputError, match=r"measured\[0\]\.power_kw: expected a number"):
+        measurements_from_rows([{"load": "full", "temperature_c": 5, "power_kw": "lots"}])
+    with pytest.raises(InputError, match="unknown column 'power_k'.*did you mean 'power_kw'"):
+        measurements_from_rows([{"load": "full", "temperature_c": 5, "power_k": 1}])
+
+
+def test_din_single_f_sets_both_strands(overland):
+    # DIN 22101's one f for both strands: power made with f_carry = f_return = 0.0237
+    rows = _plant(overland, "din", {"f_carry": TRUTH, "f_return": TRUTH})
+    cal = calibrate(overland, rows, "din", ["f"])
+    assert cal.fit["f"]["value"] == pytest.approx(TRUTH, rel=1e-6)
+    assert cal.models["din"] == {"f_carry": pytest.approx(TRUTH, rel=1e-5),
+                                 "f_return": pytest.approx(TRUTH, rel=1e-5)}
+    with pytest.raises(InputError, match="'f' is both fitted and fixed"):
+        calibrate(overland, rows, "din", ["f"], fixed={"f_return": 0.01})
+    with pytest.raises(InputError, match="'f_carry' sets a parameter another fitted name sets"):
+        calibrate(overland, rows, "din", ["f", "f_carry"])

@@ -1,0 +1,130 @@
+"""Sampled studies (SPEC 7.2 ``sample:``): drawn values, the runs they become, refusals."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+from beltstudy.service.door.sample import SampleIn, draw, unit_points
+from beltstudy.service.door.studyfile import resolve_study
+from beltstudy.service.errors import Invalid
+from beltstudy.service.grid.expand import study_from_json
+from tests.service.conftest import tiny_study
+
+AXES = {
+    "temperature_c": {"dist": "uniform", "low": -25, "high": 35},
+    "models.din.f_carry": {"dist": "lognormal", "median": 0.02, "sigma": 0.2},
+    "takeup.mass_kg": {"dist": "normal", "mean": 3000, "sd": 100},
+}
+
+
+def sampled(n=20, method="lhs", seed=7, axes=None, **over):
+    over.setdefault("grid", {"friction_model": ["din"]})
+    return tiny_study("sampled", sample={"n": n, "method": method, "seed": seed,
+                                         "axes": axes or AXES}, **over)
+
+
+def test_lhs_puts_one_point_in_each_stratum():
+    s = SampleIn(n=50, method="lhs", seed=1, axes=AXES)
+    u = unit_points(s)
+    for k in range(3):
+        assert sorted(np.floor(u[:, k] * 50).astype(int)) == list(range(50))
+
+
+def test_distributions_have_their_moments():
+    # 4000 LHS points: the sample mean of a stratified sample is far closer than 1/sqrt(n)
+    s = SampleIn(n=4000, method="lhs", seed=2, axes={
+        "a": {"dist": "uniform", "low": 2, "high": 6},
+        "b": {"dist": "normal", "mean": 10, "sd": 2},
+        "c": {"dist": "lognormal", "median": 1.5, "sigma": 0.3},
+        "d": {"dist": "triangular", "low": 0, "mode": 1, "high": 5}})
+    v = {k: np.array(x) for k, x in draw(s).items()}
+    assert v["a"].min() >= 2 and v["a"].max() <= 6 and v["a"].mean() == pytest.approx(4, abs=0.01)
+    assert v["b"].mean() == pytest.approx(10, abs=0.01)
+    assert v["b"].std() == pytest.approx(2, rel=0.01)
+    assert np.median(v["c"]) == pytest.approx(1.5, rel=0.01)
+    assert np.log(v["c"]).std() == pytest.approx(0.3, rel=0.01)
+    assert v["d"].mean() == pytest.approx(2.0, abs=0.01)  # (low + mode + high) / 3
+    assert v["d"].min() >= 0 and v["d"].max() <= 5
+
+
+def test_sobol_is_saltellis_design():
+    # SALib's order per base point j: A_j, AB_1 .. AB_D, B_j; AB_i = A with column i of B
+    d = 3
+    s = SampleIn(n=8 * (d + 2), method="sobol", seed=3, axes=AXES)
+    u = unit_points(s).reshape(8, d + 2, d)
+    a, b = u[:, 0], u[:, -1]
+    for i in range(d):
+        ab = u[:, 1 + i]
+        assert np.array_equal(ab[:, i], b[:, i])
+        others = [k for k in range(d) if k != i]
+        assert np.array_equal(ab[:, others], a[:, others])
+
+
+def test_sampled_study_runs_crossed_with_the_grid_and_stable():
+    study = resolve_study(sampled(n=12, grid={"friction_model": ["din", "cema"]},
+                                  axes={"temperature_c": AXES["temperature_c"],
+                                        "takeup.mass_kg": AXES["takeup.mass_kg"]}))
+    assert study.total == 24 and study.grid_points == 24
+    temps = {r.axes["temperature_c"] for r in study.runs}
+    assert len(temps) == 12 and all(-25 <= t <= 35 for t in temps)
+    # each run's conveyor holds its drawn take-up mass
+    for r in study.runs:
+        assert r.conveyor["takeup"]["mass_kg"] == r.axes["takeup.mass_kg"]
+    again = resolve_study(sampled(n=12, grid={"friction_model": ["din", "cema"]},
+                                  axes={"temperature_c": AXES["temperature_c"],
+                                        "takeup.mass_kg": AXES["takeup.mass_kg"]}))
+    assert again.id == study.id and [r.run_id for r in again.runs] == [
+        r.run_id for r in study.runs]
+    resumed = study_from_json(study.to_json(), study.id)
+    assert [r.run_id for r in resumed.runs] == [r.run_id for r in study.runs]
+    other = resolve_study(sampled(n=12, seed=8, grid={"friction_model": ["din", "cema"]},
+                                  axes={"temperature_c": AXES["temperature_c"]}))
+    assert not {r.run_id for r in other.runs} & {r.run_id for r in study.runs}
+
+
+def test_design_is_sized_once_at_the_nominal_inputs():
+    # the motor is sized for the nominal friction and held: the sample tests that design
+    study = resolve_study(sampled(n=10, axes={"models.din.f_carry": AXES["models.din.f_carry"]}))
+    rated = {r.conveyor["drives"][0]["rated_power_kw"] for r in study.runs}
+    assert len(rated) == 1 and len(study.designs) == 1
+    nominal = resolve_study(tiny_study("nominal", grid={"friction_model": ["din"]}))
+    assert rated == {nominal.runs[0].conveyor["drives"][0]["rated_power_kw"]}
+
+
+def test_sample_only_study_is_valid():
+    data = sampled(n=6)
+    del data["grid"]
+    assert resolve_study(data).total == 6
+
+
+@pytest.mark.parametrize("axes, message", [
+    ({"temperature_c": {"dist": "normal", "mean": 0, "sd": -1}},
+     r"sample\.axes\.temperature_c.*sd"),
+    ({"temperature_c": {"dist": "uniform", "low": 10, "high": -10}},
+     r"sample\.axes\.temperature_c.*high \(-10\) must be above low \(10\)"),
+    ({"temperature_c": {"dist": "triangular", "low": 0, "mode": 12, "high": 10}},
+     r"sample\.axes\.temperature_c.*mode \(12\) must lie between"),
+    ({"temperature_c": {"dist": "weibull", "k": 2}}, r"sample\.axes\.temperature_c.*dist"),
+    ({"temperature_c": {"dist": "lognormal", "median": -1, "sigma": 0.2}},
+     r"sample\.axes\.temperature_c.*median"),
+    ({"belt_type": {"dist": "uniform", "low": 0, "high": 1}},
+     r"sample\.axes\.belt_type: 'belt_type' does not take a number"),
+    ({"friction_model": {"dist": "uniform", "low": 0, "high": 1}},
+     r"sample\.axes\.friction_model: .*does not take a number"),
+    ({"takeup.mas_kg": {"dist": "uniform", "low": 1, "high": 2}},
+     r"sample\.axes: unknown axis 'takeup\.mas_kg'.*did you mean 'takeup\.mass_kg'"),
+    ({"models.din.f_carry": {"dist": "normal", "mean": 0.0, "sd": 0.01}},
+     r"sample\.axes\.models\.din\.f_carry: drawn value -?[0-9.e-]+: .*between 0 and 1"),
+])
+def test_invalid_distributions_are_refused_naming_the_field(axes, message):
+    with pytest.raises(Invalid, match=message):
+        resolve_study(sampled(axes=axes))
+
+
+def test_sobol_size_and_overlap_are_refused():
+    with pytest.raises(Invalid, match=r"sample.*n = 100: method sobol.*use n = 80 or 160"):
+        resolve_study(sampled(n=100, method="sobol"))
+    with pytest.raises(Invalid, match=r"sample\.axes: axes 'temperature_c' and 'temperature_c' "
+                                      r"both set scenario\.temperature_c"):
+        resolve_study(sampled(grid={"temperature_c": [0, 10]}))

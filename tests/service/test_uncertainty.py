@@ -1,0 +1,149 @@
+"""What the samples say (SPEC 7.4 uncertainty): distributions, exceedance with an interval
+and the sensitivity ranking, checked against exact answers."""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pandas as pd
+import pytest
+
+from beltstudy.service.door.studyfile import resolve_study
+from beltstudy.service.uncertainty import distribution, format_text, summarise, wilson
+from tests.service.conftest import tiny_study
+
+# three independent inputs of a sampled study and their standard deviations
+AXES = {
+    "temperature_c": ({"dist": "uniform", "low": -20, "high": 20}, 40 / math.sqrt(12)),
+    "models.din.f_return": ({"dist": "normal", "mean": 0.02, "sd": 0.002}, 0.002),
+    "models.din.f_carry": ({"dist": "triangular", "low": 0.01, "mode": 0.02, "high": 0.03},
+                           math.sqrt((0.01**2 + 0.02**2 + 0.03**2 - 0.01 * 0.02 - 0.01 * 0.03
+                                      - 0.02 * 0.03) / 18)),
+}
+COEF = {"temperature_c": 1.0, "models.din.f_return": 5000.0, "models.din.f_carry": 1000.0}
+
+
+def _linear_study(n: int, method: str, seed: int = 11):
+    """A resolved sampled study and a runs table whose figure ``y`` is linear in the inputs
+    (the rows as the store would hold them: one per run, the axes as columns)."""
+    study = resolve_study(tiny_study(
+        "linear", grid={"friction_model": ["din"]},
+        sample={"n": n, "method": method, "seed": seed,
+                "axes": {k: v[0] for k, v in AXES.items()}}))
+    rows = []
+    for r in study.runs:
+        y = sum(COEF[k] * r.axes[k] for k in AXES)
+        rows.append({"run_id": r.run_id, "status": "ok", **r.axes, "y": y})
+    return study, pd.DataFrame(rows)
+
+
+def _analytic() -> dict[str, float]:
+    var = {k: (COEF[k] * AXES[k][1]) ** 2 for k in AXES}
+    total = sum(var.values())
+    return {k: v / total for k, v in var.items()}
+
+
+def test_sobol_indices_of_a_linear_function():
+    # S_i = c_i^2 s_i^2 / sum_j c_j^2 s_j^2, and S_Ti = S_i (no interactions)
+    study, runs = _linear_study(1024 * 5, "sobol")
+    out = summarise(study.to_json(), runs, figures=("y",))
+    (cell,) = out["cells"]
+    sens = cell["sensitivity"]["y"]
+    assert sens["method"].startswith("sobol")
+    exact = _analytic()
+    # by hand: variances 133.3 (temperature), 100 (f_return), 16.67 (f_carry) of 250
+    assert sorted(exact.values()) == pytest.approx([0.0667, 0.4, 0.5333], abs=1e-4)
+    for name, s in exact.items():
+        assert sens["axes"][name]["S1"] == pytest.approx(s, abs=0.03), name
+        assert sens["axes"][name]["ST"] == pytest.approx(s, abs=0.03), name
+    assert sens["ranking"] == sorted(exact, key=lambda k: -exact[k])
+    # the distribution of y: its mean is sum c_i E[x_i]
+    mean = 0.0 + 5000 * 0.02 + 1000 * 0.02
+    assert cell["figures"]["y"]["mean"] == pytest.approx(mean, abs=0.2)
+
+
+def test_lhs_ranks_by_rank_correlation():
+    study, runs = _linear_study(400, "lhs")
+    sens = summarise(study.to_json(), runs, figures=("y",))["cells"][0]["sensitivity"]["y"]
+    assert sens["method"].startswith("spearman")
+    exact = _analytic()
+    assert sens["ranking"] == sorted(exact, key=lambda k: -exact[k])
+    # every input raises y; rho is a rank measure, not a variance share, so only its order
+    # and sign are checked
+    for name in exact:
+        assert sens["axes"][name]["rho"] > 0.1
+
+
+def test_missing_design_points_fall_back_and_say_so():
+    study, runs = _linear_study(64 * 5, "sobol")
+    runs.loc[3, "y"] = np.nan
+    sens = summarise(study.to_json(), runs, figures=("y",))["cells"][0]["sensitivity"]["y"]
+    assert sens["method"].startswith("spearman")
+    assert "1 of 320 design points have no value" in sens["note"]
+
+
+def test_wilson_interval():
+    # Agresti & Coull (1998): k = 0 of n = 20 gives [0, 0.161]; 10 of 20 gives [0.299, 0.701]
+    assert wilson(0, 20) == pytest.approx((0.0, 0.1611), abs=1e-4)
+    assert wilson(10, 20) == pytest.approx((0.2993, 0.7007), abs=1e-4)
+    assert wilson(20, 20)[1] == 1.0
+
+
+def test_exceedance_counts_the_runs_past_each_limit():
+    study, runs = _linear_study(20, "lhs")
+    runs["slip_margin"] = np.where(np.arange(20) < 5, 0.9, 1.3)  # 5 of 20 slip
+    runs["slack_max_m"] = 0.0
+    runs.loc[0, "status"] = "failed"  # a failed run counts in no probability
+    out = summarise(study.to_json(), runs, figures=("slip_margin",))
+    ex = {e["limit"]: e for e in out["cells"][0]["exceedance"]}
+    assert set(ex) == {"safety", "slip", "sag", "slack", "overload"}
+    assert (ex["slip"]["runs_past"], ex["slip"]["runs"]) == (4, 19)
+    assert ex["slip"]["p"] == pytest.approx(4 / 19)
+    assert (ex["slip"]["ci_low"], ex["slip"]["ci_high"]) == pytest.approx(wilson(4, 19))
+    assert ex["slack"]["runs_past"] == 0 and ex["slack"]["ci_high"] > 0
+
+
+def test_distribution_quantiles():
+    d = distribution(pd.Series(np.arange(101, dtype=float)))
+    assert d["quantiles"] == {"p05": 5.0, "p25": 25.0, "p50": 50.0, "p75": 75.0, "p95": 95.0}
+    assert d["sd"] == pytest.approx(np.arange(101).std(ddof=1))
+
+
+def test_a_grid_study_is_not_sampled():
+    study = resolve_study(tiny_study())
+    assert summarise(study.to_json(), pd.DataFrame())["sampled"] is False
+
+
+def test_rest_and_report_of_a_stored_sampled_study(data_dir, make_settings):
+    # a real sampled study run in this process: the take-up mass drawn about the design's
+    # own size and the friction uncertain; steady runs of the 60 m conveyor
+    from fastapi.testclient import TestClient
+
+    from beltstudy.service.api.app import create_app
+    from tests.service.conftest import store_finished
+
+    data = tiny_study("sampled-stored", grid={"friction_model": ["din"]}, sample={
+        "n": 4 * 4, "method": "sobol", "seed": 5, "axes": {
+            "models.din.f_carry": {"dist": "lognormal", "median": 0.02, "sigma": 0.3},
+            "temperature_c": {"dist": "uniform", "low": -20, "high": 30}}})
+    sid = store_finished(data_dir, data)
+    client = TestClient(create_app(make_settings(data_dir)))
+    out = client.get(f"/studies/{sid}/uncertainty").json()
+    assert out["sampled"] and out["method"] == "sobol" and out["n"] == 16
+    (cell,) = out["cells"]
+    assert cell["runs"] == 16 and cell["points_missing"] == 0
+    power = cell["figures"]["power_kw"]
+    assert power["n"] == 16 and power["quantiles"]["p05"] <= power["quantiles"]["p95"]
+    # din has no temperature term: power depends on f_carry alone, so its total index is
+    # (all but) everything and temperature's nothing
+    s = cell["sensitivity"]["power_kw"]["axes"]
+    assert s["models.din.f_carry"]["ST"] > 0.9 and abs(s["temperature_c"]["ST"]) < 0.05
+    page = client.get(f"/studies/{sid}/report").text
+    assert "Uncertainty of the sampled inputs" in page
+    assert page.count('alt="distributions"') == 1 and page.count('alt="ranking"') == 1
+    assert "Wilson" in page
+    assert client.get("/studies/0123456789abcdef/uncertainty").status_code == 404
+    text = format_text(out)
+    assert "power_kw" in text and "ST: models.din.f_carry" in text
+    assert "slipped on a drive pulley" in text
