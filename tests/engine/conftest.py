@@ -3,6 +3,8 @@ and the hand conveyor with its drives changed."""
 
 from __future__ import annotations
 
+import numpy as np
+
 from beltstudy.engine.conveyor import parse_conveyor
 from tests.conftest import hand_conveyor_dict
 
@@ -57,3 +59,20 @@ def steep_incline(brake_force="auto", **over):
                            takeup={"type": "gravity", "position": "tail", "mass_kg": 50000})
     d.update(over)
     return parse_conveyor(d)
+
+
+def assert_settles_to_statics(conv, st, start_s: float, run_s: float = 120.0):
+    """Start ``conv`` from rest by an s-curve of ``start_s`` and run ``run_s`` (the transient
+    model of the steady solution ``st``), up to the step before the stop command: the run has
+    not failed and every boundary tension is the steady one within 1 %. Returns (system,
+    result)."""
+    from beltstudy.engine.conveyor import Scenario
+    from beltstudy.engine.dynamics import build_system, simulate
+
+    scn = Scenario(start={"control": "s-curve", "time_s": start_s}, run_s=run_s)
+    sys = build_system(conv, scn, st)
+    res = simulate(sys, t_end_s=sys.stop_command_s - sys.dt_s)
+    T = res.raw["tension"]
+    assert res.status != "failed"
+    assert np.max(np.abs(T - st.tension_n) / st.tension_n) < 0.01
+    return sys, res

@@ -166,9 +166,9 @@ def test_the_transient_run_settles_onto_the_steady_tensions_with_feed_points():
     cleaner at the head; after a 30 s start and 120 s of running the tensions are the steady
     ones within 1 % (as tests/engine/integration/test_dynamics_physics.py checks without
     feed points)."""
-    from beltstudy.engine.conveyor import Scenario, load_mapping
-    from beltstudy.engine.dynamics import build_system, simulate
+    from beltstudy.engine.conveyor import load_mapping
     from tests.conftest import CONVEYORS
+    from tests.engine.conftest import assert_settles_to_statics
 
     data = load_mapping(CONVEYORS / "slope-5pct.yaml")
     data["material"]["feed"] = [
@@ -179,9 +179,4 @@ def test_the_transient_run_settles_onto_the_steady_tensions_with_feed_points():
     c = parse_conveyor(data)
     st = solve_steady(c, model="din", n_elements=80)
     assert np.any(np.isclose(st.loop.s_m, 1230.0))
-    scn = Scenario(start={"control": "s-curve", "time_s": 30}, run_s=120)
-    sys = build_system(c, scn, st)
-    res = simulate(sys, t_end_s=sys.stop_command_s - sys.dt_s)
-    T = res.raw["tension"]
-    assert res.status != "failed"
-    assert np.max(np.abs(T - st.tension_n) / st.tension_n) < 0.01
+    assert_settles_to_statics(c, st, start_s=30.0)

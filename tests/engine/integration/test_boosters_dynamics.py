@@ -9,7 +9,6 @@ from __future__ import annotations
 
 import math
 
-import numpy as np
 import pytest
 from numpy.testing import assert_allclose
 
@@ -19,6 +18,7 @@ from beltstudy.engine.dynamics.model import with_probes
 from beltstudy.engine.run import run_one
 from beltstudy.engine.statics import solve_steady
 from tests.conftest import hand_conveyor_dict
+from tests.engine.conftest import assert_settles_to_statics
 
 
 def conveyor(booster: dict, takeup: dict, head_share: float = 0.6, head_wrap: float = 200.0):
@@ -84,12 +84,7 @@ def test_running_tensions_settle_to_statics_with_a_booster(model, booster, takeu
     the booster passes its share of the steady Te (1 %)."""
     conv = conveyor(booster, takeup)
     st = solve_steady(conv, model=model, n_elements=80)
-    scn = Scenario(start={"control": "s-curve", "time_s": 60}, run_s=120)
-    sys = build_system(conv, scn, st)
-    res = simulate(sys, t_end_s=sys.stop_command_s - sys.dt_s)
-    T = res.raw["tension"]
-    assert res.status != "failed"
-    assert np.max(np.abs(T - st.tension_n) / st.tension_n) < 0.01
+    _, res = assert_settles_to_statics(conv, st, start_s=60.0)
     assert res.summary["drive1_slip_s"] == 0.0 and res.summary["drive2_slip_s"] == 0.0
     f2 = res.timeseries["f_drive2_kn"].iloc[-1] * 1e3
     assert f2 == pytest.approx(0.4 * st.te_n, rel=0.01)
