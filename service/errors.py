@@ -14,6 +14,7 @@ __all__ = [
     "TooLarge",
     "Unauthorized",
     "Unavailable",
+    "UnsupportedMedia",
 ]
 
 
@@ -70,3 +71,10 @@ class Unavailable(ServiceError):
 
     status_code = 503
     kind = "unavailable"
+
+
+class UnsupportedMedia(ServiceError):
+    """A request body in a media type the route does not read."""
+
+    status_code = 415
+    kind = "unsupported_media_type"

@@ -30,13 +30,13 @@ from beltstudy.service.dask.jobs import StudyJob
 from beltstudy.service.dask.tasks import profile_table, run_spec, surface_table
 from beltstudy.service.door.studyfile import resolve_study
 from beltstudy.service.errors import Conflict, Invalid, NotFound
-from beltstudy.service.grid.expand import ResolvedStudy, RunSpec, study_from_json
+from beltstudy.service.grid.expand import DEFAULT_MODEL, ResolvedStudy, RunSpec, study_from_json
 from beltstudy.service.settings import Settings
 from beltstudy.service.store import query
 from beltstudy.service.store.columns import profile_schema, surface_schema
 from beltstudy.service.store.parquet import Store
 
-__all__ = ["StudyService", "ACTIVE_STATES", "RESOLVED_CACHE", "SURFACE_CACHE"]
+__all__ = ["StudyService", "ACTIVE_STATES", "RESOLVED_CACHE", "SURFACE_CACHE", "study_models"]
 
 log = logging.getLogger("beltstudy.service")
 
@@ -46,6 +46,16 @@ RESOLVED_CACHE = 8
 #: Recomputed surfaces kept (a run id is a hash of the run's inputs: the surface is the same
 #: every time).
 SURFACE_CACHE = 4
+
+
+def study_models(doc: dict) -> list[str]:
+    """The friction models a stored study runs (its ``friction_model`` axis, or its one
+    model)."""
+    study = doc.get("study") or {}
+    for axis in study.get("axes", []):
+        if axis.get("column") == "friction_model":
+            return [str(v) for v in axis["values"]]
+    return [str(study.get("model") or DEFAULT_MODEL)]
 
 
 class StudyService:
@@ -243,9 +253,7 @@ class StudyService:
         runs = self.store.read_runs(study_id)
         match = runs[runs["run_id"] == run_id] if len(runs) else runs
         if not len(match):
-            known = any(r.run_id == run_id for r in self._load(self.store.read(study_id)).runs)
-            state = "not finished yet" if known else "not found"
-            raise NotFound(f"run '{run_id}' of study '{study_id}' {state}")
+            self._no_row(study_id, run_id)
         row = query.row_to_json(match.iloc[0].to_dict())
         ts = self.store.read_timeseries(study_id, run_id)
         return {
@@ -307,9 +315,7 @@ class StudyService:
         doc = self.store.read(study_id)
         runs = self.store.read_runs(study_id)
         if not len(runs) or not (runs["run_id"] == run_id).any():
-            known = any(r.run_id == run_id for r in self.resolved(study_id).runs)
-            state = "not finished yet" if known else "not found"
-            raise NotFound(f"run '{run_id}' of study '{study_id}' {state}")
+            self._no_row(study_id, run_id)
         study = doc.get("study") or {}
         if not study.get("dynamics", True):
             return surface_schema().empty_table().to_pandas(), "recomputed"
@@ -336,10 +342,32 @@ class StudyService:
         return table if table is not None else surface_schema().empty_table()
 
     def compare(self, study_id: str, baseline: str, candidate: str, metrics: list[str]) -> dict:
+        """Pairs of runs that differ only in the friction model (:func:`query.compare`) with
+        the study's state: a running study answers with the pairs finished so far."""
         doc = self.store.read(study_id)
         axes = [a["column"] for a in doc["study"]["axes"]]
-        return query.compare(
-            self.store.read_runs(study_id), axes, baseline, candidate, metrics, study_id
+        out = query.compare(
+            self.store.read_runs(study_id), axes, baseline, candidate, metrics, study_id,
+            models=study_models(doc),
+        )
+        status = self.status(study_id)
+        return {**out, "state": status["state"], "done": status["done"],
+                "total": status["total"]}
+
+    def _no_row(self, study_id: str, run_id: str) -> None:
+        """Raise for a run without a stored row: 409 with the study's state for a run of the
+        study that has not finished (never 404 for what exists), 404 for an unknown run."""
+        if not any(r.run_id == run_id for r in self.resolved(study_id).runs):
+            raise NotFound(f"run '{run_id}' of study '{study_id}' not found")
+        st = self.status(study_id)
+        if st["state"] in ACTIVE_STATES:
+            raise Conflict(
+                f"run '{run_id}' of study '{study_id}' is not finished yet (the study is "
+                f"{st['state']}: {st['done']} of {st['total']} runs done); ask again later"
+            )
+        raise Conflict(
+            f"run '{run_id}' of study '{study_id}' has no result: the study is {st['state']}"
+            + (f" ({st['message']})" if st.get("message") else "")
         )
 
     # ---------------------------------------------------------------- delete

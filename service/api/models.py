@@ -130,6 +130,11 @@ class CompareOut(BaseModel):
     summary: dict[str, Any] = Field(
         ..., description="metric -> {overall: stats, by_axis: {axis: {value: stats}}}"
     )
+    state: str | None = Field(
+        None, description="the study's state: a running study answers with the pairs so far"
+    )
+    done: int | None = Field(None, description="runs finished so far")
+    total: int | None = Field(None, description="runs of the study")
 
 
 class Deleted(BaseModel):

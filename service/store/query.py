@@ -15,7 +15,7 @@ import pyarrow as pa
 import pyarrow.parquet as pq
 
 from beltstudy.engine import InputError, canonical_name, get_model
-from beltstudy.service.errors import Invalid, NotFound
+from beltstudy.service.errors import Invalid
 from beltstudy.service.store.columns import TE_PART_COLUMNS, components_from_row
 
 __all__ = [
@@ -101,13 +101,14 @@ def model_name(text: str, field: str) -> str:
 def apply_filters(df: pd.DataFrame, filters: list[str]) -> pd.DataFrame:
     """Keep rows where every ``column=value`` holds (numbers compared as numbers; a value
     that no row of the column can have, like text for a number, keeps no row).
-    A column the study does not have is :class:`NotFound` listing the columns."""
+    A column the study does not have is :class:`Invalid` (422) naming ``filter`` and listing
+    the columns."""
     for item in filters:
         column, sep, text = item.partition("=")
         if not sep or not column:
             raise Invalid(f"filter: '{item}' is not column=value")
         if column not in df.columns:
-            raise NotFound(
+            raise Invalid(
                 f"filter: this study has no column '{column}'; columns: {', '.join(df.columns)}"
             )
         if column == "friction_model":  # its aliases too; an unknown name keeps no row
@@ -153,13 +154,15 @@ def compare(
     candidate: str,
     metrics: list[str],
     study_id: str = "",
+    models: list[str] | None = None,
 ) -> dict:
     """Pairs of runs that differ only in the friction model, with candidate / baseline ratios.
 
     Returns ``{"study_id", "baseline", "candidate", "metrics", "pairs": [...],
     "failed_pairs", "summary": {metric: {"overall": stats, "by_axis": {axis: {value:
     stats}}}}}``; stats are n, mean, min and max of the ratio. A pair with a failed run has no
-    ratio (``failed_pairs`` counts them).
+    ratio (``failed_pairs`` counts them). ``models``: the study's friction models (a model
+    not among them is :class:`Invalid` naming the parameter); default: those in ``runs``.
     """
     metrics = list(metrics) or list(DEFAULT_METRICS)
     valid = [c for c in runs.columns if pd.api.types.is_float_dtype(runs[c]) and c not in axes]
@@ -175,10 +178,11 @@ def compare(
             raise Invalid(f"metrics: unknown metric '{m}'; valid: " + ", ".join(valid))
     baseline = model_name(baseline, "baseline")
     candidate = model_name(candidate, "candidate")
-    models = sorted(set(runs["friction_model"].dropna())) if len(runs) else []
+    if models is None:
+        models = sorted(set(runs["friction_model"].dropna())) if len(runs) else []
     for label, name in (("baseline", baseline), ("candidate", candidate)):
-        if len(runs) and name not in models:
-            raise NotFound(
+        if models and name not in models:
+            raise Invalid(
                 f"{label}: model '{name}' is not in this study; it has: {', '.join(models)}"
             )
     others = [a for a in axes if a != "friction_model"]
