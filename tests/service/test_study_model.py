@@ -136,7 +136,7 @@ def test_without_a_model_axis_the_single_model_or_din_is_used(make_study):
         ({"temprature_c": [1]}, r"unknown axis 'temprature_c'.*did you mean 'temperature_c'"),
         ({"takeup.mas_kg": [1]}, r"unknown axis 'takeup.mas_kg'.*did you mean 'takeup.mass_kg'"),
         ({"profile.3.lift_m": [1]}, r"'profile' has 1 entries; index 3 is out of range"),
-        ({"temperature_c": ["hot"]}, r"temperature_c='hot'.*scenario.temperature_c"),
+        ({"temperature_c": ["hot"]}, r'grid.temperature_c.0: "hot" is not of type "number"'),
         ({"belt.width_m": [-1]}, r"belt.width_m=-1.*greater than or equal to 0.1"),
         ({"belt_type": ["ST9999"]}, r"unknown belt type 'ST9999'"),
         ({"stop_time_s": [10], "stop": [{"mode": "coast"}]}, r"overlap"),
@@ -206,11 +206,11 @@ def test_conveyor_by_path_is_resolved_and_inlined(make_study):
 
 
 def test_wrong_types_and_unknown_keys_name_the_field(make_study):
-    with pytest.raises(Invalid, match=r"dynamics: .*valid boolean"):
+    with pytest.raises(Invalid, match=r'dynamics: "sometimes" is not of type "boolean"'):
         resolve_study(make_study(dynamics="sometimes"))
     with pytest.raises(Invalid, match=r"unknown key 'gird'; did you mean 'grid'"):
         resolve_study({**make_study(), "gird": {}})
-    with pytest.raises(Invalid, match=r"scenario.temperature_c: .*valid number"):
+    with pytest.raises(Invalid, match=r'scenario.temperature_c: "warm" is not of type "number"'):
         resolve_study(make_study(scenario={"temperature_c": "warm"}))
     bad = make_study()
     bad["conveyor"] = {**bad["conveyor"], "speed": 2}
