@@ -24,9 +24,11 @@ class ServiceError(Exception):
     status_code = 500
     kind = "error"
 
-    def __init__(self, message: str, status_code: int | None = None):
+    def __init__(self, message: str, status_code: int | None = None,
+                 headers: dict[str, str] | None = None):
         super().__init__(message)
         self.message = message
+        self.headers = headers  # extra response headers (Retry-After of a 503)
         if status_code is not None:
             self.status_code = status_code
 

@@ -15,6 +15,7 @@ from __future__ import annotations
 
 import dataclasses
 import logging
+import os
 import threading
 import time
 from collections import OrderedDict
@@ -28,9 +29,21 @@ from beltstudy import engine
 from beltstudy.service.dask.executor import Executor
 from beltstudy.service.dask.jobs import StudyJob
 from beltstudy.service.dask.tasks import profile_table, run_spec, surface_table
-from beltstudy.service.door.studyfile import resolve_study
-from beltstudy.service.errors import Conflict, Invalid, NotFound
-from beltstudy.service.grid.expand import DEFAULT_MODEL, ResolvedStudy, RunSpec, study_from_json
+from beltstudy.service.door.studyfile import conveyor_from_path, resolve_study
+from beltstudy.service.errors import (
+    Conflict,
+    Invalid,
+    NotFound,
+    ServiceError,
+    Unavailable,
+)
+from beltstudy.service.grid.expand import (
+    DEFAULT_MODEL,
+    ResolvedStudy,
+    RunSpec,
+    stable_hash,
+    study_from_json,
+)
 from beltstudy.service.settings import Settings
 from beltstudy.service.store import query
 from beltstudy.service.store.columns import profile_schema, surface_schema
@@ -73,6 +86,9 @@ class StudyService:
         self._resolved: OrderedDict[str, ResolvedStudy] = OrderedDict()
         self._surfaces: OrderedDict[str, pa.Table | None] = OrderedDict()
         self._cache_lock = threading.Lock()
+        self._slots = threading.BoundedSemaphore(settings.max_expansions)
+        self._inflight: dict[str, threading.Event] = {}  # body hash -> its expansion's end
+        self.expansions = 0  # studies expanded by submit (a resend of a stored one is not)
 
     # ---------------------------------------------------------------- lifecycle
     def start(self) -> None:
@@ -174,19 +190,119 @@ class StudyService:
         """Validate and store a study, start it; return (status, created).
 
         ``confine`` keeps conveyor paths inside the studies directory (HTTP bodies);
-        ``base_dir`` resolves them for a local study file; ``strict`` holds every value to its
-        JSON type (HTTP bodies, held to the published schema). An identical study already in
-        the store is returned as it is (``created`` False).
+        ``base_dir`` resolves them for a local study file; ``strict`` is kept for callers (every
+        study is held to its JSON types). An identical study already in the store is returned
+        as it is (``created`` False).
+
+        Cheap refusals first: the body (with the conveyor file it names) is hashed before
+        anything is expanded, and a body seen before whose study is stored answers at once,
+        without expanding it again (:meth:`_known_body`). Expansions run at most
+        ``max_expansions`` at once; a request that finds no free slot within
+        ``expansion_wait_s`` is :class:`Unavailable` (503) with ``Retry-After``; the same body
+        sent again while it is being expanded waits for that expansion instead of repeating it.
         """
-        study = resolve_study(
-            data,
-            base_dir=base_dir,
-            studies_dir=self.settings.studies_dir if confine else None,
-            max_runs=self.settings.max_runs,
-            strict=strict,
-        )
-        created = self._admit(study)
+        key = self._body_key(data, base_dir, confine)
+        known = self._known_body(key)
+        if known is not None:
+            return self.status(known), False
+        owner, event = self._claim(key)
+        try:
+            if not owner:  # the same body is being expanded by another request: its answer
+                event.wait(self.settings.expansion_wait_s)
+                known = self._known_body(key)
+                if known is not None:
+                    return self.status(known), False
+            study = self._expand_bounded(data, base_dir, confine)
+            created = self._admit(study)
+            self._remember_body(key, study.id)
+        finally:
+            if owner:
+                with self._lock:
+                    self._inflight.pop(key, None)
+                event.set()
         return self.status(study.id), created
+
+    def _expand_bounded(self, data: Any, base_dir: Path | None, confine: bool
+                        ) -> ResolvedStudy:
+        """:func:`resolve_study` within the bound on expansions running at once."""
+        if not self._slots.acquire(timeout=self.settings.expansion_wait_s):
+            retry = max(1, round(self.settings.expansion_wait_s))
+            raise Unavailable(
+                f"the service is expanding {self.settings.max_expansions} studies already "
+                f"(BELTSTUDY_MAX_EXPANSIONS) and none finished within "
+                f"{self.settings.expansion_wait_s:g} s; send the study again in {retry} s",
+                headers={"Retry-After": str(retry)},
+            )
+        try:
+            with self._lock:
+                self.expansions += 1
+            return resolve_study(
+                data,
+                base_dir=base_dir,
+                studies_dir=self.settings.studies_dir if confine else None,
+                max_runs=self.settings.max_runs,
+                strict=True,
+            )
+        finally:
+            self._slots.release()
+
+    def _claim(self, key: str | None) -> tuple[bool, threading.Event]:
+        """(whether this request expands ``key``, the event set when its expansion ends)."""
+        if key is None:
+            return True, threading.Event()
+        with self._lock:
+            event = self._inflight.get(key)
+            if event is not None:
+                return False, event
+            event = self._inflight[key] = threading.Event()
+            return True, event
+
+    def _body_key(self, data: Any, base_dir: Path | None, confine: bool) -> str | None:
+        """A hash of what decides a submitted study before it is expanded: the body as given,
+        the conveyor file it names (read, a few kB), the engine version and the run limit.
+        None for a body that cannot be hashed (it is refused by the full check)."""
+        if not isinstance(data, dict):
+            return None
+        ref = data.get("conveyor")
+        conveyor_file = None
+        try:
+            if isinstance(ref, str):
+                conveyor_file, _ = conveyor_from_path(
+                    ref, base_dir, self.settings.studies_dir if confine else None)
+            return stable_hash({"body": data, "conveyor_file": conveyor_file,
+                                "engine_version": engine.__version__,
+                                "max_runs": self.settings.max_runs})
+        except (ServiceError, TypeError, ValueError, RecursionError):
+            return None
+
+    def _body_path(self, key: str) -> Path:
+        return Path(self.settings.data_dir) / "bodies" / key
+
+    def _known_body(self, key: str | None) -> str | None:
+        """The id of the stored study a body with hash ``key`` made, when it is stored and not
+        waiting to be resumed by this process (that goes the full way, through
+        :meth:`_admit`)."""
+        if key is None:
+            return None
+        try:
+            study_id = self._body_path(key).read_text(encoding="utf-8").strip()
+        except OSError:
+            return None
+        if not self.store.exists(study_id):
+            return None
+        if study_id not in self._jobs and self.store.read(study_id).get("state") in \
+                ACTIVE_STATES:
+            return None
+        return study_id
+
+    def _remember_body(self, key: str | None, study_id: str) -> None:
+        if key is None:
+            return
+        path = self._body_path(key)
+        path.parent.mkdir(parents=True, exist_ok=True)
+        tmp = path.with_name(f".{key}.{threading.get_ident()}.tmp")
+        tmp.write_text(study_id, encoding="utf-8")
+        os.replace(tmp, path)
 
     # ---------------------------------------------------------------- reading
     def status(self, study_id: str) -> dict:

@@ -20,7 +20,8 @@ router = APIRouter(tags=["meta"], dependencies=[Depends(require_token), Depends(
 
 
 @health_router.get("/health", response_model=Health, summary="Liveness and the Dask executor")
-def health(service: StudyService = Depends(get_service)) -> dict:
+async def health(service: StudyService = Depends(get_service)) -> dict:
+    # on the event loop itself: never queued behind the thread pool's expansions
     return {
         "status": "ok",
         "version": engine.__version__,
