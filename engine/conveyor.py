@@ -54,6 +54,7 @@ __all__ = [
     "load_mapping",
     "format_validation_error",
     "strict_validate",
+    "conveyor_variant",
     "check_visible",
     "NameText",
     "Yaml12Floats",
@@ -1139,18 +1140,53 @@ def strict_validate(model: type[BaseModel], data: Any) -> BaseModel:
     return model.model_validate_json(text, strict=True)
 
 
-def parse_conveyor(data: dict, prefix: str = "") -> Conveyor:
+def parse_conveyor(data: dict, prefix: str = "", *, strict: bool = True) -> Conveyor:
     """Validate a mapping as a :class:`Conveyor` (strictly: :func:`strict_validate`); raise
-    :class:`InputError` on problems."""
+    :class:`InputError` on problems. ``strict=False`` is for data whose types were held to
+    JSON's already (a study's variants, built at the door from checked values): Pydantic's
+    own validation, without the JSON round trip."""
     from beltstudy.engine import catalog
 
     try:
-        conv = strict_validate(Conveyor, data)
+        conv = strict_validate(Conveyor, data) if strict else Conveyor.model_validate(data)
     except ValidationError as exc:
         raise InputError(format_validation_error(exc, Conveyor, prefix)) from None
     catalog.check_conveyor(conv, prefix)
     _check_fill(conv, prefix)
     return conv
+
+
+#: Top-level conveyor fields the catalogue check and the fill read.
+_CATALOGUE_FIELDS = frozenset({"belt", "idlers", "material", "profile", "speed_m_s"})
+
+
+def conveyor_variant(base: Conveyor, base_data: dict, changed: dict[str, Any],
+                     prefix: str = "") -> tuple[Conveyor, dict]:
+    """``base`` with some top-level fields replaced, validated, and its dumped mapping.
+
+    ``changed`` maps top-level keys (as in the file) to their new (dumped) values; ``base_data``
+    is ``base`` dumped (``model_dump(mode="json", by_alias=True)``). Only the changed fields are
+    validated again, the others are ``base``'s own validated parts (Pydantic takes a model
+    instance as it is); the conveyor's own checks (its model validators, the catalogue and
+    the fill) run on the whole. The same conveyor as :func:`parse_conveyor` of the whole
+    mapping gives, at a fraction of the cost for a study's many variants.
+    """
+    from beltstudy.engine import catalog
+
+    names = {(f.alias or n): n for n, f in Conveyor.model_fields.items()}
+    data = {n: getattr(base, n) for n in Conveyor.model_fields}
+    for key, value in changed.items():
+        data[names.get(key, key)] = value
+    try:
+        conv = Conveyor.model_validate(data)
+    except ValidationError as exc:
+        raise InputError(format_validation_error(exc, Conveyor, prefix)) from None
+    if _CATALOGUE_FIELDS & {names.get(k, k) for k in changed}:
+        catalog.check_conveyor(conv, prefix)
+        _check_fill(conv, prefix)
+    fields = {names.get(k, k) for k in changed}
+    dumped = {**base_data, **conv.model_dump(mode="json", by_alias=True, include=fields)}
+    return conv, dumped
 
 
 def _check_fill(conv: Conveyor, prefix: str = "") -> None:
@@ -1169,13 +1205,14 @@ def _check_fill(conv: Conveyor, prefix: str = "") -> None:
             "no belt carries it): a smaller capacity, a wider belt or a higher speed")
 
 
-def parse_scenario(data: dict, prefix: str = "") -> Scenario:
-    """Validate a mapping as a :class:`Scenario` (accepts a top-level ``scenario:`` key)."""
+def parse_scenario(data: dict, prefix: str = "", *, strict: bool = True) -> Scenario:
+    """Validate a mapping as a :class:`Scenario` (accepts a top-level ``scenario:`` key);
+    ``strict``: as in :func:`parse_conveyor`."""
     if set(data) == {"scenario"} and isinstance(data["scenario"], dict):
         data = data["scenario"]
         prefix = prefix + "scenario."
     try:
-        return strict_validate(Scenario, data)
+        return strict_validate(Scenario, data) if strict else Scenario.model_validate(data)
     except ValidationError as exc:
         raise InputError(format_validation_error(exc, Scenario, prefix)) from None
 

@@ -10,7 +10,7 @@
 | ``BELTSTUDY_HOST`` | 127.0.0.1 | address ``beltstudy serve`` listens on (``--host``) |
 | ``BELTSTUDY_DASHBOARD`` | false | serve the LocalCluster's Dask dashboard on the host |
 | ``BELTSTUDY_DASK_TIMEOUT_S`` | 5 | longest wait on the Dask scheduler (connect, cancel, close) |
-| ``BELTSTUDY_MAX_EXPANSIONS`` | 2 | studies expanded and validated at once (further: wait, then 503) |
+| ``BELTSTUDY_MAX_EXPANSIONS`` | 1 | studies expanded and validated at once (further: wait, then 503) |
 | ``BELTSTUDY_EXPANSION_WAIT_S`` | 30 | longest a submission waits for an expansion slot |
 
 The full table is in the README.
@@ -77,9 +77,12 @@ class Settings(BaseSettings):
     )
 
     max_expansions: int = Field(
-        2, ge=1, le=64,
+        1, ge=1, le=64,
         description="studies expanded and validated at once (POST /studies); further ones "
-        "wait up to expansion_wait_s, then get 503 with Retry-After",
+        "wait up to expansion_wait_s, then get 503 with Retry-After. Expansion is Python "
+        "work in the service's threads, which share one interpreter lock: a second one at "
+        "once finishes no sooner and slows every other answer (measured in "
+        "benchmarks/bench_submit.py)",
     )
     expansion_wait_s: float = Field(
         30.0, gt=0, le=600,

@@ -7,7 +7,7 @@ import math
 import pandas as pd
 import pytest
 
-from beltstudy.service.errors import Invalid, NotFound
+from beltstudy.service.errors import Invalid
 from beltstudy.service.store.query import apply_filters, compare, row_to_json
 
 
@@ -57,7 +57,7 @@ def test_compare_pairs_runs_differing_only_in_model():
 
 def test_compare_refuses_unknown_models_and_metrics():
     runs = _runs()
-    with pytest.raises(NotFound, match="candidate: model 'visco' is not in this study"):
+    with pytest.raises(Invalid, match="candidate: model 'visco' is not in this study"):
         compare(runs, ["friction_model"], "cema", "visco", ["power_kw"])
     with pytest.raises(Invalid, match="metrics: unknown metric 'powr'"):
         compare(runs, ["friction_model"], "cema", "nonlin", ["powr"])
@@ -76,7 +76,7 @@ def test_filters_compare_numbers_as_numbers():
     runs = _runs()
     assert len(apply_filters(runs, ["temperature_c=20"])) == 4
     assert len(apply_filters(runs, ["load=full", "friction_model=cema"])) == 2
-    with pytest.raises(NotFound, match="this study has no column 'nope'"):
+    with pytest.raises(Invalid, match="this study has no column 'nope'"):
         apply_filters(runs, ["nope=1"])
     with pytest.raises(Invalid, match="not column=value"):
         apply_filters(runs, ["temperature_c"])
