@@ -12,6 +12,7 @@ from __future__ import annotations
 
 import math
 import time
+from collections.abc import Callable
 
 import numpy as np
 import pandas as pd
@@ -160,6 +161,7 @@ def run_one(
     options: DynamicsOptions | None = None,
     remedy: bool = False,
     check: bool = False,
+    say: Callable[[str], None] | None = None,
 ) -> RunResult:
     """Steady solve and, with ``dynamics``, the rest -> start -> run -> stop -> rest cycle.
 
@@ -184,6 +186,9 @@ def run_one(
         fine (:func:`beltstudy.engine.accuracy.error_bars`: the ``<figure>_err`` and
         ``<figure>_converged`` fields, ``RunResult.accuracy``, the marginal verdicts in the
         message). Off by default (a study checks a sample of its runs).
+    say : callable, optional
+        Called with one line before a long step a person waits for (the slip remedy's
+        reruns), for a command line to print; studies pass nothing.
 
     Raises
     ------
@@ -235,6 +240,9 @@ def run_one(
     if remedy and tr.status != "failed" and any(
             (summary.get(f"drive{i + 1}_slip_s") or 0.0) > 0.0
             for i in range(len(conveyor.drives))):
+        if say is not None:
+            say("a drive slips in the start: rerunning the start to find the take-up and the "
+                "start time that avoid it (about a dozen reruns)")
         found = _slip_remedy(conveyor, scenario, model, params, opts, summary)
         if found:
             messages.append(found)

@@ -7,6 +7,8 @@ import sys
 import time
 from typing import Any, TextIO
 
+from beltstudy.engine.warmth import COMPILE_LINE
+
 __all__ = ["ProgressBar", "format_status", "format_compare", "format_duration"]
 
 
@@ -46,10 +48,14 @@ class ProgressBar:
         frac = min(int(st["done"]) / total, 1.0)
         filled = int(round(frac * self.width))
         bar = "#" * filled + "." * (self.width - filled)
-        return (
+        line = (
             f"[{bar}] {st['done']}/{st['total']} runs  {st['failed']} failed  "
             f"{format_duration(st.get('eta_s'))} left  ({st['state']})"
         )
+        message = st.get("message") or ""
+        if st["state"] == "queued" and message:  # what the study waits for
+            line += "  " + (COMPILE_LINE if COMPILE_LINE in message else message)
+        return line
 
     def __call__(self, st: dict) -> None:
         line = self.render(st)

@@ -39,9 +39,13 @@ from beltstudy.service.store.columns import (
 )
 from beltstudy.service.store.parquet import PART_TABLES, Store
 
-__all__ = ["StudyJob", "study_schema", "batch_size", "RunRate"]
+__all__ = ["StudyJob", "study_schema", "batch_size", "RunRate", "NoWorkers"]
 
 log = logging.getLogger("beltstudy.jobs")
+
+
+class NoWorkers(Unavailable):
+    """Dask could not start any worker for the study's whole wait: the study fails."""
 
 #: Tasks kept in flight per worker.
 IN_FLIGHT_PER_WORKER = 2
@@ -64,6 +68,11 @@ FLUSH_RUNS = 1000
 POLL_S = 0.02
 #: How long a job waits for Dask before noting it in ``message`` and waiting again [s].
 WAIT_FOR_DASK_S = 5.0
+#: A study fails when Dask has kept failing to start (no cluster, no scheduler, no worker
+#: joining: ``Executor.failing_since``) for this long [s]; with the connect and join
+#: timeouts a study with no worker able to start fails within 30 s. A cluster that is
+#: starting or compiling is waited for without limit.
+NO_WORKER_FAIL_S = 12.0
 
 
 def _part_key(batch: list[RunSpec]) -> str:
@@ -236,6 +245,11 @@ class StudyJob:
     def _main(self) -> None:
         try:
             self._execute()
+        except NoWorkers as exc:  # said in the study's message, not an unexpected error
+            log.warning("study %s failed: %s", self.study.id, exc.message)
+            if not self._cancel.is_set():
+                self.state = "failed"
+                self._save(message=exc.message, finished_at=time.time())
         except Exception as exc:  # an unexpected error ends this study, not the service
             log.exception("study %s failed", self.study.id)
             if not self._cancel.is_set():
@@ -294,7 +308,11 @@ class StudyJob:
         return ""
 
     def _wait_for_client(self):
-        """The executor's client, or None once the job is halted (never blocks longer)."""
+        """The executor's client, or None once the job is halted (never blocks longer).
+
+        While Dask starts or its workers compile, the study waits and says so; when Dask has
+        failed to start for :data:`NO_WORKER_FAIL_S` (its ``error`` state throughout), the
+        study fails naming why (:class:`NoWorkers`)."""
         while not self.halted:
             t0 = time.monotonic()
             try:
@@ -302,6 +320,12 @@ class StudyJob:
             except Unavailable as exc:
                 if self.halted:
                     break
+                since = getattr(self.executor, "failing_since", None)
+                if since is not None and time.monotonic() - since >= NO_WORKER_FAIL_S:
+                    raise NoWorkers(
+                        f"no Dask worker could start in {NO_WORKER_FAIL_S:g} s: "
+                        f"{self.executor.error or exc}; the runs are kept: submit the study "
+                        "again once Dask works") from None
                 self._save(message=f"waiting for Dask: {exc}")
                 self._stop.wait(max(0.0, WAIT_FOR_DASK_S - (time.monotonic() - t0)))
         return None
