@@ -62,7 +62,9 @@ from beltstudy.engine.loop import Loop, build_loop  # noqa: E402
 from beltstudy.engine.reads import (  # noqa: E402
     STEADY_FIELDS,
     brake_sizing_stop_time,
+    conveyor_as_read,
     scenario_as_read,
+    unread_brakes,
     unread_fields,
 )
 from beltstudy.engine.results import MAX_DRIVES, check_summary  # noqa: E402
@@ -102,6 +104,7 @@ __all__ = [
     "catalog", "resolve_belt",
     "run_one", "RunResult", "check_scenario", "DynamicsOptions",
     "STEADY_FIELDS", "unread_fields", "scenario_as_read", "brake_sizing_stop_time",
+    "conveyor_as_read", "unread_brakes",
     "auto_sizes", "summary_fields",
     "DesignCase", "DesignSizes", "Largest", "BrakeSizes", "SizingError", "size_over_cases",
     "governed_at", "load_label",

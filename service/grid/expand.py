@@ -32,6 +32,7 @@ from beltstudy.engine import (
     InputError,
     Scenario,
     brake_sizing_stop_time,
+    conveyor_as_read,
     conveyor_variant,
     get_model,
     parse_conveyor,
@@ -446,7 +447,8 @@ def _expand(
     by_id: dict[str, dict] = {}
     memo: dict[int, tuple[Any, str]] = {}  # canonical text of shared conveyor parts
     run_scenarios: dict[tuple, tuple[dict, str]] = {}
-    run_conveyors: dict[tuple, tuple[dict, dict, str]] = {}
+    run_conveyors: dict[tuple, tuple[dict, dict]] = {}
+    read_conveyors: dict[tuple, str] = {}  # canonical conveyor as read, per stop kind
     for p in points:
         ck = tuple(p[i] for i in i_conv)
         sk = tuple(p[i] for i in i_scen)
@@ -464,8 +466,14 @@ def _expand(
             entry = sized.get(ck)
             conveyor, governed = apply_sizes(conveyors[ck], entry["sizes"] if entry else None,
                                              scenario, study.dynamics)
-            run_conveyors[ckey] = (conveyor, governed, canonical_mapping(conveyor, memo))
-        conveyor, governed, conveyor_json = run_conveyors[ckey]
+            run_conveyors[ckey] = (conveyor, governed)
+        conveyor, governed = run_conveyors[ckey]
+        # keyed on what the run reads of it: a brake that never acts does not make a new run
+        rkey = (ckey, (scenario.get("stop") or {}).get("mode") == "brake")
+        if rkey not in read_conveyors:
+            read_conveyors[rkey] = canonical_mapping(
+                conveyor_as_read(conveyor, scenario, dynamics=study.dynamics), memo)
+        conveyor_json = read_conveyors[rkey]
         key = "\x1f".join(
             [
                 conveyor_json,

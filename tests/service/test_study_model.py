@@ -256,3 +256,29 @@ def _conveyor():
     from beltstudy.service.examples import TINY_CONVEYOR
 
     return TINY_CONVEYOR
+
+
+def test_a_coast_stop_crossed_with_brake_forces_is_one_run_per_coast_stop(make_study,
+                                                                          make_conveyor):
+    """A brake without hold never acts in a coast stop: three brake forces make one run per
+    coast stop (the force's column is null in its row); in a brake stop each force is a run.
+    A brake with hold is set at standstill in every mode and carries the belt: not merged."""
+    conveyor = make_conveyor(brakes=[{"position": "head", "force_kn": 10.0, "hold": False}],
+                             takeup={"mass_kg": 1500})
+    conveyor["drives"] = [{**conveyor["drives"][0], "rated_power_kw": 30}]
+    scenario = {**make_study()["scenario"], "stop": {"mode": "coast", "time_s": 2.0}}
+    grid = {"brakes.0.force_kn": [5.0, 10.0, 20.0], "temperature_c": [-10, 20]}
+    study = resolve_study(make_study(conveyor=conveyor, scenario=scenario, grid=grid,
+                                     dynamics=True))
+    assert (study.grid_points, study.total, study.merged) == (6, 2, 4)
+    assert sorted(r.axes["temperature_c"] for r in study.runs) == [-10, 20]
+    assert all(r.axes["brakes.0.force_kn"] is None and r.points == 3 for r in study.runs)
+    braked = resolve_study(make_study(conveyor=conveyor, grid=grid, dynamics=True,
+                                      scenario={**scenario, "stop": {"mode": "brake",
+                                                                     "time_s": 2.0}}))
+    assert braked.total == 6
+    held = dict(conveyor, brakes=[{"position": "head", "force_kn": 10.0, "hold": True}])
+    assert resolve_study(make_study(conveyor=held, scenario=scenario, grid=grid,
+                                    dynamics=True)).total == 6
+    # steady only: no brake's law is read
+    assert resolve_study(make_study(conveyor=held, grid=grid)).total == 2
