@@ -78,16 +78,22 @@ def _num(value: Any, fmt: str = "{:.3f}") -> str:
 def format_compare(result: dict, max_pairs: int = 40) -> str:
     """The comparison as text: ratio statistics per metric and axis, then the pairs."""
     base, cand = result["baseline"], result["candidate"]
-    lines = [f"{cand} / {base}: runs that differ only in the friction model"]
+    lines = [f"{cand} / {base}: runs that differ only in the friction model (ratios of "
+             "magnitudes; 'opposite' marks values of opposite sign)"]
+    same = result.get("same_in_all_pairs") or {}
+    if same:
+        lines.append("the same in every pair: " + ", ".join(f"{k}={v}" for k, v in same.items()))
     if result.get("failed_pairs"):
         lines.append(f"({result['failed_pairs']} pairs with a failed run have no ratio)")
     for metric in result["metrics"]:
         summary = result["summary"][metric]
         o = summary["overall"]
         lines.append("")
+        opposite = o.get("opposite_sign") or 0
         lines.append(
             f"{metric}: ratio mean {_num(o['mean'])}  min {_num(o['min'])}  "
-            f"max {_num(o['max'])}  ({o['n']} pairs)"
+            f"max {_num(o['max'])}  ({o['n']} pairs"
+            + (f", {opposite} of opposite sign)" if opposite else ")")
         )
         for axis, groups in summary["by_axis"].items():
             cells = "  ".join(f"{value}: {_num(s['mean'])}" for value, s in groups.items())
@@ -111,7 +117,8 @@ def format_compare(result: dict, max_pairs: int = 40) -> str:
                 row += [
                     _num(p.get(f"{m}_baseline"), "{:.1f}"),
                     _num(p.get(f"{m}_candidate"), "{:.1f}"),
-                    _num(p.get(f"{m}_ratio")),
+                    _num(p.get(f"{m}_ratio"))
+                    + (" (opposite)" if p.get(f"{m}_sign") == "opposite" else ""),
                 ]
             rows.append(row)
         widths = [max(len(h), *(len(r[i]) for r in rows)) for i, h in enumerate(head)]

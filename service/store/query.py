@@ -160,8 +160,12 @@ def compare(
 
     Returns ``{"study_id", "baseline", "candidate", "metrics", "pairs": [...],
     "failed_pairs", "summary": {metric: {"overall": stats, "by_axis": {axis: {value:
-    stats}}}}}``; stats are n, mean, min and max of the ratio. A pair with a failed run has no
-    ratio (``failed_pairs`` counts them). ``models``: the study's friction models (a model
+    stats}}}}, "same_in_all_pairs": {axis: value}, "ratio"}``; stats are n, mean, min and max
+    of the ratio. A ratio is a magnitude, ``|candidate| / |baseline|``; ``<metric>_sign`` says
+    ``opposite`` where the two values have opposite signs (``overall.opposite_sign`` counts
+    them). Only the axes whose values differ between the pairs are listed per pair and per
+    axis; the others are in ``same_in_all_pairs``. A pair with a failed run has no ratio
+    (``failed_pairs`` counts them). ``models``: the study's friction models (a model
     not among them is :class:`Invalid` naming the parameter); default: those in ``runs``.
     """
     metrics = list(metrics) or list(DEFAULT_METRICS)
@@ -197,6 +201,12 @@ def compare(
             cand.reset_index(drop=True).add_suffix("_candidate"), how="inner")
     if others and len(merged):
         merged = merged.sort_values(others, kind="stable").reset_index(drop=True)
+    # only the parameters that differ between the pairs: an axis the two models' runs do not
+    # read (another model's parameter) or that has one value among them is no difference
+    same = {a: _clean(merged[a].iloc[0]) if len(merged) else None for a in others
+            if merged[a].nunique(dropna=False) <= 1}
+    merged = merged.drop(columns=list(same))
+    others = [a for a in others if a not in same]
     pairs = []
     summary: dict[str, dict] = {}
     usable = (merged["status_baseline"] != "failed") & (merged["status_candidate"] != "failed")
@@ -204,9 +214,14 @@ def compare(
         b = merged[f"{m}_baseline"].astype(float)
         c = merged[f"{m}_candidate"].astype(float)
         with np.errstate(divide="ignore", invalid="ignore"):
-            merged[f"{m}_ratio"] = np.where(usable & (b != 0), c / b, np.nan)
+            # a magnitude: |candidate| / |baseline|; where the two have opposite signs (a
+            # drive that regenerates under one model and drives under the other, a tension
+            # below zero) the sign column says so instead of a negative ratio
+            merged[f"{m}_ratio"] = np.where(usable & (b != 0), np.abs(c) / np.abs(b), np.nan)
+            opposite = usable & (np.sign(b) * np.sign(c) < 0)
+        merged[f"{m}_sign"] = np.where(opposite, "opposite", np.where(usable, "same", None))
         summary[m] = {
-            "overall": _stats(merged[f"{m}_ratio"]),
+            "overall": {**_stats(merged[f"{m}_ratio"]), "opposite_sign": int(opposite.sum())},
             "by_axis": {
                 a: {
                     str(_clean(value)): _stats(group[f"{m}_ratio"])
@@ -225,6 +240,9 @@ def compare(
         "pairs": pairs,
         "failed_pairs": int((~usable).sum()),
         "summary": summary,
+        "same_in_all_pairs": same,
+        "ratio": "magnitude |candidate| / |baseline|; <metric>_sign is 'opposite' where the "
+                 "two values have opposite signs",
     }
 
 
