@@ -27,7 +27,7 @@ import pyarrow as pa
 
 from beltstudy import engine
 from beltstudy.service.dask.executor import Executor
-from beltstudy.service.dask.jobs import StudyJob
+from beltstudy.service.dask.jobs import NO_WORKER_PREFIX, StudyJob
 from beltstudy.service.dask.tasks import profile_table, run_spec, surface_table
 from beltstudy.service.door.studyfile import conveyor_from_path, resolve_study
 from beltstudy.service.errors import (
@@ -59,6 +59,12 @@ RESOLVED_CACHE = 8
 #: Recomputed surfaces kept (a run id is a hash of the run's inputs: the surface is the same
 #: every time).
 SURFACE_CACHE = 4
+
+
+def _waits_for_workers(doc: dict) -> bool:
+    """Whether a stored study failed only because no Dask worker could start."""
+    return doc.get("state") == "failed" and str(doc.get("message", "")).startswith(
+        NO_WORKER_PREFIX)
 
 
 def study_models(doc: dict) -> list[str]:
@@ -147,7 +153,13 @@ class StudyService:
                 self.store.create(study.id, self._new_doc(study))
                 active = True
             else:
-                active = self.store.read(study.id).get("state") in ACTIVE_STATES
+                doc = self.store.read(study.id)
+                active = doc.get("state") in ACTIVE_STATES
+                if _waits_for_workers(doc) and not self._closing:
+                    # failed for want of Dask workers: submitted again, it goes on
+                    self.store.update(study.id, state="queued", message="",
+                                      finished_at=None)
+                    active = True
             if active and study.id not in self._jobs and not self._closing:
                 # a study interrupted earlier (`beltstudy run` stopped) carries on; during a
                 # shutdown it stays queued in the store and starts with the service
@@ -290,8 +302,9 @@ class StudyService:
             return None
         if not self.store.exists(study_id):
             return None
-        if study_id not in self._jobs and self.store.read(study_id).get("state") in \
-                ACTIVE_STATES:
+        doc = self.store.read(study_id)
+        if study_id not in self._jobs and (doc.get("state") in ACTIVE_STATES
+                                           or _waits_for_workers(doc)):
             return None
         return study_id
 

@@ -216,6 +216,25 @@ class Executor:
             except Exception as exc:  # a worker that cannot warm up still gets work
                 self.warm[addr] = {"errors": [f"{type(exc).__name__}: {exc}"]}
         log.info("warmed %d workers in %.1f s", len(futures), time.monotonic() - t0)
+        compiled = [a for a, w in self.warm.items() if a in futures and w.get("compiled")]
+        if compiled and not self.settings.scheduler and not self._closed.is_set():
+            # A process that compiled the kernel computes other last bits (about 1e-12) than
+            # one that loads it from numba's cache: so that a run gives the same stored figures
+            # whichever worker runs it, the workers that compiled start again and load it
+            log.info("restarting %d workers that compiled the kernel, to load it from the "
+                     "cache", len(compiled))
+            try:
+                client.restart_workers(compiled, timeout=WARM_TIMEOUT_S)
+                addrs = list(client.scheduler_info(n_workers=-1)["workers"])
+                again = [client.submit(warm_up, key=f"beltstudy-warm-up-{nonce}-again-{i}",
+                                       workers=[a], allow_other_workers=False, pure=False)
+                         for i, a in enumerate(addrs)]
+                self.warm = {a: f.result(timeout=WARM_TIMEOUT_S)
+                             for a, f in zip(addrs, again, strict=True)}
+            except Exception as exc:  # the workers go on with the kernel they compiled
+                log.warning("could not restart the workers that compiled the kernel (%s: %s); "
+                            "their runs may differ from other processes' in the last bits",
+                            type(exc).__name__, exc)
 
     def _drop(self) -> None:
         """Forget a client that is no longer usable (closing it in the background)."""

@@ -39,7 +39,8 @@ from beltstudy.service.store.columns import (
 )
 from beltstudy.service.store.parquet import PART_TABLES, Store
 
-__all__ = ["StudyJob", "study_schema", "batch_size", "RunRate", "NoWorkers"]
+__all__ = ["StudyJob", "study_schema", "batch_size", "RunRate", "NoWorkers",
+           "NO_WORKER_PREFIX"]
 
 log = logging.getLogger("beltstudy.jobs")
 
@@ -73,6 +74,9 @@ WAIT_FOR_DASK_S = 5.0
 #: timeouts a study with no worker able to start fails within 30 s. A cluster that is
 #: starting or compiling is waited for without limit.
 NO_WORKER_FAIL_S = 12.0
+#: How the message of a study failed for want of Dask workers starts (such a study starts
+#: again when it is submitted again).
+NO_WORKER_PREFIX = "no Dask worker could start in"
 
 
 def _part_key(batch: list[RunSpec]) -> str:
@@ -321,11 +325,14 @@ class StudyJob:
                 if self.halted:
                     break
                 since = getattr(self.executor, "failing_since", None)
-                if since is not None and time.monotonic() - since >= NO_WORKER_FAIL_S:
+                # a study that has not started here fails; one that lost its scheduler
+                # mid-study waits for it to come back (its message says so)
+                if (self.session_start is None and since is not None
+                        and time.monotonic() - since >= NO_WORKER_FAIL_S):
                     raise NoWorkers(
-                        f"no Dask worker could start in {NO_WORKER_FAIL_S:g} s: "
-                        f"{self.executor.error or exc}; the runs are kept: submit the study "
-                        "again once Dask works") from None
+                        f"{NO_WORKER_PREFIX} {NO_WORKER_FAIL_S:g} s: "
+                        f"{self.executor.error or exc}; its finished runs are kept: submit "
+                        "the study again once Dask works and it goes on") from None
                 self._save(message=f"waiting for Dask: {exc}")
                 self._stop.wait(max(0.0, WAIT_FOR_DASK_S - (time.monotonic() - t0)))
         return None

@@ -265,7 +265,8 @@ def run_batch(
 def warm_up() -> dict:
     """Import the engine and run the tiny conveyor once per model, dynamics on (numba compile).
 
-    Returns the process id, the models warmed and the seconds it took.
+    Returns the process id, the models warmed, the seconds it took, the errors, and whether
+    this process compiled the kernel (``compiled``) instead of loading it from numba's cache.
     """
     t0 = time.perf_counter()
 
@@ -278,11 +279,16 @@ def warm_up() -> dict:
         row, _ = run_spec(spec)
         if row["status"] == "failed":
             errors.append(f"{name}: {row['message']}")
+    from beltstudy.engine.warmth import kernel_dispatchers
+
     return {
         "pid": os.getpid(),
         "models": models,
         "seconds": time.perf_counter() - t0,
         "errors": errors,
+        # compiled here rather than loaded from numba's cache: this process's kernel gives
+        # other last bits than the cached one every later process loads (issue 31)
+        "compiled": any(d.stats.cache_misses for d in kernel_dispatchers()),
     }
 
 

@@ -51,8 +51,12 @@ def test_a_study_with_no_worker_able_to_start_fails_within_30_s_naming_why(tmp_p
         waited = time.monotonic() - t_submit
         assert st["state"] == "failed", st
         assert st["message"].startswith("no Dask worker could start in 12 s: "), st["message"]
+        assert "submit the study again once Dask works" in st["message"]
         assert str(nowhere) in st["message"] or "connect" in st["message"].lower()
         assert st["done"] == 0 and waited < 30
+        # submitted again (Dask still down): it is queued again, not answered as failed
+        again, created = client.submit(make_study("no-workers"))
+        assert not created and again["id"] == st["id"] and again["state"] == "queued"
         # the CLI's wait gives up on Dask's error at once, naming it, after saying what it
         # waited for
         lines: list[str] = []
