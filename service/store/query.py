@@ -203,8 +203,8 @@ def compare(
         merged = merged.sort_values(others, kind="stable").reset_index(drop=True)
     # only the parameters that differ between the pairs: an axis the two models' runs do not
     # read (another model's parameter) or that has one value among them is no difference
-    same = {a: _clean(merged[a].iloc[0]) if len(merged) else None for a in others
-            if merged[a].nunique(dropna=False) <= 1}
+    same = {a: _clean(merged[a].iloc[0]) for a in others
+            if len(merged) and merged[a].nunique(dropna=False) <= 1}
     merged = merged.drop(columns=list(same))
     others = [a for a in others if a not in same]
     pairs = []

@@ -61,7 +61,7 @@ def test_every_route_of_a_running_study_answers_with_its_state(client, running):
     cmp = client.get(f"/studies/{sid}/compare", params={"baseline": "din",
                                                         "candidate": "cema"}).json()
     assert cmp["state"] == "running" and cmp["pairs"] == []
-    assert (cmp["done"], cmp["total"]) == (0, 6)
+    assert (cmp["done"], cmp["total"], cmp["same_in_all_pairs"]) == (0, 6, {})
     # a run of the study not finished yet: 409 with the state, never 404
     for path in (f"/studies/{sid}/runs/{run_id}", f"/studies/{sid}/runs/{run_id}/surface",
                  f"/studies/{sid}/runs/{run_id}/plots/transient"):
