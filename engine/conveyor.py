@@ -1152,7 +1152,7 @@ def parse_conveyor(data: dict, prefix: str = "", *, strict: bool = True) -> Conv
     except ValidationError as exc:
         raise InputError(format_validation_error(exc, Conveyor, prefix)) from None
     catalog.check_conveyor(conv, prefix)
-    _check_fill(conv, prefix)
+    _check_whole(conv, prefix)
     return conv
 
 
@@ -1183,26 +1183,28 @@ def conveyor_variant(base: Conveyor, base_data: dict, changed: dict[str, Any],
         raise InputError(format_validation_error(exc, Conveyor, prefix)) from None
     if _CATALOGUE_FIELDS & {names.get(k, k) for k in changed}:
         catalog.check_conveyor(conv, prefix)
-        _check_fill(conv, prefix)
+        _check_whole(conv, prefix)
     fields = {names.get(k, k) for k in changed}
     dumped = {**base_data, **conv.model_dump(mode="json", by_alias=True, include=fields)}
     return conv, dumped
 
 
-def _check_fill(conv: Conveyor, prefix: str = "") -> None:
-    """Refuse a capacity that fills the belt's cross-section more than :data:`FILL_MAX_PCT`
-    at the design speed (ISO 5048 geometry, :func:`beltstudy.engine.capacity.fill_pct`)."""
-    from beltstudy.engine.capacity import fill_pct
+#: Checks of a whole conveyor that need more than its model (``fn(conv, prefix)``, raising
+#: :class:`InputError`): registered by the module that holds what they need (the fill:
+#: :mod:`beltstudy.engine.capacity`), so this module imports none of them; run by
+#: :func:`parse_conveyor` and :func:`conveyor_variant`.
+WHOLE_CHECKS: list = []
 
-    if conv.belt.type == "auto":  # the belt is chosen later; capacity_t_h's own bound holds
-        return
-    fill = fill_pct(conv)
-    if fill > FILL_MAX_PCT:
-        raise InputError(
-            f"{prefix}material.capacity_t_h: {conv.material.capacity_t_h:g} t/h fills the "
-            f"belt's cross-section to {fill:.3g} % at {conv.speed_m_s:g} m/s; at most "
-            f"{FILL_MAX_PCT:g} % (beyond that the material heaps far above the belt's edges, "
-            "no belt carries it): a smaller capacity, a wider belt or a higher speed")
+
+def register_check(check) -> None:
+    """Run ``check(conv, prefix)`` on every conveyor parsed (once per function)."""
+    if check not in WHOLE_CHECKS:
+        WHOLE_CHECKS.append(check)
+
+
+def _check_whole(conv: Conveyor, prefix: str = "") -> None:
+    for check in WHOLE_CHECKS:
+        check(conv, prefix)
 
 
 def parse_scenario(data: dict, prefix: str = "", *, strict: bool = True) -> Scenario:
