@@ -67,5 +67,7 @@ def _error(description: str) -> dict:
 ERROR_RESPONSES = {
     401: _error("missing or wrong bearer token"),
     404: _error("unknown study or run"),
+    409: _error("a run of a study that has not finished (the message gives the study's "
+                "state), or a study being deleted"),
     422: _error("invalid request; the message names the field"),
 }

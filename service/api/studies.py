@@ -91,6 +91,7 @@ def _check_media_type(content_type: str) -> None:
         200: {"model": StudyStatus, "description": "the same study was already submitted"},
         413: _error("body or grid over the limit"),
         415: _error("Content-Type other than JSON or YAML"),
+        503: _error("busy expanding other studies (Retry-After says when to send it again)"),
     },
     openapi_extra={
         "requestBody": {
