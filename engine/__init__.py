@@ -47,6 +47,7 @@ from beltstudy.engine.conveyor import (  # noqa: E402
     TEMPERATURE_MIN_C,
     Conveyor,
     Scenario,
+    conveyor_variant,
     format_validation_error,
     load_conveyor,
     load_mapping,
@@ -62,7 +63,9 @@ from beltstudy.engine.loop import Loop, build_loop  # noqa: E402
 from beltstudy.engine.reads import (  # noqa: E402
     STEADY_FIELDS,
     brake_sizing_stop_time,
+    conveyor_as_read,
     scenario_as_read,
+    unread_brakes,
     unread_fields,
 )
 from beltstudy.engine.results import MAX_DRIVES, check_summary  # noqa: E402
@@ -98,11 +101,13 @@ __all__ = [
     "__version__",
     "InputError",
     "Conveyor", "Scenario", "parse_conveyor", "parse_scenario", "load_conveyor",
+    "conveyor_variant",
     "load_mapping", "section_loads", "format_validation_error", "LOAD_MAX", "TEMPERATURE_MIN_C", "TEMPERATURE_MAX_C",
     "MODELS", "ALIASES", "get_model", "canonical_name",
     "catalog", "resolve_belt",
     "run_one", "RunResult", "check_scenario", "DynamicsOptions",
     "STEADY_FIELDS", "unread_fields", "scenario_as_read", "brake_sizing_stop_time",
+    "conveyor_as_read", "unread_brakes",
     "auto_sizes", "summary_fields",
     "DesignCase", "DesignSizes", "Largest", "BrakeSizes", "SizingError", "size_over_cases",
     "governed_at", "load_label",

@@ -49,9 +49,11 @@ from functools import cache
 
 import numpy as np
 
-from beltstudy.engine.conveyor import Conveyor
+from beltstudy.engine.conveyor import FILL_MAX_PCT, Conveyor, register_check
+from beltstudy.engine.errors import InputError
 
 __all__ = [
+    "check_fill",
     "usable_width_m",
     "middle_roll_length_m",
     "trough_segments",
@@ -216,3 +218,21 @@ def capacity(conv: Conveyor) -> Capacity:
 def fill_pct(conv: Conveyor) -> float:
     """Design volume flow over the belt's cross-section capacity at design speed [%]."""
     return capacity(conv).fill_pct
+
+
+def check_fill(conv: Conveyor, prefix: str = "") -> None:
+    """Refuse a capacity that fills the belt's cross-section more than
+    :data:`~beltstudy.engine.conveyor.FILL_MAX_PCT` at the design speed (ISO 5048 geometry,
+    :func:`fill_pct`); registered with :func:`~beltstudy.engine.conveyor.register_check`."""
+    if conv.belt.type == "auto":  # the belt is chosen later; capacity_t_h's own bound holds
+        return
+    fill = fill_pct(conv)
+    if fill > FILL_MAX_PCT:
+        raise InputError(
+            f"{prefix}material.capacity_t_h: {conv.material.capacity_t_h:g} t/h fills the "
+            f"belt's cross-section to {fill:.3g} % at {conv.speed_m_s:g} m/s; at most "
+            f"{FILL_MAX_PCT:g} % (beyond that the material heaps far above the belt's edges, "
+            "no belt carries it): a smaller capacity, a wider belt or a higher speed")
+
+
+register_check(check_fill)

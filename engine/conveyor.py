@@ -12,11 +12,13 @@ import difflib
 import json
 import math
 import re
+import unicodedata
 from pathlib import Path
 from typing import Annotated, Any, Literal
 
 import yaml
 from pydantic import (
+    AfterValidator,
     BaseModel,
     ConfigDict,
     Field,
@@ -51,6 +53,12 @@ __all__ = [
     "parse_scenario",
     "load_mapping",
     "format_validation_error",
+    "strict_validate",
+    "conveyor_variant",
+    "check_visible",
+    "NameText",
+    "Yaml12Floats",
+    "json_numbers",
     "load_fraction",
     "section_loads",
     "LOAD_MAX",
@@ -72,6 +80,61 @@ def _compound_enum(schema: dict) -> None:
 
 PositiveFloat = Annotated[float, Field(gt=0)]
 NonNegFloat = Annotated[float, Field(ge=0)]
+
+#: Unicode categories refused in names: control characters (NUL, escape, ...), format
+#: characters (the bidi overrides U+202A-202E and isolates U+2066-2069 that reorder what a page
+#: or a terminal shows, zero-width characters), line and paragraph separators.
+_HIDDEN_CATEGORIES = ("Cc", "Cf", "Zl", "Zp")
+
+
+def check_visible(text: str, allow: str = "") -> str:
+    """``text`` if it has no control, format (bidi) or separator character (but those in
+    ``allow``); ``ValueError`` naming the first one by its code point otherwise."""
+    for i, ch in enumerate(text):
+        if ch not in allow and unicodedata.category(ch) in _HIDDEN_CATEGORIES:
+            name = unicodedata.name(ch, "a control character")
+            raise ValueError(
+                f"contains U+{ord(ch):04X} ({name}) at character {i + 1}; names and descriptions are plain "
+                "text without control or bidi characters")
+    return text
+
+
+#: A name: plain visible text (:func:`check_visible`).
+NameText = Annotated[str, AfterValidator(check_visible)]
+
+# Bounds a design can reach and no more (each with its reason): a value beyond one describes
+# no conveyor, and a run of it would report figures of nothing real (a take-up mass of 1e300
+# kg, a fill of 1e10 %). The catalogue's strongest belt, ST5400 (5 400 N/mm), at 3.2 m (the
+# widest steel-cord belts built) breaks at 17 280 kN.
+#: Largest design capacity [t/h]: about five times the largest conveyors built (bucket-wheel
+#: excavator lines of open-cast lignite mines carry up to about 40 000 t/h).
+CAPACITY_MAX_T_H = 200_000.0
+#: Largest fill of the belt's cross-section [%] a capacity may imply (ISO 5048 cross-section at
+#: the design speed): three times the cross-section heaps the material far above the belt's
+#: edges; no belt carries it. Between 100 % and this a run warns (an overload or a surge).
+FILL_MAX_PCT = 300.0
+#: Largest gravity counterweight and carriage [kg]: 2 000 t pull 9.8 MN on each strand, more
+#: than half the breaking force of the strongest catalogue belt (17 280 kN); belts run at a
+#: safety factor of 5 to 10 (DIN 22101), so no belt holds such a take-up.
+TAKEUP_MASS_MAX_KG = 2.0e6
+#: Largest fixed take-up pretension [kN]: the breaking force of the strongest belt (see above).
+PRETENSION_MAX_KN = 17_280.0
+#: Largest force of one brake or lumped resistance [kN]: the strongest belt's breaking force.
+FORCE_MAX_KN = 17_280.0
+#: Largest rated power of one drive [kW]: about three times the largest conveyor drives built
+#: (gearless drives of 7 to 10 MW per pulley).
+POWER_MAX_KW = 30_000.0
+#: Largest pulley diameter [m]: the largest conveyor pulleys are about 2.5 m (DIN 22101's
+#: pulley diameters for the strongest steel-cord belts: engine/data/pulleys.csv).
+PULLEY_DIAMETER_MAX_M = 5.0
+#: Largest inertia reduced to a pulley shaft [kg m2]: a 5 m pulley of 100 t is 3e5 kg m2;
+#: motors and flywheels behind gearboxes count with the ratio squared: 1e7 is beyond any.
+INERTIA_MAX_KG_M2 = 1.0e7
+#: Largest time of a drive's or a brake's own law [s] (coupling fill, trip, brake delay and
+#: ramp): an hour; a transient run simulates every step of its cycle.
+LAW_TIME_MAX_S = 3600.0
+#: Largest total route length [m]: the longest single-flight conveyors are about 20 to 30 km.
+ROUTE_MAX_M = 200_000.0
 
 
 class Belt(_Model):
@@ -187,7 +250,10 @@ class FeedPoint(_Model):
 class Material(_Model):
     """Bulk material on the carry strand."""
 
-    capacity_t_h: NonNegFloat = Field(..., description="design capacity [t/h]")
+    capacity_t_h: NonNegFloat = Field(
+        ..., le=CAPACITY_MAX_T_H, description="design capacity [t/h] (at most 200 000: about "
+        "five times the largest conveyors built; the fill it implies at the design speed is "
+        "held to at most 300 % of the belt's cross-section, FILL_MAX_PCT)")
     density_t_m3: float = Field(1.0, ge=0.01, le=25.0,
                                 description="bulk density [t/m3] (0.01 to 25)")
     loading_speed_m_s: float = Field(
@@ -345,12 +411,16 @@ class Drive(_Model):
         None, gt=0, le=1.0, description="sliding friction while the belt slips [-] "
         "(default: friction)")
     share: float = Field(1.0, gt=0, le=1.0, description="share of the peripheral force")
-    pulley_diameter_m: PositiveFloat = Field(1.0, description="pulley diameter [m]")
+    pulley_diameter_m: PositiveFloat = Field(
+        1.0, le=PULLEY_DIAMETER_MAX_M, description="pulley diameter [m] (at most 5: the "
+        "largest conveyor pulleys are about 2.5 m)")
     inertia_kg_m2: NonNegFloat = Field(
-        0.0, description="rotating parts reduced to the pulley shaft [kg m2]"
+        0.0, le=INERTIA_MAX_KG_M2, description="rotating parts reduced to the pulley shaft "
+        "[kg m2] (at most 1e7, beyond any drive train)"
     )
     rated_power_kw: PositiveFloat | None = Field(
-        None, description="rated power [kW]; default: steady power x 1.25"
+        None, le=POWER_MAX_KW, description="rated power [kW]; default: steady power x 1.25 "
+        "(at most 30 000: three times the largest conveyor drives built)"
     )
     torque_limit: float = Field(1.5, gt=0, description="max force as a multiple of rated force")
     control: Literal["vfd", "dol"] = Field(
@@ -359,16 +429,20 @@ class Drive(_Model):
         None, max_length=CURVE_POINTS_MAX, description="dol: torque / rated torque against pulley speed / pulley speed at "
         "design belt speed (default: a typical induction-motor curve)")
     motor_inertia_kg_m2: NonNegFloat | None = Field(
-        None, description="motor rotor inertia reduced to the pulley shaft [kg m2], part of "
+        None, le=INERTIA_MAX_KG_M2, description="motor rotor inertia reduced to the pulley shaft [kg m2], part of "
         "inertia_kg_m2; used with a fluid coupling (default: 2/3 of inertia_kg_m2)")
     coupling: Literal["none", "fluid", "fluid_fill_controlled"] = Field(
         "none", description="coupling between motor and pulley (dol only)")
     coupling_fill_s: PositiveFloat = Field(
-        20.0, description="fill-controlled coupling: time from empty to full [s]")
+        20.0, le=LAW_TIME_MAX_S,
+        description="fill-controlled coupling: time from empty to full [s] (at most 3600)")
     flywheel_kg_m2: NonNegFloat = Field(
-        0.0, description="extra inertia reduced to the pulley shaft [kg m2]")
+        0.0, le=INERTIA_MAX_KG_M2,
+        description="extra inertia reduced to the pulley shaft [kg m2] (at most 1e7)")
     trip_s: NonNegFloat = Field(
-        0.0, description="power failure: motor torque falls to zero over this time [s]")
+        0.0, le=LAW_TIME_MAX_S,
+        description="power failure: motor torque falls to zero over this time [s] (at most "
+        "3600)")
     speed_loop_rad_s: float | None = Field(
         None, description="vfd: bandwidth of the speed loop closed on this pulley's own speed "
         "[rad/s], 0.1 to 50 (the master drive's is used; default: "
@@ -458,12 +532,15 @@ class TakeUp(_Model):
     at_m: NonNegFloat | None = Field(
         None, description="take-up along the return (position: return): where it sits, from "
         "the tail along the conveyor [m]")
-    mass_kg: PositiveFloat | Literal["auto"] = Field(
+    mass_kg: Annotated[float, Field(gt=0, le=TAKEUP_MASS_MAX_KG)] | Literal["auto"] = Field(
         "auto", description="gravity counterweight [kg] or auto (the smallest meeting slip at "
-        "start-up and the sag limits, running and held at rest, at the full design load)"
+        "start-up and the sag limits, running and held at rest, at the full design load); at "
+        "most 2e6 kg: 2 000 t pull 9.8 MN on each strand, more than half the breaking force "
+        "of the strongest catalogue belt"
     )
-    pretension_kn: PositiveFloat | Literal["auto"] = Field(
-        "auto", description="fixed take-up: tension at the take-up [kN] or auto"
+    pretension_kn: Annotated[float, Field(gt=0, le=PRETENSION_MAX_KN)] | Literal["auto"] = Field(
+        "auto", description="fixed take-up: tension at the take-up [kN] or auto; at most "
+        "17 280 kN, the breaking force of the strongest catalogue belt"
     )
     sag_at_rest: bool = Field(
         True, description="auto sizing also meets the sag limits with the belt held at rest "
@@ -473,7 +550,9 @@ class TakeUp(_Model):
         None, description="carriage travel between end stops [m]; default 1.5 % of length"
     )
     carriage_mass_kg: NonNegFloat = Field(
-        0.0, description="carriage and pulley mass in addition to the counterweight [kg]"
+        0.0, le=TAKEUP_MASS_MAX_KG,
+        description="carriage and pulley mass in addition to the counterweight [kg] (at most "
+        "2e6, as the counterweight)"
     )
 
     @model_validator(mode="after")
@@ -502,10 +581,14 @@ class Brake(_Model):
     position: Literal["head", "tail"] | None = Field(
         None, description="head | tail pulley (default head when no drive is given)")
     drive: int | None = Field(None, ge=1, description="1-based drive whose shaft is braked")
-    force_kn: PositiveFloat | Literal["auto"] = "auto"
-    delay_s: NonNegFloat = 0.5
+    force_kn: Annotated[float, Field(gt=0, le=FORCE_MAX_KN)] | Literal["auto"] = Field(
+        "auto", description="brake force at the belt [kN] or auto; at most 17 280 kN, the "
+        "breaking force of the strongest catalogue belt")
+    delay_s: NonNegFloat = Field(0.5, le=LAW_TIME_MAX_S,
+                                 description="from the stop command to application [s]")
     ramp_s: NonNegFloat = Field(
-        1.0, description="from application to full force [s] (disc brakes build in 0.2-2 s)")
+        1.0, le=LAW_TIME_MAX_S,
+        description="from application to full force [s] (disc brakes build in 0.2-2 s)")
     force_curve: list[tuple[float, float]] | None = Field(
         None, max_length=CURVE_POINTS_MAX,
         description="fraction of the force against time since applied [s, -]")
@@ -571,8 +654,10 @@ class Plough(_Model):
 
 
 class Accessories(_Model):
-    head_kn: NonNegFloat = Field(0.0, description="lumped resistance at the head [kN]")
-    tail_kn: NonNegFloat = Field(0.0, description="lumped resistance at the tail [kN]")
+    head_kn: NonNegFloat = Field(0.0, le=FORCE_MAX_KN,
+                                 description="lumped resistance at the head [kN]")
+    tail_kn: NonNegFloat = Field(0.0, le=FORCE_MAX_KN,
+                                 description="lumped resistance at the tail [kN]")
     scrapers: list[Scraper] = Field(default_factory=list,
                                     description="belt cleaners (ISO 5048 F_r), beside head_kn")
     ploughs: list[Plough] = Field(default_factory=list,
@@ -582,7 +667,8 @@ class Accessories(_Model):
 class Conveyor(_Model):
     """A belt conveyor (SPEC section 1)."""
 
-    name: str = Field(..., min_length=1, max_length=200)
+    name: NameText = Field(..., min_length=1, max_length=200,
+                           description="free text without control or bidi characters")
     # bounds beyond practice (belt conveyors run about 0.1 to 10 m/s)
     speed_m_s: float = Field(..., ge=0.01, le=30.0,
                              description="design belt speed [m/s] (0.01 to 30)")
@@ -600,6 +686,15 @@ class Conveyor(_Model):
     safety_factor_min: PositiveFloat | None = Field(
         None, description="minimum running belt safety factor [-]; default by belt kind"
     )
+
+    @model_validator(mode="after")
+    def _route_length(self) -> Conveyor:
+        total = sum(p.length_m for p in self.profile)
+        if total > ROUTE_MAX_M:
+            raise ValueError(
+                f"profile: {total:g} m of route in all; at most {ROUTE_MAX_M:g} m (the longest "
+                "single-flight conveyors are about 20 to 30 km)")
+        return self
 
     @model_validator(mode="after")
     def _shares(self) -> Conveyor:
@@ -984,6 +1079,24 @@ def format_validation_error(exc: ValidationError, model: type[BaseModel], prefix
     return "; ".join(out)
 
 
+#: YAML 1.2's floats that YAML 1.1 (PyYAML) reads as text: an exponent without its sign
+#: (``6.0e4``, ``1e5``). Read as numbers: with numbers held to their type, ``"6.0e4"`` would
+#: otherwise be refused where the writer meant 60 000.
+_FLOAT_12 = re.compile(r"^[-+]?(?:[0-9][0-9_]*(?:\.[0-9_]*)?|\.[0-9_]+)[eE][0-9]+$")
+
+
+class Yaml12Floats(yaml.resolver.Resolver):
+    """PyYAML's resolver with YAML 1.2's exponent floats (:data:`_FLOAT_12`) as floats."""
+
+
+Yaml12Floats.add_implicit_resolver("tag:yaml.org,2002:float", _FLOAT_12,
+                                   list("-+0123456789."))
+
+
+class _SafeLoader(yaml.SafeLoader, Yaml12Floats):
+    """``yaml.safe_load`` with :class:`Yaml12Floats`."""
+
+
 def load_mapping(path: str | Path) -> dict:
     """Read a YAML or JSON file into a mapping, with a one-line error on failure."""
     p = Path(path)
@@ -991,7 +1104,7 @@ def load_mapping(path: str | Path) -> dict:
         raise InputError(f"{p}: file not found")
     text = p.read_text(encoding="utf-8")
     try:
-        data = json.loads(text) if p.suffix.lower() == ".json" else yaml.safe_load(text)
+        data = json.loads(text) if p.suffix.lower() == ".json" else yaml.load(text, _SafeLoader)  # noqa: S506
     except (yaml.YAMLError, json.JSONDecodeError) as exc:
         first = str(exc).splitlines()[0] if str(exc) else type(exc).__name__
         mark = getattr(exc, "problem_mark", None)
@@ -1002,25 +1115,106 @@ def load_mapping(path: str | Path) -> dict:
     return data
 
 
-def parse_conveyor(data: dict, prefix: str = "") -> Conveyor:
-    """Validate a mapping as a :class:`Conveyor`; raise :class:`InputError` on problems."""
+def json_numbers(value: Any) -> Any:
+    """``value`` with its integral numbers written as integers, as JSON Schema counts them
+    (``12.0`` is the integer 12): those from 1 to 2**53 in size (0 keeps its sign, a larger
+    number is meant as a float). Integers are integers by value, whatever their notation."""
+    if isinstance(value, float) and value.is_integer() and 1 <= abs(value) <= 2**53:
+        return int(value)
+    if isinstance(value, dict):
+        return {k: json_numbers(v) for k, v in value.items()}
+    if isinstance(value, list | tuple):
+        return [json_numbers(v) for v in value]
+    return value
+
+
+def strict_validate(model: type[BaseModel], data: Any) -> BaseModel:
+    """The one strict path of every input (files, JSON and YAML bodies, study axes): ``data``
+    validated as JSON with JSON's types exactly, so ``"4.5"`` is no number and ``true`` no
+    number either, wherever it comes from; integral numbers as integers
+    (:func:`json_numbers`). Raises :class:`ValidationError`."""
+    try:
+        text = json.dumps(json_numbers(data), default=str, allow_nan=True)
+    except (TypeError, ValueError) as exc:
+        raise InputError(f"not JSON data: {exc}") from None
+    return model.model_validate_json(text, strict=True)
+
+
+def parse_conveyor(data: dict, prefix: str = "", *, strict: bool = True) -> Conveyor:
+    """Validate a mapping as a :class:`Conveyor` (strictly: :func:`strict_validate`); raise
+    :class:`InputError` on problems. ``strict=False`` is for data whose types were held to
+    JSON's already (a study's variants, built at the door from checked values): Pydantic's
+    own validation, without the JSON round trip."""
     from beltstudy.engine import catalog
 
+    try:
+        conv = strict_validate(Conveyor, data) if strict else Conveyor.model_validate(data)
+    except ValidationError as exc:
+        raise InputError(format_validation_error(exc, Conveyor, prefix)) from None
+    catalog.check_conveyor(conv, prefix)
+    _check_whole(conv, prefix)
+    return conv
+
+
+#: Top-level conveyor fields the catalogue check and the fill read.
+_CATALOGUE_FIELDS = frozenset({"belt", "idlers", "material", "profile", "speed_m_s"})
+
+
+def conveyor_variant(base: Conveyor, base_data: dict, changed: dict[str, Any],
+                     prefix: str = "") -> tuple[Conveyor, dict]:
+    """``base`` with some top-level fields replaced, validated, and its dumped mapping.
+
+    ``changed`` maps top-level keys (as in the file) to their new (dumped) values; ``base_data``
+    is ``base`` dumped (``model_dump(mode="json", by_alias=True)``). Only the changed fields are
+    validated again, the others are ``base``'s own validated parts (Pydantic takes a model
+    instance as it is); the conveyor's own checks (its model validators, the catalogue and
+    the fill) run on the whole. The same conveyor as :func:`parse_conveyor` of the whole
+    mapping gives, at a fraction of the cost for a study's many variants.
+    """
+    from beltstudy.engine import catalog
+
+    names = {(f.alias or n): n for n, f in Conveyor.model_fields.items()}
+    data = {n: getattr(base, n) for n in Conveyor.model_fields}
+    for key, value in changed.items():
+        data[names.get(key, key)] = value
     try:
         conv = Conveyor.model_validate(data)
     except ValidationError as exc:
         raise InputError(format_validation_error(exc, Conveyor, prefix)) from None
-    catalog.check_conveyor(conv, prefix)
-    return conv
+    if _CATALOGUE_FIELDS & {names.get(k, k) for k in changed}:
+        catalog.check_conveyor(conv, prefix)
+        _check_whole(conv, prefix)
+    fields = {names.get(k, k) for k in changed}
+    dumped = {**base_data, **conv.model_dump(mode="json", by_alias=True, include=fields)}
+    return conv, dumped
 
 
-def parse_scenario(data: dict, prefix: str = "") -> Scenario:
-    """Validate a mapping as a :class:`Scenario` (accepts a top-level ``scenario:`` key)."""
+#: Checks of a whole conveyor that need more than its model (``fn(conv, prefix)``, raising
+#: :class:`InputError`): registered by the module that holds what they need (the fill:
+#: :mod:`beltstudy.engine.capacity`), so this module imports none of them; run by
+#: :func:`parse_conveyor` and :func:`conveyor_variant`.
+WHOLE_CHECKS: list = []
+
+
+def register_check(check) -> None:
+    """Run ``check(conv, prefix)`` on every conveyor parsed (once per function)."""
+    if check not in WHOLE_CHECKS:
+        WHOLE_CHECKS.append(check)
+
+
+def _check_whole(conv: Conveyor, prefix: str = "") -> None:
+    for check in WHOLE_CHECKS:
+        check(conv, prefix)
+
+
+def parse_scenario(data: dict, prefix: str = "", *, strict: bool = True) -> Scenario:
+    """Validate a mapping as a :class:`Scenario` (accepts a top-level ``scenario:`` key);
+    ``strict``: as in :func:`parse_conveyor`."""
     if set(data) == {"scenario"} and isinstance(data["scenario"], dict):
         data = data["scenario"]
         prefix = prefix + "scenario."
     try:
-        return Scenario.model_validate(data)
+        return strict_validate(Scenario, data) if strict else Scenario.model_validate(data)
     except ValidationError as exc:
         raise InputError(format_validation_error(exc, Scenario, prefix)) from None
 

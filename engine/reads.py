@@ -9,6 +9,13 @@ study service's run ids) keys them on :func:`scenario_as_read` and merges such r
 Auto-sized brakes read the stop time only of a run that stops on them
 (:func:`brake_sizing_stop_time`); any other run installs the holding size
 (:mod:`beltstudy.engine.design`).
+
+Of the conveyor, a run does not read the law of a brake that never acts
+(:func:`unread_brakes`, :func:`conveyor_as_read`): in a steady-only run the statics place a
+brake (its pulley holds the belt at rest) but never use its force, delay, ramp or force curve;
+in a transient run that does not stop on its brakes (``stop.mode`` coast or controlled) a brake
+without ``hold`` is never applied. A brake with ``hold`` is set once the belt has stopped, in
+every stop mode, and carries the gravity pull with its force from then on: its law is read.
 """
 
 from __future__ import annotations
@@ -17,7 +24,21 @@ from collections.abc import Mapping
 
 from beltstudy.engine.conveyor import Scenario
 
-__all__ = ["STEADY_FIELDS", "unread_fields", "scenario_as_read", "brake_sizing_stop_time"]
+__all__ = [
+    "STEADY_FIELDS",
+    "unread_fields",
+    "scenario_as_read",
+    "brake_sizing_stop_time",
+    "BRAKE_LAW_FIELDS",
+    "UNREAD",
+    "unread_brakes",
+    "conveyor_as_read",
+]
+
+#: The fields of a brake's law (what it does once applied): unread when it never acts.
+BRAKE_LAW_FIELDS = ("force_kn", "delay_s", "ramp_s", "force_curve")
+#: What :func:`conveyor_as_read` writes in place of a field a run does not read.
+UNREAD = "unread"
 
 #: Scenario fields a steady-only run reads; it reads no other.
 STEADY_FIELDS = ("load", "temperature_c", "elements")
@@ -91,3 +112,40 @@ def brake_sizing_stop_time(scenario: Mapping, *, dynamics: bool) -> float | None
     if dynamics and stop.get("mode") == "brake":
         return float(stop["time_s"])
     return None
+
+
+def unread_brakes(conveyor: Mapping, scenario: Mapping, *, dynamics: bool) -> tuple[int, ...]:
+    """Indices of the brakes (file order) whose law (:data:`BRAKE_LAW_FIELDS`) a run never
+    reads: every brake of a steady-only run; in a transient run that does not stop on its
+    brakes, every brake without ``hold``.
+
+    Parameters
+    ----------
+    conveyor, scenario : Mapping
+        The run's conveyor and scenario as dumped mappings (JSON types, field aliases).
+    dynamics : bool
+        Whether the run simulates the transient.
+    """
+    brakes = conveyor.get("brakes") or []
+    if not dynamics:
+        return tuple(range(len(brakes)))
+    if (scenario.get("stop") or {}).get("mode") == "brake":
+        return ()
+    return tuple(i for i, b in enumerate(brakes) if b.get("hold", True) is False)
+
+
+def conveyor_as_read(conveyor: Mapping, scenario: Mapping, *, dynamics: bool) -> Mapping:
+    """The conveyor as a run reads it: the law of every brake it never reads
+    (:func:`unread_brakes`) written as :data:`UNREAD`. Two runs whose conveyors give the same
+    answer here (and whose scenarios give the same :func:`scenario_as_read`) give the same
+    result. ``conveyor`` itself is returned when the run reads all of it (so a key made of it
+    is the key it always was), and never changed in place. A key, not a conveyor to run: the
+    marker is no valid value."""
+    unread = unread_brakes(conveyor, scenario, dynamics=dynamics)
+    if not unread:
+        return conveyor
+    brakes = [
+        {**b, **{k: UNREAD for k in BRAKE_LAW_FIELDS}} if i in unread else b
+        for i, b in enumerate(conveyor["brakes"])
+    ]
+    return {**conveyor, "brakes": brakes}

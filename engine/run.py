@@ -12,6 +12,7 @@ from __future__ import annotations
 
 import math
 import time
+from collections.abc import Callable
 from dataclasses import dataclass
 
 import numpy as np
@@ -161,6 +162,7 @@ def run_one(
     options: DynamicsOptions | None = None,
     remedy: bool = False,
     check: bool = False,
+    say: Callable[[str], None] | None = None,
 ) -> RunResult:
     """Steady solve and, with ``dynamics``, the rest -> start -> run -> stop -> rest cycle.
 
@@ -185,6 +187,9 @@ def run_one(
         fine (:func:`beltstudy.engine.accuracy.error_bars`: the ``<figure>_err`` and
         ``<figure>_converged`` fields, ``RunResult.accuracy``, the marginal verdicts in the
         message). Off by default (a study checks a sample of its runs).
+    say : callable, optional
+        Called with one line before a long step a person waits for (the slip remedy's
+        reruns), for a command line to print; studies pass nothing.
 
     Raises
     ------
@@ -201,11 +206,11 @@ def run_one(
     tr = simulate(system, steady_summary=prep.steady.summary, conveyor=prep.conveyor,
                   safety_factor_min=transient_safety_min(prep.conveyor,
                                                          prep.steady.loop.belt.kind))
-    return _complete(prep, scenario, system, tr, model, params, opts, remedy, check, t0)
+    return _complete(prep, scenario, system, tr, model, params, opts, remedy, check, t0, say)
 
 
 def run_group(
-    conveyor: Conveyor,
+    conveyor: Conveyor | list[Conveyor],
     scenarios: list[Scenario],
     *,
     model: str,
@@ -220,20 +225,23 @@ def run_group(
     caller, decides which do, from the built models). Each result equals its :func:`run_one`
     bit for bit but ``elapsed_s`` (the shared stretch counts in full for each run).
 
-    ``check`` may be one flag per scenario (the error bars rerun each checked run's cycle on
-    its own, as :func:`run_one` does). Raises as :func:`run_one` for the first scenario that
+    ``conveyor`` may be one per scenario (runs whose brakes differ only in their force, delay,
+    ramp, curve or hold still share a start when their models allow it). ``check`` may be one
+    flag per scenario (the error bars rerun each checked run's cycle on its own, as
+    :func:`run_one` does). Raises as :func:`run_one` for the first scenario that
     cannot run; a caller that wants a bad scenario to fail alone runs it with
     :func:`run_one`."""
     from beltstudy.engine.dynamics.shared import group_by_start, simulate_group
 
     checks = check if isinstance(check, list) else [check] * len(scenarios)
+    convs = conveyor if isinstance(conveyor, list) else [conveyor] * len(scenarios)
     opts = options or DynamicsOptions()
     t0 = [time.perf_counter() for _ in scenarios]
     results: list[RunResult | None] = [None] * len(scenarios)
     preps, systems, todo = {}, [], []
     for i, scn in enumerate(scenarios):
         t0[i] = time.perf_counter()
-        prep = _prepare(conveyor, scn, model, params, True, opts)
+        prep = _prepare(convs[i], scn, model, params, True, opts)
         if prep.done is not None:
             prep.done.summary["elapsed_s"] = time.perf_counter() - t0[i]
             results[i] = prep.done
@@ -242,11 +250,12 @@ def run_group(
         systems.append(build_system(prep.conveyor, scn, prep.steady, opts))
         todo.append(i)
     for group in group_by_start(systems):
-        first = preps[todo[group[0]]]
+        members = [preps[todo[g]] for g in group]
         trs = simulate_group([systems[g] for g in group],
-                             steady_summary=first.steady.summary, conveyor=first.conveyor,
-                             safety_factor_min=transient_safety_min(
-                                 first.conveyor, first.steady.loop.belt.kind))
+                             steady_summary=[p.steady.summary for p in members],
+                             conveyor=[p.conveyor for p in members],
+                             safety_factor_min=[transient_safety_min(
+                                 p.conveyor, p.steady.loop.belt.kind) for p in members])
         for g, tr in zip(group, trs, strict=True):
             i = todo[g]
             results[i] = _complete(preps[i], scenarios[i], systems[g], tr, model, params, opts,
@@ -297,9 +306,10 @@ def _prepare(conveyor, scenario, model, params, dynamics, opts) -> _Prepared:
 
 
 def _complete(prep: _Prepared, scenario, system, tr, model, params, opts, remedy, check,
-              t0) -> RunResult:
+              t0, say=None) -> RunResult:
     """The rest of :func:`run_one` after the transient: its fields, the transient checks,
-    lift-off at concave curves, the slip remedy, the status and message, the error bars."""
+    lift-off at concave curves, the slip remedy (``say`` told before its reruns), the status
+    and message, the error bars."""
     conveyor, steady, summary = prep.conveyor, prep.steady, prep.summary
     summary.update(tr.summary)
     summary.update({k: (v if math.isfinite(v) else None) for k, v in transient_checks(
@@ -318,6 +328,9 @@ def _complete(prep: _Prepared, scenario, system, tr, model, params, opts, remedy
     if remedy and tr.status != "failed" and any(
             (summary.get(f"drive{i + 1}_slip_s") or 0.0) > 0.0
             for i in range(len(conveyor.drives))):
+        if say is not None:
+            say("a drive slips in the start: rerunning the start to find the take-up and the "
+                "start time that avoid it (about a dozen reruns)")
         found = _slip_remedy(conveyor, scenario, model, params, opts, summary)
         if found:
             messages.append(found)

@@ -14,6 +14,7 @@ __all__ = [
     "TooLarge",
     "Unauthorized",
     "Unavailable",
+    "UnsupportedMedia",
 ]
 
 
@@ -23,9 +24,11 @@ class ServiceError(Exception):
     status_code = 500
     kind = "error"
 
-    def __init__(self, message: str, status_code: int | None = None):
+    def __init__(self, message: str, status_code: int | None = None,
+                 headers: dict[str, str] | None = None):
         super().__init__(message)
         self.message = message
+        self.headers = headers  # extra response headers (Retry-After of a 503)
         if status_code is not None:
             self.status_code = status_code
 
@@ -70,3 +73,10 @@ class Unavailable(ServiceError):
 
     status_code = 503
     kind = "unavailable"
+
+
+class UnsupportedMedia(ServiceError):
+    """A request body in a media type the route does not read."""
+
+    status_code = 415
+    kind = "unsupported_media_type"

@@ -10,6 +10,8 @@
 | ``BELTSTUDY_HOST`` | 127.0.0.1 | address ``beltstudy serve`` listens on (``--host``) |
 | ``BELTSTUDY_DASHBOARD`` | false | serve the LocalCluster's Dask dashboard on the host |
 | ``BELTSTUDY_DASK_TIMEOUT_S`` | 5 | longest wait on the Dask scheduler (connect, cancel, close) |
+| ``BELTSTUDY_MAX_EXPANSIONS`` | 1 | studies expanded and validated at once (further: wait, then 503) |
+| ``BELTSTUDY_EXPANSION_WAIT_S`` | 30 | longest a submission waits for an expansion slot |
 
 The full table is in the README.
 """
@@ -72,6 +74,20 @@ class Settings(BaseSettings):
         le=300,
         description="longest the service waits on the Dask scheduler: to connect, and when it "
         "deletes a study or shuts down [s]",
+    )
+
+    max_expansions: int = Field(
+        1, ge=1, le=64,
+        description="studies expanded and validated at once (POST /studies); further ones "
+        "wait up to expansion_wait_s, then get 503 with Retry-After. Expansion is Python "
+        "work in the service's threads, which share one interpreter lock: a second one at "
+        "once finishes no sooner and slows every other answer (measured in "
+        "benchmarks/bench_submit.py)",
+    )
+    expansion_wait_s: float = Field(
+        30.0, gt=0, le=600,
+        description="longest a submission waits for an expansion slot, or for the same body "
+        "being expanded by another request [s]",
     )
 
     @field_validator("workers", mode="before")

@@ -15,6 +15,7 @@ from __future__ import annotations
 
 import dataclasses
 import logging
+import os
 import threading
 import time
 from collections import OrderedDict
@@ -26,17 +27,29 @@ import pyarrow as pa
 
 from beltstudy import engine
 from beltstudy.service.dask.executor import Executor
-from beltstudy.service.dask.jobs import StudyJob
+from beltstudy.service.dask.jobs import NO_WORKER_PREFIX, StudyJob
 from beltstudy.service.dask.tasks import profile_table, run_spec, surface_table
-from beltstudy.service.door.studyfile import resolve_study
-from beltstudy.service.errors import Conflict, Invalid, NotFound
-from beltstudy.service.grid.expand import ResolvedStudy, RunSpec, study_from_json
+from beltstudy.service.door.studyfile import conveyor_from_path, resolve_study
+from beltstudy.service.errors import (
+    Conflict,
+    Invalid,
+    NotFound,
+    ServiceError,
+    Unavailable,
+)
+from beltstudy.service.grid.expand import (
+    DEFAULT_MODEL,
+    ResolvedStudy,
+    RunSpec,
+    stable_hash,
+    study_from_json,
+)
 from beltstudy.service.settings import Settings
 from beltstudy.service.store import query
 from beltstudy.service.store.columns import profile_schema, surface_schema
 from beltstudy.service.store.parquet import Store
 
-__all__ = ["StudyService", "ACTIVE_STATES", "RESOLVED_CACHE", "SURFACE_CACHE"]
+__all__ = ["StudyService", "ACTIVE_STATES", "RESOLVED_CACHE", "SURFACE_CACHE", "study_models"]
 
 log = logging.getLogger("beltstudy.service")
 
@@ -46,6 +59,22 @@ RESOLVED_CACHE = 8
 #: Recomputed surfaces kept (a run id is a hash of the run's inputs: the surface is the same
 #: every time).
 SURFACE_CACHE = 4
+
+
+def _waits_for_workers(doc: dict) -> bool:
+    """Whether a stored study failed only because no Dask worker could start."""
+    return doc.get("state") == "failed" and str(doc.get("message", "")).startswith(
+        NO_WORKER_PREFIX)
+
+
+def study_models(doc: dict) -> list[str]:
+    """The friction models a stored study runs (its ``friction_model`` axis, or its one
+    model)."""
+    study = doc.get("study") or {}
+    for axis in study.get("axes", []):
+        if axis.get("column") == "friction_model":
+            return [str(v) for v in axis["values"]]
+    return [str(study.get("model") or DEFAULT_MODEL)]
 
 
 class StudyService:
@@ -63,6 +92,9 @@ class StudyService:
         self._resolved: OrderedDict[str, ResolvedStudy] = OrderedDict()
         self._surfaces: OrderedDict[str, pa.Table | None] = OrderedDict()
         self._cache_lock = threading.Lock()
+        self._slots = threading.BoundedSemaphore(settings.max_expansions)
+        self._inflight: dict[str, threading.Event] = {}  # body hash -> its expansion's end
+        self.expansions = 0  # studies expanded by submit (a resend of a stored one is not)
 
     # ---------------------------------------------------------------- lifecycle
     def start(self) -> None:
@@ -121,7 +153,13 @@ class StudyService:
                 self.store.create(study.id, self._new_doc(study))
                 active = True
             else:
-                active = self.store.read(study.id).get("state") in ACTIVE_STATES
+                doc = self.store.read(study.id)
+                active = doc.get("state") in ACTIVE_STATES
+                if _waits_for_workers(doc) and not self._closing:
+                    # failed for want of Dask workers: submitted again, it goes on
+                    self.store.update(study.id, state="queued", message="",
+                                      finished_at=None)
+                    active = True
             if active and study.id not in self._jobs and not self._closing:
                 # a study interrupted earlier (`beltstudy run` stopped) carries on; during a
                 # shutdown it stays queued in the store and starts with the service
@@ -164,19 +202,120 @@ class StudyService:
         """Validate and store a study, start it; return (status, created).
 
         ``confine`` keeps conveyor paths inside the studies directory (HTTP bodies);
-        ``base_dir`` resolves them for a local study file; ``strict`` holds every value to its
-        JSON type (HTTP bodies, held to the published schema). An identical study already in
-        the store is returned as it is (``created`` False).
+        ``base_dir`` resolves them for a local study file; ``strict`` is kept for callers (every
+        study is held to its JSON types). An identical study already in the store is returned
+        as it is (``created`` False).
+
+        Cheap refusals first: the body (with the conveyor file it names) is hashed before
+        anything is expanded, and a body seen before whose study is stored answers at once,
+        without expanding it again (:meth:`_known_body`). Expansions run at most
+        ``max_expansions`` at once; a request that finds no free slot within
+        ``expansion_wait_s`` is :class:`Unavailable` (503) with ``Retry-After``; the same body
+        sent again while it is being expanded waits for that expansion instead of repeating it.
         """
-        study = resolve_study(
-            data,
-            base_dir=base_dir,
-            studies_dir=self.settings.studies_dir if confine else None,
-            max_runs=self.settings.max_runs,
-            strict=strict,
-        )
-        created = self._admit(study)
+        key = self._body_key(data, base_dir, confine)
+        known = self._known_body(key)
+        if known is not None:
+            return self.status(known), False
+        owner, event = self._claim(key)
+        try:
+            if not owner:  # the same body is being expanded by another request: its answer
+                event.wait(self.settings.expansion_wait_s)
+                known = self._known_body(key)
+                if known is not None:
+                    return self.status(known), False
+            study = self._expand_bounded(data, base_dir, confine)
+            created = self._admit(study)
+            self._remember_body(key, study.id)
+        finally:
+            if owner:
+                with self._lock:
+                    self._inflight.pop(key, None)
+                event.set()
         return self.status(study.id), created
+
+    def _expand_bounded(self, data: Any, base_dir: Path | None, confine: bool
+                        ) -> ResolvedStudy:
+        """:func:`resolve_study` within the bound on expansions running at once."""
+        if not self._slots.acquire(timeout=self.settings.expansion_wait_s):
+            retry = max(1, round(self.settings.expansion_wait_s))
+            raise Unavailable(
+                f"the service is expanding {self.settings.max_expansions} studies already "
+                f"(BELTSTUDY_MAX_EXPANSIONS) and none finished within "
+                f"{self.settings.expansion_wait_s:g} s; send the study again in {retry} s",
+                headers={"Retry-After": str(retry)},
+            )
+        try:
+            with self._lock:
+                self.expansions += 1
+            return resolve_study(
+                data,
+                base_dir=base_dir,
+                studies_dir=self.settings.studies_dir if confine else None,
+                max_runs=self.settings.max_runs,
+                strict=True,
+            )
+        finally:
+            self._slots.release()
+
+    def _claim(self, key: str | None) -> tuple[bool, threading.Event]:
+        """(whether this request expands ``key``, the event set when its expansion ends)."""
+        if key is None:
+            return True, threading.Event()
+        with self._lock:
+            event = self._inflight.get(key)
+            if event is not None:
+                return False, event
+            event = self._inflight[key] = threading.Event()
+            return True, event
+
+    def _body_key(self, data: Any, base_dir: Path | None, confine: bool) -> str | None:
+        """A hash of what decides a submitted study before it is expanded: the body as given,
+        the conveyor file it names (read, a few kB), the engine version and the run limit.
+        None for a body that cannot be hashed (it is refused by the full check)."""
+        if not isinstance(data, dict):
+            return None
+        ref = data.get("conveyor")
+        conveyor_file = None
+        try:
+            if isinstance(ref, str):
+                conveyor_file, _ = conveyor_from_path(
+                    ref, base_dir, self.settings.studies_dir if confine else None)
+            return stable_hash({"body": data, "conveyor_file": conveyor_file,
+                                "engine_version": engine.__version__,
+                                "max_runs": self.settings.max_runs})
+        except (ServiceError, TypeError, ValueError, RecursionError):
+            return None
+
+    def _body_path(self, key: str) -> Path:
+        return Path(self.settings.data_dir) / "bodies" / key
+
+    def _known_body(self, key: str | None) -> str | None:
+        """The id of the stored study a body with hash ``key`` made, when it is stored and not
+        waiting to be resumed by this process (that goes the full way, through
+        :meth:`_admit`)."""
+        if key is None:
+            return None
+        try:
+            study_id = self._body_path(key).read_text(encoding="utf-8").strip()
+        except OSError:
+            return None
+        if not self.store.exists(study_id):
+            return None
+        doc = self.store.read(study_id)
+        if study_id not in self._jobs and (doc.get("state") in ACTIVE_STATES
+                                           or _waits_for_workers(doc)):
+            return None
+        return study_id
+
+    def _remember_body(self, key: str | None, study_id: str) -> None:
+        if key is None:
+            return
+        path = self._body_path(key)
+        path.parent.mkdir(parents=True, exist_ok=True)
+        tmp = path.with_name(f".{key}.{threading.get_ident()}.tmp")
+        tmp.write_text(study_id, encoding="utf-8")
+        os.replace(tmp, path)
 
     # ---------------------------------------------------------------- reading
     def status(self, study_id: str) -> dict:
@@ -252,9 +391,7 @@ class StudyService:
         runs = self.store.read_runs(study_id)
         match = runs[runs["run_id"] == run_id] if len(runs) else runs
         if not len(match):
-            known = any(r.run_id == run_id for r in self._load(self.store.read(study_id)).runs)
-            state = "not finished yet" if known else "not found"
-            raise NotFound(f"run '{run_id}' of study '{study_id}' {state}")
+            self._no_row(study_id, run_id)
         row = query.row_to_json(match.iloc[0].to_dict())
         ts = self.store.read_timeseries(study_id, run_id)
         return {
@@ -316,9 +453,7 @@ class StudyService:
         doc = self.store.read(study_id)
         runs = self.store.read_runs(study_id)
         if not len(runs) or not (runs["run_id"] == run_id).any():
-            known = any(r.run_id == run_id for r in self.resolved(study_id).runs)
-            state = "not finished yet" if known else "not found"
-            raise NotFound(f"run '{run_id}' of study '{study_id}' {state}")
+            self._no_row(study_id, run_id)
         study = doc.get("study") or {}
         if not study.get("dynamics", True):
             return surface_schema().empty_table().to_pandas(), "recomputed"
@@ -345,10 +480,32 @@ class StudyService:
         return table if table is not None else surface_schema().empty_table()
 
     def compare(self, study_id: str, baseline: str, candidate: str, metrics: list[str]) -> dict:
+        """Pairs of runs that differ only in the friction model (:func:`query.compare`) with
+        the study's state: a running study answers with the pairs finished so far."""
         doc = self.store.read(study_id)
         axes = [a["column"] for a in doc["study"]["axes"]]
-        return query.compare(
-            self.store.read_runs(study_id), axes, baseline, candidate, metrics, study_id
+        out = query.compare(
+            self.store.read_runs(study_id), axes, baseline, candidate, metrics, study_id,
+            models=study_models(doc),
+        )
+        status = self.status(study_id)
+        return {**out, "state": status["state"], "done": status["done"],
+                "total": status["total"]}
+
+    def _no_row(self, study_id: str, run_id: str) -> None:
+        """Raise for a run without a stored row: 409 with the study's state for a run of the
+        study that has not finished (never 404 for what exists), 404 for an unknown run."""
+        if not any(r.run_id == run_id for r in self.resolved(study_id).runs):
+            raise NotFound(f"run '{run_id}' of study '{study_id}' not found")
+        st = self.status(study_id)
+        if st["state"] in ACTIVE_STATES:
+            raise Conflict(
+                f"run '{run_id}' of study '{study_id}' is not finished yet (the study is "
+                f"{st['state']}: {st['done']} of {st['total']} runs done); ask again later"
+            )
+        raise Conflict(
+            f"run '{run_id}' of study '{study_id}' has no result: the study is {st['state']}"
+            + (f" ({st['message']})" if st.get("message") else "")
         )
 
     # ---------------------------------------------------------------- delete

@@ -3,7 +3,6 @@ transient fields of a run's summary, and the transient kernel compiled once per 
 
 from __future__ import annotations
 
-import sys
 import time
 from pathlib import Path
 
@@ -80,15 +79,9 @@ _warm_up: dict = {}
 def _kernel_dispatchers() -> list:
     """The numba functions of the loaded engine modules (each once); their ``stats`` say
     whether they were compiled or loaded from numba's cache."""
-    from numba.core.dispatcher import Dispatcher
+    from beltstudy.engine.warmth import kernel_dispatchers
 
-    found = {}
-    for name, module in list(sys.modules.items()):
-        if name.startswith("beltstudy.engine.") and module is not None:
-            for value in vars(module).values():
-                if isinstance(value, Dispatcher):
-                    found[id(value)] = value
-    return list(found.values())
+    return kernel_dispatchers()
 
 
 @pytest.fixture(scope="session", autouse=True)

@@ -97,9 +97,8 @@ def _branch(paused: KernelRun, sys: System) -> KernelRun:
                      work=_copy(paused.work))
 
 
-def simulate_group(systems: list[System], *, steady_summary: dict | None = None,
-                   conveyor=None, safety_factor_min: float | None = None
-                   ) -> list[TransientResult]:
+def simulate_group(systems: list[System], *, steady_summary=None, conveyor=None,
+                   safety_factor_min=None) -> list[TransientResult]:
     """The whole cycle of every system, sharing the stretch up to the stop command.
 
     Parameters
@@ -108,7 +107,8 @@ def simulate_group(systems: list[System], *, steady_summary: dict | None = None,
         With one :func:`start_key` (raises ValueError otherwise): runs of one conveyor, load,
         temperature, model and start that differ only in their stop.
     steady_summary, conveyor, safety_factor_min
-        As :func:`beltstudy.engine.dynamics.simulate.simulate` (the same for the group).
+        As :func:`beltstudy.engine.dynamics.simulate.simulate`: one for the group, or a list
+        with one per system.
 
     Returns
     -------
@@ -126,13 +126,17 @@ def simulate_group(systems: list[System], *, steady_summary: dict | None = None,
     t0 = time.perf_counter()
     status = shared.call(systems[big].stop_command_s)
     wall0 = time.perf_counter() - t0
+    def each(value, i):
+        return value[i] if isinstance(value, list) else value
+
     out = []
-    for sys in systems:
+    for i, sys in enumerate(systems):
         kr = _branch(shared, sys)
         t1 = time.perf_counter()
         if status == PAUSED:
             kr.call()
         wall = wall0 + time.perf_counter() - t1
-        out.append(decode(sys, kr, wall, steady_summary=steady_summary, conveyor=conveyor,
-                          safety_factor_min=safety_factor_min))
+        out.append(decode(sys, kr, wall, steady_summary=each(steady_summary, i),
+                          conveyor=each(conveyor, i),
+                          safety_factor_min=each(safety_factor_min, i)))
     return out

@@ -59,7 +59,7 @@ def _validation_message(exc: RequestValidationError) -> str:
 def _install_handlers(app: FastAPI) -> None:
     @app.exception_handler(ServiceError)
     async def service_error(request: Request, exc: ServiceError) -> JSONResponse:
-        headers = {"WWW-Authenticate": "Bearer"} if exc.status_code == 401 else None
+        headers = {"WWW-Authenticate": "Bearer"} if exc.status_code == 401 else exc.headers
         return _error(exc.kind, exc.message, exc.status_code, headers)
 
     @app.exception_handler(RequestValidationError)
@@ -86,13 +86,39 @@ _METHODS = ("GET", "HEAD", "POST", "PUT", "PATCH", "DELETE")
 
 
 def _allowed_methods(request: Request) -> list[str]:
-    """The methods some route answers on the request's path (for ``Allow``)."""
+    """The methods some route answers on the request's path (for ``Allow``); HEAD wherever
+    GET is (:class:`HeadAsGet`)."""
     routes = request.app.router.routes
-    return [
+    allowed = [
         method
         for method in _METHODS
         if any(r.matches({**request.scope, "method": method})[0] == Match.FULL for r in routes)
     ]
+    if "GET" in allowed and "HEAD" not in allowed:
+        allowed.insert(allowed.index("GET") + 1, "HEAD")
+    return allowed
+
+
+class HeadAsGet:
+    """ASGI middleware: ``HEAD`` is answered as ``GET`` would be (status and headers,
+    ``Content-Length`` included) without the body, on every route that has GET."""
+
+    def __init__(self, app):
+        self.app = app
+
+    async def __call__(self, scope, receive, send):
+        if scope["type"] != "http" or scope["method"] != "HEAD":
+            await self.app(scope, receive, send)
+            return
+
+        async def headers_only(message):
+            if message["type"] == "http.response.body":
+                if message.get("more_body", False):
+                    return
+                message = {"type": "http.response.body", "body": b"", "more_body": False}
+            await send(message)
+
+        await self.app({**scope, "method": "GET"}, receive, headers_only)
 
 
 class ErrorGuard:
@@ -168,6 +194,7 @@ def create_app(settings: Settings | None = None, service: StudyService | None = 
     app.state.service = service
     _install_handlers(app)
     app.add_middleware(ErrorGuard)
+    app.add_middleware(HeadAsGet)
     for name in ROUTERS:
         module = importlib.import_module(name)
         for attr in ("health_router", "router"):

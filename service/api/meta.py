@@ -8,18 +8,20 @@ from fastapi import APIRouter, Depends
 
 from beltstudy import engine
 from beltstudy.engine import ALIASES, MODELS, catalog
-from beltstudy.service.api.deps import ERROR_RESPONSES, get_service, require_token
+from beltstudy.service.api.deps import ERROR_RESPONSES, check_query, get_service, require_token
 from beltstudy.service.api.models import BeltsOut, Health, ModelsOut
 from beltstudy.service.studies import StudyService
 
 __all__ = ["router", "health_router"]
 
 health_router = APIRouter(tags=["meta"])
-router = APIRouter(tags=["meta"], dependencies=[Depends(require_token)], responses=ERROR_RESPONSES)
+router = APIRouter(tags=["meta"], dependencies=[Depends(require_token), Depends(check_query)],
+                   responses=ERROR_RESPONSES)
 
 
 @health_router.get("/health", response_model=Health, summary="Liveness and the Dask executor")
-def health(service: StudyService = Depends(get_service)) -> dict:
+async def health(service: StudyService = Depends(get_service)) -> dict:
+    # on the event loop itself: never queued behind the thread pool's expansions
     return {
         "status": "ok",
         "version": engine.__version__,

@@ -130,6 +130,15 @@ class CompareOut(BaseModel):
     summary: dict[str, Any] = Field(
         ..., description="metric -> {overall: stats, by_axis: {axis: {value: stats}}}"
     )
+    state: str | None = Field(
+        None, description="the study's state: a running study answers with the pairs so far"
+    )
+    same_in_all_pairs: dict[str, Any] = Field(
+        default_factory=dict, description="axes with one value in every pair (not listed per "
+        "pair): no difference between the two models' runs")
+    ratio: str = Field("", description="how the ratios are formed (magnitudes, sign column)")
+    done: int | None = Field(None, description="runs finished so far")
+    total: int | None = Field(None, description="runs of the study")
 
 
 class Deleted(BaseModel):

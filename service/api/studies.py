@@ -8,7 +8,13 @@ from typing import Literal
 from fastapi import APIRouter, Depends, Query, Request, Response
 from fastapi.concurrency import run_in_threadpool
 
-from beltstudy.service.api.deps import ERROR_RESPONSES, _error, get_service, require_token
+from beltstudy.service.api.deps import (
+    ERROR_RESPONSES,
+    _error,
+    check_query,
+    get_service,
+    require_token,
+)
 from beltstudy.service.api.models import (
     AccuracyOut,
     CompareOut,
@@ -20,8 +26,8 @@ from beltstudy.service.api.models import (
     StudyList,
     StudyStatus,
 )
-from beltstudy.service.door.parse import parse_body
-from beltstudy.service.errors import TooLarge
+from beltstudy.service.door.parse import YAML_TYPES, parse_body
+from beltstudy.service.errors import TooLarge, UnsupportedMedia
 from beltstudy.service.store import query
 from beltstudy.service.studies import StudyService
 
@@ -30,7 +36,7 @@ __all__ = ["router", "STUDY_BODY_SCHEMA_REF"]
 router = APIRouter(
     prefix="/studies",
     tags=["studies"],
-    dependencies=[Depends(require_token)],
+    dependencies=[Depends(require_token), Depends(check_query)],
     responses=ERROR_RESPONSES,
 )
 
@@ -64,6 +70,18 @@ async def _read_body(request: Request, limit: int) -> bytes:
     return b"".join(chunks)
 
 
+def _check_media_type(content_type: str) -> None:
+    """A body route reads JSON or YAML only: any other ``Content-Type`` (or none) is a 415
+    naming the types it takes (text/plain is not parsed as JSON)."""
+    media = content_type.split(";", 1)[0].strip().lower()
+    if media != "application/json" and media not in YAML_TYPES:
+        given = f"'{media}'" if media else "none"
+        raise UnsupportedMedia(
+            f"Content-Type: {given} is not read here; send the study as application/json or "
+            f"YAML ({', '.join(YAML_TYPES)})"
+        )
+
+
 @router.post(
     "",
     response_model=StudyStatus,
@@ -72,6 +90,8 @@ async def _read_body(request: Request, limit: int) -> bytes:
     responses={
         200: {"model": StudyStatus, "description": "the same study was already submitted"},
         413: _error("body or grid over the limit"),
+        415: _error("Content-Type other than JSON or YAML"),
+        503: _error("busy expanding other studies (Retry-After says when to send it again)"),
     },
     openapi_extra={
         "requestBody": {
@@ -86,6 +106,7 @@ async def _read_body(request: Request, limit: int) -> bytes:
 async def submit_study(
     request: Request, response: Response, service: StudyService = Depends(get_service)
 ) -> dict:
+    _check_media_type(request.headers.get("content-type", ""))
     body = await _read_body(request, service.settings.max_body_bytes)
     # parsing (within its budget) and resolving run in a worker thread: the event loop,
     # and so /health, keeps answering meanwhile

@@ -65,7 +65,9 @@ class ServiceClient:
         return response.content
 
     def compare(self, study_id: str, baseline: str, candidate: str, metrics: list[str]) -> dict:
-        params = {"baseline": baseline, "candidate": candidate, "metrics": ",".join(metrics)}
+        params = {"baseline": baseline, "candidate": candidate}
+        if metrics:  # none: the service's default metrics (an empty value is refused)
+            params["metrics"] = ",".join(metrics)
         return self._request("GET", f"/studies/{study_id}/compare", params=params).json()
 
     def uncertainty(self, study_id: str) -> dict:

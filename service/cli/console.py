@@ -7,6 +7,8 @@ import sys
 import time
 from typing import Any, TextIO
 
+from beltstudy.engine.warmth import COMPILE_LINE
+
 __all__ = ["ProgressBar", "format_status", "format_compare", "format_duration"]
 
 
@@ -46,10 +48,14 @@ class ProgressBar:
         frac = min(int(st["done"]) / total, 1.0)
         filled = int(round(frac * self.width))
         bar = "#" * filled + "." * (self.width - filled)
-        return (
+        line = (
             f"[{bar}] {st['done']}/{st['total']} runs  {st['failed']} failed  "
             f"{format_duration(st.get('eta_s'))} left  ({st['state']})"
         )
+        message = st.get("message") or ""
+        if st["state"] == "queued" and message:  # what the study waits for
+            line += "  " + (COMPILE_LINE if COMPILE_LINE in message else message)
+        return line
 
     def __call__(self, st: dict) -> None:
         line = self.render(st)
@@ -72,16 +78,22 @@ def _num(value: Any, fmt: str = "{:.3f}") -> str:
 def format_compare(result: dict, max_pairs: int = 40) -> str:
     """The comparison as text: ratio statistics per metric and axis, then the pairs."""
     base, cand = result["baseline"], result["candidate"]
-    lines = [f"{cand} / {base}: runs that differ only in the friction model"]
+    lines = [f"{cand} / {base}: runs that differ only in the friction model (ratios of "
+             "magnitudes; 'opposite' marks values of opposite sign)"]
+    same = result.get("same_in_all_pairs") or {}
+    if same:
+        lines.append("the same in every pair: " + ", ".join(f"{k}={v}" for k, v in same.items()))
     if result.get("failed_pairs"):
         lines.append(f"({result['failed_pairs']} pairs with a failed run have no ratio)")
     for metric in result["metrics"]:
         summary = result["summary"][metric]
         o = summary["overall"]
         lines.append("")
+        opposite = o.get("opposite_sign") or 0
         lines.append(
             f"{metric}: ratio mean {_num(o['mean'])}  min {_num(o['min'])}  "
-            f"max {_num(o['max'])}  ({o['n']} pairs)"
+            f"max {_num(o['max'])}  ({o['n']} pairs"
+            + (f", {opposite} of opposite sign)" if opposite else ")")
         )
         for axis, groups in summary["by_axis"].items():
             cells = "  ".join(f"{value}: {_num(s['mean'])}" for value, s in groups.items())
@@ -105,7 +117,8 @@ def format_compare(result: dict, max_pairs: int = 40) -> str:
                 row += [
                     _num(p.get(f"{m}_baseline"), "{:.1f}"),
                     _num(p.get(f"{m}_candidate"), "{:.1f}"),
-                    _num(p.get(f"{m}_ratio")),
+                    _num(p.get(f"{m}_ratio"))
+                    + (" (opposite)" if p.get(f"{m}_sign") == "opposite" else ""),
                 ]
             rows.append(row)
         widths = [max(len(h), *(len(r[i]) for r in rows)) for i, h in enumerate(head)]

@@ -16,8 +16,10 @@ import sys
 import time
 from pathlib import Path
 
+from beltstudy.engine.warmth import COMPILE_LINE
 from beltstudy.service.cli.client import ServiceClient
 from beltstudy.service.cli.console import ProgressBar, format_compare, format_duration
+from beltstudy.service.dask.executor import WARMING
 from beltstudy.service.door.studyfile import study_body
 from beltstudy.service.errors import Unavailable
 from beltstudy.service.settings import Settings
@@ -48,22 +50,46 @@ def start_server(port: int, env: dict | None = None, log=None) -> subprocess.Pop
     )
 
 
-def wait_ready(client, proc: subprocess.Popen | None = None, timeout_s: float = 300.0) -> dict:
-    """Poll ``/health`` until the Dask executor is ready (workers started and warmed)."""
+#: A service that has not answered ``/health`` for this long is stuck [s] (it answers within
+#: seconds whatever the load: the route runs on its event loop, Dask starts in a thread).
+STUCK_S = 120.0
 
-    t0 = time.monotonic()
-    while time.monotonic() - t0 < timeout_s:
+
+def wait_ready(client, proc: subprocess.Popen | None = None, timeout_s: float | None = None,
+               say=None) -> dict:
+    """Poll ``/health`` until the Dask executor is ready (workers started and warmed).
+
+    No fixed limit: it follows the service's progress (``say(line)`` once per stage: starting
+    the workers, compiling the transient engine) as long as the service answers. It gives up
+    when the service exits, when Dask reports an error, when ``/health`` has not answered for
+    :data:`STUCK_S`, or after ``timeout_s`` when one is given."""
+
+    t0 = last_answer = time.monotonic()
+    stage = None
+    while timeout_s is None or time.monotonic() - t0 < timeout_s:
         if proc is not None and proc.poll() is not None:
             raise Unavailable(f"the service exited with status {proc.returncode}")
         try:
             health = client.health()
         except Unavailable:
             health = None  # not listening yet
-        if health is not None:
-            if health["executor"]["state"] == "ready":
+        now = time.monotonic()
+        if health is None:
+            if now - last_answer > STUCK_S:
+                raise Unavailable(f"the service has not answered /health for {STUCK_S:.0f} s")
+        else:
+            last_answer = now
+            state = health["executor"]["state"]
+            if state == "ready":
                 return health
-            if health["executor"]["state"] == "error":
+            if state == "error":
                 raise Unavailable(f"Dask: {health['executor']['error']}")
+            if state != stage and say is not None:
+                stage = state
+                if state == WARMING:
+                    say(f"{COMPILE_LINE} ...")
+                elif state == "starting":
+                    say("starting the Dask workers ...")
         time.sleep(0.5)
     raise Unavailable(f"the service was not ready after {timeout_s:.0f} s")
 
@@ -96,7 +122,7 @@ def run_demo(study_path: str = "studies/paper-comparison.yaml", port: int = 0) -
     t0 = time.monotonic()
     try:
         with ServiceClient(f"http://127.0.0.1:{port}", settings.token) as client:
-            health = wait_ready(client, proc)
+            health = wait_ready(client, proc, say=lambda line: print(line, flush=True))
             print(
                 f"{health['executor']['workers']} Dask workers ready and warmed in "
                 f"{time.monotonic() - t0:.1f} s"

@@ -7,6 +7,7 @@ validated as a SPEC section 2 scenario, so mistakes name the field and exit with
 from __future__ import annotations
 
 import argparse
+import sys
 
 import numpy as np
 import pandas as pd
@@ -155,8 +156,14 @@ def run(args: argparse.Namespace) -> int:
         if path and not path.endswith(exts):
             raise InputError(f"{path}: give a file ending in {' or '.join(exts)}")
     scn = build_scenario(args)
+    from beltstudy.engine.warmth import COMPILE_LINE, kernel_cold
+
+    if kernel_cold():  # one line before the wait, on stderr (stdout stays the result)
+        print(f"{COMPILE_LINE}: a minute or more on a busy machine", file=sys.stderr,
+              flush=True)
     res = run_one(conv, scn, model=fm.name, params=params, dynamics=True,
-                  remedy=not args.no_remedy, check=args.check)
+                  remedy=not args.no_remedy, check=args.check,
+                  say=lambda line: print(line, file=sys.stderr, flush=True))
     s = {"conveyor": conv.name, "friction_model": fm.name,
          "temperature_c": scn.temperature_c, "load": scn.load,
          "stop_mode": scn.stop.mode, "formulation": scn.formulation, **res.summary}

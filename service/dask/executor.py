@@ -32,6 +32,12 @@ log = logging.getLogger("beltstudy.executor")
 
 #: How long to wait for workers to appear and warm up [s].
 WARM_TIMEOUT_S = 600.0
+#: How long to wait for a first worker to join an external scheduler before that counts as a
+#: failure to start (reported in ``error``, then retried) [s]: a study waiting on Dask fails
+#: once it has failed for ``jobs.NO_WORKER_FAIL_S``.
+JOIN_TIMEOUT_S = 10.0
+#: The executor's ``state`` while its workers run their warm-up (the engine compiles there).
+WARMING = "warming"
 #: Pause between two attempts to reach Dask [s].
 RETRY_S = 5.0
 #: Dask settings of the LocalCluster (inherited by its worker processes): no statistical
@@ -74,8 +80,10 @@ class Executor:
 
     def __init__(self, settings: Settings):
         self.settings = settings
-        self.state = "idle"  # idle | starting | ready | error | closed
+        self.state = "idle"  # idle | starting | warming | ready | error | closed
         self.error = ""
+        #: When Dask first failed to start since it was last ready (monotonic) [s], or None
+        self.failing_since: float | None = None
         self.warm: dict[str, dict] = {}
         self.dashboard: str | None = None
         self._client = None
@@ -114,6 +122,7 @@ class Executor:
             if closed:  # closed while connecting: close what was made here
                 _close_quietly(client, cluster, self.settings.dask_timeout_s)
                 return
+            self.state = WARMING  # the workers compile the transient engine (first run only)
             try:
                 self._warm_up(client)
             except Exception as exc:
@@ -125,13 +134,16 @@ class Executor:
                 if self._closed.is_set():
                     return
                 self.state, self.error = "ready", ""
+                self.failing_since = None
                 self._ready.set()
             return
 
     def _failed(self, exc: Exception, where: str, last_error: str) -> str:
-        error = f"{type(exc).__name__}: {exc}"
+        error = exc.message if isinstance(exc, Unavailable) else f"{type(exc).__name__}: {exc}"
         if not self._closed.is_set():
             self.state, self.error = "error", error
+            if self.failing_since is None:
+                self.failing_since = time.monotonic()
             if error != last_error:  # once per distinct failure, not every retry
                 log.warning("cannot start Dask on %s: %s (retrying every %.0f s)",
                             where, error, RETRY_S)
@@ -143,10 +155,13 @@ class Executor:
         if self.settings.scheduler:
             client = Client(self.settings.scheduler, timeout=timeout, set_as_default=False)
             try:
-                client.wait_for_workers(1, timeout=WARM_TIMEOUT_S)
-            except Exception:
+                client.wait_for_workers(1, timeout=JOIN_TIMEOUT_S)
+            except Exception as exc:
                 _close_quietly(client, None, self.settings.dask_timeout_s)
-                raise
+                raise Unavailable(
+                    f"no Dask worker joined the scheduler {self.settings.scheduler} within "
+                    f"{JOIN_TIMEOUT_S:g} s ({type(exc).__name__}); start workers with "
+                    f"'dask worker {self.settings.scheduler}'") from None
             return client, None
 
         dask.config.set(LOCAL_DASK_CONFIG)
@@ -201,6 +216,25 @@ class Executor:
             except Exception as exc:  # a worker that cannot warm up still gets work
                 self.warm[addr] = {"errors": [f"{type(exc).__name__}: {exc}"]}
         log.info("warmed %d workers in %.1f s", len(futures), time.monotonic() - t0)
+        compiled = [a for a, w in self.warm.items() if a in futures and w.get("compiled")]
+        if compiled and not self.settings.scheduler and not self._closed.is_set():
+            # A process that compiled the kernel computes other last bits (about 1e-12) than
+            # one that loads it from numba's cache: so that a run gives the same stored figures
+            # whichever worker runs it, the workers that compiled start again and load it
+            log.info("restarting %d workers that compiled the kernel, to load it from the "
+                     "cache", len(compiled))
+            try:
+                client.restart_workers(compiled, timeout=WARM_TIMEOUT_S)
+                addrs = list(client.scheduler_info(n_workers=-1)["workers"])
+                again = [client.submit(warm_up, key=f"beltstudy-warm-up-{nonce}-again-{i}",
+                                       workers=[a], allow_other_workers=False, pure=False)
+                         for i, a in enumerate(addrs)]
+                self.warm = {a: f.result(timeout=WARM_TIMEOUT_S)
+                             for a, f in zip(addrs, again, strict=True)}
+            except Exception as exc:  # the workers go on with the kernel they compiled
+                log.warning("could not restart the workers that compiled the kernel (%s: %s); "
+                            "their runs may differ from other processes' in the last bits",
+                            type(exc).__name__, exc)
 
     def _drop(self) -> None:
         """Forget a client that is no longer usable (closing it in the background)."""
@@ -252,7 +286,9 @@ class Executor:
             left = None if deadline is None else deadline - time.monotonic()
             if left is not None and left <= 0:
                 where = self.settings.scheduler or "a LocalCluster"
-                detail = self.error or "still starting"
+                detail = self.error or ("its workers are compiling the transient engine "
+                                        "(first run only)" if self.state == WARMING
+                                        else "still starting")
                 raise Unavailable(f"Dask on {where} is not ready: {detail}")
             self._ready.wait(0.1 if left is None else min(0.1, left))
 

@@ -39,9 +39,14 @@ from beltstudy.service.store.columns import (
 )
 from beltstudy.service.store.parquet import PART_TABLES, Store
 
-__all__ = ["StudyJob", "study_schema", "batch_size", "RunRate"]
+__all__ = ["StudyJob", "study_schema", "batch_size", "RunRate", "NoWorkers",
+           "NO_WORKER_PREFIX"]
 
 log = logging.getLogger("beltstudy.jobs")
+
+
+class NoWorkers(Unavailable):
+    """Dask could not start any worker for the study's whole wait: the study fails."""
 
 #: Tasks kept in flight per worker.
 IN_FLIGHT_PER_WORKER = 2
@@ -64,6 +69,14 @@ FLUSH_RUNS = 1000
 POLL_S = 0.02
 #: How long a job waits for Dask before noting it in ``message`` and waiting again [s].
 WAIT_FOR_DASK_S = 5.0
+#: A study fails when Dask has kept failing to start (no cluster, no scheduler, no worker
+#: joining: ``Executor.failing_since``) for this long [s]; with the connect and join
+#: timeouts a study with no worker able to start fails within 30 s. A cluster that is
+#: starting or compiling is waited for without limit.
+NO_WORKER_FAIL_S = 12.0
+#: How the message of a study failed for want of Dask workers starts (such a study starts
+#: again when it is submitted again).
+NO_WORKER_PREFIX = "no Dask worker could start in"
 
 
 def _part_key(batch: list[RunSpec]) -> str:
@@ -75,8 +88,9 @@ def adjacent_starts(runs: list[RunSpec]) -> list[RunSpec]:
     """``runs`` with those that may share a start (:func:`start_candidate`) side by side, in
     the order their first run came (a stable regrouping: a study's other order is kept)."""
     groups: dict[tuple, list[RunSpec]] = {}
+    memo: dict = {}
     for r in runs:
-        groups.setdefault(start_candidate(r), []).append(r)
+        groups.setdefault(start_candidate(r, memo), []).append(r)
     return [r for g in groups.values() for r in g]
 
 
@@ -245,6 +259,11 @@ class StudyJob:
     def _main(self) -> None:
         try:
             self._execute()
+        except NoWorkers as exc:  # said in the study's message, not an unexpected error
+            log.warning("study %s failed: %s", self.study.id, exc.message)
+            if not self._cancel.is_set():
+                self.state = "failed"
+                self._save(message=exc.message, finished_at=time.time())
         except Exception as exc:  # an unexpected error ends this study, not the service
             log.exception("study %s failed", self.study.id)
             if not self._cancel.is_set():
@@ -303,7 +322,11 @@ class StudyJob:
         return ""
 
     def _wait_for_client(self):
-        """The executor's client, or None once the job is halted (never blocks longer)."""
+        """The executor's client, or None once the job is halted (never blocks longer).
+
+        While Dask starts or its workers compile, the study waits and says so; when Dask has
+        failed to start for :data:`NO_WORKER_FAIL_S` (its ``error`` state throughout), the
+        study fails naming why (:class:`NoWorkers`)."""
         while not self.halted:
             t0 = time.monotonic()
             try:
@@ -311,6 +334,15 @@ class StudyJob:
             except Unavailable as exc:
                 if self.halted:
                     break
+                since = getattr(self.executor, "failing_since", None)
+                # a study that has not started here fails; one that lost its scheduler
+                # mid-study waits for it to come back (its message says so)
+                if (self.session_start is None and since is not None
+                        and time.monotonic() - since >= NO_WORKER_FAIL_S):
+                    raise NoWorkers(
+                        f"{NO_WORKER_PREFIX} {NO_WORKER_FAIL_S:g} s: "
+                        f"{self.executor.error or exc}; its finished runs are kept: submit "
+                        "the study again once Dask works and it goes on") from None
                 self._save(message=f"waiting for Dask: {exc}")
                 self._stop.wait(max(0.0, WAIT_FOR_DASK_S - (time.monotonic() - t0)))
         return None

@@ -171,17 +171,32 @@ def _row_done(row: dict, spec: RunSpec, result, t0: float) -> dict:
     return row
 
 
-def start_candidate(spec: RunSpec) -> tuple:
-    """Runs that may share one simulated start (one conveyor mapping, model, parameters and
-    scenario but its stop); the engine decides which of them do
-    (:func:`beltstudy.engine.run.run_group`). A steady-only run or one in the accuracy sample
-    (its error bars rerun it) stands alone."""
+#: A brake's conveyor fields the transient engine reads only after the stop command
+#: (beltstudy.engine.dynamics.shared.STOP_ONLY): runs whose conveyors differ only in them may
+#: share a start.
+BRAKE_STOP_FIELDS = ("force_kn", "delay_s", "ramp_s", "force_curve", "hold")
+
+
+def start_candidate(spec: RunSpec, memo: dict | None = None) -> tuple:
+    """Runs that may share one simulated start: one conveyor but its brakes' forces, delays,
+    ramps, curves and hold, one model, parameters and scenario but its stop. The engine decides
+    which of them do (:func:`beltstudy.engine.run.run_group`, from the models it builds). A
+    steady-only run or one in the accuracy sample (its error bars rerun it) stands alone.
+    ``memo`` (id of a conveyor mapping -> its key) saves work over runs sharing a mapping."""
     if not spec.dynamics or spec.check:
         return ("alone", spec.run_id)
+    conv = spec.conveyor
+    shape = memo.get(id(conv)) if memo is not None else None
+    if shape is None:
+        brakes = [{k: v for k, v in b.items() if k not in BRAKE_STOP_FIELDS}
+                  for b in conv.get("brakes") or []]
+        shape = json.dumps({**conv, "brakes": brakes}, sort_keys=True, default=str)
+        if memo is not None:
+            memo[id(conv)] = shape
     scn = json.dumps({k: v for k, v in spec.scenario.items() if k != "stop"}, sort_keys=True,
                      default=str)
-    return (id(spec.conveyor), scn, spec.model, json.dumps(spec.params, sort_keys=True,
-                                                           default=str), spec.engine_version)
+    return (shape, scn, spec.model, json.dumps(spec.params, sort_keys=True, default=str),
+            spec.engine_version)
 
 
 def run_specs(specs: list[RunSpec], study_id: str = "") -> list[tuple[dict, Any]]:
@@ -189,8 +204,9 @@ def run_specs(specs: list[RunSpec], study_id: str = "") -> list[tuple[dict, Any]
     simulated start (:func:`beltstudy.engine.run.run_group`); results and rows as run alone.
     A group whose shared run raises runs again one run at a time (a bad run fails alone)."""
     groups: dict[tuple, list[int]] = {}
+    memo: dict = {}
     for i, spec in enumerate(specs):
-        groups.setdefault(start_candidate(spec), []).append(i)
+        groups.setdefault(start_candidate(spec, memo), []).append(i)
     out: list[tuple[dict, Any] | None] = [None] * len(specs)
     for idx in groups.values():
         if len(idx) > 1:
@@ -213,9 +229,13 @@ def _run_shared(specs: list[RunSpec], study_id: str) -> list[tuple[dict, Any]] |
     try:
         if any(engine.__version__ != s.engine_version for s in specs):
             return None
-        conveyor = parse_conveyor(specs[0].conveyor)
+        parsed: dict[int, object] = {}  # runs sharing a conveyor mapping share its model
+        for s in specs:
+            if id(s.conveyor) not in parsed:
+                parsed[id(s.conveyor)] = parse_conveyor(s.conveyor)
+        conveyors = [parsed[id(s.conveyor)] for s in specs]
         scenarios = [parse_scenario(s.scenario) for s in specs]
-        results = run_group(conveyor, scenarios, model=specs[0].model,
+        results = run_group(conveyors, scenarios, model=specs[0].model,
                             params=specs[0].params or None)
     except Exception:
         return None
@@ -325,7 +345,8 @@ def run_batch(
 def warm_up() -> dict:
     """Import the engine and run the tiny conveyor once per model, dynamics on (numba compile).
 
-    Returns the process id, the models warmed and the seconds it took.
+    Returns the process id, the models warmed, the seconds it took, the errors, and whether
+    this process compiled the kernel (``compiled``) instead of loading it from numba's cache.
     """
     t0 = time.perf_counter()
 
@@ -338,11 +359,16 @@ def warm_up() -> dict:
         row, _ = run_spec(spec)
         if row["status"] == "failed":
             errors.append(f"{name}: {row['message']}")
+    from beltstudy.engine.warmth import kernel_dispatchers
+
     return {
         "pid": os.getpid(),
         "models": models,
         "seconds": time.perf_counter() - t0,
         "errors": errors,
+        # compiled here rather than loaded from numba's cache: this process's kernel gives
+        # other last bits than the cached one every later process loads (issue 31)
+        "compiled": any(d.stats.cache_misses for d in kernel_dispatchers()),
     }
 
 

@@ -30,6 +30,7 @@ from typing import Any
 
 import yaml
 
+from beltstudy.engine.conveyor import Yaml12Floats
 from beltstudy.service.errors import Invalid, TooLarge
 
 __all__ = [
@@ -60,6 +61,18 @@ YAML_TYPES = ("application/yaml", "application/x-yaml", "text/yaml")
 class _Huge(str):
     """An integer literal with more than :data:`MAX_DIGITS` digits (reported with its path)."""
 
+    digits: int = 0  # decimal digits of its value
+
+
+def _huge(text: str, digits: int) -> _Huge:
+    out = _Huge(text)
+    out.digits = digits
+    return out
+
+
+#: Bits of the largest integer of :data:`MAX_DIGITS` decimal digits (10**309 < 2**1027).
+_MAX_BITS = math.ceil(MAX_DIGITS * math.log2(10))
+
 
 class _Duplicate(dict):
     """A JSON object that had a key twice (reported with its path)."""
@@ -78,9 +91,25 @@ class _Constructor(yaml.constructor.SafeConstructor):
     what = "body"
 
     def construct_yaml_int(self, node):
+        """An integer by its value, whatever its notation (``0x10``, ``0o20``, ``0b10000``,
+        ``020``, ``1_6`` are 16): one of more than :data:`MAX_DIGITS` decimal digits is
+        refused however it is written. Hexadecimal, octal and binary text is at least a
+        quarter as long in bits, so it is measured before it is read."""
         text = str(node.value)
-        if sum(c.isdigit() for c in text) > MAX_DIGITS:
-            return _Huge(text)
+        decimal = sum(c.isdigit() for c in text)
+        bare = text.lstrip("+-").replace("_", "")
+        bits = {"0x": 4, "0b": 1}.get(bare[:2].lower(), 3 if bare[:1] == "0" else 0)
+        if bits and ":" not in bare:
+            # a text of more characters than the largest value has bits is refused unread
+            chars = len(bare) - (2 if bits != 3 else 1)
+            if bits * (chars - 1) > _MAX_BITS:
+                return _huge(text, int(chars * bits * math.log10(2)) + 1)
+            value = super().construct_yaml_int(node)
+            digits = len(str(abs(value))) if value.bit_length() <= _MAX_BITS + 8 else \
+                int(value.bit_length() * math.log10(2)) + 1
+            return _huge(text, digits) if digits > MAX_DIGITS else value
+        if decimal > MAX_DIGITS:
+            return _huge(text, decimal)
         return super().construct_yaml_int(node)
 
     def refuse_tag(self, node):
@@ -106,7 +135,7 @@ class _PyLoader(
     yaml.parser.Parser,
     yaml.composer.Composer,
     _Constructor,
-    yaml.resolver.Resolver,
+    Yaml12Floats,
 ):
     """PyYAML's pure-Python parser with the constructor above."""
 
@@ -116,20 +145,20 @@ class _PyLoader(
         yaml.parser.Parser.__init__(self)
         yaml.composer.Composer.__init__(self)
         _Constructor.__init__(self)
-        yaml.resolver.Resolver.__init__(self)
+        Yaml12Floats.__init__(self)
         self.what = what
 
 
 if yaml.__with_libyaml__:
     from yaml.cyaml import CParser
 
-    class _CLoader(CParser, _Constructor, yaml.resolver.Resolver):
+    class _CLoader(CParser, _Constructor, Yaml12Floats):
         """libyaml's parser and composer (several times faster) with the constructor above."""
 
         def __init__(self, stream: str, what: str):
             CParser.__init__(self, stream)
             _Constructor.__init__(self)
-            yaml.resolver.Resolver.__init__(self)
+            Yaml12Floats.__init__(self)
             self.what = what
 
     _Loader: type = _CLoader
@@ -267,7 +296,7 @@ def _loads_yaml(text: str, what: str, loader_class: type | None = None) -> Any:
 # ------------------------------------------------------------------------------------ JSON
 def _json_int(text: str) -> int | _Huge:
     if len(text) - text.startswith("-") > MAX_DIGITS:
-        return _Huge(text)
+        return _huge(text, len(text) - text.startswith("-"))
     return int(text)
 
 
@@ -372,7 +401,7 @@ def check_tree(data: Any, what: str = "") -> None:
     def visit(value: Any, path: str, depth: int) -> tuple[int, int, int]:
         if isinstance(value, _Huge):
             raise Invalid(
-                f"{where(path)}: a number with {sum(c.isdigit() for c in value)} digits is out "
+                f"{where(path)}: a number with {value.digits} digits is out "
                 f"of range (at most {MAX_DIGITS} digits)"
             )
         if value is None or isinstance(value, bool | int):

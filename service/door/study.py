@@ -30,9 +30,11 @@ import math
 import re
 import typing
 from collections.abc import Callable, Iterable
+from functools import partial
 from typing import Annotated, Any, Literal, Union
 
 from pydantic import (
+    AfterValidator,
     BaseModel,
     ConfigDict,
     Discriminator,
@@ -46,6 +48,7 @@ from pydantic.json_schema import GenerateJsonSchema
 from pydantic_core import core_schema
 
 from beltstudy.engine import ALIASES, MODELS, Conveyor, InputError, Scenario, catalog
+from beltstudy.engine.conveyor import check_visible
 from beltstudy.service.door.sample import SampleIn
 from beltstudy.service.examples import TINY_CONVEYOR, TINY_SCENARIO
 from beltstudy.service.grid.axes import NAMED_AXES, field_model
@@ -605,7 +608,9 @@ class StudyIn(BaseModel):
 
     name: str = Field(..., description="study name (letters, digits, spaces, ._+-)",
                       json_schema_extra={"pattern": NAME_PATTERN})
-    description: str = Field("", max_length=2000, description="free text")
+    description: Annotated[str, AfterValidator(partial(check_visible, allow="\n\t"))] = Field(
+        "", max_length=2000, description="free text (lines and tabs; no other control or "
+        "bidi characters)")
     conveyor: ConveyorRef = Field(
         ..., description="a conveyor file under the service's studies directory, or inline")
     scenario: Scenario = Field(default_factory=Scenario)

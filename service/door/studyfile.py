@@ -23,6 +23,7 @@ from pydantic import ValidationError
 
 from beltstudy import engine
 from beltstudy.engine import InputError, catalog, get_model, parse_conveyor
+from beltstudy.engine.conveyor import json_numbers
 from beltstudy.service.door.messages import describe
 from beltstudy.service.door.parse import check_tree, load_mapping
 from beltstudy.service.door.sample import draw
@@ -61,13 +62,15 @@ __all__ = [
 ]
 
 
-def read_study(data: Any, *, strict: bool = False) -> StudyIn:
+def read_study(data: Any, *, strict: bool = True) -> StudyIn:
     """``data`` as a :class:`StudyIn`: the one validation of a study's types, names and
     bounds; :class:`Invalid` naming each problem's field.
 
-    ``strict`` holds every value to its JSON type, as the published schema does (a POSTed
-    body: ``"1"`` is no number, ``"true"`` no boolean); without it (study files, mappings built
-    in Python) Pydantic's conversions apply. Axes into lists are read as their fields
+    One strict path for study files, JSON and YAML bodies and mappings built in Python: every
+    value held to its JSON type, as the published schema does (``"1"`` is no number,
+    ``"true"`` no boolean, ``true`` no number), integers by value whatever their notation
+    (``12.0``, YAML's ``0x0c``). ``strict`` is kept for callers that pass it; a lax path no
+    longer exists. Axes into lists are read as their fields
     (:func:`~beltstudy.service.door.study.fold_axes`).
     """
     if not isinstance(data, dict):
@@ -79,32 +82,19 @@ def read_study(data: Any, *, strict: bool = False) -> StudyIn:
     if isinstance(data.get("zip"), list):
         folded["zip"] = [fold_axes(g) for g in data["zip"]]
     try:
-        if strict:
-            # Pydantic's strict mode takes JSON's types exactly on JSON text (on Python data it
-            # would also refuse a list for a pair, a motor curve's point): the tree checked
-            # above goes to it as JSON
-            return StudyIn.model_validate_json(json.dumps(_integers(folded)), strict=True)
-        return StudyIn.model_validate(folded)
+        # Pydantic's strict mode takes JSON's types exactly on JSON text (on Python data it
+        # would also refuse a list for a pair, a motor curve's point): the tree checked
+        # above goes to it as JSON
+        return StudyIn.model_validate_json(json.dumps(_integers(folded)), strict=True)
     except ValidationError as exc:
-        raise Invalid(describe(exc, folded, json_types=strict)) from None
+        raise Invalid(describe(exc, folded, json_types=True)) from None
 
 
 def _integers(data: dict) -> dict:
-    """A study with its integral numbers written as integers, as JSON Schema counts them
-    (``12.0`` is an integer; Pydantic's strict mode would refuse it for one): those from 1 to
-    2**53 in size (0 keeps its sign, a larger number is meant as a float). The design case
-    stays as written: it is stored as given."""
-
-    def walk(value: Any) -> Any:
-        if isinstance(value, float) and value.is_integer() and 1 <= abs(value) <= 2**53:
-            return int(value)
-        if isinstance(value, dict):
-            return {k: walk(v) for k, v in value.items()}
-        if isinstance(value, list):
-            return [walk(v) for v in value]
-        return value
-
-    return {k: v if k == "design" else walk(v) for k, v in data.items()}
+    """A study with its integral numbers written as integers
+    (:func:`beltstudy.engine.conveyor.json_numbers`). The design case stays as written: it is
+    stored as given."""
+    return {k: v if k == "design" else json_numbers(v) for k, v in data.items()}
 
 
 def conveyor_from_path(ref: str, base_dir: Path | None, root: Path | None) -> tuple[dict, str]:

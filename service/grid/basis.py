@@ -35,7 +35,6 @@ size never falls short by rounding), so a run id reflects the design it ran.
 
 from __future__ import annotations
 
-import copy
 import math
 from typing import Any
 
@@ -264,7 +263,10 @@ def apply_sizes(conv: dict, sizes: dict | None, scenario: dict, dynamics: bool
     """
     if not sizes:
         return conv, {}
-    out = copy.deepcopy(conv)
+    # copies of the parts sizes are written into; the rest is shared with ``conv`` (read only)
+    out = {**conv, "belt": dict(conv["belt"]), "takeup": dict(conv["takeup"]),
+           "drives": [dict(d) for d in conv["drives"]],
+           "brakes": [dict(b) for b in conv.get("brakes") or []]}
     governed: dict[str, str] = {}
     if sizes.get("belt") is not None and out["belt"].get("type") == BELT_AUTO:
         out["belt"]["type"] = sizes["belt"]["type"]

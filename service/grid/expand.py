@@ -17,11 +17,13 @@ the points of one run is null in its row.
 from __future__ import annotations
 
 import dataclasses
+import functools
 import hashlib
 import itertools
 import json
 import math
 from dataclasses import dataclass, field
+from functools import partial
 from typing import Any
 
 from beltstudy.engine import (
@@ -30,6 +32,8 @@ from beltstudy.engine import (
     InputError,
     Scenario,
     brake_sizing_stop_time,
+    conveyor_as_read,
+    conveyor_variant,
     get_model,
     parse_conveyor,
     parse_scenario,
@@ -73,6 +77,25 @@ _HASH_LEN = 16
 def canonical_json(value: Any) -> str:
     """JSON with sorted keys and no spaces: the text stable ids are hashed from."""
     return json.dumps(value, sort_keys=True, separators=(",", ":"), allow_nan=False)
+
+
+@functools.lru_cache(maxsize=4096)
+def _key_text(key: str) -> str:
+    return json.dumps(key)
+
+
+def canonical_mapping(value: dict, memo: dict[int, tuple[Any, str]]) -> str:
+    """:func:`canonical_json` of a mapping, each top-level value serialised once: ``memo``
+    keeps the text of values met before (by identity), so the many variants of one conveyor,
+    which share every part a grid point does not change, are serialised once per part."""
+    parts = []
+    for key in sorted(value):
+        item = value[key]
+        hit = memo.get(id(item))
+        if hit is None or hit[0] is not item:
+            hit = memo[id(item)] = (item, canonical_json(item))
+        parts.append(f"{_key_text(key)}:{hit[1]}")
+    return "{" + ",".join(parts) + "}"
 
 
 def stable_hash(value: Any) -> str:
@@ -320,6 +343,25 @@ def _parse_scenario(data: dict) -> Scenario:
     return parse_scenario(data, prefix="scenario.")
 
 
+def _variant_parser(base: dict, parse_whole, variant=None):
+    """``sets -> (model, dumped)`` for the variants of ``base`` (a dumped conveyor or
+    scenario whose values the door held to their JSON types): with ``variant`` (conveyors:
+    :func:`beltstudy.engine.conveyor.conveyor_variant`) only the top-level parts a grid point
+    changes are validated again; without, the whole mapping, without the JSON round trip."""
+    if variant is None:
+        def whole(sets):
+            model = parse_whole(with_paths(base, sets), strict=False)
+            return model, model.model_dump(mode="json", by_alias=True)
+        return whole
+    base_model = parse_whole(base, strict=False)
+
+    def parts(sets):
+        data = with_paths(base, sets)  # copies on write: the changed parts are new objects
+        changed = {k: v for k, v in data.items() if k not in base or v is not base[k]}
+        return variant(base_model, base, changed, "conveyor.")
+    return parts
+
+
 def _params_for(model: str, overrides: dict) -> dict:
     """The model's full parameter set (defaults filled) for the run id."""
     return dataclasses.asdict(get_model(model).params(overrides))
@@ -343,23 +385,27 @@ def _expand(
         keys = list(dict.fromkeys(tuple(p[i] for i in indices) for p in points))
         out, models, bad = {}, {}, []
         for key in keys:
-            data = with_paths(base, [(axes[i].target.path, axes[i].values[j])
-                                     for i, j in zip(indices, key, strict=True)])
+            sets = [(axes[i].target.path, axes[i].values[j])
+                    for i, j in zip(indices, key, strict=True)]
             try:
-                model = parse(data)
+                models[key], out[key] = parse(sets)
             except InputError as exc:
                 bad.append((_where(axes, indices, key), _err(exc)))
                 continue
-            out[key] = model.model_dump(mode="json", by_alias=True)
-            models[key] = model
         _refuse_points(kind, bad, len(keys))
         for key, variant in out.items():
             for i, j in zip(indices, key, strict=True):
                 canon[i][j] = get_path(variant, axes[i].target.path)
         return out, models
 
-    conveyors, conv_models = variants(i_conv, study.conveyor, _parse_conveyor, "conveyor")
-    scenarios, scen_models = variants(i_scen, study.scenario, _parse_scenario, "scenario")
+    conveyors, conv_models = variants(
+        i_conv, study.conveyor,
+        _variant_parser(study.conveyor, partial(parse_conveyor, prefix="conveyor."),
+                        conveyor_variant), "conveyor")
+    scenarios, scen_models = variants(
+        i_scen, study.scenario,
+        _variant_parser(study.scenario, partial(parse_scenario, prefix="scenario.")),
+        "scenario")
 
     # every realised pair: a per-section load must match the profile; a dynamic study's
     # scenario must be one the conveyor can do
@@ -406,8 +452,10 @@ def _expand(
                           model_of, params_of, designs)
 
     by_id: dict[str, dict] = {}
+    memo: dict[int, tuple[Any, str]] = {}  # canonical text of shared conveyor parts
     run_scenarios: dict[tuple, tuple[dict, str]] = {}
-    run_conveyors: dict[tuple, tuple[dict, dict, str]] = {}
+    run_conveyors: dict[tuple, tuple[dict, dict]] = {}
+    read_conveyors: dict[tuple, str] = {}  # canonical conveyor as read, per stop kind
     for p in points:
         ck = tuple(p[i] for i in i_conv)
         sk = tuple(p[i] for i in i_scen)
@@ -425,8 +473,14 @@ def _expand(
             entry = sized.get(ck)
             conveyor, governed = apply_sizes(conveyors[ck], entry["sizes"] if entry else None,
                                              scenario, study.dynamics)
-            run_conveyors[ckey] = (conveyor, governed, canonical_json(conveyor))
-        conveyor, governed, conveyor_json = run_conveyors[ckey]
+            run_conveyors[ckey] = (conveyor, governed)
+        conveyor, governed = run_conveyors[ckey]
+        # keyed on what the run reads of it: a brake that never acts does not make a new run
+        rkey = (ckey, (scenario.get("stop") or {}).get("mode") == "brake")
+        if rkey not in read_conveyors:
+            read_conveyors[rkey] = canonical_mapping(
+                conveyor_as_read(conveyor, scenario, dynamics=study.dynamics), memo)
+        conveyor_json = read_conveyors[rkey]
         key = "\x1f".join(
             [
                 conveyor_json,

@@ -15,7 +15,7 @@ import pyarrow as pa
 import pyarrow.parquet as pq
 
 from beltstudy.engine import InputError, canonical_name, get_model
-from beltstudy.service.errors import Invalid, NotFound
+from beltstudy.service.errors import Invalid
 from beltstudy.service.store.columns import TE_PART_COLUMNS, components_from_row
 
 __all__ = [
@@ -101,13 +101,14 @@ def model_name(text: str, field: str) -> str:
 def apply_filters(df: pd.DataFrame, filters: list[str]) -> pd.DataFrame:
     """Keep rows where every ``column=value`` holds (numbers compared as numbers; a value
     that no row of the column can have, like text for a number, keeps no row).
-    A column the study does not have is :class:`NotFound` listing the columns."""
+    A column the study does not have is :class:`Invalid` (422) naming ``filter`` and listing
+    the columns."""
     for item in filters:
         column, sep, text = item.partition("=")
         if not sep or not column:
             raise Invalid(f"filter: '{item}' is not column=value")
         if column not in df.columns:
-            raise NotFound(
+            raise Invalid(
                 f"filter: this study has no column '{column}'; columns: {', '.join(df.columns)}"
             )
         if column == "friction_model":  # its aliases too; an unknown name keeps no row
@@ -153,13 +154,19 @@ def compare(
     candidate: str,
     metrics: list[str],
     study_id: str = "",
+    models: list[str] | None = None,
 ) -> dict:
     """Pairs of runs that differ only in the friction model, with candidate / baseline ratios.
 
     Returns ``{"study_id", "baseline", "candidate", "metrics", "pairs": [...],
     "failed_pairs", "summary": {metric: {"overall": stats, "by_axis": {axis: {value:
-    stats}}}}}``; stats are n, mean, min and max of the ratio. A pair with a failed run has no
-    ratio (``failed_pairs`` counts them).
+    stats}}}}, "same_in_all_pairs": {axis: value}, "ratio"}``; stats are n, mean, min and max
+    of the ratio. A ratio is a magnitude, ``|candidate| / |baseline|``; ``<metric>_sign`` says
+    ``opposite`` where the two values have opposite signs (``overall.opposite_sign`` counts
+    them). Only the axes whose values differ between the pairs are listed per pair and per
+    axis; the others are in ``same_in_all_pairs``. A pair with a failed run has no ratio
+    (``failed_pairs`` counts them). ``models``: the study's friction models (a model
+    not among them is :class:`Invalid` naming the parameter); default: those in ``runs``.
     """
     metrics = list(metrics) or list(DEFAULT_METRICS)
     valid = [c for c in runs.columns if pd.api.types.is_float_dtype(runs[c]) and c not in axes]
@@ -175,10 +182,11 @@ def compare(
             raise Invalid(f"metrics: unknown metric '{m}'; valid: " + ", ".join(valid))
     baseline = model_name(baseline, "baseline")
     candidate = model_name(candidate, "candidate")
-    models = sorted(set(runs["friction_model"].dropna())) if len(runs) else []
+    if models is None:
+        models = sorted(set(runs["friction_model"].dropna())) if len(runs) else []
     for label, name in (("baseline", baseline), ("candidate", candidate)):
-        if len(runs) and name not in models:
-            raise NotFound(
+        if models and name not in models:
+            raise Invalid(
                 f"{label}: model '{name}' is not in this study; it has: {', '.join(models)}"
             )
     others = [a for a in axes if a != "friction_model"]
@@ -193,6 +201,12 @@ def compare(
             cand.reset_index(drop=True).add_suffix("_candidate"), how="inner")
     if others and len(merged):
         merged = merged.sort_values(others, kind="stable").reset_index(drop=True)
+    # only the parameters that differ between the pairs: an axis the two models' runs do not
+    # read (another model's parameter) or that has one value among them is no difference
+    same = {a: _clean(merged[a].iloc[0]) for a in others
+            if len(merged) and merged[a].nunique(dropna=False) <= 1}
+    merged = merged.drop(columns=list(same))
+    others = [a for a in others if a not in same]
     pairs = []
     summary: dict[str, dict] = {}
     usable = (merged["status_baseline"] != "failed") & (merged["status_candidate"] != "failed")
@@ -200,9 +214,14 @@ def compare(
         b = merged[f"{m}_baseline"].astype(float)
         c = merged[f"{m}_candidate"].astype(float)
         with np.errstate(divide="ignore", invalid="ignore"):
-            merged[f"{m}_ratio"] = np.where(usable & (b != 0), c / b, np.nan)
+            # a magnitude: |candidate| / |baseline|; where the two have opposite signs (a
+            # drive that regenerates under one model and drives under the other, a tension
+            # below zero) the sign column says so instead of a negative ratio
+            merged[f"{m}_ratio"] = np.where(usable & (b != 0), np.abs(c) / np.abs(b), np.nan)
+            opposite = usable & (np.sign(b) * np.sign(c) < 0)
+        merged[f"{m}_sign"] = np.where(opposite, "opposite", np.where(usable, "same", None))
         summary[m] = {
-            "overall": _stats(merged[f"{m}_ratio"]),
+            "overall": {**_stats(merged[f"{m}_ratio"]), "opposite_sign": int(opposite.sum())},
             "by_axis": {
                 a: {
                     str(_clean(value)): _stats(group[f"{m}_ratio"])
@@ -221,6 +240,9 @@ def compare(
         "pairs": pairs,
         "failed_pairs": int((~usable).sum()),
         "summary": summary,
+        "same_in_all_pairs": same,
+        "ratio": "magnitude |candidate| / |baseline|; <metric>_sign is 'opposite' where the "
+                 "two values have opposite signs",
     }
 
 

@@ -17,7 +17,7 @@ from beltstudy.service.charts import RUN_PLOTS, STUDY_PLOTS
 from beltstudy.service.errors import Invalid, NotFound
 from beltstudy.service.grid.expand import ResolvedStudy
 from beltstudy.service.store import query
-from beltstudy.service.studies import StudyService
+from beltstudy.service.studies import StudyService, study_models
 
 __all__ = [
     "STUDY_PLOTS",
@@ -91,6 +91,14 @@ def study_figure(
     """A callable drawing plot ``name`` of a study (checks the id, then the name)."""
     doc = service.store.read(study_id)
     check_name(name, STUDY_PLOTS)
+    models = study_models(doc)
+    for label, given in (("baseline", baseline), ("candidate", candidate)):
+        # given: a model the study runs (an empty or unknown value is a 422 naming it)
+        if given is not None and query.model_name(given, label) not in models:
+            raise Invalid(f"{label}: model '{given}' is not in this study; it has: "
+                          + ", ".join(models))
+    baseline = query.model_name(baseline, "baseline") if baseline is not None else None
+    candidate = query.model_name(candidate, "candidate") if candidate is not None else None
     return figure_of(doc, service.store.read_runs(study_id), name, baseline, candidate,
                      study_id)
 

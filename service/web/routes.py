@@ -17,7 +17,7 @@ from typing import Literal
 from fastapi import APIRouter, Depends, Query, Response
 from fastapi.responses import HTMLResponse
 
-from beltstudy.service.api.deps import ERROR_RESPONSES, get_service, require_token
+from beltstudy.service.api.deps import ERROR_RESPONSES, check_query, get_service, require_token
 from beltstudy.service.errors import NotFound
 from beltstudy.service.studies import StudyService
 from beltstudy.service.web import figures
@@ -44,7 +44,8 @@ _PLOT_RESPONSES = {
 }
 
 pages = APIRouter(include_in_schema=False)
-api = APIRouter(dependencies=[Depends(require_token)], responses=ERROR_RESPONSES, tags=["plots"])
+api = APIRouter(dependencies=[Depends(require_token), Depends(check_query)],
+                responses=ERROR_RESPONSES, tags=["plots"])
 
 
 def _resource(*parts: str) -> str:

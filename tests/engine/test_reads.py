@@ -59,3 +59,36 @@ def test_brakes_are_sized_for_the_stop_time_only_of_a_brake_stop():
     for mode in ("coast", "controlled"):
         scn = _scenario(stop={"mode": mode, "time_s": 12})
         assert brake_sizing_stop_time(scn, dynamics=True) is None
+
+
+# --------------------------------------------------------------------------------------------
+# the conveyor as a run reads it: the law of a brake that never acts
+
+
+def _brake_conveyor(hold: bool) -> dict:
+    return {"name": "c", "brakes": [
+        {"position": "head", "force_kn": 120.0, "delay_s": 0.5, "ramp_s": 1.0,
+         "force_curve": None, "hold": hold}]}
+
+
+def test_a_brake_that_never_acts_is_not_read():
+    from beltstudy.engine.reads import UNREAD, conveyor_as_read, unread_brakes
+
+    coast, brake = {"stop": {"mode": "coast"}}, {"stop": {"mode": "brake"}}
+    controlled = {"stop": {"mode": "controlled"}}
+    free, held = _brake_conveyor(False), _brake_conveyor(True)
+    # transient: a brake without hold acts only in a brake stop; one with hold is set once
+    # the belt has stopped in every mode (it then carries the gravity pull: read)
+    assert unread_brakes(free, coast, dynamics=True) == (0,)
+    assert unread_brakes(free, controlled, dynamics=True) == (0,)
+    assert unread_brakes(free, brake, dynamics=True) == ()
+    assert unread_brakes(held, coast, dynamics=True) == ()
+    # steady: the statics place the brake, never use its law
+    assert unread_brakes(held, brake, dynamics=False) == (0,)
+    read = conveyor_as_read(free, coast, dynamics=True)
+    assert read["brakes"][0] == {"position": "head", "force_kn": UNREAD, "delay_s": UNREAD,
+                                 "ramp_s": UNREAD, "force_curve": UNREAD, "hold": False}
+    assert free["brakes"][0]["force_kn"] == 120.0  # not changed in place
+    # read in full: the conveyor itself (a key made of it is the key it always was)
+    assert conveyor_as_read(held, coast, dynamics=True) is held
+    assert conveyor_as_read(free, brake, dynamics=True) is free

@@ -249,11 +249,12 @@ def test_query_errors_name_the_parameter(api, data_dir, finished_study, make_stu
     assert r.status_code == 422 and r.json()["message"].startswith("query.format:")
     r = client.get(f"/studies/{sid}/runs", params={"filter": "nope"})
     assert r.status_code == 422 and "filter: 'nope' is not column=value" in r.json()["message"]
-    # well-formed, but this study has no such column or model: not found, naming what it has
+    # well-formed, but this study has no such column or model: 422 naming the parameter and
+    # what the study has (a 404 would read as "no such study")
     r = client.get(f"/studies/{sid}/runs", params={"filter": "nope=1"})
-    assert r.status_code == 404 and "this study has no column 'nope'" in r.json()["message"]
+    assert r.status_code == 422 and "this study has no column 'nope'" in r.json()["message"]
     r = client.get(f"/studies/{sid}/compare", params={"baseline": "din", "candidate": "nonlin"})
-    assert r.status_code == 404 and "candidate: model 'nonlin' is not in this study" in r.text
+    assert r.status_code == 422 and "candidate: model 'nonlin' is not in this study" in r.text
     # a value no row of a number column can have keeps no row
     r = client.get(f"/studies/{sid}/runs", params={"filter": "power_kw=abc"})
     assert r.status_code == 200 and r.json()["total"] == 0

@@ -34,7 +34,8 @@ def run_schemathesis(url: str, token: str, max_examples: int, seed: int, log: Pa
     """The schemathesis command line over ``url``; its output (also written to ``log``)."""
     exe = Path(sys.executable).parent / "schemathesis"
     cmd = [
-        str(exe), "run", f"{url}/openapi.json",
+        str(exe), "--config-file", str(Path(__file__).with_name("schemathesis.toml")),
+        "run", f"{url}/openapi.json",
         "-H", f"Authorization: Bearer {token}",
         "--checks", "all",
         "--phases", "examples,fuzzing,stateful",

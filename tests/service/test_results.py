@@ -7,7 +7,7 @@ import math
 import pandas as pd
 import pytest
 
-from beltstudy.service.errors import Invalid, NotFound
+from beltstudy.service.errors import Invalid
 from beltstudy.service.store.query import apply_filters, compare, row_to_json
 
 
@@ -49,15 +49,40 @@ def test_compare_pairs_runs_differing_only_in_model():
         "mean": pytest.approx(0.8),
         "min": pytest.approx(0.8),
         "max": pytest.approx(0.8),
+        "opposite_sign": 0,
     }
     assert set(s["by_axis"]) == {"temperature_c", "load"}
     assert set(s["by_axis"]["load"]) == {"full", "empty"}
     assert out["summary"]["t_max_dyn_kn"]["overall"]["n"] == 0
 
 
+def test_compare_lists_only_what_differs_and_ratios_as_magnitudes():
+    """A din parameter axis is read by neither cema nor nonlin (their rows have it null),
+    and a drive force that is negative under one model (regenerating) gives a magnitude ratio
+    with its sign named, not -0.127."""
+    runs = _runs()
+    runs["models.din.f_carry"] = None
+    runs["drive_force_max_kn"] = [100.0, 40.0, -12.7 / 0.8, 10.0] * 2
+    runs.loc[runs["friction_model"] == "nonlin", "drive_force_max_kn"] = \
+        [80.0, 32.0, 12.7, 8.0]
+    out = compare(runs, ["friction_model", "temperature_c", "load", "models.din.f_carry"],
+                  "cema", "nonlin", ["drive_force_max_kn"])
+    assert out["same_in_all_pairs"] == {"models.din.f_carry": None}
+    assert all("models.din.f_carry" not in p for p in out["pairs"])
+    assert set(out["summary"]["drive_force_max_kn"]["by_axis"]) == {"temperature_c", "load"}
+    by_run = {p["run_id_baseline"]: p for p in out["pairs"]}
+    # 12.7 / |-15.875| = 0.8 as a magnitude, marked opposite; the others 0.8, same sign
+    assert by_run["cema20.0full"]["drive_force_max_kn_ratio"] == pytest.approx(0.8)
+    assert by_run["cema20.0full"]["drive_force_max_kn_sign"] == "opposite"
+    assert {p["drive_force_max_kn_sign"] for k, p in by_run.items()
+            if k != "cema20.0full"} == {"same"}
+    assert all(p["drive_force_max_kn_ratio"] == pytest.approx(0.8) for p in out["pairs"])
+    assert out["summary"]["drive_force_max_kn"]["overall"]["opposite_sign"] == 1
+
+
 def test_compare_refuses_unknown_models_and_metrics():
     runs = _runs()
-    with pytest.raises(NotFound, match="candidate: model 'visco' is not in this study"):
+    with pytest.raises(Invalid, match="candidate: model 'visco' is not in this study"):
         compare(runs, ["friction_model"], "cema", "visco", ["power_kw"])
     with pytest.raises(Invalid, match="metrics: unknown metric 'powr'"):
         compare(runs, ["friction_model"], "cema", "nonlin", ["powr"])
@@ -76,7 +101,7 @@ def test_filters_compare_numbers_as_numbers():
     runs = _runs()
     assert len(apply_filters(runs, ["temperature_c=20"])) == 4
     assert len(apply_filters(runs, ["load=full", "friction_model=cema"])) == 2
-    with pytest.raises(NotFound, match="this study has no column 'nope'"):
+    with pytest.raises(Invalid, match="this study has no column 'nope'"):
         apply_filters(runs, ["nope=1"])
     with pytest.raises(Invalid, match="not column=value"):
         apply_filters(runs, ["temperature_c"])

@@ -85,7 +85,10 @@ def test_ratio_falls_back_to_the_models_present(done):
                 params={"format": "svg", "baseline": "din", "candidate": "cema"}).text
     assert "cema / din" in svg
     r = c.get(f"/studies/{sid}/plots/ratio", params={"candidate": "nonlin"})
-    assert r.status_code == 404 and "nonlin" in r.json()["message"]
+    assert r.status_code == 422 and r.json()["message"].startswith("candidate: model 'nonlin'")
+    for param in ("baseline", "candidate"):  # empty: named, not drawn as an empty figure
+        r = c.get(f"/studies/{sid}/plots/ratio", params={param: ""})
+        assert r.status_code == 422 and r.json()["message"].startswith(f"query.{param}: empty")
 
 
 @pytest.mark.parametrize("name", list(figures.RUN_PLOTS))

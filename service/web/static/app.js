@@ -88,6 +88,26 @@ function fmtValue(v) {
   return String(v);
 }
 
+// The unit a column's name ends in (SPEC: every key that carries a unit ends in it), longest
+// suffix first; none for a name without one.
+const UNITS = [["_kn_m", "kN/m"], ["_kg_m2", "kg\u00b7m\u00b2"], ["_kg_m", "kg/m"],
+  ["_knm", "kN\u00b7m"], ["_m_s", "m/s"], ["_rad_s", "rad/s"], ["_t_h", "t/h"],
+  ["_kn", "kN"], ["_kw", "kW"], ["_kg", "kg"], ["_pct", "%"], ["_deg", "\u00b0"],
+  ["_c", "\u00b0C"], ["_mm", "mm"], ["_m", "m"], ["_s", "s"], ["_h", "h"], ["_n", "N"]];
+
+function unitOf(column) {
+  const hit = UNITS.find(([suffix]) => column.endsWith(suffix));
+  return hit ? hit[1] : "";
+}
+
+// A cell of column ``column``: a number in engineering format with its column's unit (a
+// no-break space between), anything else as text.
+function fmtCell(column, v) {
+  if (typeof v !== "number") return fmtValue(v);
+  const unit = unitOf(column);
+  return fmtNumber(v) + (unit ? "\u00a0" + unit : "");
+}
+
 // A message cell that keeps its row short: the first 90 characters, the rest folded into a
 // <details> element (text nodes only).
 function messageCell(text) {
@@ -343,7 +363,7 @@ function studyPage(id) {
     const tbody = document.querySelector("#runs tbody");
     tbody.replaceChildren(...shown.map((r) => el("tr",
       { class: "status-" + r.status, data: { runId: r.run_id } },
-      cols.map((c) => c === "message" ? messageCell(r[c]) : el("td", { text: fmtValue(r[c]) }))
+      cols.map((c) => c === "message" ? messageCell(r[c]) : el("td", { text: fmtCell(c, r[c]) }))
         .concat([el("td", {}, [el("a", { text: "open",
           href: "/ui/studies/" + encodeURIComponent(id) + "/runs/" + encodeURIComponent(r.run_id) })])]))));
     document.getElementById("runs-count").textContent =
@@ -457,7 +477,7 @@ function runPage(studyId, runId) {
         if (v != null) rows.push(["te_components_kn." + part, v]);
       }
       document.querySelector("#run-summary tbody").replaceChildren(...rows.map(([k, v]) =>
-        el("tr", {}, [el("th", { text: k }), el("td", { text: fmtValue(v) })])));
+        el("tr", {}, [el("th", { text: k }), el("td", { text: fmtCell(k, v) })])));
       loadImages();
       showError("");
     } catch (e) { showError(e.message); }

@@ -15,7 +15,8 @@ import random
 import numpy as np
 import pytest
 
-from beltstudy.engine.conveyor import Scenario, parse_conveyor
+from beltstudy.engine.capacity import fill_pct
+from beltstudy.engine.conveyor import FILL_MAX_PCT, Scenario, parse_conveyor
 from beltstudy.engine.run import run_one
 
 BELTS = ["ST1000", "ST1600", "ST2000", "ST2500", "EP630/4", "EP800/4", "EP1000/5"]
@@ -75,7 +76,20 @@ def _design(rng: random.Random) -> tuple[dict, str, dict]:
     return conv, rng.choice(["din", "cema", "nonlin"]), scenario
 
 
-SAMPLE = [_design(random.Random(seed)) for seed in range(60)]
+def _within_fill(design: tuple[dict, str, dict]) -> tuple[dict, str, dict]:
+    """A design whose capacity overfills its belt beyond what a design can reach
+    (:data:`~beltstudy.engine.conveyor.FILL_MAX_PCT`) carries half as much (no draw of the
+    generator is changed: the other designs stay as they were)."""
+    conv, model, scenario = design
+    while fill_pct(parse_conveyor({**conv, "material": {**conv["material"],
+                                                         "capacity_t_h": 1.0}})) \
+            * conv["material"]["capacity_t_h"] > FILL_MAX_PCT:
+        conv = {**conv, "material": {**conv["material"],
+                                     "capacity_t_h": conv["material"]["capacity_t_h"] / 2}}
+    return conv, model, scenario
+
+
+SAMPLE = [_within_fill(_design(random.Random(seed))) for seed in range(60)]
 
 
 @pytest.mark.parametrize("conv, model, scenario", SAMPLE,

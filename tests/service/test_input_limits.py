@@ -1,0 +1,155 @@
+"""Input limits a design can reach and no more, applied the same way to files, JSON and YAML:
+no text for a number anywhere, no boolean for a number, integers by value whatever their
+notation, physical bounds naming the field and the bound, no control or bidi characters in
+names.
+"""
+
+from __future__ import annotations
+
+import json
+
+import pytest
+import yaml
+
+from beltstudy.engine import InputError, parse_conveyor
+from beltstudy.engine.capacity import fill_pct
+from beltstudy.engine.conveyor import FILL_MAX_PCT, load_conveyor
+from beltstudy.service.door.parse import loads, parse_body
+from beltstudy.service.door.studyfile import load_study_file, resolve_study
+from beltstudy.service.errors import Invalid
+
+from .conftest import ROOT
+
+
+def _three_ways(tmp_path, study: dict) -> list[str]:
+    """The refusal of ``study`` as a study file, a JSON body and a YAML body (messages)."""
+    out = []
+    path = tmp_path / "study.yaml"
+    path.write_text(yaml.safe_dump(study), encoding="utf-8")
+    for load in (
+        lambda: load_study_file(path),
+        lambda: resolve_study(parse_body(json.dumps(study).encode(), "application/json"),
+                              strict=True),
+        lambda: resolve_study(parse_body(yaml.safe_dump(study).encode(), "application/yaml")),
+    ):
+        with pytest.raises(Invalid) as err:
+            load()
+        out.append(err.value.message)
+    return out
+
+
+def test_text_for_a_number_is_refused_in_files_json_and_yaml(tmp_path, make_study,
+                                                             make_conveyor):
+    study = make_study(conveyor=make_conveyor(speed_m_s="4.5"))
+    for message in _three_ways(tmp_path, study):
+        assert message.startswith('conveyor.speed_m_s: "4.5" is not of type "number"'), message
+    # a conveyor file read on its own (beltstudy static) and one a study names by path
+    conv = tmp_path / "conveyors" / "c.yaml"
+    conv.parent.mkdir()
+    conv.write_text(yaml.safe_dump(make_conveyor(speed_m_s="4.5")), encoding="utf-8")
+    with pytest.raises(InputError, match=r"^speed_m_s: Input should be a valid number"):
+        load_conveyor(conv)
+    with pytest.raises(Invalid, match=r"^conveyor: speed_m_s: Input should be a valid number"):
+        resolve_study(make_study(conveyor="conveyors/c.yaml"), studies_dir=tmp_path)
+
+
+def test_a_boolean_is_no_number_in_any_axis_named_before_duplicates(tmp_path, make_study):
+    # [true, 1.0] was read as [1.0, 1.0] and refused as "value 1.0 appears twice"
+    for message in _three_ways(tmp_path, make_study(grid={"temperature_c": [True, 1.0]})):
+        assert message == 'grid.temperature_c.0: true is not of type "number"'
+    for message in _three_ways(tmp_path, make_study(grid={"takeup.mass_kg": [1000, False]})):
+        assert message.startswith('grid.takeup.mass_kg.1: false is not of type "number"')
+    with pytest.raises(Invalid, match=r'^scenario.run_s: true is not of type "number"'):
+        resolve_study(make_study(scenario={"run_s": True}))
+
+
+def test_integers_by_value_whatever_their_notation(make_study):
+    # YAML 1.1: 0x10, 020 (octal) and 0b10000 are the integer 16
+    text = yaml.safe_dump(make_study(grid={"temperature_c": ["A", 16]})).replace("- A", "- 0x10")
+    assert loads(text, yaml_text=True)["grid"]["temperature_c"] == [16, 16]
+    with pytest.raises(Invalid, match=r"^grid.temperature_c: value 16 appears twice"):
+        resolve_study(parse_body(text.encode(), "application/yaml"))
+    for literal in ("0x10", "020", "0b10000", "16.0", "1_6"):
+        body = yaml.safe_dump(make_study()).replace("elements: 12", f"elements: {literal}")
+        assert "elements: " + literal in body
+        study = resolve_study(parse_body(body.encode(), "application/yaml"))
+        assert study.scenario["elements"] == 16
+
+
+@pytest.mark.parametrize(("literal", "digits"), [
+    ("0x" + "f" * 300, 362),       # 16**300 - 1 has 362 decimal digits
+    ("0x1" + "0" * 256, 309),      # 16**256 = 2**1024: 309 digits (1.8e308)... the bound
+    ("-0b1" + "0" * 1100, 332),    # 2**1100: 332 digits
+    ("0" + "7" * 400, 362),        # YAML 1.1 octal: 8**400 - 1 has 362 digits
+    ("0x" + "f" * 100_000, 120_412),
+])
+def test_hex_octal_and_binary_integers_count_digits_by_value(make_study, literal, digits):
+    body = yaml.safe_dump(make_study(grid={"temperature_c": ["X"]})).replace("- X",
+                                                                             f"- {literal}")
+    if digits <= 309:
+        data = loads(body, yaml_text=True)
+        assert len(str(data["grid"]["temperature_c"][0])) == digits
+        return
+    with pytest.raises(Invalid) as err:
+        loads(body, yaml_text=True)
+    assert err.value.message.startswith("grid.temperature_c.0: a number with ")
+    assert "out of range (at most 309 digits)" in err.value.message
+    shown = int(err.value.message.split("a number with ")[1].split()[0])
+    assert abs(shown - digits) <= 1  # by value; a long text is sized from its length alone
+
+
+def test_yaml_exponent_without_sign_is_a_number():
+    # YAML 1.1 reads 6.0e4 as text; with numbers held to their type it would be refused
+    assert loads("a: 6.0e4\nb: 1e5\nc: -2E3\nd: 1e", yaml_text=True) == {
+        "a": 60000.0, "b": 100000.0, "c": -2000.0, "d": "1e"}
+    conv = load_conveyor(ROOT / "studies" / "conveyors" / "valley-booster.yaml")
+    assert conv.accessories.scrapers[0].pressure_n_m2 == 6.0e4
+
+
+@pytest.mark.parametrize(("over", "message"), [
+    ({"takeup": {"mass_kg": 1e300}},
+     "takeup.mass_kg: Input should be less than or equal to 2000000"),
+    ({"takeup": {"type": "fixed", "pretension_kn": 1e9}},
+     "takeup.pretension_kn: Input should be less than or equal to 17280"),
+    ({"material": {"capacity_t_h": 1e12, "density_t_m3": 1.0}},
+     "material.capacity_t_h: Input should be less than or equal to 200000"),
+    ({"drives": [{"pulley_diameter_m": 60.0}]},
+     "drives.0.pulley_diameter_m: Input should be less than or equal to 5"),
+    ({"drives": [{"rated_power_kw": 1e9}]},
+     "drives.0.rated_power_kw: Input should be less than or equal to 30000"),
+    ({"drives": [{"inertia_kg_m2": 1e20}]},
+     "drives.0.inertia_kg_m2: Input should be less than or equal to 10000000"),
+    ({"brakes": [{"force_kn": 1e6}]},
+     "brakes.0.force_kn: Input should be less than or equal to 17280"),
+    ({"speed_m_s": 300.0}, "speed_m_s: Input should be less than or equal to 30"),
+    ({"profile": [{"length_m": 90_000.0, "lift_m": 0}] * 3},
+     "profile: 270000 m of route in all; at most 200000 m"),
+])
+def test_absurd_magnitudes_name_their_bound(make_study, make_conveyor, over, message):
+    with pytest.raises(Invalid) as err:
+        resolve_study(make_study(conveyor=make_conveyor(**over)))
+    assert message in err.value.message, err.value.message
+
+
+def test_a_capacity_is_held_to_the_fill_it_implies(make_conveyor):
+    base = make_conveyor()
+    fill = fill_pct(parse_conveyor(base))  # fill is proportional to the capacity
+    ok = base["material"]["capacity_t_h"] * 0.99 * FILL_MAX_PCT / fill
+    assert fill_pct(parse_conveyor(make_conveyor(material={"capacity_t_h": ok}))) < 300
+    over = base["material"]["capacity_t_h"] * 1.01 * FILL_MAX_PCT / fill
+    with pytest.raises(InputError) as err:
+        parse_conveyor(make_conveyor(material={"capacity_t_h": over}))
+    assert str(err.value).startswith(f"material.capacity_t_h: {over:g} t/h fills the belt's "
+                                     "cross-section to 303 % at 2 m/s; at most 300 %")
+
+
+@pytest.mark.parametrize("bad", ["\x00", "\u202e", "\u2066", "\x1b[31m", "\u200b", "\u2028"])
+def test_control_and_bidi_characters_are_refused_in_names(tmp_path, make_study,
+                                                          make_conveyor, bad):
+    for message in _three_ways(tmp_path, make_study(conveyor=make_conveyor(
+            name=f"belt{bad}1"))):
+        assert message.startswith(f"conveyor.name: contains U+{ord(bad[0]):04X}"), message
+    with pytest.raises(Invalid, match=rf"^description: contains U\+{ord(bad[0]):04X}"):
+        resolve_study(make_study(description=f"about{bad}"))
+    # lines and tabs stay allowed in a description
+    assert resolve_study(make_study(description="two\nlines\tand a tab")).total == 6
