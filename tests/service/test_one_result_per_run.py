@@ -2,9 +2,14 @@
 another run first, with different thread settings of the numeric libraries) stores the same
 bytes: its runs row (but the wall-clock ``elapsed_s``) and its time series, as Parquet.
 
-Both processes load the same compiled kernel (numba's cache of this checkout). Across
-machines the kernel is compiled for each CPU: see the report of issue 31 for what that means
-for the fast-math flags.
+Both processes load the same compiled kernel (numba's cache of this checkout). Measured for
+issue 31 (the 5 % slope, din, paper-comparison's first run): with the kernel's fast-math flags
+as they are (``engine/dynamics/fastmath.py``: ``reassoc`` and ``contract`` among them) a
+process that compiles the kernel stores other last bits than every process that loads it
+from the cache (``t_max_dyn_kn`` 470.3735892113305 against 470.37358921133074, reproduced
+with two fresh caches); without ``reassoc`` and ``contract`` the two agree. The service
+restarts workers that compiled (``Executor._warm_up``), so its runs come from the cached
+kernel.
 """
 
 from __future__ import annotations
