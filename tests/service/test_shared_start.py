@@ -48,3 +48,28 @@ def test_the_job_keeps_the_runs_of_one_start_side_by_side(make_study):
     # each candidate's runs form one unbroken stretch
     changes = sum(1 for a, b in zip(keys, keys[1:], strict=False) if a != b)
     assert changes == len(set(keys)) - 1
+
+
+def test_brake_stops_of_one_start_share_it_though_their_brakes_are_sized_apart(make_study,
+                                                                              make_conveyor):
+    """A head brake sized for each brake stop's time (force auto): the runs' conveyors differ
+    in the brake's force, which the engine reads only after the stop command, so the coast and
+    the two braked stops of a temperature are one candidate start, and each row is its run's
+    alone."""
+    conv = make_conveyor(brakes=[{"position": "head", "force_kn": "auto", "delay_s": 0.2}])
+    runs = resolve_study(make_study(
+        name="brakes", dynamics=True, conveyor=conv,
+        grid={"temperature_c": [-10, 20], "scenario.stop.mode": ["coast", "brake"],
+              "stop_time_s": [2, 4]})).runs
+    brake_runs = [r for r in runs if r.scenario["stop"]["mode"] == "brake"]
+    forces = {r.conveyor["brakes"][0]["force_kn"] for r in brake_runs}
+    assert len(forces) == 2  # sized apart for the two stop times
+    assert len({start_candidate(r) for r in runs}) == 2  # one per temperature
+    for spec, (row, _result) in zip(runs, run_specs(runs, "sid"), strict=True):
+        alone, _ = run_spec(spec, "sid")
+        for k, v in row.items():
+            if k in TIMING:
+                continue
+            w = alone[k]
+            assert (v == w) or (isinstance(v, float) and math.isnan(v) and math.isnan(w)), \
+                (spec.run_id, k, v, w)
