@@ -20,11 +20,14 @@ from numba.extending import intrinsic
 
 __all__ = ["FASTMATH", "FASTMATH_RED", "OPTS", "OPTS_RED", "OPTS_ORDERED", "vlog", "vexp"]
 
-#: LLVM fast-math flags: everything but 'nnan'/'ninf' (divergence checks still see NaN) and
+#: LLVM fast-math flags: everything but 'nnan'/'ninf' (divergence checks still see NaN),
 #: 'reassoc' (sums keep the order written: a reassociated sum in a loop that stores is
 #: vectorised behind runtime checks and could come out differently from one memory layout to
-#: the next; element-wise loops vectorise without it).
-FASTMATH = {"nsz", "arcp", "contract", "afn"}
+#: the next; element-wise loops vectorise without it) and 'contract' (a multiply and an add
+#: fused or not by the code generator: the kernel compiled in a process and the same kernel
+#: loaded from numba's cache gave other last bits with it). The same inputs give the same bits
+#: in any process, compiled or cached.
+FASTMATH = {"nsz", "arcp", "afn"}
 #: For pure reductions (min/max, exact in any order) that LLVM only vectorises without NaN
 #: semantics.
 FASTMATH_RED = FASTMATH | {"nnan", "ninf", "reassoc"}
