@@ -18,7 +18,7 @@ from pathlib import Path
 
 from numba.core import caching
 
-__all__ = ["PackageCacheLocator", "package_stamp", "install"]
+__all__ = ["PackageCacheLocator", "PackageUserCacheLocator", "package_stamp", "install"]
 
 _HERE = Path(__file__).resolve().parent
 
@@ -47,8 +47,25 @@ class PackageCacheLocator(caching.InTreeCacheLocator):
         return package_stamp()
 
 
+class PackageUserCacheLocator(caching.UserProvidedCacheLocator):
+    """The same under ``NUMBA_CACHE_DIR`` when it is set (numba's own rule: that directory
+    wins over the in-tree one)."""
+
+    @classmethod
+    def from_function(cls, py_func, py_file):
+        if Path(py_file).resolve().parent != _HERE:
+            return None
+        return super().from_function(py_func, py_file)
+
+    def get_source_stamp(self):
+        return package_stamp()
+
+
 def install() -> None:
-    """Put :class:`PackageCacheLocator` first among numba's cache locators (once)."""
+    """Put the package's locators first among numba's cache locators (once):
+    :class:`PackageUserCacheLocator` (``NUMBA_CACHE_DIR`` set), then
+    :class:`PackageCacheLocator`."""
     classes = caching.CacheImpl._locator_classes
-    if PackageCacheLocator not in classes:
-        classes.insert(0, PackageCacheLocator)
+    for cls in (PackageCacheLocator, PackageUserCacheLocator):
+        if cls not in classes:
+            classes.insert(0, cls)
