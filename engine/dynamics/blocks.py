@@ -33,14 +33,14 @@ import math
 
 from numba import njit
 
-from beltstudy.engine.dynamics.fastmath import OPTS_ORDERED
+from beltstudy.engine.dynamics.fastmath import OPTS
 from beltstudy.engine.dynamics.passes import spring as _spring_impl
 from beltstudy.engine.dynamics.passes import spring_rest as _spring_rest
 
 __all__ = ["block_step", "solve_arrow", "solve_dense", "coulomb"]
 
 
-@njit(**OPTS_ORDERED)
+@njit(**OPTS)
 def solve_dense(A, b, m):
     """Solve A[:m, :m] x = b[:m] in place (Gaussian elimination, partial pivoting); x in b."""
     for k in range(m):
@@ -72,7 +72,7 @@ def solve_dense(A, b, m):
         b[k] = s / A[k, k]
 
 
-@njit(inline="always", **OPTS_ORDERED)
+@njit(inline="always", **OPTS)
 def solve_arrow(d, lo, up, cl, rw, x, m, car, car_free):
     """Solve a block's system in place (x holds the right-hand side, then the solution).
 
@@ -155,7 +155,7 @@ def solve_arrow(d, lo, up, cl, rw, x, m, car, car_free):
     return True
 
 
-@njit(inline="always", **OPTS_ORDERED)
+@njit(inline="always", **OPTS)
 def coulomb(p, dd, fb, hb):
     """Velocity of a mass under ``dd v = p - fb sign(v)`` (a Coulomb brake of force ``fb``,
     holding when ``|p| <= fb``) and, with a holdback ``hb``, never below zero. ``dd > 0``."""
@@ -171,7 +171,7 @@ def coulomb(p, dd, fb, hb):
     return v
 
 
-@njit(inline="always", **OPTS_ORDERED)
+@njit(inline="always", **OPTS)
 def _solve(wk, m, car, car_fixed, two):
     """Solve the working band (wd, wl, wu, wc, wr) for ``sol`` (and ``sol2`` when ``two``),
     band elimination first, the dense pivoting solve when a pivot is not positive. The
@@ -215,7 +215,7 @@ def _solve(wk, m, car, car_fixed, two):
         solve_dense(A, b, mu)
 
 
-@njit(inline="always", **OPTS_ORDERED)
+@njit(inline="always", **OPTS)
 def _row_brake(wk, k, fb, hb, vo, v_eps):
     """A brake of force ``fb`` and/or a holdback acting on block row ``k`` (its shaft sticks to
     the belt): the stick's reaction range; the element is tried held at rest when it moves
@@ -228,7 +228,7 @@ def _row_brake(wk, k, fb, hb, vo, v_eps):
     wk.stuck[k] = 1.0 if (can and (abs(vo) <= v_eps or (hb and vo < 0.0))) else 0.0
 
 
-@njit(inline="always", **OPTS_ORDERED)
+@njit(inline="always", **OPTS)
 def _reaction(wk, x, k, m, car):
     """Residual of row ``k`` at the solution: the reaction a stuck element's brake or holdback
     gives."""
@@ -242,7 +242,7 @@ def _reaction(wk, x, k, m, car):
     return s
 
 
-@njit(inline="always", **OPTS_ORDERED)
+@njit(inline="always", **OPTS)
 def _saturate_master(drives, master, U):
     """The speed loop's output within the master drive's force limit (``share x U``)."""
     f = drives.share[master] * U
@@ -253,7 +253,7 @@ def _saturate_master(drives, master, U):
     return U
 
 
-@njit(inline="always", **OPTS_ORDERED)
+@njit(inline="always", **OPTS)
 def _share_force(drives, dk, U):
     """A torque-following drive's force ``share x U`` within its own force limit."""
     f = drives.share[dk] * U
@@ -264,7 +264,7 @@ def _share_force(drives, dk, U):
     return f
 
 
-@njit(inline="always", **OPTS_ORDERED)
+@njit(inline="always", **OPTS)
 def _side_tensions(wk, sp, blocks, tt, x, p0, k, m, car):
     """Tensions of the springs on both sides of block element ``k`` at the solution [N]."""
     if k > 0:
@@ -286,7 +286,7 @@ def _side_tensions(wk, sp, blocks, tt, x, p0, k, m, car):
     return tl, tr
 
 
-@njit(inline="always", **OPTS_ORDERED)
+@njit(inline="always", **OPTS)
 def _belt_force(wk, blocks, x, p0, k, inv_veps, tl, tr):
     """Force the pulley passes to the belt element ``k`` at the solution: what its momentum
     balance needs besides the belt's own forces [N]."""
@@ -295,7 +295,7 @@ def _belt_force(wk, blocks, x, p0, k, inv_veps, tl, tr):
     return blocks.mdt[p0 + k] * (xk - wk.v_old[k]) - (tr - tl) + rk - wk.fexp[k]
 
 
-@njit(inline="always", **OPTS_ORDERED)
+@njit(inline="always", **OPTS)
 def _shaft_push(model, s, U, sl, ft):
     """Momentum over dt plus the forces on a slipping shaft but its brake [N]."""
     shafts = model.shafts
@@ -311,7 +311,7 @@ def _shaft_push(model, s, U, sl, ft):
     return p
 
 
-@njit(inline="always", **OPTS_ORDERED)
+@njit(inline="always", **OPTS)
 def _shaft_speed(model, s, U, v_ref, sl, ts):
     """New speed of a slipping shaft: its inertia under its drive and brake forces less the
     sliding force ``sl (e^(mu_k theta) - 1) ts`` it gives the belt. A torque-following drive
@@ -341,7 +341,7 @@ def _shaft_speed(model, s, U, v_ref, sl, ts):
     return v
 
 
-@njit(inline="always", **OPTS_ORDERED)
+@njit(inline="always", **OPTS)
 def _block_setup(model, st, wk, p0, m, hold_node):
     """The block's rows before the active set: each implicit spring's tension at the step's
     start and its stiffness over the step (``bA``, ``bB``), each element's old speed, its
@@ -392,7 +392,7 @@ def _block_setup(model, st, wk, p0, m, hold_node):
     return km
 
 
-@njit(inline="always", **OPTS_ORDERED)
+@njit(inline="always", **OPTS)
 def _master_output(model, wk, rs, km, U, have_u):
     """The speed loop's output U for this pass when the master's row gives it directly (a
     held or stuck master at its imposed speed), within the master's limit. Returns (U, two):
@@ -410,7 +410,7 @@ def _master_output(model, wk, rs, km, U, have_u):
     return U, False
 
 
-@njit(inline="always", **OPTS_ORDERED)
+@njit(inline="always", **OPTS)
 def _slack_side(wk, sp, blocks, tt, x, p0, k, m, car, sl):
     """The tension of the side a slip of direction ``sl`` unloads at block element ``k`` (the
     outgoing spring when ``sl > 0``, the incoming one when ``sl < 0``) as its constant part
@@ -432,7 +432,7 @@ def _slack_side(wk, sp, blocks, tt, x, p0, k, m, car, sl):
     return tt[blocks.left[p0]], 0.0
 
 
-@njit(inline="always", **OPTS_ORDERED)
+@njit(inline="always", **OPTS)
 def _master_speed(model, st, wk, p0, km, m, car):
     """The master's new shaft speed as ``g0 + gu U`` from the two solves (``sol``, the
     response ``sol2`` to U): the belt's speed at its row while it sticks; while it slips, its
@@ -453,7 +453,7 @@ def _master_speed(model, st, wk, p0, km, m, car):
     return g0, gu
 
 
-@njit(inline="always", **OPTS_ORDERED)
+@njit(inline="always", **OPTS)
 def _shaft_row(model, wk, rs, k, s, d, r, U, two):
     """A block row's shaft: its slip factors on the two sides (``ml``, ``mr``), and while it
     sticks its mass and drive force added to the row. Returns (d, r, ml, mr, coefficient of
@@ -492,7 +492,7 @@ def _shaft_row(model, wk, rs, k, s, d, r, U, two):
     return d, r, ml, mr, uc
 
 
-@njit(inline="always", **OPTS_ORDERED)
+@njit(inline="always", **OPTS)
 def _block_rows(model, st, wk, rs, p0, m, car, U, two):
     """Assemble the block's band (``dg``, ``lo``, ``up``, ``cl``, ``rhs``) and the working
     copy the solve takes, with held and stuck rows replaced by their imposed speeds."""
@@ -558,7 +558,7 @@ def _block_rows(model, st, wk, rs, p0, m, car, U, two):
             wk.cuc[k] = uc
 
 
-@njit(inline="always", **OPTS_ORDERED)
+@njit(inline="always", **OPTS)
 def _carriage_row(model, wk, rs, p0, m, car_fixed, car_v):
     """The gravity take-up carriage's row: its inertia and weight, and the springs beside
     its pulley (or its imposed speed at an end stop)."""
@@ -579,7 +579,7 @@ def _carriage_row(model, wk, rs, p0, m, car_fixed, car_v):
     wk.cuc[m] = 0.0
 
 
-@njit(inline="always", **OPTS_ORDERED)
+@njit(inline="always", **OPTS)
 def _block_solution(model, st, wk, rs, p0, m, car, car_fixed, two, km, U):
     """Solve the block's band for its speeds (``wk.sol``); with ``two`` also the response to
     U and U from the master's new shaft speed (:func:`_master_speed`), within its limit.
@@ -600,7 +600,7 @@ def _block_solution(model, st, wk, rs, p0, m, car, car_fixed, two, km, U):
     return U
 
 
-@njit(inline="always", **OPTS_ORDERED)
+@njit(inline="always", **OPTS)
 def _row_consistent(model, wk, k, m, car, U):
     """The active set of row ``k`` against the solution: a follower at its force limit, a
     stuck element whose reaction left its range, a holdback or brake that now holds, the
@@ -651,7 +651,7 @@ def _row_consistent(model, wk, k, m, car, U):
     return again
 
 
-@njit(inline="always", **OPTS_ORDERED)
+@njit(inline="always", **OPTS)
 def _shaft_consistent(model, st, wk, rs, p0, k, m, car, U):
     """Row ``k``'s shaft against the solution: a sticking shaft that would pass more than its
     capstan grip starts to slip; a slipping one whose speed crosses the belt's sticks again
@@ -703,7 +703,7 @@ def _shaft_consistent(model, st, wk, rs, p0, k, m, car, U):
     return False
 
 
-@njit(inline="always", **OPTS_ORDERED)
+@njit(inline="always", **OPTS)
 def _drive_output(model, rs, s, ft, vs_old, vsn, U):
     """A drive's force at the rim after the step [N] (mode 2: what moved its shaft; mode 1:
     its share of U, a slipping follower only what holds it in its window; mode 0: its linear
@@ -742,7 +742,7 @@ def _drive_output(model, rs, s, ft, vs_old, vsn, U):
     return f
 
 
-@njit(inline="always", **OPTS_ORDERED)
+@njit(inline="always", **OPTS)
 def _write_back(model, st, wk, rs, p0, m, car, U):
     """The solution into the belt, the shafts and the drives. Returns (holding force or nan,
     brake force, sum w v, sum of drive forces, drive power, drive work) of the block; adds the
@@ -807,7 +807,7 @@ def _write_back(model, st, wk, rs, p0, m, car, U):
     return hold_f, f_brake, vsum, f_tot, p_tot, w_drv
 
 
-@njit(inline="always", **OPTS_ORDERED)
+@njit(inline="always", **OPTS)
 def _block_springs(model, st, p0, m, car, u_new):
     """The block's implicit springs from the new velocities (and the carriage's speed)."""
     blocks = model.blocks
@@ -824,7 +824,7 @@ def _block_springs(model, st, p0, m, car, u_new):
         st.tt[s_] = t1
 
 
-@njit(inline="always", **OPTS_ORDERED)
+@njit(inline="always", **OPTS)
 def block_step(bk, model, st, wk, rs):
     """Advance the velocities of block ``bk`` by one step (see the module docstring).
 

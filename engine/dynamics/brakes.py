@@ -19,7 +19,7 @@ import numpy as np
 from numba import njit
 
 from beltstudy.engine import design
-from beltstudy.engine.dynamics.fastmath import OPTS_ORDERED
+from beltstudy.engine.dynamics.fastmath import OPTS
 from beltstudy.engine.dynamics.laws import padded_curves
 
 __all__ = ["Brakes", "build_brakes", "brake_force", "brake_fraction", "set_at"]
@@ -69,7 +69,7 @@ def build_brakes(conv, scn, loop, shaft_index: dict, total_mass: float, te: floa
         t_cmd=np.full(nb, -1.0), released=np.zeros(nb, dtype=np.int64))
 
 
-@njit(inline="always", **OPTS_ORDERED)
+@njit(inline="always", **OPTS)
 def brake_fraction(tau, ramp, ct, cf, nc):
     """Fraction of a brake's force ``tau`` seconds after it was applied (past its delay): a
     linear ramp over ``ramp`` [s], or the curve of ``nc`` points (times ``ct`` [s], fractions
@@ -90,7 +90,7 @@ def brake_fraction(tau, ramp, ct, cf, nc):
     return tau / ramp
 
 
-@njit(inline="always", **OPTS_ORDERED)
+@njit(inline="always", **OPTS)
 def brake_force(brakes, b, tau, v):
     """Force of brake ``b`` [N] ``tau`` seconds after its delay ran out (negative before),
     its shaft turning at ``v`` [m/s at the rim]: the full force times
@@ -99,7 +99,7 @@ def brake_force(brakes, b, tau, v):
                                             brakes.curve_f[b], brakes.curve_n[b])
 
 
-@njit(inline="always", **OPTS_ORDERED)
+@njit(inline="always", **OPTS)
 def set_at(brakes, b):
     """The time brake ``b``, commanded at ``brakes.t_cmd[b]``, gives its full force [s]: the
     command, its delay and its ramp (or its force curve's last time)."""

@@ -33,32 +33,27 @@ def package_stamp() -> bytes:
     return h.digest()
 
 
-class PackageCacheLocator(caching.InTreeCacheLocator):
+class _PackageStamp:
+    """For this package's functions only, stamped with :func:`package_stamp`."""
+
+    @classmethod
+    def from_function(cls, py_func, py_file):
+        if Path(py_file).resolve().parent != _HERE:
+            return None
+        return super().from_function(py_func, py_file)
+
+    def get_source_stamp(self):
+        return package_stamp()
+
+
+class PackageCacheLocator(_PackageStamp, caching.InTreeCacheLocator):
     """numba's in-tree cache (``__pycache__`` beside the sources) for the functions of this
     package, stamped with :func:`package_stamp`."""
 
-    @classmethod
-    def from_function(cls, py_func, py_file):
-        if Path(py_file).resolve().parent != _HERE:
-            return None
-        return super().from_function(py_func, py_file)
 
-    def get_source_stamp(self):
-        return package_stamp()
-
-
-class PackageUserCacheLocator(caching.UserProvidedCacheLocator):
+class PackageUserCacheLocator(_PackageStamp, caching.UserProvidedCacheLocator):
     """The same under ``NUMBA_CACHE_DIR`` when it is set (numba's own rule: that directory
     wins over the in-tree one)."""
-
-    @classmethod
-    def from_function(cls, py_func, py_file):
-        if Path(py_file).resolve().parent != _HERE:
-            return None
-        return super().from_function(py_func, py_file)
-
-    def get_source_stamp(self):
-        return package_stamp()
 
 
 def install() -> None:

@@ -18,7 +18,7 @@ from numba import njit, types, uintp
 from numba.core import cgutils
 from numba.extending import intrinsic
 
-__all__ = ["FASTMATH", "FASTMATH_RED", "OPTS", "OPTS_RED", "OPTS_ORDERED", "vlog", "vexp"]
+__all__ = ["FASTMATH", "FASTMATH_RED", "OPTS", "OPTS_RED", "vlog", "vexp"]
 
 #: LLVM fast-math flags: everything but 'nnan'/'ninf' (divergence checks still see NaN),
 #: 'reassoc' (sums keep the order written: a reassociated sum in a loop that stores is
@@ -36,13 +36,6 @@ FASTMATH_RED = FASTMATH | {"nnan", "ninf", "reassoc"}
 OPTS = dict(cache=True, nogil=True, fastmath=FASTMATH, error_model="numpy", _nrt=False)
 #: Options of the reductions.
 OPTS_RED = dict(cache=True, nogil=True, fastmath=FASTMATH_RED, error_model="numpy", _nrt=False)
-#: Options of a sum that must come out the same whatever the memory layout: without 'reassoc'
-#: LLVM keeps the order written. A reassociated sum in a loop that also stores is vectorised
-#: behind runtime alias checks, and the checks pick the vector or the scalar loop by where the
-#: arrays lie in memory: the two add in different orders, so the same run could differ in its
-#: last bits from one process (or one copy of its arrays) to the next.
-OPTS_ORDERED = dict(cache=True, nogil=True, fastmath=FASTMATH - {"reassoc"},
-                    error_model="numpy", _nrt=False)
 
 
 # --------------------------------------------------------------------------------------

@@ -40,7 +40,7 @@ from numba import njit, uintp
 from beltstudy.engine.dynamics import codes as C
 from beltstudy.engine.dynamics.blocks import block_step
 from beltstudy.engine.dynamics.brakes import brake_force, set_at
-from beltstudy.engine.dynamics.fastmath import OPTS_ORDERED
+from beltstudy.engine.dynamics.fastmath import OPTS
 from beltstudy.engine.dynamics.laws import coupling_torque, motor_force
 from beltstudy.engine.dynamics.passes import (
     extremes,
@@ -65,7 +65,7 @@ HOLD, RUN, OFF = C.HOLD, C.RUN, C.OFF
 # phase: the speed reference, brakes and drive laws of the step
 
 
-@njit(inline="always", **OPTS_ORDERED)
+@njit(inline="always", **OPTS)
 def _dol_law(model, dk, vs, fac, t):
     """A dol drive's force law ``f0 + f1 v`` for the step: its motor curve linearised in the
     shaft speed, or through its coupling (the motor's speed eliminated over the step; the
@@ -106,7 +106,7 @@ def _dol_law(model, dk, vs, fac, t):
     drives.lin_cs[dk] = cs
 
 
-@njit(inline="always", **OPTS_ORDERED)
+@njit(inline="always", **OPTS)
 def _drive_laws(model, rs, first_off):
     """Each drive's force law for this step (modes of :class:`~beltstudy.engine.dynamics.
     records.Drives`): the speed loop's share (vfd running, relative formulation), an imposed
@@ -151,7 +151,7 @@ def _drive_laws(model, rs, first_off):
             drives.mode[dk] = 1
 
 
-@njit(inline="always", **OPTS_ORDERED)
+@njit(inline="always", **OPTS)
 def _brake_forces(model, rs):
     """Command, release and current force of every brake (its law:
     :func:`beltstudy.engine.dynamics.brakes.brake_force`); the force on each shaft. Returns
@@ -190,7 +190,7 @@ def _brake_forces(model, rs):
     return latest
 
 
-@njit(inline="always", **OPTS_ORDERED)
+@njit(inline="always", **OPTS)
 def _phase(model, rs):
     """The step's phase: the speed reference (start or controlled stop), the drives' trip,
     what the drives do (hold at rest, run, off), the brakes' forces (:func:`_brake_forces`),
@@ -247,7 +247,7 @@ def _phase(model, rs):
 # the passes of one step
 
 
-@njit(inline="always", **OPTS_ORDERED)
+@njit(inline="always", **OPTS)
 def _resistances(model, st, wk, rs):
     """The resistance law per element for this step into ``wk.r0``: exactly, or with the
     expanded law the elements the last observe found outside their windows."""
@@ -263,7 +263,7 @@ def _resistances(model, st, wk, rs):
         law_refresh(lin.idx, m, st.v, st.tt, lin, wk.r0)
 
 
-@njit(inline="always", **OPTS_ORDERED)
+@njit(inline="always", **OPTS)
 def _free_elements(model, st, wk, rs):
     """Explicit velocity update of the free elements; ``rs.vsum`` their weighted speed sum."""
     sp = model.springs
@@ -275,7 +275,7 @@ def _free_elements(model, st, wk, rs):
     rs.vsum = vsum
 
 
-@njit(inline="always", **OPTS_ORDERED)
+@njit(inline="always", **OPTS)
 def _blocks(model, st, wk, rs):
     """Every implicit block (the master drive's first, so the speed loop's output is known to
     the others), the step's drive and brake totals, the take-up carriage's end stops; then the
@@ -333,7 +333,7 @@ def _blocks(model, st, wk, rs):
             rs.xhi_start = max(rs.xhi_start, rs.x_tu)
 
 
-@njit(inline="always", **OPTS_ORDERED)
+@njit(inline="always", **OPTS)
 def _free_springs(model, st, wk):
     """The free springs from the new velocities."""
     sp = model.springs
@@ -345,7 +345,7 @@ def _free_springs(model, st, wk):
 # observe: envelopes, extremes, divergence, per-drive results
 
 
-@njit(inline="always", **OPTS_ORDERED)
+@njit(inline="always", **OPTS)
 def _diverged(model, rs):
     """Whether the belt, a pulley shaft or a motor behind a coupling left the finite range or
     passed ``v_fail``; sets the status and what diverged (``div_where``)."""
@@ -368,7 +368,7 @@ def _diverged(model, rs):
     return rs.status == C.DIVERGED
 
 
-@njit(inline="always", **OPTS_ORDERED)
+@njit(inline="always", **OPTS)
 def _drive_results(model, st, out, rs):
     """Per drive after the start command: largest force and power, the slip margin with the
     tensions on both sides of its pulley, time and belt length slipped, time above the rated
@@ -428,7 +428,7 @@ def _drive_results(model, st, out, rs):
             h.last = t
 
 
-@njit(inline="always", **OPTS_ORDERED)
+@njit(inline="always", **OPTS)
 def _observe(model, st, out, wk, rs):
     """Envelopes and extremes of the new state (with the expanded law also the law at the new
     state, :func:`passes.observe_lin`), divergence and runaway, the cycle's extremes and, after
@@ -481,7 +481,7 @@ def _observe(model, st, out, wk, rs):
 # the phase switches after a step: stop, slack, envelope segments
 
 
-@njit(**OPTS_ORDERED)
+@njit(**OPTS)
 def _envelope_times(t, t_max, t_min, snap_max, snap_min, t_max_t, t_min_t):
     """Stamp the springs whose envelope grew since the last record with time t."""
     for jj in range(t_max.shape[0]):
@@ -496,7 +496,7 @@ def _envelope_times(t, t_max, t_min, snap_max, snap_min, t_max_t, t_min_t):
         snap_min[j] = lo
 
 
-@njit(**OPTS_ORDERED)
+@njit(**OPTS)
 def _archive_segment(seg, t, out):
     """Copy the current envelopes into segment ``seg`` and close it at time t."""
     for j in range(out.t_max.shape[0]):
@@ -507,7 +507,7 @@ def _archive_segment(seg, t, out):
     out.seg_time[seg, 1] = t
 
 
-@njit(**OPTS_ORDERED)
+@njit(**OPTS)
 def _cut_segment(seg, t, tt, out, wk):
     """Close the envelope segment ``seg`` at time t and start the next from the tensions now."""
     _envelope_times(t, out.t_max, out.t_min, wk.t_max_snap, wk.t_min_snap, out.t_max_t,
@@ -525,7 +525,7 @@ def _cut_segment(seg, t, tt, out, wk):
     return seg + 1
 
 
-@njit(inline="always", **OPTS_ORDERED)
+@njit(inline="always", **OPTS)
 def _switches(model, st, out, wk, rs):
     """After the step: the stop achieved, the belt stopped (holding brakes set, the rest
     begins: at 1 % of design speed, and on a controlled stop once its reference has run out),
@@ -568,7 +568,7 @@ def _switches(model, st, out, wk, rs):
 # records
 
 
-@njit(**OPTS_ORDERED)
+@njit(**OPTS)
 def _record(pr, shafts, drives, master, i_tu, st, out, rs, vabs):
     """One record of the key points (:data:`~beltstudy.engine.dynamics.records.RECORD`), the
     probe springs (``pr``, :class:`~beltstudy.engine.dynamics.records.Probes`) and the drives
@@ -610,14 +610,14 @@ def _record(pr, shafts, drives, master, i_tu, st, out, rs, vabs):
     rs.nrec += 1
 
 
-@njit(inline="always", **OPTS_ORDERED)
+@njit(inline="always", **OPTS)
 def _record_now(model, st, out, rs, vabs):
     """:func:`_record` with the records it reads."""
     _record(model.probes, model.shafts, model.drives, model.control.master, model.takeup.node,
             st, out, rs, vabs)
 
 
-@njit(**OPTS_ORDERED)
+@njit(**OPTS)
 def _record_surface(probes, st, out, rs):
     """One row of the surface: the tension and speed of the surface springs at ``rs.t``."""
     if rs.nsurf >= out.surf_t.shape[0]:
@@ -630,7 +630,7 @@ def _record_surface(probes, st, out, rs):
     rs.nsurf += 1
 
 
-@njit(inline="always", **OPTS_ORDERED)
+@njit(inline="always", **OPTS)
 def _records(model, st, out, wk, rs):
     """The records and the surface due at this step, with the envelopes' times."""
     dt = model.cycle.dt
@@ -647,7 +647,7 @@ def _records(model, st, out, wk, rs):
 # start and finish
 
 
-@njit(inline="always", **OPTS_ORDERED)
+@njit(inline="always", **OPTS)
 def _start(model, st, out, wk, rs):
     """The run's initial values: the law at the initial state, envelopes from the rest
     tensions, empty results, the end of the run, the first record. The take-up, the speed
@@ -721,7 +721,7 @@ def _start(model, st, out, wk, rs):
     _record_surface(model.probes, st, out, rs)
 
 
-@njit(inline="always", **OPTS_ORDERED)
+@njit(inline="always", **OPTS)
 def _finish(model, st, out, wk, rs):
     """After the last step: a last record at the end time, the envelopes' times, the last
     envelope segment archived."""
@@ -740,7 +740,7 @@ def _finish(model, st, out, wk, rs):
 PAUSED = -1
 
 
-@njit(**OPTS_ORDERED)
+@njit(**OPTS)
 def run_cycle(model, st, out, wk, t_pause):
     """Integrate the whole cycle (see the module docstring for one step).
 

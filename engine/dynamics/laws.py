@@ -30,7 +30,7 @@ import numpy as np
 from numba import njit
 
 from beltstudy.engine.dynamics.codes import CURVE_MAX
-from beltstudy.engine.dynamics.fastmath import OPTS_ORDERED
+from beltstudy.engine.dynamics.fastmath import OPTS
 
 __all__ = ["curve", "padded_curves", "motor_force", "coupling_torque", "STALL", "RATED_SLIP",
            "SLIP_SCALE"]
@@ -59,7 +59,7 @@ SLIP_SCALE = _slip_scale()
 _NORM = STALL / (1.0 - math.exp(-1.0 / SLIP_SCALE))
 
 
-@njit(inline="always", **OPTS_ORDERED)
+@njit(inline="always", **OPTS)
 def curve(xs, ys, n, x):
     """Piecewise linear ``y(x)`` through ``n`` points and its slope: the first value below the
     first point, the last segment continued above the last point."""
@@ -72,14 +72,14 @@ def curve(xs, ys, n, x):
     return ys[k - 1] + slope * (x - xs[k - 1]), slope
 
 
-@njit(inline="always", **OPTS_ORDERED)
+@njit(inline="always", **OPTS)
 def motor_force(xs, ys, n, f_rated, v_d, v):
     """Motor force at the rim [N] and its slope in speed [N s/m] at rim speed ``v``."""
     y, dy = curve(xs, ys, n, v / v_d)
     return f_rated * y, f_rated * dy / v_d
 
 
-@njit(inline="always", **OPTS_ORDERED)
+@njit(inline="always", **OPTS)
 def coupling_torque(t_rated, v_d, vm, vs, fill):
     """Fluid coupling force at the rim [N] with input (motor) speed ``vm`` and output (pulley)
     speed ``vs`` [m/s], and its derivatives in ``vm`` and ``vs``."""

@@ -16,7 +16,6 @@ from numba import njit, uint64, uintp
 
 from beltstudy.engine.dynamics.fastmath import (
     OPTS,
-    OPTS_ORDERED,
     OPTS_RED,
     _cttz,
     _exp,
@@ -428,11 +427,11 @@ def node_pass(a, b, v, tt, hm, grav, r0, v_eps, w):
     return weighted_sum(w, v, a, b)
 
 
-@njit(**OPTS_ORDERED)
+@njit(**OPTS)
 def weighted_sum(w, v, a, b):
     """``sum w_j v_j`` over j = a..b-1 in a fixed order: four running sums over j mod 4, joined
-    as ``(s0 + s1) + (s2 + s3)`` (the same bits whatever the memory layout:
-    :data:`~beltstudy.engine.dynamics.fastmath.OPTS_ORDERED`)."""
+    as ``(s0 + s1) + (s2 + s3)`` (the same bits whatever the memory layout: the kernel is
+    compiled without reassociation, :data:`~beltstudy.engine.dynamics.fastmath.FASTMATH`)."""
     s0 = 0.0
     s1 = 0.0
     s2 = 0.0

@@ -359,6 +359,8 @@ class StudyJob:
         self._ac = ac
         last_save = time.monotonic()
 
+        memo: dict = {}  # conveyor mapping -> its start key (start_candidate)
+
         def top_up() -> None:
             nonlocal seq
             cap = max(2, IN_FLIGHT_PER_WORKER * self.executor.n_workers())
@@ -368,7 +370,8 @@ class StudyJob:
                 )
                 batch = [todo.popleft() for _ in range(min(size, len(todo)))]
                 # runs that may share a start go to one task whole (beltstudy.engine.run.run_group)
-                while todo and start_candidate(todo[0]) == start_candidate(batch[-1]):
+                while todo and (start_candidate(todo[0], memo)
+                                == start_candidate(batch[-1], memo)):
                     batch.append(todo.popleft())
                 key = f"beltstudy-{sid}-{nonce}-{seq:06d}"
                 seq += 1
