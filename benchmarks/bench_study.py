@@ -50,6 +50,7 @@ import argparse
 import json
 import os
 import platform
+import statistics
 import subprocess
 import sys
 import tempfile
@@ -137,8 +138,8 @@ def _warm(study) -> None:
 
 
 def plain_loop(study) -> tuple[float, dict, float]:
-    """Wall time of the study's runs one after another in this process [s], the mean time
-    per run of each friction model [s], and the CPU time of the loop [s]."""
+    """Wall time of the study's runs one after another in this process [s], the times of
+    the runs of each friction model [s], and the CPU time of the loop [s]."""
     _warm(study)
     per_model: dict[str, list[float]] = defaultdict(list)
     cpu0 = time.process_time()
@@ -148,7 +149,7 @@ def plain_loop(study) -> tuple[float, dict, float]:
         _one(spec)
         per_model[spec.model].append(time.perf_counter() - t1)
     wall = time.perf_counter() - t0
-    return wall, {m: sum(v) / len(v) for m, v in per_model.items()}, time.process_time() - cpu0
+    return wall, dict(per_model), time.process_time() - cpu0
 
 
 def _loop_child(body: dict, part: int, parts: int, nice: int, ready, go, out) -> None:
@@ -421,9 +422,10 @@ class Service:
         stop_server(self.proc)
 
 
-def through_run_command(body: dict, workers: int) -> dict:
+def through_run_command(body: dict, workers: int, python: str | None = None) -> dict:
     """``beltstudy run`` on the study in a child process with its own data directory: the
-    command's wall time, the study's ``elapsed_s`` and its ``study.json``."""
+    command's wall time, the study's ``elapsed_s`` and its ``study.json``. ``python``: the
+    interpreter of another installed version (``--against``; this one's by default)."""
     with tempfile.TemporaryDirectory(prefix="bench-run-") as tmp:
         study = dict(body, conveyor=str(ROOT / "studies" / body["conveyor"]))
         path = Path(tmp) / "study.json"
@@ -436,8 +438,8 @@ def through_run_command(body: dict, workers: int) -> dict:
         }
         t0 = time.perf_counter()
         proc = subprocess.run(
-            [sys.executable, "-m", "beltstudy.service.cli", "run", str(path)],
-            env=env, capture_output=True, text=True, check=False,
+            [python or sys.executable, "-m", "beltstudy.service.cli", "run", str(path)],
+            env=env, capture_output=True, text=True, check=False, cwd=tmp,
         )
         wall = time.perf_counter() - t0
         if proc.returncode != 0:
@@ -486,8 +488,12 @@ def report_study288(n, workers, rounds: dict, per_model, split, wsplit) -> None:
     ideal = workers * loop_rate
     print(f"study288: {n} runs, {workers} workers, best of {len(rounds['loop'])} rounds "
           f"(every round in brackets)")
-    print("  in-process run_one per model: " + "  ".join(
-        f"{m} {_ms(t)}" for m, t in per_model.items()))
+    print("  in-process run_one per model, median (mean): " + "  ".join(
+        f"{m} {_ms(statistics.median(t))} ({_ms(statistics.fmean(t)).strip()})"
+        for m, t in per_model.items()))
+    if "nonlin" in per_model and "din" in per_model:
+        print(f"  median Non-Lin run over DIN's: "
+              f"{statistics.median(per_model['nonlin']) / statistics.median(per_model['din']):.2f}")
     print(f"  loop (one process)                {loop_rate:6.1f} runs/s  (CPU {_ms(loop_cpu)}/run)"
           f"  [{', '.join(f'{r:.1f}' for r, _ in rounds['loop'])}]")
     print(f"  ideal: {workers} x loop                  {ideal:6.1f} runs/s")
@@ -515,6 +521,15 @@ def report_study288(n, workers, rounds: dict, per_model, split, wsplit) -> None:
     if rounds.get("run"):
         line("beltstudy run", rounds["run"], f"  (command wall "
              f"{_best(rounds['run'])['command_wall']:.1f} s with Dask start-up)")
+    if rounds.get("against"):
+        label = f"beltstudy run, {rounds['against_rev']}"
+        line(label, rounds["against"], f"  (command wall "
+             f"{_best(rounds['against'])['command_wall']:.1f} s with Dask start-up)")
+        this, other = _best(rounds["run"])["wall"], _best(rounds["against"])["wall"]
+        print(f"  this version / {rounds['against_rev']}: {other / this:.2f} x the runs/s "
+              f"(best round of each; per round: " + ", ".join(
+                  f"{b['wall'] / a['wall']:.2f}" for a, b in zip(rounds["run"],
+                                                                  rounds["against"])) + ")")
     if any(r["status"]["failed"] for r in rounds["service"]):
         print(f"  failed runs: {[r['status']['failed'] for r in rounds['service']]}")
 
@@ -564,6 +579,7 @@ def study288_rounds(args, nice: int) -> dict:
     (and with ``surface: true``), ``beltstudy run``, the loops at once; interleaved, so each
     meets the machine's other load alike."""
     rounds: dict[str, list] = defaultdict(list)
+    rounds["against_rev"] = args.against
     for r in range(args.rounds):
         rounds["loop"].append(loops_at_once(STUDY288, 1, nice))
         with tempfile.TemporaryDirectory(prefix="bench-study288-") as tmp:
@@ -575,7 +591,12 @@ def study288_rounds(args, nice: int) -> dict:
                     rounds["surface"].append(service.run(body))
             finally:
                 service.stop()
-        if not args.no_run_command:
+        if args.against:
+            # this version and the other one's ``beltstudy run``, the order swapped each round
+            pair = [("run", None), ("against", args.against_python)]
+            for key, python in pair if r % 2 == 0 else pair[::-1]:
+                rounds[key].append(through_run_command(STUDY288, args.workers, python))
+        elif not args.no_run_command:
             rounds["run"].append(through_run_command(STUDY288, args.workers))
         if not args.no_at_once:
             rounds["at_once"].append(loops_at_once(STUDY288, args.workers, nice))
@@ -597,12 +618,19 @@ def main() -> int:
                     help="skip the surface: true pass of study288")
     ap.add_argument("--no-at-once", action="store_true",
                     help="skip the loops run at once in several processes (study288)")
+    ap.add_argument("--against", metavar="REV",
+                    help="study288 also through REV's beltstudy run (installed side by side, "
+                    "as bench_kernel_against.py does), alternating with this version's")
     ap.add_argument("--rounds", type=int, default=3,
                     help="rounds of study288 (loop, service, beltstudy run, loops at once)")
     ap.add_argument("--loop-nice", type=int, default=LOCAL_WORKER_NICE,
                     help="CPU niceness of the in-process loops (default: the LocalCluster "
                     "workers', so both meet other load on the machine alike)")
     args = ap.parse_args()
+    if args.against:
+        from bench_kernel_against import interpreter
+
+        args.against_python = str(interpreter(args.against))
     cases = [("steady", STEADY), ("dynamic", DYNAMIC), ("study288", STUDY288)]
     if args.only:
         cases = [c for c in cases if c[0] == args.only]
