@@ -238,10 +238,10 @@ def run_group(
     opts = options or DynamicsOptions()
     t0 = [time.perf_counter() for _ in scenarios]
     results: list[RunResult | None] = [None] * len(scenarios)
-    preps, systems, todo = {}, [], []
+    preps, systems, todo, solved = {}, [], [], {}
     for i, scn in enumerate(scenarios):
         t0[i] = time.perf_counter()
-        prep = _prepare(convs[i], scn, model, params, True, opts)
+        prep = _prepare(convs[i], scn, model, params, True, opts, solved)
         if prep.done is not None:
             prep.done.summary["elapsed_s"] = time.perf_counter() - t0[i]
             results[i] = prep.done
@@ -276,23 +276,34 @@ class _Prepared:
     done: RunResult | None = None
 
 
-def _prepare(conveyor, scenario, model, params, dynamics, opts) -> _Prepared:
+def _prepare(conveyor, scenario, model, params, dynamics, opts, solved=None) -> _Prepared:
     """The steady part of :func:`run_one`: the scenario checked, the auto belt chosen, the
-    steady solve and the sizes this run used."""
+    steady solve and the sizes this run used. ``solved``: a dict that keeps the belt choice
+    and steady solution of each operating case (the conveyor object, temperature, load and
+    mesh) for the next scenarios of :func:`run_group` (runs that differ in their stop alone
+    solve their design once; neither is changed by what uses it)."""
     if dynamics:
         check_scenario(scenario, conveyor, opts)
     n = None if scenario.elements == "auto" else int(scenario.elements)
-    # belt.type: auto is chosen once, here, at the run's case; the rest runs on that belt
-    conveyor, belt_choice = resolve_auto_belt(conveyor, run_cases(
-        conveyor, model, params, scenario.temperature_c, scenario.load, n))
-    steady = solve_steady(
-        conveyor,
-        model=model,
-        params=params,
-        temperature_c=scenario.temperature_c,
-        load=scenario.load,
-        n_elements=n,
-    )
+    key = (id(conveyor), float(scenario.temperature_c), repr(scenario.load), n)
+    if solved is not None and key in solved:
+        conveyor, belt_choice, steady = solved[key]
+    else:
+        base = conveyor
+        # belt.type: auto is chosen once, here, at the run's case; the rest runs on that belt
+        conveyor, belt_choice = resolve_auto_belt(conveyor, run_cases(
+            conveyor, model, params, scenario.temperature_c, scenario.load, n))
+        steady = solve_steady(
+            conveyor,
+            model=model,
+            params=params,
+            temperature_c=scenario.temperature_c,
+            load=scenario.load,
+            n_elements=n,
+        )
+        if solved is not None:
+            solved[key] = (conveyor, belt_choice, steady)
+            solved.setdefault("_keep", []).append(base)  # its id stays its own meanwhile
     summary = dict(steady.summary)
     # the sizes this run used (take-up, rated power, brakes) and what set each auto one
     summary.update(summary_fields(auto_sizes(conveyor, scenario, model=model, params=params,
