@@ -39,6 +39,14 @@ ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT))
 
 SKIP = {"elapsed_s", "wall_s"}
+#: ``--runs``: print a digest per run (to find the run that moved)
+RUNS: list = []
+
+
+def mark(h, label) -> None:
+    """With ``--runs``: the digest so far, after the run ``label``."""
+    if RUNS:
+        print(f"    {label}: {h.copy().hexdigest()[:16]}")
 
 
 def feed(h, value, name="") -> None:
@@ -118,6 +126,7 @@ def case_study288(h) -> int:
         for s, r in zip(specs, results, strict=True):
             feed(h, s.axes, "axes")
             run_digest(h, r)
+            mark(h, s.axes)
             n += 1
     return n
 
@@ -143,6 +152,7 @@ def case_example(h) -> int:
                 continue
             feed(h, f"{path.name}{model}{stop}", "case")
             run_digest(h, r)
+            mark(h, f"{path.name} {model} {stop}")
             n += 1
     return n
 
@@ -182,6 +192,7 @@ def case_kernel(h) -> int:
         st = solve_steady(conv, model=model, load=scn.load, n_elements=40)
         feed(h, f"{name}{model}{scenario}", "case")
         _kernel_digest(h, build_system(conv, scn, st, opts))
+        mark(h, f"{name} {model} {scenario}")
         n += 1
     ends = [(dict(profile=[{"length_m": 1000, "lift_m": -150}]), {}),
             (dict(drives=[{"position": "head", "wrap_deg": 200, "friction": 0.35, "share": 1.0,
@@ -196,6 +207,7 @@ def case_kernel(h) -> int:
         feed(h, repr(changes), "case")
         _kernel_digest(h, build_system(conv, scn, solve_steady(conv, model="din",
                                                                n_elements=40)))
+        mark(h, repr(changes))
         n += 1
     return n
 
@@ -256,7 +268,10 @@ def main() -> None:
     ap.add_argument("--save", help="write the digests to this JSON file")
     ap.add_argument("--against", help="compare with the digests in this JSON file")
     ap.add_argument("--only", choices=sorted(CASES), action="append")
+    ap.add_argument("--runs", action="store_true", help="print a digest after every run")
     args = ap.parse_args()
+    if args.runs:
+        RUNS.append(True)
     digests = {}
     total = hashlib.sha256()
     for name, fn in CASES.items():

@@ -37,7 +37,7 @@ from beltstudy.engine.dynamics.fastmath import OPTS
 from beltstudy.engine.dynamics.passes import spring as _spring_impl
 from beltstudy.engine.dynamics.passes import spring_rest as _spring_rest
 
-__all__ = ["block_step", "solve_arrow", "solve_dense", "coulomb"]
+__all__ = ["block_step", "solve_arrow", "solve_arrow2", "solve_dense", "coulomb"]
 
 
 @njit(**OPTS)
@@ -156,6 +156,97 @@ def solve_arrow(d, lo, up, cl, rw, x, m, car, car_free):
 
 
 @njit(inline="always", **OPTS)
+def solve_arrow2(d, lo, up, cl, rw, x, x2, m, car, car_free):
+    """:func:`solve_arrow` for two right-hand sides at once (``x`` and ``x2``, each replaced by
+    its solution): the elimination of the matrix is done once and applied to both, each
+    right-hand side taking the operations :func:`solve_arrow` gives it, with the same pivots
+    and factors (the matrix's operations do not depend on the right-hand side): the same bits
+    as two calls on copies of the band. Returns False if a pivot is not positive."""
+    mid = m // 2
+    dml = 0.0
+    xml = 0.0
+    xml2 = 0.0
+    for k in range(mid):
+        piv = d[k]
+        if not piv > 0.0:
+            return False
+        ip = 1.0 / piv
+        d[k] = ip
+        f = lo[k + 1] * ip
+        d[k + 1] -= f * up[k]
+        x[k + 1] -= f * x[k]
+        x2[k + 1] -= f * x2[k]
+        if car:
+            cl[k + 1] -= f * cl[k]
+        if car_free:
+            g = rw[k] * ip
+            rw[k + 1] -= g * up[k]
+            dml -= g * cl[k]
+            xml -= g * x[k]
+            xml2 -= g * x2[k]
+    dmr = 0.0
+    xmr = 0.0
+    xmr2 = 0.0
+    for k in range(m - 1, mid, -1):
+        piv = d[k]
+        if not piv > 0.0:
+            return False
+        ip = 1.0 / piv
+        d[k] = ip
+        f = up[k - 1] * ip
+        d[k - 1] -= f * lo[k]
+        x[k - 1] -= f * x[k]
+        x2[k - 1] -= f * x2[k]
+        if car:
+            cl[k - 1] -= f * cl[k]
+        if car_free:
+            g = rw[k] * ip
+            rw[k - 1] -= g * lo[k]
+            dmr -= g * cl[k]
+            xmr -= g * x[k]
+            xmr2 -= g * x2[k]
+    piv = d[mid]
+    if not piv > 0.0:
+        return False
+    ip = 1.0 / piv
+    d[mid] = ip
+    if car_free:
+        g = rw[mid] * ip
+        dm = (d[m] + (dml + dmr)) - g * cl[mid]
+        if not dm > 0.0:
+            return False
+        x[m] = ((x[m] + (xml + xmr)) - g * x[mid]) / dm
+        # the same divisor computed again after the store (the compiler may not fold two
+        # divisions by one value into a reciprocal and two products, which rounds otherwise)
+        dm2 = (d[m] + (dml + dmr)) - g * cl[mid]
+        x2[m] = ((x2[m] + (xml2 + xmr2)) - g * x2[mid]) / dm2
+    s = x[mid]
+    s2 = x2[mid]
+    if car:
+        s -= cl[mid] * x[m]
+        s2 -= cl[mid] * x2[m]
+    x[mid] = s * ip
+    x2[mid] = s2 * ip
+    for k in range(mid - 1, -1, -1):
+        s = x[k] - up[k] * x[k + 1]
+        s2 = x2[k] - up[k] * x2[k + 1]
+        if car:
+            s -= cl[k] * x[m]
+            s2 -= cl[k] * x2[m]
+        x[k] = s * d[k]
+        x2[k] = s2 * d[k]
+    for k in range(mid + 1, m):
+        s = x[k] - lo[k] * x[k - 1]
+        s2 = x2[k] - lo[k] * x2[k - 1]
+        if car:
+            s -= cl[k] * x[m]
+            s2 -= cl[k] * x2[m]
+        x[k] = s * d[k]
+        x2[k] = s2 * d[k]
+    return True
+
+
+@njit(inline="always", **OPTS)
 def coulomb(p, dd, fb, hb):
     """Velocity of a mass under ``dd v = p - fb sign(v)`` (a Coulomb brake of force ``fb``,
     holding when ``|p| <= fb``) and, with a holdback ``hb``, never below zero. ``dd > 0``."""
@@ -182,13 +273,12 @@ def _solve(wk, m, car, car_fixed, two):
         wk.kd[k] = wk.wd[k]
         wk.kc[k] = wk.wc[k]
         wk.kr[k] = wk.wr[k]
-    ok = solve_arrow(wk.wd, wk.wl, wk.wu, wk.wc, wk.wr, wk.sol, m, car, car and not car_fixed)
-    if ok and two:
-        for k in range(mu):
-            wk.wd[k] = wk.kd[k]
-            wk.wc[k] = wk.kc[k]
-            wk.wr[k] = wk.kr[k]
-        ok = solve_arrow(wk.wd, wk.wl, wk.wu, wk.wc, wk.wr, wk.sol2, m, car,
+    if two:
+        # one elimination for both right-hand sides (the band's operations are the same)
+        ok = solve_arrow2(wk.wd, wk.wl, wk.wu, wk.wc, wk.wr, wk.sol, wk.sol2, m, car,
+                          car and not car_fixed)
+    else:
+        ok = solve_arrow(wk.wd, wk.wl, wk.wu, wk.wc, wk.wr, wk.sol, m, car,
                          car and not car_fixed)
     if ok:
         return
