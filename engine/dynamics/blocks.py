@@ -31,7 +31,7 @@ from __future__ import annotations
 
 import math
 
-from numba import njit
+from numba import njit, uintp
 
 from beltstudy.engine.dynamics.fastmath import OPTS
 from beltstudy.engine.dynamics.passes import spring as _spring_impl
@@ -358,14 +358,14 @@ def _share_force(drives, dk, U):
 def _side_tensions(wk, sp, blocks, tt, x, p0, k, m, car):
     """Tensions of the springs on both sides of block element ``k`` at the solution [N]."""
     if k > 0:
-        jl = blocks.nodes[p0 + k - 1]
+        jl = uintp(blocks.nodes[p0 + k - 1])
         dv = x[k] - x[k - 1]
         if car:
             dv += sp.car_ind[jl] * x[m]
         tl = wk.bA[k - 1] + wk.bB[k - 1] * dv
     else:
-        tl = tt[blocks.left[p0]]
-    j = blocks.nodes[p0 + k]
+        tl = tt[uintp(blocks.left[p0])]
+    j = uintp(blocks.nodes[p0 + k])
     if k < m - 1:
         dv = x[k + 1] - x[k]
         if car:
@@ -447,7 +447,8 @@ def _block_setup(model, st, wk, p0, m, hold_node):
     r0 = wk.r0
     km = -1
     for k in range(m):
-        j = blocks.nodes[p0 + k]
+        jn = blocks.nodes[p0 + k]
+        j = uintp(jn)  # an element: unsigned, no negative-index wraparound
         if k < m - 1:
             e0 = st.te[j]
             if e0 < 0.0:
@@ -465,7 +466,7 @@ def _block_setup(model, st, wk, p0, m, hold_node):
         wk.fz[k] = 1.0 if vo > v_eps else (-1.0 if vo < -v_eps else 0.0)
         s = blocks.node_shaft[j]
         wk.shk[k] = s
-        wk.fixed[k] = 1.0 if j == hold_node else 0.0
+        wk.fixed[k] = 1.0 if jn == hold_node else 0.0
         wk.fixv[k] = 0.0
         wk.stuck[k] = 0.0
         wk.bforce[k] = 0.0
@@ -506,7 +507,7 @@ def _slack_side(wk, sp, blocks, tt, x, p0, k, m, car, sl):
     outgoing spring when ``sl > 0``, the incoming one when ``sl < 0``) as its constant part
     and its part linear in the solution ``x`` [N] (:func:`_side_tensions`' springs)."""
     if sl > 0.0:
-        j = blocks.nodes[p0 + k]
+        j = uintp(blocks.nodes[p0 + k])
         if k < m - 1:
             dv = x[k + 1] - x[k]
             if car:
@@ -514,12 +515,12 @@ def _slack_side(wk, sp, blocks, tt, x, p0, k, m, car, sl):
             return wk.bA[k], wk.bB[k] * dv
         return tt[j], 0.0
     if k > 0:
-        jl = blocks.nodes[p0 + k - 1]
+        jl = uintp(blocks.nodes[p0 + k - 1])
         dv = x[k] - x[k - 1]
         if car:
             dv += sp.car_ind[jl] * x[m]
         return wk.bA[k - 1], wk.bB[k - 1] * dv
-    return tt[blocks.left[p0]], 0.0
+    return tt[uintp(blocks.left[p0])], 0.0
 
 
 @njit(inline="always", **OPTS)
@@ -591,7 +592,7 @@ def _block_rows(model, st, wk, rs, p0, m, car, U, two):
     tt = st.tt
     inv_veps = 1.0 / model.cycle.v_eps
     for k in range(m):
-        j = blocks.nodes[p0 + k]
+        j = uintp(blocks.nodes[p0 + k])
         s = wk.shk[k]
         d = blocks.mdt[p0 + k]
         r = d * wk.v_old[k] + wk.fexp[k]
@@ -608,7 +609,7 @@ def _block_rows(model, st, wk, rs, p0, m, car, U, two):
             r -= wk.bdir[k] * wk.bforce[k]
         c_k = 0.0
         if k == 0:
-            r -= ml * tt[blocks.left[p0]]
+            r -= ml * tt[uintp(blocks.left[p0])]
             wk.lo[k] = 0.0
         else:
             b_ = ml * wk.bB[k - 1]
@@ -616,7 +617,7 @@ def _block_rows(model, st, wk, rs, p0, m, car, U, two):
             wk.lo[k] = -b_
             r -= ml * wk.bA[k - 1]
             if car:
-                c_k += b_ * sp.car_ind[blocks.nodes[p0 + k - 1]]
+                c_k += b_ * sp.car_ind[uintp(blocks.nodes[p0 + k - 1])]
         if k == m - 1:
             r += mr * tt[j]
             wk.up[k] = 0.0
@@ -657,7 +658,7 @@ def _carriage_row(model, wk, rs, p0, m, car_fixed, car_v):
     d = tu.mass / dt
     r = tu.mass / dt * rs.u_tu + tu.weight
     for k in range(m - 1):
-        if model.springs.car_ind[model.blocks.nodes[p0 + k]] != 0.0:
+        if model.springs.car_ind[uintp(model.blocks.nodes[p0 + k])] != 0.0:
             wk.rw[k + 1] += wk.bB[k]
             wk.rw[k] -= wk.bB[k]
             d += wk.bB[k]
@@ -756,7 +757,7 @@ def _shaft_consistent(model, st, wk, rs, p0, k, m, car, U):
     hold_node = rs.hold
     x = wk.sol
     s = wk.shk[k]
-    j = blocks.nodes[p0 + k]
+    j = blocks.nodes[p0 + k]  # compared with the held element only
     tl, tr = _side_tensions(wk, model.springs, blocks, st.tt, x, p0, k, m, car)
     sl = shafts.slip[s]
     if sl == 0.0:
@@ -850,7 +851,8 @@ def _write_back(model, st, wk, rs, p0, m, car, U):
     p_tot = 0.0
     w_drv = 0.0
     for k in range(m):
-        j = blocks.nodes[p0 + k]
+        jn = blocks.nodes[p0 + k]
+        j = uintp(jn)
         xk = x[k]
         st.v[j] = xk
         vsum += model.nodes.w_mean[j] * xk
@@ -883,7 +885,7 @@ def _write_back(model, st, wk, rs, p0, m, car, U):
             if shafts.hb[s] == 1 and vsn == 0.0:
                 # a slipping shaft the holdback holds at rest: what the brake does not
                 rs.f_hb += max(-_shaft_push(model, s, U, sl, ft) - fb, 0.0)
-        if j == rs.hold:
+        if jn == rs.hold:
             hold_f = ft
         shafts.vs[s] = vsn
         dk = shafts.drive[s]
@@ -903,8 +905,8 @@ def _block_springs(model, st, p0, m, car, u_new):
     blocks = model.blocks
     sp = model.springs
     for k in range(m - 1):
-        s_ = blocks.nodes[p0 + k]
-        s1 = blocks.nodes[p0 + k + 1]
+        s_ = uintp(blocks.nodes[p0 + k])
+        s1 = uintp(blocks.nodes[p0 + k + 1])
         cdt = sp.car_ind[s_] * u_new * sp.dl[s_] if car else 0.0
         e1, ts1, d1, t1 = _spring_impl(sp, s_, st.te[s_], st.ts[s_], st.td[s_],
                                        st.v[s1] - st.v[s_], cdt)
