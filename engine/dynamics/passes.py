@@ -649,10 +649,11 @@ def spring_pass(a, b, st, sp, more):
     _spring_range(a, b, st, sp, more)
 
 
-@njit(**OPTS)
+@njit(inline="always", **OPTS)
 def spring_segments(st, sp, more):
-    """:func:`spring_pass` over every free spring segment (``sp.seg_spring``), in order, in one
-    call (the records are passed once per step, not once per segment)."""
+    """:func:`spring_pass` over every free spring segment (``sp.seg_spring``), in order, inlined
+    into the caller (the records are not passed as arguments, which costs about as much as a
+    few springs)."""
     for k in range(sp.seg_spring.shape[0]):
         _spring_range(sp.seg_spring[k, 0], sp.seg_spring[k, 1], st, sp, more)
 
