@@ -60,7 +60,7 @@ def _term_sag(r0, c, v, lnv, phi, lnphi, sc, p, qc, q):
         _term(r0, c, v, lnv, phi, lnphi, sc, p, 5, q)
 
 
-@njit(**OPTS)
+@njit(inline="always", **OPTS)
 def resistance(law, nodes, st, wk):
     """Resistance magnitude ``R0_j = sum_k coef[k, j] |v_j|^pv[k] phi_j^ps[k]`` into
     ``wk.r0`` [N] (:class:`~beltstudy.engine.dynamics.records.Law`) at the state ``st``.
@@ -73,9 +73,13 @@ def resistance(law, nodes, st, wk):
     the element's sag cap both over the reference sag (``nodes``); ``wk.phi``, ``wk.lnv`` and
     ``wk.lnphi`` are scratch arrays.
     """
-    r0, phi, lnv, lnphi = wk.r0, wk.phi, wk.lnv, wk.lnphi
-    v, tt = st.v, st.tt
-    sw_ref, hsm_ref = nodes.sw_ref, nodes.hsm_ref
+    _resistance(law, nodes.sw_ref, nodes.hsm_ref, st.v, st.tt, wk.r0, wk.phi, wk.lnv, wk.lnphi)
+
+
+@njit(**OPTS)
+def _resistance(law, sw_ref, hsm_ref, v, tt, r0, phi, lnv, lnphi):
+    """:func:`resistance` on the arrays it reads and writes (the kernel's call then passes
+    these, not the whole node, state and scratch records)."""
     coef, pvc, pvv, psc, psv = law.coef, law.pvc, law.pvv, law.psc, law.psv
     t_sparse, t_ptr, t_idx = law.t_sparse, law.t_ptr, law.t_idx
     any_ps = law.any_ps
