@@ -11,7 +11,10 @@ within 5 %).
 REV is installed once into its own virtual environment under the system's temporary
 directory (``git archive`` of the revision, ``pip install``; a few minutes the first time).
 
-Run: ``.venv/bin/python benchmarks/bench_kernel_against.py 187e89f [--rounds 5]``.
+``--study288``: the 2 km slope at 202 elements in the 288-run study's scenario instead (its
+steps are short, so the scalar work per step counts: pulley blocks, drives, records).
+
+Run: ``.venv/bin/python benchmarks/bench_kernel_against.py 187e89f [--rounds 5] [--study288]``.
 """
 
 from __future__ import annotations
@@ -29,6 +32,12 @@ ROOT = Path(__file__).resolve().parents[1]
 CONVEYOR = ROOT / "studies" / "conveyors" / "overland-16km.yaml"
 SCENARIO = dict(start={"control": "s-curve", "time_s": 120}, run_s=30,
                 stop={"mode": "controlled", "time_s": 60})
+#: ``--study288``: the 2 km slope at 202 elements in the 288-run study's scenario
+#: (benchmarks/bench_study.py, its 20 s controlled stop), where a step's scalar work (pulley
+#: blocks, drives, observation, records) is a large part of the step.
+CONVEYOR_288 = ROOT / "studies" / "conveyors" / "slope-5pct.yaml"
+SCENARIO_288 = dict(start={"control": "s-curve", "time_s": 40}, run_s=20,
+                    stop={"mode": "controlled", "time_s": 20})
 
 #: Run in each version's interpreter: the best kernel wall time per model [s].
 SNIPPET = """
@@ -70,9 +79,11 @@ def interpreter(rev: str) -> Path:
     return python
 
 
-def timed(python: Path, models: str, n: int, repeat: int) -> dict[str, float]:
-    proc = subprocess.run([str(python), "-c", SNIPPET, str(CONVEYOR), models, str(n),
-                           json.dumps(SCENARIO), str(repeat)], capture_output=True, text=True,
+def timed(python: Path, models: str, n: int, repeat: int, study288: bool = False
+          ) -> dict[str, float]:
+    conveyor, scenario = (CONVEYOR_288, SCENARIO_288) if study288 else (CONVEYOR, SCENARIO)
+    proc = subprocess.run([str(python), "-c", SNIPPET, str(conveyor), models, str(n),
+                           json.dumps(scenario), str(repeat)], capture_output=True, text=True,
                           cwd=tempfile.gettempdir())
     if proc.returncode != 0:
         raise RuntimeError(proc.stderr.strip().splitlines()[-1])
@@ -84,21 +95,27 @@ def main() -> None:
     ap.add_argument("rev", help="the revision to compare against (a commit or tag)")
     ap.add_argument("--rounds", type=int, default=5)
     ap.add_argument("--repeat", type=int, default=3)
-    ap.add_argument("--elements", type=int, default=1000)
+    ap.add_argument("--elements", type=int, default=None,
+                    help="default 1000 (202 with --study288)")
     ap.add_argument("--models", default="din,nonlin")
+    ap.add_argument("--study288", action="store_true",
+                    help="the 2 km slope at 202 elements in the 288-run study's scenario")
     args = ap.parse_args()
+    if args.elements is None:
+        args.elements = 202 if args.study288 else 1000
     old = interpreter(args.rev)
     new = Path(sys.executable)
     print("# bench_kernel_against")
     print(f"date: {datetime.datetime.now().isoformat(timespec='seconds')}")
-    print(f"this checkout ({new}) against {args.rev} ({old}); 16.8 km, {args.elements} "
+    what = "2 km slope (study288 scenario)" if args.study288 else "16.8 km"
+    print(f"this checkout ({new}) against {args.rev} ({old}); {what}, {args.elements} "
           f"elements, best of {args.repeat} kernel calls per version and round")
     best: dict[str, dict[str, float]] = {"this": {}, "rev": {}}
     for k in range(args.rounds):
         row = []
         for tag, python in (("rev", old), ("this", new)) if k % 2 == 0 else \
                 (("this", new), ("rev", old)):
-            walls = timed(python, args.models, args.elements, args.repeat)
+            walls = timed(python, args.models, args.elements, args.repeat, args.study288)
             for model, wall in walls.items():
                 best[tag][model] = min(best[tag].get(model, float("inf")), wall)
                 row.append(f"{tag} {model} {wall:.4f} s")

@@ -529,7 +529,7 @@ def report_study288(n, workers, rounds: dict, per_model, split, wsplit) -> None:
         print(f"  this version / {rounds['against_rev']}: {other / this:.2f} x the runs/s "
               f"(best round of each; per round: " + ", ".join(
                   f"{b['wall'] / a['wall']:.2f}" for a, b in zip(rounds["run"],
-                                                                  rounds["against"])) + ")")
+                                                                  rounds["against"], strict=False)) + ")")
     if any(r["status"]["failed"] for r in rounds["service"]):
         print(f"  failed runs: {[r['status']['failed'] for r in rounds['service']]}")
 

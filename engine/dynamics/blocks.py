@@ -31,13 +31,13 @@ from __future__ import annotations
 
 import math
 
-from numba import njit
+from numba import njit, uintp
 
 from beltstudy.engine.dynamics.fastmath import OPTS
 from beltstudy.engine.dynamics.passes import spring as _spring_impl
 from beltstudy.engine.dynamics.passes import spring_rest as _spring_rest
 
-__all__ = ["block_step", "solve_arrow", "solve_dense", "coulomb"]
+__all__ = ["block_step", "solve_arrow", "solve_arrow2", "solve_dense", "coulomb"]
 
 
 @njit(**OPTS)
@@ -156,6 +156,97 @@ def solve_arrow(d, lo, up, cl, rw, x, m, car, car_free):
 
 
 @njit(inline="always", **OPTS)
+def solve_arrow2(d, lo, up, cl, rw, x, x2, m, car, car_free):
+    """:func:`solve_arrow` for two right-hand sides at once (``x`` and ``x2``, each replaced by
+    its solution): the elimination of the matrix is done once and applied to both, each
+    right-hand side taking the operations :func:`solve_arrow` gives it, with the same pivots
+    and factors (the matrix's operations do not depend on the right-hand side): the same bits
+    as two calls on copies of the band. Returns False if a pivot is not positive."""
+    mid = m // 2
+    dml = 0.0
+    xml = 0.0
+    xml2 = 0.0
+    for k in range(mid):
+        piv = d[k]
+        if not piv > 0.0:
+            return False
+        ip = 1.0 / piv
+        d[k] = ip
+        f = lo[k + 1] * ip
+        d[k + 1] -= f * up[k]
+        x[k + 1] -= f * x[k]
+        x2[k + 1] -= f * x2[k]
+        if car:
+            cl[k + 1] -= f * cl[k]
+        if car_free:
+            g = rw[k] * ip
+            rw[k + 1] -= g * up[k]
+            dml -= g * cl[k]
+            xml -= g * x[k]
+            xml2 -= g * x2[k]
+    dmr = 0.0
+    xmr = 0.0
+    xmr2 = 0.0
+    for k in range(m - 1, mid, -1):
+        piv = d[k]
+        if not piv > 0.0:
+            return False
+        ip = 1.0 / piv
+        d[k] = ip
+        f = up[k - 1] * ip
+        d[k - 1] -= f * lo[k]
+        x[k - 1] -= f * x[k]
+        x2[k - 1] -= f * x2[k]
+        if car:
+            cl[k - 1] -= f * cl[k]
+        if car_free:
+            g = rw[k] * ip
+            rw[k - 1] -= g * lo[k]
+            dmr -= g * cl[k]
+            xmr -= g * x[k]
+            xmr2 -= g * x2[k]
+    piv = d[mid]
+    if not piv > 0.0:
+        return False
+    ip = 1.0 / piv
+    d[mid] = ip
+    if car_free:
+        g = rw[mid] * ip
+        dm = (d[m] + (dml + dmr)) - g * cl[mid]
+        if not dm > 0.0:
+            return False
+        x[m] = ((x[m] + (xml + xmr)) - g * x[mid]) / dm
+        # the same divisor computed again after the store (the compiler may not fold two
+        # divisions by one value into a reciprocal and two products, which rounds otherwise)
+        dm2 = (d[m] + (dml + dmr)) - g * cl[mid]
+        x2[m] = ((x2[m] + (xml2 + xmr2)) - g * x2[mid]) / dm2
+    s = x[mid]
+    s2 = x2[mid]
+    if car:
+        s -= cl[mid] * x[m]
+        s2 -= cl[mid] * x2[m]
+    x[mid] = s * ip
+    x2[mid] = s2 * ip
+    for k in range(mid - 1, -1, -1):
+        s = x[k] - up[k] * x[k + 1]
+        s2 = x2[k] - up[k] * x2[k + 1]
+        if car:
+            s -= cl[k] * x[m]
+            s2 -= cl[k] * x2[m]
+        x[k] = s * d[k]
+        x2[k] = s2 * d[k]
+    for k in range(mid + 1, m):
+        s = x[k] - lo[k] * x[k - 1]
+        s2 = x2[k] - lo[k] * x2[k - 1]
+        if car:
+            s -= cl[k] * x[m]
+            s2 -= cl[k] * x2[m]
+        x[k] = s * d[k]
+        x2[k] = s2 * d[k]
+    return True
+
+
+@njit(inline="always", **OPTS)
 def coulomb(p, dd, fb, hb):
     """Velocity of a mass under ``dd v = p - fb sign(v)`` (a Coulomb brake of force ``fb``,
     holding when ``|p| <= fb``) and, with a holdback ``hb``, never below zero. ``dd > 0``."""
@@ -182,13 +273,12 @@ def _solve(wk, m, car, car_fixed, two):
         wk.kd[k] = wk.wd[k]
         wk.kc[k] = wk.wc[k]
         wk.kr[k] = wk.wr[k]
-    ok = solve_arrow(wk.wd, wk.wl, wk.wu, wk.wc, wk.wr, wk.sol, m, car, car and not car_fixed)
-    if ok and two:
-        for k in range(mu):
-            wk.wd[k] = wk.kd[k]
-            wk.wc[k] = wk.kc[k]
-            wk.wr[k] = wk.kr[k]
-        ok = solve_arrow(wk.wd, wk.wl, wk.wu, wk.wc, wk.wr, wk.sol2, m, car,
+    if two:
+        # one elimination for both right-hand sides (the band's operations are the same)
+        ok = solve_arrow2(wk.wd, wk.wl, wk.wu, wk.wc, wk.wr, wk.sol, wk.sol2, m, car,
+                          car and not car_fixed)
+    else:
+        ok = solve_arrow(wk.wd, wk.wl, wk.wu, wk.wc, wk.wr, wk.sol, m, car,
                          car and not car_fixed)
     if ok:
         return
@@ -268,14 +358,14 @@ def _share_force(drives, dk, U):
 def _side_tensions(wk, sp, blocks, tt, x, p0, k, m, car):
     """Tensions of the springs on both sides of block element ``k`` at the solution [N]."""
     if k > 0:
-        jl = blocks.nodes[p0 + k - 1]
+        jl = uintp(blocks.nodes[p0 + k - 1])
         dv = x[k] - x[k - 1]
         if car:
             dv += sp.car_ind[jl] * x[m]
         tl = wk.bA[k - 1] + wk.bB[k - 1] * dv
     else:
-        tl = tt[blocks.left[p0]]
-    j = blocks.nodes[p0 + k]
+        tl = tt[uintp(blocks.left[p0])]
+    j = uintp(blocks.nodes[p0 + k])
     if k < m - 1:
         dv = x[k + 1] - x[k]
         if car:
@@ -357,7 +447,8 @@ def _block_setup(model, st, wk, p0, m, hold_node):
     r0 = wk.r0
     km = -1
     for k in range(m):
-        j = blocks.nodes[p0 + k]
+        jn = blocks.nodes[p0 + k]
+        j = uintp(jn)  # an element: unsigned, no negative-index wraparound
         if k < m - 1:
             e0 = st.te[j]
             if e0 < 0.0:
@@ -375,7 +466,7 @@ def _block_setup(model, st, wk, p0, m, hold_node):
         wk.fz[k] = 1.0 if vo > v_eps else (-1.0 if vo < -v_eps else 0.0)
         s = blocks.node_shaft[j]
         wk.shk[k] = s
-        wk.fixed[k] = 1.0 if j == hold_node else 0.0
+        wk.fixed[k] = 1.0 if jn == hold_node else 0.0
         wk.fixv[k] = 0.0
         wk.stuck[k] = 0.0
         wk.bforce[k] = 0.0
@@ -416,7 +507,7 @@ def _slack_side(wk, sp, blocks, tt, x, p0, k, m, car, sl):
     outgoing spring when ``sl > 0``, the incoming one when ``sl < 0``) as its constant part
     and its part linear in the solution ``x`` [N] (:func:`_side_tensions`' springs)."""
     if sl > 0.0:
-        j = blocks.nodes[p0 + k]
+        j = uintp(blocks.nodes[p0 + k])
         if k < m - 1:
             dv = x[k + 1] - x[k]
             if car:
@@ -424,12 +515,12 @@ def _slack_side(wk, sp, blocks, tt, x, p0, k, m, car, sl):
             return wk.bA[k], wk.bB[k] * dv
         return tt[j], 0.0
     if k > 0:
-        jl = blocks.nodes[p0 + k - 1]
+        jl = uintp(blocks.nodes[p0 + k - 1])
         dv = x[k] - x[k - 1]
         if car:
             dv += sp.car_ind[jl] * x[m]
         return wk.bA[k - 1], wk.bB[k - 1] * dv
-    return tt[blocks.left[p0]], 0.0
+    return tt[uintp(blocks.left[p0])], 0.0
 
 
 @njit(inline="always", **OPTS)
@@ -501,7 +592,7 @@ def _block_rows(model, st, wk, rs, p0, m, car, U, two):
     tt = st.tt
     inv_veps = 1.0 / model.cycle.v_eps
     for k in range(m):
-        j = blocks.nodes[p0 + k]
+        j = uintp(blocks.nodes[p0 + k])
         s = wk.shk[k]
         d = blocks.mdt[p0 + k]
         r = d * wk.v_old[k] + wk.fexp[k]
@@ -518,7 +609,7 @@ def _block_rows(model, st, wk, rs, p0, m, car, U, two):
             r -= wk.bdir[k] * wk.bforce[k]
         c_k = 0.0
         if k == 0:
-            r -= ml * tt[blocks.left[p0]]
+            r -= ml * tt[uintp(blocks.left[p0])]
             wk.lo[k] = 0.0
         else:
             b_ = ml * wk.bB[k - 1]
@@ -526,7 +617,7 @@ def _block_rows(model, st, wk, rs, p0, m, car, U, two):
             wk.lo[k] = -b_
             r -= ml * wk.bA[k - 1]
             if car:
-                c_k += b_ * sp.car_ind[blocks.nodes[p0 + k - 1]]
+                c_k += b_ * sp.car_ind[uintp(blocks.nodes[p0 + k - 1])]
         if k == m - 1:
             r += mr * tt[j]
             wk.up[k] = 0.0
@@ -567,7 +658,7 @@ def _carriage_row(model, wk, rs, p0, m, car_fixed, car_v):
     d = tu.mass / dt
     r = tu.mass / dt * rs.u_tu + tu.weight
     for k in range(m - 1):
-        if model.springs.car_ind[model.blocks.nodes[p0 + k]] != 0.0:
+        if model.springs.car_ind[uintp(model.blocks.nodes[p0 + k])] != 0.0:
             wk.rw[k + 1] += wk.bB[k]
             wk.rw[k] -= wk.bB[k]
             d += wk.bB[k]
@@ -666,7 +757,7 @@ def _shaft_consistent(model, st, wk, rs, p0, k, m, car, U):
     hold_node = rs.hold
     x = wk.sol
     s = wk.shk[k]
-    j = blocks.nodes[p0 + k]
+    j = blocks.nodes[p0 + k]  # compared with the held element only
     tl, tr = _side_tensions(wk, model.springs, blocks, st.tt, x, p0, k, m, car)
     sl = shafts.slip[s]
     if sl == 0.0:
@@ -760,7 +851,8 @@ def _write_back(model, st, wk, rs, p0, m, car, U):
     p_tot = 0.0
     w_drv = 0.0
     for k in range(m):
-        j = blocks.nodes[p0 + k]
+        jn = blocks.nodes[p0 + k]
+        j = uintp(jn)
         xk = x[k]
         st.v[j] = xk
         vsum += model.nodes.w_mean[j] * xk
@@ -793,7 +885,7 @@ def _write_back(model, st, wk, rs, p0, m, car, U):
             if shafts.hb[s] == 1 and vsn == 0.0:
                 # a slipping shaft the holdback holds at rest: what the brake does not
                 rs.f_hb += max(-_shaft_push(model, s, U, sl, ft) - fb, 0.0)
-        if j == rs.hold:
+        if jn == rs.hold:
             hold_f = ft
         shafts.vs[s] = vsn
         dk = shafts.drive[s]
@@ -813,8 +905,8 @@ def _block_springs(model, st, p0, m, car, u_new):
     blocks = model.blocks
     sp = model.springs
     for k in range(m - 1):
-        s_ = blocks.nodes[p0 + k]
-        s1 = blocks.nodes[p0 + k + 1]
+        s_ = uintp(blocks.nodes[p0 + k])
+        s1 = uintp(blocks.nodes[p0 + k + 1])
         cdt = sp.car_ind[s_] * u_new * sp.dl[s_] if car else 0.0
         e1, ts1, d1, t1 = _spring_impl(sp, s_, st.te[s_], st.ts[s_], st.td[s_],
                                        st.v[s1] - st.v[s_], cdt)

@@ -22,7 +22,7 @@ One step is a short sequence of named passes:
    carriage, solved implicitly (:func:`blocks.block_step`), the master drive's block first so
    the speed loop's output is known to the others; then the speed loop's integrator;
 5. **free springs**: elastic (Ernst tangent), relaxing arm and mesh viscosity
-   (:func:`passes.spring_pass`);
+   (:func:`passes.spring_pass`, every segment in one call: :func:`passes.spring_segments`);
 6. **observe**: envelopes, extremes (with the expanded law also the law at the new state and
    the elements outside their windows, :func:`passes.observe_lin`), divergence, per-drive slip
    and margins, the stop, slack, the envelope segments (cut at the stop command and when the
@@ -51,7 +51,7 @@ from beltstudy.engine.dynamics.passes import (
     observe_lin,
     resistance,
     slack_zones,
-    spring_pass,
+    spring_segments,
 )
 from beltstudy.engine.dynamics.profiles import FORCE, TORQUE, start_reference, stop_reference
 
@@ -336,9 +336,7 @@ def _blocks(model, st, wk, rs):
 @njit(inline="always", **OPTS)
 def _free_springs(model, st, wk):
     """The free springs from the new velocities."""
-    sp = model.springs
-    for k in range(sp.seg_spring.shape[0]):
-        spring_pass(sp.seg_spring[k, 0], sp.seg_spring[k, 1], st, sp, wk.more)
+    spring_segments(st, model.springs, wk.more)
 
 
 # --------------------------------------------------------------------------------------

@@ -29,7 +29,7 @@ from beltstudy.engine.dynamics.fastmath import (
 from beltstudy.engine.dynamics.linlaw import BIG, K_LIN, N_POW, PREDICT
 
 __all__ = ["resistance", "law_flagged", "law_refresh", "node_pass", "spring", "spring_pass",
-           "observe", "observe_lin", "extremes", "slack_zones", "law_rows"]
+           "spring_segments", "observe", "observe_lin", "extremes", "slack_zones", "law_rows"]
 
 
 @njit(inline="always", **OPTS)
@@ -60,7 +60,7 @@ def _term_sag(r0, c, v, lnv, phi, lnphi, sc, p, qc, q):
         _term(r0, c, v, lnv, phi, lnphi, sc, p, 5, q)
 
 
-@njit(**OPTS)
+@njit(inline="always", **OPTS)
 def resistance(law, nodes, st, wk):
     """Resistance magnitude ``R0_j = sum_k coef[k, j] |v_j|^pv[k] phi_j^ps[k]`` into
     ``wk.r0`` [N] (:class:`~beltstudy.engine.dynamics.records.Law`) at the state ``st``.
@@ -73,9 +73,13 @@ def resistance(law, nodes, st, wk):
     the element's sag cap both over the reference sag (``nodes``); ``wk.phi``, ``wk.lnv`` and
     ``wk.lnphi`` are scratch arrays.
     """
-    r0, phi, lnv, lnphi = wk.r0, wk.phi, wk.lnv, wk.lnphi
-    v, tt = st.v, st.tt
-    sw_ref, hsm_ref = nodes.sw_ref, nodes.hsm_ref
+    _resistance(law, nodes.sw_ref, nodes.hsm_ref, st.v, st.tt, wk.r0, wk.phi, wk.lnv, wk.lnphi)
+
+
+@njit(**OPTS)
+def _resistance(law, sw_ref, hsm_ref, v, tt, r0, phi, lnv, lnphi):
+    """:func:`resistance` on the arrays it reads and writes (the kernel's call then passes
+    these, not the whole node, state and scratch records)."""
     coef, pvc, pvv, psc, psv = law.coef, law.pvc, law.pvv, law.psc, law.psv
     t_sparse, t_ptr, t_idx = law.t_sparse, law.t_ptr, law.t_idx
     any_ps = law.any_ps
@@ -431,21 +435,23 @@ def node_pass(a, b, v, tt, hm, grav, r0, v_eps, w):
 def weighted_sum(w, v, a, b):
     """``sum w_j v_j`` over j = a..b-1 in a fixed order: four running sums over j mod 4, joined
     as ``(s0 + s1) + (s2 + s3)`` (the same bits whatever the memory layout: the kernel is
-    compiled without reassociation, :data:`~beltstudy.engine.dynamics.fastmath.FASTMATH`)."""
+    compiled without reassociation, :data:`~beltstudy.engine.dynamics.fastmath.FASTMATH`).
+    Unsigned indices: no negative-index wraparound in the four chains of additions."""
     s0 = 0.0
     s1 = 0.0
     s2 = 0.0
     s3 = 0.0
-    j = a
-    while j + 4 <= b:
+    nq = (b - a) // 4 if b > a else 0
+    one, two, three = uintp(1), uintp(2), uintp(3)
+    for q in range(nq):
+        j = uintp(a + 4 * q)
         s0 += w[j] * v[j]
-        s1 += w[j + 1] * v[j + 1]
-        s2 += w[j + 2] * v[j + 2]
-        s3 += w[j + 3] * v[j + 3]
-        j += 4
-    while j < b:
+        s1 += w[j + one] * v[j + one]
+        s2 += w[j + two] * v[j + two]
+        s3 += w[j + three] * v[j + three]
+    for jj in range(a + 4 * nq, b):
+        j = uintp(jj)
         s0 += w[j] * v[j]
-        j += 1
     return (s0 + s1) + (s2 + s3)
 
 
@@ -613,15 +619,9 @@ def _spring_more(j, jm, jp, jq, st, sp, limited):
                                        sp.s_floor[j], sp.kfl_eb[j], sp.a_eb[j], kvs)
 
 
-@njit(**OPTS)
-def spring_pass(a, b, st, sp, more):
-    """Update springs a..b-1 (b <= n - 2) of the state ``st`` from the new velocities: the
-    first Newton step of every spring in one vectorised loop (``more`` [0/1] marks the springs
-    whose step bends too much), then the marked ones refined (:func:`spring_refine`) in a
-    second loop, only when there are any. The mesh viscosity of a free spring is limited by
-    :func:`visc_limiter` when ``sp.limited`` (its neighbours' strain increments from the new
-    velocities: every element is updated before the free springs); spring 0's left neighbour
-    is spring n - 1 (taken before the loop, which then has no wraparound)."""
+@njit(inline="always", **OPTS)
+def _spring_range(a, b, st, sp, more):
+    """:func:`spring_pass`'s body (springs a..b-1)."""
     n = st.v.shape[0]
     limited = sp.limited != 0
     cnt = 0
@@ -639,6 +639,27 @@ def spring_pass(a, b, st, sp, more):
             if more[j] != 0.0:
                 _spring_more(j, uintp(jj - 1 + (n if jj == 0 else 0)), uintp(jj + 1),
                              uintp(jj + 2), st, sp, limited)
+
+
+@njit(**OPTS)
+def spring_pass(a, b, st, sp, more):
+    """Update springs a..b-1 (b <= n - 2) of the state ``st`` from the new velocities: the
+    first Newton step of every spring in one vectorised loop (``more`` [0/1] marks the springs
+    whose step bends too much), then the marked ones refined (:func:`spring_refine`) in a
+    second loop, only when there are any. The mesh viscosity of a free spring is limited by
+    :func:`visc_limiter` when ``sp.limited`` (its neighbours' strain increments from the new
+    velocities: every element is updated before the free springs); spring 0's left neighbour
+    is spring n - 1 (taken before the loop, which then has no wraparound)."""
+    _spring_range(a, b, st, sp, more)
+
+
+@njit(inline="always", **OPTS)
+def spring_segments(st, sp, more):
+    """:func:`spring_pass` over every free spring segment (``sp.seg_spring``), in order, inlined
+    into the caller (the records are not passed as arguments, which costs about as much as a
+    few springs)."""
+    for k in range(sp.seg_spring.shape[0]):
+        _spring_range(sp.seg_spring[k, 0], sp.seg_spring[k, 1], st, sp, more)
 
 
 @njit(**OPTS_RED)
