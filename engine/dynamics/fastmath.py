@@ -14,11 +14,11 @@ import math
 
 import numpy as np
 from llvmlite import ir as llir
-from numba import njit, types, uintp
+from numba import njit, types
 from numba.core import cgutils
 from numba.extending import intrinsic
 
-__all__ = ["FASTMATH", "FASTMATH_RED", "OPTS", "OPTS_RED", "vlog", "vexp"]
+__all__ = ["FASTMATH", "FASTMATH_RED", "OPTS", "OPTS_RED"]
 
 #: LLVM fast-math flags: everything but 'nnan'/'ninf' (divergence checks still see NaN),
 #: 'reassoc' (sums keep the order written: a reassociated sum in a loop that stores is
@@ -228,23 +228,6 @@ def _exp(y):
 def _ln0(x):
     """ln x, or LN_ZERO for x <= TINY (so that x^p = exp(p ln x) vanishes for p > 0)."""
     return _ln(x) if x > TINY else LN_ZERO
-
-
-@njit(**OPTS)
-def vlog(x, out):
-    """``out = ln(x)`` for x >= 0, vectorised (see :func:`_ln`)."""
-    for jj in range(x.shape[0]):
-        j = uintp(jj)
-        out[j] = _ln(x[j])
-
-
-@njit(**OPTS)
-def vexp(y, out):
-    """``out = exp(y)`` for y in [-700, 700], vectorised (see :func:`_exp`). ``out`` may be
-    ``y``."""
-    for jj in range(y.shape[0]):
-        j = uintp(jj)
-        out[j] = _exp(y[j])
 
 
 @njit(inline="always", **OPTS)

@@ -22,7 +22,7 @@ One step is a short sequence of named passes:
    carriage, solved implicitly (:func:`blocks.block_step`), the master drive's block first so
    the speed loop's output is known to the others; then the speed loop's integrator;
 5. **free springs**: elastic (Ernst tangent), relaxing arm and mesh viscosity
-   (:func:`passes.spring_pass`, every segment in one call: :func:`passes.spring_segments`);
+   (every segment in one call: :func:`passes.spring_segments`);
 6. **observe**: envelopes, extremes (with the expanded law also the law at the new state and
    the elements outside their windows, :func:`passes.observe_lin`), divergence, per-drive slip
    and margins, the stop, slack, the envelope segments (cut at the stop command and when the

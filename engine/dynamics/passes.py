@@ -28,7 +28,7 @@ from beltstudy.engine.dynamics.fastmath import (
 )
 from beltstudy.engine.dynamics.linlaw import BIG, K_LIN, N_POW, PREDICT
 
-__all__ = ["resistance", "law_flagged", "law_refresh", "node_pass", "spring", "spring_pass",
+__all__ = ["resistance", "law_flagged", "law_refresh", "node_pass", "spring",
            "spring_segments", "observe", "observe_lin", "extremes", "slack_zones", "law_rows"]
 
 
@@ -504,7 +504,7 @@ def spring_first(e0, s0, d0, de, tfl, sfl, kfl_eb, aeb, eb, e_damp, g_damp, kvs)
     Arm: the standard linear solid's relaxing arm (dynamic less static modulus, relaxation by
     its exact exponential: ``e_damp``, ``g_damp``). Mesh viscosity ``kvs de`` (``kvs = alpha Z
     len / dt``): a Kelvin-Voigt term acting on the modes the mesh cannot resolve (``kvs`` is
-    the free springs' limited one in :func:`spring_pass`, :func:`visc_limiter`)."""
+    the free springs' limited one in :func:`spring_segments`, :func:`visc_limiter`)."""
     s1 = s0 + eb * de
     fl = tfl + (s1 - sfl) * kfl_eb
     e1, r, more = _newton(e0, s1, tfl, aeb)
@@ -621,7 +621,13 @@ def _spring_more(j, jm, jp, jq, st, sp, limited):
 
 @njit(inline="always", **OPTS)
 def _spring_range(a, b, st, sp, more):
-    """:func:`spring_pass`'s body (springs a..b-1)."""
+    """Update springs a..b-1 (b <= n - 2) of the state ``st`` from the new velocities: the
+    first Newton step of every spring in one vectorised loop (``more`` [0/1] marks the springs
+    whose step bends too much), then the marked ones refined (:func:`spring_refine`) in a
+    second loop, only when there are any. The mesh viscosity of a free spring is limited by
+    :func:`visc_limiter` when ``sp.limited`` (its neighbours' strain increments from the new
+    velocities: every element is updated before the free springs); spring 0's left neighbour
+    is spring n - 1 (taken before the loop, which then has no wraparound)."""
     n = st.v.shape[0]
     limited = sp.limited != 0
     cnt = 0
@@ -641,21 +647,9 @@ def _spring_range(a, b, st, sp, more):
                              uintp(jj + 2), st, sp, limited)
 
 
-@njit(**OPTS)
-def spring_pass(a, b, st, sp, more):
-    """Update springs a..b-1 (b <= n - 2) of the state ``st`` from the new velocities: the
-    first Newton step of every spring in one vectorised loop (``more`` [0/1] marks the springs
-    whose step bends too much), then the marked ones refined (:func:`spring_refine`) in a
-    second loop, only when there are any. The mesh viscosity of a free spring is limited by
-    :func:`visc_limiter` when ``sp.limited`` (its neighbours' strain increments from the new
-    velocities: every element is updated before the free springs); spring 0's left neighbour
-    is spring n - 1 (taken before the loop, which then has no wraparound)."""
-    _spring_range(a, b, st, sp, more)
-
-
 @njit(inline="always", **OPTS)
 def spring_segments(st, sp, more):
-    """:func:`spring_pass` over every free spring segment (``sp.seg_spring``), in order, inlined
+    """:func:`_spring_range` over every free spring segment (``sp.seg_spring``), in order, inlined
     into the caller (the records are not passed as arguments, which costs about as much as a
     few springs)."""
     for k in range(sp.seg_spring.shape[0]):

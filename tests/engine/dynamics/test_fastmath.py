@@ -4,9 +4,28 @@ against numpy."""
 from __future__ import annotations
 
 import numpy as np
+from numba import njit
 from numpy.testing import assert_allclose
 
-from beltstudy.engine.dynamics.fastmath import vexp, vlog
+from beltstudy.engine.dynamics.fastmath import OPTS, _exp, _ln
+
+#: The kernel's options, not cached: these loops exist for this test alone (a cached function
+#: the engine never runs would count as not compiled, engine/warmth.py).
+_OPTS = {**OPTS, "cache": False}
+
+
+@njit(**_OPTS)
+def vlog(x, out):
+    """``out = ln(x)`` for x >= 0 with the kernel's :func:`_ln`."""
+    for j in range(x.shape[0]):
+        out[j] = _ln(x[j])
+
+
+@njit(**_OPTS)
+def vexp(y, out):
+    """``out = exp(y)`` for y in [-700, 700] with the kernel's :func:`_exp`."""
+    for j in range(y.shape[0]):
+        out[j] = _exp(y[j])
 
 
 def test_vectorised_log_and_exp():
