@@ -40,8 +40,13 @@ summed by the service into ``study.json`` as ``worker_s``, and the time outside 
 round trips, waiting, start and tail), and the CPU time per run of the loop, of the service's
 workers and of the service process. Figures are printed, never asserted (see BENCHMARKS.md).
 
+``--against REV`` (study288) also runs the study through revision REV's ``beltstudy run``
+(installed once into its own virtual environment, as ``bench_kernel_against.py`` does),
+alternating with this version's in every round, and prints the ratio of the rates (issue 29:
+``--against 187e89f``, engine 0.4.1).
+
     .venv/bin/python benchmarks/bench_study.py [--workers N] [--only steady|dynamic|study288]
-        [--rounds N]
+        [--rounds N] [--against REV]
 """
 
 from __future__ import annotations
