@@ -289,7 +289,6 @@ def _prepare(conveyor, scenario, model, params, dynamics, opts, solved=None) -> 
     if solved is not None and key in solved:
         conveyor, belt_choice, steady = solved[key]
     else:
-        base = conveyor
         # belt.type: auto is chosen once, here, at the run's case; the rest runs on that belt
         conveyor, belt_choice = resolve_auto_belt(conveyor, run_cases(
             conveyor, model, params, scenario.temperature_c, scenario.load, n))
@@ -301,9 +300,8 @@ def _prepare(conveyor, scenario, model, params, dynamics, opts, solved=None) -> 
             load=scenario.load,
             n_elements=n,
         )
-        if solved is not None:
+        if solved is not None:  # the caller holds every conveyor meanwhile: ids stay theirs
             solved[key] = (conveyor, belt_choice, steady)
-            solved.setdefault("_keep", []).append(base)  # its id stays its own meanwhile
     summary = dict(steady.summary)
     # the sizes this run used (take-up, rated power, brakes) and what set each auto one
     summary.update(summary_fields(auto_sizes(conveyor, scenario, model=model, params=params,
