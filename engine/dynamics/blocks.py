@@ -88,71 +88,7 @@ def solve_arrow(d, lo, up, cl, rw, x, m, car, car_free):
     side, leaving a principal submatrix: every pivot is positive. Returns False if one is
     not (nothing then is reliable in x, use :func:`solve_dense`).
     """
-    # eliminate from both ends towards the middle row (halves the chain of dependent
-    # divisions); the carriage row collects from each side separately
-    mid = m // 2
-    dml = 0.0
-    xml = 0.0
-    for k in range(mid):  # unknown k out of row k + 1 (and the carriage row)
-        piv = d[k]
-        if not piv > 0.0:
-            return False
-        ip = 1.0 / piv
-        d[k] = ip  # the back substitution multiplies by the pivot's reciprocal
-        f = lo[k + 1] * ip
-        d[k + 1] -= f * up[k]
-        x[k + 1] -= f * x[k]
-        if car:
-            cl[k + 1] -= f * cl[k]
-        if car_free:
-            g = rw[k] * ip
-            rw[k + 1] -= g * up[k]
-            dml -= g * cl[k]
-            xml -= g * x[k]
-    dmr = 0.0
-    xmr = 0.0
-    for k in range(m - 1, mid, -1):  # unknown k out of row k - 1 (and the carriage row)
-        piv = d[k]
-        if not piv > 0.0:
-            return False
-        ip = 1.0 / piv
-        d[k] = ip
-        f = up[k - 1] * ip
-        d[k - 1] -= f * lo[k]
-        x[k - 1] -= f * x[k]
-        if car:
-            cl[k - 1] -= f * cl[k]
-        if car_free:
-            g = rw[k] * ip
-            rw[k - 1] -= g * lo[k]
-            dmr -= g * cl[k]
-            xmr -= g * x[k]
-    piv = d[mid]
-    if not piv > 0.0:
-        return False
-    ip = 1.0 / piv
-    d[mid] = ip
-    if car_free:
-        g = rw[mid] * ip
-        dm = (d[m] + (dml + dmr)) - g * cl[mid]
-        if not dm > 0.0:
-            return False
-        x[m] = ((x[m] + (xml + xmr)) - g * x[mid]) / dm
-    s = x[mid]
-    if car:
-        s -= cl[mid] * x[m]
-    x[mid] = s * ip
-    for k in range(mid - 1, -1, -1):
-        s = x[k] - up[k] * x[k + 1]
-        if car:
-            s -= cl[k] * x[m]
-        x[k] = s * d[k]
-    for k in range(mid + 1, m):
-        s = x[k] - lo[k] * x[k - 1]
-        if car:
-            s -= cl[k] * x[m]
-        x[k] = s * d[k]
-    return True
+    return _arrow(d, lo, up, cl, rw, x, x, m, car, car_free, False)
 
 
 @njit(inline="always", **OPTS)
@@ -162,20 +98,30 @@ def solve_arrow2(d, lo, up, cl, rw, x, x2, m, car, car_free):
     right-hand side taking the operations :func:`solve_arrow` gives it, with the same pivots
     and factors (the matrix's operations do not depend on the right-hand side): the same bits
     as two calls on copies of the band. Returns False if a pivot is not positive."""
+    return _arrow(d, lo, up, cl, rw, x, x2, m, car, car_free, True)
+
+
+@njit(inline="always", **OPTS)
+def _arrow(d, lo, up, cl, rw, x, x2, m, car, car_free, two):
+    """The elimination of :func:`solve_arrow` on ``x`` and, when ``two`` (a constant at each
+    call, so the compiler keeps only the work asked for), on ``x2`` too."""
+    # eliminate from both ends towards the middle row (halves the chain of dependent
+    # divisions); the carriage row collects from each side separately
     mid = m // 2
     dml = 0.0
     xml = 0.0
     xml2 = 0.0
-    for k in range(mid):
+    for k in range(mid):  # unknown k out of row k + 1 (and the carriage row)
         piv = d[k]
         if not piv > 0.0:
             return False
         ip = 1.0 / piv
-        d[k] = ip
+        d[k] = ip  # the back substitution multiplies by the pivot's reciprocal
         f = lo[k + 1] * ip
         d[k + 1] -= f * up[k]
         x[k + 1] -= f * x[k]
-        x2[k + 1] -= f * x2[k]
+        if two:
+            x2[k + 1] -= f * x2[k]
         if car:
             cl[k + 1] -= f * cl[k]
         if car_free:
@@ -183,11 +129,12 @@ def solve_arrow2(d, lo, up, cl, rw, x, x2, m, car, car_free):
             rw[k + 1] -= g * up[k]
             dml -= g * cl[k]
             xml -= g * x[k]
-            xml2 -= g * x2[k]
+            if two:
+                xml2 -= g * x2[k]
     dmr = 0.0
     xmr = 0.0
     xmr2 = 0.0
-    for k in range(m - 1, mid, -1):
+    for k in range(m - 1, mid, -1):  # unknown k out of row k - 1 (and the carriage row)
         piv = d[k]
         if not piv > 0.0:
             return False
@@ -196,7 +143,8 @@ def solve_arrow2(d, lo, up, cl, rw, x, x2, m, car, car_free):
         f = up[k - 1] * ip
         d[k - 1] -= f * lo[k]
         x[k - 1] -= f * x[k]
-        x2[k - 1] -= f * x2[k]
+        if two:
+            x2[k - 1] -= f * x2[k]
         if car:
             cl[k - 1] -= f * cl[k]
         if car_free:
@@ -204,7 +152,8 @@ def solve_arrow2(d, lo, up, cl, rw, x, x2, m, car, car_free):
             rw[k - 1] -= g * lo[k]
             dmr -= g * cl[k]
             xmr -= g * x[k]
-            xmr2 -= g * x2[k]
+            if two:
+                xmr2 -= g * x2[k]
     piv = d[mid]
     if not piv > 0.0:
         return False
@@ -216,33 +165,41 @@ def solve_arrow2(d, lo, up, cl, rw, x, x2, m, car, car_free):
         if not dm > 0.0:
             return False
         x[m] = ((x[m] + (xml + xmr)) - g * x[mid]) / dm
-        # the same divisor computed again after the store (the compiler may not fold two
-        # divisions by one value into a reciprocal and two products, which rounds otherwise)
-        dm2 = (d[m] + (dml + dmr)) - g * cl[mid]
-        x2[m] = ((x2[m] + (xml2 + xmr2)) - g * x2[mid]) / dm2
+        if two:
+            # the same divisor computed again after the store (the compiler may not fold two
+            # divisions by one value into a reciprocal and two products, which rounds
+            # otherwise)
+            dm2 = (d[m] + (dml + dmr)) - g * cl[mid]
+            x2[m] = ((x2[m] + (xml2 + xmr2)) - g * x2[mid]) / dm2
     s = x[mid]
-    s2 = x2[mid]
     if car:
         s -= cl[mid] * x[m]
-        s2 -= cl[mid] * x2[m]
     x[mid] = s * ip
-    x2[mid] = s2 * ip
+    if two:
+        s2 = x2[mid]
+        if car:
+            s2 -= cl[mid] * x2[m]
+        x2[mid] = s2 * ip
     for k in range(mid - 1, -1, -1):
         s = x[k] - up[k] * x[k + 1]
-        s2 = x2[k] - up[k] * x2[k + 1]
         if car:
             s -= cl[k] * x[m]
-            s2 -= cl[k] * x2[m]
         x[k] = s * d[k]
-        x2[k] = s2 * d[k]
+        if two:
+            s2 = x2[k] - up[k] * x2[k + 1]
+            if car:
+                s2 -= cl[k] * x2[m]
+            x2[k] = s2 * d[k]
     for k in range(mid + 1, m):
         s = x[k] - lo[k] * x[k - 1]
-        s2 = x2[k] - lo[k] * x2[k - 1]
         if car:
             s -= cl[k] * x[m]
-            s2 -= cl[k] * x2[m]
         x[k] = s * d[k]
-        x2[k] = s2 * d[k]
+        if two:
+            s2 = x2[k] - lo[k] * x2[k - 1]
+            if car:
+                s2 -= cl[k] * x2[m]
+            x2[k] = s2 * d[k]
     return True
 
 
