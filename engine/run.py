@@ -255,7 +255,8 @@ def run_group(
                              steady_summary=[p.steady.summary for p in members],
                              conveyor=[p.conveyor for p in members],
                              safety_factor_min=[transient_safety_min(
-                                 p.conveyor, p.steady.loop.belt.kind) for p in members])
+                                 p.conveyor, p.steady.loop.belt.kind) for p in members],
+                             grouped=True)
         for g, tr in zip(group, trs, strict=True):
             i = todo[g]
             results[i] = _complete(preps[i], scenarios[i], systems[g], tr, model, params, opts,

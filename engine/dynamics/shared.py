@@ -84,9 +84,16 @@ def _copy(value):
     return value
 
 
+#: Records of the model holding arrays a run changes (marked *state* in
+#: :mod:`beltstudy.engine.dynamics.records`, reset by
+#: :func:`~beltstudy.engine.dynamics.simulate.fresh_model`); a branch copies these and shares
+#: the others, which the kernel only reads.
+STATEFUL = ("lin", "shafts", "drives", "brakes")
+
+
 def _branch(paused: KernelRun, sys: System) -> KernelRun:
     """The paused run's state, copied, with ``sys``'s own stop put in (:data:`STOP_ONLY`)."""
-    m = _copy(paused.model)
+    m = paused.model._replace(**{rec: _copy(getattr(paused.model, rec)) for rec in STATEFUL})
     lin = m.lin._replace(flag64=m.lin.flag.view(np.uint64))  # one buffer, two views
     own = sys.model
     cycle = own.cycle._replace(t_end=m.cycle.t_end)
@@ -98,7 +105,7 @@ def _branch(paused: KernelRun, sys: System) -> KernelRun:
 
 
 def simulate_group(systems: list[System], *, steady_summary=None, conveyor=None,
-                   safety_factor_min=None) -> list[TransientResult]:
+                   safety_factor_min=None, grouped: bool = False) -> list[TransientResult]:
     """The whole cycle of every system, sharing the stretch up to the stop command.
 
     Parameters
@@ -109,6 +116,8 @@ def simulate_group(systems: list[System], *, steady_summary=None, conveyor=None,
     steady_summary, conveyor, safety_factor_min
         As :func:`beltstudy.engine.dynamics.simulate.simulate`: one for the group, or a list
         with one per system.
+    grouped : bool
+        The systems are a group of :func:`group_by_start` (their keys are not digested again).
 
     Returns
     -------
@@ -116,7 +125,7 @@ def simulate_group(systems: list[System], *, steady_summary=None, conveyor=None,
         In the order of ``systems``, each bit-identical to its own separate run; the wall
         time of each is the shared stretch's plus its own.
     """
-    keys = {start_key(s) for s in systems}
+    keys = {0} if grouped else {start_key(s) for s in systems}
     if len(keys) != 1:
         raise ValueError(f"simulate_group: the systems differ before the stop command ({len(keys)}"
                          " start keys); group them with group_by_start")

@@ -95,3 +95,38 @@ def test_a_runaway_before_the_stop_ends_every_run_of_the_group_alike():
     assert "runs away" in alone[0].summary["message"] or "ran away" in alone[0].summary["message"]
     for g, a in zip(grouped, alone, strict=True):
         assert_same(g, a)
+
+
+def _arrays(record, name=""):
+    """Every array of a record tree by its dotted name."""
+    if hasattr(record, "_fields"):
+        out = {}
+        for f in record._fields:
+            out.update(_arrays(getattr(record, f), f"{name}.{f}"))
+        return out
+    return {name: record.copy()} if isinstance(record, np.ndarray) else {}
+
+
+@pytest.mark.parametrize("model,stop", [("din", {"mode": "brake", "time_s": 3}),
+                                        ("nonlin", {"mode": "coast"}),
+                                        ("cema", {"mode": "controlled", "time_s": 8})])
+def test_the_kernel_only_reads_the_records_a_branch_shares(model, stop):
+    """A branch of a shared start copies only the records with *state* arrays (STATEFUL) and
+    shares the rest with its siblings: a whole cycle (slip in the start, a brake, a vfd speed
+    loop, a gravity take-up) leaves every array of the shared records as it was."""
+    from beltstudy.engine.dynamics.shared import STATEFUL
+    from beltstudy.engine.dynamics.simulate import fresh_run
+
+    conv = steep_incline(takeup={"type": "gravity", "position": "tail", "mass_kg": 20000})
+    scn = Scenario(start={"time_s": 6}, run_s=10, stop=stop, elements=60)
+    sysm = build_system(conv, scn, solve_steady(conv, model=model, n_elements=60))
+    kr = fresh_run(sysm)
+    shared = {rec: _arrays(getattr(kr.model, rec)) for rec in kr.model._fields
+              if rec not in STATEFUL}
+    assert sum(len(a) for a in shared.values()) > 20
+    kr.call()
+    assert kr.run["steps"] > 1000
+    for rec, arrays in shared.items():
+        now = _arrays(getattr(kr.model, rec))
+        for name, before in arrays.items():
+            np.testing.assert_array_equal(now[name], before, err_msg=f"{rec}{name}")
