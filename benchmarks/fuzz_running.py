@@ -2,13 +2,14 @@
 not say so?
 
 The 120 designs of the seeded generator of ``tests/engine/integration/test_run_random_designs``
-(seeds 0-119: 1-4 profile sections, 1-3 drives at either end, vfd and dol, fluid couplings,
-gravity and fixed take-ups, brakes, holdback), each run with its own model, load and start but
-a long running phase (``--run-s``, default 600 s) and a coast stop, on 40 elements.
+(seeds 0-119, a capacity that overfills its belt halved as the test does: 1-4 profile
+sections, 1-3 drives at either end, vfd and dol, fluid couplings, gravity and fixed take-ups,
+brakes, holdback), each run with its own model, load and start but a long running phase (``--run-s``, default 600 s) and a coast stop, on 40 elements.
 
 A run is judged unsettled here, independently of the engine's own check, when its mean belt
 speed over the last ``--tail-s`` seconds (default 120 s) of the running phase swings (highest
-less lowest) by more than ``--swing`` of design speed (default 0.02). Every unsettled run must
+less lowest) by more than ``--swing`` of design speed (default 0.02), or a drive's force there
+swings about its mean by more than ``SETTLE_FORCE`` of its rated force. Every unsettled run must
 carry the engine's ``not settled while running`` warning (PHYSICS 5.2,
 ``beltstudy.engine.dynamics.simulate.running_warnings``); runs that warn but are settled over
 the tail (a swing that decayed late in the running phase) are listed too.
@@ -33,15 +34,16 @@ import numpy as np
 sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
 
 from beltstudy.engine.conveyor import Scenario, parse_conveyor  # noqa: E402
+from beltstudy.engine.dynamics.simulate import SETTLE_FORCE  # noqa: E402
 from beltstudy.engine.run import run_one  # noqa: E402
-from tests.engine.integration.test_run_random_designs import _design  # noqa: E402
+from tests.engine.integration.test_run_random_designs import _design, _within_fill  # noqa: E402
 
 WARNING = "not settled while running"
 
 
 def judge(seed: int, run_s: float, tail_s: float, swing_max: float) -> dict:
     """One design with a long running phase: its tail swing and what the run said."""
-    conv, model, scenario = _design(random.Random(seed))
+    conv, model, scenario = _within_fill(_design(random.Random(seed)))
     scenario = dict(scenario, run_s=run_s, stop={"mode": "coast"}, elements=40)
     c = parse_conveyor(conv)
     r = run_one(c, Scenario(**scenario), model=model)
@@ -58,7 +60,12 @@ def judge(seed: int, run_s: float, tail_s: float, swing_max: float) -> dict:
     v = ts["v_mean_m_s"][tail].to_numpy()
     ran = len(v) > 1 and "ran away" not in out["message"]
     out["swing"] = float(np.ptp(v)) / c.speed_m_s if ran else None
-    out["unsettled"] = bool(ran and out["swing"] > swing_max)
+    rated = tr.system.model.drives.rated
+    # the drives' force swings about their mean, over their rated force
+    out["force_swing"] = max(0.5 * float(np.ptp(ts[f"f_drive{i + 1}_kn"][tail].to_numpy()))
+                             * 1e3 / rated[i] for i in range(len(c.drives))) if ran else None
+    out["unsettled"] = bool(ran and (out["swing"] > swing_max
+                                     or out["force_swing"] > SETTLE_FORCE))
     out["warned"] = WARNING in out["message"]
     out["overspeed"] = "overspeed in the start" in out["message"]
     return out
@@ -78,6 +85,8 @@ def main() -> int:
         rows.append(row)
         if row.get("unsettled") or row.get("warned") or row.get("overspeed"):
             sw = f"{100 * row['swing']:.1f} %" if row["swing"] is not None else "-"
+            if row.get("force_swing") is not None:
+                sw += f", forces +-{100 * row['force_swing']:.0f} % of rated"
             flags = [k for k in ("unsettled", "warned", "overspeed") if row.get(k)]
             print(f"seed {seed:3d} {row['drives']:<28s} {row['belt']:<9s} {row['length_m']:5d} m "
                   f"tail swing {sw:>7s}  {' '.join(flags)}", flush=True)

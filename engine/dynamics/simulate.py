@@ -476,6 +476,13 @@ OVERSPEED_FRACTION = 1.10
 #: (highest less lowest) by no more than this fraction of design speed: +-1 %, the tracking
 #: criterion of docs/dynamics.md (PHYSICS 5.2).
 SETTLE_SWING = 0.02
+#: A drive's force over the judged window swinging about its mean by more than this fraction of
+#: its rated force has not settled either (a limit cycle of torque followers with the mean speed
+#: held): the step from a "uniform" driven machine (a uniformly loaded belt conveyor, application
+#: factor K_A 1.00) to "light shocks" (K_A 1.25) in the gear rating tables (AGMA 2003, ISO 6336,
+#: DIN 3990-41), so a drive that swings more no longer runs the duty its gear was rated for
+#: (docs/dynamics.md, "Settling and overspeed").
+SETTLE_FORCE = 0.25
 #: The judged window: the running phase's last half, and at least its last this many wave loop
 #: times (a take-up's swing can be slower than a wave loop); judged when it begins at least
 #: one wave loop time after the start's reference reached design speed.
@@ -494,11 +501,13 @@ def swing_and_period(t: np.ndarray, v: np.ndarray) -> tuple[float, float | None]
     return float(v.max() - v.min()), period
 
 
-def running_warnings(sys: System, r: dict, out) -> list[str]:
+def running_warnings(sys: System, r: dict, out, names=None) -> list[str]:
     """The start's overspeed (the mean belt speed above :data:`OVERSPEED_FRACTION` of design
     speed before the stop command) and a running phase that has not settled (its mean speed
     swinging by more than :data:`SETTLE_SWING` of design speed over its last
-    :data:`SETTLE_LOOPS` wave loop times), in words."""
+    :data:`SETTLE_LOOPS` wave loop times, or, with the mean speed within that, a drive's force
+    swinging about its mean by more than :data:`SETTLE_FORCE` of its rated force), in words.
+    ``names``: each drive's name (default ``drive k``)."""
     w: list[str] = []
     v_d = sys.v_design
     cyc = sys.model.cycle
@@ -524,7 +533,49 @@ def running_warnings(sys: System, r: dict, out) -> list[str]:
                  f"{t0:.0f} s to the stop command at {t1:.0f} s; drives at one end with a "
                  "slower speed loop (drives[i].speed_loop_rad_s) swing less (docs/dynamics.md, "
                  "Settling and overspeed)")
+        return w
+    rec_d = getattr(out, "rec_d", None)
+    swings = [] if rec_d is None else _force_swings(sys, rec, rec_d[:len(rec)], m, names)
+    if swings:
+        w.append(f"not settled while running: the mean belt speed holds (within {swing:.3g} m/s) "
+                 f"but {'; '.join(swings)}, from t = {t0:.0f} s to the stop command at "
+                 f"{t1:.0f} s: more than +-{100.0 * SETTLE_FORCE:.0f} % of the rated force "
+                 "takes a drive out of the uniform duty its gear is rated for (application "
+                 "factor 1.25 against 1.00); drives that follow the master's torque from a "
+                 "wave's travel away run in such a limit cycle under a fast speed loop, and a "
+                 "slower one (drives[i].speed_loop_rad_s) settles them (docs/dynamics.md, "
+                 "Settling and overspeed)")
     return w
+
+
+def _force_swings(sys: System, rec, rec_d, m, names=None) -> list[str]:
+    """Each drive whose force over the records ``m`` (``rec``, and ``rec_d`` per drive) swings
+    about its mean by more than :data:`SETTLE_FORCE` of its rated force, in words (lowest and
+    highest force, rated force, period)."""
+    drives = sys.model.drives
+    out = []
+    t = rec["t"][m]
+    for i in range(drives.rated.shape[0]):
+        f = rec_d["f"][:, i][m]
+        rated = float(drives.rated[i])
+        if len(f) < 2 or not rated > 0.0:
+            continue
+        swing, period = swing_and_period(t, f)
+        if 0.5 * swing > SETTLE_FORCE * rated:
+            name = names[i] if names else f"drive {i + 1}"
+            per = (f"a period of {period:.3g} s" if period
+                   else "a period longer than the window")
+            out.append(f"the force of {name} swings between {f.min() / 1e3:.3g} and "
+                       f"{f.max() / 1e3:.3g} kN (rated {rated / 1e3:.3g} kN, {per})")
+    return out
+
+
+def _drive_names(sys: System, conveyor=None) -> list[str]:
+    """Each drive's name in the warnings: ``drive k (where)`` (``drive k`` without the
+    conveyor)."""
+    if conveyor is not None:
+        return [f"drive {i + 1} ({d.where})" for i, d in enumerate(conveyor.drives)]
+    return [f"drive {i + 1}" for i in range(sys.model.drives.share.shape[0])]
 
 
 def _slip_warnings(sys: System, r: dict, out, conveyor=None) -> list[str]:
@@ -535,9 +586,7 @@ def _slip_warnings(sys: System, r: dict, out, conveyor=None) -> list[str]:
     drv = out.drv
     nd = drv.shape[0]
     brakes = sys.model.brakes
-    names = [f"drive {i + 1}" for i in range(nd)]
-    if conveyor is not None:
-        names = [f"drive {i + 1} ({d.where})" for i, d in enumerate(conveyor.drives)]
+    names = _drive_names(sys, conveyor)
     if int(r["status"]) == C.RUNAWAY:
         w.append(runaway_words(sys, float(r["t"]), float(r["v_mean"]), t_stop_cmd))
     for i in range(nd):
@@ -688,7 +737,7 @@ def transient_summary(sys: System, r: dict, out, segs, *, steady_summary=None, c
         return summary, w
     w += _slip_warnings(sys, r, out, conveyor)
     w += overloads
-    w += running_warnings(sys, r, out)
+    w += running_warnings(sys, r, out, _drive_names(sys, conveyor))
     if r["slack_max"] > 0.0 or r["slack_first"] >= 0.0:
         j = int(r["slack_at"]) if r["slack_at"] >= 0 else jmin
         w.append(

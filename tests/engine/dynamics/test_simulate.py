@@ -142,6 +142,44 @@ def test_a_running_phase_that_swings_is_named_with_its_swing_and_period(amp, per
     assert float(m.group(2)) == pytest.approx(period, rel=0.02)
 
 
+@pytest.mark.parametrize("amp_frac, warned", [(0.4, True), (0.2, False)])
+def test_a_drive_force_that_swings_with_the_speed_held_is_named(amp_frac, warned):
+    """The mean speed within SETTLE_SWING but a drive's force swinging about its mean by more
+    than SETTLE_FORCE of its rated force (a limit cycle of torque followers): named as not
+    settled with the drive, its lowest and highest force and the period (2 %); a swing within
+    it, or on the other drive alone below it, is not."""
+    from types import SimpleNamespace
+
+    from beltstudy.engine.dynamics import codes as C
+    from beltstudy.engine.dynamics import records as R
+    from beltstudy.engine.dynamics.simulate import SETTLE_FORCE, running_warnings
+
+    sysm = _running()
+    rated = np.array([30e3, 50e3])
+    sysm.model.drives = SimpleNamespace(rated=rated)
+    t = np.arange(0.0, sysm.stop_command_s, 0.05)
+    v = sysm.v_design + 0.002 * np.sin(2 * np.pi * t / 3.0)  # the mean speed held
+    rec_d = np.zeros((len(t), 2), dtype=R.DRIVE_RECORD)
+    rec_d["f"][:, 0] = 24e3 + amp_frac * rated[0] * np.sin(2 * np.pi * t / 3.0)
+    rec_d["f"][:, 1] = 40e3 + 0.1 * rated[1] * np.sin(2 * np.pi * t / 3.0)
+    r = {"vmean_hi": sysm.v_design, "vmean_hi_t": 50.0, "status": C.OK, "nrec": len(t)}
+    w = running_warnings(sysm, r, SimpleNamespace(rec=_records(t, v), rec_d=rec_d),
+                         ["drive 1 (head)", "drive 2 (carry at 500 m)"])
+    assert (amp_frac > SETTLE_FORCE) == warned
+    if not warned:
+        assert w == []
+        return
+    (msg,) = w
+    m = re.search(r"not settled while running: the mean belt speed holds .* the force of drive 1 "
+                  r"\(head\) swings between ([\d.]+) and ([\d.]+) kN \(rated 30 kN, a period of "
+                  r"([\d.]+) s\)", msg)
+    assert m, msg
+    assert float(m.group(1)) == pytest.approx(24 - 12, rel=0.01)
+    assert float(m.group(2)) == pytest.approx(24 + 12, rel=0.01)
+    assert float(m.group(3)) == pytest.approx(3.0, rel=0.02)
+    assert "drive 2" not in msg
+
+
 def test_an_overspeed_in_the_start_is_named_above_the_switch_setting():
     """The highest mean belt speed before the stop command above OVERSPEED_FRACTION of design
     speed is named with its value, its share of design speed and its time; at the setting

@@ -88,3 +88,55 @@ def test_running_tensions_settle_to_statics_with_a_booster(model, booster, takeu
     assert res.summary["drive1_slip_s"] == 0.0 and res.summary["drive2_slip_s"] == 0.0
     f2 = res.timeseries["f_drive2_kn"].iloc[-1] * 1e3
     assert f2 == pytest.approx(0.4 * st.te_n, rel=0.01)
+
+
+@pytest.mark.parametrize("elements", ["auto", 400])
+def test_a_remote_followers_force_limit_cycle_is_named_and_a_slower_loop_settles_it(elements):
+    """docs/routes.md, *Remote followers and the speed loop*: a booster at mid-carry following
+    the head's torque (each half of Te, a 5 t take-up at the tail, a 60 s start, 120 s of
+    running). Under the default speed loop the two forces swing in a limit cycle while the mean
+    speed holds within 2 %: the run says `not settled while running` with each drive's
+    swing, beyond +-25 % of its rated force (SETTLE_FORCE); at 0.5 rad/s they swing by less
+    than a fifth of that about their share of the steady Te (1 %) and the run does not say so.
+    Alike at the automatic mesh and at 400 elements."""
+    from beltstudy.engine.dynamics.simulate import SETTLE_FORCE
+
+    def conv(loop):
+        head = {"position": "head", "wrap_deg": 200, "friction": 0.35, "share": 0.5,
+                "pulley_diameter_m": 1.0}
+        if loop:
+            head["speed_loop_rad_s"] = loop
+        d = hand_conveyor_dict(drives=[head, {
+            "position": "carry", "at_m": 500, "wrap_deg": 200, "friction": 0.35, "share": 0.5,
+            "pulley_diameter_m": 1.0}])
+        d["takeup"] = {"type": "gravity", "position": "tail", "mass_kg": 5000}
+        return parse_conveyor(d)
+
+    def run(loop):
+        return run_one(conv(loop), Scenario(start={"time_s": 60}, run_s=120,
+                                            elements=elements), model="din")
+
+    fast = run(None)
+    msg = fast.summary["message"]
+    assert "not settled while running: the mean belt speed holds" in msg
+    rated = fast.transient.system.model.drives.rated
+    ts = fast.timeseries
+    t_cmd = fast.transient.system.stop_command_s
+    tail = ((ts["t_s"] > t_cmd - 30.0) & (ts["t_s"] <= t_cmd)).to_numpy()
+    for k, where in ((1, "head"), (2, "carry at 500 m")):
+        f = ts[f"f_drive{k}_kn"].to_numpy()[tail] * 1e3
+        assert 0.5 * (f.max() - f.min()) > SETTLE_FORCE * rated[k - 1]  # a swing indeed
+        assert f"the force of drive {k} ({where}) swings between" in msg
+    v = ts["v_mean_m_s"].to_numpy()[tail]
+    assert v.max() - v.min() < 0.02 * 4.0
+    slow = run(0.5)
+    assert "not settled" not in slow.summary["message"]
+    sysm = slow.transient.system
+    st = solve_steady(conv(0.5), model="din", n_elements=sysm.n)
+    ts = slow.timeseries
+    t_cmd = sysm.stop_command_s
+    tail = ((ts["t_s"] > t_cmd - 30.0) & (ts["t_s"] <= t_cmd)).to_numpy()
+    for k in (1, 2):
+        f = ts[f"f_drive{k}_kn"].to_numpy()[tail] * 1e3
+        assert 0.5 * (f.max() - f.min()) < 0.2 * SETTLE_FORCE * rated[k - 1]
+        assert f.mean() == pytest.approx(0.5 * st.te_n, rel=0.01)
