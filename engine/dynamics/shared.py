@@ -125,8 +125,7 @@ def simulate_group(systems: list[System], *, steady_summary=None, conveyor=None,
         In the order of ``systems``, each bit-identical to its own separate run; the wall
         time of each is the shared stretch's plus its own.
     """
-    keys = {0} if grouped else {start_key(s) for s in systems}
-    if len(keys) != 1:
+    if not grouped and len(keys := {start_key(s) for s in systems}) != 1:
         raise ValueError(f"simulate_group: the systems differ before the stop command ({len(keys)}"
                          " start keys); group them with group_by_start")
     # output buffers sized for the longest cycle of the group (their size is not read)
