@@ -773,7 +773,9 @@ def transient_summary(sys: System, r: dict, out, segs, *, steady_summary=None, c
     ran_away = int(r["status"]) == C.RUNAWAY  # the run ended early: said above
     if t_start_ach is None and not ran_away:
         w.append("the belt never reached 99 % of design speed during the start")
-    if not r["stopped"] and not ran_away:
+    # a run cut before its stop window ended (``t_end_s``, verification) is not judged on it
+    window_end = t_stop_cmd + sys.model.cycle.stop_max
+    if not r["stopped"] and not ran_away and float(r["t"]) >= window_end - 0.5 * sys.dt_s:
         braked = {int(k) for k in sys.model.brakes.shaft}
         sliding = any(out.shs[k]["slip_s"] > 0.0 and out.shs[k]["last"] > sys.stop_command_s
                       for k in braked)

@@ -198,3 +198,19 @@ def test_an_overspeed_in_the_start_is_named_above_the_switch_setting():
     assert "t = 41.5 s" in msg
     assert running_warnings(sysm, {"vmean_hi": OVERSPEED_FRACTION * sysm.v_design,
                                    "vmean_hi_t": 41.5, "status": C.OK, "nrec": 1}, out) == []
+
+
+def test_a_run_cut_before_its_stop_is_not_judged_on_stopping():
+    """A run ended before the stop command (``t_end_s``, verification) never reached its stop
+    window, so it says nothing of the belt not stopping; the same run to its end stops."""
+    from beltstudy.engine.dynamics import build_system, simulate
+    from beltstudy.engine.statics import solve_steady
+
+    conv = load_conveyor(CONVEYORS / "fabric-1km.yaml")
+    st = solve_steady(conv, model="din", n_elements=40)
+    sysm = build_system(conv, Scenario(start={"time_s": 10}, run_s=5, elements=40), st)
+    cut = simulate(sysm, t_end_s=sysm.stop_command_s - sysm.dt_s)
+    assert cut.summary["stop_time_s"] is None
+    assert "did not stop" not in cut.message
+    whole = simulate(sysm)
+    assert whole.summary["stop_time_s"] is not None and whole.summary["stop_time_s"] > 0.0

@@ -377,11 +377,11 @@ VFD_STARTS = (("slope-5pct", 180), ("fabric-1km", 180), ("downhill-regen", 180),
 
 
 @functools.cache
-def _vfd_start(name: str, start_s: float):
+def _vfd_start(name: str, start_s: float, model: str = "din"):
     """A vfd s-curve start of an example conveyor inside its torque limit (80 elements), run
     to just before the stop command: (system, result)."""
     conv = load_conveyor(CONVEYORS / f"{name}.yaml")
-    st = solve_steady(conv, model="din", n_elements=80)
+    st = solve_steady(conv, model=model, n_elements=80)
     sysm = build_system(conv, Scenario(start={"time_s": start_s}, run_s=30, elements=80), st)
     return sysm, simulate(sysm, t_end_s=sysm.stop_command_s - sysm.dt_s)
 
@@ -405,18 +405,24 @@ def test_vfd_master_pulley_tracks_its_reference(name, start_s):
     assert 100 * pulley - 1e-9 <= reported <= 100 * pulley + 0.2
 
 
-@pytest.mark.parametrize("name,start_s", [
-    pytest.param(*c, marks=pytest.mark.xfail(
+@pytest.mark.parametrize("name,start_s,model", [
+    pytest.param(*c, "din", marks=pytest.mark.xfail(
         strict=True, reason="the mean belt speed swings about +-3 % with the gravity take-up "
-        "(period about 57 s), a mode the pulley held to its reference does not damp; the "
-        "pulley tracks (test above), the mean-speed criteria are not met (docs/dynamics.md)"))
-    if c[0] == "overland-16km" else c for c in VFD_STARTS])
-def test_vfd_mean_belt_speed_follows_once_the_stretch_is_paid_in(name, start_s):
+        "(period about 57 s, decaying over about 1 300 s), a mode the pulley held to its "
+        "reference does not damp; the swing grows with the running stretch, 14.5 m with DIN's "
+        "resistance against 5.5 m with Non-Lin's, which meets the criteria (next parameter); "
+        "the pulley tracks (test above; docs/dynamics.md, *Tracking*)"))
+    if c[0] == "overland-16km" else (*c, "din") for c in VFD_STARTS]
+    + [("overland-16km", 300, "nonlin")])
+def test_vfd_mean_belt_speed_follows_once_the_stretch_is_paid_in(name, start_s, model):
     """docs/dynamics.md, *Tracking*: the mean belt speed within 2 % of design speed of the
     reference once the reference has travelled twice the running stretch (the belt a start
     must move past the drive to change the at-rest strains into the running ones), and within
-    1 % from one wave loop time after the ramp ends."""
-    sysm, r = _vfd_start(name, start_s)
+    1 % from one wave loop time after the ramp ends. The 16.8 km overland's 300 s start
+    meets them with Non-Lin's resistance (half DIN's Te there, so a 5.5 m stretch against
+    14.5 m, and a swing of 0.9 % against 3.3 %), with little margin after the ramp (0.99 %
+    at 80, 160 and 203 elements and at half the step)."""
+    sysm, r = _vfd_start(name, start_s, model)
     ts = r.timeseries
     t = ts["t_s"].to_numpy() - sysm.model.cycle.t_pre
     v_ref = ts["v_ref_m_s"].to_numpy()
