@@ -283,6 +283,9 @@ TRANSIENT = ResultGroup("transient", "Transient: the start, run and stop cycle (
     _f("f_holdback_kn", "kN", "largest force the holdback (holdback: true, at the head drive "
        "pulley) gives over the run, apart from the brakes' (null without a holdback)",
        "holdback force (largest)"),
+    _f("f_brake_kn", "kN", "largest force the brakes give together over the run (their sum "
+       "on every shaft; the time series' f_brake_kn at every step), apart from the holdback's "
+       "(null without brakes)", "brake force (largest)"),
     _f("wave_loop_time_s", "s", "time a stress wave takes once round the loop",
        "wave loop time"),
     _f("stop_wave_ratio", "-", "stop_time_s / wave_loop_time_s", "stop time / wave loop time"),

@@ -231,6 +231,7 @@ def summarise(study: dict, runs: pd.DataFrame, figures: Sequence[str] = FIGURES
             cell["sensitivity"][col] = sensitivity(sample, points, y)
         cells.append(cell)
     return {"sampled": True, "method": sample["method"], "n": sample["n"],
+            "points": len(points),
             "seed": sample.get("seed", 0), "axes": sample["axes"],
             "confidence": CONFIDENCE, "limits": [c.key for c in CAUSES if c.key in LIMITS],
             "cells": cells}
@@ -245,7 +246,10 @@ def format_text(result: dict) -> str:
     then the exceedance probabilities."""
     if not result.get("sampled"):
         return result.get("message", "not a sampled study")
-    lines = [f"sample: {result['n']} points, method {result['method']}, seed {result['seed']}; "
+    drawn = result.get("points", result["n"])
+    asked = "" if drawn == result["n"] else (
+        f" (n = {result['n']}: the nearest Saltelli design, N (D + 2) with N a power of two)")
+    lines = [f"sample: {drawn} points{asked}, method {result['method']}, seed {result['seed']}; "
              f"axes {', '.join(result['axes'])}"]
     for cell in result["cells"]:
         where = ", ".join(f"{k}={v}" for k, v in cell["grid"].items()) or "all runs"

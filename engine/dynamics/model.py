@@ -923,7 +923,7 @@ def _rest_grip(loop, hold: int, T_rest: np.ndarray) -> list[str]:
     slack = max(min(t_in, t_out), 0.0)
     grip = slack * math.expm1(pulley.friction * math.radians(pulley.wrap_deg))
     held = abs(t_out - t_in)
-    if held <= grip:
+    if held <= grip * (1.0 + 1e-9):  # a take-up sized to the grip holds (rounding aside)
         return []
     need = held / math.expm1(pulley.friction * math.radians(pulley.wrap_deg))
     return [f"at rest the {pulley.where} pulley holding the belt passes {held / 1e3:.4g} kN, "

@@ -491,13 +491,13 @@ SETTLE_LOOPS = 3.0
 
 def swing_and_period(t: np.ndarray, v: np.ndarray) -> tuple[float, float | None]:
     """Highest less lowest of ``v`` and the period of its swing from the crossings of its mean
-    [s] (None with fewer than three crossings)."""
+    [s] (two crossings a period apart; from two, half a period apart; None with fewer)."""
     if len(v) < 2:
         return 0.0, None
     d = v - float(v.mean())
     cross = np.flatnonzero(np.signbit(d[:-1]) != np.signbit(d[1:]))
     period = (2.0 * float(t[cross[-1]] - t[cross[0]]) / (len(cross) - 1)
-              if len(cross) >= 3 else None)
+              if len(cross) >= 2 else None)
     return float(v.max() - v.min()), period
 
 
@@ -519,9 +519,18 @@ def running_warnings(sys: System, r: dict, out, names=None) -> list[str]:
                  "its acceleration; a gentler start (a longer vfd start.time_s, a fluid "
                  "coupling on a dol drive) stretches it less")
     t1 = sys.stop_command_s
-    t0 = t1 - max(SETTLE_LOOPS * sys.wave_loop_time_s, 0.5 * cyc.t_run)
-    if t0 < cyc.t_pre + cyc.t_start + sys.wave_loop_time_s or int(r["status"]) != C.OK:
-        return w  # the running phase is too short to judge
+    t_loop = sys.wave_loop_time_s
+    # the judged window; a running phase shorter than SETTLE_LOOPS + 1 wave loop times is
+    # judged from one wave loop time after the ramp on (what the stop starts from)
+    t_ok = cyc.t_pre + cyc.t_start + t_loop
+    t0 = max(t1 - max(SETTLE_LOOPS * t_loop, 0.5 * cyc.t_run), t_ok)
+    if t1 - t0 < 0.5 * t_loop or int(r["status"]) != C.OK:
+        return w  # too little of the running phase is past the start to judge
+    short = ""
+    if t0 > t1 - SETTLE_LOOPS * t_loop + 1e-9:
+        short = (f"; the running phase is short (run_s {cyc.t_run:.3g} s): a run_s of at least "
+                 f"{(SETTLE_LOOPS + 1.0) * t_loop:.0f} s ({SETTLE_LOOPS + 1.0:g} wave loop "
+                 "times) shows whether it settles")
     rec = out.rec[:int(r["nrec"])]
     m = (rec["t"] >= t0) & (rec["t"] <= t1)
     swing, period = swing_and_period(rec["t"][m], rec["v_mean"][m])
@@ -530,9 +539,10 @@ def running_warnings(sys: System, r: dict, out, names=None) -> list[str]:
                else "a period longer than the window")
         w.append(f"not settled while running: the mean belt speed still swings by {swing:.3g} "
                  f"m/s ({100.0 * swing / v_d:.1f} % of design speed, {per}) from t = "
-                 f"{t0:.0f} s to the stop command at {t1:.0f} s; drives at one end with a "
-                 "slower speed loop (drives[i].speed_loop_rad_s) swing less (docs/dynamics.md, "
-                 "Settling and overspeed)")
+                 f"{t0:.0f} s to the stop command at {t1:.0f} s, so the stop starts from a "
+                 "swinging belt; drives at one end with a slower speed loop "
+                 "(drives[i].speed_loop_rad_s) swing less (docs/dynamics.md, Settling and "
+                 f"overspeed){short}")
         return w
     rec_d = getattr(out, "rec_d", None)
     swings = [] if rec_d is None else _force_swings(sys, rec, rec_d[:len(rec)], m, names)
@@ -544,7 +554,7 @@ def running_warnings(sys: System, r: dict, out, names=None) -> list[str]:
                  "factor 1.25 against 1.00); drives that follow the master's torque from a "
                  "wave's travel away run in such a limit cycle under a fast speed loop, and a "
                  "slower one (drives[i].speed_loop_rad_s) settles them (docs/dynamics.md, "
-                 "Settling and overspeed)")
+                 f"Settling and overspeed){short}")
     return w
 
 
@@ -692,6 +702,7 @@ def transient_summary(sys: System, r: dict, out, segs, *, steady_summary=None, c
         "stop_window_s": float(sys.model.cycle.stop_max),
         "f_holdback_kn": (float(r["fhb_max"]) / 1e3 if (sys.model.shafts.hb == 1).any()
                           else None),
+        "f_brake_kn": float(r["fbr_max"]) / 1e3 if len(brakes.force) else None,
         "wave_loop_time_s": sys.wave_loop_time_s,
         "stop_wave_ratio": (t_stop_ach / sys.wave_loop_time_s
                             if t_stop_ach is not None else None),
@@ -764,8 +775,7 @@ def transient_summary(sys: System, r: dict, out, segs, *, steady_summary=None, c
                  f"{safety_factor_min:g} (peak {t_max_dyn / 1e3:.4g} kN near "
                  f"{where(sys, jmax)})")
     if summary["stop_wave_ratio"] is not None and summary["stop_wave_ratio"] < 5.0:
-        w.append(f"stop in {t_stop_ach:.1f} s is faster than 5 wave loop times "
-                 f"(5 x {sys.wave_loop_time_s:.1f} s): a high-stress stop")
+        w.append(_fast_stop_words(sys, t_stop_ach, summary, steady_tmax))
     if r["endstop"] > 0:
         w.append(f"take-up carriage reached its end stop at t = {r['endstop_t']:.1f} s at "
                  f"{r['endstop_speed']:.2f} m/s (travel {tu.hi - tu.lo:.3g} "
@@ -781,6 +791,28 @@ def transient_summary(sys: System, r: dict, out, segs, *, steady_summary=None, c
                       for k in braked)
         w.append(not_stopped_words(sys, float(r["v_mean"]), sliding))
     return summary, w
+
+
+def _fast_stop_words(sys: System, t_stop: float, summary: dict, steady_tmax: float) -> str:
+    """The warning of a stop faster than 5 wave loop times (Harrison after Funke 1973): the
+    stop's tensions against the running ones, and what would lengthen it."""
+    cyc = sys.model.cycle
+    t_min_run = float(np.min(sys.steady_tension_n)) / 1e3
+    hi, lo = summary.get("t_max_stop_kn"), summary.get("t_min_stop_kn")
+    seen = (f"; its tensions ranged {lo:.4g} to {hi:.4g} kN against {t_min_run:.4g} to "
+            f"{steady_tmax / 1e3:.4g} kN running" if hi is not None and lo is not None else "")
+    need = 5.0 * sys.wave_loop_time_s
+    if cyc.stop_mode == C.CONTROLLED:
+        fix = (f"a controlled stop of stop.time_s {need * cyc.t_stop / t_stop:.0f} s or more "
+               "would be slower than that")
+    elif cyc.stop_mode == C.BRAKE:
+        fix = (f"less brake force (a longer stop.time_s, at least {need:.0f} s, for an auto "
+               "brake) would be slower than that")
+    else:
+        fix = (f"a controlled stop (vfd drives, stop.time_s {need:.0f} s or more) or more "
+               "inertia on the drive shafts would be slower than that")
+    return (f"stop in {t_stop:.1f} s is faster than 5 wave loop times (5 x "
+            f"{sys.wave_loop_time_s:.1f} s): a high-stress stop{seen}; {fix}")
 
 
 def not_stopped_words(sys: System, v_end: float, sliding: bool = False) -> str:

@@ -107,6 +107,10 @@ class NonlinParams:
     drag_per_set_n: float | None = param(
         None, "seal drag A_i of one idler set at v_r and T_r [N], overriding both the file "
               "and drag_per_roll_n")
+    seal_drag_factor: float = param(
+        1.0, "factor on the seal drag A_z of every idler set [-] (1: the drag as the file, "
+             "drag_per_roll_n or drag_per_set_n gives it); a plant's seals differ from the "
+             "catalogue's by tens of percent, which a sampled study (SPEC 7.2) draws")
     drag_speed_exp: float = param(
         0.3, "seal drag speed exponent b [-] (paper range 0.3-0.5; 0.3, the lower end: grease "
              "seals whose drag grows weakly with speed)")
@@ -153,7 +157,8 @@ class NonlinParams:
              "in proportion to the sag ratio; estimate)")
 
     def check(self) -> None:
-        for name in ("mu_b", "bearing_diameter_m", "drag_speed_exp", "drag_temp_coef",
+        for name in ("mu_b", "bearing_diameter_m", "seal_drag_factor", "drag_speed_exp",
+                     "drag_temp_coef",
                      "kappa_ir", "m_star", "bf_sag_exp", "p_mf", "q_mf", "s_mf",
                      "mf_sag_exp"):
             if getattr(self, name) < 0:
@@ -330,7 +335,7 @@ def build(loop: Loop, conv: Conveyor, temperature_c: float, params: NonlinParams
 
     # R: idler rotation = Kta x bearing part + seal drag (v / v_r)^b e^{-c (T - T_r)} / S
     b.add("idler_rotation", bearing_term_n(loop, p.mu_b, p.bearing_diameter_m, kta))
-    drag = idler_drag_n(loop, conv, p.drag_per_set_n, p.drag_per_roll_n)
+    drag = idler_drag_n(loop, conv, p.drag_per_set_n, p.drag_per_roll_n) * p.seal_drag_factor
     temp = math.exp(-p.drag_temp_coef * (temperature_c - p.drag_ref_temp_c))
     # the seal drag carries its own temperature law e^{-c (T - T_r)}, not Kta as well
     drag_coef = drag * temp / spacing * dx / p.drag_ref_speed_m_s ** p.drag_speed_exp

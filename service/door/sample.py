@@ -15,9 +15,10 @@ Methods:
   (``SALib.sample.sobol.sample`` with ``calc_second_order=False``, scrambled Sobol' sequence
   of dimension 2 D from ``scipy.stats.qmc.Sobol``, seeded): base samples A and B of N points
   and the D matrices AB_i (A with column i from B), N (D + 2) points in all, in SALib's order.
-  ``n`` is that total: N = n / (D + 2) must be a power of two (the Sobol' sequence's balance),
-  so ``n`` is refused otherwise with the nearest valid values. First-order and total indices
-  then come from ``SALib.analyze.sobol`` on the runs' results.
+  ``n`` is that total when N = n / (D + 2) is a power of two (the Sobol' sequence's balance);
+  another ``n`` draws the nearest such size (SPEC 7.2's ``n: 512`` over 3 axes draws 640,
+  N = 128), which the study's uncertainty summary states (``points``). First-order and total
+  indices then come from ``SALib.analyze.sobol`` on the runs' results.
 
 Distributions (parameters as scipy.stats names them in brackets):
 
@@ -38,7 +39,7 @@ import numpy as np
 from pydantic import BaseModel, ConfigDict, Field, model_validator
 
 __all__ = ["SampleIn", "Distribution", "draw", "unit_points", "sobol_base", "DISTRIBUTIONS",
-           "MAX_SAMPLE"]
+           "MAX_SAMPLE", "sobol_points"]
 
 #: Largest sample (runs before crossing with the grid; BELTSTUDY_MAX_RUNS bounds the study).
 MAX_SAMPLE = 1 << 16
@@ -129,7 +130,8 @@ class SampleIn(BaseModel):
     model_config = ConfigDict(extra="forbid")
 
     n: int = Field(..., ge=2, le=MAX_SAMPLE, description="points drawn (runs before the grid "
-                   "crosses them); method sobol: N (D + 2) with N a power of two")
+                   "crosses them); method sobol draws the nearest N (D + 2) with N a power of "
+                   "two")
     method: Literal["sobol", "lhs"] = Field(
         "sobol", description="sobol: Saltelli's design on a scrambled Sobol' sequence "
         "(SALib; Sobol' indices) | lhs: Latin hypercube (rank correlations)")
@@ -146,19 +148,26 @@ class SampleIn(BaseModel):
 
 
 def sobol_base(n: int, d: int) -> int:
-    """N of a Saltelli design of ``n`` points over ``d`` inputs (n = N (d + 2), N a power of
-    two); ValueError naming the nearest valid sizes otherwise."""
+    """N of the Saltelli design drawn for ``n`` points over ``d`` inputs: N (d + 2) points with
+    N a power of two (the Sobol' sequence's balance), the nearest to ``n`` (the smaller on a
+    tie); ``n`` itself when it is such a size. ValueError below the smallest (N = 2)."""
     per = d + 2
-    base = n // per
-    if n % per == 0 and base >= 2 and base & (base - 1) == 0:
-        return base
-    lo = 1 << max(1, int(math.floor(math.log2(max(n / per, 2)))))
-    hi = lo * 2 if lo * per <= n else lo
-    options = sorted({lo * per, hi * per})
-    raise ValueError(
-        f"n = {n}: method sobol draws N (D + 2) points for D = {d} axes with N a power of two "
-        f"(Saltelli's design for Sobol' indices); use n = {' or '.join(map(str, options))}, "
-        "or method: lhs for any n")
+    if n < 2 * per:
+        raise ValueError(f"n = {n}: method sobol draws N (D + 2) points for D = {d} axes with N "
+                         f"a power of two from 2 (Saltelli's design for Sobol' indices); use n "
+                         f">= {2 * per}, or method: lhs for any n")
+    lo = 1 << int(math.floor(math.log2(n / per)))
+    while (lo * 2) * per <= n:  # guard the float log
+        lo *= 2
+    while lo > 2 and lo * per > n:
+        lo //= 2
+    hi = lo * 2
+    return lo if n - lo * per <= hi * per - n else hi
+
+
+def sobol_points(n: int, d: int) -> int:
+    """Points a ``method: sobol`` sample of ``n`` draws over ``d`` axes (:func:`sobol_base`)."""
+    return sobol_base(n, d) * (d + 2)
 
 
 def unit_points(sample: SampleIn) -> np.ndarray:

@@ -122,9 +122,20 @@ def test_invalid_distributions_are_refused_naming_the_field(axes, message):
         resolve_study(sampled(axes=axes))
 
 
+@pytest.mark.parametrize("n, points", [(100, 80), (512, 640), (480, 320), (80, 80),
+                                       (10, 10)])
+def test_sobol_draws_the_nearest_saltelli_design(n, points):
+    """SPEC 7.2's ``n: 512`` over three axes runs: method sobol draws N (D + 2) points with N a
+    power of two, the size nearest n (the smaller on a tie), n itself when it is one."""
+    study = resolve_study(sampled(n=n, method="sobol"))
+    assert study.total == points
+    base = points // 5
+    assert base & (base - 1) == 0 and base >= 2
+
+
 def test_sobol_size_and_overlap_are_refused():
-    with pytest.raises(Invalid, match=r"sample.*n = 100: method sobol.*use n = 80 or 160"):
-        resolve_study(sampled(n=100, method="sobol"))
+    with pytest.raises(Invalid, match=r"sample.*n = 9: method sobol.*use n >= 10"):
+        resolve_study(sampled(n=9, method="sobol"))
     with pytest.raises(Invalid, match=r"sample\.axes: axes 'temperature_c' and 'temperature_c' "
                                       r"both set scenario\.temperature_c"):
         resolve_study(sampled(grid={"temperature_c": [0, 10]}))

@@ -214,3 +214,70 @@ def test_a_run_cut_before_its_stop_is_not_judged_on_stopping():
     assert "did not stop" not in cut.message
     whole = simulate(sysm)
     assert whole.summary["stop_time_s"] is not None and whole.summary["stop_time_s"] > 0.0
+
+
+def test_a_short_running_phase_is_judged_from_one_wave_loop_after_the_ramp():
+    """A 30 s running phase of an 8.2 s-wave-loop belt (shorter than SETTLE_LOOPS + 1 wave
+    loops): a 7 % swing of the mean speed is still named, over the window from one wave loop
+    after the ramp to the stop command, with the run_s that would judge it in full and a
+    period from two crossings of the mean (10 %); a swing within 2 % is not named."""
+    from types import SimpleNamespace
+
+    from beltstudy.engine.dynamics import codes as C
+    from beltstudy.engine.dynamics.simulate import running_warnings
+
+    for amp, warned in ((0.14, True), (0.03, False)):
+        sysm = _running(t_loop=8.2, v_d=4.0, t_run=30.0)
+        t = np.arange(0.0, sysm.stop_command_s, 0.1)
+        v = sysm.v_design + amp * np.sin(2 * np.pi * t / 12.2)
+        r = {"vmean_hi": sysm.v_design, "vmean_hi_t": 50.0, "status": C.OK, "nrec": len(t)}
+        w = running_warnings(sysm, r, SimpleNamespace(rec=_records(t, v)))
+        if not warned:
+            assert w == []
+            continue
+        (msg,) = w
+        m = re.search(r"swings by ([\d.]+) m/s .* a period of ([\d.]+) s\) from t = (\d+) s", msg)
+        assert m, msg
+        assert float(m.group(1)) == pytest.approx(2 * amp, rel=0.02)
+        assert float(m.group(2)) == pytest.approx(12.2, rel=0.10)
+        assert int(m.group(3)) == round(2.0 + 60.0 + 8.2)
+        assert "a run_s of at least 33 s" in msg
+
+
+def test_a_fast_stop_says_its_tensions_and_what_would_slow_it():
+    """A stop faster than 5 wave loop times: the warning gives the stop's tension range
+    against the running one and, for a controlled stop, the stop.time_s that makes it 5 wave
+    loop times (asked x 5 loops / achieved)."""
+    from types import SimpleNamespace
+
+    from beltstudy.engine.dynamics import codes as C
+    from beltstudy.engine.dynamics.simulate import _fast_stop_words
+
+    sysm = SimpleNamespace(wave_loop_time_s=8.2, steady_tension_n=np.array([20e3, 261e3]),
+                           model=SimpleNamespace(cycle=SimpleNamespace(
+                               stop_mode=C.CONTROLLED, t_stop=30.0)))
+    msg = _fast_stop_words(sysm, 25.2, {"t_max_stop_kn": 250.0, "t_min_stop_kn": 15.0},
+                           261e3)
+    assert "ranged 15 to 250 kN against 20 to 261 kN running" in msg
+    assert f"stop.time_s {5 * 8.2 * 30.0 / 25.2:.0f} s or more" in msg
+
+
+def test_a_rest_hold_exactly_at_the_grip_is_not_called_creep():
+    """Euler-Eytelwein at rest: a take-up sized to the held pulley's grip (an auto size to the
+    slip limit, equal to rounding) holds; 0.1 % beyond it creeps, and the warning asks for the
+    slack-side tension that holds it."""
+    import math
+    from types import SimpleNamespace
+
+    from beltstudy.engine.dynamics.model import _rest_grip
+
+    pulley = SimpleNamespace(element=3, friction=0.35, wrap_deg=220.0, where="head")
+    loop = SimpleNamespace(pulleys=[pulley])
+    slack = 64.9e3
+    grip = slack * math.expm1(0.35 * math.radians(220.0))
+    for over, creeps in ((1.0 + 1e-12, False), (1.001, True)):
+        T = np.array([0.0, 0.0, slack + grip * over, slack, 0.0])
+        w = _rest_grip(loop, 3, T)
+        assert bool(w) == creeps
+        if creeps:
+            assert f"slack-side tension of {slack * 1.001 / 1e3:.4g} kN" in w[0]

@@ -199,6 +199,28 @@ def test_idler_drag_rises_as_temperature_falls(conv):
     assert_allclose(ratio, math.exp(0.017 * 40), rtol=1e-12)
 
 
+def test_seal_drag_factor_scales_the_seal_drag_alone(conv):
+    """models.nonlin.seal_drag_factor (SPEC 7.2's sampled axis) multiplies the seal drag A_z
+    and nothing else: the idler rotation less its bearing part scales with it exactly, every
+    other part stays."""
+    loop = build_loop(conv, 1.0, n_elements=50)
+    fm = get_model("nonlin")
+    tm = np.full(loop.n, 50e3)
+
+    def parts(**p):
+        return fm.build(loop, conv, -10.0, fm.params(p)).parts(V, tm)
+
+    bearing = parts(drag_per_set_n=0.0)["idler_rotation"].sum()
+    one, two = parts(), parts(seal_drag_factor=2.3)
+    assert_allclose(two["idler_rotation"].sum() - bearing,
+                    2.3 * (one["idler_rotation"].sum() - bearing), rtol=1e-12)
+    assert one["idler_rotation"].sum() - bearing > 0.0
+    for name in ("indentation", "belt_flexure", "material_flexure"):
+        assert_allclose(two[name], one[name], rtol=0, atol=0)
+    with pytest.raises(InputError, match="seal_drag_factor"):
+        fm.params({"seal_drag_factor": -1.0}).check()
+
+
 def test_speed_exponents_of_the_law(conv):
     loop = build_loop(conv, 1.0, n_elements=50)
     law = get_model("nonlin").build(loop, conv, 20.0, nl.NonlinParams())

@@ -460,6 +460,11 @@ def test_brake_force_builds_over_its_ramp_or_curve(curve):
         expected = 10.0 * np.clip(tau[window] / 2.0, 0.0, 1.0)
     assert "slipped" not in r.summary["message"]
     assert_allclose(ts["f_brake_kn"][window], expected, rtol=0.01, atol=0.2)
+    # the run's largest brake force (SPEC 7.4, every step): the brake's full 10 kN, at least
+    # the largest sample
+    assert ts["f_brake_kn"].max() <= r.summary["f_brake_kn"] + 1e-9
+    assert r.summary["f_brake_kn"] == pytest.approx(10.0, rel=1e-9)
+    assert r.summary["f_holdback_kn"] is None
 
 
 def test_controlled_stop_with_a_holding_brake_stays_at_rest():
