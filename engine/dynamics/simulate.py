@@ -809,8 +809,8 @@ def _fast_stop_words(sys: System, t_stop: float, summary: dict, steady_tmax: flo
         fix = (f"less brake force (a longer stop.time_s, at least {need:.0f} s, for an auto "
                "brake) would be slower than that")
     else:
-        fix = (f"a controlled stop (vfd drives, stop.time_s {need:.0f} s or more) or more "
-               "inertia on the drive shafts would be slower than that")
+        fix = (f"a controlled stop (vfd drives) taking {need:.0f} s or more, or more inertia "
+               "on the drive shafts, would be slower than that")
     return (f"stop in {t_stop:.1f} s is faster than 5 wave loop times (5 x "
             f"{sys.wave_loop_time_s:.1f} s): a high-stress stop{seen}; {fix}")
 
