@@ -49,7 +49,12 @@ import numpy as np
 
 from beltstudy.engine.capacity import capacity as capacity_check
 from beltstudy.engine.checks import steady_checks as design_checks
-from beltstudy.engine.conveyor import Conveyor, section_loads
+from beltstudy.engine.conveyor import (
+    PRETENSION_MAX_KN,
+    TAKEUP_MASS_MAX_KG,
+    Conveyor,
+    section_loads,
+)
 from beltstudy.engine.curves import steady_checks as curve_checks
 from beltstudy.engine.drives import rated_power_kw
 from beltstudy.engine.drives import steady_checks as drive_checks
@@ -590,6 +595,27 @@ def _summarise(res: SteadyResult, drives, hs_adm, bounds, shortfall_n: float,
                 f"slip at {where} at {which}: slip margin "
                 f"{min(m_run, m_start):.2f} < 1 (e^(mu theta) = {e:.2f}){fix}"
             )
+    # ---- an auto take-up beyond what a file may give: name what sets it and what avoids it
+    beyond = ""
+    if tu.type == "gravity" and tu.mass_kg == "auto" and res.takeup_mass_kg > TAKEUP_MASS_MAX_KG:
+        beyond = (f"the auto take-up mass {res.takeup_mass_kg / 1e3:,.0f} t is beyond any "
+                  f"counterweight (a file may give at most {TAKEUP_MASS_MAX_KG / 1e3:,.0f} t)")
+    elif (tu.type == "fixed" and tu.pretension_kn == "auto"
+          and res.takeup_tension_n / 1e3 > PRETENSION_MAX_KN):
+        beyond = (f"the auto pretension {res.takeup_tension_n / 1e3:,.0f} kN is beyond the "
+                  f"breaking force of any catalogue belt ({PRETENSION_MAX_KN:,.0f} kN)")
+    if beyond:
+        gov = res.takeup_governed_by
+        if gov.startswith("slip"):
+            k = min(range(len(drives)), key=lambda i: drives[i][2])
+            d = conv.drives[k]
+            fix = (f"drive {k + 1} ({d.where}) grips too little for its share of Te (friction "
+                   f"{d.friction:g}, wrap {d.wrap_deg:g} deg, e^(mu theta) = "
+                   f"{drives[k][2]:.3g}): more friction (a lagged pulley), more wrap "
+                   "(a snub pulley) or a smaller share on it would avoid it")
+        else:
+            fix = ("closer idlers (idlers.*.spacing_m) or a higher sag limit would lower it")
+        warnings.append(f"{beyond}, set by {gov}: {fix}")
     # ---- each drive's motor power against its rating (SPEC 7.4, beltstudy.engine.drives)
     rated_kw, _ = rated_power_kw(conv, res.te_n, float(np.sum(res.resistance_n)))
     fields, short = drive_checks(conv, [share * res.te_n for _i, share, _e in drives], v,

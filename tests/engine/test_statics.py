@@ -408,3 +408,19 @@ def test_a_regenerating_decline_sizes_its_take_up_for_breakaway():
     assert res.summary["slip_margin_start"] < 1.0
     assert "slip at drive 1 (head) at breakaway" in res.message
     assert f"{hand:.0f} kg needed" in res.message
+
+
+def test_an_auto_take_up_beyond_any_counterweight_names_the_drive_that_needs_it():
+    """A drive pulley that barely grips (friction 1e-6: e^(mu theta) = 1 + 3.5e-6) needs a
+    take-up of T2 = 1.5 Te / (e^(mu theta) - 1) at start-up, far beyond the 2 000 t a file may
+    give: the run says so, with the constraint, the drive, its friction and wrap and what would
+    avoid it; with friction 0.35 it says nothing of the kind."""
+    d = hand_conveyor_dict(drives=[{"position": "head", "wrap_deg": 200, "friction": 1e-6,
+                                    "share": 1.0, "pulley_diameter_m": 1.0}])
+    res = solve_steady(parse_conveyor(d), model="din", n_elements=50)
+    assert res.takeup_mass_kg > 2.0e6
+    (msg,) = [w for w in res.summary["message"].split("; ") if "beyond any counterweight" in w]
+    assert "set by slip_start" in msg and "drive 1 (head)" in msg
+    assert "friction 1e-06, wrap 200 deg" in msg and "lagged pulley" in msg
+    ok = solve_steady(parse_conveyor(hand_conveyor_dict()), model="din", n_elements=50)
+    assert "beyond any counterweight" not in ok.summary["message"]
