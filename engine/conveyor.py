@@ -28,6 +28,7 @@ from pydantic import (
 
 from beltstudy.engine.errors import InputError
 from beltstudy.engine.results import MAX_DRIVES, MAX_HCURVES
+from beltstudy.engine.textfile import read_text
 
 __all__ = [
     "InputError",
@@ -1093,18 +1094,61 @@ Yaml12Floats.add_implicit_resolver("tag:yaml.org,2002:float", _FLOAT_12,
                                    list("-+0123456789."))
 
 
+class _KeyTwice(Exception):
+    """A mapping with a key given twice: the key and its lines (1-based; ``None`` in JSON)."""
+
+    def __init__(self, key: str, first: int | None = None, line: int | None = None):
+        super().__init__(key)
+        self.key, self.first, self.line = key, first, line
+
+    def message(self, what: str) -> str:
+        if self.line is None:
+            return f"{what}: key '{self.key}' given twice in one object; give each key once"
+        return (f"{what}: line {self.line}: key '{self.key}' given twice (first at line "
+                f"{self.first}); give each key once")
+
+
+_MERGE_TAG = "tag:yaml.org,2002:merge"
+
+
 class _SafeLoader(yaml.SafeLoader, Yaml12Floats):
-    """``yaml.safe_load`` with :class:`Yaml12Floats`."""
+    """``yaml.safe_load`` with :class:`Yaml12Floats`; a key given twice in one mapping is
+    refused (:class:`_KeyTwice`) where PyYAML would keep the last one silently. Keys merged
+    in with ``<<`` may still be overridden, as YAML means them to be."""
+
+    def construct_mapping(self, node, deep=False):
+        if isinstance(node, yaml.MappingNode):
+            seen: dict[tuple[str, str], int] = {}
+            for key_node, _ in node.value:
+                if not isinstance(key_node, yaml.ScalarNode) or key_node.tag == _MERGE_TAG:
+                    continue
+                line = key_node.start_mark.line + 1
+                key = (key_node.tag, key_node.value)
+                if key in seen:
+                    raise _KeyTwice(key_node.value, seen[key], line)
+                seen[key] = line
+        return super().construct_mapping(node, deep=deep)
+
+
+def _json_pairs(pairs: list[tuple[str, Any]]) -> dict:
+    out = dict(pairs)
+    if len(out) != len(pairs):
+        seen: set[str] = set()
+        raise _KeyTwice(next(k for k, _ in pairs if k in seen or seen.add(k)))
+    return out
 
 
 def load_mapping(path: str | Path) -> dict:
-    """Read a YAML or JSON file into a mapping, with a one-line error on failure."""
+    """Read a YAML or JSON file into a mapping, with a one-line error on failure (text
+    encodings: :func:`beltstudy.engine.textfile.read_text`; a key given twice in one mapping
+    is an error)."""
     p = Path(path)
-    if not p.is_file():
-        raise InputError(f"{p}: file not found")
-    text = p.read_text(encoding="utf-8")
+    text = read_text(p)
     try:
-        data = json.loads(text) if p.suffix.lower() == ".json" else yaml.load(text, _SafeLoader)  # noqa: S506
+        data = (json.loads(text, object_pairs_hook=_json_pairs) if p.suffix.lower() == ".json"
+                else yaml.load(text, _SafeLoader))  # noqa: S506
+    except _KeyTwice as exc:
+        raise InputError(exc.message(str(p))) from None
     except (yaml.YAMLError, json.JSONDecodeError) as exc:
         first = str(exc).splitlines()[0] if str(exc) else type(exc).__name__
         mark = getattr(exc, "problem_mark", None)

@@ -38,7 +38,7 @@ MAX_FIT = 12
 class MeasuredRow(BaseModel):
     """One measured steady state (a row of the CSV)."""
 
-    model_config = ConfigDict(extra="forbid")
+    model_config = ConfigDict(extra="forbid", allow_inf_nan=False)
 
     load: str | float | list[float] = Field(..., description="load case as in a scenario")
     temperature_c: float = Field(..., ge=TEMPERATURE_MIN_C, le=TEMPERATURE_MAX_C,
@@ -53,7 +53,7 @@ class MeasuredRow(BaseModel):
 class CalibrationIn(BaseModel):
     """The body of ``POST /calibrations``."""
 
-    model_config = ConfigDict(extra="forbid")
+    model_config = ConfigDict(extra="forbid", allow_inf_nan=False)
 
     conveyor: ConveyorRef = Field(
         ..., description="a conveyor file under the studies directory, or inline")

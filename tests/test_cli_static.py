@@ -150,3 +150,13 @@ def test_static_table_shows_the_horizontal_curves(tmp_path):
     line = next(ln for ln in table.splitlines() if ln.strip().startswith("curve 1"))
     assert line.split()[-1] == ("yes" if out["hcurve1_ok"] else "NO")
     assert f"{out['hcurve1_tension_max_kn']:.1f}" in line
+
+
+def test_static_output_in_a_missing_folder_is_one_line(tmp_path, capsys):
+    from beltstudy.service.cli import main
+
+    for option, name in (("--plot", "p.png"), ("--profile", "p.csv")):
+        out = tmp_path / "missing" / name
+        assert main(["static", str(CONVEYORS / "slope-5pct.yaml"), option, str(out)]) == 2
+        err = capsys.readouterr().err
+        assert err == (f"error: cannot write {out}: the folder {out.parent} does not exist\n")

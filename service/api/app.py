@@ -24,12 +24,14 @@ from fastapi import Depends, FastAPI, Request
 from fastapi.exceptions import RequestValidationError
 from fastapi.openapi.docs import get_swagger_ui_html
 from fastapi.responses import HTMLResponse, JSONResponse
+from pydantic import BaseModel, ValidationError
 from starlette.exceptions import HTTPException as StarletteHTTPException
 from starlette.requests import ClientDisconnect
 from starlette.routing import Match
 
 from beltstudy import engine
 from beltstudy.service.api.deps import require_token
+from beltstudy.service.door.messages import describe
 from beltstudy.service.door.openapi import install as install_openapi
 from beltstudy.service.errors import ServiceError
 from beltstudy.service.settings import Settings, get_settings
@@ -48,6 +50,33 @@ def _error(kind: str, message: str, status: int, headers: dict | None = None) ->
     return JSONResponse({"error": kind, "message": message}, status_code=status, headers=headers)
 
 
+def _body_model(request: Request) -> type[BaseModel] | None:
+    """The Pydantic model a route reads its JSON body into (``None``: no such body)."""
+    field = getattr(request.scope.get("route"), "body_field", None)
+    model = getattr(getattr(field, "field_info", None), "annotation", None)
+    return model if isinstance(model, type) and issubclass(model, BaseModel) else None
+
+
+def _body_message(request: Request, exc: RequestValidationError) -> str | None:
+    """A body's problems said as the door says a study's (:func:`describe`): the field's path
+    in the body as written (no ``body.`` and no union members such as ``inline``), an
+    unknown key with the nearest valid one. ``None`` when the errors are not all the body's
+    fields (a body that is no JSON, a query parameter)."""
+    model, errors, data = _body_model(request), exc.errors(), getattr(exc, "body", None)
+    if model is None or not isinstance(data, dict) or not errors or any(
+            tuple(e.get("loc", ()))[:1] != ("body",) or len(e.get("loc", ())) < 2
+            for e in errors):
+        return None
+    details = [{"type": e["type"], "loc": tuple(e["loc"])[1:], "input": e.get("input"),
+                **({"ctx": e["ctx"]} if "ctx" in e else {})} for e in errors]
+    try:
+        return describe(ValidationError.from_exception_data(model.__name__, details), data,
+                        model=model)
+    except Exception:  # an error pydantic cannot make again: said the plain way below
+        log.debug("body errors kept as FastAPI says them", exc_info=True)
+        return None
+
+
 def _validation_message(exc: RequestValidationError) -> str:
     lines = []
     for err in exc.errors():
@@ -64,7 +93,8 @@ def _install_handlers(app: FastAPI) -> None:
 
     @app.exception_handler(RequestValidationError)
     async def request_invalid(request: Request, exc: RequestValidationError) -> JSONResponse:
-        return _error("invalid", _validation_message(exc), 422)
+        message = _body_message(request, exc) or _validation_message(exc)
+        return _error("invalid", message, 422)
 
     @app.exception_handler(StarletteHTTPException)
     async def http_error(request: Request, exc: StarletteHTTPException) -> JSONResponse:

@@ -4,13 +4,16 @@ from __future__ import annotations
 
 import argparse
 import csv
+import difflib
+import io
 from pathlib import Path
 
 import yaml
 from pydantic import ValidationError
 
 from beltstudy.engine import InputError, format_validation_error, get_model
-from beltstudy.service.calibration import CalibrationIn, run_calibration
+from beltstudy.engine.textfile import read_text
+from beltstudy.service.calibration import CalibrationIn, MeasuredRow, run_calibration
 from beltstudy.service.cli.common import dumps, parse_params
 
 
@@ -37,13 +40,46 @@ def register(sub) -> None:
 
 
 def read_measured(path: str) -> list[dict]:
-    """The rows of a measurement CSV (cells as text; empty cells are missing)."""
+    """The rows of a measurement CSV (cells as text; empty cells are missing).
+
+    Read as UTF-8 (a byte order mark, as Excel's "CSV UTF-8" writes, is dropped) or UTF-16
+    with its byte order mark. The header is checked once: comma-separated, every column
+    once, every column one of :class:`MeasuredRow`'s fields (the nearest named otherwise)."""
     p = Path(path)
     if not p.is_file():
         raise InputError(f"{path}: file not found", field="--measured")
-    with p.open(newline="", encoding="utf-8") as fh:
-        rows = [{k.strip(): v for k, v in row.items() if k is not None and v not in (None, "")}
-                for row in csv.DictReader(fh)]
+    text = read_text(p, path)
+    records = list(csv.reader(io.StringIO(text, newline="")))
+    if not records:
+        return []
+    header = [name.strip() for name in records[0]]
+    if len(header) == 1 and ";" in records[0][0]:
+        raise InputError(
+            f"{path}: line 1: the columns are separated by ';'; the file must be "
+            "comma-separated with a decimal point (e.g. 'load,temperature_c,power_kw' then "
+            "'0.5,12,417.5'): export it as CSV with ',' between columns")
+    valid = list(MeasuredRow.model_fields)
+    problems = []
+    for i, name in enumerate(header):
+        if name in header[:i]:
+            problems.append(f"{path}: line 1: column '{name}' given twice (columns "
+                            f"{header.index(name) + 1} and {i + 1}); give each column once")
+        elif name not in valid:
+            close = difflib.get_close_matches(name, valid, n=1, cutoff=0.5)
+            hint = f"did you mean '{close[0]}'?" if close else f"valid columns: {', '.join(valid)}"
+            shown = f"'{name}'" if name else f"{i + 1} (no name)"
+            problems.append(f"{path}: line 1: unknown column {shown}; {hint}")
+    if problems:
+        raise InputError("; ".join(problems))
+    rows = []
+    for line, record in enumerate(records[1:], start=2):
+        if not any(cell.strip() for cell in record):
+            continue  # a blank line
+        if any(cell.strip() for cell in record[len(header):]):
+            raise InputError(f"{path}: line {line}: {len(record)} cells, but the header names "
+                             f"{len(header)} columns; give one cell per column")
+        rows.append({name: cell for name, cell in zip(header, record, strict=False)
+                     if cell.strip() != ""})
     return rows
 
 

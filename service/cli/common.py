@@ -4,6 +4,9 @@ from __future__ import annotations
 
 import json
 import math
+import os
+from contextlib import contextmanager
+from pathlib import Path
 from typing import Any
 
 from beltstudy.engine import LOAD_MAX, InputError, parse_scenario, section_loads
@@ -137,11 +140,39 @@ def dumps(obj: Any) -> str:
     return json.dumps(jsonable(obj), indent=2)
 
 
+def check_output(path: str | os.PathLike) -> Path:
+    """``path`` as an output file the command can write, checked before any work starts:
+    :class:`InputError` ``cannot write PATH: the folder DIR does not exist`` (or it is a
+    folder itself, or the folder is not writable)."""
+    out = Path(path)
+    folder = out.parent
+    if out.is_dir():
+        raise InputError(f"cannot write {out}: it is a folder; give a file name")
+    if not folder.exists():
+        raise InputError(f"cannot write {out}: the folder {folder} does not exist")
+    if not folder.is_dir():
+        raise InputError(f"cannot write {out}: {folder} is a file, not a folder")
+    if not os.access(folder, os.W_OK):
+        raise InputError(f"cannot write {out}: no permission to write in the folder {folder}")
+    return out
+
+
+@contextmanager
+def writing(path: str | os.PathLike):
+    """Write ``path`` in the ``with`` block; an ``OSError`` (disk full, the folder gone since
+    :func:`check_output`) becomes one line: ``cannot write PATH: REASON``."""
+    try:
+        yield Path(path)
+    except OSError as exc:
+        raise InputError(f"cannot write {path}: {exc.strerror or exc}") from None
+
+
 def write_table(df, path: str) -> None:
     """Write a DataFrame as CSV or Parquet by the file extension."""
-    if path.endswith(".parquet"):
-        df.to_parquet(path, index=False)
-    elif path.endswith(".csv"):
-        df.to_csv(path, index=False)
-    else:
+    if not path.endswith((".parquet", ".csv")):
         raise InputError(f"{path}: give a .csv or .parquet file name")
+    with writing(path):
+        if path.endswith(".parquet"):
+            df.to_parquet(path, index=False)
+        else:
+            df.to_csv(path, index=False)

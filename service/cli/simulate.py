@@ -17,12 +17,14 @@ from beltstudy.engine import results as R
 from beltstudy.service.charts import transient_figure
 from beltstudy.service.cli.common import (
     LOAD_HELP,
+    check_output,
     design_lines,
     dumps,
     parse_load,
     parse_params,
     with_sag_at_rest,
     write_table,
+    writing,
 )
 
 #: Steady fields of the table (labels and units: :mod:`beltstudy.engine.results`, the two tensions
@@ -155,6 +157,8 @@ def run(args: argparse.Namespace) -> int:
     for path, exts in ((args.timeseries, (".csv", ".parquet")), (args.plot, (".png",))):
         if path and not path.endswith(exts):
             raise InputError(f"{path}: give a file ending in {' or '.join(exts)}")
+        if path:
+            check_output(path)
     scn = build_scenario(args)
     from beltstudy.engine.warmth import COMPILE_LINE, kernel_cold
 
@@ -178,7 +182,8 @@ def run(args: argparse.Namespace) -> int:
             f"{conv.name}: {fm.name}, {scn.temperature_c:g} C, load {scn.load}, "
             f"{scn.start.control} start {scn.start.time_s:g} s, {scn.stop.mode} stop"),
             extremes=extremes, locate=locate, extremes_surface=res.surface)
-        fig.savefig(args.plot, dpi=110)
+        with writing(args.plot):
+            fig.savefig(args.plot, dpi=110)
     if args.json:
         print(dumps(s))
     else:

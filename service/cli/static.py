@@ -25,6 +25,7 @@ from beltstudy.engine import (
 from beltstudy.service.charts import steady_profile_figure
 from beltstudy.service.cli.common import (
     LOAD_HELP,
+    check_output,
     check_scenario_fields,
     design_lines,
     dumps,
@@ -32,6 +33,7 @@ from beltstudy.service.cli.common import (
     parse_params,
     with_sag_at_rest,
     write_table,
+    writing,
 )
 
 #: The steady fields of the table, in order (labels and units: :mod:`beltstudy.engine.results`; every
@@ -81,6 +83,8 @@ def run(args: argparse.Namespace) -> int:
     for path, exts in ((args.profile, (".csv", ".parquet")), (args.plot, (".png",))):
         if path and not path.endswith(exts):
             raise InputError(f"{path}: give a file ending in {' or '.join(exts)}")
+        if path:
+            check_output(path)
     t0 = time.perf_counter()
     conv, choice = _belt(conv, fm.name, params, args, load)
     res = solve_steady(conv, model=fm.name, params=params, temperature_c=args.temperature_c,
@@ -100,7 +104,8 @@ def run(args: argparse.Namespace) -> int:
     if args.plot:
         fig = steady_profile_figure(res.profile(), title=(
             f"{conv.name}: {fm.name}, {args.temperature_c:g} C, load {load}"))
-        fig.savefig(args.plot, dpi=110)
+        with writing(args.plot):
+            fig.savefig(args.plot, dpi=110)
     if args.json:
         print(dumps(s))
     else:

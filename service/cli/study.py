@@ -17,7 +17,7 @@ import time
 from pathlib import Path
 
 from beltstudy.service.cli.client import ServiceClient
-from beltstudy.service.cli.common import dumps
+from beltstudy.service.cli.common import check_output, dumps, writing
 from beltstudy.service.cli.console import ProgressBar, format_compare, format_status
 from beltstudy.service.cli.demo import run_demo
 from beltstudy.service.door.parse import load_mapping
@@ -242,6 +242,7 @@ def cmd_results(args) -> int:
     fmt = {".parquet": "parquet", ".csv": "csv", ".json": "json"}.get(out.suffix.lower())
     if fmt is None:
         raise Invalid(f"-o {out}: use a .parquet, .csv or .json file name")
+    check_output(out)
 
     def local(service):
         df = service.runs(args.id)
@@ -253,7 +254,8 @@ def cmd_results(args) -> int:
         return json.dumps({"runs": query.rows_to_json(df)}, indent=1).encode()
 
     data = _with_fallback(args, lambda c: c.runs(args.id, fmt), local)
-    out.write_bytes(data)
+    with writing(out):
+        out.write_bytes(data)
     print(f"wrote {out} ({len(data)} bytes)")
     return 0
 
@@ -262,6 +264,7 @@ def cmd_report(args) -> int:
     out = Path(args.output)
     if out.suffix.lower() not in (".html", ".htm"):
         raise Invalid(f"-o {out}: the report is HTML; use a .html file name")
+    check_output(out)
 
     def local(service):
         # deferred: the report's pages load the service's Dask stack
@@ -270,7 +273,8 @@ def cmd_report(args) -> int:
         return build_report(service, args.id)
 
     text = _with_fallback(args, lambda c: c.report(args.id), local)
-    out.write_text(text, encoding="utf-8")
+    with writing(out):
+        out.write_text(text, encoding="utf-8")
     print(f"wrote {out} ({len(text.encode())} bytes): open it in a browser, print to PDF")
     return 0
 

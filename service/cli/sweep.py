@@ -14,6 +14,7 @@ from __future__ import annotations
 
 import argparse
 import math
+import os
 import tempfile
 from pathlib import Path
 
@@ -28,7 +29,12 @@ from beltstudy.engine import (
     resolve_auto_belt,
     run_cases,
 )
-from beltstudy.service.cli.common import check_scenario_fields, parse_load, parse_model_params
+from beltstudy.service.cli.common import (
+    check_scenario_fields,
+    parse_load,
+    parse_model_params,
+    writing,
+)
 from beltstudy.service.settings import Settings
 from beltstudy.service.store.columns import components_from_row
 
@@ -216,7 +222,12 @@ def run(args: argparse.Namespace) -> int:
     out = Path(args.out)
     if out.exists() and not out.is_dir():
         raise InputError(f"--out {out}: exists and is not a directory")
-    out.mkdir(parents=True, exist_ok=True)
+    try:
+        out.mkdir(parents=True, exist_ok=True)
+    except OSError as exc:
+        raise InputError(f"--out {out}: cannot make the folder: {exc.strerror or exc}") from None
+    if not os.access(out, os.W_OK):
+        raise InputError(f"--out {out}: no permission to write in this folder")
 
     # belt.type: auto: one belt for the whole sweep, the lightest passing at every case
     conv, choice = resolve_auto_belt(conv, [
@@ -230,10 +241,12 @@ def run(args: argparse.Namespace) -> int:
     stem = f"{_safe(conv.name)}-{load_tag}"
     csv_path = out / f"{stem}.csv"
     png_path = out / f"{stem}.png"
-    df.to_csv(csv_path, index=False)
+    with writing(csv_path):
+        df.to_csv(csv_path, index=False)
     title = f"{conv.name}, load {load}"
     fig = figure(df, title)
-    fig.savefig(png_path, dpi=110)
+    with writing(png_path):
+        fig.savefig(png_path, dpi=110)
     print(_table(df))
     print(f"\nwrote {csv_path} and {png_path}")
     failed = df[df["status"] == "failed"]

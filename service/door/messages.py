@@ -166,9 +166,12 @@ def _part(e: dict) -> str:
     return path[0] if path and path[0] in _ROOTS and inside else ""
 
 
-def describe(exc: ValidationError, data: Any, *, json_types: bool = False) -> str:
+def describe(exc: ValidationError, data: Any, *, json_types: bool = False,
+             model: type[BaseModel] = StudyIn) -> str:
     """One line per problem of ``data`` (the study as validated: its axes into lists folded)
-    named by its path; ``json_types``: a wrong JSON type said as JSON Schema says it."""
+    named by its path; ``json_types``: a wrong JSON type said as JSON Schema says it.
+    ``model``: the body's model when it is not a study (a calibration request); its
+    ``conveyor`` and ``scenario`` are said as the engine says them all the same."""
     errors = _located(exc, data)
     lines: list[str] = []
     by_path: dict[tuple, list[dict]] = defaultdict(list)
@@ -189,7 +192,7 @@ def describe(exc: ValidationError, data: Any, *, json_types: bool = False) -> st
             parts[_part(e)].append(e)
     lines += [_grid_value(key, es, data) for key, es in values.items()]
     for part, es in parts.items():
-        model = _ROOTS.get(part, StudyIn)
-        lines.append(_engine_lines(es, model, f"{part}." if part else "", 1 if part else 0))
+        lines.append(_engine_lines(es, _ROOTS.get(part, model), f"{part}." if part else "",
+                                   1 if part else 0))
     more = len(lines) - MAX_PROBLEMS
     return "; ".join(lines[:MAX_PROBLEMS]) + (f"; and {more} more" if more > 0 else "")

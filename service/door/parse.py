@@ -31,6 +31,8 @@ from typing import Any
 import yaml
 
 from beltstudy.engine.conveyor import Yaml12Floats
+from beltstudy.engine.errors import InputError
+from beltstudy.engine.textfile import read_text
 from beltstudy.service.errors import Invalid, TooLarge
 
 __all__ = [
@@ -354,13 +356,17 @@ def load_mapping(path: str | Path, what: str | None = None) -> dict:
     errors start with ``what`` (default: the path)."""
     p = Path(path)
     what = what or str(p)
-    if not p.is_file():
-        raise Invalid(f"{what}: file not found")
     try:
-        text = p.read_text(encoding="utf-8")
-    except (OSError, UnicodeDecodeError) as exc:
-        raise Invalid(f"{what}: cannot read it as UTF-8 text ({type(exc).__name__})") from None
-    data = loads(text, yaml_text=p.suffix.lower() != ".json", what=what)
+        text = read_text(p, what)  # UTF-8 (with or without BOM) or UTF-16 with its BOM
+    except InputError as exc:
+        raise Invalid(str(exc)) from None
+    try:
+        data = loads(text, yaml_text=p.suffix.lower() != ".json", what=what)
+    except (Invalid, TooLarge) as exc:
+        if not exc.message.startswith(what):  # a nested path ("belt: key 'x' appears twice")
+            exc.message = f"{what}: {exc.message}"
+            exc.args = (exc.message,)
+        raise
     if not isinstance(data, dict):
         raise Invalid(f"{what}: expected a mapping of keys at the top level")
     return data

@@ -4,11 +4,13 @@ scenario's load patterns per profile section."""
 from __future__ import annotations
 
 import pytest
+import yaml
 
 from beltstudy.engine.conveyor import (
     InputError,
     Scenario,
     load_conveyor,
+    load_mapping,
     parse_conveyor,
     parse_scenario,
     section_loads,
@@ -153,3 +155,45 @@ def test_speed_loop_bandwidth_is_checked_where_it_is_set():
         hand_conv(drives=[hand_drive(speed_loop_rad_s=0.01)])
     with pytest.raises(InputError, match=r"drives\[1\].speed_loop_rad_s: drive 2 follows"):
         hand_conv(drives=[hand_drive(share=0.6), hand_drive(share=0.4, speed_loop_rad_s=3.0)])
+
+
+# ------------------------------------------------------------------ file encodings, keys twice
+def _small_yaml() -> str:
+    return (CONVEYORS / "slope-5pct.yaml").read_text(encoding="utf-8")
+
+
+def test_a_file_not_in_utf8_is_one_line_naming_the_byte(tmp_path):
+    path = tmp_path / "latin1.yaml"
+    path.write_bytes("name: x\n# Förderband 30° Neigung\n".encode("latin-1"))
+    with pytest.raises(InputError) as ei:
+        load_mapping(path)
+    assert str(ei.value) == (f"{path}: not UTF-8 text (byte 0xf6 at line 2, column 4): "
+                             "save it as UTF-8")
+
+
+@pytest.mark.parametrize("encoding", ["utf-8-sig", "utf-16"])
+def test_utf8_with_bom_and_utf16_with_bom_read_as_utf8(tmp_path, encoding):
+    """Excel's "CSV UTF-8" and Notepad's "Unicode" (UTF-16 with its byte order mark)."""
+    text = "# Förderband 30° Neigung\n" + _small_yaml()
+    path = tmp_path / "conv.yaml"
+    path.write_bytes(text.encode(encoding))
+    assert load_mapping(path) == yaml.safe_load(_small_yaml())
+    assert load_conveyor(path).name == "slope-5pct"
+
+
+def test_a_key_given_twice_is_refused_with_both_lines(tmp_path):
+    path = tmp_path / "twice.yaml"
+    path.write_text("name: x\nbelt:\n  width_m: 1.2\nspeed_m_s: 2.5\nspeed_m_s: 25\n")
+    with pytest.raises(InputError) as ei:
+        load_mapping(path)
+    assert str(ei.value) == (f"{path}: line 5: key 'speed_m_s' given twice (first at line 4); "
+                             "give each key once")
+    path.write_text("belt: {width_m: 1.2, type: ST2000, width_m: 1.4}\n")
+    with pytest.raises(InputError, match=r"line 1: key 'width_m' given twice \(first at line 1"):
+        load_mapping(path)
+    path.write_text("base: &b {x: 1, y: 2}\nd:\n  <<: *b\n  x: 3\n")  # a merge may be overridden
+    assert load_mapping(path)["d"] == {"x": 3, "y": 2}
+    js = tmp_path / "twice.json"
+    js.write_text('{"name": "x", "belt": {"width_m": 1.2, "width_m": 1.4}}')
+    with pytest.raises(InputError, match=r"twice.json: key 'width_m' given twice"):
+        load_mapping(js)

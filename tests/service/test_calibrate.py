@@ -84,3 +84,68 @@ def test_post_calibrations_names_the_bad_field(client):
     assert r.json()["message"] == "measured[0]: give the measured power_kw or te_kn"
     r = client.post("/calibrations", json={**body, "conveyor": "../etc/passwd"})
     assert r.status_code == 422 and "studies directory" in r.json()["message"]
+
+
+# ------------------------------------------------------------------ the measurement CSV
+HEADER = "load,temperature_c,power_kw"
+
+
+@pytest.mark.parametrize("encoding", ["utf-8-sig", "utf-16"])
+def test_csv_from_excel_or_notepad_reads_as_utf8(tmp_path, encoding):
+    """Excel's "CSV UTF-8" (a byte order mark, CRLF) and UTF-16 with its byte order mark."""
+    from beltstudy.service.cli.calibrate import read_measured
+
+    path = tmp_path / "plant.csv"
+    path.write_bytes(f"{HEADER}\r\n0.5,12,417.5\r\n\r\nfull,20,741.9\r\n".encode(encoding))
+    assert read_measured(str(path)) == [
+        {"load": "0.5", "temperature_c": "12", "power_kw": "417.5"},
+        {"load": "full", "temperature_c": "20", "power_kw": "741.9"}]
+
+
+@pytest.mark.parametrize(("text", "message"), [
+    (b"load;temperature_c;power_kw\n0,5;12;417,5\n",
+     "line 1: the columns are separated by ';'; the file must be comma-separated with a "
+     "decimal point"),
+    (b"load,temperature_c,power_kw,power_kw\n0.5,12,417,9999\n",
+     "line 1: column 'power_kw' given twice (columns 3 and 4); give each column once"),
+    (b"load,temp_c,power_kw\n0.5,12,417\n",
+     "line 1: unknown column 'temp_c'; did you mean 'temperature_c'?"),
+    (b"load,temperature_c,power_kw\n0.5,12,417,5\n",
+     "line 2: 4 cells, but the header names 3 columns"),
+    ("load,temperature_c,power_kw\n# Förderband\n".encode("latin-1"),
+     "not UTF-8 text (byte 0xf6 at line 2, column 4): save it as UTF-8"),
+    (b"load,temperature_c,power_kw\n0.5,12,nan\n",
+     "measured.0.power_kw: Input should be a finite number"),
+])
+def test_csv_problems_are_one_line_naming_the_file(tmp_path, capsys, text, message):
+    from beltstudy.service.cli import main
+
+    path = tmp_path / "plant.csv"
+    path.write_bytes(text)
+    assert main(["calibrate", str(CONVEYORS / "overland-4km.yaml"), "--measured", str(path),
+                 "--model", "din", "--fit", "f_carry"]) == 2
+    err = capsys.readouterr().err
+    assert err.startswith(f"error: {path}: ") and message in err, err
+    assert len(err.strip().splitlines()) == 1 and "Traceback" not in err
+
+
+def test_post_calibrations_says_problems_as_the_study_door_does(client):
+    body = {"conveyor": "conveyors/overland-4km.yaml", "model": "din", "fit": ["f_carry"],
+            "measured": _rows()[:2]}
+    bad = json.loads(json.dumps(body))
+    bad["measured"][1]["temp_c"] = 3
+    r = client.post("/calibrations", json=bad)
+    assert r.status_code == 422
+    assert r.json()["message"] == ("measured.1.temp_c: unknown key 'temp_c'; did you mean "
+                                   "'temperature_c'?")
+    r = client.post("/calibrations", json={**body, "paramz": {}})
+    assert r.json()["message"] == "paramz: unknown key 'paramz'; did you mean 'params'?"
+    r = client.post("/calibrations", json={**body, "conveyor": {"name": "x", "sped_m_s": 2}})
+    msg = r.json()["message"]
+    assert "conveyor.sped_m_s: unknown key 'sped_m_s'; did you mean 'speed_m_s'?" in msg
+    assert "conveyor.speed_m_s: required field is missing" in msg
+    assert "inline" not in msg and "body." not in msg
+    text = json.dumps(body).replace(str(body["measured"][0]["power_kw"]), "NaN", 1)
+    r = client.post("/calibrations", content=text, headers={"content-type": "application/json"})
+    assert r.status_code == 422
+    assert r.json()["message"].startswith("measured.0.power_kw: Input should be a finite number")

@@ -68,3 +68,13 @@ def test_cli_bad_input_one_line_exit_2(argv, expect, capsys):
     assert code == 2
     assert err.startswith("error: ") and expect in err
     assert err.count("\n") == 1
+
+
+def test_cli_outputs_in_a_missing_folder_fail_before_the_run(tmp_path, capsys):
+    from beltstudy.service.cli import main
+
+    for option, name in (("--timeseries", "ts.csv"), ("--plot", "fig.png")):
+        out = tmp_path / "missing" / name
+        assert main(["simulate", str(SLOPE), option, str(out)]) == 2
+        err = capsys.readouterr().err
+        assert err == f"error: cannot write {out}: the folder {out.parent} does not exist\n"

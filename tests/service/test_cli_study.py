@@ -110,3 +110,13 @@ def test_run_uses_the_executor_and_store_in_process(env, capsys, tmp_path, make_
     assert len(pd.read_parquet(env / "studies" / sid / "runs")) == 6
     assert main(["run", str(path)]) == 0  # already done: nothing is run again
     assert "existing study" in capsys.readouterr().err
+
+
+def test_an_output_in_a_missing_folder_is_one_line_before_any_work(env, capsys, tmp_path):
+    missing = tmp_path / "no" / "such"
+    for command, name in (("results", "r.csv"), ("report", "rep.html")):
+        out = missing / name
+        assert main([command, "0123456789abcdef", "-o", str(out)]) == 2
+        err = capsys.readouterr().err
+        # checked before the study is looked for: the folder, not "study not found"
+        assert err == f"error: cannot write {out}: the folder {missing} does not exist\n"

@@ -101,3 +101,16 @@ def test_check_tree_counts_shared_parts_every_time_they_are_used():
     loop.append(loop)
     with pytest.raises(Invalid, match="contains itself"):
         parse.check_tree({"a": loop})
+
+
+def test_study_files_take_utf8_bom_and_utf16_and_name_the_file(tmp_path):
+    """The door's file reader: the engine's encodings; a problem deep in the file names it."""
+    path = tmp_path / "study.yaml"
+    path.write_bytes("name: s\n# Förderband\ngrid: {load: [full]}\n".encode("utf-16"))
+    assert parse.load_mapping(path) == {"name": "s", "grid": {"load": ["full"]}}
+    path.write_bytes("name: s\n# Förderband\n".encode("latin-1"))
+    with pytest.raises(Invalid, match=r"study.yaml: not UTF-8 text \(byte 0xf6 at line 2, col"):
+        parse.load_mapping(path)
+    path.write_text("name: s\ngrid:\n  load: [full]\n  load: [empty]\n")
+    with pytest.raises(Invalid, match=rf"^{path}: grid: key 'load' appears twice \(lines 3 "):
+        parse.load_mapping(path)
