@@ -235,13 +235,22 @@ def _add_axis(axes: list[Axis], axis: Axis) -> None:
     """Append ``axis``; no two axes set one field or one inside the other."""
     name = axis.name
     where = "sample.axes" if axis.sample else "grid"
+
+    def place(a: Axis) -> str:
+        """Where the axis was given: ``grid.x``, ``zip[k].x`` or ``sample.axes.x``."""
+        if a.sample:
+            return f"sample.axes.{a.name}"
+        return f"zip[{a.group}].{a.name}" if a.group is not None else f"grid.{a.name}"
+
     for other in axes:
         if other.target.overlaps(axis.target):
             raise Invalid(
-                f"{where}: axes '{other.name}' and '{name}' both set {other.target.dotted}"
+                f"{where}: axes '{other.name}' and '{name}' both set {other.target.dotted} "
+                f"({place(other)} and {place(axis)}): give it in one of them"
                 if other.target == axis.target
                 else f"{where}: axes '{other.name}' and '{name}' overlap "
-                f"({other.target.dotted} / {axis.target.dotted})"
+                f"({other.target.dotted} / {axis.target.dotted}; {place(other)} and "
+                f"{place(axis)})"
             )
     axes.append(axis)
 

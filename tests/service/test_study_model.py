@@ -140,7 +140,9 @@ def test_without_a_model_axis_the_single_model_or_din_is_used(make_study):
         ({"belt.width_m": [-1]}, r"belt.width_m=-1.*greater than or equal to 0.1"),
         ({"belt_type": ["ST9999"]}, r"unknown belt type 'ST9999'"),
         ({"stop_time_s": [10], "stop": [{"mode": "coast"}]}, r"overlap"),
-        ({"temperature_c": [1], "scenario.temperature_c": [2]}, r"both set"),
+        ({"temperature_c": [1], "scenario.temperature_c": [2]},
+         r"both set scenario\.temperature_c \(grid\.temperature_c and "
+         r"grid\.scenario\.temperature_c\): give it in one of them"),
         ({"temperature_c": {"start": 0, "stop": 10, "step": 0}}, r"step must be a non-zero"),
     ],
 )
@@ -282,3 +284,12 @@ def test_a_coast_stop_crossed_with_brake_forces_is_one_run_per_coast_stop(make_s
                                     dynamics=True)).total == 6
     # steady only: no brake's law is read
     assert resolve_study(make_study(conveyor=held, grid=grid)).total == 2
+
+
+def test_an_axis_in_zip_and_grid_names_both_places(make_study):
+    """The same field in ``grid`` and in a ``zip`` group: the refusal says where each is."""
+    body = make_study(grid={"load": ["full"]},
+                      zip=[{"load": ["full", "empty"], "temperature_c": [0, 10]}])
+    with pytest.raises(Invalid, match=r"both set scenario\.load \(grid\.load and "
+                                      r"zip\[0\]\.load\): give it in one of them"):
+        resolve_study(body)
