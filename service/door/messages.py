@@ -173,10 +173,20 @@ def describe(exc: ValidationError, data: Any, *, json_types: bool = False,
     ``model``: the body's model when it is not a study (a calibration request); its
     ``conveyor`` and ``scenario`` are said as the engine says them all the same."""
     errors = _located(exc, data)
-    lines: list[str] = []
     by_path: dict[tuple, list[dict]] = defaultdict(list)
     for e in errors:
         by_path[e["path"]].append(e)
+    # a value of a type some member of a union takes, outside that member's range (a load of
+    # 2): its range is the problem, not the other members' types
+    ranged = {p for p, es in by_path.items() if len(es) > 1 and any(
+        e["type"] not in JSON_TYPES and e["type"] not in SHAPE_TYPES for e in es)}
+    if ranged:
+        errors = [e for e in errors if e["path"] not in ranged
+                  or (e["type"] not in JSON_TYPES and e["type"] not in SHAPE_TYPES)]
+        by_path = defaultdict(list)
+        for e in errors:
+            by_path[e["path"]].append(e)
+    lines: list[str] = []
     typed = [p for p, es in by_path.items()
              if json_types and any(e["type"] in JSON_TYPES for e in es)]
     lines += [_as_json_type(by_path[p]) for p in typed]

@@ -144,6 +144,9 @@ def test_without_a_model_axis_the_single_model_or_din_is_used(make_study):
          r"both set scenario\.temperature_c \(grid\.temperature_c and "
          r"grid\.scenario\.temperature_c\): give it in one of them"),
         ({"temperature_c": {"start": 0, "stop": 10, "step": 0}}, r"step must be a non-zero"),
+        # a number past its range says the range, not that numbers are not taken
+        ({"load": [2.0]}, r"grid \(load=2\.0\): scenario\.load: Input should be less than "
+                          r"or equal to 1\.3 \(got 2\)"),
     ],
 )
 def test_bad_grids_are_refused_naming_the_axis(make_study, grid, message):
