@@ -19,16 +19,23 @@ import os
 import threading
 import time
 from collections import OrderedDict
+from concurrent.futures import CancelledError
 from pathlib import Path
 from typing import Any
 
 import pandas as pd
 import pyarrow as pa
+from distributed import KilledWorker
 
 from beltstudy import engine
 from beltstudy.service.dask.executor import Executor
 from beltstudy.service.dask.jobs import NO_WORKER_PREFIX, StudyJob
-from beltstudy.service.dask.tasks import profile_table, run_spec, surface_table
+from beltstudy.service.dask.tasks import (
+    profile_table,
+    recompute_surface,
+    run_spec,
+    surface_table,
+)
 from beltstudy.service.door.studyfile import conveyor_from_path, resolve_study
 from beltstudy.service.errors import (
     Conflict,
@@ -59,6 +66,13 @@ RESOLVED_CACHE = 8
 #: Recomputed surfaces kept (a run id is a hash of the run's inputs: the surface is the same
 #: every time).
 SURFACE_CACHE = 4
+#: How long a recomputed surface waits for a ready Dask worker before the service computes it
+#: itself [s] (a worker has the engine compiled; a cold service process would compile it).
+SURFACE_WORKER_WAIT_S = 5.0
+
+
+def _message_of(exc: BaseException) -> str:
+    return str(exc) or type(exc).__name__
 
 
 def _waits_for_workers(doc: dict) -> bool:
@@ -470,14 +484,32 @@ class StudyService:
                 table = self._surfaces[run_id]
                 return table if table is not None else surface_schema().empty_table()
         spec = self.run_spec(study_id, run_id)
-        # the surface only: no error bars again
-        _, result = run_spec(dataclasses.replace(spec, check=False), study_id)
-        table = surface_table(run_id, result) if result is not None else None
+        table = self._surface_on_worker(spec, study_id)
         with self._cache_lock:
             self._surfaces[run_id] = table
             while len(self._surfaces) > SURFACE_CACHE:
                 self._surfaces.popitem(last=False)
         return table if table is not None else surface_schema().empty_table()
+
+    def _surface_on_worker(self, spec: RunSpec, study_id: str) -> pa.Table | None:
+        """The run recomputed for its surface (no error bars again) on a Dask worker, whose
+        engine is compiled, so this process keeps answering; here when Dask is not started or
+        no worker is ready within :data:`SURFACE_WORKER_WAIT_S` (the same table: runs are
+        deterministic)."""
+        try:
+            if self.executor.state in ("idle", "closed"):
+                raise Unavailable("Dask is not started")  # not started for a surface alone
+            client = self.executor.client(timeout=SURFACE_WORKER_WAIT_S)
+            future = client.submit(recompute_surface, spec, study_id, pure=False,
+                                   priority=10)
+            table = future.result()
+            log.info("surface of %s recomputed on a Dask worker", spec.run_id)
+            return table
+        except (Unavailable, CancelledError, KilledWorker) as exc:
+            log.info("surface of %s recomputed in the service: %s", spec.run_id,
+                     _message_of(exc) or "no Dask worker ready")
+        _, result = run_spec(dataclasses.replace(spec, check=False), study_id)
+        return surface_table(spec.run_id, result) if result is not None else None
 
     def compare(self, study_id: str, baseline: str, candidate: str, metrics: list[str]) -> dict:
         """Pairs of runs that differ only in the friction model (:func:`query.compare`) with

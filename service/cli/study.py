@@ -131,6 +131,21 @@ def _client(args):
 GRACEFUL_SHUTDOWN_S = 5
 
 
+def _service_log() -> None:
+    """The service's own notes (Dask starting and warming, its dashboard, where a surface was
+    recomputed) on stderr beside uvicorn's, from INFO up."""
+    import logging
+
+    logger = logging.getLogger("beltstudy")
+    if not any(getattr(h, "_beltstudy", False) for h in logger.handlers):
+        handler = logging.StreamHandler()
+        handler.setFormatter(logging.Formatter("%(levelname)s:     %(name)s: %(message)s"))
+        handler._beltstudy = True
+        logger.addHandler(handler)
+    logger.setLevel(logging.INFO)
+    logger.propagate = False
+
+
 def cmd_serve(args) -> int:
     # deferred: uvicorn, FastAPI and Dask load only for the server
     import uvicorn
@@ -139,6 +154,7 @@ def cmd_serve(args) -> int:
 
     settings = _settings()
     host = args.host or settings.host
+    _service_log()
     app = create_app(settings.model_copy(update={"host": host}))
     uvicorn.run(
         app,

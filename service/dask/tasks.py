@@ -10,6 +10,7 @@ for a bad run. Results travel back as plain rows and Arrow tables.
 
 from __future__ import annotations
 
+import dataclasses
 import json
 import os
 import time
@@ -45,6 +46,7 @@ __all__ = [
     "arrays_table",
     "timeseries_table",
     "surface_table",
+    "recompute_surface",
     "profile_table",
     "accuracy_table",
     "run_spec",
@@ -114,6 +116,13 @@ def surface_table(run_id: str, result) -> pa.Table | None:
     """The surface table (float32) of a run's result: the same whether a worker stores it or
     the service recomputes it for a run whose study did not store surfaces."""
     return _arrays_table(run_id, result.surface_arrays(), _SF_LAYOUT, _SF_SCHEMA)
+
+
+def recompute_surface(spec: RunSpec, study_id: str) -> pa.Table | None:
+    """One run's surface recomputed (its stored inputs, no error bars): a task for a worker,
+    whose engine is compiled, so the service's own process stays free to answer."""
+    _, result = run_spec(dataclasses.replace(spec, check=False), study_id)
+    return surface_table(spec.run_id, result) if result is not None else None
 
 
 _AC_SCHEMA = accuracy_schema()

@@ -11,6 +11,7 @@ import signal
 import subprocess
 import sys
 import time
+from pathlib import Path
 
 import pandas as pd
 import pytest
@@ -117,6 +118,11 @@ def test_surface_is_stored_on_request_and_recomputed_otherwise(live_service, mak
     assert body["source"] == "recomputed" and body["rows"] == len(want)
     assert body["surface"]["s_m"][: 3] == pytest.approx(want["s_m"][:3].tolist())
     assert not list((root / plain["id"] / "surface").glob("*.parquet"))
+    # recomputed on the workers (their engine is compiled), not in the service's process
+    svc.log.flush()
+    log = Path(svc.log.name).read_text(errors="replace")
+    assert log.count("recomputed on a Dask worker") == len(runs)
+    assert "recomputed in the service" not in log
 
 
 def test_two_studies_at_once_and_a_failing_run(live_service, make_study):
