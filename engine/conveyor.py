@@ -456,6 +456,12 @@ class Drive(_Model):
     @model_validator(mode="after")
     def _curve_and_coupling(self) -> Drive:
         _check_at(self.position, self.at_m, "a booster drive")
+        if self.friction_kinetic is not None and self.friction_kinetic > self.friction:
+            raise ValueError(
+                f"friction_kinetic {self.friction_kinetic:g} is above friction "
+                f"{self.friction:g}: a sliding belt grips no more than a sticking one (Coulomb "
+                "friction: the sliding coefficient is at most the static one); give "
+                "friction_kinetic at most friction, or leave it out")
         if self.coupling != "none" and self.control != "dol":
             raise ValueError(f"coupling '{self.coupling}' needs control: dol (a vfd drive "
                              "controls its torque itself); use coupling: none")

@@ -138,6 +138,8 @@ def test_section_loads_of_each_pattern():
      "force_curve: List should have at most 16 items"),
     ({"drives": [hand_drive(share=0.6), hand_drive(share=0.6, position="tail")]},
      "drives[0] (head) 0.6 + drives[1] (tail) 0.6"),
+    ({"drives": [hand_drive(friction=0.35, friction_kinetic=0.9)]},
+     "friction_kinetic 0.9 is above friction 0.35"),
 ])
 def test_bad_drive_and_brake_input_names_the_field(over, field):
     with pytest.raises(InputError) as exc:
