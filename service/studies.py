@@ -71,10 +71,6 @@ SURFACE_CACHE = 4
 SURFACE_WORKER_WAIT_S = 5.0
 
 
-def _message_of(exc: BaseException) -> str:
-    return str(exc) or type(exc).__name__
-
-
 def _waits_for_workers(doc: dict) -> bool:
     """Whether a stored study failed only because no Dask worker could start."""
     return doc.get("state") == "failed" and str(doc.get("message", "")).startswith(
@@ -507,7 +503,7 @@ class StudyService:
             return table
         except (Unavailable, CancelledError, KilledWorker) as exc:
             log.info("surface of %s recomputed in the service: %s", spec.run_id,
-                     _message_of(exc) or "no Dask worker ready")
+                     str(exc) or type(exc).__name__)
         _, result = run_spec(dataclasses.replace(spec, check=False), study_id)
         return surface_table(spec.run_id, result) if result is not None else None
 

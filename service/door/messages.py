@@ -178,14 +178,12 @@ def describe(exc: ValidationError, data: Any, *, json_types: bool = False,
         by_path[e["path"]].append(e)
     # a value of a type some member of a union takes, outside that member's range (a load of
     # 2): its range is the problem, not the other members' types
-    ranged = {p for p, es in by_path.items() if len(es) > 1 and any(
-        e["type"] not in JSON_TYPES and e["type"] not in SHAPE_TYPES for e in es)}
-    if ranged:
-        errors = [e for e in errors if e["path"] not in ranged
-                  or (e["type"] not in JSON_TYPES and e["type"] not in SHAPE_TYPES)]
-        by_path = defaultdict(list)
-        for e in errors:
-            by_path[e["path"]].append(e)
+    for path, es in by_path.items():
+        valued = [e for e in es if e["type"] not in JSON_TYPES and e["type"] not in SHAPE_TYPES]
+        if valued and len(valued) < len(es):
+            by_path[path] = valued
+    kept = {id(e) for es in by_path.values() for e in es}
+    errors = [e for e in errors if id(e) in kept]
     lines: list[str] = []
     typed = [p for p, es in by_path.items()
              if json_types and any(e["type"] in JSON_TYPES for e in es)]

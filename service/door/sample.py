@@ -32,14 +32,13 @@ Distributions (parameters as scipy.stats names them in brackets):
 
 from __future__ import annotations
 
-import math
 from typing import Annotated, Any, Literal, Union
 
 import numpy as np
 from pydantic import BaseModel, ConfigDict, Field, model_validator
 
 __all__ = ["SampleIn", "Distribution", "draw", "unit_points", "sobol_base", "DISTRIBUTIONS",
-           "MAX_SAMPLE", "sobol_points"]
+           "MAX_SAMPLE"]
 
 #: Largest sample (runs before crossing with the grid; BELTSTUDY_MAX_RUNS bounds the study).
 MAX_SAMPLE = 1 << 16
@@ -156,18 +155,9 @@ def sobol_base(n: int, d: int) -> int:
         raise ValueError(f"n = {n}: method sobol draws N (D + 2) points for D = {d} axes with N "
                          f"a power of two from 2 (Saltelli's design for Sobol' indices); use n "
                          f">= {2 * per}, or method: lhs for any n")
-    lo = 1 << int(math.floor(math.log2(n / per)))
-    while (lo * 2) * per <= n:  # guard the float log
-        lo *= 2
-    while lo > 2 and lo * per > n:
-        lo //= 2
+    lo = 1 << ((n // per).bit_length() - 1)  # the largest N with N (d + 2) <= n
     hi = lo * 2
     return lo if n - lo * per <= hi * per - n else hi
-
-
-def sobol_points(n: int, d: int) -> int:
-    """Points a ``method: sobol`` sample of ``n`` draws over ``d`` axes (:func:`sobol_base`)."""
-    return sobol_base(n, d) * (d + 2)
 
 
 def unit_points(sample: SampleIn) -> np.ndarray:
