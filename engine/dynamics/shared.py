@@ -28,7 +28,7 @@ from beltstudy.engine.dynamics.kernel import PAUSED
 from beltstudy.engine.dynamics.model import System
 from beltstudy.engine.dynamics.simulate import KernelRun, TransientResult, decode, fresh_run
 
-__all__ = ["STOP_ONLY", "start_key", "simulate_group", "group_by_start"]
+__all__ = ["STOP_ONLY", "start_key", "stop_key", "simulate_group", "group_by_start"]
 
 #: Model fields the kernel reads only after the stop command (record -> fields): the run's stop.
 STOP_ONLY = {
@@ -138,13 +138,34 @@ def simulate_group(systems: list[System], *, steady_summary=None, conveyor=None,
         return value[i] if isinstance(value, list) else value
 
     out = []
+    done: dict[str, tuple[KernelRun, float]] = {}  # stop key -> the finished run, its wall
     for i, sys in enumerate(systems):
-        kr = _branch(shared, sys)
-        t1 = time.perf_counter()
-        if status == PAUSED:
-            kr.call()
-        wall = wall0 + time.perf_counter() - t1
+        key = stop_key(sys)
+        if key in done:  # the same stop of the same start: the same kernel run, copied
+            first, wall = done[key]
+            kr = KernelRun(model=first.model, state=_copy(first.state), out=_copy(first.out),
+                           work=first.work)
+        else:
+            kr = _branch(shared, sys)
+            t1 = time.perf_counter()
+            if status == PAUSED:
+                kr.call()
+            wall = wall0 + time.perf_counter() - t1
+            done[key] = (kr, wall)
         out.append(decode(sys, kr, wall, steady_summary=each(steady_summary, i),
                           conveyor=each(conveyor, i),
                           safety_factor_min=each(safety_factor_min, i)))
     return out
+
+
+def stop_key(sys: System) -> str:
+    """Digest of what the kernel reads from the stop command on (:data:`STOP_ONLY`). Within a
+    group of one :func:`start_key`, systems with equal stop keys give the same kernel run, bit
+    for bit: :func:`simulate_group` runs it once (runs that differ only in what the law does not
+    read, such as DIN's temperature, or CEMA's above 0 C where Kt is 1)."""
+    h = hashlib.sha256()
+    for rec, fields in STOP_ONLY.items():
+        part = getattr(sys.model, rec)
+        for f in fields:
+            _digest(h, f"{rec}.{f}", getattr(part, f))
+    return h.hexdigest()

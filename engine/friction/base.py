@@ -26,6 +26,23 @@ class FrictionModel:
     params_class: type
     build: Callable[..., Any]
     temperature_term: bool = True
+    #: ``(params, temperature_c) -> value``: what the law reads of the ambient temperature
+    #: (CEMA: its factor Kt); None: the temperature itself (or nothing, without a
+    #: temperature term). See :meth:`temperature_as_read`.
+    temperature_read: Callable[[Any, float], Any] | None = None
+
+    def temperature_as_read(self, params, temperature_c: float):
+        """What this model's law reads of ``temperature_c`` [C] with ``params`` (a parameter
+        object of :meth:`params`): None for a model without a temperature term, CEMA's Kt for
+        the CEMA models (1 at and above 0 C), the temperature itself otherwise. Runs of one
+        model whose temperatures read alike build the same law; the study service puts them in
+        one task so that the engine can simulate them once
+        (:func:`beltstudy.engine.run.run_group`)."""
+        if not self.temperature_term:
+            return None
+        if self.temperature_read is None:
+            return float(temperature_c)
+        return self.temperature_read(params, float(temperature_c))
 
     def params(self, overrides: dict[str, Any] | None = None):
         """Default parameters with overrides applied; unknown names raise InputError."""

@@ -63,6 +63,12 @@ def kt_factor(temperature_c: float) -> float:
     return float(np.interp(temperature_c, KT_TABLE_C, KT_TABLE))
 
 
+def kt_as_read(params, temperature_c: float) -> float:
+    """The Kt a run of ``params`` at ``temperature_c`` [C] uses: the override, else the curve
+    (what the CEMA laws read of the temperature)."""
+    return float(params.kt) if params.kt is not None else kt_factor(temperature_c)
+
+
 def ky_length(length_m: float) -> float:
     """Length part of the Ky fit: 0.035 at 76.2 m falling log-linearly to 0.016 at 914.4 m."""
     if length_m <= L_SHORT_M:
@@ -128,4 +134,5 @@ MODEL = FrictionModel(
                 "documented fit",
     params_class=CemaParams,
     build=build,
+    temperature_read=kt_as_read,
 )

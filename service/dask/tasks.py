@@ -22,6 +22,7 @@ from distributed import WorkerPlugin
 
 from beltstudy import engine
 from beltstudy.engine import MODELS, parse_conveyor, parse_scenario
+from beltstudy.engine.friction import get_model
 from beltstudy.service.examples import TINY_CONVEYOR, TINY_SCENARIO
 from beltstudy.service.grid.expand import RunSpec
 from beltstudy.service.store.columns import (
@@ -188,7 +189,8 @@ BRAKE_STOP_FIELDS = ("force_kn", "delay_s", "ramp_s", "force_curve", "hold")
 
 def start_candidate(spec: RunSpec, memo: dict | None = None) -> tuple:
     """Runs that may share one simulated start: one conveyor but its brakes' forces, delays,
-    ramps, curves and hold, one model, parameters and scenario but its stop. The engine decides
+    ramps, curves and hold, one model, parameters and scenario but its stop, and temperatures
+    that the model's law reads alike (DIN reads none, CEMA its Kt). The engine decides
     which of them do (:func:`beltstudy.engine.run.run_group`, from the models it builds). A
     steady-only run or one in the accuracy sample (its error bars rerun it) stands alone.
     ``memo`` (id of a conveyor mapping -> its key) saves work over runs sharing a mapping."""
@@ -202,10 +204,32 @@ def start_candidate(spec: RunSpec, memo: dict | None = None) -> tuple:
         shape = json.dumps({**conv, "brakes": brakes}, sort_keys=True, default=str)
         if memo is not None:
             memo[id(conv)] = shape
-    scn = json.dumps({k: v for k, v in spec.scenario.items() if k != "stop"}, sort_keys=True,
-                     default=str)
-    return (shape, scn, spec.model, json.dumps(spec.params, sort_keys=True, default=str),
+    params = json.dumps(spec.params, sort_keys=True, default=str)
+    scn = {k: v for k, v in spec.scenario.items() if k != "stop"}
+    if "temperature_c" in scn:
+        scn["temperature_c"] = _temperature_as_read(spec.model, params, spec.params,
+                                                    scn["temperature_c"], memo)
+    return (shape, json.dumps(scn, sort_keys=True, default=str), spec.model, params,
             spec.engine_version)
+
+
+def _temperature_as_read(model: str, key: str, params: dict | None, temperature_c, memo):
+    """What ``model``'s law reads of ``temperature_c``
+    (:meth:`~beltstudy.engine.friction.base.FrictionModel.temperature_as_read`: nothing for
+    DIN, Kt for CEMA), so that runs whose laws read their temperatures alike go to one task;
+    the temperature itself when the model or its parameters do not resolve (the run then
+    fails on its own)."""
+    memo_key = ("temperature", model, key, temperature_c)
+    if memo is not None and memo_key in memo:
+        return memo[memo_key]
+    try:
+        fm = get_model(model)
+        read = fm.temperature_as_read(fm.params(params), float(temperature_c))
+    except Exception:
+        read = temperature_c
+    if memo is not None:
+        memo[memo_key] = read
+    return read
 
 
 def run_specs(specs: list[RunSpec], study_id: str = "") -> list[tuple[dict, Any]]:

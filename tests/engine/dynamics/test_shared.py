@@ -130,3 +130,34 @@ def test_the_kernel_only_reads_the_records_a_branch_shares(model, stop):
         now = _arrays(getattr(kr.model, rec))
         for name, before in arrays.items():
             np.testing.assert_array_equal(now[name], before, err_msg=f"{rec}{name}")
+
+
+@pytest.mark.parametrize("model,temperatures,kernel_runs", [
+    ("din", (-20.0, 20.0, 35.0), 1 + 2),     # no temperature term: one start, two stops
+    ("cema", (5.0, 30.0), 1 + 2),            # Kt is 1 at and above 0 C (CEMA's curve)
+    ("cema", (-20.0, 30.0), 2 * (1 + 2)),    # Kt 1.31 against 1: two laws, two starts
+])
+def test_runs_whose_law_reads_their_temperatures_alike_are_simulated_once(
+        monkeypatch, model, temperatures, kernel_runs):
+    """Runs of one model whose law reads their temperatures alike build the same model: the
+    group simulates each of their stops once (the kernel calls are counted: a shared start is
+    one call up to the stop command and one per distinct stop), and each run's result still
+    equals its own separate run bit for bit, its own words included (DIN's note that its
+    figures are those of 20 C appears at -20 and 35 C alone)."""
+    from beltstudy.engine.dynamics.simulate import KernelRun
+
+    conv = steep_incline(takeup={"type": "gravity", "position": "tail", "mass_kg": 20000})
+    scns = [Scenario(start={"time_s": 6}, run_s=10, temperature_c=t, elements=60, stop=s)
+            for t in temperatures
+            for s in ({"mode": "coast"}, {"mode": "controlled", "time_s": 8})]
+    alone = [run_one(conv, s, model=model) for s in scns]
+    calls = []
+    real = KernelRun.call
+    monkeypatch.setattr(KernelRun, "call", lambda self, *a: calls.append(1) or real(self, *a))
+    grouped = run_group(conv, scns, model=model)
+    assert len(calls) == kernel_runs
+    for g, a in zip(grouped, alone, strict=True):
+        assert_same(g, a)
+    if model == "din":
+        notes = ["has no temperature term" in r.summary["message"] for r in grouped]
+        assert notes == [True, True, False, False, True, True]
