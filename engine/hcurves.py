@@ -165,35 +165,51 @@ def hcurve_checks(conv, loop, T: np.ndarray) -> tuple[dict, list[str]]:
         t_run = np.concatenate((T[idx], [T[before]]))
         sec = conv.profile[c.section]
         cos_a = math.sqrt(1.0 - (sec.lift_m / sec.length_m) ** 2)
-        m_load = float(loop.mL_kg_m[idx].max())
-        cases = ({"loaded": belt.mass_kg_m + m_load} if m_load > 0.0
-                 else {"empty": belt.mass_kg_m})
-        limits = {name: tension_limits_n(m, c.radius_m, width, middle, wing, ic.trough_deg,
-                                         c.superelevation_deg, cos_a)
-                  for name, m in cases.items()}
-        low_case = max(limits, key=lambda n: limits[n][0])
-        high_case = min(limits, key=lambda n: limits[n][1])
-        t_lo, t_hi = limits[low_case][0], limits[high_case][1]
+        # each element against the limits of its own load (a feed point within the curve
+        # changes it); the tension entering the curve goes with the first element's load
+        m_el = np.concatenate((loop.mL_kg_m[idx], loop.mL_kg_m[idx[:1]]))
+        m_full = float(loop.mL_kg_m[carry].max())  # the run's load where it is all on
+        cache: dict[float, tuple[float, float]] = {}
+        for m in np.unique(m_el):
+            cache[float(m)] = tension_limits_n(belt.mass_kg_m + float(m), c.radius_m, width,
+                                               middle, wing, ic.trough_deg,
+                                               c.superelevation_deg, cos_a)
+        lo = np.array([cache[float(m)][0] for m in m_el])
+        hi = np.array([cache[float(m)][1] for m in m_el])
+
+        def case(j: int) -> str:
+            m = float(m_el[j])
+            return "empty" if m == 0.0 else "loaded" if m == m_full else (
+                f"partly loaded ({m:.3g} kg/m of material)")
+
+        def at(j: int) -> str:  # the element's end, or the curve's start for the entry
+            x = loop.x_m[idx[j]] + loop.dx_m[idx[j]] if j < idx.size else c.start_m
+            return f"{x:.0f} m"
+
+        t_lo, t_hi = float(lo.max()), float(hi.min())
         run_lo, run_hi = float(t_run.min()), float(t_run.max())
         k = c.number
-        ok = run_lo >= t_lo and run_hi <= t_hi
+        j_in, j_out = int(np.argmax(t_run - hi)), int(np.argmax(lo - t_run))
+        inside, outside = t_run[j_in] > hi[j_in], t_run[j_out] < lo[j_out]
         out.update({f"hcurve{k}_tension_min_kn": t_lo / 1e3,
                     f"hcurve{k}_tension_max_kn": t_hi / 1e3,
                     f"hcurve{k}_t_low_kn": run_lo / 1e3,
                     f"hcurve{k}_t_high_kn": run_hi / 1e3,
-                    f"hcurve{k}_ok": bool(ok)})
+                    f"hcurve{k}_ok": bool(not inside and not outside)})
         where = (f"horizontal curve {k} (profile section {c.section + 1}, {c.start_m:g} to "
                  f"{c.end_m:g} m from the tail, R {c.radius_m:g} m, superelevation "
                  f"{c.superelevation_deg:g} deg)")
-        if run_hi > t_hi:
+        if inside:
             warnings.append(
-                f"{where}: the belt runs to the inside of the curve: tension {run_hi / 1e3:.1f} "
-                f"kN above the {t_hi / 1e3:.1f} kN the weight of the {high_case} belt holds; "
+                f"{where}: the belt runs to the inside of the curve: tension "
+                f"{t_run[j_in] / 1e3:.1f} kN at {at(j_in)} from the tail, above the "
+                f"{hi[j_in] / 1e3:.1f} kN the weight of the {case(j_in)} belt holds there; "
                 "a larger radius, more superelevation, a deeper trough or less tension there "
                 "(a take-up with less tension, the curve nearer the slack side)")
-        if run_lo < t_lo:
+        if outside:
             warnings.append(
-                f"{where}: the {low_case} belt runs out of the curve: tension "
-                f"{run_lo / 1e3:.1f} kN below the {t_lo / 1e3:.1f} kN it needs there; less "
-                "superelevation, a larger radius or more take-up tension")
+                f"{where}: the {case(j_out)} belt runs out of the curve: tension "
+                f"{t_run[j_out] / 1e3:.1f} kN at {at(j_out)} from the tail, below the "
+                f"{lo[j_out] / 1e3:.1f} kN it needs there; less superelevation, a larger "
+                "radius or more take-up tension")
     return out, warnings

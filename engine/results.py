@@ -485,17 +485,20 @@ HCURVES = ResultGroup("hcurves", "Horizontal curves, steady (SPEC 7.1, 7.4; `{k}
                       "curve's number in profile order)", (
     _f("hcurve{k}_tension_min_kn", "kN", "lowest belt tension that keeps the belt in "
        "horizontal curve k: below it the loaded belt runs down the superelevation out of the "
-       "curve (for the belt as the run loads it; 0 when there is no lower limit; "
-       "docs/routes.md)", "T min in curve"),
+       "curve (for the belt as the run loads it, the most loaded element's where a feed "
+       "point lies within the curve; 0 when there is no lower limit; docs/routes.md)",
+       "T min in curve"),
     _f("hcurve{k}_tension_max_kn", "kN", "highest belt tension the weight of the belt holds "
        "in horizontal curve k before the belt runs to the inside (for the belt as the run "
-       "loads it: an empty run gives the empty belt's)", "T max in curve"),
+       "loads it: an empty run gives the empty belt's, the least loaded element's where a "
+       "feed point lies within the curve)", "T max in curve"),
     _f("hcurve{k}_t_low_kn", "kN", "lowest steady tension of the run along curve k",
        "tension low"),
     _f("hcurve{k}_t_high_kn", "kN", "highest steady tension of the run along curve k",
        "tension high"),
-    _f("hcurve{k}_ok", "bool", "the run's tension along curve k lies within "
-       "hcurve{k}_tension_min_kn and hcurve{k}_tension_max_kn", "in curve"),
+    _f("hcurve{k}_ok", "bool", "the run's tension along curve k lies within the limits of "
+       "each element's own load (within hcurve{k}_tension_min_kn and "
+       "hcurve{k}_tension_max_kn where the load is one along the curve)", "in curve"),
 ))
 
 #: Every group, in the order of the runs table.

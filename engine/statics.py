@@ -579,10 +579,12 @@ def _summarise(res: SteadyResult, drives, hs_adm, bounds, shortfall_n: float,
             zip(drives, slip_margins, start_margins, breakaway, strict=True), start=1):
         where = f"drive {i} ({conv.drives[i - 1].where})"
         if m_run < 1.0 - 1e-6 or m_start < 1.0 - 1e-6:
-            which = "running" if m_run < 1.0 else (
-                f"breakaway (the drives hold the net gravity pull {abs(pull_kn):.4g} kN at "
-                "standstill, no running resistance yet)" if at_hold
-                else f"start-up (force x {STARTUP_FACTOR})")
+            start = (f"breakaway (the drives hold the net gravity pull {abs(pull_kn):.4g} kN at "
+                     "standstill, no running resistance yet)" if at_hold
+                     else f"start-up (force x {STARTUP_FACTOR})")
+            # each phase that slips with its own margin: running first, then the start
+            cases = [(w, m) for w, m in (("running", m_run), (start, m_start))
+                     if m < 1.0 - 1e-6]
             fix = ""
             if shortfall_n > 0 and tu.type == "gravity":
                 need = (res.takeup_tension_n + shortfall_n) * 2 / G
@@ -591,10 +593,8 @@ def _summarise(res: SteadyResult, drives, hs_adm, bounds, shortfall_n: float,
             elif shortfall_n > 0:
                 fix = (f"; pretension {res.takeup_tension_n / 1e3:.1f} kN is below the "
                        f"{(res.takeup_tension_n + shortfall_n) / 1e3:.1f} kN needed")
-            warnings.append(
-                f"slip at {where} at {which}: slip margin "
-                f"{min(m_run, m_start):.2f} < 1 (e^(mu theta) = {e:.2f}){fix}"
-            )
+            said = ", and at ".join(f"{w}: slip margin {m:.2f} < 1" for w, m in cases)
+            warnings.append(f"slip at {where} at {said} (e^(mu theta) = {e:.2f}){fix}")
     # ---- an auto take-up beyond what a file may give: name what sets it and what avoids it
     beyond = ""
     if tu.type == "gravity" and tu.mass_kg == "auto" and res.takeup_mass_kg > TAKEUP_MASS_MAX_KG:

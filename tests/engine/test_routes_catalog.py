@@ -229,6 +229,34 @@ def test_the_run_reports_the_curve_limits_of_its_own_load():
         assert any("runs out of the curve" in w and "loaded" in w for w in curve_warnings)
 
 
+def test_a_feed_within_the_curve_gives_the_upper_limit_of_the_least_loaded_belt():
+    """Feeds of 10 % at the tail and 90 % at 500 m of the 1 000 m curve: the first half carries
+    5 kg/m of material (25 kg/m with the belt), the second 50 (70 kg/m). The belt's weight holds
+    it against running in least where it is lightest, so T_max is the 25 kg/m belt's,
+    R 25 g cos(alpha) k_in = 1500 x 25 x 9.81 x 0.99875 x 0.17592 = 64.64 kN, and T_min the
+    70 kg/m belt's (46.96 kN, as above); the verdict holds the tensions to both."""
+    cos_a = math.sqrt(1 - 0.05 ** 2)
+    material = {"capacity_t_h": 720, "density_t_m3": 1.0,
+                "feed": [{"at_m": 0, "share": 0.1}, {"at_m": 500, "share": 0.9}]}
+    res = solve_steady(_curved(1500, 8, material=material), model="din", params=DIN)
+    s = res.summary
+    t_max = 1500 * 25 * G * cos_a * _hand_k(0.38, 0.38, 0.24, 35, 8, 1.0) / 1e3
+    assert t_max == pytest.approx(64.64, abs=0.01)
+    assert s["hcurve1_tension_max_kn"] == pytest.approx(t_max, rel=1e-9)
+    assert s["hcurve1_tension_min_kn"] == pytest.approx(46.96, abs=0.01)
+    # each element against its own load's limits (the profile's tensions, by hand)
+    carry = np.flatnonzero(res.loop.strand == CARRY)
+    x_end = res.loop.x_m[carry] + res.loop.dx_m[carry]
+    t_el = res.tension_n[carry] / 1e3
+    light = x_end <= 500 + 1e-9
+    t_max_full = 1500 * 70 * G * cos_a * _hand_k(0.38, 0.38, 0.24, 35, 8, 1.0) / 1e3
+    runs_in = (t_el[light] > t_max).any() or (t_el[~light] > t_max_full).any()
+    assert not s["hcurve1_ok"] if runs_in else True
+    if runs_in and (t_el[light] > t_max).any():
+        assert any("partly loaded (5 kg/m of material) belt holds there" in w
+                   for w in res.warnings)
+
+
 def test_a_wide_untilted_curve_keeps_the_belt():
     """R = 20 km, no superelevation: T_min = 0 (the belt cannot run out: k < 0 drifted out)
     and T_max = R (m'_G + m'_L) g cos(alpha) (0.38 - 0.24) sin 35 cos 35 = 902 kN (the

@@ -94,6 +94,30 @@ def test_slip_check_flips_at_threshold(hand_dict):
             assert "kg needed" in res.message  # names the limit and the fix
 
 
+def test_a_slip_warning_names_each_phase_with_its_own_margin(hand_dict):
+    """Running and start-up slip margins are e^(mu theta) T2 / T1 with the running forces and
+    with the start-up force (x STARTUP_FACTOR): a take-up at a quarter of what start-up asks
+    slips in both, and the warning gives each phase its own margin, running first."""
+    auto = solve_steady(parse_conveyor(hand_dict), model="din")
+    d = hand_conveyor_dict(takeup={"type": "gravity", "position": "tail",
+                                   "mass_kg": auto.summary["takeup_mass_kg"] * 0.25})
+    res = solve_steady(parse_conveyor(d), model="din")
+    s = res.summary
+    m_run, m_start = s["slip_margin"], s["slip_margin_start"]
+    assert m_start < m_run < 1.0
+    said = [w for w in res.warnings if w.startswith("slip at drive 1")]
+    assert len(said) == 1
+    assert (f"at running: slip margin {m_run:.2f} < 1, and at start-up (force x "
+            f"{STARTUP_FACTOR}): slip margin {m_start:.2f} < 1") in said[0]
+    # start-up alone: the margin said is the start-up one, not named running
+    d = hand_conveyor_dict(takeup={"type": "gravity", "position": "tail",
+                                   "mass_kg": auto.summary["takeup_mass_kg"] * 0.9})
+    res = solve_steady(parse_conveyor(d), model="din")
+    said = [w for w in res.warnings if w.startswith("slip at drive 1")][0]
+    assert "running" not in said
+    assert f"slip margin {res.summary['slip_margin_start']:.2f} < 1" in said
+
+
 def test_impossible_fixed_takeup_warns_with_limit(hand_dict):
     hand_dict["takeup"] = {"type": "fixed", "position": "tail", "pretension_kn": 5.0}
     res = solve_steady(parse_conveyor(hand_dict), model="din")
