@@ -213,10 +213,15 @@ def transient_liftoff(loop: Loop, segs, t_start_end_s: float, t_stop_cmd_s: floa
     Per phase, each element's peak in each segment is put in the phase its time falls in (a
     segment spans the start and running; a lower excess of an element in one phase behind
     its higher one in another is not seen, so a phase may be under-reported, never the
-    whole cycle's maximum). The remedy for a start: the start's extra tension at the curve
-    over the steady one scales with the acceleration (rigid body, ~ 1 / start time), so a
-    start time of ``start_time_s x (T_peak - T_steady) / (T_lift - T_steady)`` keeps the belt
-    down when the steady tension is below the limit; else the radius R T_peak / T_lift.
+    whole cycle's maximum); steady running is also judged at the steady tensions, which a
+    start's higher peak in the same segment cannot hide. The remedy for a start: the start's
+    extra tension at the curve over the steady one scales with the acceleration (rigid body,
+    ~ 1 / start time), so a start time of ``start_time_s x (T_peak - T_steady) / (T_lift -
+    T_steady)`` keeps the belt down when the steady tension is below the limit; a softer stop
+    for a stop likewise. The radius named is ``R max(T / T_lift)`` over the curve's elements,
+    in the phase and in steady running alike (the limit grows with R). Where running lifts the
+    belt at its steady tension, neither a start nor a stop alone avoids it: the radius, or
+    less tension there.
     """
     concave = [c for c in loop.curves if c.concave]
     none = {"liftoff_max_kn_over": None, "liftoff_at_m": None, "liftoff_time_s": None}
@@ -240,27 +245,46 @@ def transient_liftoff(loop: Loop, segs, t_start_end_s: float, t_stop_cmd_s: floa
         out["liftoff_at_m"] = float(s_end[el[j]])
         out["liftoff_time_s"] = float(hi_t[kseg, j])
     phase = np.where(hi_t <= t_start_end_s, 0, np.where(hi_t <= t_stop_cmd_s, 1, 2))
+    steady_over = steady_n[el] - lim  # what running lifts at its steady tension
     warnings = []
     curves = {c.k: c for c in concave}
     for p, name in enumerate(("the start", "steady running", "the stop")):
         masked = np.where(phase == p, over, -np.inf)
         kseg, j = np.unravel_index(int(np.argmax(masked)), masked.shape)
-        if not masked[kseg, j] > 0.0:
+        at_steady = p == 1 and steady_over.max() > max(masked[kseg, j], 0.0)
+        if at_steady:  # a segment's peak that fell in the start hides running's own
+            j = int(np.argmax(steady_over))
+        elif not masked[kseg, j] > 0.0:
             continue
         c = curves[int(ks[j])]
+        on_c = ks == c.k
         e = int(el[j])
-        t_peak, t_lim, t_run = float(hi[kseg, j]), float(lim[j]), float(steady_n[e])
+        t_lim = float(lim[j])
+        t_peak = float(steady_n[e]) if at_steady else float(hi[kseg, j])
         strand = "carry" if loop.strand[e] == CARRY else "return"
-        fixes = [f"a curve radius of at least {c.radius_m * t_peak / t_lim:.0f} m"]
-        if p == 0 and t_run < t_lim:
+        # the radius that keeps the whole curve down in this phase and while running (the
+        # limit grows with R: R max T / T_lift over the curve's elements)
+        ratio = float((steady_n[el][on_c] / lim[on_c]).max())
+        if not at_steady:
+            ratio = max(ratio, float((np.where(phase == p, hi, -np.inf)[:, on_c]
+                                      / lim[on_c]).max()))
+        fixes = [f"a curve radius of at least {c.radius_m * ratio:.0f} m"]
+        runs_over = bool((steady_over[on_c] > 0.0).any())  # running lifts there as it is
+        t_run = float(steady_n[e])
+        if p == 0 and not runs_over and t_run < t_lim:
             t_need = start_time_s * (t_peak - t_run) / (t_lim - t_run)
             fixes.insert(0, f"a start of about {t_need:.0f} s (start.time_s; rigid-body "
                             "estimate)")
-        elif p == 2:
+        elif p == 2 and not runs_over:
             fixes.insert(0, "a softer stop (stop time, brake force)")
+        elif runs_over:
+            fixes.append("less tension there in running (a lighter take-up, the curve nearer "
+                         "the slack side)")
+        when = ("at its steady running tension" if at_steady
+                else f"at t = {hi_t[kseg, j]:.1f} s")
         warnings.append(
             f"lift-off in {name}: the belt leaves its {strand} idlers at curve {c.k} "
-            f"(concave, R {c.radius_m:g} m, at {s_end[e]:.0f} m round the loop) at "
-            f"t = {hi_t[kseg, j]:.1f} s, {(t_peak - t_lim) / 1e3:.1f} kN over its lift-off "
+            f"(concave, R {c.radius_m:g} m, at {s_end[e]:.0f} m round the loop) {when}, "
+            f"{(t_peak - t_lim) / 1e3:.1f} kN over its lift-off "
             f"tension {t_lim / 1e3:.1f} kN; " + " or ".join(fixes) + " avoids it")
     return out, warnings

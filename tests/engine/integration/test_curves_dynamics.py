@@ -4,6 +4,7 @@ curve in a start, and the wave laws on a profile with a curve."""
 from __future__ import annotations
 
 import math
+import re
 
 import numpy as np
 import pytest
@@ -89,3 +90,25 @@ def test_tension_front_speed_and_height_through_a_curve():
     d_mid = res.traces.iloc[:, 2].to_numpy() * 1e3 - sys.tension_rest_n[mid]
     after = np.argmax(t > (s[sys.i_head - 1] - s[mid]) / c + 0.3)  # plateau behind the front
     assert d_mid[after] == pytest.approx(z * dv, rel=0.03)
+
+
+def test_when_running_lifts_the_belt_no_fix_of_the_start_or_stop_alone_is_offered():
+    """The valley conveyor on a 20 t take-up: its steady tension at the curve is above the
+    lift-off tension (the static verdict `curve1_liftoff`), so running lifts the belt whatever
+    the start or the stop. Every warning's radius is at least the steady one the statics give
+    (`curve1_radius_min_m`, R T_steady / T_lift over the curve), running is named, and neither
+    a longer start nor a softer stop is offered as a cure."""
+    conv = valley_conveyor()
+    d = conv.model_dump(mode="json", by_alias=True)
+    d["takeup"]["mass_kg"] = 20000
+    res = run_one(parse_conveyor(d), Scenario(start={"control": "s-curve", "time_s": 10},
+                                              run_s=30, elements=100,
+                                              stop={"mode": "controlled", "time_s": 10}),
+                  model="din")
+    s = res.summary
+    assert s["curve1_liftoff"] is True
+    said = re.findall(r"lift-off in [^;]*; [^;]* avoids it", s["message"])
+    assert any(w.startswith("lift-off in steady running") for w in said), said
+    radii = [float(r) for w in said for r in re.findall(r"curve radius of at least (\d+) m", w)]
+    assert len(radii) == len(said) and min(radii) >= s["curve1_radius_min_m"] - 0.5
+    assert not any("a start of about" in w or "a softer stop" in w for w in said)
