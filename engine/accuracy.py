@@ -17,7 +17,8 @@ each deciding figure ``f`` (``f3, f2, f1`` on the coarse, the run's and the fine
   ``richardson``); otherwise ``Fs = 3`` with ``p`` bounded to [:data:`P_MIN`,
   :data:`P_FORMAL`] (method ``gci3``; Oberkampf & Roy 2010, section 8.6.3: an observed
   order above the formal one is not credited, and an extreme behind a front converges as
-  ``sqrt(dx)``, PHYSICS 5.2). With two meshes only (one failed, or too coarse), ``p`` is
+  ``sqrt(dx)``, PHYSICS 5.2); with an observed order of zero or below (the differences grow
+  as the mesh is refined) the bar stands but no converged estimate is given. With two meshes only (one failed, or too coarse), ``p`` is
   assumed (:data:`P_ASSUMED`) and ``Fs = 3`` (method ``gci2``).
 - differences of opposite signs (or a zero difference next to a non-zero one): the figure
   is not in the asymptotic range; the bar is the spread, ``Fs = 3`` x the largest distance
@@ -205,7 +206,10 @@ def _figure_error(name: str, values: tuple, elements: tuple[int, int, int]
         else:  # not shown to be asymptotic: Fs 3, the order bounded (Oberkampf & Roy 2010)
             fs, p_used, method = FS_TWO, min(max(P_MIN, p), P_FORMAL), "gci3"
         conv = f1 + (f1 - f2) / (r21 ** p_used - 1.0)
-        return FigureError(name, f2, fs * abs(f2 - conv), conv, method, p, values)
+        # differences that grow with refinement (p <= 0) converge to no value that three
+        # meshes show: the bar stands (with the order bounded), no estimate is given
+        return FigureError(name, f2, fs * abs(f2 - conv), conv if p > 0.0 else None, method, p,
+                           values)
     if have1:
         if abs(f2 - f1) <= tiny:
             return FigureError(name, f2, 0.0, f2, "unchanged", None, values)

@@ -38,6 +38,17 @@ def test_order_below_the_asymptotic_range_is_bounded_with_fs_3():
     assert abs(f4 - f2) <= fe.err
 
 
+def test_differences_that_grow_with_the_mesh_give_a_bar_and_no_converged_value():
+    """23.0, 22.0, 20.0 on 50 / 100 / 200 elements: the differences 1 and 2 grow, p = ln(1 /
+    2) / ln 2 = -1. Nothing converges within these meshes: no estimate; the bar is Fs 3 with
+    the order bounded to 0.5, 3 |f2 - (f1 + (f1 - f2) / (sqrt 2 - 1))| = 3 x 2 x 3.414 =
+    20.49."""
+    fe = A.figure_error("t_max_dyn_kn", (23.0, 22.0, 20.0), (50, 100, 200))
+    assert fe.method == "gci3" and fe.order == pytest.approx(-1.0, abs=1e-12)
+    assert fe.converged is None
+    assert fe.err == pytest.approx(3.0 * 2.0 * (1.0 + 1.0 / (2.0 ** 0.5 - 1.0)), rel=1e-12)
+
+
 def test_unequal_ratios_give_the_order_by_celik_s_fixed_point():
     meshes = (21, 42, 86)
     f3, f2, f1 = _seq(7.0, 30.0, 1.05, meshes + (1,))[:3]
