@@ -53,6 +53,23 @@ def test_pulley_diameter_fabric_by_din_22101(utilisation, group, d_min_m):
         d_min_m, abs=1e-12)
 
 
+def test_every_catalogue_belt_has_a_carcass_thickness():
+    """The minimum pulley diameter needs the carcass thickness: every belt of the catalogue
+    (engine/data/belts.csv) has one in carcass.csv, so only a custom belt goes without."""
+    belts = {r["id"] for r in C._rows("belts.csv")}
+    missing = belts - set(C._carcass_mm())
+    assert not missing, f"carcass.csv lacks {sorted(missing)}"
+
+
+def test_the_incline_s_ep1250_belt_gets_its_minimum_pulley_by_hand():
+    """EP1250/5, five EP250 plies of 1.25 mm (carcass.csv [MON]): d_Gk = 6.25 mm, D_A = 108 x
+    6.25 = 675 mm -> row 800 mm: over 60 % group A 800 mm; over 30 % to 60 % 630 mm."""
+    d = C._carcass_mm()["EP1250/5"]
+    assert d == pytest.approx(5 * 1.25)
+    assert C.pulley_diameter_min_m("fabric", d * 1e-3, "A", 0.8) == pytest.approx(0.8)
+    assert C.pulley_diameter_min_m("fabric", d * 1e-3, "A", 0.5) == pytest.approx(0.63)
+
+
 def test_pulley_diameter_band_edges_and_beyond_the_table():
     # the bands are "over 30 % to 60 %" and "over 60 % to 100 %": exactly 60 % is the middle
     # band, just above it the full one (steel 5.85 mm, group A: 800 and 1000 mm)
