@@ -375,8 +375,9 @@ DRIVE_LOAD = ResultGroup(
         _f("drive{i}_overload_s", "s", "time after the start command with drive i's force at "
            "the pulley above its rated force (rated power / design speed)", "overload"),
         _f("drive{i}_force_rms_kn", "kN", "RMS force of drive i from the start command until "
-           "the belt is at rest after the stop (the run's end when it never stops), the "
-           "cycle's thermal equivalent load", "F rms"),
+           "the belt is at rest after the stop (its mean speed below 1 % of design speed, as "
+           "stop_time_s; the run's end when it never stops), the cycle's thermal equivalent "
+           "load", "F rms"),
     ))
 
 # ------------------------------------------------------------------ the design basis

@@ -43,6 +43,8 @@ class Verdict:
     to judge against (the value is shown). ``ok``: a boolean column that is the run's own
     verdict (a run with it false is past the limit). ``null_worst``: a missing value in a run
     whose transient ran is the worst of all (a stop time of a run that did not stop).
+    ``magnitude``: judged by its size whatever its sign (a regenerating drive's power is
+    negative); the governing run's value is shown with its sign.
     """
 
     group: str
@@ -54,6 +56,7 @@ class Verdict:
     ok: str | None = None
     at: str | None = None
     null_worst: str = ""
+    magnitude: bool = False
 
 
 #: The verdict table, in its order. Columns a run does not carry are left out.
@@ -67,8 +70,8 @@ VERDICTS: tuple[Verdict, ...] = (
     Verdict("Drives", "time over rating, drive {i}", "drive{i}_overload_s", "max", "s",
             OVERLOAD_S_MAX),
     Verdict("Drives", "RMS (thermal) force, drive {i}", "drive{i}_force_rms_kn", "max", "kN"),
-    Verdict("Drives", "power at the drive pulleys, steady (all drives)", "power_kw", "max", "kW",
-            "rated_power_kw"),
+    Verdict("Drives", "power at the drive pulleys, steady (all drives; regenerating < 0)",
+            "power_kw", "max", "kW", "rated_power_kw", magnitude=True),
     Verdict("Drives", "largest drive power, transient (all drives)", "drive_power_max_kw", "max",
             "kW"),
     Verdict("Drives", "largest force, drive {i}, transient", "drive{i}_force_max_kn", "max",
@@ -427,12 +430,13 @@ def verdict_rows(runs: pd.DataFrame, limits: dict[str, Limit]) -> list[dict]:
                 first = unstopped & not_stopped(ok)
                 idx = (first if first.any() else unstopped).idxmax()
             lim, text = _limits_of(v, ok, nums, limits)
+            judged = values.abs() if v.magnitude else values
             if not missing:
-                idx, relative = _worst(v, values, lim)
+                idx, relative = _worst(v, judged, lim)
                 text = f"{text}; the worst against its own limit" if relative else text
             row = ok.loc[idx]
             ok_col = v.ok.format(**nums) if v.ok else None
-            past = _past(v, values, ok, lim, ok_col)
+            past = _past(v, judged, ok, lim, ok_col)
             limit = None if lim is None or pd.isna(lim.loc[idx]) else float(lim.loc[idx])
             out.append({"verdict": v, "label": v.quantity.format(**nums), "column": column,
                         "row": row, "value": None if missing else float(values.loc[idx]),

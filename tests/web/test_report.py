@@ -107,7 +107,7 @@ def test_the_verdicts_name_the_governing_run_and_the_runs_past_each_limit(web):
     html = report_html(_doc(web), _runs(), {"state": "done", "done": 8, "total": 8})
     s1 = _section(html, 1)
     rows = {re.sub("<.*", "", r): r for r in re.findall(r"<tr><td>(.*?)</tr>", s1, re.S)}
-    power = rows["power at the drive pulleys, steady (all drives)"]
+    power = rows["power at the drive pulleys, steady (all drives; regenerating &lt; 0)"]
     assert f"36.5{UNIT_SPACE}kW" in power and "<code>ov</code>" in power  # the largest
     assert "past the limit in 2 of 7 runs" in power  # 36.5 and 31 kW over 30 kW rated
     stop = rows["stop time achieved"]
@@ -236,6 +236,18 @@ def test_a_limit_that_differs_between_runs_governs_by_value_over_limit(web):
                     re.S).group(0)
     assert "<code>a1</code>" in row and f"10{UNIT_SPACE}kW" in row
     assert f"5{UNIT_SPACE}kW" in row and "the worst against its own limit" in row
+    assert "past the limit in 3 of 7 runs" in row  # a1, ov, os
+
+
+def test_a_regenerating_run_governs_the_steady_power_by_its_size(web):
+    """Power at the drive pulleys is negative where the drives regenerate: -40 kW (a1) is the
+    largest power by size, above the 36.5 kW of ov, and 40 kW is past the 30 kW rating; the
+    row shows it with its sign."""
+    runs = _runs(power_kw=[-40.0, 10.0, 10.0, 36.5, 31.0, 10.0, np.nan, 10.0])
+    html = report_html(_doc(web), runs, {"state": "done", "done": 8, "total": 8})
+    row = re.search(r"<tr><td>power at the drive pulleys.*?</tr>", _section(html, 1),
+                    re.S).group(0)
+    assert "<code>a1</code>" in row and "40" in row and "36.5" not in row
     assert "past the limit in 3 of 7 runs" in row  # a1, ov, os
 
 
