@@ -1052,6 +1052,8 @@ def format_validation_error(exc: ValidationError, model: type[BaseModel], prefix
                 msg = msg[len("Value error, ") :]
             got = err.get("input")
             shown = "" if isinstance(got, dict | list) else f" (got {got!r})"
+            if isinstance(got, float) and not math.isfinite(got):
+                msg = "Input should be a finite number"  # not a bound a NaN fails
             if not clean:
                 # A check across fields names its own field first ("drives: shares sum ...").
                 m = re.match(r"([A-Za-z_][\w\[\]\.]*): (.*)$", msg, re.S)

@@ -91,6 +91,16 @@ def test_fixed_takeup_mass_is_an_error():
     assert "pretension_kn" in _err(d)
 
 
+@pytest.mark.parametrize("value", [float("nan"), float("inf")])
+def test_a_non_finite_number_is_named_as_such_not_as_a_bound(value):
+    """YAML's .nan and .inf pass no bound: the error says the number must be finite."""
+    d = hand_conveyor_dict(profile=[{"length_m": 500, "lift_m": 0, "curve_radius_m": value},
+                                    {"length_m": 500, "lift_m": 50}])
+    msg = _err(d)
+    assert "profile.0.curve_radius_m: Input should be a finite number" in msg
+    assert "less than or equal" not in msg
+
+
 def test_custom_belt_needs_fields():
     d = hand_conveyor_dict()
     del d["belt"]["modulus_kn_m"]
