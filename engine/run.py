@@ -222,8 +222,10 @@ def run_group(
     """:func:`run_one` of each scenario of one conveyor, model and parameters, the runs that
     agree on everything the transient engine reads up to the stop command sharing one
     simulated rest, start and run (:mod:`beltstudy.engine.dynamics.shared`: the engine, not the
-    caller, decides which do, from the built models). Each result equals its :func:`run_one`
-    bit for bit but ``elapsed_s`` (the shared stretch counts in full for each run).
+    caller, decides which do, from the built models), and the runs that agree on what it reads
+    after the stop command too (runs that differ only in what their law does not read, such as
+    DIN's temperature) sharing one kernel run. Each result equals its :func:`run_one` bit for
+    bit but ``elapsed_s`` (the shared stretch counts in full for each run).
 
     ``conveyor`` may be one per scenario (runs whose brakes differ only in their force, delay,
     ramp, curve or hold still share a start when their models allow it). ``check`` may be one
