@@ -138,6 +138,14 @@ def hcurves(conv) -> list[HCurve]:
     return out
 
 
+def _load_case(m_load: float, m_full: float) -> str:
+    """The belt's load in words: ``m_load`` the material on it, ``m_full`` the run's load
+    where it is all on [kg/m]."""
+    m = float(m_load)
+    return "empty" if m == 0.0 else "loaded" if m == m_full else (
+        f"partly loaded ({m:.3g} kg/m of material)")
+
+
 def hcurve_checks(conv, loop, T: np.ndarray) -> tuple[dict, list[str]]:
     """``hcurve{k}_*`` fields and warnings of a steady solution (empty with no curves).
 
@@ -176,16 +184,8 @@ def hcurve_checks(conv, loop, T: np.ndarray) -> tuple[dict, list[str]]:
                                                c.superelevation_deg, cos_a)
         lo = np.array([cache[float(m)][0] for m in m_el])
         hi = np.array([cache[float(m)][1] for m in m_el])
-
-        def case(j: int) -> str:
-            m = float(m_el[j])
-            return "empty" if m == 0.0 else "loaded" if m == m_full else (
-                f"partly loaded ({m:.3g} kg/m of material)")
-
-        def at(j: int) -> str:  # the element's end, or the curve's start for the entry
-            x = loop.x_m[idx[j]] + loop.dx_m[idx[j]] if j < idx.size else c.start_m
-            return f"{x:.0f} m"
-
+        # where each tension acts: an element's end, or the curve's start for the entry
+        x_at = np.concatenate((loop.x_m[idx] + loop.dx_m[idx], [c.start_m]))
         t_lo, t_hi = float(lo.max()), float(hi.min())
         run_lo, run_hi = float(t_run.min()), float(t_run.max())
         k = c.number
@@ -202,14 +202,15 @@ def hcurve_checks(conv, loop, T: np.ndarray) -> tuple[dict, list[str]]:
         if inside:
             warnings.append(
                 f"{where}: the belt runs to the inside of the curve: tension "
-                f"{t_run[j_in] / 1e3:.1f} kN at {at(j_in)} from the tail, above the "
-                f"{hi[j_in] / 1e3:.1f} kN the weight of the {case(j_in)} belt holds there; "
+                f"{t_run[j_in] / 1e3:.1f} kN at {x_at[j_in]:.0f} m from the tail, above the "
+                f"{hi[j_in] / 1e3:.1f} kN the weight of the {_load_case(m_el[j_in], m_full)} "
+                "belt holds there; "
                 "a larger radius, more superelevation, a deeper trough or less tension there "
                 "(a take-up with less tension, the curve nearer the slack side)")
         if outside:
             warnings.append(
-                f"{where}: the {case(j_out)} belt runs out of the curve: tension "
-                f"{t_run[j_out] / 1e3:.1f} kN at {at(j_out)} from the tail, below the "
+                f"{where}: the {_load_case(m_el[j_out], m_full)} belt runs out of the curve: "
+                f"tension {t_run[j_out] / 1e3:.1f} kN at {x_at[j_out]:.0f} m from the tail, below the "
                 f"{lo[j_out] / 1e3:.1f} kN it needs there; less superelevation, a larger "
                 "radius or more take-up tension")
     return out, warnings
