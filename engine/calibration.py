@@ -154,8 +154,11 @@ def measurements_from_rows(rows: Sequence[dict[str, Any]]) -> list[Measurement]:
         for col in MEASURED:
             val = _number(row.get(col), f"{where}.{col}")
             if val is not None:
-                if val <= 0:
-                    raise InputError(f"a measured {col} is > 0 (got {val:g})",
+                # power and Te are negative where the drives regenerate (the runs' own sign);
+                # a tension is positive; none is 0 (residuals are relative to it)
+                if val == 0 or (col == "t_tight_kn" and val < 0):
+                    need = "> 0" if col == "t_tight_kn" else "not 0 (negative: regenerating)"
+                    raise InputError(f"a measured {col} is {need} (got {val:g})",
                                      field=f"{where}.{col}")
                 values[col] = val
         if "power_kw" not in values and "te_kn" not in values:
@@ -174,6 +177,31 @@ def _conveyor_at(conv: Conveyor, speed_m_s: float | None, cache: dict) -> Convey
         data["speed_m_s"] = speed_m_s
         cache[speed_m_s] = parse_conveyor(data, prefix="measured.speed_m_s: ")
     return cache[speed_m_s]
+
+
+def _takeup_held(conv: Conveyor, fm, rows: Sequence[Measurement], params: dict
+                 ) -> tuple[Conveyor, str]:
+    """The plant's take-up held for every row: an ``auto`` counterweight (or fixed take-up's
+    pretension) sized once, as a study's design basis sizes it (the largest requirement at
+    full load over the rows' temperatures), with the start parameters. Sized per row, it
+    would follow each row's temperature and the trial parameters, which one counterweight
+    does not. Returns the conveyor and a note ("" when the file gives the size)."""
+    tu = conv.takeup
+    field, key, unit = (("mass_kg", "takeup_mass_kg", "kg") if tu.type == "gravity"
+                        else ("pretension_kn", "takeup_pretension_kn", "kN"))
+    if getattr(tu, field) != "auto":
+        return conv, ""
+    p = fm.params(params)
+    temps = sorted({m.temperature_c for m in rows})
+    size = max(float(solve_steady(conv, model=fm.name, params=p, temperature_c=t,
+                                  load="full").summary[key]) for t in temps)
+    data = conv.model_dump(mode="json", by_alias=True)
+    data["takeup"][field] = size
+    held = parse_conveyor(data)
+    return held, (f"takeup.{field} auto: held at {size:.6g} {unit} for every row (sized once, "
+                  f"at full load over the rows' temperatures {', '.join(f'{t:g}' for t in temps)} "
+                  f"C with the start values, as a study's design basis sizes it); give the "
+                  f"plant's as takeup.{field}")
 
 
 def _check_names(model, fit: Sequence[str], fixed: dict) -> list[str]:
@@ -263,6 +291,8 @@ def calibrate(conv: Conveyor, measured: Sequence[Measurement], model: str,
     names = _check_names(fm, fit, fixed)
     rows = list(measured)
     x0 = _starts(fm, conv, rows, names, fixed, dict(starts or {}))
+    conv, held_takeup = _takeup_held(conv, fm, rows, {**fixed, **_expanded(
+        fm.name, dict(zip(names, map(float, x0), strict=True)))})
     cols = [(i, col) for i, m in enumerate(rows) for col in m.values]
     y = np.array([rows[i].values[col] for i, col in cols])
     speeds: dict = {}
@@ -293,6 +323,8 @@ def calibrate(conv: Conveyor, measured: Sequence[Measurement], model: str,
     notes = [f"{', '.join(g)}: only act together on these data; "
              f"{', '.join(x for x in g if x in held)} held at the start value"
              for g in groups]
+    if held_takeup:
+        notes.append(held_takeup)
     se: list[float | None] = [None] * p
     if dof > 0:
         s2 = float(r @ r) / dof
@@ -359,8 +391,10 @@ def _identifiable(fun, x0: np.ndarray, names: list[str]
             held.append(name)
             groups.append([name])
             continue
-        _, s, vt = np.linalg.svd(trial, full_matrices=False)
-        if s[-1] >= RCOND * s[0]:
+        # fewer residuals than names: the last one named cannot be told apart (its null
+        # vector exists; the full decomposition gives it)
+        _, s, vt = np.linalg.svd(trial, full_matrices=True)
+        if trial.shape[1] <= trial.shape[0] and s[-1] >= RCOND * s[0]:
             free.append(k)
             continue
         null = np.abs(vt[-1])

@@ -43,8 +43,10 @@ class MeasuredRow(BaseModel):
     load: str | float | list[float] = Field(..., description="load case as in a scenario")
     temperature_c: float = Field(..., ge=TEMPERATURE_MIN_C, le=TEMPERATURE_MAX_C,
                                  description="ambient temperature [C]")
-    power_kw: float | None = Field(None, gt=0, description="measured drive power [kW]")
-    te_kn: float | None = Field(None, gt=0, description="measured peripheral force [kN]")
+    power_kw: float | None = Field(None, description="measured power at the drive pulleys [kW] "
+                                   "(negative where the drives regenerate; not 0)")
+    te_kn: float | None = Field(None, description="measured peripheral force [kN] (negative "
+                                "where the drives regenerate; not 0)")
     t_tight_kn: float | None = Field(None, gt=0, description="measured tight-side tension [kN]")
     speed_m_s: float | None = Field(None, gt=0, description="belt speed [m/s] (default: the "
                                     "conveyor's)")

@@ -125,7 +125,8 @@ def build(loop: Loop, conv: Conveyor, temperature_c: float, params: CemaParams) 
     add_feed(b, loop, conv)
     b.add("secondary", pulley_allowances(loop, conv))
     add_accessories(b, loop, conv)
-    return b.build(info={"kt": kt, "ky_mean": float(ky[carry].mean()) if carry.any() else None})
+    return b.build(info={"kt": kt, "ky_mean": float(ky[carry].mean()) if carry.any() else None,
+                         "ai_n": float(ai[carry].mean()) if carry.any() else None})
 
 
 MODEL = FrictionModel(

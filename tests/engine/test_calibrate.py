@@ -125,3 +125,58 @@ def test_din_single_f_sets_both_strands(overland):
         calibrate(overland, rows, "din", ["f"], fixed={"f_return": 0.01})
     with pytest.raises(InputError, match="'f_carry' sets a parameter another fitted name sets"):
         calibrate(overland, rows, "din", ["f", "f_carry"])
+
+
+def test_one_row_identifies_one_name_and_holds_the_other(overland):
+    """One measurement, two names: one residual can fix one parameter; the second is held
+    at its start and named with the first, and no degree of freedom goes below zero."""
+    rows = _plant(overland, "din", {"f_carry": TRUTH})[-1:]
+    cal = calibrate(overland, rows, "din", ["f_carry", "f_return"])
+    assert cal.not_identifiable == ["f_carry", "f_return"]
+    assert list(cal.held) == ["f_return"] and cal.dof == 0
+    assert max(abs(r["relative"]) for r in cal.residuals) < 1e-8  # f_carry meets the row
+
+
+def test_a_regenerating_decline_is_calibrated_on_its_negative_power():
+    """downhill-regen's drives regenerate: its power at the drive pulleys is negative, as the
+    runs store it. DIN's power is linear in f_carry, so the noise-free fit is the truth."""
+    conv = load_conveyor(CONVEYORS / "downhill-regen.yaml")
+    rows = [r for r in _plant(conv, "din", {"f_carry": 0.018}) if r.values["power_kw"] < 0]
+    assert len(rows) >= 3  # the loaded runs regenerate
+    cal = calibrate(conv, rows, "din", ["f_carry"])
+    assert cal.fit["f_carry"]["value"] == pytest.approx(0.018, rel=1e-6)
+    # and through the table reader: negative allowed, zero refused
+    assert measurements_from_rows([{"load": 1, "temperature_c": 5, "power_kw": -120.5}])
+    with pytest.raises(InputError, match="not 0"):
+        measurements_from_rows([{"load": 1, "temperature_c": 5, "power_kw": 0}])
+
+
+def test_cema_seal_drag_starts_from_the_catalogue_value(overland):
+    """ai_n has no default (None: the idler catalogue's seal drag); the fit starts from the
+    value the law takes, and recovers a given one from noise-free power."""
+    info = solve_steady(overland, model="cema", temperature_c=10.0).law.info
+    rows = _plant(overland, "cema", {"ai_n": 9.0})
+    cal = calibrate(overland, rows, "cema", ["ai_n"])
+    assert cal.fit["ai_n"]["start"] == pytest.approx(info["ai_n"], rel=1e-12)
+    assert cal.fit["ai_n"]["value"] == pytest.approx(9.0, rel=1e-4)
+
+
+def test_an_auto_take_up_is_held_at_one_size_for_every_row(overland):
+    """A plant has one counterweight. An auto take-up is sized once, as a study's design
+    basis sizes it (the largest at full load over the rows' temperatures, start values), and
+    held for every row: Non-Lin power made at -15 and 28 C on that one counterweight gives
+    the parameter back exactly, and the answer names the size held."""
+    temps = (-15.0, 28.0)
+    size = max(solve_steady(overland, model="nonlin", temperature_c=t,
+                            load="full").summary["takeup_mass_kg"] for t in temps)
+    data = overland.model_dump(mode="json", by_alias=True)
+    data["takeup"]["mass_kg"] = size
+    from beltstudy.engine import parse_conveyor
+    plant = parse_conveyor(data)
+    truth = {"drag_per_roll_n": 1.6}
+    rows = [Measurement(load, t, {"power_kw": solve_steady(
+        plant, model="nonlin", params=truth, temperature_c=t, load=load).summary["power_kw"]})
+        for t in temps for load in (0.5, 0.9)]
+    cal = calibrate(overland, rows, "nonlin", ["drag_per_roll_n"])
+    assert cal.fit["drag_per_roll_n"]["value"] == pytest.approx(1.6, rel=1e-5)
+    assert any(n.startswith(f"takeup.mass_kg auto: held at {size:.6g} kg") for n in cal.notes)
