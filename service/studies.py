@@ -461,9 +461,7 @@ class StudyService:
         without a transient (steady only, or a run that raised)."""
 
         doc = self.store.read(study_id)
-        runs = self.store.read_runs(study_id)
-        if not len(runs) or not (runs["run_id"] == run_id).any():
-            self._no_row(study_id, run_id)
+        self.require_row(study_id, run_id)
         study = doc.get("study") or {}
         if not study.get("dynamics", True):
             return surface_schema().empty_table().to_pandas(), "recomputed"
@@ -519,6 +517,12 @@ class StudyService:
         status = self.status(study_id)
         return {**out, "state": status["state"], "done": status["done"],
                 "total": status["total"]}
+
+    def require_row(self, study_id: str, run_id: str) -> None:
+        """Raise as :meth:`_no_row` unless the run has its stored row (it finished)."""
+        runs = self.store.read_runs(study_id, columns=["run_id"])
+        if not len(runs) or not (runs["run_id"] == run_id).any():
+            self._no_row(study_id, run_id)
 
     def _no_row(self, study_id: str, run_id: str) -> None:
         """Raise for a run without a stored row: 409 with the study's state for a run of the

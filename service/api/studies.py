@@ -188,11 +188,12 @@ def get_run(study_id: str, run_id: str, service: StudyService = Depends(get_serv
 def get_run_surface(
     study_id: str,
     run_id: str,
+    response: Response,
     format: Literal["json", "csv", "parquet"] = Query("json", description="output format"),
     service: StudyService = Depends(get_service),
 ):
     df, source = service.run_surface(study_id, run_id)
-    return _run_table(df, source, "surface", study_id, run_id, format)
+    return _run_table(df, source, "surface", study_id, run_id, format, response)
 
 
 @router.get(
@@ -207,17 +208,21 @@ def get_run_surface(
 def get_run_profile(
     study_id: str,
     run_id: str,
+    response: Response,
     format: Literal["json", "csv", "parquet"] = Query("json", description="output format"),
     service: StudyService = Depends(get_service),
 ):
     df, source = service.run_profile(study_id, run_id)
-    return _run_table(df, source, "profile", study_id, run_id, format)
+    return _run_table(df, source, "profile", study_id, run_id, format, response)
 
 
-def _run_table(df, source: str, what: str, study_id: str, run_id: str, format: str):
+def _run_table(df, source: str, what: str, study_id: str, run_id: str, format: str,
+               response: Response):
     """One run's table (``what``: surface or profile) as CSV, Parquet or JSON columns, with
-    where it came from (stored or recomputed) in ``X-Beltstudy-<What>`` and the JSON."""
+    where it came from (stored or recomputed) in ``X-Beltstudy-<What>`` (every format) and
+    the JSON."""
     headers = {f"X-Beltstudy-{what.capitalize()}": source}
+    response.headers.update(headers)  # the JSON answer's own headers
     if format == "csv":
         return Response(query.to_csv(df), media_type="text/csv; charset=utf-8",
                         headers=headers)

@@ -182,6 +182,9 @@ def compare(
             raise Invalid(f"metrics: unknown metric '{m}'; valid: " + ", ".join(valid))
     baseline = model_name(baseline, "baseline")
     candidate = model_name(candidate, "candidate")
+    if baseline == candidate:
+        raise Invalid(f"candidate: '{candidate}' is the baseline too; compare two different "
+                      "models")
     if models is None:
         models = sorted(set(runs["friction_model"].dropna())) if len(runs) else []
     for label, name in (("baseline", baseline), ("candidate", candidate)):
@@ -194,7 +197,15 @@ def compare(
     base = runs[runs["friction_model"] == baseline][others + keep]
     cand = runs[runs["friction_model"] == candidate][others + keep]
     if others:
-        merged = base.merge(cand, on=others, suffixes=("_baseline", "_candidate"))
+        # an axis one model's runs do not read (another model's parameter: null there, which
+        # stands for any value) pairs each of its runs with the other model's at every value
+        keys = [a for a in others if base[a].notna().any() and cand[a].notna().any()]
+        merged = base.merge(cand, how="inner" if keys else "cross", on=keys or None,
+                            suffixes=("_baseline", "_candidate"))
+        for a in others:
+            if a not in keys:
+                merged[a] = merged.pop(f"{a}_baseline").combine_first(
+                    merged.pop(f"{a}_candidate"))
     else:
         # one run per model: the pair is those two rows (their labels in ``runs`` differ)
         merged = base.reset_index(drop=True).add_suffix("_baseline").join(

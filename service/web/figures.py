@@ -169,11 +169,12 @@ def run_figure(service: StudyService, study_id: str, run_id: str, name: str):
         return lambda: charts.steady_profile_figure(profile, title)
     if not study.dynamics:
         return lambda: charts.message_figure(charts.NO_TRANSIENT, title)
+    service.require_row(study_id, run_id)  # 409 for a run not finished yet
     runs = service.store.read_runs(study_id)
-    row = runs[runs["run_id"] == run_id] if len(runs) else runs
+    row = runs[runs["run_id"] == run_id]
     ts = service.store.read_timeseries(study_id, run_id)
-    # the surface: stored, or recomputed from the run's inputs (a finished run only)
-    surface = service.run_surface(study_id, run_id)[0] if len(row) else ts.iloc[0:0]
+    # the surface: stored, or recomputed from the run's inputs
+    surface = service.run_surface(study_id, run_id)[0]
     if not len(ts) and not len(surface):
         return lambda: charts.message_figure("no transient data for this run", title)
     extremes = {}

@@ -63,16 +63,25 @@ def test_every_route_of_a_running_study_answers_with_its_state(client, running):
     assert cmp["state"] == "running" and cmp["pairs"] == []
     assert (cmp["done"], cmp["total"], cmp["same_in_all_pairs"]) == (0, 6, {})
     # a run of the study not finished yet: 409 with the state, never 404
-    for path in (f"/studies/{sid}/runs/{run_id}", f"/studies/{sid}/runs/{run_id}/surface",
-                 f"/studies/{sid}/runs/{run_id}/plots/transient"):
+    # (the steady profile above is the run's steady solve, answered before the run ends; the
+    # transient figure of this steady study says it has none)
+    for path in (f"/studies/{sid}/runs/{run_id}", f"/studies/{sid}/runs/{run_id}/surface"):
         r = client.get(path)
-        assert r.status_code in (200, 409), (path, r.status_code)
-        if r.status_code == 409:
-            assert "not finished yet (the study is running: 0 of 6 runs done)" in r.text
+        assert r.status_code == 409, (path, r.status_code)
+        assert "not finished yet (the study is running: 0 of 6 runs done)" in r.text
     r = client.get(f"/studies/{sid}/runs/{run_id}")
     assert r.status_code == 409 and r.json()["error"] == "conflict"
     # an id the study does not have is still not found
     assert client.get(f"/studies/{sid}/runs/ffffffffffffffff").status_code == 404
+
+
+def test_a_dynamic_run_not_finished_has_no_transient_figure_yet(client, data_dir, make_study):
+    """The transient figure of a dynamic run still to come is a 409 with the study's state,
+    as its row and surface are, not a figure saying the run has no transient."""
+    study = resolve_study(make_study("mid-dyn", dynamics=True), studies_dir=ROOT / "studies")
+    Store(data_dir).create(study.id, {**StudyService._new_doc(study), "state": "running"})
+    r = client.get(f"/studies/{study.id}/runs/{study.runs[0].run_id}/plots/transient")
+    assert r.status_code == 409 and "not finished yet (the study is running" in r.text
 
 
 def test_compare_names_a_model_the_study_does_not_run_even_mid_study(client, running):

@@ -80,12 +80,37 @@ def test_compare_lists_only_what_differs_and_ratios_as_magnitudes():
     assert out["summary"]["drive_force_max_kn"]["overall"]["opposite_sign"] == 1
 
 
+def test_compare_pairs_a_run_with_the_other_model_s_runs_at_each_of_its_parameters():
+    """A din parameter axis (two f_carry values): the din runs have it, the nonlin runs do
+    not read it (null: any value). Each nonlin run pairs with the din run of each f_carry at
+    its temperature and load: 4 x 2 = 8 pairs, the axis listed per pair and per value."""
+    base = _runs()
+    nonlin = base[base["friction_model"] == "nonlin"].assign(**{"models.din.f_carry": None})
+    dins = []
+    for f, scale in ((0.012, 1.0), (0.020, 1.25)):
+        d = base[base["friction_model"] == "cema"].assign(
+            friction_model="din", **{"models.din.f_carry": f})
+        d["run_id"] = d["run_id"].str.replace("cema", f"din{f}")
+        d["power_kw"] = d["power_kw"] * scale
+        dins.append(d)
+    runs = pd.concat([*dins, nonlin], ignore_index=True)
+    out = compare(runs, ["friction_model", "temperature_c", "load", "models.din.f_carry"],
+                  "din", "nonlin", ["power_kw"])
+    assert len(out["pairs"]) == 8
+    by_f = out["summary"]["power_kw"]["by_axis"]["models.din.f_carry"]
+    assert by_f["0.012"]["mean"] == pytest.approx(0.8)
+    assert by_f["0.02"]["mean"] == pytest.approx(0.8 / 1.25)
+    assert {p["models.din.f_carry"] for p in out["pairs"]} == {0.012, 0.02}
+
+
 def test_compare_refuses_unknown_models_and_metrics():
     runs = _runs()
     with pytest.raises(Invalid, match="candidate: model 'visco' is not in this study"):
         compare(runs, ["friction_model"], "cema", "visco", ["power_kw"])
     with pytest.raises(Invalid, match="metrics: unknown metric 'powr'"):
         compare(runs, ["friction_model"], "cema", "nonlin", ["powr"])
+    with pytest.raises(Invalid, match="candidate: 'cema' is the baseline too"):
+        compare(runs, ["friction_model"], "cema", "cema", ["power_kw"])
 
 
 def test_compare_refuses_a_metric_twice_and_an_axis_as_metric():

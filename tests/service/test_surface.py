@@ -95,7 +95,9 @@ def test_a_study_stores_surfaces_only_when_asked_and_recomputes_the_same(
 
     client = TestClient(create_app(make_settings(data_dir)))
     run_id = run_ids[0]
-    body = client.get(f"/studies/{plain}/runs/{run_id}/surface").json()
+    r = client.get(f"/studies/{plain}/runs/{run_id}/surface")
+    assert r.headers["x-beltstudy-surface"] == "recomputed"  # JSON too, as the formats
+    body = r.json()
     stored = stored_all[stored_all["run_id"] == run_id].reset_index(drop=True)
     assert body["source"] == "recomputed" and body["rows"] == len(stored)
     assert list(body["surface"]) == list(SURFACE_COLUMNS)
