@@ -215,7 +215,12 @@ class RangeSpec(BaseModel):
 
     def values(self) -> list[float | int]:
         n = self.count()
-        out = [float(f"{self.start + i * self.step:.12g}") for i in range(n)]
+        # 12 digits of the range's own scale, not of each value: -0.3 + 3 x 0.1 is 0, as
+        # the list [-0.3, ..., 0, ...] gives it (the same inputs, the same run ids)
+        scale = max(abs(self.start), abs(self.stop), abs(self.step))
+        digits = 12 - math.floor(math.log10(scale)) if scale > 0 and math.isfinite(scale) else 12
+        out = [float(f"{round(self.start + i * self.step, digits):.12g}") + 0.0
+               for i in range(n)]
         if all(v.is_integer() for v in out) and float(self.step).is_integer():
             return [int(v) for v in out]
         return out

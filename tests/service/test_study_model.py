@@ -89,6 +89,19 @@ def test_ranges_include_the_stop_value():
         RangeSpec(start=0, stop=10, step=-1).count()
 
 
+def test_a_range_crossing_zero_gives_the_values_and_ids_of_its_list(make_study):
+    """-0.3 + 3 x 0.1 is 5.6e-17 in floating point; the range's values are rounded at its
+    own scale, so the range and the list it stands for are the same inputs: the same values,
+    run ids and study id."""
+    values = RangeSpec(start=-0.3, stop=0.3, step=0.1).values()
+    assert values == [-0.3, -0.2, -0.1, 0.0, 0.1, 0.2, 0.3]
+    ranged = resolve_study(make_study(grid={"temperature_c": {"start": -0.3, "stop": 0.3,
+                                                              "step": 0.1}}))
+    listed = resolve_study(make_study(grid={"temperature_c": values}))
+    assert [r.run_id for r in ranged.runs] == [r.run_id for r in listed.runs]
+    assert ranged.id == listed.id
+
+
 def test_friction_model_aliases_are_canonical(make_study):
     study = resolve_study(make_study(grid={"friction_model": ["iso5048", "cema"]}))
     assert [a.values for a in study.axes] == [("din", "cema")]
