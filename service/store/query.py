@@ -5,6 +5,7 @@ Pure functions of DataFrames read from the store; the API and the CLI share them
 
 from __future__ import annotations
 
+import difflib
 import io
 import math
 from typing import Any
@@ -108,8 +109,11 @@ def apply_filters(df: pd.DataFrame, filters: list[str]) -> pd.DataFrame:
         if not sep or not column:
             raise Invalid(f"filter: '{item}' is not column=value")
         if column not in df.columns:
+            close = difflib.get_close_matches(column, [str(c) for c in df.columns], n=1)
+            hint = f" (did you mean '{close[0]}'?)" if close else ""
             raise Invalid(
-                f"filter: this study has no column '{column}'; columns: {', '.join(df.columns)}"
+                f"filter: this study has no column '{column}'{hint}; columns: "
+                f"{', '.join(df.columns)}"
             )
         if column == "friction_model":  # its aliases too; an unknown name keeps no row
             text = canonical_name(text)

@@ -126,8 +126,11 @@ def test_filters_compare_numbers_as_numbers():
     runs = _runs()
     assert len(apply_filters(runs, ["temperature_c=20"])) == 4
     assert len(apply_filters(runs, ["load=full", "friction_model=cema"])) == 2
-    with pytest.raises(Invalid, match="this study has no column 'nope'"):
+    with pytest.raises(Invalid, match="this study has no column 'nope'; columns: run_id"):
         apply_filters(runs, ["nope=1"])
+    with pytest.raises(Invalid, match=r"no column 'temprature_c' \(did you mean "
+                                      r"'temperature_c'\?\); columns:"):
+        apply_filters(runs, ["temprature_c=20"])
     with pytest.raises(Invalid, match="not column=value"):
         apply_filters(runs, ["temperature_c"])
     # a value no number can equal keeps no row
