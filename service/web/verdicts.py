@@ -222,10 +222,16 @@ def _overload_words(row: pd.Series) -> str:
 
 
 def _slipped(runs: pd.DataFrame) -> pd.Series:
+    """Time slipping, a running slip margin below 1, or, for a run without a transient (its
+    start not simulated), DIN 22101's start-up margin (1.5 x Te) below 1: the one check of
+    its start. A run whose start was simulated is judged by what its pulleys did."""
     out = _any_over(runs, "drive{i}_slip_s", 0.0)
     margin = numeric(runs, "slip_margin")
     if margin is not None:
         out |= (margin < 1.0).fillna(False)
+    start = numeric(runs, "slip_margin_start")
+    if start is not None:
+        out |= (~transient_ran(runs) & (start < 1.0)).fillna(False)
     return out | _message(runs).str.contains(r"slipped on its pulley|pulley slipped", regex=True)
 
 
@@ -278,7 +284,8 @@ CAUSES: tuple[Cause, ...] = (
            "drive{i}_power_required_kw"), r"overload|short by|rated",
           explain=_overload_words),
     Cause("slip", "slipped on a drive pulley", _slipped,
-          ("drive{i}_slip_s", "drive{i}_slip_margin_min", "slip_margin", "takeup_mass_kg"),
+          ("drive{i}_slip_s", "drive{i}_slip_margin_min", "slip_margin", "slip_margin_start",
+           "takeup_mass_kg"),
           r"slip"),
     Cause("slack", "went slack", _slack, ("slack_max_m", "slack_duration_s", "t_min_dyn_kn"),
           r"slack"),

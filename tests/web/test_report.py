@@ -272,3 +272,15 @@ def test_report_names_the_idler_pitch_as_the_file_gives_it():
 
     assert _pitch({"spacing_m": 1.5, "count": None}) == "spacing 1.5 m"
     assert _pitch({"count": 1334}) == "1334 sets along the route"
+
+
+def test_start_up_slip_is_a_slip_where_the_start_was_not_simulated():
+    """A steady-only run's one check of its start is DIN 22101's start-up margin (1.5 x Te):
+    below 1 it slipped. A run whose start was simulated is judged by its pulleys instead."""
+    steady = pd.DataFrame({"run_id": ["a", "b"], "status": ["warning", "ok"],
+                           "message": ["", ""], "slip_margin": [1.4, 1.4],
+                           "slip_margin_start": [0.9, 1.1]})
+    groups = {c.key: rows for c, rows, _ in cause_groups(steady)}
+    assert list(groups["slip"]["run_id"]) == ["a"]
+    simulated = steady.assign(t_max_dyn_kn=[100.0, 100.0], drive1_slip_s=[0.0, 0.0])
+    assert "slip" not in {c.key for c, _, _ in cause_groups(simulated)}
