@@ -137,13 +137,26 @@ def _axis_values(name: str, spec: list | RangeSpec, max_runs: int, where: str) -
         values = list(spec)
     if not values:
         raise Invalid(f"{label}: empty axis; give at least one value")
-    seen: set[str] = set()
+    seen: dict[str, Any] = {}
     for v in values:
-        key = canonical_json(v)
+        # a load case by name is its fraction (full 1, empty 0: engine.conveyor.section_loads)
+        same = (LOAD_NAMES.get(v, v) if isinstance(v, str) and name in ("load", "scenario.load")
+                else v)
+        key = canonical_json(float(same) if isinstance(same, int | float)
+                             and not isinstance(same, bool) else same)
         if key in seen:
-            raise Invalid(f"{label}: value {v!r} appears twice")
-        seen.add(key)
+            first = seen[key]
+            if first == v:
+                raise Invalid(f"{label}: value {v!r} appears twice")
+            named = v if isinstance(v, str) else first
+            raise Invalid(f"{label}: {first!r} and {v!r} are the same load ({named!r} is "
+                          f"{LOAD_NAMES[named]:g} x the design load); give one")
+        seen[key] = v
     return values
+
+
+#: Load cases by name that are one fraction of the design load everywhere.
+LOAD_NAMES = {"full": 1.0, "empty": 0.0}
 
 
 def _conveyor(study: StudyIn, base_dir: Path | None, studies_dir: Path | None

@@ -153,3 +153,19 @@ def test_control_and_bidi_characters_are_refused_in_names(tmp_path, make_study,
         resolve_study(make_study(description=f"about{bad}"))
     # lines and tabs stay allowed in a description
     assert resolve_study(make_study(description="two\nlines\tand a tab")).total == 6
+
+
+@pytest.mark.parametrize(("loads", "message"), [
+    ([0.5, "full", 1.0], "grid.load: 'full' and 1.0 are the same load ('full' is 1 x the "
+                         "design load); give one"),
+    ([0, "empty"], "grid.load: 0 and 'empty' are the same load ('empty' is 0 x the design "
+                   "load); give one"),
+])
+def test_a_load_by_name_and_its_fraction_are_one_value(make_study, loads, message):
+    """full is 1 and empty 0 of the design load everywhere (engine.conveyor.section_loads):
+    both in one axis would be two run ids for one run."""
+    with pytest.raises(Invalid) as err:
+        resolve_study(make_study(grid={"load": loads}))
+    assert str(err.value) == message
+    assert len(resolve_study(make_study(grid={"load": ["full", "empty", "inclines", 0.5]}))
+               .runs) == 4
