@@ -211,7 +211,15 @@ class RangeSpec(BaseModel):
             raise ValueError(
                 f"step {self.step:g} does not lead from start {self.start:g} to stop {self.stop:g}"
             )
-        return int(math.floor(span + 1e-9)) + 1
+        n = int(math.floor(span + 1e-9)) + 1
+        if span - (n - 1) > 1e-6:  # the stop is not start + a whole number of steps
+            last = self.start + (n - 1) * self.step
+            raise ValueError(
+                f"stop {self.stop:g} is not reached from start {self.start:g} in steps of "
+                f"{self.step:g} (the range would end at {last:.12g}); give stop {last:.12g} or "
+                f"{last + self.step:.12g}, a step that divides {self.stop - self.start:g}, "
+                f"or a list of values")
+        return n
 
     def values(self) -> list[float | int]:
         n = self.count()

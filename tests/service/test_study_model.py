@@ -89,6 +89,16 @@ def test_ranges_include_the_stop_value():
         RangeSpec(start=0, stop=10, step=-1).count()
 
 
+def test_a_range_whose_stop_is_off_its_steps_is_refused_with_the_stops_that_fit(make_study):
+    """{start: 0, stop: 25, step: 10} would end at 20 without a word: refused, naming 20 and
+    30 (stop is included, so it must be start + a whole number of steps)."""
+    with pytest.raises(ValueError, match=r"stop 25 is not reached .* give stop 20 or 30"):
+        RangeSpec(start=0, stop=25, step=10).count()
+    with pytest.raises(Invalid, match=r"grid\.temperature_c: stop 25 is not reached"):
+        resolve_study(make_study(grid={"temperature_c": {"start": 0, "stop": 25, "step": 10}}))
+    assert RangeSpec(start=0, stop=0.7, step=0.1).count() == 8  # 7.000000000000001 steps
+
+
 def test_a_range_crossing_zero_gives_the_values_and_ids_of_its_list(make_study):
     """-0.3 + 3 x 0.1 is 5.6e-17 in floating point; the range's values are rounded at its
     own scale, so the range and the list it stands for are the same inputs: the same values,
