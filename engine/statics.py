@@ -124,6 +124,7 @@ class SteadyResult:
     message: str = ""
     takeup_governed_by: str = "given"  # the constraint that set an auto take-up
     params_given: bool = False  # the friction model's parameters differ from its defaults
+    range_note: str = ""  # the law's note on a temperature beyond its data (FrictionModel)
 
     @property
     def tension_mean_n(self) -> np.ndarray:
@@ -436,6 +437,7 @@ def solve_steady(
         tension_n=T, resistance_n=R, drive_force_n=d_force, te_n=te,
         takeup_mass_kg=takeup_mass, takeup_tension_n=float(takeup_tension),
         iterations=iterations, summary={}, params_given=p != fm.params(None),
+        range_note=fm.range_note(p, float(temperature_c)) if fm.range_note else "",
     )
     if auto:
         floor_governs = design is not None and tu_floor_n - w_tu > c_need
@@ -656,7 +658,7 @@ def _summarise(res: SteadyResult, drives, hs_adm, bounds, shortfall_n: float,
     res.status = "warning" if warnings else "ok"
     # a note does not make a warning (as the transient's notes, "note: ..." after them)
     note = temperature_note(get_model(res.model), res.temperature_c, res.params_given)
-    res.message = "; ".join(warnings + ([note] if note else []))
+    res.message = "; ".join(warnings + [n for n in (note, res.range_note) if n])
     res.summary["status"] = res.status
     res.summary["message"] = res.message
 

@@ -30,6 +30,9 @@ class FrictionModel:
     #: (CEMA: its factor Kt); None: the temperature itself (or nothing, without a
     #: temperature term). See :meth:`temperature_as_read`.
     temperature_read: Callable[[Any, float], Any] | None = None
+    #: ``(params, temperature_c) -> str``: a note when the temperature lies beyond the data
+    #: the law was read from ("" within it; CEMA's Kt table ends at -40 C).
+    range_note: Callable[[Any, float], str] | None = None
 
     def temperature_as_read(self, params, temperature_c: float):
         """What this model's law reads of ``temperature_c`` [C] with ``params`` (a parameter

@@ -69,6 +69,16 @@ def kt_as_read(params, temperature_c: float) -> float:
     return float(params.kt) if params.kt is not None else kt_factor(temperature_c)
 
 
+def kt_note(model: str, override: float | None, temperature_c: float, name: str = "kt") -> str:
+    """The note of a run colder than CEMA's Kt table (-40 C) whose Kt is read from it: the
+    table's coldest value is used. "" otherwise (and with ``override``, the run's own Kt)."""
+    if override is not None or temperature_c >= KT_TABLE_C[0]:
+        return ""
+    return (f"note: CEMA's ambient temperature factor Kt is tabulated down to "
+            f"{KT_TABLE_C[0]:g} C; {temperature_c:g} C uses its value there, {KT_TABLE[0]:g} "
+            f"(models.{model}.{name} sets Kt for a colder site)")
+
+
 def ky_length(length_m: float) -> float:
     """Length part of the Ky fit: 0.035 at 76.2 m falling log-linearly to 0.016 at 914.4 m."""
     if length_m <= L_SHORT_M:
@@ -136,4 +146,5 @@ MODEL = FrictionModel(
     params_class=CemaParams,
     build=build,
     temperature_read=kt_as_read,
+    range_note=lambda p, t: kt_note("cema", p.kt, t),
 )

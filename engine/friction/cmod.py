@@ -37,7 +37,7 @@ import numpy as np
 
 from beltstudy.engine.conveyor import Conveyor, InputError
 from beltstudy.engine.friction.base import FrictionModel, param
-from beltstudy.engine.friction.cema import kt_as_read, kt_factor, ky_fit
+from beltstudy.engine.friction.cema import kt_as_read, kt_factor, kt_note, ky_fit
 from beltstudy.engine.friction.common import add_accessories, add_feed, pulley_allowances
 from beltstudy.engine.law import HS_REF, LawBuilder, ResistanceLaw
 from beltstudy.engine.loop import CARRY, RETURN, G, Loop
@@ -125,4 +125,5 @@ MODEL = FrictionModel(
     params_class=CmodParams,
     build=build,
     temperature_read=kt_as_read,
+    range_note=lambda p, t: kt_note("cmod", p.kt, t),
 )

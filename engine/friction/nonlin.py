@@ -74,7 +74,7 @@ import numpy as np
 from beltstudy.engine import rubber
 from beltstudy.engine.conveyor import Conveyor, InputError
 from beltstudy.engine.friction.base import FrictionModel, param
-from beltstudy.engine.friction.cema import kt_factor
+from beltstudy.engine.friction.cema import kt_factor, kt_note
 from beltstudy.engine.friction.common import add_accessories, add_feed, pulley_allowances
 from beltstudy.engine.law import HS_REF, LawBuilder, ResistanceLaw
 from beltstudy.engine.loop import CARRY, RETURN, G, Loop
@@ -385,4 +385,5 @@ MODEL = FrictionModel(
                 "(4/3 law, WLF rubber), belt and material flexure growing with sag",
     params_class=NonlinParams,
     build=build,
+    range_note=lambda p, t: kt_note("nonlin", p.kta, t, "kta"),
 )

@@ -51,3 +51,19 @@ def test_din_with_its_factors_given_for_the_temperature_carries_no_note():
     default_f = MODELS["din"].params(None).f_carry
     same = solve_steady(conv, model="din", temperature_c=-20.0, params={"f_carry": default_f})
     assert NOTE in same.message  # the default given by name is still the default
+
+
+@pytest.mark.parametrize(("model", "name"), [("cema", "kt"), ("cmod", "kt"), ("nonlin", "kta")])
+def test_colder_than_cemas_kt_table_is_noted_and_held_at_its_coldest_value(model, name):
+    """CEMA's Kt is tabulated from 0 down to -40 C (1.65, CEMA 7th ed.); a colder run uses
+    1.65 and says so, naming the parameter that sets Kt. Within the table, or with Kt given,
+    no note."""
+    conv = parse_conveyor(hand_conveyor_dict())
+    colder = solve_steady(conv, model=model, temperature_c=-50.0)
+    edge = solve_steady(conv, model=model, temperature_c=-40.0)
+    assert f"-50 C uses its value there, 1.65 (models.{model}.{name} sets Kt" in colder.message
+    assert "tabulated" not in edge.message
+    given = solve_steady(conv, model=model, temperature_c=-50.0, params={name: 1.65})
+    assert "tabulated" not in given.message
+    if model != "nonlin":  # Non-Lin's rubber reads the temperature itself as well
+        assert colder.summary["te_kn"] == pytest.approx(edge.summary["te_kn"], rel=1e-12)
