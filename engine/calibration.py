@@ -132,14 +132,14 @@ def _load(value: Any, what: str) -> float | str | list[float]:
 def measurements_from_rows(rows: Sequence[dict[str, Any]]) -> list[Measurement]:
     """Measurements from table rows (CSV columns ``load``, ``temperature_c``, ``power_kw`` or
     ``te_kn``, optional ``speed_m_s`` and ``t_tight_kn``); a bad cell is named by its row
-    (``measured[2].power_kw``, rows from 0)."""
+    (``measured.2.power_kw``, rows from 0)."""
     if not rows:
         raise InputError("no measurements: give one row per measured steady state",
                          field="measured")
     out = []
     known = {"load", "temperature_c", "speed_m_s", *MEASURED}
     for i, row in enumerate(rows):
-        where = f"measured[{i}]"
+        where = f"measured.{i}"
         unknown = [k for k in row if k not in known]
         if unknown:
             close = difflib.get_close_matches(unknown[0], sorted(known), n=1)

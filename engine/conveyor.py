@@ -707,25 +707,25 @@ class Conveyor(_Model):
     def _shares(self) -> Conveyor:
         total = sum(d.share for d in self.drives)
         if abs(total - 1.0) > 1e-6:
-            parts = " + ".join(f"drives[{i}] ({d.where}) {d.share:g}"
+            parts = " + ".join(f"drives.{i} ({d.where}) {d.share:g}"
                                for i, d in enumerate(self.drives))
             raise ValueError(f"drives: shares sum to {total:g} ({parts}); they must sum to 1")
         controls = {d.control for d in self.drives}
         if len(controls) > 1:
             raise ValueError("drives: every drive of a conveyor has the same control (vfd "
                              "drives share one speed loop, dol motors run on the line); got "
-                             + ", ".join(f"drives[{i}].control = {d.control}"
+                             + ", ".join(f"drives.{i}.control = {d.control}"
                                          for i, d in enumerate(self.drives)))
         master = max(range(len(self.drives)), key=lambda i: (self.drives[i].share, -i))
         for i, d in enumerate(self.drives):
             if d.speed_loop_rad_s is not None and i != master:
                 raise ValueError(
-                    f"drives[{i}].speed_loop_rad_s: drive {i + 1} follows the master's torque "
+                    f"drives.{i}.speed_loop_rad_s: drive {i + 1} follows the master's torque "
                     f"(drive {master + 1}, the largest share) and runs no speed loop of its "
-                    f"own; set speed_loop_rad_s on drives[{master}]")
+                    f"own; set speed_loop_rad_s on drives.{master}")
         for i, b in enumerate(self.brakes):
             if b.drive is not None and b.drive > len(self.drives):
-                raise ValueError(f"brakes[{i}].drive: there is no drive {b.drive} (the conveyor "
+                raise ValueError(f"brakes.{i}.drive: there is no drive {b.drive} (the conveyor "
                                  f"has {len(self.drives)} drive(s), numbered from 1)")
         _check_feed(self)
         _check_along(self)
@@ -781,29 +781,29 @@ def _check_feed(conv: Conveyor) -> None:
     feed = conv.material.feed or []
     for i, f in enumerate(feed):
         if f.at_m >= L:
-            raise ValueError(f"material.feed[{i}].at_m: {f.at_m:g} m is out of the carry "
+            raise ValueError(f"material.feed.{i}.at_m: {f.at_m:g} m is out of the carry "
                              f"(0 to {L:g} m from the tail, the head excluded)")
         if f.at_m + f.skirt_length_m > L + 1e-9:
-            raise ValueError(f"material.feed[{i}].skirt_length_m: skirts of {f.skirt_length_m:g}"
+            raise ValueError(f"material.feed.{i}.skirt_length_m: skirts of {f.skirt_length_m:g}"
                              f" m from {f.at_m:g} m run past the head ({L:g} m)")
         if f.skirt_width_m is not None and f.skirt_length_m == 0.0:
-            raise ValueError(f"material.feed[{i}].skirt_width_m: give skirt_length_m too (no "
+            raise ValueError(f"material.feed.{i}.skirt_width_m: give skirt_length_m too (no "
                              "skirts without a length)")
         for j in range(i):
             if abs(feed[j].at_m - f.at_m) < 1e-6:
-                raise ValueError(f"material.feed[{i}].at_m: {f.at_m:g} m is also "
-                                 f"material.feed[{j}]'s position; give one feed point per "
+                raise ValueError(f"material.feed.{i}.at_m: {f.at_m:g} m is also "
+                                 f"material.feed.{j}'s position; give one feed point per "
                                  "position with the summed share")
     if feed:
         total = sum(f.share for f in feed)
         if abs(total - 1.0) > 1e-6:
-            parts = " + ".join(f"material.feed[{i}].share {f.share:g}"
+            parts = " + ".join(f"material.feed.{i}.share {f.share:g}"
                                for i, f in enumerate(feed))
             raise ValueError(f"material.feed: shares sum to {total:g} ({parts}); they must "
                              "sum to 1")
     for i, p in enumerate(conv.accessories.ploughs):
         if p.at_m >= L:
-            raise ValueError(f"accessories.ploughs[{i}].at_m: {p.at_m:g} m is out of the "
+            raise ValueError(f"accessories.ploughs.{i}.at_m: {p.at_m:g} m is out of the "
                              f"carry (0 to {L:g} m)")
 
 
@@ -812,7 +812,7 @@ def _check_along(conv: Conveyor) -> None:
     L = conv.length_m
     for i, d in enumerate(conv.drives):
         if d.at_m is not None and not 0.0 < d.at_m < L:
-            raise ValueError(f"drives[{i}].at_m: {d.at_m:g} m is not inside the route (0 to "
+            raise ValueError(f"drives.{i}.at_m: {d.at_m:g} m is not inside the route (0 to "
                              f"{L:g} m from the tail, both ends excluded: a drive at an end is "
                              "position: head or tail)")
     tu = conv.takeup
@@ -825,9 +825,9 @@ def _check_along(conv: Conveyor) -> None:
 def route_points(conv: Conveyor) -> list[tuple[str, float]]:
     """The points along the route where the loop is cut (element ends): feed points, booster
     drives and a take-up along the return; (field name, distance from the tail [m])."""
-    out = [(f"material.feed[{i}].at_m", float(f.at_m))
+    out = [(f"material.feed.{i}.at_m", float(f.at_m))
            for i, f in enumerate(conv.material.feed or []) if f.at_m > 0.0]
-    out += [(f"drives[{i}].at_m", float(d.at_m)) for i, d in enumerate(conv.drives)
+    out += [(f"drives.{i}.at_m", float(d.at_m)) for i, d in enumerate(conv.drives)
             if d.at_m is not None]
     if conv.takeup.at_m is not None:
         out.append(("takeup.at_m", float(conv.takeup.at_m)))
@@ -864,7 +864,7 @@ def _curves_fit(profile: list[ProfileSection]) -> None:
     for i, sec in enumerate(profile):
         if sec.curve_radius_m is None:
             continue
-        name = f"profile[{i}].curve_radius_m"
+        name = f"profile.{i}.curve_radius_m"
         if i + 1 == len(profile):
             raise ValueError(f"{name}: the last section has no next grade to curve into")
         if curve_arc_m(profile, i) <= 0.0:
@@ -875,8 +875,8 @@ def _curves_fit(profile: list[ProfileSection]) -> None:
         if need > sec.length_m:
             j = i if sec.curve_radius_m is not None else i - 1
             raise ValueError(
-                f"profile[{j}].curve_radius_m: the curve's arcs need {need:.1f} m of "
-                f"profile[{i}] (half of each curve's R |delta| at its ends) but the section "
+                f"profile.{j}.curve_radius_m: the curve's arcs need {need:.1f} m of "
+                f"profile.{i} (half of each curve's R |delta| at its ends) but the section "
                 f"is {sec.length_m:g} m long; a smaller radius or longer sections")
 
 

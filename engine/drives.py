@@ -151,7 +151,7 @@ def steady_checks(conv, forces_n, speed_m_s: float, te_n: float, rated_kw
                 f"({d.share:g} x Te {te_n / 1e3:.1f} kN{regen} {eta:g}), rated "
                 f"{rated:.0f} kW: short by {need - rated:.0f} kW (utilisation "
                 f"{need / rated:.2f}); a motor of at least {need:.0f} kW "
-                f"(drives[{i - 1}].rated_power_kw), or the load shared by more drives, "
+                f"(drives.{i - 1}.rated_power_kw), or the load shared by more drives, "
                 "would avoid it")
     return fields, warnings
 

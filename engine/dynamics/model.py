@@ -515,12 +515,12 @@ def check_scenario(scn: Scenario, conv: Conveyor, opts: DynamicsOptions | None =
     dol = [i for i, d in enumerate(conv.drives) if d.control == "dol"]
     if dol and scn.stop.mode == "controlled":
         raise InputError(
-            f"scenario.stop.mode: 'controlled' needs vfd drives (drives[{dol[0]}].control is "
+            f"scenario.stop.mode: 'controlled' needs vfd drives (drives.{dol[0]}.control is "
             "'dol': a motor on the line cannot follow a stopping curve); use 'coast' or "
             "'brake'")
     if dol and scn.formulation == "support":
         raise InputError("scenario.formulation: 'support' imposes the drive pulleys' speed, "
-                         f"which needs vfd drives (drives[{dol[0]}].control is 'dol')")
+                         f"which needs vfd drives (drives.{dol[0]}.control is 'dol')")
     if scn.formulation == "support" and scn.start.control == "torque":
         raise InputError("scenario.start.control: 'torque' needs formulation 'relative' (the "
                          "moving-support formulation imposes the drive pulley's motion)")
@@ -972,7 +972,7 @@ def _cycle(conv, scn, opts, n, dt, t_loop, total_mass, te, v_d, hold, drive_trai
     if steps * n > 5e10:
         if scn.dt_s == "auto" and t_train / DRIVE_STEPS <= dt:
             raise InputError(
-                f"drives[{k_train}].inertia_kg_m2: {steps:.3g} steps of {n} elements is too much "
+                f"drives.{k_train}.inertia_kg_m2: {steps:.3g} steps of {n} elements is too much "
                 f"work for one run; the step, {dt:.3g} s, resolves the fastest dol drive train "
                 f"({t_train:.3g} s to reach design speed unloaded at rated force): give the "
                 "drives their real inertia (motor, coupling, gear and pulley reduced to the "

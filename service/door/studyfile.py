@@ -253,7 +253,7 @@ def _add_axis(axes: list[Axis], axis: Axis) -> None:
         """Where the axis was given: ``grid.x``, ``zip[k].x`` or ``sample.axes.x``."""
         if a.sample:
             return f"sample.axes.{a.name}"
-        return f"zip[{a.group}].{a.name}" if a.group is not None else f"grid.{a.name}"
+        return f"zip.{a.group}.{a.name}" if a.group is not None else f"grid.{a.name}"
 
     for other in axes:
         if other.target.overlaps(axis.target):

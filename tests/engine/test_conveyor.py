@@ -135,7 +135,7 @@ def test_section_loads_of_each_pattern():
 
 
 @pytest.mark.parametrize("over, field", [
-    ({"brakes": [{"drive": 3}]}, "brakes[0].drive"),
+    ({"brakes": [{"drive": 3}]}, "brakes.0.drive"),
     ({"drives": [hand_drive(control="dol", motor_curve=[[0.0, 1.5], [0.5, 1.2], [0.4, 1.0],
                                                         [1.0, 0.0]])]}, "increase"),
     ({"drives": [hand_drive(control="dol", motor_curve=[[0.0, 1.5], [0.9, 2.0], [1.0, 0.4]])]},
@@ -147,7 +147,7 @@ def test_section_loads_of_each_pattern():
     ({"brakes": [{"position": "head", "force_curve": [[0.1 * i, 0.05 * i] for i in range(17)]}]},
      "force_curve: List should have at most 16 items"),
     ({"drives": [hand_drive(share=0.6), hand_drive(share=0.6, position="tail")]},
-     "drives[0] (head) 0.6 + drives[1] (tail) 0.6"),
+     "drives.0 (head) 0.6 + drives.1 (tail) 0.6"),
     ({"drives": [hand_drive(friction=0.35, friction_kinetic=0.9)]},
      "friction_kinetic 0.9 is above friction 0.35"),
 ])
@@ -165,7 +165,7 @@ def test_speed_loop_bandwidth_is_checked_where_it_is_set():
         hand_conv(drives=[hand_drive(control="dol", speed_loop_rad_s=3.0)])
     with pytest.raises(InputError, match=r"outside 0.1 to 50 rad/s"):
         hand_conv(drives=[hand_drive(speed_loop_rad_s=0.01)])
-    with pytest.raises(InputError, match=r"drives\[1\].speed_loop_rad_s: drive 2 follows"):
+    with pytest.raises(InputError, match=r"drives.1.speed_loop_rad_s: drive 2 follows"):
         hand_conv(drives=[hand_drive(share=0.6), hand_drive(share=0.4, speed_loop_rad_s=3.0)])
 
 

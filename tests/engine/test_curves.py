@@ -141,11 +141,11 @@ def test_convex_curve_warns_below_its_radius():
 def test_curve_too_long_for_its_sections_is_refused():
     """R = 2 000 m between 0 and 10 % grades: arc 200 m, 100 m from each side; a 60 m
     section cannot hold its half."""
-    with pytest.raises(ValueError, match=r"profile\[0\]\.curve_radius_m"):
+    with pytest.raises(ValueError, match=r"profile.0\.curve_radius_m"):
         parse_conveyor(hand_conveyor_dict(profile=[
             {"length_m": 60, "lift_m": 0, "curve_radius_m": 2000},
             {"length_m": 500, "lift_m": 50}]))
-    with pytest.raises(ValueError, match=r"profile\[1\]\.curve_radius_m.*last section"):
+    with pytest.raises(ValueError, match=r"profile.1\.curve_radius_m.*last section"):
         parse_conveyor(hand_conveyor_dict(profile=[
             {"length_m": 500, "lift_m": 0}, {"length_m": 500, "lift_m": 50,
                                              "curve_radius_m": 300}]))

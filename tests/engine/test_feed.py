@@ -149,11 +149,11 @@ def test_scrapers_and_ploughs():
 
 
 @pytest.mark.parametrize("feed, field", [
-    ([{"at_m": 1000, "share": 1.0}], "material.feed[0].at_m"),
-    ([{"at_m": 0, "share": 0.6}, {"at_m": 500, "share": 0.3}], "material.feed[1].share"),
-    ([{"at_m": 100, "share": 0.5}, {"at_m": 100, "share": 0.5}], "material.feed[1].at_m"),
-    ([{"at_m": 995, "share": 1.0, "skirt_length_m": 10}], "material.feed[0].skirt_length_m"),
-    ([{"at_m": 0, "share": 1.0, "skirt_width_m": 0.8}], "material.feed[0].skirt_width_m"),
+    ([{"at_m": 1000, "share": 1.0}], "material.feed.0.at_m"),
+    ([{"at_m": 0, "share": 0.6}, {"at_m": 500, "share": 0.3}], "material.feed.1.share"),
+    ([{"at_m": 100, "share": 0.5}, {"at_m": 100, "share": 0.5}], "material.feed.1.at_m"),
+    ([{"at_m": 995, "share": 1.0, "skirt_length_m": 10}], "material.feed.0.skirt_length_m"),
+    ([{"at_m": 0, "share": 1.0, "skirt_width_m": 0.8}], "material.feed.0.skirt_width_m"),
 ])
 def test_feed_errors_name_the_field(feed, field):
     with pytest.raises(InputError, match=field.replace("[", r"\[").replace("]", r"\]")):

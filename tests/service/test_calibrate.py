@@ -81,7 +81,7 @@ def test_post_calibrations_names_the_bad_field(client):
             "measured": [{"load": "full", "temperature_c": 5}]}
     r = client.post("/calibrations", json=body)
     assert r.status_code == 422
-    assert r.json()["message"] == "measured[0]: give the measured power_kw or te_kn"
+    assert r.json()["message"] == "measured.0: give the measured power_kw or te_kn"
     r = client.post("/calibrations", json={**body, "conveyor": "../etc/passwd"})
     assert r.status_code == 422 and "studies directory" in r.json()["message"]
 

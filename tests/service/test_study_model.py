@@ -317,5 +317,5 @@ def test_an_axis_in_zip_and_grid_names_both_places(make_study):
     body = make_study(grid={"load": ["full"]},
                       zip=[{"load": ["full", "empty"], "temperature_c": [0, 10]}])
     with pytest.raises(Invalid, match=r"both set scenario\.load \(grid\.load and "
-                                      r"zip\[0\]\.load\): give it in one of them"):
+                                      r"zip.0\.load\): give it in one of them"):
         resolve_study(body)
