@@ -18,7 +18,8 @@ each deciding figure ``f`` (``f3, f2, f1`` on the coarse, the run's and the fine
   :data:`P_FORMAL`] (method ``gci3``; Oberkampf & Roy 2010, section 8.6.3: an observed
   order above the formal one is not credited, and an extreme behind a front converges as
   ``sqrt(dx)``, PHYSICS 5.2); with an observed order of zero or below (the differences grow
-  as the mesh is refined) the bar stands but no converged estimate is given. With two meshes only (one failed, or too coarse), ``p`` is
+  as the mesh is refined) the bar stands, with ``p`` at :data:`P_MIN`, but no converged
+  estimate is given (method ``growing``). With two meshes only (one failed, or too coarse), ``p`` is
   assumed (:data:`P_ASSUMED`) and ``Fs = 3`` (method ``gci2``).
 - differences of opposite signs (or a zero difference next to a non-zero one): the figure
   is not in the asymptotic range; the bar is the spread, ``Fs = 3`` x the largest distance
@@ -203,6 +204,8 @@ def _figure_error(name: str, values: tuple, elements: tuple[int, int, int]
         p = _order(e32, e21, r21, r32)
         if abs(p - P_FORMAL) <= P_CLOSE * P_FORMAL:
             fs, p_used, method = FS_THREE, p, "richardson"
+        elif p <= 0.0:  # the differences grow with refinement: no order, no converged value
+            fs, p_used, method = FS_TWO, P_MIN, "growing"
         else:  # not shown to be asymptotic: Fs 3, the order bounded (Oberkampf & Roy 2010)
             fs, p_used, method = FS_TWO, min(max(P_MIN, p), P_FORMAL), "gci3"
         conv = f1 + (f1 - f2) / (r21 ** p_used - 1.0)

@@ -212,9 +212,13 @@ def transient_checks(names, drv, rated_n, limit_n, vfd, speed_m_s: float, start_
             said += (f"; its RMS force over the cycle, {rms / 1e3:.4g} kN, is above the "
                      "rating (the motor overheats when the cycle repeats)")
         motor = f"a larger motor (at least {fmax * speed_m_s / 1e3:.0f} kW keeps it within)"
-        if vfd[k]:
+        f_run = float(running_n[k]) if running_n is not None else None
+        if f_run is not None and f_run >= rated:
+            # running itself needs more than the rating: no start keeps the force within it
+            fix = (f"{motor}, or the load shared by more drives (its running force, "
+                   f"{f_run / 1e3:.4g} kN, is itself above the rating: no start avoids it)")
+        elif vfd[k]:
             longer = f"a longer start (start.time_s, now {start_s:g} s"
-            f_run = float(running_n[k]) if running_n is not None else None
             if f_run is not None and 0.0 <= f_run < rated < fmax:
                 # the acceleration force falls as 1 / start time (rigid body): an estimate
                 longer += (f"; about {start_s * (fmax - f_run) / (rated - f_run):.0f} s keeps "

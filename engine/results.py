@@ -544,8 +544,10 @@ ACCURACY = ResultGroup(
         _f("accuracy_elements", "text", "the meshes of the check, coarse/the run's/fine "
            "(elements; the step follows the mesh)"),
         _f("accuracy_methods", "text", "how each figure's bar was found: richardson (three "
-           "meshes, observed order p, Fs 1.25), gci2 (order assumed, Fs 3), spread (not in "
-           "the asymptotic range), unchanged"),
+           "meshes, observed order p, Fs 1.25), gci2 (order assumed, Fs 3), gci3 (three "
+           "meshes, order bounded to 0.5-1, Fs 3), growing (differences that grow with "
+           "refinement: the gci3 bar at order 0.5, no converged value), spread (not in the "
+           "asymptotic range), unchanged"),
     ) + tuple(
         field_
         for fig in DECIDING

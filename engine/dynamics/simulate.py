@@ -706,7 +706,10 @@ def transient_summary(sys: System, r: dict, out, segs, *, steady_summary=None, c
         "wave_loop_time_s": sys.wave_loop_time_s,
         "stop_wave_ratio": (t_stop_ach / sys.wave_loop_time_s
                             if t_stop_ach is not None else None),
-        "sag_max_dyn_pct": float(sag.max()) if idler.any() else 0.0,
+        # a slack span's sag has no value (the belt leaves the idlers): none, and the slack
+        # warning says it
+        "sag_max_dyn_pct": (None if idler.any() and t_low[idler].min() <= 0.0
+                            else float(sag.max()) if idler.any() else 0.0),
         "slip_margin_min_dyn": r["slip_min"] if r["slip_min"] < 1e299 else None,
         "safety_factor_dyn": (rating / t_max_dyn if rating and t_max_dyn > 0 else None),
         **_phase_fields(sys, "start", _extremes(sys, start_segs)),
@@ -756,8 +759,9 @@ def transient_summary(sys: System, r: dict, out, segs, *, steady_summary=None, c
             f"{where(sys, j)} at t = {max(r['slack_time'], r['slack_first']):.1f} s, slack "
             f"for {r['slack_dur']:.1f} s in "
             "all (the one-dimensional model does not follow the belt leaving the idlers or "
-            "piling up); a heavier take-up, more take-up travel, a longer stop or a brake "
-            "nearer the low-tension side would avoid it")
+            "piling up; a slack span's sag is past every sag limit and has no value, so "
+            "sag_max_dyn_pct is empty); a heavier take-up, more take-up travel, a longer stop "
+            "or a brake nearer the low-tension side would avoid it")
     if conveyor is not None:
         lim = conveyor.sag_limit_pct
         for code, name, limit in ((0, "carry", lim.carry), (1, "return", lim.return_)):
@@ -766,9 +770,7 @@ def transient_summary(sys: System, r: dict, out, segs, *, steady_summary=None, c
                 smax = float(sag[mask].max())
                 if smax > limit and t_low[mask].min() > 0.0:
                     jj = int(np.flatnonzero(mask)[np.argmax(sag[mask])])
-                    w.append(f"transient sag on the {name} strand {smax:.2f} % exceeds the "
-                             f"limit {limit:g} % (low tension {t_low[jj] / 1e3:.3g} kN near "
-                             f"{where(sys, jj)})")
+                    w.append(_sag_words(sys, name, smax, limit, jj, t_low[jj], whole))
     sf = summary["safety_factor_dyn"]
     if sf is not None and safety_factor_min is not None and sf < safety_factor_min:
         w.append(f"belt safety factor {sf:.2f} during the transient is below "
@@ -793,6 +795,35 @@ def transient_summary(sys: System, r: dict, out, segs, *, steady_summary=None, c
     return summary, w
 
 
+def _sag_words(sys: System, strand: str, sag_pct: float, limit_pct: float, j: int,
+               t_low_n: float, whole: dict) -> str:
+    """The warning of a transient sag past its limit at the span ending at node ``j``: how
+    much, where, when and in which phase (the time its lower spring reached its lowest
+    tension), the tension that keeps the span within the limit (the sag ratio goes as 1 / T,
+    DIN 22101) and what raises the tension there in that phase."""
+    env, env_t = whole["env_min"], whole["env_min_t"]
+    k = j if env[j] <= env[j - 1] else j - 1
+    t_at = float(env_t[k])
+    phase = _run_phase(sys, t_at, sys.stop_command_s)
+    need_kn = t_low_n * sag_pct / limit_pct / 1e3
+    fixes = {"start": "a heavier take-up or a longer start (start.time_s)",
+             "running": "a heavier take-up (more tension at the take-up) or closer idlers",
+             "stop": "a heavier take-up, a longer stop (stop time, brake force) or a brake "
+                     "nearer the low-tension side"}[phase]
+    return (f"transient sag on the {strand} strand {sag_pct:.2f} % exceeds the limit "
+            f"{limit_pct:g} % (low tension {t_low_n / 1e3:.3g} kN near {where(sys, j)} at t = "
+            f"{t_at:.1f} s, {_PHASE_WORDS[phase]}); {need_kn:.3g} kN there keeps it within: "
+            f"{fixes} would avoid it")
+
+
+def _up_s(t_s: float) -> str:
+    """A time that must be reached [s], rounded up where it is shown (to 0.1 s below 10 s,
+    to whole seconds above), so that the time a message names meets the criterion."""
+    if t_s < 10.0:
+        return f"{math.ceil(t_s * 10.0 - 1e-9) / 10.0:g}"
+    return f"{math.ceil(t_s - 1e-9):.0f}"
+
+
 def _fast_stop_words(sys: System, t_stop: float, summary: dict, steady_tmax: float) -> str:
     """The warning of a stop faster than 5 wave loop times (Harrison after Funke 1973): the
     stop's tensions against the running ones, and what would lengthen it."""
@@ -803,14 +834,14 @@ def _fast_stop_words(sys: System, t_stop: float, summary: dict, steady_tmax: flo
             f"{steady_tmax / 1e3:.4g} kN running" if hi is not None and lo is not None else "")
     need = 5.0 * sys.wave_loop_time_s
     if cyc.stop_mode == C.CONTROLLED:
-        fix = (f"a controlled stop of stop.time_s {need * cyc.t_stop / t_stop:.0f} s or more "
-               "would be slower than that")
+        fix = (f"a controlled stop of stop.time_s {_up_s(need * cyc.t_stop / t_stop)} s or "
+               "more would be slower than that")
     elif cyc.stop_mode == C.BRAKE:
-        fix = (f"less brake force (a longer stop.time_s, at least {need:.0f} s, for an auto "
+        fix = (f"less brake force (a longer stop.time_s, at least {_up_s(need)} s, for an auto "
                "brake) would be slower than that")
     else:
-        fix = (f"a controlled stop (vfd drives) taking {need:.0f} s or more, or more inertia "
-               "on the drive shafts, would be slower than that")
+        fix = (f"a controlled stop (vfd drives) taking {_up_s(need)} s or more, or more "
+               "inertia on the drive shafts, would be slower than that")
     return (f"stop in {t_stop:.1f} s is faster than 5 wave loop times (5 x "
             f"{sys.wave_loop_time_s:.1f} s): a high-stress stop{seen}; {fix}")
 

@@ -133,6 +133,19 @@ def test_transient_checks_rms_of_a_constant_force_and_the_overload_warning():
     assert "RMS force over the cycle, 30 kN, is above the rating" in w
 
 
+@pytest.mark.parametrize("vfd", [True, False])
+def test_an_overload_while_running_offers_no_start_as_its_cure(vfd):
+    """A drive whose running force (28 kN) is itself above its rating (24 kN) is overloaded
+    whatever the start: the warning names the running force and offers the larger motor or
+    more drives, neither a longer start nor a softer one."""
+    drv = _drive_result(fmax=30e3, over_s=80.0, f2_int=28e3**2 * 80.0, rms_s=80.0)
+    _, (w,) = transient_checks(["drive 1 (head)"], drv, [24e3], [36e3], [vfd], 4.0, 10.0,
+                               running_n=[28e3])
+    assert "its running force, 28 kN, is itself above the rating: no start avoids it" in w
+    assert "at least 120 kW" in w
+    assert "longer start" not in w and "softer start" not in w
+
+
 def test_transient_checks_quiet_within_the_rating_and_a_short_overload():
     """Above the rating for less than OVERLOAD_S_MAX, never at the limit, RMS within: no
     warning; a cycle that never started has no RMS."""

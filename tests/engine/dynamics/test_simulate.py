@@ -3,6 +3,7 @@ slipping drive named, a slack stop reported, and the results per phase."""
 
 from __future__ import annotations
 
+import math
 import re
 
 import numpy as np
@@ -79,6 +80,32 @@ def test_a_slack_stop_reports_where_when_and_how_much():
     assert "slack spans gather up to" in msg and "m of belt near" in msg and "from the tail on the carry" in msg
     assert "heavier take-up" in msg
     assert r.timeseries["slack_m"].max() > 0.0
+    # a slack span's sag has no value: none is reported, and the slack warning says why
+    assert s["sag_max_dyn_pct"] is None and "sag_max_dyn_pct is empty" in msg
+
+
+def test_a_transient_sag_names_when_and_the_tension_that_keeps_it_within():
+    """A span whose lower spring fell to 8.92 kN 95.5 s into the cycle (in the stop) sags
+    3.99 % against a 1.5 % limit: the warning says where, when, in which phase, and the
+    tension that keeps it within (the sag ratio goes as 1 / T: 8.92 x 3.99 / 1.5 = 23.7 kN),
+    with the stop's cures."""
+    from types import SimpleNamespace
+
+    from beltstudy.engine.dynamics.simulate import _sag_words
+
+    sysm = SimpleNamespace(s_end_m=np.array([0.0, 420.0, 1000.0, 2000.0]),
+                           strand=np.array([0, 0, 0, 1]), stop_command_s=92.0,
+                           model=SimpleNamespace(cycle=SimpleNamespace(t_pre=2.0,
+                                                                       t_start=60.0)))
+    whole = {"env_min": np.array([50e3, 8.92e3, 9.5e3, 60e3]),
+             "env_min_t": np.array([10.0, 95.47, 96.0, 50.0])}
+    msg = _sag_words(sysm, "carry", 3.99, 1.5, 2, 8.92e3, whole)
+    assert msg.startswith("transient sag on the carry strand 3.99 % exceeds the limit 1.5 %")
+    assert "near 1000 m from the tail on the carry at t = 95.5 s, during the stop" in msg
+    assert "23.7 kN there keeps it within" in msg and "a longer stop" in msg
+    whole["env_min_t"][1] = 40.0  # the same low tension in the start
+    assert "a longer start (start.time_s)" in _sag_words(sysm, "carry", 3.99, 1.5, 2, 8.92e3,
+                                                          whole)
 
 
 def test_results_per_phase():
@@ -259,7 +286,12 @@ def test_a_fast_stop_says_its_tensions_and_what_would_slow_it():
     msg = _fast_stop_words(sysm, 25.2, {"t_max_stop_kn": 250.0, "t_min_stop_kn": 15.0},
                            261e3)
     assert "ranged 15 to 250 kN against 20 to 261 kN running" in msg
-    assert f"stop.time_s {5 * 8.2 * 30.0 / 25.2:.0f} s or more" in msg
+    assert f"stop.time_s {math.ceil(5 * 8.2 * 30.0 / 25.2)} s or more" in msg
+    # a time the message names meets the criterion: rounded up (5 x 1.493 s = 7.465 s)
+    sysm.wave_loop_time_s = 1.493
+    sysm.model.cycle.stop_mode = C.COAST
+    msg = _fast_stop_words(sysm, 1.6, {}, 261e3)
+    assert "a controlled stop (vfd drives) taking 7.5 s or more" in msg
 
 
 def test_a_rest_hold_exactly_at_the_grip_is_not_called_creep():
