@@ -30,6 +30,7 @@ from starlette.requests import ClientDisconnect
 from starlette.routing import Match
 
 from beltstudy import engine
+from beltstudy.engine import InputError
 from beltstudy.service.api.deps import require_token
 from beltstudy.service.door.messages import describe
 from beltstudy.service.door.openapi import install as install_openapi
@@ -90,6 +91,14 @@ def _install_handlers(app: FastAPI) -> None:
     async def service_error(request: Request, exc: ServiceError) -> JSONResponse:
         headers = {"WWW-Authenticate": "Bearer"} if exc.status_code == 401 else exc.headers
         return _error(exc.kind, exc.message, exc.status_code, headers)
+
+    @app.exception_handler(InputError)
+    async def input_error(request: Request, exc: InputError) -> JSONResponse:
+        # the door turns every user mistake into an Invalid; one that slips past it still
+        # names the field (422), never a 500 hiding the message
+        log.warning("InputError not turned into Invalid on %s %s: %s", request.method,
+                    request.url.path, exc)
+        return _error("invalid", str(exc), 422)
 
     @app.exception_handler(RequestValidationError)
     async def request_invalid(request: Request, exc: RequestValidationError) -> JSONResponse:

@@ -22,7 +22,7 @@ from typing import Any
 from pydantic import ValidationError
 
 from beltstudy import engine
-from beltstudy.engine import InputError, catalog, get_model, parse_conveyor
+from beltstudy.engine import InputError, get_model, parse_conveyor
 from beltstudy.engine.conveyor import json_numbers
 from beltstudy.service.door.messages import describe
 from beltstudy.service.door.parse import check_tree, load_mapping
@@ -167,8 +167,11 @@ def _conveyor(study: StudyIn, base_dir: Path | None, studies_dir: Path | None
             conv_data, source = conveyor_from_path(study.conveyor, base_dir, studies_dir)
             conveyor = parse_conveyor(conv_data, prefix="conveyor: ")
         else:
-            conveyor, source = study.conveyor, "inline"
-            catalog.check_conveyor(conveyor, "conveyor.")
+            # the same checks as a file's (catalogue, fill): the Pydantic model alone lets an
+            # over-filled belt through to the grid, which would fail there on every variant
+            conveyor = parse_conveyor(study.conveyor.model_dump(mode="json", by_alias=True),
+                                      prefix="conveyor.", strict=False)
+            source = "inline"
     except InputError as exc:
         raise Invalid(_err(exc)) from None
     return conveyor.model_dump(mode="json", by_alias=True), source

@@ -146,6 +146,12 @@ CASES = [
         r"models.din.f_carry",
     ),
     (
+        "an inline conveyor that over-fills its belt (a file's check, inline too)",
+        {"conveyor": {**TINY_CONVEYOR, "material": {"capacity_t_h": 5000, "density_t_m3": 1.0}}},
+        422,
+        r"^conveyor\.material\.capacity_t_h: 5000 t/h fills the belt's cross-section to",
+    ),
+    (
         "stop mode the conveyor cannot do",
         {"dynamics": True, "grid": {"scenario.stop.mode": ["coast", "brake"]}},
         422,
@@ -341,3 +347,19 @@ def test_compare_and_queries_take_model_aliases_and_pair_a_models_only_study(
     params = {p["name"]: p for p in spec["paths"]["/studies/{study_id}/compare"]["get"]
               ["parameters"]}
     assert {"din", "nonlin", "iso5048"} <= set(params["baseline"]["schema"]["enum"])
+
+
+def test_an_input_error_past_the_door_is_a_422_naming_the_field(api, data_dir, make_study,
+                                                                 monkeypatch):
+    """The last line of defence: an engine InputError no check turned into Invalid still
+    answers 422 with its message (not a 500 hiding it)."""
+    from beltstudy.engine import InputError
+    from beltstudy.service import studies
+
+    def refuse(*_a, **_k):
+        raise InputError("must be positive", field="conveyor.speed_m_s")
+
+    monkeypatch.setattr(studies, "resolve_study", refuse)
+    r = api().post("/studies", json=make_study())
+    assert r.status_code == 422, r.text
+    assert r.json() == {"error": "invalid", "message": "conveyor.speed_m_s: must be positive"}
