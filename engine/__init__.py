@@ -76,6 +76,7 @@ from beltstudy.engine.sizing import (  # noqa: E402
     Largest,
     SizingError,
     governed_at,
+    installed_at_full_load,
     load_label,
     size_over_cases,
 )
@@ -109,7 +110,7 @@ __all__ = [
     "STEADY_FIELDS", "unread_fields", "scenario_as_read", "brake_sizing_stop_time",
     "conveyor_as_read", "unread_brakes",
     "auto_sizes", "summary_fields",
-    "DesignCase", "DesignSizes", "Largest", "BrakeSizes", "SizingError", "size_over_cases",
+    "DesignCase", "DesignSizes", "Largest", "BrakeSizes", "SizingError", "size_over_cases", "installed_at_full_load",
     "governed_at", "load_label",
     "solve_steady", "SteadyResult", "SAFETY_FACTOR_MIN", "TRANSIENT_SAFETY_RATIO",
     "build_loop", "Loop", "capacity", "Capacity",

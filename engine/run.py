@@ -27,6 +27,7 @@ from beltstudy.engine.dynamics import DynamicsOptions, TransientResult, build_sy
 from beltstudy.engine.dynamics.model import check_scenario
 from beltstudy.engine.dynamics.simulate import span_sag_pct
 from beltstudy.engine.results import check_summary
+from beltstudy.engine.sizing import installed_at_full_load
 from beltstudy.engine.statics import (
     SAFETY_FACTOR_MIN,
     TRANSIENT_SAFETY_RATIO,
@@ -288,13 +289,16 @@ def _prepare(conveyor, scenario, model, params, dynamics, opts, solved=None) -> 
     if dynamics:
         check_scenario(scenario, conveyor, opts)
     n = None if scenario.elements == "auto" else int(scenario.elements)
-    key = (id(conveyor), float(scenario.temperature_c), repr(scenario.load), n)
-    if solved is not None and key in solved:
-        conveyor, belt_choice, steady = solved[key]
-    else:
+    # a run below the full load installs its auto brakes for its own stop (below)
+    key = (id(conveyor), float(scenario.temperature_c), repr(scenario.load), n,
+           repr(scenario.stop) if any(b.force_kn == "auto" for b in conveyor.brakes) else "")
+    if solved is None or key not in solved:
         # belt.type: auto is chosen once, here, at the run's case; the rest runs on that belt
         conveyor, belt_choice = resolve_auto_belt(conveyor, run_cases(
             conveyor, model, params, scenario.temperature_c, scenario.load, n))
+        # auto motors and brakes installed for the full load too (a run below it)
+        conveyor, installed = installed_at_full_load(conveyor, scenario, model=model,
+                                                     params=params)
         steady = solve_steady(
             conveyor,
             model=model,
@@ -304,11 +308,14 @@ def _prepare(conveyor, scenario, model, params, dynamics, opts, solved=None) -> 
             n_elements=n,
         )
         if solved is not None:  # the caller holds every conveyor meanwhile: ids stay theirs
-            solved[key] = (conveyor, belt_choice, steady)
+            solved[key] = (conveyor, belt_choice, steady, installed)
+    else:
+        conveyor, belt_choice, steady, installed = solved[key]
     summary = dict(steady.summary)
     # the sizes this run used (take-up, rated power, brakes) and what set each auto one
     summary.update(summary_fields(auto_sizes(conveyor, scenario, model=model, params=params,
                                              steady=steady)))
+    summary.update(installed)
     prep = _Prepared(conveyor, belt_choice, steady, summary)
     if not dynamics or steady.status == "failed":
         run_message(summary, belt_choice)

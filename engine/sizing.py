@@ -312,3 +312,59 @@ def size_over_cases(conveyor: Conveyor, cases: Sequence[DesignCase], *, load: An
         if brake_auto else {},
         failed_cases=tuple(needs.failures),
     )
+
+
+__all__ += ["installed_at_full_load"]
+
+
+def installed_at_full_load(conveyor: Conveyor, scenario: Scenario, *, model: str,
+                           params: dict | object | None = None) -> tuple[Conveyor, dict]:
+    """A single run's conveyor with its auto motors and brakes installed for the full design
+    load too: a run below the full load somewhere (``empty``, a fraction, ``inclines``) gets
+    each ``auto`` rated power and brake force sized over its own load case and the full load
+    (:func:`size_over_cases`, the largest kept), written into the conveyor as given sizes, as
+    the belt (:func:`beltstudy.engine.beltselect.run_cases`) and the counterweight
+    (:mod:`beltstudy.engine.statics`) are installed once. A brake-stop run's brakes are
+    sized for its stop time, any other run's for holding.
+
+    Returns the conveyor (``conveyor`` itself when nothing changes: a full-load run, or no
+    auto motor or brake) and the ``rated_power_governed_by`` / ``brake_governed_by`` fields
+    of what it installed (``stop_time @ full``)."""
+    if all(f == 1.0 for f in section_loads(scenario.load, conveyor)):
+        return conveyor, {}
+    _tu, drive_auto, brake_auto = _auto_fields(conveyor)
+    if not (any(drive_auto) or brake_auto):
+        return conveyor, {}
+    if dataclasses.is_dataclass(params):
+        params = dataclasses.asdict(params)
+    pairs = tuple(sorted((params or {}).items()))
+    case = DesignCase(model, pairs, float(scenario.temperature_c), scenario.elements,
+                      scenario.load)
+    full = dataclasses.replace(case, load="full")
+    braked = scenario.stop.mode == "brake"
+    stop_s = float(scenario.stop.time_s) if braked else None
+    sizes = size_over_cases(conveyor, [case, full],
+                            stop_times=(stop_s,) if stop_s is not None else ())
+    data = conveyor.model_dump(mode="python", by_alias=True)
+    governed: dict[str, str] = {}
+    why = []
+    for d, size, auto in zip(data["drives"], sizes.drives, drive_auto, strict=True):
+        if auto and size is not None:
+            d["rated_power_kw"] = float(size.value)
+            why.append(governed_at(size.governed_by, size.at))
+        else:
+            why.append(GIVEN)
+    if any(drive_auto):
+        governed["rated_power_governed_by"] = "+".join(dict.fromkeys(why))
+    if brake_auto:
+        sized = sizes.brakes_by_stop[stop_s] if braked else sizes.brakes_holding
+        why = []
+        for b, force, reason in zip(data["brakes"], sized.force_kn, sized.governed_by,
+                                    strict=True):
+            if b["force_kn"] == "auto":
+                b["force_kn"] = float(force)
+                why.append(governed_at(reason, sized.at))
+            else:
+                why.append(GIVEN)
+        governed["brake_governed_by"] = "+".join(dict.fromkeys(why))
+    return type(conveyor).model_validate(data), governed

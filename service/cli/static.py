@@ -12,6 +12,7 @@ from beltstudy.engine import (
     auto_sizes,
     check_summary,
     get_model,
+    installed_at_full_load,
     load_conveyor,
     resolve_auto_belt,
     results,
@@ -87,10 +88,13 @@ def run(args: argparse.Namespace) -> int:
             check_output(path)
     t0 = time.perf_counter()
     conv, choice = _belt(conv, fm.name, params, args, load)
+    # auto motors and brakes installed for the full load too, as a run installs them
+    conv, installed = installed_at_full_load(conv, scn, model=fm.name, params=params)
     res = solve_steady(conv, model=fm.name, params=params, temperature_c=args.temperature_c,
                        load=load, n_elements=args.elements)
     s = dict(res.summary)
     s.update(summary_fields(auto_sizes(conv, scn, model=fm.name, params=params, steady=res)))
+    s.update(installed)
     if choice is not None and auto:
         run_message(s, choice)
     s["elapsed_s"] = time.perf_counter() - t0

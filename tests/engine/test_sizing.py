@@ -183,3 +183,31 @@ def test_a_brake_beyond_its_grip_is_held_at_the_least_grip_over_the_cases():
     assert totals[j] < min(s["brake_grip_kn"] for s in within)
     assert sized.brakes_by_stop[3.5].force_kn == tuple(within[j]["brake_force_kn"])
     assert sized.brakes_by_stop[3.5].governed_by == ("stop_time",)
+
+
+@pytest.mark.parametrize("stop", [{"mode": "brake", "time_s": 10.0}, {"mode": "coast"}])
+def test_a_run_below_the_full_load_keeps_the_motor_and_brake_installed_for_it(stop):
+    """The belt and the counterweight are installed once, for the full load; so are the auto
+    motors and brakes of a single run. The empty undulating belt has no net gravity pull (the
+    belt's own weight cancels round the loop), so sized on its own its brake would be
+    nothing but the stop force of an empty belt, and its motor that of the empty belt's
+    resistance: an empty run installs the full load's instead (``@ full``), and a full-load
+    run is unchanged."""
+    from beltstudy.engine.run import run_one
+
+    data = {**UNDULATING, "drives": [{**UNDULATING["drives"][0]}]}
+    data["drives"][0].pop("rated_power_kw", None)  # auto
+    conv = parse_conveyor(data)
+    scn = Scenario(load="full", stop=stop)
+    full = run_one(conv, scn, model="din", dynamics=False).summary
+    empty = run_one(conv, scn.model_copy(update={"load": "empty"}), model="din",
+                    dynamics=False).summary
+    on_its_own = auto_sizes(conv, scn.model_copy(update={"load": "empty"}), model="din")
+    assert sum(on_its_own["brake_force_kn"]) < 0.5 * full["brake_force_kn"]
+    assert empty["brake_force_kn"] == pytest.approx(full["brake_force_kn"], rel=1e-12)
+    assert empty["rated_power_kw"] == pytest.approx(full["rated_power_kw"], rel=1e-12)
+    assert sum(on_its_own["drive_rated_power_kw"]) < full["rated_power_kw"]
+    why = "stop_time" if stop["mode"] == "brake" else "holding"
+    assert empty["brake_governed_by"] == f"{why} @ full"
+    assert full["brake_governed_by"] == why
+    assert empty["rated_power_governed_by"].endswith("@ full")
