@@ -22,10 +22,12 @@ import os
 from functools import lru_cache
 from pathlib import Path
 
-from pydantic import Field, field_validator
+from pydantic import Field, ValidationError, field_validator
 from pydantic_settings import BaseSettings, SettingsConfigDict
 
-__all__ = ["Settings", "get_settings", "ENV_PREFIX"]
+from beltstudy.service.errors import Invalid
+
+__all__ = ["Settings", "get_settings", "load_settings", "ENV_PREFIX"]
 
 ENV_PREFIX = "BELTSTUDY_"
 
@@ -100,7 +102,34 @@ class Settings(BaseSettings):
         return self.workers or os.cpu_count() or 1
 
 
+#: What a setting of each type must be, in words (pydantic's error types).
+_MUST_BE = {
+    "int_parsing": "must be an integer",
+    "int_from_float": "must be an integer",
+    "float_parsing": "must be a number",
+    "bool_parsing": "must be true or false",
+    "finite_number": "must be a finite number",
+}
+
+
+def _setting_problem(err: dict) -> str:
+    """``BELTSTUDY_MAX_RUNS: must be an integer (got 'abc')`` for one pydantic error."""
+    field = str(err["loc"][0]) if err.get("loc") else ""
+    reason = _MUST_BE.get(err["type"]) or err["msg"].replace("Input should be", "must be")
+    return f"{ENV_PREFIX}{field.upper()}: {reason} (got {err.get('input')!r})"
+
+
+def load_settings(**over) -> Settings:
+    """The settings from the environment; a bad value is :class:`Invalid` naming the variable,
+    what it must be and what it was (one line: the CLI prints it and exits with status 2)."""
+    try:
+        return Settings(**over)
+    except ValidationError as exc:
+        raise Invalid("; ".join(dict.fromkeys(_setting_problem(e) for e in exc.errors()))
+                      ) from None
+
+
 @lru_cache(maxsize=1)
 def get_settings() -> Settings:
     """The process-wide settings (read once from the environment)."""
-    return Settings()
+    return load_settings()

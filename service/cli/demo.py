@@ -22,7 +22,7 @@ from beltstudy.service.cli.console import ProgressBar, format_compare, format_du
 from beltstudy.service.dask.executor import WARMING
 from beltstudy.service.door.studyfile import study_body
 from beltstudy.service.errors import Unavailable
-from beltstudy.service.settings import Settings
+from beltstudy.service.settings import load_settings
 from beltstudy.service.store.parquet import Store
 
 __all__ = ["run_demo", "free_port", "start_server", "stop_server", "wait_ready", "worker_pids"]
@@ -107,7 +107,7 @@ def stop_server(proc: subprocess.Popen, timeout_s: float = 30.0) -> None:
 
 
 def run_demo(study_path: str = "studies/paper-comparison.yaml", port: int = 0) -> int:
-    settings = Settings()
+    settings = load_settings()
     port = port or free_port()
     body = study_body(study_path)
     data_dir = Path(settings.data_dir).resolve()

@@ -3,7 +3,8 @@
 ``submit``, ``status``, ``results``, ``report`` and ``compare`` talk to a running service
 (``--url``, default ``BELTSTUDY_URL`` or http://127.0.0.1:8000); ``status``, ``results``,
 ``report`` and ``compare`` read the local store (``BELTSTUDY_DATA_DIR``) when no service
-answers.
+answers at the default address (an address given by ``--url`` or ``BELTSTUDY_URL`` that does
+not answer is an error naming it).
 ``run`` uses the same executor and store in-process, without HTTP. ``demo`` is ``make run``.
 """
 
@@ -23,7 +24,7 @@ from beltstudy.service.cli.demo import run_demo
 from beltstudy.service.door.parse import load_mapping
 from beltstudy.service.door.studyfile import study_body
 from beltstudy.service.errors import Invalid, Unavailable
-from beltstudy.service.settings import Settings
+from beltstudy.service.settings import load_settings
 from beltstudy.service.store import query
 from beltstudy.service.store.parquet import Store
 from beltstudy.service.uncertainty import format_text as format_uncertainty
@@ -42,7 +43,8 @@ def register(sub) -> None:
     p.add_argument(
         "--host", default=None, help="address to listen on (default: BELTSTUDY_HOST, 127.0.0.1)"
     )
-    p.add_argument("--port", type=int, default=8000, help="port to listen on")
+    p.add_argument("--port", type=port_number, default=8000,
+                   help="port to listen on (1 to 65535; default 8000)")
     p.set_defaults(func=cmd_serve)
 
     p = sub.add_parser("submit", help="submit a study file to a running service")
@@ -105,7 +107,8 @@ def register(sub) -> None:
         "studies/paper-comparison.yaml, show progress and the comparison",
     )
     p.add_argument("--study", default="studies/paper-comparison.yaml", help="study file")
-    p.add_argument("--port", type=int, default=0, help="service port (default: a free one)")
+    p.add_argument("--port", type=lambda text: port_number(text, free=True), default=0,
+                   help="service port, 0 to 65535 (default 0: a free one)")
     p.set_defaults(func=cmd_demo)
 
 
@@ -117,13 +120,34 @@ def _client_args(p: argparse.ArgumentParser) -> None:
 
 
 def _settings():
-    return Settings()
+    return load_settings()
+
+
+def port_number(text: str, *, free: bool = False) -> int:
+    """argparse type of ``--port``: 1 to 65535 (0 too when ``free``: a free one)."""
+    low = 0 if free else 1
+    try:
+        port = int(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"expected a port number, got {text!r}") from None
+    if not low <= port <= 65535:
+        raise argparse.ArgumentTypeError(f"a port is {low} to 65535 (got {port})")
+    return port
+
+
+def _url(args) -> tuple[str, str]:
+    """The service address and where it came from (``--url``, ``BELTSTUDY_URL`` or the
+    default)."""
+    if args.url:
+        return args.url, "--url"
+    if os.environ.get("BELTSTUDY_URL"):
+        return os.environ["BELTSTUDY_URL"], "BELTSTUDY_URL"
+    return DEFAULT_URL, ""
 
 
 def _client(args):
-    url = args.url or os.environ.get("BELTSTUDY_URL") or DEFAULT_URL
     token = args.token if args.token is not None else _settings().token
-    return ServiceClient(url, token)
+    return ServiceClient(_url(args)[0], token)
 
 
 # ------------------------------------------------------------------------------ commands
@@ -229,12 +253,19 @@ def _local_service():
 
 
 def _with_fallback(args, remote, local):
+    """``remote(client)``; when the default address does not answer, ``local(service)`` on
+    the local store. An address given (``--url`` or ``BELTSTUDY_URL``) that does not answer
+    is an error naming it and where it came from."""
     try:
         with _client(args) as client:
             return remote(client)
-    except Unavailable:
-        if args.url:
+    except Unavailable as exc:
+        source = _url(args)[1]
+        if source == "--url":
             raise
+        if source:
+            raise Unavailable(f"{exc.message} (the address is {source}'s; unset it to read "
+                              "the local store instead)") from None
         return local(_local_service())
 
 

@@ -35,7 +35,7 @@ from beltstudy.service.cli.common import (
     parse_model_params,
     writing,
 )
-from beltstudy.service.settings import Settings
+from beltstudy.service.settings import load_settings
 from beltstudy.service.store.columns import components_from_row
 
 #: Colours of the models in the figure (the same model always gets the same colour).
@@ -130,7 +130,7 @@ def sweep(conv, models, temps, params: dict, load, n_elements=None):
 
     body = sweep_study(conv, models, temps, params, load, n_elements)
     with tempfile.TemporaryDirectory(prefix="beltstudy-sweep-") as tmp:
-        settings = Settings().model_copy(update={"data_dir": Path(tmp), "warm_start": False})
+        settings = load_settings().model_copy(update={"data_dir": Path(tmp), "warm_start": False})
         service = StudyService(settings)
         try:
             st, _ = service.submit(body, confine=False)

@@ -15,8 +15,11 @@ from beltstudy.service.cli.demo import free_port
 
 @pytest.fixture
 def env(monkeypatch, data_dir):
-    """No service listens at BELTSTUDY_URL; the store is in a temporary directory."""
-    monkeypatch.setenv("BELTSTUDY_URL", f"http://127.0.0.1:{free_port()}")
+    """No service listens at the default address; the store is in a temporary directory."""
+    from beltstudy.service.cli import study
+
+    monkeypatch.delenv("BELTSTUDY_URL", raising=False)
+    monkeypatch.setattr(study, "DEFAULT_URL", f"http://127.0.0.1:{free_port()}")
     monkeypatch.setenv("BELTSTUDY_DATA_DIR", str(data_dir))
     monkeypatch.setenv("BELTSTUDY_WORKERS", "2")
     return data_dir
@@ -120,3 +123,56 @@ def test_an_output_in_a_missing_folder_is_one_line_before_any_work(env, capsys, 
         err = capsys.readouterr().err
         # checked before the study is looked for: the folder, not "study not found"
         assert err == f"error: cannot write {out}: the folder {missing} does not exist\n"
+
+
+def test_an_address_given_that_does_not_answer_is_an_error_not_the_local_store(
+        env, capsys, monkeypatch, finished_study, make_study):
+    """BELTSTUDY_URL is read as --url is: a silent fall-back to ./data would show another
+    store's studies (or none) as if they were the service's."""
+    finished_study(env, make_study())
+    url = f"http://127.0.0.1:{free_port()}"
+    monkeypatch.setenv("BELTSTUDY_URL", url)
+    assert main(["status"]) == 2
+    err = capsys.readouterr().err
+    assert err.startswith(f"error: cannot reach the service at {url} ")
+    assert "'beltstudy serve'" in err and "BELTSTUDY_URL" in err
+    assert main(["status", "--url", url]) == 2
+    assert f"cannot reach the service at {url} " in capsys.readouterr().err
+
+
+@pytest.mark.parametrize(("variable", "value", "argv", "message"), [
+    ("BELTSTUDY_MAX_RUNS", "abc", ["status"],
+     "error: BELTSTUDY_MAX_RUNS: must be an integer (got 'abc')"),
+    ("BELTSTUDY_WARM_START", "maybe", ["serve"],
+     "error: BELTSTUDY_WARM_START: must be true or false (got 'maybe')"),
+    ("BELTSTUDY_WORKERS", "0", ["status"],
+     "error: BELTSTUDY_WORKERS: must be greater than or equal to 1 (got '0')"),
+])
+def test_a_bad_setting_in_the_environment_is_one_line_and_exit_2(
+        env, capsys, monkeypatch, variable, value, argv, message):
+    monkeypatch.setenv(variable, value)
+    assert main(argv) == 2
+    assert capsys.readouterr().err == message + "\n"
+
+
+@pytest.mark.parametrize(("argv", "message"), [
+    (["serve", "--port", "99999"], "argument --port: a port is 1 to 65535 (got 99999)"),
+    (["serve", "--port", "-1"], "argument --port: a port is 1 to 65535 (got -1)"),
+    (["serve", "--port", "0"], "argument --port: a port is 1 to 65535 (got 0)"),
+    (["demo", "--port", "70000"], "argument --port: a port is 0 to 65535 (got 70000)"),
+    (["demo", "--port", "http"], "argument --port: expected a port number, got 'http'"),
+])
+def test_a_port_out_of_range_is_refused_before_anything_starts(capsys, monkeypatch, argv,
+                                                                message):
+    from beltstudy.service.cli import study
+
+    def never(*_a, **_k):
+        raise AssertionError("started")
+
+    monkeypatch.setattr(study, "cmd_serve", never)
+    monkeypatch.setattr(study, "run_demo", never)
+    with pytest.raises(SystemExit) as exc:
+        main(argv)
+    assert exc.value.code == 2
+    err = capsys.readouterr().err
+    assert err.startswith("usage: beltstudy ") and err.strip().endswith(message)

@@ -186,7 +186,11 @@ def test_report_command_writes_the_page_from_the_local_store(web, tmp_path, monk
     from beltstudy.service.cli.demo import free_port
 
     sid = web.finished_study(tmp_path, web.tiny_study(name="cli-report"))
-    monkeypatch.setenv("BELTSTUDY_URL", f"http://127.0.0.1:{free_port()}")
+    from beltstudy.service.cli import study
+
+    # no service at the default address (an address given that does not answer is an error)
+    monkeypatch.delenv("BELTSTUDY_URL", raising=False)
+    monkeypatch.setattr(study, "DEFAULT_URL", f"http://127.0.0.1:{free_port()}")
     monkeypatch.setenv("BELTSTUDY_DATA_DIR", str(tmp_path))
     out = tmp_path / "report.html"
     assert main(["report", sid, "-o", str(out)]) == 0
