@@ -10,8 +10,9 @@ notes); an input problem is an :class:`~beltstudy.service.errors.Invalid` naming
 from __future__ import annotations
 
 from pathlib import Path
+from typing import Any
 
-from pydantic import BaseModel, ConfigDict, Field
+from pydantic import BaseModel, ConfigDict, Field, ValidationError
 
 from beltstudy.engine import (
     TEMPERATURE_MAX_C,
@@ -23,11 +24,13 @@ from beltstudy.engine import (
     measurements_from_rows,
     parse_conveyor,
 )
+from beltstudy.service.door.messages import describe
 from beltstudy.service.door.study import ConveyorRef, ModelName
 from beltstudy.service.door.studyfile import conveyor_from_path
 from beltstudy.service.errors import Invalid
 
-__all__ = ["CalibrationIn", "run_calibration", "split_fit", "MAX_ROWS", "MAX_FIT"]
+__all__ = ["CalibrationIn", "read_calibration", "run_calibration", "split_fit", "MAX_ROWS",
+           "MAX_FIT"]
 
 #: Measurements and fitted names a request may hold (the fit runs in the request: each
 #: measurement is a steady solve per evaluation, about 5 ms on a 2 km conveyor).
@@ -69,6 +72,18 @@ class CalibrationIn(BaseModel):
                            "NAME=START (e.g. f_carry, mu_b=0.002)")
     params: dict[str, float] = Field(default_factory=dict,
                                      description="other parameters held at these values")
+
+
+def read_calibration(data: Any) -> CalibrationIn:
+    """A parsed request body (JSON or YAML) as a :class:`CalibrationIn`; :class:`Invalid`
+    naming each problem's field as the study door says it (an unknown key with the nearest
+    valid one, an inline conveyor's fields as the engine names them)."""
+    if not isinstance(data, dict):
+        raise Invalid("body: expected a mapping with conveyor, measured, model, fit")
+    try:
+        return CalibrationIn.model_validate(data)
+    except ValidationError as exc:
+        raise Invalid(describe(exc, data, model=CalibrationIn)) from None
 
 
 def split_fit(items: list[str]) -> tuple[list[str], dict[str, float]]:

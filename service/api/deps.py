@@ -3,15 +3,18 @@
 from __future__ import annotations
 
 import secrets
+from typing import Any
 
 from fastapi import Depends, Request
+from fastapi.concurrency import run_in_threadpool
 from fastapi.security import HTTPAuthorizationCredentials, HTTPBearer
 
 from beltstudy.service.api.models import ErrorOut
-from beltstudy.service.errors import Invalid, Unauthorized
+from beltstudy.service.door.parse import YAML_TYPES, parse_body
+from beltstudy.service.errors import Invalid, TooLarge, Unauthorized, UnsupportedMedia
 from beltstudy.service.studies import StudyService
 
-__all__ = ["get_service", "require_token", "check_query", "ERROR_RESPONSES"]
+__all__ = ["get_service", "require_token", "check_query", "read_data", "ERROR_RESPONSES"]
 
 _bearer = HTTPBearer(auto_error=False, description="BELTSTUDY_TOKEN, when the service sets one")
 
@@ -57,6 +60,42 @@ def check_query(request: Request) -> None:
             raise Invalid(f"query.{name}: unknown parameter; this route takes: {valid}")
         if not value.strip():
             raise Invalid(f"query.{name}: empty; give a value or leave the parameter out")
+
+
+async def _read_body(request: Request, limit: int) -> bytes:
+    declared = request.headers.get("content-length")
+    if declared and declared.isdigit() and int(declared) > limit:
+        raise TooLarge(f"body: {declared} bytes; the limit is {limit}")
+    chunks, size = [], 0
+    async for chunk in request.stream():
+        size += len(chunk)
+        if size > limit:
+            raise TooLarge(f"body: more than {limit} bytes")
+        chunks.append(chunk)
+    return b"".join(chunks)
+
+
+def _check_media_type(content_type: str, what: str) -> None:
+    """A body route reads JSON or YAML only: any other ``Content-Type`` (or none) is a 415
+    naming the types it takes (text/plain is not parsed as JSON)."""
+    media = content_type.split(";", 1)[0].strip().lower()
+    if media != "application/json" and media not in YAML_TYPES:
+        given = f"'{media}'" if media else "none"
+        raise UnsupportedMedia(
+            f"Content-Type: {given} is not read here; send {what} as application/json or "
+            f"YAML ({', '.join(YAML_TYPES)})"
+        )
+
+
+async def read_data(request: Request, limit: int, what: str) -> Any:
+    """The request's body as data, one way for every route that takes a document (``what``:
+    ``a study``, ``a calibration``): JSON or YAML by ``Content-Type`` (415 for any other), at
+    most ``limit`` bytes (413), syntax errors with their line and column (422). Parsing runs
+    in a worker thread: the event loop, and so /health, keeps answering meanwhile."""
+    content_type = request.headers.get("content-type", "")
+    _check_media_type(content_type, what)
+    body = await _read_body(request, limit)
+    return await run_in_threadpool(parse_body, body, content_type, what)
 
 
 def _error(description: str) -> dict:

@@ -13,6 +13,7 @@ from beltstudy.service.api.deps import (
     _error,
     check_query,
     get_service,
+    read_data,
     require_token,
 )
 from beltstudy.service.api.models import (
@@ -26,8 +27,6 @@ from beltstudy.service.api.models import (
     StudyList,
     StudyStatus,
 )
-from beltstudy.service.door.parse import YAML_TYPES, parse_body
-from beltstudy.service.errors import TooLarge, UnsupportedMedia
 from beltstudy.service.store import query
 from beltstudy.service.studies import StudyService
 
@@ -57,31 +56,6 @@ def _with_urls(status: dict) -> dict:
     }
 
 
-async def _read_body(request: Request, limit: int) -> bytes:
-    declared = request.headers.get("content-length")
-    if declared and declared.isdigit() and int(declared) > limit:
-        raise TooLarge(f"body: {declared} bytes; the limit is {limit}")
-    chunks, size = [], 0
-    async for chunk in request.stream():
-        size += len(chunk)
-        if size > limit:
-            raise TooLarge(f"body: more than {limit} bytes")
-        chunks.append(chunk)
-    return b"".join(chunks)
-
-
-def _check_media_type(content_type: str) -> None:
-    """A body route reads JSON or YAML only: any other ``Content-Type`` (or none) is a 415
-    naming the types it takes (text/plain is not parsed as JSON)."""
-    media = content_type.split(";", 1)[0].strip().lower()
-    if media != "application/json" and media not in YAML_TYPES:
-        given = f"'{media}'" if media else "none"
-        raise UnsupportedMedia(
-            f"Content-Type: {given} is not read here; send the study as application/json or "
-            f"YAML ({', '.join(YAML_TYPES)})"
-        )
-
-
 @router.post(
     "",
     response_model=StudyStatus,
@@ -106,11 +80,8 @@ def _check_media_type(content_type: str) -> None:
 async def submit_study(
     request: Request, response: Response, service: StudyService = Depends(get_service)
 ) -> dict:
-    _check_media_type(request.headers.get("content-type", ""))
-    body = await _read_body(request, service.settings.max_body_bytes)
-    # parsing (within its budget) and resolving run in a worker thread: the event loop,
-    # and so /health, keeps answering meanwhile
-    data = await run_in_threadpool(parse_body, body, request.headers.get("content-type", ""))
+    data = await read_data(request, service.settings.max_body_bytes, "a study")
+    # resolving runs in a worker thread: the event loop, and so /health, keeps answering
     status, created = await run_in_threadpool(partial(service.submit, data, strict=True))
     response.status_code = 202 if created else 200
     response.headers["Location"] = f"/studies/{status['id']}"

@@ -22,6 +22,7 @@ import pyarrow as pa
 from fastapi.openapi.utils import get_openapi
 
 from beltstudy.engine import InputError, parse_conveyor
+from beltstudy.service.calibration import CalibrationIn
 from beltstudy.service.charts import RUN_PLOTS, STUDY_PLOTS
 from beltstudy.service.door.parse import load_mapping
 from beltstudy.service.door.study import (
@@ -183,6 +184,11 @@ def install(app, studies_dir: Path) -> None:
                                  description=app.description, routes=app.routes)
             body = study_schema(studies_dir, REF_TEMPLATE)
             components = schema.setdefault("components", {}).setdefault("schemas", {})
+            # the calibration body, read from the request as a study is (its parts: the
+            # study's definitions of the same models win below)
+            calibration = CalibrationIn.model_json_schema(ref_template=REF_TEMPLATE)
+            components.update(calibration.pop("$defs", {}))
+            components["CalibrationIn"] = calibration
             components.update(body.pop("$defs"))
             components["StudyDoc"] = body
             _patch_operations(schema)

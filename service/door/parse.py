@@ -339,10 +339,11 @@ def loads(text: str, *, yaml_text: bool, what: str = "body") -> Any:
     return data
 
 
-def parse_body(body: bytes, content_type: str) -> Any:
-    """A request body as data: YAML for the YAML content types, JSON otherwise."""
+def parse_body(body: bytes, content_type: str, what: str = "a study") -> Any:
+    """A request body as data: YAML for the YAML content types, JSON otherwise; ``what`` the
+    route reads (for the message of an empty body)."""
     if not body.strip():
-        raise Invalid("body: empty; send a study as JSON or YAML")
+        raise Invalid(f"body: empty; send {what} as JSON or YAML")
     try:
         text = body.decode("utf-8")
     except UnicodeDecodeError:

@@ -148,4 +148,38 @@ def test_post_calibrations_says_problems_as_the_study_door_does(client):
     text = json.dumps(body).replace(str(body["measured"][0]["power_kw"]), "NaN", 1)
     r = client.post("/calibrations", content=text, headers={"content-type": "application/json"})
     assert r.status_code == 422
-    assert r.json()["message"].startswith("measured.0.power_kw: Input should be a finite number")
+    assert r.json()["message"].startswith("measured.0.power_kw: NaN is not a number")
+
+
+def test_post_calibrations_reads_the_body_as_post_studies_does(client):
+    """YAML or JSON by Content-Type, 415 for any other, syntax errors with line and column,
+    an empty body said as empty: the study door's reading, one function for both routes."""
+    import yaml
+
+    body = {"conveyor": "conveyors/overland-4km.yaml", "model": "din", "fit": ["f_carry"],
+            "measured": _rows()[:2]}
+    r = client.post("/calibrations", content=yaml.safe_dump(body).encode(),
+                    headers={"content-type": "application/yaml"})
+    assert r.status_code == 200, r.text
+    assert set(r.json()["fit"]) == {"f_carry"}
+    r = client.post("/calibrations", content=json.dumps(body).encode(),
+                    headers={"content-type": "text/plain"})
+    assert r.status_code == 415
+    assert r.json()["message"].startswith("Content-Type: 'text/plain' is not read here; send "
+                                          "a calibration as application/json or YAML")
+    r = client.post("/calibrations", content=b'{"model": "din",\n "fit": [f_carry]}',
+                    headers={"content-type": "application/json"})
+    assert r.status_code == 422
+    assert r.json()["message"].startswith("body: not valid JSON at line 2, column 10")
+    r = client.post("/calibrations", content=b"model: din\nfit: [f_carry\n",
+                    headers={"content-type": "application/yaml"})
+    assert r.status_code == 422 and "body: not valid YAML at line" in r.json()["message"]
+    r = client.post("/calibrations", content=b"", headers={"content-type": "application/json"})
+    assert r.status_code == 422
+    assert r.json()["message"] == "body: empty; send a calibration as JSON or YAML"
+    r = client.post("/calibrations", json=[body])
+    assert r.status_code == 422 and "body: expected a mapping" in r.json()["message"]
+    spec = client.get("/openapi.json").json()
+    content = spec["paths"]["/calibrations"]["post"]["requestBody"]["content"]
+    assert content["application/yaml"]["schema"] == {"$ref": "#/components/schemas/CalibrationIn"}
+    assert "measured" in spec["components"]["schemas"]["CalibrationIn"]["properties"]
