@@ -333,8 +333,9 @@ def calibrate(conv: Conveyor, measured: Sequence[Measurement], model: str,
     else:
         notes.append(f"{n} residuals for {p} parameters: no degrees of freedom left, no "
                      "standard errors")
+    at_bound = _at_bound(free, sol, x0[[names.index(n) for n in free]])
     for name, v, s in zip(free, sol.x, se, strict=True):
-        if v <= 1e-9 * abs(float(x0[names.index(name)])):
+        if name in at_bound:
             notes.append(f"{name} ended at its bound 0: the data would take it below; its "
                          "standard error is not that of a free estimate")
         elif s is not None and s > abs(v):
@@ -357,7 +358,59 @@ def calibrate(conv: Conveyor, measured: Sequence[Measurement], model: str,
         held=held_values, models={fm.name: block},
         rms_relative=float(math.sqrt(float(r @ r) / n)), dof=dof,
         singular_values=[float(s) for s in sv],
-        status="ok" if sol.success else "failed", message=sol.message, notes=notes)
+        notes=notes, **_verdict(sol, at_bound, r, fm.name))
+
+
+#: Rms relative residual [%] above which a fit misses its data: a plant's logged drive power
+#: is good to a few per cent (meter class 1 to 2, plus the steady-state reading of a belt whose
+#: load varies), so a larger misfit points at the data or the conveyor file, not the noise.
+MISFIT_PCT = 5.0
+#: A fitted value below this share of its start is taken as at its bound 0: the trust-region
+#: reflective method keeps its iterates strictly inside the bounds, so it ends near 0, not on
+#: it (1e-10 for a start of 0.02, 1e-8 for 0.0035), and SciPy's active mask is set only
+#: within its own tolerance. A friction parameter 10 000 times below its textbook start
+#: acts as 0 does.
+AT_BOUND = 1e-4
+
+
+def _at_bound(free: Sequence[str], sol, starts: np.ndarray) -> list[str]:
+    """The fitted names that ended at their bound 0 (SciPy's active constraint, or a value
+    within :data:`AT_BOUND` of 0 relative to its start)."""
+    active = getattr(sol, "active_mask", np.zeros(len(free)))
+    return [name for name, v, x0, a in zip(free, sol.x, starts, active, strict=True)
+            if a < 0 or v <= AT_BOUND * abs(float(x0))]
+
+
+def _verdict(sol, at_bound: list[str], r: np.ndarray, model: str) -> dict[str, str]:
+    """``status`` and ``message`` of the fit in this project's words (never SciPy's text):
+    ``failed`` when it stopped without converging, ``warning`` when a fitted parameter ended
+    at its bound (the data ask for a value the model does not allow: the rest of the misfit
+    stays in the residuals), ``ok`` otherwise."""
+    rms = 100 * math.sqrt(float(r @ r) / len(r))
+    rms_text = f"{rms:.3g}" if rms < 1000 else f"{rms:.0f}"
+    if not sol.success:
+        return {"status": "failed", "message": (
+            f"the fit stopped after {sol.nfev} evaluations without converging (rms relative "
+            f"residual {rms_text} %): start it nearer the answer (NAME=START) or fit fewer "
+            "names")}
+    if at_bound:
+        names = ", ".join(at_bound)
+        verb, it = ("ends", "it") if len(at_bound) == 1 else ("end", "them")
+        head = (f"{names} {verb} at the bound 0 (the data would take {it} below, which model "
+                f"{model} does not allow)")
+        if rms > MISFIT_PCT:
+            return {"status": "warning", "message": (
+                f"{head} and the fit still misses the measurements by {rms_text} % (rms "
+                "relative residual). Check the measured values (power at the drive pulleys "
+                "[kW], negative only where the drives regenerate; each row's load and "
+                "temperature) and the conveyor file (lift, capacity, speed, take-up), or fit "
+                "other parameters of the model")}
+        return {"status": "warning", "message": (
+            f"{head}; the fit matches the measurements to {rms_text} % (rms relative residual) "
+            f"without {it}: these data do not determine {names}. Hold {it} at a value from "
+            "the literature (--param, or the request's params) and fit the others")}
+    return {"status": "ok", "message": f"converged: rms relative residual {rms_text} % over "
+            f"{len(r)} measured values"}
 
 
 def _jacobian(fun, x: np.ndarray) -> np.ndarray:

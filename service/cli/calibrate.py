@@ -103,7 +103,8 @@ def format_calibration(out: dict) -> str:
     """The fit as text: parameters, residuals, what is not identified, the models block."""
     lines = [f"calibration of {out['model']} on {out['conveyor']}: {out['status']} "
              f"(rms relative residual {100 * out['rms_relative']:.2f} %, {out['dof']} degrees "
-             "of freedom)", "", "  parameter                 value          se      start"]
+             "of freedom)", f"  {out['message']}", "",
+             "  parameter                 value          se      start"]
     for name, f in out["fit"].items():
         se = f"{f['se']:.4g}" if f["se"] is not None else "-"
         lines.append(f"  {name:<22} {f['value']:>10.6g} {se:>11} {f['start']:>10.4g}")

@@ -183,3 +183,52 @@ def test_post_calibrations_reads_the_body_as_post_studies_does(client):
     content = spec["paths"]["/calibrations"]["post"]["requestBody"]["content"]
     assert content["application/yaml"]["schema"] == {"$ref": "#/components/schemas/CalibrationIn"}
     assert "measured" in spec["components"]["schemas"]["CalibrationIn"]["properties"]
+
+
+def test_a_fit_stuck_at_a_bound_is_a_warning_in_our_words(client):
+    """Data no value of f_carry >= 0 can reach (a loaded uphill belt measured regenerating):
+    status warning, the parameter at its bound and the residual named, never SciPy's text."""
+    body = {"conveyor": "conveyors/slope-5pct.yaml", "model": "din", "fit": ["f_carry"],
+            "measured": [{"load": "full", "temperature_c": 20, "power_kw": -5}]}
+    r = client.post("/calibrations", json=body)
+    assert r.status_code == 200, r.text
+    out = r.json()
+    assert out["status"] == "warning"
+    import re
+
+    assert re.match(r"f_carry ends at the bound 0 \(the data would take it below, which model "
+                    r"din does not allow\) and the fit still misses the measurements by \d+ % "
+                    r"\(rms relative residual\)\. Check the measured values", out["message"])
+    assert "termination" not in out["message"] and "`" not in out["message"]
+    assert out["fit"]["f_carry"]["value"] < 1e-6
+    good = client.post("/calibrations", json={**body, "measured": _rows()[:3],
+                                              "conveyor": "conveyors/overland-4km.yaml"}).json()
+    assert good["status"] == "ok"
+    assert re.match(r"converged: rms relative residual [\d.e+-]+ % over 3 measured values$",
+                    good["message"]), good["message"]
+
+
+def test_the_verdict_of_a_fit_names_the_bound_and_what_would_help():
+    """Each branch of the status and message (engine/calibration.py ``_verdict``)."""
+    from types import SimpleNamespace
+
+    from beltstudy.engine.calibration import _verdict
+
+    done = SimpleNamespace(success=True, nfev=12)
+    small, large = np.full(4, 0.01), np.full(4, 0.3)
+    assert _verdict(done, [], small, "din") == {
+        "status": "ok", "message": "converged: rms relative residual 1 % over 4 measured values"}
+    out = _verdict(done, ["m_star"], small, "nonlin")
+    assert out["status"] == "warning"
+    assert out["message"].startswith("m_star ends at the bound 0 (the data would take it below, "
+                                     "which model nonlin does not allow); the fit matches the "
+                                     "measurements to 1 % (rms relative residual) without it")
+    out = _verdict(done, ["f_carry", "f_return"], large, "din")
+    assert out["status"] == "warning"
+    assert out["message"].startswith("f_carry, f_return end at the bound 0 (the data would take "
+                                     "them below, which model din does not allow) and the fit "
+                                     "still misses the measurements by 30 %")
+    out = _verdict(SimpleNamespace(success=False, nfev=400), [], large, "din")
+    assert out == {"status": "failed", "message": "the fit stopped after 400 evaluations "
+                   "without converging (rms relative residual 30 %): start it nearer the "
+                   "answer (NAME=START) or fit fewer names"}
