@@ -51,4 +51,7 @@ def models() -> dict:
 
 @router.get("/catalog/belts", response_model=BeltsOut, summary="The belt catalogue")
 def belts() -> dict:
-    return {"belts": [dataclasses.asdict(b) for b in catalog.belts().values()]}
+    """Every catalogue belt; ``kind`` in the conveyor file's words (``belt.kind``:
+    ``steel_cord`` or ``fabric``, SPEC 7.1), so a row's kind can be pasted into a file."""
+    return {"belts": [{**dataclasses.asdict(b), "kind": catalog.FILE_KIND.get(b.kind, b.kind)}
+                      for b in catalog.belts().values()]}

@@ -147,3 +147,19 @@ def test_sweep_temperature_holds_one_auto_belt(auto_file, tmp_path, capsys):
         res = solve_steady(with_belt(conv, choice.belt_id), model=m, temperature_c=t)
         k_n = catalog.belts()[choice.belt_id].rating_kn_m
         assert k_n * 1.2 / (res.tension_n.max() / 1e3) >= STEEL_MIN
+
+
+def test_the_catalogue_route_says_kind_as_a_conveyor_file_does(data_dir, make_settings):
+    """GET /catalog/belts: ``kind`` is what ``belt: {type: auto, kind: ...}`` takes (SPEC
+    7.1: steel_cord | fabric), not the data file's column value (steel)."""
+    from fastapi.testclient import TestClient
+
+    from beltstudy.engine.conveyor import Belt
+    from beltstudy.service.api.app import create_app
+
+    belts = TestClient(create_app(make_settings(data_dir))).get("/catalog/belts").json()["belts"]
+    kinds = {b["id"]: b["kind"] for b in belts}
+    assert kinds["ST2000"] == "steel_cord" and kinds["EP630/4"] == "fabric"
+    assert set(kinds.values()) == {"steel_cord", "fabric"}
+    for kind in set(kinds.values()):  # each one a file takes
+        Belt.model_validate({"type": "auto", "kind": kind, "width_m": 1.2})
