@@ -27,6 +27,7 @@ from beltstudy.service.api.models import (
     StudyList,
     StudyStatus,
 )
+from beltstudy.service.errors import Invalid
 from beltstudy.service.store import query
 from beltstudy.service.studies import StudyService
 
@@ -106,16 +107,23 @@ def get_study(study_id: str, service: StudyService = Depends(get_service)) -> di
 )
 def get_runs(
     study_id: str,
+    request: Request,
     format: Literal["json", "csv", "parquet"] = Query("json", description="output format"),
     status: Literal["ok", "warning", "failed"] | None = Query(None, description="run status"),
     friction_model: str | None = Query(None, description="keep one friction model"),
     filter: list[str] = Query(
         default_factory=list, description="column=value, repeatable (axis or result column)"
     ),
-    limit: int | None = Query(None, ge=1, le=100_000, description="JSON: rows per page"),
-    offset: int = Query(0, ge=0, le=10_000_000, description="JSON: first row"),
+    limit: int | None = Query(None, ge=1, le=100_000,
+                              description="JSON only: rows per page"),
+    offset: int = Query(0, ge=0, le=10_000_000, description="JSON only: first row"),
     service: StudyService = Depends(get_service),
 ):
+    if format != "json":
+        paged = [n for n in ("limit", "offset") if n in request.query_params]
+        if paged:
+            raise Invalid(f"query.{paged[0]}: paging is JSON only (format=json); a {format} "
+                          "download holds every row the filters keep (narrow it with filter=)")
     df = service.runs(study_id)
     wanted = list(filter)
     if status:

@@ -108,6 +108,9 @@ def apply_filters(df: pd.DataFrame, filters: list[str]) -> pd.DataFrame:
         column, sep, text = item.partition("=")
         if not sep or not column:
             raise Invalid(f"filter: '{item}' is not column=value")
+        if not text.strip():
+            raise Invalid(f"filter: '{item}' has an empty value; give column=value (a value "
+                          "no row has keeps no row)")
         if column not in df.columns:
             close = difflib.get_close_matches(column, [str(c) for c in df.columns], n=1)
             hint = f" (did you mean '{close[0]}'?)" if close else ""

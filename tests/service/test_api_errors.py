@@ -264,6 +264,21 @@ def test_query_errors_name_the_parameter(api, data_dir, finished_study, make_stu
     # a value no row of a number column can have keeps no row
     r = client.get(f"/studies/{sid}/runs", params={"filter": "power_kw=abc"})
     assert r.status_code == 200 and r.json()["total"] == 0
+    # an empty value is refused, as status= and format= are (it kept no row without a word)
+    for item in ("load=", "temperature_c= "):
+        r = client.get(f"/studies/{sid}/runs", params={"filter": item})
+        assert r.status_code == 422, item
+        assert r.json()["message"].startswith(f"filter: '{item}' has an empty value")
+    # paging is JSON's: a download with limit or offset is refused, not cut silently
+    for fmt in ("csv", "parquet"):
+        for name in ("limit", "offset"):
+            r = client.get(f"/studies/{sid}/runs", params={"format": fmt, name: 2})
+            assert r.status_code == 422, (fmt, name)
+            assert r.json()["message"].startswith(
+                f"query.{name}: paging is JSON only (format=json); a {fmt} download holds "
+                "every row")
+    page = client.get(f"/studies/{sid}/runs", params={"format": "json", "limit": 2}).json()
+    assert len(page["runs"]) == 2 and page["total"] == 6
 
 
 def test_reading_a_finished_study(api, data_dir, finished_study, make_study):
