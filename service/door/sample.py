@@ -32,13 +32,14 @@ Distributions (parameters as scipy.stats names them in brackets):
 
 from __future__ import annotations
 
+import typing
 from typing import Annotated, Any, Literal, Union
 
 import numpy as np
 from pydantic import BaseModel, ConfigDict, Field, model_validator
 
 __all__ = ["SampleIn", "Distribution", "draw", "unit_points", "sobol_base", "DISTRIBUTIONS",
-           "MAX_SAMPLE"]
+           "MAX_SAMPLE", "value_bounds", "bounds_problem"]
 
 #: Largest sample (runs before crossing with the grid; BELTSTUDY_MAX_RUNS bounds the study).
 MAX_SAMPLE = 1 << 16
@@ -184,6 +185,80 @@ def draw(sample: SampleIn) -> dict[str, list[float]]:
         values = dist.ppf(u[:, k])
         out[name] = [float(f"{v:.12g}") for v in values]
     return out
+
+
+# ------------------------------------------------------------------ the field's own bounds
+#: JSON Schema bound names (a model parameter's, :func:`param_bounds`) -> pydantic's.
+_SCHEMA_BOUNDS = {"minimum": "ge", "exclusiveMinimum": "gt", "maximum": "le",
+                  "exclusiveMaximum": "lt"}
+_OPS = {"ge": ">=", "gt": ">", "le": "<=", "lt": "<"}
+
+
+def value_bounds(item: Any, schema: dict | None = None) -> dict[str, float]:
+    """The numeric bounds (``ge``, ``gt``, ``le``, ``lt``) of an axis's value type (its
+    ``Annotated`` metadata, a union's numeric member) or of a model parameter's ``schema``
+    bounds (``minimum``, ...)."""
+    out: dict[str, float] = {}
+    for key, value in (schema or {}).items():
+        if key in _SCHEMA_BOUNDS:
+            out[_SCHEMA_BOUNDS[key]] = float(value)
+
+    def walk(t: Any) -> None:
+        origin = typing.get_origin(t)
+        if origin is Annotated:
+            base, *meta = typing.get_args(t)
+            walk(base)
+            for m in meta:
+                for inner in [m, *getattr(m, "metadata", [])]:
+                    for op in _OPS:
+                        v = getattr(inner, op, None)
+                        if isinstance(v, int | float) and not isinstance(v, bool):
+                            out.setdefault(op, float(v))
+        elif origin is not None and origin is not Literal:
+            for arg in typing.get_args(t):
+                walk(arg)
+
+    walk(item)
+    return out
+
+
+def _violated(values: np.ndarray, bounds: dict[str, float]) -> dict[str, np.ndarray]:
+    """Bound name -> which values break it."""
+    tests = {"ge": lambda v, b: v < b, "gt": lambda v, b: v <= b,
+             "le": lambda v, b: v > b, "lt": lambda v, b: v >= b}
+    return {op: tests[op](values, b) for op, b in bounds.items()
+            if tests[op](values, b).any()}
+
+
+def bounds_problem(name: str, dist: Any, values: list[float] | None,
+                   bounds: dict[str, float]) -> str | None:
+    """Why the axis ``name``'s distribution or drawn ``values`` leave the field's ``bounds``
+    (``None`` when they do not), said with the bound and the fix. A bounded distribution
+    (uniform, triangular) is checked by its ends before anything is drawn (``values`` None;
+    the draws never reach the ends, so an open bound at an end is kept); the others by
+    their draws."""
+    if values is None:
+        if not isinstance(dist, Uniform | Triangular):
+            return None
+        for end, op in (("low", "ge"), ("low", "gt"), ("high", "le"), ("high", "lt")):
+            v, b = getattr(dist, end), bounds.get(op)
+            if b is not None and (v < b if end == "low" else v > b):
+                side = "below" if end == "low" else "above"
+                fix = ">=" if end == "low" else "<="
+                return (f"{end} ({v:g}) lies {side} the field's bound {name} {_OPS[op]} {b:g}: "
+                        f"draws beyond it would be refused; give {end} {fix} {b:g}")
+        return None
+    arr = np.asarray(values, dtype=float)
+    broken = _violated(arr, bounds)
+    if not broken:
+        return None
+    bad = np.logical_or.reduce(list(broken.values()))
+    said = " and ".join(f"{name} {_OPS[op]} {bounds[op]:g}" for op in broken)
+    drawn = arr[bad]
+    shown = ", ".join(f"{v:g}" for v in sorted({float(drawn.min()), float(drawn.max())}))
+    return (f"{int(bad.sum())} of {len(arr)} drawn values break the field's bound {said} "
+            f"(drawn {shown}): give a distribution within it, a narrower one or a bounded "
+            "one (uniform or triangular with low and high within the bound)")
 
 
 def spec_json(sample: SampleIn) -> dict[str, Any]:

@@ -26,7 +26,7 @@ from beltstudy.engine import InputError, get_model, parse_conveyor
 from beltstudy.engine.conveyor import json_numbers
 from beltstudy.service.door.messages import describe
 from beltstudy.service.door.parse import check_tree, load_mapping
-from beltstudy.service.door.sample import draw
+from beltstudy.service.door.sample import bounds_problem, draw, value_bounds
 from beltstudy.service.door.study import (
     NAME_RE,
     RangeSpec,
@@ -277,6 +277,13 @@ def _numeric_axes() -> dict[str, bool]:
     return {name: numeric for name, (_t, _item, numeric, _b) in axis_types().items()}
 
 
+@functools.cache
+def _axis_bounds(folded: str) -> dict[str, float]:
+    """An axis's numeric bounds (:func:`~beltstudy.service.door.sample.value_bounds`)."""
+    found = axis_types().get(folded)
+    return value_bounds(found[1], found[3]) if found else {}
+
+
 def _sample_axes(study: StudyIn, bases: tuple[dict, dict], models: dict) -> list[Axis]:
     """The ``sample:`` axes (:mod:`beltstudy.service.door.sample`): one more group of axes
     varying together (the last), their values drawn; each path a numeric axis."""
@@ -284,16 +291,27 @@ def _sample_axes(study: StudyIn, bases: tuple[dict, dict], models: dict) -> list
         return []
     group = len(study.zip)
     out = []
-    for name, values in draw(study.sample).items():
+    targets = {}
+    for name, dist in study.sample.axes.items():  # before drawing: names, types, ends
         where = f"sample.axes.{name}"
         try:
-            target = resolve_axis(name, *bases, "sample.axes")
+            targets[name] = resolve_axis(name, *bases, "sample.axes")
         except InputError as exc:
             raise Invalid(str(exc)) from None
         if not _numeric_axes().get(fold_name(name)[0], False):
             raise Invalid(f"{where}: '{name}' does not take a number; a sample axis is a "
                           "numeric field (temperature_c, takeup.mass_kg, "
                           "models.nonlin.mu_b, ...)")
+        problem = bounds_problem(name, dist, None, _axis_bounds(fold_name(name)[0]))
+        if problem:
+            raise Invalid(f"{where}: {problem}")
+    for name, values in draw(study.sample).items():
+        where = f"sample.axes.{name}"
+        target = targets[name]
+        problem = bounds_problem(name, study.sample.axes[name], values,
+                                 _axis_bounds(fold_name(name)[0]))
+        if problem:
+            raise Invalid(f"{where}: {problem}")
         if target.root == "model_param":
             model, param = target.path
             for v in values:

@@ -115,11 +115,33 @@ def test_sample_only_study_is_valid():
     ({"takeup.mas_kg": {"dist": "uniform", "low": 1, "high": 2}},
      r"sample\.axes: unknown axis 'takeup\.mas_kg'.*did you mean 'takeup\.mass_kg'"),
     ({"models.din.f_carry": {"dist": "normal", "mean": 0.0, "sd": 0.01}},
-     r"sample\.axes\.models\.din\.f_carry: drawn value -?[0-9.e-]+: .*between 0 and 1"),
+     r"^sample\.axes\.models\.din\.f_carry: \d+ of 16 drawn values break the field's bound "
+     r"models\.din\.f_carry >= 0 \(drawn -[0-9.e-]+.*\): give a distribution within it"),
+    # a uniform beyond the field's bound: refused by its ends, before drawing, naming the
+    # bound and the fix (it was blamed on the grid: "grid: 5 of 16 scenario variants ...")
+    ({"temperature_c": {"dist": "uniform", "low": -100, "high": 35}},
+     r"^sample\.axes\.temperature_c: low \(-100\) lies below the field's bound "
+     r"temperature_c >= -60: draws beyond it would be refused; give low >= -60$"),
+    ({"temperature_c": {"dist": "triangular", "low": -20, "mode": 0, "high": 90}},
+     r"^sample\.axes\.temperature_c: high \(90\) lies above the field's bound "
+     r"temperature_c <= 80: .*give high <= 80$"),
+    ({"temperature_c": {"dist": "normal", "mean": -40, "sd": 15}},
+     r"^sample\.axes\.temperature_c: \d+ of 16 drawn values break the field's bound "
+     r"temperature_c >= -60 \(drawn -6\d.*a bounded one \(uniform or triangular"),
+    ({"takeup.mass_kg": {"dist": "normal", "mean": 1e6, "sd": 1e6}},
+     r"^sample\.axes\.takeup\.mass_kg: \d+ of 16 drawn values break the field's bound "
+     r"takeup\.mass_kg > 0 and takeup\.mass_kg <= 2e\+06"),
 ])
 def test_invalid_distributions_are_refused_naming_the_field(axes, message):
     with pytest.raises(Invalid, match=message):
-        resolve_study(sampled(axes=axes))
+        resolve_study(sampled(axes=axes, n=16, method="lhs"))
+
+
+def test_an_open_bound_at_a_uniform_end_is_kept():
+    """The draws never reach a uniform's ends: low 0 for a field > 0 draws only positives."""
+    study = resolve_study(sampled(axes={"takeup.mass_kg": {"dist": "uniform", "low": 0,
+                                                           "high": 3000}}, n=16, method="lhs"))
+    assert study.total == 16
 
 
 @pytest.mark.parametrize("n, points", [(100, 80), (512, 640), (480, 320), (80, 80),
