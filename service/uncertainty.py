@@ -53,7 +53,7 @@ from beltstudy.service.door.sample import sobol_base
 from beltstudy.service.web.verdicts import CAUSES, expand
 
 __all__ = ["FIGURES", "LIMITS", "QUANTILES", "summarise", "wilson", "distribution",
-           "sensitivity", "CONFIDENCE"]
+           "sensitivity", "small_sample_note", "CONFIDENCE", "SOBOL_N_MIN"]
 
 #: The deciding figures (SPEC issue 30: peak tension per phase, power, stop time, lowest
 #: tension, slip margin, safety factor; with sag and slack, the limits' own figures). A figure
@@ -69,6 +69,14 @@ FIGURES = (
 LIMITS = ("safety", "slip", "sag", "slack", "overload")
 QUANTILES = (0.05, 0.25, 0.5, 0.75, 0.95)
 CONFIDENCE = 0.95
+#: Smallest base sample N of a Sobol' design whose indices are read as shares without a note.
+#: Their sampling error falls as 1 / sqrt(N) (a Monte Carlo estimate; Saltelli et al. 2010):
+#: on this project's slope study (docs/uncertainty.md, section 4) N = 64 left 95 % bootstrap
+#: half-widths of 0.3-0.45 on the dominant input, so N = 512 brings them to about 0.1-0.15,
+#: the first size at which a share of 0.3 is told from one of 0.6.
+SOBOL_N_MIN = 512
+#: Slack on [0, 1] for the floating-point noise of an index that is exactly 0 or 1.
+_INDEX_SLACK = 1e-9
 
 
 def wilson(k: int, n: int, confidence: float = CONFIDENCE) -> tuple[float, float]:
@@ -142,6 +150,7 @@ def sensitivity(sample: dict, points: np.ndarray, y: np.ndarray) -> dict[str, An
                     "ST": float(si["ST"][k]), "ST_conf": float(si["ST_conf"][k])}
                 for k, n in enumerate(names)}
         ranked = sorted(names, key=lambda n: -axes[n]["ST"])
+        note = _outside_unit(axes)
         return {"method": "sobol (SALib: Saltelli 2010 first-order, Jansen total, "
                           f"{round(100 * CONFIDENCE)} % bootstrap confidence)",
                 "axes": axes, "ranking": ranked, "note": note}
@@ -155,6 +164,33 @@ def sensitivity(sample: dict, points: np.ndarray, y: np.ndarray) -> dict[str, An
     return {"method": "spearman rank correlation (rho; rho^2 a rough share of a monotone "
                       "effect, not a variance share)", "axes": axes, "ranking": ranked,
             "note": note}
+
+
+def _outside_unit(axes: dict[str, dict[str, float]]) -> str:
+    """A note naming the indices outside [0, 1] (a share of the variance cannot be: sampling
+    error); "" when none is."""
+    out = [f"{key} of {name} {v[key]:.3g}" for name, v in axes.items() for key in ("S1", "ST")
+           if not -_INDEX_SLACK <= v[key] <= 1 + _INDEX_SLACK]
+    if not out:
+        return ""
+    return (f"{', '.join(out)}: outside [0, 1], which a share of the variance cannot be; "
+            "sampling error of the estimate (see S1_conf, ST_conf): a larger sample narrows it")
+
+
+def small_sample_note(sample: dict, points: int) -> str:
+    """A note on a Sobol' design whose base sample N is below :data:`SOBOL_N_MIN` (its
+    indices are rough); "" otherwise, and for a Latin hypercube."""
+    if sample.get("method") != "sobol":
+        return ""
+    d = len(sample["axes"])
+    n_base = points // (d + 2)
+    if n_base >= SOBOL_N_MIN:
+        return ""
+    return (f"base sample N = {n_base} ({points} runs = N (D + 2), D = {d} axes): Sobol' "
+            f"indices from fewer than N = {SOBOL_N_MIN} carry a sampling error of the order "
+            "of the indices themselves (it falls as 1 / sqrt(N); docs/uncertainty.md), so "
+            "read the ranking of clearly separated inputs only, not the shares; for shares "
+            f"give sample.n >= {SOBOL_N_MIN * (d + 2)} (N = {SOBOL_N_MIN})")
 
 
 def _figures(runs: pd.DataFrame, figures: Sequence[str]) -> list[str]:
@@ -201,8 +237,8 @@ def summarise(study: dict, runs: pd.DataFrame, figures: Sequence[str] = FIGURES
     with ``{i}``) to summarise."""
     sample = study.get("sample")
     if not sample:
-        return {"sampled": False, "message": "the study has no sample: (SPEC 7.2); its "
-                "uncertainty is that of a grid, see its runs"}
+        return {"sampled": False, "message": "the study has no sample (a sample: block, "
+                "SPEC 7.2): its spread is that of its grid, in its runs and compare"}
     axes = study["axes"]
     s_axes = [a for a in axes if a.get("sample")]
     g_axes = [a for a in axes if not a.get("sample")]
@@ -231,7 +267,7 @@ def summarise(study: dict, runs: pd.DataFrame, figures: Sequence[str] = FIGURES
             cell["sensitivity"][col] = sensitivity(sample, points, y)
         cells.append(cell)
     return {"sampled": True, "method": sample["method"], "n": sample["n"],
-            "points": len(points),
+            "points": len(points), "note": small_sample_note(sample, len(points)),
             "seed": sample.get("seed", 0), "axes": sample["axes"],
             "confidence": CONFIDENCE, "limits": [c.key for c in CAUSES if c.key in LIMITS],
             "cells": cells}
@@ -251,6 +287,8 @@ def format_text(result: dict) -> str:
         f" (n = {result['n']}: the nearest Saltelli design, N (D + 2) with N a power of two)")
     lines = [f"sample: {drawn} points{asked}, method {result['method']}, seed {result['seed']}; "
              f"axes {', '.join(result['axes'])}"]
+    if result.get("note"):
+        lines.append(f"note: {result['note']}")
     for cell in result["cells"]:
         where = ", ".join(f"{k}={v}" for k, v in cell["grid"].items()) or "all runs"
         lines += ["", f"{where}: {cell['runs']} runs"
@@ -265,6 +303,8 @@ def format_text(result: dict) -> str:
             rank = ", ".join(f"{n} {_g(sens['axes'][n][key])}" for n in sens["ranking"][:3])
             lines.append(f"  {col:<30} {d['unit']:<5} {d['mean']:>8.4g} {d['sd']:>8.3g} "
                          f"{q['p05']:>8.4g} {q['p50']:>8.4g} {q['p95']:>8.4g}  {key}: {rank}")
+            if sens.get("note"):
+                lines.append(f"    note: {sens['note']}")
         lines.append("  limit                                  past / runs        p   "
                      f"{round(100 * result['confidence'])} % interval")
         for e in cell["exceedance"]:

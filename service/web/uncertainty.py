@@ -116,6 +116,8 @@ def uncertainty_section(study: dict, runs: pd.DataFrame, table, n_cell, png, fig
            "that a run is past each design limit with its 95 % Wilson interval, and the "
            "sampled inputs ranked by their share of each figure's variance (method named "
            "per figure; docs/uncertainty.md).</p>"]
+    if result.get("note"):
+        out.append(f"<p class=muted>note: {_e(result['note'])}</p>")
     g_cols = [a["column"] for a in study["axes"] if not a.get("sample")]
     for cell in result["cells"]:
         where = ", ".join(f"{k} = {v}" for k, v in cell["grid"].items()) or "all runs"

@@ -112,7 +112,45 @@ def test_distribution_quantiles():
 
 def test_a_grid_study_is_not_sampled():
     study = resolve_study(tiny_study())
-    assert summarise(study.to_json(), pd.DataFrame())["sampled"] is False
+    out = summarise(study.to_json(), pd.DataFrame())
+    assert out["sampled"] is False
+    # said plainly (it read "the study has no sample: (SPEC 7.2); ...")
+    assert out["message"] == ("the study has no sample (a sample: block, SPEC 7.2): its spread "
+                              "is that of its grid, in its runs and compare")
+    assert format_text(out) == out["message"]
+
+
+def test_a_small_sobol_sample_and_an_index_outside_0_1_are_noted():
+    """N = 4 base points over 3 axes: indices of the order of their own error (the audit's S1
+    = 1.27 with an empty note). The answer says the base sample is small and why, and names
+    each index outside [0, 1] as sampling error; the text says both."""
+    from beltstudy.service.uncertainty import SOBOL_N_MIN
+
+    study, runs = _linear_study(4 * 5, "sobol")
+    # a figure with interactions (a sine of the linear sum): at N = 4 its estimates leave
+    # [0, 1]
+    y = runs["y"].to_numpy()
+    runs["y"] = np.sin(5 * y / y.std())
+    out = summarise(study.to_json(), runs, figures=("y",))
+    assert out["note"].startswith("base sample N = 4 (20 runs = N (D + 2), D = 3 axes): "
+                                  f"Sobol' indices from fewer than N = {SOBOL_N_MIN}")
+    assert f"give sample.n >= {SOBOL_N_MIN * 5}" in out["note"]
+    sens = out["cells"][0]["sensitivity"]["y"]
+    outside = [f"{k} of {n}" for n, v in sens["axes"].items() for k in ("S1", "ST")
+               if not 0 <= v[k] <= 1]
+    assert outside, sens  # this design's estimates leave [0, 1]
+    assert sens["note"].startswith(outside[0]) and "outside [0, 1]" in sens["note"]
+    assert "sampling error" in sens["note"]
+    text = format_text(out)
+    assert f"note: {out['note']}" in text and f"    note: {sens['note']}" in text
+    # a large enough design has no size note; within [0, 1], no index note
+    big, big_runs = _linear_study(SOBOL_N_MIN * 5, "sobol")
+    out = summarise(big.to_json(), big_runs, figures=("y",))
+    assert out["note"] == ""
+    sens = out["cells"][0]["sensitivity"]["y"]
+    assert sens["note"] == "" or "outside [0, 1]" in sens["note"]
+    lhs, lhs_runs = _linear_study(20, "lhs")
+    assert summarise(lhs.to_json(), lhs_runs, figures=("y",))["note"] == ""
 
 
 def test_rest_and_report_of_a_stored_sampled_study(data_dir, make_settings):
