@@ -339,7 +339,14 @@ def _check_zip_lengths(axes: list[Axis], groups: int) -> None:
 def _run_models(study: StudyIn, axes: list[Axis], models: dict) -> tuple[str, set[str]]:
     """The default model (no friction_model axis) and the models the study runs; a model
     parameter axis of a model it does not run is refused."""
-    if any(a.target.root == "model" for a in axes):
+    model_axis = next((a for a in axes if a.target.root == "model"), None)
+    if model_axis is not None:
+        if study.model is not None:
+            where = (f"zip.{model_axis.group}.{model_axis.name}" if model_axis.group is not None
+                     else f"grid.{model_axis.name}")
+            raise Invalid(f"model: '{study.model}' is for a study without a friction_model "
+                          f"axis; this one runs {where} ({', '.join(model_axis.values)}), so "
+                          "model: would be ignored: leave it out, or list the model in the axis")
         default_model = DEFAULT_MODEL
     else:
         try:

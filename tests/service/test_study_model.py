@@ -151,6 +151,20 @@ def test_without_a_model_axis_the_single_model_or_din_is_used(make_study):
     assert resolve_study(make_study(grid=grid, model="cema")).runs[0].model == "cema"
 
 
+def test_model_beside_a_friction_model_axis_is_refused_naming_both(make_study):
+    """model: is for a study without a friction_model axis; beside one it was silently
+    ignored (as models.<m> of a model not run would be, which is refused too)."""
+    with pytest.raises(Invalid, match=r"^model: 'din' is for a study without a friction_model "
+                                      r"axis; this one runs grid\.friction_model \(cema\), so "
+                                      r"model: would be ignored"):
+        resolve_study(make_study(model="din", grid={"friction_model": ["cema"]}))
+    with pytest.raises(Invalid, match=r"^model: 'cema' .*runs zip\.0\.friction_model "
+                                      r"\(din, cema\)"):
+        resolve_study(make_study(model="cema", grid={"temperature_c": [0]}, zip=[
+            {"friction_model": ["din", "cema"], "load": ["full", "empty"]}]))
+    assert resolve_study(make_study(grid={"friction_model": ["cema"]})).runs[0].model == "cema"
+
+
 @pytest.mark.parametrize(
     ("grid", "message"),
     [
