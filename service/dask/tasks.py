@@ -60,8 +60,13 @@ _MAX_MESSAGE = 1000
 
 
 def _message(exc: BaseException) -> str:
+    """A failed run's ``message``: an input problem in its own words (it names the field:
+    ``scenario.dt_s: 5 s is above ...``); anything else with its exception's name, which
+    says it is a fault of the program rather than of the inputs."""
     text = str(exc).strip().splitlines()
     first = text[0] if text else ""
+    if isinstance(exc, engine.InputError) and first:
+        return first[:_MAX_MESSAGE]
     msg = f"{type(exc).__name__}: {first}" if first else type(exc).__name__
     return msg[:_MAX_MESSAGE]
 

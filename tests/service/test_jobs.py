@@ -1,4 +1,4 @@
-"""Batch sizing of a study's Dask tasks (service/dask/jobs.py)."""
+"""Batch sizing of a study's Dask tasks (service/dask/jobs.py) and a failed run's message."""
 
 from __future__ import annotations
 
@@ -60,3 +60,16 @@ def test_eta_comes_from_the_measured_run_rate_not_the_start_up():
     assert rate.eta_s(remaining, 2) == pytest.approx(remaining / (41 / 2.05), rel=1e-9)
     assert abs(rate.eta_s(remaining, 2) - remaining / 20.0) < 0.2
     assert rate.eta_s(0, 2) == 0.0
+
+
+def test_a_failed_runs_message_is_the_input_problem_in_its_own_words():
+    """An InputError names the field and the fix: no Python class name before it; any other
+    exception keeps its name (a fault of the program, not of the inputs)."""
+    from beltstudy.engine import InputError
+    from beltstudy.service.dask.tasks import _message
+
+    exc = InputError("5 s is above the stability limit 0.01 s", field="scenario.dt_s")
+    assert _message(exc) == "scenario.dt_s: 5 s is above the stability limit 0.01 s"
+    assert _message(ZeroDivisionError("division by zero")) == (
+        "ZeroDivisionError: division by zero")
+    assert _message(RuntimeError()) == "RuntimeError"
