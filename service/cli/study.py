@@ -47,22 +47,38 @@ def register(sub) -> None:
                    help="port to listen on (1 to 65535; default 8000)")
     p.set_defaults(func=cmd_serve)
 
-    p = sub.add_parser("submit", help="submit a study file to a running service")
+    p = sub.add_parser(
+        "submit", help="submit a study file to a running service",
+        description="Submit a study file (YAML or JSON; its conveyor inlined) to a running "
+        "service and print its id; --wait follows its progress to the end. The same study "
+        "submitted again is the existing one.")
     p.add_argument("study", help="study file (YAML or JSON)")
     p.add_argument("--wait", action="store_true", help="show progress until the study ends")
     _client_args(p)
     p.set_defaults(func=cmd_submit)
 
-    p = sub.add_parser("run", help="run a study in this process (same executor and store)")
+    p = sub.add_parser(
+        "run", help="run a study in this process (same executor and store)",
+        description="Run a study file in this process, without a service: the same Dask "
+        "executor (a LocalCluster) and the same store (BELTSTUDY_DATA_DIR), with a progress "
+        "bar.")
     p.add_argument("study", help="study file (YAML or JSON)")
     p.set_defaults(func=cmd_run)
 
-    p = sub.add_parser("status", help="state and progress of one study or of all")
+    p = sub.add_parser(
+        "status", help="state and progress of one study or of all",
+        description="State and progress of one study, or of every study. Asks the service "
+        "(--url, BELTSTUDY_URL); when none answers at the default address, reads the local "
+        "store (BELTSTUDY_DATA_DIR).")
     p.add_argument("id", nargs="?", help="study id (all studies when omitted)")
     _client_args(p)
     p.set_defaults(func=cmd_status)
 
-    p = sub.add_parser("results", help="write a study's run rows to a file")
+    p = sub.add_parser(
+        "results", help="write a study's run rows to a file",
+        description="Write a study's run summary rows (SPEC section 4) to a .parquet, .csv or "
+        ".json file, from the service or, when none answers at the default address, the "
+        "local store.")
     p.add_argument("id", help="study id")
     p.add_argument(
         "-o", "--output", required=True, help="output file: .parquet, .csv or .json (by extension)"
@@ -73,16 +89,24 @@ def register(sub) -> None:
     p = sub.add_parser(
         "report",
         help="write a study's design report: one self-contained HTML page (prints to PDF)",
+        description="Write a study's design report: one self-contained HTML page (verdicts, "
+        "design basis, figures) that prints to PDF, from the service or the local store.",
     )
     p.add_argument("id", help="study id")
     p.add_argument("-o", "--output", required=True, help="output file (.html)")
     _client_args(p)
     p.set_defaults(func=cmd_report)
 
-    p = sub.add_parser("compare", help="candidate / baseline friction model ratios of a study")
+    p = sub.add_parser(
+        "compare", help="candidate / baseline friction model ratios of a study",
+        description="Pair each run of the candidate friction model with the baseline's run "
+        "that differs only in the model, and print the ratios of the metrics (of magnitudes), "
+        "overall and per axis value. Default: nonlin over cema.")
     p.add_argument("id", help="study id")
-    p.add_argument("--baseline", default="cema", help="baseline friction model")
-    p.add_argument("--candidate", default="nonlin", help="candidate friction model")
+    p.add_argument("--baseline", default="cema",
+                   help="baseline friction model (default: %(default)s)")
+    p.add_argument("--candidate", default="nonlin",
+                   help="candidate friction model (default: %(default)s)")
     p.add_argument(
         "--metrics", default="",
         help="comma-separated result columns (default: power_kw and the stop's peak and "
@@ -95,6 +119,9 @@ def register(sub) -> None:
         "uncertainty",
         help="a sampled study's distributions, exceedance probabilities and sensitivity "
         "ranking (docs/uncertainty.md)",
+        description="A sampled study's distributions of the deciding figures, the probability "
+        "that a run is past each design limit, and the sampled inputs ranked by their share "
+        "of each figure's variance (docs/uncertainty.md).",
     )
     p.add_argument("id", help="study id")
     p.add_argument("--json", action="store_true", help="print the whole answer as JSON")
@@ -105,6 +132,8 @@ def register(sub) -> None:
         "demo",
         help="the main job (make run): start the service, submit "
         "studies/paper-comparison.yaml, show progress and the comparison",
+        description="The main job (make run): start the service on a free port, submit the "
+        "study, follow its progress and print the comparison.",
     )
     p.add_argument("--study", default="studies/paper-comparison.yaml", help="study file")
     p.add_argument("--port", type=lambda text: port_number(text, free=True), default=0,

@@ -176,3 +176,25 @@ def test_a_port_out_of_range_is_refused_before_anything_starts(capsys, monkeypat
     assert exc.value.code == 2
     err = capsys.readouterr().err
     assert err.startswith("usage: beltstudy ") and err.strip().endswith(message)
+
+
+@pytest.mark.parametrize("command", ["submit", "run", "status", "results", "report", "compare",
+                                     "uncertainty", "serve", "demo"])
+def test_every_study_command_help_has_a_description(capsys, command):
+    """``beltstudy COMMAND --help`` says what the command does under its usage."""
+    from beltstudy.service.cli import build_parser
+
+    sub = next(a for a in build_parser()._actions if a.dest == "command")
+    assert sub.choices[command].description, command
+    with pytest.raises(SystemExit):
+        main([command, "--help"])
+    out = capsys.readouterr().out
+    assert sub.choices[command].description.split()[0] in out.split("\n\n")[1]
+
+
+def test_compare_help_names_its_defaults(capsys):
+    with pytest.raises(SystemExit):
+        main(["compare", "--help"])
+    out = " ".join(capsys.readouterr().out.split())
+    assert "baseline friction model (default: cema)" in out
+    assert "candidate friction model (default: nonlin)" in out
