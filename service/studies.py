@@ -543,8 +543,10 @@ class StudyService:
     # ---------------------------------------------------------------- delete
     def delete(self, study_id: str) -> dict:
         """Cancel a study's tasks and delete its files; waits at most ``dask_timeout_s`` for
-        its job to leave (the job never waits on Dask: its tasks are released, not awaited)."""
-        self.store.read(study_id)
+        its job to leave (the job never waits on Dask: its tasks are released, not awaited).
+        The answer's ``state`` is ``deleted``; ``cancelled`` says whether it was still queued
+        or running (its tasks cancelled), ``was`` the state it had."""
+        was = self.store.read(study_id).get("state", "")
         with self._lock:
             if study_id in self._deleting:
                 raise Conflict(f"study '{study_id}' is already being deleted")
@@ -560,7 +562,8 @@ class StudyService:
         finally:
             with self._lock:
                 self._deleting.discard(study_id)
-        return {"id": study_id, "state": "cancelled", "deleted": True}
+        return {"id": study_id, "state": "deleted", "deleted": True,
+                "cancelled": job is not None or was in ACTIVE_STATES, "was": was}
 
     # ---------------------------------------------------------------- waiting
     def wait(

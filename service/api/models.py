@@ -143,8 +143,11 @@ class CompareOut(BaseModel):
 
 class Deleted(BaseModel):
     id: str
-    state: Literal["cancelled"]
+    state: Literal["deleted"]
     deleted: bool
+    cancelled: bool = Field(description="the study was still queued or running: its tasks "
+                            "were cancelled")
+    was: str = Field(description="the study's state before it was deleted")
 
 
 class ParamInfo(BaseModel):

@@ -316,10 +316,13 @@ def test_reading_a_finished_study(api, data_dir, finished_study, make_study):
     assert "iso5048" in next(m for m in models if m["name"] == "din")["aliases"]
     belts = client.get("/catalog/belts").json()["belts"]
     assert any(b["id"] == "ST2000" for b in belts)
+    # a finished study is deleted, not cancelled (it answered "state": "cancelled")
     assert client.delete(f"/studies/{sid}").json() == {
         "id": sid,
-        "state": "cancelled",
+        "state": "deleted",
         "deleted": True,
+        "cancelled": False,
+        "was": "done",
     }
     assert _written(data_dir) == []
 

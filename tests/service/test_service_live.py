@@ -164,7 +164,8 @@ def test_two_studies_at_once_and_a_failing_run(live_service, make_study):
     c, _ = svc.client.submit(long)
     st = svc.wait(c["id"], until=lambda st: st["done"] >= 2)
     assert st["state"] == "running"
-    assert svc.client.delete(c["id"]) == {"id": c["id"], "state": "cancelled", "deleted": True}
+    assert svc.client.delete(c["id"]) == {"id": c["id"], "state": "deleted", "deleted": True,
+                                          "cancelled": True, "was": "running"}
     assert not (svc.data_dir / "studies" / c["id"]).exists()
     r = svc.client._http.get(f"/studies/{c['id']}")
     assert r.status_code == 404
