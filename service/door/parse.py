@@ -368,6 +368,8 @@ def load_mapping(path: str | Path, what: str | None = None) -> dict:
             exc.message = f"{what}: {exc.message}"
             exc.args = (exc.message,)
         raise
+    if data is None:  # no content (a UTF-16 byte order mark alone is no content either)
+        raise Invalid(f"{what}: empty; expected a mapping of keys at the top level")
     if not isinstance(data, dict):
         raise Invalid(f"{what}: expected a mapping of keys at the top level")
     return data

@@ -99,6 +99,9 @@ def _integers(data: dict) -> dict:
 
 def conveyor_from_path(ref: str, base_dir: Path | None, root: Path | None) -> tuple[dict, str]:
     """Load a conveyor given by path. With ``root`` (the service), stay inside it."""
+    if not ref.strip():
+        raise Invalid("conveyor: empty; give the path of a conveyor file (e.g. "
+                      "conveyors/slope-5pct.yaml) or the conveyor inline")
     if not ref.isprintable():
         raise Invalid(f"conveyor: path {ref!r} contains control characters")
     rel = Path(ref)

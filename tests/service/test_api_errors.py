@@ -80,6 +80,13 @@ CASES = [
     ),
     ("absolute conveyor", {"conveyor": "/etc/passwd"}, 422, r"conveyor: path '/etc/passwd'"),
     (
+        "empty conveyor path (it read as a path leaving the studies directory)",
+        {"conveyor": ""},
+        422,
+        r"^conveyor: empty; give the path of a conveyor file \(e\.g\. "
+        r"conveyors/slope-5pct\.yaml\) or the conveyor inline$",
+    ),
+    (
         "missing conveyor file",
         {"conveyor": "conveyors/none.yaml"},
         422,

@@ -198,3 +198,18 @@ def test_compare_help_names_its_defaults(capsys):
     out = " ".join(capsys.readouterr().out.split())
     assert "baseline friction model (default: cema)" in out
     assert "candidate friction model (default: nonlin)" in out
+
+
+@pytest.mark.parametrize(("content", "message"), [
+    (b"", "empty; expected a mapping of keys at the top level"),
+    (b"\xff\xfe", "empty; expected a mapping of keys at the top level"),  # UTF-16 BOM alone
+    (b"name: caf\xe9\n", "not UTF-8 text (byte 0xe9 at line 1, column 10): save it as UTF-8"),
+    (b"- 1\n", "expected a mapping of keys at the top level"),
+])
+def test_a_conveyor_file_that_is_not_a_mapping_says_why(env, capsys, tmp_path, make_study,
+                                                         content, message):
+    (tmp_path / "conv.yaml").write_bytes(content)
+    path = tmp_path / "study.yaml"
+    path.write_text(yaml.safe_dump(make_study(conveyor="conv.yaml")))
+    assert main(["run", str(path)]) == 2
+    assert capsys.readouterr().err == f"error: conveyor: conv.yaml: {message}\n"
