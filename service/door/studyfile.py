@@ -252,9 +252,6 @@ def _axes(study: StudyIn, data: dict, bases: tuple[dict, dict], models: dict,
 
 def _add_axis(axes: list[Axis], axis: Axis) -> None:
     """Append ``axis``; no two axes set one field or one inside the other."""
-    name = axis.name
-    where = "sample.axes" if axis.sample else "grid"
-
     def place(a: Axis) -> str:
         """Where the axis was given: ``grid.x``, ``zip[k].x`` or ``sample.axes.x``."""
         if a.sample:
@@ -264,12 +261,11 @@ def _add_axis(axes: list[Axis], axis: Axis) -> None:
     for other in axes:
         if other.target.overlaps(axis.target):
             raise Invalid(
-                f"{where}: axes '{other.name}' and '{name}' both set {other.target.dotted} "
-                f"({place(other)} and {place(axis)}): give it in one of them"
+                f"{place(other)} and {place(axis)} both set {other.target.dotted}: give it "
+                "in one of them"
                 if other.target == axis.target
-                else f"{where}: axes '{other.name}' and '{name}' overlap "
-                f"({other.target.dotted} / {axis.target.dotted}; {place(other)} and "
-                f"{place(axis)})"
+                else f"{place(other)} and {place(axis)} overlap ({other.target.dotted} / "
+                f"{axis.target.dotted}): give one of them"
             )
     axes.append(axis)
 

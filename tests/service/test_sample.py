@@ -158,8 +158,7 @@ def test_sobol_draws_the_nearest_saltelli_design(n, points):
 def test_sobol_size_and_overlap_are_refused():
     with pytest.raises(Invalid, match=r"sample.*n = 9: method sobol.*use n >= 10"):
         resolve_study(sampled(n=9, method="sobol"))
-    with pytest.raises(Invalid, match=r"sample\.axes: axes 'temperature_c' and 'temperature_c' "
-                                      r"both set scenario\.temperature_c "
-                                      r"\(grid\.temperature_c and "
-                                      r"sample\.axes\.temperature_c\)"):
+    with pytest.raises(Invalid, match=r"^grid\.temperature_c and sample\.axes\.temperature_c "
+                                      r"both set scenario\.temperature_c: give it in one of "
+                                      r"them$"):
         resolve_study(sampled(grid={"temperature_c": [0, 10]}))

@@ -176,10 +176,12 @@ def test_model_beside_a_friction_model_axis_is_refused_naming_both(make_study):
         ({"temperature_c": ["hot"]}, r'grid.temperature_c.0: "hot" is not of type "number"'),
         ({"belt.width_m": [-1]}, r"belt.width_m=-1.*greater than or equal to 0.1"),
         ({"belt_type": ["ST9999"]}, r"unknown belt type 'ST9999'"),
-        ({"stop_time_s": [10], "stop": [{"mode": "coast"}]}, r"overlap"),
+        ({"stop_time_s": [10], "stop": [{"mode": "coast"}]},
+         r"^grid\.stop_time_s and grid\.stop overlap \(scenario\.stop\.time_s / "
+         r"scenario\.stop\): give one of them$"),
         ({"temperature_c": [1], "scenario.temperature_c": [2]},
-         r"both set scenario\.temperature_c \(grid\.temperature_c and "
-         r"grid\.scenario\.temperature_c\): give it in one of them"),
+         r"^grid\.temperature_c and grid\.scenario\.temperature_c both set "
+         r"scenario\.temperature_c: give it in one of them$"),
         ({"temperature_c": {"start": 0, "stop": 10, "step": 0}}, r"step must be a non-zero"),
         # a number past its range says the range, not that numbers are not taken
         ({"load": [2.0]}, r"grid \(load=2\.0\): scenario\.load: Input should be less than "
@@ -330,6 +332,6 @@ def test_an_axis_in_zip_and_grid_names_both_places(make_study):
     """The same field in ``grid`` and in a ``zip`` group: the refusal says where each is."""
     body = make_study(grid={"load": ["full"]},
                       zip=[{"load": ["full", "empty"], "temperature_c": [0, 10]}])
-    with pytest.raises(Invalid, match=r"both set scenario\.load \(grid\.load and "
-                                      r"zip.0\.load\): give it in one of them"):
+    with pytest.raises(Invalid, match=r"^grid\.load and zip\.0\.load both set scenario\.load: "
+                                      r"give it in one of them$"):
         resolve_study(body)
