@@ -49,6 +49,18 @@ TABLE_RESPONSES = {200: {"content": {
 }}}
 
 
+def _download(df, format: str, name: str, headers: dict | None = None) -> Response:
+    """A table as a CSV or Parquet download named ``<name>.csv`` / ``<name>.parquet``
+    (``Content-Disposition: attachment``; the name is built from checked study and run ids)."""
+    ext = "csv" if format == "csv" else "parquet"
+    headers = {**(headers or {}),
+               "Content-Disposition": f'attachment; filename="{name}.{ext}"'}
+    if format == "csv":
+        return Response(query.to_csv(df), media_type="text/csv; charset=utf-8",
+                        headers=headers)
+    return Response(query.to_parquet(df), media_type=PARQUET_TYPE, headers=headers)
+
+
 def _with_urls(status: dict) -> dict:
     return {
         **status,
@@ -132,10 +144,8 @@ def get_runs(
         wanted.append(f"friction_model={query.model_name(friction_model, 'friction_model')}")
     if len(df):
         df = query.apply_filters(df, wanted)
-    if format == "csv":
-        return Response(query.to_csv(df), media_type="text/csv; charset=utf-8")
-    if format == "parquet":
-        return Response(query.to_parquet(df), media_type=PARQUET_TYPE)
+    if format != "json":
+        return _download(df, format, f"{study_id}-runs")
     page = df.iloc[offset : offset + limit if limit else None]
     return {
         "study_id": study_id,
@@ -202,11 +212,8 @@ def _run_table(df, source: str, what: str, study_id: str, run_id: str, format: s
     the JSON."""
     headers = {f"X-Beltstudy-{what.capitalize()}": source}
     response.headers.update(headers)  # the JSON answer's own headers
-    if format == "csv":
-        return Response(query.to_csv(df), media_type="text/csv; charset=utf-8",
-                        headers=headers)
-    if format == "parquet":
-        return Response(query.to_parquet(df), media_type=PARQUET_TYPE, headers=headers)
+    if format != "json":
+        return _download(df, format, f"{study_id}-{run_id}-{what}", headers)
     return {
         "study_id": study_id,
         "run_id": run_id,
@@ -231,10 +238,8 @@ def get_accuracy(
     service: StudyService = Depends(get_service),
 ):
     acc, cols = service.accuracy(study_id)
-    if format == "csv":
-        return Response(query.to_csv(acc), media_type="text/csv; charset=utf-8")
-    if format == "parquet":
-        return Response(query.to_parquet(acc), media_type=PARQUET_TYPE)
+    if format != "json":
+        return _download(acc, format, f"{study_id}-accuracy")
     study = service.study_doc(study_id).get("study") or {}
     return {
         "study_id": study_id,

@@ -309,6 +309,10 @@ def test_reading_a_finished_study(api, data_dir, finished_study, make_study):
     assert len(pd.read_csv(io.StringIO(csv.text))) == 2
     pq = client.get(f"/studies/{sid}/runs", params={"format": "parquet"})
     assert len(pd.read_parquet(io.BytesIO(pq.content))) == 6
+    # downloads are named files (no Content-Disposition before: browsers saved "runs")
+    assert csv.headers["content-disposition"] == f'attachment; filename="{sid}-runs.csv"'
+    assert pq.headers["content-disposition"] == f'attachment; filename="{sid}-runs.parquet"'
+    assert "content-disposition" not in client.get(f"/studies/{sid}/runs").headers
     rid = page["runs"][0]["run_id"]
     detail = client.get(f"/studies/{sid}/runs/{rid}").json()
     assert detail["summary"]["run_id"] == rid

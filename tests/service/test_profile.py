@@ -68,6 +68,8 @@ def test_a_study_stores_each_runs_profile_and_the_run_page_reads_it(
     client = TestClient(create_app(make_settings(data_dir)))
     r = client.get(f"/studies/{sid}/runs/{run_id}/profile", params={"format": "parquet"})
     assert r.status_code == 200 and r.headers["x-beltstudy-profile"] == "recomputed"
+    assert r.headers["content-disposition"] == (
+        f'attachment; filename="{sid}-{run_id}-profile.parquet"')
     pd.testing.assert_frame_equal(pd.read_parquet(io.BytesIO(r.content)), stored[run_id])
     r = client.get(f"/studies/{sid}/runs/{run_id}/plots/steady-profile")
     assert r.status_code == 200 and r.content.startswith(b"\x89PNG")
