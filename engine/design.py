@@ -203,7 +203,7 @@ def _within_grip(conv: Conveyor, scenario: Scenario, steady: SteadyResult, each:
             f"{(wanted + sum(fixed.values())) / 1e3:.4g} kN); it is beyond the grip of "
             f"{where} in the stop ({total / 1e3:.4g} kN with the fall of its slack side "
             "doubled, the undamped bound), which may slide (the run's slip check says): "
-            + _hold_fix(steady))
+            + _hold_fix(conv, steady))
     t_gives = brake_stop_time(m, v, te, total, delay, ramp)
     asked = float(scenario.stop.time_s)
     where = ", ".join(dict.fromkeys(pulley_name(conv, steady.loop, n) for n in nodes))
@@ -258,14 +258,19 @@ def _holding_grip(conv: Conveyor, steady: SteadyResult, each: list[float]) -> st
     grip = brake_grip_kn(conv, steady)
     return (f"; this force is beyond the grip of {where} in the stop ({grip:.4g} kN with the "
             "fall of its slack side doubled, the undamped bound), which may slide (the run's "
-            "slip check says): " + _hold_fix(steady))
+            "slip check says): " + _hold_fix(conv, steady))
 
 
-def _hold_fix(steady: SteadyResult) -> str:
+def _hold_fix(conv: Conveyor, steady: SteadyResult) -> str:
     """What lets a holding-sized brake's pulley keep its grip in the stop, in words: on an
-    incline a holdback holds the belt at rest instead; on a decline only more tension or
-    another braked pulley do."""
+    incline a holdback holds the belt at rest instead (where it has one, the brake need not
+    hold it: a given force within the grip); on a decline only more tension or another
+    braked pulley do."""
     if float(steady.loop.gravity_n.sum()) > 0.0:
+        if conv.holdback:
+            return ("its holdback (holdback: true) already holds the belt at rest, so a given "
+                    "brake force (brakes[].force_kn) within the grip, a heavier take-up or a "
+                    "brake on another pulley would avoid it")
         return ("a holdback to hold the belt at rest with a smaller given brake, a "
                 "heavier take-up or a brake on another pulley would avoid it")
     return "a heavier take-up or part of the force on a brake on another pulley would avoid it"

@@ -168,8 +168,20 @@ def test_a_holding_force_beyond_the_grip_is_said():
     assert sizes["brake_force_kn"] == pytest.approx([1.2 * 50.0 * G * 150.0 / 1e3], rel=1e-9)
     note = sizes["brake_note"]
     assert "beyond the grip of drive 1's pulley (head) in the stop" in note
-    assert "holdback" in note
+    assert "a holdback to hold the belt at rest" in note
     assert sizes["brake_grip_kn"] < 0.5 * sizes["brake_force_kn"][0]
+
+
+def test_a_holding_note_does_not_offer_the_holdback_a_conveyor_has():
+    """The same incline with holdback: true: the note says the holdback already holds it and
+    offers a given brake force within the grip instead of a holdback."""
+    conv = steep_incline(takeup={"type": "gravity", "position": "tail", "mass_kg": 12000},
+                         holdback=True)
+    note = auto_sizes(conv, Scenario(stop={"mode": "brake", "time_s": 3.0}),
+                      model="din")["brake_note"]
+    assert "a holdback to hold" not in note
+    assert "its holdback (holdback: true) already holds the belt at rest" in note
+    assert "brakes[].force_kn" in note
 
 
 def test_two_auto_brakes_share_within_each_pulleys_grip():
