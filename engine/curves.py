@@ -157,7 +157,9 @@ def steady_checks(conv, loop: Loop, T: np.ndarray, sf_min: float) -> tuple[dict,
                     f"curve {k} (concave, R {c.radius_m:g} m at {c.at_m:.0f} m): the empty belt "
                     f"lifts off its {strand} idlers, steady tension {T[el[j]] / 1e3:.1f} kN "
                     f"above the lift-off tension {lim[j] / 1e3:.1f} kN (R m'_G g cos a); a "
-                    f"radius of at least {r_need:.0f} m keeps it on them")
+                    f"radius of at least {math.ceil(r_need):.0f} m keeps it on them at these "
+                    "tensions (a larger radius lengthens the curve and moves them a little: "
+                    "rerun to confirm)")
         else:
             out[f"curve{k}_liftoff_tension_kn"] = None
             out[f"curve{k}_liftoff"] = False
@@ -268,7 +270,8 @@ def transient_liftoff(loop: Loop, segs, t_start_end_s: float, t_stop_cmd_s: floa
         if not at_steady:
             ratio = max(ratio, float((np.where(phase == p, hi, -np.inf)[:, on_c]
                                       / lim[on_c]).max()))
-        fixes = [f"a curve radius of at least {c.radius_m * ratio:.0f} m"]
+        fixes = [f"a curve radius of at least {math.ceil(c.radius_m * ratio):.0f} m (at "
+                 "this run's tensions, which a larger radius moves a little: rerun to confirm)"]
         runs_over = bool((steady_over[on_c] > 0.0).any())  # running lifts there as it is
         t_run = float(steady_n[e])
         if p == 0 and not runs_over and t_run < t_lim:
