@@ -24,6 +24,7 @@ from beltstudy.engine.dynamics import codes as C
 from beltstudy.engine.dynamics import records as R
 from beltstudy.engine.dynamics.kernel import run_cycle
 from beltstudy.engine.dynamics.model import System, chord_strain
+from beltstudy.engine.dynamics.profiles import stop_reference
 
 __all__ = ["TransientResult", "KernelRun", "fresh_run", "fresh_model", "simulate", "decode",
            "span_sag_pct", "not_stopped_words",
@@ -349,19 +350,44 @@ def runaway_words(sys: System, t_s: float, v_mean: float, t_stop_cmd: float) -> 
             f"ended there; {what[1]}")
 
 
-def slip_words(first: str, last: str) -> tuple[str, str]:
+def start_levers(sys: System) -> list[str]:
+    """What makes this conveyor's start gentler, by its drives' control: a longer ramp
+    (``start.time_s``) where a vfd drive follows one; for dol drives the coupling, which sets
+    how fast their torque comes on (none: a fluid coupling; a constant-fill fluid coupling: a
+    fill-controlled one; a fill-controlled one: a longer fill, ``coupling_fill_s``). A dol
+    start does not read ``start.time_s``, so it is not offered there."""
+    dr = sys.model.drives
+    levers: list[str] = []
+    if (dr.control == C.VFD).any():
+        levers.append("a longer start (start.time_s)")
+    dol = dr.control == C.DOL
+    if (dol & (dr.coupling == C.COUPLING_NONE)).any():
+        levers.append("a fluid coupling on the dol drives (coupling: fluid_fill_controlled)")
+    if (dol & (dr.coupling == C.COUPLING_FLUID)).any():
+        levers.append("a fill-controlled coupling (coupling: fluid_fill_controlled)")
+    if (dol & (dr.coupling == C.COUPLING_FILL)).any():
+        levers.append("a slower coupling fill (a longer coupling_fill_s)")
+    return levers
+
+
+def _or(words: list[str]) -> str:
+    """``a``, ``a or b``, ``a, b or c``."""
+    return words[0] if len(words) == 1 else ", ".join(words[:-1]) + " or " + words[-1]
+
+
+def slip_words(first: str, last: str, sys: System | None = None) -> tuple[str, str]:
     """How a slip message names a slip from phase ``first`` to phase ``last`` (``start``,
-    ``running``, ``stop``), and what would avoid it: a heavier take-up always, a longer start
-    when it began in the start, a softer stop when it reached the stop."""
+    ``running``, ``stop``), and what would avoid it: a heavier take-up always, a gentler start
+    when it began in the start (:func:`start_levers` of ``sys``; a longer ``start.time_s``
+    without it), a softer stop when it reached the stop."""
     when = _PHASE_WORDS[first] if first == last else \
         f"from {_PHASE_NAMES[first]} into {_PHASE_NAMES[last]}"
     fixes = ["a heavier take-up (more slack-side tension)"]
     if first == "start":
-        fixes.append("a longer start (start.time_s)")
+        fixes += (start_levers(sys) if sys is not None else ["a longer start (start.time_s)"])
     if last == "stop":
         fixes.append("a softer stop (stop time, brake force)")
-    fix = fixes[0] if len(fixes) == 1 else ", ".join(fixes[:-1]) + " or " + fixes[-1]
-    return when, fix
+    return when, _or(fixes)
 
 
 def _segments(sys: System, out, r: dict):
@@ -516,8 +542,8 @@ def running_warnings(sys: System, r: dict, out, names=None) -> list[str]:
                  f"{100.0 * r['vmean_hi'] / v_d:.0f} % of design speed, at t = "
                  f"{r['vmean_hi_t']:.1f} s (plant overspeed switches trip at "
                  f"{100.0 * OVERSPEED_FRACTION:.0f} %): the belt released the stretch of "
-                 "its acceleration; a gentler start (a longer vfd start.time_s, a fluid "
-                 "coupling on a dol drive) stretches it less")
+                 "its acceleration; a gentler start stretches it less: "
+                 + _or(start_levers(sys)))
     t1 = sys.stop_command_s
     t_loop = sys.wave_loop_time_s
     # the judged window; a running phase shorter than SETTLE_LOOPS + 1 wave loop times is
@@ -605,7 +631,7 @@ def _slip_warnings(sys: System, r: dict, out, conveyor=None) -> list[str]:
             t0 = float(drv[i]["slip_first"])
             t1 = float(drv[i]["slip_last"])
             when, fix = slip_words(_run_phase(sys, t0, t_stop_cmd),
-                                   _run_phase(sys, t1, t_stop_cmd))
+                                   _run_phase(sys, t1, t_stop_cmd), sys)
             sm = float(drv[i]["slip_min"])
             margin = (f"lowest slip margin {sm:.2f}" if sm < 1e299 else
                       "the belt slack on both sides of the pulley while it slipped")
@@ -774,14 +800,12 @@ def transient_summary(sys: System, r: dict, out, segs, *, steady_summary=None, c
     sf = summary["safety_factor_dyn"]
     if sf is not None and safety_factor_min is not None and sf < safety_factor_min:
         w.append(f"belt safety factor {sf:.2f} during the transient is below "
-                 f"{safety_factor_min:g} (peak {t_max_dyn / 1e3:.4g} kN near "
+                 f"{safety_factor_min:.3g} (peak {t_max_dyn / 1e3:.4g} kN near "
                  f"{where(sys, jmax)})")
     if summary["stop_wave_ratio"] is not None and summary["stop_wave_ratio"] < 5.0:
         w.append(_fast_stop_words(sys, t_stop_ach, summary, steady_tmax))
     if r["endstop"] > 0:
-        w.append(f"take-up carriage reached its end stop at t = {r['endstop_t']:.1f} s at "
-                 f"{r['endstop_speed']:.2f} m/s (travel {tu.hi - tu.lo:.3g} "
-                 "m): more take-up travel or a heavier take-up would avoid it")
+        w.append(endstop_words(sys, r))
     ran_away = int(r["status"]) == C.RUNAWAY  # the run ended early: said above
     if t_start_ach is None and not ran_away:
         w.append("the belt never reached 99 % of design speed during the start")
@@ -795,6 +819,38 @@ def transient_summary(sys: System, r: dict, out, segs, *, steady_summary=None, c
     return summary, w
 
 
+def endstop_words(sys: System, r: dict) -> str:
+    """The warning of a gravity take-up carriage that reached an end stop: when (the first
+    time), its fastest impact [m/s], which end (the running end, where the counterweight is
+    lowest as the belt stretches, or the rest end, where the carriage is drawn in as the belt
+    shortens: ``x`` grows with the stretch, :func:`~beltstudy.engine.dynamics.model._takeup`),
+    where the carriage ran against its travel, and what avoids it. How far it would have run
+    without the stop the run cannot tell: the cure is a longer ``takeup.travel_m`` (rerun until
+    no end stop is reached) or a heavier take-up, which moves less."""
+    tu = sys.model.takeup
+    tol = 1e-6 * max(tu.hi - tu.lo, 1e-3)
+    run_end = float(r["xmax"]) >= tu.hi - tol
+    # the carriage starts at rest (x = 0), on the rest end's stop when the running stretch
+    # needs all the travel: there a low x is a hit only when nothing else explains it
+    rest_end = float(r["xmin"]) <= tu.lo + tol and (tu.lo < -tol or not run_end)
+    ends = []
+    if run_end:
+        ends.append("the running end (counterweight at its lowest: the belt stretched more than "
+                    "the travel allows)")
+    if rest_end:
+        ends.append("the rest end (carriage drawn in: the belt shortened more than the travel "
+                    "allows)")
+    which = " and ".join(ends) if ends else "an end stop"
+    short = (f", the running stretch alone needs {tu.x_run:.3g} m" if tu.x_run > tu.hi - tol
+             else "")
+    return (f"take-up carriage reached {which} at t = {r['endstop_t']:.1f} s at up to "
+            f"{r['endstop_speed']:.2f} m/s: its travel is {tu.hi - tu.lo:.3g} m "
+            f"(takeup.travel_m; from {tu.lo:.3g} to {tu.hi:.3g} m about the rest position, "
+            f"running position {tu.x_run:.3g} m{short}): a longer takeup.travel_m (rerun "
+            "until no end stop is reached: how far the carriage would have run is not known "
+            "from this run) or a heavier take-up would avoid it")
+
+
 def _sag_words(sys: System, strand: str, sag_pct: float, limit_pct: float, j: int,
                t_low_n: float, whole: dict) -> str:
     """The warning of a transient sag past its limit at the span ending at node ``j``: how
@@ -806,14 +862,16 @@ def _sag_words(sys: System, strand: str, sag_pct: float, limit_pct: float, j: in
     t_at = float(env_t[k])
     phase = _run_phase(sys, t_at, sys.stop_command_s)
     need_kn = t_low_n * sag_pct / limit_pct / 1e3
-    fixes = {"start": "a heavier take-up or a longer start (start.time_s)",
+    fixes = {"start": _or(["a heavier take-up"] + start_levers(sys)),
              "running": "a heavier take-up (more tension at the take-up) or closer idlers",
              "stop": "a heavier take-up, a longer stop (stop time, brake force) or a brake "
                      "nearer the low-tension side"}[phase]
     return (f"transient sag on the {strand} strand {sag_pct:.2f} % exceeds the limit "
             f"{limit_pct:g} % (low tension {t_low_n / 1e3:.3g} kN near {where(sys, j)} at t = "
-            f"{t_at:.1f} s, {_PHASE_WORDS[phase]}); {need_kn:.3g} kN there keeps it within: "
-            f"{fixes} would avoid it")
+            f"{t_at:.1f} s, {_PHASE_WORDS[phase]}); {need_kn:.3g} kN there keeps it within "
+            f"(the sag goes as 1 / T), so the take-up must add at least "
+            f"{need_kn - t_low_n / 1e3:.3g} kN, more where the transient passes only part of "
+            f"a take-up change to that span (rerun to confirm): {fixes} would avoid it")
 
 
 def _up_s(t_s: float) -> str:
@@ -822,6 +880,26 @@ def _up_s(t_s: float) -> str:
     if t_s < 10.0:
         return f"{math.ceil(t_s * 10.0 - 1e-9) / 10.0:g}"
     return f"{math.ceil(t_s - 1e-9):.0f}"
+
+
+#: The rest criterion of a stop's achieved time: the mean belt speed below this fraction of
+#: design speed (the kernel's ``stop_ach``).
+REST_FRACTION = 0.01
+
+
+def ramp_rest_fraction() -> float:
+    """The fraction of a controlled stop's ``stop.time_s`` at which its s-curve reference
+    (:func:`~beltstudy.engine.dynamics.profiles.stop_reference`) falls below
+    :data:`REST_FRACTION` of design speed, by bisection: a belt that follows the reference is
+    at rest by the achieved-time criterion that much before the ramp ends (about 0.885)."""
+    lo, hi = 0.0, 1.0
+    for _ in range(60):
+        mid = 0.5 * (lo + hi)
+        if stop_reference(mid, 1.0, 1.0)[0] > REST_FRACTION:
+            lo = mid
+        else:
+            hi = mid
+    return hi
 
 
 def _fast_stop_words(sys: System, t_stop: float, summary: dict, steady_tmax: float) -> str:
@@ -837,11 +915,15 @@ def _fast_stop_words(sys: System, t_stop: float, summary: dict, steady_tmax: flo
         fix = (f"a controlled stop of stop.time_s {_up_s(need * cyc.t_stop / t_stop)} s or "
                "more would be slower than that")
     elif cyc.stop_mode == C.BRAKE:
-        fix = (f"less brake force (a longer stop.time_s, at least {_up_s(need)} s, for an auto "
-               "brake) would be slower than that")
+        # an auto brake's stop scales with its asked time as a controlled one's does
+        asked = need * cyc.t_stop / t_stop if cyc.t_stop > 0.0 else need
+        fix = (f"less brake force would be slower than that: a smaller given force_kn, or for "
+               f"an auto brake sized by the stop time a stop.time_s of {_up_s(asked)} s or "
+               "more (an auto brake set by holding keeps its force whatever the stop time)")
     else:
-        fix = (f"a controlled stop (vfd drives) taking {_up_s(need)} s or more, or more "
-               "inertia on the drive shafts, would be slower than that")
+        # a belt that follows the s-curve rests at ramp_rest_fraction() of stop.time_s
+        fix = (f"a controlled stop (vfd drives) of stop.time_s {_up_s(need / ramp_rest_fraction())}"
+               " s or more, or more inertia on the drive shafts, would be slower than that")
     return (f"stop in {t_stop:.1f} s is faster than 5 wave loop times (5 x "
             f"{sys.wave_loop_time_s:.1f} s): a high-stress stop{seen}; {fix}")
 

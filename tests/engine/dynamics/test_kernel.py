@@ -4,6 +4,7 @@ handling."""
 
 from __future__ import annotations
 
+import re
 import time
 
 import numpy as np
@@ -293,5 +294,11 @@ def test_carriage_at_its_end_stop_is_a_warning_not_divergence():
     assert res.summary["takeup_travel_m"] == pytest.approx(SHORT_TRAVEL["travel_m"])
     assert res.status == "warning"
     assert "end stop" in res.message and "diverged" not in res.message
+    # the belt stretches in the start: the carriage runs to the counterweight's low end
+    assert "take-up carriage reached the running end" in res.message
+    assert "rest end" not in res.message
+    assert "a longer takeup.travel_m" in res.message
+    # its running stretch (half the belt's elongation, two strands) is beyond the 1 m
+    assert re.search(r"the running stretch alone needs ([\d.]+) m", res.message)
 
 

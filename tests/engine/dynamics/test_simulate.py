@@ -61,6 +61,31 @@ def test_a_slip_message_names_its_phases_and_the_fixes_that_apply():
                                              f"{take_up} or {stop}")
 
 
+def test_a_start_slip_offers_the_levers_its_drives_have():
+    """A dol start does not read start.time_s: its slip is cured by the coupling (a fluid
+    coupling where there is none, a fill-controlled one after a constant-fill one, a slower
+    fill after a fill-controlled one); a vfd drive's by a longer ramp."""
+    from types import SimpleNamespace
+
+    from beltstudy.engine.dynamics import codes as C
+
+    def system(control, coupling):
+        return SimpleNamespace(model=SimpleNamespace(drives=SimpleNamespace(
+            control=np.array(control), coupling=np.array(coupling))))
+
+    vfd = system([C.VFD], [C.COUPLING_NONE])
+    assert "start.time_s" in slip_words("start", "start", vfd)[1]
+    for coupling, lever in ((C.COUPLING_NONE, "a fluid coupling"),
+                            (C.COUPLING_FLUID, "a fill-controlled coupling"),
+                            (C.COUPLING_FILL, "coupling_fill_s")):
+        fix = slip_words("start", "start", system([C.DOL, C.DOL], [coupling, coupling]))[1]
+        assert lever in fix and "start.time_s" not in fix, fix
+        assert fix.startswith("a heavier take-up")
+    both = slip_words("start", "start", system([C.VFD, C.DOL], [C.COUPLING_NONE,
+                                                                 C.COUPLING_FLUID]))[1]
+    assert "start.time_s" in both and "fill-controlled" in both
+
+
 def test_a_slack_stop_reports_where_when_and_how_much():
     """A 3 s controlled stop of the fabric belt slackens the carry: the run ends with a
     warning naming the slack (belt length, where, when, for how long) and what avoids it,
@@ -91,18 +116,24 @@ def test_a_transient_sag_names_when_and_the_tension_that_keeps_it_within():
     with the stop's cures."""
     from types import SimpleNamespace
 
+    from beltstudy.engine.dynamics import codes as C
     from beltstudy.engine.dynamics.simulate import _sag_words
 
     sysm = SimpleNamespace(s_end_m=np.array([0.0, 420.0, 1000.0, 2000.0]),
                            strand=np.array([0, 0, 0, 1]), stop_command_s=92.0,
                            model=SimpleNamespace(cycle=SimpleNamespace(t_pre=2.0,
-                                                                       t_start=60.0)))
+                                                                       t_start=60.0),
+                                                 drives=SimpleNamespace(
+                                                     control=np.array([C.VFD]),
+                                                     coupling=np.array([C.COUPLING_NONE]))))
     whole = {"env_min": np.array([50e3, 8.92e3, 9.5e3, 60e3]),
              "env_min_t": np.array([10.0, 95.47, 96.0, 50.0])}
     msg = _sag_words(sysm, "carry", 3.99, 1.5, 2, 8.92e3, whole)
     assert msg.startswith("transient sag on the carry strand 3.99 % exceeds the limit 1.5 %")
     assert "near 1000 m from the tail on the carry at t = 95.5 s, during the stop" in msg
     assert "23.7 kN there keeps it within" in msg and "a longer stop" in msg
+    # what the take-up must add is a lower bound: 23.7 - 8.92 = 14.8 kN
+    assert "the take-up must add at least 14.8 kN, more where" in msg
     whole["env_min_t"][1] = 40.0  # the same low tension in the start
     assert "a longer start (start.time_s)" in _sag_words(sysm, "carry", 3.99, 1.5, 2, 8.92e3,
                                                           whole)
@@ -129,9 +160,12 @@ def test_results_per_phase():
 def _running(t_loop=10.0, v_d=4.0, t_pre=2.0, t_start=60.0, t_run=300.0):
     """A stand-in for a System as running_warnings reads it."""
     from types import SimpleNamespace
+
+    from beltstudy.engine.dynamics import codes as C
     cyc = SimpleNamespace(t_pre=t_pre, t_start=t_start, t_run=t_run)
+    drives = SimpleNamespace(control=np.array([C.VFD]), coupling=np.array([C.COUPLING_NONE]))
     return SimpleNamespace(v_design=v_d, wave_loop_time_s=t_loop, model=SimpleNamespace(
-        cycle=cyc), stop_command_s=t_pre + t_start + t_run)
+        cycle=cyc, drives=drives), stop_command_s=t_pre + t_start + t_run)
 
 
 def _records(t, v):
@@ -223,6 +257,7 @@ def test_an_overspeed_in_the_start_is_named_above_the_switch_setting():
                                      "nrec": 1}, out)
     assert "overspeed in the start" in msg and "4.8 m/s, 120 % of design speed" in msg
     assert "t = 41.5 s" in msg
+    assert msg.endswith("a gentler start stretches it less: a longer start (start.time_s)")
     assert running_warnings(sysm, {"vmean_hi": OVERSPEED_FRACTION * sysm.v_design,
                                    "vmean_hi_t": 41.5, "status": C.OK, "nrec": 1}, out) == []
 
@@ -287,11 +322,30 @@ def test_a_fast_stop_says_its_tensions_and_what_would_slow_it():
                            261e3)
     assert "ranged 15 to 250 kN against 20 to 261 kN running" in msg
     assert f"stop.time_s {math.ceil(5 * 8.2 * 30.0 / 25.2)} s or more" in msg
-    # a time the message names meets the criterion: rounded up (5 x 1.493 s = 7.465 s)
+    # a coast stop: the controlled stop that rests after 5 x 1.493 s = 7.465 s has a ramp
+    # 1 / 0.884 as long (its s-curve is under 1 % of design speed from 0.884 of stop.time_s),
+    # 8.44 s, rounded up where it is named so that it meets the criterion
     sysm.wave_loop_time_s = 1.493
     sysm.model.cycle.stop_mode = C.COAST
     msg = _fast_stop_words(sysm, 1.6, {}, 261e3)
-    assert "a controlled stop (vfd drives) taking 7.5 s or more" in msg
+    assert "a controlled stop (vfd drives) of stop.time_s 8.5 s or more" in msg
+    # a brake stop asked in 3 s that took 2.5 s: an auto brake for 7.465 x 3 / 2.5 = 8.96 s
+    sysm.model.cycle.stop_mode, sysm.model.cycle.t_stop = C.BRAKE, 3.0
+    msg = _fast_stop_words(sysm, 2.5, {}, 261e3)
+    assert "a stop.time_s of 9 s or more" in msg and "set by holding keeps its force" in msg
+
+
+def test_the_stop_ramp_rests_where_its_s_curve_says():
+    """v / v_s = 1 - x + sin(2 pi x) / (2 pi) near the ramp's end (y = 1 - x small) is
+    (2 pi)^2 y^3 / 6: it falls to 1 % at y = (0.06 / (4 pi^2))^(1/3) = 0.115, x = 0.885 (the
+    next term of the series moves it by under 0.005)."""
+    from beltstudy.engine.dynamics.profiles import stop_reference
+    from beltstudy.engine.dynamics.simulate import REST_FRACTION, ramp_rest_fraction
+
+    x = ramp_rest_fraction()
+    assert x == pytest.approx(1.0 - (6 * REST_FRACTION / (2 * math.pi) ** 2) ** (1 / 3),
+                              abs=0.005)
+    assert stop_reference(x * 40.0, 40.0, 4.0)[0] == pytest.approx(0.04, rel=1e-6)
 
 
 def test_a_rest_hold_exactly_at_the_grip_is_not_called_creep():
