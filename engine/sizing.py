@@ -362,7 +362,10 @@ def installed_at_full_load(conveyor: Conveyor, scenario: Scenario, *, model: str
         for b, force, reason in zip(data["brakes"], sized.force_kn, sized.governed_by,
                                     strict=True):
             if b["force_kn"] == "auto":
-                b["force_kn"] = float(force)
+                # a 0 kN size (a level belt that coasts to rest in time) stays auto: the
+                # largest of the two cases, it is 0 at this case too, and a given force is > 0
+                if force > 0.0:
+                    b["force_kn"] = float(force)
                 why.append(governed_at(reason, sized.at))
             else:
                 why.append(GIVEN)

@@ -211,3 +211,22 @@ def test_a_run_below_the_full_load_keeps_the_motor_and_brake_installed_for_it(st
     assert empty["brake_governed_by"] == f"{why} @ full"
     assert full["brake_governed_by"] == why
     assert empty["rated_power_governed_by"].endswith("@ full")
+
+
+def test_an_auto_brake_sized_to_nothing_stays_auto_below_the_full_load():
+    """A level belt with an auto brake and a coast stop: nothing pulls it at rest (holding 0)
+    and no stop time asks for force, so the brake's size over the run's case and the full load
+    is 0 kN. A run at half load keeps it auto (a given force_kn must be above 0) and ends as a
+    result with a 0 kN brake, as the full-load run does."""
+    from beltstudy.engine.run import run_one
+
+    data = hand_conveyor_dict(profile=[{"length_m": 500, "lift_m": 0}],
+                              brakes=[{"position": "head", "force_kn": "auto"}])
+    conv = parse_conveyor(data)
+    scn = Scenario(load=0.5, stop={"mode": "coast"})
+    assert sum(auto_sizes(conv, scn, model="din")["brake_force_kn"]) == 0.0
+    half = run_one(conv, scn, model="din", dynamics=False).summary
+    full = run_one(conv, scn.model_copy(update={"load": "full"}), model="din",
+                   dynamics=False).summary
+    assert half["brake_force_kn"] == 0.0 == full["brake_force_kn"]
+    assert half["status"] != "failed", half["message"]
