@@ -156,8 +156,16 @@ def steady_checks(conv, forces_n, speed_m_s: float, te_n: float, rated_kw
     return fields, warnings
 
 
+#: What softens a dol drive's start, by its coupling (``Drive.coupling``): the next coupling
+#: that brings its torque on more slowly, or a slower fill of the one it has, or a vfd.
+DOL_SOFTER = {"none": "a fluid coupling, a vfd",
+              "fluid": "a fill-controlled coupling (coupling: fluid_fill_controlled), a vfd",
+              "fluid_fill_controlled": "a slower coupling fill (a longer coupling_fill_s), "
+                                       "a vfd"}
+
+
 def transient_checks(names, drv, rated_n, limit_n, vfd, speed_m_s: float, start_s: float,
-                     running_n=None) -> tuple[dict, list[str]]:
+                     running_n=None, coupling=None) -> tuple[dict, list[str]]:
     """The transient drive fields and the warnings of a drive overloaded in the cycle.
 
     Parameters
@@ -179,6 +187,9 @@ def transient_checks(names, drv, rated_n, limit_n, vfd, speed_m_s: float, start_
     running_n : sequence of float, optional
         Each drive's steady running force [N] (its share of Te): the start time that keeps the
         force within the rating is estimated from it.
+    coupling : sequence of str, optional
+        Each drive's coupling (``none``, ``fluid``, ``fluid_fill_controlled``): a dol drive's
+        softer start is offered by it (:data:`DOL_SOFTER`; ``none`` without it).
 
     Returns
     -------
@@ -225,7 +236,8 @@ def transient_checks(names, drv, rated_n, limit_n, vfd, speed_m_s: float, start_
                            "the force within the rating, a rigid-body estimate")
             fix = f"{longer}) or {motor}"
         else:
-            fix = f"{motor} or a softer start (a fluid coupling, a vfd)"
+            softer = DOL_SOFTER[coupling[k] if coupling is not None else "none"]
+            fix = f"{motor} or a softer start ({softer})"
         warnings.append(f"{said}; {fix} would avoid it")
     return fields, warnings
 

@@ -13,7 +13,9 @@ a heavier take-up, or a longer start, grown by steps until no drive slips and th
 Each figure is the smallest value found with no slip, to :data:`REL_TOL` of itself, searched
 up to :data:`TAKEUP_MAX` times the take-up and :data:`START_MAX` times the start time; beyond
 that the figure is None ("not within ... x"). A rerun costs about a run's start; the search
-takes up to about a dozen each.
+takes up to about a dozen each. Dol drives start on their motor curve whatever
+``start.time_s`` is (their coupling sets how fast the torque comes on), so on a conveyor with
+no vfd drive only the take-up is searched and the start time is None.
 """
 
 from __future__ import annotations
@@ -91,11 +93,19 @@ def _smallest(ok, x0: float, x_max: float) -> tuple[float | None, int]:
     return hi, calls
 
 
+def reads_start_time(conveyor: Conveyor) -> bool:
+    """Whether the start follows ``start.time_s``: a vfd drive's speed loop ramps over it; dol
+    drives start on their motor curve (through their couplings) whatever it is, so a longer
+    start is no remedy for them."""
+    return any(d.control == "vfd" for d in conveyor.drives)
+
+
 def slip_remedy(conveyor: Conveyor, scenario: Scenario, *, model: str, params=None,
                 options: DynamicsOptions | None = None, elements: int,
                 takeup_mass_kg: float | None = None,
                 takeup_tension_kn: float | None = None) -> SlipRemedy | None:
-    """The take-up and the start time that avoid a start's slip (see the module docstring).
+    """The take-up and the start time that avoid a start's slip (see the module docstring);
+    the start time only where the start reads it (:func:`reads_start_time`: a vfd drive).
 
     Parameters
     ----------
@@ -134,9 +144,11 @@ def slip_remedy(conveyor: Conveyor, scenario: Scenario, *, model: str, params=No
     def with_start(t: float) -> Scenario:
         return scn.model_copy(update={"start": scn.start.model_copy(update={"time_s": t})})
 
-    st, k = _smallest(lambda t: not _slips(fixed, with_start(t), model, params, opts, steady),
-                      t0, START_MAX * t0)
-    reruns += k
+    st = None
+    if reads_start_time(conveyor):
+        st, k = _smallest(lambda t: not _slips(fixed, with_start(t), model, params, opts,
+                                               steady), t0, START_MAX * t0)
+        reruns += k
     return SlipRemedy(takeup_mass_kg=tu if gravity else None,
                       takeup_tension_kn=None if gravity else tu, start_time_s=st,
                       reruns=reruns)

@@ -348,8 +348,12 @@ def _complete(prep: _Prepared, scenario, system, tr, model, params, opts, remedy
             (summary.get(f"drive{i + 1}_slip_s") or 0.0) > 0.0
             for i in range(len(conveyor.drives))):
         if say is not None:
-            say("a drive slips in the start: rerunning the start to find the take-up and the "
-                "start time that avoid it (about a dozen reruns)")
+            from beltstudy.engine.remedy import reads_start_time
+            what = ("the take-up and the start time that avoid it (about a dozen reruns)"
+                    if reads_start_time(conveyor) else
+                    "the take-up that avoids it (about ten reruns; a dol start does not read "
+                    "start.time_s)")
+            say(f"a drive slips in the start: rerunning the start to find {what}")
         found = _slip_remedy(conveyor, scenario, model, params, opts, summary)
         if found:
             messages.append(found)
@@ -399,7 +403,7 @@ def _slip_remedy(conveyor, scenario, model, params, opts, summary) -> str:
     """Search what avoids a start's slip (:func:`beltstudy.engine.remedy.slip_remedy`), put the figures
     into ``summary`` and return the sentence for the message ("" when the start did not
     slip)."""
-    from beltstudy.engine.remedy import GROW, START_MAX, TAKEUP_MAX, slip_remedy
+    from beltstudy.engine.remedy import GROW, START_MAX, TAKEUP_MAX, reads_start_time, slip_remedy
 
     gravity = conveyor.takeup.type == "gravity"
     rem = slip_remedy(conveyor, scenario, model=model, params=params, options=opts,
@@ -417,7 +421,11 @@ def _slip_remedy(conveyor, scenario, model, params, opts, summary) -> str:
     else:
         tu = (f"a pretension of {rem.takeup_tension_kn:,.0f} kN" if rem.takeup_tension_kn
               is not None else f"no pretension up to {TAKEUP_MAX:g} x this one")
+    how = (f"found by rerunning the start {rem.reruns} times on the same mesh, to 2 %; steps "
+           f"of x {GROW:g}")
+    if not reads_start_time(conveyor):  # dol drives: the coupling softens their start
+        return (f"slip in the start avoided by {tu} ({how}; a dol start does not read "
+                "start.time_s: its coupling sets how fast the torque comes on)")
     st = (f"a start of {rem.start_time_s:.0f} s" if rem.start_time_s is not None
           else f"no start up to {START_MAX:g} x this one")
-    return (f"slip in the start avoided by {tu} or by {st} (each alone, found by rerunning "
-            f"the start {rem.reruns} times on the same mesh, to 2 %; steps of x {GROW:g})")
+    return f"slip in the start avoided by {tu} or by {st} (each alone, {how})"

@@ -662,9 +662,11 @@ def _drive_loads(sys: System, out, conveyor=None, steady_summary=None
              if conveyor is not None else [f"drive {i + 1}" for i in range(nd)])
     te = steady_summary.get("te_kn") if steady_summary else None
     running = drives.share * float(te) * 1e3 if te is not None else None
+    word = {C.COUPLING_NONE: "none", C.COUPLING_FLUID: "fluid",
+            C.COUPLING_FILL: "fluid_fill_controlled"}
     return transient_checks(names, out.drv, drives.rated, drives.lim0,
                             drives.control == C.VFD, sys.v_design, sys.model.cycle.t_start,
-                            running)
+                            running, [word[int(c)] for c in drives.coupling])
 
 
 def span_sag_pct(sys: System, env_min_n: np.ndarray) -> tuple[np.ndarray, np.ndarray]:

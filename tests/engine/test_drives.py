@@ -146,6 +146,21 @@ def test_an_overload_while_running_offers_no_start_as_its_cure(vfd):
     assert "longer start" not in w and "softer start" not in w
 
 
+@pytest.mark.parametrize("coupling, softer", [
+    (None, "a fluid coupling, a vfd"), ("none", "a fluid coupling, a vfd"),
+    ("fluid", "a fill-controlled coupling (coupling: fluid_fill_controlled), a vfd"),
+    ("fluid_fill_controlled", "a slower coupling fill (a longer coupling_fill_s), a vfd")])
+def test_a_dol_overload_offers_the_coupling_it_does_not_have(coupling, softer):
+    """A dol drive over its rating in the start (running 20 kN within its 24 kN): the softer
+    start offered is the next step from the coupling it has, never the one already fitted."""
+    drv = _drive_result(fmax=30e3, over_s=80.0, f2_int=20e3**2 * 80.0, rms_s=80.0)
+    _, (w,) = transient_checks(["drive 1 (head)"], drv, [24e3], [36e3], [False], 4.0, 10.0,
+                               running_n=[20e3],
+                               coupling=None if coupling is None else [coupling])
+    assert w.endswith(f"or a softer start ({softer}) would avoid it"), w
+    assert "start.time_s" not in w
+
+
 def test_transient_checks_quiet_within_the_rating_and_a_short_overload():
     """Above the rating for less than OVERLOAD_S_MAX, never at the limit, RMS within: no
     warning; a cycle that never started has no RMS."""

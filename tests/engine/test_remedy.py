@@ -2,7 +2,7 @@
 
 from __future__ import annotations
 
-from beltstudy.engine.conveyor import Scenario, load_conveyor
+from beltstudy.engine.conveyor import Scenario, load_conveyor, parse_conveyor
 from beltstudy.engine.run import run_one
 from tests.conftest import CONVEYORS
 
@@ -34,3 +34,25 @@ def test_the_take_up_and_start_time_that_avoid_a_start_slip_are_found_and_are_th
     # without the option, nothing is searched
     plain = run_one(conv, scn, model="din").summary
     assert plain["slip_free_takeup_mass_kg"] is None and plain["slip_free_start_time_s"] is None
+
+
+def test_a_dol_start_that_slips_is_offered_the_take_up_alone():
+    """Dol drives start on their motor curve whatever start.time_s is (the same conveyor's
+    20 s and 60 s starts give the same start), so the remedy searches only the take-up: the
+    start time is None, the message says why, and the take-up it names avoids the slip."""
+    data = load_conveyor(CONVEYORS / "slope-5pct.yaml").model_dump(mode="json", by_alias=True)
+    data["drives"][0]["control"] = "dol"
+    data["takeup"]["mass_kg"] = 20000
+    conv = parse_conveyor(data)
+    scn = Scenario(elements=60, run_s=10, stop={"mode": "coast"})
+    said: list[str] = []
+    s = run_one(conv, scn, model="din", remedy=True, say=said.append).summary
+    assert s["drive1_slip_s"] > 0.0
+    assert said and "a dol start does not read start.time_s" in said[0]
+    assert s["slip_free_start_time_s"] is None
+    m = s["slip_free_takeup_mass_kg"]
+    assert m is not None and m > 20000
+    assert f"slip in the start avoided by a take-up of {m:,.0f} kg (found by" in s["message"]
+    assert "or by a start of" not in s["message"] and "no start up to" not in s["message"]
+    fixed = parse_conveyor({**data, "takeup": {**data["takeup"], "mass_kg": m}})
+    assert run_one(fixed, scn, model="din").summary["drive1_slip_s"] == 0.0
