@@ -179,7 +179,8 @@ def steady_checks(conv, loop: Loop, T: np.ndarray, sf_min: float) -> tuple[dict,
 
 
 def transient_liftoff(loop: Loop, segs, t_start_end_s: float, t_stop_cmd_s: float,
-                      start_time_s: float, steady_n: np.ndarray) -> tuple[dict, list[str]]:
+                      start_time_s: float, steady_n: np.ndarray,
+                      softer_start: str | None = None) -> tuple[dict, list[str]]:
     """Lift-off at concave curves during the cycle: ``liftoff_*`` fields and one warning per
     phase in which the belt leaves its idlers.
 
@@ -199,6 +200,9 @@ def transient_liftoff(loop: Loop, segs, t_start_end_s: float, t_stop_cmd_s: floa
         The scenario's start time [s] (the remedy's rigid-body estimate).
     steady_n : ndarray
         Steady running tensions per spring [N].
+    softer_start : str, optional
+        What softens a start that does not read ``start.time_s`` (dol drives: their
+        couplings), offered instead of a longer start; None: the start follows its time.
 
     Returns
     -------
@@ -274,7 +278,9 @@ def transient_liftoff(loop: Loop, segs, t_start_end_s: float, t_stop_cmd_s: floa
                  "this run's tensions, which a larger radius moves a little: rerun to confirm)"]
         runs_over = bool((steady_over[on_c] > 0.0).any())  # running lifts there as it is
         t_run = float(steady_n[e])
-        if p == 0 and not runs_over and t_run < t_lim:
+        if p == 0 and not runs_over and softer_start is not None:
+            fixes.insert(0, softer_start)
+        elif p == 0 and not runs_over and t_run < t_lim:
             t_need = start_time_s * (t_peak - t_run) / (t_lim - t_run)
             fixes.insert(0, f"a start of about {t_need:.0f} s (start.time_s; rigid-body "
                             "estimate)")

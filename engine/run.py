@@ -25,7 +25,8 @@ from beltstudy.engine.curves import transient_liftoff
 from beltstudy.engine.design import auto_sizes, summary_fields
 from beltstudy.engine.dynamics import DynamicsOptions, TransientResult, build_system, simulate
 from beltstudy.engine.dynamics.model import check_scenario
-from beltstudy.engine.dynamics.simulate import span_sag_pct
+from beltstudy.engine.dynamics.simulate import span_sag_pct, start_levers
+from beltstudy.engine.remedy import reads_start_time
 from beltstudy.engine.results import check_summary
 from beltstudy.engine.sizing import installed_at_full_load
 from beltstudy.engine.statics import (
@@ -338,7 +339,8 @@ def _complete(prep: _Prepared, scenario, system, tr, model, params, opts, remedy
     cyc = system.model.cycle
     lifted, lift_warnings = transient_liftoff(
         steady.loop, tr.raw["segments"], cyc.t_pre + cyc.t_start, system.stop_command_s,
-        max(cyc.t_start, tr.summary.get("start_time_s") or 0.0), system.steady_tension_n)
+        max(cyc.t_start, tr.summary.get("start_time_s") or 0.0), system.steady_tension_n,
+        None if reads_start_time(conveyor) else " or ".join(start_levers(system)))
     summary.update(lifted)
     if lift_warnings:
         messages.append("; ".join(lift_warnings))
@@ -348,7 +350,6 @@ def _complete(prep: _Prepared, scenario, system, tr, model, params, opts, remedy
             (summary.get(f"drive{i + 1}_slip_s") or 0.0) > 0.0
             for i in range(len(conveyor.drives))):
         if say is not None:
-            from beltstudy.engine.remedy import reads_start_time
             what = ("the take-up and the start time that avoid it (about a dozen reruns)"
                     if reads_start_time(conveyor) else
                     "the take-up that avoids it (about ten reruns; a dol start does not read "
@@ -403,7 +404,7 @@ def _slip_remedy(conveyor, scenario, model, params, opts, summary) -> str:
     """Search what avoids a start's slip (:func:`beltstudy.engine.remedy.slip_remedy`), put the figures
     into ``summary`` and return the sentence for the message ("" when the start did not
     slip)."""
-    from beltstudy.engine.remedy import GROW, START_MAX, TAKEUP_MAX, reads_start_time, slip_remedy
+    from beltstudy.engine.remedy import GROW, START_MAX, TAKEUP_MAX, slip_remedy
 
     gravity = conveyor.takeup.type == "gravity"
     rem = slip_remedy(conveyor, scenario, model=model, params=params, options=opts,

@@ -64,6 +64,19 @@ def test_a_fast_start_lifts_the_belt_at_a_concave_curve_and_a_slow_one_does_not(
     assert "lift-off" not in slow.summary["message"]
 
 
+def test_a_dol_start_that_lifts_the_belt_is_offered_its_coupling_not_a_start_time():
+    """The valley conveyor on a dol drive without a coupling: the motor's torque comes on at
+    once, the belt lifts at the curve in the start, and the cure offered is a fluid coupling
+    (a dol start does not read start.time_s) or the radius."""
+    d = valley_conveyor().model_dump(mode="json", by_alias=True)
+    d["drives"][0]["control"] = "dol"
+    s = run_one(parse_conveyor(d), Scenario(run_s=30, elements=100), model="din").summary
+    said = re.findall(r"lift-off in the start[^;]*; [^;]* avoids it", s["message"])
+    assert said, s["message"]
+    assert "a fluid coupling on the dol drives" in said[0]
+    assert "start.time_s" not in said[0] and "a start of about" not in said[0]
+
+
 def test_tension_front_speed_and_height_through_a_curve():
     """As tests/engine/integration/test_dynamics_physics.py::test_tension_front_speed_and_height
     on a route with a concave curve (R 2 000 m from 0 to 5 % at 1 000 m, an arc of 100 m
