@@ -828,7 +828,10 @@ def endstop_words(sys: System, r: dict) -> str:
     shortens: ``x`` grows with the stretch, :func:`~beltstudy.engine.dynamics.model._takeup`),
     where the carriage ran against its travel, and what avoids it. How far it would have run
     without the stop the run cannot tell: the cure is a longer ``takeup.travel_m`` (rerun until
-    no end stop is reached) or a heavier take-up, which moves less."""
+    no end stop is reached); at the rest end also a heavier take-up, whose weight resists the
+    pull that draws the carriage in. At the running end a heavier take-up is no cure: the
+    stretch between rest and running comes from the drive force (``x_run``), not from the
+    counterweight, which only adds to rest and running tension alike."""
     tu = sys.model.takeup
     tol = 1e-6 * max(tu.hi - tu.lo, 1e-3)
     run_end = float(r["xmax"]) >= tu.hi - tol
@@ -850,7 +853,8 @@ def endstop_words(sys: System, r: dict) -> str:
             f"(takeup.travel_m; from {tu.lo:.3g} to {tu.hi:.3g} m about the rest position, "
             f"running position {tu.x_run:.3g} m{short}): a longer takeup.travel_m (rerun "
             "until no end stop is reached: how far the carriage would have run is not known "
-            "from this run) or a heavier take-up would avoid it")
+            "from this run)" + (" or a heavier take-up, which resists the pull drawing it in,"
+                                if rest_end else "") + " would avoid it")
 
 
 def _sag_words(sys: System, strand: str, sag_pct: float, limit_pct: float, j: int,

@@ -298,6 +298,8 @@ def test_carriage_at_its_end_stop_is_a_warning_not_divergence():
     assert "take-up carriage reached the running end" in res.message
     assert "rest end" not in res.message
     assert "a longer takeup.travel_m" in res.message
+    # the stretch comes from the drive force, not the counterweight: no heavier take-up offered
+    assert "heavier take-up, which resists" not in res.message
     # its running stretch (half the belt's elongation, two strands) is beyond the 1 m
     assert re.search(r"the running stretch alone needs ([\d.]+) m", res.message)
 

@@ -367,3 +367,30 @@ def test_a_rest_hold_exactly_at_the_grip_is_not_called_creep():
         assert bool(w) == creeps
         if creeps:
             assert f"slack-side tension of {slack * 1.001 / 1e3:.4g} kN" in w[0]
+
+
+def test_an_end_stop_names_its_end_and_the_cures_that_apply_there():
+    """A carriage with 10 m of travel about its rest position (-5 to 5 m, running at 1 m)
+    drawn in to -5 m: the rest end, with a longer travel or a heavier take-up; run out to 5 m:
+    the running end, with a longer travel only; a running stretch (12 m) beyond the whole
+    travel is named with its need."""
+    from types import SimpleNamespace
+
+    from beltstudy.engine.dynamics.simulate import endstop_words
+
+    def words(lo, hi, x_run, xmin, xmax):
+        sysm = SimpleNamespace(model=SimpleNamespace(takeup=SimpleNamespace(
+            lo=lo, hi=hi, x_run=x_run)))
+        return endstop_words(sysm, {"xmin": xmin, "xmax": xmax, "endstop_t": 70.0,
+                                    "endstop_speed": 0.4})
+
+    rest = words(-5.0, 5.0, 1.0, -5.0, 2.0)
+    assert rest.startswith("take-up carriage reached the rest end") and "running end" not in rest
+    assert "heavier take-up, which resists" in rest and "a longer takeup.travel_m" in rest
+    run = words(-5.0, 5.0, 1.0, -1.0, 5.0)
+    assert run.startswith("take-up carriage reached the running end")
+    assert "heavier take-up" not in run and "running stretch alone" not in run
+    # the rest position on the rest end's stop (x_run beyond the travel): x = 0 there is not
+    # a hit at the rest end, and the running stretch's need is named
+    full = words(0.0, 10.0, 12.0, 0.0, 10.0)
+    assert "rest end" not in full and "the running stretch alone needs 12 m" in full
