@@ -829,9 +829,10 @@ def endstop_words(sys: System, r: dict) -> str:
     where the carriage ran against its travel, and what avoids it. How far it would have run
     without the stop the run cannot tell: the cure is a longer ``takeup.travel_m`` (rerun until
     no end stop is reached); at the rest end also a heavier take-up, whose weight resists the
-    pull that draws the carriage in. At the running end a heavier take-up is no cure: the
-    stretch between rest and running comes from the drive force (``x_run``), not from the
-    counterweight, which only adds to rest and running tension alike."""
+    pull that draws the carriage in. At the running end a heavier take-up is not offered: the
+    stretch between rest and running comes from the drive force (``x_run``); the counterweight
+    adds to rest and running tension alike and shortens it only by the sag law's part (a
+    stiffer chord at higher tension), little against the elastic part."""
     tu = sys.model.takeup
     tol = 1e-6 * max(tu.hi - tu.lo, 1e-3)
     run_end = float(r["xmax"]) >= tu.hi - tol
