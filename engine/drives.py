@@ -156,12 +156,13 @@ def steady_checks(conv, forces_n, speed_m_s: float, te_n: float, rated_kw
     return fields, warnings
 
 
-#: What softens a dol drive's start, by its coupling (``Drive.coupling``): the next coupling
-#: that brings its torque on more slowly, or a slower fill of the one it has, or a vfd.
-DOL_SOFTER = {"none": "a fluid coupling, a vfd",
-              "fluid": "a fill-controlled coupling (coupling: fluid_fill_controlled), a vfd",
-              "fluid_fill_controlled": "a slower coupling fill (a longer coupling_fill_s), "
-                                       "a vfd"}
+#: What brings a dol drive's torque on more slowly, by its coupling (``Drive.coupling``): the
+#: next coupling, or a slower fill of the one it has.
+COUPLING_NEXT = {"none": "a fluid coupling",
+                 "fluid": "a fill-controlled coupling (coupling: fluid_fill_controlled)",
+                 "fluid_fill_controlled": "a slower coupling fill (a longer coupling_fill_s)"}
+#: What softens a dol drive's start in an overload warning: :data:`COUPLING_NEXT` or a vfd.
+DOL_SOFTER = {k: f"{v}, a vfd" for k, v in COUPLING_NEXT.items()}
 
 
 def transient_checks(names, drv, rated_n, limit_n, vfd, speed_m_s: float, start_s: float,

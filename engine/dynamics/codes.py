@@ -10,7 +10,7 @@ from __future__ import annotations
 from beltstudy.engine.conveyor import CURVE_POINTS_MAX
 
 __all__ = ["OK", "DIVERGED", "RUNAWAY", "V_FAIL_FACTOR",
-           "RUNAWAY_FACTOR",
+           "RUNAWAY_FACTOR", "REST_FRACTION",
            "BLOCK_MAX", "CURVE_MAX", "SEG_MAX", "VFD", "DOL", "COUPLING_NONE", "COUPLING_FLUID",
            "COUPLING_FILL", "COAST", "BRAKE", "CONTROLLED", "RELATIVE", "SUPPORT", "HOLD", "RUN",
            "OFF", "LAW_CONST", "LAW_EXACT", "LAW_LINEAR"]
@@ -26,6 +26,10 @@ V_FAIL_FACTOR = 100.0
 #: the example conveyors overshoot the design speed by 11 % at most (the 16.8 km overland in a
 #: 60 s start), so a belt at twice it is not being held by anything.
 RUNAWAY_FACTOR = 2.0
+#: A stopping belt is at rest when its mass-weighted mean speed is below this fraction of the
+#: design speed: its achieved stop time (``stop_ach``) and the stop window's rule
+#: (docs/dynamics.md, *The stop window*).
+REST_FRACTION = 0.01
 #: Largest implicit block (elements + carriage) the solver takes.
 BLOCK_MAX = 16
 #: Most points of a motor curve or a brake force curve.

@@ -1042,9 +1042,9 @@ def _switches(model: Model, st, rs):
     cyc, t = model.cycle, rs.t
     if rs.stopping and rs.stop_ach < 0.0:
         rs.stop_dist += rs.v_mean * cyc.dt
-    if rs.stopping and rs.stop_ach < 0.0 and rs.v_mean < 0.01 * cyc.v_d:
+    if rs.stopping and rs.stop_ach < 0.0 and rs.v_mean < C.REST_FRACTION * cyc.v_d:
         rs.stop_ach = t - rs.t_stopcmd
-    if rs.stopping and not rs.stopped and rs.v_mean < 0.01 * cyc.v_d and (
+    if rs.stopping and not rs.stopped and rs.v_mean < C.REST_FRACTION * cyc.v_d and (
             cyc.stop_mode != C.CONTROLLED or t >= rs.t_stopcmd + cyc.t_stop):
         rs.stopped, rs.t_stopped = True, t
         rs.t_limit = min(t + cyc.post_rest, rs.t_end)  # at rest within the stop window

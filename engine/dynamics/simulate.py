@@ -19,11 +19,11 @@ import numpy as np
 import pandas as pd
 
 from beltstudy.engine.catalog import resolve_belt
-from beltstudy.engine.drives import transient_checks
+from beltstudy.engine.drives import COUPLING_NEXT, transient_checks
 from beltstudy.engine.dynamics import codes as C
 from beltstudy.engine.dynamics import records as R
 from beltstudy.engine.dynamics.kernel import run_cycle
-from beltstudy.engine.dynamics.model import System, chord_strain
+from beltstudy.engine.dynamics.model import COUPLING_CODES, System, chord_strain
 from beltstudy.engine.dynamics.profiles import stop_reference
 
 __all__ = ["TransientResult", "KernelRun", "fresh_run", "fresh_model", "simulate", "decode",
@@ -350,6 +350,10 @@ def runaway_words(sys: System, t_s: float, v_mean: float, t_stop_cmd: float) -> 
             f"ended there; {what[1]}")
 
 
+#: Each coupling code's name in a conveyor file (the inverse of the model's map).
+COUPLING_WORDS = {code: word for word, code in COUPLING_CODES.items()}
+
+
 def start_levers(sys: System) -> list[str]:
     """What makes this conveyor's start gentler, by its drives' control: a longer ramp
     (``start.time_s``) where a vfd drive follows one; for dol drives the coupling, which sets
@@ -360,13 +364,9 @@ def start_levers(sys: System) -> list[str]:
     levers: list[str] = []
     if (dr.control == C.VFD).any():
         levers.append("a longer start (start.time_s)")
-    dol = dr.control == C.DOL
-    if (dol & (dr.coupling == C.COUPLING_NONE)).any():
-        levers.append("a fluid coupling on the dol drives (coupling: fluid_fill_controlled)")
-    if (dol & (dr.coupling == C.COUPLING_FLUID)).any():
-        levers.append("a fill-controlled coupling (coupling: fluid_fill_controlled)")
-    if (dol & (dr.coupling == C.COUPLING_FILL)).any():
-        levers.append("a slower coupling fill (a longer coupling_fill_s)")
+    fitted = {COUPLING_WORDS[int(c)] for c in dr.coupling[dr.control == C.DOL]}
+    levers += [f"{lever} on the dol drives" for coupling, lever in COUPLING_NEXT.items()
+               if coupling in fitted]
     return levers
 
 
@@ -662,11 +662,9 @@ def _drive_loads(sys: System, out, conveyor=None, steady_summary=None
              if conveyor is not None else [f"drive {i + 1}" for i in range(nd)])
     te = steady_summary.get("te_kn") if steady_summary else None
     running = drives.share * float(te) * 1e3 if te is not None else None
-    word = {C.COUPLING_NONE: "none", C.COUPLING_FLUID: "fluid",
-            C.COUPLING_FILL: "fluid_fill_controlled"}
     return transient_checks(names, out.drv, drives.rated, drives.lim0,
                             drives.control == C.VFD, sys.v_design, sys.model.cycle.t_start,
-                            running, [word[int(c)] for c in drives.coupling])
+                            running, [COUPLING_WORDS[int(c)] for c in drives.coupling])
 
 
 def span_sag_pct(sys: System, env_min_n: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
@@ -889,9 +887,9 @@ def _up_s(t_s: float) -> str:
     return f"{math.ceil(t_s - 1e-9):.0f}"
 
 
-#: The rest criterion of a stop's achieved time: the mean belt speed below this fraction of
-#: design speed (the kernel's ``stop_ach``).
-REST_FRACTION = 0.01
+#: The rest criterion of a stop's achieved time (:data:`~beltstudy.engine.dynamics.codes.
+#: REST_FRACTION`, the kernel's).
+REST_FRACTION = C.REST_FRACTION
 
 
 def ramp_rest_fraction() -> float:
