@@ -23,6 +23,7 @@ from pydantic import (
     ConfigDict,
     Field,
     ValidationError,
+    field_validator,
     model_validator,
 )
 
@@ -420,8 +421,9 @@ class Drive(_Model):
         "[kg m2] (at most 1e7, beyond any drive train)"
     )
     rated_power_kw: PositiveFloat | None = Field(
-        None, le=POWER_MAX_KW, description="rated power [kW]; default: steady power x 1.25 "
-        "(at most 30 000: three times the largest conveyor drives built)"
+        None, le=POWER_MAX_KW, description="rated power [kW], or auto (the same as leaving "
+        "it out): steady power x 1.25 (at most 30 000: three times the largest conveyor drives "
+        "built)"
     )
     torque_limit: float = Field(1.5, gt=0, description="max force as a multiple of rated force")
     control: Literal["vfd", "dol"] = Field(
@@ -452,6 +454,12 @@ class Drive(_Model):
         DRIVE_EFFICIENCY, gt=0, le=1.0, description="drive train efficiency from the motor "
         "shaft to the pulley (gear unit and coupling) [-]: the motor power a drive needs is "
         "its pulley power / efficiency (x efficiency regenerating); default 0.95")
+
+    @field_validator("rated_power_kw", mode="before")
+    @classmethod
+    def _auto_power(cls, v):
+        # auto, as the take-up mass and the brake force say it: the size of the design basis
+        return None if isinstance(v, str) and v.strip().lower() == "auto" else v
 
     @model_validator(mode="after")
     def _curve_and_coupling(self) -> Drive:

@@ -166,7 +166,8 @@ DOL_SOFTER = {k: f"{v}, a vfd" for k, v in COUPLING_NEXT.items()}
 
 
 def transient_checks(names, drv, rated_n, limit_n, vfd, speed_m_s: float, start_s: float,
-                     running_n=None, coupling=None) -> tuple[dict, list[str]]:
+                     running_n=None, coupling=None, stop_s: float | None = None,
+                     stop_accel_n=None) -> tuple[dict, list[str]]:
     """The transient drive fields and the warnings of a drive overloaded in the cycle.
 
     Parameters
@@ -175,8 +176,8 @@ def transient_checks(names, drv, rated_n, limit_n, vfd, speed_m_s: float, start_
         Each drive's name for the warnings (``drive 1 (head)``).
     drv : numpy structured array
         The kernel's per-drive results (:data:`~beltstudy.engine.dynamics.records.
-        DRIVE_RESULT`): ``fmax`` [N], ``over_s``, ``lim_s``, ``rms_s`` [s], ``f2_int``
-        [N^2 s].
+        DRIVE_RESULT`): ``fmax`` [N], ``fmax_t``, ``over_s``, ``over_stop_s``, ``lim_s``,
+        ``rms_s`` [s], ``f2_int`` [N^2 s].
     rated_n, limit_n : sequence of float
         Each drive's rated force ``P_N / v`` and torque limit (as a force at the pulley) [N].
     vfd : sequence of bool
@@ -191,6 +192,15 @@ def transient_checks(names, drv, rated_n, limit_n, vfd, speed_m_s: float, start_
     coupling : sequence of str, optional
         Each drive's coupling (``none``, ``fluid``, ``fluid_fill_controlled``): a dol drive's
         softer start is offered by it (:data:`DOL_SOFTER`; ``none`` without it).
+    stop_s : float, optional
+        The stop time of a controlled stop [s] (None for a coast or brake stop, in which the
+        drives are off): an overload mostly after the stop command is cured by a longer stop,
+        not a longer start.
+    stop_accel_n : sequence of float, optional
+        Each drive's share of the rigid-body deceleration force at the controlled stop's peak
+        deceleration, ``share x m a_peak`` [N]: the stop time that keeps the force within the
+        rating is estimated from it (the force the run reached may be capped by the pulley's
+        grip or the torque limit, so it would under-estimate).
 
     Returns
     -------
@@ -215,8 +225,13 @@ def transient_checks(names, drv, rated_n, limit_n, vfd, speed_m_s: float, start_
         if rated <= 0.0 or not (over_s > OVERLOAD_S_MAX or at_limit or hot):
             continue
         pct = 100.0 * (fmax / rated - 1.0)
+        over_stop = float(d["over_stop_s"])
+        in_stop = over_stop > over_s - over_stop  # the larger part of the overload's time
+        split = (f" ({over_s - over_stop:.1f} s in the start and run, {over_stop:.1f} s in the "
+                 "stop)" if over_stop > 0.0 else "")
         said = (f"{name} was above its rated force ({rated / 1e3:.4g} kN) for {over_s:.1f} s "
-                f"of the cycle, at most {pct:.0f} % over its rating ({fmax / 1e3:.4g} kN)")
+                f"of the cycle{split}, at most {pct:.0f} % over its rating ({fmax / 1e3:.4g} kN "
+                f"at t = {float(d['fmax_t']):.1f} s)")
         if at_limit:
             said += (f", at its torque limit ({float(limit_n[k]) / 1e3:.4g} kN) for "
                      f"{lim_s:.1f} s")
@@ -225,7 +240,19 @@ def transient_checks(names, drv, rated_n, limit_n, vfd, speed_m_s: float, start_
                      "rating (the motor overheats when the cycle repeats)")
         motor = f"a larger motor (at least {fmax * speed_m_s / 1e3:.0f} kW keeps it within)"
         f_run = float(running_n[k]) if running_n is not None else None
-        if f_run is not None and f_run >= rated:
+        if in_stop:
+            # braking the belt: a slower stop asks less of the drive, a longer start nothing
+            if vfd[k] and stop_s is not None:
+                longer = f"a longer stop (stop.time_s, now {stop_s:g} s"
+                f_dec = float(stop_accel_n[k]) if stop_accel_n is not None else 0.0
+                if f_run is not None and rated + f_run > 0.0 and f_dec > rated + f_run:
+                    # rigid body: F = f_run - m a, the peak deceleration as 1 / stop time
+                    longer += (f"; about {stop_s * f_dec / (rated + f_run):.0f} s keeps the "
+                               "force within the rating, a rigid-body estimate")
+                fix = f"{longer}) or {motor}"
+            else:
+                fix = motor
+        elif f_run is not None and f_run >= rated:
             # running itself needs more than the rating: no start keeps the force within it
             fix = (f"{motor}, or the load shared by more drives (its running force, "
                    f"{f_run / 1e3:.4g} kN, is itself above the rating: no start avoids it)")

@@ -388,6 +388,7 @@ def _drive_results(model, st, out, rs):
         f = max(abs(drives.force[dk]), abs(drives.f_start[dk]))
         if f > d.fmax:
             d.fmax = f
+            d.fmax_t = t
         pw = abs(drives.force[dk] * shafts.vs[s])
         if pw > d.pmax:
             d.pmax = pw
@@ -396,6 +397,8 @@ def _drive_results(model, st, out, rs):
         fa = abs(drives.force[dk])
         if fa > drives.rated[dk]:
             d.over_s += dt
+            if rs.stopping:
+                d.over_stop_s += dt
         if drives.sat[dk] == 1:
             d.lim_s += dt
         if not rs.stopped:

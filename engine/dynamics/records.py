@@ -388,13 +388,14 @@ RUN = np.dtype([
 #: slipping (-1 never); after the start command: time with |force| at the rim above the rated
 #: force [s], time at the speed loop's torque limit [s], the force squared integrated [N^2 s]
 #: and the time it was integrated over [s] (until the belt is at rest after the stop: the RMS
-#: force, :mod:`beltstudy.engine.drives`).
+#: force, :mod:`beltstudy.engine.drives`); when the largest force was [s] and the part of the
+#: time above the rated force after the stop command [s] (the overload's phase).
 DRIVE_RESULT = np.dtype([
     ("fmax", np.float64), ("pmax", np.float64), ("slip_min", np.float64),
     ("slip_min_t", np.float64), ("slip_s", np.float64), ("slip_m", np.float64),
     ("slip_first", np.float64), ("slip_last", np.float64),
     ("over_s", np.float64), ("lim_s", np.float64), ("f2_int", np.float64),
-    ("rms_s", np.float64)], align=True)
+    ("rms_s", np.float64), ("fmax_t", np.float64), ("over_stop_s", np.float64)], align=True)
 
 #: Per shaft: time slipping [s], belt length slipped [m], first and last time (-1 never).
 SHAFT_SLIP = np.dtype([

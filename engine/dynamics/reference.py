@@ -80,8 +80,9 @@ class ReferenceResult(dict):
     ``verr_max`` [m/s] and ``verr_t`` [s] (the master's largest tracking error after the first
     wave loop time of the start, and when), ``vmean_hi`` [m/s] and ``vmean_hi_t`` [s] (the
     highest mean belt speed before the stop command), ``takeup_travel_start`` and
-    ``takeup_travel_stop`` [m] (the carriage's range in each phase), ``over_s`` and ``lim_s``
-    [s] per drive (time with |force| above the rated force, time at the torque limit),
+    ``takeup_travel_stop`` [m] (the carriage's range in each phase), ``over_s``, ``over_stop_s``
+    and ``lim_s`` [s] per drive (time with |force| above the rated force, the part of it after
+    the stop command, time at the torque limit),
     ``f2_int`` [N^2 s] and ``rms_s`` [s] per drive (the force squared integrated from the start
     command until the belt is at rest after the stop, and that time), ``f_brake`` and ``f_hb``
     [N] (the last step's brake and holdback forces), ``fbr_max`` and ``fhb_max`` [N] (their
@@ -999,6 +1000,8 @@ def _drive_results(model: Model, st, sh, dr, rs, out):
     dt, shafts = model.cycle.dt, model.shafts
     fa = np.abs(dr.force)
     out.over_s += np.where(fa > model.drives.rated, dt, 0.0)
+    if rs.stopping:
+        out.over_stop_s += np.where(fa > model.drives.rated, dt, 0.0)
     out.lim_s += np.where(np.array(dr.sat, dtype=bool), dt, 0.0)
     if not rs.stopped:
         out.f2_int += fa * fa * dt
@@ -1100,7 +1103,8 @@ def _start(sys: System, t_end_s: float | None):
         x_range={"start": (math.inf, -math.inf), "stop": (math.inf, -math.inf)})
     out = SimpleNamespace(t_max=st.tt.copy(), t_min=st.tt.copy(), slip_s=np.zeros(nd),
                           slip_m=np.zeros(nd), shaft_slip_s=np.zeros(ns),
-                          shaft_slip_m=np.zeros(ns), over_s=np.zeros(nd), lim_s=np.zeros(nd),
+                          shaft_slip_m=np.zeros(ns), over_s=np.zeros(nd),
+                          over_stop_s=np.zeros(nd), lim_s=np.zeros(nd),
                           f2_int=np.zeros(nd), rms_s=np.zeros(nd))
     return ref, st, sh, dr, brk, rs, out
 
@@ -1119,7 +1123,7 @@ def _finish(ref, st, sh, dr, rs, out) -> ReferenceResult:
         verr_max=rs.verr_max, verr_t=rs.verr_t, vmean_hi=rs.vmean_hi, vmean_hi_t=rs.vmean_hi_t,
         takeup_travel_start=max(rs.x_range["start"][1] - rs.x_range["start"][0], 0.0),
         takeup_travel_stop=max(rs.x_range["stop"][1] - rs.x_range["stop"][0], 0.0),
-        over_s=out.over_s, lim_s=out.lim_s, f2_int=out.f2_int, rms_s=out.rms_s,
+        over_s=out.over_s, over_stop_s=out.over_stop_s, lim_s=out.lim_s, f2_int=out.f2_int, rms_s=out.rms_s,
         f_brake=rs.f_brake, f_hb=rs.f_hb, fbr_max=rs.fbr_max, fhb_max=rs.fhb_max)
 
 

@@ -662,9 +662,16 @@ def _drive_loads(sys: System, out, conveyor=None, steady_summary=None
              if conveyor is not None else [f"drive {i + 1}" for i in range(nd)])
     te = steady_summary.get("te_kn") if steady_summary else None
     running = drives.share * float(te) * 1e3 if te is not None else None
+    cyc = sys.model.cycle
+    controlled = cyc.stop_mode == C.CONTROLLED
+    # each drive's share of the rigid-body force at the controlled stop's peak deceleration
+    # (the s-curve's, at half the stop time: 2 v / t_stop)
+    a_peak = abs(stop_reference(0.5 * cyc.t_stop, cyc.t_stop, cyc.v_d)[1]) if controlled else 0.0
     return transient_checks(names, out.drv, drives.rated, drives.lim0,
-                            drives.control == C.VFD, sys.v_design, sys.model.cycle.t_start,
-                            running, [COUPLING_WORDS[int(c)] for c in drives.coupling])
+                            drives.control == C.VFD, sys.v_design, cyc.t_start,
+                            running, [COUPLING_WORDS[int(c)] for c in drives.coupling],
+                            stop_s=cyc.t_stop if controlled else None,
+                            stop_accel_n=drives.share * sys.model.control.m_tot * a_peak)
 
 
 def span_sag_pct(sys: System, env_min_n: np.ndarray) -> tuple[np.ndarray, np.ndarray]:

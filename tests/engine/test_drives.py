@@ -161,6 +161,28 @@ def test_a_dol_overload_offers_the_coupling_it_does_not_have(coupling, softer):
     assert "start.time_s" not in w
 
 
+def test_an_overload_in_the_stop_offers_a_longer_stop_not_a_longer_start():
+    """A regenerating drive (running force -18 kN, rated 24 kN) braking the belt in a 20 s
+    controlled stop, 16 of its 20 s above the rating after the stop command, its peak (30 kN,
+    capped by its pulley's grip) at 95.5 s: the warning says when (the split and the peak's
+    time) and offers a longer stop, by the rigid-body estimate F = F_run - m a with the peak
+    deceleration as 1 / stop time: a deceleration force of 15 kN at 20 s needs 20 x 15 / (24 -
+    18) = 50 s (not the 40 s the capped peak would give); never a longer start. In a coast
+    or brake stop (no stop time: the drives are off) only the larger motor is offered."""
+    drv = _drive_result(fmax=30e3, fmax_t=95.5, over_s=20.0, over_stop_s=16.0,
+                        f2_int=20e3**2 * 60.0, rms_s=60.0)
+    _, (w,) = transient_checks(["drive 1 (head)"], drv, [24e3], [36e3], [True], 4.0, 60.0,
+                               running_n=[-18e3], stop_s=20.0, stop_accel_n=[15e3])
+    assert "for 20.0 s of the cycle (4.0 s in the start and run, 16.0 s in the stop)" in w
+    assert "(30 kN at t = 95.5 s)" in w
+    assert "a longer stop (stop.time_s, now 20 s; about 50 s keeps the force within" in w
+    assert "longer start" not in w and "at least 120 kW" in w
+    _, (w,) = transient_checks(["drive 1 (head)"], drv, [24e3], [36e3], [True], 4.0, 60.0,
+                               running_n=[-18e3])
+    assert "longer stop" not in w and "longer start" not in w
+    assert w.endswith("a larger motor (at least 120 kW keeps it within) would avoid it"), w
+
+
 def test_transient_checks_quiet_within_the_rating_and_a_short_overload():
     """Above the rating for less than OVERLOAD_S_MAX, never at the limit, RMS within: no
     warning; a cycle that never started has no RMS."""
@@ -230,3 +252,44 @@ def test_a_start_at_the_torque_limit_warns_and_agrees_with_the_time_series():
     assert s["drive1_force_rms_kn"] * 1e3 == pytest.approx(
         math.sqrt(float(np.sum(f[window] ** 2 * step[window]) / step[window].sum())),
         rel=0.01)
+
+
+def _regen_stop(stop_s: float):
+    """downhill-regen (DIN, full load, 60 elements) in a controlled stop of ``stop_s``: the
+    run's summary, the largest |drive force| after the stop command and the drive's rated
+    force P_N / v [kN]."""
+    from beltstudy.engine.conveyor import Scenario
+    from beltstudy.engine.dynamics import DynamicsOptions, build_system, simulate
+    from tests.engine.dynamics.test_kernel import conveyor
+
+    conv = conveyor("downhill-regen")
+    scn = Scenario(stop={"mode": "controlled", "time_s": stop_s}, elements=60)
+    st = solve_steady(conv, model="din", load=scn.load, n_elements=60)
+    sys_ = build_system(conv, scn, st, DynamicsOptions())
+    res = simulate(sys_, steady_summary=st.summary, conveyor=conv)
+    ts = res.timeseries
+    t_cmd = sys_.model.cycle.t_pre + scn.start.time_s + scn.run_s
+    return ({**res.summary, "message": res.message},
+            float(ts.loc[ts.t_s > t_cmd, "f_drive1_kn"].abs().max()),
+            float(sys_.model.drives.rated[0]) / 1e3)
+
+
+def test_a_regenerating_belt_overloaded_in_its_stop_is_offered_the_stop_that_holds_it():
+    """downhill-regen braked by its drive in a 20 s controlled stop: the drive holds back
+    its running force and the belt's deceleration together, beyond its rating (P_N / v).
+    The warning puts the overload in the stop and offers a longer stop by the rigid-body
+    law F = F_run - m a, a_peak = 2 v / t_stop (the s-curve's); rerun at that stop time, the
+    stop's largest force falls to the rating within the running swing the run also names
+    (10 %), from more than 1.3 x it."""
+    import re
+
+    s, f_stop, rated = _regen_stop(20.0)
+    assert f_stop > 1.3 * rated
+    m = re.search(r"drive 1 \(head\) was above its rated force .*?\(([\d.]+) s in the start "
+                  r"and run, ([\d.]+) s in the stop\).*?a longer stop \(stop.time_s, now 20 s; "
+                  r"about (\d+) s keeps", s["message"])
+    assert m, s["message"]
+    assert float(m.group(2)) > float(m.group(1))
+    assert "a longer start" not in s["message"]
+    _, f_stop2, _ = _regen_stop(float(m.group(3)))
+    assert f_stop2 == pytest.approx(rated, rel=0.10)

@@ -170,6 +170,7 @@ def test_kernel_matches_numpy_reference(name, changes, model, scenario, exercise
     # the drives' load: time above the rated force and at the torque limit, the force squared
     # integrated until the belt is at rest (the RMS force, beltstudy.engine.drives)
     assert_allclose(out.drv["over_s"], ref["over_s"], atol=1e-9, rtol=0)
+    assert_allclose(out.drv["over_stop_s"], ref["over_stop_s"], atol=1e-9, rtol=0)
     assert_allclose(out.drv["lim_s"], ref["lim_s"], atol=1e-9, rtol=0)
     assert_allclose(out.drv["rms_s"], ref["rms_s"], atol=1e-9, rtol=0)
     assert_allclose(out.drv["f2_int"], ref["f2_int"], rtol=1e-9,
