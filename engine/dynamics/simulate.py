@@ -924,8 +924,14 @@ def _fast_stop_words(sys: System, t_stop: float, summary: dict, steady_tmax: flo
             f"{steady_tmax / 1e3:.4g} kN running" if hi is not None and lo is not None else "")
     need = 5.0 * sys.wave_loop_time_s
     if cyc.stop_mode == C.CONTROLLED:
-        fix = (f"a controlled stop of stop.time_s {_up_s(need * cyc.t_stop / t_stop)} s or "
-               "more would be slower than that")
+        # a stop that follows its curve scales with the asked time; one held back by a drive's
+        # torque limit or slip (longer than asked) does not: the curve the drives follow and
+        # that rests after 5 loops, ramp_rest_fraction() of it, is the least to ask
+        asked = max(need * cyc.t_stop / t_stop, need / ramp_rest_fraction())
+        lag = (f" (the belt did not follow the {cyc.t_stop:g} s curve: the drives' torque "
+               "limit or slip held the stop back)" if t_stop > cyc.t_stop else "")
+        fix = (f"a controlled stop of stop.time_s {_up_s(asked)} s or more would be slower "
+               f"than that{lag}")
     elif cyc.stop_mode == C.BRAKE:
         # an auto brake's stop scales with its asked time as a controlled one's does
         asked = need * cyc.t_stop / t_stop if cyc.t_stop > 0.0 else need

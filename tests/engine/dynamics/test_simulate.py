@@ -309,7 +309,8 @@ def test_a_short_running_phase_is_judged_from_one_wave_loop_after_the_ramp():
 def test_a_fast_stop_says_its_tensions_and_what_would_slow_it():
     """A stop faster than 5 wave loop times: the warning gives the stop's tension range
     against the running one and, for a controlled stop, the stop.time_s that makes it 5 wave
-    loop times (asked x 5 loops / achieved)."""
+    loop times (asked x 5 loops / achieved, at least the curve that rests after 5 loops when
+    the belt did not follow the asked one)."""
     from types import SimpleNamespace
 
     from beltstudy.engine.dynamics import codes as C
@@ -322,6 +323,14 @@ def test_a_fast_stop_says_its_tensions_and_what_would_slow_it():
                            261e3)
     assert "ranged 15 to 250 kN against 20 to 261 kN running" in msg
     assert f"stop.time_s {math.ceil(5 * 8.2 * 30.0 / 25.2)} s or more" in msg
+    assert "did not follow" not in msg
+    # asked 10 s, took 24.1 s (a torque limit held it back): not 25 x 10 / 24.1 = 10.4 s,
+    # which the drives would not follow either, but the curve resting after 5 x 5 s = 25 s,
+    # 25 / 0.884 = 28.3 s
+    sysm.wave_loop_time_s, sysm.model.cycle.t_stop = 5.0, 10.0
+    msg = _fast_stop_words(sysm, 24.1, {}, 261e3)
+    assert "a controlled stop of stop.time_s 29 s or more" in msg, msg
+    assert "did not follow the 10 s curve" in msg
     # a coast stop: the controlled stop that rests after 5 x 1.493 s = 7.465 s has a ramp
     # 1 / 0.884 as long (its s-curve is under 1 % of design speed from 0.884 of stop.time_s),
     # 8.44 s, rounded up where it is named so that it meets the criterion
