@@ -252,10 +252,16 @@ def transient_checks(names, drv, rated_n, limit_n, vfd, speed_m_s: float, start_
                 fix = f"{longer}) or {motor}"
             else:
                 fix = motor
-        elif f_run is not None and f_run >= rated:
+        elif f_run is not None and abs(f_run) >= rated:
             # running itself needs more than the rating: no start keeps the force within it
             fix = (f"{motor}, or the load shared by more drives (its running force, "
                    f"{f_run / 1e3:.4g} kN, is itself above the rating: no start avoids it)")
+        elif vfd[k] and f_run is not None and f_run < 0.0:
+            # a regenerating drive holds the belt back hardest at rest and creeping speed,
+            # before the speed-dependent resistances build up; the acceleration eases it
+            fix = (f"a larger motor (at least {fmax * speed_m_s / 1e3:.0f} kW keeps it within; "
+                   "the drive holds back the belt's downhill pull hardest at low speed, before "
+                   "the running resistances build up, which a longer start would not shorten)")
         elif vfd[k]:
             longer = f"a longer start (start.time_s, now {start_s:g} s"
             if f_run is not None and 0.0 <= f_run < rated < fmax:

@@ -183,6 +183,24 @@ def test_an_overload_in_the_stop_offers_a_longer_stop_not_a_longer_start():
     assert w.endswith("a larger motor (at least 120 kW keeps it within) would avoid it"), w
 
 
+def test_a_regenerating_drive_overloaded_in_its_start_is_not_offered_a_longer_start():
+    """A regenerating drive (running force -18 kN, rated 24 kN) above its rating for 20 s in
+    the start (holding the belt's downhill pull before the resistances build up; the
+    acceleration eases it): a longer start keeps the belt slow for longer, so only the
+    larger motor is offered; one whose running hold-back (-28 kN) is itself beyond the
+    rating is told that no start avoids it."""
+    drv = _drive_result(fmax=30e3, fmax_t=2.0, over_s=20.0, f2_int=20e3**2 * 60.0,
+                        rms_s=60.0)
+    _, (w,) = transient_checks(["drive 1 (head)"], drv, [24e3], [36e3], [True], 4.0, 60.0,
+                               running_n=[-18e3])
+    assert "start.time_s" not in w and "(30 kN at t = 2.0 s)" in w
+    assert "a larger motor (at least 120 kW keeps it within; the drive holds back" in w
+    assert w.endswith("which a longer start would not shorten) would avoid it"), w
+    _, (w,) = transient_checks(["drive 1 (head)"], drv, [24e3], [36e3], [True], 4.0, 60.0,
+                               running_n=[-28e3])
+    assert "its running force, -28 kN, is itself above the rating: no start avoids it" in w
+
+
 def test_transient_checks_quiet_within_the_rating_and_a_short_overload():
     """Above the rating for less than OVERLOAD_S_MAX, never at the limit, RMS within: no
     warning; a cycle that never started has no RMS."""
