@@ -243,7 +243,9 @@ def _check_lines(s: dict) -> list[str]:
                 "idler_load_roll_n", "idler_l10_h", "holdback_torque_knm"):
         if s.get(key) is not None:
             f = results.field(key)
-            lines.append(f"    {f.label:<34} {s[key]:>12.3f} {_unit(f)}")
+            # a bearing life is known to a few per cent at best: whole hours
+            fmt = ".0f" if key == "idler_l10_h" else ".3f"
+            lines.append(f"    {f.label:<34} {s[key]:>12{fmt}} {_unit(f)}")
     lines.append("")
     return lines
 
