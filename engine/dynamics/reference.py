@@ -1123,7 +1123,8 @@ def _finish(ref, st, sh, dr, rs, out) -> ReferenceResult:
         verr_max=rs.verr_max, verr_t=rs.verr_t, vmean_hi=rs.vmean_hi, vmean_hi_t=rs.vmean_hi_t,
         takeup_travel_start=max(rs.x_range["start"][1] - rs.x_range["start"][0], 0.0),
         takeup_travel_stop=max(rs.x_range["stop"][1] - rs.x_range["stop"][0], 0.0),
-        over_s=out.over_s, over_stop_s=out.over_stop_s, lim_s=out.lim_s, f2_int=out.f2_int, rms_s=out.rms_s,
+        over_s=out.over_s, over_stop_s=out.over_stop_s, lim_s=out.lim_s, f2_int=out.f2_int,
+        rms_s=out.rms_s,
         f_brake=rs.f_brake, f_hb=rs.f_hb, fbr_max=rs.fbr_max, fhb_max=rs.fhb_max)
 
 

@@ -924,12 +924,13 @@ def _fast_stop_words(sys: System, t_stop: float, summary: dict, steady_tmax: flo
             f"{steady_tmax / 1e3:.4g} kN running" if hi is not None and lo is not None else "")
     need = 5.0 * sys.wave_loop_time_s
     if cyc.stop_mode == C.CONTROLLED:
-        # a stop that follows its curve scales with the asked time; one held back by a drive's
-        # torque limit or slip (longer than asked) does not: the curve the drives follow and
-        # that rests after 5 loops, ramp_rest_fraction() of it, is the least to ask
+        # a stop that follows its curve scales with the asked time; one held back (a drive's
+        # torque limit, slip, the belt's own elasticity: longer than asked) does not: the
+        # curve that rests after 5 loops when followed, ramp_rest_fraction() of it, is the
+        # least to ask
         asked = max(need * cyc.t_stop / t_stop, need / ramp_rest_fraction())
-        lag = (f" (the belt did not follow the {cyc.t_stop:g} s curve: the drives' torque "
-               "limit or slip held the stop back)" if t_stop > cyc.t_stop else "")
+        lag = (f" (the belt did not follow the {cyc.t_stop:g} s curve: it took "
+               f"{t_stop:.1f} s)" if t_stop > cyc.t_stop else "")
         fix = (f"a controlled stop of stop.time_s {_up_s(asked)} s or more would be slower "
                f"than that{lag}")
     elif cyc.stop_mode == C.BRAKE:
