@@ -632,6 +632,12 @@ class Brake(_Model):
         return self.position or "head"
 
 
+#: A sag counts as past its limit above ``limit x (1 + SAG_LIMIT_RTOL)``: an auto take-up
+#: sized by a sag limit meets it exactly, and the belt's rest and running states give it back
+#: to rounding (the steady check and the transient one alike).
+SAG_LIMIT_RTOL = 1e-9
+
+
 class SagLimit(_Model):
     # a limit near zero asks for an unbounded tension (T_min = w S / (8 h/S)): at least 0.1 %,
     # well below practice (DIN 22101 and CEMA use about 0.5 to 3 %)

@@ -51,6 +51,7 @@ from beltstudy.engine.capacity import capacity as capacity_check
 from beltstudy.engine.checks import steady_checks as design_checks
 from beltstudy.engine.conveyor import (
     PRETENSION_MAX_KN,
+    SAG_LIMIT_RTOL,
     TAKEUP_MASS_MAX_KG,
     Conveyor,
     section_loads,
@@ -629,7 +630,7 @@ def _summarise(res: SteadyResult, drives, hs_adm, bounds, shortfall_n: float,
         if mask.any():
             worst = float(sag[mask].max())
             limit = float(hs_adm[mask][0])
-            if worst > limit * (1 + 1e-9):
+            if worst > limit * (1.0 + SAG_LIMIT_RTOL):
                 warnings.append(
                     f"sag on the {name} strand {worst * 100:.2f} % exceeds "
                     f"sag_limit_pct.{name} = {limit * 100:.2f} %"

@@ -19,6 +19,7 @@ import numpy as np
 import pandas as pd
 
 from beltstudy.engine.catalog import resolve_belt
+from beltstudy.engine.conveyor import SAG_LIMIT_RTOL
 from beltstudy.engine.drives import COUPLING_NEXT, transient_checks
 from beltstudy.engine.dynamics import codes as C
 from beltstudy.engine.dynamics import records as R
@@ -801,7 +802,7 @@ def transient_summary(sys: System, r: dict, out, segs, *, steady_summary=None, c
             mask = (sys.strand == code) & idler
             if mask.any():
                 smax = float(sag[mask].max())
-                if smax > limit and t_low[mask].min() > 0.0:
+                if smax > limit * (1.0 + SAG_LIMIT_RTOL) and t_low[mask].min() > 0.0:
                     jj = int(np.flatnonzero(mask)[np.argmax(sag[mask])])
                     w.append(_sag_words(sys, name, smax, limit, jj, t_low[jj], whole))
     sf = summary["safety_factor_dyn"]
