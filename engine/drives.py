@@ -242,16 +242,25 @@ def transient_checks(names, drv, rated_n, limit_n, vfd, speed_m_s: float, start_
         f_run = float(running_n[k]) if running_n is not None else None
         if in_stop:
             # braking the belt: a slower stop asks less of the drive, a longer start nothing
-            if vfd[k] and stop_s is not None:
+            f_dec = float(stop_accel_n[k]) if stop_accel_n is not None else None
+            if not (vfd[k] and stop_s is not None):
+                fix = motor  # the drives are off in a coast or brake stop
+            elif f_run is not None and rated + f_run <= 0.0:
+                fix = (f"{motor}, or the load shared by more drives (its running force, "
+                       f"{f_run / 1e3:.4g} kN, is itself beyond the rating: no stop avoids it)")
+            elif f_run is not None and f_dec is not None and f_dec <= rated + f_run:
+                # rigid body: the stop's deceleration keeps within the rating; what is above
+                # it follows the belt's waves and swing, which the stop's rate does not set
+                fix = (f"{motor}; the stop's rigid-body deceleration ({f_dec / 1e3:.3g} kN on "
+                       "this drive) keeps within the rating, so the force above it comes from "
+                       "the belt's waves and swing, which a longer stop would not remove")
+            else:
                 longer = f"a longer stop (stop.time_s, now {stop_s:g} s"
-                f_dec = float(stop_accel_n[k]) if stop_accel_n is not None else 0.0
-                if f_run is not None and rated + f_run > 0.0 and f_dec > rated + f_run:
+                if f_run is not None and f_dec is not None:
                     # rigid body: F = f_run - m a, the peak deceleration as 1 / stop time
                     longer += (f"; about {stop_s * f_dec / (rated + f_run):.0f} s keeps the "
                                "force within the rating, a rigid-body estimate")
                 fix = f"{longer}) or {motor}"
-            else:
-                fix = motor
         elif f_run is not None and abs(f_run) >= rated:
             # running itself needs more than the rating: no start keeps the force within it
             fix = (f"{motor}, or the load shared by more drives (its running force, "

@@ -183,6 +183,23 @@ def test_an_overload_in_the_stop_offers_a_longer_stop_not_a_longer_start():
     assert w.endswith("a larger motor (at least 120 kW keeps it within) would avoid it"), w
 
 
+def test_an_overload_in_a_stop_whose_deceleration_fits_is_not_offered_a_longer_stop():
+    """The same drive in a stop whose rigid-body deceleration force (4 kN) keeps within what
+    the rating leaves (24 - 18 = 6 kN): its time above the rating follows the belt's waves and
+    swing, so no stop time is offered, only the larger motor; one whose running hold-back
+    (-26 kN) is itself beyond the rating is told that no stop avoids it."""
+    drv = _drive_result(fmax=30e3, fmax_t=95.5, over_s=20.0, over_stop_s=16.0,
+                        f2_int=20e3**2 * 60.0, rms_s=60.0)
+    _, (w,) = transient_checks(["drive 1 (head)"], drv, [24e3], [36e3], [True], 4.0, 60.0,
+                               running_n=[-18e3], stop_s=20.0, stop_accel_n=[4e3])
+    assert "stop.time_s" not in w and "longer start" not in w
+    assert "the stop's rigid-body deceleration (4 kN on this drive) keeps within" in w
+    _, (w,) = transient_checks(["drive 1 (head)"], drv, [24e3], [36e3], [True], 4.0, 60.0,
+                               running_n=[-26e3], stop_s=20.0, stop_accel_n=[15e3])
+    assert "its running force, -26 kN, is itself beyond the rating: no stop avoids it" in w
+    assert "stop.time_s" not in w
+
+
 def test_a_regenerating_drive_overloaded_in_its_start_is_not_offered_a_longer_start():
     """A regenerating drive (running force -18 kN, rated 24 kN) above its rating for 20 s in
     the start (holding the belt's downhill pull before the resistances build up; the
