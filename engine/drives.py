@@ -167,7 +167,7 @@ DOL_SOFTER = {k: f"{v}, a vfd" for k, v in COUPLING_NEXT.items()}
 
 def transient_checks(names, drv, rated_n, limit_n, vfd, speed_m_s: float, start_s: float,
                      running_n=None, coupling=None, stop_s: float | None = None,
-                     stop_accel_n=None) -> tuple[dict, list[str]]:
+                     stop_accel_n=None, start_accel_n=None) -> tuple[dict, list[str]]:
     """The transient drive fields and the warnings of a drive overloaded in the cycle.
 
     Parameters
@@ -201,6 +201,9 @@ def transient_checks(names, drv, rated_n, limit_n, vfd, speed_m_s: float, start_
         deceleration, ``share x m a_peak`` [N]: the stop time that keeps the force within the
         rating is estimated from it (the force the run reached may be capped by the pulley's
         grip or the torque limit, so it would under-estimate).
+    start_accel_n : sequence of float, optional
+        The same at the start's peak acceleration, ``share x m a_peak`` [N] (NaN for a torque
+        start, which has no speed curve: its estimate comes from the largest force reached).
 
     Returns
     -------
@@ -240,6 +243,8 @@ def transient_checks(names, drv, rated_n, limit_n, vfd, speed_m_s: float, start_
                      "rating (the motor overheats when the cycle repeats)")
         motor = f"a larger motor (at least {fmax * speed_m_s / 1e3:.0f} kW keeps it within)"
         f_run = float(running_n[k]) if running_n is not None else None
+        f_acc = (float(start_accel_n[k]) if start_accel_n is not None
+                 and math.isfinite(float(start_accel_n[k])) else None)
         if in_stop:
             # braking the belt: a slower stop asks less of the drive, a longer start nothing
             f_dec = float(stop_accel_n[k]) if stop_accel_n is not None else None
@@ -271,10 +276,21 @@ def transient_checks(names, drv, rated_n, limit_n, vfd, speed_m_s: float, start_
             fix = (f"a larger motor (at least {fmax * speed_m_s / 1e3:.0f} kW keeps it within; "
                    "the drive holds back the belt's downhill pull hardest at low speed, before "
                    "the running resistances build up, which a longer start would not shorten)")
+        elif vfd[k] and f_run is not None and f_acc is not None and 0.0 <= f_run and (
+                f_acc <= rated - f_run):
+            # rigid body: the start's acceleration keeps within the rating; what is above it
+            # follows the belt's waves and swing (or the hand-over from rest)
+            fix = (f"{motor}; the start's rigid-body acceleration ({f_acc / 1e3:.3g} kN on "
+                   "this drive) keeps within the rating, so the force above it comes from "
+                   "the belt's waves and swing, which a longer start would not remove")
         elif vfd[k]:
             longer = f"a longer start (start.time_s, now {start_s:g} s"
-            if f_run is not None and 0.0 <= f_run < rated < fmax:
-                # the acceleration force falls as 1 / start time (rigid body): an estimate
+            if f_run is not None and f_acc is not None and 0.0 <= f_run < rated:
+                # rigid body: F = f_run + m a, the peak acceleration as 1 / start time
+                longer += (f"; about {start_s * f_acc / (rated - f_run):.0f} s keeps the "
+                           "force within the rating, a rigid-body estimate")
+            elif f_run is not None and 0.0 <= f_run < rated < fmax:
+                # a torque start (no speed curve): from the largest force the run reached
                 longer += (f"; about {start_s * (fmax - f_run) / (rated - f_run):.0f} s keeps "
                            "the force within the rating, a rigid-body estimate")
             fix = f"{longer}) or {motor}"

@@ -25,7 +25,7 @@ from beltstudy.engine.dynamics import codes as C
 from beltstudy.engine.dynamics import records as R
 from beltstudy.engine.dynamics.kernel import run_cycle
 from beltstudy.engine.dynamics.model import COUPLING_CODES, System, chord_strain
-from beltstudy.engine.dynamics.profiles import stop_reference
+from beltstudy.engine.dynamics.profiles import LINEAR, S_CURVE, start_reference, stop_reference
 
 __all__ = ["TransientResult", "KernelRun", "fresh_run", "fresh_model", "simulate", "decode",
            "span_sag_pct", "not_stopped_words",
@@ -668,11 +668,16 @@ def _drive_loads(sys: System, out, conveyor=None, steady_summary=None
     # each drive's share of the rigid-body force at the controlled stop's peak deceleration
     # (the s-curve's, at half the stop time: 2 v / t_stop)
     a_peak = abs(stop_reference(0.5 * cyc.t_stop, cyc.t_stop, cyc.v_d)[1]) if controlled else 0.0
+    # and at the start's (the s-curve's 2 v / t_start, the ramp's v / t_start); a torque start
+    # has no speed curve
+    a_start = (abs(start_reference(cyc.start_ctrl, 0.5 * cyc.t_start, cyc.t_start, cyc.v_d)[1])
+               if cyc.start_ctrl in (S_CURVE, LINEAR) else math.nan)
+    mass = drives.share * sys.model.control.m_tot
     return transient_checks(names, out.drv, drives.rated, drives.lim0,
                             drives.control == C.VFD, sys.v_design, cyc.t_start,
                             running, [COUPLING_WORDS[int(c)] for c in drives.coupling],
                             stop_s=cyc.t_stop if controlled else None,
-                            stop_accel_n=drives.share * sys.model.control.m_tot * a_peak)
+                            stop_accel_n=mass * a_peak, start_accel_n=mass * a_start)
 
 
 def span_sag_pct(sys: System, env_min_n: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
