@@ -250,7 +250,8 @@ def transient_checks(names, drv, rated_n, limit_n, vfd, speed_m_s: float, start_
             f_dec = float(stop_accel_n[k]) if stop_accel_n is not None else None
             if not (vfd[k] and stop_s is not None):
                 fix = motor  # the drives are off in a coast or brake stop
-            elif f_run is not None and rated + f_run <= 0.0:
+            elif f_run is not None and abs(f_run) >= rated:
+                # running (or holding back) itself needs more than the rating
                 fix = (f"{motor}, or the load shared by more drives (its running force, "
                        f"{f_run / 1e3:.4g} kN, is itself beyond the rating: no stop avoids it)")
             elif f_run is not None and f_dec is not None and f_dec <= rated + f_run:

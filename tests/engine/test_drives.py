@@ -205,7 +205,8 @@ def test_an_overload_in_a_stop_whose_deceleration_fits_is_not_offered_a_longer_s
     """The same drive in a stop whose rigid-body deceleration force (4 kN) keeps within what
     the rating leaves (24 - 18 = 6 kN): its time above the rating follows the belt's waves and
     swing, so no stop time is offered, only the larger motor; one whose running hold-back
-    (-26 kN) is itself beyond the rating is told that no stop avoids it."""
+    (-26 kN) or running pull (26 kN) is itself beyond the rating is told that no stop avoids
+    it."""
     drv = _drive_result(fmax=30e3, fmax_t=95.5, over_s=20.0, over_stop_s=16.0,
                         f2_int=20e3**2 * 60.0, rms_s=60.0)
     _, (w,) = transient_checks(["drive 1 (head)"], drv, [24e3], [36e3], [True], 4.0, 60.0,
@@ -216,6 +217,12 @@ def test_an_overload_in_a_stop_whose_deceleration_fits_is_not_offered_a_longer_s
                                running_n=[-26e3], stop_s=20.0, stop_accel_n=[15e3])
     assert "its running force, -26 kN, is itself beyond the rating: no stop avoids it" in w
     assert "stop.time_s" not in w
+    # a motoring drive whose running force (26 kN) is above the rating, overloaded mostly in
+    # the stop: the running force, not waves, is what is above the rating
+    _, (w,) = transient_checks(["drive 1 (head)"], drv, [24e3], [36e3], [True], 4.0, 60.0,
+                               running_n=[26e3], stop_s=20.0, stop_accel_n=[4e3])
+    assert "its running force, 26 kN, is itself beyond the rating: no stop avoids it" in w
+    assert "waves" not in w
 
 
 def test_a_regenerating_drive_overloaded_in_its_start_is_not_offered_a_longer_start():
