@@ -165,6 +165,16 @@ COUPLING_NEXT = {"none": "a fluid coupling",
 DOL_SOFTER = {k: f"{v}, a vfd" for k, v in COUPLING_NEXT.items()}
 
 
+def _rate_within(motor: str, what: str, force_n: float) -> str:
+    """The cure of an overload whose rigid-body acceleration or deceleration force (``what``,
+    ``force_n`` [N]) keeps within what the rating leaves: the force above the rating follows
+    the belt's waves and swing, which a longer start or stop would not remove."""
+    longer = "start" if what.startswith("start") else "stop"
+    return (f"{motor}; the {what} ({force_n / 1e3:.3g} kN on this drive) keeps within the "
+            "rating, so the force above it comes from the belt's waves and swing, which a "
+            f"longer {longer} would not remove")
+
+
 def transient_checks(names, drv, rated_n, limit_n, vfd, speed_m_s: float, start_s: float,
                      running_n=None, coupling=None, stop_s: float | None = None,
                      stop_accel_n=None, start_accel_n=None) -> tuple[dict, list[str]]:
@@ -241,56 +251,45 @@ def transient_checks(names, drv, rated_n, limit_n, vfd, speed_m_s: float, start_
         if hot:
             said += (f"; its RMS force over the cycle, {rms / 1e3:.4g} kN, is above the "
                      "rating (the motor overheats when the cycle repeats)")
-        motor = f"a larger motor (at least {fmax * speed_m_s / 1e3:.0f} kW keeps it within)"
+        kw = fmax * speed_m_s / 1e3
+        motor = f"a larger motor (at least {kw:.0f} kW keeps it within)"
         f_run = float(running_n[k]) if running_n is not None else None
         f_acc = (float(start_accel_n[k]) if start_accel_n is not None
                  and math.isfinite(float(start_accel_n[k])) else None)
-        if in_stop:
-            # braking the belt: a slower stop asks less of the drive, a longer start nothing
-            f_dec = float(stop_accel_n[k]) if stop_accel_n is not None else None
-            if not (vfd[k] and stop_s is not None):
-                fix = motor  # the drives are off in a coast or brake stop
-            elif f_run is not None and abs(f_run) >= rated:
-                # running (or holding back) itself needs more than the rating
-                fix = (f"{motor}, or the load shared by more drives (its running force, "
-                       f"{f_run / 1e3:.4g} kN, is itself beyond the rating: no stop avoids it)")
-            elif f_run is not None and f_dec is not None and f_dec <= rated + f_run:
-                # rigid body: the stop's deceleration keeps within the rating; what is above
-                # it follows the belt's waves and swing, which the stop's rate does not set
-                fix = (f"{motor}; the stop's rigid-body deceleration ({f_dec / 1e3:.3g} kN on "
-                       "this drive) keeps within the rating, so the force above it comes from "
-                       "the belt's waves and swing, which a longer stop would not remove")
-            else:
-                longer = f"a longer stop (stop.time_s, now {stop_s:g} s"
-                if f_run is not None and f_dec is not None:
-                    # rigid body: F = f_run - m a, the peak deceleration as 1 / stop time
-                    longer += (f"; about {stop_s * f_dec / (rated + f_run):.0f} s keeps the "
-                               "force within the rating, a rigid-body estimate")
-                fix = f"{longer}) or {motor}"
-        elif f_run is not None and abs(f_run) >= rated:
-            # running itself needs more than the rating: no start keeps the force within it
+        f_dec = float(stop_accel_n[k]) if stop_accel_n is not None else None
+        phase = "stop" if in_stop else "start"
+        if f_run is not None and abs(f_run) >= rated:
+            # running (or holding back) itself needs more than the rating: no start or stop
+            # keeps the force within it
             fix = (f"{motor}, or the load shared by more drives (its running force, "
-                   f"{f_run / 1e3:.4g} kN, is itself above the rating: no start avoids it)")
+                   f"{f_run / 1e3:.4g} kN, is itself above the rating: no {phase} avoids it)")
+        elif in_stop and not (vfd[k] and stop_s is not None):
+            fix = motor  # the drives are off in a coast or brake stop
+        elif in_stop and f_run is not None and f_dec is not None and f_dec <= rated + f_run:
+            fix = _rate_within(motor, "stop's rigid-body deceleration", f_dec)
+        elif in_stop:
+            # braking the belt: a slower stop asks less of the drive, a longer start nothing
+            longer = f"a longer stop (stop.time_s, now {stop_s:g} s"
+            if f_run is not None and f_dec is not None:
+                # rigid body: F = f_run - m a, the peak deceleration as 1 / stop time
+                longer += (f"; about {stop_s * f_dec / (rated + f_run):.0f} s keeps the "
+                           "force within the rating, a rigid-body estimate")
+            fix = f"{longer}) or {motor}"
         elif vfd[k] and f_run is not None and f_run < 0.0:
             # a regenerating drive holds the belt back hardest at rest and creeping speed,
             # before the speed-dependent resistances build up; the acceleration eases it
-            fix = (f"a larger motor (at least {fmax * speed_m_s / 1e3:.0f} kW keeps it within; "
-                   "the drive holds back the belt's downhill pull hardest at low speed, before "
-                   "the running resistances build up, which a longer start would not shorten)")
-        elif vfd[k] and f_run is not None and f_acc is not None and 0.0 <= f_run and (
-                f_acc <= rated - f_run):
-            # rigid body: the start's acceleration keeps within the rating; what is above it
-            # follows the belt's waves and swing (or the hand-over from rest)
-            fix = (f"{motor}; the start's rigid-body acceleration ({f_acc / 1e3:.3g} kN on "
-                   "this drive) keeps within the rating, so the force above it comes from "
-                   "the belt's waves and swing, which a longer start would not remove")
+            fix = (f"a larger motor (at least {kw:.0f} kW keeps it within; the drive holds back "
+                   "the belt's downhill pull hardest at low speed, before the running "
+                   "resistances build up, which a longer start would not shorten)")
+        elif vfd[k] and f_run is not None and f_acc is not None and f_acc <= rated - f_run:
+            fix = _rate_within(motor, "start's rigid-body acceleration", f_acc)
         elif vfd[k]:
             longer = f"a longer start (start.time_s, now {start_s:g} s"
-            if f_run is not None and f_acc is not None and 0.0 <= f_run < rated:
+            if f_run is not None and f_acc is not None:
                 # rigid body: F = f_run + m a, the peak acceleration as 1 / start time
                 longer += (f"; about {start_s * f_acc / (rated - f_run):.0f} s keeps the "
                            "force within the rating, a rigid-body estimate")
-            elif f_run is not None and 0.0 <= f_run < rated < fmax:
+            elif f_run is not None and rated < fmax:
                 # a torque start (no speed curve): from the largest force the run reached
                 longer += (f"; about {start_s * (fmax - f_run) / (rated - f_run):.0f} s keeps "
                            "the force within the rating, a rigid-body estimate")

@@ -215,13 +215,13 @@ def test_an_overload_in_a_stop_whose_deceleration_fits_is_not_offered_a_longer_s
     assert "the stop's rigid-body deceleration (4 kN on this drive) keeps within" in w
     _, (w,) = transient_checks(["drive 1 (head)"], drv, [24e3], [36e3], [True], 4.0, 60.0,
                                running_n=[-26e3], stop_s=20.0, stop_accel_n=[15e3])
-    assert "its running force, -26 kN, is itself beyond the rating: no stop avoids it" in w
+    assert "its running force, -26 kN, is itself above the rating: no stop avoids it" in w
     assert "stop.time_s" not in w
     # a motoring drive whose running force (26 kN) is above the rating, overloaded mostly in
     # the stop: the running force, not waves, is what is above the rating
     _, (w,) = transient_checks(["drive 1 (head)"], drv, [24e3], [36e3], [True], 4.0, 60.0,
                                running_n=[26e3], stop_s=20.0, stop_accel_n=[4e3])
-    assert "its running force, 26 kN, is itself beyond the rating: no stop avoids it" in w
+    assert "its running force, 26 kN, is itself above the rating: no stop avoids it" in w
     assert "waves" not in w
 
 
