@@ -130,8 +130,11 @@ def _drive_laws(model, rs, first_off):
             ts = drives.trip_s[dk]
             fac = 0.0 if ts <= 0.0 else max(0.0, 1.0 - (rs.t - rs.t_trip) / ts)
         if phase == HOLD:
+            # at rest: off; in the start's hand-over, the share of the holding force built
+            # over t_hand while the hold keeps the belt
             drives.mode[dk] = 0
-            drives.f0[dk] = 0.0
+            drives.f0[dk] = 0.0 if not rs.started else drives.share[dk] * rs.hold_f * min(
+                (rs.t - model.cycle.t_pre) / model.cycle.t_hand, 1.0)
             drives.f1[dk] = 0.0
             continue
         if drives.control[dk] == C.DOL:
@@ -219,6 +222,8 @@ def _phase(model, rs):
         rs.phase = HOLD
     elif rs.t_trip >= 0.0 and t > rs.t_trip:
         rs.phase = OFF
+    elif t - cyc.t_pre <= cyc.t_hand:
+        rs.phase = HOLD  # the hand-over: the drives build the holding force, the hold keeps
     else:
         rs.phase = RUN
     rs.hold_set = _brake_forces(model, rs)
@@ -298,8 +303,8 @@ def _blocks(model, st, wk, rs):
                 if rs.endstop_t < 0.0:
                     rs.endstop_t = rs.t
                 rs.endstop_speed = max(rs.endstop_speed, hit)
-        if not math.isnan(hf):
-            rs.hold_f = hf
+        if not math.isnan(hf) and not rs.started:
+            rs.hold_f = hf  # what holds the belt at rest, up to the start command
         rs.f_brake += fbk
         rs.vsum += vs_b
         rs.f_tot += ft_b

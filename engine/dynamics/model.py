@@ -175,6 +175,11 @@ class DynamicsOptions:
         Add the rigid-body feedforward ``M a_ref + (Te - sum G)`` (M all moving mass) to the
         speed loop's output. Off: a long belt does not move as one body while the reference
         rises, and on the example conveyors the loop tracks better without it.
+    handover_s : float or None
+        vfd drives on pulleys other than the one holding the belt at rest build their
+        share of the holding force over this time from the start command, the hold then
+        lets go and the speed loop starts from that force [s]; None = :data:`HANDOVER_S`,
+        0 = at once (engine 0.6.5).
     pre_rest_s, post_rest_s : float
         Rest before the start command and after the belt has stopped [s]; post-rest
         ``None`` = max(5 s, one wave loop time), plus the time holding brakes and the drives'
@@ -227,6 +232,7 @@ class DynamicsOptions:
     surface_samples: int = 300
     viscosity_limiter: bool = True
     stop_window_s: float = 300.0
+    handover_s: float | None = None
 
 
 @dataclass(eq=False)
@@ -305,6 +311,14 @@ def chord_strain(tension_n, a_ernst, stiffness_n, t_floor_n, k_floor_n):
     e = Tc / stiffness_n - a_ernst / (2.0 * Tc * Tc)
     return np.where(T >= tf, e, e_floor - (tf - T) / k_floor_n)
 
+
+#: Time over which vfd drives build the holding torque at the start command before the belt's
+#: hold is released [s] (docs/dynamics.md, *The start from rest*): the drive's torque ramp
+#: between brake and motor, 0.1 to 0.5 s, 0.3 s by default (KEB COMBIVERT F5, LF.79); drives
+#: take the holding torque before the brake opens and the speed ramp starts (the "release
+#: torque" of CG Emotron VFX, parameter 33I; a "torque preload" of up to 0.8 s, Curtis
+#: 1232E-1238E, EM brake menu).
+HANDOVER_S = 0.3
 
 #: Default bandwidth of the vfd speed loop closed on the master pulley's own speed [rad/s]
 #: (PHYSICS 5.1): plant drives of large conveyors run it at a few rad/s (docs/dynamics.md,
@@ -954,7 +968,23 @@ def _takeup(conv, loop, steady, springs: Springs, T_rest, T_run) -> Takeup:
                   lo=mid - 0.5 * travel, hi=mid + 0.5 * travel, x_run=x_run)
 
 
-def _cycle(conv, scn, opts, n, dt, t_loop, total_mass, te, v_d, hold, drive_train):
+def handover_time_s(conv, loop, scn, opts: DynamicsOptions, hold: int) -> float:
+    """The start's hand-over time [s]: vfd drives on a pulley other than the one holding the
+    belt at rest (``hold``) build their share of the holding force over it after the start
+    command while the hold keeps the belt, then the hold lets go and the speed loop starts
+    from that force (:data:`HANDOVER_S`). 0 where nothing in the belt changes as the load
+    passes from the hold to the drives (every drive on the held pulley), for dol drives (the
+    motor's torque from its curve at once, as its contactor closes), the moving-support
+    formulation and the verification's constant force."""
+    if (conv.drives[0].control != "vfd" or scn.formulation != "relative"
+            or opts.force_start_n is not None
+            or all(int(e) == int(hold) for e in loop.drive_elements)):
+        return 0.0
+    return HANDOVER_S if opts.handover_s is None else float(opts.handover_s)
+
+
+def _cycle(conv, scn, opts, n, dt, t_loop, total_mass, te, v_d, hold, drive_train,
+           t_hand=0.0):
     """The cycle's times: the rest after the stop (one wave loop time at least, plus what
     holding brakes and the drives' trip take), the stop window
     (``DynamicsOptions.stop_window_s``, the same for every run), the records' spacing; the work limit of one run (refused beyond, naming what to change)."""
@@ -992,7 +1022,8 @@ def _cycle(conv, scn, opts, n, dt, t_loop, total_mass, te, v_d, hold, drive_trai
         start_ctrl=(profiles.FORCE if opts.force_start_n is not None
                     else START_CODES[scn.start.control]),
         stop_mode=STOP_CODES[scn.stop.mode],
-        formulation=RELATIVE if scn.formulation == "relative" else SUPPORT, hold_node=int(hold))
+        formulation=RELATIVE if scn.formulation == "relative" else SUPPORT, hold_node=int(hold),
+        t_hand=float(t_hand))
 
 
 def _probes(conv, loop, opts) -> Probes:
@@ -1075,7 +1106,8 @@ def build_system(conv: Conveyor, scn: Scenario, steady, options: DynamicsOptions
     takeup = _takeup(conv, loop, steady, springs, T_rest, T_run)
     brakes = build_brakes(conv, scn, loop, shaft_index, total_mass, te, gravity_sum, notes,
                           steady)
-    cycle = _cycle(conv, scn, opts, n, dt, t_loop, total_mass, te, v_d, hold, train)
+    cycle = _cycle(conv, scn, opts, n, dt, t_loop, total_mass, te, v_d, hold, train,
+                   handover_time_s(conv, loop, scn, opts, hold))
     model = Model(
         cycle=cycle, nodes=nodes, law=law, lin=_lin(law, nodes, cycle.v_eps), springs=springs,
         blocks=_blocks(blocks_list, int(drives.node[control.master]), n, shaft_index,

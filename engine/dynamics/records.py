@@ -43,7 +43,9 @@ class Cycle(NamedTuple):
     and of the surface; ``v_d`` the design speed, ``v_eps`` the resistance's regularisation
     speed, ``v_fail`` the speed taken as divergence; ``start_ctrl``
     (:mod:`beltstudy.engine.dynamics.profiles`), ``stop_mode`` and ``formulation``
-    (:mod:`beltstudy.engine.dynamics.codes`); ``hold_node`` the element held at rest."""
+    (:mod:`beltstudy.engine.dynamics.codes`); ``hold_node`` the element held at rest;
+    ``t_hand`` the start's hand-over from the hold to the drives (0: at the start command;
+    :func:`beltstudy.engine.dynamics.model.handover_time_s`)."""
 
     dt: float
     t_pre: float
@@ -62,6 +64,7 @@ class Cycle(NamedTuple):
     stop_mode: int
     formulation: int
     hold_node: int
+    t_hand: float
 
 
 class Nodes(NamedTuple):

@@ -385,6 +385,9 @@ def _drive_laws(model: Model, rs, sh, dr, first_off):
             fac = 0.0 if ts <= 0.0 else max(0.0, 1.0 - (rs.t - rs.t_trip) / ts)
         dr.mode[k], dr.f0[k], dr.f1[k] = 0, 0.0, 0.0
         if rs.phase == C.HOLD:
+            if rs.started:  # the start's hand-over: the share of the holding force, built
+                dr.f0[k] = drives.share[k] * rs.hold_f * min((rs.t - cyc.t_pre) / cyc.t_hand,
+                                                             1.0)
             continue
         if drives.control[k] == C.DOL:
             _dol_law(model, dr, k, vs, fac, rs.t)
@@ -420,7 +423,8 @@ def _phase(model: Model, rs, sh, dr, brk):
             rs.t_trip = rs.t_stopcmd  # coast and brake stops: the power is cut
         elif rs.hold_set >= 0.0:
             rs.t_trip = rs.hold_set  # a controlled stop: off once the holding brakes are set
-    rs.phase = C.HOLD if not rs.started else (C.OFF if 0.0 <= rs.t_trip < t else C.RUN)
+    rs.phase = C.HOLD if not rs.started else (
+        C.OFF if 0.0 <= rs.t_trip < t else (C.HOLD if t - cyc.t_pre <= cyc.t_hand else C.RUN))
     rs.hold_set = _brake_forces(model, rs, sh, brk)
     _drive_laws(model, rs, sh, dr, rs.phase == C.OFF and not rs.was_off)
     rs.was_off = rs.phase == C.OFF
@@ -950,7 +954,7 @@ def _blocks(model: Model, ref, st, sh, dr, rs, R0):
         u_b, _hit, hf, w = _block_step(model, ref, nodes, st, sh, dr, rs, R0)
         if tu.gravity and tu.node in nodes:
             u_new = u_b
-        if not math.isnan(hf):
+        if not math.isnan(hf) and not rs.started:
             rs.hold_f = hf
         rs.w_drive += w
     rs.fbr_max, rs.fhb_max = max(rs.fbr_max, rs.f_brake), max(rs.fhb_max, rs.f_hb)
