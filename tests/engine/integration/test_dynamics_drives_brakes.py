@@ -415,7 +415,19 @@ def running_stretch_m(sysm) -> float:
 
 
 VFD_STARTS = (("slope-5pct", 180), ("fabric-1km", 180), ("downhill-regen", 180),
-              ("overland-4km", 180), ("overland-16km", 300))
+              ("overland-4km", 180), ("overland-16km", 300), ("valley-booster", 180))
+#: The examples whose mean belt speed does not meet the criteria with DIN's resistance, with
+#: what was measured (docs/dynamics.md, *Tracking*): DIN's friction factor, the same at every
+#: speed, holds the far belt until the stretch front passes and then releases it; Non-Lin's,
+#: which falls towards creep speed, meets them (its parameter runs beside).
+DIN_CREEP = {
+    "overland-16km": "5.5 % behind at 70 s, 4.7 % ahead at 110 s, then a swing of about "
+                     "+-3 % with the gravity take-up (period about 57 s, decaying over about "
+                     "1 300 s); 4.9 % after twice the 14.5 m stretch, 3.5 % after the ramp",
+    "valley-booster": "2.1 % behind at 40 s, 1.8 % ahead at 50 s, then a swing of about "
+                      "+-1.6 % (period about 25 s); 2.2 % after twice the 2.8 m stretch, 1.2 % "
+                      "after the ramp",
+}
 
 
 @functools.cache
@@ -450,14 +462,11 @@ def test_vfd_master_pulley_tracks_its_reference(name, start_s):
 @pytest.mark.parametrize("name,start_s,model", [
     pytest.param(*c, "din", marks=pytest.mark.xfail(
         strict=True, reason="DIN's friction factor, the same at every speed, holds the far belt "
-        "until the stretch front passes (5.5 % behind at 70 s) and then releases it (4.7 % "
-        "ahead at 110 s); the mean belt speed then swings about +-3 % with the gravity take-up "
-        "(period about 57 s, decaying over about 1 300 s), a mode the pulley held to its "
-        "reference does not damp; the swing grows with the running stretch, 14.5 m with DIN's "
-        "resistance against 5.5 m with Non-Lin's, which meets the criteria (next parameter); "
-        "the pulley tracks (test above; docs/dynamics.md, *Tracking*)"))
-    if c[0] == "overland-16km" else (*c, "din") for c in VFD_STARTS]
-    + [("overland-16km", 300, "nonlin")])
+        f"until the stretch front passes and then releases it: {DIN_CREEP[c[0]]}; a mode the "
+        "pulley held to its reference does not damp; Non-Lin's resistance meets the criteria "
+        "(its parameter); the pulley tracks (test above; docs/dynamics.md, *Tracking*)"))
+    if c[0] in DIN_CREEP else (*c, "din") for c in VFD_STARTS]
+    + [(*c, "nonlin") for c in VFD_STARTS if c[0] in DIN_CREEP])
 def test_vfd_mean_belt_speed_follows_once_the_stretch_is_paid_in(name, start_s, model):
     """docs/dynamics.md, *Tracking*: the mean belt speed within 2 % of design speed of the
     reference once the reference has travelled twice the running stretch (the belt a start
@@ -465,7 +474,8 @@ def test_vfd_mean_belt_speed_follows_once_the_stretch_is_paid_in(name, start_s, 
     1 % from one wave loop time after the ramp ends. The 16.8 km overland's 300 s start
     meets them with Non-Lin's resistance (half DIN's Te there, so a 5.5 m stretch against
     14.5 m, and a swing of 0.9 % against 3.3 %), with little margin after the ramp (0.99 %
-    at 80, 160 and 203 elements and at half the step)."""
+    at 80, 160 and 203 elements and at half the step); valley-booster's 180 s start with
+    0.86 % and 0.29 %."""
     sysm, r = _vfd_start(name, start_s, model)
     ts = r.timeseries
     t = ts["t_s"].to_numpy() - sysm.model.cycle.t_pre
