@@ -631,15 +631,14 @@ def _summarise(res: SteadyResult, drives, hs_adm, bounds, shortfall_n: float,
             worst = float(sag[mask].max())
             limit = float(hs_adm[mask][0])
             if worst > limit * (1.0 + SAG_LIMIT_RTOL):
-                warnings.append(
-                    f"sag on the {name} strand {worst * 100:.2f} % exceeds "
-                    f"sag_limit_pct.{name} = {limit * 100:.2f} %"
-                )
+                j = int(np.flatnonzero(mask)[np.argmax(sag[mask])])
+                warnings.append(_sag_words(loop, name, worst, limit, j,
+                                           float(min(T[j], Tprev[j]))))
     sf_min = conv.safety_factor_min or SAFETY_FACTOR_MIN.get(belt.kind, 6.7)
     sf = res.summary["safety_factor"]
     if sf < sf_min:
-        warnings.append(f"belt safety factor {sf:.2f} is below the minimum {sf_min:.2f} "
-                        f"(belt rating {rating / 1e3:.0f} kN, t_max {T[imax] / 1e3:.1f} kN)")
+        warnings.append(_safety_words(loop, belt, sf, sf_min, float(T[imax]),
+                                      float(s_end[imax])))
     if T.min() <= 1.0 + 1e-9:
         warnings.append("the belt goes slack (tension at or below zero): raise the take-up")
     # ---- design checks: pulleys, transitions, idlers, holdback (beltstudy.engine.checks)
@@ -667,6 +666,45 @@ def _summarise(res: SteadyResult, drives, hs_adm, bounds, shortfall_n: float,
 
 # ------------------------------------------------------------ start-up tensions (issue 27)
 __all__ += ["startup_tensions"]
+
+
+def place_words(loop: Loop, s_m: float) -> str:
+    """Words for a loop position [m] (round the loop from the tail, carry first): strand and
+    distance from the tail, or the pulley there."""
+    part, x = loop.where(s_m)
+    if part in ("carry", "return"):
+        return f"{x:.0f} m from the tail on the {part}"
+    if part in ("head", "tail"):
+        return f"at the {part} pulley"
+    return f"at the {part} pulley ({x:.0f} m from the tail)"
+
+
+def _sag_words(loop: Loop, strand: str, sag: float, limit: float, j: int, t_low: float
+               ) -> str:
+    """The steady sag warning of the span ending at element ``j``: how much, where, the
+    tension that keeps it within its limit (the sag ratio goes as 1 / T, DIN 22101) and what
+    would avoid it. ``sag`` and ``limit`` are ratios h/S [-], ``t_low`` the span's lower
+    tension [N] (at or below zero: the belt is slack there, and its sag is a floor's)."""
+    need = float(loop.sag_w_n[j]) / limit
+    return (f"sag on the {strand} strand {sag * 100:.2f} % exceeds sag_limit_pct.{strand} = "
+            f"{limit * 100:.2f} % (tension {t_low / 1e3:.3g} kN "
+            f"{place_words(loop, float(loop.s_end_m[j]))}); {need / 1e3:.3g} kN there keeps it "
+            f"within (the sag goes as 1 / T), so the take-up must hold at least "
+            f"{(need - t_low) / 1e3:.3g} kN more per strand; that, closer idlers "
+            f"(idlers.{strand}.spacing_m) or a higher sag limit would avoid it")
+
+
+def _safety_words(loop: Loop, belt, sf: float, sf_min: float, t_max: float, s_m: float
+                  ) -> str:
+    """The steady safety factor warning: how much, where the largest tension is, and the
+    belt rating per metre of width that meets the minimum (``rating = S_min T_max / B``)."""
+    need_kn_m = sf_min * t_max / belt.width_m / 1e3
+    return (f"belt safety factor {sf:.2f} is below the minimum {sf_min:.2f} (t_max "
+            f"{t_max / 1e3:.1f} kN {place_words(loop, s_m)}; belt rating {belt.rating_n / 1e3:.0f} "
+            f"kN, {belt.rating_kn_m:.0f} kN/m x {belt.width_m:g} m): a belt rated at least "
+            f"{math.ceil(need_kn_m)} kN/m at this width (belt.type: auto picks the lightest catalogue "
+            "belt that passes), or a lower largest tension (a take-up no heavier than the slip "
+            "and sag limits need, drives spread along the belt) would avoid it")
 
 
 def startup_tensions(res: SteadyResult) -> np.ndarray:

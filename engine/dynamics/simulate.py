@@ -812,9 +812,8 @@ def transient_summary(sys: System, r: dict, out, segs, *, steady_summary=None, c
                     w.append(_sag_words(sys, name, smax, limit, jj, t_low[jj], whole))
     sf = summary["safety_factor_dyn"]
     if sf is not None and safety_factor_min is not None and sf < safety_factor_min:
-        w.append(f"belt safety factor {sf:.2f} during the transient is below "
-                 f"{safety_factor_min:.3g} (peak {t_max_dyn / 1e3:.4g} kN near "
-                 f"{where(sys, jmax)})")
+        w.append(_transient_safety_words(sys, conveyor, sf, safety_factor_min, t_max_dyn,
+                                         jmax, float(r["tmax_t"])))
     if summary["stop_wave_ratio"] is not None and summary["stop_wave_ratio"] < 5.0:
         w.append(_fast_stop_words(sys, t_stop_ach, summary, steady_tmax))
     if r["endstop"] > 0:
@@ -890,6 +889,27 @@ def _sag_words(sys: System, strand: str, sag_pct: float, limit_pct: float, j: in
             f"(the sag goes as 1 / T), so the take-up must add at least "
             f"{need_kn - t_low_n / 1e3:.3g} kN, more where the transient passes only part of "
             f"a take-up change to that span (rerun to confirm): {fixes} would avoid it")
+
+
+def _transient_safety_words(sys: System, conveyor, sf: float, sf_min: float, t_max_n: float,
+                            j: int, t_at: float) -> str:
+    """The transient safety factor warning: how much, where and when the peak was (its phase),
+    the belt rating per metre of width that meets the minimum (``S_min T_max / B``) and what
+    lowers the peak in that phase."""
+    phase = _run_phase(sys, t_at, sys.stop_command_s)
+    belt = resolve_belt(conveyor.belt) if conveyor is not None else None
+    fixes = []
+    if belt is not None:
+        fixes.append(f"a belt rated at least {math.ceil(sf_min * t_max_n / belt.width_m / 1e3)} kN/m "
+                     f"at this width (now {belt.rating_kn_m:.0f} kN/m)")
+    fixes += {"start": start_levers(sys), "running": [],
+              "stop": ["a softer stop (a longer stop time, less brake force, a longer brake "
+                       "ramp, brakes[].ramp_s)"]
+              }[phase]
+    fix = f": {_or(fixes)} would avoid it" if fixes else ""
+    return (f"belt safety factor {sf:.2f} during the transient is below {sf_min:.3g} (peak "
+            f"{t_max_n / 1e3:.4g} kN near {where(sys, j)} at t = {t_at:.1f} s, "
+            f"{_PHASE_WORDS[phase]}){fix}")
 
 
 def _up_s(t_s: float) -> str:

@@ -189,6 +189,47 @@ def test_safety_factor_flips_at_threshold(hand_dict):
         assert any("safety factor" in w for w in r.warnings) is expect
 
 
+def test_a_safety_factor_below_its_minimum_names_the_peak_and_the_belt_that_meets_it(hand_dict):
+    """The warning names the largest tension and where it is (the head end of the carry on
+    this head-driven incline), and the rating per metre of width that meets the minimum, by
+    hand ``S_min T_max / B`` rounded up; a belt of that rating (the same tensions: the rating
+    moves no tension) passes, one of 1 kN/m less does not."""
+    res = solve_steady(parse_conveyor(hand_dict), model="din")
+    t_max = res.summary["t_max_kn"]
+    sf_min = 1.2 * 1000.0 / t_max  # 1 000 kN/m x 1 m over T_max, 20 % short
+    need = math.ceil(sf_min * t_max / 1.0)
+    hand_dict["safety_factor_min"] = sf_min
+    r = solve_steady(parse_conveyor(hand_dict), model="din")
+    (msg,) = [w for w in r.warnings if "safety factor" in w]
+    assert f"t_max {t_max:.1f} kN 1000 m from the tail on the carry" in msg
+    assert f"a belt rated at least {need} kN/m at this width" in msg
+    for rating, warned in ((need, False), (need - 1, True)):
+        hand_dict["belt"] = dict(hand_dict["belt"], rating_kn_m=rating)
+        r = solve_steady(parse_conveyor(hand_dict), model="din")
+        assert r.summary["t_max_kn"] == pytest.approx(t_max, rel=1e-12)
+        assert any("safety factor" in w for w in r.warnings) is warned
+
+
+def test_a_sag_past_its_limit_names_where_and_the_tension_that_keeps_it(hand_dict):
+    """The steady sag warning names the span and the take-up tension it lacks per strand (the
+    sag goes as 1 / T, and a gravity take-up raises every tension of the loop by the same
+    amount): a counterweight heavier by that (2 T / g) clears it, 3 % less than that does
+    not."""
+    base = solve_steady(parse_conveyor(hand_dict), model="din")
+    mass = base.summary["takeup_mass_kg"]
+    hand_dict["sag_limit_pct"] = {"carry": 0.8 * base.summary["sag_max_pct"], "return": 50.0}
+    hand_dict["takeup"] = {"type": "gravity", "position": "tail", "mass_kg": mass}
+    res = solve_steady(parse_conveyor(hand_dict), model="din")
+    (msg,) = [w for w in res.warnings if "sag on the carry strand" in w]
+    assert "m from the tail on the carry" in msg and "idlers.carry.spacing_m" in msg
+    more_kn = float(msg.split("must hold at least ")[1].split(" kN more")[0])
+    assert more_kn > 0.0
+    for factor, warned in ((1.001, False), (0.97, True)):
+        hand_dict["takeup"]["mass_kg"] = mass + 2.0 * factor * more_kn * 1e3 / G
+        r = solve_steady(parse_conveyor(hand_dict), model="din")
+        assert any("sag on the carry strand" in w for w in r.warnings) is warned
+
+
 def test_regenerating_drive_tight_side_outgoing():
     from beltstudy.engine.conveyor import load_conveyor
 

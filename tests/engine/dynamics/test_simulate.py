@@ -109,6 +109,35 @@ def test_a_slack_stop_reports_where_when_and_how_much():
     assert s["sag_max_dyn_pct"] is None and "sag_max_dyn_pct is empty" in msg
 
 
+def test_a_transient_safety_factor_names_when_and_the_belt_that_meets_it():
+    """A 420 kN peak on the hand conveyor's 1 000 kN belt (1 m wide) against a transient
+    minimum of 3: safety factor 2.38; the warning says where, when and in which phase, the
+    rating that meets the minimum (3 x 420 / 1 = 1 260 kN/m) and the levers of that phase."""
+    from types import SimpleNamespace
+
+    from beltstudy.engine.conveyor import parse_conveyor
+    from beltstudy.engine.dynamics import codes as C
+    from beltstudy.engine.dynamics.simulate import _transient_safety_words
+    from tests.conftest import hand_conveyor_dict
+
+    sysm = SimpleNamespace(s_end_m=np.array([0.0, 420.0, 1000.0, 2000.0]),
+                           strand=np.array([0, 0, 0, 1]), stop_command_s=92.0,
+                           model=SimpleNamespace(cycle=SimpleNamespace(t_pre=2.0,
+                                                                       t_start=60.0),
+                                                 drives=SimpleNamespace(
+                                                     control=np.array([C.VFD]),
+                                                     coupling=np.array([C.COUPLING_NONE]))))
+    conv = parse_conveyor(hand_conveyor_dict())
+    msg = _transient_safety_words(sysm, conv, 1000.0 / 420.0, 3.0, 420e3, 2, 31.04)
+    assert msg.startswith("belt safety factor 2.38 during the transient is below 3 (peak 420 kN "
+                          "near 1000 m from the tail on the carry at t = 31.0 s, during the "
+                          "start)")
+    assert "a belt rated at least 1260 kN/m at this width (now 1000 kN/m)" in msg
+    assert "a longer start (start.time_s)" in msg and "softer stop" not in msg
+    stop = _transient_safety_words(sysm, conv, 1000.0 / 420.0, 3.0, 420e3, 2, 95.0)
+    assert "during the stop" in stop and "a softer stop" in stop and "longer start" not in stop
+
+
 def test_a_transient_sag_names_when_and_the_tension_that_keeps_it_within():
     """A span whose lower spring fell to 8.92 kN 95.5 s into the cycle (in the stop) sags
     3.99 % against a 1.5 % limit: the warning says where, when, in which phase, and the
