@@ -226,6 +226,12 @@ def check_fill(conv: Conveyor, prefix: str = "") -> None:
     :func:`fill_pct`); registered with :func:`~beltstudy.engine.conveyor.register_check`."""
     if conv.belt.type == "auto":  # the belt is chosen later; capacity_t_h's own bound holds
         return
+    edge = conv.material.edge_distance_m
+    if edge is not None and usable_width_m(conv.belt.width_m, edge) <= 0.0:
+        raise InputError(
+            f"{prefix}material.edge_distance_m: {edge:g} m on each side leaves no width of the "
+            f"{conv.belt.width_m:g} m belt to carry material; give less than half the belt width "
+            "(leave it out for ISO 5048 / DIN 22101's 0.05 B + 0.025 m up to B = 2 m)")
     fill = fill_pct(conv)
     if fill > FILL_MAX_PCT:
         raise InputError(

@@ -288,3 +288,12 @@ def check_conveyor(conv, prefix: str = "") -> None:
         raise InputError(
             f"{prefix}belt: a custom belt (no 'type') needs top_cover_mm and bottom_cover_mm (0 allowed)"
         )
+    if conv.belt.type != AUTO and conv.belt.dynamic_modulus_kn_m is not None:
+        b = resolve_belt(conv.belt)
+        if b.dynamic_modulus_kn_m < b.modulus_kn_m:
+            raise InputError(
+                f"{prefix}belt.dynamic_modulus_kn_m: {b.dynamic_modulus_kn_m:g} kN/m is below the "
+                f"static modulus {b.modulus_kn_m:g} kN/m; a belt's rubber and carcass stiffen "
+                "under fast loading, never soften (dynamic over static about 1.1 for steel "
+                "cord, 1.5 for fabric: PHYSICS 5.1), so give at least the static modulus or "
+                "leave it out for the catalogue's ratio")

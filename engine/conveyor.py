@@ -373,6 +373,17 @@ class Idlers(_Model):
 
 #: Most points in a motor or brake curve (the transient kernel's fixed curve arrays).
 CURVE_POINTS_MAX = 16
+#: Largest speed of a motor curve point, over the speed at design belt speed [-]: its
+#: zero-torque (synchronous) point lies at 0.9 to 1.2 (:func:`check_motor_curve`).
+CURVE_SPEED_MAX = 1.2
+#: Largest torque of a motor curve point and largest ``torque_limit``, over the rated [-]:
+#: induction motors' breakdown torque is 2 to 3.5 x rated and vfd torque limits 1.5 to 2.5 x
+#: (IEC 60034-12 design N and H minima; drive makers' overload ratings): 10 is beyond any.
+CURVE_TORQUE_MAX = 10.0
+TORQUE_LIMIT_MAX = 10.0
+#: Most brakes on one conveyor: two per pulley of the largest drive stations (the six drives'
+#: pulleys), as the brake force is shared evenly among auto brakes.
+MAX_BRAKES = 12
 
 #: Typical induction-motor torque-speed curve (SPEC 6.1 ``motor_curve`` default): torque over
 #: rated torque against pulley speed over the pulley speed at design belt speed. Shape of a
@@ -425,12 +436,15 @@ class Drive(_Model):
         "it out): steady power x 1.25 (at most 30 000: three times the largest conveyor drives "
         "built)"
     )
-    torque_limit: float = Field(1.5, gt=0, description="max force as a multiple of rated force")
+    torque_limit: float = Field(1.5, gt=0, le=TORQUE_LIMIT_MAX,
+                                description="max force as a multiple of rated force (at most "
+                                f"{TORQUE_LIMIT_MAX:g})")
     control: Literal["vfd", "dol"] = Field(
         "vfd", description="vfd: speed loop with a torque limit; dol: motor on the line")
     motor_curve: list[tuple[float, float]] | None = Field(
         None, max_length=CURVE_POINTS_MAX, description="dol: torque / rated torque against pulley speed / pulley speed at "
-        "design belt speed (default: a typical induction-motor curve)")
+        "design belt speed (default: a typical induction-motor curve); speeds 0 to "
+        f"{CURVE_SPEED_MAX:g}, torques 0 to {CURVE_TORQUE_MAX:g}")
     motor_inertia_kg_m2: NonNegFloat | None = Field(
         None, le=INERTIA_MAX_KG_M2, description="motor rotor inertia reduced to the pulley shaft [kg m2], part of "
         "inertia_kg_m2; used with a fluid coupling (default: 2/3 of inertia_kg_m2)")
@@ -523,6 +537,11 @@ def check_motor_curve(curve) -> None:
     (synchronous speed) at its end; raises ValueError naming what is wrong."""
     xs = [float(p[0]) for p in curve]
     ys = [float(p[1]) for p in curve]
+    for k, (x, y) in enumerate(zip(xs, ys, strict=True)):
+        if not (math.isfinite(x) and math.isfinite(y)) or y > CURVE_TORQUE_MAX:
+            raise ValueError(f"motor_curve point {k} [{x:g}, {y:g}]: speeds and torques are "
+                             f"finite numbers, torques at most {CURVE_TORQUE_MAX:g} x rated "
+                             "(an induction motor's breakdown torque is 2 to 3.5 x)")
     if len(xs) < 2:
         raise ValueError("motor_curve needs at least two [speed, torque] points")
     if any(b <= a for a, b in zip(xs, xs[1:], strict=False)):
@@ -641,9 +660,11 @@ SAG_LIMIT_RTOL = 1e-9
 class SagLimit(_Model):
     # a limit near zero asks for an unbounded tension (T_min = w S / (8 h/S)): at least 0.1 %,
     # well below practice (DIN 22101 and CEMA use about 0.5 to 3 %)
-    carry: float = Field(1.5, ge=0.1, description="admissible carry sag h/S [%] (at least 0.1)")
-    return_: float = Field(3.0, ge=0.1, alias="return",
-                           description="admissible return sag [%] (at least 0.1)")
+    # and at most 50 %: a span sagging by half its length is no belt on idlers any more
+    carry: float = Field(1.5, ge=0.1, le=50.0,
+                         description="admissible carry sag h/S [%] (0.1 to 50)")
+    return_: float = Field(3.0, ge=0.1, le=50.0, alias="return",
+                           description="admissible return sag [%] (0.1 to 50)")
 
 
 #: Belt cleaner friction coefficient mu_3 [-]: ISO 5048:1989 gives 0.5 to 0.7 (middle taken;
@@ -700,12 +721,16 @@ class Conveyor(_Model):
     drives: list[Drive] = Field(..., min_length=1, max_length=MAX_DRIVES,
                                 description="drive pulleys, at most 6 (head and tail)")
     takeup: TakeUp = TakeUp()
-    brakes: list[Brake] = Field(default_factory=list)
+    brakes: list[Brake] = Field(default_factory=list, max_length=MAX_BRAKES,
+                                description=f"brakes, at most {MAX_BRAKES} (two per pulley of "
+                                "the largest drive stations)")
     holdback: bool = False
     sag_limit_pct: SagLimit = SagLimit()
     accessories: Accessories = Accessories()
-    safety_factor_min: PositiveFloat | None = Field(
-        None, description="minimum running belt safety factor [-]; default by belt kind"
+    # 1 to 50: below 1 the belt is allowed to break; DIN 22101's minima are 3 to 12
+    safety_factor_min: float | None = Field(
+        None, ge=1.0, le=50.0,
+        description="minimum running belt safety factor [-] (1 to 50); default by belt kind"
     )
 
     @model_validator(mode="after")

@@ -160,3 +160,28 @@ def test_static_output_in_a_missing_folder_is_one_line(tmp_path, capsys):
         assert main(["static", str(CONVEYORS / "slope-5pct.yaml"), option, str(out)]) == 2
         err = capsys.readouterr().err
         assert err == (f"error: cannot write {out}: the folder {out.parent} does not exist\n")
+
+
+BOMB = "".join(f"{b}: &{b} [{', '.join(['*' + a] * 9)}]\n"
+               for a, b in zip("abcdefgh", "bcdefghi", strict=True))
+
+
+@pytest.mark.parametrize("extra, needle", [
+    ("a: &a [1, 2, 3, 4, 5, 6, 7, 8, 9]\n" + BOMB, "(YAML aliases expanded)"),
+    ("deep: " + "[" * 200 + "]" * 200 + "\n", "nested deeper than"),
+    ("nan: .nan\n", "NaN is not a number"),
+])
+def test_every_command_reads_a_conveyor_file_within_the_doors_limits(tmp_path, capsys, extra,
+                                                                     needle):
+    """A conveyor file read by static, simulate and sweep-temperature meets the limits a study's
+    conveyor file meets (beltstudy.service.door.parse): an alias bomb of a few hundred bytes, a
+    deep nesting and a NaN are one-line errors, before anything is expanded or run."""
+    from beltstudy.service.cli import main
+
+    bad = tmp_path / "bad.yaml"
+    bad.write_text((CONVEYORS / "slope-5pct.yaml").read_text() + extra)
+    for args in (["static", str(bad)], ["simulate", str(bad), "--no-check"],
+                 ["sweep-temperature", str(bad), "--out", str(tmp_path)]):
+        assert main(args) == 2, args
+        err = capsys.readouterr().err
+        assert needle in err and len(err.strip().splitlines()) == 1, (args, err)

@@ -53,6 +53,16 @@ def check_scenario_fields(conveyor=None, **fields):
         raise InputError(text) from None
 
 
+def read_conveyor(path: str | os.PathLike):
+    """A conveyor file as the door reads it (:func:`beltstudy.service.door.parse.load_mapping`:
+    size, depth and alias limits, finite numbers, every key once), then parsed; a file the door
+    refuses is an :class:`~beltstudy.service.errors.Invalid` naming it."""
+    from beltstudy.engine import parse_conveyor
+    from beltstudy.service.door.parse import load_mapping
+
+    return parse_conveyor(load_mapping(path))
+
+
 def with_sag_at_rest(conv, on: bool):
     """The conveyor with ``takeup.sag_at_rest`` set (the CLI switch ``--no-sag-at-rest``)."""
     if conv.takeup.sag_at_rest == on:

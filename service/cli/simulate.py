@@ -12,7 +12,7 @@ import sys
 import numpy as np
 import pandas as pd
 
-from beltstudy.engine import InputError, get_model, load_conveyor, load_mapping, parse_scenario
+from beltstudy.engine import InputError, get_model, parse_scenario
 from beltstudy.engine import results as R
 from beltstudy.service.charts import transient_figure
 from beltstudy.service.cli.common import (
@@ -22,10 +22,12 @@ from beltstudy.service.cli.common import (
     dumps,
     parse_load,
     parse_params,
+    read_conveyor,
     with_sag_at_rest,
     write_table,
     writing,
 )
+from beltstudy.service.door.parse import load_mapping as door_load_mapping
 
 #: Steady fields of the table (labels and units: :mod:`beltstudy.engine.results`, the two tensions
 #: marked steady); the transient, per phase, slack and per-drive blocks show every field of
@@ -102,7 +104,7 @@ def build_scenario(args: argparse.Namespace):
 
     data: dict = {}
     if args.scenario:
-        data = load_mapping(args.scenario)
+        data = door_load_mapping(args.scenario)
         if set(data) == {"scenario"} and isinstance(data["scenario"], dict):
             data = data["scenario"]
     data = {k: (dict(v) if isinstance(v, dict) else v) for k, v in data.items()}
@@ -151,7 +153,7 @@ def run(args: argparse.Namespace) -> int:
     # deferred: the transient engine (numba) loads only for this command
     from beltstudy.engine.run import run_one
 
-    conv = with_sag_at_rest(load_conveyor(args.conveyor), args.sag_at_rest)
+    conv = with_sag_at_rest(read_conveyor(args.conveyor), args.sag_at_rest)
     fm = get_model(args.model)
     params = fm.params(parse_params(args.param, fm.name))
     for path, exts in ((args.timeseries, (".csv", ".parquet")), (args.plot, (".png",))):

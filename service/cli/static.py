@@ -13,7 +13,6 @@ from beltstudy.engine import (
     check_summary,
     get_model,
     installed_at_full_load,
-    load_conveyor,
     resolve_auto_belt,
     results,
     run_cases,
@@ -32,6 +31,7 @@ from beltstudy.service.cli.common import (
     dumps,
     parse_load,
     parse_params,
+    read_conveyor,
     with_sag_at_rest,
     write_table,
     writing,
@@ -74,7 +74,7 @@ def register(sub) -> None:
 
 
 def run(args: argparse.Namespace) -> int:
-    conv = with_sag_at_rest(load_conveyor(args.conveyor), args.sag_at_rest)
+    conv = with_sag_at_rest(read_conveyor(args.conveyor), args.sag_at_rest)
     auto = conv.belt.type == BELT_AUTO
     fm = get_model(args.model)
     params = fm.params(parse_params(args.param, fm.name))

@@ -25,7 +25,6 @@ from beltstudy.engine import (
     TEMPERATURE_MIN_C,
     InputError,
     get_model,
-    load_conveyor,
     resolve_auto_belt,
     run_cases,
 )
@@ -33,6 +32,7 @@ from beltstudy.service.cli.common import (
     check_scenario_fields,
     parse_load,
     parse_model_params,
+    read_conveyor,
     writing,
 )
 from beltstudy.service.settings import load_settings
@@ -203,7 +203,7 @@ def figure(df, title: str):
 
 
 def run(args: argparse.Namespace) -> int:
-    conv = load_conveyor(args.conveyor)
+    conv = read_conveyor(args.conveyor)
     models = _model_list(args.models)
     temps = temperatures(args.t_from, args.t_to, args.step)
     load = parse_load(args.load)

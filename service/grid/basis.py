@@ -57,6 +57,7 @@ from beltstudy.engine import (
     size_over_cases,
     with_belt,
 )
+from beltstudy.engine.conveyor import PRETENSION_MAX_KN, TAKEUP_MASS_MAX_KG
 from beltstudy.engine.design import GIVEN
 from beltstudy.service.errors import Invalid
 
@@ -271,8 +272,11 @@ def apply_sizes(conv: dict, sizes: dict | None, scenario: dict, dynamics: bool
     if sizes.get("belt") is not None and out["belt"].get("type") == BELT_AUTO:
         out["belt"]["type"] = sizes["belt"]["type"]
     tu = sizes.get("takeup")
-    # a sampled study's take-up may be drawn: only an auto field gets the design's size
-    if tu is not None and out["takeup"][tu["field"]] == "auto":
+    # a sampled study's take-up may be drawn: only an auto field gets the design's size; a
+    # size beyond what a file may give (no counterweight or screw holds it) stays auto, so
+    # the run sizes its own and says what sets it and what would avoid it
+    if tu is not None and out["takeup"][tu["field"]] == "auto" and tu["value"] <= (
+            TAKEUP_MASS_MAX_KG if tu["field"] == "mass_kg" else PRETENSION_MAX_KN):
         out["takeup"][tu["field"]] = tu["value"]
         governed["takeup_governed_by"] = governed_at(tu["governed_by"], tu.get("at", ""))
     why = []

@@ -231,3 +231,43 @@ def test_a_key_given_twice_is_refused_with_both_lines(tmp_path):
     js.write_text('{"name": "x", "belt": {"width_m": 1.2, "width_m": 1.4}}')
     with pytest.raises(InputError, match=r"twice.json: key 'width_m' given twice"):
         load_mapping(js)
+
+
+def _with(path: str, value) -> dict:
+    """The hand conveyor with one field set (a dotted path, list indices as numbers)."""
+    d = hand_conveyor_dict()
+    node = d
+    keys = path.split(".")
+    for k in keys[:-1]:
+        node = node[int(k)] if isinstance(node, list) else node.setdefault(k, {})
+    node[keys[-1]] = value
+    return d
+
+
+@pytest.mark.parametrize("path, value, needle", [
+    # a motor curve's points are finite, speeds within 1.2 and torques within 10 x rated
+    ("drives.0.motor_curve", [[0.0, float("nan")], [0.5, 2.0], [1.0, 0.0]],
+     "drives.0: motor_curve point 0 [0, nan]"),
+    ("drives.0.motor_curve", [[0.0, 1e300], [1.0, 0.0]], "motor_curve point 0 [0, 1e+300]"),
+    ("drives.0.motor_curve", [[0.0, 2.0], [float("inf"), 0.0]], "motor_curve point 1 [inf, 0]"),
+    ("drives.0.torque_limit", 1e6, "drives.0.torque_limit"),
+    ("sag_limit_pct.carry", 90.0, "sag_limit_pct.carry"),
+    ("safety_factor_min", 0.5, "safety_factor_min"),
+    ("safety_factor_min", 1e9, "safety_factor_min"),
+    ("brakes", [{"position": "head", "force_kn": 10.0}] * 13, "brakes"),
+    # a belt stiffens under fast loading: its dynamic modulus is at least the static one
+    ("belt.dynamic_modulus_kn_m", 10.0, "belt.dynamic_modulus_kn_m: 10 kN/m is below the "
+                                        "static modulus 60000 kN/m"),
+    # an edge distance that leaves no loaded width names itself, not the capacity
+    ("material.edge_distance_m", 0.5, "material.edge_distance_m: 0.5 m on each side"),
+])
+def test_values_beyond_any_conveyor_name_their_field(path, value, needle):
+    assert needle in _err(_with(path, value))
+
+
+def test_values_at_the_bounds_are_taken():
+    for path, value in (("drives.0.torque_limit", 10.0), ("sag_limit_pct.carry", 50.0),
+                        ("safety_factor_min", 1.0), ("belt.dynamic_modulus_kn_m", 60000.0),
+                        ("material.edge_distance_m", 0.1),
+                        ("drives.0.motor_curve", [[0.0, 10.0], [1.2, 0.0]])):
+        parse_conveyor(_with(path, value))

@@ -67,7 +67,29 @@ def _conveyor_ok(conv: Any) -> bool:
     limits = (conv.get("sag_limit_pct") or {}).values()
     if any(isinstance(v, int | float) and v < 1e-100 for v in limits):
         return False  # no finite auto take-up meets a sag limit this close to zero
+    if not _dynamic_modulus_ok(conv.get("belt")):
+        return False
     return all(abs(p.get("lift_m", 0.0)) < p["length_m"] for p in conv.get("profile", []))
+
+
+def _catalogue_moduli() -> dict[str, float]:
+    """Static modulus [kN/m] of each catalogue belt, from the catalogue file itself."""
+    import csv
+
+    path = Path(__file__).resolve().parents[2] / "engine" / "data" / "belts.csv"
+    rows = csv.DictReader(line for line in path.read_text().splitlines()
+                          if not line.startswith("#"))
+    return {r["id"]: float(r["modulus_kn_m"]) for r in rows}
+
+
+def _dynamic_modulus_ok(belt: Any) -> bool:
+    """A given dynamic modulus is at least the static one (the file's, else the catalogue's)."""
+    if not isinstance(belt, dict) or belt.get("dynamic_modulus_kn_m") is None:
+        return True
+    static = belt.get("modulus_kn_m")
+    if static is None:
+        static = _catalogue_moduli().get(belt.get("type"))
+    return static is None or belt["dynamic_modulus_kn_m"] >= static
 
 
 def _list_len(conv: Any, name: str) -> int | None:

@@ -373,3 +373,20 @@ def test_a_design_over_models_and_temperatures_names_the_governing_one():
     gov = largest["drive_rated_power_governed_by"][0]
     assert {r.design["rated_power_governed_by"] for r in study.runs} == {
         f"{gov} @ {model}, {temp:g} C"}
+
+
+def test_a_design_take_up_beyond_any_counterweight_is_a_warning_that_says_why(
+        make_study, finished_study, data_dir, make_conveyor):
+    """A drive pulley that barely grips (friction 1e-5: e^(mu theta) - 1 = 3.7e-5) needs a
+    counterweight of thousands of tonnes to pass Te, beyond the 2 000 t a file may give. The
+    study's runs are not failed on the size they were never given: each sizes its own take-up
+    and says what sets it and what would avoid it (more friction, more wrap)."""
+    conv = make_conveyor(drives=[{"position": "head", "pulley_diameter_m": 0.6,
+                                  "inertia_kg_m2": 20, "friction": 1e-5}])
+    sid = finished_study(data_dir, make_study(name="slippery", conveyor=conv,
+                                              grid={"temperature_c": [0, 20]}))
+    runs = _runs(data_dir, sid)
+    assert set(runs["status"]) == {"warning"}, runs["message"].tolist()
+    assert (runs["takeup_mass_kg"] > 2.0e6).all()
+    for msg in runs["message"]:
+        assert "is beyond any counterweight" in msg and "more friction" in msg
