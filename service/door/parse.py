@@ -33,7 +33,7 @@ import yaml
 from beltstudy.engine.conveyor import Yaml12Floats
 from beltstudy.engine.errors import InputError
 from beltstudy.engine.textfile import read_text
-from beltstudy.service.errors import Invalid, TooLarge
+from beltstudy.service.errors import Invalid, TooLarge, file_reason
 
 __all__ = [
     "MAX_DEPTH",
@@ -361,6 +361,8 @@ def load_mapping(path: str | Path, what: str | None = None) -> dict:
         text = read_text(p, what)  # UTF-8 (with or without BOM) or UTF-16 with its BOM
     except InputError as exc:
         raise Invalid(str(exc)) from None
+    except OSError as exc:  # a name over the file system's limits, ...
+        raise Invalid(f"{what}: cannot read it: {file_reason(exc)}") from None
     try:
         data = loads(text, yaml_text=p.suffix.lower() != ".json", what=what)
     except (Invalid, TooLarge) as exc:

@@ -36,7 +36,7 @@ from beltstudy.service.door.study import (
     fold_name,
     given_models,
 )
-from beltstudy.service.errors import Invalid, TooLarge
+from beltstudy.service.errors import Invalid, TooLarge, file_problem, shown_path
 from beltstudy.service.grid.axes import axis_column, resolve_axis
 from beltstudy.service.grid.basis import design_loads, design_models, design_temperatures
 from beltstudy.service.grid.expand import (
@@ -105,23 +105,28 @@ def conveyor_from_path(ref: str, base_dir: Path | None, root: Path | None) -> tu
     if not ref.isprintable():
         raise Invalid(f"conveyor: path {ref!r} contains control characters")
     rel = Path(ref)
-    if root is not None:
-        if rel.is_absolute() or ".." in rel.parts or "\\" in ref or ref.startswith("~"):
-            raise Invalid(
-                f"conveyor: path '{ref}' must be relative to the studies directory "
-                "without '..' (or give the conveyor inline)"
-            )
-        root_r = root.resolve()
-        path = (root_r / rel).resolve()
-        if root_r not in path.parents:
-            raise Invalid(f"conveyor: path '{ref}' leaves the studies directory")
-        if not path.is_file():
-            raise Invalid(f"conveyor: file '{ref}' not found in the studies directory")
-    else:
-        path = (base_dir or Path.cwd()) / rel
-        if not path.is_file():
-            raise Invalid(f"conveyor: file '{path}' not found")
-    return load_mapping(path, what=f"conveyor: {ref}"), ref
+    try:
+        if root is not None:
+            if rel.is_absolute() or ".." in rel.parts or "\\" in ref or ref.startswith("~"):
+                raise Invalid(
+                    f"conveyor: path '{shown_path(ref)}' must be relative to the studies "
+                    "directory without '..' (or give the conveyor inline)"
+                )
+            root_r = root.resolve()
+            path = (root_r / rel).resolve()
+            if root_r not in path.parents:
+                raise Invalid(f"conveyor: path '{shown_path(ref)}' leaves the studies directory")
+            if not path.is_file():
+                raise Invalid(f"conveyor: file '{shown_path(ref)}' not found in the studies "
+                              "directory")
+        else:
+            path = (base_dir or Path.cwd()) / rel
+            if not path.is_file():
+                raise Invalid(f"conveyor: file '{shown_path(path)}' not found")
+        return load_mapping(path, what=f"conveyor: {shown_path(ref)}"), ref
+    except OSError as exc:  # a name over the file system's limits, a folder we may not read
+        # the path as given: a service's own folders stay out of the answer
+        raise Invalid(f"conveyor: cannot read the file: {file_problem(exc, ref)}") from None
 
 
 def _axis_values(name: str, spec: list | RangeSpec, max_runs: int, where: str) -> list[Any]:

@@ -1,0 +1,58 @@
+"""Bad input a tester sent a real service (``beltstudy serve`` in a child process): each used
+to be a 500 or was taken silently; now a 422 naming the field and the fix, nothing stored.
+"""
+
+from __future__ import annotations
+
+import httpx
+import pytest
+
+from tests.service.conftest import LiveService
+
+pytestmark = pytest.mark.slow
+
+
+@pytest.fixture(scope="module")
+def svc(tmp_path_factory):
+    tmp = tmp_path_factory.mktemp("bad-input")
+    service = LiveService(tmp / "data", tmp / "beltstudy.service.log")
+    yield service
+    service.stop()
+
+
+@pytest.fixture
+def http(svc):
+    with httpx.Client(base_url=svc.url, timeout=60) as client:
+        yield client
+
+
+def _stored(svc: LiveService, http: httpx.Client) -> tuple[list, list]:
+    """The studies the service lists and the study folders in its store."""
+    listed = sorted(s["id"] for s in http.get("/studies").json()["studies"])
+    root = svc.data_dir / "studies"
+    folders = sorted(p.name for p in root.iterdir()) if root.exists() else []
+    return listed, folders
+
+
+def _refused(http: httpx.Client, body: dict) -> str:
+    """POST ``body``: a 422 whose message is one line; the message."""
+    answer = http.post("/studies", json=body)
+    assert answer.status_code == 422, answer.text
+    message = answer.json()["message"]
+    assert answer.json()["error"] == "invalid" and "\n" not in message
+    return message
+
+
+@pytest.mark.parametrize("path", [
+    "a" * 5000 + ".yaml",                  # one name over the file system's 255 bytes
+    "dddddd/" * 600 + "conveyor.yaml",     # 600 nested folders: the path over 4096 bytes
+])
+def test_a_conveyor_path_too_long_is_a_422_naming_conveyor(svc, http, make_study, path):
+    # was a 500 (OSError: [Errno 36] File name too long)
+    before = _stored(svc, http)
+    message = _refused(http, make_study(name="long-path", conveyor=path))
+    assert message.startswith("conveyor: cannot read the file: "), message
+    assert "too long" in message and "give a shorter" in message
+    assert len(message) < 400  # the path is shortened, not echoed 5000 characters long
+    assert _stored(svc, http) == before
+    assert http.get("/health").json()["status"] == "ok"
