@@ -95,8 +95,15 @@ def _walk(model: type[BaseModel], parts: list[str], data: Any) -> tuple[str | in
     is_list = False
     for part in parts:
         if is_list:
-            if not part.isdigit():
-                return f"expected an index into '{'.'.join(map(str, out))}', got '{part}'"
+            if not (part.isascii() and part.isdigit()):
+                # str.isdigit takes any script's digits and superscripts ('²', Arabic-Indic
+                # '١'), which int() reads as another number or not at all
+                at = ".".join(map(str, out))
+                odd = next((c for c in part if not c.isascii()), None)
+                if odd is not None and any(c.isnumeric() for c in part):
+                    return (f"the index '{part}' into '{at}' must be a plain number 0-9 (ASCII "
+                            f"digits only; U+{ord(odd):04X} '{odd}' is not one)")
+                return f"expected an index into '{at}', got '{part}'"
             index = int(part)
             size = len(data) if isinstance(data, list) else 0
             if index >= size:

@@ -56,3 +56,22 @@ def test_a_conveyor_path_too_long_is_a_422_naming_conveyor(svc, http, make_study
     assert len(message) < 400  # the path is shortened, not echoed 5000 characters long
     assert _stored(svc, http) == before
     assert http.get("/health").json()["status"] == "ok"
+
+
+@pytest.mark.parametrize(("extra", "where", "index"), [
+    ({"grid": {"profile.\u00b2.lift_m": [1, 2]}}, "grid", "\u00b2"),       # superscript two
+    ({"grid": {"profile.\u0661.lift_m": [1, 2]}}, "grid", "\u0661"),       # Arabic-Indic one
+    ({"zip": [{"profile.\u00b2.lift_m": [1, 2], "stop_time_s": [5, 6]}]}, "zip.0", "\u00b2"),
+    ({"sample": {"n": 4, "method": "lhs", "seed": 1, "axes": {
+        "profile.\u0661.lift_m": {"dist": "uniform", "low": 1, "high": 2}}}},
+     "sample.axes", "\u0661"),
+])
+def test_an_axis_index_in_other_digits_is_a_422_asking_for_ascii(svc, http, make_study, extra,
+                                                                  where, index):
+    # '²' was a 500 (int() cannot read it); '١' was read as index 1
+    before = _stored(svc, http)
+    message = _refused(http, make_study(name="odd-index", **extra))
+    assert message.startswith(f"{where}: axis 'profile.{index}.lift_m': the index '{index}' "
+                              "into 'profile' must be a plain number 0-9 (ASCII digits only"), \
+        message
+    assert _stored(svc, http) == before
