@@ -25,9 +25,9 @@ from pathlib import Path
 from pydantic import Field, ValidationError, field_validator
 from pydantic_settings import BaseSettings, SettingsConfigDict
 
-from beltstudy.service.errors import Invalid
+from beltstudy.service.errors import Invalid, file_reason, shown_path
 
-__all__ = ["Settings", "get_settings", "load_settings", "ENV_PREFIX"]
+__all__ = ["Settings", "get_settings", "load_settings", "check_data_dir", "ENV_PREFIX"]
 
 ENV_PREFIX = "BELTSTUDY_"
 
@@ -127,6 +127,31 @@ def load_settings(**over) -> Settings:
     except ValidationError as exc:
         raise Invalid("; ".join(dict.fromkeys(_setting_problem(e) for e in exc.errors()))
                       ) from None
+
+
+def check_data_dir(path: str | os.PathLike) -> Path:
+    """``BELTSTUDY_DATA_DIR`` as a folder the store can use: an existing folder it may write
+    in, or a path whose nearest existing part is such a folder (the store creates the rest).
+    Anything else is :class:`Invalid` naming the variable, the path and the fix (one line:
+    the service refuses to start, exit status 2)."""
+    root = Path(path)
+    where = f"{ENV_PREFIX}DATA_DIR: {shown_path(root)}"
+    probe = root
+    try:
+        while not probe.exists():  # the nearest part of the path that exists
+            if probe.parent == probe:
+                break
+            probe = probe.parent
+        if probe.exists() and not probe.is_dir():
+            what = "is a file" if probe == root else f"is under {shown_path(probe)}, a file"
+            raise Invalid(f"{where} {what}, not a folder; give a folder for the store (it is "
+                          "created if missing)")
+        if probe.exists() and not os.access(probe, os.W_OK | os.X_OK):
+            raise Invalid(f"{where}: no permission to write in {shown_path(probe)}; give a "
+                          "folder the service may write in")
+    except OSError as exc:  # a name over the file system's limits, a folder we may not read
+        raise Invalid(f"{where}: {file_reason(exc)}") from None
+    return root
 
 
 @lru_cache(maxsize=1)

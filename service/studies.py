@@ -51,7 +51,7 @@ from beltstudy.service.grid.expand import (
     stable_hash,
     study_from_json,
 )
-from beltstudy.service.settings import Settings
+from beltstudy.service.settings import Settings, check_data_dir
 from beltstudy.service.store import query
 from beltstudy.service.store.columns import profile_schema, surface_schema
 from beltstudy.service.store.parquet import Store
@@ -92,7 +92,9 @@ class StudyService:
 
     def __init__(self, settings: Settings, executor: Executor | None = None):
         self.settings = settings
-        self.store = Store(settings.data_dir)
+        # a data folder that is a file or not writable: refused here, when the service or a
+        # command starts, not by every POST /studies after /health said ok
+        self.store = Store(check_data_dir(settings.data_dir))
         self.executor = executor or Executor(settings)
         self._jobs: dict[str, StudyJob] = {}  # studies with a job thread not yet ended
         self._deleting: set[str] = set()

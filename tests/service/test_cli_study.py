@@ -213,3 +213,31 @@ def test_a_conveyor_file_that_is_not_a_mapping_says_why(env, capsys, tmp_path, m
     path.write_text(yaml.safe_dump(make_study(conveyor="conv.yaml")))
     assert main(["run", str(path)]) == 2
     assert capsys.readouterr().err == f"error: conveyor: conv.yaml: {message}\n"
+
+
+def test_a_data_dir_that_is_a_file_stops_serve_before_it_listens(env, capsys, monkeypatch,
+                                                                  tmp_path, make_study):
+    # serve started, /health said ok, then every POST /studies was a 500 (NotADirectoryError)
+    import os
+    import subprocess
+    import sys
+
+    store = tmp_path / "store"
+    store.write_text("not a folder\n")
+    for data_dir, what in ((store, "is a file"), (store / "sub", f"is under {store}, a file")):
+        said = (f"error: BELTSTUDY_DATA_DIR: {data_dir} {what}, not a folder; give a folder "
+                "for the store (it is created if missing)\n")
+        env_vars = {**os.environ, "BELTSTUDY_DATA_DIR": str(data_dir),
+                    "BELTSTUDY_WARM_START": "false"}
+        # a service that started would serve until the timeout ends the test
+        proc = subprocess.run(
+            [sys.executable, "-m", "beltstudy.service.cli", "serve", "--port", str(free_port())],
+            env=env_vars, capture_output=True, text=True, timeout=120)
+        assert (proc.returncode, proc.stderr) == (2, said)
+        monkeypatch.setenv("BELTSTUDY_DATA_DIR", str(data_dir))
+        path = tmp_path / "study.yaml"
+        path.write_text(yaml.safe_dump(make_study()))
+        for argv in (["run", str(path)], ["status"]):  # the local store: the same line
+            assert main(argv) == 2
+            assert capsys.readouterr().err == said
+    assert store.read_text() == "not a folder\n"
