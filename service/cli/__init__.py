@@ -3,7 +3,8 @@
 Each sub-command lives in its own module with a ``register(subparsers)`` function that adds
 its parser and sets ``func``. User mistakes (:class:`beltstudy.engine.errors.InputError` and every
 :class:`beltstudy.service.errors.ServiceError`: an invalid study, an unknown id, a service that does
-not answer) print one line and exit with status 2; no traceback.
+not answer) print one line and exit with status 2; no traceback. So does an ``OSError`` on a
+file the user named (the one the error names: a name too long, a folder for a file).
 """
 
 from __future__ import annotations
@@ -13,7 +14,7 @@ import importlib
 import sys
 
 from beltstudy.engine import InputError
-from beltstudy.service.errors import ServiceError
+from beltstudy.service.errors import ServiceError, file_problem
 
 #: Sub-command modules, in the order they appear in ``--help``.
 COMMAND_MODULES = ("static", "sweep", "simulate", "study", "calibrate")
@@ -49,6 +50,13 @@ def main(argv: list[str] | None = None) -> int:
     except BrokenPipeError:  # output piped into head, less, ...
         sys.stderr.close()
         return 0
+    except OSError as exc:
+        if exc.filename is None:  # not about a file the user named: a bug or the machine
+            raise
+        # reading or writing a file the user named (a name over the file system's limit, a
+        # folder that is a file, no permission): one line naming it, whichever command
+        print(f"error: {file_problem(exc)}", file=sys.stderr)
+        return 2
     except KeyboardInterrupt:
         print("interrupted", file=sys.stderr)
         return 130

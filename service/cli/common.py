@@ -10,6 +10,7 @@ from pathlib import Path
 from typing import Any
 
 from beltstudy.engine import LOAD_MAX, InputError, parse_scenario, section_loads
+from beltstudy.service.errors import file_reason, shown_path
 
 LOAD_HELP = ("full, empty, inclines, declines, a fraction of the design load up to 1.3 (a "
              "surge above 1), or one fraction per carry profile section: 1,0,0.5")
@@ -156,12 +157,15 @@ def check_output(path: str | os.PathLike) -> Path:
     folder itself, or the folder is not writable)."""
     out = Path(path)
     folder = out.parent
-    if out.is_dir():
-        raise InputError(f"cannot write {out}: it is a folder; give a file name")
-    if not folder.exists():
-        raise InputError(f"cannot write {out}: the folder {folder} does not exist")
-    if not folder.is_dir():
-        raise InputError(f"cannot write {out}: {folder} is a file, not a folder")
+    try:
+        if out.is_dir():
+            raise InputError(f"cannot write {out}: it is a folder; give a file name")
+        if not folder.exists():
+            raise InputError(f"cannot write {out}: the folder {folder} does not exist")
+        if not folder.is_dir():
+            raise InputError(f"cannot write {out}: {folder} is a file, not a folder")
+    except OSError as exc:  # a name over the file system's limits, ...
+        raise InputError(f"cannot write {shown_path(out)}: {file_reason(exc)}") from None
     if not os.access(folder, os.W_OK):
         raise InputError(f"cannot write {out}: no permission to write in the folder {folder}")
     return out
@@ -174,7 +178,7 @@ def writing(path: str | os.PathLike):
     try:
         yield Path(path)
     except OSError as exc:
-        raise InputError(f"cannot write {path}: {exc.strerror or exc}") from None
+        raise InputError(f"cannot write {shown_path(path)}: {file_reason(exc)}") from None
 
 
 def write_table(df, path: str) -> None:

@@ -3,12 +3,21 @@
 from __future__ import annotations
 
 import argparse
+import errno
 
 import pytest
+import yaml
 
 import beltstudy.service.cli as cli
 from beltstudy.engine.errors import InputError
-from beltstudy.service.errors import Conflict, Invalid, NotFound, ServiceError, Unavailable
+from beltstudy.service.errors import (
+    Conflict,
+    Invalid,
+    NotFound,
+    ServiceError,
+    Unavailable,
+    shown_path,
+)
 
 
 def _raising(monkeypatch, exc: BaseException) -> None:
@@ -60,3 +69,64 @@ def test_input_error_keeps_its_field_apart():
     from beltstudy.engine.conveyor import InputError as FromConveyor
 
     assert FromConveyor is InputError
+
+
+# ------------------------------------------------------------ files the user names
+def test_an_os_error_on_a_named_file_is_one_line_and_exit_2(monkeypatch, capsys):
+    name = "a" * 300 + ".yaml"
+    _raising(monkeypatch, OSError(errno.ENAMETOOLONG, "File name too long", name))
+    assert cli.main([]) == 2
+    err = capsys.readouterr().err
+    assert err.startswith("error: aaaa") and err.count("\n") == 1
+    assert "file name too long: a name of 305 bytes, at most 255" in err
+
+
+def test_an_os_error_about_no_file_is_not_a_user_error(monkeypatch):
+    _raising(monkeypatch, OSError(errno.EIO, "Input/output error"))
+    with pytest.raises(OSError, match="Input/output error"):
+        cli.main([])
+
+
+@pytest.fixture
+def local(monkeypatch, data_dir, tmp_path, make_conveyor):
+    """No service at the default address, the store in ``data_dir``, a conveyor file."""
+    from beltstudy.service.cli import study
+    from beltstudy.service.cli.demo import free_port
+
+    monkeypatch.delenv("BELTSTUDY_URL", raising=False)
+    monkeypatch.setattr(study, "DEFAULT_URL", f"http://127.0.0.1:{free_port()}")
+    monkeypatch.setenv("BELTSTUDY_DATA_DIR", str(data_dir))
+    conveyor = tmp_path / "conveyor.yaml"
+    conveyor.write_text(yaml.safe_dump(make_conveyor()), encoding="utf-8")
+    return conveyor
+
+
+LONG = "a" * 300
+
+
+@pytest.mark.parametrize(("argv", "said"), [
+    (["static", f"{LONG}.yaml"], "error: "),
+    (["run", f"{LONG}.yaml"], "error: "),
+    (["static", "{conveyor}", "--profile", "{tmp}/" + LONG + ".csv"], "error: cannot write "),
+    (["static", "{conveyor}", "--plot", "{tmp}/" + LONG + ".png"], "error: cannot write "),
+    (["results", "{sid}", "-o", "{tmp}/" + LONG + ".csv"], "error: cannot write "),
+    (["report", "{sid}", "-o", "{tmp}/" + LONG + ".html"], "error: cannot write "),
+    (["calibrate", "{conveyor}", "--measured", "{tmp}/" + LONG + ".csv", "--model", "din",
+      "--fit", "f_carry"], "error: "),
+])
+def test_a_file_name_too_long_is_one_line_naming_it(local, capsys, tmp_path, data_dir,
+                                                    finished_study, make_study, argv, said):
+    # each printed an OSError: [Errno 36] traceback and exited 1
+    sid = finished_study(data_dir, make_study()) if "{sid}" in argv else ""
+    fill = {"conveyor": str(local), "tmp": str(tmp_path), "sid": sid}
+    argv = [a.format(**fill) for a in argv]
+    named = next(a for a in argv if LONG in a)
+    before = sorted(p.name for p in tmp_path.iterdir())
+    assert cli.main(argv) == 2
+    err = capsys.readouterr().err
+    # the file named as given (a long one by its start and end: shown_path)
+    assert err.startswith(said + shown_path(named)[:60]), err
+    assert err.count("\n") == 1 and "Traceback" not in err
+    assert ("file name too long: a name of 30" in err and "at most 255" in err
+            and err.endswith("give a shorter name\n")), err
+    assert sorted(p.name for p in tmp_path.iterdir()) == before  # nothing written
