@@ -143,10 +143,12 @@ def _axis_values(name: str, spec: list | RangeSpec, max_runs: int, where: str) -
         values = spec.values()
     else:
         values = list(spec)
+    written = values
+    values = [_positive_zero(v) for v in values]
     if not values:
         raise Invalid(f"{label}: empty axis; give at least one value")
     seen: dict[str, Any] = {}
-    for v in values:
+    for v, as_written in zip(values, written, strict=True):
         # a load case by name is its fraction (full 1, empty 0: engine.conveyor.section_loads)
         same = (LOAD_NAMES.get(v, v) if isinstance(v, str) and name in ("load", "scenario.load")
                 else v)
@@ -155,12 +157,25 @@ def _axis_values(name: str, spec: list | RangeSpec, max_runs: int, where: str) -
         if key in seen:
             first = seen[key]
             if first == v:
-                raise Invalid(f"{label}: value {v!r} appears twice")
+                zero = "" if canonical_json(as_written) == canonical_json(v) else " (-0.0 is 0.0)"
+                raise Invalid(f"{label}: value {v!r} appears twice{zero}")
             named = v if isinstance(v, str) else first
             raise Invalid(f"{label}: {first!r} and {v!r} are the same load ({named!r} is "
                           f"{LOAD_NAMES[named]:g} x the design load); give one")
         seen[key] = v
     return values
+
+
+def _positive_zero(value: Any) -> Any:
+    """``value`` with every ``-0.0`` in it read as ``0.0``: the same number, so the same
+    duplicate key and the same run id (JSON writes ``-0.0`` apart from ``0.0``)."""
+    if isinstance(value, float):
+        return 0.0 if value == 0.0 else value
+    if isinstance(value, list):
+        return [_positive_zero(v) for v in value]
+    if isinstance(value, dict):
+        return {k: _positive_zero(v) for k, v in value.items()}
+    return value
 
 
 #: Load cases by name that are one fraction of the design load everywhere.
@@ -325,7 +340,8 @@ def _sample_axes(study: StudyIn, bases: tuple[dict, dict], models: dict) -> list
                     raise Invalid(f"{where}: drawn value {v:g}: {exc.reason} (a distribution "
                                   "within the parameter's bounds, e.g. lognormal for a "
                                   "positive one)") from None
-        out.append(Axis(name, axis_column(name), target, tuple(values), group, True))
+        out.append(Axis(name, axis_column(name), target,
+                        tuple(_positive_zero(v) for v in values), group, True))
     return out
 
 

@@ -75,3 +75,19 @@ def test_an_axis_index_in_other_digits_is_a_422_asking_for_ascii(svc, http, make
                               "into 'profile' must be a plain number 0-9 (ASCII digits only"), \
         message
     assert _stored(svc, http) == before
+
+
+def test_negative_zero_is_zero_in_an_axis(svc, http, make_study):
+    # [0.0, -0.0] were two runs with different run ids and identical inputs
+    before = _stored(svc, http)
+    message = _refused(http, make_study(name="zeros", grid={"temperature_c": [0.0, -0.0]}))
+    assert message == "grid.temperature_c: value 0.0 appears twice (-0.0 is 0.0)"
+    message = _refused(http, make_study(name="zeros", grid={"load": ["empty", -0.0]}))
+    assert message.startswith("grid.load: 'empty' and 0.0 are the same load")
+    assert _stored(svc, http) == before
+    # -0.0 alone is the study of 0.0: the same study id, so the same runs, stored once
+    first = http.post("/studies", json=make_study(name="zero", grid={"temperature_c": [0.0]}))
+    again = http.post("/studies", json=make_study(name="zero", grid={"temperature_c": [-0.0]}))
+    assert (first.status_code, again.status_code) == (202, 200)
+    assert again.json()["id"] == first.json()["id"]
+    assert svc.wait(first.json()["id"])["state"] == "done"

@@ -81,6 +81,29 @@ def test_equal_values_after_validation_are_one_study(make_study):
         resolve_study(make_study(grid={"temperature_c": [20, 20.0]}))
 
 
+def test_negative_zero_is_zero_in_every_axis(make_study):
+    """-0.0 was a value of its own: [0.0, -0.0] two runs of identical inputs, each its own
+    run id, where [10, 10.0] is refused."""
+    zero = resolve_study(make_study(grid={"temperature_c": [0.0]}))
+    for grid in ({"temperature_c": [-0.0]}, {"temperature_c": {"start": -0.0, "stop": 0,
+                                                               "step": 1}}):
+        same = resolve_study(make_study(grid=grid))
+        assert same.id == zero.id
+        assert [r.run_id for r in same.runs] == [r.run_id for r in zero.runs]
+        assert same.runs[0].scenario["temperature_c"] == 0.0
+    with pytest.raises(Invalid, match=r"^grid.temperature_c: value 0.0 appears twice "
+                                      r"\(-0.0 is 0.0\)$"):
+        resolve_study(make_study(grid={"temperature_c": [0.0, -0.0]}))
+    with pytest.raises(Invalid, match=r"^grid.load: 'empty' and 0.0 are the same load"):
+        resolve_study(make_study(grid={"load": ["empty", -0.0]}))
+    with pytest.raises(Invalid, match=r"^zip.0.models.din.f_return: value 0.0 appears twice"):
+        resolve_study(make_study(grid={"temperature_c": [0]}, zip=[
+            {"models.din.f_return": [0.0, -0.0], "stop_time_s": [5, 6]}]))
+    # inside a value too: a load given per section
+    assert [r.run_id for r in resolve_study(make_study(grid={"load": [[0.0]]})).runs] == [
+        r.run_id for r in resolve_study(make_study(grid={"load": [[-0.0]]})).runs]
+
+
 def test_ranges_include_the_stop_value():
     assert RangeSpec(start=-40, stop=40, step=10).values() == list(range(-40, 41, 10))
     assert RangeSpec(start=0, stop=1, step=0.1).values()[-1] == 1.0
