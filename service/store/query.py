@@ -26,6 +26,7 @@ __all__ = [
     "records_to_json",
     "apply_filters",
     "compare",
+    "model_pair",
     "to_csv",
     "to_parquet",
     "accuracy_columns",
@@ -154,6 +155,17 @@ def _stats(values: pd.Series) -> dict:
     }
 
 
+def model_pair(baseline: str, candidate: str) -> tuple[str, str]:
+    """The baseline and candidate friction models by their canonical names; the same model
+    twice (or by an alias) is :class:`Invalid` naming ``candidate``: a ratio needs two."""
+    baseline = model_name(baseline, "baseline")
+    candidate = model_name(candidate, "candidate")
+    if baseline == candidate:
+        raise Invalid(f"candidate: '{candidate}' is the baseline too; compare two different "
+                      "models")
+    return baseline, candidate
+
+
 def compare(
     runs: pd.DataFrame,
     axes: list[str],
@@ -187,11 +199,7 @@ def compare(
             )
         if m not in valid:
             raise Invalid(f"metrics: unknown metric '{m}'; valid: " + ", ".join(valid))
-    baseline = model_name(baseline, "baseline")
-    candidate = model_name(candidate, "candidate")
-    if baseline == candidate:
-        raise Invalid(f"candidate: '{candidate}' is the baseline too; compare two different "
-                      "models")
+    baseline, candidate = model_pair(baseline, candidate)
     if models is None:
         models = sorted(set(runs["friction_model"].dropna())) if len(runs) else []
     for label, name in (("baseline", baseline), ("candidate", candidate)):

@@ -73,8 +73,9 @@ def resolved_study(service: StudyService, study_id: str) -> ResolvedStudy:
 
 def _pick_models(runs: pd.DataFrame, baseline: str | None, candidate: str | None):
     models = sorted(set(runs["friction_model"].dropna())) if "friction_model" in runs else []
-    if baseline is None:
-        baseline = "cema" if "cema" in models or not models else models[0]
+    if baseline is None:  # not the candidate given: a ratio needs two models
+        pool = [m for m in models if m != candidate] or models
+        baseline = "cema" if "cema" in pool or not pool else pool[0]
     if candidate is None:
         others = [m for m in models if m != baseline]
         candidate = "nonlin" if "nonlin" in others or not others else others[0]
@@ -97,6 +98,8 @@ def study_figure(
         if given is not None and query.model_name(given, label) not in models:
             raise Invalid(f"{label}: model '{given}' is not in this study; it has: "
                           + ", ".join(models))
+    if name == "ratio" and baseline is not None and candidate is not None:
+        query.model_pair(baseline, candidate)  # the same model twice: a 422 as /compare's
     baseline = query.model_name(baseline, "baseline") if baseline is not None else None
     candidate = query.model_name(candidate, "candidate") if candidate is not None else None
     return figure_of(doc, service.store.read_runs(study_id), name, baseline, candidate,

@@ -91,3 +91,24 @@ def test_negative_zero_is_zero_in_an_axis(svc, http, make_study):
     assert (first.status_code, again.status_code) == (202, 200)
     assert again.json()["id"] == first.json()["id"]
     assert svc.wait(first.json()["id"])["state"] == "done"
+
+
+def test_a_ratio_plot_of_one_model_against_itself_is_a_422_like_compare(svc, http, make_study):
+    # was a 200 PNG saying "a ratio needs two friction models in the grid"
+    sid = http.post("/studies", json=make_study(name="ratio-pair")).json()["id"]  # din, cema
+    assert svc.wait(sid)["state"] == "done"
+    compare = http.get(f"/studies/{sid}/compare", params={"baseline": "din", "candidate": "din"})
+    assert compare.status_code == 422
+    said = "candidate: 'din' is the baseline too; compare two different models"
+    assert compare.json()["message"] == said
+    for candidate in ("din", "iso5048"):  # by its name or its alias
+        plot = http.get(f"/studies/{sid}/plots/ratio",
+                        params={"baseline": "din", "candidate": candidate})
+        assert plot.status_code == 422, plot.headers.get("content-type")
+        assert plot.json() == {"error": "invalid", "message": said}
+    # the candidate alone: the baseline is the study's other model, a real ratio figure
+    plot = http.get(f"/studies/{sid}/plots/ratio", params={"candidate": "cema"})
+    assert plot.status_code == 200 and plot.content.startswith(b"\x89PNG")
+    pair = http.get(f"/studies/{sid}/plots/ratio", params={"baseline": "din",
+                                                           "candidate": "cema"})
+    assert pair.status_code == 200 and pair.content == plot.content
