@@ -56,9 +56,9 @@ def read_text(path: str | Path, what: str | None = None) -> str:
     ``what`` (default: the path)."""
     p = Path(path)
     what = what or str(p)
-    if not p.is_file():
-        raise InputError(f"{what}: file not found")
     try:
+        if not p.is_file():
+            raise InputError(f"{what}: file not found")
         data = p.read_bytes()
     except OSError as exc:
         raise InputError(f"{what}: cannot read it ({exc.strerror or type(exc).__name__})") \

@@ -83,6 +83,7 @@ NAME_PATTERN = r"^(?!.*\.\.)[A-Za-z0-9][A-Za-z0-9 ._+\-]{0,119}$"
 NOT_IN_SCHEMA = (
     "drive shares sum to 1",
     "a belt's dynamic modulus is at least its static one (the file's, else the catalogue's)",
+    "an idler set gives its pitch (spacing_m) or its count, one of them",
     "a profile section's |lift_m| is below its length_m",
     "a range's step leads from start to stop, and its values stay within the study limit",
     "the grid's runs (the product of its axes) stay within BELTSTUDY_MAX_RUNS",

@@ -271,3 +271,11 @@ def test_values_at_the_bounds_are_taken():
                         ("material.edge_distance_m", 0.1),
                         ("drives.0.motor_curve", [[0.0, 10.0], [1.2, 0.0]])):
         parse_conveyor(_with(path, value))
+
+
+def test_a_file_name_the_system_refuses_is_an_input_error(tmp_path):
+    """A name over the file system's 255 bytes raises OSError in the check for the file
+    itself: it is an InputError naming the file, as a file not found is."""
+    name = tmp_path / ("a" * 300 + ".yaml")
+    with pytest.raises(InputError, match="cannot read it"):
+        load_conveyor(name)

@@ -69,6 +69,11 @@ def _conveyor_ok(conv: Any) -> bool:
         return False  # no finite auto take-up meets a sag limit this close to zero
     if not _dynamic_modulus_ok(conv.get("belt")):
         return False
+    idlers = conv.get("idlers")
+    for strand in (idlers.values() if isinstance(idlers, dict) else ()):
+        if isinstance(strand, dict) and (strand.get("spacing_m") is None) == (
+                strand.get("count") is None):
+            return False  # an idler set gives its pitch or its count, one of them
     return all(abs(p.get("lift_m", 0.0)) < p["length_m"] for p in conv.get("profile", []))
 
 
