@@ -314,7 +314,10 @@ def calibrate(conv: Conveyor, measured: Sequence[Measurement], model: str,
     x_free = np.array([x0[names.index(n)] for n in free])
     held_values = {n: float(x0[names.index(n)]) for n in held}
     fixed.update(_expanded(fm.name, held_values))
-    sol = least_squares(residual, x_free, args=(free,), bounds=(0.0, np.inf),
+    fields = {f.name: f for f in dataclasses.fields(fm.params_class)}
+    upper = [min((fields[q].metadata.get("hi") or np.inf) for q in _sets(fm.name, n))
+             for n in free]  # each parameter's largest value (friction.base.param)
+    sol = least_squares(residual, x_free, args=(free,), bounds=(0.0, upper),
                         x_scale="jac", diff_step=DIFF_STEP, xtol=1e-12, ftol=1e-12)
     r = residual(sol.x, free)
     jac = _jacobian(lambda x: residual(x, free), sol.x)

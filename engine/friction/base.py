@@ -72,6 +72,13 @@ class FrictionModel:
                 raise InputError(f"expected a number, got {value!r}",
                                  field=f"models.{self.name}.{key}") from None
         p = dataclasses.replace(self.params_class(), **clean)
+        for key, value in clean.items():
+            hi = fields[key].metadata.get("hi")
+            if hi is not None and value is not None and not value <= hi:
+                raise InputError(
+                    f"at most {hi:g}, far beyond any published value (got {value:g}); the "
+                    "parameters, their defaults and sources: docs/friction.md, GET /models",
+                    field=f"models.{self.name}.{key}")
         check = getattr(p, "check", None)
         if check is not None:
             check()
@@ -82,11 +89,15 @@ class FrictionModel:
         out = []
         for f in dataclasses.fields(self.params_class):
             default = f.default if f.default is not dataclasses.MISSING else None
-            out.append({"name": f.name, "default": default, "doc": f.metadata.get("doc", "")})
+            out.append({"name": f.name, "default": default, "doc": f.metadata.get("doc", ""),
+                        "max": f.metadata.get("hi")})
         return out
 
 
-def param(default, doc: str):
-    """A dataclass field with a documented default (units in the doc string)."""
-    return dataclasses.field(default=default, metadata={"doc": doc})
+def param(default, doc: str, hi: float | None = None):
+    """A dataclass field with a documented default (units in the doc string) and, with ``hi``,
+    the largest value taken: far beyond any published value (about ten times the top of the
+    range the doc string cites), so that only a slip of the pen is refused
+    (:meth:`FrictionModel.params`; the study schema's ``maximum``)."""
+    return dataclasses.field(default=default, metadata={"doc": doc, "hi": hi})
 

@@ -101,11 +101,11 @@ class CemaParams:
     """Parameters of the classic CEMA model."""
 
     ky: float | None = param(None, "carry resistance factor Ky override [-] (default: the "
-                                   "documented length/mass/spacing fit)")
+                                   "documented length/mass/spacing fit)", hi=1.0)
     kt: float | None = param(None, "ambient temperature factor Kt override [-] (default: "
-                                   "CEMA curve at the run temperature)")
+                                   "CEMA curve at the run temperature)", hi=10.0)
     ai_n: float | None = param(None, "idler drag A_i per carry set [N] (default: the idler "
-                                     "catalogue seal drag, CEMA 6.7 N for 6 in C/D)")
+                                     "catalogue seal drag, CEMA 6.7 N for 6 in C/D)", hi=500.0)
 
     def check(self) -> None:
         for name in ("ky", "kt", "ai_n"):

@@ -50,18 +50,18 @@ class CmodParams:
     """Parameters of the modified CEMA model."""
 
     ky: float | None = param(None, "classic carry factor Ky override [-] (default: the "
-                                   "documented fit of the cema model)")
+                                   "documented fit of the cema model)", hi=1.0)
     kt: float | None = param(None, "ambient temperature factor Kt override [-] (default: "
-                                   "CEMA curve at the run temperature)")
+                                   "CEMA curve at the run temperature)", hi=10.0)
     ai_n: float | None = param(None, "idler drag A_i per carry set [N] (default: the "
-                                     "conveyor's seal_drag_n / idler catalogue)")
+                                     "conveyor's seal_drag_n / idler catalogue)", hi=500.0)
     ky_sag_share: float = param(
         0.5, "share w of Ky that is sag-driven belt and material flexure [-] (estimate: "
              "flexure and indentation about equal in CEMA's Ky)")
     ky_sag_ref_pct: float = param(
         2.0, "sag h_c the classic Ky stands for [%] (estimate: the sag usually allowed with "
-             "CEMA's idler spacing table)")
-    ky_sag_exp: float = param(1.0, "sag exponent k of the sag-driven part [-] (estimate)")
+             "CEMA's idler spacing table)", hi=50.0)
+    ky_sag_exp: float = param(1.0, "sag exponent k of the sag-driven part [-] (estimate)", hi=10.0)
 
     def check(self) -> None:
         for name in ("ky", "kt", "ai_n"):

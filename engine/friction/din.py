@@ -56,11 +56,11 @@ class DinParams:
     """Parameters of the DIN 22101 model."""
 
     f_carry: float = param(0.020, "fictitious friction factor f, carry strand [-] (DIN 22101 "
-                                  "default 0.020; Harrison's comparison uses 0.010)")
+                                  "default 0.020; Harrison's comparison uses 0.010)", hi=1.0)
     f_return: float = param(0.020, "fictitious friction factor f, return strand [-] (0.020; "
-                                   "Harrison's comparison uses 0.008)")
+                                   "Harrison's comparison uses 0.008)", hi=1.0)
     c: float | None = param(None, "secondary resistance coefficient C override [-] (default "
-                                  "from the DIN table by length; needs C >= 1)")
+                                  "from the DIN table by length; needs C >= 1)", hi=20.0)
 
     def check(self) -> None:
         for name in ("f_carry", "f_return"):

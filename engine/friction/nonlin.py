@@ -91,70 +91,70 @@ class NonlinParams:
               "CEMA's ambient temperature factor Kt at the run temperature, 1 at 0 C and "
               "above, 1.45 at -29 C; Kta multiplies the terms CEMA's Kt multiplies, the "
               "bearing part of idler friction and belt flexure; the seal drag has its own "
-              "law e^(-c T))")
+              "law e^(-c T))", hi=10.0)
     mu_b: float = param(
         0.0015, "bearing friction coefficient mu_b [-] (deep-groove ball bearings, about "
-                "0.0015; PHYSICS section 2)")
+                "0.0015; PHYSICS section 2)", hi=0.1)
     bearing_diameter_m: float = param(
         0.045, "mean bearing diameter d_b [m] (6305/6306 bearings of 133-159 mm rolls, pitch "
-               "about 45 mm; estimate); Ks = mu_b d_b / D (m'_G + m'_L)")
+               "about 45 mm; estimate); Ks = mu_b d_b / D (m'_G + m'_L)", hi=0.5)
     drag_per_roll_n: float | None = param(
         1.0, "seal drag of one roll at v_r and T_r [N], used where the conveyor file gives no "
              "seal_drag_n: A_z = rolls x this / g. 1.0 N is typical of the running drag of "
              "sealed 127-159 mm rolls (estimate); the catalogue's CEMA A_i (6.7 N a set) is a "
              "design allowance of CEMA's method, which the paper finds too high (None: use "
-             "the catalogue value)")
+             "the catalogue value)", hi=500.0)
     drag_per_set_n: float | None = param(
         None, "seal drag A_i of one idler set at v_r and T_r [N], overriding both the file "
-              "and drag_per_roll_n")
+              "and drag_per_roll_n", hi=500.0)
     seal_drag_factor: float = param(
         1.0, "factor on the seal drag A_z of every idler set [-] (1: the drag as the file, "
              "drag_per_roll_n or drag_per_set_n gives it); a plant's seals differ from the "
-             "catalogue's by tens of percent, which a sampled study (SPEC 7.2) draws")
+             "catalogue's by tens of percent, which a sampled study (SPEC 7.2) draws", hi=100.0)
     drag_speed_exp: float = param(
         0.3, "seal drag speed exponent b [-] (paper range 0.3-0.5; 0.3, the lower end: grease "
-             "seals whose drag grows weakly with speed)")
+             "seals whose drag grows weakly with speed)", hi=5.0)
     drag_ref_speed_m_s: float = param(
-        2.0, "reference speed v_r of the seal drag [m/s] (the paper's (v / 2)^b)")
+        2.0, "reference speed v_r of the seal drag [m/s] (the paper's (v / 2)^b)", hi=30.0)
     drag_temp_coef: float = param(
         0.017, "seal drag temperature coefficient c [1/C] (paper: c ~ 0.017, the drag doubles "
-               "between +20 and -20 C)")
+               "between +20 and -20 C)", hi=1.0)
     drag_ref_temp_c: float = param(
         0.0, "reference temperature T_r of the seal drag [C] (the paper's e^{-c T}: 0 C; the "
-             "drag values of the file or drag_per_roll_n are read as the drag at 0 C)")
+             "drag values of the file or drag_per_roll_n are read as the drag at 0 C)", hi=80.0)
     kappa_ir: float = param(
         1.16, "indentation constant kappa [-] of the per-roll Winkler law (the paper's d); "
               "1.16 = (4 / (3 pi)) (3/2)^(4/3) 2^(2/3): a Winkler layer of viscous loss "
               "tan(delta), the parabolic strain pulse over the contact 2a read as half a sine "
-              "period (module notes; as a whole period: 0.58)")
+              "period (module notes; as a whole period: 0.58)", hi=100.0)
     contact_length_m: float = param(
         0.03, "contact length l_c of cover and roll [m] setting the loading frequency "
-              "f = v / l_c (PHYSICS section 3: 20-40 mm)")
+              "f = v / l_c (PHYSICS section 3: 20-40 mm)", hi=1.0)
     centre_share: float = param(
         0.65, "share of the material load on the centre roll of a three-roll set [-] (wings "
               "carry the rest equally; about 0.65 for 30-45 deg troughs; estimate)")
     indentation_speed_exp: float | None = param(
         None, "speed exponent e of BI [-] (default: derived from the rubber model, "
-              "d ln(tan(delta) E'^(-1/3)) / d ln f at the design speed)")
+              "d ln(tan(delta) E'^(-1/3)) / d ln f at the design speed)", hi=5.0)
     m_star: float = param(
         0.0035, "belt flexure constant m* [-] (paper range 0.003-0.008): BF = m* Kta (m'_G + "
                 "m'_L) at 1 % sag; 0.0035, low in the range, for steel-cord belts, which bend "
-                "little between idlers")
+                "little between idlers", hi=1.0)
     bf_sag_exp: float = param(
-        1.5, "belt flexure sag exponent n [-] (paper: n = 3/2)")
+        1.5, "belt flexure sag exponent n [-] (paper: n = 3/2)", hi=10.0)
     p_mf: float = param(
         0.4, "material flexure constant p [kg/m] (paper range 0.2-3), at the reference sag and "
-             "line load m_ref")
+             "line load m_ref", hi=100.0)
     q_mf: float = param(
-        0.08, "material flexure speed constant q [kg s/m2] (paper range 0.02-0.6)")
+        0.08, "material flexure speed constant q [kg s/m2] (paper range 0.02-0.6)", hi=100.0)
     s_mf: float = param(
-        1.5, "material flexure spacing exponent s [-] (paper range 1-3) on 1.66 S_c / S_r")
+        1.5, "material flexure spacing exponent s [-] (paper range 1-3) on 1.66 S_c / S_r", hi=10.0)
     mf_ref_load_kg_m: float = param(
         100.0, "line load m_ref [kg/m] that p + q v stands for (MF scales with m'_L / m_ref; "
-               "estimate: the load of the paper's example belts)")
+               "estimate: the load of the paper's example belts)", hi=100000.0)
     mf_sag_exp: float = param(
         1.0, "material flexure sag exponent [-] (1: the bulk's flexing energy per span grows "
-             "in proportion to the sag ratio; estimate)")
+             "in proportion to the sag ratio; estimate)", hi=10.0)
 
     def check(self) -> None:
         for name in ("mu_b", "bearing_diameter_m", "seal_drag_factor", "drag_speed_exp",

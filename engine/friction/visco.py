@@ -63,7 +63,7 @@ def _as_nonlin(name: str):
     """The Non-Lin parameter ``name``: its default and meaning, defined once in
     :class:`~beltstudy.engine.friction.nonlin.NonlinParams`."""
     f = _NONLIN_FIELDS[name]
-    return param(f.default, f"{f.metadata['doc']} (as nonlin)")
+    return param(f.default, f"{f.metadata['doc']} (as nonlin)", hi=f.metadata.get("hi"))
 
 
 @dataclass(frozen=True)
@@ -73,7 +73,7 @@ class ViscoParams:
 
     frequency_hz: float = param(
         10.0, "reference frequency of tan(delta) and E' [Hz] (10 Hz, the usual frequency of "
-              "dynamic mechanical tests of cover rubber)")
+              "dynamic mechanical tests of cover rubber)", hi=10000.0)
     kappa_ir: float = _as_nonlin("kappa_ir")
     centre_share: float = _as_nonlin("centre_share")
     kta: float | None = _as_nonlin("kta")
@@ -81,7 +81,7 @@ class ViscoParams:
     bearing_diameter_m: float = _as_nonlin("bearing_diameter_m")
     drag_per_set_n: float | None = param(
         None, "idler drag A_i per set [N] (default: the conveyor's seal_drag_n, from the "
-              "idler catalogue's CEMA A_i when the file gives none)")
+              "idler catalogue's CEMA A_i when the file gives none)", hi=500.0)
     drag_temp_coef: float = _as_nonlin("drag_temp_coef")
     drag_ref_temp_c: float = _as_nonlin("drag_ref_temp_c")
     m_star: float = _as_nonlin("m_star")
@@ -93,9 +93,9 @@ class ViscoParams:
     mf_sag_exp: float = _as_nonlin("mf_sag_exp")
     sag_carry_pct: float | None = param(
         None, "design sag h_d of the carry strand for the flexure allowances [%] (default: "
-              "the conveyor's sag_limit_pct.carry)")
+              "the conveyor's sag_limit_pct.carry)", hi=50.0)
     sag_return_pct: float | None = param(
-        None, "design sag h_d of the return strand [%] (default: sag_limit_pct.return)")
+        None, "design sag h_d of the return strand [%] (default: sag_limit_pct.return)", hi=50.0)
 
     def check(self) -> None:
         for name in ("frequency_hz", "mf_ref_load_kg_m"):

@@ -154,6 +154,8 @@ class ParamInfo(BaseModel):
     name: str
     default: float | None
     doc: str
+    max: float | None = Field(None, description="the largest value taken (null: no bound "
+                              "beyond the model's own checks)")
 
 
 class ModelInfo(BaseModel):
