@@ -1,6 +1,6 @@
 """Every friction model parameter with a declared largest value (``friction.base.param(hi=)``):
-the value itself is taken, anything above it is an InputError naming the parameter, and the
-study schema states it as the parameter's maximum."""
+the value itself is taken, anything above it is an InputError naming the parameter (the study
+schema's maximum: tests/service/test_param_schema.py)."""
 
 from __future__ import annotations
 
@@ -35,9 +35,3 @@ def test_a_parameter_above_its_largest_value_is_refused_naming_it(model, name, h
     except InputError as exc:
         assert "at most" not in str(exc)
 
-
-def test_the_study_schema_states_the_largest_value():
-    from beltstudy.service.door.study import param_bounds
-
-    for model, name, hi in BOUNDED:
-        assert param_bounds(MODELS[model], name).get("maximum") == hi, (model, name)
