@@ -1128,9 +1128,9 @@ def format_validation_error(exc: ValidationError, model: type[BaseModel], prefix
 
 
 #: YAML 1.2's floats that YAML 1.1 (PyYAML) reads as text: an exponent without its sign
-#: (``6.0e4``, ``1e5``). Read as numbers: with numbers held to their type, ``"6.0e4"`` would
+#: (``6.0e4``, ``1e5``) or with it but no decimal point (``1e-2``, ``2e+4``). Read as numbers: with numbers held to their type, ``"6.0e4"`` would
 #: otherwise be refused where the writer meant 60 000.
-_FLOAT_12 = re.compile(r"^[-+]?(?:[0-9][0-9_]*(?:\.[0-9_]*)?|\.[0-9_]+)[eE][0-9]+$")
+_FLOAT_12 = re.compile(r"^[-+]?(?:[0-9][0-9_]*(?:\.[0-9_]*)?|\.[0-9_]+)[eE][-+]?[0-9]+$")
 
 
 class Yaml12Floats(yaml.resolver.Resolver):

@@ -106,6 +106,13 @@ def test_yaml_exponent_without_sign_is_a_number():
     assert conv.accessories.scrapers[0].pressure_n_m2 == 6.0e4
 
 
+def test_yaml_exponent_with_sign_and_no_point_is_a_number():
+    # YAML 1.2 floats PyYAML's 1.1 resolver reads as text (it wants a point before a signed
+    # exponent): 1e-2, 35e-2, 2e+4; the conveyor, scenario and study readers all take them
+    assert loads("a: 1e-2\nb: 35e-2\nc: 2e+4\nd: -1E-3\ne: 1e-\nf: e-3", yaml_text=True) == {
+        "a": 0.01, "b": 0.35, "c": 20000.0, "d": -0.001, "e": "1e-", "f": "e-3"}
+
+
 @pytest.mark.parametrize(("over", "message"), [
     ({"takeup": {"mass_kg": 1e300}},
      "takeup.mass_kg: Input should be less than or equal to 2000000"),
