@@ -13,7 +13,7 @@ from pydantic import ValidationError
 
 from beltstudy.engine import InputError, format_validation_error, get_model
 from beltstudy.engine.textfile import read_text
-from beltstudy.service.calibration import CalibrationIn, MeasuredRow, run_calibration
+from beltstudy.service.calibration import MAX_ROWS, CalibrationIn, MeasuredRow, run_calibration
 from beltstudy.service.cli.common import dumps, parse_params
 
 
@@ -39,6 +39,12 @@ def register(sub) -> None:
     p.set_defaults(func=run)
 
 
+#: Largest measurement file read [bytes]: 200 rows of a few numbers are a few kilobytes.
+MEASURED_MAX_BYTES = 1_000_000
+#: Blank lines read beyond MAX_ROWS before the rows are counted.
+_BLANK_ALLOWANCE = 1000
+
+
 def read_measured(path: str) -> list[dict]:
     """The rows of a measurement CSV (cells as text; empty cells are missing).
 
@@ -48,8 +54,23 @@ def read_measured(path: str) -> list[dict]:
     p = Path(path)
     if not p.is_file():
         raise InputError(f"{path}: file not found", field="--measured")
+    size = p.stat().st_size
+    if size > MEASURED_MAX_BYTES:
+        raise InputError(
+            f"{path}: {size / 1e6:.3g} MB; a calibration reads at most {MAX_ROWS} rows, "
+            f"far less than {MEASURED_MAX_BYTES / 1e6:g} MB: give the steady states to fit "
+            "(one row each)")
     text = read_text(p, path)
-    records = list(csv.reader(io.StringIO(text, newline="")))
+    reader = csv.reader(io.StringIO(text, newline=""))
+    records = []
+    try:
+        for record in reader:
+            records.append(record)
+            if len(records) > MAX_ROWS + 1 + _BLANK_ALLOWANCE:
+                break  # more rows than a calibration takes: said below by the row count
+    except csv.Error as exc:
+        raise InputError(f"{path}: line {reader.line_num}: not a CSV row ({exc}); give one "
+                         "number per cell, comma-separated") from None
     if not records:
         return []
     header = [name.strip() for name in records[0]]
@@ -72,6 +93,11 @@ def read_measured(path: str) -> list[dict]:
     if problems:
         raise InputError("; ".join(problems))
     rows = []
+    data = [r for r in records[1:] if any(cell.strip() for cell in r)]
+    if len(data) > MAX_ROWS:
+        raise InputError(f"{path}: more than {MAX_ROWS} measured rows; a calibration takes at "
+                         f"most {MAX_ROWS} (each costs a steady solve per step of the fit): "
+                         "give fewer steady states")
     for line, record in enumerate(records[1:], start=2):
         if not any(cell.strip() for cell in record):
             continue  # a blank line

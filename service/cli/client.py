@@ -6,7 +6,7 @@ from typing import Any
 
 import httpx
 
-from beltstudy.service.errors import ServiceError, Unavailable
+from beltstudy.service.errors import Invalid, ServiceError, Unavailable
 
 __all__ = ["ServiceClient"]
 
@@ -16,8 +16,20 @@ class ServiceClient:
 
     def __init__(self, url: str, token: str = "", timeout: float = 60.0):
         self.url = url.rstrip("/")
+        if token and not all("!" <= ch <= "~" for ch in token):
+            raise Invalid("--token / BELTSTUDY_TOKEN: a token is printable ASCII (letters, "
+                          "digits and punctuation), without spaces, line breaks or other "
+                          "characters; give the token the service was started with")
         headers = {"Authorization": f"Bearer {token}"} if token else {}
-        self._http = httpx.Client(base_url=self.url, headers=headers, timeout=timeout)
+        try:
+            parsed = httpx.URL(self.url)
+            if parsed.scheme not in ("http", "https") or not parsed.host:
+                raise httpx.InvalidURL("expected http:// or https:// and a host")
+            self._http = httpx.Client(base_url=self.url, headers=headers, timeout=timeout)
+        except httpx.InvalidURL as exc:
+            raise Invalid(f"--url / BELTSTUDY_URL: {self.url!r} is not the service's address "
+                          f"({exc}); give it as http://HOST:PORT, e.g. "
+                          "http://127.0.0.1:8000") from None
 
     def close(self) -> None:
         self._http.close()

@@ -116,6 +116,14 @@ def test_csv_from_excel_or_notepad_reads_as_utf8(tmp_path, encoding):
      "not UTF-8 text (byte 0xf6 at line 2, column 4): save it as UTF-8"),
     (b"load,temperature_c,power_kw\n0.5,12,nan\n",
      "measured.0.power_kw: Input should be a finite number"),
+    # a cell beyond the csv module's field limit, more rows than a calibration takes (counted
+    # before any is read into a row), a file far beyond 200 rows of numbers
+    (b"load,temperature_c,power_kw\n1.0,22," + b"7" * 200_000 + b"\n",
+     "line 2: not a CSV row (field larger than field limit (131072))"),
+    (b"load,temperature_c,power_kw\n" + b"0.5,12,417.5\n" * 201,
+     "more than 200 measured rows; a calibration takes at most 200"),
+    (b"load,temperature_c,power_kw\n" + b"0.5,12,417.5\n" * 80_000, "MB; a calibration reads "
+     "at most 200 rows"),
 ])
 def test_csv_problems_are_one_line_naming_the_file(tmp_path, capsys, text, message):
     from beltstudy.service.cli import main

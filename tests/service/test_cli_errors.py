@@ -130,3 +130,22 @@ def test_a_file_name_too_long_is_one_line_naming_it(local, capsys, tmp_path, dat
     assert ("file name too long: a name of 30" in err and "at most 255" in err
             and err.endswith("give a shorter name\n")), err
     assert sorted(p.name for p in tmp_path.iterdir()) == before  # nothing written
+
+
+@pytest.mark.parametrize(("argv", "needle"), [
+    (["status", "--url", "http://[::1"], "--url / BELTSTUDY_URL: 'http://[::1' is not the "
+                                         "service's address"),
+    (["status", "--url", "http://127.0.0.1:abc"], "(Invalid port: 'abc')"),
+    (["status", "--url", "localhost:8000"], "expected http:// or https:// and a host"),
+    (["status", "--url", "http://127.0.0.1:9", "--token", "é"],
+     "--token / BELTSTUDY_TOKEN: a token is printable ASCII"),
+    (["status", "--url", "http://127.0.0.1:9", "--token", "tok\n123"],
+     "--token / BELTSTUDY_TOKEN: a token is printable ASCII"),
+])
+def test_a_bad_service_address_or_token_is_one_line(capsys, argv, needle):
+    """Not a traceback (httpx.InvalidURL, UnicodeEncodeError in the header), nor 'cannot reach
+    the service' for a token the service never saw."""
+    assert cli.main(argv) == 2
+    err = capsys.readouterr().err
+    assert err.startswith("error: ") and needle in err, err
+    assert err.count("\n") == 1 and "Traceback" not in err
