@@ -24,6 +24,7 @@ from beltstudy.engine import (
     measurements_from_rows,
     parse_conveyor,
 )
+from beltstudy.engine.conveyor import strict_validate
 from beltstudy.service.door.messages import describe
 from beltstudy.service.door.study import ConveyorRef, ModelName
 from beltstudy.service.door.studyfile import conveyor_from_path
@@ -80,10 +81,12 @@ def read_calibration(data: Any) -> CalibrationIn:
     valid one, an inline conveyor's fields as the engine names them)."""
     if not isinstance(data, dict):
         raise Invalid("body: expected a mapping with conveyor, measured, model, fit")
-    try:
-        return CalibrationIn.model_validate(data)
+    try:  # JSON's types exactly, as a study's (``"4.5"`` is no number, ``"yes"`` no boolean)
+        return strict_validate(CalibrationIn, data)
     except ValidationError as exc:
-        raise Invalid(describe(exc, data, model=CalibrationIn)) from None
+        raise Invalid(describe(exc, data, model=CalibrationIn, json_types=True)) from None
+    except InputError as exc:
+        raise Invalid(f"body: {exc}") from None
 
 
 def split_fit(items: list[str]) -> tuple[list[str], dict[str, float]]:

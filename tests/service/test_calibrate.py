@@ -240,3 +240,22 @@ def test_the_verdict_of_a_fit_names_the_bound_and_what_would_help():
     assert out == {"status": "failed", "message": "the fit stopped after 400 evaluations "
                    "without converging (rms relative residual 30 %): start it nearer the "
                    "answer (NAME=START) or fit fewer names"}
+
+
+@pytest.mark.parametrize(("where", "value", "message"), [
+    (("measured", 0, "power_kw"), "125", 'measured.0.power_kw: "125" is not of type "number"'),
+    (("measured", 0, "temperature_c"), True,
+     'measured.0.temperature_c: true is not of type "number"'),
+    (("params",), {"f_return": "0.01"}, 'is not of type "number"'),
+])
+def test_post_calibrations_holds_values_to_their_json_types(client, where, value, message):
+    """As a study's body: "125" is no number and true no temperature (it was fitted)."""
+    body = {"conveyor": "conveyors/overland-4km.yaml", "model": "din", "fit": ["f_carry"],
+            "measured": _rows()[:2]}
+    node = body
+    for key in where[:-1]:
+        node = node[key]
+    node[where[-1]] = value
+    r = client.post("/calibrations", json=body)
+    assert r.status_code == 422, r.text
+    assert message in r.json()["message"], r.json()
