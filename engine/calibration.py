@@ -297,9 +297,15 @@ def calibrate(conv: Conveyor, measured: Sequence[Measurement], model: str,
     y = np.array([rows[i].values[col] for i, col in cols])
     speeds: dict = {}
 
+    fields = {f.name: f for f in dataclasses.fields(fm.params_class)}
+    # each name's largest value (friction.base.param): the fit's bound, and where the
+    # differences of its Jacobian are taken at it, the value they reach past it
+    largest = {n: min((fields[q].metadata.get("hi") or np.inf) for q in _sets(fm.name, n))
+               for n in names}
+
     def model_values(x: np.ndarray, which: Sequence[str]) -> np.ndarray:
-        p = fm.params({**fixed, **_expanded(fm.name, dict(zip(which, map(float, x),
-                                                               strict=True)))})
+        p = fm.params({**fixed, **_expanded(fm.name, {n: min(float(v), largest[n]) for n, v in
+                                                      zip(which, x, strict=True)})})
         out = {}
         for i, m in enumerate(rows):
             res = solve_steady(_conveyor_at(conv, m.speed_m_s, speeds), model=fm.name,
@@ -314,9 +320,7 @@ def calibrate(conv: Conveyor, measured: Sequence[Measurement], model: str,
     x_free = np.array([x0[names.index(n)] for n in free])
     held_values = {n: float(x0[names.index(n)]) for n in held}
     fixed.update(_expanded(fm.name, held_values))
-    fields = {f.name: f for f in dataclasses.fields(fm.params_class)}
-    upper = [min((fields[q].metadata.get("hi") or np.inf) for q in _sets(fm.name, n))
-             for n in free]  # each parameter's largest value (friction.base.param)
+    upper = [largest[n] for n in free]
     sol = least_squares(residual, x_free, args=(free,), bounds=(0.0, upper),
                         x_scale="jac", diff_step=DIFF_STEP, xtol=1e-12, ftol=1e-12)
     r = residual(sol.x, free)
@@ -337,6 +341,8 @@ def calibrate(conv: Conveyor, measured: Sequence[Measurement], model: str,
         notes.append(f"{n} residuals for {p} parameters: no degrees of freedom left, no "
                      "standard errors")
     at_bound = _at_bound(free, sol, x0[[names.index(n) for n in free]])
+    at_upper = [n for n, v, hi in zip(free, sol.x, upper, strict=True)
+                if np.isfinite(hi) and v >= hi * (1.0 - 1e-6)]
     for name, v, s in zip(free, sol.x, se, strict=True):
         if name in at_bound:
             notes.append(f"{name} ended at its bound 0: the data would take it below; its "
@@ -361,7 +367,7 @@ def calibrate(conv: Conveyor, measured: Sequence[Measurement], model: str,
         held=held_values, models={fm.name: block},
         rms_relative=float(math.sqrt(float(r @ r) / n)), dof=dof,
         singular_values=[float(s) for s in sv],
-        notes=notes, **_verdict(sol, at_bound, r, fm.name))
+        notes=notes, **_verdict(sol, at_bound, r, fm.name, at_upper))
 
 
 #: Rms relative residual [%] above which a fit misses its data: a plant's logged drive power
@@ -384,18 +390,31 @@ def _at_bound(free: Sequence[str], sol, starts: np.ndarray) -> list[str]:
             if a < 0 or v <= AT_BOUND * abs(float(x0))]
 
 
-def _verdict(sol, at_bound: list[str], r: np.ndarray, model: str) -> dict[str, str]:
+def _verdict(sol, at_bound: list[str], r: np.ndarray, model: str,
+             at_upper: Sequence[str] = ()) -> dict[str, str]:
     """``status`` and ``message`` of the fit in this project's words (never SciPy's text):
     ``failed`` when it stopped without converging, ``warning`` when a fitted parameter ended
     at its bound (the data ask for a value the model does not allow: the rest of the misfit
-    stays in the residuals), ``ok`` otherwise."""
+    stays in the residuals: at 0, or at its largest value, far beyond any published one) or
+    when it converged but misses the measurements by more than :data:`MISFIT_PCT`, ``ok``
+    otherwise."""
     rms = 100 * math.sqrt(float(r @ r) / len(r))
     rms_text = f"{rms:.3g}" if rms < 1000 else f"{rms:.0f}"
+    check = ("Check the measured values (power at the drive pulleys [kW], negative only where "
+             "the drives regenerate; each row's load and temperature) and the conveyor file "
+             "(lift, capacity, speed, take-up), or fit other parameters of the model")
     if not sol.success:
         return {"status": "failed", "message": (
             f"the fit stopped after {sol.nfev} evaluations without converging (rms relative "
             f"residual {rms_text} %): start it nearer the answer (NAME=START) or fit fewer "
             "names")}
+    if at_upper:
+        names = ", ".join(at_upper)
+        verb = "ends" if len(at_upper) == 1 else "end"
+        return {"status": "warning", "message": (
+            f"{names} {verb} at the largest value model {model} takes, far beyond any "
+            f"published value (the data would take it higher), and the fit misses the "
+            f"measurements by {rms_text} % (rms relative residual). {check}")}
     if at_bound:
         names = ", ".join(at_bound)
         verb, it = ("ends", "it") if len(at_bound) == 1 else ("end", "them")
@@ -404,14 +423,16 @@ def _verdict(sol, at_bound: list[str], r: np.ndarray, model: str) -> dict[str, s
         if rms > MISFIT_PCT:
             return {"status": "warning", "message": (
                 f"{head} and the fit still misses the measurements by {rms_text} % (rms "
-                "relative residual). Check the measured values (power at the drive pulleys "
-                "[kW], negative only where the drives regenerate; each row's load and "
-                "temperature) and the conveyor file (lift, capacity, speed, take-up), or fit "
-                "other parameters of the model")}
+                f"relative residual). {check}")}
         return {"status": "warning", "message": (
             f"{head}; the fit matches the measurements to {rms_text} % (rms relative residual) "
             f"without {it}: these data do not determine {names}. Hold {it} at a value from "
             "the literature (--param, or the request's params) and fit the others")}
+    if rms > MISFIT_PCT:
+        return {"status": "warning", "message": (
+            f"converged, but the fit misses the measurements by {rms_text} % (rms relative "
+            f"residual over {len(r)} measured values; a plant's logged power is good to a few "
+            f"per cent, {MISFIT_PCT:g} % at most). {check}")}
     return {"status": "ok", "message": f"converged: rms relative residual {rms_text} % over "
             f"{len(r)} measured values"}
 

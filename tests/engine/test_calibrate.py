@@ -180,3 +180,28 @@ def test_an_auto_take_up_is_held_at_one_size_for_every_row(overland):
     cal = calibrate(overland, rows, "nonlin", ["drag_per_roll_n"])
     assert cal.fit["drag_per_roll_n"]["value"] == pytest.approx(1.6, rel=1e-5)
     assert any(n.startswith(f"takeup.mass_kg auto: held at {size:.6g} kg") for n in cal.notes)
+
+
+def test_a_converged_fit_that_misses_the_data_is_a_warning(overland):
+    """Measurements the model cannot follow with f_carry (every other row 30 % up, a
+    scatter no f meets): the fit converges, but its rms relative residual is far above the
+    5 % a plant's logged power allows; the run says so instead of 'ok'."""
+    rows = _plant(overland, "din", {"f_carry": TRUTH})
+    for k, m in enumerate(rows):
+        if k % 2:
+            m.values["power_kw"] *= 1.3
+    cal = calibrate(overland, rows, "din", ["f_carry"])
+    assert cal.status == "warning" and cal.rms_relative > 0.05
+    assert cal.message.startswith("converged, but the fit misses the measurements by")
+
+
+def test_a_fit_pushed_to_a_parameters_largest_value_says_so(overland):
+    """A power a thousand times the plant's asks for a friction factor beyond DIN's 1 (a
+    resistance of the moving weight, friction.base.param hi): the fit stops there and warns."""
+    rows = _plant(overland, "din", {"f_carry": TRUTH})
+    for m in rows:
+        m.values["power_kw"] *= 1000.0
+    cal = calibrate(overland, rows, "din", ["f_carry"])
+    assert cal.fit["f_carry"]["value"] == pytest.approx(1.0, rel=1e-6)
+    assert cal.status == "warning"
+    assert "f_carry ends at the largest value model din takes" in cal.message
