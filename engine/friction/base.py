@@ -72,6 +72,9 @@ class FrictionModel:
                 raise InputError(f"expected a number, got {value!r}",
                                  field=f"models.{self.name}.{key}") from None
         p = dataclasses.replace(self.params_class(), **clean)
+        check = getattr(p, "check", None)
+        if check is not None:
+            check()  # the model's own bounds first: its words for them
         for key, value in clean.items():
             hi = fields[key].metadata.get("hi")
             if hi is not None and value is not None and not value <= hi:
@@ -79,9 +82,6 @@ class FrictionModel:
                     f"at most {hi:g}, far beyond any published value (got {value:g}); the "
                     "parameters, their defaults and sources: docs/friction.md, GET /models",
                     field=f"models.{self.name}.{key}")
-        check = getattr(p, "check", None)
-        if check is not None:
-            check()
         return p
 
     def parameter_table(self) -> list[dict[str, Any]]:
