@@ -108,7 +108,7 @@ def register(sub) -> None:
     p.add_argument("--candidate", default="nonlin",
                    help="candidate friction model (default: %(default)s)")
     p.add_argument(
-        "--metrics", default="",
+        "--metrics", default=None,
         help="comma-separated result columns (default: power_kw and the stop's peak and "
         "lowest tension, t_max_stop_kn and t_min_stop_kn)"
     )
@@ -356,7 +356,11 @@ def cmd_report(args) -> int:
 
 
 def cmd_compare(args) -> int:
-    metrics = [m.strip() for m in args.metrics.split(",") if m.strip()]
+    metrics = [] if args.metrics is None else [m.strip() for m in args.metrics.split(",")]
+    if args.metrics is not None and not all(metrics):
+        raise Invalid(f"--metrics: an empty name in '{args.metrics}'; give result columns "
+                         "comma-separated (e.g. --metrics power_kw,t_max_stop_kn), or leave "
+                         "--metrics out for the defaults")
     result = _with_fallback(
         args,
         lambda c: c.compare(args.id, args.baseline, args.candidate, metrics),

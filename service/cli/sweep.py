@@ -86,13 +86,21 @@ def temperatures(t_from: float, t_to: float, step: float) -> list[float]:
     count = int(math.floor((t_to - t_from) / step + 1e-9)) + 1
     if count > MAX_POINTS:
         raise InputError(f"--step: {count} temperatures is too many (at most {MAX_POINTS})")
+    last = round(t_from + (count - 1) * step, 9)
+    if abs(last - t_to) > 1e-6 * max(1.0, abs(step)):
+        # as a study's range: the end asked for is reached, or said
+        raise InputError(f"--to {t_to:g} is not reached from --from {t_from:g} in steps of "
+                         f"{step:g}: give --to {last:g} or {last + step:g}, or another step")
     return [round(t_from + i * step, 9) for i in range(count)]
 
 
 def _model_list(text: str) -> list:
-    names = [s.strip() for s in text.split(",") if s.strip()]
-    if not names:
+    names = [s.strip() for s in text.split(",")]
+    if not any(names):
         raise InputError("--models: give at least one model, e.g. --models din,nonlin")
+    if not all(names):
+        raise InputError(f"--models: an empty name in '{text}'; give the models comma-separated, "
+                         "e.g. --models din,nonlin")
     out, seen = [], set()
     for name in names:
         fm = get_model(name)

@@ -149,3 +149,23 @@ def test_a_bad_service_address_or_token_is_one_line(capsys, argv, needle):
     err = capsys.readouterr().err
     assert err.startswith("error: ") and needle in err, err
     assert err.count("\n") == 1 and "Traceback" not in err
+
+
+@pytest.mark.parametrize(("argv", "needle"), [
+    (["compare", "0123456789abcdef", "--metrics", ""], "--metrics: an empty name in ''"),
+    (["compare", "0123456789abcdef", "--metrics", ","], "--metrics: an empty name in ','"),
+    (["sweep-temperature", "studies/conveyors/slope-5pct.yaml", "--from", "-40", "--to", "40",
+      "--step", "7", "--out", "unused"], "--to 40 is not reached from --from -40 in steps of "
+                                         "7: give --to 37 or 44"),
+    (["sweep-temperature", "studies/conveyors/slope-5pct.yaml", "--models", "din,,cema",
+      "--out", "unused"], "--models: an empty name in 'din,,cema'"),
+])
+def test_an_empty_list_item_or_an_unreached_end_is_refused(capsys, monkeypatch, argv, needle):
+    """Not read as the defaults, nor silently dropped or ended short (a study's range says
+    the same)."""
+    from tests.conftest import ROOT
+
+    monkeypatch.chdir(ROOT)
+    assert cli.main(argv) == 2
+    err = capsys.readouterr().err
+    assert err.startswith("error: ") and needle in err, err
