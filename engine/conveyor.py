@@ -1301,7 +1301,11 @@ def _check_whole(conv: Conveyor, prefix: str = "") -> None:
 def parse_scenario(data: dict, prefix: str = "", *, strict: bool = True) -> Scenario:
     """Validate a mapping as a :class:`Scenario` (accepts a top-level ``scenario:`` key);
     ``strict``: as in :func:`parse_conveyor`."""
-    if set(data) == {"scenario"} and isinstance(data["scenario"], dict):
+    if set(data) == {"scenario"}:
+        if not isinstance(data["scenario"], dict):
+            got = "nothing" if data["scenario"] is None else type(data["scenario"]).__name__
+            raise InputError(f"{prefix}scenario: expected a mapping of its fields (start, stop, "
+                             f"run_s, ...), got {got}")
         data = data["scenario"]
         prefix = prefix + "scenario."
     try:

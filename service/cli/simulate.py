@@ -105,7 +105,10 @@ def build_scenario(args: argparse.Namespace):
     data: dict = {}
     if args.scenario:
         data = door_load_mapping(args.scenario)
-        if set(data) == {"scenario"} and isinstance(data["scenario"], dict):
+        if set(data) == {"scenario"}:
+            if not isinstance(data["scenario"], dict):
+                raise InputError(f"{args.scenario}: scenario: expected a mapping of its fields "
+                                 "(start, stop, run_s, ...)")
             data = data["scenario"]
     data = {k: (dict(v) if isinstance(v, dict) else v) for k, v in data.items()}
     start = data.setdefault("start", {})

@@ -116,11 +116,17 @@ def conveyor_from_path(ref: str, base_dir: Path | None, root: Path | None) -> tu
             path = (root_r / rel).resolve()
             if root_r not in path.parents:
                 raise Invalid(f"conveyor: path '{shown_path(ref)}' leaves the studies directory")
+            if path.is_dir():
+                raise Invalid(f"conveyor: '{shown_path(ref)}' is a folder in the studies "
+                              "directory, not a file; give a conveyor file in it")
             if not path.is_file():
                 raise Invalid(f"conveyor: file '{shown_path(ref)}' not found in the studies "
                               "directory")
         else:
             path = (base_dir or Path.cwd()) / rel
+            if path.is_dir():
+                raise Invalid(f"conveyor: '{shown_path(path)}' is a folder, not a file; give a "
+                              "conveyor file")
             if not path.is_file():
                 raise Invalid(f"conveyor: file '{shown_path(path)}' not found")
         return load_mapping(path, what=f"conveyor: {shown_path(ref)}"), ref

@@ -279,3 +279,9 @@ def test_a_file_name_the_system_refuses_is_an_input_error(tmp_path):
     name = tmp_path / ("a" * 300 + ".yaml")
     with pytest.raises(InputError, match="cannot read it: file name too long: a name of 305 bytes, at most 255"):
         load_conveyor(name)
+
+
+def test_a_scenario_key_holding_no_mapping_says_so():
+    """``scenario: []`` is a scenario file with no fields, not an unknown key 'scenario'."""
+    with pytest.raises(InputError, match=r"^scenario: expected a mapping of its fields .*got list"):
+        parse_scenario({"scenario": []})

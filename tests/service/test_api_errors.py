@@ -93,6 +93,12 @@ CASES = [
         r"conveyor: file 'conveyors/none.yaml' not found",
     ),
     (
+        "a folder for the conveyor file",
+        {"conveyor": "conveyors"},
+        422,
+        r"^conveyor: 'conveyors' is a folder in the studies directory, not a file",
+    ),
+    (
         "bad axis value",
         {"grid": {"belt_type": ["ST2000", "ST2001"]}},
         422,
