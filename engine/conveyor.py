@@ -1013,7 +1013,10 @@ class Scenario(_Model):
     formulation: Literal["relative", "support"] = "relative"
     elements: Literal["auto"] | Annotated[int, Field(ge=8, le=200_000)] = "auto"
     dt_s: Literal["auto"] | PositiveFloat = "auto"
-    record_dt_s: PositiveFloat = Field(0.1, description="time-series sample spacing [s]")
+    # at most a minute: the start's fronts, the waves and the stop happen within seconds, and a
+    # spacing beyond the cycle would leave a time series of its two ends
+    record_dt_s: PositiveFloat = Field(0.1, le=60.0, description="time-series sample spacing "
+                                       "[s] (at most 60)")
 
     @property
     def load_fraction(self) -> float:

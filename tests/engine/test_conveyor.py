@@ -285,3 +285,10 @@ def test_a_scenario_key_holding_no_mapping_says_so():
     """``scenario: []`` is a scenario file with no fields, not an unknown key 'scenario'."""
     with pytest.raises(InputError, match=r"^scenario: expected a mapping of its fields .*got list"):
         parse_scenario({"scenario": []})
+
+
+def test_a_record_spacing_beyond_a_minute_is_refused():
+    """A time series of a cycle's two ends is no time series: record_dt_s at most 60 s."""
+    parse_scenario({"record_dt_s": 60.0})
+    with pytest.raises(InputError, match=r"record_dt_s: Input should be less than or equal to 60"):
+        parse_scenario({"record_dt_s": 1e6})
