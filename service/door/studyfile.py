@@ -24,6 +24,7 @@ from pydantic import ValidationError
 from beltstudy import engine
 from beltstudy.engine import InputError, get_model, parse_conveyor
 from beltstudy.engine.conveyor import json_numbers
+from beltstudy.engine.reads import STEADY_FIELDS
 from beltstudy.service.door.messages import describe
 from beltstudy.service.door.parse import check_tree, load_mapping
 from beltstudy.service.door.sample import bounds_problem, draw, value_bounds
@@ -323,6 +324,11 @@ def _sample_axes(study: StudyIn, bases: tuple[dict, dict], models: dict) -> list
             targets[name] = resolve_axis(name, *bases, "sample.axes")
         except InputError as exc:
             raise Invalid(str(exc)) from None
+        t = targets[name]
+        if not study.dynamics and t.root == "scenario" and t.path[0] not in STEADY_FIELDS:
+            raise Invalid(f"{where}: a steady study (dynamics: false) does not read "
+                          f"scenario.{'.'.join(t.path)}, so every draw would be one run; "
+                          "sample it in a study with dynamics: true, or drop it")
         if not _numeric_axes().get(fold_name(name)[0], False):
             raise Invalid(f"{where}: '{name}' does not take a number; a sample axis is a "
                           "numeric field (temperature_c, takeup.mass_kg, "

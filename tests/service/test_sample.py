@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+import re
+
 import numpy as np
 import pytest
 
@@ -9,7 +11,7 @@ from beltstudy.service.door.sample import SampleIn, draw, unit_points
 from beltstudy.service.door.studyfile import resolve_study
 from beltstudy.service.errors import Invalid
 from beltstudy.service.grid.expand import study_from_json
-from tests.service.conftest import tiny_study
+from tests.service.conftest import ROOT, tiny_study
 
 AXES = {
     "temperature_c": {"dist": "uniform", "low": -25, "high": 35},
@@ -162,3 +164,18 @@ def test_sobol_size_and_overlap_are_refused():
                                       r"both set scenario\.temperature_c: give it in one of "
                                       r"them$"):
         resolve_study(sampled(grid={"temperature_c": [0, 10]}))
+
+
+@pytest.mark.parametrize("axis", ["stop_time_s", "run_s", "start.time_s"])
+def test_a_steady_study_refuses_a_sample_axis_its_runs_never_read(axis):
+    """A steady run reads load, temperature and mesh of its scenario: drawing the stop time
+    would make every draw one run (merged), and the sample's statistics nothing."""
+    pattern = (rf"^sample\.axes\.{re.escape(axis)}: a steady study \(dynamics: false\) "
+               r"does not read scenario\.")
+    with pytest.raises(Invalid, match=pattern):
+        resolve_study(sampled(n=8, axes={axis: {"dist": "uniform", "low": 10, "high": 20}}),
+                      studies_dir=ROOT / "studies")
+    # read fields stay samplable in a steady study
+    resolve_study(sampled(n=8, axes={"temperature_c": {"dist": "uniform", "low": 0,
+                                                       "high": 20}}),
+                  studies_dir=ROOT / "studies")
