@@ -19,6 +19,7 @@ import json
 import logging
 import uuid
 from contextlib import asynccontextmanager
+from urllib.parse import parse_qsl
 
 from fastapi import Depends, FastAPI, Request
 from fastapi.exceptions import RequestValidationError
@@ -160,6 +161,37 @@ class HeadAsGet:
         await self.app({**scope, "method": "GET"}, receive, headers_only)
 
 
+#: Query parameters a route takes more than once (``filter=a=1&filter=b=2``, a list).
+REPEATABLE_QUERY = frozenset({"filter"})
+
+
+class QueryOnce:
+    """ASGI middleware: a query parameter given twice (``limit=1&limit=2``) is a 422 naming
+    it, where the last value would otherwise win silently; :data:`REPEATABLE_QUERY` are the
+    lists a route reads whole."""
+
+    def __init__(self, app):
+        self.app = app
+
+    async def __call__(self, scope, receive, send):
+        if scope["type"] == "http" and scope.get("query_string"):
+            seen: set[str] = set()
+            for key, _value in parse_qsl(scope["query_string"].decode("latin-1"),
+                                         keep_blank_values=True):
+                if key in seen and key not in REPEATABLE_QUERY:
+                    body = json.dumps({
+                        "error": "invalid",
+                        "message": f"query: '{key}' given twice; give each parameter once",
+                    }).encode()
+                    await send({"type": "http.response.start", "status": 422,
+                                "headers": [(b"content-type", b"application/json"),
+                                            (b"content-length", str(len(body)).encode())]})
+                    await send({"type": "http.response.body", "body": body})
+                    return
+                seen.add(key)
+        await self.app(scope, receive, send)
+
+
 class ErrorGuard:
     """ASGI middleware: an exception that reaches it becomes a logged 500 ``{error,
     message}`` with a reference to the log line, never the exception's text; the connection
@@ -233,6 +265,7 @@ def create_app(settings: Settings | None = None, service: StudyService | None = 
     app.state.service = service
     _install_handlers(app)
     app.add_middleware(ErrorGuard)
+    app.add_middleware(QueryOnce)
     app.add_middleware(HeadAsGet)
     for name in ROUTERS:
         module = importlib.import_module(name)

@@ -146,3 +146,17 @@ def test_head_answers_where_get_does(client, running):
     r = client.put("/health")
     assert r.status_code == 405 and r.headers["allow"] == "GET, HEAD"
 
+
+
+@pytest.mark.parametrize("query", ["limit=1&limit=2", "format=parquet&format=csv",
+                                   "baseline=din&baseline=cema&candidate=cema"])
+def test_a_query_parameter_given_twice_is_a_422_naming_it(client, running, query):
+    """The last value won silently before; a list the route reads whole (filter) may repeat."""
+    key = query.split("=")[0]
+    for path in ("runs", "compare"):
+        r = client.get(f"/studies/{running.id}/{path}?{query}")
+        assert r.status_code == 422
+        assert r.json() == {"error": "invalid",
+                            "message": f"query: '{key}' given twice; give each parameter once"}
+    r = client.get(f"/studies/{running.id}/runs?filter=load=full&filter=friction_model=din")
+    assert r.status_code != 422 or "given twice" not in r.text
