@@ -43,7 +43,7 @@ from typing import Any
 
 import numpy as np
 
-from beltstudy.engine.conveyor import Conveyor, parse_conveyor
+from beltstudy.engine.conveyor import Conveyor, parse_conveyor, section_loads
 from beltstudy.engine.errors import InputError
 from beltstudy.engine.friction import get_model
 from beltstudy.engine.statics import solve_steady
@@ -168,6 +168,19 @@ def measurements_from_rows(rows: Sequence[dict[str, Any]]) -> list[Measurement]:
     return out
 
 
+def _check_rows(conv: Conveyor, rows: Sequence[Measurement]) -> None:
+    """Each row's speed and load fit the conveyor (a speed within its bounds, one load
+    fraction per carry section), named by its row: ``measured.2.speed_m_s: ...``."""
+    for i, m in enumerate(rows):
+        if m.speed_m_s is not None and m.speed_m_s != conv.speed_m_s:
+            data = conv.model_dump(mode="json", by_alias=True)
+            parse_conveyor({**data, "speed_m_s": m.speed_m_s}, prefix=f"measured.{i}.")
+        try:
+            section_loads(m.load, conv)
+        except InputError as exc:
+            raise InputError(exc.reason, field=f"measured.{i}.load") from None
+
+
 def _conveyor_at(conv: Conveyor, speed_m_s: float | None, cache: dict) -> Conveyor:
     """The conveyor running at a measured speed (validated like a file's)."""
     if speed_m_s is None or speed_m_s == conv.speed_m_s:
@@ -290,6 +303,7 @@ def calibrate(conv: Conveyor, measured: Sequence[Measurement], model: str,
     fm.params(fixed)
     names = _check_names(fm, fit, fixed)
     rows = list(measured)
+    _check_rows(conv, rows)
     x0 = _starts(fm, conv, rows, names, fixed, dict(starts or {}))
     conv, held_takeup = _takeup_held(conv, fm, rows, {**fixed, **_expanded(
         fm.name, dict(zip(names, map(float, x0), strict=True)))})

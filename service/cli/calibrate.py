@@ -6,6 +6,7 @@ import argparse
 import csv
 import difflib
 import io
+import re
 from pathlib import Path
 
 import yaml
@@ -15,6 +16,7 @@ from beltstudy.engine import InputError, format_validation_error, get_model
 from beltstudy.engine.textfile import read_text
 from beltstudy.service.calibration import MAX_ROWS, CalibrationIn, MeasuredRow, run_calibration
 from beltstudy.service.cli.common import dumps, parse_params
+from beltstudy.service.errors import Invalid
 
 
 def register(sub) -> None:
@@ -45,12 +47,13 @@ MEASURED_MAX_BYTES = 1_000_000
 _BLANK_ALLOWANCE = 1000
 
 
-def read_measured(path: str) -> list[dict]:
+def read_measured(path: str, lines: list[int] | None = None) -> list[dict]:
     """The rows of a measurement CSV (cells as text; empty cells are missing).
 
     Read as UTF-8 (a byte order mark, as Excel's "CSV UTF-8" writes, is dropped) or UTF-16
     with its byte order mark. The header is checked once: comma-separated, every column
-    once, every column one of :class:`MeasuredRow`'s fields (the nearest named otherwise)."""
+    once, every column one of :class:`MeasuredRow`'s fields (the nearest named otherwise).
+    ``lines``: filled with each row's line in the file (blank lines are skipped)."""
     p = Path(path)
     if not p.is_file():
         raise InputError(f"{path}: file not found", field="--measured")
@@ -106,18 +109,37 @@ def read_measured(path: str) -> list[dict]:
                              f"{len(header)} columns; give one cell per column")
         rows.append({name: cell for name, cell in zip(header, record, strict=False)
                      if cell.strip() != ""})
+        if lines is not None:
+            lines.append(line)
     return rows
 
 
+def _at_line(message: str, path: str, lines: list[int]) -> str:
+    """A message about ``measured.K...`` (or ``PATH: measured.K...``) with the file and the
+    row's line in it: ``PATH: line N: measured.K...``."""
+    text = message.removeprefix(f"{path}: ")
+    m = re.match(r"measured\.(\d+)\b", text)
+    if m and int(m.group(1)) < len(lines):
+        return f"{path}: line {lines[int(m.group(1))]}: {text}"
+    return message if message.startswith(f"{path}: ") else f"{path}: {text}"
+
+
 def run(args: argparse.Namespace) -> int:
+    lines: list[int] = []
     data = {"conveyor": str(Path(args.conveyor).resolve()),
-            "measured": read_measured(args.measured), "model": get_model(args.model).name,
+            "measured": read_measured(args.measured, lines), "model": get_model(args.model).name,
             "fit": args.fit, "params": parse_params(args.param, args.model)}
     try:
         body = CalibrationIn.model_validate(data)
     except ValidationError as exc:
-        raise InputError(format_validation_error(exc, CalibrationIn, prefix=f"{args.measured}: ")) from None
-    out = run_calibration(body)
+        raise InputError(_at_line(format_validation_error(exc, CalibrationIn),
+                                  args.measured, lines)) from None
+    try:
+        out = run_calibration(body)
+    except Invalid as exc:
+        if "measured" not in exc.message.split(":")[0]:
+            raise
+        raise Invalid(_at_line(exc.message, args.measured, lines)) from None
     if args.json:
         print(dumps(out))
     else:
