@@ -129,11 +129,12 @@ def load_settings(**over) -> Settings:
                       ) from None
 
 
-def check_data_dir(path: str | os.PathLike) -> Path:
+def check_data_dir(path: str | os.PathLike, *, write: bool = True) -> Path:
     """``BELTSTUDY_DATA_DIR`` as a folder the store can use: an existing folder it may write
     in, or a path whose nearest existing part is such a folder (the store creates the rest).
     Anything else is :class:`Invalid` naming the variable, the path and the fix (one line:
-    the service refuses to start, exit status 2)."""
+    the service refuses to start, exit status 2). ``write=False``: a store only read (a
+    command's local read of an archived, read-only store) need not be writable."""
     root = Path(path)
     where = f"{ENV_PREFIX}DATA_DIR: {shown_path(root)}"
     probe = root
@@ -146,7 +147,7 @@ def check_data_dir(path: str | os.PathLike) -> Path:
             what = "is a file" if probe == root else f"is under {shown_path(probe)}, a file"
             raise Invalid(f"{where} {what}, not a folder; give a folder for the store (it is "
                           "created if missing)")
-        if probe.exists() and not os.access(probe, os.W_OK | os.X_OK):
+        if write and probe.exists() and not os.access(probe, os.W_OK | os.X_OK):
             raise Invalid(f"{where}: no permission to write in {shown_path(probe)}; give a "
                           "folder the service may write in")
     except OSError as exc:  # a name over the file system's limits, a folder we may not read

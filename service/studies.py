@@ -90,11 +90,13 @@ def study_models(doc: dict) -> list[str]:
 class StudyService:
     """Everything the API and the CLI do with studies."""
 
-    def __init__(self, settings: Settings, executor: Executor | None = None):
+    def __init__(self, settings: Settings, executor: Executor | None = None, *,
+                 read_only: bool = False):
         self.settings = settings
         # a data folder that is a file or not writable: refused here, when the service or a
-        # command starts, not by every POST /studies after /health said ok
-        self.store = Store(check_data_dir(settings.data_dir))
+        # command starts, not by every POST /studies after /health said ok (``read_only``: a
+        # command that only reads the store, which may be an archive it cannot write)
+        self.store = Store(check_data_dir(settings.data_dir, write=not read_only))
         self.executor = executor or Executor(settings)
         self._jobs: dict[str, StudyJob] = {}  # studies with a job thread not yet ended
         self._deleting: set[str] = set()

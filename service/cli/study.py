@@ -278,7 +278,7 @@ def _local_service():
     # deferred: the service's Dask stack loads only for the commands that use it
     from beltstudy.service.studies import StudyService
 
-    return StudyService(_settings().model_copy(update={"warm_start": False}))
+    return StudyService(_settings().model_copy(update={"warm_start": False}), read_only=True)
 
 
 def _with_fallback(args, remote, local):

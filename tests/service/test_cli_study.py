@@ -241,3 +241,23 @@ def test_a_data_dir_that_is_a_file_stops_serve_before_it_listens(env, capsys, mo
             assert main(argv) == 2
             assert capsys.readouterr().err == said
     assert store.read_text() == "not a folder\n"
+
+
+def test_a_store_that_is_only_read_need_not_be_writable(tmp_path, monkeypatch):
+    """serve and run refuse a data folder they may not write in; a local read (status,
+    results, report, compare of an archived store) takes it. os.access is asked for the
+    permission (root may write anywhere, so the answer is set here)."""
+    import os
+
+    from beltstudy.service.errors import Invalid
+    from beltstudy.service.settings import check_data_dir
+
+    store = tmp_path / "archive"
+    store.mkdir()
+    monkeypatch.setattr(os, "access", lambda path, mode: not mode & os.W_OK)
+    with pytest.raises(Invalid, match=r"DATA_DIR: .*archive: no permission to write in"):
+        check_data_dir(store)
+    assert check_data_dir(store, write=False) == store
+    (tmp_path / "afile").write_text("x")
+    with pytest.raises(Invalid, match=r"is a file, not a folder"):
+        check_data_dir(tmp_path / "afile", write=False)
