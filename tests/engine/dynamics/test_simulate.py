@@ -109,24 +109,32 @@ def test_a_slack_stop_reports_where_when_and_how_much():
     assert s["sag_max_dyn_pct"] is None and "sag_max_dyn_pct is empty" in msg
 
 
-def test_a_transient_safety_factor_names_when_and_the_belt_that_meets_it():
-    """A 420 kN peak on the hand conveyor's 1 000 kN belt (1 m wide) against a transient
-    minimum of 3: safety factor 2.38; the warning says where, when and in which phase, the
-    rating that meets the minimum (3 x 420 / 1 = 1 260 kN/m) and the levers of that phase."""
+def _four_spring_system():
+    """A stand-in for a run's system as the warning words read it: four springs (three on the
+    carry, 420, 1 000 and 2 000 m round the loop), the stop command at 92 s after a 2 s rest
+    and a 60 s start, one vfd drive without coupling."""
     from types import SimpleNamespace
 
-    from beltstudy.engine.conveyor import parse_conveyor
     from beltstudy.engine.dynamics import codes as C
-    from beltstudy.engine.dynamics.simulate import _transient_safety_words
-    from tests.conftest import hand_conveyor_dict
 
-    sysm = SimpleNamespace(s_end_m=np.array([0.0, 420.0, 1000.0, 2000.0]),
+    return SimpleNamespace(s_end_m=np.array([0.0, 420.0, 1000.0, 2000.0]),
                            strand=np.array([0, 0, 0, 1]), stop_command_s=92.0,
                            model=SimpleNamespace(cycle=SimpleNamespace(t_pre=2.0,
                                                                        t_start=60.0),
                                                  drives=SimpleNamespace(
                                                      control=np.array([C.VFD]),
                                                      coupling=np.array([C.COUPLING_NONE]))))
+
+
+def test_a_transient_safety_factor_names_when_and_the_belt_that_meets_it():
+    """A 420 kN peak on the hand conveyor's 1 000 kN belt (1 m wide) against a transient
+    minimum of 3: safety factor 2.38; the warning says where, when and in which phase, the
+    rating that meets the minimum (3 x 420 / 1 = 1 260 kN/m) and the levers of that phase."""
+    from beltstudy.engine.conveyor import parse_conveyor
+    from beltstudy.engine.dynamics.simulate import _transient_safety_words
+    from tests.conftest import hand_conveyor_dict
+
+    sysm = _four_spring_system()
     conv = parse_conveyor(hand_conveyor_dict())
     msg = _transient_safety_words(sysm, conv, 1000.0 / 420.0, 3.0, 420e3, 2, 31.04)
     assert msg.startswith("belt safety factor 2.38 during the transient is below 3 (peak 420 kN "
@@ -143,18 +151,9 @@ def test_a_transient_sag_names_when_and_the_tension_that_keeps_it_within():
     3.99 % against a 1.5 % limit: the warning says where, when, in which phase, and the
     tension that keeps it within (the sag ratio goes as 1 / T: 8.92 x 3.99 / 1.5 = 23.7 kN),
     with the stop's cures."""
-    from types import SimpleNamespace
-
-    from beltstudy.engine.dynamics import codes as C
     from beltstudy.engine.dynamics.simulate import _sag_words
 
-    sysm = SimpleNamespace(s_end_m=np.array([0.0, 420.0, 1000.0, 2000.0]),
-                           strand=np.array([0, 0, 0, 1]), stop_command_s=92.0,
-                           model=SimpleNamespace(cycle=SimpleNamespace(t_pre=2.0,
-                                                                       t_start=60.0),
-                                                 drives=SimpleNamespace(
-                                                     control=np.array([C.VFD]),
-                                                     coupling=np.array([C.COUPLING_NONE]))))
+    sysm = _four_spring_system()
     whole = {"env_min": np.array([50e3, 8.92e3, 9.5e3, 60e3]),
              "env_min_t": np.array([10.0, 95.47, 96.0, 50.0])}
     msg = _sag_words(sysm, "carry", 3.99, 1.5, 2, 8.92e3, whole)
