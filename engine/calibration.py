@@ -311,11 +311,9 @@ def calibrate(conv: Conveyor, measured: Sequence[Measurement], model: str,
     y = np.array([rows[i].values[col] for i, col in cols])
     speeds: dict = {}
 
-    fields = {f.name: f for f in dataclasses.fields(fm.params_class)}
     # each name's largest value (friction.base.param): the fit's bound, and where the
     # differences of its Jacobian are taken at it, the value they reach past it
-    largest = {n: min((fields[q].metadata.get("hi") or np.inf) for q in _sets(fm.name, n))
-               for n in names}
+    largest = {n: min((fm.largest(q) or np.inf) for q in _sets(fm.name, n)) for n in names}
 
     def model_values(x: np.ndarray, which: Sequence[str]) -> np.ndarray:
         p = fm.params({**fixed, **_expanded(fm.name, {n: min(float(v), largest[n]) for n, v in

@@ -553,9 +553,9 @@ def check_motor_curve(curve) -> None:
         raise ValueError("motor_curve needs a zero-torque point (synchronous speed) as its "
                          "last point and positive torque below it "
                          f"(got torques {ys})")
-    if not 0.9 <= xs[-1] <= 1.2:
+    if not 0.9 <= xs[-1] <= CURVE_SPEED_MAX:
         raise ValueError(f"motor_curve: the zero-torque point at speed {xs[-1]:g} is not near "
-                         "the design speed (expected 0.9-1.2 of it)")
+                         f"the design speed (expected 0.9-{CURVE_SPEED_MAX:g} of it)")
 
 
 class TakeUp(_Model):
@@ -1131,8 +1131,9 @@ def format_validation_error(exc: ValidationError, model: type[BaseModel], prefix
 
 
 #: YAML 1.2's floats that YAML 1.1 (PyYAML) reads as text: an exponent without its sign
-#: (``6.0e4``, ``1e5``) or with it but no decimal point (``1e-2``, ``2e+4``). Read as numbers: with numbers held to their type, ``"6.0e4"`` would
-#: otherwise be refused where the writer meant 60 000.
+#: (``6.0e4``, ``1e5``) or with it but no decimal point (``1e-2``, ``2e+4``). Read as
+#: numbers: with numbers held to their type, ``"6.0e4"`` would otherwise be refused where the
+#: writer meant 60 000.
 _FLOAT_12 = re.compile(r"^[-+]?(?:[0-9][0-9_]*(?:\.[0-9_]*)?|\.[0-9_]+)[eE][-+]?[0-9]+$")
 
 
@@ -1301,16 +1302,22 @@ def _check_whole(conv: Conveyor, prefix: str = "") -> None:
         check(conv, prefix)
 
 
+def scenario_fields(data: dict, prefix: str = "") -> tuple[dict, str]:
+    """A scenario mapping with a top-level ``scenario:`` key taken off (the prefix then gains
+    ``scenario.``); that key holding no mapping is an :class:`InputError` saying so."""
+    if set(data) != {"scenario"}:
+        return data, prefix
+    if not isinstance(data["scenario"], dict):
+        got = "nothing" if data["scenario"] is None else type(data["scenario"]).__name__
+        raise InputError(f"{prefix}scenario: expected a mapping of its fields (start, stop, "
+                         f"run_s, ...), got {got}")
+    return data["scenario"], prefix + "scenario."
+
+
 def parse_scenario(data: dict, prefix: str = "", *, strict: bool = True) -> Scenario:
-    """Validate a mapping as a :class:`Scenario` (accepts a top-level ``scenario:`` key);
-    ``strict``: as in :func:`parse_conveyor`."""
-    if set(data) == {"scenario"}:
-        if not isinstance(data["scenario"], dict):
-            got = "nothing" if data["scenario"] is None else type(data["scenario"]).__name__
-            raise InputError(f"{prefix}scenario: expected a mapping of its fields (start, stop, "
-                             f"run_s, ...), got {got}")
-        data = data["scenario"]
-        prefix = prefix + "scenario."
+    """Validate a mapping as a :class:`Scenario` (accepts a top-level ``scenario:`` key,
+    :func:`scenario_fields`); ``strict``: as in :func:`parse_conveyor`."""
+    data, prefix = scenario_fields(data, prefix)
     try:
         return strict_validate(Scenario, data) if strict else Scenario.model_validate(data)
     except ValidationError as exc:

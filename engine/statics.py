@@ -700,10 +700,10 @@ def _safety_words(loop: Loop, belt, sf: float, sf_min: float, t_max: float, s_m:
     belt rating per metre of width that meets the minimum (``rating = S_min T_max / B``)."""
     need_kn_m = sf_min * t_max / belt.width_m / 1e3
     return (f"belt safety factor {sf:.2f} is below the minimum {sf_min:.2f} (t_max "
-            f"{t_max / 1e3:.1f} kN {place_words(loop, s_m)}; belt rating {belt.rating_n / 1e3:.0f} "
-            f"kN, {belt.rating_kn_m:.0f} kN/m x {belt.width_m:g} m): a belt rated at least "
-            f"{math.ceil(need_kn_m)} kN/m at this width (belt.type: auto picks the lightest catalogue "
-            "belt that passes), or a lower largest tension (a take-up no heavier than the slip "
+            f"{t_max / 1e3:.1f} kN {place_words(loop, s_m)}; belt rating "
+            f"{belt.rating_n / 1e3:.0f} kN, {belt.rating_kn_m:.0f} kN/m x {belt.width_m:g} m): a "
+            f"belt rated at least {math.ceil(need_kn_m)} kN/m at this width (belt.type: auto "
+            "picks the lightest catalogue belt that passes), or a lower largest tension (a take-up no heavier than the slip "
             "and sag limits need, drives spread along the belt) would avoid it")
 
 

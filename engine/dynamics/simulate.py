@@ -900,8 +900,9 @@ def _transient_safety_words(sys: System, conveyor, sf: float, sf_min: float, t_m
     belt = resolve_belt(conveyor.belt) if conveyor is not None else None
     fixes = []
     if belt is not None:
-        fixes.append(f"a belt rated at least {math.ceil(sf_min * t_max_n / belt.width_m / 1e3)} kN/m "
-                     f"at this width (now {belt.rating_kn_m:.0f} kN/m)")
+        need_kn_m = math.ceil(sf_min * t_max_n / belt.width_m / 1e3)
+        fixes.append(f"a belt rated at least {need_kn_m} kN/m at this width (now "
+                     f"{belt.rating_kn_m:.0f} kN/m)")
     fixes += {"start": start_levers(sys), "running": [],
               "stop": ["a softer stop (a longer stop time, less brake force, a longer brake "
                        "ramp, brakes[].ramp_s)"]

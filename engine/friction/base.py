@@ -47,6 +47,12 @@ class FrictionModel:
             return float(temperature_c)
         return self.temperature_read(params, float(temperature_c))
 
+    def largest(self, name: str) -> float | None:
+        """The largest value parameter ``name`` takes (:func:`param`'s ``hi``; None: no bound
+        beyond the model's own check)."""
+        return next(f.metadata.get("hi") for f in dataclasses.fields(self.params_class)
+                    if f.name == name)
+
     def params(self, overrides: dict[str, Any] | None = None):
         """Default parameters with overrides applied; unknown names raise InputError."""
         overrides = dict(overrides or {})
@@ -76,7 +82,7 @@ class FrictionModel:
         if check is not None:
             check()  # the model's own bounds first: its words for them
         for key, value in clean.items():
-            hi = fields[key].metadata.get("hi")
+            hi = self.largest(key)
             if hi is not None and value is not None and not value <= hi:
                 raise InputError(
                     f"at most {hi:g}, far beyond any published value (got {value:g}); the "

@@ -14,6 +14,7 @@ import pandas as pd
 
 from beltstudy.engine import InputError, get_model, parse_scenario
 from beltstudy.engine import results as R
+from beltstudy.engine.conveyor import scenario_fields
 from beltstudy.service.charts import transient_figure
 from beltstudy.service.cli.common import (
     LOAD_HELP,
@@ -104,12 +105,7 @@ def build_scenario(args: argparse.Namespace):
 
     data: dict = {}
     if args.scenario:
-        data = door_load_mapping(args.scenario)
-        if set(data) == {"scenario"}:
-            if not isinstance(data["scenario"], dict):
-                raise InputError(f"{args.scenario}: scenario: expected a mapping of its fields "
-                                 "(start, stop, run_s, ...)")
-            data = data["scenario"]
+        data, _ = scenario_fields(door_load_mapping(args.scenario), f"{args.scenario}: ")
     data = {k: (dict(v) if isinstance(v, dict) else v) for k, v in data.items()}
     start = data.setdefault("start", {})
     stop = data.setdefault("stop", {})

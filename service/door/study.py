@@ -318,8 +318,7 @@ def param_bounds(model, name: str) -> dict:
             out["maximum"] = edge
     if "minimum" in out and "exclusiveMinimum" in out:
         del out["exclusiveMinimum"]
-    field = {f.name: f for f in dataclasses.fields(model.params_class)}.get(name)
-    hi = field.metadata.get("hi") if field is not None else None
+    hi = model.largest(name)
     if hi is not None and out.get("maximum", math.inf) > hi:
         out["maximum"] = hi  # the parameter's declared largest value (friction.base.param)
     return out
