@@ -251,9 +251,16 @@ def transient_checks(names, drv, rated_n, limit_n, vfd, speed_m_s: float, start_
         if hot:
             said += (f"; its RMS force over the cycle, {rms / 1e3:.4g} kN, is above the "
                      "rating (the motor overheats when the cycle repeats)")
-        kw = fmax * speed_m_s / 1e3
-        motor = f"a larger motor (at least {kw:.0f} kW keeps it within)"
         f_run = float(running_n[k]) if running_n is not None else None
+        # the force the motor must give is at least the largest reached and the running
+        # force; a force held at the torque limit shows only a lower bound of the need
+        kw = max(fmax, abs(f_run) if f_run is not None else 0.0) * speed_m_s / 1e3
+        if at_limit:
+            within = (f"more than {kw:.0f} kW: its force was held at its torque limit, so the "
+                      "run does not show how much more it needs")
+        else:
+            within = f"at least {kw:.0f} kW keeps it within"
+        motor = f"a larger motor ({within})"
         f_acc = (float(start_accel_n[k]) if start_accel_n is not None
                  and math.isfinite(float(start_accel_n[k])) else None)
         f_dec = float(stop_accel_n[k]) if stop_accel_n is not None else None
@@ -278,7 +285,7 @@ def transient_checks(names, drv, rated_n, limit_n, vfd, speed_m_s: float, start_
         elif vfd[k] and f_run is not None and f_run < 0.0:
             # a regenerating drive holds the belt back hardest at rest and creeping speed,
             # before the speed-dependent resistances build up; the acceleration eases it
-            fix = (f"a larger motor (at least {kw:.0f} kW keeps it within; the drive holds back "
+            fix = (f"a larger motor ({within}; the drive holds back "
                    "the belt's downhill pull hardest at low speed, before the running "
                    "resistances build up, which a longer start would not shorten)")
         elif vfd[k] and f_run is not None and f_acc is not None and f_acc <= rated - f_run:

@@ -129,8 +129,25 @@ def test_transient_checks_rms_of_a_constant_force_and_the_overload_warning():
     assert w.startswith("drive 1 (head) was above its rated force (24 kN) for 20.0 s")
     assert "at most 25 % over its rating" in w and "at its torque limit (30 kN) for 20.0 s" in w
     assert "about 15 s keeps the force within the rating" in w
-    assert "at least 120 kW" in w  # 30 kN x 4 m/s
+    # 30 kN x 4 m/s, a lower bound only: the force was held at the torque limit
+    assert "a larger motor (more than 120 kW: its force was held at its torque limit" in w
+    assert "at least 120 kW keeps it within" not in w
     assert "RMS force over the cycle, 30 kN, is above the rating" in w
+
+
+@pytest.mark.parametrize("running_kn", [121.0, -121.0])
+def test_a_drive_held_at_its_limit_below_its_running_force_is_not_offered_that_limit(
+        running_kn):
+    """A drive rated 300 kW at 4 m/s (75 kN) with a torque limit of 1.5 x 75 = 112.5 kN, held
+    at that limit for 64 s, on a belt whose running force is 121 kN (motoring, or holding a
+    decline back): the motor it needs is more than 121 x 4 = 484 kW, not the 112.5 x 4 = 450
+    kW of the capped force, and the run cannot say that any size keeps the force within."""
+    drv = _drive_result(fmax=112.5e3, fmax_t=6.1, over_s=71.5, lim_s=64.3,
+                        f2_int=111.4e3**2 * 70.0, rms_s=70.0)
+    _, (w,) = transient_checks(["drive 1 (head)"], drv, [75e3], [112.5e3], [True], 4.0, 30.0,
+                               running_n=[running_kn * 1e3])
+    assert "more than 484 kW" in w, w
+    assert "450 kW" not in w and "keeps it within" not in w
 
 
 def test_the_start_estimate_reads_the_rigid_body_acceleration_force():
