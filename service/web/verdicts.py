@@ -71,7 +71,7 @@ VERDICTS: tuple[Verdict, ...] = (
             OVERLOAD_S_MAX),
     Verdict("Drives", "RMS (thermal) force, drive {i}", "drive{i}_force_rms_kn", "max", "kN"),
     Verdict("Drives", "power at the drive pulleys, steady (all drives; regenerating < 0)",
-            "power_kw", "max", "kW", "rated_power_kw", magnitude=True),
+            "power_kw", "max", "kW", "rated_at_pulleys", magnitude=True),
     Verdict("Drives", "largest drive power, transient (all drives)", "drive_power_max_kw", "max",
             "kW"),
     Verdict("Drives", "largest force, drive {i}, transient", "drive{i}_force_max_kn", "max",
@@ -211,8 +211,20 @@ def _overloaded(runs: pd.DataFrame) -> pd.Series:
     return out
 
 
+def _required_power_known(runs: pd.DataFrame) -> bool:
+    """Whether the runs carry the motor power each drive needs (``drive{i}_power_required_kw``,
+    its drive train's efficiency included): the engine judges the rating by it and says so in
+    the message, so the power at the pulleys is not judged against the rating here."""
+    return any(numeric(runs, c) is not None
+               for c, _ in expand("drive{i}_power_required_kw", runs.columns))
+
+
 def _overload_words(row: pd.Series) -> str:
-    """The steady power against the rating, in words, when the run's message has none."""
+    """The steady power against the rating, in words, when the run's message has none (a run
+    without ``drive{i}_power_required_kw``, whose per-drive sentence the engine writes)."""
+    if any(c.startswith("drive") and c.endswith("_power_required_kw") and pd.notna(row.get(c))
+           for c in row.index):
+        return ""
     power = pd.to_numeric(pd.Series([row.get("power_kw")]), errors="coerce").iloc[0]
     rated = pd.to_numeric(pd.Series([row.get("rated_power_kw")]), errors="coerce").iloc[0]
     if pd.notna(power) and pd.notna(rated) and power > rated:
@@ -240,8 +252,17 @@ def _slack(runs: pd.DataFrame) -> pd.Series:
             | _message(runs).str.contains("goes slack", regex=False))
 
 
-def _sagged(runs: pd.DataFrame) -> pd.Series:
-    return _message(runs).str.contains(r"sag on the \w+ strand [\d.]+ % exceeds", regex=True)
+#: A sag warning of the steady solution (``sag on the carry strand ...``) and of the transient
+#: (``transient sag on the carry strand ...``).
+_SAG = r"sag on the \w+ strand [\d.]+ % exceeds"
+
+
+def _sagged(runs: pd.DataFrame, phase: str | None = None) -> pd.Series:
+    """Runs whose message warns of sag past its limit: any, or only the ``steady`` or only
+    the ``transient`` warning (the verdict rows of ``sag_max_pct`` and ``sag_max_dyn_pct``)."""
+    words = {None: _SAG, "steady": r"(?<!transient )" + _SAG,
+             "transient": r"transient " + _SAG}[phase]
+    return _message(runs).str.contains(words, regex=True)
 
 
 def _safety(runs: pd.DataFrame) -> pd.Series:
@@ -354,7 +375,16 @@ def study_limits(study: dict, sf_min: float, sf_ratio: float,
         # strands share their limit; else the runs' messages name the strand past its limit
         return (pd.Series(float(carry), index=runs.index) if carry == ret else None), words
 
+    def rated_at_pulleys(runs):
+        # the motor power needed (efficiency included) is judged per drive where the runs
+        # carry it; the power at the pulleys against the rating would disagree with it
+        if _required_power_known(runs):
+            return None, ("the rating is judged by the power each drive needs, its drive "
+                          "train's efficiency included (power required, drive i)")
+        return numeric(runs, "rated_power_kw"), "rated_power_kw"
+
     return {
+        "rated_at_pulleys": rated_at_pulleys,
         "sf_steady": const(sf_min, sf_words),
         "sf_dyn": const(sf_dyn, f"{sf_ratio:.3g} x the minimum, transient"),
         "t_allow_steady": allow(sf_min, f"belt rating / {sf_min:.3g}"),
@@ -385,7 +415,7 @@ def _past(v: Verdict, values: pd.Series, runs: pd.DataFrame, lim: pd.Series | No
     if ok_col and ok_col in runs.columns:
         past |= runs[ok_col].astype("boolean").fillna(True).eq(False).astype(bool)
     if v.limit == "sag":
-        past |= _sagged(runs)
+        past |= _sagged(runs, "transient" if v.column == "sag_max_dyn_pct" else "steady")
     if lim is not None:
         known = values.notna() & lim.notna()
         if v.worst == "max":

@@ -284,3 +284,43 @@ def test_start_up_slip_is_a_slip_where_the_start_was_not_simulated():
     assert list(groups["slip"]["run_id"]) == ["a"]
     simulated = steady.assign(t_max_dyn_kn=[100.0, 100.0], drive1_slip_s=[0.0, 0.0])
     assert "slip" not in {c.key for c, _, _ in cause_groups(simulated)}
+
+
+def test_the_steady_sag_row_counts_only_steady_sag_warnings(web):
+    """A run warned of transient sag (2.36 % on the carry in its stop) whose steady sag
+    (0.33 %) is within the 1.5 % limit: the steady row finds it within, the transient row
+    past; a steady sag warning counts on the steady row only."""
+    transient = ("transient sag on the carry strand 2.36 % exceeds the limit 1.5 % (low "
+                 "tension 10.2 kN near 667 m from the tail on the carry at t = 54.0 s, during "
+                 "the stop)")
+    steady = "sag on the carry strand 1.80 % exceeds sag_limit_pct.carry = 1.5 %"
+    runs = _runs(sag_max_pct=[0.33, 0.33, 0.33, 0.33, 0.33, 1.8, np.nan, 0.33],
+                 sag_max_dyn_pct=[2.36, 0.5, 0.5, 0.5, 0.5, 2.0, np.nan, 0.5])
+    runs.loc[0, ["status", "message"]] = ["warning", transient]
+    runs.loc[5, ["status", "message"]] = ["warning", steady]
+    html = report_html(_doc(web), runs, {"state": "done", "done": 8, "total": 8})
+    rows = {re.sub("<.*", "", r): r for r in re.findall(r"<tr><td>(.*?)</tr>",
+                                                        _section(html, 1), re.S)}
+    assert "past the limit in 1 of 7 runs" in rows["largest sag, steady"]  # sl only
+    assert "past the limit in 1 of 7 runs" in rows["largest sag, transient"]  # a1 only
+
+
+def test_the_power_at_the_pulleys_is_not_judged_against_the_rating_beside_the_need(web):
+    """With the motor power each drive needs in the runs (efficiency 0.9: 28 / 0.9 = 31.1 kW
+    against 30 kW rated), the power at the pulleys (28 kW, within 30) is not judged against
+    the rating, which would contradict the utilisation row, and the overload group shows the
+    engine's sentence, not a 'short by' from the power at the pulleys."""
+    need = ("drive 1 (head) needs 31 kW at 2.5 m/s (1 x Te 11.2 kN / efficiency 0.9), rated "
+            "30 kW: short by 1 kW (utilisation 1.04)")
+    runs = _runs(drive1_power_required_kw=[11.1, 11.1, 11.1, 40.6, 34.4, 11.1, np.nan, 11.1],
+                 drive1_utilisation=[0.37, 0.37, 0.37, 1.35, 1.15, 0.37, np.nan, 0.37])
+    runs.loc[1, ["power_kw", "drive1_power_required_kw", "drive1_utilisation", "status",
+                 "message"]] = [28.0, 31.1, 1.037, "warning", need]
+    html = report_html(_doc(web), runs, {"state": "done", "done": 8, "total": 8})
+    rows = {re.sub("<.*", "", r): r for r in re.findall(r"<tr><td>(.*?)</tr>",
+                                                        _section(html, 1), re.S)}
+    power = rows["power at the drive pulleys, steady (all drives; regenerating &lt; 0)"]
+    assert "past the limit" not in power and "no limit" in power
+    assert "past the limit in 3 of 7 runs" in rows["utilisation, drive 1 (required / rated)"]
+    s2 = _section(html, 2)
+    assert "at the drive pulleys" not in s2 and "short by" in s2
