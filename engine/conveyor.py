@@ -282,11 +282,14 @@ class ProfileSection(_Model):
     length_m: float = Field(..., gt=0.0, le=1e5,
                             description="length along the belt [m] (at most 100 km)")
     lift_m: float = Field(0.0, description="rise over the section, negative downhill [m]")
+    # at least 1 m: a tighter bend is a pulley or a kink, not a curve on idlers (its 1 deg arc
+    # elements, R x 0.017 m, would also set the transient step)
     curve_radius_m: float | None = Field(
-        None, gt=0.0, le=1e6,
+        None, ge=1.0, le=1e6,
         description="radius of the vertical curve joining this section's grade to the next "
-                    "section's [m] (SPEC 7.1; convex or concave by the two grades; its arc "
-                    "takes half its length from each of the two sections: docs/routes.md)")
+                    "section's [m] (1 to 1e6; SPEC 7.1; convex or concave by the two grades; "
+                    "its arc takes half its length from each of the two sections: "
+                    "docs/routes.md)")
     # bounds: a troughed belt needs hundreds of metres of radius (SPEC 7.1; docs/routes.md)
     horizontal_radius_m: float | None = Field(
         None, ge=10.0, le=1e6, description="the section is a horizontal curve of this radius "
@@ -790,10 +793,13 @@ class Conveyor(_Model):
             for k, (a, b) in enumerate(arcs, start=1):
                 tol = 1e-9 * max(1.0, b)
                 if a + tol < at < b - tol:
+                    # the places named are rounded outwards, off the arc
+                    before = math.floor(10.0 * a + 1e-6) / 10.0
+                    after = math.ceil(10.0 * b - 1e-6) / 10.0
                     raise ValueError(
                         f"{name}: {at:g} m lies on vertical curve {k} (its arc runs from "
-                        f"{a:.1f} to {b:.1f} m); place it on a straight grade, before {a:.1f} "
-                        f"or after {b:.1f} m")
+                        f"{a:.3f} to {b:.3f} m); place it on a straight grade, before "
+                        f"{before:.1f} or after {after:.1f} m")
         return self
 
     def idler_spacing_m(self, strand: str) -> float:

@@ -172,3 +172,28 @@ def test_curve_fields_are_defined_up_to_max_curves():
         R.check_summary({f"curve{R.MAX_CURVES + 1}_liftoff": True})
     with pytest.raises(KeyError, match="curve1_new_m"):
         R.check_summary({"curve1_new_m": 1.0})
+
+
+def test_a_radius_below_a_metre_is_refused():
+    """A 1e-9 m 'curve' is a kink, not a curve on idlers: its 1 deg arc elements (1.7e-11 m)
+    made the transient refuse the run for too much work, naming the step and the elements
+    instead of the radius. At least 1 m; 1 m itself is built."""
+    for bad in (1e-9, 0.5):
+        with pytest.raises(ValueError, match=r"profile\.0\.curve_radius_m"):
+            curved(radius_m=bad)
+    assert len(build_loop(curved(radius_m=1.0)).curves) == 1
+
+
+def test_a_point_near_an_arc_is_told_a_place_off_the_arc():
+    """R 1 000 m from 0 to 6 % (asin 0.06 = 0.0600360 rad): the arc is 60.036 m, from
+    969.982 to 1030.018 m. A booster at 969.999 m lies on it; the message's 'before' and
+    'after' must be off the arc (rounded outwards), not 970.0 and 1030.0, which lie on it."""
+    d = hand_conveyor_dict(profile=[{"length_m": 1000, "lift_m": 0, "curve_radius_m": 1000},
+                                    {"length_m": 1000, "lift_m": 60}])
+    d["drives"] = [{**d["drives"][0], "share": 0.5},
+                   {**d["drives"][0], "position": "carry", "at_m": 969.999, "share": 0.5}]
+    with pytest.raises(ValueError, match=r"drives\.1\.at_m: 969\.999 m lies on vertical curve "
+                                         r"1 .*before 969\.9 or after 1030\.1 m"):
+        parse_conveyor(d)
+    d["drives"][1]["at_m"] = 969.9  # the place the message names is accepted
+    parse_conveyor(d)
