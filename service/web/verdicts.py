@@ -302,7 +302,8 @@ CAUSES: tuple[Cause, ...] = (
           ("stop_time_s", "brake_force_kn", "velocity_min_m_s"), r"did not stop|never"),
     Cause("overload", "overloaded a drive", _overloaded,
           ("power_kw", "rated_power_kw", "drive{i}_utilisation", "drive{i}_overload_s",
-           "drive{i}_power_required_kw"), r"overload|short by|rated",
+           "drive{i}_power_required_kw"),
+          r"overload|short by|rated (?:force|power|\d)|rated_power|larger motor",
           explain=_overload_words),
     Cause("slip", "slipped on a drive pulley", _slipped,
           ("drive{i}_slip_s", "drive{i}_slip_margin_min", "slip_margin", "slip_margin_start",
@@ -322,8 +323,14 @@ def clauses(message: Any, words: str) -> list[str]:
     """The clauses of a run's message (joined by ``; ``) that match ``words``."""
     if not isinstance(message, str) or not message:
         return []
-    found = [c for c in message.split("; ") if re.search(words, c, re.IGNORECASE)]
-    return found
+    parts, depth, start = [], 0, 0
+    for k, ch in enumerate(message):  # "; " inside parentheses belongs to its clause
+        depth += {"(": 1, ")": -1}.get(ch, 0)
+        if depth <= 0 and message.startswith("; ", k):
+            parts.append(message[start:k])
+            start = k + 2
+    parts.append(message[start:])
+    return [c for c in parts if c and re.search(words, c, re.IGNORECASE)]
 
 
 def cause_groups(runs: pd.DataFrame) -> list[tuple[Cause, pd.DataFrame, list[str]]]:

@@ -324,3 +324,20 @@ def test_the_power_at_the_pulleys_is_not_judged_against_the_rating_beside_the_ne
     assert "past the limit in 3 of 7 runs" in rows["utilisation, drive 1 (required / rated)"]
     s2 = _section(html, 2)
     assert "at the drive pulleys" not in s2 and "short by" in s2
+
+
+def test_a_clause_is_cut_only_outside_parentheses_and_a_belt_remedy_is_no_overload():
+    """A safety-factor warning holds "; " inside its parentheses: it stays one clause, and
+    its remedy "a belt rated at least ..." is not taken for a drive's rating; the drive's
+    own sentences and its larger motor are."""
+    from beltstudy.service.web.verdicts import clauses
+
+    sf = ("belt safety factor 4.98 is below the minimum 6.70 (t_max 200.8 kN 1000 m from the "
+          "tail on the carry; belt rating 1000 kN, 1000 kN/m x 1 m): a belt rated at least "
+          "1346 kN/m at this width would avoid it")
+    over = ("drive 1 (head) was above its rated force (75 kN) for 50.0 s of the cycle; a "
+            "larger motor (more than 484 kW: its force was held at its torque limit) would "
+            "avoid it")
+    words = next(c for c in CAUSES if c.key == "overload").words
+    assert clauses(f"{sf}; {over}", "safety factor") == [sf]
+    assert clauses(f"{sf}; {over}", words) == over.split("; ")
