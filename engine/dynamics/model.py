@@ -54,7 +54,13 @@ from dataclasses import dataclass, field, replace
 import numpy as np
 
 from beltstudy.engine import design
-from beltstudy.engine.conveyor import Conveyor, InputError, Scenario
+from beltstudy.engine.conveyor import (
+    Conveyor,
+    InputError,
+    Scenario,
+    curve_arc_m,
+    route_points,
+)
 from beltstudy.engine.dynamics import profiles
 from beltstudy.engine.dynamics.brakes import build_brakes
 from beltstudy.engine.dynamics.codes import (
@@ -983,8 +989,42 @@ def handover_time_s(conv, loop, scn, opts: DynamicsOptions, hold: int) -> float:
     return HANDOVER_S if opts.handover_s is None else float(opts.handover_s)
 
 
+def short_element(conv, loop: Loop) -> tuple[str, str] | None:
+    """The belt element that sets the automatic step when it is far shorter (under a tenth)
+    than the strands' median element: a feed point, booster or take-up close to a profile
+    section's end, a vertical curve's arc end or another such point cuts it off. Returns the
+    field to move and the words saying where, or None when no element is that short."""
+    idler = np.flatnonzero(loop.is_idler)
+    if idler.size == 0 or loop.x_m is None:
+        return None
+    j = int(idler[np.argmin(loop.dx_m[idler])])
+    dx = float(loop.dx_m[j])
+    if dx >= 0.1 * float(np.median(loop.dx_m[idler])):
+        return None
+    x0 = float(loop.x_m[j])
+    ends = (x0 - dx, x0, x0 + dx)  # the element's ends, either way along the route
+    cuts = [(name, name, a) for name, a in route_points(conv)]  # (field, words, place)
+    at = 0.0
+    for i, sec in enumerate(conv.profile):
+        half = 0.5 * curve_arc_m(conv.profile, i)
+        at += sec.length_m
+        cuts.append((f"profile.{i}.length_m", f"the end of profile.{i}", at))
+        if half > 0.0:
+            cuts += [(f"profile.{i}.curve_radius_m", f"an end of the curve after profile.{i}",
+                      at + d) for d in (-half, half)]
+    tol = 1e-6 * max(1.0, loop.length_m)
+    near = [c for c in cuts if any(abs(c[2] - e) <= tol for e in ends)]
+    if not near:
+        return None
+    field = min(near, key=lambda c: (not c[0].endswith(".at_m"),
+                                     not c[0].endswith(".curve_radius_m")))[0]
+    where = " and ".join(f"{words} ({a:.10g} m)" for _, words, a in near)
+    return field, (f"the automatic step follows the shortest belt element, {dx:.3g} m long "
+                   f"between {where} from the tail: move {field} a metre or more away")
+
+
 def _cycle(conv, scn, opts, n, dt, t_loop, total_mass, te, v_d, hold, drive_train,
-           t_hand=0.0):
+           t_hand=0.0, short=None):
     """The cycle's times: the rest after the stop (one wave loop time at least, plus what
     holding brakes and the drives' trip take), the stop window
     (``DynamicsOptions.stop_window_s``, the same for every run), the records' spacing; the work limit of one run (refused beyond, naming what to change)."""
@@ -1007,6 +1047,10 @@ def _cycle(conv, scn, opts, n, dt, t_loop, total_mass, te, v_d, hold, drive_trai
                 f"({t_train:.3g} s to reach design speed unloaded at rated force): give the "
                 "drives their real inertia (motor, coupling, gear and pulley reduced to the "
                 "pulley shaft)")
+        if scn.dt_s == "auto" and short is not None:
+            raise InputError(
+                f"{short[0]}: {steps:.3g} steps of {n} elements is too much work for one run "
+                f"(over 5e10 element-steps) at a step of {dt:.3g} s; {short[1]}")
         raise InputError(
             f"scenario.dt_s / scenario.elements: {steps:.3g} steps of {n} elements is too much "
             f"work for one run (over 5e10 element-steps): a cycle of {t_total:.4g} s (start "
@@ -1107,7 +1151,7 @@ def build_system(conv: Conveyor, scn: Scenario, steady, options: DynamicsOptions
     brakes = build_brakes(conv, scn, loop, shaft_index, total_mass, te, gravity_sum, notes,
                           steady)
     cycle = _cycle(conv, scn, opts, n, dt, t_loop, total_mass, te, v_d, hold, train,
-                   handover_time_s(conv, loop, scn, opts, hold))
+                   handover_time_s(conv, loop, scn, opts, hold), short_element(conv, loop))
     model = Model(
         cycle=cycle, nodes=nodes, law=law, lin=_lin(law, nodes, cycle.v_eps), springs=springs,
         blocks=_blocks(blocks_list, int(drives.node[control.master]), n, shaft_index,

@@ -11,7 +11,7 @@ import numpy as np
 import pytest
 from numpy.testing import assert_allclose
 
-from beltstudy.engine.conveyor import InputError, Scenario, load_conveyor
+from beltstudy.engine.conveyor import Conveyor, InputError, Scenario, load_conveyor
 from beltstudy.engine.dynamics import build_system, simulate
 from beltstudy.engine.dynamics.model import chord_strain, implicit_blocks, stability_limit_s
 from beltstudy.engine.statics import solve_steady
@@ -78,6 +78,23 @@ def test_too_much_work_set_by_a_drive_train_names_the_inertia():
     with pytest.raises(InputError, match=r"^drives.0\.inertia_kg_m2: .* too much work .* "
                                          r"fastest dol drive train"):
         build_system(conv, Scenario(elements=10000), st)
+
+
+def test_too_much_work_set_by_a_short_element_names_the_point_that_cuts_it():
+    """A second feed point 1 mm past the end of overland-16km's first section cuts a 1 mm
+    carry element, and the automatic step follows it (1.3e-6 s): the run is too much work,
+    and the error names the feed point to move, not the step or the mesh (fewer elements
+    leave the 1 mm element as it is)."""
+    d = load_conveyor(CONVEYORS / "overland-16km.yaml").model_dump(by_alias=True,
+                                                                    exclude_none=True)
+    d["material"]["feed"] = [{"at_m": 0.0, "share": 0.6}, {"at_m": 3000.001, "share": 0.4}]
+    conv = Conveyor.model_validate(d)
+    st = solve_steady(conv, model="din")
+    with pytest.raises(InputError, match=r"^material\.feed\.1\.at_m: .* too much work .* "
+                                         r"shortest belt element, 0\.001 m long between "
+                                         r"material\.feed\.1\.at_m \(3000\.001 m\) and the "
+                                         r"end of profile\.0"):
+        build_system(conv, Scenario(), st)
 
 
 @pytest.mark.parametrize("load", ["inclines", "declines", [0.5, 1.0]])
