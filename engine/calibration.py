@@ -217,6 +217,24 @@ def _takeup_held(conv: Conveyor, fm, rows: Sequence[Measurement], params: dict
                   f"plant's as takeup.{field}")
 
 
+def _upper(model, name: str) -> float:
+    """The largest value a fit gives parameter ``name``: its declared largest value
+    (:meth:`FrictionModel.largest`), else 1 where the model's own check stops it there (a
+    share: ``centre_share``, ``ky_sag_share``), else no bound."""
+    hi = model.largest(name)
+    if hi is not None:
+        return float(hi)
+
+    def ok(value: float) -> bool:
+        try:
+            model.params({name: value})
+        except InputError:
+            return False
+        return True
+
+    return 1.0 if ok(1.0) and not ok(1.0 + 1e-9) else math.inf
+
+
 def _check_names(model, fit: Sequence[str], fixed: dict) -> list[str]:
     valid = [f.name for f in dataclasses.fields(model.params_class)]
     valid += list(TIED.get(model.name, {}))
@@ -267,6 +285,11 @@ def _starts(model, conv, rows, names, fixed, starts) -> np.ndarray:
         if value is None:
             raise InputError(f"'{name}' has no default to start from; give one as "
                              f"{name}=VALUE", field="fit")
+        if value < 0:
+            raise InputError(f"'{name}' starts at {value:g}, below the bound 0 the fit keeps "
+                             f"every parameter above (docs/uncertainty.md): start it at 0 or "
+                             f"above ({name}=START), or hold it there as a fixed parameter "
+                             f"(--param {name}={value:g}, the request's params)", field="fit")
         out.append(float(value))
     return np.array(out)
 
@@ -311,9 +334,13 @@ def calibrate(conv: Conveyor, measured: Sequence[Measurement], model: str,
     y = np.array([rows[i].values[col] for i, col in cols])
     speeds: dict = {}
 
-    # each name's largest value (friction.base.param): the fit's bound, and where the
-    # differences of its Jacobian are taken at it, the value they reach past it
-    largest = {n: min((fm.largest(q) or np.inf) for q in _sets(fm.name, n)) for n in names}
+    # each name's largest value (friction.base.param, else the model's own limit: 1 for a
+    # share): the fit's bound, and where the differences of its Jacobian are taken at it,
+    # the value they reach past it
+    largest = {n: min(_upper(fm, q) for q in _sets(fm.name, n)) for n in names}
+    own_limit = [n for n in names
+                 if all(fm.largest(q) is None for q in _sets(fm.name, n)) and
+                 np.isfinite(largest[n])]
 
     def model_values(x: np.ndarray, which: Sequence[str]) -> np.ndarray:
         p = fm.params({**fixed, **_expanded(fm.name, {n: min(float(v), largest[n]) for n, v in
@@ -379,7 +406,8 @@ def calibrate(conv: Conveyor, measured: Sequence[Measurement], model: str,
         held=held_values, models={fm.name: block},
         rms_relative=float(math.sqrt(float(r @ r) / n)), dof=dof,
         singular_values=[float(s) for s in sv],
-        notes=notes, **_verdict(sol, at_bound, r, fm.name, at_upper))
+        notes=notes, **_verdict(sol, at_bound, r, fm.name, at_upper,
+                                {n: largest[n] for n in own_limit}))
 
 
 #: Rms relative residual [%] above which a fit misses its data: a plant's logged drive power
@@ -403,13 +431,15 @@ def _at_bound(free: Sequence[str], sol, starts: np.ndarray) -> list[str]:
 
 
 def _verdict(sol, at_bound: list[str], r: np.ndarray, model: str,
-             at_upper: Sequence[str] = ()) -> dict[str, str]:
+             at_upper: Sequence[str] = (), own_limit: dict[str, float] | None = None
+             ) -> dict[str, str]:
     """``status`` and ``message`` of the fit in this project's words (never SciPy's text):
     ``failed`` when it stopped without converging, ``warning`` when a fitted parameter ended
     at its bound (the data ask for a value the model does not allow: the rest of the misfit
     stays in the residuals: at 0, or at its largest value, far beyond any published one) or
     when it converged but misses the measurements by more than :data:`MISFIT_PCT`, ``ok``
-    otherwise."""
+    otherwise. ``own_limit``: the names whose largest value is the model's own limit (a
+    share's 1), not a declared one far beyond any published value."""
     rms = 100 * math.sqrt(float(r @ r) / len(r))
     rms_text = f"{rms:.3g}" if rms < 1000 else f"{rms:.0f}"
     check = ("Check the measured values (power at the drive pulleys [kW], negative only where "
@@ -421,12 +451,21 @@ def _verdict(sol, at_bound: list[str], r: np.ndarray, model: str,
             f"residual {rms_text} %): start it nearer the answer (NAME=START) or fit fewer "
             "names")}
     if at_upper:
+        own = own_limit or {}
         names = ", ".join(at_upper)
         verb = "ends" if len(at_upper) == 1 else "end"
+        if not any(n in own for n in at_upper):
+            where = ", far beyond any published value"
+        elif len(at_upper) == 1:
+            where = f" ({own[at_upper[0]]:g}, its own limit)"
+        else:
+            where = " (" + "; ".join(f"{n}: {own[n]:g}, its own limit" if n in own else
+                                     f"{n}: far beyond any published value"
+                                     for n in at_upper) + ")"
         return {"status": "warning", "message": (
-            f"{names} {verb} at the largest value model {model} takes, far beyond any "
-            f"published value (the data would take it higher), and the fit misses the "
-            f"measurements by {rms_text} % (rms relative residual). {check}")}
+            f"{names} {verb} at the largest value model {model} takes{where} (the "
+            f"data would take it higher), and the fit misses the measurements by {rms_text} % "
+            f"(rms relative residual). {check}")}
     if at_bound:
         names = ", ".join(at_bound)
         verb, it = ("ends", "it") if len(at_bound) == 1 else ("end", "them")

@@ -205,3 +205,29 @@ def test_a_fit_pushed_to_a_parameters_largest_value_says_so(overland):
     assert cal.fit["f_carry"]["value"] == pytest.approx(1.0, rel=1e-6)
     assert cal.status == "warning"
     assert "f_carry ends at the largest value model din takes" in cal.message
+
+
+def test_a_start_below_the_fits_bound_0_is_refused_by_name(overland):
+    """The fit keeps every parameter at 0 or above; a start below it (a reference
+    temperature the model itself allows below 0) is refused naming the name and the fix, not
+    left to SciPy ('Initial guess is outside of provided bounds', a traceback)."""
+    rows = _plant(overland, "din", {"f_carry": TRUTH})
+    with pytest.raises(InputError, match=r"fit: 'drag_ref_temp_c' starts at -10, below the "
+                                         r"bound 0 .*hold it there as a fixed parameter"):
+        calibrate(overland, rows, "nonlin", ["drag_ref_temp_c"], starts={"drag_ref_temp_c": -10})
+
+
+def test_a_share_is_fitted_within_its_own_bound_1(overland):
+    """Shares (cmod ky_sag_share, nonlin centre_share) declare no largest value; their
+    model's own check keeps them within 0..1. Data that ask for more than the whole share
+    stop the fit at 1 with a warning, not with an input error about a trial value the user
+    never gave ('models.cmod.ky_sag_share: must be in 0..1 (got 1.0001)')."""
+    rows = _plant(overland, "cmod", {"ky_sag_share": 1.0})
+    for m in rows:  # below what the whole share gives: its sag-driven Ky is below classic
+        m.values["power_kw"] *= 0.9
+    cal = calibrate(overland, rows, "cmod", ["ky_sag_share"])
+    assert cal.fit["ky_sag_share"]["value"] == pytest.approx(1.0, rel=1e-6)
+    assert cal.status == "warning"
+    assert cal.message.startswith("ky_sag_share ends at the largest value model cmod takes (1, "
+                                  "its own limit)")
+    assert "far beyond any published value" not in cal.message
