@@ -377,7 +377,15 @@ class StudyService:
             return len(self._jobs)
 
     def list(self) -> list[dict]:
-        return [self.status(doc["id"]) for doc in self.store.list_studies()]
+        """Every stored study's status; one deleted while the list is made is left out (the
+        list itself is never a 404)."""
+        out = []
+        for doc in self.store.list_studies():
+            try:
+                out.append(self.status(doc["id"]))
+            except NotFound:
+                continue
+        return out
 
     def study_doc(self, study_id: str) -> dict:
         return self.store.read(study_id)
@@ -549,14 +557,20 @@ class StudyService:
         """Cancel a study's tasks and delete its files; waits at most ``dask_timeout_s`` for
         its job to leave (the job never waits on Dask: its tasks are released, not awaited).
         The answer's ``state`` is ``deleted``; ``cancelled`` says whether it was still queued
-        or running (its tasks cancelled), ``was`` the state it had."""
-        was = self.store.read(study_id).get("state", "")
+        or running (its tasks cancelled), ``was`` the state it had. A study another request is
+        deleting is a :class:`Conflict` (409) until that request has finished, also once its
+        files are already gone; :class:`NotFound` (404) only for a study no request holds."""
         with self._lock:
+            # checked before the store is read: the first DELETE moves the files away before
+            # it has finished (it may still be waiting for the study's job)
             if study_id in self._deleting:
                 raise Conflict(f"study '{study_id}' is already being deleted")
             self._deleting.add(study_id)
-            job = self._jobs.pop(study_id, None)
+        job = None
         try:
+            was = self.store.read(study_id).get("state", "")
+            with self._lock:
+                job = self._jobs.pop(study_id, None)
             if job is not None:
                 job.cancel()
                 job.join(timeout=self.settings.dask_timeout_s)

@@ -222,13 +222,29 @@ class Store:
                    "profile": profile_schema, "accuracy": accuracy_schema}
         return schemas[table]().empty_table()
 
+    def _vanishing(self, study_id: str, read):
+        """``read()``, which reads part files of the study: a file that vanishes meanwhile (the
+        study deleted: its directory is moved away at once; a part :meth:`clean` removed) is
+        :class:`NotFound` when the study is gone, else read again from the files there are
+        now. Never a bare ``FileNotFoundError`` (a 500) for a study deleted while it is read."""
+        for attempt in range(3):
+            try:
+                return read()
+            except FileNotFoundError:
+                if not self.exists(study_id):
+                    raise NotFound(f"study '{study_id}' not found") from None
+                if attempt == 2:
+                    raise
+
     def _read_table(self, study_id: str, table: str, columns=None, filters=None) -> pd.DataFrame:
-        parts = self.parts(study_id, table)
-        if not parts:
-            empty = self._empty(study_id, table)
-            return (empty.select(columns) if columns else empty).to_pandas()
-        data = pq.ParquetDataset(parts, filters=filters).read(columns=columns)
-        return data.to_pandas()
+        def read() -> pd.DataFrame:
+            parts = self.parts(study_id, table)
+            if not parts:
+                empty = self._empty(study_id, table)
+                return (empty.select(columns) if columns else empty).to_pandas()
+            return pq.ParquetDataset(parts, filters=filters).read(columns=columns).to_pandas()
+
+        return self._vanishing(study_id, read)
 
     def read_runs(self, study_id: str, columns: list[str] | None = None) -> pd.DataFrame:
         """The runs table of a study (one row per finished run). The table read last for the
@@ -237,6 +253,9 @@ class Store:
         self.read(study_id)
         if columns is not None:
             return self._read_table(study_id, "runs", columns)
+        return self._vanishing(study_id, lambda: self._read_runs(study_id))
+
+    def _read_runs(self, study_id: str) -> pd.DataFrame:
         parts = self.parts(study_id, "runs")
         if not parts:
             return self._read_table(study_id, "runs")

@@ -398,3 +398,66 @@ def test_an_input_error_past_the_door_is_a_422_naming_the_field(api, data_dir, m
     r = api().post("/studies", json=make_study())
     assert r.status_code == 422, r.text
     assert r.json() == {"error": "invalid", "message": "conveyor.speed_m_s: must be positive"}
+
+
+def test_a_delete_while_another_is_deleting_the_study_is_409_not_404(
+        data_dir, make_settings, finished_study, make_study):
+    """Two DELETEs of one study at once: the second is a 409 until the first has finished,
+    also after the first has already moved the files away (it answered 404 there: the store
+    was read before the study was looked for among those being deleted)."""
+    from beltstudy.service.studies import StudyService
+
+    sid = finished_study(data_dir, make_study())
+    service = StudyService(make_settings(data_dir))
+    client = TestClient(create_app(service=service, settings=service.settings),
+                        raise_server_exceptions=False)
+    # a first DELETE in progress: the study is held as being deleted (while it waits for the
+    # study's job, and while it removes the files) ...
+    with service._lock:
+        service._deleting.add(sid)
+    try:
+        r = client.delete(f"/studies/{sid}")
+        assert r.status_code == 409, r.text
+        assert r.json() == {"error": "conflict",
+                            "message": f"study '{sid}' is already being deleted"}
+        service.store.delete(sid)  # ... and its files are gone already
+        r = client.delete(f"/studies/{sid}")
+        assert r.status_code == 409, r.text
+        assert client.post("/studies", json=make_study()).status_code == 409
+    finally:
+        with service._lock:
+            service._deleting.discard(sid)
+    # once it has finished, the study is unknown: 404, and nothing is left held
+    assert client.delete(f"/studies/{sid}").status_code == 404
+    assert client.delete("/studies/0123456789abcdef").status_code == 404
+    assert service._deleting == set()
+
+
+def test_a_study_deleted_while_its_runs_are_read_is_404_not_500(
+        data_dir, make_settings, finished_study, make_study):
+    """A read that has listed the study's part files when a DELETE moves them away answers
+    404 (the study is gone), not a 500 from the vanished file."""
+    import threading
+    import time
+
+    from beltstudy.service.studies import StudyService
+
+    sid = finished_study(data_dir, make_study())
+    service = StudyService(make_settings(data_dir))
+    client = TestClient(create_app(service=service, settings=service.settings),
+                        raise_server_exceptions=False)
+    store = service.store
+    # the runs table's reader lock held: a read lists the part files, then waits here
+    with store._runs_lock:
+        reading = store._runs_reading.setdefault(sid, threading.Lock())
+    answers: list = []
+    with reading:
+        reader = threading.Thread(
+            target=lambda: answers.append(client.get(f"/studies/{sid}/runs")))
+        reader.start()
+        time.sleep(0.5)  # it has listed the files and waits for the lock
+        assert client.delete(f"/studies/{sid}").status_code == 200
+    reader.join(30)
+    assert answers and answers[0].status_code == 404, answers[0].text
+    assert answers[0].json()["error"] == "not_found"
+    assert client.get("/studies").json() == {"studies": []}

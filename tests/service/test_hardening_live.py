@@ -76,6 +76,78 @@ def test_concurrent_identical_posts_make_one_study_and_one_row_per_run(svc, make
     assert len(listed) == len(set(listed))
 
 
+def test_concurrent_deletes_of_a_running_study_give_one_200_the_others_409_or_404(
+        svc, make_study):
+    """2 to 5 DELETEs of one running study at once, 20 times: one 200, the others 409 (being
+    deleted) or 404 (already gone); the study is gone after, the stored studies untouched."""
+    keep = svc.client.submit(_tiny_dynamic(make_study, "kept-beside-deletes"))[0]["id"]
+    assert svc.wait(keep)["state"] == "done"
+    kept = pd.read_parquet(svc.data_dir / "studies" / keep / "runs")
+    with httpx.Client(base_url=svc.url, timeout=60) as http:
+        for rep in range(20):
+            n = 2 + rep % 4
+            body = make_study(name=f"deleted-{rep}", dynamics=True,
+                              grid={"friction_model": ["din", "cema"],
+                                    "temperature_c": list(range(-30, 31, 5))})
+            sid = svc.client.submit(body)[0]["id"]
+            barrier = threading.Barrier(n)
+            answers: list = [None] * n
+
+            def delete(i, sid=sid, barrier=barrier, answers=answers):
+                barrier.wait()
+                answers[i] = http.delete(f"/studies/{sid}")
+
+            threads = [threading.Thread(target=delete, args=(i,)) for i in range(n)]
+            for t in threads:
+                t.start()
+            for t in threads:
+                t.join()
+            codes = sorted(r.status_code for r in answers)
+            assert codes.count(200) == 1 and set(codes) <= {200, 404, 409}, \
+                [r.text for r in answers]
+            assert http.get(f"/studies/{sid}").status_code == 404
+    assert [s["id"] for s in svc.client.list()].count(keep) == 1
+    again = pd.read_parquet(svc.data_dir / "studies" / keep / "runs")
+    pd.testing.assert_frame_equal(again, kept)
+
+
+def test_reads_while_studies_are_deleted_are_never_a_500_and_the_list_never_a_404(
+        svc, make_study):
+    """Runs, run pages and the study list read without pause while each study is deleted, 10
+    times: a study answers 200 or 404 (gone), the list always 200 (a read that had listed the
+    files before they moved away was a 500; the list a 404)."""
+    bad: list = []
+    with httpx.Client(base_url=svc.url, timeout=60) as http:
+        for rep in range(10):
+            sid = svc.client.submit(make_study(name=f"read-while-deleted-{rep}"))[0]["id"]
+            svc.wait(sid)
+            rid = http.get(f"/studies/{sid}/runs", params={"limit": 1}).json()["runs"][0]["run_id"]
+            paths = {"/studies": {200}}
+            for path in (f"/studies/{sid}/runs", f"/studies/{sid}/runs?format=parquet",
+                         f"/studies/{sid}/runs/{rid}", f"/studies/{sid}/runs/{rid}/profile",
+                         f"/studies/{sid}/compare?baseline=din&candidate=cema"):
+                paths[path] = {200, 404}
+            stop = threading.Event()
+
+            def read(path, ok, stop=stop):
+                with httpx.Client(base_url=svc.url, timeout=60) as own:
+                    while not stop.is_set():
+                        r = own.get(path)
+                        if r.status_code not in ok:
+                            bad.append((path, r.status_code, r.text[:200]))
+
+            threads = [threading.Thread(target=read, args=item) for item in paths.items()]
+            for t in threads:
+                t.start()
+            time.sleep(0.3)
+            assert http.delete(f"/studies/{sid}").status_code == 200
+            time.sleep(0.2)
+            stop.set()
+            for t in threads:
+                t.join()
+    assert not bad, bad[:5]
+
+
 def test_alias_bomb_is_refused_in_under_a_second_while_health_answers(svc):
     latencies: list[float] = []
     stop = threading.Event()
