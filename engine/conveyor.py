@@ -129,6 +129,8 @@ POWER_MAX_KW = 30_000.0
 #: Largest pulley diameter [m]: the largest conveyor pulleys are about 2.5 m (DIN 22101's
 #: pulley diameters for the strongest steel-cord belts: engine/data/pulleys.csv).
 PULLEY_DIAMETER_MAX_M = 5.0
+#: Smallest pulley diameter [m]: the smallest of DIN 22101's table (engine/data/pulleys.csv).
+PULLEY_DIAMETER_MIN_M = 0.1
 #: Largest inertia reduced to a pulley shaft [kg m2]: a 5 m pulley of 100 t is 3e5 kg m2;
 #: motors and flywheels behind gearboxes count with the ratio squared: 1e7 is beyond any.
 INERTIA_MAX_KG_M2 = 1.0e7
@@ -421,15 +423,19 @@ class Drive(_Model):
     at_m: NonNegFloat | None = Field(
         None, description="booster drive (position carry or return): where it sits, from the "
         "tail along the conveyor [m]")
-    wrap_deg: float = Field(210.0, gt=0, le=500, description="wrap angle [deg]")
+    # one pulley: the belt meets and leaves it within a turn (a snubbed drive pulley takes
+    # about 180-240 deg; two pulleys in tandem are two drives)
+    wrap_deg: float = Field(210.0, gt=0, lt=360, description="wrap angle of this pulley "
+                            "[deg] (below 360: tandem pulleys are two drives)")
     friction: float = Field(0.35, gt=0, le=1.0, description="belt-pulley friction coefficient")
     friction_kinetic: float | None = Field(
         None, gt=0, le=1.0, description="sliding friction while the belt slips [-] "
         "(default: friction)")
     share: float = Field(1.0, gt=0, le=1.0, description="share of the peripheral force")
-    pulley_diameter_m: PositiveFloat = Field(
-        1.0, le=PULLEY_DIAMETER_MAX_M, description="pulley diameter [m] (at most 5: the "
-        "largest conveyor pulleys are about 2.5 m)")
+    pulley_diameter_m: float = Field(
+        1.0, ge=PULLEY_DIAMETER_MIN_M, le=PULLEY_DIAMETER_MAX_M, description="pulley diameter "
+        "[m] (0.1 to 5: DIN 22101's table of pulley diameters starts at 100 mm; the largest "
+        "conveyor pulleys are about 2.5 m)")
     inertia_kg_m2: NonNegFloat = Field(
         0.0, le=INERTIA_MAX_KG_M2, description="rotating parts reduced to the pulley shaft "
         "[kg m2] (at most 1e7, beyond any drive train)"

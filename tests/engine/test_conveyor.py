@@ -260,6 +260,10 @@ def _with(path: str, value) -> dict:
                                         "static modulus 60000 kN/m"),
     # an edge distance that leaves no loaded width names itself, not the capacity
     ("material.edge_distance_m", 0.5, "material.edge_distance_m: 0.5 m on each side"),
+    # one pulley is wrapped less than a full turn; DIN 22101's pulleys start at 100 mm
+    ("drives.0.wrap_deg", 500.0, "drives.0.wrap_deg"),
+    ("drives.0.wrap_deg", 360.0, "drives.0.wrap_deg"),
+    ("drives.0.pulley_diameter_m", 0.001, "drives.0.pulley_diameter_m"),
 ])
 def test_values_beyond_any_conveyor_name_their_field(path, value, needle):
     assert needle in _err(_with(path, value))
@@ -268,7 +272,8 @@ def test_values_beyond_any_conveyor_name_their_field(path, value, needle):
 def test_values_at_the_bounds_are_taken():
     for path, value in (("drives.0.torque_limit", 10.0), ("sag_limit_pct.carry", 50.0),
                         ("safety_factor_min", 1.0), ("belt.dynamic_modulus_kn_m", 60000.0),
-                        ("material.edge_distance_m", 0.1),
+                        ("material.edge_distance_m", 0.1), ("drives.0.wrap_deg", 359.0),
+                        ("drives.0.pulley_diameter_m", 0.1),
                         ("drives.0.motor_curve", [[0.0, 10.0], [1.2, 0.0]])):
         parse_conveyor(_with(path, value))
 
