@@ -153,6 +153,18 @@ def steady_checks(conv, forces_n, speed_m_s: float, te_n: float, rated_kw
                 f"{need / rated:.2f}); a motor of at least {need:.0f} kW "
                 f"(drives.{i - 1}.rated_power_kw), or the load shared by more drives, "
                 "would avoid it")
+        # a vfd caps its force at torque_limit x the rated force P_N / v (as the transient
+        # does, engine/dynamics/model.py): a cap below the running force never lets the
+        # belt reach design speed
+        cap = float(d.torque_limit) * rated * 1e3 / speed_m_s
+        if d.control == "vfd" and abs(float(f)) > cap * (1.0 + 1e-9) and math.isfinite(cap):
+            warnings.append(
+                f"drive {i} ({d.where}) force limit {cap / 1e3:.1f} kN (torque_limit "
+                f"{d.torque_limit:g} x rated {rated:.0f} kW / {speed_m_s:g} m/s) is below its "
+                f"running force {abs(float(f)) / 1e3:.1f} kN: it cannot hold the belt at "
+                f"design speed; a torque_limit of at least "
+                f"{math.ceil(abs(float(f)) / (rated * 1e3 / speed_m_s) * 100 - 1e-6) / 100:.2f} "
+                f"(drives.{i - 1}.torque_limit) or a larger motor would avoid it")
     return fields, warnings
 
 

@@ -87,6 +87,25 @@ def test_solve_steady_warns_a_drive_short_of_power():
     assert "short by" not in auto.message
 
 
+def test_a_vfd_force_limit_below_the_running_force_is_a_steady_warning():
+    """The hand conveyor with an auto rating, 1.25 Te v: its rated force P_N / v is 1.25 Te,
+    so a torque_limit of 0.5 caps the drive at 0.625 Te, short of the running force Te (the
+    belt never reaches design speed), and 1 / 1.25 = 0.8 is the least limit that holds it,
+    which is named and then warns no more."""
+    d = hand_conveyor_dict()
+    d["drives"][0]["torque_limit"] = 0.5
+    st = solve_steady(parse_conveyor(d), model="din", n_elements=100)
+    cap_kn = 0.5 * 1.25 * st.te_n / 1e3
+    assert st.status == "warning"
+    assert (f"drive 1 (head) force limit {cap_kn:.1f} kN (torque_limit 0.5 x rated"
+            in st.message)
+    assert f"below its running force {st.te_n / 1e3:.1f} kN" in st.message
+    assert "a torque_limit of at least 0.80 (drives.0.torque_limit)" in st.message
+    d["drives"][0]["torque_limit"] = 0.8
+    ok = solve_steady(parse_conveyor(d), model="din", n_elements=100)
+    assert "force limit" not in ok.message
+
+
 def test_static_cli_warns_the_drive_and_the_shortfall(tmp_path):
     """``beltstudy static`` of slope-5pct with its drive rated at 500 kW (the din model needs
     about 1 000 kW): status warning, the message names drive 1 (head) and the shortfall in
