@@ -814,7 +814,10 @@ def transient_summary(sys: System, r: dict, out, segs, *, steady_summary=None, c
     if sf is not None and safety_factor_min is not None and sf < safety_factor_min:
         w.append(_transient_safety_words(sys, conveyor, sf, safety_factor_min, t_max_dyn,
                                          jmax, float(r["tmax_t"])))
-    if summary["stop_wave_ratio"] is not None and summary["stop_wave_ratio"] < 5.0:
+    # the 5-wave-loop rule judges a stop from design speed: a belt that never reached it
+    # is told that instead (below), not told that its stop from a crawl was fast
+    if (summary["stop_wave_ratio"] is not None and summary["stop_wave_ratio"] < 5.0
+            and t_start_ach is not None):
         w.append(_fast_stop_words(sys, t_stop_ach, summary, steady_tmax))
     if r["endstop"] > 0:
         w.append(endstop_words(sys, r))

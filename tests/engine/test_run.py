@@ -18,7 +18,7 @@ from beltstudy.engine.conveyor import (
 )
 from beltstudy.engine.dynamics.simulate import TIMESERIES_COLUMNS
 from beltstudy.engine.run import run_one
-from tests.conftest import CONVEYORS, TRANSIENT_FIELDS
+from tests.conftest import CONVEYORS, TRANSIENT_FIELDS, hand_conveyor_dict
 from tests.engine.conftest import DIN, hand_conv, hand_drive, two_sections
 
 SLOPE = CONVEYORS / "slope-5pct.yaml"
@@ -66,6 +66,21 @@ def test_warnings_name_the_limit():
     r = run_one(conv, scn, model="din")
     assert r.summary["status"] == "warning"
     assert "faster than 5 wave loop times" in r.summary["message"]
+
+
+def test_a_belt_that_never_reached_speed_is_not_told_its_stop_was_fast():
+    """The hand conveyor's drive capped at 0.7 x its rated force (0.7 x 1.25 Te = 0.875 Te)
+    cannot reach design speed: the run says so, and does not judge the stop from a crawl
+    against the 5-wave-loop rule, which is about stopping a belt from design speed (its
+    stop_wave_ratio is still reported)."""
+    d = hand_conveyor_dict()
+    d["drives"][0]["torque_limit"] = 0.7
+    r = run_one(parse_conveyor(d), Scenario(elements=40, start={"time_s": 10}, run_s=5,
+                                            stop={"mode": "coast"}), model="din")
+    s = r.summary
+    assert s["start_time_s"] is None and s["stop_wave_ratio"] < 5.0
+    assert "the belt never reached 99 % of design speed" in s["message"]
+    assert "faster than 5 wave loop times" not in s["message"]
 
 
 def test_negative_time_rejected_naming_the_field(no_kernel):
