@@ -999,7 +999,8 @@ def short_element(conv, loop: Loop) -> tuple[str, str] | None:
         return None
     j = int(idler[np.argmin(loop.dx_m[idler])])
     dx = float(loop.dx_m[j])
-    if dx >= 0.1 * float(np.median(loop.dx_m[idler])):
+    apart = 0.1 * float(np.median(loop.dx_m[idler]))
+    if dx >= apart:
         return None
     x0 = float(loop.x_m[j])
     ends = (x0 - dx, x0, x0 + dx)  # the element's ends, either way along the route
@@ -1020,7 +1021,9 @@ def short_element(conv, loop: Loop) -> tuple[str, str] | None:
                                      not c[0].endswith(".curve_radius_m")))[0]
     where = " and ".join(f"{words} ({a:.10g} m)" for _, words, a in near)
     return field, (f"the automatic step follows the shortest belt element, {dx:.3g} m long "
-                   f"between {where} from the tail: move {field} a metre or more away")
+                   f"between {where} from the tail: move {field} onto the other point or "
+                   f"{math.ceil(apart * 10.0) / 10.0:g} m or more away from it (a tenth of "
+                   "the median element)")
 
 
 def _cycle(conv, scn, opts, n, dt, t_loop, total_mass, te, v_d, hold, drive_train,
@@ -1150,8 +1153,12 @@ def build_system(conv: Conveyor, scn: Scenario, steady, options: DynamicsOptions
     takeup = _takeup(conv, loop, steady, springs, T_rest, T_run)
     brakes = build_brakes(conv, scn, loop, shaft_index, total_mass, te, gravity_sum, notes,
                           steady)
+    short = short_element(conv, loop)
+    if short is not None and scn.dt_s == "auto":
+        # the run is right, only slow: say what makes it so
+        notes.append(f"{short[1]} (a step of {dt:.3g} s)")
     cycle = _cycle(conv, scn, opts, n, dt, t_loop, total_mass, te, v_d, hold, train,
-                   handover_time_s(conv, loop, scn, opts, hold), short_element(conv, loop))
+                   handover_time_s(conv, loop, scn, opts, hold), short)
     model = Model(
         cycle=cycle, nodes=nodes, law=law, lin=_lin(law, nodes, cycle.v_eps), springs=springs,
         blocks=_blocks(blocks_list, int(drives.node[control.master]), n, shaft_index,

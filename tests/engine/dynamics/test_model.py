@@ -97,6 +97,29 @@ def test_too_much_work_set_by_a_short_element_names_the_point_that_cuts_it():
         build_system(conv, Scenario(), st)
 
 
+def test_a_short_element_that_sets_the_step_is_a_note_naming_the_point():
+    """A feed point 1 mm past the end of the hand conveyor's first section cuts a 1 mm
+    element whose automatic step is a small fraction of the others': the run is right but
+    slow, and its notes say which point to move and how far: a tenth of the median element
+    (the carry's 30 elements over 1 000 m, 3.3 m, rounded up to 3.4 m); that far the note is
+    gone and the step is many times longer."""
+    def system(at_m):
+        conv = hand_conv(profile=[{"length_m": 400, "lift_m": 20},
+                                  {"length_m": 600, "lift_m": 30}],
+                         material={"capacity_t_h": 720, "density_t_m3": 1.0,
+                                   "feed": [{"at_m": 0.0, "share": 0.5},
+                                            {"at_m": at_m, "share": 0.5}]})
+        return build_system(conv, Scenario(elements=60), solve_steady(conv, model="din",
+                                                                      n_elements=60))
+    near, far = system(400.001), system(403.4)
+    note = " ".join(near.notes)
+    assert "the automatic step follows the shortest belt element, 0.001 m long" in note
+    assert "material.feed.1.at_m (400.001 m)" in note and "the end of profile.0" in note
+    assert "3.4 m or more away from it" in note
+    assert not any("shortest belt element" in n for n in far.notes)
+    assert near.dt_s < 0.05 * far.dt_s
+
+
 @pytest.mark.parametrize("load", ["inclines", "declines", [0.5, 1.0]])
 def test_transient_model_runs_on_the_same_per_element_masses(load):
     """The transient model reads the loop's per-element arrays: its gravity and masses are the
