@@ -168,6 +168,12 @@ def measurements_from_rows(rows: Sequence[dict[str, Any]]) -> list[Measurement]:
     return out
 
 
+#: Largest measured speed over the design speed [-]: drives run up to their overspeed trip,
+#: 1.1 x (plant overspeed switches, docs/dynamics.md); 1.5 x is beyond any plant and catches
+#: a speed in ft/s (3.28 x) or km/h (3.6 x).
+SPEED_OVER_DESIGN = 1.5
+
+
 def _check_rows(conv: Conveyor, rows: Sequence[Measurement]) -> None:
     """Each row's speed and load fit the conveyor (a speed within its bounds, one load
     fraction per carry section), named by its row: ``measured.2.speed_m_s: ...``."""
@@ -175,6 +181,13 @@ def _check_rows(conv: Conveyor, rows: Sequence[Measurement]) -> None:
         if m.speed_m_s is not None and m.speed_m_s != conv.speed_m_s:
             data = conv.model_dump(mode="json", by_alias=True)
             parse_conveyor({**data, "speed_m_s": m.speed_m_s}, prefix=f"measured.{i}.")
+        if m.speed_m_s is not None and m.speed_m_s > SPEED_OVER_DESIGN * conv.speed_m_s:
+            raise InputError(
+                f"{m.speed_m_s:g} m/s is {m.speed_m_s / conv.speed_m_s:.3g} x the conveyor's "
+                f"design speed {conv.speed_m_s:g} m/s, beyond the {SPEED_OVER_DESIGN:g} x no plant "
+                "runs a belt at: give the speed in m/s (1 ft/s = 0.3048 "
+                "m/s, 1 km/h = 1/3.6 m/s), or the conveyor's own speed_m_s",
+                field=f"measured.{i}.speed_m_s")
         try:
             section_loads(m.load, conv)
         except InputError as exc:
@@ -407,7 +420,7 @@ def calibrate(conv: Conveyor, measured: Sequence[Measurement], model: str,
         rms_relative=float(math.sqrt(float(r @ r) / n)), dof=dof,
         singular_values=[float(s) for s in sv],
         notes=notes, **_verdict(sol, at_bound, r, fm.name, at_upper,
-                                {n: largest[n] for n in own_limit}))
+                                {n: largest[n] for n in own_limit}, groups, held_values))
 
 
 #: Rms relative residual [%] above which a fit misses its data: a plant's logged drive power
@@ -431,15 +444,18 @@ def _at_bound(free: Sequence[str], sol, starts: np.ndarray) -> list[str]:
 
 
 def _verdict(sol, at_bound: list[str], r: np.ndarray, model: str,
-             at_upper: Sequence[str] = (), own_limit: dict[str, float] | None = None
+             at_upper: Sequence[str] = (), own_limit: dict[str, float] | None = None,
+             groups: Sequence[Sequence[str]] = (), held: dict[str, float] | None = None
              ) -> dict[str, str]:
     """``status`` and ``message`` of the fit in this project's words (never SciPy's text):
     ``failed`` when it stopped without converging, ``warning`` when a fitted parameter ended
     at its bound (the data ask for a value the model does not allow: the rest of the misfit
     stays in the residuals: at 0, or at its largest value, far beyond any published one) or
     when it converged but misses the measurements by more than :data:`MISFIT_PCT`, ``ok``
-    otherwise. ``own_limit``: the names whose largest value is the model's own limit (a
-    share's 1), not a declared one far beyond any published value."""
+    otherwise; a converged fit that held names it was asked to fit (``groups`` that only act
+    together on these data, ``held`` at their starts) is a ``warning`` too: the values it
+    gives assume the held ones. ``own_limit``: the names whose largest value is the model's
+    own limit (a share's 1), not a declared one far beyond any published value."""
     rms = 100 * math.sqrt(float(r @ r) / len(r))
     rms_text = f"{rms:.3g}" if rms < 1000 else f"{rms:.0f}"
     check = ("Check the measured values (power at the drive pulleys [kW], negative only where "
@@ -484,6 +500,15 @@ def _verdict(sol, at_bound: list[str], r: np.ndarray, model: str,
             f"converged, but the fit misses the measurements by {rms_text} % (rms relative "
             f"residual over {len(r)} measured values; a plant's logged power is good to a few "
             f"per cent, {MISFIT_PCT:g} % at most). {check}")}
+    if groups:
+        kept = "; ".join(f"{n} at {v:.4g}" for n, v in (held or {}).items())
+        together = "; ".join(" and ".join(g) for g in groups)
+        return {"status": "warning", "message": (
+            f"converged (rms relative residual {rms_text} % over {len(r)} measured values), "
+            f"but these data cannot tell {together} apart: held at the start ({kept}), and "
+            "the fitted values assume it. Hold the held names at values from the literature "
+            "(--param, or the request's params) and fit the others, or, where the model lets "
+            "them act apart, measure at other loads, speeds or temperatures")}
     return {"status": "ok", "message": f"converged: rms relative residual {rms_text} % over "
             f"{len(r)} measured values"}
 
