@@ -90,7 +90,10 @@ def wilson(k: int, n: int, confidence: float = CONFIDENCE) -> tuple[float, float
     centre = p + z * z / (2 * n)
     half = z * math.sqrt(p * (1 - p) / n + z * z / (4 * n * n))
     den = 1 + z * z / n
-    return (max(0.0, (centre - half) / den), min(1.0, (centre + half) / den))
+    # at k = 0 (k = n) the bound is 0 (1) exactly; the subtraction leaves a rounding residue
+    lo = 0.0 if k <= 0 else max(0.0, (centre - half) / den)
+    hi = 1.0 if k >= n else min(1.0, (centre + half) / den)
+    return (lo, hi)
 
 
 def distribution(values: pd.Series) -> dict[str, Any] | None:

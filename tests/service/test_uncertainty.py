@@ -88,6 +88,8 @@ def test_wilson_interval():
     assert wilson(0, 20) == pytest.approx((0.0, 0.1611), abs=1e-4)
     assert wilson(10, 20) == pytest.approx((0.2993, 0.7007), abs=1e-4)
     assert wilson(20, 20)[1] == 1.0
+    # none of 48 (a limit never passed) is 0 exactly, not a rounding residue such as 6e-18
+    assert wilson(0, 48)[0] == 0.0 and wilson(48, 48)[1] == 1.0
 
 
 def test_exceedance_counts_the_runs_past_each_limit():
