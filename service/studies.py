@@ -230,14 +230,14 @@ class StudyService:
         key = self._body_key(data, base_dir, confine)
         known = self._known_body(key)
         if known is not None:
-            return self.status(known), False
+            return known, False
         owner, event = self._claim(key)
         try:
             if not owner:  # the same body is being expanded by another request: its answer
                 event.wait(self.settings.expansion_wait_s)
                 known = self._known_body(key)
                 if known is not None:
-                    return self.status(known), False
+                    return known, False
             study = self._expand_bounded(data, base_dir, confine)
             created = self._admit(study)
             self._remember_body(key, study.id)
@@ -304,23 +304,27 @@ class StudyService:
     def _body_path(self, key: str) -> Path:
         return Path(self.settings.data_dir) / "bodies" / key
 
-    def _known_body(self, key: str | None) -> str | None:
-        """The id of the stored study a body with hash ``key`` made, when it is stored and not
-        waiting to be resumed by this process (that goes the full way, through
-        :meth:`_admit`)."""
+    def _known_body(self, key: str | None) -> dict | None:
+        """The status of the stored study a body with hash ``key`` made, when it is stored, not
+        being deleted and not waiting to be resumed by this process; ``None`` otherwise, and
+        the body goes the full way, through :meth:`_admit` (a study being deleted is a 409
+        there; one deleted meanwhile is stored anew)."""
         if key is None:
             return None
         try:
             study_id = self._body_path(key).read_text(encoding="utf-8").strip()
         except OSError:
             return None
-        if not self.store.exists(study_id):
+        if study_id in self._deleting or not self.store.exists(study_id):
             return None
-        doc = self.store.read(study_id)
-        if study_id not in self._jobs and (doc.get("state") in ACTIVE_STATES
-                                           or _waits_for_workers(doc)):
+        try:
+            doc = self.store.read(study_id)
+            if study_id not in self._jobs and (doc.get("state") in ACTIVE_STATES
+                                               or _waits_for_workers(doc)):
+                return None
+            return self.status(study_id)
+        except NotFound:  # deleted since it was looked for
             return None
-        return study_id
 
     def _remember_body(self, key: str | None, study_id: str) -> None:
         if key is None:

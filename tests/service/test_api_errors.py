@@ -461,3 +461,34 @@ def test_a_study_deleted_while_its_runs_are_read_is_404_not_500(
     assert answers and answers[0].status_code == 404, answers[0].text
     assert answers[0].json()["error"] == "not_found"
     assert client.get("/studies").json() == {"studies": []}
+
+
+def test_a_study_sent_again_while_it_is_being_deleted_is_409(
+        data_dir, make_settings, finished_study, make_study):
+    """A body sent before is answered from its hash; while its study is being deleted that
+    answer was a 200 with the study about to vanish (or a 404 once it had): it is the 409 of
+    a study being deleted, and once the delete has finished the study is stored anew."""
+    from beltstudy.service.studies import StudyService
+
+    data = make_study()
+    sid = finished_study(data_dir, data)
+    service = StudyService(make_settings(data_dir))
+    client = TestClient(create_app(service=service, settings=service.settings),
+                        raise_server_exceptions=False)
+    first = client.post("/studies", json=data)
+    assert first.status_code == 200 and first.json()["id"] == sid  # the body is known now
+    with service._lock:
+        service._deleting.add(sid)  # a DELETE of it in progress
+    try:
+        r = client.post("/studies", json=data)
+        assert r.status_code == 409, r.text
+        assert "is being deleted" in r.json()["message"]
+        service.store.delete(sid)  # its files already moved away
+        r = client.post("/studies", json=data)
+        assert r.status_code == 409, r.text
+    finally:
+        with service._lock:
+            service._deleting.discard(sid)
+    service._closing = True  # a study admitted now is stored but not started (no Dask here)
+    r = client.post("/studies", json=data)
+    assert r.status_code == 202 and r.json()["id"] == sid, r.text
