@@ -334,7 +334,10 @@ def calibrate(conv: Conveyor, measured: Sequence[Measurement], model: str,
     """
     from scipy.optimize import least_squares
 
-    fm = get_model(model)
+    try:
+        fm = get_model(model)
+    except InputError as exc:  # the calibration's field is its model (--model, "model")
+        raise InputError(exc.reason, field="model") from None
     fixed = dict(fixed or {})
     fm.params(fixed)
     names = _check_names(fm, fit, fixed)

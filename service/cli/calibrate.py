@@ -12,10 +12,10 @@ from pathlib import Path
 import yaml
 from pydantic import ValidationError
 
-from beltstudy.engine import InputError, format_validation_error, get_model
+from beltstudy.engine import InputError, format_validation_error
 from beltstudy.engine.textfile import read_text
 from beltstudy.service.calibration import MAX_ROWS, CalibrationIn, MeasuredRow, run_calibration
-from beltstudy.service.cli.common import dumps, parse_params
+from beltstudy.service.cli.common import dumps, model_option, parse_params
 from beltstudy.service.errors import Invalid
 
 
@@ -127,7 +127,7 @@ def _at_line(message: str, path: str, lines: list[int]) -> str:
 def run(args: argparse.Namespace) -> int:
     lines: list[int] = []
     data = {"conveyor": str(Path(args.conveyor).resolve()),
-            "measured": read_measured(args.measured, lines), "model": get_model(args.model).name,
+            "measured": read_measured(args.measured, lines), "model": model_option(args.model).name,
             "fit": args.fit, "params": parse_params(args.param, args.model)}
     try:
         body = CalibrationIn.model_validate(data)

@@ -9,11 +9,22 @@ from contextlib import contextmanager
 from pathlib import Path
 from typing import Any
 
-from beltstudy.engine import LOAD_MAX, InputError, parse_scenario, section_loads
+from beltstudy.engine import LOAD_MAX, InputError, get_model, parse_scenario, section_loads
 from beltstudy.service.errors import file_reason, shown_path
 
 LOAD_HELP = ("full, empty, inclines, declines, a fraction of the design load up to 1.3 (a "
              "surge above 1), or one fraction per carry profile section: 1,0,0.5")
+
+
+def model_option(name: str, option: str = "--model"):
+    """The friction model an option names, an unknown name refused naming the option (not
+    the result column ``friction_model``)."""
+    from beltstudy.engine import InputError
+
+    try:
+        return get_model(name)
+    except InputError as exc:
+        raise InputError(exc.reason, field=option) from None
 
 
 def parse_load(text: str) -> str | float | list[float]:

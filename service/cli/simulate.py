@@ -12,7 +12,7 @@ import sys
 import numpy as np
 import pandas as pd
 
-from beltstudy.engine import InputError, get_model, parse_scenario
+from beltstudy.engine import InputError, parse_scenario
 from beltstudy.engine import results as R
 from beltstudy.engine.conveyor import scenario_fields
 from beltstudy.service.charts import transient_figure
@@ -21,6 +21,7 @@ from beltstudy.service.cli.common import (
     check_output,
     design_lines,
     dumps,
+    model_option,
     parse_load,
     parse_params,
     read_conveyor,
@@ -153,7 +154,7 @@ def run(args: argparse.Namespace) -> int:
     from beltstudy.engine.run import run_one
 
     conv = with_sag_at_rest(read_conveyor(args.conveyor), args.sag_at_rest)
-    fm = get_model(args.model)
+    fm = model_option(args.model)
     params = fm.params(parse_params(args.param, fm.name))
     for path, exts in ((args.timeseries, (".csv", ".parquet")), (args.plot, (".png",))):
         if path and not path.endswith(exts):

@@ -11,7 +11,6 @@ from beltstudy.engine import (
     InputError,
     auto_sizes,
     check_summary,
-    get_model,
     installed_at_full_load,
     resolve_auto_belt,
     results,
@@ -29,6 +28,7 @@ from beltstudy.service.cli.common import (
     check_scenario_fields,
     design_lines,
     dumps,
+    model_option,
     parse_load,
     parse_params,
     read_conveyor,
@@ -76,7 +76,7 @@ def register(sub) -> None:
 def run(args: argparse.Namespace) -> int:
     conv = with_sag_at_rest(read_conveyor(args.conveyor), args.sag_at_rest)
     auto = conv.belt.type == BELT_AUTO
-    fm = get_model(args.model)
+    fm = model_option(args.model)
     params = fm.params(parse_params(args.param, fm.name))
     load = parse_load(args.load)
     scn = check_scenario_fields(conv, temperature_c=args.temperature_c, load=load,

@@ -30,6 +30,7 @@ from beltstudy.engine import (
 )
 from beltstudy.service.cli.common import (
     check_scenario_fields,
+    model_option,
     parse_load,
     parse_model_params,
     read_conveyor,
@@ -103,7 +104,7 @@ def _model_list(text: str) -> list:
                          "e.g. --models din,nonlin")
     out, seen = [], set()
     for name in names:
-        fm = get_model(name)
+        fm = model_option(name, "--models")
         if fm.name not in seen:
             seen.add(fm.name)
             out.append(fm)

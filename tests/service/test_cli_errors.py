@@ -169,3 +169,23 @@ def test_an_empty_list_item_or_an_unreached_end_is_refused(capsys, monkeypatch, 
     assert cli.main(argv) == 2
     err = capsys.readouterr().err
     assert err.startswith("error: ") and needle in err, err
+
+
+@pytest.mark.parametrize("argv", [
+    ["static", "studies/conveyors/slope-5pct.yaml", "--model", "dim"],
+    ["simulate", "studies/conveyors/slope-5pct.yaml", "--model", "dim"],
+    ["calibrate", "studies/conveyors/slope-5pct.yaml", "--measured",
+     "studies/plant/slope-5pct-power.csv", "--model", "dim", "--fit", "f"],
+    ["sweep-temperature", "studies/conveyors/slope-5pct.yaml", "--models", "din,dim",
+     "--out", "unused"],
+])
+def test_an_unknown_model_names_the_option_that_gave_it(capsys, monkeypatch, argv):
+    """The option the user typed (--model, --models), not the result column friction_model,
+    with the near name."""
+    from tests.conftest import ROOT
+
+    monkeypatch.chdir(ROOT)
+    assert cli.main(argv) == 2
+    err = capsys.readouterr().err
+    option = argv[argv.index("dim") - 1] if "dim" in argv else "--models"
+    assert err.startswith(f"error: {option}: unknown model 'dim' (did you mean 'din'?)"), err
