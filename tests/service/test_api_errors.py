@@ -292,6 +292,13 @@ def test_query_errors_name_the_parameter(api, data_dir, finished_study, make_stu
                 "every row")
     page = client.get(f"/studies/{sid}/runs", params={"format": "json", "limit": 2}).json()
     assert len(page["runs"]) == 2 and page["total"] == 6
+    # filters are capped (each costs a pass over the rows): 500 are taken, 501 refused
+    from beltstudy.service.api.studies import FILTERS_MAX
+
+    r = client.get(f"/studies/{sid}/runs", params={"filter": ["status=ok"] * FILTERS_MAX})
+    assert r.status_code == 200, r.text
+    r = client.get(f"/studies/{sid}/runs", params={"filter": ["status=ok"] * (FILTERS_MAX + 1)})
+    assert r.status_code == 422 and r.json()["message"].startswith("query.filter:"), r.text
 
 
 def test_reading_a_finished_study(api, data_dir, finished_study, make_study):
