@@ -12,6 +12,7 @@ __all__ = [
     "file_problem",
     "file_reason",
     "shown_path",
+    "shown_id",
     "ServiceError",
     "Invalid",
     "NotFound",
@@ -21,6 +22,19 @@ __all__ = [
     "Unavailable",
     "UnsupportedMedia",
 ]
+
+
+#: Longest id a message repeats whole: study and run ids are 16 hex digits.
+SHOWN_ID_MAX = 40
+
+
+def shown_id(text: str) -> str:
+    """An id as a message repeats it: whole up to :data:`SHOWN_ID_MAX` characters, else its
+    start and its length (a 100 kB id is not echoed back)."""
+    text = str(text)
+    if len(text) <= SHOWN_ID_MAX:
+        return text
+    return f"{text[:16]}... ({len(text)} characters)"
 
 
 class ServiceError(Exception):

@@ -43,6 +43,7 @@ from beltstudy.service.errors import (
     NotFound,
     ServiceError,
     Unavailable,
+    shown_id,
 )
 from beltstudy.service.grid.expand import (
     DEFAULT_MODEL,
@@ -439,7 +440,7 @@ class StudyService:
         try:
             study = study_from_json(doc["study"], study_id)
         except Exception as exc:  # made by another engine version, or damaged
-            raise NotFound(f"study '{study_id}' cannot be expanded here: {exc}") from None
+            raise NotFound(f"study '{shown_id(study_id)}' cannot be expanded here: {exc}") from None
         with self._cache_lock:
             self._resolved[study_id] = study
             while len(self._resolved) > RESOLVED_CACHE:
@@ -451,7 +452,7 @@ class StudyService:
         parameters), as the workers ran it."""
         spec = next((r for r in self.resolved(study_id).runs if r.run_id == run_id), None)
         if spec is None:
-            raise NotFound(f"run '{run_id}' of study '{study_id}' not found")
+            raise NotFound(f"run '{shown_id(run_id)}' of study '{shown_id(study_id)}' not found")
         return spec
 
     def run_profile(self, study_id: str, run_id: str) -> tuple[pd.DataFrame, str]:
@@ -544,7 +545,7 @@ class StudyService:
         """Raise for a run without a stored row: 409 with the study's state for a run of the
         study that has not finished (never 404 for what exists), 404 for an unknown run."""
         if not any(r.run_id == run_id for r in self.resolved(study_id).runs):
-            raise NotFound(f"run '{run_id}' of study '{study_id}' not found")
+            raise NotFound(f"run '{shown_id(run_id)}' of study '{shown_id(study_id)}' not found")
         st = self.status(study_id)
         if st["state"] in ACTIVE_STATES:
             raise Conflict(

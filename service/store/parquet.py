@@ -36,7 +36,7 @@ import pandas as pd
 import pyarrow as pa
 import pyarrow.parquet as pq
 
-from beltstudy.service.errors import NotFound
+from beltstudy.service.errors import NotFound, shown_id
 from beltstudy.service.store.columns import (
     accuracy_schema,
     profile_schema,
@@ -106,7 +106,7 @@ class Store:
     # ---------------------------------------------------------------- paths and ids
     def study_dir(self, study_id: str) -> Path:
         if not isinstance(study_id, str) or not _ID_RE.match(study_id):
-            raise NotFound(f"study '{study_id}' not found")
+            raise NotFound(f"study '{shown_id(study_id)}' not found")
         return self.root / study_id
 
     def table_dir(self, study_id: str, table: str) -> Path:
@@ -142,7 +142,7 @@ class Store:
         try:
             return json.loads(path.read_text(encoding="utf-8"))
         except FileNotFoundError:
-            raise NotFound(f"study '{study_id}' not found") from None
+            raise NotFound(f"study '{shown_id(study_id)}' not found") from None
 
     def update(self, study_id: str, **fields: Any) -> dict:
         """Merge ``fields`` into ``study.json`` (atomic replace); return the new document."""
@@ -171,7 +171,7 @@ class Store:
         """Remove a study's directory (renamed away first so it vanishes at once)."""
         path = self.study_dir(study_id)
         if not path.exists():
-            raise NotFound(f"study '{study_id}' not found")
+            raise NotFound(f"study '{shown_id(study_id)}' not found")
         trash = self.root / f".{study_id}.{uuid.uuid4().hex[:8]}.deleted"
         os.replace(path, trash)
         shutil.rmtree(trash, ignore_errors=True)
@@ -232,7 +232,7 @@ class Store:
                 return read()
             except FileNotFoundError:
                 if not self.exists(study_id):
-                    raise NotFound(f"study '{study_id}' not found") from None
+                    raise NotFound(f"study '{shown_id(study_id)}' not found") from None
                 if attempt == 2:
                     raise
 

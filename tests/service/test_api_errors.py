@@ -259,6 +259,12 @@ def test_unknown_ids_are_404(api, data_dir, finished_study, make_study):
     r = client.get(f"/studies/{sid}/runs/ffffffffffffffff")
     assert r.status_code == 404 and "run 'ffffffffffffffff'" in r.json()["message"]
     assert client.delete("/studies/0123456789abcdef").status_code == 404
+    # a long id is not echoed back whole: its start and its length
+    long_id = "a" * 5000
+    for path in (f"/studies/{long_id}", f"/studies/{sid}/runs/{long_id}"):
+        r = client.get(path)
+        assert r.status_code == 404 and len(r.text) < 300, r.text[:200]
+        assert "'aaaaaaaaaaaaaaaa... (5000 characters)'" in r.json()["message"]
 
 
 def test_query_errors_name_the_parameter(api, data_dir, finished_study, make_study):
