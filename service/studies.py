@@ -116,6 +116,9 @@ class StudyService:
         """Resume unfinished studies; start (and warm) Dask when configured to."""
         with self._lock:
             self._closing = False
+        swept = self.store.sweep()
+        if swept:
+            log.info("removed %d leftover folders of deleted or half-created studies", swept)
         resumed = 0
         for doc in self.store.list_studies():
             if doc.get("state") in ACTIVE_STATES:

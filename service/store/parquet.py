@@ -93,6 +93,11 @@ def write_part_to(study_dir: str | Path, token: str, table: str, key: str, data:
     return True
 
 
+#: Age after which a half-created study directory is a leftover [s] (creating one takes
+#: milliseconds; a killed process leaves it behind).
+LEFTOVER_TMP_S = 600.0
+
+
 class Store:
     """Files of every study under one data directory. Thread-safe for distinct studies."""
 
@@ -175,6 +180,30 @@ class Store:
         trash = self.root / f".{study_id}.{uuid.uuid4().hex[:8]}.deleted"
         os.replace(path, trash)
         shutil.rmtree(trash, ignore_errors=True)
+
+    def sweep(self, tmp_age_s: float = LEFTOVER_TMP_S) -> int:
+        """Remove what a killed process left at the top of the store: the directories of
+        deleted studies (``.<id>.<tag>.deleted``: moved away, the deletion decided) and
+        studies half created (``.<id>.<tag>.tmp``) older than ``tmp_age_s`` (a live one
+        lasts milliseconds). Neither is listed nor read; they only hold disk. Returns how
+        many were removed."""
+        removed = 0
+        if not self.root.is_dir():
+            return removed
+        now = time.time()
+        for child in self.root.iterdir():
+            name = child.name
+            if not (name.startswith(".") and child.is_dir()):
+                continue
+            try:
+                stale = name.endswith(".deleted") or (
+                    name.endswith(".tmp") and now - child.stat().st_mtime > tmp_age_s)
+            except FileNotFoundError:
+                continue
+            if stale:
+                shutil.rmtree(child, ignore_errors=True)
+                removed += not child.exists()
+        return removed
 
     # ---------------------------------------------------------------- parts
     def write_part(self, study_id: str, table: str, key: str, data: pa.Table) -> Path:

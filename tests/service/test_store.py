@@ -84,6 +84,30 @@ def test_clean_removes_orphans_and_temporaries(tmp_path):
     assert [p.name for p in store.table_dir(sid, "runs").iterdir()] == ["part-done.parquet"]
 
 
+def test_sweep_removes_what_a_killed_process_left_and_keeps_the_rest(tmp_path):
+    """A deleted study's folder moved away, and a half-created one older than the limit, are
+    removed; a half-created one of a moment ago (another request creating it) and the stored
+    studies stay, and read back as before."""
+    import os
+    import time
+
+    store = Store(tmp_path)
+    sid = "0123456789abcdef"
+    store.create(sid, {"id": sid, "study": {"axes": []}})
+    before = store.read(sid)
+    root = tmp_path / "studies"
+    (root / f".{'a' * 16}.1234abcd.deleted" / "runs").mkdir(parents=True)
+    old = root / f".{'b' * 16}.1234abcd.tmp"
+    (old / "runs").mkdir(parents=True)
+    past = time.time() - 3600
+    os.utime(old, (past, past))
+    fresh = root / f".{'c' * 16}.1234abcd.tmp"
+    fresh.mkdir()
+    assert store.sweep(tmp_age_s=600) == 2
+    assert sorted(p.name for p in root.iterdir()) == sorted([sid, fresh.name])
+    assert store.read(sid) == before and [d["id"] for d in store.list_studies()] == [sid]
+
+
 @pytest.mark.parametrize("bad", ["../etc", "0123", "0123456789ABCDEF", "x" * 16, ""])
 def test_ids_that_are_not_hashes_are_not_found(tmp_path, bad):
     with pytest.raises(NotFound):
