@@ -117,6 +117,12 @@ def convex_radius_min_m(tension_n: float, stiffness_n: float, admissible_n: floa
     return max((h - z_mean) / (eps_adm - eps), z_mean / eps)
 
 
+def _kn_range(lo_n: float, hi_n: float) -> str:
+    """``12.3`` or ``12.3 to 14.5`` [kN] as one figure reads."""
+    lo, hi = f"{lo_n / 1e3:.1f}", f"{hi_n / 1e3:.1f}"
+    return hi if lo == hi else f"{lo} to {hi}"
+
+
 def steady_checks(conv, loop: Loop, T: np.ndarray, sf_min: float) -> tuple[dict, list[str]]:
     """Per curve k: ``curve{k}_*`` fields and warnings (concave: lift-off; convex: radius).
 
@@ -163,9 +169,13 @@ def steady_checks(conv, loop: Loop, T: np.ndarray, sf_min: float) -> tuple[dict,
         else:
             out[f"curve{k}_liftoff_tension_kn"] = None
             out[f"curve{k}_liftoff"] = False
-            r_min = convex_radius_min_m(
-                t_carry, belt.stiffness_n, belt.rating_n / sf_min, belt.width_m, ic.rolls,
-                ic.trough_deg, ic.roll_length_m)
+            # the edge strain is largest at the arc's highest tension, the centre's relief
+            # at its lowest: the radius meets both
+            t_low = float(T[c.carry].min())
+            radii = [convex_radius_min_m(t, belt.stiffness_n, belt.rating_n / sf_min,
+                                         belt.width_m, ic.rolls, ic.trough_deg,
+                                         ic.roll_length_m) for t in (t_carry, t_low)]
+            r_min = None if radii[0] is None else max(radii)
             out[f"curve{k}_radius_min_m"] = r_min if r_min is None or math.isfinite(r_min) \
                 else None
             if r_min is not None and c.radius_m < r_min:
@@ -174,7 +184,7 @@ def steady_checks(conv, loop: Loop, T: np.ndarray, sf_min: float) -> tuple[dict,
                 warnings.append(
                     f"curve {k} (convex, R {c.radius_m:g} m at {c.at_m:.0f} m): the troughed "
                     f"belt's edge strain or centre tension is out of bounds at "
-                    f"{t_carry / 1e3:.1f} kN: {need}")
+                    f"{_kn_range(t_low, t_carry)} kN: {need}")
     return out, warnings
 
 

@@ -138,6 +138,24 @@ def test_convex_curve_warns_below_its_radius():
         s["curve1_tension_kn"] * 1e3 * 1.25 / 40.0, rel=1e-12)
 
 
+def test_a_convex_radius_meets_the_centre_at_the_arcs_lowest_tension():
+    """The centre's criterion z_mean / eps is largest where the arc's tension is lowest, the
+    edge's (h - z_mean) / (eps_adm - eps) where it is highest: the minimum radius is the
+    larger of the two criteria over the arc's tensions, by hand from the steady walk."""
+    conv = curved(40.0, lift2_m=-20.0, safety_factor_min=8.0)
+    st = solve_steady(conv, model="din", n_elements=200)
+    (c,) = st.loop.curves
+    t_arc = st.tension_n[c.carry]
+    belt = st.loop.belt
+    adm = belt.rating_n / 8.0
+    by_hand = max(convex_radius_min_m(t, belt.stiffness_n, adm, belt.width_m, 3, 35.0)
+                  for t in (t_arc.min(), t_arc.max()))
+    assert t_arc.min() < t_arc.max()
+    assert st.summary["curve1_radius_min_m"] == pytest.approx(by_hand, rel=1e-12)
+    assert st.summary["curve1_radius_min_m"] >= convex_radius_min_m(
+        t_arc.max(), belt.stiffness_n, adm, belt.width_m, 3, 35.0)
+
+
 def test_curve_too_long_for_its_sections_is_refused():
     """R = 2 000 m between 0 and 10 % grades: arc 200 m, 100 m from each side; a 60 m
     section cannot hold its half."""
