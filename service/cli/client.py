@@ -10,6 +10,10 @@ from beltstudy.service.errors import Invalid, ServiceError, Unavailable
 
 __all__ = ["ServiceClient"]
 
+#: The content type of each runs download the service answers with.
+RUNS_TYPES = {"json": "application/json", "csv": "text/csv",
+              "parquet": "application/vnd.apache.parquet"}
+
 
 class ServiceClient:
     """Calls the REST API; 4xx/5xx answers raise :class:`ServiceError` with the message."""
@@ -40,7 +44,19 @@ class ServiceClient:
     def __exit__(self, *exc) -> None:
         self.close()
 
-    def _request(self, method: str, path: str, **kw) -> httpx.Response:
+    def _not_the_service(self, response: httpx.Response) -> ServiceError:
+        """What something other than the service answered (an HTML page, a proxy's error),
+        in one line naming the address, instead of its whole body or a JSON traceback."""
+        kind = response.headers.get("content-type", "").split(";")[0].strip() or "no type"
+        return ServiceError(
+            f"the answer at {self.url} is not the beltstudy service's (HTTP "
+            f"{response.status_code}, {kind}); check --url / BELTSTUDY_URL: the address "
+            "'beltstudy serve' prints, e.g. http://127.0.0.1:8000", response.status_code)
+
+    def _request(self, method: str, path: str, expect: str = "application/json",
+                 **kw) -> httpx.Response:
+        """The answer to ``method path``; an error answer, or one whose content type is not
+        ``expect``, raises :class:`ServiceError` with one line."""
         try:
             response = self._http.request(method, path, **kw)
         except httpx.TransportError as exc:
@@ -50,10 +66,24 @@ class ServiceClient:
             ) from None
         if response.status_code >= 400:
             try:
-                message = response.json().get("message") or response.text
+                body = response.json()
+                message = body.get("message") if isinstance(body, dict) else None
             except ValueError:
-                message = response.text
+                message = None
+            if not isinstance(message, str) or not message:
+                raise self._not_the_service(response)
+            message = " ".join(message.split())  # one line
+            if response.status_code == 401:
+                message += "; give the service's token with --token or BELTSTUDY_TOKEN"
             raise ServiceError(f"{message} (HTTP {response.status_code})", response.status_code)
+        kind = response.headers.get("content-type", "").split(";")[0].strip().lower()
+        if kind != expect:
+            raise self._not_the_service(response)
+        if expect == "application/json":
+            try:
+                response.json()
+            except ValueError:
+                raise self._not_the_service(response) from None
         return response
 
     def health(self) -> dict:
@@ -72,7 +102,8 @@ class ServiceClient:
 
     def runs(self, study_id: str, fmt: str = "json", **params: Any) -> bytes:
         response = self._request(
-            "GET", f"/studies/{study_id}/runs", params={"format": fmt, **params}
+            "GET", f"/studies/{study_id}/runs", expect=RUNS_TYPES.get(fmt, "application/json"),
+            params={"format": fmt, **params}
         )
         return response.content
 
@@ -88,7 +119,7 @@ class ServiceClient:
 
     def report(self, study_id: str) -> str:
         """The study's design report (self-contained HTML)."""
-        return self._request("GET", f"/studies/{study_id}/report").text
+        return self._request("GET", f"/studies/{study_id}/report", expect="text/html").text
 
     def delete(self, study_id: str) -> dict:
         return self._request("DELETE", f"/studies/{study_id}").json()

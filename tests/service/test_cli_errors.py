@@ -189,3 +189,56 @@ def test_an_unknown_model_names_the_option_that_gave_it(capsys, monkeypatch, arg
     err = capsys.readouterr().err
     option = argv[argv.index("dim") - 1] if "dim" in argv else "--models"
     assert err.startswith(f"error: {option}: unknown model 'dim' (did you mean 'din'?)"), err
+
+
+@pytest.fixture
+def not_the_service():
+    """A real HTTP server on a free loopback port that is not the service: an HTML page with
+    200 at /studies and / (a web server's index), HTML 404 pages elsewhere."""
+    import http.server
+    import threading
+
+    class Handler(http.server.BaseHTTPRequestHandler):
+        def _answer(self):
+            code = 200 if self.path.split("?")[0] in ("/", "/studies") else 404
+            body = b"<!doctype html>\n<html>\n<body>\n<h1>It works</h1>\n</body>\n</html>\n"
+            self.send_response(code)
+            self.send_header("Content-Type", "text/html; charset=utf-8")
+            self.send_header("Content-Length", str(len(body)))
+            self.end_headers()
+            self.wfile.write(body)
+
+        do_GET = do_POST = _answer
+
+        def log_message(self, *args):
+            pass
+
+    server = http.server.ThreadingHTTPServer(("127.0.0.1", 0), Handler)
+    thread = threading.Thread(target=server.serve_forever, daemon=True)
+    thread.start()
+    yield f"http://127.0.0.1:{server.server_address[1]}"
+    server.shutdown()
+    server.server_close()
+
+
+@pytest.mark.parametrize("argv", [
+    ["status"],
+    ["status", "0123456789abcdef"],
+    ["results", "0123456789abcdef", "-o", "{tmp}/runs.json"],
+    ["results", "0123456789abcdef", "-o", "{tmp}/runs.parquet"],
+    ["report", "0123456789abcdef", "-o", "{tmp}/report.html"],
+    ["compare", "0123456789abcdef"],
+    ["uncertainty", "0123456789abcdef", "--json"],
+])
+def test_an_address_that_is_not_the_service_is_one_line(capsys, tmp_path, not_the_service,
+                                                         argv):
+    """--url at another web server: `status` printed a JSONDecodeError traceback (exit 1), the
+    others its whole HTML page as the 'message', over several lines."""
+    argv = [a.format(tmp=tmp_path) for a in argv] + ["--url", not_the_service]
+    assert cli.main(argv) == 2
+    err = capsys.readouterr().err
+    assert err.startswith(f"error: the answer at {not_the_service} is not the beltstudy "
+                          "service's (HTTP "), err
+    assert "text/html" in err and "check --url / BELTSTUDY_URL" in err
+    assert err.count("\n") == 1 and "Traceback" not in err and "<html>" not in err
+    assert list(tmp_path.iterdir()) == []  # nothing written
