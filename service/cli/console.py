@@ -80,6 +80,11 @@ def format_compare(result: dict, max_pairs: int = 40) -> str:
     base, cand = result["baseline"], result["candidate"]
     lines = [f"{cand} / {base}: runs that differ only in the friction model (ratios of "
              "magnitudes; 'opposite' marks values of opposite sign)"]
+    running = result.get("state") in ("queued", "running")
+    if running:
+        lines.append(f"study {result['state']}: {result.get('done', 0)} of "
+                     f"{result.get('total', '?')} runs done; the ratios are of the pairs "
+                     "finished so far")
     same = result.get("same_in_all_pairs") or {}
     if same:
         lines.append("the same in every pair: " + ", ".join(f"{k}={v}" for k, v in same.items()))
@@ -96,6 +101,8 @@ def format_compare(result: dict, max_pairs: int = 40) -> str:
             + (f", {opposite} of opposite sign)" if opposite else ")")
         )
         for axis, groups in summary["by_axis"].items():
+            if not groups:
+                continue
             cells = "  ".join(f"{value}: {_num(s['mean'])}" for value, s in groups.items())
             lines.append(f"  by {axis:<16} {cells}")
     pairs = result["pairs"]
@@ -128,6 +135,9 @@ def format_compare(result: dict, max_pairs: int = 40) -> str:
             lines.append("  ".join(c.rjust(w) for c, w in zip(r, widths, strict=True)))
     elif pairs:
         lines.append(f"\n({len(pairs)} pairs; 'beltstudy results ID -o runs.parquet' for all)")
+    elif running:
+        lines.append("\nno pairs yet: no run of both models with equal other axes has "
+                     "finished; compare again when the study is done ('beltstudy status ID')")
     else:
         lines.append("\nno pairs: the study has no runs of both models with equal other axes")
     return "\n".join(lines)

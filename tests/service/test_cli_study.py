@@ -261,3 +261,21 @@ def test_a_store_that_is_only_read_need_not_be_writable(tmp_path, monkeypatch):
     (tmp_path / "afile").write_text("x")
     with pytest.raises(Invalid, match=r"is a file, not a folder"):
         check_data_dir(tmp_path / "afile", write=False)
+
+
+def test_compare_of_a_running_study_says_it_is_running():
+    """A running study's comparison said 'no pairs: the study has no runs of both models
+    with equal other axes' (as if it never would) and printed empty 'by <axis>' lines."""
+    result = {
+        "baseline": "cema", "candidate": "nonlin", "metrics": ["power_kw"],
+        "summary": {"power_kw": {"overall": {"n": 0, "mean": None, "min": None, "max": None},
+                                 "by_axis": {"load": {}}}},
+        "pairs": [], "state": "running", "done": 12, "total": 40,
+    }
+    text = format_compare(result)
+    assert "study running: 12 of 40 runs done; the ratios are of the pairs finished so far" \
+        in text
+    assert "no pairs yet" in text and "has no runs of both models" not in text
+    assert "by load" not in text
+    done = format_compare(dict(result, state="done", done=40))
+    assert "study" not in done.splitlines()[1] and "no pairs: the study has no runs" in done
