@@ -333,7 +333,18 @@ def cmd_results(args) -> int:
     with writing(out):
         out.write_bytes(data)
     print(f"wrote {out} ({len(data)} bytes)")
+    _note_unfinished(args, "the file holds the runs finished so far")
     return 0
+
+
+def _note_unfinished(args, what: str) -> None:
+    """A line on stderr when the study is still queued or running: what was written is not
+    the whole study."""
+    st = _with_fallback(args, lambda c: c.status(args.id), lambda s: s.status(args.id))
+    if st.get("state") in ("queued", "running"):
+        print(f"note: study {args.id} is {st['state']} ({st.get('done', 0)} of "
+              f"{st.get('total', '?')} runs done): {what}; write it again when "
+              "'beltstudy status' says done", file=sys.stderr)
 
 
 def cmd_report(args) -> int:
@@ -352,6 +363,7 @@ def cmd_report(args) -> int:
     with writing(out):
         out.write_text(text, encoding="utf-8")
     print(f"wrote {out} ({len(text.encode())} bytes): open it in a browser, print to PDF")
+    _note_unfinished(args, "the report covers the runs finished so far")
     return 0
 
 

@@ -279,3 +279,26 @@ def test_compare_of_a_running_study_says_it_is_running():
     assert "by load" not in text
     done = format_compare(dict(result, state="done", done=40))
     assert "study" not in done.splitlines()[1] and "no pairs: the study has no runs" in done
+
+
+def test_results_and_report_of_an_unfinished_study_say_so(env, capsys, finished_study,
+                                                          make_study, tmp_path):
+    """`results` and `report` of a study still running wrote the rows finished so far with
+    exit 0 and no word that the study was not done."""
+    sid = finished_study(env, make_study())
+    doc_path = env / "studies" / sid / "study.json"
+    doc = json.loads(doc_path.read_text(encoding="utf-8"))
+    doc.update(state="running", done=2, finished_at=None)
+    doc_path.write_text(json.dumps(doc), encoding="utf-8")
+    assert main(["status", sid]) == 0
+    if "running" not in capsys.readouterr().out:
+        pytest.skip("the local store does not keep a running state")
+    for argv in (["results", sid, "-o", str(tmp_path / "runs.csv")],
+                 ["report", sid, "-o", str(tmp_path / "report.html")]):
+        assert main(argv) == 0
+        err = capsys.readouterr().err
+        assert err.startswith(f"note: study {sid} is running (2 of 6 runs done): "), err
+        assert err.count("\n") == 1
+    finished = finished_study(env, make_study(name="other"))
+    assert main(["results", finished, "-o", str(tmp_path / "all.csv")]) == 0
+    assert capsys.readouterr().err == ""
