@@ -115,6 +115,15 @@ def _numeric(df, column: str):
     return values if values.notna().any() else None
 
 
+def no_rows_message(runs) -> str:
+    """Why a study figure has no point: no run finished yet, or every finished run failed
+    (a failed run has no results), never 'dynamics: false' for a dynamic study."""
+    n = len(runs)
+    if not n:
+        return "no finished runs yet"
+    return f"no results: all {n} finished run{'s' if n != 1 else ''} failed (see their messages)"
+
+
 def _ok_rows(runs):
     if "status" in runs.columns:
         return runs[runs["status"] != "failed"]
@@ -395,7 +404,9 @@ def power_temperature_figure(runs, title: str = "", temperature_c: float | None 
     title = title or "power against temperature"
     df = _ok_rows(runs).copy()
     power = _numeric(df, "power_kw")
-    if not len(df) or power is None:
+    if not len(df):
+        return message_figure(no_rows_message(runs), title)
+    if power is None:
         return message_figure("no steady results yet", title)
     df["power_kw"] = power
     if "temperature_c" not in df.columns:
@@ -452,7 +463,9 @@ def peak_dynamic_tension_figure(runs, title: str = "", axes: list[str] | None = 
     df = _ok_rows(runs).copy()
     peak_col, low_col = stop_tension_columns(df)
     peak = _numeric(df, peak_col)
-    if not len(df) or peak is None:
+    if not len(df):
+        return message_figure(no_rows_message(runs), title)
+    if peak is None:
         return message_figure(NO_TRANSIENT, title)
     df[peak_col] = peak
     if low_col:
@@ -550,7 +563,9 @@ def phase_peaks_figure(runs, title: str = "", axes: list[str] | None = None,
     title = title or "peak and lowest tension of the start and the stop"
     df = _ok_rows(runs).copy()
     panels = _phase_panels(df)
-    if not len(df) or not panels:
+    if not len(df):
+        return message_figure(no_rows_message(runs), title)
+    if not panels:
         return message_figure(NO_TRANSIENT, title)
     cols = _model_first_axes(df, axes)
     x = _x_axis(df, cols)

@@ -252,3 +252,18 @@ def test_runs_that_did_not_stop_are_counted_by_the_engines_stop_window():
     runs.loc[runs.index[:3], "stop_time_s"] = np.nan
     fig = charts.peak_dynamic_tension_figure(runs, axes=AXES)
     assert "3 runs that did not stop within 300 s of the stop command" in _texts(fig)
+
+
+def test_a_dynamic_study_whose_runs_all_failed_is_not_called_steady_only():
+    """Every run of a dynamic study failed: the transient figures said 'no transient data
+    (dynamics: false)' and the power figure 'no steady results yet' for a finished study."""
+    runs = _runs().assign(status="failed", power_kw=np.nan, t_max_dyn_kn=np.nan,
+                          stop_time_s=np.nan)
+    for fig in (charts.peak_dynamic_tension_figure(runs, axes=AXES),
+                charts.phase_peaks_figure(runs, axes=AXES),
+                charts.power_temperature_figure(runs, axes=AXES)):
+        text = _texts(fig)
+        assert charts.NO_TRANSIENT not in text and "yet" not in text
+        assert f"no results: all {len(runs)} finished runs failed" in text
+    fig = charts.phase_peaks_figure(runs.iloc[:0], axes=AXES)
+    assert "no finished runs yet" in _texts(fig) and charts.NO_TRANSIENT not in _texts(fig)
