@@ -22,6 +22,7 @@ from __future__ import annotations
 import base64
 import html
 import math
+import re
 import time
 from typing import Any
 
@@ -523,6 +524,55 @@ def _runs_section(study: dict, runs: pd.DataFrame) -> str:
     return "".join(out)
 
 
+#: A number inside a message clause (``12.3``, ``-0.5``, ``1,234``, ``2.5e-05``): the kind of a
+#: clause is its words with every number replaced.
+_NUMBER = re.compile(r"[-+]?\d[\d,]*(?:\.\d+)?(?:e[-+]?\d+)?", re.IGNORECASE)
+#: Kinds of clause listed (the rest counted); run ids shown per kind.
+MAX_KINDS = 300
+KIND_RUNS = 5
+
+
+def clause_kinds(runs: pd.DataFrame) -> list[tuple[str, list[str], str]]:
+    """Every clause of every run's message, by kind (its words with the numbers as ``#``),
+    most runs first: ``(kind, run ids, the first run's clause)``. Nothing a run says is left
+    out, however many runs the study has."""
+    kinds: dict[str, tuple[list[str], str]] = {}
+    if not len(runs) or "message" not in runs:
+        return []
+    for run_id, message in zip(runs["run_id"], runs["message"], strict=True):
+        for clause in clauses(message, ""):
+            key = _NUMBER.sub("#", clause.strip())
+            ids, first = kinds.setdefault(key, ([], clause.strip()))
+            if not ids or ids[-1] != run_id:
+                ids.append(run_id)
+    return sorted(((k, ids, first) for k, (ids, first) in kinds.items()),
+                  key=lambda item: (-len(item[1]), item[0]))
+
+
+def _said_section(runs: pd.DataFrame) -> str:
+    """Every kind of warning, note and failure the runs' messages hold, with its count and
+    runs: the part of the messages the runs table (its first rows) and the failure groups
+    (their causes) do not show."""
+    kinds = clause_kinds(runs)
+    if not kinds:
+        return f"<p>None of the {len(runs)} runs has a warning, a note or a failure.</p>"
+    rows = []
+    for _key, ids, first in kinds[:MAX_KINDS]:
+        more = f" and {len(ids) - KIND_RUNS} more" if len(ids) > KIND_RUNS else ""
+        rows.append([NUM + str(len(ids)),
+                     " ".join(f"<code class=id>{_e(i)}</code>" for i in ids[:KIND_RUNS]) + more,
+                     _message_cell(first, 2 * MESSAGE_CHARS)])
+    out = [f"<p>Each kind of clause in the {len(runs)} runs' messages (the same words with "
+           "other numbers), how many runs say it, and the first run's words.</p>",
+           _table(["runs", "run ids", "what the first run says"], rows, "causes")]
+    if len(kinds) > MAX_KINDS:
+        rest = sum(len(ids) for _, ids, _ in kinds[MAX_KINDS:])
+        out.append(f"<p class=muted>The {MAX_KINDS} kinds said by most runs of {len(kinds)}; "
+                   f"the other {len(kinds) - MAX_KINDS} are said {rest} times in all (the "
+                   "study's Parquet has every message).</p>")
+    return "".join(out)
+
+
 def _accuracy_section(study: dict, service: StudyService, study_id: str) -> str:
     """The error of each result column over the study's accuracy sample (the error bars of
     ``accuracy: {sample: ...}``), or why there is none."""
@@ -621,6 +671,7 @@ def report_html(doc: dict, runs: pd.DataFrame, status: dict, accuracy: str = "")
         ("Comparison", figs or "<p>No figures: no finished runs yet.</p>"),
         ("Runs", _runs_section(study, runs)),
         ("Error of each column", accuracy),
+        ("Everything the runs say", _said_section(runs) if len(runs) else no_runs),
     ]
     if study.get("sample"):  # a sampled study (SPEC 7.2): what the samples say
         sections.append(("Uncertainty of the sampled inputs", uncertainty_section(

@@ -341,3 +341,37 @@ def test_a_clause_is_cut_only_outside_parentheses_and_a_belt_remedy_is_no_overlo
     words = next(c for c in CAUSES if c.key == "overload").words
     assert clauses(f"{sf}; {over}", "safety factor") == [sf]
     assert clauses(f"{sf}; {over}", words) == over.split("; ")
+
+
+def test_every_kind_of_clause_is_in_the_report_however_many_runs(web):
+    """The runs table stops at its first rows and the failure groups show their own causes:
+    the last section lists every kind of clause (its words with the numbers replaced) with
+    how many runs say it, so a note that only runs past the table's end carry, and that no
+    group takes, is still there; numbers of one kind fold into one row."""
+    from beltstudy.service.web.report import MAX_RUN_ROWS, clause_kinds
+
+    n = MAX_RUN_ROWS + 50
+    runs = _runs().iloc[[0]].loc[[0] * n].reset_index(drop=True)
+    runs["run_id"] = [f"r{i:04d}" for i in range(n)]
+    runs["message"] = ""
+    late = runs.index >= MAX_RUN_ROWS  # sorted by the axes, all equal: past the table's end
+    runs.loc[late, "message"] = [
+        f"note: load 1.{i:02d} is a surge above the design load (scenario.load)" for i in range(50)]
+    runs.loc[late, "status"] = "warning"
+    runs.loc[n - 1, "message"] += "; " + SLIP
+    html = report_html(_doc(web), runs, {"state": "done", "done": n, "total": n})
+    last = _section(html, 10)
+    assert "Everything the runs say" in html
+    row = re.search(r"<tr><td class=\"num \">(\d+)</td><td>(.*?)</td><td>(.*?)</td></tr>", last)
+    assert row and row.group(1) == "50", last[:500]
+    assert "note: load 1.00 is a surge above the design load" in row.group(3)
+    assert "r0400" in row.group(2) and "and 45 more" in row.group(2)
+    # the slip warning of the last run, cut where its message is cut ("; " outside
+    # parentheses: the finding, then what would avoid it), is said once
+    kinds = clause_kinds(runs)
+    assert [len(ids) for _, ids, _ in kinds] == [50, 1, 1]
+    assert all(ids == [f"r{n - 1:04d}"] for _, ids, _ in kinds[1:])
+    assert "; ".join(sorted(first for _, _, first in kinds[1:])[::-1]) == SLIP
+    # a study whose runs say nothing says so
+    quiet = report_html(_doc(web), _runs().iloc[:2], {"state": "done", "done": 2, "total": 2})
+    assert "None of the 2 runs has a warning, a note or a failure." in _section(quiet, 10)
