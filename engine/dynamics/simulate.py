@@ -567,8 +567,7 @@ def running_warnings(sys: System, r: dict, out, names=None) -> list[str]:
         w.append(f"not settled while running: the mean belt speed still swings by {swing:.3g} "
                  f"m/s ({100.0 * swing / v_d:.1f} % of design speed, {per}) from t = "
                  f"{t0:.0f} s to the stop command at {t1:.0f} s, so the stop starts from a "
-                 "swinging belt; drives at one end with a slower speed loop "
-                 "(drives[i].speed_loop_rad_s) swing less (docs/dynamics.md, Settling and "
+                 f"swinging belt; {_settle_levers(sys)} (docs/dynamics.md, Settling and "
                  f"overspeed){short}")
         return w
     rec_d = getattr(out, "rec_d", None)
@@ -583,6 +582,26 @@ def running_warnings(sys: System, r: dict, out, names=None) -> list[str]:
                  "slower one (drives[i].speed_loop_rad_s) settles them (docs/dynamics.md, "
                  f"Settling and overspeed){short}")
     return w
+
+
+#: Drives further apart than this share of the loop are at both ends [-]: a follower's torque
+#: reaches the belt a wave's travel from the master's loop.
+SPREAD_FRACTION = 0.05
+
+
+def _settle_levers(sys: System) -> str:
+    """What may settle a swinging running phase: with the drives at one end a slower speed
+    loop; with drives a wave's travel apart no setting is known to settle every belt (a
+    slower loop made a 7 km head-and-tail overland swing more: 0.17 to 0.49 m/s at 1 rad/s),
+    so the words say that and name the drives at one end as what swings less."""
+    pos = sys.s_end_m[np.asarray(sys.model.drives.node, dtype=np.int64)]
+    loop = float(sys.s_end_m[-1])
+    if len(pos) > 1 and float(pos.max() - pos.min()) > SPREAD_FRACTION * loop:
+        return ("with drives a wave's travel apart the followers answer the master's loop "
+                "late, and no speed loop setting is known to settle every such belt (a slower "
+                "one can swing more: rerun to check drives[i].speed_loop_rad_s); the drives at "
+                "one end swing less")
+    return "a slower speed loop (drives[i].speed_loop_rad_s) swings less"
 
 
 def _force_swings(sys: System, rec, rec_d, m, names=None) -> list[str]:

@@ -191,9 +191,11 @@ def _running(t_loop=10.0, v_d=4.0, t_pre=2.0, t_start=60.0, t_run=300.0):
 
     from beltstudy.engine.dynamics import codes as C
     cyc = SimpleNamespace(t_pre=t_pre, t_start=t_start, t_run=t_run)
-    drives = SimpleNamespace(control=np.array([C.VFD]), coupling=np.array([C.COUPLING_NONE]))
+    drives = SimpleNamespace(control=np.array([C.VFD]), coupling=np.array([C.COUPLING_NONE]),
+                             node=np.array([49]))
     return SimpleNamespace(v_design=v_d, wave_loop_time_s=t_loop, model=SimpleNamespace(
-        cycle=cyc, drives=drives), stop_command_s=t_pre + t_start + t_run)
+        cycle=cyc, drives=drives), stop_command_s=t_pre + t_start + t_run,
+        s_end_m=np.linspace(10.0, 1000.0, 100))
 
 
 def _records(t, v):
@@ -229,6 +231,8 @@ def test_a_running_phase_that_swings_is_named_with_its_swing_and_period(amp, per
     assert m, msg
     assert float(m.group(1)) == pytest.approx(2 * amp, rel=0.01)
     assert float(m.group(2)) == pytest.approx(period, rel=0.02)
+    # one drive (drives at one end): a slower speed loop is the lever
+    assert "a slower speed loop (drives[i].speed_loop_rad_s) swings less" in msg
 
 
 @pytest.mark.parametrize("amp_frac, warned", [(0.4, True), (0.2, False)])
