@@ -92,6 +92,7 @@ NOT_IN_SCHEMA = (
     "{head_kn: 0} are one accessories value)",
     "a list index in an axis (profile.3.lift_m) exists in the base conveyor",
     "a friction model appears once counting aliases (din and iso5048 are one)",
+    "a design list names each case once (aliases count as one model, full as load 1.0)",
     "a models.<model>.<parameter> axis names a model the study runs (its friction_model "
     "axis, else model, else the one model under models, else din)",
     "with dynamics, a scenario the conveyor can do (brake stop needs brakes, stop after the "

@@ -39,7 +39,12 @@ from beltstudy.service.door.study import (
 )
 from beltstudy.service.errors import Invalid, TooLarge, file_problem, shown_path
 from beltstudy.service.grid.axes import axis_column, resolve_axis
-from beltstudy.service.grid.basis import design_loads, design_models, design_temperatures
+from beltstudy.service.grid.basis import (
+    check_design_once,
+    design_loads,
+    design_models,
+    design_temperatures,
+)
 from beltstudy.service.grid.expand import (
     DEFAULT_MODEL,
     Axis,
@@ -408,6 +413,7 @@ def _design(study: StudyIn) -> dict | None:
                                     else models[0])
     design_temperatures(study.design)
     design_loads(study.design)  # each load is a load case
+    check_design_once(study.design)
     return design
 
 

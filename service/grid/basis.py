@@ -62,7 +62,8 @@ from beltstudy.engine.design import GIVEN
 from beltstudy.service.errors import Invalid
 
 __all__ = ["DesignIn", "has_auto", "size_design", "apply_sizes", "round_up", "SIG_DIGITS",
-           "design_loads", "design_models", "design_temperatures", "check_design_loads"]
+           "design_loads", "design_models", "design_temperatures", "check_design_loads",
+           "check_design_once"]
 
 #: Significant digits of a size written into a run's conveyor (rounded up).
 SIG_DIGITS = 6
@@ -173,6 +174,42 @@ def design_temperatures(design: DesignIn | dict | None) -> list[float] | None:
             raise Invalid(where + msg[len("temperature_c"):]
                           if msg.startswith("temperature_c") else f"{where}: {msg}") from None
     return list(dict.fromkeys(out))
+
+
+#: Load cases by name that are one fraction of the design load everywhere.
+_LOAD_FRACTIONS = {"full": 1.0, "empty": 0.0}
+
+
+def check_design_once(design: DesignIn | dict | None) -> None:
+    """Refuse a design list that names one case twice (as a grid axis lists each value
+    once): a model by an alias, a temperature as -20 and -20.0, a load as full and 1.0. Each
+    entry is checked first (:func:`design_loads`, :func:`design_models`,
+    :func:`design_temperatures`); called at the door only, so a stored study is read as it
+    was accepted."""
+    def canon(name: str, value: Any) -> Any:
+        if name == "friction_model":
+            return get_model(value).name
+        if name == "temperature_c":
+            return float(value)
+        load = parse_scenario({"load": value}).load
+        return _LOAD_FRACTIONS.get(load, load) if isinstance(load, str) else load
+
+    for name in ("load", "friction_model", "temperature_c"):
+        value = _field(design, name)
+        if not isinstance(value, list) or (name == "load" and not _is_case_list(value)):
+            continue
+        seen: dict[str, int] = {}
+        for j, entry in enumerate(value):
+            key = repr(canon(name, entry))
+            i = seen.setdefault(key, j)
+            if i == j:
+                continue
+            first = value[i]
+            named = "" if first == entry and type(first) is type(entry) else f" ({first!r})"
+            alias = (" (aliases count as the same)" if name == "friction_model" and named
+                     else "")
+            raise Invalid(f"design.{name}[{j}]: {entry!r} is design.{name}[{i}]{named} again"
+                          f"{alias}; give each design case once")
 
 
 def check_design_loads(conv: Conveyor, design: DesignIn | dict | None, where: str = "") -> None:

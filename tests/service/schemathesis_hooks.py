@@ -171,6 +171,12 @@ def _study_ok(body: dict) -> bool:
         if target.startswith("models.") and target.split(".")[1] not in run:
             return False  # a parameter of a model the study does not run
     design = body.get("design") if isinstance(body.get("design"), dict) else {}
+    for name in ("friction_model", "temperature_c", "load"):
+        listed = design.get(name)
+        if isinstance(listed, list):
+            canon = [json.dumps(_design_case(v), default=str) for v in listed]
+            if len(set(canon)) != len(canon):
+                return False  # a design case listed twice
     used = run | {_ALIASES.get(design.get("friction_model"), design.get("friction_model"))}
     if any(m not in used for m in models):
         return False  # parameters of a model the study neither runs nor designs with
@@ -179,6 +185,18 @@ def _study_ok(body: dict) -> bool:
     if body.get("accuracy") is not None and body.get("dynamics") is False:
         return False  # error bars are those of the transient
     return _section_loads_fit(body, axes)
+
+
+def _design_case(value: Any) -> Any:
+    """A design list's entry as the service compares them: a model by its name, full and
+    empty as 1 and 0, every number a float."""
+    if isinstance(value, str):
+        return {"full": 1.0, "empty": 0.0}.get(value, _ALIASES.get(value, value))
+    if isinstance(value, list):
+        return [_design_case(v) for v in value]
+    if isinstance(value, int | float) and not isinstance(value, bool):
+        return float(value)
+    return value
 
 
 def _section_loads_fit(body: dict, axes: dict) -> bool:

@@ -338,6 +338,26 @@ def test_a_bad_design_list_entry_is_refused_naming_it(make_study, design, messag
         resolve_study(_braked_study(make_study, design=design))
 
 
+@pytest.mark.parametrize("design, message", [
+    ({"load": ["full", "full"]},
+     r"^design.load\[1\]: 'full' is design.load\[0\] again; give each design case once$"),
+    ({"load": ["full", "declines", 1.0]},
+     r"^design.load\[2\]: 1.0 is design.load\[0\] \('full'\) again; give each design "
+     r"case once$"),
+    ({"temperature_c": [-20, 30, -20.0]},
+     r"^design.temperature_c\[2\]: -20.0 is design.temperature_c\[0\] again; give each "
+     r"design case once$"),
+    ({"friction_model": ["din", "iso5048"]},
+     r"^design.friction_model\[1\]: 'iso5048' is design.friction_model\[0\] \('din'\) "
+     r"again \(aliases count as the same\); give each design case once$"),
+])
+def test_a_design_case_listed_twice_is_refused_naming_both(make_study, design, message):
+    """A design list names each case once, as a grid axis lists each value once: a repeat
+    (an alias, 1.0 for full, -20.0 for -20) is most likely a typo for another case."""
+    with pytest.raises(Invalid, match=message):
+        resolve_study(_braked_study(make_study, design=design))
+
+
 def test_a_bad_design_load_is_a_422_naming_the_entry(make_study, make_settings, data_dir):
     from fastapi.testclient import TestClient
 
