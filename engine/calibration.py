@@ -237,15 +237,7 @@ def _upper(model, name: str) -> float:
     hi = model.largest(name)
     if hi is not None:
         return float(hi)
-
-    def ok(value: float) -> bool:
-        try:
-            model.params({name: value})
-        except InputError:
-            return False
-        return True
-
-    return 1.0 if ok(1.0) and not ok(1.0 + 1e-9) else math.inf
+    return 1.0 if model.accepts(name, 1.0) and not model.accepts(name, 1.0 + 1e-9) else math.inf
 
 
 def _check_names(model, fit: Sequence[str], fixed: dict) -> list[str]:

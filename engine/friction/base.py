@@ -53,6 +53,14 @@ class FrictionModel:
         return next(f.metadata.get("hi") for f in dataclasses.fields(self.params_class)
                     if f.name == name)
 
+    def accepts(self, name: str, value: float) -> bool:
+        """Whether the model takes ``value`` for parameter ``name`` (its own check included)."""
+        try:
+            self.params({name: value})
+        except InputError:
+            return False
+        return True
+
     def params(self, overrides: dict[str, Any] | None = None):
         """Default parameters with overrides applied; unknown names raise InputError."""
         overrides = dict(overrides or {})

@@ -47,7 +47,7 @@ from pydantic import (
 from pydantic.json_schema import GenerateJsonSchema
 from pydantic_core import core_schema
 
-from beltstudy.engine import ALIASES, MODELS, Conveyor, InputError, Scenario, catalog
+from beltstudy.engine import ALIASES, MODELS, Conveyor, Scenario, catalog
 from beltstudy.engine.conveyor import check_visible
 from beltstudy.service.door.sample import SampleIn
 from beltstudy.service.examples import TINY_CONVEYOR, TINY_SCENARIO
@@ -302,11 +302,7 @@ def param_bounds(model, name: str) -> dict:
     ``check`` finds them, asked at 0 and 1."""
 
     def ok(value: float) -> bool:
-        try:
-            model.params({name: value})
-        except InputError:
-            return False
-        return True
+        return model.accepts(name, value)
 
     out: dict[str, float] = {}
     eps = 1e-9
