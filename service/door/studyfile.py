@@ -445,15 +445,20 @@ def resolve_study(
     ``strict``: a POSTed body, held to JSON's types (:func:`read_study`).
     """
     study = read_study(data, strict=strict)
+    # -0.0 is 0.0 wherever it is written (conveyor, scenario, models, design, sample; the
+    # axes read it so in _axis_values): the same inputs, so the same run and study ids (JSON
+    # writes -0.0 apart from 0.0)
     conveyor, source = _conveyor(study, base_dir, studies_dir)
-    scenario = study.scenario.model_dump(mode="json", by_alias=True)
+    conveyor = _positive_zero(conveyor)
+    scenario = _positive_zero(study.scenario.model_dump(mode="json", by_alias=True))
     models, given = _models(study)
+    models = _positive_zero(models)
     axes = _axes(study, data, (conveyor, scenario), models, max_runs)
     total = grid_points(axes)
     if total > max_runs:
         raise TooLarge(f"grid: the study has {total} runs; the limit is {max_runs}")
     default_model, run_models = _run_models(study, axes, models)
-    design = _design(study)
+    design = _positive_zero(_design(study))
     _check_models_used(given, run_models, design)
     if study.accuracy is not None and not study.dynamics:
         raise Invalid("accuracy: error bars are those of the transient runs; this study has "
@@ -474,7 +479,8 @@ def resolve_study(
         design=design,
         grid_points=total,
         accuracy=(study.accuracy.model_dump() if study.accuracy is not None else None),
-        sample=(study.sample.model_dump(mode="json") if study.sample is not None else None),
+        sample=(_positive_zero(study.sample.model_dump(mode="json")) if study.sample is not None
+                else None),
     )
     return finish(resolved)
 

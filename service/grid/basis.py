@@ -190,7 +190,7 @@ def check_design_once(design: DesignIn | dict | None) -> None:
         if name == "friction_model":
             return get_model(value).name
         if name == "temperature_c":
-            return float(value)
+            return float(value) + 0.0  # -0.0 is 0.0
         load = parse_scenario({"load": value}).load
         return _LOAD_FRACTIONS.get(load, load) if isinstance(load, str) else load
 
@@ -205,7 +205,7 @@ def check_design_once(design: DesignIn | dict | None) -> None:
             if i == j:
                 continue
             first = value[i]
-            named = "" if first == entry and type(first) is type(entry) else f" ({first!r})"
+            named = "" if repr(first) == repr(entry) else f" ({first!r})"
             alias = (" (aliases count as the same)" if name == "friction_model" and named
                      else "")
             raise Invalid(f"design.{name}[{j}]: {entry!r} is design.{name}[{i}]{named} again"

@@ -104,6 +104,37 @@ def test_negative_zero_is_zero_in_every_axis(make_study):
         r.run_id for r in resolve_study(make_study(grid={"load": [[-0.0]]})).runs]
 
 
+def test_negative_zero_is_zero_outside_the_axes_too(make_study):
+    """-0.0 and 0.0 are one number (IEEE 754 compares them equal): written in the design case,
+    the scenario, the conveyor, a model's parameters or a sample's bounds it gives the study
+    and run ids of 0.0, as it does in an axis; a design list naming both is one case twice."""
+    def ids(**over):
+        study = resolve_study(make_study(**over))
+        return study.id, [r.run_id for r in study.runs]
+
+    def conveyor(speed):
+        conv = make_study()["conveyor"]
+        conv["material"] = {**conv["material"], "loading_speed_m_s": speed}
+        return conv
+
+    assert ids(design={"temperature_c": -0.0}) == ids(design={"temperature_c": 0.0})
+    assert (ids(design={"temperature_c": [-0.0, -20]})
+            == ids(design={"temperature_c": [0.0, -20]}))
+    grid = {"friction_model": ["din"]}
+    assert (ids(grid=grid, scenario={"load": "full", "temperature_c": -0.0})
+            == ids(grid=grid, scenario={"load": "full", "temperature_c": 0.0}))
+    assert ids(conveyor=conveyor(-0.0)) == ids(conveyor=conveyor(0.0))
+    assert (ids(models={"din": {"f_carry": 0.02, "f_return": -0.0}})
+            == ids(models={"din": {"f_carry": 0.02, "f_return": 0.0}}))
+    sample = {"n": 4, "method": "lhs", "seed": 1,
+              "axes": {"temperature_c": {"dist": "uniform", "low": -0.0, "high": 10}}}
+    zero = {**sample, "axes": {"temperature_c": {"dist": "uniform", "low": 0.0, "high": 10}}}
+    assert ids(grid=grid, sample=sample) == ids(grid=grid, sample=zero)
+    with pytest.raises(Invalid, match=r"^design.temperature_c\[1\]: -0.0 is "
+                                      r"design.temperature_c\[0\] \(0.0\) again; give each"):
+        resolve_study(make_study(design={"temperature_c": [0.0, -0.0]}))
+
+
 def test_ranges_include_the_stop_value():
     assert RangeSpec(start=-40, stop=40, step=10).values() == list(range(-40, 41, 10))
     assert RangeSpec(start=0, stop=1, step=0.1).values()[-1] == 1.0
