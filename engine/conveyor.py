@@ -111,6 +111,12 @@ NameText = Annotated[str, AfterValidator(check_visible)]
 #: Largest design capacity [t/h]: about five times the largest conveyors built (bucket-wheel
 #: excavator lines of open-cast lignite mines carry up to about 40 000 t/h).
 CAPACITY_MAX_T_H = 200_000.0
+#: Largest surcharge angle [deg]: CEMA, Belt Conveyors for Bulk Materials, Table 4-1
+#: (flowability), whose classes run from 5 deg (very free flowing, angle of repose below
+#: 20 deg) to 30 deg (sluggish, angle of repose 40 deg and more). A steeper surcharge is no
+#: material's on a moving belt and, through tan(theta), would credit the belt with a heap of
+#: any height: tan(89 deg) = 57 times the cross-section of tan(45 deg).
+SURCHARGE_MAX_DEG = 30.0
 #: Largest fill of the belt's cross-section [%] a capacity may imply (ISO 5048 cross-section at
 #: the design speed): three times the cross-section heaps the material far above the belt's
 #: edges; no belt carries it. Between 100 % and this a run warns (an overload or a surge).
@@ -265,8 +271,10 @@ class Material(_Model):
         description="along-belt speed of the material at the feed point [m/s] (-30 to 30)"
     )
     surcharge_deg: float = Field(
-        20.0, ge=0, lt=90, description="surcharge angle of the material on the moving belt "
-        "[deg] (capacity check, ISO 5048; 20 deg is the usual default for free-flowing bulk)"
+        20.0, ge=0, le=SURCHARGE_MAX_DEG, description="surcharge angle of the material on the "
+        "moving belt [deg] (0 to 30: CEMA's flowability classes run from 5 deg, very free "
+        "flowing, to 30 deg, sluggish with an angle of repose of 40 deg and more; capacity "
+        "check, ISO 5048; 20 deg is the usual default for free-flowing bulk)"
     )
     edge_distance_m: NonNegFloat | None = Field(
         None, description="unloaded belt edge on each side [m]; default ISO 5048 / DIN 22101: "
@@ -871,6 +879,14 @@ def _check_along(conv: Conveyor) -> None:
         raise ValueError(f"takeup.at_m: {tu.at_m:g} m is not inside the route (0 to {L:g} m "
                          "from the tail, both ends excluded: a take-up at an end is position: "
                          "head or tail)")
+    if tu.travel_m is not None and tu.travel_m > L:
+        # the carriage stores belt in its loop, two strands' worth: 2 x travel of belt, which
+        # cannot exceed the belt's whole loop, 2 x the route length
+        raise ValueError(f"takeup.travel_m: {tu.travel_m:g} m of carriage travel would store "
+                         f"{2.0 * tu.travel_m:g} m of belt in the take-up loop, more than the "
+                         f"whole belt loop ({2.0 * L:g} m, twice the {L:g} m route); give at "
+                         f"most {L:g} m (or leave it out: 1.5 % of the length, "
+                         f"{0.015 * L:.3g} m)")
 
 
 def route_points(conv: Conveyor) -> list[tuple[str, float]]:

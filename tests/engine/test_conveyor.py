@@ -264,6 +264,16 @@ def _with(path: str, value) -> dict:
     ("drives.0.wrap_deg", 500.0, "drives.0.wrap_deg"),
     ("drives.0.wrap_deg", 360.0, "drives.0.wrap_deg"),
     ("drives.0.pulley_diameter_m", 0.001, "drives.0.pulley_diameter_m"),
+    # CEMA's flowability classes end at a 30 deg surcharge (Table 4-1); tan(89 deg) = 57
+    # would credit the belt with a heap 57 times that of 45 deg
+    ("material.surcharge_deg", 89.0, "material.surcharge_deg: Input should be less than or "
+                                     "equal to 30"),
+    ("material.surcharge_deg", 30.5, "material.surcharge_deg"),
+    # a carriage travel x stores 2 x of belt: on the 1 000 m route the loop holds 2 000 m
+    ("takeup.travel_m", 1e9, "takeup.travel_m: 1e+09 m of carriage travel would store 2e+09 m "
+                             "of belt in the take-up loop, more than the whole belt loop "
+                             "(2000 m, twice the 1000 m route); give at most 1000 m"),
+    ("takeup.travel_m", 1000.5, "give at most 1000 m"),
 ])
 def test_values_beyond_any_conveyor_name_their_field(path, value, needle):
     assert needle in _err(_with(path, value))
@@ -274,6 +284,8 @@ def test_values_at_the_bounds_are_taken():
                         ("safety_factor_min", 1.0), ("belt.dynamic_modulus_kn_m", 60000.0),
                         ("material.edge_distance_m", 0.1), ("drives.0.wrap_deg", 359.0),
                         ("drives.0.pulley_diameter_m", 0.1),
+                        ("material.surcharge_deg", 30.0), ("material.surcharge_deg", 0.0),
+                        ("takeup.travel_m", 1000.0),
                         ("drives.0.motor_curve", [[0.0, 10.0], [1.2, 0.0]])):
         parse_conveyor(_with(path, value))
 
