@@ -185,3 +185,21 @@ def test_every_command_reads_a_conveyor_file_within_the_doors_limits(tmp_path, c
         assert main(args) == 2, args
         err = capsys.readouterr().err
         assert needle in err and len(err.strip().splitlines()) == 1, (args, err)
+
+
+def test_static_keeps_the_files_rest_sag_switch(capsys):
+    """benchmarks' ISO 5048 example says ``takeup.sag_at_rest: false``: without the CLI switch
+    the file's choice stands (running sag sets the take-up, 2 T / g with T the carry's sag
+    minimum less the tail's resistances), as it does with ``--no-sag-at-rest``; the rule held at
+    rest would ask for the full 22005 N per strand (4486 kg)."""
+    from beltstudy.service.cli import main
+    from tests.conftest import ROOT
+
+    conveyor = ROOT / "benchmarks" / "conveyors" / "iso5048-flat-143m.yaml"
+    assert "sag_at_rest: false" in conveyor.read_text()
+    assert main(["static", str(conveyor), "--json"]) == 0
+    plain = json.loads(capsys.readouterr().out)
+    assert main(["static", str(conveyor), "--json", "--no-sag-at-rest"]) == 0
+    off = json.loads(capsys.readouterr().out)
+    assert plain["takeup_governed_by"] == off["takeup_governed_by"] == "sag_running"
+    assert plain["takeup_mass_kg"] == off["takeup_mass_kg"] < 4486.0

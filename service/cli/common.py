@@ -75,9 +75,10 @@ def read_conveyor(path: str | os.PathLike):
     return parse_conveyor(load_mapping(path))
 
 
-def with_sag_at_rest(conv, on: bool):
-    """The conveyor with ``takeup.sag_at_rest`` set (the CLI switch ``--no-sag-at-rest``)."""
-    if conv.takeup.sag_at_rest == on:
+def with_sag_at_rest(conv, on: bool | None):
+    """The conveyor with ``takeup.sag_at_rest`` set by the CLI switch ``--no-sag-at-rest``
+    (``on`` False); ``None`` (no switch) keeps the file's own ``takeup.sag_at_rest``."""
+    if on is None or conv.takeup.sag_at_rest == on:
         return conv
     return conv.model_copy(update={"takeup": conv.takeup.model_copy(update={"sag_at_rest": on})})
 

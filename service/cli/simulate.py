@@ -82,7 +82,8 @@ def register(sub) -> None:
     p.add_argument("--dt-s", type=float, default=None, help="fixed time step [s] "
                    "(default: automatic, half the stability limit)")
     p.add_argument("--record-dt-s", type=float, default=None, help="time-series spacing [s]")
-    p.add_argument("--no-sag-at-rest", dest="sag_at_rest", action="store_false",
+    p.add_argument("--no-sag-at-rest", dest="sag_at_rest", action="store_const",
+                   const=False, default=None,
                    help="size an auto take-up for the sag limits running only (default: also "
                    "held at rest; the file's takeup.sag_at_rest)")
     p.add_argument("--no-remedy", action="store_true", help="when a drive slips in the start, "

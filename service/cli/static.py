@@ -57,7 +57,8 @@ def register(sub) -> None:
                    help="friction model parameter, repeatable (e.g. f_carry=0.010)")
     p.add_argument("--load", default="full", help=LOAD_HELP)
     p.add_argument("--elements", type=int, default=None, help="belt elements round the loop")
-    p.add_argument("--no-sag-at-rest", dest="sag_at_rest", action="store_false",
+    p.add_argument("--no-sag-at-rest", dest="sag_at_rest", action="store_const",
+                   const=False, default=None,
                    help="size an auto take-up for the sag limits running only (default: also "
                    "held at rest, a conservative reading beyond DIN 22101's running checks; "
                    "the file's takeup.sag_at_rest)")
