@@ -11,9 +11,10 @@ resistances F_N follow from the coefficient C(L) with F_H + F_N = C F_H, so
 F_N = (C - 1) sum F_H; they are placed at the pulleys (split evenly between the head and
 tail pulley elements, and the take-up pulley when it is separate), where they act. For
 L < 80 m DIN asks for explicit secondary resistances: the feed acceleration I_m (v - v0) on
-the feed element and pulley allowances (CEMA T_p values, see ``common``). With the C factor
-the feed is part of ``secondary`` and the ``feed`` part is 0. Speed independent; ignores
-temperature.
+the feed element, the friction F_f between the material and the skirt plates while it is
+accelerated (:func:`acceleration_skirt_forces`, where a feed point has skirts) and pulley
+allowances (CEMA T_p values, see ``common``). With the C factor the feed and F_f are part of
+``secondary`` and the ``feed`` part is 0. Speed independent; ignores temperature.
 
 References
 ----------
@@ -27,11 +28,12 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from beltstudy.engine.conveyor import Conveyor, InputError
+from beltstudy.engine.conveyor import SKIRT_WIDTH_SHARE, Conveyor, InputError
 from beltstudy.engine.friction.base import FrictionModel, param
 from beltstudy.engine.friction.common import (
     add_accessories,
     add_feed,
+    carry_element_at,
     lumped_indices,
     pulley_allowances,
 )
@@ -49,6 +51,45 @@ C_TABLE_C = np.array([1.92, 1.78, 1.58, 1.45, 1.31, 1.25, 1.20, 1.17, 1.12, 1.09
 def c_factor(length_m: float) -> float:
     """DIN 22101 coefficient C for a conveyor of length L [m] (L >= 80 m)."""
     return float(np.interp(length_m, C_TABLE_L_M, C_TABLE_C))
+
+
+#: Friction coefficient mu_1 between the material and the belt in the acceleration zone [-]:
+#: ISO 5048:1989 gives 0.5 to 0.7 (the middle taken, as for the belt cleaners' mu_3); it sets
+#: the acceleration length l_b = (v^2 - v_0^2) / (2 g mu_1).
+MU1_MATERIAL_BELT = 0.6
+
+
+def acceleration_skirt_forces(loop: Loop, conv: Conveyor,
+                              mu1: float | None = None) -> np.ndarray:
+    """Friction between the material and the skirt plates in the acceleration zone, per
+    element [N] (ISO 5048:1989 / DIN 22101 secondary resistance F_f).
+
+    F_f = mu_2 I_V^2 rho g l_b / (((v + v_0) / 2)^2 b_1^2), with the acceleration length
+    l_b = (v^2 - v_0^2) / (2 g mu_1), at most the skirts' length (no skirt plates, no F_f),
+    on the element each feed point with skirts starts. I_V = m'_L v / rho is the volume flow
+    on the belt there (the load case's; every feed upstream included), mu_2 the feed point's
+    ``skirt_friction``, b_1 its ``skirt_width_m`` (default ``SKIRT_WIDTH_SHARE`` of the belt
+    width), v_0 its along-belt loading speed and mu_1 ``MU1_MATERIAL_BELT`` unless given. The
+    friction beyond l_b is the skirts' F_gL (:func:`beltstudy.engine.friction.common.skirt_forces`,
+    an accessory).
+    """
+    mu1 = MU1_MATERIAL_BELT if mu1 is None else mu1
+    out = np.zeros(loop.n)
+    v = loop.speed_m_s
+    rho = conv.material.density_t_m3 * 1e3
+    for f in conv.material.feed or []:
+        v0 = f.loading_speed_m_s
+        if v0 is None:
+            v0 = conv.material.loading_speed_m_s
+        if f.skirt_length_m <= 0.0 or v0 >= v:
+            continue
+        j = carry_element_at(loop, f.at_m)
+        iv = float(loop.mL_kg_m[j]) * v / rho  # [m3/s]
+        b1 = f.skirt_width_m if f.skirt_width_m is not None \
+            else SKIRT_WIDTH_SHARE * loop.belt.width_m
+        lb = min((v * v - v0 * v0) / (2.0 * G * mu1), f.skirt_length_m)
+        out[j] += f.skirt_friction * iv * iv * rho * G * lb / ((0.5 * (v + v0)) ** 2 * b1 * b1)
+    return out
 
 
 @dataclass(frozen=True)
@@ -87,7 +128,7 @@ def build(loop: Loop, conv: Conveyor, temperature_c: float, params: DinParams) -
     c = params.c
     if c is None and loop.length_m < 80.0:
         add_feed(b, loop, conv)
-        b.add("secondary", pulley_allowances(loop, conv))
+        b.add("secondary", pulley_allowances(loop, conv) + acceleration_skirt_forces(loop, conv))
         c_used = None
     else:
         c_used = c if c is not None else c_factor(loop.length_m)
