@@ -377,9 +377,19 @@ def test_a_fast_stop_says_its_tensions_and_what_would_slow_it():
     assert "8.5 s or more" not in msg
     assert "rerun the controlled stop, whose own warning names the time to ask" in msg
     # a brake stop asked in 3 s that took 2.5 s: an auto brake for 7.465 x 3 / 2.5 = 8.96 s
+    # (a belt that coasts with its brakes off for M v / Te = 500 t x 4 m/s / 100 kN = 20 s,
+    # longer than 5 loops: less brake force would make the stop slower)
+    sysm.te_n, sysm.v_design = 100e3, 4.0
+    sysm.model.control = SimpleNamespace(m_tot=500e3)
     sysm.model.cycle.stop_mode, sysm.model.cycle.t_stop = C.BRAKE, 3.0
     msg = _fast_stop_words(sysm, 2.5, {}, 261e3)
     assert "a stop.time_s of 9 s or more" in msg and "set by holding keeps its force" in msg
+    # the same belt coasting in 50 t x 4 m/s / 100 kN = 2 s, within 5 x 1.493 s: no brake
+    # setting makes it slower, and no stop.time_s is offered for the brakes
+    sysm.model.control.m_tot = 50e3
+    msg = _fast_stop_words(sysm, 1.6, {}, 261e3)
+    assert "no brake setting makes it slower" in msg and "about 2 s" in msg, msg
+    assert "less brake force" not in msg and "stop.time_s at least 8.5 s" in msg
 
 
 def test_the_stop_ramp_rests_where_its_s_curve_says():
