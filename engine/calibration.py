@@ -453,8 +453,9 @@ def _verdict(sol, at_bound: list[str], r: np.ndarray, model: str,
     own limit (a share's 1), not a declared one far beyond any published value."""
     rms = 100 * math.sqrt(float(r @ r) / len(r))
     rms_text = f"{rms:.3g}" if rms < 1000 else f"{rms:.0f}"
-    check = ("Check the measured values (power at the drive pulleys [kW], negative only where "
-             "the drives regenerate; each row's load and temperature) and the conveyor file "
+    check = ("Check the measured values (power at the drive pulleys [kW] or peripheral force "
+             "[kN], negative only where the drives regenerate; each row's load and temperature) "
+             "and the conveyor file "
              "(lift, capacity, speed, take-up), or fit other parameters of the model")
     if not sol.success:
         return {"status": "failed", "message": (

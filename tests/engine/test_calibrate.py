@@ -250,3 +250,16 @@ def test_a_share_is_fitted_within_its_own_bound_1(overland):
     assert cal.message.startswith("ky_sag_share ends at the largest value model cmod takes (1, "
                                   "its own limit)")
     assert "far beyond any published value" not in cal.message
+
+
+def test_a_misfit_of_measured_force_is_told_in_force_not_power(overland):
+    """The CSV may give te_kn instead of power_kw (SPEC 7.3): a fit that cannot follow
+    measured forces (a tenth of the engine's, below what the lift alone needs at f = 0) asks
+    the reader to check the peripheral force in kN, not only a power in kW."""
+    rows = _plant(overland, "din", {"f_carry": TRUTH}, column="te_kn")
+    for m in rows:
+        m.values["te_kn"] *= 0.1
+    cal = calibrate(overland, rows, "din", ["f_carry"])
+    assert cal.status == "warning"
+    assert "Check the measured values (power at the drive pulleys [kW] or peripheral force [kN]" \
+        in cal.message
