@@ -297,8 +297,8 @@ TRANSIENT = ResultGroup("transient", "Transient: the start, run and stop cycle (
        "belt_rating_kn / t_max_dyn_kn", "belt safety factor (transient)"),
     _f("dt_used_s", "s", "time step the integration used (the scenario's dt_s, or the "
        "automatic one)", "time step"),
-    _f("elements_used", "-", "belt elements round the loop the run used (the scenario's "
-       "elements, or the automatic count)", "elements"),
+    _f("elements_used", "-", "elements round the loop the run used: the belt elements (the "
+       "scenario's elements, or the automatic count) and one per pulley", "elements"),
 ))
 
 _PHASE_WORDS = {"max": "highest", "min": "lowest"}

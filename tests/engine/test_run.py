@@ -18,6 +18,7 @@ from beltstudy.engine.conveyor import (
     parse_scenario,
 )
 from beltstudy.engine.dynamics.simulate import TIMESERIES_COLUMNS
+from beltstudy.engine.results import FIELDS
 from beltstudy.engine.run import run_one
 from tests.conftest import CONVEYORS, TRANSIENT_FIELDS, hand_conveyor_dict
 from tests.engine.conftest import DIN, hand_conv, hand_drive, two_sections
@@ -199,6 +200,12 @@ def test_fixed_step_below_the_limit_runs():
                                stop={"mode": "controlled", "time_s": 8}), model="din")
     assert r.summary["dt_used_s"] == 0.004
     assert r.summary["status"] != "failed"
+    # elements_used counts the loop's elements as docs/results.md says: the scenario's 60
+    # belt elements and one per pulley (head drive and tail here)
+    from beltstudy.engine.loop import build_loop
+    pulleys = len(build_loop(conv, n_elements=60).pulleys)
+    assert pulleys == 2 and r.summary["elements_used"] == 60 + pulleys
+    assert "and one per pulley" in FIELDS["elements_used"].meaning
 
 
 @pytest.mark.parametrize("load", ["inclines", "declines", [0.5, 1.0], 1.2])
