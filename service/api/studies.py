@@ -132,6 +132,14 @@ def get_runs(
         default_factory=list, max_length=FILTERS_MAX,
         description=f"column=value, repeatable (axis or result column), at most {FILTERS_MAX}"
     ),
+    sort: str | None = Query(
+        None, max_length=200,
+        description="order by this column (`-column`: descending); numbers as numbers, text "
+        "as text, missing values last, ties in stored order"),
+    columns: str | None = Query(
+        None, max_length=20_000,
+        description="comma-separated columns to return, in that order (default: every "
+        "column; JSON rows then hold exactly these, te_<part>_kn unfolded)"),
     limit: int | None = Query(None, ge=1, le=100_000,
                               description="JSON only: rows per page"),
     offset: int = Query(0, ge=0, le=10_000_000, description="JSON only: first row"),
@@ -142,14 +150,31 @@ def get_runs(
         if paged:
             raise Invalid(f"query.{paged[0]}: paging is JSON only (format=json); a {format} "
                           "download holds every row the filters keep (narrow it with filter=)")
-    df = service.runs(study_id)
     wanted = list(filter)
     if status:
         wanted.append(f"status={status}")
     if friction_model:
         wanted.append(f"friction_model={query.model_name(friction_model, 'friction_model')}")
+    names = order = None
+    if columns is not None or sort is not None:
+        known = service.store.runs_columns(study_id)
+        names = query.column_list(columns, known) if columns is not None else None
+        order = query.sort_key(sort, known) if sort is not None else None
+    if names is None:
+        df = service.runs(study_id)
+    else:  # only the columns asked and those the filters and the order need
+        for column in query.filter_columns(wanted):
+            if column and column not in known:
+                raise query.no_column("filter", column, known)
+        need = names + [c for c in query.filter_columns(wanted) + [order[0] if order else ""]
+                        if c and c not in names]
+        df = service.store.read_runs(study_id, columns=list(dict.fromkeys(need)))
     if len(df):
         df = query.apply_filters(df, wanted)
+    if order is not None:
+        df = query.sort_rows(df, *order)
+    if names is not None:
+        df = df[names]
     if format != "json":
         return _download(df, format, f"{study_id}-runs")
     page = df.iloc[offset : offset + limit if limit else None]
@@ -158,7 +183,7 @@ def get_runs(
         "total": int(len(df)),
         "offset": offset,
         "limit": limit,
-        "runs": query.rows_to_json(page),
+        "runs": query.rows_to_json(page) if names is None else query.records_to_json(page),
     }
 
 

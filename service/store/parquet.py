@@ -278,17 +278,46 @@ class Store:
     def read_runs(self, study_id: str, columns: list[str] | None = None) -> pd.DataFrame:
         """The runs table of a study (one row per finished run). The table read last for the
         same part files is reused (a few studies are kept): status pages and downloads read
-        it far more often than a running study adds a part."""
+        it far more often than a running study adds a part. ``columns``: only those, taken
+        from that kept table while it is current (a page of a few columns of a large study
+        costs milliseconds, not the conversion of every column), else read from the parts."""
         self.read(study_id)
         if columns is not None:
-            return self._read_table(study_id, "runs", columns)
+            return self._vanishing(study_id, lambda: self._read_runs_columns(study_id, columns))
         return self._vanishing(study_id, lambda: self._read_runs(study_id))
+
+    def runs_columns(self, study_id: str) -> list[str]:
+        """The names of the columns of a study's runs table (its schema; no rows read)."""
+        self.read(study_id)
+
+        def read() -> list[str]:
+            parts = self.parts(study_id, "runs")
+            if not parts:
+                return list(self._empty(study_id, "runs").column_names)
+            names = pq.read_schema(parts[0]).names
+            return [n for n in names if not n.startswith("__index_level_")]
+
+        return self._vanishing(study_id, read)
+
+    @staticmethod
+    def _parts_key(parts: list[Path]) -> tuple:
+        return tuple((p.name, st.st_mtime_ns, st.st_size) for p in parts for st in [p.stat()])
+
+    def _read_runs_columns(self, study_id: str, columns: list[str]) -> pd.DataFrame:
+        parts = self.parts(study_id, "runs")
+        if parts:
+            key = self._parts_key(parts)
+            with self._runs_lock:
+                hit = self._runs_cache.get(study_id)
+            if hit is not None and hit[0] == key:
+                return hit[1].select(columns).to_pandas()
+        return self._read_table(study_id, "runs", columns)
 
     def _read_runs(self, study_id: str) -> pd.DataFrame:
         parts = self.parts(study_id, "runs")
         if not parts:
             return self._read_table(study_id, "runs")
-        key = tuple((p.name, st.st_mtime_ns, st.st_size) for p in parts for st in [p.stat()])
+        key = self._parts_key(parts)
         with self._runs_lock:
             reading = self._runs_reading.setdefault(study_id, threading.Lock())
         with reading:  # one reader per study: the others wait for its table

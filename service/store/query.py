@@ -25,6 +25,11 @@ __all__ = [
     "columns_to_json",
     "records_to_json",
     "apply_filters",
+    "filter_columns",
+    "column_list",
+    "no_column",
+    "sort_key",
+    "sort_rows",
     "compare",
     "model_pair",
     "to_csv",
@@ -100,6 +105,59 @@ def model_name(text: str, field: str) -> str:
         raise Invalid(f"{field}: {exc.reason}") from None
 
 
+def no_column(field: str, column: str, columns: list[str]) -> Invalid:
+    """The 422 for a column the study does not have: names ``field``, the closest column
+    and every column."""
+    close = difflib.get_close_matches(column, columns, n=1)
+    hint = f" (did you mean '{close[0]}'?)" if close else ""
+    return Invalid(f"{field}: this study has no column '{column}'{hint}; columns: "
+                   f"{', '.join(columns)}")
+
+
+def filter_columns(filters: list[str]) -> list[str]:
+    """The columns ``column=value`` filters name (malformed ones are left to
+    :func:`apply_filters`, which names them)."""
+    return [item.partition("=")[0] for item in filters if "=" in item]
+
+
+def column_list(text: str, columns: list[str], field: str = "columns") -> list[str]:
+    """``a,b,c`` as a list of columns of the study, in the order given; :class:`Invalid`
+    naming ``field`` for an empty name, a name given twice or a column the study lacks."""
+    names = [n.strip() for n in text.split(",")]
+    seen: set[str] = set()
+    for name in names:
+        if not name:
+            raise Invalid(f"{field}: an empty name in '{text}'; give column names separated "
+                          "by commas (a,b,c)")
+        if name in seen:
+            raise Invalid(f"{field}: '{name}' is named twice; give each column once")
+        if name not in columns:
+            raise no_column(field, name, columns)
+        seen.add(name)
+    return names
+
+
+def sort_key(text: str, columns: list[str], field: str = "sort") -> tuple[str, bool]:
+    """``column`` (ascending) or ``-column`` (descending) as ``(column, descending)``;
+    :class:`Invalid` naming ``field`` for a column the study lacks."""
+    descending = text.startswith("-")
+    column = text[1:] if descending else text
+    if column not in columns:
+        raise no_column(field, column, columns)
+    return column, descending
+
+
+def sort_rows(df: pd.DataFrame, column: str, descending: bool = False) -> pd.DataFrame:
+    """Rows ordered by ``column``: numbers as numbers, text as text, missing values last in
+    either direction, ties in their stored order (stable, so pages do not overlap)."""
+    series = df[column]
+    if series.dtype == object:  # text, or a mixed axis (``load: [full, 0.5]``): compare as text
+        series = series.map(lambda v: None if v is None or v is pd.NA else str(v))
+    order = series.reset_index(drop=True).sort_values(
+        ascending=not descending, kind="mergesort", na_position="last").index
+    return df.iloc[order.to_numpy()]
+
+
 def apply_filters(df: pd.DataFrame, filters: list[str]) -> pd.DataFrame:
     """Keep rows where every ``column=value`` holds (numbers compared as numbers; a value
     that no row of the column can have, like text for a number, keeps no row).
@@ -113,12 +171,7 @@ def apply_filters(df: pd.DataFrame, filters: list[str]) -> pd.DataFrame:
             raise Invalid(f"filter: '{item}' has an empty value; give column=value (a value "
                           "no row has keeps no row)")
         if column not in df.columns:
-            close = difflib.get_close_matches(column, [str(c) for c in df.columns], n=1)
-            hint = f" (did you mean '{close[0]}'?)" if close else ""
-            raise Invalid(
-                f"filter: this study has no column '{column}'{hint}; columns: "
-                f"{', '.join(df.columns)}"
-            )
+            raise no_column("filter", column, [str(c) for c in df.columns])
         if column == "friction_model":  # its aliases too; an unknown name keeps no row
             text = canonical_name(text)
         try:

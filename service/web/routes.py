@@ -19,7 +19,7 @@ from fastapi.responses import HTMLResponse
 
 from beltstudy.service.api.deps import ERROR_RESPONSES, check_query, get_service, require_token
 from beltstudy.service.errors import NotFound
-from beltstudy.service.studies import StudyService
+from beltstudy.service.studies import StudyService, study_models
 from beltstudy.service.web import figures
 from beltstudy.service.web.report import REPORT_CSP, build_report
 
@@ -113,6 +113,8 @@ def study_data(study_id: str, service: StudyService = Depends(get_service)) -> d
         "merged": study.get("merged", 0),
         "design": study.get("design"),
         "designs": study.get("designs") or [],
+        "models": study_models(doc),
+        "columns": service.store.runs_columns(study_id),
         "study_plots": figures.STUDY_PLOTS,
         "run_plots": figures.RUN_PLOTS,
     }

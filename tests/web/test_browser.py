@@ -270,12 +270,15 @@ def test_submit_watch_and_read_a_study_in_chromium(server, browser):
     assert "friction_model" in axes and "temperature_c" in axes and "-20, 20" in axes
     Select(driver.find_element(By.CSS_SELECTOR, "select[name=friction_model]")).select_by_value(
         "din")
-    assert len(driver.find_elements(By.CSS_SELECTOR, "#runs tbody tr")) == 2
+    _wait(driver, lambda d: len(d.find_elements(By.CSS_SELECTOR, "#runs tbody tr")) == 2,
+          what="two din runs")
     Select(driver.find_element(By.CSS_SELECTOR, "select[name=friction_model]")).select_by_value(
         "")
     driver.find_element(By.CSS_SELECTOR, "#runs th[data-column=power_kw]").click()
-    cells = driver.find_elements(By.CSS_SELECTOR, "#runs tbody tr")
-    assert len(cells) == 4
+    _wait(driver, lambda d: "▲" in d.find_element(By.CSS_SELECTOR,
+                                                  "#runs th[data-column=power_kw]").text
+          and len(d.find_elements(By.CSS_SELECTOR, "#runs tbody tr")) == 4,
+          what="four runs sorted by power")
     for fmt, kind in (("csv", "text/csv"), ("parquet", "parquet"), ("json", "json")):
         href = driver.find_element(By.ID, f"download-{fmt}").get_attribute("href")
         r = httpx.get(href)
@@ -297,6 +300,106 @@ def test_submit_watch_and_read_a_study_in_chromium(server, browser):
     assert driver.find_element(By.ID, "run-study").text == "of web-e2e"
     _no_alert(driver)
     _screenshot(driver, "web-run.png")
+
+
+def _runs_requests(driver) -> list[dict]:
+    """The page's requests for run rows: their query and the bytes of the answer."""
+    from urllib.parse import parse_qs, urlparse
+
+    entries = driver.execute_script(
+        "return performance.getEntriesByType('resource').map(e => [e.name, e.encodedBodySize])")
+    out = []
+    for url, size in entries:
+        parsed = urlparse(url)
+        if parsed.path.endswith("/runs"):
+            out.append({"query": parse_qs(parsed.query), "bytes": size})
+    return out
+
+
+def test_the_runs_table_pages_through_a_large_study(browser, web):
+    """A 244-run study: the page asks for one page of rows (bounded, only the table's
+    columns) and shows the total; next and previous, filters, sorting and the page size are
+    answered by the API over every row, never by loading them all."""
+    from selenium.webdriver.common.by import By
+    from selenium.webdriver.support.ui import Select
+
+    driver = browser
+    holder = {}
+    body = web.tiny_study(name="paging-e2e", grid={
+        "friction_model": ["din", "cema"], "temperature_c": {"start": -30, "stop": 30, "step": 1},
+        "load": ["full", 0.5]})
+
+    def prepare(data: Path) -> None:
+        holder["id"] = web.finished_study(data, body)
+
+    # read in one script call: the table is rebuilt under the test's feet
+    def page_text(d) -> str:
+        return d.execute_script("return document.getElementById('runs-page').textContent")
+
+    def row_ids(d) -> list[str]:
+        return d.execute_script("return Array.from(document.querySelectorAll("
+                                "'#runs tbody tr')).map(tr => tr.dataset.runId)")
+
+    with _serve(prepare, BELTSTUDY_WARM_START="false") as base:
+        sid = holder["id"]
+        every = httpx.get(f"{base}/studies/{sid}/runs").json()["runs"]
+        assert len(every) == 244
+        driver.get(f"{base}/ui/studies/{sid}")
+        _wait(driver, lambda d: page_text(d) == "rows 1–100 of 244", what="first page")
+        assert len(row_ids(driver)) == 100
+        assert driver.find_element(By.ID, "runs-count").text == "(244 runs)"
+        assert not driver.find_element(By.ID, "runs-next").get_attribute("disabled")
+        assert driver.find_element(By.ID, "runs-prev").get_attribute("disabled")
+        asked = _runs_requests(driver)
+        assert len(asked) == 1, asked
+        query = asked[0]["query"]
+        assert query["limit"] == ["100"] and query["offset"] == ["0"]
+        columns = query["columns"][0].split(",")
+        assert "run_id" in columns and "power_kw" in columns and len(columns) < 25
+        assert asked[0]["bytes"] < 100_000, asked  # the whole table is ~1 MB of JSON
+
+        driver.find_element(By.ID, "runs-next").click()
+        _wait(driver, lambda d: page_text(d) == "rows 101–200 of 244", what="second page")
+        driver.find_element(By.ID, "runs-next").click()
+        _wait(driver, lambda d: page_text(d) == "rows 201–244 of 244", what="last page")
+        assert len(row_ids(driver)) == 44
+        assert driver.find_element(By.ID, "runs-next").get_attribute("disabled")
+        driver.find_element(By.ID, "runs-prev").click()
+        _wait(driver, lambda d: page_text(d) == "rows 101–200 of 244", what="back a page")
+        assert row_ids(driver) == [r["run_id"] for r in every[100:200]]
+
+        # a filter counts over every row and starts again at the first page
+        Select(driver.find_element(By.CSS_SELECTOR, "select[name=friction_model]")
+               ).select_by_value("din")
+        _wait(driver, lambda d: page_text(d) == "rows 1–100 of 122", what="din only")
+        assert driver.find_element(By.ID, "runs-count").text == "(122 of 244 runs match the filters)"
+        assert set(row_ids(driver)) <= {
+            r["run_id"] for r in every if r["friction_model"] == "din"}
+
+        # sorting orders every matching row, not the page shown
+        header = '#runs th[data-column="power_kw"]'
+        power = {r["run_id"]: r["power_kw"] for r in every if r["friction_model"] == "din"}
+        # (DIN's f does not change with temperature: runs of one load tie on power)
+
+        def powers(d) -> list[float]:
+            return [power[i] for i in row_ids(d)]
+
+        driver.find_element(By.CSS_SELECTOR, header).click()
+        _wait(driver, lambda d: powers(d) == sorted(power.values())[:100],
+              what="lowest power first")
+        assert "▲" in driver.find_element(By.CSS_SELECTOR, header).text
+        driver.find_element(By.CSS_SELECTOR, header).click()
+        _wait(driver, lambda d: powers(d) == sorted(power.values(), reverse=True)[:100],
+              what="highest power first")
+        assert "▼" in driver.find_element(By.CSS_SELECTOR, header).text
+
+        Select(driver.find_element(By.ID, "runs-limit")).select_by_value("50")
+        _wait(driver, lambda d: page_text(d) == "rows 1–50 of 122", what="50 a page")
+        assert len(row_ids(driver)) == 50
+        asked = _runs_requests(driver)
+        assert all(int(q["query"]["limit"][0]) <= 500 for q in asked), asked
+        assert all("columns" in q["query"] for q in asked)
+        assert sum(q["bytes"] for q in asked) < 500_000
 
 
 def test_token_login_field_unlocks_data_and_plots(browser, web):

@@ -148,6 +148,13 @@ def test_page_data_names_the_axes(done):
     assert info["axes"][1]["values"] == [-20, 20]
     assert info["dynamics"] is False
     assert set(info["study_plots"]) == set(figures.STUDY_PLOTS)
+    # what the runs table pages with: the models for the filter and the stored columns, so
+    # it asks for only the columns it shows
+    assert info["models"] == ["din", "cema"]
+    row = c.get(f"/studies/{sid}/runs", params={"limit": 1}).json()["runs"][0]
+    assert {"run_id", "power_kw", "te_main_carry_kn"} <= set(info["columns"])
+    assert set(info["columns"]) - set(row) == {c for c in info["columns"] if c.startswith("te_")
+                                               and c not in ("te_kn",)}
     assert c.get("/ui/data/studies/0123456789abcdef").status_code == 404
 
 

@@ -305,12 +305,24 @@ function designRows(designs) {
   return rows;
 }
 
+// Rows per page of the runs table, and the choices offered. A page of the table's columns
+// is about 0.5 kB a row as JSON and answers in about 50 ms up to a few hundred rows on a
+// 20 000-run study (BENCHMARKS.md, section 4b): the page never asks for every row.
+const PAGE_SIZE = 100;
+const PAGE_SIZES = [50, 100, 200, 500];
+
 function studyPage(id) {
   let timer = null;
   let axes = [];
-  let runs = [];
+  let models = [];
+  let stored = [];  // the columns of the study's runs table
   let sort = { column: null, dir: 1 };
   let filters = {};
+  let offset = 0;
+  let limit = PAGE_SIZE;
+  let total = 0;
+  let done = 0;
+  let asked = 0;  // the number of the last runs request: older answers are dropped
   let plotsShown = false;
   let lastDone = -1;
 
@@ -324,62 +336,105 @@ function studyPage(id) {
     const box = document.getElementById("filters");
     const items = axes.map((a) => ({ column: a.column, values: a.values }));
     if (!axes.some((a) => a.column === "friction_model")) {
-      items.push({ column: "friction_model", values: [...new Set(runs.map((r) => r.friction_model))] });
+      items.push({ column: "friction_model", values: models });
     }
     items.push({ column: "status", values: ["ok", "warning", "failed"] });
     box.replaceChildren(...items.map((item) => {
       const select = el("select", { name: item.column, data: { column: item.column } },
         [el("option", { value: "", text: "all" })].concat(
           item.values.map((v) => el("option", { value: String(v), text: String(v) }))));
-      select.addEventListener("change", () => { filters[item.column] = select.value; renderRuns(); });
+      select.addEventListener("change", () => {
+        filters[item.column] = select.value;
+        offset = 0;
+        loadRuns().catch((e) => showError(e.message));
+      });
       return el("label", { class: "filter" }, [item.column + " ", select]);
     }));
   }
 
-  function renderRuns() {
-    const cols = columns();
+  // The query of one page: the table's columns the study has, the filters, the order.
+  function runsQuery() {
+    const q = new URLSearchParams({ format: "json", limit: String(limit), offset: String(offset) });
+    const cols = ["run_id"].concat(columns()).filter((c, i, all) =>
+      stored.includes(c) && all.indexOf(c) === i);
+    q.set("columns", cols.join(","));
+    if (sort.column) q.set("sort", (sort.dir < 0 ? "-" : "") + sort.column);
+    for (const [c, v] of Object.entries(filters)) {
+      if (v === "") continue;
+      if (c === "status") q.set("status", v);
+      else q.append("filter", c + "=" + v);
+    }
+    return q;
+  }
+
+  function renderHead() {
     const head = document.querySelector("#runs thead tr");
-    head.replaceChildren(...cols.map((c) => {
+    head.replaceChildren(...columns().map((c) => {
       const th = el("th", { text: c + (sort.column === c ? (sort.dir > 0 ? " ▲" : " ▼") : ""),
-        data: { column: c }, title: "sort by " + c });
-      th.addEventListener("click", () => {
-        sort = { column: c, dir: sort.column === c ? -sort.dir : 1 };
-        renderRuns();
-      });
+        data: { column: c }, title: stored.includes(c) ? "sort by " + c : "" });
+      if (stored.includes(c)) {
+        th.addEventListener("click", () => {
+          sort = { column: c, dir: sort.column === c ? -sort.dir : 1 };
+          offset = 0;
+          loadRuns().catch((e) => showError(e.message));
+        });
+      }
       return th;
     }), el("th", { text: "" }));
-    let shown = runs.filter((r) => Object.entries(filters).every(
-      ([c, v]) => v === "" || String(r[c]) === v));
-    if (sort.column) {
-      const c = sort.column;
-      shown = shown.slice().sort((a, b) => {
-        const x = a[c], y = b[c];
-        if (x == null) return 1;
-        if (y == null) return -1;
-        if (typeof x === "number" && typeof y === "number") return sort.dir * (x - y);
-        return sort.dir * String(x).localeCompare(String(y));
-      });
-    }
+  }
+
+  function renderRuns(rows) {
+    const cols = columns();
+    renderHead();
     const tbody = document.querySelector("#runs tbody");
-    tbody.replaceChildren(...shown.map((r) => el("tr",
+    tbody.replaceChildren(...rows.map((r) => el("tr",
       { class: "status-" + r.status, data: { runId: r.run_id } },
       cols.map((c) => c === "message" ? messageCell(r[c]) : el("td", { text: fmtCell(c, r[c]) }))
         .concat([el("td", {}, [el("a", { text: "open",
           href: "/ui/studies/" + encodeURIComponent(id) + "/runs/" + encodeURIComponent(r.run_id) })])]))));
-    document.getElementById("runs-count").textContent =
-      "(" + shown.length + " of " + runs.length + " shown)";
+    const filtered = Object.values(filters).some((v) => v !== "");
+    const count = document.getElementById("runs-count");
+    count.dataset.total = String(total);
+    count.dataset.done = String(done);
+    count.textContent = "(" + fmtNumber(total) + (filtered ? " of " + fmtNumber(done) +
+      " runs match the filters" : " runs") + ")";
+    document.getElementById("runs-page").textContent = rows.length
+      ? "rows " + fmtNumber(offset + 1) + "–" + fmtNumber(offset + rows.length) + " of " +
+        fmtNumber(total)
+      : (total ? "no rows past row " + fmtNumber(total) : "no rows");
+    document.getElementById("runs-prev").disabled = offset <= 0;
+    document.getElementById("runs-next").disabled = offset + rows.length >= total;
   }
 
   async function loadRuns() {
-    const data = await api("/studies/" + encodeURIComponent(id) + "/runs?format=json");
-    runs = data.runs;
+    const n = ++asked;
+    const data = await api("/studies/" + encodeURIComponent(id) + "/runs?" + runsQuery());
+    if (n !== asked) return;  // a newer page was asked for meanwhile
+    total = data.total;
+    if (offset > 0 && offset >= total) {  // fewer rows than before: the last page there is
+      offset = Math.max(Math.floor((total - 1) / limit) * limit, 0);
+      await loadRuns();
+      return;
+    }
     if (!document.querySelector("#filters select")) buildFilters();
-    renderRuns();
+    renderRuns(data.runs);
+  }
+
+  function wirePager() {
+    const go = (to) => { offset = Math.max(to, 0); loadRuns().catch((e) => showError(e.message)); };
+    document.getElementById("runs-prev").addEventListener("click", () => go(offset - limit));
+    document.getElementById("runs-next").addEventListener("click", () => go(offset + limit));
+    const size = document.getElementById("runs-limit");
+    size.replaceChildren(...PAGE_SIZES.map((k) => el("option",
+      { value: String(k), text: String(k), selected: k === PAGE_SIZE })));
+    size.addEventListener("change", () => { limit = Number(size.value); go(0); });
   }
 
   async function loadInfo() {
     const info = await api("/ui/data/studies/" + encodeURIComponent(id));
     axes = info.axes;
+    models = info.models || [];
+    stored = info.columns || [];
     document.title = "beltstudy · " + info.name;
     document.getElementById("study-name").textContent = info.name;
     document.getElementById("conveyor-name").textContent = info.conveyor_name;
@@ -417,6 +472,7 @@ function studyPage(id) {
       setProgress(document.getElementById("progress"), st);
       document.getElementById("counts").textContent =
         st.done + " of " + st.total + " done, " + st.failed + " failed";
+      done = st.done;
       document.getElementById("elapsed").textContent = fmtSeconds(st.elapsed_s);
       document.getElementById("eta").textContent = active ? fmtSeconds(st.eta_s) : "–";
       const msg = document.getElementById("study-message");
@@ -444,6 +500,7 @@ function studyPage(id) {
     } catch (e) { showError(e.message); }
   });
   wireDownloads();
+  wirePager();
   wireLogin(start);
   start();
 }
