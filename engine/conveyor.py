@@ -516,6 +516,10 @@ class Drive(_Model):
                     "loops at a few rad/s)")
         if self.motor_curve is not None:
             check_motor_curve(self.motor_curve)
+            if self.control != "dol":
+                raise ValueError("motor_curve belongs to a motor on the line (control: dol); a "
+                                 "vfd drive follows its speed loop up to torque_limit and never "
+                                 "reads it: give control: dol, or leave motor_curve out")
         return self
 
     @property

@@ -141,6 +141,9 @@ def test_section_loads_of_each_pattern():
     ({"drives": [hand_drive(control="dol", motor_curve=[[0.0, 1.5], [0.9, 2.0], [1.0, 0.4]])]},
      "zero-torque point"),
     ({"drives": [hand_drive(coupling="fluid")]}, "needs control: dol"),
+    # a vfd drive never reads a motor curve: taken, it would change nothing the run does
+    ({"drives": [hand_drive(motor_curve=[[0.0, 0.3], [1.0, 0.0]])]},
+     "drives.0: motor_curve belongs to a motor on the line (control: dol); a vfd drive"),
     ({"drives": [hand_drive(control="dol",
                             motor_curve=[[i / 20, 2.0 - i / 10] for i in range(21)])]},
      "motor_curve: List should have at most 16 items"),
@@ -240,7 +243,7 @@ def _with(path: str, value) -> dict:
     keys = path.split(".")
     for k in keys[:-1]:
         node = node[int(k)] if isinstance(node, list) else node.setdefault(k, {})
-    node[keys[-1]] = value
+    node[int(keys[-1]) if isinstance(node, list) else keys[-1]] = value
     return d
 
 
@@ -286,7 +289,8 @@ def test_values_at_the_bounds_are_taken():
                         ("drives.0.pulley_diameter_m", 0.1),
                         ("material.surcharge_deg", 30.0), ("material.surcharge_deg", 0.0),
                         ("takeup.travel_m", 1000.0),
-                        ("drives.0.motor_curve", [[0.0, 10.0], [1.2, 0.0]])):
+                        ("drives.0", hand_drive(control="dol",
+                                                motor_curve=[[0.0, 10.0], [1.2, 0.0]]))):
         parse_conveyor(_with(path, value))
 
 
