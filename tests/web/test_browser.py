@@ -351,12 +351,14 @@ def test_the_runs_table_pages_through_a_large_study(browser, web):
         assert not driver.find_element(By.ID, "runs-next").get_attribute("disabled")
         assert driver.find_element(By.ID, "runs-prev").get_attribute("disabled")
         asked = _runs_requests(driver)
-        assert len(asked) == 1, asked
-        query = asked[0]["query"]
-        assert query["limit"] == ["100"] and query["offset"] == ["0"]
-        columns = query["columns"][0].split(",")
+        # one page of the table, and the count of runs with warnings (one row asked)
+        assert sorted(q["query"]["limit"][0] for q in asked) == ["1", "100"], asked
+        page = next(q for q in asked if q["query"]["limit"] == ["100"])
+        assert page["query"]["offset"] == ["0"]
+        columns = page["query"]["columns"][0].split(",")
         assert "run_id" in columns and "power_kw" in columns and len(columns) < 25
-        assert asked[0]["bytes"] < 100_000, asked  # the whole table is ~1 MB of JSON
+        assert page["bytes"] < 100_000, asked  # the whole table is ~1 MB of JSON
+        assert all("columns" in q["query"] for q in asked)
 
         driver.find_element(By.ID, "runs-next").click()
         _wait(driver, lambda d: page_text(d) == "rows 101–200 of 244", what="second page")
@@ -400,6 +402,70 @@ def test_the_runs_table_pages_through_a_large_study(browser, web):
         assert all(int(q["query"]["limit"][0]) <= 500 for q in asked), asked
         assert all("columns" in q["query"] for q in asked)
         assert sum(q["bytes"] for q in asked) < 500_000
+
+
+def test_warnings_are_counted_and_a_message_keeps_its_parentheses(browser, web):
+    """A run whose message has "; " inside parentheses: the run page lists its clauses as
+    the report does (a parenthesis never cut over two lines); the study page says how many
+    runs carry warnings beside "0 failed", and no auto-size sentence when there are none."""
+    import pyarrow as pa
+    import pyarrow.compute as pc
+    import pyarrow.parquet as pq
+
+    message = ("take-up carriage reached the running end at t = 9.1 s: its travel is 4.5 m "
+               "(takeup.travel_m; from -0.269 to 4.23 m about the rest position): a longer "
+               "takeup.travel_m would avoid it; a larger motor (more than 3 kW: its force was "
+               "held at its torque limit; the drive holds back the belt hardest at low speed) "
+               "would avoid it")
+    holder = {}
+    fixed = web.tiny_conveyor("given-sizes")
+    fixed["takeup"] = {"type": "gravity", "position": "tail", "mass_kg": 2600}
+    fixed["drives"] = [dict(fixed["drives"][0], rated_power_kw=30)]
+
+    def prepare(data: Path) -> None:
+        sid = web.finished_study(data, web.tiny_study(name="clauses-e2e", conveyor=fixed))
+        part = data / "studies" / sid / "runs" / "part-0.parquet"
+        table = pq.read_table(part)
+        first = pc.equal(pa.array(range(table.num_rows)), 0)
+        for column, value in (("message", message), ("status", "warning")):
+            i = table.schema.get_field_index(column)
+            table = table.set_column(i, column, pc.if_else(first, value, table[column]))
+        pq.write_table(table, part)
+        holder["id"], holder["run"] = sid, table["run_id"][0].as_py()
+
+    with _serve(prepare, BELTSTUDY_WARM_START="false") as base:
+        sid, run = holder["id"], holder["run"]
+        driver = browser
+        driver.get(f"{base}/ui/studies/{sid}")
+        _wait(driver, lambda d: "with warnings" in d.execute_script(
+            "return document.getElementById('counts').textContent"), what="warnings counted")
+        counts = driver.execute_script("return document.getElementById('counts').textContent")
+        statuses = [r["status"] for r in httpx.get(f"{base}/studies/{sid}/runs").json()["runs"]]
+        warned = statuses.count("warning")
+        assert warned >= 1
+        assert counts == f"4 of 4 done, 0 failed, {warned} with warnings"
+        design = driver.execute_script("const p = document.getElementById('design-case');"
+                                       "return [p.hidden, p.textContent]")
+        designs = driver.execute_script(
+            "return document.querySelector('#designs tbody').textContent")
+        assert "no auto sizes" in designs  # the take-up and the drive's rating are given
+        assert design == [True, ""], design  # no sentence about how auto sizes were found
+
+        driver.get(f"{base}/ui/studies/{sid}/runs/{run}")
+        _wait(driver, lambda d: d.execute_script(
+            "return document.querySelectorAll('#run-warnings li').length") > 0,
+            what="warnings listed")
+        items = driver.execute_script(
+            "return Array.from(document.querySelectorAll('#run-warnings li'))"
+            ".map(li => li.textContent)")
+        assert items == [
+            "take-up carriage reached the running end at t = 9.1 s: its travel is 4.5 m "
+            "(takeup.travel_m; from -0.269 to 4.23 m about the rest position): a longer "
+            "takeup.travel_m would avoid it",
+            "a larger motor (more than 3 kW: its force was held at its torque limit; the drive "
+            "holds back the belt hardest at low speed) would avoid it"], items
+        for item in items:
+            assert item.count("(") == item.count(")"), item
 
 
 def test_token_login_field_unlocks_data_and_plots(browser, web):

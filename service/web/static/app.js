@@ -119,6 +119,26 @@ function messageCell(text) {
     el("summary", { text: s.slice(0, cut) + " …" }), s.slice(cut)])]);
 }
 
+// The clauses of a run's message, joined by "; " (service/web/verdicts.py clauses): a "; "
+// inside parentheses belongs to its clause, so "(takeup.travel_m; from -0.3 to 4.2 m ...)"
+// stays on one line.
+function clauses(message) {
+  const s = message == null ? "" : String(message);
+  const parts = [];
+  let depth = 0, start = 0;
+  for (let k = 0; k < s.length; k++) {
+    const ch = s[k];
+    if (ch === "(") depth += 1;
+    else if (ch === ")") depth -= 1;
+    else if (depth <= 0 && ch === ";" && s[k + 1] === " ") {
+      parts.push(s.slice(start, k));
+      start = k + 2;
+    }
+  }
+  parts.push(s.slice(start));
+  return parts.filter((c) => c.trim());
+}
+
 function setProgress(bar, st) {
   bar.max = Math.max(st.total || 0, 1);
   bar.value = st.done || 0;
@@ -323,6 +343,7 @@ function studyPage(id) {
   let total = 0;
   let done = 0;
   let asked = 0;  // the number of the last runs request: older answers are dropped
+  let warned = null;  // finished runs with status warning
   let plotsShown = false;
   let lastDone = -1;
 
@@ -449,12 +470,15 @@ function studyPage(id) {
     merged.textContent = info.merged ? info.merged + " of " + info.grid_points +
       " grid points merged into identical runs (an axis that does not change them)" : "";
     merged.hidden = !info.merged;
-    document.getElementById("design-case").textContent = info.design
+    const rows = designRows(info.designs || []);
+    // how the auto sizes were found: said only when there are any (the table says when not)
+    const designCase = document.getElementById("design-case");
+    designCase.textContent = !rows.length ? "" : info.design
       ? "Auto sizes computed at the design case " + Object.entries(info.design)
         .map(([k, v]) => k + " " + v).join(", ") + " and held for every run of a conveyor design."
       : "Auto sizes: the largest requirement over the study's models and temperatures at full " +
         "load, computed once per conveyor design and held for every run of it.";
-    const rows = designRows(info.designs || []);
+    designCase.hidden = !rows.length;
     document.querySelector("#designs tbody").replaceChildren(...(rows.length ? rows.map((r) =>
       el("tr", {}, r.map((c) => el("td", { text: c })))) : [el("tr", {}, [el("td", {
         text: "no auto sizes: every size is given in the conveyor file", colSpan: 5 })])]));
@@ -471,14 +495,25 @@ function studyPage(id) {
       state.className = "state state-" + st.state;
       setProgress(document.getElementById("progress"), st);
       document.getElementById("counts").textContent =
-        st.done + " of " + st.total + " done, " + st.failed + " failed";
+        st.done + " of " + st.total + " done, " + st.failed + " failed" +
+        (warned == null ? "" : ", " + warned + " with warnings");
       done = st.done;
       document.getElementById("elapsed").textContent = fmtSeconds(st.elapsed_s);
       document.getElementById("eta").textContent = active ? fmtSeconds(st.eta_s) : "–";
       const msg = document.getElementById("study-message");
       msg.textContent = st.message || "";
       msg.hidden = !st.message;
-      if (st.done !== lastDone) { lastDone = st.done; await loadRuns(); }
+      if (st.done !== lastDone) {
+        lastDone = st.done;
+        await loadRuns();
+        // "0 failed" alone reads as all well: say how many finished runs carry warnings
+        // (a belt that ran away or did not stop is a warning, not a failure)
+        warned = (await api("/studies/" + encodeURIComponent(id) +
+          "/runs?status=warning&limit=1&columns=run_id")).total;
+        document.getElementById("counts").textContent =
+          st.done + " of " + st.total + " done, " + st.failed + " failed, " + warned +
+          " with warnings";
+      }
       if (!active && !plotsShown) { plotsShown = true; loadImages(); }
       showError("");
     } catch (e) { showError(e.message); }
@@ -525,7 +560,7 @@ function runPage(studyId, runId) {
       const status = document.getElementById("run-status");
       status.textContent = s.status;
       status.className = "state status-" + s.status;
-      const warnings = (s.message || "").split(/;\s*/).filter((m) => m);
+      const warnings = clauses(s.message);
       document.getElementById("run-warnings").replaceChildren(
         ...warnings.map((m) => el("li", { text: m })));
       const rows = Object.entries(s).filter(([k, v]) => !HIDDEN_FIELDS.includes(k) &&
