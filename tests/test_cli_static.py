@@ -53,6 +53,10 @@ def test_static_table_output():
     (["--model", "cemx"], "did you mean 'cema'"),
     (["--param", "f_cary=0.01"], "did you mean 'f_carry'"),
     (["--param", "f_carry"], "NAME=VALUE"),
+    # a parameter of a model the run does not use, or one given twice, was dropped silently
+    (["--param", "cema.f_carry=0.05"], "sets a parameter of model cema, but this run uses din"),
+    (["--param", "f_carry=0.05", "--param", "f_carry=0.01"],
+     "f_carry is already set by --param 'f_carry=0.05'; give each parameter once"),
     (["--load", "heavy"], "--load"),
     (["--profile", "x.txt"], ".csv or .parquet"),
 ])
@@ -61,6 +65,33 @@ def test_static_bad_args_one_line(args, needle):
     assert p.returncode == 2
     assert needle in p.stderr
     assert "Traceback" not in p.stderr and len(p.stderr.strip().splitlines()) == 1
+
+
+def test_a_parameter_under_the_runs_model_by_alias_or_case_is_read():
+    # iso5048.f_carry with --model iso5048 (din) and DIN.f_carry were dropped: Te unchanged
+    te = {}
+    for args in (["--model", "din"], ["--model", "din", "--param", "f_carry=0.03"],
+                 ["--model", "iso5048", "--param", "iso5048.f_carry=0.03"],
+                 ["--model", "din", "--param", "DIN.f_carry=0.03"]):
+        p = run("static", str(CONVEYORS / "fabric-1km.yaml"), *args, "--json")
+        te[" ".join(args)] = json.loads(p.stdout)["te_kn"]
+    base, *given = te.values()
+    assert given[0] > base * 1.1
+    assert given == pytest.approx([given[0]] * 3, rel=1e-12)
+
+
+def test_model_params_fold_aliases_and_refuse_a_repeat():
+    from beltstudy.engine import InputError
+    from beltstudy.service.cli.common import parse_model_params, parse_params
+
+    assert parse_model_params(["ISO5048.f_carry=0.01", "cema.ky=0.02"]) == {
+        "din": {"f_carry": 0.01}, "cema": {"ky": 0.02}}
+    with pytest.raises(InputError, match=r"din.f_carry is already set by --param "
+                                         r"'din.f_carry=0.01'"):
+        parse_model_params(["din.f_carry=0.01", "iso5048.f_carry=0.02"])
+    assert parse_params(["non-lin.mu_b=0.002"], "NONLIN") == {"mu_b": 0.002}
+    with pytest.raises(InputError, match=r"^--param 'xx.f=1': unknown model 'xx'"):
+        parse_params(["xx.f=1"], "din")
 
 
 def test_static_bad_file_one_line(tmp_path):

@@ -10,6 +10,7 @@ from pathlib import Path
 from typing import Any
 
 from beltstudy.engine import LOAD_MAX, InputError, get_model, parse_scenario, section_loads
+from beltstudy.engine.friction import canonical_name
 from beltstudy.service.errors import file_reason, shown_path
 
 LOAD_HELP = ("full, empty, inclines, declines, a fraction of the design load up to 1.3 (a "
@@ -113,8 +114,11 @@ def design_lines(s: dict, indent: str = "  ") -> list[str]:
 
 def parse_params(items: list[str] | None, model: str | None = None) -> dict[str, Any]:
     """``NAME=VALUE`` pairs into a dict. With ``model`` given, names may be prefixed
-    ``model.NAME``; pairs for other models are dropped. Values are numbers."""
+    ``MODEL.NAME`` with that model's name in any case or an alias of it (``iso5048.f_carry``
+    for din); a prefix naming another model is refused, as is a name given twice (neither
+    would be read). Values are numbers."""
     out: dict[str, Any] = {}
+    given: dict[str, str] = {}
     for item in items or []:
         if "=" not in item:
             raise InputError(f"--param {item!r}: expected NAME=VALUE, e.g. f_carry=0.010")
@@ -122,8 +126,18 @@ def parse_params(items: list[str] | None, model: str | None = None) -> dict[str,
         name = name.strip()
         if "." in name:
             prefix, _, name = name.partition(".")
-            if model is not None and prefix != model:
-                continue
+            if model is not None:
+                named = model_option(prefix.strip(), f"--param {item!r}").name
+                runs = canonical_name(model)
+                if named != runs:
+                    raise InputError(
+                        f"--param {item!r}: sets a parameter of model {named}, but this run "
+                        f"uses {runs} (--model) and would not read it: give {name}=VALUE for "
+                        f"{runs}, or --model {named}")
+        if name in given:
+            raise InputError(f"--param {item!r}: {name} is already set by --param "
+                             f"{given[name]!r}; give each parameter once")
+        given[name] = item
         try:
             out[name] = float(value)
         except ValueError:
@@ -132,15 +146,23 @@ def parse_params(items: list[str] | None, model: str | None = None) -> dict[str,
 
 
 def parse_model_params(items: list[str] | None) -> dict[str, dict[str, float]]:
-    """``MODEL.NAME=VALUE`` pairs into ``{model: {name: value}}``."""
+    """``MODEL.NAME=VALUE`` pairs into ``{model: {name: value}}``, the model by its
+    registry name (aliases and case folded: ``ISO5048.f_carry`` is din's); a parameter given
+    twice is refused (the later would silently win)."""
     out: dict[str, dict[str, float]] = {}
+    given: dict[tuple[str, str], str] = {}
     for item in items or []:
         if "=" not in item or "." not in item.partition("=")[0]:
             raise InputError(f"--param {item!r}: expected MODEL.NAME=VALUE, e.g. din.f_carry=0.010")
         key, _, value = item.partition("=")
         model, _, name = key.partition(".")
+        model, name = canonical_name(model.strip()), name.strip()
+        if (model, name) in given:
+            raise InputError(f"--param {item!r}: {model}.{name} is already set by --param "
+                             f"{given[model, name]!r}; give each parameter once")
+        given[model, name] = item
         try:
-            out.setdefault(model.strip(), {})[name.strip()] = float(value)
+            out.setdefault(model, {})[name] = float(value)
         except ValueError:
             raise InputError(f"--param {item!r}: the value must be a number") from None
     return out
