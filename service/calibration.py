@@ -21,6 +21,7 @@ from beltstudy.engine import (
     InputError,
     calibrate,
     catalog,
+    get_model,
     measurements_from_rows,
     parse_conveyor,
 )
@@ -30,7 +31,7 @@ from beltstudy.service.door.study import ConveyorRef, ModelName
 from beltstudy.service.door.studyfile import conveyor_from_path
 from beltstudy.service.errors import Invalid
 
-__all__ = ["CalibrationIn", "read_calibration", "run_calibration", "split_fit", "MAX_ROWS",
+__all__ = ["CalibrationIn", "read_calibration", "run_calibration", "check_params", "split_fit", "MAX_ROWS",
            "MAX_FIT"]
 
 #: Measurements and fitted names a request may hold (the fit runs in the request: each
@@ -105,11 +106,28 @@ def split_fit(items: list[str]) -> tuple[list[str], dict[str, float]]:
     return names, starts
 
 
+def check_params(body: CalibrationIn, field: str = "params.") -> None:
+    """The held parameters as the model takes them; a problem names the request's own field
+    (``params.f_return``; the CLI passes ``--param `` for its option), not the study's
+    ``models.<model>.`` path the engine's check names."""
+    fm = get_model(body.model)
+    try:
+        fm.params(body.params)
+    except InputError as exc:
+        message = str(exc)
+        engine_field = f"models.{fm.name}."
+        if message.startswith(engine_field):
+            message = field + message[len(engine_field):]
+        raise Invalid(message) from None
+
+
 def run_calibration(body: CalibrationIn, *, base_dir: Path | None = None,
-                    studies_dir: Path | None = None) -> dict:
+                    studies_dir: Path | None = None, params_field: str = "params.") -> dict:
     """Fit the request; the answer as SPEC 7.3 states it (``fit.<name>.value``, ``.se``,
-    ``residuals``, ``not_identifiable``, ``models``)."""
+    ``residuals``, ``not_identifiable``, ``models``). A held parameter's problem names
+    ``params_field`` + its name."""
     names, starts = split_fit(body.fit)
+    check_params(body, params_field)
     try:
         if isinstance(body.conveyor, Conveyor):
             conv = body.conveyor

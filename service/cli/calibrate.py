@@ -135,7 +135,7 @@ def run(args: argparse.Namespace) -> int:
         raise InputError(_at_line(format_validation_error(exc, CalibrationIn),
                                   args.measured, lines)) from None
     try:
-        out = run_calibration(body)
+        out = run_calibration(body, params_field="--param ")
     except Invalid as exc:
         if "measured" not in exc.message.split(":")[0]:
             raise

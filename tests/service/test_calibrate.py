@@ -86,6 +86,26 @@ def test_post_calibrations_names_the_bad_field(client):
     assert r.status_code == 422 and "studies directory" in r.json()["message"]
 
 
+def test_a_held_parameter_names_the_requests_own_field(client, tmp_path):
+    """A bad held parameter was named models.din.<name>, a path of a study, not of this
+    request: the body's field is params.<name>, the command line's --param <name>."""
+    body = {"conveyor": "conveyors/overland-4km.yaml", "measured": _rows(), "model": "iso5048",
+            "fit": ["f_carry"]}
+    r = client.post("/calibrations", json={**body, "params": {"f_retrun": 0.02}})
+    assert r.status_code == 422
+    assert r.json()["message"].startswith("params.f_retrun: unknown parameter of model 'din'")
+    r = client.post("/calibrations", json={**body, "params": {"f_return": -1}})
+    assert r.status_code == 422
+    assert r.json()["message"].startswith("params.f_return: a friction factor between 0 and 1")
+    csv = tmp_path / "plant.csv"
+    csv.write_text("load,temperature_c,power_kw\nfull,5,900\n0.5,5,500\n")
+    p = subprocess.run([*EXE, "calibrate", str(CONVEYORS / "overland-4km.yaml"), "--measured",
+                        str(csv), "--model", "din", "--fit", "f_carry", "--param",
+                        "f_return=-1"], capture_output=True, text=True, timeout=120)
+    assert p.returncode == 2 and "Traceback" not in p.stderr
+    assert p.stderr.startswith("error: --param f_return: a friction factor between 0 and 1")
+
+
 # ------------------------------------------------------------------ the measurement CSV
 HEADER = "load,temperature_c,power_kw"
 
