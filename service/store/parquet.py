@@ -105,6 +105,9 @@ class Store:
         self.data_dir = Path(data_dir)
         self.root = self.data_dir / "studies"
         self._runs_cache: dict[str, tuple[tuple, pa.Table]] = {}
+        #: columns of a study's runs table read on their own (a page, a figure), kept while
+        #: its parts do not change: {study: (parts key, {column: (field, values)})}
+        self._columns_cache: dict[str, tuple[tuple, dict[str, tuple]]] = {}
         self._runs_reading: dict[str, threading.Lock] = {}
         self._runs_lock = threading.Lock()
 
@@ -304,14 +307,29 @@ class Store:
         return tuple((p.name, st.st_mtime_ns, st.st_size) for p in parts for st in [p.stat()])
 
     def _read_runs_columns(self, study_id: str, columns: list[str]) -> pd.DataFrame:
+        """``columns`` of the runs table: from the whole table kept, else from the columns
+        kept for the same parts, reading from the parts only those not kept yet."""
         parts = self.parts(study_id, "runs")
-        if parts:
-            key = self._parts_key(parts)
+        if not parts:
+            return self._read_table(study_id, "runs", columns)
+        key = self._parts_key(parts)
+        with self._runs_lock:
+            hit = self._runs_cache.get(study_id)
+            kept = self._columns_cache.get(study_id)
+        if hit is not None and hit[0] == key:
+            return hit[1].select(columns).to_pandas()
+        have = dict(kept[1]) if kept is not None and kept[0] == key else {}
+        missing = [c for c in columns if c not in have]
+        if missing:
+            table = pq.ParquetDataset(parts).read(columns=missing)
+            have.update({c: (table.schema.field(c), table.column(c)) for c in missing})
             with self._runs_lock:
-                hit = self._runs_cache.get(study_id)
-            if hit is not None and hit[0] == key:
-                return hit[1].select(columns).to_pandas()
-        return self._read_table(study_id, "runs", columns)
+                self._columns_cache.pop(study_id, None)
+                self._columns_cache[study_id] = (key, have)
+                while len(self._columns_cache) > RUNS_CACHE_STUDIES:
+                    self._columns_cache.pop(next(iter(self._columns_cache)))
+        schema = pa.schema([have[c][0] for c in columns])
+        return pa.Table.from_arrays([have[c][1] for c in columns], schema=schema).to_pandas()
 
     def _read_runs(self, study_id: str) -> pd.DataFrame:
         parts = self.parts(study_id, "runs")

@@ -28,6 +28,8 @@ __all__ = [
     "figure_of",
     "run_figure",
     "check_name",
+    "figure_columns",
+    "FIGURE_COLUMNS",
 ]
 
 #: Output formats and their media types.
@@ -82,6 +84,28 @@ def _pick_models(runs: pd.DataFrame, baseline: str | None, candidate: str | None
     return baseline, candidate
 
 
+#: The result columns each figure of the study page reads besides the run id, the status,
+#: the friction model, the temperature and the study's axes: the figure is drawn from those
+#: columns only (a few of the 337 of a runs row), not from every column of every run.
+FIGURE_COLUMNS: dict[str, tuple[str, ...]] = {
+    "power-temperature": ("power_kw",),
+    "peak-dynamic-tension": ("t_max_stop_kn", "t_min_stop_kn", "t_max_dyn_kn", "t_min_dyn_kn",
+                             "stop_time_s", "stop_time_target_s", "stop_window_s"),
+    "ratio": tuple(query.DEFAULT_METRICS),
+}
+
+
+def figure_columns(doc: dict, name: str, stored: list[str]) -> list[str] | None:
+    """The columns of the runs table figure ``name`` of study ``doc`` needs, of those
+    ``stored``; None: every column (a figure not in :data:`FIGURE_COLUMNS`)."""
+    if name not in FIGURE_COLUMNS:
+        return None
+    axes = [a["column"] for a in (doc.get("study") or {}).get("axes", [])]
+    wanted = ["run_id", "status", "friction_model", "temperature_c", *axes,
+              *FIGURE_COLUMNS[name]]
+    return [c for c in dict.fromkeys(wanted) if c in stored]
+
+
 def study_figure(
     service: StudyService,
     study_id: str,
@@ -89,7 +113,8 @@ def study_figure(
     baseline: str | None = None,
     candidate: str | None = None,
 ):
-    """A callable drawing plot ``name`` of a study (checks the id, then the name)."""
+    """A callable drawing plot ``name`` of a study (checks the id, then the name) from the
+    columns of the runs table it needs (:func:`figure_columns`)."""
     doc = service.store.read(study_id)
     check_name(name, STUDY_PLOTS)
     models = study_models(doc)
@@ -102,8 +127,9 @@ def study_figure(
         query.model_pair(baseline, candidate)  # the same model twice: a 422 as /compare's
     baseline = query.model_name(baseline, "baseline") if baseline is not None else None
     candidate = query.model_name(candidate, "candidate") if candidate is not None else None
-    return figure_of(doc, service.store.read_runs(study_id), name, baseline, candidate,
-                     study_id)
+    columns = figure_columns(doc, name, service.store.runs_columns(study_id))
+    return figure_of(doc, service.store.read_runs(study_id, columns=columns), name, baseline,
+                     candidate, study_id)
 
 
 def figure_of(doc: dict, runs: pd.DataFrame, name: str, baseline: str | None = None,

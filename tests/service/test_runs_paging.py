@@ -108,17 +108,40 @@ def test_columns_and_sort_errors_name_the_parameter_and_the_fix(done):
 
 
 def test_a_few_columns_come_from_the_kept_table_and_match_the_parts(data_dir, finished_study,
-                                                                      make_study):
+                                                                      make_study, monkeypatch):
+    import pyarrow.parquet as pq
+
+    from beltstudy.service.store import parquet
     from beltstudy.service.store.parquet import Store
 
     sid = finished_study(data_dir, make_study())
     store = Store(data_dir)
+    reads = []
+    dataset = pq.ParquetDataset
+
+    class Counted(dataset):
+        def read(self, columns=None, **kw):
+            reads.append(columns)
+            return super().read(columns=columns, **kw)
+
+    monkeypatch.setattr(parquet.pq, "ParquetDataset", Counted)
     cols = ["run_id", "power_kw", "message"]
-    cold = store.read_runs(sid, columns=cols)  # nothing kept yet: read from the parts
-    assert sid not in store._runs_cache
+    cold = store.read_runs(sid, columns=cols)  # nothing kept yet: these three from the parts
+    assert reads == [cols] and sid not in store._runs_cache
+    again = store.read_runs(sid, columns=["message", "run_id", "te_kn"])
+    assert reads == [cols, ["te_kn"]]  # only the column not kept yet is read
+    assert list(again.columns) == ["message", "run_id", "te_kn"]
     full = store.read_runs(sid)
+    pd.testing.assert_frame_equal(cold, full[cols])
+    pd.testing.assert_frame_equal(again, full[["message", "run_id", "te_kn"]])
     assert sid in store._runs_cache
-    warm = store.read_runs(sid, columns=cols)
-    pd.testing.assert_frame_equal(cold, warm)
+    reads.clear()
+    warm = store.read_runs(sid, columns=cols)  # from the whole table kept
+    assert reads == []
     pd.testing.assert_frame_equal(warm, full[cols])
     assert store.runs_columns(sid) == list(full.columns)
+    # a new part: nothing kept is used, the new rows are there
+    table = pq.read_table(store.parts(sid, "runs")[0])
+    store.write_part(sid, "runs", "zz-more", table.slice(0, 2))
+    more = store.read_runs(sid, columns=cols)
+    assert len(more) == len(full) + 2 and reads == [cols]

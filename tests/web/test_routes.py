@@ -205,3 +205,31 @@ def test_report_command_writes_the_page_from_the_local_store(web, tmp_path, monk
     assert out.read_text().startswith("<!doctype html>") and "cli-report" in out.read_text()
     assert main(["report", sid, "-o", str(tmp_path / "report.pdf")]) == 2
     assert "use a .html file name" in capsys.readouterr().err
+
+
+@pytest.mark.parametrize("name", list(figures.FIGURE_COLUMNS))
+def test_study_page_figures_read_only_the_columns_they_draw(web, tmp_path, name):
+    """The study page's figures are drawn from a few columns of the runs table, not every
+    column of every run, and come out the same as from the whole table."""
+    from beltstudy.service.settings import Settings
+    from beltstudy.service.studies import StudyService
+
+    body = web.tiny_study(grid={"friction_model": ["din", "cema"],
+                                "temperature_c": [-20, 20], "load": ["full", 0.5]})
+    sid = web.finished_study(tmp_path, body)
+    service = StudyService(Settings(data_dir=tmp_path, warm_start=False), read_only=True)
+    asked = []
+    read = service.store.read_runs
+
+    def spy(study_id, columns=None):
+        asked.append(columns)
+        return read(study_id, columns=columns)
+
+    service.store.read_runs = spy
+    png = figures.render(figures.study_figure(service, sid, name))
+    assert len(asked) == 1 and asked[0] is not None, asked
+    stored = service.store.runs_columns(sid)
+    assert len(asked[0]) <= 12 < len(stored), asked[0]
+    assert {"run_id", "status", "friction_model", "temperature_c", "load"} <= set(asked[0])
+    whole = figures.figure_of(service.store.read(sid), read(sid), name, study_id=sid)
+    assert figures.render(whole) == png
