@@ -322,9 +322,12 @@ def _loads_json(text: str, what: str) -> Any:
             object_pairs_hook=_json_object,
         )
     except json.JSONDecodeError as exc:
+        # a request body may be YAML under its content type; a .json file is JSON by its name
+        hint = (" (send YAML with Content-Type: application/yaml)" if what == "body" else
+                " (a .json file is read as JSON: correct it there, or save it as YAML with "
+                "a .yaml name)")
         raise Invalid(
-            f"{what}: not valid JSON at line {exc.lineno}, column {exc.colno}: {exc.msg} "
-            "(send YAML with Content-Type: application/yaml)"
+            f"{what}: not valid JSON at line {exc.lineno}, column {exc.colno}: {exc.msg}{hint}"
         ) from None
     except RecursionError:
         raise Invalid(f"{what}: nested deeper than {MAX_DEPTH} levels") from None

@@ -84,6 +84,21 @@ def test_json_problems_name_the_place(text, message):
         parse.loads(text, yaml_text=False)
 
 
+def test_a_json_file_is_not_told_to_send_a_content_type(tmp_path):
+    """A request body may be YAML under its content type; a .json file is JSON by its name:
+    its error said to send YAML with Content-Type, which no file can."""
+    path = tmp_path / "conveyor.json"
+    path.write_text('{"name": "x",}')
+    with pytest.raises(Invalid) as err:
+        parse.load_mapping(path)
+    assert err.value.message == (
+        f"{path}: not valid JSON at line 1, column 14: Expecting property name enclosed in "
+        "double quotes (a .json file is read as JSON: correct it there, or save it as YAML "
+        "with a .yaml name)")
+    with pytest.raises(Invalid, match=r"\(send YAML with Content-Type: application/yaml\)$"):
+        parse.parse_body(b'{"name": "x",}', "application/json")
+
+
 def test_the_value_budget_also_holds_for_plain_lists():
     with pytest.raises(TooLarge, match="more than 200000 values"):
         parse.loads("a: [" + ",".join(["1"] * 200_001) + "]", yaml_text=True)
