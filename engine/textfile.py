@@ -59,6 +59,10 @@ def read_text(path: str | Path, what: str | None = None) -> str:
     p = Path(path)
     what = what or str(p)
     try:
+        if p.is_dir():
+            raise InputError(f"{what}: is a folder, not a file; give a file in it")
+        if p.exists() and not p.is_file():
+            raise InputError(f"{what}: not a regular file (a device or a pipe); give a file")
         if not p.is_file():
             raise InputError(f"{what}: file not found")
         data = p.read_bytes()

@@ -56,7 +56,10 @@ def read_measured(path: str, lines: list[int] | None = None) -> list[dict]:
     ``lines``: filled with each row's line in the file (blank lines are skipped)."""
     p = Path(path)
     if not p.is_file():
-        raise InputError(f"{path}: file not found", field="--measured")
+        try:
+            read_text(p, path)  # says why: a folder, not a regular file, not found
+        except InputError as exc:
+            raise InputError(str(exc), field="--measured") from None
     size = p.stat().st_size
     if size > MEASURED_MAX_BYTES:
         raise InputError(

@@ -3,6 +3,8 @@ scenario's load patterns per profile section."""
 
 from __future__ import annotations
 
+from pathlib import Path
+
 import pytest
 import yaml
 
@@ -292,6 +294,18 @@ def test_values_at_the_bounds_are_taken():
                         ("drives.0", hand_drive(control="dol",
                                                 motor_curve=[[0.0, 10.0], [1.2, 0.0]]))):
         parse_conveyor(_with(path, value))
+
+
+def test_a_folder_or_a_device_is_named_for_what_it_is(tmp_path):
+    """A folder or /dev/null given as the conveyor file was 'file not found', though it is
+    there: the message says what it is."""
+    with pytest.raises(InputError, match=r": is a folder, not a file; give a file in it$"):
+        load_conveyor(tmp_path)
+    if Path("/dev/null").exists():
+        with pytest.raises(InputError, match=r"^/dev/null: not a regular file"):
+            load_conveyor("/dev/null")
+    with pytest.raises(InputError, match=r"missing.yaml: file not found$"):
+        load_conveyor(tmp_path / "missing.yaml")
 
 
 def test_a_file_name_the_system_refuses_is_an_input_error(tmp_path):

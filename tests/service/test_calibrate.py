@@ -107,6 +107,16 @@ def test_a_held_parameter_names_the_requests_own_field(client, tmp_path):
 
 
 # ------------------------------------------------------------------ the measurement CSV
+def test_a_folder_given_as_the_measurements_is_named_a_folder(tmp_path):
+    from beltstudy.engine.errors import InputError
+    from beltstudy.service.cli.calibrate import read_measured
+
+    with pytest.raises(InputError, match=r"^--measured: .*: is a folder, not a file; give a "
+                                         r"file in it$"):
+        read_measured(str(tmp_path), [])
+
+
+
 HEADER = "load,temperature_c,power_kw"
 
 
