@@ -64,7 +64,8 @@ class RunsPage(BaseModel):
     offset: int
     limit: int | None
     runs: list[dict[str, Any]] = Field(
-        ..., description="SPEC section 4 rows; te_components_kn as an object"
+        ..., description="SPEC section 4 rows; te_components_kn as an object (with columns=: "
+        "exactly the columns asked, te_<part>_kn as stored)"
     )
 
 

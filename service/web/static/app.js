@@ -288,9 +288,11 @@ function indexPage() {
 }
 
 // ---------------------------------------------------------------------------- study page
+// The steady running slip margin alone hides a drive that slips at breakaway or in the
+// transient: the start's margin and the transient's lowest sit beside it.
 const RESULT_COLUMNS = ["status", "power_kw", "te_kn", "t_max_kn", "safety_factor",
-  "slip_margin", "sag_max_pct", "t_max_dyn_kn", "dyn_factor", "stop_time_s",
-  "takeup_mass_kg", "fill_pct", "message"];
+  "slip_margin", "slip_margin_start", "sag_max_pct", "t_max_dyn_kn", "dyn_factor",
+  "slip_margin_min_dyn", "stop_time_s", "takeup_mass_kg", "fill_pct", "message"];
 
 // The design basis as table rows: one per auto size of each conveyor design.
 // a size's constraint with its case, as the runs' *_governed_by columns state it (SPEC 7.2)
