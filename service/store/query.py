@@ -131,6 +131,11 @@ def column_list(text: str, columns: list[str], field: str = "columns") -> list[s
                           "by commas (a,b,c)")
         if name in seen:
             raise Invalid(f"{field}: '{name}' is named twice; give each column once")
+        if name == "te_components_kn" and name not in columns:
+            parts = [c for c in columns if c in TE_PART_COLUMNS]
+            raise Invalid(f"{field}: te_components_kn is the JSON object the te_<part>_kn "
+                          f"columns are folded into; name those ({', '.join(parts)}) or "
+                          "leave columns= out for whole rows")
         if name not in columns:
             raise no_column(field, name, columns)
         seen.add(name)

@@ -94,6 +94,9 @@ def test_columns_and_sort_errors_name_the_parameter_and_the_fix(done):
         ("columns", "run_id,,power_kw"): "columns: an empty name in 'run_id,,power_kw'; give "
                                          "column names separated by commas",
         ("columns", "run_id,run_id"): "columns: 'run_id' is named twice; give each column once",
+        ("columns", "te_components_kn"): "columns: te_components_kn is the JSON object the "
+                                         "te_<part>_kn columns are folded into; name those "
+                                         "(te_main_carry_kn,",
         ("sort", "-nope"): "sort: this study has no column 'nope'; columns: study_id",
         ("sort", ""): "query.sort: empty; give a value",
     }
