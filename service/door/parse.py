@@ -203,7 +203,8 @@ def _check_events(loader, what: str) -> None:
         if frame.values > MAX_VALUES or frame.text > MAX_TEXT:
             raise TooLarge(
                 f"{frame.path or what}: more than {MAX_VALUES} values or {MAX_TEXT} "
-                "characters (YAML aliases expanded); send a smaller study"
+                "characters (YAML aliases expanded); "
+                + ("send a smaller body" if what == "body" else "give a smaller file")
             )
 
     def line(event) -> int:

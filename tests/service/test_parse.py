@@ -99,6 +99,18 @@ def test_a_json_file_is_not_told_to_send_a_content_type(tmp_path):
         parse.parse_body(b'{"name": "x",}', "application/json")
 
 
+def test_an_oversize_file_is_not_told_to_send_a_smaller_study(tmp_path):
+    """A conveyor file of 100 000 profile sections was told to 'send a smaller study'."""
+    path = tmp_path / "conveyor.yaml"
+    path.write_text("name: x\nprofile:\n" + "  - {length_m: 1, lift_m: 0}\n" * 70_000)
+    with pytest.raises(TooLarge, match=r": profile: more than 200000 values or 4000000 "
+                                       r"characters \(YAML aliases expanded\); give a smaller "
+                                       r"file$"):
+        parse.load_mapping(path)
+    with pytest.raises(TooLarge, match=r"; send a smaller body$"):
+        parse.parse_body(b"a: [" + b",".join([b"1"] * 200_001) + b"]", "application/yaml")
+
+
 def test_the_value_budget_also_holds_for_plain_lists():
     with pytest.raises(TooLarge, match="more than 200000 values"):
         parse.loads("a: [" + ",".join(["1"] * 200_001) + "]", yaml_text=True)
