@@ -100,7 +100,8 @@ NOT_IN_SCHEMA = (
     "every auto size of a conveyor design is finite (no take-up meets a sag limit near zero)",
     "accuracy (error bars of a sample) only with dynamics",
     "a steady study (dynamics: false) samples no scenario field but load, temperature_c and "
-    "elements (the others its runs do not read)",
+    "elements (the others its runs do not read), nor gives one a grid or zip axis of two or "
+    "more values",
     "a sample axis is a numeric axis path, set by no grid or zip axis, and its drawn values "
     "stay within the field's bounds",
     "a sample of method sobol has n = N (D + 2) points, N a power of two, D its axes",

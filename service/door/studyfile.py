@@ -282,6 +282,23 @@ def _axes(study: StudyIn, data: dict, bases: tuple[dict, dict], models: dict,
     return axes
 
 
+def _check_read(study: StudyIn, axes: list[Axis]) -> None:
+    """A steady study's runs read no scenario field but :data:`STEADY_FIELDS`: a grid or zip
+    axis of two or more values of another (the stop time, the start) would make every point
+    one run, its column null, as a sample axis would (refused in :func:`_sample_axes`)."""
+    if study.dynamics:
+        return
+    for axis in axes:
+        t = axis.target
+        if (not axis.sample and t.root == "scenario" and t.path
+                and t.path[0] not in STEADY_FIELDS and len(axis.values) > 1):
+            where = f"zip.{axis.group}" if axis.group is not None else "grid"
+            raise Invalid(f"{where}.{axis.name}: a steady study (dynamics: false) does not "
+                          f"read scenario.{'.'.join(t.path)}, so its {len(axis.values)} values "
+                          "would be one run; vary it in a study with dynamics: true, or drop "
+                          "the axis")
+
+
 def _add_axis(axes: list[Axis], axis: Axis) -> None:
     """Append ``axis``; no two axes set one field or one inside the other."""
     def place(a: Axis) -> str:
@@ -457,6 +474,7 @@ def resolve_study(
     total = grid_points(axes)
     if total > max_runs:
         raise TooLarge(f"grid: the study has {total} runs; the limit is {max_runs}")
+    _check_read(study, axes)
     default_model, run_models = _run_models(study, axes, models)
     design = _positive_zero(_design(study))
     _check_models_used(given, run_models, design)

@@ -184,6 +184,12 @@ def _study_ok(body: dict) -> bool:
         return False
     if body.get("accuracy") is not None and body.get("dynamics") is False:
         return False  # error bars are those of the transient
+    if body.get("dynamics") is False:
+        for axis, values in axes.items():
+            parts = _target(axis).split(".")
+            if parts[0] == "scenario" and len(parts) > 1 and len(values) > 1 and \
+                    parts[1] not in ("load", "temperature_c", "elements"):
+                return False  # a steady study does not read it: its values would be one run
     return _section_loads_fit(body, axes)
 
 

@@ -403,3 +403,30 @@ def test_a_conveyor_with_rated_power_auto_passes_the_door_as_one_that_leaves_it_
     rated = {float(r.conveyor["drives"][0]["rated_power_kw"]) for r in auto.runs}
     sized = {float(r.conveyor["drives"][0]["rated_power_kw"]) for r in left_out.runs}
     assert len(sized) == 1 and rated == sized
+
+
+@pytest.mark.parametrize(("where", "axis", "values"), [
+    ("grid", "stop_time_s", [10, 20]),
+    ("grid", "scenario.stop.mode", ["coast", "controlled"]),
+    ("grid", "scenario.run_s", [5, 10]),
+    ("zip", "start.time_s", [10, 20]),
+])
+def test_a_steady_study_refuses_a_grid_axis_its_runs_never_read(make_study, where, axis,
+                                                                 values):
+    """A steady run reads load, temperature and mesh of its scenario: an axis of the stop time
+    was taken and merged into one run with its column null, as a sample axis is refused."""
+    if where == "grid":
+        study = make_study(grid={"temperature_c": [0, 20], axis: values}, dynamics=False)
+    else:
+        study = make_study(zip=[{axis: values, "takeup.mass_kg": [2000, 3000]}],
+                           dynamics=False)
+    index = ".0" if where == "zip" else ""
+    with pytest.raises(Invalid, match=rf"^{where}{index}\.{axis}: a steady study \(dynamics: "
+                                      rf"false\) does not read scenario\.[a-z_.]+, so its 2 "
+                                      "values would be one run"):
+        resolve_study(study)
+    # one value is the scenario's field set once; read fields and transient studies vary freely
+    resolve_study(make_study(grid={"temperature_c": [0, 20], axis: values[:1]},
+                             dynamics=False))
+    resolve_study(make_study(grid={"temperature_c": [0, 20], "load": ["full", "empty"]},
+                             dynamics=False))
