@@ -727,6 +727,13 @@ def transient_summary(sys: System, r: dict, out, segs, *, steady_summary=None, c
     t_stop_cmd = sys.stop_command_s
     t_stop_ach = r["stop_ach"] if r["stop_ach"] >= 0 else None
     t_start_ach = r["start_ach"] if r["start_ach"] >= 0 else None
+    # a stop is achieved when the mean speed *falls* below REST_FRACTION of design speed: a
+    # belt already below it at the stop command (it never got going) made no stop, and has no
+    # stop time, distance or wave ratio (the kernel marks it achieved at the first step)
+    v_cmd = _speed_at(out, r, t_stop_cmd)  # the first record is at t = 0: never None here
+    if (t_stop_ach is not None and v_cmd is not None
+            and abs(v_cmd) < C.REST_FRACTION * sys.v_design):
+        t_stop_ach = None
     rating = None
     if conveyor is not None:
         rating = resolve_belt(conveyor.belt).rating_n
@@ -837,8 +844,8 @@ def transient_summary(sys: System, r: dict, out, segs, *, steady_summary=None, c
     # is told that instead (below), not told that its stop from a crawl was fast; a belt
     # held a few per cent below it by its fluid couplings' running slip stops from its
     # running speed and is judged
-    v_cmd = _speed_at(out, r, t_stop_cmd)
-    at_speed = t_start_ach is not None or v_cmd >= RUNNING_FRACTION * sys.v_design
+    at_speed = t_start_ach is not None or (v_cmd is not None
+                                            and v_cmd >= RUNNING_FRACTION * sys.v_design)
     if (summary["stop_wave_ratio"] is not None and summary["stop_wave_ratio"] < 5.0
             and at_speed):
         w.append(_fast_stop_words(sys, t_stop_ach, summary, steady_tmax))
@@ -846,7 +853,7 @@ def transient_summary(sys: System, r: dict, out, segs, *, steady_summary=None, c
         w.append(endstop_words(sys, r))
     ran_away = int(r["status"]) == C.RUNAWAY  # the run ended early: said above
     if t_start_ach is None and not ran_away:
-        w.append(_short_of_speed_words(sys, v_cmd, t_stop_cmd))
+        w.append(_short_of_speed_words(sys, v_cmd or 0.0, t_stop_cmd))
     # a run cut before its stop window ended (``t_end_s``, verification) is not judged on it
     window_end = t_stop_cmd + sys.model.cycle.stop_max
     if not r["stopped"] and not ran_away and float(r["t"]) >= window_end - 0.5 * sys.dt_s:
@@ -866,12 +873,12 @@ def transient_summary(sys: System, r: dict, out, segs, *, steady_summary=None, c
 RUNNING_FRACTION = 0.95
 
 
-def _speed_at(out, r: dict, t_s: float) -> float:
-    """The mass-weighted mean belt speed at the last record at or before ``t_s`` [m/s] (0 when
-    there is none)."""
+def _speed_at(out, r: dict, t_s: float) -> float | None:
+    """The mass-weighted mean belt speed at the last record at or before ``t_s`` [m/s] (None
+    when there is none)."""
     rec = out.rec[:int(r["nrec"])]
     before = np.flatnonzero(rec["t"] <= t_s + 1e-9)
-    return float(rec["v_mean"][before[-1]]) if before.size else 0.0
+    return float(rec["v_mean"][before[-1]]) if before.size else None
 
 
 def _short_of_speed_words(sys: System, v_cmd: float, t_stop_cmd: float) -> str:
