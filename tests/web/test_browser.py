@@ -153,9 +153,13 @@ def browser():
 
 
 def _wait(driver, condition, timeout: float = 30, what: str = ""):
+    """Wait until ``condition(driver)`` holds; an element the page rebuilt between finding it
+    and reading it (the runs table is rebuilt on every answer) is looked for again."""
+    from selenium.common.exceptions import StaleElementReferenceException
     from selenium.webdriver.support.ui import WebDriverWait
 
-    return WebDriverWait(driver, timeout, poll_frequency=0.2).until(
+    return WebDriverWait(driver, timeout, poll_frequency=0.2,
+                         ignored_exceptions=(StaleElementReferenceException,)).until(
         lambda d: condition(d), message=what
     )
 
