@@ -70,9 +70,15 @@ def brake_force_auto(total_mass_kg: float, v_d: float, te_n: float, stop_s: floa
     """Total brake force for a rigid-body stop in ``stop_s`` [N] (no holding minimum).
 
     The belt coasts for ``delay_s`` decelerating at ``Te / M`` (accelerating when Te < 0, a
-    regenerative belt), then the brake force builds linearly over ``ramp_s`` to ``F_b`` and,
-    with the running resistance, stops it: ``M v_1 = Te t_b + F_b (t_b - r / 2)`` with
-    ``t_b = t_stop - t_delay`` and ``v_1 = v - Te t_delay / M`` (for ``t_b >= r``).
+    regenerative belt), then the brake force builds linearly from zero over ``ramp_s`` = r to
+    ``F_b`` and holds (:mod:`beltstudy.engine.dynamics.brakes`). Over the braking time
+    ``t_b = t_stop - t_delay`` the momentum after the delay, ``M v_1`` with
+    ``v_1 = v - Te t_delay / M``, equals the resistance's impulse ``Te t_b`` plus the brake's,
+    the integral of its force history:
+
+    * ``t_b >= r`` (the ramp ends before the stop): ``M v_1 = Te t_b + F_b (t_b - r / 2)``;
+    * ``t_b < r`` (the belt stops on the ramp, the force there ``F_b t / r``):
+      ``M v_1 = Te t_b + F_b t_b^2 / (2 r)``.
 
     Parameters
     ----------
@@ -84,6 +90,13 @@ def brake_force_auto(total_mass_kg: float, v_d: float, te_n: float, stop_s: floa
         Steady peripheral force (resistance + gravity) [N].
     stop_s, delay_s, ramp_s : float
         Target stop time, brake delay and ramp [s].
+
+    Returns
+    -------
+    float
+        ``F_b`` [N]: 0 when the belt coasts to rest in time on its own, inf when the stop time
+        is not longer than the delay (no force stops it; run inputs refuse that,
+        :func:`beltstudy.engine.dynamics.model.build_system`).
     """
     if not math.isfinite(stop_s):
         return 0.0
@@ -91,21 +104,35 @@ def brake_force_auto(total_mass_kg: float, v_d: float, te_n: float, stop_s: floa
     if v1 <= 0.0:
         return 0.0
     t_b = stop_s - delay_s
-    r = min(ramp_s, t_b)
-    return max((total_mass_kg * v1 - te_n * t_b) / (t_b - 0.5 * r), 0.0)
+    if t_b <= 0.0:
+        return math.inf
+    need = total_mass_kg * v1 - te_n * t_b  # the impulse the brake must give [N s]
+    if t_b >= ramp_s:
+        impulse_per_n = t_b - 0.5 * ramp_s
+    else:
+        impulse_per_n = t_b * t_b / (2.0 * ramp_s)
+    return max(need / impulse_per_n, 0.0)
 
 
 def brake_stop_time(total_mass_kg: float, v_d: float, te_n: float, force_n: float,
                     delay_s: float, ramp_s: float = 0.0) -> float:
-    """Rigid-body stop time with a brake force ``force_n`` [s] (inverse of
-    :func:`brake_force_auto` for a stop past the ramp; inf if the belt does not stop)."""
+    """Rigid-body stop time with a brake force ``force_n`` [s] (the inverse of
+    :func:`brake_force_auto`, the stop on the ramp or past it; inf if the belt does not stop).
+
+    On the ramp the speed is ``v_1 - Te t / M - F_b t^2 / (2 r M)``, whose one positive root is
+    the stop when it is at most r; past it ``t_b = (M v_1 + F_b r / 2) / (Te + F_b)``."""
     v1 = v_d - te_n * delay_s / total_mass_kg
     if v1 <= 0.0:
         return delay_s
     if te_n + force_n <= 0.0:
         return math.inf
-    t_b = (total_mass_kg * v1 + 0.5 * force_n * ramp_s) / (te_n + force_n)
-    return delay_s + max(t_b, ramp_s)
+    if force_n > 0.0 and ramp_s > 0.0:
+        a = force_n / (2.0 * ramp_s)  # F_b t^2 / (2 r) = M v_1 - Te t on the ramp
+        t_ramp = (-te_n + math.sqrt(te_n * te_n + 4.0 * a * total_mass_kg * v1)) / (2.0 * a)
+        if t_ramp <= ramp_s:
+            return delay_s + t_ramp
+    t_b = (total_mass_kg * v1 + 0.5 * max(force_n, 0.0) * ramp_s) / (te_n + force_n)
+    return delay_s + t_b
 
 
 def brake_forces(conv: Conveyor, scenario: Scenario, total_mass_kg: float, te_n: float,

@@ -10,7 +10,13 @@ import pytest
 from numpy.testing import assert_allclose
 
 from beltstudy.engine.conveyor import Scenario, load_conveyor, parse_conveyor
-from beltstudy.engine.design import RATED_POWER_FACTOR, auto_sizes, moving_mass_kg
+from beltstudy.engine.design import (
+    RATED_POWER_FACTOR,
+    auto_sizes,
+    brake_force_auto,
+    brake_stop_time,
+    moving_mass_kg,
+)
 from beltstudy.engine.dynamics import build_system
 from beltstudy.engine.loop import G, rotating_parts
 from beltstudy.engine.run import run_one
@@ -58,6 +64,51 @@ def test_brake_sized_by_the_stop_time_or_held_by_the_holding_floor():
     assert long["brake_governed_by"] == ["holding"]
     coast = auto_sizes(conv, Scenario(stop={"mode": "coast", "time_s": 3.0}), model="din")
     assert coast["brake_force_kn"] == long["brake_force_kn"]
+
+
+@pytest.mark.parametrize("stop_s, delay_s, ramp_s", [
+    (1.2, 0.5, 1.0),   # the belt stops on the ramp (t_b 0.7 s < r 1 s)
+    (3.0, 1.0, 4.0),   # on a long ramp (t_b 2 s < r 4 s)
+    (10.0, 0.5, 1.0),  # past the ramp (t_b 9.5 s > r 1 s)
+    (1.5, 0.5, 1.0),   # the ramp ends at the stop (t_b = r)
+])
+def test_auto_brake_force_meets_the_stop_time_on_its_ramp_or_past_it(stop_s, delay_s, ramp_s):
+    """The brake's impulse is the integral of its delay-then-ramp force history, F(t) = 0 to
+    the delay, F_b (t - d) / r over the ramp r, then F_b. Rigid body, M 100 t at v 4 m/s,
+    Te 20 kN: v_1 = v - Te d / M; the brake's impulse over t_b = t_stop - d is M v_1 - Te t_b,
+    which is F_b t_b^2 / (2 r) when the belt stops on the ramp (t_b < r), F_b (t_b - r / 2)
+    past it. For 1.2 s, 0.5 s, 1 s: v_1 = 3.9 m/s, M v_1 - Te t_b = 390 000 - 14 000 =
+    376 000 N s, F_b = 376 000 x 2 x 1 / 0.7^2 = 1 534 694 N (t_b - r/2 = 0.2 s would give
+    1 074 286 N, 30 % short, a 1.33 s stop). The stop time of that force (brake_stop_time) is
+    the asked one, and a forward-Euler integration of the force history stops the belt then."""
+    m, v, te = 100_000.0, 4.0, 20_000.0
+    v1 = v - te * delay_s / m
+    t_b = stop_s - delay_s
+    impulse = m * v1 - te * t_b
+    hand = (impulse * 2.0 * ramp_s / t_b**2 if t_b < ramp_s
+            else impulse / (t_b - 0.5 * ramp_s))
+    force = brake_force_auto(m, v, te, stop_s, delay_s, ramp_s)
+    assert force == pytest.approx(hand, rel=1e-12)
+    if (stop_s, delay_s, ramp_s) == (1.2, 0.5, 1.0):
+        assert force == pytest.approx(1_534_694, abs=1.0)
+    assert brake_stop_time(m, v, te, force, delay_s, ramp_s) == pytest.approx(stop_s, rel=1e-9)
+    dt, t, u = 1e-4, 0.0, v
+    while u > 0.0:
+        f = 0.0 if t < delay_s else force * min((t - delay_s) / ramp_s, 1.0)
+        u -= (te + f) / m * dt
+        t += dt
+    assert t == pytest.approx(stop_s, abs=2e-3)
+
+
+def test_brake_stop_time_of_a_force_short_of_the_ramp_or_none():
+    """A force too small to stop on the ramp stops past it: t_b = (M v_1 + F_b r / 2) /
+    (Te + F_b) (100 t, 4 m/s, Te 20 kN, d 0.5 s, r 1 s, F_b 20 kN: v_1 = 3.9, t_b =
+    (390 000 + 10 000) / 40 000 = 10 s); without a brake the belt coasts, t_b = M v_1 / Te
+    = 19.5 s; a brake below a downhill pull never stops it."""
+    assert brake_stop_time(1e5, 4.0, 2e4, 2e4, 0.5, 1.0) == pytest.approx(10.5, rel=1e-12)
+    assert brake_stop_time(1e5, 4.0, 2e4, 0.0, 0.5, 1.0) == pytest.approx(20.0, rel=1e-12)
+    assert brake_stop_time(1e5, 4.0, -2e4, 1e4, 0.5, 1.0) == math.inf
+    assert brake_force_auto(1e5, 4.0, 2e4, 0.5, 0.5, 1.0) == math.inf  # no time after the delay
 
 
 @pytest.mark.parametrize("name", ["downhill-regen.yaml", "fabric-1km.yaml"])
