@@ -285,6 +285,13 @@ class Material(_Model):
         "all the material at the tail")
 
 
+#: Largest turn of one horizontal curve section, ``length_m / horizontal_radius_m`` [deg]: a
+#: constant-radius arc longer than its circumference 2 pi R comes back over its own start in
+#: plan (geometry; a troughed belt on idler sets is not built as a helix). No conveyor
+#: standard or design guide we hold gives a smaller bound (docs/routes.md).
+HCURVE_TURN_MAX_DEG = 360.0
+
+
 class ProfileSection(_Model):
     """One straight section of the carry route, tail -> head; with ``horizontal_radius_m`` a
     horizontal curve, checked in statics (:mod:`beltstudy.engine.hcurves`)."""
@@ -320,6 +327,16 @@ class ProfileSection(_Model):
             raise ValueError(
                 f"superelevation_deg ({self.superelevation_deg:g}) belongs to a horizontal "
                 "curve: give horizontal_radius_m too, or leave superelevation_deg out")
+        if self.horizontal_radius_m is not None:
+            turn_deg = math.degrees(self.length_m / self.horizontal_radius_m)
+            if turn_deg > HCURVE_TURN_MAX_DEG:
+                raise ValueError(
+                    f"horizontal_radius_m ({self.horizontal_radius_m:g} m) over length_m "
+                    f"({self.length_m:g} m) turns the belt {turn_deg:.4g} deg (L / R), more "
+                    f"than a full turn ({HCURVE_TURN_MAX_DEG:g} deg): an arc of constant "
+                    "radius longer than 2 pi R comes back over itself; give a radius of at "
+                    f"least {self.length_m / math.radians(HCURVE_TURN_MAX_DEG):.4g} m "
+                    "(length_m / 2 pi) or a shorter section")
         return self
 
 
