@@ -98,6 +98,41 @@ def canonical_mapping(value: dict, memo: dict[int, tuple[Any, str]]) -> str:
     return "{" + ",".join(parts) + "}"
 
 
+#: A uniform load case that the engine reads as one of the named ones
+#: (:func:`beltstudy.engine.conveyor.load_fraction`: full is 1, empty 0 of the design load).
+_LOAD_NAMES_BY_FRACTION = {1.0: "full", 0.0: "empty"}
+_LOAD_TARGET = ("scenario", ("load",))
+
+
+def load_key(load: Any) -> Any:
+    """A load case as the run and study ids hash it: a number equal to a named uniform case
+    is that name (``1.0`` -> ``full``, ``0`` -> ``empty``; the scenario's default is
+    ``full``, so its ids stay put), anything else itself. The engine runs both forms alike;
+    the rows keep the value as written."""
+    if isinstance(load, int | float) and not isinstance(load, bool):
+        return _LOAD_NAMES_BY_FRACTION.get(float(load), load)
+    return load
+
+
+def _scenario_key(scenario: dict) -> dict:
+    """``scenario`` with its load as :func:`load_key` hashes it (``scenario`` itself when
+    that is its load already)."""
+    load = scenario.get("load")
+    key = load_key(load)
+    return scenario if key is load else {**scenario, "load": key}
+
+
+def _design_key(design: dict) -> dict:
+    """A design basis with its load cases as :func:`load_key` hashes them: one case, or a
+    list of cases (a list of numbers alone is one load per profile section, kept)."""
+    load = design.get("load")
+    if isinstance(load, list):
+        if not any(isinstance(x, str | list) for x in load):
+            return design
+        return {**design, "load": [load_key(x) for x in load]}
+    return {**design, "load": load_key(load)} if "load" in design else design
+
+
 def stable_hash(value: Any) -> str:
     """First 16 hex digits of the SHA-256 of the canonical JSON of ``value``."""
     return hashlib.sha256(canonical_json(value).encode()).hexdigest()[:_HASH_LEN]
@@ -318,6 +353,19 @@ def mark_accuracy_sample(study: ResolvedStudy) -> None:
 def study_hash(study: ResolvedStudy) -> str:
     """The study id: a stable hash of what decides its runs (and its name)."""
     doc = study.to_json()
+    # a load written as its fraction (1.0) is the named case (full): the same runs, one id
+    doc["scenario"] = _scenario_key(doc["scenario"])
+    groups = sorted({a.group for a in study.axes if a.group is not None and not a.sample})
+    for a in study.axes:
+        if (a.target.root, a.target.path) != _LOAD_TARGET or a.sample:
+            continue
+        values = [load_key(v) for v in a.values]
+        if a.group is None:
+            doc["grid"][a.name] = values
+        else:
+            doc["zip"][groups.index(a.group)][a.name] = values
+    if doc.get("design") is not None:
+        doc["design"] = _design_key(doc["design"])
     keys = (
         "name",
         "conveyor",
@@ -465,7 +513,7 @@ def _expand(
             # what the engine reads of the scenario: points that differ only in fields the
             # run does not read are one run
             scenario = scenario_as_read(scenarios[sk], dynamics=study.dynamics)
-            run_scenarios[sk] = (scenario, canonical_json(scenario))
+            run_scenarios[sk] = (scenario, canonical_json(_scenario_key(scenario)))
         scenario, scenario_json = run_scenarios[sk]
         # the sizes a run gets depend on its conveyor design and, for brakes, its stop
         ckey = (ck, brake_sizing_stop_time(scenario, dynamics=study.dynamics))

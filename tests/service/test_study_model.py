@@ -135,6 +135,37 @@ def test_negative_zero_is_zero_outside_the_axes_too(make_study):
         resolve_study(make_study(design={"temperature_c": [0.0, -0.0]}))
 
 
+
+def test_a_load_written_as_its_fraction_has_the_ids_of_its_name(make_study):
+    """``load: full`` and ``load: 1.0`` (``empty`` and 0) are one load to the engine
+    (engine.conveyor.load_fraction: full is 1 x the design load), and the grid already
+    refuses the pair as the same load: written either way in the scenario, a grid or zip axis
+    or the design cases they give the same run and study ids, the named form's (the
+    scenario's default, whose ids stay put). Each row keeps the value as written."""
+    def ids(**over):
+        study = resolve_study(make_study(**over))
+        return study.id, [r.run_id for r in study.runs]
+
+    for name, fraction in (("full", 1.0), ("full", 1), ("empty", 0.0), ("empty", 0)):
+        assert ids(scenario={"load": fraction}) == ids(scenario={"load": name})
+        assert (ids(grid={"friction_model": ["din"], "load": [fraction, 0.5]})
+                == ids(grid={"friction_model": ["din"], "load": [name, 0.5]}))
+        assert (ids(grid={"friction_model": ["din"]},
+                    zip=[{"load": [fraction, 0.5], "temperature_c": [0, 10]}])
+                == ids(grid={"friction_model": ["din"]},
+                       zip=[{"load": [name, 0.5], "temperature_c": [0, 10]}]))
+        assert (ids(design={"load": [fraction, "declines"]})
+                == ids(design={"load": [name, "declines"]}))
+        assert ids(design={"load": fraction}) == ids(design={"load": name})
+    # the default scenario load is full: its ids are those of a study that writes it
+    assert ids(scenario={}) == ids(scenario={"load": "full"})
+    # other loads keep their own ids; a load per profile section is not a named case
+    assert ids(scenario={"load": 0.9})[1] != ids(scenario={"load": "full"})[1]
+    rows = resolve_study(make_study(grid={"friction_model": ["din"], "load": [1.0, 0.5]}))
+    assert [r.axes["load"] for r in rows.runs] == [1.0, 0.5]
+    assert rows.runs[0].scenario["load"] == 1.0
+
+
 def test_ranges_include_the_stop_value():
     assert RangeSpec(start=-40, stop=40, step=10).values() == list(range(-40, 41, 10))
     assert RangeSpec(start=0, stop=1, step=0.1).values()[-1] == 1.0
