@@ -101,7 +101,7 @@ def reads_start_time(conveyor: Conveyor) -> bool:
 
 
 def slip_remedy(conveyor: Conveyor, scenario: Scenario, *, model: str, params=None,
-                options: DynamicsOptions | None = None, elements: int,
+                options: DynamicsOptions | None = None, elements: int | str,
                 takeup_mass_kg: float | None = None,
                 takeup_tension_kn: float | None = None) -> SlipRemedy | None:
     """The take-up and the start time that avoid a start's slip (see the module docstring);
@@ -111,8 +111,11 @@ def slip_remedy(conveyor: Conveyor, scenario: Scenario, *, model: str, params=No
     ----------
     conveyor, scenario, model, params, options
         The run whose start slipped.
-    elements : int
-        The run's element count (the reruns use the same mesh).
+    elements : int or "auto"
+        The element count the run asked for (its ``scenario.elements``), so the reruns use
+        the run's own mesh. Not the count it used: the loop's cut adds an element or two to
+        the asked count, and asking for the used count would give a finer mesh, whose
+        stability limit a fixed ``dt_s`` valid for the run can exceed.
     takeup_mass_kg, takeup_tension_kn : float, optional
         The take-up the run used (gravity counterweight [kg], fixed pretension [kN]), as its
         summary gives them (auto sizes resolved).
@@ -120,7 +123,8 @@ def slip_remedy(conveyor: Conveyor, scenario: Scenario, *, model: str, params=No
     Returns None when the start does not slip on the rerun (the slip was in the stop).
     """
     opts = options or DynamicsOptions()
-    scn = scenario.model_copy(update={"elements": int(elements)})
+    scn = scenario.model_copy(update={"elements": elements if elements == "auto"
+                                      else int(elements)})
     gravity = conveyor.takeup.type == "gravity"
     base = takeup_mass_kg if gravity else takeup_tension_kn
     field = "mass_kg" if gravity else "pretension_kn"

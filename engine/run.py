@@ -408,7 +408,7 @@ def _slip_remedy(conveyor, scenario, model, params, opts, summary) -> str:
 
     gravity = conveyor.takeup.type == "gravity"
     rem = slip_remedy(conveyor, scenario, model=model, params=params, options=opts,
-                      elements=int(summary["elements_used"]),
+                      elements=scenario.elements,
                       takeup_mass_kg=summary.get("takeup_mass_kg") if gravity else None,
                       takeup_tension_kn=None if gravity else summary.get("takeup_tension_kn"))
     if rem is None:

@@ -2,7 +2,12 @@
 
 from __future__ import annotations
 
+import re
+
+import pytest
+
 from beltstudy.engine.conveyor import Scenario, load_conveyor, parse_conveyor
+from beltstudy.engine.errors import InputError
 from beltstudy.engine.run import run_one
 from tests.conftest import CONVEYORS
 
@@ -54,5 +59,29 @@ def test_a_dol_start_that_slips_is_offered_the_take_up_alone():
     assert m is not None and m > 20000
     assert f"slip in the start avoided by a take-up of {m:,.0f} kg (found by" in s["message"]
     assert "or by a start of" not in s["message"] and "no start up to" not in s["message"]
+    fixed = parse_conveyor({**data, "takeup": {**data["takeup"], "mass_kg": m}})
+    assert run_one(fixed, scn, model="din").summary["drive1_slip_s"] == 0.0
+
+
+def test_the_remedy_reruns_the_run_s_own_mesh_so_a_valid_fixed_step_stays_valid():
+    """A fixed step just under the stability limit of the run's mesh is a valid input. The
+    remedy's reruns asked for the count of elements the run used (62 for 60 asked: the
+    loop's cut adds two), built a finer mesh (64) whose limit is below that step, and the
+    run was refused. Asking for the run's own count, the reruns use its mesh: the run
+    answers, and the take-up it names avoids the slip with that same step."""
+    data = load_conveyor(CONVEYORS / "slope-5pct.yaml").model_dump(mode="json", by_alias=True)
+    data["drives"][0]["control"] = "dol"
+    data["takeup"]["mass_kg"] = 20000
+    conv = parse_conveyor(data)
+    scn = Scenario(elements=60, run_s=10, stop={"mode": "coast"}, dt_s=1.0)
+    with pytest.raises(InputError) as exc:
+        run_one(conv, scn, model="din")
+    limit = float(re.search(r"stability limit ([\d.e-]+) s", str(exc.value)).group(1))
+    scn = scn.model_copy(update={"dt_s": 0.99 * limit})
+    s = run_one(conv, scn, model="din", remedy=True).summary
+    assert s["elements_used"] == 62 and s["dt_used_s"] == pytest.approx(0.99 * limit)
+    assert s["drive1_slip_s"] > 0.0
+    m = s["slip_free_takeup_mass_kg"]
+    assert m is not None and m > 20000
     fixed = parse_conveyor({**data, "takeup": {**data["takeup"], "mass_kg": m}})
     assert run_one(fixed, scn, model="din").summary["drive1_slip_s"] == 0.0
