@@ -5,7 +5,8 @@ of grid refinement studies", J. Fluids Eng. 116; ASME V&V 20-2009, section 2-4; 
 2008, "Procedure for estimation and reporting of uncertainty due to discretization in CFD
 applications", J. Fluids Eng. 130, 078001): the run is repeated on a coarser and a finer mesh
 (ratio :data:`RATIO`, ``n/2, n, 2n`` elements with ``n`` the run's own), the automatic step
-following the mesh so the Courant number stays (a fixed ``dt_s`` is scaled with it). For
+following the mesh so the Courant number stays (a fixed ``dt_s`` keeps its fraction of the
+stability limit on every mesh, :func:`beltstudy.engine.run.run_one`). For
 each deciding figure ``f`` (``f3, f2, f1`` on the coarse, the run's and the fine mesh):
 
 - ``e32 = f3 - f2`` and ``e21 = f2 - f1`` of one sign: the observed order

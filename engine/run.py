@@ -13,7 +13,7 @@ from __future__ import annotations
 import math
 import time
 from collections.abc import Callable
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 import numpy as np
 import pandas as pd
@@ -380,8 +380,17 @@ def _error_bars(conveyor, scenario, result, model, params, opts):
     coarser and a finer mesh) written into its summary and message."""
     from beltstudy.engine.accuracy import error_bars
 
+    o = opts
+    if scenario.dt_s != "auto":
+        # a fixed step keeps its fraction of the stability limit on every mesh (the Courant
+        # number of the run): scaled by the asked counts it could land above the limit of a
+        # mesh the loop's cut made an element or two finer, and that mesh was lost
+        o = replace(opts, dt_safety=float(scenario.dt_s) / result.transient.system.dt_limit_s)
+
     def rerun(scn: Scenario) -> dict:
-        return run_one(conveyor, scn, model=model, params=params, options=opts).summary
+        if scn.dt_s != "auto":
+            scn = scn.model_copy(update={"dt_s": "auto"})
+        return run_one(conveyor, scn, model=model, params=params, options=o).summary
 
     acc = error_bars(scenario, result.summary, rerun, rtol=opts.resistance_rtol,
                      sag_limit_pct=_sag_limit(conveyor, result.transient),

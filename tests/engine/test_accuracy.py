@@ -142,3 +142,38 @@ def test_a_brake_stop_close_to_slack_is_named_marginal():
     # the bar holds the value at 4 x the elements (a quarter of the step), still falling
     fine = run_one(conv, scn.model_copy(update={"elements": 4 * 42}), model="din").summary
     assert fine["t_min_dyn_kn"] < f1 and abs(fine["t_min_dyn_kn"] - f2) <= fe.err
+
+
+def test_a_fixed_step_keeps_its_fraction_of_the_stability_limit_on_every_mesh():
+    """A fixed step just under the stability limit of the run's mesh (slope-5pct, 60
+    elements asked, 62 used). The finer mesh asks 124 elements and the loop's cut makes 126:
+    the run's step scaled by 62 / 124 was above that mesh's limit, so the bars came from two
+    meshes (gci2, t_max_dyn_kn +- 0.86 kN against +- 0.42 from three). Each mesh now runs at
+    the run's fraction of its own limit (the same Courant number): three meshes, and the fine
+    one's value is that of a run at that fraction."""
+    import re
+    from dataclasses import replace
+
+    from beltstudy.engine import load_conveyor, parse_scenario
+    from beltstudy.engine.dynamics import DynamicsOptions
+    from beltstudy.engine.errors import InputError
+    from beltstudy.engine.run import run_one
+    from tests.conftest import CONVEYORS
+
+    conv = load_conveyor(CONVEYORS / "slope-5pct.yaml")
+    scn = parse_scenario({"elements": 60, "run_s": 10, "stop": {"mode": "coast"}, "dt_s": 1.0})
+    with pytest.raises(InputError) as exc:
+        run_one(conv, scn, model="din")
+    limit = float(re.search(r"stability limit ([\d.e-]+) s", str(exc.value)).group(1))
+    res = run_one(conv, scn.model_copy(update={"dt_s": 0.99 * limit}), model="din", check=True)
+    s = res.summary
+    assert s["accuracy_elements"] == "32/62/126"
+    assert "note: error bars from two meshes" not in s["message"]
+    fe = res.accuracy.figures["t_max_dyn_kn"]
+    assert fe.method != "gci2" and None not in fe.values
+    fraction = s["dt_used_s"] / res.transient.system.dt_limit_s
+    assert fraction == pytest.approx(0.99, rel=2e-3)
+    fine = run_one(conv, scn.model_copy(update={"elements": 124, "dt_s": "auto"}), model="din",
+                   options=replace(DynamicsOptions(), dt_safety=fraction)).summary
+    assert fine["elements_used"] == 126
+    assert fe.values[2] == fine["t_max_dyn_kn"]
