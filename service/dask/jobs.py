@@ -182,6 +182,7 @@ class StudyJob:
         self.worker_s: dict[str, float] = {}
         self._last_flush = time.monotonic()
         self._per_run_s: float | None = None
+        self._waited = False  # the study's message says it waits for Dask
         self._thread = threading.Thread(
             target=self._main, name=f"beltstudy-study-{study.id}", daemon=True
         )
@@ -310,6 +311,9 @@ class StudyJob:
                 self.state = "running"
                 self.session_start = time.monotonic()
                 self._save(started_at=doc.get("started_at") or time.time(), message="")
+            elif self._waited:  # back on Dask after losing it: no longer waiting
+                self._save(message="")
+            self._waited = False
             lost = self._stream(client, todo)
         if self.halted:
             return
@@ -344,6 +348,7 @@ class StudyJob:
                         f"{self.executor.error or exc}; its finished runs are kept: submit "
                         "the study again once Dask works and it goes on") from None
                 self._save(message=f"waiting for Dask: {exc}")
+                self._waited = True
                 self._stop.wait(max(0.0, WAIT_FOR_DASK_S - (time.monotonic() - t0)))
         return None
 

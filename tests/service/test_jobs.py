@@ -73,3 +73,66 @@ def test_a_failed_runs_message_is_the_input_problem_in_its_own_words():
     assert _message(ZeroDivisionError("division by zero")) == (
         "ZeroDivisionError: division by zero")
     assert _message(RuntimeError()) == "RuntimeError"
+
+
+def test_a_study_back_from_a_lost_scheduler_drops_its_waiting_message(monkeypatch):
+    """A study that lost its scheduler mid-run says it waits for Dask; once Dask is back and
+    its runs go on, the message goes (it said 'waiting for Dask' to the end of the study)."""
+    from types import SimpleNamespace
+
+    import pandas as pd
+
+    from beltstudy.service.dask import jobs
+    from beltstudy.service.errors import Unavailable
+
+    monkeypatch.setattr(jobs, "WAIT_FOR_DASK_S", 0.0)
+    monkeypatch.setattr(jobs, "adjacent_starts", list)
+    saved: list[dict] = []
+
+    class FakeStore:
+        def read(self, sid):
+            return {}
+
+        def done_runs(self, sid):
+            return pd.DataFrame()
+
+        def update(self, sid, **fields):
+            saved.append(fields)
+            return fields
+
+    answers = iter(["client", Unavailable("Dask on tcp://127.0.0.1:1 is not ready: lost the "
+                                          "Dask scheduler; reconnecting"), "client"])
+
+    class FakeExecutor:
+        failing_since = None
+
+        def client(self, timeout, halt):
+            answer = next(answers)
+            if isinstance(answer, Exception):
+                raise answer
+            return answer
+
+        def n_workers(self):
+            return 1
+
+    runs = [SimpleNamespace(run_id="r1"), SimpleNamespace(run_id="r2")]
+    study = SimpleNamespace(id="s1", runs=runs, total=2, axes=[], dynamics=False, surface=False)
+    job = jobs.StudyJob(study, FakeStore(), FakeExecutor(), SimpleNamespace(task_seconds=1.0))
+    monkeypatch.setattr(job, "_new_session", lambda: {})
+    streams: list[str] = []
+
+    def stream(client, todo):
+        streams.append(client)
+        if len(streams) == 1:  # the scheduler goes: the client is lost, the runs wait
+            return True
+        progress = [f for f in saved if "message" in f]
+        assert progress[-1]["message"] == "", progress  # back on Dask: no longer waiting
+        todo.clear()
+        job.done = 2
+        return False
+
+    monkeypatch.setattr(job, "_stream", stream)
+    job._execute()
+    messages = [f["message"] for f in saved if "message" in f]
+    assert any(m.startswith("waiting for Dask: ") for m in messages), messages
+    assert job.state == "done" and messages[-1] == "" and len(streams) == 2
