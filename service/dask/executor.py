@@ -18,6 +18,7 @@ import logging
 import threading
 import time
 import uuid
+from urllib.parse import urlsplit, urlunsplit
 
 import dask
 from distributed import Client, LocalCluster
@@ -73,6 +74,18 @@ def _close_quietly(client, cluster, timeout_s: float) -> None:
             obj.close(timeout=timeout_s)
         except Exception:  # a half-started cluster or a scheduler that is gone: nothing to keep
             pass
+
+
+def _dashboard_link(link: str, host: str) -> str:
+    """The dashboard's address on ``host``, where it listens: Dask's link names the
+    scheduler's address (loopback) whatever host the dashboard binds to. A wildcard host
+    keeps Dask's link, which reaches it."""
+    if host in ("", "0.0.0.0", "::", "[::]"):
+        return link
+    parts = urlsplit(link)
+    name = f"[{host.strip('[]')}]" if ":" in host else host
+    netloc = f"{name}:{parts.port}" if parts.port is not None else name
+    return urlunsplit(parts._replace(netloc=netloc))
 
 
 class Executor:
@@ -187,7 +200,7 @@ class Executor:
             _close_quietly(None, cluster, self.settings.dask_timeout_s)
             raise
         if dashboard is not None:
-            self.dashboard = cluster.dashboard_link
+            self.dashboard = _dashboard_link(cluster.dashboard_link, self.settings.host)
             log.info("Dask dashboard at %s (no token: keep it on a trusted network)",
                      self.dashboard)
         return client, cluster
