@@ -8,7 +8,8 @@ and speeds at the belt line (shaft speed times the pulley radius), both in SI.
   curve (torque over rated torque against speed over the design speed, piecewise linear,
   :data:`beltstudy.engine.conveyor.DEFAULT_MOTOR_CURVE` by default) and ``F_r`` the rated force, rated
   power over design speed. Below standstill the locked-rotor value holds; above the last
-  point (synchronous speed) the last segment continues (the motor generates).
+  point (synchronous speed) the motor generates: the last segment continues over its own
+  mirror, and beyond it the curve is mirrored about synchronous speed (:func:`motor_force`).
 * **Fluid coupling** between motor and pulley: a hydrodynamic coupling's torque follows the
   similarity law ``T ~ rho n_in^2 D^5`` (the square of the input speed), rising with slip
   ``s = 1 - n_out / n_in``. The characteristic used is a smooth one through the rated point
@@ -74,8 +75,24 @@ def curve(xs, ys, n, x):
 
 @njit(inline="always", **OPTS)
 def motor_force(xs, ys, n, f_rated, v_d, v):
-    """Motor force at the rim [N] and its slope in speed [N s/m] at rim speed ``v``."""
-    y, dy = curve(xs, ys, n, v / v_d)
+    """Motor force at the rim [N] and its slope in speed [N s/m] at rim speed ``v``.
+
+    Above synchronous speed ``x_s`` (the curve's last, zero-torque point) the motor generates.
+    Over the mirror of the last segment (up to ``2 x_s - x_{n-2}``) that segment continues;
+    beyond it the torque is the motoring curve mirrored about synchronous speed, ``y(x) =
+    -y(2 x_s - x)``: Kloss's torque-slip law ``T / T_b = 2 / (s / s_b + s_b / s)`` is odd in the
+    slip ``s`` when the stator resistance is neglected, so the generating breakdown torque is
+    the motoring one (R. Fischer, *Elektrische Maschinen*, Carl Hanser Verlag, the induction
+    machine's Kloss formula; with the stator resistance it is somewhat larger). Far above
+    synchronous speed the torque stays at minus the locked-rotor value. The plain continuation
+    of the last segment had no bound: a shaft 9 % above synchronous speed (a light pulley
+    overshooting in a dol start) met about -5 x rated torque, twice any breakdown torque."""
+    x = v / v_d
+    x_syn = xs[n - 1]
+    if x > 2.0 * x_syn - xs[n - 2]:
+        y, dy = curve(xs, ys, n, 2.0 * x_syn - x)
+        return -f_rated * y, f_rated * dy / v_d
+    y, dy = curve(xs, ys, n, x)
     return f_rated * y, f_rated * dy / v_d
 
 
