@@ -258,7 +258,8 @@ class StudyService:
         if not self._slots.acquire(timeout=self.settings.expansion_wait_s):
             retry = max(1, round(self.settings.expansion_wait_s))
             raise Unavailable(
-                f"the service is expanding {self.settings.max_expansions} studies already "
+                f"the service is expanding {self.settings.max_expansions} "
+                f"{'study' if self.settings.max_expansions == 1 else 'studies'} already "
                 f"(BELTSTUDY_MAX_EXPANSIONS) and none finished within "
                 f"{self.settings.expansion_wait_s:g} s; send the study again in {retry} s",
                 headers={"Retry-After": str(retry)},

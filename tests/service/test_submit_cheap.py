@@ -88,7 +88,7 @@ def test_expansions_beyond_the_bound_get_503_with_retry_after(data_dir, make_set
     finally:
         service._slots.release()
     assert r.status_code == 503 and r.headers["retry-after"] == "1"
-    assert "expanding 1 studies already (BELTSTUDY_MAX_EXPANSIONS)" in r.json()["message"]
+    assert "expanding 1 study already (BELTSTUDY_MAX_EXPANSIONS)" in r.json()["message"]
     assert waited >= 0.2 and service.expansions == 0
     assert not (data_dir / "studies").exists() or not any((data_dir / "studies").iterdir())
     assert service._slots.acquire(timeout=0)  # released again: the slot is free
