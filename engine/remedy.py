@@ -103,7 +103,7 @@ def reads_start_time(conveyor: Conveyor) -> bool:
 def slip_remedy(conveyor: Conveyor, scenario: Scenario, *, model: str, params=None,
                 options: DynamicsOptions | None = None, elements: int | str,
                 takeup_mass_kg: float | None = None,
-                takeup_tension_kn: float | None = None) -> SlipRemedy | None:
+                takeup_tension_kn: float | None = None, say=None) -> SlipRemedy | None:
     """The take-up and the start time that avoid a start's slip (see the module docstring);
     the start time only where the start reads it (:func:`reads_start_time`: a vfd drive).
 
@@ -119,6 +119,9 @@ def slip_remedy(conveyor: Conveyor, scenario: Scenario, *, model: str, params=No
     takeup_mass_kg, takeup_tension_kn : float, optional
         The take-up the run used (gravity counterweight [kg], fixed pretension [kN]), as its
         summary gives them (auto sizes resolved).
+    say : callable, optional
+        Told ``what`` is searched once the rerun confirms that the start slips, before the
+        search's reruns (not when the slip was in the stop alone).
 
     Returns None when the start does not slip on the rerun (the slip was in the stop).
     """
@@ -137,6 +140,12 @@ def slip_remedy(conveyor: Conveyor, scenario: Scenario, *, model: str, params=No
     steady = _steady(fixed, scn, model, params)
     if not _slips(fixed, scn, model, params, opts, steady):
         return None
+    if say is not None:
+        what = ("the take-up and the start time that avoid it (about a dozen reruns)"
+                if reads_start_time(conveyor) else
+                "the take-up that avoids it (about ten reruns; a dol start does not read "
+                "start.time_s)")
+        say(f"a drive slips in the start: rerunning the start to find {what}")
     reruns = 1
     tu = None
     if base is not None and base > 0.0:

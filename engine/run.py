@@ -349,13 +349,9 @@ def _complete(prep: _Prepared, scenario, system, tr, model, params, opts, remedy
     if remedy and tr.status != "failed" and any(
             (summary.get(f"drive{i + 1}_slip_s") or 0.0) > 0.0
             for i in range(len(conveyor.drives))):
-        if say is not None:
-            what = ("the take-up and the start time that avoid it (about a dozen reruns)"
-                    if reads_start_time(conveyor) else
-                    "the take-up that avoids it (about ten reruns; a dol start does not read "
-                    "start.time_s)")
-            say(f"a drive slips in the start: rerunning the start to find {what}")
-        found = _slip_remedy(conveyor, scenario, model, params, opts, summary)
+        # a slip in the stop alone is not searched: the first rerun says so, and ``say``
+        # is told only once the start is known to slip
+        found = _slip_remedy(conveyor, scenario, model, params, opts, summary, say)
         if found:
             messages.append(found)
     if "failed" in (steady.status, tr.status):
@@ -409,7 +405,7 @@ def _sag_limit(conveyor: Conveyor, tr: TransientResult) -> float:
     return float(lim.return_ if strand == 1 else lim.carry)
 
 
-def _slip_remedy(conveyor, scenario, model, params, opts, summary) -> str:
+def _slip_remedy(conveyor, scenario, model, params, opts, summary, say=None) -> str:
     """Search what avoids a start's slip (:func:`beltstudy.engine.remedy.slip_remedy`), put the figures
     into ``summary`` and return the sentence for the message ("" when the start did not
     slip)."""
@@ -419,7 +415,8 @@ def _slip_remedy(conveyor, scenario, model, params, opts, summary) -> str:
     rem = slip_remedy(conveyor, scenario, model=model, params=params, options=opts,
                       elements=scenario.elements,
                       takeup_mass_kg=summary.get("takeup_mass_kg") if gravity else None,
-                      takeup_tension_kn=None if gravity else summary.get("takeup_tension_kn"))
+                      takeup_tension_kn=None if gravity else summary.get("takeup_tension_kn"),
+                      say=say)
     if rem is None:
         return ""
     summary["slip_free_takeup_mass_kg"] = rem.takeup_mass_kg

@@ -85,3 +85,17 @@ def test_the_remedy_reruns_the_run_s_own_mesh_so_a_valid_fixed_step_stays_valid(
     assert m is not None and m > 20000
     fixed = parse_conveyor({**data, "takeup": {**data["takeup"], "mass_kg": m}})
     assert run_one(fixed, scn, model="din").summary["drive1_slip_s"] == 0.0
+
+
+def test_a_slip_in_the_stop_alone_is_not_announced_as_a_start_slip():
+    """fabric-1km's 3 s controlled stop slips its drive during the stop only (the start does
+    not slip). The remedy's first rerun of the start finds no slip and searches nothing; the
+    progress line "a drive slips in the start: rerunning ..." is not said (it was, before
+    the search confirmed the start slipped), and no slip-free figure is filled."""
+    conv = load_conveyor(CONVEYORS / "fabric-1km.yaml")
+    scn = Scenario(elements=100, stop={"mode": "controlled", "time_s": 3})
+    said: list[str] = []
+    s = run_one(conv, scn, model="din", remedy=True, say=said.append).summary
+    assert s["drive1_slip_s"] > 0.0 and "slipped on its pulley during the stop" in s["message"]
+    assert said == []
+    assert s["slip_free_takeup_mass_kg"] is None and s["slip_free_start_time_s"] is None
