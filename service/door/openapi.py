@@ -102,6 +102,12 @@ def study_schema(studies_dir: Path | None = None, ref_template: str = "#/$defs/{
     schema = _inline(schema, defs, own, ref_template)
     schema["$defs"] = {k: _inline(v, defs, own, ref_template) for k, v in defs.items()
                        if k not in own}
+    return with_conveyor_files(schema, studies_dir)
+
+
+def with_conveyor_files(schema: dict, studies_dir: Path | None) -> dict:
+    """``schema`` (a study's or a calibration's body) with its ``conveyor`` a file that is one
+    of :func:`conveyor_files` (an enum a client and a test generator can read) or inline."""
     files = conveyor_files(studies_dir) if studies_dir is not None else []
     conveyor = schema["properties"]["conveyor"]
     file, inline = conveyor.pop("oneOf")  # text or a mapping: never both
@@ -186,7 +192,8 @@ def install(app, studies_dir: Path) -> None:
             components = schema.setdefault("components", {}).setdefault("schemas", {})
             # the calibration body, read from the request as a study is (its parts: the
             # study's definitions of the same models win below)
-            calibration = CalibrationIn.model_json_schema(ref_template=REF_TEMPLATE)
+            calibration = with_conveyor_files(
+                CalibrationIn.model_json_schema(ref_template=REF_TEMPLATE), studies_dir)
             components.update(calibration.pop("$defs", {}))
             components["CalibrationIn"] = calibration
             components.update(body.pop("$defs"))

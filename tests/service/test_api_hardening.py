@@ -233,6 +233,9 @@ def test_the_published_schema_says_what_is_accepted(api):
     body = comps["StudyDoc"]
     conveyor = body["properties"]["conveyor"]["anyOf"][0]
     assert "conveyors/slope-5pct.yaml" in conveyor["enum"]
+    # a calibration names its conveyor file as a study does: the same enum of the files
+    calibration = comps["CalibrationIn"]["properties"]["conveyor"]["anyOf"][0]
+    assert calibration["enum"] == conveyor["enum"]
     assert "ST2000" in comps["Belt"]["properties"]["type"]["anyOf"][0]["enum"]
     grid = body["properties"]["grid"]
     assert {"temperature_c", "takeup.mass_kg", "scenario.run_s"} <= set(grid["properties"])
