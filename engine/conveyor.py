@@ -60,6 +60,7 @@ __all__ = [
     "check_visible",
     "NameText",
     "Yaml12Floats",
+    "yaml12_int",
     "json_numbers",
     "load_fraction",
     "section_loads",
@@ -1186,12 +1187,33 @@ def format_validation_error(exc: ValidationError, model: type[BaseModel], prefix
 _FLOAT_12 = re.compile(r"^[-+]?(?:[0-9][0-9_]*(?:\.[0-9_]*)?|\.[0-9_]+)[eE][-+]?[0-9]+$")
 
 
+#: YAML 1.2's integers that YAML 1.1 (PyYAML) reads otherwise: a decimal with leading zeros
+#: (``0210``: YAML 1.1 reads octal 136, or text where a digit is 8 or 9) and ``0o``
+#: octal (text in YAML 1.1). Read as YAML 1.2 reads them (:func:`yaml12_int`).
+_INT_12 = re.compile(r"^[-+]?(?:0[0-9_]+|0[oO][0-7_]+)$")
+
+
+def yaml12_int(text: str) -> int | None:
+    """The integer YAML 1.2's core schema reads in ``text`` where YAML 1.1 reads another
+    (:data:`_INT_12`): ``0210`` is 210 (a wrap angle written with a leading zero was read as
+    136 degrees), ``0o20`` is 16. ``None`` for every other notation, which both read alike."""
+    if not _INT_12.match(text):
+        return None
+    bare = text.replace("_", "")
+    sign = -1 if bare.startswith("-") else 1
+    bare = bare.lstrip("+-")
+    return sign * (int(bare[2:], 8) if bare[1:2] in "oO" else int(bare, 10))
+
+
 class Yaml12Floats(yaml.resolver.Resolver):
-    """PyYAML's resolver with YAML 1.2's exponent floats (:data:`_FLOAT_12`) as floats."""
+    """PyYAML's resolver with YAML 1.2's exponent floats (:data:`_FLOAT_12`) as floats and
+    its integers with leading zeros or ``0o`` (:data:`_INT_12`) as integers (read by
+    :func:`yaml12_int` in the loaders' constructors)."""
 
 
 Yaml12Floats.add_implicit_resolver("tag:yaml.org,2002:float", _FLOAT_12,
                                    list("-+0123456789."))
+Yaml12Floats.add_implicit_resolver("tag:yaml.org,2002:int", _INT_12, list("-+0"))
 
 
 class _KeyTwice(Exception):
@@ -1228,6 +1250,14 @@ class _SafeLoader(yaml.SafeLoader, Yaml12Floats):
                     raise _KeyTwice(key_node.value, seen[key], line)
                 seen[key] = line
         return super().construct_mapping(node, deep=deep)
+
+    def construct_yaml_int(self, node):
+        """An integer as YAML 1.2 reads it (:func:`yaml12_int`), else as PyYAML does."""
+        value = yaml12_int(str(node.value))
+        return super().construct_yaml_int(node) if value is None else value
+
+
+_SafeLoader.add_constructor("tag:yaml.org,2002:int", _SafeLoader.construct_yaml_int)
 
 
 def _json_pairs(pairs: list[tuple[str, Any]]) -> dict:

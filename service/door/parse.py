@@ -30,7 +30,7 @@ from typing import Any
 
 import yaml
 
-from beltstudy.engine.conveyor import Yaml12Floats
+from beltstudy.engine.conveyor import Yaml12Floats, yaml12_int
 from beltstudy.engine.errors import InputError
 from beltstudy.engine.textfile import read_text
 from beltstudy.service.errors import Invalid, TooLarge, file_reason
@@ -94,25 +94,27 @@ class _Constructor(yaml.constructor.SafeConstructor):
 
     def construct_yaml_int(self, node):
         """An integer by its value, whatever its notation (``0x10``, ``0o20``, ``0b10000``,
-        ``020``, ``1_6`` are 16): one of more than :data:`MAX_DIGITS` decimal digits is
-        refused however it is written. Hexadecimal, octal and binary text is at least a
-        quarter as long in bits, so it is measured before it is read."""
+        ``1_6`` are 16; ``016`` is 16 as YAML 1.2 reads it, :func:`yaml12_int`): one of more
+        than :data:`MAX_DIGITS` decimal digits is refused however it is written.
+        Hexadecimal, octal and binary text is at least a quarter as long in bits, so it is
+        measured before it is read."""
         text = str(node.value)
         decimal = sum(c.isdigit() for c in text)
         bare = text.lstrip("+-").replace("_", "")
-        bits = {"0x": 4, "0b": 1}.get(bare[:2].lower(), 3 if bare[:1] == "0" else 0)
+        bits = {"0x": 4, "0b": 1, "0o": 3}.get(bare[:2].lower(), 0)
         if bits and ":" not in bare:
             # a text of more characters than the largest value has bits is refused unread
-            chars = len(bare) - (2 if bits != 3 else 1)
+            chars = len(bare) - 2
             if bits * (chars - 1) > _MAX_BITS:
                 return _huge(text, int(chars * bits * math.log10(2)) + 1)
-            value = super().construct_yaml_int(node)
+            value = yaml12_int(text) if bits == 3 else super().construct_yaml_int(node)
             digits = len(str(abs(value))) if value.bit_length() <= _MAX_BITS + 8 else \
                 int(value.bit_length() * math.log10(2)) + 1
             return _huge(text, digits) if digits > MAX_DIGITS else value
         if decimal > MAX_DIGITS:
             return _huge(text, decimal)
-        return super().construct_yaml_int(node)
+        value = yaml12_int(text)
+        return super().construct_yaml_int(node) if value is None else value
 
     def refuse_tag(self, node):
         tag = node.tag.replace("tag:yaml.org,2002:", "!!")

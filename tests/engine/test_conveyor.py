@@ -249,6 +249,19 @@ def _with(path: str, value) -> dict:
     return d
 
 
+def test_integers_with_leading_zeros_are_read_as_yaml_1_2_reads_them(tmp_path):
+    # YAML 1.1 (PyYAML) reads 0210 as octal 136 and 0289 as text: a wrap angle written
+    # with a leading zero became 136 degrees. YAML 1.2's core schema reads both as decimal.
+    path = tmp_path / "zeros.yaml"
+    path.write_text("a: 0210\nb: -0289\nc: 0o20\nd: 0x10\ne: 0\nf: 1_6\ng: 007.5\n")
+    assert load_mapping(path) == {"a": 210, "b": -289, "c": 16, "d": 16, "e": 0, "f": 16,
+                                  "g": 7.5}
+    text = (CONVEYORS / "slope-5pct.yaml").read_text()
+    assert "wrap_deg: 210," in text
+    path.write_text(text.replace("wrap_deg: 210,", "wrap_deg: 0210,"))
+    assert load_conveyor(path).drives[0].wrap_deg == 210
+
+
 @pytest.mark.parametrize("path, value, needle", [
     # a motor curve's points are finite, speeds within 1.2 and torques within 10 x rated
     ("drives.0.motor_curve", [[0.0, float("nan")], [0.5, 2.0], [1.0, 0.0]],

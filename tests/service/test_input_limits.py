@@ -64,12 +64,12 @@ def test_a_boolean_is_no_number_in_any_axis_named_before_duplicates(tmp_path, ma
 
 
 def test_integers_by_value_whatever_their_notation(make_study):
-    # YAML 1.1: 0x10, 020 (octal) and 0b10000 are the integer 16
+    # 0x10, 0o20, 0b10000 and (as YAML 1.2 reads it, not 1.1's octal) 016 are the integer 16
     text = yaml.safe_dump(make_study(grid={"temperature_c": ["A", 16]})).replace("- A", "- 0x10")
     assert loads(text, yaml_text=True)["grid"]["temperature_c"] == [16, 16]
     with pytest.raises(Invalid, match=r"^grid.temperature_c: value 16 appears twice"):
         resolve_study(parse_body(text.encode(), "application/yaml"))
-    for literal in ("0x10", "020", "0b10000", "16.0", "1_6"):
+    for literal in ("0x10", "016", "0o20", "0b10000", "16.0", "1_6"):
         body = yaml.safe_dump(make_study()).replace("elements: 12", f"elements: {literal}")
         assert "elements: " + literal in body
         study = resolve_study(parse_body(body.encode(), "application/yaml"))
@@ -80,7 +80,8 @@ def test_integers_by_value_whatever_their_notation(make_study):
     ("0x" + "f" * 300, 362),       # 16**300 - 1 has 362 decimal digits
     ("0x1" + "0" * 256, 309),      # 16**256 = 2**1024: 309 digits (1.8e308)... the bound
     ("-0b1" + "0" * 1100, 332),    # 2**1100: 332 digits
-    ("0" + "7" * 400, 362),        # YAML 1.1 octal: 8**400 - 1 has 362 digits
+    ("0o" + "7" * 400, 362),       # octal: 8**400 - 1 has 362 digits
+    ("0" + "7" * 400, 400),        # a leading zero is decimal (YAML 1.2): 400 digits
     ("0x" + "f" * 100_000, 120_412),
 ])
 def test_hex_octal_and_binary_integers_count_digits_by_value(make_study, literal, digits):
