@@ -201,6 +201,11 @@ def to_parquet(df: pd.DataFrame) -> bytes:
     return buf.getvalue()
 
 
+#: Relative size below which a metric's value counts as zero in :func:`compare`: float64
+#: round-off of sums of terms of the metric's own size (about 1e-16 each) stays far below it.
+ZERO_REL = 1e-9
+
+
 def _stats(values: pd.Series) -> dict:
     v = values.dropna()
     if not len(v):
@@ -240,7 +245,8 @@ def compare(
     stats}}}}, "same_in_all_pairs": {axis: value}, "ratio"}``; stats are n, mean, min and max
     of the ratio. A ratio is a magnitude, ``|candidate| / |baseline|``; ``<metric>_sign`` says
     ``opposite`` where the two values have opposite signs (``overall.opposite_sign`` counts
-    them). Only the axes whose values differ between the pairs are listed per pair and per
+    them) and ``zero`` where either is zero (within :data:`ZERO_REL` of the metric's largest
+    magnitude in the pairs, so round-off of a zero gives no ratio). Only the axes whose values differ between the pairs are listed per pair and per
     axis; the others are in ``same_in_all_pairs``. A pair with a failed run has no ratio
     (``failed_pairs`` counts them). ``models``: the study's friction models (a model
     not among them is :class:`Invalid` naming the parameter); default: those in ``runs``.
@@ -297,13 +303,21 @@ def compare(
     for m in metrics:
         b = merged[f"{m}_baseline"].astype(float)
         c = merged[f"{m}_candidate"].astype(float)
+        # a value within ZERO_REL of the metric's largest magnitude in the pairs is a zero
+        # written with round-off (a baseline of -4e-14 kN gave a ratio of 1e14 and swamped
+        # the mean): no ratio over it, and no sign
+        scale = np.nanmax(np.abs(np.concatenate([b[usable], c[usable]])), initial=0.0)
+        b = b.where(np.abs(b) > ZERO_REL * scale, 0.0)
+        c = c.where(np.abs(c) > ZERO_REL * scale, 0.0)
         with np.errstate(divide="ignore", invalid="ignore"):
             # a magnitude: |candidate| / |baseline|; where the two have opposite signs (a
             # drive that regenerates under one model and drives under the other, a tension
             # below zero) the sign column says so instead of a negative ratio
             merged[f"{m}_ratio"] = np.where(usable & (b != 0), np.abs(c) / np.abs(b), np.nan)
             opposite = usable & (np.sign(b) * np.sign(c) < 0)
-        merged[f"{m}_sign"] = np.where(opposite, "opposite", np.where(usable, "same", None))
+            zero = usable & ((b == 0) | (c == 0))
+        merged[f"{m}_sign"] = np.where(opposite, "opposite", np.where(
+            zero, "zero", np.where(usable, "same", None)))
         summary[m] = {
             "overall": {**_stats(merged[f"{m}_ratio"]), "opposite_sign": int(opposite.sum())},
             "by_axis": {
@@ -326,7 +340,8 @@ def compare(
         "summary": summary,
         "same_in_all_pairs": same,
         "ratio": "magnitude |candidate| / |baseline|; <metric>_sign is 'opposite' where the "
-                 "two values have opposite signs",
+                 "two values have opposite signs and 'zero' (no ratio over a zero baseline) "
+                 "where either is zero",
     }
 
 

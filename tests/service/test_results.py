@@ -152,3 +152,21 @@ def test_pairs_with_a_failed_run_have_no_ratio():
     assert out["failed_pairs"] == 2 and len(out["pairs"]) == 4
     assert out["summary"]["power_kw"]["overall"]["n"] == 2
     assert out["summary"]["power_kw"]["by_axis"]["load"]["empty"]["n"] == 0
+
+
+def test_compare_gives_no_ratio_over_a_zero_written_with_round_off():
+    """A minimum tension of -4e-14 kN under the baseline is zero written with round-off: its
+    ratio was 1.2e14 and the mean of four ratios 3e13; now it has no ratio and sign 'zero'."""
+    runs = _runs()
+    runs["t_min_stop_kn"] = [5.0, 2.0, -4e-14, 1.0, 4.0, 1.6, 4.8, 0.0]
+    out = compare(runs, ["friction_model", "temperature_c", "load"], "cema", "nonlin",
+                  ["t_min_stop_kn"])
+    by_run = {p["run_id_baseline"]: p for p in out["pairs"]}
+    assert by_run["cema20.0full"]["t_min_stop_kn_ratio"] is None
+    assert by_run["cema20.0full"]["t_min_stop_kn_sign"] == "zero"
+    assert by_run["cema20.0empty"]["t_min_stop_kn_ratio"] == 0.0
+    assert by_run["cema20.0empty"]["t_min_stop_kn_sign"] == "zero"
+    overall = out["summary"]["t_min_stop_kn"]["overall"]
+    assert overall["n"] == 3
+    assert overall["mean"] == pytest.approx((0.8 + 0.8 + 0.0) / 3)
+    assert overall["opposite_sign"] == 0
