@@ -341,6 +341,23 @@ class ProfileSection(_Model):
         return self
 
 
+#: Largest angle in radians a wrap or a trough angle written in radians could be, and so the
+#: bound below which a value in degrees reads as radians: a pulley wrap below 2 pi deg
+#: (6.3 deg) grips nothing (e^(0.35 x 0.11) = 1.04), a trough below pi / 3 deg is flat.
+RADIANS_WRAP_MAX = 2.0 * math.pi
+RADIANS_TROUGH_MAX = math.pi / 3.0
+
+
+def degrees_not_radians(v: float, bound: float, what: str, practice: str) -> float:
+    """``v`` [deg], refused when it is below ``bound`` (the largest such angle in radians):
+    an angle written in radians where degrees are asked for, named with its degrees."""
+    if 0.0 < v < bound:
+        raise ValueError(
+            f"the {what} is in degrees ({practice}): {v:g} deg is no real {what}; "
+            f"{v:g} reads as radians, {math.degrees(v):.4g} deg: write that")
+    return v
+
+
 class IdlerSet(_Model):
     """An idler set; rotating mass and seal drag default from the catalogue by roll diameter."""
 
@@ -369,6 +386,15 @@ class IdlerSet(_Model):
         None, le=5.0, description="length of the middle (horizontal) roll [m], capacity check; "
         "default by belt width (DIN 22107, engine/data/trough.csv)"
     )
+
+    @field_validator("trough_deg")
+    @classmethod
+    def _trough_in_degrees(cls, v: float) -> float:
+        # 0 is a flat set; a trough of a degree or less is none anybody builds (20, 35, 45 deg)
+        if v == 0.0:
+            return v
+        return degrees_not_radians(v, RADIANS_TROUGH_MAX, "trough angle",
+                                   "troughed sets are 20 to 45 deg, flat ones 0")
 
     @model_validator(mode="after")
     def _one_of_each(self) -> IdlerSet:
@@ -503,6 +529,12 @@ class Drive(_Model):
         DRIVE_EFFICIENCY, gt=0, le=1.0, description="drive train efficiency from the motor "
         "shaft to the pulley (gear unit and coupling) [-]: the motor power a drive needs is "
         "its pulley power / efficiency (x efficiency regenerating); default 0.95")
+
+    @field_validator("wrap_deg")
+    @classmethod
+    def _wrap_in_degrees(cls, v: float) -> float:
+        return degrees_not_radians(v, RADIANS_WRAP_MAX, "wrap angle",
+                                   "a drive pulley takes about 180-240 deg")
 
     @field_validator("rated_power_kw", mode="before")
     @classmethod
@@ -1112,6 +1144,56 @@ def valid_keys(model: type[BaseModel]) -> list[str]:
     return [f.alias or name for name, f in model.model_fields.items()]
 
 
+#: A key written in a handbook's unit where the contract has its SI twin: the unit suffix, the
+#: twin's suffix and how to convert (exact factors: 1 ft = 0.3048 m, 1 in = 0.0254 m,
+#: 1 lb = 0.45359237 kg, 1 short ton = 0.90718474 t, 1 lbf = 4.4482216 N, 1 hp = 0.7457 kW).
+UNIT_SUFFIXES = (
+    ("_kg_m3", "_t_m3", "t/m3: kg/m3 / 1000"),
+    ("_lb_ft3", "_t_m3", "t/m3: lb/ft3 x 0.016018"),
+    ("_stph", "_t_h", "metric t/h: short tons/h x 0.90718"),
+    ("_tph", "_t_h", "metric t/h"),
+    ("_fpm", "_m_s", "m/s: ft/min x 0.00508"),
+    ("_ft", "_m", "metres: ft x 0.3048"),
+    ("_mm", "_m", "metres: mm / 1000"),
+    ("_in", "_m", "metres: in x 0.0254"),
+    ("_rad", "_deg", "degrees: rad x 57.296"),
+    ("_lbf", "_kn", "kN: lbf x 0.0044482"),
+    ("_lb", "_kg", "kg: lb x 0.45359"),
+    ("_hp", "_kw", "kW: hp x 0.7457"),
+)
+
+#: Handbook words with no key of their own, and the key that carries them.
+KEY_HINTS = {
+    "lagging": "the pulley lagging (bare, rubber, ceramic) enters as the belt-pulley friction "
+               "coefficient: give 'friction' for that lagging and its wet or dry duty (belt "
+               "maker's data or DIN 22101's table)",
+}
+
+#: Out-of-range values that are the right quantity in another unit: the field, a test on the
+#: value and the hint.
+UNIT_SLIPS = {
+    "density_t_m3": (lambda v: v > 25.0, lambda v: f"{v / 1000:g} t/m3 if {v:g} is kg/m3"),
+    "friction": (lambda v: v > 1.0, lambda v: f"a coefficient, {v / 100:g} if {v:g} is %"),
+    "friction_kinetic": (lambda v: v > 1.0,
+                         lambda v: f"a coefficient, {v / 100:g} if {v:g} is %"),
+    **{name: (lambda v: v > 5.0, lambda v: f"in metres, {v / 1000:g} m if {v:g} is mm")
+       for name in ("spacing_m", "width_m", "roll_diameter_m", "pulley_diameter_m",
+                    "skirt_width_m", "roll_length_m")},
+}
+
+
+def _unknown_key_hint(key: str, keys: list[str]) -> str:
+    """What to write instead of the unknown ``key``: its SI twin with the conversion, the key
+    a handbook word maps to, else the nearest valid key or the list."""
+    if key in KEY_HINTS:
+        return f"; {KEY_HINTS[key]}"
+    for suffix, repl, conv in UNIT_SUFFIXES:
+        if key.endswith(suffix) and key[: -len(suffix)] + repl in keys:
+            return f"; did you mean '{key[: -len(suffix)] + repl}'? (in {conv})"
+    close = difflib.get_close_matches(key, keys, n=1, cutoff=0.5)
+    return f"; did you mean '{close[0]}'?" if close else f"; valid keys: {', '.join(keys)}"
+
+
 def format_validation_error(exc: ValidationError, model: type[BaseModel], prefix: str = "") -> str:
     """Turn a Pydantic error into short lines naming the field path and the fix."""
     lines = []
@@ -1130,11 +1212,7 @@ def format_validation_error(exc: ValidationError, model: type[BaseModel], prefix
             key = str(clean[-1])
             hint = ""
             if owner is not None:
-                keys = valid_keys(owner)
-                close = difflib.get_close_matches(key, keys, n=1, cutoff=0.5)
-                hint = (
-                    f"; did you mean '{close[0]}'?" if close else f"; valid keys: {', '.join(keys)}"
-                )
+                hint = _unknown_key_hint(key, valid_keys(owner))
             lines.append(f"{path}: unknown key '{key}'{hint}")
         elif err["type"] == "missing":
             lines.append(f"{path}: required field is missing")
@@ -1146,6 +1224,10 @@ def format_validation_error(exc: ValidationError, model: type[BaseModel], prefix
             shown = "" if isinstance(got, dict | list) else f" (got {got!r})"
             if isinstance(got, float) and not math.isfinite(got):
                 msg = "Input should be a finite number"  # not a bound a NaN fails
+            slip = UNIT_SLIPS.get(str(clean[-1])) if clean else None
+            if (slip is not None and isinstance(got, int | float) and not isinstance(got, bool)
+                    and math.isfinite(got) and slip[0](got)):
+                shown += f": {slip[1](got)}"
             if not clean:
                 # A check across fields names its own field first ("drives: shares sum ...").
                 m = re.match(r"([A-Za-z_][\w\[\]\.]*): (.*)$", msg, re.S)

@@ -61,6 +61,68 @@ def test_misspelt_key_suggests_nearest():
     assert "did you mean 'speed_m_s'" in _err(d)
 
 
+def test_a_wrap_or_trough_angle_written_in_radians_is_refused_with_its_degrees():
+    """A handbook's wrap of 3.67 rad (210 deg) typed into wrap_deg was taken as a 3.67 deg wrap:
+    e^(0.35 x 0.064) = 1.02, so the auto take-up hung about 350 t on a 0.9 m belt with only a
+    safety-factor warning. Below 2 pi deg (a wrap that grips nothing) and below pi / 3 deg for
+    a trough (a flat set is 0) the value is refused, naming the field and its degrees; the
+    shallowest wraps and troughs in use are taken."""
+    d = hand_conveyor_dict()
+    d["drives"][0]["wrap_deg"] = 3.67
+    msg = _err(d)
+    assert "drives.0.wrap_deg" in msg and "radians" in msg and "210.3 deg" in msg
+    d = hand_conveyor_dict()
+    d["idlers"]["carry"]["trough_deg"] = 0.61
+    msg = _err(d)
+    assert "idlers.carry.trough_deg" in msg and "radians" in msg and "34.95 deg" in msg
+    d = hand_conveyor_dict()
+    d["drives"][0]["wrap_deg"] = 60.0
+    d["idlers"]["carry"]["trough_deg"] = 0.0
+    d["idlers"]["return"]["trough_deg"] = 10.0
+    parse_conveyor(d)
+
+
+@pytest.mark.parametrize("where,key,value,needles", [
+    ("material", "capacity_tph", 720, ["'capacity_t_h'", "metric t/h"]),
+    ("material", "density_kg_m3", 1000, ["'density_t_m3'", "kg/m3 / 1000"]),
+    ("profile.0", "lift_ft", 164, ["'lift_m'", "ft x 0.3048"]),
+    ("drives.0", "lagging", "ceramic", ["'friction'", "lagging"]),
+    ("drives.0", "wrap_rad", 3.67, ["'wrap_deg'", "rad x 57.296"]),
+])
+def test_a_key_in_a_handbook_unit_names_its_si_twin_and_the_conversion(where, key, value,
+                                                                        needles):
+    """Keys a user copies from a handbook (t/h as tph, kg/m3, ft, rad, a pulley's lagging)
+    name the contract's key and how to convert; 'lagging' was answered "did you mean
+    'coupling'?"."""
+    d = hand_conveyor_dict()
+    node = d
+    for part in where.split("."):
+        node = node[int(part)] if part.isdigit() else node[part]
+    node[key] = value
+    msg = _err(d)
+    assert f"{where}.{key}: unknown key" in msg
+    for needle in needles:
+        assert needle in msg
+
+
+@pytest.mark.parametrize("path,value,needle", [
+    (("material", "density_t_m3"), 1600, "1.6 t/m3 if 1600 is kg/m3"),
+    (("idlers", "carry", "spacing_m"), 1200, "1.2 m if 1200 is mm"),
+    (("drives", 0, "pulley_diameter_m"), 800, "0.8 m if 800 is mm"),
+    (("drives", 0, "friction"), 35, "0.35 if 35 is %"),
+])
+def test_a_value_out_of_range_in_another_unit_says_which(path, value, needle):
+    """A density in kg/m3, a pitch or diameter in mm, a friction in % fail their bound and the
+    message says what the value is in the field's unit."""
+    d = hand_conveyor_dict()
+    node = d
+    for part in path[:-1]:
+        node = node[part]
+    node[path[-1]] = value
+    msg = _err(d)
+    assert ".".join(str(p) for p in path) in msg and needle in msg
+
+
 def test_shares_must_sum_to_one():
     d = hand_conveyor_dict()
     d["drives"][0]["share"] = 0.6
