@@ -41,11 +41,12 @@ import math
 
 import numpy as np
 
+from beltstudy.engine import checks
 from beltstudy.engine.capacity import middle_roll_length_m, trough_segments
 from beltstudy.engine.loop import CARRY, Curve, G, Loop
 
-__all__ = ["liftoff_tension_n", "liftoff_limits_n", "convex_radius_min_m", "steady_checks",
-           "transient_liftoff"]
+__all__ = ["liftoff_tension_n", "liftoff_limits_n", "convex_radius_min_m",
+           "convex_idler_warnings", "steady_checks", "transient_liftoff"]
 
 
 def liftoff_tension_n(radius_m: float, mass_kg_m: float, angle_rad: float) -> float:
@@ -117,6 +118,58 @@ def convex_radius_min_m(tension_n: float, stiffness_n: float, admissible_n: floa
     return max((h - z_mean) / (eps_adm - eps), z_mean / eps)
 
 
+def convex_idler_warnings(conv, loop: Loop, curve: Curve, tension_n: float) -> list[str]:
+    """The carry idler sets on a convex curve against their CEMA class: rating and L10.
+
+    On a convex curve each carry set carries, beside the weight of belt and load
+    ``g (m'_G + m'_L) S``, the belt's tension pressing round the curve, ``T S / R`` (CEMA,
+    *Belt Conveyors for Bulk Materials*, 7th ed., ch. 5 idler selection and ch. 9 convex
+    curves: the radial load from the belt tension is added to the idler load; DIN 22101:2011
+    the same balance; *unverified* against the printed texts). The set's load is judged
+    against the class's rating and its middle roll (the straight run's share of the set's
+    load, :func:`beltstudy.engine.checks.middle_roll_share`, kept for the curve's part too: an
+    upper estimate) against the L10 basis, as ``idler_load_carry_n`` and ``idler_l10_h`` are
+    on the straight run (:mod:`beltstudy.engine.checks`).
+
+    Returns
+    -------
+    list of str
+        One warning when a limit is passed, naming the curve, the set's load (weight and curve part)
+        and the pitch or radius that meets it; empty without a ``cema_class``.
+    """
+    ic = conv.idlers.carry
+    rating = checks._idler_ratings().get(ic.cema_class) if ic.cema_class else None
+    if rating is None:
+        return []
+    pitch = conv.idler_spacing_m("carry")
+    m_load = max(loop.design_load_kg_m, loop.load_max_kg_m)
+    f_weight = checks.idler_load_set_n(loop.belt.mass_kg_m, m_load, pitch)
+    f_curve = tension_n * pitch / curve.radius_m
+    f_set = f_weight + f_curve
+    share = checks.middle_roll_share(ic.rolls, ic.trough_deg)
+    where = (f"curve {curve.k} (convex, R {curve.radius_m:g} m at {curve.at_m:.0f} m): each "
+             f"carry idler set carries {f_set:.0f} N ({f_weight:.0f} N of belt and design load "
+             f"over {pitch:g} m and {f_curve:.0f} N of the tension {tension_n / 1e3:.1f} kN "
+             f"pressing round the curve, T S / R)")
+    parts = []
+    if f_set > rating["carry_rating_n"]:
+        # the set load is proportional to the pitch; the curve part alone to 1 / R
+        room = rating["carry_rating_n"] - f_weight
+        radius = (f", or a radius of at least {math.ceil(curve.radius_m * f_curve / room):.0f} m"
+                  if room > 0.0 else "")
+        parts.append(f"above the CEMA {ic.cema_class} rating {rating['carry_rating_n']:.0f} N: a "
+                     f"heavier class, a closer pitch there "
+                     f"({pitch * rating['carry_rating_n'] / f_set:.2f} m){radius}")
+    l10 = checks.bearing_l10_h(rating["bearing_c_n"], share * f_set / 2.0, loop.speed_m_s,
+                               ic.roll_diameter_m)
+    if l10 < rating["l10_min_h"]:
+        parts.append(f"its middle roll's bearing life L10 {l10:.0f} h (ISO 281, "
+                     f"{share * f_set:.0f} N on two bearings) is below the CEMA "
+                     f"{ic.cema_class} basis {rating['l10_min_h']:.0f} h: a heavier class, "
+                     "larger rolls, a closer pitch there or a larger radius")
+    return [f"{where}, " + "; and ".join(parts)] if parts else []
+
+
 def _kn_range(lo_n: float, hi_n: float) -> str:
     """``12.3`` or ``12.3 to 14.5`` [kN] as one figure reads."""
     lo, hi = f"{lo_n / 1e3:.1f}", f"{hi_n / 1e3:.1f}"
@@ -169,6 +222,7 @@ def steady_checks(conv, loop: Loop, T: np.ndarray, sf_min: float) -> tuple[dict,
         else:
             out[f"curve{k}_liftoff_tension_kn"] = None
             out[f"curve{k}_liftoff"] = False
+            warnings += convex_idler_warnings(conv, loop, c, t_carry)
             # the edge strain is largest at the arc's highest tension, the centre's relief
             # at its lowest: the radius meets both
             t_low = float(T[c.carry].min())

@@ -215,3 +215,46 @@ def test_a_point_near_an_arc_is_told_a_place_off_the_arc():
         parse_conveyor(d)
     d["drives"][1]["at_m"] = 969.9  # the place the message names is accepted
     parse_conveyor(d)
+
+
+def test_convex_curve_idlers_carry_the_tension_pressing_round_the_curve():
+    """CEMA 7th ed. (idler selection, convex curves) / DIN 22101: on a convex curve each
+    carry set carries g (m'_G + m'_L) S + T S / R. Hand conveyor rising 10 % for 500 m, then
+    flat: a crest. Weight 9.81 x (20 + 50) x 1.25 = 858.4 N per set, inside the CEMA B rating
+    of 1824 N on the straight run; at R 40 m the tension adds T x 1.25 / 40 (about 2.4 kN at
+    the crest's ~76 kN), above the rating: a warning naming the curve, the load by hand, the
+    pitch rating / load x S and the radius R T S / (rating - weight) that meet it."""
+    def crest(radius_m):
+        d = hand_conveyor_dict(profile=[
+            {"length_m": 500, "lift_m": 50, "curve_radius_m": radius_m},
+            {"length_m": 500, "lift_m": 0}])
+        d["idlers"]["carry"]["cema_class"] = "B"
+        return solve_steady(parse_conveyor(d), model="din", n_elements=200)
+
+    st = crest(40.0)
+    s = st.summary
+    weight = 9.81 * (20 + 50) * 1.25
+    assert s["idler_load_carry_n"] == pytest.approx(weight, rel=1e-9)  # the straight run's
+    t = s["curve1_tension_kn"] * 1e3
+    assert 50e3 < t < 100e3
+    f_set = weight + t * 1.25 / 40.0
+    assert f_set > 1824.0 > weight
+    assert (f"curve 1 (convex, R 40 m at 500 m): each carry idler set carries {f_set:.0f} N "
+            f"({weight:.0f} N of belt and design load over 1.25 m and "
+            f"{t * 1.25 / 40.0:.0f} N of the tension") in st.message
+    assert "above the CEMA B rating 1824 N" in st.message
+    assert f"({1.25 * 1824.0 / f_set:.2f} m)" in st.message
+    assert f"a radius of at least {math.ceil(40.0 * (t * 1.25 / 40.0) / (1824.0 - weight))} m" \
+        in st.message
+    assert st.status == "warning"
+    # ISO 281 L10 of the middle roll (0.67 of the set's load on two 6203 bearings, C 9950 N,
+    # 0.133 m rolls at 4 m/s): (C / P)^3 10^6 / (60 n), n = 60 v / (pi D)
+    p = 0.67 * f_set / 2
+    l10 = (9950.0 / p) ** 3 * 1e6 / (60 * 60 * 4.0 / (math.pi * 0.133))
+    assert l10 < 30000  # CEMA's basis: the life is short too
+    assert (f"; and its middle roll's bearing life L10 {l10:.0f} h (ISO 281, {2 * p:.0f} N on "
+            "two bearings) is below the CEMA B basis 30000 h") in st.message
+    # a radius that keeps the set within its rating: no idler warning at the curve
+    wide = crest(200.0)
+    assert wide.summary["curve1_tension_kn"] * 1e3 * 1.25 / 200.0 + weight < 1824.0
+    assert "each carry idler set carries" not in wide.message
