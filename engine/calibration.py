@@ -192,6 +192,60 @@ def _check_rows(conv: Conveyor, rows: Sequence[Measurement]) -> None:
             section_loads(m.load, conv)
         except InputError as exc:
             raise InputError(exc.reason, field=f"measured.{i}.load") from None
+        _check_magnitudes(conv, m, i)
+
+
+#: Largest disagreement of a row's measured power and peripheral force [-], |P / (Te v) - 1|:
+#: the drive pulleys' power is Te v exactly in a steady state, and two readings each good to
+#: :data:`MISFIT_PCT` (5 %) at most disagree by at most about twice that.
+POWER_FORCE_MISMATCH = 2.0 * 5.0 / 100.0
+
+
+def _breaking_force_kn(conv: Conveyor) -> tuple[float, str] | None:
+    """The belt's breaking force rating x width [kN] and the belt it is of, or None when the
+    belt is still to be picked (``type: auto``)."""
+    from beltstudy.engine import catalog
+
+    if conv.belt.type == catalog.AUTO:
+        return None
+    b = catalog.resolve_belt(conv.belt)
+    name = conv.belt.type or "the file's belt"
+    return b.rating_n / 1e3, f"{name}, {b.rating_kn_m:g} kN/m x {b.width_m:g} m"
+
+
+def _check_magnitudes(conv: Conveyor, m: Measurement, i: int) -> None:
+    """A row's measured force, tension and power within what the belt can carry (its breaking
+    force; at the row's speed for a power), and its power and force, when both are given,
+    agreeing as P = Te v: a value in N or W for kN or kW (1000 x) or a mistyped row is named
+    by its field, not fitted into a friction factor of nothing real."""
+    v = m.speed_m_s if m.speed_m_s is not None else conv.speed_m_s
+    vals = m.values
+    broke = _breaking_force_kn(conv)
+    if broke is not None:
+        fb, belt = broke
+        for col in ("te_kn", "t_tight_kn"):
+            if col in vals and abs(vals[col]) > fb:
+                raise InputError(
+                    f"{vals[col]:g} kN is more than the belt's breaking force {fb:.4g} kN "
+                    f"({belt}): no belt carries it; give the force in kN (1 kN = 1000 N), "
+                    "or the plant's belt in the conveyor file", field=f"measured.{i}.{col}")
+        if "power_kw" in vals and abs(vals["power_kw"]) / v > fb:
+            p = vals["power_kw"]
+            raise InputError(
+                f"{p:g} kW at {v:g} m/s needs a peripheral force of {abs(p) / v:.4g} kN, more "
+                f"than the belt's breaking force {fb:.4g} kN ({belt}): no belt carries it; "
+                "give the power at the drive pulleys in kW (1 kW = 1000 W, 1 MW = 1000 kW)",
+                field=f"measured.{i}.power_kw")
+    if "power_kw" in vals and "te_kn" in vals:
+        p, te = vals["power_kw"], vals["te_kn"]
+        if abs(p / (te * v) - 1.0) > POWER_FORCE_MISMATCH:
+            raise InputError(
+                f"{p:g} kW and te_kn {te:g} kN disagree: at {v:g} m/s the peripheral force "
+                f"{te:g} kN is {te * v:.4g} kW at the drive pulleys (P = Te v), "
+                f"{100.0 * (p / (te * v) - 1.0):+.3g} % off, more than the "
+                f"{100.0 * POWER_FORCE_MISMATCH:g} % two plant readings differ by: check the "
+                "row (the same steady state, power at the pulleys not at the motors), or give "
+                "one of them", field=f"measured.{i}.power_kw")
 
 
 def _conveyor_at(conv: Conveyor, speed_m_s: float | None, cache: dict) -> Conveyor:
@@ -408,6 +462,8 @@ def calibrate(conv: Conveyor, measured: Sequence[Measurement], model: str,
              **_expanded(fm.name, {name: float(f"{v:.6g}")
                                    for name, v in zip(free, sol.x, strict=True)})}
     sv = np.linalg.svd(_unit_columns(jac), compute_uv=False) if p else np.array([])
+    suspect = _contradictions(rows, cols, y) or _outliers(rows, cols, y, values, r, jac, dof)
+    notes += suspect
     return Calibration(
         model=fm.name, fit=fitted, residuals=residuals,
         not_identifiable=sorted({x for g in groups for x in g}, key=names.index),
@@ -415,7 +471,8 @@ def calibrate(conv: Conveyor, measured: Sequence[Measurement], model: str,
         rms_relative=float(math.sqrt(float(r @ r) / n)), dof=dof,
         singular_values=[float(s) for s in sv],
         notes=notes, **_verdict(sol, at_bound, r, fm.name, at_upper,
-                                {n: largest[n] for n in own_limit}, groups, held_values))
+                                {n: largest[n] for n in own_limit}, groups, held_values,
+                                suspect=suspect, exact=bool(p) and dof == 0))
 
 
 #: Rms relative residual [%] above which a fit misses its data: a plant's logged drive power

@@ -215,12 +215,20 @@ def test_a_converged_fit_that_misses_the_data_is_a_warning(overland):
 
 
 def test_a_fit_pushed_to_a_parameters_largest_value_says_so(overland):
-    """A power a thousand times the plant's asks for a friction factor beyond DIN's 1 (a
-    resistance of the moving weight, friction.base.param hi): the fit stops there and warns."""
-    rows = _plant(overland, "din", {"f_carry": TRUTH})
-    for m in rows:
-        m.values["power_kw"] *= 1000.0
-    cal = calibrate(overland, rows, "din", ["f_carry"])
+    """A power that asks for a friction factor beyond DIN's 1 (a resistance of the moving
+    weight, friction.base.param hi) and that the belt still carries (a 300 m level version of
+    the overland: 1.3 x the power at f_carry = 1): the fit stops there and warns."""
+    from beltstudy.engine import catalog, parse_conveyor
+
+    data = overland.model_dump(mode="json", by_alias=True)
+    short = parse_conveyor({**data, "profile": [{"length_m": 300.0, "lift_m": 0.0}]})
+    at_1 = _plant(short, "din", {"f_carry": 1.0})
+    rows = _plant(short, "din", {"f_carry": TRUTH})
+    for m, m1 in zip(rows, at_1, strict=True):
+        m.values["power_kw"] = 1.3 * m1.values["power_kw"]
+    fb = catalog.resolve_belt(short.belt).rating_n / 1e3
+    assert max(m.values["power_kw"] for m in rows) / short.speed_m_s < fb  # the belt holds
+    cal = calibrate(short, rows, "din", ["f_carry"])
     assert cal.fit["f_carry"]["value"] == pytest.approx(1.0, rel=1e-6)
     assert cal.status == "warning"
     assert "f_carry ends at the largest value model din takes" in cal.message
@@ -263,3 +271,45 @@ def test_a_misfit_of_measured_force_is_told_in_force_not_power(overland):
     assert cal.status == "warning"
     assert "Check the measured values (power at the drive pulleys [kW] or peripheral force [kN]" \
         in cal.message
+
+
+def test_a_power_or_force_beyond_the_belts_breaking_force_is_refused_as_a_unit_slip(overland):
+    """overland-4km's belt breaks at rating x width; a peripheral force above it (or a power
+    that needs one at the row's speed) is no plant's: a value in W or N for kW or kN (1000 x)
+    is refused naming the row and field, not fitted into a friction factor at its bound."""
+    from beltstudy.engine import catalog
+
+    fb = catalog.resolve_belt(overland.belt).rating_n / 1e3
+    v = overland.speed_m_s
+    good = _plant(overland, "din", {"f_carry": TRUTH})
+    in_w = [Measurement(m.load, m.temperature_c, {"power_kw": 1000.0 * m.values["power_kw"]})
+            for m in good]
+    assert abs(in_w[-1].values["power_kw"]) / v > fb  # the premise: W read as kW breaks the belt
+    with pytest.raises(InputError, match=r"^measured\.0\.power_kw: .* kW at 4\.5 m/s needs a "
+                                         r"peripheral force of .*breaking force.*in kW"):
+        calibrate(overland, in_w, "din", ["f_carry"])
+    with pytest.raises(InputError, match=r"^measured\.1\.te_kn: .*breaking force.*in kN"):
+        calibrate(overland, [good[0], Measurement(0.5, 10.0, {"te_kn": 1.01 * fb})], "din",
+                  ["f_carry"])
+    with pytest.raises(InputError, match=r"^measured\.0\.t_tight_kn: .*breaking force"):
+        calibrate(overland, [Measurement(0.5, 10.0, {"power_kw": 900.0,
+                                                     "t_tight_kn": 1.01 * fb})], "din",
+                  ["f_carry"])
+
+
+def test_a_rows_power_and_force_must_agree_as_p_equals_te_v(overland):
+    """A row's power at the drive pulleys is its Te x v in a steady state: given both, they
+    agree within two readings' accuracy (10 %); 16 % apart is a mistyped row, named; 3 % apart
+    is fitted."""
+    v = overland.speed_m_s
+    te = 200.0
+    with pytest.raises(InputError, match=r"^measured\.0\.power_kw: 1044 kW and te_kn 200 kN "
+                                         r"disagree: at 4\.5 m/s .* 900 kW .*\+16 % off"):
+        calibrate(overland, [Measurement(0.8, 10.0, {"power_kw": 1.16 * te * v, "te_kn": te})],
+                  "din", ["f_carry"])
+    rows = _plant(overland, "din", {"f_carry": TRUTH})
+    both = [Measurement(m.load, m.temperature_c,
+                        {"power_kw": m.values["power_kw"],
+                         "te_kn": m.values["power_kw"] / v * 1.03}) for m in rows]
+    cal = calibrate(overland, both, "din", ["f_carry"])
+    assert cal.fit["f_carry"]["value"] == pytest.approx(TRUTH, rel=0.1)
