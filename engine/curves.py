@@ -199,7 +199,10 @@ def steady_checks(conv, loop: Loop, T: np.ndarray, sf_min: float) -> tuple[dict,
         t_carry = float(T[c.carry].max())
         out[f"curve{k}_kind"] = c.kind
         out[f"curve{k}_at_m"] = c.at_m
-        out[f"curve{k}_tension_kn"] = t_carry / 1e3
+        # the tension the verdict is judged at: the carry's on a convex curve (its edge strain
+        # and idler load), either strand's on a concave one (the empty return runs through
+        # the same valley and lifts first where it is the tighter, e.g. a regenerating decline)
+        out[f"curve{k}_tension_kn"] = (float(T[el].max()) if c.concave else t_carry) / 1e3
         out[f"curve{k}_idler_load_extra_n"] = (t_carry * conv.idler_spacing_m("carry")
                                                 / c.radius_m)
         if c.concave:

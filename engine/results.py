@@ -448,8 +448,9 @@ CURVES = ResultGroup("curves", "Vertical curves, steady (CEMA, DIN 22101; docs/r
        "convex (a crest)", "curve"),
     _f("curve{k}_at_m", "m", "the junction of the curve's two sections, from the tail along "
        "the carry", "at"),
-    _f("curve{k}_tension_kn", "kN", "highest steady tension of the carry strand on curve k",
-       "T on the curve"),
+    _f("curve{k}_tension_kn", "kN", "highest steady tension on curve k: of the carry strand "
+       "on a convex curve; of either strand on a concave one (the tension its lift-off is "
+       "judged at)", "T on the curve"),
     _f("curve{k}_liftoff_tension_kn", "kN", "concave: the tension at which the empty belt "
        "leaves its idlers there, R m'_G g cos(a) at the curve's steepest element (the loaded "
        "belt, m'_G + m'_L, holds more); null for a convex curve", "lift-off tension"),

@@ -258,3 +258,34 @@ def test_convex_curve_idlers_carry_the_tension_pressing_round_the_curve():
     wide = crest(200.0)
     assert wide.summary["curve1_tension_kn"] * 1e3 * 1.25 / 200.0 + weight < 1824.0
     assert "each carry idler set carries" not in wide.message
+
+
+def test_a_valley_on_a_regenerating_decline_is_judged_at_its_tighter_return():
+    """A decline falling 10 % for 500 m into a valley of R 100 m, then flat: the drive at the
+    head holds the loaded belt back, so the return leaving the head is the tight side and,
+    at the valley, tighter than the carry. CEMA 7th ed. ch. 9 / DIN 22101: the empty belt
+    lifts where T > R m'_G g cos a (100 x 20 x 9.81 x cos a ~ 19.6 kN). The verdict, the
+    tension printed beside it and the radius it needs all read the strand that lifts:
+    ``curve1_tension_kn`` is the highest tension on the arc of either strand, and
+    ``curve1_radius_min_m`` = that tension / (m'_G g cos a)."""
+    d = hand_conveyor_dict(profile=[
+        {"length_m": 500, "lift_m": -50, "curve_radius_m": 100.0},
+        {"length_m": 500, "lift_m": 0}])
+    st = solve_steady(parse_conveyor(d), model="din", n_elements=200)
+    s = st.summary
+    (c,) = st.loop.curves
+    assert c.kind == "concave" and s["te_kn"] < 0.0  # regenerating
+    t_carry, t_ret = st.tension_n[c.carry].max(), st.tension_n[c.ret].max()
+    assert t_ret > t_carry  # the return is the tighter strand at the valley
+    assert s["curve1_tension_kn"] == pytest.approx(t_ret / 1e3, rel=1e-12)
+    lift = s["curve1_liftoff_tension_kn"]
+    assert lift * 1e3 == pytest.approx(100 * 20 * 9.81 * math.cos(math.asin(0.1)), rel=2e-3)
+    assert s["curve1_liftoff"] is (s["curve1_tension_kn"] > lift)
+    el = np.concatenate((c.carry, c.ret))
+    by_hand = max(st.tension_n[j] / (20 * 9.81 * st.loop.cos_a[j]) for j in el)
+    assert s["curve1_radius_min_m"] == pytest.approx(by_hand, rel=1e-12)
+    # the tension printed and the radius agree: T / (m'_G g cos a) at the arc's slopes
+    assert s["curve1_radius_min_m"] == pytest.approx(
+        s["curve1_tension_kn"] * 1e3 / (20 * 9.81 * math.cos(math.asin(0.1))), rel=6e-3)
+    # the carry's own tension stays the convex curves' (edge strain, idler load)
+    assert s["curve1_idler_load_extra_n"] == pytest.approx(t_carry * 1.25 / 100.0, rel=1e-12)
