@@ -712,6 +712,15 @@ class Brake(_Model):
             if ts[0] < 0.0 or any(not 0.0 <= f <= 1.0 for f in fs):
                 raise ValueError("force_curve: times from 0 up and fractions of the force in "
                                  f"0..1 (got {list(self.force_curve)})")
+            if max(fs) < 1.0:
+                # force_kn is the brake's full force: the auto size, the stop-time estimate,
+                # the grip check and brake_force_kn all take it as the force the brake gives
+                raise ValueError(
+                    f"force_curve: its fractions reach {max(fs):g} of force_kn, never the full "
+                    "force (1): force_kn is the force the brake gives; let the curve reach 1 "
+                    "and give force_kn the brake's largest force"
+                    + (" (a curve of zeros is a brake that never brakes)" if max(fs) == 0.0
+                       else ""))
         return self
 
     @property

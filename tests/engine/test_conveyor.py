@@ -402,3 +402,18 @@ def test_a_record_spacing_beyond_a_minute_is_refused():
     parse_scenario({"record_dt_s": 60.0})
     with pytest.raises(InputError, match=r"record_dt_s: Input should be less than or equal to 60"):
         parse_scenario({"record_dt_s": 1e6})
+
+
+@pytest.mark.parametrize(("curve", "reach"), [([[0.0, 0.0], [5.0, 0.0]], "0"),
+                                              ([[0.0, 0.5], [3.0, 0.8]], "0.8")])
+def test_a_brake_force_curve_reaches_the_full_force(curve, reach):
+    """force_kn is the brake's force (the auto size, the stop-time estimate, the grip check and
+    brake_force_kn take it so): a curve that never reaches 1 would brake with less than all of
+    them say (all zeros: not at all); it is refused naming the field. One that reaches 1 is
+    taken."""
+    d = hand_conveyor_dict(brakes=[{"position": "head", "force_kn": 50, "force_curve": curve}])
+    msg = _err(d)
+    assert msg.startswith("brakes.0: force_curve: its fractions reach " + reach + " of force_kn"), msg
+    ok = hand_conveyor_dict(brakes=[{"position": "head", "force_kn": 50,
+                                     "force_curve": [[0.0, 0.5], [3.0, 1.0]]}])
+    assert parse_conveyor(ok).brakes[0].force_curve[-1] == (3.0, 1.0)
