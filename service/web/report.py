@@ -89,6 +89,7 @@ code { font-size: 9pt; }
 table.verdicts, table.causes, table.runs { width: 100%; }
 .run { font-size: 7.5pt; color: #444; }
 details summary { cursor: pointer; }
+.print-full { display: none; }
 ul.causes-list { margin: 0.3em 0 0.8em; }
 @page { size: A4; margin: 14mm 12mm; }
 @media print {
@@ -102,6 +103,8 @@ ul.causes-list { margin: 0.3em 0 0.8em; }
   .runs, .verdicts, .causes { font-size: 7.5pt; }
   details summary { list-style: none; }
   details summary::-webkit-details-marker { display: none; }
+  details.fold-print { display: none; }
+  .print-full { display: inline; }
 }
 """
 
@@ -189,15 +192,21 @@ def _unit(column: str) -> str:
     return ""
 
 
-def _message_cell(message: Any, chars: int = MESSAGE_CHARS) -> str:
+def _message_cell(message: Any, chars: int = MESSAGE_CHARS, print_full: bool = False) -> str:
     """A message that keeps its row short: the first ``chars`` characters, the rest folded
-    into a ``<details>`` element."""
+    into a ``<details>`` element. A closed ``<details>`` does not print, so with
+    ``print_full`` the whole text is also given in a span that only print shows (the report
+    has no script to open the folds): what would avoid a limit, at the end of a long clause,
+    is on the PDF too."""
     text = "" if message is None or (isinstance(message, float) and math.isnan(message)) \
         else str(message)
     if len(text) <= chars:
         return _e(text)
     cut = text.rfind(" ", 0, chars)
     cut = cut if cut > chars // 2 else chars
+    if print_full:
+        return (f"<details class=fold-print><summary>{_e(text[:cut])} …</summary>"
+                f"{_e(text[cut:])}</details><span class=print-full>{_e(text)}</span>")
     return (f"<details><summary>{_e(text[:cut])} …</summary>{_e(text[cut:])}</details>")
 
 
@@ -561,7 +570,7 @@ def _said_section(runs: pd.DataFrame) -> str:
         more = f" and {len(ids) - KIND_RUNS} more" if len(ids) > KIND_RUNS else ""
         rows.append([NUM + str(len(ids)),
                      " ".join(f"<code class=id>{_e(i)}</code>" for i in ids[:KIND_RUNS]) + more,
-                     _message_cell(first, 2 * MESSAGE_CHARS)])
+                     _message_cell(first, 2 * MESSAGE_CHARS, print_full=True)])
     out = [f"<p>Each kind of clause in the {len(runs)} runs' messages (the same words with "
            "other numbers), how many runs say it, and the first run's words.</p>",
            _table(["runs", "run ids", "what the first run says"], rows, "causes")]

@@ -375,3 +375,32 @@ def test_every_kind_of_clause_is_in_the_report_however_many_runs(web):
     # a study whose runs say nothing says so
     quiet = report_html(_doc(web), _runs().iloc[:2], {"state": "done", "done": 2, "total": 2})
     assert "None of the 2 runs has a warning, a note or a failure." in _section(quiet, 10)
+
+
+def test_a_long_clause_prints_whole_in_the_last_section(web):
+    """A closed <details> does not print and the report has no script to open it: the last
+    section's clause past 180 characters kept its remedy (the clause's end) only on screen,
+    so the PDF for the client said the belt safety factor was short but not what would
+    avoid it. The whole clause is now also in a span that only print shows."""
+    from beltstudy.service.web.report import CSS
+
+    remedy = ("a belt rated at least 1252 kN/m at this width (now 1250 kN/m) or a softer stop "
+              "(a longer stop time, less brake force, a longer brake ramp, brakes[].ramp_s) "
+              "would avoid it")
+    clause = ("belt safety factor 4.46 during the transient is below 4.47 (peak 280.1 kN near "
+              "1800 m from the tail on the carry at t = 55.9 s, during the stop): " + remedy)
+    assert len(clause) > 180
+    runs = _runs()
+    runs.loc[0, "message"] = clause
+    runs.loc[0, "status"] = "warning"
+    html = report_html(_doc(web), runs, {"state": "done", "done": 8, "total": 8})
+    last = _section(html, 10)
+    # on screen the clause folds; what print shows is everything outside closed <details>
+    assert "<details class=fold-print><summary>" in last
+    printed = re.sub(r"<details class=fold-print>.*?</details>", "", last, flags=re.S)
+    assert remedy in printed and "print-full" in printed
+    # the style hides the fold and shows the whole text in print only
+    screen, _, print_css = CSS.partition("@media print")
+    assert re.search(r"\.print-full\s*\{\s*display:\s*none", screen)
+    assert re.search(r"details\.fold-print\s*\{\s*display:\s*none", print_css)
+    assert re.search(r"\.print-full\s*\{\s*display:\s*inline", print_css)
