@@ -292,10 +292,19 @@ def _loads_yaml(text: str, what: str, loader_class: type | None = None) -> Any:
             problem = getattr(exc, "problem", None) or str(exc).splitlines()[0]
             if "nesting depth" in problem:  # libyaml's own limit, met while it reads ahead
                 raise Invalid(f"{what}: nested deeper than {MAX_DEPTH} levels{where}") from None
+            if mark is not None and _tab_at(text, mark.line, mark.column) and "tab" not in problem:
+                problem += " (a tab character: YAML indents with spaces only; replace the tab)"
             raise Invalid(f"{what}: not valid YAML{where}: {problem}") from None
         finally:
             loader.dispose()
     return None
+
+
+def _tab_at(text: str, line: int, column: int) -> bool:
+    """Whether ``text`` has a tab at 0-based ``line`` and ``column`` (a YAML error's mark)."""
+    lines = text.splitlines()
+    return 0 <= line < len(lines) and 0 <= column < len(lines[line]) and \
+        lines[line][column] == "\t"
 
 
 # ------------------------------------------------------------------------------------ JSON
@@ -351,7 +360,9 @@ def parse_body(body: bytes, content_type: str, what: str = "a study") -> Any:
     if not body.strip():
         raise Invalid(f"body: empty; send {what} as JSON or YAML")
     try:
-        text = body.decode("utf-8")
+        # a byte order mark (Windows editors write one) is no part of the text: RFC 8259 8.1
+        # lets a parser ignore it, and the YAML reader and every file reader already do
+        text = body.decode("utf-8").removeprefix("\ufeff")
     except UnicodeDecodeError:
         raise Invalid("body: not UTF-8 text") from None
     content_type = content_type.lower()

@@ -141,3 +141,23 @@ def test_study_files_take_utf8_bom_and_utf16_and_name_the_file(tmp_path):
     path.write_text("name: s\ngrid:\n  load: [full]\n  load: [empty]\n")
     with pytest.raises(Invalid, match=rf"^{path}: grid: key 'load' appears twice \(lines 3 "):
         parse.load_mapping(path)
+
+
+@pytest.mark.parametrize("loader", LOADERS)
+def test_a_tab_in_the_indentation_is_named_as_a_tab(loader):
+    """A tab where YAML wants indentation: PyYAML says 'found character that cannot start any
+    token'; the message names the tab and the fix."""
+    with pytest.raises(Invalid, match=r"at line 3, column 1: .*\(a tab character: YAML indents "
+                                      r"with spaces only; replace the tab\)"):
+        parse._loads_yaml("idlers:\n  carry: {spacing_m: 1.2}\n\treturn: {spacing_m: 3}\n",
+                          "body", loader)
+
+
+@pytest.mark.parametrize("content_type", ["application/json", "application/yaml"])
+def test_a_body_with_a_utf8_byte_order_mark_reads_as_without(content_type):
+    """Windows editors save UTF-8 with a byte order mark: a JSON body with one was refused
+    ('Unexpected UTF-8 BOM (decode using utf-8-sig)') while a YAML body and every file reader
+    take it; RFC 8259 8.1 lets a parser ignore it."""
+    text = b'{"name": "bom", "grid": {"temperature_c": [1, 2]}}'
+    assert parse.parse_body(b"\xef\xbb\xbf" + text, content_type) == \
+        parse.parse_body(text, content_type)
