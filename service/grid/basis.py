@@ -120,6 +120,17 @@ def _entries(value: Any, name: str) -> list[tuple[str, Any]]:
     return [(f"design.{name}", value)]
 
 
+def _at(msg: str, name: str, where: str) -> str:
+    """A scenario field's message (``load: ...; load.0: ...``, one part per problem) with each
+    part's field path ``name`` put at ``where`` in the study (``design.load``,
+    ``design.load.0``)."""
+    parts = msg.split("; ")
+    if not parts[0].startswith(name):
+        return f"{where}: {msg}"
+    return "; ".join(where + p[len(name):] if p.startswith((name + ":", name + ".")) else p
+                     for p in parts)
+
+
 def _is_case_list(load: Any) -> bool:
     """A list of load cases (it holds a named case or a per-section list), not one load per
     profile section (numbers only)."""
@@ -140,9 +151,7 @@ def design_loads(design: DesignIn | dict | None) -> list[tuple[str, Any]]:
         try:
             out.append((where, parse_scenario({"load": value}).load))
         except InputError as exc:
-            msg = str(exc)
-            raise Invalid(where + msg[len("load"):] if msg.startswith("load") else
-                          f"{where}: {msg}") from None
+            raise Invalid(_at(str(exc), "load", where)) from None
     return out
 
 
@@ -170,9 +179,7 @@ def design_temperatures(design: DesignIn | dict | None) -> list[float] | None:
         try:
             out.append(float(parse_scenario({"temperature_c": t}).temperature_c))
         except InputError as exc:
-            msg = str(exc)
-            raise Invalid(where + msg[len("temperature_c"):]
-                          if msg.startswith("temperature_c") else f"{where}: {msg}") from None
+            raise Invalid(_at(str(exc), "temperature_c", where)) from None
     return list(dict.fromkeys(out))
 
 

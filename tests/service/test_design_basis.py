@@ -410,3 +410,15 @@ def test_a_design_take_up_beyond_any_counterweight_is_a_warning_that_says_why(
     assert (runs["takeup_mass_kg"] > 2.0e6).all()
     for msg in runs["message"]:
         assert "is beyond any counterweight" in msg and "more friction" in msg
+
+
+def test_every_part_of_a_design_load_message_names_its_place_in_the_study(make_study):
+    """design.load: [2.0] (one fraction per profile section, 2 above the surge limit 1.3):
+    each part of the message names the study's field; the per-section entry was named
+    'load.0', the scenario's path, not design.load.0."""
+    with pytest.raises(Invalid) as err:
+        resolve_study(_braked_study(make_study, design={"load": [2.0]}))
+    msg = err.value.message
+    assert msg.startswith("design.load: ") and "; design.load.0: Input should be less than or " \
+        "equal to 1.3 (got 2)" in msg, msg
+    assert "; load" not in msg
