@@ -402,6 +402,11 @@ class IdlerSet(_Model):
             raise ValueError(
                 "give the idler pitch spacing_m [m] or the number of sets count along the "
                 "route, " + ("not both" if self.count is not None else "one of them"))
+        if self.rolls == 1 and self.trough_deg > 0.0:
+            raise ValueError(
+                f"trough_deg {self.trough_deg:g} with rolls: 1: a set of one roll carries the "
+                "belt flat; give trough_deg: 0 (or leave it out), or the rolls of the troughed "
+                "set (2 for a V, 3 or more)")
         if self.rotating_mass_kg is not None and self.rotating_mass_per_roll_kg is not None:
             raise ValueError(
                 "give the rotating mass per set (rotating_mass_kg) or per roll "
@@ -551,6 +556,13 @@ class Drive(_Model):
                 f"{self.friction:g}: a sliding belt grips no more than a sticking one (Coulomb "
                 "friction: the sliding coefficient is at most the static one); give "
                 "friction_kinetic at most friction, or leave it out")
+        if (self.motor_inertia_kg_m2 is not None
+                and self.motor_inertia_kg_m2 > self.inertia_kg_m2):
+            raise ValueError(
+                f"motor_inertia_kg_m2 {self.motor_inertia_kg_m2:g} is above inertia_kg_m2 "
+                f"{self.inertia_kg_m2:g}: the motor's inertia is part of all the rotating parts "
+                "reduced to the pulley shaft; give inertia_kg_m2 with the motor in it, or the "
+                "motor's own (at most inertia_kg_m2)")
         if self.coupling != "none" and self.control != "dol":
             raise ValueError(f"coupling '{self.coupling}' needs control: dol (a vfd drive "
                              "controls its torque itself); use coupling: none")
@@ -908,6 +920,12 @@ def _check_feed(conv: Conveyor) -> None:
         if f.at_m + f.skirt_length_m > L + 1e-9:
             raise ValueError(f"material.feed.{i}.skirt_length_m: skirts of {f.skirt_length_m:g}"
                              f" m from {f.at_m:g} m run past the head ({L:g} m)")
+        if f.skirt_width_m is not None and f.skirt_width_m >= conv.belt.width_m:
+            raise ValueError(f"material.feed.{i}.skirt_width_m: {f.skirt_width_m:g} m between "
+                             f"the skirt boards is not less than the belt width "
+                             f"{conv.belt.width_m:g} m: the boards stand on the belt, inside its "
+                             f"edges; give less (leave it out for two thirds of the width, "
+                             f"{SKIRT_WIDTH_SHARE * conv.belt.width_m:.3g} m)")
         if f.skirt_width_m is not None and f.skirt_length_m == 0.0:
             raise ValueError(f"material.feed.{i}.skirt_width_m: give skirt_length_m too (no "
                              "skirts without a length)")

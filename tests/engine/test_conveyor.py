@@ -78,7 +78,7 @@ def test_a_wrap_or_trough_angle_written_in_radians_is_refused_with_its_degrees()
     d = hand_conveyor_dict()
     d["drives"][0]["wrap_deg"] = 60.0
     d["idlers"]["carry"]["trough_deg"] = 0.0
-    d["idlers"]["return"]["trough_deg"] = 10.0
+    d["idlers"]["return"].update(rolls=2, trough_deg=10.0)  # a V-return (one roll is flat)
     parse_conveyor(d)
 
 
@@ -417,3 +417,43 @@ def test_a_brake_force_curve_reaches_the_full_force(curve, reach):
     ok = hand_conveyor_dict(brakes=[{"position": "head", "force_kn": 50,
                                      "force_curve": [[0.0, 0.5], [3.0, 1.0]]}])
     assert parse_conveyor(ok).brakes[0].force_curve[-1] == (3.0, 1.0)
+
+
+def _idlers_with(strand: str, **over) -> dict:
+    d = hand_conveyor_dict()
+    d["idlers"][strand] = {**d["idlers"][strand], **over}
+    return d
+
+
+@pytest.mark.parametrize(("d", "message"), [
+    # the skirt boards stand on the belt: 3 m apart on a 1 m belt understates their drag
+    # (ISO 5048's F = mu2 I_v^2 rho g l / (v^2 b1^2) falls as 1 / b1^2) by a factor of 9 or more
+    (hand_conveyor_dict(material={"capacity_t_h": 300, "density_t_m3": 1.0, "feed": [
+        {"at_m": 0, "share": 1.0, "skirt_length_m": 6, "skirt_width_m": 3.0}]}),
+     "material.feed.0.skirt_width_m: 3 m between the skirt boards is not less than the belt "
+     "width 1 m"),
+    # one roll carries the belt flat: the capacity took it flat while the trough angle was read
+    # elsewhere
+    (_idlers_with("carry", rolls=1, trough_deg=35),
+     "idlers.carry: trough_deg 35 with rolls: 1: a set of one roll carries the belt flat"),
+    (_idlers_with("return", rolls=1, trough_deg=10),
+     "idlers.return: trough_deg 10 with rolls: 1"),
+    # the motor is part of inertia_kg_m2: a larger part left the pulley side at 0 (clamped)
+    # and the whole above the inertia the file gives
+    (hand_conveyor_dict(drives=[{"position": "head", "control": "dol", "coupling": "fluid",
+                                 "inertia_kg_m2": 60, "motor_inertia_kg_m2": 100}]),
+     "drives.0: motor_inertia_kg_m2 100 is above inertia_kg_m2 60"),
+])
+def test_contradictory_parts_of_a_conveyor_are_refused_by_field(d, message):
+    msg = _err(d)
+    assert msg.startswith(message), msg
+
+
+def test_the_parts_within_their_whole_are_taken():
+    d = hand_conveyor_dict(material={"capacity_t_h": 300, "density_t_m3": 1.0, "feed": [
+        {"at_m": 0, "share": 1.0, "skirt_length_m": 6, "skirt_width_m": 0.66}]},
+        drives=[{"position": "head", "control": "dol", "coupling": "fluid",
+                 "inertia_kg_m2": 60, "motor_inertia_kg_m2": 40}])
+    d["idlers"]["return"] = {**d["idlers"]["return"], "rolls": 2, "trough_deg": 10}
+    conv = parse_conveyor(d)
+    assert conv.material.feed[0].skirt_width_m == 0.66 and conv.drives[0].motor_inertia_kg_m2 == 40
