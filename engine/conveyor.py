@@ -102,8 +102,14 @@ def check_visible(text: str, allow: str = "") -> str:
     return text
 
 
-#: A name: plain visible text (:func:`check_visible`).
-NameText = Annotated[str, AfterValidator(check_visible)]
+def _not_blank(text: str) -> str:
+    if not text.strip():
+        raise ValueError("is blank (spaces only): give a name that shows")
+    return text
+
+
+#: A name: plain visible text (:func:`check_visible`), not blank.
+NameText = Annotated[str, AfterValidator(check_visible), AfterValidator(_not_blank)]
 
 # Bounds a design can reach and no more (each with its reason): a value beyond one describes
 # no conveyor, and a run of it would report figures of nothing real (a take-up mass of 1e300

@@ -457,3 +457,10 @@ def test_the_parts_within_their_whole_are_taken():
     d["idlers"]["return"] = {**d["idlers"]["return"], "rolls": 2, "trough_deg": 10}
     conv = parse_conveyor(d)
     assert conv.material.feed[0].skirt_width_m == 0.66 and conv.drives[0].motor_inertia_kg_m2 == 40
+
+
+def test_a_blank_conveyor_name_is_refused():
+    """name is required free text: spaces alone name nothing (results, reports and the design
+    table show the conveyor by it)."""
+    assert _err(hand_conveyor_dict(name="   ")).startswith("name: is blank (spaces only)")
+    assert parse_conveyor(hand_conveyor_dict(name=" belt 1 ")).name == " belt 1 "
