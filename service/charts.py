@@ -307,6 +307,9 @@ def comparison_figure(df, x: str, y: str, others: list[str], xlabel: str, ylabel
             if ptitle and col == y:
                 ax.set_title(wrap_title(ptitle, 40), fontsize=10)
         targets[-1][0].set_xlabel(xlabel)
+        # sharex shows tick labels on the grid's last row only: a panel above an unused
+        # one of an incomplete last row would have its axis named but not numbered
+        targets[-1][0].tick_params(axis="x", labelbottom=True)
     for k in range(len(panels), nrows_p * ncols):  # unused panels of the last row
         r, c = divmod(k, ncols)
         for rr in range(r * (2 if y2 else 1), (r + 1) * (2 if y2 else 1)):
@@ -641,6 +644,7 @@ def phase_peaks_figure(runs, title: str = "", axes: list[str] | None = None,
             ax.set_xticks(range(len(ticks)), ticks)
         if k // ncols == nrows - 1 or k + ncols >= len(panels):
             ax.set_xlabel(_tied_label(f"{x}", _tied(groups, x or "")) if x else "all runs")
+            ax.tick_params(axis="x", labelbottom=True)  # sharex numbers the last row only
     for k in range(len(panels), nrows * ncols):
         grid[k // ncols][k % ncols].set_axis_off()
     handles, labels = [], []

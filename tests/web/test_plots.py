@@ -267,3 +267,35 @@ def test_a_dynamic_study_whose_runs_all_failed_is_not_called_steady_only():
         assert f"no results: all {len(runs)} finished runs failed" in text
     fig = charts.phase_peaks_figure(runs.iloc[:0], axes=AXES)
     assert "no finished runs yet" in _texts(fig) and charts.NO_TRANSIENT not in _texts(fig)
+
+
+def _numbered(ax) -> bool:
+    """The axis shows numbers under it (after a draw)."""
+    return any(t.get_visible() and t.get_text() for t in ax.get_xticklabels())
+
+
+def test_every_named_x_axis_is_numbered_when_the_last_row_of_panels_is_short():
+    """Four panels of the stop figure on a grid three wide: with sharex, matplotlib numbers
+    only the grid's last row, so the three panels of the first row (their lower axes above
+    the two unused ones) said 'stop time achieved [s]' with no numbers under it (a 1.8 km
+    incline study: friction model x temperature panels, colours by stop mode)."""
+    rows = []
+    for k, (model, temp, mode, mass) in enumerate(
+            (m, t, s, w) for m in ("din", "nonlin") for t in (-25.0, 20.0)
+            for s in ("coast", "brake", "controlled") for w in ("auto", "3000")):
+        rows.append({"run_id": f"r{k}", "friction_model": model, "temperature_c": temp,
+                     "scenario.stop.mode": mode, "takeup.mass_kg": mass, "status": "warning",
+                     "t_max_stop_kn": 200.0 + k, "t_min_stop_kn": 3.0 + k / 10,
+                     "t_max_dyn_kn": 260.0 + k, "stop_time_s": 5.0 + k / 5})
+    runs = pd.DataFrame(rows)
+    axes = ["friction_model", "temperature_c", "scenario.stop.mode", "takeup.mass_kg"]
+    # the phase figure with three panels (start peak and low, stop peak) on a 2 x 2 grid
+    three = runs.drop(columns=["t_min_stop_kn", "t_max_dyn_kn"]).assign(
+        t_max_start_kn=runs["t_max_stop_kn"] + 5, t_min_start_kn=runs["t_min_stop_kn"] + 1)
+    for fig, panels in ((charts.peak_dynamic_tension_figure(runs, axes=axes), 4),
+                        (charts.phase_peaks_figure(three, axes=axes), 2)):
+        fig.canvas.draw()
+        named = [ax for ax in fig.axes if ax.get_visible() and ax.axison and ax.get_xlabel()]
+        assert len(named) == panels
+        assert all(_numbered(ax) for ax in named), [ax.get_xlabel() for ax in named
+                                                    if not _numbered(ax)]
