@@ -487,6 +487,99 @@ MISFIT_PCT = 5.0
 AT_BOUND = 1e-4
 
 
+#: Chance [-] that a fit of consistent data names a row as an outlier: each row's externally
+#: studentized residual is judged against Student's t at the Bonferroni level
+#: OUTLIER_ALPHA / (2 n) with n - p - 1 degrees of freedom (Cook & Weisberg 1982, 2.2.2;
+#: Belsley, Kuh & Welsch 1980, 2.1): 1 fit in 100 of consistent data names one (a warning
+#: is rare where nothing is wrong).
+OUTLIER_ALPHA = 0.01
+#: Smallest relative residual [%] named as an outlier however far it stands from the rest: a
+#: plant meter of class 1 reads within 1 % (the class of :data:`MISFIT_PCT`'s note).
+OUTLIER_MIN_PCT = 1.0
+#: Largest difference [-] of two readings of one steady state (the same load, temperature and
+#: speed), relative to their mean: each good to :data:`MISFIT_PCT` at most, they differ by at
+#: most twice that.
+REPLICATE_SPREAD = 2.0 * MISFIT_PCT / 100.0
+
+
+def _state_text(m: Measurement) -> str:
+    """A measured steady state in words: ``load 0.5, 5 C`` (and the speed when given)."""
+    load = m.load if not isinstance(m.load, list) else ",".join(f"{v:g}" for v in m.load)
+    load = f"{load:g}" if isinstance(load, float) else load
+    speed = f", {m.speed_m_s:g} m/s" if m.speed_m_s is not None else ""
+    return f"load {load}, {m.temperature_c:g} C{speed}"
+
+
+def _contradictions(rows: Sequence[Measurement], cols: Sequence[tuple[int, str]],
+                    y: np.ndarray) -> list[str]:
+    """Readings of one steady state (rows of equal load, temperature and speed) whose
+    measured values of a column differ by more than :data:`REPLICATE_SPREAD` of their mean:
+    no parameter value meets both; one sentence per such group."""
+    groups: dict[tuple, list[int]] = {}
+    for k, (i, col) in enumerate(cols):
+        m = rows[i]
+        key = (repr(m.load), m.temperature_c, m.speed_m_s, col)
+        groups.setdefault(key, []).append(k)
+    out = []
+    for (_, _, _, col), ks in groups.items():
+        if len(ks) < 2:
+            continue
+        vals = y[ks]
+        lo, hi = int(ks[int(np.argmin(vals))]), int(ks[int(np.argmax(vals))])
+        spread = (y[hi] - y[lo]) / abs(float(np.mean(vals)))
+        if spread > REPLICATE_SPREAD:
+            i_lo, i_hi = sorted((cols[lo][0], cols[hi][0]))
+            out.append(
+                f"rows {i_lo} and {i_hi} read one steady state ({_state_text(rows[i_lo])}) "
+                f"but their {col} differ by {100 * spread:.3g} % ({y[lo]:.4g} and {y[hi]:.4g}), "
+                f"more than the {100 * REPLICATE_SPREAD:g} % two readings each good to "
+                f"{MISFIT_PCT:g} % can: at least one is not that state (its load, temperature, "
+                "speed or units); no parameter value meets both")
+    return out
+
+
+def _outliers(rows: Sequence[Measurement], cols: Sequence[tuple[int, str]], y: np.ndarray,
+              values: np.ndarray, r: np.ndarray, jac: np.ndarray, dof: int) -> list[str]:
+    """The measured values that stand apart from the fit of the others: the externally
+    studentized residual t_k = r_k / (s_(k) sqrt(1 - h_k)), with h_k the leverage (the hat
+    matrix J (J^T J)^-1 J^T of the relative residuals) and s_(k) the residual scale without
+    value k, beyond Student's t at the Bonferroni level (:data:`OUTLIER_ALPHA`) and beyond
+    :data:`OUTLIER_MIN_PCT`. One sentence per such value; none when fewer than two degrees of
+    freedom are left (the others cannot judge it) or a value alone sets a parameter
+    (leverage 1)."""
+    from scipy.stats import t as student
+
+    n = len(r)
+    if dof < 2:
+        return []
+    if jac.size:
+        hat = jac @ np.linalg.pinv(jac.T @ jac) @ jac.T
+        h = np.clip(np.diag(hat), 0.0, 1.0)
+    else:
+        h = np.zeros(n)
+    ssr = float(r @ r)
+    limit = float(student.ppf(1.0 - OUTLIER_ALPHA / (2 * n), dof - 1))
+    out = []
+    for k, (i, col) in enumerate(cols):
+        if h[k] > 1.0 - 1e-6 or abs(r[k]) * 100 <= OUTLIER_MIN_PCT:
+            continue
+        rest = (ssr - r[k] ** 2 / (1.0 - h[k])) / (dof - 1)
+        tk = abs(r[k]) / math.sqrt(rest * (1.0 - h[k])) if rest > 0 else math.inf
+        if tk <= limit:
+            continue
+        side = "above" if y[k] > values[k] else "below"
+        shown = f"{tk:.3g}" if math.isfinite(tk) else "unbounded"
+        out.append(
+            f"row {i} ({_state_text(rows[i])}): measured {col} {y[k]:.4g} lies "
+            f"{100 * abs(y[k] - values[k]) / abs(values[k]):.3g} % {side} the fit "
+            f"({values[k]:.4g}; externally studentized residual {shown}, "
+            f"where {n} readings as consistent as the rest pass {limit:.3g} only 1 time in "
+            f"{1 / OUTLIER_ALPHA:.0f}): an outlier, and it pulls the fitted values; check the "
+            "row (a steady state? its load, temperature, speed and units) and fit again "
+            "without it if it is wrong")
+    return out
+
+
 def _at_bound(free: Sequence[str], sol, starts: np.ndarray) -> list[str]:
     """The fitted names that ended at their bound 0 (SciPy's active constraint, or a value
     within :data:`AT_BOUND` of 0 relative to its start)."""
@@ -497,8 +590,8 @@ def _at_bound(free: Sequence[str], sol, starts: np.ndarray) -> list[str]:
 
 def _verdict(sol, at_bound: list[str], r: np.ndarray, model: str,
              at_upper: Sequence[str] = (), own_limit: dict[str, float] | None = None,
-             groups: Sequence[Sequence[str]] = (), held: dict[str, float] | None = None
-             ) -> dict[str, str]:
+             groups: Sequence[Sequence[str]] = (), held: dict[str, float] | None = None,
+             suspect: Sequence[str] = (), exact: bool = False) -> dict[str, str]:
     """``status`` and ``message`` of the fit in this project's words (never SciPy's text):
     ``failed`` when it stopped without converging, ``warning`` when a fitted parameter ended
     at its bound (the data ask for a value the model does not allow: the rest of the misfit
@@ -507,7 +600,12 @@ def _verdict(sol, at_bound: list[str], r: np.ndarray, model: str,
     otherwise; a converged fit that held names it was asked to fit (``groups`` that only act
     together on these data, ``held`` at their starts) is a ``warning`` too: the values it
     gives assume the held ones. ``own_limit``: the names whose largest value is the model's
-    own limit (a share's 1), not a declared one far beyond any published value."""
+    own limit (a share's 1), not a declared one far beyond any published value. ``suspect``:
+    sentences naming measured values the others contradict (readings of one state that
+    disagree, :func:`_contradictions`; outliers, :func:`_outliers`): a ``warning`` that names
+    them before a misfit's general advice. ``exact``: as many measured values as fitted
+    names, met exactly: nothing checks the fit and it has no standard errors, a
+    ``warning``."""
     rms = 100 * math.sqrt(float(r @ r) / len(r))
     rms_text = f"{rms:.3g}" if rms < 1000 else f"{rms:.0f}"
     check = ("Check the measured values (power at the drive pulleys [kW] or peripheral force "
@@ -548,6 +646,10 @@ def _verdict(sol, at_bound: list[str], r: np.ndarray, model: str,
             f"{head}; the fit matches the measurements to {rms_text} % (rms relative residual) "
             f"without {it}: these data do not determine {names}. Hold {it} at a value from "
             "the literature (--param, or the request's params) and fit the others")}
+    if suspect:
+        return {"status": "warning", "message": (
+            f"converged (rms relative residual {rms_text} % over {len(r)} measured values), "
+            f"but some readings disagree with the others: {'; '.join(suspect)}")}
     if rms > MISFIT_PCT:
         return {"status": "warning", "message": (
             f"converged, but the fit misses the measurements by {rms_text} % (rms relative "
@@ -562,6 +664,12 @@ def _verdict(sol, at_bound: list[str], r: np.ndarray, model: str,
             "the fitted values assume it. Hold the held names at values from the literature "
             "(--param, or the request's params) and fit the others, or, where the model lets "
             "them act apart, measure at other loads, speeds or temperatures")}
+    if exact:
+        return {"status": "warning", "message": (
+            f"converged, but {len(r)} measured values for as many fitted names are met "
+            "exactly whatever their errors: nothing is left to check the fit against and it "
+            "has no standard errors. Measure at least one more steady state (another load or "
+            "temperature), or fit fewer names")}
     return {"status": "ok", "message": f"converged: rms relative residual {rms_text} % over "
             f"{len(r)} measured values"}
 

@@ -1,0 +1,76 @@
+"""Calibration (SPEC 7.3) on data a plant gives: a reading that stands apart from the others,
+two readings of one steady state that disagree, and as many readings as fitted names. Each is
+a warning naming the rows, not an ``ok`` fit that the bad reading has quietly moved."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+from beltstudy.engine import load_conveyor, solve_steady
+from beltstudy.engine.calibration import Measurement, calibrate
+from tests.conftest import CONVEYORS
+
+TRUTH = 0.0237
+STATES = [(load, temp) for load in (0.2, 0.4, 0.6, 0.8, 1.0) for temp in (-10.0, 20.0)]
+
+
+@pytest.fixture(scope="module")
+def plant():
+    """overland-4km's power made by DIN at f_carry = 0.0237 at ten steady states, with 1 %
+    seeded noise (a class-1 meter)."""
+    conv = load_conveyor(CONVEYORS / "overland-4km.yaml")
+    rng = np.random.default_rng(4)
+    rows = []
+    for load, temp in STATES:
+        p = solve_steady(conv, model="din", params={"f_carry": TRUTH}, temperature_c=temp,
+                         load=load).summary["power_kw"]
+        rows.append(Measurement(load, temp, {"power_kw": p * (1 + 0.01 * rng.standard_normal())}))
+    return conv, rows
+
+
+def test_consistent_readings_fit_ok(plant):
+    conv, rows = plant
+    cal = calibrate(conv, rows, "din", ["f_carry"])
+    assert cal.status == "ok", cal.message
+    assert abs(cal.fit["f_carry"]["value"] - TRUTH) < 2.3 * cal.fit["f_carry"]["se"]
+
+
+def test_an_outlier_is_named_by_its_row_and_how_far_it_stands(plant):
+    """One reading 12 % high among ten good to 1 %: the rms residual (3.3 %) stays under the
+    5 % misfit, so it was an ``ok`` fit with f_carry pulled 1.6 % up; the externally studentized
+    residual (9.4 against the Bonferroni limit 5.0 for ten readings at 1 %) names it."""
+    conv, rows = plant
+    bad = list(rows)
+    m = bad[6]
+    bad[6] = Measurement(m.load, m.temperature_c, {"power_kw": 1.12 * m.values["power_kw"]})
+    cal = calibrate(conv, bad, "din", ["f_carry"])
+    assert cal.rms_relative < 0.05  # the premise: the misfit alone would not say it
+    assert cal.status == "warning"
+    assert "row 6 (load 0.8, -10 C): measured power_kw" in cal.message
+    assert "above the fit" in cal.message and "outlier" in cal.message
+    assert sum("row 6" in n for n in cal.notes) == 1
+    assert not any(f"row {i} " in cal.message for i in range(10) if i != 6)
+
+
+def test_two_readings_of_one_state_that_disagree_are_named(plant):
+    """A second reading of row 2's state 20 % below it: no f_carry meets both; the message names
+    the two rows and their spread instead of only a misfit."""
+    conv, rows = plant
+    m = rows[2]
+    again = Measurement(m.load, m.temperature_c, {"power_kw": 0.8 * m.values["power_kw"]})
+    cal = calibrate(conv, [*rows, again], "din", ["f_carry"])
+    assert cal.status == "warning"
+    assert "rows 2 and 10 read one steady state (load 0.4, -10 C)" in cal.message
+    assert "differ by 22.2 %" in cal.message  # (1 - 0.8) / 0.9
+
+
+def test_as_many_readings_as_names_is_a_warning_not_ok(plant):
+    """Two readings, two names: met exactly whatever their errors, with no standard errors;
+    status was ``ok``."""
+    conv, rows = plant
+    cal = calibrate(conv, [rows[0], rows[9]], "din", ["f_carry", "f_return"])
+    assert cal.dof == 0 and cal.not_identifiable == []
+    assert all(f["se"] is None for f in cal.fit.values())
+    assert cal.status == "warning"
+    assert "nothing is left to check the fit against" in cal.message
