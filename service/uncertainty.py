@@ -169,11 +169,21 @@ def sensitivity(sample: dict, points: np.ndarray, y: np.ndarray) -> dict[str, An
             "note": note}
 
 
+def _beyond_unit(value: float) -> str:
+    """An index outside [0, 1] shown with the digits that show it outside (1.0005 as 1.0005,
+    not as the 1 that three digits give, beside the words "outside [0, 1]")."""
+    for digits in (3, 6, 12):
+        text = f"{value:.{digits}g}"
+        if not 0.0 <= float(text) <= 1.0:
+            return text
+    return repr(value)
+
+
 def _outside_unit(axes: dict[str, dict[str, float]]) -> str:
     """A note naming the indices outside [0, 1] (a share of the variance cannot be: sampling
     error); "" when none is."""
-    out = [f"{key} of {name} {v[key]:.3g}" for name, v in axes.items() for key in ("S1", "ST")
-           if not -_INDEX_SLACK <= v[key] <= 1 + _INDEX_SLACK]
+    out = [f"{key} of {name} {_beyond_unit(v[key])}" for name, v in axes.items()
+           for key in ("S1", "ST") if not -_INDEX_SLACK <= v[key] <= 1 + _INDEX_SLACK]
     if not out:
         return ""
     return (f"{', '.join(out)}: outside [0, 1], which a share of the variance cannot be; "

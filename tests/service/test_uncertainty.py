@@ -187,3 +187,15 @@ def test_rest_and_report_of_a_stored_sampled_study(data_dir, make_settings):
     text = format_text(out)
     assert "power_kw" in text and "ST: models.din.f_carry" in text
     assert "slipped on a drive pulley" in text
+
+
+def test_an_index_just_outside_0_1_is_shown_outside_it():
+    """SALib's S1 of a figure one input sets alone came out 1.0005 (f_carry on a DIN belt's
+    peak tension, N = 128); the note said 'S1 of f_carry 1: outside [0, 1]'. Its value is
+    shown with the digits that put it outside."""
+    from beltstudy.service.uncertainty import _outside_unit
+
+    note = _outside_unit({"f_carry": {"S1": 1.0005005682980321, "ST": 1.000042983507698},
+                          "f_return": {"S1": -0.0000142, "ST": 5.1e-06}})
+    assert note.startswith("S1 of f_carry 1.0005, ST of f_carry 1.00004, "
+                           "S1 of f_return -1.42e-05: outside [0, 1]"), note
