@@ -730,6 +730,26 @@ def _positions(surface) -> np.ndarray:
     return np.unique(np.asarray(surface["s_m"], dtype=float))
 
 
+def _probe_position(surface, positions: np.ndarray, at: float, value: float | None) -> float:
+    """The sampled position that shows an extreme reported at ``at``: the nearest one, or,
+    given the extreme's ``value``, of the nearest position on each side the one whose trace
+    comes closest to it. An extreme at an element's end (the carry's last element meeting a
+    drive pulley, ``t_max_dyn_at_m`` = 1800 m) lies between the two elements' centres, and
+    the nearer centre may be the pulley's, on the other side of the tension step."""
+    nearest = float(positions[np.argmin(np.abs(positions - at))])
+    if value is None or not np.isfinite(value):
+        return nearest
+    below, above = positions[positions <= at], positions[positions >= at]
+    sides = {float(below.max())} if len(below) else set()
+    sides |= {float(above.min())} if len(above) else set()
+
+    def miss(s: float) -> float:
+        tension = _trace(surface, s)[1]
+        return float(np.min(np.abs(tension - value))) if len(tension) else np.inf
+
+    return min(sorted(sides), key=lambda s: (miss(s), abs(s - at)))
+
+
 def _trace(surface, s: float):
     part = surface[np.isclose(surface["s_m"].astype(float), s)].sort_values("t_s")
     return part["t_s"].to_numpy(float), part["tension_kn"].to_numpy(float)
@@ -770,7 +790,9 @@ def transient_figure(timeseries, surface=None, title: str = "", extremes: dict |
     evenly round the loop, named by strand and distance from the tail when ``locate(s_m) ->
     (strand, distance from the tail [m])`` is given. ``extremes`` (``{"highest": s_m,
     "lowest": s_m}``, e.g. ``t_max_dyn_at_m`` and ``t_min_dyn_at_m``) add a probe at each of
-    those positions (nearest point of ``extremes_surface``, default ``surface``), drawn bold.
+    those positions (nearest point of ``extremes_surface``, default ``surface``; given as
+    ``(s_m, value)`` the point on either side whose trace comes closest to the value), drawn
+    bold.
     Without a surface the key points of ``timeseries`` (SPEC section 5) are drawn. A
     :data:`NO_TRANSIENT` figure when there is no time series.
     """
@@ -790,9 +812,10 @@ def transient_figure(timeseries, surface=None, title: str = "", extremes: dict |
         positions = _positions(pool)
         for (name, at), color in zip((extremes or {}).items(), ("black", "tab:red"),
                                      strict=False):
+            at, value = at if isinstance(at, tuple) else (at, None)
             if at is None or not np.isfinite(at) or not len(positions):
                 continue
-            s = float(positions[np.argmin(np.abs(positions - float(at)))])
+            s = _probe_position(pool, positions, float(at), value)
             t, tension = _trace(pool, s)
             ax1.plot(t, tension, color=color, linewidth=2.0, linestyle="--",
                      label=f"{name}: {_where_text(s, locate)}")

@@ -299,3 +299,34 @@ def test_every_named_x_axis_is_numbered_when_the_last_row_of_panels_is_short():
         assert len(named) == panels
         assert all(_numbered(ax) for ax in named), [ax.get_xlabel() for ax in named
                                                     if not _numbered(ax)]
+
+
+def test_the_highest_tension_probe_shows_the_peak_at_an_element_end():
+    """A 1.8 km incline with two head drives: its peak, 219 kN, is reported at 1800 m, the
+    end of the carry's last element (centre 1782 m, 216 kN) where the first drive pulley's
+    element (centre 1801.7 m, 87 kN past the drive) begins. The nearest centre is the
+    pulley's, so the bold 'highest tension' curve drew 87 kN under a 195 kN carry probe.
+    Given the peak's value, the probe is the position on either side whose trace reaches it."""
+    t = np.arange(0.0, 10.0, 0.5)
+    s = np.array([1710.0, 1746.0, 1782.0, 1801.7454, 1821.4906, 1857.4906])
+    level = {1710.0: 209.0, 1746.0: 212.5, 1782.0: 216.3, 1801.7454: 86.7, 1821.4906: 77.9,
+             1857.4906: 77.6}
+    surface = pd.DataFrame([{"t_s": ti, "s_m": si, "tension_kn": level[si] * (0.5 + ti / 19)}
+                            for ti in t for si in s])
+
+    def locate(x):
+        return ("carry", x) if x <= 1800 else ("return", 3600 - x)
+
+    def bold(fig):
+        line = next(ln for ln in fig.axes[0].get_lines()
+                    if ln.get_label().startswith("highest tension"))
+        return line.get_label(), float(np.max(line.get_ydata()))
+
+    label, peak = bold(charts.transient_figure(
+        None, surface, extremes={"highest tension": (1800.0, 219.1)}, locate=locate))
+    assert label == "highest tension: carry, 1782 m from the tail"
+    assert peak == pytest.approx(216.3 * (0.5 + 9.5 / 19))
+    # without the value the nearest centre is kept (the former rule)
+    label, _ = bold(charts.transient_figure(
+        None, surface, extremes={"highest tension": 1800.0}, locate=locate))
+    assert label.startswith("highest tension: return")
