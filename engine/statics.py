@@ -446,6 +446,10 @@ def solve_steady(
                                      else _governing(bounds))
     _summarise(result, drives, hs_adm, bounds, c_need - (T[0] - W[0]), W_start - W,
                None if W_hold is None else W_hold - W)
+    pattern = _pattern_note(conv, load)
+    if pattern:  # a note, not a warning: the empty belt is a case the run answers
+        result.message = "; ".join(m for m in (result.message, pattern) if m)
+        result.summary["message"] = result.message
     if not converged:
         result.status = "failed"
         result.message = (
@@ -468,6 +472,20 @@ def solve_steady(
         result.summary["status"] = result.status
         result.summary["message"] = result.message
     return result
+
+
+def _pattern_note(conv: Conveyor, load) -> str:
+    """A note when a load pattern loads no section (SPEC 6.2): ``inclines`` on a profile
+    without a rising section or ``declines`` without a falling one runs the belt empty, which
+    the case's name does not say."""
+    if load not in ("inclines", "declines"):
+        return ""
+    sign = 1.0 if load == "inclines" else -1.0
+    if any(sign * p.lift_m > 0.0 for p in conv.profile):
+        return ""
+    what = "rises (lift_m > 0)" if load == "inclines" else "falls (lift_m < 0)"
+    return (f"note: load {load}: no profile section {what}, so the belt runs empty in this "
+            "case (the empty case's figures)")
 
 
 def _summarise(res: SteadyResult, drives, hs_adm, bounds, shortfall_n: float,

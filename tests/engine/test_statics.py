@@ -492,3 +492,24 @@ def test_an_auto_take_up_beyond_any_counterweight_names_the_drive_that_needs_it(
     assert "friction 1e-06, wrap 200 deg" in msg and "lagged pulley" in msg
     ok = solve_steady(parse_conveyor(hand_conveyor_dict()), model="din", n_elements=50)
     assert "beyond any counterweight" not in ok.summary["message"]
+
+
+@pytest.mark.parametrize(("lifts", "load", "noted"), [
+    ([0.0, 0.0], "inclines", True),     # level: nothing rises
+    ([5.0, 10.0], "declines", True),    # all rising: nothing falls
+    ([5.0, -5.0], "inclines", False),   # one section each way: loaded where it says
+    ([5.0, -5.0], "declines", False),
+])
+def test_a_load_pattern_that_loads_no_section_says_the_belt_runs_empty(lifts, load, noted):
+    """SPEC 6.2: inclines loads the rising sections, declines the falling ones. On a profile
+    with none of them the case is the empty belt (Te equal to load: empty), which the run now
+    says in a note (status unchanged); a profile that has such a section gets no note."""
+    conv = parse_conveyor(hand_conveyor_dict(
+        profile=[{"length_m": 500, "lift_m": lifts[0]}, {"length_m": 500, "lift_m": lifts[1]}]))
+    res = solve_steady(conv, model="din", load=load)
+    empty = solve_steady(conv, model="din", load="empty")
+    note = f"note: load {load}: no profile section"
+    assert (note in res.summary["message"]) is noted, res.summary["message"]
+    if noted:
+        assert res.te_n == pytest.approx(empty.te_n, rel=1e-9)
+        assert res.summary["status"] == empty.summary["status"]
