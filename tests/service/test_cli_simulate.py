@@ -78,3 +78,27 @@ def test_cli_outputs_in_a_missing_folder_fail_before_the_run(tmp_path, capsys):
         assert main(["simulate", str(SLOPE), option, str(out)]) == 2
         err = capsys.readouterr().err
         assert err == f"error: cannot write {out}: the folder {out.parent} does not exist\n"
+
+
+def test_cli_simulate_plot_probes_the_extremes_by_their_values(tmp_path, capsys, monkeypatch):
+    """The plot's bold probes are given the peak's and the low's value with their position,
+    so a peak at an element's end is drawn on the side that reaches it (see
+    tests/web/test_plots.py::test_the_highest_tension_probe_shows_the_peak_at_an_element_end)."""
+    from beltstudy.service import charts
+    from beltstudy.service.cli import main, simulate
+
+    seen = {}
+    real = charts.transient_figure
+
+    def spy(*args, **kwargs):
+        seen.update(kwargs.get("extremes") or {})
+        return real(*args, **kwargs)
+
+    monkeypatch.setattr(simulate, "transient_figure", spy)
+    code = main(["simulate", str(SLOPE), "--model", "din", "--elements", "40",
+                 "--start-time-s", "15", "--run-s", "5", "--stop-time-s", "10",
+                 "--no-check", "--json", "--plot", str(tmp_path / "fig.png")])
+    s = json.loads(capsys.readouterr().out)
+    assert code == 0
+    assert seen["highest tension"] == (s["t_max_dyn_at_m"], s["t_max_dyn_kn"])
+    assert seen["lowest tension"] == (s["t_min_dyn_at_m"], s["t_min_dyn_kn"])
