@@ -1367,12 +1367,21 @@ class _SafeLoader(yaml.SafeLoader, Yaml12Floats):
         return super().construct_mapping(node, deep=deep)
 
     def construct_yaml_int(self, node):
-        """An integer as YAML 1.2 reads it (:func:`yaml12_int`), else as PyYAML does."""
+        """An integer as YAML 1.2 reads it (:func:`yaml12_int`), else as PyYAML does; YAML
+        1.1's base 60 (``1:30``, 90) is text, as YAML 1.2 reads it."""
+        if ":" in str(node.value):
+            return str(node.value)
         value = yaml12_int(str(node.value))
         return super().construct_yaml_int(node) if value is None else value
 
+    def construct_yaml_float(self, node):
+        """YAML 1.1's base-60 float (``1:30.5``, 90.5) is text, as YAML 1.2 reads it."""
+        text = str(node.value)
+        return text if ":" in text else super().construct_yaml_float(node)
+
 
 _SafeLoader.add_constructor("tag:yaml.org,2002:int", _SafeLoader.construct_yaml_int)
+_SafeLoader.add_constructor("tag:yaml.org,2002:float", _SafeLoader.construct_yaml_float)
 
 
 def _json_pairs(pairs: list[tuple[str, Any]]) -> dict:

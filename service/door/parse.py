@@ -99,6 +99,8 @@ class _Constructor(yaml.constructor.SafeConstructor):
         Hexadecimal, octal and binary text is at least a quarter as long in bits, so it is
         measured before it is read."""
         text = str(node.value)
+        if ":" in text:  # YAML 1.1's base 60 (1:30 is 90): text in YAML 1.2, as here
+            return text
         decimal = sum(c.isdigit() for c in text)
         bare = text.lstrip("+-").replace("_", "")
         bits = {"0x": 4, "0b": 1, "0o": 3}.get(bare[:2].lower(), 0)
@@ -124,8 +126,15 @@ class _Constructor(yaml.constructor.SafeConstructor):
         )
 
 
+    def construct_yaml_float(self, node):
+        """A float as YAML 1.2 reads it: YAML 1.1's base 60 (``1:30.5``, 90.5) is text."""
+        text = str(node.value)
+        return text if ":" in text else super().construct_yaml_float(node)
+
+
 _Constructor.yaml_constructors = dict(yaml.constructor.SafeConstructor.yaml_constructors)
 _Constructor.add_constructor("tag:yaml.org,2002:int", _Constructor.construct_yaml_int)
+_Constructor.add_constructor("tag:yaml.org,2002:float", _Constructor.construct_yaml_float)
 _Constructor.add_constructor(
     "tag:yaml.org,2002:timestamp", yaml.constructor.SafeConstructor.construct_yaml_str
 )

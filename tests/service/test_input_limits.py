@@ -177,3 +177,21 @@ def test_a_load_by_name_and_its_fraction_are_one_value(make_study, loads, messag
     assert str(err.value) == message
     assert len(resolve_study(make_study(grid={"load": ["full", "empty", "inclines", 0.5]}))
                .runs) == 4
+
+
+def test_yaml_base_60_is_text_as_yaml_1_2_reads_it(tmp_path):
+    """YAML 1.1 (PyYAML) reads 1:30 as 90 and 1:30.5 as 90.5 (base 60): lift_m: 1:30.5 was a
+    90.5 m lift, speed_m_s: 0:30 a 30 m/s belt, both silently. YAML 1.2 reads them as text,
+    so a number field refuses them by name and a name may hold a time of day."""
+    assert loads("a: 1:30\nb: -1:30.5\nc: 12:30\nd: 90\ne: 1.5", yaml_text=True) == {
+        "a": "1:30", "b": "-1:30.5", "c": "12:30", "d": 90, "e": 1.5}
+    from beltstudy.engine.conveyor import load_mapping
+
+    path = tmp_path / "c.yaml"
+    path.write_text("a: 1:30\nb: 1:30.5\nc: 016\n")
+    assert load_mapping(path) == {"a": "1:30", "b": "1:30.5", "c": 16}
+    conv = yaml.safe_load((ROOT / "studies" / "conveyors" / "fabric-1km.yaml").read_text())
+    conv["profile"][0]["lift_m"] = "1:30.5"
+    with pytest.raises(InputError, match=r"profile\.0\.lift_m: Input should be a valid number "
+                                         r"\(got '1:30\.5'\)"):
+        parse_conveyor(conv)
