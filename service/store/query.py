@@ -156,11 +156,42 @@ def sort_rows(df: pd.DataFrame, column: str, descending: bool = False) -> pd.Dat
     """Rows ordered by ``column``: numbers as numbers, text as text, missing values last in
     either direction, ties in their stored order (stable, so pages do not overlap)."""
     series = df[column]
-    if series.dtype == object:  # text, or a mixed axis (``load: [full, 0.5]``): compare as text
-        series = series.map(lambda v: None if v is None or v is pd.NA else str(v))
-    order = series.reset_index(drop=True).sort_values(
-        ascending=not descending, kind="mergesort", na_position="last").index
+    if pd.api.types.is_numeric_dtype(series) or pd.api.types.is_bool_dtype(series):
+        order = series.reset_index(drop=True).sort_values(
+            ascending=not descending, kind="mergesort", na_position="last").index
+        return df.iloc[order.to_numpy()]
+    # text, or a mixed axis stored as text (``load: [full, 0.5]``, ``takeup.mass_kg: [auto,
+    # 500, 3000]`` as '500.0', '3000.0'): its numbers as numbers before its words (as text
+    # '3000.0' came before '500.0'), the order reversed for descending, missing values last
+    text = series.map(lambda v: None if v is None or v is pd.NA
+                      or (isinstance(v, float) and math.isnan(v)) else str(v))
+    text = text.reset_index(drop=True).astype(object)
+    number = pd.to_numeric(text, errors="coerce")
+    number = number.where(np.isfinite(number.astype(float)))
+    keys = pd.DataFrame({"missing": text.isna(), "word": number.isna() & text.notna(),
+                         "number": number, "text": text.where(number.isna())})
+    up = not descending
+    order = keys.sort_values(["missing", "word", "number", "text"],
+                             ascending=[True, up, up, up], kind="mergesort",
+                             na_position="last").index
     return df.iloc[order.to_numpy()]
+
+
+def _text_matches(series: pd.Series, text: str) -> np.ndarray:
+    """Rows of a text column equal to ``text``; in a mixed axis stored as text (``auto``,
+    '3000.0') a number matches by value, so ``3000`` (as the study page's filter offers the
+    grid's value) finds '3000.0'."""
+    as_text = series.map(lambda v: None if v is None or v is pd.NA else str(v))
+    exact = (as_text == text).fillna(False).to_numpy(bool)
+    try:
+        value = float(text)
+    except ValueError:
+        return exact
+    if not math.isfinite(value):
+        return exact
+    numbers = pd.to_numeric(as_text, errors="coerce").to_numpy(float)
+    close = np.isclose(numbers, value, rtol=1e-9, atol=1e-12) & np.isfinite(numbers)
+    return exact | close
 
 
 def apply_filters(df: pd.DataFrame, filters: list[str]) -> pd.DataFrame:
@@ -186,6 +217,8 @@ def apply_filters(df: pd.DataFrame, filters: list[str]) -> pd.DataFrame:
             continue
         if isinstance(value, float):
             df = df[np.isclose(df[column].astype(float), value, rtol=1e-9, atol=1e-12)]
+        elif isinstance(value, str):
+            df = df[_text_matches(df[column], value)]
         else:
             df = df[df[column] == value]
     return df

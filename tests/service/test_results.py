@@ -170,3 +170,17 @@ def test_compare_gives_no_ratio_over_a_zero_written_with_round_off():
     assert overall["n"] == 3
     assert overall["mean"] == pytest.approx((0.8 + 0.8 + 0.0) / 3)
     assert overall["opposite_sign"] == 0
+
+
+def test_a_number_filters_a_mixed_axis_stored_as_text():
+    """``takeup.mass_kg: [auto, 3000]`` is stored as text ('auto', '3000.0'); the study page
+    offers the grid's values, so its filter sends 3000 and the page said '0 of 24 runs match
+    the filters' where 12 runs have 3000 kg. A number now matches such a column by value."""
+    runs = pd.DataFrame({"run_id": list("abcd"),
+                         "takeup.mass_kg": ["3000.0", "auto", "3000.0", "500.0"]})
+    for text in ("3000", "3000.0", "3e3"):
+        assert list(apply_filters(runs, [f"takeup.mass_kg={text}"])["run_id"]) == ["a", "c"]
+    assert list(apply_filters(runs, ["takeup.mass_kg=auto"])["run_id"]) == ["b"]
+    assert len(apply_filters(runs, ["takeup.mass_kg=30"])) == 0
+    assert len(apply_filters(runs, ["takeup.mass_kg=nan"])) == 0
+    assert len(apply_filters(runs, ["takeup.mass_kg=Auto"])) == 0

@@ -148,3 +148,13 @@ def test_a_few_columns_come_from_the_kept_table_and_match_the_parts(data_dir, fi
     store.write_part(sid, "runs", "zz-more", table.slice(0, 2))
     more = store.read_runs(sid, columns=cols)
     assert len(more) == len(full) + 2 and reads == [cols]
+
+
+def test_a_mixed_axis_sorts_its_numbers_as_numbers():
+    """``takeup.mass_kg: [auto, 500, 3000]`` is stored as text: sorted as text '3000.0' came
+    before '500.0'. Its numbers now sort as numbers, before its words, reversed for
+    descending, missing values last."""
+    df = pd.DataFrame({"run_id": list("abcde"),
+                       "m": ["3000.0", "auto", None, "500.0", "12000.0"]})
+    assert list(query.sort_rows(df, "m")["run_id"]) == ["d", "a", "e", "b", "c"]
+    assert list(query.sort_rows(df, "m", True)["run_id"]) == ["b", "e", "a", "d", "c"]
