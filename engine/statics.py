@@ -446,7 +446,7 @@ def solve_steady(
                                      else _governing(bounds))
     _summarise(result, drives, hs_adm, bounds, c_need - (T[0] - W[0]), W_start - W,
                None if W_hold is None else W_hold - W)
-    pattern = _pattern_note(conv, load)
+    pattern = _pattern_note(conv, load, loop)
     if pattern:  # a note, not a warning: the empty belt is a case the run answers
         result.message = "; ".join(m for m in (result.message, pattern) if m)
         result.summary["message"] = result.message
@@ -474,18 +474,26 @@ def solve_steady(
     return result
 
 
-def _pattern_note(conv: Conveyor, load) -> str:
-    """A note when a load pattern loads no section (SPEC 6.2): ``inclines`` on a profile
-    without a rising section or ``declines`` without a falling one runs the belt empty, which
-    the case's name does not say."""
-    if load not in ("inclines", "declines"):
-        return ""
-    sign = 1.0 if load == "inclines" else -1.0
-    if any(sign * p.lift_m > 0.0 for p in conv.profile):
-        return ""
-    what = "rises (lift_m > 0)" if load == "inclines" else "falls (lift_m < 0)"
-    return (f"note: load {load}: no profile section {what}, so the belt runs empty in this "
-            "case (the empty case's figures)")
+def _pattern_note(conv: Conveyor, load, loop: Loop) -> str:
+    """A note when a load case that names material puts none on the belt (SPEC 6.2):
+    ``inclines`` on a profile without a rising section or ``declines`` without a falling one,
+    or a list of fractions whose loaded sections all lie upstream of every feed point
+    (``material.feed``): the belt runs empty, which the case's name does not say."""
+    if load in ("inclines", "declines"):
+        sign = 1.0 if load == "inclines" else -1.0
+        if not any(sign * p.lift_m > 0.0 for p in conv.profile):
+            what = "rises (lift_m > 0)" if load == "inclines" else "falls (lift_m < 0)"
+            return (f"note: load {load}: no profile section {what}, so the belt runs empty "
+                    "in this case (the empty case's figures)")
+    loaded = [i for i, f in enumerate(loop.section_load) if f > 0.0]
+    if conv.material.feed and loaded and loop.load_max_kg_m <= 0.0:
+        first = min(f.at_m for f in conv.material.feed)
+        names = ", ".join(f"profile.{i}" for i in loaded)
+        shown = [float(x) for x in load] if isinstance(load, list | tuple) else load
+        return (f"note: load {shown}: the loaded sections ({names}) lie upstream of "
+                f"every feed point (the first at {first:g} m, material.feed), so no material "
+                "reaches them and the belt runs empty in this case")
+    return ""
 
 
 def _summarise(res: SteadyResult, drives, hs_adm, bounds, shortfall_n: float,

@@ -513,3 +513,24 @@ def test_a_load_pattern_that_loads_no_section_says_the_belt_runs_empty(lifts, lo
     if noted:
         assert res.te_n == pytest.approx(empty.te_n, rel=1e-9)
         assert res.summary["status"] == empty.summary["status"]
+
+
+@pytest.mark.parametrize(("load", "noted"), [([1.0, 0.0], True), ("inclines", True),
+                                             ([0.0, 1.0], False), ("full", False)])
+def test_a_load_on_sections_upstream_of_every_feed_point_says_the_belt_runs_empty(load, noted):
+    """Material enters at the feed points (SPEC 7.1): fed only at 700 m, the first section
+    (0 to 500 m, the one that rises) carries none whatever its load fraction. A case that
+    loads only such sections is the empty belt (Te equal to load: empty), now said in a note."""
+    conv = parse_conveyor(hand_conveyor_dict(
+        profile=[{"length_m": 500, "lift_m": 10.0}, {"length_m": 500, "lift_m": 0.0}],
+        material={"capacity_t_h": 300, "density_t_m3": 1.0,
+                  "feed": [{"at_m": 700, "share": 1.0}]}))
+    res = solve_steady(conv, model="din", load=load)
+    empty = solve_steady(conv, model="din", load="empty")
+    assert ("lie upstream of every feed point (the first at 700 m" in res.summary["message"]) \
+        is noted, res.summary["message"]
+    if noted:
+        assert "(profile.0)" in res.summary["message"]
+        assert res.te_n == pytest.approx(empty.te_n, rel=1e-9)
+    else:
+        assert res.te_n > empty.te_n
