@@ -165,3 +165,79 @@ def slip_remedy(conveyor: Conveyor, scenario: Scenario, *, model: str, params=No
     return SlipRemedy(takeup_mass_kg=tu if gravity else None,
                       takeup_tension_kn=None if gravity else tu, start_time_s=st,
                       reruns=reruns)
+
+
+@dataclass(frozen=True)
+class FinerCheck:
+    """The figures of a :class:`SlipRemedy` tried on a mesh finer than the run's.
+
+    elements : the finer mesh's element count (asked)
+    takeup : the take-up (mass [kg] or pretension [kN]) with which no drive slips on the finer
+        mesh: the run's figure where it holds there, else the one found there (None: not
+        found within the search limit, or nothing to try)
+    start_time_s : the same for the start time
+    takeup_moved, start_moved : whether the run's figure slipped on the finer mesh
+    reruns : int, how many starts were rerun on the finer mesh
+    """
+
+    elements: int
+    takeup: float | None
+    start_time_s: float | None
+    takeup_moved: bool
+    start_moved: bool
+    reruns: int
+
+
+def confirm_finer(conveyor: Conveyor, scenario: Scenario, rem: SlipRemedy, *, model: str,
+                  params=None, options: DynamicsOptions | None = None, elements: int,
+                  takeup_base: float | None) -> FinerCheck:
+    """Try the figures of ``rem`` (found on the run's mesh) on the finer mesh of ``elements``
+    and, where a drive still slips there, search that mesh as :func:`slip_remedy` does, up
+    from the run's figure (to the same limits, :data:`TAKEUP_MAX` x ``takeup_base`` and
+    :data:`START_MAX` x the run's start time).
+
+    A slip margin is an extreme read behind the start's front, which the mesh smears: on a
+    finer mesh the front is sharper and the slack side's dip deeper, so the least take-up or
+    start time that avoids the slip can grow with the mesh (a 600 m incline's two dol drives
+    with fluid couplings: 18.9 t on 53 elements, 20.2 t on 103, 22.1 t on 205, 23.8 t on
+    409), and the figure found at the edge of the slip on the run's mesh slips on a finer one.
+    ``options`` are the run's with the step rule the finer mesh uses (a fixed ``dt_s`` kept at
+    its fraction of the stability limit: ``beltstudy.engine.run``)."""
+    opts = options or DynamicsOptions()
+    scn = scenario.model_copy(update={"elements": int(elements)})
+    gravity = conveyor.takeup.type == "gravity"
+    field = "mass_kg" if gravity else "pretension_kn"
+
+    def with_takeup(x: float) -> Conveyor:
+        return conveyor.model_copy(update={"takeup": conveyor.takeup.model_copy(
+            update={field: float(x)})})
+
+    reruns = 0
+    tu = rem.takeup_mass_kg if gravity else rem.takeup_tension_kn
+    tu_moved = False
+    if tu is not None:
+        reruns += 1
+        if _slips(with_takeup(tu), scn, model, params, opts):
+            tu_moved = True
+            hi = TAKEUP_MAX * float(takeup_base) if takeup_base else TAKEUP_MAX * float(tu)
+            tu, k = _smallest(lambda x: not _slips(with_takeup(x), scn, model, params, opts),
+                              float(tu), max(hi, float(tu)))
+            reruns += k
+    st = rem.start_time_s
+    st_moved = False
+    if st is not None:
+        fixed = conveyor if takeup_base is None else with_takeup(takeup_base)
+        steady = _steady(fixed, scn, model, params)
+
+        def with_start(t: float) -> Scenario:
+            return scn.model_copy(update={"start": scn.start.model_copy(update={"time_s": t})})
+
+        reruns += 1
+        if _slips(fixed, with_start(st), model, params, opts, steady):
+            st_moved = True
+            t_max = START_MAX * float(scenario.start.time_s)
+            st, k = _smallest(lambda t: not _slips(fixed, with_start(t), model, params, opts,
+                                                   steady), float(st), max(t_max, float(st)))
+            reruns += k
+    return FinerCheck(elements=int(elements), takeup=tu, start_time_s=st,
+                      takeup_moved=tu_moved, start_moved=st_moved, reruns=reruns)

@@ -335,8 +335,9 @@ SLACK = ResultGroup("slack", "Slack (SPEC 6.4)", (
     _f("takeup_endstop_speed_m_s", "m/s", "take-up carriage speed when it hit an end stop (0 "
        "when it never did)", "take-up speed at an end stop"),
     _f("slip_free_takeup_mass_kg", "kg", "gravity take-up with which no drive slips in the "
-       "start, found by rerunning it (beltstudy.engine.remedy, 2 %; beltstudy simulate; null when not "
-       "searched, not found within 4 x or the start did not slip)", "take-up without slip"),
+       "start, found by rerunning it (beltstudy.engine.remedy, 2 %; beltstudy simulate; in a checked "
+       "run the figure that also holds on the mesh twice as fine; null when not searched, not "
+       "found within 4 x or the start did not slip)", "take-up without slip"),
     _f("slip_free_takeup_kn", "kN", "fixed take-up pretension with which no drive slips in "
        "the start, found by rerunning it (as slip_free_takeup_mass_kg)",
        "pretension without slip"),

@@ -351,7 +351,9 @@ def _complete(prep: _Prepared, scenario, system, tr, model, params, opts, remedy
             for i in range(len(conveyor.drives))):
         # a slip in the stop alone is not searched: the first rerun says so, and ``say``
         # is told only once the start is known to slip
-        found = _slip_remedy(conveyor, scenario, model, params, opts, summary, say)
+        found = _slip_remedy(conveyor, scenario, model, params, opts, summary, say,
+                             finer=_finer_mesh(scenario, summary, system, opts) if check
+                             else None)
         if found:
             messages.append(found)
     if "failed" in (steady.status, tr.status):
@@ -405,11 +407,31 @@ def _sag_limit(conveyor: Conveyor, tr: TransientResult) -> float:
     return float(lim.return_ if strand == 1 else lim.carry)
 
 
-def _slip_remedy(conveyor, scenario, model, params, opts, summary, say=None) -> str:
+def _finer_mesh(scenario: Scenario, summary: dict, system, opts: DynamicsOptions
+                ) -> tuple[Scenario, DynamicsOptions]:
+    """The scenario and options of the finer mesh a checked run's error bars use
+    (:func:`beltstudy.engine.accuracy.error_bars`: ``RATIO`` x the elements the run used, the
+    automatic step following the mesh, a fixed one kept at its fraction of the stability
+    limit as :func:`_error_bars` keeps it)."""
+    from beltstudy.engine.accuracy import RATIO
+
+    o = opts
+    scn = scenario.model_copy(update={"elements": RATIO * int(summary["elements_used"])})
+    if scenario.dt_s != "auto":
+        o = replace(opts, dt_safety=float(scenario.dt_s) / system.dt_limit_s)
+        scn = scn.model_copy(update={"dt_s": "auto"})
+    return scn, o
+
+
+def _slip_remedy(conveyor, scenario, model, params, opts, summary, say=None,
+                 finer: tuple[Scenario, DynamicsOptions] | None = None) -> str:
     """Search what avoids a start's slip (:func:`beltstudy.engine.remedy.slip_remedy`), put the figures
     into ``summary`` and return the sentence for the message ("" when the start did not
-    slip)."""
-    from beltstudy.engine.remedy import GROW, START_MAX, TAKEUP_MAX, slip_remedy
+    slip). With ``finer`` (the scenario and options of a checked run's finer mesh,
+    :func:`_finer_mesh`) each figure is tried there too (:func:`beltstudy.engine.remedy.
+    confirm_finer`): where the start still slips with it, the figure found on the finer mesh
+    is the one given (the larger), and the message names both."""
+    from beltstudy.engine.remedy import GROW, START_MAX, TAKEUP_MAX, confirm_finer, slip_remedy
 
     gravity = conveyor.takeup.type == "gravity"
     rem = slip_remedy(conveyor, scenario, model=model, params=params, options=opts,
@@ -419,20 +441,49 @@ def _slip_remedy(conveyor, scenario, model, params, opts, summary, say=None) -> 
                       say=say)
     if rem is None:
         return ""
-    summary["slip_free_takeup_mass_kg"] = rem.takeup_mass_kg
-    summary["slip_free_takeup_kn"] = rem.takeup_tension_kn
-    summary["slip_free_start_time_s"] = rem.start_time_s
-    if gravity:
-        tu = (f"a take-up of {rem.takeup_mass_kg:,.0f} kg" if rem.takeup_mass_kg is not None
-              else f"no take-up up to {TAKEUP_MAX:g} x this one")
-    else:
-        tu = (f"a pretension of {rem.takeup_tension_kn:,.0f} kN" if rem.takeup_tension_kn
-              is not None else f"no pretension up to {TAKEUP_MAX:g} x this one")
+    run_tu = rem.takeup_mass_kg if gravity else rem.takeup_tension_kn
+    tu_fig, st_fig = run_tu, rem.start_time_s
+    fine = None
+    if finer is not None and (run_tu is not None or rem.start_time_s is not None):
+        fine_scn, fine_opts = finer
+        fine = confirm_finer(conveyor, fine_scn, rem, model=model, params=params,
+                             options=fine_opts, elements=int(fine_scn.elements),
+                             takeup_base=summary.get("takeup_mass_kg") if gravity
+                             else summary.get("takeup_tension_kn"))
+        tu_fig, st_fig = fine.takeup, fine.start_time_s
+    summary["slip_free_takeup_mass_kg"] = tu_fig if gravity else None
+    summary["slip_free_takeup_kn"] = None if gravity else tu_fig
+    summary["slip_free_start_time_s"] = st_fig
+    unit, noun = ("kg", "take-up") if gravity else ("kN", "pretension")
+    article = "a take-up of" if gravity else "a pretension of"
+
+    def amount(x):
+        return f"{x:,.0f} {unit}"
+
+    tu = (f"{article} {amount(tu_fig)}" if tu_fig is not None
+          else f"no {noun} up to {TAKEUP_MAX:g} x this one")
+    st = (f"a start of {st_fig:.0f} s" if st_fig is not None
+          else f"no start up to {START_MAX:g} x this one")
     how = (f"found by rerunning the start {rem.reruns} times on the same mesh, to 2 %; steps "
            f"of x {GROW:g}")
+    if fine is not None:
+        n_run, n_fine = int(summary["elements_used"]), fine.elements
+        moved = []
+        if fine.takeup_moved:
+            moved.append(f"{article} {amount(run_tu)}")
+        if fine.start_moved:
+            moved.append(f"a start of {rem.start_time_s:.0f} s")
+        if moved:
+            how += (f"; {' and '.join(moved)}, enough on this mesh ({n_run} elements), "
+                    f"still slipped on one twice as fine ({n_fine} elements, {fine.reruns} "
+                    "more reruns): the figure grows as the mesh sharpens the start's front, "
+                    "so the finer mesh's is given (a margin above it is safer)")
+        else:
+            how += (f"; it holds on a mesh twice as fine too ({n_fine} elements)"
+                    if reads_start_time(conveyor) is False or rem.start_time_s is None
+                    or run_tu is None else
+                    f"; each holds on a mesh twice as fine too ({n_fine} elements)")
     if not reads_start_time(conveyor):  # dol drives: the coupling softens their start
         return (f"slip in the start avoided by {tu} ({how}; a dol start does not read "
                 "start.time_s: its coupling sets how fast the torque comes on)")
-    st = (f"a start of {rem.start_time_s:.0f} s" if rem.start_time_s is not None
-          else f"no start up to {START_MAX:g} x this one")
     return f"slip in the start avoided by {tu} or by {st} (each alone, {how})"

@@ -99,3 +99,51 @@ def test_a_slip_in_the_stop_alone_is_not_announced_as_a_start_slip():
     assert s["drive1_slip_s"] > 0.0 and "slipped on its pulley during the stop" in s["message"]
     assert said == []
     assert s["slip_free_takeup_mass_kg"] is None and s["slip_free_start_time_s"] is None
+
+
+#: A 600 m incline rising 95 m with two head dol drives through constant-fill fluid couplings
+#: (a conveyor unlike the examples): its start slips drive 2, and the least take-up that
+#: avoids the slip grows with the mesh (18.9 t on 53 elements, 20.2 t on 103, 22.1 t on 205).
+INCLINE_DOL = {
+    "name": "incline-dol", "speed_m_s": 2.5,
+    "belt": {"type": "ST1600", "width_m": 1.0},
+    "material": {"capacity_t_h": 1200, "density_t_m3": 1.6},
+    "profile": [{"length_m": 600, "lift_m": 95}],
+    "idlers": {"carry": {"spacing_m": 1.2, "roll_diameter_m": 0.133, "rolls": 3,
+                         "trough_deg": 35, "cema_class": "D"},
+               "return": {"spacing_m": 3.0, "roll_diameter_m": 0.133, "rolls": 1,
+                          "cema_class": "C"}},
+    "drives": [{"position": "head", "wrap_deg": 210, "friction": 0.35, "share": 0.5,
+                "pulley_diameter_m": 1.0, "inertia_kg_m2": 300, "control": "dol",
+                "coupling": "fluid"}] * 2,
+    "takeup": {"type": "gravity", "position": "tail", "mass_kg": "auto", "travel_m": 6},
+    "holdback": True,
+    "accessories": {"head_kn": 1.0, "tail_kn": 0.5},
+}
+
+
+def test_a_checked_run_s_slip_free_take_up_holds_on_the_finer_mesh_too():
+    """The remedy's take-up is the least that avoids the slip on the run's own mesh, at the
+    edge of the slip there; a finer mesh sharpens the start's front and deepens the slack
+    side's dip, so on the incline above the 18,921 kg found on 53 elements slipped drive 2
+    again on the error bars' mesh twice as fine (0.13 s of slip on 109 elements). A checked
+    run now tries each figure on that finer mesh and, where it still slips, gives the
+    figure found there, naming both: that take-up starts without slip on both meshes."""
+    conv = parse_conveyor(INCLINE_DOL)
+    scn = Scenario(elements=50, run_s=10, stop={"mode": "coast"})
+    plain = run_one(conv, scn, model="din", remedy=True).summary
+    s = run_one(conv, scn, model="din", remedy=True, check=True).summary
+    n, fine_n = s["elements_used"], 2 * s["elements_used"]
+    m_run, m = plain["slip_free_takeup_mass_kg"], s["slip_free_takeup_mass_kg"]
+    assert m_run is not None and m is not None and m > m_run
+    assert f"a take-up of {m:,.0f} kg (found by" in s["message"]
+    assert (f"a take-up of {m_run:,.0f} kg, enough on this mesh ({n} elements), still slipped "
+            f"on one twice as fine ({fine_n} elements") in s["message"]
+
+    def slip_s(mass, elements):
+        c = parse_conveyor({**INCLINE_DOL, "takeup": {**INCLINE_DOL["takeup"], "mass_kg": mass}})
+        r = run_one(c, scn.model_copy(update={"elements": elements}), model="din").summary
+        return r["drive1_slip_s"] + r["drive2_slip_s"]
+
+    assert slip_s(m_run, 50) == 0.0 and slip_s(m_run, fine_n) > 0.0  # the run's figure
+    assert slip_s(m, 50) == 0.0 and slip_s(m, fine_n) == 0.0  # the figure given
