@@ -27,6 +27,7 @@ from beltstudy.service.api.models import (
     StudyList,
     StudyStatus,
 )
+from beltstudy.service.door.parse import expect_kind
 from beltstudy.service.errors import Invalid
 from beltstudy.service.store import query
 from beltstudy.service.studies import StudyService
@@ -94,6 +95,7 @@ async def submit_study(
     request: Request, response: Response, service: StudyService = Depends(get_service)
 ) -> dict:
     data = await read_data(request, service.settings.max_body_bytes, "a study")
+    expect_kind(data, "study", "body")
     # resolving runs in a worker thread: the event loop, and so /health, keeps answering
     status, created = await run_in_threadpool(partial(service.submit, data, strict=True))
     response.status_code = 202 if created else 200

@@ -71,9 +71,11 @@ def read_conveyor(path: str | os.PathLike):
     size, depth and alias limits, finite numbers, every key once), then parsed; a file the door
     refuses is an :class:`~beltstudy.service.errors.Invalid` naming it."""
     from beltstudy.engine import parse_conveyor
-    from beltstudy.service.door.parse import load_mapping
+    from beltstudy.service.door.parse import expect_kind, load_mapping
 
-    return parse_conveyor(load_mapping(path))
+    data = load_mapping(path)
+    expect_kind(data, "conveyor", str(path))
+    return parse_conveyor(data)
 
 
 def with_sag_at_rest(conv, on: bool | None):

@@ -29,6 +29,7 @@ from beltstudy.service.cli.common import (
     write_table,
     writing,
 )
+from beltstudy.service.door.parse import expect_kind
 from beltstudy.service.door.parse import load_mapping as door_load_mapping
 
 #: Steady fields of the table (labels and units: :mod:`beltstudy.engine.results`, the two tensions
@@ -107,7 +108,9 @@ def build_scenario(args: argparse.Namespace):
 
     data: dict = {}
     if args.scenario:
-        data, _ = scenario_fields(door_load_mapping(args.scenario), f"{args.scenario}: ")
+        raw = door_load_mapping(args.scenario)
+        expect_kind(raw, "scenario", str(args.scenario))
+        data, _ = scenario_fields(raw, f"{args.scenario}: ")
     data = {k: (dict(v) if isinstance(v, dict) else v) for k, v in data.items()}
     start = data.setdefault("start", {})
     stop = data.setdefault("stop", {})

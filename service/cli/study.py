@@ -21,7 +21,7 @@ from beltstudy.service.cli.client import ServiceClient
 from beltstudy.service.cli.common import check_output, dumps, writing
 from beltstudy.service.cli.console import ProgressBar, format_compare, format_status
 from beltstudy.service.cli.demo import run_demo
-from beltstudy.service.door.parse import load_mapping
+from beltstudy.service.door.parse import expect_kind, load_mapping
 from beltstudy.service.door.studyfile import study_body
 from beltstudy.service.errors import Invalid, Unavailable
 from beltstudy.service.settings import load_settings
@@ -259,6 +259,7 @@ def cmd_run(args) -> int:
     service = StudyService(settings.model_copy(update={"warm_start": False}))
     p = Path(args.study)
     data = load_mapping(p)
+    expect_kind(data, "study", str(p))
     try:
         st, created = service.submit(data, base_dir=p.parent, confine=False)
         print(

@@ -36,6 +36,8 @@ from beltstudy.engine.textfile import read_text
 from beltstudy.service.errors import Invalid, TooLarge, file_reason
 
 __all__ = [
+    "expect_kind",
+    "file_kind",
     "MAX_DEPTH",
     "MAX_VALUES",
     "MAX_TEXT",
@@ -401,6 +403,46 @@ def load_mapping(path: str | Path, what: str | None = None) -> dict:
     if not isinstance(data, dict):
         raise Invalid(f"{what}: expected a mapping of keys at the top level")
     return data
+
+
+#: Keys only a conveyor file has at its top level (SPEC 1), only a study file (SPEC 3), and the
+#: scenario's own (SPEC 2): a file given in the wrong place is named for what it is.
+_CONVEYOR_KEYS = ("speed_m_s", "belt", "material", "profile", "idlers", "drives")
+_STUDY_KEYS = ("conveyor", "grid", "zip", "design", "models", "sample", "dynamics")
+_FILE_USE = {
+    "conveyor": "a conveyor file (SPEC 1: name, speed_m_s, belt, material, profile, idlers, "
+                "drives)",
+    "study": "a study file (SPEC 3: name, conveyor, scenario, grid, ...)",
+    "scenario": "a scenario file (SPEC 2: load, temperature_c, start, run_s, stop, ...)",
+}
+
+
+def file_kind(data: Any) -> str | None:
+    """What a top-level mapping looks like: ``conveyor`` (three or more of a conveyor's own
+    keys), ``study`` (a ``conveyor:`` key, or two of a study's own keys), or None."""
+    if not isinstance(data, dict):
+        return None
+    if sum(k in data for k in _CONVEYOR_KEYS) >= 3 and "conveyor" not in data:
+        return "conveyor"
+    if "conveyor" in data or sum(k in data for k in _STUDY_KEYS) >= 2:
+        return "study"
+    return None
+
+
+def expect_kind(data: Any, kind: str, what: str) -> None:
+    """Refuse a conveyor file given as a study or scenario, or a study file given as a
+    conveyor or scenario, in one line naming what the file is and where it goes (instead of
+    one unknown key after another)."""
+    got = file_kind(data)
+    if got is None or got == kind:
+        return
+    keys = ", ".join(k for k in (_CONVEYOR_KEYS if got == "conveyor" else _STUDY_KEYS)
+                     if k in data)
+    where = {"conveyor": "give it as the conveyor (a study names it under conveyor:)",
+             "study": "run it as a study (beltstudy run FILE, or POST /studies); its conveyor: "
+                      "names the conveyor file"}[got]
+    raise Invalid(f"{what}: this is a {got} file (it has {keys}), not {_FILE_USE[kind]}: "
+                  f"{where}")
 
 
 def _describe(value: float) -> str:

@@ -26,7 +26,7 @@ from beltstudy.engine import InputError, get_model, parse_conveyor
 from beltstudy.engine.conveyor import json_numbers
 from beltstudy.engine.reads import STEADY_FIELDS
 from beltstudy.service.door.messages import describe
-from beltstudy.service.door.parse import check_tree, load_mapping
+from beltstudy.service.door.parse import check_tree, expect_kind, load_mapping
 from beltstudy.service.door.sample import bounds_problem, draw, value_bounds
 from beltstudy.service.door.study import (
     NAME_RE,
@@ -135,7 +135,9 @@ def conveyor_from_path(ref: str, base_dir: Path | None, root: Path | None) -> tu
                               "conveyor file")
             if not path.is_file():
                 raise Invalid(f"conveyor: file '{shown_path(path)}' not found")
-        return load_mapping(path, what=f"conveyor: {shown_path(ref)}"), ref
+        data = load_mapping(path, what=f"conveyor: {shown_path(ref)}")
+        expect_kind(data, "conveyor", f"conveyor: {shown_path(ref)}")
+        return data, ref
     except OSError as exc:  # a name over the file system's limits, a folder we may not read
         # the path as given: a service's own folders stay out of the answer
         raise Invalid(f"conveyor: cannot read the file: {file_problem(exc, ref)}") from None
@@ -506,7 +508,9 @@ def resolve_study(
 def load_study_file(path: str | Path, *, max_runs: int = 20_000) -> ResolvedStudy:
     """Read and resolve a study file (YAML or JSON); the conveyor path is relative to it."""
     p = Path(path)
-    return resolve_study(load_mapping(p), base_dir=p.parent, max_runs=max_runs)
+    data = load_mapping(p)
+    expect_kind(data, "study", str(p))
+    return resolve_study(data, base_dir=p.parent, max_runs=max_runs)
 
 
 def inline_conveyor(data: dict, base_dir: Path) -> dict:
@@ -522,4 +526,6 @@ def inline_conveyor(data: dict, base_dir: Path) -> dict:
 def study_body(path: str | Path) -> dict:
     """A study file as a POST body: the conveyor file inlined, so the server needs no files."""
     p = Path(path)
-    return inline_conveyor(load_mapping(p), p.parent)
+    data = load_mapping(p)
+    expect_kind(data, "study", str(p))
+    return inline_conveyor(data, p.parent)

@@ -242,3 +242,43 @@ def test_an_address_that_is_not_the_service_is_one_line(capsys, tmp_path, not_th
     assert "text/html" in err and "check --url / BELTSTUDY_URL" in err
     assert err.count("\n") == 1 and "Traceback" not in err and "<html>" not in err
     assert list(tmp_path.iterdir()) == []  # nothing written
+
+
+@pytest.mark.parametrize(("args", "message"), [
+    # a study file where a conveyor goes, a conveyor file where a scenario or a study goes:
+    # one line saying what the file is and where it goes, not an unknown key per top key
+    (["static", "studies/paper-comparison.yaml"],
+     "studies/paper-comparison.yaml: this is a study file (it has conveyor, grid, models, "
+     "dynamics), not a conveyor file"),
+    (["simulate", "studies/conveyors/slope-5pct.yaml", "--scenario",
+      "studies/conveyors/slope-5pct.yaml"],
+     "studies/conveyors/slope-5pct.yaml: this is a conveyor file (it has speed_m_s, belt, "
+     "material, profile, idlers, drives), not a scenario file"),
+    (["run", "studies/conveyors/slope-5pct.yaml"],
+     "studies/conveyors/slope-5pct.yaml: this is a conveyor file (it has speed_m_s, belt, "
+     "material, profile, idlers, drives), not a study file"),
+])
+def test_a_file_in_the_wrong_place_is_named_for_what_it_is(monkeypatch, capsys, tmp_path, args,
+                                                           message):
+    from tests.conftest import ROOT
+
+    monkeypatch.chdir(ROOT)
+    monkeypatch.setenv("BELTSTUDY_DATA_DIR", str(tmp_path / "data"))
+    assert cli.main(args) == 2
+    err = capsys.readouterr().err
+    assert err.startswith("error: " + message), err
+    assert len(err.strip().splitlines()) == 1 and "unknown key" not in err
+
+
+def test_a_conveyor_posted_as_a_study_is_a_422_saying_so(tmp_path):
+    from fastapi.testclient import TestClient
+
+    from beltstudy.service.api.app import create_app
+    from tests.service.conftest import settings_for, tiny_conveyor
+
+    app = create_app(settings_for(tmp_path / "data"))
+    with TestClient(app) as client:
+        r = client.post("/studies", json=tiny_conveyor())
+    assert r.status_code == 422
+    assert r.json()["message"].startswith("body: this is a conveyor file (it has speed_m_s, "
+                                          "belt, material, profile, idlers, drives), not a study")
