@@ -247,7 +247,9 @@ def steady_checks(conv, loop: Loop, T: np.ndarray, sf_min: float) -> tuple[dict,
 
 def transient_liftoff(loop: Loop, segs, t_start_end_s: float, t_stop_cmd_s: float,
                       start_time_s: float, steady_n: np.ndarray,
-                      softer_start: str | None = None) -> tuple[dict, list[str]]:
+                      softer_start: str | None = None,
+                      softer_stop: str = "a softer stop (stop time, brake force)",
+                      ) -> tuple[dict, list[str]]:
     """Lift-off at concave curves during the cycle: ``liftoff_*`` fields and one warning per
     phase in which the belt leaves its idlers.
 
@@ -270,6 +272,9 @@ def transient_liftoff(loop: Loop, segs, t_start_end_s: float, t_stop_cmd_s: floa
     softer_start : str, optional
         What softens a start that does not read ``start.time_s`` (dol drives: their
         couplings), offered instead of a longer start; None: the start follows its time.
+    softer_stop : str, optional
+        What softens this run's stop (by its stop mode:
+        :func:`beltstudy.engine.dynamics.simulate.stop_levers`).
 
     Returns
     -------
@@ -352,7 +357,7 @@ def transient_liftoff(loop: Loop, segs, t_start_end_s: float, t_stop_cmd_s: floa
             fixes.insert(0, f"a start of about {t_need:.0f} s (start.time_s; rigid-body "
                             "estimate)")
         elif p == 2 and not runs_over:
-            fixes.insert(0, "a softer stop (stop time, brake force)")
+            fixes.insert(0, softer_stop)
         elif runs_over:
             fixes.append("less tension there in running (a lighter take-up, the curve nearer "
                          "the slack side)")

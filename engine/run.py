@@ -25,7 +25,7 @@ from beltstudy.engine.curves import transient_liftoff
 from beltstudy.engine.design import auto_sizes, summary_fields
 from beltstudy.engine.dynamics import DynamicsOptions, TransientResult, build_system, simulate
 from beltstudy.engine.dynamics.model import check_scenario
-from beltstudy.engine.dynamics.simulate import span_sag_pct, start_levers
+from beltstudy.engine.dynamics.simulate import span_sag_pct, start_levers, stop_levers
 from beltstudy.engine.remedy import reads_start_time
 from beltstudy.engine.results import check_summary
 from beltstudy.engine.sizing import installed_at_full_load
@@ -340,7 +340,8 @@ def _complete(prep: _Prepared, scenario, system, tr, model, params, opts, remedy
     lifted, lift_warnings = transient_liftoff(
         steady.loop, tr.raw["segments"], cyc.t_pre + cyc.t_start, system.stop_command_s,
         max(cyc.t_start, tr.summary.get("start_time_s") or 0.0), system.steady_tension_n,
-        None if reads_start_time(conveyor) else " or ".join(start_levers(system)))
+        None if reads_start_time(conveyor) else " or ".join(start_levers(system)),
+        " or ".join(stop_levers(system)))
     summary.update(lifted)
     if lift_warnings:
         messages.append("; ".join(lift_warnings))

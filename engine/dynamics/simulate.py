@@ -371,6 +371,24 @@ def start_levers(sys: System) -> list[str]:
     return levers
 
 
+def stop_levers(sys: System | None) -> list[str]:
+    """What makes this run's stop softer, by its stop mode: a longer ``stop.time_s`` for a
+    controlled stop; less brake force or a longer brake ramp (``brakes[].ramp_s``) for a
+    brake stop; a coast stop has no setting of its own, so the lever is a controlled stop
+    (the drives easing the belt down over ``stop.time_s``). Without ``sys``: the general
+    words."""
+    if sys is None:
+        return ["a softer stop (stop time, brake force)"]
+    mode = sys.model.cycle.stop_mode
+    if mode == C.CONTROLLED:
+        return ["a longer stop (stop.time_s)"]
+    if mode == C.BRAKE:
+        return ["a softer brake stop (less brake force, a longer stop.time_s for an auto "
+                "brake sized by it, a longer brake ramp brakes[].ramp_s)"]
+    return ["a controlled stop instead of the coast (stop.mode: controlled, the drives "
+            "easing the belt down over stop.time_s)"]
+
+
 def _or(words: list[str]) -> str:
     """``a``, ``a or b``, ``a, b or c``."""
     return words[0] if len(words) == 1 else ", ".join(words[:-1]) + " or " + words[-1]
@@ -387,7 +405,7 @@ def slip_words(first: str, last: str, sys: System | None = None) -> tuple[str, s
     if first == "start":
         fixes += (start_levers(sys) if sys is not None else ["a longer start (start.time_s)"])
     if last == "stop":
-        fixes.append("a softer stop (stop time, brake force)")
+        fixes += stop_levers(sys)
     return when, _or(fixes)
 
 
@@ -950,8 +968,9 @@ def _sag_words(sys: System, strand: str, sag_pct: float, limit_pct: float, j: in
     need_kn = t_low_n * sag_pct / limit_pct / 1e3
     fixes = {"start": _or(["a heavier take-up"] + start_levers(sys)),
              "running": "a heavier take-up (more tension at the take-up) or closer idlers",
-             "stop": "a heavier take-up, a longer stop (stop time, brake force) or a brake "
-                     "nearer the low-tension side"}[phase]
+             "stop": _or(["a heavier take-up", *stop_levers(sys)]
+                         + (["a brake nearer the low-tension side"]
+                            if sys.model.cycle.stop_mode == C.BRAKE else []))}[phase]
     return (f"transient sag on the {strand} strand {sag_pct:.2f} % exceeds the limit "
             f"{limit_pct:g} % (low tension {t_low_n / 1e3:.3g} kN near {where(sys, j)} at t = "
             f"{t_at:.1f} s, {_PHASE_WORDS[phase]}); {need_kn:.3g} kN there keeps it within "
@@ -973,9 +992,7 @@ def _transient_safety_words(sys: System, conveyor, sf: float, sf_min: float, t_m
         fixes.append(f"a belt rated at least {need_kn_m} kN/m at this width (now "
                      f"{belt.rating_kn_m:.0f} kN/m)")
     fixes += {"start": start_levers(sys), "running": [],
-              "stop": ["a softer stop (a longer stop time, less brake force, a longer brake "
-                       "ramp, brakes[].ramp_s)"]
-              }[phase]
+              "stop": stop_levers(sys)}[phase]
     fix = f": {_or(fixes)} would avoid it" if fixes else ""
     return (f"belt safety factor {sf:.2f} during the transient is below {sf_min:.3g} (peak "
             f"{t_max_n / 1e3:.4g} kN near {where(sys, j)} at t = {t_at:.1f} s, "

@@ -109,18 +109,20 @@ def test_a_slack_stop_reports_where_when_and_how_much():
     assert s["sag_max_dyn_pct"] is None and "sag_max_dyn_pct is empty" in msg
 
 
-def _four_spring_system():
+def _four_spring_system(stop_mode=None):
     """A stand-in for a run's system as the warning words read it: four springs (three on the
     carry, 420, 1 000 and 2 000 m round the loop), the stop command at 92 s after a 2 s rest
-    and a 60 s start, one vfd drive without coupling."""
+    and a 60 s start, a controlled stop (or ``stop_mode``), one vfd drive without coupling."""
     from types import SimpleNamespace
 
     from beltstudy.engine.dynamics import codes as C
 
+    mode = C.CONTROLLED if stop_mode is None else stop_mode
     return SimpleNamespace(s_end_m=np.array([0.0, 420.0, 1000.0, 2000.0]),
                            strand=np.array([0, 0, 0, 1]), stop_command_s=92.0,
                            model=SimpleNamespace(cycle=SimpleNamespace(t_pre=2.0,
-                                                                       t_start=60.0),
+                                                                       t_start=60.0,
+                                                                       stop_mode=mode),
                                                  drives=SimpleNamespace(
                                                      control=np.array([C.VFD]),
                                                      coupling=np.array([C.COUPLING_NONE]))))
@@ -143,7 +145,38 @@ def test_a_transient_safety_factor_names_when_and_the_belt_that_meets_it():
     assert "a belt rated at least 1260 kN/m at this width (now 1000 kN/m)" in msg
     assert "a longer start (start.time_s)" in msg and "softer stop" not in msg
     stop = _transient_safety_words(sysm, conv, 1000.0 / 420.0, 3.0, 420e3, 2, 95.0)
-    assert "during the stop" in stop and "a softer stop" in stop and "longer start" not in stop
+    assert "during the stop" in stop and "longer start" not in stop
+    assert stop.endswith("or a longer stop (stop.time_s) would avoid it")
+
+
+def test_the_stop_levers_offered_are_those_of_the_run_s_stop_mode():
+    """A coast stop has no stop time or brake to soften: it is offered a controlled stop; a
+    controlled stop a longer stop time; a brake stop less force or a longer ramp. A coast stop
+    of a conveyor without brakes that slipped its drive was told 'a softer stop (stop time,
+    brake force)'."""
+    from beltstudy.engine.dynamics import codes as C
+    from beltstudy.engine.dynamics.simulate import _sag_words, stop_levers
+
+    take_up = "a heavier take-up (more slack-side tension)"
+    coast = _four_spring_system(C.COAST)
+    _, fix = slip_words("stop", "stop", coast)
+    assert fix == (f"{take_up} or a controlled stop instead of the coast (stop.mode: "
+                   "controlled, the drives easing the belt down over stop.time_s)")
+    assert "brake" not in fix and "stop time" not in fix
+    _, fix = slip_words("stop", "stop", _four_spring_system(C.CONTROLLED))
+    assert fix == f"{take_up} or a longer stop (stop.time_s)"
+    _, fix = slip_words("running", "stop", _four_spring_system(C.BRAKE))
+    assert "less brake force" in fix and "brakes[].ramp_s" in fix
+    whole = {"env_min": np.array([9e3, 8.92e3, 9e3, 9e3]),
+             "env_min_t": np.array([95.0, 95.5, 95.0, 95.0])}
+    sag = _sag_words(coast, "carry", 2.4, 2.0, 2, 8.92e3, whole)
+    assert sag.endswith("a heavier take-up or a controlled stop instead of the coast "
+                        "(stop.mode: controlled, the drives easing the belt down over "
+                        "stop.time_s) would avoid it")
+    assert "brake" not in sag
+    assert "a brake nearer the low-tension side" in _sag_words(
+        _four_spring_system(C.BRAKE), "carry", 2.4, 2.0, 2, 8.92e3, whole)
+    assert stop_levers(None) == ["a softer stop (stop time, brake force)"]
 
 
 def test_a_transient_sag_names_when_and_the_tension_that_keeps_it_within():
