@@ -155,10 +155,12 @@ def format_calibration(out: dict) -> str:
     lines = [f"calibration of {out['model']} on {out['conveyor']}: {out['status']} "
              f"(rms relative residual {100 * out['rms_relative']:.2f} %, {out['dof']} degrees "
              "of freedom)", f"  {out['message']}", "",
-             "  parameter                 value          se      start"]
+             "  parameter                 value          se      start   95 % interval"]
     for name, f in out["fit"].items():
         se = f"{f['se']:.4g}" if f["se"] is not None else "-"
-        lines.append(f"  {name:<22} {f['value']:>10.6g} {se:>11} {f['start']:>10.4g}")
+        ci = f.get("ci95")
+        ci = f"{ci[0]:.4g} to {ci[1]:.4g}" if ci else "-"
+        lines.append(f"  {name:<22} {f['value']:>10.6g} {se:>11} {f['start']:>10.4g}   {ci}")
     lines += ["", "  row  measured      value      model   residual [%]"]
     for r in out["residuals"]:
         lines.append(f"  {r['row']:>3}  {r['measured']:<10} {r['value']:>9.4g} "
