@@ -40,9 +40,8 @@ CALIBRATION_BODY_SCHEMA_REF = {"$ref": "#/components/schemas/CalibrationIn"}
 async def post_calibration(request: Request,
                            service: StudyService = Depends(get_service)) -> dict:
     """Values, standard errors and 95 % intervals (``fit.<name>.value``, ``.se``, ``.ci95``),
-    residuals, the names the
-    data cannot identify (``not_identifiable``) and a ``models`` block for a study. The body
-    is read as ``POST /studies`` reads a study: JSON or YAML."""
+    residuals, the names the data cannot identify (``not_identifiable``) and a ``models``
+    block for a study. The body is read as ``POST /studies`` reads a study: JSON or YAML."""
     data = await read_data(request, service.settings.max_body_bytes, "a calibration")
     body = await run_in_threadpool(read_calibration, data)
     return await run_in_threadpool(partial(run_calibration, body,
