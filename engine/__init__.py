@@ -55,7 +55,7 @@ from beltstudy.engine.conveyor import (  # noqa: E402
     parse_scenario,
     section_loads,
 )
-from beltstudy.engine.design import auto_sizes, summary_fields  # noqa: E402
+from beltstudy.engine.design import GIVEN, auto_sizes, summary_fields  # noqa: E402
 from beltstudy.engine.drives import OVERLOAD_S_MAX  # noqa: E402
 from beltstudy.engine.errors import InputError  # noqa: E402
 from beltstudy.engine.friction import ALIASES, MODELS, canonical_name, get_model  # noqa: E402
@@ -109,7 +109,7 @@ __all__ = [
     "run_one", "RunResult", "check_scenario", "DynamicsOptions",
     "STEADY_FIELDS", "unread_fields", "scenario_as_read", "brake_sizing_stop_time",
     "conveyor_as_read", "unread_brakes",
-    "auto_sizes", "summary_fields",
+    "auto_sizes", "summary_fields", "GIVEN",
     "DesignCase", "DesignSizes", "Largest", "BrakeSizes", "SizingError", "size_over_cases", "installed_at_full_load",
     "governed_at", "load_label",
     "solve_steady", "SteadyResult", "SAFETY_FACTOR_MIN", "TRANSIENT_SAFETY_RATIO",

@@ -152,3 +152,17 @@ def test_the_door_reaches_neither_the_workers_nor_the_faces():
     for module in door:
         reached = sorted(m for m in reachable(graph, module) if m.startswith(beyond))
         assert not reached, f"{module} reaches {', '.join(reached)}"
+
+
+#: Engine modules the service must not import: it reaches them through the engine's public
+#: API (``beltstudy.engine``'s ``__init__``), issue 25's rule.
+ENGINE_INSIDES = ("beltstudy.engine.statics", "beltstudy.engine.design",
+                  "beltstudy.engine.dynamics", "beltstudy.engine.loop")
+
+
+def test_the_service_reaches_statics_design_dynamics_and_loop_only_through_the_engine_api():
+    graph = import_graph()
+    found = sorted(f"{m} imports {w}" for m, ws in graph.items()
+                   if m.startswith("beltstudy.service") for w in ws
+                   if any(w == e or w.startswith(e + ".") for e in ENGINE_INSIDES))
+    assert not found, "; ".join(found)

@@ -187,7 +187,7 @@ def _row_done(row: dict, spec: RunSpec, result, t0: float) -> dict:
 
 
 #: A brake's conveyor fields the transient engine reads only after the stop command
-#: (beltstudy.engine.dynamics.shared.STOP_ONLY): runs whose conveyors differ only in them may
+#: (``STOP_ONLY`` in engine/dynamics/shared.py): runs whose conveyors differ only in them may
 #: share a start.
 BRAKE_STOP_FIELDS = ("force_kn", "delay_s", "ramp_s", "force_curve", "hold")
 

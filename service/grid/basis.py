@@ -42,6 +42,7 @@ from pydantic import BaseModel, ConfigDict, Field
 
 from beltstudy.engine import (
     BELT_AUTO,
+    GIVEN,
     BrakeSizes,
     Conveyor,
     DesignCase,
@@ -58,7 +59,6 @@ from beltstudy.engine import (
     with_belt,
 )
 from beltstudy.engine.conveyor import PRETENSION_MAX_KN, TAKEUP_MASS_MAX_KG
-from beltstudy.engine.design import GIVEN
 from beltstudy.service.errors import Invalid
 
 __all__ = ["DesignIn", "has_auto", "size_design", "apply_sizes", "round_up", "SIG_DIGITS",
