@@ -318,6 +318,30 @@ def section_cuts(conv: Conveyor, start_m: float, length_m: float, k: int
     return out
 
 
+def _heights(z: float, dz: float, k: int) -> tuple[list[float], float]:
+    """Heights of ``k`` elements from ``z`` rising ``dz`` each (summed one by one), and the
+    height after them."""
+    out = []
+    for _ in range(k):
+        out.append(z)
+        z += dz
+    return out, z
+
+
+def _strand_pulleys(conv: Conveyor) -> tuple[list, list]:
+    """The pulleys along the strands as ``(at_m, 0 drive / 1 take-up, drive index or -1)``:
+    the carry's booster drives tail -> head, the return's boosters and a take-up along it
+    head -> tail (the take-up after the drives at its position)."""
+    on_carry = sorted((float(d.at_m), 0, i) for i, d in enumerate(conv.drives)
+                      if d.position == "carry")
+    on_return = [(float(d.at_m), 0, i) for i, d in enumerate(conv.drives)
+                 if d.position == "return"]
+    if conv.takeup.position == "return":
+        on_return.append((float(conv.takeup.at_m), 1, -1))
+    on_return.sort(key=lambda p: (-p[0], p[1], p[2]))
+    return on_carry, on_return
+
+
 def build_loop(
     conv: Conveyor,
     load_fraction: float | str | list = 1.0,
@@ -349,7 +373,6 @@ def build_loop(
     counts = _split(n_strand, lengths)
 
     belt = catalog.resolve_belt(conv.belt)
-    mG = belt.mass_kg_m
     design_mL = conv.material.capacity_t_h / (3.6 * conv.speed_m_s)
     loads = section_loads(load_fraction, conv)
     w = belt.width_m
@@ -373,15 +396,6 @@ def build_loop(
             v = values[key]
             cols[key].extend(v if key == "z" else [v] * k)
 
-    def heights(z: float, dz: float, k: int) -> tuple[list[float], float]:
-        """Heights of ``k`` elements from ``z`` rising ``dz`` each (summed one by one), and
-        the height after them."""
-        out = []
-        for _ in range(k):
-            out.append(z)
-            z += dz
-        return out, z
-
     pulleys: list[Pulley] = []
 
     def add_pulley(code, position, drive, diameter, wrap, mu, mu_k, takeup, z_at, at_m=None):
@@ -393,13 +407,7 @@ def build_loop(
     # the pulleys along the strands: booster drives (file order at one position) and a take-up
     # along the return (after the drives at its position)
     tol = 1e-6 * max(1.0, L)
-    on_carry = sorted((float(d.at_m), 0, i) for i, d in enumerate(conv.drives)
-                      if d.position == "carry")
-    on_return = [(float(d.at_m), 0, i) for i, d in enumerate(conv.drives)
-                 if d.position == "return"]
-    if conv.takeup.position == "return":
-        on_return.append((float(conv.takeup.at_m), 1, -1))
-    on_return.sort(key=lambda p: (-p[0], p[1], p[2]))
+    on_carry, on_return = _strand_pulleys(conv)
     cut_return = bool(on_return)
     cut_carry = bool(route_cuts(conv))
 
@@ -445,7 +453,7 @@ def build_loop(
             x = s0
             for sub_len, sub_k, fed in section_cuts(conv, s0, sec.length_m, k):
                 along(on_carry, x, z, upto)
-                zs, z = heights(z, sub_len / sub_k * sin, sub_k)
+                zs, z = _heights(z, sub_len / sub_k * sin, sub_k)
                 add(sub_k, strand=CARRY, dx=sub_len / sub_k, z=zs, sin=sin, cos=cos,
                     S=s_c, D=ic.roll_diameter_m, rolls=ic.rolls,
                     trough=ic.trough_deg, mL=design_mL * frac * fed,
@@ -453,7 +461,7 @@ def build_loop(
                 x += sub_len
             s0 += sec.length_m
             continue
-        zs, z = heights(z, dx * sin, k)
+        zs, z = _heights(z, dx * sin, k)
         add(k, strand=CARRY, dx=dx, z=zs, sin=sin, cos=cos, S=s_c,
             D=ic.roll_diameter_m, rolls=ic.rolls, trough=ic.trough_deg, mL=design_mL * frac,
             mR=carry_mass / s_c, drag=carry_drag)
@@ -501,7 +509,7 @@ def build_loop(
             x = s1 + sec.length_m
             for sub_len, sub_k, _fed in parts:
                 along(on_return, x, z, downto)
-                zs, z = heights(z, sub_len / sub_k * sin, sub_k)
+                zs, z = _heights(z, sub_len / sub_k * sin, sub_k)
                 add(sub_k, strand=RETURN, dx=sub_len / sub_k if cut_return else dx, z=zs,
                     sin=sin, cos=cos, S=s_r, D=ir.roll_diameter_m, rolls=ir.rolls,
                     trough=ir.trough_deg, mL=0.0, mR=ret_mass / s_r, drag=ret_drag)
@@ -514,6 +522,21 @@ def build_loop(
         add_pulley(TAKEUP, "tail", -1, DEFAULT_PULLEY_DIAMETER_M, PLAIN_WRAP_DEG,
                    PLAIN_FRICTION, PLAIN_FRICTION, True, 0.0)
     add_end("tail", TAIL, 0.0, conv.takeup.position == "tail")
+    curves = tuple(Curve(carry=np.asarray([carry_el[j] for j in c["carry_"]], dtype=np.int64),
+                         ret=np.asarray([ret_el[j] for j in c["carry_"]], dtype=np.int64),
+                         **{k: v for k, v in c.items() if k != "carry_"})
+                   for c in arcs)
+    return _assemble(conv, belt, cols, pulleys, nc, i_head, i_tail0, loads, design_mL, curves)
+
+
+def _assemble(conv: Conveyor, belt, cols: dict[str, list], pulleys: list[Pulley], nc: int,
+              i_head: int, i_tail0: int, loads: list[float], design_mL: float,
+              curves: tuple) -> Loop:
+    """The :class:`Loop` from :func:`build_loop`'s element columns and pulleys: ``nc`` carry
+    elements (with the carry's pulleys), the head end from ``i_head``, the tail end from
+    ``i_tail0``; positions round the loop and along the route, heights, the sag limits."""
+    L = conv.length_m
+    mG = belt.mass_kg_m
     n = len(cols["dx"])
     i_tail = n - 1
     i_takeup = next(p.element for p in pulleys if p.takeup)
@@ -567,11 +590,7 @@ def build_loop(
         belt=belt,
         design_load_kg_m=design_mL,
         section_load=loads,
-        curves=tuple(Curve(carry=np.asarray([carry_el[j] for j in c["carry_"]],
-                                            dtype=np.int64),
-                           ret=np.asarray([ret_el[j] for j in c["carry_"]], dtype=np.int64),
-                           **{k: v for k, v in c.items() if k != "carry_"})
-                     for c in arcs),
+        curves=curves,
         x_m=x_arr,
     )
 

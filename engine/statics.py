@@ -496,6 +496,90 @@ def _pattern_note(conv: Conveyor, load, loop: Loop) -> str:
     return ""
 
 
+def _drive_margins(drives, T, Tprev, T_start, Sprev, T_hold):
+    """Each drive's slip margin running and at start-up (the lower of start-up and breakaway,
+    ``T_hold`` None for a fixed take-up), its tight and slack tensions as summary fields, and
+    whether the breakaway set its start margin: (running, start, fields, breakaway)."""
+    slip_margins, start_margins, per_drive, breakaway = [], [], {}, []
+    for i, (idx, _s, e) in enumerate(drives, start=1):
+        tin, tout = Tprev[idx], T[idx]
+        tight, slack = max(tin, tout), min(tin, tout)
+        margin = e / (tight / slack) if slack > 0 else 0.0
+        slip_margins.append(margin)
+        s_tight, s_slack = max(Sprev[idx], T_start[idx]), min(Sprev[idx], T_start[idx])
+        start = e / (s_tight / s_slack) if s_slack > 0 else 0.0
+        if T_hold is not None:  # breakaway: the drives hold the net pull at standstill
+            h_in, h_out = T_hold[idx - 1], T_hold[idx]
+            h_slack = min(h_in, h_out)
+            hold = e / (max(h_in, h_out) / h_slack) if h_slack > 0 else 0.0
+            breakaway.append(hold < start)
+            start = min(start, hold)
+        else:
+            breakaway.append(False)
+        start_margins.append(start)
+        per_drive[f"drive{i}_t_tight_kn"] = float(tight) / 1e3
+        per_drive[f"drive{i}_t_slack_kn"] = float(slack) / 1e3
+        per_drive[f"drive{i}_slip_margin"] = float(margin)
+    return slip_margins, start_margins, per_drive, breakaway
+
+
+def _slip_words(res: SteadyResult, drives, slip_margins, start_margins, breakaway,
+                shortfall_n: float) -> list[str]:
+    """A warning per drive that slips running or at start-up (or breakaway), each phase with
+    its own margin, and the take-up that would avoid it when ``shortfall_n`` > 0."""
+    conv, tu = res.conveyor, res.conveyor.takeup
+    pull_kn = float(res.loop.gravity_n.sum()) / 1e3
+    warnings = []
+    for i, ((_idx, _s, e), m_run, m_start, at_hold) in enumerate(
+            zip(drives, slip_margins, start_margins, breakaway, strict=True), start=1):
+        where = f"drive {i} ({conv.drives[i - 1].where})"
+        if m_run < 1.0 - 1e-6 or m_start < 1.0 - 1e-6:
+            start = (f"breakaway (the drives hold the net gravity pull {abs(pull_kn):.4g} kN at "
+                     "standstill, no running resistance yet)" if at_hold
+                     else f"start-up (force x {STARTUP_FACTOR})")
+            # each phase that slips with its own margin: running first, then the start
+            cases = [(w, m) for w, m in (("running", m_run), (start, m_start))
+                     if m < 1.0 - 1e-6]
+            fix = ""
+            if shortfall_n > 0 and tu.type == "gravity":
+                need = (res.takeup_tension_n + shortfall_n) * 2 / G
+                fix = (f"; take-up mass {res.takeup_mass_kg:.0f} kg is below the "
+                       f"{need:.0f} kg needed (use mass_kg: auto)")
+            elif shortfall_n > 0:
+                fix = (f"; pretension {res.takeup_tension_n / 1e3:.1f} kN is below the "
+                       f"{(res.takeup_tension_n + shortfall_n) / 1e3:.1f} kN needed")
+            said = ", and at ".join(f"{w}: slip margin {m:.2f} < 1" for w, m in cases)
+            warnings.append(f"slip at {where} at {said} (e^(mu theta) = {e:.2f}){fix}")
+    return warnings
+
+
+def _takeup_beyond_words(res: SteadyResult, drives) -> list[str]:
+    """An auto take-up beyond what a file may give: what sets it and what avoids it (no
+    warning otherwise)."""
+    conv, tu = res.conveyor, res.conveyor.takeup
+    beyond = ""
+    if tu.type == "gravity" and tu.mass_kg == "auto" and res.takeup_mass_kg > TAKEUP_MASS_MAX_KG:
+        beyond = (f"the auto take-up mass {res.takeup_mass_kg / 1e3:,.0f} t is beyond any "
+                  f"counterweight (a file may give at most {TAKEUP_MASS_MAX_KG / 1e3:,.0f} t)")
+    elif (tu.type == "fixed" and tu.pretension_kn == "auto"
+          and res.takeup_tension_n / 1e3 > PRETENSION_MAX_KN):
+        beyond = (f"the auto pretension {res.takeup_tension_n / 1e3:,.0f} kN is beyond the "
+                  f"breaking force of any catalogue belt ({PRETENSION_MAX_KN:,.0f} kN)")
+    if not beyond:
+        return []
+    gov = res.takeup_governed_by
+    if gov.startswith("slip"):
+        k = min(range(len(drives)), key=lambda i: drives[i][2])
+        d = conv.drives[k]
+        fix = (f"drive {k + 1} ({d.where}) grips too little for its share of Te (friction "
+               f"{d.friction:g}, wrap {d.wrap_deg:g} deg, e^(mu theta) = "
+               f"{drives[k][2]:.3g}): more friction (a lagged pulley), more wrap "
+               "(a snub pulley) or a smaller share on it would avoid it")
+    else:
+        fix = ("closer idlers (idlers.*.spacing_m) or a higher sag limit would lower it")
+    return [f"{beyond}, set by {gov}: {fix}"]
+
+
 def _summarise(res: SteadyResult, drives, hs_adm, bounds, shortfall_n: float,
                start_delta: np.ndarray, hold_delta: np.ndarray | None = None) -> None:
     """Fill ``res.summary`` with the SPEC section 4 and 6.4 steady fields and the warnings.
@@ -518,26 +602,8 @@ def _summarise(res: SteadyResult, drives, hs_adm, bounds, shortfall_n: float,
         t1, t2 = t2, t1
     T_hold = (None if hold_delta is None
               else T + hold_delta - 0.5 * (hold_delta[k - 1] + hold_delta[k]))
-    slip_margins, start_margins, per_drive, breakaway = [], [], {}, []
-    for i, (idx, _s, e) in enumerate(drives, start=1):
-        tin, tout = Tprev[idx], T[idx]
-        tight, slack = max(tin, tout), min(tin, tout)
-        margin = e / (tight / slack) if slack > 0 else 0.0
-        slip_margins.append(margin)
-        s_tight, s_slack = max(Sprev[idx], T_start[idx]), min(Sprev[idx], T_start[idx])
-        start = e / (s_tight / s_slack) if s_slack > 0 else 0.0
-        if T_hold is not None:  # breakaway: the drives hold the net pull at standstill
-            h_in, h_out = T_hold[idx - 1], T_hold[idx]
-            h_slack = min(h_in, h_out)
-            hold = e / (max(h_in, h_out) / h_slack) if h_slack > 0 else 0.0
-            breakaway.append(hold < start)
-            start = min(start, hold)
-        else:
-            breakaway.append(False)
-        start_margins.append(start)
-        per_drive[f"drive{i}_t_tight_kn"] = float(tight) / 1e3
-        per_drive[f"drive{i}_t_slack_kn"] = float(slack) / 1e3
-        per_drive[f"drive{i}_slip_margin"] = float(margin)
+    slip_margins, start_margins, per_drive, breakaway = _drive_margins(
+        drives, T, Tprev, T_start, Sprev, T_hold)
     s_end = loop.s_end_m
     imax, imin = int(np.argmax(T)), int(np.argmin(T))
     Tm = res.tension_mean_n
@@ -602,49 +668,8 @@ def _summarise(res: SteadyResult, drives, hs_adm, bounds, shortfall_n: float,
             f"({cap.volume_flow_m3_h:.0f} m3/h) exceeds what the belt's cross-section carries "
             f"at {v:g} m/s ({cap.capacity_m3_h:.0f} m3/h, ISO 5048); widen or trough the belt "
             "deeper, or run faster")
-    tu = conv.takeup
-    pull_kn = float(loop.gravity_n.sum()) / 1e3
-    for i, ((_idx, _s, e), m_run, m_start, at_hold) in enumerate(
-            zip(drives, slip_margins, start_margins, breakaway, strict=True), start=1):
-        where = f"drive {i} ({conv.drives[i - 1].where})"
-        if m_run < 1.0 - 1e-6 or m_start < 1.0 - 1e-6:
-            start = (f"breakaway (the drives hold the net gravity pull {abs(pull_kn):.4g} kN at "
-                     "standstill, no running resistance yet)" if at_hold
-                     else f"start-up (force x {STARTUP_FACTOR})")
-            # each phase that slips with its own margin: running first, then the start
-            cases = [(w, m) for w, m in (("running", m_run), (start, m_start))
-                     if m < 1.0 - 1e-6]
-            fix = ""
-            if shortfall_n > 0 and tu.type == "gravity":
-                need = (res.takeup_tension_n + shortfall_n) * 2 / G
-                fix = (f"; take-up mass {res.takeup_mass_kg:.0f} kg is below the "
-                       f"{need:.0f} kg needed (use mass_kg: auto)")
-            elif shortfall_n > 0:
-                fix = (f"; pretension {res.takeup_tension_n / 1e3:.1f} kN is below the "
-                       f"{(res.takeup_tension_n + shortfall_n) / 1e3:.1f} kN needed")
-            said = ", and at ".join(f"{w}: slip margin {m:.2f} < 1" for w, m in cases)
-            warnings.append(f"slip at {where} at {said} (e^(mu theta) = {e:.2f}){fix}")
-    # ---- an auto take-up beyond what a file may give: name what sets it and what avoids it
-    beyond = ""
-    if tu.type == "gravity" and tu.mass_kg == "auto" and res.takeup_mass_kg > TAKEUP_MASS_MAX_KG:
-        beyond = (f"the auto take-up mass {res.takeup_mass_kg / 1e3:,.0f} t is beyond any "
-                  f"counterweight (a file may give at most {TAKEUP_MASS_MAX_KG / 1e3:,.0f} t)")
-    elif (tu.type == "fixed" and tu.pretension_kn == "auto"
-          and res.takeup_tension_n / 1e3 > PRETENSION_MAX_KN):
-        beyond = (f"the auto pretension {res.takeup_tension_n / 1e3:,.0f} kN is beyond the "
-                  f"breaking force of any catalogue belt ({PRETENSION_MAX_KN:,.0f} kN)")
-    if beyond:
-        gov = res.takeup_governed_by
-        if gov.startswith("slip"):
-            k = min(range(len(drives)), key=lambda i: drives[i][2])
-            d = conv.drives[k]
-            fix = (f"drive {k + 1} ({d.where}) grips too little for its share of Te (friction "
-                   f"{d.friction:g}, wrap {d.wrap_deg:g} deg, e^(mu theta) = "
-                   f"{drives[k][2]:.3g}): more friction (a lagged pulley), more wrap "
-                   "(a snub pulley) or a smaller share on it would avoid it")
-        else:
-            fix = ("closer idlers (idlers.*.spacing_m) or a higher sag limit would lower it")
-        warnings.append(f"{beyond}, set by {gov}: {fix}")
+    warnings += _slip_words(res, drives, slip_margins, start_margins, breakaway, shortfall_n)
+    warnings += _takeup_beyond_words(res, drives)
     # ---- each drive's motor power against its rating (SPEC 7.4, beltstudy.engine.drives)
     rated_kw, _ = rated_power_kw(conv, res.te_n, float(np.sum(res.resistance_n)))
     fields, short = drive_checks(conv, [share * res.te_n for _i, share, _e in drives], v,

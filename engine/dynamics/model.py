@@ -1026,7 +1026,7 @@ def short_element(conv, loop: Loop) -> tuple[str, str] | None:
                    "the median element)")
 
 
-def _cycle(conv, scn, opts, n, dt, t_loop, total_mass, te, v_d, hold, drive_train,
+def _cycle(conv, scn, opts, n, dt, t_loop, v_d, hold, drive_train,
            t_hand=0.0, short=None):
     """The cycle's times: the rest after the stop (one wave loop time at least, plus what
     holding brakes and the drives' trip take), the stop window
@@ -1157,7 +1157,7 @@ def build_system(conv: Conveyor, scn: Scenario, steady, options: DynamicsOptions
     if short is not None and scn.dt_s == "auto":
         # the run is right, only slow: say what makes it so
         notes.append(f"{short[1]} (a step of {dt:.3g} s)")
-    cycle = _cycle(conv, scn, opts, n, dt, t_loop, total_mass, te, v_d, hold, train,
+    cycle = _cycle(conv, scn, opts, n, dt, t_loop, v_d, hold, train,
                    handover_time_s(conv, loop, scn, opts, hold), short)
     model = Model(
         cycle=cycle, nodes=nodes, law=law, lin=_lin(law, nodes, cycle.v_eps), springs=springs,
