@@ -234,3 +234,40 @@ def test_static_keeps_the_files_rest_sag_switch(capsys):
     off = json.loads(capsys.readouterr().out)
     assert plain["takeup_governed_by"] == off["takeup_governed_by"] == "sag_running"
     assert plain["takeup_mass_kg"] == off["takeup_mass_kg"] < 4486.0
+
+
+def test_static_loads_no_other_commands_stack():
+    """Issue 3: ``beltstudy static`` on the 16.8 km example answers in under a second with
+    start-up. It did in 0.8 s until every command's module was imported to build the parser:
+    the study commands' Dask and HTTP client and the calibration took it to 1.5 s of CPU. The
+    command now imports its own module only (no timing here: what it loads)."""
+    code = (
+        "import sys, contextlib, io\n"
+        "from beltstudy.service.cli import main\n"
+        "with contextlib.redirect_stdout(io.StringIO()):\n"
+        f"    code = main(['static', {str(CONVEYORS / 'slope-5pct.yaml')!r}, '--json'])\n"
+        "heavy = ['distributed', 'httpx', 'beltstudy.service.cli.study',\n"
+        "         'beltstudy.service.cli.demo', 'beltstudy.service.calibration']\n"
+        "print(code, [m for m in heavy if m in sys.modules])\n"
+    )
+    p = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,
+                       timeout=120)
+    assert p.returncode == 0, p.stderr
+    assert p.stdout.strip() == "0 []"
+
+
+def test_the_command_table_names_each_commands_module():
+    """Each command runs with the parser of its own module alone (``COMMANDS``): the table
+    holds every command the modules register, each under the module that registers it."""
+    import argparse
+    import importlib
+
+    from beltstudy.service import cli
+
+    found = {}
+    for name in cli.COMMAND_MODULES:
+        sub = argparse.ArgumentParser().add_subparsers()
+        importlib.import_module(f"beltstudy.service.cli.{name}").register(sub)
+        found.update(dict.fromkeys(sub.choices, name))
+    assert found == cli.COMMANDS
+    assert list(found) == list(cli.COMMANDS)  # the order of --help

@@ -19,22 +19,51 @@ from beltstudy.service.errors import ServiceError, file_problem
 #: Sub-command modules, in the order they appear in ``--help``.
 COMMAND_MODULES = ("static", "sweep", "simulate", "study", "calibrate")
 
+#: Which module registers each command. A command given on the command line imports only its
+#: own module: importing them all (the study commands' Dask and HTTP client, the calibration's
+#: fitting) took ``beltstudy static`` from 0.66 to 1.5 s of CPU before it read its file.
+#: ``tests/test_cli_static.py`` checks this table against what the modules register.
+COMMANDS = {
+    "static": "static",
+    "sweep-temperature": "sweep",
+    "simulate": "simulate",
+    "serve": "study",
+    "submit": "study",
+    "run": "study",
+    "status": "study",
+    "results": "study",
+    "report": "study",
+    "compare": "study",
+    "uncertainty": "study",
+    "demo": "study",
+    "calibrate": "calibrate",
+}
 
-def build_parser() -> argparse.ArgumentParser:
+
+def build_parser(command: str | None = None) -> argparse.ArgumentParser:
+    """The parser of every command, or only of ``command`` (one of :data:`COMMANDS`)."""
     parser = argparse.ArgumentParser(
         prog="beltstudy",
         description="Belt conveyor friction models, Euler-X transient simulation and "
         "parameter studies on Dask.",
     )
     sub = parser.add_subparsers(dest="command", metavar="COMMAND")
-    for name in COMMAND_MODULES:
+    names = (COMMANDS[command],) if command in COMMANDS else COMMAND_MODULES
+    for name in names:
         module = importlib.import_module(f"beltstudy.service.cli.{name}")
         module.register(sub)
     return parser
 
 
+def _command(argv: list[str]) -> str | None:
+    """The command named on the command line, when it is the first word and a known one."""
+    return argv[0] if argv and argv[0] in COMMANDS else None
+
+
 def main(argv: list[str] | None = None) -> int:
-    parser = build_parser()
+    argv = sys.argv[1:] if argv is None else list(argv)
+    command = _command(argv)
+    parser = build_parser(command) if command else build_parser()
     args = parser.parse_args(argv)
     if not getattr(args, "func", None):
         parser.print_help()
