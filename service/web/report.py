@@ -416,6 +416,11 @@ def _verdict_cell(r: dict) -> str:
         return f"\x01fails\x01{r['missing']} of {r['n']} runs {_e(v.null_worst)}"
     if r["limit"] is None and not r.get("ok_col") and v.limit != "sag":
         return "<span class=muted>no limit</span>"
+    if r["limit"] is None and r.get("ok_col") and r.get("ok_judged") == 0 and not r["past"]:
+        # a plain or take-up pulley: its diameter is the loop's estimate, its minimum is
+        # reported and not judged (``pulley{j}_diameter_min_ok`` null in every run)
+        return ("<span class=muted>not judged: the file gives no diameter for this pulley "
+                "(docs/checks.md)</span>")
     if r["past"]:
         return f"\x01fails\x01past the limit in {r['past']} of {r['n']} runs"
     if r["limit"] is None and v.limit == "sag" and not r.get("ok_col"):

@@ -486,5 +486,7 @@ def verdict_rows(runs: pd.DataFrame, limits: dict[str, Limit]) -> list[dict]:
                         "row": row, "value": None if missing else float(values.loc[idx]),
                         "limit": limit, "limit_text": text, "past": int(past.sum()),
                         "n": int(values.notna().sum()) + missing, "missing": missing,
-                        "ok_col": ok_col})
+                        "ok_col": ok_col,
+                        "ok_judged": (int(ok[ok_col].notna().sum())
+                                      if ok_col and ok_col in ok.columns else None)})
     return out

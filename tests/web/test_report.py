@@ -404,3 +404,21 @@ def test_a_long_clause_prints_whole_in_the_last_section(web):
     assert re.search(r"\.print-full\s*\{\s*display:\s*none", screen)
     assert re.search(r"details\.fold-print\s*\{\s*display:\s*none", print_css)
     assert re.search(r"\.print-full\s*\{\s*display:\s*inline", print_css)
+
+
+def test_a_pulley_whose_minimum_is_only_reported_is_not_called_within(web):
+    """A plain or take-up pulley's diameter is the loop's 0.8 m estimate: its DIN minimum is
+    reported and ``_ok`` is null in every run (docs/checks.md). The verdict said 'within
+    (24 runs)' in green for such a pulley (a 1.8 km incline: the tail take-up pulley, minimum
+    0.5 m); it now says it is not judged, while a drive pulley judged in the runs keeps its
+    verdict."""
+    status = {"state": "done", "done": 8, "total": 8}
+    s1 = _section(report_html(_doc(web), _runs(**{
+        "pulley1_diameter_min_m": [0.8] * 8, "pulley1_diameter_min_ok": [True] * 8,
+        "pulley3_diameter_min_m": [0.5] * 8, "pulley3_diameter_min_ok": [None] * 8}),
+        status), 1)
+    plain = re.search(r"<tr><td>minimum diameter, pulley 3.*?</tr>", s1, re.S).group(0)
+    assert "within" not in plain and "not judged" in plain
+    assert f"0.5{UNIT_SPACE}m" in plain
+    drive = re.search(r"<tr><td>minimum diameter, pulley 1.*?</tr>", s1, re.S).group(0)
+    assert "within (7 runs)" in drive
