@@ -387,6 +387,22 @@ def _one_per_zip_group(others: list[str], groups: list[list[str]] | None
     return out, notes
 
 
+#: Units of axis columns by their name's end (SPEC: every key that carries a unit ends in it).
+_AXIS_UNITS = (("_rad_s", "rad/s"), ("_m_s", "m/s"), ("_kg_m2", "kg m²"), ("_kg_m", "kg/m"),
+               ("_t_h", "t/h"), ("_t_m3", "t/m³"), ("_kn_m", "kN/m"), ("_kn", "kN"),
+               ("_kw", "kW"), ("_kg", "kg"), ("_deg", "°"), ("_pct", "%"), ("_mm", "mm"),
+               ("_s", "s"), ("_m", "m"), ("_n", "N"), ("_c", "°C"))
+
+
+def axis_label(column: str) -> str:
+    """An axis column as an axis label with its unit: ``temperature_c [°C]``,
+    ``takeup.mass_kg [kg]``; a column without a unit as it is."""
+    for end, unit in _AXIS_UNITS:
+        if column.endswith(end):
+            return f"{column} [{unit}]"
+    return column
+
+
 def _tied_label(label: str, tied: list[str]) -> str:
     return label + (f" (with {', '.join(tied)})" if tied else "")
 
@@ -643,7 +659,8 @@ def phase_peaks_figure(runs, title: str = "", axes: list[str] | None = None,
         if ticks is not None:
             ax.set_xticks(range(len(ticks)), ticks)
         if k // ncols == nrows - 1 or k + ncols >= len(panels):
-            ax.set_xlabel(_tied_label(f"{x}", _tied(groups, x or "")) if x else "all runs")
+            ax.set_xlabel(_tied_label(axis_label(x), _tied(groups, x or "")) if x
+                          else "all runs")
             ax.tick_params(axis="x", labelbottom=True)  # sharex numbers the last row only
     for k in range(len(panels), nrows * ncols):
         grid[k // ncols][k % ncols].set_axis_off()
@@ -718,7 +735,7 @@ def ratio_figure(summary: dict, baseline: str = "cema", candidate: str = "nonlin
             ax.set_xticks(x, labels, rotation=30 if len(labels) > 4 else 0, fontsize=8)
             ax.grid(alpha=0.3, axis="y")
             if i == len(rows) - 1:
-                ax.set_xlabel(axis)
+                ax.set_xlabel(axis_label(axis))
             if j == 0:
                 ax.set_ylabel(f"{metric} ratio")
     fig.suptitle(wrap_title(title))

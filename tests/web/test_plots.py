@@ -330,3 +330,31 @@ def test_the_highest_tension_probe_shows_the_peak_at_an_element_end():
     label, _ = bold(charts.transient_figure(
         None, surface, extremes={"highest tension": 1800.0}, locate=locate))
     assert label.startswith("highest tension: return")
+
+
+@pytest.mark.parametrize("column, label", [
+    ("temperature_c", "temperature_c [°C]"), ("takeup.mass_kg", "takeup.mass_kg [kg]"),
+    ("stop_time_target_s", "stop_time_target_s [s]"),
+    ("drives.0.speed_loop_rad_s", "drives.0.speed_loop_rad_s [rad/s]"),
+    ("drives.1.inertia_kg_m2", "drives.1.inertia_kg_m2 [kg m²]"),
+    ("material.capacity_t_h", "material.capacity_t_h [t/h]"),
+    ("models.nonlin.drag_per_roll_n", "models.nonlin.drag_per_roll_n [N]"),
+    ("friction_model", "friction_model"), ("load", "load"),
+    ("scenario.stop.mode", "scenario.stop.mode")])
+def test_axis_labels_carry_the_unit_of_the_column(column, label):
+    assert charts.axis_label(column) == label
+
+
+def test_the_peaks_and_ratio_figures_name_the_unit_of_their_x_axis():
+    """The report's start and stop peaks figure and the ratio figure labelled the x axis with
+    the bare column ('temperature_c'), where the power figure said 'temperature [°C]'."""
+    runs = _runs()
+    runs["t_max_start_kn"] = runs["t_max_dyn_kn"] + 1.0
+    runs["t_max_stop_kn"] = runs["t_max_dyn_kn"]
+    fig = charts.phase_peaks_figure(runs, axes=AXES)
+    labels = {ax.get_xlabel() for ax in fig.axes if ax.get_xlabel()}
+    assert labels == {"temperature_c [°C]"}
+    summary = query.compare(runs, AXES, "cema", "nonlin", ["power_kw"])
+    fig = charts.ratio_figure(summary["summary"])
+    labels = {ax.get_xlabel() for ax in fig.axes if ax.get_xlabel()}
+    assert labels == {"load", "temperature_c [°C]", "stop_time_target_s [s]"}
