@@ -279,7 +279,8 @@ def compare(
     of the ratio. A ratio is a magnitude, ``|candidate| / |baseline|``; ``<metric>_sign`` says
     ``opposite`` where the two values have opposite signs (``overall.opposite_sign`` counts
     them) and ``zero`` where either is zero (within :data:`ZERO_REL` of the metric's largest
-    magnitude in the pairs, so round-off of a zero gives no ratio). Only the axes whose values differ between the pairs are listed per pair and per
+    magnitude in the pairs, so round-off of a zero gives no ratio); where either value is
+    missing (a column one of the two models does not write) ratio and sign are null. Only the axes whose values differ between the pairs are listed per pair and per
     axis; the others are in ``same_in_all_pairs``. A pair with a failed run has no ratio
     (``failed_pairs`` counts them). ``models``: the study's friction models (a model
     not among them is :class:`Invalid` naming the parameter); default: those in ``runs``.
@@ -340,17 +341,20 @@ def compare(
         # written with round-off (a baseline of -4e-14 kN gave a ratio of 1e14 and swamped
         # the mean): no ratio over it, and no sign
         scale = np.nanmax(np.abs(np.concatenate([b[usable], c[usable]])), initial=0.0)
-        b = b.where(np.abs(b) > ZERO_REL * scale, 0.0)
-        c = c.where(np.abs(c) > ZERO_REL * scale, 0.0)
+        # a missing value (a column one model does not write, such as Non-Lin's
+        # te_idler_rotation_kn under CEMA) stays missing: no ratio and no sign, never a zero
+        b = b.mask(np.abs(b) <= ZERO_REL * scale, 0.0)
+        c = c.mask(np.abs(c) <= ZERO_REL * scale, 0.0)
+        known = usable & b.notna() & c.notna()
         with np.errstate(divide="ignore", invalid="ignore"):
             # a magnitude: |candidate| / |baseline|; where the two have opposite signs (a
             # drive that regenerates under one model and drives under the other, a tension
             # below zero) the sign column says so instead of a negative ratio
-            merged[f"{m}_ratio"] = np.where(usable & (b != 0), np.abs(c) / np.abs(b), np.nan)
-            opposite = usable & (np.sign(b) * np.sign(c) < 0)
-            zero = usable & ((b == 0) | (c == 0))
+            merged[f"{m}_ratio"] = np.where(known & (b != 0), np.abs(c) / np.abs(b), np.nan)
+            opposite = known & (np.sign(b) * np.sign(c) < 0)
+            zero = known & ((b == 0) | (c == 0))
         merged[f"{m}_sign"] = np.where(opposite, "opposite", np.where(
-            zero, "zero", np.where(usable, "same", None)))
+            zero, "zero", np.where(known, "same", None)))
         summary[m] = {
             "overall": {**_stats(merged[f"{m}_ratio"]), "opposite_sign": int(opposite.sum())},
             "by_axis": {
@@ -374,7 +378,7 @@ def compare(
         "same_in_all_pairs": same,
         "ratio": "magnitude |candidate| / |baseline|; <metric>_sign is 'opposite' where the "
                  "two values have opposite signs and 'zero' (no ratio over a zero baseline) "
-                 "where either is zero",
+                 "where either is zero; ratio and sign are null where either is missing",
     }
 
 

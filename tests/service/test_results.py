@@ -80,6 +80,36 @@ def test_compare_lists_only_what_differs_and_ratios_as_magnitudes():
     assert out["summary"]["drive_force_max_kn"]["overall"]["opposite_sign"] == 1
 
 
+def test_a_value_one_model_does_not_write_gives_no_ratio_not_a_zero():
+    """te_idler_rotation_kn is written by Non-Lin only (null under CEMA), te_main_carry_kn by
+    CEMA only: a missing value gave a ratio of 0.0 with sign 'zero' (|NaN| compared as no
+    larger than the zero band, so it was set to 0), saying Non-Lin's main carry resistance
+    was nil, and pulled the mean ratio down. A pair with a missing value has no ratio and no
+    sign; the other pairs keep theirs."""
+    runs = _runs()
+    cema = runs["friction_model"] == "cema"
+    runs["te_main_carry_kn"] = runs["power_kw"].where(cema)
+    runs["te_idler_rotation_kn"] = runs["power_kw"].where(~cema)
+    # one metric with a value under both models in two pairs and a missing candidate in two
+    runs["f_kn"] = runs["power_kw"]
+    runs.loc[~cema & (runs["temperature_c"] < 0), "f_kn"] = float("nan")
+    out = compare(runs, ["friction_model", "temperature_c", "load"], "cema", "nonlin",
+                  ["te_main_carry_kn", "te_idler_rotation_kn", "f_kn"])
+    for m in ("te_main_carry_kn", "te_idler_rotation_kn"):
+        assert [(p[f"{m}_ratio"], p[f"{m}_sign"]) for p in out["pairs"]] == [(None, None)] * 4
+        assert out["summary"][m]["overall"]["n"] == 0
+    by_t = {(p["temperature_c"], p["load"]): p for p in out["pairs"]}
+    assert [by_t[(-20.0, load)]["f_kn_ratio"] for load in ("full", "empty")] == [None, None]
+    assert [by_t[(-20.0, load)]["f_kn_sign"] for load in ("full", "empty")] == [None, None]
+    assert all(by_t[(20.0, load)]["f_kn_ratio"] == pytest.approx(0.8) for load in ("full", "empty"))
+    assert out["summary"]["f_kn"]["overall"]["n"] == 2
+    assert out["summary"]["f_kn"]["overall"]["mean"] == pytest.approx(0.8)
+    # the steady-only metric of _runs (null under both) has no sign either
+    out = compare(_runs(), ["friction_model", "temperature_c", "load"], "cema", "nonlin",
+                  ["t_max_dyn_kn"])
+    assert {p["t_max_dyn_kn_sign"] for p in out["pairs"]} == {None}
+
+
 def test_compare_pairs_a_run_with_the_other_model_s_runs_at_each_of_its_parameters():
     """A din parameter axis (two f_carry values): the din runs have it, the nonlin runs do
     not read it (null: any value). Each nonlin run pairs with the din run of each f_carry at
