@@ -42,9 +42,14 @@ def run_schemathesis(url: str, token: str, max_examples: int, seed: int, log: Pa
         "--max-examples", str(max_examples),
         "--seed", str(seed),
         "--no-color",
-        # the hooks skip generated studies that break a rule JSON Schema cannot state, so
-        # generation is slower than Hypothesis expects; that is not a finding about the API
-        "--suppress-health-check=too_slow",
+        # the hooks skip generated studies and calibrations that break a rule JSON Schema
+        # cannot state (a calibration: fitted names of the body's model, a row's power and
+        # force agreeing as P = Te v, readings the belt can carry), so generation is slower
+        # than Hypothesis expects and most random calibrations are skipped; whether the
+        # health check trips then rides on the seed's draw (it passed or failed as the
+        # operation's description text changed), which is not a finding about the API.
+        # POST /calibrations' valid bodies are tested in tests/service/test_calibrate.py
+        "--suppress-health-check=too_slow,filter_too_much",
     ]
     env = {**os.environ, "SCHEMATHESIS_HOOKS": "tests.service.schemathesis_hooks",
            "PYTHONPATH": str(ROOT)}
