@@ -11,7 +11,7 @@ runs carry (:data:`beltstudy.service.web.verdicts.VERDICTS`: power and utilisati
 belt safety factor, T_max and T_min per phase, take-up, brakes, the stop, slip, sag, pulleys,
 idlers) with its limit and how many runs are past it; (2) every run that did not pass, grouped
 by cause (:data:`~beltstudy.service.web.verdicts.CAUSES`: failed, ran away, did not stop,
-overloaded a drive, slipped, ...), each group with its count and the figures that show it;
+never got going, overloaded a drive, slipped, ...), each group with its count and the figures that show it;
 (3) the start and stop peaks against the study's axes; then the conveyor and its capacity
 check, the design basis, the grid, the comparison figures, the runs and the error bars.
 Every number goes through :func:`beltstudy.service.web.numbers.eng` (``16 886 kg``).

@@ -10,7 +10,7 @@ Two declarative lists drive the design report's first two sections
   gets its row as soon as the runs carry it. ``{i}`` and ``{j}`` stand for the drive and
   pulley numbers found in the table.
 * :data:`CAUSES`: one :class:`Cause` per way a run can fail to pass (failed, ran away, did not
-  stop, overloaded a drive, slipped, went slack, sagged past its limit, ...), each detected
+  stop, never got going, overloaded a drive, slipped, went slack, sagged past its limit, ...), each detected
   from the columns (and, where the engine says it only in words, from the run's message).
 
 Everything here is a pure function of a pandas DataFrame and the study's JSON.
@@ -30,7 +30,7 @@ from beltstudy.engine import OVERLOAD_S_MAX
 from beltstudy.service.web.numbers import eng
 
 __all__ = ["Verdict", "VERDICTS", "Cause", "CAUSES", "verdict_rows", "cause_groups",
-           "expand", "numeric", "transient_ran", "not_stopped", "clauses"]
+           "expand", "numeric", "transient_ran", "not_stopped", "never_going", "clauses"]
 
 
 @dataclass(frozen=True)
@@ -183,13 +183,30 @@ def _ran_away(runs: pd.DataFrame) -> pd.Series:
     return _message(runs).str.contains(r"\bran (?:away|back)\b", regex=True)
 
 
+def _no_stop_time(runs: pd.DataFrame) -> pd.Series:
+    """Rows whose transient ran without a stop time."""
+    if "stop_time_s" not in runs.columns:
+        return pd.Series(False, index=runs.index)
+    return transient_ran(runs) & pd.to_numeric(runs["stop_time_s"], errors="coerce").isna()
+
+
+def never_going(runs: pd.DataFrame) -> pd.Series:
+    """Runs whose belt never got going: a transient without a stop time whose belt neither
+    ran away nor did not stop. A run leaves its stop time empty only for those three (and a
+    failure): a belt below 1 % of design speed at the stop command made no stop (SPEC 4),
+    which is not a belt that did not stop (the report counted a 2 kW drive that never moved
+    its belt as a stop that failed, and its empty stop time as the worst stop)."""
+    return (_no_stop_time(runs) & ~_message(runs).str.contains("did not stop", regex=False)
+            & ~_ran_away(runs) & (_status(runs) != "failed"))
+
+
 def not_stopped(runs: pd.DataFrame) -> pd.Series:
-    """Runs whose belt did not stop: a transient that ran without a stop time, or the message
-    says so; runs that ran away or failed are their own causes."""
+    """Runs whose belt did not stop: a transient that ran without a stop time (its belt
+    going at the stop command: not :func:`never_going`), or the message says so; runs that
+    ran away or failed are their own causes."""
     msg = _message(runs)
-    no_time = (transient_ran(runs) & pd.to_numeric(runs.get("stop_time_s"), errors="coerce")
-               .isna()) if "stop_time_s" in runs.columns else pd.Series(False, index=runs.index)
-    return ((no_time | msg.str.contains("did not stop", regex=False)) & ~_ran_away(runs)
+    return (((_no_stop_time(runs) & ~never_going(runs))
+             | msg.str.contains("did not stop", regex=False)) & ~_ran_away(runs)
             & (_status(runs) != "failed"))
 
 
@@ -300,6 +317,9 @@ CAUSES: tuple[Cause, ...] = (
           r"ran (?:away|back)"),
     Cause("not_stopped", "did not stop", not_stopped,
           ("stop_time_s", "brake_force_kn", "velocity_min_m_s"), r"did not stop|never"),
+    Cause("never_going", "never got going (no stop to judge)", never_going,
+          ("start_time_s", "power_kw", "drive{i}_power_required_kw", "drive{i}_utilisation"),
+          r"never reached|cannot hold|short by|force limit"),
     Cause("overload", "overloaded a drive", _overloaded,
           ("power_kw", "rated_power_kw", "drive{i}_utilisation", "drive{i}_overload_s",
            "drive{i}_power_required_kw"),
@@ -468,7 +488,9 @@ def verdict_rows(runs: pd.DataFrame, limits: dict[str, Limit]) -> list[dict]:
             if values is None:
                 continue
             # a transient without a stop time did not stop (ran away included)
-            unstopped = transient_ran(ok) & values.isna() if v.null_worst else values.isna() & False
+            # (a belt that never got going made no stop: its stop time is missing, not worst)
+            unstopped = (transient_ran(ok) & values.isna() & ~never_going(ok) if v.null_worst
+                         else values.isna() & False)
             missing = int(unstopped.sum())
             if missing:  # the governing run: one that did not stop, before one that ran away
                 first = unstopped & not_stopped(ok)

@@ -422,3 +422,35 @@ def test_a_pulley_whose_minimum_is_only_reported_is_not_called_within(web):
     assert f"0.5{UNIT_SPACE}m" in plain
     drive = re.search(r"<tr><td>minimum diameter, pulley 1.*?</tr>", s1, re.S).group(0)
     assert "within (7 runs)" in drive
+
+
+def test_a_belt_that_never_got_going_is_no_stop_that_failed(web):
+    """A 2 kW drive that never moved its belt: the run has no stop time (a belt below 1 % of
+    design speed at the stop command made no stop, SPEC 4) and says the belt never reached
+    design speed. It was counted among the runs that did not stop, and its empty stop time
+    made it the governing (worst) stop; now it is its own group and the stop verdict is
+    governed by the run that did not stop."""
+    from beltstudy.service.web.verdicts import never_going, not_stopped
+
+    never = ("drive 1 (head) force limit 1.2 kN (torque_limit 1.5 x rated 2 kW / 2.5 m/s) is "
+             "below its running force 3.0 kN: it cannot hold the belt at design speed; the "
+             "belt never reached 99 % of design speed during the start (its mean speed was "
+             "3.67e-05 m/s, 0.0 % of design speed, at the stop command at t = 14.0 s)")
+    runs = _runs()
+    runs.loc[1, ["stop_time_s", "stop_distance_m", "status", "message"]] = \
+        [np.nan, np.nan, "warning", never]
+    assert list(runs.loc[never_going(runs), "run_id"]) == ["a2"]
+    assert list(runs.loc[not_stopped(runs), "run_id"]) == ["ns"]
+    html = report_html(_doc(web), runs, {"state": "done", "done": 8, "total": 8})
+    s2 = _section(html, 2)
+    assert "<li><b>1</b> of 8 runs did not stop</li>" in s2
+    assert "<li><b>1</b> of 8 runs never got going (no stop to judge)</li>" in s2
+    tables = dict(re.findall(r"<h3>([^<:]+): \d+ runs?</h3>.*?<tbody>(.*?)</tbody>", s2, re.S))
+    assert re.findall(r"<code class=id>(\w+)</code>",
+                      tables["Never got going (no stop to judge)"]) == ["a2"]
+    s1 = _section(html, 1)
+    stop_row = next(r for r in re.findall(r"<tr><td>(.*?)</tr>", s1, re.S)
+                    if r.startswith("stop time achieved"))
+    assert "run <code>ns</code>" in stop_row and "a2" not in stop_row
+    assert "2 of 6 runs did not stop" in stop_row  # ns and the run that ran away, of 8 less
+    # the failed run and the belt that never got going
