@@ -187,6 +187,8 @@ def brake_forces(conv: Conveyor, scenario: Scenario, total_mass_kg: float, te_n:
                         f"rigid-body brake stop then takes about {t_gives:.3g} s")
                 if steady is not None:
                     note += _holding_grip(conv, steady, each)
+    if not auto and scenario.stop.mode == "brake" and steady is not None:
+        note = _given_grip(conv, steady)
     shares = iter(each)
     kn = [next(shares) / 1e3 if b.force_kn == "auto" else float(b.force_kn)
           for b in conv.brakes]
@@ -268,6 +270,32 @@ def brake_kn_within_grip(conv: Conveyor, steady: SteadyResult, total_kn: float
     shares = iter(forces)
     return [next(shares) / 1e3 if b.force_kn == "auto" else float(b.force_kn)
             for b in conv.brakes]
+
+
+def _given_grip(conv: Conveyor, steady: SteadyResult) -> str:
+    """The note of given brake forces beyond their pulleys' grip in a brake stop ("" when
+    within): per such pulley, the largest force it passes with the other brakes as given
+    (:meth:`~beltstudy.engine.stopgrip.StopWalk.grip_n`, the same undamped bound as an auto
+    brake's), so the run's slip warning comes with the force that avoids it."""
+    walk = StopWalk.of(conv, steady)
+    _nodes, fixed = _brake_nodes(conv, steady.loop)
+    parts = []
+    for node, given in fixed.items():
+        if walk.room_n(node, fixed) >= 0.0:
+            continue
+        grip = walk.grip_n(node, fixed)
+        field = " + ".join(f"brakes.{k}.force_kn" for k, b in enumerate(conv.brakes)
+                           if steady.loop.brake_element(b) == node)
+        parts.append(f"{pulley_name(conv, steady.loop, node)} passes at most "
+                     f"{grip / 1e3:.4g} kN of brake force in the stop against the "
+                     f"{given / 1e3:.4g} kN given ({field})")
+    if not parts:
+        return ""
+    return ("given brake force beyond the grip in the stop (the capstan limit at the "
+            "slack-side tension of the stop, its fall doubled for the stop's fronts, the "
+            "undamped bound): " + "; ".join(parts) + "; the pulley may slide (the run's slip "
+            "check says): a force within it, a heavier take-up or a brake on another pulley "
+            "would avoid it")
 
 
 def _holding_grip(conv: Conveyor, steady: SteadyResult, each: list[float]) -> str:

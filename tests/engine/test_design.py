@@ -223,6 +223,41 @@ def test_a_holding_force_beyond_the_grip_is_said():
     assert sizes["brake_grip_kn"] < 0.5 * sizes["brake_force_kn"][0]
 
 
+def test_a_given_brake_beyond_its_grip_is_told_the_force_its_pulley_passes():
+    """A given 88 kN head brake on the 12 t take-up: the head pulley passes far less in the
+    stop. The run's slip warning said only 'less brake force'; the note now names the pulley,
+    the given force and the largest it passes, which meets the capstan limit by hand at that
+    force (as an auto brake's grip: F - m_p d = (e^(mu theta) - 1) T_slack, 1 %), and within
+    the grip a given brake has no note."""
+    conv = steep_incline(brake_force=88.0,
+                         takeup={"type": "gravity", "position": "tail", "mass_kg": 12000})
+    scn = Scenario(stop={"mode": "brake", "time_s": 3.0})
+    sizes = auto_sizes(conv, scn, model="din")
+    note = sizes["brake_note"]
+    assert sizes["brake_governed_by"] == ["given"] and sizes["brake_force_kn"] == [88.0]
+    m = re.search(r"drive 1's pulley \(head\) passes at most ([0-9.]+) kN of brake force in "
+                  r"the stop against the 88 kN given \(brakes.0.force_kn\)", note)
+    assert m, note
+    assert "a force within it, a heavier take-up or a brake on another pulley" in note
+    f = float(m.group(1)) * 1e3
+    st = solve_steady(conv, model="din")
+    loop = st.loop
+    parts = rotating_parts(conv, loop)
+    d = (st.te_n + f) / moving_mass_kg(conv, st)
+    head, tail = loop.i_head, loop.i_takeup
+    m_carry = float(loop.mass_kg[:head].sum()) + 0.5 * (float(loop.mass_kg[tail])
+                                                       + parts.plain_mass[tail])
+    t_run = float(st.tension_n[head - 1])
+    t_slack = t_run - 2.0 * (t_run - (t_run - d * m_carry))
+    assert f - parts.shaft_mass[head] * d == pytest.approx((_euler() - 1.0) * t_slack,
+                                                           rel=0.01)
+    within = steep_incline(brake_force=0.9 * f / 1e3,
+                           takeup={"type": "gravity", "position": "tail", "mass_kg": 12000})
+    assert auto_sizes(within, scn, model="din")["brake_note"] == ""
+    # a coast stop does not use the brake: nothing to say
+    assert auto_sizes(conv, Scenario(stop={"mode": "coast"}), model="din")["brake_note"] == ""
+
+
 def test_a_holding_note_does_not_offer_the_holdback_a_conveyor_has():
     """The same incline with holdback: true: the note says the holdback already holds it and
     offers a given brake force within the grip instead of a holdback."""
