@@ -1261,6 +1261,9 @@ def format_validation_error(exc: ValidationError, model: type[BaseModel], prefix
             if (slip is not None and isinstance(got, int | float) and not isinstance(got, bool)
                     and math.isfinite(got) and slip[0](got)):
                 shown += f": {slip[1](got)}"
+            if (err["type"] == "bool_type" and isinstance(got, str)
+                    and got.lower() in ("yes", "no", "on", "off", "y", "n")):
+                shown += ": write true or false (YAML 1.2 reads yes, no, on and off as text)"
             if not clean:
                 # A check across fields names its own field first ("drives: shares sum ...").
                 m = re.match(r"([A-Za-z_][\w\[\]\.]*): (.*)$", msg, re.S)
@@ -1321,14 +1324,23 @@ def yaml12_int(text: str) -> int | None:
 
 
 class Yaml12Floats(yaml.resolver.Resolver):
-    """PyYAML's resolver with YAML 1.2's exponent floats (:data:`_FLOAT_12`) as floats and
-    its integers with leading zeros or ``0o`` (:data:`_INT_12`) as integers (read by
-    :func:`yaml12_int` in the loaders' constructors)."""
+    """PyYAML's resolver with YAML 1.2's exponent floats (:data:`_FLOAT_12`) as floats, its
+    integers with leading zeros or ``0o`` (:data:`_INT_12`) as integers (read by
+    :func:`yaml12_int` in the loaders' constructors) and its booleans (``true``/``false``
+    only: ``yes``, ``no``, ``on``, ``off`` are text)."""
 
 
 Yaml12Floats.add_implicit_resolver("tag:yaml.org,2002:float", _FLOAT_12,
                                    list("-+0123456789."))
 Yaml12Floats.add_implicit_resolver("tag:yaml.org,2002:int", _INT_12, list("-+0"))
+# YAML 1.2's booleans are true and false alone: YAML 1.1's yes/no/on/off (and y/n) are
+# text, so ``holdback: yes`` is refused as no boolean and ``position: on`` names the text it
+# got, where YAML 1.1 read them as true
+_BOOL_12 = re.compile(r"^(?:true|True|TRUE|false|False|FALSE)$")
+Yaml12Floats.yaml_implicit_resolvers = {
+    first: [(tag, rx) for tag, rx in rules if tag != "tag:yaml.org,2002:bool"]
+    for first, rules in Yaml12Floats.yaml_implicit_resolvers.items()}
+Yaml12Floats.add_implicit_resolver("tag:yaml.org,2002:bool", _BOOL_12, list("tTfF"))
 
 
 class _KeyTwice(Exception):

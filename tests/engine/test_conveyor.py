@@ -311,14 +311,24 @@ def _with(path: str, value) -> dict:
     return d
 
 
-def test_integers_with_leading_zeros_are_read_as_yaml_1_2_reads_them(tmp_path):
+def test_integers_and_booleans_are_read_as_yaml_1_2_reads_them(tmp_path):
     # YAML 1.1 (PyYAML) reads 0210 as octal 136 and 0289 as text: a wrap angle written
-    # with a leading zero became 136 degrees. YAML 1.2's core schema reads both as decimal.
+    # with a leading zero became 136 degrees. YAML 1.2's core schema reads both as decimal,
+    # and its booleans are true and false only (YAML 1.1 took holdback: yes as true and
+    # position: on as a boolean, refused as "got True").
     path = tmp_path / "zeros.yaml"
     path.write_text("a: 0210\nb: -0289\nc: 0o20\nd: 0x10\ne: 0\nf: 1_6\ng: 007.5\n")
     assert load_mapping(path) == {"a": 210, "b": -289, "c": 16, "d": 16, "e": 0, "f": 16,
                                   "g": 7.5}
+    path.write_text("a: yes\nb: [on, off, No]\nc: true\nd: FALSE\n")
+    assert load_mapping(path) == {"a": "yes", "b": ["on", "off", "No"], "c": True, "d": False}
     text = (CONVEYORS / "slope-5pct.yaml").read_text()
+    assert "holdback: true " in text
+    path.write_text(text.replace("holdback: true ", "holdback: yes  "))
+    with pytest.raises(InputError, match=r"^holdback: Input should be a valid boolean \(got "
+                       r"'yes'\): write true or false \(YAML 1.2 reads yes, no, on and off "
+                       r"as text\)$"):
+        load_conveyor(path)
     assert "wrap_deg: 210," in text
     path.write_text(text.replace("wrap_deg: 210,", "wrap_deg: 0210,"))
     assert load_conveyor(path).drives[0].wrap_deg == 210
