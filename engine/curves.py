@@ -15,7 +15,13 @@ radius r = T / (w_b cos a) that keeps the empty belt on its idlers; DIN 22101:20
 same balance for concave curves; both *unverified* against the printed text). m' is the belt's
 own mass m'_G: with material on it (m'_G + m'_L) the limit is higher, so the empty belt, and
 the empty return strand that runs through the same valley, lift first. The check uses the
-empty belt on both strands at the tensions of the load case run.
+empty belt on both strands at the tensions of the load case run, running and at start-up:
+CEMA 7th ed. takes a concave curve's radius from the belt tension at the curve during
+starting, DIN 22101 the most unfavourable operating case, so the steady check also walks the
+start-up tensions (the drives at ``STARTUP_FACTOR`` x their running force, the walk of the
+start-up slip check: :func:`beltstudy.engine.statics.startup_tensions`) and names the radius
+``R x T_start / T_lift`` that keeps the belt down at start, a rigid-body estimate beside the
+transient run's ``liftoff_*``.
 
 Convex curve (a crest, the grade decreasing). The trough's wings lie above the belt's centre
 line, so on a curve of radius R a fibre at height z above it runs on radius R + z and is
@@ -176,8 +182,59 @@ def _kn_range(lo_n: float, hi_n: float) -> str:
     return hi if lo == hi else f"{lo} to {hi}"
 
 
-def steady_checks(conv, loop: Loop, T: np.ndarray, sf_min: float) -> tuple[dict, list[str]]:
-    """Per curve k: ``curve{k}_*`` fields and warnings (concave: lift-off; convex: radius).
+def _start_liftoff(c: Curve, loop: Loop, el: np.ndarray, lim: np.ndarray, T: np.ndarray,
+                   T_start: np.ndarray | None, lifts_running: bool) -> tuple[dict, list[str]]:
+    """A concave curve's lift-off at start-up: ``curve{k}_*_start`` fields and a warning.
+
+    CEMA (*Belt Conveyors for Bulk Materials*, 7th ed., ch. 9, concave curves) takes the
+    curve's radius from the belt tension at the curve during starting, and DIN 22101:2011
+    checks the most unfavourable operating case, which on a concave curve is usually the
+    start (*unverified* against the printed texts). The start-up tensions are the steady
+    solution's own start-up walk (:func:`beltstudy.engine.statics.startup_tensions`: the
+    drives give ``STARTUP_FACTOR`` = 1.5 x their running force, the excess accelerating
+    every moving mass, the take-up holding its running mean tension; the walk the take-up's
+    ``slip_start`` sizing and ``slip_margin_start`` use), a rigid-body estimate: the
+    transient run's ``liftoff_*`` is the start's own figure. The belt lifts at start-up where
+    ``T_start > R m'_G g cos(a)`` on either strand; the radius that keeps it down is
+    ``R max(T_start / T_lift)`` over the curve's elements, ``max T_start / (m'_G g cos a)``.
+
+    Returns
+    -------
+    dict, list of str
+        ``curve{k}_tension_start_kn`` (highest start-up tension on the curve, either strand),
+        ``curve{k}_liftoff_start`` and ``curve{k}_radius_min_start_m`` (all null without
+        start-up tensions); one warning when the start lifts the belt and running does not
+        (where running lifts, its own warning names the start's radius too).
+    """
+    k = c.k
+    if T_start is None:
+        return {f"curve{k}_tension_start_kn": None, f"curve{k}_liftoff_start": None,
+                f"curve{k}_radius_min_start_m": None}, []
+    ts = T_start[el]
+    over = ts - lim
+    j = int(np.argmax(over))
+    lifts = bool(over[j] > 0.0)
+    r_need = float(np.max(ts / (loop.mG_kg_m[el] * G * loop.cos_a[el])))
+    out = {f"curve{k}_tension_start_kn": float(ts.max()) / 1e3,
+           f"curve{k}_liftoff_start": lifts, f"curve{k}_radius_min_start_m": r_need}
+    if not lifts or lifts_running:
+        return out, []
+    strand = "carry" if loop.strand[el[j]] == CARRY else "return"
+    return out, [
+        f"curve {k} (concave, R {c.radius_m:g} m at {c.at_m:.0f} m): at start-up the empty "
+        f"belt lifts off its {strand} idlers, start-up tension {ts[j] / 1e3:.1f} kN (the "
+        f"drives at the start-up factor of the slip check, a rigid-body estimate) above the "
+        f"lift-off tension {lim[j] / 1e3:.1f} kN (R m'_G g cos a), though running stays "
+        f"down ({T[el[j]] / 1e3:.1f} kN there); a radius of at least {math.ceil(r_need):.0f} m "
+        "(R x T_start / T_lift) keeps it on them at start (a larger radius lengthens the "
+        "curve and moves the tensions a little: rerun to confirm), or a gentler start "
+        "lowers the start-up tension (simulate gives the transient figure, liftoff_*)"]
+
+
+def steady_checks(conv, loop: Loop, T: np.ndarray, sf_min: float,
+                  T_start: np.ndarray | None = None) -> tuple[dict, list[str]]:
+    """Per curve k: ``curve{k}_*`` fields and warnings (concave: lift-off running and at
+    start-up; convex: radius).
 
     Parameters
     ----------
@@ -188,6 +245,10 @@ def steady_checks(conv, loop: Loop, T: np.ndarray, sf_min: float) -> tuple[dict,
         is judged by the tension at its end.
     sf_min : float
         Minimum running belt safety factor [-] (the convex edge limit, rating / S_min).
+    T_start : ndarray, optional
+        Start-up boundary tensions [N] (:func:`beltstudy.engine.statics.startup_tensions`):
+        a concave curve's lift-off at start-up (:func:`_start_liftoff`); None leaves its
+        fields null.
     """
     out: dict = {}
     warnings: list[str] = []
@@ -213,18 +274,28 @@ def steady_checks(conv, loop: Loop, T: np.ndarray, sf_min: float) -> tuple[dict,
             out[f"curve{k}_liftoff_tension_kn"] = float(lim.min()) / 1e3
             out[f"curve{k}_liftoff"] = lifts
             out[f"curve{k}_radius_min_m"] = r_need
+            started, start_words = _start_liftoff(c, loop, el, lim, T, T_start, lifts)
+            out.update(started)
+            warnings += start_words
             if lifts:
                 strand = "carry" if loop.strand[el[j]] == CARRY else "return"
+                r_start = started[f"curve{k}_radius_min_start_m"]
+                at_start = (f", and at start-up ({started[f'curve{k}_tension_start_kn']:.1f} "
+                            f"kN there) at least {math.ceil(r_start):.0f} m"
+                            if r_start is not None and r_start > r_need else "")
                 warnings.append(
                     f"curve {k} (concave, R {c.radius_m:g} m at {c.at_m:.0f} m): the empty belt "
                     f"lifts off its {strand} idlers, steady tension {T[el[j]] / 1e3:.1f} kN "
                     f"above the lift-off tension {lim[j] / 1e3:.1f} kN (R m'_G g cos a); a "
                     f"radius of at least {math.ceil(r_need):.0f} m keeps it on them at these "
-                    "tensions (a larger radius lengthens the curve and moves them a little: "
-                    "rerun to confirm)")
+                    f"tensions{at_start} (a larger radius lengthens the curve and moves them a "
+                    "little: rerun to confirm)")
         else:
             out[f"curve{k}_liftoff_tension_kn"] = None
             out[f"curve{k}_liftoff"] = False
+            out[f"curve{k}_tension_start_kn"] = None
+            out[f"curve{k}_liftoff_start"] = False
+            out[f"curve{k}_radius_min_start_m"] = None
             warnings += convex_idler_warnings(conv, loop, c, t_carry)
             # the edge strain is largest at the arc's highest tension, the centre's relief
             # at its lowest: the radius meets both

@@ -463,6 +463,17 @@ CURVES = ResultGroup("curves", "Vertical curves, steady (CEMA, DIN 22101; docs/r
        "troughed belt's edge strain within the admissible (rating / S_min) and its centre in "
        "tension (null for a flat belt, or when the tension is at or above the admissible)",
        "R min"),
+    _f("curve{k}_tension_start_kn", "kN", "concave: highest tension on curve k at start-up, "
+       "either strand, from the steady start-up walk (the drives at the start-up factor 1.5 "
+       "of the slip check, slip_margin_start; a rigid-body estimate, the transient's is "
+       "liftoff_*); null for a convex curve", "T at start"),
+    _f("curve{k}_liftoff_start", "bool", "concave: the start-up tension on either strand is "
+       "above the lift-off tension of the empty belt somewhere on curve k (CEMA 7th ed. sizes "
+       "the radius from the tension during starting; a warning where running stays down); "
+       "false for a convex curve", "lifts at start"),
+    _f("curve{k}_radius_min_start_m", "m", "concave: the smallest radius that keeps the belt "
+       "down at start-up, max T_start / (m'_G g cos a) over the curve, both strands (R x "
+       "T_start / T_lift); null for a convex curve", "R min at start"),
     _f("curve{k}_idler_load_extra_n", "N", "load the belt's tension adds to each carry idler "
        "set on curve k, T S / R (convex; on a concave curve it is taken off)",
        "idler load from the curve"),

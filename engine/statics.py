@@ -697,8 +697,9 @@ def _summarise(res: SteadyResult, drives, hs_adm, bounds, shortfall_n: float,
     checked, check_warnings = design_checks(conv, loop, T, sf_min, friction_n)
     res.summary.update(checked)
     warnings += check_warnings
-    if loop.curves:  # vertical curves: lift-off, convex radius (beltstudy.engine.curves)
-        checked, check_warnings = curve_checks(conv, loop, T, sf_min)
+    if loop.curves:  # vertical curves: lift-off running and at start-up (the start-up
+        # walk of slip_margin_start, T_start above), convex radius (beltstudy.engine.curves)
+        checked, check_warnings = curve_checks(conv, loop, T, sf_min, T_start)
         res.summary.update(checked)
         warnings += check_warnings
     # ---- horizontal curves (beltstudy.engine.hcurves; nothing without curves)
@@ -764,7 +765,8 @@ def startup_tensions(res: SteadyResult) -> np.ndarray:
     The steady solution's own start-up walk (:func:`_startup_walk`: the drives give
     ``STARTUP_FACTOR`` x Te, the excess accelerating every moving mass), levelled so the
     take-up holds the same mean tension as running: the tensions the take-up's
-    ``slip_start`` sizing and ``slip_margin_start`` use, at the boundaries of the elements.
+    ``slip_start`` sizing and ``slip_margin_start`` use, at the boundaries of the elements
+    (and the concave curves' lift-off at start-up, ``curve{k}_liftoff_start``).
     The largest is the start-up peak of a rigid-body start (no wave fronts, no overshoot of
     the torque limit), an estimate the transient run's ``t_max_start_kn`` replaces.
     """

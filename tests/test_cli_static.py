@@ -183,6 +183,27 @@ def test_static_table_shows_the_horizontal_curves(tmp_path):
     assert f"{out['hcurve1_tension_max_kn']:.1f}" in line
 
 
+def test_static_table_shows_a_concave_curve_at_start_up(capsys):
+    """valley-booster's concave curve (the README's table): under the running line a line
+    at start-up with the start-up walk's tension at the curve, the same lift-off tension,
+    the verdict and the radius the start needs, as the JSON gives them."""
+    from beltstudy.service.cli import main
+
+    path = str(CONVEYORS / "valley-booster.yaml")
+    assert main(["static", path, "--json"]) == 0
+    out = json.loads(capsys.readouterr().out)
+    assert main(["static", path]) == 0
+    lines = capsys.readouterr().out.splitlines()
+    i = next(n for n, ln in enumerate(lines) if ln.strip().startswith("curve 1: concave"))
+    start = lines[i + 1].split()
+    assert lines[i + 1].strip().startswith("at start-up")
+    assert start[-4:] == [f"{out['curve1_tension_start_kn']:.1f}",
+                          f"{out['curve1_liftoff_tension_kn']:.1f}",
+                          "YES" if out["curve1_liftoff_start"] else "no",
+                          f"{out['curve1_radius_min_start_m']:.0f}"]
+    assert out["curve1_tension_start_kn"] > out["curve1_tension_kn"]
+
+
 def test_static_output_in_a_missing_folder_is_one_line(tmp_path, capsys):
     from beltstudy.service.cli import main
 

@@ -253,7 +253,8 @@ def _check_lines(s: dict) -> list[str]:
 
 def _curve_lines(s: dict) -> list[str]:
     """The vertical curves (docs/routes.md, part (c)): per curve its kind, place, steady
-    tension, lift-off tension (concave) and the radius it needs."""
+    tension, lift-off tension (concave) and the radius it needs; under a concave curve the
+    same at start-up (the steady start-up walk of ``slip_margin_start``)."""
     lines, k = [], 1
     if "curve1_kind" not in s:
         return lines
@@ -266,6 +267,13 @@ def _curve_lines(s: dict) -> list[str]:
                      f"{'-' if lift is None else f'{lift:.1f}':>17} "
                      f"{'YES' if s[f'curve{k}_liftoff'] else 'no':>7} "
                      f"{'-' if r_min is None else f'{r_min:.0f}':>11}")
+        t_start = s.get(f"curve{k}_tension_start_kn")
+        if t_start is not None and lift is not None:
+            r_start = s[f"curve{k}_radius_min_start_m"]
+            lines.append(f"      at start-up (rigid-body estimate) {t_start:>8.1f} "
+                         f"{lift:>17.1f} "
+                         f"{'YES' if s[f'curve{k}_liftoff_start'] else 'no':>7} "
+                         f"{r_start:>11.0f}")
         k += 1
     lines.append("")
     return lines

@@ -11,7 +11,7 @@ import pytest
 
 from beltstudy.engine.conveyor import parse_conveyor
 from beltstudy.engine.curves import convex_radius_min_m, liftoff_tension_n
-from beltstudy.engine.loop import CURVE_STEP_DEG, build_loop
+from beltstudy.engine.loop import CURVE_STEP_DEG, build_loop, rotating_parts
 from beltstudy.engine.statics import solve_steady
 from tests.conftest import hand_conveyor_dict
 
@@ -111,6 +111,64 @@ def test_steady_liftoff_tension_and_verdict():
     assert small.status == "warning"
 
 
+def test_a_start_that_lifts_the_belt_where_running_does_not_by_hand():
+    """CEMA 7th ed. (concave curves) sizes the radius from the tension at the curve during
+    starting, DIN 22101 from the most unfavourable case: the steady check also judges the
+    start-up walk of slip_margin_start (drives at STARTUP_FACTOR = 1.5 x Te).
+
+    Hand conveyor (m'_G 20, m'_L 50, m'_R 10 / 3 kg/m), 500 m flat then 500 m up 50 m, curve
+    R 230 m, DIN f = 0.02, C = 1: Te = f L g (m'_Rc + m'_Rr + 2 m'_G + m'_L) + m'_L g H +
+    accessories = 0.02 x 1000 x 9.81 x 103 + 50 x 9.81 x 50 + 1500 = 46 234 N (the arc's
+    cos a takes ~40 N off: 0.2 %). Start-up walk from the tail take-up (it holds its running
+    mean): the excess 0.5 Te accelerates every moving mass M (belt, load, idlers 103 t plus
+    the pulleys' and motor's rotating parts) at a = 0.5 Te / M, and the tension at x along
+    the carry rises by the inertia of the carry behind it,
+
+        T_start(x) = T(x) + a (m'_G + m'_L + m'_Rc) x,
+
+    at the arc's last element (x ~ 511.5 m): 0.5 x 46 234 x 80 x 511.5 / 104 522 = 9.05 kN
+    (the tail pulley's half share left out: 1.5 %). Running 39.0 kN < lift-off
+    R m'_G g cos a = 230 x 20 x 9.81 x 0.995 = 44.9 kN < start-up 48.1 kN: running stays
+    down, the start lifts it, and the radius named is R x T_start / T_lift = 247 m."""
+    conv = curved(230.0)
+    st = solve_steady(conv, model="din", params={"f_carry": 0.02, "f_return": 0.02, "c": 1.0},
+                      n_elements=200)
+    loop, s = st.loop, st.summary
+    (c,) = loop.curves
+    te_hand = 0.02 * 1000 * G * (10 + 3 + 40 + 50) + 50 * G * 50 + 1500
+    assert st.te_n == pytest.approx(te_hand, rel=2e-3)
+    e = int(c.carry[-1])  # the steepest element: the lowest lift-off tension, highest T
+    t_lift = 230 * 20 * G * math.cos(math.asin(loop.sin_a[e]))
+    assert s["curve1_liftoff_tension_kn"] * 1e3 == pytest.approx(t_lift, rel=1e-12)
+    assert t_lift == pytest.approx(44.94e3, abs=20)
+    m_total = 103_000.0 + rotating_parts(conv, loop).total_kg
+    t_start = st.tension_n[e] + 0.5 * te_hand * 80.0 * loop.s_end_m[e] / m_total
+    assert s["curve1_tension_start_kn"] * 1e3 == pytest.approx(t_start, rel=0.015)
+    assert s["curve1_tension_start_kn"] == pytest.approx(48.1, abs=0.1)
+    # running stays down, the start lifts it
+    assert s["curve1_tension_kn"] * 1e3 < t_lift < s["curve1_tension_start_kn"] * 1e3
+    assert s["curve1_liftoff"] is False and s["curve1_liftoff_start"] is True
+    r_start = s["curve1_radius_min_start_m"]
+    assert r_start == pytest.approx(230 * s["curve1_tension_start_kn"] * 1e3 / t_lift,
+                                    rel=1e-9)
+    assert math.ceil(r_start) == 247
+    assert st.status == "warning"
+    (said,) = [w for w in st.warnings if w.startswith("curve 1 (concave")]
+    for words in ("R 230 m", "at start-up", "start-up tension 48.1 kN",
+                  "lift-off tension 44.9 kN", "running stays down (39.0 kN there)",
+                  "a radius of at least 247 m (R x T_start / T_lift)", "a gentler start",
+                  "simulate"):
+        assert words in said, (words, said)
+    # where running lifts the belt too, its warning names the start's larger radius
+    small = solve_steady(curved(180.0), model="din",
+                         params={"f_carry": 0.02, "f_return": 0.02, "c": 1.0}, n_elements=200)
+    assert small.summary["curve1_liftoff"] is True
+    (said,) = [w for w in small.warnings if w.startswith("curve 1 (concave")]
+    r = small.summary["curve1_radius_min_start_m"]
+    assert f"at start-up ({small.summary['curve1_tension_start_kn']:.1f} kN there) at least " \
+        f"{math.ceil(r)} m" in said
+
+
 def test_convex_radius_min_by_hand():
     """Three rolls, B = 1.0 m, 35 deg: middle roll 0.38 m (DIN 22107, engine/data/trough.csv),
     wings 0.31 m, edge height h = 0.31 sin 35 = 0.17781 m, width-mean height z_mean =
@@ -132,6 +190,8 @@ def test_convex_curve_warns_below_its_radius():
     st = solve_steady(conv, model="din", n_elements=200)
     s = st.summary
     assert s["curve1_kind"] == "convex" and s["curve1_liftoff"] is False
+    assert s["curve1_liftoff_start"] is False  # a crest: no lift-off, running or at start
+    assert s["curve1_tension_start_kn"] is None and s["curve1_radius_min_start_m"] is None
     assert s["curve1_radius_min_m"] > 40.0
     assert "curve 1 (convex, R 40 m" in st.message
     assert s["curve1_idler_load_extra_n"] == pytest.approx(
