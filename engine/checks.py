@@ -55,6 +55,7 @@ __all__ = [
     "pulley_resultant_n",
     "idler_load_set_n",
     "middle_roll_share",
+    "pitch_within_m",
     "bearing_l10_h",
     "holdback_torque_nm",
     "pulley_name",
@@ -285,6 +286,14 @@ def idler_load_set_n(belt_kg_m: float, load_kg_m: float, spacing_m: float) -> fl
     return G * (belt_kg_m + load_kg_m) * spacing_m
 
 
+def pitch_within_m(pitch_m: float, rating_n: float, load_n: float) -> float:
+    """The idler pitch [m] at which a set loaded ``load_n`` at ``pitch_m`` (a load in
+    proportion to the pitch) is within ``rating_n``, rounded down to the centimetre the
+    warnings print: rounded to the nearest, ``pitch x rating / load`` could print a pitch
+    a little above it (1.389 m as 1.39 m), whose load is still above the rating."""
+    return math.floor(100.0 * pitch_m * rating_n / load_n * (1.0 + 1e-12)) / 100.0
+
+
 def middle_roll_share(rolls: int, trough_deg: float) -> float:
     """Share of an idler set's load carried by its most loaded roll [-].
 
@@ -422,7 +431,7 @@ def _idlers(conv, loop: Loop) -> tuple[dict, list[str]]:
             f"carry idler load {f_set:.0f} N per set (belt and design load over "
             f"{pitch:g} m) exceeds the CEMA {ic.cema_class} rating "
             f"{rating['carry_rating_n']:.0f} N: a heavier class or a closer pitch "
-            f"({pitch * rating['carry_rating_n'] / f_set:.2f} m)")
+            f"({pitch_within_m(pitch, rating['carry_rating_n'], f_set):.2f} m)")
     if l10 < rating["l10_min_h"]:
         warnings.append(
             f"carry idler bearing life L10 {l10:.0f} h (middle roll {f_roll:.0f} N, two "

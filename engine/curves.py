@@ -163,9 +163,14 @@ def convex_idler_warnings(conv, loop: Loop, curve: Curve, tension_n: float) -> l
         room = rating["carry_rating_n"] - f_weight
         radius = (f", or a radius of at least {math.ceil(curve.radius_m * f_curve / room):.0f} m"
                   if room > 0.0 else "")
+        # the pitch is rounded down to the cm: rounded to the nearest it could name one a
+        # little above the rating's (1.5 x 4003 / 4323 = 1.389 m printed 1.39 m, 4006 N)
+        closer = checks.pitch_within_m(pitch, rating["carry_rating_n"], f_set)
         parts.append(f"above the CEMA {ic.cema_class} rating {rating['carry_rating_n']:.0f} N: a "
-                     f"heavier class, a closer pitch there "
-                     f"({pitch * rating['carry_rating_n'] / f_set:.2f} m){radius}")
+                     f"heavier class, a closer pitch of the sets on the curve (at most "
+                     f"{closer:.2f} m at this tension; idlers.carry.spacing_m is the whole "
+                     f"carry's pitch, whose added idlers raise the tension a little: rerun "
+                     f"to confirm){radius}")
     l10 = checks.bearing_l10_h(rating["bearing_c_n"], share * f_set / 2.0, loop.speed_m_s,
                                ic.roll_diameter_m)
     if l10 < rating["l10_min_h"]:

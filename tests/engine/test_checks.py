@@ -261,6 +261,29 @@ def test_idler_rating_and_l10_warn(tmp_path):
     assert "is below the CEMA B basis 30000 h" in out["message"]
 
 
+def test_the_closer_pitch_named_for_the_rating_meets_it_when_applied():
+    """Hand conveyor (m'_G 20, m'_L 50 kg/m) with CEMA B sets 3 m apart: 9.81 x 70 x 3 =
+    2060.1 N per set, above the 1824 N rating; the pitch that meets it is 3 x 1824 / 2060.1 =
+    2.6562 m. Rounded to the nearest the warning named 2.66 m, at which a set carries
+    9.81 x 70 x 2.66 = 1826.6 N, still above the rating (and the rerun named 2.66 m again);
+    rounded down it names 2.65 m: 1819.8 N, and the rerun has no idler warning."""
+    def run(pitch):
+        d = hand_conveyor_dict()
+        d["idlers"]["carry"].update(cema_class="B", spacing_m=pitch)
+        return solve_steady(Conveyor.model_validate(d), model="din", n_elements=100)
+
+    st = run(3.0)
+    assert st.summary["idler_load_carry_n"] == pytest.approx(9.81 * 70 * 3.0, rel=1e-12)
+    assert 3.0 * 1824.0 / (9.81 * 70 * 3.0) == pytest.approx(2.6562, abs=1e-4)
+    assert "a heavier class or a closer pitch (2.65 m)" in st.message
+    assert C.pitch_within_m(3.0, 1824.0, 9.81 * 70 * 3.0) == 2.65
+    assert C.pitch_within_m(1.5, 1000.0, 1000.0) == 1.5  # exactly at it: kept
+    applied = run(2.65)
+    assert applied.summary["idler_load_carry_n"] == pytest.approx(9.81 * 70 * 2.65, rel=1e-12)
+    assert applied.summary["idler_load_carry_n"] < 1824.0
+    assert "carry idler load" not in applied.message
+
+
 def test_transient_resultant_bounds_the_sampled_head_resultant():
     # the envelope is kept every step, so R(max T_in, max T_out) per segment is at least the
     # resultant of every recorded pair (t_head_in_kn, t_head_out_kn) of the first head pulley,

@@ -303,7 +303,12 @@ def test_convex_curve_idlers_carry_the_tension_pressing_round_the_curve():
             f"({weight:.0f} N of belt and design load over 1.25 m and "
             f"{t * 1.25 / 40.0:.0f} N of the tension") in st.message
     assert "above the CEMA B rating 1824 N" in st.message
-    assert f"({1.25 * 1824.0 / f_set:.2f} m)" in st.message
+    # the pitch that meets the rating at this tension, rounded down to the cm printed (to
+    # the nearest it named 0.71 m for 1.25 x 1824 / 3219 = 0.7083 m: 1828 N at 0.71 m)
+    pitch = math.floor(100 * 1.25 * 1824.0 / f_set) / 100
+    assert pitch * f_set / 1.25 <= 1824.0 < (pitch + 0.01) * f_set / 1.25
+    assert (f"a closer pitch of the sets on the curve (at most {pitch:.2f} m at this "
+            "tension; idlers.carry.spacing_m is the whole carry's pitch") in st.message
     assert f"a radius of at least {math.ceil(40.0 * (t * 1.25 / 40.0) / (1824.0 - weight))} m" \
         in st.message
     assert st.status == "warning"
