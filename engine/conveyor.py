@@ -61,6 +61,7 @@ __all__ = [
     "NameText",
     "Yaml12Floats",
     "yaml12_int",
+    "yaml11_hint",
     "json_numbers",
     "load_fraction",
     "section_loads",
@@ -1227,6 +1228,33 @@ def _unknown_key_hint(key: str, keys: list[str]) -> str:
     return f"; did you mean '{close[0]}'?" if close else f"; valid keys: {', '.join(keys)}"
 
 
+#: YAML 1.1's base-60 numbers (``1:30`` is 90, ``1:30.5`` is 90.5): text in YAML 1.2.
+_BASE_60 = re.compile(r"^[-+]?[0-9][0-9_]*(?::[0-5]?[0-9])+(?:\.[0-9_]*)?$")
+#: Pydantic error types of a value that should be a number, and of one that should be a boolean.
+_NUMBER_ERRORS = {"float_type", "float_parsing", "int_type", "int_parsing"}
+_BOOL_ERRORS = {"bool_type", "bool_parsing"}
+
+
+def yaml11_hint(got: Any, error_type: str) -> str:
+    """The fix for a text that YAML 1.1 read as another type and YAML 1.2 (the readers here)
+    reads as text: ``yes``/``no``/``on``/``off`` where a boolean belongs, a base-60 ``1:30``
+    where a number belongs; "" for every other value. The conveyor's messages and the door's
+    JSON-type ones (studies, calibrations) both add it."""
+    if not isinstance(got, str):
+        return ""
+    if error_type in _BOOL_ERRORS and got.strip().lower() in ("yes", "no", "on", "off", "y", "n"):
+        return "write true or false (YAML 1.2 reads yes, no, on and off as text)"
+    text = got.strip()
+    if error_type in _NUMBER_ERRORS and _BASE_60.match(text):
+        value = 0.0
+        for part in text.lstrip("+-").replace("_", "").split(":"):
+            value = 60.0 * value + float(part)
+        value = -value if text.startswith("-") else value
+        return (f"write the number itself (YAML 1.2 reads {text} as text, not as YAML 1.1's "
+                f"base 60, {value:g})")
+    return ""
+
+
 def format_validation_error(exc: ValidationError, model: type[BaseModel], prefix: str = "") -> str:
     """Turn a Pydantic error into short lines naming the field path and the fix."""
     lines = []
@@ -1261,9 +1289,9 @@ def format_validation_error(exc: ValidationError, model: type[BaseModel], prefix
             if (slip is not None and isinstance(got, int | float) and not isinstance(got, bool)
                     and math.isfinite(got) and slip[0](got)):
                 shown += f": {slip[1](got)}"
-            if (err["type"] == "bool_type" and isinstance(got, str)
-                    and got.lower() in ("yes", "no", "on", "off", "y", "n")):
-                shown += ": write true or false (YAML 1.2 reads yes, no, on and off as text)"
+            hint = yaml11_hint(got, err["type"])
+            if hint:
+                shown += f": {hint}"
             if not clean:
                 # A check across fields names its own field first ("drives: shares sum ...").
                 m = re.match(r"([A-Za-z_][\w\[\]\.]*): (.*)$", msg, re.S)
@@ -1308,7 +1336,7 @@ _FLOAT_12 = re.compile(r"^[-+]?(?:[0-9][0-9_]*(?:\.[0-9_]*)?|\.[0-9_]+)[eE][-+]?
 #: YAML 1.2's integers that YAML 1.1 (PyYAML) reads otherwise: a decimal with leading zeros
 #: (``0210``: YAML 1.1 reads octal 136, or text where a digit is 8 or 9) and ``0o``
 #: octal (text in YAML 1.1). Read as YAML 1.2 reads them (:func:`yaml12_int`).
-_INT_12 = re.compile(r"^[-+]?(?:0[0-9_]+|0[oO][0-7_]+)$")
+_INT_12 = re.compile(r"^[-+]?(?:0[0-9_]+|0[oO]_*[0-7][0-7_]*)$")
 
 
 def yaml12_int(text: str) -> int | None:
@@ -1320,7 +1348,8 @@ def yaml12_int(text: str) -> int | None:
     bare = text.replace("_", "")
     sign = -1 if bare.startswith("-") else 1
     bare = bare.lstrip("+-")
-    return sign * (int(bare[2:], 8) if bare[1:2] in "oO" else int(bare, 10))
+    # ``0_`` is 0 (``bare[1:2]`` is empty there, and "" is in every text): octal by its o only
+    return sign * (int(bare[2:], 8) if bare[1:2] in ("o", "O") else int(bare, 10))
 
 
 class Yaml12Floats(yaml.resolver.Resolver):

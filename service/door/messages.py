@@ -24,6 +24,7 @@ from typing import Any
 from pydantic import BaseModel, ValidationError
 
 from beltstudy.engine import Conveyor, Scenario, format_validation_error
+from beltstudy.engine.conveyor import yaml11_hint
 from beltstudy.service.door.study import AXIS_TARGETS, StudyIn, unfold_axis
 
 __all__ = ["describe", "MAX_PROBLEMS"]
@@ -109,6 +110,9 @@ def _as_json_type(errors: list[dict]) -> str:
               if e["type"] == "literal_error" and "ctx" in e]
     text = f'{_json(errors[0]["input"])} is not of type "{types[0]}"'
     text += "".join(f' or "{t}"' for t in types[1:]) + "".join(f" or {o}" for o in others)
+    # a YAML 1.1 boolean word or base-60 number, text as YAML 1.2 reads it: say what to write
+    hint = next((h for e in errors if (h := yaml11_hint(e["input"], e["type"]))), "")
+    text += f": {hint}" if hint else ""
     return f"{_dotted(errors[0]['path'])}: {text}"
 
 

@@ -195,3 +195,49 @@ def test_yaml_base_60_is_text_as_yaml_1_2_reads_it(tmp_path):
     with pytest.raises(InputError, match=r"profile\.0\.lift_m: Input should be a valid number "
                                          r"\(got '1:30\.5'\)"):
         parse_conveyor(conv)
+
+
+def test_a_zero_and_underscores_reads_as_yaml_1_2_without_a_crash(tmp_path):
+    """``0_`` matched the YAML 1.2 integer pattern but was read as octal with no digits
+    (``"" in "oO"`` holds): ValueError out of every YAML reader, a traceback from
+    ``beltstudy static`` and an unhandled error in a body. YAML 1.1 read it as 0. ``0o_`` has
+    no octal digit: text, refused by its field like any text."""
+    from beltstudy.engine.conveyor import load_mapping
+
+    text = "a: 0_\nb: -0_0\nc: 0o_\nd: 0o_17\n"
+    want = {"a": 0, "b": 0, "c": "0o_", "d": 15}
+    assert loads(text, yaml_text=True) == want
+    path = tmp_path / "c.yaml"
+    path.write_text(text)
+    assert load_mapping(path) == want
+
+
+def test_yaml_1_1_words_and_base_60_name_the_fix_on_every_path(tmp_path, make_study,
+                                                             make_conveyor):
+    """The conveyor file said 'write true or false' for holdback: yes; a study file, a JSON
+    or YAML body and a calibration body said only '"yes" is not of type "boolean"', and a
+    base-60 1:30 (YAML 1.1's 90) was refused on every path without saying what to write."""
+    from beltstudy.service.calibration import read_calibration
+
+    bool_fix = "write true or false (YAML 1.2 reads yes, no, on and off as text)"
+    for message in _three_ways(tmp_path, make_study(dynamics="yes")):
+        assert message == f'dynamics: "yes" is not of type "boolean": {bool_fix}', message
+    for message in _three_ways(tmp_path, make_study(conveyor=make_conveyor(holdback="off"))):
+        assert message == f'conveyor.holdback: "off" is not of type "boolean": {bool_fix}'
+    for message in _three_ways(tmp_path, make_study(scenario={"run_s": "1:30"})):
+        assert message == ('scenario.run_s: "1:30" is not of type "number": write the number '
+                           "itself (YAML 1.2 reads 1:30 as text, not as YAML 1.1's base 60, 90)")
+    body = {"conveyor": make_conveyor(), "model": "din", "fit": ["f"],
+            "measured": [{"load": "full", "temperature_c": "-1:30.5", "power_kw": 100}]}
+    with pytest.raises(Invalid) as err:
+        read_calibration(body)
+    assert err.value.message == (
+        'measured.0.temperature_c: "-1:30.5" is not of type "number": write the number itself '
+        "(YAML 1.2 reads -1:30.5 as text, not as YAML 1.1's base 60, -90.5)")
+    conv = tmp_path / "c.yaml"
+    conv.write_text(yaml.safe_dump(make_conveyor(speed_m_s="0:4")), encoding="utf-8")
+    with pytest.raises(InputError) as err:
+        load_conveyor(conv)
+    assert str(err.value) == ("speed_m_s: Input should be a valid number (got '0:4'): write "
+                              "the number itself (YAML 1.2 reads 0:4 as text, not as YAML "
+                              "1.1's base 60, 4)")
