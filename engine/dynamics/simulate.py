@@ -375,8 +375,11 @@ def stop_levers(sys: System | None) -> list[str]:
     """What makes this run's stop softer, by its stop mode: a longer ``stop.time_s`` for a
     controlled stop; less brake force or a longer brake ramp (``brakes[].ramp_s``) for a
     brake stop; a coast stop has no setting of its own, so the lever is a controlled stop
-    (the drives easing the belt down over ``stop.time_s``). Without ``sys``: the general
-    words."""
+    (the drives easing the belt down over ``stop.time_s``), which needs vfd drives (a
+    scenario asking it of a conveyor with a dol drive is refused,
+    :func:`beltstudy.engine.dynamics.model.check_scenario`): with a dol drive the coast is
+    lengthened by more inertia on the drive shafts (``drives[].flywheel_kg_m2``), or the
+    drives made vfd for a controlled stop. Without ``sys``: the general words."""
     if sys is None:
         return ["a softer stop (stop time, brake force)"]
     mode = sys.model.cycle.stop_mode
@@ -385,6 +388,10 @@ def stop_levers(sys: System | None) -> list[str]:
     if mode == C.BRAKE:
         return ["a softer brake stop (less brake force, a longer stop.time_s for an auto "
                 "brake sized by it, a longer brake ramp brakes[].ramp_s)"]
+    if (sys.model.drives.control == C.DOL).any():
+        return ["a longer coast (more inertia on the drive shafts, drives[].flywheel_kg_m2)",
+                "vfd drives and a controlled stop (drives[].control: vfd, stop.mode: "
+                "controlled: a dol motor cannot follow a stopping curve)"]
     return ["a controlled stop instead of the coast (stop.mode: controlled, the drives "
             "easing the belt down over stop.time_s)"]
 

@@ -179,6 +179,42 @@ def test_the_stop_levers_offered_are_those_of_the_run_s_stop_mode():
     assert stop_levers(None) == ["a softer stop (stop time, brake force)"]
 
 
+def test_a_coast_stop_of_dol_drives_is_not_offered_a_controlled_stop_it_cannot_run():
+    """The 1.5 km 10 % incline (tests/engine/conftest.py steep_incline) without brakes, its
+    head drive dol with a fluid coupling, an 8 t tail take-up, coasting to rest: the carry
+    sags 4.8 % against 3 % during the stop (the belt's deceleration, about 4 m/s / 5.7 s,
+    takes the carry's inertia off the tension behind the head). The warning offered 'a
+    controlled stop instead of the coast (stop.mode: controlled ...)', which check_scenario
+    refuses for a dol drive ('controlled' needs vfd drives). Now it offers a longer coast by
+    more drive inertia, and vfd drives for the controlled stop; applied, a 10 000 kg m2
+    flywheel on the 1 m pulley (40 t at the belt line, J (2 / D)^2, beside the belt's 156 t)
+    coasts in 7.3 s and the sag warning is gone."""
+    from beltstudy.engine.conveyor import parse_conveyor
+    from beltstudy.engine.dynamics.model import check_scenario
+    from beltstudy.engine.errors import InputError
+    from tests.engine.conftest import steep_incline
+
+    def dol(flywheel):
+        d = steep_incline(takeup={"type": "gravity", "position": "tail", "mass_kg": 8000},
+                          brakes=[]).model_dump()
+        d["drives"][0].update(control="dol", coupling="fluid", flywheel_kg_m2=flywheel)
+        return parse_conveyor(d)
+
+    coast = Scenario(stop={"mode": "coast"}, elements=60, run_s=30)
+    msg = run_one(dol(0.0), coast, model="din").summary["message"]
+    i = msg.index("transient sag on the carry strand")
+    sag = msg[i:msg.index("would avoid it", i)]
+    assert "during the stop" in sag
+    assert "stop.mode: controlled, the drives easing" not in msg
+    assert ("a heavier take-up, a longer coast (more inertia on the drive shafts, "
+            "drives[].flywheel_kg_m2) or vfd drives and a controlled stop (drives[].control: "
+            "vfd, stop.mode: controlled") in sag
+    with pytest.raises(InputError, match="'controlled' needs vfd drives"):
+        check_scenario(Scenario(stop={"mode": "controlled", "time_s": 15.0}), dol(0.0))
+    applied = run_one(dol(10000.0), coast, model="din").summary["message"]
+    assert "transient sag" not in applied
+
+
 def test_a_transient_sag_names_when_and_the_tension_that_keeps_it_within():
     """A span whose lower spring fell to 8.92 kN 95.5 s into the cycle (in the stop) sags
     3.99 % against a 1.5 % limit: the warning says where, when, in which phase, and the
