@@ -561,7 +561,8 @@ def _phase_panels(df: pd.DataFrame) -> list[tuple[str, str]]:
 
 def phase_peaks_figure(runs, title: str = "", axes: list[str] | None = None,
                        groups: list[list[str]] | None = None,
-                       allowed_kn: float | None = None):
+                       allowed_kn: float | None = None,
+                       never_going: pd.Series | None = None):
     """Peak and lowest belt tension [kN] of the start and of the stop against a study axis.
 
     One point per run, never joined: runs with different values of the other axes are
@@ -572,8 +573,11 @@ def phase_peaks_figure(runs, title: str = "", axes: list[str] | None = None,
     (categories side by side, points of one category spread a little so none hides another).
     Colour: one per value of the friction model (or of the first other varying axis); marker:
     one per combination of the remaining varying axes (hollow after ten). Each colour and each
-    marker has one legend entry. A red ring marks a run whose belt did not stop; a dashed line
-    the tension the belt allows (``allowed_kn``: rating over the transient safety factor) and
+    marker has one legend entry. A red ring marks a run whose belt did not stop (no stop
+    time; it ran away, or did not stop in its window), not one that never got going
+    (``never_going``, a mask over ``runs``: the report's
+    :func:`~beltstudy.service.web.verdicts.never_going`; it made no stop); a dashed line the
+    tension the belt allows (``allowed_kn``: rating over the transient safety factor) and
     zero (slack).
     """
     plt = _plt()
@@ -620,6 +624,8 @@ def phase_peaks_figure(runs, title: str = "", axes: list[str] | None = None,
     offset = pd.Series([(series_index[(c, m)] - (n_series - 1) / 2) * step
                         for c, m in zip(ckey, mkey, strict=True)], index=df.index)
     stopped = df["stop_time_s"].notna() if "stop_time_s" in df.columns else None
+    if stopped is not None and never_going is not None:
+        stopped |= never_going.reindex(df.index, fill_value=False).astype(bool)
     ncols = 2 if len(panels) > 2 else len(panels)
     nrows = math.ceil(len(panels) / ncols)
     longest = max([len(", ".join(k)) for k in (*ckeys, *mkeys)]

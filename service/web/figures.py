@@ -18,6 +18,7 @@ from beltstudy.service.errors import Invalid, NotFound
 from beltstudy.service.grid.expand import ResolvedStudy
 from beltstudy.service.store import query
 from beltstudy.service.studies import StudyService, study_models
+from beltstudy.service.web.verdicts import never_going
 
 __all__ = [
     "STUDY_PLOTS",
@@ -156,7 +157,7 @@ def figure_of(doc: dict, runs: pd.DataFrame, name: str, baseline: str | None = N
         if name == "start-stop-peaks":
             return lambda: charts.phase_peaks_figure(
                 runs, f"{title}: peak and lowest tension of the start and the stop",
-                axes=axes, groups=groups)
+                axes=axes, groups=groups, never_going=never_going(runs))
         return lambda: charts.peak_dynamic_tension_figure(
             runs, f"{title}: peak and lowest tension against stop time", axes=axes,
             groups=groups)

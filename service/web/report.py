@@ -49,6 +49,7 @@ from beltstudy.service.web.uncertainty import uncertainty_section
 from beltstudy.service.web.verdicts import (
     cause_groups,
     clauses,
+    never_going,
     study_limits,
     verdict_rows,
 )
@@ -627,7 +628,8 @@ def _figures(doc: dict, runs: pd.DataFrame, study: dict) -> tuple[str, str]:
         def make():
             return charts.phase_peaks_figure(
                 runs, f"{doc.get('name', '')}: peak and lowest tension of the start and the "
-                "stop", axes=axes, groups=list(groups.values()), allowed_kn=allowed)
+                "stop", axes=axes, groups=list(groups.values()), allowed_kn=allowed,
+                never_going=never_going(runs))
 
         peaks = _figure(_png(make), "Peak and lowest belt tension of the start and of the "
                         "stop, a point per run (never joined): colour and marker name the run's "

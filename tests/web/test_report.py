@@ -197,6 +197,27 @@ def test_start_and_stop_peaks_are_points_with_one_legend_entry_each():
     assert "marker: load" in labels and "did not stop" in labels
 
 
+def test_a_belt_that_never_got_going_is_not_ringed_as_a_stop_that_failed():
+    """The start and stop peaks figure rings a run whose belt did not stop (no stop time: ns
+    and the run that ran away): a belt that never got going has no stop time either but made
+    no stop, and was ringed red as one that failed to stop."""
+    from beltstudy.service.web.verdicts import never_going
+
+    runs = _runs()
+    runs.loc[1, ["stop_time_s", "status", "message"]] = [
+        np.nan, "warning", "the belt never reached 99 % of design speed during the start (its "
+        "mean speed was 3.67e-05 m/s, 0.0 % of design speed, at the stop command at t = 14 s)"]
+    axes = ["friction_model", "temperature_c"]
+    for mask, rings_in_stop in ((None, 3), (never_going(runs), 2)):
+        fig = charts.phase_peaks_figure(runs, axes=axes, never_going=mask)
+        for ax in fig.axes:
+            if not ax.get_title():
+                continue
+            rings = [c for c in ax.collections if not c.get_gid()]
+            assert sum(len(c.get_offsets()) for c in rings) == \
+                (rings_in_stop if "stop" in ax.get_title() else 0), ax.get_title()
+
+
 def test_the_stop_figure_legend_names_each_colour_once():
     """24 combinations of the other axes (the report's stop figure had a 24-entry legend
     with colours repeated): a colour per value of the first axis, a marker per combination
