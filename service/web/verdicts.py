@@ -201,12 +201,10 @@ def never_going(runs: pd.DataFrame) -> pd.Series:
 
 
 def not_stopped(runs: pd.DataFrame) -> pd.Series:
-    """Runs whose belt did not stop: a transient that ran without a stop time (its belt
-    going at the stop command: not :func:`never_going`), or the message says so; runs that
-    ran away or failed are their own causes."""
-    msg = _message(runs)
-    return (((_no_stop_time(runs) & ~never_going(runs))
-             | msg.str.contains("did not stop", regex=False)) & ~_ran_away(runs)
+    """Runs whose belt did not stop within the stop window: the message says so (a run
+    without a stop time says it, ran away or never got going, :func:`never_going`); runs
+    that ran away or failed are their own causes."""
+    return (_message(runs).str.contains("did not stop", regex=False) & ~_ran_away(runs)
             & (_status(runs) != "failed"))
 
 
