@@ -8,6 +8,7 @@ from __future__ import annotations
 
 import csv
 import difflib
+import re
 from dataclasses import dataclass
 from functools import cache
 from importlib import resources
@@ -159,11 +160,42 @@ def belts() -> dict[str, BeltData]:
     return out
 
 
+#: A belt id followed by its covers as belt makers print them, top + bottom in mm.
+_COVERS = re.compile(r"^\s*(.*?)\s+(\d+(?:\.\d+)?)\s*\+\s*(\d+(?:\.\d+)?)\s*$")
+
+
+def _belt_key(belt_id: str) -> str:
+    """A belt id as handbooks vary its spelling (``St 1600``, ``ST-1600``, ``EP 630/4``,
+    ``EP630-4``) reduced to the catalogue's form (``ST1600``, ``EP630/4``)."""
+    text = str(belt_id).upper().replace(" ", "").replace("_", "")
+    head, sep, tail = text.partition("-")
+    if head[:2] == "ST" and not head[2:]:  # ST-1600
+        return head + tail
+    return head + ("/" + tail if sep else "")  # EP630-4
+
+
 def belt(belt_id: str, field: str = "belt.type") -> BeltData:
+    """The catalogue belt ``belt_id``. An id the catalogue does not hold is refused; the fix
+    offered is the same belt spelled as the catalogue spells it, never a belt of another
+    rating (EP500/3 is not EP400/3), else the belt given by its own data."""
     table = belts()
-    if belt_id not in table:
-        raise InputError(_unknown("belt type", belt_id, list(table), field))
-    return table[belt_id]
+    if belt_id in table:
+        return table[belt_id]
+    where = f"{field}: " if field else ""
+    covers = _COVERS.match(str(belt_id))  # EP630/4 5+2: the carcass, then top + bottom covers
+    named = covers.group(1) if covers else belt_id
+    same = [k for k in table if _belt_key(k) == _belt_key(named)]
+    if same:
+        extra = (f" with top_cover_mm: {covers.group(2)} and bottom_cover_mm: "
+                 f"{covers.group(3)}" if covers else "")
+        raise InputError(f"{where}unknown belt type '{belt_id}'; did you mean "
+                         f"'{same[0]}'{extra}? valid: {', '.join(table)}")
+    raise InputError(
+        f"{where}unknown belt type '{belt_id}': not in the catalogue ({', '.join(table)}); "
+        "for a belt of its own, leave out type and give its data from the belt maker's "
+        "sheet: rating_kn_m, modulus_kn_m, carcass_mass_kg_m2 (or mass_kg_m), top_cover_mm "
+        "and bottom_cover_mm, or pick a "
+        "catalogue belt of at least the rating you need")
 
 
 @cache

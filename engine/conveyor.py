@@ -1185,7 +1185,8 @@ UNIT_SUFFIXES = (
     ("_kg_m3", "_t_m3", "t/m3: kg/m3 / 1000"),
     ("_lb_ft3", "_t_m3", "t/m3: lb/ft3 x 0.016018"),
     ("_stph", "_t_h", "metric t/h: short tons/h x 0.90718"),
-    ("_tph", "_t_h", "metric t/h"),
+    ("_tph", "_t_h", "metric t/h, or short tons/h x 0.90718 if the tph are US short tons "
+               "as in CEMA"),
     ("_fpm", "_m_s", "m/s: ft/min x 0.00508"),
     ("_ft", "_m", "metres: ft x 0.3048"),
     ("_mm", "_m", "metres: mm / 1000"),
@@ -1201,6 +1202,20 @@ KEY_HINTS = {
     "lagging": "the pulley lagging (bare, rubber, ceramic) enters as the belt-pulley friction "
                "coefficient: give 'friction' for that lagging and its wet or dry duty (belt "
                "maker's data or DIN 22101's table)",
+    "mu": "the belt-pulley friction coefficient (mu) is 'friction'",
+    **{name: "a section rises by lift_m over length_m, its length along the belt: give "
+             "lift_m = length_m x sin(angle) (negative downhill)"
+       for name in ("angle_deg", "slope_deg", "inclination_deg", "incline_deg")},
+}
+
+#: Handbook words for a choice the contract names otherwise: (field, word) -> the fix.
+VALUE_HINTS = {
+    **{("type", word): "a counterweight take-up is type: gravity"
+       for word in ("counterweight", "counter_weight", "weighted", "vertical_gravity",
+                    "horizontal_gravity")},
+    **{("type", word): "a take-up set by hand or by a winch and then held is type: fixed "
+                       "(give pretension_kn)"
+       for word in ("screw", "manual", "winch", "hydraulic")},
 }
 
 #: Out-of-range values that are the right quantity in another unit: the field, a test on the
@@ -1290,6 +1305,8 @@ def format_validation_error(exc: ValidationError, model: type[BaseModel], prefix
                     and math.isfinite(got) and slip[0](got)):
                 shown += f": {slip[1](got)}"
             hint = yaml11_hint(got, err["type"])
+            if not hint and clean and isinstance(got, str):
+                hint = VALUE_HINTS.get((str(clean[-1]), got.strip().lower()), "")
             if hint:
                 shown += f": {hint}"
             if not clean:
