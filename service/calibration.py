@@ -110,7 +110,10 @@ def check_params(body: CalibrationIn, field: str = "params.") -> None:
     """The held parameters as the model takes them; a problem names the request's own field
     (``params.f_return``; the CLI passes ``--param `` for its option), not the study's
     ``models.<model>.`` path the engine's check names."""
-    fm = get_model(body.model)
+    try:
+        fm = get_model(body.model)
+    except InputError as exc:  # the request's field is model, not a study's friction_model
+        raise Invalid(f"model: {exc.reason}") from None
     try:
         fm.params(body.params)
     except InputError as exc:

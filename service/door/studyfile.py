@@ -222,10 +222,13 @@ def _models(study: StudyIn) -> tuple[dict[str, dict[str, float | None]], dict[st
     for name, overrides in given_models(study.models).items():
         try:
             fm = get_model(name)
+        except InputError as exc:  # the key under models: is the field, not friction_model
+            raise Invalid(f"models.{name}: {exc.reason}") from None
+        try:
             fm.params(overrides)
         except InputError as exc:
-            raise Invalid(str(exc) if (exc.field or "").startswith("models.")
-                          else f"models: {exc}") from None
+            raise Invalid(str(exc) if str(exc).startswith("models.")  # names its field
+                          else f"models.{name}: {exc}") from None
         if fm.name in models:
             raise Invalid(f"models.{name}: model '{fm.name}' is given twice")
         models[fm.name] = dict(overrides)

@@ -86,6 +86,16 @@ def test_post_calibrations_names_the_bad_field(client):
     assert r.status_code == 422 and "studies directory" in r.json()["message"]
 
 
+def test_an_unknown_model_names_the_requests_field_model(client):
+    """POST /calibrations with model: xx answered 'friction_model: unknown model', the name of
+    a study's grid axis, not of this body's field: it is 'model: ...'."""
+    body = {"conveyor": "conveyors/overland-4km.yaml", "measured": _rows(), "model": "dinx",
+            "fit": ["f_carry"]}
+    r = client.post("/calibrations", json=body)
+    assert r.status_code == 422, r.text
+    assert r.json()["message"].startswith("model: unknown model 'dinx' (did you mean 'din'?)")
+
+
 def test_a_held_parameter_names_the_requests_own_field(client, tmp_path):
     """A bad held parameter was named models.din.<name>, a path of a study, not of this
     request: the body's field is params.<name>, the command line's --param <name>."""

@@ -209,8 +209,21 @@ def test_friction_model_aliases_are_canonical(make_study):
 def test_model_parameters_are_checked_at_the_door(make_study):
     with pytest.raises(Invalid, match=r"models.din.f_cary: unknown parameter.*'f_carry'"):
         resolve_study(make_study(models={"din": {"f_cary": 0.02}}))
-    with pytest.raises(Invalid, match=r"models: .*unknown model 'dinn'"):
+    with pytest.raises(Invalid, match=r"^models\.dinn: unknown model 'dinn' \(did you mean 'din'"):
         resolve_study(make_study(models={"dinn": {}}))
+
+
+def test_a_bad_models_entry_names_its_own_key_once(make_study):
+    """An unknown model under models: was named 'models: friction_model: unknown model', the
+    grid axis's field, not the key written; a bad parameter value read 'models: models.din.
+    f_carry: ...', the path twice. Each now names the key as written, once."""
+    with pytest.raises(Invalid) as exc:
+        resolve_study(make_study(models={"dinx": {}}))
+    assert str(exc.value).startswith("models.dinx: unknown model 'dinx' (did you mean 'din'?)")
+    assert "friction_model" not in str(exc.value)
+    with pytest.raises(Invalid) as exc:
+        resolve_study(make_study(models={"din": {"f_carry": -0.01}}))
+    assert str(exc.value).startswith("models.din.f_carry: a friction factor between 0 and 1")
 
 
 def test_parameters_of_a_model_the_study_does_not_run_are_refused(make_study):
