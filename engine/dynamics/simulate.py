@@ -499,6 +499,24 @@ def decode(sys: System, kr: KernelRun, wall_s: float, *, steady_summary=None, co
                            surface_data=surface_data, envelope_data=(s_end, whole))
 
 
+def _exact_times(ext: dict | None, segs, r: dict) -> dict | None:
+    """``ext`` (:func:`_extremes` of ``segs``) with the exact time of the whole cycle's
+    largest or lowest tension where that extreme is this part's own (the same value, its
+    time inside the part). The envelopes' times are stamped at the first record
+    after the envelope grew, so they run late by up to ``record_dt_s``; the whole cycle's
+    extremes carry the step's own time. Without this, a phase holding the cycle's peak gave
+    the same tension as ``t_max_dyn_kn`` at a time up to ``record_dt_s`` later."""
+    if ext is None or not segs:
+        return ext
+    t0, t1 = segs[0][0], segs[-1][1]
+    out = dict(ext)
+    for key, name in (("tmax", "t_max"), ("tmin", "t_min")):
+        value, t_exact = float(r[key]), float(r[key + "_t"])
+        if ext[name] == value and t0 <= t_exact <= t1 and math.isfinite(value):
+            out[name + "_t"] = t_exact
+    return out
+
+
 def _phase_fields(sys: System, prefix: str, ext: dict | None) -> dict:
     keys = ("kn", "at_m", "time_s")
     if ext is None:
@@ -770,7 +788,7 @@ def transient_summary(sys: System, r: dict, out, segs, *, steady_summary=None, c
     pre = [s for s in segs if first_slack < 0 or s[1] <= first_slack + eps]
     post = [s for s in segs if first_slack >= 0 and s[1] > first_slack + eps]
     ext_pre = _extremes(sys, pre)
-    ext_post = _extremes(sys, post)
+    ext_post = _exact_times(_extremes(sys, post), post, r)
     summary = {
         "t_max_dyn_kn": t_max_dyn / 1e3,
         "t_max_dyn_at_m": float(s_end[jmax]),
@@ -802,8 +820,8 @@ def transient_summary(sys: System, r: dict, out, segs, *, steady_summary=None, c
                             else float(sag.max()) if idler.any() else 0.0),
         "slip_margin_min_dyn": r["slip_min"] if r["slip_min"] < 1e299 else None,
         "safety_factor_dyn": (rating / t_max_dyn if rating and t_max_dyn > 0 else None),
-        **_phase_fields(sys, "start", _extremes(sys, start_segs)),
-        **_phase_fields(sys, "stop", _extremes(sys, stop_segs)),
+        **_phase_fields(sys, "start", _exact_times(_extremes(sys, start_segs), start_segs, r)),
+        **_phase_fields(sys, "stop", _exact_times(_extremes(sys, stop_segs), stop_segs, r)),
         "t_max_pre_slack_kn": ext_pre["t_max"] / 1e3 if ext_pre else None,
         "t_max_post_slack_kn": ext_post["t_max"] / 1e3 if ext_post else None,
         "t_max_post_slack_at_m": float(s_end[ext_post["j_max"]]) if ext_post else None,

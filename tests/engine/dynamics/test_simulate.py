@@ -520,3 +520,24 @@ def test_an_end_stop_names_its_end_and_the_cures_that_apply_there():
     # a hit at the rest end, and the running stretch's need is named
     full = words(0.0, 10.0, 12.0, 0.0, 10.0)
     assert "rest end" not in full and "the running stretch alone needs 12 m" in full
+
+
+def test_the_phase_holding_the_cycle_s_extreme_gives_its_exact_time():
+    """The per-phase extremes' times came from the envelopes, stamped at the first record
+    after the envelope grew: with record_dt_s 5 s the start's peak (68.0 kN, the cycle's
+    own, at 11.46 s on a 600 m two-drive conveyor) read t_max_start_time_s 15.0 s while
+    t_max_dyn_time_s said 11.46 s. The phase that holds the cycle's extreme now gives the
+    cycle's exact time; the other phase's time stays within a record spacing after its own."""
+    from beltstudy.engine.conveyor import parse_conveyor
+    from tests.conftest import hand_conveyor_dict
+
+    conv = parse_conveyor(hand_conveyor_dict())
+    rec_dt = 5.0
+    s = run_one(conv, Scenario(elements=24, start={"time_s": 10.0}, run_s=5.0,
+                               stop={"mode": "coast"}, record_dt_s=rec_dt),
+                model="din").summary
+    for ext in ("max", "min"):
+        phase = "start" if s[f"t_{ext}_start_kn"] == s[f"t_{ext}_dyn_kn"] else "stop"
+        assert s[f"t_{ext}_{phase}_kn"] == s[f"t_{ext}_dyn_kn"]
+        assert s[f"t_{ext}_{phase}_time_s"] == s[f"t_{ext}_dyn_time_s"]
+        assert s[f"t_{ext}_{phase}_at_m"] == s[f"t_{ext}_dyn_at_m"]
