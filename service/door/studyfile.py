@@ -337,6 +337,25 @@ def _axis_bounds(folded: str) -> dict[str, float]:
     return value_bounds(found[1], found[3]) if found else {}
 
 
+def _too_many_runs(axes: list[Axis], total: int, max_runs: int) -> str:
+    """The refusal of a study over ``max_runs``: the count, the factors it is the product of
+    (each grid axis, zip group and the sample), and what brings it under the limit. Named
+    ``sample.n`` when the grid alone fits and the sample takes it over, else ``grid``."""
+    factors: dict[str, int] = {}
+    for a in axes:
+        label = ("sample.n" if a.sample else a.name if a.group is None
+                 else f"zip.{a.group}")
+        factors.setdefault(label, len(a.values))
+    shown = " x ".join(f"{k} {n}" for k, n in factors.items())
+    grid_alone = total // factors["sample.n"] if "sample.n" in factors else total
+    points = max_runs // max(grid_alone, 1)  # sample points the grid leaves room for
+    field = "sample.n" if "sample.n" in factors and points >= 2 else "grid"
+    fix = (f"a smaller sample.n (at most {points} points with this grid)"
+           if field == "sample.n" else "fewer values on an axis")
+    return (f"{field}: the study has {total} runs; the limit is {max_runs} ({shown}): give "
+            f"{fix}, or split the study into several")
+
+
 def _sample_axes(study: StudyIn, bases: tuple[dict, dict], models: dict) -> list[Axis]:
     """The ``sample:`` axes (:mod:`beltstudy.service.door.sample`): one more group of axes
     varying together (the last), their values drawn; each path a numeric axis."""
@@ -478,7 +497,7 @@ def resolve_study(
     axes = _axes(study, data, (conveyor, scenario), models, max_runs)
     total = grid_points(axes)
     if total > max_runs:
-        raise TooLarge(f"grid: the study has {total} runs; the limit is {max_runs}")
+        raise TooLarge(_too_many_runs(axes, total, max_runs))
     _check_read(study, axes)
     default_model, run_models = _run_models(study, axes, models)
     design = _positive_zero(_design(study))
