@@ -48,6 +48,7 @@ __all__ = [
     "MIDDLE_ROLL_SHARE",
     "BEARING_LIFE_EXPONENT",
     "HOLDBACK_FRICTION_SHARE",
+    "runback_note",
     "PulleyCheck",
     "pulley_group",
     "pulley_diameter_min_m",
@@ -495,6 +496,25 @@ def steady_checks(conv, loop: Loop, T: np.ndarray, sf_min: float, friction_n: fl
     out["holdback_torque_knm"] = holdback_torque_nm(
         float(loop.gravity_n.sum()), friction_n, hb.diameter_m) / 1e3
     return out, warnings
+
+
+def runback_note(conv, loop: Loop, friction_n: float) -> str:
+    """The note of a loaded incline that can run back when stopped (a holdback torque above 0,
+    :func:`holdback_torque_nm`) with nothing to hold it at rest (``holdback: false`` and no
+    brake with ``hold``): the pull, the resistance CEMA's backstop rule credits and the
+    holdback that avoids it; "" otherwise. A note, not a warning: the steady run is not
+    where the belt runs back (the transient's stop is)."""
+    if conv.holdback or any(b.hold for b in conv.brakes):
+        return ""
+    pull = float(loop.gravity_n.sum())
+    torque = holdback_torque_nm(pull, friction_n, loop.pulley_at(loop.i_head).diameter_m)
+    if torque <= 0.0:
+        return ""
+    return (f"note: the loaded belt can run back when it stops: its lift pulls {pull / 1e3:.3g} kN "
+            f"back against {HOLDBACK_FRICTION_SHARE * friction_n / 1e3:.3g} kN (half its "
+            "running resistance without the feed, CEMA's backstop rule) and nothing holds it "
+            "(holdback: false, no brake with hold: true): a holdback on the head pulley of at "
+            f"least {torque / 1e3:.3g} kNm (holdback: true) or a holding brake would avoid it")
 
 
 def transient_checks(loop: Loop, t_max_n: np.ndarray) -> dict:

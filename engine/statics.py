@@ -48,6 +48,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from beltstudy.engine.capacity import capacity as capacity_check
+from beltstudy.engine.checks import runback_note
 from beltstudy.engine.checks import steady_checks as design_checks
 from beltstudy.engine.conveyor import (
     PRETENSION_MAX_KN,
@@ -56,6 +57,7 @@ from beltstudy.engine.conveyor import (
     Conveyor,
     section_loads,
 )
+from beltstudy.engine.curves import junction_checks
 from beltstudy.engine.curves import steady_checks as curve_checks
 from beltstudy.engine.drives import rated_power_kw
 from beltstudy.engine.drives import steady_checks as drive_checks
@@ -702,6 +704,8 @@ def _summarise(res: SteadyResult, drives, hs_adm, bounds, shortfall_n: float,
         checked, check_warnings = curve_checks(conv, loop, T, sf_min, T_start)
         res.summary.update(checked)
         warnings += check_warnings
+    # grade changes without curve_radius_m, read as the circle through their survey points
+    warnings += junction_checks(conv, loop, T, sf_min, T_start)
     # ---- horizontal curves (beltstudy.engine.hcurves; nothing without curves)
     curved, curve_warnings = hcurve_checks(conv, loop, T)
     res.summary.update(curved)
@@ -710,7 +714,8 @@ def _summarise(res: SteadyResult, drives, hs_adm, bounds, shortfall_n: float,
     res.status = "warning" if warnings else "ok"
     # a note does not make a warning (as the transient's notes, "note: ..." after them)
     note = temperature_note(get_model(res.model), res.temperature_c, res.params_given)
-    res.message = "; ".join(warnings + [n for n in (note, res.range_note) if n])
+    runback = runback_note(conv, loop, friction_n)
+    res.message = "; ".join(warnings + [n for n in (note, res.range_note, runback) if n])
     res.summary["status"] = res.status
     res.summary["message"] = res.message
 
