@@ -49,7 +49,7 @@ import numpy as np
 
 from beltstudy.engine import checks
 from beltstudy.engine.capacity import middle_roll_length_m, trough_segments
-from beltstudy.engine.loop import CARRY, Curve, G, Loop
+from beltstudy.engine.loop import CARRY, RETURN, Curve, G, Loop
 
 __all__ = ["liftoff_tension_n", "liftoff_limits_n", "convex_radius_min_m",
            "convex_idler_warnings", "steady_checks", "transient_liftoff"]
@@ -445,3 +445,169 @@ def transient_liftoff(loop: Loop, segs, t_start_end_s: float, t_stop_cmd_s: floa
             f"{(t_peak - t_lim) / 1e3:.1f} kN over its lift-off "
             f"tension {t_lim / 1e3:.1f} kN; " + " or ".join(fixes) + " avoids it")
     return out, warnings
+
+
+# ------------------------------------------------- grade changes without a vertical curve
+__all__ += ["survey_radius_m", "junction_checks"]
+
+
+def survey_radius_m(length_in_m: float, length_out_m: float, turn_rad: float) -> float:
+    """Radius of the circle through a grade change's three survey points [m].
+
+    A route given by survey points (short sections, no ``curve_radius_m``) describes its
+    vertical curves by the points themselves: the circle through a point and its two
+    neighbours, ``R = |AC| / (2 sin |delta|)`` with ``|AC|^2 = l_1^2 + l_2^2 + 2 l_1 l_2
+    cos(delta)`` (the circumradius of the triangle whose angle at the middle point is
+    ``pi - |delta|``). Points spaced ``l`` on a curve of radius R give back R exactly
+    (``l = 2 R sin(delta / 2)``); an isolated kink between long sections reads as the gentle
+    curve those sections leave room for.
+
+    Parameters
+    ----------
+    length_in_m, length_out_m : float
+        The two sections' lengths along the belt, l_1 and l_2 [m].
+    turn_rad : float
+        The change of grade angle delta [rad] (either sign); 0 gives ``inf``.
+    """
+    s = math.sin(abs(turn_rad))
+    if s <= 0.0:
+        return math.inf
+    chord = math.sqrt(length_in_m ** 2 + length_out_m ** 2
+                      + 2.0 * length_in_m * length_out_m * math.cos(turn_rad))
+    return chord / (2.0 * s)
+
+
+def _node_tensions(loop: Loop, T: np.ndarray, x_m: float) -> list[tuple[str, float]]:
+    """(strand, tension [N]) at the idler element ends nearest route position x_m, per strand
+    (the sections meet at an element end; a pulley there has idler elements either side)."""
+    x0 = loop.x_m if loop.x_m is not None else loop.s_m
+    out = []
+    for code, name, sign in ((CARRY, "carry", 1.0), (RETURN, "return", -1.0)):
+        j = np.flatnonzero(loop.strand == code)
+        if j.size == 0:
+            continue
+        pos = np.concatenate((x0[j], x0[j] + sign * loop.dx_m[j]))
+        ten = np.concatenate((T[j - 1], T[j]))
+        gap = np.abs(pos - x_m)
+        near = gap <= gap.min() + 1e-6 * max(1.0, loop.length_m)
+        out.append((name, float(ten[near].max())))
+    return out
+
+
+def _junctions(conv) -> list[dict]:
+    """Each grade change without ``curve_radius_m``: section, where, turn and survey radius.
+
+    Sections on one grade (no turn, no curve between them) are one straight run: the survey
+    circle goes through the ends of the straight runs either side (:func:`survey_radius_m`),
+    so a straight written as one section or as many points is read alike."""
+    prof = conv.profile
+    angles = [math.asin(p.lift_m / p.length_m) for p in prof]
+    runs: list[list[float]] = [[0.0, 0.0]]  # per straight run: [length, end position]
+    breaks = []  # (section i, turn) at each end of a run that is a grade change without curve
+    for i, p in enumerate(prof):
+        runs[-1][0] += p.length_m
+        runs[-1][1] += p.length_m
+        if i == len(prof) - 1:
+            break
+        turn = angles[i + 1] - angles[i]
+        if p.curve_radius_m is None and abs(turn) < 1e-12:
+            continue
+        breaks.append((i, turn if p.curve_radius_m is None else None))
+        runs.append([0.0, runs[-1][1]])
+    out = []
+    for r, (i, turn) in enumerate(breaks):
+        if turn is None:
+            continue
+        out.append({"i": i, "run": r, "at_m": runs[r][1], "turn": turn,
+                    "cos": min(math.cos(angles[i]), math.cos(angles[i + 1])),
+                    "radius_m": survey_radius_m(runs[r][0], runs[r + 1][0], turn)})
+    return out
+
+
+def _judge_junction(conv, loop: Loop, jn: dict, T: np.ndarray, T_start, sf_min: float
+                    ) -> dict | None:
+    """A grade change judged as its survey circle: None when it passes, else the figures."""
+    belt, ic = loop.belt, conv.idlers.carry
+    if jn["turn"] > 0.0:  # concave: the empty belt lifts first, on either strand
+        w = float(loop.mG_kg_m[0]) * G * jn["cos"]
+        nodes = _node_tensions(loop, T, jn["at_m"])
+        starts = [] if T_start is None else _node_tensions(loop, T_start, jn["at_m"])
+        strand, t_run = max(nodes, key=lambda n: n[1])
+        t_start = max((t for _s, t in starts), default=0.0)
+        need = max(t_run, t_start) / w
+        if need <= jn["radius_m"]:
+            return None
+        return {**jn, "kind": "concave", "strand": strand, "t_n": t_run, "t_start_n": t_start,
+                "limit_n": jn["radius_m"] * w, "need_m": need, "need_run_m": t_run / w,
+                "at_start": t_run <= jn["radius_m"] * w}
+    t_carry = max(t for s, t in _node_tensions(loop, T, jn["at_m"]) if s == "carry")
+    need = convex_radius_min_m(t_carry, belt.stiffness_n, belt.rating_n / sf_min,
+                               belt.width_m, ic.rolls, ic.trough_deg, ic.roll_length_m)
+    if need is None or need <= jn["radius_m"]:
+        return None
+    return {**jn, "kind": "convex", "strand": "carry", "t_n": t_carry, "need_m": need}
+
+
+def _junction_words(group: list[dict]) -> str:
+    """One warning for a run of neighbouring grade changes of one kind that fail."""
+    worst = max(group, key=lambda g: g["need_m"] / g["radius_m"])
+    first, last = group[0], group[-1]
+    where = (f"at {first['at_m']:.0f} m (profile[{first['i']}] to profile[{first['i'] + 1}]"
+             if len(group) == 1 else
+             f"from {first['at_m']:.0f} to {last['at_m']:.0f} m ({len(group)} of them, "
+             f"profile[{first['i']}] to profile[{last['i'] + 1}]; the tightest at "
+             f"{worst['at_m']:.0f} m")
+    head = (f"grade change without a vertical curve {where}, {worst['kind']}, the grade "
+            f"turning by {math.degrees(abs(worst['turn'])):.3g} deg): read as the circle through "
+            f"the survey points there, radius {worst['radius_m']:.0f} m, ")
+    need = ("a lower tension there (no radius keeps the edge within it)"
+            if not math.isfinite(worst["need_m"]) else
+            f"the route there needs a vertical curve of at least {math.ceil(worst['need_m']):.0f}"
+            " m (give it as curve_radius_m on the section before the grade change, or "
+            "survey points on that radius)")
+    if worst["kind"] == "convex":
+        return (head + f"the troughed belt's edge strain or centre tension is out of bounds at "
+                f"{worst['t_n'] / 1e3:.1f} kN: " + need)
+    if worst["at_start"]:
+        return (head + f"at start-up the empty belt lifts off its idlers, start-up tension "
+                f"{worst['t_start_n'] / 1e3:.1f} kN (a rigid-body estimate) above the lift-off "
+                f"tension {worst['limit_n'] / 1e3:.1f} kN (R m'_G g cos a), though running stays "
+                f"down ({worst['t_n'] / 1e3:.1f} kN); " + need + ", or a gentler start")
+    start = (f" ({math.ceil(worst['need_run_m']):.0f} m at the running tensions, the rest "
+             f"for the start-up tension {worst['t_start_n'] / 1e3:.1f} kN)"
+             if worst["need_m"] > worst["need_run_m"] else "")
+    return (head + f"the empty belt lifts off its {worst['strand']} idlers, steady tension "
+            f"{worst['t_n'] / 1e3:.1f} kN above the lift-off tension "
+            f"{worst['limit_n'] / 1e3:.1f} kN (R m'_G g cos a); " + need + start)
+
+
+def junction_checks(conv, loop: Loop, T: np.ndarray, sf_min: float,
+                    T_start: np.ndarray | None = None) -> list[str]:
+    """Grade changes between profile sections that give no ``curve_radius_m``.
+
+    Such a change is read as the circle through its survey points (:func:`survey_radius_m`),
+    so a route written as survey points along a curve gets the verdicts of the same route
+    with ``curve_radius_m``: a concave change is judged for lift-off of the empty belt on
+    either strand, running and at start-up (``T > R m'_G g cos a``, ``cos a`` of the steeper
+    grade), a convex one for the troughed belt's edge strain (:func:`convex_radius_min_m`),
+    at the tension where the sections meet. The tension walk keeps the sections' straight
+    grades (no elements on an arc), and there are no result columns: a warning names the
+    change (where, which sections, its turn and survey radius), the tension against its
+    limit and the radius the route needs there. Neighbouring changes of one kind that fail
+    are one warning, naming the tightest.
+
+    Returns
+    -------
+    list of str
+        The warnings, in route order.
+    """
+    fails = [f for jn in _junctions(conv)
+             if (f := _judge_junction(conv, loop, jn, T, T_start, sf_min)) is not None]
+    groups: list[list[dict]] = []
+    for f in fails:
+        if (groups and groups[-1][-1]["run"] == f["run"] - 1
+                and groups[-1][-1]["kind"] == f["kind"]):
+            groups[-1].append(f)
+        else:
+            groups.append([f])
+    return [_junction_words(g) for g in groups]

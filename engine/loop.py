@@ -264,10 +264,11 @@ def _split(n: int, lengths: list[float]) -> list[int]:
     while sum(counts) < n:
         i = max(range(len(raw)), key=lambda k: raw[k] - counts[k])
         counts[i] += 1
+    # take the surplus back from sections that keep at least one (a short section floored up
+    # to one element must not be picked: it would leave the count unchanged for ever)
     while sum(counts) > n and max(counts) > 1:
-        i = max(range(len(raw)), key=lambda k: counts[k] - raw[k])
-        if counts[i] > 1:
-            counts[i] -= 1
+        i = max((k for k in range(len(raw)) if counts[k] > 1), key=lambda k: counts[k] - raw[k])
+        counts[i] -= 1
     return counts
 
 

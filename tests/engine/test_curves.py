@@ -354,3 +354,106 @@ def test_a_valley_on_a_regenerating_decline_is_judged_at_its_tighter_return():
         s["curve1_tension_kn"] * 1e3 / (20 * 9.81 * math.cos(math.asin(0.1))), rel=6e-3)
     # the carry's own tension stays the convex curves' (edge strain, idler load)
     assert s["curve1_idler_load_extra_n"] == pytest.approx(t_carry * 1.25 / 100.0, rel=1e-12)
+
+
+# ------------------------------------------------- grade changes without a vertical curve
+
+def _as_survey_points(conv, step_m=4.0):
+    """The same route with every vertical curve replaced by survey points: the straight
+    rests, and the arc as chords of about ``step_m`` at the arc's grade in their middle."""
+    prof = conv.profile
+    ang = [math.asin(p.lift_m / p.length_m) for p in prof]
+    rest = [p.length_m for p in prof]
+    arcs = {}
+    for i, p in enumerate(prof[:-1]):
+        if p.curve_radius_m is not None:
+            arc = p.curve_radius_m * abs(ang[i + 1] - ang[i])
+            rest[i] -= arc / 2
+            rest[i + 1] -= arc / 2
+            arcs[i] = arc
+    out = []
+    for i in range(len(prof)):
+        out.append({"length_m": rest[i], "lift_m": rest[i] * math.sin(ang[i])})
+        if i in arcs:
+            n = max(2, int(arcs[i] / step_m))
+            for k in range(n):
+                a = ang[i] + (ang[i + 1] - ang[i]) * (k + 0.5) / n
+                out.append({"length_m": arcs[i] / n, "lift_m": arcs[i] / n * math.sin(a)})
+    return out
+
+
+def test_survey_radius_is_the_circle_through_three_points():
+    """Points spaced l = 2 R sin(delta / 2) on a circle of radius R give R back; the circle
+    through A, B, C with AB = l1, BC = l2 and the grade turning by delta at B has
+    R = |AC| / (2 sin delta), |AC|^2 = l1^2 + l2^2 + 2 l1 l2 cos(delta)."""
+    from beltstudy.engine.curves import survey_radius_m
+
+    d = math.radians(0.5)
+    assert survey_radius_m(2 * 400 * math.sin(d / 2), 2 * 400 * math.sin(d / 2), d) \
+        == pytest.approx(400.0, rel=1e-12)
+    # 10 m and 10 m, grades 2 % then 8 %: delta = asin(0.08) - asin(0.02) = 0.060064 rad
+    d = math.asin(0.08) - math.asin(0.02)
+    ac = math.sqrt(2 * 100 * (1 + math.cos(d)))
+    assert survey_radius_m(10, 10, -d) == pytest.approx(ac / (2 * math.sin(d)), rel=1e-12)
+    assert survey_radius_m(10, 10, d) == pytest.approx(166.5, abs=0.1)
+    assert survey_radius_m(10, 10, 0.0) == math.inf
+
+
+def test_a_valley_given_as_survey_points_gets_the_curves_verdict():
+    """The route written two ways: a concave curve of R 230 m (curve_radius_m) and the same
+    valley as survey points every ~4 m on that radius. The curve's start-up lift-off (running
+    39 kN < lift-off 44.9 kN < start-up 48.1 kN, radius 247 m named, the case above) was
+    silent for the survey points (no curve, no check); now the survey circle (230 m) is
+    judged: the same verdict, the same lift-off tension (within the arc's cos a) and radius
+    (2 %). At R 400 m neither lifts and neither warns."""
+    params = {"f_carry": 0.02, "f_return": 0.02, "c": 1.0}
+    for radius, lifts in ((230.0, True), (400.0, False)):
+        conv = curved(radius)
+        survey = parse_conveyor(hand_conveyor_dict(profile=_as_survey_points(conv)))
+        st = solve_steady(conv, model="din", params=params, n_elements=200)
+        sv = solve_steady(survey, model="din", params=params, n_elements=200)
+        assert st.summary["curve1_liftoff_start"] is lifts
+        assert sv.te_n == pytest.approx(st.te_n, rel=2e-3)
+        assert ("grade change without a vertical curve" in sv.message) is lifts
+        assert sv.status == st.status
+        if lifts:
+            words = sv.message
+            assert "concave" in words and "at start-up the empty belt lifts off" in words
+            assert f"radius {radius:.0f} m" in words
+            lim = float(words.split("lift-off tension ")[1].split(" kN")[0])
+            assert lim == pytest.approx(radius * 20 * G * math.cos(math.asin(0.1)) / 1e3,
+                                        rel=5e-3)
+            need = float(words.split("at least ")[1].split(" m")[0])
+            assert need == pytest.approx(st.summary["curve1_radius_min_start_m"], rel=0.02)
+
+
+def test_a_sharp_grade_change_without_a_curve_by_hand():
+    """Hand conveyor as 490 m flat, 10 m at 2 %, 10 m at 8 %, 490 m at 10 % (the same 1000 m
+    and 50 m of lift): at 500 m the grade turns by 0.060064 rad between two 10 m runs, the
+    circle through the survey points is 166.5 m and the empty belt lifts where
+    T > R m'_G g cos a = 166.5 x 20 x 9.81 x cos(asin 0.08) = 32.57 kN; the running tension
+    there is about 39 kN. The 490 m runs either side make the other two changes 12.5 km
+    circles that hold. Split into collinear pieces the route reads alike."""
+    prof = [{"length_m": 490, "lift_m": 0.0}, {"length_m": 10, "lift_m": 0.2},
+            {"length_m": 10, "lift_m": 0.8}, {"length_m": 490, "lift_m": 49.0}]
+    st = solve_steady(parse_conveyor(hand_conveyor_dict(profile=prof)), model="din",
+                      n_elements=200)
+    d = math.asin(0.08) - math.asin(0.02)
+    r = math.sqrt(2 * 100 * (1 + math.cos(d))) / (2 * math.sin(d))
+    lim = r * 20 * G * math.cos(math.asin(0.08))
+    loop, T = st.loop, st.tension_n
+    at = [j for j in range(loop.n) if loop.strand[j] == 0
+          and abs(loop.x_m[j] + loop.dx_m[j] - 500.0) < 1e-6]
+    t_run = float(T[at[0]])
+    assert t_run > lim  # the hand case: ~39 kN against 32.57 kN
+    (w,) = [x for x in st.warnings if "grade change" in x]
+    assert "at 500 m (profile[1] to profile[2], concave" in w
+    assert f"radius {r:.0f} m" in w and f"lift-off tension {lim / 1e3:.1f} kN" in w
+    assert f"steady tension {t_run / 1e3:.1f} kN" in w
+    # the same route with its straights cut into survey points: one verdict
+    pieces = ([{"length_m": 49, "lift_m": 0.0}] * 10 + prof[1:3]
+              + [{"length_m": 49, "lift_m": 4.9}] * 10)
+    sv = solve_steady(parse_conveyor(hand_conveyor_dict(profile=pieces)), model="din",
+                      n_elements=200)
+    (w2,) = [x for x in sv.warnings if "grade change" in x]
+    assert f"radius {r:.0f} m" in w2 and f"lift-off tension {lim / 1e3:.1f} kN" in w2

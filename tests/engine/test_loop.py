@@ -31,3 +31,25 @@ def test_loop_where_names_the_strand_and_the_distance_from_the_tail():
     strand, x = loop.where(head_end + 250.0)
     assert strand == "return" and x == pytest.approx(1000.0 - 250.0)
     assert loop.where(float(loop.s_end_m[-1]) - 1e-6)[0] == "tail"
+
+
+def test_many_short_sections_split_without_hanging():
+    """A route given as survey points (one long section and many short ones): each short
+    section is floored up to one element, so the counts first exceed the strand's elements,
+    and the surplus must come back from sections that keep one. Before, the largest surplus
+    was looked for among every section, found at a one-element section, left unchanged, and
+    the loop never ended (a 2500 m route with 18 chords of 2-5 m hung `beltstudy static`).
+    The split is run in a thread with a generous join so a regression fails, not hangs."""
+    import threading
+
+    from beltstudy.engine.loop import _split
+
+    lengths = [964.0] + [4.0] * 9 + [800.0] + [4.0] * 9 + [700.0]
+    box = []
+    th = threading.Thread(target=lambda: box.append(_split(100, lengths)), daemon=True)
+    th.start()
+    th.join(60.0)
+    assert box, "_split did not return"
+    counts = box[0]
+    assert sum(counts) == 100 and min(counts) == 1
+    assert counts[0] > counts[-1] > counts[1]  # the long sections keep the most
