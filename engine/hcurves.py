@@ -199,18 +199,25 @@ def hcurve_checks(conv, loop, T: np.ndarray) -> tuple[dict, list[str]]:
         where = (f"horizontal curve {k} (profile section {c.section + 1}, {c.start_m:g} to "
                  f"{c.end_m:g} m from the tail, R {c.radius_m:g} m, superelevation "
                  f"{c.superelevation_deg:g} deg)")
+        # both limits are R q(+-d): proportional to the radius at this tension and tilt
         if inside:
+            r_min = c.radius_m * float(np.max(t_run / np.maximum(hi, 1e-9)))
             warnings.append(
                 f"{where}: the belt runs to the inside of the curve: tension "
                 f"{t_run[j_in] / 1e3:.1f} kN at {x_at[j_in]:.0f} m from the tail, above the "
                 f"{hi[j_in] / 1e3:.1f} kN the weight of the {_load_case(m_el[j_in], m_full)} "
-                "belt holds there; "
-                "a larger radius, more superelevation, a deeper trough or less tension there "
-                "(a take-up with less tension, the curve nearer the slack side)")
+                f"belt holds there; a radius of at least {math.ceil(r_min):.0f} m (at this "
+                "superelevation and these tensions), more superelevation, a deeper trough or "
+                "less tension there (a take-up with less tension, the curve nearer the slack "
+                "side)")
         if outside:
+            held = lo > 0.0
+            r_max = c.radius_m * float(np.min(t_run[held] / lo[held]))
             warnings.append(
                 f"{where}: the {_load_case(m_el[j_out], m_full)} belt runs out of the curve: "
-                f"tension {t_run[j_out] / 1e3:.1f} kN at {x_at[j_out]:.0f} m from the tail, below the "
-                f"{lo[j_out] / 1e3:.1f} kN it needs there; less superelevation, a larger "
-                "radius or more take-up tension")
+                f"tension {t_run[j_out] / 1e3:.1f} kN at {x_at[j_out]:.0f} m from the tail, "
+                f"below the {lo[j_out] / 1e3:.1f} kN it needs there; less superelevation, "
+                f"more take-up tension, or a tighter radius (at most {math.floor(r_max):.0f} m "
+                "at this superelevation and these tensions: the tension's pull to the inside, "
+                "T / R, grows as the radius shrinks)")
     return out, warnings

@@ -323,3 +323,32 @@ def test_at_most_max_hcurves_curves():
                for _ in range(MAX_HCURVES + 1)]
     with pytest.raises(InputError, match=f"at most {MAX_HCURVES}"):
         parse_conveyor(hand_conveyor_dict(profile=profile))
+
+
+def test_a_horizontal_curve_warning_names_the_radius_that_holds_the_belt():
+    """Both limits are R q(+-d) (Grimmer and Kessler), proportional to the radius at a given
+    tilt: the belt runs out of the curve where T < T_min = R q(-d), so a *tighter* radius
+    (more pull T / R to the inside) holds it, at most R min(T / T_min); it runs to the inside
+    where T > T_max = R q(+d), so a larger radius holds it, at least R max(T / T_max). The
+    low-tension warning used to advise a larger radius, which raises T_min. Hand conveyor
+    (70 kg/m loaded, T_min 46.96 kN at R 1500 m, tilt 8 deg; empty at R 600 m, T_max 20.68
+    kN): the named radius removes the warning on a rerun; the tilt is kept, and the tensions
+    do not depend on the radius."""
+    res = solve_steady(_curved(1500, 8), model="din", params=DIN)
+    s = res.summary
+    (out,) = [w for w in res.warnings if "runs out of the curve" in w]
+    assert "a larger radius" not in out
+    r_max = float(out.split("a tighter radius (at most ")[1].split(" m")[0])
+    # by hand: every element of the loaded curve has T_min 46.96 kN; the lowest tension rules
+    assert r_max == pytest.approx(1500 * s["hcurve1_t_low_kn"] / 46.96, abs=1.0)
+    tighter = solve_steady(_curved(r_max, 8), model="din", params=DIN)
+    assert not any("runs out of the curve" in w for w in tighter.warnings)
+    empty = solve_steady(_curved(600, 8), model="din", params=DIN, load="empty")
+    (inside,) = [w for w in empty.warnings if "runs to the inside" in w]
+    assert "a radius of at least" in inside
+    r_min = float(inside.split("a radius of at least ")[1].split(" m")[0])
+    # by hand: the empty belt's T_max 51.71 kN at R 1500 m is 20.684 kN at R 600 m, the
+    # highest tension rules
+    assert r_min == pytest.approx(1500 * empty.summary["hcurve1_t_high_kn"] / 51.71, abs=2.0)
+    larger = solve_steady(_curved(r_min, 8), model="din", params=DIN, load="empty")
+    assert not any("runs to the inside" in w for w in larger.warnings)
