@@ -18,6 +18,7 @@ from functools import cached_property
 import numpy as np
 import pandas as pd
 
+from beltstudy.engine import design
 from beltstudy.engine.catalog import resolve_belt
 from beltstudy.engine.conveyor import SAG_LIMIT_RTOL
 from beltstudy.engine.drives import COUPLING_NEXT, transient_checks
@@ -891,7 +892,7 @@ def transient_summary(sys: System, r: dict, out, segs, *, steady_summary=None, c
                                             and v_cmd >= RUNNING_FRACTION * sys.v_design)
     if (summary["stop_wave_ratio"] is not None and summary["stop_wave_ratio"] < 5.0
             and at_speed):
-        w.append(_fast_stop_words(sys, t_stop_ach, summary, steady_tmax))
+        w.append(_fast_stop_words(sys, t_stop_ach, summary, steady_tmax, conveyor))
     if r["endstop"] > 0:
         w.append(endstop_words(sys, r))
     ran_away = int(r["status"]) == C.RUNAWAY  # the run ended early: said above
@@ -1066,9 +1067,40 @@ def _coasts_within(sys: System, need_s: float) -> bool:
     return _coast_s(sys) < need_s
 
 
-def _fast_stop_words(sys: System, t_stop: float, summary: dict, steady_tmax: float) -> str:
+def _given_brake_words(sys: System, need_s: float, t_stop: float) -> str:
+    """What brake force would make a brake stop last ``need_s`` [s] (5 wave loop times): the
+    rigid-body total force with the brakes' delay and ramp
+    (:func:`~beltstudy.engine.design.brake_force_auto`, the stop at zero speed, moved out by
+    the rest criterion's last stretch, ``REST_FRACTION v / a`` at the deceleration the force
+    gives) against the brakes' total now, as ``a smaller given force_kn: at most ...``."""
+    brakes = getattr(sys.model, "brakes", None)
+    if brakes is None or not len(brakes.force):
+        return "a smaller given force_kn"
+    now_n = float(np.sum(brakes.force))
+    m, v, te = float(sys.model.control.m_tot), float(sys.v_design), float(sys.te_n)
+    delay = float(np.max(brakes.delay)) if len(brakes.delay) else 0.0
+    ramp = float(np.max(brakes.ramp)) if len(brakes.ramp) else 0.0
+    force = design.brake_force_auto(m, v, te, need_s, delay, ramp)
+    for _ in range(3):
+        if not (math.isfinite(force) and te + force > 0.0):
+            break
+        force = design.brake_force_auto(m, v, te, need_s + REST_FRACTION * v * m / (te + force),
+                                        delay, ramp)
+    if not math.isfinite(force) or force >= now_n:
+        return "a smaller given force_kn"
+    return (f"a smaller given force_kn: at most about {force / 1e3:.3g} kN in all, now "
+            f"{now_n / 1e3:.4g} kN (rigid body, {m / 1e3:.4g} t from {v:g} m/s against Te "
+            f"{te / 1e3:.4g} kN with the brakes' {delay:g} s delay and {ramp:g} s ramp, a stop "
+            f"of {need_s:.3g} s against {t_stop:.3g} s now; a holdback or a holding brake "
+            "set at rest holds the belt once stopped)")
+
+
+def _fast_stop_words(sys: System, t_stop: float, summary: dict, steady_tmax: float,
+                     conveyor=None) -> str:
     """The warning of a stop faster than 5 wave loop times (Harrison after Funke 1973): the
-    stop's tensions against the running ones, and what would lengthen it."""
+    stop's tensions against the running ones, and what would lengthen it: for a brake stop
+    the given brake force that would (:func:`_given_brake_words`), and an auto brake's
+    stop time only where a brake is auto (``stop.time_s`` sizes no given brake)."""
     cyc = sys.model.cycle
     t_min_run = float(np.min(sys.steady_tension_n)) / 1e3
     hi, lo = summary.get("t_max_stop_kn"), summary.get("t_min_stop_kn")
@@ -1086,11 +1118,17 @@ def _fast_stop_words(sys: System, t_stop: float, summary: dict, steady_tmax: flo
         fix = (f"a controlled stop of stop.time_s {_up_s(asked)} s or more would be slower "
                f"than that{lag}")
     elif cyc.stop_mode == C.BRAKE and not _coasts_within(sys, need):
-        # an auto brake's stop scales with its asked time as a controlled one's does
-        asked = need * cyc.t_stop / t_stop if cyc.t_stop > 0.0 else need
-        fix = (f"less brake force would be slower than that: a smaller given force_kn, or for "
-               f"an auto brake sized by the stop time a stop.time_s of {_up_s(asked)} s or "
-               "more (an auto brake set by holding keeps its force whatever the stop time)")
+        auto = conveyor is None or any(b.force_kn == "auto" for b in conveyor.brakes)
+        given = _given_brake_words(sys, need, t_stop)
+        if auto:
+            # an auto brake's stop scales with its asked time as a controlled one's does
+            asked = need * cyc.t_stop / t_stop if cyc.t_stop > 0.0 else need
+            fix = (f"less brake force would be slower than that: {given}, or for an auto "
+                   f"brake sized by the stop time a stop.time_s of {_up_s(asked)} s or more "
+                   "(an auto brake set by holding keeps its force whatever the stop time)")
+        else:
+            # every brake is given: stop.time_s sizes nothing, the force is the lever
+            fix = f"less brake force would be slower than that: {given}"
     else:
         # a coast stop, or a brake stop of a belt that coasts to rest within 5 wave loop
         # times on its own resistances (no brake setting makes it slower): the drives must

@@ -461,6 +461,47 @@ def test_a_fast_stop_says_its_tensions_and_what_would_slow_it():
     assert "less brake force" not in msg and "stop.time_s at least 8.5 s" in msg
 
 
+def test_a_fast_stop_on_given_brakes_names_the_force_not_a_stop_time():
+    """A brake stop faster than 5 wave loop times on brakes of a given force: stop.time_s
+    sizes no given brake, yet the warning offered 'a stop.time_s of 43 s or more' (5 x
+    0.41 s x the default 30 s / 1.46 s achieved) for a 90 m, 16 deg incline whose 20 kN head
+    brake stopped it in 1.46 s, where 0.45 kN makes the stop 5.0 loops. Now it names the
+    given force that makes the rigid-body stop last 5 loops. By hand: 500 t from 4 m/s
+    against Te 100 kN, brakes after 0.5 s over a 1 s ramp; 5 x 1.493 = 7.465 s to 1 % of
+    design speed, which falls 0.01 x 4 m/s x 500 t / (Te + F) before the stop at zero;
+    v1 = 4 - 100e3 x 0.5 / 500e3 = 3.9 m/s, M v1 = Te t_b + F (t_b - 0.5)."""
+    from types import SimpleNamespace
+
+    from beltstudy.engine.dynamics import codes as C
+    from beltstudy.engine.dynamics.simulate import _fast_stop_words
+
+    m, v, te, delay, ramp, need = 500e3, 4.0, 100e3, 0.5, 1.0, 5 * 1.493
+    f = 0.0
+    for _ in range(20):  # the stop at zero speed lies the rest criterion's stretch past need
+        t_b = need + 0.01 * v * m / (te + f) - delay
+        f = (m * (v - te * delay / m) - te * t_b) / (t_b - ramp / 2)
+    assert f == pytest.approx(190.8e3, rel=2e-3)
+    brakes = SimpleNamespace(force=np.array([250e3, 150e3]), delay=np.array([delay, 0.2]),
+                             ramp=np.array([ramp, 0.5]))
+    sysm = SimpleNamespace(wave_loop_time_s=1.493, steady_tension_n=np.array([20e3, 261e3]),
+                           te_n=te, v_design=v,
+                           model=SimpleNamespace(cycle=SimpleNamespace(stop_mode=C.BRAKE,
+                                                                       t_stop=30.0),
+                                                 control=SimpleNamespace(m_tot=m),
+                                                 brakes=brakes))
+    given = SimpleNamespace(brakes=[SimpleNamespace(force_kn=250.0),
+                                    SimpleNamespace(force_kn=150.0)])
+    msg = _fast_stop_words(sysm, 2.5, {}, 261e3, given)
+    assert f"at most about {f / 1e3:.3g} kN in all, now 400 kN" in msg, msg
+    assert "0.5 s delay and 1 s ramp" in msg and "a stop of 7.47 s against 2.5 s now" in msg
+    assert "stop.time_s" not in msg
+    # an auto brake beside a given one: its stop time is still offered (5 x 1.493 x 30 / 2.5)
+    mixed = SimpleNamespace(brakes=[SimpleNamespace(force_kn="auto"),
+                                    SimpleNamespace(force_kn=150.0)])
+    msg = _fast_stop_words(sysm, 2.5, {}, 261e3, mixed)
+    assert "a stop.time_s of 90 s or more" in msg and "at most about 191 kN" in msg, msg
+
+
 def test_the_stop_ramp_rests_where_its_s_curve_says():
     """v / v_s = 1 - x + sin(2 pi x) / (2 pi) near the ramp's end (y = 1 - x small) is
     (2 pi)^2 y^3 / 6: it falls to 1 % at y = (0.06 / (4 pi^2))^(1/3) = 0.115, x = 0.885 (the
