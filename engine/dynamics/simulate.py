@@ -402,6 +402,17 @@ def _or(words: list[str]) -> str:
     return words[0] if len(words) == 1 else ", ".join(words[:-1]) + " or " + words[-1]
 
 
+def heavier_takeup(sys: System | None, why: str = "") -> str:
+    """The take-up lever of a message: ``a heavier take-up`` for a gravity take-up, ``a higher
+    take-up pretension (takeup.pretension_kn)`` for a fixed (screw or winch) one, which has no
+    counterweight to make heavier; ``why`` is added in the brackets (``more slack-side
+    tension``)."""
+    tu = getattr(getattr(sys, "model", None), "takeup", None)
+    if tu is not None and not tu.gravity:
+        return "a higher take-up pretension (takeup.pretension_kn" + (f", {why})" if why else ")")
+    return "a heavier take-up" + (f" ({why})" if why else "")
+
+
 def slip_words(first: str, last: str, sys: System | None = None) -> tuple[str, str]:
     """How a slip message names a slip from phase ``first`` to phase ``last`` (``start``,
     ``running``, ``stop``), and what would avoid it: a heavier take-up always, a gentler start
@@ -409,7 +420,7 @@ def slip_words(first: str, last: str, sys: System | None = None) -> tuple[str, s
     without it), a softer stop when it reached the stop."""
     when = _PHASE_WORDS[first] if first == last else \
         f"from {_PHASE_NAMES[first]} into {_PHASE_NAMES[last]}"
-    fixes = ["a heavier take-up (more slack-side tension)"]
+    fixes = [heavier_takeup(sys, "more slack-side tension")]
     if first == "start":
         fixes += (start_levers(sys) if sys is not None else ["a longer start (start.time_s)"])
     if last == "stop":
@@ -992,9 +1003,10 @@ def _sag_words(sys: System, strand: str, sag_pct: float, limit_pct: float, j: in
     t_at = float(env_t[k])
     phase = _run_phase(sys, t_at, sys.stop_command_s)
     need_kn = t_low_n * sag_pct / limit_pct / 1e3
-    fixes = {"start": _or(["a heavier take-up"] + start_levers(sys)),
-             "running": "a heavier take-up (more tension at the take-up) or closer idlers",
-             "stop": _or(["a heavier take-up", *stop_levers(sys)]
+    more = heavier_takeup(sys)
+    fixes = {"start": _or([more] + start_levers(sys)),
+             "running": f"{heavier_takeup(sys, 'more tension at the take-up')} or closer idlers",
+             "stop": _or([more, *stop_levers(sys)]
                          + (["a brake nearer the low-tension side"]
                             if sys.model.cycle.stop_mode == C.BRAKE else []))}[phase]
     return (f"transient sag on the {strand} strand {sag_pct:.2f} % exceeds the limit "
@@ -1169,8 +1181,8 @@ def not_stopped_words(sys: System, v_end: float, sliding: bool = False) -> str:
                "with force_kn: auto sizes one for stop.mode brake and its stop.time_s)")
     elif sliding:
         fix = (f"its brakes ({total_kn:.4g} kN in all) are beyond the grip of their pulley, "
-               "which slid in the stop: more slack-side tension there (a heavier take-up) or "
-               "part of the brake force on another pulley would let them stop it")
+               f"which slid in the stop: more slack-side tension there ({heavier_takeup(sys)}) "
+               "or part of the brake force on another pulley would let them stop it")
     elif cyc.stop_mode != C.BRAKE:
         fix = (f"its brakes ({total_kn:.4g} kN) act only once it rests: a brake stop "
                "(stop.mode: brake) would stop it")

@@ -179,6 +179,37 @@ def test_the_stop_levers_offered_are_those_of_the_run_s_stop_mode():
     assert stop_levers(None) == ["a softer stop (stop time, brake force)"]
 
 
+def test_a_screw_take_up_is_offered_more_pretension_not_a_heavier_take_up():
+    """An 800 m, 3 % incline on two head drives with a fixed (screw) take-up at 25.6 kN sagged
+    1.75 % against 1.5 % in a coast stop, and the warning said 'a heavier take-up' would avoid
+    it: a fixed take-up has no counterweight; its lever is takeup.pretension_kn. The gravity
+    take-up keeps its words."""
+    from types import SimpleNamespace
+
+    from beltstudy.engine.dynamics import codes as C
+    from beltstudy.engine.dynamics.simulate import _sag_words, heavier_takeup, slip_words
+
+    screw = _four_spring_system(C.COAST)
+    screw.model.takeup = SimpleNamespace(gravity=False)
+    whole = {"env_min": np.array([9e3, 8.92e3, 9e3, 9e3]),
+             "env_min_t": np.array([95.0, 95.5, 95.0, 95.0])}
+    sag = _sag_words(screw, "carry", 2.4, 2.0, 2, 8.92e3, whole)
+    assert "a higher take-up pretension (takeup.pretension_kn) or a controlled stop" in sag
+    assert "heavier" not in sag
+    _, fix = slip_words("start", "start", screw)
+    assert fix.startswith("a higher take-up pretension (takeup.pretension_kn, more slack-side "
+                          "tension)"), fix
+    running = _sag_words(screw, "carry", 2.4, 2.0, 2, 8.92e3,
+                         {"env_min": whole["env_min"], "env_min_t": np.full(4, 80.0)})
+    assert ("a higher take-up pretension (takeup.pretension_kn, more tension at the take-up) "
+            "or closer idlers") in running
+    gravity = _four_spring_system(C.COAST)
+    gravity.model.takeup = SimpleNamespace(gravity=True)
+    assert heavier_takeup(gravity, "more slack-side tension") == \
+        "a heavier take-up (more slack-side tension)"
+    assert heavier_takeup(None) == "a heavier take-up"
+
+
 def test_a_coast_stop_of_dol_drives_is_not_offered_a_controlled_stop_it_cannot_run():
     """The 1.5 km 10 % incline (tests/engine/conftest.py steep_incline) without brakes, its
     head drive dol with a fluid coupling, an 8 t tail take-up, coasting to rest: the carry
