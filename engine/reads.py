@@ -2,7 +2,8 @@
 
 A run does not read every scenario field. A steady-only run (dynamics off) reads
 :data:`STEADY_FIELDS` (``load``, ``temperature_c``, ``elements``); a run that coasts to a stop
-does not read ``stop.time_s`` (the belt stops on its own). Two runs whose scenarios differ only
+does not read ``stop.time_s`` (the belt stops on its own), nor does a brake stop whose brakes
+all have their force given (the stop time sizes nothing; the brakes stop the belt). Two runs whose scenarios differ only
 in fields neither reads give the same result, so a caller that keys runs by their inputs (the
 study service's run ids) keys them on :func:`scenario_as_read` and merges such runs.
 
@@ -49,7 +50,8 @@ def _defaults() -> dict:
     return Scenario().model_dump(mode="json", by_alias=True)
 
 
-def unread_fields(scenario: Mapping, *, dynamics: bool) -> tuple[str, ...]:
+def unread_fields(scenario: Mapping, *, dynamics: bool,
+                  brakes_given: bool = False) -> tuple[str, ...]:
     """The scenario fields a run does not read, as dotted names.
 
     Parameters
@@ -58,28 +60,34 @@ def unread_fields(scenario: Mapping, *, dynamics: bool) -> tuple[str, ...]:
         The scenario as a mapping (``Scenario.model_dump(mode="json", by_alias=True)``).
     dynamics : bool
         Whether the run simulates the transient (False: steady state only).
+    brakes_given : bool
+        Every brake of the run's conveyor has its ``force_kn`` given (none ``auto``): a brake
+        stop then sizes nothing by its stop time, and the brakes stop the belt as they will.
 
     Returns
     -------
     tuple of str
         Every field but :data:`STEADY_FIELDS` for a steady-only run; ``stop.time_s`` for a
-        run that coasts to a stop; nothing otherwise.
+        run that coasts to a stop, or that stops on brakes whose forces are all given;
+        nothing otherwise.
     """
     if not dynamics:
         return tuple(k for k in _defaults() if k not in STEADY_FIELDS)
-    if (scenario.get("stop") or {}).get("mode") == "coast":
+    mode = (scenario.get("stop") or {}).get("mode")
+    if mode == "coast" or (mode == "brake" and brakes_given):
         return ("stop.time_s",)
     return ()
 
 
-def scenario_as_read(scenario: dict, *, dynamics: bool) -> dict:
+def scenario_as_read(scenario: dict, *, dynamics: bool, brakes_given: bool = False) -> dict:
     """The scenario as a run reads it: every field it does not read set to its default.
 
-    Two scenarios that give the same answer here give the same run. ``scenario`` is a mapping
-    as :func:`unread_fields` takes it; it is returned itself when every field the run does not
-    read already has its default, and never changed in place.
+    Two scenarios that give the same answer here give the same run. ``scenario`` and
+    ``brakes_given`` are as :func:`unread_fields` takes them; the scenario is returned itself
+    when every field the run does not read already has its default, and never changed in
+    place.
     """
-    unread = unread_fields(scenario, dynamics=dynamics)
+    unread = unread_fields(scenario, dynamics=dynamics, brakes_given=brakes_given)
     if not unread:
         return scenario
     defaults = _defaults()

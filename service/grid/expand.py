@@ -509,12 +509,15 @@ def _expand(
         sk = tuple(p[i] for i in i_scen)
         model = model_of(p)
         overrides, params_json = params_of(p)
-        if sk not in run_scenarios:
+        # a brake stop on brakes whose forces are all given does not read its stop time
+        given = all(b.force_kn != "auto" for b in conv_models[ck].brakes)
+        if (sk, given) not in run_scenarios:
             # what the engine reads of the scenario: points that differ only in fields the
             # run does not read are one run
-            scenario = scenario_as_read(scenarios[sk], dynamics=study.dynamics)
-            run_scenarios[sk] = (scenario, canonical_json(_scenario_key(scenario)))
-        scenario, scenario_json = run_scenarios[sk]
+            scenario = scenario_as_read(scenarios[sk], dynamics=study.dynamics,
+                                        brakes_given=given)
+            run_scenarios[sk, given] = (scenario, canonical_json(_scenario_key(scenario)))
+        scenario, scenario_json = run_scenarios[sk, given]
         # the sizes a run gets depend on its conveyor design and, for brakes, its stop
         ckey = (ck, brake_sizing_stop_time(scenario, dynamics=study.dynamics))
         if ckey not in run_conveyors:

@@ -43,6 +43,19 @@ def test_a_coast_stop_does_not_read_its_stop_time():
     assert scn == before  # never changed in place
 
 
+def test_a_brake_stop_reads_its_stop_time_only_to_size_an_auto_brake():
+    """The stop time of a brake stop sizes auto brakes and nothing else: with every brake's
+    force given it is unread (a 600 m conveyor's brake stop at 10 and 20 s gave identical
+    summaries); with an auto brake it is read."""
+    scn = _scenario(stop={"mode": "brake", "time_s": 12})
+    assert unread_fields(scn, dynamics=True) == ()
+    assert unread_fields(scn, dynamics=True, brakes_given=True) == ("stop.time_s",)
+    assert scenario_as_read(scn, dynamics=True, brakes_given=True)["stop"] == {
+        "mode": "brake", "time_s": DEFAULT["stop"]["time_s"]}
+    ctl = _scenario(stop={"mode": "controlled", "time_s": 12})
+    assert unread_fields(ctl, dynamics=True, brakes_given=True) == ()
+
+
 def test_a_run_that_reads_everything_gets_its_scenario_back():
     for stop in ({"mode": "brake", "time_s": 12}, {"mode": "controlled", "time_s": 40},
                  {"mode": "coast"}):

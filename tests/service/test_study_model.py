@@ -446,6 +446,26 @@ def test_a_coast_stop_crossed_with_brake_forces_is_one_run_per_coast_stop(make_s
     assert resolve_study(make_study(conveyor=held, grid=grid)).total == 2
 
 
+def test_a_brake_stop_on_given_brakes_crossed_with_stop_times_is_one_run(make_study,
+                                                                          make_conveyor):
+    """SPEC 6.3: grid points whose resolved runs are identical are one run. A brake stop whose
+    brakes all have their force given reads no stop time (the time sizes only auto brakes),
+    so stop_time_s [10, 20] made two runs with identical results; now one, its stop time
+    column null. With an auto brake each stop time sizes its own force: a run each."""
+    conveyor = make_conveyor(brakes=[{"position": "head", "force_kn": 10.0}],
+                             takeup={"mass_kg": 1500})
+    conveyor["drives"] = [{**conveyor["drives"][0], "rated_power_kw": 30}]
+    scenario = {**make_study()["scenario"], "stop": {"mode": "brake", "time_s": 5.0}}
+    grid = {"stop_time_s": [10.0, 20.0]}
+    given = resolve_study(make_study(conveyor=conveyor, scenario=scenario, grid=grid,
+                                     dynamics=True))
+    assert (given.grid_points, given.total) == (2, 1)
+    assert given.runs[0].axes["stop_time_target_s"] is None and given.runs[0].points == 2
+    auto = dict(conveyor, brakes=[{"position": "head", "force_kn": "auto"}])
+    assert resolve_study(make_study(conveyor=auto, scenario=scenario, grid=grid,
+                                    dynamics=True)).total == 2
+
+
 def test_an_axis_in_zip_and_grid_names_both_places(make_study):
     """The same field in ``grid`` and in a ``zip`` group: the refusal says where each is."""
     body = make_study(grid={"load": ["full"]},
