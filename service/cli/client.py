@@ -3,16 +3,28 @@
 from __future__ import annotations
 
 from typing import Any
+from urllib.parse import quote
 
 import httpx
 
 from beltstudy.service.errors import Invalid, ServiceError, Unavailable
 
-__all__ = ["ServiceClient"]
+__all__ = ["ServiceClient", "study_path"]
 
 #: The content type of each runs download the service answers with.
 RUNS_TYPES = {"json": "application/json", "csv": "text/csv",
               "parquet": "application/vnd.apache.parquet"}
+
+
+def study_path(study_id: str, *rest: str) -> str:
+    """``/studies/<id>/<rest...>`` with the id as one path segment: an id as typed
+    (``../health``, ``..``, ``x?y=1``) is percent-encoded, so it reaches the study routes and
+    is answered as an unknown study, never as another route (``GET /health`` read as a study
+    status was a KeyError traceback)."""
+    seg = quote(study_id, safe="")
+    if seg in (".", ".."):  # a dot segment an HTTP client would resolve away
+        seg = seg.replace(".", "%2E")
+    return "/".join(["/studies", seg, *rest])
 
 
 class ServiceClient:
@@ -95,14 +107,14 @@ class ServiceClient:
         return response.json(), response.status_code == 202
 
     def status(self, study_id: str) -> dict:
-        return self._request("GET", f"/studies/{study_id}").json()
+        return self._request("GET", study_path(study_id)).json()
 
     def list(self) -> list[dict]:
         return self._request("GET", "/studies").json()["studies"]
 
     def runs(self, study_id: str, fmt: str = "json", **params: Any) -> bytes:
         response = self._request(
-            "GET", f"/studies/{study_id}/runs", expect=RUNS_TYPES.get(fmt, "application/json"),
+            "GET", study_path(study_id, "runs"), expect=RUNS_TYPES.get(fmt, "application/json"),
             params={"format": fmt, **params}
         )
         return response.content
@@ -111,15 +123,15 @@ class ServiceClient:
         params = {"baseline": baseline, "candidate": candidate}
         if metrics:  # none: the service's default metrics (an empty value is refused)
             params["metrics"] = ",".join(metrics)
-        return self._request("GET", f"/studies/{study_id}/compare", params=params).json()
+        return self._request("GET", study_path(study_id, "compare"), params=params).json()
 
     def uncertainty(self, study_id: str) -> dict:
         """A sampled study's distributions, exceedance probabilities and ranking."""
-        return self._request("GET", f"/studies/{study_id}/uncertainty").json()
+        return self._request("GET", study_path(study_id, "uncertainty")).json()
 
     def report(self, study_id: str) -> str:
         """The study's design report (self-contained HTML)."""
-        return self._request("GET", f"/studies/{study_id}/report", expect="text/html").text
+        return self._request("GET", study_path(study_id, "report"), expect="text/html").text
 
     def delete(self, study_id: str) -> dict:
-        return self._request("DELETE", f"/studies/{study_id}").json()
+        return self._request("DELETE", study_path(study_id)).json()

@@ -301,3 +301,35 @@ def test_results_and_report_of_an_unfinished_study_say_so(env, capsys, finished_
     finished = finished_study(env, make_study(name="other"))
     assert main(["results", finished, "-o", str(tmp_path / "all.csv")]) == 0
     assert capsys.readouterr().err == ""
+
+
+@pytest.mark.parametrize("typed", ["../health", "..", "../catalog/belts", "abc?x=1", "abc#f"])
+def test_a_study_id_as_typed_reaches_only_the_study_routes(typed):
+    """`beltstudy status ../health` sent GET /health (the id joined into the path unescaped and
+    the dot segment resolved away) and printed a KeyError traceback reading the health answer
+    as a study; `status abc?x=1` sent a query. The id is one percent-encoded path segment: the
+    service answers it as an unknown study."""
+    from urllib.parse import quote
+
+    import httpx
+
+    from beltstudy.service.cli.client import ServiceClient
+    from beltstudy.service.errors import ServiceError
+
+    seen = []
+
+    def answer(request: httpx.Request) -> httpx.Response:
+        seen.append(request.url.raw_path.decode().split("?")[0])  # the path, not the query
+        if request.url.path == "/health":
+            return httpx.Response(200, json={"status": "ok"})
+        return httpx.Response(404, json={"error": "not_found", "message": "study not found"})
+
+    client = ServiceClient("http://127.0.0.1:9")
+    client._http = httpx.Client(base_url=client.url, transport=httpx.MockTransport(answer))
+    for call in (client.status, client.uncertainty, client.report, client.delete,
+                 lambda i: client.compare(i, "cema", "din", []), client.runs):
+        with pytest.raises(ServiceError, match=r"study not found \(HTTP 404\)"):
+            call(typed)
+    assert len(seen) == 6 and all(p.startswith("/studies/") for p in seen), seen
+    assert {p.split("/")[2] for p in seen} == {
+        quote(typed, safe="") if typed != ".." else "%2E%2E"}
