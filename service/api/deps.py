@@ -87,6 +87,24 @@ def _check_media_type(content_type: str, what: str) -> None:
         )
 
 
+def _check_encoding(content_type: str, content_encoding: str, what: str) -> None:
+    """The body is read as it arrives, as UTF-8 text: a compressed body (``Content-Encoding:
+    gzip``) or another declared charset (``charset=utf-16``) is a 415 saying so, where it
+    was a 422 'body: not UTF-8 text' that named neither header."""
+    coding = content_encoding.strip().lower()
+    if coding and coding != "identity":
+        raise UnsupportedMedia(
+            f"Content-Encoding: '{coding}' is not read here; send {what} uncompressed "
+            "(no Content-Encoding header)")
+    for param in content_type.split(";")[1:]:
+        key, _, value = param.partition("=")
+        charset = value.strip().strip('"').lower()
+        if key.strip().lower() == "charset" and charset not in ("utf-8", "utf8", "us-ascii"):
+            raise UnsupportedMedia(
+                f"Content-Type: charset '{charset}' is not read here; send {what} as UTF-8 "
+                "(charset=utf-8, or no charset)")
+
+
 async def read_data(request: Request, limit: int, what: str) -> Any:
     """The request's body as data, one way for every route that takes a document (``what``:
     ``a study``, ``a calibration``): JSON or YAML by ``Content-Type`` (415 for any other), at
@@ -94,6 +112,7 @@ async def read_data(request: Request, limit: int, what: str) -> Any:
     in a worker thread: the event loop, and so /health, keeps answering meanwhile."""
     content_type = request.headers.get("content-type", "")
     _check_media_type(content_type, what)
+    _check_encoding(content_type, request.headers.get("content-encoding", ""), what)
     body = await _read_body(request, limit)
     return await run_in_threadpool(parse_body, body, content_type, what)
 

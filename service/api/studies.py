@@ -78,7 +78,8 @@ def _with_urls(status: dict) -> dict:
     responses={
         200: {"model": StudyStatus, "description": "the same study was already submitted"},
         413: _error("body or grid over the limit"),
-        415: _error("Content-Type other than JSON or YAML"),
+        415: _error("Content-Type other than JSON or YAML, a charset other than UTF-8, or a "
+                    "compressed body (Content-Encoding)"),
         503: _error("busy expanding other studies (Retry-After says when to send it again)"),
     },
     openapi_extra={

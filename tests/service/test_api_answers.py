@@ -104,6 +104,31 @@ def test_a_body_in_another_media_type_is_415(client, data_dir, make_study, media
     assert _written(data_dir) == []
 
 
+@pytest.mark.parametrize("route", ["/studies", "/calibrations"])
+def test_a_compressed_or_non_utf8_body_is_415_naming_the_header(client, data_dir, make_study,
+                                                                route):
+    """A gzip body (Content-Encoding: gzip) and a UTF-16 one declared as such were a 422
+    'body: not UTF-8 text' naming neither header; each is a 415 naming it and the fix."""
+    import gzip
+
+    text = json.dumps(make_study())
+    r = client.post(route, content=gzip.compress(text.encode()),
+                    headers={"content-type": "application/json", "content-encoding": "gzip"})
+    assert r.status_code == 415, r.text
+    assert r.json()["message"].startswith("Content-Encoding: 'gzip' is not read here; send")
+    assert "uncompressed" in r.json()["message"]
+    r = client.post(route, content=text.encode("utf-16"),
+                    headers={"content-type": "application/json; charset=UTF-16"})
+    assert r.status_code == 415, r.text
+    assert r.json()["message"].startswith("Content-Type: charset 'utf-16' is not read here")
+    assert _written(data_dir) == []
+    for fine in ("application/json; charset=utf-8", 'application/json; charset="UTF-8"'):
+        # an invalid body: the answer is its 422, past the door
+        r = client.post(route, content='{"name": "x"}', headers={"content-type": fine,
+                                                                 "content-encoding": "identity"})
+        assert r.status_code == 422, r.text
+
+
 @pytest.mark.parametrize("media", ["application/json; charset=utf-8", "application/yaml",
                                    "text/yaml", "application/x-yaml"])
 def test_json_and_yaml_media_types_pass_the_door(client, media):
