@@ -545,8 +545,11 @@ def _slip_words(res: SteadyResult, drives, slip_margins, start_margins, breakawa
             fix = ""
             if shortfall_n > 0 and tu.type == "gravity":
                 need = (res.takeup_tension_n + shortfall_n) * 2 / G
+                # said as the mass itself: the run's mass may already be an auto one held
+                # by a study's design basis, where "use mass_kg: auto" would be no fix
                 fix = (f"; take-up mass {res.takeup_mass_kg:.0f} kg is below the "
-                       f"{need:.0f} kg needed (use mass_kg: auto)")
+                       f"{need:.0f} kg needed: a takeup.mass_kg of {math.ceil(need):.0f} kg "
+                       "or more would avoid it")
             elif shortfall_n > 0:
                 fix = (f"; pretension {res.takeup_tension_n / 1e3:.1f} kN is below the "
                        f"{(res.takeup_tension_n + shortfall_n) / 1e3:.1f} kN needed")

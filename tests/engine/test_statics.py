@@ -476,6 +476,10 @@ def test_a_regenerating_decline_sizes_its_take_up_for_breakaway():
     assert res.summary["slip_margin_start"] < 1.0
     assert "slip at drive 1 (head) at breakaway" in res.message
     assert f"{hand:.0f} kg needed" in res.message
+    # the fix is the mass itself: a study's design basis may hold an auto mass at a size
+    # another case outgrows, where "use mass_kg: auto" would be no fix
+    assert f"takeup.mass_kg of {math.ceil(hand):.0f} kg or more would avoid it" in res.message
+    assert "use mass_kg: auto" not in res.message
 
 
 def test_an_auto_take_up_beyond_any_counterweight_names_the_drive_that_needs_it():
