@@ -16,6 +16,7 @@ from __future__ import annotations
 
 import functools
 import json
+import math
 from pathlib import Path
 from typing import Any
 
@@ -151,8 +152,13 @@ def _axis_values(name: str, spec: list | RangeSpec, max_runs: int, where: str) -
         except ValueError as exc:
             raise Invalid(f"{label}: {exc}") from None
         if n > max_runs:
+            # a count past 10^15 (a step near float's smallest, or a range past float's
+            # largest, counted as 2^63) said as its order, not as a 19- to 300-digit number
+            count = (str(n) if n < HUGE_COUNT else
+                     f"more than 10^{round(math.log10(HUGE_COUNT))} (from {spec.start:g} to "
+                     f"{spec.stop:g} in steps of {spec.step:g})")
             raise TooLarge(
-                f"{label}: the range has {n} values; the study limit is {max_runs} runs"
+                f"{label}: the range has {count} values; the study limit is {max_runs} runs"
             )
         values = spec.values()
     else:
@@ -193,6 +199,8 @@ def _positive_zero(value: Any) -> Any:
 
 
 #: Load cases by name that are one fraction of the design load everywhere.
+#: A range counted at or past this many values is said by its order (:func:`_axis_values`).
+HUGE_COUNT = 10**15
 LOAD_NAMES = {"full": 1.0, "empty": 0.0}
 
 

@@ -82,7 +82,8 @@ BODIES = [
         ),
         "json",
         413,
-        r"^grid\.temperature_c: the range has \d+ values; the study limit is 20000 runs",
+        r"^grid\.temperature_c: the range has more than 10\^15 \(from -1e\+308 to 1e\+308 in "
+        r"steps of 1e-300\) values; the study limit is 20000 runs",
     ),
     (
         "an integer of 5000 digits",

@@ -341,6 +341,12 @@ def test_oversize_grids_are_refused_with_the_count(make_study):
     huge = {"temperature_c": {"start": 0, "stop": 1, "step": 1e-12}}
     with pytest.raises(TooLarge, match=r"the range has \d+ values"):
         resolve_study(make_study(grid=huge))
+    # a count past 10^15 is said by its order, not as 2^63 or a 300-digit number
+    tiny = {"temperature_c": {"start": 0, "stop": 1, "step": 1e-320}}
+    with pytest.raises(TooLarge, match=r"the range has more than 10\^15 \(from 0 to 1 in "
+                       r"steps of 9\.99989e-321\) values") as err:
+        resolve_study(make_study(grid=tiny))
+    assert "9223372036854775808" not in str(err.value)
 
 
 @pytest.mark.parametrize("name", ["../evil", "a/b", "..", "x\\y", "", " lead", "a" * 121])
