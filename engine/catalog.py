@@ -26,6 +26,7 @@ __all__ = [
     "compounds",
     "resolve_belt",
     "idler_set_values",
+    "idler_note",
     "check_conveyor",
     "COVER_MASS_KG_M2_PER_MM",
     "AUTO",
@@ -212,27 +213,116 @@ def idlers() -> list[IdlerData]:
     ]
 
 
+#: Relative tolerance within which a roll diameter is a catalogue row's [-] (a file's 0.1524 m
+#: for 6 in is the 0.152 m row).
+DIAMETER_RTOL = 0.005
+
+
+def _row_at(rows: list[IdlerData], roll_diameter_m: float) -> IdlerData | None:
+    return next((r for r in rows if abs(r.roll_diameter_m - roll_diameter_m)
+                 <= DIAMETER_RTOL * r.roll_diameter_m), None)
+
+
+def _check_class(cema_class: str, field: str) -> None:
+    classes = sorted({r.cema_class for r in idlers()})
+    if cema_class not in classes:
+        raise InputError(_unknown("CEMA idler class", cema_class, classes, field + "cema_class"))
+
+
 def idler(roll_diameter_m: float, cema_class: str | None = None, field: str = "") -> IdlerData:
-    """The catalogue idler nearest in roll diameter (and of the class, when given)."""
+    """The catalogue idler of the roll diameter (and of the class, when given; without one,
+    the first class of the file, the lightest, that holds the diameter).
+
+    A diameter between two rows of a class is interpolated between them, on a physical basis
+    for each column: the rotating mass is mostly the roll's steel shell, pi D t L rho, linear
+    in D (at the wall interpolated between the rows), so the mass is linear in D; the seal
+    drag A_i is the seals' friction torque over the roll's radius (the CEMA A_i of the rows,
+    A_i D = 1.02 to 1.04 N m for 4, 5 and 6 in class C rolls), so A_i D is linear in D. The
+    row's ``source`` says so; :func:`idler_note` words it for the run's message. A diameter
+    beyond the class's rows (without a class, beyond the catalogue's) is the nearest row's
+    roll scaled on the same basis: mass times D / D_row (its wall), A_i times D_row / D (its
+    seals' torque), said the same way.
+    """
     rows = idlers()
     if cema_class is not None:
-        classes = sorted({r.cema_class for r in rows})
-        if cema_class not in classes:
-            raise InputError(_unknown("CEMA idler class", cema_class, classes, field + "cema_class"))
-        rows = [r for r in rows if r.cema_class == cema_class]
-    best = min(rows, key=lambda r: abs(r.roll_diameter_m - roll_diameter_m))
-    return best
+        _check_class(cema_class, field)
+        groups = [[r for r in rows if r.cema_class == cema_class]]
+    else:
+        order = list(dict.fromkeys(r.cema_class for r in rows))
+        groups = [[r for r in rows if r.cema_class == c] for c in order]
+    for group in groups:  # the exact row first, in file order
+        row = _row_at(group, roll_diameter_m)
+        if row is not None:
+            return row
+    for group in groups:
+        below = [r for r in group if r.roll_diameter_m < roll_diameter_m]
+        above = [r for r in group if r.roll_diameter_m > roll_diameter_m]
+        if below and above:
+            lo = max(below, key=lambda r: r.roll_diameter_m)
+            hi = min(above, key=lambda r: r.roll_diameter_m)
+            w = (roll_diameter_m - lo.roll_diameter_m) / (hi.roll_diameter_m - lo.roll_diameter_m)
+            torque = ((1 - w) * lo.seal_drag_n * lo.roll_diameter_m
+                      + w * hi.seal_drag_n * hi.roll_diameter_m)
+            return IdlerData(
+                roll_diameter_m=float(roll_diameter_m), cema_class=lo.cema_class,
+                rotating_mass_kg_m=(1 - w) * lo.rotating_mass_kg_m + w * hi.rotating_mass_kg_m,
+                seal_drag_n=torque / roll_diameter_m,
+                source=(f"interpolated between the class {lo.cema_class} rows of "
+                        f"{lo.roll_diameter_m:g} m and {hi.roll_diameter_m:g} m"))
+    # beyond the class's rows (or, without a class, the catalogue's): the nearest row's roll
+    # scaled to the diameter, its shell's mass linear in D at its wall (mass ~ D) and its
+    # seals' torque kept (A_i ~ 1 / D)
+    held = sorted({r.roll_diameter_m for g in groups for r in g})
+    near = min((r for g in groups for r in g),
+               key=lambda r: abs(r.roll_diameter_m - roll_diameter_m))
+    k = roll_diameter_m / near.roll_diameter_m
+    return IdlerData(
+        roll_diameter_m=float(roll_diameter_m), cema_class=near.cema_class,
+        rotating_mass_kg_m=near.rotating_mass_kg_m * k, seal_drag_n=near.seal_drag_n / k,
+        source=(f"scaled from the class {near.cema_class} row of {near.roll_diameter_m:g} m, "
+                f"beyond the {'class' if cema_class else 'catalogue'}'s rolls "
+                f"({', '.join(f'{d:g}' for d in held)} m)"))
+
+
+def _needs_catalogue(idler_set) -> bool:
+    return idler_set.set_rotating_mass_kg is None or idler_set.seal_drag_n is None
+
+
+def idler_note(idler_set, width_m: float, field: str) -> str:
+    """The note of an idler set whose rotating mass or seal drag is interpolated between two
+    catalogue rows (:func:`idler`): the diameter given, the rows used and the values taken,
+    and how to give the set's own. "" when the set's diameter is a row's or the set gives
+    both values itself."""
+    if not _needs_catalogue(idler_set):
+        return ""
+    row = idler(idler_set.roll_diameter_m, idler_set.cema_class, field + ".")
+    if not row.source.startswith(("interpolated", "scaled")):
+        return ""
+    took = []
+    if idler_set.set_rotating_mass_kg is None:
+        took.append(f"rotating mass {row.rotating_mass_kg_m * width_m:.3g} kg a set "
+                    f"({row.rotating_mass_kg_m:.3g} kg per m of belt width, the shell's "
+                    "mass linear in D)")
+    if idler_set.seal_drag_n is None:
+        took.append(f"seal drag {row.seal_drag_n:.3g} N a set (the seals' torque A_i D "
+                    "linear in D)")
+    return (f"note: {field}.roll_diameter_m {idler_set.roll_diameter_m:g} m is no catalogue "
+            f"row: {' and '.join(took)} {row.source} (engine/data/idlers.csv), "
+            f"{field}.rotating_mass_kg (or rotating_mass_per_roll_kg) and seal_drag_n give "
+            "the roll maker's values")
 
 
 def idler_set_values(idler_set, width_m: float) -> tuple[float, float]:
-    """Rotating mass [kg] and seal drag [N] of an idler set, catalogue filling gaps."""
-    row = idler(idler_set.roll_diameter_m, idler_set.cema_class)
+    """Rotating mass [kg] and seal drag [N] of an idler set, catalogue filling gaps (a
+    diameter between two rows interpolated: :func:`idler`)."""
     mass = idler_set.set_rotating_mass_kg  # per set, or per roll x rolls
-    if mass is None:
-        mass = row.rotating_mass_kg_m * width_m
     drag = idler_set.seal_drag_n
-    if drag is None:
-        drag = row.seal_drag_n
+    if mass is None or drag is None:
+        row = idler(idler_set.roll_diameter_m, idler_set.cema_class)
+        if mass is None:
+            mass = row.rotating_mass_kg_m * width_m
+        if drag is None:
+            drag = row.seal_drag_n
     return float(mass), float(drag)
 
 
@@ -314,8 +404,11 @@ def check_conveyor(conv, prefix: str = "") -> None:
         )
     for strand in ("carry", "return_"):
         s = getattr(conv.idlers, strand)
-        if s.cema_class is not None:
-            idler(s.roll_diameter_m, s.cema_class, f"{prefix}idlers.{strand.rstrip('_')}.")
+        field = f"{prefix}idlers.{strand.rstrip('_')}."
+        if _needs_catalogue(s):  # the class exists and holds the diameter (or brackets it)
+            idler(s.roll_diameter_m, s.cema_class, field)
+        elif s.cema_class is not None:  # the set's own values: the class alone is read
+            _check_class(s.cema_class, field)
     if conv.belt.type is None and (conv.belt.top_cover_mm is None or conv.belt.bottom_cover_mm is None):
         raise InputError(
             f"{prefix}belt: a custom belt (no 'type') needs top_cover_mm and bottom_cover_mm (0 allowed)"

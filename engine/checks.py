@@ -49,6 +49,7 @@ __all__ = [
     "BEARING_LIFE_EXPONENT",
     "HOLDBACK_FRICTION_SHARE",
     "runback_note",
+    "input_notes",
     "PulleyCheck",
     "pulley_group",
     "pulley_diameter_min_m",
@@ -515,6 +516,83 @@ def runback_note(conv, loop: Loop, friction_n: float) -> str:
             "running resistance without the feed, CEMA's backstop rule) and nothing holds it "
             "(holdback: false, no brake with hold: true): a holdback on the head pulley of at "
             f"least {torque / 1e3:.3g} kNm (holdback: true) or a holding brake would avoid it")
+
+
+def _loading_speeds(conv) -> list[tuple[str, float]]:
+    """``(field, v0)`` of each feed point's along-belt loading speed [m/s], one entry per field
+    (a feed point without its own speed reads ``material.loading_speed_m_s``)."""
+    if not conv.material.feed:
+        return [("material.loading_speed_m_s", float(conv.material.loading_speed_m_s))]
+    out: dict[str, float] = {}
+    for i, f in enumerate(conv.material.feed):
+        if f.loading_speed_m_s is None:
+            out["material.loading_speed_m_s"] = float(conv.material.loading_speed_m_s)
+        else:
+            out[f"material.feed.{i}.loading_speed_m_s"] = float(f.loading_speed_m_s)
+    return list(out.items())
+
+
+def input_notes(conv, loop: Loop, feed_n: float, c_factor: float | None = None) -> list[str]:
+    """Notes on inputs the run reads beyond its tables or in an unusual sense (SPEC: a value
+    the engine takes in place of one it has not got is said): an idler roll diameter between
+    two catalogue rows (:func:`beltstudy.engine.catalog.idler_note`), a loading speed above
+    the belt speed or against the travel, a belt width outside the DIN 22107 roll table and a
+    trough angle outside the CEMA transition and middle-roll tables. ``feed_n`` is the feed
+    part of Te [N]; ``c_factor`` DIN's C where the run's law used it (the feed is inside C
+    and the loading speed is not read)."""
+    from beltstudy.engine import catalog
+    from beltstudy.engine.capacity import _roll_table
+
+    notes = []
+    width = loop.belt.width_m
+    for strand in ("carry", "return_"):
+        name = strand.rstrip("_")
+        n = catalog.idler_note(getattr(conv.idlers, strand), width, f"idlers.{name}")
+        if n:
+            notes.append(n)
+    v = loop.speed_m_s
+    loaded = loop.design_load_kg_m > 0.0
+    for field, v0 in _loading_speeds(conv) if loaded else []:
+        if c_factor is not None and v0 != 0.0:
+            notes.append(f"note: {field} {v0:g} m/s is not read: DIN 22101's secondary "
+                         f"resistance factor C = {c_factor:.3g} holds the feed as a usual "
+                         "loading at rest (the models that sum the feed, cema, cmod, nonlin "
+                         "and visco, read it; din does below 80 m without models.din.c)")
+        elif v0 > v:
+            notes.append(f"note: {field} {v0:g} m/s is above the belt speed {v:g} m/s: the "
+                         "material fed pushes the belt (DIN 22101 F_bA = I_m (v - v0) below "
+                         f"0: the feed part of Te is {feed_n / 1e3:.3g} kN)")
+        elif v0 < 0.0:
+            skirts = any(f.skirt_length_m > 0.0 for f in conv.material.feed or [])
+            notes.append(f"note: {field} {v0:g} m/s is against the belt's travel: the belt "
+                         "stops the material, then accelerates it (F_bA = I_m (v - v0), the "
+                         f"feed part of Te {feed_n / 1e3:.3g} kN)" + (
+                             ", and the skirts' friction while it accelerates (ISO 5048 F_f, "
+                             "for 0 <= v0 < v, summed by din below 80 m) is that from rest, "
+                             "a lower bound" if skirts else ""))
+    ic = conv.idlers.carry
+    widths, _ = _roll_table()
+    if ic.rolls == 3 and ic.roll_length_m is None and not widths[0] <= width <= widths[-1]:
+        end = widths[0] if width < widths[0] else widths[-1]
+        notes.append(f"note: belt.width_m {width:g} m is outside DIN 22107's roll table "
+                     f"({widths[0]:g} to {widths[-1]:g} m, engine/data/trough.csv): the middle "
+                     f"roll of the {end:g} m belt is used for the capacity check "
+                     "(idlers.carry.roll_length_m gives the set's own)")
+    lo, hi = MIDDLE_ROLL_SHARE[0][0], MIDDLE_ROLL_SHARE[-1][0]
+    words = []
+    top = max(a for (_, k), pts in _transitions().items() for a, _ in pts)
+    if loop.belt.kind in ("steel", "fabric") and ic.trough_deg > top:
+        words.append(f"the transition lengths continue CEMA Table 7.29's 35 to {top:g} deg "
+                     "slope past its last row")
+    if ic.rolls >= 3 and not lo <= ic.trough_deg <= hi:
+        share = middle_roll_share(ic.rolls, ic.trough_deg)
+        words.append(f"the middle roll's share of the set's load is that of "
+                     f"{lo if ic.trough_deg < lo else hi:g} deg ({share:.2f}, the table runs "
+                     f"{lo:g} to {hi:g} deg)")
+    if words:
+        notes.append(f"note: idlers.carry.trough_deg {ic.trough_deg:g} deg is outside the "
+                     f"tables: {' and '.join(words)}")
+    return notes
 
 
 def transient_checks(loop: Loop, t_max_n: np.ndarray) -> dict:

@@ -48,7 +48,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from beltstudy.engine.capacity import capacity as capacity_check
-from beltstudy.engine.checks import runback_note
+from beltstudy.engine.checks import input_notes, runback_note
 from beltstudy.engine.checks import steady_checks as design_checks
 from beltstudy.engine.conveyor import (
     PRETENSION_MAX_KN,
@@ -718,7 +718,11 @@ def _summarise(res: SteadyResult, drives, hs_adm, bounds, shortfall_n: float,
     # a note does not make a warning (as the transient's notes, "note: ..." after them)
     note = temperature_note(get_model(res.model), res.temperature_c, res.params_given)
     runback = runback_note(conv, loop, friction_n)
-    res.message = "; ".join(warnings + [n for n in (note, res.range_note, runback) if n])
+    # inputs read beyond the tables or in an unusual sense (idler rows, loading speed, ...)
+    given = input_notes(conv, loop, comps.get("feed", 0.0) * 1e3,
+                        res.law.info.get("c_factor"))
+    res.message = "; ".join(warnings + [n for n in (note, res.range_note, runback, *given)
+                                        if n])
     res.summary["status"] = res.status
     res.summary["message"] = res.message
 

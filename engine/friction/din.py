@@ -69,8 +69,8 @@ def acceleration_skirt_forces(loop: Loop, conv: Conveyor,
     on the element each feed point with skirts starts. I_V = m'_L v / rho is the volume flow
     on the belt there (the load case's; every feed upstream included), mu_2 the feed point's
     ``skirt_friction``, b_1 its ``skirt_width_m`` (default ``SKIRT_WIDTH_SHARE`` of the belt
-    width), v_0 its along-belt loading speed and mu_1 ``MU1_MATERIAL_BELT`` unless given. The
-    friction beyond l_b is the skirts' F_gL (:func:`beltstudy.engine.friction.common.skirt_forces`,
+    width), v_0 its along-belt loading speed (0 for one against the travel) and mu_1
+    ``MU1_MATERIAL_BELT`` unless given. The friction beyond l_b is the skirts' F_gL (:func:`beltstudy.engine.friction.common.skirt_forces`,
     an accessory).
     """
     mu1 = MU1_MATERIAL_BELT if mu1 is None else mu1
@@ -83,6 +83,11 @@ def acceleration_skirt_forces(loop: Loop, conv: Conveyor,
             v0 = conv.material.loading_speed_m_s
         if f.skirt_length_m <= 0.0 or v0 >= v:
             continue
+        # fed against the travel (v0 < 0) the belt first stops the material and then
+        # accelerates it from rest: the formula (for 0 <= v0 < v; at v0 = -v its mean speed
+        # (v + v0) / 2 is 0, a division by zero) is taken from rest, a lower bound (a note
+        # says so: beltstudy.engine.checks.input_notes)
+        v0 = max(v0, 0.0)
         j = carry_element_at(loop, f.at_m)
         iv = float(loop.mL_kg_m[j]) * v / rho  # [m3/s]
         b1 = f.skirt_width_m if f.skirt_width_m is not None \

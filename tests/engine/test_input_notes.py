@@ -1,0 +1,138 @@
+"""Inputs read beyond the catalogue's rows or in an unusual sense are said in the run's message
+or refused (``beltstudy.engine.checks.input_notes``): an idler roll diameter between two
+catalogue rows, a loading speed above the belt speed or against the travel, a belt width
+outside DIN 22107's roll table, a trough angle outside CEMA's tables.
+
+Hand numbers: the hand conveyor of tests/conftest.py (1 km rising 50 m, m'_L 50 kg/m at 4 m/s,
+so I_m = 200 kg/s, B = 1 m) and the rows of engine/data/idlers.csv (class C: 0.127 m 13.0 kg/m
+A_i 8.0 N, 0.152 m 17.0 kg/m A_i 6.7 N).
+"""
+
+from __future__ import annotations
+
+import math
+
+import pytest
+
+from beltstudy.engine import catalog
+from beltstudy.engine.conveyor import InputError, parse_conveyor
+from beltstudy.engine.loop import CARRY, build_loop
+from beltstudy.engine.statics import solve_steady
+from tests.conftest import hand_conveyor_dict
+
+#: DIN summing each resistance (no C factor): the feed is read below 80 m only.
+SHORT = [{"length_m": 60, "lift_m": 3}]
+
+
+def _catalogue_idlers(d_m: float, cema_class: str | None = "C") -> dict:
+    s = {"roll_diameter_m": d_m, **({"cema_class": cema_class} if cema_class else {})}
+    return {"carry": {"spacing_m": 1.25, "rolls": 3, "trough_deg": 35, **s},
+            "return": {"spacing_m": 2.5, "rolls": 1, **s}}
+
+
+# ------------------------------------------------------------------ idler roll diameters
+def test_a_roll_between_two_rows_is_interpolated_and_said():
+    """0.133 m was read as the 0.127 m row (13.0 kg/m); between 0.127 and 0.152 m (w = 0.24)
+    the shell's mass, linear in D, is 13.0 + 0.24 x 4.0 = 13.96 kg/m, and the seals' torque
+    A_i D linear in D gives (0.76 x 8.0 x 0.127 + 0.24 x 6.7 x 0.152) / 0.133 = 7.644 N."""
+    row = catalog.idler(0.133, "C")
+    assert row.rotating_mass_kg_m == pytest.approx(13.96, rel=1e-9)
+    assert row.seal_drag_n == pytest.approx(
+        (0.76 * 8.0 * 0.127 + 0.24 * 6.7 * 0.152) / 0.133, rel=1e-9)
+    conv = parse_conveyor(hand_conveyor_dict(idlers=_catalogue_idlers(0.133)))
+    loop = build_loop(conv, "full")
+    carry = loop.strand == CARRY
+    assert loop.mR_kg_m[carry & (loop.roll_diameter_m > 0)].max() == pytest.approx(
+        13.96 / 1.25, rel=1e-9)
+    msg = solve_steady(conv, model="din").message
+    assert ("note: idlers.carry.roll_diameter_m 0.133 m is no catalogue row: rotating mass "
+            "14 kg a set") in msg
+    assert "interpolated between the class C rows of 0.127 m and 0.152 m" in msg
+    assert "idlers.return.rotating_mass_kg (or rotating_mass_per_roll_kg) and seal_drag_n" in msg
+
+
+def test_a_catalogue_row_and_given_values_carry_no_note():
+    # 6 in as a file spells it (0.1524 m) is the 0.152 m row
+    assert catalog.idler(0.1524, "C").rotating_mass_kg_m == 17.0
+    conv = parse_conveyor(hand_conveyor_dict(idlers=_catalogue_idlers(0.1524)))
+    assert "roll_diameter_m" not in solve_steady(conv, model="din").message
+    # the hand conveyor's 0.133 m sets give their mass and drag: the catalogue is not read
+    assert "roll_diameter_m" not in solve_steady(parse_conveyor(hand_conveyor_dict()),
+                                                 model="din").message
+
+
+def test_a_roll_beyond_the_class_rows_is_scaled_from_the_nearest_and_said():
+    """Class B holds 0.102 and 0.127 m: a 0.133 m B roll is the 0.127 m row's scaled, its
+    shell's mass x 0.133 / 0.127 (12.0 -> 12.567 kg/m), its seals' torque kept (A_i 8.0 ->
+    8.0 x 0.127 / 0.133 = 7.639 N)."""
+    row = catalog.idler(0.133, "B")
+    assert row.rotating_mass_kg_m == pytest.approx(12.0 * 0.133 / 0.127, rel=1e-9)
+    assert row.seal_drag_n == pytest.approx(8.0 * 0.127 / 0.133, rel=1e-9)
+    conv = parse_conveyor(hand_conveyor_dict(idlers=_catalogue_idlers(0.133, "B")))
+    msg = solve_steady(conv, model="din").message
+    assert ("scaled from the class B row of 0.127 m, beyond the class's rolls (0.102, 0.127 m)"
+            in msg)
+
+
+# ------------------------------------------------------------------ loading speed
+def _feed_run(v0: float, **over):
+    d = hand_conveyor_dict(profile=SHORT, **over)
+    d["material"] = {**d["material"], "loading_speed_m_s": v0}
+    return solve_steady(parse_conveyor(d), model="din")
+
+
+def test_a_feed_faster_than_the_belt_pushes_it_and_is_said():
+    res = _feed_run(6.0)
+    # F_bA = I_m (v - v0) = 200 kg/s x (4 - 6) m/s = -0.4 kN
+    assert res.summary["te_components_kn"]["feed"] == pytest.approx(-0.4, rel=1e-9)
+    assert ("note: material.loading_speed_m_s 6 m/s is above the belt speed 4 m/s: the "
+            "material fed pushes the belt") in res.message
+    assert "loading_speed" not in _feed_run(2.0).message
+
+
+def test_a_feed_against_the_travel_at_the_belt_speed_does_not_crash():
+    """v0 = -v with skirts: F_f's mean speed (v + v0) / 2 was 0 (ZeroDivisionError); the
+    skirt friction while accelerating is now that from rest, and said."""
+    feed = {"feed": [{"at_m": 0, "share": 1.0, "skirt_length_m": 3}]}
+    d_mat = {**hand_conveyor_dict()["material"], **feed}
+    rest = _feed_run(0.0, material={**d_mat, "loading_speed_m_s": 0.0})
+    back = _feed_run(-4.0, material=d_mat)
+    # F_bA = 200 x (4 + 4) = 1.6 kN; the secondary resistances are those fed at rest
+    assert back.summary["te_components_kn"]["feed"] == pytest.approx(1.6, rel=1e-9)
+    assert back.summary["te_components_kn"]["secondary"] == pytest.approx(
+        rest.summary["te_components_kn"]["secondary"], rel=1e-12)
+    assert "-4 m/s is against the belt's travel" in back.message
+    assert "that from rest, a lower bound" in back.message
+    assert math.isfinite(back.summary["te_kn"])
+
+
+def test_a_loading_speed_the_c_factor_does_not_read_is_said():
+    d = hand_conveyor_dict()  # 1 km: DIN's C holds the feed
+    d["material"] = {**d["material"], "loading_speed_m_s": 1.0}
+    msg = solve_steady(parse_conveyor(d), model="din").message
+    assert "material.loading_speed_m_s 1 m/s is not read: DIN 22101's secondary" in msg
+
+
+@pytest.mark.parametrize("bad", [float("nan"), float("inf")])
+def test_a_non_finite_loading_speed_is_refused(bad):
+    d = hand_conveyor_dict()
+    d["material"] = {**d["material"], "loading_speed_m_s": bad}
+    with pytest.raises(InputError, match="material.loading_speed_m_s"):
+        parse_conveyor(d)
+
+
+# ------------------------------------------------------------------ widths, trough angles
+def test_a_width_and_a_trough_angle_beyond_the_tables_are_said():
+    d = hand_conveyor_dict()
+    d["belt"] = {**d["belt"], "width_m": 0.3}
+    d["material"] = {**d["material"], "capacity_t_h": 50}
+    msg = solve_steady(parse_conveyor(d), model="din").message
+    assert ("note: belt.width_m 0.3 m is outside DIN 22107's roll table (0.4 to 3.2 m, "
+            "engine/data/trough.csv): the middle roll of the 0.4 m belt is used") in msg
+    d = hand_conveyor_dict()
+    d["idlers"]["carry"]["trough_deg"] = 55
+    msg = solve_steady(parse_conveyor(d), model="din").message
+    assert "note: idlers.carry.trough_deg 55 deg is outside the tables" in msg
+    assert "that of 45 deg (0.72" in msg
+    assert "trough_deg" not in solve_steady(parse_conveyor(hand_conveyor_dict()),
+                                            model="din").message
