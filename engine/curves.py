@@ -325,6 +325,7 @@ def transient_liftoff(loop: Loop, segs, t_start_end_s: float, t_stop_cmd_s: floa
                       start_time_s: float, steady_n: np.ndarray,
                       softer_start: str | None = None,
                       softer_stop: str = "a softer stop (stop time, brake force)",
+                      survey: list[dict] | tuple = (),
                       ) -> tuple[dict, list[str]]:
     """Lift-off at concave curves during the cycle: ``liftoff_*`` fields and one warning per
     phase in which the belt leaves its idlers.
@@ -351,13 +352,18 @@ def transient_liftoff(loop: Loop, segs, t_start_end_s: float, t_stop_cmd_s: floa
     softer_stop : str, optional
         What softens this run's stop (by its stop mode:
         :func:`beltstudy.engine.dynamics.simulate.stop_levers`).
+    survey : list of dict, optional
+        The concave grade changes given as survey points (no ``curve_radius_m``), each with
+        its springs and their lift-off tensions (:func:`survey_liftoff_limits_n`): judged as
+        the curves are, neighbouring ones as one bend.
 
     Returns
     -------
     dict, list of str
         ``liftoff_max_kn_over``: the largest T - R m'_G g cos(a) over the concave curves' elements
-        (both strands) and the cycle [kN], negative when the belt stays on its idlers (the
-        margin left), null without a concave curve; ``liftoff_at_m`` / ``liftoff_time_s``
+        and the concave survey grade changes' springs (both strands) and the cycle [kN],
+        negative when the belt stays on its idlers (the margin left), null without either;
+        ``liftoff_at_m`` / ``liftoff_time_s``
         where (loop position of the spring, as ``t_max_dyn_at_m``) and when, null when it
         never lifts. Exact: the envelopes hold every step's tension and the limit is fixed
         per element, so max(T - T_lift) = max(T) - T_lift element by element.
@@ -379,7 +385,8 @@ def transient_liftoff(loop: Loop, segs, t_start_end_s: float, t_stop_cmd_s: floa
     """
     concave = [c for c in loop.curves if c.concave]
     none = {"liftoff_max_kn_over": None, "liftoff_at_m": None, "liftoff_time_s": None}
-    if not concave or not segs:
+    bends = _survey_bends(survey)
+    if not (concave or bends) or not segs:
         return none, []
     els, lims, ks = [], [], []
     for c in concave:
@@ -387,7 +394,13 @@ def transient_liftoff(loop: Loop, segs, t_start_end_s: float, t_stop_cmd_s: floa
         els.append(el)
         lims.append(lim)
         ks += [c.k] * len(el)
+    for b in bends:  # after the curves, keyed below zero (curves are 1, 2, ...)
+        els.append(b["el"])
+        lims.append(b["lim"])
+        ks += [b["k"]] * len(b["el"])
     el, lim, ks = np.concatenate(els), np.concatenate(lims), np.asarray(ks)
+    radius = np.concatenate([np.full(len(e), np.nan) for e in els[:len(concave)]]
+                            + [b["r"] for b in bends]) if bends else None
     hi = np.array([s[2] for s in segs])[:, el]
     hi_t = np.array([s[3] for s in segs])[:, el]
     over = np.where(np.isfinite(hi), hi - lim, -np.inf)
@@ -402,6 +415,7 @@ def transient_liftoff(loop: Loop, segs, t_start_end_s: float, t_stop_cmd_s: floa
     steady_over = steady_n[el] - lim  # what running lifts at its steady tension
     warnings = []
     curves = {c.k: c for c in concave}
+    curves.update({b["k"]: b for b in bends})
     for p, name in enumerate(("the start", "steady running", "the stop")):
         masked = np.where(phase == p, over, -np.inf)
         kseg, j = np.unravel_index(int(np.argmax(masked)), masked.shape)
@@ -411,19 +425,29 @@ def transient_liftoff(loop: Loop, segs, t_start_end_s: float, t_stop_cmd_s: floa
         elif not masked[kseg, j] > 0.0:
             continue
         c = curves[int(ks[j])]
-        on_c = ks == c.k
+        k_c = int(ks[j])
+        on_c = ks == k_c
         e = int(el[j])
         t_lim = float(lim[j])
         t_peak = float(steady_n[e]) if at_steady else float(hi[kseg, j])
         strand = "carry" if loop.strand[e] == CARRY else "return"
         # the radius that keeps the whole curve down in this phase and while running (the
-        # limit grows with R: R max T / T_lift over the curve's elements)
-        ratio = float((steady_n[el][on_c] / lim[on_c]).max())
+        # limit grows with R: R max T / T_lift over the curve's elements; a survey bend's
+        # points have their own radii, R T / T_lift = T / (m'_G g cos a) each)
+        scale = 1.0 if k_c > 0 else radius[on_c]
+        ratio = float((scale * steady_n[el][on_c] / lim[on_c]).max())
         if not at_steady:
-            ratio = max(ratio, float((np.where(phase == p, hi, -np.inf)[:, on_c]
+            ratio = max(ratio, float((scale * np.where(phase == p, hi, -np.inf)[:, on_c]
                                       / lim[on_c]).max()))
-        fixes = [f"a curve radius of at least {math.ceil(c.radius_m * ratio):.0f} m (at "
-                 "this run's tensions, which a larger radius moves a little: rerun to confirm)"]
+        if k_c > 0:
+            fixes = [f"a curve radius of at least {math.ceil(c.radius_m * ratio):.0f} m (at "
+                     "this run's tensions, which a larger radius moves a little: rerun to "
+                     "confirm)"]
+        else:
+            fixes = [f"a vertical curve of at least {math.ceil(ratio):.0f} m there "
+                     "(curve_radius_m on the section before the grade change, or survey "
+                     "points on that radius; at this run's tensions, which a larger radius "
+                     "moves a little: rerun to confirm)"]
         runs_over = bool((steady_over[on_c] > 0.0).any())  # running lifts there as it is
         t_run = float(steady_n[e])
         if p == 0 and not runs_over and softer_start is not None:
@@ -439,9 +463,11 @@ def transient_liftoff(loop: Loop, segs, t_start_end_s: float, t_stop_cmd_s: floa
                          "the slack side)")
         when = ("at its steady running tension" if at_steady
                 else f"at t = {hi_t[kseg, j]:.1f} s")
+        where = (f"curve {c.k} (concave, R {c.radius_m:g} m" if k_c > 0 else
+                 _survey_where(c, float(radius[j])))
         warnings.append(
-            f"lift-off in {name}: the belt leaves its {strand} idlers at curve {c.k} "
-            f"(concave, R {c.radius_m:g} m, at {s_end[e]:.0f} m round the loop) {when}, "
+            f"lift-off in {name}: the belt leaves its {strand} idlers at {where}, "
+            f"at {s_end[e]:.0f} m round the loop) {when}, "
             f"{(t_peak - t_lim) / 1e3:.1f} kN over its lift-off "
             f"tension {t_lim / 1e3:.1f} kN; " + " or ".join(fixes) + " avoids it")
     return out, warnings
@@ -611,3 +637,82 @@ def junction_checks(conv, loop: Loop, T: np.ndarray, sf_min: float,
         else:
             groups.append([f])
     return [_junction_words(g) for g in groups]
+
+
+# ------------------------------------------------- survey grade changes in the transient
+__all__ += ["survey_liftoff_limits_n"]
+
+
+def _junction_springs(loop: Loop, x_m: float) -> np.ndarray:
+    """The springs at route position x_m on both strands (carry then return): the end of
+    each idler element that ends there and the one before each that starts there (one
+    spring where idler elements meet, both sides of a pulley standing there)."""
+    x0 = loop.x_m if loop.x_m is not None else loop.s_m
+    tol = 1e-6 * max(1.0, loop.length_m)
+    out: list[int] = []
+    for code, sign in ((CARRY, 1.0), (RETURN, -1.0)):
+        j = np.flatnonzero(loop.strand == code)
+        ends = j[np.abs(x0[j] + sign * loop.dx_m[j] - x_m) <= tol]
+        starts = j[np.abs(x0[j] - x_m) <= tol] - 1
+        out += sorted(set(ends.tolist()) | set(starts.tolist()))
+    return np.asarray(out, dtype=np.int64)
+
+
+def survey_liftoff_limits_n(conv, loop: Loop) -> list[dict]:
+    """The concave grade changes given as survey points (no ``curve_radius_m``), for the
+    transient lift-off check (:func:`transient_liftoff`).
+
+    Each is read as the circle through its survey points (:func:`survey_radius_m`, as the
+    steady :func:`junction_checks` reads it); the belt bends where the sections meet, so its
+    springs there, on both strands, get the empty belt's lift-off tension
+    ``R m'_G g cos a`` (``a`` the steeper grade). A valley written as survey points along an
+    arc has a spring at every point, as the arc given with ``curve_radius_m`` has elements
+    along it; the springs between points (a section cut into several elements) lie on a
+    straight chord and get none. A straight, in one section or many, has no grade change.
+
+    Returns
+    -------
+    list of dict
+        Per concave change in route order: ``i`` (profile[i] to profile[i + 1]), ``run``
+        (its straight run's number: neighbours are one apart), ``at_m``, ``turn``,
+        ``radius_m``, ``el`` (springs) and ``lim`` (their lift-off tensions [N]).
+    """
+    out = []
+    for jn in _junctions(conv):
+        if jn["turn"] <= 0.0:
+            continue
+        el = _junction_springs(loop, jn["at_m"])
+        if el.size == 0:
+            continue
+        lim = jn["radius_m"] * loop.mG_kg_m[el] * G * jn["cos"]
+        out.append({**jn, "el": el, "lim": lim})
+    return out
+
+
+def _survey_bends(survey) -> list[dict]:
+    """Neighbouring concave survey changes as one bend (the tightest named), keyed -1, -2,
+    ... in route order: springs, lift-off tensions and each spring's survey radius."""
+    groups: list[list[dict]] = []
+    for jn in survey:
+        if groups and groups[-1][-1]["run"] == jn["run"] - 1:
+            groups[-1].append(jn)
+        else:
+            groups.append([jn])
+    return [{"k": -(n + 1), "changes": g,
+             "el": np.concatenate([jn["el"] for jn in g]),
+             "lim": np.concatenate([jn["lim"] for jn in g]),
+             "r": np.concatenate([np.full(len(jn["el"]), jn["radius_m"]) for jn in g])}
+            for n, g in enumerate(groups)]
+
+
+def _survey_where(bend: dict, radius_m: float) -> str:
+    """Where a survey bend is, for a lift-off warning (the text before ', at ... round the
+    loop)')."""
+    g = bend["changes"]
+    first, last = g[0], g[-1]
+    span = (f"at {first['at_m']:.0f} m (profile[{first['i']}] to profile[{first['i'] + 1}]"
+            if len(g) == 1 else
+            f"from {first['at_m']:.0f} to {last['at_m']:.0f} m ({len(g)} of them, "
+            f"profile[{first['i']}] to profile[{last['i'] + 1}]")
+    return (f"the grade change without a vertical curve {span}, concave, read as the circle "
+            f"through the survey points there, radius {radius_m:.0f} m")

@@ -481,8 +481,9 @@ CURVES = ResultGroup("curves", "Vertical curves, steady (CEMA, DIN 22101; docs/r
 
 CURVES_TRANSIENT = ResultGroup("curves_transient", "Vertical curves, transient", (
     _f("liftoff_max_kn_over", "kN", "largest tension over the empty belt's lift-off tension "
-       "(R m'_G g cos a) on the concave curves during the cycle, both strands, every step; "
-       "negative: the margin left; null without a concave curve", "lift-off, most over"),
+       "(R m'_G g cos a) on the concave curves and the concave grade changes given as survey "
+       "points (R the circle through them) during the cycle, both strands, every step; "
+       "negative: the margin left; null without either", "lift-off, most over"),
     _f("liftoff_at_m", "m", "where liftoff_max_kn_over is, along the loop from the tail, carry "
        "first (null when the belt never lifts)", "  at"),
     _f("liftoff_time_s", "s", "when (null when the belt never lifts)", "  time"),

@@ -21,7 +21,7 @@ import pandas as pd
 from beltstudy.engine.beltselect import resolve_auto_belt, run_cases, run_message
 from beltstudy.engine.checks import transient_checks
 from beltstudy.engine.conveyor import Conveyor, Scenario
-from beltstudy.engine.curves import transient_liftoff
+from beltstudy.engine.curves import survey_liftoff_limits_n, transient_liftoff
 from beltstudy.engine.design import auto_sizes, summary_fields
 from beltstudy.engine.dynamics import DynamicsOptions, TransientResult, build_system, simulate
 from beltstudy.engine.dynamics.model import check_scenario
@@ -335,13 +335,14 @@ def _complete(prep: _Prepared, scenario, system, tr, model, params, opts, remedy
     summary.update({k: (v if math.isfinite(v) else None) for k, v in transient_checks(
         steady.loop, np.array([seg[2] for seg in tr.raw["segments"]])).items()})
     messages = [m for m in (steady.message, tr.message) if m]
-    # lift-off at concave curves in the cycle (engine/curves.py; null fields without one)
+    # lift-off at concave curves and concave survey grade changes in the cycle
+    # (engine/curves.py; null fields without either)
     cyc = system.model.cycle
     lifted, lift_warnings = transient_liftoff(
         steady.loop, tr.raw["segments"], cyc.t_pre + cyc.t_start, system.stop_command_s,
         max(cyc.t_start, tr.summary.get("start_time_s") or 0.0), system.steady_tension_n,
         None if reads_start_time(conveyor) else " or ".join(start_levers(system)),
-        " or ".join(stop_levers(system)))
+        " or ".join(stop_levers(system)), survey_liftoff_limits_n(conveyor, steady.loop))
     summary.update(lifted)
     if lift_warnings:
         messages.append("; ".join(lift_warnings))

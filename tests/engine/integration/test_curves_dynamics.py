@@ -125,3 +125,79 @@ def test_when_running_lifts_the_belt_no_fix_of_the_start_or_stop_alone_is_offere
     radii = [float(r) for w in said for r in re.findall(r"curve radius of at least (\d+) m", w)]
     assert len(radii) == len(said) and min(radii) >= s["curve1_radius_min_m"] - 0.5
     assert not any("a start of about" in w or "a softer stop" in w for w in said)
+
+
+def _survey_valley(radius_m=250.0, takeup_kg=6000.0):
+    """The valley conveyor on a curve of ``radius_m`` (lift-off tension of the empty belt
+    R m'_G g cos a = 250 x 20 x 9.81 x cos(asin 0.1) = 48.8 kN) and the same route as survey
+    points every ~4.2 m on that arc (no curve_radius_m); a 6 t take-up."""
+    from tests.engine.test_curves import _as_survey_points
+
+    def build(profile):
+        d = valley_conveyor().model_dump(mode="json", by_alias=True)
+        d["profile"] = profile
+        d["takeup"]["mass_kg"] = takeup_kg
+        return parse_conveyor(d)
+
+    curve = build([{"length_m": 500, "lift_m": 0, "curve_radius_m": radius_m},
+                   {"length_m": 500, "lift_m": 50}])
+    return curve, build(_as_survey_points(curve))
+
+
+def test_a_valley_as_survey_points_gets_the_curves_transient_liftoff():
+    """The transient lift-off check (liftoff_*) knew only curves given with curve_radius_m:
+    the valley of R 250 m lifted the belt by 44.6 kN in a 5 s start as a curve and got null
+    as survey points. Now each concave survey change's springs (both strands) get the empty
+    belt's lift-off tension R m'_G g cos a, R the circle through the survey points (here
+    250 m: the arc's chords), a the steeper grade; the same route written both ways gets the
+    same verdict at the automatic mesh and at twice its elements. The figures agree within
+    the survey spacing: the survey's last bending point lies 4.2 m before the arc's end,
+    where the carry tension climbs ~0.1 kN/m (70 kg/m on 10 %, plus the start's inertia)."""
+    from beltstudy.engine.curves import survey_liftoff_limits_n
+
+    curve, survey = _survey_valley()
+    loop = solve_steady(survey, model="din").loop
+    bends = survey_liftoff_limits_n(survey, loop)
+    ang = [math.asin(p.lift_m / p.length_m) for p in survey.profile]
+    inner = [b for b in bends if 0 < b["i"] < len(survey.profile) - 2]
+    assert len(bends) == 7 and len(inner) == 5  # the ends meet the long straights
+    for b in inner:  # on the arc: the circle through the points is the arc's
+        assert b["radius_m"] == pytest.approx(250.0, rel=2e-3)
+        cos_a = min(math.cos(ang[b["i"]]), math.cos(ang[b["i"] + 1]))
+        assert np.allclose(b["lim"], b["radius_m"] * 20 * G * cos_a, rtol=1e-12)
+        assert set(loop.strand[b["el"]]) == {0, 1} and len(b["el"]) == 2  # carry, return
+    assert min(b["lim"].min() for b in bends) == pytest.approx(
+        250 * 20 * G * math.cos(math.asin(0.1)), rel=2e-3)  # 48.8 kN by hand
+    for start_s, lifts in ((5.0, True), (60.0, False)):
+        n_auto = None
+        for factor in (1, 2):
+            got = {}
+            for name, conv in (("curve", curve), ("survey", survey)):
+                elements = "auto" if factor == 1 else factor * n_auto[name]
+                res = run_one(conv, Scenario(start={"control": "s-curve", "time_s": start_s},
+                                             run_s=20, elements=elements), model="din")
+                got[name] = res
+            n_auto = n_auto or {k: r.steady.loop.n for k, r in got.items()}
+            over = {k: r.summary["liftoff_max_kn_over"] for k, r in got.items()}
+            assert over["survey"] is not None, (start_s, factor)
+            assert (over["curve"] > 0.0) is lifts and (over["survey"] > 0.0) is lifts, over
+            assert over["survey"] == pytest.approx(over["curve"], abs=1.0), over
+            said = got["survey"].summary["message"]
+            assert ("lift-off in the start" in said) is lifts
+            if lifts:
+                assert 480.0 < got["survey"].summary["liftoff_at_m"] < 520.0
+                assert "grade change without a vertical curve from 487 to 513 m" in said
+                assert "radius 250 m" in said and "a vertical curve of at least" in said
+
+
+def test_a_straight_cut_into_survey_points_has_no_liftoff_limits():
+    """The hand conveyor's one grade (1 000 m rising 50 m) as 20 sections of 50 m: no grade
+    change, so no lift-off limits and null liftoff_* fields, as the one-section route."""
+    from beltstudy.engine.curves import survey_liftoff_limits_n
+
+    d = valley_conveyor().model_dump(mode="json", by_alias=True)
+    d["profile"] = [{"length_m": 50, "lift_m": 2.5}] * 20
+    conv = parse_conveyor(d)
+    assert survey_liftoff_limits_n(conv, solve_steady(conv, model="din").loop) == []
+    s = _start(conv, 5.0).summary
+    assert s["liftoff_max_kn_over"] is None and "lift-off" not in s["message"]
