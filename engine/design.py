@@ -45,12 +45,18 @@ from beltstudy.engine.loop import (
     rotating_parts,
 )
 from beltstudy.engine.statics import SteadyResult, solve_steady
-from beltstudy.engine.stopgrip import StopWalk, grip_limits, grip_remedies, pulley_name
+from beltstudy.engine.stopgrip import (
+    StopWalk,
+    _bisect_up,
+    grip_limits,
+    grip_remedies,
+    pulley_name,
+)
 
 __all__ = ["auto_sizes", "summary_fields", "RATED_POWER_FACTOR", "HOLD_MARGIN",
            "MOTOR_INERTIA_SHARE", "moving_mass_kg", "rotating_parts", "RotatingParts",
            "pulley_reduced_mass_kg", "rated_power_kw", "brake_forces", "brake_force_auto",
-           "brake_stop_time", "brake_grip_kn", "brake_kn_within_grip", "GIVEN"]
+           "brake_stop_time", "brake_grip_kn", "brake_kn_within_grip", "GIVEN", "takeup_lever"]
 
 #: Minimum holding force of an auto-sized brake as a multiple of the net gravity pull of the
 #: loaded belt [-] (a holding margin, an estimate).
@@ -273,29 +279,55 @@ def brake_kn_within_grip(conv: Conveyor, steady: SteadyResult, total_kn: float
 
 
 def _given_grip(conv: Conveyor, steady: SteadyResult) -> str:
-    """The note of given brake forces beyond their pulleys' grip in a brake stop ("" when
-    within): per such pulley, the largest force it passes with the other brakes as given
+    """The note of brake forces beyond their pulleys' grip in a brake stop ("" when within):
+    per such pulley, the largest force it passes with the other brakes as set
     (:meth:`~beltstudy.engine.stopgrip.StopWalk.grip_n`, the same undamped bound as an auto
-    brake's), so the run's slip warning comes with the force that avoids it."""
+    brake's) and the take-up that would let it pass its force, so the run's slip warning
+    comes with the force that avoids it. The force is the file's ``force_kn``: given there,
+    or an auto size the design (or a run below full load, sized at full load too) wrote in,
+    which ``brake_governed_by`` names. A pulley that passes nothing is said as what it is:
+    unbraked, the stop's fall of its slack side already leaves too little tension to slow its
+    own shell, so the belt slides on it at any brake force."""
     walk = StopWalk.of(conv, steady)
     _nodes, fixed = _brake_nodes(conv, steady.loop)
-    parts = []
-    for node, given in fixed.items():
+    parts, slides_any = [], False
+    for node, force in fixed.items():
         if walk.room_n(node, fixed) >= 0.0:
             continue
         grip = walk.grip_n(node, fixed)
         field = " + ".join(f"brakes.{k}.force_kn" for k, b in enumerate(conv.brakes)
                            if steady.loop.brake_element(b) == node)
-        parts.append(f"{pulley_name(conv, steady.loop, node)} passes at most "
-                     f"{grip / 1e3:.4g} kN of brake force in the stop against the "
-                     f"{given / 1e3:.4g} kN given ({field})")
+        name = pulley_name(conv, steady.loop, node)
+        if grip <= 0.0:
+            low, f = walk.slack_n(node, {**fixed, node: 0.0})
+            euler = steady.loop.pulley_at(node).euler
+            said = (f"{name} passes no brake force in the stop: unbraked, its slack side "
+                    f"already falls to {low / 1e3:.3g} kN (its fall doubled), a grip of "
+                    f"{max(low, 0.0) * (euler - 1.0) / 1e3:.3g} kN against the "
+                    f"{abs(f) / 1e3:.3g} kN that slows its own shell and shaft, so the belt "
+                    f"slides on it at any brake force, the {force / 1e3:.4g} kN set "
+                    f"({field}) too")
+        else:
+            said = (f"{name} passes at most {grip / 1e3:.4g} kN of brake force in the stop "
+                    f"against the {force / 1e3:.4g} kN set ({field})")
+        need = _bisect_up(lambda t, n=node: walk.room_n(n, fixed, takeup_n=t) >= 0.0,
+                          walk.takeup_n, 100.0 * walk.takeup_n + 1e6)
+        if need is not None:
+            said += (f" (a take-up of {2.0 * need / G:,.0f} kg, takeup.mass_kg,"
+                     if conv.takeup.type == "gravity" else
+                     f" (a take-up pretension of {need / 1e3:.4g} kN, takeup.pretension_kn,")
+            said += " would let it pass that force)"
+        parts.append(said)
+        slides_any = slides_any or grip <= 0.0
     if not parts:
         return ""
-    return ("given brake force beyond the grip in the stop (the capstan limit at the "
+    within = "" if slides_any else "a force within it, "
+    return ("brake force beyond the grip in the stop (the capstan limit at the "
             "slack-side tension of the stop, its fall doubled for the stop's fronts, the "
-            "undamped bound): " + "; ".join(parts) + "; the pulley may slide (the run's slip "
-            "check says): a force within it, a heavier take-up or a brake on another pulley "
-            "would avoid it")
+            "undamped bound; the force is given in the file or an auto size written in, as "
+            "brake_governed_by says): " + "; ".join(parts) + "; the pulley may slide (the "
+            f"run's slip check says): {within}{takeup_lever(conv)} or a brake on another "
+            "pulley would avoid it")
 
 
 def _holding_grip(conv: Conveyor, steady: SteadyResult, each: list[float]) -> str:
@@ -316,19 +348,31 @@ def _holding_grip(conv: Conveyor, steady: SteadyResult, each: list[float]) -> st
             "slip check says): " + _hold_fix(conv, steady))
 
 
+def takeup_lever(conv: Conveyor, why: str = "") -> str:
+    """The take-up lever in words: ``a heavier take-up`` for a gravity take-up, ``a higher
+    take-up pretension (takeup.pretension_kn)`` for a fixed (screw or winch) one, which has no
+    counterweight to make heavier (the words of
+    :func:`beltstudy.engine.dynamics.simulate.heavier_takeup`); ``why`` goes in the
+    brackets."""
+    if conv.takeup.type != "gravity":
+        return "a higher take-up pretension (takeup.pretension_kn" + (f", {why})" if why else ")")
+    return "a heavier take-up" + (f" ({why})" if why else "")
+
+
 def _hold_fix(conv: Conveyor, steady: SteadyResult) -> str:
     """What lets a holding-sized brake's pulley keep its grip in the stop, in words: on an
     incline a holdback holds the belt at rest instead (where it has one, the brake need not
     hold it: a given force within the grip); on a decline only more tension or another
     braked pulley do."""
+    more = takeup_lever(conv)
     if float(steady.loop.gravity_n.sum()) > 0.0:
         if conv.holdback:
             return ("its holdback (holdback: true) already holds the belt at rest, so a given "
-                    "brake force (brakes[].force_kn) within the grip, a heavier take-up or a "
+                    f"brake force (brakes[].force_kn) within the grip, {more} or a "
                     "brake on another pulley would avoid it")
-        return ("a holdback to hold the belt at rest with a smaller given brake, a "
-                "heavier take-up or a brake on another pulley would avoid it")
-    return "a heavier take-up or part of the force on a brake on another pulley would avoid it"
+        return (f"a holdback to hold the belt at rest with a smaller given brake, {more} or "
+                "a brake on another pulley would avoid it")
+    return f"{more} or part of the force on a brake on another pulley would avoid it"
 def auto_sizes(conveyor: Conveyor, scenario: Scenario, *, model: str,
                params: dict | object | None = None, steady: SteadyResult | None = None) -> dict:
     """The take-up, rated power and brake forces of ``conveyor`` at one operating case.

@@ -927,15 +927,17 @@ def _rest(conv, loop, springs: Springs, gravity, T_run, tu_weight) -> tuple[int,
         warns.append(f"held at rest the belt is slack at {loop.s_m[k] + loop.dx_m[k]:.0f} m "
                      f"(the take-up leaves {T_rest[k] / 1e3:.3g} kN there): raise the take-up "
                      "tension")
-    warns += _rest_grip(loop, hold, T_rest)
+    warns += _rest_grip(loop, hold, T_rest, conv)
     return hold, T_rest, warns
 
 
-def _rest_grip(loop, hold: int, T_rest: np.ndarray) -> list[str]:
+def _rest_grip(loop, hold: int, T_rest: np.ndarray, conv=None) -> list[str]:
     """The pulley holding the belt at rest passes at most ``T_slack (e^(mu theta) - 1)``
     (Euler-Eytelwein, PHYSICS 5.1, static friction): a rest state that asks more of it cannot
     stand (the belt would creep over the held pulley). The transient model starts from it
-    all the same (the hold is taken as given), so the run says so."""
+    all the same (the hold is taken as given), so the run says so, with the take-up lever of
+    ``conv`` (:func:`beltstudy.engine.design.takeup_lever`: a fixed take-up has no
+    counterweight to make heavier)."""
     pulley = next((p for p in loop.pulleys if p.element == hold), None)
     if pulley is None:
         return []
@@ -946,10 +948,11 @@ def _rest_grip(loop, hold: int, T_rest: np.ndarray) -> list[str]:
     if held <= grip * (1.0 + 1e-9):  # a take-up sized to the grip holds (rounding aside)
         return []
     need = held / math.expm1(pulley.friction * math.radians(pulley.wrap_deg))
+    more = design.takeup_lever(conv) if conv is not None else "a heavier take-up"
     return [f"at rest the {pulley.where} pulley holding the belt passes {held / 1e3:.4g} kN, "
             f"beyond its grip of {grip / 1e3:.4g} kN (slack side {slack / 1e3:.4g} kN, mu "
             f"{pulley.friction:g}, wrap {pulley.wrap_deg:g} deg): the belt would creep over it; "
-            f"a slack-side tension of {need / 1e3:.4g} kN (a heavier take-up) or a brake or "
+            f"a slack-side tension of {need / 1e3:.4g} kN ({more}) or a brake or "
             "holdback on another pulley would hold it"]
 
 

@@ -236,7 +236,7 @@ def test_a_given_brake_beyond_its_grip_is_told_the_force_its_pulley_passes():
     note = sizes["brake_note"]
     assert sizes["brake_governed_by"] == ["given"] and sizes["brake_force_kn"] == [88.0]
     m = re.search(r"drive 1's pulley \(head\) passes at most ([0-9.]+) kN of brake force in "
-                  r"the stop against the 88 kN given \(brakes.0.force_kn\)", note)
+                  r"the stop against the 88 kN set \(brakes.0.force_kn\)", note)
     assert m, note
     assert "a force within it, a heavier take-up or a brake on another pulley" in note
     f = float(m.group(1)) * 1e3
