@@ -774,3 +774,42 @@ def rotating_parts(conv: Conveyor, loop: Loop, pulley_mass_kg: float | None = No
             shaft_mass[node] = shell(node)
     plain = {p.element: shell(p.element) for p in loop.pulleys if p.element not in shaft_mass}
     return RotatingParts(shaft_mass, shaft_drive, motor, plain)
+
+
+__all__ += ["shell_floor_notes"]
+
+
+def shell_floor_notes(conv: Conveyor, loop: Loop) -> list[str]:
+    """What :func:`rotating_parts` said nothing of: a drive whose given inertia, reduced to
+    the belt line on its pulley shaft (``(J + J_flywheel) (2 / D)^2``, less the motor's part
+    behind a fluid coupling; a drive that gives neither field is not told), is below the estimate of its pulley's own shell
+    (:func:`pulley_reduced_mass_kg`): the shaft is given the shell's mass instead, since the
+    given J cannot hold less than the pulley it turns. One note per such drive, with the given
+    and the used reduced masses [kg] and the inertia that would have given the used one."""
+    width = loop.belt.width_m
+    out = []
+    for i, d in enumerate(conv.drives):
+        if not {"inertia_kg_m2", "flywheel_kg_m2"} & d.model_fields_set:
+            continue  # nothing given: the shell is the estimate of the pulley asked for
+        red = (2.0 / d.pulley_diameter_m) ** 2
+        given = (d.inertia_kg_m2 + d.flywheel_kg_m2) * red
+        motor = ""
+        if d.coupling != "none":
+            j_m = (d.motor_inertia_kg_m2 if d.motor_inertia_kg_m2 is not None
+                   else MOTOR_INERTIA_SHARE * d.inertia_kg_m2)
+            given = max(given - j_m * red, 0.0)
+            motor = f", less the motor's {j_m:.4g} kg m2 behind the fluid coupling"
+        shell = pulley_reduced_mass_kg(d.pulley_diameter_m, width)
+        if given >= shell:
+            continue
+        out.append(
+            f"drive {i + 1}'s given inertia (drives.{i}.inertia_kg_m2 {d.inertia_kg_m2:g} kg m2"
+            + (f" + flywheel_kg_m2 {d.flywheel_kg_m2:g}" if d.flywheel_kg_m2 else "")
+            + f"{motor}) is {given:.4g} kg at the belt line (x (2 / D)^2, D "
+            f"{d.pulley_diameter_m:g} m), below the estimate of its pulley's own shell, "
+            f"{shell:.4g} kg (a steel drum of D {d.pulley_diameter_m:g} m, face B + 0.2 m, wall "
+            "12 mm + 1 % of D, + 30 % for the end discs: pulley_reduced_mass_kg), so the run "
+            f"used {shell:.4g} kg on that shaft ({shell / red:.4g} kg m2 at the pulley); an "
+            "inertia_kg_m2 with the pulley, gearbox and motor in it, from the drive's data, "
+            "sets it")
+    return out

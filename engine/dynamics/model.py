@@ -106,7 +106,7 @@ from beltstudy.engine.dynamics.records import (
     Takeup,
 )
 from beltstudy.engine.law import ResistanceLaw
-from beltstudy.engine.loop import G, Loop, rotating_parts
+from beltstudy.engine.loop import G, Loop, rotating_parts, shell_floor_notes
 from beltstudy.engine.statics import master_drive, rest_hold_element, rest_walk
 
 __all__ = [
@@ -1131,6 +1131,7 @@ def build_system(conv: Conveyor, scn: Scenario, steady, options: DynamicsOptions
     notes: list[str] = []
     v_d = float(loop.speed_m_s)
     mass, shafts, shaft_index, parts = _shafts(conv, loop, opts)
+    notes += shell_floor_notes(conv, loop)
     total_mass = float(mass.sum() + shafts.mass.sum() + np.sum(parts.motor_mass))
     law = _law(n, steady.law, opts)
     nodes = _nodes(loop, mass, steady.law, opts, law.hs_ref)
