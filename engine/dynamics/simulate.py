@@ -916,7 +916,47 @@ def transient_summary(sys: System, r: dict, out, segs, *, steady_summary=None, c
         sliding = any(out.shs[k]["slip_s"] > 0.0 and out.shs[k]["last"] > sys.stop_command_s
                       for k in braked)
         w.append(not_stopped_words(sys, float(r["v_mean"]), sliding))
+    elif not ran_away:  # a belt that never stopped is told so above, a holdback with it
+        w += runback_words(sys, out, r, steady_summary)
     return summary, w
+
+
+def runback_words(sys: System, out, r: dict, steady_summary: dict | None = None) -> list[str]:
+    """The warning of a belt that runs back after its stop ([] otherwise): its mass-weighted
+    mean speed (the records' ``v_mean``, the speed the stop's rest criterion reads) is still
+    below ``-REST_FRACTION`` x design speed at the run's end, the belt moving backwards as a
+    whole over its pulleys because the lift outpulls the resistances at rest and nothing holds
+    it. Not a passing dip: after a stop on a holdback the belt's stretch relaxes and its mean
+    speed can fall a few per cent below zero for a second or two, then rests (a 2 km 5 %
+    incline on its holdback: -0.136 m/s, 3 % of design, and at rest by the run's end). Names
+    since when it ran back (the start of the last stretch below the criterion), its fastest
+    backward mean speed, how far the belt ran back after the stop command by the run's end
+    (the trapezoidal integral of the negative mean speed over the records, an estimate at
+    ``record_dt_s``) and the holdback torque statics computes (CEMA's rule,
+    ``holdback_torque_knm``) or a holding brake that avoids it."""
+    rec = out.rec[:int(r["nrec"])]
+    after = rec["t"] > sys.stop_command_s + 1e-9
+    t, v = np.asarray(rec["t"][after], float), np.asarray(rec["v_mean"][after], float)
+    limit = REST_FRACTION * sys.v_design
+    if not t.size or v[-1] >= -limit:
+        return []
+    fwd = np.flatnonzero(v >= -limit)
+    k0 = int(fwd[-1]) + 1 if fwd.size else 0  # the last stretch below the criterion
+    k = k0 + int(np.argmin(v[k0:]))
+    neg = np.minimum(v, 0.0)
+    dist = float(-np.sum(0.5 * (neg[1:] + neg[:-1]) * np.diff(t))) if t.size > 1 else 0.0
+    torque = (steady_summary or {}).get("holdback_torque_knm")
+    holdback = ("a holdback on the head pulley (holdback: true)"
+                + (f" of at least {torque:.3g} kNm (CEMA's backstop rule, "
+                   "holdback_torque_knm)" if torque else ""))
+    return [f"the belt runs back after the stop: its mean speed has been below -{limit:.3g} "
+            f"m/s (-{100.0 * REST_FRACTION:g} % of design speed) since t = {t[k0]:.4g} s, "
+            f"{t[k0] - sys.stop_command_s:.3g} s after the stop command, reached "
+            f"{-v[k]:.3g} m/s backwards at t = {t[k]:.4g} s and was still {-v[-1]:.3g} m/s "
+            f"backwards at the run's end (t = {t[-1]:.4g} s), about {dist:.3g} m of belt run "
+            "back by then (the lift outpulls the resistances at rest and nothing holds it); "
+            f"{holdback} or a brake that holds once the belt rests (brakes[].hold: true) "
+            "would avoid it"]
 
 
 #: A belt whose mean speed at the stop command is at least this fraction of design speed ran

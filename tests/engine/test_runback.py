@@ -10,6 +10,10 @@ back, and the status of the steady figures stays theirs.
 
 from __future__ import annotations
 
+import re
+from types import SimpleNamespace
+
+import numpy as np
 import pytest
 
 from beltstudy.engine.conveyor import parse_conveyor
@@ -51,3 +55,55 @@ def test_a_brake_that_does_not_hold_at_rest_does_not_hold_the_belt():
     res = _solve(brakes=[{"position": "head", "force_kn": 40.0, "delay_s": 0.5,
                           "hold": False}])
     assert "can run back when it stops" in res.summary["message"]
+
+
+# ------------------------------------------------------------------ the transient's warning
+def _records(t, v):
+    rec = np.zeros(len(t), dtype=[("t", float), ("v_mean", float)])
+    rec["t"], rec["v_mean"] = t, v
+    return SimpleNamespace(rec=rec), {"nrec": len(t)}
+
+
+def test_a_sustained_run_back_is_warned_a_passing_dip_is_not():
+    """Design speed 2 m/s, stop command at 10 s, records every 0.5 s. The criterion is the
+    stop's rest criterion mirrored: the mean speed below -1 % of design (-0.02 m/s), still at
+    the run's end. A belt relaxing onto its holdback dips to -0.1 m/s (5 %) and rests: no
+    warning. A belt creeping back: -0.02 from 12 s, -0.05 from 12.5 s to the end at 15 s;
+    by hand the distance is the trapezoid of the negative speeds: 0.5 x (0 + 0.02) / 2 +
+    0.5 x (0.02 + 0.05) / 2 + 2.5 x 0.05 = 0.005 + 0.0175 + 0.125 = 0.1475 m."""
+    from beltstudy.engine.dynamics.simulate import runback_words
+
+    sysm = SimpleNamespace(stop_command_s=10.0, v_design=2.0)
+    t = np.arange(0.0, 15.01, 0.5)
+    dip = np.where(t < 11.0, 2.0 - 0.2 * t, 0.0)
+    dip[(t > 11.9) & (t < 13.1)] = -0.1
+    assert runback_words(sysm, *_records(t, dip)) == []
+    creep = np.where(t <= 10.0, 2.0, 0.0)
+    creep[t >= 11.5] = 0.0
+    creep[t >= 12.0] = -0.02
+    creep[t >= 12.5] = -0.05
+    (w,) = runback_words(sysm, *_records(t, creep), {"holdback_torque_knm": 1.234})
+    assert "since t = 12.5 s, 2.5 s after the stop command" in w, w  # -0.02 is not below
+    assert "reached 0.05 m/s backwards" in w and "still 0.05 m/s backwards" in w
+    dist = float(re.search(r"about ([\d.]+) m of belt run back", w).group(1))
+    assert dist == pytest.approx(0.1475, abs=0.0006)
+    assert "holdback: true) of at least 1.23 kNm" in w and "brakes[].hold: true" in w
+
+
+def test_the_revert_conveyor_runs_back_after_a_coast_stop_unless_held():
+    """The published 31 m revert conveyor (lift pull 2.14 kN against 2.13 kN of resistance
+    at rest, holdback: false) creeps back after a coast stop: warned, with the holdback torque
+    statics computes; with its holdback the belt rests and nothing is said."""
+    from beltstudy.engine.conveyor import Scenario, load_conveyor
+    from beltstudy.engine.run import run_one
+    from tests.conftest import ROOT
+
+    conv = load_conveyor(ROOT / "benchmarks" / "conveyors" / "helix-revert-31m.yaml")
+    scn = Scenario.model_validate({"start": {"time_s": 5.0}, "run_s": 5.0,
+                                   "stop": {"mode": "coast"}, "elements": 60})
+    s = run_one(conv, scn, model="din").summary
+    assert "the belt runs back after the stop" in s["message"], s["message"]
+    assert f"of at least {s['holdback_torque_knm']:.3g} kNm" in s["message"]
+    assert s["status"] == "warning"
+    held = run_one(conv.model_copy(update={"holdback": True}), scn, model="din").summary
+    assert "runs back" not in held["message"], held["message"]
