@@ -339,14 +339,14 @@ def runaway_words(sys: System, t_s: float, v_mean: float, t_stop_cmd: float) -> 
     """The warning of a run that ended because the belt ran away (mean speed past
     :data:`~beltstudy.engine.dynamics.codes.RUNAWAY_FACTOR` x design either way at ``t_s``)."""
     phase = _PHASE_WORDS[_run_phase(sys, t_s, t_stop_cmd)]
+    more = heavier_takeup(sys)
     if v_mean > 0.0:
         what = ("the belt ran away forwards", "the drives and brakes could not hold it back: "
                 "more brake force, brakes that act in this stop (stop.mode: brake, hold), or, "
-                "where a drive pulley slipped, a heavier take-up")
+                f"where a drive pulley slipped, {more}")
     else:
         what = ("the belt ran back", "nothing held it against the lift: a holdback "
-                "(holdback: true), brakes that hold, or, where a drive pulley slipped, a heavier "
-                "take-up")
+                f"(holdback: true), brakes that hold, or, where a drive pulley slipped, {more}")
     return (f"{what[0]} {phase}: its mean speed reached {abs(v_mean):.3g} m/s "
             f"({C.RUNAWAY_FACTOR:g} x the design speed) at t = {t_s:.4g} s and the run was "
             f"ended there; {what[1]}")
@@ -880,8 +880,8 @@ def transient_summary(sys: System, r: dict, out, segs, *, steady_summary=None, c
             f"for {r['slack_dur']:.1f} s in "
             "all (the one-dimensional model does not follow the belt leaving the idlers or "
             "piling up; a slack span's sag is past every sag limit and has no value, so "
-            "sag_max_dyn_pct is empty); a heavier take-up, more take-up travel, a longer stop "
-            "or a brake nearer the low-tension side would avoid it")
+            f"sag_max_dyn_pct is empty); {heavier_takeup(sys)}, more take-up travel, a longer "
+            "stop or a brake nearer the low-tension side would avoid it")
     if conveyor is not None:
         lim = conveyor.sag_limit_pct
         for code, name, limit in ((0, "carry", lim.carry), (1, "return", lim.return_)):
@@ -981,6 +981,8 @@ def _short_of_speed_words(sys: System, v_cmd: float, t_stop_cmd: float) -> str:
     ran at when the stop was commanded and, for dol drives behind fluid couplings, that their
     running slip holds the pulleys below the motors' speed, and what would meet design speed."""
     v_d = sys.v_design
+    if abs(v_cmd) < 1e-9 * v_d:  # round-off about rest: said as 0, not as -8.6e-20, -0.0 %
+        v_cmd = 0.0
     words = (f"the belt never reached 99 % of design speed during the start (its mean speed "
              f"was {v_cmd:.4g} m/s, {100.0 * v_cmd / v_d:.1f} % of design speed, at the stop "
              f"command at t = {t_stop_cmd:.1f} s)")

@@ -208,6 +208,19 @@ def test_a_screw_take_up_is_offered_more_pretension_not_a_heavier_take_up():
     assert heavier_takeup(gravity, "more slack-side tension") == \
         "a heavier take-up (more slack-side tension)"
     assert heavier_takeup(None) == "a heavier take-up"
+    # the runaway warnings offer the same lever (a screw take-up: its pretension)
+    from beltstudy.engine.dynamics.simulate import _short_of_speed_words, runaway_words
+    t_stop_cmd = screw.model.cycle.t_pre + screw.model.cycle.t_start + 1.0
+    for v in (-7.0, 7.0):
+        said = runaway_words(screw, t_stop_cmd + 2.0, v, t_stop_cmd)
+        assert "where a drive pulley slipped, a higher take-up pretension" in said, said
+        assert "heavier" not in said
+        assert "a heavier take-up" in runaway_words(gravity, t_stop_cmd + 2.0, v, t_stop_cmd)
+    # a belt the drives never moved: its mean speed is round-off about rest, said as 0
+    screw.v_design = 3.15
+    still = _short_of_speed_words(screw, -8.617e-20, t_stop_cmd)
+    assert "its mean speed was 0 m/s, 0.0 % of design speed" in still, still
+    assert "-0.0 %" not in still and "e-20" not in still
 
 
 def test_a_coast_stop_of_dol_drives_is_not_offered_a_controlled_stop_it_cannot_run():
