@@ -35,7 +35,7 @@ The bar is of the figure the run reports, at the run's own mesh, in its unit
 step) gives, which ``benchmarks/check_error_bars.py`` checks on the example conveyors.
 
 A verdict whose figure lies within its bar of the limit (slack, sag, slip margin, transient
-safety factor) is *marginal* (PHYSICS 5.2): :func:`marginal_verdicts` says so, with the
+safety factor, lift-off at a concave curve) is *marginal* (PHYSICS 5.2): :func:`marginal_verdicts` says so, with the
 figure, the limit and the error, in the run's message. A run is checked with
 ``beltstudy.engine.run.run_one(..., check=True)``.
 """
@@ -364,7 +364,10 @@ def marginal_verdicts(summary: dict, figures: dict, *, sag_limit_pct: float | No
       sag is largest;
     - slip: ``slip_margin_min_dyn`` against 1, when no drive slipped (a slip is reported
       by itself);
-    - safety factor: ``safety_factor_dyn`` against ``safety_factor_min``.
+    - safety factor: ``safety_factor_dyn`` against ``safety_factor_min``;
+    - lift-off: ``liftoff_max_kn_over`` (the most the tension at a concave curve or survey
+      grade change exceeded its lift-off tension, > 0 the belt lifted) against 0 kN, where
+      the run has one (:func:`beltstudy.engine.curves.transient_liftoff`).
     """
     slack = (summary.get("slack_max_m") or 0.0) > 0.0
     checks = [("slack_max_m", 0.0, "m") if slack else ("t_min_dyn_kn", 0.0, "kN")]
@@ -376,5 +379,6 @@ def marginal_verdicts(summary: dict, figures: dict, *, sag_limit_pct: float | No
         checks.append(("slip_margin_min_dyn", 1.0, ""))
     if safety_factor_min is not None:
         checks.append(("safety_factor_dyn", float(safety_factor_min), ""))
+    checks.append(("liftoff_max_kn_over", 0.0, "kN"))  # no bar without a concave curve
     said = (_marginal(figures.get(name), limit, unit) for name, limit, unit in checks)
     return [words for words in said if words]

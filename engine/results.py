@@ -531,7 +531,7 @@ DECIDING = (
     "drive{i}_force_max_kn", "drive{i}_power_max_kw",
     "takeup_travel_m", "takeup_travel_start_m", "takeup_travel_stop_m",
     "stop_time_s", "stop_distance_m", "slack_max_m",
-    "slip_margin_min_dyn", "safety_factor_dyn", "sag_max_dyn_pct",
+    "slip_margin_min_dyn", "safety_factor_dyn", "sag_max_dyn_pct", "liftoff_max_kn_over",
 )
 _SUFFIX_UNIT = (("_kn", "kN"), ("_kw", "kW"), ("_m_s", "m/s"), ("_pct", "%"), ("_m", "m"),
                 ("_s", "s"))

@@ -114,6 +114,26 @@ def test_a_verdict_within_its_error_of_the_limit_is_marginal():
         "marginal: slip_margin_min_dyn 1.03", "marginal: safety_factor_dyn 5.9"]
 
 
+def test_a_lift_off_within_its_error_of_zero_is_marginal():
+    """liftoff_max_kn_over (the most a concave curve's tension went over its lift-off
+    tension; > 0 the belt lifted) is judged against 0 kN: a belt that lifted by 0.14 kN
+    +- 2.5 kN, or stayed down by 1.0 kN +- 2.5 kN, may do the other on a finer mesh; one
+    3.2 kN under the limit +- 1.5 kN, or 10 kN over it +- 2 kN, does not. A run without a
+    concave curve has no such figure and no verdict."""
+    def words(value, err):
+        return A.marginal_verdicts({"slack_max_m": 0.0}, {
+            "liftoff_max_kn_over": _fe("liftoff_max_kn_over", value, err)})
+
+    assert words(0.14, 2.5) == ["marginal: liftoff_max_kn_over 0.14 against limit 0 +- 2.5 kN "
+                                "(the verdict may flip with the mesh)"]
+    assert words(-1.0, 2.5)[0].startswith("marginal: liftoff_max_kn_over -1 against limit 0")
+    assert words(-3.2, 1.5) == [] and words(10.0, 2.0) == []
+    assert A.marginal_verdicts({"slack_max_m": 0.0, "liftoff_max_kn_over": None}, {}) == []
+    # a figure of the deciding ones, barred where the run reports it (null without a curve)
+    assert "liftoff_max_kn_over" in A.deciding_figures({"liftoff_max_kn_over": -1.0})
+    assert A.deciding_figures({"liftoff_max_kn_over": None}) == []
+
+
 def test_a_brake_stop_close_to_slack_is_named_marginal():
     """A 450 m incline (benchmarks/conveyors/steep-incline.yaml) stopped by a 50 kN head
     brake on 42 elements: its lowest tension, behind the brake on the carry, falls with the
