@@ -158,12 +158,17 @@ def figure_error(name: str, values: tuple, elements: tuple[int, int, int],
 def resolution(name: str, summary: dict, rtol: float) -> float:
     """What a run resolves of a figure, the floor of its bar: a time is read at a step
     (``dt_used_s``); any other figure carries the relative accuracy ``rtol`` of the
-    resistance law between its exact evaluations (``DynamicsOptions.resistance_rtol``)."""
+    resistance law between its exact evaluations (``DynamicsOptions.resistance_rtol``). A
+    lift-off margin (``liftoff_*``, T - T_lift) carries that of the tension T at the curve,
+    not of the margin, which is near 0 where the verdict is close: ``rtol`` x the cycle's
+    highest tension ``t_max_dyn_kn`` (T is at most that)."""
     value = summary.get(name)
     if not _finite(value):
         return 0.0
     if name.endswith("_time_s") or name == "stop_time_s":
         return float(summary.get("dt_used_s") or 0.0)
+    if name.startswith("liftoff_") and _finite(summary.get("t_max_dyn_kn")):
+        return rtol * max(abs(float(value)), abs(float(summary["t_max_dyn_kn"])))
     return rtol * abs(float(value))
 
 
@@ -367,7 +372,10 @@ def marginal_verdicts(summary: dict, figures: dict, *, sag_limit_pct: float | No
     - safety factor: ``safety_factor_dyn`` against ``safety_factor_min``;
     - lift-off: ``liftoff_max_kn_over`` (the most the tension at a concave curve or survey
       grade change exceeded its lift-off tension, > 0 the belt lifted) against 0 kN, where
-      the run has one (:func:`beltstudy.engine.curves.transient_liftoff`).
+      the run has one (:func:`beltstudy.engine.curves.transient_liftoff`); and each phase's,
+      ``liftoff_over_start_kn`` and ``liftoff_over_stop_kn``, that is not the cycle's
+      (another value): a phase's excess under the other's on the run's mesh may pass it on
+      a finer one, which the cycle's figure on three meshes does not show.
     """
     slack = (summary.get("slack_max_m") or 0.0) > 0.0
     checks = [("slack_max_m", 0.0, "m") if slack else ("t_min_dyn_kn", 0.0, "kN")]
@@ -379,6 +387,13 @@ def marginal_verdicts(summary: dict, figures: dict, *, sag_limit_pct: float | No
         checks.append(("slip_margin_min_dyn", 1.0, ""))
     if safety_factor_min is not None:
         checks.append(("safety_factor_dyn", float(safety_factor_min), ""))
-    checks.append(("liftoff_max_kn_over", 0.0, "kN"))  # no bar without a concave curve
-    said = (_marginal(figures.get(name), limit, unit) for name, limit, unit in checks)
+    said = [_marginal(figures.get(name), limit, unit) for name, limit, unit in checks]
+    # lift-off (no bar without a concave curve): the cycle's, then a phase's other peak
+    cycle = figures.get("liftoff_max_kn_over")
+    cycle_said = _marginal(cycle, 0.0, "kN")
+    said.append(cycle_said)
+    for name in ("liftoff_over_start_kn", "liftoff_over_stop_kn"):
+        fe = figures.get(name)
+        if fe is not None and not (cycle_said and fe.value == cycle.value):
+            said.append(_marginal(fe, 0.0, "kN"))
     return [words for words in said if words]

@@ -1270,18 +1270,81 @@ def yaml11_hint(got: Any, error_type: str) -> str:
     return ""
 
 
+#: Pydantic error types that say a value has the wrong JSON type -> the type it should have.
+#: Every door says such an error alike: ``speed_m_s: "4.5" is not of type "number"`` (the
+#: field, the value given as JSON writes it, the type to write), then :func:`type_hint`.
+JSON_TYPES = {
+    "float_type": "number", "float_parsing": "number", "int_type": "integer",
+    "int_parsing": "integer", "int_from_float": "integer", "bool_type": "boolean",
+    "bool_parsing": "boolean", "string_type": "string", "list_type": "array",
+    "tuple_type": "array", "dict_type": "object", "model_type": "object",
+    "model_attributes_type": "object", "none_required": "null",
+}
+_JSON_NUMBER = re.compile(r"^-?(?:0|[1-9][0-9]*)(?:\.[0-9]+)?(?:[eE][-+]?[0-9]+)?$")
+
+
+def as_json(value: Any) -> str:
+    """``value`` as JSON writes it (``"4.5"``, ``[1,2]``, ``true``); ``repr`` where JSON
+    cannot."""
+    try:
+        return json.dumps(value, ensure_ascii=False, separators=(",", ":"), allow_nan=False)
+    except (TypeError, ValueError):
+        return repr(value)
+
+
+def type_hint(got: Any, error_type: str) -> str:
+    """What to write for a value of the wrong type: :func:`yaml11_hint`'s fixes, a number or
+    boolean written as text (``"4.5"``: ``write 4.5 without quotes``) and a number or boolean
+    where text belongs (``name: 5``: ``write "5" in quotes``); "" for every other value."""
+    hint = yaml11_hint(got, error_type)
+    if hint:
+        return hint
+    if isinstance(got, str):
+        text = got.strip()
+        if error_type in _NUMBER_ERRORS and _JSON_NUMBER.match(text):
+            return f"write {text} without quotes"
+        if error_type in _BOOL_ERRORS and text.lower() in ("true", "false"):
+            return f"write {text.lower()} without quotes"
+    elif error_type == "string_type" and isinstance(got, int | float | bool):
+        return f"write {json.dumps(as_json(got))} in quotes"
+    return ""
+
+
+def _clean_loc(loc: tuple) -> tuple:
+    """A location without the union member tags Pydantic adds (``literal['auto']``,
+    ``float``)."""
+    return tuple(
+        p for p in loc
+        if not (isinstance(p, str) and ("[" in p or p in {"float", "int", "str", "list"}
+                                        or p.startswith("constrained-")))
+    )
+
+
+def _said_errors(exc: ValidationError) -> list[dict]:
+    """The errors worth saying: a union member's wrong type is left out where another member
+    took the value and found it out of range (a load of 2: its range is the problem) or
+    looked inside it (a mapping that is no text, with a problem inside)."""
+    errors = [{**e, "clean": _clean_loc(tuple(e["loc"]))} for e in exc.errors()]
+    valued = {e["clean"] for e in errors
+              if e["type"] not in JSON_TYPES and e["type"] not in ("literal_error", "missing",
+                                                                    "extra_forbidden")}
+    deeper = {e["clean"][:i] for e in errors for i in range(len(e["clean"]))}
+
+    def outshone(e: dict) -> bool:
+        return e["type"] in JSON_TYPES and (
+            e["clean"] in valued
+            or (isinstance(e.get("input"), dict | list) and e["clean"] in deeper))
+
+    return [e for e in errors if not outshone(e)]
+
+
 def format_validation_error(exc: ValidationError, model: type[BaseModel], prefix: str = "") -> str:
-    """Turn a Pydantic error into short lines naming the field path and the fix."""
+    """Turn a Pydantic error into short lines naming the field path and the fix; a value of
+    the wrong type as JSON Schema says it (``speed_m_s: "4.5" is not of type "number"``),
+    the same words as a study's door (:mod:`beltstudy.service.door.messages`)."""
     lines = []
-    for err in exc.errors():
-        loc = tuple(err["loc"])
-        path = prefix + ".".join(str(p) for p in loc if not str(p).startswith("function-"))
-        # Pydantic adds union member tags (e.g. 'literal['auto']', 'float') to locations.
-        clean = tuple(
-            p for p in loc
-            if not (isinstance(p, str) and ("[" in p or p in {"float", "int", "str", "list"}
-                                            or p.startswith("constrained-")))
-        )
+    for err in _said_errors(exc):
+        clean = err["clean"]  # Pydantic's union member tags taken off (_clean_loc)
         path = prefix + ".".join(str(p) for p in clean)
         if err["type"] == "extra_forbidden":
             owner = _model_at(model, clean)
@@ -1297,6 +1360,12 @@ def format_validation_error(exc: ValidationError, model: type[BaseModel], prefix
             if msg.startswith("Value error, "):
                 msg = msg[len("Value error, ") :]
             got = err.get("input")
+            if err["type"] in JSON_TYPES:
+                # the value given, the type to write and how (one wording on every path)
+                hint = type_hint(got, err["type"])
+                lines.append((path, f'is not of type "{JSON_TYPES[err["type"]]}"',
+                              f": {hint}" if hint else "", f"{as_json(got)} "))
+                continue
             shown = "" if isinstance(got, dict | list) else f" (got {got!r})"
             if isinstance(got, float) and not math.isfinite(got):
                 msg = "Input should be a finite number"  # not a bound a NaN fails
@@ -1316,31 +1385,43 @@ def format_validation_error(exc: ValidationError, model: type[BaseModel], prefix
                     path, msg = prefix + m.group(1), m.group(2)
                 else:
                     path = prefix.rstrip(".") or "(top level)"
-            lines.append((path, msg, shown))
+            lines.append((path, msg, shown, ""))
     # Union types produce one error per member: one line per field, the members' conditions
-    # joined by "or" ("Input should be 'auto' or greater than or equal to 8").
+    # joined by "or" ("Input should be 'auto' or greater than or equal to 8"; a wrong type
+    # first: '"x" is not of type "number" or 'auto'').
     merged: dict[str, list] = {}
     for line in lines:
         if isinstance(line, str):
             merged.setdefault(line, [])
             continue
-        path, msg, shown = line
+        path, msg, shown, lead = line
         key = f"\x00{path}"
         if key not in merged:
-            merged[key] = [path, [msg], shown]
+            merged[key] = [path, [msg], shown, lead]
         elif msg not in merged[key][1]:
+            if lead and not merged[key][3]:  # the wrong type leads, its value and fix too
+                merged[key][2:] = [shown, lead]
             merged[key][1].append(msg)
     out = []
     for key, item in merged.items():
         if not item:
             out.append(key)
             continue
-        path, msgs, shown = item
-        text = msgs[0] + "".join(
-            " or " + (m[len("Input should be "):] if m.startswith("Input should be ") else m)
-            for m in msgs[1:])
-        out.append(f"{path}: {text}{shown}")
+        path, msgs, shown, lead = item
+        # the types first, then the members' other conditions (the door's order)
+        msgs = sorted(msgs, key=lambda m: not m.startswith("is not of type "))
+        text = msgs[0] + "".join(" or " + _or_part(m) for m in msgs[1:])
+        out.append(f"{path}: {lead}{text}{shown}")
     return "; ".join(out)
+
+
+def _or_part(msg: str) -> str:
+    """A union member's condition after the first's: ``'auto'`` of ``Input should be 'auto'``,
+    ``"null"`` of ``is not of type "null"``."""
+    for lead in ("Input should be ", "is not of type "):
+        if msg.startswith(lead):
+            return msg[len(lead):]
+    return msg
 
 
 #: YAML 1.2's floats that YAML 1.1 (PyYAML) reads as text: an exponent without its sign
@@ -1586,5 +1667,6 @@ def parse_scenario(data: dict, prefix: str = "", *, strict: bool = True) -> Scen
 
 
 def load_conveyor(path: str | Path) -> Conveyor:
-    """Load a conveyor file (YAML or JSON)."""
-    return parse_conveyor(load_mapping(path))
+    """Load a conveyor file (YAML or JSON); its problems name the file first
+    (``c.yaml: speed_m_s: ...``)."""
+    return parse_conveyor(load_mapping(path), prefix=f"{path}: ")

@@ -363,6 +363,8 @@ def transient_liftoff(loop: Loop, segs, t_start_end_s: float, t_stop_cmd_s: floa
         ``liftoff_max_kn_over``: the largest T - R m'_G g cos(a) over the concave curves' elements
         and the concave survey grade changes' springs (both strands) and the cycle [kN],
         negative when the belt stays on its idlers (the margin left), null without either;
+        ``liftoff_over_start_kn`` / ``liftoff_over_stop_kn`` the same before and after the
+        stop command (null for a phase no envelope covers);
         ``liftoff_at_m`` / ``liftoff_time_s``
         where (loop position of the spring, as ``t_max_dyn_at_m``) and when, null when it
         never lifts. Exact: the envelopes hold every step's tension and the limit is fixed
@@ -384,7 +386,8 @@ def transient_liftoff(loop: Loop, segs, t_start_end_s: float, t_stop_cmd_s: floa
     less tension there.
     """
     concave = [c for c in loop.curves if c.concave]
-    none = {"liftoff_max_kn_over": None, "liftoff_at_m": None, "liftoff_time_s": None}
+    none = {"liftoff_max_kn_over": None, "liftoff_at_m": None, "liftoff_time_s": None,
+            "liftoff_over_start_kn": None, "liftoff_over_stop_kn": None}
     bends = _survey_bends(survey)
     if not (concave or bends) or not segs:
         return none, []
@@ -408,6 +411,12 @@ def transient_liftoff(loop: Loop, segs, t_start_end_s: float, t_stop_cmd_s: floa
     worst = float(over[kseg, j])
     s_end = loop.s_end_m
     out = dict(none, liftoff_max_kn_over=worst / 1e3)
+    # per phase, split at the stop command as the segments are (exact): the largest excess of
+    # one phase may lie under the other's on one mesh and pass it on a finer one
+    before = hi_t <= t_stop_cmd_s
+    for key, mask in (("liftoff_over_start_kn", before), ("liftoff_over_stop_kn", ~before)):
+        part = over[mask & np.isfinite(over)]
+        out[key] = float(part.max()) / 1e3 if part.size else None
     if worst > 0.0:
         out["liftoff_at_m"] = float(s_end[el[j]])
         out["liftoff_time_s"] = float(hi_t[kseg, j])

@@ -487,6 +487,9 @@ CURVES_TRANSIENT = ResultGroup("curves_transient", "Vertical curves, transient",
     _f("liftoff_at_m", "m", "where liftoff_max_kn_over is, along the loop from the tail, carry "
        "first (null when the belt never lifts)", "  at"),
     _f("liftoff_time_s", "s", "when (null when the belt never lifts)", "  time"),
+    _f("liftoff_over_start_kn", "kN", "liftoff_max_kn_over from the start command to the stop "
+       "command (start and running)", "  start"),
+    _f("liftoff_over_stop_kn", "kN", "liftoff_max_kn_over from the stop command on", "  stop"),
 ))
 
 BOOKKEEPING = ResultGroup("bookkeeping", "Bookkeeping", (
@@ -531,7 +534,8 @@ DECIDING = (
     "drive{i}_force_max_kn", "drive{i}_power_max_kw",
     "takeup_travel_m", "takeup_travel_start_m", "takeup_travel_stop_m",
     "stop_time_s", "stop_distance_m", "slack_max_m",
-    "slip_margin_min_dyn", "safety_factor_dyn", "sag_max_dyn_pct", "liftoff_max_kn_over",
+    "slip_margin_min_dyn", "safety_factor_dyn", "sag_max_dyn_pct",
+    "liftoff_max_kn_over", "liftoff_over_start_kn", "liftoff_over_stop_kn",
 )
 _SUFFIX_UNIT = (("_kn", "kN"), ("_kw", "kW"), ("_m_s", "m/s"), ("_pct", "%"), ("_m", "m"),
                 ("_s", "s"))

@@ -29,7 +29,7 @@ from beltstudy.engine.conveyor import strict_validate
 from beltstudy.service.door.messages import describe
 from beltstudy.service.door.study import ConveyorRef, ModelName
 from beltstudy.service.door.studyfile import conveyor_from_path
-from beltstudy.service.errors import Invalid
+from beltstudy.service.errors import Invalid, shown_path
 
 __all__ = ["CalibrationIn", "read_calibration", "run_calibration", "check_params", "split_fit", "MAX_ROWS",
            "MAX_FIT"]
@@ -137,7 +137,7 @@ def run_calibration(body: CalibrationIn, *, base_dir: Path | None = None,
             catalog.check_conveyor(conv, "conveyor.")
         else:
             data, _ = conveyor_from_path(body.conveyor, base_dir, studies_dir)
-            conv = parse_conveyor(data, prefix="conveyor: ")
+            conv = parse_conveyor(data, prefix=f"conveyor: {shown_path(body.conveyor)}: ")
         rows = measurements_from_rows([r.model_dump(exclude_none=True) for r in body.measured])
         result = calibrate(conv, rows, body.model, names, fixed=body.params, starts=starts)
     except InputError as exc:

@@ -75,7 +75,7 @@ def read_conveyor(path: str | os.PathLike):
 
     data = load_mapping(path)
     expect_kind(data, "conveyor", str(path))
-    return parse_conveyor(data)
+    return parse_conveyor(data, prefix=f"{path}: ")
 
 
 def with_sag_at_rest(conv, on: bool | None):

@@ -17,28 +17,19 @@ shape of (a mapping is no text) is not reported when another member looked insid
 
 from __future__ import annotations
 
-import json
 from collections import defaultdict
 from typing import Any
 
 from pydantic import BaseModel, ValidationError
 
 from beltstudy.engine import Conveyor, Scenario, format_validation_error
-from beltstudy.engine.conveyor import yaml11_hint
+from beltstudy.engine.conveyor import JSON_TYPES, as_json, type_hint
 from beltstudy.service.door.study import AXIS_TARGETS, StudyIn, unfold_axis
 
 __all__ = ["describe", "MAX_PROBLEMS"]
 
 #: Problems named in one message; the rest are counted.
 MAX_PROBLEMS = 5
-#: Pydantic error types that say a value has the wrong JSON type -> the type it should have.
-JSON_TYPES = {
-    "float_type": "number", "float_parsing": "number", "int_type": "integer",
-    "int_parsing": "integer", "int_from_float": "integer", "bool_type": "boolean",
-    "bool_parsing": "boolean", "string_type": "string", "list_type": "array",
-    "tuple_type": "array", "dict_type": "object", "model_type": "object",
-    "model_attributes_type": "object", "none_required": "null",
-}
 #: Error types of a union member that does not take the value's shape at all (a mapping for a
 #: text): not reported when another member looked inside the value.
 SHAPE_TYPES = {"string_type", "float_type", "int_type", "bool_type", "list_type", "dict_type",
@@ -95,23 +86,16 @@ def _dotted(path: tuple) -> str:
     return ".".join(str(p) for p in _unfolded(path)) or "(top level)"
 
 
-def _json(value: Any) -> str:
-    try:
-        return json.dumps(value, ensure_ascii=False, separators=(",", ":"))
-    except (TypeError, ValueError):
-        return repr(value)
-
-
 def _as_json_type(errors: list[dict]) -> str:
     """``"4.5" is not of type "number"`` for the errors at one path (the members of a union
     each add what they want)."""
     types = list(dict.fromkeys(JSON_TYPES[e["type"]] for e in errors if e["type"] in JSON_TYPES))
     others = [e["ctx"]["expected"] for e in errors
               if e["type"] == "literal_error" and "ctx" in e]
-    text = f'{_json(errors[0]["input"])} is not of type "{types[0]}"'
+    text = f'{as_json(errors[0]["input"])} is not of type "{types[0]}"'
     text += "".join(f' or "{t}"' for t in types[1:]) + "".join(f" or {o}" for o in others)
-    # a YAML 1.1 boolean word or base-60 number, text as YAML 1.2 reads it: say what to write
-    hint = next((h for e in errors if (h := yaml11_hint(e["input"], e["type"]))), "")
+    # what to write (a YAML 1.1 word, a number in quotes): the engine's words (type_hint)
+    hint = next((h for e in errors if (h := type_hint(e["input"], e["type"]))), "")
     text += f": {hint}" if hint else ""
     return f"{_dotted(errors[0]['path'])}: {text}"
 

@@ -210,7 +210,7 @@ def _conveyor(study: StudyIn, base_dir: Path | None, studies_dir: Path | None
     try:
         if isinstance(study.conveyor, str):
             conv_data, source = conveyor_from_path(study.conveyor, base_dir, studies_dir)
-            conveyor = parse_conveyor(conv_data, prefix="conveyor: ")
+            conveyor = parse_conveyor(conv_data, prefix=f"conveyor: {shown_path(source)}: ")
         else:
             # the same checks as a file's (catalogue, fill): the Pydantic model alone lets an
             # over-filled belt through to the grid, which would fail there on every variant

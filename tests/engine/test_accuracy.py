@@ -134,6 +134,42 @@ def test_a_lift_off_within_its_error_of_zero_is_marginal():
     assert A.deciding_figures({"liftoff_max_kn_over": None}) == []
 
 
+def test_a_lift_off_in_one_phase_under_the_other_s_peak_is_said_by_its_phase():
+    """The cycle's lift-off margin is the larger of the start's (with running) and the stop's:
+    a start margin of -0.87 kN that has converged (+- 0.004 kN) over a stop margin of -3.07 kN
+    that grows with the mesh (+- 22 kN) is not marginal as the cycle's figure, yet the stop
+    may lift on a finer mesh: the stop's figure says so. Where the cycle's figure is itself
+    marginal, the phase of the same peak is not said twice."""
+    cycle = _fe("liftoff_max_kn_over", -0.87, 0.004)
+    start = _fe("liftoff_over_start_kn", -0.87, 0.004)
+    stop = _fe("liftoff_over_stop_kn", -3.07, 22.0)
+    words = A.marginal_verdicts({}, {f.name: f for f in (cycle, start, stop)})
+    lift = [w for w in words if "liftoff" in w]
+    assert lift == ["marginal: liftoff_over_stop_kn -3.07 against limit 0 +- 22 kN (the "
+                    "verdict may flip with the mesh)"]
+    cycle, start = (_fe(f.name, -0.5, 2.0) for f in (cycle, start))
+    words = A.marginal_verdicts({}, {f.name: f for f in (cycle, start, stop)})
+    assert [w.split(" against")[0] for w in words if "liftoff" in w] == [
+        "marginal: liftoff_max_kn_over -0.5", "marginal: liftoff_over_stop_kn -3.07"]
+    assert A.marginal_verdicts({}, {"liftoff_over_stop_kn": _fe("liftoff_over_stop_kn", -3.07,
+                                                                2.0)}) == []
+
+
+def test_a_lift_off_margin_carries_the_resolution_of_the_tension():
+    """A margin T - T_lift inherits the absolute error of the tension T (the resistance law's
+    rtol x T), not rtol x the margin, which vanishes where the verdict is close. The valley
+    of test_curves_dynamics (R 250 m, 6 t take-up, 60 s start, controlled stop) on 114, 210,
+    422 elements: the start's margin -3.716, -3.717, -3.718 kN (+- 0.015 kN by the meshes,
+    0.0037 kN as rtol x the margin) and -3.699 kN on 846; rtol x the cycle's highest tension
+    91.7 kN = 0.092 kN holds it."""
+    s = {"liftoff_over_start_kn": -3.717, "t_max_dyn_kn": 91.7, "t_min_dyn_kn": 2.0}
+    assert A.resolution("liftoff_over_start_kn", s, 1e-3) == pytest.approx(0.0917)
+    assert A.resolution("t_min_dyn_kn", s, 1e-3) == pytest.approx(0.002)  # its own value
+    fe = A.figure_error("liftoff_over_start_kn", (-3.716, -3.717, -3.718), (114, 210, 422),
+                        A.resolution("liftoff_over_start_kn", s, 1e-3))
+    assert abs(-3.699 - fe.value) <= fe.err
+
+
 def test_a_brake_stop_close_to_slack_is_named_marginal():
     """A 450 m incline (benchmarks/conveyors/steep-incline.yaml) stopped by a 50 kN head
     brake on 42 elements: its lowest tension, behind the brake on the carry, falls with the

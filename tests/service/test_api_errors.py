@@ -120,13 +120,13 @@ CASES = [
         "text for a number inside an inline conveyor",
         {"conveyor": {**TINY_CONVEYOR, "speed_m_s": "4.5"}},
         422,
-        r'^conveyor.speed_m_s: "4.5" is not of type "number"$',
+        r'^conveyor.speed_m_s: "4.5" is not of type "number": write 4.5 without quotes$',
     ),
     (
         "text for a number in a grid axis",
         {"grid": {"temperature_c": ["15", 20]}},
         422,
-        r'^grid.temperature_c.0: "15" is not of type "number"$',
+        r'^grid.temperature_c.0: "15" is not of type "number": write 15 without quotes$',
     ),
     (
         "'nan' as text",

@@ -323,7 +323,8 @@ def test_a_design_over_full_and_declines_sizes_the_brake_from_the_declines_and_s
 
 @pytest.mark.parametrize("design, message", [
     ({"load": ["full", "downhill"]},
-     r"^design.load\[1\]: Input should be 'full', 'empty', 'inclines' or 'declines'"),
+     r"^design.load\[1\]: \"downhill\" is not of type \"number\" or \"array\" or 'full', "
+     r"'empty', 'inclines' or 'declines'$"),
     ({"load": ["full", [1.0, 0.5, 0.2]]},
      r"^design.load\[1\]: 3 fractions for 2 profile sections"),
     ({"load": [1.0, 0.5, 0.2]},

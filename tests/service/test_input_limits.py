@@ -40,17 +40,54 @@ def _three_ways(tmp_path, study: dict) -> list[str]:
 
 def test_text_for_a_number_is_refused_in_files_json_and_yaml(tmp_path, make_study,
                                                              make_conveyor):
+    said = '"4.5" is not of type "number": write 4.5 without quotes'
     study = make_study(conveyor=make_conveyor(speed_m_s="4.5"))
     for message in _three_ways(tmp_path, study):
-        assert message.startswith('conveyor.speed_m_s: "4.5" is not of type "number"'), message
-    # a conveyor file read on its own (beltstudy static) and one a study names by path
+        assert message == f"conveyor.speed_m_s: {said}", message
+    # a conveyor file read on its own (beltstudy static) and one a study names by path: the
+    # same words, after the file's name (they said 'speed_m_s: Input should be a valid
+    # number (got '4.5')', naming no file)
     conv = tmp_path / "conveyors" / "c.yaml"
     conv.parent.mkdir()
     conv.write_text(yaml.safe_dump(make_conveyor(speed_m_s="4.5")), encoding="utf-8")
-    with pytest.raises(InputError, match=r"^speed_m_s: Input should be a valid number"):
+    with pytest.raises(InputError) as err:
         load_conveyor(conv)
-    with pytest.raises(Invalid, match=r"^conveyor: speed_m_s: Input should be a valid number"):
+    assert str(err.value) == f"{conv}: speed_m_s: {said}"
+    with pytest.raises(Invalid) as err:
         resolve_study(make_study(conveyor="conveyors/c.yaml"), studies_dir=tmp_path)
+    assert err.value.message == f"conveyor: conveyors/c.yaml: speed_m_s: {said}"
+
+
+@pytest.mark.parametrize(("field", "value", "said"), [
+    ("speed_m_s", "3", '"3" is not of type "number": write 3 without quotes'),
+    ("takeup", [1, 2], '[1,2] is not of type "object"'),
+    ("drives", {"a": 1}, '{"a":1} is not of type "array"'),
+    ("holdback", "true", '"true" is not of type "boolean": write true without quotes'),
+    ("holdback", "maybe", '"maybe" is not of type "boolean"'),
+    ("name", 5, '5 is not of type "string": write "5" in quotes'),
+])
+def test_a_wrong_type_reads_alike_inline_in_a_file_and_on_the_command_line(
+        tmp_path, capsys, make_study, make_conveyor, field, value, said):
+    """One fault, one wording: an inline conveyor (study file, JSON and YAML bodies), a
+    conveyor file a study names, and ``beltstudy static FILE`` / the engine's loader each
+    name the field as written, the value given and what to write."""
+    from beltstudy.service.cli import main
+
+    conv_data = make_conveyor(**{field: value})
+    for message in _three_ways(tmp_path, make_study(conveyor=conv_data)):
+        assert message == f"conveyor.{field}: {said}", message
+    conv = tmp_path / "c.yaml"
+    conv.write_text(yaml.safe_dump(conv_data), encoding="utf-8")
+    study = tmp_path / "uses-file.yaml"
+    study.write_text(yaml.safe_dump(make_study(conveyor="c.yaml")), encoding="utf-8")
+    with pytest.raises(Invalid) as err:
+        load_study_file(study)
+    assert err.value.message == f"conveyor: c.yaml: {field}: {said}"
+    with pytest.raises(InputError) as err:
+        load_conveyor(conv)
+    assert str(err.value) == f"{conv}: {field}: {said}"
+    assert main(["static", str(conv)]) == 2
+    assert capsys.readouterr().err == f"error: {conv}: {field}: {said}\n"
 
 
 def test_a_boolean_is_no_number_in_any_axis_named_before_duplicates(tmp_path, make_study):
@@ -192,8 +229,8 @@ def test_yaml_base_60_is_text_as_yaml_1_2_reads_it(tmp_path):
     assert load_mapping(path) == {"a": "1:30", "b": "1:30.5", "c": 16}
     conv = yaml.safe_load((ROOT / "studies" / "conveyors" / "fabric-1km.yaml").read_text())
     conv["profile"][0]["lift_m"] = "1:30.5"
-    with pytest.raises(InputError, match=r"profile\.0\.lift_m: Input should be a valid number "
-                                         r"\(got '1:30\.5'\)"):
+    with pytest.raises(InputError, match=r'^profile\.0\.lift_m: "1:30\.5" is not of type '
+                                         r'"number": write the number itself'):
         parse_conveyor(conv)
 
 
@@ -238,6 +275,6 @@ def test_yaml_1_1_words_and_base_60_name_the_fix_on_every_path(tmp_path, make_st
     conv.write_text(yaml.safe_dump(make_conveyor(speed_m_s="0:4")), encoding="utf-8")
     with pytest.raises(InputError) as err:
         load_conveyor(conv)
-    assert str(err.value) == ("speed_m_s: Input should be a valid number (got '0:4'): write "
+    assert str(err.value) == (f'{conv}: speed_m_s: "0:4" is not of type "number": write '
                               "the number itself (YAML 1.2 reads 0:4 as text, not as YAML "
                               "1.1's base 60, 4)")

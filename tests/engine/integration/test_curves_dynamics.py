@@ -244,3 +244,32 @@ def test_simulate_s_check_gives_the_liftoff_margin_its_error_bar(tmp_path, capsy
     assert "accuracy_elements" in s and s["liftoff_max_kn_over"] is None
     assert s.get("liftoff_max_kn_over_err") is None
     assert "marginal: liftoff" not in s["message"]
+
+
+def test_a_stop_lift_off_under_the_start_s_margin_is_barred_by_its_phase():
+    """The hand conveyor as 500 m flat then 500 m rising 50 m, a concave curve of R 250 m, a
+    6 t take-up, a 40 s start on 210 elements: the start's margin at the curve converges
+    (-0.866, -0.871, -0.872 kN on 120, 220 and 442 elements) and is the cycle's figure, with a
+    bar of a few N; the coast stop's peak there grows with the mesh (-4.6, -3.1, -0.9 kN) and
+    passes the start's on 4 x the elements (+1.1 kN: the belt lifts in the stop), which the
+    cycle's figure on three meshes cannot show. The stop's own figure has its bar (about 22
+    kN), holding the finer mesh's value, and the run says that the stop's verdict is
+    marginal. The cycle's figure is the larger of the phases'."""
+    d = hand_conveyor_dict(profile=[{"length_m": 500, "lift_m": 0, "curve_radius_m": 250},
+                                    {"length_m": 500, "lift_m": 50}])
+    d["takeup"]["mass_kg"] = 6000
+    conv = parse_conveyor(d)
+    scn = Scenario(start={"control": "s-curve", "time_s": 40}, elements=210)
+    res = run_one(conv, scn, model="din", remedy=False, check=True)
+    s = res.summary
+    start, stop = s["liftoff_over_start_kn"], s["liftoff_over_stop_kn"]
+    assert s["liftoff_max_kn_over"] == max(start, stop)
+    assert s["liftoff_over_stop_kn_err"] is not None and s["liftoff_over_start_kn_err"] is not None
+    assert abs(stop) <= s["liftoff_over_stop_kn_err"]
+    assert (f"marginal: liftoff_over_stop_kn {stop:.4g} against limit 0 "
+            f"+- {s['liftoff_over_stop_kn_err']:.3g} kN") in s["message"]
+    fine = run_one(conv, scn.model_copy(update={"elements": 4 * 210}), model="din",
+                   remedy=False).summary
+    assert abs(fine["liftoff_over_stop_kn"] - stop) <= s["liftoff_over_stop_kn_err"]
+    assert fine["liftoff_max_kn_over"] == max(fine["liftoff_over_start_kn"],
+                                              fine["liftoff_over_stop_kn"])
