@@ -37,6 +37,16 @@ def shown_id(text: str) -> str:
     return f"{text[:16]}... ({len(text)} characters)"
 
 
+#: What a study id is and where the ids are, for an id that cannot be one (``../x``).
+STUDY_ID_FORM = ("a study id is 16 hexadecimal digits, as POST /studies answers it; "
+                 "GET /studies (beltstudy status) lists the studies")
+
+
+def bad_study_id(study_id: str) -> str:
+    """The message of an id that cannot be a study's: the id, its form and the list."""
+    return f"study '{shown_id(study_id)}' not found: {STUDY_ID_FORM}"
+
+
 class ServiceError(Exception):
     """Base class: ``message`` for people, ``status_code`` for HTTP."""
 

@@ -19,7 +19,7 @@ import json
 import logging
 import uuid
 from contextlib import asynccontextmanager
-from urllib.parse import parse_qsl
+from urllib.parse import parse_qsl, unquote
 
 from fastapi import Depends, FastAPI, Request
 from fastapi.exceptions import RequestValidationError
@@ -35,8 +35,9 @@ from beltstudy.engine import InputError
 from beltstudy.service.api.deps import require_token
 from beltstudy.service.door.messages import describe
 from beltstudy.service.door.openapi import install as install_openapi
-from beltstudy.service.errors import ServiceError
+from beltstudy.service.errors import ServiceError, bad_study_id
 from beltstudy.service.settings import Settings, get_settings
+from beltstudy.service.store.parquet import is_study_id
 from beltstudy.service.studies import StudyService
 
 __all__ = ["create_app", "ROUTERS"]
@@ -110,6 +111,9 @@ def _install_handlers(app: FastAPI) -> None:
     async def http_error(request: Request, exc: StarletteHTTPException) -> JSONResponse:
         path, method = request.url.path, request.method
         if exc.status_code == 404:
+            study_id = _unroutable_study_id(request)
+            if study_id is not None:  # '/studies/..%2Fx': no route took it, no study has it
+                return _error("not_found", bad_study_id(study_id), 404)
             return _error("not_found", f"no route {method} {path}", 404)
         if exc.status_code == 405:
             allowed = _allowed_methods(request)
@@ -120,6 +124,18 @@ def _install_handlers(app: FastAPI) -> None:
                 {"Allow": ", ".join(allowed)},
             )
         return _error("error", str(exc.detail), exc.status_code, exc.headers)
+
+
+def _unroutable_study_id(request: Request) -> str | None:
+    """The study id of a ``/studies/ID...`` path no route took, when it cannot be a study's
+    (``..%2Fx`` decodes to ``../x``: its slash splits the path, so no route matched it);
+    None for a path elsewhere or an id of a study's form (an unknown route under it)."""
+    raw = request.scope.get("raw_path") or request.url.path.encode()
+    parts = raw.split(b"?", 1)[0].split(b"/")
+    if len(parts) < 3 or parts[1] != b"studies" or not parts[2]:
+        return None
+    study_id = unquote(parts[2].decode("latin-1"), errors="replace")
+    return None if is_study_id(study_id) else study_id
 
 
 _METHODS = ("GET", "HEAD", "POST", "PUT", "PATCH", "DELETE")

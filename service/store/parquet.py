@@ -36,7 +36,7 @@ import pandas as pd
 import pyarrow as pa
 import pyarrow.parquet as pq
 
-from beltstudy.service.errors import NotFound, shown_id
+from beltstudy.service.errors import NotFound, bad_study_id, shown_id
 from beltstudy.service.store.columns import (
     accuracy_schema,
     profile_schema,
@@ -52,6 +52,13 @@ TABLES = ("runs", "timeseries", "surface", "profile", "accuracy")
 #: The tables a batch writes before its ``runs`` part (which commits them).
 PART_TABLES = ("surface", "timeseries", "profile", "accuracy")
 _ID_RE = re.compile(r"^[0-9a-f]{16}$")
+
+
+def is_study_id(text: object) -> bool:
+    """Whether ``text`` has a study id's form (16 lower-case hexadecimal digits)."""
+    return isinstance(text, str) and bool(_ID_RE.match(text))
+
+
 #: Studies whose runs table :meth:`Store.read_runs` keeps for reuse.
 RUNS_CACHE_STUDIES = 4
 
@@ -113,8 +120,8 @@ class Store:
 
     # ---------------------------------------------------------------- paths and ids
     def study_dir(self, study_id: str) -> Path:
-        if not isinstance(study_id, str) or not _ID_RE.match(study_id):
-            raise NotFound(f"study '{shown_id(study_id)}' not found")
+        if not is_study_id(study_id):
+            raise NotFound(bad_study_id(study_id))
         return self.root / study_id
 
     def table_dir(self, study_id: str, table: str) -> Path:

@@ -267,6 +267,30 @@ def test_unknown_ids_are_404(api, data_dir, finished_study, make_study):
         assert "'aaaaaaaaaaaaaaaa... (5000 characters)'" in r.json()["message"]
 
 
+def test_an_id_that_cannot_be_a_study_is_an_unknown_study(api, data_dir, finished_study,
+                                                          make_study):
+    """``/studies/..%2Fx`` was answered 'no route GET /studies/../x' (the encoded slash split
+    the path, so no route took it): now, as 'xyz' and any id no study can have, a 404 naming
+    the id, what a study id is and how to list the studies."""
+    client = api()
+    form = ("a study id is 16 hexadecimal digits, as POST /studies answers it; "
+            "GET /studies (beltstudy status) lists the studies")
+    for path, study_id in [("/studies/..%2Fx", "../x"), ("/studies/a%2Fb/runs", "a/b"),
+                           ("/studies/xyz", "xyz"), ("/studies/xyz/runs", "xyz"),
+                           ("/studies/%2F..%2F..%2Fhealth", "/../../health")]:
+        r = client.get(path)
+        assert r.status_code == 404, path
+        assert r.json() == {"error": "not_found",
+                            "message": f"study '{study_id}' not found: {form}"}, path
+    # an id of a study's form keeps its words; a route under a real study that is not one is
+    # still no route
+    r = client.get("/studies/0123456789abcdef")
+    assert r.json()["message"] == "study '0123456789abcdef' not found"
+    sid = finished_study(data_dir, make_study())
+    r = client.get(f"/studies/{sid}/nothing")
+    assert r.status_code == 404 and r.json()["message"] == f"no route GET /studies/{sid}/nothing"
+
+
 def test_query_errors_name_the_parameter(api, data_dir, finished_study, make_study):
     client = api()
     sid = finished_study(data_dir, make_study())
