@@ -288,16 +288,53 @@ def _needs_catalogue(idler_set) -> bool:
     return idler_set.set_rotating_mass_kg is None or idler_set.seal_drag_n is None
 
 
+#: Spread of a column over the classes that hold a roll diameter beyond which the class the
+#: catalogue takes for a set without ``cema_class`` (the file's first, the lightest) is said
+#: [-]: (largest - smallest) / the value taken. Every diameter held by two classes in
+#: engine/data/idlers.csv differs by more (0.152 m: mass 17 to 20 kg/m, A_i 6.7 to 12.5 N).
+CLASS_SPREAD_NOTE = 0.05
+
+
+def _class_note(idler_set, row: IdlerData, width_m: float, field: str) -> str:
+    """The note of a set without a ``cema_class`` at a catalogue diameter several classes
+    hold, when the values it reads differ by more than :data:`CLASS_SPREAD_NOTE` between them:
+    the class taken, the classes' range and the fields that give the set's own."""
+    rows = [r for c in dict.fromkeys(r.cema_class for r in idlers())
+            if (r := _row_at([x for x in idlers() if x.cema_class == c],
+                             idler_set.roll_diameter_m)) is not None]
+    cols = []  # (column, words with the value taken, unit of the classes' range)
+    if idler_set.set_rotating_mass_kg is None:
+        cols.append(("rotating_mass_kg_m", f"rotating mass {row.rotating_mass_kg_m * width_m:.3g}"
+                     f" kg a set ({row.rotating_mass_kg_m:.3g} kg per m of belt width", "kg/m"))
+    if idler_set.seal_drag_n is None:
+        cols.append(("seal_drag_n", f"seal drag {row.seal_drag_n:.3g} N a set (", "N"))
+    said, differ = [], False
+    for col, taken, unit in cols:
+        values = [getattr(r, col) for r in rows]
+        differ |= max(values) - min(values) > CLASS_SPREAD_NOTE * getattr(row, col)
+        sep = "; " if taken.endswith("width") else ""
+        said.append(f"{taken}{sep}{min(values):.3g} to {max(values):.3g} {unit} over the "
+                    "classes)")
+    if not differ:
+        return ""
+    return (f"note: {field}.cema_class is not given: the {idler_set.roll_diameter_m:g} m roll "
+            f"is read as class {row.cema_class}, the lightest of {', '.join(r.cema_class for r in rows)} "
+            f"(engine/data/idlers.csv): {' and '.join(said)}; {field}.cema_class, or the roll "
+            f"maker's rotating_mass_kg and seal_drag_n, give the set's own")
+
+
 def idler_note(idler_set, width_m: float, field: str) -> str:
     """The note of an idler set whose rotating mass or seal drag is interpolated between two
     catalogue rows (:func:`idler`): the diameter given, the rows used and the values taken,
-    and how to give the set's own. "" when the set's diameter is a row's or the set gives
-    both values itself."""
+    and how to give the set's own; or, without a ``cema_class`` at a diameter several classes
+    hold with values that differ (:func:`_class_note`), the class taken. "" when the set's
+    diameter is a row's (of its class, or of the only class there) or the set gives both
+    values itself."""
     if not _needs_catalogue(idler_set):
         return ""
     row = idler(idler_set.roll_diameter_m, idler_set.cema_class, field + ".")
     if not row.source.startswith(("interpolated", "scaled")):
-        return ""
+        return "" if idler_set.cema_class else _class_note(idler_set, row, width_m, field)
     took = []
     if idler_set.set_rotating_mass_kg is None:
         took.append(f"rotating mass {row.rotating_mass_kg_m * width_m:.3g} kg a set "

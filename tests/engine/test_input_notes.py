@@ -74,6 +74,52 @@ def test_a_roll_beyond_the_class_rows_is_scaled_from_the_nearest_and_said():
             in msg)
 
 
+def test_a_set_without_its_class_says_the_class_taken_where_the_classes_differ():
+    """Without cema_class a 0.152 m set read class C's row (the file's first, the lightest:
+    17.0 kg/m, A_i 6.7 N) silently, where D is 18.5 kg/m and E 20.0 kg/m, A_i 12.5 N (+87 %).
+    The class taken stays C; the note names it, the classes' range and the fields to give."""
+    assert catalog.idler(0.152).cema_class == "C"
+    d = hand_conveyor_dict(idlers=_catalogue_idlers(0.152, None))
+    msg = solve_steady(parse_conveyor(d), model="din").message
+    assert ("note: idlers.carry.cema_class is not given: the 0.152 m roll is read as class C, "
+            "the lightest of C, D, E (engine/data/idlers.csv): rotating mass 17 kg a set (17 kg "
+            "per m of belt width; 17 to 20 kg/m over the classes) and seal drag 6.7 N a set "
+            "(6.7 to 12.5 N over the classes); idlers.carry.cema_class, or the roll maker's "
+            "rotating_mass_kg and seal_drag_n, give the set's own") in msg
+    assert "note: idlers.return.cema_class is not given" in msg
+    # the drag given, the mass (17 to 20 kg/m: 18 % of 17) still differs by class
+    d["idlers"]["carry"]["seal_drag_n"] = 6.0
+    msg = solve_steady(parse_conveyor(d), model="din").message
+    carry = next(n for n in msg.split("; note: ") if "idlers.carry.cema_class" in n)
+    assert "rotating mass 17 kg a set" in carry and "seal drag" not in carry
+    # the class given, or both values: no note
+    for carry in ({"cema_class": "C"}, {"seal_drag_n": 6.0, "rotating_mass_kg": 15.0}):
+        d["idlers"]["carry"] = {**_catalogue_idlers(0.152, None)["carry"], **carry}
+        msg = solve_steady(parse_conveyor(d), model="din").message
+        assert "idlers.carry.cema_class" not in msg
+    # 0.127 m: B, C and D share A_i 8.0 N; with the mass given no class changes what is read
+    # (within CLASS_SPREAD_NOTE); 0.194 m is class F's alone
+    d = hand_conveyor_dict(idlers=_catalogue_idlers(0.127, None))
+    for strand in ("carry", "return"):
+        d["idlers"][strand]["rotating_mass_kg"] = 15.0
+    assert "cema_class" not in solve_steady(parse_conveyor(d), model="din").message
+    d = hand_conveyor_dict(idlers=_catalogue_idlers(0.194, None))
+    assert "cema_class" not in solve_steady(parse_conveyor(d), model="din").message
+
+
+def test_the_example_conveyors_give_their_idler_classes():
+    """So the class note of a set without cema_class changes no example study's rows."""
+    from beltstudy.engine.conveyor import load_conveyor
+
+    root = __import__("pathlib").Path(__file__).resolve().parents[2] / "studies" / "conveyors"
+    files = sorted(root.glob("*.yaml"))
+    assert files
+    for path in files:
+        conv = load_conveyor(path)
+        for strand in (conv.idlers.carry, conv.idlers.return_):
+            assert catalog.idler_note(strand, conv.belt.width_m, "idlers.x") == "", path
+
+
 # ------------------------------------------------------------------ loading speed
 def _feed_run(v0: float, **over):
     d = hand_conveyor_dict(profile=SHORT, **over)
