@@ -678,6 +678,10 @@ def survey_liftoff_limits_n(conv, loop: Loop) -> list[dict]:
     arc has a spring at every point, as the arc given with ``curve_radius_m`` has elements
     along it; the springs between points (a section cut into several elements) lie on a
     straight chord and get none. A straight, in one section or many, has no grade change.
+    A change whose lift-off tension at every spring is above the belt's breaking force
+    (``rating_kn_m`` x width) is left out: no tension the belt can carry lifts it there (a
+    kink between long straight sections reads as a circle of tens of kilometres, with a
+    lift-off tension of tens of meganewtons, which would only fill the output).
 
     Returns
     -------
@@ -694,6 +698,8 @@ def survey_liftoff_limits_n(conv, loop: Loop) -> list[dict]:
         if el.size == 0:
             continue
         lim = jn["radius_m"] * loop.mG_kg_m[el] * G * jn["cos"]
+        if loop.belt.rating_n > 0.0 and bool(np.all(lim > loop.belt.rating_n)):
+            continue
         out.append({**jn, "el": el, "lim": lim})
     return out
 

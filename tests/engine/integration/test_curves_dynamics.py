@@ -160,7 +160,10 @@ def test_a_valley_as_survey_points_gets_the_curves_transient_liftoff():
     bends = survey_liftoff_limits_n(survey, loop)
     ang = [math.asin(p.lift_m / p.length_m) for p in survey.profile]
     inner = [b for b in bends if 0 < b["i"] < len(survey.profile) - 2]
-    assert len(bends) == 7 and len(inner) == 5  # the ends meet the long straights
+    # the two ends meet the long straights: their circles (about 14 km through a 480 m
+    # section's far end) give lift-off tensions above the belt's 1 000 kN breaking force,
+    # which no tension it carries reaches, so only the five changes on the arc have limits
+    assert len(bends) == 5 and len(inner) == 5
     for b in inner:  # on the arc: the circle through the points is the arc's
         assert b["radius_m"] == pytest.approx(250.0, rel=2e-3)
         cos_a = min(math.cos(ang[b["i"]]), math.cos(ang[b["i"] + 1]))
@@ -186,7 +189,7 @@ def test_a_valley_as_survey_points_gets_the_curves_transient_liftoff():
             assert ("lift-off in the start" in said) is lifts
             if lifts:
                 assert 480.0 < got["survey"].summary["liftoff_at_m"] < 520.0
-                assert "grade change without a vertical curve from 487 to 513 m" in said
+                assert "grade change without a vertical curve from 492 to 508 m" in said
                 assert "radius 250 m" in said and "a vertical curve of at least" in said
 
 
@@ -201,6 +204,27 @@ def test_a_straight_cut_into_survey_points_has_no_liftoff_limits():
     assert survey_liftoff_limits_n(conv, solve_steady(conv, model="din").loop) == []
     s = _start(conv, 5.0).summary
     assert s["liftoff_max_kn_over"] is None and "lift-off" not in s["message"]
+
+
+def test_a_kink_between_long_straights_past_the_belts_strength_has_no_liftoff_limit():
+    """A concave kink between two long straights (the hand conveyor as 1 000 m flat, then
+    1 000 m rising 50 m) reads as the circle through its survey points, R = |AC| / (2 sin d)
+    with d = atan(0.05) = 2.86 deg: about 20 km, a lift-off tension R m'_G g cos a of about
+    4 MN, above the belt's 1 000 kN breaking force: no tension the belt can carry lifts it
+    there, so it gets no lift-off limit (the output would only show a margin of meganewtons).
+    The same route cut so that the change is a 250 m valley keeps its limits (the test
+    above)."""
+    from beltstudy.engine.curves import survey_liftoff_limits_n, survey_radius_m
+
+    d = valley_conveyor().model_dump(mode="json", by_alias=True)
+    d["profile"] = [{"length_m": 1000, "lift_m": 0}, {"length_m": 1000, "lift_m": 50}]
+    conv = parse_conveyor(d)
+    loop = solve_steady(conv, model="din").loop
+    turn = math.asin(50.0 / 1000.0)
+    r = survey_radius_m(1000.0, 1000.0, turn)
+    assert 19_000.0 < r < 21_000.0  # |AC| / (2 sin d), |AC| ~ 2 000 m, sin d = 0.05
+    assert r * loop.mG_kg_m[0] * 9.81 * math.cos(turn) > loop.belt.rating_n
+    assert survey_liftoff_limits_n(conv, loop) == []
 
 
 def test_simulate_s_check_gives_the_liftoff_margin_its_error_bar(tmp_path, capsys):
