@@ -38,8 +38,8 @@ def shown_id(text: str) -> str:
 
 
 #: What a study id is and where the ids are, for an id that cannot be one (``../x``).
-STUDY_ID_FORM = ("a study id is 16 hexadecimal digits, as POST /studies answers it; "
-                 "GET /studies (beltstudy status) lists the studies")
+STUDY_ID_FORM = ("a study id is 16 lower-case hexadecimal digits, as POST /studies "
+                 "answers it; GET /studies (beltstudy status) lists the studies")
 
 
 def bad_study_id(study_id: str) -> str:

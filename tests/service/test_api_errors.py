@@ -273,9 +273,11 @@ def test_an_id_that_cannot_be_a_study_is_an_unknown_study(api, data_dir, finishe
     the path, so no route took it): now, as 'xyz' and any id no study can have, a 404 naming
     the id, what a study id is and how to list the studies."""
     client = api()
-    form = ("a study id is 16 hexadecimal digits, as POST /studies answers it; "
+    form = ("a study id is 16 lower-case hexadecimal digits, as POST /studies answers it; "
             "GET /studies (beltstudy status) lists the studies")
-    for path, study_id in [("/studies/..%2Fx", "../x"), ("/studies/a%2Fb/runs", "a/b"),
+    # an upper-case id is 16 hexadecimal digits too, yet no study's: the words say which form
+    for path, study_id in [("/studies/0123456789ABCDEF", "0123456789ABCDEF"),
+                           ("/studies/..%2Fx", "../x"), ("/studies/a%2Fb/runs", "a/b"),
                            ("/studies/xyz", "xyz"), ("/studies/xyz/runs", "xyz"),
                            ("/studies/%2F..%2F..%2Fhealth", "/../../health")]:
         r = client.get(path)
