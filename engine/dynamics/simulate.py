@@ -917,11 +917,12 @@ def transient_summary(sys: System, r: dict, out, segs, *, steady_summary=None, c
                       for k in braked)
         w.append(not_stopped_words(sys, float(r["v_mean"]), sliding))
     elif not ran_away:  # a belt that never stopped is told so above, a holdback with it
-        w += runback_words(sys, out, r, steady_summary)
+        w += runback_words(sys, out, r, steady_summary, conveyor)
     return summary, w
 
 
-def runback_words(sys: System, out, r: dict, steady_summary: dict | None = None) -> list[str]:
+def runback_words(sys: System, out, r: dict, steady_summary: dict | None = None,
+                  conveyor=None) -> list[str]:
     """The warning of a belt that runs back after its stop ([] otherwise): its mass-weighted
     mean speed (the records' ``v_mean``, the speed the stop's rest criterion reads) is still
     below ``-REST_FRACTION`` x design speed at the run's end, the belt moving backwards as a
@@ -933,7 +934,16 @@ def runback_words(sys: System, out, r: dict, steady_summary: dict | None = None)
     backward mean speed, how far the belt ran back after the stop command by the run's end
     (the trapezoidal integral of the negative mean speed over the records, an estimate at
     ``record_dt_s``) and the holdback torque statics computes (CEMA's rule,
-    ``holdback_torque_knm``) or a holding brake that avoids it."""
+    ``holdback_torque_knm``) or a holding brake that avoids it.
+
+    A conveyor with a holdback (``holdback: true``) is not told: its head pulley cannot turn
+    back, so a backward mean speed there is the belt's stretch relaxing onto the held pulley
+    (the take-up carriage returning), not the belt running back over its pulleys; fabric-1km's
+    coast stop, its drive pulley held at 0 m/s, still relaxed at -0.12 m/s at the run's end and
+    was told 'nothing holds it' and offered the holdback it has. A belt sliding on its held
+    pulley is the slip check's to say."""
+    if conveyor is not None and conveyor.holdback:
+        return []
     rec = out.rec[:int(r["nrec"])]
     after = rec["t"] > sys.stop_command_s + 1e-9
     t, v = np.asarray(rec["t"][after], float), np.asarray(rec["v_mean"][after], float)

@@ -107,3 +107,34 @@ def test_the_revert_conveyor_runs_back_after_a_coast_stop_unless_held():
     assert s["status"] == "warning"
     held = run_one(conv.model_copy(update={"holdback": True}), scn, model="din").summary
     assert "runs back" not in held["message"], held["message"]
+
+
+def test_a_belt_relaxing_onto_its_holdback_is_not_said_to_run_back():
+    """A holdback holds the head pulley: a backward mean speed after the stop is the belt's
+    stretch relaxing onto it, not a run-back. studies/conveyors/fabric-1km.yaml (holdback:
+    true, 3 and 8 deg rises) coasting to rest on 40 elements: its drive pulley is held at
+    0 m/s from about 97.6 s while the mean speed falls to about -0.26 m/s and is still below
+    -1 % of design (-0.0315 m/s) at the run's end, relaxing; it was warned 'nothing holds it'
+    and offered 'a holdback (holdback: true)', the one it has. The same records on a conveyor
+    without a holdback are still warned."""
+    from beltstudy.engine.conveyor import Scenario, load_conveyor
+    from beltstudy.engine.dynamics.simulate import runback_words
+    from beltstudy.engine.run import run_one
+    from tests.conftest import ROOT
+
+    sysm = SimpleNamespace(stop_command_s=10.0, v_design=2.0)
+    t = np.arange(0.0, 15.01, 0.5)
+    creep = np.where(t <= 10.0, 2.0, -0.05)
+    assert runback_words(sysm, *_records(t, creep), None, SimpleNamespace(holdback=True)) == []
+    assert len(runback_words(sysm, *_records(t, creep), None,
+                             SimpleNamespace(holdback=False))) == 1
+
+    conv = load_conveyor(ROOT / "studies" / "conveyors" / "fabric-1km.yaml")
+    assert conv.holdback
+    scn = Scenario.model_validate({"stop": {"mode": "coast"}, "elements": 40})
+    res = run_one(conv, scn, model="din")
+    ts = res.transient.timeseries
+    after = ts[ts.t_s > res.transient.system.stop_command_s]
+    assert after.v_mean_m_s.iloc[-1] < -0.01 * conv.speed_m_s  # still relaxing at the end
+    assert (after.v_drive_m_s.iloc[-20:] >= 0.0).all()  # the held pulley does not turn back
+    assert "runs back" not in res.summary["message"], res.summary["message"]
