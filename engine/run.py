@@ -165,6 +165,7 @@ def run_one(
     remedy: bool = False,
     check: bool = False,
     say: Callable[[str], None] | None = None,
+    auto_brakes: bool | None = None,
 ) -> RunResult:
     """Steady solve and, with ``dynamics``, the rest -> start -> run -> stop -> rest cycle.
 
@@ -192,6 +193,10 @@ def run_one(
     say : callable, optional
         Called with one line before a long step a person waits for (the slip remedy's
         reruns), for a command line to print; studies pass nothing.
+    auto_brakes : bool, optional
+        Whether a brake of the run is auto although ``conveyor`` has its force written in (a
+        study writes its design's sizes in): the advice on a fast brake stop then offers
+        ``stop.time_s``. None: a brake of ``conveyor`` with ``force_kn: auto``.
 
     Raises
     ------
@@ -205,10 +210,20 @@ def run_one(
         prep.done.summary["elapsed_s"] = time.perf_counter() - t0
         return prep.done
     system = build_system(prep.conveyor, scenario, prep.steady, opts)
+    system.auto_brakes = _auto_brakes(conveyor, auto_brakes)
     tr = simulate(system, steady_summary=prep.steady.summary, conveyor=prep.conveyor,
                   safety_factor_min=transient_safety_min(prep.conveyor,
                                                          prep.steady.loop.belt.kind))
     return _complete(prep, scenario, system, tr, model, params, opts, remedy, check, t0, say)
+
+
+def _auto_brakes(conveyor: Conveyor, given: bool | None) -> bool:
+    """Whether a brake of the run is auto: ``given`` when the caller knows (a study writes its
+    design's sizes into the conveyor it runs), else a brake of ``conveyor`` (the run's own, before
+    a run below full load gets the full-load sizes written in) with ``force_kn: auto``."""
+    if given is not None:
+        return bool(given)
+    return any(b.force_kn == "auto" for b in conveyor.brakes)
 
 
 def run_group(
@@ -220,6 +235,7 @@ def run_group(
     options: DynamicsOptions | None = None,
     remedy: bool = False,
     check: bool | list[bool] = False,
+    auto_brakes: list[bool | None] | None = None,
 ) -> list[RunResult]:
     """:func:`run_one` of each scenario of one conveyor, model and parameters, the runs that
     agree on everything the transient engine reads up to the stop command sharing one
@@ -232,9 +248,9 @@ def run_group(
     ``conveyor`` may be one per scenario (runs whose brakes differ only in their force, delay,
     ramp, curve or hold still share a start when their models allow it). ``check`` may be one
     flag per scenario (the error bars rerun each checked run's cycle on its own, as
-    :func:`run_one` does). Raises as :func:`run_one` for the first scenario that
-    cannot run; a caller that wants a bad scenario to fail alone runs it with
-    :func:`run_one`."""
+    :func:`run_one` does); ``auto_brakes`` one per scenario, as :func:`run_one` takes it.
+    Raises as :func:`run_one` for the first scenario that cannot run; a caller that wants a
+    bad scenario to fail alone runs it with :func:`run_one`."""
     from beltstudy.engine.dynamics.shared import group_by_start, simulate_group
 
     checks = check if isinstance(check, list) else [check] * len(scenarios)
@@ -252,6 +268,8 @@ def run_group(
             continue
         preps[i] = prep
         systems.append(build_system(prep.conveyor, scn, prep.steady, opts))
+        systems[-1].auto_brakes = _auto_brakes(
+            convs[i], None if auto_brakes is None else auto_brakes[i])
         todo.append(i)
     for group in group_by_start(systems):
         members = [preps[todo[g]] for g in group]

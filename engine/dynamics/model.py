@@ -271,6 +271,10 @@ class System:
     mesh_viscosity: float  # alpha
     notes: list[str] = field(default_factory=list)  # informational, for the message
     warnings: list[str] = field(default_factory=list)  # limits crossed before the start
+    #: a brake of the run is auto (sized by the stop time or by holding) although the conveyor
+    #: it runs has its force written in (a study's design basis, a run below full load): the
+    #: stop's advice then offers stop.time_s; None: read the conveyor given to the words
+    auto_brakes: bool | None = None
 
     @property
     def n(self) -> int:

@@ -1131,15 +1131,17 @@ def _coasts_within(sys: System, need_s: float) -> bool:
     return _coast_s(sys) < need_s
 
 
-def _given_brake_words(sys: System, need_s: float, t_stop: float) -> str:
+def _given_brake_words(sys: System, need_s: float, t_stop: float, auto: bool = False) -> str:
     """What brake force would make a brake stop last ``need_s`` [s] (5 wave loop times): the
     rigid-body total force with the brakes' delay and ramp
     (:func:`~beltstudy.engine.design.brake_force_auto`, the stop at zero speed, moved out by
     the rest criterion's last stretch, ``REST_FRACTION v / a`` at the deceleration the force
-    gives) against the brakes' total now, as ``a smaller given force_kn: at most ...``."""
+    gives) against the brakes' total now, as ``a smaller given force_kn: at most ...`` (``a
+    smaller brake force (brakes[].force_kn)`` where a brake is ``auto``)."""
+    lever = "a smaller brake force (brakes[].force_kn)" if auto else "a smaller given force_kn"
     brakes = getattr(sys.model, "brakes", None)
     if brakes is None or not len(brakes.force):
-        return "a smaller given force_kn"
+        return lever
     now_n = float(np.sum(brakes.force))
     m, v, te = float(sys.model.control.m_tot), float(sys.v_design), float(sys.te_n)
     delay = float(np.max(brakes.delay)) if len(brakes.delay) else 0.0
@@ -1151,8 +1153,8 @@ def _given_brake_words(sys: System, need_s: float, t_stop: float) -> str:
         force = design.brake_force_auto(m, v, te, need_s + REST_FRACTION * v * m / (te + force),
                                         delay, ramp)
     if not math.isfinite(force) or force >= now_n:
-        return "a smaller given force_kn"
-    return (f"a smaller given force_kn: at most about {force / 1e3:.3g} kN in all, now "
+        return lever
+    return (f"{lever}: at most about {force / 1e3:.3g} kN in all, now "
             f"{now_n / 1e3:.4g} kN (rigid body, {m / 1e3:.4g} t from {v:g} m/s against Te "
             f"{te / 1e3:.4g} kN with the brakes' {delay:g} s delay and {ramp:g} s ramp, a stop "
             f"of {need_s:.3g} s against {t_stop:.3g} s now; a holdback or a holding brake "
@@ -1182,8 +1184,10 @@ def _fast_stop_words(sys: System, t_stop: float, summary: dict, steady_tmax: flo
         fix = (f"a controlled stop of stop.time_s {_up_s(asked)} s or more would be slower "
                f"than that{lag}")
     elif cyc.stop_mode == C.BRAKE and not _coasts_within(sys, need):
-        auto = conveyor is None or any(b.force_kn == "auto" for b in conveyor.brakes)
-        given = _given_brake_words(sys, need, t_stop)
+        auto = getattr(sys, "auto_brakes", None)
+        if auto is None:
+            auto = conveyor is None or any(b.force_kn == "auto" for b in conveyor.brakes)
+        given = _given_brake_words(sys, need, t_stop, auto)
         if auto:
             # an auto brake's stop scales with its asked time as a controlled one's does
             asked = need * cyc.t_stop / t_stop if cyc.t_stop > 0.0 else need

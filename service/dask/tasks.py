@@ -21,7 +21,7 @@ import pyarrow as pa
 from distributed import WorkerPlugin
 
 from beltstudy import engine
-from beltstudy.engine import MODELS, parse_conveyor, parse_scenario
+from beltstudy.engine import GIVEN, MODELS, parse_conveyor, parse_scenario
 from beltstudy.engine.friction import get_model
 from beltstudy.service.examples import TINY_CONVEYOR, TINY_SCENARIO
 from beltstudy.service.grid.expand import RunSpec
@@ -274,17 +274,29 @@ def _run_shared(specs: list[RunSpec], study_id: str) -> list[tuple[dict, Any]] |
         conveyors = [parsed[id(s.conveyor)] for s in specs]
         scenarios = [parse_scenario(s.scenario) for s in specs]
         results = run_group(conveyors, scenarios, model=specs[0].model,
-                            params=specs[0].params or None)
+                            params=specs[0].params or None,
+                            auto_brakes=[_auto_brakes(s) for s in specs])
     except Exception:
         return None
     return [(_row_done(_row_head(spec, study_id), spec, result, t0), result)
             for spec, result in zip(specs, results, strict=True)]
 
 
+def _auto_brakes(spec: RunSpec) -> bool | None:
+    """Whether the study's design sized a brake of this run (its ``brake_governed_by`` names
+    a reason other than ``given``): the conveyor the worker runs has the size written in, so
+    the engine is told; None (the engine reads the conveyor) where the design sized none."""
+    why = spec.design.get("brake_governed_by")
+    if not why:
+        return None
+    return any(part.split(" @")[0].strip() != GIVEN for part in why.split("+"))
+
+
 def _run(run_one, conveyor, scenario, spec: RunSpec):
     """``run_one`` of a spec, with error bars for a run of the accuracy sample; a check that
     raises leaves the run without them, with a note in its message."""
-    kw = {"model": spec.model, "params": spec.params or None, "dynamics": spec.dynamics}
+    kw = {"model": spec.model, "params": spec.params or None, "dynamics": spec.dynamics,
+          "auto_brakes": _auto_brakes(spec)}
     if not (spec.check and spec.dynamics):
         return run_one(conveyor, scenario, **kw)
     try:

@@ -626,3 +626,39 @@ def test_the_phase_holding_the_cycle_s_extreme_gives_its_exact_time():
         assert s[f"t_{ext}_{phase}_kn"] == s[f"t_{ext}_dyn_kn"]
         assert s[f"t_{ext}_{phase}_time_s"] == s[f"t_{ext}_dyn_time_s"]
         assert s[f"t_{ext}_{phase}_at_m"] == s[f"t_{ext}_dyn_at_m"]
+
+
+def test_an_auto_brake_written_in_for_a_run_below_full_load_keeps_its_stop_time_lever():
+    """A run below full load gets the full-load sizes written into its conveyor (sizing.
+    installed_at_full_load), so its auto brake reached the fast-stop words as a number and
+    was offered only 'a smaller given force_kn', not the stop.time_s that sizes it. An 800 m
+    level belt, auto head brake, 0.8 s brake stop, empty: the stop (2.8 s) is faster than 5
+    wave loop times (15.4 s), and the words offer the stop time; the same belt with its brake
+    force given is offered the force only."""
+    from beltstudy.engine.conveyor import parse_conveyor
+
+    d = {"name": "level-800", "speed_m_s": 4.0,
+         "belt": {"type": "EP630/4", "width_m": 0.8},
+         "material": {"capacity_t_h": 400, "density_t_m3": 1.6},
+         "profile": [{"lift_m": 0, "length_m": 800}],
+         "idlers": {"carry": {"spacing_m": 1.2, "trough_deg": 35, "cema_class": "C"},
+                    "return": {"spacing_m": 3.0, "rolls": 1, "cema_class": "C"}},
+         "drives": [{"position": "head", "wrap_deg": 200, "friction": 0.35,
+                     "pulley_diameter_m": 0.63, "inertia_kg_m2": 20}],
+         "takeup": {"type": "gravity", "position": "tail", "mass_kg": 20000},
+         "brakes": [{"position": "head", "force_kn": "auto", "delay_s": 0.2, "ramp_s": 0.3}],
+         "holdback": True}
+    scn = Scenario(stop={"mode": "brake", "time_s": 0.8}, elements=40, load="empty", run_s=5,
+                   start={"time_s": 5})
+    msg = run_one(parse_conveyor(d), scn, model="din").summary["message"]
+    assert "is faster than 5 wave loop times" in msg
+    assert "a smaller brake force (brakes[].force_kn): at most about" in msg, msg
+    assert "for an auto brake sized by the stop time a stop.time_s of" in msg
+    assert "given force_kn" not in msg
+    # the caller that wrote a study's design sizes in says so (the service's run spec)
+    given = parse_conveyor({**d, "brakes": [{**d["brakes"][0], "force_kn": 46.35}]})
+    told = run_one(given, scn, model="din", auto_brakes=True).summary["message"]
+    assert "a stop.time_s of" in told and "given force_kn" not in told
+    plain = run_one(given, scn, model="din").summary["message"]
+    assert "a smaller given force_kn: at most about" in plain
+    assert "stop.time_s of" not in plain
