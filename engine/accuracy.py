@@ -373,9 +373,12 @@ def marginal_verdicts(summary: dict, figures: dict, *, sag_limit_pct: float | No
     - lift-off: ``liftoff_max_kn_over`` (the most the tension at a concave curve or survey
       grade change exceeded its lift-off tension, > 0 the belt lifted) against 0 kN, where
       the run has one (:func:`beltstudy.engine.curves.transient_liftoff`); and each phase's,
-      ``liftoff_over_start_kn`` and ``liftoff_over_stop_kn``, that is not the cycle's
-      (another value): a phase's excess under the other's on the run's mesh may pass it on
-      a finer one, which the cycle's figure on three meshes does not show.
+      ``liftoff_over_start_kn`` and ``liftoff_over_stop_kn``, on its own bar: a phase's
+      excess under the other's on the run's mesh may pass it on a finer one, which the
+      cycle's figure on three meshes does not show. A phase holding the cycle's value is
+      said only when the cycle's line has not said it: its bar, from that phase's own three
+      meshes, can reach 0 where the cycle's (whose three values may come from different
+      phases) does not.
     """
     slack = (summary.get("slack_max_m") or 0.0) > 0.0
     checks = [("slack_max_m", 0.0, "m") if slack else ("t_min_dyn_kn", 0.0, "kN")]
