@@ -354,7 +354,12 @@ def takeup_lever(conv: Conveyor, why: str = "") -> str:
     counterweight to make heavier (the words of
     :func:`beltstudy.engine.dynamics.simulate.heavier_takeup`); ``why`` goes in the
     brackets."""
-    if conv.takeup.type != "gravity":
+    return lever_words(conv.takeup.type == "gravity", why)
+
+
+def lever_words(gravity: bool, why: str = "") -> str:
+    """:func:`takeup_lever` of a take-up that is ``gravity`` or not."""
+    if not gravity:
         return "a higher take-up pretension (takeup.pretension_kn" + (f", {why})" if why else ")")
     return "a heavier take-up" + (f" ({why})" if why else "")
 

@@ -735,6 +735,20 @@ class RotatingParts:
                      + sum(self.plain_mass.values()))
 
 
+def _drive_given_kg(d) -> tuple[float, float | None]:
+    """A drive's given inertia at the belt line on its pulley shaft, ``(J + J_flywheel) (2 /
+    D)^2`` less the motor's part behind a fluid coupling [kg], and that motor inertia
+    ``J_motor`` [kg m2] (``motor_inertia_kg_m2``, default ``MOTOR_INERTIA_SHARE`` of
+    ``inertia_kg_m2``; None without a coupling)."""
+    red = (2.0 / d.pulley_diameter_m) ** 2
+    total = (d.inertia_kg_m2 + d.flywheel_kg_m2) * red
+    if d.coupling == "none":
+        return total, None
+    j_m = (d.motor_inertia_kg_m2 if d.motor_inertia_kg_m2 is not None
+           else MOTOR_INERTIA_SHARE * d.inertia_kg_m2)
+    return max(total - j_m * red, 0.0), j_m
+
+
 def rotating_parts(conv: Conveyor, loop: Loop, pulley_mass_kg: float | None = None
                    ) -> RotatingParts:
     """The rotating parts of a conveyor (:class:`RotatingParts`).
@@ -755,14 +769,8 @@ def rotating_parts(conv: Conveyor, loop: Loop, pulley_mass_kg: float | None = No
     shaft_mass, shaft_drive, motor = {}, {}, []
     for i, d in enumerate(conv.drives):
         node = int(loop.drive_elements[i])
-        red = (2.0 / d.pulley_diameter_m) ** 2
-        total = (d.inertia_kg_m2 + d.flywheel_kg_m2) * red
-        m_motor = 0.0
-        if d.coupling != "none":
-            j_m = (d.motor_inertia_kg_m2 if d.motor_inertia_kg_m2 is not None
-                   else MOTOR_INERTIA_SHARE * d.inertia_kg_m2)
-            m_motor = max(j_m * red, 1.0)
-            total = max(total - j_m * red, 0.0)
+        total, j_m = _drive_given_kg(d)
+        m_motor = 0.0 if j_m is None else max(j_m * (2.0 / d.pulley_diameter_m) ** 2, 1.0)
         shaft_mass[node] = max(total, pulley_reduced_mass_kg(d.pulley_diameter_m, width))
         shaft_drive[node] = i
         motor.append(m_motor)
@@ -792,13 +800,9 @@ def shell_floor_notes(conv: Conveyor, loop: Loop) -> list[str]:
         if not {"inertia_kg_m2", "flywheel_kg_m2"} & d.model_fields_set:
             continue  # nothing given: the shell is the estimate of the pulley asked for
         red = (2.0 / d.pulley_diameter_m) ** 2
-        given = (d.inertia_kg_m2 + d.flywheel_kg_m2) * red
-        motor = ""
-        if d.coupling != "none":
-            j_m = (d.motor_inertia_kg_m2 if d.motor_inertia_kg_m2 is not None
-                   else MOTOR_INERTIA_SHARE * d.inertia_kg_m2)
-            given = max(given - j_m * red, 0.0)
-            motor = f", less the motor's {j_m:.4g} kg m2 behind the fluid coupling"
+        given, j_m = _drive_given_kg(d)
+        motor = ("" if j_m is None else
+                 f", less the motor's {j_m:.4g} kg m2 behind the fluid coupling")
         shell = pulley_reduced_mass_kg(d.pulley_diameter_m, width)
         if given >= shell:
             continue

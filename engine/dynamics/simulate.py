@@ -408,9 +408,7 @@ def heavier_takeup(sys: System | None, why: str = "") -> str:
     counterweight to make heavier; ``why`` is added in the brackets (``more slack-side
     tension``)."""
     tu = getattr(getattr(sys, "model", None), "takeup", None)
-    if tu is not None and not tu.gravity:
-        return "a higher take-up pretension (takeup.pretension_kn" + (f", {why})" if why else ")")
-    return "a heavier take-up" + (f" ({why})" if why else "")
+    return design.lever_words(tu is None or bool(tu.gravity), why)
 
 
 def slip_words(first: str, last: str, sys: System | None = None) -> tuple[str, str]:
