@@ -468,6 +468,7 @@ def calibrate(conv: Conveyor, measured: Sequence[Measurement], model: str,
     sv = np.linalg.svd(_unit_columns(jac), compute_uv=False) if p else np.array([])
     suspect = _contradictions(rows, cols, y) or _outliers(rows, cols, y, values, r, jac, dof)
     notes += suspect
+    few = _few_states(rows, cols, p) if dof > 0 else ""
     return Calibration(
         model=fm.name, fit=fitted, residuals=residuals,
         not_identifiable=sorted({x for g in groups for x in g}, key=names.index),
@@ -476,7 +477,7 @@ def calibrate(conv: Conveyor, measured: Sequence[Measurement], model: str,
         singular_values=[float(s) for s in sv],
         notes=notes, **_verdict(sol, at_bound, r, fm.name, at_upper,
                                 {n: largest[n] for n in own_limit}, groups, held_values,
-                                suspect=suspect, exact=bool(p) and dof == 0))
+                                suspect=suspect, exact=bool(p) and dof == 0, few=few))
 
 
 def _t95(dof: int) -> float:
@@ -523,6 +524,22 @@ def _state_text(m: Measurement) -> str:
     load = f"{load:g}" if isinstance(load, float) else load
     speed = f", {m.speed_m_s:g} m/s" if m.speed_m_s is not None else ""
     return f"load {load}, {m.temperature_c:g} C{speed}"
+
+
+def _few_states(rows: Sequence[Measurement], cols: Sequence[tuple[int, str]], p: int) -> str:
+    """The steady states the measured values read, in words, when they are no more than the
+    ``p`` fitted names (``""`` otherwise): repeated readings of one state (equal load,
+    temperature and speed) tell the meter's scatter, not the model, so that many states are
+    met whatever the model, as :func:`_verdict`'s ``exact`` is, with degrees of freedom that
+    count only the repeats."""
+    states: dict[tuple, list[int]] = {}
+    for i, col in cols:
+        m = rows[i]
+        states.setdefault((repr(m.load), m.temperature_c, m.speed_m_s, col), []).append(i)
+    if not p or len(states) > p:
+        return ""
+    return "; ".join(f"{_state_text(rows[ix[0]])} {col} (rows {', '.join(map(str, ix))})"
+                     for (*_, col), ix in states.items())
 
 
 def _contradictions(rows: Sequence[Measurement], cols: Sequence[tuple[int, str]],
@@ -606,7 +623,7 @@ def _at_bound(free: Sequence[str], sol, starts: np.ndarray) -> list[str]:
 def _verdict(sol, at_bound: list[str], r: np.ndarray, model: str,
              at_upper: Sequence[str] = (), own_limit: dict[str, float] | None = None,
              groups: Sequence[Sequence[str]] = (), held: dict[str, float] | None = None,
-             suspect: Sequence[str] = (), exact: bool = False) -> dict[str, str]:
+             suspect: Sequence[str] = (), exact: bool = False, few: str = "") -> dict[str, str]:
     """``status`` and ``message`` of the fit in this project's words (never SciPy's text):
     ``failed`` when it stopped without converging, ``warning`` when a fitted parameter ended
     at its bound (the data ask for a value the model does not allow: the rest of the misfit
@@ -620,7 +637,9 @@ def _verdict(sol, at_bound: list[str], r: np.ndarray, model: str,
     disagree, :func:`_contradictions`; outliers, :func:`_outliers`): a ``warning`` that names
     them before a misfit's general advice. ``exact``: as many measured values as fitted
     names, met exactly: nothing checks the fit and it has no standard errors, a
-    ``warning``."""
+    ``warning``. ``few``: the steady states read, in words, when the measured values repeat
+    no more states than there are fitted names (:func:`_few_states`): met whatever the model
+    as ``exact`` is, the repeats' scatter alone setting the standard errors, a ``warning``."""
     rms = 100 * math.sqrt(float(r @ r) / len(r))
     rms_text = f"{rms:.3g}" if rms < 1000 else f"{rms:.0f}"
     check = ("Check the measured values (power at the drive pulleys [kW] or peripheral force "
@@ -679,6 +698,13 @@ def _verdict(sol, at_bound: list[str], r: np.ndarray, model: str,
             "the fitted values assume it. Hold the held names at values from the literature "
             "(--param, or the request's params) and fit the others, or, where the model lets "
             "them act apart, measure at other loads, speeds or temperatures")}
+    if few:
+        return {"status": "warning", "message": (
+            f"converged, but the {len(r)} measured values read only as many steady states as "
+            f"fitted names ({few}): those states are met whatever the model, and the "
+            "standard errors tell only how the repeated readings agree, not how the model fits "
+            "the plant (copies of one row agree exactly, a standard error of 0). Measure at "
+            "least one more steady state (another load or temperature), or fit fewer names")}
     if exact:
         return {"status": "warning", "message": (
             f"converged, but {len(r)} measured values for as many fitted names are met "

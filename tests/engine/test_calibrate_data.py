@@ -74,3 +74,28 @@ def test_as_many_readings_as_names_is_a_warning_not_ok(plant):
     assert all(f["se"] is None for f in cal.fit.values())
     assert cal.status == "warning"
     assert "nothing is left to check the fit against" in cal.message
+
+
+def test_copies_of_one_reading_are_one_state_not_three_degrees_of_freedom(plant):
+    """One row pasted three times, one name: the three values are one steady state, which
+    f_carry meets whatever the model (the fitted power equals the reading, residuals 0); the
+    fit counted 2 degrees of freedom and answered ``ok`` with a standard error of 0 (a 95 %
+    interval of zero width). It is a warning naming the state and its rows."""
+    conv, rows = plant
+    cal = calibrate(conv, [rows[0]] * 3, "din", ["f_carry"])
+    assert max(abs(r["relative"]) for r in cal.residuals) < 1e-8  # one state, met exactly
+    assert cal.status == "warning"
+    assert "read only as many steady states as fitted names" in cal.message
+    assert "load 0.2, -10 C power_kw (rows 0, 1, 2)" in cal.message
+
+
+def test_repeats_of_two_states_for_two_names_are_a_warning(plant):
+    """Two states read twice each, two names: four values, two degrees of freedom, but the two
+    states fix the two names whatever the model; a third state gives the fit something to
+    miss and is ``ok``."""
+    conv, rows = plant
+    cal = calibrate(conv, [rows[0], rows[9], rows[0], rows[9]], "din", ["f_carry", "f_return"])
+    assert cal.dof == 2 and cal.status == "warning"
+    assert "(rows 0, 2)" in cal.message and "(rows 1, 3)" in cal.message
+    one = calibrate(conv, [rows[0], rows[9], rows[0]], "din", ["f_carry"])
+    assert "steady states as fitted names" not in one.message
