@@ -155,6 +155,13 @@ LAW_TIME_MAX_S = 3600.0
 ROUTE_MAX_M = 200_000.0
 
 
+#: Thinnest rubber cover [mm] other than none: a cover is a calendered rubber sheet, and the
+#: thinnest a belt carries is a skim coat of a few tenths of a millimetre (the catalogue's
+#: thinnest are 2 mm); a thickness below this one is a cover written in metres (0.005 for
+#: 5 mm), which read as millimetres leaves the belt without covers. 0 is a bare carcass.
+COVER_MIN_MM = 0.2
+
+
 class Belt(_Model):
     """Belt: a catalogue type plus optional overrides (SPEC section 1).
 
@@ -195,6 +202,13 @@ class Belt(_Model):
         None, gt=0.0, le=2000.0, description="belt mass per metre m'_G as the catalogue "
         "prints it [kg/m] (above 0, at most 2000): replaces (carcass + covers) x width; the "
         "covers still set the rubber (indentation) model; not with carcass_mass_kg_m2")
+
+    @field_validator("top_cover_mm", "bottom_cover_mm")
+    @classmethod
+    def _cover_in_mm(cls, v: float | None) -> float | None:
+        if v is not None and 0.0 < v < COVER_MIN_MM:
+            raise ValueError(f"a rubber cover is 0 (none) or at least {COVER_MIN_MM:g} mm thick")
+        return v
 
     @model_validator(mode="after")
     def _type_or_fields(self) -> Belt:
@@ -1225,6 +1239,9 @@ UNIT_SLIPS = {
     "friction": (lambda v: v > 1.0, lambda v: f"a coefficient, {v / 100:g} if {v:g} is %"),
     "friction_kinetic": (lambda v: v > 1.0,
                          lambda v: f"a coefficient, {v / 100:g} if {v:g} is %"),
+    **{name: (lambda v: 0.0 < v < COVER_MIN_MM,
+              lambda v: f"in millimetres, {v * 1000:g} mm if {v:g} is m")
+       for name in ("top_cover_mm", "bottom_cover_mm")},
     **{name: (lambda v: v > 5.0, lambda v: f"in metres, {v / 1000:g} m if {v:g} is mm")
        for name in ("spacing_m", "width_m", "roll_diameter_m", "pulley_diameter_m",
                     "skirt_width_m", "roll_length_m")},

@@ -519,3 +519,19 @@ def test_a_blank_conveyor_name_is_refused():
     table show the conveyor by it)."""
     assert _err(hand_conveyor_dict(name="   ")).startswith("name: is blank (spaces only)")
     assert parse_conveyor(hand_conveyor_dict(name=" belt 1 ")).name == " belt 1 "
+
+
+def test_a_cover_written_in_metres_is_refused_with_the_millimetres_it_means():
+    """top_cover_mm 0.005 and bottom_cover_mm 0.002 (5 and 2 mm in metres) were read as
+    millimetres: fabric-1km's EP800/4 lost its covers, its mass fell from 15.45 to 7.41 kg/m
+    (1 m x (7.4 kg/m2 carcass + 7 mm x 1.15 kg/m2/mm), against 7.41 with 0.007 mm) and it said
+    ok. Each is now refused naming the field and the millimetres; 0 (a bare carcass) and the
+    catalogue's thinnest 2 mm stay valid."""
+    d = yaml.safe_load((CONVEYORS / "fabric-1km.yaml").read_text())
+    d["belt"].update(top_cover_mm=0.005, bottom_cover_mm=0.002)
+    msg = _err(d)
+    assert "belt.top_cover_mm: a rubber cover is 0 (none) or at least 0.2 mm thick" in msg
+    assert "in millimetres, 5 mm if 0.005 is m" in msg
+    assert "belt.bottom_cover_mm" in msg and "2 mm if 0.002 is m" in msg
+    d["belt"].update(top_cover_mm=5, bottom_cover_mm=0)
+    assert parse_conveyor(d).belt.bottom_cover_mm == 0
