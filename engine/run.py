@@ -366,6 +366,11 @@ def _complete(prep: _Prepared, scenario, system, tr, model, params, opts, remedy
         messages.append("; ".join(lift_warnings))
         tr.warnings.extend(lift_warnings)
         tr.status = "warning" if tr.status == "ok" else tr.status
+    late = _late_brakes(conveyor, scenario, summary.get("stop_time_s"))
+    if late:
+        messages.append("; ".join(late))
+        tr.warnings.extend(late)
+        tr.status = "warning" if tr.status == "ok" else tr.status
     if remedy and tr.status != "failed" and any(
             (summary.get(f"drive{i + 1}_slip_s") or 0.0) > 0.0
             for i in range(len(conveyor.drives))):
@@ -391,6 +396,28 @@ def _complete(prep: _Prepared, scenario, system, tr, model, params, opts, remedy
     summary["elapsed_s"] = time.perf_counter() - t0
     check_summary(summary)
     return result
+
+
+def _late_brakes(conveyor: Conveyor, scenario: Scenario, stop_time_s: float | None
+                 ) -> list[str]:
+    """In a brake stop, one sentence per brake whose delay (from the stop command, SPEC 6.1)
+    is not shorter than the stop the run achieved (``stop_time_s`` [s]): the belt was at rest
+    before that brake came on, so it took no part in the stop (it only holds the belt at rest);
+    a delay of hundreds of seconds is most likely milliseconds."""
+    if scenario.stop.mode != "brake" or stop_time_s is None or not math.isfinite(stop_time_s):
+        return []
+    out = []
+    for i, b in enumerate(conveyor.brakes):
+        if b.delay_s < stop_time_s:
+            continue
+        ms = f"; {b.delay_s / 1000:g} s if {b.delay_s:g} is ms" if b.delay_s >= 50.0 else ""
+        out.append(
+            f"brake {i + 1} never acted in the stop: its delay (brakes.{i}.delay_s "
+            f"{b.delay_s:g} s from the stop command) is not shorter than the stop itself "
+            f"({stop_time_s:.3g} s to rest), so it only holds the belt at rest: a shorter "
+            f"delay_s (a brake comes on in about a second{ms}), or stop.mode: coast for the "
+            "stop this was")
+    return out
 
 
 def _error_bars(conveyor, scenario, result, model, params, opts):
