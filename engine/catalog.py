@@ -450,6 +450,11 @@ def check_conveyor(conv, prefix: str = "") -> None:
         raise InputError(
             f"{prefix}belt: a custom belt (no 'type') needs top_cover_mm and bottom_cover_mm (0 allowed)"
         )
+    if conv.belt.type != AUTO and conv.belt.mass_kg_m is not None:
+        try:  # the printed mass against the covers: named as the file or the body writes it
+            resolve_belt(conv.belt)
+        except InputError as exc:
+            raise InputError(f"{prefix}{exc}") from None
     if conv.belt.type != AUTO and conv.belt.dynamic_modulus_kn_m is not None:
         b = resolve_belt(conv.belt)
         if b.dynamic_modulus_kn_m < b.modulus_kn_m:

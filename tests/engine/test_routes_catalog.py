@@ -11,12 +11,13 @@ import math
 
 import numpy as np
 import pytest
+import yaml
 
 from beltstudy.engine.conveyor import InputError, parse_conveyor
 from beltstudy.engine.hcurves import restoring_force_n_m, tension_limits_n
 from beltstudy.engine.loop import CARRY, RETURN, build_loop
 from beltstudy.engine.statics import solve_steady
-from tests.conftest import hand_conveyor_dict
+from tests.conftest import CONVEYORS, hand_conveyor_dict
 
 G = 9.81
 #: DIN model with C = 1 and f = 0.02 on both strands: the main resistance alone depends on
@@ -352,3 +353,17 @@ def test_a_horizontal_curve_warning_names_the_radius_that_holds_the_belt():
     assert r_min == pytest.approx(1500 * empty.summary["hcurve1_t_high_kn"] / 51.71, abs=2.0)
     larger = solve_steady(_curved(r_min, 8), model="din", params=DIN, load="empty")
     assert not any("runs to the inside" in w for w in larger.warnings)
+
+
+def test_a_belt_mass_below_its_covers_is_named_with_the_files_path():
+    """fabric-1km's EP800/4 with mass_kg_m 0.5 (covers 5 + 2 mm x 1.15 kg/m2/mm x 1 m = 8.05
+    kg/m alone) was refused as 'belt.mass_kg_m: ...' without the file the command read, and a
+    study's inline conveyor without 'conveyor.': the check ran once the belt was resolved, past
+    the door. It runs at the door now, under the prefix every other field of the file has."""
+    d = yaml.safe_load((CONVEYORS / "fabric-1km.yaml").read_text())
+    d["belt"]["mass_kg_m"] = 0.5
+    with pytest.raises(InputError) as ei:
+        parse_conveyor(d, prefix="conveyor.")
+    assert str(ei.value).startswith("conveyor.belt.mass_kg_m: 0.5 kg/m is no more than the "
+                                    "covers alone weigh")
+    assert "= 8.0 kg/m" in str(ei.value)
