@@ -127,6 +127,21 @@ def _at_line(message: str, path: str, lines: list[int]) -> str:
     return message if message.startswith(f"{path}: ") else f"{path}: {text}"
 
 
+def _by_source(message: str, path: str, lines: list[int]) -> str:
+    """Each problem of a message named where it was written: a ``measured.K...`` one with the
+    file and the row's line (:func:`_at_line`), a ``params.NAME`` one as the command line's
+    ``--param NAME``, the others (``fit``, ``model``: the command line's too) as they are."""
+    out = []
+    for part in re.split(r"; (?=[A-Za-z_][\w.\[\]]*: )", message):
+        if part.startswith("measured"):
+            out.append(_at_line(part, path, lines))
+        elif part.startswith("params."):
+            out.append("--param " + part.removeprefix("params."))
+        else:
+            out.append(part)
+    return "; ".join(out)
+
+
 def run(args: argparse.Namespace) -> int:
     lines: list[int] = []
     data = {"conveyor": str(Path(args.conveyor).resolve()),
@@ -135,8 +150,8 @@ def run(args: argparse.Namespace) -> int:
     try:
         body = CalibrationIn.model_validate(data)
     except ValidationError as exc:
-        raise InputError(_at_line(format_validation_error(exc, CalibrationIn),
-                                  args.measured, lines)) from None
+        raise InputError(_by_source(format_validation_error(exc, CalibrationIn),
+                                    args.measured, lines)) from None
     try:
         out = run_calibration(body, params_field="--param ")
     except Invalid as exc:

@@ -116,6 +116,26 @@ def test_a_held_parameter_names_the_requests_own_field(client, tmp_path):
     assert p.stderr.startswith("error: --param f_return: a friction factor between 0 and 1")
 
 
+def test_a_held_parameter_that_is_no_number_is_named_on_the_command_line(tmp_path, capsys):
+    """--param f_return=nan was refused as 'error: PLANT.csv: params.f_return: ...': the CSV
+    named for a value the command line gave, under the request's field name. It is the
+    command line's --param f_return now, and a bad row beside it keeps its file and line."""
+    from beltstudy.service.cli import main
+
+    csv = tmp_path / "plant.csv"
+    csv.write_text("load,temperature_c,power_kw\nfull,5,900\n0.5,5,500\n")
+    args = ["calibrate", str(CONVEYORS / "overland-4km.yaml"), "--measured", str(csv),
+            "--model", "din", "--fit", "f_carry", "--param", "f_return=nan"]
+    assert main(args) == 2
+    err = capsys.readouterr().err
+    assert err.strip() == "error: --param f_return: Input should be a finite number (got nan)"
+    csv.write_text("load,temperature_c,power_kw\nfull,5,900\n0.5,5,abc\n")
+    assert main(args) == 2
+    err = capsys.readouterr().err
+    assert err.startswith(f"error: {csv}: line 3: measured.1.power_kw: ")
+    assert err.strip().endswith("; --param f_return: Input should be a finite number (got nan)")
+
+
 # ------------------------------------------------------------------ the measurement CSV
 def test_a_folder_given_as_the_measurements_is_named_a_folder(tmp_path):
     from beltstudy.engine.errors import InputError
