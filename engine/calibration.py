@@ -529,17 +529,22 @@ def _state_text(m: Measurement) -> str:
 def _few_states(rows: Sequence[Measurement], cols: Sequence[tuple[int, str]], p: int) -> str:
     """The steady states the measured values read, in words, when they are no more than the
     ``p`` fitted names (``""`` otherwise): repeated readings of one state (equal load,
-    temperature and speed) tell the meter's scatter, not the model, so that many states are
+    temperature and speed, in any column: power and Te of one state are one reading,
+    P = Te v) tell the meter's scatter, not the model, so that many states are
     met whatever the model, as :func:`_verdict`'s ``exact`` is, with degrees of freedom that
     count only the repeats."""
-    states: dict[tuple, list[int]] = {}
+    states: dict[tuple, dict[int, list[str]]] = {}
     for i, col in cols:
         m = rows[i]
-        states.setdefault((repr(m.load), m.temperature_c, m.speed_m_s, col), []).append(i)
+        states.setdefault((repr(m.load), m.temperature_c, m.speed_m_s), {}).setdefault(
+            i, []).append(col)
     if not p or len(states) > p:
         return ""
-    return "; ".join(f"{_state_text(rows[ix[0]])} {col} (rows {', '.join(map(str, ix))})"
-                     for (*_, col), ix in states.items())
+    return "; ".join(
+        f"{_state_text(rows[next(iter(ix))])} "
+        f"{' and '.join(dict.fromkeys(c for cs in ix.values() for c in cs))} "
+        f"(row{'s' if len(ix) > 1 else ''} {', '.join(map(str, ix))})"
+        for ix in states.values())
 
 
 def _contradictions(rows: Sequence[Measurement], cols: Sequence[tuple[int, str]],

@@ -99,3 +99,18 @@ def test_repeats_of_two_states_for_two_names_are_a_warning(plant):
     assert "(rows 0, 2)" in cal.message and "(rows 1, 3)" in cal.message
     one = calibrate(conv, [rows[0], rows[9], rows[0]], "din", ["f_carry"])
     assert "steady states as fitted names" not in one.message
+
+
+def test_power_and_te_of_one_state_are_one_state(plant):
+    """A row that gives both the power and the peripheral force of one steady state (P = Te v,
+    the two agree) is two values but one state: one name meets both whatever the model, so
+    the fit is a warning, not ``ok`` with one degree of freedom."""
+    conv, rows = plant
+    row = rows[0]
+    v = conv.speed_m_s
+    both = type(row)(load=row.load, temperature_c=row.temperature_c,
+                     values={"power_kw": row.values["power_kw"],
+                             "te_kn": row.values["power_kw"] / v})
+    cal = calibrate(conv, [both], "din", ["f_carry"])
+    assert cal.dof == 1 and cal.status == "warning"
+    assert "power_kw and te_kn (row 0)" in cal.message
