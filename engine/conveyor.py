@@ -1239,6 +1239,11 @@ UNIT_SLIPS = {
     "friction": (lambda v: v > 1.0, lambda v: f"a coefficient, {v / 100:g} if {v:g} is %"),
     "friction_kinetic": (lambda v: v > 1.0,
                          lambda v: f"a coefficient, {v / 100:g} if {v:g} is %"),
+    "efficiency": (lambda v: 1.0 < v <= 100.0,
+                   lambda v: f"a fraction, {v / 100:g} if {v:g} is %"),
+    # a temperature in kelvin that is one in the range read in degrees Celsius
+    "temperature_c": (lambda v: TEMPERATURE_MIN_C + 273.15 <= v <= TEMPERATURE_MAX_C + 273.15,
+                      lambda v: f"in degrees Celsius, {v - 273.15:.4g} C if {v:g} is K"),
     **{name: (lambda v: 0.0 < v < COVER_MIN_MM,
               lambda v: f"in millimetres, {v * 1000:g} mm if {v:g} is m")
        for name in ("top_cover_mm", "bottom_cover_mm")},

@@ -155,10 +155,11 @@ def test_a_key_in_a_handbook_unit_names_its_si_twin_and_the_conversion(where, ke
     (("idlers", "carry", "spacing_m"), 1200, "1.2 m if 1200 is mm"),
     (("drives", 0, "pulley_diameter_m"), 800, "0.8 m if 800 is mm"),
     (("drives", 0, "friction"), 35, "0.35 if 35 is %"),
+    (("drives", 0, "efficiency"), 95, "a fraction, 0.95 if 95 is %"),
 ])
 def test_a_value_out_of_range_in_another_unit_says_which(path, value, needle):
-    """A density in kg/m3, a pitch or diameter in mm, a friction in % fail their bound and the
-    message says what the value is in the field's unit."""
+    """A density in kg/m3, a pitch or diameter in mm, a friction or an efficiency in % fail
+    their bound and the message says what the value is in the field's unit."""
     d = hand_conveyor_dict()
     node = d
     for part in path[:-1]:
@@ -166,6 +167,20 @@ def test_a_value_out_of_range_in_another_unit_says_which(path, value, needle):
     node[path[-1]] = value
     msg = _err(d)
     assert ".".join(str(p) for p in path) in msg and needle in msg
+
+
+@pytest.mark.parametrize("kelvin,needle", [(293.15, "20 C if 293.15 is K"),
+                                           (253, "-20.15 C if 253 is K")])
+def test_a_temperature_in_kelvin_says_its_degrees_celsius(kelvin, needle):
+    """An ambient of 293.15 (20 C in kelvin) fails the 80 C bound; the message gives the
+    degrees Celsius it means (T - 273.15). 85 C, past the bound but no kelvin temperature of
+    the range, gets no hint."""
+    with pytest.raises(InputError) as exc:
+        parse_scenario({"temperature_c": kelvin})
+    assert "temperature_c" in str(exc.value) and needle in str(exc.value)
+    with pytest.raises(InputError) as exc:
+        parse_scenario({"temperature_c": 85})
+    assert " is K" not in str(exc.value)
 
 
 def test_shares_must_sum_to_one():
