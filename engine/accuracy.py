@@ -370,6 +370,9 @@ def marginal_verdicts(summary: dict, figures: dict, *, sag_limit_pct: float | No
     - slip: ``slip_margin_min_dyn`` against 1, when no drive slipped (a slip is reported
       by itself);
     - safety factor: ``safety_factor_dyn`` against ``safety_factor_min``;
+    - take-up end stop: a carriage that reached one by an impact speed
+      ``takeup_endstop_speed_m_s`` within its error of 0 m/s, or one that did not by a
+      clearance ``takeup_endstop_gap_m`` within its error of 0 m;
     - lift-off: ``liftoff_max_kn_over`` (the most the tension at a concave curve or survey
       grade change exceeded its lift-off tension, > 0 the belt lifted) against 0 kN, where
       the run has one (:func:`beltstudy.engine.curves.transient_liftoff`); and each phase's,
@@ -390,6 +393,9 @@ def marginal_verdicts(summary: dict, figures: dict, *, sag_limit_pct: float | No
         checks.append(("slip_margin_min_dyn", 1.0, ""))
     if safety_factor_min is not None:
         checks.append(("safety_factor_dyn", float(safety_factor_min), ""))
+    checks.append(("takeup_endstop_speed_m_s", 0.0, "m/s")
+                  if (summary.get("takeup_endstop_speed_m_s") or 0.0) > 0.0
+                  else ("takeup_endstop_gap_m", 0.0, "m"))
     said = [_marginal(figures.get(name), limit, unit) for name, limit, unit in checks]
     # lift-off (no bar without a concave curve): the cycle's, then a phase's other peak
     cycle = figures.get("liftoff_max_kn_over")

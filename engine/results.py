@@ -334,6 +334,9 @@ SLACK = ResultGroup("slack", "Slack (SPEC 6.4)", (
     _f("t_max_post_slack_time_s", "s", "when t_max_post_slack_kn is", "  at time"),
     _f("takeup_endstop_speed_m_s", "m/s", "take-up carriage speed when it hit an end stop (0 "
        "when it never did)", "take-up speed at an end stop"),
+    _f("takeup_endstop_gap_m", "m", "least clearance between the take-up carriage's travel "
+       "in the run and its end stops (0 when it reached one; null without a gravity take-up)",
+       "take-up clearance to its end stops"),
     _f("slip_free_takeup_mass_kg", "kg", "gravity take-up with which no drive slips in the "
        "start, found by rerunning it (beltstudy.engine.remedy, 2 %; beltstudy simulate; in a checked "
        "run the figure that also holds on the mesh twice as fine; null when not searched, not "
@@ -533,6 +536,7 @@ DECIDING = (
     "drive_force_max_kn", "drive_power_max_kw",
     "drive{i}_force_max_kn", "drive{i}_power_max_kw",
     "takeup_travel_m", "takeup_travel_start_m", "takeup_travel_stop_m",
+    "takeup_endstop_speed_m_s", "takeup_endstop_gap_m",
     "stop_time_s", "stop_distance_m", "slack_max_m",
     "slip_margin_min_dyn", "safety_factor_dyn", "sag_max_dyn_pct",
     "liftoff_max_kn_over", "liftoff_over_start_kn", "liftoff_over_stop_kn",

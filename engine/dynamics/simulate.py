@@ -841,6 +841,7 @@ def transient_summary(sys: System, r: dict, out, segs, *, steady_summary=None, c
         "slack_time_s": r["slack_time"] if r["slack_time"] >= 0 else None,
         "slack_duration_s": r["slack_dur"],
         "takeup_endstop_speed_m_s": r["endstop_speed"],
+        "takeup_endstop_gap_m": _endstop_gap(sys, r),
         # filled by beltstudy.engine.remedy when a run asks for them (run_one(remedy=True))
         "slip_free_takeup_mass_kg": None,
         "slip_free_takeup_kn": None,
@@ -1003,6 +1004,18 @@ def _short_of_speed_words(sys: System, v_cmd: float, t_stop_cmd: float) -> str:
                   "the coupling's slip (drives[].motor_curve, its speeds divided by the "
                   f"running ratio {v_cmd / v_d:.3f}) would meet it")
     return words
+
+
+def _endstop_gap(sys: System, r: dict) -> float | None:
+    """The least clearance [m] between the carriage's travel in the run (``xmin`` to ``xmax``)
+    and its end stops (``lo``, ``hi``, :func:`~beltstudy.engine.dynamics.model._takeup`): 0
+    when it reached one (the stop holds it there), None without a gravity take-up. The
+    figure the end-stop verdict is judged on with its error bar when the carriage reached no
+    stop (:func:`beltstudy.engine.accuracy.marginal_verdicts`)."""
+    tu = sys.model.takeup
+    if not tu.gravity:
+        return None
+    return max(min(float(r["xmin"]) - tu.lo, tu.hi - float(r["xmax"])), 0.0)
 
 
 def endstop_words(sys: System, r: dict) -> str:

@@ -200,6 +200,79 @@ def test_a_brake_stop_close_to_slack_is_named_marginal():
     assert fine["t_min_dyn_kn"] < f1 and abs(fine["t_min_dyn_kn"] - f2) <= fe.err
 
 
+def test_an_end_stop_within_its_error_is_marginal():
+    """The take-up end stop is judged like slack: a carriage that reached a stop by its impact
+    speed against 0 m/s (0.023 +- 0.18 m/s: a finer mesh may miss it), one that did not by
+    its clearance against 0 m (0.08 mm +- 0.45 mm); a hard hit (0.9 +- 0.1 m/s) or a wide
+    clearance (0.4 +- 0.01 m) is no marginal verdict."""
+    def words(summary, fe):
+        return [w for w in A.marginal_verdicts({"slack_max_m": 0.0, **summary},
+                                               {fe.name: fe}) if "endstop" in w]
+
+    hit = {"takeup_endstop_speed_m_s": 0.023, "takeup_endstop_gap_m": 0.0}
+    assert words(hit, _fe("takeup_endstop_speed_m_s", 0.023, 0.18)) == [
+        "marginal: takeup_endstop_speed_m_s 0.023 against limit 0 +- 0.18 m/s (the verdict "
+        "may flip with the mesh)"]
+    assert words({**hit, "takeup_endstop_speed_m_s": 0.9},
+                 _fe("takeup_endstop_speed_m_s", 0.9, 0.1)) == []
+    clear = {"takeup_endstop_speed_m_s": 0.0, "takeup_endstop_gap_m": 8e-5}
+    assert words(clear, _fe("takeup_endstop_gap_m", 8e-5, 4.5e-4)) == [
+        "marginal: takeup_endstop_gap_m 8e-05 against limit 0 +- 0.00045 m (the verdict may "
+        "flip with the mesh)"]
+    assert words({**clear, "takeup_endstop_gap_m": 0.4},
+                 _fe("takeup_endstop_gap_m", 0.4, 0.01)) == []
+
+
+#: A 300 m, 14 deg incline on a fabric belt with an auto head brake and a 4 m gravity take-up
+#: travel (no end stop reached in a brake stop).
+STEEP_14 = {
+    "name": "steep-14deg-300", "speed_m_s": 2.5,
+    "belt": {"type": "EP630/4", "width_m": 1.0, "compound": "standard"},
+    "material": {"capacity_t_h": 500, "density_t_m3": 1.4},
+    "profile": [{"length_m": 300, "lift_m": 72.58}],
+    "idlers": {"carry": {"spacing_m": 1.2, "roll_diameter_m": 0.127, "rolls": 3,
+                         "trough_deg": 35, "cema_class": "C"},
+               "return": {"spacing_m": 3.0, "roll_diameter_m": 0.127, "rolls": 1,
+                          "cema_class": "C"}},
+    "drives": [{"position": "head", "wrap_deg": 210, "friction": 0.35, "share": 1.0,
+                "pulley_diameter_m": 0.8, "inertia_kg_m2": 200, "rated_power_kw": 250,
+                "torque_limit": 1.5}],
+    "takeup": {"type": "gravity", "position": "tail", "mass_kg": "auto", "travel_m": 4.0},
+    "brakes": [{"position": "head", "force_kn": "auto", "delay_s": 0.3, "ramp_s": 0.5}],
+    "holdback": True,
+}
+
+
+def test_a_take_up_end_stop_close_to_the_carriage_is_named_marginal():
+    """The carriage of STEEP_14 in a brake stop, at the defaults, with the travel cut until
+    its clearance is 0.1 mm either side of the stop it runs towards: whether it reaches the
+    stop flipped with the mesh (a travel of 2.3597 m reached it at 0.023 m/s on the run's
+    mesh and 0.040 m/s on twice the elements, not at half the step) and no run said so. The
+    travel is found from a first run: the carriage's motion does not depend on the travel
+    until it reaches a stop, and a shorter travel moves both stops in by half the cut
+    (docs/dynamics.md, the take-up)."""
+    from beltstudy.engine import parse_conveyor, parse_scenario
+    from beltstudy.engine.run import run_one
+
+    scn = parse_scenario({"stop": {"mode": "brake"}})
+    wide = run_one(parse_conveyor(STEEP_14), scn, model="din").summary
+    gap = wide["takeup_endstop_gap_m"]
+    assert wide["takeup_endstop_speed_m_s"] == 0.0 and 0.1 < gap < 2.0
+    for cut, hits in ((2.0 * gap - 2e-4, False), (2.0 * gap + 2e-4, True)):
+        conv = parse_conveyor({**STEEP_14, "takeup": {**STEEP_14["takeup"],
+                                                      "travel_m": 4.0 - cut}})
+        s = run_one(conv, scn, model="din", check=True).summary
+        if hits:
+            assert s["takeup_endstop_speed_m_s"] > 0.0 and s["takeup_endstop_gap_m"] == 0.0
+            assert "take-up carriage reached" in s["message"]
+            assert "marginal: takeup_endstop_speed_m_s" in s["message"]
+        else:
+            assert s["takeup_endstop_speed_m_s"] == 0.0
+            assert s["takeup_endstop_gap_m"] == pytest.approx(1e-4, abs=1e-6)
+            assert "take-up carriage reached" not in s["message"]
+            assert "marginal: takeup_endstop_gap_m" in s["message"]
+
+
 def test_a_fixed_step_keeps_its_fraction_of_the_stability_limit_on_every_mesh():
     """A fixed step just under the stability limit of the run's mesh (slope-5pct, 60
     elements asked, 62 used). The finer mesh asks 124 elements and the loop's cut makes 126:
