@@ -51,7 +51,7 @@ if TYPE_CHECKING:  # the conveyor model, for the annotations only
     from beltstudy.engine.conveyor import Conveyor
 
 __all__ = ["OVERLOAD_S_MAX", "RATED_POWER_FACTOR", "GIVEN", "rated_power_kw", "power_required_kw",
-           "steady_checks", "transient_checks"]
+           "kw_at_least", "steady_checks", "transient_checks"]
 
 #: Longest time a drive may run above its rated force in a cycle without a warning [s]: the
 #: 15 s for which IEC 60034-1 (clause 9.4, *unverified*) has an induction motor withstand
@@ -112,6 +112,20 @@ def power_required_kw(force_n: float, speed_m_s: float, efficiency: float) -> fl
     return (p / efficiency if p >= 0.0 else -p * efficiency) / 1e3
 
 
+def kw_at_least(kw: float) -> int:
+    """A power [kW] as a rating to advise: the whole kilowatt at or above it. Rounded to the
+    nearest, 998.3 kW needed was advised as a motor of "at least 998 kW", whose utilisation
+    is 1.0003: the advice did not pass. The 1e-9 keeps a need of a whole kilowatt (up to
+    float noise) at that kilowatt, within the check's own 1e-9."""
+    return math.ceil(kw * (1.0 - 1e-9))
+
+
+def _kw_words(kw: float) -> str:
+    """A shortfall [kW] as words: whole kilowatts, two figures below half a kilowatt (not 'short by
+    0 kW')."""
+    return f"{kw:.0f}" if kw >= 0.5 else f"{kw:.2g}"
+
+
 def steady_checks(conv, forces_n, speed_m_s: float, te_n: float, rated_kw
                   ) -> tuple[dict, list[str]]:
     """The steady drive fields and the warnings of a drive short of power.
@@ -149,8 +163,8 @@ def steady_checks(conv, forces_n, speed_m_s: float, te_n: float, rated_kw
             warnings.append(
                 f"drive {i} ({d.where}) {how} {need:.0f} kW at {speed_m_s:g} m/s "
                 f"({d.share:g} x Te {te_n / 1e3:.1f} kN{regen} {eta:g}), rated "
-                f"{rated:.0f} kW: short by {need - rated:.0f} kW (utilisation "
-                f"{need / rated:.2f}); a motor of at least {need:.0f} kW "
+                f"{rated:.0f} kW: short by {_kw_words(need - rated)} kW (utilisation "
+                f"{need / rated:.2f}); a motor of at least {kw_at_least(need)} kW "
                 f"(drives.{i - 1}.rated_power_kw), or the load shared by more drives, "
                 "would avoid it")
         # a vfd caps its force at torque_limit x the rated force P_N / v (as the transient
@@ -271,7 +285,7 @@ def transient_checks(names, drv, rated_n, limit_n, vfd, speed_m_s: float, start_
             within = (f"more than {kw:.0f} kW: its force was held at its torque limit, so the "
                       "run does not show how much more it needs")
         else:
-            within = f"at least {kw:.0f} kW keeps it within"
+            within = f"at least {kw_at_least(kw)} kW keeps it within"
         motor = f"a larger motor ({within})"
         f_acc = (float(start_accel_n[k]) if start_accel_n is not None
                  and math.isfinite(float(start_accel_n[k])) else None)

@@ -52,6 +52,28 @@ def test_steady_checks_utilisation_and_shortfall_by_hand():
     assert "rated 500 kW: short by 100 kW" in warnings[0]
 
 
+def test_the_motor_advised_for_a_drive_short_of_power_is_enough():
+    """A drive pulling 189.677 kN at 5 m/s through 0.95 needs 189.677 x 5 / 0.95 = 998.3 kW.
+    Rounded to the nearest the advice was "a motor of at least 998 kW", and a 998 kW motor
+    is still short (utilisation 998.3 / 998 = 1.0003, warned again "short by 0 kW"): the
+    advice is the next whole kilowatt, 999 kW, which passes. A shortfall under half a kilowatt
+    is said in two figures (0.3 kW), not as 0."""
+    conv = parse_conveyor(hand_conveyor_dict(drives=[{"position": "head",
+                                                      "rated_power_kw": 900}]))
+    force, v = 998.3 * 0.95 * 1e3 / 5.0, 5.0
+    fields, (w,) = steady_checks(conv, [force], v, force, [900.0])
+    assert fields["drive1_power_required_kw"] == pytest.approx(998.3, rel=1e-12)
+    assert "a motor of at least 999 kW (drives.0.rated_power_kw)" in w
+    _, again = steady_checks(conv, [force], v, force, [998.0])
+    assert "short by 0.3 kW" in again[0] and "at least 999 kW" in again[0]
+    assert steady_checks(conv, [force], v, force, [999.0])[1] == []
+    # a need of a whole kilowatt is advised as that kilowatt
+    whole = 1000.0 * 0.95 * 1e3 / 5.0
+    (w,) = steady_checks(conv, [whole], v, whole, [900.0])[1]
+    assert "a motor of at least 1000 kW" in w
+    assert steady_checks(conv, [whole], v, whole, [1000.0])[1] == []
+
+
 def test_a_regenerating_drive_short_of_power_holds_back():
     """A drive holding back 120 kN at 4.5 m/s passes 120 x 4.5 x 0.95 = 513 kW to its motor
     (the losses come off the belt's power); rated 400 kW it is short by 113 kW."""
