@@ -551,8 +551,10 @@ def _slip_words(res: SteadyResult, drives, slip_margins, start_margins, breakawa
                        f"{need:.0f} kg needed: a takeup.mass_kg of {math.ceil(need):.0f} kg "
                        "or more would avoid it")
             elif shortfall_n > 0:
-                fix = (f"; pretension {res.takeup_tension_n / 1e3:.1f} kN is below the "
-                       f"{(res.takeup_tension_n + shortfall_n) / 1e3:.1f} kN needed")
+                need_kn = up3((res.takeup_tension_n + shortfall_n) / 1e3)
+                fix = (f"; pretension {res.takeup_tension_n / 1e3:.3g} kN is below the "
+                       f"{need_kn:g} kN needed: a takeup.pretension_kn of {need_kn:g} kN or "
+                       "more would avoid it")
             said = ", and at ".join(f"{w}: slip margin {m:.2f} < 1" for w, m in cases)
             warnings.append(f"slip at {where} at {said} (e^(mu theta) = {e:.2f}){fix}")
     return warnings
@@ -729,7 +731,18 @@ def _summarise(res: SteadyResult, drives, hs_adm, bounds, shortfall_n: float,
 
 
 # ------------------------------------------------------------ start-up tensions (issue 27)
-__all__ += ["startup_tensions"]
+__all__ += ["startup_tensions", "up3"]
+
+
+def up3(x: float) -> float:
+    """``x`` rounded up at three significant figures, for a least value a warning advises (a
+    tension, a pretension): rounded to the nearest, a sag short of 804.25 N was advised as
+    "0.804 kN more per strand", which left the span 0.25 N short and warned again. The 1e-9
+    keeps a value already of three figures (up to float noise) as it is."""
+    if not math.isfinite(x) or x <= 0.0:
+        return x
+    step = 10.0 ** (math.floor(math.log10(x)) - 2)
+    return float(f"{math.ceil(x / step - 1e-9) * step:.3g}")
 
 
 def place_words(loop: Loop, s_m: float) -> str:
@@ -752,9 +765,9 @@ def _sag_words(loop: Loop, strand: str, sag: float, limit: float, j: int, t_low:
     need = float(loop.sag_w_n[j]) / limit
     return (f"sag on the {strand} strand {sag * 100:.2f} % exceeds sag_limit_pct.{strand} = "
             f"{limit * 100:.2f} % (tension {t_low / 1e3:.3g} kN "
-            f"{place_words(loop, float(loop.s_end_m[j]))}); {need / 1e3:.3g} kN there keeps it "
-            f"within (the sag goes as 1 / T), so the take-up must hold at least "
-            f"{(need - t_low) / 1e3:.3g} kN more per strand; that, closer idlers "
+            f"{place_words(loop, float(loop.s_end_m[j]))}); {up3(need / 1e3):g} kN there keeps "
+            f"it within (the sag goes as 1 / T), so the take-up must hold at least "
+            f"{up3((need - t_low) / 1e3):g} kN more per strand; that, closer idlers "
             f"(idlers.{strand}.spacing_m) or a higher sag limit would avoid it")
 
 

@@ -230,6 +230,53 @@ def test_a_sag_past_its_limit_names_where_and_the_tension_that_keeps_it(hand_dic
         assert any("sag on the carry strand" in w for w in r.warnings) is warned
 
 
+def test_the_take_up_a_sag_warning_advises_clears_it():
+    """The hand conveyor on a fixed take-up of 2.0005 kN: its first carry span (the lowest
+    tension, leaving the tail) sags past 3 %. By hand the span needs T >= g (m'_G + m'_L) S
+    cos(a) / (8 x 0.03) = 9.81 x 70 x 1.25 x cos(asin 0.05) / 0.24 = 3572.09 N, said rounded
+    up, 3.58 kN (3.57 to the nearest is below it). It lacks 0.8674 kN: rounded to the nearest,
+    "0.867 kN more per strand" left it 0.4 N short and warned again; the advice is now
+    rounded up (0.868 kN) and, added to the pretension, clears the sag."""
+    d = hand_conveyor_dict(takeup={"type": "fixed", "position": "tail",
+                                   "pretension_kn": 2.0005})
+    res = solve_steady(parse_conveyor(d), model="din")
+    (msg,) = [w for w in res.warnings if "sag on the carry strand" in w]
+    need_n = G * 70.0 * 1.25 * math.cos(math.asin(0.05)) / (8 * 0.03)
+    assert need_n == pytest.approx(3572.09, abs=0.01)
+    assert "; 3.58 kN there keeps it within" in msg
+    more_kn = float(msg.split("must hold at least ")[1].split(" kN more")[0])
+    assert more_kn == 0.868
+    d["takeup"]["pretension_kn"] = 2.0005 + more_kn
+    r = solve_steady(parse_conveyor(d), model="din")
+    assert not any("sag on the carry strand" in w for w in r.warnings)
+    assert r.summary["sag_max_pct"] <= 3.0
+
+
+def test_the_pretension_a_slip_warning_advises_clears_it():
+    """The hand conveyor with a head scraper of 1.2 kN on a fixed take-up of 20 kN slips at
+    start-up; the least pretension that holds it is the auto one (33.036 kN, sized for slip at
+    start-up). Said to 0.1 kN to the nearest, "33.0 kN needed" left the start-up slip margin
+    at 0.999; the advice names the field and is rounded up (33.1 kN), which holds."""
+    d = hand_conveyor_dict(takeup={"type": "fixed", "position": "tail", "pretension_kn": "auto"},
+                           accessories={"head_kn": 1.2, "tail_kn": 0.5})
+    auto = solve_steady(parse_conveyor(d), model="din")
+    assert auto.takeup_governed_by == "slip_start"
+    assert auto.takeup_tension_n == pytest.approx(33035.7, abs=0.1)
+    d["takeup"]["pretension_kn"] = 20.0
+    res = solve_steady(parse_conveyor(d), model="din")
+    (msg,) = [w for w in res.warnings if w.startswith("slip at drive 1")]
+    assert "pretension 20 kN is below the 33.1 kN needed: a takeup.pretension_kn of 33.1 kN" in msg
+    d["takeup"]["pretension_kn"] = 33.1
+    ok = solve_steady(parse_conveyor(d), model="din")
+    assert ok.summary["slip_margin_start"] >= 1.0 and ok.status == "ok"
+
+
+@pytest.mark.parametrize("x, said", [(0.80425, 0.805), (0.804, 0.804), (33.0357, 33.1),
+                                     (3572.09, 3580.0), (0.0679, 0.0679)])
+def test_up3_rounds_a_least_value_up_at_three_figures(x, said):
+    assert statics.up3(x) == said
+
+
 def test_regenerating_drive_tight_side_outgoing():
     from beltstudy.engine.conveyor import load_conveyor
 
