@@ -11,8 +11,10 @@ Notes
 *Exceedance.* A run is past a limit when the design report says so
 (:data:`beltstudy.service.web.verdicts.CAUSES`: belt safety factor below its minimum, slip
 margin below 1 or slipping, sag past its limit, slack, a drive over its rating). Of n finished
-runs k are past it: p = k / n with the Wilson score interval (Wilson 1927; recommended over
-the normal approximation by Agresti & Coull 1998, also for k = 0 or k = n):
+runs k are past it (a run that stands for several sample points, merged because they differ
+only in an axis it does not read, counts once for each): p = k / n with the Wilson score
+interval (Wilson 1927; recommended over the normal approximation by Agresti & Coull 1998, also
+for k = 0 or k = n):
 
     (p + z^2 / 2n +- z sqrt(p (1 - p) / n + z^2 / 4n^2)) / (1 + z^2 / n),   z = 1.96 (95 %).
 
@@ -216,14 +218,21 @@ def _figures(runs: pd.DataFrame, figures: Sequence[str]) -> list[str]:
     return out
 
 
-def _exceedance(rows: pd.DataFrame) -> list[dict[str, Any]]:
-    done = rows[rows["status"].astype(str) != "failed"] if "status" in rows else rows
+def _exceedance(rows: pd.DataFrame, weights: np.ndarray | None = None
+                ) -> list[dict[str, Any]]:
+    """Each limit's runs past it of the finished ``rows``, a row counted ``weights`` times
+    (the sample points it stands for; once each by default)."""
+    w = np.ones(len(rows), dtype=int) if weights is None else np.asarray(weights, dtype=int)
+    keep = (rows["status"].astype(str) != "failed").to_numpy() if "status" in rows else (
+        np.ones(len(rows), dtype=bool))
+    done, w = rows[keep], w[keep]
     out = []
     for cause in CAUSES:
         if cause.key not in LIMITS:
             continue
-        mask = cause.detect(done).fillna(False).astype(bool) if len(done) else pd.Series([])
-        k, n = int(mask.sum()), int(len(done))
+        mask = (cause.detect(done).fillna(False).astype(bool).to_numpy() if len(done)
+                else np.zeros(0, dtype=bool))
+        k, n = int(w[mask].sum()), int(w.sum())
         lo, hi = wilson(k, n)
         out.append({"limit": cause.key, "title": cause.title, "runs_past": k, "runs": n,
                     "p": (k / n) if n else None, "ci_low": lo, "ci_high": hi,
@@ -241,6 +250,32 @@ def _unit(column: str) -> str:
 def _key(values) -> tuple:
     return tuple(None if v is None or (isinstance(v, float) and math.isnan(v)) else float(v)
                  for v in values)
+
+
+def _runs_at(rows: pd.DataFrame, s_cols: list[str], points: np.ndarray) -> list[int | None]:
+    """The position in ``rows`` of the run at each sample point (None: no run yet).
+
+    A run that stands for several points (grid points whose runs are identical are one run,
+    its axis column null where they differ: a ``models.nonlin.*`` axis under ``cema``) is the
+    run of every point whose values match its non-null ones."""
+    by_known: dict[tuple[bool, ...], dict[tuple, int]] = {}
+    for i, r in enumerate(rows[s_cols].itertuples(index=False)):
+        key = _key(r)
+        known = tuple(v is not None for v in key)
+        by_known.setdefault(known, {}).setdefault(
+            tuple(v for v in key if v is not None), i)
+    # the runs of one point first, then those standing for more points
+    order = sorted(by_known, key=lambda known: -sum(known))
+    at: list[int | None] = []
+    for p in points:
+        key = _key(p)
+        found = None
+        for known in order:
+            found = by_known[known].get(tuple(v for v, k in zip(key, known, strict=True) if k))
+            if found is not None:
+                break
+        at.append(found)
+    return at
 
 
 def summarise(study: dict, runs: pd.DataFrame, figures: Sequence[str] = FIGURES
@@ -265,11 +300,13 @@ def summarise(study: dict, runs: pd.DataFrame, figures: Sequence[str] = FIGURES
         [((), runs)])
     for gkey, rows in groups:
         gkey = gkey if isinstance(gkey, tuple) else (gkey,)
-        index = {_key(r): i for i, r in enumerate(rows[s_cols].itertuples(index=False))}
-        at = [index.get(_key(p)) for p in points]
+        at = _runs_at(rows, s_cols, points)
+        # the sample points each run stands for (1 for a run no point has, as before)
+        weights = np.bincount([i for i in at if i is not None], minlength=len(rows))
+        weights[weights == 0] = 1
         cell = {"grid": dict(zip(g_cols, gkey, strict=False)), "runs": int(len(rows)),
                 "points_missing": int(sum(i is None for i in at)),
-                "figures": {}, "exceedance": _exceedance(rows), "sensitivity": {}}
+                "figures": {}, "exceedance": _exceedance(rows, weights), "sensitivity": {}}
         for col in cols:
             vals = pd.to_numeric(rows[col], errors="coerce").to_numpy(dtype=float)
             y = np.array([vals[i] if i is not None else np.nan for i in at])

@@ -199,3 +199,41 @@ def test_an_index_just_outside_0_1_is_shown_outside_it():
                           "f_return": {"S1": -0.0000142, "ST": 5.1e-06}})
     assert note.startswith("S1 of f_carry 1.0005, ST of f_carry 1.00004, "
                            "S1 of f_return -1.42e-05: outside [0, 1]"), note
+
+
+def test_a_run_merged_over_sample_points_stands_for_each(data_dir, make_settings):
+    """A Sobol' sample of a DIN parameter crossed with friction_model [din, cema]: a cema run
+    does not read models.din.f_carry, so the points of Saltelli's design that differ only in
+    it are one cema run with that axis null. The answer dropped those points (cema: '4 sample
+    points without a run yet' for a finished study, each figure over 8 of 12 points, Spearman
+    instead of Sobol' and a rank correlation for f_carry, which cema never reads). Each point
+    now has the run it merged into."""
+    from fastapi.testclient import TestClient
+
+    from beltstudy.service.api.app import create_app
+    from tests.service.conftest import store_finished
+
+    data = tiny_study("sampled-merged", grid={"friction_model": ["din", "cema"]}, sample={
+        "n": 3 * 4, "method": "sobol", "seed": 5, "axes": {
+            "models.din.f_carry": {"dist": "lognormal", "median": 0.02, "sigma": 0.3},
+            "temperature_c": {"dist": "uniform", "low": -20, "high": 30}}})
+    study = resolve_study(data)
+    cema = [r for r in study.runs if r.model == "cema"]
+    points = sum(r.model == "din" for r in study.runs)  # din reads every axis: one a point
+    assert len(cema) < points  # some cema runs stand for several points
+    sid = store_finished(data_dir, data)
+    client = TestClient(create_app(make_settings(data_dir)))
+    out = client.get(f"/studies/{sid}/uncertainty").json()
+    assert out["points"] == points
+    cells = {c["grid"]["friction_model"]: c for c in out["cells"]}
+    for model, cell in cells.items():
+        assert cell["points_missing"] == 0, model
+        assert cell["figures"]["power_kw"]["n"] == out["points"], model
+        sens = cell["sensitivity"]["power_kw"]
+        assert sens["method"].startswith("sobol"), (model, sens)
+        assert {e["runs"] for e in cell["exceedance"]} == {out["points"]}, model
+    assert cells["cema"]["runs"] == len(cema)
+    # cema does not read f_carry: it explains none of cema's power
+    s = cells["cema"]["sensitivity"]["power_kw"]["axes"]
+    assert abs(s["models.din.f_carry"]["ST"]) < 1e-9 and s["temperature_c"]["ST"] > 0.9
+    assert "without a run yet" not in format_text(out)
