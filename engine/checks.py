@@ -435,10 +435,15 @@ def _idlers(conv, loop: Loop) -> tuple[dict, list[str]]:
             f"{rating['carry_rating_n']:.0f} N: a heavier class or a closer pitch "
             f"({pitch_within_m(pitch, rating['carry_rating_n'], f_set):.2f} m)")
     if l10 < rating["l10_min_h"]:
+        # L10 goes as 1 / P^3 and the roll's load P as the pitch: the pitch whose life is the
+        # basis, rounded down to the centimetre printed (pitch_within_m)
+        closer = pitch_within_m(pitch, (l10 / rating["l10_min_h"]) ** (1.0 / BEARING_LIFE_EXPONENT),
+                                1.0)
         warnings.append(
             f"carry idler bearing life L10 {l10:.0f} h (middle roll {f_roll:.0f} N, two "
             f"bearings, ISO 281) is below the CEMA {ic.cema_class} basis "
-            f"{rating['l10_min_h']:.0f} h: a heavier class, larger rolls or a closer pitch")
+            f"{rating['l10_min_h']:.0f} h: a heavier class, larger rolls or a closer pitch "
+            f"({closer:.2f} m)")
     return out, warnings
 
 

@@ -284,6 +284,33 @@ def test_the_closer_pitch_named_for_the_rating_meets_it_when_applied():
     assert "carry idler load" not in applied.message
 
 
+def test_the_closer_pitch_named_for_the_bearing_life_meets_it_when_applied():
+    """slope-5pct with CEMA B sets 3 m apart: L10 = (9950 / 1556.7)^3 x 10^6 / (60 x 565.4)
+    = 7 697 h, below CEMA's 30 000 h. L10 goes as 1 / P^3 and P as the pitch, so the pitch
+    with the basis life is 3 x (7697 / 30000)^(1/3) = 1.906 m, named rounded down, 1.90 m
+    (the warning named no pitch before); at 1.90 m L10 = 7697 x (3 / 1.9)^3 = 30 300 h and
+    the rerun has no bearing-life warning."""
+    d = yaml.safe_load((CONVEYORS / "slope-5pct.yaml").read_text())
+
+    def run(pitch):
+        d["idlers"]["carry"].update(cema_class="B", spacing_m=pitch)
+        return solve_steady(Conveyor.model_validate(d), model="din", n_elements=100)
+
+    m = 1.2 * (12.6 + 14 * 1.15) + 2000 / (3.6 * 4.5)
+    n_rpm = 60 * 4.5 / (math.pi * 0.152)
+    l10 = (9950 / (0.67 * 9.81 * m * 3.0 / 2)) ** 3 * 1e6 / (60 * n_rpm)
+    assert l10 == pytest.approx(7697, abs=1)
+    st = run(3.0)
+    assert st.summary["idler_l10_h"] == pytest.approx(l10, rel=1e-9)
+    assert 3.0 * (l10 / 30000) ** (1 / 3) == pytest.approx(1.906, abs=1e-3)
+    assert ("is below the CEMA B basis 30000 h: a heavier class, larger rolls or a closer "
+            "pitch (1.90 m)") in st.message
+    applied = run(1.90)
+    assert applied.summary["idler_l10_h"] == pytest.approx(l10 * (3.0 / 1.9) ** 3, rel=1e-9)
+    assert applied.summary["idler_l10_h"] > 30000
+    assert "bearing life" not in applied.message
+
+
 def test_transient_resultant_bounds_the_sampled_head_resultant():
     # the envelope is kept every step, so R(max T_in, max T_out) per segment is at least the
     # resultant of every recorded pair (t_head_in_kn, t_head_out_kn) of the first head pulley,
