@@ -27,6 +27,7 @@ from beltstudy.engine.dynamics import records as R
 from beltstudy.engine.dynamics.kernel import run_cycle
 from beltstudy.engine.dynamics.model import COUPLING_CODES, System, chord_strain
 from beltstudy.engine.dynamics.profiles import LINEAR, S_CURVE, start_reference, stop_reference
+from beltstudy.engine.statics import up3
 
 __all__ = ["TransientResult", "KernelRun", "fresh_run", "fresh_model", "simulate", "decode",
            "span_sag_pct", "not_stopped_words",
@@ -1074,9 +1075,9 @@ def _sag_words(sys: System, strand: str, sag_pct: float, limit_pct: float, j: in
                             if sys.model.cycle.stop_mode == C.BRAKE else []))}[phase]
     return (f"transient sag on the {strand} strand {sag_pct:.2f} % exceeds the limit "
             f"{limit_pct:g} % (low tension {t_low_n / 1e3:.3g} kN near {where(sys, j)} at t = "
-            f"{t_at:.1f} s, {_PHASE_WORDS[phase]}); {need_kn:.3g} kN there keeps it within "
+            f"{t_at:.1f} s, {_PHASE_WORDS[phase]}); {up3(need_kn):g} kN there keeps it within "
             f"(the sag goes as 1 / T), so the take-up must add at least "
-            f"{need_kn - t_low_n / 1e3:.3g} kN, more where the transient passes only part of "
+            f"{up3(need_kn - t_low_n / 1e3):g} kN, more where the transient passes only part of "
             f"a take-up change to that span (rerun to confirm): {fixes} would avoid it")
 
 

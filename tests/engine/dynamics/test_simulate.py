@@ -262,8 +262,9 @@ def test_a_coast_stop_of_dol_drives_is_not_offered_a_controlled_stop_it_cannot_r
 def test_a_transient_sag_names_when_and_the_tension_that_keeps_it_within():
     """A span whose lower spring fell to 8.92 kN 95.5 s into the cycle (in the stop) sags
     3.99 % against a 1.5 % limit: the warning says where, when, in which phase, and the
-    tension that keeps it within (the sag ratio goes as 1 / T: 8.92 x 3.99 / 1.5 = 23.7 kN),
-    with the stop's cures."""
+    tension that keeps it within (the sag ratio goes as 1 / T: 8.92 x 3.99 / 1.5 = 23.727 kN,
+    said rounded up at three figures, 23.8 kN: rounded to the nearest, 23.7 kN, it would still
+    sag past the limit), with the stop's cures."""
     from beltstudy.engine.dynamics.simulate import _sag_words
 
     sysm = _four_spring_system()
@@ -272,9 +273,9 @@ def test_a_transient_sag_names_when_and_the_tension_that_keeps_it_within():
     msg = _sag_words(sysm, "carry", 3.99, 1.5, 2, 8.92e3, whole)
     assert msg.startswith("transient sag on the carry strand 3.99 % exceeds the limit 1.5 %")
     assert "near 1000 m from the tail on the carry at t = 95.5 s, during the stop" in msg
-    assert "23.7 kN there keeps it within" in msg and "a longer stop" in msg
-    # what the take-up must add is a lower bound: 23.7 - 8.92 = 14.8 kN
-    assert "the take-up must add at least 14.8 kN, more where" in msg
+    assert "23.8 kN there keeps it within" in msg and "a longer stop" in msg
+    # what the take-up must add is a lower bound: 23.727 - 8.92 = 14.807 kN, rounded up
+    assert "the take-up must add at least 14.9 kN, more where" in msg
     whole["env_min_t"][1] = 40.0  # the same low tension in the start
     assert "a longer start (start.time_s)" in _sag_words(sysm, "carry", 3.99, 1.5, 2, 8.92e3,
                                                           whole)
