@@ -605,8 +605,13 @@ def running_warnings(sys: System, r: dict, out, names=None) -> list[str]:
     # judged from one wave loop time after the ramp on (what the stop starts from)
     t_ok = cyc.t_pre + cyc.t_start + t_loop
     t0 = max(t1 - max(SETTLE_LOOPS * t_loop, 0.5 * cyc.t_run), t_ok)
-    if t1 - t0 < 0.5 * t_loop or int(r["status"]) != C.OK:
-        return w  # too little of the running phase is past the start to judge
+    n_rec = int(r["nrec"])
+    t_end = float(out.rec["t"][n_rec - 1]) if n_rec else 0.0
+    if t1 - t0 < 0.5 * t_loop or (int(r["status"]) != C.OK and t_end < t1):
+        # too little of the running phase is past the start to judge, or the run ended
+        # (ran away, diverged) before the stop command; one that ended in the stop has its
+        # whole running phase to judge
+        return w
     short = ""
     if t0 > t1 - SETTLE_LOOPS * t_loop + 1e-9:
         short = (f"; the running phase is short (run_s {cyc.t_run:.3g} s): a run_s of at least "
@@ -646,15 +651,20 @@ SPREAD_FRACTION = 0.05
 def _settle_levers(sys: System) -> str:
     """What may settle a swinging running phase: with the drives at one end a slower speed
     loop; with drives a wave's travel apart no setting is known to settle every belt (a
-    slower loop made a 7 km head-and-tail overland swing more: 0.17 to 0.49 m/s at 1 rad/s),
-    so the words say that and name the drives at one end as what swings less."""
+    slower loop made a 7 km head-and-tail overland swing more: 0.17 to 0.49 m/s at 1 rad/s,
+    and settled a 5 km one), nor does moving the drives to one end (a 2.9 km head-and-tail
+    belt swung 83-93 % of design speed and 23 % with its drives at the head, but a 5 km one
+    3.5 % and 11.9 %, a 10 km one with a booster 5.5 % and 8.4 %), so the words say that and
+    name what shows it: a rerun with another loop speed, a longer running phase (a swing that
+    decays)."""
     pos = sys.s_end_m[np.asarray(sys.model.drives.node, dtype=np.int64)]
     loop = float(sys.s_end_m[-1])
     if len(pos) > 1 and float(pos.max() - pos.min()) > SPREAD_FRACTION * loop:
         return ("with drives a wave's travel apart the followers answer the master's loop "
-                "late, and no speed loop setting is known to settle every such belt (a slower "
-                "one can swing more: rerun to check drives[i].speed_loop_rad_s); the drives at "
-                "one end swing less")
+                "late, and no speed loop setting or drive layout is known to settle every such "
+                "belt (a slower loop or the drives at one end settle some and swing others "
+                "more: rerun to check drives[i].speed_loop_rad_s; a longer run_s shows whether "
+                "the swing decays)")
     return "a slower speed loop (drives[i].speed_loop_rad_s) swings less"
 
 

@@ -349,6 +349,43 @@ def test_a_running_phase_that_swings_is_named_with_its_swing_and_period(amp, per
     assert "a slower speed loop (drives[i].speed_loop_rad_s) swings less" in msg
 
 
+def test_a_run_that_ran_away_in_its_stop_still_has_its_running_phase_judged():
+    """A regenerating decline whose running phase swings by 2.7 % of design speed and which
+    runs away in its coast stop was not told the swing (a brake stop of the same running
+    phase was): the check was skipped for any run that did not end OK. A run that ran away
+    or diverged after the stop command has its whole running phase and is judged; one that
+    ended before the stop command is not."""
+    from types import SimpleNamespace
+
+    from beltstudy.engine.dynamics import codes as C
+    from beltstudy.engine.dynamics.simulate import running_warnings
+
+    sysm = _running()
+    t1 = sysm.stop_command_s
+    t = np.arange(0.0, t1 + 20.0, 0.1)  # records on into the stop, where it ran away
+    v = sysm.v_design + 0.6 * np.sin(2 * np.pi * t / 30.0)
+    r = {"vmean_hi": sysm.v_design, "vmean_hi_t": 50.0, "status": C.RUNAWAY, "nrec": len(t)}
+    (msg,) = running_warnings(sysm, r, SimpleNamespace(rec=_records(t, v)))
+    assert msg.startswith("not settled while running")
+    early = t < t1 - 100.0  # ran away 100 s before the stop command
+    r_early = {**r, "nrec": int(early.sum())}
+    assert running_warnings(sysm, r_early, SimpleNamespace(rec=_records(t[early],
+                                                                          v[early]))) == []
+
+
+def test_the_settling_words_for_drives_apart_claim_no_layout_that_settles():
+    """Drives a wave's travel apart: moving them to one end swung some measured belts more
+    (a 5 km incline 3.5 % head and tail, 11.9 % all at the head), so the words no longer
+    name the drives at one end as what swings less; they name the reruns that show it."""
+    from beltstudy.engine.dynamics.simulate import _settle_levers
+
+    sysm = _running()
+    sysm.model.drives.node = np.array([0, 49])  # head and mid-loop: half the loop apart
+    words = _settle_levers(sysm)
+    assert "swing less" not in words
+    assert "drives[i].speed_loop_rad_s" in words and "a longer run_s" in words
+
+
 @pytest.mark.parametrize("amp_frac, warned", [(0.4, True), (0.2, False)])
 def test_a_drive_force_that_swings_with_the_speed_held_is_named(amp_frac, warned):
     """The mean speed within SETTLE_SWING but a drive's force swinging about its mean by more

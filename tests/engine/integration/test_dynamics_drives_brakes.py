@@ -600,5 +600,5 @@ def test_tail_followers_settle_or_the_run_says_so():
     assert float(m.group(3)) == pytest.approx(2.0 / crossings_per_s, rel=0.1)
     # the drives are a wave's travel apart: the words do not promise that a slower loop
     # settles it (no setting tried does on this belt, docs/dynamics.md), they say so
-    assert "no speed loop setting is known to settle every such belt" in msg
+    assert "no speed loop setting or drive layout is known to settle every such belt" in msg
     assert "a slower speed loop (drives[i].speed_loop_rad_s) swings less" not in msg
