@@ -605,8 +605,8 @@ def running_warnings(sys: System, r: dict, out, names=None) -> list[str]:
     # judged from one wave loop time after the ramp on (what the stop starts from)
     t_ok = cyc.t_pre + cyc.t_start + t_loop
     t0 = max(t1 - max(SETTLE_LOOPS * t_loop, 0.5 * cyc.t_run), t_ok)
-    n_rec = int(r["nrec"])
-    t_end = float(out.rec["t"][n_rec - 1]) if n_rec else 0.0
+    rec = out.rec[:int(r["nrec"])]
+    t_end = float(rec["t"][-1]) if len(rec) else 0.0
     if t1 - t0 < 0.5 * t_loop or (int(r["status"]) != C.OK and t_end < t1):
         # too little of the running phase is past the start to judge, or the run ended
         # (ran away, diverged) before the stop command; one that ended in the stop has its
@@ -617,7 +617,6 @@ def running_warnings(sys: System, r: dict, out, names=None) -> list[str]:
         short = (f"; the running phase is short (run_s {cyc.t_run:.3g} s): a run_s of at least "
                  f"{(SETTLE_LOOPS + 1.0) * t_loop:.0f} s ({SETTLE_LOOPS + 1.0:g} wave loop "
                  "times) shows whether it settles")
-    rec = out.rec[:int(r["nrec"])]
     m = (rec["t"] >= t0) & (rec["t"] <= t1)
     swing, period = swing_and_period(rec["t"][m], rec["v_mean"][m])
     if swing > SETTLE_SWING * v_d:
