@@ -642,6 +642,105 @@ def running_warnings(sys: System, r: dict, out, names=None) -> list[str]:
     return w
 
 
+#: The tracking criterion (docs/dynamics.md, "Tracking"; PHYSICS 5.1): a vfd start keeps the
+#: master pulley within this fraction of design speed of its reference from one wave loop time
+#: after the start command, and the mean belt speed within it once the reference has moved.
+TRACK_FRACTION = 0.02
+
+
+def tracking_warnings(sys: System, r: dict, out, names=None) -> list[str]:
+    """A speed-controlled start (s-curve or linear, vfd drives, relative formulation) that does
+    not follow its reference, in words: (1) the mean belt speed ahead of the reference by more
+    than :data:`TRACK_FRACTION` of design speed in the first wave loop time after the hold let
+    go (the records): the belt held at rest on a pulley a wave's travel from the master's loop
+    runs forward at the hold's release with the part of the holding force the drives on that
+    pulley do not take (docs/dynamics.md, "The start from rest"); (2) the master pulley off its
+    reference by more than that after one wave loop time (``verr_max``, every step), unless the
+    master reached its torque limit (the drive checks name that limit, which explains the lag);
+    after a run ahead at the release, the master's lag is its aftermath and is named with it.
+    ``names``: each drive's name (default ``drive k``)."""
+    model = sys.model
+    cyc, ctl, drives = model.cycle, model.control, model.drives
+    if (not ctl.vfd or cyc.formulation == C.SUPPORT or cyc.start_ctrl not in (S_CURVE, LINEAR)
+            or int(r["status"]) == C.DIVERGED):
+        return []
+    names = names or [f"drive {i + 1}" for i in range(drives.share.shape[0])]
+    v_d = sys.v_design
+    t_loop = sys.wave_loop_time_s
+    m = int(ctl.master)
+    err = float(r["verr_max"])
+    t_err = float(r["verr_t"])
+    lag = ""
+    if err > TRACK_FRACTION * v_d and not float(out.drv[m]["lim_s"]) > 0.0:
+        lag = (f"the master pulley ({names[m]}) was {err:.3g} m/s ({100.0 * err / v_d:.1f} % of "
+               f"design speed) off its reference at t = {t_err:.1f} s")
+    ahead = _ahead_at_release(sys, r, out, names)
+    if ahead:
+        return [ahead + (f"; then {lag}" if lag else "")]
+    if not lag:
+        return []
+    in_start = t_err <= cyc.t_pre + cyc.t_start + t_loop
+    # the loop's lag falls with the reference's acceleration: measured on a 300 m incline as
+    # 1 / T (s-curve) and T^-0.65 (linear); the advice takes T^-0.5, and 10 % more
+    t_need = math.ceil(cyc.t_start * (err / (TRACK_FRACTION * v_d)) ** 2 * 1.1)
+    if in_start:
+        lever = (f"a longer start (start.time_s {t_need:.0f} s or more: the loop's lag falls with "
+                 "the reference's acceleration), "
+                 + ("an s-curve start (start.control: s-curve: a ramp's corners step the "
+                    "acceleration), " if cyc.start_ctrl == LINEAR else "")
+                 + "or a faster speed loop (drives[i].speed_loop_rad_s)")
+        when = "in the " + ("s-curve" if cyc.start_ctrl == S_CURVE else "linear") + " start"
+    else:
+        lever = "a faster speed loop (drives[i].speed_loop_rad_s)"
+        when = "while running"
+    return [f"the speed loop did not track its reference: {lag}, {when} (criterion: within "
+            f"{100.0 * TRACK_FRACTION:.0f} % from one wave loop time, {t_loop:.3g} s, after the "
+            f"start command; docs/dynamics.md, Tracking): {lever}"]
+
+
+def _ahead_at_release(sys: System, r: dict, out, names) -> str:
+    """The mean belt speed ahead of the start's reference by more than
+    :data:`TRACK_FRACTION` of design speed from the start command to one wave loop time after
+    the hold let go, in words with the hold's share and what hands it over on one shaft; ""
+    when it did not run ahead."""
+    model = sys.model
+    cyc, ctl, drives = model.cycle, model.control, model.drives
+    v_d = sys.v_design
+    t_loop = sys.wave_loop_time_s
+    m = int(ctl.master)
+    rec = out.rec[:int(r["nrec"])]
+    t_rel = cyc.t_pre + cyc.t_hand
+    win = (rec["t"] > cyc.t_pre) & (rec["t"] <= t_rel + t_loop) & (rec["t"] <= sys.stop_command_s)
+    if not win.any():
+        return ""
+    ahead = rec["v_mean"][win] - rec["v_ref"][win]
+    k = int(np.argmax(ahead))
+    if ahead[k] <= TRACK_FRACTION * v_d:
+        return ""
+    node = np.asarray(drives.node, dtype=np.int64)
+    held = [i for i in range(node.shape[0]) if int(node[i]) == int(cyc.hold_node)]
+    cause = ""
+    if m not in held:
+        loop_m = float(sys.s_end_m[-1])
+        gap = abs(float(sys.s_end_m[int(cyc.hold_node)]) - float(sys.s_end_m[int(node[m])]))
+        travel = min(gap, loop_m - gap) / loop_m * t_loop
+        share = float(sum(float(drives.share[i]) for i in held))
+        where = (f"the pulley of {', '.join(names[i] for i in held)}" if held
+                 else "a braked pulley without a drive")
+        cause = (f"; {where} held the belt at rest ({abs(float(r['hold_f'])) / 1e3:.4g} kN) and "
+                 f"its drives took {100.0 * share:.0f} % of that at the hand-over: the rest "
+                 f"must come from the master's loop on {names[m]}, about {travel:.2g} s of wave "
+                 "travel away, and the belt runs until it arrives; the belt held at rest on the "
+                 f"master's pulley (the first brake on {names[m]}, where its grip holds the belt "
+                 "at rest: the run warns when it does not) or the held pulley's drive made the "
+                 "master (the largest drives[i].share) hands the hold over on one shaft")
+    return (f"the belt ran ahead of the start as its hold let go (t = {t_rel:.1f} s): the mean "
+            f"belt speed reached {rec['v_mean'][win][k]:.3g} m/s at t = {rec['t'][win][k]:.1f} s "
+            f"against a reference of {rec['v_ref'][win][k]:.2g} m/s, "
+            f"{100.0 * ahead[k] / v_d:.1f} % of design speed ahead (criterion: within "
+            f"{100.0 * TRACK_FRACTION:.0f} %; docs/dynamics.md, The start from rest){cause}")
+
+
 #: Drives further apart than this share of the loop are at both ends [-]: a follower's torque
 #: reaches the belt a wave's travel from the master's loop.
 SPREAD_FRACTION = 0.05
@@ -881,6 +980,7 @@ def transient_summary(sys: System, r: dict, out, segs, *, steady_summary=None, c
     w += _slip_warnings(sys, r, out, conveyor)
     w += overloads
     w += running_warnings(sys, r, out, _drive_names(sys, conveyor))
+    w += tracking_warnings(sys, r, out, _drive_names(sys, conveyor))
     if r["slack_max"] > 0.0 or r["slack_first"] >= 0.0:
         j = int(r["slack_at"]) if r["slack_at"] >= 0 else jmin
         w.append(

@@ -14,7 +14,7 @@ import numpy as np
 import pytest
 from numpy.testing import assert_allclose
 
-from beltstudy.engine.conveyor import Scenario, load_conveyor
+from beltstudy.engine.conveyor import Scenario, load_conveyor, parse_conveyor
 from beltstudy.engine.dynamics import DynamicsOptions, build_system, simulate
 from beltstudy.engine.run import run_one
 from beltstudy.engine.statics import solve_steady
@@ -485,6 +485,115 @@ def test_vfd_mean_belt_speed_follows_once_the_stretch_is_paid_in(name, start_s, 
     err = np.abs(ts["v_mean_m_s"].to_numpy() - v_ref) / sysm.v_design
     assert err[travelled >= 2.0 * running_stretch_m(sysm)].max() < 0.02
     assert err[t >= start_s + sysm.wave_loop_time_s].max() < 0.01
+
+
+def _short_incline():
+    """A 300 m, 8 % incline on a fabric belt with one head drive and a 2.5 t take-up."""
+    return parse_conveyor({
+        "name": "short-incline", "speed_m_s": 2.5,
+        "belt": {"type": "EP630/4", "width_m": 0.8, "compound": "standard"},
+        "material": {"capacity_t_h": 400, "density_t_m3": 1.6, "loading_speed_m_s": 0.0},
+        "profile": [{"length_m": 300, "lift_m": 24}],
+        "idlers": {"carry": {"spacing_m": 1.2, "roll_diameter_m": 0.127, "rolls": 3,
+                             "trough_deg": 35, "cema_class": "C"},
+                   "return": {"spacing_m": 3.0, "roll_diameter_m": 0.127, "rolls": 1,
+                              "cema_class": "C"}},
+        "drives": [{"position": "head", "wrap_deg": 210, "friction": 0.35, "share": 1.0,
+                    "pulley_diameter_m": 0.63, "inertia_kg_m2": 25, "torque_limit": 1.5}],
+        "takeup": {"type": "gravity", "position": "tail", "mass_kg": 2500, "travel_m": 3},
+        "holdback": True})
+
+
+def _master_error(r, v_design, t_from_s, t_to_s):
+    """Largest |v_ref - v_master| over the records from ``t_from_s`` to ``t_to_s`` (the stop
+    command), as a fraction of design speed (drive 1 is the master)."""
+    ts = r.timeseries
+    t = ts["t_s"].to_numpy()
+    m = (t > t_from_s) & (t < t_to_s)
+    return float(np.abs(ts["v_ref_m_s"] - ts["v_drive1_m_s"]).to_numpy()[m].max()) / v_design
+
+
+@pytest.mark.parametrize("elements", ["auto", 404])
+def test_a_start_the_speed_loop_does_not_track_is_named_with_a_start_that_does(elements):
+    """docs/dynamics.md, *Tracking*: a 10 s linear start of a 300 m incline, inside the torque
+    limit, keeps the master pulley 2.1 % of design speed off its reference after the first wave
+    loop (the records show more than 2 %, the criterion): the run says so and names a start
+    time; rerun with it, the pulley keeps within 2 % (records and report) and nothing is
+    said. The same on twice the elements."""
+    conv = _short_incline()
+    scn = dict(run_s=20, stop={"mode": "coast"}, elements=elements)
+    r = run_one(conv, Scenario(start={"time_s": 10, "control": "linear"}, **scn), model="din")
+    t_loop = r.summary["wave_loop_time_s"]
+    assert _master_error(r, 2.5, 2.0 + t_loop, 2.0 + 10 + 20) > 0.02
+    assert r.summary["drive1_speed_error_max_pct"] > 2.0
+    said = re.search(r"the speed loop did not track its reference: the master pulley \(drive 1 "
+                     r"\(head\)\) was [\d.]+ m/s \(([\d.]+) % of design speed\)[^;]*; "
+                     r"docs/dynamics.md, Tracking\): a longer start \(start.time_s (\d+) s or "
+                     r"more", r.summary["message"])
+    assert said, r.summary["message"]
+    assert float(said.group(1)) > 2.0
+    t_new = float(said.group(2))
+    assert t_new > 10.0
+    r2 = run_one(conv, Scenario(start={"time_s": t_new, "control": "linear"}, **scn),
+                 model="din")
+    assert _master_error(r2, 2.5, 2.0 + t_loop, 2.0 + t_new + 20) < 0.02
+    assert r2.summary["drive1_speed_error_max_pct"] < 2.0
+    assert "did not track" not in r2.summary["message"]
+
+
+def _decline(tail_share: float):
+    """A 2.2 km, 152 m decline (regenerating) with a head and a tail drive, the belt held at
+    rest by a brake on the tail drive's shaft; the master is the drive with the larger
+    share."""
+    drive = {"wrap_deg": 200, "friction": 0.35, "pulley_diameter_m": 1.0, "torque_limit": 1.5}
+    return parse_conveyor({
+        "name": "decline", "speed_m_s": 4.0,
+        "belt": {"type": "ST1600", "width_m": 1.2, "compound": "standard"},
+        "material": {"capacity_t_h": 2200, "density_t_m3": 1.7, "loading_speed_m_s": 0.0},
+        "profile": [{"length_m": 800, "lift_m": -40, "curve_radius_m": 2000},
+                    {"length_m": 1400, "lift_m": -112}],
+        "idlers": {"carry": {"spacing_m": 1.2, "roll_diameter_m": 0.152, "rolls": 3,
+                             "trough_deg": 35, "cema_class": "D"},
+                   "return": {"spacing_m": 3.0, "roll_diameter_m": 0.152, "rolls": 1,
+                              "cema_class": "C"}},
+        "drives": [{**drive, "position": "head", "share": 1.0 - tail_share,
+                    "inertia_kg_m2": 900, "rated_power_kw": 700},
+                   {**drive, "position": "tail", "share": tail_share,
+                    "inertia_kg_m2": 600, "rated_power_kw": 470}],
+        "takeup": {"type": "gravity", "position": "tail", "mass_kg": "auto", "travel_m": 12},
+        "brakes": [{"drive": 2, "force_kn": "auto", "delay_s": 1.0}],
+        "holdback": False})
+
+
+def test_a_hold_a_wave_away_from_the_master_lets_the_belt_run_ahead_and_says_so():
+    """docs/dynamics.md, *The start from rest*: a regenerating decline held at rest by a
+    brake on its tail drive, the master at the head (share 0.6). At the hand-over the tail
+    drive takes 40 % of the holding force; the rest reaches the tail only as the head loop's
+    front arrives (a wave's travel), so the belt runs ahead of the reference as the brake lets
+    go (the records: the mean belt speed more than 2 % of design speed above it): the run names
+    it, with the holding force, the drives' part and the remedy; with the tail drive the master
+    (share 0.6) the hold is handed over on one shaft, and the belt keeps within 2 %."""
+    scn = Scenario(start={"time_s": 30}, run_s=10, stop={"mode": "coast"})
+
+    def ahead(r):
+        ts = r.timeseries
+        t = ts["t_s"].to_numpy()
+        m = (t > 2.0) & (t < 2.0 + 0.3 + r.summary["wave_loop_time_s"])
+        return float((ts["v_mean_m_s"] - ts["v_ref_m_s"]).to_numpy()[m].max()) / 4.0
+
+    r = run_one(_decline(0.4), scn, model="din")
+    assert ahead(r) > 0.02
+    said = re.search(r"the belt ran ahead of the start as its hold let go \(t = 2.3 s\): [^;]*?"
+                     r", ([\d.]+) % of design speed ahead \(criterion: within 2 %; docs/dynamics.md, "
+                     r"The start from rest\); the pulley of drive 2 \(tail\) "
+                     r"held the belt at rest \(([\d.]+) kN\) and its drives took 40 % of that",
+                     r.summary["message"])
+    assert said, r.summary["message"]
+    assert float(said.group(1)) > 2.0
+    assert "the held pulley's drive made the master" in r.summary["message"]
+    swapped = run_one(_decline(0.6), scn, model="din")
+    assert ahead(swapped) < 0.02
+    assert "ran ahead" not in swapped.summary["message"]
 
 
 # --------------------------------------------------------------------------------------
