@@ -597,6 +597,30 @@ def input_notes(conv, loop: Loop, feed_n: float, c_factor: float | None = None) 
     if words:
         notes.append(f"note: idlers.carry.trough_deg {ic.trough_deg:g} deg is outside the "
                      f"tables: {' and '.join(words)}")
+    notes += _unread_drive_fields(conv)
+    return notes
+
+
+def _unread_drive_fields(conv) -> list[str]:
+    """Drive fields given in the file that this drive's coupling does not read, as notes:
+    ``coupling_fill_s`` is the fill time of a fill-controlled fluid coupling only, and
+    ``motor_inertia_kg_m2`` splits the shaft's inertia at a fluid coupling only (without one
+    the motor turns with the pulley and ``inertia_kg_m2`` holds it all)."""
+    notes = []
+    for i, d in enumerate(conv.drives):
+        given = d.model_fields_set
+        if "coupling_fill_s" in given and d.coupling != "fluid_fill_controlled":
+            notes.append(f"note: drives.{i}.coupling_fill_s {d.coupling_fill_s:g} s is not "
+                         f"read: only a fill-controlled fluid coupling fills over a time (coupling: "
+                         f"fluid_fill_controlled, control: dol), and drive {i + 1}'s coupling is "
+                         f"{d.coupling}")
+        if "motor_inertia_kg_m2" in given and d.motor_inertia_kg_m2 is not None \
+                and d.coupling == "none":
+            notes.append(f"note: drives.{i}.motor_inertia_kg_m2 {d.motor_inertia_kg_m2:g} kg m2 "
+                         f"is not read: it splits the shaft's inertia at a fluid coupling "
+                         f"(coupling: fluid or fluid_fill_controlled, control: dol), and without "
+                         f"one the motor turns with the pulley and inertia_kg_m2 "
+                         f"({d.inertia_kg_m2:g} kg m2) holds it all")
     return notes
 
 

@@ -182,3 +182,31 @@ def test_a_width_and_a_trough_angle_beyond_the_tables_are_said():
     assert "that of 45 deg (0.72" in msg
     assert "trough_deg" not in solve_steady(parse_conveyor(hand_conveyor_dict()),
                                             model="din").message
+
+
+# ------------------------------------------------------------------ drive fields not read
+def _drive_notes(**drive) -> list[str]:
+    d = hand_conveyor_dict()
+    d["drives"] = [{**d["drives"][0], **drive}]
+    msg = solve_steady(parse_conveyor(d), model="din").message
+    return [m for m in msg.split("; ") if "drives.0." in m]
+
+
+def test_drive_fields_the_coupling_does_not_read_are_said():
+    """A fill time without a fill-controlled coupling and a motor inertia without a fluid
+    coupling change nothing in the run (the vfd drive's shaft turns as one with its motor):
+    each is said, with the field, its value and what reads it; given where they are read (a
+    fill-controlled coupling on a dol drive), nothing is said."""
+    notes = _drive_notes(coupling_fill_s=40, motor_inertia_kg_m2=30, inertia_kg_m2=100)
+    assert any(n.startswith("note: drives.0.coupling_fill_s 40 s is not read") and
+               "coupling: fluid_fill_controlled" in n and "coupling is none" in n
+               for n in notes), notes
+    assert any(n.startswith("note: drives.0.motor_inertia_kg_m2 30 kg m2 is not read") and
+               "inertia_kg_m2 (100 kg m2) holds it all" in n for n in notes), notes
+    assert _drive_notes(control="dol", coupling="fluid_fill_controlled", coupling_fill_s=40,
+                        motor_inertia_kg_m2=30, inertia_kg_m2=100) == []
+    assert _drive_notes(control="dol", coupling="fluid", coupling_fill_s=40,
+                        motor_inertia_kg_m2=30, inertia_kg_m2=100) == [
+        n for n in _drive_notes(control="dol", coupling="fluid", coupling_fill_s=40)
+        if "coupling_fill_s" in n]
+    assert _drive_notes() == []
