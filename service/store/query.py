@@ -7,6 +7,7 @@ from __future__ import annotations
 
 import difflib
 import io
+import json
 import math
 from typing import Any
 
@@ -183,6 +184,15 @@ def _text_matches(series: pd.Series, text: str) -> np.ndarray:
     grid's value) finds '3000.0'."""
     as_text = series.map(lambda v: None if v is None or v is pd.NA else str(v))
     exact = (as_text == text).fillna(False).to_numpy(bool)
+    if text.lstrip().startswith(("[", "{")):
+        # a list or mapping axis value, stored as JSON ('[0.5, 1.0]'): matched by what it
+        # holds, so '[0.5,1]' finds it (numbers by value, as above)
+        try:
+            wanted = json.loads(text)
+        except ValueError:
+            return exact
+        return exact | np.fromiter((_json_equal(_json_or_none(v), wanted) for v in as_text),
+                                   bool, len(as_text))
     try:
         value = float(text)
     except ValueError:
@@ -192,6 +202,30 @@ def _text_matches(series: pd.Series, text: str) -> np.ndarray:
     numbers = pd.to_numeric(as_text, errors="coerce").to_numpy(float)
     close = np.isclose(numbers, value, rtol=1e-9, atol=1e-12) & np.isfinite(numbers)
     return exact | close
+
+
+def _json_or_none(text: str | None) -> Any:
+    """A stored JSON axis value, or None for a missing or non-JSON one."""
+    if text is None:
+        return None
+    try:
+        return json.loads(text)
+    except ValueError:
+        return None
+
+
+def _json_equal(a: Any, b: Any) -> bool:
+    """Two JSON values alike: numbers by value (relative 1e-9), lists item by item, mappings
+    key by key, anything else equal."""
+    num = (int, float)
+    if isinstance(a, num) and isinstance(b, num) and not isinstance(a, bool) \
+            and not isinstance(b, bool):
+        return math.isclose(a, b, rel_tol=1e-9, abs_tol=1e-12)
+    if isinstance(a, list) and isinstance(b, list):
+        return len(a) == len(b) and all(_json_equal(x, y) for x, y in zip(a, b, strict=True))
+    if isinstance(a, dict) and isinstance(b, dict):
+        return a.keys() == b.keys() and all(_json_equal(a[k], b[k]) for k in a)
+    return a is not None and type(a) is type(b) and a == b
 
 
 def apply_filters(df: pd.DataFrame, filters: list[str]) -> pd.DataFrame:

@@ -214,3 +214,17 @@ def test_a_number_filters_a_mixed_axis_stored_as_text():
     assert len(apply_filters(runs, ["takeup.mass_kg=30"])) == 0
     assert len(apply_filters(runs, ["takeup.mass_kg=nan"])) == 0
     assert len(apply_filters(runs, ["takeup.mass_kg=Auto"])) == 0
+
+
+def test_a_list_axis_value_filters_by_what_it_holds():
+    """A load list ``[0.5, 1.0]`` is stored as JSON text; ``load=[0.5,1]`` (as a user types it)
+    found no row. It now matches by the list's numbers; another list, another length or a
+    malformed one keeps no row, and a word still matches as text."""
+    runs = pd.DataFrame({"run_id": list("abcd"),
+                         "load": ["[0.5, 1.0]", "full", "[1.0, 0.5]", "[0.5, 1.0, 1.0]"]})
+    for text in ("[0.5,1]", "[0.5, 1.0]", "[5e-1, 1]"):
+        assert list(apply_filters(runs, [f"load={text}"])["run_id"]) == ["a"], text
+    assert list(apply_filters(runs, ["load=[1,0.5]"])["run_id"]) == ["c"]
+    assert len(apply_filters(runs, ["load=[0.5]"])) == 0
+    assert len(apply_filters(runs, ["load=[0.5,"])) == 0
+    assert list(apply_filters(runs, ["load=full"])["run_id"]) == ["b"]
