@@ -605,17 +605,21 @@ def _unread_drive_fields(conv) -> list[str]:
     """Drive fields given in the file that this drive's coupling does not read, as notes:
     ``coupling_fill_s`` is the fill time of a fill-controlled fluid coupling only, and
     ``motor_inertia_kg_m2`` splits the shaft's inertia at a fluid coupling only (without one
-    the motor turns with the pulley and ``inertia_kg_m2`` holds it all)."""
+    the motor turns with the pulley and ``inertia_kg_m2`` holds it all).
+
+    A field counts as given when it differs from its default, not by Pydantic's
+    ``model_fields_set``: a study's runs and a non-full-load run's sized conveyor are
+    validated again from the whole dumped conveyor, which marks every field set."""
     notes = []
+    fill_default = type(conv.drives[0]).model_fields["coupling_fill_s"].default \
+        if conv.drives else None
     for i, d in enumerate(conv.drives):
-        given = d.model_fields_set
-        if "coupling_fill_s" in given and d.coupling != "fluid_fill_controlled":
+        if d.coupling_fill_s != fill_default and d.coupling != "fluid_fill_controlled":
             notes.append(f"note: drives.{i}.coupling_fill_s {d.coupling_fill_s:g} s is not "
                          f"read: only a fill-controlled fluid coupling fills over a time (coupling: "
                          f"fluid_fill_controlled, control: dol), and drive {i + 1}'s coupling is "
                          f"{d.coupling}")
-        if "motor_inertia_kg_m2" in given and d.motor_inertia_kg_m2 is not None \
-                and d.coupling == "none":
+        if d.motor_inertia_kg_m2 is not None and d.coupling == "none":
             notes.append(f"note: drives.{i}.motor_inertia_kg_m2 {d.motor_inertia_kg_m2:g} kg m2 "
                          f"is not read: it splits the shaft's inertia at a fluid coupling "
                          f"(coupling: fluid or fluid_fill_controlled, control: dol), and without "

@@ -790,15 +790,17 @@ __all__ += ["shell_floor_notes"]
 def shell_floor_notes(conv: Conveyor, loop: Loop) -> list[str]:
     """What :func:`rotating_parts` said nothing of: a drive whose given inertia, reduced to
     the belt line on its pulley shaft (``(J + J_flywheel) (2 / D)^2``, less the motor's part
-    behind a fluid coupling; a drive that gives neither field is not told), is below the estimate of its pulley's own shell
+    behind a fluid coupling; a drive that gives neither field, or both 0, is not told), is below the estimate of its pulley's own shell
     (:func:`pulley_reduced_mass_kg`): the shaft is given the shell's mass instead, since the
     given J cannot hold less than the pulley it turns. One note per such drive, with the given
     and the used reduced masses [kg] and the inertia that would have given the used one."""
     width = loop.belt.width_m
     out = []
     for i, d in enumerate(conv.drives):
-        if not {"inertia_kg_m2", "flywheel_kg_m2"} & d.model_fields_set:
-            continue  # nothing given: the shell is the estimate of the pulley asked for
+        if d.inertia_kg_m2 == 0.0 and d.flywheel_kg_m2 == 0.0:
+            # nothing given: the shell is the estimate of the pulley asked for (by value, not
+            # model_fields_set: a study's runs are validated from the whole dumped conveyor)
+            continue
         red = (2.0 / d.pulley_diameter_m) ** 2
         given, j_m = _drive_given_kg(d)
         motor = ("" if j_m is None else

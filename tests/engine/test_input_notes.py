@@ -16,7 +16,7 @@ import pytest
 
 from beltstudy.engine import catalog
 from beltstudy.engine.conveyor import InputError, parse_conveyor
-from beltstudy.engine.loop import CARRY, build_loop
+from beltstudy.engine.loop import CARRY, build_loop, shell_floor_notes
 from beltstudy.engine.statics import solve_steady
 from tests.conftest import hand_conveyor_dict
 
@@ -210,3 +210,23 @@ def test_drive_fields_the_coupling_does_not_read_are_said():
         n for n in _drive_notes(control="dol", coupling="fluid", coupling_fill_s=40)
         if "coupling_fill_s" in n]
     assert _drive_notes() == []
+
+
+def test_drive_fields_left_out_are_not_said_after_the_conveyor_is_dumped_and_read_again():
+    """A study's runs (and a part-load run's sized conveyor, engine/sizing.py) are validated
+    again from the whole dumped conveyor, which marks every field as given. The hand
+    conveyor's vfd drive gives no coupling_fill_s and no inertia: read that way it was told
+    'drives.0.coupling_fill_s 20 s is not read' (its default) and that its given inertia, 0 kg
+    m2, is below its pulley's shell. Neither was given, so nothing is said either way; a fill
+    time given on it (40 s) still is."""
+    conv = parse_conveyor(hand_conveyor_dict())
+    again = parse_conveyor(conv.model_dump(mode="json", by_alias=True))
+    assert "coupling_fill_s" in again.drives[0].model_fields_set  # the round trip marks it
+    assert [m for m in solve_steady(again, model="din").message.split("; ")
+            if "drives.0." in m] == []
+    assert shell_floor_notes(again, build_loop(again)) == []
+    d = hand_conveyor_dict()
+    d["drives"] = [{**d["drives"][0], "coupling_fill_s": 40}]
+    given = parse_conveyor(parse_conveyor(d).model_dump(mode="json", by_alias=True))
+    assert any(m.startswith("note: drives.0.coupling_fill_s 40 s is not read")
+               for m in solve_steady(given, model="din").message.split("; "))
