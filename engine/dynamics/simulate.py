@@ -796,6 +796,36 @@ def _drive_names(sys: System, conveyor=None) -> list[str]:
     return [f"drive {i + 1}" for i in range(sys.model.drives.share.shape[0])]
 
 
+def _brake_past_full(sys: System, i: int, t_last: float) -> tuple[str, str] | None:
+    """What avoids drive ``i``'s slip in a brake stop (a slip that began in the stop) when brakes act on its shaft and the belt
+    still slid after they had all reached full force (``t_last`` past the stop command, their
+    delay and their ramp or force curve): then the full force is beyond the pulley's grip and a
+    longer ramp only delays the slip (a 3 km decline's 112 kN holding brake on its head drive:
+    17.0 s and 25.6 m of slip with a 1 s ramp, 20.1 s and 34.1 m with a 5 s one). The levers
+    are the grip (a heavier take-up) and the force on that pulley (part of it on a brake on
+    another pulley, or less of it). Returns the levers and the reason (after "would avoid it");
+    None where the rule does not apply."""
+    brakes = sys.model.brakes
+    if sys.model.cycle.stop_mode != C.BRAKE or brakes is None:
+        return None
+    on = [b for b in range(brakes.shaft.shape[0])
+          if int(sys.model.shafts.drive[int(brakes.shaft[b])]) == i]
+    if not on:
+        return None
+    full = max(float(brakes.delay[b]) + (float(brakes.curve_t[b, int(brakes.curve_n[b]) - 1])
+                                         if int(brakes.curve_n[b]) > 0 else float(brakes.ramp[b]))
+               for b in on)
+    t_full = sys.stop_command_s + full
+    if t_last <= t_full:
+        return None
+    force_kn = float(np.sum(brakes.force[on])) / 1e3
+    return (f"{heavier_takeup(sys, 'more slack-side tension')}, part of the brake force on a "
+            f"brake on another pulley (brakes[].position or drive) or less brake force on this "
+            f"one (now {force_kn:.4g} kN; a given force_kn)",
+            f": the belt still slid after the brakes on this pulley reached full force (t = "
+            f"{t_full:.1f} s), so a longer ramp (brakes[].ramp_s) would not")
+
+
 def _slip_warnings(sys: System, r: dict, out, conveyor=None) -> list[str]:
     """The run's events in words: a runaway, each drive's slip on its pulley (when, how long,
     how much belt, what avoids it), each braked plain pulley's slip."""
@@ -814,12 +844,17 @@ def _slip_warnings(sys: System, r: dict, out, conveyor=None) -> list[str]:
             t1 = float(drv[i]["slip_last"])
             when, fix = slip_words(_run_phase(sys, t0, t_stop_cmd),
                                    _run_phase(sys, t1, t_stop_cmd), sys)
+            past = (_brake_past_full(sys, i, t1)
+                    if _run_phase(sys, t0, t_stop_cmd) == "stop" else None)
+            why = ""
+            if past is not None:
+                fix, why = past
             sm = float(drv[i]["slip_min"])
             margin = (f"lowest slip margin {sm:.2f}" if sm < 1e299 else
                       "the belt slack on both sides of the pulley while it slipped")
             w.append(f"{names[i]} slipped on its pulley {when}: from t = {t0:.1f} "
                      f"to {t1:.1f} s, {slip_s:.2f} s in all, {drv[i]['slip_m']:.3g} m of belt "
-                     f"slipped ({margin}); {fix} would avoid it")
+                     f"slipped ({margin}); {fix} would avoid it{why}")
     shs = out.shs
     for b in range(brakes.shaft.shape[0]):
         k = int(brakes.shaft[b])
