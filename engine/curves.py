@@ -236,6 +236,36 @@ def _start_liftoff(c: Curve, loop: Loop, el: np.ndarray, lim: np.ndarray, T: np.
         "lowers the start-up tension (simulate gives the transient figure, liftoff_*)"]
 
 
+def _convex_words(k: int, c: Curve, belt, ic, sf_min: float, t_low: float, t_high: float,
+                  r_min: float) -> str:
+    """The warning of a convex curve below its radius (:func:`convex_radius_min_m`): which
+    strain sets the radius, the edge's at the arc's highest tension or the centre's at its
+    lowest, the radius rounded up (a radius rounded to the nearest metre can fall short of it)
+    and the other levers of that strain."""
+    where = (f"curve {k} (convex, R {c.radius_m:g} m at {c.at_m:.0f} m): the troughed belt's "
+             f"tension on the arc {_kn_range(t_low, t_high)} kN")
+    if not math.isfinite(r_min):
+        return (f"{where}: {t_high / 1e3:.1f} kN is at or above the admissible "
+                f"{belt.rating_n / sf_min / 1e3:.1f} kN (rating / S_min), so no radius keeps the "
+                "edge strain within it: a stronger belt or less tension there")
+    roll = (middle_roll_length_m(belt.width_m, ic.rolls) if ic.roll_length_m is None
+            else ic.roll_length_m)
+    h, z_mean = _trough_heights(belt.width_m, ic.rolls, ic.trough_deg, roll)
+    r_centre = z_mean * belt.stiffness_n / t_low
+    if r_centre >= r_min:
+        why = (f"at {t_low / 1e3:.1f} kN its centre line, stretched z_mean / R less than the "
+               f"mean strain T / EB (z_mean {z_mean * 1e3:.0f} mm), goes slack")
+        other = "more tension there (a heavier take-up) or a shallower trough"
+    else:
+        why = (f"at {t_high / 1e3:.1f} kN its edges, stretched (h - z_mean) / R more than the "
+               f"mean strain T / EB (h - z_mean {(h - z_mean) * 1e3:.0f} mm), pass the "
+               f"admissible strain, that of rating / S_min = {belt.rating_n / sf_min / 1e3:.1f} "
+               "kN")
+        other = "a stronger belt, less tension there or a shallower trough"
+    return (f"{where}: {why}: a radius of at least {math.ceil(r_min):.0f} m (at these "
+            f"tensions, which a larger radius moves a little: rerun to confirm) or {other}")
+
+
 def steady_checks(conv, loop: Loop, T: np.ndarray, sf_min: float,
                   T_start: np.ndarray | None = None) -> tuple[dict, list[str]]:
     """Per curve k: ``curve{k}_*`` fields and warnings (concave: lift-off running and at
@@ -312,12 +342,7 @@ def steady_checks(conv, loop: Loop, T: np.ndarray, sf_min: float,
             out[f"curve{k}_radius_min_m"] = r_min if r_min is None or math.isfinite(r_min) \
                 else None
             if r_min is not None and c.radius_m < r_min:
-                need = (f"a radius of at least {r_min:.0f} m" if math.isfinite(r_min)
-                        else "a lower tension there (no radius keeps the edge within it)")
-                warnings.append(
-                    f"curve {k} (convex, R {c.radius_m:g} m at {c.at_m:.0f} m): the troughed "
-                    f"belt's edge strain or centre tension is out of bounds at "
-                    f"{_kn_range(t_low, t_carry)} kN: {need}")
+                warnings.append(_convex_words(k, c, belt, ic, sf_min, t_low, t_carry, r_min))
     return out, warnings
 
 

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import argparse
+import math
 import time
 
 from beltstudy.engine import (
@@ -266,14 +267,14 @@ def _curve_lines(s: dict) -> list[str]:
                      f"{s[f'curve{k}_tension_kn']:>8.1f} "
                      f"{'-' if lift is None else f'{lift:.1f}':>17} "
                      f"{'YES' if s[f'curve{k}_liftoff'] else 'no':>7} "
-                     f"{'-' if r_min is None else f'{r_min:.0f}':>11}")
+                     f"{'-' if r_min is None else f'{math.ceil(r_min):.0f}':>11}")
         t_start = s.get(f"curve{k}_tension_start_kn")
         if t_start is not None and lift is not None:
             r_start = s[f"curve{k}_radius_min_start_m"]
             lines.append(f"      at start-up (rigid-body estimate) {t_start:>8.1f} "
                          f"{lift:>17.1f} "
                          f"{'YES' if s[f'curve{k}_liftoff_start'] else 'no':>7} "
-                         f"{r_start:>11.0f}")
+                         f"{math.ceil(r_start):>11.0f}")
         k += 1
     lines.append("")
     return lines

@@ -457,3 +457,31 @@ def test_a_sharp_grade_change_without_a_curve_by_hand():
                       n_elements=200)
     (w2,) = [x for x in sv.warnings if "grade change" in x]
     assert f"radius {r:.0f} m" in w2 and f"lift-off tension {lim / 1e3:.1f} kN" in w2
+
+
+def test_a_convex_warning_names_the_strain_that_sets_its_radius_rounded_up():
+    """The hand conveyor's crest (flat, then falling 20 m; R 40 m; EB 60 MN, B 1 m on three
+    35 deg rolls, middle roll 0.38 m): wing 0.31 m, h = 0.31 sin 35 = 0.177808 m, z_mean =
+    2 x 0.31 x h / 2 / 1 m = 0.055120 m. At the arc's ~29.69 kN the centre sets it,
+    z_mean EB / T = 111.39 m: the warning said 'a radius of at least 111 m' (rounded to the
+    nearest), less than the radius it needs, and named neither strain. It names the centre
+    and 112 m. With S_min 15 (admissible 1000 kN / 15 = 66.67 kN) the edges set it,
+    (h - z_mean) EB / (66.67 kN - T) = 0.122688 x 60e6 / (66 667 - 29 694) = 199.1 m."""
+    h, z_mean = 0.31 * math.sin(math.radians(35.0)), 0.31 * 0.31 * math.sin(math.radians(35.0))
+    st = solve_steady(curved(40.0, lift2_m=-20.0), model="din", n_elements=200)
+    (c,) = st.loop.curves
+    t_low = float(st.tension_n[c.carry].min())
+    r_centre = z_mean * 60e6 / t_low
+    assert r_centre == pytest.approx(111.39, abs=0.01)
+    (w,) = [m for m in st.message.split("; ") if "convex" in m]
+    assert "its centre line" in w and "goes slack" in w and "edges" not in w
+    assert f"a radius of at least {math.ceil(r_centre)} m" in w
+    assert "more tension there (a heavier take-up)" in w
+    st = solve_steady(curved(40.0, lift2_m=-20.0, safety_factor_min=15.0), model="din",
+                      n_elements=200)
+    t_high = float(st.tension_n[c.carry].max())
+    r_edge = (h - z_mean) * 60e6 / (1e6 / 15.0 - t_high)
+    assert r_edge == pytest.approx(199.1, abs=0.1)
+    (w,) = [m for m in st.message.split("; ") if "convex" in m]
+    assert "its edges" in w and "admissible strain, that of rating / S_min = 66.7 kN" in w
+    assert f"a radius of at least {math.ceil(r_edge)} m" in w and "a stronger belt" in w
