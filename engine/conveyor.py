@@ -1046,7 +1046,28 @@ def _curves_fit(profile: list[ProfileSection]) -> None:
             raise ValueError(
                 f"profile.{j}.curve_radius_m: the curve's arcs need {need:.1f} m of "
                 f"profile.{i} (half of each curve's R |delta| at its ends) but the section "
-                f"is {sec.length_m:g} m long; a smaller radius or longer sections")
+                f"is {sec.length_m:g} m long; {_curve_fit_fix(profile, j)}")
+
+
+def _curve_fit_fix(profile: list[ProfileSection], j: int) -> str:
+    """What fits the curve ending ``profile[j]`` into its two sections: the largest radius
+    whose half arc, ``R |delta| / 2``, fits each of them beside the half of the curve at its
+    other end (rounded down to the metre), or, where that curve's half takes the section, a
+    smaller radius there."""
+    sec = profile[j]
+    turn = curve_arc_m(profile, j) / sec.curve_radius_m
+    rooms = [profile[j].length_m - (0.5 * curve_arc_m(profile, j - 1) if j else 0.0),
+             profile[j + 1].length_m - 0.5 * curve_arc_m(profile, j + 1)]
+    room = min(rooms)
+    if room <= 0.0:
+        k = j - 1 if rooms[0] <= 0.0 else j + 1
+        return (f"the half arc of profile.{k}.curve_radius_m takes all of profile."
+                f"{j if k < j else j + 1}: a smaller radius there or longer sections")
+    r_max = math.floor(2.0 * room / turn)
+    tight = j if rooms[0] <= rooms[1] else j + 1
+    return (f"a radius of at most {r_max:g} m (the grades turn by {math.degrees(turn):.2f} deg: "
+            f"R |delta| / 2 within the {room:.1f} m left to the curve in profile.{tight}) or "
+            "longer sections")
 
 
 class StartSpec(_Model):

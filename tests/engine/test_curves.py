@@ -233,6 +233,31 @@ def test_curve_too_long_for_its_sections_is_refused():
             {"length_m": 500, "lift_m": 0}]))
 
 
+def test_a_curve_too_long_for_its_sections_names_the_largest_radius_that_fits():
+    """The error said only 'a smaller radius or longer sections'. Between 0 and 10 % (delta =
+    asin(0.1) = 0.100167 rad) a 60 m section holds a half arc of 60 m: R at most
+    2 x 60 / 0.100167 = 1197.99 m, named rounded down (1197 m), and 1197 m is taken. Two
+    curves in a 200 m section: the first's half arc, 2000 x 0.100167 / 2 = 100.17 m, leaves
+    99.83 m to the second, at most 2 x 99.83 / 0.100167 = 1993.3 m."""
+    def profile(length_m, radius_m):
+        return [{"length_m": length_m, "lift_m": 0, "curve_radius_m": radius_m},
+                {"length_m": 500, "lift_m": 50}]
+    delta = math.asin(0.1)
+    assert 2 * 60 / delta == pytest.approx(1197.99, abs=0.01)
+    with pytest.raises(ValueError, match=r"profile.0\.curve_radius_m: .* a radius of at most "
+                       r"1197 m \(the grades turn by 5\.74 deg: R \|delta\| / 2 within the "
+                       r"60\.0 m left to the curve in profile\.0\)"):
+        parse_conveyor(hand_conveyor_dict(profile=profile(60, 2000)))
+    parse_conveyor(hand_conveyor_dict(profile=profile(60, 1197)))
+    with pytest.raises(ValueError, match=r"profile.1\.curve_radius_m: .* at most 1993 m .*"
+                       r"99\.8 m left to the curve in profile\.1"):
+        parse_conveyor(hand_conveyor_dict(profile=[
+            {"length_m": 500, "lift_m": 0, "curve_radius_m": 2000},
+            {"length_m": 200, "lift_m": 20, "curve_radius_m": 3000},
+            {"length_m": 500, "lift_m": 0}]))
+    assert 2 * (200 - 1000 * delta) / delta == pytest.approx(1993.3, abs=0.1)
+
+
 def test_no_curve_no_change():
     """Without curve_radius_m the loop has no curves and the summary no curve fields."""
     conv = parse_conveyor(hand_conveyor_dict())
