@@ -487,9 +487,19 @@ def transient_liftoff(loop: Loop, segs, t_start_end_s: float, t_stop_cmd_s: floa
         if p == 0 and not runs_over and softer_start is not None:
             fixes.insert(0, softer_start)
         elif p == 0 and not runs_over and t_run < t_lim:
-            t_need = start_time_s * (t_peak - t_run) / (t_lim - t_run)
+            # every element of the curve that lifts in the start needs its own: the one with
+            # the least room below its limit in running may not be the one lifted most
+            peak = np.where(phase == p, hi, -np.inf)[:, on_c].max(axis=0)
+            run_c, lim_c = steady_n[el][on_c], lim[on_c]
+            lifts = peak > lim_c
+            need = (peak[lifts] - run_c[lifts]) / (lim_c[lifts] - run_c[lifts])
+            i_need = int(np.argmax(need))
+            t_need = start_time_s * float(need[i_need])
+            room = float(lim_c[lifts][i_need] - run_c[lifts][i_need])
             fixes.insert(0, f"a start of about {t_need:.0f} s (start.time_s; rigid-body "
-                            "estimate)")
+                            f"estimate: running leaves {room / 1e3:.2f} kN below the lift-off "
+                            f"tension {lim_c[lifts][i_need] / 1e3:.1f} kN there, "
+                            f"{room / lim_c[lifts][i_need]:.1%})")
         elif p == 2 and not runs_over:
             fixes.insert(0, softer_stop)
         elif runs_over:

@@ -10,7 +10,12 @@ import numpy as np
 import pytest
 
 from beltstudy.engine.conveyor import parse_conveyor
-from beltstudy.engine.curves import convex_radius_min_m, liftoff_tension_n
+from beltstudy.engine.curves import (
+    convex_radius_min_m,
+    liftoff_limits_n,
+    liftoff_tension_n,
+    transient_liftoff,
+)
 from beltstudy.engine.loop import CURVE_STEP_DEG, build_loop, rotating_parts
 from beltstudy.engine.statics import solve_steady
 from tests.conftest import hand_conveyor_dict
@@ -510,3 +515,31 @@ def test_a_convex_warning_names_the_strain_that_sets_its_radius_rounded_up():
     (w,) = [m for m in st.message.split("; ") if "convex" in m]
     assert "its edges" in w and "admissible strain, that of rating / S_min = 66.7 kN" in w
     assert f"a radius of at least {math.ceil(r_edge)} m" in w and "a stronger belt" in w
+
+
+def test_the_start_time_for_a_start_lift_off_keeps_every_element_of_the_curve_down():
+    """transient_liftoff's rigid-body start time, t x (T_peak - T_run) / (T_lift - T_run), was
+    taken at the element lifted most only. On the hand valley (R 250 m, 200 elements) the
+    curve's first carry element has 7.94 kN of room below its lift-off tension in running and
+    its last 6.57 kN; a start (60 s) that passes the first by 5.0 kN and the last by 4.5 kN
+    was told 60 x (7.94 + 5.0) / 7.94 = 98 s, which leaves the last element lifting (it needs
+    60 x (6.57 + 4.5) / 6.57 = 101 s). The time named is the larger, with the room it comes
+    from."""
+    st = solve_steady(curved(250.0, 50.0), model="din", n_elements=200)
+    loop, run = st.loop, st.tension_n
+    (c,) = loop.curves
+    el, lim = liftoff_limits_n(loop, c)
+    first, last = int(c.carry[0]), int(c.carry[-1])
+    lim_of = dict(zip(el.tolist(), lim, strict=True))
+    room = {e: lim_of[e] - run[e] for e in (first, last)}
+    assert room[first] == pytest.approx(7939, abs=1) and room[last] == pytest.approx(6571, abs=1)
+    hi = run.copy()
+    hi[first], hi[last] = lim_of[first] + 5000.0, lim_of[last] + 4500.0
+    seg = (0.0, 100.0, hi, np.full_like(hi, 30.0), run.copy(), np.full_like(hi, 30.0))
+    out, warnings = transient_liftoff(loop, [seg], 60.0, 80.0, 60.0, run)
+    assert out["liftoff_max_kn_over"] == pytest.approx(5.0, abs=1e-9)
+    need = 60.0 * (room[last] + 4500.0) / room[last]
+    assert need == pytest.approx(101.1, abs=0.1)
+    (w,) = [m for m in warnings if m.startswith("lift-off in the start")]
+    assert (f"a start of about {need:.0f} s (start.time_s; rigid-body estimate: running leaves "
+            f"{room[last] / 1e3:.2f} kN below the lift-off tension") in w
