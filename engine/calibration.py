@@ -294,6 +294,25 @@ def _upper(model, name: str) -> float:
     return 1.0 if model.accepts(name, 1.0) and not model.accepts(name, 1.0 + 1e-9) else math.inf
 
 
+def _lower(model, name: str) -> float:
+    """The smallest value a fit gives parameter ``name``: 0, or the model's own lower limit
+    where its check refuses 0 (DIN's C >= 1), found by bisection on :meth:`accepts`."""
+    if model.accepts(name, 0.0):
+        return 0.0
+    hi = 1.0
+    for _ in range(64):
+        if model.accepts(name, hi):
+            break
+        hi *= 2.0
+    else:
+        return 0.0
+    lo = 0.0
+    for _ in range(80):
+        mid = 0.5 * (lo + hi)
+        lo, hi = (lo, mid) if model.accepts(name, mid) else (mid, hi)
+    return hi
+
+
 def _check_names(model, fit: Sequence[str], fixed: dict) -> list[str]:
     valid = [f.name for f in dataclasses.fields(model.params_class)]
     valid += list(TIED.get(model.name, {}))
@@ -328,7 +347,7 @@ def _expanded(model: str, values: dict[str, float]) -> dict[str, float]:
     return {p: v for name, v in values.items() for p in _sets(model, name)}
 
 
-def _starts(model, conv, rows, names, fixed, starts) -> np.ndarray:
+def _starts(model, conv, rows, names, fixed, starts, lowest=None) -> np.ndarray:
     """Start values: given, else the model's default, else the law's computed value."""
     base = model.params(fixed)
     info = None
@@ -344,11 +363,14 @@ def _starts(model, conv, rows, names, fixed, starts) -> np.ndarray:
         if value is None:
             raise InputError(f"'{name}' has no default to start from; give one as "
                              f"{name}=VALUE", field="fit")
-        if value < 0:
-            raise InputError(f"'{name}' starts at {value:g}, below the bound 0 the fit keeps "
-                             f"every parameter above (docs/uncertainty.md): start it at 0 or "
-                             f"above ({name}=START), or hold it there as a fixed parameter "
-                             f"(--param {name}={value:g}, the request's params)", field="fit")
+        low = (lowest or {}).get(name, 0.0)
+        if value < low:
+            where = ("the bound 0 the fit keeps every parameter above (docs/uncertainty.md)"
+                     if low == 0 else f"the smallest value model {model.name} takes ({low:g})")
+            hold = (f", or hold it there as a fixed parameter (--param {name}={value:g}, the "
+                    "request's params)" if model.accepts(name, value) else "")
+            raise InputError(f"'{name}' starts at {value:g}, below {where}: start it at "
+                             f"{low:g} or above ({name}=START){hold}", field="fit")
         out.append(float(value))
     return np.array(out)
 
@@ -389,7 +411,9 @@ def calibrate(conv: Conveyor, measured: Sequence[Measurement], model: str,
     names = _check_names(fm, fit, fixed)
     rows = list(measured)
     _check_rows(conv, rows)
-    x0 = _starts(fm, conv, rows, names, fixed, dict(starts or {}))
+    # each name's smallest value: 0, or the model's own limit above it (DIN's C >= 1)
+    lowest = {n: max(_lower(fm, q) for q in _sets(fm.name, n)) for n in names}
+    x0 = _starts(fm, conv, rows, names, fixed, dict(starts or {}), lowest)
     conv, held_takeup = _takeup_held(conv, fm, rows, {**fixed, **_expanded(
         fm.name, dict(zip(names, map(float, x0), strict=True)))})
     cols = [(i, col) for i, m in enumerate(rows) for col in m.values]
@@ -405,8 +429,8 @@ def calibrate(conv: Conveyor, measured: Sequence[Measurement], model: str,
                  np.isfinite(largest[n])]
 
     def model_values(x: np.ndarray, which: Sequence[str]) -> np.ndarray:
-        p = fm.params({**fixed, **_expanded(fm.name, {n: min(float(v), largest[n]) for n, v in
-                                                      zip(which, x, strict=True)})})
+        p = fm.params({**fixed, **_expanded(fm.name, {
+            n: min(max(float(v), lowest[n]), largest[n]) for n, v in zip(which, x, strict=True)})})
         out = {}
         for i, m in enumerate(rows):
             res = solve_steady(_conveyor_at(conv, m.speed_m_s, speeds), model=fm.name,
@@ -417,15 +441,17 @@ def calibrate(conv: Conveyor, measured: Sequence[Measurement], model: str,
     def residual(x, which):
         return (model_values(x, which) - y) / np.abs(y)
 
-    free, held, groups = _identifiable(lambda x: residual(x, names), x0, names)
+    free, held, groups = _identifiable(lambda x: residual(x, names), x0, names,
+                                       [lowest[n] for n in names])
     x_free = np.array([x0[names.index(n)] for n in free])
     held_values = {n: float(x0[names.index(n)]) for n in held}
     fixed.update(_expanded(fm.name, held_values))
     upper = [largest[n] for n in free]
-    sol = least_squares(residual, x_free, args=(free,), bounds=(0.0, upper),
+    lower = [lowest[n] for n in free]
+    sol = least_squares(residual, x_free, args=(free,), bounds=(lower, upper),
                         x_scale="jac", diff_step=DIFF_STEP, xtol=1e-12, ftol=1e-12)
     r = residual(sol.x, free)
-    jac = _jacobian(lambda x: residual(x, free), sol.x)
+    jac = _jacobian(lambda x: residual(x, free), sol.x, lower)
     n, p = len(r), len(free)
     dof = n - p
     notes = [f"{', '.join(g)}: only act together on these data; "
@@ -441,12 +467,13 @@ def calibrate(conv: Conveyor, measured: Sequence[Measurement], model: str,
     else:
         notes.append(f"{n} residuals for {p} parameters: no degrees of freedom left, no "
                      "standard errors")
-    at_bound = _at_bound(free, sol, x0[[names.index(n) for n in free]])
+    at_bound = _at_bound(free, sol, x0[[names.index(n) for n in free]], lower)
     at_upper = [n for n, v, hi in zip(free, sol.x, upper, strict=True)
                 if np.isfinite(hi) and v >= hi * (1.0 - 1e-6)]
     for name, v, s in zip(free, sol.x, se, strict=True):
         if name in at_bound:
-            notes.append(f"{name} ended at its bound 0: the data would take it below; its "
+            notes.append(f"{name} ended at its bound {lowest[name]:g}: the data would take it "
+                         "below; its "
                          "standard error is not that of a free estimate")
         elif s is not None and s > abs(v):
             notes.append(f"{name} is poorly determined by these data: its standard error "
@@ -455,7 +482,8 @@ def calibrate(conv: Conveyor, measured: Sequence[Measurement], model: str,
     t95 = _t95(dof)
     fitted = {name: {"value": float(v), "se": s, "start": float(x0[names.index(name)]),
                      "ci95": (None if s is None or name in at_bound
-                              else [max(float(v - t95 * s), 0.0), float(v + t95 * s)])}
+                              else [max(float(v - t95 * s), lowest[name]),
+                                    float(v + t95 * s)])}
               for name, v, s in zip(free, sol.x, se, strict=True)}
     fitted.update({name: {"value": v, "se": None, "start": v, "ci95": None}
                    for name, v in held_values.items()})
@@ -477,7 +505,8 @@ def calibrate(conv: Conveyor, measured: Sequence[Measurement], model: str,
         singular_values=[float(s) for s in sv],
         notes=notes, **_verdict(sol, at_bound, r, fm.name, at_upper,
                                 {n: largest[n] for n in own_limit}, groups, held_values,
-                                suspect=suspect, exact=bool(p) and dof == 0, few=few))
+                                suspect=suspect, exact=bool(p) and dof == 0, few=few,
+                                lowest=lowest))
 
 
 def _t95(dof: int) -> float:
@@ -617,18 +646,22 @@ def _outliers(rows: Sequence[Measurement], cols: Sequence[tuple[int, str]], y: n
     return out
 
 
-def _at_bound(free: Sequence[str], sol, starts: np.ndarray) -> list[str]:
-    """The fitted names that ended at their bound 0 (SciPy's active constraint, or a value
-    within :data:`AT_BOUND` of 0 relative to its start)."""
+def _at_bound(free: Sequence[str], sol, starts: np.ndarray,
+              lower: Sequence[float] | None = None) -> list[str]:
+    """The fitted names that ended at their lower bound (0, or the model's own limit such as
+    DIN's C >= 1: ``lower``): SciPy's active constraint, or a value within
+    :data:`AT_BOUND` of the bound relative to the start's distance from it."""
     active = getattr(sol, "active_mask", np.zeros(len(free)))
-    return [name for name, v, x0, a in zip(free, sol.x, starts, active, strict=True)
-            if a < 0 or v <= AT_BOUND * abs(float(x0))]
+    lower = [0.0] * len(free) if lower is None else lower
+    return [name for name, v, x0, a, lo in zip(free, sol.x, starts, active, lower, strict=True)
+            if a < 0 or v - lo <= AT_BOUND * (abs(float(x0) - lo) or abs(float(x0)))]
 
 
 def _verdict(sol, at_bound: list[str], r: np.ndarray, model: str,
              at_upper: Sequence[str] = (), own_limit: dict[str, float] | None = None,
              groups: Sequence[Sequence[str]] = (), held: dict[str, float] | None = None,
-             suspect: Sequence[str] = (), exact: bool = False, few: str = "") -> dict[str, str]:
+             suspect: Sequence[str] = (), exact: bool = False, few: str = "",
+             lowest: dict[str, float] | None = None) -> dict[str, str]:
     """``status`` and ``message`` of the fit in this project's words (never SciPy's text):
     ``failed`` when it stopped without converging, ``warning`` when a fitted parameter ended
     at its bound (the data ask for a value the model does not allow: the rest of the misfit
@@ -642,7 +675,8 @@ def _verdict(sol, at_bound: list[str], r: np.ndarray, model: str,
     disagree, :func:`_contradictions`; outliers, :func:`_outliers`): a ``warning`` that names
     them before a misfit's general advice. ``exact``: as many measured values as fitted
     names, met exactly: nothing checks the fit and it has no standard errors, a
-    ``warning``. ``few``: the steady states read, in words, when the measured values repeat
+    ``warning``. ``lowest``: each name's smallest value (0 unless the model's own check sets
+    another, DIN's C >= 1), named where a fit ends there. ``few``: the steady states read, in words, when the measured values repeat
     no more states than there are fitted names (:func:`_few_states`): met whatever the model
     as ``exact`` is, the repeats' scatter alone setting the standard errors, a ``warning``."""
     rms = 100 * math.sqrt(float(r @ r) / len(r))
@@ -675,7 +709,10 @@ def _verdict(sol, at_bound: list[str], r: np.ndarray, model: str,
     if at_bound:
         names = ", ".join(at_bound)
         verb, it = ("ends", "it") if len(at_bound) == 1 else ("end", "them")
-        head = (f"{names} {verb} at the bound 0 (the data would take {it} below, which model "
+        bounds = {(lowest or {}).get(n, 0.0) for n in at_bound}
+        bound = (f"the bound {bounds.pop():g}" if len(bounds) == 1 else "their bounds (" +
+                 "; ".join(f"{n}: {(lowest or {}).get(n, 0.0):g}" for n in at_bound) + ")")
+        head = (f"{names} {verb} at {bound} (the data would take {it} below, which model "
                 f"{model} does not allow)")
         if rms > MISFIT_PCT:
             return {"status": "warning", "message": (
@@ -720,13 +757,14 @@ def _verdict(sol, at_bound: list[str], r: np.ndarray, model: str,
             f"{len(r)} measured values"}
 
 
-def _jacobian(fun, x: np.ndarray) -> np.ndarray:
-    """Central-difference Jacobian of ``fun`` at ``x`` (relative step :data:`DIFF_STEP`)."""
+def _jacobian(fun, x: np.ndarray, lower: Sequence[float] | None = None) -> np.ndarray:
+    """Central-difference Jacobian of ``fun`` at ``x`` (relative step :data:`DIFF_STEP`),
+    one-sided where a step below would pass a parameter's ``lower`` bound (default 0)."""
     cols = []
     for k in range(len(x)):
         h = DIFF_STEP * max(abs(x[k]), 1e-6)
         lo, hi = x.copy(), x.copy()
-        lo[k] = max(x[k] - h, 0.0)
+        lo[k] = max(x[k] - h, 0.0 if lower is None else lower[k])
         hi[k] = x[k] + h
         cols.append((fun(hi) - fun(lo)) / (hi[k] - lo[k]))
     return np.column_stack(cols)
@@ -737,11 +775,11 @@ def _unit_columns(jac: np.ndarray) -> np.ndarray:
     return jac / np.where(norms > 0, norms, 1.0)
 
 
-def _identifiable(fun, x0: np.ndarray, names: list[str]
+def _identifiable(fun, x0: np.ndarray, names: list[str], lower: Sequence[float] | None = None
                   ) -> tuple[list[str], list[str], list[list[str]]]:
     """The names the data identify (in the order named), those held, and each held name's
     group: the named parameters it only acts together with (the Jacobian's null vector)."""
-    jac = _unit_columns(_jacobian(fun, x0) * np.where(x0 != 0, x0, 1.0))
+    jac = _unit_columns(_jacobian(fun, x0, lower) * np.where(x0 != 0, x0, 1.0))
     free: list[int] = []
     held: list[str] = []
     groups: list[list[str]] = []

@@ -342,3 +342,28 @@ def test_a_held_name_or_one_without_degrees_of_freedom_has_no_interval(overland)
     assert cal.fit["bearing_diameter_m"]["ci95"] is None  # held at its start
     lo, hi = cal.fit["mu_b"]["ci95"]
     assert 0.0 <= lo < cal.fit["mu_b"]["value"] < hi
+
+
+def test_din_c_is_fitted_within_its_own_lower_bound_1(overland):
+    """DIN 22101's C is at least 1 (the secondary resistances add to the main ones; the
+    model's own check). Power made at C = 1 and read 2 % low asks for C < 1: the fit stops at
+    1 with a warning naming that bound, not with an input error about a trial value the user
+    never gave ('models.din.c: C must be >= 1 (got 0.98)'); a start below 1 is refused naming
+    the smallest value, not the bound 0."""
+    rows = _plant(overland, "din", {"f_carry": TRUTH, "c": 1.0})
+    for m in rows:
+        m.values["power_kw"] *= 0.98
+    cal = calibrate(overland, rows, "din", ["c"], fixed={"f_carry": TRUTH})
+    assert cal.fit["c"]["value"] == pytest.approx(1.0, abs=1e-9)
+    assert cal.fit["c"]["ci95"] is None
+    assert cal.status == "warning"
+    assert cal.message.startswith("c ends at the bound 1 (the data would take it below")
+    assert any(n.startswith("c ended at its bound 1:") for n in cal.notes)
+    # data made at C = 1.05 are met inside the bound, its interval cut at 1 at most
+    rows = _plant(overland, "din", {"f_carry": TRUTH, "c": 1.05}, noise=0.005, seed=4)
+    cal = calibrate(overland, rows, "din", ["c"], fixed={"f_carry": TRUTH})
+    lo, hi = cal.fit["c"]["ci95"]
+    assert lo >= 1.0 and lo <= 1.05 <= hi
+    with pytest.raises(InputError, match=r"'c' starts at 0.9, below the smallest value model din "
+                                         r"takes \(1\): start it at 1 or above \(c=START\)$"):
+        calibrate(overland, rows, "din", ["c"], starts={"c": 0.9}, fixed={"f_carry": TRUTH})
