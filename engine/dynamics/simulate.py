@@ -637,7 +637,7 @@ def running_warnings(sys: System, r: dict, out, names=None) -> list[str]:
                  "takes a drive out of the uniform duty its gear is rated for (application "
                  "factor 1.25 against 1.00); drives that follow the master's torque from a "
                  "wave's travel away run in such a limit cycle under a fast speed loop, and a "
-                 "slower one (drives[i].speed_loop_rad_s) settles them (docs/dynamics.md, "
+                 f"slower one ({_loop_field(sys)}) settles them (docs/dynamics.md, "
                  f"Settling and overspeed){short}")
     return w
 
@@ -688,10 +688,10 @@ def tracking_warnings(sys: System, r: dict, out, names=None) -> list[str]:
                  "the reference's acceleration), "
                  + ("an s-curve start (start.control: s-curve: a ramp's corners step the "
                     "acceleration), " if cyc.start_ctrl == LINEAR else "")
-                 + "or a faster speed loop (drives[i].speed_loop_rad_s)")
+                 + f"or a faster speed loop ({_loop_field(sys)})")
         when = "in the " + ("s-curve" if cyc.start_ctrl == S_CURVE else "linear") + " start"
     else:
-        lever = "a faster speed loop (drives[i].speed_loop_rad_s)"
+        lever = f"a faster speed loop ({_loop_field(sys)})"
         when = "while running"
     return [f"the speed loop did not track its reference: {lag}, {when} (criterion: within "
             f"{100.0 * TRACK_FRACTION:.0f} % from one wave loop time, {t_loop:.3g} s, after the "
@@ -746,6 +746,15 @@ def _ahead_at_release(sys: System, r: dict, out, names) -> str:
 SPREAD_FRACTION = 0.05
 
 
+def _loop_field(sys: System) -> str:
+    """The one field that sets the speed loop, the master drive's (a follower's is refused at
+    the door: :class:`beltstudy.engine.conveyor.Drive`), and the bandwidth the run used, so a
+    warning's lever names what to change and from what: ``drives.0.speed_loop_rad_s, now 5
+    rad/s``."""
+    ctl = sys.model.control
+    return f"drives.{int(ctl.master)}.speed_loop_rad_s, now {float(ctl.bandwidth):.3g} rad/s"
+
+
 def _settle_levers(sys: System) -> str:
     """What may settle a swinging running phase: with the drives at one end a slower speed
     loop; with drives a wave's travel apart no setting is known to settle every belt (a
@@ -761,9 +770,9 @@ def _settle_levers(sys: System) -> str:
         return ("with drives a wave's travel apart the followers answer the master's loop "
                 "late, and no speed loop setting or drive layout is known to settle every such "
                 "belt (a slower loop or the drives at one end settle some and swing others "
-                "more: rerun to check drives[i].speed_loop_rad_s; a longer run_s shows whether "
+                f"more: rerun to check {_loop_field(sys)}; a longer run_s shows whether "
                 "the swing decays)")
-    return "a slower speed loop (drives[i].speed_loop_rad_s) swings less"
+    return f"a slower speed loop ({_loop_field(sys)}) swings less"
 
 
 def _force_swings(sys: System, rec, rec_d, m, names=None) -> list[str]:

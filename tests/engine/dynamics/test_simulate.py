@@ -307,8 +307,9 @@ def _running(t_loop=10.0, v_d=4.0, t_pre=2.0, t_start=60.0, t_run=300.0):
     cyc = SimpleNamespace(t_pre=t_pre, t_start=t_start, t_run=t_run)
     drives = SimpleNamespace(control=np.array([C.VFD]), coupling=np.array([C.COUPLING_NONE]),
                              node=np.array([49]))
+    control = SimpleNamespace(master=0, bandwidth=5.0)  # the default speed loop, drive 1
     return SimpleNamespace(v_design=v_d, wave_loop_time_s=t_loop, model=SimpleNamespace(
-        cycle=cyc, drives=drives), stop_command_s=t_pre + t_start + t_run,
+        cycle=cyc, drives=drives, control=control), stop_command_s=t_pre + t_start + t_run,
         s_end_m=np.linspace(10.0, 1000.0, 100))
 
 
@@ -346,7 +347,7 @@ def test_a_running_phase_that_swings_is_named_with_its_swing_and_period(amp, per
     assert float(m.group(1)) == pytest.approx(2 * amp, rel=0.01)
     assert float(m.group(2)) == pytest.approx(period, rel=0.02)
     # one drive (drives at one end): a slower speed loop is the lever
-    assert "a slower speed loop (drives[i].speed_loop_rad_s) swings less" in msg
+    assert "a slower speed loop (drives.0.speed_loop_rad_s, now 5 rad/s) swings less" in msg
 
 
 def test_a_run_that_ran_away_in_its_stop_still_has_its_running_phase_judged():
@@ -383,7 +384,7 @@ def test_the_settling_words_for_drives_apart_claim_no_layout_that_settles():
     sysm.model.drives.node = np.array([0, 49])  # head and mid-loop: half the loop apart
     words = _settle_levers(sysm)
     assert "swing less" not in words
-    assert "drives[i].speed_loop_rad_s" in words and "a longer run_s" in words
+    assert "drives.0.speed_loop_rad_s, now 5 rad/s" in words and "a longer run_s" in words
 
 
 @pytest.mark.parametrize("amp_frac, warned", [(0.4, True), (0.2, False)])
