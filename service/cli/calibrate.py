@@ -77,8 +77,9 @@ def read_measured(path: str, lines: list[int] | None = None) -> list[dict]:
     except csv.Error as exc:
         raise InputError(f"{path}: line {reader.line_num}: not a CSV row ({exc}); give one "
                          "number per cell, comma-separated") from None
-    if not records:
-        return []
+    if not any(any(cell.strip() for cell in r) for r in records):
+        raise InputError(f"{path}: empty: give a header line (load,temperature_c,power_kw) and "
+                         "one row per measured steady state below it")
     header = [name.strip() for name in records[0]]
     if len(header) == 1 and ";" in records[0][0]:
         raise InputError(
@@ -96,10 +97,22 @@ def read_measured(path: str, lines: list[int] | None = None) -> list[dict]:
             hint = f"did you mean '{close[0]}'?" if close else f"valid columns: {', '.join(valid)}"
             shown = f"'{name}'" if name else f"{i + 1} (no name)"
             problems.append(f"{path}: line 1: unknown column {shown}; {hint}")
+    if not problems:  # the columns every row needs, said once for the header
+        problems += [f"{path}: line 1: no column '{name}'; every row needs its {what}"
+                     for name, what in (("load", "load case (full, empty or a fraction of the "
+                                         "design load)"), ("temperature_c", "ambient "
+                                         "temperature [C]")) if name not in header]
+        if "power_kw" not in header and "te_kn" not in header:
+            problems.append(f"{path}: line 1: no column 'power_kw' or 'te_kn'; give the "
+                            "measured power at the drive pulleys [kW] or the peripheral force "
+                            "[kN] (or both)")
     if problems:
         raise InputError("; ".join(problems))
     rows = []
     data = [r for r in records[1:] if any(cell.strip() for cell in r)]
+    if not data:
+        raise InputError(f"{path}: no measured rows below the header (line 1); give one row "
+                         "per measured steady state")
     if len(data) > MAX_ROWS:
         raise InputError(f"{path}: more than {MAX_ROWS} measured rows; a calibration takes at "
                          f"most {MAX_ROWS} (each costs a steady solve per step of the fit): "

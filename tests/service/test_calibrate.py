@@ -191,6 +191,15 @@ def test_csv_from_excel_or_notepad_reads_as_utf8(tmp_path, encoding):
      "line 2: measured.0.speed_m_s: Input should be less than or equal to 30"),
     (b'load,temperature_c,power_kw\n"1,0,0,0,0,0,0,0",12,417.5\n',
      "line 2: measured.0.load: 8 fractions for"),
+    # a column every row needs, missing from the header, is said once for the header (not
+    # once per row, nor as 'measured.0: give the measured ...'); an empty file or a header
+    # without rows in words, not pydantic's 'List should have at least 1 item'
+    (b"load,power_kw\n0.2,47.7\n0.5,67.9\n0.8,88.1\n",
+     "line 1: no column 'temperature_c'; every row needs its ambient temperature [C]"),
+    (b"load,temperature_c\n0.2,5\n0.5,10\n",
+     "line 1: no column 'power_kw' or 'te_kn'; give the measured power at the drive pulleys"),
+    (b"load,temperature_c,power_kw\n", "no measured rows below the header (line 1)"),
+    (b"", "empty: give a header line (load,temperature_c,power_kw) and one row per measured"),
 ])
 def test_csv_problems_are_one_line_naming_the_file(tmp_path, capsys, text, message):
     from beltstudy.service.cli import main
