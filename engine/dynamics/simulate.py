@@ -27,6 +27,7 @@ from beltstudy.engine.dynamics import records as R
 from beltstudy.engine.dynamics.kernel import run_cycle
 from beltstudy.engine.dynamics.model import COUPLING_CODES, System, chord_strain
 from beltstudy.engine.dynamics.profiles import LINEAR, S_CURVE, start_reference, stop_reference
+from beltstudy.engine.loop import G
 from beltstudy.engine.statics import up3
 
 __all__ = ["TransientResult", "KernelRun", "fresh_run", "fresh_model", "simulate", "decode",
@@ -1220,6 +1221,13 @@ def _sag_words(sys: System, strand: str, sag_pct: float, limit_pct: float, j: in
     t_at = float(env_t[k])
     phase = _run_phase(sys, t_at, sys.stop_command_s)
     need_kn = t_low_n * sag_pct / limit_pct / 1e3
+    add_kn = up3(need_kn - t_low_n / 1e3)
+    tu = getattr(sys.model, "takeup", None)
+    # a gravity take-up holds m g / 2 on each of its two strands: the tension a span gains
+    # from it is half its weight's gain
+    mass = (f" on each of its two strands (a counterweight of at least "
+            f"{math.ceil((tu.weight + 2e3 * add_kn) / G):,} kg, takeup.mass_kg, now "
+            f"{tu.weight / G:,.0f} kg)" if tu is not None and tu.gravity else "")
     more = heavier_takeup(sys)
     fixes = {"start": _or([more] + start_levers(sys)),
              "running": f"{heavier_takeup(sys, 'more tension at the take-up')} or closer idlers",
@@ -1230,7 +1238,7 @@ def _sag_words(sys: System, strand: str, sag_pct: float, limit_pct: float, j: in
             f"{limit_pct:g} % (low tension {t_low_n / 1e3:.3g} kN near {where(sys, j)} at t = "
             f"{t_at:.1f} s, {_PHASE_WORDS[phase]}); {up3(need_kn):g} kN there keeps it within "
             f"(the sag goes as 1 / T), so the take-up must add at least "
-            f"{up3(need_kn - t_low_n / 1e3):g} kN, more where the transient passes only part of "
+            f"{add_kn:g} kN{mass}, more where the transient passes only part of "
             f"a take-up change to that span (rerun to confirm): {fixes} would avoid it")
 
 
