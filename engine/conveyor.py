@@ -1271,6 +1271,14 @@ UNIT_SLIPS = {
     **{name: (lambda v: v > 5.0, lambda v: f"in metres, {v / 1000:g} m if {v:g} is mm")
        for name in ("spacing_m", "width_m", "roll_diameter_m", "pulley_diameter_m",
                     "skirt_width_m", "roll_length_m")},
+    # a motor's power in watts, a force in newtons, a belt speed in metres per minute
+    "rated_power_kw": (lambda v: v > POWER_MAX_KW,
+                       lambda v: f"in kilowatts, {v / 1000:.6g} kW if {v:.12g} is W"),
+    **{name: (lambda v: v > FORCE_MAX_KN,
+              lambda v: f"in kilonewtons, {v / 1000:.6g} kN if {v:.12g} is N")
+       for name in ("force_kn", "pretension_kn", "head_kn", "tail_kn")},
+    "speed_m_s": (lambda v: v > 30.0,
+                  lambda v: f"in metres per second, {v / 60:g} m/s if {v:g} is m/min"),
 }
 
 

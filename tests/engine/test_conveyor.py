@@ -156,6 +156,9 @@ def test_a_key_in_a_handbook_unit_names_its_si_twin_and_the_conversion(where, ke
     (("drives", 0, "pulley_diameter_m"), 800, "0.8 m if 800 is mm"),
     (("drives", 0, "friction"), 35, "0.35 if 35 is %"),
     (("drives", 0, "efficiency"), 95, "a fraction, 0.95 if 95 is %"),
+    (("drives", 0, "rated_power_kw"), 1_250_000, "in kilowatts, 1250 kW if 1250000 is W"),
+    (("accessories", "head_kn"), 20_000, "in kilonewtons, 20 kN if 20000 is N"),
+    (("speed_m_s",), 270, "in metres per second, 4.5 m/s if 270 is m/min"),
 ])
 def test_a_value_out_of_range_in_another_unit_says_which(path, value, needle):
     """A density in kg/m3, a pitch or diameter in mm, a friction or an efficiency in % fail
