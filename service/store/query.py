@@ -329,8 +329,15 @@ def compare(
                 f"metrics: '{m}' is an axis of this study, not a result; valid: "
                 + ", ".join(valid)
             )
+        if m in runs.columns and m not in valid:
+            raise Invalid(
+                f"metrics: '{m}' is not a number in this study's rows (a ratio needs one); "
+                "valid: " + ", ".join(valid)
+            )
         if m not in valid:
-            raise Invalid(f"metrics: unknown metric '{m}'; valid: " + ", ".join(valid))
+            close = difflib.get_close_matches(m, valid, n=1)
+            hint = f" (did you mean '{close[0]}'?)" if close else ""
+            raise Invalid(f"metrics: unknown metric '{m}'{hint}; valid: " + ", ".join(valid))
     baseline, candidate = model_pair(baseline, candidate)
     if models is None:
         models = sorted(set(runs["friction_model"].dropna())) if len(runs) else []

@@ -143,6 +143,16 @@ def test_compare_refuses_unknown_models_and_metrics():
         compare(runs, ["friction_model"], "cema", "cema", ["power_kw"])
 
 
+def test_compare_names_the_nearest_metric_and_a_text_column():
+    """A near miss ('powr_kw', as filter=, sort= and columns= already answer) names the
+    metric meant; a text column is said to be no number, not 'unknown'."""
+    runs = _runs()
+    with pytest.raises(Invalid, match=r"unknown metric 'powr_kw' \(did you mean 'power_kw'\?\)"):
+        compare(runs, ["friction_model"], "cema", "nonlin", ["powr_kw"])
+    with pytest.raises(Invalid, match="metrics: 'status' is not a number in this study's rows"):
+        compare(runs, ["friction_model"], "cema", "nonlin", ["status"])
+
+
 def test_compare_refuses_a_metric_twice_and_an_axis_as_metric():
     runs = _runs()
     axes = ["friction_model", "temperature_c", "load"]
