@@ -184,6 +184,53 @@ def rest_hold_element(conv: Conveyor, loop: Loop) -> int:
     return int(loop.drive_elements[master_drive(conv)])
 
 
+def _startup_acceleration(conv: Conveyor, loop: Loop, te: float):
+    """The start-up check's acceleration: the drives' ``STARTUP_FACTOR`` x |Te| less |Te|
+    shared out by every moving mass (belt, load, idler rolls, pulley shells, drive shafts and
+    motors: :func:`beltstudy.engine.loop.rotating_parts`). Returns (the rotating parts, each
+    element's inertia [kg], the acceleration [m/s2])."""
+    parts = rotating_parts(conv, loop)
+    inertia = loop.mass_kg.copy()
+    for node, m in list(parts.plain_mass.items()) + [
+            (node, m) for node, m in parts.shaft_mass.items() if node not in parts.shaft_drive]:
+        inertia[node] += m
+    extra = (STARTUP_FACTOR - 1.0) * abs(te)
+    a = extra / (float(inertia.sum()) + sum(parts.shaft_mass[n] for n in parts.shaft_drive)
+                 + sum(parts.motor_mass))
+    return parts, inertia, a
+
+
+def start_time_note(conv: Conveyor, loop: Loop, te: float) -> str:
+    """A note when the start-up checks' force (``STARTUP_FACTOR`` x Te) is less than the
+    transient's default start asks of a rigid belt: the slip margin at start-up and the auto
+    take-up are sized for that force, so a vfd start faster than the one it accelerates the
+    belt at slips with a take-up the steady run calls enough. The s-curve (cycloid) start of
+    time T peaks at an acceleration of 2 v / T, the linear one runs at v / T; the note names
+    the start times whose rigid-body force is within the checks' (waves add to it: the
+    transient run shows them). Only for vfd drives (their start time is ``start.time_s``) on a
+    belt that motors (Te > 0); "" otherwise."""
+    from beltstudy.engine.conveyor import StartSpec
+
+    if te <= 0.0 or any(d.control != "vfd" for d in conv.drives):
+        return ""
+    _, _, a = _startup_acceleration(conv, loop, te)
+    v = float(conv.speed_m_s)
+    t_default = float(StartSpec.model_fields["time_s"].default)
+    if not a > 0.0:
+        return ""
+    t_s = math.ceil(2.0 * v / a)
+    if 2.0 * v / a <= t_default:
+        return ""
+    return (f"note: the start-up checks (slip_margin_start, the auto take-up) take the drives at "
+            f"{STARTUP_FACTOR:g} x Te, which accelerates this belt at {a:.3g} m/s2 (the force "
+            f"above Te shared out by every moving mass): an s-curve start asks no more of a "
+            f"rigid belt from start.time_s {t_s:.0f} s (peak acceleration 2 v / T, a linear "
+            f"one from {math.ceil(v / a):.0f} s); the default {t_default:g} s s-curve asks "
+            f"{1.0 + (STARTUP_FACTOR - 1.0) * 2.0 * v / a / t_default:.2f} x Te at its peak, more "
+            "than these checks allow for (beltstudy simulate shows the start's slip and sizes "
+            "the take-up for the start asked)")
+
+
 def _startup_walk(conv: Conveyor, loop: Loop, dF: np.ndarray, te: float) -> np.ndarray:
     """Tension increments at start-up, walked like the running ones [N].
 
@@ -195,14 +242,8 @@ def _startup_walk(conv: Conveyor, loop: Loop, dF: np.ndarray, te: float) -> np.n
     the start-up force less what accelerates its own rotating parts, so the walk closes round
     the loop.
     """
-    parts = rotating_parts(conv, loop)
-    inertia = loop.mass_kg.copy()
-    for node, m in list(parts.plain_mass.items()) + [
-            (node, m) for node, m in parts.shaft_mass.items() if node not in parts.shaft_drive]:
-        inertia[node] += m
+    parts, inertia, a = _startup_acceleration(conv, loop, te)
     extra = (STARTUP_FACTOR - 1.0) * abs(te)
-    a = extra / (float(inertia.sum()) + sum(parts.shaft_mass[n] for n in parts.shaft_drive)
-                 + sum(parts.motor_mass))
     d_start = np.zeros(loop.n)
     for node, i in parts.shaft_drive.items():
         d = conv.drives[i]
@@ -723,8 +764,9 @@ def _summarise(res: SteadyResult, drives, hs_adm, bounds, shortfall_n: float,
     # inputs read beyond the tables or in an unusual sense (idler rows, loading speed, ...)
     given = input_notes(conv, loop, comps.get("feed", 0.0) * 1e3,
                         res.law.info.get("c_factor"))
-    res.message = "; ".join(warnings + [n for n in (note, res.range_note, runback, *given)
-                                        if n])
+    start = start_time_note(conv, loop, res.te_n)
+    res.message = "; ".join(warnings + [n for n in (note, res.range_note, runback, start,
+                                                    *given) if n])
     res.summary["status"] = res.status
     res.summary["message"] = res.message
 
