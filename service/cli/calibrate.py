@@ -171,11 +171,36 @@ def run(args: argparse.Namespace) -> int:
         if "measured" not in exc.message.split(":")[0]:
             raise
         raise Invalid(_at_line(exc.message, args.measured, lines)) from None
+    out = _rows_with_lines(out, lines)
     if args.json:
         print(dumps(out))
     else:
         print(format_calibration(out))
     return 0 if out["status"] == "ok" else 1
+
+
+def _rows_with_lines(out: dict, lines: list[int]) -> dict:
+    """The fit's words and residuals with each row's line in the file beside its number (the
+    fit counts the rows from 0, as ``measured.K``; the file's errors and an editor count its
+    lines from 1 with the header on line 1, so row 3 is line 5): ``row 3 (line 5: load 0.8,
+    -10 C)``, ``rows 2 and 5 (lines 4 and 7) read ...``; each residual gets its ``line``."""
+
+    def line(k: str) -> str:
+        return str(lines[int(k)]) if int(k) < len(lines) else "?"
+
+    def words(text: str) -> str:
+        text = re.sub(r"\brows (\d+) and (\d+) read\b",
+                      lambda m: f"rows {m[1]} and {m[2]} (lines {line(m[1])} and "
+                                f"{line(m[2])}) read", text)
+        return re.sub(r"\brow (\d+) \(", lambda m: f"row {m[1]} (line {line(m[1])}: ", text)
+
+    out = dict(out)
+    out["message"] = words(out["message"])
+    out["notes"] = [words(n) for n in out["notes"]]
+    out["residuals"] = [{**r, "line": int(line(str(r["row"])))}
+                        if str(r["row"]).isdigit() and int(r["row"]) < len(lines) else r
+                        for r in out["residuals"]]
+    return out
 
 
 def format_calibration(out: dict) -> str:
@@ -189,10 +214,10 @@ def format_calibration(out: dict) -> str:
         ci = f.get("ci95")
         ci = f"{ci[0]:.4g} to {ci[1]:.4g}" if ci else "-"
         lines.append(f"  {name:<22} {f['value']:>10.6g} {se:>11} {f['start']:>10.4g}   {ci}")
-    lines += ["", "  row  measured      value      model   residual [%]"]
+    lines += ["", "  row  line  measured      value      model   residual [%]"]
     for r in out["residuals"]:
-        lines.append(f"  {r['row']:>3}  {r['measured']:<10} {r['value']:>9.4g} "
-                     f"{r['model']:>10.4g} {100 * r['relative']:>+10.2f}")
+        lines.append(f"  {r['row']:>3}  {r.get('line', ''):>4}  {r['measured']:<10} "
+                     f"{r['value']:>9.4g} {r['model']:>10.4g} {100 * r['relative']:>+10.2f}")
     if out["not_identifiable"]:
         lines += ["", "not identifiable: " + ", ".join(out["not_identifiable"])]
     lines += [f"note: {n}" for n in out["notes"]]

@@ -335,3 +335,34 @@ def test_post_calibrations_holds_values_to_their_json_types(client, where, value
     r = client.post("/calibrations", json=body)
     assert r.status_code == 422, r.text
     assert message in r.json()["message"], r.json()
+
+
+def test_the_fit_names_each_row_with_its_line_in_the_file(tmp_path, capsys):
+    """The fit counts rows from 0 (as ``measured.K``) while the file's errors and an editor
+    count lines from 1 with the header on line 1: a CSV user read 'row 3' as the third data
+    line. The CLI now puts each row's line beside it, in the words and the residuals, blank
+    lines skipped: a second reading of load 0.6 15 % high as the sixth row, after a blank line,
+    is row 5 on line 8, and an outlier's sentence gets its line the same way."""
+    from beltstudy.service.cli import main
+    from beltstudy.service.cli.calibrate import _rows_with_lines
+
+    rows = _rows(noise=0.005)
+    out = {**rows[2], "power_kw": round(rows[2]["power_kw"] * 1.15, 2)}
+    text = "load,temperature_c,power_kw\n" + "".join(
+        f"{r['load']},{r['temperature_c']},{r['power_kw']}\n" for r in rows) + "\n" + (
+        f"{out['load']},{out['temperature_c']},{out['power_kw']}\n")
+    csv = tmp_path / "plant.csv"
+    csv.write_text(text)
+    assert text.splitlines()[7].startswith(f"{out['load']},")  # line 8 of the file
+    args = ["calibrate", str(CONVEYORS / "overland-4km.yaml"), "--measured", str(csv),
+            "--model", "din", "--fit", "f_carry", "--param", "f_return=0.020"]
+    main(args)
+    said = capsys.readouterr().out
+    assert "rows 2 and 5 (lines 4 and 8) read one steady state (load 0.6, 5 C)" in said, said
+    assert "  row  line  measured" in said
+    main([*args, "--json"])
+    answer = json.loads(capsys.readouterr().out)
+    assert [r["line"] for r in answer["residuals"]] == [2, 3, 4, 5, 6, 8]
+    one = _rows_with_lines({"message": "row 5 (load 0.6, 5 C): measured power_kw 1024 lies",
+                            "notes": [], "residuals": []}, [2, 3, 4, 5, 6, 8])
+    assert one["message"] == "row 5 (line 8: load 0.6, 5 C): measured power_kw 1024 lies"
