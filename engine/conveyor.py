@@ -1282,6 +1282,19 @@ UNIT_SLIPS = {
 }
 
 
+def nearest_word(got: Any, expected: str) -> str:
+    """``did you mean 'inclines'?`` for a text near one of the words a choice takes (the
+    quoted words of ``expected``, as Pydantic lists a literal's values: ``'full', 'empty'
+    or 'inclines'``); the word itself when only its case differs (``Full``); "" otherwise."""
+    if not isinstance(got, str):
+        return ""
+    words = re.findall(r"'([^']*)'", expected)
+    text = got.strip()
+    close = ([w for w in words if w.lower() == text.lower()]
+             or difflib.get_close_matches(text.lower(), words, n=1, cutoff=0.6))
+    return f"did you mean '{close[0]}'?" if close and close[0] != got else ""
+
+
 def _unknown_key_hint(key: str, keys: list[str]) -> str:
     """What to write instead of the unknown ``key``: its SI twin with the conversion, the key
     a handbook word maps to, else the nearest valid key or the list."""
@@ -1394,6 +1407,7 @@ def format_validation_error(exc: ValidationError, model: type[BaseModel], prefix
     the wrong type as JSON Schema says it (``speed_m_s: "4.5" is not of type "number"``),
     the same words as a study's door (:mod:`beltstudy.service.door.messages`)."""
     lines = []
+    near: dict[str, str] = {}  # path -> the choice a misspelt word is nearest
     for err in _said_errors(exc):
         clean = err["clean"]  # Pydantic's union member tags taken off (_clean_loc)
         path = prefix + ".".join(str(p) for p in clean)
@@ -1427,6 +1441,18 @@ def format_validation_error(exc: ValidationError, model: type[BaseModel], prefix
             hint = yaml11_hint(got, err["type"])
             if not hint and clean and isinstance(got, str):
                 hint = VALUE_HINTS.get((str(clean[-1]), got.strip().lower()), "")
+            if not hint and err["type"] == "literal_error":
+                hint = nearest_word(got, msg)
+                if hint:
+                    # kept beside a union's wrong-type line ('"inclnes" is not of type ...')
+                    near[path] = hint
+            if err["type"] == "union_tag_invalid" and "ctx" in err:
+                # a tagged choice (a sample axis's dist): the key, the word given and the words
+                ctx = err["ctx"]
+                path += f".{str(ctx['discriminator']).strip(chr(39))}"
+                msg = f"unknown value '{ctx['tag']}'; valid: {ctx['expected_tags']}"
+                hint = nearest_word(ctx["tag"], str(ctx["expected_tags"]))
+                shown = ""
             if hint:
                 shown += f": {hint}"
             if not clean:
@@ -1462,6 +1488,8 @@ def format_validation_error(exc: ValidationError, model: type[BaseModel], prefix
         # the types first, then the members' other conditions (the door's order)
         msgs = sorted(msgs, key=lambda m: not m.startswith("is not of type "))
         text = msgs[0] + "".join(" or " + _or_part(m) for m in msgs[1:])
+        if path in near and near[path] not in shown:
+            shown += f": {near[path]}"
         out.append(f"{path}: {lead}{text}{shown}")
     return "; ".join(out)
 

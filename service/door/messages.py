@@ -23,7 +23,7 @@ from typing import Any
 from pydantic import BaseModel, ValidationError
 
 from beltstudy.engine import Conveyor, Scenario, format_validation_error
-from beltstudy.engine.conveyor import JSON_TYPES, as_json, type_hint
+from beltstudy.engine.conveyor import JSON_TYPES, as_json, nearest_word, type_hint
 from beltstudy.service.door.study import AXIS_TARGETS, StudyIn, unfold_axis
 
 __all__ = ["describe", "MAX_PROBLEMS"]
@@ -94,8 +94,10 @@ def _as_json_type(errors: list[dict]) -> str:
               if e["type"] == "literal_error" and "ctx" in e]
     text = f'{as_json(errors[0]["input"])} is not of type "{types[0]}"'
     text += "".join(f' or "{t}"' for t in types[1:]) + "".join(f" or {o}" for o in others)
-    # what to write (a YAML 1.1 word, a number in quotes): the engine's words (type_hint)
+    # what to write (a YAML 1.1 word, a number in quotes): the engine's words (type_hint);
+    # else the choice a misspelt word is nearest ("inclnes": did you mean 'inclines'?)
     hint = next((h for e in errors if (h := type_hint(e["input"], e["type"]))), "")
+    hint = hint or nearest_word(errors[0]["input"], " ".join(others))
     text += f": {hint}" if hint else ""
     return f"{_dotted(errors[0]['path'])}: {text}"
 

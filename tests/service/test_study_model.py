@@ -272,6 +272,11 @@ def test_model_beside_a_friction_model_axis_is_refused_naming_both(make_study):
         ({"takeup.mas_kg": [1]}, r"unknown axis 'takeup.mas_kg'.*did you mean 'takeup.mass_kg'"),
         ({"profile.3.lift_m": [1]}, r"'profile' has 1 entries; index 3 is out of range"),
         ({"temperature_c": ["hot"]}, r'grid.temperature_c.0: "hot" is not of type "number"'),
+        # a misspelt word of a choice names the word meant
+        ({"load": ["inclnes"]}, r"grid.load.0: \"inclnes\" is not of type .* or 'declines': "
+                                r"did you mean 'inclines'\?$"),
+        ({"scenario.stop.mode": ["coast", "brak"]},
+         r"\(got 'brak'\): did you mean 'brake'\?$"),
         ({"belt.width_m": [-1]}, r"belt.width_m=-1.*greater than or equal to 0.1"),
         ({"belt_type": ["ST9999"]}, r"unknown belt type 'ST9999'"),
         ({"stop_time_s": [10], "stop": [{"mode": "coast"}]},
@@ -289,6 +294,27 @@ def test_model_beside_a_friction_model_axis_is_refused_naming_both(make_study):
 def test_bad_grids_are_refused_naming_the_axis(make_study, grid, message):
     with pytest.raises(Invalid, match=message):
         resolve_study(make_study(grid=grid))
+
+
+def test_a_misspelt_choice_outside_the_grid_names_the_word_meant(make_study):
+    """A scenario load 'Full', a design load 'inclnes', a sample dist 'unifrom' and method
+    'sobel' were refused with the valid words only (the dist in Pydantic's 'Input tag ...
+    found using 'dist''); each now names the word meant, at its own key."""
+    cases = [
+        (dict(scenario={"load": "Full"}), r"scenario.load: .*: did you mean 'full'\?$"),
+        (dict(design={"load": ["full", "inclnes"]}),
+         r"design.load\[1\]: .*: did you mean 'inclines'\?$"),
+        (dict(sample={"n": 8, "method": "lhs", "seed": 1, "axes": {
+            "temperature_c": {"dist": "unifrom", "low": 0, "high": 1}}}),
+         r"^sample.axes.temperature_c.dist: unknown value 'unifrom'; valid: 'uniform', "
+         r"'normal', 'lognormal', 'triangular': did you mean 'uniform'\?$"),
+        (dict(sample={"n": 8, "method": "sobel", "seed": 1, "axes": {
+            "temperature_c": {"dist": "uniform", "low": 0, "high": 1}}}),
+         r"sample.method: .*\(got 'sobel'\): did you mean 'sobol'\?$"),
+    ]
+    for over, message in cases:
+        with pytest.raises(Invalid, match=message):
+            resolve_study(make_study(grid={"belt_type": ["ST2000"]}, **over))
 
 
 def test_scenarios_the_conveyor_cannot_do_are_refused_before_any_run(make_study):
