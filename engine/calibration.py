@@ -494,8 +494,9 @@ def calibrate(conv: Conveyor, measured: Sequence[Measurement], model: str,
              **_expanded(fm.name, {name: float(f"{v:.6g}")
                                    for name, v in zip(free, sol.x, strict=True)})}
     sv = np.linalg.svd(_unit_columns(jac), compute_uv=False) if p else np.array([])
-    suspect = _contradictions(rows, cols, y) or _outliers(rows, cols, y, values, r, jac, dof)
-    notes += suspect
+    suspect = (_sign_slips(rows, cols, y, values) or _contradictions(rows, cols, y)
+               or _outliers(rows, cols, y, values, r, jac, dof))
+    notes += suspect + _copies(rows)
     few = _few_states(rows, cols, p) if dof > 0 else ""
     return Calibration(
         model=fm.name, fit=fitted, residuals=residuals,
@@ -574,6 +575,45 @@ def _few_states(rows: Sequence[Measurement], cols: Sequence[tuple[int, str]], p:
         f"{' and '.join(dict.fromkeys(c for cs in ix.values() for c in cs))} "
         f"(row{'s' if len(ix) > 1 else ''} {', '.join(map(str, ix))})"
         for ix in states.values())
+
+
+def _sign_slips(rows: Sequence[Measurement], cols: Sequence[tuple[int, str]], y: np.ndarray,
+                values: np.ndarray) -> list[str]:
+    """Measured power or Te of the other sign than the fit's for its state, the fit at least
+    :data:`MISFIT_PCT` of the reading away from zero (so not a belt near balance, where
+    either sign is honest): power and Te are negative only where the drives regenerate, so
+    such a reading is most likely a meter or a column the other way round; one sentence per
+    such value."""
+    out = []
+    for k, (i, col) in enumerate(cols):
+        if col not in ("power_kw", "te_kn") or y[k] * values[k] >= 0.0:
+            continue
+        if abs(values[k]) < MISFIT_PCT / 100.0 * abs(y[k]):
+            continue
+        runs = "regenerates" if values[k] < 0 else "motors"
+        out.append(f"row {i} ({_state_text(rows[i])}): measured {col} {y[k]:.4g} has the "
+                   f"other sign than the fit's {values[k]:.4g} (the belt {runs} in that state "
+                   "by the model; power and Te are negative only where the drives "
+                   "regenerate): check the row's sign (a meter or a column the other way "
+                   "round) and fit again")
+    return out
+
+
+def _copies(rows: Sequence[Measurement]) -> list[str]:
+    """Rows that repeat an earlier one exactly (state and every measured value): a reading
+    pasted twice counts as a second one and narrows the interval; one note per copy."""
+    seen: dict[tuple, int] = {}
+    out = []
+    for i, m in enumerate(rows):
+        key = (repr(m.load), m.temperature_c, m.speed_m_s, tuple(sorted(m.values.items())))
+        if key in seen:
+            out.append(f"row {i} repeats row {seen[key]} exactly ({_state_text(m)}, every "
+                       "measured value equal): a copy counts as a second reading and "
+                       "narrows the interval; remove it if it was pasted twice (a true "
+                       "repeat of a steady state rarely reads every digit alike)")
+        else:
+            seen[key] = i
+    return out
 
 
 def _contradictions(rows: Sequence[Measurement], cols: Sequence[tuple[int, str]],

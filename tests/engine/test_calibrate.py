@@ -367,3 +367,37 @@ def test_din_c_is_fitted_within_its_own_lower_bound_1(overland):
     with pytest.raises(InputError, match=r"'c' starts at 0.9, below the smallest value model din "
                                          r"takes \(1\): start it at 1 or above \(c=START\)$"):
         calibrate(overland, rows, "din", ["c"], starts={"c": 0.9}, fixed={"f_carry": TRUTH})
+
+
+def test_a_reading_of_the_other_sign_is_named_as_a_sign_slip(overland):
+    """The 4.2 km overland motors at every load (power > 0). One reading typed negative
+    (a meter or column the other way round) led the verdict with the fit stuck at a bound and
+    named the row only among the notes, if at all; the verdict now names it first: the row,
+    its state, the reading and the fit's value of the other sign, and what to check. Honest
+    readings get no such words."""
+    rows = _plant(overland, "din", {"f_carry": TRUTH}, noise=0.005, seed=2)
+    assert "other sign" not in calibrate(overland, rows, "din", ["f_carry"]).message
+    slipped = list(rows)
+    m = rows[3]
+    slipped[3] = Measurement(m.load, m.temperature_c, {"power_kw": -m.values["power_kw"]},
+                             m.speed_m_s)
+    cal = calibrate(overland, slipped, "din", ["f_carry"])
+    words = f"row 3 (load 0.8, 10 C): measured power_kw {-m.values['power_kw']:.4g} has the " \
+            "other sign than the fit's"
+    assert words in cal.message, cal.message
+    assert "the belt motors in that state by the model" in cal.message
+    assert cal.status == "warning"
+
+
+def test_a_row_pasted_twice_is_noted(overland):
+    """An exact copy of a row (its state and every digit of its reading) counts as a second
+    reading and narrows the interval; it is noted, naming both rows. Two readings of one
+    state that differ (a true repeat) are not."""
+    rows = _plant(overland, "din", {"f_carry": TRUTH}, noise=0.005, seed=1)
+    cal = calibrate(overland, [*rows, rows[1]], "din", ["f_carry"])
+    assert any(n.startswith("row 5 repeats row 1 exactly (load 0.4, 10 C") for n in cal.notes)
+    m = rows[1]
+    again = Measurement(m.load, m.temperature_c, {"power_kw": m.values["power_kw"] * 1.003},
+                        m.speed_m_s)
+    cal = calibrate(overland, [*rows, again], "din", ["f_carry"])
+    assert not any("repeats" in n for n in cal.notes)
