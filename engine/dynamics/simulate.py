@@ -1226,8 +1226,8 @@ def _sag_words(sys: System, strand: str, sag_pct: float, limit_pct: float, j: in
     # a gravity take-up holds m g / 2 on each of its two strands: the tension a span gains
     # from it is half its weight's gain
     mass = (f" on each of its two strands (a counterweight of at least "
-            f"{math.ceil((tu.weight + 2e3 * add_kn) / G):,} kg, takeup.mass_kg, now "
-            f"{tu.weight / G:,.0f} kg)" if tu is not None and tu.gravity else "")
+            f"{math.ceil((tu.weight + 2e3 * add_kn) / G)} kg, takeup.mass_kg, now "
+            f"{tu.weight / G:.0f} kg)" if tu is not None and tu.gravity else "")
     more = heavier_takeup(sys)
     fixes = {"start": _or([more] + start_levers(sys)),
              "running": f"{heavier_takeup(sys, 'more tension at the take-up')} or closer idlers",
