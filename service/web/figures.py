@@ -6,6 +6,7 @@ keeps global state) and closed after rendering.
 
 from __future__ import annotations
 
+import difflib
 import io
 import threading
 
@@ -42,7 +43,13 @@ _lock = threading.Lock()
 def check_name(name: str, valid: dict) -> None:
     """:class:`Invalid` naming the valid plot names when ``name`` is not one of them."""
     if name not in valid:
-        raise Invalid(f"name: unknown plot '{name}'; valid: {', '.join(valid)}")
+        close = difflib.get_close_matches(name, list(valid), n=1)
+        hint = f" (did you mean '{close[0]}'?)" if close else ""
+        if not close and valid is RUN_PLOTS and name in STUDY_PLOTS:
+            hint = " (a plot of the whole study: /studies/{id}/plots/" + name + ")"
+        elif not close and valid is STUDY_PLOTS and name in RUN_PLOTS:
+            hint = " (a plot of one run: /studies/{id}/runs/{run_id}/plots/" + name + ")"
+        raise Invalid(f"name: unknown plot '{name}'{hint}; valid: {', '.join(valid)}")
 
 
 def render(make, fmt: str = "png") -> bytes:

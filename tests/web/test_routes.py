@@ -129,6 +129,22 @@ def test_plot_routes_422_for_unknown_names_name_the_valid_ones(done):
     assert r.status_code == 422 and "format" in r.json()["message"]
 
 
+def test_a_misspelt_plot_name_or_a_plot_of_the_other_kind_says_which(done):
+    """'power-temprature' names 'power-temperature'; a study plot asked of a run (and a run
+    plot of the study) says where that plot is."""
+    c, sid, runs = done
+    r = c.get(f"/studies/{sid}/plots/power-temprature")
+    assert r.status_code == 422
+    assert "unknown plot 'power-temprature' (did you mean 'power-temperature'?)" in (
+        r.json()["message"])
+    r = c.get(f"/studies/{sid}/runs/{runs[0]}/plots/power-temperature")
+    assert "(a plot of the whole study: /studies/{id}/plots/power-temperature)" in (
+        r.json()["message"])
+    r = c.get(f"/studies/{sid}/plots/steady-profile")
+    assert "(a plot of one run: /studies/{id}/runs/{run_id}/plots/steady-profile)" in (
+        r.json()["message"])
+
+
 def test_token_guards_plots_and_data_but_not_the_page_shells(web, tmp_path):
     sid = web.finished_study(tmp_path, web.tiny_study())
     c = web.client(tmp_path, token="s3cret")
