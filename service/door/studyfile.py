@@ -14,7 +14,9 @@ way out through a link).
 
 from __future__ import annotations
 
+import difflib
 import functools
+import itertools
 import json
 import math
 from pathlib import Path
@@ -104,6 +106,39 @@ def _integers(data: dict) -> dict:
     return {k: v if k == "design" else json_numbers(v) for k, v in data.items()}
 
 
+#: Files looked at for the nearest name of a conveyor path that is not there (a bound: a
+#: studies directory is a handful of files, a working directory may be anything).
+_NEAREST_SCAN = 2000
+
+
+def _nearest_file(ref: str, folder: Path, recursive: bool) -> str:
+    """The file meant by a conveyor path that is not there: a YAML or JSON file under
+    ``folder`` (its path relative to it) of the same name in another folder, with the other
+    extension (``.yml``) or a near spelling; "" when none is near."""
+    try:
+        found = folder.rglob("*") if recursive else folder.glob("*")
+        names = []
+        for path in itertools.islice(found, _NEAREST_SCAN):
+            rel = path.relative_to(folder)
+            if (path.suffix.lower() in (".yaml", ".yml", ".json") and path.is_file()
+                    and not any(part.startswith(".") for part in rel.parts)):
+                names.append(rel.as_posix())
+    except OSError:
+        return ""
+    # by the file's own name (a shared folder makes every path look near)
+    stems = sorted({Path(n).stem for n in names})
+    close = difflib.get_close_matches(Path(ref).stem, stems, n=1, cutoff=0.75)
+    if not close:
+        return ""
+    meant = [n for n in sorted(names) if Path(n).stem == close[0]]
+    same_folder = [n for n in meant if Path(n).parent == Path(ref).parent]
+    return (same_folder or meant)[0]
+
+
+def _did_you_mean(name: str) -> str:
+    return f"; did you mean '{name}'?" if name else ""
+
+
 def conveyor_from_path(ref: str, base_dir: Path | None, root: Path | None) -> tuple[dict, str]:
     """Load a conveyor given by path. With ``root`` (the service), stay inside it."""
     if not ref.strip():
@@ -128,14 +163,19 @@ def conveyor_from_path(ref: str, base_dir: Path | None, root: Path | None) -> tu
                               "directory, not a file; give a conveyor file in it")
             if not path.is_file():
                 raise Invalid(f"conveyor: file '{shown_path(ref)}' not found in the studies "
-                              "directory")
+                              "directory (paths are relative to it)"
+                              + _did_you_mean(_nearest_file(ref, root_r, recursive=True)))
         else:
             path = (base_dir or Path.cwd()) / rel
             if path.is_dir():
                 raise Invalid(f"conveyor: '{shown_path(path)}' is a folder, not a file; give a "
                               "conveyor file")
             if not path.is_file():
-                raise Invalid(f"conveyor: file '{shown_path(path)}' not found")
+                # a near name in the folder the path names (slope-5pct.yml for .yaml)
+                near = (_nearest_file(path.name, path.parent, recursive=False)
+                        if path.parent.is_dir() else "")
+                raise Invalid(f"conveyor: file '{shown_path(path)}' not found"
+                              + _did_you_mean(shown_path(path.parent / near) if near else ""))
         data = load_mapping(path, what=f"conveyor: {shown_path(ref)}")
         expect_kind(data, "conveyor", f"conveyor: {shown_path(ref)}")
         return data, ref

@@ -399,6 +399,35 @@ def test_conveyor_by_path_is_resolved_and_inlined(make_study):
         resolve_study(make_study(conveyor="conveyors/nope.yaml"), studies_dir=ROOT / "studies")
 
 
+@pytest.mark.parametrize(("ref", "meant"), [
+    ("conveyors/slope-5pct.yml", "conveyors/slope-5pct.yaml"),   # the other extension
+    ("slope-5pct.yaml", "conveyors/slope-5pct.yaml"),            # the folder left out
+    ("conveyor/slope-5pct.yaml", "conveyors/slope-5pct.yaml"),   # the folder misspelt
+    ("conveyors/overland-4k.yaml", "conveyors/overland-4km.yaml"),
+    ("conveyors/nope.yaml", None),                               # nothing near: no guess
+])
+def test_a_conveyor_path_that_is_not_there_names_the_file_meant(make_study, ref, meant):
+    """A path near a conveyor file of the studies directory was refused 'not found in the
+    studies directory' with no file named; it now says paths are relative to that
+    directory and names the file meant (by its own name, not the shared folder)."""
+    with pytest.raises(Invalid) as exc:
+        resolve_study(make_study(conveyor=ref), studies_dir=ROOT / "studies")
+    msg = str(exc.value)
+    assert msg.startswith(f"conveyor: file '{ref}' not found in the studies directory (paths "
+                          "are relative to it)")
+    assert msg.endswith(f"; did you mean '{meant}'?") if meant else "did you mean" not in msg
+
+
+def test_a_local_conveyor_path_that_is_not_there_names_the_file_beside_it(make_study,
+                                                                          tmp_path):
+    """``beltstudy run`` / ``submit``: a conveyor next to the study file under a near name."""
+    (tmp_path / "belts").mkdir()
+    (tmp_path / "belts" / "short.yaml").write_text("name: x\n")
+    with pytest.raises(Invalid) as exc:
+        resolve_study(make_study(conveyor="belts/short.yml"), base_dir=tmp_path)
+    assert str(exc.value).endswith(f"not found; did you mean '{tmp_path}/belts/short.yaml'?")
+
+
 def test_wrong_types_and_unknown_keys_name_the_field(make_study):
     with pytest.raises(Invalid, match=r'dynamics: "sometimes" is not of type "boolean"'):
         resolve_study(make_study(dynamics="sometimes"))
