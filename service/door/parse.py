@@ -305,6 +305,10 @@ def _loads_yaml(text: str, what: str, loader_class: type | None = None) -> Any:
                 raise Invalid(f"{what}: nested deeper than {MAX_DEPTH} levels{where}") from None
             if mark is not None and _tab_at(text, mark.line, mark.column) and "tab" not in problem:
                 problem += " (a tab character: YAML indents with spaces only; replace the tab)"
+            if "another document" in problem:  # PyYAML's "but found another document"
+                problem = ("a second YAML document ('---') begins here; give one study, "
+                           "conveyor or scenario per file or body (remove the '---' and what "
+                           "follows, or send each document on its own)")
             raise Invalid(f"{what}: not valid YAML{where}: {problem}") from None
         finally:
             loader.dispose()

@@ -153,6 +153,15 @@ def test_a_tab_in_the_indentation_is_named_as_a_tab(loader):
                           "body", loader)
 
 
+@pytest.mark.parametrize("loader", LOADERS)
+def test_a_second_yaml_document_is_named_as_one(loader):
+    """Two studies in one body or file ('---' between them): PyYAML says 'but found another
+    document'; the message says a second document begins there and what to do."""
+    with pytest.raises(Invalid, match=r"^body: not valid YAML at line 3, column 1: a second YAML "
+                                      r"document \('---'\) begins here; give one study"):
+        parse._loads_yaml("---\nname: a\n---\nname: b\n", "body", loader)
+
+
 @pytest.mark.parametrize("content_type", ["application/json", "application/yaml"])
 def test_a_body_with_a_utf8_byte_order_mark_reads_as_without(content_type):
     """Windows editors save UTF-8 with a byte order mark: a JSON body with one was refused
