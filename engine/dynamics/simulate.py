@@ -27,7 +27,7 @@ from beltstudy.engine.dynamics import records as R
 from beltstudy.engine.dynamics.kernel import run_cycle
 from beltstudy.engine.dynamics.model import COUPLING_CODES, System, chord_strain
 from beltstudy.engine.dynamics.profiles import LINEAR, S_CURVE, start_reference, stop_reference
-from beltstudy.engine.loop import G
+from beltstudy.engine.loop import G, _drive_given_kg
 from beltstudy.engine.statics import up3
 
 __all__ = ["TransientResult", "KernelRun", "fresh_run", "fresh_model", "simulate", "decode",
@@ -1334,6 +1334,44 @@ def _given_brake_words(sys: System, need_s: float, t_stop: float, auto: bool = F
             "set at rest holds the belt once stopped)")
 
 
+def _coast_inertia_words(sys: System, need_s: float, conveyor=None) -> str:
+    """How much inertia on the drive shafts makes a coast last ``need_s`` [s] (5 wave loop
+    times), in words: the rigid-body coast ``M v / Te`` reaches it with ``M = need_s Te / v``
+    moving [kg], so the drives' shafts must carry ``dM = M - M_now`` more at the belt line,
+    each its share; a drive's flywheel (on the pulley side of a coupling) of ``J_fw + (m_shaft
+    + share dM - m_given) (D / 2)^2`` [kg m2] gives it (its shaft carries the larger of the given
+    inertia and the pulley's shell). A trip time and the belt's elasticity only lengthen the
+    coast, so the figure is enough for a rigid belt. ``more inertia on the drive shafts`` alone
+    where Te <= 0 (the belt does not coast to rest) or no inertia is missing."""
+    te, v = float(sys.te_n), float(sys.v_design)
+    m_now = float(sys.model.control.m_tot)
+    if te <= 0.0 or v <= 0.0:
+        return "more inertia on the drive shafts"
+    m_need = need_s * te / v
+    dm = m_need - m_now
+    if dm <= 0.0:
+        return "more inertia on the drive shafts"
+    head = (f"more inertia on the drive shafts: a rigid-body coast (M v / Te) of {need_s:.3g} s "
+            f"needs M = {need_s:.3g} s x {te / 1e3:.4g} kN / {v:g} m/s = {m_need / 1e3:.4g} t "
+            f"moving, {dm / 1e3:.4g} t more than the {m_now / 1e3:.4g} t now at the belt line")
+    if conveyor is None:
+        return head
+    dr = sys.model.drives
+    parts = []
+    for k, d in enumerate(conveyor.drives):
+        share = float(dr.share[k])
+        if share <= 0.0:
+            continue
+        red = (2.0 / d.pulley_diameter_m) ** 2
+        m_shaft = float(sys.model.shafts.mass[int(dr.shaft[k])])
+        given = _drive_given_kg(d)[0]
+        j_fw = d.flywheel_kg_m2 + (m_shaft + share * dm - given) / red
+        parts.append(f"drives.{k}.flywheel_kg_m2 {math.ceil(j_fw):,} kg m2 (now "
+                     f"{d.flywheel_kg_m2:,.0f}; {share * dm / 1e3:.4g} t at the belt line, x "
+                     f"(D / 2)^2, D {d.pulley_diameter_m:g} m)")
+    return head + (f", a flywheel of {' and '.join(parts)}" if parts else "")
+
+
 def _fast_stop_words(sys: System, t_stop: float, summary: dict, steady_tmax: float,
                      conveyor=None) -> str:
     """The warning of a stop faster than 5 wave loop times (Harrison after Funke 1973): the
@@ -1389,7 +1427,7 @@ def _fast_stop_words(sys: System, t_stop: float, summary: dict, steady_tmax: flo
                f"least {_up_s(need / frac)} s (enough for a belt that follows its s-curve, at "
                f"rest from {frac:.3f} of it; a long or soft belt's mean speed comes to rest "
                "sooner and needs more: rerun the controlled stop, whose own warning names the "
-               "time to ask), or more inertia on the drive shafts")
+               f"time to ask), or {_coast_inertia_words(sys, need, conveyor)}")
     return (f"stop in {t_stop:.1f} s is faster than 5 wave loop times (5 x "
             f"{sys.wave_loop_time_s:.1f} s): a high-stress stop{seen}; {fix}")
 
