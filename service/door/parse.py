@@ -191,7 +191,7 @@ class _Frame:
         self.values, self.text = 1, 0
         self.items = 0  # children so far (a mapping's keys and values both count)
         self.key = "?"  # label of the value that comes next (mappings)
-        self.keys: dict[tuple[str, str], int] = {}  # (tag, text) of each key -> its line
+        self.keys: dict[tuple[str, str], tuple[int, int]] = {}  # (tag, text) -> line, column
 
     def child_path(self) -> str:
         label = self.key if self.mapping else str(self.items)
@@ -243,11 +243,16 @@ def _check_events(loader, what: str) -> None:
                 if tag != _MERGE:
                     first = frame.keys.get((tag, event.value))
                     if first is not None:
+                        # two keys on one line (a flow mapping {a: 1, a: 2}): their columns
+                        here = event.start_mark
+                        where = (f"lines {first[0]} and {line(event)}" if first[0] != line(event)
+                                 else f"line {first[0]}, columns {first[1]} and "
+                                      f"{here.column + 1}")
                         raise Invalid(
-                            f"{frame.path or what}: key '{event.value}' appears twice (lines "
-                            f"{first} and {line(event)}); give each key once"
+                            f"{frame.path or what}: key '{event.value}' appears twice "
+                            f"({where}); give each key once"
                         )
-                    frame.keys[(tag, event.value)] = line(event)
+                    frame.keys[(tag, event.value)] = (line(event), event.start_mark.column + 1)
                 frame.key = event.value
             anchor(event)
             if event.anchor:

@@ -363,11 +363,11 @@ def _add_axis(axes: list[Axis], axis: Axis) -> None:
     for other in axes:
         if other.target.overlaps(axis.target):
             raise Invalid(
-                f"{place(other)} and {place(axis)} both set {other.target.dotted}: give it "
+                f"{place(other)} and {place(axis)} both set {other.target.shown}: give it "
                 "in one of them"
                 if other.target == axis.target
-                else f"{place(other)} and {place(axis)} overlap ({other.target.dotted} / "
-                f"{axis.target.dotted}): give one of them"
+                else f"{place(other)} and {place(axis)} overlap ({other.target.shown} / "
+                f"{axis.target.shown}): give one of them"
             )
     axes.append(axis)
 

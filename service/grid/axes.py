@@ -58,6 +58,13 @@ class Target:
     def dotted(self) -> str:
         return ".".join([self.root, *map(str, self.path)])
 
+    @property
+    def shown(self) -> str:
+        """The field as a study file writes it (``models.din.f_carry``; ``dotted`` keeps the
+        stored root name ``model_param``)."""
+        root = "models" if self.root == "model_param" else self.root
+        return ".".join([root, *map(str, self.path)])
+
     def overlaps(self, other: Target) -> bool:
         if self.root != other.root:
             return False

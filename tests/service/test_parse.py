@@ -44,6 +44,8 @@ def test_alias_bomb_is_refused_without_expanding_it(loader):
         ("a: &x 1\nb: &x 2", r"anchor &x at line 2 is defined twice"),
         ("a: 1\nb: 2\na: 3\n", r"body: key 'a' appears twice \(lines 1 and 3\)"),
         ("g:\n  t: {x: 1, x: 2}", r"g\.t: key 'x' appears twice"),
+        # on one line: the columns, not 'lines 2 and 2'
+        ("g:\n  t: {x: 1, x: 2}", r"^g\.t: key 'x' appears twice \(line 2, columns 7 and 13\)"),
         ("a: " + "[" * 40 + "]" * 40, r"nested deeper than 32 levels at line 1, column 35"),
         ("e: !!binary aGVsbG8=", r"YAML tag !!binary at line 1 is not allowed"),
         ("a: [1, .nan]", r"a\.1: NaN is not a number"),

@@ -296,6 +296,16 @@ def test_bad_grids_are_refused_naming_the_axis(make_study, grid, message):
         resolve_study(make_study(grid=grid))
 
 
+def test_a_model_parameter_given_twice_is_named_as_the_study_writes_it(make_study):
+    """A model parameter in the grid and in a zip group was said as the store's internal
+    name ('both set model_param.din.f_carry'); it is the study's own 'models.din.f_carry'."""
+    with pytest.raises(Invalid, match=r"^grid\.models\.din\.f_carry and zip\.0\.models\.din\."
+                                      r"f_carry both set models\.din\.f_carry: give it in one "
+                                      r"of them$"):
+        resolve_study(make_study(model="din", grid={"models.din.f_carry": [0.01, 0.02]},
+                                 zip=[{"models.din.f_carry": [0.03, 0.04]}]))
+
+
 def test_a_misspelt_choice_outside_the_grid_names_the_word_meant(make_study):
     """A scenario load 'Full', a design load 'inclnes', a sample dist 'unifrom' and method
     'sobel' were refused with the valid words only (the dist in Pydantic's 'Input tag ...
