@@ -98,6 +98,15 @@ def _as_json_type(errors: list[dict]) -> str:
     # else the choice a misspelt word is nearest ("inclnes": did you mean 'inclines'?)
     hint = next((h for e in errors if (h := type_hint(e["input"], e["type"]))), "")
     hint = hint or nearest_word(errors[0]["input"], " ".join(others))
+    path = tuple(errors[0]["path"])
+    got = errors[0]["input"]
+    if not hint and _axis_at(path) == len(path) - 1 and not isinstance(got, dict | list):
+        # one value where an axis takes several: the two shapes an axis has
+        shown = got if isinstance(got, str) else as_json(got)  # "1,2" -> [1,2]
+        hint = f"an axis is a list ([{shown}]) or a range ({{start, stop, step}})"
+    elif not hint and path == ("conveyor",) and not isinstance(got, dict | list):
+        hint = ("give the path of a conveyor file as text (conveyors/slope-5pct.yaml) or the "
+                "conveyor inline")
     text += f": {hint}" if hint else ""
     return f"{_dotted(errors[0]['path'])}: {text}"
 

@@ -296,6 +296,25 @@ def test_bad_grids_are_refused_naming_the_axis(make_study, grid, message):
         resolve_study(make_study(grid=grid))
 
 
+@pytest.mark.parametrize(("over", "message"), [
+    (dict(grid={"temperature_c": 5}),
+     'grid.temperature_c: 5 is not of type "array": an axis is a list ([5]) or a range '
+     '({start, stop, step})'),
+    (dict(grid={"temperature_c": "1,2"}),
+     'grid.temperature_c: "1,2" is not of type "array": an axis is a list ([1,2]) or a range '
+     '({start, stop, step})'),
+    (dict(grid={"temperature_c": [1]}, conveyor=5),
+     'conveyor: 5 is not of type "object": give the path of a conveyor file as text '
+     '(conveyors/slope-5pct.yaml) or the conveyor inline'),
+])
+def test_a_value_of_the_wrong_shape_says_the_shapes_taken(make_study, over, message):
+    """A single value for an axis, a number for the conveyor: the type alone ('is not of type
+    "array"', '"object"') did not say a range or a path would do."""
+    with pytest.raises(Invalid) as exc:
+        resolve_study(make_study(**over))
+    assert str(exc.value) == message
+
+
 def test_a_model_parameter_given_twice_is_named_as_the_study_writes_it(make_study):
     """A model parameter in the grid and in a zip group was said as the store's internal
     name ('both set model_param.din.f_carry'); it is the study's own 'models.din.f_carry'."""
