@@ -343,6 +343,25 @@ def _prepare(conveyor, scenario, model, params, dynamics, opts, solved=None) -> 
     return prep
 
 
+def _start_note_for(steady, conveyor, scenario) -> str:
+    """The steady run's message with its start-time note (:func:`beltstudy.engine.statics.
+    start_time_note`, which judges the transient's default start) said of the run's own start
+    instead: added where only the run's start is beyond the start-up checks, left out where
+    only the default one is."""
+    from beltstudy.engine.statics import start_time_note
+
+    default = start_time_note(conveyor, steady.loop, steady.te_n)
+    own = start_time_note(conveyor, steady.loop, steady.te_n, scenario.start)
+    if not default:
+        return "; ".join(m for m in (steady.message, own) if m)
+    if own:
+        return steady.message.replace(default, own)
+    for cut in ("; " + default, default + "; ", default):
+        if cut in steady.message:
+            return steady.message.replace(cut, "", 1)
+    return steady.message
+
+
 def _complete(prep: _Prepared, scenario, system, tr, model, params, opts, remedy, check,
               t0, say=None) -> RunResult:
     """The rest of :func:`run_one` after the transient: its fields, the transient checks,
@@ -352,7 +371,7 @@ def _complete(prep: _Prepared, scenario, system, tr, model, params, opts, remedy
     summary.update(tr.summary)
     summary.update({k: (v if math.isfinite(v) else None) for k, v in transient_checks(
         steady.loop, np.array([seg[2] for seg in tr.raw["segments"]])).items()})
-    messages = [m for m in (steady.message, tr.message) if m]
+    messages = [m for m in (_start_note_for(steady, conveyor, scenario), tr.message) if m]
     # lift-off at concave curves and concave survey grade changes in the cycle
     # (engine/curves.py; null fields without either)
     cyc = system.model.cycle

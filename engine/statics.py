@@ -48,7 +48,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from beltstudy.engine.capacity import capacity as capacity_check
-from beltstudy.engine.checks import input_notes, runback_note
+from beltstudy.engine.checks import holding_warning, input_notes, runback_note
 from beltstudy.engine.checks import steady_checks as design_checks
 from beltstudy.engine.conveyor import (
     PRETENSION_MAX_KN,
@@ -200,35 +200,40 @@ def _startup_acceleration(conv: Conveyor, loop: Loop, te: float):
     return parts, inertia, a
 
 
-def start_time_note(conv: Conveyor, loop: Loop, te: float) -> str:
-    """A note when the start-up checks' force (``STARTUP_FACTOR`` x Te) is less than the
-    transient's default start asks of a rigid belt: the slip margin at start-up and the auto
-    take-up are sized for that force, so a vfd start faster than the one it accelerates the
-    belt at slips with a take-up the steady run calls enough. The s-curve (cycloid) start of
-    time T peaks at an acceleration of 2 v / T, the linear one runs at v / T; the note names
-    the start times whose rigid-body force is within the checks' (waves add to it: the
-    transient run shows them). Only for vfd drives (their start time is ``start.time_s``) on a
-    belt that motors (Te > 0); "" otherwise."""
+def start_time_note(conv: Conveyor, loop: Loop, te: float, start=None) -> str:
+    """A note when the start-up checks' force (``STARTUP_FACTOR`` x Te) is less than a start
+    asks of a rigid belt: the slip margin at start-up and the auto take-up are sized for that
+    force, so a vfd start faster than the one it accelerates the belt at slips with a take-up
+    the steady run calls enough. The s-curve (cycloid) start of time T peaks at an
+    acceleration of 2 v / T, the linear one runs at v / T; the note names the start times
+    whose rigid-body force is within the checks' (waves add to it: the transient run shows
+    them). ``start``: the run's start (:class:`~beltstudy.engine.conveyor.StartSpec`); None
+    for the steady run, which judges the transient's default start. Only for vfd drives (their
+    start time is ``start.time_s``) on a belt that motors (Te > 0), and not for a torque start
+    (its force ramps, no reference to follow); "" otherwise."""
     from beltstudy.engine.conveyor import StartSpec
 
-    if te <= 0.0 or any(d.control != "vfd" for d in conv.drives):
+    asked = start if start is not None else StartSpec()
+    if (te <= 0.0 or any(d.control != "vfd" for d in conv.drives)
+            or asked.control not in ("s-curve", "linear")):
         return ""
     _, _, a = _startup_acceleration(conv, loop, te)
-    v = float(conv.speed_m_s)
-    t_default = float(StartSpec.model_fields["time_s"].default)
     if not a > 0.0:
         return ""
-    t_s = math.ceil(2.0 * v / a)
-    if 2.0 * v / a <= t_default:
+    v = float(conv.speed_m_s)
+    peak = (2.0 if asked.control == "s-curve" else 1.0) * v / float(asked.time_s)
+    if peak <= a:
         return ""
+    which = "the default" if start is None else "this run's"
     return (f"note: the start-up checks (slip_margin_start, the auto take-up) take the drives at "
             f"{STARTUP_FACTOR:g} x Te, which accelerates this belt at {a:.3g} m/s2 (the force "
             f"above Te shared out by every moving mass): an s-curve start asks no more of a "
-            f"rigid belt from start.time_s {t_s:.0f} s (peak acceleration 2 v / T, a linear "
-            f"one from {math.ceil(v / a):.0f} s); the default {t_default:g} s s-curve asks "
-            f"{1.0 + (STARTUP_FACTOR - 1.0) * 2.0 * v / a / t_default:.2f} x Te at its peak, more "
-            "than these checks allow for (beltstudy simulate shows the start's slip and sizes "
-            "the take-up for the start asked)")
+            f"rigid belt from start.time_s {math.ceil(2.0 * v / a):.0f} s (peak acceleration "
+            f"2 v / T, a linear one from {math.ceil(v / a):.0f} s), and {which} "
+            f"{float(asked.time_s):g} s {asked.control} asks "
+            f"{1.0 + (STARTUP_FACTOR - 1.0) * peak / a:.2f} x Te at its peak, more than these "
+            "checks allow for (beltstudy simulate shows the start's slip and sizes the take-up "
+            "for the start asked)")
 
 
 def _startup_walk(conv: Conveyor, loop: Loop, dF: np.ndarray, te: float) -> np.ndarray:
@@ -756,6 +761,9 @@ def _summarise(res: SteadyResult, drives, hs_adm, bounds, shortfall_n: float,
     curved, curve_warnings = hcurve_checks(conv, loop, T)
     res.summary.update(curved)
     warnings += curve_warnings
+    held = holding_warning(conv, loop, friction_n)
+    if held:
+        warnings.append(held)
     res.warnings = warnings
     res.status = "warning" if warnings else "ok"
     # a note does not make a warning (as the transient's notes, "note: ..." after them)

@@ -59,6 +59,12 @@ def test_the_start_time_the_start_up_checks_allow_for_is_said_and_holds():
     assert st.summary["slip_margin_start"] >= 1.0 - 1e-9
     _, r = _start(_flat(), 0.75 * t_s)
     assert r.summary["drive1_slip_s"] > 1.0
+    # a transient run says it of its own start: the 54 s start asks 1 + 0.5 x 72 / 54 x Te
+    # (a = 4 x 2 / 72), the note's start time itself nothing
+    own = re.search(r"this run's 54 s s-curve asks ([\d.]+) x Te at its peak", r.summary["message"])
+    assert own, r.summary["message"]
+    assert float(own.group(1)) == round(1.0 + 0.5 * (2.0 * 4.0 / 54.0) / a, 2)
+    assert "start-up checks" not in _start(_flat(), t_s)[1].summary["message"]
 
 
 def test_no_note_where_the_default_start_is_within_the_checks():
@@ -67,6 +73,11 @@ def test_no_note_where_the_default_start_is_within_the_checks():
     drive's start is its motor's, not start.time_s: nothing is said either."""
     st = solve_steady(parse_conveyor(hand_conveyor_dict()), model="din")
     assert "start-up checks" not in st.message
+    # a transient run whose own start is beyond the checks says so (a 10 s s-curve peaks at
+    # 0.8 m/s2), one within them does not
+    fast = run_one(parse_conveyor(hand_conveyor_dict()), Scenario(
+        start={"time_s": 10}, run_s=5, stop={"mode": "coast"}), model="din")
+    assert "this run's 10 s s-curve asks" in fast.summary["message"]
     d = hand_conveyor_dict(profile=[{"length_m": 1000, "lift_m": 0}])
     d["drives"] = [{**d["drives"][0], "control": "dol"}]
     assert "start-up checks" not in solve_steady(parse_conveyor(d), model="din").message
