@@ -42,6 +42,7 @@ from beltstudy.engine.catalog import _rows
 from beltstudy.engine.loop import G, Loop, Pulley
 
 __all__ = [
+    "holding_warning",
     "C_TR",
     "GROUP_A_TENSION_SHARE",
     "SNUB_WRAP_DEG",
@@ -521,6 +522,38 @@ def runback_note(conv, loop: Loop, friction_n: float) -> str:
             "running resistance without the feed, CEMA's backstop rule) and nothing holds it "
             "(holdback: false, no brake with hold: true): a holdback on the head pulley of at "
             f"least {torque / 1e3:.3g} kNm (holdback: true) or a holding brake would avoid it")
+
+
+def holding_warning(conv, loop: Loop, friction_n: float) -> str:
+    """The warning of holding brakes (``hold: true``) whose given forces cannot hold the loaded
+    belt at rest: its net gravity pull (forward on a decline; back on an incline without a
+    holdback) less the resistance CEMA's backstop rule credits (half the running resistance
+    without the feed, :data:`HOLDBACK_FRICTION_SHARE`) is more than their forces' sum; a brake
+    holds at most its force. "" when an auto brake holds (it is sized to
+    :data:`beltstudy.engine.design.HOLD_MARGIN` x the pull), a holdback holds an incline, no
+    brake holds, or they hold."""
+    from beltstudy.engine.design import HOLD_MARGIN
+
+    holding = [(i, b) for i, b in enumerate(conv.brakes) if b.hold]
+    if not holding or any(b.force_kn == "auto" for _, b in holding):
+        return ""
+    pull = float(loop.gravity_n.sum())
+    if pull > 0.0 and conv.holdback:
+        return ""
+    credit = HOLDBACK_FRICTION_SHARE * max(friction_n, 0.0)
+    need = abs(pull) - credit
+    given = sum(float(b.force_kn) for _, b in holding) * 1e3
+    if need <= 0.0 or given >= need:
+        return ""
+    way = "forward (downhill)" if pull < 0.0 else "back"
+    names = ", ".join(f"brakes.{i} {float(b.force_kn):g} kN" for i, b in holding)
+    return (f"the holding brakes cannot hold the loaded belt at rest: {names} give "
+            f"{given / 1e3:.4g} kN in all against its net gravity pull {abs(pull) / 1e3:.4g} kN "
+            f"less {credit / 1e3:.3g} kN (half its running resistance without the feed, CEMA's "
+            f"backstop rule), {need / 1e3:.4g} kN, so it would creep {way} once stopped; "
+            f"holding brakes of at least {math.ceil(need / 1e2) / 10:g} kN in all (force_kn: "
+            f"auto sizes them {HOLD_MARGIN:g} x the pull, {HOLD_MARGIN * abs(pull) / 1e3:.4g} kN)"
+            + (" or a holdback (holdback: true)" if pull > 0.0 else "") + " would avoid it")
 
 
 def _loading_speeds(conv) -> list[tuple[str, float]]:
