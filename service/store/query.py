@@ -145,7 +145,12 @@ def column_list(text: str, columns: list[str], field: str = "columns") -> list[s
 
 def sort_key(text: str, columns: list[str], field: str = "sort") -> tuple[str, bool]:
     """``column`` (ascending) or ``-column`` (descending) as ``(column, descending)``;
-    :class:`Invalid` naming ``field`` for a column the study lacks."""
+    :class:`Invalid` naming ``field`` for a column the study lacks, or for several keys
+    (``te_kn,power_kw``: one column is taken)."""
+    if "," in text:
+        first = text.split(",")[0].strip().lstrip("-") or "te_kn"
+        raise Invalid(f"{field}: one column ('{first}' or '-{first}'); several keys are not "
+                      f"supported ('{text}'): sort in pandas")
     descending = text.startswith("-")
     column = text[1:] if descending else text
     if column not in columns:

@@ -99,6 +99,9 @@ def test_columns_and_sort_errors_name_the_parameter_and_the_fix(done):
                                          "(te_main_carry_kn,",
         ("sort", "-nope"): "sort: this study has no column 'nope'; columns: study_id",
         ("sort", ""): "query.sort: empty; give a value",
+        ("sort", "te_kn,power_kw"): "sort: one column ('te_kn' or '-te_kn'); several keys "
+                                    "are not supported ('te_kn,power_kw'): sort in pandas",
+        ("sort", "-power_kw, te_kn"): "sort: one column ('power_kw' or '-power_kw'); several",
     }
     for (name, value), message in cases.items():
         r = client.get(f"/studies/{sid}/runs", params={name: value})
