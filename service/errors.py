@@ -6,6 +6,8 @@ Routes raise these; one handler in :mod:`beltstudy.service.api.app` maps them to
 
 from __future__ import annotations
 
+import re
+
 from beltstudy.engine.textfile import file_problem, file_reason, shown_path
 
 __all__ = [
@@ -45,6 +47,17 @@ STUDY_ID_FORM = ("a study id is 16 lower-case hexadecimal digits, as POST /studi
 def bad_study_id(study_id: str) -> str:
     """The message of an id that cannot be a study's: the id, its form and the list."""
     return f"study '{shown_id(study_id)}' not found: {STUDY_ID_FORM}"
+
+
+def unknown_run(study_id: str, run_id: str) -> str:
+    """The message of a run id the study has not: the ids, what a run id is when ``run_id``
+    cannot be one (``A8D7...``: upper case), and where the study's run ids are listed."""
+    run, study = shown_id(run_id), shown_id(study_id)
+    where = f"GET /studies/{study}/runs?columns=run_id (beltstudy results {study} -o runs.csv) lists them"
+    if re.fullmatch(r"[0-9a-f]{16}", str(run_id)):
+        return f"run '{run}' of study '{study}' not found; its run ids: {where}"
+    return (f"run '{run}' of study '{study}' not found: a run id is 16 lower-case "
+            f"hexadecimal digits; {where}")
 
 
 class ServiceError(Exception):

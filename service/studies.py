@@ -44,6 +44,7 @@ from beltstudy.service.errors import (
     ServiceError,
     Unavailable,
     shown_id,
+    unknown_run,
 )
 from beltstudy.service.grid.expand import (
     DEFAULT_MODEL,
@@ -456,7 +457,7 @@ class StudyService:
         parameters), as the workers ran it."""
         spec = next((r for r in self.resolved(study_id).runs if r.run_id == run_id), None)
         if spec is None:
-            raise NotFound(f"run '{shown_id(run_id)}' of study '{shown_id(study_id)}' not found")
+            raise NotFound(unknown_run(study_id, run_id))
         return spec
 
     def run_profile(self, study_id: str, run_id: str) -> tuple[pd.DataFrame, str]:
@@ -549,7 +550,7 @@ class StudyService:
         """Raise for a run without a stored row: 409 with the study's state for a run of the
         study that has not finished (never 404 for what exists), 404 for an unknown run."""
         if not any(r.run_id == run_id for r in self.resolved(study_id).runs):
-            raise NotFound(f"run '{shown_id(run_id)}' of study '{shown_id(study_id)}' not found")
+            raise NotFound(unknown_run(study_id, run_id))
         st = self.status(study_id)
         if st["state"] in ACTIVE_STATES:
             raise Conflict(

@@ -293,6 +293,27 @@ def test_an_id_that_cannot_be_a_study_is_an_unknown_study(api, data_dir, finishe
     assert r.status_code == 404 and r.json()["message"] == f"no route GET /studies/{sid}/nothing"
 
 
+def test_an_unknown_run_id_says_what_a_run_id_is_and_where_they_are(api, data_dir,
+                                                                    finished_study, make_study):
+    """``/studies/{id}/runs/A8D7...`` (upper case) was a plain 'run ... not found' where a study
+    id of that form is told what a study id is: now the run's words say what a run id is
+    (when it cannot be one) and where the study's run ids are listed, on every run route."""
+    client = api()
+    sid = finished_study(data_dir, make_study())
+    where = f"GET /studies/{sid}/runs?columns=run_id (beltstudy results {sid} -o runs.csv) lists them"
+    real = client.get(f"/studies/{sid}/runs", params={"columns": "run_id"}).json()["runs"][0]
+    upper = real["run_id"].upper()
+    for tail in ("", "/surface", "/profile"):
+        r = client.get(f"/studies/{sid}/runs/{upper}{tail}")
+        assert r.status_code == 404, tail
+        assert r.json()["message"] == (f"run '{upper}' of study '{sid}' not found: a run id is 16 "
+                                       f"lower-case hexadecimal digits; {where}"), tail
+    r = client.get(f"/studies/{sid}/runs/ffffffffffffffff")
+    assert r.status_code == 404
+    assert r.json()["message"] == (f"run 'ffffffffffffffff' of study '{sid}' not found; its run "
+                                   f"ids: {where}")
+
+
 def test_query_errors_name_the_parameter(api, data_dir, finished_study, make_study):
     client = api()
     sid = finished_study(data_dir, make_study())
