@@ -25,7 +25,13 @@ from beltstudy.engine.curves import survey_liftoff_limits_n, transient_liftoff
 from beltstudy.engine.design import auto_sizes, summary_fields
 from beltstudy.engine.dynamics import DynamicsOptions, TransientResult, build_system, simulate
 from beltstudy.engine.dynamics.model import check_scenario
-from beltstudy.engine.dynamics.simulate import span_sag_pct, start_levers, stop_levers
+from beltstudy.engine.dynamics.simulate import (
+    heavier_takeup,
+    slip_words,
+    span_sag_pct,
+    start_levers,
+    stop_levers,
+)
 from beltstudy.engine.remedy import reads_start_time
 from beltstudy.engine.results import check_summary
 from beltstudy.engine.sizing import installed_at_full_load
@@ -400,6 +406,7 @@ def _complete(prep: _Prepared, scenario, system, tr, model, params, opts, remedy
                              else None)
         if found:
             messages.append(found)
+            _unfound_levers(conveyor, system, tr, messages, summary)
     if "failed" in (steady.status, tr.status):
         status = "failed"
     elif steady.status == "warning" or tr.status == "warning":
@@ -415,6 +422,53 @@ def _complete(prep: _Prepared, scenario, system, tr, model, params, opts, remedy
     summary["elapsed_s"] = time.perf_counter() - t0
     check_summary(summary)
     return result
+
+
+def _unfound_levers(conveyor: Conveyor, system, tr, messages: list[str], summary: dict
+                    ) -> None:
+    """After the slip remedy: the slip warnings of a start no longer offer a lever the remedy
+    searched and did not find within its limit (a heavier take-up, for a vfd start a longer
+    start), which the remedy's own sentence contradicted ("a heavier take-up ... would avoid
+    it", then "avoided by no take-up up to 4 x this one"); they say what the reruns found
+    instead. ``tr.warnings`` and the transient's message in ``messages`` are rewritten."""
+    from beltstudy.engine.remedy import START_MAX, TAKEUP_MAX
+
+    gravity = conveyor.takeup.type == "gravity"
+    tu = summary.get("slip_free_takeup_mass_kg" if gravity else "slip_free_takeup_kn")
+    searched_start = reads_start_time(conveyor)
+    start_found = summary.get("slip_free_start_time_s") is not None
+    if tu is not None and (start_found or not searched_start):
+        return
+    noun = "take-up" if gravity else "pretension"
+    for first_last in (("start", "start"), ("start", "running"), ("start", "stop")):
+        when, fix = slip_words(*first_last, system)
+        lever_tu = heavier_takeup(system, "more slack-side tension")
+        lever_st = "a longer start (start.time_s)"
+        parts = [lever_tu] + start_levers(system) + (
+            stop_levers(system) if first_last[1] == "stop" else [])
+        gone, nots, short = [], [], []
+        if tu is None:
+            gone.append(lever_tu)
+            nots.append(f"no {noun} up to {TAKEUP_MAX:g} x this one")
+            short.append("a heavier take-up" if gravity else "a higher pretension")
+        if searched_start and not start_found:
+            gone.append(lever_st)
+            nots.append(f"no start up to {START_MAX:g} x this one")
+            short.append("a longer start")
+        kept = [p for p in parts if p not in gone]
+        found = f"rerunning the start found {' and '.join(nots)} that avoids it"
+        new = (f"{_or_words(kept)} would avoid it; {' or '.join(short)} would not: {found}"
+               if kept else found)
+        old = f"{fix} would avoid it"
+        for k, w in enumerate(tr.warnings):
+            if when in w and w.endswith(old):
+                tr.warnings[k] = w[: -len(old)] + new
+                messages[:] = [m.replace(w, tr.warnings[k]) for m in messages]
+
+
+def _or_words(words: list[str]) -> str:
+    """``a``, ``a or b``, ``a, b or c``."""
+    return words[0] if len(words) == 1 else ", ".join(words[:-1]) + " or " + words[-1]
 
 
 def _late_brakes(conveyor: Conveyor, scenario: Scenario, stop_time_s: float | None

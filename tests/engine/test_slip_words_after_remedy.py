@@ -1,0 +1,50 @@
+"""A start slip's warning after the slip remedy (engine/run.py): a lever the reruns searched and
+did not find within their limit is not offered."""
+
+from __future__ import annotations
+
+from beltstudy.engine.conveyor import Scenario, parse_conveyor
+from beltstudy.engine.remedy import TAKEUP_MAX
+from beltstudy.engine.run import run_one
+
+#: A 500 m incline rising 40 m (ST1250) with one head dol drive through a constant-fill fluid
+#: coupling, its motor rated well above the need (450 kW for a Te of about 65 kN at 2.5 m/s):
+#: the coupling's stall force (1.6 x rated) slips the pulley in the start whatever take-up.
+INCLINE = {
+    "name": "incline-st1250", "speed_m_s": 2.5,
+    "belt": {"type": "ST1250", "width_m": 1.0},
+    "material": {"capacity_t_h": 1000, "density_t_m3": 1.6},
+    "profile": [{"length_m": 500, "lift_m": 40}],
+    "idlers": {"carry": {"spacing_m": 1.2, "roll_diameter_m": 0.133, "rolls": 3,
+                         "trough_deg": 35, "cema_class": "D"},
+               "return": {"spacing_m": 3.0, "roll_diameter_m": 0.133, "rolls": 1,
+                          "cema_class": "C"}},
+    "drives": [{"position": "head", "wrap_deg": 200, "friction": 0.30, "share": 1.0,
+                "pulley_diameter_m": 0.8, "inertia_kg_m2": 200, "control": "dol",
+                "coupling": "fluid", "rated_power_kw": 450}],
+    "takeup": {"type": "gravity", "position": "tail", "mass_kg": "auto", "travel_m": 6},
+    "holdback": True,
+    "accessories": {"head_kn": 1.0, "tail_kn": 0.5},
+}
+SCN = Scenario(elements=50, run_s=10, stop={"mode": "coast"})
+
+
+def test_a_take_up_the_remedy_did_not_find_is_not_offered_by_the_slip_warning():
+    """The start slips; the remedy finds no take-up up to 4 x the run's that avoids it, and
+    the slip warning said "a heavier take-up (more slack-side tension) or a fill-controlled
+    coupling ... would avoid it" beside it. It now offers the coupling alone and says what
+    the reruns found. The remedy's finding is checked by rerunning at 4 x the take-up."""
+    conv = parse_conveyor(INCLINE)
+    s = run_one(conv, SCN, model="din", remedy=True).summary
+    assert s["drive1_slip_s"] > 0.0 and s["slip_free_takeup_mass_kg"] is None
+    m = s["takeup_mass_kg"]
+    heavier = parse_conveyor({**INCLINE, "takeup": {**INCLINE["takeup"],
+                                                    "mass_kg": TAKEUP_MAX * m}})
+    assert run_one(heavier, SCN, model="din").summary["drive1_slip_s"] > 0.0
+    msg = s["message"]
+    assert "a heavier take-up (more slack-side tension)" not in msg
+    assert ("a fill-controlled coupling (coupling: fluid_fill_controlled) on the dol drives "
+            "would avoid it; a heavier take-up would not: rerunning the start found no "
+            f"take-up up to {TAKEUP_MAX:g} x this one that avoids it") in msg
+    # the remedy's own sentence is kept
+    assert f"slip in the start avoided by no take-up up to {TAKEUP_MAX:g} x this one" in msg
