@@ -36,7 +36,7 @@ import math
 import numpy as np
 
 from beltstudy.engine.conveyor import Conveyor, Scenario
-from beltstudy.engine.drives import GIVEN, RATED_POWER_FACTOR, rated_power_kw
+from beltstudy.engine.drives import GIVEN, RATED_POWER_FACTOR, figures, rated_power_kw
 from beltstudy.engine.loop import (
     MOTOR_INERTIA_SHARE,
     G,
@@ -313,7 +313,7 @@ def _given_grip(conv: Conveyor, steady: SteadyResult) -> str:
         need = _bisect_up(lambda t, n=node: walk.room_n(n, fixed, takeup_n=t) >= 0.0,
                           walk.takeup_n, 100.0 * walk.takeup_n + 1e6)
         if need is not None:
-            said += (f" (a take-up of {2.0 * need / G:,.0f} kg, takeup.mass_kg,"
+            said += (f" (a take-up of {figures(2.0 * need / G, thousands=True)} kg, takeup.mass_kg,"
                      if conv.takeup.type == "gravity" else
                      f" (a take-up pretension of {need / 1e3:.4g} kN, takeup.pretension_kn,")
             said += " would let it pass that force)"

@@ -120,10 +120,14 @@ def kw_at_least(kw: float) -> int:
     return math.ceil(kw * (1.0 - 1e-9))
 
 
-def _kw_words(kw: float) -> str:
-    """A shortfall [kW] as words: whole kilowatts, two figures below half a kilowatt (not 'short by
-    0 kW')."""
-    return f"{kw:.0f}" if kw >= 0.5 else f"{kw:.2g}"
+def figures(value: float, thousands: bool = False) -> str:
+    """A quantity in a message [any unit]: whole units from 10 up, two significant figures
+    below, so a small value keeps its figures (a motor rated 0.2 kW was 'rated 0 kW', a need
+    of 0.7 kW 'short by 1 kW') and a large one is not cut to powers of ten (17000, not
+    '1.7e+04' as ``:.2g`` gives); ``thousands``: whole units with separators (17,000)."""
+    if abs(value) >= 10 or not math.isfinite(value):
+        return f"{value:,.0f}" if thousands else f"{value:.0f}"
+    return f"{value:.2g}"
 
 
 def steady_checks(conv, forces_n, speed_m_s: float, te_n: float, rated_kw
@@ -161,9 +165,9 @@ def steady_checks(conv, forces_n, speed_m_s: float, te_n: float, rated_kw
             how = ("holds back" if f < 0 else "needs")
             regen = ", regenerating: x efficiency" if f < 0 else " / efficiency"
             warnings.append(
-                f"drive {i} ({d.where}) {how} {need:.0f} kW at {speed_m_s:g} m/s "
+                f"drive {i} ({d.where}) {how} {figures(need)} kW at {speed_m_s:g} m/s "
                 f"({d.share:g} x Te {te_n / 1e3:.1f} kN{regen} {eta:g}), rated "
-                f"{rated:.0f} kW: short by {_kw_words(need - rated)} kW (utilisation "
+                f"{figures(rated)} kW: short by {figures(need - rated)} kW (utilisation "
                 f"{need / rated:.2f}); a motor of at least {kw_at_least(need)} kW "
                 f"(drives.{i - 1}.rated_power_kw), or the load shared by more drives, "
                 "would avoid it")
@@ -174,7 +178,7 @@ def steady_checks(conv, forces_n, speed_m_s: float, te_n: float, rated_kw
         if d.control == "vfd" and abs(float(f)) > cap * (1.0 + 1e-9) and math.isfinite(cap):
             warnings.append(
                 f"drive {i} ({d.where}) force limit {cap / 1e3:.1f} kN (torque_limit "
-                f"{d.torque_limit:g} x rated {rated:.0f} kW / {speed_m_s:g} m/s) is below its "
+                f"{d.torque_limit:g} x rated {figures(rated)} kW / {speed_m_s:g} m/s) is below its "
                 f"running force {abs(float(f)) / 1e3:.1f} kN: it cannot hold the belt at "
                 f"design speed; a torque_limit of at least "
                 f"{math.ceil(abs(float(f)) / (rated * 1e3 / speed_m_s) * 100 - 1e-6) / 100:.2f} "
@@ -282,7 +286,7 @@ def transient_checks(names, drv, rated_n, limit_n, vfd, speed_m_s: float, start_
         # force; a force held at the torque limit shows only a lower bound of the need
         kw = max(fmax, abs(f_run) if f_run is not None else 0.0) * speed_m_s / 1e3
         if at_limit:
-            within = (f"more than {kw:.0f} kW: its force was held at its torque limit, so the "
+            within = (f"more than {figures(kw)} kW: its force was held at its torque limit, so the "
                       "run does not show how much more it needs")
         else:
             within = f"at least {kw_at_least(kw)} kW keeps it within"

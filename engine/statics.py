@@ -59,7 +59,7 @@ from beltstudy.engine.conveyor import (
 )
 from beltstudy.engine.curves import junction_checks
 from beltstudy.engine.curves import steady_checks as curve_checks
-from beltstudy.engine.drives import rated_power_kw
+from beltstudy.engine.drives import figures, rated_power_kw
 from beltstudy.engine.drives import steady_checks as drive_checks
 from beltstudy.engine.friction import get_model, temperature_note
 from beltstudy.engine.hcurves import hcurve_checks
@@ -593,8 +593,8 @@ def _slip_words(res: SteadyResult, drives, slip_margins, start_margins, breakawa
                 need = (res.takeup_tension_n + shortfall_n) * 2 / G
                 # said as the mass itself: the run's mass may already be an auto one held
                 # by a study's design basis, where "use mass_kg: auto" would be no fix
-                fix = (f"; take-up mass {res.takeup_mass_kg:.0f} kg is below the "
-                       f"{need:.0f} kg needed: a takeup.mass_kg of {math.ceil(need):.0f} kg "
+                fix = (f"; take-up mass {figures(res.takeup_mass_kg)} kg is below the "
+                       f"{figures(need)} kg needed: a takeup.mass_kg of {math.ceil(need):.0f} kg "
                        "or more would avoid it")
             elif shortfall_n > 0:
                 need_kn = up3((res.takeup_tension_n + shortfall_n) / 1e3)
@@ -718,8 +718,8 @@ def _summarise(res: SteadyResult, drives, hs_adm, bounds, shortfall_n: float,
     if cap.fill_pct > 100.0:
         warnings.append(
             f"fill_pct {cap.fill_pct:.0f} %: the design volume flow "
-            f"({cap.volume_flow_m3_h:.0f} m3/h) exceeds what the belt's cross-section carries "
-            f"at {v:g} m/s ({cap.capacity_m3_h:.0f} m3/h, ISO 5048); widen or trough the belt "
+            f"({figures(cap.volume_flow_m3_h)} m3/h) exceeds what the belt's cross-section carries "
+            f"at {v:g} m/s ({figures(cap.capacity_m3_h)} m3/h, ISO 5048); widen or trough the belt "
             "deeper, or run faster")
     warnings += _slip_words(res, drives, slip_margins, start_margins, breakaway, shortfall_n)
     warnings += _takeup_beyond_words(res, drives)
@@ -828,7 +828,7 @@ def _safety_words(loop: Loop, belt, sf: float, sf_min: float, t_max: float, s_m:
     need_kn_m = sf_min * t_max / belt.width_m / 1e3
     return (f"belt safety factor {sf:.2f} is below the minimum {sf_min:.2f} (t_max "
             f"{t_max / 1e3:.1f} kN {place_words(loop, s_m)}; belt rating "
-            f"{belt.rating_n / 1e3:.0f} kN, {belt.rating_kn_m:.0f} kN/m x {belt.width_m:g} m): a "
+            f"{figures(belt.rating_n / 1e3)} kN, {figures(belt.rating_kn_m)} kN/m x {belt.width_m:g} m): a "
             f"belt rated at least {math.ceil(need_kn_m)} kN/m at this width (belt.type: auto "
             "picks the lightest catalogue belt that passes), or a lower largest tension (a take-up no heavier than the slip "
             "and sag limits need, drives spread along the belt) would avoid it")

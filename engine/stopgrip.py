@@ -32,6 +32,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from beltstudy.engine.drives import figures
 from beltstudy.engine.loop import G, Loop, rotating_parts
 
 __all__ = ["BRAKE_GRIP_MARGIN", "FRONT_FACTOR", "StopWalk", "grip_limits", "grip_remedies",
@@ -272,7 +273,7 @@ def grip_remedies(conv, steady, walk: StopWalk, nodes: list[int], fixed: dict,
                                       for n in dict.fromkeys(nodes)), t0, 100.0 * t0 + 1e6)
     if t_need is not None:
         if conv.takeup.type == "gravity":
-            out.append(f"a take-up of {2.0 * t_need / G:,.0f} kg (takeup.mass_kg)")
+            out.append(f"a take-up of {figures(2.0 * t_need / G, thousands=True)} kg (takeup.mass_kg)")
         else:
             out.append(f"a take-up pretension of {t_need / 1e3:.4g} kN")
     # more wrap on each braked pulley

@@ -411,3 +411,41 @@ def test_a_regenerating_belt_overloaded_in_its_stop_is_offered_the_stop_that_hol
     assert "a longer start" not in s["message"]
     _, f_stop2, _ = _regen_stop(float(m.group(3)))
     assert f_stop2 == pytest.approx(rated, rel=0.10)
+
+
+def _small_conveyor(**over) -> dict:
+    """A 20 m conveyor rising 1 m at 1 m/s, 20 t/h, no accessories: Te 1.85 kN (din), a
+    drive of about 1.9 kW."""
+    d = hand_conveyor_dict(speed_m_s=1.0, profile=[{"length_m": 20, "lift_m": 1}],
+                           material={"capacity_t_h": 20, "density_t_m3": 1.0},
+                           accessories={"head_kn": 0.0, "tail_kn": 0.0},
+                           drives=[{"position": "head", "wrap_deg": 200, "friction": 0.35,
+                                    "share": 1.0, "pulley_diameter_m": 0.5,
+                                    "rated_power_kw": 0.2}])
+    d.update(over)
+    return d
+
+
+def test_small_powers_and_masses_keep_their_figures_in_the_words():
+    """A motor rated 0.2 kW was 'rated 0 kW' (twice: the shortfall and the force limit), the
+    1.94 kW it needs '2 kW', and a 0.4 kg take-up '0 kg is below the 519 kg needed': a value
+    below 10 now keeps two figures, one from 10 up stays whole."""
+    st = solve_steady(parse_conveyor(_small_conveyor()), model="din", n_elements=40)
+    assert st.summary["drive1_power_required_kw"] == pytest.approx(1.94, abs=0.005)
+    assert "drive 1 (head) needs 1.9 kW at 1 m/s" in st.message
+    assert "rated 0.2 kW: short by 1.7 kW (utilisation 9.72)" in st.message
+    assert "(torque_limit 1.5 x rated 0.2 kW / 1 m/s)" in st.message
+    light = _small_conveyor(takeup={"type": "gravity", "position": "tail", "mass_kg": 0.4})
+    light["drives"][0]["rated_power_kw"] = 5
+    st = solve_steady(parse_conveyor(light), model="din", n_elements=40)
+    assert "take-up mass 0.4 kg is below the 519 kg needed" in st.message
+
+
+def test_figures_in_words():
+    from beltstudy.engine.drives import figures
+
+    assert [figures(x) for x in (0.2, 0.04321, 1.94, 9.96, 12.6, 998.3, 17000.0, 0.0)] == [
+        "0.2", "0.043", "1.9", "10", "13", "998", "17000", "0"]
+    assert figures(17000.0, thousands=True) == "17,000"
+    assert figures(0.35, thousands=True) == "0.35"
+    assert figures(-0.2) == "-0.2" and figures(float("inf")) == "inf"
