@@ -48,3 +48,26 @@ def test_a_take_up_the_remedy_did_not_find_is_not_offered_by_the_slip_warning():
             f"take-up up to {TAKEUP_MAX:g} x this one that avoids it") in msg
     # the remedy's own sentence is kept
     assert f"slip in the start avoided by no take-up up to {TAKEUP_MAX:g} x this one" in msg
+
+
+def test_a_fill_controlled_coupling_s_start_slip_is_offered_a_fill_time_that_holds():
+    """The incline above through a fill-controlled coupling (fill 20 s) slips in the start;
+    the warning said "a slower coupling fill (a longer coupling_fill_s)" with no amount. It
+    now names a fill time, a rigid-body estimate (engine/run.py _fill_estimates); rerun with
+    it, on the run's mesh and one twice as fine, the start does not slip."""
+    import re
+
+    data = {**INCLINE, "drives": [{**INCLINE["drives"][0], "coupling": "fluid_fill_controlled",
+                                   "coupling_fill_s": 20}]}
+    s = run_one(parse_conveyor(data), SCN, model="din").summary
+    assert s["drive1_slip_s"] > 0.0
+    m = re.search(r"a slower coupling fill \(drives\.0\.coupling_fill_s, now 20 s; about (\d+) s "
+                  r"keeps the start force within the pulley's grip \(.*?\): a rigid-body "
+                  r"estimate, rerun to confirm\)", s["message"])
+    assert m, s["message"]
+    fill = float(m.group(1))
+    assert fill > 20.0
+    rerun = parse_conveyor({**data, "drives": [{**data["drives"][0], "coupling_fill_s": fill}]})
+    for n in (50, 100):
+        scn = SCN.model_copy(update={"elements": n})
+        assert run_one(rerun, scn, model="din").summary["drive1_slip_s"] == 0.0
