@@ -55,7 +55,7 @@ from beltstudy.service.door.sample import sobol_base
 from beltstudy.service.web.verdicts import CAUSES, expand
 
 __all__ = ["FIGURES", "LIMITS", "QUANTILES", "summarise", "wilson", "distribution",
-           "sensitivity", "small_sample_note", "CONFIDENCE", "SOBOL_N_MIN"]
+           "sensitivity", "small_sample_note", "index_text", "CONFIDENCE", "SOBOL_N_MIN"]
 
 #: The deciding figures (SPEC issue 30: peak tension per phase, power, stop time, lowest
 #: tension, slip margin, safety factor; with sag and slack, the limits' own figures). A figure
@@ -327,6 +327,20 @@ def _g(value: Any) -> str:
     return "-" if value is None else f"{value:.4g}"
 
 
+#: An index or rank correlation smaller than this in magnitude is round-off of zero (SALib's
+#: total index of an input a figure does not read came out 2.031e-30, or -1e-31).
+ROUND_OFF = 1e-12
+
+
+def index_text(value: Any, digits: int = 4) -> str:
+    """A sensitivity index (S1, ST) or rho as text: ``digits`` significant figures, ``0`` for
+    round-off of zero (``|value| < ROUND_OFF``, either sign), ``-`` for none. The JSON keeps
+    the float."""
+    if value is None or not math.isfinite(value):
+        return "-"
+    return "0" if abs(value) < ROUND_OFF else f"{value:.{digits}g}"
+
+
 def format_text(result: dict) -> str:
     """The answer as text: per grid cell, each figure's distribution and top-ranked inputs,
     then the exceedance probabilities."""
@@ -350,7 +364,8 @@ def format_text(result: dict) -> str:
             q = d["quantiles"]
             sens = cell["sensitivity"][col]
             key = "ST" if sens["method"].startswith("sobol") else "rho"
-            rank = ", ".join(f"{n} {_g(sens['axes'][n][key])}" for n in sens["ranking"][:3])
+            rank = ", ".join(f"{n} {index_text(sens['axes'][n][key])}"
+                             for n in sens["ranking"][:3])
             lines.append(f"  {col:<30} {d['unit']:<5} {d['mean']:>8.4g} {d['sd']:>8.3g} "
                          f"{q['p05']:>8.4g} {q['p50']:>8.4g} {q['p95']:>8.4g}  {key}: {rank}")
             if sens.get("note"):

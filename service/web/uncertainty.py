@@ -12,7 +12,7 @@ from typing import Any
 import numpy as np
 import pandas as pd
 
-from beltstudy.service.uncertainty import summarise
+from beltstudy.service.uncertainty import index_text, summarise
 
 __all__ = ["uncertainty_section", "histograms_figure", "ranking_figure", "FIGURE_COLUMNS"]
 
@@ -90,7 +90,8 @@ def _cell_tables(cell: dict, table, n_cell) -> str:
         q = d["quantiles"]
         sens = cell["sensitivity"][col]
         key = "ST" if sens["method"].startswith("sobol") else "rho"
-        rank = ", ".join(f"{n} ({_g(sens['axes'][n][key], 2)})" for n in sens["ranking"][:3])
+        rank = ", ".join(f"{n} ({index_text(sens['axes'][n][key], 2)})"
+                        for n in sens["ranking"][:3])
         rows.append([f"<code>{_e(col)}</code>", _e(d["unit"]), n_cell(d["mean"]),
                      n_cell(d["sd"]), n_cell(q["p05"]), n_cell(q["p50"]), n_cell(q["p95"]),
                      _e(rank)])

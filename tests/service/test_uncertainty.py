@@ -237,3 +237,24 @@ def test_a_run_merged_over_sample_points_stands_for_each(data_dir, make_settings
     s = cells["cema"]["sensitivity"]["power_kw"]["axes"]
     assert abs(s["models.din.f_carry"]["ST"]) < 1e-9 and s["temperature_c"]["ST"] > 0.9
     assert "without a run yet" not in format_text(out)
+
+
+def test_round_off_indices_are_printed_as_zero():
+    """``beltstudy uncertainty`` printed the total index of an input a figure does not read as
+    SALib's round-off ('temperature_c 2.031e-30'); the text and the report's table now say 0
+    for anything below 1e-12 in magnitude, either sign, and the JSON keeps the float."""
+    from beltstudy.service.web.uncertainty import _cell_tables
+
+    study, runs = _linear_study(16 * 5, "sobol")
+    out = summarise(study.to_json(), runs, figures=("y",))
+    sens = out["cells"][0]["sensitivity"]["y"]
+    first, second, third = sens["ranking"]
+    sens["axes"][second]["ST"], sens["axes"][third]["ST"] = 2.031e-30, -1e-31
+    text = format_text(out)
+    assert "e-30" not in text and "e-31" not in text
+    assert f"{second} 0, {third} 0" in text
+    assert f"ST: {first} {sens['axes'][first]['ST']:.4g}," in text
+    page = _cell_tables(out["cells"][0], lambda head, rows, what: str(rows),
+                        lambda v: str(v))
+    assert f"{second} (0), {third} (0)" in page and "e-30" not in page
+    assert sens["axes"][second]["ST"] == 2.031e-30  # the stored value is the float
