@@ -43,6 +43,7 @@ from beltstudy.engine.loop import G, Loop, Pulley
 
 __all__ = [
     "holding_warning",
+    "HOLD_MARGIN",
     "C_TR",
     "GROUP_A_TENSION_SHARE",
     "SNUB_WRAP_DEG",
@@ -92,6 +93,11 @@ BEARING_LIFE_EXPONENT = 3.0
 #: support.overlandconveyor.com, Backstops). DIN 22101's reduced friction for the holding case
 #: was not checked (unverified).
 HOLDBACK_FRICTION_SHARE = 0.5
+
+#: Minimum holding force of an auto-sized brake as a multiple of the net gravity pull of the
+#: loaded belt [-] (a holding margin, an estimate; :mod:`beltstudy.engine.design` sizes with
+#: it, :func:`holding_warning` names it).
+HOLD_MARGIN = 1.2
 #: Utilisation bands of the DIN pulley table (upper bounds, columns of pulleys.csv).
 _DIN_BANDS = ((0.3, "30"), (0.6, "60"), (math.inf, "100"))
 
@@ -530,10 +536,8 @@ def holding_warning(conv, loop: Loop, friction_n: float) -> str:
     holdback) less the resistance CEMA's backstop rule credits (half the running resistance
     without the feed, :data:`HOLDBACK_FRICTION_SHARE`) is more than their forces' sum; a brake
     holds at most its force. "" when an auto brake holds (it is sized to
-    :data:`beltstudy.engine.design.HOLD_MARGIN` x the pull), a holdback holds an incline, no
+    :data:`HOLD_MARGIN` x the pull), a holdback holds an incline, no
     brake holds, or they hold."""
-    from beltstudy.engine.design import HOLD_MARGIN
-
     holding = [(i, b) for i, b in enumerate(conv.brakes) if b.hold]
     if not holding or any(b.force_kn == "auto" for _, b in holding):
         return ""

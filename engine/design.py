@@ -35,6 +35,7 @@ import math
 
 import numpy as np
 
+from beltstudy.engine.checks import HOLD_MARGIN
 from beltstudy.engine.conveyor import Conveyor, Scenario
 from beltstudy.engine.drives import GIVEN, RATED_POWER_FACTOR, figures, rated_power_kw
 from beltstudy.engine.loop import (
@@ -58,9 +59,6 @@ __all__ = ["auto_sizes", "summary_fields", "RATED_POWER_FACTOR", "HOLD_MARGIN",
            "pulley_reduced_mass_kg", "rated_power_kw", "brake_forces", "brake_force_auto",
            "brake_stop_time", "brake_grip_kn", "brake_kn_within_grip", "GIVEN", "takeup_lever"]
 
-#: Minimum holding force of an auto-sized brake as a multiple of the net gravity pull of the
-#: loaded belt [-] (a holding margin, an estimate).
-HOLD_MARGIN = 1.2
 
 
 def moving_mass_kg(conv: Conveyor, steady: SteadyResult) -> float:
