@@ -20,6 +20,7 @@ import pandas as pd
 
 from beltstudy.engine import design
 from beltstudy.engine.catalog import resolve_belt
+from beltstudy.engine.checks import HOLD_MARGIN
 from beltstudy.engine.conveyor import SAG_LIMIT_RTOL
 from beltstudy.engine.drives import COUPLING_NEXT, transient_checks
 from beltstudy.engine.dynamics import codes as C
@@ -829,9 +830,21 @@ def _brake_past_full(sys: System, i: int, t_last: float) -> tuple[str, str] | No
     if t_last <= t_full:
         return None
     force_kn = float(np.sum(brakes.force[on])) / 1e3
-    return (f"{heavier_takeup(sys, 'more slack-side tension')}, part of the brake force on a "
-            f"brake on another pulley (brakes[].position or drive) or less brake force on this "
-            f"one (now {force_kn:.4g} kN; a given force_kn)",
+    # the brakes' force holds the loaded belt at rest too: less of it on this pulley only down
+    # to the holding size (HOLD_MARGIN x the net gravity pull), none below
+    floor_kn = HOLD_MARGIN * abs(float(np.sum(sys.model.nodes.gravity))) / 1e3
+    others_kn = float(np.sum(brakes.force)) / 1e3 - force_kn
+    least_kn = max(floor_kn - others_kn, 0.0)
+    if least_kn < force_kn * (1.0 - 1e-6):
+        less = (f" or less brake force on this one (now {force_kn:.4g} kN; a given force_kn"
+                + (f" of at least {up3(least_kn):g} kN, which with the others holds the loaded "
+                   f"belt at rest, {HOLD_MARGIN:g} x its net gravity pull)" if least_kn > 0.0
+                   else ")"))
+    else:
+        less = (f" (not less force on this one: its {force_kn:.4g} kN is what holds the loaded "
+                f"belt at rest, {HOLD_MARGIN:g} x its net gravity pull)")
+    return (f"{heavier_takeup(sys, 'more slack-side tension')} or part of the brake force on a "
+            f"brake on another pulley (brakes[].position or drive){less}",
             f": the belt still slid after the brakes on this pulley reached full force (t = "
             f"{t_full:.1f} s), so a longer ramp (brakes[].ramp_s) would not")
 

@@ -61,7 +61,26 @@ def test_a_slip_past_the_brakes_full_force_is_not_offered_a_longer_ramp():
     assert "a longer brake ramp" not in words
     assert f"reached full force (t = {t_full:.1f} s)" in words
     assert "part of the brake force on a brake on another pulley" in words
-    assert f"(now {hold_kn:.4g} kN" in words
+    # the auto brake is at its holding size: less force on it would not hold the belt at rest
+    assert (f"(not less force on this one: its {hold_kn:.4g} kN is what holds the loaded belt "
+            "at rest, 1.2 x its net gravity pull)") in words
+    assert "or less brake force on this one" not in words
     # the ramp indeed does not cure it: five times longer, the belt slides as long or longer
     _, res5 = _run(5.0)
     assert res5.summary["drive1_slip_s"] >= 0.9 * res.summary["drive1_slip_s"] > 5.0
+
+
+def test_a_given_brake_above_its_holding_size_is_offered_less_force_down_to_it():
+    """A given 150 kN brake where 1.2 x the net gravity pull is 112.11 kN: less force on it is
+    offered down to the holding size, rounded up (113 kN), not below."""
+    d = _decline(1.0)
+    d["brakes"] = [{**d["brakes"][0], "force_kn": 150}]
+    conv = parse_conveyor(d)
+    scn = Scenario(start={"control": "s-curve", "time_s": 30}, run_s=10,
+                   stop={"mode": "brake", "time_s": 20}, elements=60)
+    st = solve_steady(conv, model="din", load=scn.load, n_elements=60)
+    sys_ = build_system(conv, scn, st, DynamicsOptions())
+    msg = simulate(sys_, steady_summary=st.summary, conveyor=conv).message
+    assert ("or less brake force on this one (now 150 kN; a given force_kn of at least 113 kN, "
+            "which with the others holds the loaded belt at rest, 1.2 x its net gravity pull)"
+            ) in msg, msg
