@@ -310,12 +310,36 @@ def grid_points(axes: list[Axis]) -> int:
     return math.prod(len(axes[d[0]].values) for d in _dimensions(axes))
 
 
+def _refuse_unread_axes(study: ResolvedStudy, canon: list[list]) -> None:
+    """A sample axis that no run of the study reads: every draw that differs only in it was
+    merged into one run, so its column is null in every row (a stop time drawn over coast
+    stops only, which do not read it) and the sample's statistics describe nothing it drew;
+    :class:`Invalid` naming it and what would read it. A grid axis is merged as SPEC 6.3 says
+    (points whose runs are identical are one run, the column null), and a sample axis some
+    runs read stays."""
+    for i, axis in enumerate(study.axes):
+        if not axis.sample or len({canonical_json(v) for v in canon[i]}) < 2:
+            continue
+        if any(run.axes.get(axis.column) is not None for run in study.runs):
+            continue
+        where = "sample.axes"
+        path = ".".join((axis.target.root, *axis.target.path))
+        hint = ""
+        if path == "scenario.stop.time_s":
+            hint = (" (a coast stop does not read its stop time, nor a brake stop on brakes "
+                    "whose forces are all given: vary it over controlled stops or auto brakes)")
+        raise Invalid(f"{where}.{axis.name}: no run of this study reads {path}{hint}, so its "
+                      f"{len(canon[i])} draws are one run and the sample varies nothing there; "
+                      "sample a field the runs read, or drop the axis")
+
+
 def finish(study: ResolvedStudy) -> ResolvedStudy:
     """Expand a study built at the door: its runs (identical points merged), the design
     basis, each axis's values as validated, and the study id. Returns ``study``."""
     study.runs, canon, study.designs = _expand(study)
     axes = study.axes
     study.total = len(study.runs)
+    _refuse_unread_axes(study, canon)
     for i, axis in enumerate(axes):
         keys = [canonical_json(v) for v in canon[i]]
         if not axis.sample and len(set(keys)) != len(keys):

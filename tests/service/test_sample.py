@@ -179,3 +179,20 @@ def test_a_steady_study_refuses_a_sample_axis_its_runs_never_read(axis):
     resolve_study(sampled(n=8, axes={"temperature_c": {"dist": "uniform", "low": 0,
                                                        "high": 20}}),
                   studies_dir=ROOT / "studies")
+
+
+def test_a_sample_axis_no_run_reads_is_refused():
+    """Drawing the stop time of a study whose runs all coast to rest made every draw one run
+    (a coast stop does not read its stop time): 4 points, 1 run and an uncertainty answer
+    with sd 0. It is refused, naming the axis and what reads it; the same axis over
+    controlled stops is drawn."""
+    axes = {"stop_time_s": {"dist": "uniform", "low": 10, "high": 20}}
+    with pytest.raises(Invalid, match=r"^sample\.axes\.stop_time_s: no run of this study reads "
+                                      r"scenario\.stop\.time_s \(a coast stop does not read"):
+        resolve_study(sampled(n=4, axes=axes, dynamics=True,
+                              scenario={"stop": {"mode": "coast"}}),
+                      studies_dir=ROOT / "studies")
+    study = resolve_study(sampled(n=4, axes=axes, dynamics=True,
+                                  scenario={"stop": {"mode": "controlled"}}),
+                          studies_dir=ROOT / "studies")
+    assert study.total == 4
