@@ -49,6 +49,7 @@ from beltstudy.service.web.uncertainty import uncertainty_section
 from beltstudy.service.web.verdicts import (
     cause_groups,
     clauses,
+    finding_clauses,
     never_going,
     study_limits,
     verdict_rows,
@@ -478,7 +479,7 @@ def _cause_table(cause, part: pd.DataFrame, cols: list[str], axes: list[str]) ->
         part.head(MAX_CAUSE_ROWS)
     rows = []
     for _, r in shown.iterrows():
-        said = clauses(r.get("message"), cause.words)
+        said = finding_clauses(r.get("message"), cause.words)
         extra = cause.explain(r) if cause.explain else ""
         if extra and not any(extra in c for c in said):
             said.insert(0, extra)

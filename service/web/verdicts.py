@@ -351,6 +351,15 @@ def clauses(message: Any, words: str) -> list[str]:
     return [c for c in parts if c and re.search(words, c, re.IGNORECASE)]
 
 
+def finding_clauses(message: Any, words: str) -> list[str]:
+    """:func:`clauses` matching ``words``, its warnings only where one matches: a note
+    (``note: ...``) names checks and fields (``slip_margin_start``) without being a finding,
+    so it is what a run says of a cause only when no warning of the run matches."""
+    found = clauses(message, words)
+    said = [c for c in found if not c.startswith("note: ")]
+    return said or found
+
+
 def cause_groups(runs: pd.DataFrame) -> list[tuple[Cause, pd.DataFrame, list[str]]]:
     """Every cause with runs in it: ``(cause, its rows, the figure columns present)``."""
     out = []

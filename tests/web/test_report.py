@@ -364,6 +364,22 @@ def test_a_clause_is_cut_only_outside_parentheses_and_a_belt_remedy_is_no_overlo
     assert clauses(f"{sf}; {over}", words) == over.split("; ")
 
 
+def test_a_failure_group_shows_the_warning_before_a_note_that_names_its_check():
+    """A run that slipped and carries the start-time note (which names slip_margin_start):
+    the 'slipped' group showed the note as what the run says; it shows the slip warning, and
+    a note only where no warning matches."""
+    from beltstudy.service.web.verdicts import finding_clauses
+
+    note = ("note: the start-up checks (slip_margin_start, the auto take-up) take the drives "
+            "at 1.5 x Te, which accelerates this belt at 0.121 m/s2 (the force above Te shared "
+            "out by every moving mass)")
+    slip = ("drive 1 (head) slipped on its pulley during the start: from t = 5.0 to 10.1 s, "
+            "5.12 s in all (lowest slip margin 1.00)")
+    words = next(c for c in CAUSES if c.key == "slip").words
+    assert finding_clauses(f"{note}; {slip}", words) == [slip]
+    assert finding_clauses(note, words) == [note]
+
+
 def test_every_kind_of_clause_is_in_the_report_however_many_runs(web):
     """The runs table stops at its first rows and the failure groups show their own causes:
     the last section lists every kind of clause (its words with the numbers replaced) with
