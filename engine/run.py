@@ -26,6 +26,7 @@ from beltstudy.engine.design import auto_sizes, summary_fields
 from beltstudy.engine.dynamics import DynamicsOptions, TransientResult, build_system, simulate
 from beltstudy.engine.dynamics.model import check_scenario
 from beltstudy.engine.dynamics.simulate import (
+    _or,
     heavier_takeup,
     slip_words,
     span_sag_pct,
@@ -489,10 +490,10 @@ def _unfound_levers(conveyor: Conveyor, system, tr, messages: list[str], summary
     if tu is not None and (start_found or not searched_start):
         return
     noun = "take-up" if gravity else "pretension"
+    lever_tu = heavier_takeup(system, "more slack-side tension")
+    lever_st = "a longer start (start.time_s)"
     for first_last in (("start", "start"), ("start", "running"), ("start", "stop")):
         when, fix = slip_words(*first_last, system)
-        lever_tu = heavier_takeup(system, "more slack-side tension")
-        lever_st = "a longer start (start.time_s)"
         parts = [lever_tu] + start_levers(system) + (
             stop_levers(system) if first_last[1] == "stop" else [])
         gone, nots, short = [], [], []
@@ -506,18 +507,13 @@ def _unfound_levers(conveyor: Conveyor, system, tr, messages: list[str], summary
             short.append("a longer start")
         kept = [p for p in parts if p not in gone]
         found = f"rerunning the start found {' and '.join(nots)} that avoids it"
-        new = (f"{_or_words(kept)} would avoid it; {' or '.join(short)} would not: {found}"
+        new = (f"{_or(kept)} would avoid it; {' or '.join(short)} would not: {found}"
                if kept else found)
         old = f"{fix} would avoid it"
         for k, w in enumerate(tr.warnings):
             if when in w and w.endswith(old):
                 tr.warnings[k] = w[: -len(old)] + new
                 messages[:] = [m.replace(w, tr.warnings[k]) for m in messages]
-
-
-def _or_words(words: list[str]) -> str:
-    """``a``, ``a or b``, ``a, b or c``."""
-    return words[0] if len(words) == 1 else ", ".join(words[:-1]) + " or " + words[-1]
 
 
 def _late_brakes(conveyor: Conveyor, scenario: Scenario, stop_time_s: float | None
