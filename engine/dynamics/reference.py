@@ -431,7 +431,9 @@ def _phase(model: Model, rs, sh, dr, brk):
     rs.pi = rs.phase == C.RUN and ctl.vfd and cyc.formulation != C.SUPPORT and (
         cyc.start_ctrl != FORCE or rs.stopping)
     if rs.pi and not rs.pi_started:
-        rs.integ, rs.pi_started = rs.hold_f, True
+        # bumpless switch-on: the loop's output starts at the holding force
+        rs.integ = rs.hold_f - ctl.kp * (rs.v_ref - sh.vs[drives.shaft[ctl.master]])
+        rs.pi_started = True
     if cyc.start_ctrl == TORQUE and not rs.stopping and rs.phase == C.RUN:
         ramp = min(max((t - cyc.t_pre) / cyc.t_start, 0.0), 1.0)
         dr.lim[:] = drives.lim0 * ramp + drives.share * abs(rs.hold_f) * (1.0 - ramp)

@@ -596,6 +596,29 @@ def test_a_hold_a_wave_away_from_the_master_lets_the_belt_run_ahead_and_says_so(
     assert "ran ahead" not in swapped.summary["message"]
 
 
+
+def test_the_speed_loop_switches_on_without_a_bump():
+    """Bumpless transfer (Astrom & Hagglund, *Advanced PID Control*, 2006): at the end of the
+    hand-over the speed loop's integrator takes the holding force less the proportional term
+    at the master's speed, so the drives' force goes on from where the hand-over left it. On
+    the decline held by its tail drive's brake the head pulley (the master) runs back during
+    the hand-over under its share of the holding force; a loop that started its integrator at
+    the holding force alone added ``Kp`` times that speed in one step (the drives' total force
+    fell from -227.8 to -74 kN, 0.67 of the holding force). Sampled every 10 ms, the total
+    drive force now changes by less than 10 % of the holding force from one sample to the next
+    through the switch, as it does through the hand-over's own ramp."""
+    scn = Scenario(start={"time_s": 30}, run_s=2, stop={"mode": "coast"}, record_dt_s=0.01)
+    r = run_one(_decline(0.4), scn, model="din")
+    ts = r.timeseries
+    t = ts["t_s"].to_numpy()
+    f = ts["f_drive_kn"].to_numpy()
+    m = (t > 2.2) & (t < 2.5)
+    assert m.sum() > 20
+    hold = abs(f[m]).max()  # the holding force, built by the hand-over's end
+    assert hold > 100.0
+    assert np.abs(np.diff(f[m])).max() < 0.1 * hold
+
+
 # --------------------------------------------------------------------------------------
 # brakes
 
