@@ -197,7 +197,7 @@ def _brake_forces(model, rs):
 def _phase(model, rs):
     """The step's phase: the speed reference (start or controlled stop), the drives' trip,
     what the drives do (hold at rest, run, off), the brakes' forces (:func:`_brake_forces`),
-    each drive's law (:func:`_drive_laws`), whether the speed loop runs (its integrator starts
+    each drive's law (:func:`_drive_laws`), whether the speed loop runs (switched on bumpless
     from the holding force), a torque start's ramped limits, and the speed loop's law ``U =
     f0u + f1u v`` (rigid-body feedforward, integrator, proportional gain)."""
     cyc = model.cycle

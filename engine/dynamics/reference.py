@@ -405,7 +405,7 @@ def _phase(model: Model, rs, sh, dr, brk):
     """The step's phase into ``rs``: the speed reference (start or controlled stop), the
     drives' trip, what the drives do (hold at rest, run, off), the brakes' forces
     (:func:`_brake_forces`), each drive's law (:func:`_drive_laws`), whether the speed loop
-    runs (its integrator starts from the holding force), a torque start's ramped limits, and
+    runs (switched on bumpless from the holding force), a torque start's ramped limits, and
     the speed loop's law ``U = f0u + f1u v_master`` (rigid-body feedforward, integrator,
     proportional gain)."""
     cyc, ctl, drives = model.cycle, model.control, model.drives
