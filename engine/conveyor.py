@@ -153,6 +153,8 @@ INERTIA_MAX_KG_M2 = 1.0e7
 LAW_TIME_MAX_S = 3600.0
 #: Largest total route length [m]: the longest single-flight conveyors are about 20 to 30 km.
 ROUTE_MAX_M = 200_000.0
+#: Largest vertical curve radius ``profile[i].curve_radius_m`` [m].
+CURVE_RADIUS_MAX_M = 1e6
 
 
 #: Thinnest rubber cover [mm] other than none: a cover is a calendered rubber sheet, and the
@@ -324,7 +326,7 @@ class ProfileSection(_Model):
     # at least 1 m: a tighter bend is a pulley or a kink, not a curve on idlers (its 1 deg arc
     # elements, R x 0.017 m, would also set the transient step)
     curve_radius_m: float | None = Field(
-        None, ge=1.0, le=1e6,
+        None, ge=1.0, le=CURVE_RADIUS_MAX_M,
         description="radius of the vertical curve joining this section's grade to the next "
                     "section's [m] (1 to 1e6; SPEC 7.1; convex or concave by the two grades; "
                     "its arc takes half its length from each of the two sections: "
@@ -898,6 +900,7 @@ class Conveyor(_Model):
     @model_validator(mode="after")
     def _curves(self) -> Conveyor:
         _curves_fit(self.profile)
+        _curves_span_a_pitch(self)
         arcs = curve_arcs(self.profile)
         for name, at in route_points(self):
             for k, (a, b) in enumerate(arcs, start=1):
@@ -1047,6 +1050,54 @@ def _curves_fit(profile: list[ProfileSection]) -> None:
                 f"profile.{j}.curve_radius_m: the curve's arcs need {need:.1f} m of "
                 f"profile.{i} (half of each curve's R |delta| at its ends) but the section "
                 f"is {sec.length_m:g} m long; {_curve_fit_fix(profile, j)}")
+
+
+def _curves_span_a_pitch(conv: Conveyor) -> None:
+    """Refuse a vertical curve whose arc is shorter than an idler pitch (docs/routes.md,
+    part (c)).
+
+    The belt is held by idler sets a pitch S apart; a curve is built by setting the sets on
+    its arc to the radius R, so the belt follows R only where the arc holds sets, R |delta| >=
+    S. A shorter arc holds at most one set: the belt runs straight from the last set on one
+    grade to that set and on to the first set on the other, turning by delta there as at a
+    grade change without a curve, and every verdict taken with R (lift-off at T > R m'_G g
+    cos a, the convex edge strain (h - z_mean) / R, the idler load T S / R) judges a bend the
+    belt does not make. So does the transient, whose step follows the arc's elements: an arc
+    of 2e-7 m (a turn of 4e-9 rad at R 100 m, two grades whose lifts differ by 1e-6 m) asked
+    for 1e12 steps. The pitch is the smaller of the carry and return sets', the turn of a
+    curve shorter than it is a kink on both strands. The error names the curve, its turn and
+    arc, and the two fixes: no curve (the change is then judged as the circle through its
+    survey points, :func:`beltstudy.engine.curves.junction_checks`) or a radius whose arc
+    spans a pitch, S / |delta| (named only where that is a radius the field takes and its
+    arc fits the two sections)."""
+    prof = conv.profile
+    pitch = min(conv.idler_spacing_m("carry"), conv.idler_spacing_m("return"))
+    for i, sec in enumerate(prof):
+        arc = curve_arc_m(prof, i)
+        if sec.curve_radius_m is None or arc >= pitch:
+            continue
+        turn = arc / sec.curve_radius_m
+        nxt = prof[i + 1]
+        grades = (f"profile.{i} lifts {sec.lift_m:.10g} m over {sec.length_m:g} m, "
+                  f"profile.{i + 1} {nxt.lift_m:.10g} m over {nxt.length_m:g} m")
+        r_span = math.ceil(pitch / turn)
+        room = min(sec.length_m - (0.5 * curve_arc_m(prof, i - 1) if i else 0.0),
+                   nxt.length_m - 0.5 * curve_arc_m(prof, i + 1))
+        if r_span > CURVE_RADIUS_MAX_M:  # the turn is too small for any curve to span a pitch
+            other = (f"; no radius up to {CURVE_RADIUS_MAX_M:.0f} m spans a pitch at this "
+                     "turn: if the grades should differ, check lift_m")
+        elif 0.5 * r_span * turn <= room:
+            other = (f", or a radius of at least {r_span:.0f} m (S / |delta|) so that the arc "
+                     "spans a pitch")
+        else:
+            other = ""
+        raise ValueError(
+            f"profile.{i}.curve_radius_m: the grades turn by {math.degrees(turn):.3g} deg "
+            f"({grades}), so the curve of R {sec.curve_radius_m:g} m is an arc of "
+            f"{arc:.3g} m, shorter than the idler pitch {pitch:g} m: at most one idler set "
+            "stands on it and the belt bends there as at a grade change without a curve, not "
+            f"round R; drop curve_radius_m (the change is then judged as the circle through "
+            f"its survey points){other}")
 
 
 def _curve_fit_fix(profile: list[ProfileSection], j: int) -> str:

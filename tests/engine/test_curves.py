@@ -285,11 +285,57 @@ def test_curve_fields_are_defined_up_to_max_curves():
 def test_a_radius_below_a_metre_is_refused():
     """A 1e-9 m 'curve' is a kink, not a curve on idlers: its 1 deg arc elements (1.7e-11 m)
     made the transient refuse the run for too much work, naming the step and the elements
-    instead of the radius. At least 1 m; 1 m itself is built."""
+    instead of the radius. At least 1 m; 1 m itself passes the field's bound, and between 0
+    and 10 % its arc (0.1 m) is then shorter than an idler pitch (below)."""
     for bad in (1e-9, 0.5):
         with pytest.raises(ValueError, match=r"profile\.0\.curve_radius_m"):
             curved(radius_m=bad)
-    assert len(build_loop(curved(radius_m=1.0)).curves) == 1
+    with pytest.raises(ValueError, match=r"profile\.0\.curve_radius_m: .*shorter than the "
+                       r"idler pitch"):
+        curved(radius_m=1.0)
+
+
+def test_a_curve_of_negligible_turn_is_refused():
+    """Two grades whose lifts differ by 1e-6 m over 500 m (delta = asin(2e-9) = 2e-9 rad =
+    1.15e-7 deg) joined by R 100 m: an arc of R delta = 2e-7 m. It was accepted: statics
+    judged lift-off on it as on a curve of 100 m and asked for a larger radius, and simulate
+    refused it for too much work (a step set by 1e-7 m elements), naming the curve's end twice
+    and telling the user to move it. The arc is far shorter than the idler pitch (1.25 m,
+    carry), so the belt does not bend round R there: refused, naming the field, the turn, the
+    arc and the fix (no curve; no radius up to 1e6 m spans a pitch: 1.25 / 2e-9 = 6.25e8 m).
+    Without curve_radius_m the same grades are one straight run in effect: built, no curve,
+    no warning."""
+    delta = math.asin(1e-6 / 500)
+    assert 100 * delta == pytest.approx(2e-7, rel=1e-9)
+    assert math.degrees(delta) == pytest.approx(1.146e-7, rel=1e-3)
+    prof = [{"length_m": 500, "lift_m": 0, "curve_radius_m": 100},
+            {"length_m": 500, "lift_m": 1e-6}]
+    with pytest.raises(ValueError, match=(
+            r"profile\.0\.curve_radius_m: the grades turn by 1\.15e-07 deg \(profile\.0 lifts "
+            r"0 m over 500 m, profile\.1 1e-06 m over 500 m\), so the curve of R 100 m is an "
+            r"arc of 2e-07 m, shorter than the idler pitch 1\.25 m: .*drop curve_radius_m.*"
+            r"no radius up to 1000000 m spans a pitch at this turn: if the grades should "
+            r"differ, check lift_m")):
+        parse_conveyor(hand_conveyor_dict(profile=prof))
+    del prof[0]["curve_radius_m"]
+    st = solve_steady(parse_conveyor(hand_conveyor_dict(profile=prof)), model="din",
+                      n_elements=200)
+    assert st.loop.curves == ()
+    assert not [w for w in st.warnings if "curve" in w]
+
+
+def test_a_curve_shorter_than_an_idler_pitch_is_told_the_radius_that_spans_one():
+    """Between 0 and 10 % (delta = asin(0.1) = 0.100167 rad) with the hand conveyor's pitches
+    1.25 m (carry) and 2.5 m (return): an arc spans the smaller pitch from R = 1.25 / 0.100167
+    = 12.48 m. R 12 m (arc 1.202 m) holds at most one carry idler set, so the belt turns there
+    as at a kink, not round 12 m: refused, told a radius of at least 13 m; 13 m (arc 1.302 m)
+    is built."""
+    assert 1.25 / math.asin(0.1) == pytest.approx(12.479, abs=1e-3)
+    with pytest.raises(ValueError, match=r"profile\.0\.curve_radius_m: the grades turn by "
+                       r"5\.74 deg .* an arc of 1\.2 m, shorter than the idler pitch 1\.25 m"
+                       r".* a radius of at least 13 m \(S / \|delta\|\)"):
+        curved(radius_m=12.0)
+    assert len(build_loop(curved(radius_m=13.0)).curves) == 1
 
 
 def test_a_point_near_an_arc_is_told_a_place_off_the_arc():
