@@ -12,6 +12,7 @@ import difflib
 import json
 import math
 import re
+import typing
 import unicodedata
 from pathlib import Path
 from typing import Annotated, Any, Literal
@@ -1230,34 +1231,64 @@ class Scenario(_Model):
 
 
 def _model_at(model: type[BaseModel], loc: tuple) -> type[BaseModel] | None:
-    """Walk a location tuple down the model tree; return the model that owns the last key."""
-    current: Any = model
+    """Walk a location tuple down the model tree; return the model that owns the last key
+    (the first member where a union of models owns it: :func:`_models_at` gives them all)."""
+    found = _models_at(model, loc)
+    return found[0] if found else None
+
+
+def _models_at(model: type[BaseModel], loc: tuple) -> list[type[BaseModel]]:
+    """Every model that may own the last key of ``loc``: one, or the members of a union of
+    models (a sample axis's ``dist``: uniform, normal, ...). A mapping's own keys (a sample
+    axis's path) are stepped over; a union member's tag in ``loc`` picks that member."""
+    current: list[Any] = [model]
+    skip_key = False
     for part in loc[:-1]:
         if isinstance(part, int):
             continue
-        if not (isinstance(current, type) and issubclass(current, BaseModel)):
-            return None
-        field = None
-        for name, f in current.model_fields.items():
-            if part in (name, f.alias):
-                field = f
-                break
+        if skip_key:  # a key of a mapping (dict[str, Model]), not a field
+            skip_key = False
+            continue
+        tagged = [m for m in current if part in _tags(m)]
+        if tagged and len(current) > 1:
+            current = tagged  # the tag Pydantic puts in a location: that member
+            continue
+        field = next((f for m in current for name, f in m.model_fields.items()
+                      if part in (name, f.alias)), None)
         if field is None:
-            return None
-        current = _inner_model(field.annotation)
-    return current if isinstance(current, type) and issubclass(current, BaseModel) else None
+            return []
+        skip_key = typing.get_origin(field.annotation) is dict
+        current = _inner_models(field.annotation)
+        if not current:
+            return []
+    return current
+
+
+def _tags(model: type[BaseModel]) -> set[str]:
+    """The literal values of a model's ``Literal`` fields (a union member's tag)."""
+    out: set[str] = set()
+    for f in model.model_fields.values():
+        if typing.get_origin(f.annotation) is Literal:
+            out.update(str(a) for a in typing.get_args(f.annotation))
+    return out
+
+
+def _inner_models(annotation: Any) -> list[type[BaseModel]]:
+    """The models inside an annotation (a list's, a dict's values, a union's members)."""
+    if isinstance(annotation, type) and issubclass(annotation, BaseModel):
+        return [annotation]
+    args = typing.get_args(annotation)
+    if typing.get_origin(annotation) is dict and len(args) == 2:
+        args = args[1:]  # the values' type, not the keys'
+    found: list[type[BaseModel]] = []
+    for arg in args:
+        found += [m for m in _inner_models(arg) if m not in found]
+    return found
 
 
 def _inner_model(annotation: Any) -> Any:
-    import typing
-
-    if isinstance(annotation, type) and issubclass(annotation, BaseModel):
-        return annotation
-    for arg in typing.get_args(annotation):
-        found = _inner_model(arg)
-        if found is not None:
-            return found
-    return None
+    found = _inner_models(annotation)
+    return found[0] if found else None
 
 
 def valid_keys(model: type[BaseModel]) -> list[str]:
@@ -1346,15 +1377,18 @@ def nearest_word(got: Any, expected: str) -> str:
     return f"did you mean '{close[0]}'?" if close and close[0] != got else ""
 
 
-def _unknown_key_hint(key: str, keys: list[str]) -> str:
+def _unknown_key_hint(key: str, keys: list[str], missing: list[str] = ()) -> str:
     """What to write instead of the unknown ``key``: its SI twin with the conversion, the key
-    a handbook word maps to, else the nearest valid key or the list."""
+    a handbook word maps to, else the nearest valid key (first among the required keys
+    ``missing`` beside it: ``stpe`` beside a missing ``step`` is that, not ``stop``) or the
+    list."""
     if key in KEY_HINTS:
         return f"; {KEY_HINTS[key]}"
     for suffix, repl, conv in UNIT_SUFFIXES:
         if key.endswith(suffix) and key[: -len(suffix)] + repl in keys:
             return f"; did you mean '{key[: -len(suffix)] + repl}'? (in {conv})"
-    close = difflib.get_close_matches(key, keys, n=1, cutoff=0.5)
+    close = (difflib.get_close_matches(key, [k for k in missing if k in keys], n=1, cutoff=0.5)
+             or difflib.get_close_matches(key, keys, n=1, cutoff=0.5))
     return f"; did you mean '{close[0]}'?" if close else f"; valid keys: {', '.join(keys)}"
 
 
@@ -1459,15 +1493,25 @@ def format_validation_error(exc: ValidationError, model: type[BaseModel], prefix
     the same words as a study's door (:mod:`beltstudy.service.door.messages`)."""
     lines = []
     near: dict[str, str] = {}  # path -> the choice a misspelt word is nearest
-    for err in _said_errors(exc):
+    said = _said_errors(exc)
+    # the required keys missing beside an unknown one: the key it most likely misspells
+    missing: dict[tuple, list[str]] = {}
+    for err in said:
+        if err["type"] == "missing" and err["clean"]:
+            missing.setdefault(err["clean"][:-1], []).append(str(err["clean"][-1]))
+    for err in said:
         clean = err["clean"]  # Pydantic's union member tags taken off (_clean_loc)
         path = prefix + ".".join(str(p) for p in clean)
         if err["type"] == "extra_forbidden":
-            owner = _model_at(model, clean)
+            owners = _models_at(model, clean)
             key = str(clean[-1])
             hint = ""
-            if owner is not None:
-                hint = _unknown_key_hint(key, valid_keys(owner))
+            lacking = missing.get(clean[:-1], [])
+            # a union of models (a sample axis's dist): the members that lack those keys
+            owners = [m for m in owners if set(lacking) <= set(valid_keys(m))] or owners
+            if owners:
+                keys = list(dict.fromkeys(k for m in owners for k in valid_keys(m)))
+                hint = _unknown_key_hint(key, keys, lacking)
             lines.append(f"{path}: unknown key '{key}'{hint}")
         elif err["type"] == "missing":
             lines.append(f"{path}: required field is missing")

@@ -346,6 +346,35 @@ def test_a_misspelt_choice_outside_the_grid_names_the_word_meant(make_study):
             resolve_study(make_study(grid={"belt_type": ["ST2000"]}, **over))
 
 
+def test_a_misspelt_key_names_the_key_meant_inside_a_sample_axis_and_a_range(make_study):
+    """A misspelt key of a sample axis's distribution ('medain' of a lognormal) was refused
+    with 'unknown key 'medain'' and no key named (a mapping of a union of models: the door
+    found no model owning it), and a range's 'stpe' beside its missing 'step' was told 'did
+    you mean 'stop'?', a key it already has. Each now names the key meant: the required key
+    missing beside it first, and only keys of the distributions that lack it."""
+    def axis(spec):
+        return dict(sample={"n": 8, "method": "lhs", "seed": 1, "axes": {"temperature_c": spec}})
+
+    cases = [
+        (axis({"dist": "lognormal", "medain": 1.0, "sigma": 0.3}),
+         r"sample.axes.temperature_c.medain: unknown key 'medain'; did you mean 'median'\?$"),
+        (axis({"dist": "normal", "mean": 0.0, "sdd": 2.0}),
+         r"sample.axes.temperature_c.sdd: unknown key 'sdd'; did you mean 'sd'\?$"),
+        (axis({"dist": "uniform", "lo": -5.0, "high": 5.0}),
+         r"sample.axes.temperature_c.lo: unknown key 'lo'; did you mean 'low'\?$"),
+        # a normal's misspelt 'sd' is not sent to the lognormal's 'sigma'
+        (axis({"dist": "normal", "mean": 0.0, "sigm": 2.0}),
+         r"sample.axes.temperature_c.sigm: unknown key 'sigm'; valid keys: dist, mean, sd$"),
+        (dict(grid={"temperature_c": {"start": -20, "stop": 20, "stpe": 10}}),
+         r"grid.temperature_c.stpe: unknown key 'stpe'; did you mean 'step'\?$"),
+    ]
+    for over, message in cases:
+        body = make_study(**over)
+        body.setdefault("grid", {"belt_type": ["ST2000"]})
+        with pytest.raises(Invalid, match=message):
+            resolve_study(body)
+
+
 def test_scenarios_the_conveyor_cannot_do_are_refused_before_any_run(make_study):
     """A dynamic study whose grid asks for a brake stop of a conveyor without brakes (or one
     whose brakes an axis removes) is refused at the door, naming the field and the grid point;
