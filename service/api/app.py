@@ -32,6 +32,7 @@ from starlette.routing import Match
 
 from beltstudy import engine
 from beltstudy.engine import InputError
+from beltstudy.engine.conveyor import nearest_word
 from beltstudy.service.api.deps import require_token
 from beltstudy.service.door.messages import describe
 from beltstudy.service.door.openapi import install as install_openapi
@@ -84,7 +85,12 @@ def _validation_message(exc: RequestValidationError) -> str:
     lines = []
     for err in exc.errors():
         loc = ".".join(str(p) for p in err.get("loc", ()))
-        lines.append(f"{loc}: {err.get('msg', 'invalid')}")
+        msg = err.get("msg", "invalid")
+        if err.get("type") == "literal_error":
+            # a misspelt choice (format=jsn): the word meant, as a study's door says it
+            hint = nearest_word(err.get("input"), msg)
+            msg += f": {hint}" if hint else ""
+        lines.append(f"{loc}: {msg}")
     return "; ".join(dict.fromkeys(lines)) or "invalid request"
 
 

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import difflib
 import secrets
 from typing import Any
 
@@ -57,7 +58,9 @@ def check_query(request: Request) -> None:
     for name, value in request.query_params.multi_items():
         if name not in known:
             valid = ", ".join(known) if known else "none"
-            raise Invalid(f"query.{name}: unknown parameter; this route takes: {valid}")
+            close = difflib.get_close_matches(name, known, n=1, cutoff=0.6)
+            meant = f" (did you mean '{close[0]}'?)" if close else ""
+            raise Invalid(f"query.{name}: unknown parameter{meant}; this route takes: {valid}")
         if not value.strip():
             raise Invalid(f"query.{name}: empty; give a value or leave the parameter out")
 

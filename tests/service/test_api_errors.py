@@ -354,6 +354,27 @@ def test_query_errors_name_the_parameter(api, data_dir, finished_study, make_stu
     assert r.status_code == 422 and r.json()["message"].startswith("query.filter:"), r.text
 
 
+def test_a_misspelt_query_parameter_or_choice_names_the_one_meant(api, data_dir,
+                                                                  finished_study, make_study):
+    """GET /studies/{id}/runs?limt=3 was refused with 'query.limt: unknown parameter; this
+    route takes: format, ..., limit, offset' and ?format=jsn with 'Input should be 'json',
+    'csv' or 'parquet'', neither naming the one meant; each now does, as a study's door does
+    for a misspelt key or word."""
+    client = api()
+    sid = finished_study(data_dir, make_study())
+    r = client.get(f"/studies/{sid}/runs", params={"limt": 3})
+    assert r.status_code == 422
+    assert r.json()["message"].startswith(
+        "query.limt: unknown parameter (did you mean 'limit'?); this route takes: ")
+    r = client.get(f"/studies/{sid}/runs", params={"format": "jsn"})
+    assert r.status_code == 422
+    assert r.json()["message"] == (
+        "query.format: Input should be 'json', 'csv' or 'parquet': did you mean 'json'?")
+    # a name near none keeps the list alone
+    r = client.get(f"/studies/{sid}/runs", params={"zzz": 1})
+    assert r.json()["message"].startswith("query.zzz: unknown parameter; this route takes: ")
+
+
 def test_reading_a_finished_study(api, data_dir, finished_study, make_study):
     import io
 
