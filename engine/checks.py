@@ -579,7 +579,9 @@ def input_notes(conv, loop: Loop, feed_n: float, c_factor: float | None = None) 
     the engine takes in place of one it has not got is said): an idler roll diameter between
     two catalogue rows (:func:`beltstudy.engine.catalog.idler_note`), a loading speed above
     the belt speed or against the travel, a belt width outside the DIN 22107 roll table and a
-    trough angle outside the CEMA transition and middle-roll tables. ``feed_n`` is the feed
+    trough angle outside the CEMA transition and middle-roll tables, a vertical curve whose
+    arc is shorter than an idler pitch, judged as the grade change without it
+    (:func:`_short_curve_notes`). ``feed_n`` is the feed
     part of Te [N]; ``c_factor`` DIN's C where the run's law used it (the feed is inside C
     and the loading speed is not read)."""
     from beltstudy.engine import catalog
@@ -635,6 +637,44 @@ def input_notes(conv, loop: Loop, feed_n: float, c_factor: float | None = None) 
         notes.append(f"note: idlers.carry.trough_deg {ic.trough_deg:g} deg is outside the "
                      f"tables: {' and '.join(words)}")
     notes += _unread_drive_fields(conv)
+    notes += _short_curve_notes(conv)
+    return notes
+
+
+def _short_curve_notes(conv) -> list[str]:
+    """A note per vertical curve whose arc is shorter than an idler pitch
+    (:meth:`beltstudy.engine.conveyor.Conveyor.short_curves`): the run judges it as the grade
+    change without a curve. The note names the field, the turn, the arc, the pitch and the
+    radius whose arc spans a pitch, ``S / |delta|`` rounded up to the metre, where that is a
+    radius the field takes (up to 1e6 m) and its half arcs fit the two sections beside their
+    other curves; otherwise that the turn is too small for any curve."""
+    from beltstudy.engine.conveyor import CURVE_RADIUS_MAX_M, curve_arc_m
+
+    prof, judged = conv.profile, conv.judged_profile()
+    pitch = conv.curve_pitch_m()
+    notes = []
+    for i, turn, arc in conv.short_curves():
+        sec, nxt = prof[i], prof[i + 1]
+        grades = (f"profile.{i} lifts {sec.lift_m:.10g} m over {sec.length_m:g} m, "
+                  f"profile.{i + 1} {nxt.lift_m:.10g} m over {nxt.length_m:g} m")
+        r_span = math.ceil(pitch / turn - 1e-9)
+        room = min(sec.length_m - (0.5 * curve_arc_m(judged, i - 1) if i else 0.0),
+                   nxt.length_m - 0.5 * curve_arc_m(judged, i + 1))
+        if r_span > CURVE_RADIUS_MAX_M:
+            fix = (f"the turn is too small for any curve: no radius up to "
+                   f"{CURVE_RADIUS_MAX_M:.0f} m spans a pitch (S / |delta| = "
+                   f"{pitch / turn:.3g} m; if the grades should differ, check lift_m)")
+        elif 0.5 * r_span * turn > room:
+            fix = (f"the turn is too small for any curve on these sections: one whose arc "
+                   f"spans a pitch, R >= {r_span:.0f} m (S / |delta|), does not fit them")
+        else:
+            fix = f"a radius of at least {r_span:.0f} m (S / |delta|) makes the arc span a pitch"
+        notes.append(
+            f"note: profile.{i}.curve_radius_m {sec.curve_radius_m:g} m: the grades turn by "
+            f"{math.degrees(turn):.3g} deg ({grades}), so its arc is {arc:.3g} m, shorter than "
+            f"the idler pitch {pitch:g} m: at most one idler set stands on it and the belt "
+            "bends there as at a kink, not round R, so it is judged as a grade change without "
+            f"a curve (the circle through its survey points); {fix}")
     return notes
 
 

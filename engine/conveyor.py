@@ -900,9 +900,8 @@ class Conveyor(_Model):
 
     @model_validator(mode="after")
     def _curves(self) -> Conveyor:
-        _curves_fit(self.profile)
-        _curves_span_a_pitch(self)
-        arcs = curve_arcs(self.profile)
+        _curves_fit(self.profile, self.judged_profile())
+        arcs = curve_arcs(self.judged_profile())
         for name, at in route_points(self):
             for k, (a, b) in enumerate(arcs, start=1):
                 tol = 1e-9 * max(1.0, b)
@@ -915,6 +914,48 @@ class Conveyor(_Model):
                         f"{a:.3f} to {b:.3f} m); place it on a straight grade, before "
                         f"{before:.1f} or after {after:.1f} m")
         return self
+
+    def short_curves(self) -> list[tuple[int, float, float]]:
+        """The vertical curves whose arc is shorter than an idler pitch, ``(i, |delta|, arc)``
+        per ``profile[i].curve_radius_m`` in profile order (docs/routes.md, part (c)).
+
+        The belt is held by idler sets a pitch S apart (the smaller of the carry and return
+        pitches: a turn shorter than it is a kink on both strands); a curve is built by
+        setting the sets on its arc to the radius R, so the belt follows R only where the arc
+        holds sets, R |delta| >= S. A shorter arc holds at most one set: the belt runs
+        straight from the last set on one grade to that set and on to the first set on the
+        other, turning by delta there as at a grade change without a curve. Every verdict
+        taken with R (lift-off at T > R m'_G g cos a, the convex edge strain (h - z_mean) / R,
+        the idler load T S / R) would judge a bend the belt does not make, and the
+        transient's step, set by the arc's elements, would shrink with the arc (an arc of
+        2e-7 m asked for 1e12 steps). Such a curve is judged as the grade change without it
+        (:meth:`judged_profile`), and the run says so (``beltstudy.engine.checks.
+        input_notes``). A curve between equal grades (no turn) or on the last section is
+        refused at input, not listed."""
+        pitch = self.curve_pitch_m()
+        out = []
+        for i, sec in enumerate(self.profile):
+            arc = curve_arc_m(self.profile, i)
+            if sec.curve_radius_m is not None and 0.0 < arc < pitch:
+                out.append((i, arc / sec.curve_radius_m, arc))
+        return out
+
+    def judged_profile(self) -> list[ProfileSection]:
+        """The profile as every check, the loop and the transient read it: the sections as
+        given, but a vertical curve whose arc is shorter than an idler pitch
+        (:meth:`short_curves`) without its ``curve_radius_m``, so its grade change is judged
+        as one given without a curve (the circle through its survey points,
+        :func:`beltstudy.engine.curves.junction_checks`). The conveyor's own ``profile`` keeps
+        what the file gave. Read ``curve_radius_m`` (and :func:`curve_arc_m`,
+        :func:`curve_arcs`) from this list, never from ``profile``."""
+        short = {i for i, _, _ in self.short_curves()}
+        return [sec.model_copy(update={"curve_radius_m": None}) if i in short else sec
+                for i, sec in enumerate(self.profile)]
+
+    def curve_pitch_m(self) -> float:
+        """The idler pitch a vertical curve's arc must span to be a curve [m]: the smaller of
+        the carry and return pitches (:meth:`short_curves`)."""
+        return min(self.idler_spacing_m("carry"), self.idler_spacing_m("return"))
 
     def idler_spacing_m(self, strand: str) -> float:
         """Idler set pitch of ``carry`` or ``return`` [m]: ``spacing_m``, or the conveyor
@@ -1008,7 +1049,8 @@ def route_points(conv: Conveyor) -> list[tuple[str, float]]:
 
 
 def curve_arcs(profile: list[ProfileSection]) -> list[tuple[float, float]]:
-    """Each vertical curve's arc along the route from the tail, (start, end) [m]."""
+    """Each vertical curve's arc along the route from the tail, (start, end) [m] (of the
+    profile given: :meth:`Conveyor.judged_profile` for the curves the run builds)."""
     out, at = [], 0.0
     for i, sec in enumerate(profile):
         at += sec.length_m
@@ -1020,7 +1062,8 @@ def curve_arcs(profile: list[ProfileSection]) -> list[tuple[float, float]]:
 
 def curve_arc_m(profile: list[ProfileSection], i: int) -> float:
     """Arc length R |delta| of the vertical curve that ends ``profile[i]`` [m] (0 without one):
-    delta the change of slope angle between section i's grade and section i+1's."""
+    delta the change of slope angle between section i's grade and section i+1's (of the
+    profile given: :meth:`Conveyor.judged_profile` for the curves the run builds)."""
     sec = profile[i]
     if sec.curve_radius_m is None or i + 1 >= len(profile):
         return 0.0
@@ -1029,11 +1072,13 @@ def curve_arc_m(profile: list[ProfileSection], i: int) -> float:
     return sec.curve_radius_m * abs(delta)
 
 
-def _curves_fit(profile: list[ProfileSection]) -> None:
+def _curves_fit(profile: list[ProfileSection], judged: list[ProfileSection]) -> None:
     """Refuse a vertical curve that cannot be built (docs/routes.md, part (c)): on the last
     section (no next grade), between equal grades, or longer than its sections: its arc takes
     half its length from the end of its section and half from the start of the next, and a
-    section must hold the halves of the curves at both its ends."""
+    section must hold the halves of the curves at both its ends. ``profile`` is the profile
+    as given, ``judged`` as judged (:meth:`Conveyor.judged_profile`: a curve shorter than an
+    idler pitch is a grade change without a curve, and takes no room)."""
     for i, sec in enumerate(profile):
         if sec.curve_radius_m is None:
             continue
@@ -1043,62 +1088,14 @@ def _curves_fit(profile: list[ProfileSection]) -> None:
         if curve_arc_m(profile, i) <= 0.0:
             raise ValueError(f"{name}: sections {i} and {i + 1} have the same grade; there is "
                              "no curve to make (drop curve_radius_m)")
-    for i, sec in enumerate(profile):
-        need = 0.5 * curve_arc_m(profile, i) + (0.5 * curve_arc_m(profile, i - 1) if i else 0.0)
+    for i, sec in enumerate(judged):
+        need = 0.5 * curve_arc_m(judged, i) + (0.5 * curve_arc_m(judged, i - 1) if i else 0.0)
         if need > sec.length_m:
             j = i if sec.curve_radius_m is not None else i - 1
             raise ValueError(
                 f"profile.{j}.curve_radius_m: the curve's arcs need {need:.1f} m of "
                 f"profile.{i} (half of each curve's R |delta| at its ends) but the section "
-                f"is {sec.length_m:g} m long; {_curve_fit_fix(profile, j)}")
-
-
-def _curves_span_a_pitch(conv: Conveyor) -> None:
-    """Refuse a vertical curve whose arc is shorter than an idler pitch (docs/routes.md,
-    part (c)).
-
-    The belt is held by idler sets a pitch S apart; a curve is built by setting the sets on
-    its arc to the radius R, so the belt follows R only where the arc holds sets, R |delta| >=
-    S. A shorter arc holds at most one set: the belt runs straight from the last set on one
-    grade to that set and on to the first set on the other, turning by delta there as at a
-    grade change without a curve, and every verdict taken with R (lift-off at T > R m'_G g
-    cos a, the convex edge strain (h - z_mean) / R, the idler load T S / R) judges a bend the
-    belt does not make. So does the transient, whose step follows the arc's elements: an arc
-    of 2e-7 m (a turn of 4e-9 rad at R 100 m, two grades whose lifts differ by 1e-6 m) asked
-    for 1e12 steps. The pitch is the smaller of the carry and return sets', the turn of a
-    curve shorter than it is a kink on both strands. The error names the curve, its turn and
-    arc, and the two fixes: no curve (the change is then judged as the circle through its
-    survey points, :func:`beltstudy.engine.curves.junction_checks`) or a radius whose arc
-    spans a pitch, S / |delta| (named only where that is a radius the field takes and its
-    arc fits the two sections)."""
-    prof = conv.profile
-    pitch = min(conv.idler_spacing_m("carry"), conv.idler_spacing_m("return"))
-    for i, sec in enumerate(prof):
-        arc = curve_arc_m(prof, i)
-        if sec.curve_radius_m is None or arc >= pitch:
-            continue
-        turn = arc / sec.curve_radius_m
-        nxt = prof[i + 1]
-        grades = (f"profile.{i} lifts {sec.lift_m:.10g} m over {sec.length_m:g} m, "
-                  f"profile.{i + 1} {nxt.lift_m:.10g} m over {nxt.length_m:g} m")
-        r_span = math.ceil(pitch / turn)
-        room = min(sec.length_m - (0.5 * curve_arc_m(prof, i - 1) if i else 0.0),
-                   nxt.length_m - 0.5 * curve_arc_m(prof, i + 1))
-        if r_span > CURVE_RADIUS_MAX_M:  # the turn is too small for any curve to span a pitch
-            other = (f"; no radius up to {CURVE_RADIUS_MAX_M:.0f} m spans a pitch at this "
-                     "turn: if the grades should differ, check lift_m")
-        elif 0.5 * r_span * turn <= room:
-            other = (f", or a radius of at least {r_span:.0f} m (S / |delta|) so that the arc "
-                     "spans a pitch")
-        else:
-            other = ""
-        raise ValueError(
-            f"profile.{i}.curve_radius_m: the grades turn by {math.degrees(turn):.3g} deg "
-            f"({grades}), so the curve of R {sec.curve_radius_m:g} m is an arc of "
-            f"{arc:.3g} m, shorter than the idler pitch {pitch:g} m: at most one idler set "
-            "stands on it and the belt bends there as at a grade change without a curve, not "
-            f"round R; drop curve_radius_m (the change is then judged as the circle through "
-            f"its survey points){other}")
+                f"is {sec.length_m:g} m long; {_curve_fit_fix(judged, j)}")
 
 
 def _curve_fit_fix(profile: list[ProfileSection], j: int) -> str:

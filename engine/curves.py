@@ -569,8 +569,9 @@ def _junctions(conv) -> list[dict]:
 
     Sections on one grade (no turn, no curve between them) are one straight run: the survey
     circle goes through the ends of the straight runs either side (:func:`survey_radius_m`),
-    so a straight written as one section or as many points is read alike."""
-    prof = conv.profile
+    so a straight written as one section or as many points is read alike. A curve whose arc
+    is shorter than an idler pitch is such a change (:meth:`Conveyor.judged_profile`)."""
+    prof = conv.judged_profile()
     angles = [math.asin(p.lift_m / p.length_m) for p in prof]
     runs: list[list[float]] = [[0.0, 0.0]]  # per straight run: [length, end position]
     breaks = []  # (section i, turn) at each end of a run that is a grade change without curve

@@ -620,7 +620,7 @@ def _curve_elements(conv: Conveyor, counts: list[int]) -> tuple[list, list]:
     arcs : list of dict
         Per curve the :class:`Curve` fields, with ``carry_`` its carry elements.
     """
-    prof = conv.profile
+    prof = conv.judged_profile()  # a curve shorter than an idler pitch is a grade change
     if all(sec.curve_radius_m is None for sec in prof):
         return [], []
     ang = [math.asin(sec.lift_m / sec.length_m) for sec in prof]

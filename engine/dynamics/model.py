@@ -1013,8 +1013,9 @@ def short_element(conv, loop: Loop) -> tuple[str, str] | None:
     ends = (x0 - dx, x0, x0 + dx)  # the element's ends, either way along the route
     cuts = [(name, name, a) for name, a in route_points(conv)]  # (field, words, place)
     at = 0.0
-    for i, sec in enumerate(conv.profile):
-        half = 0.5 * curve_arc_m(conv.profile, i)
+    prof = conv.judged_profile()  # the curves the loop builds (none shorter than a pitch)
+    for i, sec in enumerate(prof):
+        half = 0.5 * curve_arc_m(prof, i)
         at += sec.length_m
         cuts.append((f"profile.{i}.length_m", f"the end of profile.{i}", at))
         if half > 0.0:

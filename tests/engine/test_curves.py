@@ -286,55 +286,110 @@ def test_a_radius_below_a_metre_is_refused():
     """A 1e-9 m 'curve' is a kink, not a curve on idlers: its 1 deg arc elements (1.7e-11 m)
     made the transient refuse the run for too much work, naming the step and the elements
     instead of the radius. At least 1 m; 1 m itself passes the field's bound, and between 0
-    and 10 % its arc (0.1 m) is then shorter than an idler pitch (below)."""
+    and 10 % its arc (0.1 m) is then shorter than an idler pitch: built as the grade change
+    without a curve (below)."""
     for bad in (1e-9, 0.5):
         with pytest.raises(ValueError, match=r"profile\.0\.curve_radius_m"):
             curved(radius_m=bad)
-    with pytest.raises(ValueError, match=r"profile\.0\.curve_radius_m: .*shorter than the "
-                       r"idler pitch"):
-        curved(radius_m=1.0)
+    conv = curved(radius_m=1.0)
+    assert conv.profile[0].curve_radius_m == 1.0
+    assert build_loop(conv).curves == ()
 
 
-def test_a_curve_of_negligible_turn_is_refused():
+def _short_curve_note(i, radius, turn_deg, grades, arc, fix):
+    return (f"note: profile.{i}.curve_radius_m {radius} m: the grades turn by {turn_deg} deg "
+            f"({grades}), so its arc is {arc} m, shorter than the idler pitch 1.25 m: at most "
+            "one idler set stands on it and the belt bends there as at a kink, not round R, so "
+            "it is judged as a grade change without a curve (the circle through its survey "
+            f"points); {fix}")
+
+
+def test_a_curve_of_negligible_turn_is_judged_as_a_grade_change_without_it():
     """Two grades whose lifts differ by 1e-6 m over 500 m (delta = asin(2e-9) = 2e-9 rad =
-    1.15e-7 deg) joined by R 100 m: an arc of R delta = 2e-7 m. It was accepted: statics
-    judged lift-off on it as on a curve of 100 m and asked for a larger radius, and simulate
-    refused it for too much work (a step set by 1e-7 m elements), naming the curve's end twice
-    and telling the user to move it. The arc is far shorter than the idler pitch (1.25 m,
-    carry), so the belt does not bend round R there: refused, naming the field, the turn, the
-    arc and the fix (no curve; no radius up to 1e6 m spans a pitch: 1.25 / 2e-9 = 6.25e8 m).
-    Without curve_radius_m the same grades are one straight run in effect: built, no curve,
-    no warning."""
+    1.15e-7 deg) joined by R 100 m: an arc of R delta = 2e-7 m, far shorter than the idler
+    pitch (1.25 m, carry), so the belt does not bend round R there. It was judged as a curve
+    of 100 m: statics said the empty belt lifts off it (the tension there, about 33 kN, above
+    R m'_G g = 100 x 20 x 9.81 = 19.62 kN) and asked for a larger radius, and simulate refused
+    it for too much work (a step set by 1e-7 m elements), telling the user to move the
+    curve's end; then it was refused at input. It is accepted and judged as the grade change
+    without curve_radius_m: no curve, no verdict taken with R, the same tensions, and a note
+    naming the field, the turn, the arc, the pitch and that no radius up to 1e6 m spans a
+    pitch (1.25 / 2e-9 = 6.25e8 m). The conveyor keeps the radius it was given."""
     delta = math.asin(1e-6 / 500)
     assert 100 * delta == pytest.approx(2e-7, rel=1e-9)
     assert math.degrees(delta) == pytest.approx(1.146e-7, rel=1e-3)
+    assert 1.25 / delta == pytest.approx(6.25e8, rel=1e-9)
     prof = [{"length_m": 500, "lift_m": 0, "curve_radius_m": 100},
             {"length_m": 500, "lift_m": 1e-6}]
-    with pytest.raises(ValueError, match=(
-            r"profile\.0\.curve_radius_m: the grades turn by 1\.15e-07 deg \(profile\.0 lifts "
-            r"0 m over 500 m, profile\.1 1e-06 m over 500 m\), so the curve of R 100 m is an "
-            r"arc of 2e-07 m, shorter than the idler pitch 1\.25 m: .*drop curve_radius_m.*"
-            r"no radius up to 1000000 m spans a pitch at this turn: if the grades should "
-            r"differ, check lift_m")):
-        parse_conveyor(hand_conveyor_dict(profile=prof))
-    del prof[0]["curve_radius_m"]
-    st = solve_steady(parse_conveyor(hand_conveyor_dict(profile=prof)), model="din",
-                      n_elements=200)
+    conv = parse_conveyor(hand_conveyor_dict(profile=prof))
+    assert conv.profile[0].curve_radius_m == 100.0
+    assert conv.model_dump()["profile"][0]["curve_radius_m"] == 100.0
+    st = solve_steady(conv, model="din", n_elements=200)
     assert st.loop.curves == ()
-    assert not [w for w in st.warnings if "curve" in w]
+    assert not [k for k in st.summary if k.startswith("curve")]
+    assert not [w for w in st.warnings if "curve" in w or "lift" in w]
+    # R would have judged lift-off here: the carry tension at 500 m is above R m'_G g
+    nc = st.loop.nc
+    at = np.flatnonzero(np.isclose(st.loop.s_m[:nc] + st.loop.dx_m[:nc], 500.0))[0]
+    assert st.tension_n[at] > 100 * 20 * G
+    note = _short_curve_note(
+        0, 100, "1.15e-07", "profile.0 lifts 0 m over 500 m, profile.1 1e-06 m over 500 m",
+        "2e-07", "the turn is too small for any curve: no radius up to 1000000 m spans a "
+        "pitch (S / |delta| = 6.25e+08 m; if the grades should differ, check lift_m)")
+    del prof[0]["curve_radius_m"]
+    plain = solve_steady(parse_conveyor(hand_conveyor_dict(profile=prof)), model="din",
+                         n_elements=200)
+    assert np.array_equal(st.tension_n, plain.tension_n)
+    assert st.message == "; ".join(m for m in (plain.message, note) if m)
+
+    # the transient of a small one runs on the same loop (beltstudy simulate: run_one)
+    from beltstudy.engine.conveyor import Scenario
+    from beltstudy.engine.run import run_one
+    from tests.conftest import WARM_UP_SCENARIO
+
+    small = parse_conveyor(hand_conveyor_dict(profile=[
+        {"length_m": 50, "lift_m": 0, "curve_radius_m": 100},
+        {"length_m": 50, "lift_m": 1e-6}]))
+    r = run_one(small, Scenario(**WARM_UP_SCENARIO), model="din")
+    assert r.transient is not None
+    msg = r.summary["message"]
+    assert "note: profile.0.curve_radius_m 100 m: the grades turn by 1.15e-06 deg" in msg
+    assert "move" not in msg and "automatic step" not in msg
 
 
 def test_a_curve_shorter_than_an_idler_pitch_is_told_the_radius_that_spans_one():
-    """Between 0 and 10 % (delta = asin(0.1) = 0.100167 rad) with the hand conveyor's pitches
-    1.25 m (carry) and 2.5 m (return): an arc spans the smaller pitch from R = 1.25 / 0.100167
-    = 12.48 m. R 12 m (arc 1.202 m) holds at most one carry idler set, so the belt turns there
-    as at a kink, not round 12 m: refused, told a radius of at least 13 m; 13 m (arc 1.302 m)
-    is built."""
+    """Between 0 and 10 % (delta = asin(0.1) = 0.100167 rad = 5.74 deg) with the hand
+    conveyor's pitches 1.25 m (carry) and 2.5 m (return): an arc spans the smaller pitch from
+    R = 1.25 / 0.100167 = 12.48 m. R 12 m (arc 1.202 m) holds at most one carry idler set, so
+    the belt turns there as at a kink, not round 12 m: built as the grade change without a
+    curve, noted with a radius of at least 13 m; 13 m (arc 1.302 m) is a curve. Between 0
+    and 2 % (delta = 0.0200013 rad) R 50 m is an arc of 1.0 m, told 1.25 / 0.0200013 = 62.5,
+    63 m. Where a curve of S / |delta| does not fit the sections (a 0.6 m section at 10 %
+    holds half an arc of 0.6 m, R 12 m, but not 13 x 0.100167 / 2 = 0.651 m) the note says
+    the turn is too small for any curve there."""
     assert 1.25 / math.asin(0.1) == pytest.approx(12.479, abs=1e-3)
-    with pytest.raises(ValueError, match=r"profile\.0\.curve_radius_m: the grades turn by "
-                       r"5\.74 deg .* an arc of 1\.2 m, shorter than the idler pitch 1\.25 m"
-                       r".* a radius of at least 13 m \(S / \|delta\|\)"):
-        curved(radius_m=12.0)
+    assert 1.25 / math.asin(0.02) == pytest.approx(62.496, abs=1e-3)
+    fix13 = "a radius of at least 13 m (S / |delta|) makes the arc span a pitch"
+    for prof, note in (
+            ([{"length_m": 500, "lift_m": 0, "curve_radius_m": 12},
+              {"length_m": 500, "lift_m": 50}],
+             _short_curve_note(0, 12, "5.74", "profile.0 lifts 0 m over 500 m, profile.1 50 m "
+                               "over 500 m", "1.2", fix13)),
+            ([{"length_m": 500, "lift_m": 0, "curve_radius_m": 50},
+              {"length_m": 500, "lift_m": 10}],
+             _short_curve_note(0, 50, "1.15", "profile.0 lifts 0 m over 500 m, profile.1 10 m "
+                               "over 500 m", "1", "a radius of at least 63 m (S / |delta|) "
+                               "makes the arc span a pitch")),
+            ([{"length_m": 500, "lift_m": 0, "curve_radius_m": 12},
+              {"length_m": 0.6, "lift_m": 0.06}, {"length_m": 499.4, "lift_m": 49.94}],
+             _short_curve_note(0, 12, "5.74", "profile.0 lifts 0 m over 500 m, profile.1 "
+                               "0.06 m over 0.6 m", "1.2", "the turn is too small for any "
+                               "curve on these sections: one whose arc spans a pitch, R >= 13 "
+                               "m (S / |delta|), does not fit them"))):
+        st = solve_steady(parse_conveyor(hand_conveyor_dict(profile=prof)), model="din",
+                          n_elements=200)
+        assert st.loop.curves == ()
+        assert st.message.endswith(note)
     assert len(build_loop(curved(radius_m=13.0)).curves) == 1
 
 
