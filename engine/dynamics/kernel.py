@@ -233,9 +233,11 @@ def _phase(model, rs):
         cyc.start_ctrl != FORCE or rs.stopping)
     if rs.pi and not rs.pi_started:
         # bumpless switch-on (Astrom & Hagglund, Advanced PID Control, 2006, *bumpless
-        # transfer*): the integrator takes the holding force less the proportional term at the
-        # master's speed, so the loop's output starts where the hand-over left it
-        rs.integ = rs.hold_f - ctl.kp * (rs.v_ref - model.shafts.vs[drives.shaft[ctl.master]])
+        # transfer*): the integrator takes the drives' force before it (the holding force
+        # after the hand-over, the open-loop force at a force start's stop command) less the
+        # proportional term at the master's speed, so the loop's output goes on from there
+        u0 = ctl.f_const if cyc.start_ctrl == FORCE else rs.hold_f
+        rs.integ = u0 - ctl.kp * (rs.v_ref - model.shafts.vs[drives.shaft[ctl.master]])
         rs.pi_started = True
     if cyc.start_ctrl == TORQUE and not rs.stopping and rs.phase == RUN:
         ramp = min(max((t - cyc.t_pre) / cyc.t_start, 0.0), 1.0)

@@ -431,8 +431,9 @@ def _phase(model: Model, rs, sh, dr, brk):
     rs.pi = rs.phase == C.RUN and ctl.vfd and cyc.formulation != C.SUPPORT and (
         cyc.start_ctrl != FORCE or rs.stopping)
     if rs.pi and not rs.pi_started:
-        # bumpless switch-on: the loop's output starts at the holding force
-        rs.integ = rs.hold_f - ctl.kp * (rs.v_ref - sh.vs[drives.shaft[ctl.master]])
+        # bumpless switch-on: the loop's output goes on from the drives' force before it
+        u0 = ctl.f_const if cyc.start_ctrl == FORCE else rs.hold_f
+        rs.integ = u0 - ctl.kp * (rs.v_ref - sh.vs[drives.shaft[ctl.master]])
         rs.pi_started = True
     if cyc.start_ctrl == TORQUE and not rs.stopping and rs.phase == C.RUN:
         ramp = min(max((t - cyc.t_pre) / cyc.t_start, 0.0), 1.0)

@@ -619,6 +619,33 @@ def test_the_speed_loop_switches_on_without_a_bump():
     assert np.abs(np.diff(f[m])).max() < 0.1 * hold
 
 
+
+def test_the_speed_loop_takes_over_a_force_start_without_a_bump():
+    """A force start (open loop, ``force_start_n``, verification) hands over to the speed loop
+    at a controlled stop's command; bumpless, the loop's output goes on from the open-loop
+    force, not from the force that held the belt at rest. On the inclined hand conveyor with
+    1.1 x Te (52.8 kN) against 24.5 kN held at rest, the old switch-on dropped the drive's force
+    by 8.05 kN in one sample (10 ms); sampled every 10 ms it now changes by less than 5 % of
+    the open-loop force from one sample to the next through the stop command."""
+    conv = hand_conv(drives=[hand_drive()], takeup={"type": "gravity", "position": "tail",
+                                                      "mass_kg": 8000})
+    st = solve_steady(conv, model="din", n_elements=60)
+    scn = Scenario(run_s=20, elements=60, record_dt_s=0.01,
+                   stop={"mode": "controlled", "time_s": 15})
+    f_const = 1.1 * st.te_n
+    sysm = build_system(conv, scn, st, DynamicsOptions(force_start_n=f_const))
+    assert sysm.hold_force_n < 0.6 * f_const
+    r = simulate(sysm)
+    ts = r.timeseries
+    t = ts["t_s"].to_numpy()
+    f = ts["f_drive_kn"].to_numpy()
+    t_cmd = sysm.model.cycle.t_pre + float(scn.start.time_s) + 20.0
+    before = (t > t_cmd - 0.05) & (t < t_cmd)
+    assert_allclose(f[before], f_const / 1e3, rtol=1e-9)  # the open-loop force up to it
+    m = (t > t_cmd - 0.05) & (t < t_cmd + 0.1)
+    assert np.abs(np.diff(f[m])).max() < 0.05 * f_const / 1e3
+
+
 # --------------------------------------------------------------------------------------
 # brakes
 
