@@ -332,8 +332,17 @@ def transient_checks(names, drv, rated_n, limit_n, vfd, speed_m_s: float, start_
                            "the force within the rating, a rigid-body estimate")
             fix = f"{longer}) or {motor}"
         else:
+            # a dol motor's start force is its torque curve (and coupling) times its rating:
+            # a larger motor starts as far over its own rating, only for a shorter time, and
+            # pulls the belt harder (a larger slip and overspeed risk), so it keeps nothing
+            # within the rating; the RMS force (set by the running load) it does bring within
             softer = DOL_SOFTER[coupling[k] if coupling is not None else "none"]
-            fix = f"{motor} or a softer start ({softer})"
+            rms_fix = (f", and at least {kw_at_least(rms * speed_m_s / 1e3)} kW brings the RMS "
+                       "force within" if hot else "")
+            fix = (f"a softer start ({softer}) or a larger motor, which shortens the time over "
+                   f"its rating{rms_fix} but not the {pct:.0f} % over it (a dol motor's start "
+                   "force is its torque curve times its rating, so a larger one starts the "
+                   "belt harder)")
         warnings.append(f"{said}; {fix} would avoid it")
     return fields, warnings
 
