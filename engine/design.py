@@ -339,11 +339,24 @@ def _holding_grip(conv: Conveyor, steady: SteadyResult, each: list[float]) -> st
     short = [n for n in dict.fromkeys(nodes) if walk.room_n(n, acting) < 0.0]
     if not short:
         return ""
-    where = ", ".join(pulley_name(conv, steady.loop, n) for n in short)
-    grip = brake_grip_kn(conv, steady)
-    return (f"; this force is beyond the grip of {where} in the stop ({grip:.4g} kN with the "
-            "fall of its slack side doubled, the undamped bound), which may slide (the run's "
-            "slip check says): " + _hold_fix(conv, steady))
+    # each short pulley's own grip against the force set on it (the other brakes as set),
+    # not the braked pulleys' total, which may exceed the whole holding force
+    parts = [f"{pulley_name(conv, steady.loop, n)} in the stop (it passes at most "
+             f"{walk.grip_n(n, acting) / 1e3:.4g} kN against the {acting[n] / 1e3:.4g} kN set "
+             "on it" for n in short]
+    said = (f"; this force is beyond the grip of {'; of '.join(parts)}, with the fall of its "
+            "slack side doubled, the undamped bound), which may slide (the run's slip check "
+            "says): ")
+    total = brake_grip_kn(conv, steady)
+    held = sum(acting.values())
+    if len(acting) > 1 and total is not None and total * 1e3 >= held:
+        # the equal split leaves one pulley short while the others have room: given forces
+        # shared by grip hold the belt within it
+        said += (f"the braked pulleys together pass {total:.4g} kN, more than the "
+                 f"{held / 1e3:.4g} kN set, so given forces (brakes[].force_kn) shared by their "
+                 "grip rather than equally would avoid it, as would ")
+        return said + _hold_fix(conv, steady).replace(" would avoid it", "")
+    return said + _hold_fix(conv, steady)
 
 
 def takeup_lever(conv: Conveyor, why: str = "") -> str:

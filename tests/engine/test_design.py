@@ -303,3 +303,47 @@ def test_a_shaft_brake_behind_a_drive_acts_through_its_pulley():
     assert shaft["brake_force_kn"] == pytest.approx(head["brake_force_kn"], rel=1e-12)
     assert shaft["brake_governed_by"] == ["grip"]
     assert "drive 1's pulley (head)" in shaft["brake_note"]
+
+
+def _decline_two_auto_brakes():
+    """A 2.5 km steel-cord decline falling 120 m (ST1600, 2000 t/h at 4 m/s, net pull m'_L g H
+    = 138.9 x 9.81 x 120 = 163.5 kN), auto gravity take-up at the tail, an auto brake on the
+    head drive's pulley and one on the tail pulley."""
+    return parse_conveyor({
+        "name": "decline-two-brakes", "speed_m_s": 4.0,
+        "belt": {"type": "ST1600", "width_m": 1.2},
+        "material": {"capacity_t_h": 2000, "density_t_m3": 1.6},
+        "profile": [{"length_m": 2500, "lift_m": -120}],
+        "idlers": {"carry": {"spacing_m": 1.2, "roll_diameter_m": 0.152, "rolls": 3,
+                             "trough_deg": 35, "cema_class": "D"},
+                   "return": {"spacing_m": 3.0, "roll_diameter_m": 0.152, "rolls": 1,
+                              "cema_class": "C"}},
+        "drives": [{"position": "head", "wrap_deg": 210, "friction": 0.35, "share": 1.0,
+                    "pulley_diameter_m": 1.25, "inertia_kg_m2": 1500,
+                    "rated_power_kw": 800}],
+        "takeup": {"type": "gravity", "position": "tail", "mass_kg": "auto"},
+        "brakes": [{"position": "head", "force_kn": "auto", "delay_s": 1.0},
+                   {"position": "tail", "force_kn": "auto", "delay_s": 1.0}],
+        "accessories": {"head_kn": 2.0, "tail_kn": 1.0}})
+
+
+def test_a_holding_brake_beyond_one_pulleys_grip_quotes_that_pulleys_grip_not_the_total():
+    """Holding sets the two auto brakes at 1.2 x 163.5 = 196.2 kN, 98.1 kN each. The head
+    pulley passes less than its 98.1 kN in the stop; the note said 'beyond the grip of drive
+    1's pulley (head) in the stop (287.7 kN ...)', the grip of both pulleys together, a figure
+    above the whole 196.2 kN. It now quotes the head pulley's own grip, below the 98.1 kN set
+    on it, and, as both together pass more than 196.2 kN, offers given forces shared by grip."""
+    conv = _decline_two_auto_brakes()
+    sizes = auto_sizes(conv, Scenario(stop={"mode": "brake", "time_s": 30.0}), model="din")
+    hold = 1.2 * 2000 / 3.6 / 4.0 * G * 120.0 / 1e3
+    assert sizes["brake_governed_by"] == ["holding", "holding"]
+    assert sizes["brake_force_kn"] == pytest.approx([hold / 2, hold / 2], rel=1e-3)
+    note = sizes["brake_note"]
+    m = re.search(r"beyond the grip of drive 1's pulley \(head\) in the stop \(it passes at "
+                  r"most ([0-9.]+) kN against the ([0-9.]+) kN set on it", note)
+    assert m, note
+    assert float(m.group(2)) == pytest.approx(hold / 2, rel=1e-3)
+    assert float(m.group(1)) < float(m.group(2))  # the claim 'beyond' holds for the figure
+    assert sizes["brake_grip_kn"] > hold
+    assert f"the braked pulleys together pass {sizes['brake_grip_kn']:.4g} kN" in note
+    assert "shared by their grip rather than equally" in note
