@@ -352,6 +352,10 @@ def error_bars(scenario: Scenario, summary: dict, rerun, *,
 def _marginal(fe: FigureError | None, limit: float, unit: str) -> str | None:
     if fe is None or not math.isfinite(fe.err) or fe.err <= 0.0:
         return None
+    if fe.method == "unchanged":
+        # the same on every mesh: its bar is only the run's resolution (the floor), and no
+        # mesh moves the verdict (a belt held at rest on a take-up sized to the grip limit)
+        return None
     if abs(fe.value - limit) > fe.err:
         return None
     return (f"marginal: {fe.name} {fe.value:.4g} against limit {limit:g} +- {fe.err:.3g}"
@@ -360,7 +364,10 @@ def _marginal(fe: FigureError | None, limit: float, unit: str) -> str | None:
 
 def marginal_verdicts(summary: dict, figures: dict, *, sag_limit_pct: float | None = None,
                       safety_factor_min: float | None = None) -> list[str]:
-    """The verdicts whose figure lies within its error bar of the limit (PHYSICS 5.2):
+    """The verdicts whose figure lies within its error bar of the limit (PHYSICS 5.2), of the
+    figures that move with the mesh (one the same on every mesh, method ``unchanged``, has
+    only the run's resolution for a bar and no mesh flips its verdict: an auto take-up sized
+    to a slip margin of exactly 1 with the belt held at rest):
 
     - slack: a belt that went slack by less than the error of ``slack_max_m`` (limit 0 m),
       or one that did not by less than the error of its lowest tension ``t_min_dyn_kn``

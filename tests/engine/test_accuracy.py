@@ -114,6 +114,21 @@ def test_a_verdict_within_its_error_of_the_limit_is_marginal():
         "marginal: slip_margin_min_dyn 1.03", "marginal: safety_factor_dyn 5.9"]
 
 
+
+def test_a_figure_the_same_on_every_mesh_is_not_marginal():
+    """A decline's auto take-up is sized to hold the belt at rest at a slip margin of exactly 1
+    (DIN 22101's grip with its design friction); the run's lowest margin is that held state,
+    1.0000000000000002 on every mesh, so its bar is only the law's resolution (0.1 % of 1). No
+    mesh flips that verdict: it is not named marginal, while the same value and bar from
+    meshes that differ is."""
+    vals = (1.0000000000000002,) * 3
+    bars = A.bars([{"slip_margin_min_dyn": v} for v in vals], (100, 200, 400), 1e-3)
+    fe = bars["slip_margin_min_dyn"]
+    assert fe.method == "unchanged" and fe.err == pytest.approx(1e-3)
+    assert A.marginal_verdicts({}, {"slip_margin_min_dyn": fe}) == []
+    assert A.marginal_verdicts({}, {"slip_margin_min_dyn": _fe("slip_margin_min_dyn", vals[0],
+                                                                1e-3)})
+
 def test_a_lift_off_within_its_error_of_zero_is_marginal():
     """liftoff_max_kn_over (the most a concave curve's tension went over its lift-off
     tension; > 0 the belt lifted) is judged against 0 kN: a belt that lifted by 0.14 kN
