@@ -19,7 +19,8 @@ used.
 * **Brakes** (``force_kn: auto``): the total brake force for a rigid-body stop in the
   scenario's stop time after the brake delay and over its ramp (:func:`brake_force_auto`), at
   least ``HOLD_MARGIN`` x the net downhill pull of the loaded belt, less the fixed brakes,
-  shared evenly by the auto brakes. Its sizing input is the stop time: a run that stops on its
+  shared evenly by the auto brakes (within their pulleys' grip in a brake stop, where an even
+  share is beyond one pulley's grip and the others have room). Its sizing input is the stop time: a run that stops on its
   brakes (``stop.mode: brake``) sizes them for its stop time (``stop_time``, or ``holding``
   where the holding floor is larger); any other run uses no stop time and installs the
   holding size (``holding``).
@@ -145,7 +146,9 @@ def brake_forces(conv: Conveyor, scenario: Scenario, total_mass_kg: float, te_n:
     """Force of each brake [kN], what set it, and a note when holding or the grip set an auto
     force.
 
-    Auto brakes share ``max(stop force, holding force) - fixed brakes`` evenly: the stop
+    Auto brakes share ``max(stop force, holding force) - fixed brakes`` evenly (in a brake
+    stop within their pulleys' grip where an even share is beyond one's and the others have
+    room, :func:`_hold_shared_by_grip`, :func:`_within_grip`): the stop
     force of :func:`brake_force_auto` for a run that stops on its brakes (none otherwise),
     the holding force ``HOLD_MARGIN`` x the net gravity pull ``gravity_sum_n`` [N]. With the
     ``steady`` solution, a stop force is held within what each braked pulley can pass in the
@@ -184,11 +187,17 @@ def brake_forces(conv: Conveyor, scenario: Scenario, total_mass_kg: float, te_n:
             each = [max(total_n - fixed_n, 0.0) / len(auto)] * len(auto)
             if scenario.stop.mode == "brake":
                 t_gives = brake_stop_time(total_mass_kg, v, te_n, hold_n, delay, ramp)
+                shared = False
+                if steady is not None:
+                    each, shared = _hold_shared_by_grip(conv, steady, each)
                 note = (f"auto brake force {hold_n / 1e3:.4g} kN is set by holding the loaded "
                         f"belt at rest ({HOLD_MARGIN:g} x the net gravity pull "
                         f"{pull_n / 1e3:.4g} kN), not by the stop time "
-                        f"{scenario.stop.time_s:g} s (which needs {stop_n / 1e3:.4g} kN): the "
-                        f"rigid-body brake stop then takes about {t_gives:.3g} s")
+                        f"{scenario.stop.time_s:g} s (which needs {stop_n / 1e3:.4g} kN)"
+                        + (", shared by the braked pulleys' grip in the stop (an equal share "
+                           "is beyond one pulley's grip, the others have room)" if shared
+                           else "")
+                        + f": the rigid-body brake stop then takes about {t_gives:.3g} s")
                 if steady is not None:
                     note += _holding_grip(conv, steady, each)
     if not auto and scenario.stop.mode == "brake" and steady is not None:
@@ -328,6 +337,23 @@ def _given_grip(conv: Conveyor, steady: SteadyResult) -> str:
             "pulley would avoid it")
 
 
+def _hold_shared_by_grip(conv: Conveyor, steady: SteadyResult, each: list[float]
+                         ) -> tuple[list[float], bool]:
+    """The auto brakes' holding forces [N] shared within their pulleys' grip in the stop
+    (:func:`beltstudy.engine.stopgrip.grip_limits`, as a stop-time size is) where an equal
+    share ``each`` is beyond one pulley's grip and the others together pass the whole; else
+    ``each``. Returns the forces and whether the grip shared them."""
+    walk = StopWalk.of(conv, steady)
+    nodes, fixed = _brake_nodes(conv, steady.loop)
+    wanted = sum(each)
+    if len(set(nodes)) < 2 or wanted <= 0.0:
+        return each, False
+    forces, capped = grip_limits(walk, nodes, fixed, wanted)
+    if capped and sum(forces) >= wanted * (1.0 - 1e-6):
+        return forces, True
+    return each, False
+
+
 def _holding_grip(conv: Conveyor, steady: SteadyResult, each: list[float]) -> str:
     """The clause a holding-set note gains when the holding force is beyond the braked
     pulleys' grip in the stop ("" when within)."""
@@ -336,7 +362,9 @@ def _holding_grip(conv: Conveyor, steady: SteadyResult, each: list[float]) -> st
     acting = dict(fixed)
     for node, f in zip(nodes, each, strict=True):
         acting[node] = acting.get(node, 0.0) + f
-    short = [n for n in dict.fromkeys(nodes) if walk.room_n(n, acting) < 0.0]
+    # beyond the grip by more than the grip sharing's convergence (1e-6 of the force)
+    short = [n for n in dict.fromkeys(nodes)
+             if acting[n] > walk.grip_n(n, acting) * (1.0 + 1e-6) + 1e-3]
     if not short:
         return ""
     # each short pulley's own grip against the force set on it (the other brakes as set),
@@ -347,15 +375,6 @@ def _holding_grip(conv: Conveyor, steady: SteadyResult, each: list[float]) -> st
     said = (f"; this force is beyond the grip of {'; of '.join(parts)}, with the fall of its "
             "slack side doubled, the undamped bound), which may slide (the run's slip check "
             "says): ")
-    total = brake_grip_kn(conv, steady)
-    held = sum(acting.values())
-    if len(acting) > 1 and total is not None and total * 1e3 >= held:
-        # the equal split leaves one pulley short while the others have room: given forces
-        # shared by grip hold the belt within it
-        said += (f"the braked pulleys together pass {total:.4g} kN, more than the "
-                 f"{held / 1e3:.4g} kN set, so given forces (brakes[].force_kn) shared by their "
-                 "grip rather than equally would avoid it, as would ")
-        return said + _hold_fix(conv, steady).replace(" would avoid it", "")
     return said + _hold_fix(conv, steady)
 
 

@@ -327,23 +327,37 @@ def _decline_two_auto_brakes():
         "accessories": {"head_kn": 2.0, "tail_kn": 1.0}})
 
 
-def test_a_holding_brake_beyond_one_pulleys_grip_quotes_that_pulleys_grip_not_the_total():
-    """Holding sets the two auto brakes at 1.2 x 163.5 = 196.2 kN, 98.1 kN each. The head
-    pulley passes less than its 98.1 kN in the stop; the note said 'beyond the grip of drive
-    1's pulley (head) in the stop (287.7 kN ...)', the grip of both pulleys together, a figure
-    above the whole 196.2 kN. It now quotes the head pulley's own grip, below the 98.1 kN set
-    on it, and, as both together pass more than 196.2 kN, offers given forces shared by grip."""
+def test_auto_holding_brakes_are_shared_by_their_pulleys_grip():
+    """Holding sets the two auto brakes at 1.2 x 163.5 = 196.2 kN. Shared equally, 98.1 kN
+    each, the head pulley's brake is beyond what that pulley passes in the stop (74.45 kN
+    with the tail's share set) while the tail pulley has room: both together pass 287.7 kN.
+    An auto size is sized within its pulley's grip (issue 26, brakes within their grip), so
+    the holding force is now shared by grip: the head brake at most its pulley's grip, the tail
+    the rest, the total still 196.2 kN, and no pulley beyond its grip. With a 30 t take-up
+    the two together pass 150.8 kN, less than the holding force: the equal share stays, and the
+    note quotes each short pulley's own grip against the force set on it (not the braked
+    pulleys' total, which may exceed the whole)."""
     conv = _decline_two_auto_brakes()
-    sizes = auto_sizes(conv, Scenario(stop={"mode": "brake", "time_s": 30.0}), model="din")
+    scn = Scenario(stop={"mode": "brake", "time_s": 30.0})
+    sizes = auto_sizes(conv, scn, model="din")
     hold = 1.2 * 2000 / 3.6 / 4.0 * G * 120.0 / 1e3
     assert sizes["brake_governed_by"] == ["holding", "holding"]
+    head, tail = sizes["brake_force_kn"]
+    assert head + tail == pytest.approx(hold, rel=1e-6)
+    assert head < hold / 2 < tail
+    assert sizes["brake_grip_kn"] > hold
+    note = sizes["brake_note"]
+    assert "shared by the braked pulleys' grip in the stop" in note
+    assert "beyond the grip" not in note  # each pulley within its grip (1e-6)
+
+    light = conv.model_copy(update={"takeup": conv.takeup.model_copy(update={"mass_kg": 30000})})
+    sizes = auto_sizes(light, scn, model="din")
     assert sizes["brake_force_kn"] == pytest.approx([hold / 2, hold / 2], rel=1e-3)
+    assert sizes["brake_grip_kn"] < hold
     note = sizes["brake_note"]
     m = re.search(r"beyond the grip of drive 1's pulley \(head\) in the stop \(it passes at "
                   r"most ([0-9.]+) kN against the ([0-9.]+) kN set on it", note)
     assert m, note
     assert float(m.group(2)) == pytest.approx(hold / 2, rel=1e-3)
     assert float(m.group(1)) < float(m.group(2))  # the claim 'beyond' holds for the figure
-    assert sizes["brake_grip_kn"] > hold
-    assert f"the braked pulleys together pass {sizes['brake_grip_kn']:.4g} kN" in note
-    assert "shared by their grip rather than equally" in note
+    assert f"{sizes['brake_grip_kn']:.4g} kN" not in note  # not the total's grip
