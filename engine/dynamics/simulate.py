@@ -1070,7 +1070,7 @@ def transient_summary(sys: System, r: dict, out, segs, *, steady_summary=None, c
                                             and v_cmd >= RUNNING_FRACTION * sys.v_design)
     if (summary["stop_wave_ratio"] is not None and summary["stop_wave_ratio"] < 5.0
             and at_speed):
-        w.append(_fast_stop_words(sys, t_stop_ach, summary, steady_tmax, conveyor))
+        w.append(_fast_stop_words(sys, t_stop_ach, summary, steady_tmax, conveyor, v_cmd))
     if r["endstop"] > 0:
         w.append(endstop_words(sys, r))
     ran_away = int(r["status"]) == C.RUNAWAY  # the run ended early: said above
@@ -1347,26 +1347,49 @@ def _given_brake_words(sys: System, need_s: float, t_stop: float, auto: bool = F
             "set at rest holds the belt once stopped)")
 
 
-def _coast_inertia_words(sys: System, need_s: float, conveyor=None) -> str:
+#: The margin on 5 wave loop times that the flywheel advice sizes its rigid-body coast for:
+#: the elastic belt's mean speed, whose fall below 1 % of design speed ends the measured stop,
+#: swings about the rigid body's against a heavy flywheel (a 1.2 km EP800/4 belt with 103 t
+#: of flywheel at the belt line came to rest 0.3 to 0.5 % before its rigid body).
+COAST_MARGIN = 0.02
+
+
+def _coast_inertia_words(sys: System, need_s: float, conveyor=None, v_run: float | None = None,
+                         t_stop: float | None = None) -> str:
     """How much inertia on the drive shafts makes a coast last ``need_s`` [s] (5 wave loop
-    times), in words: the rigid-body coast ``M v / Te`` reaches it with ``M = need_s Te / v``
-    moving [kg], so the drives' shafts must carry ``dM = M - M_now`` more at the belt line,
-    each its share; a drive's flywheel (on the pulley side of a coupling) of ``J_fw + (m_shaft
-    + share dM - m_given) (D / 2)^2`` [kg m2] gives it (its shaft carries the larger of the given
-    inertia and the pulley's shell). A trip time and the belt's elasticity only lengthen the
-    coast, so the figure is enough for a rigid belt. ``more inertia on the drive shafts`` alone
-    where Te <= 0 (the belt does not coast to rest) or no inertia is missing."""
+    times), in words. The measured stop runs from the stop command, at the running speed
+    ``v_run`` (the mean belt speed then: a dol drive's slip speed, a few per mille below design
+    speed), until the mean speed falls below ``REST_FRACTION`` of design speed, so the rigid
+    body's coast is ``M (v_run - REST_FRACTION v) / Te``; it reaches ``need_s (1 +
+    COAST_MARGIN)`` (the margin for the elastic belt's swing about the rigid body) with ``M =
+    need_s (1 + COAST_MARGIN) Te / (v_run - REST_FRACTION v)`` moving [kg], so the drives'
+    shafts must carry ``dM = M - M_now`` more at the belt line, each its share; a drive's
+    flywheel (on the pulley side of a coupling) of ``J_fw + (m_shaft + share dM - m_given) (D /
+    2)^2`` [kg m2] gives it (its shaft carries the larger of the given inertia and the pulley's
+    shell). The stop as it is (``t_stop``) is quoted against its own rigid-body time. A trip
+    time only lengthens the coast. ``more inertia on the drive shafts`` alone where Te <= 0 (the
+    belt does not coast to rest) or no inertia is missing. ``v_run`` None: design speed."""
     te, v = float(sys.te_n), float(sys.v_design)
     m_now = float(sys.model.control.m_tot)
-    if te <= 0.0 or v <= 0.0:
+    v0 = v if v_run is None else float(v_run)
+    dv = v0 - REST_FRACTION * v
+    if te <= 0.0 or v <= 0.0 or dv <= 0.0:
         return "more inertia on the drive shafts"
-    m_need = need_s * te / v
+    target = need_s * (1.0 + COAST_MARGIN)
+    m_need = target * te / dv
     dm = m_need - m_now
     if dm <= 0.0:
         return "more inertia on the drive shafts"
-    head = (f"more inertia on the drive shafts: a rigid-body coast (M v / Te) of {need_s:.3g} s "
-            f"needs M = {need_s:.3g} s x {te / 1e3:.4g} kN / {v:g} m/s = {m_need / 1e3:.4g} t "
-            f"moving, {dm / 1e3:.4g} t more than the {m_now / 1e3:.4g} t now at the belt line")
+    now = (f" (the stop as it is: {m_now / 1e3:.4g} t x {dv:.4g} m/s / {te / 1e3:.4g} kN = "
+           f"{m_now * dv / te:.4g} s rigid, {t_stop:.4g} s measured)" if t_stop is not None
+           else "")
+    head = (f"more inertia on the drive shafts: a rigid-body coast from the running speed "
+            f"{v0:.4g} m/s to rest ({100.0 * REST_FRACTION:g} % of design speed, {REST_FRACTION * v:.3g} m/s, "
+            f"where the stop time ends), M (v_run - v_rest) / Te, of {target:.4g} s (5 wave loop "
+            f"times and {100.0 * COAST_MARGIN:g} % for the elastic belt's swing about the rigid "
+            f"body) needs M = {target:.4g} s x {te / 1e3:.4g} kN / {dv:.4g} m/s = "
+            f"{m_need / 1e3:.4g} t moving, {dm / 1e3:.4g} t more than the {m_now / 1e3:.4g} t "
+            f"now at the belt line{now}")
     if conveyor is None:
         return head
     dr = sys.model.drives
@@ -1386,11 +1409,13 @@ def _coast_inertia_words(sys: System, need_s: float, conveyor=None) -> str:
 
 
 def _fast_stop_words(sys: System, t_stop: float, summary: dict, steady_tmax: float,
-                     conveyor=None) -> str:
+                     conveyor=None, v_cmd: float | None = None) -> str:
     """The warning of a stop faster than 5 wave loop times (Harrison after Funke 1973): the
     stop's tensions against the running ones, and what would lengthen it: for a brake stop
     the given brake force that would (:func:`_given_brake_words`), and an auto brake's
-    stop time only where a brake is auto (``stop.time_s`` sizes no given brake)."""
+    stop time only where a brake is auto (``stop.time_s`` sizes no given brake); for a coast
+    the flywheel from the mean belt speed at the stop command ``v_cmd``
+    (:func:`_coast_inertia_words`)."""
     cyc = sys.model.cycle
     t_min_run = float(np.min(sys.steady_tension_n)) / 1e3
     hi, lo = summary.get("t_max_stop_kn"), summary.get("t_min_stop_kn")
@@ -1440,7 +1465,7 @@ def _fast_stop_words(sys: System, t_stop: float, summary: dict, steady_tmax: flo
                f"least {_up_s(need / frac)} s (enough for a belt that follows its s-curve, at "
                f"rest from {frac:.3f} of it; a long or soft belt's mean speed comes to rest "
                "sooner and needs more: rerun the controlled stop, whose own warning names the "
-               f"time to ask), or {_coast_inertia_words(sys, need, conveyor)}")
+               f"time to ask), or {_coast_inertia_words(sys, need, conveyor, v_cmd, t_stop)}")
     return (f"stop in {t_stop:.1f} s is faster than 5 wave loop times (5 x "
             f"{sys.wave_loop_time_s:.1f} s): a high-stress stop{seen}; {fix}")
 

@@ -525,11 +525,13 @@ def test_a_fast_stop_says_its_tensions_and_what_would_slow_it():
     msg = _fast_stop_words(sysm, 1.6, {}, 261e3)
     assert "a controlled stop (vfd drives) would be slower than that, with stop.time_s at " \
         "least 8.5 s" in msg, msg
-    # ... or the inertia whose rigid-body coast M v / Te lasts 5 loops: M = 7.465 s x 100 kN
-    # / 4 m/s = 186.6 t, 136.6 t more than the 50 t moving now
-    assert ("more inertia on the drive shafts: a rigid-body coast (M v / Te) of 7.47 s needs "
-            "M = 7.47 s x 100 kN / 4 m/s = 186.6 t moving, 136.6 t more than the 50 t now at "
-            "the belt line") in msg, msg
+    # ... or the inertia whose rigid-body coast from design speed (no running speed given) to
+    # 1 % of it, M (4 - 0.04 m/s) / Te, lasts 5 loops and 2 %: M = 7.614 s x 100 kN / 3.96 m/s
+    # = 192.3 t, 142.3 t more than the 50 t moving now
+    assert ("of 7.614 s (5 wave loop times and 2 % for the elastic belt's swing about the rigid "
+            "body) needs M = 7.614 s x 100 kN / 3.96 m/s = 192.3 t moving, 142.3 t more than "
+            "the 50 t now at the belt line (the stop as it is: 50 t x 3.96 m/s / 100 kN = 1.98 "
+            "s rigid, 1.6 s measured)") in msg, msg
     # ... the least, not a time sure to meet 5 loops: a belt's mean speed can rest before its
     # s-curve does (a 1.5 km fabric belt at -25 C, Non-Lin, asked 38 s for a 6.56 s loop took
     # 31.6 s, still under 5 loops), so the words send the reader to the controlled run's own
