@@ -1461,7 +1461,21 @@ def _fast_stop_words(sys: System, t_stop: float, summary: dict, steady_tmax: flo
         # a 7 km steel-cord overland at 0.81 of the ramp), so this is the least to ask, not
         # one that is sure to meet 5 loops: say so, and where the figure that does comes from
         frac = ramp_rest_fraction()
-        fix = (f"{coast}a controlled stop (vfd drives) would be slower than that, with stop.time_s at "
+        # a controlled stop needs every drive on a vfd (a dol motor on the line cannot follow a
+        # stopping curve, and the run refuses stop.mode controlled): where one is dol, say what
+        # makes it possible
+        drv = getattr(sys.model, "drives", None)
+        dol = ([k for k, c in enumerate(drv.control) if c == C.DOL] if drv is not None
+               else [])
+        def _vfd(k: int) -> str:  # a vfd drive has no coupling (a dol drive's only)
+            cpl = getattr(drv, "coupling", None)
+            none = cpl is not None and int(cpl[k]) != C.COUPLING_NONE
+            return f"drives.{k}.control: vfd" + (" with coupling: none" if none else "")
+
+        how = ("a controlled stop (vfd drives)" if not dol else
+               f"a controlled stop on vfd drives ({', '.join(_vfd(k) for k in dol)}, now dol: a "
+               "motor on the line cannot follow a stopping curve; then stop.mode: controlled)")
+        fix = (f"{coast}{how} would be slower than that, with stop.time_s at "
                f"least {_up_s(need / frac)} s (enough for a belt that follows its s-curve, at "
                f"rest from {frac:.3f} of it; a long or soft belt's mean speed comes to rest "
                "sooner and needs more: rerun the controlled stop, whose own warning names the "

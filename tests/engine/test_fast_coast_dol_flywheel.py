@@ -104,3 +104,42 @@ def test_a_dol_coast_told_a_flywheel_coasts_five_wave_loops_with_it():
     r2 = run_one(parse_conveyor(d), Scenario(), model="din")
     assert r2.summary["stop_wave_ratio"] >= 5.0, r2.summary["stop_wave_ratio"]
     assert "faster than 5 wave loop times" not in r2.summary["message"]
+
+
+def test_a_dol_coast_is_told_what_makes_a_controlled_stop_possible():
+    """The coast advice offered 'a controlled stop (vfd drives) ... stop.time_s at least 35 s'
+    to a conveyor whose only drive is dol behind a fluid coupling, a stop the run refuses
+    ('controlled' needs vfd drives). It now names the change that allows it, and that change
+    (control: vfd, no coupling, stop.mode: controlled) runs."""
+    r = run_one(parse_conveyor(DOL), Scenario(), model="din")
+    msg = r.summary["message"]
+    assert "a controlled stop (vfd drives)" not in msg, msg
+    m = re.search(r"a controlled stop on vfd drives \(drives\.0\.control: vfd with coupling: "
+                  r"none, now dol: .*?; then stop\.mode: controlled\) would be slower than "
+                  r"that, with stop\.time_s at least ([\d.]+) s", msg)
+    assert m, msg
+    d = copy.deepcopy(DOL)
+    d["drives"][0].update(control="vfd", coupling="none")
+    scn = Scenario(stop={"mode": "controlled", "time_s": float(m.group(1))})
+    r2 = run_one(parse_conveyor(d), scn, model="din")
+    # runs (a dol drive is refused here) and stops over the ramp, well past the 16 s coast
+    assert r2.summary["stop_time_s"] > 0.8 * float(m.group(1))
+
+
+def test_a_vfd_coast_is_offered_the_controlled_stop_as_before():
+    """Drives already on vfds: the controlled stop needs only stop.mode, as it said; one dol
+    drive among vfds is named alone."""
+    sysm = SimpleNamespace(wave_loop_time_s=1.493, steady_tension_n=np.array([20e3, 261e3]),
+                           te_n=100e3, v_design=4.0,
+                           model=SimpleNamespace(cycle=SimpleNamespace(stop_mode=C.COAST,
+                                                                       t_stop=30.0),
+                                                 control=SimpleNamespace(m_tot=50e3),
+                                                 drives=SimpleNamespace(
+                                                     control=np.array([C.VFD, C.DOL]),
+                                                     coupling=np.array([0, 1]))))
+    msg = _fast_stop_words(sysm, 1.6, {}, 261e3)
+    assert ("a controlled stop on vfd drives (drives.1.control: vfd with coupling: none, now "
+            "dol:") in msg, msg
+    sysm.model.drives.control = np.array([C.VFD, C.VFD])
+    msg = _fast_stop_words(sysm, 1.6, {}, 261e3)
+    assert "a controlled stop (vfd drives) would be slower than that" in msg, msg
