@@ -200,9 +200,17 @@ def _rate_within(motor: str, what: str, force_n: float) -> str:
     ``force_n`` [N]) keeps within what the rating leaves: the force above the rating follows
     the belt's waves and swing, which a longer start or stop would not remove."""
     longer = "start" if what.startswith("start") else "stop"
-    return (f"{motor}; the {what} ({force_n / 1e3:.3g} kN on this drive) keeps within the "
-            "rating, so the force above it comes from the belt's waves and swing, which a "
-            f"longer {longer} would not remove")
+    # inside the motor's brackets, so the caller's "would avoid it" follows the motor
+    return (f"{motor[:-1]}; the {what} ({force_n / 1e3:.3g} kN on this drive) keeps within "
+            "the rating, so the force above it comes from the belt's waves and swing, which a "
+            f"longer {longer} would not remove)")
+
+
+def _time_at_least(seconds: float) -> int:
+    """A start or stop time [s] to advise: the whole second at or above the rigid-body
+    estimate. Rounded to the nearest, an estimate of 177.05 s at a 177 s start was advised as
+    "about 177 s", the start already run, which does not clear the warning."""
+    return math.ceil(seconds * (1.0 - 1e-9))
 
 
 def transient_checks(names, drv, rated_n, limit_n, vfd, speed_m_s: float, start_s: float,
@@ -309,8 +317,9 @@ def transient_checks(names, drv, rated_n, limit_n, vfd, speed_m_s: float, start_
             longer = f"a longer stop (stop.time_s, now {stop_s:g} s"
             if f_run is not None and f_dec is not None:
                 # rigid body: F = f_run - m a, the peak deceleration as 1 / stop time
-                longer += (f"; about {stop_s * f_dec / (rated + f_run):.0f} s keeps the "
-                           "force within the rating, a rigid-body estimate")
+                need = _time_at_least(stop_s * f_dec / (rated + f_run))
+                longer += (f"; about {need} s keeps the force within the rating, a "
+                           "rigid-body estimate")
             fix = f"{longer}) or {motor}"
         elif vfd[k] and f_run is not None and f_run < 0.0:
             # a regenerating drive holds the belt back hardest at rest and creeping speed,
@@ -324,12 +333,14 @@ def transient_checks(names, drv, rated_n, limit_n, vfd, speed_m_s: float, start_
             longer = f"a longer start (start.time_s, now {start_s:g} s"
             if f_run is not None and f_acc is not None:
                 # rigid body: F = f_run + m a, the peak acceleration as 1 / start time
-                longer += (f"; about {start_s * f_acc / (rated - f_run):.0f} s keeps the "
-                           "force within the rating, a rigid-body estimate")
+                need = _time_at_least(start_s * f_acc / (rated - f_run))
+                longer += (f"; about {need} s keeps the force within the rating, a "
+                           "rigid-body estimate")
             elif f_run is not None and rated < fmax:
                 # a torque start (no speed curve): from the largest force the run reached
-                longer += (f"; about {start_s * (fmax - f_run) / (rated - f_run):.0f} s keeps "
-                           "the force within the rating, a rigid-body estimate")
+                need = _time_at_least(start_s * (fmax - f_run) / (rated - f_run))
+                longer += (f"; about {need} s keeps the force within the rating, a "
+                           "rigid-body estimate")
             fix = f"{longer}) or {motor}"
         else:
             # a dol motor's start force is its torque curve (and coupling) times its rating:

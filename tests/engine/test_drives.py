@@ -209,6 +209,43 @@ def test_the_start_estimate_reads_the_rigid_body_acceleration_force():
     assert "the start's rigid-body acceleration (9 kN on this drive) keeps within" in w
 
 
+def test_the_start_estimate_is_rounded_up_past_the_start_already_run():
+    """A 10 s start whose rigid-body acceleration force is 12.03 kN on a drive rated 24 kN and
+    running at 12 kN: the start that keeps the force within the rating is 10 x 12.03 / (24 -
+    12) = 10.025 s. Rounded to the nearest it was advised as 'about 10 s', the start already
+    run (a 5 km flat belt at start.time_s 177 s was told 'now 177 s; about 177 s keeps the
+    force within the rating'): the advice is the whole second above, 11 s, and 11 s leaves
+    the rigid-body force within what the rating leaves (10 x 12.03 / 11 = 10.94 kN <= 12 kN).
+    The same for a controlled stop: 20 s at 36.09 kN deceleration force, rated 24 kN,
+    running 12 kN: 20 x 36.09 / 36 = 20.05 s, advised as 21 s, not 20 s."""
+    drv = _drive_result(fmax=26e3, fmax_t=5.0, over_s=20.0, f2_int=13e3**2 * 60.0,
+                        rms_s=60.0)
+    _, (w,) = transient_checks(["drive 1 (head)"], drv, [24e3], [60e3], [True], 4.0, 10.0,
+                               running_n=[12e3], start_accel_n=[12.03e3])
+    assert "a longer start (start.time_s, now 10 s; about 11 s keeps the force within" in w, w
+    assert 10.0 * 12.03e3 / 11.0 <= 24e3 - 12e3
+    drv = _drive_result(fmax=26e3, fmax_t=50.0, over_s=20.0, over_stop_s=20.0,
+                        f2_int=13e3**2 * 60.0, rms_s=60.0)
+    _, (w,) = transient_checks(["drive 1 (head)"], drv, [24e3], [60e3], [True], 4.0, 10.0,
+                               running_n=[12e3], stop_s=20.0, stop_accel_n=[36.09e3])
+    assert "a longer stop (stop.time_s, now 20 s; about 21 s keeps the force within" in w, w
+
+
+def test_an_overload_from_waves_names_the_larger_motor_in_one_clause():
+    """With the start's rigid-body acceleration force within what the rating leaves (9 kN
+    against 24 - 12 kN), the cure is a larger motor and the reason is that a longer start
+    would not remove the force above the rating. The reason stood after the motor's brackets
+    and before 'would avoid it', so the sentence read '... which a longer start would not
+    remove would avoid it'; the reason now sits inside the motor's brackets."""
+    drv = _drive_result(fmax=26e3, fmax_t=5.0, over_s=20.0, f2_int=13e3**2 * 60.0,
+                        rms_s=60.0)
+    _, (w,) = transient_checks(["drive 1 (head)"], drv, [24e3], [60e3], [True], 4.0, 10.0,
+                               running_n=[12e3], start_accel_n=[9e3])
+    assert "a larger motor (at least 104 kW keeps it within; the start's rigid-body" in w, w
+    assert w.endswith("which a longer start would not remove) would avoid it"), w
+    assert "remove would avoid" not in w
+
+
 @pytest.mark.parametrize("vfd", [True, False])
 def test_an_overload_while_running_offers_no_start_as_its_cure(vfd):
     """A drive whose running force (28 kN) is itself above its rating (24 kN) is overloaded
