@@ -33,6 +33,7 @@ from beltstudy.engine.dynamics.simulate import (
     start_levers,
     stop_levers,
 )
+from beltstudy.engine.loop import G
 from beltstudy.engine.remedy import reads_start_time
 from beltstudy.engine.results import check_summary
 from beltstudy.engine.sizing import installed_at_full_load
@@ -404,7 +405,9 @@ def _complete(prep: _Prepared, scenario, system, tr, model, params, opts, remedy
         # is told only once the start is known to slip
         found = _slip_remedy(conveyor, scenario, model, params, opts, summary, say,
                              finer=_finer_mesh(scenario, summary, system, opts) if check
-                             else None)
+                             else None,
+                             sf_min=conveyor.safety_factor_min
+                             or SAFETY_FACTOR_MIN.get(steady.loop.belt.kind, 6.7))
         if found:
             messages.append(found)
             _unfound_levers(conveyor, system, tr, messages, summary)
@@ -588,8 +591,33 @@ def _finer_mesh(scenario: Scenario, summary: dict, system, opts: DynamicsOptions
     return scn, o
 
 
+def _takeup_safety_words(summary: dict, tu_fig: float | None, gravity: bool,
+                         sf_min: float | None) -> str:
+    """The clause a slip-free take-up (``tu_fig``: a mass [kg] for a gravity take-up, a
+    tension per strand [kN] for a fixed one) gains when it puts the steady belt safety factor
+    below ``sf_min`` ("" otherwise). A heavier take-up lifts the tension at the take-up by
+    ``(m - m_run) g / 2`` on each strand (the pretension's rise for a fixed one) and the walk
+    carries that rise round the loop, so the largest tension rises by it (exactly for a
+    tension-independent model, about for a sag-dependent one): ``S = rating / (T_max + dT)``.
+    The remedy searched the start's slip only; its take-up could break the running check
+    unsaid (a 400 m 16 deg EP1250/5 incline: 4,939 kg for 3,729 kg, T_max 119.8 -> 125.7 kN,
+    S 10.44 -> 9.94 against 10)."""
+    t_max, rating = summary.get("t_max_kn"), summary.get("belt_rating_kn")
+    base = summary.get("takeup_mass_kg") if gravity else summary.get("takeup_tension_kn")
+    if None in (tu_fig, t_max, rating, base, sf_min) or tu_fig <= base:
+        return ""
+    rise_kn = (tu_fig - base) * G / 2.0 / 1e3 if gravity else tu_fig - base
+    sf = float(rating) / (float(t_max) + rise_kn)
+    if sf >= sf_min:
+        return ""
+    return (f" lifts the largest running tension by {rise_kn:.3g} kN, to "
+            f"{float(t_max) + rise_kn:.4g} kN: the belt safety factor falls to about {sf:.2f}, "
+            f"below the minimum {sf_min:.2f}")
+
+
 def _slip_remedy(conveyor, scenario, model, params, opts, summary, say=None,
-                 finer: tuple[Scenario, DynamicsOptions] | None = None) -> str:
+                 finer: tuple[Scenario, DynamicsOptions] | None = None,
+                 sf_min: float | None = None) -> str:
     """Search what avoids a start's slip (:func:`beltstudy.engine.remedy.slip_remedy`), put the figures
     into ``summary`` and return the sentence for the message ("" when the start did not
     slip). With ``finer`` (the scenario and options of a checked run's finer mesh,
@@ -627,6 +655,9 @@ def _slip_remedy(conveyor, scenario, model, params, opts, summary, say=None,
 
     tu = (f"{article} {amount(tu_fig)}" if tu_fig is not None
           else f"no {noun} up to {TAKEUP_MAX:g} x this one")
+    safety = _takeup_safety_words(summary, tu_fig, gravity, sf_min)
+    if safety:
+        safety = f"; the {noun} of {amount(tu_fig)}{safety}"
     st = (f"a start of {st_fig:.0f} s" if st_fig is not None
           else f"no start up to {START_MAX:g} x this one")
     how = (f"found by rerunning the start {rem.reruns} times on the same mesh, to 2 %; steps "
@@ -650,5 +681,5 @@ def _slip_remedy(conveyor, scenario, model, params, opts, summary, say=None,
                     f"; each holds on a mesh twice as fine too ({n_fine} elements)")
     if not reads_start_time(conveyor):  # dol drives: the coupling softens their start
         return (f"slip in the start avoided by {tu} ({how}; a dol start does not read "
-                "start.time_s: its coupling sets how fast the torque comes on)")
-    return f"slip in the start avoided by {tu} or by {st} (each alone, {how})"
+                f"start.time_s: its coupling sets how fast the torque comes on){safety}")
+    return f"slip in the start avoided by {tu} or by {st} (each alone, {how}){safety}"
