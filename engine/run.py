@@ -498,7 +498,7 @@ def _unfound_levers(conveyor: Conveyor, system, tr, messages: list[str], summary
     for first_last in (("start", "start"), ("start", "running"), ("start", "stop")):
         when, fix = slip_words(*first_last, system)
         parts = [lever_tu] + start_levers(system) + (
-            stop_levers(system) if first_last[1] == "stop" else [])
+            stop_levers(system, slip=True) if first_last[1] == "stop" else [])
         gone, nots, short = [], [], []
         if tu is None:
             gone.append(lever_tu)
@@ -679,7 +679,24 @@ def _slip_remedy(conveyor, scenario, model, params, opts, summary, say=None,
                     if reads_start_time(conveyor) is False or rem.start_time_s is None
                     or run_tu is None else
                     f"; each holds on a mesh twice as fine too ({n_fine} elements)")
-    if not reads_start_time(conveyor):  # dol drives: the coupling softens their start
-        return (f"slip in the start avoided by {tu} ({how}; a dol start does not read "
-                f"start.time_s: its coupling sets how fast the torque comes on){safety}")
-    return f"slip in the start avoided by {tu} or by {st} (each alone, {how}){safety}"
+    searched = [(tu_fig, tu)]
+    if reads_start_time(conveyor):
+        searched.append((st_fig, st))
+    else:  # dol drives: the coupling softens their start
+        how += ("; a dol start does not read start.time_s: its coupling sets how fast the "
+                "torque comes on")
+    return remedy_sentence(searched, how) + safety
+
+
+def remedy_sentence(searched: list[tuple[float | None, str]], how: str) -> str:
+    """The slip remedy's finding in words: ``searched`` holds per lever the figure its reruns
+    found (None: none up to the search's end) and its words (``a take-up of 39,995 kg``, ``no
+    start up to 6 x this one``); ``how`` how they were found. The levers found avoid the slip;
+    the rest are said apart, not as an "avoided by no ..." that reads as a finding."""
+    found = [words for fig, words in searched if fig is not None]
+    nots = [words for fig, words in searched if fig is None]
+    if not found:  # what the reruns tried, none of which avoided the slip
+        return f"slip in the start not avoided: {' and '.join(nots)} avoids it ({how})"
+    each = "each alone, " if len(found) > 1 else ""
+    said = f"slip in the start avoided by {' or by '.join(found)} ({each}{how})"
+    return said + "".join(f"; {n} avoids it" for n in nots)

@@ -375,7 +375,18 @@ def start_levers(sys: System) -> list[str]:
     return levers
 
 
-def stop_levers(sys: System | None) -> list[str]:
+def vfd_fields(sys: System) -> str:
+    """The fields that make every dol drive a vfd one, in words: ``drives.k.control: vfd``,
+    with ``coupling: none`` where the drive has a fluid coupling (a vfd drive takes none, the
+    conveyor file refuses one)."""
+    drv = sys.model.drives
+    return ", ".join(
+        f"drives.{k}.control: vfd" + (" with coupling: none"
+                                      if int(drv.coupling[k]) != C.COUPLING_NONE else "")
+        for k, c in enumerate(drv.control) if c == C.DOL)
+
+
+def stop_levers(sys: System | None, slip: bool = False) -> list[str]:
     """What makes this run's stop softer, by its stop mode: a longer ``stop.time_s`` for a
     controlled stop; less brake force or a longer brake ramp (``brakes[].ramp_s``) for a
     brake stop; a coast stop has no setting of its own, so the lever is a controlled stop
@@ -383,7 +394,10 @@ def stop_levers(sys: System | None) -> list[str]:
     scenario asking it of a conveyor with a dol drive is refused,
     :func:`beltstudy.engine.dynamics.model.check_scenario`): with a dol drive the coast is
     lengthened by more inertia on the drive shafts (``drives[].flywheel_kg_m2``), or the
-    drives made vfd for a controlled stop. Without ``sys``: the general words."""
+    drives made vfd for a controlled stop (:func:`vfd_fields`). For a pulley that slips in
+    the stop (``slip``) more inertia is no lever: the shaft's inertia is what its grip must
+    slow (a 400 m, 16 deg incline's head pulley slid 0.05 s in its coast stop, 0.18 s with a
+    19 000 kg m2 flywheel and 0.33 s with 38 000). Without ``sys``: the general words."""
     if sys is None:
         return ["a softer stop (stop time, brake force)"]
     mode = sys.model.cycle.stop_mode
@@ -393,9 +407,10 @@ def stop_levers(sys: System | None) -> list[str]:
         return ["a softer brake stop (less brake force, a longer stop.time_s for an auto "
                 "brake sized by it, a longer brake ramp brakes[].ramp_s)"]
     if (sys.model.drives.control == C.DOL).any():
-        return ["a longer coast (more inertia on the drive shafts, drives[].flywheel_kg_m2)",
-                "vfd drives and a controlled stop (drives[].control: vfd, stop.mode: "
-                "controlled: a dol motor cannot follow a stopping curve)"]
+        coast = [] if slip else ["a longer coast (more inertia on the drive shafts, "
+                                 "drives[].flywheel_kg_m2)"]
+        return coast + [f"vfd drives and a controlled stop ({vfd_fields(sys)}, stop.mode: "
+                        "controlled: a dol motor cannot follow a stopping curve)"]
     return ["a controlled stop instead of the coast (stop.mode: controlled, the drives "
             "easing the belt down over stop.time_s)"]
 
@@ -425,7 +440,7 @@ def slip_words(first: str, last: str, sys: System | None = None) -> tuple[str, s
     if first == "start":
         fixes += (start_levers(sys) if sys is not None else ["a longer start (start.time_s)"])
     if last == "stop":
-        fixes += stop_levers(sys)
+        fixes += stop_levers(sys, slip=True)
     return when, _or(fixes)
 
 
@@ -617,7 +632,7 @@ def running_warnings(sys: System, r: dict, out, names=None) -> list[str]:
     short = ""
     if t0 > t1 - SETTLE_LOOPS * t_loop + 1e-9:
         short = (f"; the running phase is short (run_s {cyc.t_run:.3g} s): a run_s of at least "
-                 f"{(SETTLE_LOOPS + 1.0) * t_loop:.0f} s ({SETTLE_LOOPS + 1.0:g} wave loop "
+                 f"{_up_s((SETTLE_LOOPS + 1.0) * t_loop)} s ({SETTLE_LOOPS + 1.0:g} wave loop "
                  "times) shows whether it settles")
     m = (rec["t"] >= t0) & (rec["t"] <= t1)
     swing, period = swing_and_period(rec["t"][m], rec["v_mean"][m])
@@ -1465,16 +1480,10 @@ def _fast_stop_words(sys: System, t_stop: float, summary: dict, steady_tmax: flo
         # stopping curve, and the run refuses stop.mode controlled): where one is dol, say what
         # makes it possible
         drv = getattr(sys.model, "drives", None)
-        dol = ([k for k, c in enumerate(drv.control) if c == C.DOL] if drv is not None
-               else [])
-        def _vfd(k: int) -> str:  # a vfd drive has no coupling (a dol drive's only)
-            cpl = getattr(drv, "coupling", None)
-            none = cpl is not None and int(cpl[k]) != C.COUPLING_NONE
-            return f"drives.{k}.control: vfd" + (" with coupling: none" if none else "")
-
+        dol = drv is not None and bool((drv.control == C.DOL).any())
         how = ("a controlled stop (vfd drives)" if not dol else
-               f"a controlled stop on vfd drives ({', '.join(_vfd(k) for k in dol)}, now dol: a "
-               "motor on the line cannot follow a stopping curve; then stop.mode: controlled)")
+               f"a controlled stop on vfd drives ({vfd_fields(sys)}, now dol: a motor on the "
+               "line cannot follow a stopping curve; then stop.mode: controlled)")
         fix = (f"{coast}{how} would be slower than that, with stop.time_s at "
                f"least {_up_s(need / frac)} s (enough for a belt that follows its s-curve, at "
                f"rest from {frac:.3f} of it; a long or soft belt's mean speed comes to rest "

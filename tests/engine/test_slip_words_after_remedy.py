@@ -47,7 +47,9 @@ def test_a_take_up_the_remedy_did_not_find_is_not_offered_by_the_slip_warning():
             "would avoid it; a heavier take-up would not: rerunning the start found no "
             f"take-up up to {TAKEUP_MAX:g} x this one that avoids it") in msg
     # the remedy's own sentence is kept
-    assert f"slip in the start avoided by no take-up up to {TAKEUP_MAX:g} x this one" in msg
+    assert (f"slip in the start not avoided: no take-up up to {TAKEUP_MAX:g} x this one "
+            "avoids it (found by") in msg
+    assert "avoided by no" not in msg
 
 
 def test_a_fill_controlled_coupling_s_start_slip_is_offered_a_fill_time_that_holds():
@@ -71,3 +73,26 @@ def test_a_fill_controlled_coupling_s_start_slip_is_offered_a_fill_time_that_hol
     for n in (50, 100):
         scn = SCN.model_copy(update={"elements": n})
         assert run_one(rerun, scn, model="din").summary["drive1_slip_s"] == 0.0
+
+
+def test_the_remedy_sentence_says_a_lever_not_found_apart_from_those_found():
+    """The remedy's sentence read 'slip in the start avoided by a take-up of 39,995 kg or by no
+    start up to 6 x this one' (a 6 km valley whose start reruns found a take-up and no start
+    time): the lever not found read as a finding. It is now said apart, and a search that
+    found nothing says so."""
+    from beltstudy.engine.run import remedy_sentence
+
+    how = "found by rerunning the start 9 times"
+    said = remedy_sentence([(39995.0, "a take-up of 39,995 kg"),
+                            (None, "no start up to 6 x this one")], how)
+    assert said == ("slip in the start avoided by a take-up of 39,995 kg (found by rerunning "
+                    "the start 9 times); no start up to 6 x this one avoids it")
+    both = remedy_sentence([(39995.0, "a take-up of 39,995 kg"),
+                            (334.0, "a start of 334 s")], how)
+    assert both == ("slip in the start avoided by a take-up of 39,995 kg or by a start of "
+                    "334 s (each alone, found by rerunning the start 9 times)")
+    none = remedy_sentence([(None, "no take-up up to 4 x this one"),
+                            (None, "no start up to 6 x this one")], how)
+    assert none == ("slip in the start not avoided: no take-up up to 4 x this one and no "
+                    "start up to 6 x this one avoids it (found by rerunning the start 9 times)")
+    assert "avoided by no" not in said + both + none

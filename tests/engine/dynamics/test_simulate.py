@@ -179,6 +179,28 @@ def test_the_stop_levers_offered_are_those_of_the_run_s_stop_mode():
     assert stop_levers(None) == ["a softer stop (stop time, brake force)"]
 
 
+
+def test_a_dol_coast_slip_is_not_offered_a_flywheel_and_its_vfd_lever_names_the_coupling():
+    """A 400 m, 16 deg incline on two dol head drives with fill-controlled couplings: its head
+    pulley slid 0.05 s in the coast stop, 0.18 s with a 19 000 kg m2 flywheel and 0.33 s with
+    38 000, yet the slip words offered 'a longer coast (more inertia on the drive shafts)':
+    the shaft's inertia is what the grip must slow. And 'vfd drives ... (drives[].control:
+    vfd ...)' is refused for a drive with a coupling. The slip words now leave the flywheel out
+    and name each dol drive's fields; the sag words (the coast's deceleration, not a grip)
+    keep the longer coast."""
+    from beltstudy.engine.dynamics import codes as C
+    from beltstudy.engine.dynamics.simulate import stop_levers
+
+    sysm = _four_spring_system(C.COAST)
+    sysm.model.drives.control = np.array([C.DOL, C.DOL])
+    sysm.model.drives.coupling = np.array([C.COUPLING_FILL, C.COUPLING_NONE])
+    _, fix = slip_words("stop", "stop", sysm)
+    assert "flywheel" not in fix and "inertia" not in fix
+    assert ("vfd drives and a controlled stop (drives.0.control: vfd with coupling: none, "
+            "drives.1.control: vfd, stop.mode: controlled: a dol motor cannot follow a "
+            "stopping curve)") in fix
+    assert any("flywheel_kg_m2" in w for w in stop_levers(sysm))  # not a slip: kept
+
 def test_a_screw_take_up_is_offered_more_pretension_not_a_heavier_take_up():
     """An 800 m, 3 % incline on two head drives with a fixed (screw) take-up at 25.6 kN sagged
     1.75 % against 1.5 % in a coast stop, and the warning said 'a heavier take-up' would avoid
@@ -251,8 +273,8 @@ def test_a_coast_stop_of_dol_drives_is_not_offered_a_controlled_stop_it_cannot_r
     assert "during the stop" in sag
     assert "stop.mode: controlled, the drives easing" not in msg
     assert ("a heavier take-up, a longer coast (more inertia on the drive shafts, "
-            "drives[].flywheel_kg_m2) or vfd drives and a controlled stop (drives[].control: "
-            "vfd, stop.mode: controlled") in sag
+            "drives[].flywheel_kg_m2) or vfd drives and a controlled stop (drives.0.control: "
+            "vfd with coupling: none, stop.mode: controlled") in sag
     with pytest.raises(InputError, match="'controlled' needs vfd drives"):
         check_scenario(Scenario(stop={"mode": "controlled", "time_s": 15.0}), dol(0.0))
     applied = run_one(dol(10000.0), coast, model="din").summary["message"]
@@ -489,6 +511,23 @@ def test_a_short_running_phase_is_judged_from_one_wave_loop_after_the_ramp():
         assert int(m.group(3)) == round(2.0 + 60.0 + 8.2)
         assert "a run_s of at least 33 s" in msg
 
+
+
+def test_the_run_s_that_judges_the_running_phase_is_rounded_up():
+    """A 6 km valley's wave loop time is 8.767 s: the running phase needs 4 x 8.767 = 35.07 s,
+    and the warning said 'a run_s of at least 35 s', which, rerun, repeated the warning. The
+    figure is rounded up: 36 s."""
+    from types import SimpleNamespace
+
+    from beltstudy.engine.dynamics import codes as C
+    from beltstudy.engine.dynamics.simulate import running_warnings
+
+    sysm = _running(t_loop=8.767, v_d=4.0, t_run=30.0)
+    t = np.arange(0.0, sysm.stop_command_s, 0.1)
+    v = sysm.v_design + 0.14 * np.sin(2 * np.pi * t / 12.2)
+    r = {"vmean_hi": sysm.v_design, "vmean_hi_t": 50.0, "status": C.OK, "nrec": len(t)}
+    (msg,) = running_warnings(sysm, r, SimpleNamespace(rec=_records(t, v)))
+    assert "a run_s of at least 36 s (4 wave loop times)" in msg
 
 def test_a_fast_stop_says_its_tensions_and_what_would_slow_it():
     """A stop faster than 5 wave loop times: the warning gives the stop's tension range
