@@ -369,12 +369,17 @@ def _holding_grip(conv: Conveyor, steady: SteadyResult, each: list[float]) -> st
         return ""
     # each short pulley's own grip against the force set on it (the other brakes as set),
     # not the braked pulleys' total, which may exceed the whole holding force
-    parts = [f"{pulley_name(conv, steady.loop, n)} in the stop (it passes at most "
-             f"{walk.grip_n(n, acting) / 1e3:.4g} kN against the {acting[n] / 1e3:.4g} kN set "
-             "on it" for n in short]
-    said = (f"; this force is beyond the grip of {'; of '.join(parts)}, with the fall of its "
-            "slack side doubled, the undamped bound), which may slide (the run's slip check "
-            "says): ")
+    parts = []
+    for n in short:
+        grip = walk.grip_n(n, acting)
+        passes = (f"it passes at most {grip / 1e3:.4g} kN" if grip > 0.0 else
+                  "unbraked, its slack side already falls so far that it passes no brake "
+                  "force")
+        parts.append(f"{pulley_name(conv, steady.loop, n)} ({passes} against the "
+                     f"{acting[n] / 1e3:.4g} kN set on it)")
+    said = (f"; this force is beyond the grip of {' and of '.join(parts)} in the stop (with "
+            "the fall of the slack side doubled, the undamped bound), which may slide (the "
+            "run's slip check says): ")
     return said + _hold_fix(conv, steady)
 
 

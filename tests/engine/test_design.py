@@ -355,9 +355,19 @@ def test_auto_holding_brakes_are_shared_by_their_pulleys_grip():
     assert sizes["brake_force_kn"] == pytest.approx([hold / 2, hold / 2], rel=1e-3)
     assert sizes["brake_grip_kn"] < hold
     note = sizes["brake_note"]
-    m = re.search(r"beyond the grip of drive 1's pulley \(head\) in the stop \(it passes at "
-                  r"most ([0-9.]+) kN against the ([0-9.]+) kN set on it", note)
+    m = re.search(r"beyond the grip of drive 1's pulley \(head\) \(it passes at most ([0-9.]+) "
+                  r"kN against the ([0-9.]+) kN set on it\) and of the tail pulley \(it passes "
+                  r"at most [0-9.]+ kN against the [0-9.]+ kN set on it\) in the stop \(with ",
+                  note)
     assert m, note
     assert float(m.group(2)) == pytest.approx(hold / 2, rel=1e-3)
     assert float(m.group(1)) < float(m.group(2))  # the claim 'beyond' holds for the figure
     assert f"{sizes['brake_grip_kn']:.4g} kN" not in note  # not the total's grip
+    # a 20 t take-up: the head pulley passes no brake force at all; said as what it is, not
+    # as 'it passes at most 0 kN'
+    lighter = conv.model_copy(update={"takeup": conv.takeup.model_copy(update={"mass_kg":
+                                                                            20000})})
+    note = auto_sizes(lighter, scn, model="din")["brake_note"]
+    assert ("drive 1's pulley (head) (unbraked, its slack side already falls so far that it "
+            f"passes no brake force against the {hold / 2:.4g} kN set on it)") in note
+    assert "at most 0 kN" not in note
