@@ -1,4 +1,5 @@
-"""What avoids a drive's slip in the start: the take-up and the start time, found by rerunning.
+"""What avoids a drive's slip in the start or in the stop: the take-up and the start (stop)
+time, found by rerunning.
 
 A pulley slips in a start when the force its drive asks for exceeds what its slack-side
 tension lets it pass, ``T_slack (e^(mu theta) - 1)``. Both sides of that inequality are
@@ -16,6 +17,16 @@ that the figure is None ("not within ... x"). A rerun costs about a run's start;
 takes up to about a dozen each. Dol drives start on their motor curve whatever
 ``start.time_s`` is (their coupling sets how fast the torque comes on), so on a conveyor with
 no vfd drive only the take-up is searched and the start time is None.
+
+A slip in the stop (``phase="stop"``: a drive that slipped after the stop command) is searched
+the same way with the whole cycle rerun (a rerun costs a cycle): the take-up, and for a
+controlled stop ``stop.time_s`` (up to :data:`STOP_MAX` x the run's), with "no drive slips in
+the stop" as the test; a coast or brake stop has no stop time of the search's to lengthen
+(their levers are a controlled stop, the brakes' force and ramp), so only the take-up is
+searched. Where the start slipped too, its take-up figure is tried first (``takeup_try``):
+where it also avoids the stop's slip, one figure serves both (``takeup_shared``; the stop's
+own least may be lower, not searched), else the search grows from it, so the stop's figure
+is above the start's and, the slip margin growing with the take-up, avoids both.
 """
 
 from __future__ import annotations
@@ -24,6 +35,7 @@ from dataclasses import dataclass
 
 from beltstudy.engine.conveyor import Conveyor, Scenario
 from beltstudy.engine.dynamics import DynamicsOptions, build_system, simulate
+from beltstudy.engine.dynamics.simulate import _PHASE_NAMES, _PHASE_WORDS
 from beltstudy.engine.statics import solve_steady
 
 #: Bisection tolerance of each figure (relative).
@@ -31,24 +43,34 @@ REL_TOL = 0.02
 #: Search limits: the take-up (mass or pretension) and the start time, times the run's own.
 TAKEUP_MAX = 4.0
 START_MAX = 6.0
+#: Search limit of a controlled stop's ``stop.time_s``, times the run's own.
+STOP_MAX = 6.0
 #: Growth factor of the bracketing steps.
 GROW = 1.3
 
 
 @dataclass(frozen=True)
 class SlipRemedy:
-    """Figures that avoid the slip of a start (None: not found within the search limit).
+    """Figures that avoid the slip of a start or a stop (None: not found within the search
+    limit, or not searched).
 
     takeup_mass_kg : gravity take-up counterweight [kg] (None for a fixed take-up)
     takeup_tension_kn : fixed take-up pretension [kN] (None for a gravity take-up)
-    start_time_s : start time [s] with the run's take-up
-    reruns : int, how many starts were rerun
+    start_time_s : start time [s] with the run's take-up (a start's slip)
+    reruns : int, how many starts (for a stop's slip: cycles) were rerun
+    phase : ``start`` or ``stop``, the slip searched
+    stop_time_s : a controlled stop's ``stop.time_s`` [s] with the run's take-up (a stop's slip)
+    takeup_shared : the take-up is the start's figure (``takeup_try``), which avoids the
+        stop's slip too
     """
 
     takeup_mass_kg: float | None
     takeup_tension_kn: float | None
     start_time_s: float | None
     reruns: int
+    phase: str = "start"
+    stop_time_s: float | None = None
+    takeup_shared: bool = False
 
 
 def _steady(conveyor: Conveyor, scenario: Scenario, model: str, params):
@@ -57,14 +79,34 @@ def _steady(conveyor: Conveyor, scenario: Scenario, model: str, params):
                         temperature_c=scenario.temperature_c, load=scenario.load, n_elements=n)
 
 
+def slipped_in_stop(warnings: list[str]) -> bool:
+    """Whether a drive's slip reached the stop, by the run's slip warnings
+    (:func:`beltstudy.engine.dynamics.simulate.slip_words`: "drive 1 (head) slipped on its
+    pulley during the stop: ...", "... from the start into the stop: ..."; the drive record
+    keeps its first and last slip time, which the summary does not give)."""
+    stop_words = (_PHASE_WORDS["stop"], f"into {_PHASE_NAMES['stop']}")
+    for w in warnings:
+        head = w.split(": from t = ", 1)[0]
+        if not head.startswith("drive ") or " slipped on its pulley " not in head:
+            continue
+        if head.split(" slipped on its pulley ", 1)[1].endswith(stop_words):
+            return True
+    return False
+
+
 def _slips(conveyor: Conveyor, scenario: Scenario, model: str, params, options,
-           steady=None) -> bool:
-    """Whether any drive slips between the start command and the stop command (``steady``:
-    the conveyor's steady solve when known; the start time does not change it)."""
+           steady=None, phase: str = "start") -> bool:
+    """Whether any drive slips between the start command and the stop command (``phase``
+    ``start``), or in the stop of the whole cycle (``stop``: :func:`slipped_in_stop`; a run
+    that fails counts as a slip). ``steady``: the conveyor's steady solve when known; the
+    start and stop times do not change it."""
     steady = steady or _steady(conveyor, scenario, model, params)
     if steady.status == "failed":
         return True
     system = build_system(conveyor, scenario, steady, options)
+    if phase == "stop":
+        tr = simulate(system)
+        return tr.status == "failed" or slipped_in_stop(tr.warnings)
     tr = simulate(system, t_end_s=system.stop_command_s)
     return any(tr.summary.get(f"drive{i + 1}_slip_s", 0.0) > 0.0
                for i in range(len(system.model.drives.share)))
@@ -100,17 +142,27 @@ def reads_start_time(conveyor: Conveyor) -> bool:
     return any(d.control == "vfd" for d in conveyor.drives)
 
 
+def reads_stop_time(scenario: Scenario) -> bool:
+    """Whether the stop follows ``stop.time_s`` so that a longer one is the search's lever: a
+    controlled stop (the drives ease the belt down over it). A coast has none; a brake stop's
+    levers are its brakes' force and ramp (``stop.time_s`` only sizes an auto brake)."""
+    return scenario.stop.mode == "controlled"
+
+
 def slip_remedy(conveyor: Conveyor, scenario: Scenario, *, model: str, params=None,
                 options: DynamicsOptions | None = None, elements: int | str,
                 takeup_mass_kg: float | None = None,
-                takeup_tension_kn: float | None = None, say=None) -> SlipRemedy | None:
+                takeup_tension_kn: float | None = None, say=None, phase: str = "start",
+                takeup_try: float | None = None) -> SlipRemedy | None:
     """The take-up and the start time that avoid a start's slip (see the module docstring);
     the start time only where the start reads it (:func:`reads_start_time`: a vfd drive).
+    With ``phase="stop"``: the take-up and the stop time that avoid a stop's slip, the whole
+    cycle rerun; the stop time only for a controlled stop (:func:`reads_stop_time`).
 
     Parameters
     ----------
     conveyor, scenario, model, params, options
-        The run whose start slipped.
+        The run whose start (stop) slipped.
     elements : int or "auto"
         The element count the run asked for (its ``scenario.elements``), so the reruns use
         the run's own mesh. Not the count it used: the loop's cut adds an element or two to
@@ -120,10 +172,17 @@ def slip_remedy(conveyor: Conveyor, scenario: Scenario, *, model: str, params=No
         The take-up the run used (gravity counterweight [kg], fixed pretension [kN]), as its
         summary gives them (auto sizes resolved).
     say : callable, optional
-        Told ``what`` is searched once the rerun confirms that the start slips, before the
-        search's reruns (not when the slip was in the stop alone).
+        Told ``what`` is searched once the rerun confirms that the start (stop) slips, before
+        the search's reruns (not when the slip was in the other phase alone).
+    phase : str
+        ``start`` (a slip between the start and the stop command) or ``stop``.
+    takeup_try : float, optional
+        A stop's search: the take-up found for the start's slip, tried first (one rerun): where
+        it avoids the stop's slip too it is the figure (``takeup_shared``), else the search
+        grows from it.
 
-    Returns None when the start does not slip on the rerun (the slip was in the stop).
+    Returns None when the start (stop) does not slip on the rerun (the slip was in the other
+    phase).
     """
     opts = options or DynamicsOptions()
     scn = scenario.model_copy(update={"elements": elements if elements == "auto"
@@ -131,40 +190,65 @@ def slip_remedy(conveyor: Conveyor, scenario: Scenario, *, model: str, params=No
     gravity = conveyor.takeup.type == "gravity"
     base = takeup_mass_kg if gravity else takeup_tension_kn
     field = "mass_kg" if gravity else "pretension_kn"
+    stop = phase == "stop"
 
     def with_takeup(x: float) -> Conveyor:
         return conveyor.model_copy(update={"takeup": conveyor.takeup.model_copy(
             update={field: float(x)})})
 
+    def slips(c: Conveyor, s: Scenario, st=None) -> bool:
+        return _slips(c, s, model, params, opts, st, phase=phase)
+
     fixed = conveyor if base is None else with_takeup(base)
     steady = _steady(fixed, scn, model, params)
-    if not _slips(fixed, scn, model, params, opts, steady):
+    if not slips(fixed, scn, steady):
         return None
+    timed = reads_stop_time(scenario) if stop else reads_start_time(conveyor)
     if say is not None:
-        what = ("the take-up and the start time that avoid it (about a dozen reruns)"
-                if reads_start_time(conveyor) else
-                "the take-up that avoids it (about ten reruns; a dol start does not read "
-                "start.time_s)")
-        say(f"a drive slips in the start: rerunning the start to find {what}")
+        if stop:
+            what = ("the take-up and the stop time (stop.time_s) that avoid it (about a dozen "
+                    "reruns of the whole cycle each)" if timed else
+                    f"the take-up that avoids it (about ten reruns of the whole cycle; a "
+                    f"{scenario.stop.mode} stop has no stop.time_s to lengthen)")
+            say(f"a drive slips in the stop: rerunning the cycle to find {what}")
+        else:
+            what = ("the take-up and the start time that avoid it (about a dozen reruns)"
+                    if timed else
+                    "the take-up that avoids it (about ten reruns; a dol start does not read "
+                    "start.time_s)")
+            say(f"a drive slips in the start: rerunning the start to find {what}")
     reruns = 1
-    tu = None
+    tu, shared = None, False
     if base is not None and base > 0.0:
-        tu, k = _smallest(lambda x: not _slips(with_takeup(x), scn, model, params, opts),
-                          float(base), TAKEUP_MAX * float(base))
-        reruns += k
-    t0 = float(scenario.start.time_s)
+        top = TAKEUP_MAX * float(base)
+        x0 = float(base)
+        if takeup_try is not None and float(base) < takeup_try < top:
+            reruns += 1
+            shared = not slips(with_takeup(takeup_try), scn)
+            if takeup_try * GROW <= top:  # the steps grow from it within the limit
+                x0 = float(takeup_try)
+        if shared:
+            tu = float(takeup_try)
+        else:
+            tu, k = _smallest(lambda x: not slips(with_takeup(x), scn), x0, top)
+            reruns += k
+    which = scenario.stop if stop else scenario.start
+    t0 = float(which.time_s)
 
-    def with_start(t: float) -> Scenario:
-        return scn.model_copy(update={"start": scn.start.model_copy(update={"time_s": t})})
+    def with_time(t: float) -> Scenario:
+        key = "stop" if stop else "start"
+        return scn.model_copy(update={key: getattr(scn, key).model_copy(
+            update={"time_s": t})})
 
     st = None
-    if reads_start_time(conveyor):
-        st, k = _smallest(lambda t: not _slips(fixed, with_start(t), model, params, opts,
-                                               steady), t0, START_MAX * t0)
+    if timed:
+        st, k = _smallest(lambda t: not slips(fixed, with_time(t), steady), t0,
+                          (STOP_MAX if stop else START_MAX) * t0)
         reruns += k
     return SlipRemedy(takeup_mass_kg=tu if gravity else None,
-                      takeup_tension_kn=None if gravity else tu, start_time_s=st,
-                      reruns=reruns)
+                      takeup_tension_kn=None if gravity else tu,
+                      start_time_s=None if stop else st, reruns=reruns, phase=phase,
+                      stop_time_s=st if stop else None, takeup_shared=shared)
 
 
 @dataclass(frozen=True)

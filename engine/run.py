@@ -34,7 +34,7 @@ from beltstudy.engine.dynamics.simulate import (
     stop_levers,
 )
 from beltstudy.engine.loop import G
-from beltstudy.engine.remedy import reads_start_time
+from beltstudy.engine.remedy import reads_start_time, slipped_in_stop
 from beltstudy.engine.results import check_summary
 from beltstudy.engine.sizing import installed_at_full_load
 from beltstudy.engine.statics import (
@@ -192,7 +192,9 @@ def run_one(
     remedy : bool
         When a drive slips in the start, find the take-up and the start time that avoid it
         by rerunning the start (:mod:`beltstudy.engine.remedy`: about a dozen reruns each); the
-        ``slip_free_*`` fields and a sentence in the message. Off by default (studies).
+        ``slip_free_*`` fields and a sentence in the message; when a drive slips in the stop,
+        the take-up and (a controlled stop) the ``stop.time_s`` that avoid it, by rerunning the
+        whole cycle (a sentence in the message only). Off by default (studies).
     check : bool
         Error bars of the deciding figures by rerunning the cycle on a mesh half and twice as
         fine (:func:`beltstudy.engine.accuracy.error_bars`: the ``<figure>_err`` and
@@ -401,8 +403,10 @@ def _complete(prep: _Prepared, scenario, system, tr, model, params, opts, remedy
     if remedy and tr.status != "failed" and any(
             (summary.get(f"drive{i + 1}_slip_s") or 0.0) > 0.0
             for i in range(len(conveyor.drives))):
-        # a slip in the stop alone is not searched: the first rerun says so, and ``say``
-        # is told only once the start is known to slip
+        # a slip in the stop alone is not searched for the start: the first rerun says so,
+        # and ``say`` is told only once the start is known to slip; a slip that reached the
+        # stop is searched on its own after it (the whole cycle rerun), from the start's
+        # take-up where the start slipped too
         found = _slip_remedy(conveyor, scenario, model, params, opts, summary, say,
                              finer=_finer_mesh(scenario, summary, system, opts) if check
                              else None,
@@ -411,6 +415,15 @@ def _complete(prep: _Prepared, scenario, system, tr, model, params, opts, remedy
         if found:
             messages.append(found)
             _unfound_levers(conveyor, system, tr, messages, summary)
+        if slipped_in_stop(tr.warnings):
+            stop_found = _stop_slip_remedy(
+                conveyor, scenario, model, params, opts, summary, say,
+                sf_min=conveyor.safety_factor_min
+                or SAFETY_FACTOR_MIN.get(steady.loop.belt.kind, 6.7))
+            if stop_found is not None:
+                messages.append(stop_found[0])
+                _unfound_stop_levers(conveyor, system, tr, messages, stop_found[1],
+                                     stop_found[2])
     # after the remedy's rewrite, which reads the levers' own words
     _fill_estimates(conveyor, system, tr, messages, summary)
     if "failed" in (steady.status, tr.status):
@@ -484,32 +497,60 @@ def _unfound_levers(conveyor: Conveyor, system, tr, messages: list[str], summary
     start), which the remedy's own sentence contradicted ("a heavier take-up ... would avoid
     it", then "avoided by no take-up up to 4 x this one"); they say what the reruns found
     instead. ``tr.warnings`` and the transient's message in ``messages`` are rewritten."""
-    from beltstudy.engine.remedy import START_MAX, TAKEUP_MAX
-
     gravity = conveyor.takeup.type == "gravity"
     tu = summary.get("slip_free_takeup_mass_kg" if gravity else "slip_free_takeup_kn")
-    searched_start = reads_start_time(conveyor)
-    start_found = summary.get("slip_free_start_time_s") is not None
-    if tu is not None and (start_found or not searched_start):
+    _drop_unfound(system, tr, messages, "start", gravity, tu is not None,
+                  reads_start_time(conveyor), summary.get("slip_free_start_time_s") is not None)
+
+
+def _unfound_stop_levers(conveyor: Conveyor, system, tr, messages: list[str], rem,
+                         timed: bool) -> None:
+    """:func:`_unfound_levers` for a slip that reached the stop, after the stop's search
+    (``rem``, a :class:`~beltstudy.engine.remedy.SlipRemedy`; ``timed``: a controlled stop,
+    whose ``stop.time_s`` was searched)."""
+    gravity = conveyor.takeup.type == "gravity"
+    tu = rem.takeup_mass_kg if gravity else rem.takeup_tension_kn
+    _drop_unfound(system, tr, messages, "stop", gravity, tu is not None, timed,
+                  rem.stop_time_s is not None)
+
+
+def _drop_unfound(system, tr, messages: list[str], phase: str, gravity: bool, tu_found: bool,
+                  time_searched: bool, time_found: bool) -> None:
+    """The rewrite of :func:`_unfound_levers` (``phase`` ``start``) and
+    :func:`_unfound_stop_levers` (``stop``): in the slip warnings of that phase, a lever the
+    reruns searched and did not find is replaced by what they found."""
+    from beltstudy.engine.remedy import START_MAX, STOP_MAX, TAKEUP_MAX
+
+    if tu_found and (time_found or not time_searched):
         return
     noun = "take-up" if gravity else "pretension"
     lever_tu = heavier_takeup(system, "more slack-side tension")
-    lever_st = "a longer start (start.time_s)"
-    for first_last in (("start", "start"), ("start", "running"), ("start", "stop")):
+    if phase == "start":
+        lever_t, not_t, short_t = ("a longer start (start.time_s)",
+                                   f"no start up to {START_MAX:g} x this one", "a longer start")
+        spans = (("start", "start"), ("start", "running"), ("start", "stop"))
+        rerun = "rerunning the start"
+    else:
+        lever_t, not_t, short_t = ("a longer stop (stop.time_s)",
+                                   f"no stop.time_s up to {STOP_MAX:g} x this one",
+                                   "a longer stop")
+        spans = (("stop", "stop"), ("running", "stop"), ("start", "stop"))
+        rerun = "rerunning the cycle"
+    for first_last in spans:
         when, fix = slip_words(*first_last, system)
-        parts = [lever_tu] + start_levers(system) + (
+        parts = [lever_tu] + (start_levers(system) if first_last[0] == "start" else []) + (
             stop_levers(system, slip=True) if first_last[1] == "stop" else [])
         gone, nots, short = [], [], []
-        if tu is None:
+        if not tu_found:
             gone.append(lever_tu)
             nots.append(f"no {noun} up to {TAKEUP_MAX:g} x this one")
             short.append("a heavier take-up" if gravity else "a higher pretension")
-        if searched_start and not start_found:
-            gone.append(lever_st)
-            nots.append(f"no start up to {START_MAX:g} x this one")
-            short.append("a longer start")
+        if time_searched and not time_found:
+            gone.append(lever_t)
+            nots.append(not_t)
+            short.append(short_t)
         kept = [p for p in parts if p not in gone]
-        found = f"rerunning the start found {' and '.join(nots)} that avoids it"
+        found = f"{rerun} found {' and '.join(nots)} that avoids it"
         new = (f"{_or(kept)} would avoid it; {' or '.join(short)} would not: {found}"
                if kept else found)
         old = f"{fix} would avoid it"
@@ -688,15 +729,77 @@ def _slip_remedy(conveyor, scenario, model, params, opts, summary, say=None,
     return remedy_sentence(searched, how) + safety
 
 
-def remedy_sentence(searched: list[tuple[float | None, str]], how: str) -> str:
+def _stop_slip_remedy(conveyor, scenario, model, params, opts, summary, say=None,
+                      sf_min: float | None = None):
+    """Search what avoids a slip that reached the stop (:func:`beltstudy.engine.remedy.
+    slip_remedy` with ``phase="stop"``: the whole cycle rerun on the run's mesh, the take-up
+    and, for a controlled stop, ``stop.time_s``) and return ``(sentence, remedy, timed)``
+    (None when the rerun found no slip in the stop). Where the start slipped too, the
+    start's take-up figure (``slip_free_*`` in ``summary``) is tried first: where it avoids the
+    stop's slip too, it is named once for both; else the stop's figure is grown from it and
+    is the one that avoids both. The stop's figures are not written into ``summary`` (its
+    ``slip_free_*`` fields are the start's) nor tried on a finer mesh: a rerun costs a whole
+    cycle, where the start's costs a start."""
+    from beltstudy.engine.remedy import GROW, STOP_MAX, TAKEUP_MAX, reads_stop_time, slip_remedy
+
+    gravity = conveyor.takeup.type == "gravity"
+    start_tu = summary.get("slip_free_takeup_mass_kg" if gravity else "slip_free_takeup_kn")
+    rem = slip_remedy(conveyor, scenario, model=model, params=params, options=opts,
+                      elements=scenario.elements,
+                      takeup_mass_kg=summary.get("takeup_mass_kg") if gravity else None,
+                      takeup_tension_kn=None if gravity else summary.get("takeup_tension_kn"),
+                      say=say, phase="stop", takeup_try=start_tu)
+    if rem is None:
+        return None
+    timed = reads_stop_time(scenario)
+    tu_fig = rem.takeup_mass_kg if gravity else rem.takeup_tension_kn
+    unit, noun = ("kg", "take-up") if gravity else ("kN", "pretension")
+    article = "a take-up of" if gravity else "a pretension of"
+
+    def amount(x):
+        return f"{x:,.0f} {unit}"
+
+    if tu_fig is None:
+        tu = f"no {noun} up to {TAKEUP_MAX:g} x this one"
+    elif rem.takeup_shared:
+        tu = f"the {noun} of {amount(tu_fig)} found for the start"
+    elif start_tu is not None and tu_fig > start_tu:
+        tu = (f"{article} {amount(tu_fig)} (which avoids the start's slip too; the start's "
+              f"{amount(start_tu)} still slips in the stop)")
+    else:
+        tu = f"{article} {amount(tu_fig)}"
+    safety = ("" if rem.takeup_shared else
+              _takeup_safety_words(summary, tu_fig, gravity, sf_min))
+    if safety:
+        safety = f"; the {noun} of {amount(tu_fig)}{safety}"
+    st_fig = rem.stop_time_s
+    # rounded up: the figure is the least found, and rounded down it could slip again
+    st_up = None if st_fig is None else (math.ceil(st_fig) if st_fig >= 10.0
+                                         else math.ceil(10.0 * st_fig) / 10.0)
+    st = (f"a stop.time_s of {st_up:g} s" if st_up is not None
+          else f"no stop.time_s up to {STOP_MAX:g} x this one")
+    how = (f"found by rerunning the cycle {rem.reruns} times on the same mesh, to 2 %; steps "
+           f"of x {GROW:g}")
+    searched = [(tu_fig, tu)]
+    if timed:
+        searched.append((st_up, st))
+    else:
+        how += (f"; a {scenario.stop.mode} stop has no stop.time_s to lengthen: its other "
+                "levers were not searched")
+    return remedy_sentence(searched, how, phase="stop") + safety, rem, timed
+
+
+def remedy_sentence(searched: list[tuple[float | None, str]], how: str,
+                    phase: str = "start") -> str:
     """The slip remedy's finding in words: ``searched`` holds per lever the figure its reruns
     found (None: none up to the search's end) and its words (``a take-up of 39,995 kg``, ``no
     start up to 6 x this one``); ``how`` how they were found. The levers found avoid the slip;
-    the rest are said apart, not as an "avoided by no ..." that reads as a finding."""
+    the rest are said apart, not as an "avoided by no ..." that reads as a finding. ``phase``:
+    the slip's, ``start`` or ``stop``."""
     found = [words for fig, words in searched if fig is not None]
     nots = [words for fig, words in searched if fig is None]
     if not found:  # what the reruns tried, none of which avoided the slip
-        return f"slip in the start not avoided: {' and '.join(nots)} avoids it ({how})"
+        return f"slip in the {phase} not avoided: {' and '.join(nots)} avoids it ({how})"
     each = "each alone, " if len(found) > 1 else ""
-    said = f"slip in the start avoided by {' or by '.join(found)} ({each}{how})"
+    said = f"slip in the {phase} avoided by {' or by '.join(found)} ({each}{how})"
     return said + "".join(f"; {n} avoids it" for n in nots)

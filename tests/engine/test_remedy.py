@@ -91,13 +91,15 @@ def test_a_slip_in_the_stop_alone_is_not_announced_as_a_start_slip():
     """fabric-1km's 3 s controlled stop slips its drive during the stop only (the start does
     not slip). The remedy's first rerun of the start finds no slip and searches nothing; the
     progress line "a drive slips in the start: rerunning ..." is not said (it was, before
-    the search confirmed the start slipped), and no slip-free figure is filled."""
+    the search confirmed the start slipped), and no slip-free figure of the start is filled
+    (the stop's own search, tests/engine/test_remedy_stop.py, is what is said)."""
     conv = load_conveyor(CONVEYORS / "fabric-1km.yaml")
     scn = Scenario(elements=100, stop={"mode": "controlled", "time_s": 3})
     said: list[str] = []
     s = run_one(conv, scn, model="din", remedy=True, say=said.append).summary
     assert s["drive1_slip_s"] > 0.0 and "slipped on its pulley during the stop" in s["message"]
-    assert said == []
+    assert not any("slips in the start" in line for line in said)
+    assert "slip in the start" not in s["message"]
     assert s["slip_free_takeup_mass_kg"] is None and s["slip_free_start_time_s"] is None
 
 
