@@ -784,8 +784,9 @@ def _stop_slip_remedy(conveyor, scenario, model, params, opts, summary, say=None
     if timed:
         searched.append((st_up, st))
     else:
-        how += (f"; a {scenario.stop.mode} stop has no stop.time_s to lengthen: its other "
-                "levers were not searched")
+        how += ("; a coast stop has no stop.time_s to lengthen" if scenario.stop.mode == "coast"
+                else "; the brake stop's own levers (its brakes' force and ramp, an auto "
+                "brake's stop.time_s) were not searched")
     return remedy_sentence(searched, how, phase="stop") + safety, rem, timed
 
 
