@@ -1123,7 +1123,15 @@ def runback_words(sys: System, out, r: dict, steady_summary: dict | None = None,
     (the take-up carriage returning), not the belt running back over its pulleys; fabric-1km's
     coast stop, its drive pulley held at 0 m/s, still relaxed at -0.12 m/s at the run's end and
     was told 'nothing holds it' and offered the holdback it has. A belt sliding on its held
-    pulley is the slip check's to say."""
+    pulley is the slip check's to say.
+
+    A brake with ``hold: true`` (set once the belt has stopped, in every stop mode) holds its
+    pulley the same way: while the drive pulley's recorded speed is not running back at the
+    run's end, the backward mean speed is the belt relaxing onto (or sliding on) the held
+    pulley. A 10 km, +60 m overland on three vfd drives with 120 and 60 kN holding brakes at
+    head and tail, coasting, its drive pulleys at 0 m/s from about 115 s, relaxed at -0.087
+    m/s at the run's end and was told 'nothing holds it' and offered 'brakes[].hold: true',
+    which it had. A held pulley that turns back (a brake too weak to hold) is still warned."""
     if conveyor is not None and conveyor.holdback:
         return []
     rec = out.rec[:int(r["nrec"])]
@@ -1131,6 +1139,10 @@ def runback_words(sys: System, out, r: dict, steady_summary: dict | None = None,
     t, v = np.asarray(rec["t"][after], float), np.asarray(rec["v_mean"][after], float)
     limit = REST_FRACTION * sys.v_design
     if not t.size or v[-1] >= -limit:
+        return []
+    if (conveyor is not None and any(b.hold for b in getattr(conveyor, "brakes", None) or [])
+            and "v_drive" in (rec.dtype.names or ())
+            and float(rec["v_drive"][after][-1]) >= -limit):
         return []
     fwd = np.flatnonzero(v >= -limit)
     k0 = int(fwd[-1]) + 1 if fwd.size else 0  # the last stretch below the criterion

@@ -138,3 +138,30 @@ def test_a_belt_relaxing_onto_its_holdback_is_not_said_to_run_back():
     assert after.v_mean_m_s.iloc[-1] < -0.01 * conv.speed_m_s  # still relaxing at the end
     assert (after.v_drive_m_s.iloc[-20:] >= 0.0).all()  # the held pulley does not turn back
     assert "runs back" not in res.summary["message"], res.summary["message"]
+
+
+def test_a_belt_relaxing_onto_a_holding_brake_is_not_told_to_set_hold():
+    """A brake with hold: true holds its pulley once the belt has stopped, as a holdback does.
+    A 10 km overland (+60 m) with 120 and 60 kN holding brakes at head and tail, coasting: its
+    drive pulleys rested at 0 m/s from about 115 s while the mean speed relaxed to -0.087 m/s
+    (below -1 % of 5 m/s) at the run's end; it was told 'nothing holds it' and offered
+    'brakes[].hold: true', which it had. The same records with the drive pulley turning back
+    (a brake too weak to hold) or with hold: false are still warned. Design speed 2 m/s,
+    stop command at 10 s: the criterion is -0.02 m/s."""
+    from beltstudy.engine.dynamics.simulate import runback_words
+
+    sysm = SimpleNamespace(stop_command_s=10.0, v_design=2.0)
+    t = np.arange(0.0, 15.01, 0.5)
+    rec = np.zeros(len(t), dtype=[("t", float), ("v_mean", float), ("v_drive", float)])
+    rec["t"] = t
+    rec["v_mean"] = np.where(t <= 10.0, 2.0, -0.05)
+    rec["v_drive"] = np.where(t <= 10.0, 2.0, 0.0)  # the held pulley rests
+    out, r = SimpleNamespace(rec=rec), {"nrec": len(t)}
+    held = SimpleNamespace(holdback=False, brakes=[SimpleNamespace(hold=True)])
+    assert runback_words(sysm, out, r, None, held) == []
+    released = SimpleNamespace(holdback=False, brakes=[SimpleNamespace(hold=False)])
+    assert len(runback_words(sysm, out, r, None, released)) == 1
+    back = rec.copy()
+    back["v_drive"] = np.where(t <= 10.0, 2.0, -0.05)  # the braked pulley turns back
+    (w,) = runback_words(sysm, SimpleNamespace(rec=back), r, None, held)
+    assert "the belt runs back after the stop" in w
