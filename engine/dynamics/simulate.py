@@ -1072,7 +1072,8 @@ def transient_summary(sys: System, r: dict, out, segs, *, steady_summary=None, c
                 smax = float(sag[mask].max())
                 if smax > limit * (1.0 + SAG_LIMIT_RTOL) and t_low[mask].min() > 0.0:
                     jj = int(np.flatnonzero(mask)[np.argmax(sag[mask])])
-                    w.append(_sag_words(sys, name, smax, limit, jj, t_low[jj], whole))
+                    w.append(_sag_words(sys, name, smax, limit, jj, t_low[jj], whole,
+                                        (steady_summary or {}).get("takeup_tension_kn")))
     sf = summary["safety_factor_dyn"]
     if sf is not None and safety_factor_min is not None and sf < safety_factor_min:
         w.append(_transient_safety_words(sys, conveyor, sf, safety_factor_min, t_max_dyn,
@@ -1250,12 +1251,24 @@ def endstop_words(sys: System, r: dict) -> str:
                                 if rest_end else "") + " would avoid it")
 
 
+def past_limit(value: float, limit: float, digits: int = 2) -> str:
+    """``value`` with ``digits`` decimals, more where that would print it as the ``limit`` it
+    passed (a sag of 1.5003 % against 1.5 % is '1.5003', not '1.50')."""
+    for d in range(digits, 8):
+        text = f"{value:.{d}f}"
+        if float(text) != limit:
+            return text
+    return f"{value:.8g}"
+
+
 def _sag_words(sys: System, strand: str, sag_pct: float, limit_pct: float, j: int,
-               t_low_n: float, whole: dict) -> str:
+               t_low_n: float, whole: dict, pretension_kn: float | None = None) -> str:
     """The warning of a transient sag past its limit at the span ending at node ``j``: how
     much, where, when and in which phase (the time its lower spring reached its lowest
     tension), the tension that keeps the span within the limit (the sag ratio goes as 1 / T,
-    DIN 22101) and what raises the tension there in that phase."""
+    DIN 22101) and what raises the tension there in that phase: for a gravity take-up the
+    counterweight, for a fixed one the pretension (``pretension_kn``, the run's, per strand
+    as ``takeup.pretension_kn`` is) that adds it."""
     env, env_t = whole["env_min"], whole["env_min_t"]
     k = j if env[j] <= env[j - 1] else j - 1
     t_at = float(env_t[k])
@@ -1268,13 +1281,18 @@ def _sag_words(sys: System, strand: str, sag_pct: float, limit_pct: float, j: in
     mass = (f" on each of its two strands (a counterweight of at least "
             f"{math.ceil((tu.weight + 2e3 * add_kn) / G)} kg, takeup.mass_kg, now "
             f"{tu.weight / G:.0f} kg)" if tu is not None and tu.gravity else "")
+    if tu is not None and not tu.gravity and pretension_kn is not None:
+        # rounded up to 10 N: the least pretension that adds add_kn
+        least = math.ceil((pretension_kn + add_kn) * 100.0 - 1e-9) / 100.0
+        mass = (f" (a pretension of at least {least:g} kN, "
+                f"takeup.pretension_kn, now {pretension_kn:.4g} kN)")
     more = heavier_takeup(sys)
     fixes = {"start": _or([more] + start_levers(sys)),
              "running": f"{heavier_takeup(sys, 'more tension at the take-up')} or closer idlers",
              "stop": _or([more, *stop_levers(sys)]
                          + (["a brake nearer the low-tension side"]
                             if sys.model.cycle.stop_mode == C.BRAKE else []))}[phase]
-    return (f"transient sag on the {strand} strand {sag_pct:.2f} % exceeds the limit "
+    return (f"transient sag on the {strand} strand {past_limit(sag_pct, limit_pct)} % exceeds the limit "
             f"{limit_pct:g} % (low tension {t_low_n / 1e3:.3g} kN near {where(sys, j)} at t = "
             f"{t_at:.1f} s, {_PHASE_WORDS[phase]}); {up3(need_kn):g} kN there keeps it within "
             f"(the sag goes as 1 / T), so the take-up must add at least "

@@ -201,6 +201,31 @@ def test_a_dol_coast_slip_is_not_offered_a_flywheel_and_its_vfd_lever_names_the_
             "stopping curve)") in fix
     assert any("flywheel_kg_m2" in w for w in stop_levers(sysm))  # not a slip: kept
 
+
+def test_a_screw_take_up_s_sag_is_told_the_pretension_and_a_sag_past_the_limit_shows_it():
+    """A 150 m plant conveyor on a screw take-up (pretension 10.42 kN) sagged past its limit in
+    a coast stop and was told 'the take-up must add at least 0.543 kN' with no value for
+    takeup.pretension_kn, where a gravity take-up is told its counterweight. The span's lower
+    spring at 8.92 kN sagging 2.4 % against 2 % needs 8.92 x 2.4 / 2 = 10.704 kN, 1.784 kN
+    more (1.79 rounded up at three figures): a pretension of at least 10.42 + 1.79 = 12.21 kN.
+    And a sag of 1.5003 % against 1.5 % read 'sag 1.50 % exceeds the limit 1.5 %': it is now
+    printed with the decimals that show it past the limit."""
+    from types import SimpleNamespace
+
+    from beltstudy.engine.dynamics import codes as C
+    from beltstudy.engine.dynamics.simulate import _sag_words, past_limit
+
+    screw = _four_spring_system(C.COAST)
+    screw.model.takeup = SimpleNamespace(gravity=False)
+    whole = {"env_min": np.array([9e3, 8.92e3, 9e3, 9e3]),
+             "env_min_t": np.array([95.0, 95.5, 95.0, 95.0])}
+    sag = _sag_words(screw, "carry", 2.4, 2.0, 2, 8.92e3, whole, 10.42)
+    assert "must add at least 1.79 kN (a pretension of at least 12.21 kN, " \
+           "takeup.pretension_kn, now 10.42 kN)" in sag, sag
+    close = _sag_words(screw, "carry", 1.5003, 1.5, 2, 8.92e3, whole, 10.42)
+    assert close.startswith("transient sag on the carry strand 1.5003 % exceeds the limit 1.5 %")
+    assert past_limit(2.4, 2.0) == "2.40" and past_limit(1.5003, 1.5) == "1.5003"
+
 def test_a_screw_take_up_is_offered_more_pretension_not_a_heavier_take_up():
     """An 800 m, 3 % incline on two head drives with a fixed (screw) take-up at 25.6 kN sagged
     1.75 % against 1.5 % in a coast stop, and the warning said 'a heavier take-up' would avoid
