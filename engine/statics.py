@@ -741,8 +741,10 @@ def _summarise(res: SteadyResult, drives, hs_adm, bounds, shortfall_n: float,
     sf_min = conv.safety_factor_min or SAFETY_FACTOR_MIN.get(belt.kind, 6.7)
     sf = res.summary["safety_factor"]
     if sf < sf_min:
+        tu_auto = (conv.takeup.type == "gravity" and conv.takeup.mass_kg == "auto") or (
+            conv.takeup.type == "fixed" and conv.takeup.pretension_kn == "auto")
         warnings.append(_safety_words(loop, belt, sf, sf_min, float(T[imax]),
-                                      float(s_end[imax])))
+                                      float(s_end[imax]), tu_auto))
     if T.min() <= 1.0 + 1e-9:
         warnings.append("the belt goes slack (tension at or below zero): raise the take-up")
     # ---- design checks: pulleys, transitions, idlers, holdback (beltstudy.engine.checks)
@@ -821,17 +823,23 @@ def _sag_words(loop: Loop, strand: str, sag: float, limit: float, j: int, t_low:
             f"(idlers.{strand}.spacing_m) or a higher sag limit would avoid it")
 
 
-def _safety_words(loop: Loop, belt, sf: float, sf_min: float, t_max: float, s_m: float
-                  ) -> str:
+def _safety_words(loop: Loop, belt, sf: float, sf_min: float, t_max: float, s_m: float,
+                  takeup_auto: bool = False) -> str:
     """The steady safety factor warning: how much, where the largest tension is, and the
-    belt rating per metre of width that meets the minimum (``rating = S_min T_max / B``)."""
+    belt rating per metre of width that meets the minimum (``rating = S_min T_max / B``);
+    a lower largest tension by a lighter take-up only where the take-up is given (an auto
+    one, ``takeup_auto``, is already the least its slip and sag limits need)."""
     need_kn_m = sf_min * t_max / belt.width_m / 1e3
+    lower = ("drives spread along the belt; the auto take-up is already the least the slip "
+             "and sag limits need" if takeup_auto else
+             "a take-up no heavier than the slip and sag limits need, drives spread along "
+             "the belt")
     return (f"belt safety factor {sf:.2f} is below the minimum {sf_min:.2f} (t_max "
             f"{t_max / 1e3:.1f} kN {place_words(loop, s_m)}; belt rating "
             f"{figures(belt.rating_n / 1e3)} kN, {figures(belt.rating_kn_m)} kN/m x {belt.width_m:g} m): a "
             f"belt rated at least {math.ceil(need_kn_m)} kN/m at this width (belt.type: auto "
-            "picks the lightest catalogue belt that passes), or a lower largest tension (a take-up no heavier than the slip "
-            "and sag limits need, drives spread along the belt) would avoid it")
+            f"picks the lightest catalogue belt that passes), or a lower largest tension ({lower}) "
+            "would avoid it")
 
 
 def startup_tensions(res: SteadyResult) -> np.ndarray:
