@@ -76,3 +76,33 @@ def assert_settles_to_statics(conv, st, start_s: float, run_s: float = 120.0):
     assert res.status != "failed"
     assert np.max(np.abs(T - st.tension_n) / st.tension_n) < 0.01
     return sys, res
+
+
+#: The head drives of :func:`steep_16deg_dict`: dol through fill-controlled fluid couplings.
+STEEP_16DEG_DRIVE = {"position": "head", "wrap_deg": 200, "friction": 0.35, "share": 0.5,
+                     "pulley_diameter_m": 0.8, "inertia_kg_m2": 80, "rated_power_kw": 250,
+                     "control": "dol", "coupling": "fluid_fill_controlled",
+                     "coupling_fill_s": 20}
+
+
+def steep_16deg_dict(**over):
+    """A 400 m, 16 deg (110.3 m lift) EP1250/5 incline at 2.5 m/s carrying 600 t/h on two dol
+    head drives through fill-controlled couplings (:data:`STEEP_16DEG_DRIVE`), an auto gravity
+    take-up at the tail and a holdback (a designer's sign-off conveyor), top-level fields
+    replaced by ``over``."""
+    d = {
+        "name": "steep-16deg", "speed_m_s": 2.5,
+        "belt": {"type": "EP1250/5", "width_m": 1.0, "top_cover_mm": 6, "bottom_cover_mm": 2},
+        "material": {"capacity_t_h": 600, "density_t_m3": 1.4},
+        "profile": [{"length_m": 400, "lift_m": 110.3}],
+        "idlers": {"carry": {"spacing_m": 1.0, "roll_diameter_m": 0.127, "rolls": 3,
+                             "trough_deg": 35, "cema_class": "C"},
+                   "return": {"spacing_m": 3.0, "roll_diameter_m": 0.127, "rolls": 1,
+                              "cema_class": "C"}},
+        "drives": [dict(STEEP_16DEG_DRIVE), dict(STEEP_16DEG_DRIVE)],
+        "takeup": {"type": "gravity", "position": "tail", "mass_kg": "auto", "travel_m": 4},
+        "holdback": True,
+        "accessories": {"head_kn": 1.0, "tail_kn": 0.5},
+    }
+    d.update(over)
+    return d

@@ -10,26 +10,11 @@ import pytest
 
 from beltstudy.engine.conveyor import Scenario, parse_conveyor
 from beltstudy.engine.run import _takeup_safety_words, run_one
+from tests.engine.conftest import steep_16deg_dict
 
 #: A 400 m, 16 deg incline (lift 400 sin 16 deg = 110.3 m) on an EP1250/5 fabric belt, two
 #: head dol drives through fill-controlled fluid couplings, a gravity take-up at the tail.
-STEEP = {
-    "name": "steep-16deg", "speed_m_s": 2.5,
-    "belt": {"type": "EP1250/5", "width_m": 1.0, "top_cover_mm": 6, "bottom_cover_mm": 2},
-    "material": {"capacity_t_h": 600, "density_t_m3": 1.4},
-    "profile": [{"length_m": 400, "lift_m": 110.3}],
-    "idlers": {"carry": {"spacing_m": 1.0, "roll_diameter_m": 0.127, "rolls": 3,
-                         "trough_deg": 35, "cema_class": "C"},
-               "return": {"spacing_m": 3.0, "roll_diameter_m": 0.127, "rolls": 1,
-                          "cema_class": "C"}},
-    "drives": [{"position": "head", "wrap_deg": 200, "friction": 0.35, "share": 0.5,
-                "pulley_diameter_m": 0.8, "inertia_kg_m2": 80, "rated_power_kw": 250,
-                "control": "dol", "coupling": "fluid_fill_controlled",
-                "coupling_fill_s": 20}] * 2,
-    "takeup": {"type": "gravity", "position": "tail", "mass_kg": "auto", "travel_m": 4},
-    "holdback": True,
-    "accessories": {"head_kn": 1.0, "tail_kn": 0.5},
-}
+STEEP = steep_16deg_dict()
 
 
 def test_the_safety_clause_is_the_hand_calculation():

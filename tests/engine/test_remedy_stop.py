@@ -10,28 +10,18 @@ from beltstudy.engine.conveyor import Scenario, load_conveyor, parse_conveyor
 from beltstudy.engine.remedy import slipped_in_stop
 from beltstudy.engine.run import remedy_sentence, run_one
 from tests.conftest import CONVEYORS
+from tests.engine.conftest import STEEP_16DEG_DRIVE, steep_16deg_dict
 
 #: A 400 m, 16 deg EP1600/4 incline on two dol head drives through fill-controlled couplings
 #: (a designer's sign-off conveyor): its head pulley slides about 0.18 s in a coast stop.
-INCLINE_COAST = {
-    "name": "signoff-b-steep", "speed_m_s": 2.5,
-    "belt": {"type": "EP1600/4", "width_m": 1.0, "top_cover_mm": 6, "bottom_cover_mm": 2,
-             "compound": "standard"},
-    "material": {"capacity_t_h": 600, "density_t_m3": 1.4},
-    "profile": [{"length_m": 400, "lift_m": 110.3}],
-    "idlers": {"carry": {"spacing_m": 1.0, "roll_diameter_m": 0.127, "rolls": 3,
-                         "trough_deg": 35, "cema_class": "C"},
-               "return": {"spacing_m": 3.0, "roll_diameter_m": 0.127, "rolls": 1,
-                          "cema_class": "C"}},
-    "drives": [{"position": "head", "wrap_deg": 200, "friction": 0.35, "share": 0.5,
-                "pulley_diameter_m": 0.8, "inertia_kg_m2": 80, "rated_power_kw": 250,
-                "torque_limit": 1.5, "control": "dol", "coupling": "fluid_fill_controlled",
-                "coupling_fill_s": fill, "flywheel_kg_m2": 19034} for fill in (20, 45)],
-    "takeup": {"type": "gravity", "position": "tail", "mass_kg": 4939, "travel_m": 4},
-    "holdback": True,
-    "sag_limit_pct": {"carry": 1.5, "return": 3.0},
-    "accessories": {"head_kn": 1.0, "tail_kn": 0.5},
-}
+INCLINE_COAST = steep_16deg_dict(
+    name="signoff-b-steep",
+    belt={"type": "EP1600/4", "width_m": 1.0, "top_cover_mm": 6, "bottom_cover_mm": 2,
+          "compound": "standard"},
+    drives=[{**STEEP_16DEG_DRIVE, "torque_limit": 1.5, "coupling_fill_s": fill,
+             "flywheel_kg_m2": 19034} for fill in (20, 45)],
+    takeup={"type": "gravity", "position": "tail", "mass_kg": 4939, "travel_m": 4},
+    sag_limit_pct={"carry": 1.5, "return": 3.0})
 
 
 def _with_mass(conv, mass):
