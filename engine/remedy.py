@@ -208,8 +208,11 @@ def slip_remedy(conveyor: Conveyor, scenario: Scenario, *, model: str, params=No
         if stop:
             what = ("the take-up and the stop time (stop.time_s) that avoid it (about a dozen "
                     "reruns of the whole cycle each)" if timed else
-                    f"the take-up that avoids it (about ten reruns of the whole cycle; a "
-                    f"{scenario.stop.mode} stop has no stop.time_s to lengthen)")
+                    "the take-up that avoids it (about ten reruns of the whole cycle; " + (
+                        "a coast stop has no stop.time_s to lengthen)"
+                        if scenario.stop.mode == "coast" else
+                        "a brake stop's own levers, its brakes' force and ramp, are not "
+                        "searched)"))
             say(f"a drive slips in the stop: rerunning the cycle to find {what}")
         else:
             what = ("the take-up and the start time that avoid it (about a dozen reruns)"

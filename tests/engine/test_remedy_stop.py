@@ -115,3 +115,43 @@ def test_the_stop_words_name_the_phase_and_what_was_not_found_apart():
                             "from t = 2.9 to 37.9 s"])
     assert not slipped_in_stop(["drive 1 (head) slipped on its pulley during the start: from "
                                 "t = 2.9 to 7.9 s; ... into the stop"])
+
+
+def test_a_brake_stop_slip_names_the_levers_not_searched():
+    """A 2.5 km, -120 m decline whose auto head brake (holding size) makes the head pulley
+    slide in a 30 s brake stop: the stop's search reruns the cycle for the take-up alone, and
+    said 'a brake stop has no stop.time_s to lengthen', though an auto brake reads stop.time_s.
+    The progress line and the sentence now name the brake stop's own levers, not searched; the
+    take-up named, applied, leaves no slip in the stop."""
+    data = {
+        "name": "sign-c-decline", "speed_m_s": 4.0,
+        "belt": {"type": "ST1600", "width_m": 1.2, "compound": "standard"},
+        "material": {"capacity_t_h": 2000, "density_t_m3": 1.6, "loading_speed_m_s": 0.0},
+        "profile": [{"length_m": 2500, "lift_m": -120}],
+        "idlers": {"carry": {"spacing_m": 1.2, "roll_diameter_m": 0.152, "rolls": 3,
+                             "trough_deg": 35, "cema_class": "D"},
+                   "return": {"spacing_m": 3.0, "roll_diameter_m": 0.152, "rolls": 1,
+                              "cema_class": "C"}},
+        "drives": [{"position": "head", "wrap_deg": 210, "friction": 0.35, "share": 1.0,
+                    "pulley_diameter_m": 1.25, "inertia_kg_m2": 1500, "rated_power_kw": 800,
+                    "torque_limit": 1.5, "control": "vfd"}],
+        "takeup": {"type": "gravity", "position": "tail", "mass_kg": "auto", "travel_m": 12},
+        "brakes": [{"position": "head", "force_kn": "auto", "delay_s": 1.0}],
+        "holdback": False,
+        "accessories": {"head_kn": 2.0, "tail_kn": 1.0}}
+    conv = parse_conveyor(data)
+    scn = Scenario(elements=60, stop={"mode": "brake", "time_s": 30})
+    said: list[str] = []
+    s = run_one(conv, scn, model="din", remedy=True, say=said.append).summary
+    assert s["drive1_slip_s"] > 0.0
+    assert said and said[-1].endswith("(about ten reruns of the whole cycle; a brake stop's "
+                                      "own levers, its brakes' force and ramp, are not "
+                                      "searched)")
+    found = re.search(r"slip in the stop avoided by a take-up of ([\d,]+) kg \(found by "
+                      r"rerunning the cycle \d+ times on the same mesh, to 2 %; steps of x "
+                      r"1.3; the brake stop's own levers \(its brakes' force and ramp, an auto "
+                      r"brake's stop.time_s\) were not searched\)", s["message"])
+    assert found, s["message"]
+    assert "has no stop.time_s to lengthen" not in s["message"]
+    mass = float(found.group(1).replace(",", ""))
+    assert not _stop_slips(_with_mass(conv, mass), scn)
