@@ -20,10 +20,10 @@ used.
   scenario's stop time after the brake delay and over its ramp (:func:`brake_force_auto`), at
   least ``HOLD_MARGIN`` x the net downhill pull of the loaded belt, less the fixed brakes,
   shared evenly by the auto brakes (within their pulleys' grip in a brake stop, where an even
-  share is beyond one pulley's grip and the others have room). Its sizing input is the stop time: a run that stops on its
-  brakes (``stop.mode: brake``) sizes them for its stop time (``stop_time``, or ``holding``
-  where the holding floor is larger); any other run uses no stop time and installs the
-  holding size (``holding``).
+  share is beyond one pulley's grip and the others have room). Its sizing input is the stop
+  time: a run that stops on its brakes (``stop.mode: brake``) sizes them for its stop time
+  (``stop_time``, or ``holding`` where the holding floor is larger); any other run uses no
+  stop time and installs the holding size (``holding``).
 
 The rotating parts (:func:`rotating_parts`) and these rules are the ones the transient model
 builds with (:func:`beltstudy.engine.dynamics.model.build_system`), so a size reported here is the size

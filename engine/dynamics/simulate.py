@@ -1292,7 +1292,8 @@ def _sag_words(sys: System, strand: str, sag_pct: float, limit_pct: float, j: in
              "stop": _or([more, *stop_levers(sys)]
                          + (["a brake nearer the low-tension side"]
                             if sys.model.cycle.stop_mode == C.BRAKE else []))}[phase]
-    return (f"transient sag on the {strand} strand {past_limit(sag_pct, limit_pct)} % exceeds the limit "
+    shown = past_limit(sag_pct, limit_pct)
+    return (f"transient sag on the {strand} strand {shown} % exceeds the limit "
             f"{limit_pct:g} % (low tension {t_low_n / 1e3:.3g} kN near {where(sys, j)} at t = "
             f"{t_at:.1f} s, {_PHASE_WORDS[phase]}); {up3(need_kn):g} kN there keeps it within "
             f"(the sag goes as 1 / T), so the take-up must add at least "
@@ -1429,7 +1430,8 @@ def _coast_inertia_words(sys: System, need_s: float, conveyor=None, v_run: float
            f"{m_now * dv / te:.4g} s rigid, {t_stop:.4g} s measured)" if t_stop is not None
            else "")
     head = (f"more inertia on the drive shafts: a rigid-body coast from the running speed "
-            f"{v0:.4g} m/s to rest ({100.0 * REST_FRACTION:g} % of design speed, {REST_FRACTION * v:.3g} m/s, "
+            f"{v0:.4g} m/s to rest ({100.0 * REST_FRACTION:g} % of design speed, "
+            f"{REST_FRACTION * v:.3g} m/s, "
             f"where the stop time ends), M (v_run - v_rest) / Te, of {target:.4g} s (5 wave loop "
             f"times and {100.0 * COAST_MARGIN:g} % for the elastic belt's swing about the rigid "
             f"body) needs M = {target:.4g} s x {te / 1e3:.4g} kN / {dv:.4g} m/s = "
