@@ -106,3 +106,28 @@ def steep_16deg_dict(**over):
     }
     d.update(over)
     return d
+
+
+def decline_2500_dict(**over):
+    """A 2.5 km steel-cord decline falling 120 m (ST1600 1.2 m wide, 2000 t/h at 4 m/s, net
+    pull m'_L g H = 138.9 x 9.81 x 120 = 163.5 kN) on one vfd head drive, an auto gravity
+    take-up at the tail and an auto brake on the head drive's pulley (a designer's sign-off
+    conveyor), top-level fields replaced by ``over``."""
+    d = {
+        "name": "decline-2500", "speed_m_s": 4.0,
+        "belt": {"type": "ST1600", "width_m": 1.2},
+        "material": {"capacity_t_h": 2000, "density_t_m3": 1.6},
+        "profile": [{"length_m": 2500, "lift_m": -120}],
+        "idlers": {"carry": {"spacing_m": 1.2, "roll_diameter_m": 0.152, "rolls": 3,
+                             "trough_deg": 35, "cema_class": "D"},
+                   "return": {"spacing_m": 3.0, "roll_diameter_m": 0.152, "rolls": 1,
+                              "cema_class": "C"}},
+        "drives": [{"position": "head", "wrap_deg": 210, "friction": 0.35, "share": 1.0,
+                    "pulley_diameter_m": 1.25, "inertia_kg_m2": 1500,
+                    "rated_power_kw": 800}],
+        "takeup": {"type": "gravity", "position": "tail", "mass_kg": "auto"},
+        "brakes": [{"position": "head", "force_kn": "auto", "delay_s": 1.0}],
+        "accessories": {"head_kn": 2.0, "tail_kn": 1.0},
+    }
+    d.update(over)
+    return d

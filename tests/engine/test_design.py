@@ -22,7 +22,7 @@ from beltstudy.engine.loop import G, rotating_parts
 from beltstudy.engine.run import run_one
 from beltstudy.engine.statics import solve_steady
 from tests.conftest import CONVEYORS, hand_conveyor_dict
-from tests.engine.conftest import hand_conv, steep_incline
+from tests.engine.conftest import decline_2500_dict, hand_conv, steep_incline
 
 
 def _euler(wrap_deg=200, mu=0.35):
@@ -309,22 +309,10 @@ def _decline_two_auto_brakes():
     """A 2.5 km steel-cord decline falling 120 m (ST1600, 2000 t/h at 4 m/s, net pull m'_L g H
     = 138.9 x 9.81 x 120 = 163.5 kN), auto gravity take-up at the tail, an auto brake on the
     head drive's pulley and one on the tail pulley."""
-    return parse_conveyor({
-        "name": "decline-two-brakes", "speed_m_s": 4.0,
-        "belt": {"type": "ST1600", "width_m": 1.2},
-        "material": {"capacity_t_h": 2000, "density_t_m3": 1.6},
-        "profile": [{"length_m": 2500, "lift_m": -120}],
-        "idlers": {"carry": {"spacing_m": 1.2, "roll_diameter_m": 0.152, "rolls": 3,
-                             "trough_deg": 35, "cema_class": "D"},
-                   "return": {"spacing_m": 3.0, "roll_diameter_m": 0.152, "rolls": 1,
-                              "cema_class": "C"}},
-        "drives": [{"position": "head", "wrap_deg": 210, "friction": 0.35, "share": 1.0,
-                    "pulley_diameter_m": 1.25, "inertia_kg_m2": 1500,
-                    "rated_power_kw": 800}],
-        "takeup": {"type": "gravity", "position": "tail", "mass_kg": "auto"},
-        "brakes": [{"position": "head", "force_kn": "auto", "delay_s": 1.0},
-                   {"position": "tail", "force_kn": "auto", "delay_s": 1.0}],
-        "accessories": {"head_kn": 2.0, "tail_kn": 1.0}})
+    return parse_conveyor(decline_2500_dict(
+        name="decline-two-brakes",
+        brakes=[{"position": "head", "force_kn": "auto", "delay_s": 1.0},
+                {"position": "tail", "force_kn": "auto", "delay_s": 1.0}]))
 
 
 def test_auto_holding_brakes_are_shared_by_their_pulleys_grip():

@@ -10,7 +10,7 @@ from beltstudy.engine.conveyor import Scenario, load_conveyor, parse_conveyor
 from beltstudy.engine.remedy import slipped_in_stop
 from beltstudy.engine.run import remedy_sentence, run_one
 from tests.conftest import CONVEYORS
-from tests.engine.conftest import STEEP_16DEG_DRIVE, steep_16deg_dict
+from tests.engine.conftest import STEEP_16DEG_DRIVE, decline_2500_dict, steep_16deg_dict
 
 #: A 400 m, 16 deg EP1600/4 incline on two dol head drives through fill-controlled couplings
 #: (a designer's sign-off conveyor): its head pulley slides about 0.18 s in a coast stop.
@@ -123,22 +123,9 @@ def test_a_brake_stop_slip_names_the_levers_not_searched():
     said 'a brake stop has no stop.time_s to lengthen', though an auto brake reads stop.time_s.
     The progress line and the sentence now name the brake stop's own levers, not searched; the
     take-up named, applied, leaves no slip in the stop."""
-    data = {
-        "name": "sign-c-decline", "speed_m_s": 4.0,
-        "belt": {"type": "ST1600", "width_m": 1.2, "compound": "standard"},
-        "material": {"capacity_t_h": 2000, "density_t_m3": 1.6, "loading_speed_m_s": 0.0},
-        "profile": [{"length_m": 2500, "lift_m": -120}],
-        "idlers": {"carry": {"spacing_m": 1.2, "roll_diameter_m": 0.152, "rolls": 3,
-                             "trough_deg": 35, "cema_class": "D"},
-                   "return": {"spacing_m": 3.0, "roll_diameter_m": 0.152, "rolls": 1,
-                              "cema_class": "C"}},
-        "drives": [{"position": "head", "wrap_deg": 210, "friction": 0.35, "share": 1.0,
-                    "pulley_diameter_m": 1.25, "inertia_kg_m2": 1500, "rated_power_kw": 800,
-                    "torque_limit": 1.5, "control": "vfd"}],
-        "takeup": {"type": "gravity", "position": "tail", "mass_kg": "auto", "travel_m": 12},
-        "brakes": [{"position": "head", "force_kn": "auto", "delay_s": 1.0}],
-        "holdback": False,
-        "accessories": {"head_kn": 2.0, "tail_kn": 1.0}}
+    data = decline_2500_dict(name="sign-c-decline",
+                             takeup={"type": "gravity", "position": "tail", "mass_kg": "auto",
+                                      "travel_m": 12})
     conv = parse_conveyor(data)
     scn = Scenario(elements=60, stop={"mode": "brake", "time_s": 30})
     said: list[str] = []
