@@ -362,16 +362,16 @@ def _holding_grip(conv: Conveyor, steady: SteadyResult, each: list[float]) -> st
     acting = dict(fixed)
     for node, f in zip(nodes, each, strict=True):
         acting[node] = acting.get(node, 0.0) + f
-    # beyond the grip by more than the grip sharing's convergence (1e-6 of the force)
-    short = [n for n in dict.fromkeys(nodes)
-             if acting[n] > walk.grip_n(n, acting) * (1.0 + 1e-6) + 1e-3]
+    # each pulley's own grip against the force set on it (the other brakes as set), not the
+    # braked pulleys' total, which may exceed the whole holding force; beyond it by more
+    # than the grip sharing's convergence (1e-6 of the force)
+    grips = {n: walk.grip_n(n, acting) for n in dict.fromkeys(nodes)}
+    short = [n for n, grip in grips.items() if acting[n] > grip * (1.0 + 1e-6) + 1e-3]
     if not short:
         return ""
-    # each short pulley's own grip against the force set on it (the other brakes as set),
-    # not the braked pulleys' total, which may exceed the whole holding force
     parts = []
     for n in short:
-        grip = walk.grip_n(n, acting)
+        grip = grips[n]
         passes = (f"it passes at most {grip / 1e3:.4g} kN" if grip > 0.0 else
                   "unbraked, its slack side already falls so far that it passes no brake "
                   "force")
