@@ -35,7 +35,6 @@ from dataclasses import dataclass
 
 from beltstudy.engine.conveyor import Conveyor, Scenario
 from beltstudy.engine.dynamics import DynamicsOptions, build_system, simulate
-from beltstudy.engine.dynamics.simulate import _PHASE_NAMES, _PHASE_WORDS
 from beltstudy.engine.statics import solve_steady
 
 #: Bisection tolerance of each figure (relative).
@@ -79,19 +78,13 @@ def _steady(conveyor: Conveyor, scenario: Scenario, model: str, params):
                         temperature_c=scenario.temperature_c, load=scenario.load, n_elements=n)
 
 
-def slipped_in_stop(warnings: list[str]) -> bool:
-    """Whether a drive's slip reached the stop, by the run's slip warnings
-    (:func:`beltstudy.engine.dynamics.simulate.slip_words`: "drive 1 (head) slipped on its
-    pulley during the stop: ...", "... from the start into the stop: ..."; the drive record
-    keeps its first and last slip time, which the summary does not give)."""
-    stop_words = (_PHASE_WORDS["stop"], f"into {_PHASE_NAMES['stop']}")
-    for w in warnings:
-        head = w.split(": from t = ", 1)[0]
-        if not head.startswith("drive ") or " slipped on its pulley " not in head:
-            continue
-        if head.split(" slipped on its pulley ", 1)[1].endswith(stop_words):
-            return True
-    return False
+def slipped_in_stop(tr) -> bool:
+    """Whether a drive's slip on its pulley reached the stop of the transient ``tr``
+    (:class:`~beltstudy.engine.dynamics.simulate.TransientResult`): its last slip, kept by the
+    drive's record (``raw["drive_slip_last_s"]``), after the stop command. The slip warning
+    says the same in words ("during the stop", "from the start into the stop")."""
+    t_cmd = tr.system.stop_command_s
+    return any(float(t) > t_cmd for t in tr.raw["drive_slip_last_s"])
 
 
 def _slips(conveyor: Conveyor, scenario: Scenario, model: str, params, options,
@@ -106,7 +99,7 @@ def _slips(conveyor: Conveyor, scenario: Scenario, model: str, params, options,
     system = build_system(conveyor, scenario, steady, options)
     if phase == "stop":
         tr = simulate(system)
-        return tr.status == "failed" or slipped_in_stop(tr.warnings)
+        return tr.status == "failed" or slipped_in_stop(tr)
     tr = simulate(system, t_end_s=system.stop_command_s)
     return any(tr.summary.get(f"drive{i + 1}_slip_s", 0.0) > 0.0
                for i in range(len(system.model.drives.share)))

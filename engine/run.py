@@ -415,7 +415,7 @@ def _complete(prep: _Prepared, scenario, system, tr, model, params, opts, remedy
         if found:
             messages.append(found)
             _unfound_levers(conveyor, system, tr, messages, summary)
-        if slipped_in_stop(tr.warnings):
+        if slipped_in_stop(tr):
             stop_found = _stop_slip_remedy(
                 conveyor, scenario, model, params, opts, summary, say,
                 sf_min=conveyor.safety_factor_min

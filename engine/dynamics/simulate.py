@@ -202,7 +202,8 @@ class TransientResult:
         Per spring: ``s_m``, ``t_max_kn``, ``t_max_time_s``, ``t_min_kn``, ``t_min_time_s``.
     system : System
     raw : dict
-        Kernel scalars by name (``RES``), final state arrays and run bookkeeping.
+        Kernel scalars by name (``RES``), final state arrays and run bookkeeping (with
+        ``drive_slip_last_s``, each drive's last slip on its pulley [s], -1 where it did not).
     """
 
     status: str
@@ -521,6 +522,7 @@ def decode(sys: System, kr: KernelRun, wall_s: float, *, steady_summary=None, co
                tension=st.tt.copy(), x_takeup=r["x_tu"], u_takeup=r["u_tu"],
                integrator=r["integ"], drive_force=kr.model.drives.force.copy(),
                shaft_speed=kr.model.shafts.vs.copy(), shaft_slip=kr.model.shafts.slip.copy(),
+               drive_slip_last_s=np.array(out.drv["slip_last"], dtype=np.float64),
                wall_s=wall_s, element_steps=float(r["steps"]) * sys.n, segments=segs)
     return TransientResult(status=status, message=message, warnings=warnings, summary=summary,
                            series=cols, system=sys, raw=raw, trace_data=trace_data,
