@@ -345,11 +345,18 @@ def error_bars(scenario: Scenario, summary: dict, rerun, *,
     acc.elements = used
     acc.figures = bars(runs, used, rtol)
     acc.marginal = marginal_verdicts(summary, acc.figures, sag_limit_pct=sag_limit_pct,
-                                     safety_factor_min=safety_factor_min)
+                                     safety_factor_min=safety_factor_min, finest=used[-1])
     return acc
 
 
-def _marginal(fe: FigureError | None, limit: float, unit: str) -> str | None:
+def _marginal(fe: FigureError | None, limit: float, unit: str, higher_passes: bool,
+              finest: int | None = None) -> str | None:
+    """The words of a verdict within ``fe``'s bar of ``limit``, else None. ``higher_passes``:
+    a value above the limit passes the check (a lowest tension above 0 kN), else one below it
+    (a sag under its limit); ``finest`` the elements of the finest mesh run. The words give
+    the finest mesh's value, the Richardson estimate's side of the limit where there is one,
+    and the finer mesh that narrows the bar (the bar shrinks with the mesh at the observed
+    order)."""
     if fe is None or not math.isfinite(fe.err) or fe.err <= 0.0:
         return None
     if fe.method == "unchanged":
@@ -358,12 +365,25 @@ def _marginal(fe: FigureError | None, limit: float, unit: str) -> str | None:
         return None
     if abs(fe.value - limit) > fe.err:
         return None
-    return (f"marginal: {fe.name} {fe.value:.4g} against limit {limit:g} +- {fe.err:.3g}"
-            f"{(' ' + unit) if unit else ''} (the verdict may flip with the mesh)")
+    u = f" {unit}" if unit else ""
+    said = ["the verdict may flip with the mesh"]
+    fine = fe.values[-1] if fe.values else None
+    if fine is not None and finest:
+        said.append(f"{fine:.4g}{u} on {finest} elements")
+    conv = fe.converged
+    if conv is not None and math.isfinite(conv):
+        side = ("at the limit" if conv == limit else
+                "which passes" if (conv > limit) == higher_passes else "which fails")
+        said.append(f"converged estimate {conv:.4g}{u}, {side}")
+    if finest:
+        said.append(f"a finer mesh (scenario.elements {2 * finest}) narrows the bar")
+    return (f"marginal: {fe.name} {fe.value:.4g} against limit {limit:g} +- {fe.err:.3g}{u} "
+            f"({'; '.join(said)})")
 
 
 def marginal_verdicts(summary: dict, figures: dict, *, sag_limit_pct: float | None = None,
-                      safety_factor_min: float | None = None) -> list[str]:
+                      safety_factor_min: float | None = None, finest: int | None = None
+                      ) -> list[str]:
     """The verdicts whose figure lies within its error bar of the limit (PHYSICS 5.2), of the
     figures that move with the mesh (one the same on every mesh, method ``unchanged``, has
     only the run's resolution for a bar and no mesh flips its verdict: an auto take-up sized
@@ -389,27 +409,33 @@ def marginal_verdicts(summary: dict, figures: dict, *, sag_limit_pct: float | No
       said only when the cycle's line has not said it: its bar, from that phase's own three
       meshes, can reach 0 where the cycle's (whose three values may come from different
       phases) does not.
+
+    Each verdict says what would settle it (:func:`_marginal`): the finest mesh's value
+    (``finest`` its elements), the side of the limit its converged estimate lies on, and the
+    finer mesh that narrows the bar.
     """
     slack = (summary.get("slack_max_m") or 0.0) > 0.0
-    checks = [("slack_max_m", 0.0, "m") if slack else ("t_min_dyn_kn", 0.0, "kN")]
+    # (figure, limit, unit, a value above the limit passes)
+    checks = [("slack_max_m", 0.0, "m", False) if slack else ("t_min_dyn_kn", 0.0, "kN", True)]
     if sag_limit_pct is not None:
-        checks.append(("sag_max_dyn_pct", float(sag_limit_pct), "%"))
+        checks.append(("sag_max_dyn_pct", float(sag_limit_pct), "%", False))
     slipped = any((v or 0.0) > 0.0 for k, v in summary.items()
                   if k.startswith("drive") and k.endswith("_slip_s"))
     if not slipped:  # a slip that happened is its own verdict, the margin then at its floor
-        checks.append(("slip_margin_min_dyn", 1.0, ""))
+        checks.append(("slip_margin_min_dyn", 1.0, "", True))
     if safety_factor_min is not None:
-        checks.append(("safety_factor_dyn", float(safety_factor_min), ""))
-    checks.append(("takeup_endstop_speed_m_s", 0.0, "m/s")
+        checks.append(("safety_factor_dyn", float(safety_factor_min), "", True))
+    checks.append(("takeup_endstop_speed_m_s", 0.0, "m/s", False)
                   if (summary.get("takeup_endstop_speed_m_s") or 0.0) > 0.0
-                  else ("takeup_endstop_gap_m", 0.0, "m"))
-    said = [_marginal(figures.get(name), limit, unit) for name, limit, unit in checks]
+                  else ("takeup_endstop_gap_m", 0.0, "m", True))
+    said = [_marginal(figures.get(name), limit, unit, up, finest)
+            for name, limit, unit, up in checks]
     # lift-off (no bar without a concave curve): the cycle's, then a phase's other peak
     cycle = figures.get("liftoff_max_kn_over")
-    cycle_said = _marginal(cycle, 0.0, "kN")
+    cycle_said = _marginal(cycle, 0.0, "kN", False, finest)
     said.append(cycle_said)
     for name in ("liftoff_over_start_kn", "liftoff_over_stop_kn"):
         fe = figures.get(name)
         if fe is not None and not (cycle_said and fe.value == cycle.value):
-            said.append(_marginal(fe, 0.0, "kN"))
+            said.append(_marginal(fe, 0.0, "kN", False, finest))
     return [words for words in said if words]

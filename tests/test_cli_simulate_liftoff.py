@@ -39,7 +39,7 @@ def test_simulate_s_check_gives_the_liftoff_margin_its_error_bar(tmp_path, capsy
     assert "liftoff_max_kn_over" in s["accuracy_methods"]
     assert "liftoff_max_kn_over_converged" in s
     marginal = (f"marginal: liftoff_max_kn_over {over:.4g} against limit 0 +- {err:.3g} kN "
-                "(the verdict may flip with the mesh)")
+                "(the verdict may flip with the mesh; ")
     assert (marginal in s["message"]) is (abs(over) <= err)
     assert abs(over) <= err and s["status"] == "warning"  # this margin is within its bar
     d["profile"] = [{"length_m": 200, "lift_m": 10}]

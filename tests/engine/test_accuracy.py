@@ -129,6 +129,40 @@ def test_a_figure_the_same_on_every_mesh_is_not_marginal():
     assert A.marginal_verdicts({}, {"slip_margin_min_dyn": _fe("slip_margin_min_dyn", vals[0],
                                                                 1e-3)})
 
+def test_a_marginal_verdict_says_what_would_settle_it():
+    """A marginal verdict gave no lever. It now gives the finest mesh's value, the side of the
+    limit its converged (Richardson) estimate lies on, and the finer mesh that narrows the bar.
+    A lowest tension of 0.8 kN +- 1.5 kN on 200 elements (0.5 kN on 400, converged 0.3 kN)
+    passes the slack check: the estimate is on the passing side; a sag of 2.9 % +- 0.2 %
+    against 3 % converging to 3.05 % is on the failing side, as is a lift-off excess of
+    -0.4 kN converging to +0.2 kN (above 0 kN the belt lifts)."""
+    def fe(name, value, err, conv, values):
+        return A.FigureError(name, value, err, conv, "richardson", 1.0, values)
+
+    words = A.marginal_verdicts(
+        {"slack_max_m": 0.0},
+        {"t_min_dyn_kn": fe("t_min_dyn_kn", 0.8, 1.5, 0.3, (1.4, 0.8, 0.5)),
+         "sag_max_dyn_pct": fe("sag_max_dyn_pct", 2.9, 0.2, 3.05, (2.6, 2.9, 2.99)),
+         "liftoff_max_kn_over": fe("liftoff_max_kn_over", -0.4, 0.7, 0.2, (-1.0, -0.4, -0.1))},
+        sag_limit_pct=3.0, finest=400)
+    assert words == [
+        "marginal: t_min_dyn_kn 0.8 against limit 0 +- 1.5 kN (the verdict may flip with the "
+        "mesh; 0.5 kN on 400 elements; converged estimate 0.3 kN, which passes; a finer mesh "
+        "(scenario.elements 800) narrows the bar)",
+        "marginal: sag_max_dyn_pct 2.9 against limit 3 +- 0.2 % (the verdict may flip with the "
+        "mesh; 2.99 % on 400 elements; converged estimate 3.05 %, which fails; a finer mesh "
+        "(scenario.elements 800) narrows the bar)",
+        "marginal: liftoff_max_kn_over -0.4 against limit 0 +- 0.7 kN (the verdict may flip "
+        "with the mesh; -0.1 kN on 400 elements; converged estimate 0.2 kN, which fails; a "
+        "finer mesh (scenario.elements 800) narrows the bar)"]
+    # no estimate (a spread): the finest value and the finer mesh only
+    spread = A.FigureError("safety_factor_dyn", 6.8, 0.3, None, "spread", None, (7.0, 6.8, 6.9))
+    assert A.marginal_verdicts({}, {"safety_factor_dyn": spread}, safety_factor_min=6.7,
+                               finest=400) == [
+        "marginal: safety_factor_dyn 6.8 against limit 6.7 +- 0.3 (the verdict may flip with "
+        "the mesh; 6.9 on 400 elements; a finer mesh (scenario.elements 800) narrows the bar)"]
+
+
 def test_a_lift_off_within_its_error_of_zero_is_marginal():
     """liftoff_max_kn_over (the most a concave curve's tension went over its lift-off
     tension; > 0 the belt lifted) is judged against 0 kN: a belt that lifted by 0.14 kN
