@@ -168,6 +168,7 @@ class StudyService:
                     f"study '{study.id}' is being deleted; submit it again when that is done"
                 )
             created = not self.store.exists(study.id)
+            doc = None
             if created:
                 self.store.create(study.id, self._new_doc(study))
                 active = True
@@ -176,13 +177,14 @@ class StudyService:
                 active = doc.get("state") in ACTIVE_STATES
                 if _waits_for_workers(doc) and not self._closing:
                     # failed for want of Dask workers: submitted again, it goes on
-                    self.store.update(study.id, state="queued", message="",
-                                      finished_at=None)
+                    doc = self.store.update(study.id, state="queued", message="",
+                                            finished_at=None)
                     active = True
             if active and study.id not in self._jobs and not self._closing:
                 # a study interrupted earlier (`beltstudy run` stopped) carries on; during a
                 # shutdown it stays queued in the store and starts with the service
-                job = StudyJob(study, self.store, self.executor, self.settings, self._job_ended)
+                job = StudyJob(study, self.store, self.executor, self.settings, self._job_ended,
+                               doc=doc)
                 self._jobs[study.id] = job
                 job.start()
         return created

@@ -158,18 +158,23 @@ def study_schema(study: ResolvedStudy) -> pa.Schema:
 class StudyJob:
     """Executes the missing runs of one study; progress readable from other threads."""
 
-    def __init__(self, study: ResolvedStudy, store: Store, executor, settings, on_exit=None):
+    def __init__(self, study: ResolvedStudy, store: Store, executor, settings, on_exit=None,
+                 doc: dict | None = None):
+        """``doc``: the study's stored status when it was stored before (a resumed study), so
+        its progress reads what the store last said (not 0 runs done) until :meth:`_execute`
+        has counted its stored runs."""
+        doc = doc or {}
         self.study = study
         self._on_exit = on_exit  # called with the job when its thread ends
         self.store = store
         self.executor = executor
         self.settings = settings
         self.state = "queued"
-        self.done = 0
-        self.failed = 0
+        self.done = int(doc.get("done") or 0)
+        self.failed = int(doc.get("failed") or 0)
         self.session_done = 0
         self.session_start: float | None = None
-        self.elapsed_before = 0.0
+        self.elapsed_before = float(doc.get("elapsed_s") or 0.0)
         self._cancel = threading.Event()
         self._stop = threading.Event()
         self._lock = threading.Lock()
