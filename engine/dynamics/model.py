@@ -1028,8 +1028,18 @@ def short_element(conv, loop: Loop) -> tuple[str, str] | None:
     field = min(near, key=lambda c: (not c[0].endswith(".at_m"),
                                      not c[0].endswith(".curve_radius_m")))[0]
     where = " and ".join(f"{words} ({a:.10g} m)" for _, words, a in near)
-    return field, (f"the automatic step follows the shortest belt element, {dx:.3g} m long "
-                   f"between {where} from the tail: move {field} onto the other point or "
+    said = (f"the automatic step follows the shortest belt element, {dx:.3g} m long between "
+            f"{where} from the tail: ")
+    i = int(field.split(".")[1]) if field.endswith(".curve_radius_m") else -1
+    if i >= 0 and any(c[0] == f"profile.{i}.length_m" for c in near):
+        # half the curve's own arc (its section's end is the arc's middle): nothing to move,
+        # the arc grows with the radius (arc = R |delta|)
+        r = float(prof[i].curve_radius_m)
+        need = math.ceil(r * apart / (0.5 * curve_arc_m(prof, i)) / 10.0) * 10.0
+        return field, (f"{said}a radius of {need:g} m or more ({field}, now {r:g} m) makes "
+                       f"each half of the curve's {curve_arc_m(prof, i):.3g} m arc a tenth of "
+                       "the median element or more")
+    return field, (f"{said}move {field} onto the other point or "
                    f"{math.ceil(apart * 10.0) / 10.0:g} m or more away from it (a tenth of "
                    "the median element)")
 

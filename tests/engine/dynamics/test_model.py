@@ -120,6 +120,36 @@ def test_a_short_element_that_sets_the_step_is_a_note_naming_the_point():
     assert near.dt_s < 0.05 * far.dt_s
 
 
+def test_a_short_element_inside_a_curves_arc_is_given_the_radius_that_lengthens_it():
+    """A vertical curve whose half arc is under a tenth of the median element cuts a short
+    element between the arc's end and its middle (the section's end), and the note said "move
+    profile.0.curve_radius_m onto the other point or ... m or more away from it", which a
+    radius cannot do. The arc is ``R |delta|``: the note now names the radius that makes each
+    half a tenth of the median element. 5 % to 4 % (delta 0.00998 rad) on a 200 m radius: a
+    2.0 m arc; 20 elements round the 2 km loop (median about 100 m); the radius named gives
+    no note and a step many times longer, 10 % less still gives it."""
+    def system(radius):
+        conv = hand_conv(profile=[{"length_m": 400, "lift_m": 20, "curve_radius_m": radius},
+                                  {"length_m": 600, "lift_m": 24}])
+        return build_system(conv, Scenario(elements=20), solve_steady(conv, model="din",
+                                                                      n_elements=20))
+    note = " ".join(system(200.0).notes)
+    said = re.search(r"shortest belt element, [\d.]+ m long between the end of profile\.0 "
+                     r"\(400 m\) and an end of the curve after profile\.0 \([\d.]+ m\) from the "
+                     r"tail: a radius of (\d+) m or more \(profile\.0\.curve_radius_m, now 200 m\) "
+                     r"makes each half of the curve's 2 m arc a tenth of the median element",
+                     note)
+    assert said, note
+    need = float(said.group(1))
+    delta = math.atan(20 / 400) - math.atan(24 / 600)
+    assert 200.0 * delta == pytest.approx(2.0, rel=0.01)
+    assert "onto the other point" not in note
+    ok = system(need)
+    assert not any("shortest belt element" in n for n in ok.notes)
+    assert any("shortest belt element" in n for n in system(0.9 * need).notes)
+    assert system(200.0).dt_s < 0.2 * ok.dt_s  # 0.00036 s against 0.0034 s
+
+
 @pytest.mark.parametrize("load", ["inclines", "declines", [0.5, 1.0]])
 def test_transient_model_runs_on_the_same_per_element_masses(load):
     """The transient model reads the loop's per-element arrays: its gravity and masses are the
