@@ -50,16 +50,18 @@ TABLE_RESPONSES = {200: {"content": {
 }}}
 
 
-def _download(df, format: str, name: str, headers: dict | None = None) -> Response:
+def _download(df, format: str, name: str, headers: dict | None = None,
+              schema=None) -> Response:
     """A table as a CSV or Parquet download named ``<name>.csv`` / ``<name>.parquet``
-    (``Content-Disposition: attachment``; the name is built from checked study and run ids)."""
+    (``Content-Disposition: attachment``; the name is built from checked study and run ids;
+    ``schema``: the stored table's, whose column types the Parquet keeps)."""
     ext = "csv" if format == "csv" else "parquet"
     headers = {**(headers or {}),
                "Content-Disposition": f'attachment; filename="{name}.{ext}"'}
     if format == "csv":
         return Response(query.to_csv(df), media_type="text/csv; charset=utf-8",
                         headers=headers)
-    return Response(query.to_parquet(df), media_type=PARQUET_TYPE, headers=headers)
+    return Response(query.to_parquet(df, schema), media_type=PARQUET_TYPE, headers=headers)
 
 
 def _with_urls(status: dict) -> dict:
@@ -179,7 +181,8 @@ def get_runs(
     if names is not None:
         df = df[names]
     if format != "json":
-        return _download(df, format, f"{study_id}-runs")
+        schema = service.store.runs_schema(study_id) if format == "parquet" else None
+        return _download(df, format, f"{study_id}-runs", schema=schema)
     page = df.iloc[offset : offset + limit if limit else None]
     return {
         "study_id": study_id,

@@ -298,14 +298,18 @@ class Store:
 
     def runs_columns(self, study_id: str) -> list[str]:
         """The names of the columns of a study's runs table (its schema; no rows read)."""
+        return [n for n in self.runs_schema(study_id).names
+                if not n.startswith("__index_level_")]
+
+    def runs_schema(self, study_id: str) -> pa.Schema:
+        """The schema of a study's runs table, as its part files store it (no rows read)."""
         self.read(study_id)
 
-        def read() -> list[str]:
+        def read() -> pa.Schema:
             parts = self.parts(study_id, "runs")
             if not parts:
-                return list(self._empty(study_id, "runs").column_names)
-            names = pq.read_schema(parts[0]).names
-            return [n for n in names if not n.startswith("__index_level_")]
+                return self._empty(study_id, "runs").schema
+            return pq.read_schema(parts[0])
 
         return self._vanishing(study_id, read)
 

@@ -267,9 +267,16 @@ def to_csv(df: pd.DataFrame) -> str:
     return df.to_csv(index=False)
 
 
-def to_parquet(df: pd.DataFrame) -> bytes:
+def to_parquet(df: pd.DataFrame, schema: pa.Schema | None = None) -> bytes:
+    """``df`` as Parquet; ``schema``: the stored table's, so each column keeps its stored
+    type (a yes/no column with no value in any row stays boolean, not Arrow's null type)."""
+    table = pa.Table.from_pandas(df, preserve_index=False)
+    if schema is not None:
+        fields = [schema.field(n) if n in schema.names else table.schema.field(n)
+                  for n in table.column_names]
+        table = pa.Table.from_pandas(df, schema=pa.schema(fields), preserve_index=False)
     buf = io.BytesIO()
-    pq.write_table(pa.Table.from_pandas(df, preserve_index=False), buf)
+    pq.write_table(table, buf)
     return buf.getvalue()
 
 
