@@ -255,9 +255,9 @@ class FinerCheck:
     takeup : the take-up (mass [kg] or pretension [kN]) with which no drive slips on the finer
         mesh: the run's figure where it holds there, else the one found there (None: not
         found within the search limit, or nothing to try)
-    start_time_s : the same for the start time
+    start_time_s : the same for the start time (a stop's check: for ``stop.time_s``)
     takeup_moved, start_moved : whether the run's figure slipped on the finer mesh
-    reruns : int, how many starts were rerun on the finer mesh
+    reruns : int, how many starts (a stop's check: cycles) were rerun on the finer mesh
     """
 
     elements: int
@@ -274,7 +274,8 @@ def confirm_finer(conveyor: Conveyor, scenario: Scenario, rem: SlipRemedy, *, mo
     """Try the figures of ``rem`` (found on the run's mesh) on the finer mesh of ``elements``
     and, where a drive still slips there, search that mesh as :func:`slip_remedy` does, up
     from the run's figure (to the same limits, :data:`TAKEUP_MAX` x ``takeup_base`` and
-    :data:`START_MAX` x the run's start time).
+    :data:`START_MAX` x the run's start time; a stop's remedy, ``rem.phase`` ``stop``: the
+    whole cycle for a slip in the stop, and :data:`STOP_MAX` x the run's ``stop.time_s``).
 
     A slip margin is an extreme read behind the start's front, which the mesh smears: on a
     finer mesh the front is sharper and the slack side's dip deeper, so the least take-up or
@@ -287,37 +288,43 @@ def confirm_finer(conveyor: Conveyor, scenario: Scenario, rem: SlipRemedy, *, mo
     scn = scenario.model_copy(update={"elements": int(elements)})
     gravity = conveyor.takeup.type == "gravity"
     field = "mass_kg" if gravity else "pretension_kn"
+    stop = rem.phase == "stop"
 
     def with_takeup(x: float) -> Conveyor:
         return conveyor.model_copy(update={"takeup": conveyor.takeup.model_copy(
             update={field: float(x)})})
+
+    def slips(c: Conveyor, s: Scenario, steady=None) -> bool:
+        return _slips(c, s, model, params, opts, steady, phase=rem.phase)
 
     reruns = 0
     tu = rem.takeup_mass_kg if gravity else rem.takeup_tension_kn
     tu_moved = False
     if tu is not None:
         reruns += 1
-        if _slips(with_takeup(tu), scn, model, params, opts):
+        if slips(with_takeup(tu), scn):
             tu_moved = True
             hi = TAKEUP_MAX * float(takeup_base) if takeup_base else TAKEUP_MAX * float(tu)
-            tu, k = _smallest(lambda x: not _slips(with_takeup(x), scn, model, params, opts),
-                              float(tu), max(hi, float(tu)))
+            tu, k = _smallest(lambda x: not slips(with_takeup(x), scn), float(tu),
+                              max(hi, float(tu)))
             reruns += k
-    st = rem.start_time_s
+    st = rem.stop_time_s if stop else rem.start_time_s
     st_moved = False
     if st is not None:
         fixed = conveyor if takeup_base is None else with_takeup(takeup_base)
         steady = _steady(fixed, scn, model, params)
+        key = "stop" if stop else "start"
 
-        def with_start(t: float) -> Scenario:
-            return scn.model_copy(update={"start": scn.start.model_copy(update={"time_s": t})})
+        def with_time(t: float) -> Scenario:
+            return scn.model_copy(update={key: getattr(scn, key).model_copy(
+                update={"time_s": t})})
 
         reruns += 1
-        if _slips(fixed, with_start(st), model, params, opts, steady):
+        if slips(fixed, with_time(st), steady):
             st_moved = True
-            t_max = START_MAX * float(scenario.start.time_s)
-            st, k = _smallest(lambda t: not _slips(fixed, with_start(t), model, params, opts,
-                                                   steady), float(st), max(t_max, float(st)))
+            t_max = (STOP_MAX if stop else START_MAX) * float(getattr(scenario, key).time_s)
+            st, k = _smallest(lambda t: not slips(fixed, with_time(t), steady), float(st),
+                              max(t_max, float(st)))
             reruns += k
     return FinerCheck(elements=int(elements), takeup=tu, start_time_s=st,
                       takeup_moved=tu_moved, start_moved=st_moved, reruns=reruns)

@@ -419,7 +419,8 @@ def _complete(prep: _Prepared, scenario, system, tr, model, params, opts, remedy
             stop_found = _stop_slip_remedy(
                 conveyor, scenario, model, params, opts, summary, say,
                 sf_min=conveyor.safety_factor_min
-                or SAFETY_FACTOR_MIN.get(steady.loop.belt.kind, 6.7))
+                or SAFETY_FACTOR_MIN.get(steady.loop.belt.kind, 6.7),
+                finer=_finer_mesh(scenario, summary, system, opts) if check else None)
             if stop_found is not None:
                 messages.append(stop_found[0])
                 _unfound_stop_levers(conveyor, system, tr, messages, stop_found[1],
@@ -730,7 +731,8 @@ def _slip_remedy(conveyor, scenario, model, params, opts, summary, say=None,
 
 
 def _stop_slip_remedy(conveyor, scenario, model, params, opts, summary, say=None,
-                      sf_min: float | None = None):
+                      sf_min: float | None = None,
+                      finer: tuple[Scenario, DynamicsOptions] | None = None):
     """Search what avoids a slip that reached the stop (:func:`beltstudy.engine.remedy.
     slip_remedy` with ``phase="stop"``: the whole cycle rerun on the run's mesh, the take-up
     and, for a controlled stop, ``stop.time_s``) and return ``(sentence, remedy, timed)``
@@ -738,9 +740,18 @@ def _stop_slip_remedy(conveyor, scenario, model, params, opts, summary, say=None
     start's take-up figure (``slip_free_*`` in ``summary``) is tried first: where it avoids the
     stop's slip too, it is named once for both; else the stop's figure is grown from it and
     is the one that avoids both. The stop's figures are not written into ``summary`` (its
-    ``slip_free_*`` fields are the start's) nor tried on a finer mesh: a rerun costs a whole
-    cycle, where the start's costs a start."""
-    from beltstudy.engine.remedy import GROW, STOP_MAX, TAKEUP_MAX, reads_stop_time, slip_remedy
+    ``slip_free_*`` fields are the start's). With ``finer`` (a checked run's finer mesh,
+    :func:`_finer_mesh`) each figure is tried there too, the whole cycle rerun
+    (:func:`beltstudy.engine.remedy.confirm_finer`), as the start's are: where the stop still
+    slips, the finer mesh's figure is given and the message names both."""
+    from beltstudy.engine.remedy import (
+        GROW,
+        STOP_MAX,
+        TAKEUP_MAX,
+        confirm_finer,
+        reads_stop_time,
+        slip_remedy,
+    )
 
     gravity = conveyor.takeup.type == "gravity"
     start_tu = summary.get("slip_free_takeup_mass_kg" if gravity else "slip_free_takeup_kn")
@@ -752,7 +763,25 @@ def _stop_slip_remedy(conveyor, scenario, model, params, opts, summary, say=None
     if rem is None:
         return None
     timed = reads_stop_time(scenario)
-    tu_fig = rem.takeup_mass_kg if gravity else rem.takeup_tension_kn
+
+    def up(t):  # rounded up: the figure is the least found; rounded down it could slip
+        return None if t is None else (math.ceil(t) if t >= 10.0 else math.ceil(10.0 * t) / 10.0)
+
+    # the stop time as it is said, which the finer mesh tries
+    rem = replace(rem, stop_time_s=up(rem.stop_time_s))
+    run_tu = rem.takeup_mass_kg if gravity else rem.takeup_tension_kn
+    tu_fig, st_fig = run_tu, rem.stop_time_s
+    fine = None
+    if finer is not None and (run_tu is not None or st_fig is not None):
+        fine_scn, fine_opts = finer
+        if say is not None:
+            say(f"trying the stop's figures on a mesh twice as fine ({int(fine_scn.elements)} "
+                "elements, a whole cycle each)")
+        fine = confirm_finer(conveyor, fine_scn, rem, model=model, params=params,
+                             options=fine_opts, elements=int(fine_scn.elements),
+                             takeup_base=summary.get("takeup_mass_kg") if gravity
+                             else summary.get("takeup_tension_kn"))
+        tu_fig, st_fig = fine.takeup, fine.start_time_s
     unit, noun = ("kg", "take-up") if gravity else ("kN", "pretension")
     article = "a take-up of" if gravity else "a pretension of"
 
@@ -761,25 +790,38 @@ def _stop_slip_remedy(conveyor, scenario, model, params, opts, summary, say=None
 
     if tu_fig is None:
         tu = f"no {noun} up to {TAKEUP_MAX:g} x this one"
-    elif rem.takeup_shared:
+    elif rem.takeup_shared and not (fine is not None and fine.takeup_moved):
         tu = f"the {noun} of {amount(tu_fig)} found for the start"
     elif start_tu is not None and tu_fig > start_tu:
         tu = (f"{article} {amount(tu_fig)} (which avoids the start's slip too; the start's "
               f"{amount(start_tu)} still slips in the stop)")
     else:
         tu = f"{article} {amount(tu_fig)}"
-    safety = ("" if rem.takeup_shared else
+    safety = ("" if rem.takeup_shared and not (fine is not None and fine.takeup_moved) else
               _takeup_safety_words(summary, tu_fig, gravity, sf_min))
     if safety:
         safety = f"; the {noun} of {amount(tu_fig)}{safety}"
-    st_fig = rem.stop_time_s
-    # rounded up: the figure is the least found, and rounded down it could slip again
-    st_up = None if st_fig is None else (math.ceil(st_fig) if st_fig >= 10.0
-                                         else math.ceil(10.0 * st_fig) / 10.0)
+    st_up = up(st_fig)
     st = (f"a stop.time_s of {st_up:g} s" if st_up is not None
           else f"no stop.time_s up to {STOP_MAX:g} x this one")
     how = (f"found by rerunning the cycle {rem.reruns} times on the same mesh, to 2 %; steps "
            f"of x {GROW:g}")
+    if fine is not None:
+        n_run, n_fine = int(summary["elements_used"]), fine.elements
+        moved = []
+        if fine.takeup_moved:
+            moved.append(f"{article} {amount(run_tu)}")
+        if fine.start_moved:
+            moved.append(f"a stop.time_s of {up(rem.stop_time_s):g} s")
+        tried = [x for x in (run_tu, rem.stop_time_s if timed else None) if x is not None]
+        if moved:
+            how += (f"; {' and '.join(moved)}, enough on this mesh ({n_run} elements), "
+                    f"still slipped on one twice as fine ({n_fine} elements, {fine.reruns} "
+                    "more cycles): the finer mesh's figure is given (a margin above it is "
+                    "safer)")
+        else:
+            how += (f"; {'each holds' if len(tried) > 1 else 'it holds'} on a mesh twice as "
+                    f"fine too ({n_fine} elements)")
     searched = [(tu_fig, tu)]
     if timed:
         searched.append((st_up, st))
