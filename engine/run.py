@@ -634,7 +634,7 @@ def _finer_mesh(scenario: Scenario, summary: dict, system, opts: DynamicsOptions
 
 
 def _takeup_safety_words(summary: dict, tu_fig: float | None, gravity: bool,
-                         sf_min: float | None) -> str:
+                         sf_min: float | None, width_m: float | None = None) -> str:
     """The clause a slip-free take-up (``tu_fig``: a mass [kg] for a gravity take-up, a
     tension per strand [kN] for a fixed one) gains when it puts the steady belt safety factor
     below ``sf_min`` ("" otherwise). A heavier take-up lifts the tension at the take-up by
@@ -643,7 +643,9 @@ def _takeup_safety_words(summary: dict, tu_fig: float | None, gravity: bool,
     tension-independent model, about for a sag-dependent one): ``S = rating / (T_max + dT)``.
     The remedy searched the start's slip only; its take-up could break the running check
     unsaid (a 400 m 16 deg EP1250/5 incline: 4,939 kg for 3,729 kg, T_max 119.8 -> 125.7 kN,
-    S 10.44 -> 9.94 against 10)."""
+    S 10.44 -> 9.94 against 10). With the belt's width ``width_m`` [m] the clause names the
+    rating per metre of width that passes both with that take-up, ``S_min (T_max + dT) / B``
+    (as the steady check's own advice)."""
     t_max, rating = summary.get("t_max_kn"), summary.get("belt_rating_kn")
     base = summary.get("takeup_mass_kg") if gravity else summary.get("takeup_tension_kn")
     if None in (tu_fig, t_max, rating, base, sf_min) or tu_fig <= base:
@@ -652,9 +654,14 @@ def _takeup_safety_words(summary: dict, tu_fig: float | None, gravity: bool,
     sf = float(rating) / (float(t_max) + rise_kn)
     if sf >= sf_min:
         return ""
+    both = ""
+    if width_m:
+        need = math.ceil(sf_min * (float(t_max) + rise_kn) / float(width_m))
+        both = (f"; with it, a belt rated at least {need} kN/m at this width "
+                f"({float(rating) / float(width_m):.4g} kN/m now) passes both")
     return (f" lifts the largest running tension by {rise_kn:.3g} kN, to "
             f"{float(t_max) + rise_kn:.4g} kN: the belt safety factor falls to about {sf:.2f}, "
-            f"below the minimum {sf_min:.2f}")
+            f"below the minimum {sf_min:.2f}{both}")
 
 
 def _slip_remedy(conveyor, scenario, model, params, opts, summary, say=None,
@@ -697,7 +704,8 @@ def _slip_remedy(conveyor, scenario, model, params, opts, summary, say=None,
 
     tu = (f"{article} {amount(tu_fig)}" if tu_fig is not None
           else f"no {noun} up to {TAKEUP_MAX:g} x this one")
-    safety = _takeup_safety_words(summary, tu_fig, gravity, sf_min)
+    safety = _takeup_safety_words(summary, tu_fig, gravity, sf_min,
+                                  conveyor.belt.width_m)
     if safety:
         safety = f"; the {noun} of {amount(tu_fig)}{safety}"
     st = (f"a start of {st_fig:.0f} s" if st_fig is not None
@@ -798,7 +806,8 @@ def _stop_slip_remedy(conveyor, scenario, model, params, opts, summary, say=None
     else:
         tu = f"{article} {amount(tu_fig)}"
     safety = ("" if rem.takeup_shared and not (fine is not None and fine.takeup_moved) else
-              _takeup_safety_words(summary, tu_fig, gravity, sf_min))
+              _takeup_safety_words(summary, tu_fig, gravity, sf_min,
+                                   conveyor.belt.width_m))
     if safety:
         safety = f"; the {noun} of {amount(tu_fig)}{safety}"
     st_up = up(st_fig)
