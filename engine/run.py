@@ -644,7 +644,7 @@ def _takeup_safety_words(summary: dict, tu_fig: float | None, gravity: bool,
     The remedy searched the start's slip only; its take-up could break the running check
     unsaid (a 400 m 16 deg EP1250/5 incline: 4,939 kg for 3,729 kg, T_max 119.8 -> 125.7 kN,
     S 10.44 -> 9.94 against 10). With the belt's width ``width_m`` [m] the clause names the
-    rating per metre of width that passes both with that take-up, ``S_min (T_max + dT) / B``
+    rating per metre of width that keeps the minimum with that take-up, ``S_min (T_max + dT) / B``
     (as the steady check's own advice)."""
     t_max, rating = summary.get("t_max_kn"), summary.get("belt_rating_kn")
     base = summary.get("takeup_mass_kg") if gravity else summary.get("takeup_tension_kn")
@@ -658,7 +658,7 @@ def _takeup_safety_words(summary: dict, tu_fig: float | None, gravity: bool,
     if width_m:
         need = math.ceil(sf_min * (float(t_max) + rise_kn) / float(width_m))
         both = (f"; with it, a belt rated at least {need} kN/m at this width "
-                f"({float(rating) / float(width_m):.4g} kN/m now) passes both")
+                f"({float(rating) / float(width_m):.4g} kN/m now) keeps the minimum")
     return (f" lifts the largest running tension by {rise_kn:.3g} kN, to "
             f"{float(t_max) + rise_kn:.4g} kN: the belt safety factor falls to about {sf:.2f}, "
             f"below the minimum {sf_min:.2f}{both}")
