@@ -445,7 +445,15 @@ def calibrate(conv: Conveyor, measured: Sequence[Measurement], model: str,
                                        [lowest[n] for n in names])
     x_free = np.array([x0[names.index(n)] for n in free])
     held_values = {n: float(x0[names.index(n)]) for n in held}
-    fixed.update(_expanded(fm.name, held_values))
+    # a held name whose default the law computes (CEMA's kt from each row's temperature, ky,
+    # ai_n from the catalogue) is left to the law, as it would be unnamed: its start is the
+    # value at the first row, and pinned there it would stand for every row's temperature
+    # (and, in the models block, for every run of a study)
+    base = fm.params(fixed)
+    computed = {n for n in held if n not in (starts or {})
+                and getattr(base, _sets(fm.name, n)[0]) is None}
+    fixed.update(_expanded(fm.name, {n: v for n, v in held_values.items()
+                                     if n not in computed}))
     upper = [largest[n] for n in free]
     lower = [lowest[n] for n in free]
     sol = least_squares(residual, x_free, args=(free,), bounds=(lower, upper),
@@ -454,9 +462,10 @@ def calibrate(conv: Conveyor, measured: Sequence[Measurement], model: str,
     jac = _jacobian(lambda x: residual(x, free), sol.x, lower)
     n, p = len(r), len(free)
     dof = n - p
-    notes = [f"{', '.join(g)}: only act together on these data; "
-             f"{', '.join(x for x in g if x in held)} held at the start value"
-             for g in groups]
+    notes = [f"{', '.join(g)}: only act together on these data; " + "; ".join(
+        f"{x} held at the value model {fm.name} computes for each row, its default "
+        f"({held_values[x]:.4g} at row 0)" if x in computed else f"{x} held at the start value"
+        for x in g if x in held) for g in groups]
     if held_takeup:
         notes.append(held_takeup)
     se: list[float | None] = [None] * p
@@ -507,7 +516,7 @@ def calibrate(conv: Conveyor, measured: Sequence[Measurement], model: str,
         notes=notes, **_verdict(sol, at_bound, r, fm.name, at_upper,
                                 {n: largest[n] for n in own_limit}, groups, held_values,
                                 suspect=suspect, exact=bool(p) and dof == 0, few=few,
-                                lowest=lowest))
+                                lowest=lowest, computed=computed))
 
 
 def _t95(dof: int) -> float:
@@ -701,7 +710,8 @@ def _verdict(sol, at_bound: list[str], r: np.ndarray, model: str,
              at_upper: Sequence[str] = (), own_limit: dict[str, float] | None = None,
              groups: Sequence[Sequence[str]] = (), held: dict[str, float] | None = None,
              suspect: Sequence[str] = (), exact: bool = False, few: str = "",
-             lowest: dict[str, float] | None = None) -> dict[str, str]:
+             lowest: dict[str, float] | None = None, computed: Sequence[str] = ()
+             ) -> dict[str, str]:
     """``status`` and ``message`` of the fit in this project's words (never SciPy's text):
     ``failed`` when it stopped without converging, ``warning`` when a fitted parameter ended
     at its bound (the data ask for a value the model does not allow: the rest of the misfit
@@ -716,7 +726,8 @@ def _verdict(sol, at_bound: list[str], r: np.ndarray, model: str,
     them before a misfit's general advice. ``exact``: as many measured values as fitted
     names, met exactly: nothing checks the fit and it has no standard errors, a
     ``warning``. ``lowest``: each name's smallest value (0 unless the model's own check sets
-    another, DIN's C >= 1), named where a fit ends there. ``few``: the steady states read, in words, when the measured values repeat
+    another, DIN's C >= 1), named where a fit ends there. ``computed``: the held names left
+    to the value the law computes for each row (their default), not held at a number. ``few``: the steady states read, in words, when the measured values repeat
     no more states than there are fitted names (:func:`_few_states`): met whatever the model
     as ``exact`` is, the repeats' scatter alone setting the standard errors, a ``warning``."""
     rms = 100 * math.sqrt(float(r @ r) / len(r))
@@ -772,11 +783,13 @@ def _verdict(sol, at_bound: list[str], r: np.ndarray, model: str,
             f"residual over {len(r)} measured values; a plant's logged power is good to a few "
             f"per cent, {MISFIT_PCT:g} % at most). {check}")}
     if groups:
-        kept = "; ".join(f"{n} at {v:.4g}" for n, v in (held or {}).items())
+        kept = "; ".join(f"{n} at the value model {model} computes for each row, its default"
+                         if n in computed else f"{n} at {v:.4g}" for n, v in (held or {}).items())
         together = "; ".join(" and ".join(g) for g in groups)
+        at = "" if set(held or {}) <= set(computed) else " at the start"
         return {"status": "warning", "message": (
             f"converged (rms relative residual {rms_text} % over {len(r)} measured values), "
-            f"but these data cannot tell {together} apart: held at the start ({kept}), and "
+            f"but these data cannot tell {together} apart: held{at} ({kept}), and "
             "the fitted values assume it. Hold the held names at values from the literature "
             "(--param, or the request's params) and fit the others, or, where the model lets "
             "them act apart, measure at other loads, speeds or temperatures")}

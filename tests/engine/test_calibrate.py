@@ -401,3 +401,26 @@ def test_a_row_pasted_twice_is_noted(overland):
                         m.speed_m_s)
     cal = calibrate(overland, [*rows, again], "din", ["f_carry"])
     assert not any("repeats" in n for n in cal.notes)
+
+
+def test_a_held_name_the_law_computes_stays_the_laws_for_every_row(overland):
+    """CEMA's Kt is computed from each row's temperature (1 at 0 C and above, more below).
+    Power made at one load at 20, -25, -10 and 5 C with ai_n = 9 N and CEMA's own Kt: fitted
+    alone, ai_n is 9 exactly. Named with kt, kt cannot be told from ai_n at one load and is
+    held; it was held at its start, Kt at row 0's 20 C (1.0), for the -25 C row too (1.38), and
+    the fit answered ai_n = 12.4 N with a 4.8 % misfit and a models block pinning kt: 1.0
+    for every temperature of a study. Held, it is left to the law: ai_n is 9 again and the
+    block does not pin kt."""
+    truth = {"ai_n": 9.0}
+    rows = [Measurement(1.0, t, {"power_kw": solve_steady(
+        overland, model="cema", params=truth, temperature_c=t, load=1.0).summary["power_kw"]})
+        for t in (20.0, -25.0, -10.0, 5.0)]
+    cal = calibrate(overland, rows, "cema", ["ai_n", "kt"])
+    assert cal.not_identifiable == ["ai_n", "kt"] and list(cal.held) == ["kt"]
+    assert cal.fit["ai_n"]["value"] == pytest.approx(9.0, rel=1e-5)
+    assert max(abs(r["relative"]) for r in cal.residuals) < 1e-7
+    assert cal.models == {"cema": {"ai_n": pytest.approx(9.0, rel=1e-5)}}
+    assert "kt at the value model cema computes for each row" in cal.message
+    # a start given is a number the user chose: held there, and in the block
+    cal = calibrate(overland, rows, "cema", ["ai_n", "kt"], starts={"kt": 1.2})
+    assert cal.models["cema"]["kt"] == 1.2
