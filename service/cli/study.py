@@ -324,7 +324,7 @@ def cmd_results(args) -> int:
     def local(service):
         df = service.runs(args.id)
         if fmt == "parquet":
-            return query.to_parquet(df)
+            return query.to_parquet(df, service.store.runs_schema(args.id))
         if fmt == "csv":
             return query.to_csv(df).encode()
 

@@ -31,3 +31,24 @@ def test_a_runs_download_has_the_stored_schema(data_dir, make_settings, make_stu
         wrong = [(f.name, str(f.type), str(stored.field(f.name).type)) for f in got
                  if f.type != stored.field(f.name).type]
         assert not wrong, (query, wrong[:8])
+
+
+def test_beltstudy_results_from_the_local_store_has_the_stored_schema(
+    monkeypatch, data_dir, make_study, finished_study, tmp_path
+):
+    """``beltstudy results ID -o runs.parquet`` with no service answering reads the store and
+    writes the same types as the stored parts."""
+    from beltstudy.service.cli import main, study
+    from beltstudy.service.cli.demo import free_port
+
+    monkeypatch.delenv("BELTSTUDY_URL", raising=False)
+    monkeypatch.setattr(study, "DEFAULT_URL", f"http://127.0.0.1:{free_port()}")
+    monkeypatch.setenv("BELTSTUDY_DATA_DIR", str(data_dir))
+    sid = finished_study(data_dir, make_study("types-cli"))
+    stored = pq.read_schema(next((data_dir / "studies" / sid / "runs").glob("part-*.parquet")))
+    out = tmp_path / "runs.parquet"
+    assert main(["results", sid, "-o", str(out)]) == 0
+    got = pq.read_schema(out)
+    wrong = [(f.name, str(f.type), str(stored.field(f.name).type)) for f in got
+             if f.type != stored.field(f.name).type]
+    assert not wrong, wrong[:8]
