@@ -503,7 +503,8 @@ def calibrate(conv: Conveyor, measured: Sequence[Measurement], model: str,
              **_expanded(fm.name, {name: float(f"{v:.6g}")
                                    for name, v in zip(free, sol.x, strict=True)})}
     sv = np.linalg.svd(_unit_columns(jac), compute_uv=False) if p else np.array([])
-    suspect = (_sign_slips(rows, cols, y, values) or _contradictions(rows, cols, y)
+    slips = _sign_slips(rows, cols, y, values)
+    suspect = (slips or _contradictions(rows, cols, y)
                or _outliers(rows, cols, y, values, r, jac, dof))
     notes += suspect + _copies(rows)
     few = _few_states(rows, cols, p) if dof > 0 else ""
@@ -516,7 +517,7 @@ def calibrate(conv: Conveyor, measured: Sequence[Measurement], model: str,
         notes=notes, **_verdict(sol, at_bound, r, fm.name, at_upper,
                                 {n: largest[n] for n in own_limit}, groups, held_values,
                                 suspect=suspect, exact=bool(p) and dof == 0, few=few,
-                                lowest=lowest, computed=computed))
+                                lowest=lowest, computed=computed, slips=slips))
 
 
 def _t95(dof: int) -> float:
@@ -710,8 +711,8 @@ def _verdict(sol, at_bound: list[str], r: np.ndarray, model: str,
              at_upper: Sequence[str] = (), own_limit: dict[str, float] | None = None,
              groups: Sequence[Sequence[str]] = (), held: dict[str, float] | None = None,
              suspect: Sequence[str] = (), exact: bool = False, few: str = "",
-             lowest: dict[str, float] | None = None, computed: Sequence[str] = ()
-             ) -> dict[str, str]:
+             lowest: dict[str, float] | None = None, computed: Sequence[str] = (),
+             slips: Sequence[str] = ()) -> dict[str, str]:
     """``status`` and ``message`` of the fit in this project's words (never SciPy's text):
     ``failed`` when it stopped without converging, ``warning`` when a fitted parameter ended
     at its bound (the data ask for a value the model does not allow: the rest of the misfit
@@ -727,7 +728,10 @@ def _verdict(sol, at_bound: list[str], r: np.ndarray, model: str,
     names, met exactly: nothing checks the fit and it has no standard errors, a
     ``warning``. ``lowest``: each name's smallest value (0 unless the model's own check sets
     another, DIN's C >= 1), named where a fit ends there. ``computed``: the held names left
-    to the value the law computes for each row (their default), not held at a number. ``few``: the steady states read, in words, when the measured values repeat
+    to the value the law computes for each row (their default), not held at a number.
+    ``slips``: the sentences of :func:`_sign_slips` (readings of the other sign than the
+    fit's): they lead the message even where a name ended at a bound, since a reading of the
+    wrong sign is what drives a friction factor to 0. ``few``: the steady states read, in words, when the measured values repeat
     no more states than there are fitted names (:func:`_few_states`): met whatever the model
     as ``exact`` is, the repeats' scatter alone setting the standard errors, a ``warning``."""
     rms = 100 * math.sqrt(float(r @ r) / len(r))
@@ -741,6 +745,13 @@ def _verdict(sol, at_bound: list[str], r: np.ndarray, model: str,
             f"the fit stopped after {sol.nfev} evaluations without converging (rms relative "
             f"residual {rms_text} %): start it nearer the answer (NAME=START) or fit fewer "
             "names")}
+    if slips:
+        ended = at_bound or at_upper
+        bound = (f"; {', '.join(ended)} ended at {'a' if len(ended) == 1 else 'their'} bound "
+                 "trying to meet them" if ended else "")
+        return {"status": "warning", "message": (
+            f"{len(slips)} of {len(r)} measured values have the other sign than the fit's "
+            f"(rms relative residual {rms_text} %{bound}): {'; '.join(slips)}")}
     if at_upper:
         own = own_limit or {}
         names = ", ".join(at_upper)

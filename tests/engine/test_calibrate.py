@@ -424,3 +424,18 @@ def test_a_held_name_the_law_computes_stays_the_laws_for_every_row(overland):
     # a start given is a number the user chose: held there, and in the block
     cal = calibrate(overland, rows, "cema", ["ai_n", "kt"], starts={"kt": 1.2})
     assert cal.models["cema"]["kt"] == 1.2
+
+
+def test_every_reading_of_the_other_sign_leads_the_verdict(overland):
+    """A meter wired the other way round: every power reading of the motoring 4.2 km overland
+    negative. f_carry is driven to its bound 0 trying to meet them, and the verdict led with
+    that ('f_carry ends at the bound 0 ... Check the measured values ...'), the rows' sign
+    only in the notes; it now leads with the readings of the other sign, as for one such row."""
+    rows = [Measurement(m.load, m.temperature_c, {"power_kw": -m.values["power_kw"]})
+            for m in _plant(overland, "din", {"f_carry": TRUTH})]
+    cal = calibrate(overland, rows, "din", ["f_carry"])
+    assert cal.status == "warning"
+    assert cal.message.startswith("5 of 5 measured values have the other sign than the fit's"), (
+        cal.message)
+    assert "f_carry ended at a bound trying to meet them" in cal.message
+    assert "row 0 (load 0.2, 10 C): measured power_kw -" in cal.message

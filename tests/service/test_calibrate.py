@@ -270,10 +270,11 @@ def test_post_calibrations_reads_the_body_as_post_studies_does(client):
 
 
 def test_a_fit_stuck_at_a_bound_is_a_warning_in_our_words(client):
-    """Data no value of f_carry >= 0 can reach (a loaded uphill belt measured regenerating):
-    status warning, the parameter at its bound and the residual named, never SciPy's text."""
+    """Data no value of f_carry >= 0 can reach (a loaded uphill belt measured at 5 kW, less
+    than its lift alone takes): status warning, the parameter at its bound and the residual
+    named, never SciPy's text. Measured regenerating (-5 kW), the reading's sign leads."""
     body = {"conveyor": "conveyors/slope-5pct.yaml", "model": "din", "fit": ["f_carry"],
-            "measured": [{"load": "full", "temperature_c": 20, "power_kw": -5}]}
+            "measured": [{"load": "full", "temperature_c": 20, "power_kw": 5}]}
     r = client.post("/calibrations", json=body)
     assert r.status_code == 200, r.text
     out = r.json()
@@ -285,6 +286,11 @@ def test_a_fit_stuck_at_a_bound_is_a_warning_in_our_words(client):
                     r"\(rms relative residual\)\. Check the measured values", out["message"])
     assert "termination" not in out["message"] and "`" not in out["message"]
     assert out["fit"]["f_carry"]["value"] < 1e-6
+    body["measured"][0]["power_kw"] = -5
+    out = client.post("/calibrations", json=body).json()
+    assert out["status"] == "warning"
+    assert out["message"].startswith("1 of 1 measured values have the other sign than the "
+                                     "fit's"), out["message"]
     good = client.post("/calibrations", json={**body, "measured": _rows()[:3],
                                               "conveyor": "conveyors/overland-4km.yaml"}).json()
     assert good["status"] == "ok"
