@@ -485,8 +485,11 @@ def _run_models(study: StudyIn, axes: list[Axis], models: dict) -> tuple[str, se
                           (default_model,)))
     for a in axes:
         if a.target.root == "model_param" and a.target.path[0] not in run_models:
-            raise Invalid(f"grid: axis '{a.name}': model '{a.target.path[0]}' is not run by "
-                          f"this study (its models: {', '.join(sorted(run_models))})")
+            # named where the axis is written: a sample's and a zip group's are no grid axes
+            where = ("sample.axes" if a.sample else
+                     f"zip.{a.group}" if a.group is not None else "grid")
+            raise Invalid(f"{where}: axis '{a.name}': model '{a.target.path[0]}' is not run "
+                          f"by this study (its models: {', '.join(sorted(run_models))})")
     return default_model, run_models
 
 
