@@ -1506,9 +1506,17 @@ def format_validation_error(exc: ValidationError, model: type[BaseModel], prefix
             lacking = missing.get(clean[:-1], [])
             # a union of models (a sample axis's dist): the members that lack those keys
             owners = [m for m in owners if set(lacking) <= set(valid_keys(m))] or owners
+            # a key of another member of the union (a normal's sd on a uniform): not the
+            # key to suggest for itself; say which members take it
+            others = [m for m in owners if key not in valid_keys(m)]
+            takers = [m for m in owners if key in valid_keys(m)] if others else []
+            owners = others or owners
             if owners:
                 keys = list(dict.fromkeys(k for m in owners for k in valid_keys(m)))
                 hint = _unknown_key_hint(key, keys, lacking)
+                tags = sorted(t for m in takers for t in _tags(m))
+                if tags:
+                    hint = f" (a key of {' and '.join(tags)}, not of this kind){hint}"
             lines.append(f"{path}: unknown key '{key}'{hint}")
         elif err["type"] == "missing":
             lines.append(f"{path}: required field is missing")

@@ -130,6 +130,10 @@ def test_sample_only_study_is_valid():
     ({"temperature_c": {"dist": "normal", "mean": -40, "sd": 15}},
      r"^sample\.axes\.temperature_c: \d+ of 16 drawn values break the field's bound "
      r"temperature_c >= -60 \(drawn -6\d.*a bounded one \(uniform or triangular"),
+    # a key of another distribution: it said "unknown key 'sd'; did you mean 'sd'?"
+    ({"temperature_c": {"dist": "uniform", "low": 0, "high": 10, "sd": 3}},
+     r"^sample\.axes\.temperature_c\.sd: unknown key 'sd' \(a key of normal, not of this "
+     r"kind\); valid keys: dist, low, high"),
     # a parameter of a model the study does not run, named where it is written (it was
     # "grid: axis 'models.nonlin.m_star': ..." for a sample axis)
     ({"models.nonlin.m_star": {"dist": "uniform", "low": 0.003, "high": 0.008}},
