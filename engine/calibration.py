@@ -740,6 +740,16 @@ def _verdict(sol, at_bound: list[str], r: np.ndarray, model: str,
              "[kN], negative only where the drives regenerate; each row's load and temperature) "
              "and the conveyor file "
              "(lift, capacity, speed, take-up), or fit other parameters of the model")
+    kept = "; ".join(f"{n} at the value model {model} computes for each row, its default"
+                     if n in computed else f"{n} at {v:.4g}" for n, v in (held or {}).items())
+    together = "; ".join(" and ".join(g) for g in groups)
+    if groups:
+        # a held name's value is the fit's assumption: a misfit or a bound may be its doing,
+        # not the data's
+        check = (f"These data cannot tell {together} apart, so {kept.replace('; ', ', ')} "
+                 "is held and the fitted values assume it: fit the held name in place of the "
+                 "other, or hold it at a value from the literature (--param, or the request's "
+                 f"params). {check}")
     if not sol.success:
         return {"status": "failed", "message": (
             f"the fit stopped after {sol.nfev} evaluations without converging (rms relative "
@@ -794,9 +804,6 @@ def _verdict(sol, at_bound: list[str], r: np.ndarray, model: str,
             f"residual over {len(r)} measured values; a plant's logged power is good to a few "
             f"per cent, {MISFIT_PCT:g} % at most). {check}")}
     if groups:
-        kept = "; ".join(f"{n} at the value model {model} computes for each row, its default"
-                         if n in computed else f"{n} at {v:.4g}" for n, v in (held or {}).items())
-        together = "; ".join(" and ".join(g) for g in groups)
         at = "" if set(held or {}) <= set(computed) else " at the start"
         return {"status": "warning", "message": (
             f"converged (rms relative residual {rms_text} % over {len(r)} measured values), "
