@@ -707,6 +707,11 @@ def _at_bound(free: Sequence[str], sol, starts: np.ndarray,
             if a < 0 or v - lo <= AT_BOUND * (abs(float(x0) - lo) or abs(float(x0)))]
 
 
+def _values(n: int) -> str:
+    """``n`` measured value(s), in words."""
+    return f"{n} measured value{'' if n == 1 else 's'}"
+
+
 def _verdict(sol, at_bound: list[str], r: np.ndarray, model: str,
              at_upper: Sequence[str] = (), own_limit: dict[str, float] | None = None,
              groups: Sequence[Sequence[str]] = (), held: dict[str, float] | None = None,
@@ -796,17 +801,17 @@ def _verdict(sol, at_bound: list[str], r: np.ndarray, model: str,
             "the literature (--param, or the request's params) and fit the others")}
     if suspect:
         return {"status": "warning", "message": (
-            f"converged (rms relative residual {rms_text} % over {len(r)} measured values), "
+            f"converged (rms relative residual {rms_text} % over {_values(len(r))}), "
             f"but some readings disagree with the others: {'; '.join(suspect)}")}
     if rms > MISFIT_PCT:
         return {"status": "warning", "message": (
             f"converged, but the fit misses the measurements by {rms_text} % (rms relative "
-            f"residual over {len(r)} measured values; a plant's logged power is good to a few "
+            f"residual over {_values(len(r))}; a plant's logged power is good to a few "
             f"per cent, {MISFIT_PCT:g} % at most). {check}")}
     if groups:
         at = "" if set(held or {}) <= set(computed) else " at the start"
         return {"status": "warning", "message": (
-            f"converged (rms relative residual {rms_text} % over {len(r)} measured values), "
+            f"converged (rms relative residual {rms_text} % over {_values(len(r))}), "
             f"but these data cannot tell {together} apart: held{at} ({kept}), and "
             "the fitted values assume it. Hold the held names at values from the literature "
             "(--param, or the request's params) and fit the others, or, where the model lets "

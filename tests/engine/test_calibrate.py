@@ -152,6 +152,7 @@ def test_one_row_identifies_one_name_and_holds_the_other(overland):
     # f_return (made with DIN's default, it is not the truth here), so it is a warning
     assert cal.status == "warning"
     assert cal.message.startswith("converged (rms relative residual")
+    assert " over 1 measured value), " in cal.message  # not "1 measured values"
     assert "cannot tell f_carry and f_return apart: held at the start (f_return at " in (
         cal.message)
 
