@@ -1058,14 +1058,7 @@ def transient_summary(sys: System, r: dict, out, segs, *, steady_summary=None, c
     w += tracking_warnings(sys, r, out, _drive_names(sys, conveyor))
     if r["slack_max"] > 0.0 or r["slack_first"] >= 0.0:
         j = int(r["slack_at"]) if r["slack_at"] >= 0 else jmin
-        w.append(
-            f"the belt goes slack: its slack spans gather up to {r['slack_max']:.3g} m of belt near "
-            f"{where(sys, j)} at t = {max(r['slack_time'], r['slack_first']):.1f} s, slack "
-            f"for {r['slack_dur']:.1f} s in "
-            "all (the one-dimensional model does not follow the belt leaving the idlers or "
-            "piling up; a slack span's sag is past every sag limit and has no value, so "
-            f"sag_max_dyn_pct is empty); {heavier_takeup(sys)}, more take-up travel, a longer "
-            "stop or a brake nearer the low-tension side would avoid it")
+        w.append(_slack_words(sys, r, j))
     if conveyor is not None:
         lim = conveyor.sag_limit_pct
         for code, name, limit in ((0, "carry", lim.carry), (1, "return", lim.return_)):
@@ -1301,6 +1294,36 @@ def _sag_words(sys: System, strand: str, sag_pct: float, limit_pct: float, j: in
             f"(the sag goes as 1 / T), so the take-up must add at least "
             f"{add_kn:g} kN{mass}, more where the transient passes only part of "
             f"a take-up change to that span (rerun to confirm): {fixes} would avoid it")
+
+
+def _slack_words(sys: System, r: dict, j: int) -> str:
+    """The warning of a belt that went slack: the largest length stored, near node ``j``, when
+    and for how long, and what would avoid it in the phases it was slack in (its first slack
+    span's and its largest's, :func:`_run_phase`): more take-up tension always; more carriage
+    travel for a gravity take-up only (a fixed, screw or winch, take-up has none); a gentler
+    start (:func:`start_levers`) for a slack start; a softer stop (:func:`stop_levers`), and in
+    a brake stop a brake nearer the low-tension side, for a slack stop. A 250 m, 14 deg dol
+    incline on a screw take-up that went slack in its start was told 'more take-up travel, a
+    longer stop or a brake nearer the low-tension side', none of which it has or which acts
+    in a start."""
+    t_max = max(float(r["slack_time"]), float(r["slack_first"]))
+    t_first = float(r["slack_first"]) if r["slack_first"] >= 0.0 else t_max
+    phases = {_run_phase(sys, t, sys.stop_command_s) for t in (t_first, t_max)}
+    tu = getattr(sys.model, "takeup", None)
+    fixes = [heavier_takeup(sys)]
+    if tu is None or tu.gravity:
+        fixes.append("more take-up travel (takeup.travel_m)")
+    if "start" in phases:
+        fixes += start_levers(sys)
+    if "stop" in phases:
+        fixes += stop_levers(sys)
+        if sys.model.cycle.stop_mode == C.BRAKE:
+            fixes.append("a brake nearer the low-tension side")
+    return (f"the belt goes slack: its slack spans gather up to {r['slack_max']:.3g} m of belt "
+            f"near {where(sys, j)} at t = {t_max:.1f} s, slack for {r['slack_dur']:.1f} s in "
+            "all (the one-dimensional model does not follow the belt leaving the idlers or "
+            "piling up; a slack span's sag is past every sag limit and has no value, so "
+            f"sag_max_dyn_pct is empty); {_or(fixes)} would avoid it")
 
 
 def _transient_safety_words(sys: System, conveyor, sf: float, sf_min: float, t_max_n: float,

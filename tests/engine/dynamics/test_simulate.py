@@ -179,6 +179,39 @@ def test_the_stop_levers_offered_are_those_of_the_run_s_stop_mode():
     assert stop_levers(None) == ["a softer stop (stop time, brake force)"]
 
 
+def test_slack_levers_are_those_of_its_phase_and_of_its_take_up():
+    """A 250 m, 14 deg, 2 000 t/h dol incline on a screw take-up went slack in its start
+    (0.584 m of belt near 78 m on the carry at t = 10.3 s, stop command at 92 s) and was told
+    'a higher take-up pretension, more take-up travel, a longer stop or a brake nearer the
+    low-tension side': a screw take-up has no travel, and neither a stop nor a brake acts in
+    a start. The levers are now the take-up's and the slack phase's: a start's are a gentler
+    start; a brake stop's a softer brake stop and a brake nearer the low-tension side; a
+    gravity take-up's carriage travel is offered, a fixed one's is not."""
+    from types import SimpleNamespace
+
+    from beltstudy.engine.dynamics import codes as C
+    from beltstudy.engine.dynamics.simulate import _slack_words
+
+    start = _four_spring_system(C.COAST)
+    start.model.takeup = SimpleNamespace(gravity=False)
+    r = {"slack_max": 0.584, "slack_time": 10.3, "slack_first": 9.0, "slack_dur": 5.1}
+    msg = _slack_words(start, r, 1)
+    assert msg.startswith("the belt goes slack: its slack spans gather up to 0.584 m of belt "
+                          "near 420 m from the tail on the carry at t = 10.3 s, slack for 5.1 s")
+    assert msg.endswith("; a higher take-up pretension (takeup.pretension_kn) or a longer start "
+                        "(start.time_s) would avoid it")
+    assert "travel" not in msg and "stop" not in msg.split(";")[-1] and "brake" not in msg
+    brake = _four_spring_system(C.BRAKE)
+    brake.model.takeup = SimpleNamespace(gravity=True)
+    r = {"slack_max": 2.0, "slack_time": 97.0, "slack_first": 95.0, "slack_dur": 3.0}
+    msg = _slack_words(brake, r, 2)
+    assert "during" not in msg and "longer start" not in msg
+    assert msg.endswith("; a heavier take-up, more take-up travel (takeup.travel_m), a softer "
+                        "brake stop (less brake force, a longer stop.time_s for an auto brake "
+                        "sized by it, a longer brake ramp brakes[].ramp_s) or a brake nearer "
+                        "the low-tension side would avoid it")
+
+
 
 def test_a_dol_coast_slip_is_not_offered_a_flywheel_and_its_vfd_lever_names_the_coupling():
     """A 400 m, 16 deg incline on two dol head drives with fill-controlled couplings: its head
