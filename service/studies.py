@@ -495,6 +495,19 @@ class StudyService:
                 return stored, "stored"
         return self._recomputed_surface(study_id, run_id).to_pandas(), "recomputed"
 
+    def no_surface_reason(self, study_id: str, run_id: str) -> str:
+        """Why a finished run has no surface rows: a steady-only study, or a run without a
+        transient (failed, with its own message)."""
+        study = (self.store.read(study_id).get("study") or {})
+        if not study.get("dynamics", True):
+            return ("the study runs without dynamics (dynamics: false): a steady run has no "
+                    "transient, so no surface; submit it with dynamics: true for one")
+        row = self.store.read_runs(study_id, columns=["run_id", "status", "message"])
+        row = row[row["run_id"] == run_id]
+        if len(row) and row["status"].iloc[0] == "failed":
+            return f"the run failed, so it has no transient: {row['message'].iloc[0]}"
+        return "the run has no transient"
+
     def _recomputed_surface(self, study_id: str, run_id: str) -> pa.Table:
         with self._cache_lock:
             if run_id in self._surfaces:

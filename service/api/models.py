@@ -103,6 +103,10 @@ class RunSurface(BaseModel):
         None, description="column -> values: t_s, s_m, tension_kn, velocity_m_s (null "
         "without a transient)"
     )
+    reason: str | None = Field(
+        None, description="why there are no rows (a steady-only study, a failed run); absent "
+        "when there are rows"
+    )
 
 
 class RunProfile(BaseModel):

@@ -219,7 +219,8 @@ def get_run_surface(
     service: StudyService = Depends(get_service),
 ):
     df, source = service.run_surface(study_id, run_id)
-    return _run_table(df, source, "surface", study_id, run_id, format, response)
+    reason = None if len(df) else service.no_surface_reason(study_id, run_id)
+    return _run_table(df, source, "surface", study_id, run_id, format, response, reason)
 
 
 @router.get(
@@ -243,10 +244,10 @@ def get_run_profile(
 
 
 def _run_table(df, source: str, what: str, study_id: str, run_id: str, format: str,
-               response: Response):
+               response: Response, reason: str | None = None):
     """One run's table (``what``: surface or profile) as CSV, Parquet or JSON columns, with
     where it came from (stored or recomputed) in ``X-Beltstudy-<What>`` (every format) and
-    the JSON."""
+    the JSON; ``reason`` in the JSON says why a surface has no rows."""
     headers = {f"X-Beltstudy-{what.capitalize()}": source}
     response.headers.update(headers)  # the JSON answer's own headers
     if format != "json":
@@ -257,6 +258,7 @@ def _run_table(df, source: str, what: str, study_id: str, run_id: str, format: s
         "source": source,
         "rows": int(len(df)),
         what: query.columns_to_json(df.drop(columns=["run_id"])) if len(df) else None,
+        **({"reason": reason} if reason else {}),
     }
 
 

@@ -132,3 +132,6 @@ def test_a_steady_study_has_no_surface(data_dir, make_study, make_settings, fini
     run_id = client.get(f"/studies/{sid}/runs").json()["runs"][0]["run_id"]
     body = client.get(f"/studies/{sid}/runs/{run_id}/surface").json()
     assert body["rows"] == 0 and body["surface"] is None
+    # it said only "source: recomputed, rows 0": it says why
+    assert body["reason"].startswith("the study runs without dynamics (dynamics: false): a "
+                                     "steady run has no transient, so no surface")
