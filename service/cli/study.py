@@ -299,18 +299,40 @@ def _with_fallback(args, remote, local):
         return local(_local_service())
 
 
+#: Said under an offline status whose studies the store calls queued or running: no service
+#: answers, so nothing runs them until one starts on the data dir (it resumes them).
+NOT_RUNNING = ("no service answers: the queued or running studies above are not running now; a "
+               "service started on this data dir resumes them where they stopped (beltstudy "
+               "serve)")
+
+
 def cmd_status(args) -> int:
+    from beltstudy.service.studies import ACTIVE_STATES
+
+    offline: list[bool] = []
+
+    def local(read):
+        def call(service):
+            offline.append(True)
+            return read(service)
+        return call
+
     if args.id:
-        st = _with_fallback(args, lambda c: c.status(args.id), lambda s: s.status(args.id))
+        st = _with_fallback(args, lambda c: c.status(args.id),
+                            local(lambda s: s.status(args.id)))
         print(format_status(st))
         if st.get("message"):
             print(f"  {st['message']}")
+        if offline and st.get("state") in ACTIVE_STATES:
+            print(f"  {NOT_RUNNING}")
         return 0
-    studies = _with_fallback(args, lambda c: c.list(), lambda s: s.list())
+    studies = _with_fallback(args, lambda c: c.list(), local(lambda s: s.list()))
     if not studies:
         print("no studies")
     for st in studies:
         print(format_status(st))
+    if offline and any(st.get("state") in ACTIVE_STATES for st in studies):
+        print(NOT_RUNNING)
     return 0
 
 

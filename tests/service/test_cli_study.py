@@ -11,6 +11,7 @@ import yaml
 from beltstudy.service.cli import main
 from beltstudy.service.cli.console import ProgressBar, format_compare
 from beltstudy.service.cli.demo import free_port
+from beltstudy.service.store.parquet import Store
 
 
 @pytest.fixture
@@ -47,6 +48,25 @@ def test_status_results_compare_read_the_local_store_without_a_service(
     )
     out = capsys.readouterr().out
     assert "cema / din" in out and "power_kw: ratio mean" in out and "by temperature_c" in out
+
+
+def test_an_offline_status_says_a_running_study_is_not_running_now(
+    env, capsys, finished_study, make_study
+):
+    """Without a service, status reads the local store, where a study stopped mid-run is
+    still 'running': it printed that state alone, as if it ran. It says no service runs it and
+    that a service started on the data dir resumes it."""
+    sid = finished_study(env, make_study())
+    assert main(["status"]) == 0
+    assert "not running now" not in capsys.readouterr().out  # a finished study: no note
+    Store(env).update(sid, state="running")
+    assert main(["status", sid]) == 0
+    out = capsys.readouterr().out
+    assert "running" in out and ("no service answers: the queued or running studies above are "
+                                 "not running now; a service started on this data dir resumes "
+                                 "them") in out
+    assert main(["status"]) == 0
+    assert "not running now" in capsys.readouterr().out
 
 
 def test_user_mistakes_print_one_line_and_exit_2(env, capsys, tmp_path, make_study):
