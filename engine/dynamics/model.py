@@ -525,6 +525,23 @@ def check_scenario(scn: Scenario, conv: Conveyor, opts: DynamicsOptions | None =
             "start, run and stop times in seconds (a start takes seconds to minutes)")
     if scn.dt_s != "auto" and not (float(scn.dt_s) > 0.0):
         raise InputError(f"scenario.dt_s: must be 'auto' or a positive step (got {scn.dt_s!r})")
+    if scn.dt_s != "auto":
+        # the work of one run (refused beyond 5e10 element-steps when the model is built,
+        # :func:`_cycle`), here from what the scenario alone fixes: the cycle is at least the
+        # rest before the start, the start, the run, the stop window and 5 s of rest after it,
+        # on the elements asked (an automatic mesh: 2 at the least, the loop's floor)
+        n_least = int(scn.elements) if scn.elements != "auto" else 2
+        t_least = (opts.pre_rest_s + float(scn.start.time_s) + float(scn.run_s)
+                   + float(opts.stop_window_s) + 5.0)
+        steps = t_least / float(scn.dt_s)
+        if steps * n_least > 5e10:
+            of = f" of {n_least} elements" if scn.elements != "auto" else ""
+            raise InputError(
+                f"scenario.dt_s: {float(scn.dt_s):g} s makes at least {steps:.3g} steps{of}, "
+                "too much work for one run (over 5e10 element-steps; "
+                f"a cycle of at least {t_least:.4g} s: start {float(scn.start.time_s):g} s, "
+                f"run {float(scn.run_s):g} s, up to {opts.stop_window_s:g} s for the stop, "
+                "the rests); use dt_s: auto (the stability limit's step), or a larger step")
     if scn.stop.mode == "brake":
         if not conv.brakes:
             raise InputError("scenario.stop.mode: 'brake' needs brakes, and this conveyor has "

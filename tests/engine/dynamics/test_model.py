@@ -257,3 +257,23 @@ def test_a_rest_state_beyond_the_held_pulleys_grip_is_said(name, beyond):
                                                     * math.radians(pulley.wrap_deg)), rel=1e-3)
     assert held > grip
     assert held * 1e3 == pytest.approx(np.max(np.abs(np.diff(T))), rel=1e-3)
+
+
+def test_a_fixed_step_too_small_for_any_mesh_is_refused_before_the_model_is_built():
+    """A fixed dt_s of 1e-9 s was accepted by a study's door and every run then failed when
+    its model was built (3.4e11 steps). The scenario alone bounds the work: the cycle is at
+    least 2 s of rest + the 60 s start + the 30 s run + the 300 s stop window + 5 s, and a
+    fixed step makes (2 + 60 + 30 + 300 + 5) / 1e-9 = 3.97e11 steps, over 5e10 element-steps
+    on any mesh: check_scenario (which a dynamic study's door runs on every variant) refuses
+    it naming dt_s. 1e-5 s on 100 elements, 4e9 element-steps, passes."""
+    from beltstudy.engine.dynamics.model import check_scenario
+
+    conv = hand_conv()
+    with pytest.raises(InputError, match=r"^scenario\.dt_s: 1e-09 s makes at least 3\.97e\+11 "
+                                         r"steps, too much work for one run \(over 5e10 "
+                                         r"element-steps; a cycle of at least 397 s"):
+        check_scenario(Scenario(dt_s=1e-9), conv)
+    with pytest.raises(InputError, match=r"^scenario\.dt_s: 1e-06 s makes at least 3\.97e\+08 "
+                                         r"steps of 200 elements"):
+        check_scenario(Scenario(dt_s=1e-6, elements=200), conv)
+    check_scenario(Scenario(dt_s=1e-5, elements=100), conv)
