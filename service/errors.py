@@ -117,6 +117,21 @@ class Unavailable(ServiceError):
     kind = "unavailable"
 
 
+class Damaged(ServiceError):
+    """A study's stored ``study.json`` cannot be read (edited or truncated outside the
+    service, which writes it atomically): a 500 naming the file, with the way out."""
+
+    status_code = 500
+    kind = "damaged"
+
+    def __init__(self, study_id: str, path, why: str):
+        super().__init__(
+            f"study '{shown_id(study_id)}': its stored document {path} cannot be read ({why}); "
+            f"nothing else of the study was changed: restore the file from a backup, or "
+            f"delete the study (DELETE /studies/{shown_id(study_id)}, which works without it) "
+            "and submit it again")
+
+
 class UnsupportedMedia(ServiceError):
     """A request body in a media type the route does not read."""
 

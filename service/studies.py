@@ -39,6 +39,7 @@ from beltstudy.service.dask.tasks import (
 from beltstudy.service.door.studyfile import conveyor_from_path, resolve_study
 from beltstudy.service.errors import (
     Conflict,
+    Damaged,
     Invalid,
     NotFound,
     ServiceError,
@@ -593,7 +594,10 @@ class StudyService:
             self._deleting.add(study_id)
         job = None
         try:
-            was = self.store.read(study_id).get("state", "")
+            try:
+                was = self.store.read(study_id).get("state", "")
+            except Damaged:  # its document is unreadable: the rest of it goes all the same
+                was = "damaged"
             with self._lock:
                 job = self._jobs.pop(study_id, None)
             if job is not None:

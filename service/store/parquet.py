@@ -23,6 +23,7 @@ the time-series parts of a batch whose ``runs`` part never landed.
 from __future__ import annotations
 
 import json
+import logging
 import os
 import re
 import shutil
@@ -36,7 +37,7 @@ import pandas as pd
 import pyarrow as pa
 import pyarrow.parquet as pq
 
-from beltstudy.service.errors import NotFound, bad_study_id, shown_id
+from beltstudy.service.errors import Damaged, NotFound, bad_study_id, shown_id
 from beltstudy.service.store.columns import (
     accuracy_schema,
     profile_schema,
@@ -44,6 +45,8 @@ from beltstudy.service.store.columns import (
     surface_schema,
     timeseries_schema,
 )
+
+log = logging.getLogger(__name__)
 
 __all__ = ["Store", "STATES", "TABLES", "PART_TABLES", "write_part_to"]
 
@@ -152,12 +155,19 @@ class Store:
                 shutil.rmtree(tmp, ignore_errors=True)
 
     def read(self, study_id: str) -> dict:
-        """The study's ``study.json``; :class:`NotFound` for an unknown id."""
+        """The study's ``study.json``; :class:`NotFound` for an unknown id, :class:`Damaged`
+        (a 500 naming the file and the way out) for one that is not a JSON object (edited or
+        truncated by hand: this store writes it atomically)."""
         path = self.study_dir(study_id) / "study.json"
         try:
-            return json.loads(path.read_text(encoding="utf-8"))
+            doc = json.loads(path.read_text(encoding="utf-8"))
         except FileNotFoundError:
             raise NotFound(f"study '{shown_id(study_id)}' not found") from None
+        except (json.JSONDecodeError, UnicodeDecodeError) as exc:
+            raise Damaged(study_id, path, str(exc)) from None
+        if not isinstance(doc, dict):
+            raise Damaged(study_id, path, f"it holds a JSON {type(doc).__name__}, not an object")
+        return doc
 
     def update(self, study_id: str, **fields: Any) -> dict:
         """Merge ``fields`` into ``study.json`` (atomic replace); return the new document."""
@@ -178,7 +188,10 @@ class Store:
                 continue
             try:
                 out.append(self.read(child.name))
-            except (NotFound, json.JSONDecodeError):
+            except NotFound:
+                continue
+            except Damaged as exc:  # said, not dropped in silence
+                log.warning("%s", exc.message)
                 continue
         return sorted(out, key=lambda d: (d.get("created_at", 0), d.get("id", "")))
 
