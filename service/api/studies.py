@@ -2,11 +2,13 @@
 
 from __future__ import annotations
 
+import json
 from functools import partial
 from typing import Literal
 
 from fastapi import APIRouter, Depends, Query, Request, Response
 from fastapi.concurrency import run_in_threadpool
+from fastapi.responses import StreamingResponse
 
 from beltstudy.service.api.deps import (
     ERROR_RESPONSES,
@@ -184,13 +186,30 @@ def get_runs(
         schema = service.store.runs_schema(study_id) if format == "parquet" else None
         return _download(df, format, f"{study_id}-runs", schema=schema)
     page = df.iloc[offset : offset + limit if limit else None]
-    return {
-        "study_id": study_id,
-        "total": int(len(df)),
-        "offset": offset,
-        "limit": limit,
-        "runs": query.rows_to_json(page) if names is None else query.records_to_json(page),
-    }
+    head = {"study_id": study_id, "total": int(len(df)), "offset": offset, "limit": limit}
+    to_json = query.rows_to_json if names is None else query.records_to_json
+    if len(page) > STREAM_ROWS:
+        return StreamingResponse(_streamed_runs(head, page, to_json),
+                                 media_type="application/json")
+    return {**head, "runs": to_json(page)}
+
+
+#: A JSON page of more rows than this is written out as it is encoded, a block of rows at a
+#: time: built whole (and checked against the response model) the 19 764 rows of a large
+#: study took about 1 GB of the server's memory per request for a 199 MB answer.
+STREAM_ROWS = 2_000
+STREAM_BLOCK = 500
+
+
+def _streamed_runs(head: dict, page, to_json):
+    """The page's JSON, ``{**head, "runs": [...]}``, in blocks of :data:`STREAM_BLOCK` rows
+    (the same document as the whole answer)."""
+    yield json.dumps(head, separators=(",", ":"))[:-1].encode() + b',"runs":['
+    for i in range(0, len(page), STREAM_BLOCK):
+        rows = to_json(page.iloc[i : i + STREAM_BLOCK])
+        text = ",".join(json.dumps(r, separators=(",", ":"), allow_nan=False) for r in rows)
+        yield (("," if i else "") + text).encode()
+    yield b"]}"
 
 
 @router.get(
