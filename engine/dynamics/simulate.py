@@ -1388,6 +1388,30 @@ def _coasts_within(sys: System, need_s: float) -> bool:
     return _coast_s(sys) < need_s
 
 
+def _gravity_pull_n(sys: System) -> float:
+    """The loop's net gravity resistance [N] (negative: gravity pulls the belt forward, a
+    decline); 0 where the system carries no elements' gravity (a stand-in of the words)."""
+    gravity = getattr(getattr(sys.model, "nodes", None), "gravity", None)
+    return float(np.sum(gravity)) if gravity is not None else 0.0
+
+
+def _auto_brake_held(sys: System) -> bool:
+    """True when the run's auto brakes are set by holding the loaded belt at rest
+    (``HOLD_MARGIN`` x its net gravity pull, :func:`beltstudy.engine.design.brake_forces`),
+    above the force a rigid-body stop in ``stop.time_s`` asks: a longer stop time then leaves
+    their force as it is."""
+    brakes = getattr(sys.model, "brakes", None)
+    if brakes is None or not len(brakes.force):
+        return False
+    hold = HOLD_MARGIN * abs(_gravity_pull_n(sys))
+    cyc = sys.model.cycle
+    delay = float(np.max(brakes.delay))
+    ramp = float(np.max(brakes.ramp))
+    stop_n = design.brake_force_auto(float(sys.model.control.m_tot), float(sys.v_design),
+                                     float(sys.te_n), float(cyc.t_stop), delay, ramp)
+    return hold > 0.0 and not stop_n >= hold
+
+
 def _given_brake_words(sys: System, need_s: float, t_stop: float, auto: bool = False) -> str:
     """What brake force would make a brake stop last ``need_s`` [s] (5 wave loop times): the
     rigid-body total force with the brakes' delay and ramp
@@ -1411,11 +1435,21 @@ def _given_brake_words(sys: System, need_s: float, t_stop: float, auto: bool = F
                                         delay, ramp)
     if not math.isfinite(force) or force >= now_n:
         return lever
-    return (f"{lever}: at most about {force / 1e3:.3g} kN in all, now "
+    said = (f"{lever}: at most about {force / 1e3:.3g} kN in all, now "
             f"{now_n / 1e3:.4g} kN (rigid body, {m / 1e3:.4g} t from {v:g} m/s against Te "
             f"{te / 1e3:.4g} kN with the brakes' {delay:g} s delay and {ramp:g} s ramp, a stop "
-            f"of {need_s:.3g} s against {t_stop:.3g} s now; a holdback or a holding brake "
-            "set at rest holds the belt once stopped)")
+            f"of {need_s:.3g} s against {t_stop:.3g} s now; ")
+    pull = _gravity_pull_n(sys)
+    hold = HOLD_MARGIN * abs(pull)
+    if pull < 0.0 and force < hold:
+        # a decline: gravity pulls the stopped belt forward, which no holdback holds, and a
+        # brake holding it at rest needs HOLD_MARGIN x the pull, more than the stop's force
+        return (said + f"so light a brake does not hold the loaded belt at rest on this "
+                f"decline, whose net gravity pull is {abs(pull) / 1e3:.4g} kN: keep a holding "
+                f"force of {hold / 1e3:.4g} kN ({HOLD_MARGIN:g} x the pull) and ease the stop "
+                f"with brakes[].force_curve, about {force / hold:.2f} of it until the belt has "
+                "stopped, then 1)")
+    return said + "a holdback or a holding brake set at rest holds the belt once stopped)"
 
 
 #: The margin on 5 wave loop times that the flywheel advice sizes its rigid-body coast for:
@@ -1509,12 +1543,17 @@ def _fast_stop_words(sys: System, t_stop: float, summary: dict, steady_tmax: flo
         if auto is None:
             auto = conveyor is None or any(b.force_kn == "auto" for b in conveyor.brakes)
         given = _given_brake_words(sys, need, t_stop, auto)
-        if auto:
+        held = _auto_brake_held(sys) if auto else False
+        if auto and not held:
             # an auto brake's stop scales with its asked time as a controlled one's does
             asked = need * cyc.t_stop / t_stop if cyc.t_stop > 0.0 else need
             fix = (f"less brake force would be slower than that: {given}, or for an auto "
                    f"brake sized by the stop time a stop.time_s of {_up_s(asked)} s or more "
                    "(an auto brake set by holding keeps its force whatever the stop time)")
+        elif held:
+            # sized by holding the belt at rest: a longer stop.time_s does not change it
+            fix = (f"less brake force would be slower than that: {given} (the auto brake is "
+                   "set by holding the belt at rest, so stop.time_s does not change it)")
         else:
             # every brake is given: stop.time_s sizes nothing, the force is the lever
             fix = f"less brake force would be slower than that: {given}"

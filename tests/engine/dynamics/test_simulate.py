@@ -179,6 +179,52 @@ def test_the_stop_levers_offered_are_those_of_the_run_s_stop_mode():
     assert stop_levers(None) == ["a softer stop (stop time, brake force)"]
 
 
+def _decline_brake_system(gravity_sum_n):
+    """A stand-in for a brake-stop run's system as the stop words read it: the 1.6 km, -8 %
+    fabric decline at -25 C (CEMA): 177.6 t moving at 3.5 m/s, Te -22.884 kN, one tail brake
+    of 83.45 kN (auto, 1.2 x the 69.54 kN net gravity pull) with a 0.5 s delay and a 1 s
+    ramp, stop.time_s 30 s; ``gravity_sum_n`` the loop's net gravity resistance [N]."""
+    from types import SimpleNamespace
+
+    from beltstudy.engine.dynamics import codes as C
+
+    return SimpleNamespace(
+        v_design=3.5, te_n=-22.884e3,
+        model=SimpleNamespace(
+            brakes=SimpleNamespace(force=np.array([83.45e3]), delay=np.array([0.5]),
+                                   ramp=np.array([1.0])),
+            nodes=SimpleNamespace(gravity=np.array([gravity_sum_n / 2, gravity_sum_n / 2])),
+            control=SimpleNamespace(m_tot=177.6e3),
+            cycle=SimpleNamespace(t_stop=30.0, stop_mode=C.BRAKE)))
+
+
+def test_a_decline_s_lighter_brake_keeps_its_holding_force():
+    """The decline's auto brake (83.45 kN, set by holding) stopped it in 11.5 s, under 5 wave
+    loop times (34.98 s). The words said 'a smaller brake force: at most about 41.7 kN ... a
+    holdback or a holding brake set at rest holds the belt once stopped', and 'for an auto
+    brake sized by the stop time a stop.time_s of 77 s'. Followed, 41.7 kN could not hold the
+    belt at rest (the run's own hold check asks 46.6 kN), a holdback holds no decline, and
+    stop.time_s leaves a holding-sized brake as it is. By hand: after the 0.5 s delay
+    v1 = 3.5 + 22 884 x 0.5 / 177 600 = 3.564 m/s; a stop of 34.98 s plus the rest criterion's
+    last stretch (0.01 x 3.5 x 177 600 / (F - 22 884), about 0.33 s) takes
+    F = (M v1 - Te t_b) / (t_b - r / 2) = (633 037 + 22 884 x 34.81) / 34.31 = 41.7 kN,
+    0.50 of the 83.45 kN holding force. The words now keep the holding force and lower the
+    stopping part with brakes[].force_curve."""
+    from beltstudy.engine.dynamics.simulate import _auto_brake_held, _given_brake_words
+
+    decline = _decline_brake_system(69.54e3 * -1)
+    words = _given_brake_words(decline, 5 * 6.996, 11.5, auto=True)
+    assert "at most about 41.7 kN in all, now 83.45 kN" in words
+    assert "holdback" not in words
+    assert ("net gravity pull is 69.54 kN: keep a holding force of 83.45 kN (1.2 x the pull) "
+            "and ease the stop with brakes[].force_curve, about 0.50 of it until the belt has "
+            "stopped, then 1)") in words
+    assert _auto_brake_held(decline)
+    incline = _decline_brake_system(69.54e3)
+    assert "a holdback or a holding brake set at rest" in _given_brake_words(
+        incline, 5 * 6.996, 11.5, auto=True)
+
+
 def test_slack_levers_are_those_of_its_phase_and_of_its_take_up():
     """A 250 m, 14 deg, 2 000 t/h dol incline on a screw take-up went slack in its start
     (0.584 m of belt near 78 m on the carry at t = 10.3 s, stop command at 92 s) and was told
