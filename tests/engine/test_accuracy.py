@@ -163,6 +163,22 @@ def test_a_marginal_verdict_says_what_would_settle_it():
         "the mesh; 6.9 on 400 elements; a finer mesh (scenario.elements 800) narrows the bar)"]
 
 
+def test_a_verdict_every_mesh_gives_and_refining_leaves_is_not_marginal():
+    """A sag of 50.8 % against 1.5 % had a 'spread' bar of +- 133 % and was called marginal,
+    'the verdict may flip', though every mesh failed it and the finer one by more (63.7 %).
+    Where the three meshes give the same verdict and each finer one lies further from the
+    limit, refining moves away from a flip: not marginal. The same values coming back
+    towards the limit, or on both sides of it, stay marginal."""
+    def words(values):
+        fe = A.FigureError("sag_max_dyn_pct", values[1], 133.0, None, "spread", None, values)
+        return A.marginal_verdicts({}, {"sag_max_dyn_pct": fe}, sag_limit_pct=1.5, finest=400)
+
+    assert words((31.0, 50.8, 63.7)) == []
+    assert words((70.0, 50.8, 40.1))[0].startswith("marginal: sag_max_dyn_pct 50.8 against "
+                                                    "limit 1.5 +- 133 %")
+    assert words((1.2, 50.8, 63.7))  # the coarse mesh passed it: the verdict flipped once
+
+
 def test_a_lift_off_within_its_error_of_zero_is_marginal():
     """liftoff_max_kn_over (the most a concave curve's tension went over its lift-off
     tension; > 0 the belt lifted) is judged against 0 kN: a belt that lifted by 0.14 kN
