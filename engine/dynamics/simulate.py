@@ -791,7 +791,14 @@ def _settle_levers(sys: System) -> str:
                 "belt (a slower loop or the drives at one end settle some and swing others "
                 f"more: rerun to check {_loop_field(sys)}; a longer run_s shows whether "
                 "the swing decays)")
-    return f"a slower speed loop ({_loop_field(sys)}) swings less"
+    # drives at one end: a slower loop damps a swing the loop drives, but not a strand's own
+    # mode with its node at the drive (a 1.6 km fabric decline swung 26.6 % of design speed
+    # at 5 rad/s and 24.4 % at 1 rad/s, a quarter wave of its carry, 4 L / c = 22.4 s); a
+    # gentler start excites the belt's modes less (its acceleration has less content at their
+    # frequency: the same decline settled from a 300 s start)
+    return (f"a slower speed loop ({_loop_field(sys)}) may swing less, and a gentler start "
+            f"excites the swing less ({_or(start_levers(sys))}): rerun to check; a longer "
+            "run_s shows whether the swing decays")
 
 
 def _force_swings(sys: System, rec, rec_d, m, names=None) -> list[str]:

@@ -24,6 +24,7 @@ def test_the_settling_lever_names_the_masters_field_and_its_bandwidth():
     assert int(sys_.model.control.master) == 1
     assert float(sys_.model.control.bandwidth) == pytest.approx(2.5)
     words = _settle_levers(sys_)
-    assert words == "a slower speed loop (drives.1.speed_loop_rad_s, now 2.5 rad/s) swings less"
+    assert words.startswith("a slower speed loop (drives.1.speed_loop_rad_s, now 2.5 rad/s) "
+                            "may swing less")
     with pytest.raises(Exception, match="drives.0.speed_loop_rad_s"):
         conveyor("slope-5pct", drives=[dict(PAIR[0], speed_loop_rad_s=1.0), PAIR[1]])

@@ -475,8 +475,12 @@ def test_a_running_phase_that_swings_is_named_with_its_swing_and_period(amp, per
     assert m, msg
     assert float(m.group(1)) == pytest.approx(2 * amp, rel=0.01)
     assert float(m.group(2)) == pytest.approx(period, rel=0.02)
-    # one drive (drives at one end): a slower speed loop is the lever
-    assert "a slower speed loop (drives.0.speed_loop_rad_s, now 5 rad/s) swings less" in msg
+    # one drive (drives at one end): a slower speed loop may help, a gentler start excites
+    # the swing less; neither is promised (a strand's own mode with its node at the drive is
+    # not damped by the loop)
+    assert ("a slower speed loop (drives.0.speed_loop_rad_s, now 5 rad/s) may swing less, and "
+            "a gentler start excites the swing less (") in msg
+    assert "rerun to check; a longer run_s shows whether the swing decays" in msg
 
 
 def test_a_run_that_ran_away_in_its_stop_still_has_its_running_phase_judged():
