@@ -405,8 +405,12 @@ def stop_levers(sys: System | None, slip: bool = False) -> list[str]:
     if mode == C.CONTROLLED:
         return ["a longer stop (stop.time_s)"]
     if mode == C.BRAKE:
-        return ["a softer brake stop (less brake force, a longer stop.time_s for an auto "
-                "brake sized by it, a longer brake ramp brakes[].ramp_s)"]
+        # stop.time_s sizes an auto brake only: not offered where every brake's force is
+        # written in (``System.auto_brakes`` False; None: not known, offered as for one)
+        timed = ("" if getattr(sys, "auto_brakes", None) is False else
+                 ", a longer stop.time_s for an auto brake sized by it")
+        return [f"a softer brake stop (less brake force{timed}, a longer brake ramp "
+                "brakes[].ramp_s)"]
     if (sys.model.drives.control == C.DOL).any():
         coast = [] if slip else ["a longer coast (more inertia on the drive shafts, "
                                  "drives[].flywheel_kg_m2)"]
@@ -1244,13 +1248,23 @@ def endstop_words(sys: System, r: dict) -> str:
     which = " and ".join(ends) if ends else "an end stop"
     short = (f", the running stretch alone needs {tu.x_run:.3g} m" if tu.x_run > tu.hi - tol
              else "")
+    # where the running stretch fits the travel, the carriage ran past it by the swing of
+    # the start's (or the stop's) fronts, which a gentler start (stop) makes smaller: a
+    # 1.6 km fabric decline's carriage still hit with 14 m of travel after an 8 m one had,
+    # and moved 4.2 m from a 300 s start
+    phase = _run_phase(sys, float(r["endstop_t"]), sys.stop_command_s)
+    swing = ""
+    if not short and phase in ("start", "stop"):
+        levers = start_levers(sys) if phase == "start" else stop_levers(sys)
+        swing = (f", or a gentler {phase}, which swings the carriage less past its running "
+                 f"position ({_or(levers)})")
     return (f"take-up carriage reached {which} at t = {r['endstop_t']:.1f} s at up to "
             f"{r['endstop_speed']:.2f} m/s: its travel is {tu.hi - tu.lo:.3g} m "
             f"(takeup.travel_m; from {tu.lo:.3g} to {tu.hi:.3g} m about the rest position, "
             f"running position {tu.x_run:.3g} m{short}): a longer takeup.travel_m (rerun "
             "until no end stop is reached: how far the carriage would have run is not known "
             "from this run)" + (" or a heavier take-up, which resists the pull drawing it in,"
-                                if rest_end else "") + " would avoid it")
+                                if rest_end else "") + swing + " would avoid it")
 
 
 def past_limit(value: float, limit: float, digits: int = 2) -> str:

@@ -259,6 +259,11 @@ def test_slack_levers_are_those_of_its_phase_and_of_its_take_up():
                         "brake stop (less brake force, a longer stop.time_s for an auto brake "
                         "sized by it, a longer brake ramp brakes[].ramp_s) or a brake nearer "
                         "the low-tension side would avoid it")
+    # every brake's force written in: stop.time_s sizes none of them, so it is not offered
+    brake.auto_brakes = False
+    msg = _slack_words(brake, r, 2)
+    assert "a softer brake stop (less brake force, a longer brake ramp brakes[].ramp_s)" in msg
+    assert "stop.time_s" not in msg
 
 
 
@@ -785,12 +790,19 @@ def test_an_end_stop_names_its_end_and_the_cures_that_apply_there():
     travel is named with its need."""
     from types import SimpleNamespace
 
+    from beltstudy.engine.dynamics import codes as C
     from beltstudy.engine.dynamics.simulate import endstop_words
 
-    def words(lo, hi, x_run, xmin, xmax):
-        sysm = SimpleNamespace(model=SimpleNamespace(takeup=SimpleNamespace(
-            lo=lo, hi=hi, x_run=x_run)))
-        return endstop_words(sysm, {"xmin": xmin, "xmax": xmax, "endstop_t": 70.0,
+    def words(lo, hi, x_run, xmin, xmax, t=70.0):
+        # a 2 s rest, a 60 s start of vfd drives, a 30 s run: the stop command at 92 s
+        sysm = SimpleNamespace(
+            model=SimpleNamespace(takeup=SimpleNamespace(lo=lo, hi=hi, x_run=x_run),
+                                  cycle=SimpleNamespace(t_pre=2.0, t_start=60.0,
+                                                        stop_mode=C.CONTROLLED),
+                                  drives=SimpleNamespace(control=np.array([C.VFD]),
+                                                         coupling=np.array([0]))),
+            stop_command_s=92.0)
+        return endstop_words(sysm, {"xmin": xmin, "xmax": xmax, "endstop_t": t,
                                     "endstop_speed": 0.4})
 
     rest = words(-5.0, 5.0, 1.0, -5.0, 2.0)
@@ -803,6 +815,18 @@ def test_an_end_stop_names_its_end_and_the_cures_that_apply_there():
     # a hit at the rest end, and the running stretch's need is named
     full = words(0.0, 10.0, 12.0, 0.0, 10.0)
     assert "rest end" not in full and "the running stretch alone needs 12 m" in full
+    # where the running stretch fits, a hit in the start or the stop is the swing of its
+    # fronts past the running position: a gentler start (stop) is a lever too (a 1.6 km
+    # fabric decline's carriage hit with 8 and 14 m of travel, and moved 4.2 m from a 300 s
+    # start); in the running phase (70 s) it is not offered
+    assert "gentler" not in run
+    in_start = words(-5.0, 5.0, 1.0, -1.0, 5.0, t=30.0)
+    assert in_start.endswith(", or a gentler start, which swings the carriage less past its "
+                             "running position (a longer start (start.time_s)) would avoid it")
+    in_stop = words(-5.0, 5.0, 1.0, -5.0, 2.0, t=95.0)
+    assert "or a gentler stop, which swings the carriage less past its running position (a " \
+        "longer stop (stop.time_s)) would avoid it" in in_stop
+    assert "gentler" not in full  # the running stretch itself needs more travel
 
 
 def test_the_phase_holding_the_cycle_s_extreme_gives_its_exact_time():
