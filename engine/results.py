@@ -293,6 +293,11 @@ TRANSIENT = ResultGroup("transient", "Transient: the start, run and stop cycle (
        "largest sag (transient)"),
     _f("slip_margin_min_dyn", "-", "smallest slip margin of any drive pulley during the cycle",
        "smallest slip margin (transient)"),
+    _f("slip_margin_min_start_dyn", "-", "smallest slip margin of any drive pulley from the "
+       "start of the run to the stop command (the rest before the start included)",
+       "  of the start"),
+    _f("slip_margin_min_stop_dyn", "-", "smallest slip margin of any drive pulley from the stop "
+       "command on (null when the run ended before it)", "  of the stop"),
     _f("safety_factor_dyn", "-", "belt safety factor at the cycle's highest tension, "
        "belt_rating_kn / t_max_dyn_kn", "belt safety factor (transient)"),
     _f("dt_used_s", "s", "time step the integration used (the scenario's dt_s, or the "
@@ -538,7 +543,8 @@ DECIDING = (
     "takeup_travel_m", "takeup_travel_start_m", "takeup_travel_stop_m",
     "takeup_endstop_speed_m_s", "takeup_endstop_gap_m",
     "stop_time_s", "stop_distance_m", "slack_max_m",
-    "slip_margin_min_dyn", "safety_factor_dyn", "sag_max_dyn_pct",
+    "slip_margin_min_dyn", "slip_margin_min_start_dyn", "slip_margin_min_stop_dyn",
+    "safety_factor_dyn", "sag_max_dyn_pct",
     "liftoff_max_kn_over", "liftoff_over_start_kn", "liftoff_over_stop_kn",
 )
 _SUFFIX_UNIT = (("_kn", "kN"), ("_kw", "kW"), ("_m_s", "m/s"), ("_pct", "%"), ("_m", "m"),

@@ -144,12 +144,18 @@ def simulate_group(systems: list[System], *, steady_summary=None, conveyor=None,
         if key in done:  # the same stop of the same start: the same kernel run, copied
             first, wall = done[key]
             kr = KernelRun(model=first.model, state=_copy(first.state), out=_copy(first.out),
-                           work=first.work)
+                           work=first.work, slip_min_start=first.slip_min_start,
+                           slip_min_stop=first.slip_min_stop)
         else:
             kr = _branch(shared, sys)
             t1 = time.perf_counter()
-            if status == PAUSED:
+            if status == PAUSED:  # each phase's smallest slip margin, as KernelRun.cycle
+                kept = kr.pause_slip()
                 kr.call()
+                kr.merge_slip(kept)
+            else:  # the shared stretch ended before the stop command
+                m = float(kr.out.run["slip_min"][0])
+                kr.slip_min_start = m if m < 1e299 else None
             wall = wall0 + time.perf_counter() - t1
             done[key] = (kr, wall)
         out.append(decode(sys, kr, wall, steady_summary=each(steady_summary, i),

@@ -25,7 +25,7 @@ from beltstudy.engine.conveyor import SAG_LIMIT_RTOL
 from beltstudy.engine.drives import COUPLING_NEXT, transient_checks
 from beltstudy.engine.dynamics import codes as C
 from beltstudy.engine.dynamics import records as R
-from beltstudy.engine.dynamics.kernel import run_cycle
+from beltstudy.engine.dynamics.kernel import PAUSED, run_cycle
 from beltstudy.engine.dynamics.model import COUPLING_CODES, System, chord_strain
 from beltstudy.engine.dynamics.profiles import LINEAR, S_CURVE, start_reference, stop_reference
 from beltstudy.engine.loop import G, _drive_given_kg
@@ -66,11 +66,55 @@ class KernelRun:
     state: R.State
     out: R.Out
     work: R.Work
+    #: the smallest slip margin of any drive pulley from the start of the run to the stop
+    #: command and from the stop command on (None: the run ended before it), set by
+    #: :meth:`phases`
+    slip_min_start: float | None = None
+    slip_min_stop: float | None = None
 
     def call(self, t_pause: float = -1.0) -> int:
         """Run the cycle (on from where it paused); ``t_pause`` >= 0 pauses before the first
         step past it (:data:`~beltstudy.engine.dynamics.kernel.PAUSED` returned)."""
         return int(run_cycle(self.model, self.state, self.out, self.work, float(t_pause)))
+
+    def pause_slip(self) -> tuple:
+        """At the stop command (paused there): keep the run's and each drive's smallest slip
+        margin so far (the start's) and start them again for the stop's own."""
+        run, drv = self.out.run, self.out.drv
+        kept = (float(run["slip_min"][0]), float(run["slip_min_t"][0]),
+                drv["slip_min"].copy(), drv["slip_min_t"].copy())
+        run["slip_min"][0] = 1e300
+        drv["slip_min"] = 1e300
+        return kept
+
+    def merge_slip(self, kept: tuple) -> None:
+        """After the stop (:meth:`pause_slip` gave ``kept``): the phases' smallest margins
+        (``slip_min_start``, ``slip_min_stop``), and the cycle's back in the records, the
+        earlier phase's on a tie, as one uninterrupted run keeps its first (the kernel
+        replaces a smallest margin only by a smaller one): bit for bit the same records."""
+        run, drv = self.out.run, self.out.drv
+        m0, t0, d0, dt0 = kept
+        m1 = float(run["slip_min"][0])
+        self.slip_min_start = m0 if m0 < 1e299 else None
+        self.slip_min_stop = m1 if m1 < 1e299 else None
+        if m0 <= m1:
+            run["slip_min"][0], run["slip_min_t"][0] = m0, t0
+        first = d0 <= drv["slip_min"]
+        drv["slip_min"] = np.where(first, d0, drv["slip_min"])
+        drv["slip_min_t"] = np.where(first, dt0, drv["slip_min_t"])
+
+    def cycle(self, t_stop_cmd: float) -> int:
+        """The whole cycle (from rest), paused at the stop command ``t_stop_cmd`` [s] for the
+        phases' smallest slip margins; step for step the same run as one call."""
+        status = self.call(t_stop_cmd)
+        if status != PAUSED:  # ended before the stop command: the start's alone
+            m = float(self.out.run["slip_min"][0])
+            self.slip_min_start = m if m < 1e299 else None
+            return status
+        kept = self.pause_slip()
+        status = self.call()
+        self.merge_slip(kept)
+        return status
 
     @property
     def run(self) -> np.void:
@@ -265,7 +309,7 @@ def run_kernel(sys: System, t_end_s: float | None = None) -> tuple[KernelRun, fl
     """Run the kernel from rest; returns the run (holding the outputs) and wall time [s]."""
     kr = fresh_run(sys, t_end_s)
     t0 = time.perf_counter()
-    kr.call()
+    kr.cycle(sys.stop_command_s)
     return kr, time.perf_counter() - t0
 
 
@@ -508,6 +552,7 @@ def decode(sys: System, kr: KernelRun, wall_s: float, *, steady_summary=None, co
     segs = _segments(sys, out, r)
     whole = _extremes(sys, segs)
     summary, warnings = transient_summary(sys, r, out, segs, steady_summary=steady_summary,
+                                          slip_phases=(kr.slip_min_start, kr.slip_min_stop),
                                           conveyor=conveyor,
                                           safety_factor_min=safety_factor_min)
     notes = list(sys.notes)
@@ -957,8 +1002,9 @@ def span_sag_pct(sys: System, env_min_n: np.ndarray) -> tuple[np.ndarray, np.nda
 
 
 def transient_summary(sys: System, r: dict, out, segs, *, steady_summary=None, conveyor=None,
-                      safety_factor_min=None):
-    """SPEC section 4 and 6.4 transient fields and the warnings."""
+                      safety_factor_min=None, slip_phases: tuple = (None, None)):
+    """SPEC section 4 and 6.4 transient fields and the warnings; ``slip_phases`` the smallest
+    slip margins of the start and the stop (:meth:`KernelRun.cycle`)."""
     s_end = sys.s_end_m
     brakes = sys.model.brakes
     tu = sys.model.takeup
@@ -1024,6 +1070,8 @@ def transient_summary(sys: System, r: dict, out, segs, *, steady_summary=None, c
         "sag_max_dyn_pct": (None if idler.any() and t_low[idler].min() <= 0.0
                             else float(sag.max()) if idler.any() else 0.0),
         "slip_margin_min_dyn": r["slip_min"] if r["slip_min"] < 1e299 else None,
+        "slip_margin_min_start_dyn": slip_phases[0],
+        "slip_margin_min_stop_dyn": slip_phases[1],
         "safety_factor_dyn": (rating / t_max_dyn if rating and t_max_dyn > 0 else None),
         **_phase_fields(sys, "start", _exact_times(_extremes(sys, start_segs), start_segs, r)),
         **_phase_fields(sys, "stop", _exact_times(_extremes(sys, stop_segs), stop_segs, r)),

@@ -371,3 +371,27 @@ def test_a_fixed_step_keeps_its_fraction_of_the_stability_limit_on_every_mesh():
                    options=replace(DynamicsOptions(), dt_safety=fraction)).summary
     assert fine["elements_used"] == 126
     assert fe.values[2] == fine["t_max_dyn_kn"]
+
+
+def test_a_cycle_figure_s_bar_covers_the_phase_that_may_take_it_over():
+    """A 1.6 km decline's slip margin was 1.31 (the rest before the start's) on 103 and 205
+    elements and 1.26 on 409, a bar of +- 0.13, while the stop's own fell 1.51, 1.44, 1.26 on
+    the same meshes and 1.06 on 821 elements (0.96 on 3 279: it slips). The cycle's bar now
+    covers each phase's: here down to the stop's 1.44 less its bar, so the 4 x mesh's 1.06 is
+    inside it, and the verdict is marginal, not a silent pass."""
+    runs = [{"slip_margin_min_dyn": min(a, b), "slip_margin_min_start_dyn": a,
+             "slip_margin_min_stop_dyn": b}
+            for a, b in ((1.3057, 1.5089), (1.3057, 1.4434), (1.3057, 1.2591))]
+    figs = A.bars(runs, (103, 205, 409), 1e-3)
+    cyc, stop = figs["slip_margin_min_dyn"], figs["slip_margin_min_stop_dyn"]
+    assert cyc.err == pytest.approx(1.3057 - (1.4434 - stop.err))
+    assert cyc.value - cyc.err < 1.0611 < cyc.value + cyc.err  # the value on 821 elements
+    assert A.marginal_verdicts({}, figs, finest=409)[0].startswith(
+        "marginal: slip_margin_min_dyn 1.306 against limit 1")
+    # a phase whose bar stays clear of the cycle's does not widen it
+    calm = [{"slip_margin_min_dyn": a, "slip_margin_min_start_dyn": a,
+             "slip_margin_min_stop_dyn": a + 0.5} for a in (1.32, 1.31, 1.305)]
+    figs = A.bars(calm, (103, 205, 409), 1e-3)
+    assert figs["slip_margin_min_dyn"].err == A.bars(
+        [{"slip_margin_min_dyn": r["slip_margin_min_dyn"]} for r in calm], (103, 205, 409),
+        1e-3)["slip_margin_min_dyn"].err
