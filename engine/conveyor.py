@@ -1511,6 +1511,9 @@ def format_validation_error(exc: ValidationError, model: type[BaseModel], prefix
             others = [m for m in owners if key not in valid_keys(m)]
             takers = [m for m in owners if key in valid_keys(m)] if others else []
             owners = others or owners
+            # the member the input names (its tag, kept by the caller in ``ctx``): its keys
+            tags = set((err.get("ctx") or {}).get("tags") or ())
+            owners = [m for m in owners if _tags(m) & tags] or owners
             if owners:
                 keys = list(dict.fromkeys(k for m in owners for k in valid_keys(m)))
                 hint = _unknown_key_hint(key, keys, lacking)

@@ -111,10 +111,19 @@ def _as_json_type(errors: list[dict]) -> str:
     return f"{_dotted(errors[0]['path'])}: {text}"
 
 
+def _tag_ctx(e: dict) -> dict:
+    """For an unknown key: the union member labels the path walk dropped (a sample axis's
+    ``uniform``), so the engine's words list that member's keys, not every member's."""
+    if e["type"] != "extra_forbidden":
+        return {}
+    tags = [p for p in e["loc"][:-1] if isinstance(p, str) and p not in e["path"]]
+    return {"ctx": {"tags": tags}} if tags else {}
+
+
 def _engine_lines(errors: list[dict], model: type[BaseModel], prefix: str, skip: int) -> str:
     """The errors as the engine says them for ``model`` (paths from ``skip`` on)."""
     details = [{"type": e["type"], "loc": _unfolded(e["path"])[skip:], "input": e["input"],
-                **({"ctx": e["ctx"]} if "ctx" in e else {})} for e in errors]
+                **({"ctx": e["ctx"]} if "ctx" in e else _tag_ctx(e))} for e in errors]
     exc = ValidationError.from_exception_data(model.__name__, details)
     return format_validation_error(exc, model, prefix)
 

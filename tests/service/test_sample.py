@@ -133,7 +133,7 @@ def test_sample_only_study_is_valid():
     # a key of another distribution: it said "unknown key 'sd'; did you mean 'sd'?"
     ({"temperature_c": {"dist": "uniform", "low": 0, "high": 10, "sd": 3}},
      r"^sample\.axes\.temperature_c\.sd: unknown key 'sd' \(a key of normal, not of this "
-     r"kind\); valid keys: dist, low, high"),
+     r"kind\); valid keys: dist, low, high$"),  # uniform's own keys, not every member's
     # a parameter of a model the study does not run, named where it is written (it was
     # "grid: axis 'models.nonlin.m_star': ..." for a sample axis)
     ({"models.nonlin.m_star": {"dist": "uniform", "low": 0.003, "high": 0.008}},
