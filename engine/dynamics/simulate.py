@@ -22,7 +22,7 @@ from beltstudy.engine import design
 from beltstudy.engine.catalog import resolve_belt
 from beltstudy.engine.checks import HOLD_MARGIN
 from beltstudy.engine.conveyor import SAG_LIMIT_RTOL
-from beltstudy.engine.drives import COUPLING_NEXT, transient_checks
+from beltstudy.engine.drives import COUPLING_NEXT, RATED_POWER_FACTOR, transient_checks
 from beltstudy.engine.dynamics import codes as C
 from beltstudy.engine.dynamics import records as R
 from beltstudy.engine.dynamics.kernel import PAUSED, run_cycle
@@ -418,6 +418,34 @@ def start_levers(sys: System) -> list[str]:
     levers += [f"{lever} on the dol drives" for coupling, lever in COUPLING_NEXT.items()
                if coupling in fitted]
     return levers
+
+
+def oversized_motor_words(sys: System, which=None) -> list[str]:
+    """Each dol drive whose motor is more than 5 % above the engine's own size for it
+    (:data:`RATED_POWER_FACTOR` x its share of the steady power, Te v; beyond a catalogue
+    size's rounding), in words for a start's slip. A dol start's force is the motor's (its
+    curve, or ``STALL`` x its rated force through a fluid coupling), so an oversized motor
+    starts harder than it needs. Not a cure by itself: on a 500 m, 40 m-lift incline whose
+    450 kW motor (203 kW needed) slipped through its fluid coupling, no take-up up to 4 x
+    avoided the slip; at 300, 250 and 203 kW take-ups of 30.4, 24.1 and 19.8 t did (a 250 m,
+    14 deg plant incline likewise: none at 1 000 kW, one at the auto size). A belt that
+    regenerates is left out: its motor is sized by its other duties. ``which``: the drives
+    to judge (all by default)."""
+    dr = sys.model.drives
+    te, v = float(getattr(sys, "te_n", 0.0) or 0.0), float(getattr(sys, "v_design", 0.0))
+    rated = getattr(dr, "rated", None)
+    said = []
+    for k in np.flatnonzero(dr.control == C.DOL) if rated is not None and te > 0.0 else ():
+        need_kw = RATED_POWER_FACTOR * float(dr.share[k]) * te * v / 1e3
+        now_kw = float(rated[k]) * v / 1e3
+        if now_kw > 1.05 * need_kw and (which is None or int(k) in which):
+            said.append(f"drive {k + 1}'s motor (drives.{k}.rated_power_kw, now {now_kw:.0f} kW) "
+                        f"is {now_kw / need_kw:.1f} x the {need_kw:.0f} kW the engine would "
+                        f"size it at ({RATED_POWER_FACTOR:g} x its share of the steady power), "
+                        "and a dol start's force grows with the motor's rating: a motor nearer "
+                        "its need starts more gently, and less take-up tension then avoids the "
+                        "slip (rerun to check)")
+    return said
 
 
 def vfd_fields(sys: System) -> str:
@@ -951,6 +979,8 @@ def _slip_warnings(sys: System, r: dict, out, conveyor=None) -> list[str]:
             w.append(f"{names[i]} slipped on its pulley {when}: from t = {t0:.1f} "
                      f"to {t1:.1f} s, {slip_s:.2f} s in all, {drv[i]['slip_m']:.3g} m of belt "
                      f"slipped ({margin}); {fix} would avoid it{why}")
+            if _run_phase(sys, t0, t_stop_cmd) == "start":
+                w.extend(oversized_motor_words(sys, {i}))
     shs = out.shs
     for b in range(brakes.shaft.shape[0]):
         k = int(brakes.shaft[b])

@@ -462,7 +462,10 @@ def test_a_regenerating_belt_overloaded_in_its_stop_is_offered_the_stop_that_hol
                   r"about (\d+) s keeps", s["message"])
     assert m, s["message"]
     assert float(m.group(2)) > float(m.group(1))
-    assert "a longer start" not in s["message"]
+    # the overload is the stop's: its cure is not a longer start (the settling words of the
+    # same run may name one for the running swing)
+    over = re.search(r"drive 1 \(head\) was above its rated force.*?would avoid it", s["message"])
+    assert over and "a longer start" not in over.group(0)
     _, f_stop2, _ = _regen_stop(float(m.group(3)))
     assert f_stop2 == pytest.approx(rated, rel=0.10)
 
