@@ -514,10 +514,10 @@ def calibrate(conv: Conveyor, measured: Sequence[Measurement], model: str,
         held=held_values, models={fm.name: block},
         rms_relative=float(math.sqrt(float(r @ r) / n)), dof=dof,
         singular_values=[float(s) for s in sv],
-        notes=notes, **_verdict(sol, at_bound, r, fm.name, at_upper,
-                                {n: largest[n] for n in own_limit}, groups, held_values,
-                                suspect=suspect, exact=bool(p) and dof == 0, few=few,
-                                lowest=lowest, computed=computed, slips=slips))
+        notes=notes, **_verdict(
+            sol, at_bound, r, fm.name, at_upper, {n: largest[n] for n in own_limit},
+            lowest=lowest, held=_Held(groups, held_values, computed),
+            doubts=_Doubts(suspect, slips, few, bool(p) and dof == 0)))
 
 
 def _t95(dof: int) -> float:
@@ -712,21 +712,42 @@ def _values(n: int) -> str:
     return f"{n} measured value{'' if n == 1 else 's'}"
 
 
+@dataclass(frozen=True)
+class _Held:
+    """The names a fit held (:func:`_verdict`): ``groups`` that only act together on the data,
+    the held ``values`` and those of them left to the law's own value (``computed``)."""
+
+    groups: Sequence[Sequence[str]] = ()
+    values: dict[str, float] | None = None
+    computed: Sequence[str] = ()
+
+
+@dataclass(frozen=True)
+class _Doubts:
+    """What speaks against the readings (:func:`_verdict`): sentences naming values the
+    others contradict (``suspect``), readings of the other sign (``slips``), too few states
+    (``few``), and a fit met exactly with nothing to check it (``exact``)."""
+
+    suspect: Sequence[str] = ()
+    slips: Sequence[str] = ()
+    few: str = ""
+    exact: bool = False
+
+
 def _verdict(sol, at_bound: list[str], r: np.ndarray, model: str,
              at_upper: Sequence[str] = (), own_limit: dict[str, float] | None = None,
-             groups: Sequence[Sequence[str]] = (), held: dict[str, float] | None = None,
-             suspect: Sequence[str] = (), exact: bool = False, few: str = "",
-             lowest: dict[str, float] | None = None, computed: Sequence[str] = (),
-             slips: Sequence[str] = ()) -> dict[str, str]:
+             lowest: dict[str, float] | None = None, held: _Held | None = None,
+             doubts: _Doubts | None = None) -> dict[str, str]:
     """``status`` and ``message`` of the fit in this project's words (never SciPy's text):
     ``failed`` when it stopped without converging, ``warning`` when a fitted parameter ended
     at its bound (the data ask for a value the model does not allow: the rest of the misfit
     stays in the residuals: at 0, or at its largest value, far beyond any published one) or
     when it converged but misses the measurements by more than :data:`MISFIT_PCT`, ``ok``
-    otherwise; a converged fit that held names it was asked to fit (``groups`` that only act
-    together on these data, ``held`` at their starts) is a ``warning`` too: the values it
+    otherwise; a converged fit that held names it was asked to fit (``held``: its ``groups``
+    that only act together on these data, held at ``values``) is a ``warning`` too: the values it
     gives assume the held ones. ``own_limit``: the names whose largest value is the model's
-    own limit (a share's 1), not a declared one far beyond any published value. ``suspect``:
+    own limit (a share's 1), not a declared one far beyond any published value. ``doubts``
+    about the readings (:class:`_Doubts`): ``suspect``:
     sentences naming measured values the others contradict (readings of one state that
     disagree, :func:`_contradictions`; outliers, :func:`_outliers`): a ``warning`` that names
     them before a misfit's general advice. ``exact``: as many measured values as fitted
@@ -739,6 +760,11 @@ def _verdict(sol, at_bound: list[str], r: np.ndarray, model: str,
     wrong sign is what drives a friction factor to 0. ``few``: the steady states read, in words, when the measured values repeat
     no more states than there are fitted names (:func:`_few_states`): met whatever the model
     as ``exact`` is, the repeats' scatter alone setting the standard errors, a ``warning``."""
+    held = held or _Held()
+    doubts = doubts or _Doubts()
+    groups, computed = held.groups, held.computed
+    suspect, exact, few, slips = doubts.suspect, doubts.exact, doubts.few, doubts.slips
+    held = held.values
     rms = 100 * math.sqrt(float(r @ r) / len(r))
     rms_text = f"{rms:.3g}" if rms < 1000 else f"{rms:.0f}"
     check = ("Check the measured values (power at the drive pulleys [kW] or peripheral force "
