@@ -714,11 +714,8 @@ def _slip_remedy(conveyor, scenario, model, params, opts, summary, say=None,
            f"of x {GROW:g}")
     if fine is not None:
         n_run, n_fine = int(summary["elements_used"]), fine.elements
-        moved = []
-        if fine.takeup_moved:
-            moved.append(f"{article} {amount(run_tu)}")
-        if fine.start_moved:
-            moved.append(f"a start of {rem.start_time_s:.0f} s")
+        moved = _moved(fine, f"{article} {amount(run_tu)}" if run_tu is not None else "",
+                       f"a start of {rem.start_time_s:.0f} s" if rem.start_time_s else "")
         if moved:
             how += (f"; {' and '.join(moved)}, enough on this mesh ({n_run} elements), "
                     f"still slipped on one twice as fine ({n_fine} elements, {fine.reruns} "
@@ -736,6 +733,13 @@ def _slip_remedy(conveyor, scenario, model, params, opts, summary, say=None,
         how += ("; a dol start does not read start.time_s: its coupling sets how fast the "
                 "torque comes on")
     return remedy_sentence(searched, how) + safety
+
+
+def _moved(fine, takeup_words: str, time_words: str) -> list[str]:
+    """The figures of a remedy (their words) that slipped again on the finer mesh
+    (``fine``, a :class:`~beltstudy.engine.remedy.FinerCheck`)."""
+    return ([takeup_words] if fine.takeup_moved else []) + (
+        [time_words] if fine.start_moved else [])
 
 
 def _stop_slip_remedy(conveyor, scenario, model, params, opts, summary, say=None,
@@ -817,11 +821,8 @@ def _stop_slip_remedy(conveyor, scenario, model, params, opts, summary, say=None
            f"of x {GROW:g}")
     if fine is not None:
         n_run, n_fine = int(summary["elements_used"]), fine.elements
-        moved = []
-        if fine.takeup_moved:
-            moved.append(f"{article} {amount(run_tu)}")
-        if fine.start_moved:
-            moved.append(f"a stop.time_s of {up(rem.stop_time_s):g} s")
+        moved = _moved(fine, f"{article} {amount(run_tu)}" if run_tu is not None else "",
+                       f"a stop.time_s of {up(rem.stop_time_s):g} s" if rem.stop_time_s else "")
         tried = [x for x in (run_tu, rem.stop_time_s if timed else None) if x is not None]
         if moved:
             how += (f"; {' and '.join(moved)}, enough on this mesh ({n_run} elements), "
