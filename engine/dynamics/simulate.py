@@ -68,7 +68,7 @@ class KernelRun:
     work: R.Work
     #: the smallest slip margin of any drive pulley from the start of the run to the stop
     #: command and from the stop command on (None: the run ended before it), set by
-    #: :meth:`phases`
+    #: :meth:`cycle` (or :meth:`merge_slip` for a run continued from a shared start)
     slip_min_start: float | None = None
     slip_min_stop: float | None = None
 
