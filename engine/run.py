@@ -713,19 +713,12 @@ def _slip_remedy(conveyor, scenario, model, params, opts, summary, say=None,
     how = (f"found by rerunning the start {rem.reruns} times on the same mesh, to 2 %; steps "
            f"of x {GROW:g}")
     if fine is not None:
-        n_run, n_fine = int(summary["elements_used"]), fine.elements
-        moved = _moved(fine, f"{article} {amount(run_tu)}" if run_tu is not None else "",
-                       f"a start of {rem.start_time_s:.0f} s" if rem.start_time_s else "")
-        if moved:
-            how += (f"; {' and '.join(moved)}, enough on this mesh ({n_run} elements), "
-                    f"still slipped on one twice as fine ({n_fine} elements, {fine.reruns} "
-                    "more reruns): the figure grows as the mesh sharpens the start's front, "
-                    "so the finer mesh's is given (a margin above it is safer)")
-        else:
-            how += (f"; it holds on a mesh twice as fine too ({n_fine} elements)"
-                    if reads_start_time(conveyor) is False or rem.start_time_s is None
-                    or run_tu is None else
-                    f"; each holds on a mesh twice as fine too ({n_fine} elements)")
+        how += _finer_words(
+            fine, int(summary["elements_used"]),
+            f"{article} {amount(run_tu)}" if run_tu is not None else "",
+            f"a start of {rem.start_time_s:.0f} s" if rem.start_time_s is not None else "",
+            "reruns", "the figure grows as the mesh sharpens the start's front, so the finer "
+            "mesh's is given (a margin above it is safer)")
     searched = [(tu_fig, tu)]
     if reads_start_time(conveyor):
         searched.append((st_fig, st))
@@ -735,11 +728,20 @@ def _slip_remedy(conveyor, scenario, model, params, opts, summary, say=None,
     return remedy_sentence(searched, how) + safety
 
 
-def _moved(fine, takeup_words: str, time_words: str) -> list[str]:
-    """The figures of a remedy (their words) that slipped again on the finer mesh
-    (``fine``, a :class:`~beltstudy.engine.remedy.FinerCheck`)."""
-    return ([takeup_words] if fine.takeup_moved else []) + (
+def _finer_words(fine, n_run: int, takeup_words: str, time_words: str, rerun: str,
+                 why: str) -> str:
+    """The clause a checked run's remedy adds for the finer mesh (``fine``, a
+    :class:`~beltstudy.engine.remedy.FinerCheck`; ``n_run`` the run's elements): the figures
+    tried there (their words, "" for one not tried) that slipped again, with ``why`` the finer
+    mesh's figure is given, or that each held; ``rerun`` names what the finer search reran."""
+    moved = ([takeup_words] if fine.takeup_moved else []) + (
         [time_words] if fine.start_moved else [])
+    if moved:
+        return (f"; {' and '.join(moved)}, enough on this mesh ({n_run} elements), still "
+                f"slipped on one twice as fine ({fine.elements} elements, {fine.reruns} more "
+                f"{rerun}): {why}")
+    each = "each holds" if takeup_words and time_words else "it holds"
+    return f"; {each} on a mesh twice as fine too ({fine.elements} elements)"
 
 
 def _stop_slip_remedy(conveyor, scenario, model, params, opts, summary, say=None,
@@ -820,18 +822,11 @@ def _stop_slip_remedy(conveyor, scenario, model, params, opts, summary, say=None
     how = (f"found by rerunning the cycle {rem.reruns} times on the same mesh, to 2 %; steps "
            f"of x {GROW:g}")
     if fine is not None:
-        n_run, n_fine = int(summary["elements_used"]), fine.elements
-        moved = _moved(fine, f"{article} {amount(run_tu)}" if run_tu is not None else "",
-                       f"a stop.time_s of {up(rem.stop_time_s):g} s" if rem.stop_time_s else "")
-        tried = [x for x in (run_tu, rem.stop_time_s if timed else None) if x is not None]
-        if moved:
-            how += (f"; {' and '.join(moved)}, enough on this mesh ({n_run} elements), "
-                    f"still slipped on one twice as fine ({n_fine} elements, {fine.reruns} "
-                    "more cycles): the finer mesh's figure is given (a margin above it is "
-                    "safer)")
-        else:
-            how += (f"; {'each holds' if len(tried) > 1 else 'it holds'} on a mesh twice as "
-                    f"fine too ({n_fine} elements)")
+        how += _finer_words(
+            fine, int(summary["elements_used"]),
+            f"{article} {amount(run_tu)}" if run_tu is not None else "",
+            f"a stop.time_s of {up(rem.stop_time_s):g} s" if rem.stop_time_s is not None
+            else "", "cycles", "the finer mesh's figure is given (a margin above it is safer)")
     searched = [(tu_fig, tu)]
     if timed:
         searched.append((st_up, st))
