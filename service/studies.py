@@ -57,7 +57,7 @@ from beltstudy.service.grid.expand import (
 from beltstudy.service.settings import Settings, check_data_dir
 from beltstudy.service.store import query
 from beltstudy.service.store.columns import profile_schema, surface_schema
-from beltstudy.service.store.parquet import Store
+from beltstudy.service.store.parquet import Store, tmp_path
 
 __all__ = ["StudyService", "ACTIVE_STATES", "RESOLVED_CACHE", "SURFACE_CACHE", "study_models"]
 
@@ -340,7 +340,7 @@ class StudyService:
             return
         path = self._body_path(key)
         path.parent.mkdir(parents=True, exist_ok=True)
-        tmp = path.with_name(f".{key}.{threading.get_ident()}.tmp")
+        tmp = tmp_path(path)
         tmp.write_text(study_id, encoding="utf-8")
         os.replace(tmp, path)
 

@@ -66,8 +66,25 @@ def is_study_id(text: object) -> bool:
 RUNS_CACHE_STUDIES = 4
 
 
+#: Tags this process's temporary files (``.<name>.<tag>-<random>.tmp``): one that does not
+#: carry it was left by a process killed mid-write (a live write lasts milliseconds), and
+#: :meth:`Store.clean` / :meth:`Store.sweep` remove it. A tag, not the pid: a restarted
+#: service (pid 1 in a container) may be given its predecessor's pid.
+PROCESS_TAG = uuid.uuid4().hex[:8]
+
+
+def tmp_path(path: Path) -> Path:
+    """A temporary name beside ``path`` for an atomic write by this process."""
+    return path.with_name(f".{path.name}.{PROCESS_TAG}-{uuid.uuid4().hex[:8]}.tmp")
+
+
+def _left_by_dead_process(p: Path) -> bool:
+    return (p.name.startswith(".") and p.name.endswith(".tmp")
+            and f".{PROCESS_TAG}-" not in p.name and p.is_file())
+
+
 def _write_atomic(path: Path, write) -> None:
-    tmp = path.with_name(f".{path.name}.{uuid.uuid4().hex[:8]}.tmp")
+    tmp = tmp_path(path)
     try:
         write(tmp)
         os.replace(tmp, path)
@@ -208,8 +225,9 @@ class Store:
         """Remove what a killed process left at the top of the store: the directories of
         deleted studies (``.<id>.<tag>.deleted``: moved away, the deletion decided) and
         studies half created (``.<id>.<tag>.tmp``) older than ``tmp_age_s`` (a live one
-        lasts milliseconds). Neither is listed nor read; they only hold disk. Returns how
-        many were removed."""
+        lasts milliseconds), and the temporary files of body records (``bodies/``) a killed
+        process left. None is listed nor read; they only hold disk. Returns how many were
+        removed."""
         removed = 0
         if not self.root.is_dir():
             return removed
@@ -226,6 +244,12 @@ class Store:
             if stale:
                 shutil.rmtree(child, ignore_errors=True)
                 removed += not child.exists()
+        bodies = self.data_dir / "bodies"
+        if bodies.is_dir():
+            for p in bodies.iterdir():
+                if _left_by_dead_process(p):
+                    p.unlink(missing_ok=True)
+                    removed += 1
         return removed
 
     # ---------------------------------------------------------------- parts
@@ -244,13 +268,18 @@ class Store:
         return sorted(p for p in directory.glob("part-*.parquet"))
 
     def clean(self, study_id: str) -> int:
-        """Remove temporary files, and time-series parts holding runs without a runs row.
+        """Remove temporary files (in the tables, and a ``study.json`` write a killed process
+        cut short), and time-series parts holding runs without a runs row.
 
         Time-series parts are written before the runs rows that commit them (by the service
         or, on a shared disk, by the workers); a part whose runs never got their rows is
         removed, and those runs are run again.
         """
         removed = 0
+        for p in self.study_dir(study_id).iterdir():  # a study.json write cut short
+            if _left_by_dead_process(p):
+                p.unlink(missing_ok=True)
+                removed += 1
         done = set(self.done_runs(study_id)["run_id"])
         for table in TABLES:
             directory = self.table_dir(study_id, table)

@@ -108,6 +108,34 @@ def test_sweep_removes_what_a_killed_process_left_and_keeps_the_rest(tmp_path):
     assert store.read(sid) == before and [d["id"] for d in store.list_studies()] == [sid]
 
 
+def test_a_study_json_write_a_killed_process_cut_short_is_removed_on_resume(tmp_path):
+    """``study.json`` is written under a temporary name, then renamed; a SIGKILL between the
+    two leaves ``.study.json.<tag>-<random>.tmp`` in the study's folder (and a body record's
+    in ``bodies/``). Those of another process go at the resume (:meth:`Store.clean`) and at
+    start-up (:meth:`Store.sweep`); one of this process (a write in flight) stays."""
+    from beltstudy.service.store.parquet import PROCESS_TAG, tmp_path as tmp_name
+
+    sid = "0123456789abcdef"
+    store = Store(tmp_path)
+    store.create(sid, {"id": sid, "study": {"axes": []}})
+    store.update(sid, state="running")
+    folder = store.study_dir(sid)
+    dead = folder / ".study.json.0badf00d-12345678.tmp"
+    dead.write_text('{"id": "half')
+    live = tmp_name(folder / "study.json")
+    live.write_text("{}")
+    assert PROCESS_TAG in live.name and PROCESS_TAG not in dead.name
+    assert store.clean(sid) == 1
+    assert not dead.exists() and live.exists()
+    assert store.read(sid)["state"] == "running"
+    bodies = tmp_path / "bodies"
+    bodies.mkdir()
+    (bodies / "k1").write_text(sid)
+    (bodies / ".k2.0badf00d-12345678.tmp").write_text(sid)
+    assert store.sweep() == 1
+    assert [p.name for p in bodies.iterdir()] == ["k1"]
+
+
 @pytest.mark.parametrize("bad", ["../etc", "0123", "0123456789ABCDEF", "x" * 16, ""])
 def test_ids_that_are_not_hashes_are_not_found(tmp_path, bad):
     with pytest.raises(NotFound):
