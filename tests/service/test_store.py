@@ -113,7 +113,8 @@ def test_a_study_json_write_a_killed_process_cut_short_is_removed_on_resume(tmp_
     two leaves ``.study.json.<tag>-<random>.tmp`` in the study's folder (and a body record's
     in ``bodies/``). Those of another process go at the resume (:meth:`Store.clean`) and at
     start-up (:meth:`Store.sweep`); one of this process (a write in flight) stays."""
-    from beltstudy.service.store.parquet import PROCESS_TAG, tmp_path as tmp_name
+    from beltstudy.service.store.parquet import PROCESS_TAG
+    from beltstudy.service.store.parquet import tmp_path as tmp_name
 
     sid = "0123456789abcdef"
     store = Store(tmp_path)
