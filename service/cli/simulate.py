@@ -198,8 +198,14 @@ def run(args: argparse.Namespace) -> int:
 
 
 def _fmt(val) -> str:
+    """A table value in 12 characters: three decimals, or three significant figures where
+    three decimals would round a figure that is not zero to 0.000 (a short belt's time step,
+    2.3e-4 s, read "0.000 s")."""
     if isinstance(val, float | int | np.floating) and not isinstance(val, bool):
-        return f"{float(val):>12.3f}"
+        x = float(val)
+        if x != 0.0 and abs(x) < 0.0005:
+            return f"{x:>12.3g}"
+        return f"{x:>12.3f}"
     return f"{val!s:>12}"
 
 
