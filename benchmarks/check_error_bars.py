@@ -1,9 +1,9 @@
 """Do the error bars hold? (issue 26 acceptance; beltstudy.engine.accuracy)
 
-For each conveyor (the examples in studies/conveyors and the three of benchmarks/conveyors:
-a short steep incline, a long flat overland, a regenerative decline) and each stop (coast,
-controlled, brake where the conveyor has a brake), at the defaults (automatic mesh ``n`` and
-step), the run's error bars are computed as ``beltstudy simulate`` computes them (meshes
+For each conveyor (the examples in studies/conveyors and those of benchmarks/conveyors: a
+short steep incline, a long flat overland, a regenerative decline, and the published
+summaries rebuilt from their inputs) and each stop (coast, controlled, brake where the
+conveyor has a brake), at the defaults (automatic mesh ``n`` and step), the run's error bars are computed as ``beltstudy simulate`` computes them (meshes
 ``n/2, n, 2n``) and compared with the value at ``4n`` elements (the automatic step follows
 the mesh: a quarter of the step). It prints, per figure, whether the bar contains that value,
 the misses, and the fraction of figures whose bar holds it (target: at least 95 %).
