@@ -1418,8 +1418,12 @@ def _slack_words(sys: System, r: dict, j: int) -> str:
         fixes += stop_levers(sys)
         if sys.model.cycle.stop_mode == C.BRAKE:
             fixes.append("a brake nearer the low-tension side")
+    dur = float(r["slack_dur"])
+    # tenths of a second, or two significant figures below 0.05 s, which tenths read as 0.0
+    # (an 18 deg incline's coast held by its holdback was slack for 0.041 s: "0.0 s in all")
+    dur_words = f"{dur:.1f}" if dur >= 0.05 else f"{dur:.2g}"
     return (f"the belt goes slack: its slack spans gather up to {r['slack_max']:.3g} m of belt "
-            f"near {where(sys, j)} at t = {t_max:.1f} s, slack for {r['slack_dur']:.1f} s in "
+            f"near {where(sys, j)} at t = {t_max:.1f} s, slack for {dur_words} s in "
             "all (the one-dimensional model does not follow the belt leaving the idlers or "
             "piling up; a slack span's sag is past every sag limit and has no value, so "
             f"sag_max_dyn_pct is empty); {_or(fixes)} would avoid it")
