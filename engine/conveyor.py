@@ -629,14 +629,18 @@ def place(position: str, at_m: float | None) -> str:
     return position if at_m is None else f"{position} at {at_m:g} m"
 
 
-def _check_at(position: str, at_m: float | None, what: str) -> None:
-    """``at_m`` goes with a position along a strand (carry or return) and only with one."""
+def _check_at(position: str, at_m: float | None, what: str,
+              strands: tuple[str, ...] = ("carry", "return")) -> None:
+    """``at_m`` goes with a position along a strand (carry or return) and only with one;
+    ``strands`` are the strand positions ``what`` may take (a take-up: return only)."""
     if position in ("carry", "return") and at_m is None:
         raise ValueError(f"position: {position} places {what} along the {position} strand; "
                          "give at_m, its distance from the tail along the conveyor [m]")
     if position in ("head", "tail") and at_m is not None:
-        raise ValueError(f"at_m: {at_m:g} m goes with position carry or return (along a "
-                         f"strand); at the {position} drop at_m")
+        along = " or ".join(strands)
+        raise ValueError(f"at_m: {at_m:g} m goes with position {along} (along "
+                         f"{'a strand' if len(strands) > 1 else 'the ' + along + ' strand'}); "
+                         f"at the {position} drop at_m")
 
 
 def check_motor_curve(curve) -> None:
@@ -698,7 +702,7 @@ class TakeUp(_Model):
 
     @model_validator(mode="after")
     def _kind_fields(self) -> TakeUp:
-        _check_at(self.position, self.at_m, "the take-up")
+        _check_at(self.position, self.at_m, "the take-up", strands=("return",))
         if self.position == "carry":
             raise ValueError("position: carry; a take-up sits on the return (head, tail or "
                              "return with at_m)")

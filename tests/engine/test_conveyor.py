@@ -553,3 +553,15 @@ def test_a_cover_written_in_metres_is_refused_with_the_millimetres_it_means():
     assert "belt.bottom_cover_mm" in msg and "2 mm if 0.002 is m" in msg
     d["belt"].update(top_cover_mm=5, bottom_cover_mm=0)
     assert parse_conveyor(d).belt.bottom_cover_mm == 0
+
+
+def test_takeup_at_m_at_an_end_names_return_only():
+    """A take-up at the tail given at_m is told the position that goes with at_m: return, the
+    only strand a take-up may sit along (position: carry is refused), not 'carry or return'."""
+    msg = _err(hand_conveyor_dict(
+        takeup={"type": "gravity", "position": "tail", "at_m": 150, "mass_kg": "auto"}))
+    assert "takeup" in msg and "goes with position return (along the return strand)" in msg
+    assert "carry" not in msg
+    drive = {"position": "head", "at_m": 100, "wrap_deg": 200, "friction": 0.35, "share": 1.0,
+             "pulley_diameter_m": 1.0}
+    assert "goes with position carry or return" in _err(hand_conveyor_dict(drives=[drive]))
