@@ -815,7 +815,8 @@ def transient_figure(timeseries, surface=None, title: str = "", extremes: dict |
     "lowest": s_m}``, e.g. ``t_max_dyn_at_m`` and ``t_min_dyn_at_m``) add a probe at each of
     those positions (nearest point of ``extremes_surface``, default ``surface``; given as
     ``(s_m, value)`` the point on either side whose trace comes closest to the value), drawn
-    bold.
+    bold; given as ``(s_m, value, t_s)`` the extreme itself is marked too, at its time (the
+    probe's trace is sampled, and a short peak falls between its samples).
     Without a surface the key points of ``timeseries`` (SPEC section 5) are drawn. A
     :data:`NO_TRANSIENT` figure when there is no time series.
     """
@@ -835,13 +836,21 @@ def transient_figure(timeseries, surface=None, title: str = "", extremes: dict |
         positions = _positions(pool)
         for (name, at), color in zip((extremes or {}).items(), ("black", "tab:red"),
                                      strict=False):
-            at, value = at if isinstance(at, tuple) else (at, None)
+            at, value, when = (tuple(at) + (None, None))[:3] if isinstance(at, tuple) else (
+                at, None, None)
             if at is None or not np.isfinite(at) or not len(positions):
                 continue
             s = _probe_position(pool, positions, float(at), value)
             t, tension = _trace(pool, s)
             ax1.plot(t, tension, color=color, linewidth=2.0, linestyle="--",
                      label=f"{name}: {_where_text(s, locate)}")
+            if value is not None and when is not None and np.isfinite(value) \
+                    and np.isfinite(when):
+                # the extreme itself: the probe's trace is sampled at the surface's spacing
+                # (1.3 s on a 30 m belt), and a peak of a fraction of a second between two
+                # samples is not on it
+                ax1.plot([when], [value], color=color, marker="o", markersize=6,
+                         linestyle="none", label=f"{name} {value:.4g} kN at t = {when:.4g} s")
     else:
         ts = timeseries.sort_values("t_s")
         for column, label in _KEY_POINTS:

@@ -181,8 +181,10 @@ def run(args: argparse.Namespace) -> int:
         write_table(res.timeseries, args.timeseries)
     if args.plot:
         surface = traces_long(res.transient.traces) if res.transient is not None else None
-        extremes = {"highest tension": (s.get("t_max_dyn_at_m"), s.get("t_max_dyn_kn")),
-                    "lowest tension": (s.get("t_min_dyn_at_m"), s.get("t_min_dyn_kn"))}
+        extremes = {"highest tension": (s.get("t_max_dyn_at_m"), s.get("t_max_dyn_kn"),
+                                        s.get("t_max_dyn_time_s")),
+                    "lowest tension": (s.get("t_min_dyn_at_m"), s.get("t_min_dyn_kn"),
+                                       s.get("t_min_dyn_time_s"))}
         locate = res.steady.loop.where if res.steady is not None else None
         fig = transient_figure(res.timeseries, surface, title=(
             f"{conv.name}: {fm.name}, {scn.temperature_c:g} C, load {scn.load}, "

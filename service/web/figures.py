@@ -216,12 +216,15 @@ def run_figure(service: StudyService, study_id: str, run_id: str, name: str):
         return lambda: charts.message_figure("no transient data for this run", title)
     extremes = {}
     if len(row):
-        for label, column, size in (("highest tension", "t_max_dyn_at_m", "t_max_dyn_kn"),
-                                    ("lowest tension", "t_min_dyn_at_m", "t_min_dyn_kn")):
+        for label, column, size, time in (
+                ("highest tension", "t_max_dyn_at_m", "t_max_dyn_kn", "t_max_dyn_time_s"),
+                ("lowest tension", "t_min_dyn_at_m", "t_min_dyn_kn", "t_min_dyn_time_s")):
             value = row[column].iloc[0] if column in row else None
             kn = row[size].iloc[0] if size in row else None
+            when = row[time].iloc[0] if time in row else None
             extremes[label] = None if pd.isna(value) else (
-                float(value), None if kn is None or pd.isna(kn) else float(kn))
+                float(value), None if kn is None or pd.isna(kn) else float(kn),
+                None if when is None or pd.isna(when) else float(when))
     locate = _locator(spec)
     return lambda: charts.transient_figure(ts, surface, title, extremes=extremes, locate=locate)
 

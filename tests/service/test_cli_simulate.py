@@ -100,5 +100,7 @@ def test_cli_simulate_plot_probes_the_extremes_by_their_values(tmp_path, capsys,
                  "--no-check", "--json", "--plot", str(tmp_path / "fig.png")])
     s = json.loads(capsys.readouterr().out)
     assert code == 0
-    assert seen["highest tension"] == (s["t_max_dyn_at_m"], s["t_max_dyn_kn"])
-    assert seen["lowest tension"] == (s["t_min_dyn_at_m"], s["t_min_dyn_kn"])
+    assert seen["highest tension"] == (s["t_max_dyn_at_m"], s["t_max_dyn_kn"],
+                                       s["t_max_dyn_time_s"])
+    assert seen["lowest tension"] == (s["t_min_dyn_at_m"], s["t_min_dyn_kn"],
+                                      s["t_min_dyn_time_s"])
