@@ -19,6 +19,7 @@ import functools
 import itertools
 import json
 import math
+import typing
 from pathlib import Path
 from typing import Any
 
@@ -378,6 +379,24 @@ def _numeric_axes() -> dict[str, bool]:
     return {name: numeric for name, (_t, _item, numeric, _b) in axis_types().items()}
 
 
+def _whole_numbers_only(annotation: Any) -> bool:
+    """Whether a field's numbers are integers only (``int``, ``int | None``, ``'auto' | int``:
+    a count such as ``scenario.elements`` or ``idlers.carry.count``), no ``float``."""
+    kinds: set[type] = set()
+
+    def leaves(a: Any) -> None:
+        if a in (int, float):
+            kinds.add(a)
+        elif typing.get_origin(a) is typing.Annotated:
+            leaves(typing.get_args(a)[0])
+        elif typing.get_origin(a) not in (list, tuple, typing.Literal):
+            for arg in typing.get_args(a):
+                leaves(arg)
+
+    leaves(annotation)
+    return kinds == {int}
+
+
 @functools.cache
 def _axis_bounds(folded: str) -> dict[str, float]:
     """An axis's numeric bounds (:func:`~beltstudy.service.door.sample.value_bounds`)."""
@@ -427,6 +446,10 @@ def _sample_axes(study: StudyIn, bases: tuple[dict, dict], models: dict) -> list
             raise Invalid(f"{where}: '{name}' does not take a number; a sample axis is a "
                           "numeric field (temperature_c, takeup.mass_kg, "
                           "models.nonlin.mu_b, ...)")
+        if _whole_numbers_only(axis_types()[fold_name(name)[0]][1]):
+            raise Invalid(f"{where}: '{name}' takes a whole number (a count) and a sample "
+                          "draws real values, which it would refuse; give its values as a "
+                          f"grid axis instead (grid: {{{name}: [...]}})")
         problem = bounds_problem(name, dist, None, _axis_bounds(fold_name(name)[0]))
         if problem:
             raise Invalid(f"{where}: {problem}")
@@ -556,6 +579,10 @@ def resolve_study(
     if study.accuracy is not None and not study.dynamics:
         raise Invalid("accuracy: error bars are those of the transient runs; this study has "
                       "dynamics: false (set dynamics: true or remove accuracy)")
+    if study.surface and not study.dynamics:
+        raise Invalid("surface: the tension and velocity surface is that of the transient "
+                      "runs; this study has dynamics: false, whose runs have none (set "
+                      "dynamics: true or remove surface)")
     resolved = ResolvedStudy(
         name=study.name,
         description=study.description,

@@ -184,6 +184,8 @@ def _study_ok(body: dict) -> bool:
         return False
     if body.get("accuracy") is not None and body.get("dynamics") is False:
         return False  # error bars are those of the transient
+    if body.get("surface") is True and body.get("dynamics") is False:
+        return False  # the surface is that of the transient
     if body.get("dynamics") is False:
         for axis, values in axes.items():
             parts = _target(axis).split(".")

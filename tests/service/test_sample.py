@@ -205,3 +205,19 @@ def test_a_sample_axis_no_run_reads_is_refused():
                                   scenario={"stop": {"mode": "controlled"}}),
                           studies_dir=ROOT / "studies")
     assert study.total == 4
+
+
+@pytest.mark.parametrize("axis", ["scenario.elements", "idlers.return.count",
+                                  "idlers.carry.rolls"])
+def test_a_sample_axis_of_a_whole_number_field_is_refused_naming_it(axis):
+    """A sample draws real values: ``scenario.elements`` drawn uniform 20 to 40 made every
+    variant fail as 'grid: 8 of 8 scenario variants are invalid: ... scenario.elements:
+    21.5048272628 is not of type "integer"' (a grid the study does not have). It is refused
+    at the sample, naming the axis and the way out (a grid axis of its values)."""
+    dynamic = axis.startswith("scenario.")
+    pattern = (rf"^sample\.axes\.{re.escape(axis)}: '{re.escape(axis)}' takes a whole number "
+               r"\(a count\) and a sample draws real values.*grid axis")
+    with pytest.raises(Invalid, match=pattern):
+        resolve_study(sampled(n=8, dynamics=dynamic,
+                              axes={axis: {"dist": "uniform", "low": 2, "high": 40}}),
+                      studies_dir=ROOT / "studies")

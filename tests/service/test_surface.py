@@ -72,6 +72,19 @@ def test_surface_option_is_false_by_default_and_changes_the_study_not_its_runs(m
     assert [r.run_id for r in plain.runs] == [r.run_id for r in kept.runs]  # ... same runs
 
 
+def test_a_steady_study_asking_for_surfaces_is_refused(make_study):
+    """``surface: true`` with ``dynamics: false`` was accepted and stored nothing (a steady run
+    has no transient), a second study id for the same runs; it is refused as ``accuracy`` is
+    there, naming the field and the way out."""
+    from beltstudy.service.errors import Invalid
+
+    with pytest.raises(Invalid, match=r"^surface: the tension and velocity surface is that of "
+                                      r"the transient runs; this study has dynamics: false.*"
+                                      r"set dynamics: true or remove surface"):
+        resolve_study(make_study("steady-surface", dynamics=False, surface=True))
+    assert resolve_study(make_study("steady", dynamics=False, surface=False)).surface is False
+
+
 def test_a_study_stores_surfaces_only_when_asked_and_recomputes_the_same(
     data_dir, make_study, make_settings, finished_study
 ):
