@@ -275,6 +275,11 @@ class System:
     #: it runs has its force written in (a study's design basis, a run below full load): the
     #: stop's advice then offers stop.time_s; None: read the conveyor given to the words
     auto_brakes: bool | None = None
+    #: the force the engine sizes a motor for [N] (``RATED_POWER_FACTOR`` x a drive's share of
+    #: it): the run's |Te| and, below the full load, the full load's larger of |Te| and the
+    #: running resistance, the larger kept, as an auto motor of such a run is installed
+    #: (:func:`beltstudy.engine.sizing.installed_at_full_load`); None: the run's own |Te|
+    motor_basis_n: float | None = None
 
     @property
     def n(self) -> int:
