@@ -236,7 +236,9 @@ def _motor_basis_n(prep: _Prepared, scenario: Scenario, model: str, params) -> f
     30 m belt's |Te| is 1.77 kN and its full load's 2.04 kN: judged on the empty case alone, a
     given motor was called 3.4 x the engine's size (4 kW) instead of 2.9 x (5 kW)."""
     own = abs(float(prep.steady.te_n))
-    if all(f == 1.0 for f in section_loads(scenario.load, prep.conveyor)):
+    # read only of dol drives (oversized_motor_words): no second solve for vfd-only belts
+    if (all(d.control != "dol" for d in prep.conveyor.drives)
+            or all(f == 1.0 for f in section_loads(scenario.load, prep.conveyor))):
         return own
     n = None if scenario.elements == "auto" else int(scenario.elements)
     full = solve_steady(prep.conveyor, model=model, params=params,
