@@ -23,7 +23,7 @@ from beltstudy.service.cli.console import ProgressBar, format_compare, format_st
 from beltstudy.service.cli.demo import run_demo
 from beltstudy.service.door.parse import expect_kind, load_mapping
 from beltstudy.service.door.studyfile import study_body
-from beltstudy.service.errors import Invalid, Unavailable
+from beltstudy.service.errors import Invalid, ServiceError, Unavailable
 from beltstudy.service.settings import load_settings
 from beltstudy.service.store import query
 from beltstudy.service.store.parquet import Store
@@ -207,6 +207,10 @@ def cmd_serve(args) -> int:
 
     settings = _settings()
     host = args.host or settings.host
+    # the port is tried before the app starts: uvicorn binds only after the app's startup,
+    # which resumes the data directory's unfinished studies (and may start a LocalCluster),
+    # and a port in use was then uvicorn's '[Errno 98] ...' and exit status 3
+    listening_socket(host, args.port).close()
     _service_log()
     app = create_app(settings.model_copy(update={"host": host}))
     uvicorn.run(
@@ -217,6 +221,38 @@ def cmd_serve(args) -> int:
         timeout_graceful_shutdown=GRACEFUL_SHUTDOWN_S,
     )
     return 0
+
+
+def listening_socket(host: str, port: int):
+    """A socket bound to ``host:port`` as uvicorn binds it, or a :class:`ServiceError`
+    naming the address and the way out (a port in use, an address this machine lacks)."""
+    import errno
+    import socket
+
+    try:
+        family = socket.getaddrinfo(host, port, type=socket.SOCK_STREAM)[0][0]
+    except socket.gaierror as exc:
+        raise ServiceError(
+            f"--host {host}: no such address ({exc.strerror}); give an "
+            "address such as 127.0.0.1 (--host or BELTSTUDY_HOST)"
+        ) from None
+    sock = socket.socket(family, socket.SOCK_STREAM)
+    sock.setsockopt(socket.SOL_SOCKET, socket.SO_REUSEADDR, 1)
+    try:
+        sock.bind((host, port))
+    except OSError as exc:
+        sock.close()
+        where = f"[{host}]:{port}" if ":" in host else f"{host}:{port}"
+        if exc.errno == errno.EADDRINUSE:
+            raise ServiceError(
+                f"--port {port}: {where} is already in use (another beltstudy serve, or "
+                "another program); stop it, or give another port with --port"
+            ) from None
+        raise ServiceError(
+            f"--host {host} --port {port}: cannot listen on {where} ({exc.strerror}); "
+            "give another address (--host or BELTSTUDY_HOST) or port (--port)"
+        ) from None
+    return sock
 
 
 def cmd_submit(args) -> int:

@@ -282,3 +282,34 @@ def test_a_conveyor_posted_as_a_study_is_a_422_saying_so(tmp_path):
     assert r.status_code == 422
     assert r.json()["message"].startswith("body: this is a conveyor file (it has speed_m_s, "
                                           "belt, material, profile, idlers, drives), not a study")
+
+
+def test_serve_on_a_port_in_use_is_one_line_before_the_service_starts(monkeypatch, capsys,
+                                                                      tmp_path):
+    """`beltstudy serve --port P` with P taken: uvicorn binds only after the app's startup, so
+    the service resumed the data directory's unfinished studies (a second executor on them),
+    then printed uvicorn's 'ERROR: [Errno 98] error while attempting to bind on address' and
+    exited 3. It is now one line naming the port and the way out, exit 2, before any start."""
+    import socket
+
+    import beltstudy.service.api.app as app_module
+
+    def no_app(*_a, **_k):
+        raise AssertionError("the service started although its port is in use")
+
+    monkeypatch.setattr(app_module, "create_app", no_app)
+    monkeypatch.setenv("BELTSTUDY_DATA_DIR", str(tmp_path / "data"))
+    monkeypatch.setenv("BELTSTUDY_WARM_START", "false")
+    taken = socket.socket()
+    taken.bind(("127.0.0.1", 0))
+    taken.listen()
+    port = taken.getsockname()[1]
+    try:
+        code = cli.main(["serve", "--port", str(port)])
+    finally:
+        taken.close()
+    err = capsys.readouterr().err.strip()
+    assert code == 2
+    assert err == (f"error: --port {port}: 127.0.0.1:{port} is already in use (another "
+                   "beltstudy serve, or another program); stop it, or give another port "
+                   "with --port")
