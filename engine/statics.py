@@ -815,9 +815,14 @@ def _sag_words(loop: Loop, strand: str, sag: float, limit: float, j: int, t_low:
     would avoid it. ``sag`` and ``limit`` are ratios h/S [-], ``t_low`` the span's lower
     tension [N] (at or below zero: the belt is slack there, and its sag is a floor's)."""
     need = float(loop.sag_w_n[j]) / limit
-    return (f"sag on the {strand} strand {sag * 100:.2f} % exceeds sag_limit_pct.{strand} = "
-            f"{limit * 100:.2f} % (tension {t_low / 1e3:.3g} kN "
-            f"{place_words(loop, float(loop.s_end_m[j]))}); {up3(need / 1e3):g} kN there keeps "
+    where = place_words(loop, float(loop.s_end_m[j]))
+    if t_low <= 0.0:  # w / max(T, 1 N) is a number, not a sag: the strand lies slack there
+        head = (f"the {strand} strand is slack (tension {t_low / 1e3:.3g} kN {where}): its sag "
+                f"there has no bound, far beyond sag_limit_pct.{strand} = {limit * 100:.2f} %")
+    else:
+        head = (f"sag on the {strand} strand {sag * 100:.2f} % exceeds sag_limit_pct.{strand} "
+                f"= {limit * 100:.2f} % (tension {t_low / 1e3:.3g} kN {where})")
+    return (f"{head}; {up3(need / 1e3):g} kN there keeps "
             f"it within (the sag goes as 1 / T), so the take-up must hold at least "
             f"{up3((need - t_low) / 1e3):g} kN more per strand; that, closer idlers "
             f"(idlers.{strand}.spacing_m) or a higher sag limit would avoid it")
