@@ -103,6 +103,28 @@ class Compound:
         return math.exp(2.0 * _LN10 * self.loss_peak * self.loss_width_dec)
 
 
+def glass_note(compound_id: str, temperature_c: float, model: str) -> str:
+    """The note of a run of a model that reads the cover rubber (``model``: nonlin, visco)
+    colder than the cover compound's glass transition T_g (engine/data/compounds.csv, PHYSICS
+    section 3): the cover is glassy there, its loss peak at the idler contact's frequency lies
+    a few kelvin above T_g, so the indentation loss falls the colder it gets (a glassy cover
+    barely indents) while the cover itself is brittle, out of the range a rubber cover serves
+    in. "" at or above T_g. Names the catalogue compounds whose T_g lies
+    below ``temperature_c`` (``belt.compound``)."""
+    comp = compound(compound_id)
+    if float(temperature_c) >= comp.tg_c:
+        return ""
+    colder = [f"{cid} (T_g {float(r['tg_c']):g} C)" for cid, r in catalog.compounds().items()
+              if float(r["tg_c"]) < float(temperature_c)]
+    way = (f"a compound rubbery there, belt.compound: {' or '.join(colder)}" if colder
+           else "no catalogue compound is rubbery there; a compound of the maker's, with its "
+                "measured master curve")
+    return (f"note: at {float(temperature_c):g} C the {comp.id} cover is below its glass "
+            f"transition (T_g {comp.tg_c:g} C, engine/data/compounds.csv): it is glassy, so "
+            f"{model}'s indentation loss has passed its peak and falls the colder it gets, "
+            f"and a glassy cover is brittle: {way}")
+
+
 @cache
 def compound(compound_id: str) -> Compound:
     """The catalogue compound ``compound_id`` (InputError listing the valid ids if unknown)."""

@@ -47,6 +47,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from beltstudy.engine import rubber
 from beltstudy.engine.capacity import capacity as capacity_check
 from beltstudy.engine.checks import holding_warning, input_notes, runback_note
 from beltstudy.engine.checks import steady_checks as design_checks
@@ -770,13 +771,15 @@ def _summarise(res: SteadyResult, drives, hs_adm, bounds, shortfall_n: float,
     res.status = "warning" if warnings else "ok"
     # a note does not make a warning (as the transient's notes, "note: ..." after them)
     note = temperature_note(get_model(res.model), res.temperature_c, res.params_given)
+    glassy = (rubber.glass_note(res.law.info["compound"], res.temperature_c, res.model)
+              if "compound" in res.law.info else "")
     runback = runback_note(conv, loop, friction_n)
     # inputs read beyond the tables or in an unusual sense (idler rows, loading speed, ...)
     given = input_notes(conv, loop, comps.get("feed", 0.0) * 1e3,
                         res.law.info.get("c_factor"))
     start = start_time_note(conv, loop, res.te_n)
-    res.message = "; ".join(warnings + [n for n in (note, res.range_note, runback, start,
-                                                    *given) if n])
+    res.message = "; ".join(warnings + [n for n in (note, glassy, res.range_note, runback,
+                                                    start, *given) if n])
     res.summary["status"] = res.status
     res.summary["message"] = res.message
 
