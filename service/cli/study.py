@@ -266,8 +266,16 @@ def cmd_submit(args) -> int:
         if not args.wait:
             return 0
         st = _poll(lambda: client.status(st["id"]), ProgressBar())
-        print(format_status(st))
+        _print_final(st)
     return 0 if st["state"] == "done" else 1
+
+
+def _print_final(st: dict) -> None:
+    """The study's status line and, as ``status ID`` prints it, its message: the reason
+    of a failed study (no Dask worker, ...) and what to do."""
+    print(format_status(st))
+    if st.get("message"):
+        print(f"  {st['message']}")
 
 
 def _runs_text(st: dict) -> str:
@@ -306,7 +314,7 @@ def cmd_run(args) -> int:
         st = service.wait(st["id"], progress=ProgressBar())
     finally:
         service.close()
-    print(format_status(st))
+    _print_final(st)
     return 0 if st["state"] == "done" else 1
 
 

@@ -353,3 +353,43 @@ def test_a_study_id_as_typed_reaches_only_the_study_routes(typed):
     assert len(seen) == 6 and all(p.startswith("/studies/") for p in seen), seen
     assert {p.split("/")[2] for p in seen} == {
         quote(typed, safe="") if typed != ".." else "%2E%2E"}
+
+
+def test_submit_wait_of_a_failed_study_prints_why(monkeypatch, capsys):
+    """`beltstudy submit STUDY --wait` against a service whose Dask scheduler is gone ended
+    on 'bd32af557a4b12b7  power-vs-temperature  failed  0/85 ...' and exit 1, without the
+    study's message ('no Dask worker could start in 12 s: ...; submit the study again once
+    Dask works'), which `beltstudy status ID` prints. The message now follows the line."""
+    from pathlib import Path
+
+    from beltstudy.service.cli import study
+
+    why = ("no Dask worker could start in 12 s: OSError: Timed out trying to connect to "
+           "tcp://127.0.0.1:8799 after 5 s; its finished runs are kept: submit the study "
+           "again once Dask works and it goes on")
+    failed = {"id": "bd32af557a4b12b7", "name": "power-vs-temperature", "state": "failed",
+              "total": 85, "done": 0, "failed": 0, "elapsed_s": 0.0, "eta_s": None,
+              "message": why, "status_url": "/studies/bd32af557a4b12b7"}
+
+    class Client:
+        url = "http://127.0.0.1:8000"
+
+        def __enter__(self):
+            return self
+
+        def __exit__(self, *exc):
+            return False
+
+        def submit(self, body):
+            return dict(failed, state="queued", message=""), True
+
+        def status(self, sid):
+            return failed
+
+    monkeypatch.setattr(study, "_client", lambda args: Client())
+    root = Path(__file__).resolve().parents[2]
+    code = main(["submit", str(root / "studies" / "power-vs-temperature.yaml"), "--wait"])
+    out = capsys.readouterr().out.splitlines()
+    assert code == 1
+    assert out[-2].startswith("bd32af557a4b12b7  power-vs-temperature") and "failed" in out[-2]
+    assert out[-1] == f"  {why}"
