@@ -28,6 +28,7 @@ from beltstudy.engine.dynamics.model import check_scenario
 from beltstudy.engine.dynamics.simulate import (
     _or,
     heavier_takeup,
+    slip_levers,
     slip_words,
     span_sag_pct,
     start_levers,
@@ -551,18 +552,19 @@ def _drop_unfound(system, tr, messages: list[str], phase: str, gravity: bool, tu
     if phase == "start":
         lever_t, not_t, short_t = ("a longer start (start.time_s)",
                                    f"no start up to {START_MAX:g} x this one", "a longer start")
-        spans = (("start", "start"), ("start", "running"), ("start", "stop"))
+        spans = (("start", "start"), ("start", "running"), ("start", "stop"),
+                 ("start", "stop", True))
         rerun = "rerunning the start"
     else:
         lever_t, not_t, short_t = ("a longer stop (stop.time_s)",
                                    f"no stop.time_s up to {STOP_MAX:g} x this one",
                                    "a longer stop")
-        spans = (("stop", "stop"), ("running", "stop"), ("start", "stop"))
+        spans = (("stop", "stop"), ("running", "stop"), ("start", "stop"),
+                 ("running", "stop", True), ("start", "stop", True))
         rerun = "rerunning the cycle"
-    for first_last in spans:
-        when, fix = slip_words(*first_last, system)
-        parts = [lever_tu] + (start_levers(system) if first_last[0] == "start" else []) + (
-            stop_levers(system, slip=True) if first_last[1] == "stop" else [])
+    for span in spans:  # (first phase, last phase[, unbroken])
+        when, fix = slip_words(*span[:2], system, *span[2:])
+        parts = slip_levers(*span[:2], system, *span[2:])
         gone, nots, short = [], [], []
         if not tu_found:
             gone.append(lever_tu)

@@ -61,6 +61,64 @@ def test_a_slip_message_names_its_phases_and_the_fixes_that_apply():
                                              f"{take_up} or {stop}")
 
 
+def test_a_slip_that_ran_on_into_the_stop_without_a_break_is_not_offered_a_softer_stop():
+    """A slip that began before the stop command and never stopped is the stop's only by
+    inheritance: a softer stop does not avoid it. With a break (it stuck again and slipped anew
+    in the stop) the stop's own slip keeps the stop lever."""
+    take_up = "a heavier take-up (more slack-side tension)"
+    start = "a longer start (start.time_s)"
+    stop = "a softer stop (stop time, brake force)"
+    assert slip_words("start", "stop", unbroken=True) == ("from the start into the stop",
+                                                          f"{take_up} or {start}")
+    assert slip_words("running", "stop", unbroken=True) == ("from steady running into the stop",
+                                                            take_up)
+    assert slip_words("stop", "stop", unbroken=True) == ("during the stop",
+                                                         f"{take_up} or {stop}")
+
+
+SCREW_LOW = {  # 300 m, 15 m lift; the screw take-up's 2 kN passes 0.61 of the running force
+    "name": "screw-low", "speed_m_s": 2.0,
+    "belt": {"type": "EP630/4", "width_m": 0.8, "top_cover_mm": 5, "bottom_cover_mm": 2},
+    "material": {"capacity_t_h": 200, "density_t_m3": 1.2},
+    "profile": [{"length_m": 300, "lift_m": 15}],
+    "idlers": {"carry": {"spacing_m": 1.2, "roll_diameter_m": 0.127, "rolls": 3,
+                         "trough_deg": 35, "cema_class": "C"},
+               "return": {"spacing_m": 3.0, "roll_diameter_m": 0.127, "rolls": 1,
+                          "cema_class": "C"}},
+    "drives": [{"position": "head", "wrap_deg": 200, "friction": 0.35, "share": 1.0,
+                "pulley_diameter_m": 0.5, "inertia_kg_m2": 30, "rated_power_kw": 75,
+                "torque_limit": 1.5}],
+    "takeup": {"type": "fixed", "position": "tail", "pretension_kn": 2},
+    "accessories": {"head_kn": 0.0, "tail_kn": 0.0},
+}
+
+
+def test_a_drive_slipping_from_the_start_to_past_the_stop_command_is_told_the_take_up():
+    """By hand: e^(mu theta) = e^(0.35 x 200 deg) = 3.39; the 2 kN pretension with the slack
+    side's share of the running force cannot pass the drive's Te (slip margin 0.61 running),
+    so the pulley slips from the start on and is still slipping at the stop command. The
+    run is told the take-up (and the start), not a controlled stop."""
+    from beltstudy.engine.conveyor import parse_conveyor
+    from beltstudy.engine.dynamics import DynamicsOptions, build_system, simulate
+    from beltstudy.engine.statics import solve_steady
+
+    conv = parse_conveyor(SCREW_LOW)
+    assert math.exp(0.35 * math.radians(200)) == pytest.approx(3.39, abs=5e-3)
+    scn = Scenario(run_s=30, elements=60)
+    st = solve_steady(conv, model="din", load=scn.load, n_elements=60)
+    sys_ = build_system(conv, scn, st, DynamicsOptions())
+    res = simulate(sys_, steady_summary=st.summary, conveyor=conv)
+    slip = [w for w in res.warnings if w.startswith("drive 1 (head) slipped on its pulley")]
+    assert slip, res.warnings
+    m = re.search(r"from the start into the stop: from t = ([\d.]+) to ([\d.]+) s, ([\d.]+) s "
+                  r"in all", slip[0])
+    assert m, slip[0]
+    t0, t1, total = map(float, m.groups())
+    assert total >= 0.99 * (t1 - t0) and t1 > sys_.stop_command_s
+    assert "higher take-up pretension" in slip[0]
+    assert "stop.mode: controlled" not in slip[0] and "softer stop" not in slip[0], slip[0]
+
+
 def test_a_start_slip_offers_the_levers_its_drives_have():
     """A dol start does not read start.time_s: its slip is cured by the coupling (a fluid
     coupling where there is none, a fill-controlled one after a constant-fill one, a slower
@@ -226,6 +284,22 @@ def test_a_decline_s_lighter_brake_keeps_its_holding_force():
     incline = _decline_brake_system(69.54e3)
     assert "a holdback or a holding brake set at rest" in _given_brake_words(
         incline, 5 * 6.996, 11.5, auto=True)
+
+
+def test_a_brake_set_by_holding_is_not_offered_a_longer_stop_time():
+    """A 300 m, 15 m lift incline's auto head brake was set by holding the loaded belt at rest
+    (4.905 kN, 1.2 x the 4.088 kN net gravity pull; the 60 s stop asked 0 kN), and its sag
+    words still offered 'a longer stop.time_s for an auto brake sized by it' beside the note
+    that the stop time does not change it. By hand on the decline stand-in: a 30 s rigid stop
+    of 177.6 t from 3.5 m/s against Te -22.9 kN asks about (177.6 t x 3.5 m/s) / 30 s +
+    22.9 kN = 43.6 kN, under the 83.45 kN holding force: the stop time sizes nothing."""
+    from beltstudy.engine.dynamics.simulate import stop_levers
+
+    held = stop_levers(_decline_brake_system(-69.54e3))
+    assert len(held) == 1 and "less brake force" in held[0] and "ramp_s" in held[0]
+    assert "stop.time_s" not in held[0], held
+    level = stop_levers(_decline_brake_system(0.0))  # nothing to hold: the stop time sizes it
+    assert "a longer stop.time_s for an auto brake sized by it" in level[0]
 
 
 def test_slack_levers_are_those_of_its_phase_and_of_its_take_up():
