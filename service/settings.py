@@ -27,7 +27,8 @@ from pydantic_settings import BaseSettings, SettingsConfigDict
 
 from beltstudy.service.errors import Invalid, file_reason, shown_path
 
-__all__ = ["Settings", "get_settings", "load_settings", "check_data_dir", "ENV_PREFIX"]
+__all__ = ["Settings", "get_settings", "load_settings", "check_data_dir", "ENV_PREFIX",
+           "unknown_variables"]
 
 ENV_PREFIX = "BELTSTUDY_"
 
@@ -159,3 +160,26 @@ def check_data_dir(path: str | os.PathLike, *, write: bool = True) -> Path:
 def get_settings() -> Settings:
     """The process-wide settings (read once from the environment)."""
     return load_settings()
+
+
+#: Variables of the prefix that are not settings but are read elsewhere (the CLI's service
+#: address).
+OTHER_VARIABLES = ("URL",)
+
+
+def unknown_variables(environ=None) -> list[str]:
+    """A line for each ``BELTSTUDY_*`` variable in the environment that no part of beltstudy
+    reads (a misspelt setting is otherwise ignored in silence), with the nearest name."""
+    import difflib
+
+    environ = os.environ if environ is None else environ
+    known = [f"{ENV_PREFIX}{name.upper()}" for name in Settings.model_fields]
+    known += [f"{ENV_PREFIX}{name}" for name in OTHER_VARIABLES]
+    lines = []
+    for name in sorted(environ):
+        if not name.upper().startswith(ENV_PREFIX) or name.upper() in known:
+            continue
+        near = difflib.get_close_matches(name.upper(), known, n=1, cutoff=0.6)
+        hint = f"; did you mean {near[0]}?" if near else f"; the settings are {', '.join(known)}"
+        lines.append(f"{name}: not a beltstudy setting, ignored{hint}")
+    return lines

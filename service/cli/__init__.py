@@ -15,6 +15,7 @@ import sys
 
 from beltstudy.engine import InputError
 from beltstudy.service.errors import ServiceError, file_problem
+from beltstudy.service.settings import unknown_variables
 
 #: Sub-command modules, in the order they appear in ``--help``.
 COMMAND_MODULES = ("static", "sweep", "simulate", "study", "calibrate")
@@ -68,6 +69,8 @@ def main(argv: list[str] | None = None) -> int:
     if not getattr(args, "func", None):
         parser.print_help()
         return 2
+    for line in unknown_variables():  # a misspelt BELTSTUDY_ setting, else ignored in silence
+        print(f"warning: {line}", file=sys.stderr)
     try:
         code = args.func(args)
     except InputError as exc:

@@ -313,3 +313,17 @@ def test_serve_on_a_port_in_use_is_one_line_before_the_service_starts(monkeypatc
     assert err == (f"error: --port {port}: 127.0.0.1:{port} is already in use (another "
                    "beltstudy serve, or another program); stop it, or give another port "
                    "with --port")
+
+
+def test_a_misspelt_setting_in_the_environment_is_named(monkeypatch, capsys, tmp_path):
+    """`BELTSTUDY_DATA_DIRR=/tmp/x beltstudy status` (one R too many) read ./data and said
+    nothing: pydantic-settings ignores unknown variables. Each BELTSTUDY_ variable that no
+    part of beltstudy reads is now a warning line naming it and the nearest setting."""
+    monkeypatch.setenv("BELTSTUDY_DATA_DIRR", str(tmp_path / "x"))
+    monkeypatch.setenv("BELTSTUDY_URL", "http://127.0.0.1:1")  # read by the CLI: no warning
+    _raising(monkeypatch, NotFound("study 'x' not found"))
+    assert cli.main([]) == 2
+    err = capsys.readouterr().err.splitlines()
+    assert err[0] == ("warning: BELTSTUDY_DATA_DIRR: not a beltstudy setting, ignored; did "
+                      "you mean BELTSTUDY_DATA_DIR?")
+    assert err[1:] == ["error: study 'x' not found"]
