@@ -175,8 +175,15 @@ def conveyor_from_path(ref: str, base_dir: Path | None, root: Path | None) -> tu
                 # a near name in the folder the path names (slope-5pct.yml for .yaml)
                 near = (_nearest_file(path.name, path.parent, recursive=False)
                         if path.parent.is_dir() else "")
-                raise Invalid(f"conveyor: file '{shown_path(path)}' not found"
-                              + _did_you_mean(shown_path(path.parent / near) if near else ""))
+                if near:
+                    raise Invalid(f"conveyor: file '{shown_path(path)}' not found"
+                                  + _did_you_mean(shown_path(path.parent / near)))
+                # a study file copied out of studies/ keeps its 'conveyors/...' path: say
+                # where a conveyor path is read from
+                folder = shown_path((base_dir or Path.cwd()).absolute())
+                raise Invalid(f"conveyor: file '{shown_path(path)}' not found (a conveyor "
+                              f"path is read from the study file's folder, {folder}); give "
+                              "the path from there, or the conveyor inline")
         data = load_mapping(path, what=f"conveyor: {shown_path(ref)}")
         expect_kind(data, "conveyor", f"conveyor: {shown_path(ref)}")
         return data, ref

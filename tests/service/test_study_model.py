@@ -486,6 +486,19 @@ def test_a_local_conveyor_path_that_is_not_there_names_the_file_beside_it(make_s
     assert str(exc.value).endswith(f"not found; did you mean '{tmp_path}/belts/short.yaml'?")
 
 
+def test_a_study_copied_out_of_studies_says_where_its_conveyor_path_is_read(make_study,
+                                                                           tmp_path):
+    """`beltstudy submit my/typo.yaml`, a copy of a study of studies/ (conveyor:
+    conveyors/slope-5pct.yaml), said only "conveyor: file 'my/conveyors/slope-5pct.yaml' not
+    found". It now says a conveyor path is read from the study file's folder, and the fix."""
+    with pytest.raises(Invalid) as exc:
+        resolve_study(make_study(conveyor="conveyors/slope-5pct.yaml"), base_dir=tmp_path)
+    assert str(exc.value) == (
+        f"conveyor: file '{tmp_path}/conveyors/slope-5pct.yaml' not found (a conveyor path is "
+        f"read from the study file's folder, {tmp_path}); give the path from there, or the "
+        "conveyor inline")
+
+
 def test_wrong_types_and_unknown_keys_name_the_field(make_study):
     with pytest.raises(Invalid, match=r'dynamics: "sometimes" is not of type "boolean"'):
         resolve_study(make_study(dynamics="sometimes"))
