@@ -23,7 +23,6 @@ from urllib.parse import parse_qsl, unquote
 
 from fastapi import Depends, FastAPI, Request
 from fastapi.exceptions import RequestValidationError
-from fastapi.openapi.docs import get_swagger_ui_html
 from fastapi.responses import HTMLResponse, JSONResponse
 from pydantic import BaseModel, ValidationError
 from starlette.exceptions import HTTPException as StarletteHTTPException
@@ -33,6 +32,7 @@ from starlette.routing import Match
 from beltstudy import engine
 from beltstudy.engine import InputError
 from beltstudy.engine.conveyor import nearest_word
+from beltstudy.service.api.apidoc import API_DOC_CSP, api_reference_html
 from beltstudy.service.api.deps import require_token
 from beltstudy.service.door.messages import describe
 from beltstudy.service.door.openapi import install as install_openapi
@@ -301,7 +301,8 @@ def create_app(settings: Settings | None = None, service: StudyService | None = 
 
 
 def _install_docs(app: FastAPI) -> None:
-    """``/openapi.json`` and ``/docs`` (Swagger UI), both needing the token when one is set."""
+    """``/openapi.json`` and ``/docs`` (the routes from it on one page, service/api/apidoc.py),
+    both needing the token when one is set."""
 
     @app.get("/openapi.json", include_in_schema=False, dependencies=[Depends(require_token)])
     def openapi_json() -> JSONResponse:
@@ -309,4 +310,7 @@ def _install_docs(app: FastAPI) -> None:
 
     @app.get("/docs", include_in_schema=False, dependencies=[Depends(require_token)])
     def docs() -> HTMLResponse:
-        return get_swagger_ui_html(openapi_url="/openapi.json", title="beltstudy API")
+        # not FastAPI's Swagger UI: it loads from a CDN, a blank page without internet
+        return HTMLResponse(api_reference_html(app.openapi()),
+                            headers={"Content-Security-Policy": API_DOC_CSP,
+                                     "X-Content-Type-Options": "nosniff"})
