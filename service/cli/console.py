@@ -53,7 +53,9 @@ class ProgressBar:
             f"{format_duration(st.get('eta_s'))} left  ({st['state']})"
         )
         message = st.get("message") or ""
-        if st["state"] == "queued" and message:  # what the study waits for
+        # what the study waits for: Dask starting or compiling (queued), or a scheduler lost
+        # mid-study ('waiting for Dask: ... start workers with ...', running)
+        if st["state"] in ("queued", "running") and message:
             line += "  " + (COMPILE_LINE if COMPILE_LINE in message else message)
         return line
 

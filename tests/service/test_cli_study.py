@@ -393,3 +393,18 @@ def test_submit_wait_of_a_failed_study_prints_why(monkeypatch, capsys):
     assert code == 1
     assert out[-2].startswith("bd32af557a4b12b7  power-vs-temperature") and "failed" in out[-2]
     assert out[-1] == f"  {why}"
+
+
+def test_the_progress_line_of_a_running_study_waiting_for_dask_says_so():
+    """A 512-run study whose scheduler was killed at 168 runs showed '168/512 runs  0 failed
+    00:41 left  (running)' for 25 s, the time left growing, while the study's message said
+    'waiting for Dask: ... lost the Dask scheduler; reconnecting': the bar showed a message
+    only while queued. It shows it while running too."""
+    why = ("waiting for Dask: Dask on tcp://127.0.0.1:8786 is not ready: lost the Dask "
+           "scheduler; reconnecting")
+    line = ProgressBar().render({"state": "running", "total": 512, "done": 168, "failed": 0,
+                                 "eta_s": 41.0, "message": why})
+    assert line.endswith("(running)  " + why)
+    quiet = ProgressBar().render({"state": "running", "total": 512, "done": 168, "failed": 0,
+                                  "eta_s": 41.0, "message": ""})
+    assert quiet.endswith("(running)")
