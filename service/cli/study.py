@@ -210,7 +210,7 @@ def cmd_serve(args) -> int:
     # the port is tried before the app starts: uvicorn binds only after the app's startup,
     # which resumes the data directory's unfinished studies (and may start a LocalCluster),
     # and a port in use was then uvicorn's '[Errno 98] ...' and exit status 3
-    listening_socket(host, args.port).close()
+    check_port(host, args.port)
     _service_log()
     app = create_app(settings.model_copy(update={"host": host}))
     uvicorn.run(
@@ -223,36 +223,42 @@ def cmd_serve(args) -> int:
     return 0
 
 
-def listening_socket(host: str, port: int):
-    """A socket bound to ``host:port`` as uvicorn binds it, or a :class:`ServiceError`
-    naming the address and the way out (a port in use, an address this machine lacks)."""
+def check_port(host: str, port: int) -> None:
+    """Bind ``host:port`` as uvicorn will (every address the name has, as asyncio's
+    ``create_server`` does) and let go, or a :class:`ServiceError` naming the address and the
+    way out (a port in use, an address this machine lacks)."""
     import errno
     import socket
 
     try:
-        family = socket.getaddrinfo(host, port, type=socket.SOCK_STREAM)[0][0]
+        infos = socket.getaddrinfo(host, port, type=socket.SOCK_STREAM,
+                                   flags=socket.AI_PASSIVE)
     except socket.gaierror as exc:
         raise ServiceError(
             f"--host {host}: no such address ({exc.strerror}); give an "
             "address such as 127.0.0.1 (--host or BELTSTUDY_HOST)"
         ) from None
-    sock = socket.socket(family, socket.SOCK_STREAM)
-    sock.setsockopt(socket.SOL_SOCKET, socket.SO_REUSEADDR, 1)
-    try:
-        sock.bind((host, port))
-    except OSError as exc:
-        sock.close()
-        where = f"[{host}]:{port}" if ":" in host else f"{host}:{port}"
-        if exc.errno == errno.EADDRINUSE:
-            raise ServiceError(
-                f"--port {port}: {where} is already in use (another beltstudy serve, or "
-                "another program); stop it, or give another port with --port"
-            ) from None
-        raise ServiceError(
-            f"--host {host} --port {port}: cannot listen on {where} ({exc.strerror}); "
-            "give another address (--host or BELTSTUDY_HOST) or port (--port)"
-        ) from None
-    return sock
+    for family, kind, proto, _, sockaddr in dict.fromkeys(infos):
+        where = (f"[{sockaddr[0]}]:{port}" if family == socket.AF_INET6
+                 else f"{sockaddr[0]}:{port}")
+        with socket.socket(family, kind, proto) as sock:
+            sock.setsockopt(socket.SOL_SOCKET, socket.SO_REUSEADDR, 1)
+            if family == socket.AF_INET6:
+                sock.setsockopt(socket.IPPROTO_IPV6, socket.IPV6_V6ONLY, 1)
+            try:
+                sock.bind(sockaddr)
+            except OSError as exc:
+                if exc.errno == errno.EADDRINUSE:
+                    raise ServiceError(
+                        f"--port {port}: {where} is already in use (another beltstudy "
+                        "serve, or another program); stop it, or give another port with "
+                        "--port"
+                    ) from None
+                raise ServiceError(
+                    f"--host {host} --port {port}: cannot listen on {where} "
+                    f"({exc.strerror}); give another address (--host or BELTSTUDY_HOST) or "
+                    "port (--port)"
+                ) from None
 
 
 def cmd_submit(args) -> int:
