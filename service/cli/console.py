@@ -33,14 +33,20 @@ def format_status(st: dict) -> str:
 class ProgressBar:
     """``[#####.....] 12/40 runs  1 failed  00:35 left`` on one terminal line.
 
-    Redraws in place on a terminal; elsewhere prints a line at most every ``every_s`` seconds.
+    Redraws in place on a terminal; elsewhere (a log, CI) prints a line at most every
+    ``every_s`` seconds when the progress moved (runs done or failed, the state, the
+    message), and otherwise one every ``quiet_s`` seconds to show it is alive: the first
+    compile of the engine (minutes at 0 runs) printed the same line every 5 s, some 60 times.
     """
 
-    def __init__(self, stream: TextIO | None = None, width: int = 30, every_s: float = 5.0):
+    def __init__(self, stream: TextIO | None = None, width: int = 30, every_s: float = 5.0,
+                 quiet_s: float = 60.0):
         self.stream = stream or sys.stderr
         self.width = width
         self.every_s = every_s
+        self.quiet_s = quiet_s
         self._last = 0.0
+        self._said: tuple | None = None
         self._tty = getattr(self.stream, "isatty", lambda: False)()
 
     def render(self, st: dict) -> str:
@@ -65,10 +71,14 @@ class ProgressBar:
         if self._tty:
             self.stream.write("\r" + line + ("\n" if finished else ""))
             self.stream.flush()
-        elif finished or time.monotonic() - self._last >= self.every_s:
+            return
+        said = (st["done"], st["failed"], st["state"], st.get("message") or "")
+        waited = time.monotonic() - self._last
+        if finished or waited >= (self.every_s if said != self._said else self.quiet_s):
             self.stream.write(line + "\n")
             self.stream.flush()
             self._last = time.monotonic()
+            self._said = said
 
 
 def _num(value: Any, fmt: str = "{:.3f}") -> str:

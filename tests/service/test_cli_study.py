@@ -85,6 +85,35 @@ def test_user_mistakes_print_one_line_and_exit_2(env, capsys, tmp_path, make_stu
     assert not (env / "studies").exists() or not list((env / "studies").iterdir())
 
 
+def test_progress_in_a_log_prints_a_line_when_it_moves_and_else_once_a_minute(monkeypatch):
+    """Off a terminal (a log, CI, make run piped) the first compile held the study at 0 runs
+    for minutes and the bar printed the same line every 5 s. Now: a line when the runs done,
+    the failures, the state or the message moved (at most every 5 s), else one a minute."""
+    import io
+
+    from beltstudy.service.cli import console
+
+    clock = {"t": 1000.0}
+    monkeypatch.setattr(console.time, "monotonic", lambda: clock["t"])
+    out = io.StringIO()
+    bar = ProgressBar(stream=out)
+    waiting = {"total": 85, "done": 0, "failed": 0, "eta_s": None, "state": "queued",
+               "message": "compiling the transient engine (first run only)"}
+    for _ in range(60):  # five minutes of polls every 5 s, nothing moving
+        bar(waiting)
+        clock["t"] += 5.0
+    assert len(out.getvalue().splitlines()) == 5  # at 0 s and each minute after
+    bar({**waiting, "state": "running", "done": 3})  # moved: said at once (5 s since the last)
+    clock["t"] += 1.0
+    bar({**waiting, "state": "running", "done": 9})  # moved, but within 5 s: not yet
+    clock["t"] += 5.0
+    bar({**waiting, "state": "running", "done": 12})
+    bar({**waiting, "state": "done", "done": 85})  # the end is always said
+    lines = out.getvalue().splitlines()
+    assert [ln.split("]")[1].split(" runs")[0].strip() for ln in lines[5:]] == [
+        "3/85", "12/85", "85/85"]
+
+
 def test_progress_bar_and_compare_table():
     bar = ProgressBar(stream=None)
     line = bar.render({"total": 40, "done": 10, "failed": 1, "eta_s": 95, "state": "running"})

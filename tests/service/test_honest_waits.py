@@ -74,7 +74,10 @@ def test_the_progress_line_says_what_a_queued_study_waits_for():
                      "compiling the transient engine (first run only)"}
     assert bar.render(st).endswith(f"(queued)  {COMPILE_LINE}")
     assert bar.render({**st, "message": ""}).endswith("(queued)")
-    assert bar.render({**st, "state": "running"}).endswith("(running)")
+    # a running study's message is cleared when it runs (StudyJob._execute) and set again only
+    # while it waits for Dask (a scheduler lost, workers compiling again): then said too
+    assert bar.render({**st, "state": "running"}).endswith(f"(running)  {COMPILE_LINE}")
+    assert bar.render({**st, "state": "running", "message": ""}).endswith("(running)")
 
 
 def test_a_command_knows_before_the_run_whether_the_engine_compiles(tmp_path):
