@@ -61,3 +61,30 @@ def test_a_slip_free_take_up_that_breaks_the_safety_factor_says_so():
     heavier = parse_conveyor({**STEEP, "takeup": {**STEEP["takeup"], "mass_kg": m}})
     r = run_one(heavier, scn, model="din").summary
     assert r["safety_factor"] == pytest.approx(sf, rel=1e-6)
+
+
+def test_a_safety_verdict_within_the_take_up_search_tolerance_says_marginal():
+    """The remedy's take-up is found to 2 % of itself (engine/remedy.py REL_TOL): the least
+    slip-free take-up lies between 0.98 x the figure and the figure. Rating 1 100 kN, T_max
+    100 kN on 3 000 kg. A figure of 5 100 kg: T_max + 2 100 x 9.81 / 2 = 110.30 kN, S = 9.973
+    below 10; 2 % less, 4 998 kg: 100 + 1 998 x 9.81 / 2 = 109.80 kN, S = 10.018 at or above
+    10, so the verdict is within the search's error of the limit: marginal (a 250 m dol
+    incline said 'falls to about 9.99, below the minimum 10.00' with 4,972 kg on 202 elements
+    and nothing with 4,937 kg on 406). A figure of 5 300 kg: S 9.885, and 5 194 kg gives
+    110.76 kN, S 9.931, still below: no marginal word."""
+    s = {"t_max_kn": 100.0, "belt_rating_kn": 1100.0, "takeup_mass_kg": 3000.0}
+    w = _takeup_safety_words(s, 5100.0, True, 10.0)
+    assert w == (" lifts the largest running tension by 10.3 kN, to 110.3 kN: the belt "
+                 "safety factor falls to about 9.97, below the minimum 10.00 (marginal: the "
+                 "take-up is found to 2 %, and 2 % less, 4,998 kg, keeps 10.02: the verdict "
+                 "may flip with the mesh or the step)")
+    plain = _takeup_safety_words(s, 5300.0, True, 10.0)
+    assert "falls to about 9.88, below the minimum 10.00" in plain
+    assert "marginal" not in plain
+    # a fixed take-up: 31 kN per strand on 20 kN, T_max 111 kN, S 9.910; 2 % less, 30.38 kN:
+    # 110.38 kN, S 9.966, still below 10; a 30.5 kN figure: 110.5 kN, S 9.955; 29.89 kN:
+    # 109.89 kN, S 10.010: marginal
+    f = {"t_max_kn": 100.0, "belt_rating_kn": 1100.0, "takeup_tension_kn": 20.0}
+    assert "marginal" not in _takeup_safety_words(f, 31.0, False, 10.0)
+    assert ("(marginal: the pretension is found to 2 %, and 2 % less, 29.89 kN, keeps 10.01"
+            in _takeup_safety_words(f, 30.5, False, 10.0))
