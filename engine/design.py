@@ -453,10 +453,15 @@ def auto_sizes(conveyor: Conveyor, scenario: Scenario, *, model: str,
                                                   moving_mass_kg(conveyor, steady),
                                                   float(steady.te_n),
                                                   float(steady.loop.gravity_n.sum()), steady)
+    # a given take-up as given (the steady solve keeps its mass), not as its round trip
+    # through the tension: 2 (3748.2 G / 2) / G is 3748.1999999999994, and a row that says so
+    # is not the conveyor the run used
+    given_kn = (float(tu.pretension_kn)
+                if tu.type != "gravity" and tu.pretension_kn != "auto" else None)
     return {
-        "takeup_mass_kg": (float(2.0 * steady.takeup_tension_n / G)
-                           if tu.type == "gravity" else None),
-        "takeup_pretension_kn": float(steady.takeup_tension_n) / 1e3,
+        "takeup_mass_kg": steady.takeup_mass_kg if tu.type == "gravity" else None,
+        "takeup_pretension_kn": (given_kn if given_kn is not None
+                                 else float(steady.takeup_tension_n) / 1e3),
         "takeup_governed_by": steady.takeup_governed_by,
         "drive_rated_power_kw": rated,
         "drive_rated_power_governed_by": rated_gov,

@@ -359,3 +359,28 @@ def test_auto_holding_brakes_are_shared_by_their_pulleys_grip():
     assert ("drive 1's pulley (head) (unbraked, its slack side already falls so far that it "
             f"passes no brake force against the {hold / 2:.4g} kN set on it)") in note
     assert "at most 0 kN" not in note
+
+
+def test_a_given_takeup_is_reported_as_given_not_through_its_tension():
+    """A study writes its design's take-up into each run's conveyor (3748.2 kg) and its row's
+    takeup_mass_kg must be that conveyor's: the summary said 2 (3748.2 G / 2) / G =
+    3748.1999999999994 kg, and a user who wrote the row's figure back into the conveyor got
+    other transient figures (last bits, up to 7e-11 relative in the error bars). A fixed
+    take-up's pretension_kn is reported as given the same way (10.0071 kN x 1e3 / 1e3 is not
+    10.0071)."""
+    assert 2.0 * (3748.2 * G / 2.0) / G != 3748.2  # the round trip this guards against
+    assert 10.0071 * 1e3 / 1e3 != 10.0071
+    data = hand_conveyor_dict()
+    data["takeup"] = {**data["takeup"], "type": "gravity", "mass_kg": 3748.2}
+    data["takeup"].pop("pretension_kn", None)
+    conv = parse_conveyor(data)
+    s = run_one(conv, Scenario(), model="din", dynamics=False).summary
+    assert s["takeup_mass_kg"] == 3748.2
+    assert auto_sizes(conv, Scenario(), model="din")["takeup_mass_kg"] == 3748.2
+
+    data["takeup"] = {k: v for k, v in data["takeup"].items() if k != "mass_kg"}
+    data["takeup"].update(type="fixed", pretension_kn=10.0071)
+    conv = parse_conveyor(data)
+    s = run_one(conv, Scenario(), model="din", dynamics=False).summary
+    assert s["takeup_pretension_kn"] == 10.0071
+    assert s["takeup_mass_kg"] is None
