@@ -280,12 +280,18 @@ def transient_checks(names, drv, rated_n, limit_n, vfd, speed_m_s: float, start_
         in_stop = over_stop > over_s - over_stop  # the larger part of the overload's time
         split = (f" ({over_s - over_stop:.1f} s in the start and run, {over_stop:.1f} s in the "
                  "stop)" if over_stop > 0.0 else "")
-        said = (f"{name} was above its rated force ({rated / 1e3:.4g} kN) for {over_s:.1f} s "
-                f"of the cycle{split}, at most {pct:.0f} % over its rating ({fmax / 1e3:.4g} kN "
-                f"at t = {float(d['fmax_t']):.1f} s)")
-        if at_limit:
-            said += (f", at its torque limit ({float(limit_n[k]) / 1e3:.4g} kN) for "
-                     f"{lim_s:.1f} s")
+        if fmax > rated:
+            said = (f"{name} was above its rated force ({rated / 1e3:.4g} kN) for {over_s:.1f} s "
+                    f"of the cycle{split}, at most {pct:.0f} % over its rating "
+                    f"({fmax / 1e3:.4g} kN at t = {float(d['fmax_t']):.1f} s)")
+            if at_limit:
+                said += (f", at its torque limit ({float(limit_n[k]) / 1e3:.4g} kN) for "
+                         f"{lim_s:.1f} s")
+        else:  # a torque limit below the rating: never above the rating, held at the limit
+            said = (f"{name} was held at its torque limit ({float(limit_n[k]) / 1e3:.4g} kN, "
+                    f"{100.0 * float(limit_n[k]) / rated:.0f} % of its rated force "
+                    f"{rated / 1e3:.4g} kN) for {lim_s:.1f} s of the cycle (first at t = "
+                    f"{float(d['fmax_t']):.1f} s)")
         if hot:
             said += (f"; its RMS force over the cycle, {rms / 1e3:.4g} kN, is above the "
                      "rating (the motor overheats when the cycle repeats)")

@@ -506,3 +506,20 @@ def test_figures_in_words():
     assert figures(17000.0, thousands=True) == "17,000"
     assert figures(0.35, thousands=True) == "0.35"
     assert figures(-0.2) == "-0.2" and figures(float("inf")) == "inf"
+
+
+def test_a_drive_held_at_a_torque_limit_below_its_rating_is_not_said_to_be_over_it():
+    """A regenerating drive on a decline with torque_limit 0.4: rated 8.334 kN (20.835 kW at
+    2.5 m/s), its limit 0.4 x 8.334 = 3.334 kN, held there for 12.7 s from t = 2 s and never
+    above the rating (over_s 0). The warning said 'was above its rated force (8.334 kN) for
+    0.0 s of the cycle, at most -60 % over its rating'; it now says the drive was held at its
+    torque limit, 3.334 / 8.334 = 40 % of its rated force, for 12.7 s."""
+    drv = _drive_result(fmax=3.334e3, fmax_t=2.0, over_s=0.0, lim_s=12.7,
+                        f2_int=3.334e3**2 * 12.7, rms_s=20.0)
+    _fields, warnings = transient_checks(["drive 1 (head)"], drv, [8.334e3], [3.334e3], [True],
+                                         2.5, 12.0, running_n=[-4.0e3])
+    (w,) = warnings
+    assert "over its rating" not in w and "above its rated force" not in w
+    assert w.startswith("drive 1 (head) was held at its torque limit (3.334 kN, 40 % of its "
+                        "rated force 8.334 kN) for 12.7 s of the cycle (first at t = 2.0 s)")
+    assert "a larger motor (more than" in w
