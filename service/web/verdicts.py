@@ -69,7 +69,9 @@ VERDICTS: tuple[Verdict, ...] = (
     # the engine warns beyond OVERLOAD_S_MAX (IEC 60034-1's 15 s of excess torque, docs/drives.md)
     Verdict("Drives", "time over rating, drive {i}", "drive{i}_overload_s", "max", "s",
             OVERLOAD_S_MAX),
-    Verdict("Drives", "RMS (thermal) force, drive {i}", "drive{i}_force_rms_kn", "max", "kN"),
+    # the engine warns where the RMS force is above the rated force P_N / v (docs/drives.md)
+    Verdict("Drives", "RMS (thermal) force, drive {i}", "drive{i}_force_rms_kn", "max", "kN",
+            "rated_force"),
     Verdict("Drives", "power at the drive pulleys, steady (all drives; regenerating < 0)",
             "power_kw", "max", "kW", "rated_at_pulleys", magnitude=True),
     Verdict("Drives", "largest drive power, transient (all drives)", "drive_power_max_kw", "max",
@@ -109,6 +111,10 @@ VERDICTS: tuple[Verdict, ...] = (
     Verdict("Take-up", "take-up travel, whole cycle", "takeup_travel_m", "max", "m", "travel"),
     Verdict("Take-up", "take-up travel, start", "takeup_travel_start_m", "max", "m", "travel"),
     Verdict("Take-up", "take-up travel, stop", "takeup_travel_stop_m", "max", "m", "travel"),
+    # a carriage that reached an end stop travelled no further than the stop let it: its
+    # travel is within the carriage travel, its impact speed is what says it hit
+    Verdict("Take-up", "carriage speed at an end stop", "takeup_endstop_speed_m_s", "max",
+            "m/s", 0.0),
     # stop
     Verdict("Stop", "brake force (all brakes)", "brake_force_kn", "max", "kN"),
     Verdict("Stop", "holdback force", "f_holdback_kn", "max", "kN"),
@@ -215,11 +221,19 @@ def _any_over(runs: pd.DataFrame, pattern: str, limit: float) -> pd.Series:
     return out
 
 
+#: The engine's words for a drive past its rating in the transient (engine/drives.py
+#: ``transient_checks``: above its rated force beyond OVERLOAD_S_MAX, at its torque limit, or
+#: an RMS force above the rating) and for a torque limit below the running force.
+_DRIVE_PAST_RATING = (r"above its rated force|at its torque limit|held at its torque limit"
+                      r"|motor overheats|cannot hold the belt")
+
+
 def _overloaded(runs: pd.DataFrame) -> pd.Series:
     msg = _message(runs).str.lower()
     out = (_any_over(runs, "drive{i}_utilisation", 1.0)
            | _any_over(runs, "drive{i}_overload_s", OVERLOAD_S_MAX)
-           | msg.str.contains("overload", regex=False) | msg.str.contains("short by", regex=False))
+           | msg.str.contains("overload", regex=False) | msg.str.contains("short by", regex=False)
+           | msg.str.contains(_DRIVE_PAST_RATING, regex=True))
     power, rated = numeric(runs, "power_kw"), numeric(runs, "rated_power_kw")
     if power is not None and rated is not None:  # steady power above the installed rating
         out |= (power > rated).fillna(False)
@@ -270,6 +284,18 @@ def _slack(runs: pd.DataFrame) -> pd.Series:
 #: A sag warning of the steady solution (``sag on the carry strand ...``) and of the transient
 #: (``transient sag on the carry strand ...``).
 _SAG = r"sag on the \w+ strand [\d.]+ % exceeds"
+
+
+def _end_stop(runs: pd.DataFrame) -> pd.Series:
+    """Runs whose take-up carriage reached an end stop: an impact speed above 0, no clearance
+    left (``takeup_endstop_gap_m`` 0) or the message saying so. Its travel column stays within
+    the carriage travel (the stop held it), so the travel verdict alone does not show it."""
+    out = (_any_over(runs, "takeup_endstop_speed_m_s", 0.0)
+           | _message(runs).str.contains("take-up carriage reached", regex=False))
+    gap = numeric(runs, "takeup_endstop_gap_m")
+    if gap is not None:
+        out |= (gap <= 0.0).fillna(False)
+    return out
 
 
 def _sagged(runs: pd.DataFrame, phase: str | None = None) -> pd.Series:
@@ -327,6 +353,9 @@ CAUSES: tuple[Cause, ...] = (
           ("drive{i}_slip_s", "drive{i}_slip_margin_min", "slip_margin", "slip_margin_start",
            "takeup_mass_kg"),
           r"slip"),
+    Cause("end_stop", "reached a take-up end stop", _end_stop,
+          ("takeup_endstop_speed_m_s", "takeup_travel_m"),
+          r"take-up carriage reached|end stop"),
     Cause("slack", "went slack", _slack, ("slack_max_m", "slack_duration_s", "t_min_dyn_kn"),
           r"slack"),
     Cause("sag", "sagged past its limit", _sagged, ("sag_max_pct", "sag_max_dyn_pct"), r"sag"),
@@ -376,8 +405,9 @@ def cause_groups(runs: pd.DataFrame) -> list[tuple[Cause, pd.DataFrame, list[str
 
 
 # ---------------------------------------------------------------------- verdict rows
-#: A named limit: ``runs -> (the limit per row [unit of the quantity] or None, words)``.
-Limit = Callable[[pd.DataFrame], tuple[pd.Series | None, str]]
+#: A named limit: ``(runs, **numbers) -> (the limit per row [unit of the quantity] or None,
+#: words)``; ``numbers`` the drive or pulley number of the verdict's column (``i="1"``).
+Limit = Callable[..., tuple[pd.Series | None, str]]
 
 
 def study_limits(study: dict, sf_min: float, sf_ratio: float,
@@ -392,16 +422,31 @@ def study_limits(study: dict, sf_min: float, sf_ratio: float,
     travel = (conv.get("takeup") or {}).get("travel_m") or 0.015 * length
     sf_dyn = sf_ratio * sf_min
 
-    def const(value: float, words: str) -> Limit:
-        return lambda runs: (pd.Series(float(value), index=runs.index), words)
+    def per_run(runs: pd.DataFrame, axis: str, value: float | None) -> pd.Series:
+        """``value`` for every run, or the run's own where a conveyor axis sets it (a
+        ``takeup.travel_m`` axis: each run is judged against its own carriage travel)."""
+        out = pd.Series(value, index=runs.index, dtype=float)
+        own = numeric(runs, axis)
+        return out if own is None else own.fillna(out)
+
+    def const(value: float, words: str, axis: str = "") -> Limit:
+        return lambda runs, **_: (per_run(runs, axis, value), words)
 
     def allow(sf: float, words: str) -> Limit:
-        def f(runs):
+        def f(runs, **_):
             rating = numeric(runs, "belt_rating_kn")
             return (None, "") if rating is None else (rating / sf, words)
         return f
 
-    def sag_limit(runs):
+    def rated_force(runs, i: str = "1", **_):
+        # a drive's rated force P_N / v at design speed, the engine's (docs/drives.md)
+        rated = numeric(runs, f"drive{i}_rated_power_kw")
+        speed = per_run(runs, "speed_m_s", conv.get("speed_m_s"))
+        if rated is None or not speed.notna().any():
+            return None, ""
+        return rated / speed, f"rated force drive{i}_rated_power_kw / speed"
+
+    def sag_limit(runs, **_):
         if carry is None or ret is None:
             return None, ""
         words = f"carry {carry:g} %, return {ret:g} %"
@@ -409,7 +454,7 @@ def study_limits(study: dict, sf_min: float, sf_ratio: float,
         # strands share their limit; else the runs' messages name the strand past its limit
         return (pd.Series(float(carry), index=runs.index) if carry == ret else None), words
 
-    def rated_at_pulleys(runs):
+    def rated_at_pulleys(runs, **_):
         # the motor power needed (efficiency included) is judged per drive where the runs
         # carry it; the power at the pulleys against the rating would disagree with it
         if _required_power_known(runs):
@@ -424,7 +469,8 @@ def study_limits(study: dict, sf_min: float, sf_ratio: float,
         "t_allow_steady": allow(sf_min, f"belt rating / {sf_min:.3g}"),
         "t_allow_dyn": allow(sf_dyn, f"belt rating / {sf_dyn:.3g}"),
         "sag": sag_limit,
-        "travel": const(travel, "carriage travel"),
+        "travel": const(travel, "carriage travel", "takeup.travel_m"),
+        "rated_force": rated_force,
     }
 
 
@@ -437,7 +483,7 @@ def _limits_of(v: Verdict, runs: pd.DataFrame, nums: dict[str, str], limits: dic
         return pd.Series(float(v.limit), index=runs.index), ""
     name = v.limit.format(**nums) if nums else v.limit
     if name in limits:
-        return limits[name](runs)
+        return limits[name](runs, **nums)
     return numeric(runs, name), name
 
 

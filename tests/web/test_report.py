@@ -491,3 +491,54 @@ def test_a_belt_that_never_got_going_is_no_stop_that_failed(web):
     assert "run <code>ns</code>" in stop_row and "a2" not in stop_row
     assert "2 of 6 runs did not stop" in stop_row  # ns and the run that ran away, of 8 less
     # the failed run and the belt that never got going
+
+
+def test_take_up_travel_is_judged_against_each_runs_own_travel_and_an_end_stop_is_named(web):
+    """A ``takeup.travel_m`` axis of 0.4 and 3 m: a carriage that moved 0.4428 m on 3 m of
+    travel is within it, one stopped at its 0.4 m end stop (travel 0.4 m, hitting at
+    0.148 m/s) is past it. The report judged every run against the file's travel (0.4 m):
+    'past the limit' for the 3 m runs that were within, nothing for the run that hit, and no
+    group named the end stop. Now the travel row counts none past (0.4428 < 3, 0.4 = 0.4), the
+    end-stop row counts the one run that hit, and section 2 lists it."""
+    travel = [3.0, 3.0, 0.4, 3.0, 3.0, 3.0, 3.0, 3.0]
+    moved = [0.4428, 0.3, 0.4, 0.3, 0.3, 0.3, np.nan, 0.3]
+    speed = [0.0, 0.0, 0.147784, 0.0, 0.0, 0.0, np.nan, 0.0]
+    runs = _runs(**{"takeup.travel_m": travel, "takeup_travel_m": moved,
+                    "takeup_endstop_speed_m_s": speed})
+    html = report_html(_doc(web), runs, {"state": "done", "done": 8, "total": 8})
+    verdicts = _section(html, 1)
+    row = re.search(r"<tr><td>take-up travel, whole cycle.*?</tr>", verdicts, re.S).group(0)
+    assert "within (7 runs)" in row and "past the limit" not in row
+    # governed by the run nearest its own travel (0.4 of 0.4 m), not the longest travel
+    assert "<code>ns</code>" in row and "the worst against its own limit" in row
+    row = re.search(r"<tr><td>carriage speed at an end stop.*?</tr>", verdicts, re.S).group(0)
+    assert "past the limit in 1 of 7 runs" in row and "<code>ns</code>" in row
+    causes = _section(html, 2)
+    assert "<b>1</b> of 8 runs reached a take-up end stop" in causes
+    assert "Reached a take-up end stop: 1 run" in causes
+
+
+def test_an_rms_force_above_the_rating_is_judged_and_overloads_the_drive(web):
+    """Rated 30 kW at 2.5 m/s is a rated force of 12 kN. A run whose RMS force is 13.2 kN
+    (the engine: 'its RMS force over the cycle, 13.2 kN, is above the rating (the motor
+    overheats when the cycle repeats)') with 14.8 s above the rating (below the 15 s of
+    OVERLOAD_S_MAX) and its utilisation 0.9: the report said 'no limit' for the RMS force and
+    left the run out of 'overloaded a drive'. Now the RMS row is judged against 12 kN and the
+    run is in the group."""
+    hot = ("drive 1 (head) was above its rated force (12 kN) for 14.8 s of the cycle, at most "
+           "40 % over its rating (16.8 kN at t = 7.9 s); its RMS force over the cycle, 13.2 kN, "
+           "is above the rating (the motor overheats when the cycle repeats)")
+    runs = _runs(drive1_force_rms_kn=[13.2, 8.0, 8.0, 8.0, 8.0, 8.0, np.nan, 8.0],
+                 drive1_overload_s=[14.8, 0.0, 0.0, 0.0, 0.0, 0.0, np.nan, 0.0],
+                 drive1_utilisation=[0.9, 0.3, 0.3, 0.3, 0.3, 0.3, np.nan, 0.3],
+                 drive1_power_required_kw=[27.0, 9.0, 9.0, 9.0, 9.0, 9.0, np.nan, 9.0],
+                 message=[hot, "", DID_NOT_STOP, "", SLIP, SLIP, "diverged", "ran away"],
+                 status=["warning", "ok", "warning", "ok", "warning", "warning", "failed",
+                         "warning"])
+    groups = {c.key: set(part["run_id"]) for c, part, _ in cause_groups(runs)}
+    assert "a1" in groups["overload"]
+    html = report_html(_doc(web), runs, {"state": "done", "done": 8, "total": 8})
+    row = re.search(r"<tr><td>RMS \(thermal\) force, drive 1.*?</tr>", _section(html, 1),
+                    re.S).group(0)
+    assert f"12{UNIT_SPACE}kN" in row and "past the limit in 1 of 7 runs" in row
+    assert "<code>a1</code>" in row
