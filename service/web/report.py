@@ -430,9 +430,11 @@ def _verdict_cell(r: dict) -> str:
     return f"\x01passes\x01within ({r['n']} runs)"
 
 
-def _verdicts_section(study: dict, runs: pd.DataFrame) -> str:
+def _verdicts_section(study: dict, runs: pd.DataFrame, bars: pd.DataFrame | None = None
+                      ) -> str:
     """The verdict table: every design quantity the runs carry, its worst value over the
-    finished runs, its limit, how many runs are past it and the run that governs it."""
+    finished runs, its limit, how many runs are past it and the run that governs it; where
+    the governing run is in the accuracy sample (``bars``), its value's error bar."""
     sf = _sf_min(study)
     words = ("the conveyor's minimum" if study["conveyor"].get("safety_factor_min")
              else "DIN 22101 minimum")
@@ -452,6 +454,11 @@ def _verdicts_section(study: dict, runs: pd.DataFrame) -> str:
                          _run_cell(r["row"], axes), ""])
             continue
         value = (_e(v.null_worst) if r["missing"] else _n(r["value"], 4, v.unit))
+        err = run_bars(bars, r["row"].get("run_id")).get(r["column"]) if not r["missing"] \
+            else None
+        if err is not None:
+            value += (f"<br><span class=muted>± {_num(err, 3, v.unit)} (the error bar of this "
+                      "sampled run, section 9)</span>")
         limit = (_n(r["limit"], 4, v.unit) if r["limit"] is not None else "")
         if r["limit_text"]:
             limit += (f"<br><span class=muted>{_e(r['limit_text'])}</span>" if limit
@@ -589,27 +596,88 @@ def _said_section(runs: pd.DataFrame) -> str:
     return "".join(out)
 
 
-def _accuracy_section(study: dict, service: StudyService, study_id: str) -> str:
-    """The error of each result column over the study's accuracy sample (the error bars of
-    ``accuracy: {sample: ...}``), or why there is none."""
+#: Sampled runs listed with their error bars (the accuracy table has them all).
+MAX_BAR_RUNS = 60
+
+
+def _bar_text(column: str, value: Any, err: Any) -> str:
+    """``t_max_dyn_kn 36.24 ± 0.0391 kN``: a figure of a run with its error bar."""
+    unit = _unit(column)
+    return f"{column} {eng(value, '', 4)} ± {eng(err, unit, 3)}"
+
+
+def run_bars(acc: pd.DataFrame, run_id: Any) -> dict[str, float]:
+    """The error bar of each figure of one sampled run (``{column: err}``), empty for a run
+    outside the accuracy sample."""
+    if acc is None or not len(acc) or "run_id" not in acc:
+        return {}
+    row = acc[acc["run_id"] == run_id]
+    if not len(row):
+        return {}
+    row = row.iloc[0]
+    return {c[:-4]: float(row[c]) for c in acc.columns
+            if c.endswith("_err") and pd.notna(row[c])}
+
+
+def accuracy_html(study: dict, runs: pd.DataFrame, acc: pd.DataFrame, cols: pd.DataFrame) -> str:
+    """The error of each result column over the study's accuracy sample, then every sampled
+    run (the first :data:`MAX_BAR_RUNS`) with each figure's value and error bar, its meshes
+    and each figure's method (a ``growing`` or ``spread`` figure is not converging on these
+    meshes: its bar is wide and has no converged value)."""
     asked = study.get("accuracy")
     if not asked:
         return ("<p class=muted>No error bars: the study has no <code>accuracy: {sample: "
                 "...}</code> (beltstudy simulate checks a single run by default).</p>")
-    acc, cols = service.accuracy(study_id)
     if not len(cols):
         return "<p class=muted>No sampled run has finished yet.</p>"
     rows = [[f"<code>{_e(r['column'])}</code>", _e(r["unit"]), _n(r["runs"]),
              _n(r["value_median"]), _n(r["err_median"]), _n(r["err_max"]),
              _n(r["err_rel_max_pct"], 3)] for r in query.records_to_json(cols)]
-    return (f"<p>Error bars of {len(acc)} sampled runs (sample {_e(asked.get('sample'))}, "
-            f"seed {_e(asked.get('seed', 0))}): each run repeated on a mesh half and one "
-            "twice as fine, the step following the mesh; Richardson extrapolation where the "
-            "observed order allows, else the spread (docs/dynamics.md, Error bars). The "
-            "value at a finer mesh lies within value +- error. The accuracy table is "
-            "<code>GET /studies/{id}/accuracy</code>.</p>"
-            + _table(["column", "unit", "runs", "value (median)", "error (median)",
-                      "error (largest)", "largest error / value [%]"], rows, "runs"))
+    out = [f"<p>Error bars of {len(acc)} sampled runs (sample {_e(asked.get('sample'))}, "
+           f"seed {_e(asked.get('seed', 0))}): each run repeated on a mesh half and one "
+           "twice as fine, the step following the mesh; Richardson extrapolation where the "
+           "observed order allows, else the spread (docs/dynamics.md, Error bars). The "
+           "value at a finer mesh lies within value +- error. The accuracy table is "
+           "<code>GET /studies/{id}/accuracy</code>.</p>",
+           _table(["column", "unit", "runs", "value (median)", "error (median)",
+                   "error (largest)", "largest error / value [%]"], rows, "runs")]
+    axes = _axes(study, runs)
+    by_id = runs.set_index("run_id") if len(runs) and "run_id" in runs else None
+    sampled = acc
+    if by_id is not None and axes:
+        order = by_id.reindex(acc["run_id"])[axes].reset_index()
+        sampled = acc.assign(**{f"_ax{k}": order[a].to_numpy() for k, a in enumerate(axes)})
+        sampled = sampled.sort_values([f"_ax{k}" for k in range(len(axes))], kind="stable")
+    prows = []
+    for _, a in sampled.head(MAX_BAR_RUNS).iterrows():
+        run = by_id.loc[a["run_id"]] if by_id is not None and a["run_id"] in by_id.index \
+            else pd.Series(dtype=object)
+        bars = run_bars(acc, a["run_id"])
+        figures_ = "; ".join(_bar_text(c, run.get(c), e) for c, e in bars.items()
+                             if pd.notna(run.get(c)))
+        prows.append([f"<code class=id>{_e(a['run_id'])}</code>"]
+                     + ["\x01ax\x01" + _e(_text(run.get(ax))) for ax in axes]
+                     + [_e(a.get("accuracy_elements")),
+                        _message_cell(figures_, 2 * MESSAGE_CHARS, print_full=True),
+                        _message_cell(a.get("accuracy_methods"), 2 * MESSAGE_CHARS,
+                                      print_full=True)])
+    out.append("<h3>Each sampled run</h3>")
+    out.append(_table(["run", *axes, "meshes [elements]", "figure ± error bar",
+                       "method of each figure"], prows, "causes"))
+    if len(acc) > MAX_BAR_RUNS:
+        out.append(f"<p class=muted>The first {MAX_BAR_RUNS} of {len(acc)} sampled runs; the "
+                   "accuracy table has them all.</p>")
+    return "".join(out)
+
+
+def _accuracy_section(study: dict, service: StudyService, study_id: str
+                      ) -> tuple[str, pd.DataFrame]:
+    """The error bars section and the study's accuracy table (empty without a sample)."""
+    if not study.get("accuracy"):
+        return accuracy_html(study, pd.DataFrame(), pd.DataFrame(), pd.DataFrame()), \
+            pd.DataFrame()
+    acc, cols = service.accuracy(study_id)
+    return accuracy_html(study, service.store.read_runs(study_id), acc, cols), acc
 
 
 def _figures(doc: dict, runs: pd.DataFrame, study: dict) -> tuple[str, str]:
@@ -651,10 +719,13 @@ def _figures(doc: dict, runs: pd.DataFrame, study: dict) -> tuple[str, str]:
     return peaks, "".join(figs)
 
 
-def report_html(doc: dict, runs: pd.DataFrame, status: dict, accuracy: str = "") -> str:
+def report_html(doc: dict, runs: pd.DataFrame, status: dict, accuracy: str = "",
+                bars: pd.DataFrame | None = None) -> str:
     """The design report of a stored study document ``doc`` (as the store keeps it: name,
     ``study``, engine version, times) and its ``runs`` table, as one HTML page. ``status``:
-    ``state``, ``done``, ``total``; ``accuracy``: the error bars section's markup."""
+    ``state``, ``done``, ``total``; ``accuracy``: the error bars section's markup
+    (:func:`accuracy_html`), ``bars``: the study's accuracy table (a governing run in it
+    shows its error bar in the verdicts)."""
     study_id = doc.get("id", "")
     study = doc["study"]
     try:
@@ -675,7 +746,7 @@ def report_html(doc: dict, runs: pd.DataFrame, status: dict, accuracy: str = "")
     sections = [
         ("Verdicts", "<p>The run that governs each design quantity, its value against the "
          "limit, and how many runs are past that limit.</p>"
-         + (_verdicts_section(study, runs) if len(runs) else no_runs)),
+         + (_verdicts_section(study, runs, bars) if len(runs) else no_runs)),
         ("Runs that did not pass", _causes_section(study, runs) if len(runs) else no_runs),
         ("Start and stop peaks", peaks or (
             "<p>No transient: the study ran the steady state only (dynamics: false).</p>"
@@ -715,5 +786,6 @@ def build_report(service: StudyService, study_id: str) -> str:
 
     doc = dict(service.store.read(study_id))
     doc.setdefault("id", study_id)
+    section, acc = _accuracy_section(doc["study"], service, study_id)
     return report_html(doc, service.store.read_runs(study_id), service.status(study_id),
-                       _accuracy_section(doc["study"], service, study_id))
+                       section, bars=acc)

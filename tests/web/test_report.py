@@ -542,3 +542,33 @@ def test_an_rms_force_above_the_rating_is_judged_and_overloads_the_drive(web):
                     re.S).group(0)
     assert f"12{UNIT_SPACE}kN" in row and "past the limit in 1 of 7 runs" in row
     assert "<code>a1</code>" in row
+
+
+def test_each_sampled_run_is_named_with_its_error_bars_and_methods(web):
+    """A study with an accuracy sample: the report gave only each column's median and largest
+    error over the sample, so which runs were sampled, each figure's bar and a figure whose
+    differences grow with the mesh (method 'growing', no converged value) could not be found
+    in it. Now section 9 lists each sampled run with 'figure value ± bar' and its methods, and
+    a verdict governed by a sampled run shows its bar: t_max_dyn_kn of run os, 31 kN here,
+    ± 2.33 kN."""
+    from beltstudy.service.store import query
+    from beltstudy.service.web.report import accuracy_html
+
+    runs = _runs(t_max_dyn_kn=[25.0, 25.0, 25.0, 25.0, 31.0, 25.0, np.nan, 25.0])
+    acc = pd.DataFrame({"run_id": ["os", "a1"], "accuracy_elements": ["42/82/166"] * 2,
+                        "accuracy_methods": ["growing: t_max_dyn_kn (p -0.37)",
+                                             "richardson: t_max_dyn_kn (p 0.99)"],
+                        "t_max_dyn_kn_err": [2.326815, 0.0224],
+                        "t_max_dyn_kn_converged": [np.nan, 25.02]})
+    doc = _doc(web)
+    doc["study"]["accuracy"] = {"sample": 0.25, "seed": 3}
+    section = accuracy_html(doc["study"], runs, acc, query.accuracy_columns(runs, acc))
+    html = report_html(doc, runs, {"state": "done", "done": 8, "total": 8}, section, bars=acc)
+    s9 = _section(html, 9)
+    assert "<code class=id>os</code>" in s9 and "<code class=id>a1</code>" in s9
+    assert f"t_max_dyn_kn 31 ± 2.33{UNIT_SPACE}kN" in s9
+    assert f"t_max_dyn_kn 25 ± 0.0224{UNIT_SPACE}kN" in s9
+    assert "growing: t_max_dyn_kn (p -0.37)" in s9
+    row = re.search(r"<tr><td>largest tension, transient.*?</tr>", _section(html, 1),
+                    re.S).group(0)
+    assert "<code>os</code>" in row and f"± 2.33{UNIT_SPACE}kN" in row
