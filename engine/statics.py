@@ -779,7 +779,8 @@ def _summarise(res: SteadyResult, drives, hs_adm, bounds, shortfall_n: float,
                         res.law.info.get("c_factor"))
     start = start_time_note(conv, loop, res.te_n)
     res.message = "; ".join(warnings + [n for n in (note, glassy, res.range_note, runback,
-                                                    start, *given) if n])
+                                                    start, takeup_place_note(res), *given)
+                                        if n])
     res.summary["status"] = res.status
     res.summary["message"] = res.message
 
@@ -798,6 +799,45 @@ def up3(x: float) -> float:
         return x
     step = 10.0 ** (math.floor(math.log10(x)) - 2)
     return float(f"{math.ceil(x / step - 1e-9) * step:.3g}")
+
+
+#: A take-up this many times tighter than the slackest point of the return is named in a note
+#: with the lighter one there (a design hint, not a verdict: CEMA and DIN 22101 place the
+#: take-up where the running belt is slackest, just behind the drive, or at the tail of a head
+#: drive whose return falls towards it).
+TAKEUP_PLACE_RATIO = 1.5
+
+
+def takeup_place_note(res: SteadyResult) -> str:
+    """A note when the take-up sits where the running belt is much tighter (``TAKEUP_PLACE_RATIO``)
+    than at the slackest point of the return: a take-up sets the tension where it is and the
+    loop's running tensions follow from it, so about the same running tensions are held by a
+    counterweight of ``2 T / g`` (a pretension ``T``) at that point, less the take-up's own
+    pulleys' resistance, which moves with it (a 500 m, -40 m decline driven at the tail, its
+    take-up at the tail: 2 154 kg; 2 T / g at the head end of the return 884 kg; auto there
+    926 kg). The note gives the estimate and the field that sizes it there with every check
+    (``mass_kg: auto`` / ``pretension_kn: auto``). "" otherwise."""
+    loop, T = res.loop, res.tension_n
+    ret = np.flatnonzero(loop.strand == RETURN)
+    if not ret.size or res.takeup_tension_n <= 0.0:
+        return ""
+    j = int(ret[np.argmin(T[ret])])
+    t_low, t_tu = float(T[j]), float(res.takeup_tension_n)
+    if t_low <= 0.0 or t_tu < TAKEUP_PLACE_RATIO * t_low:
+        return ""
+    part, x = loop.where(float(loop.s_end_m[j]))
+    field = (f"takeup.position: {part}" if part in ("head", "tail")
+             else f"takeup.position: return, at_m: {x:.0f}")
+    gravity = res.conveyor.takeup.type == "gravity"
+    size = (f"a counterweight of about {2.0 * t_low / G:.0f} kg (2 T / g there, now "
+            f"{res.takeup_mass_kg:.0f} kg), and mass_kg: auto" if gravity else
+            f"a pretension of about {t_low / 1e3:.3g} kN (now {t_tu / 1e3:.3g} kN), and "
+            "pretension_kn: auto")
+    return (f"note: the take-up holds {t_tu / 1e3:.3g} kN where it sits, {t_tu / t_low:.1f} x "
+            f"the slackest running tension of the return ({t_low / 1e3:.3g} kN "
+            f"{place_words(loop, float(loop.s_end_m[j]))}): a take-up there ({field}) holds "
+            f"about the same running tensions with {size} there sizes it with its own pulleys "
+            "and every check")
 
 
 def place_words(loop: Loop, s_m: float) -> str:
