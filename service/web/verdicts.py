@@ -359,6 +359,9 @@ CAUSES: tuple[Cause, ...] = (
     Cause("slack", "went slack", _slack, ("slack_max_m", "slack_duration_s", "t_min_dyn_kn"),
           r"slack"),
     Cause("sag", "sagged past its limit", _sagged, ("sag_max_pct", "sag_max_dyn_pct"), r"sag"),
+    Cause("overspeed", "ran above the overspeed trip (110 % of design speed)",
+          lambda r: _message(r).str.contains("overspeed in the", regex=False) & ~_ran_away(r),
+          ("velocity_max_m_s",), r"overspeed"),
     Cause("safety", "belt safety factor below its minimum", _safety,
           ("safety_factor", "safety_factor_dyn"), r"safety factor"),
     Cause("pulley", "pulley below its minimum diameter", _pulleys,
@@ -556,11 +559,19 @@ def verdict_rows(runs: pd.DataFrame, limits: dict[str, Limit]) -> list[dict]:
             row = ok.loc[idx]
             ok_col = v.ok.format(**nums) if v.ok else None
             past = _past(v, judged, ok, lim, ok_col)
+            slack = (transient_ran(ok) & values.isna() if v.column == "sag_max_dyn_pct"
+                     else values.isna() & False)
+            if slack.any():  # a slack span's sag has no value: it is past every sag limit
+                past |= slack
+                k = int(slack.sum())
+                text = (f"{text}; {k} run{'s' if k != 1 else ''} went slack (a slack span's "
+                        "sag has no value and is past every limit: section 2, went slack)")
             limit = None if lim is None or pd.isna(lim.loc[idx]) else float(lim.loc[idx])
             out.append({"verdict": v, "label": v.quantity.format(**nums), "column": column,
                         "row": row, "value": None if missing else float(values.loc[idx]),
                         "limit": limit, "limit_text": text, "past": int(past.sum()),
-                        "n": int(values.notna().sum()) + missing, "missing": missing,
+                        "n": int(values.notna().sum()) + missing + int(slack.sum()),
+                        "missing": missing,
                         "ok_col": ok_col,
                         "ok_judged": (int(ok[ok_col].notna().sum())
                                       if ok_col and ok_col in ok.columns else None)})

@@ -572,3 +572,30 @@ def test_each_sampled_run_is_named_with_its_error_bars_and_methods(web):
     row = re.search(r"<tr><td>largest tension, transient.*?</tr>", _section(html, 1),
                     re.S).group(0)
     assert "<code>os</code>" in row and f"± 2.33{UNIT_SPACE}kN" in row
+
+
+def test_a_slack_run_is_past_the_transient_sag_limit_and_an_overspeed_is_named(web):
+    """The engine leaves sag_max_dyn_pct empty where a span went slack ('a slack span's sag is
+    past every sag limit and has no value'). Of 7 finished runs, a1 warns of transient sag
+    (8.75 % > 1.5 %) and sl went slack (no sag value): the row said 'past the limit in 1 of 6
+    runs', leaving the slack run out of its count. It now says 2 of 7 and why. A run whose
+    start overshot to 117 % of design speed (the plant's overspeed trip is 110 %) was in no
+    group; it is now under its own."""
+    sag = ("transient sag on the carry strand 8.75 % exceeds the limit 1.5 % (low tension "
+           "1.18 kN near 50 m from the tail on the carry at t = 21.5 s, during the stop)")
+    over = ("overspeed in the start: the mean belt speed reached 2.94 m/s, 117 % of design "
+            "speed, at t = 17.0 s (plant overspeed switches trip at 110 %): the belt released "
+            "the stretch of its acceleration")
+    runs = _runs(sag_max_dyn_pct=[8.75, 0.5, 0.5, 0.5, 0.5, np.nan, np.nan, 0.5],
+                 slack_max_m=[0.0, 0.0, 0.0, 0.0, 0.0, 0.39, np.nan, 0.0],
+                 velocity_max_m_s=[2.5, 2.94, 2.5, 2.5, 2.5, 2.5, np.nan, 5.0],
+                 message=[sag, over, DID_NOT_STOP, "", SLIP, SLIP, "diverged",
+                          "the belt ran away forwards during the stop: its mean speed reached "
+                          "5 m/s (2 x the design speed) at t = 76.12 s; " + over])
+    html = report_html(_doc(web), runs, {"state": "done", "done": 8, "total": 8})
+    row = re.search(r"<tr><td>largest sag, transient.*?</tr>", _section(html, 1),
+                    re.S).group(0)
+    assert "past the limit in 2 of 7 runs" in row and "1 run went slack" in row
+    groups = {c.key: set(part["run_id"]) for c, part, _ in cause_groups(runs)}
+    assert groups["overspeed"] == {"a2"}  # ra ran away: its own group
+    assert "<b>1</b> of 8 runs ran above the overspeed trip" in _section(html, 2)
