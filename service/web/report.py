@@ -412,7 +412,17 @@ def _run_cell(row: pd.Series, axes: list[str]) -> str:
 
 
 def _verdict_cell(r: dict) -> str:
-    """Within the limit, past it in some runs, or no limit to judge against."""
+    """Within the limit, past it in some runs, or no limit to judge against; and how many
+    runs are marginal on it (the figure within its error bar of the limit)."""
+    cell = _verdict_words(r)
+    k = r.get("marginal") or 0
+    if k:
+        cell += (f"; marginal in {k} run{'s' if k != 1 else ''} (within the error bar of the "
+                 "limit: section 2)")
+    return cell
+
+
+def _verdict_words(r: dict) -> str:
     v = r["verdict"]
     if r["missing"]:
         return f"\x01fails\x01{r['missing']} of {r['n']} runs {_e(v.null_worst)}"

@@ -359,6 +359,9 @@ CAUSES: tuple[Cause, ...] = (
     Cause("slack", "went slack", _slack, ("slack_max_m", "slack_duration_s", "t_min_dyn_kn"),
           r"slack"),
     Cause("sag", "sagged past its limit", _sagged, ("sag_max_pct", "sag_max_dyn_pct"), r"sag"),
+    Cause("marginal", "marginal: a figure within its error bar of the limit (the verdict "
+          "may flip on a finer mesh)",
+          lambda r: _message(r).str.contains("marginal:", regex=False), (), r"marginal"),
     Cause("overspeed", "ran above the overspeed trip (110 % of design speed)",
           lambda r: _message(r).str.contains("overspeed in the", regex=False) & ~_ran_away(r),
           ("velocity_max_m_s",), r"overspeed"),
@@ -567,7 +570,12 @@ def verdict_rows(runs: pd.DataFrame, limits: dict[str, Limit]) -> list[dict]:
                 text = (f"{text}; {k} run{'s' if k != 1 else ''} went slack (a slack span's "
                         "sag has no value and is past every limit: section 2, went slack)")
             limit = None if lim is None or pd.isna(lim.loc[idx]) else float(lim.loc[idx])
+            # runs whose error bars put this figure within its bar of the limit (the engine's
+            # "marginal: <figure> ... against limit ...", engine/accuracy.py)
+            marginal = int(_message(ok).str.contains(f"marginal: {column} ",
+                                                     regex=False).sum())
             out.append({"verdict": v, "label": v.quantity.format(**nums), "column": column,
+                        "marginal": marginal,
                         "row": row, "value": None if missing else float(values.loc[idx]),
                         "limit": limit, "limit_text": text, "past": int(past.sum()),
                         "n": int(values.notna().sum()) + missing + int(slack.sum()),

@@ -599,3 +599,24 @@ def test_a_slack_run_is_past_the_transient_sag_limit_and_an_overspeed_is_named(w
     groups = {c.key: set(part["run_id"]) for c, part, _ in cause_groups(runs)}
     assert groups["overspeed"] == {"a2"}  # ra ran away: its own group
     assert "<b>1</b> of 8 runs ran above the overspeed trip" in _section(html, 2)
+
+
+def test_a_marginal_verdict_is_named_in_its_row_and_grouped(web):
+    """A sampled run whose lowest tension, 14.81 kN, lies within its error bar (± 45.1 kN)
+    of the slack limit 0 says 'marginal: t_min_dyn_kn 14.81 against limit 0 +- 45.1 kN (...)'
+    (engine/accuracy.py): the report's 'lowest tension, transient' row read 'within (7 runs)'
+    and no group named it. The row now adds 'marginal in 1 run' and section 2 lists it."""
+    marginal = ("marginal: t_min_dyn_kn 14.81 against limit 0 +- 45.1 kN (19.1 kN on 22 "
+                "elements; 10.3 kN on 86 elements; a finer mesh (scenario.elements 172) "
+                "narrows the bar)")
+    runs = _runs(t_min_dyn_kn=[14.81, 2.0, 2.0, 2.0, 2.0, 2.0, np.nan, 2.0],
+                 message=[marginal, "", DID_NOT_STOP, "", SLIP, SLIP, "diverged", "ran away"],
+                 status=["warning", "ok", "warning", "warning", "warning", "warning", "failed",
+                         "warning"])
+    html = report_html(_doc(web), runs, {"state": "done", "done": 8, "total": 8})
+    row = re.search(r"<tr><td>lowest tension, transient.*?</tr>", _section(html, 1),
+                    re.S).group(0)
+    assert "within (7 runs); marginal in 1 run" in row
+    groups = {c.key: set(part["run_id"]) for c, part, _ in cause_groups(runs)}
+    assert groups["marginal"] == {"a1"}
+    assert "<b>1</b> of 8 runs marginal" in _section(html, 2)
