@@ -429,11 +429,18 @@ class StudyService:
             self._no_row(study_id, run_id)
         row = query.row_to_json(match.iloc[0].to_dict())
         ts = self.store.read_timeseries(study_id, run_id)
+        # a sampled run's error bars (accuracy: {sample: ...}): the run page shows them
+        acc = self.store.read_accuracy(study_id, run_id)
+        bars = None
+        if len(acc):
+            bars = {k: v for k, v in query.row_to_json(acc.iloc[0].to_dict()).items()
+                    if k != "run_id" and v is not None}
         return {
             "study_id": study_id,
             "run_id": run_id,
             "summary": row,
             "timeseries": query.columns_to_json(ts.drop(columns=["run_id"])) if len(ts) else None,
+            "accuracy": bars,
         }
 
     def resolved(self, study_id: str) -> ResolvedStudy:

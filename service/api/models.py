@@ -89,6 +89,11 @@ class RunDetail(BaseModel):
     timeseries: dict[str, list[float | None]] | None = Field(
         None, description="SPEC section 5 key points, column -> values (null without dynamics)"
     )
+    accuracy: dict[str, Any] | None = Field(
+        None, description="the run's error bars where it is in the study's accuracy sample: "
+        "<figure>_err, <figure>_converged, accuracy_elements, accuracy_methods (null for a "
+        "run outside the sample)"
+    )
 
 
 class RunSurface(BaseModel):

@@ -112,3 +112,24 @@ def test_a_study_without_accuracy_has_an_empty_table(data_dir, make_study, make_
     body = client.get(f"/studies/{sid}/accuracy").json()
     assert body == {"study_id": sid, "sample": None, "total": 0, "columns": [], "runs": []}
     assert "No error bars" in client.get(f"/studies/{sid}/report").text
+
+
+def test_a_sampled_runs_detail_carries_its_error_bars_for_the_run_page(
+    data_dir, make_study, make_settings, finished_study
+):
+    """The run page (GET /studies/{id}/runs/{run_id}) gave a sampled run's summary row only:
+    its error bars, in the study's accuracy table, were not on it. The detail now has
+    ``accuracy`` with the run's <figure>_err (the table's value), meshes and methods; a run
+    outside the sample has null."""
+    sid = finished_study(data_dir, _dynamic(make_study, "acc-detail",
+                                            accuracy={"sample": 0.25}))
+    store = Store(data_dir)
+    acc = store.read_accuracy(sid)
+    sampled = acc["run_id"].iloc[0]
+    other = next(r for r in store.read_runs(sid)["run_id"] if r != sampled)
+    client = TestClient(create_app(make_settings(data_dir)))
+    bars = client.get(f"/studies/{sid}/runs/{sampled}").json()["accuracy"]
+    assert bars["t_max_dyn_kn_err"] == pytest.approx(acc["t_max_dyn_kn_err"].iloc[0])
+    assert bars["accuracy_elements"] == acc["accuracy_elements"].iloc[0]
+    assert bars["accuracy_methods"] == acc["accuracy_methods"].iloc[0]
+    assert client.get(f"/studies/{sid}/runs/{other}").json()["accuracy"] is None

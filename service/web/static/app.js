@@ -570,8 +570,16 @@ function runPage(studyId, runId) {
       for (const [part, v] of Object.entries(s.te_components_kn || {})) {
         if (v != null) rows.push(["te_components_kn." + part, v]);
       }
+      // a sampled run's error bars (accuracy: {sample: ...}): "value ± bar" beside each figure
+      const bars = detail.accuracy || {};
+      const withBar = (k, v) => typeof bars[k + "_err"] === "number"
+        ? fmtCell(k, v) + " ± " + fmtCell(k, bars[k + "_err"]) : fmtCell(k, v);
+      if (detail.accuracy) {
+        rows.unshift(["error bars (meshes; method of each figure)",
+          (bars.accuracy_elements || "") + "; " + (bars.accuracy_methods || "")]);
+      }
       document.querySelector("#run-summary tbody").replaceChildren(...rows.map(([k, v]) =>
-        el("tr", {}, [el("th", { text: k }), el("td", { text: fmtCell(k, v) })])));
+        el("tr", {}, [el("th", { text: k }), el("td", { text: withBar(k, v) })])));
       loadImages();
       showError("");
     } catch (e) { showError(e.message); }
