@@ -222,6 +222,12 @@ def _figure(src: str, caption: str, alt: str) -> str:
             "</figcaption></figure>")
 
 
+def _given(value: Any, unit: str) -> str:
+    """A size as the file gives it: ``auto``, or its number as the report writes numbers
+    (``2 400 kg``, not ``2400.0 kg``), to six figures so a given size reads as given."""
+    return str(value) if isinstance(value, str) else eng(value, unit, 6)
+
+
 def _conveyor_section(conv: dict, fill: dict | None) -> str:
     belt = conv["belt"]
     mat = conv["material"]
@@ -243,10 +249,8 @@ def _conveyor_section(conv: dict, fill: dict | None) -> str:
                             + _pitch(conv['idlers']['carry']))],
 
         ["take-up", _e(f"{tu['type']} at the {_place(tu)}, "
-                       + (f"mass {tu['mass_kg']}" + (" kg" if tu["mass_kg"] != "auto" else "")
-                          if tu["type"] == "gravity" else
-                          f"pretension {tu['pretension_kn']}"
-                          + (" kN" if tu["pretension_kn"] != "auto" else ""))
+                       + (f"mass {_given(tu['mass_kg'], 'kg')}" if tu["type"] == "gravity"
+                          else f"pretension {_given(tu['pretension_kn'], 'kN')}")
                        + ("" if tu.get("sag_at_rest", True)
                           else "; sized for the sag limits running only"))],
         ["sag limits", _e(f"carry {conv['sag_limit_pct']['carry']:g} %, return "
@@ -341,7 +345,7 @@ def _grid_section(study: dict, status: dict) -> str:
     rows = []
     for a in study.get("axes", []):
         group = "grid" if a.get("group") is None else f"zip group {a['group'] + 1}"
-        rows.append([_e(a["name"]), _e(group), _e(", ".join(str(v) for v in a["values"]))])
+        rows.append([_e(a["name"]), _e(group), _e(", ".join(_text(v) for v in a["values"]))])
     out = [_table(["axis", "in", "values"], rows)]
     merged = study.get("merged", 0)
     out.append(f"<p>{status['total']} runs from {study.get('grid_points', status['total'])} grid "

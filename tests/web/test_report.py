@@ -620,3 +620,18 @@ def test_a_marginal_verdict_is_named_in_its_row_and_grouped(web):
     groups = {c.key: set(part["run_id"]) for c, part, _ in cause_groups(runs)}
     assert groups["marginal"] == {"a1"}
     assert "<b>1</b> of 8 runs marginal" in _section(html, 2)
+
+
+def test_a_given_take_up_and_the_axis_values_read_as_the_rows_do(web):
+    """A given take-up of 2400 kg read 'mass 2400.0 kg' in the conveyor section (the verdicts
+    and runs say '2 400 kg') and the grid's temperatures '-25.0, 20.0' (the runs table says
+    '-25', '20'). Both now go through the report's number format."""
+    doc = _doc(web)
+    doc["study"]["conveyor"]["takeup"]["mass_kg"] = 2400.0
+    for a in doc["study"]["axes"]:
+        if a["column"] == "temperature_c":
+            a["values"] = [-25.0, 20.0]
+    html = report_html(doc, _runs(), {"state": "done", "done": 8, "total": 8})
+    assert f"mass 2{NB}400{UNIT_SPACE}kg" in _section(html, 4)
+    assert "2400.0" not in _section(html, 4)
+    assert "<td>-25, 20</td>" in _section(html, 6)
