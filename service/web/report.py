@@ -421,8 +421,7 @@ def _verdict_cell(r: dict) -> str:
     cell = _verdict_words(r)
     k = r.get("marginal") or 0
     if k:
-        cell += (f"; marginal in {k} run{'s' if k != 1 else ''} (within the error bar of the "
-                 "limit: section 2)")
+        cell += f"; marginal in {k} run{'s' if k != 1 else ''} (section 2)"
     return cell
 
 

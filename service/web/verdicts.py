@@ -450,7 +450,7 @@ def study_limits(study: dict, sf_min: float, sf_ratio: float,
         speed = per_run(runs, "speed_m_s", conv.get("speed_m_s"))
         if rated is None or not speed.notna().any():
             return None, ""
-        return rated / speed, f"rated force drive{i}_rated_power_kw / speed"
+        return rated / speed, "rated force (rated power / speed)"
 
     def sag_limit(runs, **_):
         if carry is None or ret is None:
@@ -567,8 +567,8 @@ def verdict_rows(runs: pd.DataFrame, limits: dict[str, Limit]) -> list[dict]:
             if slack.any():  # a slack span's sag has no value: it is past every sag limit
                 past |= slack
                 k = int(slack.sum())
-                text = (f"{text}; {k} run{'s' if k != 1 else ''} went slack (a slack span's "
-                        "sag has no value and is past every limit: section 2, went slack)")
+                text = (f"{text}; {k} run{'s' if k != 1 else ''} went slack (no sag value: "
+                        "past every limit)")
             limit = None if lim is None or pd.isna(lim.loc[idx]) else float(lim.loc[idx])
             # runs whose error bars put this figure within its bar of the limit (the engine's
             # "marginal: <figure> ... against limit ...", engine/accuracy.py)
