@@ -395,13 +395,24 @@ def finding_clauses(message: Any, words: str) -> list[str]:
     return said or found
 
 
+#: The last group: a run with status warning that no cause above names (a speed loop that did
+#: not track its reference, ...), so that every run that did not pass is in section 2.
+OTHER = Cause("other", "warned of something else (what the run says)",
+              lambda r: _status(r) == "warning", (), r".")
+
+
 def cause_groups(runs: pd.DataFrame) -> list[tuple[Cause, pd.DataFrame, list[str]]]:
-    """Every cause with runs in it: ``(cause, its rows, the figure columns present)``."""
+    """Every cause with runs in it: ``(cause, its rows, the figure columns present)``; last,
+    :data:`OTHER`, the runs with a warning that no cause names."""
     out = []
     if not len(runs):
         return out
-    for cause in CAUSES:
+    named = pd.Series(False, index=runs.index)
+    for cause in (*CAUSES, OTHER):
         mask = cause.detect(runs).fillna(False).astype(bool)
+        if cause is OTHER:
+            mask &= ~named
+        named |= mask
         if not mask.any():
             continue
         cols = [c for p in cause.columns for c, _ in expand(p, runs.columns)
