@@ -1363,7 +1363,7 @@ def endstop_words(sys: System, r: dict) -> str:
             f"(takeup.travel_m; from {tu.lo:.3g} to {tu.hi:.3g} m about the rest position, "
             f"running position {tu.x_run:.3g} m{short}): a longer takeup.travel_m (rerun "
             "until no end stop is reached: how far the carriage would have run is not known "
-            "from this run)" + (" or a heavier take-up, which resists the pull drawing it in,"
+            "from this run)" + (" or a heavier take-up, which resists the pull drawing it in"
                                 if rest_end else "") + swing + " would avoid it")
 
 
