@@ -955,6 +955,8 @@ def _brake_past_full(sys: System, i: int, t_last: float) -> tuple[str, str] | No
     floor_kn = HOLD_MARGIN * abs(float(np.sum(sys.model.nodes.gravity))) / 1e3
     others_kn = float(np.sum(brakes.force)) / 1e3 - force_kn
     least_kn = max(floor_kn - others_kn, 0.0)
+    if least_kn < 1e-6:  # 1 mN: a pull that cancels round the loop (an empty belt) is rounding
+        least_kn = 0.0  # noise ('at least 5.12e-17 kN'), not a force to hold
     if least_kn < force_kn * (1.0 - 1e-6):
         less = (f" or less brake force on this one (now {force_kn:.4g} kN; a given force_kn"
                 + (f" of at least {up3(least_kn):g} kN, which with the others holds the loaded "

@@ -84,3 +84,32 @@ def test_a_given_brake_above_its_holding_size_is_offered_less_force_down_to_it()
     assert ("or less brake force on this one (now 150 kN; a given force_kn of at least 113 kN, "
             "which with the others holds the loaded belt at rest, 1.2 x its net gravity pull)"
             ) in msg, msg
+
+
+def test_an_empty_belts_pull_that_cancels_round_the_loop_is_no_force_to_hold():
+    """An empty 400 m incline's brake-stop slip read 'a given force_kn of at least 5.12e-17 kN,
+    which ... holds the loaded belt at rest': the belt's own weight pulls as much down the
+    return as up the carry, and the sum of the elements' gravity is rounding noise. A pull
+    below 1 mN is none: the words give no holding figure."""
+    from types import SimpleNamespace
+
+    import numpy as np
+
+    from beltstudy.engine.dynamics import codes as C
+    from beltstudy.engine.dynamics.simulate import _brake_past_full
+
+    g = np.array([5.12e-17 * 1e3 / 1.2, 0.0, 0.0, 0.0])  # the sum the incline's terms left
+    sys_ = SimpleNamespace(
+        stop_command_s=90.0,
+        model=SimpleNamespace(
+            cycle=SimpleNamespace(stop_mode=C.BRAKE),
+            brakes=SimpleNamespace(shaft=np.array([0]), delay=np.array([0.5]),
+                                   ramp=np.array([1.0]), curve_n=np.array([0]),
+                                   curve_t=np.zeros((1, 1)), force=np.array([40e3])),
+            shafts=SimpleNamespace(drive=np.array([0])),
+            nodes=SimpleNamespace(gravity=g),
+            takeup=SimpleNamespace(gravity=True)))
+    levers, why = _brake_past_full(sys_, 0, 100.0)
+    assert "less brake force on this one (now 40 kN; a given force_kn)" in levers, levers
+    assert "at least" not in levers and not re.search(r"\de-\d", levers)
+    assert "reached full force (t = 91.5 s)" in why
