@@ -63,6 +63,28 @@ def hand_conveyor():
     return parse_conveyor(hand_conveyor_dict())
 
 
+def short30_dict() -> dict:
+    """A 30 m level fabric belt at 2 m/s (EP630/4, 0.8 m, 200 t/h), head drive of 15 kW, auto
+    take-up at the tail: a conveyor whose automatic step is below 5e-4 s and whose motor is
+    about 3 x what it needs."""
+    return {
+        "name": "short30",
+        "speed_m_s": 2.0,
+        "belt": {"type": "EP630/4", "width_m": 0.8, "top_cover_mm": 5, "bottom_cover_mm": 2,
+                 "compound": "standard"},
+        "material": {"capacity_t_h": 200, "density_t_m3": 1.2, "loading_speed_m_s": 0.0},
+        "profile": [{"length_m": 30, "lift_m": 0}],
+        "idlers": {"carry": {"spacing_m": 1.2, "roll_diameter_m": 0.127, "rolls": 3,
+                             "trough_deg": 35, "cema_class": "C"},
+                   "return": {"spacing_m": 3.0, "roll_diameter_m": 0.127, "rolls": 1,
+                              "cema_class": "C"}},
+        "drives": [{"position": "head", "wrap_deg": 200, "friction": 0.35, "share": 1.0,
+                    "pulley_diameter_m": 0.5, "inertia_kg_m2": 5, "rated_power_kw": 15,
+                    "torque_limit": 1.5}],
+        "takeup": {"type": "gravity", "position": "tail", "mass_kg": "auto"},
+    }
+
+
 # --------------------------------------------------------------------------------------------
 # The numba kernel, compiled once per session before the first test
 

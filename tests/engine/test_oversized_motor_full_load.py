@@ -12,25 +12,13 @@ import pytest
 
 from beltstudy.engine.conveyor import Scenario, parse_conveyor
 from beltstudy.engine.run import run_one
+from tests.conftest import short30_dict
 
 LBF_N = 4.4482216152605
 
-SHORT = {
-    "name": "short30-dol",
-    "speed_m_s": 2.0,
-    "belt": {"type": "EP630/4", "width_m": 0.8, "top_cover_mm": 5, "bottom_cover_mm": 2,
-             "compound": "standard"},
-    "material": {"capacity_t_h": 200, "density_t_m3": 1.2, "loading_speed_m_s": 0.0},
-    "profile": [{"length_m": 30, "lift_m": 0}],
-    "idlers": {"carry": {"spacing_m": 1.2, "roll_diameter_m": 0.127, "rolls": 3,
-                         "trough_deg": 35, "cema_class": "C"},
-               "return": {"spacing_m": 3.0, "roll_diameter_m": 0.127, "rolls": 1,
-                          "cema_class": "C"}},
-    "drives": [{"position": "head", "wrap_deg": 200, "friction": 0.35, "share": 1.0,
-                "pulley_diameter_m": 0.5, "inertia_kg_m2": 5, "rated_power_kw": 15,
-                "torque_limit": 1.5, "control": "dol", "coupling": "none"}],
-    "takeup": {"type": "gravity", "position": "tail", "mass_kg": "auto"},
-}
+SHORT = short30_dict()
+SHORT["name"] = "short30-dol"
+SHORT["drives"][0].update(control="dol", coupling="none")
 
 
 def test_an_empty_runs_oversized_motor_is_judged_at_full_load():
