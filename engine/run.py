@@ -222,6 +222,7 @@ def run_one(
         return prep.done
     system = build_system(prep.conveyor, scenario, prep.steady, opts)
     system.auto_brakes = _auto_brakes(conveyor, auto_brakes)
+    system.brakes_timed = _brakes_timed(prep, system.auto_brakes)
     system.motor_basis_n = _motor_basis_n(prep, scenario, model, params)
     tr = simulate(system, steady_summary=prep.steady.summary, conveyor=prep.conveyor,
                   safety_factor_min=transient_safety_min(prep.conveyor,
@@ -247,6 +248,28 @@ def _motor_basis_n(prep: _Prepared, scenario: Scenario, model: str, params) -> f
     if full.status == "failed":
         return own
     return max(own, abs(float(full.te_n)), float(np.sum(full.resistance_n)))
+
+
+def brakes_timed(governed_by: str | None) -> bool | None:
+    """Whether a longer ``stop.time_s`` changes the run's auto brakes, from what set their
+    size (``brake_governed_by``: ``stop_time``, ``grip``, ``holding`` or ``given`` per brake,
+    joined by ``+``, each possibly ``@ <design case>``): True where one is set by the stop
+    time or by its pulley's grip against the stop time's need, False where every one is set
+    by holding or given; None when the run says nothing of it (no brake)."""
+    if not governed_by:
+        return None
+    return any(w in str(governed_by) for w in ("stop_time", "grip"))
+
+
+def _brakes_timed(prep: _Prepared, auto: bool) -> bool | None:
+    """:func:`brakes_timed` of the run's sizes; None (not known) where the caller says a brake
+    is auto (``auto``, a study's design written in) but the run saw only given forces: what
+    set the design's brake is then not the run's to say."""
+    governed = prep.summary.get("brake_governed_by")
+    timed = brakes_timed(governed)
+    if auto and timed is False and "holding" not in str(governed):
+        return None
+    return timed
 
 
 def _auto_brakes(conveyor: Conveyor, given: bool | None) -> bool:
@@ -303,6 +326,7 @@ def run_group(
         systems[-1].auto_brakes = _auto_brakes(
             convs[i], None if auto_brakes is None else auto_brakes[i])
         systems[-1].motor_basis_n = _motor_basis_n(prep, scn, model, params)
+        systems[-1].brakes_timed = _brakes_timed(prep, systems[-1].auto_brakes)
         todo.append(i)
     for group in group_by_start(systems):
         members = [preps[todo[g]] for g in group]

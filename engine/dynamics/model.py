@@ -275,6 +275,11 @@ class System:
     #: it runs has its force written in (a study's design basis, a run below full load): the
     #: stop's advice then offers stop.time_s; None: read the conveyor given to the words
     auto_brakes: bool | None = None
+    #: a longer stop.time_s changes an auto brake's force: its size is set by the stop time
+    #: or by its pulley's grip against the stop time's need (``brake_governed_by`` names
+    #: ``stop_time`` or ``grip``); False where every brake is set by holding the belt at rest
+    #: or given; None: not known (the words judge it from the system, ``_auto_brake_held``)
+    brakes_timed: bool | None = None
     #: the force the engine sizes a motor for [N] (``RATED_POWER_FACTOR`` x a drive's share of
     #: it): the run's |Te| and, below the full load, the full load's larger of |Te| and the
     #: running resistance, the larger kept, as an auto motor of such a run is installed

@@ -488,7 +488,7 @@ def stop_levers(sys: System | None, slip: bool = False) -> list[str]:
         # written in (``System.auto_brakes`` False; None: not known, offered as for one), nor
         # where the auto brake is set by holding the loaded belt at rest, above what the stop
         # time asks (:func:`_auto_brake_held`: a longer stop.time_s leaves it as it is)
-        timed = ("" if getattr(sys, "auto_brakes", None) is False or _auto_brake_held(sys)
+        timed = ("" if getattr(sys, "auto_brakes", None) is False or _brake_held(sys)
                  else ", a longer stop.time_s for an auto brake sized by it")
         return [f"a softer brake stop (less brake force{timed}, a longer brake ramp "
                 "brakes[].ramp_s)"]
@@ -1522,6 +1522,16 @@ def _gravity_pull_n(sys: System) -> float:
     return float(np.sum(gravity)) if gravity is not None else 0.0
 
 
+def _brake_held(sys: System) -> bool:
+    """True when a longer stop.time_s leaves the run's auto brakes as they are: what set their
+    size where the run knows it (``System.brakes_timed``: a brake set by holding the belt at
+    rest, also where its pulley's grip held the stop time's force below the holding one: a
+    300 m incline's head brake asked 22.1 kN for a 2 s stop, its grip 1.35 kN, set at the
+    4.9 kN that holds the belt), else :func:`_auto_brake_held`."""
+    timed = getattr(sys, "brakes_timed", None)
+    return (not timed) if timed is not None else _auto_brake_held(sys)
+
+
 def _auto_brake_held(sys: System) -> bool:
     """True when the run's auto brakes are set by holding the loaded belt at rest
     (``HOLD_MARGIN`` x its net gravity pull, :func:`beltstudy.engine.design.brake_forces`),
@@ -1681,7 +1691,7 @@ def _fast_stop_words(sys: System, t_stop: float, summary: dict, steady_tmax: flo
         if auto is None:
             auto = conveyor is None or any(b.force_kn == "auto" for b in conveyor.brakes)
         given = _given_brake_words(sys, need, t_stop, auto)
-        held = _auto_brake_held(sys) if auto else False
+        held = _brake_held(sys) if auto else False
         if auto and not held:
             # an auto brake's stop scales with its asked time as a controlled one's does
             asked = need * cyc.t_stop / t_stop if cyc.t_stop > 0.0 else need
