@@ -85,6 +85,28 @@ def short30_dict() -> dict:
     }
 
 
+def incline300_dict(**changes) -> dict:
+    """A 300 m, 15 m lift fabric incline at 2 m/s (EP630/4, 0.8 m, 200 t/h), one 75 kW head
+    drive (wrap 200 deg, mu 0.35), auto gravity take-up at the tail, no accessories;
+    ``changes`` replace top-level fields (a take-up, brakes)."""
+    return {
+        "name": "incline-300", "speed_m_s": 2.0,
+        "belt": {"type": "EP630/4", "width_m": 0.8, "top_cover_mm": 5, "bottom_cover_mm": 2},
+        "material": {"capacity_t_h": 200, "density_t_m3": 1.2},
+        "profile": [{"length_m": 300, "lift_m": 15}],
+        "idlers": {"carry": {"spacing_m": 1.2, "roll_diameter_m": 0.127, "rolls": 3,
+                             "trough_deg": 35, "cema_class": "C"},
+                   "return": {"spacing_m": 3.0, "roll_diameter_m": 0.127, "rolls": 1,
+                              "cema_class": "C"}},
+        "drives": [{"position": "head", "wrap_deg": 200, "friction": 0.35, "share": 1.0,
+                    "pulley_diameter_m": 0.5, "inertia_kg_m2": 30, "rated_power_kw": 75,
+                    "torque_limit": 1.5}],
+        "takeup": {"type": "gravity", "position": "tail", "mass_kg": "auto"},
+        "accessories": {"head_kn": 0.0, "tail_kn": 0.0},
+        **changes,
+    }
+
+
 # --------------------------------------------------------------------------------------------
 # The numba kernel, compiled once per session before the first test
 

@@ -12,25 +12,12 @@ import pytest
 from beltstudy.engine.conveyor import Scenario, parse_conveyor
 from beltstudy.engine.dynamics.simulate import _brake_held
 from beltstudy.engine.run import brakes_timed, run_one
+from tests.conftest import incline300_dict
 
 G = 9.81
 
-INCLINE = {  # 300 m, 15 m lift, 200 t/h at 2 m/s, one head drive, an auto head brake
-    "name": "incline-auto-brake", "speed_m_s": 2.0,
-    "belt": {"type": "EP630/4", "width_m": 0.8, "top_cover_mm": 5, "bottom_cover_mm": 2},
-    "material": {"capacity_t_h": 200, "density_t_m3": 1.2},
-    "profile": [{"length_m": 300, "lift_m": 15}],
-    "idlers": {"carry": {"spacing_m": 1.2, "roll_diameter_m": 0.127, "rolls": 3,
-                         "trough_deg": 35, "cema_class": "C"},
-               "return": {"spacing_m": 3.0, "roll_diameter_m": 0.127, "rolls": 1,
-                          "cema_class": "C"}},
-    "drives": [{"position": "head", "wrap_deg": 200, "friction": 0.35, "share": 1.0,
-                "pulley_diameter_m": 0.5, "inertia_kg_m2": 30, "rated_power_kw": 75,
-                "torque_limit": 1.5}],
-    "takeup": {"type": "gravity", "position": "tail", "mass_kg": "auto"},
-    "brakes": [{"position": "head", "force_kn": "auto", "delay_s": 0.5}],
-    "accessories": {"head_kn": 0.0, "tail_kn": 0.0},
-}
+# 300 m, 15 m lift, 200 t/h at 2 m/s, one head drive, an auto head brake
+INCLINE = incline300_dict(brakes=[{"position": "head", "force_kn": "auto", "delay_s": 0.5}])
 
 
 @pytest.mark.parametrize("governed, timed", [

@@ -12,7 +12,7 @@ import pytest
 from beltstudy.engine.conveyor import Scenario, load_conveyor
 from beltstudy.engine.dynamics.simulate import slip_words
 from beltstudy.engine.run import run_one
-from tests.conftest import CONVEYORS
+from tests.conftest import CONVEYORS, incline300_dict
 
 
 def test_overland_60s_start_names_the_slipping_drive():
@@ -76,21 +76,8 @@ def test_a_slip_that_ran_on_into_the_stop_without_a_break_is_not_offered_a_softe
                                                          f"{take_up} or {stop}")
 
 
-SCREW_LOW = {  # 300 m, 15 m lift; the screw take-up's 2 kN passes 0.61 of the running force
-    "name": "screw-low", "speed_m_s": 2.0,
-    "belt": {"type": "EP630/4", "width_m": 0.8, "top_cover_mm": 5, "bottom_cover_mm": 2},
-    "material": {"capacity_t_h": 200, "density_t_m3": 1.2},
-    "profile": [{"length_m": 300, "lift_m": 15}],
-    "idlers": {"carry": {"spacing_m": 1.2, "roll_diameter_m": 0.127, "rolls": 3,
-                         "trough_deg": 35, "cema_class": "C"},
-               "return": {"spacing_m": 3.0, "roll_diameter_m": 0.127, "rolls": 1,
-                          "cema_class": "C"}},
-    "drives": [{"position": "head", "wrap_deg": 200, "friction": 0.35, "share": 1.0,
-                "pulley_diameter_m": 0.5, "inertia_kg_m2": 30, "rated_power_kw": 75,
-                "torque_limit": 1.5}],
-    "takeup": {"type": "fixed", "position": "tail", "pretension_kn": 2},
-    "accessories": {"head_kn": 0.0, "tail_kn": 0.0},
-}
+# 300 m, 15 m lift; the screw take-up's 2 kN passes 0.61 of the running force
+SCREW_LOW = incline300_dict(takeup={"type": "fixed", "position": "tail", "pretension_kn": 2})
 
 
 def test_a_drive_slipping_from_the_start_to_past_the_stop_command_is_told_the_take_up():
