@@ -657,3 +657,19 @@ def test_a_warning_no_cause_names_is_still_a_run_that_did_not_pass(web):
     s2 = _section(report_html(_doc(web), runs, {"state": "done", "done": 8, "total": 8}), 2)
     assert "<b>1</b> of 8 runs warned of something else" in s2
     assert "the speed loop did not track its reference" in s2
+
+
+def test_a_brake_stop_that_missed_its_time_has_its_own_group():
+    """A run whose auto brakes stopped it 1.61 x slower than the stop time asked is a cause of
+    its own, with the stop time and the brake force, not 'warned of something else'."""
+    missed = ("brake stop missed its stop.time_s: 3.23 s from the stop command to rest against "
+              "the 2 s asked of the auto brakes (1.61 x) (set by holding: ...)")
+    runs = _runs()
+    runs.loc[runs.run_id == "a1", ["status", "message", "stop_time_s"]] = ["warning", missed,
+                                                                           3.23]
+    runs["brake_force_kn"] = 4.905
+    groups = {c.key: (rows, cols) for c, rows, cols in cause_groups(runs)}
+    rows, cols = groups["missed_stop"]
+    assert list(rows.run_id) == ["a1"]
+    assert "stop_time_s" in cols and "brake_force_kn" in cols
+    assert "other" not in groups
