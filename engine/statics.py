@@ -736,8 +736,13 @@ def _summarise(res: SteadyResult, drives, hs_adm, bounds, shortfall_n: float,
             worst = float(sag[mask].max())
             limit = float(hs_adm[mask][0])
             if worst > limit * (1.0 + SAG_LIMIT_RTOL):
-                j = int(np.flatnonzero(mask)[np.argmax(sag[mask])])
-                warnings.append(_sag_words(loop, name, worst, limit, j,
+                # the span that needs the most added tension, not the largest ratio: every
+                # slack span reads w / 1 N, so the first of them tied for the largest ratio
+                # and the words sized the take-up for it, not for the slackest span
+                lack = np.where(mask & idl, loop.sag_w_n / limit - np.minimum(T, Tprev),
+                                -np.inf)
+                j = int(np.argmax(lack))
+                warnings.append(_sag_words(loop, name, float(sag[j]), limit, j,
                                            float(min(T[j], Tprev[j]))))
     sf_min = conv.safety_factor_min or SAFETY_FACTOR_MIN.get(belt.kind, 6.7)
     sf = res.summary["safety_factor"]
