@@ -328,3 +328,87 @@ def confirm_finer(conveyor: Conveyor, scenario: Scenario, rem: SlipRemedy, *, mo
             reruns += k
     return FinerCheck(elements=int(elements), takeup=tu, start_time_s=st,
                       takeup_moved=tu_moved, start_moved=st_moved, reruns=reruns)
+
+
+#: How a transient sag warning begins (:func:`beltstudy.engine.dynamics.simulate._sag_words`).
+SAG_WARNING = "transient sag on the "
+
+
+def sagged(tr) -> bool:
+    """Whether the transient ``tr`` sagged past a limit: it warned of a transient sag, or a
+    span went slack (its sag past every limit), or it failed."""
+    return (tr.status == "failed" or any(w.startswith(SAG_WARNING) for w in tr.warnings)
+            or (tr.summary.get("slack_max_m") or 0.0) > 0.0)
+
+
+def _sags(conveyor: Conveyor, scenario: Scenario, model: str, params, options) -> bool:
+    """Whether the whole cycle of ``conveyor`` sags past a limit (:func:`sagged`)."""
+    steady = _steady(conveyor, scenario, model, params)
+    if steady.status == "failed":
+        return True
+    # the conveyor gives the sag limits (without it the transient judges no sag)
+    return sagged(simulate(build_system(conveyor, scenario, steady, options),
+                           steady_summary=steady.summary, conveyor=conveyor))
+
+
+@dataclass(frozen=True)
+class SagRemedy:
+    """The take-up that keeps a cycle's transient sag within its limits, found by rerunning.
+
+    takeup : counterweight [kg] (gravity) or pretension [kN] (fixed) with no sag past a limit
+        (None: none up to :data:`TAKEUP_MAX` x the run's)
+    reruns : int, whole cycles rerun
+    run_takeup : the figure found on the run's mesh (``takeup`` is the finer mesh's where
+        that one still sagged there)
+    finer_elements : the finer mesh tried (None: not tried)
+    """
+
+    takeup: float | None
+    reruns: int
+    run_takeup: float | None = None
+    finer_elements: int | None = None
+
+
+def sag_remedy(conveyor: Conveyor, scenario: Scenario, *, model: str, params=None,
+               options: DynamicsOptions | None = None, elements: int | str,
+               takeup: float | None, finer: tuple | None = None, say=None
+               ) -> SagRemedy | None:
+    """The least take-up (counterweight [kg] or pretension [kN], ``takeup`` the run's) with
+    which the whole cycle, rerun on the run's mesh, sags past no limit: grown by :data:`GROW`
+    up to :data:`TAKEUP_MAX` x the run's and bisected to :data:`REL_TOL`. A transient sag
+    comes from the lowest tension of a stop's (start's) wave, and how much of a take-up
+    change reaches that span then depends on the wave and on what the change does to the
+    stop: a heavier take-up lets a brake's pulley grip more and stop the belt harder, so the
+    tension the sag warning asks for (the whole change reaching the span) is a floor that
+    may not avoid it (a 400 m plant belt's brake stop: 2 911 kg asked, 2.66 % sag against
+    1.5 % with it; 3 527 kg found, 3 659 kg on a mesh twice as fine). With ``finer`` (the
+    scenario and options of a checked run's finer mesh) the figure is tried there too and
+    searched up from there where it still sags (a transient sag grows as the mesh sharpens
+    the front). None without a take-up figure to grow."""
+    if takeup is None or not takeup > 0.0:
+        return None
+    opts = options or DynamicsOptions()
+    scn = scenario.model_copy(update={"elements": elements if elements == "auto"
+                                      else int(elements)})
+    field = "mass_kg" if conveyor.takeup.type == "gravity" else "pretension_kn"
+
+    def with_takeup(x: float) -> Conveyor:
+        return conveyor.model_copy(update={"takeup": conveyor.takeup.model_copy(
+            update={field: float(x)})})
+
+    if say is not None:
+        say("a transient sag past its limit: rerunning the cycle to find the take-up that "
+            "avoids it (about ten reruns of the whole cycle)")
+    top = TAKEUP_MAX * float(takeup)
+    tu, reruns = _smallest(lambda x: not _sags(with_takeup(x), scn, model, params, opts),
+                           float(takeup), top)
+    run_tu, fine_n = tu, None
+    if finer is not None and tu is not None:
+        fine_scn, fine_opts = finer
+        fine_n = int(fine_scn.elements)
+        reruns += 1
+        if _sags(with_takeup(tu), fine_scn, model, params, fine_opts):
+            tu, k = _smallest(lambda x: not _sags(with_takeup(x), fine_scn, model, params,
+                                                  fine_opts), float(tu), max(top, float(tu)))
+            reruns += k
+    return SagRemedy(takeup=tu, reruns=reruns, run_takeup=run_tu, finer_elements=fine_n)

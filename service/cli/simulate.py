@@ -88,7 +88,8 @@ def register(sub) -> None:
                    help="size an auto take-up for the sag limits running only (default: also "
                    "held at rest; the file's takeup.sag_at_rest)")
     p.add_argument("--no-remedy", action="store_true", help="when a drive slips in the start, "
-                   "do not rerun the start to find the take-up and start time that avoid it")
+                   "do not rerun the start to find the take-up and start time that avoid it "
+                   "(nor the cycle for a slip in the stop or a transient sag past its limit)")
     p.add_argument("--no-check", dest="check", action="store_false",
                    help="skip the error bars (by default the run is repeated on a mesh half "
                    "and twice as fine, about 5 x the run's time, and each deciding figure "

@@ -22,8 +22,9 @@ def test_the_take_up_and_start_time_that_avoid_a_start_slip_are_found_and_are_th
     said: list[str] = []
     s = run_one(conv, scn, model="din", remedy=True, say=said.append).summary
     assert max(s["drive1_slip_s"], s["drive2_slip_s"]) > 0.0
-    assert said == ["a drive slips in the start: rerunning the start to find the take-up and "
-                    "the start time that avoid it (about a dozen reruns)"]
+    # the slip's search is said first (its stop sags past the limit too: that search follows)
+    assert said[0] == ("a drive slips in the start: rerunning the start to find the take-up and "
+                       "the start time that avoid it (about a dozen reruns)")
     m, t = s["slip_free_takeup_mass_kg"], s["slip_free_start_time_s"]
     assert m > s["takeup_mass_kg"] and t > 60.0
     assert f"a take-up of {m:,.0f} kg" in s["message"] and f"a start of {t:.0f} s" in s["message"]
