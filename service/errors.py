@@ -8,6 +8,7 @@ from __future__ import annotations
 
 import re
 
+from beltstudy.engine.errors import shown_text
 from beltstudy.engine.textfile import file_problem, file_reason, shown_path
 
 __all__ = [
@@ -68,6 +69,7 @@ class ServiceError(Exception):
 
     def __init__(self, message: str, status_code: int | None = None,
                  headers: dict[str, str] | None = None):
+        message = shown_text(message)  # a 300 kB value given is not echoed whole
         super().__init__(message)
         self.message = message
         self.headers = headers  # extra response headers (Retry-After of a 503)

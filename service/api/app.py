@@ -32,6 +32,7 @@ from starlette.routing import Match
 from beltstudy import engine
 from beltstudy.engine import InputError
 from beltstudy.engine.conveyor import nearest_word
+from beltstudy.engine.errors import shown_text
 from beltstudy.service.api.apidoc import API_DOC_CSP, api_reference_html
 from beltstudy.service.api.deps import require_token
 from beltstudy.service.door.messages import describe
@@ -51,7 +52,8 @@ ROUTERS = ("beltstudy.service.api.meta", "beltstudy.service.api.studies", "belts
 
 
 def _error(kind: str, message: str, status: int, headers: dict | None = None) -> JSONResponse:
-    return JSONResponse({"error": kind, "message": message}, status_code=status, headers=headers)
+    return JSONResponse({"error": kind, "message": shown_text(message)}, status_code=status,
+                        headers=headers)
 
 
 def _body_model(request: Request) -> type[BaseModel] | None:
