@@ -523,3 +523,25 @@ def test_a_drive_held_at_a_torque_limit_below_its_rating_is_not_said_to_be_over_
     assert w.startswith("drive 1 (head) was held at its torque limit (3.334 kN, 40 % of its "
                         "rated force 8.334 kN) for 12.7 s of the cycle (first at t = 2.0 s)")
     assert "a larger motor (more than" in w
+
+
+def test_a_start_overload_gives_the_swing_scaled_figure_beside_the_rigid_body_one():
+    """A 10 s vfd start on a drive rated 24 kN, running at 12 kN, whose rigid-body share at
+    the peak acceleration is 15 kN while the run's own peak reached 30 kN (18 kN above its
+    running force): the rigid body says 10 x 15 / 12 = 12.5 s (13 s), which leaves the belt's
+    swing out; the run's own peak scaled as 1 / t says 10 x 18 / 12 = 15 s, and both are
+    given. A 5 km route's 60 s start was told 128 s by the rigid body and still overloaded
+    there for 19.6 s; its swing-scaled 142 s kept it within. A run whose peak is within the
+    rigid body's gets the one figure."""
+    drv = _drive_result(fmax=30e3, fmax_t=5.0, over_s=20.0, f2_int=13e3**2 * 60.0,
+                        rms_s=60.0)
+    _, (w,) = transient_checks(["drive 1 (head)"], drv, [24e3], [60e3], [True], 4.0, 10.0,
+                               running_n=[12e3], start_accel_n=[15e3])
+    assert "about 13 s keeps the force within the rating, a rigid-body estimate" in w, w
+    assert "about 15 s with the run's own peak above its running force (18 kN against the " \
+           "rigid body's 15 kN) scaled as 1 / t" in w, w
+    drv = _drive_result(fmax=26e3, fmax_t=5.0, over_s=20.0, f2_int=13e3**2 * 60.0,
+                        rms_s=60.0)
+    _, (w,) = transient_checks(["drive 1 (head)"], drv, [24e3], [60e3], [True], 4.0, 10.0,
+                               running_n=[12e3], start_accel_n=[15e3])
+    assert "about 13 s keeps the force within" in w and "run's own peak" not in w, w
