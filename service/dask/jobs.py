@@ -240,7 +240,8 @@ class StudyJob:
 
     def eta_s(self) -> float | None:
         """Time left from the measured run rate (:class:`RunRate`); None until a task of this
-        session has finished."""
+        session has finished, and again from a lost Dask client until a task finishes on
+        the next one."""
         remaining = self.study.total - self.done - self._buffered
         try:
             workers = self.executor.n_workers()
@@ -320,6 +321,8 @@ class StudyJob:
                 self._save(message="")
             self._waited = False
             lost = self._stream(client, todo)
+            if lost:  # nothing runs until Dask is back: no time left until it is measured
+                self.rate = RunRate()  # again (not a rate averaged over the outage)
         if self.halted:
             return
         self.state = "done"

@@ -136,3 +136,76 @@ def test_a_study_back_from_a_lost_scheduler_drops_its_waiting_message(monkeypatc
     messages = [f["message"] for f in saved if "message" in f]
     assert any(m.startswith("waiting for Dask: ") for m in messages), messages
     assert job.state == "done" and messages[-1] == "" and len(streams) == 2
+
+
+def test_a_study_waiting_for_a_lost_scheduler_has_no_time_left(monkeypatch):
+    """While a study waits for its lost scheduler nothing runs: its time left is unknown (it
+    grew by 2 s each second of the outage, 3.5 s to 134 s over a minute, on a live service
+    whose scheduler was killed), and once Dask is back it comes from the runs since then, not
+    from a rate averaged over the outage (63 s left for 28 runs that took 1.5 s)."""
+    from types import SimpleNamespace
+
+    import pandas as pd
+
+    from beltstudy.service.dask import jobs
+    from beltstudy.service.errors import Unavailable
+
+    clock = Clock()
+    monkeypatch.setattr(jobs, "WAIT_FOR_DASK_S", 0.0)
+    monkeypatch.setattr(jobs, "adjacent_starts", list)
+    run_rate = jobs.RunRate
+    monkeypatch.setattr(jobs, "RunRate", lambda: run_rate(clock))
+
+    class FakeStore:
+        def read(self, sid):
+            return {}
+
+        def done_runs(self, sid):
+            return pd.DataFrame()
+
+        def update(self, sid, **fields):
+            return fields
+
+    etas_waiting: list = []
+
+    class FakeExecutor:
+        failing_since = None
+        answers = iter(["client", "down", "client"])
+
+        def client(self, timeout, halt):
+            if next(self.answers) == "down":
+                clock.t += 60.0  # a minute without a scheduler
+                etas_waiting.append(job.eta_s())
+                raise Unavailable("Dask on tcp://127.0.0.1:1 is not ready: lost the Dask "
+                                  "scheduler; reconnecting")
+            return "client"
+
+        def n_workers(self):
+            return 1
+
+    runs = [SimpleNamespace(run_id=f"r{i}") for i in range(60)]
+    study = SimpleNamespace(id="s1", runs=runs, total=60, axes=[], dynamics=False, surface=False)
+    job = jobs.StudyJob(study, FakeStore(), FakeExecutor(), SimpleNamespace(task_seconds=1.0))
+    monkeypatch.setattr(job, "_new_session", lambda: {})
+    etas: list = []
+
+    def stream(client, todo):
+        for _ in range(10):  # 2 runs of 0.1 s every 0.2 s: 10 runs/s
+            clock.t += 0.2
+            job.rate.finished(2, 0.2)
+            job.done += 2
+            todo.popleft(), todo.popleft()
+        etas.append(job.eta_s())
+        if len(etas) == 1:
+            return True  # the first session loses its scheduler
+        todo.clear()
+        job.done = 60
+        return False
+
+    monkeypatch.setattr(job, "_stream", stream)
+    job._execute()
+    assert job.state == "done" and len(etas) == 2
+    assert etas[0] == pytest.approx(40 / (18 / 1.8), rel=1e-9)  # 4 s left at 10 runs/s
+    assert etas_waiting == [None]  # nothing runs: no time left to give
+    # back on Dask: the new session's 20 runs over 2 s, not 20 runs over 62 s
+    assert etas[1] == pytest.approx(20 / (18 / 1.8), rel=1e-9)
