@@ -103,6 +103,17 @@ def finished_study():
 
 
 # ------------------------------------------------------------------ live servers (slow tests)
+#: Tries at a free port before a live service's start fails (:class:`LiveService`).
+PORT_ATTEMPTS = 3
+
+
+def _port_taken(log_path: Path, start: int) -> bool:
+    """Whether the server's log, from byte ``start``, says its port was already in use."""
+    with open(log_path, "rb") as f:
+        f.seek(start)
+        return b"is already in use" in f.read()
+
+
 class LiveService:
     """``beltstudy serve`` in a child process on a free loopback port."""
 
@@ -111,8 +122,6 @@ class LiveService:
         from beltstudy.service.cli.demo import free_port, start_server, wait_ready
 
         self.data_dir = data_dir
-        self.port = free_port()
-        self.url = f"http://127.0.0.1:{self.port}"
         self.env = {
             "BELTSTUDY_DATA_DIR": str(data_dir),
             "BELTSTUDY_STUDIES_DIR": str(ROOT / "studies"),
@@ -121,14 +130,24 @@ class LiveService:
             "BELTSTUDY_SCHEDULER": "",
             **env,
         }
-        self.log = open(log_path, "ab")  # noqa: SIM115 - closed in stop()
-        self.proc = start_server(self.port, env=self.env, log=self.log)
-        self.client = ServiceClient(self.url, self.env["BELTSTUDY_TOKEN"], timeout=60)
-        try:
-            self.health = wait_ready(self.client, self.proc, timeout_s=240)
-        except Exception:
-            self.stop()
-            raise
+        # a free port can be taken between free_port() and the server's bind (another
+        # service's Dask workers bind ports of their own): the server then exits at once
+        # saying so, and is started again on another port
+        for attempt in range(PORT_ATTEMPTS):
+            self.port = free_port()
+            self.url = f"http://127.0.0.1:{self.port}"
+            self.log = open(log_path, "ab")  # noqa: SIM115 - closed in stop()
+            start = self.log.tell()
+            self.proc = start_server(self.port, env=self.env, log=self.log)
+            self.client = ServiceClient(self.url, self.env["BELTSTUDY_TOKEN"], timeout=60)
+            try:
+                self.health = wait_ready(self.client, self.proc, timeout_s=240)
+                return
+            except Exception:
+                self.stop()
+                if attempt + 1 < PORT_ATTEMPTS and _port_taken(log_path, start):
+                    continue
+                raise
 
     def worker_pids(self) -> list[int]:
         """Dask worker processes of the service's LocalCluster."""
