@@ -376,8 +376,8 @@ class StudyService:
                 elapsed_s=round(job.elapsed_s(), 3),
                 eta_s=job.eta_s(),
             )
-        if out["eta_s"] is not None:
-            out["eta_s"] = round(out["eta_s"], 1)
+        if out["eta_s"] is not None:  # to 0.1 s; only no runs left reads 0 (as a done study)
+            out["eta_s"] = max(round(out["eta_s"], 1), 0.1) if out["eta_s"] > 0 else 0.0
         return out
 
     def running_count(self) -> int:

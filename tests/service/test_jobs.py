@@ -209,3 +209,34 @@ def test_a_study_waiting_for_a_lost_scheduler_has_no_time_left(monkeypatch):
     assert etas_waiting == [None]  # nothing runs: no time left to give
     # back on Dask: the new session's 20 runs over 2 s, not 20 runs over 62 s
     assert etas[1] == pytest.approx(20 / (18 / 1.8), rel=1e-9)
+
+
+def test_a_running_studys_time_left_never_reads_zero(data_dir, make_settings, make_study,
+                                                     finished_study):
+    """0 s left is the done study's answer: a running study with 40 ms of runs left (40 steady
+    runs at 1000 runs/s) said 0.0, rounded to the 0.1 s the status gives; it says 0.1."""
+    from beltstudy.service.studies import StudyService
+
+    sid = finished_study(data_dir, make_study("eta"))
+    service = StudyService(make_settings(data_dir))
+
+    class Job:
+        state, done, failed = "running", 5, 0
+
+        def __init__(self, eta):
+            self.eta = eta
+
+        def is_alive(self):
+            return True
+
+        def elapsed_s(self):
+            return 1.0
+
+        def eta_s(self):
+            return self.eta
+
+    for eta, said in ((0.04, 0.1), (0.0, 0.0), (None, None), (2.34, 2.3)):
+        service._jobs[sid] = Job(eta)
+        assert service.status(sid)["eta_s"] == said, eta
+    del service._jobs[sid]
+    assert service.status(sid)["eta_s"] == 0.0  # done
