@@ -324,6 +324,8 @@ class StudyJob:
             if lost:  # nothing runs until Dask is back: no time left until it is measured
                 self.rate = RunRate()  # again (not a rate averaged over the outage)
         if self.halted:
+            if self.session_start is not None:  # a stop wrote what finished: say so (a
+                self._save()  # cancel saves nothing)
             return
         self.state = "done"
         self._save(finished_at=time.time(), message=self._final_message())
