@@ -123,8 +123,9 @@ def run_demo(study_path: str = "studies/paper-comparison.yaml", port: int = 0) -
     try:
         with ServiceClient(f"http://127.0.0.1:{port}", settings.token) as client:
             health = wait_ready(client, proc, say=lambda line: print(line, flush=True))
+            n = health["executor"]["workers"]
             print(
-                f"{health['executor']['workers']} Dask workers ready and warmed in "
+                f"{n} Dask worker{'' if n == 1 else 's'} ready and warmed in "
                 f"{time.monotonic() - t0:.1f} s"
             )
             st, created = client.submit(body)

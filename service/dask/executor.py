@@ -228,7 +228,8 @@ class Executor:
                 self.warm[addr] = fut.result(timeout=WARM_TIMEOUT_S)
             except Exception as exc:  # a worker that cannot warm up still gets work
                 self.warm[addr] = {"errors": [f"{type(exc).__name__}: {exc}"]}
-        log.info("warmed %d workers in %.1f s", len(futures), time.monotonic() - t0)
+        log.info("warmed %d worker%s in %.1f s", len(futures), "" if len(futures) == 1 else "s",
+                 time.monotonic() - t0)
         compiled = [a for a, w in self.warm.items() if a in futures and w.get("compiled")]
         if compiled and not self.settings.scheduler and not self._closed.is_set():
             # A process that compiled the kernel computes other last bits (about 1e-12) than
