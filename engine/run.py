@@ -175,6 +175,7 @@ def run_one(
     check: bool = False,
     say: Callable[[str], None] | None = None,
     auto_brakes: bool | None = None,
+    governed: dict[str, str] | None = None,
 ) -> RunResult:
     """Steady solve and, with ``dynamics``, the rest -> start -> run -> stop -> rest cycle.
 
@@ -210,6 +211,12 @@ def run_one(
         Whether a brake of the run is auto although ``conveyor`` has its force written in (a
         study writes its design's sizes in): the advice on a fast brake stop then offers
         ``stop.time_s``. None: a brake of ``conveyor`` with ``force_kn: auto``.
+    governed : dict, optional
+        What set the sizes a caller wrote into ``conveyor`` (a study's design: its
+        ``takeup_governed_by``, ``rated_power_governed_by``, ``brake_governed_by``), which the
+        run then says in place of ``given``: a brake stop that missed the ``stop.time_s`` of a
+        brake the design set for holding says so, as the run with ``force_kn: auto`` does,
+        instead of calling it sized by the stop time.
 
     Raises
     ------
@@ -218,7 +225,7 @@ def run_one(
     """
     t0 = time.perf_counter()
     opts = options or DynamicsOptions()
-    prep = _prepare(conveyor, scenario, model, params, dynamics, opts)
+    prep = _prepare(conveyor, scenario, model, params, dynamics, opts, governed=governed)
     if prep.done is not None:
         prep.done.summary["elapsed_s"] = time.perf_counter() - t0
         return prep.done
@@ -293,6 +300,7 @@ def run_group(
     remedy: bool = False,
     check: bool | list[bool] = False,
     auto_brakes: list[bool | None] | None = None,
+    governed: list[dict[str, str] | None] | None = None,
 ) -> list[RunResult]:
     """:func:`run_one` of each scenario of one conveyor, model and parameters, the runs that
     agree on everything the transient engine reads up to the stop command sharing one
@@ -305,7 +313,8 @@ def run_group(
     ``conveyor`` may be one per scenario (runs whose brakes differ only in their force, delay,
     ramp, curve or hold still share a start when their models allow it). ``check`` may be one
     flag per scenario (the error bars rerun each checked run's cycle on its own, as
-    :func:`run_one` does); ``auto_brakes`` one per scenario, as :func:`run_one` takes it.
+    :func:`run_one` does); ``auto_brakes`` and ``governed`` one per scenario, as :func:`run_one`
+    takes them.
     Raises as :func:`run_one` for the first scenario that cannot run; a caller that wants a
     bad scenario to fail alone runs it with :func:`run_one`."""
     from beltstudy.engine.dynamics.shared import group_by_start, simulate_group
@@ -318,7 +327,8 @@ def run_group(
     preps, systems, todo, solved = {}, [], [], {}
     for i, scn in enumerate(scenarios):
         t0[i] = time.perf_counter()
-        prep = _prepare(convs[i], scn, model, params, True, opts, solved)
+        prep = _prepare(convs[i], scn, model, params, True, opts, solved,
+                        governed=None if governed is None else governed[i])
         if prep.done is not None:
             prep.done.summary["elapsed_s"] = time.perf_counter() - t0[i]
             results[i] = prep.done
@@ -358,12 +368,14 @@ class _Prepared:
     done: RunResult | None = None
 
 
-def _prepare(conveyor, scenario, model, params, dynamics, opts, solved=None) -> _Prepared:
+def _prepare(conveyor, scenario, model, params, dynamics, opts, solved=None, governed=None
+             ) -> _Prepared:
     """The steady part of :func:`run_one`: the scenario checked, the auto belt chosen, the
     steady solve and the sizes this run used. ``solved``: a dict that keeps the belt choice
     and steady solution of each operating case (the conveyor object, temperature, load and
     mesh) for the next scenarios of :func:`run_group` (runs that differ in their stop alone
-    solve their design once; neither is changed by what uses it)."""
+    solve their design once; neither is changed by what uses it). ``governed``: what set the
+    sizes the caller wrote in (:func:`run_one`), put in place of the run's own ``given``."""
     if dynamics:
         check_scenario(scenario, conveyor, opts)
     n = None if scenario.elements == "auto" else int(scenario.elements)
@@ -394,6 +406,8 @@ def _prepare(conveyor, scenario, model, params, dynamics, opts, solved=None) -> 
     summary.update(summary_fields(auto_sizes(conveyor, scenario, model=model, params=params,
                                              steady=steady)))
     summary.update(installed)
+    # a study's design: the run sees its sizes as given numbers, the caller knows what set them
+    summary.update({k: v for k, v in (governed or {}).items() if k.endswith("_governed_by")})
     prep = _Prepared(conveyor, belt_choice, steady, summary)
     if not dynamics or steady.status == "failed":
         run_message(summary, belt_choice)

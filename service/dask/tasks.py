@@ -178,8 +178,8 @@ def _row_head(spec: RunSpec, study_id: str) -> dict[str, Any]:
 def _row_done(row: dict, spec: RunSpec, result, t0: float) -> dict:
     """A run's row with its figures and what set each size of its design."""
     row.update(flatten_summary(result.summary))
-    # what set each size the study held for this run's conveyor design (beltstudy.service.grid.basis): the
-    # run itself only sees the numbers
+    # what set each size the study held for this run's conveyor design (beltstudy.service.grid.basis):
+    # the run sees the numbers, and these words from the design (its message says them too)
     row.update(spec.design)
     if row["elapsed_s"] is None:
         row["elapsed_s"] = time.perf_counter() - t0
@@ -275,7 +275,8 @@ def _run_shared(specs: list[RunSpec], study_id: str) -> list[tuple[dict, Any]] |
         scenarios = [parse_scenario(s.scenario) for s in specs]
         results = run_group(conveyors, scenarios, model=specs[0].model,
                             params=specs[0].params or None,
-                            auto_brakes=[_auto_brakes(s) for s in specs])
+                            auto_brakes=[_auto_brakes(s) for s in specs],
+                            governed=[s.design for s in specs])
     except Exception:
         return None
     return [(_row_done(_row_head(spec, study_id), spec, result, t0), result)
@@ -296,7 +297,7 @@ def _run(run_one, conveyor, scenario, spec: RunSpec):
     """``run_one`` of a spec, with error bars for a run of the accuracy sample; a check that
     raises leaves the run without them, with a note in its message."""
     kw = {"model": spec.model, "params": spec.params or None, "dynamics": spec.dynamics,
-          "auto_brakes": _auto_brakes(spec)}
+          "auto_brakes": _auto_brakes(spec), "governed": spec.design}
     if not (spec.check and spec.dynamics):
         return run_one(conveyor, scenario, **kw)
     try:

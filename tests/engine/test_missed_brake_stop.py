@@ -53,3 +53,28 @@ def test_only_brake_stops_of_auto_brakes_are_held_to_the_time():
     assert missed_brake_stop(BRAKE_2S, 9.0, "given", False) == []
     grip = missed_brake_stop(BRAKE_2S, 9.0, "grip", True)[0]
     assert "names the stop time its pulleys' grip allows" in grip
+
+
+def test_a_study_design_holding_brake_is_named_as_holding_when_it_misses_the_time():
+    # A study writes its design's auto sizes into the conveyor it runs and tells the run what
+    # set them. The brake above is set by holding: 1.2 x the loaded belt's net pull,
+    # 1.2 x (200 t/h / (3.6 x 2 m/s)) x 9.81 x 15 m = 1.2 x 27.78 kg/m x 9.81 x 15 m = 4.905 kN.
+    # Written in as a number, the run said the stop had missed a time the brake was "sized by
+    # as a rigid body" and offered a shorter stop.time_s (1.24 s), which holding outweighs;
+    # the study's row said brake_governed_by 'holding' beside it.
+    held = round(1.2 * 200 / (3.6 * 2.0) * 9.81 * 15.0 / 1e3, 3)
+    assert held == pytest.approx(4.905)
+    auto = run_one(parse_conveyor(incline300_dict(
+        brakes=[{"position": "head", "force_kn": "auto", "delay_s": 0.5}])), BRAKE_2S,
+        model="din").summary
+    assert auto["brake_force_kn"] == pytest.approx(held, rel=1e-3)
+    conv = parse_conveyor(incline300_dict(
+        brakes=[{"position": "head", "force_kn": held, "delay_s": 0.5}],
+        takeup={"type": "gravity", "position": "tail", "mass_kg": auto["takeup_mass_kg"]}))
+    s = run_one(conv, BRAKE_2S, model="din", auto_brakes=True,
+                governed={"brake_governed_by": "holding"}).summary
+    assert s["stop_time_s"] > MISSED_STOP_RATIO * 2.0
+    assert s["brake_governed_by"] == "holding"
+    assert "brake stop missed its stop.time_s" in s["message"]
+    assert "(set by holding:" in s["message"], s["message"]
+    assert "sized by it as a rigid body" not in s["message"]
