@@ -164,7 +164,10 @@ STEADY = ResultGroup("steady", "Steady state (the friction model at design speed
     _f("t_min_kn", "kN", "lowest steady belt tension", "minimum tension"),
     _f("t_min_at_m", "m", "where t_min_kn is, along the loop from the tail, carry first",
        "  at"),
-    _f("sag_max_pct", "%", "largest sag ratio h/S of a span, running", "maximum sag h/S"),
+    _f("sag_max_pct", "%", "largest sag ratio h/S of a span, running: `g (m'_G + m'_L) cos(a) "
+       "S / (8 T)`, the span's weight normal to the belt (PHYSICS 2 writes it without "
+       "`cos(a)`: the same on a level belt, 5 % lower on an 18 deg incline)",
+       "maximum sag h/S"),
     _f("takeup_mass_kg", "kg", "gravity take-up mass as used (the auto size when auto; null "
        "for a fixed take-up)", "take-up mass"),
     _f("takeup_tension_kn", "kN", "tension the take-up holds in each of its two strands, "
@@ -254,10 +257,14 @@ TRANSIENT = ResultGroup("transient", "Transient: the start, run and stop cycle (
     _f("t_max_dyn_kn", "kN", "highest belt tension of the cycle", "maximum tension (transient)"),
     _f("t_max_dyn_at_m", "m", "where t_max_dyn_kn is, from the tail, carry first",
        "  at (from the tail, carry first)"),
-    _f("t_max_dyn_time_s", "s", "when t_max_dyn_kn is, from the start command", "  at time"),
+    _f("t_max_dyn_time_s", "s", "when t_max_dyn_kn is, on the run's clock (the time series' "
+       "t_s): from the beginning of the run, which rests DynamicsOptions.pre_rest_s (2 s) "
+       "before the start command; the per-phase t_*_time_s are on this clock too",
+       "  at time"),
     _f("t_min_dyn_kn", "kN", "lowest belt tension of the cycle", "minimum tension (transient)"),
     _f("t_min_dyn_at_m", "m", "where t_min_dyn_kn is", "  at"),
-    _f("t_min_dyn_time_s", "s", "when t_min_dyn_kn is", "  at time"),
+    _f("t_min_dyn_time_s", "s", "when t_min_dyn_kn is (the run's clock, as "
+       "t_max_dyn_time_s: below 2 s it is the belt at rest before the start)", "  at time"),
     _f("dyn_factor", "-", "t_max_dyn_kn / t_max_kn", "dynamic factor t_max_dyn / t_max"),
     _f("drive_force_max_kn", "kN", "largest total drive force", "largest drive force"),
     _f("drive_power_max_kw", "kW", "largest total drive power", "largest drive power"),
@@ -288,7 +295,8 @@ TRANSIENT = ResultGroup("transient", "Transient: the start, run and stop cycle (
        "(null without brakes)", "brake force (largest)"),
     _f("wave_loop_time_s", "s", "time a stress wave takes once round the loop",
        "wave loop time"),
-    _f("stop_wave_ratio", "-", "stop_time_s / wave_loop_time_s", "stop time / wave loop time"),
+    _f("stop_wave_ratio", "-", "stop_time_s / wave_loop_time_s (null when the belt did not "
+       "stop)", "stop time / wave loop time"),
     _f("sag_max_dyn_pct", "%", "largest sag ratio of a span during the cycle",
        "largest sag (transient)"),
     _f("slip_margin_min_dyn", "-", "smallest slip margin of any drive pulley during the cycle",
@@ -307,11 +315,12 @@ TRANSIENT = ResultGroup("transient", "Transient: the start, run and stop cycle (
 ))
 
 _PHASE_WORDS = {"max": "highest", "min": "lowest"}
-_PHASE_SPAN = {"start": "from the start command to the stop command",
+_PHASE_SPAN = {"start": "from the beginning of the run (the rest before the start command "
+                         "included) to the stop command",
                "stop": "from the stop command to the end"}
 PHASE = ResultGroup(
-    "phase", "Per phase (SPEC 6.4): start = start command to stop command; stop = stop "
-    "command to the end",
+    "phase", "Per phase (SPEC 6.4): start = the beginning of the run (the rest before the "
+    "start command included) to the stop command; stop = stop command to the end",
     tuple(
         field_
         for p in ("start", "stop")
@@ -328,8 +337,9 @@ PHASE = ResultGroup(
 SLACK = ResultGroup("slack", "Slack (SPEC 6.4)", (
     _f("slack_max_m", "m", "largest belt length gathered by slack spans (0 when never slack)",
        "belt gathered by slack spans (largest)"),
-    _f("slack_at_m", "m", "where the belt went slack first", "  at"),
-    _f("slack_time_s", "s", "when the belt went slack first", "  at time"),
+    _f("slack_at_m", "m", "where the belt went slack first (null when it never did)", "  at"),
+    _f("slack_time_s", "s", "when the belt went slack first (null when it never did)",
+       "  at time"),
     _f("slack_duration_s", "s", "time with a slack span", "time with a slack span"),
     _f("t_max_pre_slack_kn", "kN", "highest tension before the belt first went slack (the "
        "whole cycle when it never did)", "highest tension before slack"),
