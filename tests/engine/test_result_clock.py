@@ -2,7 +2,7 @@
 which begins DynamicsOptions.pre_rest_s at rest before the start command, and the start phase
 takes that rest in. docs/results.md (generated from beltstudy.engine.results) said
 ``t_max_dyn_time_s`` was 'from the start command' and the start phase 'from the start command
-to the stop command': a 600 m decline study had its highest tension at t = 16.70 s on the
+to the stop command': an 800 m probe study had its highest tension at t = 16.70 s on the
 time series and t_max_dyn_time_s 16.695 (14.7 s after the start command at 2 s), and 36 of
 144 probe rows had t_min_start_time_s below 2 s, the belt at rest before the start."""
 from __future__ import annotations
