@@ -252,6 +252,11 @@ def _panels(df, others: list[str]):
     return out
 
 
+#: Room below zero of a figure drawn from zero (``ymin0``), as a share of its top: a point
+#: at zero keeps its whole marker inside the frame.
+ZERO_ROOM = 0.04
+
+
 def comparison_figure(df, x: str, y: str, others: list[str], xlabel: str, ylabel: str,
                       title: str, y2: str | None = None, y2label: str = "", ymin0=False,
                       inputs: list[str] | None = None, notes: list[str] | None = None):
@@ -303,7 +308,10 @@ def comparison_figure(df, x: str, y: str, others: list[str], xlabel: str, ylabel
             ax.set_ylabel(lab)
             ax.grid(alpha=0.3)
             if ymin0:
-                ax.set_ylim(bottom=0.0)
+                # from zero, with room below it: a point at zero (a stop whose belt went
+                # slack, the worst run) is drawn whole, not half hidden by the frame
+                top = ax.get_ylim()[1]
+                ax.set_ylim(bottom=-ZERO_ROOM * top if top > 0 else 0.0)
             if ptitle and col == y:
                 ax.set_title(wrap_title(ptitle, 40), fontsize=10)
         targets[-1][0].set_xlabel(xlabel)

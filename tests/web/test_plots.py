@@ -358,3 +358,29 @@ def test_the_peaks_and_ratio_figures_name_the_unit_of_their_x_axis():
     fig = charts.ratio_figure(summary["summary"])
     labels = {ax.get_xlabel() for ax in fig.axes if ax.get_xlabel()}
     assert labels == {"load", "temperature_c [°C]", "stop_time_target_s [s]"}
+
+
+def test_a_stop_whose_lowest_tension_is_zero_is_drawn_whole_inside_the_frame():
+    # a brake stop of a 1 km fabric belt went slack (t_min_stop_kn 0.0 at 3.82 s): the
+    # figure began its lowest-tension axis at exactly 0, so that run, the worst one, was a
+    # half marker on the frame line
+    runs = _runs()
+    runs["t_min_dyn_kn"] = 5.0 + runs["stop_time_s"] / 100 + runs["temperature_c"] / 1000
+    runs.loc[0, "t_min_dyn_kn"] = 0.0
+    fig = charts.peak_dynamic_tension_figure(runs, axes=AXES)
+    fig.canvas.draw()
+    lows = [ax for ax in fig.axes if ax.get_lines() and "lowest" in ax.get_ylabel()]
+    assert lows
+    zero_points = 0
+    for ax in lows:
+        box = ax.get_window_extent()
+        for line in ax.get_lines():
+            radius_px = line.get_markersize() / 2 * fig.dpi / 72
+            for xv, yv in zip(line.get_xdata(), line.get_ydata(), strict=True):
+                if yv != 0.0:
+                    continue
+                zero_points += 1
+                _, y_px = ax.transData.transform((xv, yv))
+                assert y_px - radius_px >= box.y0, "the point at zero tension is clipped"
+        assert ax.get_ylim()[0] < 0.0 < ax.get_ylim()[1]
+    assert zero_points == 1
