@@ -38,7 +38,7 @@ import numpy as np
 
 from beltstudy.engine.checks import HOLD_MARGIN
 from beltstudy.engine.conveyor import Conveyor, Scenario
-from beltstudy.engine.drives import GIVEN, RATED_POWER_FACTOR, figures, rated_power_kw
+from beltstudy.engine.drives import GIVEN, RATED_POWER_FACTOR, rated_power_kw
 from beltstudy.engine.loop import (
     MOTOR_INERTIA_SHARE,
     G,
@@ -53,6 +53,7 @@ from beltstudy.engine.stopgrip import (
     grip_limits,
     grip_remedies,
     pulley_name,
+    takeup_at_least,
 )
 
 __all__ = ["auto_sizes", "summary_fields", "RATED_POWER_FACTOR", "HOLD_MARGIN",
@@ -320,9 +321,10 @@ def _given_grip(conv: Conveyor, steady: SteadyResult) -> str:
         need = _bisect_up(lambda t, n=node: walk.room_n(n, fixed, takeup_n=t) >= 0.0,
                           walk.takeup_n, 100.0 * walk.takeup_n + 1e6)
         if need is not None:
-            said += (f" (a take-up of {figures(2.0 * need / G, thousands=True)} kg, takeup.mass_kg,"
+            said += (f" (a take-up of {takeup_at_least(need, G)}, takeup.mass_kg,"
                      if conv.takeup.type == "gravity" else
-                     f" (a take-up pretension of {need / 1e3:.4g} kN, takeup.pretension_kn,")
+                     f" (a take-up pretension of {takeup_at_least(need)}, "
+                     "takeup.pretension_kn,")
             said += " would let it pass that force)"
         parts.append(said)
         slides_any = slides_any or grip <= 0.0

@@ -32,11 +32,10 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from beltstudy.engine.drives import figures
 from beltstudy.engine.loop import G, Loop, rotating_parts
 
 __all__ = ["BRAKE_GRIP_MARGIN", "FRONT_FACTOR", "StopWalk", "grip_limits", "grip_remedies",
-           "pulley_name"]
+           "pulley_name", "takeup_at_least"]
 
 #: Dynamic factor on the fall of a braked pulley's slack-side tension [-]. The walk above is
 #: quasi-static; the stop's fronts (the drives' trip, the brake) are suddenly applied loads,
@@ -215,6 +214,21 @@ def _water_fill(caps: list[float], wanted: float) -> list[float]:
     return [min(c, hi) for c in caps]
 
 
+def takeup_at_least(tension_n: float, g: float | None = None) -> str:
+    """The least take-up a grip note advises, rounded up so the advice passes: with ``g`` a
+    counterweight holding ``tension_n`` [N] on each strand, ``2 T / g`` in whole kilograms
+    (``30,046 kg``), else a pretension in kN at four significant figures (``147.4 kN``).
+    Rounded to the nearest, a decline's head brake needing 30 045.3 kg was advised
+    '30,045 kg', which left its pulley 3 N short and repeated the same advice."""
+    if g is not None:
+        return f"{math.ceil(2.0 * tension_n / g * (1.0 - 1e-12)):,} kg"
+    kn = tension_n / 1e3
+    if not (kn > 0.0) or not math.isfinite(kn):
+        return f"{kn:.4g} kN"
+    step = 10.0 ** (math.floor(math.log10(kn)) - 3)
+    return f"{float(f'{math.ceil(kn / step * (1.0 - 1e-12)) * step:.4g}'):g} kN"
+
+
 def pulley_name(conv, loop: Loop, node: int) -> str:
     """A pulley in words: ``drive N's pulley (head)``, ``the head pulley``, ``the tail
     pulley``."""
@@ -273,9 +287,9 @@ def grip_remedies(conv, steady, walk: StopWalk, nodes: list[int], fixed: dict,
                                       for n in dict.fromkeys(nodes)), t0, 100.0 * t0 + 1e6)
     if t_need is not None:
         if conv.takeup.type == "gravity":
-            out.append(f"a take-up of {figures(2.0 * t_need / G, thousands=True)} kg (takeup.mass_kg)")
+            out.append(f"a take-up of {takeup_at_least(t_need, G)} (takeup.mass_kg)")
         else:
-            out.append(f"a take-up pretension of {t_need / 1e3:.4g} kN")
+            out.append(f"a take-up pretension of {takeup_at_least(t_need)}")
     # more wrap on each braked pulley
     wraps = []
     for node in dict.fromkeys(nodes):
