@@ -337,9 +337,11 @@ PHASE = ResultGroup(
 SLACK = ResultGroup("slack", "Slack (SPEC 6.4)", (
     _f("slack_max_m", "m", "largest belt length gathered by slack spans (0 when never slack)",
        "belt gathered by slack spans (largest)"),
-    _f("slack_at_m", "m", "where the belt went slack first (null when it never did)", "  at"),
-    _f("slack_time_s", "s", "when the belt went slack first (null when it never did)",
-       "  at time"),
+    _f("slack_at_m", "m", "where slack_max_m was gathered: the slack span that had gathered "
+       "most at slack_time_s, from the tail, carry first (not where the belt first went slack; "
+       "null when it never did)", "  at"),
+    _f("slack_time_s", "s", "when slack_max_m was reached (not when the belt first went slack, "
+       "which is where t_max_pre_slack_kn ends; null when it never did)", "  at time"),
     _f("slack_duration_s", "s", "time with a slack span", "time with a slack span"),
     _f("t_max_pre_slack_kn", "kN", "highest tension before the belt first went slack (the "
        "whole cycle when it never did)", "highest tension before slack"),
