@@ -459,6 +459,7 @@ def _complete(prep: _Prepared, scenario, system, tr, model, params, opts, remedy
         tr.warnings.extend(lift_warnings)
         tr.status = "warning" if tr.status == "ok" else tr.status
     late = _late_brakes(conveyor, scenario, summary.get("stop_time_s"))
+    late += missed_controlled_stop(scenario, summary.get("stop_time_s"))
     late += missed_brake_stop(scenario, summary.get("stop_time_s"),
                               summary.get("brake_governed_by"), system.auto_brakes)
     if late:
@@ -691,6 +692,27 @@ def missed_brake_stop(scenario: Scenario, stop_time_s: float | None,
             f"and an auto brake asked for about {asked * asked / stop_time_s:.3g} s (the "
             "rigid-body force goes about as 1 / t; rerun to check) or a given "
             "brakes[].force_kn would stop it nearer the time asked"]
+
+
+def missed_controlled_stop(scenario: Scenario, stop_time_s: float | None) -> list[str]:
+    """In a controlled stop, the sentence saying the belt (``stop_time_s`` [s], command to
+    rest) took longer than ``MISSED_STOP_RATIO`` x the ``stop.time_s`` its drives were asked
+    to stop it in; [] otherwise. A belt that follows the drives' s-curve is at rest (1 % of
+    design speed) from 0.884 of it, so a stop past the time asked did not follow it: a drive
+    slipped, met its torque limit or rating, or the belt swung about its curve (a 600 m
+    regenerating decline asked for 10 s slipped its head pulley for 13.2 s and took 15.6 s,
+    and only the slip was said)."""
+    if scenario.stop.mode != "controlled" or stop_time_s is None \
+            or not math.isfinite(stop_time_s):
+        return []
+    asked = float(scenario.stop.time_s)
+    if not asked > 0.0 or stop_time_s <= MISSED_STOP_RATIO * asked:
+        return []
+    return [f"controlled stop missed its stop.time_s: {stop_time_s:.3g} s from the stop "
+            f"command to rest against the {asked:g} s asked of the drives "
+            f"({stop_time_s / asked:.2f} x): the belt did not follow the drives' stop curve; "
+            "the run's slip, torque-limit and overload warnings, where it has them, say what "
+            "held it back and what would avoid it"]
 
 
 def _error_bars(conveyor, scenario, result, model, params, opts):

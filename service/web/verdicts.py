@@ -341,9 +341,9 @@ CAUSES: tuple[Cause, ...] = (
           r"ran (?:away|back)"),
     Cause("not_stopped", "did not stop", not_stopped,
           ("stop_time_s", "brake_force_kn", "velocity_min_m_s"), r"did not stop|never"),
-    Cause("missed_stop", "stopped slower than the stop time asked of its auto brakes",
-          lambda r: _message(r).str.contains("brake stop missed its stop.time_s",
-                                             regex=False),
+    Cause("missed_stop", "stopped slower than the stop time asked (of its auto brakes or "
+          "its drives in a controlled stop)",
+          lambda r: _message(r).str.contains("stop missed its stop.time_s", regex=False),
           ("stop_time_s", "stop_time_target_s", "brake_force_kn"), r"missed its stop"),
     Cause("never_going", "never got going (no stop to judge)", never_going,
           ("start_time_s", "power_kw", "drive{i}_power_required_kw", "drive{i}_utilisation"),

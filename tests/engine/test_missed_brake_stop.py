@@ -8,7 +8,12 @@ from __future__ import annotations
 import pytest
 
 from beltstudy.engine.conveyor import Scenario, parse_conveyor
-from beltstudy.engine.run import MISSED_STOP_RATIO, missed_brake_stop, run_one
+from beltstudy.engine.run import (
+    MISSED_STOP_RATIO,
+    missed_brake_stop,
+    missed_controlled_stop,
+    run_one,
+)
 from tests.conftest import incline300_dict
 
 BRAKE_2S = Scenario(elements=60, run_s=20, stop={"mode": "brake", "time_s": 2})
@@ -78,3 +83,42 @@ def test_a_study_design_holding_brake_is_named_as_holding_when_it_misses_the_tim
     assert "brake stop missed its stop.time_s" in s["message"]
     assert "(set by holding:" in s["message"], s["message"]
     assert "sized by it as a rigid body" not in s["message"]
+
+
+# a 600 m, -50 m regenerating decline, 900 t/h at 3 m/s, one 200 kW vfd head drive (wrap
+# 200 deg, mu 0.35), auto gravity take-up at the tail: asked to stop in 10 s, its head pulley
+# slips and the belt takes about 15 s
+DECLINE_600 = {
+    "name": "decline-600", "speed_m_s": 3.0,
+    "belt": {"type": "ST1000", "width_m": 1.0},
+    "material": {"capacity_t_h": 900, "density_t_m3": 1.7},
+    "profile": [{"length_m": 300, "lift_m": -20}, {"length_m": 300, "lift_m": -30}],
+    "idlers": {"carry": {"spacing_m": 1.2, "roll_diameter_m": 0.127, "rolls": 3,
+                         "trough_deg": 35, "cema_class": "C"},
+               "return": {"spacing_m": 3.0, "roll_diameter_m": 0.127, "rolls": 1,
+                          "cema_class": "C"}},
+    "drives": [{"position": "head", "wrap_deg": 200, "friction": 0.35, "share": 1.0,
+                "pulley_diameter_m": 0.8, "inertia_kg_m2": 150, "rated_power_kw": 200,
+                "torque_limit": 1.5, "control": "vfd"}],
+    "takeup": {"type": "gravity", "position": "tail", "mass_kg": "auto", "travel_m": 4},
+}
+
+
+def test_a_controlled_stop_the_belt_did_not_follow_says_it_missed_the_time_asked():
+    """A belt that follows the drives' s-curve is at rest (1 % of design speed) from 0.884 of
+    the time asked; this one slips its head pulley and takes over 1.1 x the 10 s asked."""
+    scn = Scenario(elements=60, start={"time_s": 20}, run_s=10,
+                   stop={"mode": "controlled", "time_s": 10})
+    s = run_one(parse_conveyor(DECLINE_600), scn, model="din").summary
+    t = s["stop_time_s"]
+    assert t > MISSED_STOP_RATIO * 10.0 and s["drive1_slip_s"] > 0.0, (t, s["drive1_slip_s"])
+    assert (f"controlled stop missed its stop.time_s: {t:.3g} s from the stop command to rest "
+            f"against the 10 s asked of the drives ({t / 10.0:.2f} x)") in s["message"]
+
+
+@pytest.mark.parametrize("took, said", [(8.84, False), (11.0, False), (11.01, True),
+                                        (None, False), (float("inf"), False)])
+def test_a_controlled_stop_is_held_to_a_tenth_over_its_time(took, said):
+    scn = Scenario(stop={"mode": "controlled", "time_s": 10})
+    assert bool(missed_controlled_stop(scn, took)) is said
+    assert missed_controlled_stop(Scenario(stop={"mode": "coast"}), 30.0) == []
