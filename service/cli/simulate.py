@@ -189,7 +189,7 @@ def run(args: argparse.Namespace) -> int:
         locate = res.steady.loop.where if res.steady is not None else None
         fig = transient_figure(res.timeseries, surface, title=(
             f"{conv.name}: {fm.name}, {scn.temperature_c:g} C, load {scn.load}, "
-            f"{scn.start.control} start {scn.start.time_s:g} s, {scn.stop.mode} stop"),
+            f"{start_words(conv, scn)}, {scn.stop.mode} stop"),
             extremes=extremes, locate=locate, extremes_surface=res.surface)
         with writing(args.plot):
             fig.savefig(args.plot, dpi=110)
@@ -198,6 +198,22 @@ def run(args: argparse.Namespace) -> int:
     else:
         print(_table(s))
     return 0 if s["status"] != "failed" else 1
+
+
+def start_words(conv, scn) -> str:
+    """The start as the run made it, for the plot's title: ``s-curve start 60 s`` for vfd
+    drives, which follow the scenario's start curve; ``dol start`` (with the coupling) when
+    every drive is a motor on the line, which does not read ``start.time_s`` (docs/drives.md)
+    and starts as its torque curve and coupling let it."""
+    drives = list(conv.drives)
+    if drives and all(d.control == "dol" for d in drives):
+        couplings = sorted({d.coupling for d in drives} - {"none"})
+        named = ", ".join(c.replace("_", " ") + " coupling" for c in couplings)
+        return f"dol start ({named})" if named else "dol start"
+    words = f"{scn.start.control} start {scn.start.time_s:g} s"
+    if any(d.control == "dol" for d in drives):
+        words += " (vfd drives; the dol drives on the line)"
+    return words
 
 
 def _fmt(val) -> str:

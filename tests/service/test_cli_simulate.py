@@ -104,3 +104,35 @@ def test_cli_simulate_plot_probes_the_extremes_by_their_values(tmp_path, capsys,
                                        s["t_max_dyn_time_s"])
     assert seen["lowest tension"] == (s["t_min_dyn_at_m"], s["t_min_dyn_kn"],
                                       s["t_min_dyn_time_s"])
+
+
+def test_cli_simulate_plot_title_says_a_dol_start_not_the_scenario_start_curve(
+        tmp_path, capsys, monkeypatch):
+    """A dol drive with a fluid coupling does not read start.time_s (docs/drives.md): an 800 m,
+    5 % incline on a 400 kW dol motor started in 13.7 s, and its plot's title said 's-curve
+    start 60 s', the scenario's curve that no drive followed (here slope-5pct.yaml's drive made
+    dol with a fluid coupling)."""
+    import yaml
+
+    from beltstudy.service.cli import main, simulate
+
+    conv = yaml.safe_load(SLOPE.read_text())
+    for d in conv["drives"]:
+        d.update(control="dol", coupling="fluid")
+    path = tmp_path / "dol.yaml"
+    path.write_text(yaml.safe_dump(conv))
+    titles = []
+    real = simulate.transient_figure
+
+    def spy(*args, **kwargs):
+        titles.append(kwargs["title"])
+        return real(*args, **kwargs)
+
+    monkeypatch.setattr(simulate, "transient_figure", spy)
+    code = main(["simulate", str(path), "--model", "din", "--elements", "40",
+                 "--start-time-s", "60", "--run-s", "5", "--stop-mode", "coast",
+                 "--no-check", "--no-remedy", "--json", "--plot", str(tmp_path / "fig.png")])
+    s = json.loads(capsys.readouterr().out)
+    assert code == 0 and s["start_time_s"] is not None
+    assert "s-curve" not in titles[0] and "60 s" not in titles[0]
+    assert "dol start (fluid coupling)" in titles[0]
