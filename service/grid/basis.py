@@ -61,8 +61,8 @@ from beltstudy.engine import (
 from beltstudy.engine.conveyor import PRETENSION_MAX_KN, TAKEUP_MASS_MAX_KG
 from beltstudy.service.errors import Invalid
 
-__all__ = ["DesignIn", "has_auto", "size_design", "apply_sizes", "round_up", "SIG_DIGITS",
-           "design_loads", "design_models", "design_temperatures", "check_design_loads",
+__all__ = ["DesignIn", "has_auto", "size_design", "apply_sizes", "round_up", "round_down",
+           "SIG_DIGITS", "design_loads", "design_models", "design_temperatures", "check_design_loads",
            "check_design_once"]
 
 #: Significant digits of a size written into a run's conveyor (rounded up).
@@ -90,6 +90,16 @@ def round_up(x: float, digits: int = SIG_DIGITS) -> float:
     q = 10.0 ** (math.floor(math.log10(x)) - (digits - 1))
     value = float(f"{math.ceil(x / q - 1e-9) * q:.{digits}g}")
     return value if value >= x * (1.0 - 1e-12) else float(f"{value + q:.{digits}g}")
+
+
+def round_down(x: float, digits: int = SIG_DIGITS) -> float:
+    """``x`` rounded down to ``digits`` significant digits (0 and negatives unchanged): a size
+    that is a ceiling (a brake held at its pulley's grip) must not rise past it by rounding."""
+    if not (x > 0.0) or not math.isfinite(x):
+        return float(x)
+    q = 10.0 ** (math.floor(math.log10(x)) - (digits - 1))
+    value = float(f"{math.floor(x / q + 1e-9) * q:.{digits}g}")
+    return value if value <= x * (1.0 + 1e-12) else float(f"{value - q:.{digits}g}")
 
 
 def has_auto(conv: dict) -> bool:
@@ -293,7 +303,11 @@ def design_belt(conv: Conveyor, cases: list[DesignCase]) -> tuple[Conveyor, dict
 
 
 def _brake_entry(brakes: BrakeSizes) -> dict:
-    return {"force_kn": [max(round_up(f), 1e-3) for f in brakes.force_kn],
+    # a force held at its pulley's grip is the most the pulley passes: rounded down, as every
+    # other size (a least need) is rounded up; rounded up, the grip size at its own case was
+    # beyond the grip (59.3205 kN set against 59.32052 kN passed) and its run said so
+    return {"force_kn": [max(round_down(f) if why == "grip" else round_up(f), 1e-3)
+                         for f, why in zip(brakes.force_kn, brakes.governed_by, strict=True)],
             "governed_by": list(brakes.governed_by), "case": brakes.case.label(),
             "at": brakes.at}
 
