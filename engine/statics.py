@@ -47,7 +47,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from beltstudy.engine import rubber
+from beltstudy.engine import catalog, rubber
 from beltstudy.engine.capacity import capacity as capacity_check
 from beltstudy.engine.checks import holding_warning, input_notes, runback_note
 from beltstudy.engine.checks import steady_checks as design_checks
@@ -883,6 +883,20 @@ def _safety_words(loop: Loop, belt, sf: float, sf_min: float, t_max: float, s_m:
     a lower largest tension by a lighter take-up only where the take-up is given (an auto
     one, ``takeup_auto``, is already the least its slip and sag limits need)."""
     need_kn_m = sf_min * t_max / belt.width_m / 1e3
+    strongest = max((b for b in catalog.belts().values() if b.kind == belt.kind),
+                    key=lambda b: b.rating_kn_m, default=None)
+    if strongest is None or need_kn_m <= strongest.rating_kn_m:
+        pick = "belt.type: auto picks the lightest catalogue belt that passes"
+    else:
+        # no catalogue belt of this kind is that strong, so belt.type: auto would not find one;
+        # the strongest meets the minimum at these tensions on a belt this much wider
+        width = sf_min * t_max / (strongest.rating_kn_m * 1e3)
+        pick = (f"stronger than any catalogue {belt.kind} belt: the strongest, "
+                f"{strongest.id}, is rated {figures(strongest.rating_kn_m)} kN/m, and "
+                f"belt.type: auto finds none that passes; at these tensions {strongest.id} "
+                f"needs a width of at least {math.ceil(width * 100.0) / 100.0:.2f} m (more with "
+                "its own weight), "
+                "or a belt of its own from a maker's sheet (rating_kn_m)")
     lower = ("drives spread along the belt; the auto take-up is already the least the slip "
              "and sag limits need" if takeup_auto else
              "a take-up no heavier than the slip and sag limits need, drives spread along "
@@ -890,8 +904,8 @@ def _safety_words(loop: Loop, belt, sf: float, sf_min: float, t_max: float, s_m:
     return (f"belt safety factor {sf:.2f} is below the minimum {sf_min:.2f} (t_max "
             f"{t_max / 1e3:.1f} kN {place_words(loop, s_m)}; belt rating "
             f"{figures(belt.rating_n / 1e3)} kN, {figures(belt.rating_kn_m)} kN/m x {belt.width_m:g} m): a "
-            f"belt rated at least {math.ceil(need_kn_m)} kN/m at this width (belt.type: auto "
-            f"picks the lightest catalogue belt that passes), or a lower largest tension ({lower}) "
+            f"belt rated at least {math.ceil(need_kn_m)} kN/m at this width ({pick}), or a "
+            f"lower largest tension ({lower}) "
             "would avoid it")
 
 

@@ -606,3 +606,25 @@ def test_a_low_safety_factor_is_not_told_a_lighter_auto_take_up():
     given = solve_steady(parse_conveyor(data), model="din")
     said = [w for w in given.warnings if w.startswith("belt safety factor")]
     assert said and "a take-up no heavier than the slip and sag limits need" in said[0]
+
+
+def test_a_safety_factor_no_catalogue_belt_meets_does_not_send_the_user_to_belt_type_auto(
+        hand_dict):
+    """A minimum safety factor that asks for more rating than the catalogue's strongest belt
+    of the kind (steel: ST5400, 5 400 kN/m) must not offer belt.type: auto, which then finds
+    none that passes: a 25 km overland asked for 10 878 kN/m and was told 'belt.type: auto
+    picks the lightest catalogue belt that passes'. The hand conveyor (custom steel belt,
+    1 m wide) with S_min set so that S_min T_max / B is 6 000 kN/m: the warning names
+    ST5400 and the width it needs by hand, S_min T_max / 5 400 kN/m, rounded up to cm. A
+    60 t take-up lifts T_max past 300 kN, so S_min stays within its bound of 50."""
+    hand_dict["takeup"] = {"type": "gravity", "position": "tail", "mass_kg": 60000}
+    t_max = solve_steady(parse_conveyor(hand_dict), model="din").summary["t_max_kn"]
+    sf_min = 5999.5 / t_max  # 6 000 kN/m on the 1 m belt, rounded up
+    hand_dict["safety_factor_min"] = sf_min
+    r = solve_steady(parse_conveyor(hand_dict), model="din")
+    (msg,) = [w for w in r.warnings if "safety factor" in w]
+    assert "a belt rated at least 6000 kN/m at this width" in msg
+    assert "picks the lightest catalogue belt that passes" not in msg
+    assert "stronger than any catalogue steel belt: the strongest, ST5400" in msg
+    width = math.ceil(5999.5 / 5400.0 * 100.0) / 100.0  # 1.12 m
+    assert f"ST5400 needs a width of at least {width:.2f} m" in msg
