@@ -711,11 +711,24 @@ def _summarise(res: SteadyResult, drives, hs_adm, bounds, shortfall_n: float,
     warnings: list[str] = []
     # ---- load case and capacity (SPEC 6.2, 6.4)
     surge = max(loop.section_load) if loop.section_load else loop.load_fraction
-    if surge > 1.0:
-        warnings.append(f"surge: load {surge:g} x the design load (material.capacity_t_h) "
-                        "is above the design capacity")
     cap = capacity_check(conv)
     res.summary["fill_pct"] = cap.fill_pct
+    if surge > 1.0 and conv.material.capacity_t_h > 0.0:
+        # the surge's volume flow at design speed is the load fraction x the design one: a
+        # design load that fills 96 % of the cross-section overflows it at 1.3 (125 %)
+        surge_fill = surge * cap.fill_pct
+        most = 100.0 / surge_fill * conv.material.capacity_t_h if surge_fill > 0.0 else 0.0
+        step = 10.0 ** (math.floor(math.log10(most)) - 2) if most > 0.0 else 1.0
+        most = math.floor(most / step + 1e-9) * step  # down at three figures: at most
+        spill = (f", beyond its capacity ({figures(cap.capacity_m3_h)} m3/h, ISO 5048): the "
+                 f"material heaps past the belt's edges and spills; a design load of at most "
+                 f"{most:.3g} t/h "
+                 "(material.capacity_t_h) leaves room for it, or a wider or deeper-troughed belt"
+                 if surge_fill > 100.0 else "")
+        warnings.append(f"surge: load {surge:g} x the design load (material.capacity_t_h) "
+                        f"is above the design capacity; it fills the belt's cross-section to "
+                        f"{surge_fill:.0f} % at {v:g} m/s (the design load {cap.fill_pct:.0f} %)"
+                        f"{spill}")
     if cap.fill_pct > 100.0:
         warnings.append(
             f"fill_pct {cap.fill_pct:.0f} %: the design volume flow "

@@ -466,6 +466,30 @@ def test_surge_above_the_design_load_warns():
     assert "surge" in per_section.message
 
 
+def test_a_surge_that_overfills_the_cross_section_says_so_and_what_leaves_room():
+    """A surge of 1.3 on a 150 m lift whose design load filled 96 % of the cross-section
+    (125 % in the surge) warned only 'above the design capacity', the same words as on a belt
+    with room to spare. The hand conveyor (1 t/m3) loaded to 90 % of what its cross-section
+    carries at 4 m/s (ISO 5048 geometry, Q_belt from engine.capacity, checked against the
+    ISO 5048 example elsewhere): a surge of 1.2 fills 1.2 x 90 = 108 %, spills, and a design
+    load of Q_belt x 1 t/m3 / 1.2 leaves room for it; a surge of 1.1 (99 %) fits."""
+    from beltstudy.engine.capacity import capacity
+
+    q_belt = capacity(parse_conveyor(hand_conveyor_dict())).capacity_m3_h
+    cap_t_h = round(0.9 * q_belt, 6)
+    conv = parse_conveyor(hand_conveyor_dict(
+        material={"capacity_t_h": cap_t_h, "density_t_m3": 1.0}))
+    (big,) = [w for w in solve_steady(conv, model="din", load=1.2).warnings if "surge" in w]
+    assert "fills the belt's cross-section to 108 % at 4 m/s (the design load 90 %)" in big
+    most = q_belt / 1.2
+    step = 10.0 ** (math.floor(math.log10(most)) - 2)
+    assert f"a design load of at most {math.floor(most / step) * step:.3g} t/h" in big
+    assert "spills" in big
+    (small,) = [w for w in solve_steady(conv, model="din", load=1.1).warnings if "surge" in w]
+    assert "fills the belt's cross-section to 99 % at 4 m/s" in small
+    assert "spills" not in small
+
+
 # --------------------------------------------------------------------------------------
 # the fixed point of a tension-dependent law (Non-Lin)
 
