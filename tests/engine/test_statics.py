@@ -652,3 +652,13 @@ def test_a_safety_factor_no_catalogue_belt_meets_does_not_send_the_user_to_belt_
     assert "stronger than any catalogue steel belt: the strongest, ST5400" in msg
     width = math.ceil(5999.5 / 5400.0 * 100.0) / 100.0  # 1.12 m
     assert f"ST5400 needs a width of at least {width:.2f} m" in msg
+
+
+def test_a_surge_on_a_belt_with_no_design_load_is_no_surge():
+    """1.3 x a design load of 0 t/h is 0 t/h: the empty belt at load 1.3 is the empty belt
+    (same Te as load 'empty'), and no 'surge ... above the design capacity' warning."""
+    conv = parse_conveyor(hand_conveyor_dict(material={"capacity_t_h": 0.0,
+                                                       "density_t_m3": 1.0}))
+    r = solve_steady(conv, model="din", load=1.3)
+    assert not any("surge" in w for w in r.warnings)
+    assert_allclose(r.te_n, solve_steady(conv, model="din", load="empty").te_n, rtol=1e-12)
