@@ -166,7 +166,8 @@ STEADY = ResultGroup("steady", "Steady state (the friction model at design speed
        "  at"),
     _f("sag_max_pct", "%", "largest sag ratio h/S of a span, running: `g (m'_G + m'_L) cos(a) "
        "S / (8 T)`, the span's weight normal to the belt (PHYSICS 2 writes it without "
-       "`cos(a)`: the same on a level belt, 5 % lower on an 18 deg incline)",
+       "`cos(a)`: the same on a level belt, 5 % lower on an 18 deg incline); at most 100, "
+       "null when a span is slack (tension at or below zero: the slack warning says where)",
        "maximum sag h/S"),
     _f("takeup_mass_kg", "kg", "gravity take-up mass as used (the auto size when auto; null "
        "for a fixed take-up)", "take-up mass"),

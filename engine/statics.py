@@ -663,6 +663,10 @@ def _summarise(res: SteadyResult, drives, hs_adm, bounds, shortfall_n: float,
     Tm = res.tension_mean_n
     idl = loop.is_idler
     sag = np.where(idl, loop.sag_w_n / np.maximum(np.minimum(T, Tprev), 1.0), 0.0)
+    # a slack span (tension at or below zero) has no sag ratio: w / 1 N read 22 750 % on a
+    # decline's slack carry; none, as sag_max_dyn_pct, and at most 100 % (its cap) otherwise
+    slack_span = bool((idl & (np.minimum(T, Tprev) <= 0.0)).any())
+    sag_max_pct = None if slack_span else float(min(sag.max() * 100, 100.0))
     rating = belt.rating_n
     parts = res.law.parts(v, Tm)
     comps = {name: 0.0 for name in SPEC_PARTS}
@@ -686,7 +690,7 @@ def _summarise(res: SteadyResult, drives, hs_adm, bounds, shortfall_n: float,
         "t_max_at_m": float(s_end[imax]),
         "t_min_kn": float(T[imin]) / 1e3,
         "t_min_at_m": float(s_end[imin]),
-        "sag_max_pct": float(sag.max() * 100),
+        "sag_max_pct": sag_max_pct,
         "takeup_mass_kg": res.takeup_mass_kg,
         "takeup_tension_kn": res.takeup_tension_n / 1e3,
         "takeup_pretension_kn": res.takeup_tension_n / 1e3,

@@ -662,3 +662,20 @@ def test_a_surge_on_a_belt_with_no_design_load_is_no_surge():
     r = solve_steady(conv, model="din", load=1.3)
     assert not any("surge" in w for w in r.warnings)
     assert_allclose(r.te_n, solve_steady(conv, model="din", load="empty").te_n, rtol=1e-12)
+
+
+def test_a_slack_span_has_no_steady_sag_figure():
+    """A take-up far too light for a 20 % decline (the hand conveyor falling 200 m over 1 km,
+    a fixed take-up of 5 kN per strand) leaves the carry slack: the sag w / max(T, 1 N) of a
+    span at or below zero tension read 22 750 % as sag_max_pct on such a belt, a number with
+    no meaning (the warning says the strand is slack and its sag has no bound). It is now
+    null, as sag_max_dyn_pct is for a slack span; the hand conveyor as it is (auto take-up)
+    keeps its figure."""
+    d = hand_conveyor_dict(profile=[{"length_m": 1000, "lift_m": -200}],
+                           takeup={"type": "fixed", "position": "tail", "pretension_kn": 5})
+    r = solve_steady(parse_conveyor(d), model="din")
+    assert r.tension_n.min() <= 0.0
+    assert any("strand is slack" in w for w in r.warnings)
+    assert r.summary["sag_max_pct"] is None
+    ok = solve_steady(parse_conveyor(hand_conveyor_dict()), model="din")
+    assert 0.0 < ok.summary["sag_max_pct"] <= 100.0
