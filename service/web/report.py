@@ -48,9 +48,9 @@ from beltstudy.service.web.numbers import eng
 from beltstudy.service.web.uncertainty import uncertainty_section
 from beltstudy.service.web.verdicts import (
     cause_groups,
-    clauses,
     finding_clauses,
     never_going,
+    said_clauses,
     study_limits,
     verdict_rows,
 )
@@ -576,7 +576,7 @@ def clause_kinds(runs: pd.DataFrame) -> list[tuple[str, list[str], str]]:
     if not len(runs) or "message" not in runs:
         return []
     for run_id, message in zip(runs["run_id"], runs["message"], strict=True):
-        for clause in clauses(message, ""):
+        for _finding, clause in said_clauses(message):
             key = _NUMBER.sub("#", clause.strip())
             ids, first = kinds.setdefault(key, ([], clause.strip()))
             if not ids or ids[-1] != run_id:

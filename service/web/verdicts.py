@@ -357,6 +357,9 @@ CAUSES: tuple[Cause, ...] = (
           ("drive{i}_slip_s", "drive{i}_slip_margin_min", "slip_margin", "slip_margin_start",
            "takeup_mass_kg"),
           r"slip"),
+    Cause("holding", "holding brakes cannot hold the loaded belt at rest",
+          lambda r: _message(r).str.contains("holding brakes cannot hold", regex=False),
+          ("brake_force_kn", "holdback_torque_knm"), r"holding brakes cannot hold"),
     Cause("end_stop", "reached a take-up end stop", _end_stop,
           ("takeup_endstop_speed_m_s", "takeup_travel_m"),
           r"take-up carriage reached|end stop"),
@@ -390,11 +393,33 @@ def clauses(message: Any, words: str) -> list[str]:
     return [c for c in parts if c and re.search(words, c, re.IGNORECASE)]
 
 
+#: The words that end what would avoid a finding (the engine's warnings end their fix so).
+AVOID = "would avoid"
+
+
+def said_clauses(message: Any) -> list[tuple[str, str]]:
+    """The clauses of a run's message (:func:`clauses`) as ``(finding, what it says)``: a
+    clause naming what would avoid a finding (``... would avoid it``) joins the clause before
+    it, when that one has no fix of its own. A warning cuts its finding from its fix with
+    "; " as the message cuts warnings, so a failure group showed a slip without the take-up
+    or start time that avoids it, and the last section listed the fix as a clause of its
+    own."""
+    out: list[tuple[str, str]] = []
+    for part in clauses(message, ""):
+        if out and AVOID in part and AVOID not in out[-1][1]:
+            out[-1] = (out[-1][0], f"{out[-1][1]}; {part}")
+        else:
+            out.append((part, part))
+    return out
+
+
 def finding_clauses(message: Any, words: str) -> list[str]:
-    """:func:`clauses` matching ``words``, its warnings only where one matches: a note
-    (``note: ...``) names checks and fields (``slip_margin_start``) without being a finding,
-    so it is what a run says of a cause only when no warning of the run matches."""
-    found = clauses(message, words)
+    """What a run says (:func:`said_clauses`, each finding with its fix) of the findings
+    matching ``words``, its warnings only where one matches: a note (``note: ...``) names
+    checks and fields (``slip_margin_start``) without being a finding, so it is what a run
+    says of a cause only when no warning of the run matches."""
+    found = [said for finding, said in said_clauses(message)
+             if re.search(words, finding, re.IGNORECASE)]
     said = [c for c in found if not c.startswith("note: ")]
     return said or found
 
