@@ -951,13 +951,19 @@ def _brake_past_full(sys: System, i: int, t_last: float) -> tuple[str, str] | No
         return None
     force_kn = float(np.sum(brakes.force[on])) / 1e3
     # the brakes' force holds the loaded belt at rest too: less of it on this pulley only down
-    # to the holding size (HOLD_MARGIN x the net gravity pull), none below
-    floor_kn = HOLD_MARGIN * abs(float(np.sum(sys.model.nodes.gravity))) / 1e3
+    # to the holding size (HOLD_MARGIN x the net gravity pull), none below; an incline's
+    # holdback holds it at rest instead (engine/checks.py holding_warning), so there no floor
+    pull = float(np.sum(sys.model.nodes.gravity))
+    held_back = pull > 0.0 and bool(np.any(sys.model.shafts.hb))
+    floor_kn = 0.0 if held_back else HOLD_MARGIN * abs(pull) / 1e3
     others_kn = float(np.sum(brakes.force)) / 1e3 - force_kn
     least_kn = max(floor_kn - others_kn, 0.0)
     if least_kn < 1e-6:  # 1 mN: a pull that cancels round the loop (an empty belt) is rounding
         least_kn = 0.0  # noise ('at least 5.12e-17 kN'), not a force to hold
-    if least_kn < force_kn * (1.0 - 1e-6):
+    # the least force advised is rounded up at three figures: a force at the floor already
+    # (a study's design brake, its size rounded up at six) was told 'less brake force (now
+    # 56.06 kN; a given force_kn of at least 56.1 kN)'
+    if (up3(least_kn) if least_kn > 0.0 else 0.0) < force_kn * (1.0 - 1e-6):
         less = (f" or less brake force on this one (now {force_kn:.4g} kN; a given force_kn"
                 + (f" of at least {up3(least_kn):g} kN, which with the others holds the loaded "
                    f"belt at rest, {HOLD_MARGIN:g} x its net gravity pull)" if least_kn > 0.0
