@@ -12,8 +12,9 @@ model itself: the start (and the run, up to the stop command) is rerun on the sa
 a heavier take-up, or a longer start, grown by steps until no drive slips and then bisected.
 
 Each figure is the smallest value found with no slip, to :data:`REL_TOL` of itself, searched
-up to :data:`TAKEUP_MAX` times the take-up and :data:`START_MAX` times the start time; beyond
-that the figure is None ("not within ... x"). A rerun costs about a run's start; the search
+up to :data:`TAKEUP_MAX` times the take-up and :data:`START_MAX` times the start time (at
+least :data:`RIGID_MAX` x the rigid body's start time, :func:`time_top_s`); beyond that the
+figure is None ("not within ... x"). A rerun costs about a run's start; the search
 takes up to about a dozen each. Dol drives start on their motor curve whatever
 ``start.time_s`` is (their coupling sets how fast the torque comes on), so on a conveyor with
 no vfd drive only the take-up is searched and the start time is None.
@@ -34,8 +35,9 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 from beltstudy.engine.conveyor import Conveyor, Scenario
+from beltstudy.engine.design import moving_mass_kg
 from beltstudy.engine.dynamics import DynamicsOptions, build_system, simulate
-from beltstudy.engine.statics import solve_steady
+from beltstudy.engine.statics import STARTUP_FACTOR, solve_steady
 
 #: Bisection tolerance of each figure (relative).
 REL_TOL = 0.02
@@ -44,6 +46,8 @@ TAKEUP_MAX = 4.0
 START_MAX = 6.0
 #: Search limit of a controlled stop's ``stop.time_s``, times the run's own.
 STOP_MAX = 6.0
+#: The time searches reach at least this many times the rigid body's time (:func:`time_top_s`).
+RIGID_MAX = 2.0
 #: Growth factor of the bracketing steps.
 GROW = 1.3
 
@@ -70,6 +74,8 @@ class SlipRemedy:
     phase: str = "start"
     stop_time_s: float | None = None
     takeup_shared: bool = False
+    #: the longest start (stop) time the search tried [s] (:func:`time_top_s`; None: none)
+    time_top_s: float | None = None
 
 
 def _steady(conveyor: Conveyor, scenario: Scenario, model: str, params):
@@ -103,6 +109,39 @@ def _slips(conveyor: Conveyor, scenario: Scenario, model: str, params, options,
     tr = simulate(system, t_end_s=system.stop_command_s)
     return any(tr.summary.get(f"drive{i + 1}_slip_s", 0.0) > 0.0
                for i in range(len(system.model.drives.share)))
+
+
+def rigid_time_s(conveyor: Conveyor, scenario: Scenario, steady, stop: bool) -> float:
+    """The start (stop) time [s] from which a rigid belt asks its drives for no more than
+    the statics allow for (0 where there is none):
+
+    * start (an s-curve or linear vfd start): the drives at ``STARTUP_FACTOR`` x Te, the
+      checks' start-up force (DIN 22101), accelerate the moving mass M at
+      ``a = (STARTUP_FACTOR - 1) Te / M``; the s-curve peaks at ``2 v / T``, the linear start
+      runs at ``v / T``: ``T = 2 v / a`` (``v / a``);
+    * controlled stop (a reverse s-curve): its peak deceleration ``2 v / T`` is within the
+      coast's ``Te / M``, so the drives never brake the belt, from ``T = 2 M v / Te``.
+
+    A regenerative belt (Te <= 0) or a torque start has none."""
+    te = float(steady.te_n)
+    if te <= 0.0:
+        return 0.0
+    m = moving_mass_kg(conveyor, steady)
+    v = float(conveyor.speed_m_s)
+    if stop:
+        return 2.0 * m * v / te if scenario.stop.mode == "controlled" else 0.0
+    shape = {"s-curve": 2.0, "linear": 1.0}.get(scenario.start.control, 0.0)
+    return shape * v * m / ((STARTUP_FACTOR - 1.0) * te)
+
+
+def time_top_s(conveyor: Conveyor, scenario: Scenario, steady, stop: bool) -> float:
+    """How far the start (stop) time search goes [s]: :data:`START_MAX` (:data:`STOP_MAX`) x
+    the run's time, and at least :data:`RIGID_MAX` x :func:`rigid_time_s`. A 10 s start of a
+    3 km belt that slipped was searched only up to 60 s and the run said 'a longer start
+    would not' avoid the slip, while 87 s did (the rigid body's start time was 48 s)."""
+    t0 = float((scenario.stop if stop else scenario.start).time_s)
+    return max((STOP_MAX if stop else START_MAX) * t0,
+               RIGID_MAX * rigid_time_s(conveyor, scenario, steady, stop))
 
 
 def _smallest(ok, x0: float, x_max: float) -> tuple[float | None, int]:
@@ -236,15 +275,16 @@ def slip_remedy(conveyor: Conveyor, scenario: Scenario, *, model: str, params=No
         return scn.model_copy(update={key: getattr(scn, key).model_copy(
             update={"time_s": t})})
 
-    st = None
+    st, t_top = None, None
     if timed:
-        st, k = _smallest(lambda t: not slips(fixed, with_time(t), steady), t0,
-                          (STOP_MAX if stop else START_MAX) * t0)
+        t_top = time_top_s(fixed, scn, steady, stop)
+        st, k = _smallest(lambda t: not slips(fixed, with_time(t), steady), t0, t_top)
         reruns += k
     return SlipRemedy(takeup_mass_kg=tu if gravity else None,
                       takeup_tension_kn=None if gravity else tu,
                       start_time_s=None if stop else st, reruns=reruns, phase=phase,
-                      stop_time_s=st if stop else None, takeup_shared=shared)
+                      stop_time_s=st if stop else None, takeup_shared=shared,
+                      time_top_s=t_top)
 
 
 @dataclass(frozen=True)
@@ -322,7 +362,8 @@ def confirm_finer(conveyor: Conveyor, scenario: Scenario, rem: SlipRemedy, *, mo
         reruns += 1
         if slips(fixed, with_time(st), steady):
             st_moved = True
-            t_max = (STOP_MAX if stop else START_MAX) * float(getattr(scenario, key).time_s)
+            t_max = (rem.time_top_s if rem.time_top_s is not None else
+                     (STOP_MAX if stop else START_MAX) * float(getattr(scenario, key).time_s))
             st, k = _smallest(lambda t: not slips(fixed, with_time(t), steady), float(st),
                               max(t_max, float(st)))
             reruns += k

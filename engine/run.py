@@ -473,14 +473,15 @@ def _complete(prep: _Prepared, scenario, system, tr, model, params, opts, remedy
         # and ``say`` is told only once the start is known to slip; a slip that reached the
         # stop is searched on its own after it (the whole cycle rerun), from the start's
         # take-up where the start slipped too
+        tops: dict[str, str] = {}
         found = _slip_remedy(conveyor, scenario, model, params, opts, summary, say,
                              finer=_finer_mesh(scenario, summary, system, opts) if check
                              else None,
                              sf_min=conveyor.safety_factor_min
-                             or SAFETY_FACTOR_MIN.get(steady.loop.belt.kind, 6.7))
+                             or SAFETY_FACTOR_MIN.get(steady.loop.belt.kind, 6.7), tops=tops)
         if found:
             messages.append(found)
-            _unfound_levers(conveyor, system, tr, messages, summary)
+            _unfound_levers(conveyor, system, tr, messages, summary, tops.get("start"))
         if slipped_in_stop(tr):
             stop_found = _stop_slip_remedy(
                 conveyor, scenario, model, params, opts, summary, say,
@@ -563,8 +564,8 @@ def _fill_estimates(conveyor: Conveyor, system, tr, messages: list[str], summary
                 messages[:] = [m.replace(w, tr.warnings[k]) for m in messages]
 
 
-def _unfound_levers(conveyor: Conveyor, system, tr, messages: list[str], summary: dict
-                    ) -> None:
+def _unfound_levers(conveyor: Conveyor, system, tr, messages: list[str], summary: dict,
+                    not_time: str | None = None) -> None:
     """After the slip remedy: the slip warnings of a start no longer offer a lever the remedy
     searched and did not find within its limit (a heavier take-up, for a vfd start a longer
     start), which the remedy's own sentence contradicted ("a heavier take-up ... would avoid
@@ -573,7 +574,8 @@ def _unfound_levers(conveyor: Conveyor, system, tr, messages: list[str], summary
     gravity = conveyor.takeup.type == "gravity"
     tu = summary.get("slip_free_takeup_mass_kg" if gravity else "slip_free_takeup_kn")
     _drop_unfound(system, tr, messages, "start", gravity, tu is not None,
-                  reads_start_time(conveyor), summary.get("slip_free_start_time_s") is not None)
+                  reads_start_time(conveyor), summary.get("slip_free_start_time_s") is not None,
+                  not_time)
 
 
 def _unfound_stop_levers(conveyor: Conveyor, system, tr, messages: list[str], rem,
@@ -584,11 +586,25 @@ def _unfound_stop_levers(conveyor: Conveyor, system, tr, messages: list[str], re
     gravity = conveyor.takeup.type == "gravity"
     tu = rem.takeup_mass_kg if gravity else rem.takeup_tension_kn
     _drop_unfound(system, tr, messages, "stop", gravity, tu is not None, timed,
-                  rem.stop_time_s is not None)
+                  rem.stop_time_s is not None,
+                  _time_top_words("stop", rem.time_top_s, float(system.model.cycle.t_stop)))
+
+
+def _time_top_words(phase: str, top_s: float | None, t0: float) -> str:
+    """How far a start (stop) time search went, in words: ``N x this one`` where it went to
+    :data:`~beltstudy.engine.remedy.START_MAX` (``STOP_MAX``) x the run's time ``t0``, else
+    the time it reached [s] (the rigid body's floor, :func:`beltstudy.engine.remedy.
+    time_top_s`)."""
+    from beltstudy.engine.remedy import START_MAX, STOP_MAX
+
+    what, most = ("start", START_MAX) if phase == "start" else ("stop.time_s", STOP_MAX)
+    if top_s is None or top_s <= most * t0 * (1.0 + 1e-9):
+        return f"no {what} up to {most:g} x this one"
+    return f"no {what} up to {top_s:.3g} s"
 
 
 def _drop_unfound(system, tr, messages: list[str], phase: str, gravity: bool, tu_found: bool,
-                  time_searched: bool, time_found: bool) -> None:
+                  time_searched: bool, time_found: bool, not_time: str | None = None) -> None:
     """The rewrite of :func:`_unfound_levers` (``phase`` ``start``) and
     :func:`_unfound_stop_levers` (``stop``): in the slip warnings of that phase, a lever the
     reruns searched and did not find is replaced by what they found."""
@@ -600,13 +616,14 @@ def _drop_unfound(system, tr, messages: list[str], phase: str, gravity: bool, tu
     lever_tu = heavier_takeup(system, "more slack-side tension")
     if phase == "start":
         lever_t, not_t, short_t = ("a longer start (start.time_s)",
-                                   f"no start up to {START_MAX:g} x this one", "a longer start")
+                                   not_time or f"no start up to {START_MAX:g} x this one",
+                                   "a longer start")
         spans = (("start", "start"), ("start", "running"), ("start", "stop"),
                  ("start", "stop", True))
         rerun = "rerunning the start"
     else:
         lever_t, not_t, short_t = ("a longer stop (stop.time_s)",
-                                   f"no stop.time_s up to {STOP_MAX:g} x this one",
+                                   not_time or f"no stop.time_s up to {STOP_MAX:g} x this one",
                                    "a longer stop")
         spans = (("stop", "stop"), ("running", "stop"), ("start", "stop"),
                  ("running", "stop", True), ("start", "stop", True))
@@ -817,14 +834,15 @@ def _takeup_safety_words(summary: dict, tu_fig: float | None, gravity: bool,
 
 def _slip_remedy(conveyor, scenario, model, params, opts, summary, say=None,
                  finer: tuple[Scenario, DynamicsOptions] | None = None,
-                 sf_min: float | None = None) -> str:
+                 sf_min: float | None = None, tops: dict | None = None) -> str:
     """Search what avoids a start's slip (:func:`beltstudy.engine.remedy.slip_remedy`), put the figures
     into ``summary`` and return the sentence for the message ("" when the start did not
-    slip). With ``finer`` (the scenario and options of a checked run's finer mesh,
+    slip); ``tops``, when given, gets under ``start`` how far the start time search went, in
+    words (:func:`_time_top_words`). With ``finer`` (the scenario and options of a checked run's finer mesh,
     :func:`_finer_mesh`) each figure is tried there too (:func:`beltstudy.engine.remedy.
     confirm_finer`): where the start still slips with it, the figure found on the finer mesh
     is the one given (the larger), and the message names both."""
-    from beltstudy.engine.remedy import GROW, START_MAX, TAKEUP_MAX, confirm_finer, slip_remedy
+    from beltstudy.engine.remedy import GROW, TAKEUP_MAX, confirm_finer, slip_remedy
 
     gravity = conveyor.takeup.type == "gravity"
     rem = slip_remedy(conveyor, scenario, model=model, params=params, options=opts,
@@ -859,8 +877,10 @@ def _slip_remedy(conveyor, scenario, model, params, opts, summary, say=None,
                                   conveyor.belt.width_m)
     if safety:
         safety = f"; the {noun} of {amount(tu_fig)}{safety}"
-    st = (f"a start of {st_fig:.0f} s" if st_fig is not None
-          else f"no start up to {START_MAX:g} x this one")
+    not_time = _time_top_words("start", rem.time_top_s, float(scenario.start.time_s))
+    if tops is not None:
+        tops["start"] = not_time
+    st = f"a start of {st_fig:.0f} s" if st_fig is not None else not_time
     how = (f"found by rerunning the start {rem.reruns} times on the same mesh, to 2 %; steps "
            f"of x {GROW:g}")
     if fine is not None:
@@ -911,7 +931,6 @@ def _stop_slip_remedy(conveyor, scenario, model, params, opts, summary, say=None
     slips, the finer mesh's figure is given and the message names both."""
     from beltstudy.engine.remedy import (
         GROW,
-        STOP_MAX,
         TAKEUP_MAX,
         confirm_finer,
         reads_stop_time,
@@ -969,7 +988,7 @@ def _stop_slip_remedy(conveyor, scenario, model, params, opts, summary, say=None
         safety = f"; the {noun} of {amount(tu_fig)}{safety}"
     st_up = up(st_fig)
     st = (f"a stop.time_s of {st_up:g} s" if st_up is not None
-          else f"no stop.time_s up to {STOP_MAX:g} x this one")
+          else _time_top_words("stop", rem.time_top_s, float(scenario.stop.time_s)))
     how = (f"found by rerunning the cycle {rem.reruns} times on the same mesh, to 2 %; steps "
            f"of x {GROW:g}")
     if fine is not None:

@@ -150,3 +150,34 @@ def test_a_checked_run_s_slip_free_take_up_holds_on_the_finer_mesh_too():
 
     assert slip_s(m_run, 50) == 0.0 and slip_s(m_run, fine_n) > 0.0  # the run's figure
     assert slip_s(m, 50) == 0.0 and slip_s(m, fine_n) == 0.0  # the figure given
+
+
+def test_a_too_short_start_is_searched_past_six_times_itself_to_the_rigid_body_start():
+    """A 10 s start of a 3 km belt slipped and was searched only up to 6 x 10 = 60 s, so the
+    run said 'a longer start would not: rerunning the start found no start up to 6 x this
+    one', though the same belt starts without slip in 87 s. The search now goes at least to
+    2 x the rigid body's start time (remedy.time_top_s): the drives at the statics' 1.5 Te
+    accelerate the moving mass M at a = 0.5 Te / M, and an s-curve of T peaks at 2 v / T, so
+    T_rigid = 2 v M / (0.5 Te) = 4 v M / Te. The hand conveyor (1 km, 4 m/s) started in 2 s
+    (searched to 12 s before): the start time found lies past 12 s, within the new limit,
+    and a start of that time has no slip."""
+    from beltstudy.engine.design import moving_mass_kg
+    from beltstudy.engine.remedy import time_top_s
+    from beltstudy.engine.statics import solve_steady
+    from tests.conftest import hand_conveyor_dict
+
+    conv = parse_conveyor(hand_conveyor_dict())
+    scn = Scenario(start={"time_s": 2.0}, run_s=5, elements=40)
+    st = solve_steady(conv, model="din")
+    t_rigid = 4.0 * 4.0 * moving_mass_kg(conv, st) / st.te_n
+    assert time_top_s(conv, scn, st, stop=False) == pytest.approx(2.0 * t_rigid, rel=1e-12)
+    assert 2.0 * t_rigid > 6.0 * 2.0
+    s = run_one(conv, scn, model="din", remedy=True).summary
+    assert s["drive1_slip_s"] > 0.0
+    t = s["slip_free_start_time_s"]
+    assert t is not None and 12.0 < t <= 2.0 * t_rigid
+    assert "a longer start would not" not in s["message"]
+    assert f"a start of {t:.0f} s" in s["message"]
+    again = run_one(conv, scn.model_copy(update={"start": scn.start.model_copy(
+        update={"time_s": t})}), model="din").summary
+    assert again["drive1_slip_s"] == 0.0
