@@ -181,3 +181,30 @@ def test_a_too_short_start_is_searched_past_six_times_itself_to_the_rigid_body_s
     again = run_one(conv, scn.model_copy(update={"start": scn.start.model_copy(
         update={"time_s": t})}), model="din").summary
     assert again["drive1_slip_s"] == 0.0
+
+
+def test_a_too_short_controlled_stop_is_searched_to_the_rigid_body_stop():
+    """The stop's search the same way: a 0.2 s controlled stop of the hand conveyor makes its
+    head drive brake the belt past its grip; searched to 6 x 0.2 = 1.2 s alone it found no
+    stop.time_s. The reverse s-curve of T asks a peak deceleration 2 v / T, within the
+    coast's Te / M from T = 2 M v / Te (the drives then never brake): the search now reaches
+    2 x that, finds a stop time past 1.2 s, and that stop has no slip in the stop."""
+    from beltstudy.engine.design import moving_mass_kg
+    from beltstudy.engine.remedy import time_top_s
+    from beltstudy.engine.statics import solve_steady
+    from tests.conftest import hand_conveyor_dict
+
+    conv = parse_conveyor(hand_conveyor_dict())
+    scn = Scenario(start={"time_s": 60.0}, run_s=5, elements=40,
+                   stop={"mode": "controlled", "time_s": 0.2})
+    st = solve_steady(conv, model="din")
+    t_rigid = 2.0 * moving_mass_kg(conv, st) * 4.0 / st.te_n
+    assert time_top_s(conv, scn, st, stop=True) == pytest.approx(2.0 * t_rigid, rel=1e-12)
+    msg = run_one(conv, scn, model="din", remedy=True).summary["message"]
+    assert "drive 1 (head) slipped on its pulley during the stop" in msg
+    found = re.search(r"slip in the stop avoided by a stop\.time_s of ([0-9.]+) s", msg)
+    assert found and 1.2 < float(found.group(1)) <= 2.0 * t_rigid
+    assert "a longer stop would not" not in msg
+    again = run_one(conv, scn.model_copy(update={"stop": scn.stop.model_copy(
+        update={"time_s": float(found.group(1))})}), model="din").summary["message"]
+    assert "slipped on its pulley" not in again
