@@ -1690,8 +1690,12 @@ def _fast_stop_words(sys: System, t_stop: float, summary: dict, steady_tmax: flo
         asked = max(need * cyc.t_stop / t_stop, need / ramp_rest_fraction())
         lag = (f" (the belt did not follow the {cyc.t_stop:g} s curve: it took "
                f"{t_stop:.1f} s)" if t_stop > cyc.t_stop else "")
+        # scaled from this stop, the figure assumes the belt rests at the same fraction of a
+        # longer curve; it rests a little sooner (a 200 m, 0.2 m/s belt: 0.800 of 1.9 s, 0.792
+        # of 2.1 s), so the figure can fall short by a step of its rounding: say to rerun
         fix = (f"a controlled stop of stop.time_s {_up_s(asked)} s or more would be slower "
-               f"than that{lag}")
+               f"than that{lag} (this stop's time scaled to 5 wave loop times; rerun to "
+               "check)")
     elif cyc.stop_mode == C.BRAKE and not _coasts_within(sys, need):
         auto = getattr(sys, "auto_brakes", None)
         if auto is None:
@@ -1739,8 +1743,10 @@ def _fast_stop_words(sys: System, t_stop: float, summary: dict, steady_tmax: flo
                f"rest from {frac:.3f} of it; a long or soft belt's mean speed comes to rest "
                "sooner and needs more: rerun the controlled stop, whose own warning names the "
                f"time to ask), or {_coast_inertia_words(sys, need, conveyor, v_cmd, t_stop)}")
-    return (f"stop in {t_stop:.1f} s is faster than 5 wave loop times (5 x "
-            f"{sys.wave_loop_time_s:.1f} s): a high-stress stop{seen}; {fix}")
+    # three figures: at 0.1 s a 1.519 s stop against 5 x 0.333 s read 'stop in 1.5 s is faster
+    # than 5 wave loop times (5 x 0.3 s)'
+    return (f"stop in {t_stop:.3g} s is faster than 5 wave loop times (5 x "
+            f"{sys.wave_loop_time_s:.3g} s = {need:.3g} s): a high-stress stop{seen}; {fix}")
 
 
 def not_stopped_words(sys: System, v_end: float, sliding: bool = False) -> str:

@@ -767,6 +767,17 @@ def test_a_fast_stop_says_its_tensions_and_what_would_slow_it():
     msg = _fast_stop_words(sysm, 1.6, {}, 261e3)
     assert "no brake setting makes it slower" in msg and "about 2 s" in msg, msg
     assert "less brake force" not in msg and "stop.time_s at least 8.5 s" in msg
+    # the times at three figures: at 0.1 s a 1.519 s stop of a 200 m belt at 0.2 m/s against
+    # 5 x 0.3333 s = 1.667 s read 'stop in 1.5 s ... (5 x 0.3 s)', the two equal as shown
+    sysm.wave_loop_time_s = 1.0 / 3.0
+    sysm.model.cycle.stop_mode, sysm.model.cycle.t_stop = C.CONTROLLED, 1.9
+    msg = _fast_stop_words(sysm, 1.519, {}, 261e3)
+    assert msg.startswith("stop in 1.52 s is faster than 5 wave loop times (5 x 0.333 s = "
+                          "1.67 s)"), msg
+    # the controlled stop's figure, 1.667 x 1.9 / 1.519 = 2.085 s (2.1 s), is this stop
+    # scaled: a belt rests a little sooner within a longer curve, so it says to rerun
+    assert "stop.time_s 2.1 s or more would be slower than that (this stop's time scaled to " \
+        "5 wave loop times; rerun to check)" in msg, msg
 
 
 def test_a_fast_stop_on_given_brakes_names_the_force_not_a_stop_time():
