@@ -7,6 +7,25 @@ import pytest
 from beltstudy.service.dask.jobs import MAX_BATCH, MIN_TASK_S, batch_size
 
 
+class FakeStore:
+    """A study store that holds no runs and keeps what a job saves (``saved``)."""
+
+    def __init__(self):
+        self.saved: list[dict] = []
+
+    def read(self, sid):
+        return {}
+
+    def done_runs(self, sid):
+        import pandas as pd
+
+        return pd.DataFrame()
+
+    def update(self, sid, **fields):
+        self.saved.append(fields)
+        return fields
+
+
 def test_first_wave_is_small():
     assert batch_size(None, 1000, 4, 1.0, dynamics=False) == 8
     assert batch_size(None, 1000, 4, 1.0, dynamics=True) == 1
@@ -80,25 +99,13 @@ def test_a_study_back_from_a_lost_scheduler_drops_its_waiting_message(monkeypatc
     its runs go on, the message goes (it said 'waiting for Dask' to the end of the study)."""
     from types import SimpleNamespace
 
-    import pandas as pd
-
     from beltstudy.service.dask import jobs
     from beltstudy.service.errors import Unavailable
 
     monkeypatch.setattr(jobs, "WAIT_FOR_DASK_S", 0.0)
     monkeypatch.setattr(jobs, "adjacent_starts", list)
-    saved: list[dict] = []
-
-    class FakeStore:
-        def read(self, sid):
-            return {}
-
-        def done_runs(self, sid):
-            return pd.DataFrame()
-
-        def update(self, sid, **fields):
-            saved.append(fields)
-            return fields
+    store = FakeStore()
+    saved = store.saved
 
     answers = iter(["client", Unavailable("Dask on tcp://127.0.0.1:1 is not ready: lost the "
                                           "Dask scheduler; reconnecting"), "client"])
@@ -117,7 +124,7 @@ def test_a_study_back_from_a_lost_scheduler_drops_its_waiting_message(monkeypatc
 
     runs = [SimpleNamespace(run_id="r1"), SimpleNamespace(run_id="r2")]
     study = SimpleNamespace(id="s1", runs=runs, total=2, axes=[], dynamics=False, surface=False)
-    job = jobs.StudyJob(study, FakeStore(), FakeExecutor(), SimpleNamespace(task_seconds=1.0))
+    job = jobs.StudyJob(study, store, FakeExecutor(), SimpleNamespace(task_seconds=1.0))
     monkeypatch.setattr(job, "_new_session", lambda: {})
     streams: list[str] = []
 
@@ -145,8 +152,6 @@ def test_a_study_waiting_for_a_lost_scheduler_has_no_time_left(monkeypatch):
     from a rate averaged over the outage (63 s left for 28 runs that took 1.5 s)."""
     from types import SimpleNamespace
 
-    import pandas as pd
-
     from beltstudy.service.dask import jobs
     from beltstudy.service.errors import Unavailable
 
@@ -156,15 +161,7 @@ def test_a_study_waiting_for_a_lost_scheduler_has_no_time_left(monkeypatch):
     run_rate = jobs.RunRate
     monkeypatch.setattr(jobs, "RunRate", lambda: run_rate(clock))
 
-    class FakeStore:
-        def read(self, sid):
-            return {}
-
-        def done_runs(self, sid):
-            return pd.DataFrame()
-
-        def update(self, sid, **fields):
-            return fields
+    store = FakeStore()
 
     etas_waiting: list = []
 
@@ -185,7 +182,7 @@ def test_a_study_waiting_for_a_lost_scheduler_has_no_time_left(monkeypatch):
 
     runs = [SimpleNamespace(run_id=f"r{i}") for i in range(60)]
     study = SimpleNamespace(id="s1", runs=runs, total=60, axes=[], dynamics=False, surface=False)
-    job = jobs.StudyJob(study, FakeStore(), FakeExecutor(), SimpleNamespace(task_seconds=1.0))
+    job = jobs.StudyJob(study, store, FakeExecutor(), SimpleNamespace(task_seconds=1.0))
     monkeypatch.setattr(job, "_new_session", lambda: {})
     etas: list = []
 
@@ -248,23 +245,11 @@ def test_a_stopped_study_stores_the_runs_it_kept(monkeypatch):
     'beltstudy status' and 'results' then read with no service up. It now says 48."""
     from types import SimpleNamespace
 
-    import pandas as pd
-
     from beltstudy.service.dask import jobs
 
     monkeypatch.setattr(jobs, "adjacent_starts", list)
-    saved: list[dict] = []
-
-    class FakeStore:
-        def read(self, sid):
-            return {}
-
-        def done_runs(self, sid):
-            return pd.DataFrame()
-
-        def update(self, sid, **fields):
-            saved.append(fields)
-            return fields
+    store = FakeStore()
+    saved = store.saved
 
     class FakeExecutor:
         def client(self, timeout, halt):
@@ -275,7 +260,7 @@ def test_a_stopped_study_stores_the_runs_it_kept(monkeypatch):
 
     runs = [SimpleNamespace(run_id=f"r{i}") for i in range(60)]
     study = SimpleNamespace(id="s1", runs=runs, total=60, axes=[], dynamics=False, surface=False)
-    job = jobs.StudyJob(study, FakeStore(), FakeExecutor(), SimpleNamespace(task_seconds=1.0))
+    job = jobs.StudyJob(study, store, FakeExecutor(), SimpleNamespace(task_seconds=1.0))
     monkeypatch.setattr(job, "_new_session", lambda: {})
 
     def stream(client, todo):
