@@ -466,7 +466,8 @@ def _verdicts_section(study: dict, runs: pd.DataFrame, bars: pd.DataFrame | None
             rows.append([_e(r["label"]), _e(r["value"]), "", "<span class=muted>–</span>",
                          _run_cell(r["row"], axes), ""])
             continue
-        value = (_e(v.null_worst) if r["missing"] else _n(r["value"], 4, v.unit))
+        value = (_e(v.null_worst) if r["missing"] else _e(r["value_text"])
+                 if r.get("value_text") else _n(r["value"], 4, v.unit))
         err = run_bars(bars, r["row"].get("run_id")).get(r["column"]) if not r["missing"] \
             else None
         if err is not None:

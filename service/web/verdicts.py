@@ -520,6 +520,21 @@ def study_limits(study: dict, sf_min: float, sf_ratio: float,
     }
 
 
+def _slack_no_sag(v: Verdict, runs: pd.DataFrame, values: pd.Series) -> pd.Series:
+    """Runs of a sag row without a sag value because the belt went slack: a slack span's sag
+    has no bound, past every limit. Transient: a run whose transient ran without
+    ``sag_max_dyn_pct``; steady: a run without ``sag_max_pct`` whose steady lowest tension
+    ``t_min_kn`` is at or below zero (a steady run slack at -2.84 kN was left out of the steady
+    sag row, which read 0.78 % against 1.5 %, 'past the limit in 2 of 8 runs' of 16)."""
+    if v.column == "sag_max_dyn_pct":
+        return transient_ran(runs) & values.isna()
+    if v.column == "sag_max_pct":
+        t_min = numeric(runs, "t_min_kn")
+        if t_min is not None:
+            return values.isna() & (t_min <= 0.0).fillna(False)
+    return values.isna() & False
+
+
 def _limits_of(v: Verdict, runs: pd.DataFrame, nums: dict[str, str], limits: dict[str, Limit]
                ) -> tuple[pd.Series | None, str]:
     """The limit of ``v`` for every row of ``runs`` and its words."""
@@ -602,13 +617,20 @@ def verdict_rows(runs: pd.DataFrame, limits: dict[str, Limit]) -> list[dict]:
             row = ok.loc[idx]
             ok_col = v.ok.format(**nums) if v.ok else None
             past = _past(v, judged, ok, lim, ok_col)
-            slack = (transient_ran(ok) & values.isna() if v.column == "sag_max_dyn_pct"
-                     else values.isna() & False)
+            slack = _slack_no_sag(v, ok, values)
+            value_text = ""
             if slack.any():  # a slack span's sag has no value: it is past every sag limit
                 past |= slack
                 k = int(slack.sum())
-                text = (f"{text}; {k} run{'s' if k != 1 else ''} went slack (no sag value: "
-                        "past every limit)")
+                when = " in the steady state" if v.column == "sag_max_pct" else ""
+                text = (f"{text}; {k} run{'s' if k != 1 else ''} went slack{when} (no sag "
+                        "value: past every limit)")
+                if not past.loc[idx]:  # the worst value is within: a slack run governs
+                    value_text = f"no value: went slack{when}" + (
+                        f" (largest value {eng(values.max(), v.unit)}, run "
+                        f"{ok.loc[idx].get('run_id')})" if values.notna().any() else "")
+                    idx = slack.idxmax()
+                    row = ok.loc[idx]
             limit = None if lim is None or pd.isna(lim.loc[idx]) else float(lim.loc[idx])
             # runs whose error bars put this figure within its bar of the limit (the engine's
             # "marginal: <figure> ... against limit ...", engine/accuracy.py)
@@ -616,9 +638,15 @@ def verdict_rows(runs: pd.DataFrame, limits: dict[str, Limit]) -> list[dict]:
                                                      regex=False).sum())
             out.append({"verdict": v, "label": v.quantity.format(**nums), "column": column,
                         "marginal": marginal,
-                        "row": row, "value": None if missing else float(values.loc[idx]),
+                        "row": row,
+                        "value": None if missing or value_text else float(values.loc[idx]),
+                        "value_text": value_text,
                         "limit": limit, "limit_text": text, "past": int(past.sum()),
-                        "n": int(values.notna().sum()) + missing + int(slack.sum()),
+                        # every run with a value, and those past without one (did not
+                        # stop, went slack, a sag warning without its figure)
+                        # (a belt that never got going made no stop: not counted)
+                        "n": int((values.notna() | unstopped | slack
+                                  | (past & ~never_going(ok))).sum()),
                         "missing": missing,
                         "ok_col": ok_col,
                         "ok_judged": (int(ok[ok_col].notna().sum())
