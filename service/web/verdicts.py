@@ -361,7 +361,7 @@ CAUSES: tuple[Cause, ...] = (
           lambda r: _message(r).str.contains("holding brakes cannot hold", regex=False),
           ("brake_force_kn", "holdback_torque_knm"), r"holding brakes cannot hold"),
     Cause("end_stop", "reached a take-up end stop", _end_stop,
-          ("takeup_endstop_speed_m_s", "takeup_travel_m"),
+          ("takeup_endstop_speed_m_s", "takeup_endstop_gap_m", "takeup_travel_m"),
           r"take-up carriage reached|end stop"),
     Cause("slack", "went slack", _slack, ("slack_max_m", "slack_duration_s", "t_min_dyn_kn"),
           r"slack"),

@@ -712,3 +712,18 @@ def test_a_run_slack_in_the_steady_state_is_past_the_steady_sag_limit(web):
     assert "2 runs went slack in the steady state" in row
     assert "no value: went slack in the steady state" in row and "<code>sl</code>" in row
     assert f"largest value 0.33{UNIT_SPACE}%" in row
+
+
+def test_a_carriage_at_its_end_stop_without_an_impact_shows_its_gap(web):
+    """A 300 kg take-up on studies/report-failures' decline sat at an end stop at rest speed
+    (takeup_endstop_gap_m 0 m, takeup_endstop_speed_m_s 0 m/s, travel 0.0094 m of 0.5 m) with
+    no end-stop words in its message: 4 of the 10 runs of 'reached a take-up end stop' showed
+    0 m/s and 0.00944 m, nothing that names an end stop. The group now shows the gap."""
+    runs = _runs(takeup_endstop_speed_m_s=[0.0] * 8,
+                 takeup_endstop_gap_m=[0.2, 0.2, 0.2, 0.2, 0.2, 0.0, np.nan, 0.2],
+                 takeup_travel_m=[0.1, 0.1, 0.1, 0.1, 0.1, 0.0094, np.nan, 0.1])
+    html = report_html(_doc(web), runs, {"state": "done", "done": 8, "total": 8})
+    s2 = _section(html, 2)
+    table = re.search(r"Reached a take-up end stop: 1 run</h3>(.*?)</table>", s2, re.S).group(1)
+    assert "takeup_endstop_gap_m [m]" in table and "<code class=id>sl</code>" in table
+    assert re.search(r'<td class="num ">0</td>', table)  # the gap that says it
