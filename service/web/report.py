@@ -443,6 +443,17 @@ def _verdict_words(r: dict) -> str:
     return f"\x01passes\x01within ({r['n']} runs)"
 
 
+def _apart(value: Any, limit: Any, digits: int = 4) -> int:
+    """The significant digits that write a value and its limit apart when they differ: a
+    slip margin of 0.99996 against 1 read '1' and '1', past the limit yet shown equal to it.
+    Four where they already read apart (or either is missing); at most twelve."""
+    if value is None or limit is None or value == limit:
+        return digits
+    while digits < 12 and eng(value, "", digits) == eng(limit, "", digits):
+        digits += 1
+    return digits
+
+
 def _verdicts_section(study: dict, runs: pd.DataFrame, bars: pd.DataFrame | None = None
                       ) -> str:
     """The verdict table: every design quantity the runs carry, its worst value over the
@@ -466,14 +477,15 @@ def _verdicts_section(study: dict, runs: pd.DataFrame, bars: pd.DataFrame | None
             rows.append([_e(r["label"]), _e(r["value"]), "", "<span class=muted>–</span>",
                          _run_cell(r["row"], axes), ""])
             continue
+        digits = _apart(r["value"], r["limit"])
         value = (_e(v.null_worst) if r["missing"] else _e(r["value_text"])
-                 if r.get("value_text") else _n(r["value"], 4, v.unit))
+                 if r.get("value_text") else _n(r["value"], digits, v.unit))
         err = run_bars(bars, r["row"].get("run_id")).get(r["column"]) if not r["missing"] \
             else None
         if err is not None:
             value += (f"<br><span class=muted>± {_num(err, 3, v.unit)} (the error bar of this "
                       "sampled run, section 9)</span>")
-        limit = (_n(r["limit"], 4, v.unit) if r["limit"] is not None else "")
+        limit = (_n(r["limit"], digits, v.unit) if r["limit"] is not None else "")
         if r["limit_text"]:
             limit += (f"<br><span class=muted>{_e(r['limit_text'])}</span>" if limit
                       else f"<span class=muted>{_e(r['limit_text'])}</span>")

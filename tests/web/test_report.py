@@ -727,3 +727,16 @@ def test_a_carriage_at_its_end_stop_without_an_impact_shows_its_gap(web):
     table = re.search(r"Reached a take-up end stop: 1 run</h3>(.*?)</table>", s2, re.S).group(1)
     assert "takeup_endstop_gap_m [m]" in table and "<code class=id>sl</code>" in table
     assert re.search(r'<td class="num ">0</td>', table)  # the gap that says it
+
+
+def test_a_value_past_its_limit_is_never_written_equal_to_it(web):
+    """At four significant digits a slip margin of 0.99996 reads '1' beside its limit '1' and
+    'past the limit in 1 of 7 runs': past, yet shown equal to the limit. Value and limit now
+    take the digits that write them apart (0.99996 against 1)."""
+    runs = _runs(slip_margin=[1.5, 1.5, 1.5, 1.5, 1.5, 0.99996, np.nan, 1.5])
+    html = report_html(_doc(web), runs, {"state": "done", "done": 8, "total": 8})
+    row = re.search(r"<tr><td>slip margin, running<br>.*?</tr>", _section(html, 1),
+                    re.S).group(0)
+    assert "past the limit in 1 of 7 runs" in row
+    cells = re.findall(r'<td class="num ">(.*?)</td>', row)
+    assert cells[:2] == ["0.99996", "1"], cells
