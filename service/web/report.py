@@ -285,7 +285,30 @@ def _conveyor_section(conv: dict, fill: dict | None) -> str:
     return "".join(out)
 
 
-def _design_section(study: dict) -> str:
+def _held(runs: pd.DataFrame | None, axes: dict, governed: str, column: str, unit: str
+          ) -> str:
+    """What the runs of one conveyor design (``axes``) say of an auto size: nothing when they
+    hold it; where every one of them has it ``given`` (a grid or sample axis sets the size per
+    run, e.g. a sampled ``takeup.mass_kg``), that the size was not held and what the runs
+    used. The design basis said 'take-up mass 17 020 kg ... held for every run' of a study
+    whose 512 runs each had their sampled mass, 15 736 to 18 244 kg."""
+    if runs is None or not len(runs) or governed not in runs or column not in runs:
+        return ""
+    part = runs
+    for k, val in axes.items():
+        if k in part:
+            part = part[part[k].astype(str) == str(val)]
+    gov = part[governed].dropna().astype(str)
+    if not len(gov) or not (gov == "given").all():
+        return ""
+    used = pd.to_numeric(part[column], errors="coerce").dropna()
+    span = ("" if not len(used) else f": {eng(used.min(), unit)}" if used.min() == used.max()
+            else f": {eng(used.min(), unit)} to {eng(used.max(), unit)}")
+    return (f"; not held: each of its {len(part)} runs sets its own ({governed} given, "
+            f"{column}{span})")
+
+
+def _design_section(study: dict, runs: pd.DataFrame | None = None) -> str:
     design = study.get("design")
     if design:
         case = "; ".join(f"{k} " + (", ".join(str(x) for x in v) if isinstance(v, list)
@@ -307,19 +330,25 @@ def _design_section(study: dict) -> str:
     rows = []
     for d in designs:
         where = ", ".join(f"{k}={v}" for k, v in d["axes"].items()) or "the conveyor"
+        ax = d["axes"]
         sizes = d["sizes"]
         tu = sizes.get("takeup")
         if tu:
             rows.append([_e(where), "take-up " + ("mass" if tu["unit"] == "kg" else
                                                   "pretension"),
                          _n(tu["value"], 5, tu["unit"]),
-                         _e(governed_at(tu["governed_by"], tu.get("at", ""))),
+                         _e(governed_at(tu["governed_by"], tu.get("at", ""))
+                            + _held(runs, ax, "takeup_governed_by",
+                                    "takeup_mass_kg" if tu["unit"] == "kg"
+                                    else "takeup_pretension_kn", tu["unit"])),
                          _e(tu["case"])])
         for i, dr in enumerate(sizes.get("drives") or []):
             if dr:
                 rows.append([_e(where), f"rated power, drive {i + 1}",
                              _n(dr["rated_power_kw"], 5, "kW"),
-                             _e(governed_at(dr["governed_by"], dr.get("at", ""))),
+                             _e(governed_at(dr["governed_by"], dr.get("at", ""))
+                                + _held(runs, ax, "rated_power_governed_by",
+                                        f"drive{i + 1}_rated_power_kw", "kW")),
                              _e(dr["case"])])
         brakes = sizes.get("brakes")
         if brakes:
@@ -780,7 +809,7 @@ def report_html(doc: dict, runs: pd.DataFrame, status: dict, accuracy: str = "",
         ("Conveyor", f"<p class=muted>from {_e(study.get('conveyor_source', 'inline'))}; "
          "conveyor axes of the grid change it per design (section 5).</p>"
          + _conveyor_section(study["conveyor"], fill)),
-        ("Design basis", _design_section(study)),
+        ("Design basis", _design_section(study, runs)),
         ("The grid", _grid_section(study, status)),
         ("Comparison", figs or "<p>No figures: no finished runs yet.</p>"),
         ("Runs", _runs_section(study, runs)),

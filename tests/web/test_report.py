@@ -740,3 +740,30 @@ def test_a_value_past_its_limit_is_never_written_equal_to_it(web):
     assert "past the limit in 1 of 7 runs" in row
     cells = re.findall(r'<td class="num ">(.*?)</td>', row)
     assert cells[:2] == ["0.99996", "1"], cells
+
+
+def test_an_auto_size_each_run_sets_itself_is_not_called_held(web):
+    """studies' slope-uncertainty samples takeup.mass_kg (normal, 17 000 kg +- 500 kg) over a
+    file whose mass_kg is auto: the design basis said 'take-up mass 17 020 kg, slip_start',
+    held for every run, while each of the 512 runs had its own sampled mass (15 736 to
+    18 244 kg, takeup_governed_by 'given'). The row now says it was not held and what the
+    runs used; a size the runs hold reads as before."""
+    doc = _doc(web)
+    doc["study"]["designs"] = [{"axes": {}, "key": "k", "sizes": {
+        "takeup": {"field": "mass_kg", "value": 17020.3, "unit": "kg",
+                   "governed_by": "slip_start", "case": "full, din, 20 C", "at": ""},
+        "drives": [{"rated_power_kw": 30.0, "governed_by": "peripheral_force",
+                    "case": "full, din, 20 C", "at": ""}],
+        "brakes": None, "belt": None}}]
+    runs = _runs(takeup_governed_by=["given"] * 8,
+                 takeup_mass_kg=[15736.0, 18244.0, 17000.0, 17000.0, 17000.0, 17000.0,
+                                 np.nan, 17000.0],
+                 rated_power_governed_by=["peripheral_force"] * 8)
+    html = report_html(doc, runs, {"state": "done", "done": 8, "total": 8})
+    s5 = _section(html, 5)
+    tu = re.search(r"<tr><td>the conveyor</td><td>take-up mass</td>.*?</tr>", s5).group(0)
+    assert "not held: each of its 8 runs sets its own" in tu
+    assert f"15{NB}736{UNIT_SPACE}kg to 18{NB}244{UNIT_SPACE}kg" in tu
+    drive = re.search(r"<tr><td>the conveyor</td><td>rated power, drive 1</td>.*?</tr>",
+                      s5).group(0)
+    assert "not held" not in drive
