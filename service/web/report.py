@@ -548,7 +548,8 @@ def _cause_table(cause, part: pd.DataFrame, cols: list[str], axes: list[str]) ->
         said = said or [r.get("message") or ""]
         rows.append([f"<code class=id>{_e(r.get('run_id'))}</code>"]
                     + ["\x01ax\x01" + _e(_text(r.get(a))) for a in axes]
-                    + [_n(r.get(c), 4) for c in cols] + [_message_cell("; ".join(said), 2 * MESSAGE_CHARS)])
+                    + [_n(r.get(c), 4) for c in cols]
+                    + [_message_cell("; ".join(said), 2 * MESSAGE_CHARS, print_full=True)])
     head = ["run", *axes, *[f"{c} [{_unit(c)}]" if _unit(c) else c for c in cols],
             "what the run says"]
     out = _table(head, rows, "causes")

@@ -767,3 +767,17 @@ def test_an_auto_size_each_run_sets_itself_is_not_called_held(web):
     drive = re.search(r"<tr><td>the conveyor</td><td>rated power, drive 1</td>.*?</tr>",
                       s5).group(0)
     assert "not held" not in drive
+
+
+def test_a_failure_groups_fix_prints_whole(web):
+    """Section 2 folded a long finding into a plain <details>, which does not print: the PDF
+    for the client showed a slip without the take-up or start time that avoids it (past 180
+    characters). Its cells now print whole, as the last section's do."""
+    long_slip = SLIP.replace("a heavier take-up", "a heavier take-up " + "(x) " * 40)
+    runs = _runs()
+    runs.loc[runs.run_id == "sl", "message"] = long_slip
+    html = report_html(_doc(web), runs, {"state": "done", "done": 8, "total": 8})
+    s2 = _section(html, 2)
+    printed = re.sub(r"<details class=fold-print>.*?</details>", "", s2, flags=re.S)
+    assert "<details><summary>" not in s2
+    assert "would avoid it" in printed and "print-full" in printed
