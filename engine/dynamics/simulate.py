@@ -1319,13 +1319,23 @@ def _short_of_speed_words(sys: System, v_cmd: float, t_stop_cmd: float) -> str:
 def _endstop_gap(sys: System, r: dict) -> float | None:
     """The least clearance [m] between the carriage's travel in the run (``xmin`` to ``xmax``)
     and its end stops (``lo``, ``hi``, :func:`~beltstudy.engine.dynamics.model._takeup`): 0
-    when it reached one (the stop holds it there), None without a gravity take-up. The
+    when it reached one (the stop holds it there), None without a gravity take-up; an end the
+    carriage starts at (x = 0, the rest position) counts only when the run hit it. The
     figure the end-stop verdict is judged on with its error bar when the carriage reached no
     stop (:func:`beltstudy.engine.accuracy.marginal_verdicts`)."""
     tu = sys.model.takeup
     if not tu.gravity:
         return None
-    return max(min(float(r["xmin"]) - tu.lo, tu.hi - float(r["xmax"])), 0.0)
+    if r["endstop"] > 0:
+        return 0.0
+    # the carriage starts at rest at x = 0, which is an end of the travel where the running
+    # stretch needs all of it (or more): resting there is no reach (a 300 kg take-up on a
+    # loaded decline moved 0.0094 m of its 0.5 m from the rest end, hit nothing, and read
+    # gap 0 and 'reached a take-up end stop' in the report)
+    tol = 1e-6 * max(tu.hi - tu.lo, 1e-3)
+    low = float(r["xmin"]) - tu.lo if tu.lo < -tol else math.inf
+    high = tu.hi - float(r["xmax"]) if tu.hi > tol else math.inf
+    return max(min(low, high), 0.0)
 
 
 def endstop_words(sys: System, r: dict) -> str:
