@@ -10,7 +10,7 @@ slipping), waits for it, opens ``GET /studies/{id}/report`` in Debian's headless
   ``docs/img/report-failures.png`` (section 2, the runs that did not pass, by cause);
 * checks, in print media at the width of an A4 page's content (210 mm less the report's
   2 x 12 mm margins = 186 mm = 703 CSS px), that no table is wider than the page, that the
-  page scrolls nowhere sideways and that no table row is taller than 150 px;
+  page scrolls nowhere sideways and that no table row is taller than 250 px;
 * checks that section 2 lists each failure group the study has (did not stop, overloaded a
   drive, slipped on a drive pulley) with its count;
 * prints the report with Chrome DevTools' ``Page.printToPDF`` (A4 from the page's
@@ -42,8 +42,10 @@ IMG = ROOT / "docs" / "img"
 STUDY = ROOT / "studies" / "report-failures.yaml"
 #: A4 less the report's @page margins (12 mm each side), in CSS px (96 per inch).
 PAGE_CONTENT_PX = round((210 - 2 * 12) / 25.4 * 96)
-#: The tallest a table row may be in print [CSS px] (a long message folds into <details>).
-ROW_MAX_PX = 150
+#: The tallest a table row may be in print [CSS px]: a quarter of the A4 content height
+#: (about 1 020 px), so a page holds at least four rows, which are never split. A finding
+#: prints whole with its fix (what would avoid it), which a fold would keep off the PDF.
+ROW_MAX_PX = 250
 #: The groups the study of ``studies/report-failures.yaml`` must show (title, fewest runs).
 EXPECTED_GROUPS = ("did not stop", "overloaded a drive", "slipped on a drive pulley")
 
