@@ -106,7 +106,7 @@ def test_an_empty_belts_pull_that_cancels_round_the_loop_is_no_force_to_hold():
             brakes=SimpleNamespace(shaft=np.array([0]), delay=np.array([0.5]),
                                    ramp=np.array([1.0]), curve_n=np.array([0]),
                                    curve_t=np.zeros((1, 1)), force=np.array([40e3])),
-            shafts=SimpleNamespace(drive=np.array([0])),
+            shafts=SimpleNamespace(drive=np.array([0]), hb=np.array([0])),
             nodes=SimpleNamespace(gravity=g),
             takeup=SimpleNamespace(gravity=True)))
     levers, why = _brake_past_full(sys_, 0, 100.0)
