@@ -91,6 +91,14 @@ def test_model_params_fold_aliases_and_refuse_a_repeat():
                                          r"'din.f_carry=0.01'"):
         parse_model_params(["din.f_carry=0.01", "iso5048.f_carry=0.02"])
     assert parse_params(["non-lin.mu_b=0.002"], "NONLIN") == {"mu_b": 0.002}
+    with pytest.raises(InputError, match=r"give f_carry=VALUE for din, or --model cema"):
+        parse_params(["cema.f_carry=0.05"], "din")
+    # cema.ky under din told the user to 'give ky=VALUE for din', a name din does not have
+    with pytest.raises(InputError) as ky:
+        parse_params(["cema.ky=0.03"], "din")
+    assert "ky=VALUE for din" not in str(ky.value)
+    assert str(ky.value).endswith(": --model cema (din has no ky; its parameters: f_carry, "
+                                  "f_return, c)")
     with pytest.raises(InputError, match=r"^--param 'xx.f=1': unknown model 'xx'"):
         parse_params(["xx.f=1"], "din")
 

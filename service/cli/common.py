@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import dataclasses
 import json
 import math
 import os
@@ -132,10 +133,13 @@ def parse_params(items: list[str] | None, model: str | None = None) -> dict[str,
                 named = model_option(prefix.strip(), f"--param {item!r}").name
                 runs = canonical_name(model)
                 if named != runs:
+                    own = [f.name for f in dataclasses.fields(get_model(runs).params_class)]
+                    fix = (f"give {name}=VALUE for {runs}, or --model {named}" if name in own
+                           else f"--model {named} ({runs} has no {name}; its parameters: "
+                                f"{', '.join(own)})")
                     raise InputError(
                         f"--param {item!r}: sets a parameter of model {named}, but this run "
-                        f"uses {runs} (--model) and would not read it: give {name}=VALUE for "
-                        f"{runs}, or --model {named}")
+                        f"uses {runs} (--model) and would not read it: {fix}")
         if name in given:
             raise InputError(f"--param {item!r}: {name} is already set by --param "
                              f"{given[name]!r}; give each parameter once")
