@@ -419,7 +419,8 @@ def test_the_runs_table_pages_through_a_large_study(browser, web):
 
 def test_warnings_are_counted_and_a_message_keeps_its_parentheses(browser, web):
     """A run whose message has "; " inside parentheses: the run page lists its clauses as
-    the report does (a parenthesis never cut over two lines); the study page says how many
+    the report does (a parenthesis never cut over two lines, a finding with what would avoid
+    it in one item: a slip's take-up was an item of its own); the study page says how many
     runs carry warnings beside "0 failed", and no auto-size sentence when there are none."""
     import pyarrow as pa
     import pyarrow.compute as pc
@@ -429,7 +430,9 @@ def test_warnings_are_counted_and_a_message_keeps_its_parentheses(browser, web):
                "(takeup.travel_m; from -0.269 to 4.23 m about the rest position): a longer "
                "takeup.travel_m would avoid it; a larger motor (more than 3 kW: its force was "
                "held at its torque limit; the drive holds back the belt hardest at low speed) "
-               "would avoid it")
+               "would avoid it; drive 1 (head) slipped on its pulley during the start: from "
+               "t = 7.8 to 8.7 s (lowest slip margin 1.00); a heavier take-up (more slack-side "
+               "tension) would avoid it")
     holder = {}
     fixed = web.tiny_conveyor("given-sizes")
     fixed["takeup"] = {"type": "gravity", "position": "tail", "mass_kg": 2600}
@@ -476,7 +479,11 @@ def test_warnings_are_counted_and_a_message_keeps_its_parentheses(browser, web):
             "(takeup.travel_m; from -0.269 to 4.23 m about the rest position): a longer "
             "takeup.travel_m would avoid it",
             "a larger motor (more than 3 kW: its force was held at its torque limit; the drive "
-            "holds back the belt hardest at low speed) would avoid it"], items
+            "holds back the belt hardest at low speed) would avoid it",
+            # a finding and what would avoid it are one item, as in the report
+            "drive 1 (head) slipped on its pulley during the start: from t = 7.8 to 8.7 s "
+            "(lowest slip margin 1.00); a heavier take-up (more slack-side tension) would "
+            "avoid it"], items
         for item in items:
             assert item.count("(") == item.count(")"), item
 

@@ -119,7 +119,7 @@ function messageCell(text) {
     el("summary", { text: s.slice(0, cut) + " …" }), s.slice(cut)])]);
 }
 
-// The clauses of a run's message, joined by "; " (service/web/verdicts.py clauses): a "; "
+// The clauses of a run's message, joined by "; " (service/web/verdicts.py said_clauses): a "; "
 // inside parentheses belongs to its clause, so "(takeup.travel_m; from -0.3 to 4.2 m ...)"
 // stays on one line.
 function clauses(message) {
@@ -136,7 +136,19 @@ function clauses(message) {
     }
   }
   parts.push(s.slice(start));
-  return parts.filter((c) => c.trim());
+  // a clause saying what would avoid a finding joins the finding before it (a warning cuts
+  // the two with "; " as the message cuts warnings), as the report does (verdicts.py
+  // said_clauses): a slip and the take-up that avoids it are one item
+  const out = [];
+  for (const c of parts.filter((p) => p.trim())) {
+    const last = out.length ? out[out.length - 1] : null;
+    if (last !== null && c.includes("would avoid") && !last.includes("would avoid")) {
+      out[out.length - 1] = last + "; " + c;
+    } else {
+      out.push(c);
+    }
+  }
+  return out;
 }
 
 function setProgress(bar, st) {
