@@ -33,6 +33,7 @@ from __future__ import annotations
 
 import bisect
 import math
+import re
 from dataclasses import dataclass
 from functools import cache
 
@@ -558,6 +559,26 @@ def holding_warning(conv, loop: Loop, friction_n: float) -> str:
             f"holding brakes of at least {math.ceil(need / 1e2) / 10:g} kN in all (force_kn: "
             f"auto sizes them {HOLD_MARGIN:g} x the pull, {HOLD_MARGIN * abs(pull) / 1e3:.4g} kN)"
             + (" or a holdback (holdback: true)" if pull > 0.0 else "") + " would avoid it")
+
+
+#: The auto size :func:`holding_warning` offers ("(force_kn: auto sizes them 1.2 x the pull,
+#: 50.45 kN)"), which :func:`design_holding_words` rewords for a study's design.
+_AUTO_HOLD = re.compile(r"\(force_kn: auto sizes them ([0-9.]+) x the pull, ([0-9.e+-]+) kN\)")
+
+
+def design_holding_words(text: str, governed_by: str | None) -> str:
+    """:func:`holding_warning`'s words in ``text`` said of a study's design: its brakes are
+    auto already, sized over the design's cases (``governed_by``, the design's
+    ``brake_governed_by``), so 'force_kn: auto sizes them' is no fix; a case outside the
+    design's list (the warning fires only there: within it the auto size holds) is, added to
+    the list. ``text`` unchanged without a design's brake (None, ``given``) or the words."""
+    if not governed_by or governed_by == "given" or not text:
+        return text
+    return _AUTO_HOLD.sub(
+        lambda m: (f"(the study's auto brakes are sized over its design cases, "
+                   f"brake_governed_by {governed_by}, and this run's case is not one of them: "
+                   f"with its load, model and temperature in the study's design: list they are "
+                   f"sized for it too, {m.group(1)} x its pull, {m.group(2)} kN)"), text)
 
 
 def _loading_speeds(conv) -> list[tuple[str, float]]:

@@ -19,7 +19,7 @@ import numpy as np
 import pandas as pd
 
 from beltstudy.engine.beltselect import resolve_auto_belt, run_cases, run_message
-from beltstudy.engine.checks import transient_checks
+from beltstudy.engine.checks import design_holding_words, transient_checks
 from beltstudy.engine.conveyor import Conveyor, Scenario, section_loads
 from beltstudy.engine.curves import survey_liftoff_limits_n, transient_liftoff
 from beltstudy.engine.design import auto_sizes, summary_fields
@@ -408,6 +408,12 @@ def _prepare(conveyor, scenario, model, params, dynamics, opts, solved=None, gov
     summary.update(installed)
     # a study's design: the run sees its sizes as given numbers, the caller knows what set them
     summary.update({k: v for k, v in (governed or {}).items() if k.endswith("_governed_by")})
+    held_by = (governed or {}).get("brake_governed_by")
+    if held_by and "force_kn: auto sizes them" in steady.message:
+        # a holding brake short at a case outside the design: its fix is the design's list
+        steady = replace(steady, message=design_holding_words(steady.message, held_by),
+                         warnings=[design_holding_words(w, held_by) for w in steady.warnings])
+        summary["message"] = design_holding_words(summary.get("message") or "", held_by)
     prep = _Prepared(conveyor, belt_choice, steady, summary)
     if not dynamics or steady.status == "failed":
         run_message(summary, belt_choice)
