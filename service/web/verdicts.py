@@ -406,7 +406,9 @@ def said_clauses(message: Any) -> list[tuple[str, str]]:
     own."""
     out: list[tuple[str, str]] = []
     for part in clauses(message, ""):
-        if out and AVOID in part and AVOID not in out[-1][1]:
+        # a note or a marginal verdict is a sentence of its own, whatever it ends with
+        opens = part.startswith(("note: ", "marginal: "))
+        if out and AVOID in part and AVOID not in out[-1][1] and not opens:
             out[-1] = (out[-1][0], f"{out[-1][1]}; {part}")
         else:
             out.append((part, part))

@@ -695,6 +695,11 @@ def test_holding_brakes_that_cannot_hold_have_their_own_group():
     # and the slip group shows its finding with its fix, not the finding alone
     slip = next(c for c in CAUSES if c.key == "slip")
     assert finding_clauses(SLIP + "; " + held, slip.words) == [SLIP]
+    # a note that ends with its own fix is a sentence of its own, not the fix of the
+    # finding before it
+    finding = SLIP.split("; ")[0]
+    note = "note: this force is beyond the grip (x): a heavier take-up would avoid it"
+    assert finding_clauses(f"{finding}; {note}", slip.words) == [finding]
 
 
 def test_a_run_slack_in_the_steady_state_is_past_the_steady_sag_limit(web):

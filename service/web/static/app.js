@@ -142,7 +142,8 @@ function clauses(message) {
   const out = [];
   for (const c of parts.filter((p) => p.trim())) {
     const last = out.length ? out[out.length - 1] : null;
-    if (last !== null && c.includes("would avoid") && !last.includes("would avoid")) {
+    const opens = c.startsWith("note: ") || c.startsWith("marginal: ");
+    if (last !== null && c.includes("would avoid") && !last.includes("would avoid") && !opens) {
       out[out.length - 1] = last + "; " + c;
     } else {
       out.push(c);
