@@ -687,6 +687,17 @@ def _late_brakes(conveyor: Conveyor, scenario: Scenario, stop_time_s: float | No
 MISSED_STOP_RATIO = 1.1
 
 
+def _missed_asked(scenario: Scenario, mode: str, stop_time_s: float | None) -> float | None:
+    """The ``stop.time_s`` [s] a ``mode`` stop missed: the stop (``stop_time_s``, command to
+    rest) took longer than ``MISSED_STOP_RATIO`` x it; None when it did not, or the run is
+    not such a stop or did not come to rest."""
+    if (scenario.stop.mode != mode or stop_time_s is None
+            or not math.isfinite(stop_time_s)):
+        return None
+    asked = float(scenario.stop.time_s)
+    return asked if asked > 0.0 and stop_time_s > MISSED_STOP_RATIO * asked else None
+
+
 def missed_brake_stop(scenario: Scenario, stop_time_s: float | None,
                       governed_by: str | None, auto: bool) -> list[str]:
     """In a brake stop of auto brakes (``auto``), the sentence saying the stop
@@ -694,11 +705,8 @@ def missed_brake_stop(scenario: Scenario, stop_time_s: float | None,
     ``stop.time_s`` asked of them, with what set them (``governed_by``, as
     ``brake_governed_by``) and what would bring the stop nearer the asked time; [] otherwise
     (a given brake is not sized by the stop time, so a stop time asked of it is not a target)."""
-    if (scenario.stop.mode != "brake" or not auto or stop_time_s is None
-            or not math.isfinite(stop_time_s)):
-        return []
-    asked = float(scenario.stop.time_s)
-    if not asked > 0.0 or stop_time_s <= MISSED_STOP_RATIO * asked:
+    asked = _missed_asked(scenario, "brake", stop_time_s) if auto else None
+    if asked is None:
         return []
     said = (f"brake stop missed its stop.time_s: {stop_time_s:.3g} s from the stop command to "
             f"rest against the {asked:g} s asked of the auto brakes "
@@ -725,11 +733,8 @@ def missed_controlled_stop(scenario: Scenario, stop_time_s: float | None) -> lis
     slipped, met its torque limit or rating, or the belt swung about its curve (a 600 m
     regenerating decline asked for 10 s slipped its head pulley for 13.2 s and took 15.6 s,
     and only the slip was said)."""
-    if scenario.stop.mode != "controlled" or stop_time_s is None \
-            or not math.isfinite(stop_time_s):
-        return []
-    asked = float(scenario.stop.time_s)
-    if not asked > 0.0 or stop_time_s <= MISSED_STOP_RATIO * asked:
+    asked = _missed_asked(scenario, "controlled", stop_time_s)
+    if asked is None:
         return []
     return [f"controlled stop missed its stop.time_s: {stop_time_s:.3g} s from the stop "
             f"command to rest against the {asked:g} s asked of the drives "
