@@ -312,8 +312,8 @@ def _given_grip(conv: Conveyor, steady: SteadyResult) -> str:
             said = (f"{name} passes no brake force in the stop: unbraked, its slack side "
                     f"already falls to {low / 1e3:.3g} kN (its fall doubled), a grip of "
                     f"{max(low, 0.0) * (euler - 1.0) / 1e3:.3g} kN against the "
-                    f"{abs(f) / 1e3:.3g} kN that slows its own shell and shaft, so the belt "
-                    f"slides on it at any brake force, the {force / 1e3:.4g} kN set "
+                    f"{abs(f) / 1e3:.3g} kN that slows its own shell and shaft, so by that bound "
+                    f"the belt slides on it at any brake force, the {force / 1e3:.4g} kN set "
                     f"({field}) too")
         else:
             said = (f"{name} passes at most {grip / 1e3:.4g} kN of brake force in the stop "
@@ -382,7 +382,7 @@ def _holding_grip(conv: Conveyor, steady: SteadyResult, each: list[float]) -> st
     said = (f"; this force is beyond the grip of {' and of '.join(parts)} in the stop (with "
             "the fall of the slack side doubled, the undamped bound), which may slide (the "
             "run's slip check says): ")
-    return said + _hold_fix(conv, steady)
+    return said + _hold_fix(conv, steady, any(grips[n] <= 0.0 for n in short))
 
 
 def takeup_lever(conv: Conveyor, why: str = "") -> str:
@@ -401,13 +401,16 @@ def lever_words(gravity: bool, why: str = "") -> str:
     return "a heavier take-up" + (f" ({why})" if why else "")
 
 
-def _hold_fix(conv: Conveyor, steady: SteadyResult) -> str:
+def _hold_fix(conv: Conveyor, steady: SteadyResult, none_passes: bool = False) -> str:
     """What lets a holding-sized brake's pulley keep its grip in the stop, in words: on an
     incline a holdback holds the belt at rest instead (where it has one, the brake need not
-    hold it: a given force within the grip); on a decline only more tension or another
-    braked pulley do."""
+    hold it: a given force within the grip, not offered where a pulley passes no brake force,
+    ``none_passes``); on a decline only more tension or another braked pulley do."""
     more = takeup_lever(conv)
     if float(steady.loop.gravity_n.sum()) > 0.0:
+        if conv.holdback and none_passes:
+            return (f"{more} or the brake on another pulley (its holdback, holdback: true, "
+                    "already holds the belt at rest) would avoid it")
         if conv.holdback:
             return ("its holdback (holdback: true) already holds the belt at rest, so a given "
                     f"brake force (brakes[].force_kn) within the grip, {more} or a "
@@ -415,6 +418,8 @@ def _hold_fix(conv: Conveyor, steady: SteadyResult) -> str:
         return (f"a holdback to hold the belt at rest with a smaller given brake, {more} or "
                 "a brake on another pulley would avoid it")
     return f"{more} or part of the force on a brake on another pulley would avoid it"
+
+
 def auto_sizes(conveyor: Conveyor, scenario: Scenario, *, model: str,
                params: dict | object | None = None, steady: SteadyResult | None = None) -> dict:
     """The take-up, rated power and brake forces of ``conveyor`` at one operating case.

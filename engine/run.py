@@ -10,6 +10,7 @@ step above the stability limit.
 
 from __future__ import annotations
 
+import functools
 import math
 import time
 from collections.abc import Callable
@@ -44,6 +45,7 @@ from beltstudy.engine.statics import (
     SteadyResult,
     solve_steady,
 )
+from beltstudy.engine.stopgrip import brake_grip_n
 
 __all__ = ["RunResult", "run_one", "run_group", "check_scenario", "TRANSIENT_SAFETY_RATIO",
            "transient_safety_min"]
@@ -233,10 +235,23 @@ def run_one(
     system.auto_brakes = _auto_brakes(conveyor, auto_brakes)
     system.brakes_timed = _brakes_timed(prep, system.auto_brakes)
     system.motor_basis_n = _motor_basis_n(prep, scenario, model, params)
+    system.brake_grip = _brake_grip(prep, system, scenario)
     tr = simulate(system, steady_summary=prep.steady.summary, conveyor=prep.conveyor,
                   safety_factor_min=transient_safety_min(prep.conveyor,
                                                          prep.steady.loop.belt.kind))
     return _complete(prep, scenario, system, tr, model, params, opts, remedy, check, t0, say)
+
+
+def _brake_grip(prep: _Prepared, system, scenario: Scenario) -> functools.partial | None:
+    """The largest brake force [N] a braked pulley passes in the run's brake stop, by its
+    element (:func:`beltstudy.engine.stopgrip.brake_grip_n` with the run's brakes, auto sizes
+    in), for the stop slip's words; None without a brake stop."""
+    brakes = system.model.brakes
+    if brakes is None or not len(brakes.force) or scenario.stop.mode != "brake":
+        return None
+    return functools.partial(brake_grip_n, prep.conveyor, prep.steady,
+                             tuple(int(n) for n in brakes.node),
+                             tuple(float(f) for f in brakes.force))
 
 
 def _motor_basis_n(prep: _Prepared, scenario: Scenario, model: str, params) -> float:
@@ -339,6 +354,7 @@ def run_group(
             convs[i], None if auto_brakes is None else auto_brakes[i])
         systems[-1].motor_basis_n = _motor_basis_n(prep, scn, model, params)
         systems[-1].brakes_timed = _brakes_timed(prep, systems[-1].auto_brakes)
+        systems[-1].brake_grip = _brake_grip(prep, systems[-1], scn)
         todo.append(i)
     for group in group_by_start(systems):
         members = [preps[todo[g]] for g in group]

@@ -34,8 +34,8 @@ import numpy as np
 
 from beltstudy.engine.loop import G, Loop, rotating_parts
 
-__all__ = ["BRAKE_GRIP_MARGIN", "FRONT_FACTOR", "StopWalk", "grip_limits", "grip_remedies",
-           "pulley_name", "takeup_at_least"]
+__all__ = ["BRAKE_GRIP_MARGIN", "FRONT_FACTOR", "StopWalk", "brake_grip_n", "grip_limits",
+           "grip_remedies", "pulley_name", "takeup_at_least"]
 
 #: Dynamic factor on the fall of a braked pulley's slack-side tension [-]. The walk above is
 #: quasi-static; the stop's fronts (the drives' trip, the brake) are suddenly applied loads,
@@ -174,6 +174,18 @@ class StopWalk:
             mid = 0.5 * (lo + hi)
             lo, hi = (mid, hi) if room(mid) >= 0.0 else (lo, mid)
         return lo
+
+
+def brake_grip_n(conv, steady, nodes: tuple, forces: tuple, node: int) -> float:
+    """The largest brake force [N] the pulley at ``node`` passes in a brake stop
+    (:meth:`StopWalk.grip_n`, the undamped bound), the run's brakes at elements ``nodes`` with
+    their full forces ``forces`` [N] (auto sizes in) as the others; 0 when it passes none.
+    The run's stop-slip words read it (``System.brake_grip``) so that they do not offer less
+    force on a pulley that would still slide at the force that holds the loaded belt."""
+    fixed: dict = {}
+    for n, f in zip(nodes, forces, strict=True):
+        fixed[int(n)] = fixed.get(int(n), 0.0) + float(f)
+    return StopWalk.of(conv, steady).grip_n(int(node), fixed)
 
 
 def grip_limits(walk: StopWalk, nodes: list[int], fixed: dict, wanted: float,

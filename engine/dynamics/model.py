@@ -285,6 +285,11 @@ class System:
     #: running resistance, the larger kept, as an auto motor of such a run is installed
     #: (:func:`beltstudy.engine.sizing.installed_at_full_load`); None: the run's own |Te|
     motor_basis_n: float | None = None
+    #: the largest brake force [N] the braked pulley at an element passes in a brake stop, the
+    #: undamped bound (:func:`beltstudy.engine.stopgrip.brake_grip_n` bound to the run's
+    #: conveyor, steady solution and brakes): a stop slip's words offer less force on a pulley
+    #: only where the holding force fits within it; None: not known (less force is offered)
+    brake_grip: object | None = None
 
     @property
     def n(self) -> int:

@@ -934,8 +934,11 @@ def _brake_past_full(sys: System, i: int, t_last: float) -> tuple[str, str] | No
     longer ramp only delays the slip (a 3 km decline's 112 kN holding brake on its head drive:
     17.0 s and 25.6 m of slip with a 1 s ramp, 20.1 s and 34.1 m with a 5 s one). The levers
     are the grip (a heavier take-up) and the force on that pulley (part of it on a brake on
-    another pulley, or less of it). Returns the levers and the reason (after "would avoid it");
-    None where the rule does not apply."""
+    another pulley, or less of it). Less of it is not offered where the pulley's grip in the
+    stop (``System.brake_grip``, the undamped bound of the design note) is nothing or below
+    the force that holds the loaded belt at rest: a 100 m, 15 m lift belt on a 6 kN fixed
+    take-up slid with 20 kN on its head drive and with the 10 kN that holds it too. Returns the
+    levers and the reason (after "would avoid it"); None where the rule does not apply."""
     brakes = sys.model.brakes
     if sys.model.cycle.stop_mode != C.BRAKE or brakes is None:
         return None
@@ -963,7 +966,17 @@ def _brake_past_full(sys: System, i: int, t_last: float) -> tuple[str, str] | No
     # the least force advised is rounded up at three figures: a force at the floor already
     # (a study's design brake, its size rounded up at six) was told 'less brake force (now
     # 56.06 kN; a given force_kn of at least 56.1 kN)'
-    if (up3(least_kn) if least_kn > 0.0 else 0.0) < force_kn * (1.0 - 1e-6):
+    grip_kn = (sys.brake_grip(int(brakes.node[on[0]])) / 1e3
+               if getattr(sys, "brake_grip", None) is not None else None)
+    if grip_kn is not None and grip_kn <= 0.0:
+        # the design note's bound: unbraked, the fall of its slack side already slides it
+        less = (" (not less force on this one: by the stop's undamped bound its pulley passes "
+                "no brake force at all, as the note on the brake grip says)")
+    elif grip_kn is not None and grip_kn < least_kn:
+        less = (f" (not less force on this one: by the stop's undamped bound its pulley passes "
+                f"at most {grip_kn:.3g} kN, below the {up3(least_kn):g} kN that with the "
+                f"others holds the loaded belt at rest, {HOLD_MARGIN:g} x its net gravity pull)")
+    elif (up3(least_kn) if least_kn > 0.0 else 0.0) < force_kn * (1.0 - 1e-6):
         less = (f" or less brake force on this one (now {force_kn:.4g} kN; a given force_kn"
                 + (f" of at least {up3(least_kn):g} kN, which with the others holds the loaded "
                    f"belt at rest, {HOLD_MARGIN:g} x its net gravity pull)" if least_kn > 0.0

@@ -1,0 +1,76 @@
+"""A drive that slides in a brake stop after its brakes reached full force was offered 'less
+brake force on this one (now 20 kN; a given force_kn of at least 9.81 kN, which with the
+others holds the loaded belt at rest)' beside the design note that its pulley passes no brake
+force at all in the stop (the undamped bound): a 100 m belt lifting 15 m on a 6 kN fixed
+take-up. With 9.81 kN, the holding force, the run still slides, so that lever was wrong. The
+slip's words now offer less force only where the holding force fits within the pulley's
+grip (simulate.py _brake_past_full, System.brake_grip)."""
+from __future__ import annotations
+
+import numpy as np
+
+from beltstudy.engine.checks import HOLD_MARGIN
+from beltstudy.engine.conveyor import Scenario, parse_conveyor
+from beltstudy.engine.dynamics import DynamicsOptions, build_system
+from beltstudy.engine.dynamics.simulate import _brake_past_full
+from beltstudy.engine.run import run_one
+from beltstudy.engine.statics import solve_steady, up3
+
+LIFT = {
+    "name": "short-incline", "speed_m_s": 2.0,
+    "belt": {"type": "EP630/4", "width_m": 0.8, "compound": "standard"},
+    "material": {"capacity_t_h": 400, "density_t_m3": 1.6, "loading_speed_m_s": 0.0},
+    "profile": [{"length_m": 100, "lift_m": 15}],
+    "idlers": {"carry": {"spacing_m": 1.2, "roll_diameter_m": 0.133, "rolls": 3,
+                         "trough_deg": 35, "cema_class": "C"},
+               "return": {"spacing_m": 3.0, "roll_diameter_m": 0.133, "rolls": 1,
+                          "cema_class": "C"}},
+    "drives": [{"position": "head", "wrap_deg": 200, "friction": 0.35, "share": 1.0,
+                "pulley_diameter_m": 0.63, "inertia_kg_m2": 20}],
+    "takeup": {"type": "fixed", "position": "tail", "pretension_kn": 6.0},
+    "brakes": [{"position": "head", "force_kn": 20.0, "delay_s": 0.2, "ramp_s": 0.3}],
+    "holdback": False,
+}
+BRAKE = Scenario(elements=80, stop={"mode": "brake", "time_s": 1.0})
+PAST_FULL = "the belt still slid after the brakes on this pulley reached full force"
+
+
+def _slid(brake_kn: float) -> str:
+    conv = parse_conveyor({**LIFT, "brakes": [{**LIFT["brakes"][0], "force_kn": brake_kn}]})
+    return run_one(conv, BRAKE, model="din").summary["message"]
+
+
+def test_no_less_force_where_the_pulley_passes_none():
+    msg = _slid(20.0)
+    assert "passes no brake force in the stop" in msg, msg  # the design note's bound
+    assert PAST_FULL in msg, msg
+    assert "or less brake force on this one" not in msg, msg
+    assert ("not less force on this one: by the stop's undamped bound its pulley passes no "
+            "brake force at all") in msg, msg
+    # the lever left out would not have worked: at the holding force the belt still slides
+    conv = parse_conveyor(LIFT)
+    steady = solve_steady(conv, model="din", n_elements=80)
+    pull_kn = float(np.sum(build_system(conv, BRAKE, steady, DynamicsOptions())
+                           .model.nodes.gravity)) / 1e3
+    hold_kn = up3(HOLD_MARGIN * pull_kn)
+    assert 9.0 < hold_kn < 11.0  # 1.2 x g x 400 / (3.6 x 2) kg/m x 15 m = 9.81 kN, by hand
+    assert "slipped on its pulley during the stop" in _slid(hold_kn)
+
+
+def test_less_force_offered_only_down_to_what_the_grip_passes():
+    conv = parse_conveyor(LIFT)
+    steady = solve_steady(conv, model="din", n_elements=80)
+    system = build_system(conv, BRAKE, steady, DynamicsOptions())
+    floor_kn = HOLD_MARGIN * float(np.sum(system.model.nodes.gravity)) / 1e3
+    t_late = system.stop_command_s + 60.0
+    system.brake_grip = lambda node: 0.5 * floor_kn * 1e3  # a grip below the holding force
+    levers, _why = _brake_past_full(system, 0, t_late)
+    assert "or less brake force" not in levers, levers
+    assert (f"passes at most {0.5 * floor_kn:.3g} kN, below the {up3(floor_kn):g} kN that "
+            "with the others holds the loaded belt at rest") in levers, levers
+    system.brake_grip = lambda node: 1.5 * floor_kn * 1e3  # room above it: less is a lever
+    levers, _why = _brake_past_full(system, 0, t_late)
+    assert f"a given force_kn of at least {up3(floor_kn):g} kN" in levers, levers
+    system.brake_grip = None  # not known: offered as before
+    levers, _why = _brake_past_full(system, 0, t_late)
+    assert f"a given force_kn of at least {up3(floor_kn):g} kN" in levers, levers
