@@ -904,7 +904,7 @@ class Conveyor(_Model):
 
     @model_validator(mode="after")
     def _curves(self) -> Conveyor:
-        _curves_fit(self.profile, self.judged_profile())
+        _curves_fit(self.profile, self.judged_profile(), self.curve_pitch_m())
         arcs = curve_arcs(self.judged_profile())
         for name, at in route_points(self):
             for k, (a, b) in enumerate(arcs, start=1):
@@ -1076,13 +1076,14 @@ def curve_arc_m(profile: list[ProfileSection], i: int) -> float:
     return sec.curve_radius_m * abs(delta)
 
 
-def _curves_fit(profile: list[ProfileSection], judged: list[ProfileSection]) -> None:
+def _curves_fit(profile: list[ProfileSection], judged: list[ProfileSection],
+                pitch_m: float) -> None:
     """Refuse a vertical curve that cannot be built (docs/routes.md, part (c)): on the last
     section (no next grade), between equal grades, or longer than its sections: its arc takes
     half its length from the end of its section and half from the start of the next, and a
     section must hold the halves of the curves at both its ends. ``profile`` is the profile
     as given, ``judged`` as judged (:meth:`Conveyor.judged_profile`: a curve shorter than an
-    idler pitch is a grade change without a curve, and takes no room)."""
+    idler pitch ``pitch_m`` is a grade change without a curve, and takes no room)."""
     for i, sec in enumerate(profile):
         if sec.curve_radius_m is None:
             continue
@@ -1099,14 +1100,17 @@ def _curves_fit(profile: list[ProfileSection], judged: list[ProfileSection]) -> 
             raise ValueError(
                 f"profile.{j}.curve_radius_m: the curve's arcs need {need:.1f} m of "
                 f"profile.{i} (half of each curve's R |delta| at its ends) but the section "
-                f"is {sec.length_m:g} m long; {_curve_fit_fix(judged, j)}")
+                f"is {sec.length_m:g} m long; {_curve_fit_fix(judged, j, pitch_m)}")
 
 
-def _curve_fit_fix(profile: list[ProfileSection], j: int) -> str:
+def _curve_fit_fix(profile: list[ProfileSection], j: int, pitch_m: float) -> str:
     """What fits the curve ending ``profile[j]`` into its two sections: the largest radius
     whose half arc, ``R |delta| / 2``, fits each of them beside the half of the curve at its
     other end (rounded down to the metre), or, where that curve's half takes the section, a
-    smaller radius there."""
+    smaller radius there. Where that radius's arc would be shorter than an idler pitch
+    ``pitch_m`` it is no curve (the belt kinks on one idler set, :meth:`Conveyor.short_curves`):
+    a 0.5 m section after a 4.6 deg turn was offered 'a radius of at most 12 m', an arc of
+    0.96 m under the 1.5 m pitch; then the levers are longer sections or no curve there."""
     sec = profile[j]
     turn = curve_arc_m(profile, j) / sec.curve_radius_m
     rooms = [profile[j].length_m - (0.5 * curve_arc_m(profile, j - 1) if j else 0.0),
@@ -1118,6 +1122,13 @@ def _curve_fit_fix(profile: list[ProfileSection], j: int) -> str:
                 f"{j if k < j else j + 1}: a smaller radius there or longer sections")
     r_max = math.floor(2.0 * room / turn)
     tight = j if rooms[0] <= rooms[1] else j + 1
+    if r_max * turn < pitch_m:
+        return (f"no curve fits there: the largest radius that does, {r_max:g} m (the grades "
+                f"turn by {math.degrees(turn):.2f} deg, R |delta| / 2 within the {room:.2f} m "
+                f"left to the curve in profile.{tight}), makes an arc of "
+                f"{r_max * turn:.2f} m, shorter than an idler pitch ({pitch_m:g} m), which is "
+                f"no curve but a grade change on one idler set; longer sections, or no "
+                f"curve_radius_m (a grade change without a curve, judged as one)")
     return (f"a radius of at most {r_max:g} m (the grades turn by {math.degrees(turn):.2f} deg: "
             f"R |delta| / 2 within the {room:.1f} m left to the curve in profile.{tight}) or "
             "longer sections")

@@ -263,6 +263,26 @@ def test_a_curve_too_long_for_its_sections_names_the_largest_radius_that_fits():
     assert 2 * (200 - 1000 * delta) / delta == pytest.approx(1993.3, abs=0.1)
 
 
+def test_a_radius_whose_arc_is_under_a_pitch_is_not_offered():
+    """Between 0 and 4 % (delta = asin(0.04) = 0.040011 rad) a 0.5 m section holds a half arc
+    of 0.5 m: R at most 2 x 0.5 / 0.040011 = 24.99 m, rounded down 24 m, an arc of
+    24 x 0.040011 = 0.96 m, under the 1.25 m carry pitch: no curve but a grade change on one
+    idler set, so that radius is not the fix; longer sections or no curve_radius_m are."""
+    delta = math.asin(0.04)
+    assert math.floor(2 * 0.5 / delta) * delta == pytest.approx(0.960, abs=0.001)
+    with pytest.raises(ValueError, match=r"profile.0\.curve_radius_m: .* no curve fits there: "
+                       r"the largest radius that does, 24 m .* makes an arc of 0\.96 m, "
+                       r"shorter than an idler pitch \(1\.25 m\)") as err:
+        parse_conveyor(hand_conveyor_dict(profile=[
+            {"length_m": 500, "lift_m": 0, "curve_radius_m": 400},
+            {"length_m": 0.5, "lift_m": 0.02}, {"length_m": 500, "lift_m": 0}]))
+    assert "a radius of at most" not in str(err.value)
+    # the fix named is taken: no curve_radius_m there
+    parse_conveyor(hand_conveyor_dict(profile=[
+        {"length_m": 500, "lift_m": 0}, {"length_m": 0.5, "lift_m": 0.02},
+        {"length_m": 500, "lift_m": 0}]))
+
+
 def test_no_curve_no_change():
     """Without curve_radius_m the loop has no curves and the summary no curve fields."""
     conv = parse_conveyor(hand_conveyor_dict())
