@@ -1704,6 +1704,14 @@ def _fast_stop_words(sys: System, t_stop: float, summary: dict, steady_tmax: flo
     hi, lo = summary.get("t_max_stop_kn"), summary.get("t_min_stop_kn")
     seen = (f"; its tensions ranged {lo:.4g} to {hi:.4g} kN against {t_min_run:.4g} to "
             f"{steady_tmax / 1e3:.4g} kN running" if hi is not None and lo is not None else "")
+    # the rule is of thumb: where this stop's tensions stayed within the running range (an
+    # empty belt's stop), it is said beside the name, not left to contradict it
+    calm = (hi is not None and lo is not None and lo >= t_min_run * (1.0 - 1e-3)
+            and hi <= steady_tmax / 1e3 * (1.0 + 1e-3))
+    if calm:
+        seen = (f" by that rule, though its tensions stayed within the running range ({lo:.4g} "
+                f"to {hi:.4g} kN against {t_min_run:.4g} to {steady_tmax / 1e3:.4g} kN "
+                "running)")
     need = 5.0 * sys.wave_loop_time_s
     if cyc.stop_mode == C.CONTROLLED:
         # a stop that follows its curve scales with the asked time; one held back (a drive's

@@ -722,7 +722,14 @@ def test_a_fast_stop_says_its_tensions_and_what_would_slow_it():
     msg = _fast_stop_words(sysm, 25.2, {"t_max_stop_kn": 250.0, "t_min_stop_kn": 15.0},
                            261e3)
     assert "ranged 15 to 250 kN against 20 to 261 kN running" in msg
+    assert "stayed within the running range" not in msg
     assert f"stop.time_s {math.ceil(5 * 8.2 * 30.0 / 25.2)} s or more" in msg
+    # an empty belt's stop whose tensions stay within the running ones: still fast by the
+    # rule, said beside it instead of 'a high-stress stop; its tensions ranged' alone
+    calm = _fast_stop_words(sysm, 25.2, {"t_max_stop_kn": 240.0, "t_min_stop_kn": 22.0},
+                            261e3)
+    assert ("a high-stress stop by that rule, though its tensions stayed within the running "
+            "range (22 to 240 kN against 20 to 261 kN running)") in calm, calm
     assert "did not follow" not in msg
     # asked 10 s, took 24.1 s (a torque limit held it back): not 25 x 10 / 24.1 = 10.4 s,
     # which the drives would not follow either, but the curve resting after 5 x 5 s = 25 s,
