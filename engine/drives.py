@@ -51,7 +51,7 @@ if TYPE_CHECKING:  # the conveyor model, for the annotations only
     from beltstudy.engine.conveyor import Conveyor
 
 __all__ = ["OVERLOAD_S_MAX", "RATED_POWER_FACTOR", "GIVEN", "rated_power_kw", "power_required_kw",
-           "kw_at_least", "steady_checks", "transient_checks"]
+           "kw_at_least", "steady_checks", "transient_checks", "WATTS_RATIO", "watts_notes"]
 
 #: Longest time a drive may run above its rated force in a cycle without a warning [s]: the
 #: 15 s for which IEC 60034-1 (clause 9.4, *unverified*) has an induction motor withstand
@@ -82,6 +82,36 @@ def rated_power_kw(conv: Conveyor, te_n: float, resistance_n: float
             kw.append(RATED_POWER_FACTOR * d.share * basis * v / 1e3)
             gov.append(why)
     return kw, gov
+
+
+#: A given rated power this many times what an auto size would install is read as a power
+#: written in W for kW [-]: a motor sized anywhere from half to twice the need and written in
+#: watts is 500 to 2 000 x it, while no built drive is hundreds of times its belt's need
+#: (motors come in steps of about 1.25 x, the smallest a fraction of a kW).
+WATTS_RATIO = 500.0
+
+
+def watts_notes(conv: Conveyor, te_n: float, resistance_n: float) -> list[str]:
+    """The notes of given rated powers :data:`WATTS_RATIO` or more times what an auto size
+    would install (:func:`rated_power_kw`): ``rated_power_kw: 15000`` for a 15 kW motor
+    passed with a utilisation of 0.0003 and a transient driven by a 15 MW motor."""
+    auto = RATED_POWER_FACTOR * max(abs(te_n), resistance_n) * float(conv.speed_m_s) / 1e3
+    notes = []
+    for i, d in enumerate(conv.drives):
+        need = d.share * auto
+        if d.rated_power_kw is None or not need > 0.0:
+            continue
+        ratio = float(d.rated_power_kw) / need
+        if ratio >= WATTS_RATIO:
+            notes.append(
+                f"note: drives.{i}.rated_power_kw {figures(float(d.rated_power_kw), True)} kW "
+                f"is {ratio:,.0f} x the {figures(need)} kW an auto size installs for drive "
+                f"{i + 1} ({d.where}: {RATED_POWER_FACTOR:g} x its share {d.share:g} of the "
+                f"larger of |Te| and the running resistance, "
+                f"{max(abs(te_n), resistance_n) / 1e3:.3g} kN, x {conv.speed_m_s:g} m/s); "
+                f"rated_power_kw is in kW: if it was written in W, it is "
+                f"{figures(float(d.rated_power_kw) / 1e3)} kW")
+    return notes
 
 
 def power_required_kw(force_n: float, speed_m_s: float, efficiency: float) -> float:

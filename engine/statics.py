@@ -8,7 +8,8 @@ constant, which the take-up sets: a gravity take-up carries its counterweight on
 ``mass_kg: auto`` (or ``pretension_kn: auto``) the constant is the smallest that meets
 
 * slip at every drive at start-up (Euler-Eytelwein, T_tight / T_slack <= e^{mu theta}, with the
-  drive force times the start-up factor 1.5, the slack side held by the take-up), and running;
+  drive force times the start-up factor 1.5, the level held by the take-up: a gravity one its
+  mean tension, a fixed one the loop length, :func:`start_level`), and running;
 * for a gravity take-up, slip at every drive at breakaway: the drives take the loaded belt's
   net gravity pull from the brake at standstill, before any running resistance acts
   (:func:`_breakaway_walk`). This is the start-up of a regenerating belt: there the start-up
@@ -60,7 +61,7 @@ from beltstudy.engine.conveyor import (
 )
 from beltstudy.engine.curves import junction_checks
 from beltstudy.engine.curves import steady_checks as curve_checks
-from beltstudy.engine.drives import figures, rated_power_kw
+from beltstudy.engine.drives import figures, rated_power_kw, watts_notes
 from beltstudy.engine.drives import steady_checks as drive_checks
 from beltstudy.engine.friction import get_model, temperature_note
 from beltstudy.engine.hcurves import hcurve_checks
@@ -327,11 +328,33 @@ def _sag_need(loop: Loop, W: np.ndarray, hs_adm: np.ndarray) -> float:
     return float(np.max(np.where(idl, tmin_elem - lower, -np.inf)))
 
 
+def start_level(loop: Loop, W: np.ndarray, fixed: bool) -> float:
+    """The figure of a tension walk ``W`` [N] that the take-up holds from running to start-up.
+
+    A gravity take-up's counterweight holds the mean tension of its two strands,
+    ``(W[k - 1] + W[k]) / 2`` at the take-up pulley ``k``, whatever the belt does. A fixed
+    (screw or winch) take-up holds its place, so the loop's length: the belt's elastic
+    elongation ``sum_j dx_j (W[j - 1] + W[j]) / 2 / EB`` (tension linear along each element,
+    EB the same round the loop) stays as running, and the figure held is that length-weighted
+    mean tension. Starting, the carry stretches under the drives' extra force and the slack
+    side gives up the length: held at the take-up's running tension instead, the start-up
+    check of a fixed take-up behind a head drive kept the slack side about 19 kN higher than
+    a fixed length leaves it. The belt's sag (Ernst's chord term) is left out of the length:
+    at the tensions a start-up check asks for it is a small part of the stretch."""
+    if not fixed:
+        k = loop.i_takeup
+        return float(0.5 * (W[k - 1] + W[k]))
+    dx = loop.dx_m
+    return float(np.sum(dx * 0.5 * (np.roll(W, 1) + W)) / np.sum(dx))
+
+
 def _required_offset(loop: Loop, W: np.ndarray, W_start: np.ndarray, drives,
                      hs_adm: np.ndarray, rest_need: float | None,
-                     W_hold: np.ndarray | None = None) -> tuple[float, dict]:
+                     W_hold: np.ndarray | None = None, fixed: bool = False
+                     ) -> tuple[float, dict]:
     """Smallest constant c (T = c + W) meeting slip at every drive pulley running, at
-    start-up (``W_start`` from :func:`_startup_walk`) and at breakaway (``W_hold`` from
+    start-up (``W_start`` from :func:`_startup_walk`, levelled by :func:`start_level`: a
+    ``fixed`` take-up holds the loop length) and at breakaway (``W_hold`` from
     :func:`_breakaway_walk`, gravity take-ups), and sag (running and, with ``rest_need``
     from :func:`_rest_need`, held at rest)."""
     bounds = {}
@@ -339,9 +362,10 @@ def _required_offset(loop: Loop, W: np.ndarray, W_start: np.ndarray, drives,
     Sprev = np.roll(W_start, 1)
     bounds["slip_running"] = float(max(_slip_need(Wprev[idx], W[idx], e)
                                        for idx, _s, e in drives))
-    # the start-up walk has its own level: the take-up holds the same mean tension
+    # the start-up walk has its own level: a gravity take-up holds the same mean tension, a
+    # fixed one the same loop length (:func:`start_level`)
     k = loop.i_takeup
-    shift = 0.5 * (W[k - 1] + W[k]) - 0.5 * (W_start[k - 1] + W_start[k])
+    shift = start_level(loop, W, fixed) - start_level(loop, W_start, fixed)
     bounds["slip_start"] = float(max(_slip_need(Sprev[idx], W_start[idx], e)
                                      for idx, _s, e in drives) - shift)
     if W_hold is not None:  # the same mean tension at the take-up as running
@@ -406,6 +430,7 @@ def solve_steady(
                       conv.sag_limit_pct.return_ / 100.0)
     tu = conv.takeup
     k = loop.i_takeup
+    fixed = tu.type == "fixed"
 
     rest_need = _rest_need(conv, loop, hs_adm)
     W_hold = _breakaway_walk(conv, loop)
@@ -445,7 +470,8 @@ def solve_steady(
         elif tu.type == "fixed" and tu.pretension_kn != "auto":
             c = float(tu.pretension_kn) * 1e3 - w_tu
         else:
-            c, _ = _required_offset(loop, W, W_start, drives, hs_adm, rest_need, W_hold)
+            c, _ = _required_offset(loop, W, W_start, drives, hs_adm, rest_need, W_hold,
+                            fixed)
             c = max(c, tu_floor_n - w_tu)
         T_new = c + W
         if not law.tension_dependent:
@@ -472,7 +498,8 @@ def solve_steady(
             T = T_new
 
     assert T is not None and R is not None
-    c_need, bounds = _required_offset(loop, W, W_start, drives, hs_adm, rest_need, W_hold)
+    c_need, bounds = _required_offset(loop, W, W_start, drives, hs_adm, rest_need, W_hold,
+                            fixed)
     takeup_tension = 0.5 * (T[k - 1] + T[k])
     takeup_mass = float(2.0 * takeup_tension / G) if tu.type == "gravity" else None
     if not auto:  # a given take-up is reported as given (not as its round trip through T)
@@ -648,7 +675,7 @@ def _summarise(res: SteadyResult, drives, hs_adm, bounds, shortfall_n: float,
     v = loop.speed_m_s
     Tprev = np.roll(T, 1)
     k = loop.i_takeup
-    T_start = T + start_delta - 0.5 * (start_delta[k - 1] + start_delta[k])
+    T_start = T + start_delta - start_level(loop, start_delta, conv.takeup.type == "fixed")
     Sprev = np.roll(T_start, 1)
     main_idx = loop.drive_elements[master_drive(conv)]
     t1, t2 = Tprev[main_idx], T[main_idx]
@@ -800,8 +827,10 @@ def _summarise(res: SteadyResult, drives, hs_adm, bounds, shortfall_n: float,
     given = input_notes(conv, loop, comps.get("feed", 0.0) * 1e3,
                         res.law.info.get("c_factor"))
     start = start_time_note(conv, loop, res.te_n)
+    watts = watts_notes(conv, res.te_n, float(np.sum(res.resistance_n)))
     res.message = "; ".join(warnings + [n for n in (note, glassy, res.range_note, runback,
-                                                    start, takeup_place_note(res), *given)
+                                                    start, takeup_place_note(res), *given,
+                                                    *watts)
                                         if n])
     res.summary["status"] = res.status
     res.summary["message"] = res.message
@@ -930,8 +959,9 @@ def startup_tensions(res: SteadyResult) -> np.ndarray:
     """Tensions at start-up with DIN 22101's start-up peripheral force [N].
 
     The steady solution's own start-up walk (:func:`_startup_walk`: the drives give
-    ``STARTUP_FACTOR`` x Te, the excess accelerating every moving mass), levelled so the
-    take-up holds the same mean tension as running: the tensions the take-up's
+    ``STARTUP_FACTOR`` x Te, the excess accelerating every moving mass), levelled so a
+    gravity take-up holds the same mean tension as running and a fixed one the same loop
+    length (:func:`start_level`): the tensions the take-up's
     ``slip_start`` sizing and ``slip_margin_start`` use, at the boundaries of the elements
     (and the concave curves' lift-off at start-up, ``curve{k}_liftoff_start``).
     The largest is the start-up peak of a rigid-body start (no wave fronts, no overshoot of
@@ -941,5 +971,4 @@ def startup_tensions(res: SteadyResult) -> np.ndarray:
     dF = res.resistance_n + loop.gravity_n
     W = np.cumsum(dF - res.drive_force_n)
     delta = _startup_walk(conv, loop, dF, res.te_n) - W
-    k = loop.i_takeup
-    return res.tension_n + delta - 0.5 * (delta[k - 1] + delta[k])
+    return res.tension_n + delta - start_level(loop, delta, conv.takeup.type == "fixed")
