@@ -947,9 +947,13 @@ def _safety_words(loop: Loop, belt, sf: float, sf_min: float, t_max: float, s_m:
              "and sag limits need" if takeup_auto else
              "a take-up no heavier than the slip and sag limits need, drives spread along "
              "the belt")
+    # below 1 the running tension is past the belt's breaking strength: said as what it is
+    broken = ("; below 1, the largest running tension is above the belt's breaking strength: "
+              "the belt would break" if sf < 1.0 else "")
     return (f"belt safety factor {sf:.2f} is below the minimum {sf_min:.2f} (t_max "
             f"{t_max / 1e3:.1f} kN {place_words(loop, s_m)}; belt rating "
-            f"{figures(belt.rating_n / 1e3)} kN, {figures(belt.rating_kn_m)} kN/m x {belt.width_m:g} m): a "
+            f"{figures(belt.rating_n / 1e3)} kN, {figures(belt.rating_kn_m)} kN/m x "
+            f"{belt.width_m:g} m){broken}: a "
             f"belt rated at least {math.ceil(need_kn_m)} kN/m at this width ({pick}), or a "
             f"lower largest tension ({lower}) "
             "would avoid it")

@@ -254,19 +254,21 @@ def test_the_take_up_a_sag_warning_advises_clears_it():
 
 def test_the_pretension_a_slip_warning_advises_clears_it():
     """The hand conveyor with a head scraper of 1.2 kN on a fixed take-up of 20 kN slips at
-    start-up; the least pretension that holds it is the auto one (33.036 kN, sized for slip at
-    start-up). Said to 0.1 kN to the nearest, "33.0 kN needed" left the start-up slip margin
-    at 0.999; the advice names the field and is rounded up (33.1 kN), which holds."""
+    start-up; the least pretension that holds it is the auto one (36.324 kN, sized for slip at
+    start-up with the loop length held, tests/engine/test_fixed_takeup_start.py; 33.036 kN
+    when the walk held the take-up's tension). Said to 0.1 kN to the nearest, "33.0 kN
+    needed" left the start-up slip margin at 0.999; the advice names the field and is
+    rounded up (36.4 kN), which holds."""
     d = hand_conveyor_dict(takeup={"type": "fixed", "position": "tail", "pretension_kn": "auto"},
                            accessories={"head_kn": 1.2, "tail_kn": 0.5})
     auto = solve_steady(parse_conveyor(d), model="din")
     assert auto.takeup_governed_by == "slip_start"
-    assert auto.takeup_tension_n == pytest.approx(33035.7, abs=0.1)
+    assert auto.takeup_tension_n == pytest.approx(36324.1, abs=0.1)
     d["takeup"]["pretension_kn"] = 20.0
     res = solve_steady(parse_conveyor(d), model="din")
     (msg,) = [w for w in res.warnings if w.startswith("slip at drive 1")]
-    assert "pretension 20 kN is below the 33.1 kN needed: a takeup.pretension_kn of 33.1 kN" in msg
-    d["takeup"]["pretension_kn"] = 33.1
+    assert "pretension 20 kN is below the 36.4 kN needed: a takeup.pretension_kn of 36.4 kN" in msg
+    d["takeup"]["pretension_kn"] = 36.4
     ok = solve_steady(parse_conveyor(d), model="din")
     assert ok.summary["slip_margin_start"] >= 1.0 and ok.status == "ok"
 
