@@ -1204,13 +1204,26 @@ def section_loads(load, conveyor: Conveyor) -> tuple[float, ...]:
                 "give one per carry section, tail to head", field="scenario.load")
         for x in load:
             if not (0.0 <= float(x) <= LOAD_MAX):
-                raise InputError(f"{x!r} is outside 0..{LOAD_MAX:g}", field="scenario.load")
+                raise InputError(_fraction_problem(float(x)), field="scenario.load")
         return tuple(float(x) for x in load)
     frac = float(load)
     if not (0.0 <= frac <= LOAD_MAX):
-        raise InputError(f"{frac:g} is outside 0..{LOAD_MAX:g} of the design load",
-                         field="scenario.load")
+        raise InputError(_fraction_problem(frac), field="scenario.load")
     return (frac,) * len(sections)
+
+
+def _fraction_problem(frac: float) -> str:
+    """Why ``frac`` is no load fraction, and the fix: a value from twice the design load (no
+    belt runs so overfilled; 1.3 to 2 is a surge past the largest) up to 100 x the largest
+    fraction reads as a per cent (a plant log's load in % of the design capacity: 50 for 0.5),
+    a NaN as no value."""
+    if math.isnan(frac):
+        return "not a number: give the load case (full, empty or a fraction of the design load)"
+    text = f"{frac:g} is outside 0..{LOAD_MAX:g} of the design load"
+    if 2.0 <= frac <= 100.0 * LOAD_MAX:
+        text += (f": give a fraction, not a per cent ({frac:g} % of the design load is "
+                 f"{frac / 100.0:g})")
+    return text
 
 
 class Scenario(_Model):
