@@ -10,7 +10,7 @@ constant, which the take-up sets: a gravity take-up carries its counterweight on
 * slip at every drive at start-up (Euler-Eytelwein, T_tight / T_slack <= e^{mu theta}, with the
   drive force times the start-up factor 1.5, the level held by the take-up: a gravity one its
   mean tension, a fixed one the loop length, :func:`start_level`), and running;
-* for a gravity take-up, slip at every drive at breakaway: the drives take the loaded belt's
+* slip at every drive at breakaway: the drives take the loaded belt's
   net gravity pull from the brake at standstill, before any running resistance acts
   (:func:`_breakaway_walk`). This is the start-up of a regenerating belt: there the start-up
   factor's walk asks the drives for less than running (they hold back ``Te + 0.5 |Te|``, half
@@ -259,19 +259,19 @@ def _startup_walk(conv: Conveyor, loop: Loop, dF: np.ndarray, te: float) -> np.n
     return np.cumsum(dF + inertia * a - d_start)
 
 
-def _breakaway_walk(conv: Conveyor, loop: Loop) -> np.ndarray | None:
-    """Tension increments at breakaway, walked like the running ones [N] (None for a fixed
-    take-up, whose level at rest this walk cannot give).
+def _breakaway_walk(conv: Conveyor, loop: Loop) -> np.ndarray:
+    """Tension increments at breakaway, walked like the running ones [N].
 
     At standstill no running resistance acts (idler rolling and indentation resistances are
     motion resistances): the drives, taking the belt from the brake at the start, hold the
     net gravity pull ``sum G`` (the loaded lift; the belt's own weight cancels round the
     loop), each its share, as in the at-rest walk (:func:`rest_walk`) with the drives
     holding. On a regenerating belt ``|sum G| = |Te| + sum R`` exceeds the running force.
-    The gravity take-up holds the same mean tension as running.
+    The level is held as at start-up (:func:`start_level`): a gravity take-up's mean tension,
+    a fixed take-up's loop length (the at-rest level the transient run starts from keeps it
+    too). Before, a fixed take-up had no breakaway check: a 2 km, 150 m decline held back by
+    its head drive was sized 172 kN for slip running and slid 2.5 m in a 60 s start.
     """
-    if conv.takeup.type != "gravity":
-        return None
     grav = loop.gravity_n
     pull = float(grav.sum())
     hold = np.zeros(loop.n)
@@ -355,7 +355,7 @@ def _required_offset(loop: Loop, W: np.ndarray, W_start: np.ndarray, drives,
     """Smallest constant c (T = c + W) meeting slip at every drive pulley running, at
     start-up (``W_start`` from :func:`_startup_walk`, levelled by :func:`start_level`: a
     ``fixed`` take-up holds the loop length) and at breakaway (``W_hold`` from
-    :func:`_breakaway_walk`, gravity take-ups), and sag (running and, with ``rest_need``
+    :func:`_breakaway_walk`), and sag (running and, with ``rest_need``
     from :func:`_rest_need`, held at rest)."""
     bounds = {}
     Wprev = np.roll(W, 1)
@@ -368,9 +368,9 @@ def _required_offset(loop: Loop, W: np.ndarray, W_start: np.ndarray, drives,
     shift = start_level(loop, W, fixed) - start_level(loop, W_start, fixed)
     bounds["slip_start"] = float(max(_slip_need(Sprev[idx], W_start[idx], e)
                                      for idx, _s, e in drives) - shift)
-    if W_hold is not None:  # the same mean tension at the take-up as running
+    if W_hold is not None:  # levelled as the start-up walk
         hprev = np.roll(W_hold, 1)
-        shift_h = 0.5 * (W[k - 1] + W[k]) - 0.5 * (W_hold[k - 1] + W_hold[k])
+        shift_h = start_level(loop, W, fixed) - start_level(loop, W_hold, fixed)
         bounds["slip_breakaway"] = float(max(_slip_need(hprev[idx], W_hold[idx], e)
                                              for idx, _s, e in drives) - shift_h)
     bounds["sag_running"] = _sag_need(loop, W, hs_adm)
@@ -574,7 +574,7 @@ def _pattern_note(conv: Conveyor, load, loop: Loop) -> str:
 
 def _drive_margins(drives, T, Tprev, T_start, Sprev, T_hold):
     """Each drive's slip margin running and at start-up (the lower of start-up and breakaway,
-    ``T_hold`` None for a fixed take-up), its tight and slack tensions as summary fields, and
+    ``T_hold`` None where it is not checked), its tight and slack tensions as summary fields, and
     whether the breakaway set its start margin: (running, start, fields, breakaway)."""
     slip_margins, start_margins, per_drive, breakaway = [], [], {}, []
     for i, (idx, _s, e) in enumerate(drives, start=1):
@@ -666,23 +666,23 @@ def _summarise(res: SteadyResult, drives, hs_adm, bounds, shortfall_n: float,
     """Fill ``res.summary`` with the SPEC section 4 and 6.4 steady fields and the warnings.
 
     ``start_delta`` is the start-up walk less the running one (:func:`_startup_walk`),
-    ``hold_delta`` the breakaway walk less the running one (:func:`_breakaway_walk`, None
-    for a fixed take-up); the take-up holds the same mean tension at both as running.
+    ``hold_delta`` the breakaway walk less the running one (:func:`_breakaway_walk`); both
+    are levelled by :func:`start_level` (a gravity take-up's mean tension, a fixed one's loop
+    length, as running).
     ``slip_margin_start`` is the lower of the two.
     """
     conv, loop, T = res.conveyor, res.loop, res.tension_n
     belt = loop.belt
     v = loop.speed_m_s
     Tprev = np.roll(T, 1)
-    k = loop.i_takeup
     T_start = T + start_delta - start_level(loop, start_delta, conv.takeup.type == "fixed")
     Sprev = np.roll(T_start, 1)
     main_idx = loop.drive_elements[master_drive(conv)]
     t1, t2 = Tprev[main_idx], T[main_idx]
     if res.drive_force_n[main_idx] < 0:  # regenerating: tight side outgoing
         t1, t2 = t2, t1
-    T_hold = (None if hold_delta is None
-              else T + hold_delta - 0.5 * (hold_delta[k - 1] + hold_delta[k]))
+    T_hold = (None if hold_delta is None else
+              T + hold_delta - start_level(loop, hold_delta, conv.takeup.type == "fixed"))
     slip_margins, start_margins, per_drive, breakaway = _drive_margins(
         drives, T, Tprev, T_start, Sprev, T_hold)
     s_end = loop.s_end_m

@@ -96,3 +96,29 @@ def test_a_gravity_take_up_there_still_holds_its_mean_tension():
     run, start = res.tension_n, startup_tensions(res)
     assert 0.5 * (start[k - 1] + start[k]) == pytest.approx(0.5 * (run[k - 1] + run[k]),
                                                             rel=1e-12)
+
+
+def test_breakaway_of_a_regenerating_belt_on_a_fixed_take_up_by_hand():
+    """The hand conveyor down 100 m (10 %) on a fixed take-up at the tail, held back by its
+    head drive (Te < 0), is sized for breakaway as a counterweight's is: at standstill the
+    drive holds the whole pull sum G = -50 x 9.81 x 100 = -49.05 kN with no resistance yet.
+    Walking from the tail pulley's out side (C): the carry falls by 70 x 9.81 x 100 =
+    68.67 kN to the head, the drive gives back 49.05 kN, the return climbs 19.62 kN to the
+    tail. Tight C - 19.62, slack C - 68.67: C >= (68.67 e - 19.62) / (e - 1), e =
+    e^(0.35 x 200 deg). Held by length, the loop's mean tension at rest is C less the walk's
+    mean (carry C - 34.335, return C - 9.81 kN, pulley arcs neglected), and the running state
+    keeps that mean. Before, a fixed take-up had no breakaway check (slip running set it)."""
+    d = hand_conveyor_dict(profile=[{"length_m": 1000, "lift_m": -100}],
+                           takeup={"type": "fixed", "position": "tail",
+                                   "pretension_kn": "auto"})
+    res = solve_steady(parse_conveyor(d), model="din")
+    assert res.te_n < 0.0
+    assert res.takeup_governed_by == "slip_breakaway"
+    assert res.summary["slip_margin_start"] == pytest.approx(1.0, abs=1e-9)
+    e = math.exp(0.35 * math.radians(200.0))
+    c = (68.67e3 * e - 19.62e3) / (e - 1.0)
+    mean_rest = c - 0.5 * (34.335e3 + 9.81e3)
+    dx = res.loop.dx_m
+    T = res.tension_n
+    mean_run = float(np.sum(dx * 0.5 * (np.roll(T, 1) + T)) / np.sum(dx))
+    assert mean_run == pytest.approx(mean_rest, rel=2e-3)
