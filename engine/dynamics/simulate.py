@@ -1497,9 +1497,14 @@ def _transient_safety_words(sys: System, conveyor, sf: float, sf_min: float, t_m
     fixes += {"start": start_levers(sys), "running": [],
               "stop": stop_levers(sys)}[phase]
     fix = f": {_or(fixes)} would avoid it" if fixes else ""
+    # below 1 the peak is past the belt's breaking strength: said as what it is, not only as
+    # a factor below the minimum
+    broken = (f"; below 1, the peak is above the belt's breaking strength "
+              f"({belt.rating_n / 1e3:.4g} kN): the belt would break"
+              if belt is not None and sf < 1.0 else "")
     return (f"belt safety factor {sf:.2f} during the transient is below {sf_min:.3g} (peak "
             f"{t_max_n / 1e3:.4g} kN near {where(sys, j)} at t = {t_at:.1f} s, "
-            f"{_PHASE_WORDS[phase]}){fix}")
+            f"{_PHASE_WORDS[phase]}){broken}{fix}")
 
 
 def _up_s(t_s: float) -> str:

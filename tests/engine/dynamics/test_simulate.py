@@ -192,6 +192,11 @@ def test_a_transient_safety_factor_names_when_and_the_belt_that_meets_it():
     stop = _transient_safety_words(sysm, conv, 1000.0 / 420.0, 3.0, 420e3, 2, 95.0)
     assert "during the stop" in stop and "longer start" not in stop
     assert stop.endswith("or a longer stop (stop.time_s) would avoid it")
+    assert "breaking strength" not in msg + stop
+    # a 1 250 kN peak on the 1 000 kN belt: safety factor 0.8, past its breaking strength
+    broke = _transient_safety_words(sysm, conv, 0.8, 3.0, 1250e3, 2, 31.04)
+    assert ("; below 1, the peak is above the belt's breaking strength (1000 kN): the belt "
+            "would break") in broke, broke
 
 
 def test_the_stop_levers_offered_are_those_of_the_run_s_stop_mode():
