@@ -664,8 +664,10 @@ def _drop_unfound(system, tr, messages: list[str], phase: str, gravity: bool, tu
             short.append(short_t)
         kept = [p for p in parts if p not in gone]
         found = f"{rerun} found {' and '.join(nots)} that avoids it"
-        new = (f"{_or(kept)} would avoid it; {' or '.join(short)} would not: {found}"
-               if kept else found)
+        # 'did not as far as searched': the reruns stop at TAKEUP_MAX (START_MAX, STOP_MAX)
+        # x the run's own; a take-up 7 x a tail-driven decline's did avoid what 4 x did not
+        new = (f"{_or(kept)} would avoid it; {' or '.join(short)} did not as far as searched: "
+               f"{found}" if kept else found)
         old = f"{fix} would avoid it"
         for k, w in enumerate(tr.warnings):
             if when in w and w.endswith(old):

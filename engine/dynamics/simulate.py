@@ -1452,7 +1452,8 @@ def _slack_words(sys: System, r: dict, j: int) -> str:
     """The warning of a belt that went slack: the largest length stored, near node ``j``, when
     and for how long, and what would avoid it in the phases it was slack in (its first slack
     span's and its largest's, :func:`_run_phase`): more take-up tension always; more carriage
-    travel for a gravity take-up only (a fixed, screw or winch, take-up has none); a gentler
+    travel for a gravity take-up only (a fixed, screw or winch, take-up has none) whose
+    carriage reached an end stop in the run; a gentler
     start (:func:`start_levers`) for a slack start; a softer stop (:func:`stop_levers`), and in
     a brake stop a brake nearer the low-tension side, for a slack stop. A 250 m, 14 deg dol
     incline on a screw take-up that went slack in its start was told 'more take-up travel, a
@@ -1463,7 +1464,10 @@ def _slack_words(sys: System, r: dict, j: int) -> str:
     phases = {_run_phase(sys, t, sys.stop_command_s) for t in (t_first, t_max)}
     tu = getattr(sys.model, "takeup", None)
     fixes = [heavier_takeup(sys)]
-    if tu is None or tu.gravity:
+    # travel only where the carriage reached an end stop: one that stayed short of its stops
+    # took up all it could (a valley's coast went slack by 2.14 m with the carriage 17.4 m
+    # short of its end stop, and by 2.14 m again with 80 m of travel)
+    if tu is None or (tu.gravity and r["endstop"] > 0):
         fixes.append("more take-up travel (takeup.travel_m)")
     if "start" in phases:
         fixes += start_levers(sys)
@@ -1494,9 +1498,20 @@ def _transient_safety_words(sys: System, conveyor, sf: float, sf_min: float, t_m
         need_kn_m = math.ceil(sf_min * t_max_n / belt.width_m / 1e3)
         fixes.append(f"a belt rated at least {need_kn_m} kN/m at this width (now "
                      f"{belt.rating_kn_m:.0f} kN/m)")
-    fixes += {"start": start_levers(sys), "running": [],
-              "stop": stop_levers(sys)}[phase]
+    # a start or stop setting lowers the transient's peak, never the running tension: where
+    # running alone is below the minimum (a tail-driven incline's 390 kN running peak gave
+    # 4.10 against 4.47), those levers cannot meet it
+    run_kn = float(np.max(sys.steady_tension_n)) / 1e3
+    running_short = (belt is not None and run_kn > 0.0
+                     and belt.rating_n / 1e3 / run_kn < sf_min * (1.0 - 1e-9))
+    if not running_short:
+        fixes += {"start": start_levers(sys), "running": [],
+                  "stop": stop_levers(sys)}[phase]
     fix = f": {_or(fixes)} would avoid it" if fixes else ""
+    if running_short:
+        fix += (f" (the running tension alone, {run_kn:.4g} kN, gives "
+                f"{belt.rating_n / 1e3 / run_kn:.2f}, below {sf_min:.3g}: no start or stop "
+                "setting meets it)")
     # below 1 the peak is past the belt's breaking strength: said as what it is, not only as
     # a factor below the minimum
     broken = (f"; below 1, the peak is above the belt's breaking strength "

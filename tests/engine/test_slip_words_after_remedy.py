@@ -44,7 +44,8 @@ def test_a_take_up_the_remedy_did_not_find_is_not_offered_by_the_slip_warning():
     msg = s["message"]
     assert "a heavier take-up (more slack-side tension)" not in msg
     assert ("a fill-controlled coupling (coupling: fluid_fill_controlled) on the dol drives "
-            "would avoid it; a heavier take-up would not: rerunning the start found no "
+            "would avoid it; a heavier take-up did not as far as searched: rerunning the start "
+            "found no "
             f"take-up up to {TAKEUP_MAX:g} x this one that avoids it") in msg
     # the remedy's own sentence is kept
     assert (f"slip in the start not avoided: no take-up up to {TAKEUP_MAX:g} x this one "

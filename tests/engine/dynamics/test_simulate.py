@@ -182,6 +182,7 @@ def test_a_transient_safety_factor_names_when_and_the_belt_that_meets_it():
     from tests.conftest import hand_conveyor_dict
 
     sysm = _four_spring_system()
+    sysm.steady_tension_n = np.array([50e3, 200e3, 120e3, 60e3])  # running: 1000 / 200 = 5
     conv = parse_conveyor(hand_conveyor_dict())
     msg = _transient_safety_words(sysm, conv, 1000.0 / 420.0, 3.0, 420e3, 2, 31.04)
     assert msg.startswith("belt safety factor 2.38 during the transient is below 3 (peak 420 kN "
@@ -197,6 +198,14 @@ def test_a_transient_safety_factor_names_when_and_the_belt_that_meets_it():
     broke = _transient_safety_words(sysm, conv, 0.8, 3.0, 1250e3, 2, 31.04)
     assert ("; below 1, the peak is above the belt's breaking strength (1000 kN): the belt "
             "would break") in broke, broke
+    # running alone at 400 kN gives 1000 / 400 = 2.5 < 3: a start or stop setting lowers the
+    # transient's peak, never the running tension, so they are not offered
+    sysm.steady_tension_n = np.array([50e3, 400e3, 120e3, 60e3])
+    run_short = _transient_safety_words(sysm, conv, 1000.0 / 420.0, 3.0, 420e3, 2, 31.04)
+    assert "longer start" not in run_short, run_short
+    assert run_short.endswith(": a belt rated at least 1260 kN/m at this width (now 1000 kN/m) "
+                              "would avoid it (the running tension alone, 400 kN, gives 2.50, "
+                              "below 3: no start or stop setting meets it)"), run_short
 
 
 def test_the_stop_levers_offered_are_those_of_the_run_s_stop_mode():
@@ -309,7 +318,8 @@ def test_slack_levers_are_those_of_its_phase_and_of_its_take_up():
 
     start = _four_spring_system(C.COAST)
     start.model.takeup = SimpleNamespace(gravity=False)
-    r = {"slack_max": 0.584, "slack_time": 10.3, "slack_first": 9.0, "slack_dur": 5.1}
+    r = {"slack_max": 0.584, "slack_time": 10.3, "slack_first": 9.0, "slack_dur": 5.1,
+         "endstop": 0}
     msg = _slack_words(start, r, 1)
     assert msg.startswith("the belt goes slack: its slack spans gather up to 0.584 m of belt "
                           "near 420 m from the tail on the carry at t = 10.3 s, slack for 5.1 s")
@@ -318,7 +328,8 @@ def test_slack_levers_are_those_of_its_phase_and_of_its_take_up():
     assert "travel" not in msg and "stop" not in msg.split(";")[-1] and "brake" not in msg
     brake = _four_spring_system(C.BRAKE)
     brake.model.takeup = SimpleNamespace(gravity=True)
-    r = {"slack_max": 2.0, "slack_time": 97.0, "slack_first": 95.0, "slack_dur": 3.0}
+    r = {"slack_max": 2.0, "slack_time": 97.0, "slack_first": 95.0, "slack_dur": 3.0,
+         "endstop": 1}
     msg = _slack_words(brake, r, 2)
     assert "during" not in msg and "longer start" not in msg
     assert msg.endswith("; a heavier take-up, more take-up travel (takeup.travel_m), a softer "
@@ -330,6 +341,10 @@ def test_slack_levers_are_those_of_its_phase_and_of_its_take_up():
     msg = _slack_words(brake, r, 2)
     assert "a softer brake stop (less brake force, a longer brake ramp brakes[].ramp_s)" in msg
     assert "stop.time_s" not in msg
+    # a carriage that stayed short of its end stops took up all it could: no more travel
+    r["endstop"] = 0
+    msg = _slack_words(brake, r, 2)
+    assert "travel" not in msg and msg.startswith("the belt goes slack"), msg
 
 
 

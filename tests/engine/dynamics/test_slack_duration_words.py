@@ -15,7 +15,8 @@ def _words(dur_s: float) -> str:
 
     sys = _four_spring_system(C.COAST)
     sys.model.takeup = SimpleNamespace(gravity=True)
-    r = {"slack_max": 0.0109, "slack_time": 92.7, "slack_first": 92.68, "slack_dur": dur_s}
+    r = {"slack_max": 0.0109, "slack_time": 92.7, "slack_first": 92.68, "slack_dur": dur_s,
+         "endstop": 0}
     return _slack_words(sys, r, 1)
 
 
