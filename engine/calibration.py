@@ -174,13 +174,16 @@ def measurements_from_rows(rows: Sequence[dict[str, Any]]) -> list[Measurement]:
 SPEED_OVER_DESIGN = 1.5
 
 
-def _check_rows(conv: Conveyor, rows: Sequence[Measurement]) -> None:
+def _check_rows(conv: Conveyor, rows: Sequence[Measurement]) -> list[str]:
     """Each row's speed and load fit the conveyor (a speed within its bounds, one load
-    fraction per carry section), named by its row: ``measured.2.speed_m_s: ...``."""
+    fraction per carry section, the flow they make within what the belt's cross-section
+    holds), named by its row: ``measured.2.speed_m_s: ...``. Returns a note for each row whose
+    flow overfills the cross-section (:func:`_row_fill`) but not past what any belt carries."""
+    notes = []
     for i, m in enumerate(rows):
+        at = conv
         if m.speed_m_s is not None and m.speed_m_s != conv.speed_m_s:
-            data = conv.model_dump(mode="json", by_alias=True)
-            parse_conveyor({**data, "speed_m_s": m.speed_m_s}, prefix=f"measured.{i}.")
+            at = _at_speed(conv, m.speed_m_s, f"measured.{i}.")
         if m.speed_m_s is not None and m.speed_m_s > SPEED_OVER_DESIGN * conv.speed_m_s:
             raise InputError(
                 f"{m.speed_m_s:g} m/s is {m.speed_m_s / conv.speed_m_s:.3g} x the conveyor's "
@@ -189,10 +192,65 @@ def _check_rows(conv: Conveyor, rows: Sequence[Measurement]) -> None:
                 "m/s, 1 km/h = 1/3.6 m/s), or the conveyor's own speed_m_s",
                 field=f"measured.{i}.speed_m_s")
         try:
-            section_loads(m.load, conv)
+            loads = section_loads(m.load, conv)
         except InputError as exc:
             raise InputError(exc.reason, field=f"measured.{i}.load") from None
+        notes += _row_fill(at, m, i, max(loads))
         _check_magnitudes(conv, m, i)
+    return notes
+
+
+def _at_speed(conv: Conveyor, speed_m_s: float, prefix: str) -> Conveyor:
+    """The conveyor at a measured speed, validated as a file's but for the fill of its design
+    capacity at that speed: a plant slows a belt when it carries less (a speed-controlled
+    drive at a light load), so the fill at that speed is the row's load's
+    (:func:`_row_fill`), not the design capacity's (the file's fill passed at its speed)."""
+    from pydantic import ValidationError
+
+    from beltstudy.engine import catalog
+    from beltstudy.engine.capacity import check_fill
+    from beltstudy.engine.conveyor import WHOLE_CHECKS, format_validation_error, strict_validate
+
+    data = {**conv.model_dump(mode="json", by_alias=True), "speed_m_s": speed_m_s}
+    try:
+        out = strict_validate(Conveyor, data)
+    except ValidationError as exc:
+        raise InputError(format_validation_error(exc, Conveyor, prefix)) from None
+    catalog.check_conveyor(out, prefix)
+    for check in WHOLE_CHECKS:
+        if check is not check_fill:
+            check(out, prefix)
+    return out
+
+
+def _row_fill(at: Conveyor, m: Measurement, i: int, load: float) -> list[str]:
+    """The fill of the belt's cross-section by a row's flow (its largest section load x the
+    design capacity, at its speed; ISO 5048 geometry): past what any belt carries
+    (:data:`~beltstudy.engine.conveyor.FILL_MAX_PCT`) it is refused naming the row, past 100 %
+    it is a note (the material spills: the belt did not carry that load at that speed)."""
+    from beltstudy.engine.capacity import fill_pct
+    from beltstudy.engine.conveyor import FILL_MAX_PCT
+
+    if at.belt.type == "auto" or at.material.capacity_t_h <= 0.0 or load <= 0.0:
+        return []
+    fill = load * fill_pct(at)
+    where = f"load {m.load if isinstance(m.load, str) else _load_text(m.load)} at {at.speed_m_s:g} m/s"
+    if fill > FILL_MAX_PCT:
+        raise InputError(
+            f"{where} fills the belt's cross-section to {fill:.3g} % (ISO 5048), beyond the "
+            f"{FILL_MAX_PCT:g} % no belt carries: check the row's load (a fraction of the "
+            f"design {at.material.capacity_t_h:g} t/h) and speed [m/s]",
+            field=f"measured.{i}.{'speed_m_s' if m.speed_m_s is not None else 'load'}")
+    if fill > 100.0:
+        return [f"row {i} ({where}) fills the belt's cross-section to {fill:.3g} % (ISO 5048): "
+                "the material spills past the belt's edges, so the belt did not carry that load "
+                "at that speed; check the row's load (a fraction of the design "
+                f"{at.material.capacity_t_h:g} t/h) and speed"]
+    return []
+
+
+def _load_text(load: float | list[float]) -> str:
+    return ",".join(f"{x:g}" for x in load) if isinstance(load, list) else f"{load:g}"
 
 
 #: Largest disagreement of a row's measured power and peripheral force [-], |P / (Te v) - 1|:
@@ -253,9 +311,7 @@ def _conveyor_at(conv: Conveyor, speed_m_s: float | None, cache: dict) -> Convey
     if speed_m_s is None or speed_m_s == conv.speed_m_s:
         return conv
     if speed_m_s not in cache:
-        data = conv.model_dump(mode="json", by_alias=True)
-        data["speed_m_s"] = speed_m_s
-        cache[speed_m_s] = parse_conveyor(data, prefix="measured.speed_m_s: ")
+        cache[speed_m_s] = _at_speed(conv, speed_m_s, "measured.speed_m_s: ")
     return cache[speed_m_s]
 
 
@@ -410,7 +466,7 @@ def calibrate(conv: Conveyor, measured: Sequence[Measurement], model: str,
     fm.params(fixed)
     names = _check_names(fm, fit, fixed)
     rows = list(measured)
-    _check_rows(conv, rows)
+    overfilled = _check_rows(conv, rows)
     # each name's smallest value: 0, or the model's own limit above it (DIN's C >= 1)
     lowest = {n: max(_lower(fm, q) for q in _sets(fm.name, n)) for n in names}
     x0 = _starts(fm, conv, rows, names, fixed, dict(starts or {}), lowest)
@@ -468,6 +524,7 @@ def calibrate(conv: Conveyor, measured: Sequence[Measurement], model: str,
         for x in g if x in held) for g in groups]
     if held_takeup:
         notes.append(held_takeup)
+    notes += overfilled
     se: list[float | None] = [None] * p
     if dof > 0:
         s2 = float(r @ r) / dof
