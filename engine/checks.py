@@ -700,17 +700,20 @@ def _short_curve_notes(conv) -> list[str]:
 
 
 def _unread_drive_fields(conv) -> list[str]:
-    """Drive fields given in the file that this drive's coupling does not read, as notes:
-    ``coupling_fill_s`` is the fill time of a fill-controlled fluid coupling only, and
+    """Drive fields given in the file that this drive's control or coupling does not read, as
+    notes: ``coupling_fill_s`` is the fill time of a fill-controlled fluid coupling only,
     ``motor_inertia_kg_m2`` splits the shaft's inertia at a fluid coupling only (without one
-    the motor turns with the pulley and ``inertia_kg_m2`` holds it all).
+    the motor turns with the pulley and ``inertia_kg_m2`` holds it all), and ``torque_limit``
+    caps a vfd drive's force only (a dol motor gives its curve's torque, through its coupling
+    if it has one: docs/dynamics.md, *Drives*).
 
     A field counts as given when it differs from its default, not by Pydantic's
     ``model_fields_set``: a study's runs and a non-full-load run's sized conveyor are
     validated again from the whole dumped conveyor, which marks every field set."""
     notes = []
-    fill_default = type(conv.drives[0]).model_fields["coupling_fill_s"].default \
-        if conv.drives else None
+    fields = type(conv.drives[0]).model_fields if conv.drives else {}
+    fill_default = fields["coupling_fill_s"].default if conv.drives else None
+    limit_default = fields["torque_limit"].default if conv.drives else None
     for i, d in enumerate(conv.drives):
         if d.coupling_fill_s != fill_default and d.coupling != "fluid_fill_controlled":
             notes.append(f"note: drives.{i}.coupling_fill_s {d.coupling_fill_s:g} s is not "
@@ -723,6 +726,12 @@ def _unread_drive_fields(conv) -> list[str]:
                          f"(coupling: fluid or fluid_fill_controlled, control: dol), and without "
                          f"one the motor turns with the pulley and inertia_kg_m2 "
                          f"({d.inertia_kg_m2:g} kg m2) holds it all")
+        if d.torque_limit != limit_default and d.control == "dol":
+            through = " through its fluid coupling" if d.coupling != "none" else ""
+            notes.append(f"note: drives.{i}.torque_limit {d.torque_limit:g} is not read: it "
+                         f"caps a vfd drive's force (control: vfd), and drive {i + 1} is a "
+                         f"motor on the line (control: dol), whose force is its motor_curve's "
+                         f"torque{through}")
     return notes
 
 

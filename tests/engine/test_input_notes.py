@@ -230,3 +230,31 @@ def test_drive_fields_left_out_are_not_said_after_the_conveyor_is_dumped_and_rea
     given = parse_conveyor(parse_conveyor(d).model_dump(mode="json", by_alias=True))
     assert any(m.startswith("note: drives.0.coupling_fill_s 40 s is not read")
                for m in solve_steady(given, model="din").message.split("; "))
+
+
+def test_a_torque_limit_on_a_dol_drive_is_said_to_be_not_read():
+    """``torque_limit`` caps a vfd drive's force at torque_limit x P_N / v; a dol motor gives
+    its curve's torque (docs/dynamics.md: 'torque_limit does not apply'). A dol drive with
+    torque_limit 0.3 was run with no word: its cap would be 0.3 x 400 kW / 4 m/s = 30 kN, below
+    the hand conveyor's lift alone (m'_L g H = 50 x 9.81 x 50 = 24.5 kN) plus its resistances,
+    yet the run reached that force and more. It is now said; the default (1.5) and a vfd drive
+    are not, the vfd's cap being read (its own warning)."""
+    from beltstudy.engine import parse_scenario, run_one
+
+    dol = {"control": "dol", "rated_power_kw": 400, "inertia_kg_m2": 100}
+    notes = _drive_notes(torque_limit=0.3, **dol)
+    assert any(n.startswith("note: drives.0.torque_limit 0.3 is not read") and
+               "control: dol" in n and "motor_curve" in n for n in notes), notes
+    fluid = _drive_notes(torque_limit=0.3, coupling="fluid", **dol)
+    assert any("torque through its fluid coupling" in n for n in fluid), fluid
+    assert _drive_notes(**dol) == []
+    assert not any("torque_limit" in n and "not read" in n
+                   for n in _drive_notes(torque_limit=0.3, rated_power_kw=400))
+    # the note is true: the dol drive's force passes the 30 kN it would cap
+    d = hand_conveyor_dict()
+    d["drives"] = [{**d["drives"][0], "torque_limit": 0.3, **dol}]
+    scenario = parse_scenario({"start": {"time_s": 20}, "run_s": 2, "stop": {"mode": "coast"}})
+    summary = run_one(parse_conveyor(d), scenario, model="din").summary
+    cap_kn = 0.3 * 400.0 / 4.0
+    assert summary["te_kn"] > cap_kn + 5.0
+    assert summary["drive1_force_max_kn"] > cap_kn + 5.0
