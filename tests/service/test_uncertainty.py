@@ -151,8 +151,32 @@ def test_a_small_sobol_sample_and_an_index_outside_0_1_are_noted():
     assert out["note"] == ""
     sens = out["cells"][0]["sensitivity"]["y"]
     assert sens["note"] == "" or "outside [0, 1]" in sens["note"]
+    # a Latin hypercube's note is the |rho| of chance: 1.96 / sqrt(20 - 1) = 0.45
     lhs, lhs_runs = _linear_study(20, "lhs")
-    assert summarise(lhs.to_json(), lhs_runs, figures=("y",))["note"] == ""
+    note = summarise(lhs.to_json(), lhs_runs, figures=("y",))["note"]
+    assert "shows |rho| up to about 0.45 by chance" in note, note
+
+
+def test_the_chance_level_of_rho_holds_for_an_input_the_figure_does_not_read():
+    """Over 400 seeded 24-point Latin hypercubes of a figure that reads f_carry and f_return
+    only, the temperature's |rho| passes the noted chance level (1.96 / sqrt(23) = 0.409) in
+    about 5 % of them (binomial: 20 expected, 95 % of counts within 11-29)."""
+    from beltstudy.service.uncertainty import chance_rho
+
+    lim = chance_rho(24)
+    assert lim == pytest.approx(1.959964 / math.sqrt(23))
+    coef = {**COEF, "temperature_c": 0.0}
+    past = 0
+    for seed in range(400):
+        study = resolve_study(tiny_study(
+            "linear", grid={"friction_model": ["din"]},
+            sample={"n": 24, "method": "lhs", "seed": seed,
+                    "axes": {k: v[0] for k, v in AXES.items()}}))
+        pts = np.array([[r.axes[k] for k in AXES] for r in study.runs])
+        y = pts @ np.array([coef[k] for k in AXES])
+        rho = pd.Series(pts[:, 0]).rank().corr(pd.Series(y).rank())
+        past += abs(rho) > lim
+    assert 8 <= past <= 32, past
 
 
 def test_rest_and_report_of_a_stored_sampled_study(data_dir, make_settings):
