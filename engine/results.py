@@ -376,7 +376,8 @@ TRANSIENT_DRIVE = ResultGroup("transient_drive", "Per drive pulley, transient (S
     _f("drive{i}_slip_m", "m", "belt length that slipped over drive i", "slipped"),
     _f("drive{i}_speed_error_max_pct", "%", "vfd master drive only (null for the others): "
        "largest |reference - pulley speed| of its speed loop from one wave loop time after the "
-       "start command to the stop command, in % of design speed", "speed err"),
+       "start command to the stop command, in % of design speed; null where the loop follows "
+       "no start ramp (a torque or force start, the support formulation)", "speed err"),
 ))
 
 # --------------------------------------------------------- drive checks (SPEC 7.4)

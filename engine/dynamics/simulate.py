@@ -763,6 +763,17 @@ def running_warnings(sys: System, r: dict, out, names=None) -> list[str]:
 TRACK_FRACTION = 0.02
 
 
+def _tracks_a_ramp(sys: System) -> bool:
+    """Whether the master's speed loop follows a start ramp, so its tracking error is a figure
+    (``drive{i}_speed_error_max_pct``): vfd drives, an s-curve or linear start, the relative
+    formulation. A torque start's reference is design speed from the start command while its
+    force limit ramps (a 1 km belt's read 99.9 %: the start's lag, not the loop's tracking); a
+    force start and the support formulation run no loop until the stop (it read 0)."""
+    cyc = sys.model.cycle
+    return bool(sys.model.control.vfd and cyc.formulation != C.SUPPORT
+                and cyc.start_ctrl in (S_CURVE, LINEAR))
+
+
 def tracking_warnings(sys: System, r: dict, out, names=None) -> list[str]:
     """A speed-controlled start (s-curve or linear, vfd drives, relative formulation) that does
     not follow its reference, in words: (1) the mean belt speed ahead of the reference by more
@@ -1178,7 +1189,7 @@ def transient_summary(sys: System, r: dict, out, segs, *, steady_summary=None, c
         summary[f"drive{i + 1}_slip_m"] = float(drv[i]["slip_m"])
         summary[f"drive{i + 1}_speed_error_max_pct"] = (
             100.0 * float(r["verr_max"]) / sys.v_design
-            if i == sys.model.control.master and sys.model.control.vfd else None)
+            if i == sys.model.control.master and _tracks_a_ramp(sys) else None)
     loads, overloads = _drive_loads(sys, out, conveyor, steady_summary)
     summary.update(loads)
     w: list[str] = list(sys.warnings)
