@@ -360,6 +360,10 @@ def test_din_c_is_fitted_within_its_own_lower_bound_1(overland):
     assert cal.status == "warning"
     assert cal.message.startswith("c ends at the bound 1 (the data would take it below")
     assert any(n.startswith("c ended at its bound 1:") for n in cal.notes)
+    # nothing else was fitted: not 'fit the others', and c is bounded by the data, not free
+    assert "past what model din allows, as a meter reading a few per cent off would" in \
+        cal.message, cal.message
+    assert "fit the others" not in cal.message and cal.not_identifiable == []
     # data made at C = 1.05 are met inside the bound, its interval cut at 1 at most
     rows = _plant(overland, "din", {"f_carry": TRUTH, "c": 1.05}, noise=0.005, seed=4)
     cal = calibrate(overland, rows, "din", ["c"], fixed={"f_carry": TRUTH})
@@ -454,3 +458,19 @@ def test_a_bound_or_misfit_caused_by_a_held_name_says_so(overland):
     assert cal.message.startswith("c ends at the bound 1"), cal.message
     assert ("These data cannot tell c and f apart, so f at 0.02 is held and the fitted values "
             "assume it: fit the held name in place of the other") in cal.message
+
+
+def test_a_name_at_its_bound_that_the_others_make_up_for_is_not_identifiable(overland):
+    """DIN's f_carry and c fitted together on power made with a lighter return (f_return
+    0.009, held at its default in the fit): c ends at its bound 1, f_carry takes up the rest
+    and the fit meets the data within MISFIT_PCT, so the verdict says 'these data do not
+    determine c'; SPEC 7.3's list of the names that cannot be identified was empty. It now
+    names c, as it names held ones."""
+    from beltstudy.engine.calibration import MISFIT_PCT
+
+    rows = _plant(overland, "din", {"f_carry": TRUTH, "f_return": 0.009})
+    cal = calibrate(overland, rows, "din", ["f_carry", "c"])
+    assert cal.fit["c"]["value"] == pytest.approx(1.0, abs=1e-9)
+    assert 100 * cal.rms_relative <= MISFIT_PCT
+    assert "these data do not determine c" in cal.message, cal.message
+    assert cal.not_identifiable == ["c"]

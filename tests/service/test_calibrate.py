@@ -304,7 +304,7 @@ def test_the_verdict_of_a_fit_names_the_bound_and_what_would_help():
 
     from beltstudy.engine.calibration import _verdict
 
-    done = SimpleNamespace(success=True, nfev=12)
+    done = SimpleNamespace(success=True, nfev=12, x=np.zeros(2))  # two names fitted
     small, large = np.full(4, 0.01), np.full(4, 0.3)
     assert _verdict(done, [], small, "din") == {
         "status": "ok", "message": "converged: rms relative residual 1 % over 4 measured values"}
@@ -313,6 +313,11 @@ def test_the_verdict_of_a_fit_names_the_bound_and_what_would_help():
     assert out["message"].startswith("m_star ends at the bound 0 (the data would take it below, "
                                      "which model nonlin does not allow); the fit matches the "
                                      "measurements to 1 % (rms relative residual) without it")
+    alone = _verdict(SimpleNamespace(success=True, nfev=12, x=np.zeros(1)), ["m_star"], small,
+                     "nonlin")
+    assert alone["message"].startswith("m_star ends at the bound 0 (the data would take it "
+                                       "below, which model nonlin does not allow); at the bound "
+                                       "the fit meets the measurements to 1 %"), alone
     out = _verdict(done, ["f_carry", "f_return"], large, "din")
     assert out["status"] == "warning"
     assert out["message"].startswith("f_carry, f_return end at the bound 0 (the data would take "
