@@ -395,3 +395,21 @@ def test_a_cycle_figure_s_bar_covers_the_phase_that_may_take_it_over():
     assert figs["slip_margin_min_dyn"].err == A.bars(
         [{"slip_margin_min_dyn": r["slip_margin_min_dyn"]} for r in calm], (103, 205, 409),
         1e-3)["slip_margin_min_dyn"].err
+
+
+def test_a_phase_near_slack_is_marginal_when_the_other_phase_went_slack():
+    """A 1 km 14 deg incline on a dol drive went slack in its coast stop (1.46 m of belt on
+    the carry); in the start the return near the tail fell to 0.087 kN +- 0.52 kN on 202
+    elements (a sag of 100 % past its 3 % limit, warned) and to 0 kN on 406 (slack: the
+    sag verdict gone). The cycle's slack verdict holds the stop; the start's lowest tension,
+    within its bar of 0 kN, is marginal. A phase that went slack itself, or one far from 0 kN,
+    is not named."""
+    summary = {"slack_max_m": 1.46, "t_min_start_kn": 0.087, "t_min_stop_kn": 0.0}
+    figures = {"slack_max_m": _fe("slack_max_m", 1.46, 0.01),
+               "t_min_start_kn": _fe("t_min_start_kn", 0.087, 0.52),
+               "t_min_stop_kn": _fe("t_min_stop_kn", 0.0, 0.3)}
+    words = A.marginal_verdicts(summary, figures)
+    assert words == ["marginal: t_min_start_kn 0.087 against limit 0 +- 0.52 kN (the verdict "
+                     "may flip with the mesh)"]
+    figures["t_min_start_kn"] = _fe("t_min_start_kn", 0.087, 0.05)
+    assert A.marginal_verdicts(summary, figures) == []
