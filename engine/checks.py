@@ -43,6 +43,8 @@ from beltstudy.engine.catalog import _rows
 from beltstudy.engine.loop import G, Loop, Pulley
 
 __all__ = [
+    "LUMP_MAX_KN_M",
+    "lump_notes",
     "holding_warning",
     "HOLD_MARGIN",
     "C_TR",
@@ -593,6 +595,28 @@ def _loading_speeds(conv) -> list[tuple[str, float]]:
         else:
             out[f"material.feed.{i}.loading_speed_m_s"] = float(f.loading_speed_m_s)
     return list(out.items())
+
+
+#: The largest accessory lump (``accessories.head_kn``, ``tail_kn``) per metre of belt width
+#: read as kN [kN/m]; above it a lump is taken for newtons written for kN. ISO 5048 gives a
+#: belt scraper A p mu_3 of at most about 0.6 kN per metre of width (A 0.01 m2 a metre,
+#: p up to 1e5 N/m2, mu_3 0.6) and a plough 1.5 kN a metre: 50 kN/m is some 80 scrapers,
+#: while a 2 kN lump written in newtons on a 1.2 m belt is 1 667 kN/m.
+LUMP_MAX_KN_M = 50.0
+
+
+def lump_notes(conv, width_m: float) -> list[str]:
+    """Notes of accessory lumps above :data:`LUMP_MAX_KN_M` per metre of belt width
+    ``width_m``: ``head_kn: 2000`` for a 2 kN scraper passed as a 2 MN resistance."""
+    notes = []
+    for name in ("head_kn", "tail_kn"):
+        v = float(getattr(conv.accessories, name))
+        if v > LUMP_MAX_KN_M * width_m:
+            notes.append(f"note: accessories.{name} {v:g} kN is {v / width_m:,.0f} kN per "
+                         f"metre of belt width, above the {LUMP_MAX_KN_M:g} kN/m of some 80 "
+                         "belt scrapers (ISO 5048: about 0.6 kN/m each); accessories are in "
+                         f"kN: if it was written in N, it is {v / 1e3:g} kN")
+    return notes
 
 
 def input_notes(conv, loop: Loop, feed_n: float, c_factor: float | None = None) -> list[str]:

@@ -50,7 +50,7 @@ import numpy as np
 
 from beltstudy.engine import catalog, rubber
 from beltstudy.engine.capacity import capacity as capacity_check
-from beltstudy.engine.checks import holding_warning, input_notes, runback_note
+from beltstudy.engine.checks import holding_warning, input_notes, lump_notes, runback_note
 from beltstudy.engine.checks import steady_checks as design_checks
 from beltstudy.engine.conveyor import (
     PRETENSION_MAX_KN,
@@ -827,7 +827,8 @@ def _summarise(res: SteadyResult, drives, hs_adm, bounds, shortfall_n: float,
     given = input_notes(conv, loop, comps.get("feed", 0.0) * 1e3,
                         res.law.info.get("c_factor"))
     start = start_time_note(conv, loop, res.te_n)
-    watts = watts_notes(conv, res.te_n, float(np.sum(res.resistance_n)))
+    watts = (watts_notes(conv, res.te_n, float(np.sum(res.resistance_n)))
+             + lump_notes(conv, loop.belt.width_m))
     res.message = "; ".join(warnings + [n for n in (note, glassy, res.range_note, runback,
                                                     start, takeup_place_note(res), *given,
                                                     *watts)
