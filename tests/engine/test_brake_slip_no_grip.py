@@ -10,34 +10,25 @@ from __future__ import annotations
 import numpy as np
 
 from beltstudy.engine.checks import HOLD_MARGIN
-from beltstudy.engine.conveyor import Scenario, parse_conveyor
+from beltstudy.engine.conveyor import Scenario
 from beltstudy.engine.dynamics import DynamicsOptions, build_system
 from beltstudy.engine.dynamics.simulate import _brake_past_full
 from beltstudy.engine.run import run_one
 from beltstudy.engine.statics import solve_steady, up3
+from tests.engine.test_brake_grip_words import FIXED_LOW, _conv
 
-LIFT = {
-    "name": "short-incline", "speed_m_s": 2.0,
-    "belt": {"type": "EP630/4", "width_m": 0.8, "compound": "standard"},
-    "material": {"capacity_t_h": 400, "density_t_m3": 1.6, "loading_speed_m_s": 0.0},
-    "profile": [{"length_m": 100, "lift_m": 15}],
-    "idlers": {"carry": {"spacing_m": 1.2, "roll_diameter_m": 0.133, "rolls": 3,
-                         "trough_deg": 35, "cema_class": "C"},
-               "return": {"spacing_m": 3.0, "roll_diameter_m": 0.133, "rolls": 1,
-                          "cema_class": "C"}},
-    "drives": [{"position": "head", "wrap_deg": 200, "friction": 0.35, "share": 1.0,
-                "pulley_diameter_m": 0.63, "inertia_kg_m2": 20}],
-    "takeup": {"type": "fixed", "position": "tail", "pretension_kn": 6.0},
-    "brakes": [{"position": "head", "force_kn": 20.0, "delay_s": 0.2, "ramp_s": 0.3}],
-    "holdback": False,
-}
+
+# the 100 m, 15 m lift belt of the grip note's tests, its 6 kN fixed take-up at the tail
+def _lift(brake_kn: float):
+    return _conv(FIXED_LOW, brake_kn)
+
+
 BRAKE = Scenario(elements=80, stop={"mode": "brake", "time_s": 1.0})
 PAST_FULL = "the belt still slid after the brakes on this pulley reached full force"
 
 
 def _slid(brake_kn: float) -> str:
-    conv = parse_conveyor({**LIFT, "brakes": [{**LIFT["brakes"][0], "force_kn": brake_kn}]})
-    return run_one(conv, BRAKE, model="din").summary["message"]
+    return run_one(_lift(brake_kn), BRAKE, model="din").summary["message"]
 
 
 def test_no_less_force_where_the_pulley_passes_none():
@@ -48,7 +39,7 @@ def test_no_less_force_where_the_pulley_passes_none():
     assert ("not less force on this one: by the stop's undamped bound its pulley passes no "
             "brake force at all") in msg, msg
     # the lever left out would not have worked: at the holding force the belt still slides
-    conv = parse_conveyor(LIFT)
+    conv = _lift(20.0)
     steady = solve_steady(conv, model="din", n_elements=80)
     pull_kn = float(np.sum(build_system(conv, BRAKE, steady, DynamicsOptions())
                            .model.nodes.gravity)) / 1e3
@@ -58,7 +49,7 @@ def test_no_less_force_where_the_pulley_passes_none():
 
 
 def test_less_force_offered_only_down_to_what_the_grip_passes():
-    conv = parse_conveyor(LIFT)
+    conv = _lift(20.0)
     steady = solve_steady(conv, model="din", n_elements=80)
     system = build_system(conv, BRAKE, steady, DynamicsOptions())
     floor_kn = HOLD_MARGIN * float(np.sum(system.model.nodes.gravity)) / 1e3
