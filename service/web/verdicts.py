@@ -273,7 +273,19 @@ def _slipped(runs: pd.DataFrame) -> pd.Series:
     start = numeric(runs, "slip_margin_start")
     if start is not None:
         out |= (~transient_ran(runs) & (start < 1.0)).fillna(False)
-    return out | _message(runs).str.contains(r"slipped on its pulley|pulley slipped", regex=True)
+    return out | _message(runs).str.contains(_SLIPPED, regex=True)
+
+
+#: The engine's words for a pulley that slipped: a drive's (``drive 1 (head) slipped on its
+#: pulley``), a braked pulley's (``the head brake's pulley slipped: ...``) and a drive at
+#: start-up or running (``slip at drive 1 (head) at start-up ...``); not the remedy of a belt
+#: that ran away (``..., or, where a drive pulley slipped, a heavier take-up``), which says
+#: it of every run-away whether its pulleys slipped or not.
+_SLIPPED = r"slipped on its pulley|(?<!where a drive )pulley slipped"
+#: The clauses the slip group shows: the findings and the remedies that say the slip (a dol
+#: motor sized above its need: '... then avoids the slip'), not every clause with the word
+#: (a safety factor's 'a take-up no heavier than the slip and sag limits need').
+_SLIP_WORDS = _SLIPPED + r"|\bslip at |avoids the slip|slip.margin"
 
 
 def _slack(runs: pd.DataFrame) -> pd.Series:
@@ -338,7 +350,7 @@ CAUSES: tuple[Cause, ...] = (
     Cause("failed", "failed (no result)", lambda r: _status(r) == "failed", (),
           r".", "the run stopped with an error; its message says where and why"),
     Cause("ran_away", "ran away", _ran_away, ("velocity_max_m_s", "velocity_min_m_s"),
-          r"ran (?:away|back)"),
+          r"ran (?:away|back)|could not hold it back"),
     Cause("not_stopped", "did not stop", not_stopped,
           ("stop_time_s", "brake_force_kn", "velocity_min_m_s"), r"did not stop|never"),
     Cause("missed_stop", "stopped slower than the stop time asked (of its auto brakes or "
@@ -356,7 +368,7 @@ CAUSES: tuple[Cause, ...] = (
     Cause("slip", "slipped on a drive pulley", _slipped,
           ("drive{i}_slip_s", "drive{i}_slip_margin_min", "slip_margin", "slip_margin_start",
            "takeup_mass_kg"),
-          r"slip"),
+          _SLIP_WORDS),
     Cause("holding", "holding brakes cannot hold the loaded belt at rest",
           lambda r: _message(r).str.contains("holding brakes cannot hold", regex=False),
           ("brake_force_kn", "holdback_torque_knm"), r"holding brakes cannot hold"),
@@ -365,7 +377,8 @@ CAUSES: tuple[Cause, ...] = (
           r"take-up carriage reached|end stop"),
     Cause("slack", "went slack", _slack, ("slack_max_m", "slack_duration_s", "t_min_dyn_kn"),
           r"slack"),
-    Cause("sag", "sagged past its limit", _sagged, ("sag_max_pct", "sag_max_dyn_pct"), r"sag"),
+    Cause("sag", "sagged past its limit", _sagged, ("sag_max_pct", "sag_max_dyn_pct"),
+          _SAG + r"|the sag goes as"),
     Cause("marginal", "marginal: a figure within its error bar of the limit (the verdict "
           "may flip on a finer mesh)",
           lambda r: _message(r).str.contains("marginal:", regex=False), (), r"marginal"),
@@ -395,6 +408,15 @@ def clauses(message: Any, words: str) -> list[str]:
 
 #: The words that end what would avoid a finding (the engine's warnings end their fix so).
 AVOID = "would avoid"
+#: The opening words of the engine's findings that name their own fix: such a clause is a
+#: warning of its own, never the fix of the clause before it, even where that clause (the
+#: last of a warning whose remedies do not end in AVOID: a stop faster than the wave
+#: criterion, a belt that ran away, an overspeed) has none.
+_OPENS_FINDING = re.compile(
+    r"(?:take-up carriage reached|belt safety factor [\d.]+ |(?:transient )?sag on the \w+ "
+    r"strand|the belt (?:goes slack|ran |did not stop|never )|drive \d+ \([^)]*\) "
+    r"(?:slipped|needs|was above)|slip at drive|overspeed in the|stop in [\d.]+ s is faster"
+    r"|brake stop missed|the holding brakes cannot hold|the \w+ brake's pulley slipped)")
 
 
 def said_clauses(message: Any) -> list[tuple[str, str]]:
@@ -403,11 +425,14 @@ def said_clauses(message: Any) -> list[tuple[str, str]]:
     it, when that one has no fix of its own. A warning cuts its finding from its fix with
     "; " as the message cuts warnings, so a failure group showed a slip without the take-up
     or start time that avoids it, and the last section listed the fix as a clause of its
-    own."""
+    own. A clause that opens a finding of its own (:data:`_OPENS_FINDING`) is never joined:
+    a take-up end stop after a stop's remedies ('... a flywheel of ...') was read as their
+    fix, so the end-stop group showed another clause for the run, and a transient safety
+    factor after a run-away's remedies was missing from the safety factor group."""
     out: list[tuple[str, str]] = []
     for part in clauses(message, ""):
         # a note or a marginal verdict is a sentence of its own, whatever it ends with
-        opens = part.startswith(("note: ", "marginal: "))
+        opens = part.startswith(("note: ", "marginal: ")) or bool(_OPENS_FINDING.match(part))
         if out and AVOID in part and AVOID not in out[-1][1] and not opens:
             out[-1] = (out[-1][0], f"{out[-1][1]}; {part}")
         else:

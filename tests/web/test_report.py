@@ -786,3 +786,68 @@ def test_a_failure_groups_fix_prints_whole(web):
     printed = re.sub(r"<details class=fold-print>.*?</details>", "", s2, flags=re.S)
     assert "<details><summary>" not in s2
     assert "would avoid it" in printed and "print-full" in printed
+
+
+# Clauses as the engine wrote them for a 600 m 14 deg dol incline whose 0.3 m take-up travel
+# ran out, and a 3 km regenerative decline that ran away in a coast stop (engine 0.6.14).
+STOP_REMEDY = ("a controlled stop on vfd drives (drives.0.control: vfd with coupling: none, now "
+               "dol: a motor on the line cannot follow a stopping curve; then stop.mode: "
+               "controlled) would be slower than that, with stop.time_s at least 12 s, or more "
+               "inertia on the drive shafts: a flywheel of drives.0.flywheel_kg_m2 28,197 kg m2 "
+               "(now 0; 175.7 t at the belt line, x (D / 2)^2, D 0.8 m)")
+END_STOP = ("take-up carriage reached the running end (counterweight at its lowest: the belt "
+            "stretched more than the travel allows) at t = 3.2 s at up to 1.16 m/s: its travel "
+            "is 0.3 m (takeup.travel_m; from -0.129 to 0.171 m about the rest position): a "
+            "longer takeup.travel_m or a heavier take-up would avoid it")
+RAN_AWAY = ("the belt ran away forwards during the stop: its mean speed reached 8 m/s (2 x the "
+            "design speed) at t = 57.98 s and the run was ended there; the drives and brakes "
+            "could not hold it back: more brake force, brakes that act in this stop "
+            "(stop.mode: brake, hold), or, where a drive pulley slipped, a heavier take-up")
+SF_DYN = ("belt safety factor 3.93 during the transient is below 4.47 (peak 610 kN near 300 m "
+          "from the tail on the carry at t = 40.4 s, during the stop): a belt rated at least "
+          "2271 kN/m at this width (now 2000 kN/m) would avoid it")
+SF_STEADY = ("belt safety factor 4.77 is below the minimum 6.70 (t_max 503.1 kN at the tail "
+             "pulley; belt rating 2400 kN, 2000 kN/m x 1.2 m): a belt rated at least 2810 kN/m "
+             "at this width, or a lower largest tension (a take-up no heavier than the slip and "
+             "sag limits need, drives spread along the belt) would avoid it")
+SAG_DYN = ("transient sag on the carry strand 3.47 % exceeds the limit 1.5 % (low tension "
+           "8.29 kN near 2550 m from the tail on the carry at t = 46.5 s, during the stop)")
+
+
+def _cause(key: str):
+    return next(c for c in CAUSES if c.key == key)
+
+
+def test_a_finding_after_remedies_that_name_no_fix_is_a_finding_of_its_own():
+    """A clause ending in 'would avoid it' joined the clause before it as its fix whenever that
+    one had none: a take-up end stop after a fast stop's remedies ('... a flywheel of ...')
+    and a transient safety factor after a run-away's ('... a heavier take-up'). The end-stop
+    group showed the whole message (a slip, a sag) for 4 of its 8 runs, and the safety factor
+    group the steady clause alone for the 4 that ran away. Each is now its own finding."""
+    msg = f"{STOP_REMEDY}; {END_STOP}"
+    assert finding_clauses(msg, _cause("end_stop").words) == [END_STOP]
+    msg = f"{SF_STEADY}; {RAN_AWAY}; {SF_DYN}"
+    assert finding_clauses(msg, _cause("safety").words) == [SF_STEADY, SF_DYN]
+    # a fix without a finding of its own still joins its finding
+    assert finding_clauses(SLIP, _cause("slip").words) == [SLIP]
+
+
+def test_a_run_away_is_no_slip_and_a_safety_factors_remedy_is_no_slip_or_sag():
+    """The run-away's remedy says '..., or, where a drive pulley slipped, a heavier take-up'
+    of every run that ran away: 2 coast runs whose pulleys never slipped (drive1_slip_s 0,
+    slip margin 2.27) were in 'slipped on a drive pulley' (8 runs where the verdict row said
+    6 of 8 slipped). And the slip and sag groups showed the steady safety factor's clause
+    first ('a take-up no heavier than the slip and sag limits need'), not what slipped or
+    sagged."""
+    runs = _runs()
+    runs.loc[runs.run_id == "ra", "message"] = f"{SF_STEADY}; {RAN_AWAY}; {SF_DYN}"
+    brake = ("the head brake's pulley slipped: the brake held it while the belt slid on, "
+             "0.8 s in all")
+    runs.loc[runs.run_id == "a2", ["status", "message"]] = ["warning", brake]
+    groups = {c.key: set(part["run_id"]) for c, part, _ in cause_groups(runs)}
+    assert groups["slip"] == {"os", "sl", "a2"}
+    assert groups["safety"] == {"ra"}
+    slipped = f"{SF_STEADY}; {SLIP}"
+    assert finding_clauses(slipped, _cause("slip").words) == [SLIP]
+    sagged = f"{SF_STEADY}; {SAG_DYN}"
+    assert finding_clauses(sagged, _cause("sag").words) == [SAG_DYN]
