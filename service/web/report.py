@@ -457,7 +457,11 @@ def _verdict_cell(r: dict) -> str:
 def _verdict_words(r: dict) -> str:
     v = r["verdict"]
     if r["missing"]:
-        return f"\x01fails\x01{r['missing']} of {r['n']} runs {_e(v.null_worst)}"
+        away = r.get("ran_away") or 0
+        both = ("all of them ran away" if away == r["missing"]
+                else f"{away} of them ran away")
+        return (f"\x01fails\x01{r['missing']} of {r['n']} runs {_e(v.null_worst)}"
+                + (f" ({both}, section 2)" if away else ""))
     if r["limit"] is None and not r.get("ok_col") and v.limit != "sag":
         return "<span class=muted>no limit</span>"
     if r["limit"] is None and r.get("ok_col") and r.get("ok_judged") == 0 and not r["past"]:

@@ -675,6 +675,8 @@ def verdict_rows(runs: pd.DataFrame, limits: dict[str, Limit]) -> list[dict]:
                         "n": int((values.notna() | unstopped | slack
                                   | (past & ~never_going(ok))).sum()),
                         "missing": missing,
+                        # of those, the runs that ran away (section 2's own group)
+                        "ran_away": int((unstopped & _ran_away(ok)).sum()),
                         "ok_col": ok_col,
                         "ok_judged": (int(ok[ok_col].notna().sum())
                                       if ok_col and ok_col in ok.columns else None)})

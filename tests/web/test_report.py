@@ -851,3 +851,18 @@ def test_a_run_away_is_no_slip_and_a_safety_factors_remedy_is_no_slip_or_sag():
     assert finding_clauses(slipped, _cause("slip").words) == [SLIP]
     sagged = f"{SF_STEADY}; {SAG_DYN}"
     assert finding_clauses(sagged, _cause("sag").words) == [SAG_DYN]
+
+
+def test_a_stop_verdict_says_how_many_of_the_runs_that_did_not_stop_ran_away(web):
+    """A 3 km regenerative decline: its 4 coast runs ran away, none 'did not stop'. The stop
+    time row said '4 of 8 runs did not stop' where section 2 listed no run under 'did not
+    stop' and 4 under 'ran away'. The row now says how many of them ran away."""
+    html = report_html(_doc(web), _runs(), {"state": "done", "done": 8, "total": 8})
+    stop = re.search(r"<tr><td>stop time achieved.*?</tr>", _section(html, 1), re.S).group(0)
+    assert "2 of 7 runs did not stop (1 of them ran away, section 2)" in stop
+    runs = _runs()
+    runs.loc[runs.run_id == "ns", ["stop_time_s", "stop_distance_m"]] = [8.0, 10.0]
+    runs.loc[runs.run_id == "ns", ["status", "message"]] = ["ok", ""]
+    html = report_html(_doc(web), runs, {"state": "done", "done": 8, "total": 8})
+    stop = re.search(r"<tr><td>stop time achieved.*?</tr>", _section(html, 1), re.S).group(0)
+    assert "1 of 7 runs did not stop (all of them ran away, section 2)" in stop
