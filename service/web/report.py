@@ -77,6 +77,7 @@ th, td { border: 1px solid #bbb; padding: 0.15em 0.45em; text-align: left; verti
 th { background: #eef1f5; }
 td.num { text-align: right; font-variant-numeric: tabular-nums; white-space: nowrap;
   overflow-wrap: normal; }
+td.num .muted { white-space: normal; overflow-wrap: normal; }
 td code.id { font-size: 7pt; word-break: break-all; }
 td.ax { white-space: nowrap; overflow-wrap: normal; }
 tr.warning td { background: #fff6da; }

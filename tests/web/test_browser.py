@@ -673,3 +673,58 @@ def test_the_report_of_runs_that_do_not_pass_in_chromium_and_as_a_pdf(browser, w
     pdf = (ARTIFACTS / "report-failures.pdf").read_bytes()
     assert report_pdf.page_count(pdf) >= 2
     assert b"/MediaBox [0 0 594.9" in pdf  # A4: 210 x 297 mm = 595 x 842 pt
+
+
+def test_a_verdict_with_its_error_bar_fits_an_a4_page_in_print(browser, web, tmp_path):
+    """A study with an accuracy sample: a verdict whose governing run was sampled writes its
+    bar under the value ('± 5.97 kN (the error bar of this sampled run, section 9)'), in a
+    number cell that does not wrap, beside a limit's note that did not wrap either ('carriage
+    travel; the worst against its own limit'). In print at the A4 content width (688 px) the
+    verdicts table of a 16-run dol incline was 710 px wide, its other columns squeezed to
+    20 px, and its rows 1152 px tall (118 A4 pages for 16 runs). The notes now wrap."""
+    import pandas as pd
+
+    from beltstudy.service.store import query
+    from beltstudy.service.web.report import accuracy_html, report_html
+    from tests.web.test_report import _doc, _runs
+
+    sys.path.insert(0, str(ROOT / "docs"))
+    try:
+        import report_pdf
+    finally:
+        sys.path.remove(str(ROOT / "docs"))
+    nan = float("nan")
+    runs = _runs(t_max_dyn_kn=[25.0, 25.0, 25.0, 25.0, 31.0, 25.0, nan, 25.0],
+                 takeup_travel_m=[0.3, 0.3, 0.3, 0.3, 0.3, 0.28, nan, 0.3],
+                 **{"takeup.travel_m": [0.3, 6.0, 0.3, 6.0, 0.3, 6.0, 0.3, 6.0]})
+    bars = {"t_max_dyn_kn", "t_min_dyn_kn", "t_max_start_kn", "t_min_start_kn",
+            "t_max_stop_kn", "t_min_stop_kn", "safety_factor_dyn", "takeup_travel_m",
+            "stop_time_s", "stop_distance_m"}
+    acc = pd.DataFrame({"run_id": ["os"], "accuracy_elements": ["22/42/86"],
+                        "accuracy_methods": ["richardson: t_max_dyn_kn (p 0.99)"],
+                        **{f"{c}_err": [0.1234] for c in bars}})
+    doc = _doc(web)
+    doc["study"]["accuracy"] = {"sample": 0.25, "seed": 0}
+    section = accuracy_html(doc["study"], runs, acc, query.accuracy_columns(runs, acc))
+    page = tmp_path / "report.html"
+    page.write_text(report_html(doc, runs, {"state": "done", "done": 8, "total": 8}, section,
+                                bars=acc))
+    browser.get(page.as_uri())
+    try:
+        problems = report_pdf.check_print_layout(browser)
+        browser.execute_cdp_cmd("Emulation.setEmulatedMedia", {"media": "print"})
+        browser.execute_cdp_cmd("Emulation.setDeviceMetricsOverride", {
+            "width": report_pdf.PAGE_CONTENT_PX, "height": 1000, "deviceScaleFactor": 1,
+            "mobile": False})
+        time.sleep(0.3)
+        # the quantity column keeps room for its words; no row grows tall for a note
+        quantity, tallest = browser.execute_script(
+            "const t = document.querySelector('table.verdicts');"
+            "const rows = Array.from(t.tBodies[0].rows).filter(r => r.cells.length > 1);"
+            "return [Math.min(...rows.map(r => r.cells[0].getBoundingClientRect().width)),"
+            " Math.max(...rows.map(r => r.getBoundingClientRect().height))];")
+    finally:
+        browser.execute_cdp_cmd("Emulation.setEmulatedMedia", {"media": ""})
+        browser.execute_cdp_cmd("Emulation.clearDeviceMetricsOverride", {})
+    assert problems == []
+    assert quantity >= 100 and tallest <= 100, (quantity, tallest)  # 49 and 153 px before
