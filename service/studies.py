@@ -504,12 +504,23 @@ class StudyService:
         return self._recomputed_surface(study_id, run_id).to_pandas(), "recomputed"
 
     def no_surface_reason(self, study_id: str, run_id: str) -> str:
-        """Why a finished run has no surface rows: a steady-only study, or a run without a
-        transient (failed, with its own message)."""
-        study = (self.store.read(study_id).get("study") or {})
+        """Why a finished run has no surface rows: a steady-only study, a study made on another
+        engine version (its surface is recomputed from the run's inputs, which only the
+        engine that made it reproduces: the run page of a 0.6.14 study under 0.6.15 said 'the
+        run has no transient' for runs that had one), or a run without a transient (failed,
+        with its own message)."""
+        doc = self.store.read(study_id)
+        study = doc.get("study") or {}
         if not study.get("dynamics", True):
             return ("the study runs without dynamics (dynamics: false): a steady run has no "
                     "transient, so no surface; submit it with dynamics: true for one")
+        made = study.get("engine_version") or doc.get("engine_version")
+        if made and made != engine.__version__:
+            return (f"the study was run on engine {made} and this service runs engine "
+                    f"{engine.__version__}: a surface not stored with the run is recomputed "
+                    "from its inputs, which only the engine that ran it reproduces; submit the "
+                    f"study again for its runs and surfaces on engine {engine.__version__} "
+                    "(surface: true stores them with the runs)")
         row = self.store.read_runs(study_id, columns=["run_id", "status", "message"])
         row = row[row["run_id"] == run_id]
         if len(row) and row["status"].iloc[0] == "failed":

@@ -148,3 +148,25 @@ def test_a_steady_study_has_no_surface(data_dir, make_study, make_settings, fini
     # it said only "source: recomputed, rows 0": it says why
     assert body["reason"].startswith("the study runs without dynamics (dynamics: false): a "
                                      "steady run has no transient, so no surface")
+
+
+def test_a_study_of_another_engine_says_why_its_surface_is_not_recomputed(
+    data_dir, make_study, make_settings, finished_study, monkeypatch
+):
+    """The run page of a study made on the engine before (0.6.14, the service on 0.6.15) said
+    'the run has no transient' for runs that had one: the recompute is refused on another
+    engine version. It now says so, and what gets the figure. The upgrade is the service's
+    engine version moved on after the study finished."""
+    from beltstudy import engine
+
+    sid = finished_study(data_dir, _dynamic(make_study, "surface-old-engine"))
+    made = Store(data_dir).read(sid)["engine_version"]
+    monkeypatch.setattr(engine, "__version__", made + ".1")
+    client = TestClient(create_app(make_settings(data_dir)))
+    run_id = client.get(f"/studies/{sid}/runs").json()["runs"][0]["run_id"]
+    body = client.get(f"/studies/{sid}/runs/{run_id}/surface").json()
+    assert body.get("rows") == 0, body
+    assert body["reason"].startswith(
+        f"the study was run on engine {made} and this service runs engine {made}.1"
+    ), body["reason"]
+    assert "has no transient" not in body["reason"]
