@@ -521,8 +521,10 @@ class Drive(_Model):
         0.0, le=INERTIA_MAX_KG_M2, description="rotating parts reduced to the pulley shaft "
         "[kg m2] (at most 1e7, beyond any drive train)"
     )
-    rated_power_kw: PositiveFloat | None = Field(
-        None, le=POWER_MAX_KW, description="rated power [kW], or auto (the same as leaving "
+    # "auto" in the type, not only in the validator below, so that a grid axis and the
+    # published schema take it as the file does ([500, auto, 800])
+    rated_power_kw: Annotated[float, Field(gt=0, le=POWER_MAX_KW)] | Literal["auto"] | None = Field(
+        None, description="rated power [kW], or auto (the same as leaving "
         "it out): steady power x 1.25 (at most 30 000: three times the largest conveyor drives "
         "built)"
     )

@@ -621,6 +621,19 @@ def test_a_conveyor_with_rated_power_auto_passes_the_door_as_one_that_leaves_it_
     assert len(sized) == 1 and rated == sized
 
 
+def test_a_rated_power_axis_takes_auto_among_numbers_as_the_conveyor_file_does(make_study):
+    """``drives.0.rated_power_kw: [500, auto, 800]``: the conveyor file takes ``auto`` (SPEC
+    6.3: a drive's auto rated power), and the axis refused it ('"auto" is not of type
+    "number"'); now its ``auto`` point is the design basis's size, as in the file."""
+    study = resolve_study(make_study(
+        grid={"drives.0.rated_power_kw": [500, "auto", 800]}))
+    assert study.total == 3
+    rated = sorted(float(r.conveyor["drives"][0]["rated_power_kw"]) for r in study.runs)
+    left_out = resolve_study(make_study(grid={"temperature_c": [20]}))
+    sized = float(left_out.runs[0].conveyor["drives"][0]["rated_power_kw"])
+    assert rated == sorted([500.0, sized, 800.0])
+
+
 @pytest.mark.parametrize(("where", "axis", "values"), [
     ("grid", "stop_time_s", [10, 20]),
     ("grid", "scenario.stop.mode", ["coast", "controlled"]),
