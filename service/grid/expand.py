@@ -266,17 +266,35 @@ def _where(axes: list[Axis], indices: list[int], combo: tuple[int, ...]) -> str:
 MAX_NAMED_POINTS = 5
 
 
-def _refuse_points(kind: str, bad: list[tuple[str, str]], total: int) -> None:
-    """Raise :class:`Invalid` naming every grid point in ``bad`` (``(where, message)``)."""
+def _origin(axes: list[Axis], indices: list[int]) -> str:
+    """Where the axes ``indices`` were given, as an error names it: ``grid`` (grid and zip
+    axes, crossed into grid points), ``sample.axes`` (drawn values), or both."""
+    drawn = {axes[i].sample for i in indices}
+    if drawn == {True}:
+        return "sample.axes"
+    return "grid and sample.axes" if True in drawn else "grid"
+
+
+#: What to do when drawn values make an invalid conveyor or scenario.
+_DRAWN_FIX = ("; give each sample axis a distribution whose draws the field takes (a narrower "
+              "one, or uniform or triangular with low and high within it)")
+
+
+def _refuse_points(kind: str, bad: list[tuple[str, str]], total: int,
+                   origin: str = "grid") -> None:
+    """Raise :class:`Invalid` naming every grid point in ``bad`` (``(where, message)``);
+    ``origin``: where the axes were given (:func:`_origin`)."""
     if not bad:
         return
+    fix = _DRAWN_FIX if "sample" in origin else ""
     if len(bad) == 1:
         where, msg = bad[0]
-        raise Invalid(f"grid ({where}): {msg}" if where else msg)
+        raise Invalid(f"{origin} ({where}): {msg}{fix}" if where else msg)
     named = "; ".join(f"({w}): {m}" for w, m in bad[:MAX_NAMED_POINTS])
     more = len(bad) - MAX_NAMED_POINTS
     tail = f"; and {more} more" if more > 0 else ""
-    raise Invalid(f"grid: {len(bad)} of {total} {kind} variants are invalid: {named}{tail}")
+    raise Invalid(f"{origin}: {len(bad)} of {total} {kind} variants are invalid: "
+                  f"{named}{tail}{fix}")
 
 
 def _dimensions(axes: list[Axis]) -> list[list[int]]:
@@ -464,7 +482,7 @@ def _expand(
             except InputError as exc:
                 bad.append((_where(axes, indices, key), _err(exc)))
                 continue
-        _refuse_points(kind, bad, len(keys))
+        _refuse_points(kind, bad, len(keys), _origin(axes, indices))
         for key, variant in out.items():
             for i, j in zip(indices, key, strict=True):
                 canon[i][j] = get_path(variant, axes[i].target.path)

@@ -221,3 +221,15 @@ def test_a_sample_axis_of_a_whole_number_field_is_refused_naming_it(axis):
         resolve_study(sampled(n=8, dynamics=dynamic,
                               axes={axis: {"dist": "uniform", "low": 2, "high": 40}}),
                       studies_dir=ROOT / "studies")
+
+
+def test_drawn_values_the_conveyor_refuses_are_named_as_the_sample_s():
+    """``profile.0.lift_m`` drawn uniform 3 to 80 on a 60 m section: the draws above 60 m were
+    refused as 'grid: 2 of 4 conveyor variants are invalid: ...' in a study whose grid does
+    not have the axis, with no way out; now as the sample's, with what to give instead."""
+    axes = {"profile.0.lift_m": {"dist": "uniform", "low": 3, "high": 80}}
+    with pytest.raises(Invalid, match=r"^sample\.axes: \d+ of \d+ conveyor variants are "
+                                      r"invalid: \(profile\.0\.lift_m=.*lift_m .* length_m "
+                                      r".*; give each sample axis a distribution whose draws "
+                                      r"the field takes"):
+        resolve_study(sampled(n=8, axes=axes), studies_dir=ROOT / "studies")
