@@ -697,9 +697,42 @@ def swing_and_period(t: np.ndarray, v: np.ndarray) -> tuple[float, float | None]
     return float(v.max() - v.min()), period
 
 
+def _stop_overspeed(sys: System, r: dict, out) -> list[str]:
+    """The stop's overspeed, from the records after the stop command (the kernel's
+    ``vmean_hi`` ends at it): a regenerating decline whose drives let go before its brakes
+    bite runs on under gravity (a 1.5 km, 150 m decline with a 3 s brake delay reached 5.01
+    m/s, 125 % of its 4 m/s, and nothing was said). A run that ran away is said as such."""
+    if int(r["status"]) == C.RUNAWAY:
+        return []
+    rec = out.rec[:int(r["nrec"])]
+    after = np.flatnonzero(rec["t"] > sys.stop_command_s)
+    if not after.size:
+        return []
+    k = after[int(np.argmax(rec["v_mean"][after]))]
+    v_hi, v_d = float(rec["v_mean"][k]), sys.v_design
+    if v_hi <= OVERSPEED_FRACTION * v_d:
+        return []
+    mode = sys.model.cycle.stop_mode
+    if mode == C.BRAKE:
+        fix = ("brakes that bite sooner (a shorter brakes[].delay_s or brakes[].ramp_s) or a "
+               "controlled stop (stop.mode: controlled, the drives holding the belt back down "
+               "its stopping curve)")
+    elif mode == C.CONTROLLED:
+        fix = ("more drive force to hold it back (drives[].torque_limit or rated_power_kw) or "
+               "brakes")
+    else:
+        fix = ("a controlled stop (stop.mode: controlled, the drives holding the belt back "
+               "down its stopping curve) or a brake stop (stop.mode: brake)")
+    return [f"overspeed in the stop: the mean belt speed reached {v_hi:.3g} m/s, "
+            f"{100.0 * v_hi / v_d:.0f} % of design speed, at t = {float(rec['t'][k]):.1f} s, "
+            f"{float(rec['t'][k]) - sys.stop_command_s:.1f} s after the stop command (plant "
+            f"overspeed switches trip at {100.0 * OVERSPEED_FRACTION:.0f} %; read at the "
+            f"records): gravity pulled it on before it was held; {fix} would avoid it"]
+
+
 def running_warnings(sys: System, r: dict, out, names=None) -> list[str]:
     """The start's overspeed (the mean belt speed above :data:`OVERSPEED_FRACTION` of design
-    speed before the stop command) and a running phase that has not settled (its mean speed
+    speed before the stop command), the stop's (:func:`_stop_overspeed`) and a running phase that has not settled (its mean speed
     swinging by more than :data:`SETTLE_SWING` of design speed over its last
     :data:`SETTLE_LOOPS` wave loop times, or, with the mean speed within that, a drive's force
     swinging about its mean by more than :data:`SETTLE_FORCE` of its rated force), in words.
@@ -714,6 +747,7 @@ def running_warnings(sys: System, r: dict, out, names=None) -> list[str]:
                  f"{100.0 * OVERSPEED_FRACTION:.0f} %): the belt released the stretch of "
                  "its acceleration; a gentler start stretches it less: "
                  + _or(start_levers(sys)))
+    w += _stop_overspeed(sys, r, out)
     t1 = sys.stop_command_s
     t_loop = sys.wave_loop_time_s
     # the judged window; a running phase shorter than SETTLE_LOOPS + 1 wave loop times is
@@ -1822,6 +1856,14 @@ def not_stopped_words(sys: System, v_end: float, sliding: bool = False) -> str:
     if v_end < 0.0:
         fix = ("a holdback (holdback: true) or brakes that hold (brakes[].hold) would hold it "
                "against the lift")
+    elif not len(brakes.force) and float(sys.te_n) > 0.0:
+        # resistance above the pull, barely: it slows, too slowly for the window (a 2 km,
+        # 78 m decline, Te +0.52 kN: 4.00 -> 3.51 m/s in 300 s), not kept moving by gravity
+        fix = (f"its resistance exceeds gravity's pull by only Te = {sys.te_n / 1e3:.3g} kN, so "
+               f"it slows at about Te / M = {sys.te_n / sys.model.control.m_tot:.2g} m/s2: a "
+               f"rigid-body coast to rest takes about {_coast_s(sys):.3g} s (M v / Te), beyond "
+               "the window; a brake would stop it sooner (brakes with force_kn: auto sizes one "
+               "for stop.mode brake and its stop.time_s)")
     elif not len(brakes.force):
         fix = ("gravity keeps it moving against its resistance: a brake would stop it (brakes "
                "with force_kn: auto sizes one for stop.mode brake and its stop.time_s)")
