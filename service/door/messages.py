@@ -107,6 +107,10 @@ def _as_json_type(errors: list[dict]) -> str:
     elif not hint and path == ("conveyor",) and not isinstance(got, dict | list):
         hint = ("give the path of a conveyor file as text (conveyors/slope-5pct.yaml) or the "
                 "conveyor inline")
+    elif (not hint and path == ("accuracy",) and isinstance(got, int | float)
+          and not isinstance(got, bool)):
+        # the share of runs written alone: the block that holds it
+        hint = f"write the share of runs to check as accuracy: {{sample: {as_json(got)}}}"
     text += f": {hint}" if hint else ""
     return f"{_dotted(errors[0]['path'])}: {text}"
 

@@ -115,7 +115,8 @@ def _walk(model: type[BaseModel], parts: list[str], data: Any) -> tuple[str | in
             size = len(data) if isinstance(data, list) else 0
             if index >= size:
                 return (
-                    f"'{'.'.join(map(str, out))}' has {size} entries; index {index} is out of range"
+                    f"'{'.'.join(map(str, out))}' has {size} "
+                    f"{'entry' if size == 1 else 'entries'}; index {index} is out of range"
                 )
             out.append(index)
             data = data[index]

@@ -363,7 +363,9 @@ def finish(study: ResolvedStudy) -> ResolvedStudy:
         if not axis.sample and len(set(keys)) != len(keys):
             dup = next(v for v, k in zip(canon[i], keys, strict=True) if keys.count(k) > 1)
             where = "grid" if axis.group is None else f"zip.{axis.group}"
-            raise Invalid(f"{where}.{axis.name}: value {dup!r} appears twice (after validation)")
+            # None is how 'auto' and null are both held (an auto size): said as written
+            shown = "auto (or null, the same)" if dup is None else repr(dup)
+            raise Invalid(f"{where}.{axis.name}: value {shown} appears twice (after validation)")
         axes[i] = dataclasses.replace(axis, values=tuple(canon[i]))
     study.id = study_hash(study)
     mark_accuracy_sample(study)

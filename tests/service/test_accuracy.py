@@ -43,6 +43,14 @@ def test_a_wrong_accuracy_is_refused_by_name(make_study, accuracy, expect):
                       studies_dir=ROOT / "studies")
 
 
+def test_a_share_written_alone_is_told_the_block_that_holds_it(make_study):
+    """'accuracy: 0.05' said only 'is not of type "object"'."""
+    with pytest.raises(Invalid, match=r"^accuracy: 0\.05 is not of type \"object\": write the "
+                                      r"share of runs to check as accuracy: \{sample: 0\.05\}"):
+        resolve_study(_dynamic(make_study, "acc-bare", accuracy=0.05),
+                      studies_dir=ROOT / "studies")
+
+
 def test_accuracy_needs_the_transient(make_study):
     with pytest.raises(Invalid, match="accuracy: error bars are those of the transient runs"):
         resolve_study(make_study(name="acc-steady", accuracy={"sample": 0.5}),

@@ -270,7 +270,7 @@ def test_model_beside_a_friction_model_axis_is_refused_naming_both(make_study):
         ({"temperature_c": []}, r"grid.temperature_c: empty axis"),
         ({"temprature_c": [1]}, r"unknown axis 'temprature_c'.*did you mean 'temperature_c'"),
         ({"takeup.mas_kg": [1]}, r"unknown axis 'takeup.mas_kg'.*did you mean 'takeup.mass_kg'"),
-        ({"profile.3.lift_m": [1]}, r"'profile' has 1 entries; index 3 is out of range"),
+        ({"profile.3.lift_m": [1]}, r"'profile' has 1 entry; index 3 is out of range"),
         ({"temperature_c": ["hot"]}, r'grid.temperature_c.0: "hot" is not of type "number"'),
         # a misspelt word of a choice names the word meant
         ({"load": ["inclnes"]}, r"grid.load.0: \"inclnes\" is not of type .* or 'declines': "
@@ -632,6 +632,10 @@ def test_a_rated_power_axis_takes_auto_among_numbers_as_the_conveyor_file_does(m
     left_out = resolve_study(make_study(grid={"temperature_c": [20]}))
     sized = float(left_out.runs[0].conveyor["drives"][0]["rated_power_kw"])
     assert rated == sorted([500.0, sized, 800.0])
+    # auto and null are the same point: the repeat is said as written, not as 'None'
+    with pytest.raises(Invalid, match=r"grid\.drives\.0\.rated_power_kw: value auto \(or null, "
+                                      r"the same\) appears twice"):
+        resolve_study(make_study(grid={"drives.0.rated_power_kw": ["auto", None]}))
 
 
 @pytest.mark.parametrize(("where", "axis", "values"), [
