@@ -280,6 +280,13 @@ _DRAWN_FIX = ("; give each sample axis a distribution whose draws the field take
               "one, or uniform or triangular with low and high within it)")
 
 
+#: What to do when an axis sets one of two exclusive fields and the file gives the other
+#: (``idlers.carry.count`` on a file with ``spacing_m``: 'not both').
+_BOTH_FIX = ("; where an axis sets one of two fields the conveyor file gives the other of, an "
+             "axis of that other field with the value null (grid: {idlers.carry.spacing_m: "
+             "[null]} beside idlers.carry.count) clears the file's")
+
+
 def _refuse_points(kind: str, bad: list[tuple[str, str]], total: int,
                    origin: str = "grid") -> None:
     """Raise :class:`Invalid` naming every grid point in ``bad`` (``(where, message)``);
@@ -287,6 +294,8 @@ def _refuse_points(kind: str, bad: list[tuple[str, str]], total: int,
     if not bad:
         return
     fix = _DRAWN_FIX if "sample" in origin else ""
+    if any(", not both" in m for _w, m in bad):
+        fix += _BOTH_FIX
     if len(bad) == 1:
         where, msg = bad[0]
         raise Invalid(f"{origin} ({where}): {msg}{fix}" if where else msg)

@@ -663,3 +663,16 @@ def test_a_steady_study_refuses_a_grid_axis_its_runs_never_read(make_study, wher
                              dynamics=False))
     resolve_study(make_study(grid={"temperature_c": [0, 20], "load": ["full", "empty"]},
                              dynamics=False))
+
+
+def test_an_axis_of_one_of_two_exclusive_fields_is_told_how_to_clear_the_other(make_study):
+    """``idlers.carry.count`` as an axis on a conveyor that gives ``spacing_m`` was refused
+    'give ... spacing_m or ... count, not both' with no word of the fix that works: an axis
+    of the other field with the value null."""
+    with pytest.raises(Invalid, match=r"not both; where an axis sets one of two fields the "
+                                      r"conveyor file gives the other of, an axis of that other "
+                                      r"field with the value null"):
+        resolve_study(make_study(grid={"idlers.carry.count": [40, 50]}))
+    study = resolve_study(make_study(grid={"idlers.carry.count": [40, 50],
+                                           "idlers.carry.spacing_m": [None]}))
+    assert study.total == 2
