@@ -727,7 +727,7 @@ def _stop_overspeed(sys: System, r: dict, out) -> list[str]:
             f"{100.0 * v_hi / v_d:.0f} % of design speed, at t = {float(rec['t'][k]):.1f} s, "
             f"{float(rec['t'][k]) - sys.stop_command_s:.1f} s after the stop command (plant "
             f"overspeed switches trip at {100.0 * OVERSPEED_FRACTION:.0f} %; read at the "
-            f"records): gravity pulled it on before it was held; {fix} would avoid it"]
+            f"records): gravity outpulled what held it back; {fix} would avoid it"]
 
 
 def running_warnings(sys: System, r: dict, out, names=None) -> list[str]:
