@@ -848,5 +848,22 @@ def build_report(service: StudyService, study_id: str) -> str:
     doc = dict(service.store.read(study_id))
     doc.setdefault("id", study_id)
     section, acc = _accuracy_section(doc["study"], service, study_id)
-    return report_html(doc, service.store.read_runs(study_id), service.status(study_id),
+    return report_html(doc, _in_grid_order(service, study_id), service.status(study_id),
                        section, bars=acc)
+
+
+def _in_grid_order(service: StudyService, study_id: str) -> pd.DataFrame:
+    """The study's stored runs in the order of its grid (the store keeps them in the order
+    they finished): a verdict's governing run among runs tied on its value is then the same
+    in every report of the same rows (the overland design study's named one of two tied
+    coast stops, whichever had finished first). Run id order where the study cannot be
+    expanded here (another engine version)."""
+    runs = service.store.read_runs(study_id)
+    if not len(runs):
+        return runs
+    try:
+        order = {r.run_id: i for i, r in enumerate(service.resolved(study_id).runs)}
+    except Exception:  # a study this engine cannot expand: still one order
+        order = {}
+    key = runs["run_id"].map(lambda r: (order.get(r, len(order)), r))
+    return runs.iloc[sorted(range(len(runs)), key=key.iloc.__getitem__)].reset_index(drop=True)

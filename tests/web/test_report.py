@@ -866,3 +866,38 @@ def test_a_stop_verdict_says_how_many_of_the_runs_that_did_not_stop_ran_away(web
     html = report_html(_doc(web), runs, {"state": "done", "done": 8, "total": 8})
     stop = re.search(r"<tr><td>stop time achieved.*?</tr>", _section(html, 1), re.S).group(0)
     assert "1 of 7 runs did not stop (all of them ran away, section 2)" in stop
+
+
+def test_the_report_is_the_same_whatever_order_its_runs_finished_in(web, tmp_path):
+    """The store keeps a study's runs in the order they finished, and the report took that
+    order: the overland design study named one of two coast stops tied on a verdict's value,
+    whichever had finished first, and listed its runs in that order, so two runs of the same
+    study gave two reports. The same rows stored in two orders now give one report."""
+    from beltstudy.service.dask.jobs import study_schema
+    from beltstudy.service.dask.tasks import run_batch
+    from beltstudy.service.door.studyfile import resolve_study
+    from beltstudy.service.settings import Settings
+    from beltstudy.service.store.columns import rows_to_table
+    from beltstudy.service.store.parquet import Store
+    from beltstudy.service.studies import StudyService
+    from beltstudy.service.web.report import build_report
+
+    study = resolve_study(web.tiny_study(grid={"friction_model": ["din", "cema"],
+                                               "temperature_c": [-20, 20],
+                                               "load": ["full", 0.5]}),
+                          studies_dir=web.ROOT / "studies")
+    rows = run_batch(study.id, study.runs, False)["rows"]
+    reports = []
+    for order in (rows, rows[::-1]):
+        data = tmp_path / str(len(reports))
+        store = Store(data)
+        store.create(study.id, {
+            "id": study.id, "name": study.name, "state": "done", "total": study.total,
+            "done": study.total, "failed": 0, "elapsed_s": 0.5, "message": "",
+            "created_at": 1.0, "updated_at": 1.0, "started_at": 1.0, "finished_at": 1.0,
+            "engine_version": study.engine_version, "study": study.to_json()})
+        store.write_part(study.id, "runs", "0", rows_to_table(order, study_schema(study)))
+        service = StudyService(Settings(data_dir=data, warm_start=False), read_only=True)
+        assert list(service.store.read_runs(study.id)["run_id"]) == [r["run_id"] for r in order]
+        reports.append(build_report(service, study.id))
+    assert reports[0] == reports[1]
