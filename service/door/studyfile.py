@@ -518,8 +518,11 @@ def _run_models(study: StudyIn, axes: list[Axis], models: dict) -> tuple[str, se
             # named where the axis is written: a sample's and a zip group's are no grid axes
             where = ("sample.axes" if a.sample else
                      f"zip.{a.group}" if a.group is not None else "grid")
-            raise Invalid(f"{where}: axis '{a.name}': model '{a.target.path[0]}' is not run "
-                          f"by this study (its models: {', '.join(sorted(run_models))})")
+            m = a.target.path[0]
+            raise Invalid(f"{where}: axis '{a.name}': model '{m}' is not run by this study "
+                          f"(its models: {', '.join(sorted(run_models))}); add {m} to the "
+                          f"friction_model axis to vary it in runs, or, for a design model, "
+                          f"give one value in models: {m}: (the design basis takes one)")
     return default_model, run_models
 
 

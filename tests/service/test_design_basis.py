@@ -149,7 +149,10 @@ def test_model_parameters_as_axes_and_identical_runs_merged(make_study, finished
     with pytest.raises(Invalid, match=r"unknown parameter of model 'din'; did you mean "
                                       r"'models.din.f_carry'"):
         resolve_study(make_study(grid={"models.din.f_cary": [0.01]}))
-    with pytest.raises(Invalid, match=r"model 'nonlin' is not run by this study"):
+    # and how to vary it or give it to the design basis (it named no fix)
+    with pytest.raises(Invalid, match=r"model 'nonlin' is not run by this study .*; add nonlin "
+                                      r"to the friction_model axis to vary it in runs, or, for "
+                                      r"a design model, give one value in models: nonlin:"):
         resolve_study(make_study(grid={"models.nonlin.p_mf": [1.0]}))
     with pytest.raises(Invalid, match=r"models.din.f_carry: value -1.*between 0 and 1"):
         resolve_study(make_study(grid={"models.din.f_carry": [-1]}))
