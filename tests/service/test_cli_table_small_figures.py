@@ -5,6 +5,7 @@ from __future__ import annotations
 
 import re
 
+import numpy as np
 import yaml
 
 from beltstudy.service.cli.simulate import _fmt
@@ -24,6 +25,13 @@ def test_fmt_small_figures_keep_three_significant_figures():
     assert len(_fmt(1e-9)) == 12
 
 
+def test_fmt_counts_print_as_integers():
+    # elements_used (an int in the summary) read "202.000 -" beside figures with units
+    assert _fmt(202) == f"{202:>12d}"
+    assert _fmt(np.int64(202)) == f"{202:>12d}"
+    assert _fmt(202.0) == "     202.000"  # a figure that happens to be whole stays a figure
+
+
 def test_simulate_table_time_step_of_a_short_belt_is_not_zero(tmp_path, capsys):
     from beltstudy.service.cli import main
 
@@ -36,6 +44,7 @@ def test_simulate_table_time_step_of_a_short_belt_is_not_zero(tmp_path, capsys):
     m = re.search(r"^\s+time step\s+(\S+) s$", out, re.M)
     assert m, out
     dt = float(m.group(1))
+    assert re.search(r"^\s+elements\s+\d+ -$", out, re.M), out  # a count, no decimals
     # the automatic mesh cuts the 61.7 m loop into about 200 elements, dx ~ 0.3 m; the return
     # strand's wave speed is about 590 m/s (sqrt(EB / rho')), so the explicit limit dx / c is
     # ~ 5e-4 s: the step is below it, and above zero
