@@ -16,6 +16,7 @@ from beltstudy.service.errors import file_reason, shown_path
 
 LOAD_HELP = ("full, empty, inclines, declines, a fraction of the design load up to 1.3 (a "
              "surge above 1), or one fraction per carry profile section: 1,0,0.5")
+ELEMENTS_HELP = "belt elements round the loop, at least 8 (default: auto, the engine's count)"
 
 
 def model_option(name: str, option: str = "--model"):

@@ -12,11 +12,12 @@ import sys
 import numpy as np
 import pandas as pd
 
-from beltstudy.engine import InputError, parse_scenario
+from beltstudy.engine import InputError, Scenario, parse_scenario
 from beltstudy.engine import results as R
 from beltstudy.engine.conveyor import scenario_fields
 from beltstudy.service.charts import transient_figure
 from beltstudy.service.cli.common import (
+    ELEMENTS_HELP,
     LOAD_HELP,
     check_output,
     design_lines,
@@ -53,6 +54,14 @@ PHASE_FIELDS = _rows(R.PHASE)
 SLACK_FIELDS = _rows(R.SLACK)
 CURVE_FIELDS = _rows(R.CURVES_TRANSIENT)
 
+#: The scenario a command line without --scenario runs (SPEC section 2 defaults).
+DEFAULT_SCENARIO = Scenario()
+
+
+def _scenario_default(value) -> str:
+    """The help's default of a scenario option: the scenario file's field, else ``value``."""
+    return f"(default: the scenario file's, else {value})"
+
 
 def register(sub) -> None:
     p = sub.add_parser(
@@ -64,25 +73,40 @@ def register(sub) -> None:
     )
     p.add_argument("conveyor", help="conveyor file (YAML or JSON)")
     p.add_argument("--model", default="din", help="friction model: din, cema, cmod, visco, "
-                   "nonlin")
+                   "nonlin (default: %(default)s)")
     p.add_argument("--temperature-c", type=float, default=None,
-                   help="ambient temperature [C] (default: the scenario's, else 20)")
+                   help="ambient temperature [C] "
+                   + _scenario_default(f"{DEFAULT_SCENARIO.temperature_c:g}"))
     p.add_argument("--scenario", metavar="SCENARIO.yaml", help="scenario file (SPEC section 2)")
     p.add_argument("--param", action="append", metavar="NAME=VALUE",
                    help="friction model parameter, repeatable (e.g. f_carry=0.010)")
-    p.add_argument("--load", default=None, help=LOAD_HELP)
-    p.add_argument("--start-control", choices=["s-curve", "linear", "torque"], default=None)
-    p.add_argument("--start-time-s", type=float, default=None, help="start time [s]")
-    p.add_argument("--run-s", type=float, default=None, help="steady running time [s]")
-    p.add_argument("--stop-mode", choices=["coast", "brake", "controlled"], default=None)
-    p.add_argument("--stop-time-s", type=float, default=None, help="target stop time [s]")
+    scn = DEFAULT_SCENARIO
+    p.add_argument("--load", default=None,
+                   help=f"{LOAD_HELP} {_scenario_default(scn.load)}")
+    p.add_argument("--start-control", choices=["s-curve", "linear", "torque"], default=None,
+                   help="the vfd drives' start: an s-curve or linear speed reference, or torque (the "
+                   "force limit ramped up over the start time) "
+                   + _scenario_default(scn.start.control))
+    p.add_argument("--start-time-s", type=float, default=None,
+                   help=f"start time [s] {_scenario_default(f'{scn.start.time_s:g}')}")
+    p.add_argument("--run-s", type=float, default=None,
+                   help=f"steady running time [s] {_scenario_default(f'{scn.run_s:g}')}")
+    p.add_argument("--stop-mode", choices=["coast", "brake", "controlled"], default=None,
+                   help="coast (power failure), brake (coast and the brakes) or controlled "
+                   f"(the drives ease the belt down) {_scenario_default(scn.stop.mode)}")
+    p.add_argument("--stop-time-s", type=float, default=None,
+                   help="target stop time [s], read by the brake and controlled stops "
+                   + _scenario_default(f"{scn.stop.time_s:g}"))
     p.add_argument("--formulation", choices=["relative", "support"], default=None,
                    help="relative (drive force from a speed controller) or support (drive "
-                        "pulley motion imposed)")
-    p.add_argument("--elements", type=int, default=None, help="belt elements round the loop")
+                        f"pulley motion imposed) {_scenario_default(scn.formulation)}")
+    p.add_argument("--elements", type=int, default=None,
+                   help=ELEMENTS_HELP.replace("(default:", "(default: the scenario file's, "
+                                              "else"))
     p.add_argument("--dt-s", type=float, default=None, help="fixed time step [s] "
-                   "(default: automatic, half the stability limit)")
-    p.add_argument("--record-dt-s", type=float, default=None, help="time-series spacing [s]")
+                   "(default: the scenario file's, else automatic, half the stability limit)")
+    p.add_argument("--record-dt-s", type=float, default=None, help="time-series spacing [s] "
+                   + _scenario_default(f"{DEFAULT_SCENARIO.record_dt_s:g}"))
     p.add_argument("--no-sag-at-rest", dest="sag_at_rest", action="store_const",
                    const=False, default=None,
                    help="size an auto take-up for the sag limits running only (default: also "

@@ -24,6 +24,7 @@ from beltstudy.engine import (
 )
 from beltstudy.service.charts import steady_profile_figure
 from beltstudy.service.cli.common import (
+    ELEMENTS_HELP,
     LOAD_HELP,
     check_output,
     check_scenario_fields,
@@ -52,12 +53,13 @@ def register(sub) -> None:
         description="Steady running tensions of CONVEYOR for one friction model.",
     )
     p.add_argument("conveyor", help="conveyor file (YAML or JSON)")
-    p.add_argument("--model", default="din", help="friction model: din (iso5048), cema, ...")
-    p.add_argument("--temperature-c", type=float, default=20.0, help="ambient temperature [C]")
+    p.add_argument("--model", default="din", help="friction model: din (iso5048), cema, cmod, visco, nonlin "
+                   "(default: %(default)s)")
+    p.add_argument("--temperature-c", type=float, default=20.0, help="ambient temperature [C] (default: %(default)g)")
     p.add_argument("--param", action="append", metavar="NAME=VALUE",
                    help="friction model parameter, repeatable (e.g. f_carry=0.010)")
-    p.add_argument("--load", default="full", help=LOAD_HELP)
-    p.add_argument("--elements", type=int, default=None, help="belt elements round the loop")
+    p.add_argument("--load", default="full", help=f"{LOAD_HELP} (default: %(default)s)")
+    p.add_argument("--elements", type=int, default=None, help=ELEMENTS_HELP)
     p.add_argument("--no-sag-at-rest", dest="sag_at_rest", action="store_const",
                    const=False, default=None,
                    help="size an auto take-up for the sag limits running only (default: also "

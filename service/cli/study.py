@@ -135,7 +135,8 @@ def register(sub) -> None:
         description="The main job (make run): start the service on a free port, submit the "
         "study, follow its progress and print the comparison.",
     )
-    p.add_argument("--study", default="studies/paper-comparison.yaml", help="study file")
+    p.add_argument("--study", default="studies/paper-comparison.yaml",
+                   help="study file (YAML or JSON; default: %(default)s)")
     p.add_argument("--port", type=lambda text: port_number(text, free=True), default=0,
                    help="service port, 0 to 65535 (default 0: a free one)")
     p.set_defaults(func=cmd_demo)

@@ -29,6 +29,7 @@ from beltstudy.engine import (
     run_cases,
 )
 from beltstudy.service.cli.common import (
+    ELEMENTS_HELP,
     check_scenario_fields,
     model_option,
     parse_load,
@@ -55,7 +56,7 @@ def register(sub) -> None:
     )
     p.add_argument("conveyor", help="conveyor file (YAML or JSON)")
     p.add_argument("--models", default="cema,din,nonlin,visco,cmod",
-                   help="comma-separated friction models (default: all five)")
+                   help="comma-separated friction models (default: all five, %(default)s)")
     p.add_argument("--from", dest="t_from", type=float, default=-40.0,
                    help="first temperature [C] (default -40)")
     p.add_argument("--to", dest="t_to", type=float, default=40.0,
@@ -64,9 +65,11 @@ def register(sub) -> None:
     p.add_argument("--param", action="append", metavar="MODEL.NAME=VALUE",
                    help="model parameter, repeatable (e.g. din.f_carry=0.010)")
     p.add_argument("--load", default="full", help="full, empty, inclines, declines, a "
-                   "fraction up to 1.3 or one fraction per carry section (1,0,0.5)")
-    p.add_argument("--elements", type=int, default=None, help="belt elements round the loop")
-    p.add_argument("--out", required=True, metavar="DIR", help="output directory")
+                   "fraction up to 1.3 or one fraction per carry section (1,0,0.5) (default: "
+                   "%(default)s)")
+    p.add_argument("--elements", type=int, default=None, help=ELEMENTS_HELP)
+    p.add_argument("-o", "--out", "--output", dest="out", required=True, metavar="DIR",
+                   help="output directory (made when missing)")
     p.set_defaults(func=run)
 
 
