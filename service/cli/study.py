@@ -441,17 +441,31 @@ def cmd_report(args) -> int:
     return 0
 
 
+def _as_option(message: str, names: tuple[str, ...]) -> str:
+    """A service error that starts with one of its parameter ``names`` (``metrics: ...``)
+    said with the command line's option (``--metrics: ...``)."""
+    for name in names:
+        if message.startswith(f"{name}:"):
+            return f"--{message}"
+    return message
+
+
 def cmd_compare(args) -> int:
     metrics = [] if args.metrics is None else [m.strip() for m in args.metrics.split(",")]
     if args.metrics is not None and not all(metrics):
         raise Invalid(f"--metrics: an empty name in '{args.metrics}'; give result columns "
                          "comma-separated (e.g. --metrics power_kw,t_max_stop_kn), or leave "
                          "--metrics out for the defaults")
-    result = _with_fallback(
-        args,
-        lambda c: c.compare(args.id, args.baseline, args.candidate, metrics),
-        lambda s: s.compare(args.id, args.baseline, args.candidate, metrics),
-    )
+    try:
+        result = _with_fallback(
+            args,
+            lambda c: c.compare(args.id, args.baseline, args.candidate, metrics),
+            lambda s: s.compare(args.id, args.baseline, args.candidate, metrics),
+        )
+    except ServiceError as exc:
+        # the service names its parameters (metrics: ...); here they are options
+        exc.message = _as_option(exc.message, ("metrics", "baseline", "candidate"))
+        raise
     print(format_compare(result))
     return 0
 

@@ -297,6 +297,10 @@ def _stats(values: pd.Series) -> dict:
     }
 
 
+#: Valid metrics named in the refusal of an unknown one; the rest are counted.
+SHOWN_METRICS = 20
+
+
 def model_pair(baseline: str, candidate: str) -> tuple[str, str]:
     """The baseline and candidate friction models by their canonical names; the same model
     twice (or by an alias) is :class:`Invalid` naming ``candidate``: a ratio needs two."""
@@ -349,7 +353,11 @@ def compare(
         if m not in valid:
             close = difflib.get_close_matches(m, valid, n=1)
             hint = f" (did you mean '{close[0]}'?)" if close else ""
-            raise Invalid(f"metrics: unknown metric '{m}'{hint}; valid: " + ", ".join(valid))
+            # the study's number columns run to hundreds (6 200 characters): the first few
+            shown = ", ".join(valid[:SHOWN_METRICS]) + (
+                f", and {len(valid) - SHOWN_METRICS} more (the study's number columns)"
+                if len(valid) > SHOWN_METRICS else "")
+            raise Invalid(f"metrics: unknown metric '{m}'{hint}; valid: {shown}")
     baseline, candidate = model_pair(baseline, candidate)
     if models is None:
         models = sorted(set(runs["friction_model"].dropna())) if len(runs) else []

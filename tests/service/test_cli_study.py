@@ -48,6 +48,14 @@ def test_status_results_compare_read_the_local_store_without_a_service(
     )
     out = capsys.readouterr().out
     assert "cema / din" in out and "power_kw: ratio mean" in out and "by temperature_c" in out
+    # a wrong metric or model is said with the option, and hundreds of valid columns are
+    # not listed whole (6 200 characters: 'metrics: unknown metric ...; valid: ...')
+    assert main(["compare", sid, "--metrics", "foo"]) != 0
+    err = capsys.readouterr().err
+    assert "--metrics: unknown metric 'foo'; valid: " in err and "more (the study's number" in err
+    assert len(err) < 1500, len(err)
+    assert main(["compare", sid, "--baseline", "dinx", "--candidate", "cema"]) != 0
+    assert "--baseline: unknown model 'dinx'" in capsys.readouterr().err
 
 
 def test_an_offline_status_says_a_running_study_is_not_running_now(
