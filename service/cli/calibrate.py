@@ -87,6 +87,16 @@ def read_measured(path: str, lines: list[int] | None = None) -> list[dict]:
             "comma-separated with a decimal point (e.g. 'load,temperature_c,power_kw' then "
             "'0.5,12,417.5'): export it as CSV with ',' between columns")
     valid = list(MeasuredRow.model_fields)
+    if not any(name in valid or difflib.get_close_matches(name, valid, n=1, cutoff=0.5)
+               for name in header):
+        # no column of a measured-data file at all: not that file (a conveyor's YAML given
+        # to --measured was refused column by column, from its comment line)
+        what = (" (it looks like a YAML or JSON file)"
+                if Path(str(path)).suffix.lower() in (".yaml", ".yml", ".json") else "")
+        raise InputError(
+            f"{path}: line 1 names none of the measured-data columns ({', '.join(valid)}): "
+            f"--measured takes a CSV file{what} whose first line names them, e.g. "
+            "'load,temperature_c,power_kw', and one row per measured steady state below it")
     problems = []
     for i, name in enumerate(header):
         if name in header[:i]:

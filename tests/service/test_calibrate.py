@@ -170,6 +170,12 @@ def test_csv_from_excel_or_notepad_reads_as_utf8(tmp_path, encoding):
      "line 1: column 'power_kw' given twice (columns 3 and 4); give each column once"),
     (b"load,temp_c,power_kw\n0.5,12,417\n",
      "line 1: unknown column 'temp_c'; did you mean 'temperature_c'?"),
+    # a file that is no measured data at all (a conveyor's YAML given to --measured) was
+    # refused column by column from its comment line; a header of near misses keeps its hints
+    (b"# A 5 % slope conveyor, modelled on Harrison (2008), Fig. 2\nname: slope-5pct\n",
+     "line 1 names none of the measured-data columns (load, temperature_c, power_kw, te_kn, "
+     "t_tight_kn, speed_m_s): --measured takes a CSV file whose first line names them"),
+    (b"Load,Temperature,Power\n0.5,12,417\n", "unknown column 'Load'; did you mean 'load'?"),
     (b"load,temperature_c,power_kw\n0.5,12,417,5\n",
      "line 2: 4 cells, but the header names 3 columns"),
     ("load,temperature_c,power_kw\n# Förderband\n".encode("latin-1"),
