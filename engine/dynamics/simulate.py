@@ -1356,7 +1356,9 @@ def _speed_at(out, r: dict, t_s: float) -> float | None:
 def _short_of_speed_words(sys: System, v_cmd: float, t_stop_cmd: float) -> str:
     """The warning of a start that never reached 99 % of design speed: the mean speed the belt
     ran at when the stop was commanded and, for dol drives behind fluid couplings, that their
-    running slip holds the pulleys below the motors' speed, and what would meet design speed."""
+    running slip holds the pulleys below the motors' speed, and what would meet design speed;
+    for vfd drives the force limit against Te (a limit not above Te never gets there; else the
+    rigid body's time still needed at the limit, and the run_s that gives it)."""
     v_d = sys.v_design
     if abs(v_cmd) < 1e-9 * v_d:  # round-off about rest: said as 0, not as -8.6e-20, -0.0 %
         v_cmd = 0.0
@@ -1365,6 +1367,23 @@ def _short_of_speed_words(sys: System, v_cmd: float, t_stop_cmd: float) -> str:
              f"command at t = {t_stop_cmd:.1f} s)")
     dr = sys.model.drives
     fluid = (dr.control == C.DOL) & (dr.coupling != COUPLING_CODES["none"])
+    te = float(getattr(sys, "te_n", 0.0) or 0.0)
+    lim = float(np.sum(dr.lim0)) if hasattr(dr, "lim0") else math.nan
+    if (dr.control == C.VFD).all() and te > 0.0 and math.isfinite(lim) and lim <= te:
+        # the drives cannot hold design speed at all (the steady check names the torque limit)
+        words += (f"; the drives' force limit, {lim / 1e3:.4g} kN in all (torque_limit x the "
+                  f"rated force), is not above the running resistance Te {te / 1e3:.4g} kN, so "
+                  "no start reaches design speed: a higher torque_limit or larger motors "
+                  "(drives[].rated_power_kw) would")
+    elif (dr.control == C.VFD).all() and te > 0.0 and math.isfinite(lim) and v_cmd < v_d:
+        # still accelerating at the stop command: the time it still needed at the drives'
+        # force limit, rigid body (the waves add to it)
+        more = sys.model.control.m_tot * (v_d - v_cmd) / (lim - te)
+        words += (f"; at the drives' force limit ({lim / 1e3:.4g} kN in all against Te "
+                  f"{te / 1e3:.4g} kN) a rigid body needs about {more:.3g} s more to reach it: "
+                  f"a run_s of at least {_up_s(sys.model.cycle.t_run + more)} s, a longer "
+                  "start.time_s that the drives can follow, or more drive force (a higher "
+                  "torque_limit or larger motors) would let it get there (rerun to check)")
     if fluid.any() and v_cmd >= RUNNING_FRACTION * v_d:
         words += ("; the dol drives' fluid couplings run at their slip under load (1.5-4 % at "
                   "rated torque), so the pulleys turn that much slower than the motors: a "
