@@ -40,6 +40,7 @@ from functools import cache
 import numpy as np
 
 from beltstudy.engine.catalog import _rows
+from beltstudy.engine.drives import apart
 from beltstudy.engine.loop import G, Loop, Pulley
 
 __all__ = [
@@ -48,6 +49,7 @@ __all__ = [
     "holding_warning",
     "HOLD_MARGIN",
     "C_TR",
+    "BAND_RTOL",
     "GROUP_A_TENSION_SHARE",
     "SNUB_WRAP_DEG",
     "MIDDLE_ROLL_SHARE",
@@ -103,6 +105,11 @@ HOLDBACK_FRICTION_SHARE = 0.5
 HOLD_MARGIN = 1.2
 #: Utilisation bands of the DIN pulley table (upper bounds, columns of pulleys.csv).
 _DIN_BANDS = ((0.3, "30"), (0.6, "60"), (math.inf, "100"))
+#: Relative tolerance of a band edge (DIN's 30 % and 60 %, CEMA's 60 % and 90 %): a
+#: utilisation at an edge up to float noise is at it. A tension of exactly 90 % of an ST1000
+#: belt's rated tension (1 m, 1000 kN / 6.7) reads 0.9000000000000001 as T x S_min / rating,
+#: which put its transition in CEMA's "over 90 %" row (6.8 B at 35 deg against 5.2 B).
+BAND_RTOL = 1e-9
 
 
 @cache
@@ -199,7 +206,7 @@ def pulley_diameter_min_m(kind: str, carcass_m: float, group: str, utilisation: 
     DIN 22101:2011, minimum pulley diameters; table in engine/data/pulleys.csv [DIN-TAB].
     """
     d_a_mm = C_TR[kind] * carcass_m * 1e3
-    band = next(b for top, b in _DIN_BANDS if utilisation <= top)
+    band = next(b for top, b in _DIN_BANDS if utilisation <= top * (1.0 + BAND_RTOL))
     col = f"{group.lower()}_{band}"
     table = _pulley_table()
     sizes = [r["d_a_mm"] for r in table]
@@ -238,7 +245,8 @@ def transition_length_m(kind: str, trough_deg: float, width_m: float, utilisatio
     ----------
     CEMA, Belt Conveyors for Bulk Materials, 7th ed., Table 7.29 (engine/data/transitions.csv).
     """
-    band = "high" if utilisation > 0.9 else ("mid" if utilisation >= 0.6 else "low")
+    band = ("high" if utilisation > 0.9 * (1.0 + BAND_RTOL) else
+            ("mid" if utilisation >= 0.6 * (1.0 - BAND_RTOL) else "low"))
     pts = [(0.0, 0.0)] + _transitions()[(kind, band)]
     ang = [a for a, _ in pts]
     fac = [f for _, f in pts]
@@ -404,6 +412,16 @@ class PulleyCheck:
     resultant_n: float
 
 
+def _band_pct(utilisation: float) -> str:
+    """A utilisation [-] as the percent a pulley warning prints [%]: whole percent, with more
+    decimals where a value just over a DIN band edge (30 %, 60 %) would print as the edge
+    (60.04 % as '60 %', whose band is the one below, the minimum a step smaller)."""
+    pct = 100.0 * utilisation
+    edge = max((100.0 * top for top, _ in _DIN_BANDS
+                if 100.0 * top * (1.0 + BAND_RTOL) < pct), default=0.0)
+    return apart(pct, edge, 0, rtol=0.0)[0]
+
+
 def _pulleys(conv, loop: Loop, T: np.ndarray, sf_min: float) -> list[PulleyCheck]:
     belt = loop.belt
     admissible = belt.rating_n / sf_min
@@ -495,7 +513,7 @@ def steady_checks(conv, loop: Loop, T: np.ndarray, sf_min: float, friction_n: fl
             warnings.append(
                 f"pulley {pc.j} ({pc.name}) diameter {pc.diameter_m:g} m is below the DIN "
                 f"22101 minimum {pc.diameter_min_m:g} m for {belt.id} at "
-                f"{pc.utilisation * 100:.0f} % of the admissible tension: a pulley of at least "
+                f"{_band_pct(pc.utilisation)} % of the admissible tension: a pulley of at least "
                 f"{pc.diameter_min_m:g} m")
     ic = conv.idlers.carry
     sf = sf_min

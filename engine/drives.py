@@ -51,7 +51,7 @@ if TYPE_CHECKING:  # the conveyor model, for the annotations only
     from beltstudy.engine.conveyor import Conveyor
 
 __all__ = ["OVERLOAD_S_MAX", "RATED_POWER_FACTOR", "GIVEN", "rated_power_kw", "power_required_kw",
-           "kw_at_least", "steady_checks", "transient_checks", "WATTS_RATIO", "watts_notes"]
+           "kw_at_least", "apart", "steady_checks", "transient_checks", "WATTS_RATIO", "watts_notes"]
 
 #: Longest time a drive may run above its rated force in a cycle without a warning [s]: the
 #: 15 s for which IEC 60034-1 (clause 9.4, *unverified*) has an induction motor withstand
@@ -158,6 +158,22 @@ def figures(value: float, thousands: bool = False) -> str:
     if abs(value) >= 10 or not math.isfinite(value):
         return f"{value:,.0f}" if thousands else f"{value:.0f}"
     return f"{value:.2g}"
+
+
+def apart(value: float, limit: float, decimals: int = 2, rtol: float = 1e-9
+          ) -> tuple[str, str]:
+    """A value and the limit it is judged against, printed [any unit] so that the printed
+    pair compares as the numbers do: at ``decimals`` decimals, more (up to 6) where rounding
+    would print them equal though one is below the other by more than ``rtol`` (a safety
+    factor 6.5487 against a minimum 6.549 read '6.55 < 6.55'; a utilisation 60.04 % over
+    the band edge 60 % read '60 %' while its band is the one above). Within ``rtol`` they are
+    equal, as the checks' own tolerances take them."""
+    equal = abs(value - limit) <= rtol * max(abs(limit), abs(value))
+    for d in range(decimals, 7):
+        a, b = f"{value:.{d}f}", f"{limit:.{d}f}"
+        if equal or (float(a) - float(b)) * (value - limit) > 0.0:
+            return a, b
+    return a, b
 
 
 def steady_checks(conv, forces_n, speed_m_s: float, te_n: float, rated_kw

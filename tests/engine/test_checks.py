@@ -328,3 +328,44 @@ def test_transient_resultant_bounds_the_sampled_head_resultant():
     assert s["pulley2_resultant_dyn_kn"] >= s["pulley2_resultant_kn"] * (1 - 1e-6)
     steady_only = run_one(conv, Scenario(**WARM_UP_SCENARIO), model="din", dynamics=False)
     assert "pulley1_resultant_dyn_kn" not in steady_only.summary
+
+
+def test_band_edges_up_to_float_noise_are_at_the_edge():
+    """A tension of exactly 90 % of an ST1000 belt's rated tension (1.0 m: 1000 kN / 6.7 =
+    149.25 kN, 90 % = 134.33 kN) is in CEMA Table 7.29's "60 % to 90 %" row: 5.2 B = 5.2 m at
+    35 deg steel cord. Formed as the run forms it, T x S_min / rating, it reads
+    0.9000000000000001, and the transition was the "over 90 %" row's 6.8 m. Likewise a
+    utilisation of 60 % up to float noise is DIN 22101's "over 30 % to 60 %" band: ST1600
+    (5.85 mm cord, D_A = 145 x 5.85 = 848 -> 1000 mm), group A one step down, 0.8 m."""
+    rating_n, sf = 1000e3, 6.7
+    t = 0.9 * (rating_n / sf)  # 90 % of the rated tension
+    u = t * sf / rating_n  # as checks.steady_checks forms it
+    assert u > 0.9  # the float noise the band must not read
+    assert C.transition_length_m("steel", 35.0, 1.0, u) == pytest.approx(5.2, abs=1e-12)
+    assert C.transition_length_m("steel", 35.0, 1.0, 0.9 + 1e-6) == pytest.approx(6.8,
+                                                                                  abs=1e-12)
+    assert C.transition_length_m("steel", 35.0, 1.0, 0.6 * (1 - 1e-12)) == pytest.approx(
+        5.2, abs=1e-12)
+    assert C.pulley_diameter_min_m("steel", 5.85e-3, "A", 0.6 * (1 + 1e-12)) == pytest.approx(
+        0.8, abs=1e-12)
+    assert C.pulley_diameter_min_m("steel", 5.85e-3, "A", 0.6 + 1e-6) == pytest.approx(
+        1.0, abs=1e-12)
+
+
+def test_a_pulley_just_over_a_band_edge_is_not_said_at_the_edge(tmp_path):
+    """slope-5pct (ST2000, 1.2 m, 2400 kN) with its head drive pulley 0.63 m and
+    ``safety_factor_min`` set so that the drive's tension T1 is 60.04 % of the admissible
+    tension (S = 0.6004 x 2400 / T1 kN): DIN 22101's "over 60 %" band, D_A 1000 mm, group A
+    1.0 m, so the 0.63 m pulley is too small. The warning said "at 60 % of the admissible
+    tension: a pulley of at least 1 m", where the table's 60 % row asks 0.8 m; it says
+    60.04 %."""
+    d = yaml.safe_load((CONVEYORS / "slope-5pct.yaml").read_text())
+    d["drives"][0]["pulley_diameter_m"] = 0.63
+    t1 = solve_steady(Conveyor.model_validate(d), model="din").summary["t1_kn"]
+    d["safety_factor_min"] = 0.6004 * 2400.0 / t1
+    st = solve_steady(Conveyor.model_validate(d), model="din")
+    assert st.summary["t1_kn"] == pytest.approx(t1, rel=1e-12)  # S_min sizes nothing here
+    assert st.summary["pulley1_diameter_min_m"] == pytest.approx(1.0)
+    assert st.summary["pulley1_diameter_min_ok"] is False
+    assert "for ST2000 at 60.04 % of the admissible tension: a pulley of at least 1 m" in (
+        st.message)
