@@ -39,6 +39,7 @@ from typing import Any
 
 from beltstudy.engine import catalog
 from beltstudy.engine.conveyor import Conveyor, section_loads
+from beltstudy.engine.drives import apart
 from beltstudy.engine.statics import (
     SAFETY_FACTOR_MIN,
     TRANSIENT_SAFETY_RATIO,
@@ -92,8 +93,13 @@ class Candidate:
             return f"the steady solve failed ({self.failed})"
 
         def one(sf: float, low: float, what: str, case: str) -> str:
-            sign = ">=" if sf >= low * (1 - RTOL) else "<"
-            return f"{sf:.2f} {what} {sign} {low:.2f} (margin {100 * (sf / low - 1):+.0f} %, {case})"
+            passes = sf >= low * (1 - RTOL)
+            # printed so the pair reads as judged (6.5487 against 6.549 was '6.55 < 6.55')
+            a, b = apart(sf, low, rtol=RTOL)
+            margin = 100 * (sf / low - 1)
+            # a pass within RTOL reads +0 %, a fail below 0 at the decimals that show it
+            m = f"{max(margin, 0.0):+.0f}" if passes else apart(margin, 0.0, 0, rtol=0.0)[0]
+            return f"{a} {what} {'>=' if passes else '<'} {b} (margin {m} %, {case})"
 
         return (one(self.safety_factor, sf_min, "running", self.case) + ", "
                 + one(self.safety_factor_start, sf_start_min, "at start-up", self.case_start))

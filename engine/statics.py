@@ -61,7 +61,7 @@ from beltstudy.engine.conveyor import (
 )
 from beltstudy.engine.curves import junction_checks
 from beltstudy.engine.curves import steady_checks as curve_checks
-from beltstudy.engine.drives import figures, rated_power_kw, watts_notes
+from beltstudy.engine.drives import apart, figures, rated_power_kw, watts_notes
 from beltstudy.engine.drives import steady_checks as drive_checks
 from beltstudy.engine.friction import get_model, temperature_note
 from beltstudy.engine.hcurves import hcurve_checks
@@ -790,7 +790,7 @@ def _summarise(res: SteadyResult, drives, hs_adm, bounds, shortfall_n: float,
                                            float(min(T[j], Tprev[j]))))
     sf_min = conv.safety_factor_min or SAFETY_FACTOR_MIN.get(belt.kind, 6.7)
     sf = res.summary["safety_factor"]
-    if sf < sf_min:
+    if sf < sf_min * (1.0 - 1e-9):  # equal to its minimum passes, as belt.type: auto's test
         tu_auto = (conv.takeup.type == "gravity" and conv.takeup.mass_kg == "auto") or (
             conv.takeup.type == "fixed" and conv.takeup.pretension_kn == "auto")
         warnings.append(_safety_words(loop, belt, sf, sf_min, float(T[imax]),
@@ -951,7 +951,8 @@ def _safety_words(loop: Loop, belt, sf: float, sf_min: float, t_max: float, s_m:
     # below 1 the running tension is past the belt's breaking strength: said as what it is
     broken = ("; below 1, the largest running tension is above the belt's breaking strength: "
               "the belt would break" if sf < 1.0 else "")
-    return (f"belt safety factor {sf:.2f} is below the minimum {sf_min:.2f} (t_max "
+    sf_text, min_text = apart(sf, sf_min)  # never '6.55 is below the minimum 6.55'
+    return (f"belt safety factor {sf_text} is below the minimum {min_text} (t_max "
             f"{t_max / 1e3:.1f} kN {place_words(loop, s_m)}; belt rating "
             f"{figures(belt.rating_n / 1e3)} kN, {figures(belt.rating_kn_m)} kN/m x "
             f"{belt.width_m:g} m){broken}: a "

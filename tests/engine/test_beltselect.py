@@ -227,3 +227,38 @@ def test_auto_is_not_a_belt():
 
 def test_catalogue_kinds_are_the_file_kinds():
     assert {r.kind for r in catalog.belts().values()} == set(catalog.KIND_OF_FILE.values())
+
+
+def test_a_factor_just_below_its_minimum_is_not_printed_equal_to_it():
+    """A candidate at 6.5487 against a minimum 6.549 (a file's ``safety_factor_min``) fails;
+    at two decimals the note read "6.55 running < 6.55 (margin -0 %)". The pair is printed
+    at the decimals that show it: 6.5487 < 6.5490, margin 100 (6.5487 / 6.549 - 1) =
+    -0.005 %. A factor within the pass tolerance of its minimum reads equal and +0 %."""
+    from beltstudy.engine.beltselect import Candidate
+    c = Candidate("ST1600", 32.88, 1920.0, 293.2, 376.8, 6.5487, 5.10, "din", "din", False)
+    words = c.factors(6.549, 2.0 / 3.0 * 6.549)
+    assert words.startswith("6.5487 running < 6.5490 (margin -0.005 %")
+    assert "5.10 at start-up >= 4.37 (margin +17 %" in words
+    at = Candidate("ST1600", 32.88, 1920.0, 293.2, 376.8, 6.7 * (1 - 1e-12), 5.10, "din",
+                   "din", True)
+    assert at.factors(6.7, 4.4667).startswith("6.70 running >= 6.70 (margin +0 %")
+
+
+def test_the_steady_safety_warning_prints_its_factor_below_its_minimum():
+    """slope-5pct (ST2000, 1.2 m) runs at S = 2400 kN / T_max = 6.776. With
+    ``safety_factor_min`` 1.00005 x that (6.7763) the steady warning read "belt safety factor
+    6.78 is below the minimum 6.78"; the two now print apart. At the minimum up to float
+    noise (S_min = S (1 + 1e-12)) the belt passes, as belt.type: auto's own test takes it,
+    and the run has no safety warning."""
+    import re
+
+    d = load_mapping(CONVEYORS / "slope-5pct.yaml")
+    sf = solve_steady(parse_conveyor(d), model="din").summary["safety_factor"]
+    assert sf == pytest.approx(6.776, abs=1e-3)
+    d["safety_factor_min"] = sf * 1.00005
+    msg = solve_steady(parse_conveyor(d), model="din").message
+    m = re.search(r"belt safety factor ([0-9.]+) is below the minimum ([0-9.]+)", msg)
+    assert m is not None, msg
+    assert float(m.group(1)) < float(m.group(2))
+    d["safety_factor_min"] = sf * (1 + 1e-12)
+    assert "belt safety factor" not in solve_steady(parse_conveyor(d), model="din").message
