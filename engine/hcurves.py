@@ -160,6 +160,10 @@ def hcurve_checks(conv, loop, T: np.ndarray) -> tuple[dict, list[str]]:
     width = belt.width_m
     if ic.rolls <= 1:
         middle = width
+    elif ic.rolls == 2:
+        # a V set has no middle roll (b_M = 0): roll_length_m is the middle roll's length
+        # (the capacity and convex checks read it only for three rolls or more)
+        middle = 0.0
     else:
         roll = ic.roll_length_m or middle_roll_length_m(width, ic.rolls)
         middle = min(roll, width)

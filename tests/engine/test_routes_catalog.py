@@ -367,3 +367,26 @@ def test_a_belt_mass_below_its_covers_is_named_with_the_files_path():
     assert str(ei.value).startswith("conveyor.belt.mass_kg_m: 0.5 kg/m is no more than the "
                                     "covers alone weigh")
     assert "= 8.0 kg/m" in str(ei.value)
+
+
+def test_a_v_set_has_no_middle_roll_whatever_roll_length_m_says():
+    """Two rolls (a V set, trough 20 deg), R 1500 m, superelevation 5 deg, loaded belt
+    70 kg/m on the 5 % grade: no middle roll, b_M = 0, each wing carries b_W = B / 2 = 0.5 m
+    and the belt cannot drift (d = 0), so T_min = T_max = R q(0):
+      k = 0.5 sin 25 cos 20 - 0.5 sin 15 cos 20 = 0.07696
+      T = 1500 x 70 x 9.81 x 0.99875 x 0.07696 = 79.17 kN.
+    ``roll_length_m`` (the middle roll's length) does not change it: with 0.6 m it was read as
+    a 0.6 m middle roll, leaving -0.1 m of belt on the outer wing and a band of 0 to 283 kN."""
+    cos_a = math.sqrt(1 - 0.05 ** 2)
+    k = _hand_k(0.5, 0.0, 0.5, 20, 5, 1.0)
+    assert k == pytest.approx(0.07696, abs=1e-5)
+    hand = 1500 * 70 * G * cos_a * k / 1e3
+    assert hand == pytest.approx(79.17, abs=0.01)
+    for roll in (None, 0.6):
+        d = hand_conveyor_dict(
+            profile=[{"length_m": 1000, "lift_m": 50, "horizontal_radius_m": 1500,
+                      "superelevation_deg": 5}],
+            idlers=_idlers({"rolls": 2, "trough_deg": 20, "roll_length_m": roll}))
+        s = solve_steady(parse_conveyor(d), model="din", params=DIN).summary
+        assert s["hcurve1_tension_min_kn"] == pytest.approx(hand, rel=1e-9)
+        assert s["hcurve1_tension_max_kn"] == pytest.approx(hand, rel=1e-9)
