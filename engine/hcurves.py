@@ -32,6 +32,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from beltstudy.engine.capacity import middle_roll_length_m
+from beltstudy.engine.conveyor import HCURVE_TURN_MAX_DEG
 from beltstudy.engine.loop import CARRY, G
 
 __all__ = ["restoring_force_n_m", "drift_limit_m", "tension_limits_n", "HCurve",
@@ -203,25 +204,56 @@ def hcurve_checks(conv, loop, T: np.ndarray) -> tuple[dict, list[str]]:
         where = (f"horizontal curve {k} (profile section {c.section + 1}, {c.start_m:g} to "
                  f"{c.end_m:g} m from the tail, R {c.radius_m:g} m, superelevation "
                  f"{c.superelevation_deg:g} deg)")
-        # both limits are R q(+-d): proportional to the radius at this tension and tilt
+        # both limits are R q(+-d): proportional to the radius at this tension and tilt, so
+        # the radii that hold the belt run from r_in (below it the belt runs to the inside)
+        # to r_out (above it, out of the curve); the file takes no radius under r_turn (a
+        # section of more than a full turn). A radius is named only where that range is open.
+        r_in = (c.radius_m * float(np.max(t_run / hi)) if (hi > 0.0).all() else math.inf)
+        held = lo > 0.0
+        r_out = (c.radius_m * float(np.min(t_run[held] / lo[held])) if held.any()
+                 else math.inf)
+        r_turn = sec.length_m / math.radians(HCURVE_TURN_MAX_DEG)
+        r_lo = max(r_in, math.ceil(r_turn)) if math.isinf(r_in) else max(
+            math.ceil(r_in), math.ceil(r_turn))
+        r_hi = math.floor(r_out) if math.isfinite(r_out) else math.inf
+        none_holds = (
+            "no radius holds it at this superelevation: the weight on these sets gives no "
+            "restoring force against the tension" if math.isinf(r_in) else
+            f"no radius holds it at this superelevation and these tensions (at least "
+            f"{math.ceil(r_in):.0f} m against running in, at most {r_hi:.0f} m against "
+            "running out: the tension changes along the curve by more than the band R q(-d) "
+            "to R q(+d) allows)")
+        holds = math.isfinite(r_lo) and r_lo <= r_hi
         if inside:
-            r_min = c.radius_m * float(np.max(t_run / np.maximum(hi, 1e-9)))
+            radius = (f"a radius of at least {r_lo:.0f} m (at this superelevation and these "
+                      "tensions" + (f"; above {r_hi:.0f} m the belt runs out of the curve)"
+                                    if math.isfinite(r_out) else ")")
+                      if holds else none_holds)
             warnings.append(
                 f"{where}: the belt runs to the inside of the curve: tension "
                 f"{t_run[j_in] / 1e3:.1f} kN at {x_at[j_in]:.0f} m from the tail, above the "
                 f"{hi[j_in] / 1e3:.1f} kN the weight of the {_load_case(m_el[j_in], m_full)} "
-                f"belt holds there; a radius of at least {math.ceil(r_min):.0f} m (at this "
-                "superelevation and these tensions), more superelevation, a deeper trough or "
+                f"belt holds there; {radius}, more superelevation, a deeper trough or "
                 "less tension there (a take-up with less tension, the curve nearer the slack "
                 "side)")
         if outside:
-            held = lo > 0.0
-            r_max = c.radius_m * float(np.min(t_run[held] / lo[held]))
+            if holds:
+                radius = (f"a tighter radius (at most {r_hi:.0f} m at this superelevation "
+                          "and these tensions: the tension's pull to the inside, T / R, grows "
+                          "as the radius shrinks" + (
+                              f"; below {r_lo:.0f} m the belt runs to the inside)"
+                              if math.isfinite(r_in) and r_lo == math.ceil(r_in) else
+                              f"; not below {r_lo:.0f} m, a full turn of the section)"))
+            elif math.isfinite(r_in) and math.ceil(r_in) <= r_hi:
+                radius = (f"a tighter radius is no help: the {r_hi:.0f} m that holds it would "
+                          f"turn the section's {sec.length_m:g} m more than a full turn "
+                          f"(at least {r_turn:.1f} m)")
+            else:
+                radius = none_holds
+            sep = ", or " if holds else "; "
             warnings.append(
                 f"{where}: the {_load_case(m_el[j_out], m_full)} belt runs out of the curve: "
                 f"tension {t_run[j_out] / 1e3:.1f} kN at {x_at[j_out]:.0f} m from the tail, "
                 f"below the {lo[j_out] / 1e3:.1f} kN it needs there; less superelevation, "
-                f"more take-up tension, or a tighter radius (at most {math.floor(r_max):.0f} m "
-                "at this superelevation and these tensions: the tension's pull to the inside, "
-                "T / R, grows as the radius shrinks)")
+                f"more take-up tension{sep}{radius}")
     return out, warnings

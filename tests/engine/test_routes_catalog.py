@@ -390,3 +390,68 @@ def test_a_v_set_has_no_middle_roll_whatever_roll_length_m_says():
         s = solve_steady(parse_conveyor(d), model="din", params=DIN).summary
         assert s["hcurve1_tension_min_kn"] == pytest.approx(hand, rel=1e-9)
         assert s["hcurve1_tension_max_kn"] == pytest.approx(hand, rel=1e-9)
+
+
+def _level_curve(radius: float, tilt: float) -> object:
+    """A level 2 000 m carry that is all one horizontal curve, a 4 000 kg take-up at the tail:
+    the carry starts at 19.62 + 0.5 / 2 = 19.87 kN (the take-up's m g / 2, tail_kn across the
+    tail pulley) and, with DIN f 0.02, C 1, rises by 0.02 x 9.81 x (20 + 50 + 10) x 2000 =
+    31.392 kN to 51.262 kN at the head."""
+    return parse_conveyor(hand_conveyor_dict(
+        profile=[{"length_m": 2000, "lift_m": 0, "horizontal_radius_m": radius,
+                  "superelevation_deg": tilt}],
+        idlers=_idlers({"roll_length_m": ROLL}),
+        takeup={"type": "gravity", "position": "tail", "mass_kg": 4000}))
+
+
+def _band_per_m(tilt: float) -> tuple[float, float]:
+    """q(-d) and q(+d) of the loaded level belt, 70 kg/m, by hand [kN/m of radius]."""
+    return (70 * G * _hand_k(0.24, ROLL, 0.38, 35, tilt, 1.0) / 1e3,
+            70 * G * _hand_k(0.38, ROLL, 0.24, 35, tilt, 1.0) / 1e3)
+
+
+def test_a_tighter_radius_is_named_only_where_it_holds_the_belt_both_ways():
+    """Tilt 10 deg: q(-d) 50.44 and q(+d) 139.41 N/m. The belt runs out of the curve at
+    19.87 kN (T_min at R 2000 m is 100.9 kN): a tighter radius holds it up to 19.87 / 0.05044
+    = 393.9 m, but below 51.262 / 0.13941 = 367.7 m the head end runs to the inside. The
+    warning names both (at most 393 m, below 368 m) and a rerun at either keeps the belt."""
+    q_out, q_in = _band_per_m(10)
+    assert (q_out, q_in) == (pytest.approx(0.05044, abs=1e-5), pytest.approx(0.13941, abs=1e-5))
+    res = solve_steady(_level_curve(2000, 10), model="din", params=DIN)
+    s = res.summary
+    assert (s["hcurve1_t_low_kn"], s["hcurve1_t_high_kn"]) == (
+        pytest.approx(19.87, abs=1e-9), pytest.approx(51.262, abs=1e-9))
+    (out,) = [w for w in res.warnings if "runs out of the curve" in w]
+    assert math.floor(19.87 / q_out) == 393 and math.ceil(51.262 / q_in) == 368
+    assert "a tighter radius (at most 393 m" in out
+    assert "below 368 m the belt runs to the inside" in out
+    for radius in (393, 368):
+        again = solve_steady(_level_curve(radius, 10), model="din", params=DIN).summary
+        assert again["hcurve1_ok"] is True
+    for radius in (394, 367):
+        assert solve_steady(_level_curve(radius, 10), model="din", params=DIN
+                            ).summary["hcurve1_ok"] is False
+
+
+def test_no_radius_is_named_where_none_holds_the_belt():
+    """Tilt 16 deg: q(-d) 107.25, q(+d) 194.09 N/m, a band of 1.81 : 1 against the curve's
+    tensions 19.87 to 51.262 kN (2.58 : 1). Against running out the radius must be at most
+    19.87 / 0.10725 = 185.3 m, against running in at least 51.262 / 0.19409 = 264.1 m: no
+    radius holds both, and the warning says so instead of naming 185 m (which ran the head
+    end to the inside, and which the file refuses besides: 2000 m at 185 m turns 619 deg).
+    With f 0.01 (19.87 to 35.566 kN) 185 m would hold it both ways (35.566 / 0.19409 =
+    183.2 m) but is more than a full turn (at least 2000 / 2 pi = 318.3 m): said so."""
+    q_out, q_in = _band_per_m(16)
+    assert (q_out, q_in) == (pytest.approx(0.10725, abs=1e-5), pytest.approx(0.19409, abs=1e-5))
+    res = solve_steady(_level_curve(2000, 16), model="din", params=DIN)
+    (out,) = [w for w in res.warnings if "runs out of the curve" in w]
+    assert math.ceil(51.262 / q_in) == 265 and math.floor(19.87 / q_out) == 185
+    assert "a tighter radius" not in out
+    assert ("no radius holds it at this superelevation and these tensions (at least 265 m "
+            "against running in, at most 185 m against running out" in out)
+    soft = solve_steady(_level_curve(2000, 16), model="din", params={**DIN, "f_carry": 0.01})
+    assert soft.summary["hcurve1_t_high_kn"] == pytest.approx(35.566, abs=1e-9)
+    assert 35.566 / q_in < 185 < 2000 / (2 * math.pi)
+    (out,) = [w for w in soft.warnings if "runs out of the curve" in w]
+    assert ("a tighter radius is no help: the 185 m that holds it would turn the section's "
+            "2000 m more than a full turn (at least 318.3 m)") in out
