@@ -22,6 +22,7 @@ from beltstudy.engine import (
     summary_fields,
     with_belt,
 )
+from beltstudy.engine.drives import apart
 from beltstudy.service.charts import steady_profile_figure
 from beltstudy.service.cli.common import (
     ELEMENTS_HELP,
@@ -143,10 +144,26 @@ def _selection(choice) -> dict:
             "note": choice.note() or choice.warning(), "candidates": choice.table()}
 
 
+def _sf_decimals(choice) -> int:
+    """The decimals that print every candidate's safety factors apart from their minima as the
+    numbers compare (:func:`beltstudy.engine.drives.apart`): a candidate at 6.5487 against a
+    minimum of 6.549 read '6.55 fail' under 'minimum safety factor 6.55'."""
+    d = 2
+    for r in choice.table():
+        if r["failed"]:
+            continue
+        for v, lim in ((r["safety_factor"], choice.safety_factor_min),
+                       (r["safety_factor_start"], choice.safety_factor_start_min)):
+            if v is not None and lim is not None:
+                d = max(d, len(apart(float(v), float(lim))[0].partition(".")[2]))
+    return d
+
+
 def _selection_table(choice) -> str:
+    d = _sf_decimals(choice)
     lines = [f"belt selection: {choice.kind} belts of the catalogue, lightest first; minimum "
-             f"safety factor {choice.safety_factor_min:.2f} running, "
-             f"{choice.safety_factor_start_min:.2f} at start-up (start-up force "
+             f"safety factor {choice.safety_factor_min:.{d}f} running, "
+             f"{choice.safety_factor_start_min:.{d}f} at start-up (start-up force "
              f"{STARTUP_FACTOR:g} x Te)", "",
              "  belt        mass [kg/m]  rating [kN]  T_max [kN]  T_max start [kN]  "
              "SF running  SF start-up",
@@ -161,7 +178,7 @@ def _selection_table(choice) -> str:
             continue
         lines.append(f"  {r['belt']:<10} {r['mass_kg_m']:>12.2f} {r['rating_kn']:>12.0f} "
                      f"{r['t_max_kn']:>11.1f} {r['t_max_start_kn']:>17.1f} "
-                     f"{r['safety_factor']:>11.2f} {r['safety_factor_start']:>12.2f}  {mark}")
+                     f"{r['safety_factor']:>11.{d}f} {r['safety_factor_start']:>12.{d}f}  {mark}")
     lines += ["", "  " + (choice.note() or choice.warning()), ""]
     return "\n".join(lines)
 

@@ -74,6 +74,25 @@ def test_suggest_belt_table_for_a_given_belt(capsys):
     assert "SF running" in text and text.count(" fail") >= 1
 
 
+def test_suggest_belt_table_prints_a_factor_just_below_its_minimum_apart(tmp_path, capsys):
+    """The --suggest-belt table printed safety factors at two decimals: a candidate just below
+    its minimum read '6.78 ... fail' under 'minimum safety factor 6.78'. The table now prints
+    them at the decimals that part them, the header's minima too."""
+    import re
+
+    d = load_mapping(CONVEYORS / "slope-5pct.yaml")
+    sf = solve_steady(parse_conveyor(d), model="din").summary["safety_factor"]
+    d["safety_factor_min"] = sf * 1.00005  # ST2000 misses by 0.005 %
+    path = tmp_path / "tight.yaml"
+    path.write_text(yaml.safe_dump(d))
+    main(["static", str(path), "--model", "din", "--suggest-belt"])
+    text = capsys.readouterr().out
+    head = re.search(r"minimum safety factor ([0-9.]+) running", text)
+    row = re.search(r"\n  ST2000 .* ([0-9.]+) +([0-9.]+)  fail", text)
+    assert head and row, text
+    assert float(row.group(1)) < float(head.group(1)), (row.group(1), head.group(1))
+
+
 def test_static_auto_without_suggest_reports_belt_type_used(auto_file, capsys):
     assert main(["static", str(auto_file), "--model", "nonlin", "--json"]) == 0
     out = json.loads(capsys.readouterr().out)
