@@ -54,6 +54,7 @@ from beltstudy.engine.errors import InputError
 
 __all__ = [
     "check_fill",
+    "incline_warning",
     "usable_width_m",
     "middle_roll_length_m",
     "trough_segments",
@@ -242,3 +243,49 @@ def check_fill(conv: Conveyor, prefix: str = "") -> None:
 
 
 register_check(check_fill)
+
+
+def incline_warning(conv: Conveyor, loop) -> str:
+    """A warning for each loaded carry section steeper than the material rides ("" if none).
+
+    The material's surcharge angle theta is the slope its surface takes on the moving belt
+    (CEMA, Belt Conveyors for Bulk Materials, Table 4-1), and ISO 5048's slope factor ends
+    there: ``k1 = sqrt((cos^2(delta) - cos^2(theta)) / (1 - cos^2(theta)))`` is 0 at
+    ``delta = theta`` (no surcharge is carried) and has no value beyond it. A section steeper
+    than theta that carries material in the run's load case (``loop.mL_kg_m`` on its carry
+    elements) has no ISO 5048 capacity and the material can slide back down it (forward down a
+    decline), while the run carries it as if it stayed. The fix named is the section length
+    at which the same lift is at the surcharge angle, ``|lift| / sin(theta)``.
+    """
+    from beltstudy.engine.loop import CARRY
+
+    theta = conv.material.surcharge_deg
+    sin_t = math.sin(math.radians(theta))
+    carry = (loop.strand == CARRY) & (loop.mL_kg_m > 0.0)
+    if loop.x_m is None or not carry.any():
+        return ""
+    x = np.asarray(loop.x_m)
+    steep = []
+    x0 = 0.0
+    for i, p in enumerate(conv.profile):
+        x1 = x0 + p.length_m
+        delta = math.degrees(math.asin(min(abs(p.lift_m) / p.length_m, 1.0)))
+        # float noise: a section written at exactly the surcharge angle is at the edge, inside
+        loaded = bool((carry & (x >= x0) & (x < x1)).any())
+        if loaded and delta > theta * (1.0 + 1e-9):
+            need = abs(p.lift_m) / sin_t if sin_t > 0.0 else math.inf
+            fix = (f"at least {math.ceil(need):.0f} m for that lift" if math.isfinite(need)
+                   else "a level section")
+            steep.append(f"profile.{i} {'climbs' if p.lift_m > 0 else 'falls'} {delta:.1f} deg "
+                         f"({p.lift_m:.4g} m over {p.length_m:.4g} m, {x0:.0f} to {x1:.0f} m from "
+                         f"the tail; length_m {fix})")
+        x0 = x1
+    if not steep:
+        return ""
+    return (f"loaded section steeper than the material rides: {'; '.join(steep)}: beyond the "
+            f"material's surcharge angle, material.surcharge_deg {theta:g} deg, ISO 5048's "
+            "slope factor carries no surcharge and has no value: the material can slide "
+            "back down the belt, which this run carries as if it stayed; a flatter route (the "
+            "length above), a material.surcharge_deg as steep if the material stands so on "
+            "the moving belt (CEMA Table 4-1, at most 30 deg), or a cleated or pocket belt "
+            "(not modelled) would avoid it")

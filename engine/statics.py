@@ -50,6 +50,7 @@ import numpy as np
 
 from beltstudy.engine import catalog, rubber
 from beltstudy.engine.capacity import capacity as capacity_check
+from beltstudy.engine.capacity import incline_warning
 from beltstudy.engine.checks import holding_warning, input_notes, lump_notes, runback_note
 from beltstudy.engine.checks import steady_checks as design_checks
 from beltstudy.engine.conveyor import (
@@ -766,6 +767,9 @@ def _summarise(res: SteadyResult, drives, hs_adm, bounds, shortfall_n: float,
             f"({figures(cap.volume_flow_m3_h)} m3/h) exceeds what the belt's cross-section carries "
             f"at {v:g} m/s ({figures(cap.capacity_m3_h)} m3/h, ISO 5048); widen or trough the belt "
             "deeper, or run faster")
+    steep = incline_warning(conv, loop)
+    if steep:
+        warnings.append(steep)
     warnings += _slip_words(res, drives, slip_margins, start_margins, breakaway, shortfall_n)
     warnings += _takeup_beyond_words(res, drives)
     # ---- each drive's motor power against its rating (SPEC 7.4, beltstudy.engine.drives)

@@ -97,3 +97,41 @@ def test_five_roll_garland_fills_more_than_three_rolls_at_the_same_angle():
     five = sum(cross_section_m2(1.03, 5, 45, 1.2 / 5, 20))
     flat = sum(cross_section_m2(1.03, 1, 0, 0.0, 20))
     assert flat < three and five > flat
+
+
+def test_a_loaded_section_steeper_than_the_surcharge_angle_is_warned():
+    """A 200 m section climbing 30 deg (100 m), loaded, with the default 20 deg surcharge angle:
+    ISO 5048's slope factor ends at the surcharge angle (k1 = 0 there, no value beyond), and
+    the material slides back. It was 'status: ok'; the warning names the section, its angle
+    and the length at the surcharge angle, 100 / sin(20 deg) = 292.4 -> 293 m. 18 deg passes,
+    and the same 30 deg section empty is not warned."""
+    steep = conveyor(1.2, 3, 35, 500, 1.6, 4.5, profile=[
+        {"length_m": 1000, "lift_m": 0.0}, {"length_m": 200, "lift_m": 100.0}])
+    res = solve_steady(steep, model="din")
+    words = [w for w in res.warnings if w.startswith("loaded section steeper")]
+    assert len(words) == 1, res.warnings
+    assert "profile.1 climbs 30.0 deg" in words[0]
+    assert "1000 to 1200 m from the tail" in words[0]
+    assert "length_m at least 293 m" in words[0]
+    assert "material.surcharge_deg 20 deg" in words[0]
+    assert res.status == "warning"
+    empty = solve_steady(steep, model="din", load="empty")
+    assert not [w for w in empty.warnings if w.startswith("loaded section steeper")]
+    lift18 = 200 * math.sin(math.radians(18))
+    mild = conveyor(1.2, 3, 35, 500, 1.6, 4.5, profile=[{"length_m": 200, "lift_m": lift18}])
+    assert not [w for w in solve_steady(mild, model="din").warnings
+                if w.startswith("loaded section steeper")]
+
+
+def test_a_middle_roll_as_long_as_the_belt_is_refused():
+    """A 0.8 m belt on three-roll 35 deg sets whose middle roll is 1 m lies flat on it and never
+    reaches the wing rolls; it ran with the trough's capacity and roll share ('status: ok').
+    It is refused naming idlers.carry.roll_length_m and the DIN 22107 roll (0.315 m)."""
+    with pytest.raises(ValueError, match=r"idlers\.carry\.roll_length_m: a middle roll of 1 m "
+                       r"is not shorter than the 0\.8 m belt.*0\.315 m"):
+        conveyor(0.8, 3, 35, 100, 1.6, 4.5,
+                 idlers={**hand_conveyor_dict()["idlers"],
+                         "carry": {**hand_conveyor_dict()["idlers"]["carry"], "rolls": 3,
+                                   "trough_deg": 35, "roll_length_m": 1.0}})
+    # the DIN 22107 middle roll (left out) runs
+    assert conveyor(0.8, 3, 35, 100, 1.6, 4.5).idlers.carry.roll_length_m is None
