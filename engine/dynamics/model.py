@@ -526,6 +526,17 @@ def check_scenario(scn: Scenario, conv: Conveyor, opts: DynamicsOptions | None =
              ("scenario.run_s", float(scn.run_s)), ("scenario.stop.time_s", float(scn.stop.time_s)))
     t_cycle = sum(t for _, t in times)
     samples = t_cycle / scn.record_dt_s
+    if scn.record_dt_s > scn.start.time_s:
+        # the records carry more than the time series: the speed at the stop command, the
+        # tracking and settling checks and the stop's overspeed are read from them (60 s on a
+        # 20 s start kept 2 samples of a 37.7 s cycle, its two ends)
+        default = Scenario.model_fields["record_dt_s"].default
+        raise InputError(
+            f"scenario.record_dt_s: {scn.record_dt_s:g} s is longer than the start "
+            f"(scenario.start.time_s {scn.start.time_s:g} s): the time series and the checks "
+            "read from it (the speed at the stop command, tracking, settling, the stop's "
+            f"overspeed) would have no sample inside the start; give at most "
+            f"{scn.start.time_s:g} s, or leave it out (the default {default:g} s)")
     if samples > MAX_SAMPLES:
         name, longest = max(times, key=lambda x: x[1])
         if t_cycle / Scenario.model_fields["record_dt_s"].default <= MAX_SAMPLES:

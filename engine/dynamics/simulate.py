@@ -1263,7 +1263,9 @@ def transient_summary(sys: System, r: dict, out, segs, *, steady_summary=None, c
         w.append(endstop_words(sys, r))
     ran_away = int(r["status"]) == C.RUNAWAY  # the run ended early: said above
     if t_start_ach is None and not ran_away:
-        w.append(_short_of_speed_words(sys, v_cmd or 0.0, t_stop_cmd))
+        w.append(_short_of_speed_words(
+            sys, v_cmd or 0.0, t_stop_cmd,
+            limited=bool(any(float(out.drv[k]["lim_s"]) > 0.0 for k in range(out.drv.shape[0])))))
     # a run cut before its stop window ended (``t_end_s``, verification) is not judged on it
     window_end = t_stop_cmd + sys.model.cycle.stop_max
     if not r["stopped"] and not ran_away and float(r["t"]) >= window_end - 0.5 * sys.dt_s:
@@ -1353,12 +1355,14 @@ def _speed_at(out, r: dict, t_s: float) -> float | None:
     return float(rec["v_mean"][before[-1]]) if before.size else None
 
 
-def _short_of_speed_words(sys: System, v_cmd: float, t_stop_cmd: float) -> str:
+def _short_of_speed_words(sys: System, v_cmd: float, t_stop_cmd: float,
+                          limited: bool = True) -> str:
     """The warning of a start that never reached 99 % of design speed: the mean speed the belt
     ran at when the stop was commanded and, for dol drives behind fluid couplings, that their
     running slip holds the pulleys below the motors' speed, and what would meet design speed;
-    for vfd drives the force limit against Te (a limit not above Te never gets there; else the
-    rigid body's time still needed at the limit, and the run_s that gives it)."""
+    for vfd drives the force limit against Te (a limit not above Te never gets there; drives
+    that never reached it (``limited`` False) leave the belt's own stretch; else the rigid
+    body's time still needed at the limit, and the run_s that gives it)."""
     v_d = sys.v_design
     if abs(v_cmd) < 1e-9 * v_d:  # round-off about rest: said as 0, not as -8.6e-20, -0.0 %
         v_cmd = 0.0
@@ -1375,6 +1379,13 @@ def _short_of_speed_words(sys: System, v_cmd: float, t_stop_cmd: float) -> str:
                   f"rated force), is not above the running resistance Te {te / 1e3:.4g} kN, so "
                   "no start reaches design speed: a higher torque_limit or larger motors "
                   "(drives[].rated_power_kw) would")
+    elif (dr.control == C.VFD).all() and te > 0.0 and not limited:
+        # the drives had force to spare: the belt's own stretch held its mean speed back (a
+        # 1 km belt at 0.05 m/s at 66 % after a 30 s start and 5 s run; a rigid body at the
+        # force limit would have been there in a fraction of a millisecond)
+        words += ("; the drives never reached their force limit, so the belt's own stretch held "
+                  "its mean speed back (a slow or long belt pays its running stretch in through "
+                  "the take-up): a longer run_s shows when it gets there")
     elif (dr.control == C.VFD).all() and te > 0.0 and math.isfinite(lim) and v_cmd < v_d:
         # still accelerating at the stop command: the time it still needed at the drives'
         # force limit, rigid body (the waves add to it)

@@ -36,3 +36,39 @@ def test_the_run_s_named_at_the_force_limit_gets_there():
     assert NEVER in s["message"] and said, s["message"]
     followed = _run(0.3, float(said.group(1)))
     assert NEVER not in followed["message"], followed["message"]
+
+
+def test_a_slow_belt_short_of_speed_with_force_to_spare_is_not_given_a_rigid_body_time():
+    """fabric-1km at 0.05 m/s (4 t/h) after a 30 s start and 5 s run sat at 66 % of design
+    speed, with its 250 kW drive far from its force limit; the words said 'a rigid body
+    needs about 0.000159 s more: a run_s of at least 5.1 s'. What held it back is the belt's
+    own stretch, paid in through the take-up at that speed: the words now say so."""
+    from beltstudy.engine.conveyor import load_mapping
+    from tests.conftest import CONVEYORS
+
+    d = load_mapping(CONVEYORS / "fabric-1km.yaml")
+    d["speed_m_s"], d["material"] = 0.05, {**d["material"], "capacity_t_h": 4}
+    scn = Scenario(elements=60, run_s=5.0, start={"time_s": 30.0})
+    s = run_one(parse_conveyor(d), scn, model="din").summary
+    assert NEVER in s["message"], s["message"]
+    assert s["drive1_force_max_kn"] < 0.5 * 1.5 * 250 / 0.05  # far from its limit
+    assert "rigid body needs" not in s["message"]
+    assert "the drives never reached their force limit, so the belt's own stretch" in \
+        s["message"]
+
+
+def test_a_record_spacing_longer_than_the_start_is_refused():
+    """record_dt_s 60 on a 20 s start kept 2 samples of a 37.7 s cycle, and the checks read
+    from the records (the speed at the stop command, tracking, settling) had none inside the
+    start."""
+    import pytest
+
+    from beltstudy.engine.errors import InputError
+
+    d = short30_dict()
+    with pytest.raises(InputError, match=r"scenario\.record_dt_s: 60 s is longer than the start "
+                                         r"\(scenario\.start\.time_s 20 s\)"):
+        run_one(parse_conveyor(d), Scenario(record_dt_s=60.0, start={"time_s": 20.0}),
+                model="din")
+    run_one(parse_conveyor(d), Scenario(elements=40, record_dt_s=20.0, run_s=1.0,
+                                        start={"time_s": 20.0}), model="din")
