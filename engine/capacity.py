@@ -245,6 +245,31 @@ def check_fill(conv: Conveyor, prefix: str = "") -> None:
 register_check(check_fill)
 
 
+def check_middle_roll(conv: Conveyor, prefix: str = "") -> None:
+    """A troughed carry set's flat middle roll (three or five rolls) shorter than the belt;
+    registered with :func:`~beltstudy.engine.conveyor.register_check`.
+
+    Geometry: a belt no wider than the middle roll lies flat on it and never reaches the wing
+    rolls, so the set troughs nothing: the trough angle, the middle roll's share of the load
+    and the ISO 5048 cross-section would all be read for a trough that is not there.
+    """
+    ic = conv.idlers.carry
+    width = conv.belt.width_m
+    if ic.rolls in (3, 5) and ic.trough_deg > 0.0 and ic.roll_length_m is not None \
+            and ic.roll_length_m >= width:
+        usual = middle_roll_length_m(width, ic.rolls)
+        raise InputError(
+            f"{prefix}idlers.carry.roll_length_m: a middle roll of {ic.roll_length_m:g} m is "
+            f"not shorter than the {width:g} m belt (belt.width_m): the belt lies flat on it "
+            f"and never reaches the wing rolls, so the set troughs nothing at trough_deg "
+            f"{ic.trough_deg:g}; give the set's middle roll (leave it out for "
+            f"{usual:.3g} m, DIN 22107 for this width), or a wider belt, or rolls: 1 with "
+            "trough_deg: 0 for a flat belt")
+
+
+register_check(check_middle_roll)
+
+
 def incline_warning(conv: Conveyor, loop) -> str:
     """A warning for each loaded carry section steeper than the material rides ("" if none).
 

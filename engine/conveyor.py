@@ -890,7 +890,6 @@ class Conveyor(_Model):
                                  f"has {len(self.drives)} drive(s), numbered from 1)")
         _check_feed(self)
         _check_along(self)
-        _check_middle_roll(self)
         n_curves = sum(p.horizontal_radius_m is not None for p in self.profile)
         if n_curves > MAX_HCURVES:
             raise ValueError(f"profile: {n_curves} horizontal curves; at most {MAX_HCURVES} "
@@ -979,29 +978,6 @@ class Conveyor(_Model):
     def lift_m(self) -> float:
         """Net lift tail -> head [m]."""
         return float(sum(p.lift_m for p in self.profile))
-
-
-def _check_middle_roll(conv: Conveyor) -> None:
-    """A troughed carry set's flat middle roll (three or five rolls) shorter than the belt.
-
-    Geometry: a belt no wider than the middle roll lies flat on it and never reaches the wing
-    rolls, so the set troughs nothing: the trough angle, the middle roll's share of the load
-    and the ISO 5048 cross-section would all be read for a trough that is not there.
-    """
-    ic = conv.idlers.carry
-    width = conv.belt.width_m
-    if ic.rolls in (3, 5) and ic.trough_deg > 0.0 and ic.roll_length_m is not None \
-            and ic.roll_length_m >= width:
-        from beltstudy.engine.capacity import middle_roll_length_m
-
-        usual = middle_roll_length_m(width, ic.rolls)
-        raise ValueError(
-            f"idlers.carry.roll_length_m: a middle roll of {ic.roll_length_m:g} m is not "
-            f"shorter than the {width:g} m belt (belt.width_m): the belt lies flat on it and "
-            f"never reaches the wing rolls, so the set troughs nothing at trough_deg "
-            f"{ic.trough_deg:g}; give the set's middle roll (leave it out for "
-            f"{usual:.3g} m, DIN 22107 for this width), or a wider belt, or rolls: 1 with "
-            "trough_deg: 0 for a flat belt")
 
 
 def _check_feed(conv: Conveyor) -> None:

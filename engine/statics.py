@@ -822,23 +822,28 @@ def _summarise(res: SteadyResult, drives, hs_adm, bounds, shortfall_n: float,
         warnings.append(held)
     res.warnings = warnings
     res.status = "warning" if warnings else "ok"
-    # a note does not make a warning (as the transient's notes, "note: ..." after them)
+    res.message = "; ".join(warnings + _notes(res, friction_n, comps.get("feed", 0.0)))
+    res.summary["status"] = res.status
+    res.summary["message"] = res.message
+
+
+def _notes(res: SteadyResult, friction_n: float, feed_kn: float) -> list[str]:
+    """The steady run's notes, after its warnings (a note does not make a warning, as the
+    transient's notes do not): the law's temperature and glass notes, the run-back, the start
+    time, the take-up's place, inputs read beyond the tables or in an unusual sense (idler
+    rows, loading speed, ...) and values that look written in other units (W for kW, N for
+    kN); ``friction_n`` the running resistance without lift and feed [N], ``feed_kn`` the
+    feed part of Te [kN]."""
+    conv, loop = res.conveyor, res.loop
     note = temperature_note(get_model(res.model), res.temperature_c, res.params_given)
     glassy = (rubber.glass_note(res.law.info["compound"], res.temperature_c, res.model)
               if "compound" in res.law.info else "")
-    runback = runback_note(conv, loop, friction_n)
-    # inputs read beyond the tables or in an unusual sense (idler rows, loading speed, ...)
-    given = input_notes(conv, loop, comps.get("feed", 0.0) * 1e3,
-                        res.law.info.get("c_factor"))
-    start = start_time_note(conv, loop, res.te_n)
-    watts = (watts_notes(conv, res.te_n, float(np.sum(res.resistance_n)))
+    given = input_notes(conv, loop, feed_kn * 1e3, res.law.info.get("c_factor"))
+    units = (watts_notes(conv, res.te_n, float(np.sum(res.resistance_n)))
              + lump_notes(conv, loop.belt.width_m))
-    res.message = "; ".join(warnings + [n for n in (note, glassy, res.range_note, runback,
-                                                    start, takeup_place_note(res), *given,
-                                                    *watts)
-                                        if n])
-    res.summary["status"] = res.status
-    res.summary["message"] = res.message
+    return [n for n in (note, glassy, res.range_note, runback_note(conv, loop, friction_n),
+                        start_time_note(conv, loop, res.te_n), takeup_place_note(res),
+                        *given, *units) if n]
 
 
 

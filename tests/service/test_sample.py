@@ -138,7 +138,7 @@ def test_sample_only_study_is_valid():
     # "grid: axis 'models.nonlin.m_star': ..." for a sample axis)
     ({"models.nonlin.m_star": {"dist": "uniform", "low": 0.003, "high": 0.008}},
      r"^sample\.axes: axis 'models\.nonlin\.m_star': model 'nonlin' is not run by this "
-     r"study \(its models: din\)$"),
+     r"study \(its models: din\); add nonlin to the friction_model axis"),
     ({"takeup.mass_kg": {"dist": "normal", "mean": 1e6, "sd": 1e6}},
      r"^sample\.axes\.takeup\.mass_kg: \d+ of 16 drawn values break the field's bound "
      r"takeup\.mass_kg > 0 and takeup\.mass_kg <= 2e\+06"),
