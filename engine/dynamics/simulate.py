@@ -732,8 +732,8 @@ def _stop_overspeed(sys: System, r: dict, out) -> list[str]:
 
 def running_warnings(sys: System, r: dict, out, names=None) -> list[str]:
     """The start's overspeed (the mean belt speed above :data:`OVERSPEED_FRACTION` of design
-    speed before the stop command), the stop's (:func:`_stop_overspeed`) and a running phase that has not settled (its mean speed
-    swinging by more than :data:`SETTLE_SWING` of design speed over its last
+    speed before the stop command), the stop's (:func:`_stop_overspeed`) and a running phase
+    that has not settled (its mean speed swinging by more than :data:`SETTLE_SWING` of design speed over its last
     :data:`SETTLE_LOOPS` wave loop times, or, with the mean speed within that, a drive's force
     swinging about its mean by more than :data:`SETTLE_FORCE` of its rated force), in words.
     ``names``: each drive's name (default ``drive k``)."""
@@ -1263,9 +1263,8 @@ def transient_summary(sys: System, r: dict, out, segs, *, steady_summary=None, c
         w.append(endstop_words(sys, r))
     ran_away = int(r["status"]) == C.RUNAWAY  # the run ended early: said above
     if t_start_ach is None and not ran_away:
-        w.append(_short_of_speed_words(
-            sys, v_cmd or 0.0, t_stop_cmd,
-            limited=bool(any(float(out.drv[k]["lim_s"]) > 0.0 for k in range(out.drv.shape[0])))))
+        w.append(_short_of_speed_words(sys, v_cmd or 0.0, t_stop_cmd,
+                                       limited=bool((out.drv["lim_s"] > 0.0).any())))
     # a run cut before its stop window ended (``t_end_s``, verification) is not judged on it
     window_end = t_stop_cmd + sys.model.cycle.stop_max
     if not r["stopped"] and not ran_away and float(r["t"]) >= window_end - 0.5 * sys.dt_s:
@@ -1373,20 +1372,21 @@ def _short_of_speed_words(sys: System, v_cmd: float, t_stop_cmd: float,
     fluid = (dr.control == C.DOL) & (dr.coupling != COUPLING_CODES["none"])
     te = float(getattr(sys, "te_n", 0.0) or 0.0)
     lim = float(np.sum(dr.lim0)) if hasattr(dr, "lim0") else math.nan
-    if (dr.control == C.VFD).all() and te > 0.0 and math.isfinite(lim) and lim <= te:
+    vfd = bool((dr.control == C.VFD).all()) and te > 0.0 and math.isfinite(lim)
+    if vfd and lim <= te:
         # the drives cannot hold design speed at all (the steady check names the torque limit)
         words += (f"; the drives' force limit, {lim / 1e3:.4g} kN in all (torque_limit x the "
                   f"rated force), is not above the running resistance Te {te / 1e3:.4g} kN, so "
                   "no start reaches design speed: a higher torque_limit or larger motors "
                   "(drives[].rated_power_kw) would")
-    elif (dr.control == C.VFD).all() and te > 0.0 and not limited:
+    elif vfd and not limited:
         # the drives had force to spare: the belt's own stretch held its mean speed back (a
         # 1 km belt at 0.05 m/s at 66 % after a 30 s start and 5 s run; a rigid body at the
         # force limit would have been there in a fraction of a millisecond)
         words += ("; the drives never reached their force limit, so the belt's own stretch held "
                   "its mean speed back (a slow or long belt pays its running stretch in through "
                   "the take-up): a longer run_s shows when it gets there")
-    elif (dr.control == C.VFD).all() and te > 0.0 and math.isfinite(lim) and v_cmd < v_d:
+    elif vfd and v_cmd < v_d:
         # still accelerating at the stop command: the time it still needed at the drives'
         # force limit, rigid body (the waves add to it)
         more = sys.model.control.m_tot * (v_d - v_cmd) / (lim - te)
@@ -1797,16 +1797,15 @@ def _fast_stop_words(sys: System, t_stop: float, summary: dict, steady_tmax: flo
     cyc = sys.model.cycle
     t_min_run = float(np.min(sys.steady_tension_n)) / 1e3
     hi, lo = summary.get("t_max_stop_kn"), summary.get("t_min_stop_kn")
-    seen = (f"; its tensions ranged {lo:.4g} to {hi:.4g} kN against {t_min_run:.4g} to "
-            f"{steady_tmax / 1e3:.4g} kN running" if hi is not None and lo is not None else "")
-    # the rule is of thumb: where this stop's tensions stayed within the running range (an
-    # empty belt's stop), it is said beside the name, not left to contradict it
-    calm = (hi is not None and lo is not None and lo >= t_min_run * (1.0 - 1e-3)
-            and hi <= steady_tmax / 1e3 * (1.0 + 1e-3))
-    if calm:
-        seen = (f" by that rule, though its tensions stayed within the running range ({lo:.4g} "
-                f"to {hi:.4g} kN against {t_min_run:.4g} to {steady_tmax / 1e3:.4g} kN "
-                "running)")
+    seen = ""
+    if hi is not None and lo is not None:
+        ranges = (f"{lo:.4g} to {hi:.4g} kN against {t_min_run:.4g} to "
+                  f"{steady_tmax / 1e3:.4g} kN running")
+        # the rule is of thumb: where this stop's tensions stayed within the running range
+        # (an empty belt's stop), it is said beside the name, not left to contradict it
+        calm = (lo >= t_min_run * (1.0 - 1e-3) and hi <= steady_tmax / 1e3 * (1.0 + 1e-3))
+        seen = (f" by that rule, though its tensions stayed within the running range ({ranges})"
+                if calm else f"; its tensions ranged {ranges}")
     need = 5.0 * sys.wave_loop_time_s
     if cyc.stop_mode == C.CONTROLLED:
         # a stop that follows its curve scales with the asked time; one held back (a drive's

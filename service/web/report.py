@@ -865,5 +865,6 @@ def _in_grid_order(service: StudyService, study_id: str) -> pd.DataFrame:
         order = {r.run_id: i for i, r in enumerate(service.resolved(study_id).runs)}
     except Exception:  # a study this engine cannot expand: still one order
         order = {}
-    key = runs["run_id"].map(lambda r: (order.get(r, len(order)), r))
-    return runs.iloc[sorted(range(len(runs)), key=key.iloc.__getitem__)].reset_index(drop=True)
+    place = runs["run_id"].map(lambda r: order.get(r, len(order)))
+    return (runs.assign(_place=place).sort_values(["_place", "run_id"], kind="stable")
+            .drop(columns="_place").reset_index(drop=True))
