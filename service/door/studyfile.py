@@ -217,9 +217,7 @@ def _axis_values(name: str, spec: list | RangeSpec, max_runs: int, where: str) -
         raise Invalid(f"{label}: empty axis; give at least one value")
     seen: dict[str, Any] = {}
     for v, as_written in zip(values, written, strict=True):
-        # a load case by name is its fraction (full 1, empty 0: engine.conveyor.section_loads)
-        same = (LOAD_NAMES.get(v, v) if isinstance(v, str) and name in ("load", "scenario.load")
-                else v)
+        same = _load_fraction(v) if name in ("load", "scenario.load") else v
         key = canonical_json(float(same) if isinstance(same, int | float)
                              and not isinstance(same, bool) else same)
         if key in seen:
@@ -227,11 +225,26 @@ def _axis_values(name: str, spec: list | RangeSpec, max_runs: int, where: str) -
             if first == v:
                 zero = "" if canonical_json(as_written) == canonical_json(v) else " (-0.0 is 0.0)"
                 raise Invalid(f"{label}: value {v!r} appears twice{zero}")
-            named = v if isinstance(v, str) else first
+            named = v if isinstance(v, str | list) else first
+            where = " on every section" if isinstance(named, list) else ""
             raise Invalid(f"{label}: {first!r} and {v!r} are the same load ({named!r} is "
-                          f"{LOAD_NAMES[named]:g} x the design load); give one")
+                          f"{float(_load_fraction(named)):g} x the design load{where}); "
+                          "give one")
         seen[key] = v
     return values
+
+
+def _load_fraction(load: Any) -> Any:
+    """A load case as the one fraction of the design load it is everywhere, where it is one:
+    ``full`` 1 and ``empty`` 0 (engine.conveyor.section_loads), a list of one fraction per
+    carry section that are all equal that fraction; any other case itself."""
+    if isinstance(load, str):
+        return LOAD_NAMES.get(load, load)
+    if (isinstance(load, list) and load
+            and all(isinstance(x, int | float) and not isinstance(x, bool) for x in load)
+            and len({float(x) for x in load}) == 1):
+        return float(load[0])
+    return load
 
 
 def _positive_zero(value: Any) -> Any:

@@ -15,7 +15,7 @@ from beltstudy.engine import InputError, parse_conveyor
 from beltstudy.engine.capacity import fill_pct
 from beltstudy.engine.conveyor import FILL_MAX_PCT, load_conveyor
 from beltstudy.service.door.parse import loads, parse_body
-from beltstudy.service.door.studyfile import load_study_file, resolve_study
+from beltstudy.service.door.studyfile import _load_fraction, load_study_file, resolve_study
 from beltstudy.service.errors import Invalid
 
 from .conftest import ROOT
@@ -205,6 +205,11 @@ def test_control_and_bidi_characters_are_refused_in_names(tmp_path, make_study,
                          "design load); give one"),
     ([0, "empty"], "grid.load: 0 and 'empty' are the same load ('empty' is 0 x the design "
                    "load); give one"),
+    # one fraction per carry section, all equal, is that fraction everywhere
+    (["full", [1, 1.0]], "grid.load: 'full' and [1, 1.0] are the same load ([1, 1.0] is 1 x "
+                         "the design load on every section); give one"),
+    ([[0.5, 0.5], 0.5], "grid.load: [0.5, 0.5] and 0.5 are the same load ([0.5, 0.5] is 0.5 x "
+                        "the design load on every section); give one"),
 ])
 def test_a_load_by_name_and_its_fraction_are_one_value(make_study, loads, message):
     """full is 1 and empty 0 of the design load everywhere (engine.conveyor.section_loads):
@@ -214,6 +219,8 @@ def test_a_load_by_name_and_its_fraction_are_one_value(make_study, loads, messag
     assert str(err.value) == message
     assert len(resolve_study(make_study(grid={"load": ["full", "empty", "inclines", 0.5]}))
                .runs) == 4
+    # a list whose fractions differ is a load of its own
+    assert _load_fraction([1, 0.5]) == [1, 0.5]
 
 
 def test_yaml_base_60_is_text_as_yaml_1_2_reads_it(tmp_path):
