@@ -418,7 +418,14 @@ def study_hash(study: ResolvedStudy) -> str:
         else:
             doc["zip"][groups.index(a.group)][a.name] = values
     if doc.get("design") is not None:
-        doc["design"] = _design_key(doc["design"])
+        # a design field left empty is its default (the study's models and temperatures, full
+        # load): `design: {}` and `design: {load: full}` are the study without one, one id
+        design = {k: v for k, v in _design_key(doc["design"]).items()
+                  if v is not None and not (k == "load" and v == "full")}
+        if design:
+            doc["design"] = design
+        else:
+            del doc["design"]
     keys = (
         "name",
         "conveyor",

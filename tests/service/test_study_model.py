@@ -73,6 +73,20 @@ def test_run_ids_are_stable_and_depend_on_inputs_and_engine_version(make_study):
     assert {r.run_id for r in expand_runs(moved)}.isdisjoint({r.run_id for r in a.runs})
 
 
+def test_an_empty_design_is_the_study_without_one(make_study):
+    """``design: {}`` (or only its default, full load) sizes exactly as no ``design``: the
+    study's own models and temperatures at full load (SPEC 6.3). It was another study id for
+    the same runs."""
+    plain = resolve_study(make_study())
+    for design in ({}, {"load": "full"}, {"load": 1.0}, {"friction_model": None}):
+        same = resolve_study(make_study(design=design))
+        assert same.id == plain.id, design
+        assert [r.run_id for r in same.runs] == [r.run_id for r in plain.runs]
+    # a design that says something is its own study
+    assert resolve_study(make_study(design={"temperature_c": -20})).id != plain.id
+    assert resolve_study(make_study(design={"load": "empty"})).id != plain.id
+
+
 def test_equal_values_after_validation_are_one_study(make_study):
     a = resolve_study(make_study(grid={"temperature_c": [0, 20]}))
     b = resolve_study(make_study(grid={"temperature_c": [0.0, 20.0]}))
