@@ -561,6 +561,11 @@ def calibrate(conv: Conveyor, measured: Sequence[Measurement], model: str,
                                    for name, v in zip(free, sol.x, strict=True)})}
     sv = np.linalg.svd(_unit_columns(jac), compute_uv=False) if p else np.array([])
     slips = _sign_slips(rows, cols, y, values)
+    x_start = x0[[names.index(n) for n in free]]
+    unit = _unit_slip(cols, y, model_values(x_start, free) if p else values, ", ".join(
+        f"{n} {v:.4g}" for n, v in zip(free, x_start, strict=True)) or "as given")
+    if unit:
+        notes.append(unit)
     suspect = (slips or _contradictions(rows, cols, y)
                or _outliers(rows, cols, y, values, r, jac, dof))
     notes += suspect + _copies(rows)
@@ -582,7 +587,7 @@ def calibrate(conv: Conveyor, measured: Sequence[Measurement], model: str,
         notes=notes, **_verdict(
             sol, at_bound, r, fm.name, at_upper, {n: largest[n] for n in own_limit},
             lowest=lowest, held=_Held(groups, held_values, computed),
-            doubts=_Doubts(suspect, slips, few, bool(p) and dof == 0)))
+            doubts=_Doubts(suspect, slips, few, bool(p) and dof == 0, unit)))
 
 
 def _t95(dof: int) -> float:
@@ -672,6 +677,43 @@ def _sign_slips(rows: Sequence[Measurement], cols: Sequence[tuple[int, str]], y:
                    "regenerate): check the row's sign (a meter or a column the other way "
                    "round) and fit again")
     return out
+
+
+#: A reading taken as written in the unit a prefix step (1000 x) away from the column's when
+#: the model at its textbook start values computes within half a decade of 1000 x (or of
+#: 1 / 1000 x) the readings (the median over them): a plant's friction factors lie within 3 x
+#: of the textbook's (DIN 22101's f 0.010-0.030 about its 0.020; CEMA's Kx, Ky alike), far from
+#: 1000 x.
+PREFIX_STEP = 1000.0
+#: Units a prefix step (1000 x) above and below each measured column's (:func:`_unit_slip`).
+_PREFIX_UNITS = {"power_kw": ("MW", "W", "kW"), "te_kn": ("MN", "N", "kN")}
+
+
+def _unit_slip(cols: Sequence[tuple[int, str]], y: np.ndarray, start: np.ndarray,
+               names: str) -> str:
+    """A sentence when the readings look written in another unit than their column's (MW or
+    W in ``power_kw``, MN or N in ``te_kn``): the model at its start values ``start`` (the
+    fitted ``names``' textbook values) computes about :data:`PREFIX_STEP` x (or 1 /
+    :data:`PREFIX_STEP` x) each reading; ``""`` otherwise."""
+    ratios = [m / v for (_, col), v, m in zip(cols, y, start, strict=True)
+              if col in _PREFIX_UNITS and v * m > 0.0]
+    if not ratios or 2 * len(ratios) < len(cols):
+        return ""
+    ratio = float(np.median(ratios))
+    half_decade = math.sqrt(10.0)
+    units = {_PREFIX_UNITS[col] for _, col in cols if col in _PREFIX_UNITS}
+    if len(units) != 1:
+        return ""
+    above, below, own = units.pop()
+    if PREFIX_STEP / half_decade <= ratio <= PREFIX_STEP * half_decade:
+        unit, times = above, f"{ratio:.0f} x"
+    elif PREFIX_STEP / half_decade <= 1.0 / ratio <= PREFIX_STEP * half_decade:
+        unit, times = below, f"1 / {1.0 / ratio:.0f} of"
+    else:
+        return ""
+    return (f"At its textbook values ({names}) the model computes about {times} each "
+            f"reading: the readings look written in {unit}; give them in {own} (1 "
+            f"{above} = 1000 {own} = 1 000 000 {below}) and fit again.")
 
 
 def _copies(rows: Sequence[Measurement]) -> list[str]:
@@ -797,6 +839,7 @@ class _Doubts:
     slips: Sequence[str] = ()
     few: str = ""
     exact: bool = False
+    unit: str = ""
 
 
 def _verdict(sol, at_bound: list[str], r: np.ndarray, model: str,
@@ -836,6 +879,9 @@ def _verdict(sol, at_bound: list[str], r: np.ndarray, model: str,
              "[kN], negative only where the drives regenerate; each row's load and temperature) "
              "and the conveyor file "
              "(lift, capacity, speed, take-up), or fit other parameters of the model")
+    if doubts.unit:
+        # readings a prefix step off (MW in a kW column): the likeliest cause, said first
+        check = f"{doubts.unit} {check}"
     kept = "; ".join(f"{n} at the value model {model} computes for each row, its default"
                      if n in computed else f"{n} at {v:.4g}" for n, v in (held or {}).items())
     together = "; ".join(" and ".join(g) for g in groups)

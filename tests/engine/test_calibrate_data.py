@@ -114,3 +114,30 @@ def test_power_and_te_of_one_state_are_one_state(plant):
     cal = calibrate(conv, [both], "din", ["f_carry"])
     assert cal.dof == 1 and cal.status == "warning"
     assert "power_kw and te_kn (row 0)" in cal.message
+
+
+@pytest.mark.parametrize(("column", "scale", "unit", "own"), [
+    ("power_kw", 1e-3, "MW", "kW"),
+    ("te_kn", 1e-3, "MN", "kN"),
+])
+def test_readings_a_prefix_step_off_are_said_to_be_in_that_unit(plant, column, scale, unit,
+                                                                 own):
+    """Plant power logged in MW and put in the kW column (2.8 for 2 800 kW) read as a misfit
+    of 85 000 % with 'check the values'. The model at its textbook start (DIN f 0.020 against
+    the plant's 0.0237) computes 1000 x each reading within the friction's share, so the
+    readings are said to be in MW."""
+    conv, rows = plant
+    v = conv.speed_m_s
+    moved = [Measurement(m.load, m.temperature_c, {column: scale * (
+        m.values["power_kw"] if column == "power_kw" else m.values["power_kw"] / v)})
+        for m in rows]
+    cal = calibrate(conv, moved, "din", ["f_carry"])
+    assert cal.status == "warning"
+    assert f"the readings look written in {unit}; give them in {own}" in cal.message
+    assert any(f"look written in {unit}" in n for n in cal.notes)
+    times = float(cal.message.split("computes about ")[1].split(" x")[0])
+    # 1000 x the reading, times the textbook start's share of the plant's power (f 0.020
+    # against 0.0237 on a belt whose lift takes part of the power): 0.7-1 x
+    assert 700 <= times <= 1000
+    good = calibrate(conv, rows, "din", ["f_carry"])
+    assert not any("look written" in n for n in [good.message, *good.notes])
