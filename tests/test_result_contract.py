@@ -118,7 +118,7 @@ def test_rest_rows_hold_the_stored_fields(capsys, simulate_json):
            "engine_version": "x", **flatten_summary(simulate_json(capsys))}
     out = row_to_json(row)
     results = set(out) - set(INPUT_COLUMNS) - {R.TE_COMPONENTS_KEY}
-    assert results == {c for g in NON_TE if g is not R.HCURVES for f in g for c in f.columns()}
+    assert results == {c for g in NON_TE for f in g for c in f.columns()}
     assert set(out[R.TE_COMPONENTS_KEY]) <= set(R.TE_PARTS)
 
 

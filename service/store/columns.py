@@ -187,7 +187,7 @@ def flatten_summary(summary: dict) -> dict:
     row: dict[str, Any] = {c: _number(summary.get(c))
                            for c in STEADY_COLUMNS + DESIGN_COLUMNS + TRANSIENT_COLUMNS
                            + DRIVE_POWER_COLUMNS}
-    for c in CHECK_COLUMNS + CURVE_COLUMNS:
+    for c in CHECK_COLUMNS + CURVE_COLUMNS + HCURVE_COLUMNS:
         value = summary.get(c)
         row[c] = (None if value is None else bool(value)) if R.field(c).flag else _number(value)
     for c in DESIGN_TEXT_COLUMNS:

@@ -190,3 +190,20 @@ def test_workers_write_parts_only_into_the_study_they_were_given(tmp_path):
     store.delete(sid)  # a worker finishing after a delete must not bring the study back
     assert not write_part_to(d, "t0k", "timeseries", "k", ts)
     assert not d.exists()
+
+
+def test_flatten_keeps_the_horizontal_curve_fields():
+    """A study of a conveyor with a horizontal curve stored hcurve1_* null in every row
+    (0.0 / 146.9 kN limits, 26.8 to 30.9 kN run, ok in `beltstudy static`): the row builder
+    took the vertical curves' columns and not the horizontal ones'."""
+    summary = {"te_kn": 10.0, "status": "ok", "hcurve1_tension_min_kn": 0.0,
+               "hcurve1_tension_max_kn": 146.9, "hcurve1_t_low_kn": 26.8,
+               "hcurve1_t_high_kn": 30.9, "hcurve1_ok": True}
+    row = flatten_summary(summary)
+    assert row["hcurve1_tension_min_kn"] == 0.0 and row["hcurve1_tension_max_kn"] == 146.9
+    assert row["hcurve1_t_low_kn"] == 26.8 and row["hcurve1_t_high_kn"] == 30.9
+    assert row["hcurve1_ok"] is True
+    assert row["hcurve2_ok"] is None and row["hcurve2_tension_min_kn"] is None
+    table = rows_to_table([{"run_id": "r", **row}], runs_schema([]))
+    assert table.schema.field("hcurve1_ok").type == pa.bool_()
+    assert table.column("hcurve1_tension_max_kn").to_pylist() == [146.9]
