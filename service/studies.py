@@ -365,6 +365,7 @@ class StudyService:
             "dynamics": doc["study"]["dynamics"],
             "grid_points": doc["study"].get("grid_points", doc["total"]),
             "merged": doc["study"].get("merged", 0),
+            "merged_axes": doc["study"].get("merged_axes", []),
             "axes": {a["name"]: a["column"] for a in doc["study"]["axes"]},
             "engine_version": doc.get("engine_version"),
         }

@@ -48,6 +48,9 @@ class StudyStatus(BaseModel):
     dynamics: bool
     grid_points: int | None = Field(None, description="grid points (grid x zip groups)")
     merged: int = Field(0, description="grid points merged into an identical run")
+    merged_axes: list[str] = Field(default_factory=list, description=(
+        "axes that change no run of the study (their column null in every row), so every "
+        "point that differs only in them was merged"))
     axes: dict[str, str] = Field(..., description="axis name -> runs column")
     engine_version: str | None = None
     status_url: str

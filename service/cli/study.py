@@ -286,10 +286,17 @@ def _print_final(st: dict) -> None:
 
 
 def _runs_text(st: dict) -> str:
-    """``12 runs`` or ``12 runs; 4 of 16 grid points merged into identical runs``."""
+    """``12 runs`` or ``12 runs; 4 of 16 grid points merged into identical runs``, with the
+    axes that change no run named (``brakes.0.delay_s changes no run``)."""
     text = f"{st['total']} runs"
     if st.get("merged"):
         text += f"; {st['merged']} of {st['grid_points']} grid points merged into identical runs"
+        inert = st.get("merged_axes") or []
+        if inert:
+            verb = "changes" if len(inert) == 1 else "change"
+            steady = "" if st.get("dynamics", True) else "; the study runs steady only"
+            text += (f": {', '.join(inert)} {verb} no run of this study (null in every "
+                     f"row{steady})")
     return text
 
 

@@ -215,6 +215,16 @@ class ResolvedStudy:
         """Grid points that were merged into another point's identical run."""
         return max(self.grid_points - self.total, 0)
 
+    @property
+    def merged_axes(self) -> list[str]:
+        """Axes of two or more values that change no run of the study: their column is null
+        in every row (a brake's delay in steady runs), so every point that differs only in
+        them was merged (SPEC 6.3)."""
+        if not self.runs:
+            return []
+        return [a.name for a in self.axes
+                if len(a.values) > 1 and all(r.axes.get(a.column) is None for r in self.runs)]
+
     def to_json(self) -> dict:
         """The resolved study as stored in ``study.json`` (enough to expand it again)."""
         out = {
@@ -232,6 +242,7 @@ class ResolvedStudy:
             "engine_version": self.engine_version,
             "grid_points": self.grid_points,
             "merged": self.merged,
+            "merged_axes": self.merged_axes,
             "designs": self.designs,
         }
         groups = sorted({a.group for a in self.axes if a.group is not None and not a.sample})

@@ -111,6 +111,7 @@ def study_data(study_id: str, service: StudyService = Depends(get_service)) -> d
                  for a in study.get("axes", [])],
         "grid_points": study.get("grid_points"),
         "merged": study.get("merged", 0),
+        "merged_axes": study.get("merged_axes", []),
         "design": study.get("design"),
         "designs": study.get("designs") or [],
         "models": study_models(doc),

@@ -13,9 +13,11 @@ import pytest
 from beltstudy.engine.conveyor import Scenario, parse_conveyor
 from beltstudy.engine.design import auto_sizes
 from beltstudy.engine.statics import solve_steady
+from beltstudy.service.cli.study import _runs_text
 from beltstudy.service.door.studyfile import resolve_study
 from beltstudy.service.errors import Invalid
 from beltstudy.service.grid.basis import round_up
+from beltstudy.service.store.parquet import Store
 from tests.service.conftest import ROOT, tiny_conveyor
 
 
@@ -138,6 +140,8 @@ def test_model_parameters_as_axes_and_identical_runs_merged(make_study, finished
     grid = {"friction_model": ["din", "cema"], "models.din.f_carry": [0.010, 0.016]}
     study = resolve_study(make_study(grid=grid))
     assert study.grid_points == 4 and study.total == 3 and study.merged == 1
+    # some runs read f_carry: it is no axis that changes no run
+    assert study.merged_axes == []
     sid = finished_study(data_dir, make_study(grid=grid))
     runs = _runs(data_dir, sid)
     assert len(runs) == 3 and runs["run_id"].is_unique
@@ -156,6 +160,29 @@ def test_model_parameters_as_axes_and_identical_runs_merged(make_study, finished
         resolve_study(make_study(grid={"models.nonlin.p_mf": [1.0]}))
     with pytest.raises(Invalid, match=r"models.din.f_carry: value -1.*between 0 and 1"):
         resolve_study(make_study(grid={"models.din.f_carry": [-1]}))
+
+
+def test_an_axis_that_changes_no_run_is_named(make_study, finished_study, data_dir):
+    """A brake's delay acts only in a transient: in a steady study its two values merged into
+    one run each, said only as '2 of 4 grid points merged'. The axis is named in the study
+    (``merged_axes``), its status and the command line's words."""
+    braked = tiny_conveyor(brakes=[{"position": "head", "force_kn": 5.0, "delay_s": 0.5}])
+    body = make_study(conveyor=braked, grid={"brakes.0.delay_s": [0.5, 2.0],
+                                             "temperature_c": [0, 20]})
+    study = resolve_study(body)
+    assert study.grid_points == 4 and study.total == 2
+    assert study.merged_axes == ["brakes.0.delay_s"]
+    sid = finished_study(data_dir, body)
+    assert _runs(data_dir, sid)["brakes.0.delay_s"].isna().all()
+    stored = Store(data_dir).read(sid)["study"]
+    assert stored["merged_axes"] == ["brakes.0.delay_s"]
+    status = {"total": 2, "merged": stored["merged"], "grid_points": stored["grid_points"],
+              "merged_axes": stored["merged_axes"], "dynamics": stored["dynamics"]}
+    assert _runs_text(status) == (
+        "2 runs; 2 of 4 grid points merged into identical runs: brakes.0.delay_s changes no "
+        "run of this study (null in every row; the study runs steady only)")
+    # a study whose axes all change runs says nothing more
+    assert resolve_study(make_study(grid={"temperature_c": [0, 20]})).merged_axes == []
 
 
 def test_a_coast_crossed_with_four_stop_times_stores_one_coast_run(make_study, finished_study,

@@ -482,8 +482,11 @@ function studyPage(id) {
       el("dt", { text: a.name }), el("dd", { text: a.values.map(String).join(", ") +
         (a.group == null ? "" : "  (zip group " + (a.group + 1) + ")") })]));
     const merged = document.getElementById("merged");
+    const inert = info.merged_axes || [];
     merged.textContent = info.merged ? info.merged + " of " + info.grid_points +
-      " grid points merged into identical runs (an axis that does not change them)" : "";
+      " grid points merged into identical runs (" + (inert.length ? inert.join(", ") +
+        (inert.length === 1 ? " changes" : " change") + " no run of this study" :
+        "an axis that does not change them") + ")" : "";
     merged.hidden = !info.merged;
     const rows = designRows(info.designs || []);
     // how the auto sizes were found: said only when there are any (the table says when not)
