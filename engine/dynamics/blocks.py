@@ -363,7 +363,9 @@ def _shaft_speed(model, s, U, v_ref, sl, ts):
     """New speed of a slipping shaft: its inertia under its drive and brake forces less the
     sliding force ``sl (e^(mu_k theta) - 1) ts`` it gives the belt. A torque-following drive
     keeps its shaft within the speed window (``Control.window``) of the speed reference (its
-    speed-window control)."""
+    speed-window control) through its own torque: the force that takes the shaft into the
+    window in this step where the drive's force stays within its limit (``Drives.lim``),
+    else the limit, which takes it there over the steps that follow."""
     shafts = model.shafts
     drives = model.drives
     ms = shafts.mass[s] / model.cycle.dt
@@ -371,20 +373,34 @@ def _shaft_speed(model, s, U, v_ref, sl, ts):
     dd = ms
     dk = shafts.drive[s]
     follower = False
+    fd = 0.0
     if dk >= 0:
         md = drives.mode[dk]
         if md == 2:
             return v_ref
         if md == 1:
-            f += drives.f0[dk] if drives.sat[dk] == 1 else drives.share[dk] * U
+            fd = drives.f0[dk] if drives.sat[dk] == 1 else drives.share[dk] * U
+            f += fd
             follower = dk != model.control.master
         else:
             f += drives.f0[dk]
             dd -= drives.f1[dk]
-    v = coulomb(ms * shafts.vs[s] + f, dd, shafts.fb[s], shafts.hb[s] == 1)
+    p = ms * shafts.vs[s] + f
+    fb = shafts.fb[s]
+    hb = shafts.hb[s] == 1
+    v = coulomb(p, dd, fb, hb)
     if follower:
         window = model.control.window
-        v = min(max(v, v_ref - window), v_ref + window)
+        vw = min(max(v, v_ref - window), v_ref + window)
+        if vw != v:
+            lim = drives.lim[dk]
+            need = ms * (vw - v)
+            if need > lim - fd:
+                v = coulomb(p + (lim - fd), dd, fb, hb)
+            elif need < -lim - fd:
+                v = coulomb(p - (lim + fd), dd, fb, hb)
+            else:
+                v = vw
     return v
 
 

@@ -769,22 +769,36 @@ def _row_consistent(model: Model, bk, dr, k, U):
 def _shaft_speed(model: Model, sh, dr, rs, s, U, f_slide):
     """New speed of slipping shaft s [m/s]: its inertia under its drive and brake less the
     sliding force ``ck T_slack`` (``f_slide = slip x T_slack``); an imposed speed holds it at
-    the reference, a torque follower stays within its speed window."""
+    the reference, a torque follower stays within its speed window through its own torque,
+    within its limit ``lim`` (the force that takes it into the window in this step, else the
+    limit)."""
     shafts = model.shafts
     ms = shafts.mass[s] / model.cycle.dt
     f = -shafts.ck[s] * f_slide
     dd = ms
     d = shafts.drive[s]
+    fd = 0.0
     if d >= 0:
         if dr.mode[d] == 2:
             return rs.v_ref
-        f += _shaft_drive_force(model, dr, d, U)
+        fd = _shaft_drive_force(model, dr, d, U)
+        f += fd
         if dr.mode[d] == 0:
             dd -= dr.f1[d]
-    v = _coulomb(ms * sh.vs[s] + f, dd, sh.fb[s], shafts.hb[s] == 1)
+    p = ms * sh.vs[s] + f
+    v = _coulomb(p, dd, sh.fb[s], shafts.hb[s] == 1)
     if d >= 0 and dr.mode[d] == 1 and d != model.control.master:
         window = model.control.window
-        v = min(max(v, rs.v_ref - window), rs.v_ref + window)
+        vw = min(max(v, rs.v_ref - window), rs.v_ref + window)
+        if vw != v:
+            lim = dr.lim[d]
+            need = ms * (vw - v)
+            if need > lim - fd:
+                v = _coulomb(p + (lim - fd), dd, sh.fb[s], shafts.hb[s] == 1)
+            elif need < -lim - fd:
+                v = _coulomb(p - (lim + fd), dd, sh.fb[s], shafts.hb[s] == 1)
+            else:
+                v = vw
     return v
 
 

@@ -40,6 +40,18 @@ HOLDING_BRAKES = [dict(position="head", force_kn="auto", delay_s=0.5, ramp_s=1.5
                        force_curve=[(0.0, 0.3), (1.0, 1.0)], hold=False)]
 FOLLOWER_BRAKE = [dict(drive=2, force_kn=300, delay_s=0.3, ramp_s=0.5, hold=True)]
 SHORT_TRAVEL = dict(type="gravity", position="head", mass_kg="auto", travel_m=1.0)
+#: two head drives and a light tail follower behind a 300 kg take-up: the follower slips and
+#: its speed window brings its shaft back at its torque limit
+HEADS_AND_TAIL = [dict(position="head", wrap_deg=200, friction=0.35, share=0.5,
+                       pulley_diameter_m=1.25, inertia_kg_m2=800, rated_power_kw=400,
+                       torque_limit=1.5),
+                  dict(position="head", wrap_deg=200, friction=0.35, share=0.3,
+                       pulley_diameter_m=1.25, inertia_kg_m2=800, rated_power_kw=250,
+                       torque_limit=1.5),
+                  dict(position="tail", wrap_deg=200, friction=0.35, share=0.2,
+                       pulley_diameter_m=1.25, inertia_kg_m2=100, rated_power_kw=160,
+                       torque_limit=1.5)]
+LIGHT_TAIL = dict(type="gravity", position="tail", mass_kg=300, travel_m=10)
 
 
 def _slipped_in_start(kr):
@@ -99,6 +111,12 @@ CASES = [
                       stop={"mode": "coast"}),
                  lambda kr: kr.run["endstop"] > 0,
                  id="carriage-at-its-end-stop"),
+    pytest.param("slope-5pct", dict(drives=HEADS_AND_TAIL, takeup=LIGHT_TAIL), "din",
+                 dict(start={"control": "s-curve", "time_s": 8}, run_s=3,
+                      stop={"mode": "coast"}),
+                 lambda kr: kr.out.drv["slip_s"][2] > 0.0
+                 and kr.out.drv["fmax"][2] == pytest.approx(kr.model.drives.lim0[2], rel=1e-12),
+                 id="slipping-follower-window-at-its-torque-limit"),
 ]
 
 

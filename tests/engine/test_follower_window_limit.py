@@ -1,0 +1,58 @@
+"""A torque follower's speed window acts through its motor's torque, within its limit.
+
+A light tail follower behind a 200 kg take-up slips in the start (its pulley grips under
+1 kN) and spins its shaft up during the hand-over; the speed loop's window then brings the
+shaft back towards the reference. The window set the shaft's speed in one step whatever that
+took: 505 kN of drive force for one step (0.95 ms) on a drive whose torque limit is 15.6 kN,
+which the run reported as its largest force and its overload. A motor passes at most its
+torque limit (``torque_limit`` x rated force, rated force = rated power / design speed), so
+it brings the shaft back over the steps that follow.
+"""
+
+from __future__ import annotations
+
+import pytest
+
+from beltstudy.engine import parse_conveyor
+from beltstudy.engine.conveyor import Scenario
+from beltstudy.engine.dynamics.model import DynamicsOptions
+from beltstudy.engine.run import run_one
+
+SPEED = 3.0
+LIMIT = 1.5
+
+
+def _conveyor() -> dict:
+    drive = dict(wrap_deg=200, friction=0.35, pulley_diameter_m=0.8, torque_limit=LIMIT)
+    return dict(
+        name="short-multi", speed_m_s=SPEED, belt={"type": "ST1000", "width_m": 1.0},
+        material={"capacity_t_h": 800, "density_t_m3": 1.0},
+        profile=[{"length_m": 200, "lift_m": 10}, {"length_m": 200, "lift_m": 30}],
+        idlers={"carry": {"spacing_m": 1.5, "roll_diameter_m": 0.152, "rolls": 3,
+                          "trough_deg": 35, "cema_class": "C"},
+                "return": {"spacing_m": 3.0, "roll_diameter_m": 0.152, "rolls": 1,
+                           "cema_class": "C"}},
+        drives=[dict(drive, position="head", share=0.5, inertia_kg_m2=200),
+                dict(drive, position="head", share=0.3, inertia_kg_m2=200),
+                dict(drive, position="tail", share=0.2, inertia_kg_m2=100)],
+        takeup={"type": "gravity", "position": "tail", "mass_kg": 200, "travel_m": 5},
+        holdback=False)
+
+
+@pytest.mark.parametrize("options", [{}, {"dt_s": 0.0004}, {"elements": 400}],
+                         ids=["defaults", "finer-step", "finer-mesh"])
+def test_a_follower_never_passes_more_than_its_torque_limit(options):
+    scn = dict(start={"control": "s-curve", "time_s": 8}, run_s=4, stop={"mode": "coast"})
+    scn.update(options)
+    r = run_one(parse_conveyor(_conveyor()), Scenario(**scn), model="din",
+                options=DynamicsOptions())
+    s = r.summary
+    # the tail follower slips (the case the window acts in)
+    assert s["drive3_slip_s"] > 0.0
+    for i in (1, 2, 3):
+        rated_kn = s[f"drive{i}_rated_power_kw"] / SPEED
+        limit_kn = LIMIT * rated_kn
+        assert s[f"drive{i}_force_max_kn"] <= limit_kn * (1.0 + 1e-9), (i, limit_kn)
+    # the peak of all drives together is within the sum of their limits
+    total = sum(LIMIT * s[f"drive{i}_rated_power_kw"] / SPEED for i in (1, 2, 3))
+    assert s["drive_force_max_kn"] <= total * (1.0 + 1e-9)
