@@ -135,7 +135,11 @@ class Executor:
             if closed:  # closed while connecting: close what was made here
                 _close_quietly(client, cluster, self.settings.dask_timeout_s)
                 return
-            self.state = WARMING  # the workers compile the transient engine (first run only)
+            # the workers compile the transient engine (first run only); a worker joined, so
+            # an earlier failure to start is over (its words would send the operator to start
+            # workers that are compiling, and fail a waiting study 12 s after it)
+            with self._lock:
+                self.state, self.error, self.failing_since = WARMING, "", None
             try:
                 self._warm_up(client)
             except Exception as exc:

@@ -88,3 +88,51 @@ def test_a_command_knows_before_the_run_whether_the_engine_compiles(tmp_path):
     out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,
                          env={**os.environ, "NUMBA_CACHE_DIR": str(tmp_path)}, timeout=300)
     assert out.stdout.strip() == "True", out.stderr
+
+
+def test_workers_that_joined_after_a_failure_are_said_to_warm_not_to_be_missing(monkeypatch,
+                                                                                tmp_path):
+    """A worker that joins an external scheduler after a first 'no Dask worker joined' ends
+    that failure: while it warms up (the engine compiles: minutes on a fresh clone) the
+    executor said the old error, so a study waiting on it said 'no Dask worker joined ...;
+    start workers with ...' for 3.5 min with two workers compiling, and a study that had not
+    started failed 12 s after the first failure with 'no Dask worker could start in 12 s'."""
+    import threading
+
+    from beltstudy.service.dask import executor as ex
+    from beltstudy.service.settings import Settings
+
+    monkeypatch.setattr(ex, "RETRY_S", 0.0)
+    exe = ex.Executor(Settings(data_dir=tmp_path, warm_start=False,
+                               scheduler="tcp://127.0.0.1:1"))
+    attempts = iter([Unavailable("no Dask worker joined the scheduler tcp://127.0.0.1:1 "
+                                 "within 10 s (WorkerStartTimeoutError); start workers with "
+                                 "'dask worker tcp://127.0.0.1:1'"), ("client", None)])
+
+    def connect():
+        answer = next(attempts)
+        if isinstance(answer, Exception):
+            raise answer
+        return answer
+
+    warming, release = threading.Event(), threading.Event()
+
+    def warm_up(client):
+        warming.set()
+        release.wait(10)
+
+    monkeypatch.setattr(exe, "_connect", connect)
+    monkeypatch.setattr(exe, "_warm_up", warm_up)
+    exe.start_background()
+    try:
+        assert warming.wait(10)
+        assert exe.state == ex.WARMING
+        assert exe.error == "" and exe.failing_since is None, (exe.error, exe.failing_since)
+        with pytest.raises(Unavailable) as err:
+            exe.client(timeout=0.05)
+        assert "compiling the transient engine" in str(err.value), str(err.value)
+        assert "no Dask worker joined" not in str(err.value)
+    finally:
+        release.set()
+        exe._thread.join(10)
+    assert exe.state == "ready" and exe.error == ""
