@@ -59,7 +59,8 @@ __all__ = ["OVERLOAD_S_MAX", "RATED_POWER_FACTOR", "GIVEN", "rated_power_kw", "p
 OVERLOAD_S_MAX = 15.0
 
 #: Installed drive power as a multiple of the steady power at the drive [-] (the engine's
-#: default of ``drives[].rated_power_kw``: steady power x 1.25, SPEC section 1).
+#: default of ``drives[].rated_power_kw``: steady power x 1.25). The project's estimate: SPEC
+#: section 1 gives no default, and DIN 22101 leaves the reserve to the designer (unverified).
 RATED_POWER_FACTOR = 1.25
 #: ``*_governed_by`` of a size given in the conveyor file.
 GIVEN = "given"
