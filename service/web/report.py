@@ -29,6 +29,7 @@ from typing import Any
 import pandas as pd
 
 from beltstudy.engine import (
+    BELT_AUTO,
     SAFETY_FACTOR_MIN,
     TRANSIENT_SAFETY_RATIO,
     build_loop,
@@ -37,6 +38,7 @@ from beltstudy.engine import (
     governed_at,
     parse_conveyor,
     resolve_belt,
+    with_belt,
 )
 from beltstudy.engine import results as result_fields
 from beltstudy.engine.conveyor import place
@@ -142,6 +144,15 @@ def _pitch(idler_set: dict) -> str:
 def _place(item: dict) -> str:
     """A drive's or take-up's position: ``head``, ``tail`` or ``carry at 1000 m``."""
     return place(item["position"], item.get("at_m"))
+
+
+def _brake_place(brake: dict, drives: list[dict]) -> str:
+    """A brake's place: ``head`` or ``tail``, or the drive whose shaft it brakes
+    (``drive 2 (carry at 700 m)`` for ``drive: 2``)."""
+    n = brake.get("drive")
+    if n is None:
+        return brake["position"]
+    return f"drive {n} ({_place(drives[n - 1])})" if 0 < n <= len(drives) else f"drive {n}"
 
 
 def _num(value: Any, digits: int = 4, unit: str = "") -> str:
@@ -281,7 +292,8 @@ def _conveyor_section(conv: dict, fill: dict | None) -> str:
                       drows))
     if conv.get("brakes"):
         out.append(_table(["brake", "position", "force [kN]", "delay [s]"], [
-            [str(i + 1), _e(b["position"]), _n(b["force_kn"]), _n(b["delay_s"])]
+            [str(i + 1), _e(_brake_place(b, conv["drives"])), _n(b["force_kn"]),
+             _n(b["delay_s"])]
             for i, b in enumerate(conv["brakes"])]))
     return "".join(out)
 
@@ -780,6 +792,26 @@ def _figures(doc: dict, runs: pd.DataFrame, study: dict) -> tuple[str, str]:
     return peaks, "".join(figs)
 
 
+def _fill(study: dict) -> dict | None:
+    """The capacity check of the study's conveyor (ISO 5048 cross-section at design speed);
+    a ``belt.type: auto`` on the belt its design chose (docs/belts.md), as its runs'
+    ``fill_pct``; None for a conveyor this engine cannot read (the rest of the report still
+    helps) or an auto belt no design chose."""
+    try:
+        conv = parse_conveyor(study["conveyor"])
+        if conv.belt.type == BELT_AUTO:
+            chosen = [d["sizes"]["belt"]["type"] for d in study.get("designs") or []
+                      if (d.get("sizes") or {}).get("belt")]
+            if not chosen:
+                return None
+            conv = with_belt(conv, chosen[0])
+        cap = capacity(conv)
+    except Exception:
+        return None
+    return {"fill_pct": cap.fill_pct, "volume_flow_m3_h": cap.volume_flow_m3_h,
+            "capacity_m3_h": cap.capacity_m3_h}
+
+
 def report_html(doc: dict, runs: pd.DataFrame, status: dict, accuracy: str = "",
                 bars: pd.DataFrame | None = None) -> str:
     """The design report of a stored study document ``doc`` (as the store keeps it: name,
@@ -789,12 +821,7 @@ def report_html(doc: dict, runs: pd.DataFrame, status: dict, accuracy: str = "",
     shows its error bar in the verdicts)."""
     study_id = doc.get("id", "")
     study = doc["study"]
-    try:
-        cap = capacity(parse_conveyor(study["conveyor"]))
-        fill = {"fill_pct": cap.fill_pct, "volume_flow_m3_h": cap.volume_flow_m3_h,
-                "capacity_m3_h": cap.capacity_m3_h}
-    except Exception:  # a conveyor this engine cannot read: the rest of the report still helps
-        fill = None
+    fill = _fill(study)
     name = doc.get("name", study_id)
     when = time.strftime("%Y-%m-%d %H:%M", time.gmtime(doc.get("finished_at")
                                                         or doc.get("updated_at") or time.time()))
