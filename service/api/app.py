@@ -19,6 +19,7 @@ import json
 import logging
 import uuid
 from contextlib import asynccontextmanager
+from pathlib import Path
 from urllib.parse import parse_qsl, unquote
 
 from fastapi import Depends, FastAPI, Request
@@ -270,6 +271,11 @@ def create_app(settings: Settings | None = None, service: StudyService | None = 
 
     @asynccontextmanager
     async def lifespan(app: FastAPI):
+        if not Path(settings.studies_dir).is_dir():
+            log.warning(
+                "BELTSTUDY_STUDIES_DIR %s is not a folder (from %s): a POSTed study can give "
+                "its conveyor inline only, not as a path; set it to the study files' folder "
+                "(the repository's studies/)", settings.studies_dir, Path.cwd())
         service.start()
         try:
             yield

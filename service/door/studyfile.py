@@ -162,6 +162,14 @@ def conveyor_from_path(ref: str, base_dir: Path | None, root: Path | None) -> tu
             if path.is_dir():
                 raise Invalid(f"conveyor: '{shown_path(ref)}' is a folder in the studies "
                               "directory, not a file; give a conveyor file in it")
+            if not path.is_file() and not root_r.is_dir():
+                # a service started outside the repository (./studies is relative to where
+                # it starts): say so, without the service's own folders
+                raise Invalid(f"conveyor: file '{shown_path(ref)}' not found: the service "
+                              "has no studies directory to read it from (its "
+                              "BELTSTUDY_STUDIES_DIR is not a folder); give the conveyor "
+                              "inline (beltstudy submit inlines it), or ask its operator to "
+                              "set BELTSTUDY_STUDIES_DIR to the study files' folder")
             if not path.is_file():
                 raise Invalid(f"conveyor: file '{shown_path(ref)}' not found in the studies "
                               "directory (paths are relative to it)"

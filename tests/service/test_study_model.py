@@ -690,3 +690,35 @@ def test_an_axis_of_one_of_two_exclusive_fields_is_told_how_to_clear_the_other(m
     study = resolve_study(make_study(grid={"idlers.carry.count": [40, 50],
                                            "idlers.carry.spacing_m": [None]}))
     assert study.total == 2
+
+
+def test_a_conveyor_path_on_a_service_without_a_studies_directory_says_so(make_study,
+                                                                          tmp_path, caplog):
+    """``beltstudy serve`` started outside the repository (BELTSTUDY_STUDIES_DIR is
+    ./studies, relative to where it starts) has no studies directory: every POSTed conveyor
+    path, studies/power-vs-temperature.yaml's 'conveyors/slope-5pct.yaml' included, was
+    refused 'not found in the studies directory (paths are relative to it)', naming neither
+    the setting nor a way round it, and the service said nothing when it started. The answer
+    now says the service has no studies directory, names the setting and the inline
+    conveyor; the service names it in its log when it starts."""
+    import logging
+
+    from fastapi.testclient import TestClient
+
+    from beltstudy.service.api.app import create_app
+    from beltstudy.service.settings import Settings
+
+    nowhere = tmp_path / "nowhere"
+    with pytest.raises(Invalid) as exc:
+        resolve_study(make_study(conveyor="conveyors/slope-5pct.yaml"), studies_dir=nowhere)
+    msg = str(exc.value)
+    assert msg.startswith("conveyor: file 'conveyors/slope-5pct.yaml' not found: the service "
+                          "has no studies directory"), msg
+    assert "BELTSTUDY_STUDIES_DIR" in msg and "inline" in msg
+    assert str(tmp_path) not in msg  # the service's own folders stay out of the answer
+
+    settings = Settings(data_dir=tmp_path / "data", warm_start=False, studies_dir=nowhere)
+    with caplog.at_level(logging.WARNING), TestClient(create_app(settings)):
+        pass
+    said = [r.getMessage() for r in caplog.records if "BELTSTUDY_STUDIES_DIR" in r.getMessage()]
+    assert said and str(nowhere) in said[0], [r.getMessage() for r in caplog.records]
