@@ -200,6 +200,19 @@ def conveyor_from_path(ref: str, base_dir: Path | None, root: Path | None) -> tu
         raise Invalid(f"conveyor: cannot read the file: {file_problem(exc, ref)}") from None
 
 
+def _range_fix(spec: RangeSpec, max_runs: int) -> str:
+    """What brings a range within the run limit: the smallest step that does on its own
+    (rounded up at three digits), or a shorter range."""
+    span = abs(float(spec.stop) - float(spec.start))
+    if max_runs < 2 or not math.isfinite(span) or span == 0:
+        return "a larger step or a shorter range"
+    least = span / (max_runs - 1)
+    scale = 10.0 ** (math.floor(math.log10(least)) - 2)
+    least = math.ceil(least / scale * (1 - 1e-12)) * scale
+    return (f"a step of at least {least:.3g} (that keeps this axis alone within the limit), "
+            "or a shorter range")
+
+
 def _axis_values(name: str, spec: list | RangeSpec, max_runs: int, where: str) -> list[Any]:
     label = f"{where}.{name}"
     if isinstance(spec, RangeSpec):
@@ -214,7 +227,8 @@ def _axis_values(name: str, spec: list | RangeSpec, max_runs: int, where: str) -
                      f"more than 10^{round(math.log10(HUGE_COUNT))} (from {spec.start:g} to "
                      f"{spec.stop:g} in steps of {spec.step:g})")
             raise TooLarge(
-                f"{label}: the range has {count} values; the study limit is {max_runs} runs"
+                f"{label}: the range has {count} values; the study limit is {max_runs} runs: "
+                + _range_fix(spec, max_runs)
             )
         values = spec.values()
     else:

@@ -722,3 +722,21 @@ def test_a_conveyor_path_on_a_service_without_a_studies_directory_says_so(make_s
         pass
     said = [r.getMessage() for r in caplog.records if "BELTSTUDY_STUDIES_DIR" in r.getMessage()]
     assert said and str(nowhere) in said[0], [r.getMessage() for r in caplog.records]
+
+
+def test_a_range_over_the_run_limit_names_the_step_that_fits(make_study):
+    """A range over the limit said 'grid.temperature_c: the range has 80000000001 values; the
+    study limit is 20000 runs' and no way out (the product over the limit names one); it now
+    names the smallest step that keeps the axis within the limit: -40 to 40 over 19999 gaps
+    is 0.0040002, at least 0.00401 (rounded up, so it does)."""
+    huge = {"temperature_c": {"start": -40, "stop": 40, "step": 1e-9}}
+    with pytest.raises(TooLarge) as err:
+        resolve_study(make_study(grid=huge))
+    assert str(err.value) == (
+        "grid.temperature_c: the range has 80000000001 values; the study limit is 20000 runs: "
+        "a step of at least 0.00401 (that keeps this axis alone within the limit), or a "
+        "shorter range")
+    assert 80 / 0.00401 + 1 <= 20000
+    wild = {"temperature_c": {"start": -1e308, "stop": 1e308, "step": 1e-300}}
+    with pytest.raises(TooLarge, match=r"runs: a larger step or a shorter range$"):
+        resolve_study(make_study(grid=wild))
