@@ -350,7 +350,7 @@ def transient_liftoff(loop: Loop, segs, t_start_end_s: float, t_stop_cmd_s: floa
                       start_time_s: float, steady_n: np.ndarray,
                       softer_start: str | None = None,
                       softer_stop: str = "a softer stop (stop time, brake force)",
-                      survey: list[dict] | tuple = (),
+                      survey: list[dict] | tuple = (), t_start_cmd_s: float = 0.0,
                       ) -> tuple[dict, list[str]]:
     """Lift-off at concave curves during the cycle: ``liftoff_*`` fields and one warning per
     phase in which the belt leaves its idlers.
@@ -381,6 +381,10 @@ def transient_liftoff(loop: Loop, segs, t_start_end_s: float, t_stop_cmd_s: floa
         The concave grade changes given as survey points (no ``curve_radius_m``), each with
         its springs and their lift-off tensions (:func:`survey_liftoff_limits_n`): judged as
         the curves are, neighbouring ones as one bend.
+    t_start_cmd_s : float, optional
+        The start command [s]: ``liftoff_over_start_kn`` is of the segments from it to the
+        stop command (SPEC 6.4's start phase; the kernel cuts a segment there), the rest
+        before it counting in the whole cycle's figure only.
 
     Returns
     -------
@@ -388,8 +392,8 @@ def transient_liftoff(loop: Loop, segs, t_start_end_s: float, t_stop_cmd_s: floa
         ``liftoff_max_kn_over``: the largest T - R m'_G g cos(a) over the concave curves' elements
         and the concave survey grade changes' springs (both strands) and the cycle [kN],
         negative when the belt stays on its idlers (the margin left), null without either;
-        ``liftoff_over_start_kn`` / ``liftoff_over_stop_kn`` the same before and after the
-        stop command (null for a phase no envelope covers);
+        ``liftoff_over_start_kn`` / ``liftoff_over_stop_kn`` the same from the start command
+        to the stop command and after it (null for a phase no envelope covers);
         ``liftoff_at_m`` / ``liftoff_time_s``
         where (loop position of the spring, as ``t_max_dyn_at_m``) and when, null when it
         never lifts. Exact: the envelopes hold every step's tension and the limit is fixed
@@ -439,7 +443,10 @@ def transient_liftoff(loop: Loop, segs, t_start_end_s: float, t_stop_cmd_s: floa
     # per phase, split at the stop command as the segments are (exact): the largest excess of
     # one phase may lie under the other's on one mesh and pass it on a finer one
     before = hi_t <= t_stop_cmd_s
-    for key, mask in (("liftoff_over_start_kn", before), ("liftoff_over_stop_kn", ~before)):
+    # the start phase from the start command (SPEC 6.4): the segments that begin there
+    started = np.array([s[0] >= t_start_cmd_s for s in segs])[:, None]
+    for key, mask in (("liftoff_over_start_kn", before & started),
+                      ("liftoff_over_stop_kn", ~before)):
         part = over[mask & np.isfinite(over)]
         out[key] = float(part.max()) / 1e3 if part.size else None
     if worst > 0.0:

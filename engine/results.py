@@ -303,7 +303,7 @@ TRANSIENT = ResultGroup("transient", "Transient: the start, run and stop cycle (
     _f("slip_margin_min_dyn", "-", "smallest slip margin of any drive pulley during the cycle",
        "smallest slip margin (transient)"),
     _f("slip_margin_min_start_dyn", "-", "smallest slip margin of any drive pulley from the "
-       "start of the run to the stop command (the rest before the start included)",
+       "start command to the stop command",
        "  of the start"),
     _f("slip_margin_min_stop_dyn", "-", "smallest slip margin of any drive pulley from the stop "
        "command on (null when the run ended before it)", "  of the stop"),
@@ -316,12 +316,13 @@ TRANSIENT = ResultGroup("transient", "Transient: the start, run and stop cycle (
 ))
 
 _PHASE_WORDS = {"max": "highest", "min": "lowest"}
-_PHASE_SPAN = {"start": "from the beginning of the run (the rest before the start command "
-                         "included) to the stop command",
+_PHASE_SPAN = {"start": "from the start command to the stop command (the rest before the "
+                         "start command is in the whole run's t_max_dyn_kn and t_min_dyn_kn "
+                         "only)",
                "stop": "from the stop command to the end"}
 PHASE = ResultGroup(
-    "phase", "Per phase (SPEC 6.4): start = the beginning of the run (the rest before the "
-    "start command included) to the stop command; stop = stop command to the end",
+    "phase", "Per phase (SPEC 6.4): start = start command to stop command; stop = stop "
+    "command to the end",
     tuple(
         field_
         for p in ("start", "stop")

@@ -474,7 +474,8 @@ def _complete(prep: _Prepared, scenario, system, tr, model, params, opts, remedy
         steady.loop, tr.raw["segments"], cyc.t_pre + cyc.t_start, system.stop_command_s,
         max(cyc.t_start, tr.summary.get("start_time_s") or 0.0), system.steady_tension_n,
         None if reads_start_time(conveyor) else " or ".join(start_levers(system)),
-        " or ".join(stop_levers(system)), survey_liftoff_limits_n(conveyor, steady.loop))
+        " or ".join(stop_levers(system)), survey_liftoff_limits_n(conveyor, steady.loop),
+        t_start_cmd_s=cyc.t_pre)
     summary.update(lifted)
     if lift_warnings:
         messages.append("; ".join(lift_warnings))

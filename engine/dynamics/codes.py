@@ -34,9 +34,10 @@ REST_FRACTION = 0.01
 BLOCK_MAX = 16
 #: Most points of a motor curve or a brake force curve.
 CURVE_MAX = CURVE_POINTS_MAX  # beltstudy.engine.conveyor refuses longer curves at the door
-#: Envelope segments: the cycle is cut at the stop command and when the belt first goes
-#: slack, so per-phase and before/after-slack extremes come from whole segments.
-SEG_MAX = 3
+#: Envelope segments: the cycle is cut at the start command, when the belt first goes slack
+#: and at the stop command, so per-phase (SPEC 6.4: start = start command to stop command) and
+#: before/after-slack extremes come from whole segments.
+SEG_MAX = 4
 
 #: Speed window of a torque-following vfd drive, as a fraction of the design speed: a follower
 #: gives the master's torque share while its own shaft stays within this of the speed

@@ -541,7 +541,8 @@ def _switches(model, st, out, wk, rs):
     """After the step: the stop achieved, the belt stopped (holding brakes set, the rest
     begins: at 1 % of design speed, and on a controlled stop once its reference has run out),
     slack (the belt length gathered by the slack spans, the time with a slack span), and the
-    envelope cut when the belt first goes slack and at the stop command."""
+    envelope cut at the start command (the rest before it a segment of its own: SPEC 6.4's
+    start phase begins there), when the belt first goes slack and at the stop command."""
     cyc = model.cycle
     t = rs.t
     if rs.stopping and rs.stop_ach < 0.0:
@@ -556,6 +557,8 @@ def _switches(model, st, out, wk, rs):
         if cyc.t_end > 0.0:
             rs.t_end_limit = min(rs.t_end_limit, cyc.t_end)
     nseg = out.seg_time.shape[0]
+    if rs.started and rs.seg == 0 and t - cyc.dt <= cyc.t_pre and nseg > 1:
+        rs.seg = _cut_segment(rs.seg, t, st.tt, out, wk)
     if rs.tlo <= 0.0 and rs.started:
         rs.slack_dur += cyc.dt
         sp = model.springs

@@ -1149,9 +1149,12 @@ def transient_summary(sys: System, r: dict, out, segs, *, steady_summary=None, c
     rating = None
     if conveyor is not None:
         rating = resolve_belt(conveyor.belt).rating_n
-    # phases: start = start command to stop command, stop = stop command to the end
+    # phases (SPEC 6.4): start = start command to stop command, stop = stop command to the
+    # end; the rest before the start command is a segment of its own (the kernel cuts one
+    # at the start command), in the whole cycle's figures only
     eps = 1.5 * sys.dt_s
-    start_segs = [s for s in segs if s[1] <= t_stop_cmd + eps]
+    t_start_cmd = float(sys.model.cycle.t_pre)
+    start_segs = [s for s in segs if s[0] >= t_start_cmd and s[1] <= t_stop_cmd + eps]
     stop_segs = [s for s in segs if s[1] > t_stop_cmd + eps]
     first_slack = r["slack_first"]
     pre = [s for s in segs if first_slack < 0 or s[1] <= first_slack + eps]
