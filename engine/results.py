@@ -108,7 +108,6 @@ class ResultField:
     def per_hcurve(self) -> bool:
         """A field per horizontal curve (``hcurve{k}_*``)."""
         return "{k}" in self.name and self.name.startswith("hcurve")
-        return "{k}" in self.name
 
     @property
     def flag(self) -> bool:
@@ -416,7 +415,8 @@ DESIGN_BASIS = ResultGroup("design_basis", "What set each auto size (text)", (
     _f("brake_governed_by", "text", "the brakes: stop_time, holding, or grip (the stop time "
        "asked needs more than the braked pulley passes in the stop: held at its grip, the "
        "message gives the stop time it makes and what would meet the asked one, "
-       "docs/dynamics.md *Brakes within their grip*); given when the file gives them (null "
+       "docs/dynamics.md *Brakes within their grip*); given when the file gives them "
+       "(several joined by +, 'holding+given' for an auto brake beside a given one; null "
        "without brakes); in a study with ' @ <case>' as for takeup_governed_by "
        "('stop_time @ declines')"),
     _f("belt_type_used", "text", "the catalogue belt the run used (custom for a belt without a "
@@ -425,10 +425,11 @@ DESIGN_BASIS = ResultGroup("design_basis", "What set each auto size (text)", (
 ))
 
 # ------------------------------------------------ design checks (SPEC 7.4, docs/checks.md)
-_PULLEY_J = ("pulley j: the pulley's 1-based number in loop order (head drives in file order "
-             "or the plain head pulley, a head take-up pulley, a tail take-up pulley before "
-             "tail drives, tail drives in file order or the plain tail pulley; "
-             "pulley{j}_name says which)")
+_PULLEY_J = ("pulley j: the pulley's 1-based number in loop order (booster drives on the "
+             "carry, tail to head; head drives in file order or the plain head pulley, a head "
+             "take-up pulley; booster drives and a take-up along the return, head to tail; a "
+             "tail take-up pulley before tail drives, tail drives in file order or the plain "
+             "tail pulley; pulley{j}_name says which)")
 CHECKS = ResultGroup("checks", "Design checks, steady (DIN 22101, ISO 5048, CEMA, ISO 281; "
                      "docs/checks.md)", (
     _f("pulley{j}_name", "text", f"{_PULLEY_J}: drive i (head|tail), head, tail or take-up "
