@@ -296,10 +296,16 @@ class Accuracy:
         return summary
 
     def methods(self) -> str:
-        """Each figure's method, grouped: ``richardson: a (p 0.8), b (p 1.1); spread: c``."""
+        """Each figure's method, grouped: ``richardson: a (p 0.8), b (p 1.1); spread: c``;
+        the observed order, with the bounded one the bar used where ``gci3`` bounds it
+        (``gci3: d (p 4.2 observed, 1 used)``)."""
         groups: dict[str, list[str]] = {}
         for name, fe in self.figures.items():
             words = name if fe.order is None else f"{name} (p {fe.order:.2g})"
+            if fe.method == "gci3":
+                used = min(max(P_MIN, fe.order), P_FORMAL)
+                if f"{used:.2g}" != f"{fe.order:.2g}":
+                    words = f"{name} (p {fe.order:.2g} observed, {used:.2g} used)"
             groups.setdefault(fe.method, []).append(words)
         return "; ".join(f"{m}: {', '.join(v)}" for m, v in groups.items())
 

@@ -63,6 +63,12 @@ def test_an_order_above_the_formal_one_is_not_credited():
     assert fe.method == "gci3" and fe.order == pytest.approx(2.0)
     # p used 1 (the formal order), Fs 3: converged 50.5 - 1.5 = 49, bar 3 x |52 - 49|
     assert fe.converged == pytest.approx(49.0) and fe.err == pytest.approx(9.0)
+    # the words give the observed order and the bounded one the bar used (they read as if
+    # gci3 had taken p 2 where its bound is the formal order 1)
+    low = A.figure_error("t_min_stop_kn", _seq(50.0, 2.0e4, 0.6)[:3], (50, 100, 200))
+    acc = A.Accuracy((50, 100, 200), {"t_max_stop_kn": fe, "t_min_stop_kn": low})
+    assert acc.methods() == ("gci3: t_max_stop_kn (p 2 observed, 1 used), t_min_stop_kn "
+                             f"(p {low.order:.2g})")
 
 
 def test_differences_of_opposite_sign_give_the_spread():
