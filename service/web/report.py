@@ -403,11 +403,11 @@ def _grid_section(study: dict, status: dict) -> str:
 
 
 def _locator(study: dict):
-    """``s_m -> (strand, distance from the tail)`` on the study's conveyor (None if the
-    conveyor cannot be read here)."""
+    """``s_m -> (strand, distance from the tail)`` on the study's conveyor, an auto belt on
+    its design's (None if the conveyor cannot be read here)."""
 
     try:
-        return build_loop(parse_conveyor(study["conveyor"]), 1.0).where
+        return build_loop(_on_design_belt(study), 1.0).where
     except Exception:  # made by another engine version
         return None
 
@@ -792,20 +792,27 @@ def _figures(doc: dict, runs: pd.DataFrame, study: dict) -> tuple[str, str]:
     return peaks, "".join(figs)
 
 
+def _on_design_belt(study: dict):
+    """The study's conveyor, parsed; a ``belt.type: auto`` on the belt its (first) design
+    chose (docs/belts.md): the belt an auto conveyor's runs ran on (raises when none chose
+    one, or the conveyor cannot be read here)."""
+    conv = parse_conveyor(study["conveyor"])
+    if conv.belt.type == BELT_AUTO:
+        chosen = [d["sizes"]["belt"]["type"] for d in study.get("designs") or []
+                  if (d.get("sizes") or {}).get("belt")]
+        if not chosen:
+            raise ValueError("belt.type: auto and no design chose a belt")
+        conv = with_belt(conv, chosen[0])
+    return conv
+
+
 def _fill(study: dict) -> dict | None:
     """The capacity check of the study's conveyor (ISO 5048 cross-section at design speed);
     a ``belt.type: auto`` on the belt its design chose (docs/belts.md), as its runs'
     ``fill_pct``; None for a conveyor this engine cannot read (the rest of the report still
     helps) or an auto belt no design chose."""
     try:
-        conv = parse_conveyor(study["conveyor"])
-        if conv.belt.type == BELT_AUTO:
-            chosen = [d["sizes"]["belt"]["type"] for d in study.get("designs") or []
-                      if (d.get("sizes") or {}).get("belt")]
-            if not chosen:
-                return None
-            conv = with_belt(conv, chosen[0])
-        cap = capacity(conv)
+        cap = capacity(_on_design_belt(study))
     except Exception:
         return None
     return {"fill_pct": cap.fill_pct, "volume_flow_m3_h": cap.volume_flow_m3_h,

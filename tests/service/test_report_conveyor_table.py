@@ -55,3 +55,22 @@ def test_an_auto_belt_has_its_capacity_check_on_the_belt_its_design_chose():
     # the width and trough set it: any belt of that width fills it alike
     assert abs(fill["fill_pct"] - capacity(parse_conveyor(_conveyor())).fill_pct) < 1e-12
     assert "capacity check (ISO 5048)" in _conveyor_section(study["conveyor"], fill)
+
+
+def test_an_auto_belt_s_verdicts_say_where_the_tension_is():
+    """belt: {type: auto}: the verdict table's 'where' cell was empty for every tension of
+    the study (the report's loop could not be cut on the unchosen belt), while a given belt
+    said 'carry, 1 200 m from the tail'. On the tiny conveyor (300 m of carry, then the head
+    drive pulley of 0.6 m, its arc more than 0.5 m) 150 m is on the carry and 300.5 m on the
+    head pulley."""
+    from beltstudy.service.web.numbers import UNIT_SPACE
+    from beltstudy.service.web.report import _locator, _where_on_loop
+
+    study = resolve_study({"name": "auto-belt-where", "dynamics": False,
+                           "conveyor": _conveyor(belt={"type": "auto", "kind": "fabric",
+                                                       "width_m": 0.8}),
+                           "grid": {"friction_model": ["din"]}}).to_json()
+    locate = _locator(study)
+    assert locate is not None
+    assert _where_on_loop(locate, 150.0) == f"carry, 150{UNIT_SPACE}m from the tail"
+    assert _where_on_loop(locate, 300.5) == "head pulley"
