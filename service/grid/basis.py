@@ -306,8 +306,23 @@ def _brake_entry(brakes: BrakeSizes) -> dict:
     # a force held at its pulley's grip is the most the pulley passes: rounded down, as every
     # other size (a least need) is rounded up; rounded up, the grip size at its own case was
     # beyond the grip (59.3205 kN set against 59.32052 kN passed) and its run said so
-    return {"force_kn": [max(round_down(f) if why == "grip" else round_up(f), 1e-3)
-                         for f, why in zip(brakes.force_kn, brakes.governed_by, strict=True)],
+    forces, why = list(brakes.force_kn), list(brakes.governed_by)
+    held = [k for k, w in enumerate(why) if w == "holding"]
+    # a holding force shared by the pulleys' grip (engine.design: an even share is beyond one
+    # pulley's grip): the brakes below the even share sit at their grip, rounded down too,
+    # what that takes off going to the others (rounded up) so the brakes still hold the belt
+    at_grip: set[int] = set()
+    if len(held) > 1:
+        even = sum(forces[k] for k in held) / len(held)
+        at_grip = {k for k in held if forces[k] < even * (1.0 - 1e-9)}
+    others = [k for k in held if k not in at_grip]
+    if at_grip and others:
+        taken = sum(forces[k] - round_down(forces[k]) for k in at_grip)
+        for k in others:
+            forces[k] += taken / len(others)
+    return {"force_kn": [max(round_down(f) if w == "grip" or k in at_grip else round_up(f),
+                             1e-3)
+                         for k, (f, w) in enumerate(zip(forces, why, strict=True))],
             "governed_by": list(brakes.governed_by), "case": brakes.case.label(),
             "at": brakes.at}
 

@@ -61,3 +61,64 @@ def test_a_grip_held_design_brake_is_within_the_grip_at_its_own_case():
     given = parse_conveyor({**ROUTE, "brakes": [{**ROUTE["brakes"][0], "force_kn": force}]})
     steady = solve_steady(given, model="cema", temperature_c=-20.0, load="inclines")
     assert auto_sizes(given, STOP, model="cema", steady=steady)["brake_note"] == ""
+
+
+#: A 900 m regenerating decline (-50 m) with a head drive, a booster on the return, the
+#: take-up along the return and auto brakes at the head and the tail: the holding force, 1.2 x
+#: the net gravity pull 25.89 kN = 31.07 kN, is beyond the head pulley's grip as an even share,
+#: so the engine gives the head its grip (15.385 kN) and the tail the rest (15.680 kN), both
+#: ``holding``.
+DECLINE = {
+    "name": "decline-two-brakes", "speed_m_s": 3.0,
+    "belt": {"type": "EP630/4", "width_m": 1.0},
+    "material": {"capacity_t_h": 600, "density_t_m3": 1.4, "feed": [
+        {"at_m": 0, "share": 0.5, "skirt_length_m": 4},
+        {"at_m": 250, "share": 0.5, "skirt_length_m": 3}]},
+    "profile": [{"length_m": 300, "lift_m": -6, "curve_radius_m": 500},
+                {"length_m": 400, "lift_m": -40, "horizontal_radius_m": 900,
+                 "superelevation_deg": 4, "curve_radius_m": 700},
+                {"length_m": 200, "lift_m": -4}],
+    "idlers": {"carry": {"spacing_m": 1.2, "roll_diameter_m": 0.127, "rolls": 3,
+                         "trough_deg": 35, "cema_class": "C"},
+               "return": {"spacing_m": 3.0, "roll_diameter_m": 0.127, "rolls": 1,
+                          "cema_class": "C"}},
+    "drives": [{"position": "head", "wrap_deg": 210, "friction": 0.35, "share": 0.6,
+                "pulley_diameter_m": 0.8, "inertia_kg_m2": 150, "torque_limit": 1.5},
+               {"position": "return", "at_m": 500, "wrap_deg": 190, "friction": 0.35,
+                "share": 0.4, "pulley_diameter_m": 0.8, "inertia_kg_m2": 100,
+                "torque_limit": 1.5}],
+    "takeup": {"type": "gravity", "position": "return", "at_m": 850, "mass_kg": "auto",
+               "travel_m": 10},
+    "brakes": [{"position": "head", "force_kn": "auto", "delay_s": 0.5, "ramp_s": 1.5},
+               {"position": "tail", "force_kn": "auto", "delay_s": 0.5}],
+    "accessories": {"head_kn": 0.5, "tail_kn": 0.5},
+}
+
+
+def test_a_holding_share_at_its_pulleys_grip_is_written_in_within_the_grip():
+    """The even share of a holding force beyond one pulley's grip is shared by the grip, both
+    brakes still ``holding``: the head's share at its grip, 15.38514 kN, was rounded up like a
+    least need to 15.3852 kN, and the study's run (not beltstudy simulate) said 'passes at
+    most 15.39 kN of brake force in the stop against the 15.39 kN set ... a take-up of 6,711
+    kg (6,710.94 kg written in) would let it pass that force'. It is now rounded down, what
+    that takes off going to the other brake, so the two still hold the belt."""
+    from beltstudy.service.grid.basis import apply_sizes
+
+    conv = parse_conveyor(DECLINE)
+    case = DesignCase(model="din", temperature_c=20.0, load="full")
+    scn = {"load": "full", "temperature_c": 20, "stop": {"mode": "brake", "time_s": 15}}
+    steady = solve_steady(conv, model="din", temperature_c=20.0, load="full")
+    own = auto_sizes(conv, Scenario.model_validate(scn), model="din", steady=steady)
+    head, tail = own["brake_force_kn"]
+    assert own["brake_governed_by"] == ["holding", "holding"]
+    assert "shared by the braked pulleys' grip" in own["brake_note"]
+    assert head < tail  # the head at its grip, the tail the rest
+    entry = size_design(conv, [case], stop_times=[15.0])["brakes"]["stop_time_s"]["15"]
+    assert head * (1 - 1e-5) <= entry["force_kn"][0] <= head
+    assert sum(entry["force_kn"]) >= head + tail
+    run_conv, _ = apply_sizes(conv.model_dump(mode="json", by_alias=True),
+                              size_design(conv, [case], stop_times=[15.0]), scn, True)
+    given = parse_conveyor(run_conv)
+    steady = solve_steady(given, model="din", temperature_c=20.0, load="full")
+    assert auto_sizes(given, Scenario.model_validate(scn), model="din",
+                      steady=steady)["brake_note"] == ""
