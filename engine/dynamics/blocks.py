@@ -353,6 +353,7 @@ def _shaft_push(model, s, U, sl, ft):
         md = drives.mode[dk]
         if md == 1:
             p += drives.f0[dk] if drives.sat[dk] == 1 else drives.share[dk] * U
+            p += drives.win_f[dk]  # a follower's window (0 for any other drive)
         elif md == 0:
             p += drives.f0[dk] + drives.f1[dk] * shafts.vs[s]
     return p
@@ -392,15 +393,20 @@ def _shaft_speed(model, s, U, v_ref, sl, ts):
     if follower:
         window = model.control.window
         vw = min(max(v, v_ref - window), v_ref + window)
+        extra = 0.0
         if vw != v:
             lim = drives.lim[dk]
             need = ms * (vw - v)
             if need > lim - fd:
-                v = coulomb(p + (lim - fd), dd, fb, hb)
+                extra = lim - fd
+                v = coulomb(p + extra, dd, fb, hb)
             elif need < -lim - fd:
-                v = coulomb(p - (lim + fd), dd, fb, hb)
+                extra = -(lim + fd)
+                v = coulomb(p + extra, dd, fb, hb)
             else:
+                extra = need
                 v = vw
+        drives.win_f[dk] = extra
     return v
 
 
@@ -755,6 +761,8 @@ def _shaft_consistent(model, st, wk, rs, p0, k, m, car, U):
         return False
     if abs(wk.crossed[k]) == 2.0:
         wk.vsn[k] = x[k]
+        if shafts.drive[s] >= 0:
+            model.drives.win_f[shafts.drive[s]] = 0.0  # sliding on at the belt's speed
         return False
     ts = max(tr if sl > 0.0 else tl, 0.0)
     vsn = _shaft_speed(model, s, U, rs.v_ref, sl, ts)
@@ -770,7 +778,7 @@ def _shaft_consistent(model, st, wk, rs, p0, k, m, car, U):
 @njit(inline="always", **OPTS)
 def _drive_output(model, rs, s, ft, vs_old, vsn, U):
     """A drive's force at the rim after the step [N] (mode 2: what moved its shaft; mode 1:
-    its share of U, a slipping follower only what holds it in its window; mode 0: its linear
+    its share of U, a slipping follower's with what its speed window adds; mode 0: its linear
     law), the force at the step's start (``f_start``), and its motor's speed behind a
     coupling."""
     shafts = model.shafts
@@ -784,9 +792,9 @@ def _drive_output(model, rs, s, ft, vs_old, vsn, U):
     elif md == 1:
         f = drives.f0[dk] if drives.sat[dk] == 1 else drives.share[dk] * U
         if sl != 0.0 and dk != model.control.master:
-            # a follower in its speed window gives what holds its shaft there
-            f = min(f, shafts.mass[s] / dt * (vsn - vs_old) + ft) if f > 0.0 else \
-                max(f, shafts.mass[s] / dt * (vsn - vs_old) + ft)
+            # a slipping follower's speed window adds the force that takes its shaft there,
+            # within its limit (:func:`_shaft_speed`)
+            f += drives.win_f[dk]
     else:
         f = drives.f0[dk] + drives.f1[dk] * vsn
     # the force at the step's start: the step's law at the shaft's speed before it (a share

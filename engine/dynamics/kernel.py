@@ -119,6 +119,7 @@ def _drive_laws(model, rs, first_off):
     support = model.cycle.formulation == C.SUPPORT
     for dk in range(drives.share.shape[0]):
         drives.sat[dk] = 0
+        drives.win_f[dk] = 0.0
         drives.lim[dk] = drives.lim0[dk]
         drives.lin_d[dk] = 0.0
         vs = shafts.vs[drives.shaft[dk]]

@@ -924,7 +924,8 @@ def _drives(conv: Conveyor, loop: Loop, shaft_index: dict, rated: np.ndarray,
         curve_x=cx, curve_y=cy, curve_n=cn, fill_s=_f64([d.coupling_fill_s for d in conv.drives]),
         motor_mass=_f64(np.maximum(motor_mass, 1.0)),
         trip_s=_f64([d.trip_s for d in conv.drives]), mode=np.zeros(nd, dtype=np.int64), f0=z,
-        f1=z.copy(), sat=np.zeros(nd, dtype=np.int64), lin_p=z.copy(), lin_d=z.copy(),
+        f1=z.copy(), sat=np.zeros(nd, dtype=np.int64), win_f=z.copy(), lin_p=z.copy(),
+        lin_d=z.copy(),
         lin_cs=z.copy(), vm=z.copy(), force=z.copy(), ft=z.copy(), f_trip=z.copy(),
         f_start=z.copy())
 

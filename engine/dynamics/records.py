@@ -224,8 +224,9 @@ class Drives(NamedTuple):
     drive), fill time [s], motor mass behind a coupling [kg] (at least 1), trip time [s];
     *state* per step: force law mode (0 linear ``f0 + f1 v``, 1 share of the speed loop's
     output, 2 imposed shaft speed), ``f0``, ``f1``, saturation; coupling linearisation
-    ``(P, D, c_s)`` and the motor speed; outputs: force at the rim and force passed to the
-    belt, the force when the power went off, the force at the rim at the step's start (the
+    ``(P, D, c_s)`` and the motor speed; the force a slipping torque follower's speed window
+    adds to its share (``win_f``, within its limit; 0 otherwise); outputs: force at the rim
+    and force passed to the belt, the force when the power went off, the force at the rim at the step's start (the
     law of the step at the shaft's speed before it: with the force linear in the shaft speed
     and that speed monotone over the step, the force's extremes over a step are at its
     ends)."""
@@ -248,6 +249,7 @@ class Drives(NamedTuple):
     f0: np.ndarray
     f1: np.ndarray
     sat: np.ndarray
+    win_f: np.ndarray
     lin_p: np.ndarray
     lin_d: np.ndarray
     lin_cs: np.ndarray

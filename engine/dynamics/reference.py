@@ -374,6 +374,7 @@ def _drive_laws(model: Model, rs, sh, dr, first_off):
     drives, cyc = model.drives, model.cycle
     for k in range(len(drives.share)):
         dr.sat[k] = False
+        dr.win_f[k] = 0.0
         dr.lim[k] = drives.lim0[k]
         dr.lin[k] = None
         vs = sh.vs[drives.shaft[k]]
@@ -790,15 +791,20 @@ def _shaft_speed(model: Model, sh, dr, rs, s, U, f_slide):
     if d >= 0 and dr.mode[d] == 1 and d != model.control.master:
         window = model.control.window
         vw = min(max(v, rs.v_ref - window), rs.v_ref + window)
+        extra = 0.0
         if vw != v:
             lim = dr.lim[d]
             need = ms * (vw - v)
             if need > lim - fd:
-                v = _coulomb(p + (lim - fd), dd, sh.fb[s], shafts.hb[s] == 1)
+                extra = lim - fd
+                v = _coulomb(p + extra, dd, sh.fb[s], shafts.hb[s] == 1)
             elif need < -lim - fd:
-                v = _coulomb(p - (lim + fd), dd, sh.fb[s], shafts.hb[s] == 1)
+                extra = -(lim + fd)
+                v = _coulomb(p + extra, dd, sh.fb[s], shafts.hb[s] == 1)
             else:
+                extra = need
                 v = vw
+        dr.win_f[d] = extra
     return v
 
 
@@ -833,6 +839,8 @@ def _shaft_consistent(model: Model, bk, sh, dr, rs, k, U):
         return False
     if abs(bk.crossed[k]) == 2.0:
         bk.vsn[k] = x[k]  # sliding on at the belt's speed
+        if model.shafts.drive[s] >= 0:
+            dr.win_f[model.shafts.drive[s]] = 0.0
         return False
     bk.vsn[k] = _shaft_speed(model, sh, dr, rs, s, U, sl * max(tr if sl > 0 else tl, 0))
     if sl * (bk.vsn[k] - x[k]) <= 0.0:
@@ -845,7 +853,7 @@ def _shaft_consistent(model: Model, bk, sh, dr, rs, k, U):
 
 def _drive_output(model: Model, dr, s, sl, ft, vs_old, vs_new, U):
     """Force at the rim of the drive on shaft s after the step [N] (an imposed speed: what
-    moved its shaft; a share of U, a slipping follower only what holds it in its window; a
+    moved its shaft; a share of U, a slipping follower's with what its speed window adds; a
     linear law at the new speed), and its motor's speed behind a coupling."""
     shafts = model.shafts
     d = shafts.drive[s]
@@ -855,8 +863,9 @@ def _drive_output(model: Model, dr, s, sl, ft, vs_old, vs_new, U):
     elif dr.mode[d] == 1:
         f = _shaft_drive_force(model, dr, d, U)
         if sl != 0.0 and d != model.control.master:
-            # a follower in its speed window gives what holds its shaft there
-            f = min(f, inertia + ft) if f > 0.0 else max(f, inertia + ft)
+            # a slipping follower's speed window adds what takes its shaft there (within its
+            # limit, :func:`_shaft_speed`)
+            f += dr.win_f[d]
     else:
         f = dr.f0[d] + dr.f1[d] * vs_new
     if dr.lin[d] is not None:
@@ -887,6 +896,7 @@ def _brake_holdback(model: Model, bk, sh, dr, k, U, ft, vs_new):
     d = model.shafts.drive[s]
     if d >= 0 and dr.mode[d] == 1:
         p += dr.f0[d] if dr.sat[d] else model.drives.share[d] * U
+        p += dr.win_f[d]  # a follower's window (0 for any other drive)
     elif d >= 0 and dr.mode[d] == 0:
         p += dr.f0[d] + dr.f1[d] * sh.vs[s]
     return min(fb, abs(p)), (max(-p - fb, 0.0) if hb else 0.0)
@@ -1105,6 +1115,7 @@ def _start(sys: System, t_end_s: float | None):
     st = SimpleNamespace(v=np.zeros(n), te=te.copy(), ts=ts, td=np.zeros(n), tt=te.copy())
     sh = SimpleNamespace(vs=np.zeros(ns), slip=np.zeros(ns), fb=np.zeros(ns))
     dr = SimpleNamespace(mode=[0] * nd, f0=np.zeros(nd), f1=np.zeros(nd), sat=[False] * nd,
+                         win_f=np.zeros(nd),
                          lim=np.zeros(nd), lin=[None] * nd, vm=np.zeros(nd),
                          force=np.zeros(nd), ft=np.zeros(nd), f_trip=np.zeros(nd))
     brk = model.brakes._replace(t_cmd=np.full(nb, -1.0), released=np.zeros(nb, dtype=np.int64))

@@ -135,7 +135,8 @@ def fresh_model(model: R.Model, t_end_s: float | None = None) -> R.Model:
 
     shafts = sh._replace(vs=z(ns), slip=z(ns), fb=z(ns), fb_out=z(ns))
     drives = dr._replace(lim=dr.lim0.copy(), mode=np.zeros(nd, dtype=np.int64), f0=z(), f1=z(),
-                         sat=np.zeros(nd, dtype=np.int64), lin_p=z(), lin_d=z(), lin_cs=z(),
+                         sat=np.zeros(nd, dtype=np.int64), win_f=z(), lin_p=z(), lin_d=z(),
+                         lin_cs=z(),
                          vm=z(), force=z(), ft=z(), f_trip=z(), f_start=z())
     brakes = br._replace(t_cmd=np.full(br.shaft.shape[0], -1.0),
                          released=np.zeros(br.shaft.shape[0], dtype=np.int64))
