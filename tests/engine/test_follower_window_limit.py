@@ -87,3 +87,37 @@ def test_a_slipping_followers_shaft_obeys_newton_with_the_force_reported(element
     residual = m * (v[k] - v[k - 1]) / dt - (f_drive[k] - f_belt[k])
     assert np.abs(residual).max() <= 1e-6 * lim
     assert np.abs(f_drive).max() <= lim * (1.0 + 1e-9)
+
+
+def _pair(rated_2_kw: float) -> dict:
+    drive = dict(position="head", wrap_deg=220, friction=0.4, pulley_diameter_m=0.8,
+                 torque_limit=LIMIT, share=0.5, inertia_kg_m2=50)
+    return dict(
+        name="pair", speed_m_s=SPEED, belt={"type": "ST1000", "width_m": 1.0},
+        material={"capacity_t_h": 800, "density_t_m3": 1.0},
+        profile=[{"length_m": 400, "lift_m": 30}],
+        idlers={"carry": {"spacing_m": 1.5, "roll_diameter_m": 0.152, "rolls": 3,
+                          "trough_deg": 35},
+                "return": {"spacing_m": 3.0, "roll_diameter_m": 0.152, "rolls": 1}},
+        drives=[dict(drive, rated_power_kw=150.0), dict(drive, rated_power_kw=rated_2_kw)],
+        takeup={"type": "gravity", "position": "tail", "mass_kg": 6000, "travel_m": 5})
+
+
+def test_time_at_the_torque_limit_is_the_force_there_not_a_rounding():
+    """Two head drives rated in proportion to their shares: in a 3 s start the master sits at
+    its limit (75 kN) for 1.1 s while the slipping follower's speed window holds its force at
+    36-75 kN. Its time 'at its torque limit' was counted from the saturation of its share
+    (share x U > limit, strictly): 0.1 s at the rating as given, 1.1 s with the rating
+    1e-12 lower, as a study's rounded size tips it. It is now the time its force is at
+    the limit, the same either way."""
+    words = []
+    for rated in (150.0, 150.0 * (1.0 - 1e-12), 150.0 * (1.0 + 1e-12)):
+        r = run_one(parse_conveyor(_pair(rated)),
+                    Scenario(start={"control": "s-curve", "time_s": 3}, run_s=3,
+                             stop={"mode": "coast"}), model="din")
+        message = r.summary["message"]
+        said = [p for p in message.split("; ") if p.startswith("drive 2 (head) was above")]
+        assert said, message
+        words.append(said[0].split("(first at")[0])
+    assert words[0] == words[1] == words[2]
+    assert "at its torque limit (75 kN) for 0.1 s" in words[0]
