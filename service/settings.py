@@ -23,6 +23,7 @@ from functools import lru_cache
 from pathlib import Path
 
 from pydantic import Field, ValidationError, field_validator
+from pydantic_core import PydanticCustomError
 from pydantic_settings import BaseSettings, SettingsConfigDict
 
 from beltstudy.service.errors import Invalid, file_reason, shown_path
@@ -93,6 +94,19 @@ class Settings(BaseSettings):
         "being expanded by another request [s]",
     )
 
+    @field_validator("scheduler")
+    @classmethod
+    def _dask_address(cls, value: str) -> str:
+        value = value.strip()
+        if value:
+            problem = scheduler_problem(value)
+            if problem:
+                raise PydanticCustomError(
+                    "scheduler_address",
+                    "must be a Dask scheduler address such as tcp://127.0.0.1:8786: "
+                    "{problem}", {"problem": problem})
+        return value
+
     @field_validator("workers", mode="before")
     @classmethod
     def _empty_is_default(cls, value):
@@ -101,6 +115,36 @@ class Settings(BaseSettings):
     @property
     def n_local_workers(self) -> int:
         return self.workers or os.cpu_count() or 1
+
+
+#: The address schemes of Dask's comms (``distributed.comm.registry``; no scheme is tcp).
+DASK_SCHEMES = ("tcp", "tls", "ucx", "ws", "wss", "inproc")
+
+
+def scheduler_problem(address: str) -> str:
+    """What keeps Dask from reaching a scheduler at ``address`` whatever runs there ("" for
+    none): a scheme Dask has no comm for (``http://``), no host, a port outside 1 to 65535.
+    Such an address was retried for ever ('unknown address scheme', 'Timed out trying to
+    connect'); the network is not asked here."""
+    scheme, sep, rest = address.partition("://")
+    if not sep:
+        scheme, rest = "tcp", address
+    if scheme not in DASK_SCHEMES:
+        return f"'{scheme}' is not a Dask scheme ({', '.join(DASK_SCHEMES)})"
+    if scheme == "inproc":
+        return ""
+    if rest.startswith("["):  # [IPv6]:port
+        host, _, tail = rest[1:].partition("]")
+        port = tail[1:] if tail.startswith(":") else None
+    elif rest.count(":") == 1:
+        host, port = rest.split(":")
+    else:  # a bare host (Dask's default port) or an IPv6 address without brackets
+        host, port = rest, None
+    if not host.strip("/"):
+        return "no host"
+    if port is not None and not (port.isdigit() and 1 <= int(port) <= 65535):
+        return "a port is 1 to 65535"
+    return ""
 
 
 #: What a setting of each type must be, in words (pydantic's error types).

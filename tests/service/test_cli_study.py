@@ -204,6 +204,18 @@ def test_an_address_given_that_does_not_answer_is_an_error_not_the_local_store(
      "error: BELTSTUDY_WARM_START: must be true or false (got 'maybe')"),
     ("BELTSTUDY_WORKERS", "0", ["status"],
      "error: BELTSTUDY_WORKERS: must be greater than or equal to 1 (got '0')"),
+    # a scheduler address Dask cannot use: the service started and retried for ever
+    # ('unknown address scheme', 'Timed out trying to connect to tcp://127.0.0.1:99999')
+    ("BELTSTUDY_SCHEDULER", "http://127.0.0.1:8786", ["status"],
+     "error: BELTSTUDY_SCHEDULER: must be a Dask scheduler address such as "
+     "tcp://127.0.0.1:8786: 'http' is not a Dask scheme (tcp, tls, ucx, ws, wss, inproc) "
+     "(got 'http://127.0.0.1:8786')"),
+    ("BELTSTUDY_SCHEDULER", "tcp://127.0.0.1:99999", ["status"],
+     "error: BELTSTUDY_SCHEDULER: must be a Dask scheduler address such as "
+     "tcp://127.0.0.1:8786: a port is 1 to 65535 (got 'tcp://127.0.0.1:99999')"),
+    ("BELTSTUDY_SCHEDULER", "tcp://:8786", ["status"],
+     "error: BELTSTUDY_SCHEDULER: must be a Dask scheduler address such as "
+     "tcp://127.0.0.1:8786: no host (got 'tcp://:8786')"),
 ])
 def test_a_bad_setting_in_the_environment_is_one_line_and_exit_2(
         env, capsys, monkeypatch, variable, value, argv, message):
