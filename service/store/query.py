@@ -301,6 +301,11 @@ def _stats(values: pd.Series) -> dict:
 SHOWN_METRICS = 20
 
 
+#: The models a comparison pairs when none are named (``GET /studies/{id}/compare``,
+#: ``beltstudy compare``): CEMA against the paper's Non-Lin.
+_PAIR_DEFAULTS = {"baseline": "cema", "candidate": "nonlin"}
+
+
 def model_pair(baseline: str, candidate: str) -> tuple[str, str]:
     """The baseline and candidate friction models by their canonical names; the same model
     twice (or by an alias) is :class:`Invalid` naming ``candidate``: a ratio needs two."""
@@ -363,8 +368,10 @@ def compare(
         models = sorted(set(runs["friction_model"].dropna())) if len(runs) else []
     for label, name in (("baseline", baseline), ("candidate", candidate)):
         if models and name not in models:
+            default = " (the default)" if name == _PAIR_DEFAULTS[label] else ""
             raise Invalid(
-                f"{label}: model '{name}' is not in this study; it has: {', '.join(models)}"
+                f"{label}: model '{name}'{default} is not in this study; it has: "
+                f"{', '.join(models)}: give {label}=NAME from those"
             )
     others = [a for a in axes if a != "friction_model"]
     keep = ["run_id", "status", *metrics]
