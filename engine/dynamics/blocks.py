@@ -918,8 +918,13 @@ def block_step(bk, model, st, wk, rs):
     U = rs.U
     have_u = rs.u_known
     if km >= 0 and not have_u:
-        # the loop's output at the step's start (the master's block comes first)
-        rs.u0 = rs.f0u + rs.f1u * model.shafts.vs[wk.shk[km]]
+        # the loop's output at the step's start (the master's block comes first), within the
+        # master's limit as the step's own output is (_saturate_master): a follower's force
+        # at the step's start is its share of that
+        u0 = rs.f0u + rs.f1u * model.shafts.vs[wk.shk[km]]
+        master = model.control.master
+        lim_u = model.drives.lim[master] / model.drives.share[master]
+        rs.u0 = min(max(u0, -lim_u), lim_u)
     car_fixed = False
     car_v = 0.0
     car_hit = -1.0

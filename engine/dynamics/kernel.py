@@ -134,8 +134,10 @@ def _drive_laws(model, rs, first_off):
             # at rest: off; in the start's hand-over, the share of the holding force built
             # over t_hand while the hold keeps the belt
             drives.mode[dk] = 0
-            drives.f0[dk] = 0.0 if not rs.started else drives.share[dk] * rs.hold_f * min(
+            f = 0.0 if not rs.started else drives.share[dk] * rs.hold_f * min(
                 (rs.t - model.cycle.t_pre) / model.cycle.t_hand, 1.0)
+            # within the drive's torque limit, as its share of the loop's output is after
+            drives.f0[dk] = math.copysign(min(abs(f), drives.lim[dk]), f)
             drives.f1[dk] = 0.0
             continue
         if drives.control[dk] == C.DOL:

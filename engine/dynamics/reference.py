@@ -387,8 +387,9 @@ def _drive_laws(model: Model, rs, sh, dr, first_off):
         dr.mode[k], dr.f0[k], dr.f1[k] = 0, 0.0, 0.0
         if rs.phase == C.HOLD:
             if rs.started:  # the start's hand-over: the share of the holding force, built
-                dr.f0[k] = drives.share[k] * rs.hold_f * min((rs.t - cyc.t_pre) / cyc.t_hand,
-                                                             1.0)
+                # over t_hand, within the drive's torque limit
+                f = drives.share[k] * rs.hold_f * min((rs.t - cyc.t_pre) / cyc.t_hand, 1.0)
+                dr.f0[k] = math.copysign(min(abs(f), dr.lim[k]), f)
             continue
         if drives.control[k] == C.DOL:
             _dol_law(model, dr, k, vs, fac, rs.t)

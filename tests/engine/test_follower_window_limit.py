@@ -11,6 +11,9 @@ it brings the shaft back over the steps that follow.
 
 from __future__ import annotations
 
+import json
+from pathlib import Path
+
 import numpy as np
 import pytest
 
@@ -121,3 +124,46 @@ def test_time_at_the_torque_limit_is_the_force_there_not_a_rounding():
         words.append(said[0].split("(first at")[0])
     assert words[0] == words[1] == words[2]
     assert "at its torque limit (75 kN) for 0.1 s" in words[0]
+
+
+_CASES = json.loads((Path(__file__).parent / "data" / "drive_limit_cases.json").read_text())
+
+
+def _case(name: str):
+    case = _CASES[name]
+    return run_one(parse_conveyor(case["conveyor"]), Scenario(**case["scenario"]), model="din")
+
+
+def test_the_start_hand_over_keeps_each_drive_within_its_limit():
+    """A 640 m loaded decline on three drives (head 0.262, tail 0.372, a carry booster 0.366;
+    torque limits 1.29, 1.87, 1.33) behind a light take-up: the hold passes 103 kN to the
+    drives over the start's hand-over, each its share. Drive 1 was given 26.87 kN against its
+    limit 24.71 kN (1.29 x 19.15 kN), drive 3 37.54 against 35.58 kN, and the run said drive
+    1 was '40 % over its rating' on a drive that cannot pass 29 %."""
+    r = _case("handover_decline")
+    s = r.summary
+    lim0 = r.transient.system.model.drives.lim0
+    for i, limit in enumerate(lim0, start=1):
+        assert s[f"drive{i}_force_max_kn"] * 1e3 <= limit * (1.0 + 1e-9), i
+        series = np.abs(r.timeseries[f"f_drive{i}_kn"].to_numpy()) * 1e3
+        assert series.max() <= limit * (1.0 + 1e-9), i
+
+
+def test_a_followers_largest_force_is_one_it_gave():
+    """Four drives, the master (a return booster, share 0.292) at its limit for 35 s of the
+    start: the loop's output is held at the master's limit over its share, so a follower
+    gives its share of that. Its largest force was read from the loop's output at the step's
+    start before that limit (share x u0, capped only by its own limit): drive 2 (share 0.282)
+    reported 31.29 kN, its own limit, where it never gave more than 20.92 kN = 0.282 / 0.292 x
+    21.66 kN, and the words called it 81 % over its rating."""
+    r = _case("master_at_limit")
+    s = r.summary
+    drives = r.transient.system.model.drives
+    master = r.transient.system.model.control.master
+    cap_u = drives.lim0[master] / drives.share[master]
+    for i in range(len(drives.share)):
+        if i == master:
+            continue
+        assert s[f"drive{i + 1}_force_max_kn"] * 1e3 <= drives.share[i] * cap_u * (1.0 + 1e-9)
+        series = np.abs(r.timeseries[f"f_drive{i + 1}_kn"].to_numpy()) * 1e3
+        assert s[f"drive{i + 1}_force_max_kn"] * 1e3 == pytest.approx(series.max(), rel=1e-9)
