@@ -787,8 +787,8 @@ def transient_checks(loop: Loop, t_max_n: np.ndarray) -> dict:
         The loop the transient ran on (its springs are the loop's element ends).
     t_max_n : ndarray
         Highest tension of each spring, every time step [N]: over the whole cycle (one row),
-        or one row per envelope segment of the kernel (cut at the stop command and when the
-        belt first goes slack, ``TransientResult.raw["segments"]``).
+        or one row per envelope segment of the kernel (cut at the start command, when the
+        belt first goes slack and at the stop command, ``TransientResult.raw["segments"]``).
 
     Notes
     -----
