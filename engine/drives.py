@@ -253,6 +253,12 @@ def _rate_within(motor: str, what: str, force_n: float) -> str:
             f"longer {longer} would not remove)")
 
 
+def _seconds(duration_s: float) -> str:
+    """A duration in words to 0.1 s, and to two figures below it (``0.04 s``, not ``0.0 s``:
+    a drive at its torque limit for a few steps was said to be there 'for 0.0 s')."""
+    return f"{duration_s:.1f} s" if duration_s >= 0.095 else f"{duration_s:.2g} s"
+
+
 def _time_at_least(seconds: float) -> int:
     """A start or stop time [s] to advise: the whole second at or above the rigid-body
     estimate. Rounded to the nearest, an estimate of 177.05 s at a 177 s start was advised as
@@ -355,11 +361,11 @@ def transient_checks(names, drv, rated_n, limit_n, vfd, speed_m_s: float, start_
                     f"({fmax / 1e3:.4g} kN at t = {float(d['fmax_t']):.1f} s)")
             if at_limit:
                 said += (f", at its torque limit ({float(limit_n[k]) / 1e3:.4g} kN) for "
-                         f"{lim_s:.1f} s")
+                         f"{_seconds(lim_s)}")
         else:  # a torque limit below the rating: never above the rating, held at the limit
             said = (f"{name} was held at its torque limit ({float(limit_n[k]) / 1e3:.4g} kN, "
                     f"{100.0 * float(limit_n[k]) / rated:.0f} % of its rated force "
-                    f"{rated / 1e3:.4g} kN) for {lim_s:.1f} s of the cycle (first at t = "
+                    f"{rated / 1e3:.4g} kN) for {_seconds(lim_s)} of the cycle (first at t = "
                     f"{float(d['fmax_t']):.1f} s)")
         if hot:
             said += (f"; its RMS force over the cycle, {rms / 1e3:.4g} kN, is above the "

@@ -176,6 +176,21 @@ def test_transient_checks_rms_of_a_constant_force_and_the_overload_warning():
     assert "RMS force over the cycle, 30 kN, is above the rating" in w
 
 
+def test_a_few_steps_at_the_limit_are_said_in_their_own_figures():
+    """A drive at its torque limit for 0.042 s of a 20 s overload was said to be there 'for
+    0.0 s'; below 0.1 s the time is given to two figures."""
+    drv = _drive_result(fmax=30e3, over_s=20.0, lim_s=0.042, f2_int=30e3**2 * 20.0,
+                        rms_s=20.0)
+    _, (w,) = transient_checks(["drive 1 (head)"], drv, [24e3], [30e3], [True], 4.0, 10.0,
+                               running_n=[12e3])
+    assert "at its torque limit (30 kN) for 0.042 s" in w
+    assert "for 0.0 s" not in w
+    drv = _drive_result(fmax=30e3, over_s=0.5, lim_s=0.5, f2_int=1.0, rms_s=20.0)
+    _, (w,) = transient_checks(["drive 1 (head)"], drv, [24e3], [30e3], [True], 4.0, 10.0,
+                               running_n=[12e3])
+    assert "for 0.5 s of the cycle" in w and "at its torque limit (30 kN) for 0.5 s" in w
+
+
 @pytest.mark.parametrize("running_kn", [121.0, -121.0])
 def test_a_drive_held_at_its_limit_below_its_running_force_is_not_offered_that_limit(
         running_kn):
