@@ -124,6 +124,9 @@ def write_part_to(study_dir: str | Path, token: str, table: str, key: str, data:
 #: milliseconds; a killed process leaves it behind).
 LEFTOVER_TMP_S = 600.0
 
+#: What a study id the store does not hold is told with: where the stored ones are listed.
+LISTED = "; GET /studies and beltstudy status list the stored studies"
+
 
 class Store:
     """Files of every study under one data directory. Thread-safe for distinct studies."""
@@ -179,7 +182,7 @@ class Store:
         try:
             doc = json.loads(path.read_text(encoding="utf-8"))
         except FileNotFoundError:
-            raise NotFound(f"study '{shown_id(study_id)}' not found") from None
+            raise NotFound(f"study '{shown_id(study_id)}' not found{LISTED}") from None
         except (json.JSONDecodeError, UnicodeDecodeError) as exc:
             raise Damaged(study_id, path, str(exc)) from None
         if not isinstance(doc, dict):
@@ -216,7 +219,7 @@ class Store:
         """Remove a study's directory (renamed away first so it vanishes at once)."""
         path = self.study_dir(study_id)
         if not path.exists():
-            raise NotFound(f"study '{shown_id(study_id)}' not found")
+            raise NotFound(f"study '{shown_id(study_id)}' not found{LISTED}")
         trash = self.root / f".{study_id}.{uuid.uuid4().hex[:8]}.deleted"
         os.replace(path, trash)
         shutil.rmtree(trash, ignore_errors=True)
@@ -313,7 +316,7 @@ class Store:
                 return read()
             except FileNotFoundError:
                 if not self.exists(study_id):
-                    raise NotFound(f"study '{shown_id(study_id)}' not found") from None
+                    raise NotFound(f"study '{shown_id(study_id)}' not found{LISTED}") from None
                 if attempt == 2:
                     raise
 

@@ -287,7 +287,8 @@ def test_an_id_that_cannot_be_a_study_is_an_unknown_study(api, data_dir, finishe
     # an id of a study's form keeps its words; a route under a real study that is not one is
     # still no route
     r = client.get("/studies/0123456789abcdef")
-    assert r.json()["message"] == "study '0123456789abcdef' not found"
+    assert r.json()["message"] == ("study '0123456789abcdef' not found; GET /studies and "
+                                   "beltstudy status list the stored studies")
     sid = finished_study(data_dir, make_study())
     r = client.get(f"/studies/{sid}/nothing")
     assert r.status_code == 404 and r.json()["message"] == f"no route GET /studies/{sid}/nothing"

@@ -79,7 +79,9 @@ def test_an_offline_status_says_a_running_study_is_not_running_now(
 
 def test_user_mistakes_print_one_line_and_exit_2(env, capsys, tmp_path, make_study):
     assert main(["status", "0123456789abcdef"]) == 2
-    assert capsys.readouterr().err.strip() == "error: study '0123456789abcdef' not found"
+    assert capsys.readouterr().err.strip() == ("error: study '0123456789abcdef' not found; GET "
+                                               "/studies and beltstudy status list the stored "
+                                               "studies")
     assert main(["results", "0123456789abcdef", "-o", str(tmp_path / "x.xlsx")]) == 2
     assert "use a .parquet, .csv or .json" in capsys.readouterr().err
     path = tmp_path / "bad.yaml"
