@@ -356,7 +356,7 @@ def transient_checks(names, drv, rated_n, limit_n, vfd, speed_m_s: float, start_
         split = (f" ({over_s - over_stop:.1f} s in the start and run, {over_stop:.1f} s in the "
                  "stop)" if over_stop > 0.0 else "")
         if fmax > rated:
-            said = (f"{name} was above its rated force ({rated / 1e3:.4g} kN) for {over_s:.1f} s "
+            said = (f"{name} was above its rated force ({rated / 1e3:.4g} kN) for {_seconds(over_s)} "
                     f"of the cycle{split}, at most {pct:.0f} % over its rating "
                     f"({fmax / 1e3:.4g} kN at t = {float(d['fmax_t']):.1f} s)")
             if at_limit:

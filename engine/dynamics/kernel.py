@@ -412,10 +412,12 @@ def _drive_results(model, st, out, rs):
             d.over_s += dt
             if rs.stopping:
                 d.over_stop_s += dt
-        # at its torque limit: its force there (to the last bits: a follower rated in
-        # proportion to its share meets its limit when the master does, whichever way a
-        # rounded size tips it); a saturated share its speed window holds lower is not
-        if drives.lim[dk] > 0.0 and fa >= drives.lim[dk] * (1.0 - 1e-9):
+        # at its torque limit: a vfd drive's force there (to the last bits: a follower rated
+        # in proportion to its share meets its limit when the master does, whichever way a
+        # rounded size tips it); a saturated share its speed window holds lower is not; a dol
+        # motor has no torque limit (its curve is its force)
+        if (drives.control[dk] != C.DOL and drives.lim[dk] > 0.0
+                and fa >= drives.lim[dk] * (1.0 - 1e-9)):
             d.lim_s += dt
         if not rs.stopped:
             d.f2_int += fa * fa * dt

@@ -1034,8 +1034,8 @@ def _drive_results(model: Model, st, sh, dr, rs, out):
     out.over_s += np.where(fa > model.drives.rated, dt, 0.0)
     if rs.stopping:
         out.over_stop_s += np.where(fa > model.drives.rated, dt, 0.0)
-    out.lim_s += np.where((dr.lim > 0.0) & (np.abs(dr.force) >= dr.lim * (1.0 - 1e-9)),
-                          dt, 0.0)
+    out.lim_s += np.where((model.drives.control != C.DOL) & (dr.lim > 0.0)
+                          & (np.abs(dr.force) >= dr.lim * (1.0 - 1e-9)), dt, 0.0)
     if not rs.stopped:
         out.f2_int += fa * fa * dt
         out.rms_s += dt

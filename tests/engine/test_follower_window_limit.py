@@ -18,7 +18,7 @@ import numpy as np
 import pytest
 
 from beltstudy.engine import load_conveyor, parse_conveyor
-from beltstudy.engine.conveyor import Scenario
+from beltstudy.engine.conveyor import Scenario, load_mapping
 from beltstudy.engine.dynamics.model import DynamicsOptions
 from beltstudy.engine.run import run_one
 from tests.conftest import CONVEYORS
@@ -167,3 +167,17 @@ def test_a_followers_largest_force_is_one_it_gave():
         assert s[f"drive{i + 1}_force_max_kn"] * 1e3 <= drives.share[i] * cap_u * (1.0 + 1e-9)
         series = np.abs(r.timeseries[f"f_drive{i + 1}_kn"].to_numpy()) * 1e3
         assert s[f"drive{i + 1}_force_max_kn"] * 1e3 == pytest.approx(series.max(), rel=1e-9)
+
+
+def test_a_dol_motor_is_never_said_to_be_at_a_torque_limit():
+    """A dol motor's force is its curve (164.8 kN at breakaway on fabric-1km, 2.1 x its
+    rating); its torque_limit is not read. Counting the time at the limit from the force (not
+    from a vfd share's saturation) must leave dol drives out: fabric-1km's dol start was said
+    to be 'at its torque limit (119 kN) for 0.021 s'."""
+    data = load_mapping(CONVEYORS / "fabric-1km.yaml")
+    data["drives"][0]["control"] = "dol"
+    r = run_one(parse_conveyor(data), Scenario(stop={"mode": "coast"}), model="din")
+    s = r.summary
+    assert s["drive1_force_max_kn"] * 1e3 > r.transient.system.model.drives.lim0[0]
+    assert "at its torque limit" not in s["message"]
+    assert "held at its torque limit" not in s["message"]
