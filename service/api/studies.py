@@ -324,8 +324,9 @@ def get_uncertainty(study_id: str, service: StudyService = Depends(get_service))
 )
 def compare(
     study_id: str,
-    baseline: str = Query("cema", description="baseline friction model"),
-    candidate: str = Query("nonlin", description="candidate friction model"),
+    baseline: str = Query(query.PAIR_DEFAULTS["baseline"], description="baseline friction model"),
+    candidate: str = Query(query.PAIR_DEFAULTS["candidate"],
+                           description="candidate friction model"),
     metrics: str = Query(
         ",".join(query.DEFAULT_METRICS), description="comma-separated numeric columns"
     ),

@@ -103,9 +103,9 @@ def register(sub) -> None:
         "that differs only in the model, and print the ratios of the metrics (of magnitudes), "
         "overall and per axis value. Default: nonlin over cema.")
     p.add_argument("id", help="study id")
-    p.add_argument("--baseline", default="cema",
+    p.add_argument("--baseline", default=query.PAIR_DEFAULTS["baseline"],
                    help="baseline friction model (default: %(default)s)")
-    p.add_argument("--candidate", default="nonlin",
+    p.add_argument("--candidate", default=query.PAIR_DEFAULTS["candidate"],
                    help="candidate friction model (default: %(default)s)")
     p.add_argument(
         "--metrics", default=None,

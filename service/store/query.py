@@ -303,7 +303,7 @@ SHOWN_METRICS = 20
 
 #: The models a comparison pairs when none are named (``GET /studies/{id}/compare``,
 #: ``beltstudy compare``): CEMA against the paper's Non-Lin.
-_PAIR_DEFAULTS = {"baseline": "cema", "candidate": "nonlin"}
+PAIR_DEFAULTS = {"baseline": "cema", "candidate": "nonlin"}
 
 
 def model_pair(baseline: str, candidate: str) -> tuple[str, str]:
@@ -368,7 +368,7 @@ def compare(
         models = sorted(set(runs["friction_model"].dropna())) if len(runs) else []
     for label, name in (("baseline", baseline), ("candidate", candidate)):
         if models and name not in models:
-            default = " (the default)" if name == _PAIR_DEFAULTS[label] else ""
+            default = " (the default)" if name == PAIR_DEFAULTS[label] else ""
             raise Invalid(
                 f"{label}: model '{name}'{default} is not in this study; it has: "
                 f"{', '.join(models)}: give {label}=NAME from those"
