@@ -9,7 +9,7 @@ from the study is escaped.
 Contents, verdicts first: (1) the verdicts, a governing case for every design quantity the
 runs carry (:data:`beltstudy.service.web.verdicts.VERDICTS`: power and utilisation per drive,
 belt safety factor, T_max and T_min per phase, take-up, brakes, the stop, slip, sag, pulleys,
-idlers) with its limit and how many runs are past it; (2) every run that did not pass, grouped
+idlers, the vertical and horizontal curves) with its limit and how many runs are past it; (2) every run that did not pass, grouped
 by cause (:data:`~beltstudy.service.web.verdicts.CAUSES`: failed, ran away, did not stop,
 never got going, overloaded a drive, slipped, ...), each group with its count and the figures that show it;
 (3) the start and stop peaks against the study's axes; then the conveyor and its capacity

@@ -37,11 +37,17 @@ __all__ = ["Verdict", "VERDICTS", "Cause", "CAUSES", "verdict_rows", "cause_grou
 class Verdict:
     """One design quantity of the verdict table.
 
-    ``column`` may hold ``{i}`` (drives) or ``{j}`` (pulleys): one row per number present.
+    ``column`` may hold ``{i}`` (drives), ``{j}`` (pulleys) or ``{k}`` (vertical or horizontal
+    curves): one row per number present.
     ``worst`` is ``max`` or ``min``. ``limit`` is a number, a column of the same run (with the
-    same ``{i}``/``{j}``), or a key of the study's limits (:func:`study_limits`); None: no limit
-    to judge against (the value is shown). ``ok``: a boolean column that is the run's own
-    verdict (a run with it false is past the limit). ``null_worst``: a missing value in a run
+    same ``{i}``/``{j}``/``{k}``), or a key of the study's limits (:func:`study_limits`); None:
+    no limit to judge against (the value is shown). ``ok``: a boolean column that is the run's
+    own verdict (a run with it false is past the limit); ``bad``: one true when the run is past
+    it (``curve{k}_liftoff``). Where either is given, it judges (a limit beside it is shown,
+    and picks the side a failed verdict is past): the engine judges a curve element by element,
+    which the curve's extremes against its tightest limit would not (a highest tension on one
+    element above the lowest limit of another is no lift-off). ``null_worst``: a missing value
+    in a run
     whose transient ran is the worst of all (a stop time of a run that did not stop).
     ``magnitude``: judged by its size whatever its sign (a regenerating drive's power is
     negative); the governing run's value is shown with its sign.
@@ -54,6 +60,7 @@ class Verdict:
     unit: str
     limit: float | str | None = None
     ok: str | None = None
+    bad: str | None = None
     at: str | None = None
     null_worst: str = ""
     magnitude: bool = False
@@ -138,6 +145,27 @@ VERDICTS: tuple[Verdict, ...] = (
     Verdict("Pulleys", "transition length, tail", "transition_tail_m", "max", "m"),
     Verdict("Idlers", "idler load per carry set", "idler_load_carry_n", "max", "N"),
     Verdict("Idlers", "idler bearing life L10", "idler_l10_h", "min", "h"),
+    # routes (docs/routes.md): a concave curve lifts the empty belt off its idlers above its
+    # lift-off tension R m'_G g cos(a); a convex curve's radius is judged by the edge strain
+    # (the run's message names a curve below it); a horizontal curve holds the belt between
+    # its two tensions
+    Verdict("Routes", "highest steady tension, vertical curve {k} (concave: judged against "
+            "the empty belt's lift-off tension, element by element)", "curve{k}_tension_kn",
+            "max", "kN", "curve{k}_liftoff_tension_kn", bad="curve{k}_liftoff"),
+    Verdict("Routes", "highest start-up tension, vertical curve {k} (concave, rigid-body "
+            "estimate)", "curve{k}_tension_start_kn", "max", "kN",
+            "curve{k}_liftoff_tension_kn", bad="curve{k}_liftoff_start"),
+    Verdict("Routes", "smallest radius vertical curve {k} needs, steady",
+            "curve{k}_radius_min_m", "max", "m", "curve_radius"),
+    Verdict("Routes", "smallest radius vertical curve {k} needs at start-up (concave)",
+            "curve{k}_radius_min_start_m", "max", "m", "curve_radius"),
+    Verdict("Routes", "tension over the lift-off tension at the concave curves, transient "
+            "(negative: the margin left)", "liftoff_max_kn_over", "max", "kN", 0.0,
+            at="liftoff_at_m"),
+    Verdict("Routes", "lowest steady tension, horizontal curve {k}", "hcurve{k}_t_low_kn",
+            "min", "kN", "hcurve{k}_tension_min_kn", ok="hcurve{k}_ok"),
+    Verdict("Routes", "highest steady tension, horizontal curve {k}", "hcurve{k}_t_high_kn",
+            "max", "kN", "hcurve{k}_tension_max_kn", ok="hcurve{k}_ok"),
 )
 
 
@@ -156,7 +184,8 @@ def expand(pattern: str, columns) -> list[tuple[str, dict[str, str]]]:
     if "{" not in pattern:
         return [(pattern, {})] if pattern in columns else []
     regex = re.compile("^" + re.escape(pattern).replace(r"\{i\}", r"(?P<i>\d+)")
-                       .replace(r"\{j\}", r"(?P<j>\d+)") + "$")
+                       .replace(r"\{j\}", r"(?P<j>\d+)").replace(r"\{k\}", r"(?P<k>\d+)")
+                       + "$")
     found = []
     for c in columns:
         m = regex.match(str(c))
@@ -318,6 +347,35 @@ def _sagged(runs: pd.DataFrame, phase: str | None = None) -> pd.Series:
     return _message(runs).str.contains(words, regex=True)
 
 
+#: The engine's route warnings (engine/curves.py, engine/hcurves.py): a concave curve that
+#: lifts the empty belt (running, at start-up, in the transient), a convex curve below its
+#: radius or past its idlers' rating, a grade change without a curve judged as its survey
+#: circle, and a horizontal curve the belt runs out of or to the inside of; not the notes
+#: that name curve_radius_m (``note: profile.2.curve_radius_m ...``).
+_ROUTE = (r"lift-off in |lifts off its|^curve \d+ \((?:concave|convex), R |grade change without "
+          r"a vertical curve|^horizontal curve \d+ \(profile section")
+
+
+#: What the route warnings name as their fix, each a clause after its finding: the radius
+#: that keeps the belt on its idlers or in its line, the superelevation.
+_ROUTE_FIX = (r"^a radius of at least \d+ m|^no radius holds it|^a tighter radius"
+              r"|^less superelevation")
+
+
+def _route(runs: pd.DataFrame) -> pd.Series:
+    """Runs whose belt leaves its idlers or its line at a curve: a lift-off verdict
+    (``curve{k}_liftoff``, ``curve{k}_liftoff_start``, ``liftoff_max_kn_over`` above 0), a
+    horizontal curve's ``hcurve{k}_ok`` false, or a route warning in the message."""
+    out = _any_over(runs, "liftoff_max_kn_over", 0.0)
+    for pattern, bad in (("curve{k}_liftoff", True), ("curve{k}_liftoff_start", True),
+                         ("hcurve{k}_ok", False)):
+        for c, _ in expand(pattern, runs.columns):
+            out |= runs[c].astype("boolean").eq(bad).fillna(False).astype(bool)
+    said = _message(runs).map(lambda m: any(
+        not c.startswith("note: ") and re.search(_ROUTE, c) for c in clauses(m, "")))
+    return out | said.astype(bool)
+
+
 def _safety(runs: pd.DataFrame) -> pd.Series:
     return _message(runs).str.contains("safety factor", regex=False) & _message(
         runs).str.contains("below", regex=False)
@@ -379,6 +437,10 @@ CAUSES: tuple[Cause, ...] = (
           r"slack"),
     Cause("sag", "sagged past its limit", _sagged, ("sag_max_pct", "sag_max_dyn_pct"),
           _SAG + r"|the sag goes as"),
+    Cause("route", "left its idlers or its line at a curve (vertical or horizontal)", _route,
+          ("liftoff_max_kn_over", "curve{k}_tension_kn", "curve{k}_liftoff_tension_kn",
+           "curve{k}_radius_min_m", "hcurve{k}_t_low_kn", "hcurve{k}_tension_min_kn",
+           "hcurve{k}_t_high_kn", "hcurve{k}_tension_max_kn"), _ROUTE + "|" + _ROUTE_FIX),
     Cause("marginal", "marginal: a figure within its error bar of the limit (the verdict "
           "may flip on a finer mesh)",
           lambda r: _message(r).str.contains("marginal:", regex=False), (), r"marginal"),
@@ -527,6 +589,23 @@ def study_limits(study: dict, sf_min: float, sf_ratio: float,
         # strands share their limit; else the runs' messages name the strand past its limit
         return (pd.Series(float(carry), index=runs.index) if carry == ret else None), words
 
+    def curve_radius(runs, k: str = "1", **_):
+        # curve k's radius: the profile section whose end is the curve's junction
+        # (curve{k}_at_m), as the file gives it (a curve shorter than an idler pitch is judged
+        # as a grade change and has no curve{k} fields)
+        # (each run's own section lengths and radii where a grid axis sets them)
+        at = numeric(runs, f"curve{k}_at_m")
+        if at is None:
+            return None, ""
+        out = pd.Series(math.nan, index=runs.index)
+        end = pd.Series(0.0, index=runs.index)
+        for i, sec in enumerate(conv.get("profile", [])):
+            end = end + per_run(runs, f"profile.{i}.length_m", sec.get("length_m", 0.0))
+            radius = per_run(runs, f"profile.{i}.curve_radius_m", sec.get("curve_radius_m"))
+            here = radius.notna() & ((end - at).abs() <= 0.5)
+            out[here] = radius[here]
+        return out, "the curve's radius (profile curve_radius_m)"
+
     def rated_at_pulleys(runs, **_):
         # the motor power needed (efficiency included) is judged per drive where the runs
         # carry it; the power at the pulleys against the rating would disagree with it
@@ -544,6 +623,7 @@ def study_limits(study: dict, sf_min: float, sf_ratio: float,
         "sag": sag_limit,
         "travel": const(travel, "carriage travel", "takeup.travel_m"),
         "rated_force": rated_force,
+        "curve_radius": curve_radius,
     }
 
 
@@ -576,33 +656,53 @@ def _limits_of(v: Verdict, runs: pd.DataFrame, nums: dict[str, str], limits: dic
 
 
 def _past(v: Verdict, values: pd.Series, runs: pd.DataFrame, lim: pd.Series | None,
-          ok_col: str | None) -> pd.Series:
-    """Rows past the limit: beyond the number, their own verdict column false, the message
-    naming it (sag), or no value where a missing one is the worst (did not stop)."""
+          ok_col: str | None, bad_col: str | None = None) -> pd.Series:
+    """Rows past the limit: beyond the number, their own verdict column false (``ok``) or true
+    (``bad``), the message naming it (sag), or no value where a missing one is the worst (did
+    not stop)."""
     past = pd.Series(False, index=runs.index)
-    if ok_col and ok_col in runs.columns:
-        past |= runs[ok_col].astype("boolean").fillna(True).eq(False).astype(bool)
-    if v.limit == "sag":
-        past |= _sagged(runs, "transient" if v.column == "sag_max_dyn_pct" else "steady")
+    beyond = pd.Series(False, index=runs.index)
     if lim is not None:
         known = values.notna() & lim.notna()
         if v.worst == "max":
-            past |= known & (values > lim)
+            beyond = known & (values > lim)
         else:  # a lowest tension of 0 is slack: at the limit is past it
-            past |= known & ((values <= lim) if v.limit == 0.0 else (values < lim))
+            beyond = known & ((values <= lim) if v.limit == 0.0 else (values < lim))
+    if v.ok or v.bad:
+        # the run's own verdict judges, element by element; where a limit is shown too, the
+        # row counts the runs whose verdict fails on its side (a horizontal curve's one
+        # verdict is past its lower limit or its upper one; the extremes against the limits
+        # are only known to be beyond them where the verdict fails)
+        own = pd.Series(False, index=runs.index)
+        if ok_col and ok_col in runs.columns:
+            own |= runs[ok_col].astype("boolean").fillna(True).eq(False).astype(bool)
+        if bad_col and bad_col in runs.columns:
+            own |= runs[bad_col].astype("boolean").fillna(False).astype(bool)
+        unknown = values.isna() | lim.isna() if lim is not None else True
+        past |= own & (beyond | unknown)
+    else:
+        past |= beyond
+    if v.limit == "sag":
+        past |= _sagged(runs, "transient" if v.column == "sag_max_dyn_pct" else "steady")
     if v.null_worst:
         past |= transient_ran(runs) & values.isna()
     return past
 
 
-def _worst(v: Verdict, values: pd.Series, lim: pd.Series | None) -> tuple[Any, bool]:
+def _worst(v: Verdict, values: pd.Series, lim: pd.Series | None,
+           past: pd.Series | None = None) -> tuple[Any, bool]:
     """The row with the worst value; where the limit differs between runs (a rated power
-    that is a grid axis), the worst against its own limit (value / limit), and True."""
-    if lim is not None and lim.notna().any() and lim.dropna().nunique() > 1 \
-            and (lim.dropna() > 0).all():
-        ratio = values / lim
-        if ratio.notna().any():
-            return (ratio.idxmax() if v.worst == "max" else ratio.idxmin()), True
+    that is a grid axis), the worst against its own limit (value / limit, or value - limit
+    where a limit is 0 or below), and True. A row judged by the runs' own verdicts (``ok``,
+    ``bad``) is governed by a run past it where one is: a horizontal curve's lowest tension
+    was governed by a run that ran to the inside (every run's lowest tension the same), not by
+    the one that ran out."""
+    if past is not None and (v.ok or v.bad) and values.where(past).notna().any():
+        values = values.where(past)
+    if lim is not None and lim.notna().any() and lim.dropna().nunique() > 1:
+        rel = values / lim if (lim.dropna() > 0).all() else values - lim
+        if rel.notna().any():
+            return (rel.idxmax() if v.worst == "max" else rel.idxmin()), True
     return (values.idxmax() if v.worst == "max" else values.idxmin()), False
 
 
@@ -638,12 +738,14 @@ def verdict_rows(runs: pd.DataFrame, limits: dict[str, Limit]) -> list[dict]:
                 idx = (first if first.any() else unstopped).idxmax()
             lim, text = _limits_of(v, ok, nums, limits)
             judged = values.abs() if v.magnitude else values
+            ok_col = v.ok.format(**nums) if v.ok else None
+            bad_col = v.bad.format(**nums) if v.bad else None
+            past = _past(v, judged, ok, lim, ok_col, bad_col)
+            ok_col = ok_col or bad_col
             if not missing:
-                idx, relative = _worst(v, judged, lim)
+                idx, relative = _worst(v, judged, lim, past)
                 text = f"{text}; the worst against its own limit" if relative else text
             row = ok.loc[idx]
-            ok_col = v.ok.format(**nums) if v.ok else None
-            past = _past(v, judged, ok, lim, ok_col)
             slack = _slack_no_sag(v, ok, values)
             value_text = ""
             if slack.any():  # a slack span's sag has no value: it is past every sag limit
