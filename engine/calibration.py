@@ -55,6 +55,12 @@ __all__ = ["Measurement", "Calibration", "calibrate", "measurements_from_rows", 
 #: (columns scaled to unit length; 1e-4: the fitted pair's estimates would correlate beyond
 #: 1 - 5e-9, far beyond anything 1 % data can resolve).
 RCOND = 1e-4
+#: Why a fitted name whose Jacobian column is zero is held: it moves no modelled value (Non-Lin's
+#: drag_per_roll_n where the conveyor file gives the idlers' seal_drag_n; material flexure on
+#: rows all at load empty), so no other name stands in for it.
+_INERT = ("none of the modelled values of these rows: the model does not read it here (a field "
+          "of the conveyor file may set what it stands for) or it acts only in states these "
+          "rows do not have (another load, speed or temperature)")
 #: Relative step of the central differences of the Jacobian.
 DIFF_STEP = 1e-4
 #: Measured column -> the steady summary field the model gives for it.
@@ -518,7 +524,8 @@ def calibrate(conv: Conveyor, measured: Sequence[Measurement], model: str,
     jac = _jacobian(lambda x: residual(x, free), sol.x, lower)
     n, p = len(r), len(free)
     dof = n - p
-    notes = [f"{', '.join(g)}: only act together on these data; " + "; ".join(
+    notes = [(f"{', '.join(g)}: only act together on these data; " if len(g) > 1 else
+              f"{g[0]}: changes {_INERT}; ") + "; ".join(
         f"{x} held at the value model {fm.name} computes for each row, its default "
         f"({held_values[x]:.4g} at row 0)" if x in computed else f"{x} held at the start value"
         for x in g if x in held) for g in groups]
@@ -884,11 +891,15 @@ def _verdict(sol, at_bound: list[str], r: np.ndarray, model: str,
         check = f"{doubts.unit} {check}"
     kept = "; ".join(f"{n} at the value model {model} computes for each row, its default"
                      if n in computed else f"{n} at {v:.4g}" for n, v in (held or {}).items())
-    together = "; ".join(" and ".join(g) for g in groups)
+    together = "; ".join(" and ".join(g) for g in groups if len(g) > 1)
+    inert = [g[0] for g in groups if len(g) == 1]
+    cannot = "; ".join(([f"these data cannot tell {together} apart"] if together else []) + (
+        [f"{' and '.join(inert)} {'changes' if len(inert) == 1 else 'change'} {_INERT}"]
+        if inert else []))
     if groups:
         # a held name's value is the fit's assumption: a misfit or a bound may be its doing,
         # not the data's
-        check = (f"These data cannot tell {together} apart, so {kept.replace('; ', ', ')} "
+        check = (f"{cannot[0].upper()}{cannot[1:]}, so {kept.replace('; ', ', ')} "
                  "is held and the fitted values assume it: fit the held name in place of the "
                  "other, or hold it at a value from the literature (--param, or the request's "
                  f"params). {check}")
@@ -957,10 +968,12 @@ def _verdict(sol, at_bound: list[str], r: np.ndarray, model: str,
         at = "" if set(held or {}) <= set(computed) else " at the start"
         return {"status": "warning", "message": (
             f"converged (rms relative residual {rms_text} % over {_values(len(r))}), "
-            f"but these data cannot tell {together} apart: held{at} ({kept}), and "
-            "the fitted values assume it. Hold the held names at values from the literature "
-            "(--param, or the request's params) and fit the others, or, where the model lets "
-            "them act apart, measure at other loads, speeds or temperatures")}
+            f"but {cannot}: held{at} ({kept})" + (
+                ", and the fitted values assume it. Hold the held names at values from the "
+                "literature (--param, or the request's params) and fit the others, or, where "
+                "the model lets them act apart, measure at other loads, speeds or temperatures"
+                if together else ". Fit a parameter these rows move, or measure in the states "
+                "where it acts"))}
     if few:
         return {"status": "warning", "message": (
             f"converged, but the {len(r)} measured values read only as many steady states as "
@@ -981,6 +994,8 @@ def _verdict(sol, at_bound: list[str], r: np.ndarray, model: str,
 def _jacobian(fun, x: np.ndarray, lower: Sequence[float] | None = None) -> np.ndarray:
     """Central-difference Jacobian of ``fun`` at ``x`` (relative step :data:`DIFF_STEP`),
     one-sided where a step below would pass a parameter's ``lower`` bound (default 0)."""
+    if not len(x):  # nothing fitted (every name held): a Jacobian of no columns
+        return np.zeros((len(fun(x)), 0))
     cols = []
     for k in range(len(x)):
         h = DIFF_STEP * max(abs(x[k]), 1e-6)
