@@ -11,6 +11,7 @@ from pathlib import Path
 from typing import Any
 
 from beltstudy.engine import LOAD_MAX, InputError, get_model, parse_scenario, section_loads
+from beltstudy.engine.drives import GIVEN
 from beltstudy.engine.friction import canonical_name
 from beltstudy.service.errors import file_reason, shown_path
 
@@ -88,9 +89,30 @@ def with_sag_at_rest(conv, on: bool | None):
     return conv.model_copy(update={"takeup": conv.takeup.model_copy(update={"sag_at_rest": on})})
 
 
-def design_lines(s: dict, indent: str = "  ") -> list[str]:
+def drives_given(conv) -> list[bool]:
+    """Per drive (file order): whether the conveyor file gives its ``rated_power_kw`` (omitted
+    or ``auto`` is an auto size)."""
+    return [d.rated_power_kw is not None for d in conv.drives]
+
+
+def drive_governed(joined: str | None, given: bool | None) -> str | None:
+    """What set one drive's rated power, from the run's ``rated_power_governed_by`` (the
+    drives' constraints joined by ``+``, e.g. ``given+peripheral_force``) and whether the file
+    gives that drive's ``rated_power_kw`` (None: not known, the joined text as it is)."""
+    if not joined or given is None:
+        return joined
+    if given:
+        return GIVEN
+    auto = [part for part in joined.split("+") if part != GIVEN]
+    return "+".join(auto) or joined
+
+
+def design_lines(s: dict, indent: str = "  ", drives_given: list[bool] | None = None
+                 ) -> list[str]:
     """Where the run's sizes came from: each size with its governing constraint, then the
-    capacity check."""
+    capacity check. ``drives_given``: per drive (file order), whether the conveyor file gives
+    its ``rated_power_kw``; each drive's row then names its own constraint (``given``, or what
+    set its auto size) instead of the drives' joined ``rated_power_governed_by``."""
     rows = []
     if s.get("takeup_mass_kg") is not None:
         rows.append(("take-up mass", s["takeup_mass_kg"], "kg", s.get("takeup_governed_by")))
@@ -98,8 +120,10 @@ def design_lines(s: dict, indent: str = "  ") -> list[str]:
                  None if s.get("takeup_mass_kg") is not None else s.get("takeup_governed_by")))
     i = 1
     while f"drive{i}_rated_power_kw" in s:
+        given = (drives_given[i - 1] if drives_given is not None and i <= len(drives_given)
+                 else None)
         rows.append((f"rated power, drive {i}", s[f"drive{i}_rated_power_kw"], "kW",
-                     s.get("rated_power_governed_by")))
+                     drive_governed(s.get("rated_power_governed_by"), given)))
         i += 1
     if s.get("brake_force_kn") is not None:
         rows.append(("brake force (all brakes)", s["brake_force_kn"], "kN",

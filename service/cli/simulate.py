@@ -21,6 +21,7 @@ from beltstudy.service.cli.common import (
     LOAD_HELP,
     check_output,
     design_lines,
+    drives_given,
     dumps,
     model_option,
     parse_load,
@@ -220,7 +221,7 @@ def run(args: argparse.Namespace) -> int:
     if args.json:
         print(dumps(s))
     else:
-        print(_table(s))
+        print(_table(s, drives_given(conv)))
     return 0 if s["status"] != "failed" else 1
 
 
@@ -254,7 +255,7 @@ def _fmt(val) -> str:
     return f"{val!s:>12}"
 
 
-def _table(s: dict) -> str:
+def _table(s: dict, given: list[bool] | None = None) -> str:
     lines = [f"{s['conveyor']}  model={s['friction_model']}  temperature={s['temperature_c']:g} C"
              f"  load={s['load']}  stop={s['stop_mode']}  formulation={s['formulation']}",
              f"belt {s.get('belt_type_used')}", ""]
@@ -266,7 +267,7 @@ def _table(s: dict) -> str:
                 lines.append(f"    {label:<38} {_fmt(s[key])} {unit}")
         lines.append("")
         if title == "steady":
-            lines += design_lines(s)
+            lines += design_lines(s, drives_given=given)
             lines.append("")
     for title, fields in (("per phase (start: start command to stop command; stop: from "
                            "the stop command)", PHASE_FIELDS), ("slack", SLACK_FIELDS)):

@@ -30,6 +30,7 @@ from beltstudy.service.cli.common import (
     check_output,
     check_scenario_fields,
     design_lines,
+    drives_given,
     dumps,
     model_option,
     parse_load,
@@ -92,6 +93,7 @@ def run(args: argparse.Namespace) -> int:
         if path:
             check_output(path)
     t0 = time.perf_counter()
+    given = drives_given(conv)
     conv, choice = _belt(conv, fm.name, params, args, load)
     # auto motors and brakes installed for the full load too, as a run installs them
     conv, installed = installed_at_full_load(conv, scn, model=fm.name, params=params)
@@ -120,7 +122,7 @@ def run(args: argparse.Namespace) -> int:
     else:
         if args.suggest_belt:
             print(_selection_table(choice))
-        print(_table(s))
+        print(_table(s, given))
     return 0 if res.status != "failed" else 1
 
 
@@ -187,7 +189,7 @@ def _unit(f) -> str:
     return "-" if f.unit == "text" else f.unit
 
 
-def _table(s: dict) -> str:
+def _table(s: dict, given: list[bool] | None = None) -> str:
     lines = [f"{s['conveyor']}  model={s['friction_model']}  temperature={s['temperature_c']:g} C"
              f"  load={s['load']}", f"belt {s.get('belt_type_used')}", ""]
     for key in TABLE:
@@ -197,7 +199,7 @@ def _table(s: dict) -> str:
         f = results.field(key)
         lines.append(f"  {f.label:<36} {val:>12.3f} {_unit(f)}")
     lines.append("")
-    lines += design_lines(s)
+    lines += design_lines(s, drives_given=given)
     lines.append("")
     lines.append("  Te components [kN]")
     for name, val in s["te_components_kn"].items():
