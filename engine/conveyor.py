@@ -14,6 +14,7 @@ import math
 import re
 import typing
 import unicodedata
+from collections.abc import Sequence
 from pathlib import Path
 from typing import Annotated, Any, Literal
 
@@ -1339,6 +1340,12 @@ UNIT_SUFFIXES = (
     ("_lbf", "_kn", "kN: lbf x 0.0044482"),
     ("_lb", "_kg", "kg: lb x 0.45359"),
     ("_hp", "_kw", "kW: hp x 0.7457"),
+    ("_mw", "_kw", "kW: MW x 1000"),
+    ("_w", "_kw", "kW: W / 1000"),
+    ("_mn", "_kn", "kN: MN x 1000"),
+    ("_n", "_kn", "kN: N / 1000"),
+    ("_f", "_c", "degrees Celsius: (F - 32) / 1.8"),
+    ("_k", "_c", "degrees Celsius: K - 273.15"),
 )
 
 #: Handbook words with no key of their own, and the key that carries them.
@@ -1404,6 +1411,18 @@ def nearest_word(got: Any, expected: str) -> str:
     return f"did you mean '{close[0]}'?" if close and close[0] != got else ""
 
 
+def unit_twin(key: str, keys: Sequence[str]) -> str:
+    """``did you mean 'power_kw'? (in kW: MW x 1000)`` for a ``key`` that is a valid key
+    with its unit written in another one (``power_MW``, ``te_N``, ``mass_lb``; any case), "" for
+    any other: the name alone would be renamed and its numbers kept in the other unit."""
+    low = key.lower()
+    for suffix, repl, conv in UNIT_SUFFIXES:
+        twin = low[: -len(suffix)] + repl
+        if low.endswith(suffix) and twin in keys and twin != key:
+            return f"did you mean '{twin}'? (in {conv})"
+    return ""
+
+
 def _unknown_key_hint(key: str, keys: list[str], missing: list[str] = ()) -> str:
     """What to write instead of the unknown ``key``: its SI twin with the conversion, the key
     a handbook word maps to, else the nearest valid key (first among the required keys
@@ -1411,9 +1430,9 @@ def _unknown_key_hint(key: str, keys: list[str], missing: list[str] = ()) -> str
     list."""
     if key in KEY_HINTS:
         return f"; {KEY_HINTS[key]}"
-    for suffix, repl, conv in UNIT_SUFFIXES:
-        if key.endswith(suffix) and key[: -len(suffix)] + repl in keys:
-            return f"; did you mean '{key[: -len(suffix)] + repl}'? (in {conv})"
+    twin = unit_twin(key, keys)
+    if twin:
+        return f"; {twin}"
     close = (difflib.get_close_matches(key, [k for k in missing if k in keys], n=1, cutoff=0.5)
              or difflib.get_close_matches(key, keys, n=1, cutoff=0.5))
     return f"; did you mean '{close[0]}'?" if close else f"; valid keys: {', '.join(keys)}"

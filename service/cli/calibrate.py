@@ -13,6 +13,7 @@ import yaml
 from pydantic import ValidationError
 
 from beltstudy.engine import InputError, format_validation_error
+from beltstudy.engine.conveyor import unit_twin
 from beltstudy.engine.textfile import read_text
 from beltstudy.service.calibration import MAX_ROWS, CalibrationIn, MeasuredRow, run_calibration
 from beltstudy.service.cli.common import dumps, model_option, parse_params
@@ -104,7 +105,8 @@ def read_measured(path: str, lines: list[int] | None = None) -> list[dict]:
                             f"{header.index(name) + 1} and {i + 1}); give each column once")
         elif name not in valid:
             close = difflib.get_close_matches(name, valid, n=1, cutoff=0.5)
-            hint = f"did you mean '{close[0]}'?" if close else f"valid columns: {', '.join(valid)}"
+            hint = (unit_twin(name, valid) or (f"did you mean '{close[0]}'?" if close else
+                                                f"valid columns: {', '.join(valid)}"))
             shown = f"'{name}'" if name else f"{i + 1} (no name)"
             problems.append(f"{path}: line 1: unknown column {shown}; {hint}")
     if not problems:  # the columns every row needs, said once for the header

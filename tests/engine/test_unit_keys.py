@@ -1,0 +1,42 @@
+"""A key written in another unit than the contract's (SPEC: every key that carries a unit ends
+in it): the message names the contract's key and the conversion, whatever the case of the
+unit (power_MW, te_N); the name alone was suggested before ("did you mean 'rated_power_kw'?"),
+which a user follows by renaming the key and keeping the numbers in MW."""
+
+from __future__ import annotations
+
+import pytest
+from pydantic import ValidationError
+
+from beltstudy.engine import InputError, parse_conveyor
+from beltstudy.engine.conveyor import unit_twin
+from tests.conftest import hand_conveyor_dict
+
+
+@pytest.mark.parametrize("key,twin,conversion", [
+    ("power_MW", "power_kw", "kW: MW x 1000"),
+    ("power_w", "power_kw", "kW: W / 1000"),
+    ("te_N", "te_kn", "kN: N / 1000"),
+    ("te_MN", "te_kn", "kN: MN x 1000"),
+    ("temperature_F", "temperature_c", "degrees Celsius: (F - 32) / 1.8"),
+    ("temperature_K", "temperature_c", "degrees Celsius: K - 273.15"),
+])
+def test_a_unit_slip_in_a_key_names_the_twin_and_the_conversion(key, twin, conversion):
+    keys = ["load", "temperature_c", "power_kw", "te_kn"]
+    assert unit_twin(key, keys) == f"did you mean '{twin}'? (in {conversion})"
+
+
+def test_a_key_that_is_no_unit_slip_has_no_twin():
+    keys = ["load", "temperature_c", "power_kw", "te_kn"]
+    assert unit_twin("temp_c", keys) == ""  # a misspelling: difflib's word, not a unit
+    assert unit_twin("power_kw", keys) == ""  # the key itself
+
+
+def test_a_conveyor_key_in_mw_is_refused_with_the_conversion():
+    d = hand_conveyor_dict()
+    d["drives"][0]["rated_power_MW"] = 1.25
+    with pytest.raises((InputError, ValidationError)) as exc:
+        parse_conveyor(d)
+    msg = str(exc.value)
+    assert "drives.0.rated_power_MW: unknown key" in msg
+    assert "did you mean 'rated_power_kw'? (in kW: MW x 1000)" in msg

@@ -1,0 +1,36 @@
+"""A measured column or key in another unit than the contract's (power_MW, te_N): the
+calibration's CSV header (beltstudy calibrate) and body (POST /calibrations) name the column
+to write and the conversion, not the name alone."""
+
+from __future__ import annotations
+
+import pytest
+
+from beltstudy.engine import InputError
+from beltstudy.service.calibration import read_calibration
+from beltstudy.service.cli.calibrate import read_measured
+from beltstudy.service.errors import Invalid
+
+
+@pytest.mark.parametrize("header,needle", [
+    ("load,temperature_c,power_MW", "unknown column 'power_MW'; did you mean 'power_kw'? "
+                                    "(in kW: MW x 1000)"),
+    ("load,temperature_c,te_N", "unknown column 'te_N'; did you mean 'te_kn'? (in kN: N / 1000)"),
+    ("load,temperature_F,power_kw", "did you mean 'temperature_c'? (in degrees Celsius: "
+                                    "(F - 32) / 1.8)"),
+])
+def test_a_csv_column_in_another_unit_names_the_conversion(tmp_path, header, needle):
+    path = tmp_path / "plant.csv"
+    path.write_text(f"{header}\n0.5,10,0.044\n")
+    with pytest.raises(InputError) as exc:
+        read_measured(str(path))
+    assert needle in str(exc.value)
+
+
+def test_a_request_key_in_another_unit_names_the_conversion():
+    with pytest.raises(Invalid) as exc:
+        read_calibration({"conveyor": "conveyors/slope-5pct.yaml", "model": "din",
+                          "fit": ["f_carry"],
+                          "measured": [{"load": 0.5, "temperature_c": 10, "power_MW": 0.044}]})
+    assert ("measured.0.power_MW: unknown key 'power_MW'; did you mean 'power_kw'? "
+            "(in kW: MW x 1000)") in exc.value.message
