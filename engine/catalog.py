@@ -381,7 +381,9 @@ def resolve_belt(b) -> ResolvedBelt:
             return float(val)
         return float(getattr(base, name))
 
-    kind = base.kind if base else ("steel" if (b.modulus_kn_m or 0) > 30000 else "fabric")
+    # a custom belt is of the kind its file says; without one, steel cord above 30 000 kN/m
+    kind = (base.kind if base else KIND_OF_FILE[b.kind] if b.kind is not None else
+            ("steel" if (b.modulus_kn_m or 0) > 30000 else "fabric"))
     static = pick("modulus_kn_m")
     if b.dynamic_modulus_kn_m is not None:
         dynamic = float(b.dynamic_modulus_kn_m)
