@@ -72,10 +72,33 @@ def liftoff_tension_n(radius_m: float, mass_kg_m: float, angle_rad: float) -> fl
 
 
 def liftoff_limits_n(loop: Loop, curve: Curve) -> tuple[np.ndarray, np.ndarray]:
-    """The curve's elements on both strands (carry then return) and each one's lift-off
-    tension for the empty belt, R m'_G g cos(a) at the element's slope [N]."""
-    el = np.concatenate((curve.carry, curve.ret))
-    return el, curve.radius_m * loop.mG_kg_m[el] * G * loop.cos_a[el]
+    """The points of the curve's arc on both strands (carry then return), as the springs
+    (element ends, ``T[j]`` at the end of element j) that sit on them, and each point's
+    lift-off tension for the empty belt, R m'_G g cos(a) at that point's slope [N].
+
+    The points are the arc's two ends and every junction of its elements: on each strand the
+    spring just before the strand's first arc element (where the belt enters the arc) and the
+    end of every arc element. Each is judged by its own tension against the cosine of the
+    arc's slope there, ``a = a_in + (x - x_start) / R`` (``x`` along the route): the tension at
+    an element's end against the slope at its middle (half an element's turn, up to 0.5 deg,
+    away) let a belt lift by up to ``R m'_G g (cos(a - step / 2) - cos a)`` at the arc's steep
+    end unseen, and the point where each strand enters the arc was not judged at all (on the
+    return, and on a carry running down into the valley, that is the steeper end).
+    """
+    sign = 1.0 if curve.delta_rad > 0.0 else -1.0
+    # arc length from the arc's tail-side end to each carry element's ends: the slope there
+    along = np.concatenate(([0.0], np.cumsum(loop.dx_m[curve.carry])))
+    ang = curve.angle_in_rad + sign * along / curve.radius_m
+    carry, ret = curve.carry, curve.ret  # ret in carry order: ret[i] runs over carry[i]
+    # carry: the spring before its first arc element (the tail-side end), then each end;
+    # return (head -> tail): the spring before ret[-1] (the head-side end), then each
+    # element's end, the tail-side end of the stretch it runs over
+    el = np.concatenate(([carry[0] - 1], carry, [ret[-1] - 1], ret))
+    el = np.where(el < 0, el + loop.n, el)  # the carry's first element: the tail's end
+    a = np.concatenate((ang, [ang[-1]], ang[:-1]))
+    m_g = np.concatenate((loop.mG_kg_m[carry[:1]], loop.mG_kg_m[carry],
+                          loop.mG_kg_m[ret[-1:]], loop.mG_kg_m[ret]))
+    return el, curve.radius_m * m_g * G * np.cos(a)
 
 
 def _trough_heights(width_m: float, rolls: int, trough_deg: float, roll_length_m: float
@@ -219,7 +242,7 @@ def _start_liftoff(c: Curve, loop: Loop, el: np.ndarray, lim: np.ndarray, T: np.
     over = ts - lim
     j = int(np.argmax(over))
     lifts = bool(over[j] > 0.0)
-    r_need = float(np.max(ts / (loop.mG_kg_m[el] * G * loop.cos_a[el])))
+    r_need = float(np.max(ts * c.radius_m / lim))  # T_start / (m'_G g cos a)
     out = {f"curve{k}_tension_start_kn": float(ts.max()) / 1e3,
            f"curve{k}_liftoff_start": lifts, f"curve{k}_radius_min_start_m": r_need}
     if not lifts or lifts_running:
@@ -276,8 +299,8 @@ def steady_checks(conv, loop: Loop, T: np.ndarray, sf_min: float,
     conv : Conveyor
     loop : Loop
     T : ndarray
-        Steady boundary tensions, ``T[j]`` at the end of element j [N]; an element on a curve
-        is judged by the tension at its end.
+        Steady boundary tensions, ``T[j]`` at the end of element j [N]; a concave curve is
+        judged at the points of its arc, each by the tension there (:func:`liftoff_limits_n`).
     sf_min : float
         Minimum running belt safety factor [-] (the convex edge limit, rating / S_min).
     T_start : ndarray, optional
@@ -305,7 +328,7 @@ def steady_checks(conv, loop: Loop, T: np.ndarray, sf_min: float,
             over = T[el] - lim
             j = int(np.argmax(over))
             lifts = bool(over[j] > 0.0)
-            r_need = float(np.max(T[el] / (loop.mG_kg_m[el] * G * loop.cos_a[el])))
+            r_need = float(np.max(T[el] * c.radius_m / lim))  # T / (m'_G g cos a)
             out[f"curve{k}_liftoff_tension_kn"] = float(lim.min()) / 1e3
             out[f"curve{k}_liftoff"] = lifts
             out[f"curve{k}_radius_min_m"] = r_need
@@ -389,8 +412,9 @@ def transient_liftoff(loop: Loop, segs, t_start_end_s: float, t_stop_cmd_s: floa
     Returns
     -------
     dict, list of str
-        ``liftoff_max_kn_over``: the largest T - R m'_G g cos(a) over the concave curves' elements
-        and the concave survey grade changes' springs (both strands) and the cycle [kN],
+        ``liftoff_max_kn_over``: the largest T - R m'_G g cos(a) over the springs on the
+        concave curves' arcs (:func:`liftoff_limits_n`) and the concave survey grade
+        changes' springs (both strands) and the cycle [kN],
         negative when the belt stays on its idlers (the margin left), null without either;
         ``liftoff_over_start_kn`` / ``liftoff_over_stop_kn`` the same from the start command
         to the stop command and after it (null for a phase no envelope covers);
