@@ -1598,6 +1598,16 @@ def format_validation_error(exc: ValidationError, model: type[BaseModel], prefix
                 if hint:
                     # kept beside a union's wrong-type line ('"inclnes" is not of type ...')
                     near[path] = hint
+            if err["type"] == "union_tag_not_found" and "ctx" in err:
+                # a tagged choice given without its tag (a sample axis with no dist): the
+                # key to add and the words it takes, not Pydantic's "Unable to extract tag"
+                key = str(err["ctx"]["discriminator"]).strip(chr(39))
+                path += f".{key}"
+                words = list(dict.fromkeys(t for m in _models_at(model, (*clean, key))
+                                           for t in sorted(_tags(m))))
+                msg = "required field is missing" + (
+                    f"; give {key}: one of {', '.join(words)}" if words else "")
+                shown = ""
             if err["type"] == "union_tag_invalid" and "ctx" in err:
                 # a tagged choice (a sample axis's dist): the key, the word given and the words
                 ctx = err["ctx"]
