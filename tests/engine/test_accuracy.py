@@ -87,6 +87,37 @@ def test_unchanged_and_missing_meshes():
     assert A.figure_error("t_max_dyn_kn", (110.0, None, 100.0), (50, 100, 200)) is None
 
 
+def test_an_extrapolation_below_zero_of_a_figure_that_cannot_be_negative_is_no_estimate():
+    """A lowest tension of 40, 20 and 5 kN on 50 / 100 / 200 elements: differences 20 and 15,
+    p = ln(20 / 15) / ln 2 = 0.415, bounded to 0.5 (gci3), Richardson 5 + (5 - 20) / (sqrt 2 -
+    1) = -31.2 kN: a belt tension below the model's floor of 0 kN (slack). The converged
+    estimate said -31.2 kN (and a marginal verdict 'converged estimate -31.2 kN'); it is now
+    none, and the bar stands: 3 |20 - (-31.2)| = 153.6 kN. A lift-off excess, which may be
+    negative, keeps its estimate."""
+    vals = (40.0, 20.0, 5.0)
+    conv = 5.0 + (5.0 - 20.0) / (math.sqrt(2.0) - 1.0)
+    assert conv == pytest.approx(-31.213, abs=1e-3)
+    for name in ("t_min_dyn_kn", "slack_max_m", "sag_max_dyn_pct", "stop_time_s"):
+        fe = A.figure_error(name, vals, (50, 100, 200))
+        assert fe.method == "gci3" and fe.order == pytest.approx(math.log(20 / 15) / math.log(2))
+        assert fe.converged is None, name
+        assert fe.err == pytest.approx(3.0 * (20.0 - conv), rel=1e-12)  # 153.6
+    # two meshes (gci2): 47.9 kN on 10 elements, 18.2 kN on 22, order 0.5 assumed:
+    # 18.2 + (18.2 - 47.9) / (2.2^0.5 - 1) = -43.26 kN, no estimate; the bar 3 |47.9 + 43.26|
+    fe = A.figure_error("t_min_dyn_kn", (None, 47.9, 18.2), (None, 10, 22))
+    two = 18.2 + (18.2 - 47.9) / (2.2 ** 0.5 - 1.0)
+    assert fe.method == "gci2" and two == pytest.approx(-43.26, abs=0.005)
+    assert fe.converged is None and fe.err == pytest.approx(3.0 * (47.9 - two), rel=1e-12)
+    words = A.marginal_verdicts({"slack_max_m": 0.0}, {"t_min_dyn_kn": fe}, finest=22)
+    assert len(words) == 1 and "converged estimate" not in words[0]
+    # a figure that may be negative keeps its extrapolation
+    fe = A.figure_error("liftoff_max_kn_over", vals, (50, 100, 200))
+    assert fe.converged == pytest.approx(conv, rel=1e-12)
+    # an estimate at or above 0 is kept
+    fe = A.figure_error("t_min_dyn_kn", (40.0, 20.0, 10.0), (50, 100, 200))
+    assert fe.method == "richardson" and fe.converged == pytest.approx(0.0, abs=1e-9)
+
+
 def test_deciding_figures_are_those_the_run_reports():
     s = {"t_max_dyn_kn": 5.0, "t_min_dyn_kn": 1.0, "drive2_force_max_kn": 3.0,
          "drive1_force_max_kn": 2.0, "drive1_slip_s": 0.0, "stop_time_s": None,
