@@ -983,12 +983,12 @@ def _verdict(sol, at_bound: list[str], r: np.ndarray, model: str,
             "least one more steady state (another load or temperature), or fit fewer names")}
     if exact:
         return {"status": "warning", "message": (
-            f"converged, but {len(r)} measured values for as many fitted names are met "
-            "exactly whatever their errors: nothing is left to check the fit against and it "
+            f"converged, but {_values(len(r))} for as many fitted names "
+            f"{'is' if len(r) == 1 else 'are'} met exactly whatever their errors: nothing is left to check the fit against and it "
             "has no standard errors. Measure at least one more steady state (another load or "
             "temperature), or fit fewer names")}
     return {"status": "ok", "message": f"converged: rms relative residual {rms_text} % over "
-            f"{len(r)} measured values"}
+            f"{_values(len(r))}"}
 
 
 def _jacobian(fun, x: np.ndarray, lower: Sequence[float] | None = None) -> np.ndarray:

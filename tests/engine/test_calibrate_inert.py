@@ -71,3 +71,13 @@ def test_material_flexure_on_empty_rows_is_held_beside_a_fitted_name(with_seal_d
     assert cal.fit["mu_b"]["se"] is not None
     assert "p_mf changes none of the modelled values" in cal.message
     assert "cannot tell" not in cal.message
+
+
+def test_one_row_for_one_name_is_said_in_the_singular(with_seal_drag):
+    # one reading fixes one name exactly: "1 measured values for as many fitted names are
+    # met" before; mu_b is read here (the bearing term), the seal drag is the file's
+    rows = _rows(with_seal_drag, {"mu_b": 0.002}, [0.5], (10.0,))
+    cal = calibrate(with_seal_drag, rows, "nonlin", ["mu_b"])
+    assert cal.status == "warning" and cal.dof == 0
+    assert cal.message.startswith(
+        "converged, but 1 measured value for as many fitted names is met exactly")
