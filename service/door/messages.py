@@ -107,6 +107,15 @@ def _as_json_type(errors: list[dict]) -> str:
     elif not hint and path == ("conveyor",) and not isinstance(got, dict | list):
         hint = ("give the path of a conveyor file as text (conveyors/slope-5pct.yaml) or the "
                 "conveyor inline")
+    elif not hint and len(path) == 3 and path[:2] == ("sample", "axes") \
+            and not isinstance(got, dict):
+        # a sampled axis written as a value or a list: its distribution (SPEC 7.2)
+        number = isinstance(got, int | float) and not isinstance(got, bool)
+        mean = as_json(got) if number else "..."
+        hint = ("a sampled axis is a distribution, e.g. {dist: uniform, low: ..., high: ...} "
+                f"or {{dist: normal, mean: {mean}, sd: ...}}; "
+                + ("a list of values is a grid axis (grid:)" if isinstance(got, list) else
+                   "a fixed value belongs in the conveyor or the scenario"))
     elif (not hint and path == ("accuracy",) and isinstance(got, int | float)
           and not isinstance(got, bool)):
         # the share of runs written alone: the block that holds it
