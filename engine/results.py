@@ -477,8 +477,9 @@ CURVES = ResultGroup("curves", "Vertical curves, steady (CEMA, DIN 22101; docs/r
        "on a convex curve; of either strand on a concave one (the tension its lift-off is "
        "judged at)", "T on the curve"),
     _f("curve{k}_liftoff_tension_kn", "kN", "concave: the tension at which the empty belt "
-       "leaves its idlers there, R m'_G g cos(a) at the curve's steepest element (the loaded "
-       "belt, m'_G + m'_L, holds more); null for a convex curve", "lift-off tension"),
+       "leaves its idlers there, R m'_G g cos(a) at the curve's steepest point, its steeper "
+       "end (the loaded belt, m'_G + m'_L, holds more); null for a convex curve",
+       "lift-off tension"),
     _f("curve{k}_liftoff", "bool", "concave: the steady tension on either strand is above the "
        "lift-off tension of the empty belt somewhere on curve k (a warning); false for a "
        "convex curve", "lifts off"),
