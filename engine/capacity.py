@@ -171,9 +171,12 @@ def slope_factor(s1_m2: float, s2_m2: float, slope_deg: float, surcharge_deg: fl
     s = s1_m2 + s2_m2
     if s <= 0.0 or s1_m2 <= 0.0:
         return 1.0
-    cd2 = math.cos(math.radians(slope_deg)) ** 2
-    ct2 = math.cos(math.radians(surcharge_deg)) ** 2
-    k1 = math.sqrt(max(cd2 - ct2, 0.0) / (1.0 - ct2))
+    # k1 = sqrt((cos^2 delta - cos^2 theta) / (1 - cos^2 theta)), written with sines
+    # (cos^2 delta - cos^2 theta = sin^2 theta - sin^2 delta): below about 6e-7 deg of
+    # surcharge cos^2 theta rounds to 1 and the cosine form divides by zero
+    sd = abs(math.sin(math.radians(slope_deg)))
+    st = math.sin(math.radians(surcharge_deg))
+    k1 = math.sqrt(1.0 - (sd / st) ** 2) if sd < st else 0.0
     return 1.0 - (s1_m2 / s) * (1.0 - k1)
 
 
