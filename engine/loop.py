@@ -309,7 +309,10 @@ def section_cuts(conv: Conveyor, start_m: float, length_m: float, k: int
     tol = 1e-9 * max(1.0, end)
     cuts = [c for c in route_cuts(conv) if start_m + tol < c < end - tol]
     bounds = [start_m, *cuts, end]
-    pieces = [b - a for a, b in zip(bounds[:-1], bounds[1:], strict=True)]
+    # uncut, the piece is the section's own length: a section shorter than the rounding of its
+    # end along the route (1e-17 m after 60 m) would otherwise be a piece of 0 m
+    pieces = ([b - a for a, b in zip(bounds[:-1], bounds[1:], strict=True)] if cuts
+              else [length_m])
     counts = _split(max(k, len(pieces)), pieces)
     out = []
     for a, piece, c in zip(bounds[:-1], pieces, counts, strict=True):
