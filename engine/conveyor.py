@@ -577,6 +577,15 @@ class Drive(_Model):
     @model_validator(mode="after")
     def _curve_and_coupling(self) -> Drive:
         _check_at(self.position, self.at_m, "a booster drive")
+        if math.exp(self.friction * math.radians(self.wrap_deg)) == 1.0:
+            # below about 1e-16 / theta the capstan factor is 1 in floating point: the slack
+            # side the grip needs, Te / (e^(mu theta) - 1), is a division by zero (a pulley that
+            # barely grips, friction 1e-6, is kept: its verdict names the take-up it needs)
+            raise ValueError(
+                f"friction {self.friction:g} over {self.wrap_deg:g} deg of wrap grips nothing: "
+                "e^(mu theta) is 1 to the last digit, and no slack-side tension makes the "
+                "pulley drive the belt; give the belt-pulley friction coefficient (DIN 22101: "
+                "about 0.1 wet and bare to 0.35-0.4 lagged)")
         if self.friction_kinetic is not None and self.friction_kinetic > self.friction:
             raise ValueError(
                 f"friction_kinetic {self.friction_kinetic:g} is above friction "
