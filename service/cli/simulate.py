@@ -138,6 +138,10 @@ def build_scenario(args: argparse.Namespace):
         expect_kind(raw, "scenario", str(args.scenario))
         data, _ = scenario_fields(raw, f"{args.scenario}: ")
     data = {k: (dict(v) if isinstance(v, dict) else v) for k, v in data.items()}
+    if any(k in data and not isinstance(data[k], dict) for k in ("start", "stop")):
+        # 'start: null' or 'stop: [1]': refused naming the field, as POST /studies refuses it
+        # (it was read as no start, or the command line's --start-time-s written into it)
+        return parse_scenario(data, prefix="scenario.")
     start = data.setdefault("start", {})
     stop = data.setdefault("stop", {})
     over = {
