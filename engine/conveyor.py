@@ -1334,7 +1334,8 @@ def valid_keys(model: type[BaseModel]) -> list[str]:
 
 #: A key written in a handbook's unit where the contract has its SI twin: the unit suffix, the
 #: twin's suffix and how to convert (exact factors: 1 ft = 0.3048 m, 1 in = 0.0254 m,
-#: 1 lb = 0.45359237 kg, 1 short ton = 0.90718474 t, 1 lbf = 4.4482216 N, 1 hp = 0.7457 kW).
+#: 1 lb = 0.45359237 kg, 1 short ton = 0.90718474 t, 1 lbf = 4.4482216 N, 1 hp = 0.7457 kW,
+#: 1 lb ft2 = 0.45359237 x 0.3048^2 = 0.0421401 kg m2).
 UNIT_SUFFIXES = (
     ("_kg_m3", "_t_m3", "t/m3: kg/m3 / 1000"),
     ("_lb_ft3", "_t_m3", "t/m3: lb/ft3 x 0.016018"),
@@ -1355,6 +1356,10 @@ UNIT_SUFFIXES = (
     ("_n", "_kn", "kN: N / 1000"),
     ("_f", "_c", "degrees Celsius: (F - 32) / 1.8"),
     ("_k", "_c", "degrees Celsius: K - 273.15"),
+    ("_min", "_s", "seconds: min x 60"),
+    ("_ms", "_s", "seconds: ms / 1000"),
+    ("_h", "_s", "seconds: h x 3600"),
+    ("_lb_ft2", "_kg_m2", "kg m2: lb ft2 x 0.042140"),
 )
 
 #: Handbook words with no key of their own, and the key that carries them.
