@@ -1011,6 +1011,20 @@ def _check_feed(conv: Conveyor) -> None:
         if f.skirt_width_m is not None and f.skirt_length_m == 0.0:
             raise ValueError(f"material.feed.{i}.skirt_width_m: give skirt_length_m too (no "
                              "skirts without a length)")
+        if f.skirt_width_m is not None and f.skirt_length_m > 0.0:
+            # ISO 5048's F_gL = mu_2 I_V^2 rho g l_b / (v^2 b_1^2) per metre of skirt at the
+            # design load, m'_L = capacity / v: a width whose square underflows makes it
+            # infinite (1e-200 m: every tension inf, a traceback in the pulley checks)
+            m_l = conv.material.capacity_t_h / 3.6 / conv.speed_m_s
+            rho = conv.material.density_t_m3 * 1e3
+            per_m = f.skirt_friction * 9.81 * m_l * m_l / (rho * f.skirt_width_m ** 2) \
+                if f.skirt_width_m ** 2 > 0.0 else math.inf
+            if not math.isfinite(per_m):
+                raise ValueError(
+                    f"material.feed.{i}.skirt_width_m: {f.skirt_width_m:g} m between the skirt "
+                    "boards makes their friction infinite (ISO 5048: F_gL grows as 1 / b_1^2); "
+                    "give the clear width between the boards (leave it out for two thirds of "
+                    f"the belt width, {SKIRT_WIDTH_SHARE * conv.belt.width_m:.3g} m)")
         for j in range(i):
             if abs(feed[j].at_m - f.at_m) < 1e-6:
                 raise ValueError(f"material.feed.{i}.at_m: {f.at_m:g} m is also "
