@@ -1074,6 +1074,17 @@ def short_element(conv, loop: Loop) -> tuple[str, str] | None:
     where = " and ".join(f"{words} ({a:.10g} m)" for _, words, a in near)
     said = (f"the automatic step follows the shortest belt element, {dx:.3g} m long between "
             f"{where} from the tail: ")
+    ended = {c[0] for c in near}
+    tiny = [i for i in range(1, len(prof)) if f"profile.{i}.length_m" in ended
+            and f"profile.{i - 1}.length_m" in ended]
+    if tiny and not any(c[0].endswith(".at_m") for c in near):
+        # the element is a whole section between two others: its own length is what to change
+        # (moving the section before shifts both its ends alike)
+        i = tiny[0]
+        return f"profile.{i}.length_m", (
+            f"{said}profile.{i} is {prof[i].length_m:.3g} m long; give it "
+            f"{math.ceil(apart * 10.0) / 10.0:g} m or more (a tenth of the median element) or "
+            "join it to a neighbouring section")
     i = int(field.split(".")[1]) if field.endswith(".curve_radius_m") else -1
     if i >= 0 and any(c[0] == f"profile.{i}.length_m" for c in near):
         # half the curve's own arc (its section's end is the arc's middle): nothing to move,

@@ -277,3 +277,26 @@ def test_a_fixed_step_too_small_for_any_mesh_is_refused_before_the_model_is_buil
                                          r"steps of 200 elements"):
         check_scenario(Scenario(dt_s=1e-6, elements=200), conv)
     check_scenario(Scenario(dt_s=1e-5, elements=100), conv)
+
+
+def test_a_short_section_that_sets_the_step_is_named_by_its_own_length():
+    """A 1 mm profile section between two others is itself the short element: the note named
+    the section before it ('move profile.0.length_m onto the other point or ... m or more away
+    from it'), which shifts both of the short element's ends alike; it now names the short
+    section and the length that lifts it to a tenth of the median element: at that length the
+    note is gone, at 0.8 of it the section still sets the step."""
+    def system(short_m):
+        conv = hand_conv(profile=[{"length_m": 400, "lift_m": 20},
+                                  {"length_m": short_m, "lift_m": 0},
+                                  {"length_m": 600 - short_m, "lift_m": 30}])
+        return build_system(conv, Scenario(elements=60), solve_steady(conv, model="din",
+                                                                      n_elements=60))
+    note = " ".join(system(0.001).notes)
+    said = re.search(r"profile\.1 is 0\.001 m long; give it ([\d.]+) m or more \(a tenth of "
+                     r"the median element\) or join it to a neighbouring section", note)
+    assert said, note
+    assert "move profile.0.length_m" not in note
+    need = float(said.group(1))
+    assert 3.0 < need < 4.0  # a tenth of about 1 000 m / 30 carry elements
+    assert not any("shortest belt element" in n for n in system(need).notes)
+    assert any("profile.1 is" in n for n in system(0.8 * need).notes)
