@@ -377,9 +377,12 @@ def degrees_not_radians(v: float, bound: float, what: str, practice: str) -> flo
     """``v`` [deg], refused when it is below ``bound`` (the largest such angle in radians):
     an angle written in radians where degrees are asked for, named with its degrees."""
     if 0.0 < v < bound:
+        # as radians, a value whose degrees are under the bound too is no real angle either
+        # (wrap_deg 1e-300 was told to write 5.73e-299 deg)
+        hint = (f"{v:g} reads as radians, {math.degrees(v):.4g} deg: write that"
+                if math.degrees(v) >= bound else f"give the {what} in degrees")
         raise ValueError(
-            f"the {what} is in degrees ({practice}): {v:g} deg is no real {what}; "
-            f"{v:g} reads as radians, {math.degrees(v):.4g} deg: write that")
+            f"the {what} is in degrees ({practice}): {v:g} deg is no real {what}; {hint}")
     return v
 
 

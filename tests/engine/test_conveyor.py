@@ -118,6 +118,14 @@ def test_a_wrap_or_trough_angle_written_in_radians_is_refused_with_its_degrees()
     d["idlers"]["carry"]["trough_deg"] = 0.61
     msg = _err(d)
     assert "idlers.carry.trough_deg" in msg and "radians" in msg and "34.95 deg" in msg
+    # a value that as radians is no real angle either is not offered as one (1e-300 was told
+    # 'reads as radians, 5.73e-299 deg: write that'; 0.05 rad is 2.9 deg, below 2 pi deg too)
+    for tiny in (1e-300, 0.05):
+        d = hand_conveyor_dict()
+        d["drives"][0]["wrap_deg"] = tiny
+        msg = _err(d)
+        assert "drives.0.wrap_deg" in msg and "no real wrap angle" in msg, msg
+        assert "reads as radians" not in msg and "give the wrap angle in degrees" in msg, msg
     d = hand_conveyor_dict()
     d["drives"][0]["wrap_deg"] = 60.0
     d["idlers"]["carry"]["trough_deg"] = 0.0
