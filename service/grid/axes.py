@@ -19,6 +19,7 @@ from typing import Any
 from pydantic import BaseModel
 
 from beltstudy.engine import MODELS, Conveyor, InputError, Scenario, get_model, results
+from beltstudy.engine.conveyor import unit_twin
 
 __all__ = [
     "NAMED_AXES",
@@ -199,8 +200,16 @@ def resolve_axis(name: str, conveyor: dict, scenario: dict, where: str = "grid")
             problems.append(found)
     if problems:
         raise InputError(f"axis '{name}': {problems[0]}", field=where)
-    close = difflib.get_close_matches(name, valid_paths(conveyor, scenario), n=1, cutoff=0.5)
+    paths = valid_paths(conveyor, scenario)
+    close = difflib.get_close_matches(name, paths, n=1, cutoff=0.5)
     hint = f"; did you mean '{close[0]}'?" if close else ""
+    # a field with its unit written in another one (belt.width_ft): the field and the
+    # conversion, as the conveyor file says it (renamed alone, the values stay in feet)
+    parent, _, last = name.rpartition(".")
+    twin = unit_twin(last, [p.rpartition(".")[2] for p in paths if p.rpartition(".")[0] == parent])
+    if twin:
+        hint = "; " + twin.replace("did you mean '", f"did you mean '{parent}." if parent else
+                                   "did you mean '", 1)
     raise InputError(
         f"unknown axis '{name}'{hint} (axes are {', '.join(NAMED_AXES)} or a dotted "
         "conveyor or scenario field such as takeup.mass_kg or scenario.run_s, or a model "

@@ -284,6 +284,10 @@ def test_model_beside_a_friction_model_axis_is_refused_naming_both(make_study):
         ({"temperature_c": []}, r"grid.temperature_c: empty axis"),
         ({"temprature_c": [1]}, r"unknown axis 'temprature_c'.*did you mean 'temperature_c'"),
         ({"takeup.mas_kg": [1]}, r"unknown axis 'takeup.mas_kg'.*did you mean 'takeup.mass_kg'"),
+        # a field in another unit: the field and the conversion, as a conveyor key is told
+        ({"belt.width_ft": [4]}, r"unknown axis 'belt.width_ft'; did you mean 'belt.width_m'\? "
+                                 r"\(in metres: ft x 0\.3048\)"),
+        ({"scenario.run_min": [2]}, r"did you mean 'scenario.run_s'\? \(in seconds: min x 60\)"),
         ({"profile.3.lift_m": [1]}, r"'profile' has 1 entry; index 3 is out of range"),
         ({"temperature_c": ["hot"]}, r'grid.temperature_c.0: "hot" is not of type "number"'),
         # a misspelt word of a choice names the word meant
