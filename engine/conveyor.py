@@ -1614,7 +1614,9 @@ def format_validation_error(exc: ValidationError, model: type[BaseModel], prefix
                 lines.append((path, f'is not of type "{JSON_TYPES[err["type"]]}"',
                               f": {hint}" if hint else "", f"{as_json(got)} "))
                 continue
-            shown = "" if isinstance(got, dict | list) else f" (got {got!r})"
+            # a YAML null as the file writes it, not Python's None
+            shown = "" if isinstance(got, dict | list) else (
+                " (got null)" if got is None else f" (got {got!r})")
             if isinstance(got, float) and not math.isfinite(got):
                 msg = "Input should be a finite number"  # not a bound a NaN fails
             slip = UNIT_SLIPS.get(str(clean[-1])) if clean else None

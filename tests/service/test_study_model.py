@@ -295,6 +295,8 @@ def test_model_beside_a_friction_model_axis_is_refused_naming_both(make_study):
                                 r"did you mean 'inclines'\?$"),
         ({"scenario.stop.mode": ["coast", "brak"]},
          r"\(got 'brak'\): did you mean 'brake'\?$"),
+        # a YAML null is said as the file writes it, not as Python's None
+        ({"scenario.stop.mode": [None]}, r"or 'controlled' \(got null\)$"),
         ({"belt.width_m": [-1]}, r"belt.width_m=-1.*greater than or equal to 0.1"),
         ({"belt_type": ["ST9999"]}, r"unknown belt type 'ST9999'"),
         ({"stop_time_s": [10], "stop": [{"mode": "coast"}]},
