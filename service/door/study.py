@@ -230,8 +230,11 @@ class RangeSpec(BaseModel):
     def values(self) -> list[float | int]:
         n = self.count()
         # 12 digits of the range's own scale, not of each value: -0.3 + 3 x 0.1 is 0, as
-        # the list [-0.3, ..., 0, ...] gives it (the same inputs, the same run ids)
-        scale = max(abs(self.start), abs(self.stop), abs(self.step))
+        # the list [-0.3, ..., 0, ...] gives it (the same inputs, the same run ids). A range
+        # of one value is that value: its step and stop, never reached, set no scale (a
+        # step of 1e20 from 20 to 20 rounded 20 at 1e20's scale, to 0)
+        scale = (max(abs(self.start), abs(self.stop), abs(self.step)) if n > 1
+                 else abs(self.start))
         digits = 12 - math.floor(math.log10(scale)) if scale > 0 and math.isfinite(scale) else 12
         out = [float(f"{round(self.start + i * self.step, digits):.12g}") + 0.0
                for i in range(n)]
