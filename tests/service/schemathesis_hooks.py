@@ -70,11 +70,37 @@ def _conveyor_ok(conv: Any) -> bool:
     if not _dynamic_modulus_ok(conv.get("belt")):
         return False
     idlers = conv.get("idlers")
+    route_m = sum(p["length_m"] for p in conv.get("profile", []))
     for strand in (idlers.values() if isinstance(idlers, dict) else ()):
         if isinstance(strand, dict) and (strand.get("spacing_m") is None) == (
                 strand.get("count") is None):
             return False  # an idler set gives its pitch or its count, one of them
-    return all(abs(p.get("lift_m", 0.0)) < p["length_m"] for p in conv.get("profile", []))
+        if isinstance(strand, dict) and strand.get("count") is not None and \
+                not 0.1 <= route_m / strand["count"] <= 20.0:
+            return False  # sets counted along the route: a pitch of 0.1 to 20 m (Conveyor)
+    if not all(abs(p.get("lift_m", 0.0)) < p["length_m"] for p in conv.get("profile", [])):
+        return False
+    return _whole_checks_pass(conv)
+
+
+def _whole_checks_pass(conv: dict) -> bool:
+    """The conveyor's registered checks of the whole (``WHOLE_CHECKS``: the cross-section's
+    fill against the capacity and speed, the middle roll), rules across fields no schema
+    states: a conveyor they refuse is skipped. A conveyor whose own model refuses it is still
+    sent (whether the schema says so is what the run checks)."""
+    import beltstudy.engine.capacity  # noqa: F401 - registers the fill and the middle roll
+    from beltstudy.engine.conveyor import WHOLE_CHECKS, Conveyor, InputError
+
+    try:
+        model = Conveyor.model_validate(conv)
+    except ValueError:
+        return True
+    try:
+        for check in WHOLE_CHECKS:
+            check(model, "")
+    except InputError:
+        return False
+    return True
 
 
 def _catalogue_moduli() -> dict[str, float]:
@@ -139,11 +165,15 @@ def _study_ok(body: dict) -> bool:
             if size is None or int(parts[2]) >= size:
                 return False  # the index must exist in an inline base conveyor
         base = _base_conveyor(conv)
+        if parts[0] == "conveyor" and isinstance(base, dict) and \
+                not _indices_exist(base, parts[1:]):
+            return False  # an index into a list the base conveyor (inline or file) lacks
         if parts[0] == "conveyor" and len(parts) > 1 and isinstance(base, dict):
             # a conveyor axis changes the conveyor: each variant must stay valid
             for value in values:
                 variant = _with(base, parts[1:], value)
-                if variant is None or not _conveyor_ok(variant):
+                if variant is None or not _conveyor_ok(variant) or \
+                        _variant_refused(base, variant):
                     return False
         if any(isinstance(v, (dict, list)) for v in values) and not _distinct(conv, parts,
                                                                              values):
@@ -225,11 +255,46 @@ def _section_loads_fit(body: dict, axes: dict) -> bool:
 
 def _base_conveyor(conv: Any) -> Any:
     """The study's base conveyor as a mapping: inline, or the shipped file it names."""
-    if isinstance(conv, str):
-        import yaml
+    if isinstance(conv, str):  # read as the service reads it (YAML 1.2: 6.0e4 is a number)
+        from beltstudy.engine.conveyor import load_mapping
 
-        return yaml.safe_load((STUDIES / conv).read_text())
+        return load_mapping(STUDIES / conv)
     return conv
+
+
+def _variant_refused(base: dict, variant: dict) -> bool:
+    """Whether the conveyor refuses a variant of a base it accepts: an axis value is held to
+    its field's schema alone, and what it breaks together with the base's other fields (a
+    take-up moved to the tail that keeps the base's ``at_m`` along the return) is a rule
+    across fields no schema states. A base the conveyor refuses is not judged here."""
+    from beltstudy.engine.conveyor import InputError, parse_conveyor
+
+    try:
+        parse_conveyor(base)
+    except (InputError, ValueError):
+        return False
+    try:
+        parse_conveyor(variant)
+    except (InputError, ValueError):
+        return True
+    return False
+
+
+def _indices_exist(base: dict, path: list[str]) -> bool:
+    """Whether every list index on a conveyor axis's path names an entry of the base
+    conveyor (``accessories.ploughs.0`` on a conveyor without ploughs is refused: the index
+    is out of range). A field the base does not give is fine unless an index lies below it."""
+    node: Any = base
+    for i, key in enumerate(path):
+        if isinstance(node, list):
+            if not key.isdigit() or int(key) >= len(node):
+                return False
+            node = node[int(key)]
+        elif isinstance(node, dict) and key in node:
+            node = node[key]
+        else:
+            return not any(k.isdigit() for k in path[i:])
+    return True
 
 
 def _distinct(conv: Any, parts: list[str], values: list) -> bool:
