@@ -20,9 +20,16 @@ from tests.conftest import hand_conveyor_dict
     ("te_MN", "te_kn", "kN: MN x 1000"),
     ("temperature_F", "temperature_c", "degrees Celsius: (F - 32) / 1.8"),
     ("temperature_K", "temperature_c", "degrees Celsius: K - 273.15"),
+    # times and inertias (tests/engine/test_unit_keys_time.py: the scenario and drive doors)
+    ("run_min", "run_s", "seconds: min x 60"),
+    ("time_MIN", "time_s", "seconds: min x 60"),
+    ("delay_ms", "delay_s", "seconds: ms / 1000"),
+    ("run_h", "run_s", "seconds: h x 3600"),
+    ("inertia_lb_ft2", "inertia_kg_m2", "kg m2: lb ft2 x 0.042140"),
 ])
 def test_a_unit_slip_in_a_key_names_the_twin_and_the_conversion(key, twin, conversion):
-    keys = ["load", "temperature_c", "power_kw", "te_kn"]
+    keys = ["load", "temperature_c", "power_kw", "te_kn", "run_s", "time_s", "delay_s",
+            "inertia_kg_m2", "capacity_t_h", "speed_m_s"]
     assert unit_twin(key, keys) == f"did you mean '{twin}'? (in {conversion})"
 
 

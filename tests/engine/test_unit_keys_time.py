@@ -13,17 +13,7 @@ from beltstudy.engine import InputError, parse_conveyor, parse_scenario
 from beltstudy.engine.conveyor import unit_twin
 from tests.conftest import hand_conveyor_dict
 
-
-@pytest.mark.parametrize("key,twin,conversion", [
-    ("run_min", "run_s", "seconds: min x 60"),
-    ("time_MIN", "time_s", "seconds: min x 60"),
-    ("delay_ms", "delay_s", "seconds: ms / 1000"),
-    ("run_h", "run_s", "seconds: h x 3600"),
-    ("inertia_lb_ft2", "inertia_kg_m2", "kg m2: lb ft2 x 0.042140"),
-])
-def test_a_time_or_inertia_key_names_its_twin_and_the_conversion(key, twin, conversion):
-    keys = ["run_s", "time_s", "delay_s", "inertia_kg_m2", "capacity_t_h", "speed_m_s"]
-    assert unit_twin(key, keys) == f"did you mean '{twin}'? (in {conversion})"
+# the twin and its words, for every unit: tests/engine/test_unit_keys.py
 
 
 def test_the_factors_by_hand():
