@@ -390,8 +390,11 @@ def error_bars(scenario: Scenario, summary: dict, rerun, *,
     used = tuple(int(s["elements_used"]) if s is not None and s.get("elements_used") else m
                  for s, m in zip(runs, meshes, strict=True))
     if runs[0] is not None and used[0] >= used[1]:
+        # the coarse mesh asked came out no coarser than this run's own: the fewest belt
+        # elements, with one element per pulley on top
         runs[0] = None
-        acc.notes.append(f"no mesh coarser than {n} elements (the fewest is {ELEMENTS_MIN})")
+        acc.notes.append(f"no mesh coarser than {n} elements ({meshes[0]} asked gave "
+                         f"{used[0]} with the pulleys; the fewest is {ELEMENTS_MIN} belt elements)")
     used = tuple(None if s is None else u for s, u in zip(runs, used, strict=True))
     acc.elements = used
     acc.figures = bars(runs, used, rtol)

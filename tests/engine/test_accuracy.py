@@ -450,3 +450,22 @@ def test_a_phase_near_slack_is_marginal_when_the_other_phase_went_slack():
                      "may flip with the mesh)"]
     figures["t_min_start_kn"] = _fe("t_min_start_kn", 0.087, 0.05)
     assert A.marginal_verdicts(summary, figures) == []
+
+
+def test_a_coarse_mesh_cut_back_to_the_run_s_own_is_said_as_asked_and_given():
+    """slope-5pct on 9 belt elements: the loop keeps an even count, 8, and adds one element
+    per pulley; the coarse mesh asks the fewest, 8 belt elements, which gives the run's own
+    count again, so no coarser mesh exists. The note says what was asked and what it gave
+    (not "no mesh coarser than 10 elements (the fewest is 8)", which reads as a
+    contradiction)."""
+    from beltstudy.engine import load_conveyor, parse_scenario
+    from beltstudy.engine.run import run_one
+    from tests.conftest import ROOT
+
+    conv = load_conveyor(ROOT / "studies" / "conveyors" / "slope-5pct.yaml")
+    res = run_one(conv, parse_scenario({"elements": 9, "run_s": 5}), model="din", check=True)
+    n = int(res.summary["elements_used"])
+    assert n > A.ELEMENTS_MIN  # the pulleys on top of the 8 belt elements
+    assert res.accuracy.elements[0] is None
+    assert (f"no mesh coarser than {n} elements ({A.ELEMENTS_MIN} asked gave {n} with the "
+            f"pulleys; the fewest is {A.ELEMENTS_MIN} belt elements)") in res.summary["message"]
