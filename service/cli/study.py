@@ -407,8 +407,12 @@ def cmd_results(args) -> int:
             return query.to_parquet(df, service.store.runs_schema(args.id))
         if fmt == "csv":
             return query.to_csv(df).encode()
-
-        return json.dumps({"runs": query.rows_to_json(df)}, indent=1).encode()
+        # the document GET /studies/{id}/runs answers (every row, unpaged), as the service
+        # writes it: a file made without a service reads as one made with it
+        doc = {"study_id": args.id, "total": int(len(df)), "offset": 0, "limit": None,
+               "runs": query.rows_to_json(df)}
+        return json.dumps(doc, ensure_ascii=False, allow_nan=False,
+                          separators=(",", ":")).encode()
 
     data = _with_fallback(args, lambda c: c.runs(args.id, fmt), local)
     with writing(out):
