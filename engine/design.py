@@ -194,7 +194,11 @@ def brake_forces(conv: Conveyor, scenario: Scenario, total_mass_kg: float, te_n:
                 note = (f"auto brake force {hold_n / 1e3:.4g} kN is set by holding the loaded "
                         f"belt at rest ({HOLD_MARGIN:g} x the net gravity pull "
                         f"{pull_n / 1e3:.4g} kN), not by the stop time "
-                        f"{scenario.stop.time_s:g} s (which needs {stop_n / 1e3:.4g} kN)"
+                        f"{scenario.stop.time_s:g} s ("
+                        + (f"which needs {stop_n / 1e3:.4g} kN" if stop_n > 0.0 else
+                           "which needs none: the belt coasts to rest within it on its own "
+                           "resistances")
+                        + ")"
                         + (", shared by the braked pulleys' grip in the stop (an equal share "
                            "is beyond one pulley's grip, the others have room)" if shared
                            else "")
