@@ -136,10 +136,18 @@ def _parameter_schema(path: str, param: dict) -> dict | None:
     """The schema of a route's parameter, where it says more than FastAPI's."""
     where, name = param["in"], param["name"]
     if where == "query" and name in ("baseline", "candidate", "friction_model"):
-        out = {"type": "string", "enum": model_names(),
-               "description": "a friction model or its alias"}
-        if "default" in param.get("schema", {}):
-            out["default"] = param["schema"]["default"]
+        # that the candidate is another model than the baseline (an alias is the model) is a
+        # rule across the two parameters, which JSON Schema cannot state: said in words
+        names = model_names()
+        default = param.get("schema", {}).get("default")
+        if default in names:  # first: a generator's first pick is then a valid pair (cema,
+            names = [default] + [n for n in names if n != default]  # nonlin), not din, din
+        out = {"type": "string", "enum": names,
+               "description": "a friction model or its alias" + (
+                   ", another model than the baseline (by name or alias)"
+                   if name == "candidate" else "")}
+        if default is not None:
+            out["default"] = default
         return out
     if where == "path" and name in ("study_id", "run_id"):
         return {"type": "string", "pattern": ID_PATTERN}
@@ -147,13 +155,19 @@ def _parameter_schema(path: str, param: dict) -> dict | None:
         return {"type": "string", "enum": list(RUN_PLOTS if "/runs/" in path else STUDY_PLOTS)}
     if where == "query" and name == "metrics":
         param["style"], param["explode"] = "form", False
-        return {"type": "array", "uniqueItems": True,
+        # at least one: an empty value (metrics=) is refused naming the parameter; the
+        # defaults are had by leaving the parameter out
+        return {"type": "array", "uniqueItems": True, "minItems": 1,
                 "items": {"type": "string", "enum": metric_names()},
                 "default": list(DEFAULT_METRICS),
-                "description": "result columns, comma-separated; none: the defaults"}
+                "description": "result columns, comma-separated, each once; leave the "
+                               "parameter out for the defaults"}
     if where == "query" and name == "filter":
-        return {"type": "array", "items": {"type": "string", "pattern": "^[^=]+="},
-                "description": param["schema"].get("description", "")}
+        out = {"type": "array", "items": {"type": "string", "pattern": "^[^=]+="},
+               "description": param["schema"].get("description", "")}
+        if "maxItems" in param["schema"]:  # the route's limit (more is a 422) stays stated
+            out["maxItems"] = param["schema"]["maxItems"]
+        return out
     return None
 
 

@@ -446,3 +446,33 @@ def filter_calibration(ctx, body):
         return _calibration_ok(body)
     except (TypeError, KeyError, AttributeError, ValueError, OSError):
         return True
+
+
+#: The models ``GET /studies/{id}/compare`` pairs when a parameter is left out (README).
+_PAIR_DEFAULTS = {"baseline": "cema", "candidate": "nonlin"}
+
+
+def _pair_ok(path: str, query: dict) -> bool:
+    """A comparison names two models: the candidate (given or its default, nonlin) is not
+    the baseline (given or its default, cema), an alias being its model. Across two
+    parameters, so outside JSON Schema; the handler refuses it with a 422 naming
+    ``candidate``. Positive compare requests broke it in 353 of 525 generated (seed 5): both
+    parameters drawn as the enum's first value, ``din``."""
+    if not path.endswith("/compare"):
+        return True
+    pair = {}
+    for label, default in _PAIR_DEFAULTS.items():
+        value = query.get(label, default)
+        if not isinstance(value, str):
+            return True  # a negative case: refused anyway
+        pair[label] = _ALIASES.get(value, value)
+    return pair["baseline"] != pair["candidate"]
+
+
+@schemathesis.hook("filter_query")
+def filter_model_pair(ctx, query):
+    """Skip generated comparisons whose candidate is the baseline (a rule across fields)."""
+    operation = getattr(ctx, "operation", None)
+    if operation is None or not isinstance(query, dict):
+        return True
+    return _pair_ok(operation.path, query)
