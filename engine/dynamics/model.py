@@ -1040,6 +1040,13 @@ def handover_time_s(conv, loop, scn, opts: DynamicsOptions, hold: int) -> float:
     return HANDOVER_S if opts.handover_s is None else float(opts.handover_s)
 
 
+def _places(a: float, nd: int) -> str:
+    """``a`` with ``nd`` decimals, trailing zeros dropped (2116.900896 on 1 decimal: 2116.9;
+    3000.001 on 4: 3000.001; 2118 on 1: 2118)."""
+    text = f"{a:.{nd}f}"
+    return text.rstrip("0").rstrip(".") if "." in text else text
+
+
 def short_element(conv, loop: Loop) -> tuple[str, str] | None:
     """The belt element that sets the automatic step when it is far shorter (under a tenth)
     than the strands' median element: a feed point, booster or take-up close to a profile
@@ -1071,7 +1078,9 @@ def short_element(conv, loop: Loop) -> tuple[str, str] | None:
         return None
     field = min(near, key=lambda c: (not c[0].endswith(".at_m"),
                                      not c[0].endswith(".curve_radius_m")))[0]
-    where = " and ".join(f"{words} ({a:.10g} m)" for _, words, a in near)
+    # places to a tenth of the element: enough to tell its two ends apart, no more
+    nd = max(0, min(6, 1 - math.floor(math.log10(dx)))) if dx > 0.0 else 6
+    where = " and ".join(f"{words} ({_places(a, nd)} m)" for _, words, a in near)
     said = (f"the automatic step follows the shortest belt element, {dx:.3g} m long between "
             f"{where} from the tail: ")
     ended = {c[0] for c in near}

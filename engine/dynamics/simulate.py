@@ -414,11 +414,22 @@ def runaway_words(sys: System, t_s: float, v_mean: float, t_stop_cmd: float) -> 
     phase = _PHASE_WORDS[_run_phase(sys, t_s, t_stop_cmd)]
     more = heavier_takeup(sys)
     if v_mean > 0.0:
-        what = ("the belt ran away forwards", "the drives and brakes could not hold it back: "
-                "more brake force, brakes that act in this stop (stop.mode: brake, hold), or, "
-                f"where a drive pulley slipped, {more}")
+        # how much: the loaded decline's pull at speed is -Te (gravity less the running
+        # resistance), at rest its net gravity pull (the hold force, negative downhill)
+        pull = ""
+        if sys.te_n < 0.0:
+            pull = (f" (the belt pulls {-sys.te_n / 1e3:.4g} kN forwards at speed, -Te, and "
+                    f"{max(-sys.hold_force_n, 0.0) / 1e3:.4g} kN at rest, its net gravity "
+                    "pull: what the brakes and drives must take at the belt line)")
+        what = ("the belt ran away forwards", "the drives and brakes could not hold it back"
+                f"{pull}: more brake force, brakes that act in this stop (stop.mode: brake, "
+                f"hold), or, where a drive pulley slipped, {more}")
     else:
-        what = ("the belt ran back", "nothing held it against the lift: a holdback "
+        pull = ""
+        if sys.hold_force_n > 0.0:
+            pull = (f" (at rest the belt pulls {sys.hold_force_n / 1e3:.4g} kN back, its net "
+                    "gravity pull: what a holdback or brakes must take at the belt line)")
+        what = ("the belt ran back", f"nothing held it against the lift{pull}: a holdback "
                 f"(holdback: true), brakes that hold, or, where a drive pulley slipped, {more}")
     return (f"{what[0]} {phase}: its mean speed reached {abs(v_mean):.3g} m/s "
             f"({C.RUNAWAY_FACTOR:g} x the design speed) at t = {t_s:.4g} s and the run was "
@@ -1352,6 +1363,8 @@ def runback_words(sys: System, out, r: dict, steady_summary: dict | None = None,
     neg = np.minimum(v, 0.0)
     dist = float(-np.sum(0.5 * (neg[1:] + neg[:-1]) * np.diff(t))) if t.size > 1 else 0.0
     torque = (steady_summary or {}).get("holdback_torque_knm")
+    # how much: the net gravity pull a holdback or a holding brake must take at the belt line
+    pull = f"{sys.hold_force_n / 1e3:.4g} kN at the belt line"
     holdback = ("a holdback on the head pulley (holdback: true)"
                 + (f" of at least {torque:.3g} kNm (CEMA's backstop rule, "
                    "holdback_torque_knm)" if torque else ""))
@@ -1360,7 +1373,8 @@ def runback_words(sys: System, out, r: dict, steady_summary: dict | None = None,
             f"{t[k0] - sys.stop_command_s:.3g} s after the stop command, reached "
             f"{-v[k]:.3g} m/s backwards at t = {t[k]:.4g} s and was still {-v[-1]:.3g} m/s "
             f"backwards at the run's end (t = {t[-1]:.4g} s), about {dist:.3g} m of belt run "
-            "back by then (the lift outpulls the resistances at rest and nothing holds it); "
+            f"back by then (the lift's pull at rest, {pull}, outpulls the resistances and "
+            "nothing holds it); "
             f"{holdback} or a brake that holds once the belt rests (brakes[].hold: true) "
             "would avoid it"]
 

@@ -144,6 +144,9 @@ def test_a_short_element_inside_a_curves_arc_is_given_the_radius_that_lengthens_
     delta = math.atan(20 / 400) - math.atan(24 / 600)
     assert 200.0 * delta == pytest.approx(2.0, rel=0.01)
     assert "onto the other point" not in note
+    # the arc's end, 400 - 200 m x delta / 2 = 399.002 m, to a tenth of the 1 m element, not
+    # to ten digits (p11's generated conveyors: "(2116.900896 m)")
+    assert "and an end of the curve after profile.0 (399 m) from the tail" in note
     ok = system(need)
     assert not any("shortest belt element" in n for n in ok.notes)
     assert any("shortest belt element" in n for n in system(0.9 * need).notes)

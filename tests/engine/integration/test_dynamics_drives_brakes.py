@@ -336,6 +336,13 @@ def test_a_decline_the_drive_cannot_hold_runs_away_as_a_rigid_body():
     r = simulate(sysm, conveyor=conv)
     assert r.status == "warning"
     assert "the belt ran away forwards during the stop" in r.message
+    # how much would hold it: -Te at speed, and at rest the material's pull, m'_L g H =
+    # 50 kg/m x 9.81 x 150 m = 73.58 kN (the belt's own weight cancels round the loop)
+    said = re.search(r"the belt pulls ([\d.]+) kN forwards at speed, -Te, and ([\d.]+) kN at "
+                     r"rest, its net gravity pull", r.message)
+    assert said, r.message
+    assert float(said.group(1)) == pytest.approx(-st.te_n / 1e3, rel=1e-3)
+    assert float(said.group(2)) == pytest.approx(50.0 * 9.81 * 150.0 / 1e3, rel=1e-3)
     ts = r.timeseries
     t, v = ts["t_s"].to_numpy(), ts["v_mean_m_s"].to_numpy()
     assert v[-1] == pytest.approx(2.0 * 4.0, rel=0.01)
@@ -761,3 +768,26 @@ def test_tail_followers_settle_or_the_run_says_so():
     # settles it (no setting tried does on this belt, docs/dynamics.md), they say so
     assert "no speed loop setting or drive layout is known to settle every such belt" in msg
     assert "a slower speed loop (drives." not in msg
+
+
+@pytest.mark.parametrize("lift_m, said_as", [
+    (50.0, r"the belt runs back after the stop: .* \(the lift's pull at rest, ([\d.]+) kN at "
+           r"the belt line, outpulls the resistances and nothing holds it\)"),
+    (400.0, r"the belt ran back during the stop: .* \(at rest the belt pulls ([\d.]+) kN back, "
+            r"its net gravity pull: what a holdback or brakes must take at the belt line\)"),
+])
+def test_a_belt_that_runs_back_is_told_the_pull_to_hold(lift_m, said_as):
+    """The hand conveyor (1 km, m'_L 50 kg/m) rising 50 m and 400 m with no holdback and no
+    brake, coasting to rest: the loaded belt runs back, slowly on 50 m (the run ends with it
+    running back) and to twice the design speed on 400 m (the run is ended there), and each
+    warning says how much a holdback or brakes must take, the net gravity pull at rest,
+    m'_L g H = 50 kg/m x 9.81 x H: 24.53 and 196.2 kN (the belt's own weight cancels round
+    the loop)."""
+    conv = hand_conv(profile=[{"length_m": 1000, "lift_m": lift_m}])
+    st = solve_steady(conv, model="din", n_elements=60)
+    sysm = build_system(conv, Scenario(start={"time_s": 20}, run_s=10, stop={"mode": "coast"},
+                                       elements=60), st)
+    r = simulate(sysm, conveyor=conv)
+    said = re.search(said_as, r.message)
+    assert said, r.message
+    assert float(said.group(1)) == pytest.approx(50.0 * 9.81 * lift_m / 1e3, rel=1e-3)
