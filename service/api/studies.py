@@ -333,6 +333,10 @@ def compare(
     service: StudyService = Depends(get_service),
 ) -> dict:
     names = metrics.split(",") if metrics else []
+    if not all(names):  # as columns= and the command line's --metrics say it
+        raise Invalid(f"metrics: an empty name in '{metrics}'; give result columns "
+                      "comma-separated (metrics=power_kw,t_max_stop_kn), or leave the "
+                      "parameter out for the defaults")
     return service.compare(study_id, baseline, candidate, names)
 
 

@@ -71,3 +71,17 @@ def test_the_hooks_skip_a_comparison_of_one_model():
     assert ok(path, {"baseline": "din", "candidate": "visco"})
     assert ok(path, {"baseline": 3, "candidate": 3})  # a negative case: left to the handler
     assert ok("/studies/{study_id}/runs", {"baseline": "din", "candidate": "din"})
+
+
+def test_an_empty_metric_name_is_said_as_one(data_dir, finished_study, make_study, make_settings):
+    """``metrics=power_kw,`` answered "metrics: unknown metric ''; valid: te_kn, ..." (a
+    blank among hundreds of names); it says the empty name, as columns= and --metrics do."""
+    sid = finished_study(data_dir, make_study(
+        grid={"friction_model": ["cema", "nonlin"], "temperature_c": [0, 20]}))
+    client = TestClient(create_app(make_settings(data_dir)))
+    for given in ("power_kw,", ",", "power_kw,,te_kn"):
+        r = client.get(f"/studies/{sid}/compare", params={"metrics": given})
+        assert r.status_code == 422, given
+        assert r.json()["message"] == (
+            f"metrics: an empty name in '{given}'; give result columns comma-separated "
+            "(metrics=power_kw,t_max_stop_kn), or leave the parameter out for the defaults")
