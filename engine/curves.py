@@ -528,9 +528,9 @@ def transient_liftoff(loop: Loop, segs, t_start_end_s: float, t_stop_cmd_s: floa
             t_need = start_time_s * float(need[i_need])
             room = float(lim_c[lifts][i_need] - run_c[lifts][i_need])
             fixes.insert(0, f"a start of about {t_need:.0f} s (start.time_s; rigid-body "
-                            f"estimate: running leaves {room / 1e3:.2f} kN below the lift-off "
-                            f"tension {lim_c[lifts][i_need] / 1e3:.1f} kN there, "
-                            f"{room / lim_c[lifts][i_need]:.1%})")
+                            f"estimate: running leaves {room / 1e3:.4g} kN below the lift-off "
+                            f"tension {lim_c[lifts][i_need] / 1e3:.4g} kN there, "
+                            f"{100.0 * room / lim_c[lifts][i_need]:.3g} %)")
         elif p == 2 and not runs_over:
             fixes.insert(0, softer_stop)
         elif runs_over:

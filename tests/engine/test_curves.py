@@ -663,4 +663,6 @@ def test_the_start_time_for_a_start_lift_off_keeps_every_element_of_the_curve_do
     assert need == pytest.approx(101.3, abs=0.1)
     (w,) = [m for m in warnings if m.startswith("lift-off in the start")]
     assert (f"a start of about {need:.0f} s (start.time_s; rigid-body estimate: running leaves "
-            f"{room[last] / 1e3:.2f} kN below the lift-off tension") in w
+            f"{room[last] / 1e3:.4g} kN below the lift-off tension {lim_of[last] / 1e3:.4g} kN "
+            f"there, {100.0 * room[last] / lim_of[last]:.3g} %)") in w  # 4 figures, ' %'
+    assert "%)" not in w.replace(" %)", "")
