@@ -59,7 +59,8 @@ from beltstudy.engine.stopgrip import (
 __all__ = ["auto_sizes", "summary_fields", "RATED_POWER_FACTOR", "HOLD_MARGIN",
            "MOTOR_INERTIA_SHARE", "moving_mass_kg", "rotating_parts", "RotatingParts",
            "pulley_reduced_mass_kg", "rated_power_kw", "brake_forces", "brake_force_auto",
-           "brake_stop_time", "brake_grip_kn", "brake_kn_within_grip", "GIVEN", "takeup_lever"]
+           "brake_stop_time", "brake_profile", "brake_grip_kn", "brake_kn_within_grip", "GIVEN",
+           "takeup_lever"]
 
 
 
@@ -72,7 +73,8 @@ def moving_mass_kg(conv: Conveyor, steady: SteadyResult) -> float:
 
 
 def brake_force_auto(total_mass_kg: float, v_d: float, te_n: float, stop_s: float,
-                     delay_s: float, ramp_s: float = 0.0) -> float:
+                     delay_s: float, ramp_s: float = 0.0,
+                     curve: tuple[tuple[float, float], ...] | None = None) -> float:
     """Total brake force for a rigid-body stop in ``stop_s`` [N] (no holding minimum).
 
     The belt coasts for ``delay_s`` decelerating at ``Te / M`` (accelerating when Te < 0, a
@@ -96,6 +98,10 @@ def brake_force_auto(total_mass_kg: float, v_d: float, te_n: float, stop_s: floa
         Steady peripheral force (resistance + gravity) [N].
     stop_s, delay_s, ramp_s : float
         Target stop time, brake delay and ramp [s].
+    curve : tuple of (float, float), optional
+        The brakes' force history instead of the ramp (:func:`brake_profile`): fraction of
+        ``F_b`` against the time since application [s, -]; the brake's impulse is then
+        ``F_b`` times its integral over ``t_b``.
 
     Returns
     -------
@@ -113,7 +119,11 @@ def brake_force_auto(total_mass_kg: float, v_d: float, te_n: float, stop_s: floa
     if t_b <= 0.0:
         return math.inf
     need = total_mass_kg * v1 - te_n * t_b  # the impulse the brake must give [N s]
-    if t_b >= ramp_s:
+    if curve is not None:
+        impulse_per_n = _profile_integral(curve, t_b)
+        if impulse_per_n <= 0.0:
+            return math.inf if need > 0.0 else 0.0
+    elif t_b >= ramp_s:
         impulse_per_n = t_b - 0.5 * ramp_s
     else:
         impulse_per_n = t_b * t_b / (2.0 * ramp_s)
@@ -121,15 +131,20 @@ def brake_force_auto(total_mass_kg: float, v_d: float, te_n: float, stop_s: floa
 
 
 def brake_stop_time(total_mass_kg: float, v_d: float, te_n: float, force_n: float,
-                    delay_s: float, ramp_s: float = 0.0) -> float:
+                    delay_s: float, ramp_s: float = 0.0,
+                    curve: tuple[tuple[float, float], ...] | None = None) -> float:
     """Rigid-body stop time with a brake force ``force_n`` [s] (the inverse of
-    :func:`brake_force_auto`, the stop on the ramp or past it; inf if the belt does not stop).
+    :func:`brake_force_auto`, the stop on the ramp or past it; inf if the belt does not stop;
+    with ``curve``, the first zero of the momentum under that force history, segment by
+    segment).
 
     On the ramp the speed is ``v_1 - Te t / M - F_b t^2 / (2 r M)``, whose one positive root is
     the stop when it is at most r; past it ``t_b = (M v_1 + F_b r / 2) / (Te + F_b)``."""
     v1 = v_d - te_n * delay_s / total_mass_kg
     if v1 <= 0.0:
         return delay_s
+    if curve is not None:
+        return delay_s + _profile_stop(curve, total_mass_kg * v1, te_n, max(force_n, 0.0))
     if te_n + force_n <= 0.0:
         return math.inf
     if force_n > 0.0 and ramp_s > 0.0:
@@ -139,6 +154,98 @@ def brake_stop_time(total_mass_kg: float, v_d: float, te_n: float, force_n: floa
             return delay_s + t_ramp
     t_b = (total_mass_kg * v1 + 0.5 * max(force_n, 0.0) * ramp_s) / (te_n + force_n)
     return delay_s + t_b
+
+
+def _points(brake) -> list[tuple[float, float]]:
+    """A brake's force fraction against the time since application as points (a jump is two
+    points at one time): its ``force_curve`` (zero before the first point, linear between,
+    the last value held) or its ramp from zero to full over ``ramp_s``."""
+    if brake.force_curve:
+        pts = [(float(t), float(f)) for t, f in brake.force_curve]
+        return ([(0.0, 0.0), (pts[0][0], 0.0)] if pts[0][0] > 0.0 else []) + pts
+    r = float(brake.ramp_s)
+    return [(0.0, 0.0), (r, 1.0)] if r > 0.0 else [(0.0, 1.0)]
+
+
+def _at(pts: list[tuple[float, float]], t: float, left: bool) -> float:
+    """The fraction of ``pts`` at ``t`` (``left``: just before t, else just after)."""
+    ts = [p[0] for p in pts]
+    i = (np.searchsorted(ts, t, side="left") - 1 if left
+         else np.searchsorted(ts, t, side="right") - 1)
+    if i < 0:
+        return 0.0 if left or t < ts[0] else pts[0][1]
+    if i >= len(pts) - 1:
+        return pts[-1][1]
+    (t0, f0), (t1, f1) = pts[i], pts[i + 1]
+    return f0 + (f1 - f0) * (t - t0) / (t1 - t0) if t1 > t0 else f1
+
+
+def brake_profile(brakes) -> tuple[tuple[float, float], ...] | None:
+    """The force history the auto ``brakes`` share (even shares: the mean of their
+    fractions against the time since application) where one of them has a ``force_curve``;
+    None where all ramp (the rigid-body sizes then take the longest ``ramp_s``, as before).
+
+    A brake with a force curve does not read ``ramp_s`` (the dynamics follow the curve): a
+    size taken over its ``ramp_s`` stopped a brake whose curve builds over 8 s (``[[0, 0],
+    [8, 1]]``) as if it built over the default 1 s, 58.4 kN asked for a 12 s stop of a
+    526 t overland where the curve needs 85.7 kN."""
+    if not any(b.force_curve for b in brakes):
+        return None
+    each = [_points(b) for b in brakes]
+    times = sorted({p[0] for pts in each for p in pts})
+    out: list[tuple[float, float]] = []
+    for t in times:
+        before = sum(_at(p, t, True) for p in each) / len(each)
+        after = sum(_at(p, t, False) for p in each) / len(each)
+        if out and before != after:
+            out.append((t, before))
+        out.append((t, after))
+    return tuple(out)
+
+
+def _segments(curve):
+    """(start, length, fraction at start, slope) of each piece of a profile, the last one
+    held without end (length inf)."""
+    pts = list(curve)
+    for (t0, f0), (t1, f1) in zip(pts, pts[1:], strict=False):
+        if t1 > t0:
+            yield t0, t1 - t0, f0, (f1 - f0) / (t1 - t0)
+    yield pts[-1][0], math.inf, pts[-1][1], 0.0
+
+
+def _profile_integral(curve, t: float) -> float:
+    """Integral of the profile's fraction from application to ``t`` [s]."""
+    total = 0.0
+    for a, length, f0, k in _segments(curve):
+        if t <= a:
+            break
+        tau = min(t - a, length)
+        total += f0 * tau + 0.5 * k * tau * tau
+    return total
+
+
+def _profile_stop(curve, momentum: float, te_n: float, force_n: float) -> float:
+    """Time from application [s] at which ``momentum - Te t - F_b * integral of the
+    fraction`` first reaches zero (inf if never): exact on each linear piece."""
+    g = momentum
+    for a, length, f0, k in _segments(curve):
+        qa, qb = 0.5 * force_n * k, te_n + force_n * f0  # g - qb tau - qa tau^2 = 0
+        roots = []
+        if qa == 0.0:
+            if qb > 0.0:
+                roots = [g / qb]
+        else:
+            disc = qb * qb + 4.0 * qa * g
+            if disc >= 0.0:
+                sq = math.sqrt(disc)
+                roots = [(-qb + sq) / (2.0 * qa), (-qb - sq) / (2.0 * qa)]
+        hits = [r for r in roots if 0.0 <= r <= length]
+        if hits:
+            return a + min(hits)
+        if not math.isfinite(length):
+            return math.inf
+        g -= qb * length + qa * length * length
+    return math.inf
 
 
 def brake_forces(conv: Conveyor, scenario: Scenario, total_mass_kg: float, te_n: float,
@@ -165,6 +272,7 @@ def brake_forces(conv: Conveyor, scenario: Scenario, total_mass_kg: float, te_n:
         fixed_n = sum(b.force_kn * 1e3 for b in conv.brakes if b.force_kn != "auto")
         delay = max(b.delay_s for b in auto)
         ramp = max(b.ramp_s for b in auto)
+        curve = brake_profile(auto)
         v = float(conv.speed_m_s)
         # a level loop's pull is zero; summed over its elements it is rounding noise
         pull_n = abs(gravity_sum_n) if abs(gravity_sum_n) > 1e-9 * G * total_mass_kg else 0.0
@@ -172,7 +280,7 @@ def brake_forces(conv: Conveyor, scenario: Scenario, total_mass_kg: float, te_n:
         stop_n = 0.0
         if scenario.stop.mode == "brake":
             stop_n = brake_force_auto(total_mass_kg, v, te_n, float(scenario.stop.time_s),
-                                      delay, ramp)
+                                      delay, ramp, curve)
         if stop_n >= hold_n:
             total_n, why = stop_n, "stop_time"
             each = [max(total_n - fixed_n, 0.0) / len(auto)] * len(auto)
@@ -182,12 +290,12 @@ def brake_forces(conv: Conveyor, scenario: Scenario, total_mass_kg: float, te_n:
                         "once stopped; a shorter stop time or a given force_kn sizes a brake")
             elif steady is not None and total_n > fixed_n:
                 each, why, note = _within_grip(conv, scenario, steady, each, hold_n,
-                                               (total_mass_kg, v, te_n, delay, ramp))
+                                               (total_mass_kg, v, te_n, delay, ramp, curve))
         else:
             total_n, why = hold_n, "holding"
             each = [max(total_n - fixed_n, 0.0) / len(auto)] * len(auto)
             if scenario.stop.mode == "brake":
-                t_gives = brake_stop_time(total_mass_kg, v, te_n, hold_n, delay, ramp)
+                t_gives = brake_stop_time(total_mass_kg, v, te_n, hold_n, delay, ramp, curve)
                 shared = False
                 if steady is not None:
                     each, shared = _hold_shared_by_grip(conv, steady, each)
@@ -231,7 +339,7 @@ def _within_grip(conv: Conveyor, scenario: Scenario, steady: SteadyResult, each:
     """The auto brakes' forces [N] within their pulleys' grip in the stop
     (:func:`beltstudy.engine.stopgrip.grip_limits`), ``grip`` or ``stop_time``, and the note
     when the grip held them below the stop time's need (``rigid``: mass, speed, Te, delay,
-    ramp of :func:`brake_stop_time`)."""
+    ramp and force profile of :func:`brake_stop_time`)."""
     walk = StopWalk.of(conv, steady)
     nodes, fixed = _brake_nodes(conv, steady.loop)
     wanted = sum(each)
@@ -239,7 +347,7 @@ def _within_grip(conv: Conveyor, scenario: Scenario, steady: SteadyResult, each:
     if not capped or sum(forces) >= wanted * (1.0 - 1e-6):
         return each, "stop_time", ""
     total = sum(forces) + sum(fixed.values())
-    m, v, te, delay, ramp = rigid
+    m, v, te, delay, ramp, curve = rigid
     if total < hold_n:  # the holding floor stays; the pulley may slide in the stop
         forces = [f + (hold_n - total) / len(forces) for f in forces]
         where = ", ".join(dict.fromkeys(pulley_name(conv, steady.loop, n) for n in nodes))
@@ -251,7 +359,7 @@ def _within_grip(conv: Conveyor, scenario: Scenario, steady: SteadyResult, each:
             f"{where} in the stop ({total / 1e3:.4g} kN with the fall of its slack side "
             "doubled, the undamped bound), which may slide (the run's slip check says): "
             + _hold_fix(conv, steady))
-    t_gives = brake_stop_time(m, v, te, total, delay, ramp)
+    t_gives = brake_stop_time(m, v, te, total, delay, ramp, curve)
     asked = float(scenario.stop.time_s)
     where = ", ".join(dict.fromkeys(pulley_name(conv, steady.loop, n) for n in nodes))
     note = (f"auto brake force {total / 1e3:.4g} kN is set by the grip of {where} in the "
