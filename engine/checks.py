@@ -700,8 +700,24 @@ def input_notes(conv, loop: Loop, feed_n: float, c_factor: float | None = None) 
         notes.append(f"note: idlers.carry.trough_deg {ic.trough_deg:g} deg is outside the "
                      f"tables: {' and '.join(words)}")
     notes += _unread_drive_fields(conv)
+    notes += _unread_brake_fields(conv)
     notes += _short_curve_notes(conv)
     return notes
+
+
+def _unread_brake_fields(conv) -> list[str]:
+    """``ramp_s`` given beside a ``force_curve``, as a note: the brake follows its curve (the
+    transient model and the auto size alike) and never reads the ramp. Given means other than
+    its default, as for the drives (:func:`_unread_drive_fields`)."""
+    if not conv.brakes:
+        return []
+    default = type(conv.brakes[0]).model_fields["ramp_s"].default
+    return [f"note: brakes.{i}.ramp_s {b.ramp_s:g} s is not read: brake {i + 1} follows its "
+            f"force_curve (the fraction of its force against the time since applied), which "
+            f"sets how its force builds: give the build-up in force_curve, or leave force_curve "
+            f"out to ramp over ramp_s"
+            for i, b in enumerate(conv.brakes)
+            if b.force_curve and b.ramp_s != default]
 
 
 def _short_curve_notes(conv) -> list[str]:

@@ -58,3 +58,22 @@ def test_a_ramp_written_as_a_curve_sizes_as_the_ramp():
     ramp = {"position": "head", "force_kn": "auto", "delay_s": 0.5, "ramp_s": 8.0}
     assert _sized(curve, 12.0) == pytest.approx(160_000 / 7.5 / 1e3, rel=1e-9)
     assert _sized(ramp, 12.0) == pytest.approx(160_000 / 7.5 / 1e3, rel=1e-9)
+
+
+def test_a_ramp_beside_a_force_curve_is_said_to_be_not_read():
+    """A brake with a force curve follows the curve: a 30 kN head brake on an 800 m incline with
+    ``force_curve: [[0, 0.5], [3, 1]]`` stopped in 5.055 s with ``ramp_s`` 1 and 5 alike, with
+    no word that the 5 s ramp was not read. It is now said, naming the field; the default
+    ramp beside a curve, and a ramp without one, are not."""
+    from beltstudy.engine.statics import solve_steady
+
+    def notes(**brake):
+        conv = hand_conv(brakes=[{"position": "head", "force_kn": 30, **brake}])
+        return [m for m in solve_steady(conv, model="din").message.split("; ")
+                if "brakes.0.ramp_s" in m]
+
+    said = notes(ramp_s=5.0, force_curve=[[0, 0.5], [3, 1.0]])
+    assert len(said) == 1 and said[0].startswith("note: brakes.0.ramp_s 5 s is not read"), said
+    assert "force_curve" in said[0]
+    assert notes(force_curve=[[0, 0.5], [3, 1.0]]) == []
+    assert notes(ramp_s=5.0) == []
