@@ -110,7 +110,7 @@ def register(sub) -> None:
     p.add_argument(
         "--metrics", default=None,
         help="comma-separated result columns (default: power_kw and the stop's peak and "
-        "lowest tension, t_max_stop_kn and t_min_stop_kn)"
+        "lowest tension, t_max_stop_kn and t_min_stop_kn, those a run of the study has)"
     )
     _client_args(p)
     p.set_defaults(func=cmd_compare)

@@ -317,6 +317,15 @@ def model_pair(baseline: str, candidate: str) -> tuple[str, str]:
     return baseline, candidate
 
 
+def _metrics_with_values(runs: pd.DataFrame, metrics: list[str], defaulted: bool) -> list[str]:
+    """The metrics to compare: the defaults keep those some run of the study has a value of
+    (a steady-only study has no stop-phase figures: power alone, not two columns of nulls);
+    metrics asked by name are kept as asked (one no run has a value of has no ratio, n 0)."""
+    if not defaulted or not len(runs):
+        return metrics
+    return [m for m in metrics if runs[m].notna().any()] or metrics[:1]
+
+
 def compare(
     runs: pd.DataFrame,
     axes: list[str],
@@ -340,6 +349,7 @@ def compare(
     (``failed_pairs`` counts them). ``models``: the study's friction models (a model
     not among them is :class:`Invalid` naming the parameter); default: those in ``runs``.
     """
+    defaulted = not metrics or list(metrics) == list(DEFAULT_METRICS)
     metrics = list(metrics) or list(DEFAULT_METRICS)
     valid = [c for c in runs.columns if pd.api.types.is_float_dtype(runs[c]) and c not in axes]
     for i, m in enumerate(metrics):
@@ -363,6 +373,7 @@ def compare(
                 f", and {len(valid) - SHOWN_METRICS} more (the study's number columns)"
                 if len(valid) > SHOWN_METRICS else "")
             raise Invalid(f"metrics: unknown metric '{m}'{hint}; valid: {shown}")
+    metrics = _metrics_with_values(runs, metrics, defaulted)
     baseline, candidate = model_pair(baseline, candidate)
     if models is None:
         models = sorted(set(runs["friction_model"].dropna())) if len(runs) else []

@@ -238,3 +238,23 @@ def test_a_list_axis_value_filters_by_what_it_holds():
     assert len(apply_filters(runs, ["load=[0.5]"])) == 0
     assert len(apply_filters(runs, ["load=[0.5,"])) == 0
     assert list(apply_filters(runs, ["load=full"])["run_id"]) == ["b"]
+
+
+@pytest.mark.parametrize("asked", [[], ["power_kw", "t_max_stop_kn", "t_min_stop_kn"]])
+def test_the_default_metrics_of_a_steady_study_are_its_power_alone(asked):
+    """A steady-only study has no stop-phase figures: the defaults (power and the stop's
+    peak and lowest tensions, what the route passes when metrics= is left out) compared
+    power and two columns of nulls (n 0 each). They now keep the metrics some run has a
+    value of; the 0.8 ratio of power stands."""
+    runs = _runs()
+    runs["t_max_stop_kn"] = float("nan")
+    runs["t_min_stop_kn"] = float("nan")
+    out = compare(runs, ["friction_model", "temperature_c", "load"], "cema", "nonlin", asked)
+    assert out["metrics"] == ["power_kw"]
+    assert set(out["summary"]) == {"power_kw"}
+    assert out["summary"]["power_kw"]["overall"]["mean"] == pytest.approx(0.8)
+    # a dynamic study keeps all three
+    runs["t_max_stop_kn"] = runs["power_kw"]
+    runs["t_min_stop_kn"] = runs["power_kw"]
+    out = compare(runs, ["friction_model", "temperature_c", "load"], "cema", "nonlin", asked)
+    assert out["metrics"] == ["power_kw", "t_max_stop_kn", "t_min_stop_kn"]
