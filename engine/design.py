@@ -351,14 +351,18 @@ def _within_grip(conv: Conveyor, scenario: Scenario, steady: SteadyResult, each:
     if total < hold_n:  # the holding floor stays; the pulley may slide in the stop
         forces = [f + (hold_n - total) / len(forces) for f in forces]
         where = ", ".join(dict.fromkeys(pulley_name(conv, steady.loop, n) for n in nodes))
+        # the stop time asks more than holding, the grip passes less than either: the
+        # holding floor sets the force, which is said as that chain, not as a stop force
+        # smaller than the holding one
         return forces, "holding", (
             f"auto brake force {hold_n / 1e3:.4g} kN is set by holding the loaded belt at rest "
             f"({HOLD_MARGIN:g} x the net gravity pull), not by the stop time "
-            f"{scenario.stop.time_s:g} s (which needs "
-            f"{(wanted + sum(fixed.values())) / 1e3:.4g} kN); it is beyond the grip of "
-            f"{where} in the stop ({total / 1e3:.4g} kN with the fall of its slack side "
-            "doubled, the undamped bound), which may slide (the run's slip check says): "
-            + _hold_fix(conv, steady))
+            f"{scenario.stop.time_s:g} s: that needs "
+            f"{(wanted + sum(fixed.values())) / 1e3:.4g} kN, beyond the grip of {where} in "
+            f"the stop ({total / 1e3:.4g} kN with the fall of its slack side doubled, the "
+            "undamped bound), and held to that grip it would fall below the holding force; "
+            f"the holding force {hold_n / 1e3:.4g} kN is beyond the grip too, so the pulley "
+            "may slide (the run's slip check says): " + _hold_fix(conv, steady))
     t_gives = brake_stop_time(m, v, te, total, delay, ramp, curve)
     asked = float(scenario.stop.time_s)
     where = ", ".join(dict.fromkeys(pulley_name(conv, steady.loop, n) for n in nodes))
