@@ -600,6 +600,21 @@ def _drive_margins(drives, T, Tprev, T_start, Sprev, T_hold):
     return slip_margins, start_margins, per_drive, breakaway
 
 
+def _surge_where(conv, section_load) -> str:
+    """Where a surge of a per-section load (a list, ``inclines``, ``declines``) sits: the
+    profile sections above the design load, by index and distance from the tail ("" when every
+    section carries the same load: the whole carry)."""
+    loads = tuple(section_load)
+    if not loads or min(loads) == max(loads):
+        return ""
+    ends = np.cumsum([float(sec.length_m) for sec in conv.profile])
+    over = [(k, f) for k, f in enumerate(loads) if f > 1.0]
+    each = len({f for _, f in over}) > 1  # several surges of their own size: each said
+    where = [f"profile.{k} ({(ends[k - 1] if k else 0.0):.6g} to {ends[k]:.6g} m from the tail"
+             + (f", {f:g} x" if each else "") + ")" for k, f in over]
+    return " on " + ", ".join(where)
+
+
 def _slip_words(res: SteadyResult, drives, slip_margins, start_margins, breakaway,
                 shortfall_n: float) -> list[str]:
     """A warning per drive that slips running or at start-up (or breakaway), each phase with
@@ -757,7 +772,8 @@ def _summarise(res: SteadyResult, drives, hs_adm, bounds, shortfall_n: float,
                  f"{most:.3g} t/h "
                  "(material.capacity_t_h) leaves room for it, or a wider or deeper-troughed belt"
                  if surge_fill > 100.0 else "")
-        warnings.append(f"surge: load {surge:g} x the design load (material.capacity_t_h) "
+        warnings.append(f"surge: load {surge:g} x the design load (material.capacity_t_h)"
+                        f"{_surge_where(conv, loop.section_load)} "
                         f"is above the design capacity; it fills the belt's cross-section to "
                         f"{surge_fill:.0f} % at {v:g} m/s (the design load {cap.fill_pct:.0f} %)"
                         f"{spill}")
