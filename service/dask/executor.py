@@ -310,22 +310,40 @@ class Executor:
                 raise Unavailable(f"Dask on {where} is not ready: {detail}")
             self._ready.wait(0.1 if left is None else min(0.1, left))
 
-    def n_workers(self) -> int:
-        """Workers connected now, from the client's cached scheduler information (refreshed
-        by the client every few seconds; never a call to the scheduler)."""
-        client = self._client
-        info = getattr(client, "_scheduler_identity", None) or {}
+    def workers_connected(self) -> int | None:
+        """Workers connected to the scheduler now, from the client's cached scheduler
+        information (refreshed by the client every few seconds; never a call to the
+        scheduler); None while no client is ready or before the client has that information.
+        0 is a real answer: an external cluster whose workers are all gone (killed, or ended
+        with a scheduler that came back within the client's reconnect time)."""
+        if not self._ready.is_set():
+            return None
+        info = getattr(self._client, "_scheduler_identity", None) or {}
         n = info.get("n_workers")
-        if n is None:
-            n = len(info.get("workers") or {})
-        return max(1, int(n))
+        if n is None and "workers" in info:
+            n = len(info["workers"] or {})
+        return None if n is None else int(n)
+
+    def n_workers(self) -> int:
+        """Workers to plan for (at least 1): :meth:`workers_connected`, else 1."""
+        return max(1, self.workers_connected() or 0)
+
+    def no_workers(self) -> str:
+        """Why nothing runs when the client is ready but no worker is connected ("" when one
+        is, or when that is not known): an external scheduler's workers do not come back on
+        their own (a LocalCluster's nannies restart theirs)."""
+        if not self.settings.scheduler or self.workers_connected() != 0:
+            return ""
+        address = self.settings.scheduler
+        return (f"no Dask worker is connected to the scheduler {address}; start workers with "
+                f"'dask worker {address}'")
 
     def info(self) -> dict:
         return {
             "state": self.state,
-            "error": self.error,
+            "error": self.error or self.no_workers(),
             "scheduler": self.settings.scheduler or "local",
-            "workers": self.n_workers() if self._ready.is_set() else 0,
+            "workers": self.workers_connected() or 0,
             "dashboard": self.dashboard,
         }
 

@@ -69,6 +69,9 @@ FLUSH_RUNS = 1000
 POLL_S = 0.02
 #: How long a job waits for Dask before noting it in ``message`` and waiting again [s].
 WAIT_FOR_DASK_S = 5.0
+#: How often a running job asks the executor whether any worker is connected [s] (the
+#: client's cached scheduler information: no call to the scheduler).
+WORKERS_CHECK_S = 1.0
 #: A study fails when Dask has kept failing to start (no cluster, no scheduler, no worker
 #: joining: ``Executor.failing_since``) for this long [s]; with the connect and join
 #: timeouts a study with no worker able to start fails within 30 s. A cluster that is
@@ -188,6 +191,7 @@ class StudyJob:
         self._last_flush = time.monotonic()
         self._per_run_s: float | None = None
         self._waited = False  # the study's message says it waits for Dask
+        self._workers_checked = 0.0  # when _note_workers last looked (monotonic) [s]
         self._thread = threading.Thread(
             target=self._main, name=f"beltstudy-study-{study.id}", daemon=True
         )
@@ -243,6 +247,8 @@ class StudyJob:
         session has finished, and again from a lost Dask client until a task finishes on
         the next one."""
         remaining = self.study.total - self.done - self._buffered
+        if remaining > 0 and self._no_workers():
+            return None  # nothing runs until a worker joins: no time left to tell
         try:
             workers = self.executor.n_workers()
         except Exception:  # the cluster is gone: the measured rate alone
@@ -408,6 +414,7 @@ class StudyJob:
         lost = False
         top_up()
         while self._inflight and not self.halted:
+            self._note_workers()
             if not ac.has_ready():
                 if client.status not in LIVE_CLIENT_STATES:
                     lost = True
@@ -447,6 +454,31 @@ class StudyJob:
         if not self._cancel.is_set():
             self._flush()  # also on a shutdown: what finished is kept
         return lost
+
+    def _no_workers(self) -> str:
+        """Why no task can run now ("" when a worker is connected or it is not known)."""
+        no_workers = getattr(self.executor, "no_workers", None)
+        try:
+            return no_workers() if no_workers is not None else ""
+        except Exception:  # the client is going away: the stream loop sees that itself
+            return ""
+
+    def _note_workers(self) -> None:
+        """Say in the study's message that it waits for a worker while the scheduler has none
+        (an external cluster whose workers were killed, or ended with a scheduler restarted
+        within the client's reconnect time: the client is connected, the tasks wait), and
+        clear it once one has joined. At most every ``WORKERS_CHECK_S``."""
+        now = time.monotonic()
+        if now - self._workers_checked < WORKERS_CHECK_S:
+            return
+        self._workers_checked = now
+        why = self._no_workers()
+        if why and not self._waited:
+            self._save(message=f"waiting for Dask: {why}")
+            self._waited = True
+        elif not why and self._waited:
+            self._save(message="")
+            self._waited = False
 
     def _account(self, runs: int, result: dict) -> None:
         """Add a finished task's time to ``worker_s``: runs, tasks, task wall time and its
