@@ -14,6 +14,7 @@ import math
 import time
 from dataclasses import dataclass, field
 from functools import cached_property
+from types import SimpleNamespace
 
 import numpy as np
 import pandas as pd
@@ -526,8 +527,9 @@ def stop_levers(sys: System | None, slip: bool = False) -> list[str]:
         # time asks (:func:`_auto_brake_held`: a longer stop.time_s leaves it as it is)
         timed = ("" if getattr(sys, "auto_brakes", None) is False or _brake_held(sys)
                  else ", a longer stop.time_s for an auto brake sized by it")
-        return [f"a softer brake stop (less brake force{timed}, a longer brake ramp "
-                "brakes[].ramp_s)"]
+        slower = ("a force curve that builds more slowly, brakes[].force_curve"
+                  if _curve_brakes(sys) else "a longer brake ramp brakes[].ramp_s")
+        return [f"a softer brake stop (less brake force{timed}, {slower})"]
     if (sys.model.drives.control == C.DOL).any():
         coast = [] if slip else ["a longer coast (more inertia on the drive shafts, "
                                  "drives[].flywheel_kg_m2)"]
@@ -750,7 +752,8 @@ def _stop_overspeed(sys: System, r: dict, out) -> list[str]:
         return []
     mode = sys.model.cycle.stop_mode
     if mode == C.BRAKE:
-        fix = ("brakes that bite sooner (a shorter brakes[].delay_s or brakes[].ramp_s) or a "
+        sooner = ("brakes[].force_curve" if _curve_brakes(sys) else "brakes[].ramp_s")
+        fix = (f"brakes that bite sooner (a shorter brakes[].delay_s or {sooner}) or a "
                "controlled stop (stop.mode: controlled, the drives holding the belt back down "
                "its stopping curve)")
     elif mode == C.CONTROLLED:
@@ -1698,6 +1701,29 @@ def _brake_held(sys: System) -> bool:
     return (not timed) if timed is not None else _auto_brake_held(sys)
 
 
+def _brake_history(sys: System) -> tuple | None:
+    """The run's brakes' force history for the rigid-body words
+    (:func:`beltstudy.engine.design.brake_profile` of the brakes as the kernel holds them):
+    None where every brake ramps over ``ramp_s``. A brake with a ``force_curve`` does not read
+    its ``ramp_s``; the words took the ramp (a 30 kN brake on the curve [[0, 0.5], [3, 1]]
+    was quoted 'with the brakes' 0.5 s delay and 1 s ramp')."""
+    br = sys.model.brakes
+    if getattr(br, "curve_n", None) is None:  # a stand-in without curves: ramps
+        return None
+    each = [SimpleNamespace(
+        force_curve=[(float(br.curve_t[b, k]), float(br.curve_f[b, k]))
+                     for k in range(int(br.curve_n[b]))] or None,
+        ramp_s=float(br.ramp[b])) for b in range(len(br.force))]
+    return design.brake_profile(each) if each else None
+
+
+def _curve_brakes(sys: System | None) -> bool:
+    """Whether a brake of the run follows a ``force_curve`` (its ``ramp_s`` unread)."""
+    br = getattr(getattr(sys, "model", None), "brakes", None)
+    return (br is not None and bool(len(br.force)) and getattr(br, "curve_n", None) is not None
+            and bool((br.curve_n > 0).any()))
+
+
 def _auto_brake_held(sys: System) -> bool:
     """True when the run's auto brakes are set by holding the loaded belt at rest
     (``HOLD_MARGIN`` x its net gravity pull, :func:`beltstudy.engine.design.brake_forces`),
@@ -1711,7 +1737,8 @@ def _auto_brake_held(sys: System) -> bool:
     delay = float(np.max(brakes.delay))
     ramp = float(np.max(brakes.ramp))
     stop_n = design.brake_force_auto(float(sys.model.control.m_tot), float(sys.v_design),
-                                     float(sys.te_n), float(cyc.t_stop), delay, ramp)
+                                     float(sys.te_n), float(cyc.t_stop), delay, ramp,
+                                     _brake_history(sys))
     return hold > 0.0 and not stop_n >= hold
 
 
@@ -1730,17 +1757,24 @@ def _given_brake_words(sys: System, need_s: float, t_stop: float, auto: bool = F
     m, v, te = float(sys.model.control.m_tot), float(sys.v_design), float(sys.te_n)
     delay = float(np.max(brakes.delay)) if len(brakes.delay) else 0.0
     ramp = float(np.max(brakes.ramp)) if len(brakes.ramp) else 0.0
-    force = design.brake_force_auto(m, v, te, need_s, delay, ramp)
+    curve = _brake_history(sys)
+    if curve is not None:
+        # the time the history reaches its last value stands for the ramp below
+        ramp = max((t for t, f in curve if f != curve[-1][1]), default=0.0)
+        ramp = min((t for t, _f in curve if t > ramp), default=ramp)
+    force = design.brake_force_auto(m, v, te, need_s, delay, ramp, curve)
     for _ in range(3):
         if not (math.isfinite(force) and te + force > 0.0):
             break
         force = design.brake_force_auto(m, v, te, need_s + REST_FRACTION * v * m / (te + force),
-                                        delay, ramp)
+                                        delay, ramp, curve)
     if not math.isfinite(force) or force >= now_n:
         return lever
+    how = (f"{delay:g} s delay and their force curve (full at {ramp:g} s)" if curve is not None
+           else f"{delay:g} s delay and {ramp:g} s ramp")
     said = (f"{lever}: at most about {force / 1e3:.3g} kN in all, now "
             f"{now_n / 1e3:.4g} kN (rigid body, {m / 1e3:.4g} t from {v:g} m/s against Te "
-            f"{te / 1e3:.4g} kN with the brakes' {delay:g} s delay and {ramp:g} s ramp, a stop "
+            f"{te / 1e3:.4g} kN with the brakes' {how}, a stop "
             f"of {need_s:.3g} s against {t_stop:.3g} s now; ")
     pull = _gravity_pull_n(sys)
     hold = HOLD_MARGIN * abs(pull)
