@@ -257,11 +257,18 @@ _DRIVE_PAST_RATING = (r"above its rated force|at its torque limit|held at its to
                       r"|motor overheats|cannot hold the belt")
 
 
+#: The word of an overload, not the missed controlled stop's pointer to the run's other
+#: warnings (engine/run.py ``missed_controlled_stop``: "the run's slip, torque-limit and
+#: overload warnings, where it has them, say what held it back"), which every run whose
+#: belt did not follow the stop curve carries, overloaded or not.
+_OVERLOAD = r"overload(?! warnings)"
+
+
 def _overloaded(runs: pd.DataFrame) -> pd.Series:
     msg = _message(runs).str.lower()
     out = (_any_over(runs, "drive{i}_utilisation", 1.0)
            | _any_over(runs, "drive{i}_overload_s", OVERLOAD_S_MAX)
-           | msg.str.contains("overload", regex=False) | msg.str.contains("short by", regex=False)
+           | msg.str.contains(_OVERLOAD, regex=True) | msg.str.contains("short by", regex=False)
            | msg.str.contains(_DRIVE_PAST_RATING, regex=True))
     power, rated = numeric(runs, "power_kw"), numeric(runs, "rated_power_kw")
     if power is not None and rated is not None:  # steady power above the installed rating
@@ -421,7 +428,7 @@ CAUSES: tuple[Cause, ...] = (
     Cause("overload", "overloaded a drive", _overloaded,
           ("power_kw", "rated_power_kw", "drive{i}_utilisation", "drive{i}_overload_s",
            "drive{i}_power_required_kw"),
-          r"overload|short by|rated (?:force|power|\d)|rated_power|larger motor",
+          _OVERLOAD + r"|short by|rated (?:force|power|\d)|rated_power|larger motor",
           explain=_overload_words),
     Cause("slip", "slipped on a drive pulley", _slipped,
           ("drive{i}_slip_s", "drive{i}_slip_margin_min", "slip_margin", "slip_margin_start",
