@@ -88,7 +88,11 @@ def _pick_models(runs: pd.DataFrame, baseline: str | None, candidate: str | None
         baseline = "cema" if "cema" in pool or not pool else pool[0]
     if candidate is None:
         others = [m for m in models if m != baseline]
-        candidate = "nonlin" if "nonlin" in others or not others else others[0]
+        # no other model (a study of one model): the baseline itself, so that the figure
+        # says a ratio needs two models (not a 422 for 'nonlin' the study never ran); no
+        # models at all (no runs yet): the defaults
+        candidate = ("nonlin" if "nonlin" in others or not models
+                     else others[0] if others else baseline)
     return baseline, candidate
 
 
@@ -173,7 +177,8 @@ def figure_of(doc: dict, runs: pd.DataFrame, name: str, baseline: str | None = N
         return lambda: charts.message_figure("no finished runs yet", f"{title}: ratio")
     if base == cand:
         return lambda: charts.message_figure(
-            "a ratio needs two friction models in the grid", f"{title}: ratio"
+            f"a ratio needs two friction models in the grid; this study ran {_text(base)} "
+            "only", f"{title}: ratio"
         )
     metrics = [m for m in query.DEFAULT_METRICS
                if m in runs.columns and pd.api.types.is_float_dtype(runs[m])]

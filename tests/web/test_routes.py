@@ -249,3 +249,22 @@ def test_study_page_figures_read_only_the_columns_they_draw(web, tmp_path, name)
     assert {"run_id", "status", "friction_model", "temperature_c", "load"} <= set(asked[0])
     whole = figures.figure_of(service.store.read(sid), read(sid), name, study_id=sid)
     assert figures.render(whole) == png
+
+
+def test_a_study_of_one_model_draws_a_ratio_figure_saying_it_needs_two(web, tmp_path):
+    """A steady study of din alone (one run at 20 C): GET /studies/{id}/plots/ratio without
+    baseline or candidate answered 422 "candidate: model 'nonlin' (the default) is not in
+    this study; it has: din: give candidate=NAME from those" (no NAME would do), and the study
+    page, which loads that figure, showed the message as its error banner and a broken image.
+    It is a figure saying a ratio needs two models, as a steady study's transient figures say
+    there is no transient; a model named that the study lacks is still a 422."""
+    sid = web.finished_study(tmp_path, web.tiny_study(
+        name="one-model", grid={"friction_model": ["din"], "temperature_c": [20]}))
+    c = web.client(tmp_path)
+    r = c.get(f"/studies/{sid}/plots/ratio", params={"format": "svg"})
+    assert r.status_code == 200 and r.headers["content-type"] == "image/svg+xml"
+    assert "a ratio needs two friction models in the grid; this study ran din only" in r.text
+    r = c.get(f"/studies/{sid}/plots/ratio")
+    assert r.status_code == 200 and r.content.startswith(PNG)
+    r = c.get(f"/studies/{sid}/plots/ratio", params={"candidate": "nonlin"})
+    assert r.status_code == 422 and r.json()["message"].startswith("candidate: model 'nonlin'")
