@@ -66,6 +66,11 @@ class Verdict:
     magnitude: bool = False
 
 
+#: The limit of a concave vertical curve's tensions: the empty belt's lift-off tension, which
+#: the engine gives only a concave curve (a convex one's row would read 'concave' without a
+#: limit, and 'within' by its lift-off verdict, which is false there).
+LIFTOFF_LIMIT = "curve{k}_liftoff_tension_kn"
+
 #: The verdict table, in its order. Columns a run does not carry are left out.
 VERDICTS: tuple[Verdict, ...] = (
     # drives
@@ -151,10 +156,10 @@ VERDICTS: tuple[Verdict, ...] = (
     # its two tensions
     Verdict("Routes", "highest steady tension, vertical curve {k} (concave: judged against "
             "the empty belt's lift-off tension, element by element)", "curve{k}_tension_kn",
-            "max", "kN", "curve{k}_liftoff_tension_kn", bad="curve{k}_liftoff"),
+            "max", "kN", LIFTOFF_LIMIT, bad="curve{k}_liftoff"),
     Verdict("Routes", "highest start-up tension, vertical curve {k} (concave, rigid-body "
             "estimate)", "curve{k}_tension_start_kn", "max", "kN",
-            "curve{k}_liftoff_tension_kn", bad="curve{k}_liftoff_start"),
+            LIFTOFF_LIMIT, bad="curve{k}_liftoff_start"),
     Verdict("Routes", "smallest radius vertical curve {k} needs, steady",
             "curve{k}_radius_min_m", "max", "m", "curve_radius"),
     Verdict("Routes", "smallest radius vertical curve {k} needs at start-up (concave)",
@@ -744,6 +749,10 @@ def verdict_rows(runs: pd.DataFrame, limits: dict[str, Limit]) -> list[dict]:
                 first = unstopped & not_stopped(ok)
                 idx = (first if first.any() else unstopped).idxmax()
             lim, text = _limits_of(v, ok, nums, limits)
+            if v.limit == LIFTOFF_LIMIT and lim is None:
+                # a convex curve (crest): the engine gives it no lift-off tension, and its
+                # tensions are not judged against one (its radius row judges it)
+                continue
             judged = values.abs() if v.magnitude else values
             ok_col = v.ok.format(**nums) if v.ok else None
             bad_col = v.bad.format(**nums) if v.bad else None

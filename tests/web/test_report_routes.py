@@ -136,3 +136,27 @@ def test_the_report_shows_the_route_verdicts(web, valley_runs):
     assert "past the limit in 1 of 3 runs" in s1
     s2 = re.search(r'<section id="s2">(.*?)</section>', html, re.S).group(1)
     assert "left its idlers or its line at a curve" in s2
+
+
+def test_a_convex_curve_has_no_lift_off_rows():
+    """A valley of 0 % into +10 % (concave, R 3 000 m) and a crest of +10 % into 0 %
+    (convex, R 400 m): the engine gives the crest no lift-off tension, yet the report listed
+    'highest steady tension, vertical curve 2 (concave: judged against the empty belt's lift-off
+    tension ...)' with the bare column name 'curve2_liftoff_tension_kn' as its limit and
+    'within' by curve2_liftoff, false at a crest (p13: a 1 km booster conveyor with a crest of
+    R 300 m, 40.36 kN). The crest keeps its radius row; the valley keeps its lift-off rows
+    against R m'_G g cos(a) = 3 000 x 20 x 9.81 x cos(asin 0.1) / 1e3 = 585.6 kN."""
+    conv = hand_conveyor_dict(profile=[
+        {"length_m": 500, "lift_m": 0, "curve_radius_m": 3000},
+        {"length_m": 500, "lift_m": 50, "curve_radius_m": 400},
+        {"length_m": 300, "lift_m": 0}])
+    runs = _runs({"r1": (conv, {})})
+    assert list(runs[["curve1_kind", "curve2_kind"]].iloc[0]) == ["concave", "convex"]
+    assert pd.isna(runs["curve2_liftoff_tension_kn"].iloc[0])
+    rows = _rows(runs, conv)
+    assert "curve2_tension_kn" not in rows and "curve2_tension_start_kn" not in rows
+    assert "curve2_radius_min_m" in rows and rows["curve2_radius_min_m"]["limit"] == 400.0
+    hand = 3000.0 * 20.0 * G * math.cos(math.asin(0.1)) / 1e3
+    for column in ("curve1_tension_kn", "curve1_tension_start_kn"):
+        assert rows[column]["limit"] == pytest.approx(hand, rel=5e-3)
+        assert rows[column]["past"] == 0
