@@ -73,7 +73,7 @@ def test_a_sustained_run_back_is_warned_a_passing_dip_is_not():
     0.5 x (0.02 + 0.05) / 2 + 2.5 x 0.05 = 0.005 + 0.0175 + 0.125 = 0.1475 m."""
     from beltstudy.engine.dynamics.simulate import runback_words
 
-    sysm = SimpleNamespace(stop_command_s=10.0, v_design=2.0)
+    sysm = SimpleNamespace(stop_command_s=10.0, v_design=2.0, hold_force_n=24_530.0)
     t = np.arange(0.0, 15.01, 0.5)
     dip = np.where(t < 11.0, 2.0 - 0.2 * t, 0.0)
     dip[(t > 11.9) & (t < 13.1)] = -0.1
@@ -88,6 +88,7 @@ def test_a_sustained_run_back_is_warned_a_passing_dip_is_not():
     dist = float(re.search(r"about ([\d.]+) m of belt run back", w).group(1))
     assert dist == pytest.approx(0.1475, abs=0.0006)
     assert "holdback: true) of at least 1.23 kNm" in w and "brakes[].hold: true" in w
+    assert "(the lift's pull at rest, 24.53 kN at the belt line, outpulls" in w
 
 
 def test_the_revert_conveyor_runs_back_after_a_coast_stop_unless_held():
@@ -104,6 +105,8 @@ def test_the_revert_conveyor_runs_back_after_a_coast_stop_unless_held():
     s = run_one(conv, scn, model="din").summary
     assert "the belt runs back after the stop" in s["message"], s["message"]
     assert f"of at least {s['holdback_torque_knm']:.3g} kNm" in s["message"]
+    pull = float(re.search(r"the lift's pull at rest, ([\d.]+) kN", s["message"]).group(1))
+    assert pull == pytest.approx(2.14, abs=0.01)  # the lift pull above
     assert s["status"] == "warning"
     held = run_one(conv.model_copy(update={"holdback": True}), scn, model="din").summary
     assert "runs back" not in held["message"], held["message"]
@@ -122,7 +125,7 @@ def test_a_belt_relaxing_onto_its_holdback_is_not_said_to_run_back():
     from beltstudy.engine.run import run_one
     from tests.conftest import ROOT
 
-    sysm = SimpleNamespace(stop_command_s=10.0, v_design=2.0)
+    sysm = SimpleNamespace(stop_command_s=10.0, v_design=2.0, hold_force_n=24_530.0)
     t = np.arange(0.0, 15.01, 0.5)
     creep = np.where(t <= 10.0, 2.0, -0.05)
     assert runback_words(sysm, *_records(t, creep), None, SimpleNamespace(holdback=True)) == []
@@ -150,7 +153,7 @@ def test_a_belt_relaxing_onto_a_holding_brake_is_not_told_to_set_hold():
     stop command at 10 s: the criterion is -0.02 m/s."""
     from beltstudy.engine.dynamics.simulate import runback_words
 
-    sysm = SimpleNamespace(stop_command_s=10.0, v_design=2.0)
+    sysm = SimpleNamespace(stop_command_s=10.0, v_design=2.0, hold_force_n=24_530.0)
     t = np.arange(0.0, 15.01, 0.5)
     rec = np.zeros(len(t), dtype=[("t", float), ("v_mean", float), ("v_drive", float)])
     rec["t"] = t
