@@ -71,6 +71,9 @@ def register(sub) -> None:
         "(--url, BELTSTUDY_URL); when none answers at the default address, reads the local "
         "store (BELTSTUDY_DATA_DIR).")
     p.add_argument("id", nargs="?", help="study id (all studies when omitted)")
+    p.add_argument("--json", action="store_true",
+                   help="print the answer as JSON: GET /studies/{id}'s document, or "
+                   "GET /studies's ({\"studies\": [...]}) for all")
     _client_args(p)
     p.set_defaults(func=cmd_status)
 
@@ -112,6 +115,8 @@ def register(sub) -> None:
         help="comma-separated result columns (default: power_kw and the stop's peak and "
         "lowest tension, t_max_stop_kn and t_min_stop_kn, those a run of the study has)"
     )
+    p.add_argument("--json", action="store_true",
+                   help="print the whole answer as JSON (GET /studies/{id}/compare's document)")
     _client_args(p)
     p.set_defaults(func=cmd_compare)
 
@@ -378,6 +383,9 @@ def cmd_status(args) -> int:
     if args.id:
         st = _with_fallback(args, lambda c: c.status(args.id),
                             local(lambda s: s.status(args.id)))
+        if args.json:
+            print(dumps(st))
+            return 0
         print(format_status(st))
         if st.get("message"):
             print(f"  {st['message']}")
@@ -385,6 +393,9 @@ def cmd_status(args) -> int:
             print(f"  {NOT_RUNNING}")
         return 0
     studies = _with_fallback(args, lambda c: c.list(), local(lambda s: s.list()))
+    if args.json:
+        print(dumps({"studies": studies}))
+        return 0
     if not studies:
         print("no studies")
     for st in studies:
@@ -477,7 +488,7 @@ def cmd_compare(args) -> int:
         # the service names its parameters (metrics: ...); here they are options
         exc.message = _as_option(exc.message, ("metrics", "baseline", "candidate"))
         raise
-    print(format_compare(result))
+    print(dumps(result) if args.json else format_compare(result))
     return 0
 
 

@@ -459,3 +459,26 @@ def test_the_progress_line_of_a_running_study_waiting_for_dask_says_so():
     quiet = ProgressBar().render({"state": "running", "total": 512, "done": 168, "failed": 0,
                                   "eta_s": 41.0, "message": ""})
     assert quiet.endswith("(running)")
+
+
+def test_status_and_compare_print_the_service_s_documents_as_json(
+    env, capsys, finished_study, make_study
+):
+    """status and compare had no --json (uncertainty and simulate had): a script had to
+    parse the tables. With --json they print the documents REST answers, here from the local
+    store: GET /studies/{id} (state, done of total), GET /studies ({"studies": [...]}) and
+    GET /studies/{id}/compare (its pairs, each a ratio of the two models' power)."""
+    sid = finished_study(env, make_study())
+    capsys.readouterr()
+    assert main(["status", sid, "--json"]) == 0
+    st = json.loads(capsys.readouterr().out)
+    assert st["id"] == sid and st["state"] == "done" and st["done"] == st["total"] == 6
+    assert main(["status", "--json"]) == 0
+    assert [s["id"] for s in json.loads(capsys.readouterr().out)["studies"]] == [sid]
+    assert main(["compare", sid, "--baseline", "din", "--candidate", "cema", "--metrics",
+                 "power_kw", "--json"]) == 0
+    doc = json.loads(capsys.readouterr().out)
+    assert doc["baseline"] == "din" and doc["candidate"] == "cema" and doc["pairs"]
+    for p in doc["pairs"]:
+        assert p["power_kw_ratio"] == pytest.approx(
+            abs(p["power_kw_candidate"]) / abs(p["power_kw_baseline"]), rel=1e-12)
