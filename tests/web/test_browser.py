@@ -417,6 +417,28 @@ def test_the_runs_table_pages_through_a_large_study(browser, web):
         assert all(q["bytes"] < 0.41 * len(whole.content) for q in asked), asked
 
 
+def test_a_study_of_one_run_counts_it_as_one_run_and_asks_for_no_favicon(browser, web):
+    """A one-run study's page said "Runs (1 runs)", and every page asked for /favicon.ico,
+    a 404 and an error in the browser's console. One run is "(1 run)"; the pages carry an
+    empty icon of their own (a data: URL), so the browser asks the server for none."""
+    holder = {}
+    body = web.tiny_study(name="one-run", grid={"friction_model": ["din"],
+                                                "temperature_c": [20]})
+
+    def prepare(data: Path) -> None:
+        holder["id"] = web.finished_study(data, body)
+
+    with _serve(prepare, BELTSTUDY_WARM_START="false") as base:
+        sid = holder["id"]
+        browser.get(f"{base}/ui/studies/{sid}")
+        text = "return document.getElementById('runs-count').textContent"
+        _wait(browser, lambda d: d.execute_script(text) == "(1 run)", what="(1 run)")
+        icon = browser.execute_script(
+            "return document.querySelector('link[rel=icon]').getAttribute('href')")
+        assert icon == "data:,"
+        assert httpx.get(f"{base}/ui/studies/{sid}").text.count('rel="icon"') == 1
+
+
 def test_warnings_are_counted_and_a_message_keeps_its_parentheses(browser, web):
     """A run whose message has "; " inside parentheses: the run page lists its clauses as
     the report does (a parenthesis never cut over two lines, a finding with what would avoid

@@ -288,7 +288,7 @@ function indexPage() {
       });
       result.replaceChildren("Submitted ",
         el("a", { href: "/ui/studies/" + encodeURIComponent(st.id), text: st.name }),
-        " (" + st.total + " runs, " + st.state + ")");
+        " (" + st.total + (st.total === 1 ? " run, " : " runs, ") + st.state + ")");
       result.hidden = false;
       refresh();
     } catch (e) {
@@ -432,8 +432,9 @@ function studyPage(id) {
     const count = document.getElementById("runs-count");
     count.dataset.total = String(total);
     count.dataset.done = String(done);
-    count.textContent = "(" + fmtNumber(total) + (filtered ? " of " + fmtNumber(done) +
-      " runs match the filters" : " runs") + ")";
+    const runs = (n) => fmtNumber(n) + (n === 1 ? " run" : " runs");
+    count.textContent = "(" + (filtered ? fmtNumber(total) + " of " + runs(done) +
+      (total === 1 ? " matches" : " match") + " the filters" : runs(total)) + ")";
     document.getElementById("runs-page").textContent = rows.length
       ? "rows " + fmtNumber(offset + 1) + "–" + fmtNumber(offset + rows.length) + " of " +
         fmtNumber(total)
