@@ -645,7 +645,9 @@ def _slip_words(res: SteadyResult, drives, slip_margins, start_margins, breakawa
                 fix = (f"; pretension {res.takeup_tension_n / 1e3:.3g} kN is below the "
                        f"{need_kn:g} kN needed: a takeup.pretension_kn of {need_kn:g} kN or "
                        "more would avoid it")
-            said = ", and at ".join(f"{w}: slip margin {m:.2f} < 1" for w, m in cases)
+            # two decimals, and two figures below 0.1 (not "0.00 < 1")
+            said = ", and at ".join(f"{w}: slip margin {m:.2f} < 1" if m >= 0.1 else
+                                    f"{w}: slip margin {m:.2g} < 1" for w, m in cases)
             warnings.append(f"slip at {where} at {said} (e^(mu theta) = {e:.2f}){fix}")
     return warnings
 

@@ -681,3 +681,18 @@ def test_a_slack_span_has_no_steady_sag_figure():
     assert r.summary["sag_max_pct"] is None
     ok = solve_steady(parse_conveyor(hand_conveyor_dict()), model="din")
     assert 0.0 < ok.summary["sag_max_pct"] <= 100.0
+
+
+def test_a_slip_margin_below_a_tenth_is_said_in_figures_not_as_0_00():
+    """A fixed take-up at 0.05 kN on the hand conveyor (36 kN needed): the start-up force
+    (x 1.5) leaves the slack side at no tension, a slip margin of 0, which read "slip margin
+    0.00 < 1"; margins below 0.1 are said to two figures, others to two decimals as before."""
+    from tests.engine.conftest import hand_conv
+
+    res = solve_steady(hand_conv(takeup={"type": "fixed", "position": "tail",
+                                         "pretension_kn": 0.05}), model="din")
+    (said,) = [w for w in res.warnings if w.startswith("slip at drive 1")]
+    assert res.summary["slip_margin_start"] < 0.1 <= res.summary["slip_margin"]
+    assert f"at running: slip margin {res.summary['slip_margin']:.2f} < 1" in said
+    assert f"): slip margin {res.summary['slip_margin_start']:.2g} < 1" in said
+    assert "0.00 < 1" not in said
