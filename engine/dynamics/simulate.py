@@ -1889,13 +1889,13 @@ def _fast_stop_words(sys: System, t_stop: float, summary: dict, steady_tmax: flo
         # curve that rests after 5 loops when followed, ramp_rest_fraction() of it, is the
         # least to ask
         asked = max(need * cyc.t_stop / t_stop, need / ramp_rest_fraction())
-        lag = (f" (the belt did not follow the {cyc.t_stop:g} s curve: it took "
-               f"{t_stop:.1f} s)" if t_stop > cyc.t_stop else "")
+        lag = (f"; the belt did not follow the {cyc.t_stop:g} s curve: it took "
+               f"{t_stop:.1f} s" if t_stop > cyc.t_stop else "")
         # scaled from this stop, the figure assumes the belt rests at the same fraction of a
         # longer curve; it rests a little sooner (a 200 m, 0.2 m/s belt: 0.800 of 1.9 s, 0.792
         # of 2.1 s), so the figure can fall short by a step of its rounding: say to rerun
         fix = (f"a controlled stop of stop.time_s {_up_s(asked)} s or more would be slower "
-               f"than that{lag} (this stop's time scaled to 5 wave loop times; rerun to "
+               f"than that (this stop's time scaled to 5 wave loop times{lag}; rerun to "
                "check)")
     elif cyc.stop_mode == C.BRAKE and not _coasts_within(sys, need):
         auto = getattr(sys, "auto_brakes", None)
