@@ -1020,3 +1020,63 @@ def test_an_oversized_dol_motor_is_named_beside_a_start_slip():
     near = parse_conveyor({**INCLINE, "drives": [{**INCLINE["drives"][0],
                                                   "rated_power_kw": round(1.04 * want)}]})
     assert oversized_motor_words(build_system(near, SCN, big.steady)) == []
+
+
+def test_a_sag_at_rest_before_the_start_is_offered_the_take_up_alone():
+    """A 110 m conveyor on a fixed take-up at 19.05 kN sagged 1.90 % against 1.5 % at t = 0.0
+    s, before its start command, and was told 'a higher take-up pretension or a longer start
+    (start.time_s)'; rerun with a 60 s start in place of 53 s it sagged 1.90 % still: the
+    belt at rest is where no start or stop setting reaches. By hand: 8.92 kN x 1.90 / 1.5 =
+    11.299 kN keeps it within (11.3 kN rounded up), 2.379 kN more (2.38 kN), a pretension of
+    10.42 + 2.38 = 12.8 kN."""
+    from types import SimpleNamespace
+
+    from beltstudy.engine.dynamics.simulate import _sag_words
+
+    screw = _four_spring_system()  # the start command at t_pre = 2 s
+    screw.model.takeup = SimpleNamespace(gravity=False)
+    whole = {"env_min": np.array([9e3, 8.92e3, 9e3, 9e3]),
+             "env_min_t": np.array([0.0, 0.0, 0.0, 0.0])}
+    sag = _sag_words(screw, "carry", 1.90, 1.5, 2, 8.92e3, whole, 10.42)
+    assert "at t = 0.0 s, at rest before the start); 11.3 kN there keeps it within" in sag, sag
+    assert "must add at least 2.38 kN (a pretension of at least 12.8 kN" in sag, sag
+    assert "longer start" not in sag and "during the start" not in sag, sag
+    assert sag.endswith("a higher take-up pretension (takeup.pretension_kn) (no start or stop "
+                        "setting changes the tension at rest) would avoid it"), sag
+    # after the start command (t = 3.5 s) the start's levers stay
+    whole["env_min_t"][:] = 3.5
+    assert "during the start" in _sag_words(screw, "carry", 1.90, 1.5, 2, 8.92e3, whole, 10.42)
+    assert "a longer start (start.time_s)" in _sag_words(screw, "carry", 1.90, 1.5, 2, 8.92e3,
+                                                         whole, 10.42)
+
+
+def test_a_stop_overspeed_offers_a_dol_conveyor_vfd_drives_for_a_controlled_stop():
+    """A 450 m dol decline's brake stop reached 2.4 m/s, 141 % of its 1.7 m/s, and was told
+    'brakes that bite sooner ... or a controlled stop (stop.mode: controlled)'; its rerun in a
+    controlled stop was refused ('controlled' needs vfd drives). With a dol drive the lever
+    names the fields that make it vfd; a vfd conveyor keeps the plain words."""
+    from types import SimpleNamespace
+
+    from beltstudy.engine.dynamics import codes as C
+    from beltstudy.engine.dynamics.simulate import _stop_overspeed
+
+    rec = np.zeros(5, dtype=[("t", "f8"), ("v_mean", "f8")])
+    rec["t"] = [90.0, 92.0, 93.0, 93.4, 95.0]
+    rec["v_mean"] = [1.7, 1.7, 2.2, 2.4, 1.0]
+    out, r = SimpleNamespace(rec=rec), {"status": C.OK, "nrec": 5}
+    for mode in (C.BRAKE, C.COAST):
+        dol = _four_spring_system(mode)
+        dol.v_design = 1.7
+        dol.model.drives = SimpleNamespace(control=np.array([C.DOL]),
+                                           coupling=np.array([C.COUPLING_FLUID]))
+        (said,) = _stop_overspeed(dol, r, out)
+        assert said.startswith("overspeed in the stop: the mean belt speed reached 2.4 m/s, "
+                               "141 % of design speed, at t = 93.4 s, 1.4 s after"), said
+        assert ("vfd drives and a controlled stop (drives.0.control: vfd with coupling: none, "
+                "stop.mode: controlled") in said, said
+        assert "or a controlled stop" not in said, said
+        vfd = _four_spring_system(mode)
+        vfd.v_design = 1.7
+        (said,) = _stop_overspeed(vfd, r, out)
+        assert "a controlled stop (stop.mode: controlled, the drives holding" in said, said
+        assert "vfd drives" not in said, said
