@@ -960,7 +960,10 @@ def _safety_words(loop: Loop, belt, sf: float, sf_min: float, t_max: float, s_m:
     strongest = max((b for b in catalog.belts().values() if b.kind == belt.kind),
                     key=lambda b: b.rating_kn_m, default=None)
     if strongest is None or need_kn_m <= strongest.rating_kn_m:
-        pick = "belt.type: auto picks the lightest catalogue belt that passes"
+        # belt.type: auto without belt.kind is refused ('needs belt.kind'): the kind is named
+        kind = catalog.FILE_KIND.get(belt.kind)
+        pick = ("belt.type: auto" + (f" with belt.kind: {kind}" if kind else "")
+                + " picks the lightest catalogue belt that passes")
     else:
         # no catalogue belt of this kind is that strong, so belt.type: auto would not find one;
         # the strongest meets the minimum at these tensions on a belt this much wider

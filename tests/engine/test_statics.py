@@ -5,6 +5,7 @@ tension-dependent law."""
 from __future__ import annotations
 
 import math
+import re
 
 import numpy as np
 import pytest
@@ -696,3 +697,26 @@ def test_a_slip_margin_below_a_tenth_is_said_in_figures_not_as_0_00():
     assert f"at running: slip margin {res.summary['slip_margin']:.2f} < 1" in said
     assert f"): slip margin {res.summary['slip_margin_start']:.2g} < 1" in said
     assert "0.00 < 1" not in said
+
+
+def test_the_safety_factor_warning_names_the_belt_kind_its_auto_belt_needs(hand_dict):
+    """A 2.2 m ST1000 belt at 596 kN (S 3.69 < 6.70) was told 'a belt rated at least 1815
+    kN/m at this width (belt.type: auto picks the lightest catalogue belt that passes)';
+    belt.type: auto as said was refused ('needs belt.kind'). The words name the kind the file
+    needs, and followed they pass. The hand conveyor on an ST1000 (1 000 kN/m, 1 m) with a
+    60 t take-up: the rating asked is S_min T_max / B by hand."""
+    hand_dict["belt"] = {"type": "ST1000", "width_m": 1.0}
+    hand_dict["takeup"] = {"type": "gravity", "position": "tail", "mass_kg": 60000}
+    r = solve_steady(parse_conveyor(hand_dict), model="din")
+    (msg,) = [w for w in r.warnings if w.startswith("belt safety factor")]
+    need = math.ceil(6.7 * r.summary["t_max_kn"] / 1.0)
+    assert abs(float(re.search(r"at least (\d+) kN/m", msg).group(1)) - need) <= 1, msg
+    assert ("(belt.type: auto with belt.kind: steel_cord picks the lightest catalogue belt "
+            "that passes)") in msg, msg
+    from beltstudy.engine.beltselect import SteadyCase, resolve_auto_belt
+
+    hand_dict["belt"] = {"type": "auto", "kind": "steel_cord", "width_m": 1.0}
+    picked, choice = resolve_auto_belt(parse_conveyor(hand_dict), [SteadyCase("din")])
+    assert choice is not None and picked.belt.type != "auto"
+    followed = solve_steady(picked, model="din")
+    assert not [w for w in followed.warnings if w.startswith("belt safety factor")]
