@@ -770,7 +770,10 @@ def _error_bars(conveyor, scenario, result, model, params, opts):
     o = _mesh_step_options(scenario, result.transient.system, opts)
 
     def rerun(scn: Scenario) -> dict:
-        if scn.dt_s != "auto":
+        # a fixed step keeps its fraction of each mesh's limit (``o``); an automatic run's
+        # finer mesh given a step (the step refined with the mesh where the automatic one
+        # did not follow it, ``accuracy._step_with_the_mesh``) runs at that step
+        if scn.dt_s != "auto" and scenario.dt_s != "auto":
             scn = scn.model_copy(update={"dt_s": "auto"})
         return run_one(conveyor, scn, model=model, params=params, options=o).summary
 
