@@ -12,8 +12,6 @@ mesh now runs at the run's step x n / n_fine where its automatic step did not fo
 
 from __future__ import annotations
 
-import pytest
-
 from beltstudy.engine.conveyor import parse_conveyor, parse_scenario
 from beltstudy.engine.run import run_one
 
