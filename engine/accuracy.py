@@ -394,6 +394,7 @@ def error_bars(scenario: Scenario, summary: dict, rerun, *,
     n = int(summary["elements_used"])
     meshes = (max(ELEMENTS_MIN, n // RATIO), n, n * RATIO)
     runs: list[dict | None] = []
+    fine_dt = None  # the finest mesh's step where it was given, not automatic
     acc = Accuracy(elements=meshes)
     for k, m in enumerate(meshes):
         if k == 0 and m >= n:
@@ -410,7 +411,10 @@ def error_bars(scenario: Scenario, summary: dict, rerun, *,
             acc.notes.append(f"{m} elements not run: {exc}")
             continue
         if k == 2 and other.get("status") != "failed":
-            other = _step_with_the_mesh(scenario, summary, other, m, rerun)
+            stepped = _step_with_the_mesh(scenario, summary, other, m, rerun)
+            if stepped is not other:  # run at a given step: the advice names one too
+                fine_dt = stepped.get("dt_used_s")
+            other = stepped
         if other.get("status") == "failed":
             runs.append(None)
             acc.notes.append(f"{m} elements failed: {other.get('message')}")
@@ -429,18 +433,21 @@ def error_bars(scenario: Scenario, summary: dict, rerun, *,
     acc.elements = used
     acc.figures = bars(runs, used, rtol)
     acc.marginal = marginal_verdicts(summary, acc.figures, sag_limit_pct=sag_limit_pct,
-                                     safety_factor_min=safety_factor_min, finest=used[-1])
+                                     safety_factor_min=safety_factor_min, finest=used[-1],
+                                     finest_dt_s=fine_dt if runs[-1] is not None else None)
     return acc
 
 
 def _marginal(fe: FigureError | None, limit: float, unit: str, higher_passes: bool,
-              finest: int | None = None) -> str | None:
+              finest: int | None = None, finest_dt_s: float | None = None) -> str | None:
     """The words of a verdict within ``fe``'s bar of ``limit``, else None. ``higher_passes``:
     a value above the limit passes the check (a lowest tension above 0 kN), else one below it
     (a sag under its limit); ``finest`` the elements of the finest mesh run. The words give
     the finest mesh's value, the Richardson estimate's side of the limit where there is one,
     and the finer mesh that narrows the bar (the bar shrinks with the mesh at the observed
-    order)."""
+    order); ``finest_dt_s`` the finest mesh's step where it was given (the automatic one did
+    not follow the mesh): the finer mesh named then comes with its own step, as an automatic
+    one would not refine it."""
     if fe is None or not math.isfinite(fe.err) or fe.err <= 0.0:
         return None
     if fe.method == "unchanged":
@@ -468,15 +475,18 @@ def _marginal(fe: FigureError | None, limit: float, unit: str, higher_passes: bo
         side = ("at the limit" if conv == limit else
                 "which passes" if (conv > limit) == higher_passes else "which fails")
         said.append(f"converged estimate {conv:.4g}{u}, {side}")
-    if finest:
+    if finest and finest_dt_s:
+        said.append(f"a finer mesh and step (scenario.elements {2 * finest}, scenario.dt_s "
+                    f"{finest_dt_s / 2:.3g}) narrow the bar")
+    elif finest:
         said.append(f"a finer mesh (scenario.elements {2 * finest}) narrows the bar")
     return (f"marginal: {fe.name} {fe.value:.4g} against limit {limit:g} +- {fe.err:.3g}{u} "
             f"({'; '.join(said)})")
 
 
 def marginal_verdicts(summary: dict, figures: dict, *, sag_limit_pct: float | None = None,
-                      safety_factor_min: float | None = None, finest: int | None = None
-                      ) -> list[str]:
+                      safety_factor_min: float | None = None, finest: int | None = None,
+                      finest_dt_s: float | None = None) -> list[str]:
     """The verdicts whose figure lies within its error bar of the limit (PHYSICS 5.2), of the
     figures that move with the mesh (one the same on every mesh, method ``unchanged``, has
     only the run's resolution for a bar and no mesh flips its verdict: an auto take-up sized
@@ -533,14 +543,14 @@ def marginal_verdicts(summary: dict, figures: dict, *, sag_limit_pct: float | No
     checks.append(("takeup_endstop_speed_m_s", 0.0, "m/s", False)
                   if (summary.get("takeup_endstop_speed_m_s") or 0.0) > 0.0
                   else ("takeup_endstop_gap_m", 0.0, "m", True))
-    said = [_marginal(figures.get(name), limit, unit, up, finest)
+    said = [_marginal(figures.get(name), limit, unit, up, finest, finest_dt_s)
             for name, limit, unit, up in checks]
     # lift-off (no bar without a concave curve): the cycle's, then a phase's other peak
     cycle = figures.get("liftoff_max_kn_over")
-    cycle_said = _marginal(cycle, 0.0, "kN", False, finest)
+    cycle_said = _marginal(cycle, 0.0, "kN", False, finest, finest_dt_s)
     said.append(cycle_said)
     for name in ("liftoff_over_start_kn", "liftoff_over_stop_kn"):
         fe = figures.get(name)
         if fe is not None and not (cycle_said and fe.value == cycle.value):
-            said.append(_marginal(fe, 0.0, "kN", False, finest))
+            said.append(_marginal(fe, 0.0, "kN", False, finest, finest_dt_s))
     return [words for words in said if words]

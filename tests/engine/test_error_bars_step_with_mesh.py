@@ -12,6 +12,10 @@ mesh now runs at the run's step x n / n_fine where its automatic step did not fo
 
 from __future__ import annotations
 
+import re
+
+import pytest
+
 from beltstudy.engine.conveyor import parse_conveyor, parse_scenario
 from beltstudy.engine.run import run_one
 
@@ -53,3 +57,11 @@ def test_the_bar_of_a_curved_route_holds_the_step_s_error():
     assert abs(quarter[name] - value) > 0.032  # beyond the bar the mesh alone gave
     assert abs(quarter[name] - value) <= err, (value, err, quarter[name])
     assert "which passes" not in s["message"]
+    # what settles it names a finer step too: a finer mesh at the automatic step keeps the
+    # arc's step (0.47 ms), which is what the bar lacked
+    said = re.search(r"a finer mesh and step \(scenario\.elements (\d+), scenario\.dt_s "
+                     r"([\d.e-]+)\) narrow the bar", s["message"])
+    assert said, s["message"]
+    fine_n = int(res.accuracy.elements[-1])
+    assert int(said.group(1)) == 2 * fine_n
+    assert float(said.group(2)) == pytest.approx(dt * n / fine_n / 2, rel=5e-3)  # 3 figures
