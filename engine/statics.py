@@ -17,9 +17,10 @@ constant, which the take-up sets: a gravity take-up carries its counterweight on
   the running force, while the belt accelerates), but at standstill they must hold the whole
   net pull, which exceeds the running |Te| by the running resistance, with the at-rest
   tensions, whose slack side (the carry at a head drive) is lower than running;
-* the sag limits on both strands, T >= g (m'_G + m'_L) S / (8 (h/S)_adm), running and, for a
-  gravity take-up, also held at rest (take-up plus gravity, the net pull of the loaded belt
-  taken by the brake or the master drive: :func:`rest_walk`). The held-at-rest rule is this
+* the sag limits on both strands, T >= g (m'_G + m'_L) S / (8 (h/S)_adm), running and also
+  held at rest (take-up plus gravity, the net pull of the loaded belt taken by the brake or the
+  master drive: :func:`rest_walk`; a gravity take-up holds its mean tension at rest, a fixed
+  one the loop length, :func:`start_level`). The held-at-rest rule is this
   project's conservative reading (DIN 22101 checks the minimum tensions in its running and
   starting / stopping states only); it is on by default because a stopped, loaded belt sags
   most where the brake leaves it least tension, and it is switched off per conveyor with
@@ -302,16 +303,19 @@ def rest_walk(loop: Loop, hold: int, gravity_n: np.ndarray) -> np.ndarray:
     return out
 
 
-def _rest_need(conv: Conveyor, loop: Loop, hs_adm: np.ndarray) -> float | None:
-    """Smallest mean tension at a gravity take-up that keeps the belt held at rest within
-    its sag limits [N] (None for a fixed take-up, or with ``takeup.sag_at_rest`` off). The
-    counterweight holds the same mean tension at rest as running: ``T_rest = T_tu - w_rest_tu
-    + W_rest``."""
-    if conv.takeup.type != "gravity" or not conv.takeup.sag_at_rest:
+def _rest_need(conv: Conveyor, loop: Loop, hs_adm: np.ndarray, fixed: bool) -> float | None:
+    """The level (:func:`start_level`) of the smallest at-rest tensions that keep the belt
+    held at rest within its sag limits [N] (None with ``takeup.sag_at_rest`` off). The take-up
+    holds the same level at rest as running: a gravity take-up's counterweight the mean
+    tension of its two strands, a fixed one the loop length (the length-weighted mean
+    tension), so ``T_rest = W_rest + start_level(T) - start_level(W_rest)``. The fixed
+    take-up's level leaves out the belt's sag, as :func:`start_level` does: at rest the spans
+    that sag more take up length, which raises the tensions the transient model starts from
+    (:func:`beltstudy.engine.dynamics.model._rest`), so the bound errs on the safe side."""
+    if not conv.takeup.sag_at_rest:
         return None
-    k = loop.i_takeup
     Wr = rest_walk(loop, rest_hold_element(conv, loop), loop.gravity_n)
-    return _sag_need(loop, Wr, hs_adm) + 0.5 * (Wr[k - 1] + Wr[k])
+    return _sag_need(loop, Wr, hs_adm) + start_level(loop, Wr, fixed)
 
 
 def _sag_need(loop: Loop, W: np.ndarray, hs_adm: np.ndarray) -> float:
@@ -365,7 +369,6 @@ def _required_offset(loop: Loop, W: np.ndarray, W_start: np.ndarray, drives,
                                        for idx, _s, e in drives))
     # the start-up walk has its own level: a gravity take-up holds the same mean tension, a
     # fixed one the same loop length (:func:`start_level`)
-    k = loop.i_takeup
     shift = start_level(loop, W, fixed) - start_level(loop, W_start, fixed)
     bounds["slip_start"] = float(max(_slip_need(Sprev[idx], W_start[idx], e)
                                      for idx, _s, e in drives) - shift)
@@ -376,7 +379,7 @@ def _required_offset(loop: Loop, W: np.ndarray, W_start: np.ndarray, drives,
                                              for idx, _s, e in drives) - shift_h)
     bounds["sag_running"] = _sag_need(loop, W, hs_adm)
     if rest_need is not None:
-        bounds["sag_at_rest"] = rest_need - 0.5 * (W[k - 1] + W[k])
+        bounds["sag_at_rest"] = rest_need - start_level(loop, W, fixed)
     bounds["positive"] = float(np.max(1.0 - W))  # keep every tension above 1 N
     return max(bounds.values()), bounds
 
@@ -433,7 +436,7 @@ def solve_steady(
     k = loop.i_takeup
     fixed = tu.type == "fixed"
 
-    rest_need = _rest_need(conv, loop, hs_adm)
+    rest_need = _rest_need(conv, loop, hs_adm, fixed)
     W_hold = _breakaway_walk(conv, loop)
     # the installed take-up: at least what the full design load needs
     tu_floor_n = -np.inf
