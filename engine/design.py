@@ -12,9 +12,11 @@ used.
   at standstill, a regenerating belt's start) and running, and the sag limits running and,
   unless ``takeup.sag_at_rest`` is off, held at rest. Governing constraint: ``slip_start``,
   ``slip_breakaway``, ``slip_running``, ``sag_running``, ``sag_at_rest``.
-* **Rated power** (``rated_power_kw`` omitted): ``RATED_POWER_FACTOR`` x the drive's share of
-  the larger of the steady peripheral force |Te| and the running resistance (a regenerating
-  decline's motors must still overcome the resistance of the empty belt's start). Governing:
+* **Rated power** (``rated_power_kw`` omitted): ``RATED_POWER_FACTOR`` x the motor power
+  (through the drive train's ``efficiency``: ``F v / eta`` driving, ``|F v| eta``
+  regenerating) of the drive's share of the larger of the steady peripheral force |Te| and the
+  running resistance (a regenerating decline's motors must still overcome the resistance of
+  the empty belt's start). Governing:
   ``peripheral_force`` or ``running_resistance``.
 * **Brakes** (``force_kn: auto``): the total brake force for a rigid-body stop in the
   scenario's stop time after the brake delay and over its ramp (:func:`brake_force_auto`), at

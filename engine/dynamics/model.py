@@ -285,6 +285,9 @@ class System:
     #: running resistance, the larger kept, as an auto motor of such a run is installed
     #: (:func:`beltstudy.engine.sizing.installed_at_full_load`); None: the run's own |Te|
     motor_basis_n: float | None = None
+    #: each drive's train efficiency, motor shaft to pulley (``drives[i].efficiency``) [-]: the
+    #: engine sizes a motor on the power at its shaft; None: 1 (the words size on the pulley)
+    drive_efficiency: np.ndarray | None = None
     #: the largest brake force [N] the braked pulley at an element passes in a brake stop, the
     #: undamped bound (:func:`beltstudy.engine.stopgrip.brake_grip_n` bound to the run's
     #: conveyor, steady solution and brakes): a stop slip's words offer less force on a pulley
@@ -1255,4 +1258,4 @@ def build_system(conv: Conveyor, scn: Scenario, steady, options: DynamicsOptions
         steady_tension_n=T_run.copy(), te_n=te, wave_loop_time_s=t_loop, wave_speed_m_s=c_wave,
         dt_limit_s=dt_lim, damping=damping, relaxation_s=tau,
         mesh_viscosity=0.0 if damping == "off" else float(opts.mesh_viscosity), notes=notes,
-        warnings=warns)
+        warnings=warns, drive_efficiency=np.array([float(d.efficiency) for d in conv.drives]))

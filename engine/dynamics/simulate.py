@@ -23,7 +23,12 @@ from beltstudy.engine import design
 from beltstudy.engine.catalog import resolve_belt
 from beltstudy.engine.checks import HOLD_MARGIN
 from beltstudy.engine.conveyor import SAG_LIMIT_RTOL
-from beltstudy.engine.drives import COUPLING_NEXT, RATED_POWER_FACTOR, transient_checks
+from beltstudy.engine.drives import (
+    COUPLING_NEXT,
+    RATED_POWER_FACTOR,
+    power_required_kw,
+    transient_checks,
+)
 from beltstudy.engine.dynamics import codes as C
 from beltstudy.engine.dynamics import records as R
 from beltstudy.engine.dynamics.kernel import PAUSED, run_cycle
@@ -459,7 +464,8 @@ def start_levers(sys: System) -> list[str]:
 
 def oversized_motor_words(sys: System, which=None) -> list[str]:
     """Each dol drive whose motor is more than 5 % above the engine's own size for it
-    (:data:`RATED_POWER_FACTOR` x its share of the steady power, Te v; beyond a catalogue
+    (:data:`RATED_POWER_FACTOR` x the motor power of its share of the steady power, Te v
+    through its drive train's efficiency; beyond a catalogue
     size's rounding), in words for a start's slip. A dol start's force is the motor's (its
     curve, or ``STALL`` x its rated force through a fluid coupling), so an oversized motor
     starts harder than it needs. Not a cure by itself: on a 500 m, 40 m-lift incline whose
@@ -471,6 +477,7 @@ def oversized_motor_words(sys: System, which=None) -> list[str]:
     dr = sys.model.drives
     te, v = float(getattr(sys, "te_n", 0.0) or 0.0), float(getattr(sys, "v_design", 0.0))
     rated = getattr(dr, "rated", None)
+    eta = getattr(sys, "drive_efficiency", None)
     # the engine sizes a motor at the full load too (System.motor_basis_n): an empty run's
     # steady power alone (a 30 m belt's 1.77 kN against 2.04 kN full) undersizes it
     basis = getattr(sys, "motor_basis_n", None)
@@ -478,14 +485,16 @@ def oversized_motor_words(sys: System, which=None) -> list[str]:
     basis = basis if full else te
     said = []
     for k in np.flatnonzero(dr.control == C.DOL) if rated is not None and te > 0.0 else ():
-        need_kw = RATED_POWER_FACTOR * float(dr.share[k]) * basis * v / 1e3
+        need_kw = RATED_POWER_FACTOR * power_required_kw(
+            float(dr.share[k]) * basis, v, 1.0 if eta is None else float(eta[k]))
         now_kw = float(rated[k]) * v / 1e3
         if now_kw > 1.05 * need_kw and (which is None or int(k) in which):
             of = (f"the full load's {basis / 1e3:.3g} kN x {v:g} m/s, the case it sizes "
                   "motors for" if full else "the steady power")
             said.append(f"drive {k + 1}'s motor (drives.{k}.rated_power_kw, now {now_kw:.0f} kW) "
                         f"is {now_kw / need_kw:.1f} x the {need_kw:.0f} kW the engine would "
-                        f"size it at ({RATED_POWER_FACTOR:g} x its share of {of}), "
+                        f"size it at ({RATED_POWER_FACTOR:g} x its share of {of}, through "
+                        "its drive train's efficiency), "
                         "and a dol start's force grows with the motor's rating: a motor nearer "
                         "its need starts more gently, and less take-up tension then avoids the "
                         "slip (rerun to check)")

@@ -30,13 +30,14 @@ def _euler(wrap_deg=200, mu=0.35):
 
 
 def test_rated_power_by_hand():
-    """1.25 x share x Te x v for a lifting conveyor without a given rated power."""
+    """1.25 x share x Te x v / eta (the motor power, eta 0.95 by default) for a lifting
+    conveyor without a given rated power."""
     conv = parse_conveyor(hand_conveyor_dict())
     scn = Scenario()
     sizes = auto_sizes(conv, scn, model="din")
     st = solve_steady(conv, model="din")
     assert sizes["drive_rated_power_kw"] == pytest.approx(
-        [RATED_POWER_FACTOR * 1.0 * st.te_n * 4.0 / 1e3], rel=1e-9)
+        [RATED_POWER_FACTOR * 1.0 * st.te_n * 4.0 / 0.95 / 1e3], rel=1e-9)
     assert sizes["drive_rated_power_governed_by"] == ["peripheral_force"]
     assert sizes["takeup_governed_by"] == "slip_start"
     assert sizes["takeup_mass_kg"] == pytest.approx(st.summary["takeup_mass_kg"], rel=1e-12)

@@ -17,6 +17,7 @@ from beltstudy.engine.conveyor import DRIVE_EFFICIENCY, load_mapping, parse_conv
 from beltstudy.engine.drives import (
     OVERLOAD_S_MAX,
     power_required_kw,
+    rated_power_kw,
     steady_checks,
     transient_checks,
 )
@@ -93,7 +94,7 @@ def test_default_efficiency_is_the_documented_one():
 def test_solve_steady_warns_a_drive_short_of_power():
     """The hand conveyor (one head drive, share 1) rated at 100 kW: the steady solve reports
     P_M = Te v / eta (Te from the same solve) and warns with the shortfall in kW; an auto
-    rated power (1.25 x Te v) leaves the drive at 1 / (1.25 eta) = 0.842."""
+    rated power (1.25 x the motor power, Te v / eta) leaves the drive at 1 / 1.25 = 0.8."""
     low = parse_conveyor(hand_conveyor_dict(drives=[{"position": "head",
                                                      "rated_power_kw": 100}]))
     st = solve_steady(low, model="din", n_elements=100)
@@ -105,25 +106,58 @@ def test_solve_steady_warns_a_drive_short_of_power():
     assert f"drive 1 (head) needs {need:.0f} kW" in st.message
     assert f"rated 100 kW: short by {need - 100:.0f} kW" in st.message
     auto = solve_steady(parse_conveyor(hand_conveyor_dict()), model="din", n_elements=100)
-    assert auto.summary["drive1_utilisation"] == pytest.approx(1.0 / (1.25 * 0.95), rel=1e-9)
+    assert auto.summary["drive1_utilisation"] == pytest.approx(1.0 / 1.25, rel=1e-9)
     assert "short by" not in auto.message
 
 
+@pytest.mark.parametrize("eta", [0.75, 0.5])
+def test_an_auto_motor_behind_a_lossy_drive_train_passes_its_own_check(eta):
+    """The auto size is 1.25 x the motor power the steady state needs, the power at the pulley
+    through the drive train: Te v / eta. Sized on Te v alone, a train of efficiency 0.75 left
+    the engine's own motor at 1 / (1.25 x 0.75) = 1.07 of its rating, warned short of power."""
+    d = hand_conveyor_dict(drives=[{"position": "head", "wrap_deg": 200, "friction": 0.35,
+                                    "share": 1.0, "pulley_diameter_m": 1.0,
+                                    "efficiency": eta}])
+    conv = parse_conveyor(d)
+    st = solve_steady(conv, model="din", n_elements=100)
+    by_hand_kw = 1.25 * st.te_n * 4.0 / eta / 1e3
+    rated, why = rated_power_kw(conv, st.te_n, float(np.sum(st.resistance_n)))
+    assert rated[0] == pytest.approx(by_hand_kw, rel=1e-9) and why == ["peripheral_force"]
+    assert st.summary["drive1_power_required_kw"] == pytest.approx(by_hand_kw / 1.25, rel=1e-9)
+    assert st.summary["drive1_utilisation"] == pytest.approx(0.8, rel=1e-9)
+    assert "short by" not in st.message
+
+
+def test_an_auto_motor_of_a_regenerating_belt_takes_in_its_power_times_eta():
+    """A loaded decline (1 km falling 80 m): Te < 0, the motor takes in |Te v| eta; the empty
+    belt's running resistance R v / eta is the other duty. The auto size is 1.25 x the larger,
+    and names it."""
+    d = hand_conveyor_dict(profile=[{"length_m": 1000, "lift_m": -80}])
+    conv = parse_conveyor(d)
+    st = solve_steady(conv, model="din", n_elements=100)
+    assert st.te_n < 0.0
+    regen = abs(st.te_n) * 4.0 * 0.95 / 1e3
+    drive = float(np.sum(st.resistance_n)) * 4.0 / 0.95 / 1e3
+    rated, why = rated_power_kw(conv, st.te_n, float(np.sum(st.resistance_n)))
+    assert rated[0] == pytest.approx(1.25 * max(regen, drive), rel=1e-9)
+    assert why == ["peripheral_force" if regen >= drive else "running_resistance"]
+
+
 def test_a_vfd_force_limit_below_the_running_force_is_a_steady_warning():
-    """The hand conveyor with an auto rating, 1.25 Te v: its rated force P_N / v is 1.25 Te,
-    so a torque_limit of 0.5 caps the drive at 0.625 Te, short of the running force Te (the
-    belt never reaches design speed), and 1 / 1.25 = 0.8 is the least limit that holds it,
-    which is named and then warns no more."""
+    """The hand conveyor with an auto rating, 1.25 Te v / eta (eta 0.95): its rated force
+    P_N / v is 1.25 Te / 0.95, so a torque_limit of 0.5 caps the drive at 0.658 Te, short of
+    the running force Te (the belt never reaches design speed), and 0.95 / 1.25 = 0.76 is the
+    least limit that holds it, which is named and then warns no more."""
     d = hand_conveyor_dict()
     d["drives"][0]["torque_limit"] = 0.5
     st = solve_steady(parse_conveyor(d), model="din", n_elements=100)
-    cap_kn = 0.5 * 1.25 * st.te_n / 1e3
+    cap_kn = 0.5 * 1.25 * st.te_n / 0.95 / 1e3
     assert st.status == "warning"
     assert (f"drive 1 (head) force limit {cap_kn:.1f} kN (torque_limit 0.5 x rated"
             in st.message)
     assert f"below its running force {st.te_n / 1e3:.1f} kN" in st.message
-    assert "a torque_limit of at least 0.80 (drives.0.torque_limit)" in st.message
-    d["drives"][0]["torque_limit"] = 0.8
+    assert "a torque_limit of at least 0.76 (drives.0.torque_limit)" in st.message
+    d["drives"][0]["torque_limit"] = 0.76
     ok = solve_steady(parse_conveyor(d), model="din", n_elements=100)
     assert "force limit" not in ok.message
 

@@ -994,9 +994,9 @@ def test_an_oversized_dol_motor_is_named_beside_a_start_slip():
     rated force, so a motor far larger than its need starts harder than it must. A 500 m,
     40 m-lift incline's 450 kW motor (203 kW needed) slipped through its fluid coupling and no
     take-up up to 4 x avoided it; at 300, 250 and 203 kW, take-ups of 30.4, 24.1 and 19.8 t
-    did. Where a dol drive's motor is more than 5 % above the engine's own size (1.25 x its
-    share of the steady power, Te v) and it slipped in the start, the run says so, not as a
-    cure by itself."""
+    did. Where a dol drive's motor is more than 5 % above the engine's own size (1.25 x the
+    motor power of its share of the steady power, Te v / eta) and it slipped in the start, the
+    run says so, not as a cure by itself."""
     from beltstudy.engine.conveyor import parse_conveyor
     from beltstudy.engine.dynamics import build_system
     from beltstudy.engine.dynamics.simulate import oversized_motor_words
@@ -1007,13 +1007,14 @@ def test_an_oversized_dol_motor_is_named_beside_a_start_slip():
         return conv, run_one(conv, SCN, model="din")
 
     conv, big = run()
-    want = 1.25 * big.steady.te_n * conv.speed_m_s / 1e3  # the auto size [kW]
+    want = 1.25 * big.steady.te_n * conv.speed_m_s / 0.95 / 1e3  # the auto size [kW]
     said = (f"drive 1's motor (drives.0.rated_power_kw, now 450 kW) is {450 / want:.1f} x the "
-            f"{want:.0f} kW the engine would size it at (1.25 x its share of the steady power), "
+            f"{want:.0f} kW the engine would size it at (1.25 x its share of the steady power, "
+            "through its drive train's efficiency), "
             "and a dol start's force grows with the motor's rating: a motor nearer its need "
             "starts more gently, and less take-up tension then avoids the slip (rerun to check)")
     assert big.summary["drive1_slip_s"] > 0.0 and said in big.transient.warnings
-    assert 200.0 < want < 210.0
+    assert 210.0 < want < 220.0
     # within a catalogue size's rounding of the auto size: nothing said
     sys_ = build_system(conv, SCN, big.steady)
     assert oversized_motor_words(sys_, {0}) == [said]
