@@ -30,7 +30,7 @@ from pydantic import (
 )
 
 from beltstudy.engine.errors import InputError
-from beltstudy.engine.results import MAX_DRIVES, MAX_HCURVES
+from beltstudy.engine.results import MAX_CURVES, MAX_DRIVES, MAX_HCURVES
 from beltstudy.engine.textfile import read_text
 
 __all__ = [
@@ -907,6 +907,16 @@ class Conveyor(_Model):
         if n_curves > MAX_HCURVES:
             raise ValueError(f"profile: {n_curves} horizontal curves; at most {MAX_HCURVES} "
                              "(sections with horizontal_radius_m)")
+        vertical = [i for i, p in enumerate(self.judged_profile())
+                    if p.curve_radius_m is not None]
+        if len(vertical) > MAX_CURVES:
+            raise ValueError(
+                f"profile: {len(vertical)} vertical curves (curve_radius_m on profile."
+                f"{', profile.'.join(str(i) for i in vertical)}); at most {MAX_CURVES}, each "
+                f"with its own result columns (curve1_* to curve{MAX_CURVES}_*): join "
+                "sections of nearly the same grade into one, or give the radius only to "
+                "the curves to be checked (a grade change without curve_radius_m is judged "
+                "as the circle through its survey points, docs/routes.md)")
         for strand in ("carry", "return"):
             s = self.idlers.carry if strand == "carry" else self.idlers.return_
             if s.count is not None and not 0.1 <= s.pitch_m(self.length_m) <= 20.0:
@@ -1126,8 +1136,10 @@ def _curves_fit(profile: list[ProfileSection], judged: list[ProfileSection],
         need = 0.5 * curve_arc_m(judged, i) + (0.5 * curve_arc_m(judged, i - 1) if i else 0.0)
         if need > sec.length_m:
             j = i if sec.curve_radius_m is not None else i - 1
+            # to the millimetre where a tenth would print the section's own length
+            shown = f"{need:.1f}" if f"{need:.1f}" != f"{sec.length_m:.1f}" else f"{need:.3f}"
             raise ValueError(
-                f"profile.{j}.curve_radius_m: the curve's arcs need {need:.1f} m of "
+                f"profile.{j}.curve_radius_m: the curve's arcs need {shown} m of "
                 f"profile.{i} (half of each curve's R |delta| at its ends) but the section "
                 f"is {sec.length_m:g} m long; {_curve_fit_fix(judged, j, pitch_m)}")
 

@@ -610,7 +610,10 @@ def _curve_elements(conv: Conveyor, counts: list[int]) -> tuple[list, list]:
     its grade, tangent to the arc; the arc rises by a hair less than the two straight halves
     it replaces (R (cos a1 - cos a2) against R |delta| (sin a1 + sin a2) / 2, a difference of
     order R delta^4), and that difference goes half to each section's straight rest, so the
-    route keeps its length and its lift. The junction then lies off the grades' intersection
+    route keeps its length and its lift. A rest too short to take its half within
+    :data:`CURVE_STEP_DEG` of its grade (a curve of nearly the largest radius its section
+    holds leaves a rest of centimetres: 0.014 m took -0.021 m of lift, a sine of -1.46) turns
+    by that step and leaves the rest of its half out (centimetres of lift). The junction then lies off the grades' intersection
     by the curve's external distance R (sec(delta / 2) - 1), as on a real curve.
 
     Returns
@@ -666,7 +669,10 @@ def _curve_elements(conv: Conveyor, counts: list[int]) -> tuple[list, list]:
         if rest > 1e-9 * sec.length_m:
             lift = (rest * sec.lift_m / sec.length_m
                     + 0.5 * (excess.get(i - 1, 0.0) + excess.get(i, 0.0)))
-            sin = lift / rest
+            # a rest a sliver long (a curve of nearly the largest radius its section holds)
+            # cannot take its share of the excess: it turns at most an arc element's step
+            # off its grade, and the few centimetres of lift left over are left out
+            sin = min(max(lift / rest, math.sin(ang[i] - step)), math.sin(ang[i] + step))
             cos = math.sqrt(1.0 - sin * sin)
             # cut at the feed points and pulleys along the route (never on an arc: refused)
             a0 = at + sum(d for d, _, _ in first)

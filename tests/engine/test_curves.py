@@ -666,3 +666,42 @@ def test_the_start_time_for_a_start_lift_off_keeps_every_element_of_the_curve_do
             f"{room[last] / 1e3:.4g} kN below the lift-off tension {lim_of[last] / 1e3:.4g} kN "
             f"there, {100.0 * room[last] / lim_of[last]:.3g} %)") in w  # 4 figures, ' %'
     assert "%)" not in w.replace(" %)", "")
+
+
+def test_the_largest_radius_offered_builds_and_keeps_the_lift():
+    """Between 0 and 10 % in two 500 m sections the largest radius offered is 9 983 m (2 x 500
+    / asin(0.1) = 9 983.3), which leaves a straight rest of 0.014 m on the flat section. Its
+    half of the arc's lift excess (-0.021 m) gave that rest a sine of -1.46 and the loop build
+    a math domain error; the rest now turns at most an arc element's step (CURVE_STEP_DEG) off
+    its grade. The loop keeps every element's slope within the two grades and the route's
+    lift within the centimetres left out (g m'_L H by hand: 9.81 x 50 x 50 = 24 525 N)."""
+    with pytest.raises(ValueError, match=r"need 500\.036 m of profile\.0 .* a radius of at "
+                       r"most 9983 m"):
+        parse_conveyor(hand_conveyor_dict(profile=[
+            {"length_m": 500, "lift_m": 0, "curve_radius_m": 9984},
+            {"length_m": 500, "lift_m": 50}]))
+    conv = parse_conveyor(hand_conveyor_dict(profile=[
+        {"length_m": 500, "lift_m": 0, "curve_radius_m": 9983},
+        {"length_m": 500, "lift_m": 50}]))
+    st = solve_steady(conv, model="din")
+    carry = st.loop.strand == 0
+    step = math.sin(math.radians(CURVE_STEP_DEG))
+    assert np.all(st.loop.sin_a[carry] >= -step) and np.all(st.loop.sin_a[carry] <= 0.1 + step)
+    lift = float(np.sum(st.loop.dx_m[carry] * st.loop.sin_a[carry]))
+    assert lift == pytest.approx(50.0, abs=0.05)
+    assert st.summary["te_components_kn"]["lift"] * 1e3 == pytest.approx(9.81 * 50 * 50,
+                                                                      rel=1e-3)
+
+
+def test_more_vertical_curves_than_their_columns_are_refused_by_name():
+    """Nine vertical curves (ten 100 m sections alternating 0 and 5 m of lift, R 300 m) had
+    no curve9_* columns: the run failed after its solve with a KeyError. The file is refused
+    at input, naming the sections and what to do."""
+    prof = [{"length_m": 100, "lift_m": 5.0 * (i % 2), "curve_radius_m": 300}
+            for i in range(9)] + [{"length_m": 100, "lift_m": 5.0}]
+    with pytest.raises(ValueError, match=r"profile: 9 vertical curves \(curve_radius_m on "
+                       r"profile\.0, .*profile\.8\); at most 8, .* give the radius only to "
+                       r"the curves to be checked"):
+        parse_conveyor(hand_conveyor_dict(profile=prof))
+    prof[0].pop("curve_radius_m")
+    parse_conveyor(hand_conveyor_dict(profile=prof))  # eight: taken
