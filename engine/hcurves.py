@@ -201,7 +201,7 @@ def hcurve_checks(conv, loop, T: np.ndarray) -> tuple[dict, list[str]]:
                     f"hcurve{k}_t_low_kn": run_lo / 1e3,
                     f"hcurve{k}_t_high_kn": run_hi / 1e3,
                     f"hcurve{k}_ok": bool(not inside and not outside)})
-        where = (f"horizontal curve {k} (profile section {c.section + 1}, {c.start_m:g} to "
+        where = (f"horizontal curve {k} (profile.{c.section}, {c.start_m:g} to "
                  f"{c.end_m:g} m from the tail, R {c.radius_m:g} m, superelevation "
                  f"{c.superelevation_deg:g} deg)")
         # both limits are R q(+-d): proportional to the radius at this tension and tilt, so

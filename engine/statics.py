@@ -59,6 +59,7 @@ from beltstudy.engine.conveyor import (
     SAG_LIMIT_RTOL,
     TAKEUP_MASS_MAX_KG,
     Conveyor,
+    curve_arcs,
     section_loads,
 )
 from beltstudy.engine.curves import junction_checks
@@ -908,8 +909,8 @@ def takeup_place_note(res: SteadyResult) -> str:
     if t_low <= 0.0 or t_tu < TAKEUP_PLACE_RATIO * t_low:
         return ""
     part, x = loop.where(float(loop.s_end_m[j]))
-    field = (f"takeup.position: {part}" if part in ("head", "tail")
-             else f"takeup.position: return, at_m: {x:.0f}")
+    field = f"takeup.position: {part}" if part in ("head", "tail") else _takeup_at(
+        res.conveyor, x)
     gravity = res.conveyor.takeup.type == "gravity"
     size = (f"a counterweight of about {2.0 * t_low / G:.0f} kg (2 T / g there, now "
             f"{res.takeup_mass_kg:.0f} kg), and mass_kg: auto" if gravity else
@@ -920,6 +921,23 @@ def takeup_place_note(res: SteadyResult) -> str:
             f"{place_words(loop, float(loop.s_end_m[j]))}): a take-up there ({field}) holds "
             f"about the same running tensions with {size} there sizes it with its own pulleys "
             "and every check")
+
+
+def _takeup_at(conv: Conveyor, x_m: float) -> str:
+    """The take-up fields that place it on the return near ``x_m`` from the tail [m], as the
+    conveyor file takes them: an end of the route is ``position: tail`` or ``head`` (the
+    slackest return tension at the tail end of the return read 'position: return, at_m: 0',
+    which the file refuses), a point on a vertical curve's arc the nearer whole metre off it
+    (a take-up on an arc is refused)."""
+    for a, b in curve_arcs(conv.judged_profile()):
+        if a < x_m < b:
+            x_m = math.floor(a) if x_m - a <= b - x_m else math.ceil(b)
+    at = round(x_m)
+    if at <= 0:
+        return "takeup.position: tail"
+    if at >= conv.length_m:
+        return "takeup.position: head"
+    return f"takeup.position: return, at_m: {at:.0f}"
 
 
 def place_words(loop: Loop, s_m: float) -> str:

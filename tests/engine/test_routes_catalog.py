@@ -222,7 +222,7 @@ def test_the_run_reports_the_curve_limits_of_its_own_load():
     assert s["hcurve1_ok"] is (not inside and not outside)
     assert inside or outside  # the hand conveyor's tensions (tens of kN) straddle the band
     curve_warnings = [w for w in res.warnings if w.startswith("horizontal curve 1")]
-    assert curve_warnings and all("profile section 1, 0 to 1000 m from the tail" in w
+    assert curve_warnings and all("profile.0, 0 to 1000 m from the tail" in w
                                   for w in curve_warnings)
     if inside:
         assert any("runs to the inside" in w and "larger radius" in w for w in curve_warnings)

@@ -62,3 +62,34 @@ def test_a_take_up_near_the_slackest_return_gets_no_note(name):
     conv = load_conveyor(ROOT / "studies" / "conveyors" / f"{name}.yaml")
     res = solve_steady(conv, model="din", n_elements=100)
     assert "note: the take-up holds" not in res.message
+
+
+def test_a_take_up_named_at_the_tail_end_of_the_return_is_placed_at_the_tail():
+    """A 1 km incline with a return booster at 300 m and its take-up on the return at 800 m:
+    the slackest return tension is where the return reaches the tail. The note read
+    'takeup.position: return, at_m: 0', which the file refuses (a take-up at an end is
+    position: head or tail); it names the tail, and the named place parses."""
+    d = {
+        "name": "boost1", "speed_m_s": 4.0,
+        "belt": {"width_m": 1.0, "rating_kn_m": 1000, "modulus_kn_m": 60000,
+                 "carcass_mass_kg_m2": 20.0, "top_cover_mm": 0, "bottom_cover_mm": 0},
+        "material": {"capacity_t_h": 720, "density_t_m3": 1.0},
+        "profile": [{"length_m": 1000, "lift_m": 50}],
+        "idlers": {"carry": {"spacing_m": 1.25, "roll_diameter_m": 0.133, "rolls": 3,
+                             "trough_deg": 35, "rotating_mass_kg": 12.5, "seal_drag_n": 5.0},
+                   "return": {"spacing_m": 2.5, "roll_diameter_m": 0.133, "rolls": 1,
+                              "rotating_mass_kg": 7.5, "seal_drag_n": 3.0}},
+        "drives": [{"position": "head", "wrap_deg": 200, "friction": 0.35, "share": 0.7,
+                    "pulley_diameter_m": 1.0},
+                   {"position": "return", "at_m": 300, "wrap_deg": 200, "friction": 0.35,
+                    "share": 0.3, "pulley_diameter_m": 1.0}],
+        "takeup": {"type": "gravity", "position": "return", "at_m": 800, "mass_kg": 6000},
+        "accessories": {"head_kn": 1.0, "tail_kn": 0.5},
+    }
+    res = solve_steady(parse_conveyor(d), model="din", n_elements=100)
+    m = re.search(r"a take-up there \((takeup\.position: [^)]*)\) holds", res.message)
+    assert m and m.group(1) == "takeup.position: tail", res.message
+    moved = copy.deepcopy(d)
+    moved["takeup"] = {"type": "gravity", "position": "tail", "mass_kg": "auto"}
+    there = solve_steady(parse_conveyor(moved), model="din", n_elements=100)
+    assert "note: the take-up holds" not in there.message
