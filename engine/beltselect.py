@@ -6,7 +6,8 @@ file's width, covers (each belt's default covers where the file gives none) and 
 tried from the lightest belt mass per metre ``m'_G = (carcass + covers x 1.15 kg/m2/mm) B``
 upward. A belt changes the masses, the tensions and an auto take-up, so each candidate gets
 its own steady solve (:func:`beltstudy.engine.statics.solve_steady`) at every case asked
-(friction model, parameters, temperature, load, mesh), and passes when at every case
+(friction model, parameters, temperature, load, mesh; an auto take-up installed once, the
+largest over the cases, :func:`_solve_cases`), and passes when at every case
 
 1. the running safety factor ``S = k_N B / T_max`` (rating x width over the largest steady
    tension) is at least the running minimum ``safety_factor_min`` (the conveyor's, else
@@ -33,6 +34,7 @@ run's message (a note). When no candidate passes the heaviest is used, with a wa
 
 from __future__ import annotations
 
+import math
 from collections.abc import Sequence
 from dataclasses import dataclass
 from typing import Any
@@ -40,6 +42,7 @@ from typing import Any
 from beltstudy.engine import catalog
 from beltstudy.engine.conveyor import Conveyor, section_loads
 from beltstudy.engine.drives import apart
+from beltstudy.engine.errors import InputError
 from beltstudy.engine.statics import (
     SAFETY_FACTOR_MIN,
     TRANSIENT_SAFETY_RATIO,
@@ -119,6 +122,9 @@ class BeltChoice:
     lighter: Candidate | None
     passed: bool
     width_m: float = 0.0
+    #: the width [m] at which the heaviest candidate passes every case, solved with the
+    #: belt's own weight at that width (:func:`_width_needed`); None: not found
+    width_needed_m: float | None = None
 
     @property
     def belt_id(self) -> str:
@@ -156,11 +162,18 @@ class BeltChoice:
         c = self.chosen
         if c.failed or not self.width_m:
             return "; lower tensions or a stronger belt would avoid it"
-        need = self.width_m * max(self.safety_factor_min / c.safety_factor,
-                                  self.safety_factor_start_min / c.safety_factor_start)
-        return (f"; at these tensions {c.id} would need a width of about {need:.2f} m "
-                f"(not {self.width_m:g} m); lower tensions (drive force shared nearer the load, "
-                "a tail or booster drive) would avoid it too")
+        if self.width_needed_m is not None:
+            width = (f"{c.id} passes at a width of {self.width_needed_m:.2f} m (belt.width_m, "
+                     f"now {self.width_m:g} m; solved again at that width, the belt's own "
+                     "weight with it)")
+        else:
+            need = self.width_m * max(self.safety_factor_min / c.safety_factor,
+                                      self.safety_factor_start_min / c.safety_factor_start)
+            width = (f"at these tensions {c.id} would need a width of at least "
+                     f"{math.ceil(need * 100.0) / 100.0:.2f} m (not {self.width_m:g} m; more "
+                     "with its own weight)")
+        return (f"; {width}; lower tensions (drive force shared nearer the load, a tail or "
+                "booster drive) would avoid it too")
 
     def table(self) -> list[dict]:
         """One row per candidate tried: id, mass [kg/m], rating [kN], tensions [kN],
@@ -215,18 +228,42 @@ def candidates(conv: Conveyor) -> list[tuple[str, float, float]]:
     return sorted(out, key=lambda r: (r[1], r[2]))
 
 
+def _solve_cases(trial: Conveyor, cases: Sequence[SteadyCase]) -> list:
+    """Steady solutions of ``trial`` at every case, the take-up installed once: an auto take-up
+    is sized at each case, then held at the largest of them (as a study's design basis and a
+    single run below full load install it, :func:`beltstudy.engine.sizing.size_over_cases`)
+    and the cases it was lighter at are solved again with it. Judged with each case's own
+    take-up, a pick could fail its study's runs: a fabric belt chosen at safety factor 10.51
+    >= 10.5 (CEMA, -20 C) ran at 10.49 on the 6 582 kg take-up the DIN case installed."""
+    def solve(conv, case):
+        return solve_steady(conv, model=case.model, params=case.params,
+                            temperature_c=case.temperature_c, load=case.load,
+                            n_elements=case.n_elements)
+
+    results = [solve(trial, case) for case in cases]
+    tu = trial.takeup
+    auto = tu.mass_kg == "auto" if tu.type == "gravity" else tu.pretension_kn == "auto"
+    if not auto or len(cases) < 2 or any(r.status == "failed" for r in results):
+        return results
+    gravity = tu.type == "gravity"
+    sizes = [r.takeup_mass_kg if gravity else r.takeup_tension_n / 1e3 for r in results]
+    installed = max(sizes)
+    held = trial.model_copy(update={"takeup": tu.model_copy(
+        update={"mass_kg" if gravity else "pretension_kn": installed})})
+    return [r if size >= installed else solve(held, case)
+            for r, size, case in zip(results, sizes, cases, strict=True)]
+
+
 def _evaluate(conv: Conveyor, belt_id: str, cases: Sequence[SteadyCase],
               minima: tuple[float, float]) -> Candidate:
-    """Steady-solve one candidate at every case; its least safety factors."""
+    """Steady-solve one candidate at every case (its take-up installed once,
+    :func:`_solve_cases`); its least safety factors."""
     trial = with_belt(conv, belt_id)
     b = catalog.resolve_belt(trial.belt)
     rating_n = b.rating_n
     worst = (float("inf"), 0.0, "")  # (factor, tension [N], case)
     worst_start = (float("inf"), 0.0, "")
-    for case in cases:
-        res = solve_steady(trial, model=case.model, params=case.params,
-                           temperature_c=case.temperature_c, load=case.load,
-                           n_elements=case.n_elements)
+    for case, res in zip(cases, _solve_cases(trial, cases), strict=True):
         if res.status == "failed":
             return Candidate(belt_id, b.mass_kg_m, rating_n / 1e3, float("nan"), float("nan"),
                              float("nan"), float("nan"), case.label(), case.label(), False,
@@ -275,11 +312,44 @@ def select_belt(conv: Conveyor, cases: Sequence[SteadyCase], *, every: bool = Fa
             if not every:
                 break
     passed = chosen is not None
+    width_needed = None
     if chosen is None:
         chosen = len(tried) - 1
+        width_needed = _width_needed(conv, tried[chosen], cases, minima)
     return BeltChoice(catalog.FILE_KIND[kind], minima[0], minima[1], tuple(tried),
                       tried[chosen], tried[chosen - 1] if chosen > 0 else None, passed,
-                      float(conv.belt.width_m))
+                      float(conv.belt.width_m), width_needed)
+
+
+#: Most steady re-solves :func:`_width_needed` spends on the width [-].
+WIDTH_TRIES = 6
+
+
+def _width_needed(conv: Conveyor, heaviest: Candidate, cases: Sequence[SteadyCase],
+                  minima: tuple[float, float]) -> float | None:
+    """The width [m] (up to the centimetre) at which the heaviest candidate passes every case,
+    or None. The safety factor is proportional to the width at fixed tensions, but a wider
+    belt is heavier and its tensions grow with it: a 6 km, 430 m-lift belt's ST5400 at 1 m
+    (factor 4.007 against 6.7) was told 'about 1.67 m' and at 1.67 m reached 6.21. So the
+    width is scaled by the shortfall and the cases solved again at it, until it passes."""
+    if heaviest.failed or not math.isfinite(heaviest.safety_factor):
+        return None
+    width, cand = float(conv.belt.width_m), heaviest
+    for _ in range(WIDTH_TRIES):
+        short = max(minima[0] / cand.safety_factor, minima[1] / cand.safety_factor_start)
+        width = math.ceil(width * short * 100.0 - 1e-6) / 100.0
+        try:
+            wider = conv.model_copy(update={"belt": conv.belt.model_copy(
+                update={"width_m": width})})
+            cand = _evaluate(wider, heaviest.id, cases, minima)
+        except (ValueError, InputError):
+            return None
+        if cand.failed or not math.isfinite(cand.safety_factor):
+            return None
+        if cand.passes:
+            return width
+        width += 0.01 if short <= 1.0 else 0.0
+    return None
 
 
 def run_cases(conv: Conveyor, model: str, params: Any, temperature_c: float, load: Any,
