@@ -411,8 +411,10 @@ class IdlerSet(_Model):
     seal_drag_n: NonNegFloat | None = Field(
         None, le=500.0, description="seal drag per set [N] (at most 500)")
     roll_length_m: PositiveFloat | None = Field(
-        None, le=5.0, description="length of the middle (horizontal) roll [m], capacity check; "
-        "default by belt width (DIN 22107, engine/data/trough.csv)"
+        None, le=5.0, description="length of the middle (horizontal) roll of a three-roll set, "
+        "of each roll of a two-, four- or five-roll set [m], capacity and horizontal-curve "
+        "checks; default by belt width (DIN 22107, engine/data/trough.csv; B / rolls for four "
+        "or five, B / 2 for two)"
     )
 
     @field_validator("trough_deg")

@@ -31,11 +31,12 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from beltstudy.engine.capacity import middle_roll_length_m
+from beltstudy.engine.capacity import middle_roll_length_m, trough_segments
 from beltstudy.engine.conveyor import HCURVE_TURN_MAX_DEG
 from beltstudy.engine.loop import CARRY, G
 
-__all__ = ["restoring_force_n_m", "drift_limit_m", "tension_limits_n", "HCurve",
+__all__ = ["restoring_force_n_m", "drift_limit_m", "tension_limits_n", "garland_limits_n",
+           "HCurve",
            "hcurves", "hcurve_checks"]
 
 
@@ -114,6 +115,59 @@ def tension_limits_n(mass_kg_m: float, radius_m: float, width_m: float, middle_m
     return max(t_min, 0.0), max(t_max, 0.0)
 
 
+def garland_limits_n(mass_kg_m: float, radius_m: float, width_m: float,
+                     segments: list[tuple[float, float]], drift_m: float,
+                     superelevation_deg: float, cos_incline: float = 1.0
+                     ) -> tuple[float, float]:
+    """Lowest and highest tension that keep the belt in a horizontal curve on a set of two,
+    four or five rolls [N], :func:`tension_limits_n` with the belt's half width on each roll.
+
+    ``segments`` is half the belt from its centre as ``(width on the roll [m], roll angle
+    [rad])`` (:func:`beltstudy.engine.capacity.trough_segments` at the full belt width B),
+    ``drift_m`` the room d the outer roll leaves beyond the belt's edge. Each roll takes the
+    weight of the belt's width on it, as in :func:`restoring_force_n_m`: on the inside of the
+    curve ``b sin(theta + beta) cos(theta)``, on the outside ``- b sin(theta - beta)
+    cos(theta)`` (a flat roll, theta 0, gives ``b sin(beta)`` on each side, the middle roll's
+    term); drifted by d to the inside, the inside outer roll carries ``b + d`` and the outside
+    one ``b - d``. Three rolls is :func:`tension_limits_n` exactly."""
+    beta = math.radians(superelevation_deg)
+
+    def q(d: float) -> float:
+        k = 0.0
+        for j, (b, th) in enumerate(segments):
+            extra = d if j == len(segments) - 1 else 0.0
+            k += ((b + extra) * math.sin(th + beta) - (b - extra) * math.sin(th - beta)
+                  ) * math.cos(th)
+        return mass_kg_m * G * cos_incline * k / width_m
+
+    return max(radius_m * q(-drift_m), 0.0), max(radius_m * q(drift_m), 0.0)
+
+
+def _garland(ic, width: float) -> tuple[list[tuple[float, float]], float, bool]:
+    """Half a two-, four- or five-roll set's belt as roll segments, the drift room [m] and
+    whether the roll length is the default (the rolls spanning the belt exactly: B / rolls for
+    four or five, B / 2 for two)."""
+    given = ic.roll_length_m is not None
+    roll = float(ic.roll_length_m) if given else (
+        0.5 * width if ic.rolls == 2 else middle_roll_length_m(width, ic.rolls))
+    segs = trough_segments(width, ic.rolls, ic.trough_deg, roll)
+    # the rolls of one side reach out (rolls - 1) / 2 roll lengths past the middle roll's half
+    # (odd), rolls / 2 from the centre (even); the outer segment is the belt's width there
+    reach = roll * (0.5 + (ic.rolls - 1) // 2) if ic.rolls % 2 else roll * (ic.rolls // 2)
+    return segs, max(reach - 0.5 * width, 0.0), not given
+
+
+def _no_room(ic, garland) -> str:
+    """Words for a set whose rolls are taken to span the belt exactly (no roll length given),
+    leaving no room to drift (d = 0): the band is then a single tension. "" otherwise."""
+    if garland is None or not garland[2] or garland[1] > 0.0:
+        return ""
+    default = "B / 2" if ic.rolls == 2 else f"B / {ic.rolls}"
+    return (f"; idlers.carry.roll_length_m is not given, so the {ic.rolls} rolls are taken to "
+            f"span the belt exactly ({default} each), leaving it no room to drift: the "
+            "rolls' own length (idlers.carry.roll_length_m) gives the band its width")
+
+
 @dataclass(frozen=True)
 class HCurve:
     """One horizontal curve: ``number`` (1-based, profile order), ``section`` (0-based
@@ -169,6 +223,9 @@ def hcurve_checks(conv, loop, T: np.ndarray) -> tuple[dict, list[str]]:
         roll = ic.roll_length_m or middle_roll_length_m(width, ic.rolls)
         middle = min(roll, width)
     wing = middle if ic.rolls >= 3 else 0.5 * width
+    # two, four and five rolls: the belt's width on each roll (a V set has no middle roll, a
+    # garland two rolls a side); three rolls and flat sets as before
+    garland = _garland(ic, width) if ic.rolls in (2, 4, 5) else None
     carry = np.flatnonzero(loop.strand == CARRY)
     s_mid = loop.x_m[carry] + 0.5 * loop.dx_m[carry]
     out, warnings = {}, []
@@ -184,9 +241,13 @@ def hcurve_checks(conv, loop, T: np.ndarray) -> tuple[dict, list[str]]:
         m_full = float(loop.mL_kg_m[carry].max())  # the run's load where it is all on
         cache: dict[float, tuple[float, float]] = {}
         for m in np.unique(m_el):
-            cache[float(m)] = tension_limits_n(belt.mass_kg_m + float(m), c.radius_m, width,
-                                               middle, wing, ic.trough_deg,
-                                               c.superelevation_deg, cos_a)
+            cache[float(m)] = (tension_limits_n(belt.mass_kg_m + float(m), c.radius_m, width,
+                                                middle, wing, ic.trough_deg,
+                                                c.superelevation_deg, cos_a)
+                               if garland is None else
+                               garland_limits_n(belt.mass_kg_m + float(m), c.radius_m, width,
+                                                garland[0], garland[1],
+                                                c.superelevation_deg, cos_a))
         lo = np.array([cache[float(m)][0] for m in m_el])
         hi = np.array([cache[float(m)][1] for m in m_el])
         # where each tension acts: an element's end, or the curve's start for the entry
@@ -222,7 +283,7 @@ def hcurve_checks(conv, loop, T: np.ndarray) -> tuple[dict, list[str]]:
             f"no radius holds it at this superelevation and these tensions (at least "
             f"{math.ceil(r_in):.0f} m against running in, at most {r_hi:.0f} m against "
             "running out: the tension changes along the curve by more than the band R q(-d) "
-            "to R q(+d) allows)")
+            "to R q(+d) allows)") + _no_room(ic, garland)
         holds = math.isfinite(r_lo) and r_lo <= r_hi
         if inside:
             radius = (f"a radius of at least {r_lo:.0f} m (at this superelevation and these "

@@ -375,14 +375,16 @@ def test_a_v_set_has_no_middle_roll_whatever_roll_length_m_says():
     and the belt cannot drift (d = 0), so T_min = T_max = R q(0):
       k = 0.5 sin 25 cos 20 - 0.5 sin 15 cos 20 = 0.07696
       T = 1500 x 70 x 9.81 x 0.99875 x 0.07696 = 79.17 kN.
-    ``roll_length_m`` (the middle roll's length) does not change it: with 0.6 m it was read as
-    a 0.6 m middle roll, leaving -0.1 m of belt on the outer wing and a band of 0 to 283 kN."""
+    (``roll_length_m`` not given: the rolls are taken to span the belt. It is each V roll's
+    length, not a middle roll's: with 0.6 m it was read as a 0.6 m middle roll, leaving
+    -0.1 m of belt on the outer wing and a band of 0 to 283 kN; with 0.6 m V rolls the band
+    is tests/engine/test_hcurve_garland.py's.)"""
     cos_a = math.sqrt(1 - 0.05 ** 2)
     k = _hand_k(0.5, 0.0, 0.5, 20, 5, 1.0)
     assert k == pytest.approx(0.07696, abs=1e-5)
     hand = 1500 * 70 * G * cos_a * k / 1e3
     assert hand == pytest.approx(79.17, abs=0.01)
-    for roll in (None, 0.6):
+    for roll in (None,):
         d = hand_conveyor_dict(
             profile=[{"length_m": 1000, "lift_m": 50, "horizontal_radius_m": 1500,
                       "superelevation_deg": 5}],
