@@ -213,7 +213,18 @@ def _phase(model, rs):
     if not rs.stopping:
         rs.v_ref, rs.a_ref = start_reference(cyc.start_ctrl, t - cyc.t_pre, cyc.t_start, cyc.v_d)
     elif cyc.stop_mode == C.CONTROLLED:
-        rs.v_ref, rs.a_ref = stop_reference(t - rs.t_stopcmd, cyc.t_stop, cyc.v_d)
+        if rs.v_stop0 < 0.0:
+            # the ramp starts from design speed, the reference the loop followed; a master held
+            # at its limit short of it (a torque start, a drive at its torque limit) has the
+            # ramp start from its own speed, the integrator taking the force it gave
+            # (ramp-function generator tracking, bumpless): ramped from design speed, its stop
+            # drove a belt at 1.7 m/s up to 3.5 m/s at the limit
+            rs.v_stop0 = cyc.v_d
+            vm = model.shafts.vs[drives.shaft[ctl.master]]
+            if rs.pi_started and drives.sat[ctl.master] != 0 and vm < cyc.v_d:
+                rs.v_stop0 = max(vm, 0.0)
+                rs.integ = rs.U - ctl.kp * (rs.v_stop0 - vm)
+        rs.v_ref, rs.a_ref = stop_reference(t - rs.t_stopcmd, cyc.t_stop, rs.v_stop0)
     else:
         rs.v_ref = 0.0
     if rs.stopping and rs.t_trip < 0.0:
@@ -727,6 +738,7 @@ def _start(model, st, out, wk, rs):
     rs.verr_t = -1.0
     rs.vmean_hi_t = -1.0
     rs.t_stopcmd = cyc.t_pre + cyc.t_start + cyc.t_run
+    rs.v_stop0 = -1.0
     rs.t_end_limit = rs.t_stopcmd + cyc.stop_max  # the stop window: not at rest, ends there
     if cyc.t_end > 0.0:
         rs.t_end_limit = min(rs.t_end_limit, cyc.t_end)

@@ -346,6 +346,8 @@ class State(NamedTuple):
 RUN = np.dtype([
     ("status", np.int64), ("div_where", np.int64), ("steps", np.int64), ("t", np.float64),
     ("t_end_limit", np.float64), ("t_stopcmd", np.float64), ("inv_w_sum", np.float64),
+    # the speed a controlled stop's ramp starts from (-1 until the stop command)
+    ("v_stop0", np.float64),
     # phases of this step
     ("phase", np.int64), ("started", np.bool_), ("stopping", np.bool_), ("was_off", np.bool_),
     ("pi", np.bool_), ("pi_started", np.bool_), ("hold", np.int64),

@@ -417,7 +417,13 @@ def _phase(model: Model, rs, sh, dr, brk):
     if not rs.stopping:
         rs.v_ref, rs.a_ref = start_reference(cyc.start_ctrl, t - cyc.t_pre, cyc.t_start, cyc.v_d)
     elif cyc.stop_mode == C.CONTROLLED:
-        rs.v_ref, rs.a_ref = stop_reference(t - rs.t_stopcmd, cyc.t_stop, cyc.v_d)
+        if rs.v_stop0 < 0.0:  # from v_d; a master held at its limit below it: its speed
+            rs.v_stop0 = cyc.v_d
+            vm = sh.vs[drives.shaft[ctl.master]]
+            if rs.pi_started and dr.sat[ctl.master] != 0 and vm < cyc.v_d:
+                rs.v_stop0 = max(vm, 0.0)
+                rs.integ = rs.U - ctl.kp * (rs.v_stop0 - vm)
+        rs.v_ref, rs.a_ref = stop_reference(t - rs.t_stopcmd, cyc.t_stop, rs.v_stop0)
     else:
         rs.v_ref = 0.0
     if rs.stopping and rs.t_trip < 0.0:
@@ -1126,7 +1132,8 @@ def _start(sys: System, t_end_s: float | None):
     t_end = float(t_end_s) if t_end_s else math.inf
     t_limit = min(t_limit, t_end)
     rs = SimpleNamespace(
-        step=0, t=0.0, t_stopcmd=t_stopcmd, t_limit=t_limit, t_end=t_end, status=C.OK,
+        step=0, t=0.0, t_stopcmd=t_stopcmd, v_stop0=-1.0, t_limit=t_limit, t_end=t_end,
+        status=C.OK,
         div_where=0,
         phase=C.HOLD, started=False, stopping=False, was_off=False, pi=False, pi_started=False,
         hold=-1, v_ref=0.0, a_ref=0.0, f0u=0.0, f1u=0.0, U=0.0, u_known=False,

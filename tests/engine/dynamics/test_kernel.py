@@ -52,6 +52,11 @@ HEADS_AND_TAIL = [dict(position="head", wrap_deg=200, friction=0.35, share=0.5,
                        pulley_diameter_m=1.25, inertia_kg_m2=100, rated_power_kw=160,
                        torque_limit=1.5)]
 LIGHT_TAIL = dict(type="gravity", position="tail", mass_kg=300, travel_m=10)
+#: a head drive whose torque limit is a little above Te: a torque start is still at its limit,
+#: short of design speed, when a controlled stop is commanded (the ramp starts from its speed)
+WEAK_HEAD = [dict(position="head", wrap_deg=210, friction=0.35, share=1.0,
+                  pulley_diameter_m=1.25, inertia_kg_m2=1500, rated_power_kw=1250,
+                  torque_limit=0.8)]
 
 
 def _slipped_in_start(kr):
@@ -117,6 +122,11 @@ CASES = [
                  lambda kr: kr.out.drv["slip_s"][2] > 0.0
                  and kr.out.drv["fmax"][2] == pytest.approx(kr.model.drives.lim0[2], rel=1e-12),
                  id="slipping-follower-window-at-its-torque-limit"),
+    pytest.param("slope-5pct", dict(drives=WEAK_HEAD), "din",
+                 dict(start={"control": "torque", "time_s": 8}, run_s=3,
+                      stop={"mode": "controlled", "time_s": 10}),
+                 lambda kr: 0.0 < kr.run["v_stop0"] < kr.model.cycle.v_d,
+                 id="controlled-stop-from-a-master-short-of-speed"),
 ]
 
 
