@@ -22,6 +22,16 @@ It is the interval of the probability over the sampled distributions, given that
 an independent random sample of them; a Sobol' or Latin hypercube sample is more even than
 that, so the interval is conservative.
 
+*Runs without a value.* A figure's mean, sd and quantiles are those of the sample points
+whose run has it; the points whose run has none are counted beside them (``points``,
+``without_value``) with the reason (``why``). Where a missing value is beyond every bound --
+the sag of a strand that went slack (unbounded sag; the design report's rule,
+:func:`beltstudy.service.web.verdicts._slack_no_sag`), the stop time of a transient that did
+not stop (the report's ``null_worst``) -- it is counted in ``unbounded``, and
+``unbounded_quantiles`` names the quantiles that, with those points counted past every value,
+are unbounded (2 slack of 32: p95, whose position 0.95 x 31 = 29.45 lies past the 30
+values).
+
 *Sensitivity.* A ``method: sobol`` sample is Saltelli's design
 (:mod:`beltstudy.service.door.sample`): the first-order index S_i = V[E(Y | X_i)] / V(Y) and
 the total index S_Ti = E[V(Y | X_~i)] / V(Y) come from ``SALib.analyze.sobol`` (Saltelli et al.
@@ -52,10 +62,18 @@ import pandas as pd
 
 from beltstudy.engine import results as result_fields
 from beltstudy.service.door.sample import sobol_base
-from beltstudy.service.web.verdicts import CAUSES, expand
+from beltstudy.service.web.verdicts import (
+    CAUSES,
+    VERDICTS,
+    _slack_no_sag,  # the report's rule: a sag missing because the strand went slack
+    expand,
+    never_going,
+    transient_ran,
+)
 
 __all__ = ["FIGURES", "LIMITS", "QUANTILES", "summarise", "wilson", "distribution",
-           "sensitivity", "small_sample_note", "index_text", "CONFIDENCE", "SOBOL_N_MIN"]
+           "sensitivity", "small_sample_note", "index_text", "sd_text", "no_value",
+           "without_text", "CONFIDENCE", "SOBOL_N_MIN"]
 
 #: The deciding figures (SPEC issue 30: peak tension per phase, power, stop time, lowest
 #: tension, slip margin, safety factor; with sag and slack, the limits' own figures). A figure
@@ -112,6 +130,61 @@ def distribution(values: pd.Series) -> dict[str, Any] | None:
                 QUANTILES, q, strict=True)}}
 
 
+#: The design report's verdict row of each figure (its limit, what a missing value means).
+_VERDICT_OF = {v.column: v for v in VERDICTS}
+
+
+def no_value(column: str, rows: pd.DataFrame) -> tuple[np.ndarray, np.ndarray]:
+    """Why each run of ``rows`` has no finite ``column`` ("" where it has one) and whether the
+    missing value lies beyond every bound, as the design report judges the run: a sag row's
+    run that went slack (the report's
+    :func:`~beltstudy.service.web.verdicts._slack_no_sag`: a slack span's sag has no bound),
+    a ``null_worst`` row's transient that did not stop (its stop time has none); a transient
+    whose belt never got going made no stop (no value, not beyond a bound); a failed run has
+    no value at all."""
+    values = pd.to_numeric(rows[column], errors="coerce").astype(float)
+    missing = ~np.isfinite(values)
+    why = pd.Series(np.where(missing, "no value", ""), index=rows.index, dtype=object)
+    beyond = pd.Series(False, index=rows.index)
+    v = _VERDICT_OF.get(column)
+    if v is not None and v.limit == "sag":
+        beyond = _slack_no_sag(v, rows, values.where(~missing)) & missing
+        why[beyond] = "slack, sag unbounded"
+    elif v is not None and v.null_worst:
+        going = never_going(rows) & missing
+        beyond = transient_ran(rows) & missing & ~going
+        why[beyond] = f"{v.null_worst}, {column} unbounded"
+        why[going] = "never got going, no stop"
+    if "status" in rows:
+        failed = (rows["status"].astype(str) == "failed") & missing
+        why[failed] = "the run failed"
+        beyond = beyond & ~failed
+    return why.to_numpy(dtype=object), beyond.to_numpy(dtype=bool)
+
+
+def _without(at: list[int | None], why: np.ndarray, beyond: np.ndarray, n: int
+             ) -> dict[str, Any]:
+    """The sample points with a run (``points``), of them those whose run has no value of the
+    figure (``without_value``, ``why``: the reasons, counted where they differ) and those
+    beyond every bound (``unbounded``); ``unbounded_quantiles``: the :data:`QUANTILES` that
+    are unbounded over the ``n`` values and the unbounded points counted past them (linear
+    quantile at position q (m - 1) of m sorted values: unbounded where it reaches past the
+    n-th)."""
+    ran = [i for i in at if i is not None]
+    reasons = [str(why[i]) for i in ran if why[i]]
+    unbounded = int(sum(bool(beyond[i]) for i in ran))
+    counts: dict[str, int] = {}
+    for r in reasons:
+        counts[r] = counts.get(r, 0) + 1
+    text = (next(iter(counts)) if len(counts) == 1
+            else "; ".join(f"{k} {r}" for r, k in counts.items()))
+    m = n + unbounded
+    past = [f"p{round(100 * q):02d}" for q in QUANTILES
+            if unbounded and math.ceil(round(q * (m - 1), 9)) > n - 1]
+    return {"points": len(ran), "without_value": len(reasons), "why": text,
+            "unbounded": unbounded, "unbounded_quantiles": past}
+
+
 def _spearman(x: np.ndarray, y: np.ndarray) -> dict[str, float | None]:
     from scipy.stats import spearmanr
 
@@ -159,10 +232,14 @@ def sensitivity(sample: dict, points: np.ndarray, y: np.ndarray) -> dict[str, An
         return {"method": "sobol (SALib: Saltelli 2010 first-order, Jansen total, "
                           f"{round(100 * CONFIDENCE)} % bootstrap confidence)",
                 "axes": axes, "ranking": ranked, "note": note}
-    if sample["method"] == "sobol":
+    if sample["method"] == "sobol" and not finite.all():
         note = (f"{int((~finite).sum())} of {len(y)} design points have no value: Sobol' "
-                "indices need every point; ranked by rank correlation instead"
-                if not finite.all() else "the figure does not vary")
+                "indices need every point; ranked by rank correlation instead")
+    elif finite.sum() < 3:  # a rank correlation of fewer points says nothing
+        k = int(finite.sum())
+        note = f"{k} point{'s' if k != 1 else ''} with a value: a rank correlation needs 3"
+    elif np.ptp(y[finite]) == 0:
+        note = "the figure does not vary"
     axes = {n: _spearman(points[:, k], y) for k, n in enumerate(names)}
     ranked = sorted(names, key=lambda n: -(abs(axes[n]["rho"]) if axes[n]["rho"] is not None
                                            else -1.0))
@@ -204,19 +281,24 @@ def chance_rho(points: int) -> float:
     return Z95 / math.sqrt(points - 1) if points > 2 else math.inf
 
 
-def small_sample_note(sample: dict, points: int) -> str:
+def small_sample_note(sample: dict, points: int, with_run: int | None = None) -> str:
     """A note on a Sobol' design whose base sample N is below :data:`SOBOL_N_MIN` (its
     indices are rough); for a Latin hypercube, the |rho| reached by chance
-    (:func:`chance_rho`): at 24 points a figure that does not read the temperature ranked
-    it second with rho 0.31, within the 0.41 of chance; "" otherwise."""
+    (:func:`chance_rho`) over the ``with_run`` points whose run has finished (``points``, the
+    design's size, when not given): at 24 points a figure that does not read the temperature
+    ranked it second with rho 0.31, within the 0.41 of chance; while the study runs, 15 of
+    its 24 points give 1.96 / sqrt(14) = 0.52. "" otherwise."""
     if sample.get("method") == "lhs":
-        lim = chance_rho(points)
+        count = points if with_run is None else min(with_run, points)
+        of = f" with a run (of the {points} drawn)" if count < points else ""
+        lim = chance_rho(count)
         if not math.isfinite(lim):
-            return (f"{points} points give no rank correlation to read: give sample.n >= 3")
-        return (f"rank correlations from {points} points: an input a figure does not depend "
-                f"on shows |rho| up to about {lim:.2f} by chance (95 %: 1.96 / sqrt(n - 1), "
-                "the spread of Spearman's rho between independent samples), so read a "
-                "smaller |rho| as no dependence; a larger sample.n narrows it")
+            return (f"{count} points{of} give no rank correlation to read: "
+                    + ("give sample.n >= 3" if count >= points else "wait for more runs"))
+        return (f"rank correlations from {count} points{of}: an input a figure does not "
+                f"depend on shows |rho| up to about {lim:.2f} by chance (95 %: 1.96 / "
+                "sqrt(n - 1), the spread of Spearman's rho between independent samples), so "
+                "read a smaller |rho| as no dependence; a larger sample.n narrows it")
     if sample.get("method") != "sobol":
         return ""
     d = len(sample["axes"])
@@ -322,27 +404,40 @@ def summarise(study: dict, runs: pd.DataFrame, figures: Sequence[str] = FIGURES
         [((), runs)])
     for gkey, rows in groups:
         gkey = gkey if isinstance(gkey, tuple) else (gkey,)
-        at = _runs_at(rows, s_cols, points)
-        # the sample points each run stands for (1 for a run no point has, as before)
-        weights = np.bincount([i for i in at if i is not None], minlength=len(rows))
-        weights[weights == 0] = 1
-        cell = {"grid": dict(zip(g_cols, gkey, strict=False)), "runs": int(len(rows)),
-                "points_missing": int(sum(i is None for i in at)),
-                "figures": {}, "exceedance": _exceedance(rows, weights), "sensitivity": {}}
-        for col in cols:
-            vals = pd.to_numeric(rows[col], errors="coerce").to_numpy(dtype=float)
-            y = np.array([vals[i] if i is not None else np.nan for i in at])
-            dist = distribution(pd.Series(y))
-            if dist is None:
-                continue
-            cell["figures"][col] = {"unit": units[col], **dist}
-            cell["sensitivity"][col] = sensitivity(sample, points, y)
-        cells.append(cell)
+        cells.append(_cell(sample, dict(zip(g_cols, gkey, strict=False)), rows, s_cols,
+                           points, {c: units[c] for c in cols}))
+    # the points whose run finished (the exceedance's count), fewest over the cells
+    finished = [c["exceedance"][0]["runs"] for c in cells if c["exceedance"]]
     return {"sampled": True, "method": sample["method"], "n": sample["n"],
-            "points": len(points), "note": small_sample_note(sample, len(points)),
+            "points": len(points),
+            "note": small_sample_note(sample, len(points), min(finished, default=0)),
             "seed": sample.get("seed", 0), "axes": sample["axes"],
             "confidence": CONFIDENCE, "limits": [c.key for c in CAUSES if c.key in LIMITS],
             "cells": cells}
+
+
+def _cell(sample: dict, grid: dict, rows: pd.DataFrame, s_cols: list[str],
+          points: np.ndarray, units: dict[str, str]) -> dict[str, Any]:
+    """One grid cell's answer (:func:`summarise`): its runs ``rows`` matched to the sample
+    ``points``, each figure of ``units`` summarised."""
+    at = _runs_at(rows, s_cols, points)
+    # the sample points each run stands for (1 for a run no point has, as before)
+    weights = np.bincount([i for i in at if i is not None], minlength=len(rows))
+    weights[weights == 0] = 1
+    cell = {"grid": grid, "runs": int(len(rows)),
+            "points": int(sum(i is not None for i in at)),
+            "points_missing": int(sum(i is None for i in at)),
+            "figures": {}, "exceedance": _exceedance(rows, weights), "sensitivity": {}}
+    for col, unit in units.items():
+        vals = pd.to_numeric(rows[col], errors="coerce").to_numpy(dtype=float)
+        y = np.array([vals[i] if i is not None else np.nan for i in at])
+        dist = distribution(pd.Series(y))
+        if dist is None:
+            continue
+        cell["figures"][col] = {"unit": unit, **dist,
+                                **_without(at, *no_value(col, rows), dist["n"])}
+        cell["sensitivity"][col] = sensitivity(sample, points, y)
+    return cell
 
 
 def _g(value: Any) -> str:
@@ -363,6 +458,39 @@ def index_text(value: Any, digits: int = 4) -> str:
     return "0" if abs(value) < ROUND_OFF else f"{value:.{digits}g}"
 
 
+def sd_text(sd: float, mean: float) -> str:
+    """A standard deviation as text: 3 significant figures, ``0`` for the round-off of a
+    figure that does not vary (below :data:`ROUND_OFF` times |mean|: a lowest tension of
+    39.97 kN equal in every run gave sd 7.29e-15). The JSON keeps the float."""
+    return "0" if abs(sd) < ROUND_OFF * abs(mean) else f"{sd:.3g}"
+
+
+def _runs_text(cell: dict) -> str:
+    """``20 runs``; where runs stand for several sample points each (a run merged over
+    points that differ only in an axis it does not read), ``1 run standing for 20 sample
+    points``."""
+    runs = cell["runs"]
+    text = f"{runs} run{'s' if runs != 1 else ''}"
+    points = cell.get("points", runs)
+    return text if points == runs else f"{text} standing for {points} sample points"
+
+
+def without_text(d: dict) -> str:
+    """The points of a figure without a value, said beside its quantiles: ``n 30 of 32; 2
+    without a value: slack, sag unbounded (past every bound: p95 of all 32 is unbounded);
+    mean, sd and quantiles are of the 30 with a value`` ("" when every point has one)."""
+    if not d.get("without_value"):
+        return ""
+    text = f"n {d['n']} of {d['points']}; {d['without_value']} without a value: {d['why']}"
+    if d.get("unbounded"):
+        m = d["n"] + d["unbounded"]
+        qs = d["unbounded_quantiles"]
+        text += (f" (past every bound: {' and '.join(qs)} of all {m} "
+                 f"{'is' if len(qs) == 1 else 'are'} unbounded)" if qs else
+                 f" (past every bound: above every quantile shown of all {m})")
+    return f"{text}; mean, sd and quantiles are of the {d['n']} with a value"
+
+
 def format_text(result: dict) -> str:
     """The answer as text: per grid cell, each figure's distribution and top-ranked inputs,
     then the exceedance probabilities."""
@@ -377,7 +505,7 @@ def format_text(result: dict) -> str:
         lines.append(f"note: {result['note']}")
     for cell in result["cells"]:
         where = ", ".join(f"{k}={v}" for k, v in cell["grid"].items()) or "all runs"
-        lines += ["", f"{where}: {cell['runs']} runs"
+        lines += ["", f"{where}: {_runs_text(cell)}"
                   + (f" ({cell['points_missing']} sample points without a run yet)"
                      if cell["points_missing"] else "")]
         lines.append("  figure                         unit     mean       sd      p05      "
@@ -388,11 +516,15 @@ def format_text(result: dict) -> str:
             key = "ST" if sens["method"].startswith("sobol") else "rho"
             rank = ", ".join(f"{n} {index_text(sens['axes'][n][key])}"
                              for n in sens["ranking"][:3])
-            lines.append(f"  {col:<30} {d['unit']:<5} {d['mean']:>8.4g} {d['sd']:>8.3g} "
+            lines.append(f"  {col:<30} {d['unit']:<5} {d['mean']:>8.4g} "
+                         f"{sd_text(d['sd'], d['mean']):>8} "
                          f"{q['p05']:>8.4g} {q['p50']:>8.4g} {q['p95']:>8.4g}  {key}: {rank}")
+            if d.get("without_value"):
+                lines.append(f"    {without_text(d)}")
             if sens.get("note"):
                 lines.append(f"    note: {sens['note']}")
-        lines.append("  limit                                  past / runs        p   "
+        # the exceedance counts sample points (a run standing for several counts for each)
+        lines.append("  limit                                  past / points      p   "
                      f"{round(100 * result['confidence'])} % interval")
         for e in cell["exceedance"]:
             lines.append(f"  {e['title']:<38} {e['runs_past']:>5} / {e['runs']:<5} "

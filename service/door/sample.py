@@ -36,10 +36,10 @@ import typing
 from typing import Annotated, Any, Literal, Union
 
 import numpy as np
-from pydantic import BaseModel, ConfigDict, Field, model_validator
+from pydantic import BaseModel, ConfigDict, Field, field_validator, model_validator
 
-__all__ = ["SampleIn", "Distribution", "draw", "unit_points", "sobol_base", "DISTRIBUTIONS",
-           "MAX_SAMPLE", "value_bounds", "bounds_problem"]
+__all__ = ["SampleIn", "Distribution", "draw", "unit_points", "sobol_base", "sobol_n_within",
+           "DISTRIBUTIONS", "MAX_SAMPLE", "value_bounds", "bounds_problem"]
 
 #: Largest sample (runs before crossing with the grid; BELTSTUDY_MAX_RUNS bounds the study).
 MAX_SAMPLE = 1 << 16
@@ -137,8 +137,19 @@ class SampleIn(BaseModel):
         "(SALib; Sobol' indices) | lhs: Latin hypercube (rank correlations)")
     seed: int = Field(0, ge=0, description="seed: the same seed, the same points")
     axes: dict[str, Distribution] = Field(
-        ..., min_length=1, description="axis path (as in grid) -> {dist: uniform|normal|"
-        "lognormal|triangular, and its parameters}")
+        ..., description="axis path (as in grid) -> {dist: uniform|normal|"
+        "lognormal|triangular, and its parameters}; at least one",
+        json_schema_extra={"minProperties": 1})
+
+    @field_validator("axes")
+    @classmethod
+    def _some_axis(cls, axes: dict) -> dict:
+        # said here, not as pydantic's "Dictionary should have at least 1 item after
+        # validation, not 0", which names neither what to give nor how
+        if not axes:
+            raise ValueError("give at least one axis with a dist (e.g. temperature_c: "
+                             "{dist: uniform, low: -25, high: 35})")
+        return axes
 
     @model_validator(mode="after")
     def _sobol_size(self):
@@ -159,6 +170,24 @@ def sobol_base(n: int, d: int) -> int:
     lo = 1 << ((n // per).bit_length() - 1)  # the largest N with N (d + 2) <= n
     hi = lo * 2
     return lo if n - lo * per <= hi * per - n else hi
+
+
+def sobol_n_within(d: int, most: int) -> tuple[int, int] | None:
+    """The largest ``n`` whose Saltelli design over ``d`` inputs (:func:`sobol_base`) has at
+    most ``most`` points, and that design's size N (d + 2); None when even the smallest
+    (N = 2) has more.
+
+    With S = N (d + 2) the largest design within ``most``, every n up to 1.5 S draws S or
+    less: the sizes around it are S and 2 S, and :func:`sobol_base` takes the nearer, the
+    smaller on a tie (1.5 S itself); 1.5 S + 1 draws 2 S. Over one axis (d + 2 = 3) within
+    5000 points: S = 3072 (N = 1024), n <= 4608; 4609 and the 5000 that the limit alone
+    would suggest draw 6144. Capped at :data:`MAX_SAMPLE`, the largest ``n`` taken."""
+    per = d + 2
+    if most < 2 * per:
+        return None
+    size = (1 << ((most // per).bit_length() - 1)) * per
+    n = min(size * 3 // 2, MAX_SAMPLE)
+    return n, sobol_base(n, d) * per
 
 
 def unit_points(sample: SampleIn) -> np.ndarray:

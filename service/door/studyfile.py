@@ -31,7 +31,13 @@ from beltstudy.engine.conveyor import json_numbers
 from beltstudy.engine.reads import STEADY_FIELDS
 from beltstudy.service.door.messages import describe
 from beltstudy.service.door.parse import check_tree, expect_kind, load_mapping
-from beltstudy.service.door.sample import bounds_problem, draw, value_bounds
+from beltstudy.service.door.sample import (
+    SampleIn,
+    bounds_problem,
+    draw,
+    sobol_n_within,
+    value_bounds,
+)
 from beltstudy.service.door.study import (
     NAME_RE,
     RangeSpec,
@@ -446,23 +452,60 @@ def _axis_bounds(folded: str) -> dict[str, float]:
     return value_bounds(found[1], found[3]) if found else {}
 
 
-def _too_many_runs(axes: list[Axis], total: int, max_runs: int) -> str:
+def _too_many_runs(axes: list[Axis], total: int, max_runs: int,
+                   sample: SampleIn | None = None) -> str:
     """The refusal of a study over ``max_runs``: the count, the factors it is the product of
     (each grid axis, zip group and the sample), and what brings it under the limit. Named
-    ``sample.n`` when the grid alone fits and the sample takes it over, else ``grid``."""
+    ``sample.n`` when the grid alone fits and the sample takes it over (``sample.method``
+    when only a Latin hypercube fits), else ``grid``. A Sobol' design's factor is the size it
+    draws for the ``sample.n`` written (6144 points for ``n: 6000`` over one axis), and the
+    fix is the largest ``n`` whose design fits (:func:`_smaller_sample`)."""
     factors: dict[str, int] = {}
     for a in axes:
         label = ("sample.n" if a.sample else a.name if a.group is None
                  else f"zip.{a.group}")
         factors.setdefault(label, len(a.values))
-    shown = " x ".join(f"{k} {n}" for k, n in factors.items())
-    grid_alone = total // factors["sample.n"] if "sample.n" in factors else total
+    drawn = factors.get("sample.n")
+
+    def factor(label: str, n: int) -> str:
+        if label == "sample.n" and sample is not None and n != sample.n:
+            return f"the {sample.method} design's {n} points for sample.n {sample.n}"
+        return f"{label} {n}"
+
+    shown = " x ".join(factor(k, n) for k, n in factors.items())
+    grid_alone = total // drawn if drawn else total
     points = max_runs // max(grid_alone, 1)  # sample points the grid leaves room for
-    field = "sample.n" if "sample.n" in factors and points >= 2 else "grid"
-    fix = (f"a smaller sample.n (at most {points} points with this grid)"
-           if field == "sample.n" else "fewer values on an axis")
+    field, fix = (_smaller_sample(sample, sum(a.sample for a in axes), points, grid_alone)
+                  if drawn else ("grid", ""))
     return (f"{field}: the study has {total} runs; the limit is {max_runs} ({shown}): give "
-            f"{fix}, or split the study into several")
+            f"{fix or 'fewer values on an axis'}, or split the study into several")
+
+
+def _smaller_sample(sample: SampleIn | None, d: int, points: int, grid_alone: int
+                    ) -> tuple[str, str]:
+    """The field and the fix of a sample of ``d`` axes that takes a study of ``grid_alone``
+    runs per point over the limit, which leaves room for ``points`` points: ``("grid", "")``
+    when not even two fit. A Latin hypercube draws ``n`` points: at most ``points``. A Sobol'
+    design draws N (d + 2) for the nearest N a power of two
+    (:func:`~beltstudy.service.door.sample.sobol_n_within`): the largest ``n`` whose design
+    fits (4608 over one axis within 5000 points, not 5000, which draws 6144), or a Latin
+    hypercube when not even N = 2 fits."""
+    if points < 2:
+        return "grid", ""
+    if sample is None or sample.method != "sobol":
+        return "sample.n", f"a smaller sample.n (at most {points} points with this grid)"
+    within = sobol_n_within(d, points)
+    if within is None:
+        return "sample.method", (
+            f"method: lhs with sample.n at most {points} (method sobol's smallest design, "
+            f"N = 2, has 2 (D + 2) = {2 * (d + 2)} points for D = {d} axes, "
+            f"{2 * (d + 2) * grid_alone} runs with this grid)")
+    n, size = within
+    runs = f", {size * grid_alone} runs with this grid" if grid_alone > 1 else ""
+    return "sample.n", (
+        f"sample.n at most {n} (method sobol draws N (D + 2) points, N a power of two, the "
+        f"nearest to n: {n} draws {size}{runs}), or method: lhs with sample.n at most "
+        f"{points}")
 
 
 def _sample_axes(study: StudyIn, bases: tuple[dict, dict], models: dict) -> list[Axis]:
@@ -616,7 +659,7 @@ def resolve_study(
     axes = _axes(study, data, (conveyor, scenario), models, max_runs)
     total = grid_points(axes)
     if total > max_runs:
-        raise TooLarge(_too_many_runs(axes, total, max_runs))
+        raise TooLarge(_too_many_runs(axes, total, max_runs, study.sample))
     _check_read(study, axes)
     default_model, run_models = _run_models(study, axes, models)
     design = _positive_zero(_design(study))
