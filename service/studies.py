@@ -56,6 +56,7 @@ from beltstudy.service.grid.expand import (
 )
 from beltstudy.service.settings import Settings, check_data_dir
 from beltstudy.service.store import query
+from beltstudy.service.store.claim import DataDirClaim
 from beltstudy.service.store.columns import profile_schema, surface_schema
 from beltstudy.service.store.parquet import Store, tmp_path
 
@@ -100,6 +101,8 @@ class StudyService:
         # command starts, not by every POST /studies after /health said ok (``read_only``: a
         # command that only reads the store, which may be an archive it cannot write)
         self.store = Store(check_data_dir(settings.data_dir, write=not read_only))
+        # the one process that runs this folder's studies (taken when one starts to run)
+        self.claim = None if read_only else DataDirClaim(settings.data_dir)
         self.executor = executor or Executor(settings)
         self._jobs: dict[str, StudyJob] = {}  # studies with a job thread not yet ended
         self._deleting: set[str] = set()
@@ -118,6 +121,7 @@ class StudyService:
         """Resume unfinished studies; start (and warm) Dask when configured to."""
         with self._lock:
             self._closing = False
+        self._take_claim()
         swept = self.store.sweep()
         if swept:
             log.info("removed %d leftover folders of deleted or half-created studies", swept)
@@ -150,6 +154,8 @@ class StudyService:
         if left:
             log.warning("study threads still busy at shutdown: %s", ", ".join(left))
         self.executor.close()
+        if self.claim is not None:
+            self.claim.drop()
 
     def _load(self, doc: dict) -> ResolvedStudy:
         if doc.get("engine_version") != engine.__version__:
@@ -159,10 +165,17 @@ class StudyService:
             )
         return study_from_json(doc["study"], doc["id"])
 
+    def _take_claim(self) -> None:
+        """Hold the data folder for this process (:class:`DataDirClaim`; a read-only service
+        holds nothing)."""
+        if self.claim is not None:
+            self.claim.take()
+
     def _admit(self, study: ResolvedStudy) -> bool:
         """Store ``study`` unless it is stored, and run it unless it is finished or running:
         the one way a study starts, decided and done under the lock. Returns whether it was
         new to the store."""
+        self._take_claim()
         with self._lock:
             if study.id in self._deleting:
                 raise Conflict(

@@ -217,6 +217,14 @@ def cmd_serve(args) -> int:
     # which resumes the data directory's unfinished studies (and may start a LocalCluster),
     # and a port in use was then uvicorn's '[Errno 98] ...' and exit status 3
     check_port(host, args.port)
+    # the data folder is tried before the app starts too, for a one-line refusal: another
+    # process running its studies would run them twice (service.store.claim)
+    from beltstudy.service.settings import check_data_dir
+    from beltstudy.service.store.claim import DataDirClaim
+
+    probe = DataDirClaim(check_data_dir(settings.data_dir))
+    probe.take()
+    probe.drop()
     _service_log()
     app = create_app(settings.model_copy(update={"host": host}))
     uvicorn.run(
