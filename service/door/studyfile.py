@@ -213,6 +213,16 @@ def _range_fix(spec: RangeSpec, max_runs: int) -> str:
     if max_runs < 2 or not math.isfinite(span) or span == 0:
         return "a larger step or a shorter range"
     least = span / (max_runs - 1)
+    # a round step (1, 2, 2.5 or 5 x a power of ten) that reaches the stop: 'at least
+    # 0.00701' over -60 to 80 was refused next for not reaching 80 (0.01 does, 14 001 values)
+    for exp in range(math.floor(math.log10(least)), math.floor(math.log10(least)) + 3):
+        for m in (1.0, 2.0, 2.5, 5.0):
+            step = m * 10.0 ** exp
+            k = span / step
+            if step >= least and abs(k - round(k)) <= 1e-9 * k:
+                return (f"a step of {step:g} ({round(k) + 1} values from {spec.start:g} to "
+                        f"{spec.stop:g}: this axis alone within the limit; the other axes "
+                        "multiply it), or a shorter range")
     scale = 10.0 ** (math.floor(math.log10(least)) - 2)
     least = math.ceil(least / scale * (1 - 1e-12)) * scale
     return (f"a step of at least {least:.3g} (that keeps this axis alone within the limit), "

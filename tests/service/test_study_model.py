@@ -733,16 +733,17 @@ def test_a_conveyor_path_on_a_service_without_a_studies_directory_says_so(make_s
 def test_a_range_over_the_run_limit_names_the_step_that_fits(make_study):
     """A range over the limit said 'grid.temperature_c: the range has 80000000001 values; the
     study limit is 20000 runs' and no way out (the product over the limit names one); it now
-    names the smallest step that keeps the axis within the limit: -40 to 40 over 19999 gaps
-    is 0.0040002, at least 0.00401 (rounded up, so it does)."""
+    names a round step that keeps the axis within the limit and reaches the stop: -40 to 40
+    over 19999 gaps is 0.0040002; 'at least 0.00401' did not reach 40 (the next answer
+    refused it), 0.005 does in 16 000 steps."""
     huge = {"temperature_c": {"start": -40, "stop": 40, "step": 1e-9}}
     with pytest.raises(TooLarge) as err:
         resolve_study(make_study(grid=huge))
     assert str(err.value) == (
         "grid.temperature_c: the range has 80000000001 values; the study limit is 20000 runs: "
-        "a step of at least 0.00401 (that keeps this axis alone within the limit), or a "
-        "shorter range")
-    assert 80 / 0.00401 + 1 <= 20000
+        "a step of 0.005 (16001 values from -40 to 40: this axis alone within the limit; the "
+        "other axes multiply it), or a shorter range")
+    assert 80 / 0.005 + 1 <= 20000
     wild = {"temperature_c": {"start": -1e308, "stop": 1e308, "step": 1e-300}}
     with pytest.raises(TooLarge, match=r"runs: a larger step or a shorter range$"):
         resolve_study(make_study(grid=wild))
