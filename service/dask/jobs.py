@@ -24,7 +24,7 @@ import uuid
 from collections import deque
 
 import pyarrow as pa
-from distributed import as_completed
+from distributed import KilledWorker, as_completed
 
 from beltstudy import engine
 from beltstudy.service.dask.executor import LIVE_CLIENT_STATES
@@ -437,7 +437,7 @@ class StudyJob:
                     todo.extendleft(reversed(batch))  # cancelled by the scheduler: run again
                 else:
                     exc = result[1] if isinstance(result, tuple) else result
-                    message = f"task failed: {type(exc).__name__}: {exc}"[:1000]
+                    message = task_failed_words(exc)
                     self._add(batch, {"rows": [self._failed(r, message) for r in batch]})
                 fut.release()
             top_up()
@@ -540,3 +540,20 @@ class StudyJob:
         self.done += len(rows)
         self.failed += sum(1 for r in rows if r.get("status") == "failed")
         self.session_done += len(rows)
+
+
+def task_failed_words(exc: BaseException) -> str:
+    """A failed row's message for a task that raised ``exc`` (at most 1 000 characters).
+
+    A task whose workers died under it (Dask's ``KilledWorker``, after its allowed failures)
+    said only Dask's own text ('Attempted to run task ... on 4 different workers ...
+    Inspecting worker logs ...'): it is said in the study's terms, with its likely causes
+    and the way to run it again (a failed row is a finished run: a resubmission finds the
+    study done)."""
+    if isinstance(exc, KilledWorker):
+        return ("task failed: the Dask worker running it died each time it was tried "
+                "(KilledWorker: killed from outside, or out of memory); the run itself was "
+                "not judged: if it is memory, a coarser mesh (scenario.elements) or fewer "
+                "time-series records (scenario.record_dt_s) lighten it; to run it again, "
+                "DELETE the study and submit it again")[:1000]
+    return f"task failed: {type(exc).__name__}: {exc}"[:1000]
