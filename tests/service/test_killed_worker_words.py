@@ -11,7 +11,7 @@ from beltstudy.service.dask.jobs import task_failed_words
 
 
 def test_a_killed_worker_is_said_with_its_causes_and_the_way_to_rerun():
-    said = task_failed_words(KilledWorker("beltstudy-abc-000000", "tcp://127.0.0.1:1"))
+    said = task_failed_words(KilledWorker("beltstudy-abc-000000", "tcp://127.0.0.1:1", 3))
     assert said.startswith("task failed: the Dask worker running it died each time it was "
                            "tried (KilledWorker: killed from outside, or out of memory)")
     assert "scenario.elements" in said and "DELETE the study and submit it again" in said
