@@ -944,6 +944,7 @@ class Conveyor(_Model):
                         f"{name}: {at:g} m lies on vertical curve {k} (its arc runs from "
                         f"{a:.3f} to {b:.3f} m); place it on a straight grade, before "
                         f"{before:.1f} or after {after:.1f} m")
+        _drives_off_hcurves(self)
         return self
 
     def short_curves(self) -> list[tuple[int, float, float]]:
@@ -1079,6 +1080,25 @@ def _check_along(conv: Conveyor) -> None:
                          f"whole belt loop ({2.0 * L:g} m, twice the {L:g} m route); give at "
                          f"most {L:g} m (or leave it out: 1.5 % of the length, "
                          f"{0.015 * L:.3g} m)")
+
+
+def _drives_off_hcurves(conv: Conveyor) -> None:
+    """Refuse a booster drive inside a horizontal curve (a profile section with
+    ``horizontal_radius_m``), as one on a vertical arc is: a drive pulley turns the belt about
+    an axis across it and needs the belt running straight into and out of it."""
+    start = 0.0
+    for i, sec in enumerate(conv.profile):
+        end = start + sec.length_m
+        if sec.horizontal_radius_m is not None:
+            tol = 1e-9 * max(1.0, end)
+            for k, d in enumerate(conv.drives):
+                if d.at_m is not None and start + tol < float(d.at_m) < end - tol:
+                    raise ValueError(
+                        f"drives.{k}.at_m: {float(d.at_m):g} m lies in the horizontal curve of "
+                        f"profile.{i} ({start:g} to {end:g} m from the tail); a drive pulley "
+                        "needs the belt straight into and out of it: place it on a straight "
+                        f"section, at or before {start:g} or at or after {end:g} m")
+        start = end
 
 
 def route_points(conv: Conveyor) -> list[tuple[str, float]]:

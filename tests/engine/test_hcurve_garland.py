@@ -78,3 +78,24 @@ def test_a_v_set_uses_its_rolls_length_and_without_it_says_there_is_no_room():
         bare.summary["hcurve1_tension_max_kn"], rel=1e-12)
     assert ("idlers.carry.roll_length_m is not given, so the 2 rolls are taken to span the "
             "belt exactly (B / 2 each), leaving it no room to drift") in bare.message
+
+
+def test_a_booster_inside_a_horizontal_curve_is_refused_as_on_a_vertical_arc():
+    """A booster drive at 500 m inside a horizontal curve from 300 to 700 m was taken
+    silently (one on a vertical arc is refused naming a place off it): a drive pulley needs
+    the belt straight into and out of it. At the curve's end it is taken."""
+    def with_booster(at_m):
+        d = hand_conveyor_dict(profile=[{"length_m": 300, "lift_m": 0.0},
+                                        {"length_m": 400, "lift_m": 0.0,
+                                         "horizontal_radius_m": 1000},
+                                        {"length_m": 300, "lift_m": 0.0}])
+        d["drives"] = [{**d["drives"][0], "share": 0.6},
+                       {"position": "carry", "at_m": at_m, "wrap_deg": 200, "friction": 0.35,
+                        "share": 0.4, "pulley_diameter_m": 1.0}]
+        return parse_conveyor(d)
+
+    with pytest.raises(ValueError, match=r"drives\.1\.at_m: 500 m lies in the horizontal "
+                       r"curve of profile\.1 \(300 to 700 m from the tail\); .* at or before "
+                       r"300 or at or after 700 m"):
+        with_booster(500)
+    assert with_booster(700).drives[1].at_m == 700
