@@ -73,7 +73,7 @@ from beltstudy.service.web.verdicts import (
 
 __all__ = ["FIGURES", "LIMITS", "QUANTILES", "summarise", "wilson", "distribution",
            "sensitivity", "small_sample_note", "index_text", "sd_text", "no_value",
-           "without_text", "CONFIDENCE", "SOBOL_N_MIN"]
+           "without_text", "runs_text", "CONFIDENCE", "SOBOL_N_MIN"]
 
 #: The deciding figures (SPEC issue 30: peak tension per phase, power, stop time, lowest
 #: tension, slip margin, safety factor; with sag and slack, the limits' own figures). A figure
@@ -465,7 +465,7 @@ def sd_text(sd: float, mean: float) -> str:
     return "0" if abs(sd) < ROUND_OFF * abs(mean) else f"{sd:.3g}"
 
 
-def _runs_text(cell: dict) -> str:
+def runs_text(cell: dict) -> str:
     """``20 runs``; where runs stand for several sample points each (a run merged over
     points that differ only in an axis it does not read), ``1 run standing for 20 sample
     points``."""
@@ -505,7 +505,7 @@ def format_text(result: dict) -> str:
         lines.append(f"note: {result['note']}")
     for cell in result["cells"]:
         where = ", ".join(f"{k}={v}" for k, v in cell["grid"].items()) or "all runs"
-        lines += ["", f"{where}: {_runs_text(cell)}"
+        lines += ["", f"{where}: {runs_text(cell)}"
                   + (f" ({cell['points_missing']} sample points without a run yet)"
                      if cell["points_missing"] else "")]
         lines.append("  figure                         unit     mean       sd      p05      "

@@ -12,7 +12,7 @@ from typing import Any
 import numpy as np
 import pandas as pd
 
-from beltstudy.service.uncertainty import index_text, summarise
+from beltstudy.service.uncertainty import index_text, runs_text, summarise
 
 __all__ = ["uncertainty_section", "histograms_figure", "ranking_figure", "FIGURE_COLUMNS"]
 
@@ -99,7 +99,8 @@ def _cell_tables(cell: dict, table, n_cell) -> str:
                   "inputs that matter most"], rows, "runs")
     ex = [[_e(e["title"]), n_cell(e["runs_past"]), n_cell(e["runs"]), n_cell(e["p"]),
            _e(f"{e['ci_low']:.3f} to {e['ci_high']:.3f}")] for e in cell["exceedance"]]
-    return dist + table(["design limit", "runs past it", "runs", "probability",
+    # the exceedance counts sample points (a run standing for several counts for each)
+    return dist + table(["design limit", "points past it", "points", "probability",
                          "interval (Wilson, 95 %)"], ex, "runs")
 
 
@@ -126,7 +127,7 @@ def uncertainty_section(study: dict, runs: pd.DataFrame, table, n_cell, png, fig
         for c in g_cols:
             mask &= runs[c].astype(str) == str(cell["grid"].get(c))
         part = runs[mask]
-        out.append(f"<h3>{_e(where)}: {cell['runs']} runs</h3>")
+        out.append(f"<h3>{_e(where)}: {_e(runs_text(cell))}</h3>")
         sens = next(iter(cell["sensitivity"].values()), None)
         if sens is not None:
             out.append(f"<p class=muted>ranking: {_e(sens['method'])}"

@@ -195,6 +195,14 @@ def test_one_run_standing_for_many_points_is_said_so_and_the_limits_count_points
     power = next(i for i in range(at, len(text)) if text[i].startswith("  power_kw "))
     assert text[power].endswith("rho: models.din.f_carry -")
     assert text[power + 1] == "    note: the figure does not vary"
+    # the report's section says the same: its limits table counts points, not runs
+    from beltstudy.service.web import report as R
+    from beltstudy.service.web.uncertainty import uncertainty_section
+
+    html = uncertainty_section(store.read(sid)["study"], store.read_runs(sid), R._table, R._n,
+                               R._png, R._figure)
+    assert "friction_model = cema: 1 run standing for 20 sample points</h3>" in html
+    assert "<th>points past it</th>" in html and "runs past it" not in html
 
 
 def test_a_figure_that_does_not_vary_prints_sd_0():
