@@ -11,15 +11,23 @@ Notes
 -----
 Residuals are relative, r_i = (y_model,i - y_meas,i) / |y_meas,i|: weighted least squares
 with a measurement error proportional to the reading (a meter's accuracy is a share of its
-reading), which also lets power and tension rows share one fit. With J the Jacobian of r
-at the solution (central differences), n residuals and p fitted parameters, the standard
-errors are the square roots of the diagonal of
+reading), which also lets power and tension rows share one fit. A row that gives both
+``power_kw`` and ``te_kn`` gives one reading of its state, not two: P = Te v at the drive
+pulleys, and a plant's Te is most often its power over the speed, so their errors are one
+error; the fit takes the mean of the two relative residuals as the row's one residual
+(:func:`_observations`). Counted as two, a row read both ways halved s^2 / n and gave standard
+errors sqrt 2 too small (95 % intervals covering 81 % of fits); for two independent meters the
+mean is conservative (its error is 1 / sqrt 2 of one meter's). With J the Jacobian of the
+readings' residuals r at the solution (central differences), n readings and p fitted
+parameters, the standard errors are the square roots of the diagonal of
 
     Cov = s^2 (J^T J)^-1,   s^2 = SSR / (n - p)
 
 (the linearised covariance of a nonlinear least-squares estimate; Seber & Wild 2003, section
-2.1). Identifiability: the columns of J (relative sensitivities d r / d ln x, each scaled to
-unit length) must be independent. Their singular values decide it: a named parameter whose
+2.1). A name ends at its lower bound when the data would take it below (:func:`_at_bound`:
+the Gauss-Newton step from the fit leaves the bound's side), whatever its start.
+Identifiability: the columns of J (relative sensitivities d r / d ln x, each scaled to unit
+length) must be independent. Their singular values decide it: a named parameter whose
 column adds a singular value below ``RCOND`` times the largest to those named before it cannot
 be told apart from them by these data (the parameters only act together, e.g. as a product
 as ``mu_b`` and ``bearing_diameter_m`` in Non-Lin's bearing term, or it does not act at all).
@@ -30,6 +38,7 @@ References
 ----------
 Seber, G.A.F., Wild, C.J.: Nonlinear Regression. Wiley 2003, sections 2.1, 3.4.
 Bates, D.M., Watts, D.G.: Nonlinear Regression Analysis and Its Applications. Wiley 1988.
+Nocedal, J., Wright, S.J.: Numerical Optimization, 2nd ed. Springer 2006, section 12.3.
 """
 
 from __future__ import annotations
@@ -37,6 +46,7 @@ from __future__ import annotations
 import dataclasses
 import difflib
 import math
+import re
 from collections.abc import Sequence
 from dataclasses import dataclass, field
 from typing import Any
@@ -49,7 +59,7 @@ from beltstudy.engine.friction import get_model
 from beltstudy.engine.statics import solve_steady
 
 __all__ = ["Measurement", "Calibration", "calibrate", "measurements_from_rows", "RCOND",
-           "MEASURED"]
+           "MEASURED", "time_column_hint"]
 
 #: Relative singular value below which a Jacobian column is taken as dependent on the others
 #: (columns scaled to unit length; 1e-4: the fitted pair's estimates would correlate beyond
@@ -132,7 +142,34 @@ def _load(value: Any, what: str) -> float | str | list[float]:
         return values[0] if len(values) == 1 else values
     if value is None:
         raise InputError("missing: give the load case of the measurement", field=what)
+    if isinstance(value, list | tuple):  # one fraction per carry section, as in a scenario
+        if not value:
+            raise InputError("an empty list: give one load fraction per carry section, tail "
+                             "to head, or one load case (full, empty, a fraction)", field=what)
+        values = [_number(v, f"{what}.{k}") for k, v in enumerate(value)]
+        if any(v is None for v in values):
+            k = values.index(None)
+            raise InputError("missing: give one load fraction per carry section, tail to head",
+                             field=f"{what}.{k}")
+        return values
     return _number(value, what)
+
+
+#: Column names of a logged time series (a time or date column): calibration takes steady
+#: states, one row each, not the log they were read from (:func:`time_column_hint`).
+_TIME_COLUMN = re.compile(r"(t|time|timestamp|date|datetime|date_?time|clock|elapsed|hour|"
+                          r"minute|second)(_(s|ms|min|h|hr|utc|local))?", re.IGNORECASE)
+
+
+def time_column_hint(name: str) -> str:
+    """What to do with a column ``name`` that holds a time or date (``time_s``, ``timestamp``):
+    calibration fits steady states, one row each, not a time series; ``""`` for another
+    name."""
+    if not _TIME_COLUMN.fullmatch(name.strip()):
+        return ""
+    return (f"calibration takes steady states, one row each, not a time series: give each "
+            f"steady stretch of the log as one row (its mean load, temperature and power) "
+            f"and drop '{name}'")
 
 
 def measurements_from_rows(rows: Sequence[dict[str, Any]]) -> list[Measurement]:
@@ -148,6 +185,9 @@ def measurements_from_rows(rows: Sequence[dict[str, Any]]) -> list[Measurement]:
         where = f"measured.{i}"
         unknown = [k for k in row if k not in known]
         if unknown:
+            timed = time_column_hint(str(unknown[0]))
+            if timed:
+                raise InputError(f"unknown column '{unknown[0]}': {timed}", field=where)
             close = difflib.get_close_matches(unknown[0], sorted(known), n=1)
             hint = f" (did you mean '{close[0]}'?)" if close else ""
             raise InputError(f"unknown column '{unknown[0]}'{hint}; columns: "
@@ -163,15 +203,27 @@ def measurements_from_rows(rows: Sequence[dict[str, Any]]) -> list[Measurement]:
                 # power and Te are negative where the drives regenerate (the runs' own sign);
                 # a tension is positive; none is 0 (residuals are relative to it)
                 if val == 0 or (col == "t_tight_kn" and val < 0):
-                    need = "> 0" if col == "t_tight_kn" else "not 0 (negative: regenerating)"
-                    raise InputError(f"a measured {col} is {need} (got {val:g})",
-                                     field=f"{where}.{col}")
+                    raise InputError(_zero_reading(col, val), field=f"{where}.{col}")
                 values[col] = val
         if "power_kw" not in values and "te_kn" not in values:
             raise InputError("give the measured power_kw or te_kn", field=where)
         speed = _number(row.get("speed_m_s"), f"{where}.speed_m_s")
         out.append(Measurement(_load(row.get("load"), f"{where}.load"), temp, values, speed))
     return out
+
+
+def _zero_reading(col: str, val: float) -> str:
+    """Why a measured ``col`` of ``val`` (0, or a negative tension) is refused, and the fix."""
+    if col == "t_tight_kn":
+        return (f"a measured t_tight_kn must be > 0 [kN] (got {val:g}): a belt's tight-side "
+                "tension pulls; give the tension at the main drive in kN, or leave the cell "
+                "empty")
+    what, unit = (("power at the drive pulleys", "kW") if col == "power_kw"
+                  else ("peripheral force at the drive pulleys", "kN"))
+    return (f"a measured {col} must not be 0 (got {val:g}): each residual is relative to its "
+            f"reading, and 0 gives it no scale; give the steady state's {what} [{unit}] "
+            "(positive where the drives motor, negative where they regenerate, not 0), or leave "
+            f"out a row read at balance (near 0 {unit})")
 
 
 #: Largest measured speed over the design speed [-]: drives run up to their overspeed trip,
@@ -387,17 +439,47 @@ def _check_names(model, fit: Sequence[str], fixed: dict) -> list[str]:
                              f"valid: {', '.join(valid)}", field="fit")
         if name in names:
             raise InputError(f"'{name}' is named twice", field="fit")
-        sets = _sets(model.name, name)
-        if set(sets) & set(fixed):
-            raise InputError(f"'{name}' is both fitted and fixed; fit it or fix it", field="fit")
-        if any(set(sets) & set(_sets(model.name, n)) for n in names):
-            raise InputError(f"'{name}' sets a parameter another fitted name sets",
-                             field="fit")
+        _check_overlap(model.name, name, names, fixed)
         names.append(name)
     if not names:
         raise InputError(f"name at least one parameter to fit; valid: {', '.join(valid)}",
                          field="fit")
     return names
+
+
+def _sets_text(model: str, name: str) -> str:
+    """What fitting a :data:`TIED` ``name`` sets, in words: ``'f' sets f_carry and f_return to
+    one value``."""
+    return f"'{name}' sets {' and '.join(_sets(model, name))} to one value"
+
+
+def _check_overlap(model: str, name: str, names: Sequence[str], fixed: dict) -> None:
+    """A fitted ``name`` that sets a parameter held in ``fixed`` or set by a name fitted
+    before it (DIN's ``f`` sets ``f_carry`` and ``f_return``) is refused naming both and which
+    to fit instead."""
+    sets = _sets(model, name)
+    clash = [q for q in sets if q in fixed]
+    if clash:
+        held = (f"{' and '.join(clash)} {'is' if len(clash) == 1 else 'are'} held at "
+                f"{' and '.join(f'{fixed[q]:g}' for q in clash)} (--param, or the request's "
+                "params)")
+        if sets == (name,):
+            raise InputError(f"'{name}' is both fitted and fixed: {held}; fit it or hold it, "
+                             "not both", field="fit")
+        rest = [q for q in sets if q not in clash]
+        instead = (f"fit {' and '.join(rest)} instead, with {' and '.join(clash)} held, or "
+                   if rest else "")
+        raise InputError(f"'{name}' is both fitted and fixed: it sets {' and '.join(sets)} to "
+                         f"one value, and {held}: {instead}stop holding "
+                         f"{' and '.join(clash)} to fit '{name}'", field="fit")
+    for other in names:
+        both = [q for q in sets if q in _sets(model, other)]
+        if both:
+            tied = [t for t in (other, name) if _sets(model, t) != (t,)]
+            why = f" ({'; '.join(_sets_text(model, t) for t in tied)})" if tied else ""
+            raise InputError(f"'{name}' sets a parameter another fitted name sets: "
+                             f"{' and '.join(both)}, which '{other}' sets too{why}; fit one of "
+                             "them, not both", field="fit")
 
 
 def _sets(model: str, name: str) -> tuple[str, ...]:
@@ -433,8 +515,24 @@ def _starts(model, conv, rows, names, fixed, starts, lowest=None) -> np.ndarray:
                     "request's params)" if model.accepts(name, value) else "")
             raise InputError(f"'{name}' starts at {value:g}, below {where}: start it at "
                              f"{low:g} or above ({name}=START){hold}", field="fit")
+        if name in starts:
+            _check_start(model, name, value)
         out.append(float(value))
     return np.array(out)
+
+
+def _check_start(model, name: str, value: float) -> None:
+    """A given start (``NAME=START``) the model's own check refuses is named as the fit item
+    the user wrote (``fit: 'f_carry=5': ...``), not as a study's ``models.<model>.`` field."""
+    for q in _sets(model.name, name):
+        try:
+            model.params({q: value})
+        except InputError as exc:
+            reason = exc.reason.removeprefix(f"models.{model.name}.{q}: ")
+            raise InputError(f"'{name}={value:g}': the start of {q} is out of the model's "
+                             f"range: {reason}; start it within that range ({name}=START), or "
+                             "drop =START to start at the model's default",
+                             field="fit") from None
 
 
 def calibrate(conv: Conveyor, measured: Sequence[Measurement], model: str,
@@ -480,6 +578,8 @@ def calibrate(conv: Conveyor, measured: Sequence[Measurement], model: str,
         fm.name, dict(zip(names, map(float, x0), strict=True)))})
     cols = [(i, col) for i, m in enumerate(rows) for col in m.values]
     y = np.array([rows[i].values[col] for i, col in cols])
+    obs = _observations(cols)
+    combine = _combiner(obs, len(cols))
     speeds: dict = {}
 
     # each name's largest value (friction.base.param, else the model's own limit: 1 for a
@@ -503,7 +603,10 @@ def calibrate(conv: Conveyor, measured: Sequence[Measurement], model: str,
     def residual(x, which):
         return (model_values(x, which) - y) / np.abs(y)
 
-    free, held, groups = _identifiable(lambda x: residual(x, names), x0, names,
+    def fit_residual(x, which):  # one per reading: a row's power and Te are one (_observations)
+        return combine(residual(x, which))
+
+    free, held, groups = _identifiable(lambda x: fit_residual(x, names), x0, names,
                                        [lowest[n] for n in names])
     x_free = np.array([x0[names.index(n)] for n in free])
     held_values = {n: float(x0[names.index(n)]) for n in held}
@@ -518,12 +621,13 @@ def calibrate(conv: Conveyor, measured: Sequence[Measurement], model: str,
                                      if n not in computed}))
     upper = [largest[n] for n in free]
     lower = [lowest[n] for n in free]
-    sol = least_squares(residual, x_free, args=(free,), bounds=(lower, upper),
+    sol = least_squares(fit_residual, x_free, args=(free,), bounds=(lower, upper),
                         x_scale="jac", diff_step=DIFF_STEP, xtol=1e-12, ftol=1e-12)
     r = residual(sol.x, free)
-    jac = _jacobian(lambda x: residual(x, free), sol.x, lower)
+    r_fit = combine(r)
+    jac = _jacobian(lambda x: fit_residual(x, free), sol.x, lower)
     n, p = len(r), len(free)
-    dof = n - p
+    dof = len(obs) - p
     notes = [(f"{', '.join(g)}: only act together on these data; " if len(g) > 1 else
               f"{g[0]}: changes {_INERT}; ") + "; ".join(
         f"{x} held at the value model {fm.name} computes for each row, its default "
@@ -532,25 +636,13 @@ def calibrate(conv: Conveyor, measured: Sequence[Measurement], model: str,
     if held_takeup:
         notes.append(held_takeup)
     notes += overfilled
-    se: list[float | None] = [None] * p
-    if dof > 0:
-        s2 = float(r @ r) / dof
-        cov = s2 * np.linalg.pinv(jac.T @ jac)
-        se = [float(math.sqrt(max(cov[k, k], 0.0))) for k in range(p)]
-    else:
-        notes.append(f"{n} residuals for {p} parameters: no degrees of freedom left, no "
-                     "standard errors")
-    at_bound = _at_bound(free, sol, x0[[names.index(n) for n in free]], lower)
+    se = _standard_errors(r_fit, jac, dof)
+    if dof <= 0:
+        notes.append(_no_dof(n, len(obs), p))
+    at_bound = _at_bound(free, sol.x, lower, jac, r_fit)
     at_upper = [n for n, v, hi in zip(free, sol.x, upper, strict=True)
                 if np.isfinite(hi) and v >= hi * (1.0 - 1e-6)]
-    for name, v, s in zip(free, sol.x, se, strict=True):
-        if name in at_bound:
-            notes.append(f"{name} ended at its bound {lowest[name]:g}: the data would take it "
-                         "below; its "
-                         "standard error is not that of a free estimate")
-        elif s is not None and s > abs(v):
-            notes.append(f"{name} is poorly determined by these data: its standard error "
-                         f"({s:.3g}) exceeds its value ({v:.3g})")
+    notes += _value_notes(fm.name, free, sol.x, se, at_bound, lowest)
     values = model_values(sol.x, free)
     t95 = _t95(dof)
     fitted = {name: {"value": float(v), "se": s, "start": float(x0[names.index(name)]),
@@ -573,10 +665,13 @@ def calibrate(conv: Conveyor, measured: Sequence[Measurement], model: str,
         f"{n} {v:.4g}" for n, v in zip(free, x_start, strict=True)) or "as given")
     if unit:
         notes.append(unit)
+    first = [ks[0] for ks in obs]  # each reading's first value (a row's power before its Te)
     suspect = (slips or _contradictions(rows, cols, y)
-               or _outliers(rows, cols, y, values, r, jac, dof))
+               or _outliers(rows, [cols[k] for k in first], y[first], values[first], r_fit, jac,
+                            dof, len({_state_key(m) for m in rows})))
     notes += suspect + _copies(rows)
-    few = _few_states(rows, cols, p) if dof > 0 else ""
+    # a row's power and Te left as many readings as names: those states are met, not checked
+    few = _few_states(rows, cols, p) if dof > 0 or len(obs) < n else ""
     # a name at its bound in a fit that meets the data without it is not determined by them
     # where other fitted names took its part (the verdict says 'these data do not determine
     # c'): named with the held ones (SPEC 7.3, 'the names that cannot be identified'); DIN's
@@ -597,6 +692,87 @@ def calibrate(conv: Conveyor, measured: Sequence[Measurement], model: str,
             doubts=_Doubts(suspect, slips, few, bool(p) and dof == 0, unit)))
 
 
+def _observations(cols: Sequence[tuple[int, str]]) -> list[list[int]]:
+    """The measured values grouped into readings (indices into ``cols``): a row's
+    ``power_kw`` and ``te_kn`` are one reading of its steady state (P = Te v at the drive
+    pulleys; a plant's Te is most often its power over the speed), every other value its
+    own. The fit takes the mean of a reading's relative residuals as its one residual
+    (:func:`_combiner`) and counts the degrees of freedom by readings."""
+    out: list[list[int]] = []
+    drive: dict[int, list[int]] = {}
+    for k, (i, col) in enumerate(cols):
+        if col in ("power_kw", "te_kn"):
+            if i not in drive:
+                drive[i] = []
+                out.append(drive[i])
+            drive[i].append(k)
+        else:
+            out.append([k])
+    return out
+
+
+def _combiner(obs: Sequence[Sequence[int]], n: int):
+    """The map from the ``n`` relative residuals of the measured values to one per reading
+    (:func:`_observations`): the mean of a reading's values; the residuals themselves where
+    every reading is one value."""
+    if all(len(ks) == 1 for ks in obs):
+        return lambda r: r
+    a = np.zeros((len(obs), n))
+    for o, ks in enumerate(obs):
+        a[o, ks] = 1.0 / len(ks)
+    return lambda r: a @ r
+
+
+def _standard_errors(r: np.ndarray, jac: np.ndarray, dof: int) -> list[float | None]:
+    """The square roots of the diagonal of Cov = s^2 (J^T J)^-1, s^2 = SSR / dof, of the
+    readings' relative residuals ``r`` [-] (one per reading) and their Jacobian; None each
+    without degrees of freedom."""
+    if dof <= 0:
+        return [None] * jac.shape[1]
+    cov = float(r @ r) / dof * np.linalg.pinv(jac.T @ jac)
+    return [float(math.sqrt(max(cov[k, k], 0.0))) for k in range(jac.shape[1])]
+
+
+def _no_dof(n: int, readings: int, p: int) -> str:
+    """The note of a fit without degrees of freedom: ``n`` measured values, ``readings``
+    readings (a row's power and Te one), ``p`` fitted names."""
+    what = (f"{n} residuals" if n == readings else f"{_values(n)} ({readings} reading"
+            f"{'' if readings == 1 else 's'}: a row's power_kw and te_kn are one)")
+    return f"{what} for {p} parameters: no degrees of freedom left, no standard errors"
+
+
+#: Ranges of published values that a model's own parameter check quotes ([-]; DIN 22101's
+#: fictitious friction factor f, 0.010 to about 0.04: ``engine/friction/din.py``): a fitted
+#: value outside is noted (:func:`_value_notes`).
+PUBLISHED = {"din": {name: (0.010, 0.04, "DIN 22101: 0.010 to about 0.04")
+                    for name in ("f_carry", "f_return", "f")}}
+
+
+def _value_notes(model: str, free: Sequence[str], x: np.ndarray, se: Sequence[float | None],
+                 at_bound: Sequence[str], lowest: dict[str, float]) -> list[str]:
+    """A note per fitted value at its bound, poorly determined (its standard error above the
+    value) or outside the published range its model's check quotes (:data:`PUBLISHED`)."""
+    notes = []
+    for name, v, s in zip(free, x, se, strict=True):
+        if name in at_bound:
+            notes.append(f"{name} ended at its bound {lowest[name]:g}: the data would take it "
+                         "below; its standard error is not that of a free estimate")
+            continue
+        if s is not None and s > abs(v):
+            notes.append(f"{name} is poorly determined by these data: its standard error "
+                         f"({s:.3g}) exceeds its value ({v:.3g})")
+        lo, hi, src = PUBLISHED.get(model, {}).get(name, (-math.inf, math.inf, ""))
+        if not lo <= v <= hi:
+            notes.append(
+                f"{name} {v:.4g} lies {'above' if v > hi else 'below'} the published range "
+                f"({src}; model {model}'s own check quotes it): a conveyor file whose "
+                "length or lift is not the plant's (a plant "
+                f"{'longer or higher' if v > hi else 'shorter or lower'} than the file) asks "
+                "for such a value to make up the difference; check the file's profile "
+                "(length_m, lift_m), capacity and speed against the plant's before using it")
+    return notes
+
+
 def _t95(dof: int) -> float:
     """Student's t quantile of a two-sided 95 % interval with ``dof`` degrees of freedom
     (the residual variance is estimated from the same data, so 1.96 undercovers: 2.45 at 6,
@@ -612,14 +788,6 @@ def _t95(dof: int) -> float:
 #: is good to a few per cent (meter class 1 to 2, plus the steady-state reading of a belt whose
 #: load varies), so a larger misfit points at the data or the conveyor file, not the noise.
 MISFIT_PCT = 5.0
-#: A fitted value below this share of its start is taken as at its bound 0: the trust-region
-#: reflective method keeps its iterates strictly inside the bounds, so it ends near 0, not on
-#: it (1e-10 for a start of 0.02, 1e-8 for 0.0035), and SciPy's active mask is set only
-#: within its own tolerance. A friction parameter 10 000 times below its textbook start
-#: acts as 0 does.
-AT_BOUND = 1e-4
-
-
 #: Chance [-] that a fit of consistent data names a row as an outlier: each row's externally
 #: studentized residual is judged against Student's t at the Bonferroni level
 #: OUTLIER_ALPHA / (2 n) with n - p - 1 degrees of freedom (Cook & Weisberg 1982, 2.2.2;
@@ -633,6 +801,11 @@ OUTLIER_MIN_PCT = 1.0
 #: speed), relative to their mean: each good to :data:`MISFIT_PCT` at most, they differ by at
 #: most twice that.
 REPLICATE_SPREAD = 2.0 * MISFIT_PCT / 100.0
+
+
+def _state_key(m: Measurement) -> tuple:
+    """What makes two rows readings of one steady state: equal load, temperature and speed."""
+    return (repr(m.load), m.temperature_c, m.speed_m_s)
 
 
 def _state_text(m: Measurement) -> str:
@@ -769,18 +942,23 @@ def _contradictions(rows: Sequence[Measurement], cols: Sequence[tuple[int, str]]
 
 
 def _outliers(rows: Sequence[Measurement], cols: Sequence[tuple[int, str]], y: np.ndarray,
-              values: np.ndarray, r: np.ndarray, jac: np.ndarray, dof: int) -> list[str]:
+              values: np.ndarray, r: np.ndarray, jac: np.ndarray, dof: int,
+              states: int) -> list[str]:
     """The measured values that stand apart from the fit of the others: the externally
     studentized residual t_k = r_k / (s_(k) sqrt(1 - h_k)), with h_k the leverage (the hat
     matrix J (J^T J)^-1 J^T of the relative residuals) and s_(k) the residual scale without
     value k, beyond Student's t at the Bonferroni level (:data:`OUTLIER_ALPHA`) and beyond
-    :data:`OUTLIER_MIN_PCT`. One sentence per such value; none when fewer than two degrees of
-    freedom are left (the others cannot judge it) or a value alone sets a parameter
+    :data:`OUTLIER_MIN_PCT`. One value per reading (a row's power and Te are one,
+    :func:`_observations`: ``r`` and ``jac`` are the readings'). One sentence per such value;
+    none when fewer than two degrees of freedom are left, counted by the distinct steady
+    ``states`` the readings are of (the others cannot judge it: a state read twice, a row
+    pasted twice, leaves the other state's reading nothing to stand apart from but the copies,
+    which agree exactly, a residual scale s_(k) of 0), or a value alone sets a parameter
     (leverage 1)."""
     from scipy.stats import t as student
 
     n = len(r)
-    if dof < 2:
+    if dof < 2 or states - jac.shape[1] < 2:
         return []
     if jac.size:
         hat = jac @ np.linalg.pinv(jac.T @ jac) @ jac.T
@@ -810,15 +988,25 @@ def _outliers(rows: Sequence[Measurement], cols: Sequence[tuple[int, str]], y: n
     return out
 
 
-def _at_bound(free: Sequence[str], sol, starts: np.ndarray,
-              lower: Sequence[float] | None = None) -> list[str]:
-    """The fitted names that ended at their lower bound (0, or the model's own limit such as
-    DIN's C >= 1: ``lower``): SciPy's active constraint, or a value within
-    :data:`AT_BOUND` of the bound relative to the start's distance from it."""
-    active = getattr(sol, "active_mask", np.zeros(len(free)))
-    lower = [0.0] * len(free) if lower is None else lower
-    return [name for name, v, x0, a, lo in zip(free, sol.x, starts, active, lower, strict=True)
-            if a < 0 or v - lo <= AT_BOUND * (abs(float(x0) - lo) or abs(float(x0)))]
+def _at_bound(free: Sequence[str], x: np.ndarray, lower: Sequence[float], jac: np.ndarray,
+              r: np.ndarray) -> list[str]:
+    """The fitted names held at their lower bound (0, or the model's own limit such as DIN's
+    C >= 1: ``lower``) by the bound, not by the data: those the data would take below it.
+
+    From the fit ``x`` the Gauss-Newton step d = -(J^T J)^+ J^T r (``jac`` and ``r`` the
+    readings' Jacobian and relative residuals there) reaches the least squares of the
+    linearised model without bounds; a name with x + d below its bound ends at the bound
+    (its gradient points out of the box: the Karush-Kuhn-Tucker condition of a bound
+    constraint; Nocedal & Wright 2006, section 12.3, Theorem 12.1). A fit that converged
+    inside its bounds has J^T r = 0, d = 0. The verdict depends on the data only: the
+    trust-region reflective method keeps its iterates strictly inside the bounds and ends a
+    distance from the bound that depends on where it started (Non-Lin's m_star 3.7e-7 from
+    0.0035, 2.8e-7 from 0.007, d = -5.8e-5 from both, its standard error 0.012), which a
+    share of the start (the former test, 1e-4 x start) turned into two verdicts."""
+    if not len(free):
+        return []
+    step = -np.linalg.pinv(jac.T @ jac) @ (jac.T @ r)
+    return [name for name, v, d, lo in zip(free, x, step, lower, strict=True) if v + d < lo]
 
 
 def _values(n: int) -> str:
@@ -874,7 +1062,8 @@ def _verdict(sol, at_bound: list[str], r: np.ndarray, model: str,
     fit's): they lead the message even where a name ended at a bound, since a reading of the
     wrong sign is what drives a friction factor to 0. ``few``: the steady states read, in words, when the measured values repeat
     no more states than there are fitted names (:func:`_few_states`): met whatever the model
-    as ``exact`` is, the repeats' scatter alone setting the standard errors, a ``warning``."""
+    as ``exact`` is, the repeats' scatter alone setting the standard errors, a ``warning``
+    (with ``exact`` too: a row's power and Te, one reading, left no degrees of freedom)."""
     held = held or _Held()
     doubts = doubts or _Doubts()
     groups, computed = held.groups, held.computed
@@ -975,12 +1164,15 @@ def _verdict(sol, at_bound: list[str], r: np.ndarray, model: str,
                 if together else ". Fit a parameter these rows move, or measure in the states "
                 "where it acts"))}
     if few:
+        errors = ("no degrees of freedom are left (a row's power_kw and te_kn are one "
+                  "reading): no standard errors" if exact else
+                  "the standard errors tell only how the repeated readings agree, not how the "
+                  "model fits the plant (copies of one row agree exactly, a standard error of 0)")
         return {"status": "warning", "message": (
             f"converged, but the {len(r)} measured values read only as many steady states as "
-            f"fitted names ({few}): those states are met whatever the model, and the "
-            "standard errors tell only how the repeated readings agree, not how the model fits "
-            "the plant (copies of one row agree exactly, a standard error of 0). Measure at "
-            "least one more steady state (another load or temperature), or fit fewer names")}
+            f"fitted names ({few}): those states are met whatever the model, and {errors}. "
+            "Measure at least one more steady state (another load or temperature), or fit "
+            "fewer names")}
     if exact:
         return {"status": "warning", "message": (
             f"converged, but {_values(len(r))} for as many fitted names "

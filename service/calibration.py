@@ -25,6 +25,7 @@ from beltstudy.engine import (
     measurements_from_rows,
     parse_conveyor,
 )
+from beltstudy.engine.calibration import time_column_hint
 from beltstudy.engine.conveyor import strict_validate
 from beltstudy.service.door.messages import describe
 from beltstudy.service.door.study import ConveyorRef, ModelName
@@ -82,12 +83,28 @@ def read_calibration(data: Any) -> CalibrationIn:
     valid one, an inline conveyor's fields as the engine names them)."""
     if not isinstance(data, dict):
         raise Invalid("body: expected a mapping with conveyor, measured, model, fit")
+    _refuse_time_keys(data.get("measured"))
     try:  # JSON's types exactly, as a study's (``"4.5"`` is no number, ``"yes"`` no boolean)
         return strict_validate(CalibrationIn, data)
     except ValidationError as exc:
         raise Invalid(describe(exc, data, model=CalibrationIn, json_types=True)) from None
     except InputError as exc:
         raise Invalid(f"body: {exc}") from None
+
+
+def _refuse_time_keys(measured: Any) -> None:
+    """A measured row with a time or date key (``time_s``) is refused saying calibration takes
+    steady states, one row each, not a time series (the schema's own refusal named the nearest
+    field, ``te_kn``)."""
+    if not isinstance(measured, list):
+        return
+    for i, row in enumerate(measured):
+        if not isinstance(row, dict):
+            continue
+        for key in row:
+            if key not in MeasuredRow.model_fields and time_column_hint(str(key)):
+                raise Invalid(f"measured.{i}.{key}: unknown key '{key}'; "
+                              f"{time_column_hint(str(key))}")
 
 
 def split_fit(items: list[str]) -> tuple[list[str], dict[str, float]]:

@@ -13,6 +13,7 @@ import yaml
 from pydantic import ValidationError
 
 from beltstudy.engine import InputError, format_validation_error
+from beltstudy.engine.calibration import time_column_hint
 from beltstudy.engine.conveyor import unit_twin
 from beltstudy.engine.textfile import read_text
 from beltstudy.service.calibration import MAX_ROWS, CalibrationIn, MeasuredRow, run_calibration
@@ -98,17 +99,7 @@ def read_measured(path: str, lines: list[int] | None = None) -> list[dict]:
             f"{path}: line 1 names none of the measured-data columns ({', '.join(valid)}): "
             f"--measured takes a CSV file{what} whose first line names them, e.g. "
             "'load,temperature_c,power_kw', and one row per measured steady state below it")
-    problems = []
-    for i, name in enumerate(header):
-        if name in header[:i]:
-            problems.append(f"{path}: line 1: column '{name}' given twice (columns "
-                            f"{header.index(name) + 1} and {i + 1}); give each column once")
-        elif name not in valid:
-            close = difflib.get_close_matches(name, valid, n=1, cutoff=0.5)
-            hint = (unit_twin(name, valid) or (f"did you mean '{close[0]}'?" if close else
-                                                f"valid columns: {', '.join(valid)}"))
-            shown = f"'{name}'" if name else f"{i + 1} (no name)"
-            problems.append(f"{path}: line 1: unknown column {shown}; {hint}")
+    problems = [f"{path}: line 1: {p}" for p in _header_problems(header, valid)]
     if not problems:  # the columns every row needs, said once for the header
         problems += [f"{path}: line 1: no column '{name}'; every row needs its {what}"
                      for name, what in (("load", "load case (full, empty or a fraction of the "
@@ -134,12 +125,70 @@ def read_measured(path: str, lines: list[int] | None = None) -> list[dict]:
             continue  # a blank line
         if any(cell.strip() for cell in record[len(header):]):
             raise InputError(f"{path}: line {line}: {len(record)} cells, but the header names "
-                             f"{len(header)} columns; give one cell per column")
-        rows.append({name: cell for name, cell in zip(header, record, strict=False)
-                     if cell.strip() != ""})
+                             f"{len(header)} columns; give one cell per column"
+                             f"{_decimal_comma_hint(record)}")
+        row = {name: cell for name, cell in zip(header, record, strict=False)
+               if cell.strip() != ""}
+        _refuse_decimal_commas(row, f"{path}: line {line}")
+        rows.append(row)
         if lines is not None:
             lines.append(line)
     return rows
+
+
+def _header_problems(header: list[str], valid: list[str]) -> list[str]:
+    """What is wrong with each column name of a measurement CSV's header (``valid``: the
+    columns it takes): given twice, a time or date column (calibration takes steady states, not
+    a time series), an empty last column (a trailing ',' as Excel writes it), an unknown name
+    (its unit twin or the nearest valid one)."""
+    problems = []
+    for i, name in enumerate(header):
+        if name in header[:i] and name:
+            problems.append(f"column '{name}' given twice (columns {header.index(name) + 1} "
+                            f"and {i + 1}); give each column once")
+        elif not name and not any(header[i:]):
+            k = len(header) - i
+            problems.append(f"the last {'column has' if k == 1 else f'{k} columns have'} no "
+                            "name (a trailing ',' on each line, as a spreadsheet writes an "
+                            f"empty last column): remove the empty last column{'s' * (k > 1)}")
+            break
+        elif not name:
+            problems.append(f"column {i + 1} has no name; name it ({', '.join(valid)}) or "
+                            "remove it")
+        elif name not in valid:
+            timed = time_column_hint(name)
+            close = difflib.get_close_matches(name, valid, n=1, cutoff=0.5)
+            hint = (timed or unit_twin(name, valid) or (
+                f"did you mean '{close[0]}'?" if close else f"valid columns: {', '.join(valid)}"))
+            problems.append(f"unknown column '{name}'; {hint}")
+    return problems
+
+
+#: A cell written with a decimal comma: digits, one comma, digits (``620,3``).
+_DECIMAL_COMMA = re.compile(r"[+-]?\d+,\d+")
+
+
+def _decimal_comma_hint(record: list[str]) -> str:
+    """A hint for a row with more cells than the header where every cell is a number: the
+    numbers are likely written with a decimal comma (``0,5,10,620``: 0,5 split in two)."""
+    if all(re.fullmatch(r"\s*[+-]?\d+\s*", c) or not c.strip() for c in record):
+        return ("; a decimal comma splits a number in two ('0,5' for 0.5 reads as the cells "
+                "0 and 5): write the numbers with a decimal point, e.g. "
+                "'load,temperature_c,power_kw' then '0.5,12,417.5' (export the CSV with '.' as "
+                "the decimal separator)")
+    return ""
+
+
+def _refuse_decimal_commas(row: dict[str, str], where: str) -> None:
+    """A quoted number with a decimal comma (``"620,3"``) is refused naming its column and
+    the number with a decimal point; ``load`` is left alone (``"0.5,1"`` is one fraction per
+    carry section, and a two-section ``"1,0"`` is a load)."""
+    for name, cell in row.items():
+        if name != "load" and _DECIMAL_COMMA.fullmatch(cell.strip()):
+            raise InputError(
+                f"{where}: {name} '{cell.strip()}' is written with a decimal comma; write "
+                f"{cell.strip().replace(',', '.')} (the file must be comma-separated with a "
+                "decimal point: export it as CSV with '.' as the decimal separator)")
 
 
 def _at_line(message: str, path: str, lines: list[int]) -> str:

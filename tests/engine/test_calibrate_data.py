@@ -103,8 +103,9 @@ def test_repeats_of_two_states_for_two_names_are_a_warning(plant):
 
 def test_power_and_te_of_one_state_are_one_state(plant):
     """A row that gives both the power and the peripheral force of one steady state (P = Te v,
-    the two agree) is two values but one state: one name meets both whatever the model, so
-    the fit is a warning, not ``ok`` with one degree of freedom."""
+    the two agree) is two values but one state and one reading: one name meets it whatever the
+    model, so the fit is a warning, not ``ok``, with no degree of freedom (the pair counts
+    once: tests/engine/test_calibrate_power_and_te.py)."""
     conv, rows = plant
     row = rows[0]
     v = conv.speed_m_s
@@ -112,7 +113,7 @@ def test_power_and_te_of_one_state_are_one_state(plant):
                      values={"power_kw": row.values["power_kw"],
                              "te_kn": row.values["power_kw"] / v})
     cal = calibrate(conv, [both], "din", ["f_carry"])
-    assert cal.dof == 1 and cal.status == "warning"
+    assert cal.dof == 0 and cal.status == "warning"
     assert "power_kw and te_kn (row 0)" in cal.message
 
 

@@ -192,7 +192,7 @@ def test_csv_from_excel_or_notepad_reads_as_utf8(tmp_path, encoding):
      "at most 200 rows"),
     # a row's problem names the row's line (blank lines counted)
     (b"load,temperature_c,power_kw\n0.5,12,417.5\n\n1.0,12,0\n",
-     "line 4: measured.1.power_kw: a measured power_kw is not 0"),
+     "line 4: measured.1.power_kw: a measured power_kw must not be 0"),
     (b"load,temperature_c,power_kw,speed_m_s\n0.5,12,417.5,500\n",
      "line 2: measured.0.speed_m_s: Input should be less than or equal to 30"),
     (b'load,temperature_c,power_kw\n"1,0,0,0,0,0,0,0",12,417.5\n',
