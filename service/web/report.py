@@ -510,6 +510,11 @@ def _verdicts_section(study: dict, runs: pd.DataFrame, bars: pd.DataFrame | None
              else "DIN 22101 minimum")
     rows_ = verdict_rows(runs, study_limits(study, sf, TRANSIENT_SAFETY_RATIO, words))
     if not rows_:
+        # every run failed: no figure to judge (not 'yet': the study may be done)
+        failed = int((runs["status"] == "failed").sum()) if "status" in runs else 0
+        if failed and failed == len(runs):
+            return (f"<p>All {failed} finished runs failed: no figure to judge. Their "
+                    "messages are under <em>Runs that did not pass</em>.</p>")
         return "<p>No finished runs yet.</p>"
     axes = _axes(study, runs)
     locate = _locator(study)

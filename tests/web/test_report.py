@@ -924,3 +924,19 @@ def test_a_missed_controlled_stop_alone_is_no_overload():
     assert groups["overload"] == ["a2", "os", "ov"]  # a2 by its words, os and ov by power
     words = next(c for c in CAUSES if c.key == "overload").words
     assert finding_clauses(runs.loc[1, "message"], words) == [over]
+
+
+def test_a_done_study_whose_runs_all_failed_is_not_said_to_have_none_yet(web):
+    """A done study whose two runs both failed (its workers killed under them) said 'No
+    finished runs yet' in its verdicts: they finished, failing. It says so, and where their
+    messages are."""
+    runs = _runs().iloc[:2].copy()
+    runs["status"] = "failed"
+    for col in runs.columns:
+        if col not in ("run_id", "friction_model", "temperature_c", "status", "message"):
+            runs[col] = float("nan")
+    runs["message"] = "task failed: the Dask worker running it died each time it was tried"
+    html = report_html(_doc(web), runs, {"state": "done", "done": 2, "total": 2})
+    s1 = _section(html, 1)
+    assert "No finished runs yet" not in s1
+    assert "All 2 finished runs failed: no figure to judge" in s1
