@@ -365,7 +365,7 @@ def _sagged(runs: pd.DataFrame, phase: str | None = None) -> pd.Series:
 #: circle, and a horizontal curve the belt runs out of or to the inside of; not the notes
 #: that name curve_radius_m (``note: profile.2.curve_radius_m ...``).
 _ROUTE = (r"lift-off in |lifts off its|^curve \d+ \((?:concave|convex), R |grade change without "
-          r"a vertical curve|^horizontal curve \d+ \(profile section")
+          r"a vertical curve|^horizontal curve \d+ \(profile(?: section |\.\d)")
 
 
 #: What the route warnings name as their fix, each a clause after its finding: the radius

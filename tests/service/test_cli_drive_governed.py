@@ -53,15 +53,17 @@ def test_each_drive_row_says_what_set_its_own_rated_power(tmp_path):
     p = subprocess.run([*EXE, "static", str(path)], capture_output=True, text=True,
                        timeout=120)
     assert p.returncode == 0, p.stderr
-    # the given ratings as given; the auto one 1.25 x its share of Te x v, Te by hand (DIN,
+    # the given ratings as given; the auto one 1.25 x its share of Te x v / 0.95 (the motor
+    # power through the default drive train), Te by hand (DIN,
     # f 0.020, C(2000 m) 1.05): belt (20.4 + 1.15 x 14) x 1.4 = 51.1 kg/m, load 3000 / (3.6 x
     # 4.5) = 185.19 kg/m, rolls 18.5 x 1.4 / 1.5 = 17.27 and 17.0 x 1.4 / 3 = 7.93 kg/m,
     # cos = 0.99718: carry 0.02 x 9.81 x 2000 x (17.27 + 236.29 x 0.99718) = 99.23 kN,
     # return 392.4 x (7.93 + 51.1 x 0.99718) = 23.11 kN, secondary 0.05 x 122.34 = 6.12 kN,
-    # lift 185.19 x 9.81 x 150 = 272.50 kN: Te 400.96 kN, 0.2 x 400.96 x 4.5 x 1.25 = 451.1 kW
+    # lift 185.19 x 9.81 x 150 = 272.50 kN: Te 400.96 kN, 0.2 x 400.96 x 4.5 x 1.25 / 0.95 =
+    # 474.8 kW
     for label, kw, why in (("rated power, drive 1", 1000.0, "given"),
                            ("rated power, drive 2", 600.0, "given"),
-                           ("rated power, drive 3", 451.1, "peripheral_force")):
+                           ("rated power, drive 3", 474.8, "peripheral_force")):
         row = _row(p.stdout, label)
         assert float(row.split()[-3]) == pytest.approx(kw, rel=1e-3), row
         assert row.split()[-1] == why, row
