@@ -21,7 +21,14 @@ from dataclasses import dataclass
 import numpy as np
 
 from beltstudy.engine import catalog
-from beltstudy.engine.conveyor import Conveyor, curve_arc_m, place, route_points, section_loads
+from beltstudy.engine.conveyor import (
+    CURVE_STEP_DEG,
+    Conveyor,
+    curve_arc_m,
+    place,
+    route_points,
+    section_loads,
+)
 
 __all__ = ["G", "Loop", "Pulley", "build_loop", "CARRY", "RETURN", "HEAD", "TAIL", "TAKEUP",
            "BOOSTER", "route_cuts",
@@ -91,9 +98,6 @@ class Pulley:
         return math.exp(self.friction_kinetic * math.radians(self.wrap_deg))
 
 
-#: Largest change of slope angle from one element to the next on a vertical curve [deg]: the
-#: mesh on a curve is the automatic element size or finer, so that it follows the arc.
-CURVE_STEP_DEG = 1.0
 
 
 @dataclass(frozen=True, eq=False)
@@ -610,10 +614,11 @@ def _curve_elements(conv: Conveyor, counts: list[int]) -> tuple[list, list]:
     its grade, tangent to the arc; the arc rises by a hair less than the two straight halves
     it replaces (R (cos a1 - cos a2) against R |delta| (sin a1 + sin a2) / 2, a difference of
     order R delta^4), and that difference goes half to each section's straight rest, so the
-    route keeps its length and its lift. A rest too short to take its half within
-    :data:`CURVE_STEP_DEG` of its grade (a curve of nearly the largest radius its section
-    holds leaves a rest of centimetres: 0.014 m took -0.021 m of lift, a sine of -1.46) turns
-    by that step and leaves the rest of its half out (centimetres of lift). The junction then lies off the grades' intersection
+    route keeps its length and its lift. A rest too short to take its half within the larger
+    of :data:`CURVE_STEP_DEG` and its curves' own turn off its grade (a curve of nearly the
+    largest radius its section holds leaves a rest of centimetres: 0.014 m took -0.021 m of
+    lift, a sine of -1.46) turns by that much and leaves the rest of its half out
+    (millimetres to centimetres of lift). The junction then lies off the grades' intersection
     by the curve's external distance R (sec(delta / 2) - 1), as on a real curve.
 
     Returns
@@ -670,9 +675,12 @@ def _curve_elements(conv: Conveyor, counts: list[int]) -> tuple[list, list]:
             lift = (rest * sec.lift_m / sec.length_m
                     + 0.5 * (excess.get(i - 1, 0.0) + excess.get(i, 0.0)))
             # a rest a sliver long (a curve of nearly the largest radius its section holds)
-            # cannot take its share of the excess: it turns at most an arc element's step
-            # off its grade, and the few centimetres of lift left over are left out
-            sin = min(max(lift / rest, math.sin(ang[i] - step)), math.sin(ang[i] + step))
+            # cannot take its share of the excess: it turns off its grade by at most the
+            # larger of an arc element's step and its curves' own turn, and what lift is
+            # left over (centimetres, on such a sliver) is left out
+            turn = max([step] + [abs(ang[j + 1] - ang[j]) for j in (i - 1, i)
+                                 if j in excess])
+            sin = min(max(lift / rest, math.sin(ang[i] - turn)), math.sin(ang[i] + turn))
             cos = math.sqrt(1.0 - sin * sin)
             # cut at the feed points and pulleys along the route (never on an arc: refused)
             a0 = at + sum(d for d, _, _ in first)

@@ -64,11 +64,14 @@ class DataDirClaim:
             except OSError:
                 holder = _read(fd)
                 os.close(fd)
+                # a service takes studies; a `beltstudy run` ends with its study
+                way = ("wait for it to finish (it ends with its study)"
+                       if holder.startswith("beltstudy run") else
+                       "submit to it (beltstudy submit, or POST /studies at its address)")
                 raise Conflict(
                     f"the data folder {self.path.parent} is in use by {holder}: one process "
-                    "runs a folder's studies at a time (two would run them twice); submit to "
-                    "it (beltstudy submit, or POST /studies at its address), or give this one "
-                    "another folder (BELTSTUDY_DATA_DIR)") from None
+                    f"runs a folder's studies at a time (two would run them twice); {way}, or "
+                    "give this one another folder (BELTSTUDY_DATA_DIR)") from None
             os.ftruncate(fd, 0)
             os.write(fd, json.dumps({"pid": os.getpid(), "command": self.who,
                                      "since": time.strftime("%Y-%m-%d %H:%M:%S")}).encode())

@@ -5,6 +5,7 @@ for the troughed belt's edge and centre strains, and the input checks."""
 from __future__ import annotations
 
 import math
+import re
 
 import numpy as np
 import pytest
@@ -251,7 +252,9 @@ def test_a_curve_too_long_for_its_sections_names_the_largest_radius_that_fits():
                        r"60\.0 m left to the curve in profile\.0\)"):
         parse_conveyor(hand_conveyor_dict(profile=profile(60, 2000)))
     parse_conveyor(hand_conveyor_dict(profile=profile(60, 1197)))
-    with pytest.raises(ValueError, match=r"profile.1\.curve_radius_m: .* at most 1993 m .*"
+    # 1993 m by length; 1991 m keeps the section's lift (its straight rest takes its half
+    # of the arcs' difference from the grades: test_the_largest_radius_offered_...)
+    with pytest.raises(ValueError, match=r"profile.1\.curve_radius_m: .* at most 1991 m .*"
                        r"99\.8 m left to the curve in profile\.1"):
         parse_conveyor(hand_conveyor_dict(profile=[
             {"length_m": 500, "lift_m": 0, "curve_radius_m": 2000},
@@ -669,28 +672,56 @@ def test_the_start_time_for_a_start_lift_off_keeps_every_element_of_the_curve_do
 
 
 def test_the_largest_radius_offered_builds_and_keeps_the_lift():
-    """Between 0 and 10 % in two 500 m sections the largest radius offered is 9 983 m (2 x 500
-    / asin(0.1) = 9 983.3), which leaves a straight rest of 0.014 m on the flat section. Its
-    half of the arc's lift excess (-0.021 m) gave that rest a sine of -1.46 and the loop build
-    a math domain error; the rest now turns at most an arc element's step (CURVE_STEP_DEG) off
-    its grade. The loop keeps every element's slope within the two grades and the route's
-    lift within the centimetres left out (g m'_L H by hand: 9.81 x 50 x 50 = 24 525 N)."""
+    """Between 0 and 10 % in two 500 m sections the largest radius by length is 9 983 m (2 x
+    500 / asin(0.1) = 9 983.3), which leaves a straight rest of 0.014 m on the flat section;
+    its half of the arcs' difference from the grades (-0.021 m of lift) gave that rest a sine
+    of -1.46 and the loop build a math domain error, and capping the rest's slope lost the
+    lift (a 0 to 30 % curve rose 90.69 m for 90). A radius is taken, and offered, only where
+    each rest keeps its section's lift within the turn the loop allows it: 9 979 m here. The
+    loop then keeps every element's slope within the grades and the route's lift exact
+    (g m'_L H by hand: 9.81 x 50 x 50 = 24 525 N)."""
     with pytest.raises(ValueError, match=r"need 500\.036 m of profile\.0 .* a radius of at "
-                       r"most 9983 m"):
+                       r"most 9979 m"):
         parse_conveyor(hand_conveyor_dict(profile=[
             {"length_m": 500, "lift_m": 0, "curve_radius_m": 9984},
             {"length_m": 500, "lift_m": 50}]))
+    with pytest.raises(ValueError, match=r"profile\.0\.curve_radius_m: the curve's arcs leave "
+                       r"0\.\d+ m of straight grade in profile\.0, too little to keep the "
+                       r"section's lift .* a radius of at most 9979 m"):
+        parse_conveyor(hand_conveyor_dict(profile=[
+            {"length_m": 500, "lift_m": 0, "curve_radius_m": 9983},
+            {"length_m": 500, "lift_m": 50}]))
     conv = parse_conveyor(hand_conveyor_dict(profile=[
-        {"length_m": 500, "lift_m": 0, "curve_radius_m": 9983},
+        {"length_m": 500, "lift_m": 0, "curve_radius_m": 9979},
         {"length_m": 500, "lift_m": 50}]))
     st = solve_steady(conv, model="din")
     carry = st.loop.strand == 0
-    step = math.sin(math.radians(CURVE_STEP_DEG))
-    assert np.all(st.loop.sin_a[carry] >= -step) and np.all(st.loop.sin_a[carry] <= 0.1 + step)
+    # every slope within the grades and at most the curve's own turn (asin 0.1) beyond them
+    turn = math.asin(0.1)
+    assert np.all(st.loop.sin_a[carry] >= math.sin(-turn) - 1e-12)
+    assert np.all(st.loop.sin_a[carry] <= math.sin(2 * turn) + 1e-12)
     lift = float(np.sum(st.loop.dx_m[carry] * st.loop.sin_a[carry]))
-    assert lift == pytest.approx(50.0, abs=0.05)
+    assert lift == pytest.approx(50.0, abs=1e-6)
     assert st.summary["te_components_kn"]["lift"] * 1e3 == pytest.approx(9.81 * 50 * 50,
-                                                                      rel=1e-3)
+                                                                          rel=1e-9)
+
+
+def test_a_steep_convex_curve_is_offered_a_radius_that_keeps_the_lift():
+    """0 to 30 % over two 300 m sections, convex: by length alone the largest radius is 1 969
+    m, whose arcs leave 0.03 m of straight; the arcs rise 0.70 m more than the grades they
+    replace, so that route rose 90.69 m for 90. The radius offered keeps the lift: built at
+    it, the carry rises 90 m."""
+    prof = [{"length_m": 300, "lift_m": 90, "curve_radius_m": 5000},
+            {"length_m": 300, "lift_m": 0}]
+    with pytest.raises(ValueError, match=r"a radius of at most (\d+) m") as err:
+        parse_conveyor(hand_conveyor_dict(profile=prof))
+    r = int(re.search(r"a radius of at most (\d+) m", str(err.value)).group(1))
+    assert r < 1969
+    prof[0]["curve_radius_m"] = r
+    st = solve_steady(parse_conveyor(hand_conveyor_dict(profile=prof)), model="din")
+    carry = st.loop.strand == 0
+    assert float(np.sum(st.loop.dx_m[carry] * st.loop.sin_a[carry])) == pytest.approx(
+        90.0, abs=1e-6)
 
 
 def test_more_vertical_curves_than_their_columns_are_refused_by_name():

@@ -99,3 +99,22 @@ def test_a_booster_inside_a_horizontal_curve_is_refused_as_on_a_vertical_arc():
                        r"300 or at or after 700 m"):
         with_booster(500)
     assert with_booster(700).drives[1].at_m == 700
+
+
+def test_a_drift_wider_than_the_outer_rolls_share_leaves_the_roll_inside_it():
+    """Four 0.45 m rolls under a 1 m belt at 35 deg: half the belt lies 0.45 m on the 17.5 deg
+    roll and 0.05 m on the 35 deg one, which reaches 0.4 m past its edge. Drifted 0.4 m in,
+    the outside edge leaves the 35 deg roll and 0.35 m of the 17.5 deg one: inside 0.45 m on
+    each roll, outside 0.1 m on the 17.5 deg roll. With beta 3 deg, m' 14.65 kg/m, R 800 m:
+    q = m' g / B [0.45 sin 20.5 cos 17.5 + 0.45 sin 38 cos 35 - 0.1 sin 14.5 cos 17.5],
+    T_max = R q = 40.63 kN (the outside outer roll taken at 0.05 - 0.4 = -0.35 m gave
+    48.49 kN, on the unsafe side)."""
+    b, lam1, lam2 = math.radians(3), math.radians(17.5), math.radians(35)
+    k = (0.45 * math.sin(lam1 + b) * math.cos(lam1) + 0.45 * math.sin(lam2 + b) * math.cos(lam2)
+         - 0.10 * math.sin(lam1 - b) * math.cos(lam1))
+    hand = 800 * 14.65 * G * k
+    segs = trough_segments(1.0, 4, 35.0, 0.45)
+    assert segs[0][0] == pytest.approx(0.45) and segs[1][0] == pytest.approx(0.05)
+    t_min, t_max = garland_limits_n(14.65, 800.0, 1.0, segs, 0.4, 3.0)
+    assert t_max == pytest.approx(hand, rel=1e-12) and hand == pytest.approx(40627, abs=1)
+    assert t_min == 0.0

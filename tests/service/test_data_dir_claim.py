@@ -87,3 +87,20 @@ def test_the_lock_goes_with_its_process_and_is_shared_within_one(held, data_dir)
     first.drop()
     assert (data_dir / LOCK_NAME).exists() and second.held
     second.drop()
+
+
+def test_a_folder_held_by_beltstudy_run_is_told_to_wait_for_it(data_dir):
+    """A `beltstudy run` has no address to submit to: the refusal says to wait for it."""
+    data_dir.mkdir(parents=True)
+    hold = HOLD.replace("beltstudy serve --port 18999", "beltstudy run studies/s.yaml")
+    proc = subprocess.Popen([sys.executable, "-c", hold, str(data_dir)],
+                            stdout=subprocess.PIPE, text=True)
+    try:
+        assert proc.stdout.readline().strip() == "held"
+        with pytest.raises(Conflict, match=r"in use by beltstudy run studies/s\.yaml \(pid "
+                           r"\d+, since .*\); wait for it to finish \(it ends with its "
+                           r"study\), or give this one another folder"):
+            DataDirClaim(data_dir, "beltstudy serve").take()
+    finally:
+        proc.kill()
+        proc.wait()
