@@ -63,7 +63,8 @@ def test_a_grip_held_design_brake_is_within_the_grip_at_its_own_case():
     assert auto_sizes(given, STOP, model="cema", steady=steady)["brake_note"] == ""
 
 
-#: A 900 m regenerating decline (-50 m) with a head drive, a booster on the return, the
+#: A 900 m regenerating decline (-50 m) with a head drive, a booster on the return (at 250 m,
+#: off the horizontal curve from 300 to 700 m: a drive pulley needs a straight run), the
 #: take-up along the return and auto brakes at the head and the tail: the holding force, 1.2 x
 #: the net gravity pull 25.89 kN = 31.07 kN, is beyond the head pulley's grip as an even share,
 #: so the engine gives the head its grip (15.385 kN) and the tail the rest (15.680 kN), both
@@ -84,7 +85,7 @@ DECLINE = {
                           "cema_class": "C"}},
     "drives": [{"position": "head", "wrap_deg": 210, "friction": 0.35, "share": 0.6,
                 "pulley_diameter_m": 0.8, "inertia_kg_m2": 150, "torque_limit": 1.5},
-               {"position": "return", "at_m": 500, "wrap_deg": 190, "friction": 0.35,
+               {"position": "return", "at_m": 250, "wrap_deg": 190, "friction": 0.35,
                 "share": 0.4, "pulley_diameter_m": 0.8, "inertia_kg_m2": 100,
                 "torque_limit": 1.5}],
     "takeup": {"type": "gravity", "position": "return", "at_m": 850, "mass_kg": "auto",
