@@ -197,6 +197,32 @@ def _brake_forces(model, rs):
 
 
 @njit(inline="always", **OPTS)
+def _stop_from(model, rs):
+    """The speed a controlled stop's ramp starts from, at its command. Design speed, the
+    reference the loop followed; a master held at its limit short of it (a torque start, a
+    drive at its torque limit) ramps from its own speed, and a master whose pulley slips from
+    the belt's mean speed where that is lower (the pulley runs ahead of its belt); the
+    integrator takes the force the drive gave (ramp-function generator tracking, bumpless).
+    Ramped from design speed, a stop drove a belt at 1.7 m/s up to 3.5 m/s at the limit, and
+    a belt at 2.6 m/s behind its slipping pulley up to 3.9 m/s."""
+    cyc = model.cycle
+    ctl = model.control
+    sh = model.drives.shaft[ctl.master]
+    rs.v_stop0 = cyc.v_d
+    vm = model.shafts.vs[sh]
+    if not rs.pi_started:
+        return
+    v0 = cyc.v_d
+    if model.drives.sat[ctl.master] != 0:
+        v0 = min(v0, vm)
+    if model.shafts.slip[sh] != 0:
+        v0 = min(v0, vm, rs.v_mean)
+    if v0 < cyc.v_d:
+        rs.v_stop0 = max(v0, 0.0)
+        rs.integ = rs.U - ctl.kp * (rs.v_stop0 - vm)
+
+
+@njit(inline="always", **OPTS)
 def _phase(model, rs):
     """The step's phase: the speed reference (start or controlled stop), the drives' trip,
     what the drives do (hold at rest, run, off), the brakes' forces (:func:`_brake_forces`),
@@ -214,16 +240,7 @@ def _phase(model, rs):
         rs.v_ref, rs.a_ref = start_reference(cyc.start_ctrl, t - cyc.t_pre, cyc.t_start, cyc.v_d)
     elif cyc.stop_mode == C.CONTROLLED:
         if rs.v_stop0 < 0.0:
-            # the ramp starts from design speed, the reference the loop followed; a master held
-            # at its limit short of it (a torque start, a drive at its torque limit) has the
-            # ramp start from its own speed, the integrator taking the force it gave
-            # (ramp-function generator tracking, bumpless): ramped from design speed, its stop
-            # drove a belt at 1.7 m/s up to 3.5 m/s at the limit
-            rs.v_stop0 = cyc.v_d
-            vm = model.shafts.vs[drives.shaft[ctl.master]]
-            if rs.pi_started and drives.sat[ctl.master] != 0 and vm < cyc.v_d:
-                rs.v_stop0 = max(vm, 0.0)
-                rs.integ = rs.U - ctl.kp * (rs.v_stop0 - vm)
+            _stop_from(model, rs)
         rs.v_ref, rs.a_ref = stop_reference(t - rs.t_stopcmd, cyc.t_stop, rs.v_stop0)
     else:
         rs.v_ref = 0.0

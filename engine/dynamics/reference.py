@@ -417,11 +417,17 @@ def _phase(model: Model, rs, sh, dr, brk):
     if not rs.stopping:
         rs.v_ref, rs.a_ref = start_reference(cyc.start_ctrl, t - cyc.t_pre, cyc.t_start, cyc.v_d)
     elif cyc.stop_mode == C.CONTROLLED:
-        if rs.v_stop0 < 0.0:  # from v_d; a master held at its limit below it: its speed
-            rs.v_stop0 = cyc.v_d
-            vm = sh.vs[drives.shaft[ctl.master]]
-            if rs.pi_started and dr.sat[ctl.master] != 0 and vm < cyc.v_d:
-                rs.v_stop0 = max(vm, 0.0)
+        if rs.v_stop0 < 0.0:  # from v_d; a master held at its limit below it: its speed;
+            rs.v_stop0 = cyc.v_d  # a master whose pulley slips: the belt's mean if lower
+            k = drives.shaft[ctl.master]
+            vm = sh.vs[k]
+            v0 = cyc.v_d
+            if rs.pi_started and dr.sat[ctl.master] != 0:
+                v0 = min(v0, vm)
+            if rs.pi_started and sh.slip[k] != 0:
+                v0 = min(v0, vm, rs.v_mean)
+            if v0 < cyc.v_d:
+                rs.v_stop0 = max(v0, 0.0)
                 rs.integ = rs.U - ctl.kp * (rs.v_stop0 - vm)
         rs.v_ref, rs.a_ref = stop_reference(t - rs.t_stopcmd, cyc.t_stop, rs.v_stop0)
     else:

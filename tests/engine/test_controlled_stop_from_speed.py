@@ -57,3 +57,34 @@ def test_a_controlled_stop_of_a_belt_short_of_speed_does_not_speed_it_up(stop_s)
     # no jolt at the switch: the drive's force right after the command is the force it gave
     f = np.asarray(ts["f_drive_kn"])
     assert f[after][0] == pytest.approx(f[before][-1], rel=0.05)
+
+
+def test_a_controlled_stop_behind_a_slipping_pulley_ramps_from_the_belt():
+    """The same belt on a 30 m decline, its controlled stop commanded 1 s after a 10 s torque
+    start: the head pulley slips at the command (about 3.9 m/s against the belt's 2.5 m/s
+    mean). Ramped from design speed, the drive kept pushing at its limit and the stop drove
+    the belt's mean speed up to 3.87 m/s (97 % of design speed). The ramp now starts from
+    the belt's mean speed, the pulley is pulled back onto its belt and the stop slows it."""
+    data = dict(LEVEL_SLOW, name="level-slow-decline",
+                profile=[{"length_m": 1500, "lift_m": -30}])
+    conv = parse_conveyor(data)
+    scn = Scenario(start={"control": "torque", "time_s": 10}, run_s=1,
+                   stop={"mode": "controlled", "time_s": 15}, elements=40,
+                   record_dt_s=0.05)
+    res = run_one(conv, scn, model="din", check=False)
+    ts = res.timeseries
+    t = np.asarray(ts["t_s"])
+    t_cmd = 2.0 + 10.0 + 1.0
+    before = t <= t_cmd + 1e-9
+    v_mean = np.asarray(ts["v_mean_m_s"])
+    v_pulley = np.asarray(ts["v_drive_m_s"])
+    v_belt_cmd = float(v_mean[before][-1])
+    # the pulley runs well ahead of its belt at the command: it slips
+    assert float(v_pulley[before][-1]) > 1.2 * v_belt_cmd
+    after = t > t_cmd
+    v_ref = np.asarray(ts["v_ref_m_s"])[after]
+    assert v_ref[0] <= 1.02 * v_belt_cmd
+    assert np.all(np.diff(v_ref) <= 1e-12)
+    # the belt's mean speed stays well short of design speed (ramped from it: 97 %); what
+    # it gains after the command is the stretch the drive's pull had stored and the slope
+    assert v_mean[after].max() < 0.8 * conv.speed_m_s

@@ -127,6 +127,15 @@ CASES = [
                       stop={"mode": "controlled", "time_s": 10}),
                  lambda kr: 0.0 < kr.run["v_stop0"] < kr.model.cycle.v_d,
                  id="controlled-stop-from-a-master-short-of-speed"),
+    # a 20 t take-up: the head pulley slips in the torque start and still runs ahead of its
+    # belt at the command, so the ramp starts from the belt's mean speed (the highest so far)
+    pytest.param("slope-5pct", dict(takeup=dict(type="gravity", position="tail",
+                                                mass_kg=20000, travel_m=10)), "din",
+                 dict(start={"control": "torque", "time_s": 8}, run_s=1,
+                      stop={"mode": "controlled", "time_s": 10}),
+                 lambda kr: kr.out.drv["slip_s"][0] > 0.0
+                 and 0.0 < kr.run["v_stop0"] == kr.run["vmean_hi"] < kr.model.cycle.v_d,
+                 id="controlled-stop-from-the-belt-behind-a-slipping-master"),
 ]
 
 
