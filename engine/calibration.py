@@ -669,7 +669,8 @@ def calibrate(conv: Conveyor, measured: Sequence[Measurement], model: str,
     suspect = (slips or _contradictions(rows, cols, y)
                or _outliers(rows, [cols[k] for k in first], y[first], values[first], r_fit, jac,
                             dof, len({_state_key(m) for m in rows})))
-    notes += suspect + _copies(rows)
+    notes += suspect + _copies(rows) + _leverage_notes(
+        rows, [cols[k] for k in first], y[first], jac, dof)
     # a row's power and Te left as many readings as names: those states are met, not checked
     few = _few_states(rows, cols, p) if dof > 0 or len(obs) < n else ""
     # a name at its bound in a fit that meets the data without it is not determined by them
@@ -794,6 +795,10 @@ MISFIT_PCT = 5.0
 #: Belsley, Kuh & Welsch 1980, 2.1): 1 fit in 100 of consistent data names one (a warning
 #: is rare where nothing is wrong).
 OUTLIER_ALPHA = 0.01
+#: Leverage [-] of one reading above which it is named as carrying the fit (and above twice
+#: the mean leverage 2 p / n; Belsley, Kuh & Welsch 1980, 2.1): half the fit's weight on one
+#: reading.
+LEVERAGE_HIGH = 0.5
 #: Smallest relative residual [%] named as an outlier however far it stands from the rest: a
 #: plant meter of class 1 reads within 1 % (the class of :data:`MISFIT_PCT`'s note).
 OUTLIER_MIN_PCT = 1.0
@@ -985,6 +990,35 @@ def _outliers(rows: Sequence[Measurement], cols: Sequence[tuple[int, str]], y: n
             f"{1 / OUTLIER_ALPHA:.0f}): an outlier, and it pulls the fitted values; check the "
             "row (a steady state? its load, temperature, speed and units) and fit again "
             "without it if it is wrong")
+    return out
+
+
+def _leverage_notes(rows: Sequence[Measurement], cols: Sequence[tuple[int, str]],
+                    y: np.ndarray, jac: np.ndarray, dof: int) -> list[str]:
+    """The readings that carry most of the fit: leverage h_k (the diagonal of the hat matrix
+    J (J^T J)^-1 J^T of the readings' relative residuals; the h_k sum to the p fitted names)
+    above :data:`LEVERAGE_HIGH` and above twice its mean 2 p / n (Belsley, Kuh & Welsch 1980,
+    section 2.1). With residuals relative to each reading, a small reading (a belt near
+    zero power, regenerating or nearly balanced) weighs most: a meter's error of a share of
+    its full scale there moves the fitted values most, and their intervals do not show it.
+    None when no degree of freedom is left (every reading then sets the fit alike)."""
+    n, p = jac.shape if jac.ndim == 2 else (len(y), 0)
+    if dof < 1 or not p:
+        return []
+    h = np.clip(np.diag(jac @ np.linalg.pinv(jac.T @ jac) @ jac.T), 0.0, 1.0)
+    big = float(np.max(np.abs(y)))
+    out = []
+    for k, (i, col) in enumerate(cols):
+        if h[k] <= max(LEVERAGE_HIGH, 2.0 * p / n):
+            continue
+        out.append(
+            f"row {i} ({_state_text(rows[i])}): its {col} {y[k]:.4g} carries a leverage of "
+            f"{h[k]:.2f} (the {n} readings' leverages sum to {p}, one per fitted name); the "
+            "residuals are relative to each reading, so a small one (the largest reading is "
+            f"{big:.4g} in size) weighs most "
+            "and a meter error of a share of its full scale there moves the fitted values "
+            "most, beyond their standard errors: check that reading, add readings at other "
+            "loads or temperatures, or fit again without it to see how far the values move")
     return out
 
 
