@@ -6,6 +6,7 @@ Routes raise these; one handler in :mod:`beltstudy.service.api.app` maps them to
 
 from __future__ import annotations
 
+import os
 import re
 
 from beltstudy.engine.errors import shown_text
@@ -24,6 +25,8 @@ __all__ = [
     "Unauthorized",
     "Unavailable",
     "UnsupportedMedia",
+    "Damaged",
+    "DamagedParts",
 ]
 
 
@@ -132,6 +135,44 @@ class Damaged(ServiceError):
             f"nothing else of the study was changed: restore the file from a backup, or "
             f"delete the study (DELETE /studies/{shown_id(study_id)}, which works without it) "
             "and submit it again")
+
+
+#: Damaged part files a message names one by one; the rest are counted.
+SHOWN_PARTS = 3
+
+
+class DamagedParts(ServiceError):
+    """Part files of a study's table (``runs``, ``timeseries``, ...) that Arrow cannot read:
+    truncated or overwritten outside the service, which writes each part whole under a
+    temporary name and renames it. A 500 naming the study, the files and why, with the ways
+    out; ``parts`` holds ``(path, why)`` of each."""
+
+    status_code = 500
+    kind = "damaged"
+
+    def __init__(self, study_id: str, table: str, parts: list[tuple[object, str]]):
+        self.parts = list(parts)
+        super().__init__(damaged_parts_message(study_id, table, self.parts))
+
+
+def damaged_parts_message(study_id: str, table: str, parts: list[tuple[object, str]]) -> str:
+    """What :class:`DamagedParts` says: the study, each damaged file (the first
+    :data:`SHOWN_PARTS`) with why it cannot be read, that nothing was changed, and what to
+    do: restore the file, or move it out of the folder (the study then reads without the rows
+    it held), or delete the study and submit it again (every run anew)."""
+    sid = shown_id(study_id)
+    named = "; ".join(f"{path} ({why})" for path, why in parts[:SHOWN_PARTS])
+    more = (f"; and {len(parts) - SHOWN_PARTS} more"
+            if len(parts) > SHOWN_PARTS else "")
+    files = "file" if len(parts) == 1 else "files"
+    folder = os.path.dirname(str(parts[0][0])) if parts else table
+    return (f"study '{sid}': {len(parts)} {table} part {files} cannot be read: {named}{more}; "
+            "the service writes each part whole (a temporary name, then renamed), so it was "
+            "damaged on disk afterwards; nothing of the study was changed by the service: "
+            f"restore the {files} from a backup, or move {'it' if len(parts) == 1 else 'them'}"
+            f" out of {folder} (the study is then read without the rows "
+            f"{'it holds' if len(parts) == 1 else 'they hold'}), or delete the study "
+            f"(DELETE /studies/{sid}) and submit it again to run every run anew")
 
 
 class UnsupportedMedia(ServiceError):

@@ -40,6 +40,7 @@ from beltstudy.service.door.studyfile import conveyor_from_path, resolve_study
 from beltstudy.service.errors import (
     Conflict,
     Damaged,
+    DamagedParts,
     Invalid,
     NotFound,
     ServiceError,
@@ -60,7 +61,8 @@ from beltstudy.service.store.claim import DataDirClaim
 from beltstudy.service.store.columns import profile_schema, surface_schema
 from beltstudy.service.store.parquet import Store, tmp_path
 
-__all__ = ["StudyService", "ACTIVE_STATES", "RESOLVED_CACHE", "SURFACE_CACHE", "study_models"]
+__all__ = ["StudyService", "ACTIVE_STATES", "RESOLVED_CACHE", "SURFACE_CACHE", "study_models",
+           "belt_choices", "damaged_status"]
 
 log = logging.getLogger("beltstudy.service")
 
@@ -89,6 +91,32 @@ def study_models(doc: dict) -> list[str]:
         if axis.get("column") == "friction_model":
             return [str(v) for v in axis["values"]]
     return [str(study.get("model") or DEFAULT_MODEL)]
+
+
+def belt_choices(study: dict) -> list[dict] | None:
+    """The belts ``belt.type: auto`` chose for a stored study, as its ``study.json`` holds
+    them (:func:`beltstudy.service.grid.basis.design_belt`: type, kind, ``passed`` (False: no
+    catalogue belt passes, the heaviest is used and ``note`` is that warning), mass, safety
+    factors, the deciding case, ``next_lighter``, ``note``), one per conveyor design that
+    chose one, with the design's conveyor ``axes`` ({} for one design); None when the
+    conveyor gives its belt."""
+    out = [{"axes": d.get("axes") or {}, **d["sizes"]["belt"]}
+           for d in study.get("designs") or [] if (d.get("sizes") or {}).get("belt")]
+    return out or None
+
+
+def damaged_status(entry: dict) -> dict:
+    """The status of a study whose ``study.json`` cannot be read (a list entry of
+    :meth:`Store.list_studies`): state ``damaged``, ``message`` naming the file and the way
+    out; the counts it cannot tell are 0, its runs are on disk as they were."""
+    return {
+        "id": entry["id"], "name": entry.get("name") or "", "state": "damaged",
+        "total": 0, "done": 0, "failed": 0, "elapsed_s": 0.0, "eta_s": None,
+        "message": entry.get("message", ""), "created_at": entry.get("created_at"),
+        "started_at": None, "finished_at": None, "dynamics": False, "grid_points": None,
+        "merged": 0, "merged_axes": [], "axes": {}, "engine_version": None,
+        "belt_choices": None,
+    }
 
 
 class StudyService:
@@ -381,6 +409,7 @@ class StudyService:
             "merged_axes": doc["study"].get("merged_axes", []),
             "axes": {a["name"]: a["column"] for a in doc["study"]["axes"]},
             "engine_version": doc.get("engine_version"),
+            "belt_choices": belt_choices(doc["study"]),
         }
         if job is not None and job.is_alive():
             out.update(
@@ -407,11 +436,18 @@ class StudyService:
         """Every stored study's status; one deleted while the list is made is left out (the
         list itself is never a 404)."""
         out = []
-        for doc in self.store.list_studies():
+        for doc in self.store.list_studies(damaged=True):
+            if doc.get("state") == "damaged":  # its study.json unreadable: listed, untouched
+                out.append(damaged_status(doc))
+                continue
             try:
                 out.append(self.status(doc["id"]))
             except NotFound:
                 continue
+            except Damaged as exc:  # damaged since it was listed
+                out.append(damaged_status({"id": doc["id"], "name": doc.get("name", ""),
+                                           "created_at": doc.get("created_at"),
+                                           "message": exc.message}))
         return out
 
     def study_doc(self, study_id: str) -> dict:
@@ -437,10 +473,10 @@ class StudyService:
 
     def run_detail(self, study_id: str, run_id: str) -> dict:
         """Summary row and time series of one run."""
-        runs = self.store.read_runs(study_id)
+        runs, bad = self.store.read_runs_readable(study_id)
         match = runs[runs["run_id"] == run_id] if len(runs) else runs
         if not len(match):
-            self._no_row(study_id, run_id)
+            self._no_row(study_id, run_id, bad)
         row = query.row_to_json(match.iloc[0].to_dict())
         ts = self.store.read_timeseries(study_id, run_id)
         # a sampled run's error bars (accuracy: {sample: ...}): the run page shows them
@@ -535,7 +571,7 @@ class StudyService:
                     "from its inputs, which only the engine that ran it reproduces; submit the "
                     f"study again for its runs and surfaces on engine {engine.__version__} "
                     "(surface: true stores them with the runs)")
-        row = self.store.read_runs(study_id, columns=["run_id", "status", "message"])
+        row, _ = self.store.read_runs_readable(study_id, columns=["run_id", "status", "message"])
         row = row[row["run_id"] == run_id]
         if len(row) and row["status"].iloc[0] == "failed":
             return f"the run failed, so it has no transient: {row['message'].iloc[0]}"
@@ -590,15 +626,19 @@ class StudyService:
 
     def require_row(self, study_id: str, run_id: str) -> None:
         """Raise as :meth:`_no_row` unless the run has its stored row (it finished)."""
-        runs = self.store.read_runs(study_id, columns=["run_id"])
+        runs, bad = self.store.read_runs_readable(study_id, columns=["run_id"])
         if not len(runs) or not (runs["run_id"] == run_id).any():
-            self._no_row(study_id, run_id)
+            self._no_row(study_id, run_id, bad)
 
-    def _no_row(self, study_id: str, run_id: str) -> None:
+    def _no_row(self, study_id: str, run_id: str, bad: list | tuple = ()) -> None:
         """Raise for a run without a stored row: 409 with the study's state for a run of the
-        study that has not finished (never 404 for what exists), 404 for an unknown run."""
+        study that has not finished (never 404 for what exists), 404 for an unknown run,
+        :class:`DamagedParts` (500 naming the files) for a run of the study while ``bad``
+        runs parts cannot be read (its row may be in one)."""
         if not any(r.run_id == run_id for r in self.resolved(study_id).runs):
             raise NotFound(unknown_run(study_id, run_id))
+        if bad:
+            raise DamagedParts(study_id, "runs", list(bad))
         st = self.status(study_id)
         if st["state"] in ACTIVE_STATES:
             raise Conflict(

@@ -22,7 +22,9 @@ __all__ = [
     "Health",
 ]
 
-State = Literal["queued", "running", "done", "failed", "cancelled"]
+#: ``damaged``: a listed study whose stored ``study.json`` cannot be read (its message names
+#: the file and the way out; its counts read 0, its results are on disk as they were).
+State = Literal["queued", "running", "done", "failed", "cancelled", "damaged"]
 
 
 class ErrorOut(BaseModel):
@@ -53,12 +55,24 @@ class StudyStatus(BaseModel):
         "point that differs only in them was merged"))
     axes: dict[str, str] = Field(..., description="axis name -> runs column")
     engine_version: str | None = None
+    belt_choices: list[dict[str, Any]] | None = Field(None, description=(
+        "the belts belt.type: auto chose, as study.json holds them: one per conveyor design "
+        "that chose one, {axes (the design's conveyor axes, {} for one design), type, kind, "
+        "passed (false: no catalogue belt passes, the heaviest is used and note is the "
+        "warning), mass_kg_m, safety_factor, safety_factor_start, case, next_lighter: {type, "
+        "mass_kg_m, safety_factor, safety_factor_start} or null, note}; null when the "
+        "conveyor gives its belt"))
     status_url: str
     runs_url: str
 
 
 class StudyList(BaseModel):
     studies: list[StudyStatus]
+
+
+class UnreadablePart(BaseModel):
+    file: str = Field(..., description="the part file on the service's disk")
+    reason: str = Field(..., description="why Arrow cannot read it")
 
 
 class RunsPage(BaseModel):
@@ -70,6 +84,12 @@ class RunsPage(BaseModel):
         ..., description="SPEC section 4 rows; te_components_kn as an object (with columns=: "
         "exactly the columns asked, te_<part>_kn as stored)"
     )
+    unreadable_parts: list[UnreadablePart] | None = Field(
+        None, description="only when runs part files cannot be read (damaged on disk): each "
+        "file and why; their rows are not in runs (a CSV or Parquet download is refused: 500 "
+        "naming them)")
+    message: str | None = Field(None, description="only with unreadable_parts: what they "
+                                "mean and the way out")
 
 
 class AccuracyOut(BaseModel):

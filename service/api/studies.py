@@ -30,7 +30,7 @@ from beltstudy.service.api.models import (
     StudyStatus,
 )
 from beltstudy.service.door.parse import expect_kind
-from beltstudy.service.errors import Invalid
+from beltstudy.service.errors import DamagedParts, Invalid
 from beltstudy.service.store import query
 from beltstudy.service.studies import StudyService
 
@@ -126,6 +126,7 @@ FILTERS_MAX = 500
 @router.get(
     "/{study_id}/runs",
     response_model=RunsPage,
+    response_model_exclude_unset=True,  # unreadable_parts and message: only when said
     summary="Run summary rows (SPEC section 4) as JSON, CSV or Parquet",
     responses=TABLE_RESPONSES,
 )
@@ -168,14 +169,16 @@ def get_runs(
         names = query.column_list(columns, known) if columns is not None else None
         order = query.sort_key(sort, known) if sort is not None else None
     if names is None:
-        df = service.runs(study_id)
+        df, bad = service.store.read_runs_readable(study_id)
     else:  # only the columns asked and those the filters and the order need
         for column in query.filter_columns(wanted):
             if column and column not in known:
                 raise query.no_column("filter", column, known)
         need = names + [c for c in query.filter_columns(wanted) + [order[0] if order else ""]
                         if c and c not in names]
-        df = service.store.read_runs(study_id, columns=list(dict.fromkeys(need)))
+        df, bad = service.store.read_runs_readable(study_id, columns=list(dict.fromkeys(need)))
+    if bad and format != "json":  # a file holds no word of the rows it lacks: refused
+        raise DamagedParts(study_id, "runs", bad)
     if len(df):
         df = query.apply_filters(df, wanted)
     if order is not None:
@@ -186,7 +189,8 @@ def get_runs(
         schema = service.store.runs_schema(study_id) if format == "parquet" else None
         return _download(df, format, f"{study_id}-runs", schema=schema)
     page = df.iloc[offset : offset + limit if limit else None]
-    head = {"study_id": study_id, "total": int(len(df)), "offset": offset, "limit": limit}
+    head = {"study_id": study_id, "total": int(len(df)), "offset": offset, "limit": limit,
+            **query.unreadable_fields(study_id, bad)}
     to_json = query.rows_to_json if names is None else query.records_to_json
     if len(page) > STREAM_ROWS:
         return StreamingResponse(_streamed_runs(head, page, to_json),

@@ -408,6 +408,8 @@ def cmd_status(args) -> int:
         print("no studies")
     for st in studies:
         print(format_status(st))
+        if st.get("state") == "damaged":  # its study.json unreadable: the file and the way out
+            print(f"  {st.get('message', '')}")
     if offline and any(st.get("state") in ACTIVE_STATES for st in studies):
         print(NOT_RUNNING)
     return 0
@@ -421,15 +423,16 @@ def cmd_results(args) -> int:
     check_output(out)
 
     def local(service):
-        df = service.runs(args.id)
         if fmt == "parquet":
-            return query.to_parquet(df, service.store.runs_schema(args.id))
+            return query.to_parquet(service.runs(args.id), service.store.runs_schema(args.id))
         if fmt == "csv":
-            return query.to_csv(df).encode()
-        # the document GET /studies/{id}/runs answers (every row, unpaged), as the service
-        # writes it: a file made without a service reads as one made with it
+            return query.to_csv(service.runs(args.id)).encode()
+        # the document GET /studies/{id}/runs answers (every row, unpaged; the rows of the
+        # readable parts, naming any damaged one), as the service writes it: a file made
+        # without a service reads as one made with it
+        df, bad = service.store.read_runs_readable(args.id)
         doc = {"study_id": args.id, "total": int(len(df)), "offset": 0, "limit": None,
-               "runs": query.rows_to_json(df)}
+               "runs": query.rows_to_json(df), **query.unreadable_fields(args.id, bad)}
         return json.dumps(doc, ensure_ascii=False, allow_nan=False,
                           separators=(",", ":")).encode()
 
@@ -437,6 +440,10 @@ def cmd_results(args) -> int:
     with writing(out):
         out.write_bytes(data)
     print(f"wrote {out} ({len(data)} bytes)")
+    if fmt == "json" and b',"unreadable_parts":' in data:  # a key, never inside a string
+        print(f"note: runs part files of study {args.id} cannot be read (damaged on disk): "
+              f"{out} holds the runs of the other parts; its unreadable_parts and message "
+              "name the files and the way out", file=sys.stderr)
     _note_unfinished(args, "the file holds the runs finished so far")
     return 0
 

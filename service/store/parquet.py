@@ -37,7 +37,13 @@ import pandas as pd
 import pyarrow as pa
 import pyarrow.parquet as pq
 
-from beltstudy.service.errors import Damaged, NotFound, bad_study_id, shown_id
+from beltstudy.service.errors import (
+    Damaged,
+    DamagedParts,
+    NotFound,
+    bad_study_id,
+    shown_id,
+)
 from beltstudy.service.store.columns import (
     accuracy_schema,
     profile_schema,
@@ -120,6 +126,49 @@ def write_part_to(study_dir: str | Path, token: str, table: str, key: str, data:
     return True
 
 
+def damaged_parts(parts: list[Path], columns=None) -> list[tuple[Path, str]]:
+    """The part files among ``parts`` that Arrow cannot read (``columns`` of them), each
+    with why: a file cut short or overwritten on disk (this store writes whole files)."""
+    bad = []
+    for part in parts:
+        try:
+            with pq.ParquetFile(part) as f:
+                f.read(columns=columns)
+        except FileNotFoundError:
+            raise
+        except (pa.ArrowException, OSError) as exc:
+            bad.append((part, str(exc).strip() or type(exc).__name__))
+    return bad
+
+
+def damaged_entry(study_id: str, path: Path, message: str) -> dict:
+    """A study whose ``study.json`` cannot be read, as the list shows it: its id, state
+    ``damaged``, ``message`` (the file and the way out), and what the document's readable
+    start still says of its ``name`` and ``created_at`` (else "" and the file's time). The
+    file is only read."""
+    try:
+        text = path.read_text(encoding="utf-8", errors="replace")
+        created: float | None = path.stat().st_mtime
+    except OSError:
+        text, created = "", None
+    name = ""
+    # top-level keys, as :meth:`Store.create` writes them (indent 1): one line each
+    found = re.search(r'^ "name": ("(?:[^"\\]|\\.)*"),?$', text, re.M)
+    if found:
+        try:
+            name = str(json.loads(found.group(1)))
+        except ValueError:
+            pass
+    found = re.search(r'^ "created_at": ([0-9.eE+-]+),?$', text, re.M)
+    if found:
+        try:
+            created = float(found.group(1))
+        except ValueError:
+            pass
+    return {"id": study_id, "name": name, "state": "damaged", "message": message,
+            "created_at": created}
+
+
 #: Age after which a half-created study directory is a leftover [s] (creating one takes
 #: milliseconds; a killed process leaves it behind).
 LEFTOVER_TMP_S = 600.0
@@ -198,8 +247,10 @@ class Store:
         _write_atomic(path, lambda p: p.write_text(json.dumps(doc, indent=1), encoding="utf-8"))
         return doc
 
-    def list_studies(self) -> list[dict]:
-        """``study.json`` of every study, oldest first."""
+    def list_studies(self, damaged: bool = False) -> list[dict]:
+        """``study.json`` of every study, oldest first. A study whose ``study.json`` cannot
+        be read is logged, and with ``damaged`` listed as :func:`damaged_entry` says (state
+        ``damaged``); nothing of it is changed."""
         out = []
         if not self.root.is_dir():
             return out
@@ -212,8 +263,9 @@ class Store:
                 continue
             except Damaged as exc:  # said, not dropped in silence
                 log.warning("%s", exc.message)
-                continue
-        return sorted(out, key=lambda d: (d.get("created_at", 0), d.get("id", "")))
+                if damaged:
+                    out.append(damaged_entry(child.name, child / "study.json", exc.message))
+        return sorted(out, key=lambda d: (d.get("created_at") or 0, d.get("id", "")))
 
     def delete(self, study_id: str) -> None:
         """Remove a study's directory (renamed away first so it vanishes at once)."""
@@ -320,13 +372,37 @@ class Store:
                 if attempt == 2:
                     raise
 
+    def _read_parts(self, study_id: str, table: str, parts: list[Path], columns=None,
+                    filters=None) -> tuple[pa.Table, list[tuple[Path, str]]]:
+        """The rows of ``parts`` that Arrow reads, and the parts it cannot (``(path, why)``:
+        truncated or overwritten on disk). All parts are read at once; only when that fails
+        is each tried on its own, to name the damaged ones and read the others."""
+        try:
+            return pq.ParquetDataset(parts, filters=filters).read(columns=columns), []
+        except FileNotFoundError:
+            raise  # the study or a part removed meanwhile: :meth:`_vanishing` says which
+        except (pa.ArrowException, OSError) as exc:
+            bad = damaged_parts(parts, columns)
+            if not bad:  # not a damaged file (parts that disagree): as it was
+                raise exc from None
+        good = [p for p in parts if p not in {path for path, _ in bad}]
+        if not good:
+            empty = self._empty(study_id, table)
+            return (empty.select(columns) if columns else empty), bad
+        return pq.ParquetDataset(good, filters=filters).read(columns=columns), bad
+
     def _read_table(self, study_id: str, table: str, columns=None, filters=None) -> pd.DataFrame:
+        """A table of the study; :class:`DamagedParts` (a 500 naming the files and the way
+        out) when a part file cannot be read."""
         def read() -> pd.DataFrame:
             parts = self.parts(study_id, table)
             if not parts:
                 empty = self._empty(study_id, table)
                 return (empty.select(columns) if columns else empty).to_pandas()
-            return pq.ParquetDataset(parts, filters=filters).read(columns=columns).to_pandas()
+            data, bad = self._read_parts(study_id, table, parts, columns, filters)
+            if bad:
+                raise DamagedParts(study_id, table, bad)
+            return data.to_pandas()
 
         return self._vanishing(study_id, read)
 
@@ -335,7 +411,18 @@ class Store:
         same part files is reused (a few studies are kept): status pages and downloads read
         it far more often than a running study adds a part. ``columns``: only those, taken
         from that kept table while it is current (a page of a few columns of a large study
-        costs milliseconds, not the conversion of every column), else read from the parts."""
+        costs milliseconds, not the conversion of every column), else read from the parts.
+        A part file that cannot be read is :class:`DamagedParts` (a 500 naming it and the
+        way out); :meth:`read_runs_readable` reads the others."""
+        df, bad = self.read_runs_readable(study_id, columns)
+        if bad:
+            raise DamagedParts(study_id, "runs", bad)
+        return df
+
+    def read_runs_readable(self, study_id: str, columns: list[str] | None = None
+                           ) -> tuple[pd.DataFrame, list[tuple[Path, str]]]:
+        """The rows of the study's runs parts that can be read (as :meth:`read_runs`), and
+        the parts that cannot (``(path, why)``; empty for a sound study)."""
         self.read(study_id)
         if columns is not None:
             return self._vanishing(study_id, lambda: self._read_runs_columns(study_id, columns))
@@ -351,10 +438,14 @@ class Store:
         self.read(study_id)
 
         def read() -> pa.Schema:
-            parts = self.parts(study_id, "runs")
-            if not parts:
-                return self._empty(study_id, "runs").schema
-            return pq.read_schema(parts[0])
+            for part in self.parts(study_id, "runs"):  # the first that can be read
+                try:
+                    return pq.read_schema(part)
+                except FileNotFoundError:
+                    raise
+                except (pa.ArrowException, OSError):
+                    continue  # damaged: named by whatever reads its rows
+            return self._empty(study_id, "runs").schema
 
         return self._vanishing(study_id, read)
 
@@ -362,22 +453,27 @@ class Store:
     def _parts_key(parts: list[Path]) -> tuple:
         return tuple((p.name, st.st_mtime_ns, st.st_size) for p in parts for st in [p.stat()])
 
-    def _read_runs_columns(self, study_id: str, columns: list[str]) -> pd.DataFrame:
+    def _read_runs_columns(self, study_id: str, columns: list[str]
+                           ) -> tuple[pd.DataFrame, list[tuple[Path, str]]]:
         """``columns`` of the runs table: from the whole table kept, else from the columns
-        kept for the same parts, reading from the parts only those not kept yet."""
+        kept for the same parts, reading from the parts only those not kept yet (a study
+        with a damaged part: from its readable parts, nothing kept)."""
         parts = self.parts(study_id, "runs")
         if not parts:
-            return self._read_table(study_id, "runs", columns)
+            return self._read_table(study_id, "runs", columns), []
         key = self._parts_key(parts)
         with self._runs_lock:
             hit = self._runs_cache.get(study_id)
             kept = self._columns_cache.get(study_id)
         if hit is not None and hit[0] == key:
-            return hit[1].select(columns).to_pandas()
+            return hit[1].select(columns).to_pandas(), hit[2]
         have = dict(kept[1]) if kept is not None and kept[0] == key else {}
         missing = [c for c in columns if c not in have]
         if missing:
-            table = pq.ParquetDataset(parts).read(columns=missing)
+            table, bad = self._read_parts(study_id, "runs", parts, missing)
+            if bad:  # rows of the readable parts only: read whole, never mixed with kept ones
+                table, bad = self._read_parts(study_id, "runs", parts, columns)
+                return table.to_pandas(), bad
             have.update({c: (table.schema.field(c), table.column(c)) for c in missing})
             with self._runs_lock:
                 self._columns_cache.pop(study_id, None)
@@ -385,12 +481,13 @@ class Store:
                 while len(self._columns_cache) > RUNS_CACHE_STUDIES:
                     self._columns_cache.pop(next(iter(self._columns_cache)))
         schema = pa.schema([have[c][0] for c in columns])
-        return pa.Table.from_arrays([have[c][1] for c in columns], schema=schema).to_pandas()
+        return (pa.Table.from_arrays([have[c][1] for c in columns], schema=schema).to_pandas(),
+                [])
 
-    def _read_runs(self, study_id: str) -> pd.DataFrame:
+    def _read_runs(self, study_id: str) -> tuple[pd.DataFrame, list[tuple[Path, str]]]:
         parts = self.parts(study_id, "runs")
         if not parts:
-            return self._read_table(study_id, "runs")
+            return self._read_table(study_id, "runs"), []
         key = self._parts_key(parts)
         with self._runs_lock:
             reading = self._runs_reading.setdefault(study_id, threading.Lock())
@@ -398,16 +495,16 @@ class Store:
             with self._runs_lock:
                 hit = self._runs_cache.get(study_id)
             if hit is not None and hit[0] == key:
-                return hit[1].to_pandas()
-            table = pq.ParquetDataset(parts).read()
+                return hit[1].to_pandas(), hit[2]
+            table, bad = self._read_parts(study_id, "runs", parts)
             with self._runs_lock:
                 self._runs_cache.pop(study_id, None)
-                self._runs_cache[study_id] = (key, table)
+                self._runs_cache[study_id] = (key, table, bad)
                 while len(self._runs_cache) > RUNS_CACHE_STUDIES:
                     gone = next(iter(self._runs_cache))
                     self._runs_cache.pop(gone)
                     self._runs_reading.pop(gone, None)
-        return table.to_pandas()
+        return table.to_pandas(), bad
 
     def done_runs(self, study_id: str) -> pd.DataFrame:
         """``run_id`` and ``status`` of the finished runs."""

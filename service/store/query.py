@@ -17,7 +17,7 @@ import pyarrow as pa
 import pyarrow.parquet as pq
 
 from beltstudy.engine import InputError, canonical_name, get_model
-from beltstudy.service.errors import Invalid
+from beltstudy.service.errors import Invalid, damaged_parts_message
 from beltstudy.service.store.columns import TE_PART_COLUMNS, components_from_row
 
 __all__ = [
@@ -36,6 +36,7 @@ __all__ = [
     "to_csv",
     "to_parquet",
     "accuracy_columns",
+    "unreadable_fields",
     "DEFAULT_METRICS",
 ]
 
@@ -74,6 +75,20 @@ def records_to_json(df: pd.DataFrame) -> list[dict]:
 def columns_to_json(df: pd.DataFrame) -> dict[str, list]:
     """A DataFrame as ``{column: [values]}`` with NaN as null."""
     return {c: [_clean(v) for v in df[c].tolist()] for c in df.columns}
+
+
+def unreadable_fields(study_id: str, bad: list[tuple[Any, str]]) -> dict:
+    """What a runs page read from the readable parts says of the parts it could not read:
+    ``unreadable_parts`` (``{file, reason}`` each) and ``message`` (the files, that the rows
+    listed are the other parts', and the way out); nothing for a sound study (its page is
+    as it always was)."""
+    if not bad:
+        return {}
+    return {
+        "unreadable_parts": [{"file": str(path), "reason": why} for path, why in bad],
+        "message": damaged_parts_message(study_id, "runs", bad) + "; the runs listed are "
+                   "those of the other parts",
+    }
 
 
 class _NoMatch(Exception):
