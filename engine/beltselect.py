@@ -46,6 +46,7 @@ from beltstudy.engine.errors import InputError
 from beltstudy.engine.statics import (
     SAFETY_FACTOR_MIN,
     TRANSIENT_SAFETY_RATIO,
+    auto_width_words,
     solve_steady,
     startup_tensions,
 )
@@ -167,13 +168,20 @@ class BeltChoice:
                      f"now {self.width_m:g} m; solved again at that width, the belt's own "
                      "weight with it)")
         else:
-            need = self.width_m * max(self.safety_factor_min / c.safety_factor,
-                                      self.safety_factor_start_min / c.safety_factor_start)
             width = (f"at these tensions {c.id} would need a width of at least "
-                     f"{math.ceil(need * 100.0) / 100.0:.2f} m (not {self.width_m:g} m; more "
+                     f"{self.width_estimate_m():.2f} m (not {self.width_m:g} m; more "
                      "with its own weight)")
         return (f"; {width}; lower tensions (drive force shared nearer the load, a tail or "
                 "booster drive) would avoid it too")
+
+    def width_estimate_m(self) -> float:
+        """The width [m] the heaviest candidate needs at its present tensions, up to the
+        centimetre: the factor is proportional to the width, the tensions held (a wider,
+        heavier belt needs more, which :attr:`width_needed_m` solves for)."""
+        c = self.chosen
+        need = self.width_m * max(self.safety_factor_min / c.safety_factor,
+                                  self.safety_factor_start_min / c.safety_factor_start)
+        return math.ceil(need * 100.0) / 100.0
 
     def table(self) -> list[dict]:
         """One row per candidate tried: id, mass [kg/m], rating [kN], tensions [kN],
@@ -398,4 +406,11 @@ def run_message(summary: dict, choice: BeltChoice | None) -> None:
         extra = choice.warning()
         if summary.get("status") == "ok":
             summary["status"] = "warning"
+        c = choice.chosen
+        if summary.get("message") and choice.width_m and not c.failed:
+            # the safety factor's warning gives the width of the same belt: one figure
+            solved = choice.width_needed_m is not None
+            summary["message"] = auto_width_words(
+                summary["message"], c.id,
+                choice.width_needed_m if solved else choice.width_estimate_m(), solved)
     summary["message"] = "; ".join(m for m in (summary.get("message"), extra) if m)

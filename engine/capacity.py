@@ -50,6 +50,7 @@ from functools import cache
 import numpy as np
 
 from beltstudy.engine.conveyor import FILL_MAX_PCT, Conveyor, register_check
+from beltstudy.engine.drives import down3, up3
 from beltstudy.engine.errors import InputError
 
 __all__ = [
@@ -242,7 +243,10 @@ def check_fill(conv: Conveyor, prefix: str = "") -> None:
             f"{prefix}material.capacity_t_h: {conv.material.capacity_t_h:g} t/h fills the "
             f"belt's cross-section to {fill:.3g} % at {conv.speed_m_s:g} m/s; at most "
             f"{FILL_MAX_PCT:g} % (beyond that the material heaps far above the belt's edges, "
-            "no belt carries it): a smaller capacity, a wider belt or a higher speed")
+            "no belt carries it): a capacity of at most "
+            f"{down3(conv.material.capacity_t_h * FILL_MAX_PCT / fill):g} t/h, a speed of "
+            f"at least {up3(conv.speed_m_s * fill / FILL_MAX_PCT):g} m/s (the fill falls "
+            "as 1 / speed) or a wider belt")
 
 
 register_check(check_fill)

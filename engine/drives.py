@@ -51,7 +51,8 @@ if TYPE_CHECKING:  # the conveyor model, for the annotations only
     from beltstudy.engine.conveyor import Conveyor
 
 __all__ = ["OVERLOAD_S_MAX", "RATED_POWER_FACTOR", "GIVEN", "rated_power_kw", "power_required_kw",
-           "kw_at_least", "apart", "steady_checks", "transient_checks", "WATTS_RATIO", "watts_notes"]
+           "motor_size_kw",
+           "kw_at_least", "up3", "down3", "apart", "steady_checks", "transient_checks", "WATTS_RATIO", "watts_notes"]
 
 #: Longest time a drive may run above its rated force in a cycle without a warning [s]: the
 #: 15 s for which IEC 60034-1 (clause 9.4, *unverified*) has an induction motor withstand
@@ -92,9 +93,34 @@ def rated_power_kw(conv: Conveyor, te_n: float, resistance_n: float
 
 def _auto_kw(drive, te_n: float, resistance_n: float, v: float) -> tuple[float, str]:
     """One drive's auto rated power [kW] and what set it (:func:`rated_power_kw`)."""
-    eta = float(drive.efficiency)
-    by_te = power_required_kw(drive.share * te_n, v, eta)
-    by_res = power_required_kw(drive.share * resistance_n, v, eta)
+    return motor_size_kw(float(drive.share), float(drive.efficiency), te_n, resistance_n, v)
+
+
+def motor_size_kw(share: float, efficiency: float, te_n: float, resistance_n: float,
+                  speed_m_s: float) -> tuple[float, str]:
+    """The auto rated power of a drive [kW] and what set it (``peripheral_force`` or
+    ``running_resistance``), the rule of :func:`rated_power_kw` for one load case.
+
+    Parameters
+    ----------
+    share : float
+        The drive's share of the peripheral force [-].
+    efficiency : float
+        Its drive train's efficiency, motor shaft to pulley [-].
+    te_n : float
+        Peripheral force Te [N] (negative: the belt regenerates).
+    resistance_n : float
+        Running resistance, the force the motor drives the belt against [N].
+    speed_m_s : float
+        Design speed [m/s].
+
+    Notes
+    -----
+    ``RATED_POWER_FACTOR x max(P(share Te), P(share R))`` with the motor power
+    :func:`power_required_kw`: ``F v / eta`` motoring, ``|F v| eta`` regenerating.
+    """
+    by_te = power_required_kw(share * te_n, speed_m_s, efficiency)
+    by_res = power_required_kw(share * resistance_n, speed_m_s, efficiency)
     return (RATED_POWER_FACTOR * max(by_te, by_res),
             "peripheral_force" if by_te >= by_res else "running_resistance")
 
@@ -163,6 +189,27 @@ def kw_at_least(kw: float) -> int:
     is 1.0003: the advice did not pass. The 1e-9 keeps a need of a whole kilowatt (up to
     float noise) at that kilowatt, within the check's own 1e-9."""
     return math.ceil(kw * (1.0 - 1e-9))
+
+
+def up3(x: float) -> float:
+    """``x`` rounded up at three significant figures, for a least value a warning advises (a
+    tension, a pretension): rounded to the nearest, a sag short of 804.25 N was advised as
+    "0.804 kN more per strand", which left the span 0.25 N short and warned again. The 1e-9
+    keeps a value already of three figures (up to float noise) as it is."""
+    if not math.isfinite(x) or x <= 0.0:
+        return x
+    step = 10.0 ** (math.floor(math.log10(x)) - 2)
+    return float(f"{math.ceil(x / step - 1e-9) * step:.3g}")
+
+
+def down3(x: float) -> float:
+    """``x`` rounded down at three significant figures, for a largest value a warning or an
+    error advises (a capacity, a design load): taken, it passes. The 1e-9 keeps a value
+    already of three figures (up to float noise) as it is."""
+    if not math.isfinite(x) or x <= 0.0:
+        return x
+    step = 10.0 ** (math.floor(math.log10(x)) - 2)
+    return float(f"{math.floor(x / step + 1e-9) * step:.3g}")
 
 
 def figures(value: float, thousands: bool = False) -> str:

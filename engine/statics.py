@@ -20,7 +20,8 @@ constant, which the take-up sets: a gravity take-up carries its counterweight on
 * the sag limits on both strands, T >= g (m'_G + m'_L) S / (8 (h/S)_adm), running and also
   held at rest (take-up plus gravity, the net pull of the loaded belt taken by the brake or the
   master drive: :func:`rest_walk`; a gravity take-up holds its mean tension at rest, a fixed
-  one the loop length, :func:`start_level`). The held-at-rest rule is this
+  one the loop length, elastic and with the spans' sag in it, :func:`_rest_bound`). The
+  held-at-rest rule is this
   project's conservative reading (DIN 22101 checks the minimum tensions in its running and
   starting / stopping states only); it is on by default because a stopped, loaded belt sags
   most where the brake leaves it least tension, and it is switched off per conveyor with
@@ -45,6 +46,7 @@ change of 1e-6 and the iteration count is reported.
 from __future__ import annotations
 
 import math
+import re
 from dataclasses import dataclass, field
 
 import numpy as np
@@ -54,6 +56,7 @@ from beltstudy.engine.capacity import capacity as capacity_check
 from beltstudy.engine.capacity import incline_warning
 from beltstudy.engine.checks import holding_warning, input_notes, lump_notes, runback_note
 from beltstudy.engine.checks import steady_checks as design_checks
+from beltstudy.engine.chord import LEVEL_RTOL, chord_springs, length_level
 from beltstudy.engine.conveyor import (
     PRETENSION_MAX_KN,
     SAG_LIMIT_RTOL,
@@ -64,7 +67,7 @@ from beltstudy.engine.conveyor import (
 )
 from beltstudy.engine.curves import junction_checks
 from beltstudy.engine.curves import steady_checks as curve_checks
-from beltstudy.engine.drives import apart, figures, rated_power_kw, watts_notes
+from beltstudy.engine.drives import apart, down3, figures, rated_power_kw, up3, watts_notes
 from beltstudy.engine.drives import steady_checks as drive_checks
 from beltstudy.engine.friction import get_model, temperature_note
 from beltstudy.engine.hcurves import hcurve_checks
@@ -84,7 +87,7 @@ from beltstudy.engine.loop import (
 
 __all__ = ["SteadyResult", "solve_steady", "STARTUP_FACTOR", "SAFETY_FACTOR_MIN",
            "TRANSIENT_SAFETY_RATIO", "SPEC_PARTS", "rest_hold_element", "rest_walk",
-           "TAKEUP_CONSTRAINTS"]
+           "TAKEUP_CONSTRAINTS", "auto_width_words"]
 
 #: Start-up force factor for slip sizing of the take-up [-] (PHYSICS section 1).
 STARTUP_FACTOR = 1.5
@@ -304,19 +307,40 @@ def rest_walk(loop: Loop, hold: int, gravity_n: np.ndarray) -> np.ndarray:
     return out
 
 
-def _rest_need(conv: Conveyor, loop: Loop, hs_adm: np.ndarray, fixed: bool) -> float | None:
-    """The level (:func:`start_level`) of the smallest at-rest tensions that keep the belt
-    held at rest within its sag limits [N] (None with ``takeup.sag_at_rest`` off). The take-up
-    holds the same level at rest as running: a gravity take-up's counterweight the mean
-    tension of its two strands, a fixed one the loop length (the length-weighted mean
-    tension), so ``T_rest = W_rest + start_level(T) - start_level(W_rest)``. The fixed
-    take-up's level leaves out the belt's sag, as :func:`start_level` does: at rest the spans
-    that sag more take up length, which raises the tensions the transient model starts from
-    (:func:`beltstudy.engine.dynamics.model._rest`), so the bound errs on the safe side."""
+def _rest_need(conv: Conveyor, loop: Loop, hs_adm: np.ndarray, fixed: bool
+               ) -> np.ndarray | None:
+    """The smallest at-rest tensions that keep the belt held at rest within its sag limits
+    [N] (None with ``takeup.sag_at_rest`` off): the at-rest walk (:func:`rest_walk`) at the
+    least level that meets them, a little above it for a ``fixed`` take-up (by the tolerance
+    of the transient model's own level, :data:`~beltstudy.engine.chord.LEVEL_RTOL`, so that
+    the rest state it finds from the running tensions meets the limits too).
+    :func:`_rest_bound` gives the running level that holds them."""
     if not conv.takeup.sag_at_rest:
         return None
     Wr = rest_walk(loop, rest_hold_element(conv, loop), loop.gravity_n)
-    return _sag_need(loop, Wr, hs_adm) + start_level(loop, Wr, fixed)
+    level = _sag_need(loop, Wr, hs_adm)
+    if fixed:
+        level += LEVEL_RTOL * max(1.0, abs(level))
+    return Wr + level
+
+
+def _rest_bound(loop: Loop, W: np.ndarray, rest: np.ndarray, fixed: bool) -> float:
+    """The least constant c [N] of the running tensions ``c + W`` whose take-up holds the
+    at-rest tensions ``rest`` (:func:`_rest_need`) or more. A gravity take-up holds the same
+    mean tension of its two strands at rest as running (:func:`start_level`). A fixed one
+    holds the loop's length: its elastic part (:func:`start_level`, the length-weighted mean
+    tension) and, as the transient model's at-rest state takes it, the chord length with the
+    spans' sag in it (Ernst, :func:`beltstudy.engine.chord.length_level`); the larger level
+    holds both. The sag's part of the length changes from running to rest, which raises the
+    rest level on some belts and lowers it on others: sized on the elastic length alone, a
+    loaded 110 m decline with a tail drive and its take-up at the tail (13.220 kN) sagged
+    1.5005 % at rest against its 1.5 % limit; on its chord length (13.223 kN), 1.5 %."""
+    elastic = start_level(loop, rest, fixed) - start_level(loop, W, fixed)
+    if not fixed:
+        return elastic
+    springs = chord_springs(loop)
+    return max(elastic, length_level(W, rest, springs[0], springs[1],
+                                     float(loop.belt.stiffness_n), springs[2], springs[3]))
 
 
 def _sag_need(loop: Loop, W: np.ndarray, hs_adm: np.ndarray) -> float:
@@ -355,7 +379,7 @@ def start_level(loop: Loop, W: np.ndarray, fixed: bool) -> float:
 
 
 def _required_offset(loop: Loop, W: np.ndarray, W_start: np.ndarray, drives,
-                     hs_adm: np.ndarray, rest_need: float | None,
+                     hs_adm: np.ndarray, rest_need: np.ndarray | None,
                      W_hold: np.ndarray | None = None, fixed: bool = False
                      ) -> tuple[float, dict]:
     """Smallest constant c (T = c + W) meeting slip at every drive pulley running, at
@@ -380,7 +404,7 @@ def _required_offset(loop: Loop, W: np.ndarray, W_start: np.ndarray, drives,
                                              for idx, _s, e in drives) - shift_h)
     bounds["sag_running"] = _sag_need(loop, W, hs_adm)
     if rest_need is not None:
-        bounds["sag_at_rest"] = rest_need - start_level(loop, W, fixed)
+        bounds["sag_at_rest"] = _rest_bound(loop, W, rest_need, fixed)
     bounds["positive"] = float(np.max(1.0 - W))  # keep every tension above 1 N
     return max(bounds.values()), bounds
 
@@ -771,8 +795,7 @@ def _summarise(res: SteadyResult, drives, hs_adm, bounds, shortfall_n: float,
         # design load that fills 96 % of the cross-section overflows it at 1.3 (125 %)
         surge_fill = surge * cap.fill_pct
         most = 100.0 / surge_fill * conv.material.capacity_t_h if surge_fill > 0.0 else 0.0
-        step = 10.0 ** (math.floor(math.log10(most)) - 2) if most > 0.0 else 1.0
-        most = math.floor(most / step + 1e-9) * step  # down at three figures: at most
+        most = down3(most)  # down at three figures: at most
         spill = (f", beyond its capacity ({figures(cap.capacity_m3_h)} m3/h, ISO 5048): the "
                  f"material heaps past the belt's edges and spills; a design load of at most "
                  f"{most:.3g} t/h "
@@ -873,17 +896,6 @@ def _notes(res: SteadyResult, friction_n: float, feed_kn: float) -> list[str]:
 __all__ += ["startup_tensions", "up3"]
 
 
-def up3(x: float) -> float:
-    """``x`` rounded up at three significant figures, for a least value a warning advises (a
-    tension, a pretension): rounded to the nearest, a sag short of 804.25 N was advised as
-    "0.804 kN more per strand", which left the span 0.25 N short and warned again. The 1e-9
-    keeps a value already of three figures (up to float noise) as it is."""
-    if not math.isfinite(x) or x <= 0.0:
-        return x
-    step = 10.0 ** (math.floor(math.log10(x)) - 2)
-    return float(f"{math.ceil(x / step - 1e-9) * step:.3g}")
-
-
 #: A take-up this many times tighter than the slackest point of the return is named in a note
 #: with the lighter one there (a design hint, not a verdict: CEMA and DIN 22101 place the
 #: take-up where the running belt is slackest, just behind the drive, or at the tail of a head
@@ -963,12 +975,39 @@ def _sag_words(loop: Loop, strand: str, sag: float, limit: float, j: int, t_low:
         head = (f"the {strand} strand is slack (tension {t_low / 1e3:.3g} kN {where}): its sag "
                 f"there has no bound, far beyond sag_limit_pct.{strand} = {limit * 100:.2f} %")
     else:
-        head = (f"sag on the {strand} strand {sag * 100:.2f} % exceeds sag_limit_pct.{strand} "
-                f"= {limit * 100:.2f} % (tension {t_low / 1e3:.3g} kN {where})")
+        # a sag past its limit by less than the rounding printed as it: '1.50 % exceeds 1.50 %'
+        shown, lim = apart(sag * 100, limit * 100, rtol=SAG_LIMIT_RTOL)
+        head = (f"sag on the {strand} strand {shown} % exceeds sag_limit_pct.{strand} "
+                f"= {lim} % (tension {t_low / 1e3:.3g} kN {where})")
     return (f"{head}; {up3(need / 1e3):g} kN there keeps "
             f"it within (the sag goes as 1 / T), so the take-up must hold at least "
             f"{up3((need - t_low) / 1e3):g} kN more per strand; that, closer idlers "
             f"(idlers.{strand}.spacing_m) or a higher sag limit would avoid it")
+
+
+#: The width clause of :func:`_safety_words` ('at these tensions ST5400 needs a width of at
+#: least 1.46 m (more with its own weight)'), which :func:`auto_width_words` replaces by the
+#: figure of ``belt.type: auto``'s own warning beside it.
+_WIDTH_AT_TENSIONS = re.compile(r"at these tensions (\S+) needs a width of at least "
+                                r"[0-9.]+ m \(more with its own weight\)")
+
+
+def auto_width_words(text: str, belt_id: str, width_m: float, solved: bool) -> str:
+    """``text`` with :func:`_safety_words`' width for ``belt_id`` (an estimate at the present
+    tensions) replaced by the one ``belt.type: auto`` gives beside it
+    (:mod:`beltstudy.engine.beltselect`): ``solved``, the width [m] at which the belt passes
+    solved again with its own weight at that width, else its estimate over every case it
+    picks at (running and start-up). One output gave two figures: 'at these tensions ST5400
+    needs a width of at least 1.46 m (more with its own weight)' beside 'ST5400 passes at a
+    width of 1.49 m'. Unchanged where the clause names another belt or is absent."""
+    if solved:
+        said = (f"{belt_id} passes at a width of {width_m:.2f} m (belt.width_m; solved "
+                "again at that width, the belt's own weight with it)")
+    else:
+        said = (f"at these tensions {belt_id} needs a width of at least {width_m:.2f} m (more "
+                "with its own weight)")
+    return _WIDTH_AT_TENSIONS.sub(lambda m: said if m.group(1) == belt_id else m.group(0),
+                                  text)
 
 
 def _safety_words(loop: Loop, belt, sf: float, sf_min: float, t_max: float, s_m: float,

@@ -54,6 +54,7 @@ from dataclasses import dataclass, field, replace
 import numpy as np
 
 from beltstudy.engine import design
+from beltstudy.engine.chord import HS_FLOOR, chord_springs, chord_strain, length_level
 from beltstudy.engine.conveyor import (
     Conveyor,
     InputError,
@@ -137,9 +138,6 @@ START_CODES = {"s-curve": profiles.S_CURVE, "linear": profiles.LINEAR,
 COUPLING_CODES = {"none": COUPLING_NONE, "fluid": COUPLING_FLUID,
                   "fluid_fill_controlled": COUPLING_FILL}
 
-#: Sag ratio h/S below whose tension the Ernst tangent modulus is held constant: the range of
-#: the parabolic sag model (10 %).
-HS_FLOOR = 0.10
 
 
 @dataclass(frozen=True)
@@ -280,11 +278,12 @@ class System:
     #: ``stop_time`` or ``grip``); False where every brake is set by holding the belt at rest
     #: or given; None: not known (the words judge it from the system, ``_auto_brake_held``)
     brakes_timed: bool | None = None
-    #: the force the engine sizes a motor for [N] (``RATED_POWER_FACTOR`` x a drive's share of
-    #: it): the run's |Te| and, below the full load, the full load's larger of |Te| and the
-    #: running resistance, the larger kept, as an auto motor of such a run is installed
-    #: (:func:`beltstudy.engine.sizing.installed_at_full_load`); None: the run's own |Te|
-    motor_basis_n: float | None = None
+    #: the load cases the engine sizes a motor at, each (Te, running resistance) [N], Te signed
+    #: (negative: regenerating): the run's own and, below the full load, the full load's, as
+    #: an auto motor of such a run is installed (:func:`beltstudy.engine.sizing.
+    #: installed_at_full_load`, :func:`beltstudy.engine.drives.motor_size_kw`); None: the
+    #: run's own Te alone
+    motor_cases: tuple[tuple[float, float], ...] | None = None
     #: each drive's train efficiency, motor shaft to pulley (``drives[i].efficiency``) [-]: the
     #: engine sizes a motor on the power at its shaft; None: 1 (the words size on the pulley)
     drive_efficiency: np.ndarray | None = None
@@ -324,20 +323,6 @@ class System:
 
 # --------------------------------------------------------------------------------------
 # Helpers
-
-
-def chord_strain(tension_n, a_ernst, stiffness_n, t_floor_n, k_floor_n):
-    """Elastic strain of a span from the Ernst chord law, up to a constant [-].
-
-    ``eps(T) = T / EB - a / (2 T^2)`` with ``a = (w S)^2 / 12`` (so ``d eps / dT =
-    1 / EB_eq``); below ``t_floor`` the tangent modulus is held at ``k_floor``.
-    """
-    T = np.asarray(tension_n, dtype=np.float64)
-    tf = np.maximum(t_floor_n, 1e-300)
-    e_floor = tf / stiffness_n - a_ernst / (2.0 * tf * tf)
-    Tc = np.maximum(T, tf)
-    e = Tc / stiffness_n - a_ernst / (2.0 * Tc * Tc)
-    return np.where(T >= tf, e, e_floor - (tf - T) / k_floor_n)
 
 
 #: Time over which vfd drives build the holding torque at the start command before the belt's
@@ -610,30 +595,6 @@ def check_scenario(scn: Scenario, conv: Conveyor, opts: DynamicsOptions | None =
                          f"0.01 (got {opts.resistance_rtol!r})")
 
 
-def _fixed_takeup_level(T_rel, T_run, len_m, a_el, EB, t_floor, k_floor) -> float:
-    """Level of the at-rest tensions of a fixed take-up: the belt has the same length at rest
-    as in the running state of statics (the loop length is fixed), found by bisection [N]."""
-    target = float(np.sum(len_m * chord_strain(T_run, a_el, EB, t_floor, k_floor)))
-
-    def excess(level):
-        return float(np.sum(len_m * chord_strain(T_rel + level, a_el, EB, t_floor, k_floor))) \
-            - target
-
-    lo = -float(T_rel.max()) - abs(target) * EB - 1.0
-    hi = float(np.abs(T_run).max()) + abs(float(T_rel.min())) + 1.0
-    while excess(hi) < 0.0:
-        hi *= 2.0
-    for _ in range(200):
-        mid = 0.5 * (lo + hi)
-        if excess(mid) < 0.0:
-            lo = mid
-        else:
-            hi = mid
-        if hi - lo < 1e-9 * max(1.0, abs(hi)):
-            break
-    return 0.5 * (lo + hi)
-
-
 # --------------------------------------------------------------------------------------
 # The records, section by section
 
@@ -779,13 +740,7 @@ def _springs(loop: Loop, conv: Conveyor, opts: DynamicsOptions, T_run: np.ndarra
     nxt = np.roll(np.arange(n), -1)
     EB = float(loop.belt.stiffness_n)
     EBd = float(loop.belt.dynamic_stiffness_n)
-    len_m = 0.5 * (dx + dx[nxt])
-    wS2 = (8.0 * loop.sag_w_n) ** 2  # (w S)^2 per element [N^2]
-    a_el = (dx * wS2 + dx[nxt] * wS2[nxt]) / (dx + dx[nxt]) / 12.0
-    if not opts.ernst:
-        a_el = np.zeros(n)
-    t_floor = np.maximum(np.sqrt(12.0 * a_el) / (8.0 * HS_FLOOR), 1.0)
-    k_floor = EB * t_floor**3 / (t_floor**3 + a_el * EB)
+    len_m, a_el, t_floor, k_floor = chord_springs(loop, opts.ernst)
     carriage = np.zeros(n)
     if conv.takeup.type == "gravity":
         carriage[loop.i_takeup - 1] = 1.0
@@ -970,8 +925,8 @@ def _rest(conv, loop, springs: Springs, gravity, T_run, tu_weight) -> tuple[int,
         # at rest may be the take-up pulley itself)
         T_rest += 0.5 * (tu_weight - T_rest[itu - 1] - T_rest[itu])
     else:
-        T_rest += _fixed_takeup_level(T_rest, T_run, springs.len_m, springs.a_ernst,
-                                      springs.eb, springs.t_floor, springs.k_floor)
+        T_rest += length_level(T_rest, T_run, springs.len_m, springs.a_ernst, springs.eb,
+                               springs.t_floor, springs.k_floor)
     warns: list[str] = []
     if T_rest.min() < 0.0:
         k = int(np.argmin(T_rest))

@@ -26,7 +26,7 @@ from beltstudy.engine.conveyor import SAG_LIMIT_RTOL
 from beltstudy.engine.drives import (
     COUPLING_NEXT,
     RATED_POWER_FACTOR,
-    power_required_kw,
+    motor_size_kw,
     transient_checks,
 )
 from beltstudy.engine.dynamics import codes as C
@@ -464,41 +464,63 @@ def start_levers(sys: System) -> list[str]:
 
 def oversized_motor_words(sys: System, which=None) -> list[str]:
     """Each dol drive whose motor is more than 5 % above the engine's own size for it
-    (:data:`RATED_POWER_FACTOR` x the motor power of its share of the steady power, Te v
-    through its drive train's efficiency; beyond a catalogue
-    size's rounding), in words for a start's slip. A dol start's force is the motor's (its
+    (:func:`~beltstudy.engine.drives.motor_size_kw`, the auto motor's rule:
+    :data:`RATED_POWER_FACTOR` x the motor power of its share of the larger of Te and the
+    running resistance, through its drive train's efficiency, ``F v / eta`` driving and
+    ``|F v| eta`` regenerating, at each load case the engine sizes motors at,
+    ``System.motor_cases``; beyond a catalogue size's rounding), in words for a start's slip. A dol start's force is the motor's (its
     curve, or ``STALL`` x its rated force through a fluid coupling), so an oversized motor
     starts harder than it needs. Not a cure by itself: on a 500 m, 40 m-lift incline whose
     450 kW motor (203 kW needed) slipped through its fluid coupling, no take-up up to 4 x
     avoided the slip; at 300, 250 and 203 kW take-ups of 30.4, 24.1 and 19.8 t did (a 250 m,
-    14 deg plant incline likewise: none at 1 000 kW, one at the auto size). A belt that
-    regenerates is left out: its motor is sized by its other duties. ``which``: the drives
-    to judge (all by default)."""
+    14 deg plant incline likewise: none at 1 000 kW, one at the auto size). A run whose own
+    belt regenerates is left out: its motor is sized by its other duties. ``which``: the
+    drives to judge (all by default)."""
     dr = sys.model.drives
     te, v = float(getattr(sys, "te_n", 0.0) or 0.0), float(getattr(sys, "v_design", 0.0))
     rated = getattr(dr, "rated", None)
     eta = getattr(sys, "drive_efficiency", None)
-    # the engine sizes a motor at the full load too (System.motor_basis_n): an empty run's
+    # the engine sizes a motor at the full load too (System.motor_cases): an empty run's
     # steady power alone (a 30 m belt's 1.77 kN against 2.04 kN full) undersizes it
-    basis = getattr(sys, "motor_basis_n", None)
-    full = basis is not None and basis > te
-    basis = basis if full else te
+    cases = getattr(sys, "motor_cases", None) or ((te, 0.0),)
     said = []
     for k in np.flatnonzero(dr.control == C.DOL) if rated is not None and te > 0.0 else ():
-        need_kw = RATED_POWER_FACTOR * power_required_kw(
-            float(dr.share[k]) * basis, v, 1.0 if eta is None else float(eta[k]))
+        e_k = 1.0 if eta is None else float(eta[k])
+        sizes = [motor_size_kw(float(dr.share[k]), e_k, t, r, v) for t, r in cases]
+        i = max(range(len(sizes)), key=lambda c: (sizes[c][0], -c))  # the own case on a tie
+        need_kw = sizes[i][0]
         now_kw = float(rated[k]) * v / 1e3
         if now_kw > 1.05 * need_kw and (which is None or int(k) in which):
-            of = (f"the full load's {basis / 1e3:.3g} kN x {v:g} m/s, the case it sizes "
-                  "motors for" if full else "the steady power")
             said.append(f"drive {k + 1}'s motor (drives.{k}.rated_power_kw, now {now_kw:.0f} kW) "
                         f"is {now_kw / need_kw:.1f} x the {need_kw:.0f} kW the engine would "
-                        f"size it at ({RATED_POWER_FACTOR:g} x its share of {of}, through "
-                        "its drive train's efficiency), "
+                        f"size it at ({RATED_POWER_FACTOR:g} x its share of "
+                        f"{_motor_case_words(cases[i], sizes[i][1], i > 0, v, e_k)}), "
                         "and a dol start's force grows with the motor's rating: a motor nearer "
                         "its need starts more gently, and less take-up tension then avoids the "
                         "slip (rerun to check)")
     return said
+
+
+def _motor_case_words(case: tuple[float, float], why: str, full: bool, v: float,
+                      eta: float) -> str:
+    """What set the engine's motor size in :func:`oversized_motor_words`: the case (the run's
+    steady state, or the full load, ``full``), the force (Te, or the running resistance
+    [N], ``why``) and how the efficiency ``eta`` enters (divided driving, multiplied
+    regenerating)."""
+    te, res = case
+    regen = why == "peripheral_force" and te < 0.0
+    force = (f"regenerating {-te / 1e3:.3g} kN" if regen else f"{te / 1e3:.3g} kN"
+             if why == "peripheral_force" else f"running resistance {res / 1e3:.3g} kN")
+    if full:
+        what = f"the full load's {force} x {v:g} m/s, the case it sizes motors for"
+    elif why == "peripheral_force":
+        what = "the steady power"
+    else:
+        what = f"the steady {force} x {v:g} m/s"
+    if regen:
+        return (f"{what}, times its drive train's efficiency {eta:g}: the losses come off the "
+                "power a regenerating belt gives the motor")
+    return f"{what}, through its drive train's efficiency"
 
 
 def vfd_fields(sys: System) -> str:
@@ -1542,7 +1564,7 @@ def past_limit(value: float, limit: float, digits: int = 2) -> str:
         text = f"{value:.{d}f}"
         if float(text) != limit:
             return text
-    return f"{value:.8g}"
+    return f"{value:.12g}"  # past by less than 1e-7: the figures that show it
 
 
 def _sag_at_rest_too(sys: System, j: int, limit_pct: float) -> str:
@@ -1561,7 +1583,12 @@ def _sag_at_rest_too(sys: System, j: int, limit_pct: float) -> str:
     worst = float(np.max(sag[on])) if on.any() else 0.0
     if worst <= limit_pct * (1.0 + SAG_LIMIT_RTOL):
         return ""
-    return (f"; the strand sags {worst:.3g} % at rest too (before the start), which only the "
+    # three figures, more where they would read as the limit it passed (1.5005 % read '1.5 %'
+    # against 1.5 %)
+    shown = f"{worst:.3g}"
+    if float(shown) <= limit_pct:
+        shown = past_limit(worst, limit_pct)
+    return (f"; the strand sags {shown} % at rest too (before the start), which only the "
             "take-up changes")
 
 
