@@ -756,3 +756,37 @@ def test_a_verdict_with_its_error_bar_fits_an_a4_page_in_print(browser, web, tmp
     before = [p.stat().st_mtime_ns for p in shots]
     assert report_pdf.main(["--html", str(page), "--pdf", str(tmp_path / "r.pdf")]) == 0
     assert [p.stat().st_mtime_ns for p in shots] == before
+
+
+def test_a_steady_study_shows_no_transient_columns_and_a_missing_one_no_sections(browser, web):
+    """A steady-only study's runs table showed the transient's columns (t_max_dyn_kn,
+    dyn_factor, slip_margin_min_dyn, stop_time_s), every cell empty; and the page of a
+    deleted study still drew its sections (broken plots, download links) under "not found".
+    The table now leaves them out when the study has no dynamics, and a study that is not
+    there shows the error alone."""
+    holder = {}
+    body = web.tiny_study(name="steady-only")
+
+    def prepare(data: Path) -> None:
+        holder["id"] = web.finished_study(data, body)
+
+    with _serve(prepare, BELTSTUDY_WARM_START="false") as base:
+        browser.get(f"{base}/ui/studies/{holder['id']}")
+        heads = ("return [...document.querySelectorAll('#runs thead th')]"
+                 ".map((t) => t.dataset.column || '')")
+        _wait(browser, lambda d: "power_kw" in d.execute_script(heads), what="the runs head")
+        cols = browser.execute_script(heads)
+        assert "safety_factor" in cols
+        for c in ("t_max_dyn_kn", "dyn_factor", "slip_margin_min_dyn", "stop_time_s"):
+            assert c not in cols
+        browser.get(f"{base}/ui/studies/0123456789abcdef")
+        err = "return document.getElementById('error').textContent"
+        _wait(browser, lambda d: "not found" in d.execute_script(err).lower(),
+              what="'not found'")
+        shown = browser.execute_script(
+            "return [...document.querySelectorAll('main section, main .status')]"
+            ".filter((n) => n.offsetParent !== null).length")
+        assert shown == 0
+        back = browser.execute_script(
+            "return document.querySelector('main a[href=\"/\"]').offsetParent !== null")
+        assert back

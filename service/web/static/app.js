@@ -306,6 +306,8 @@ function indexPage() {
 const RESULT_COLUMNS = ["status", "power_kw", "te_kn", "t_max_kn", "safety_factor",
   "slip_margin", "slip_margin_start", "sag_max_pct", "t_max_dyn_kn", "dyn_factor",
   "slip_margin_min_dyn", "stop_time_s", "takeup_mass_kg", "fill_pct", "message"];
+// the transient's columns, left out of a steady-only study's table (every cell empty there)
+const DYNAMIC_COLUMNS = ["t_max_dyn_kn", "dyn_factor", "slip_margin_min_dyn", "stop_time_s"];
 
 // The design basis as table rows: one per auto size of each conveyor design.
 // a size's constraint with its case, as the runs' *_governed_by columns state it (SPEC 7.2)
@@ -359,13 +361,14 @@ function studyPage(id) {
   let done = 0;
   let asked = 0;  // the number of the last runs request: older answers are dropped
   let warned = null;  // finished runs with status warning
+  let dynamics = true;  // a steady-only study's table leaves out the transient's columns
   let plotsShown = false;
   let lastDone = -1;
 
   function columns() {
     const cols = axes.map((a) => a.column);
     if (!cols.includes("friction_model")) cols.push("friction_model");
-    return cols.concat(RESULT_COLUMNS);
+    return cols.concat(RESULT_COLUMNS.filter((c) => dynamics || !DYNAMIC_COLUMNS.includes(c)));
   }
 
   function buildFilters() {
@@ -478,6 +481,7 @@ function studyPage(id) {
     document.getElementById("conveyor-source").textContent =
       info.conveyor_source ? "(" + info.conveyor_source + ")" : "";
     document.getElementById("dynamics").textContent = info.dynamics ? "on" : "off";
+    dynamics = Boolean(info.dynamics);
     document.getElementById("description").textContent = info.description;
     document.getElementById("axes").replaceChildren(...axes.flatMap((a) => [
       el("dt", { text: a.name }), el("dd", { text: a.values.map(String).join(", ") +
@@ -540,7 +544,15 @@ function studyPage(id) {
   }
 
   async function start() {
-    try { await loadInfo(); } catch (e) { showError(e.message); return; }
+    try { await loadInfo(); } catch (e) {
+      showError(e.message);
+      // a deleted (or never stored) study: its sections would draw broken plots and links
+      if (e.status === 404) {
+        document.querySelectorAll("main section, main .status, main .meta, main h1 ~ p")
+          .forEach((n) => { n.hidden = true; });
+      }
+      return;
+    }
     lastDone = -1;
     plotsShown = false;
     poll();
