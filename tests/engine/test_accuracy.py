@@ -469,3 +469,21 @@ def test_a_coarse_mesh_cut_back_to_the_run_s_own_is_said_as_asked_and_given():
     assert res.accuracy.elements[0] is None
     assert (f"no mesh coarser than {n} elements ({A.ELEMENTS_MIN} asked gave {n} with the "
             f"pulleys; the fewest is {A.ELEMENTS_MIN} belt elements)") in res.summary["message"]
+
+
+def test_a_stop_within_its_bar_of_five_wave_loops_is_marginal():
+    """The 5-wave-loop rule flips with the mesh too: a 2.5 km belt's controlled stop rested in
+    18.7215 +- 0.0067 s against 5 x 3.74418 = 18.7209 s ('ok'), and in 18.7203 s on twice
+    the elements and 18.7188 s at half the step, a high-stress stop, unnamed. A belt that
+    never reached design speed (no ``start_time_s``) is not judged by the rule, nor named."""
+    summary = {"slack_max_m": 0.0, "stop_time_s": 18.7215, "wave_loop_time_s": 3.74418,
+               "start_time_s": 60.0}
+    fe = A.FigureError("stop_time_s", 18.7215, 0.0067, None, "spread", None,
+                       (18.7230, 18.7215, 18.7203))
+    words = A.marginal_verdicts(summary, {"stop_time_s": fe}, finest=406)
+    assert len(words) == 1
+    assert words[0].startswith("marginal: stop_time_s 18.72 against limit 18.7209 +- 0.0067 s")
+    # well clear of it: nothing said
+    far = A.FigureError("stop_time_s", 25.0, 0.0067, None, "spread", None, (25.0,) * 3)
+    assert A.marginal_verdicts(dict(summary, stop_time_s=25.0), {"stop_time_s": far}) == []
+    assert A.marginal_verdicts(dict(summary, start_time_s=None), {"stop_time_s": fe}) == []
