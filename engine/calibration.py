@@ -965,11 +965,7 @@ def _outliers(rows: Sequence[Measurement], cols: Sequence[tuple[int, str]], y: n
     n = len(r)
     if dof < 2 or states - jac.shape[1] < 2:
         return []
-    if jac.size:
-        hat = jac @ np.linalg.pinv(jac.T @ jac) @ jac.T
-        h = np.clip(np.diag(hat), 0.0, 1.0)
-    else:
-        h = np.zeros(n)
+    h = _leverages(jac) if jac.size else np.zeros(n)
     ssr = float(r @ r)
     limit = float(student.ppf(1.0 - OUTLIER_ALPHA / (2 * n), dof - 1))
     out = []
@@ -993,6 +989,13 @@ def _outliers(rows: Sequence[Measurement], cols: Sequence[tuple[int, str]], y: n
     return out
 
 
+def _leverages(jac: np.ndarray) -> np.ndarray:
+    """Each reading's leverage h_k [-]: the diagonal of the hat matrix J (J^T J)^+ J^T of
+    the readings' relative residuals, clipped to [0, 1] (float noise); they sum to the rank
+    of J (Belsley, Kuh & Welsch 1980, 2.1)."""
+    return np.clip(np.diag(jac @ np.linalg.pinv(jac.T @ jac) @ jac.T), 0.0, 1.0)
+
+
 def _leverage_notes(rows: Sequence[Measurement], cols: Sequence[tuple[int, str]],
                     y: np.ndarray, jac: np.ndarray, dof: int) -> list[str]:
     """The readings that carry most of the fit: leverage h_k (the diagonal of the hat matrix
@@ -1005,7 +1008,7 @@ def _leverage_notes(rows: Sequence[Measurement], cols: Sequence[tuple[int, str]]
     n, p = jac.shape if jac.ndim == 2 else (len(y), 0)
     if dof < 1 or not p:
         return []
-    h = np.clip(np.diag(jac @ np.linalg.pinv(jac.T @ jac) @ jac.T), 0.0, 1.0)
+    h = _leverages(jac)
     big = float(np.max(np.abs(y)))
     out = []
     for k, (i, col) in enumerate(cols):
