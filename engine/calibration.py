@@ -795,9 +795,9 @@ MISFIT_PCT = 5.0
 #: Belsley, Kuh & Welsch 1980, 2.1): 1 fit in 100 of consistent data names one (a warning
 #: is rare where nothing is wrong).
 OUTLIER_ALPHA = 0.01
-#: Leverage [-] of one reading above which it is named as carrying the fit (and above twice
-#: the mean leverage 2 p / n; Belsley, Kuh & Welsch 1980, 2.1): half the fit's weight on one
-#: reading.
+#: Leverage [-] of one reading above which it is named as carrying the fit: Huber's bound
+#: (Robust Statistics, 1981, 7.2: h above 0.5 is to be avoided, the reading then outweighs
+#: the rest), and above twice the mean leverage 2 p / n (Belsley, Kuh & Welsch 1980, 2.1).
 LEVERAGE_HIGH = 0.5
 #: Smallest relative residual [%] named as an outlier however far it stands from the rest: a
 #: plant meter of class 1 reads within 1 % (the class of :data:`MISFIT_PCT`'s note).
