@@ -1211,7 +1211,10 @@ def _rest_takes_its_lift(profile: list[ProfileSection], i: int) -> bool:
         curve_arc_m(profile, j) / profile[j].curve_radius_m
         for j in (i - 1, i) if j >= 0 and curve_arc_m(profile, j) > 0.0])
     lift = rest * math.sin(ang) + need
-    return rest * math.sin(ang - turn) <= lift <= rest * math.sin(ang + turn)
+    # the turned grades bounded at the vertical: a section 0.05 m short of vertical turned by
+    # another degree falls below its own sine, and its straight rest failed its own lift
+    hi, lo = min(ang + turn, 0.5 * math.pi), max(ang - turn, -0.5 * math.pi)
+    return rest * math.sin(lo) <= lift <= rest * math.sin(hi)
 
 
 def _radius_keeps_lift(profile: list[ProfileSection], j: int, r: float) -> bool:
@@ -2024,9 +2027,27 @@ def _check_whole(conv: Conveyor, prefix: str = "") -> None:
         check(conv, prefix)
 
 
+def _beside_the_wrapper(key: str, prefix: str) -> str:
+    """The problem of a key beside a scenario file's ``scenario:`` mapping."""
+    both = ("a scenario file holds its fields under 'scenario:' or at the top level, not "
+            "both")
+    if key in Scenario.model_fields:
+        return (f"{prefix}{key}: a scenario field outside the 'scenario:' mapping ({both}; "
+                f"move {key} into scenario:)")
+    return (f"{prefix}{key}: unknown key beside the 'scenario:' mapping ({both}; drop it; "
+            f"valid keys under scenario: {', '.join(Scenario.model_fields)})")
+
+
 def scenario_fields(data: dict, prefix: str = "") -> tuple[dict, str]:
     """A scenario mapping with a top-level ``scenario:`` key taken off (the prefix then gains
     ``scenario.``); that key holding no mapping is an :class:`InputError` saying so."""
+    if "scenario" not in data:
+        return data, prefix
+    if set(data) != {"scenario"} and isinstance(data["scenario"], dict):
+        # 'scenario: {...}' and a stray key beside it: the stray key is the fault, not the
+        # wrapper (it was told 'scenario.scenario: unknown key', to drop a valid wrapper)
+        raise InputError("; ".join(_beside_the_wrapper(k, prefix) for k in data
+                                   if k != "scenario"))
     if set(data) != {"scenario"}:
         return data, prefix
     if not isinstance(data["scenario"], dict):

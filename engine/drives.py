@@ -142,6 +142,13 @@ def watts_notes(conv: Conveyor, te_n: float, resistance_n: float) -> list[str]:
         if d.rated_power_kw is None or not need > 0.0:
             continue
         ratio = float(d.rated_power_kw) / need
+        if 0.0 < ratio <= 1.0 / WATTS_RATIO:
+            # the other way: 1.25 for a 1250 kW motor, written in MW
+            notes.append(
+                f"note: drives.{i}.rated_power_kw {float(d.rated_power_kw):.6g} kW is 1/"
+                f"{1.0 / ratio:,.0f} of the {figures(need)} kW an auto size installs for drive "
+                f"{i + 1} ({d.where}); rated_power_kw is in kW: if it was written in MW, it "
+                f"is {figures(float(d.rated_power_kw) * 1e3, True)} kW")
         if ratio >= WATTS_RATIO:
             notes.append(
                 f"note: drives.{i}.rated_power_kw {figures(float(d.rated_power_kw), True)} kW "
@@ -222,6 +229,12 @@ def figures(value: float, thousands: bool = False) -> str:
     return f"{value:.2g}"
 
 
+def _rating(kw: float) -> str:
+    """A rated power in words [kW]: as :func:`figures`, with three significant figures below
+    10 kW, so a rating given as 1.25 reads 1.25 (it read 1.2)."""
+    return f"{kw:.3g}" if 0.0 < abs(kw) < 10.0 else figures(kw)
+
+
 def apart(value: float, limit: float, decimals: int = 2, rtol: float = 1e-9
           ) -> tuple[str, str]:
     """A value and the limit it is judged against, printed [any unit] so that the printed
@@ -275,7 +288,7 @@ def steady_checks(conv, forces_n, speed_m_s: float, te_n: float, rated_kw
             warnings.append(
                 f"drive {i} ({d.where}) {how} {figures(need)} kW at {speed_m_s:g} m/s "
                 f"({d.share:g} x Te {te_n / 1e3:.1f} kN{regen} {eta:g}), rated "
-                f"{figures(rated)} kW: short by {figures(need - rated)} kW (utilisation "
+                f"{_rating(rated)} kW: short by {figures(need - rated)} kW (utilisation "
                 f"{need / rated:.2f}); a motor of at least {kw_at_least(need)} kW "
                 f"(drives.{i - 1}.rated_power_kw), or the load shared by more drives, "
                 "would avoid it")
@@ -286,7 +299,8 @@ def steady_checks(conv, forces_n, speed_m_s: float, te_n: float, rated_kw
         if d.control == "vfd" and abs(float(f)) > cap * (1.0 + 1e-9) and math.isfinite(cap):
             warnings.append(
                 f"drive {i} ({d.where}) force limit {cap / 1e3:.1f} kN (torque_limit "
-                f"{d.torque_limit:g} x rated {figures(rated)} kW / {speed_m_s:g} m/s) is below its "
+                f"{d.torque_limit:g} x rated {_rating(rated)} kW / {speed_m_s:g} m/s) is "
+                "below its "
                 f"running force {abs(float(f)) / 1e3:.1f} kN: it cannot hold the belt at "
                 f"design speed; a torque_limit of at least "
                 f"{math.ceil(abs(float(f)) / (rated * 1e3 / speed_m_s) * 100 - 1e-6) / 100:.2f} "

@@ -71,7 +71,7 @@ class FrictionModel:
                 close = difflib.get_close_matches(key, list(fields), n=1, cutoff=0.5)
                 hint = f"; did you mean '{close[0]}'?" if close else ""
                 raise InputError(
-                    f"unknown parameter of model '{self.name}'{hint} valid: {', '.join(fields)}",
+                    f"unknown parameter of model '{self.name}'{hint}; valid: {', '.join(fields)}",
                     field=f"models.{self.name}.{key}")
             if value is None:
                 if type(None) not in typing.get_args(typing.get_type_hints(self.params_class)[key]):

@@ -37,3 +37,18 @@ def test_a_power_written_in_watts_is_named():
 @pytest.mark.parametrize("rated_kw", [15.0, 300.0])
 def test_a_motor_a_few_times_its_need_is_not_taken_for_watts(rated_kw):
     assert "rated_power_kw is in kW" not in _steady(rated_kw).message
+
+
+def test_a_power_written_in_megawatts_is_named_and_printed_as_given():
+    # slope-5pct-like by hand is not needed: the same short belt, its motor written as
+    # 0.005 (5 kW in MW); the auto size is a few kW, so 0.005 is under 1/500 of it
+    res = _steady(0.005)
+    te_kn = float(res.summary["te_kn"])
+    auto_kw = RATED_POWER_FACTOR * te_kn * 2.0 / 0.95
+    assert auto_kw / 0.005 > WATTS_RATIO
+    assert (f"note: drives.0.rated_power_kw 0.005 kW is 1/{auto_kw / 0.005:,.0f} of the "
+            in res.message), res.message
+    assert "if it was written in MW, it is 5 kW" in res.message
+    # the warning prints the rating as given (1.25 read 'rated 1.2 kW')
+    res = _steady(1.25e-3)
+    assert "rated 0.00125 kW" in res.message, res.message

@@ -31,3 +31,23 @@ def test_a_start_or_stop_that_is_no_mapping_is_refused_naming_it(tmp_path, capsy
     assert code == 2, err
     assert err.startswith(f"error: {needle}"), err
     assert "\n" not in err
+
+
+@pytest.mark.parametrize(("stray", "needle"), [
+    ({"extra": 1}, "extra: unknown key beside the 'scenario:' mapping"),
+    ({"run_s": 10}, "run_s: a scenario field outside the 'scenario:' mapping"),
+])
+def test_a_key_beside_the_scenario_mapping_is_named_not_the_mapping(tmp_path, capsys, stray,
+                                                                      needle):
+    # 'scenario: {...}' and 'extra: 1' was told 'scenario.scenario: unknown key', which
+    # asks the user to drop the valid wrapper; the stray key is the fault
+    conveyor = tmp_path / "tiny.yaml"
+    conveyor.write_text(yaml.safe_dump(TINY_CONVEYOR))
+    scenario = tmp_path / "scenario.yaml"
+    scenario.write_text(yaml.safe_dump({"scenario": dict(TINY_SCENARIO), **stray}))
+    code = cli.main(["simulate", str(conveyor), "--scenario", str(scenario), "--no-check",
+                     "--no-remedy"])
+    err = capsys.readouterr().err.strip()
+    assert code == 2, err
+    assert err.startswith(f"error: {scenario}: {needle}"), err
+    assert "scenario.scenario" not in err and "\n" not in err
