@@ -611,9 +611,11 @@ class StudyService:
         _, result = run_spec(dataclasses.replace(spec, check=False), study_id)
         return surface_table(spec.run_id, result) if result is not None else None
 
-    def compare(self, study_id: str, baseline: str, candidate: str, metrics: list[str]) -> dict:
+    def compare(self, study_id: str, baseline: str | None, candidate: str | None,
+                metrics: list[str]) -> dict:
         """Pairs of runs that differ only in the friction model (:func:`query.compare`) with
-        the study's state: a running study answers with the pairs finished so far."""
+        the study's state: a running study answers with the pairs finished so far.
+        ``baseline`` / ``candidate``: None for one left to its default."""
         doc = self.store.read(study_id)
         axes = [a["column"] for a in doc["study"]["axes"]]
         out = query.compare(

@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import dataclasses
 
-from fastapi import APIRouter, Depends
+from fastapi import APIRouter, Depends, Request
 
 from beltstudy import engine
 from beltstudy.engine import ALIASES, MODELS, catalog
@@ -19,9 +19,13 @@ router = APIRouter(tags=["meta"], dependencies=[Depends(require_token), Depends(
                    responses=ERROR_RESPONSES)
 
 
-@health_router.get("/health", response_model=Health, summary="Liveness and the Dask executor")
-async def health(service: StudyService = Depends(get_service)) -> dict:
-    # on the event loop itself: never queued behind the thread pool's expansions
+@health_router.get("/health", response_model=Health, summary="Liveness and the Dask executor",
+                   responses={422: ERROR_RESPONSES[422]})
+async def health(request: Request, service: StudyService = Depends(get_service)) -> dict:
+    # on the event loop itself: never queued behind the thread pool's expansions. So the
+    # query check is called here, not a dependency (a plain def one runs in that pool): an
+    # unknown parameter is a 422 naming it, as on every other route
+    check_query(request)
     return {
         "status": "ok",
         "version": engine.__version__,

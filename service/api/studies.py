@@ -328,6 +328,7 @@ def get_uncertainty(study_id: str, service: StudyService = Depends(get_service))
 )
 def compare(
     study_id: str,
+    request: Request,
     baseline: str = Query(query.PAIR_DEFAULTS["baseline"], description="baseline friction model"),
     candidate: str = Query(query.PAIR_DEFAULTS["candidate"],
                            description="candidate friction model"),
@@ -341,7 +342,10 @@ def compare(
         raise Invalid(f"metrics: an empty name in '{metrics}'; give result columns "
                       "comma-separated (metrics=power_kw,t_max_stop_kn), or leave the "
                       "parameter out for the defaults")
-    return service.compare(study_id, baseline, candidate, names)
+    # a model left out is its default, and said so ("(the default)") only then
+    given = request.query_params
+    return service.compare(study_id, baseline if "baseline" in given else None,
+                           candidate if "candidate" in given else None, names)
 
 
 @router.delete("/{study_id}", response_model=Deleted, summary="Cancel a study and delete its files")

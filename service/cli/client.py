@@ -119,8 +119,11 @@ class ServiceClient:
         )
         return response.content
 
-    def compare(self, study_id: str, baseline: str, candidate: str, metrics: list[str]) -> dict:
-        params = {"baseline": baseline, "candidate": candidate}
+    def compare(self, study_id: str, baseline: str | None, candidate: str | None,
+                metrics: list[str]) -> dict:
+        # a model left out (None) is left to the service's default, which says so
+        params = {k: v for k, v in (("baseline", baseline), ("candidate", candidate))
+                  if v is not None}
         if metrics:  # none: the service's default metrics (an empty value is refused)
             params["metrics"] = ",".join(metrics)
         return self._request("GET", study_path(study_id, "compare"), params=params).json()

@@ -106,10 +106,12 @@ def register(sub) -> None:
         "that differs only in the model, and print the ratios of the metrics (of magnitudes), "
         "overall and per axis value. Default: nonlin over cema.")
     p.add_argument("id", help="study id")
-    p.add_argument("--baseline", default=query.PAIR_DEFAULTS["baseline"],
-                   help="baseline friction model (default: %(default)s)")
-    p.add_argument("--candidate", default=query.PAIR_DEFAULTS["candidate"],
-                   help="candidate friction model (default: %(default)s)")
+    # left out: None, so the answer says "(the default)" of that model only
+    p.add_argument("--baseline", default=None,
+                   help=f"baseline friction model (default: {query.PAIR_DEFAULTS['baseline']})")
+    p.add_argument("--candidate", default=None,
+                   help=f"candidate friction model (default: "
+                   f"{query.PAIR_DEFAULTS['candidate']})")
     p.add_argument(
         "--metrics", default=None,
         help="comma-separated result columns (default: power_kw and the stop's peak and "

@@ -17,14 +17,18 @@ shape of (a mapping is no text) is not reported when another member looked insid
 
 from __future__ import annotations
 
+import dataclasses
+import functools
+import json
 from collections import defaultdict
 from typing import Any
 
-from pydantic import BaseModel, ValidationError
+import yaml
+from pydantic import BaseModel, TypeAdapter, ValidationError
 
-from beltstudy.engine import Conveyor, Scenario, format_validation_error
+from beltstudy.engine import ALIASES, MODELS, Conveyor, Scenario, format_validation_error
 from beltstudy.engine.conveyor import JSON_TYPES, as_json, nearest_word, type_hint
-from beltstudy.service.door.study import AXIS_TARGETS, StudyIn, unfold_axis
+from beltstudy.service.door.study import AXIS_TARGETS, StudyIn, axis_types, unfold_axis
 
 __all__ = ["describe", "MAX_PROBLEMS"]
 
@@ -102,8 +106,7 @@ def _as_json_type(errors: list[dict]) -> str:
     got = errors[0]["input"]
     if not hint and _axis_at(path) == len(path) - 1 and not isinstance(got, dict | list):
         # one value where an axis takes several: the two shapes an axis has
-        shown = got if isinstance(got, str) else as_json(got)  # "1,2" -> [1,2]
-        hint = f"an axis is a list ([{shown}]) or a range ({{start, stop, step}})"
+        hint = _axis_advice(str(path[-1]), got)
     elif not hint and path == ("conveyor",) and not isinstance(got, dict | list):
         hint = ("give the path of a conveyor file as text (conveyors/slope-5pct.yaml) or the "
                 "conveyor inline")
@@ -122,6 +125,94 @@ def _as_json_type(errors: list[dict]) -> str:
         hint = f"write the share of runs to check as accuracy: {{sample: {as_json(got)}}}"
     text += f": {hint}" if hint else ""
     return f"{_dotted(errors[0]['path'])}: {text}"
+
+
+@functools.cache
+def _axis_items() -> dict[str, tuple[Any, bool, dict | None]]:
+    """Axis name (folded) -> (the type of one value, numeric, bounds) (:func:`axis_types`)."""
+    return {name: (item, numeric, bounds)
+            for name, (_t, item, numeric, bounds) in axis_types().items()}
+
+
+#: Values an axis's advice may show, tried in order until one the axis takes.
+_NUMBER_EXAMPLES = ([0, 10, 20], [1, 2, 3], [0, 0.5, 1], [0.01, 0.02, 0.03])
+
+
+def _takes(item: Any, bounds: dict | None, values: Any) -> bool:
+    """Whether an axis of values of type ``item`` (a model parameter's ``bounds``) takes the
+    list ``values``, held to JSON's types as a study is."""
+    if not isinstance(values, list) or not values:
+        return False
+    try:
+        TypeAdapter(list[item]).validate_json(json.dumps(values), strict=True)
+    except (ValidationError, TypeError, ValueError):
+        return False
+    low, high = (bounds or {}).get("minimum"), (bounds or {}).get("maximum")
+    above = (bounds or {}).get("exclusiveMinimum")
+    return all(not isinstance(v, int | float) or isinstance(v, bool) or (
+        (low is None or v >= low) and (high is None or v <= high)
+        and (above is None or v > above)) for v in values)
+
+
+def _words(item: Any) -> list[str]:
+    """The words an axis's values may be (its schema's enums: load cases, model names)."""
+    try:
+        schema = TypeAdapter(item).json_schema()
+    except Exception:  # noqa: BLE001 - a type without a schema: no words to offer
+        return []
+    found: list[str] = []
+    for option in [schema, *schema.get("anyOf", [])]:
+        found += [w for w in option.get("enum", [option.get("const")]) if isinstance(w, str)]
+    return found
+
+
+def _axis_advice(axis: str, got: Any) -> str:
+    """What to write for an axis given as the one value ``got``: a list of it (``[5]``,
+    ``[din]``) where the axis takes that value, else of values it takes (never the bad value
+    wrapped: ``[null]`` fails again); a range of numbers it takes where it is numeric."""
+    item, numeric, bounds = _axis_items().get(axis, (None, False, None))
+    shown = got if isinstance(got, str) else as_json(got)  # "1,2" -> [1,2]
+    try:  # null is no value to vary (where a field takes it, it is its default)
+        wrapped = yaml.safe_load(f"[{shown}]") if got is not None else None
+    except yaml.YAMLError:
+        wrapped = None
+    numbers = [v for v in (*_param_examples(axis), *_NUMBER_EXAMPLES)
+               if numeric and _takes(item, bounds, v)]
+    words = _words(item)[:2] if item is not None else []
+    tried = [wrapped, words, *numbers, [True, False]]
+    listed = next((v for v in tried if item is None or _takes(item, bounds, v)), None)
+    if listed is None:
+        return ("an axis is a list of the field's values (one value v: [v]) or, for a "
+                "number, a range ({start, stop, step})")
+    if listed is wrapped:  # the value itself, in a list
+        return f"an axis is a list ([{shown}])" + (" or a range ({start, stop, step})"
+                                                    if numeric else "")
+    text = _flow(listed)
+    if not numbers:
+        return f"an axis is a list of values ({text})"
+    a, b, c = numbers[0]
+    return (f"an axis is a list of values ({text}) or a range "
+            f"({{start: {as_json(a)}, stop: {as_json(c)}, step: {as_json(round(b - a, 12))}}})")
+
+
+def _param_examples(axis: str) -> list[list[float]]:
+    """For a model parameter axis (``models.din.f_carry``), its default and twice it, where
+    the model has a number for it (a friction factor's scale is not a temperature's)."""
+    parts = axis.split(".")
+    if len(parts) != 3 or parts[0] != "models":
+        return []
+    fm = MODELS.get(ALIASES.get(parts[1], parts[1]))
+    field = next((f for f in dataclasses.fields(fm.params_class) if f.name == parts[2]),
+                 None) if fm is not None else None
+    d = getattr(field, "default", None)
+    if not isinstance(d, int | float) or isinstance(d, bool) or not d:
+        return []
+    return [[d, float(f"{2 * d:.12g}"), float(f"{3 * d:.12g}")]]
+
+
+def _flow(values: list) -> str:
+    """A list as a study file writes it: ``[0, 10, 20]``, ``[full, empty]``."""
+    return "[" + ", ".join(v if isinstance(v, str) else as_json(v) for v in values) + "]"
 
 
 def _tag_ctx(e: dict) -> dict:

@@ -51,7 +51,7 @@ from beltstudy.engine import ALIASES, MODELS, Conveyor, Scenario, catalog
 from beltstudy.engine.conveyor import check_visible
 from beltstudy.service.door.sample import SampleIn
 from beltstudy.service.examples import TINY_CONVEYOR, TINY_SCENARIO
-from beltstudy.service.grid.axes import NAMED_AXES, field_model
+from beltstudy.service.grid.axes import NAMED_AXES, NOT_READ, field_model
 from beltstudy.service.grid.basis import DesignIn
 
 __all__ = [
@@ -95,6 +95,9 @@ NOT_IN_SCHEMA = (
     "a design list names each case once (aliases count as one model, full as load 1.0)",
     "a models.<model>.<parameter> axis names a model the study runs (its friction_model "
     "axis, else model, else the one model under models, else din)",
+    "a parameter set by a models.<model>.<parameter> axis is not also under models: (its "
+    "runs take the axis's value) unless that model is design.friction_model and the study "
+    "runs another model, whose runs it sizes",
     "with dynamics, a scenario the conveyor can do (brake stop needs brakes, stop after the "
     "brake delay)",
     "every auto size of a conveyor design is finite (no take-up meets a sag limit near zero)",
@@ -380,6 +383,12 @@ _INDEX = r"\.(0|[1-9][0-9]*)"
 def _axis_field(alias: str, item: Any, numeric: bool, bounds: dict | None) -> tuple:
     """``(type, Field)`` of one axis; an axis into a list holds ``{index: values}``."""
     extra = _FRICTION_MODEL_AXIS if alias == "friction_model" else {}
+    unread = NOT_READ.get(tuple(alias.removeprefix("conveyor.").split(".")))
+    if unread:
+        # a field no run reads (the conveyor's name): set once, never varied (the resolver's
+        # words for two values: studyfile._check_read)
+        extra = {"maxItems": 1, "description": f"{unread}: no run reads it, so one value "
+                 "(the field set once), never an axis of several"}
 
     def schema(s: dict) -> None:
         if ".N" in alias:

@@ -48,7 +48,7 @@ from beltstudy.service.door.study import (
     given_models,
 )
 from beltstudy.service.errors import Invalid, TooLarge, file_problem, shown_path
-from beltstudy.service.grid.axes import axis_column, resolve_axis
+from beltstudy.service.grid.axes import NOT_READ, axis_column, resolve_axis
 from beltstudy.service.grid.basis import (
     check_design_once,
     design_loads,
@@ -348,6 +348,9 @@ def _axis(name: str, spec, group: int | None, where: str, bases: tuple[dict, dic
     """One axis: its values (a range counted out), the field it sets, its values canonical
     (model names, model parameters)."""
     values = _axis_values(name, spec, max_runs, where)
+    problem = _study_field_axis(name, values, where)
+    if problem:
+        raise Invalid(problem)
     try:
         target = resolve_axis(name, *bases, where)
     except InputError as exc:
@@ -375,6 +378,28 @@ def _axis(name: str, spec, group: int | None, where: str, bases: tuple[dict, dic
     return Axis(name, axis_column(name), target, tuple(values), group)
 
 
+#: Fields of the study itself that an axis name may be mistaken for (``name`` is the
+#: conveyor's, ``models`` the start of a model parameter axis: both are axis paths).
+_STUDY_FIELDS = frozenset(StudyIn.model_fields) - {"name", "models"}
+
+
+def _study_field_axis(name: str, values: list, where: str) -> str:
+    """The refusal of an axis named as a field of the study (``dynamics``, ``model``): one
+    value for all its runs, not a conveyor or scenario field; "" for any other name."""
+    if name not in _STUDY_FIELDS:
+        return ""
+    label = f"{where}.{name}: '{name}' is a field of the study, not an axis"
+    if name == "model":
+        shown = ", ".join(str(v) for v in values)
+        return (f"{label} (the one friction model of a study without a friction_model axis); "
+                f"to run several models give the friction_model axis ({where}: "
+                f"{{friction_model: [{shown}]}})")
+    example = json.dumps(values[0]) if values and not isinstance(values[0], dict | list) \
+        else "..."
+    return (f"{label}: it holds for every run of the study; give it once at the top level "
+            f"({name}: {example}), and submit one study per value to compare them")
+
+
 def _axes(study: StudyIn, data: dict, bases: tuple[dict, dict], models: dict,
           max_runs: int) -> list[Axis]:
     """The grid's and the zip groups' axes, in the order written; no two set one field."""
@@ -385,7 +410,9 @@ def _axes(study: StudyIn, data: dict, bases: tuple[dict, dict], models: dict,
     axes: list[Axis] = []
     for group, where, grid, written in groups:
         if group is not None and not written:
-            raise Invalid(f"{where}: empty group; give two or more axes of equal length")
+            raise Invalid(f"{where}: empty group; give one or more axes (the axes of a group "
+                          "vary together, so each has the same number of values), e.g. "
+                          "{temperature_c: [0, 20], load: [full, empty]}")
         for name, spec in grid.axes(written):
             _add_axis(axes, _axis(name, spec, group, where, bases, models, max_runs))
     for axis in _sample_axes(study, bases, models):
@@ -395,20 +422,28 @@ def _axes(study: StudyIn, data: dict, bases: tuple[dict, dict], models: dict,
 
 
 def _check_read(study: StudyIn, axes: list[Axis]) -> None:
-    """A steady study's runs read no scenario field but :data:`STEADY_FIELDS`: a grid or zip
-    axis of two or more values of another (the stop time, the start) would make every point
-    one run, its column null, as a sample axis would (refused in :func:`_sample_axes`)."""
-    if study.dynamics:
-        return
+    """A grid or zip axis of two or more values of a field no run reads would make runs that
+    differ in nothing a run reads: refused. A steady study's runs read no scenario field but
+    :data:`STEADY_FIELDS` (the stop time, the start: every point one run, its column null, as
+    a sample axis would be, refused in :func:`_sample_axes`); no run reads the conveyor's
+    :data:`~beltstudy.service.grid.axes.NOT_READ` fields (its name: as many runs, with the
+    same results). One value is the field set once."""
     for axis in axes:
         t = axis.target
-        if (not axis.sample and t.root == "scenario" and t.path
-                and t.path[0] not in STEADY_FIELDS and len(axis.values) > 1):
-            where = f"zip.{axis.group}" if axis.group is not None else "grid"
+        if axis.sample or len(axis.values) < 2:
+            continue
+        where = f"zip.{axis.group}" if axis.group is not None else "grid"
+        n = len(axis.values)
+        if t.root == "conveyor" and t.path in NOT_READ:
+            raise Invalid(f"{where}.{axis.name}: no run reads {NOT_READ[t.path]} (free text, "
+                          f"the same physics under any name), so its {n} values would be {n} "
+                          "runs with the same results; drop the axis (name the conveyor in "
+                          "the conveyor, the study in its own name:)")
+        if (not study.dynamics and t.root == "scenario" and t.path
+                and t.path[0] not in STEADY_FIELDS):
             raise Invalid(f"{where}.{axis.name}: a steady study (dynamics: false) does not "
-                          f"read scenario.{'.'.join(t.path)}, so its {len(axis.values)} values "
-                          "would be one run; vary it in a study with dynamics: true, or drop "
-                          "the axis")
+                          f"read scenario.{'.'.join(t.path)}, so its {n} values would be one "
+                          "run; vary it in a study with dynamics: true, or drop the axis")
 
 
 def _add_axis(axes: list[Axis], axis: Axis) -> None:
@@ -642,6 +677,28 @@ def _check_models_used(given: dict[str, str], run_models: set[str], design: dict
                 f"{name} to the friction_model axis or remove models.{as_given}")
 
 
+def _check_models_on_axes(axes: list[Axis], models: dict, given: dict[str, str],
+                          run_models: set[str], design: dict | None) -> None:
+    """A parameter under ``models:`` that an axis also sets: every run of that model takes the
+    axis's value, so the fixed one would be ignored (refused naming both, as the same field
+    in the grid and a zip group is), unless a design case reads it (the model is a
+    ``design.friction_model`` and the study runs another model, whose runs it sizes)."""
+    designs = set(design_models(design) or [])
+    for axis in axes:
+        if axis.target.root != "model_param":
+            continue
+        model, param = axis.target.path
+        if param not in models.get(model, {}) or (model in designs and run_models - {model}):
+            continue
+        place = (f"sample.axes.{axis.name}" if axis.sample else
+                 f"zip.{axis.group}.{axis.name}" if axis.group is not None else
+                 f"grid.{axis.name}")
+        value = json.dumps(models[model][param])
+        raise Invalid(f"models.{given[model]}.{param} and {place} both set "
+                      f"models.{model}.{param}: give it in one of them (every {model} run takes "
+                      f"the axis's value, so {param}: {value} under models: would be ignored)")
+
+
 def resolve_study(
     data: Any,
     *,
@@ -674,6 +731,7 @@ def resolve_study(
     default_model, run_models = _run_models(study, axes, models)
     design = _positive_zero(_design(study))
     _check_models_used(given, run_models, design)
+    _check_models_on_axes(axes, models, given, run_models, design)
     if study.accuracy is not None and not study.dynamics:
         raise Invalid("accuracy: error bars are those of the transient runs; this study has "
                       "dynamics: false (set dynamics: true or remove accuracy)")

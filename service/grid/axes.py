@@ -23,6 +23,7 @@ from beltstudy.engine.conveyor import unit_twin
 
 __all__ = [
     "NAMED_AXES",
+    "NOT_READ",
     "RESULT_COLUMNS_TAKEN",
     "Target",
     "resolve_axis",
@@ -41,6 +42,12 @@ NAMED_AXES: dict[str, tuple[str, ...]] = {
     "stop_time_s": ("scenario", "stop", "time_s"),
     "load": ("scenario", "load"),
 }
+
+#: Conveyor fields no run reads (free text: the conveyor's ``name`` is a label, the physics is
+#: the same under any name) -> how a message says them. An axis of two or more of their values
+#: would be runs that differ in nothing a run reads, with the same results: the door refuses it
+#: (:func:`beltstudy.service.door.studyfile.resolve_study`), and no suggestion points at one.
+NOT_READ: dict[tuple[str, ...], str] = {("name",): "the conveyor's name"}
 
 #: Result columns an axis column must not shadow (every column of :mod:`beltstudy.engine.results`;
 #: SPEC section 4 names the achieved stop time ``stop_time_s``); such an axis is stored as
@@ -156,13 +163,15 @@ def _paths(model: type[BaseModel], prefix: str, data: Any) -> list[str]:
 
 
 def valid_paths(conveyor: dict, scenario: dict) -> list[str]:
-    """Every axis name accepted for this conveyor and scenario (for suggestions)."""
+    """Every axis name accepted for this conveyor and scenario (for suggestions), less the
+    fields no run reads (:data:`NOT_READ`)."""
 
     models = [f"models.{m}.{f.name}" for m, fm in MODELS.items()
               for f in dataclasses.fields(fm.params_class)]
+    unread = {".".join(path) for path in NOT_READ}
     return (
-        list(NAMED_AXES) + _paths(Conveyor, "", conveyor) + _paths(Scenario, "scenario.", scenario)
-        + models
+        list(NAMED_AXES) + [p for p in _paths(Conveyor, "", conveyor) if p not in unread]
+        + _paths(Scenario, "scenario.", scenario) + models
     )
 
 
@@ -230,7 +239,7 @@ def _model_param(name: str, parts: list[str], where: str) -> Target:
     if parts[2] not in fields:
         close = difflib.get_close_matches(parts[2], fields, n=1, cutoff=0.5)
         hint = f"; did you mean 'models.{fm.name}.{close[0]}'?" if close else ""
-        raise InputError(f"axis '{name}': unknown parameter of model '{fm.name}'{hint} "
+        raise InputError(f"axis '{name}': unknown parameter of model '{fm.name}'{hint}; "
                          f"valid: {', '.join(fields)}", field=where)
     return Target("model_param", (fm.name, parts[2]))
 

@@ -29,6 +29,7 @@ __all__ = [
     "filter_columns",
     "column_list",
     "no_column",
+    "folded_components",
     "sort_key",
     "sort_rows",
     "compare",
@@ -121,9 +122,30 @@ def model_name(text: str, field: str) -> str:
         raise Invalid(f"{field}: {exc.reason}") from None
 
 
+#: The breakdown of ``te_kn`` as REST and CLI rows hold it: a JSON object, stored as the
+#: ``te_<part>_kn`` columns (no column of its own to name, filter, sort or compare).
+FOLDED_COMPONENTS = "te_components_kn"
+#: What to do instead of naming :data:`FOLDED_COMPONENTS`, by the parameter that named it.
+_PARTS_FIX = {"columns": "name those ({parts}) or leave columns= out for whole rows",
+              "filter": "filter on one of those ({parts})",
+              "sort": "sort by one of those ({parts})",
+              "metrics": "compare those ({parts})"}
+
+
+def folded_components(field: str, columns: list[str]) -> Invalid:
+    """The 422 for ``te_components_kn`` named in ``field`` (``columns``, ``filter``,
+    ``sort``, ``metrics``): what it is, and the study's part columns to name instead."""
+    parts = ", ".join(c for c in columns if c in TE_PART_COLUMNS)
+    fix = _PARTS_FIX.get(field, _PARTS_FIX["filter"]).format(parts=parts)
+    return Invalid(f"{field}: {FOLDED_COMPONENTS} is the JSON object the te_<part>_kn columns "
+                   f"are folded into; {fix}")
+
+
 def no_column(field: str, column: str, columns: list[str]) -> Invalid:
     """The 422 for a column the study does not have: names ``field``, the closest column
-    and every column."""
+    and every column (``te_components_kn``: :func:`folded_components`)."""
+    if column == FOLDED_COMPONENTS:
+        return folded_components(field, columns)
     close = difflib.get_close_matches(column, columns, n=1)
     hint = f" (did you mean '{close[0]}'?)" if close else ""
     return Invalid(f"{field}: this study has no column '{column}'{hint}; columns: "
@@ -147,11 +169,6 @@ def column_list(text: str, columns: list[str], field: str = "columns") -> list[s
                           "by commas (a,b,c)")
         if name in seen:
             raise Invalid(f"{field}: '{name}' is named twice; give each column once")
-        if name == "te_components_kn" and name not in columns:
-            parts = [c for c in columns if c in TE_PART_COLUMNS]
-            raise Invalid(f"{field}: te_components_kn is the JSON object the te_<part>_kn "
-                          f"columns are folded into; name those ({', '.join(parts)}) or "
-                          "leave columns= out for whole rows")
         if name not in columns:
             raise no_column(field, name, columns)
         seen.add(name)
@@ -332,20 +349,88 @@ def model_pair(baseline: str, candidate: str) -> tuple[str, str]:
     return baseline, candidate
 
 
-def _metrics_with_values(runs: pd.DataFrame, metrics: list[str], defaulted: bool) -> list[str]:
+def _shown_metrics(valid: list[str]) -> str:
+    """The first :data:`SHOWN_METRICS` of ``valid`` (a study's number columns run to
+    hundreds, 6 200 characters), and how many more."""
+    return ", ".join(valid[:SHOWN_METRICS]) + (
+        f", and {len(valid) - SHOWN_METRICS} more (the study's number columns)"
+        if len(valid) > SHOWN_METRICS else "")
+
+
+def _check_metrics(runs: pd.DataFrame, axes: list[str], metrics: list[str]) -> list[str]:
+    """The study's number columns that are no axis (the valid metrics); :class:`Invalid`
+    naming ``metrics`` for a name given twice, an axis, a column that is no number and a name
+    the study lacks (the folded ``te_components_kn`` said as ``columns=`` says it)."""
+    valid = [c for c in runs.columns if pd.api.types.is_float_dtype(runs[c]) and c not in axes]
+    for i, m in enumerate(metrics):
+        if m in metrics[:i]:
+            raise Invalid(f"metrics: '{m}' is listed twice; give each metric once")
+        if m in axes:
+            raise Invalid(
+                f"metrics: '{m}' is an axis of this study, not a result; valid: "
+                + ", ".join(valid)
+            )
+        if m in runs.columns and m not in valid:
+            raise Invalid(
+                f"metrics: '{m}' is not a number in this study's rows (a ratio needs one); "
+                "valid: " + ", ".join(valid)
+            )
+        if m == FOLDED_COMPONENTS and m not in valid:
+            raise folded_components("metrics", valid)
+        if m not in valid:
+            close = difflib.get_close_matches(m, valid, n=1)
+            hint = f" (did you mean '{close[0]}'?)" if close else ""
+            raise Invalid(f"metrics: unknown metric '{m}'{hint}; valid: {_shown_metrics(valid)}")
+    return valid
+
+
+def _metrics_with_values(runs: pd.DataFrame, metrics: list[str], defaulted: bool,
+                         valid: list[str]) -> list[str]:
     """The metrics to compare: the defaults keep those some run of the study has a value of
     (a steady-only study has no stop-phase figures: power alone, not two columns of nulls);
-    metrics asked by name are kept as asked (one no run has a value of has no ratio, n 0)."""
-    if not defaulted or not len(runs):
+    a metric asked by name that no run of the study has a value of (a transient figure of a
+    steady study, another model's part) is :class:`Invalid` naming it and those that have
+    values. A study whose rows so far are all of failed runs (which write few figures)
+    refuses nothing yet."""
+    if not len(runs):
         return metrics
-    return [m for m in metrics if runs[m].notna().any()] or metrics[:1]
+    if defaulted:
+        return [m for m in metrics if runs[m].notna().any()] or metrics[:1]
+    if "status" in runs.columns and not (runs["status"] != "failed").any():
+        return metrics
+    for m in metrics:
+        if not runs[m].notna().any():
+            having = [c for c in valid if runs[c].notna().any()]
+            raise Invalid(f"metrics: '{m}' has no values in this study: none of its runs writes "
+                          "it (a figure of another friction model, or of transient runs in a "
+                          "study with dynamics: false); metrics with values: "
+                          + _shown_metrics(having))
+    return metrics
+
+
+def _named_pair(baseline: str | None, candidate: str | None, models: list[str]
+                ) -> tuple[str, str]:
+    """The pair compared (:func:`model_pair`), a model left out (None) being its default of
+    :data:`PAIR_DEFAULTS`; one the study does not run is :class:`Invalid` naming the
+    parameter, and "(the default)" only when it was left out."""
+    given = {"baseline": baseline, "candidate": candidate}
+    pair = model_pair(baseline or PAIR_DEFAULTS["baseline"],
+                      candidate or PAIR_DEFAULTS["candidate"])
+    for label, name in zip(("baseline", "candidate"), pair, strict=True):
+        if models and name not in models:
+            default = " (the default)" if given[label] is None else ""
+            raise Invalid(
+                f"{label}: model '{name}'{default} is not in this study; it has: "
+                f"{', '.join(models)}: give {label}=NAME from those"
+            )
+    return pair
 
 
 def compare(
     runs: pd.DataFrame,
     axes: list[str],
-    baseline: str,
-    candidate: str,
+    baseline: str | None,
+    candidate: str | None,
     metrics: list[str],
     study_id: str = "",
     models: list[str] | None = None,
@@ -361,44 +446,19 @@ def compare(
     magnitude in the pairs, so round-off of a zero gives no ratio); where either value is
     missing (a column one of the two models does not write) ratio and sign are null. Only the axes whose values differ between the pairs are listed per pair and per
     axis; the others are in ``same_in_all_pairs``. A pair with a failed run has no ratio
-    (``failed_pairs`` counts them). ``models``: the study's friction models (a model
+    (``failed_pairs`` counts them). ``baseline`` / ``candidate``: None for one left out (its
+    default, :data:`PAIR_DEFAULTS`). ``models``: the study's friction models (a model
     not among them is :class:`Invalid` naming the parameter); default: those in ``runs``.
+    A metric asked by name that no run has a value of is :class:`Invalid`
+    (:func:`_metrics_with_values`).
     """
     defaulted = not metrics or list(metrics) == list(DEFAULT_METRICS)
     metrics = list(metrics) or list(DEFAULT_METRICS)
-    valid = [c for c in runs.columns if pd.api.types.is_float_dtype(runs[c]) and c not in axes]
-    for i, m in enumerate(metrics):
-        if m in metrics[:i]:
-            raise Invalid(f"metrics: '{m}' is listed twice; give each metric once")
-        if m in axes:
-            raise Invalid(
-                f"metrics: '{m}' is an axis of this study, not a result; valid: "
-                + ", ".join(valid)
-            )
-        if m in runs.columns and m not in valid:
-            raise Invalid(
-                f"metrics: '{m}' is not a number in this study's rows (a ratio needs one); "
-                "valid: " + ", ".join(valid)
-            )
-        if m not in valid:
-            close = difflib.get_close_matches(m, valid, n=1)
-            hint = f" (did you mean '{close[0]}'?)" if close else ""
-            # the study's number columns run to hundreds (6 200 characters): the first few
-            shown = ", ".join(valid[:SHOWN_METRICS]) + (
-                f", and {len(valid) - SHOWN_METRICS} more (the study's number columns)"
-                if len(valid) > SHOWN_METRICS else "")
-            raise Invalid(f"metrics: unknown metric '{m}'{hint}; valid: {shown}")
-    metrics = _metrics_with_values(runs, metrics, defaulted)
-    baseline, candidate = model_pair(baseline, candidate)
+    valid = _check_metrics(runs, axes, metrics)
+    metrics = _metrics_with_values(runs, metrics, defaulted, valid)
     if models is None:
         models = sorted(set(runs["friction_model"].dropna())) if len(runs) else []
-    for label, name in (("baseline", baseline), ("candidate", candidate)):
-        if models and name not in models:
-            default = " (the default)" if name == PAIR_DEFAULTS[label] else ""
-            raise Invalid(
-                f"{label}: model '{name}'{default} is not in this study; it has: "
-                f"{', '.join(models)}: give {label}=NAME from those"
-            )
+    baseline, candidate = _named_pair(baseline, candidate, models)
     others = [a for a in axes if a != "friction_model"]
     keep = ["run_id", "status", *metrics]
     base = runs[runs["friction_model"] == baseline][others + keep]

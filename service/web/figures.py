@@ -180,8 +180,10 @@ def figure_of(doc: dict, runs: pd.DataFrame, name: str, baseline: str | None = N
             f"a ratio needs two friction models in the grid; this study ran {_text(base)} "
             "only", f"{title}: ratio"
         )
+    # those some run has a value of (compare refuses a metric named without any)
     metrics = [m for m in query.DEFAULT_METRICS
-               if m in runs.columns and pd.api.types.is_float_dtype(runs[m])]
+               if m in runs.columns and pd.api.types.is_float_dtype(runs[m])
+               and runs[m].notna().any()]
     summary = query.compare(runs, axes, base, cand, metrics, study_id)["summary"]
     label = f"{title}: {_text(cand)} / {_text(base)} per axis value"
     return lambda: charts.ratio_figure(summary, _text(base), _text(cand), label)

@@ -201,6 +201,15 @@ def _study_ok(body: dict) -> bool:
         if target.startswith("models.") and target.split(".")[1] not in run:
             return False  # a parameter of a model the study does not run
     design = body.get("design") if isinstance(body.get("design"), dict) else {}
+    listed = design.get("friction_model")
+    designed = {_ALIASES.get(m, m) for m in (listed if isinstance(listed, list) else [listed])
+                if isinstance(m, str)}
+    fixed = {f"models.{_ALIASES.get(m, m)}.{p}" for m, given in body.get("models", {}).items()
+             if isinstance(given, dict) for p in given}
+    for target in targets:
+        model = target.split(".")[1] if target.startswith("models.") else None
+        if target in fixed and not (model in designed and run - {model}):
+            return False  # under models: and on an axis: the fixed value would be ignored
     for name in ("friction_model", "temperature_c", "load"):
         listed = design.get(name)
         if isinstance(listed, list):

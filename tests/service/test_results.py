@@ -37,12 +37,11 @@ def test_compare_pairs_runs_differing_only_in_model():
         ["friction_model", "temperature_c", "load"],
         "cema",
         "nonlin",
-        ["power_kw", "t_max_dyn_kn"],
+        ["power_kw"],
     )
     assert len(out["pairs"]) == 4
     for p in out["pairs"]:
         assert p["power_kw_ratio"] == pytest.approx(0.8)
-        assert p["t_max_dyn_kn_ratio"] is None
     s = out["summary"]["power_kw"]
     assert s["overall"] == {
         "n": 4,
@@ -53,7 +52,11 @@ def test_compare_pairs_runs_differing_only_in_model():
     }
     assert set(s["by_axis"]) == {"temperature_c", "load"}
     assert set(s["by_axis"]["load"]) == {"full", "empty"}
-    assert out["summary"]["t_max_dyn_kn"]["overall"]["n"] == 0
+    # a metric no run has a value of (steady rows: no transient figure) is refused, not
+    # answered with n 0 (test_compare_asked_names)
+    with pytest.raises(Invalid, match="^metrics: 't_max_dyn_kn' has no values in this study"):
+        compare(_runs(), ["friction_model", "temperature_c", "load"], "cema", "nonlin",
+                ["power_kw", "t_max_dyn_kn"])
 
 
 def test_compare_lists_only_what_differs_and_ratios_as_magnitudes():
@@ -104,10 +107,11 @@ def test_a_value_one_model_does_not_write_gives_no_ratio_not_a_zero():
     assert all(by_t[(20.0, load)]["f_kn_ratio"] == pytest.approx(0.8) for load in ("full", "empty"))
     assert out["summary"]["f_kn"]["overall"]["n"] == 2
     assert out["summary"]["f_kn"]["overall"]["mean"] == pytest.approx(0.8)
-    # the steady-only metric of _runs (null under both) has no sign either
-    out = compare(_runs(), ["friction_model", "temperature_c", "load"], "cema", "nonlin",
-                  ["t_max_dyn_kn"])
-    assert {p["t_max_dyn_kn_sign"] for p in out["pairs"]} == {None}
+    # the steady-only metric of _runs (null in every run) is refused by name
+    # (test_compare_asked_names), not answered with every sign null
+    with pytest.raises(Invalid, match="'t_max_dyn_kn' has no values in this study"):
+        compare(_runs(), ["friction_model", "temperature_c", "load"], "cema", "nonlin",
+                ["t_max_dyn_kn"])
 
 
 def test_compare_pairs_a_run_with_the_other_model_s_runs_at_each_of_its_parameters():
