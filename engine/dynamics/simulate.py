@@ -34,7 +34,7 @@ from beltstudy.engine.dynamics import records as R
 from beltstudy.engine.dynamics.kernel import PAUSED, run_cycle
 from beltstudy.engine.dynamics.model import COUPLING_CODES, System, chord_strain
 from beltstudy.engine.dynamics.profiles import LINEAR, S_CURVE, start_reference, stop_reference
-from beltstudy.engine.loop import G, _drive_given_kg
+from beltstudy.engine.loop import DEFAULT_PULLEY_DIAMETER_M, G, _drive_given_kg
 from beltstudy.engine.statics import up3
 
 __all__ = ["TransientResult", "KernelRun", "fresh_run", "fresh_model", "simulate", "decode",
@@ -671,7 +671,7 @@ def decode(sys: System, kr: KernelRun, wall_s: float, *, steady_summary=None, co
                                           slip_phases=(kr.slip_min_start, kr.slip_min_stop),
                                           conveyor=conveyor,
                                           safety_factor_min=safety_factor_min)
-    notes = list(sys.notes)
+    notes = list(sys.notes) + holdback_notes(sys, summary, steady_summary, conveyor, cols)
     if int(r["status"]) == C.DIVERGED:
         status = "failed"
         message = diverged_words(sys, int(r["div_where"]), float(r["t"]), conveyor)
@@ -692,6 +692,41 @@ def decode(sys: System, kr: KernelRun, wall_s: float, *, steady_summary=None, co
     return TransientResult(status=status, message=message, warnings=warnings, summary=summary,
                            series=cols, system=sys, raw=raw, trace_data=trace_data,
                            surface_data=surface_data, envelope_data=(s_end, whole))
+
+
+def holdback_notes(sys: System, summary: dict, steady_summary: dict | None, conveyor,
+                   cols: dict) -> list[str]:
+    """The note of a holdback that took more after the stop command than the loaded belt's
+    pull at rest (``hold_force_n``, what it holds with the belt still): the belt's stretch
+    swinging back onto the held pulley (a 150 m, 15 deg incline: 25.2 kN at the belt line,
+    7.94 kNm, 1.49 x its pull of 16.9 kN). Names the peak (read at the records), when, its
+    torque on the head pulley, the ratio and CEMA's static rule beside it
+    (``holdback_torque_knm``, which credits half the running resistance against the pull,
+    :func:`beltstudy.engine.checks.holdback_torque_nm`); [] otherwise. The rest before the
+    start is not read: the belt settling onto the holdback from its initial state there
+    (2-8 % over the pull on a 4 km overland) is the model's start, not a load the plant
+    sees."""
+    rule = (steady_summary or {}).get("holdback_torque_knm")
+    pull_kn = float(sys.hold_force_n) / 1e3
+    if conveyor is None or not summary.get("f_holdback_kn") or "f_holdback_kn" not in cols:
+        return []
+    t = np.asarray(cols["t_s"], float)
+    after = t > sys.stop_command_s
+    f = np.asarray(cols["f_holdback_kn"], float)[after]
+    if pull_kn <= 0.0 or not f.size or float(f.max()) <= pull_kn * (1.0 + 1e-6):
+        return []
+    k = int(np.argmax(f))
+    f_kn, t_peak = float(f[k]), float(t[after][k])
+    heads = [d for d in conveyor.drives if d.position == "head"]
+    d_m = float(heads[0].pulley_diameter_m) if heads else DEFAULT_PULLEY_DIAMETER_M
+    torque = f_kn * d_m / 2.0
+    cema = (f"; CEMA's static rule (holdback_torque_knm) sizes it for {float(rule):.3g} kNm, "
+            "crediting half the running resistance against the pull" if rule else "")
+    return [f"the holdback took up to {f_kn:.4g} kN at the belt line after the stop (t = "
+            f"{t_peak:.4g} s, read at the records; {torque:.3g} kNm on the {d_m:g} m head "
+            f"pulley), {f_kn / pull_kn:.2f} x the loaded belt's pull at rest ({pull_kn:.4g} kN): "
+            f"the belt's stretch swinging back onto it{cema}; a holdback rated for the "
+            "larger, with its maker's service factor on top"]
 
 
 def _exact_times(ext: dict | None, segs, r: dict) -> dict | None:
@@ -1340,22 +1375,36 @@ def transient_summary(sys: System, r: dict, out, segs, *, steady_summary=None, c
     if (summary["stop_wave_ratio"] is not None and summary["stop_wave_ratio"] < 5.0
             and at_speed):
         w.append(_fast_stop_words(sys, t_stop_ach, summary, steady_tmax, conveyor, v_cmd))
+    w += _cycle_end_words(sys, r, out, t_start_ach, v_cmd, steady_summary=steady_summary,
+                          conveyor=conveyor)
+    return summary, w
+
+
+def _cycle_end_words(sys: System, r: dict, out, t_start_ach: float | None, v_cmd: float | None,
+                     *, steady_summary: dict | None = None, conveyor=None) -> list[str]:
+    """The warnings read from the whole cycle's records: an end stop reached, a start short of
+    design speed (``t_start_ach`` None; ``v_cmd`` the mean speed at the stop command), a belt
+    not at rest when the stop window ended, or one that runs back after its stop."""
+    w = []
+    t_stop_cmd = sys.stop_command_s
     if r["endstop"] > 0:
-        w.append(endstop_words(sys, r))
+        w.append(endstop_words(sys, r, out))
     ran_away = int(r["status"]) == C.RUNAWAY  # the run ended early: said above
     if t_start_ach is None and not ran_away:
         w.append(_short_of_speed_words(sys, v_cmd or 0.0, t_stop_cmd,
-                                       limited=bool((out.drv["lim_s"] > 0.0).any())))
+                                       limited=bool((out.drv["lim_s"] > 0.0).any()),
+                                       grip=_grip_words(sys, r, out, _drive_names(sys, conveyor))))
     # a run cut before its stop window ended (``t_end_s``, verification) is not judged on it
     window_end = t_stop_cmd + sys.model.cycle.stop_max
     if not r["stopped"] and not ran_away and float(r["t"]) >= window_end - 0.5 * sys.dt_s:
         braked = {int(k) for k in sys.model.brakes.shaft}
         sliding = any(out.shs[k]["slip_s"] > 0.0 and out.shs[k]["last"] > sys.stop_command_s
                       for k in braked)
-        w.append(not_stopped_words(sys, float(r["v_mean"]), sliding))
+        w.append(not_stopped_words(sys, float(r["v_mean"]), sliding,
+                                   late=_window_tail(sys, out, r)))
     elif not ran_away:  # a belt that never stopped is told so above, a holdback with it
         w += runback_words(sys, out, r, steady_summary, conveyor)
-    return summary, w
+    return w
 
 
 def runback_words(sys: System, out, r: dict, steady_summary: dict | None = None,
@@ -1408,8 +1457,9 @@ def runback_words(sys: System, out, r: dict, steady_summary: dict | None = None,
     # how much: the net gravity pull a holdback or a holding brake must take at the belt line
     pull = f"{sys.hold_force_n / 1e3:.4g} kN at the belt line"
     holdback = ("a holdback on the head pulley (holdback: true)"
-                + (f" of at least {torque:.3g} kNm (CEMA's backstop rule, "
-                   "holdback_torque_knm)" if torque else ""))
+                + (f" of at least {torque:.3g} kNm (CEMA's static backstop rule, "
+                   "holdback_torque_knm; the stop's roll-back onto it can take more, which "
+                   "the rerun with holdback: true names)" if torque else ""))
     return [f"the belt runs back after the stop: its mean speed has been below -{limit:.3g} "
             f"m/s (-{100.0 * REST_FRACTION:g} % of design speed) since t = {t[k0]:.4g} s, "
             f"{t[k0] - sys.stop_command_s:.3g} s after the stop command, reached "
@@ -1439,13 +1489,18 @@ def _speed_at(out, r: dict, t_s: float) -> float | None:
 
 
 def _short_of_speed_words(sys: System, v_cmd: float, t_stop_cmd: float,
-                          limited: bool = True) -> str:
+                          limited: bool = True, grip: str = "") -> str:
     """The warning of a start that never reached 99 % of design speed: the mean speed the belt
     ran at when the stop was commanded and, for dol drives behind fluid couplings, that their
     running slip holds the pulleys below the motors' speed, and what would meet design speed;
     for vfd drives the force limit against Te (a limit not above Te never gets there; drives
     that never reached it (``limited`` False) leave the belt's own stretch; else the rigid
-    body's time still needed at the limit, and the run_s that gives it)."""
+    body's time still needed at the limit, and the run_s that gives it). A drive pulley that
+    slipped through the start (``grip``, :func:`_grip_words`) is what held the belt back
+    instead, whatever the drives' force: a 400 m belt on a 2 kN screw take-up slipped its
+    drive pulley from 9.7 s to the stop command and crawled at 3.1e-5 m/s, and was told the
+    belt's stretch held it back and a longer run_s would show when it got there (after a
+    300 s run it crawled at 3.4e-5 m/s)."""
     v_d = sys.v_design
     if abs(v_cmd) < 1e-9 * v_d:  # round-off about rest: said as 0, not as -8.6e-20, -0.0 %
         v_cmd = 0.0
@@ -1463,6 +1518,8 @@ def _short_of_speed_words(sys: System, v_cmd: float, t_stop_cmd: float,
                   f"rated force), is not above the running resistance Te {te / 1e3:.4g} kN, so "
                   "no start reaches design speed: a higher torque_limit or larger motors "
                   "(drives[].rated_power_kw) would")
+    elif grip:
+        words += grip
     elif vfd and not limited:
         # the drives had force to spare: the belt's own stretch held its mean speed back (a
         # 1 km belt at 0.05 m/s at 66 % after a 30 s start and 5 s run; a rigid body at the
@@ -1488,6 +1545,47 @@ def _short_of_speed_words(sys: System, v_cmd: float, t_stop_cmd: float,
     return words
 
 
+def _grip_words(sys: System, r: dict, out, names: list[str]) -> str:
+    """The words of a start that its drive pulleys' grip held back ("" where none did): a
+    drive whose pulley was slipping at the stop command (its last slip not before the step
+    before it) and had slipped for at least half the time from its first slip in the start to
+    the stop command (what it slipped after the command, at most ``slip_last - t_stop``, is
+    taken off its slip time). The force such a pulley passes to the belt is its grip, the
+    slack-side tension times ``e^(mu theta) - 1``, whatever the drive's force limit, so more
+    slack-side tension (the slip warning's remedy) is the lever; the mean speed's rise over
+    the run before the stop command (the records), at which rate a longer run_s would reach
+    design speed, says whether time would do it too."""
+    t_cmd = sys.stop_command_s
+    held = []
+    for i, d in enumerate(out.drv):
+        t0, t1, slip_s = float(d["slip_first"]), float(d["slip_last"]), float(d["slip_s"])
+        if slip_s <= 0.0 or t0 > t_cmd or t1 < t_cmd - 1.5 * sys.dt_s:
+            continue
+        before = slip_s - max(t1 - t_cmd, 0.0)
+        if before >= 0.5 * (t_cmd - t0):
+            held.append(f"{names[i]} slipped on its pulley from t = {t0:.1f} s to the stop "
+                        f"command ({min(before, t_cmd - t0):.3g} s of those {t_cmd - t0:.3g} s)")
+    if not held:
+        return ""
+    words = (f"; {' and '.join(held)}, so the pulley's grip (its slack-side tension times "
+             "e^(mu theta) - 1), not the drives' force limit nor the belt's stretch, held the "
+             f"belt back: {heavier_takeup(sys, 'more slack-side tension')}, the slip warning's "
+             "remedy, would let it grip and reach design speed")
+    t_run = float(sys.model.cycle.t_run)
+    v_cmd, v_then = _speed_at(out, r, t_cmd), _speed_at(out, r, t_cmd - t_run)
+    if t_run <= 0.0 or v_cmd is None or v_then is None:
+        return words
+    rise = v_cmd - v_then
+    v_d = sys.v_design
+    more = (v_d - v_cmd) * t_run / rise if rise > 0.0 else math.inf
+    pace = (f"its mean speed rose {rise:.3g} m/s over the {t_run:g} s run before the stop "
+            f"command" + (f", a pace that reaches design speed in about {more:.3g} s more"
+                          if rise > 0.0 else ""))
+    if more <= 10.0 * (t_run + float(sys.model.cycle.t_start)):
+        return words + f"; {pace}: a run_s of at least {_up_s(t_run + more)} s would too"
+    return words + f"; {pace}, so a longer run_s would not"
+
+
 def _endstop_gap(sys: System, r: dict) -> float | None:
     """The least clearance [m] between the carriage's travel in the run (``xmin`` to ``xmax``)
     and its end stops (``lo``, ``hi``, :func:`~beltstudy.engine.dynamics.model._takeup`): 0
@@ -1510,51 +1608,135 @@ def _endstop_gap(sys: System, r: dict) -> float | None:
     return max(min(low, high), 0.0)
 
 
-def endstop_words(sys: System, r: dict) -> str:
-    """The warning of a gravity take-up carriage that reached an end stop: when (the first
-    time), its fastest impact [m/s], which end (the running end, where the counterweight is
-    lowest as the belt stretches, or the rest end, where the carriage is drawn in as the belt
-    shortens: ``x`` grows with the stretch, :func:`~beltstudy.engine.dynamics.model._takeup`),
-    where the carriage ran against its travel, and what avoids it. How far it would have run
-    without the stop the run cannot tell: the cure is a longer ``takeup.travel_m`` (rerun until
-    no end stop is reached); at the rest end also a heavier take-up, whose weight resists the
-    pull that draws the carriage in. At the running end a heavier take-up is not offered: the
-    stretch between rest and running comes from the drive force (``x_run``); the counterweight
-    adds to rest and running tension alike and shortens it only by the sag law's part (a
-    stiffer chord at higher tension), little against the elastic part."""
+def _first_at_end(t: np.ndarray, x: np.ndarray, x_end: float, tol: float,
+                  t_kernel: float) -> float | None:
+    """The first time [s] the records hold the carriage at its end stop ``x_end`` (within
+    ``tol``), after it first left it when it starts there (the rest position on that stop);
+    the kernel's first hit ``t_kernel`` where it falls within the record spacing before it
+    (the records stamp it up to a spacing late). None when no record holds it there."""
+    at = np.abs(x - x_end) <= tol
+    if at.size and at[0]:
+        away = np.flatnonzero(~at)
+        if not away.size:
+            return None
+        at[:int(away[0])] = False
+    k = np.flatnonzero(at)
+    if not k.size:
+        return None
+    k0 = int(k[0])
+    if k0 > 0 and float(t[k0 - 1]) < t_kernel <= float(t[k0]) + 1e-9:
+        return t_kernel
+    return float(t[k0])
+
+
+def _endstop_reach(sys: System, r: dict, out=None) -> dict:
+    """The end stops the carriage reached, ``lo`` and ``hi`` (:func:`endstop_words`), each
+    with the time it first reached it [s], in the order of those times. The run's extremes
+    (``xmin``, ``xmax``, every step's) say which ends it reached; the records (``out``) say
+    when. The kernel's own first-hit time (``endstop_t``) is its first touch of any stop,
+    t = 0 for a carriage whose rest position is an end (the running stretch needs all the
+    travel or more) pressing on that stop from rest: a tail-drive belt whose carriage ran to
+    its running end at 12.5 s and a head-drive one whose carriage reached it at 13.3 s were
+    both told t = 0.0 s. An end at the rest position is a hit only where nothing else explains
+    the kernel's (the other end not reached), at the time the records show the carriage back
+    on it after it left, else the kernel's. Without records every end has the kernel's time."""
     tu = sys.model.takeup
     tol = 1e-6 * max(tu.hi - tu.lo, 1e-3)
-    run_end = float(r["xmax"]) >= tu.hi - tol
-    # the carriage starts at rest (x = 0), on the rest end's stop when the running stretch
-    # needs all the travel: there a low x is a hit only when nothing else explains it
-    rest_end = float(r["xmin"]) <= tu.lo + tol and (tu.lo < -tol or not run_end)
-    ends = []
-    if run_end:
-        ends.append("the running end (counterweight at its lowest: the belt stretched more than "
-                    "the travel allows)")
-    if rest_end:
-        ends.append("the rest end (carriage drawn in: the belt shortened more than the travel "
-                    "allows)")
-    which = " and ".join(ends) if ends else "an end stop"
-    short = (f", the running stretch alone needs {tu.x_run:.3g} m" if tu.x_run > tu.hi - tol
-             else "")
-    # where the running stretch fits the travel, the carriage ran past it by the swing of
-    # the start's (or the stop's) fronts, which a gentler start (stop) makes smaller: a
-    # 1.6 km fabric decline's carriage still hit with 14 m of travel after an 8 m one had,
-    # and moved 4.2 m from a 300 s start
-    phase = _run_phase(sys, float(r["endstop_t"]), sys.stop_command_s)
-    swing = ""
-    if not short and phase in ("start", "stop"):
-        levers = start_levers(sys) if phase == "start" else stop_levers(sys)
-        swing = (f", or a gentler {phase}, which swings the carriage less past its running "
-                 f"position ({_or(levers)})")
-    return (f"take-up carriage reached {which} at t = {r['endstop_t']:.1f} s at up to "
-            f"{r['endstop_speed']:.2f} m/s: its travel is {tu.hi - tu.lo:.3g} m "
-            f"(takeup.travel_m; from {tu.lo:.3g} to {tu.hi:.3g} m about the rest position, "
-            f"running position {tu.x_run:.3g} m{short}): a longer takeup.travel_m (rerun "
-            "until no end stop is reached: how far the carriage would have run is not known "
-            "from this run)" + (" or a heavier take-up, which resists the pull drawing it in"
-                                if rest_end else "") + swing + " would avoid it")
+    t_hit = float(r["endstop_t"])
+    reached = {"hi": float(r["xmax"]) >= tu.hi - tol, "lo": float(r["xmin"]) <= tu.lo + tol}
+    rec = out.rec[:int(r["nrec"])] if out is not None else None
+    times = {}
+    for end, x_end in (("hi", tu.hi), ("lo", tu.lo)):
+        other = reached["lo" if end == "hi" else "hi"]
+        if not reached[end] or (abs(x_end) <= tol and other):
+            continue
+        t = _first_at_end(rec["t"], rec["x_tu"], x_end, tol, t_hit) if rec is not None else None
+        if t is None and rec is not None and abs(x_end) > tol and other:
+            # touched between two records, with the kernel's time the other end's: the record
+            # nearest the end
+            t = float(rec["t"][int(np.argmax(rec["x_tu"]) if end == "hi"
+                                   else np.argmin(rec["x_tu"]))])
+        times[end] = t_hit if t is None else t
+    return dict(sorted(times.items(), key=lambda e: e[1]))
+
+
+#: How the end-stop warning names an end: ``x`` grows with the belt's stretch
+#: (:func:`~beltstudy.engine.dynamics.model._takeup`), so the high end is where the
+#: counterweight is lowest, the low end where the carriage is drawn in.
+_END_WORDS = {"hi": "counterweight at its lowest: the belt stretched more than the travel "
+                    "allows",
+              "lo": "carriage drawn in: the belt shortened more than the travel allows"}
+
+
+def _endstop_levers(sys: System, reach: dict, run_end: str, short: bool) -> str:
+    """What besides a longer travel avoids the end stops ``reach`` (:func:`_endstop_reach`),
+    in words ("" when nothing else does): where the running position is beyond the travel
+    (``short``) nothing; else per end a heavier take-up at the rest end on the low side (its
+    weight resists the pull that draws the carriage in; at the high end its weight is what
+    drops it), and a gentler start (stop) where the end was first reached in the start (stop),
+    whose fronts swing the carriage past its running position. Two ends reached need both
+    ends' levers together."""
+    if short:
+        return ""
+    per_end = []
+    for end, t_end in reach.items():
+        levers = []
+        if end == "lo" and run_end == "hi":
+            levers.append("a heavier take-up, which resists the pull drawing it in")
+        phase = _run_phase(sys, t_end, sys.stop_command_s)
+        if phase in ("start", "stop"):
+            ways = start_levers(sys) if phase == "start" else stop_levers(sys)
+            levers.append(f"a gentler {phase}, which swings the carriage less past its "
+                          f"running position ({_or(ways)})")
+        per_end.append((end, levers))
+    if not all(levers for _, levers in per_end):
+        return ""
+    if len(per_end) == 1 or per_end[0][1] == per_end[1][1]:
+        return "".join(f", or {lever}" for lever in per_end[0][1])
+    both = [f"{_or(levers)} for the {'running' if end == run_end else 'rest'} end"
+            for end, levers in per_end]
+    return f", or {both[0]} together with {both[1]}"
+
+
+def endstop_words(sys: System, r: dict, out=None) -> str:
+    """The warning of a gravity take-up carriage that reached an end stop: which ends and when
+    it first reached each (:func:`_endstop_reach`, from the records ``out``), its fastest impact
+    [m/s], where the carriage ran against its travel, and what avoids it. The running end is
+    the one on the side of the running position ``x_run``: the high end (counterweight at its
+    lowest) where the belt stretches as it runs, the low end (carriage drawn in) where it runs
+    shorter than at rest (a tail drive with the take-up at the head: its carriage, running at
+    -0.102 m against 0.1 m of travel, was told it reached the running end 'stretched' and
+    offered a heavier take-up, with which it still hit). How far it would have run without the
+    stop the run cannot tell: the cure is a longer ``takeup.travel_m`` (rerun until no end stop
+    is reached); where the running position lies beyond the travel that alone (the running
+    stretch's need named); else :func:`_endstop_levers`. At the running end a heavier take-up is
+    not offered: the stretch between rest and running comes from the drive force (``x_run``);
+    the counterweight adds to rest and running tension alike and changes it only by the sag
+    law's part (a stiffer chord at higher tension), little against the elastic part."""
+    tu = sys.model.takeup
+    tol = 1e-6 * max(tu.hi - tu.lo, 1e-3)
+    run_end = "hi" if tu.x_run >= 0.0 else "lo"
+    reach = _endstop_reach(sys, r, out)
+    if not reach:  # the kernel's hit with no end in the extremes (round-off): its own time
+        reach = {run_end: float(r["endstop_t"])}
+    named = [f"the {'running' if end == run_end else 'rest'} end ({_END_WORDS[end]})"
+             for end in reach]
+    if out is None:  # the kernel's one time: the first hit of any stop
+        which = " and ".join(named) + f" at t = {float(r['endstop_t']):.1f} s"
+    else:
+        which = " and ".join(f"{name} at t = {t_end:.1f} s"
+                             for name, t_end in zip(named, reach.values(), strict=True))
+    short = tu.x_run > tu.hi - tol if run_end == "hi" else tu.x_run < tu.lo + tol
+    need = ""
+    if short:
+        need = (f", the running stretch alone needs {abs(tu.x_run):.3g} m" +
+                (" (the belt runs shorter than at rest)" if run_end == "lo" else ""))
+    return (f"take-up carriage reached {which} at up to {r['endstop_speed']:.2f} m/s: its "
+            f"travel is {tu.hi - tu.lo:.3g} m (takeup.travel_m; from {tu.lo:.3g} to "
+            f"{tu.hi:.3g} m about the rest position, running position {tu.x_run:.3g} m{need}): "
+            "a longer takeup.travel_m (rerun until no end stop is reached: how far the carriage "
+            "would have run is not known from this run)"
+            + _endstop_levers(sys, reach, run_end, short) + " would avoid it")
 
 
 def past_limit(value: float, limit: float, digits: int = 2) -> str:
@@ -2043,11 +2225,68 @@ def _fast_stop_words(sys: System, t_stop: float, summary: dict, steady_tmax: flo
             f"{sys.wave_loop_time_s:.3g} s = {need:.3g} s): a high-stress stop{seen}; {fix}")
 
 
-def not_stopped_words(sys: System, v_end: float, sliding: bool = False) -> str:
+#: The last part of the stop window whose change of the mean speed says whether a belt that
+#: did not stop settled at a speed: a tenth of the window (30 s of 300 s).
+LATE_FRACTION = 0.1
+
+
+def _window_tail(sys: System, out, r: dict) -> tuple[float, float] | None:
+    """The last tenth of the stop window (:data:`LATE_FRACTION`) [s] and the mean belt speed
+    at its beginning [m/s] (the records), for :func:`not_stopped_words`; None without a
+    record there."""
+    span = LATE_FRACTION * float(sys.model.cycle.stop_max)
+    v_then = _speed_at(out, r, float(r["t"]) - span)
+    return (span, v_then) if v_then is not None and span > 0.0 else None
+
+
+def _coasts_on_words(sys: System, v_end: float, late: tuple[float, float] | None) -> str:
+    """Why a belt that no brake slows, its resistance above gravity's pull at design speed
+    (Te > 0), did not stop in the stop window, in words. Where the rigid-body coast ``M v /
+    Te`` (:func:`_coast_s`) is beyond the window, that (a 2 km, 78 m decline, Te +0.52 kN:
+    4.00 -> 3.51 m/s in 300 s). Where it is within it, the resistances fell as the belt
+    slowed, to gravity's pull down the decline: the speed the belt coasts on at (``late``:
+    the mean speed's change over the window's last tenth, from the records). A 20 m, 5 m
+    decline at 4.5 m/s (Te +1.82 kN at design speed, its feed's resistance falling with the
+    speed) coasted on at 1.23 m/s, and was told a rigid-body coast to rest takes about 22.2 s,
+    'beyond the window' of 300 s."""
+    te, m = float(sys.te_n), sys.model.control.m_tot
+    window = float(sys.model.cycle.stop_max)
+    brake = ("a brake would stop it (brakes with force_kn: auto sizes one for stop.mode brake "
+             "and its stop.time_s)")
+    coast = _coast_s(sys)
+    if coast > window:
+        # resistance above the pull, barely: it slows, too slowly for the window, not kept
+        # moving by gravity
+        return (f"its resistance exceeds gravity's pull by only Te = {te / 1e3:.3g} kN, so "
+                f"it slows at about Te / M = {te / m:.2g} m/s2: a rigid-body coast to rest "
+                f"takes about {coast:.3g} s (M v / Te), beyond the window; a brake would stop it "
+                "sooner (brakes with force_kn: auto sizes one for stop.mode brake and its "
+                "stop.time_s)")
+    rigid = (f"a rigid body at its design-speed resistance (Te = {te / 1e3:.3g} kN above "
+             f"gravity's pull) would coast to rest in about {coast:.3g} s (M v / Te), within "
+             "the window, but its resistances fall as it slows")
+    if late is None:
+        return f"{rigid}; {brake}"
+    span, v_then = late
+    dv = v_end - v_then
+    change = f"its mean speed changed {dv:+.2g} m/s over the window's last {span:.0f} s"
+    if abs(dv) > 0.01 * abs(v_end):
+        return f"{rigid}, so it slows far more slowly than a rigid body ({change}); {brake}"
+    pull = -_gravity_pull_n(sys)
+    down = (f"its pull down the decline, {pull / 1e3:.4g} kN ({change})" if pull > 0.0 else
+            f"gravity's pull ({change})")
+    return (f"{rigid}: it coasts on at about {v_end:.3g} m/s, where they match {down}, so "
+            f"gravity keeps it moving: {brake}")
+
+
+def not_stopped_words(sys: System, v_end: float, sliding: bool = False,
+                      late: tuple[float, float] | None = None) -> str:
     """The warning of a run whose belt did not come to rest within the stop window
     (``DynamicsOptions.stop_window_s``, the one rule for every run): the window, the mean belt
     speed at its end [m/s] and what would stop it; ``sliding`` when a braked pulley slipped in
-    the stop (the belt slid over it: more brake force would not help)."""
+    the stop (the belt slid over it: more brake force would not help); ``late`` the last part
+    of the window [s] and the mean speed at its start [m/s] (:func:`_window_tail`), which say
+    whether an unbraked belt settled at a speed (:func:`_coasts_on_words`)."""
     cyc = sys.model.cycle
     brakes = sys.model.brakes
     total_kn = float(brakes.force.sum()) / 1e3
@@ -2055,13 +2294,7 @@ def not_stopped_words(sys: System, v_end: float, sliding: bool = False) -> str:
         fix = ("a holdback (holdback: true) or brakes that hold (brakes[].hold) would hold it "
                "against the lift")
     elif not len(brakes.force) and float(sys.te_n) > 0.0:
-        # resistance above the pull, barely: it slows, too slowly for the window (a 2 km,
-        # 78 m decline, Te +0.52 kN: 4.00 -> 3.51 m/s in 300 s), not kept moving by gravity
-        fix = (f"its resistance exceeds gravity's pull by only Te = {sys.te_n / 1e3:.3g} kN, so "
-               f"it slows at about Te / M = {sys.te_n / sys.model.control.m_tot:.2g} m/s2: a "
-               f"rigid-body coast to rest takes about {_coast_s(sys):.3g} s (M v / Te), beyond "
-               "the window; a brake would stop it sooner (brakes with force_kn: auto sizes one "
-               "for stop.mode brake and its stop.time_s)")
+        fix = _coasts_on_words(sys, v_end, late)
     elif not len(brakes.force):
         fix = ("gravity keeps it moving against its resistance: a brake would stop it (brakes "
                "with force_kn: auto sizes one for stop.mode brake and its stop.time_s)")

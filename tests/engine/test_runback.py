@@ -116,10 +116,10 @@ def test_a_belt_relaxing_onto_its_holdback_is_not_said_to_run_back():
     """A holdback holds the head pulley: a backward mean speed after the stop is the belt's
     stretch relaxing onto it, not a run-back. studies/conveyors/fabric-1km.yaml (holdback:
     true, 3 and 8 deg rises) coasting to rest on 40 elements: its drive pulley is held at
-    0 m/s from about 97.6 s while the mean speed falls to about -0.26 m/s and is still below
-    -1 % of design (-0.0315 m/s) at the run's end, relaxing; it was warned 'nothing holds it'
-    and offered 'a holdback (holdback: true)', the one it has. The same records on a conveyor
-    without a holdback are still warned."""
+    0 m/s from about 97.6 s while the mean speed falls to about -0.26 m/s, relaxing (the run
+    then goes on until it is back within 1 % of design speed, -0.0315 m/s: a belt moving is
+    not at rest); it was warned 'nothing holds it' and offered 'a holdback (holdback: true)',
+    the one it has. The same records on a conveyor without a holdback are still warned."""
     from beltstudy.engine.conveyor import Scenario, load_conveyor
     from beltstudy.engine.dynamics.simulate import runback_words
     from beltstudy.engine.run import run_one
@@ -138,7 +138,8 @@ def test_a_belt_relaxing_onto_its_holdback_is_not_said_to_run_back():
     res = run_one(conv, scn, model="din")
     ts = res.transient.timeseries
     after = ts[ts.t_s > res.transient.system.stop_command_s]
-    assert after.v_mean_m_s.iloc[-1] < -0.01 * conv.speed_m_s  # still relaxing at the end
+    assert after.v_mean_m_s.min() < -0.05 * conv.speed_m_s  # relaxing onto the holdback
+    assert after.v_mean_m_s.iloc[-1] >= -0.01 * conv.speed_m_s  # and at rest at the end
     assert (after.v_drive_m_s.iloc[-20:] >= 0.0).all()  # the held pulley does not turn back
     assert "runs back" not in res.summary["message"], res.summary["message"]
 
