@@ -618,11 +618,11 @@ class StudyService:
         ``baseline`` / ``candidate``: None for one left to its default."""
         doc = self.store.read(study_id)
         axes = [a["column"] for a in doc["study"]["axes"]]
+        status = self.status(study_id)
         out = query.compare(
             self.store.read_runs(study_id), axes, baseline, candidate, metrics, study_id,
-            models=study_models(doc),
+            models=study_models(doc), settled=status["state"] not in ACTIVE_STATES,
         )
-        status = self.status(study_id)
         return {**out, "state": status["state"], "done": status["done"],
                 "total": status["total"]}
 

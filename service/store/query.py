@@ -385,14 +385,14 @@ def _check_metrics(runs: pd.DataFrame, axes: list[str], metrics: list[str]) -> l
 
 
 def _metrics_with_values(runs: pd.DataFrame, metrics: list[str], defaulted: bool,
-                         valid: list[str]) -> list[str]:
+                         valid: list[str], settled: bool = True) -> list[str]:
     """The metrics to compare: the defaults keep those some run of the study has a value of
     (a steady-only study has no stop-phase figures: power alone, not two columns of nulls);
     a metric asked by name that no run of the study has a value of (a transient figure of a
     steady study, another model's part) is :class:`Invalid` naming it and those that have
     values. A study whose rows so far are all of failed runs (which write few figures)
     refuses nothing yet."""
-    if not len(runs):
+    if not len(runs) or not settled:  # a running study's later runs may have it
         return metrics
     if defaulted:
         return [m for m in metrics if runs[m].notna().any()] or metrics[:1]
@@ -401,9 +401,10 @@ def _metrics_with_values(runs: pd.DataFrame, metrics: list[str], defaulted: bool
     for m in metrics:
         if not runs[m].notna().any():
             having = [c for c in valid if runs[c].notna().any()]
-            raise Invalid(f"metrics: '{m}' has no values in this study: none of its runs writes "
-                          "it (a figure of another friction model, or of transient runs in a "
-                          "study with dynamics: false); metrics with values: "
+            raise Invalid(f"metrics: '{m}' has no values in this study: none of its runs has "
+                          "one (a figure of another friction model, of transient runs in a "
+                          "study with dynamics: false, or one no run reached, as stop_time_s "
+                          "where no run stopped); metrics with values: "
                           + _shown_metrics(having))
     return metrics
 
@@ -434,6 +435,7 @@ def compare(
     metrics: list[str],
     study_id: str = "",
     models: list[str] | None = None,
+    settled: bool = True,
 ) -> dict:
     """Pairs of runs that differ only in the friction model, with candidate / baseline ratios.
 
@@ -450,12 +452,13 @@ def compare(
     default, :data:`PAIR_DEFAULTS`). ``models``: the study's friction models (a model
     not among them is :class:`Invalid` naming the parameter); default: those in ``runs``.
     A metric asked by name that no run has a value of is :class:`Invalid`
-    (:func:`_metrics_with_values`).
+    (:func:`_metrics_with_values`) once the study is ``settled`` (not queued or running: a
+    running study's later runs may have one).
     """
     defaulted = not metrics or list(metrics) == list(DEFAULT_METRICS)
     metrics = list(metrics) or list(DEFAULT_METRICS)
     valid = _check_metrics(runs, axes, metrics)
-    metrics = _metrics_with_values(runs, metrics, defaulted, valid)
+    metrics = _metrics_with_values(runs, metrics, defaulted, valid, settled)
     if models is None:
         models = sorted(set(runs["friction_model"].dropna())) if len(runs) else []
     baseline, candidate = _named_pair(baseline, candidate, models)

@@ -57,6 +57,11 @@ def test_compare_pairs_runs_differing_only_in_model():
     with pytest.raises(Invalid, match="^metrics: 't_max_dyn_kn' has no values in this study"):
         compare(_runs(), ["friction_model", "temperature_c", "load"], "cema", "nonlin",
                 ["power_kw", "t_max_dyn_kn"])
+    # a study still running is answered with what it has: its later runs may have a value
+    out = compare(_runs(), ["friction_model", "temperature_c", "load"], "cema", "nonlin",
+                  ["power_kw", "t_max_dyn_kn"], settled=False)
+    assert out["summary"]["t_max_dyn_kn"]["overall"]["n"] == 0
+    assert out["summary"]["power_kw"]["overall"]["n"] == 4
 
 
 def test_compare_lists_only_what_differs_and_ratios_as_magnitudes():
