@@ -203,3 +203,17 @@ def live_service(tmp_path):
     for svc in started:
         if svc.proc.poll() is None:
             svc.stop()
+
+
+@pytest.fixture
+def env(monkeypatch, data_dir):
+    """For the command line: no service listens at the default address; the store is in a
+    temporary directory (``data_dir``), run in process with two workers."""
+    from beltstudy.service.cli import study
+    from beltstudy.service.cli.demo import free_port
+
+    monkeypatch.delenv("BELTSTUDY_URL", raising=False)
+    monkeypatch.setattr(study, "DEFAULT_URL", f"http://127.0.0.1:{free_port()}")
+    monkeypatch.setenv("BELTSTUDY_DATA_DIR", str(data_dir))
+    monkeypatch.setenv("BELTSTUDY_WORKERS", "2")
+    return data_dir

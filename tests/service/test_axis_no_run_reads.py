@@ -15,7 +15,6 @@ from fastapi.testclient import TestClient
 
 from beltstudy.service.api.app import create_app
 from beltstudy.service.cli import main
-from beltstudy.service.cli.demo import free_port
 from beltstudy.service.door.studyfile import resolve_study
 from tests.service.conftest import ROOT
 
@@ -28,18 +27,6 @@ def _probe(**over) -> dict:
 @pytest.fixture
 def client(data_dir, make_settings):
     return TestClient(create_app(make_settings(data_dir)))
-
-
-@pytest.fixture
-def env(monkeypatch, data_dir):
-    """No service listens at the default address; the store is in a temporary directory."""
-    from beltstudy.service.cli import study
-
-    monkeypatch.delenv("BELTSTUDY_URL", raising=False)
-    monkeypatch.setattr(study, "DEFAULT_URL", f"http://127.0.0.1:{free_port()}")
-    monkeypatch.setenv("BELTSTUDY_DATA_DIR", str(data_dir))
-    monkeypatch.setenv("BELTSTUDY_WORKERS", "2")
-    return data_dir
 
 
 @pytest.mark.parametrize(("body", "field"), [

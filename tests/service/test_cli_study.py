@@ -14,18 +14,6 @@ from beltstudy.service.cli.demo import free_port
 from beltstudy.service.store.parquet import Store
 
 
-@pytest.fixture
-def env(monkeypatch, data_dir):
-    """No service listens at the default address; the store is in a temporary directory."""
-    from beltstudy.service.cli import study
-
-    monkeypatch.delenv("BELTSTUDY_URL", raising=False)
-    monkeypatch.setattr(study, "DEFAULT_URL", f"http://127.0.0.1:{free_port()}")
-    monkeypatch.setenv("BELTSTUDY_DATA_DIR", str(data_dir))
-    monkeypatch.setenv("BELTSTUDY_WORKERS", "2")
-    return data_dir
-
-
 def test_status_results_compare_read_the_local_store_without_a_service(
     env, capsys, finished_study, make_study, tmp_path
 ):

@@ -15,19 +15,6 @@ from fastapi.testclient import TestClient
 
 from beltstudy.service.api.app import create_app
 from beltstudy.service.cli import main
-from beltstudy.service.cli.demo import free_port
-
-
-@pytest.fixture
-def env(monkeypatch, data_dir):
-    """No service listens at the default address; the store is in a temporary directory."""
-    from beltstudy.service.cli import study
-
-    monkeypatch.delenv("BELTSTUDY_URL", raising=False)
-    monkeypatch.setattr(study, "DEFAULT_URL", f"http://127.0.0.1:{free_port()}")
-    monkeypatch.setenv("BELTSTUDY_DATA_DIR", str(data_dir))
-    monkeypatch.setenv("BELTSTUDY_WORKERS", "2")
-    return data_dir
 
 
 @pytest.fixture
