@@ -91,6 +91,10 @@ class Measurement:
     temperature_c: float
     values: dict[str, float]
     speed_m_s: float | None = None
+    #: the steady state the model computes for the row (:func:`_with_states`): the load per
+    #: section, the temperature where the model reads one (None where it has no temperature
+    #: term) and the speed; None: not resolved (the row as written is its state)
+    state: tuple | None = None
 
 
 @dataclass
@@ -571,6 +575,7 @@ def calibrate(conv: Conveyor, measured: Sequence[Measurement], model: str,
     names = _check_names(fm, fit, fixed)
     rows = list(measured)
     overfilled = _check_rows(conv, rows)
+    rows = _with_states(conv, fm, rows)
     # each name's smallest value: 0, or the model's own limit above it (DIN's C >= 1)
     lowest = {n: max(_lower(fm, q) for q in _sets(fm.name, n)) for n in names}
     x0 = _starts(fm, conv, rows, names, fixed, dict(starts or {}), lowest)
@@ -809,15 +814,47 @@ REPLICATE_SPREAD = 2.0 * MISFIT_PCT / 100.0
 
 
 def _state_key(m: Measurement) -> tuple:
-    """What makes two rows readings of one steady state: equal load, temperature and speed."""
-    return (repr(m.load), m.temperature_c, m.speed_m_s)
+    """What makes two rows readings of one steady state: equal load, temperature and speed,
+    as the model computes them (``m.state``, :func:`_with_states`), else as written."""
+    return m.state if m.state is not None else (repr(m.load), m.temperature_c, m.speed_m_s)
 
 
-def _state_text(m: Measurement) -> str:
-    """A measured steady state in words: ``load 0.5, 5 C`` (and the speed when given)."""
+def _reading_key(m: Measurement) -> tuple:
+    """What makes two rows readings of one state of the plant: :func:`_state_key` with the
+    temperature as written, whether or not the model reads it (a plant at -10 and 20 C runs
+    two states, which DIN computes alike: their readings may differ without either being
+    wrong)."""
+    key = _state_key(m)
+    return (key[0], float(m.temperature_c), *key[2:]) if m.state is not None else key
+
+
+def _with_states(conv: Conveyor, fm, rows: Sequence[Measurement]) -> list[Measurement]:
+    """The rows with the steady state the model computes for each (``Measurement.state``):
+    the load as one fraction per section (``full``, ``1.0`` and ``"1.0,1.0"`` are one load,
+    :func:`~beltstudy.engine.conveyor.section_loads`), the temperature only where the model
+    has a temperature term (DIN's figures at 10 and 30 C are one state) and the speed (the
+    file's where a row gives none). Rows of one state are repeats: a file with ``full`` and
+    ``1.0`` at 10 C named its third row an outlier (a residual of 7.5e5), where ``1.0`` twice
+    noted the copy; a DIN fit of one load at five temperatures said ``ok`` where the same
+    readings at one temperature said the data check the model against nothing."""
+    temp = bool(getattr(fm, "temperature_term", True))
+    return [dataclasses.replace(m, state=(
+        tuple(float(v) for v in section_loads(m.load, conv)),
+        float(m.temperature_c) if temp else None,
+        float(m.speed_m_s if m.speed_m_s is not None else conv.speed_m_s))) for m in rows]
+
+
+def _state_text(m: Measurement, group: Sequence[Measurement] = ()) -> str:
+    """A measured steady state in words: ``load 0.5, 5 C`` (and the speed when given); of a
+    ``group`` of rows of one state read at several temperatures by a model without a
+    temperature term, ``load 0.5 at -10 to 30 C (the model reads no temperature)``."""
     load = m.load if not isinstance(m.load, list) else ",".join(f"{v:g}" for v in m.load)
     load = f"{load:g}" if isinstance(load, float) else load
     speed = f", {m.speed_m_s:g} m/s" if m.speed_m_s is not None else ""
+    temps = sorted({float(g.temperature_c) for g in group})
+    if m.state is not None and m.state[1] is None and len(temps) > 1:
+        return (f"load {load} at {temps[0]:g} to {temps[-1]:g} C (the model has no "
+                f"temperature term: one state){speed}")
     return f"load {load}, {m.temperature_c:g} C{speed}"
 
 
@@ -830,13 +867,11 @@ def _few_states(rows: Sequence[Measurement], cols: Sequence[tuple[int, str]], p:
     count only the repeats."""
     states: dict[tuple, dict[int, list[str]]] = {}
     for i, col in cols:
-        m = rows[i]
-        states.setdefault((repr(m.load), m.temperature_c, m.speed_m_s), {}).setdefault(
-            i, []).append(col)
+        states.setdefault(_state_key(rows[i]), {}).setdefault(i, []).append(col)
     if not p or len(states) > p:
         return ""
     return "; ".join(
-        f"{_state_text(rows[next(iter(ix))])} "
+        f"{_state_text(rows[next(iter(ix))], [rows[i] for i in ix])} "
         f"{' and '.join(dict.fromkeys(c for cs in ix.values() for c in cs))} "
         f"(row{'s' if len(ix) > 1 else ''} {', '.join(map(str, ix))})"
         for ix in states.values())
@@ -907,7 +942,7 @@ def _copies(rows: Sequence[Measurement]) -> list[str]:
     seen: dict[tuple, int] = {}
     out = []
     for i, m in enumerate(rows):
-        key = (repr(m.load), m.temperature_c, m.speed_m_s, tuple(sorted(m.values.items())))
+        key = (_reading_key(m), tuple(sorted(m.values.items())))
         if key in seen:
             out.append(f"row {i} repeats row {seen[key]} exactly ({_state_text(m)}, every "
                        "measured value equal): a copy counts as a second reading and "
@@ -925,11 +960,9 @@ def _contradictions(rows: Sequence[Measurement], cols: Sequence[tuple[int, str]]
     no parameter value meets both; one sentence per such group."""
     groups: dict[tuple, list[int]] = {}
     for k, (i, col) in enumerate(cols):
-        m = rows[i]
-        key = (repr(m.load), m.temperature_c, m.speed_m_s, col)
-        groups.setdefault(key, []).append(k)
+        groups.setdefault((_reading_key(rows[i]), col), []).append(k)
     out = []
-    for (_, _, _, col), ks in groups.items():
+    for (_, col), ks in groups.items():
         if len(ks) < 2:
             continue
         vals = y[ks]
@@ -1208,16 +1241,27 @@ def _verdict(sol, at_bound: list[str], r: np.ndarray, model: str,
         return {"status": "warning", "message": (
             f"converged, but the {len(r)} measured values read only as many steady states as "
             f"fitted names ({few}): those states are met whatever the model, and {errors}. "
-            "Measure at least one more steady state (another load or temperature), or fit "
+            f"Measure at least one more steady state ({_another_state(model)}), or fit "
             "fewer names")}
     if exact:
         return {"status": "warning", "message": (
             f"converged, but {_values(len(r))} for as many fitted names "
             f"{'is' if len(r) == 1 else 'are'} met exactly whatever their errors: nothing is left to check the fit against and it "
-            "has no standard errors. Measure at least one more steady state (another load or "
-            "temperature), or fit fewer names")}
+            "has no standard errors. Measure at least one more steady state "
+            f"({_another_state(model)}), or fit fewer names")}
     return {"status": "ok", "message": f"converged: rms relative residual {rms_text} % over "
             f"{_values(len(r))}"}
+
+
+def _another_state(model: str) -> str:
+    """What makes another steady state for ``model``: another load or temperature, or another
+    load only where the model has no temperature term (DIN computes 10 and 30 C alike)."""
+    try:
+        temp = get_model(model).temperature_term
+    except InputError:
+        temp = True
+    return ("another load or temperature" if temp else
+            f"another load or speed: {model} has no temperature term")
 
 
 def _jacobian(fun, x: np.ndarray, lower: Sequence[float] | None = None) -> np.ndarray:

@@ -643,8 +643,8 @@ def input_notes(conv, loop: Loop, feed_n: float, c_factor: float | None = None) 
     two catalogue rows (:func:`beltstudy.engine.catalog.idler_note`), a loading speed above
     the belt speed or against the travel, a belt width outside the DIN 22107 roll table and a
     trough angle outside the CEMA transition and middle-roll tables, a vertical curve whose
-    arc is shorter than an idler pitch, judged as the grade change without it
-    (:func:`_short_curve_notes`). ``feed_n`` is the feed
+    arc is shorter than an idler pitch, judged as the bend one idler set makes or as the
+    grade change without it (:func:`_short_curve_notes`). ``feed_n`` is the feed
     part of Te [N]; ``c_factor`` DIN's C where the run's law used it (the feed is inside C
     and the loading speed is not read)."""
     from beltstudy.engine import catalog
@@ -722,8 +722,10 @@ def _unread_brake_fields(conv) -> list[str]:
 
 def _short_curve_notes(conv) -> list[str]:
     """A note per vertical curve whose arc is shorter than an idler pitch
-    (:meth:`beltstudy.engine.conveyor.Conveyor.short_curves`): the run judges it as the grade
-    change without a curve. The note names the field, the turn, the arc, the pitch and the
+    (:meth:`beltstudy.engine.conveyor.Conveyor.short_curves`): the run judges it as a curve
+    of ``S / |delta|``, whose arc spans one pitch, where that fits its sections
+    (:meth:`beltstudy.engine.conveyor.Conveyor.judged_profile`), else as the grade change
+    without a curve. The note names the field, the turn, the arc, the pitch and the
     radius whose arc spans a pitch, ``S / |delta|`` rounded up to the metre, where that is a
     radius the field takes (up to 1e6 m) and its half arcs fit the two sections beside their
     other curves; otherwise that the turn is too small for any curve."""
@@ -739,6 +741,19 @@ def _short_curve_notes(conv) -> list[str]:
         r_span = math.ceil(pitch / turn - 1e-9)
         room = min(sec.length_m - (0.5 * curve_arc_m(judged, i - 1) if i else 0.0),
                    nxt.length_m - 0.5 * curve_arc_m(judged, i + 1))
+        head = (f"note: profile.{i}.curve_radius_m {sec.curve_radius_m:g} m: the grades turn "
+                f"by {math.degrees(turn):.3g} deg ({grades}), so its arc is {arc:.3g} m, "
+                f"shorter than the idler pitch {pitch:g} m: at most one idler set stands on it "
+                "and the belt bends there as at a kink, not round R, so ")
+        radius = judged[i].curve_radius_m
+        if radius is not None:
+            # judged as the tightest bend the sets give (Conveyor.short_curve_radius_m)
+            notes.append(
+                head + f"it is judged as a curve of S / |delta| = {radius:.4g} m, whose arc "
+                "spans one pitch (the turn taken on one idler set: its resultant T |delta| "
+                "against the belt's weight over a pitch, as that radius judges it); a radius "
+                f"of at least {r_span:.0f} m is a curve of its own")
+            continue
         if r_span > CURVE_RADIUS_MAX_M:
             fix = (f"the turn is too small for any curve: no radius up to "
                    f"{CURVE_RADIUS_MAX_M:.0f} m spans a pitch (S / |delta| = "
@@ -748,12 +763,8 @@ def _short_curve_notes(conv) -> list[str]:
                    f"spans a pitch, R >= {r_span:.0f} m (S / |delta|), does not fit them")
         else:
             fix = f"a radius of at least {r_span:.0f} m (S / |delta|) makes the arc span a pitch"
-        notes.append(
-            f"note: profile.{i}.curve_radius_m {sec.curve_radius_m:g} m: the grades turn by "
-            f"{math.degrees(turn):.3g} deg ({grades}), so its arc is {arc:.3g} m, shorter than "
-            f"the idler pitch {pitch:g} m: at most one idler set stands on it and the belt "
-            "bends there as at a kink, not round R, so it is judged as a grade change without "
-            f"a curve (the circle through its survey points); {fix}")
+        notes.append(head + "it is judged as a grade change without a curve (the circle "
+                     f"through its survey points); {fix}")
     return notes
 
 

@@ -956,13 +956,13 @@ class Conveyor(_Model):
         setting the sets on its arc to the radius R, so the belt follows R only where the arc
         holds sets, R |delta| >= S. A shorter arc holds at most one set: the belt runs
         straight from the last set on one grade to that set and on to the first set on the
-        other, turning by delta there as at a grade change without a curve. Every verdict
-        taken with R (lift-off at T > R m'_G g cos a, the convex edge strain (h - z_mean) / R,
-        the idler load T S / R) would judge a bend the belt does not make, and the
-        transient's step, set by the arc's elements, would shrink with the arc (an arc of
-        2e-7 m asked for 1e12 steps). Such a curve is judged as the grade change without it
-        (:meth:`judged_profile`), and the run says so (``beltstudy.engine.checks.
-        input_notes``). A curve between equal grades (no turn) or on the last section is
+        other, turning by delta there on that one set. Every verdict taken with R (lift-off
+        at T > R m'_G g cos a, the convex edge strain (h - z_mean) / R, the idler load
+        T S / R) would judge a bend the belt does not make, and the transient's step, set by
+        the arc's elements, would shrink with the arc (an arc of 2e-7 m asked for 1e12
+        steps). Such a curve is judged at the radius whose arc spans one pitch, or as the
+        grade change without it where that does not fit (:meth:`judged_profile`), and the
+        run says so (``beltstudy.engine.checks.input_notes``). A curve between equal grades (no turn) or on the last section is
         refused at input, not listed."""
         pitch = self.curve_pitch_m()
         out = []
@@ -975,14 +975,45 @@ class Conveyor(_Model):
     def judged_profile(self) -> list[ProfileSection]:
         """The profile as every check, the loop and the transient read it: the sections as
         given, but a vertical curve whose arc is shorter than an idler pitch
-        (:meth:`short_curves`) without its ``curve_radius_m``, so its grade change is judged
-        as one given without a curve (the circle through its survey points,
+        (:meth:`short_curves`) at the radius whose arc spans one pitch, ``S / |delta|``
+        (:meth:`short_curve_radius_m`): the turn is taken on one idler set, as the tightest
+        bend the sets give the belt. Where that curve does not fit its sections (or is above
+        ``CURVE_RADIUS_MAX_M``, a turn of a hair) the grade change is judged as one given
+        without a curve (the circle through its survey points,
         :func:`beltstudy.engine.curves.junction_checks`). The conveyor's own ``profile`` keeps
         what the file gave. Read ``curve_radius_m`` (and :func:`curve_arc_m`,
         :func:`curve_arcs`) from this list, never from ``profile``."""
-        short = {i for i, _, _ in self.short_curves()}
-        return [sec.model_copy(update={"curve_radius_m": None}) if i in short else sec
-                for i, sec in enumerate(self.profile)]
+        short = self.short_curves()
+        drop = {i for i, _, _ in short}
+        out = [sec.model_copy(update={"curve_radius_m": None}) if i in drop else sec
+               for i, sec in enumerate(self.profile)]
+        for i, turn, _arc in short:
+            radius = self.short_curve_radius_m(turn)
+            if radius is None:
+                continue
+            trial = list(out)
+            trial[i] = out[i].model_copy(update={"curve_radius_m": radius})
+            fits = all(
+                0.5 * curve_arc_m(trial, k) + (0.5 * curve_arc_m(trial, k - 1) if k else 0.0)
+                <= trial[k].length_m and _rest_takes_its_lift(trial, k) for k in (i, i + 1))
+            if fits:
+                out = trial
+        return out
+
+    def short_curve_radius_m(self, turn_rad: float) -> float | None:
+        """The radius a vertical curve shorter than an idler pitch is judged at [m]: ``S /
+        |delta|``, whose arc spans one pitch S (:meth:`curve_pitch_m`), None above
+        ``CURVE_RADIUS_MAX_M``. The belt cannot bend tighter than its idler sets let it: on an
+        arc shorter than a pitch it runs straight to one set and turns there by delta, so
+        that set takes the resultant ``T |delta|`` against the belt's weight over a pitch,
+        ``m' g S``, the balance of a curve of ``S / |delta|`` (``T = R m' g`` at lift-off, the
+        idler load ``T S / R``). A tighter radius given is judged no milder than that: a
+        6.3 deg valley given R 10 m (arc 1.1 m of a 1.2 m pitch) had been judged as the circle
+        through its survey points, 3 135 m, and said the empty belt stays on its idlers with
+        463 kN to spare, where R 11 m said it lifts (the kink pulls 2.9 kN up against 188 N of
+        belt on the set). Raised by 1e-9 so its arc is not read as under the pitch."""
+        radius = self.curve_pitch_m() / turn_rad * (1.0 + 1e-9)
+        return radius if radius <= CURVE_RADIUS_MAX_M else None
 
     def curve_pitch_m(self) -> float:
         """The idler pitch a vertical curve's arc must span to be a curve [m]: the smaller of
@@ -1559,6 +1590,43 @@ def unit_twin(key: str, keys: Sequence[str]) -> str:
     for suffix, repl, conv in UNIT_SUFFIXES:
         twin = low[: -len(suffix)] + repl
         if low.endswith(suffix) and twin in keys and twin != key:
+            return f"did you mean '{twin}'? (in {conv})"
+    return _bracket_twin(key, keys)
+
+
+#: A name with its unit in brackets or parentheses, as spreadsheets head their columns:
+#: ``temperature_c [F]``, ``power (W)``, ``power_kw [kW]``.
+_BRACKETED = re.compile(r"\s*([A-Za-z_][\w ]*?)\s*[\[(]\s*([^\])]+?)\s*[\])]\s*")
+
+
+def _bracket_twin(key: str, keys: Sequence[str]) -> str:
+    """:func:`unit_twin` of a name whose unit is written in brackets: the name's stem (without
+    a unit suffix of its own) joined to that unit (``temperature_c [F]`` -> ``temperature_f``),
+    whose twin gives the conversion; ``did you mean 'power_kw'? (the unit is in the name)``
+    where the bracket repeats the name's own unit. A column headed ``temperature_c [F]`` was
+    told "did you mean 'temperature_c'?", and renamed so its degrees Fahrenheit were read as
+    Celsius."""
+    m = _BRACKETED.fullmatch(key)
+    if not m:
+        return ""
+    name = m.group(1).strip().lower().replace(" ", "_")
+    unit = (m.group(2).lower().replace("°", "").replace("deg", "").replace("/", "_")
+            .replace(" ", "").strip("_"))
+    stem = name
+    for _suffix, repl, _conv in UNIT_SUFFIXES:
+        if name in keys and name.endswith(repl):
+            stem = name[: -len(repl)]
+            break
+    if not unit:
+        return ""
+    candidate = f"{stem}_{unit}"
+    if candidate in keys:
+        return (f"did you mean '{candidate}'? (its unit, {m.group(2).strip()}, is in the "
+                "name)")
+    low = candidate
+    for suffix, repl, conv in UNIT_SUFFIXES:
+        twin = low[: -len(suffix)] + repl
+        if low.endswith(suffix) and twin in keys:
             return f"did you mean '{twin}'? (in {conv})"
     return ""
 

@@ -306,14 +306,15 @@ def test_a_radius_below_a_metre_is_refused():
     """A 1e-9 m 'curve' is a kink, not a curve on idlers: its 1 deg arc elements (1.7e-11 m)
     made the transient refuse the run for too much work, naming the step and the elements
     instead of the radius. At least 1 m; 1 m itself passes the field's bound, and between 0
-    and 10 % its arc (0.1 m) is then shorter than an idler pitch: built as the grade change
-    without a curve (below)."""
+    and 10 % its arc (0.1 m) is then shorter than an idler pitch: built as the tightest bend
+    the idler sets give, a curve of S / |delta| = 1.25 / asin(0.1) = 12.48 m (below)."""
     for bad in (1e-9, 0.5):
         with pytest.raises(ValueError, match=r"profile\.0\.curve_radius_m"):
             curved(radius_m=bad)
     conv = curved(radius_m=1.0)
     assert conv.profile[0].curve_radius_m == 1.0
-    assert build_loop(conv).curves == ()
+    (curve,) = build_loop(conv).curves
+    assert curve.radius_m == pytest.approx(1.25 / math.asin(0.1), rel=1e-6)
 
 
 def _short_curve_note(i, radius, turn_deg, grades, arc, fix):
@@ -377,40 +378,85 @@ def test_a_curve_of_negligible_turn_is_judged_as_a_grade_change_without_it():
     assert "move" not in msg and "automatic step" not in msg
 
 
-def test_a_curve_shorter_than_an_idler_pitch_is_told_the_radius_that_spans_one():
+def _judged_note(i, radius, turn_deg, grades, arc, judged, r_span):
+    return (f"note: profile.{i}.curve_radius_m {radius} m: the grades turn by {turn_deg} deg "
+            f"({grades}), so its arc is {arc} m, shorter than the idler pitch 1.25 m: at most "
+            "one idler set stands on it and the belt bends there as at a kink, not round R, so "
+            f"it is judged as a curve of S / |delta| = {judged} m, whose arc spans one pitch "
+            "(the turn taken on one idler set: its resultant T |delta| against the belt's "
+            "weight over a pitch, as that radius judges it); a radius of at least "
+            f"{r_span} m is a curve of its own")
+
+
+def test_a_curve_shorter_than_an_idler_pitch_is_judged_as_the_bend_one_set_makes():
     """Between 0 and 10 % (delta = asin(0.1) = 0.100167 rad = 5.74 deg) with the hand
     conveyor's pitches 1.25 m (carry) and 2.5 m (return): an arc spans the smaller pitch from
     R = 1.25 / 0.100167 = 12.48 m. R 12 m (arc 1.202 m) holds at most one carry idler set, so
-    the belt turns there as at a kink, not round 12 m: built as the grade change without a
-    curve, noted with a radius of at least 13 m; 13 m (arc 1.302 m) is a curve. Between 0
-    and 2 % (delta = 0.0200013 rad) R 50 m is an arc of 1.0 m, told 1.25 / 0.0200013 = 62.5,
-    63 m. Where a curve of S / |delta| does not fit the sections (a 0.6 m section at 10 %
-    holds half an arc of 0.6 m, R 12 m, but not 13 x 0.100167 / 2 = 0.651 m) the note says
-    the turn is too small for any curve there."""
+    the belt turns there as at a kink on that set, not round 12 m: judged as the tightest
+    bend the sets give, a curve of S / |delta| = 12.48 m (its arc one pitch), noted with 13 m
+    as the radius that is a curve of its own; 13 m (arc 1.302 m) is a curve at 13 m. Between
+    0 and 2 % (delta = 0.0200013 rad) R 50 m is an arc of 1.0 m, judged at 1.25 / 0.0200013 =
+    62.5 m. Where a curve of S / |delta| does not fit the sections (a 0.6 m section at 10 %
+    holds half an arc of 0.6 m, R 12 m, but not 12.48 x 0.100167 / 2 = 0.625 m) it is judged
+    as the grade change without a curve and the note says the turn is too small for any
+    curve there."""
     assert 1.25 / math.asin(0.1) == pytest.approx(12.479, abs=1e-3)
     assert 1.25 / math.asin(0.02) == pytest.approx(62.496, abs=1e-3)
-    fix13 = "a radius of at least 13 m (S / |delta|) makes the arc span a pitch"
-    for prof, note in (
+    for prof, note, judged in (
             ([{"length_m": 500, "lift_m": 0, "curve_radius_m": 12},
               {"length_m": 500, "lift_m": 50}],
-             _short_curve_note(0, 12, "5.74", "profile.0 lifts 0 m over 500 m, profile.1 50 m "
-                               "over 500 m", "1.2", fix13)),
+             _judged_note(0, 12, "5.74", "profile.0 lifts 0 m over 500 m, profile.1 50 m "
+                          "over 500 m", "1.2", "12.48", 13), 1.25 / math.asin(0.1)),
             ([{"length_m": 500, "lift_m": 0, "curve_radius_m": 50},
               {"length_m": 500, "lift_m": 10}],
-             _short_curve_note(0, 50, "1.15", "profile.0 lifts 0 m over 500 m, profile.1 10 m "
-                               "over 500 m", "1", "a radius of at least 63 m (S / |delta|) "
-                               "makes the arc span a pitch")),
+             _judged_note(0, 50, "1.15", "profile.0 lifts 0 m over 500 m, profile.1 10 m "
+                          "over 500 m", "1", "62.5", 63), 1.25 / math.asin(0.02)),
             ([{"length_m": 500, "lift_m": 0, "curve_radius_m": 12},
               {"length_m": 0.6, "lift_m": 0.06}, {"length_m": 499.4, "lift_m": 49.94}],
              _short_curve_note(0, 12, "5.74", "profile.0 lifts 0 m over 500 m, profile.1 "
                                "0.06 m over 0.6 m", "1.2", "the turn is too small for any "
                                "curve on these sections: one whose arc spans a pitch, R >= 13 "
-                               "m (S / |delta|), does not fit them"))):
+                               "m (S / |delta|), does not fit them"), None)):
         st = solve_steady(parse_conveyor(hand_conveyor_dict(profile=prof)), model="din",
                           n_elements=200)
-        assert st.loop.curves == ()
+        if judged is None:
+            assert st.loop.curves == ()
+        else:
+            (curve,) = st.loop.curves
+            assert curve.radius_m == pytest.approx(judged, rel=1e-6)
         assert st.message.endswith(note)
-    assert len(build_loop(curved(radius_m=13.0)).curves) == 1
+    (curve,) = build_loop(curved(radius_m=13.0)).curves
+    assert curve.radius_m == 13.0
+
+
+def test_a_tighter_concave_radius_is_never_judged_milder():
+    """A concave turn from -2 % to +10 % given R 10 m: an arc of 10 x 0.1202 = 1.2 m, under
+    the 1.25 m pitch. The belt runs straight to one idler set and turns by delta there, so
+    the set takes T delta upwards against the empty belt's weight over a pitch, m'_G g S: it
+    lifts where T delta > m'_G g S cos a, the balance of a curve of S / delta = 10.4 m. It had
+    been judged as the circle through its survey points (some 4 km here) and said to stay on
+    its idlers, where R 11 m (a curve) said it lifts. Every radius from 4 to 12 m is judged
+    no milder than the next larger one, and the lift-off tension the run gives at R 10 m is
+    the kink's balance by hand."""
+    def conv_of(r):
+        return parse_conveyor(hand_conveyor_dict(profile=[
+            {"length_m": 500, "lift_m": -10, "curve_radius_m": r},
+            {"length_m": 500, "lift_m": 50}]))
+    delta = math.asin(0.1) - math.asin(-0.02)
+    assert 10 * delta < 1.25 < 11 * delta
+    lift_off = []
+    for r in (4, 6, 8, 10, 11, 12):
+        st = solve_steady(conv_of(r), model="din", n_elements=200)
+        lift_off.append(st.summary["curve1_liftoff_tension_kn"])
+    # a tighter radius lifts the belt at a tension no higher (no milder verdict)
+    assert all(a <= b + 1e-9 for a, b in zip(lift_off, lift_off[1:], strict=False))
+    st = solve_steady(conv_of(10), model="din", n_elements=200)
+    # the kink's balance T delta = m'_G g S cos(a), a the steeper grade (asin 0.1), m'_G the
+    # hand conveyor's 20 kg/m of empty belt and idlers (R m'_G g = 100 x 20 x 9.81 above)
+    radius = 1.25 / delta
+    assert st.loop.curves[0].radius_m == pytest.approx(radius, rel=1e-6)
+    assert st.summary["curve1_liftoff_tension_kn"] == pytest.approx(
+        20 * G * 1.25 / delta * math.cos(math.asin(0.1)) / 1e3, rel=1e-6)
 
 
 def test_a_point_near_an_arc_is_told_a_place_off_the_arc():

@@ -18,6 +18,18 @@ from beltstudy.service.errors import Invalid
     ("load,temperature_c,te_N", "unknown column 'te_N'; did you mean 'te_kn'? (in kN: N / 1000)"),
     ("load,temperature_F,power_kw", "did you mean 'temperature_c'? (in degrees Celsius: "
                                     "(F - 32) / 1.8)"),
+    # the unit in brackets, as a spreadsheet heads its columns: renamed as told without the
+    # conversion, 50-86 F were read as Celsius
+    ("load,temperature_c [F],power_kw", "unknown column 'temperature_c [F]'; did you mean "
+                                        "'temperature_c'? (in degrees Celsius: (F - 32) / 1.8)"),
+    ("load,temperature_c (degF),power_kw", "did you mean 'temperature_c'? (in degrees "
+                                           "Celsius: (F - 32) / 1.8)"),
+    ("load,temperature_c,power_kw [W]", "unknown column 'power_kw [W]'; did you mean "
+                                        "'power_kw'? (in kW: W / 1000)"),
+    ("load,temperature_c,power [kW]", "unknown column 'power [kW]'; did you mean 'power_kw'? "
+                                      "(its unit, kW, is in the name)"),
+    ("load,temperature [K],power_kw", "did you mean 'temperature_c'? (in degrees Celsius: "
+                                      "K - 273.15)"),
 ])
 def test_a_csv_column_in_another_unit_names_the_conversion(tmp_path, header, needle):
     path = tmp_path / "plant.csv"
