@@ -482,11 +482,22 @@ def _verdict_words(r: dict) -> str:
         # reported and not judged (``pulley{j}_diameter_min_ok`` null in every run)
         return ("<span class=muted>not judged: the file gives no diameter for this pulley "
                 "(docs/checks.md)</span>")
+    if r["past"] and v.limit == "travel":
+        return (f"\x01fails\x01the whole travel used (the carriage at its end stops) in "
+                f"{r['past']} of {r['n']} runs")
     if r["past"]:
         return f"\x01fails\x01past the limit in {r['past']} of {r['n']} runs"
     if r["limit"] is None and v.limit == "sag" and not r.get("ok_col"):
         return "\x01passes\x01within the limits of each strand (no run warns)"
     return f"\x01passes\x01within ({r['n']} runs)"
+
+
+#: The verdicts the engine calls marginal when their error bar reaches the limit
+#: (engine/accuracy.py ``marginal_verdicts``), as the report's verdict rows show them.
+MARGINAL_JUDGED = frozenset({"t_min_dyn_kn", "t_min_start_kn", "t_min_stop_kn",
+                             "slack_max_m", "sag_max_dyn_pct", "slip_margin_min_dyn",
+                             "safety_factor_dyn", "takeup_endstop_speed_m_s",
+                             "liftoff_max_kn_over"})
 
 
 def _apart(value: Any, limit: Any, digits: int = 4) -> int:
@@ -534,14 +545,36 @@ def _verdicts_section(study: dict, runs: pd.DataFrame, bars: pd.DataFrame | None
         err = run_bars(bars, r["row"].get("run_id")).get(r["column"]) if not r["missing"] \
             else None
         if err is not None:
-            value += (f"<br><span class=muted>± {_num(err, 3, v.unit)} (the error bar of this "
-                      "sampled run, section 9)</span>")
+            # a bar of a figure in % is in percentage points, not a fraction of the figure
+            bar = (f"{_num(err, 3, '')} percentage points" if v.unit == "%"
+                   else _num(err, 3, v.unit))
+            value += (f"<br><span class=muted>± {bar} (the error bar of this sampled run, "
+                      "section 9)")
+            said = str(r["row"].get("message") or "")
+            # the limits the engine judged it against: the row's, or each strand's sag limit
+            # (the row has none where they differ: the engine took the strand of the peak)
+            sag = (study["conveyor"].get("sag_limit_pct") or {}) if r["limit"] is None \
+                and v.limit == "sag" else {}
+            lims = ([r["limit"]] if r["limit"] is not None
+                    else [float(x) for x in (sag.get("carry"), sag.get("return"))
+                          if x is not None] if len(sag) == 2 else [])
+            if (r["column"] in MARGINAL_JUDGED and r["past"] and r["value"] is not None
+                    and lims and all(abs(r["value"] - lim) <= err for lim in lims)
+                    and f"marginal: {r['column']} " not in said):
+                # the bar reaches the limit, yet the run names no marginal verdict: the engine
+                # (engine/accuracy.py ``_marginal``) calls none where every mesh of the check
+                # fails, each finer one further past the limit (no mesh flips it)
+                value += ("; it reaches the limit, yet every mesh of the check is past it, "
+                          "each finer one further, so the verdict holds and is not marginal")
+            value += "</span>"
         limit = (_n(r["limit"], digits, v.unit) if r["limit"] is not None else "")
         if r["limit_text"]:
             limit += (f"<br><span class=muted>{_e(r['limit_text'])}</span>" if limit
                       else f"<span class=muted>{_e(r['limit_text'])}</span>")
         where = _where_on_loop(locate, r["row"].get(v.at)) if v.at else ""
         worst = "largest" if v.worst == "max" else "smallest"
+        if r.get("relative"):  # the limit differs between runs: the worst against its own
+            worst = f"{worst} against its own limit:"
         rows.append([f"{_e(r['label'])}<br><span class=muted>{worst} "
                      f"<code>{_e(r['column'])}</code></span>",
                      value, limit, _verdict_cell(r),
@@ -793,8 +826,20 @@ def _figures(doc: dict, runs: pd.DataFrame, study: dict) -> tuple[str, str]:
         if plot == "ratio" and ("friction_model" not in runs or
                                 runs["friction_model"].nunique() < 2):
             continue
+        if plot == "power-temperature" and _single_temperature(runs):
+            # every run at one temperature: a column of points at one x tells nothing (the
+            # start and stop peaks of section 3 are drawn against the study's axes)
+            continue
         figs.append(_figure(_png(figures.figure_of(doc, runs, plot)), caption, plot))
     return peaks, "".join(figs)
+
+
+def _single_temperature(runs: pd.DataFrame) -> bool:
+    """Whether every run of ``runs`` ran at one temperature (no ``temperature_c`` axis, or
+    one value of it): power against temperature is then a column of points at one x."""
+    if "temperature_c" not in runs:
+        return True
+    return pd.to_numeric(runs["temperature_c"], errors="coerce").dropna().nunique() < 2
 
 
 def _on_design_belt(study: dict):
@@ -856,7 +901,11 @@ def report_html(doc: dict, runs: pd.DataFrame, status: dict, accuracy: str = "",
          + _conveyor_section(study["conveyor"], fill)),
         ("Design basis", _design_section(study, runs)),
         ("The grid", _grid_section(study, status)),
-        ("Comparison", figs or "<p>No figures: no finished runs yet.</p>"),
+        ("Comparison", figs or ("<p>No figures: no finished runs yet.</p>" if not len(runs)
+                                else "<p>No comparison figure: the study runs one friction "
+                                "model at one temperature (power against temperature and the "
+                                "model ratio need two of either); section 3 draws the start "
+                                "and stop peaks against its axes.</p>")),
         ("Runs", _runs_section(study, runs)),
         ("Error of each column", accuracy),
         ("Everything the runs say", _said_section(runs) if len(runs) else no_runs),

@@ -123,8 +123,8 @@ VERDICTS: tuple[Verdict, ...] = (
     Verdict("Take-up", "take-up travel, whole cycle", "takeup_travel_m", "max", "m", "travel"),
     Verdict("Take-up", "take-up travel, start", "takeup_travel_start_m", "max", "m", "travel"),
     Verdict("Take-up", "take-up travel, stop", "takeup_travel_stop_m", "max", "m", "travel"),
-    # a carriage that reached an end stop travelled no further than the stop let it: its
-    # travel is within the carriage travel, its impact speed is what says it hit
+    # a carriage whose travel (max - min position) is the whole carriage travel went from one
+    # end stop to the other: at the limit is past it (_past); its impact speed is the next row
     Verdict("Take-up", "carriage speed at an end stop", "takeup_endstop_speed_m_s", "max",
             "m/s", 0.0),
     # stop
@@ -667,6 +667,11 @@ def _limits_of(v: Verdict, runs: pd.DataFrame, nums: dict[str, str], limits: dic
     return numeric(runs, name), name
 
 
+#: A take-up travel within this fraction of the carriage travel is the whole of it: the
+#: carriage at its end stop (the engine's contact leaves 4.499999999 m of a 4.5 m travel).
+TRAVEL_AT_STOP = 1e-6
+
+
 def _past(v: Verdict, values: pd.Series, runs: pd.DataFrame, lim: pd.Series | None,
           ok_col: str | None, bad_col: str | None = None) -> pd.Series:
     """Rows past the limit: beyond the number, their own verdict column false (``ok``) or true
@@ -676,7 +681,9 @@ def _past(v: Verdict, values: pd.Series, runs: pd.DataFrame, lim: pd.Series | No
     beyond = pd.Series(False, index=runs.index)
     if lim is not None:
         known = values.notna() & lim.notna()
-        if v.worst == "max":
+        if v.limit == "travel":  # the whole travel used: the carriage reached its end stops
+            beyond = known & (values >= lim * (1.0 - TRAVEL_AT_STOP))
+        elif v.worst == "max":
             beyond = known & (values > lim)
         else:  # a lowest tension of 0 is slack: at the limit is past it
             beyond = known & ((values <= lim) if v.limit == 0.0 else (values < lim))
@@ -758,6 +765,7 @@ def verdict_rows(runs: pd.DataFrame, limits: dict[str, Limit]) -> list[dict]:
             bad_col = v.bad.format(**nums) if v.bad else None
             past = _past(v, judged, ok, lim, ok_col, bad_col)
             ok_col = ok_col or bad_col
+            relative = False
             if not missing:
                 idx, relative = _worst(v, judged, lim, past)
                 text = f"{text}; the worst against its own limit" if relative else text
@@ -781,10 +789,14 @@ def verdict_rows(runs: pd.DataFrame, limits: dict[str, Limit]) -> list[dict]:
             # "marginal: <figure> ... against limit ...", engine/accuracy.py)
             marginal = int(_message(ok).str.contains(f"marginal: {column} ",
                                                      regex=False).sum())
+            value = None if missing or value_text else float(values.loc[idx])
+            if (v.limit == "travel" and value is not None and limit is not None
+                    and value >= limit * (1.0 - TRAVEL_AT_STOP)):
+                value = limit  # at its end stop: the whole travel, not 4.499999999 of 4.5 m
             out.append({"verdict": v, "label": v.quantity.format(**nums), "column": column,
-                        "marginal": marginal,
+                        "marginal": marginal, "relative": relative,
                         "row": row,
-                        "value": None if missing or value_text else float(values.loc[idx]),
+                        "value": value,
                         "value_text": value_text,
                         "limit": limit, "limit_text": text, "past": int(past.sum()),
                         # every run with a value, and those past without one (did not

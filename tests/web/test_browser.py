@@ -643,7 +643,10 @@ def test_design_report_and_the_changed_plots_in_chromium(browser, web):
         driver.get(f"{base}/studies/{sid}/report")
         _wait(driver, lambda d: d.execute_script(
             "return Array.from(document.images).every(i => i.complete && i.naturalWidth > 0)"
-            " && document.images.length >= 3"), timeout=30, what="report figures drawn")
+            " && document.images.length >= 2"), timeout=30, what="report figures drawn")
+        # the start and stop peaks and the model ratio; power against temperature is left
+        # out of a study at one temperature
+        assert driver.execute_script("return document.images.length") == 2
         sources = driver.execute_script(
             "return Array.from(document.querySelectorAll('[src],[href]'))"
             ".map(e => e.getAttribute('src') || e.getAttribute('href'))")

@@ -258,6 +258,69 @@ def test_a_limit_that_differs_between_runs_governs_by_value_over_limit(web):
     assert "<code>a1</code>" in row and f"10{UNIT_SPACE}kW" in row
     assert f"5{UNIT_SPACE}kW" in row and "the worst against its own limit" in row
     assert "past the limit in 3 of 7 runs" in row  # a1, ov, os
+    # the label names what governs: not 'largest power_kw' beside 10 kW where 36.5 kW is
+    assert "largest against its own limit: <code>power_kw</code>" in row
+    row = re.search(r"<tr><td>largest tension, transient.*?</tr>", _section(html, 1),
+                    re.S).group(0)
+    assert "largest <code>t_max_dyn_kn</code>" in row  # one limit: the largest value
+
+
+def test_a_carriage_that_used_its_whole_travel_is_at_its_end_stops(web):
+    """A 4.5 m carriage travel and a run whose carriage went 4.499999999 m (max - min
+    position; it struck its end stop at 1.28 m/s): the travel rows read 'within (8 runs)' and
+    printed the start's travel to ten digits. A travel within 1e-6 of the whole is the whole:
+    shown as 4.5 m and counted as at its end stops."""
+    moved = [4.499999999331635, 0.3, 0.3, 0.3, 0.3, 0.3, np.nan, 0.3]
+    runs = _runs(**{"takeup.travel_m": [4.5] * 8, "takeup_travel_m": moved,
+                    "takeup_travel_start_m": moved, "takeup_endstop_speed_m_s":
+                    [1.276, 0.0, 0.0, 0.0, 0.0, 0.0, np.nan, 0.0]})
+    html = report_html(_doc(web), runs, {"state": "done", "done": 8, "total": 8})
+    for label in ("take-up travel, whole cycle", "take-up travel, start"):
+        row = re.search(rf"<tr><td>{label}.*?</tr>", _section(html, 1), re.S).group(0)
+        assert "the whole travel used (the carriage at its end stops) in 1 of 7 runs" in row
+        assert "4.499999" not in row and f"4.5{UNIT_SPACE}m" in row
+        assert "<code>a1</code>" in row
+
+
+def test_no_power_against_temperature_figure_at_one_temperature(web):
+    """Every run at 20 C (no temperature axis) and one friction model: the report drew power
+    against temperature, a column of points at 20 C on a 19-21 C axis. It is left out and
+    section 7 says why; with two temperatures it is drawn."""
+    one = _runs(temperature_c=[20.0] * 8, friction_model=["din"] * 8)
+    html = report_html(_doc(web), one, {"state": "done", "done": 8, "total": 8})
+    s7 = _section(html, 7)
+    assert "<img" not in s7 and "No comparison figure: the study runs one friction model at " \
+        "one temperature" in s7
+    two = _runs(friction_model=["din"] * 8)
+    assert "<img" in _section(report_html(_doc(web), two, {"state": "done", "done": 8,
+                                                            "total": 8}), 7)
+
+
+def test_a_bar_in_per_cent_is_in_percentage_points_and_a_growing_failure_is_not_marginal(web):
+    """A sampled run's transient sag 7.151 % +- 47.4 against a 1.5 % limit, past it on every
+    mesh of the check and further on each finer one, so the engine names no 'marginal:'
+    (engine/accuracy.py). The row read '7.151 % ± 47.4 %' beside 'past the limit', a bar
+    reaching the limit and no word of why it is no marginal verdict, nor that the bar is in
+    percentage points. Both are said now."""
+    doc = _doc(web)
+    doc["study"]["accuracy"] = {"sample": 1.0, "seed": 3}
+    doc["study"]["conveyor"]["sag_limit_pct"] = {"carry": 1.5, "return": 3.0}
+    sag = ("transient sag on the carry strand 7.151 % exceeds the 1.5 % limit (at t = 9.1 s); "
+           "a heavier take-up would avoid it")
+    runs = _runs(sag_max_dyn_pct=[7.151, 0.5, 0.5, 0.5, 0.5, 0.5, np.nan, 0.5],
+                 message=[sag, "", DID_NOT_STOP, "", SLIP, SLIP, "diverged", "ran away"],
+                 status=["warning", "ok", "warning", "ok", "warning", "warning", "failed",
+                         "warning"])
+    acc = pd.DataFrame({"run_id": ["a1"], "accuracy_elements": ["42/82/166"],
+                        "accuracy_methods": ["growing: sag_max_dyn_pct (p -0.18)"],
+                        "sag_max_dyn_pct_err": [47.366898],
+                        "sag_max_dyn_pct_converged": [np.nan]})
+    html = report_html(doc, runs, {"state": "done", "done": 8, "total": 8}, bars=acc)
+    row = re.search(r"<tr><td>largest sag, transient.*?</tr>", _section(html, 1),
+                    re.S).group(0)
+    assert "± 47.4 percentage points" in row, row
+    assert "every mesh of the check is past it, each finer one further, so the verdict " \
+        "holds and is not marginal" in row
 
 
 def test_a_regenerating_run_governs_the_steady_power_by_its_size(web):
@@ -497,8 +560,10 @@ def test_take_up_travel_is_judged_against_each_runs_own_travel_and_an_end_stop_i
     travel is within it, one stopped at its 0.4 m end stop (travel 0.4 m, hitting at
     0.148 m/s) is past it. The report judged every run against the file's travel (0.4 m):
     'past the limit' for the 3 m runs that were within, nothing for the run that hit, and no
-    group named the end stop. Now the travel row counts none past (0.4428 < 3, 0.4 = 0.4), the
-    end-stop row counts the one run that hit, and section 2 lists it."""
+    group named the end stop. Now the travel row counts the run whose carriage used its whole
+    travel (max - min position 0.4 of 0.4 m: from one end stop to the other; it read 'within'
+    beside the end-stop row's hit), the end-stop row counts the one run that hit, and
+    section 2 lists it."""
     travel = [3.0, 3.0, 0.4, 3.0, 3.0, 3.0, 3.0, 3.0]
     moved = [0.4428, 0.3, 0.4, 0.3, 0.3, 0.3, np.nan, 0.3]
     speed = [0.0, 0.0, 0.147784, 0.0, 0.0, 0.0, np.nan, 0.0]
@@ -507,9 +572,10 @@ def test_take_up_travel_is_judged_against_each_runs_own_travel_and_an_end_stop_i
     html = report_html(_doc(web), runs, {"state": "done", "done": 8, "total": 8})
     verdicts = _section(html, 1)
     row = re.search(r"<tr><td>take-up travel, whole cycle.*?</tr>", verdicts, re.S).group(0)
-    assert "within (7 runs)" in row and "past the limit" not in row
+    assert "the whole travel used (the carriage at its end stops) in 1 of 7 runs" in row
     # governed by the run nearest its own travel (0.4 of 0.4 m), not the longest travel
     assert "<code>ns</code>" in row and "the worst against its own limit" in row
+    assert "largest against its own limit: <code>takeup_travel_m</code>" in row
     row = re.search(r"<tr><td>carriage speed at an end stop.*?</tr>", verdicts, re.S).group(0)
     assert "past the limit in 1 of 7 runs" in row and "<code>ns</code>" in row
     causes = _section(html, 2)
