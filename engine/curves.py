@@ -274,8 +274,12 @@ def _convex_words(k: int, c: Curve, belt, ic, sf_min: float, t_low: float, t_hig
     roll = (middle_roll_length_m(belt.width_m, ic.rolls) if ic.roll_length_m is None
             else ic.roll_length_m)
     h, z_mean = _trough_heights(belt.width_m, ic.rolls, ic.trough_deg, roll)
-    r_centre = z_mean * belt.stiffness_n / t_low
-    if r_centre >= r_min:
+    # the centre's radius as convex_radius_min_m writes it, z_mean / eps, judged to a relative
+    # 1e-9: z_mean EB / T can come out an ulp below the same radius written z_mean / (T / EB),
+    # and a curve set by its centre was told its edges pass the admissible strain, and less
+    # tension, which slackens the centre further (0.0551 m / (25.7 kN / 72 000 kN) = 154.4 m)
+    r_centre = z_mean / (t_low / belt.stiffness_n)
+    if r_centre >= r_min * (1.0 - 1e-9):
         why = (f"at {t_low / 1e3:.1f} kN its centre line, stretched z_mean / R less than the "
                f"mean strain T / EB (z_mean {z_mean * 1e3:.0f} mm), goes slack")
         other = "more tension there (a heavier take-up) or a shallower trough"

@@ -70,7 +70,12 @@ def acceleration_skirt_forces(loop: Loop, conv: Conveyor,
     on the belt there (the load case's; every feed upstream included), mu_2 the feed point's
     ``skirt_friction``, b_1 its ``skirt_width_m`` (default ``SKIRT_WIDTH_SHARE`` of the belt
     width), v_0 its along-belt loading speed (0 for one against the travel) and mu_1
-    ``MU1_MATERIAL_BELT`` unless given. The friction beyond l_b is the skirts' F_gL (:func:`beltstudy.engine.friction.common.skirt_forces`,
+    ``MU1_MATERIAL_BELT`` unless given. ``I_V / ((v + v_0) / 2)`` is the material's
+    cross-section in the zone, which sets its pressure on the skirts; at a feed point with
+    feeds upstream only the flow fed there speeds up, the rest already runs at v, so the
+    cross-section is ``I_V,up / v + I_V,here / ((v + v_0) / 2)`` (the feed's ``share`` of the
+    shares fed up to it): a second feed of 0.3 on 0.7 already on the belt had its whole flow
+    taken at the mean speed, 72.3 N of skirt friction where its material gives 30.6 N. The friction beyond l_b is the skirts' F_gL (:func:`beltstudy.engine.friction.common.skirt_forces`,
     an accessory).
     """
     mu1 = MU1_MATERIAL_BELT if mu1 is None else mu1
@@ -93,7 +98,11 @@ def acceleration_skirt_forces(loop: Loop, conv: Conveyor,
         b1 = f.skirt_width_m if f.skirt_width_m is not None \
             else SKIRT_WIDTH_SHARE * loop.belt.width_m
         lb = min((v * v - v0 * v0) / (2.0 * G * mu1), f.skirt_length_m)
-        out[j] += f.skirt_friction * iv * iv * rho * G * lb / ((0.5 * (v + v0)) ** 2 * b1 * b1)
+        # the share of the flow there that is fed there (the rest came from upstream at v)
+        fed = sum(g.share for g in conv.material.feed if g.at_m <= f.at_m)
+        here = f.share / fed if fed > 0.0 else 1.0
+        area = iv * ((1.0 - here) / v + here / (0.5 * (v + v0)))  # [m2]
+        out[j] += f.skirt_friction * rho * G * lb * area * area / (b1 * b1)
     return out
 
 

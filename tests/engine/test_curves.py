@@ -782,3 +782,46 @@ def test_more_vertical_curves_than_their_columns_are_refused_by_name():
         parse_conveyor(hand_conveyor_dict(profile=prof))
     prof[0].pop("curve_radius_m")
     parse_conveyor(hand_conveyor_dict(profile=prof))  # eight: taken
+
+
+def test_a_convex_radius_set_by_its_centre_is_said_so_at_every_tension():
+    """A convex crest whose radius is set by the centre line's slack at the arc's lowest
+    tension, ``z_mean / (T / EB)``: on a 1 km ST1000 belt (EB 72 000 kN) at 25.7 kN that is
+    0.0551 / (25.7 / 72 000) = 154.4 m, against the edges' 71.7 m. The words recomputed the
+    centre's radius as ``z_mean EB / T``, an ulp below the same number at some tensions, and
+    told such a curve its edges pass the admissible strain, and less tension (which slackens
+    the centre further). At every tension where the centre sets the radius, the words say the
+    centre and more tension."""
+    from beltstudy.engine.capacity import middle_roll_length_m
+    from beltstudy.engine.conveyor import parse_conveyor
+    from beltstudy.engine.curves import _convex_words, _trough_heights, convex_radius_min_m
+
+    conv = parse_conveyor({
+        "name": "crest", "speed_m_s": 4.0, "belt": {"type": "ST1000", "width_m": 1.0},
+        "material": {"capacity_t_h": 800, "density_t_m3": 1.0},
+        "profile": [{"length_m": 200, "lift_m": 20, "curve_radius_m": 80},
+                    {"length_m": 800, "lift_m": 0}],
+        "idlers": {"carry": {"spacing_m": 1.25, "roll_diameter_m": 0.152, "rolls": 3,
+                             "trough_deg": 35},
+                   "return": {"spacing_m": 3.0, "roll_diameter_m": 0.152, "rolls": 1}},
+        "drives": [{"position": "head", "wrap_deg": 240, "friction": 0.5, "share": 1.0}],
+        "takeup": {"type": "gravity", "position": "tail", "mass_kg": 1500}})
+    loop = build_loop(conv)
+    belt, ic, (c,) = loop.belt, conv.idlers.carry, loop.curves
+    sf = 6.7
+    _h, z = _trough_heights(belt.width_m, ic.rolls, ic.trough_deg,
+                            middle_roll_length_m(belt.width_m, ic.rolls))
+    assert z == pytest.approx(0.31 * 0.31 * math.sin(math.radians(35)), rel=1e-2)
+    said = 0
+    for t_low in np.linspace(20e3, 30e3, 4001):
+        t_high = t_low + 300.0
+        r_min = max(convex_radius_min_m(t, belt.stiffness_n, belt.rating_n / sf, belt.width_m,
+                                        ic.rolls, ic.trough_deg, ic.roll_length_m)
+                    for t in (t_high, t_low))
+        centre = z / (t_low / belt.stiffness_n)
+        if centre < r_min * (1.0 - 1e-12):
+            continue  # the edges set it
+        words = _convex_words(1, c, belt, ic, sf, t_low, t_high, r_min)
+        assert "centre line" in words and "more tension there" in words, (t_low, words)
+        said += 1
+    assert said > 1000

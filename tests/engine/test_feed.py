@@ -180,3 +180,30 @@ def test_the_transient_run_settles_onto_the_steady_tensions_with_feed_points():
     st = solve_steady(c, model="din", n_elements=80)
     assert np.any(np.isclose(st.loop.s_m, 1230.0))
     assert_settles_to_statics(c, st, start_s=30.0)
+
+
+def test_skirt_friction_while_accelerating_counts_only_the_flow_fed_there():
+    """ISO 5048's F_f = mu_2 rho g l_b A^2 / b_1^2 with A = I_V / ((v + v_0) / 2), the material's
+    cross-section in the acceleration zone. Two feeds (0.7 at 100 m, fed at 0.5 m/s; 0.3 at
+    600 m, fed at rest), 10 m skirts each, b_1 0.7 m, mu_2 0.6, mu_1 0.6, on the hand conveyor
+    (I_V = 0.2 m3/s in all, v 4 m/s, rho 1000 kg/m3). At the second feed the 0.7 fed upstream
+    already runs at v: A = 0.14 / 4 + 0.06 / 2 = 0.065 m2, not 0.2 / 2 = 0.1 m2 (the whole
+    flow at the mean speed, 2.4 x the force). By hand, from the force the skirts add to DIN's
+    secondary resistance with their F_gL taken out."""
+    from beltstudy.engine.friction.din import acceleration_skirt_forces
+
+    feed = [{"at_m": 100, "share": 0.7, "loading_speed_m_s": 0.5, "skirt_length_m": 10,
+             "skirt_width_m": 0.7, "skirt_friction": 0.6},
+            {"at_m": 600, "share": 0.3, "loading_speed_m_s": 0.0, "skirt_length_m": 10,
+             "skirt_width_m": 0.7, "skirt_friction": 0.6}]
+    c = conv(feed=feed)
+    forces = acceleration_skirt_forces(build_loop(c), c, mu1=0.6)
+    rho, b1, mu2 = 1000.0, 0.7, 0.6
+
+    def f_f(area, v0):
+        lb = (V * V - v0 * v0) / (2 * G * 0.6)
+        return mu2 * rho * G * lb * area * area / (b1 * b1)
+    first = f_f(0.14 / ((V + 0.5) / 2), 0.5)
+    second = f_f(0.14 / V + 0.06 / (V / 2), 0.0)
+    assert sorted(forces[forces > 0]) == pytest.approx(sorted([first, second]), rel=1e-9)
+    assert second == pytest.approx(mu2 * rho * G * (16 / (2 * G * 0.6)) * 0.065**2 / 0.49)
