@@ -667,17 +667,44 @@ def _slip_words(res: SteadyResult, drives, slip_margins, start_margins, breakawa
                 # by a study's design basis, where "use mass_kg: auto" would be no fix
                 fix = (f"; take-up mass {figures(res.takeup_mass_kg)} kg is below the "
                        f"{figures(need)} kg needed: a takeup.mass_kg of {math.ceil(need):.0f} kg "
-                       "or more would avoid it")
+                       "or more")
             elif shortfall_n > 0:
                 need_kn = up3((res.takeup_tension_n + shortfall_n) / 1e3)
                 fix = (f"; pretension {res.takeup_tension_n / 1e3:.3g} kN is below the "
                        f"{need_kn:g} kN needed: a takeup.pretension_kn of {need_kn:g} kN or "
-                       "more would avoid it")
+                       "more")
             # two decimals, and two figures below 0.1 (not "0.00 < 1")
             said = ", and at ".join(f"{w}: slip margin {m:.2f} < 1" if m >= 0.1 else
                                     f"{w}: slip margin {m:.2g} < 1" for w, m in cases)
-            warnings.append(f"slip at {where} at {said} (e^(mu theta) = {e:.2f}){fix}")
+            # a margin of 0 is a slack side of no tension: no grip passes a force from it
+            least = min(m for _, m in cases)
+            grip = _grip_levers(conv, i - 1, e / least) if least > 0.0 else ""
+            avoid = (f"{fix}, or{grip}" if fix and grip else fix or (f";{grip}" if grip else ""))
+            warnings.append(f"slip at {where} at {said} (e^(mu theta) = {e:.2f}){avoid}"
+                            + (" would avoid it" if avoid else ""))
     return warnings
+
+
+def _grip_levers(conv, k: int, ratio: float) -> str:
+    """The levers on the slipping drive's own pulley, beside the take-up: more friction (a
+    lagged pulley), more wrap (a snub pulley), each at least what makes ``e^(mu theta)`` the
+    tension ratio ``ratio`` it must pass (T1 / T2 of the slipping phase, the same tensions:
+    the margin is e^(mu theta) / (T1 / T2)), and, where the conveyor has other drives, a
+    smaller share of Te on it. A carry booster of wrap 90 deg slipping at a margin of 0.70
+    was offered only a counterweight nearly twice as heavy (9 000 to 17 528 kg), which raises
+    the belt's tension everywhere (92 to 134 kN peak)."""
+    d = conv.drives[k]
+    share = (f", or a smaller share of Te on it (drives.{k}.share {d.share:g}; the others then "
+             "take more: rerun to check)" if len(conv.drives) > 1 else "")
+    log_r = math.log(ratio)
+    levers = [f"more friction (a lagged pulley: drives.{k}.friction at least "
+              f"{math.ceil(100.0 * log_r / math.radians(d.wrap_deg)) / 100.0:g} at this wrap, "
+              f"now {d.friction:g})"]
+    if d.friction > 0.0:
+        levers.append(f"more wrap (a snub pulley: drives.{k}.wrap_deg at least "
+                      f"{math.ceil(math.degrees(log_r / d.friction)):g} deg at this friction, "
+                      f"now {d.wrap_deg:g})")
+    return f" on its own pulley {' or '.join(levers)}{share}"
 
 
 def _takeup_beyond_words(res: SteadyResult, drives) -> list[str]:

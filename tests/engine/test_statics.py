@@ -552,8 +552,25 @@ def test_a_regenerating_decline_sizes_its_take_up_for_breakaway():
     assert f"{hand:.0f} kg needed" in res.message
     # the fix is the mass itself: a study's design basis may hold an auto mass at a size
     # another case outgrows, where "use mass_kg: auto" would be no fix
-    assert f"takeup.mass_kg of {math.ceil(hand):.0f} kg or more would avoid it" in res.message
+    assert f"takeup.mass_kg of {math.ceil(hand):.0f} kg or more, or on its own pulley" \
+        in res.message
     assert "use mass_kg: auto" not in res.message
+    # the pulley's own levers, each from the tension ratio it must pass: the margin is
+    # e^(mu theta) / (T1 / T2), so T1 / T2 = e / margin, and mu = ln(e / margin) / theta at
+    # this wrap, theta = ln(e / margin) / mu at this friction (rounded up)
+    d = light.drives[0]
+    ratio = e / res.summary["slip_margin_start"]
+    mu = math.ceil(100 * math.log(ratio) / math.radians(d.wrap_deg)) / 100
+    wrap = math.ceil(math.degrees(math.log(ratio) / d.friction))
+    assert (f"more friction (a lagged pulley: drives.0.friction at least {mu:g} at this wrap, "
+            f"now {d.friction:g}) or more wrap (a snub pulley: drives.0.wrap_deg at least "
+            f"{wrap:g} deg at this friction, now {d.wrap_deg:g}) would avoid it") in res.message
+    for more in ({"friction": mu}, {"wrap_deg": wrap}):  # each, followed, avoids it
+        gripped = parse_conveyor(hand_conveyor_dict(
+            profile=[{"length_m": 1000, "lift_m": -50}],
+            takeup={"type": "gravity", "position": "tail", "mass_kg": 0.9 * hand},
+            drives=[{**light.drives[0].model_dump(exclude_none=True), **more}]))
+        assert solve_steady(gripped, model="din").summary["slip_margin_start"] >= 1.0, more
 
 
 def test_an_auto_take_up_beyond_any_counterweight_names_the_drive_that_needs_it():
