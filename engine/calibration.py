@@ -53,7 +53,7 @@ from typing import Any
 
 import numpy as np
 
-from beltstudy.engine.conveyor import Conveyor, parse_conveyor, section_loads
+from beltstudy.engine.conveyor import LOAD_MAX, Conveyor, parse_conveyor, section_loads
 from beltstudy.engine.errors import InputError
 from beltstudy.engine.friction import get_model
 from beltstudy.engine.statics import solve_steady
@@ -143,6 +143,16 @@ def _load(value: Any, what: str) -> float | str | list[float]:
         except ValueError:
             raise InputError(f"a load case: full, empty, inclines, declines, a fraction or "
                              f"one fraction per carry section; got {value!r}", field=what) from None
+        if (re.fullmatch(r"[+-]?\d+,\d+", text)
+                and not all(0.0 <= v <= LOAD_MAX for v in values)):
+            # '0,7' is a list of one fraction per section, [0, 7], or 0.7 with a decimal comma:
+            # read as the list, 7 was told 'a fraction, not a per cent (0.07)', a tenth of it
+            raise InputError(
+                f"{value!r} is one fraction per carry section ({', '.join(f'{v:g}' for v in values)}"
+                f"), {next(v for v in values if not 0.0 <= v <= LOAD_MAX):g} outside "
+                f"0..{LOAD_MAX:g}; if it is "
+                f"{text.replace(',', '.')} written with a decimal comma, write "
+                f"{text.replace(',', '.')}", field=what)
         return values[0] if len(values) == 1 else values
     if value is None:
         raise InputError("missing: give the load case of the measurement", field=what)

@@ -46,3 +46,22 @@ def test_a_request_key_in_another_unit_names_the_conversion():
                           "measured": [{"load": 0.5, "temperature_c": 10, "power_MW": 0.044}]})
     assert ("measured.0.power_MW: unknown key 'power_MW'; did you mean 'power_kw'? "
             "(in kW: MW x 1000)") in exc.value.message
+
+
+@pytest.mark.parametrize("cell,number", [("0,7", "0.7"), ("2,5", "2.5")])
+def test_a_load_with_a_decimal_comma_is_named_as_such(tmp_path, cell, number):
+    """A load cell '0,7' reads as one fraction per section, [0, 7], and 7 was told 'a fraction,
+    not a per cent (7 % of the design load is 0.07)', a tenth of the 0.7 meant. A pair of
+    which one is outside 0..1.3 is named as the decimal comma it likely is ('1,0', two
+    fractions in range, stays a list)."""
+    path = tmp_path / "plant.csv"
+    path.write_text(f'load,temperature_c,power_kw\n"{cell}",10,378.8\n0.6,12,419\n')
+    from beltstudy.engine.calibration import measurements_from_rows
+
+    with pytest.raises(InputError) as exc:
+        measurements_from_rows(read_measured(str(path)))
+    assert f"if it is {number} written with a decimal comma, write {number}" in str(exc.value)
+    assert exc.value.field == "measured.0.load"
+    ok = tmp_path / "ok.csv"
+    ok.write_text('load,temperature_c,power_kw\n"1,0",10,378.8\n0.6,12,419\n')
+    assert measurements_from_rows(read_measured(str(ok)))[0].load == [1.0, 0.0]
