@@ -234,6 +234,7 @@ def run_one(
     system = build_system(prep.conveyor, scenario, prep.steady, opts)
     system.auto_brakes = _auto_brakes(conveyor, auto_brakes)
     system.brakes_timed = _brakes_timed(prep, system.auto_brakes)
+    system.brakes_gripped = _brakes_gripped(prep)
     system.motor_cases = _motor_cases(prep, scenario, model, params)
     system.brake_grip = _brake_grip(prep, system, scenario)
     tr = simulate(system, steady_summary=prep.steady.summary, conveyor=prep.conveyor,
@@ -286,6 +287,13 @@ def brakes_timed(governed_by: str | None) -> bool | None:
     if not governed_by:
         return None
     return any(w in str(governed_by) for w in ("stop_time", "grip"))
+
+
+def _brakes_gripped(prep: _Prepared) -> bool | None:
+    """Whether an auto brake of the run is held to its pulley's grip below the stop time's
+    need (``brake_governed_by`` names ``grip``); None when the run says nothing of it."""
+    governed = prep.summary.get("brake_governed_by")
+    return None if not governed else "grip" in str(governed)
 
 
 def _brakes_timed(prep: _Prepared, auto: bool) -> bool | None:
@@ -357,6 +365,7 @@ def run_group(
             convs[i], None if auto_brakes is None else auto_brakes[i])
         systems[-1].motor_cases = _motor_cases(prep, scn, model, params)
         systems[-1].brakes_timed = _brakes_timed(prep, systems[-1].auto_brakes)
+        systems[-1].brakes_gripped = _brakes_gripped(prep)
         systems[-1].brake_grip = _brake_grip(prep, systems[-1], scn)
         todo.append(i)
     for group in group_by_start(systems):

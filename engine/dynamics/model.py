@@ -278,6 +278,10 @@ class System:
     #: ``stop_time`` or ``grip``); False where every brake is set by holding the belt at rest
     #: or given; None: not known (the words judge it from the system, ``_auto_brake_held``)
     brakes_timed: bool | None = None
+    #: an auto brake of the run is held below the stop time's need by its pulley's grip
+    #: (``brake_governed_by`` names ``grip``): a longer stop.time_s changes it only once the
+    #: rigid-body force for that time falls below the grip; None: not known
+    brakes_gripped: bool | None = None
     #: the load cases the engine sizes a motor at, each (Te, running resistance) [N], Te signed
     #: (negative: regenerating): the run's own and, below the full load, the full load's, as
     #: an auto motor of such a run is installed (:func:`beltstudy.engine.sizing.

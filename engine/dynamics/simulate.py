@@ -593,11 +593,27 @@ def slip_levers(first: str, last: str, sys: System | None = None, unbroken: bool
     inherited it (a 300 m belt on a 2 kN screw take-up slipped from t = 8.9 s to 92.1 s, the
     stop command at 92.0 s, and was offered a controlled stop for it)."""
     fixes = [heavier_takeup(sys, "more slack-side tension")]
-    if first == "start":
+    # slipping without a break through steady running into the stop, or from within running:
+    # the running tensions slip it, which no gentler start changes (a carry booster of 90 deg
+    # wrap slipped from 6.8 s to 122 s, its steady margin 0.70, and was offered a longer
+    # start); the pulley's own grip and its share of the force are the levers
+    steady = (first == "running") or (first == "start" and last == "stop" and unbroken)
+    if steady:
+        fixes.append(GRIP_WORDS + (SHARE_WORDS if sys is not None
+                                   and len(sys.model.drives.share) > 1 else ""))
+    elif first == "start":
         fixes += (start_levers(sys) if sys is not None else ["a longer start (start.time_s)"])
     if last == "stop" and not (unbroken and first != "stop"):
         fixes += stop_levers(sys, slip=True)
     return fixes
+
+
+#: The levers of a drive pulley that slips in steady running, on its own pulley
+#: (engine/statics.py's slip warning names the friction and wrap it needs).
+GRIP_WORDS = ("more grip on that pulley (a lagged pulley, drives[].friction, or a snub pulley, "
+              "drives[].wrap_deg)")
+#: ... and, where other drives can take it, less of the force on it.
+SHARE_WORDS = " or a smaller share of the drive force on it (drives[].share)"
 
 
 def slip_words(first: str, last: str, sys: System | None = None, unbroken: bool = False
@@ -1998,6 +2014,29 @@ def _auto_brake_held(sys: System) -> bool:
     return hold > 0.0 and not stop_n >= hold
 
 
+def _gripped_stop_s(sys: System) -> tuple[float, float, float] | None:
+    """Where an auto brake is held to its pulley's grip (``System.brakes_gripped``): the
+    rigid-body stop time [s] of the run's brakes at their force now, below which no
+    stop.time_s changes the brake; the one at the holding force, ``HOLD_MARGIN`` x the net
+    gravity pull, the longest stop an auto brake gives (inf without a pull); and that force
+    [N] (:func:`beltstudy.engine.design.brake_stop_time`, the brakes' delay and ramp or force
+    curve). None otherwise or where the belt does not stop on them."""
+    brakes = getattr(sys.model, "brakes", None)
+    if not getattr(sys, "brakes_gripped", None) or brakes is None or not len(brakes.force):
+        return None
+    curve = _brake_history(sys)
+    ramp = float(np.max(brakes.ramp)) if len(brakes.ramp) else 0.0
+    m, v, te = float(sys.model.control.m_tot), float(sys.v_design), float(sys.te_n)
+    delay = float(np.max(brakes.delay))
+    t = design.brake_stop_time(m, v, te, float(np.sum(brakes.force)), delay, ramp, curve)
+    if not (math.isfinite(t) and t > 0.0):
+        return None
+    hold = HOLD_MARGIN * abs(_gravity_pull_n(sys))
+    t_hold = (design.brake_stop_time(m, v, te, hold, delay, ramp, curve) if hold > 0.0
+              else math.inf)
+    return t, t_hold, hold
+
+
 def _given_brake_words(sys: System, need_s: float, t_stop: float, auto: bool = False) -> str:
     """What brake force would make a brake stop last ``need_s`` [s] (5 wave loop times): the
     rigid-body total force with the brakes' delay and ramp
@@ -2178,7 +2217,28 @@ def _fast_stop_words(sys: System, t_stop: float, summary: dict, steady_tmax: flo
             auto = conveyor is None or any(b.force_kn == "auto" for b in conveyor.brakes)
         given = _given_brake_words(sys, need, t_stop, auto)
         held = _brake_held(sys) if auto else False
-        if auto and not held:
+        gripped = _gripped_stop_s(sys) if auto and not held else None
+        if gripped is not None:
+            # held to its pulley's grip, the brake keeps that force until the asked time's
+            # rigid-body force falls below it: a stop.time_s up to the grip's own rigid-body
+            # stop (t_grip) changes nothing (8 s asked, then the 8.8 s advised, both stopped in
+            # 11.89 s at the same 157.1 kN). Past it the stop scales with the asked time as
+            # this run's stop did with its rigid-body one, down to the holding force, whose
+            # own stop (t_hold) is the longest an auto brake gives
+            t_grip, t_hold, hold = gripped
+            asked = need * t_grip / t_stop
+            grip = (f"the auto brake is held to its pulley's grip, whose rigid-body stop takes "
+                    f"{t_grip:.3g} s")
+            if asked <= t_hold:
+                fix = (f"less brake force would be slower than that: {given}, or a stop.time_s "
+                       f"of {_up_s(asked)} s or more ({grip}: a stop.time_s below that leaves "
+                       "it as it is)")
+            else:
+                fix = (f"less brake force would be slower than that: {given} (no stop.time_s "
+                       f"would: {grip}, and no auto brake falls below the holding force "
+                       f"{hold / 1e3:.4g} kN, {HOLD_MARGIN:g} x the net gravity pull, whose "
+                       f"rigid-body stop takes about {t_hold:.3g} s)")
+        elif auto and not held:
             # an auto brake's stop scales with its asked time as a controlled one's does
             asked = need * cyc.t_stop / t_stop if cyc.t_stop > 0.0 else need
             fix = (f"less brake force would be slower than that: {given}, or for an auto "
@@ -2221,8 +2281,14 @@ def _fast_stop_words(sys: System, t_stop: float, summary: dict, steady_tmax: flo
                f"time to ask), or {_coast_inertia_words(sys, need, conveyor, v_cmd, t_stop)}")
     # three figures: at 0.1 s a 1.519 s stop against 5 x 0.333 s read 'stop in 1.5 s is faster
     # than 5 wave loop times (5 x 0.3 s)'
+    # a stop time asked below the criterion asks for the high-stress stop itself: said, as
+    # a brake stop that missed its asked 8 s was told both too slow and too fast (13 s)
+    asked_fast = (f" (the stop.time_s asked, {cyc.t_stop:g} s, is itself shorter than "
+                  f"that)" if cyc.stop_mode in (C.BRAKE, C.CONTROLLED)
+                  and 0.0 < cyc.t_stop < need else "")
     return (f"stop in {t_stop:.3g} s is faster than 5 wave loop times (5 x "
-            f"{sys.wave_loop_time_s:.3g} s = {need:.3g} s): a high-stress stop{seen}; {fix}")
+            f"{sys.wave_loop_time_s:.3g} s = {need:.3g} s){asked_fast}: a high-stress "
+            f"stop{seen}; {fix}")
 
 
 #: The last part of the stop window whose change of the mean speed says whether a belt that
