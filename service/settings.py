@@ -47,7 +47,7 @@ class Settings(BaseSettings):
         None, ge=1, le=512, description="LocalCluster worker processes (default: one per core)"
     )
     token: str = Field("", description="bearer token required by every route but /health")
-    max_runs: int = Field(20_000, ge=1, description="largest study (runs) accepted")
+    max_runs: int = Field(20_000, ge=1, description="largest study accepted, in grid points (before identical runs merge)")
     studies_dir: Path = Field(
         Path("./studies"),
         description="the study files directory (the repository's studies/): conveyor paths "
@@ -107,6 +107,18 @@ class Settings(BaseSettings):
                     "{problem}", {"problem": problem})
         return value
 
+    @field_validator("token")
+    @classmethod
+    def _sendable_token(cls, value: str) -> str:
+        # HTTP strips the blanks round a header's value, so a token with a space (a trailing
+        # one from a .env or compose file) could never be sent: every client locked out
+        if value and not all("!" <= ch <= "~" for ch in value):
+            raise PydanticCustomError(
+                "token", "a token is printable ASCII (letters, digits and punctuation), "
+                "without spaces, line breaks or other characters: no client could send it "
+                "in an Authorization header (check for a trailing space)")
+        return value
+
     @field_validator("workers", mode="before")
     @classmethod
     def _empty_is_default(cls, value):
@@ -142,6 +154,9 @@ def scheduler_problem(address: str) -> str:
         host, port = rest, None
     if not host.strip("/"):
         return "no host"
+    if port is None and scheme in ("tcp", "tls") and not rest.startswith("["):
+        # Dask: 'missing port number in address', retried every 5 s for ever
+        return "no port (host:port; a Dask scheduler listens on 8786 unless told otherwise)"
     if port is not None and not (port.isdigit() and 1 <= int(port) <= 65535):
         return "a port is 1 to 65535"
     return ""
@@ -161,6 +176,9 @@ def _setting_problem(err: dict) -> str:
     """``BELTSTUDY_MAX_RUNS: must be an integer (got 'abc')`` for one pydantic error."""
     field = str(err["loc"][0]) if err.get("loc") else ""
     reason = _MUST_BE.get(err["type"]) or err["msg"].replace("Input should be", "must be")
+    if field == "token":  # a secret: its length, not its value, goes to the log
+        return (f"{ENV_PREFIX}{field.upper()}: {reason} (got {len(str(err.get('input')))} "
+                "characters, not shown)")
     return f"{ENV_PREFIX}{field.upper()}: {reason} (got {err.get('input')!r})"
 
 

@@ -619,6 +619,11 @@ class StudyService:
         doc = self.store.read(study_id)
         axes = [a["column"] for a in doc["study"]["axes"]]
         status = self.status(study_id)
+        if ((not metrics or list(metrics) == list(query.DEFAULT_METRICS))
+                and not doc["study"].get("dynamics", True)):
+            # a steady-only study's default is power alone, whether or not a run has finished
+            # (with none yet, the stop-phase defaults were kept, which it never writes)
+            metrics = [query.DEFAULT_METRICS[0]]
         out = query.compare(
             self.store.read_runs(study_id), axes, baseline, candidate, metrics, study_id,
             models=study_models(doc), settled=status["state"] not in ACTIVE_STATES,

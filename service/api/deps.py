@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import difflib
 import secrets
+import threading
 from typing import Any
 
 from fastapi import Depends, Request
@@ -15,7 +16,13 @@ from beltstudy.service.door.parse import YAML_TYPES, parse_body
 from beltstudy.service.errors import Invalid, TooLarge, Unauthorized, UnsupportedMedia
 from beltstudy.service.studies import StudyService
 
-__all__ = ["get_service", "require_token", "check_query", "read_data", "ERROR_RESPONSES"]
+__all__ = ["get_service", "require_token", "check_query", "read_data", "ERROR_RESPONSES",
+           "SHUTTING_DOWN"]
+
+#: Set when ``beltstudy serve`` is told to stop (SIGTERM, SIGINT), before uvicorn's grace
+#: period: a request still working (a study in expansion) answers 503 with Retry-After
+#: instead of being cut off with a plain-text 500 when the grace period ends.
+SHUTTING_DOWN = threading.Event()
 
 _bearer = HTTPBearer(auto_error=False, description="BELTSTUDY_TOKEN, when the service sets one")
 
@@ -65,15 +72,24 @@ def check_query(request: Request) -> None:
             raise Invalid(f"query.{name}: empty; give a value or leave the parameter out")
 
 
+#: What brings a body within the limit (the 413's fix): a conveyor written inline is most of
+#: a study's bytes, and the limit is the service's setting.
+BODY_FIX = ("; give the conveyor as a path in the service's studies folder "
+            "(BELTSTUDY_STUDIES_DIR) rather than inline, shorten the description, or raise "
+            "the service's BELTSTUDY_MAX_BODY_BYTES")
+
+
 async def _read_body(request: Request, limit: int) -> bytes:
     declared = request.headers.get("content-length")
     if declared and declared.isdigit() and int(declared) > limit:
-        raise TooLarge(f"body: {declared} bytes; the limit is {limit}")
+        raise TooLarge(f"body: {declared} bytes; the limit is {limit} "
+                       f"(BELTSTUDY_MAX_BODY_BYTES){BODY_FIX}")
     chunks, size = [], 0
     async for chunk in request.stream():
         size += len(chunk)
         if size > limit:
-            raise TooLarge(f"body: more than {limit} bytes")
+            raise TooLarge(f"body: more than {limit} bytes, the limit "
+                           f"(BELTSTUDY_MAX_BODY_BYTES){BODY_FIX}")
         chunks.append(chunk)
     return b"".join(chunks)
 

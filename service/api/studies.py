@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import asyncio
 import json
 from functools import partial
 from typing import Literal
@@ -12,6 +13,7 @@ from fastapi.responses import StreamingResponse
 
 from beltstudy.service.api.deps import (
     ERROR_RESPONSES,
+    SHUTTING_DOWN,
     _error,
     check_query,
     get_service,
@@ -30,7 +32,7 @@ from beltstudy.service.api.models import (
     StudyStatus,
 )
 from beltstudy.service.door.parse import expect_kind
-from beltstudy.service.errors import DamagedParts, Invalid
+from beltstudy.service.errors import DamagedParts, Invalid, Unavailable
 from beltstudy.service.store import query
 from beltstudy.service.studies import StudyService
 
@@ -102,10 +104,38 @@ async def submit_study(
     data = await read_data(request, service.settings.max_body_bytes, "a study")
     expect_kind(data, "study", "body")
     # resolving runs in a worker thread: the event loop, and so /health, keeps answering
-    status, created = await run_in_threadpool(partial(service.submit, data, strict=True))
+    status, created = await _unless_stopping(run_in_threadpool(
+        partial(service.submit, data, strict=True)))
     response.status_code = 202 if created else 200
     response.headers["Location"] = f"/studies/{status['id']}"
     return _with_urls(status)
+
+
+#: How often a submission in expansion looks whether the service is being stopped [s].
+STOPPING_POLL_S = 0.2
+#: The Retry-After of a submission the service stopped for [s]: a restart's start-up.
+STOPPING_RETRY_S = 10
+
+
+async def _unless_stopping(work):
+    """``await work``, unless the service is being stopped first (``SHUTTING_DOWN``, set on
+    SIGTERM or SIGINT by ``beltstudy serve``): then a 503 with ``Retry-After``. A study in
+    expansion when the service was stopped outlived its grace period and was answered with
+    uvicorn's plain-text '500 Internal Server Error', which the CLI took for another server
+    ('check --url'). Its expansion goes on in its thread; sent again after the restart, the
+    same study is one study."""
+    task = asyncio.ensure_future(work)
+    while True:
+        done, _ = await asyncio.wait({task}, timeout=STOPPING_POLL_S)
+        if done:
+            return task.result()
+        if SHUTTING_DOWN.is_set():
+            task.add_done_callback(lambda t: t.cancelled() or t.exception())
+            raise Unavailable(
+                "the service is being stopped before the study's expansion finished: send it "
+                f"again once the service is back (in {STOPPING_RETRY_S} s or more; the same "
+                "study is one study, whether or not this one was stored)",
+                headers={"Retry-After": str(STOPPING_RETRY_S)})
 
 
 @router.get("", response_model=StudyList, summary="All studies, oldest first")

@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+import sys
+import time
 from typing import Any
 from urllib.parse import quote
 
@@ -25,6 +27,12 @@ def study_path(study_id: str, *rest: str) -> str:
     if seg in (".", ".."):  # a dot segment an HTTP client would resolve away
         seg = seg.replace(".", "%2E")
     return "/".join(["/studies", seg, *rest])
+
+
+#: Times ``submit`` sends a study again after a 503 with Retry-After.
+SUBMIT_RETRIES = 3
+#: Longest wait before sending again [s], whatever Retry-After asks.
+RETRY_WAIT_MAX_S = 30.0
 
 
 class ServiceClient:
@@ -87,7 +95,9 @@ class ServiceClient:
             message = " ".join(message.split())  # one line
             if response.status_code == 401:
                 message += "; give the service's token with --token or BELTSTUDY_TOKEN"
-            raise ServiceError(f"{message} (HTTP {response.status_code})", response.status_code)
+            retry = response.headers.get("retry-after", "")
+            raise ServiceError(f"{message} (HTTP {response.status_code})", response.status_code,
+                               {"Retry-After": retry} if retry.isdigit() else None)
         kind = response.headers.get("content-type", "").split(";")[0].strip().lower()
         if kind != expect:
             raise self._not_the_service(response)
@@ -101,10 +111,25 @@ class ServiceClient:
     def health(self) -> dict:
         return self._request("GET", "/health").json()
 
-    def submit(self, study: dict) -> tuple[dict, bool]:
-        """POST a study; returns (status, created)."""
-        response = self._request("POST", "/studies", json=study)
-        return response.json(), response.status_code == 202
+    def submit(self, study: dict, retries: int = SUBMIT_RETRIES) -> tuple[dict, bool]:
+        """POST a study; returns (status, created). A 503 with ``Retry-After`` (the service
+        busy expanding other studies, or being stopped) is sent again after the time it asks,
+        at most :data:`RETRY_WAIT_MAX_S` each, up to ``retries`` times, saying so on stderr:
+        the CLI stopped at the first with exit status 2, though the answer said when to send
+        it again (the same study is one study however often it is sent)."""
+        for attempt in range(retries + 1):
+            try:
+                response = self._request("POST", "/studies", json=study)
+                return response.json(), response.status_code == 202
+            except ServiceError as exc:
+                wait = (exc.headers or {}).get("Retry-After", "")
+                if exc.status_code != 503 or not wait or attempt == retries:
+                    raise
+                wait_s = min(float(wait), RETRY_WAIT_MAX_S)
+                print(f"{exc.message}: sending it again in {wait_s:g} s ({attempt + 1} of "
+                      f"{retries})", file=sys.stderr, flush=True)
+                time.sleep(wait_s)
+        raise AssertionError("unreachable")  # pragma: no cover
 
     def status(self, study_id: str) -> dict:
         return self._request("GET", study_path(study_id)).json()

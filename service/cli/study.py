@@ -229,14 +229,24 @@ def cmd_serve(args) -> int:
     probe.drop()
     _service_log()
     app = create_app(settings.model_copy(update={"host": host}))
-    uvicorn.run(
-        app,
-        host=host,
-        port=args.port,
-        log_level="info",
-        timeout_graceful_shutdown=GRACEFUL_SHUTDOWN_S,
-    )
+    config = uvicorn.Config(app, host=host, port=args.port, log_level="info",
+                            timeout_graceful_shutdown=GRACEFUL_SHUTDOWN_S)
+    _stopping_server(uvicorn, config).run()
     return 0
+
+
+def _stopping_server(uvicorn, config):
+    """uvicorn's server that says it is stopping (``SHUTTING_DOWN``) as the signal comes, so
+    a request still working (a study in expansion) answers 503 with Retry-After within the
+    grace period, not uvicorn's plain-text 500 after it."""
+    from beltstudy.service.api.deps import SHUTTING_DOWN
+
+    class StoppingServer(uvicorn.Server):
+        def handle_exit(self, sig, frame) -> None:
+            SHUTTING_DOWN.set()
+            super().handle_exit(sig, frame)
+
+    return StoppingServer(config)
 
 
 def check_port(host: str, port: int) -> None:

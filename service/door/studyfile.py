@@ -522,7 +522,11 @@ def _too_many_runs(axes: list[Axis], total: int, max_runs: int,
     points = max_runs // max(grid_alone, 1)  # sample points the grid leaves room for
     field, fix = (_smaller_sample(sample, sum(a.sample for a in axes), points, grid_alone)
                   if drawn else ("grid", ""))
-    return (f"{field}: the study has {total} runs; the limit is {max_runs} ({shown}): give "
+    # the limit is checked before the grid is expanded (expansion is the costly part), so it
+    # counts grid points: identical runs are merged only then (a stop time over coast stops),
+    # and a study of 90 points that are 3 runs was told it 'has 90 runs'
+    return (f"{field}: the study has {total} grid points (runs before identical ones are "
+            f"merged); the limit is {max_runs} ({shown}): give "
             f"{fix or 'fewer values on an axis'}, or split the study into several")
 
 

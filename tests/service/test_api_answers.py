@@ -62,6 +62,9 @@ def test_every_route_of_a_running_study_answers_with_its_state(client, running):
                                                         "candidate": "cema"}).json()
     assert cmp["state"] == "running" and cmp["pairs"] == []
     assert (cmp["done"], cmp["total"], cmp["same_in_all_pairs"]) == (0, 6, {})
+    # a steady-only study's default is power alone, before any run has finished too (it was
+    # the stop-phase figures as well, which such a study never writes)
+    assert cmp["metrics"] == ["power_kw"]
     # a run of the study not finished yet: 409 with the state, never 404
     # (the steady profile above is the run's steady solve, answered before the run ends; the
     # transient figure of this steady study says it has none)

@@ -69,7 +69,8 @@ CASES = [
             }
         },
         413,
-        r"grid: the study has 28000 runs; the limit is 20000",
+        r"grid: the study has 28000 grid points \(runs before identical ones are merged\); "
+        r"the limit is 20000",
     ),
     ("path traversal name", {"name": "../../etc"}, 422, r"name: must start with an ASCII letter"),
     (
@@ -208,7 +209,9 @@ def test_oversize_body_is_413(api, data_dir, make_study):
         "/studies", content=json.dumps(study).encode(), headers={"Content-Type": "application/json"}
     )
     assert response.status_code == 413
-    assert "the limit is 2048" in response.json()["message"]
+    assert "the limit is 2048 (BELTSTUDY_MAX_BODY_BYTES)" in response.json()["message"]
+    # the fix: the conveyor as a path, or the setting (the 413 named neither)
+    assert "give the conveyor as a path" in response.json()["message"]
     assert _written(data_dir) == []
 
 

@@ -206,6 +206,18 @@ def test_an_address_given_that_does_not_answer_is_an_error_not_the_local_store(
     ("BELTSTUDY_SCHEDULER", "tcp://:8786", ["status"],
      "error: BELTSTUDY_SCHEDULER: must be a Dask scheduler address such as "
      "tcp://127.0.0.1:8786: no host (got 'tcp://:8786')"),
+    # a host without a port: the service started and retried it every 5 s ('missing port
+    # number in address'), the studies failing 30 s later
+    ("BELTSTUDY_SCHEDULER", "notaurl", ["serve"],
+     "error: BELTSTUDY_SCHEDULER: must be a Dask scheduler address such as "
+     "tcp://127.0.0.1:8786: no port (host:port; a Dask scheduler listens on 8786 unless told "
+     "otherwise) (got 'notaurl')"),
+    # a token with a space: HTTP strips it from the header, so no client could ever send it
+    # (every route 401 for ever); its value stays out of the log
+    ("BELTSTUDY_TOKEN", "s3cret ", ["serve"],
+     "error: BELTSTUDY_TOKEN: a token is printable ASCII (letters, digits and punctuation), "
+     "without spaces, line breaks or other characters: no client could send it in an "
+     "Authorization header (check for a trailing space) (got 7 characters, not shown)"),
 ])
 def test_a_bad_setting_in_the_environment_is_one_line_and_exit_2(
         env, capsys, monkeypatch, variable, value, argv, message):

@@ -379,3 +379,57 @@ def test_a_finished_study_releases_its_job_memory(data_dir, make_settings, make_
         )
     finally:
         service.close()
+
+
+#: A study of seconds of expansion: 5 models x 5 temperatures x 40 lifts x 4 widths, 4 000
+#: steady runs of 160 conveyor designs (a fifth of it took a minute on a loaded machine).
+SLOW_EXPANSION = {
+    "name": "slow-expansion", "conveyor": "conveyors/slope-5pct.yaml", "dynamics": False,
+    "grid": {"friction_model": ["cema", "din", "nonlin", "cmod", "visco"],
+             "temperature_c": [-20, 0, 10, 20, 30],
+             "profile.0.lift_m": {"start": 1, "stop": 40, "step": 1},
+             "belt.width_m": [1.2, 1.4, 1.6, 1.8]}}
+
+
+def test_submit_sends_a_study_again_after_a_503_with_retry_after(live_service, make_study,
+                                                                 capsys):
+    """With one expansion at a time and a 1 s wait for it, a second study sent while the
+    first expands is a 503 with Retry-After: 1. ``beltstudy submit`` stopped there with exit
+    status 2, though the answer said when to send it again; it now sends it again after the
+    time asked, saying so, and the study is submitted."""
+    svc = live_service(BELTSTUDY_EXPANSION_WAIT_S="1")
+    first = threading.Thread(target=lambda: svc.client.submit(SLOW_EXPANSION, retries=0))
+    first.start()
+    time.sleep(1.0)
+    st, created = svc.client.submit(make_study(name="second-in-line"), retries=60)
+    first.join(120)
+    assert created and st["total"] == 6
+    err = capsys.readouterr().err
+    assert "(BELTSTUDY_MAX_EXPANSIONS)" in err and "sending it again in 1 s (1 of 60)" in err
+
+
+def test_sigterm_while_a_study_expands_answers_503_with_retry_after(live_service, tmp_path):
+    """A study still in expansion when the service is stopped (SIGTERM) outlived uvicorn's
+    grace period and was cut off with a plain-text '500 Internal Server Error', which the CLI
+    took for another server ('check --url'). It is a JSON 503 with Retry-After: the service is
+    being stopped, send it again once it is back."""
+    svc = live_service()
+    slow = SLOW_EXPANSION
+    answer: dict = {}
+
+    def post():
+        with httpx.Client(base_url=svc.url, timeout=120) as http:
+            answer["r"] = http.post("/studies", json=slow)
+
+    poster = threading.Thread(target=post)
+    poster.start()
+    time.sleep(1.5)  # the body is read and the expansion under way
+    svc.proc.send_signal(signal.SIGTERM)
+    poster.join(60)
+    r = answer["r"]
+    assert r.status_code == 503, (r.status_code, r.text[:300])
+    assert r.headers["content-type"].startswith("application/json")
+    assert r.json()["error"] == "unavailable"
+    assert "the service is being stopped" in r.json()["message"]
+    assert int(r.headers["Retry-After"]) >= 1
+    svc.kill()

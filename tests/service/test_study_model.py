@@ -428,19 +428,22 @@ def test_an_oversize_study_names_its_factors_and_the_fix(make_study):
         resolve_study(make_study(grid={"load": ["full", "empty"]}, sample=sample),
                       max_runs=150)
     assert str(exc.value) == (
-        "sample.n: the study has 800 runs; the limit is 150 (load 2 x sample.n 400): give a "
+        "sample.n: the study has 800 grid points (runs before identical ones are merged); "
+        "the limit is 150 (load 2 x sample.n 400): give a "
         "smaller sample.n (at most 75 points with this grid), or split the study into several")
     grid = {"scenario.run_s": [1, 2, 3], "load": {"start": 0, "stop": 1, "step": 0.01}}
     with pytest.raises(TooLarge) as exc:  # the grid alone leaves no room for two points
         resolve_study(make_study(grid=grid, sample={**sample, "n": 2}), max_runs=303)
     assert str(exc.value).startswith(
-        "grid: the study has 606 runs; the limit is 303 (scenario.run_s 3 x load 101 "
+        "grid: the study has 606 grid points (runs before identical ones are merged); the "
+        "limit is 303 (scenario.run_s 3 x load 101 "
         "x sample.n 2): give fewer values on an axis")
 
 
 def test_oversize_grids_are_refused_with_the_count(make_study):
     grid = {"temperature_c": {"start": -50, "stop": 50, "step": 1}, "scenario.run_s": [1, 2]}
-    with pytest.raises(TooLarge, match=r"the study has 202 runs; the limit is 150"):
+    with pytest.raises(TooLarge, match=r"the study has 202 grid points \(runs before identical "
+                       r"ones are merged\); the limit is 150"):
         resolve_study(make_study(grid=grid), max_runs=150)
     huge = {"temperature_c": {"start": 0, "stop": 1, "step": 1e-12}}
     with pytest.raises(TooLarge, match=r"the range has \d+ values"):

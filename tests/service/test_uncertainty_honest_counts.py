@@ -36,7 +36,8 @@ def test_a_too_large_sobol_sample_is_told_the_largest_n_whose_design_fits():
     with pytest.raises(TooLarge) as exc:
         resolve_study(tiny_study("huge", grid=grid, sample=_sobol(6000)))
     assert str(exc.value) == (
-        "sample.n: the study has 24576 runs; the limit is 20000 (temperature_c 4 x the sobol "
+        "sample.n: the study has 24576 grid points (runs before identical ones are merged); "
+        "the limit is 20000 (temperature_c 4 x the sobol "
         "design's 6144 points for sample.n 6000): give sample.n at most 4608 (method sobol "
         "draws N (D + 2) points, N a power of two, the nearest to n: 4608 draws 3072, 12288 "
         "runs with this grid), or method: lhs with sample.n at most 5000, or split the study "
@@ -80,7 +81,8 @@ def test_a_sobol_sample_that_fits_only_as_a_latin_hypercube_is_told_to_change_me
     with pytest.raises(TooLarge) as exc:
         resolve_study(tiny_study("tight", grid=grid, sample=_sobol(10, axes)), max_runs=2000)
     assert str(exc.value) == (
-        "sample.method: the study has 3000 runs; the limit is 2000 (friction_model 1 x "
+        "sample.method: the study has 3000 grid points (runs before identical ones are "
+        "merged); the limit is 2000 (friction_model 1 x "
         "temperature_c 30 x load 10 x sample.n 10): give method: lhs with sample.n at most 6 (method sobol's smallest design, N = 2, has "
         "2 (D + 2) = 10 points for D = 3 axes, 3000 runs with this grid), or split the study "
         "into several")
