@@ -2138,8 +2138,31 @@ def _given_brake_words(sys: System, need_s: float, t_stop: float, auto: bool = F
 COAST_MARGIN = 0.02
 
 
+def _brake_impulse_ns(sys: System, t_s: float) -> float:
+    """The momentum the run's brakes take out of the belt from the stop command to ``t_s``
+    [N s]: each brake's force over its delay and then its ramp or force curve (the fraction
+    of its force against the time since applied, as the kernel holds them), integrated."""
+    br = getattr(sys.model, "brakes", None)
+    if br is None or not len(br.force):
+        return 0.0
+    total = 0.0
+    for b in range(len(br.force)):
+        span = t_s - float(br.delay[b])
+        if span <= 0.0:
+            continue
+        tau = np.linspace(0.0, span, 2001)
+        n = int(br.curve_n[b]) if getattr(br, "curve_n", None) is not None else 0
+        if n:
+            frac = np.interp(tau, br.curve_t[b, :n], br.curve_f[b, :n])
+        else:
+            r = float(br.ramp[b])
+            frac = np.minimum(tau / r, 1.0) if r > 0.0 else np.ones_like(tau)
+        total += float(br.force[b]) * float(np.sum(0.5 * (frac[1:] + frac[:-1]) * np.diff(tau)))
+    return total
+
+
 def _coast_inertia_words(sys: System, need_s: float, conveyor=None, v_run: float | None = None,
-                         t_stop: float | None = None) -> str:
+                         t_stop: float | None = None, braked: bool = False) -> str:
     """How much inertia on the drive shafts makes a coast last ``need_s`` [s] (5 wave loop
     times), in words. The measured stop runs from the stop command, at the running speed
     ``v_run`` (the mean belt speed then: a dol drive's slip speed, a few per mille below design
@@ -2152,7 +2175,12 @@ def _coast_inertia_words(sys: System, need_s: float, conveyor=None, v_run: float
     2)^2`` [kg m2] gives it (its shaft carries the larger of the given inertia and the pulley's
     shell). The stop as it is (``t_stop``) is quoted against its own rigid-body time. A trip
     time only lengthens the coast. ``more inertia on the drive shafts`` alone where Te <= 0 (the
-    belt does not coast to rest) or no inertia is missing. ``v_run`` None: design speed."""
+    belt does not coast to rest) or no inertia is missing. ``v_run`` None: design speed.
+
+    ``braked``: a brake stop whose brakes stay on: the momentum to take out is then Te's and
+    the brakes' (:func:`_brake_impulse_ns`), ``M dv = Te t + I_b(t)``. A 2 km incline on a
+    given 50 kN brake was told the coast's 100 484 kg m2, and with it stopped in 12.2 s against
+    the 14.2 s asked (212 + 50 kN took the momentum out, not 212)."""
     te, v = float(sys.te_n), float(sys.v_design)
     m_now = float(sys.model.control.m_tot)
     v0 = v if v_run is None else float(v_run)
@@ -2160,21 +2188,34 @@ def _coast_inertia_words(sys: System, need_s: float, conveyor=None, v_run: float
     if te <= 0.0 or v <= 0.0 or dv <= 0.0:
         return "more inertia on the drive shafts"
     target = need_s * (1.0 + COAST_MARGIN)
-    m_need = target * te / dv
+    impulse = _brake_impulse_ns(sys, target) if braked else 0.0
+    m_need = (target * te + impulse) / dv
     dm = m_need - m_now
     if dm <= 0.0:
         return "more inertia on the drive shafts"
-    now = (f" (the stop as it is: {m_now / 1e3:.4g} t x {dv:.4g} m/s / {te / 1e3:.4g} kN = "
-           f"{m_now * dv / te:.4g} s rigid, {t_stop:.4g} s measured)" if t_stop is not None
-           else "")
-    head = (f"more inertia on the drive shafts: a rigid-body coast from the running speed "
-            f"{v0:.4g} m/s to rest ({100.0 * REST_FRACTION:g} % of design speed, "
-            f"{REST_FRACTION * v:.3g} m/s, "
-            f"where the stop time ends), M (v_run - v_rest) / Te, of {target:.4g} s (5 wave loop "
-            f"times and {100.0 * COAST_MARGIN:g} % for the elastic belt's swing about the rigid "
-            f"body) needs M = {target:.4g} s x {te / 1e3:.4g} kN / {dv:.4g} m/s = "
-            f"{m_need / 1e3:.4g} t moving, {dm / 1e3:.4g} t more than the {m_now / 1e3:.4g} t "
-            f"now at the belt line{now}")
+    if impulse > 0.0:
+        now = (f" (the stop as it is, {t_stop:.4g} s measured)" if t_stop is not None else "")
+        head = (f"more inertia on the drive shafts: a rigid-body brake stop from the running "
+                f"speed {v0:.4g} m/s to rest ({100.0 * REST_FRACTION:g} % of design speed, "
+                f"{REST_FRACTION * v:.3g} m/s, where the stop time ends) with the brakes as "
+                f"they are, M (v_run - v_rest) = Te t + the brakes' impulse I_b(t), of "
+                f"{target:.4g} s (5 wave loop times and {100.0 * COAST_MARGIN:g} % for the "
+                f"elastic belt's swing about the rigid body) needs M = ({target:.4g} s x "
+                f"{te / 1e3:.4g} kN + {impulse / 1e3:.4g} kN s) / {dv:.4g} m/s = "
+                f"{m_need / 1e3:.4g} t moving, {dm / 1e3:.4g} t more than the "
+                f"{m_now / 1e3:.4g} t now at the belt line{now}")
+    else:
+        now = (f" (the stop as it is: {m_now / 1e3:.4g} t x {dv:.4g} m/s / {te / 1e3:.4g} kN = "
+               f"{m_now * dv / te:.4g} s rigid, {t_stop:.4g} s measured)" if t_stop is not None
+               else "")
+        head = (f"more inertia on the drive shafts: a rigid-body coast from the running speed "
+                f"{v0:.4g} m/s to rest ({100.0 * REST_FRACTION:g} % of design speed, "
+                f"{REST_FRACTION * v:.3g} m/s, "
+                f"where the stop time ends), M (v_run - v_rest) / Te, of {target:.4g} s (5 wave "
+                f"loop times and {100.0 * COAST_MARGIN:g} % for the elastic belt's swing about "
+                f"the rigid body) needs M = {target:.4g} s x {te / 1e3:.4g} kN / {dv:.4g} m/s = "
+                f"{m_need / 1e3:.4g} t moving, {dm / 1e3:.4g} t more than the "
+                f"{m_now / 1e3:.4g} t now at the belt line{now}")
     if conveyor is None:
         return head
     dr = sys.model.drives
@@ -2314,7 +2355,8 @@ def _fast_stop_words(sys: System, t_stop: float, summary: dict, steady_tmax: flo
                f"least {_up_s(need / frac)} s (enough for a belt that follows its s-curve, at "
                f"rest from {frac:.3f} of it; a long or soft belt's mean speed comes to rest "
                "sooner and needs more: rerun the controlled stop, whose own warning names the "
-               f"time to ask), or {_coast_inertia_words(sys, need, conveyor, v_cmd, t_stop)}")
+               "time to ask), or " + _coast_inertia_words(
+                   sys, need, conveyor, v_cmd, t_stop, braked=cyc.stop_mode == C.BRAKE))
     # three figures: at 0.1 s a 1.519 s stop against 5 x 0.333 s read 'stop in 1.5 s is faster
     # than 5 wave loop times (5 x 0.3 s)'
     # a stop time asked below the criterion asks for the high-stress stop itself: said, as
