@@ -278,6 +278,12 @@ def _motor_cases(prep: _Prepared, scenario: Scenario, model: str, params
     return (*own, (float(full.te_n), float(np.sum(full.resistance_n))))
 
 
+def said_up(t: float | None) -> float | None:
+    """A remedy's time [s] as it is said: rounded up (to the second from 10 s, to a tenth
+    below), since the figure is the least found and rounded down it could slip."""
+    return None if t is None else (math.ceil(t) if t >= 10.0 else math.ceil(10.0 * t) / 10.0)
+
+
 def brakes_timed(governed_by: str | None) -> bool | None:
     """Whether a longer ``stop.time_s`` changes the run's auto brakes, from what set their
     size (``brake_governed_by``: ``stop_time``, ``grip``, ``holding`` or ``given`` per brake,
@@ -911,6 +917,9 @@ def _slip_remedy(conveyor, scenario, model, params, opts, summary, say=None,
                       say=say)
     if rem is None:
         return ""
+    # the start time as it is said, which the finer mesh tries: rounded up (26.4 s found was
+    # said '26 s', and a start of 26 s still slipped 1.7 s)
+    rem = replace(rem, start_time_s=said_up(rem.start_time_s))
     run_tu = rem.takeup_mass_kg if gravity else rem.takeup_tension_kn
     tu_fig, st_fig = run_tu, rem.start_time_s
     fine = None
@@ -923,6 +932,7 @@ def _slip_remedy(conveyor, scenario, model, params, opts, summary, say=None,
         tu_fig, st_fig = fine.takeup, fine.start_time_s
     summary["slip_free_takeup_mass_kg"] = tu_fig if gravity else None
     summary["slip_free_takeup_kn"] = None if gravity else tu_fig
+    st_fig = said_up(st_fig)
     summary["slip_free_start_time_s"] = st_fig
     unit, noun = ("kg", "take-up") if gravity else ("kN", "pretension")
     article = "a take-up of" if gravity else "a pretension of"
@@ -939,14 +949,14 @@ def _slip_remedy(conveyor, scenario, model, params, opts, summary, say=None,
     not_time = _time_top_words("start", rem.time_top_s, float(scenario.start.time_s))
     if tops is not None:
         tops["start"] = not_time
-    st = f"a start of {st_fig:.0f} s" if st_fig is not None else not_time
+    st = f"a start of {st_fig:g} s" if st_fig is not None else not_time
     how = (f"found by rerunning the start {rem.reruns} times on the same mesh, to 2 %; steps "
            f"of x {GROW:g}")
     if fine is not None:
         how += _finer_words(
             fine, int(summary["elements_used"]),
             f"{article} {amount(run_tu)}" if run_tu is not None else "",
-            f"a start of {rem.start_time_s:.0f} s" if rem.start_time_s is not None else "",
+            f"a start of {rem.start_time_s:g} s" if rem.start_time_s is not None else "",
             "reruns", "the figure grows as the mesh sharpens the start's front, so the finer "
             "mesh's is given (a margin above it is safer)")
     searched = [(tu_fig, tu)]
@@ -1007,9 +1017,7 @@ def _stop_slip_remedy(conveyor, scenario, model, params, opts, summary, say=None
         return None
     timed = reads_stop_time(scenario)
 
-    def up(t):  # rounded up: the figure is the least found; rounded down it could slip
-        return None if t is None else (math.ceil(t) if t >= 10.0 else math.ceil(10.0 * t) / 10.0)
-
+    up = said_up
     # the stop time as it is said, which the finer mesh tries
     rem = replace(rem, stop_time_s=up(rem.stop_time_s))
     run_tu = rem.takeup_mass_kg if gravity else rem.takeup_tension_kn
