@@ -297,9 +297,13 @@ def brakes_timed(governed_by: str | None) -> bool | None:
 
 def _brakes_gripped(prep: _Prepared) -> bool | None:
     """Whether an auto brake of the run is held to its pulley's grip below the stop time's
-    need (``brake_governed_by`` names ``grip``); None when the run says nothing of it."""
+    need at the run's own case (``brake_governed_by`` names ``grip`` without ``@`` another
+    design case: a run below full load carries the full load's brake, whose grip and stop
+    time are that case's, not this run's); None when the run says nothing of it."""
     governed = prep.summary.get("brake_governed_by")
-    return None if not governed else "grip" in str(governed)
+    if not governed:
+        return None
+    return any(part.strip() == "grip" for part in str(governed).split("+"))
 
 
 def _brakes_timed(prep: _Prepared, auto: bool) -> bool | None:

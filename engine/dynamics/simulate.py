@@ -599,8 +599,9 @@ def slip_levers(first: str, last: str, sys: System | None = None, unbroken: bool
     # start); the pulley's own grip and its share of the force are the levers
     steady = (first == "running") or (first == "start" and last == "stop" and unbroken)
     if steady:
-        fixes.append(GRIP_WORDS + (SHARE_WORDS if sys is not None
-                                   and len(sys.model.drives.share) > 1 else ""))
+        shares = getattr(getattr(getattr(sys, "model", None), "drives", None), "share", None)
+        fixes.append(GRIP_WORDS + (SHARE_WORDS if shares is not None and len(shares) > 1
+                                   else ""))
     elif first == "start":
         fixes += (start_levers(sys) if sys is not None else ["a longer start (start.time_s)"])
     if last == "stop" and not (unbroken and first != "stop"):

@@ -45,33 +45,40 @@ def test_overland_60s_start_names_the_slipping_drive():
     assert "a longer start (start.time_s)" in s["message"]  # the slips began in the start
 
 
+#: The levers of a pulley that slips in steady running (no start changes that slip).
+GRIP = ("more grip on that pulley (a lagged pulley, drives[].friction, or a snub pulley, "
+        "drives[].wrap_deg)")
+
+
 def test_a_slip_message_names_its_phases_and_the_fixes_that_apply():
-    """Every pair of first and last phase: the words, and the fixes that apply to it."""
+    """Every pair of first and last phase: the words, and the fixes that apply to it. A slip
+    that begins in steady running is offered the pulley's grip beside the take-up."""
     take_up = "a heavier take-up (more slack-side tension)"
     start = "a longer start (start.time_s)"
     stop = "a softer stop (stop time, brake force)"
     assert slip_words("start", "start") == ("during the start", f"{take_up} or {start}")
-    assert slip_words("running", "running") == ("while running", take_up)
+    assert slip_words("running", "running") == ("while running", f"{take_up} or {GRIP}")
     assert slip_words("stop", "stop") == ("during the stop", f"{take_up} or {stop}")
     assert slip_words("start", "running") == ("from the start into steady running",
                                               f"{take_up} or {start}")
     assert slip_words("start", "stop") == ("from the start into the stop",
                                            f"{take_up}, {start} or {stop}")
     assert slip_words("running", "stop") == ("from steady running into the stop",
-                                             f"{take_up} or {stop}")
+                                             f"{take_up}, {GRIP} or {stop}")
 
 
 def test_a_slip_that_ran_on_into_the_stop_without_a_break_is_not_offered_a_softer_stop():
     """A slip that began before the stop command and never stopped is the stop's only by
     inheritance: a softer stop does not avoid it. With a break (it stuck again and slipped anew
-    in the stop) the stop's own slip keeps the stop lever."""
+    in the stop) the stop's own slip keeps the stop lever. Slipping without a break from the
+    start through steady running, the running tensions slip it, which no start changes: it
+    is offered the pulley's grip, not a longer start."""
     take_up = "a heavier take-up (more slack-side tension)"
-    start = "a longer start (start.time_s)"
     stop = "a softer stop (stop time, brake force)"
     assert slip_words("start", "stop", unbroken=True) == ("from the start into the stop",
-                                                          f"{take_up} or {start}")
+                                                          f"{take_up} or {GRIP}")
     assert slip_words("running", "stop", unbroken=True) == ("from steady running into the stop",
-                                                            take_up)
+                                                            f"{take_up} or {GRIP}")
     assert slip_words("stop", "stop", unbroken=True) == ("during the stop",
                                                          f"{take_up} or {stop}")
 
