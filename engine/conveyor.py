@@ -1612,23 +1612,16 @@ def _bracket_twin(key: str, keys: Sequence[str]) -> str:
     name = m.group(1).strip().lower().replace(" ", "_")
     unit = (m.group(2).lower().replace("°", "").replace("deg", "").replace("/", "_")
             .replace(" ", "").strip("_"))
-    stem = name
-    for _suffix, repl, _conv in UNIT_SUFFIXES:
-        if name in keys and name.endswith(repl):
-            stem = name[: -len(repl)]
-            break
     if not unit:
         return ""
+    # the name's own unit suffix off (temperature_c -> temperature), where it is a key
+    own = next((repl for _, repl, _ in UNIT_SUFFIXES if name.endswith(repl)), "")
+    stem = name[: -len(own)] if own and name in keys else name
     candidate = f"{stem}_{unit}"
     if candidate in keys:
         return (f"did you mean '{candidate}'? (its unit, {m.group(2).strip()}, is in the "
                 "name)")
-    low = candidate
-    for suffix, repl, conv in UNIT_SUFFIXES:
-        twin = low[: -len(suffix)] + repl
-        if low.endswith(suffix) and twin in keys:
-            return f"did you mean '{twin}'? (in {conv})"
-    return ""
+    return unit_twin(candidate, keys)
 
 
 def _unknown_key_hint(key: str, keys: list[str], missing: list[str] = ()) -> str:

@@ -121,15 +121,24 @@ def brake_force_auto(total_mass_kg: float, v_d: float, te_n: float, stop_s: floa
     if t_b <= 0.0:
         return math.inf
     need = total_mass_kg * v1 - te_n * t_b  # the impulse the brake must give [N s]
-    if curve is not None:
-        impulse_per_n = _profile_integral(curve, t_b)
-        if impulse_per_n <= 0.0:
-            return math.inf if need > 0.0 else 0.0
-    elif t_b >= ramp_s:
-        impulse_per_n = t_b - 0.5 * ramp_s
-    else:
-        impulse_per_n = t_b * t_b / (2.0 * ramp_s)
+    impulse_per_n = brake_impulse_per_n(t_b, ramp_s, curve)
+    if impulse_per_n <= 0.0:
+        return math.inf if need > 0.0 else 0.0
     return max(need / impulse_per_n, 0.0)
+
+
+def brake_impulse_per_n(t_b: float, ramp_s: float = 0.0,
+                        curve: tuple[tuple[float, float], ...] | None = None) -> float:
+    """The impulse of a brake of 1 N over ``t_b`` [s] from its application [N s / N]: the
+    integral of its force history, ``t_b - r / 2`` past a ramp of ``ramp_s`` = r,
+    ``t_b^2 / (2 r)`` on it, or the integral of ``curve`` (:func:`brake_profile`)."""
+    if t_b <= 0.0:
+        return 0.0
+    if curve is not None:
+        return _profile_integral(curve, t_b)
+    if t_b >= ramp_s:
+        return t_b - 0.5 * ramp_s
+    return t_b * t_b / (2.0 * ramp_s)
 
 
 def brake_stop_time(total_mass_kg: float, v_d: float, te_n: float, force_n: float,

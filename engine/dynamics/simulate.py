@@ -2141,25 +2141,16 @@ COAST_MARGIN = 0.02
 
 def _brake_impulse_ns(sys: System, t_s: float) -> float:
     """The momentum the run's brakes take out of the belt from the stop command to ``t_s``
-    [N s]: each brake's force over its delay and then its ramp or force curve (the fraction
-    of its force against the time since applied, as the kernel holds them), integrated."""
+    [N s]: their force in all over the longest delay, then their ramp or shared force curve
+    (:func:`beltstudy.engine.design.brake_impulse_per_n`), as the stop's other rigid-body
+    words take them (:func:`_given_brake_words`)."""
     br = getattr(sys.model, "brakes", None)
     if br is None or not len(br.force):
         return 0.0
-    total = 0.0
-    for b in range(len(br.force)):
-        span = t_s - float(br.delay[b])
-        if span <= 0.0:
-            continue
-        tau = np.linspace(0.0, span, 2001)
-        n = int(br.curve_n[b]) if getattr(br, "curve_n", None) is not None else 0
-        if n:
-            frac = np.interp(tau, br.curve_t[b, :n], br.curve_f[b, :n])
-        else:
-            r = float(br.ramp[b])
-            frac = np.minimum(tau / r, 1.0) if r > 0.0 else np.ones_like(tau)
-        total += float(br.force[b]) * float(np.sum(0.5 * (frac[1:] + frac[:-1]) * np.diff(tau)))
-    return total
+    curve = _brake_history(sys)
+    ramp = float(np.max(br.ramp)) if len(br.ramp) else 0.0
+    return float(np.sum(br.force)) * design.brake_impulse_per_n(
+        t_s - float(np.max(br.delay)), ramp, curve)
 
 
 def _coast_inertia_words(sys: System, need_s: float, conveyor=None, v_run: float | None = None,
