@@ -95,6 +95,7 @@ table.verdicts, table.causes, table.runs { width: 100%; }
 .run { font-size: 7.5pt; color: #444; }
 details summary { cursor: pointer; }
 .print-full { display: none; }
+tr.print-row { display: none; }
 ul.causes-list { margin: 0.3em 0 0.8em; }
 @page { size: A4; margin: 14mm 12mm; }
 @media print {
@@ -110,11 +111,19 @@ ul.causes-list { margin: 0.3em 0 0.8em; }
   details summary::-webkit-details-marker { display: none; }
   details.fold-print { display: none; }
   .print-full { display: inline; }
+  tr.print-row { display: table-row; }
+  tr.print-row td { padding-left: 1.5em; }
+  tr.has-print-rows { break-after: avoid; page-break-after: avoid; }
+  table.split th:last-child, table.split tr:not(.print-row) > td:last-child { display: none; }
 }
 """
 
 #: Marks a number cell of :func:`_table` (right-aligned).
 NUM = "\x00"
+#: Marks a row of :func:`_table` that only print shows: one clause of the row above it,
+#: across the table (a failure group's row with three drives' overload clauses, 2 386
+#: characters, printed in its last column 1 775 px tall, more than an A4 page).
+PRINT_ROW = "print-row"
 #: Runs listed in the report's runs table (the Parquet has them all).
 MAX_RUN_ROWS = 400
 #: Runs listed per failure group (the runs table and the Parquet have them all).
@@ -163,13 +172,18 @@ def _num(value: Any, digits: int = 4, unit: str = "") -> str:
 def _table(head: list[str], rows: list[list[str]], cls: str = "", row_cls=None) -> str:
     """An HTML table: ``head`` is text (escaped), ``rows`` are cells of markup (a cell
     starting with :data:`NUM` is a right-aligned number, one holding ``\x01CLASS\x01`` at
-    its start gets that class)."""
+    its start gets that class), a heading spanning the table (a str) or a clause that only
+    print shows (a ``(PRINT_ROW, markup)`` tuple, spanning every column but the last, which
+    a ``split`` table hides in print)."""
     out = [f'<table class="{cls}">' if cls else "<table>", "<thead><tr>"]
     out += [f"<th>{_e(h)}</th>" for h in head]
     out.append("</tr></thead><tbody>")
     for i, row in enumerate(rows):
         if isinstance(row, str):  # a group heading spanning the table
             out.append(f'<tr class="group"><th colspan="{len(head)}">{row}</th></tr>')
+            continue
+        if isinstance(row, tuple):  # PRINT_ROW: a clause that only print shows, spanning
+            out.append(f'<tr class="print-row"><td colspan="{len(head) - 1}">{row[1]}</td></tr>')
             continue
         rc = row_cls(i) if row_cls else ""
         out.append(f'<tr class="{rc}">' if rc else "<tr>")
@@ -604,10 +618,15 @@ def _cause_table(cause, part: pd.DataFrame, cols: list[str], axes: list[str]) ->
         rows.append([f"<code class=id>{_e(r.get('run_id'))}</code>"]
                     + ["\x01ax\x01" + _e(_text(r.get(a))) for a in axes]
                     + [_n(r.get(c), 4) for c in cols]
-                    + [_message_cell("; ".join(said), 2 * MESSAGE_CHARS, print_full=True)])
+                    + [_message_cell("; ".join(said), 2 * MESSAGE_CHARS)])
+        # in print the last column is hidden and each clause is a row across the table
+        # under the run's figures: a row then never outgrows a page
+        rows += [(PRINT_ROW, _e(c)) for c in said if c]
     head = ["run", *axes, *[f"{c} [{_unit(c)}]" if _unit(c) else c for c in cols],
             "what the run says"]
-    out = _table(head, rows, "causes")
+    out = _table(head, rows, "causes split",
+                 row_cls=lambda i: ("has-print-rows" if i + 1 < len(rows)
+                                    and isinstance(rows[i + 1], tuple) else ""))
     if len(part) > MAX_CAUSE_ROWS:
         out += (f"<p class=muted>The first {MAX_CAUSE_ROWS} of {len(part)}; section 8 and "
                 "the study's Parquet have them all.</p>")
