@@ -246,14 +246,15 @@ def start_words(conv, scn) -> str:
 
 
 def _fmt(val) -> str:
-    """A table value in 12 characters: three decimals, or three significant figures where
-    three decimals would round a figure that is not zero to 0.000 (a short belt's time step,
-    2.3e-4 s, read "0.000 s"). A count (an integer: the elements used) prints as one."""
+    """A table value in 12 characters: three decimals, or three significant figures below
+    0.01, where three decimals keep one figure or none (a short belt's time step, 2.3e-4 s,
+    read "0.000 s"; a halved step of 0.0005 s read "0.001 s", as the automatic 0.000809 s
+    did). A count (an integer: the elements used) prints as one."""
     if isinstance(val, int | np.integer) and not isinstance(val, bool):
         return f"{int(val):>12d}"
     if isinstance(val, float | np.floating):
         x = float(val)
-        if x != 0.0 and abs(x) < 0.0005:
+        if x != 0.0 and abs(x) < 0.01:
             return f"{x:>12.3g}"
         return f"{x:>12.3f}"
     return f"{val!s:>12}"

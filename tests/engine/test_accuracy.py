@@ -152,6 +152,22 @@ def test_a_verdict_within_its_error_of_the_limit_is_marginal():
 
 
 
+def test_a_slip_that_a_mesh_of_the_check_holds_is_marginal():
+    """A 350 m 16 deg incline's controlled stop slipped 5.7e-5 m on 203 elements at a margin
+    of 0.9953 +- 0.0717 and held on 103 (1.003, status ok): the slip verdict flips with the
+    mesh, so it is marginal (PHYSICS 5.2). A slip on every mesh of the check is not: the
+    margin of a slipping pulley sits at its floor, 1, whatever the mesh."""
+    slipped = {"drive1_slip_s": 0.004}
+    flips = A.FigureError("slip_margin_min_dyn", 0.9953, 0.0717, None, "spread", None,
+                          (1.003, 0.9953, 0.981))
+    words = A.marginal_verdicts(slipped, {"slip_margin_min_dyn": flips}, finest=409)
+    assert len(words) == 1 and words[0].startswith(
+        "marginal: slip_margin_min_dyn 0.9953 against limit 1 +- 0.0717 (the verdict may flip")
+    every = A.FigureError("slip_margin_min_dyn", 0.9953, 0.0717, None, "spread", None,
+                          (0.999, 0.9953, 0.991))
+    assert A.marginal_verdicts(slipped, {"slip_margin_min_dyn": every}, finest=409) == []
+
+
 def test_a_figure_the_same_on_every_mesh_is_not_marginal():
     """A decline's auto take-up is sized to hold the belt at rest at a slip margin of exactly 1
     (DIN 22101's grip with its design friction); the run's lowest margin is that held state,

@@ -21,7 +21,10 @@ def test_fmt_small_figures_keep_three_significant_figures():
     # a figure that three decimals show stays as it was, and zero stays 0.000
     assert _fmt(4.912) == "       4.912"
     assert _fmt(0.0) == "       0.000"
-    assert _fmt(0.006259) == "       0.006"
+    assert _fmt(0.006259) == "     0.00626"
+    # a halved step reads apart from the automatic one (both read "0.001" before)
+    assert _fmt(0.0005) == "      0.0005" and _fmt(0.000809) == "    0.000809"
+    assert _fmt(0.0123) == "       0.012"
     assert len(_fmt(1e-9)) == 12
 
 
