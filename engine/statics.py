@@ -378,15 +378,36 @@ def start_level(loop: Loop, W: np.ndarray, fixed: bool) -> float:
     return float(np.sum(dx * 0.5 * (np.roll(W, 1) + W)) / np.sum(dx))
 
 
+def _rest_grip_bound(conv: Conveyor | None, loop: Loop, W: np.ndarray, fixed: bool) -> float:
+    """The least constant c [N] of the running tensions ``c + W`` whose take-up lets the
+    pulley holding the stopped belt (:func:`rest_hold_element`: the first brake's, else the
+    master drive's) hold its whole net gravity pull at rest, ``T_tight <= e^(mu theta)
+    T_slack`` on the at-rest walk (:func:`rest_walk`, levelled as :func:`_rest_bound`
+    levels it); -inf without a conveyor or a pulley there. The breakaway walk shares the
+    pull among the drives; at rest one pulley holds it all: a 350 m 16 deg incline on two
+    head drives was sized 3 615 kg for start-up slip, where its braked head pulley holding
+    112.7 kN at rest needed 4.31 t (the run said the belt would creep over it)."""
+    if conv is None:
+        return -np.inf
+    hold = rest_hold_element(conv, loop)
+    pulley = next((p for p in loop.pulleys if p.element == hold), None)
+    if pulley is None:
+        return -np.inf
+    Wr = rest_walk(loop, hold, loop.gravity_n)
+    level = _slip_need(float(Wr[hold - 1]), float(Wr[hold]), pulley.euler)
+    return _rest_bound(loop, W, Wr + level, fixed)
+
+
 def _required_offset(loop: Loop, W: np.ndarray, W_start: np.ndarray, drives,
                      hs_adm: np.ndarray, rest_need: np.ndarray | None,
-                     W_hold: np.ndarray | None = None, fixed: bool = False
-                     ) -> tuple[float, dict]:
+                     W_hold: np.ndarray | None = None, fixed: bool = False,
+                     conv: Conveyor | None = None) -> tuple[float, dict]:
     """Smallest constant c (T = c + W) meeting slip at every drive pulley running, at
     start-up (``W_start`` from :func:`_startup_walk`, levelled by :func:`start_level`: a
     ``fixed`` take-up holds the loop length) and at breakaway (``W_hold`` from
-    :func:`_breakaway_walk`), and sag (running and, with ``rest_need``
-    from :func:`_rest_need`, held at rest)."""
+    :func:`_breakaway_walk`, and with ``conv`` the pulley holding the belt at rest,
+    :func:`_rest_grip_bound`), and sag (running and, with ``rest_need`` from
+    :func:`_rest_need`, held at rest)."""
     bounds = {}
     Wprev = np.roll(W, 1)
     Sprev = np.roll(W_start, 1)
@@ -400,8 +421,9 @@ def _required_offset(loop: Loop, W: np.ndarray, W_start: np.ndarray, drives,
     if W_hold is not None:  # levelled as the start-up walk
         hprev = np.roll(W_hold, 1)
         shift_h = start_level(loop, W, fixed) - start_level(loop, W_hold, fixed)
-        bounds["slip_breakaway"] = float(max(_slip_need(hprev[idx], W_hold[idx], e)
-                                             for idx, _s, e in drives) - shift_h)
+        bounds["slip_breakaway"] = float(max(max(_slip_need(hprev[idx], W_hold[idx], e)
+                                                 for idx, _s, e in drives) - shift_h,
+                                             _rest_grip_bound(conv, loop, W, fixed)))
     bounds["sag_running"] = _sag_need(loop, W, hs_adm)
     if rest_need is not None:
         bounds["sag_at_rest"] = _rest_bound(loop, W, rest_need, fixed)
@@ -500,7 +522,7 @@ def solve_steady(
             c = float(tu.pretension_kn) * 1e3 - w_tu
         else:
             c, _ = _required_offset(loop, W, W_start, drives, hs_adm, rest_need, W_hold,
-                            fixed)
+                                    fixed, conv)
             c = max(c, tu_floor_n - w_tu)
         T_new = c + W
         if not law.tension_dependent:
@@ -528,7 +550,7 @@ def solve_steady(
 
     assert T is not None and R is not None
     c_need, bounds = _required_offset(loop, W, W_start, drives, hs_adm, rest_need, W_hold,
-                            fixed)
+                                      fixed, conv)
     takeup_tension = 0.5 * (T[k - 1] + T[k])
     takeup_mass = float(2.0 * takeup_tension / G) if tu.type == "gravity" else None
     if not auto:  # a given take-up is reported as given (not as its round trip through T)

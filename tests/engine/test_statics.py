@@ -737,3 +737,32 @@ def test_the_safety_factor_warning_names_the_belt_kind_its_auto_belt_needs(hand_
     assert choice is not None and picked.belt.type != "auto"
     followed = solve_steady(picked, model="din")
     assert not [w for w in followed.warnings if w.startswith("belt safety factor")]
+
+
+def test_an_incline_s_take_up_lets_the_pulley_holding_it_at_rest_hold_the_whole_pull():
+    """Two head drives sharing a steep loaded incline (350 m, 96.47 m, 2 000 t/h at 2 m/s)
+    with a head brake: at start-up and breakaway each drive passes its share, but held at rest
+    the braked head pulley holds the whole net pull ``m'_L g H`` (the transient run's rest
+    state). A 350 m 16 deg incline sized for start-up slip alone (3 615 kg) passed 112.7 kN at
+    rest against a grip of 104.5 kN: the belt would creep over its pulley.
+
+    Hand calculation (Euler-Eytelwein, no running resistance at rest): the take-up at the
+    tail holds both strands at ``m g / 2``; the slack side at the head is the return leaving
+    it, ``m g / 2 + m'_G g H``, and it passes ``(e^(mu theta) - 1)`` times that, which must
+    reach ``m'_L g H``: ``m = 2 [m'_L H / (e^(mu theta) - 1) - m'_G H]`` with m'_G = 20,
+    m'_L = 2000 / (3.6 x 2) kg/m, mu 0.35, theta 200 deg."""
+    drive = {"position": "head", "wrap_deg": 200, "friction": 0.35, "share": 0.5,
+             "pulley_diameter_m": 1.0}
+    H = 96.47
+    conv = parse_conveyor(hand_conveyor_dict(
+        speed_m_s=2.0, material={"capacity_t_h": 2000, "density_t_m3": 1.0},
+        profile=[{"length_m": 350, "lift_m": H}], drives=[dict(drive), dict(drive)],
+        brakes=[{"position": "head", "force_kn": "auto"}], holdback=True))
+    res = solve_steady(conv, model="din")
+    e = math.exp(0.35 * math.radians(200.0))
+    m_l = 2000.0 / (3.6 * 2.0)
+    hand = 2.0 * (m_l * H / (e - 1.0) - 20.0 * H)
+    assert res.takeup_mass_kg == pytest.approx(hand, rel=1e-9)
+    assert res.takeup_governed_by == "slip_breakaway"
+    # the drives' own start-up and breakaway checks ask less: each passes its share only
+    assert res.summary["slip_margin_start"] > 1.0
