@@ -576,8 +576,8 @@ def _cut_segment(seg, t, tt, out, wk):
 def _switches(model, st, out, wk, rs):
     """After the step: the stop achieved, the belt stopped (holding brakes set, the rest
     begins: at 1 % of design speed, and on a controlled stop once its reference has run out;
-    a belt running back as a whole when the rest would end is not at rest, and the run goes
-    on), slack (the belt length gathered by the slack spans, the time with a slack span), and the
+    a belt running back or on as a whole when the rest would end is not at rest, and the run
+    goes on), slack (the belt length gathered by the slack spans, the time with a slack span), and the
     envelope cut at the start command (the rest before it a segment of its own: SPEC 6.4's
     start phase begins there), when the belt first goes slack and at the stop command."""
     cyc = model.cycle
@@ -593,9 +593,11 @@ def _switches(model, st, out, wk, rs):
         rs.t_end_limit = t + cyc.post_rest  # came to rest within the stop window
         if cyc.t_end > 0.0:
             rs.t_end_limit = min(rs.t_end_limit, cyc.t_end)
-    if rs.stopped and t >= rs.t_end_limit and rs.v_mean < -C.REST_FRACTION * cyc.v_d:
-        # running back as a whole is not rest: the rest goes on, up to the stop window's end
-        # (a belt speeding up backwards then ends as a runaway, not 4.2 m/s backwards)
+    if rs.stopped and t >= rs.t_end_limit and abs(rs.v_mean) > C.REST_FRACTION * cyc.v_d:
+        # running back (or on, forwards) as a whole is not rest: the rest goes on, up to the
+        # stop window's end (a belt speeding up backwards then ends as a runaway, not 4.2 m/s
+        # backwards; a loaded decline whose brake without hold let go at rest, 0.77 m/s
+        # forwards and speeding up, ended 'ok')
         lim = min(t + cyc.dt, rs.t_stopcmd + cyc.stop_max)
         rs.t_end_limit = min(lim, cyc.t_end) if cyc.t_end > 0.0 else lim
     nseg = out.seg_time.shape[0]

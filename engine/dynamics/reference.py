@@ -1096,8 +1096,9 @@ def _switches(model: Model, st, rs):
             cyc.stop_mode != C.CONTROLLED or t >= rs.t_stopcmd + cyc.t_stop):
         rs.stopped, rs.t_stopped = True, t
         rs.t_limit = min(t + cyc.post_rest, rs.t_end)  # at rest within the stop window
-    if rs.stopped and t >= rs.t_limit and rs.v_mean < -C.REST_FRACTION * cyc.v_d:
-        # running back as a whole is not rest: the rest goes on, up to the stop window's end
+    if rs.stopped and t >= rs.t_limit and abs(rs.v_mean) > C.REST_FRACTION * cyc.v_d:
+        # running back (or on) as a whole is not rest: the rest goes on, up to the stop
+        # window's end
         rs.t_limit = min(t + cyc.dt, rs.t_stopcmd + cyc.stop_max, rs.t_end)
     if rs.started and st.tt.min() <= 0.0:
         rs.slack_s += cyc.dt

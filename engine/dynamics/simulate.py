@@ -414,9 +414,12 @@ def diverged_words(sys: System, where_code: int, t_s: float, conveyor=None) -> s
             "avoid it")
 
 
-def runaway_words(sys: System, t_s: float, v_mean: float, t_stop_cmd: float) -> str:
+def runaway_words(sys: System, t_s: float, v_mean: float, t_stop_cmd: float,
+                  rested_s: float | None = None) -> str:
     """The warning of a run that ended because the belt ran away (mean speed past
-    :data:`~beltstudy.engine.dynamics.codes.RUNAWAY_FACTOR` x design either way at ``t_s``)."""
+    :data:`~beltstudy.engine.dynamics.codes.RUNAWAY_FACTOR` x design either way at ``t_s``).
+    ``rested_s``: when the belt came to rest in its stop, for one that set off again from
+    rest (a decline whose brakes without ``hold`` let go once it rested)."""
     phase = _PHASE_WORDS[_run_phase(sys, t_s, t_stop_cmd)]
     more = heavier_takeup(sys)
     if v_mean > 0.0:
@@ -430,6 +433,20 @@ def runaway_words(sys: System, t_s: float, v_mean: float, t_stop_cmd: float) -> 
         what = ("the belt ran away forwards", "the drives and brakes could not hold it back"
                 f"{pull}: more brake force, brakes that act in this stop (stop.mode: brake, "
                 f"hold), or, where a drive pulley slipped, {more}")
+        hold = getattr(getattr(sys.model, "brakes", None), "hold", None)
+        loose = ([f"brakes.{int(b)}" for b in np.flatnonzero(np.asarray(hold) == 0)]
+                 if hold is not None else [])
+        if rested_s is not None and rested_s >= 0.0:
+            # at rest, then off again: the brakes that let go at rest (hold: false), or too
+            # little holding force for the net gravity pull
+            why = (f"{', '.join(loose)} without hold let go once it rested" if loose else
+                   "its brakes could not hold it at rest")
+            need = HOLD_MARGIN * max(-sys.hold_force_n, 0.0)
+            what = (f"the belt came to rest at t = {rested_s:.4g} s and then ran away "
+                    "forwards", f"{why}{pull}: brakes that hold once the belt rests "
+                    "(brakes[].hold: true)"
+                    + (f" of at least {need / 1e3:.4g} kN in all ({HOLD_MARGIN:g} x the net "
+                       "gravity pull; force_kn: auto sizes them so)" if need > 0.0 else ""))
     else:
         pull = ""
         if sys.hold_force_n > 0.0:
@@ -1211,7 +1228,8 @@ def _slip_warnings(sys: System, r: dict, out, conveyor=None) -> list[str]:
     brakes = sys.model.brakes
     names = _drive_names(sys, conveyor)
     if int(r["status"]) == C.RUNAWAY:
-        w.append(runaway_words(sys, float(r["t"]), float(r["v_mean"]), t_stop_cmd))
+        w.append(runaway_words(sys, float(r["t"]), float(r["v_mean"]), t_stop_cmd,
+                               rested_s=float(r["t_stopped"]) if r["stopped"] else None))
     for i in range(nd):
         slip_s = float(drv[i]["slip_s"])
         if slip_s > 0.0:
@@ -1457,7 +1475,47 @@ def _cycle_end_words(sys: System, r: dict, out, t_start_ach: float | None, v_cmd
                                    late=_window_tail(sys, out, r)))
     elif not ran_away:  # a belt that never stopped is told so above, a holdback with it
         w += runback_words(sys, out, r, steady_summary, conveyor)
+        w += runon_words(sys, out, r, conveyor)
     return w
+
+
+def runon_words(sys: System, out, r: dict, conveyor=None) -> list[str]:
+    """The warning of a belt that came to rest and then runs on forwards ([] otherwise): its
+    mass-weighted mean speed is above ``REST_FRACTION`` x design speed at the run's end,
+    after the rest began (``r["t_stopped"]``): a loaded decline's net gravity pull outpulls
+    what holds it at rest. A 600 m decline whose 150 kN head brake had ``hold: false`` let
+    go once the belt rested, and the belt set off downhill again (0.77 m/s and speeding up
+    when the run ended, 'ok'). Says since when, how fast, how far (the trapezoidal integral
+    of the mean speed over the records after the rest began) and what holds it: holding
+    brakes of at least the pull (a holdback holds a belt running back only)."""
+    rec = out.rec[:int(r["nrec"])]
+    t_rest = float(r["t_stopped"])
+    limit = REST_FRACTION * sys.v_design
+    after = rec["t"] > t_rest + 1e-9
+    if not r["stopped"] or t_rest < 0.0 or not after.any():
+        return []
+    t, v = np.asarray(rec["t"][after], float), np.asarray(rec["v_mean"][after], float)
+    if v[-1] <= limit:
+        return []
+    slow = np.flatnonzero(v <= limit)
+    k0 = int(slow[-1]) + 1 if slow.size else 0  # the last stretch above the criterion
+    pos = np.maximum(v, 0.0)
+    dist = float(np.sum(0.5 * (pos[1:] + pos[:-1]) * np.diff(t))) if t.size > 1 else 0.0
+    pull = max(-float(sys.hold_force_n), 0.0)
+    brakes = list(getattr(conveyor, "brakes", None) or [])
+    loose = [f"brakes.{i}" for i, b in enumerate(brakes) if not b.hold]
+    held = [b for b in brakes if b.hold and b.force_kn != "auto"]
+    why = (f"{', '.join(loose)} without hold let go once it rested" if loose else
+           "its holding brakes give less than that" if held else "nothing holds it")
+    need = (f" of at least {HOLD_MARGIN * pull / 1e3:.4g} kN in all ({HOLD_MARGIN:g} x the "
+            "pull; force_kn: auto sizes them so)" if pull > 0.0 else "")
+    return [f"the belt runs on after its stop: it came to rest at t = {t_rest:.4g} s, its "
+            f"mean speed has been above {limit:.3g} m/s ({100.0 * REST_FRACTION:g} % of "
+            f"design speed) since t = {t[k0]:.4g} s and was {v[-1]:.3g} m/s forwards at the "
+            f"run's end (t = {t[-1]:.4g} s), about {dist:.3g} m of belt run on by then (its "
+            f"net gravity pull at rest, {pull / 1e3:.4g} kN at the belt line, outpulls the "
+            f"resistances and {why}); brakes that hold once the belt rests (brakes[].hold: "
+            f"true){need} would avoid it"]
 
 
 def runback_words(sys: System, out, r: dict, steady_summary: dict | None = None,

@@ -8,6 +8,7 @@ stop window's end), so it ends as a runaway, with the lift's pull and a holdback
 from __future__ import annotations
 
 import math
+import re
 
 import numpy as np
 import pytest
@@ -133,3 +134,64 @@ def test_a_holdback_holding_the_pull_at_rest_alone_is_not_noted():
     pull_kn = res.transient.system.hold_force_n / 1e3
     assert res.summary["f_holdback_kn"] == pytest.approx(pull_kn, rel=1e-9)
     assert "the holdback took up to" not in res.summary["message"]
+
+
+def _decline(hold: bool) -> dict:
+    d = _steep(False)
+    d["profile"] = [{"length_m": LENGTH_M, "lift_m": -LIFT_M}]
+    d["brakes"] = [{"position": "head", "force_kn": 40, "delay_s": 0.5, "hold": hold}]
+    return d
+
+
+def test_a_decline_whose_brake_lets_go_at_rest_runs_away_and_says_so():
+    """A brake without ``hold`` is released once the belt rests (SPEC 6.1); on a loaded
+    decline the net gravity pull then sets the belt off downhill again. The rest ended after
+    its time whatever the forward speed: a 600 m decline ended 'ok' at 0.77 m/s forwards and
+    speeding up. Running on as a whole is not rest, as running back is not: the rest goes on
+    and the belt runs away, said with the brake that let go and a holding force (1.2 x the
+    net gravity pull m'_L g H). With ``hold: true`` the same brake holds it at rest."""
+    scn = Scenario.model_validate({"stop": {"mode": "brake", "time_s": 5},
+                                   "record_dt_s": 0.05})
+    res = run_one(parse_conveyor(_decline(False)), scn, model="din")
+    s, ts = res.summary, res.timeseries
+    msg = s["message"]
+    assert s["status"] == "warning" and s["stop_time_s"] is not None
+    assert ts["v_mean_m_s"].iloc[-1] == pytest.approx(2.0 * V_D, rel=0.02)
+    assert "then ran away forwards during the stop" in msg, msg
+    assert "brakes.0 without hold let go once it rested" in msg
+    pull_kn = G * LIFT_M * s["load_mass_kg_m"] / 1e3
+    need = re.search(r"brakes\[\]\.hold: true\) of at least ([0-9.]+) kN in all", msg)
+    assert need and float(need.group(1)) == pytest.approx(1.2 * pull_kn, rel=2e-3)
+    held = run_one(parse_conveyor(_decline(True)), scn, model="din")
+    v_end = held.timeseries["v_mean_m_s"].iloc[-1]
+    assert abs(v_end) < 0.01 * V_D
+    assert "ran away" not in held.summary["message"]
+    assert "runs on after its stop" not in held.summary["message"]
+
+
+def test_a_belt_running_on_at_the_run_s_end_is_told_how_far_and_what_holds_it():
+    """The words of a belt that rested and runs on forwards when its run ends (short of the
+    runaway limit): since when, how fast, how far (the mean speed's integral after the rest
+    began: here 0.1 m/s for 2 s then 0.2 m/s for 2 s, about 0.6 m) and the holding force."""
+    from types import SimpleNamespace
+
+    from beltstudy.engine.dynamics.simulate import runon_words
+
+    t = np.arange(0.0, 10.01, 1.0)
+    v = np.array([2.0, 1.0, 0.0, 0.0, 0.0, 0.0, 0.1, 0.1, 0.2, 0.2, 0.2])
+    rec = np.zeros(t.size, dtype=[("t", float), ("v_mean", float)])
+    rec["t"], rec["v_mean"] = t, v
+    sys_ = SimpleNamespace(v_design=2.5, hold_force_n=-10e3)
+    conv = SimpleNamespace(brakes=[SimpleNamespace(hold=False, force_kn=40.0)])
+    r = {"nrec": t.size, "stopped": True, "t_stopped": 2.0}
+    (words,) = runon_words(sys_, SimpleNamespace(rec=rec), r, conv)
+    assert words.startswith("the belt runs on after its stop: it came to rest at t = 2 s")
+    assert "since t = 6 s" in words and "0.2 m/s forwards at the run's end (t = 10 s)" in words
+    assert "about 0.7 m of belt run on" in words  # from t = 3 s: 0.05 + 0.1 + 0.15 + 0.2 + 0.2
+    assert "brakes.0 without hold let go once it rested" in words
+    assert "of at least 12 kN in all" in words
+    # at rest at the end, or never at rest: nothing
+    rec2 = rec.copy()
+    rec2["v_mean"][-3:] = 0.0
+    assert runon_words(sys_, SimpleNamespace(rec=rec2), r, conv) == []
+    assert runon_words(sys_, SimpleNamespace(rec=rec), dict(r, stopped=False), conv) == []
