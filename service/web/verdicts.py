@@ -50,7 +50,9 @@ class Verdict:
     in a run
     whose transient ran is the worst of all (a stop time of a run that did not stop).
     ``magnitude``: judged by its size whatever its sign (a regenerating drive's power is
-    negative); the governing run's value is shown with its sign.
+    negative); the governing run's value is shown with its sign. ``judged_only``: the runs
+    whose limit is missing are not judged and their values not shown (a stop's ratio to the
+    wave loop time of a belt that never reached its running speed).
     """
 
     group: str
@@ -64,6 +66,7 @@ class Verdict:
     at: str | None = None
     null_worst: str = ""
     magnitude: bool = False
+    judged_only: bool = False
 
 
 #: The limit of a concave vertical curve's tensions: the empty belt's lift-off tension, which
@@ -134,6 +137,10 @@ VERDICTS: tuple[Verdict, ...] = (
             null_worst="did not stop"),
     Verdict("Stop", "stopping distance", "stop_distance_m", "max", "m",
             null_worst="did not stop"),
+    # the 5-wave-loop rule (Harrison after Funke 1973): a stop faster than 5 wave loop times
+    # is a high-stress stop (SPEC 4's warnings); judged of a belt that reached design speed
+    Verdict("Stop", "stop time over the wave loop time", "stop_wave_ratio", "min", "-",
+            "wave", judged_only=True),
     # slip
     Verdict("Slip", "slip margin, running", "slip_margin", "min", "-", 1.0),
     Verdict("Slip", "slip margin, start-up (DIN 22101)", "slip_margin_start", "min", "-", 1.0),
@@ -400,6 +407,17 @@ def _pulleys(runs: pd.DataFrame) -> pd.Series:
     return out
 
 
+#: The engine's words of a stop faster than 5 wave loop times (engine/dynamics/simulate.py).
+_HIGH_STRESS = r"faster than 5 wave loop times"
+
+
+def _high_stress(runs: pd.DataFrame) -> pd.Series:
+    """Runs whose stop the engine judged a high-stress stop (5-wave-loop rule): the engine
+    judges a belt that reached its running speed only, so its words decide, not the ratio
+    (a belt that never got going has a ratio and no such stop)."""
+    return _message(runs).str.contains(_HIGH_STRESS, regex=True)
+
+
 @dataclass(frozen=True)
 class Cause:
     """One way a run does not pass: ``detect(runs)`` flags its rows; ``columns`` (patterns
@@ -456,6 +474,9 @@ CAUSES: tuple[Cause, ...] = (
     Cause("marginal", "marginal: a figure within its error bar of the limit (the verdict "
           "may flip on a finer mesh)",
           lambda r: _message(r).str.contains("marginal:", regex=False), (), r"marginal"),
+    Cause("high_stress", "stopped faster than 5 wave loop times (a high-stress stop)",
+          _high_stress, ("stop_time_s", "wave_loop_time_s", "stop_wave_ratio"),
+          _HIGH_STRESS),
     Cause("overspeed", "ran above the overspeed trip (110 % of design speed)",
           lambda r: _message(r).str.contains("overspeed in the", regex=False) & ~_ran_away(r),
           ("velocity_max_m_s",), r"overspeed"),
@@ -618,6 +639,17 @@ def study_limits(study: dict, sf_min: float, sf_ratio: float,
             out[here] = radius[here]
         return out, "the curve's radius (profile curve_radius_m)"
 
+    def wave_rule(runs, **_):
+        # 5 wave loop times where the engine judged the stop (a belt that reached its running
+        # speed: start_time_s, or the words of a high-stress stop); none elsewhere
+        judged = _high_stress(runs)
+        start = numeric(runs, "start_time_s")
+        if start is not None:
+            judged |= start.notna()
+        return (pd.Series(5.0, index=runs.index).where(judged),
+                "5 wave loop times (Harrison after Funke 1973; judged where the belt reached "
+                "its running speed)")
+
     def rated_at_pulleys(runs, **_):
         # the motor power needed (efficiency included) is judged per drive where the runs
         # carry it; the power at the pulleys against the rating would disagree with it
@@ -636,6 +668,7 @@ def study_limits(study: dict, sf_min: float, sf_ratio: float,
         "travel": const(travel, "carriage travel", "takeup.travel_m"),
         "rated_force": rated_force,
         "curve_radius": curve_radius,
+        "wave": wave_rule,
     }
 
 
@@ -756,6 +789,10 @@ def verdict_rows(runs: pd.DataFrame, limits: dict[str, Limit]) -> list[dict]:
                 first = unstopped & not_stopped(ok)
                 idx = (first if first.any() else unstopped).idxmax()
             lim, text = _limits_of(v, ok, nums, limits)
+            if v.judged_only and lim is not None:
+                values = values.where(lim.notna())
+                if not values.notna().any():
+                    continue
             if v.limit == LIFTOFF_LIMIT and lim is None:
                 # a convex curve (crest): the engine gives it no lift-off tension, and its
                 # tensions are not judged against one (its radius row judges it)

@@ -1045,3 +1045,31 @@ def test_a_done_study_whose_runs_all_failed_is_not_said_to_have_none_yet(web):
     s1 = _section(html, 1)
     assert "No finished runs yet" not in s1
     assert "All 2 finished runs failed: no figure to judge" in s1
+
+
+def test_a_high_stress_stop_has_its_verdict_row_and_its_group(web):
+    """Two runs of a 350 m incline warned 'stop in 1.5 s is faster than 5 wave loop times
+    ... a high-stress stop' (SPEC 4 names it among the warnings), and the report showed no
+    row for it (the stop time's row said 'largest 11.77 s, no limit') and no group: only the
+    last section held it. The row judges ``stop_wave_ratio`` against 5, smallest first, of
+    the runs the engine judged (a belt that never got going has a ratio and no such stop);
+    the group lists the runs by the engine's words."""
+    fast = ("stop in 1.5 s is faster than 5 wave loop times (5 x 0.577 s = 2.88 s): a "
+            "high-stress stop")
+    runs = _runs(stop_wave_ratio=8.0, wave_loop_time_s=1.0, start_time_s=20.0)
+    runs.loc[runs.run_id == "a2", ["stop_wave_ratio", "status", "message"]] = [
+        2.605, "warning", fast]
+    # a belt that never got going: a small ratio, not judged by the engine
+    runs.loc[runs.run_id == "ns", ["stop_wave_ratio", "start_time_s"]] = [1.2, np.nan]
+    html = report_html(_doc(web), runs, {"state": "done", "done": 8, "total": 8})
+    s1 = re.sub(r"<[^>]+>", " ", _section(html, 1))
+    row = re.search(r"stop time over the wave loop time\s+smallest\s+stop_wave_ratio\s+"
+                    r"(\S+)\s+5\s+.*?(past the limit in \d+ of \d+ runs)", s1, re.S)
+    assert row, s1[s1.find("wave loop"):][:400]
+    # of the 6 runs judged: 7 finished, the one that never got going not judged
+    assert row.group(1) == "2.605" and row.group(2) == "past the limit in 1 of 6 runs"
+    s2 = _section(html, 2)
+    assert "stopped faster than 5 wave loop times (a high-stress stop)" in s2
+    group = s2[s2.find("Stopped faster than 5 wave loop times"):]
+    group = group[:group.find("</table>")]
+    assert "a2" in group and ">ns<" not in group and fast in group
