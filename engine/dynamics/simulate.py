@@ -2329,15 +2329,19 @@ def _fast_stop_words(sys: System, t_stop: float, summary: dict, steady_tmax: flo
         # torque limit, slip, the belt's own elasticity: longer than asked) does not: the
         # curve that rests after 5 loops when followed, ramp_rest_fraction() of it, is the
         # least to ask
-        asked = max(need * cyc.t_stop / t_stop, need / ramp_rest_fraction())
+        scaled = max(need * cyc.t_stop / t_stop, need / ramp_rest_fraction())
+        unbraked = _unbraked_stop_s(sys)
+        asked = max(scaled, unbraked)
         lag = (f"; the belt did not follow the {cyc.t_stop:g} s curve: it took "
                f"{t_stop:.1f} s" if t_stop > cyc.t_stop else "")
+        floor = (f", and at least {_unbraked_words(sys, unbraked)}" if unbraked > scaled
+                 else "")
         # scaled from this stop, the figure assumes the belt rests at the same fraction of a
         # longer curve; it rests a little sooner (a 200 m, 0.2 m/s belt: 0.800 of 1.9 s, 0.792
         # of 2.1 s), so the figure can fall short by a step of its rounding: say to rerun
         fix = (f"a controlled stop of stop.time_s {_up_s(asked)} s or more would be slower "
-               f"than that (this stop's time scaled to 5 wave loop times{lag}; rerun to "
-               "check)")
+               f"than that (this stop's time scaled to 5 wave loop times{lag}{floor}; rerun "
+               "to check)")
     elif cyc.stop_mode == C.BRAKE and not _coasts_within(sys, need):
         auto = getattr(sys, "auto_brakes", None)
         if auto is None:
@@ -2401,11 +2405,14 @@ def _fast_stop_words(sys: System, t_stop: float, summary: dict, steady_tmax: flo
         how = ("a controlled stop (vfd drives)" if not dol else
                f"a controlled stop on vfd drives ({vfd_fields(sys)}, now dol: a motor on the "
                "line cannot follow a stopping curve; then stop.mode: controlled)")
+        unbraked = _unbraked_stop_s(sys)
+        floor = (f", and at least {_unbraked_words(sys, unbraked)}" if unbraked > need / frac
+                 else "")
         fix = (f"{coast}{how} would be slower than that, with stop.time_s at "
-               f"least {_up_s(need / frac)} s (enough for a belt that follows its s-curve, at "
-               f"rest from {frac:.3f} of it; a long or soft belt's mean speed comes to rest "
-               "sooner and needs more: rerun the controlled stop, whose own warning names the "
-               "time to ask), or " + _coast_inertia_words(
+               f"least {_up_s(max(need / frac, unbraked))} s (enough for a belt that follows "
+               f"its s-curve, at rest from {frac:.3f} of it{floor}; a long or soft belt's mean "
+               "speed comes to rest sooner and needs more: rerun the controlled stop, whose "
+               "own warning names the time to ask), or " + _coast_inertia_words(
                    sys, need, conveyor, v_cmd, t_stop, braked=cyc.stop_mode == C.BRAKE))
     # three figures: at 0.1 s a 1.519 s stop against 5 x 0.333 s read 'stop in 1.5 s is faster
     # than 5 wave loop times (5 x 0.3 s)'
@@ -2417,6 +2424,27 @@ def _fast_stop_words(sys: System, t_stop: float, summary: dict, steady_tmax: flo
     return (f"stop in {t_stop:.3g} s is faster than 5 wave loop times (5 x "
             f"{sys.wave_loop_time_s:.3g} s = {need:.3g} s){asked_fast}: a high-stress "
             f"stop{seen}; {fix}")
+
+
+def _unbraked_stop_s(sys: System) -> float:
+    """The shortest controlled stop whose s-curve the drives follow without braking [s]: its
+    steepest deceleration, ``2 v / T`` (:func:`~beltstudy.engine.dynamics.profiles.
+    stop_reference`), within the coast's ``Te / M``, so ``T = 2 v M / Te``; 0 where the belt
+    does not coast to rest (Te <= 0). On a steeper curve the drives brake the belt faster than
+    it coasts: a 120 m fabric belt that coasted to rest in 3.01 s, stopped on the 3.6 s curve
+    asked of it, rested in 2.70 s with a higher peak (its 2 v M / Te is 5.95 s). Pushing only,
+    the drives leave the rigid body no deceleration above its coast's, so it rests no sooner
+    than it coasts."""
+    te = float(sys.te_n)
+    return 2.0 * sys.v_design * sys.model.control.m_tot / te if te > 0.0 else 0.0
+
+
+def _unbraked_words(sys: System, t_s: float) -> str:
+    """:func:`_unbraked_stop_s` in words, with its figures."""
+    return (f"2 v M / Te = 2 x {sys.v_design:g} m/s x {sys.model.control.m_tot / 1e3:.4g} t / "
+            f"{sys.te_n / 1e3:.4g} kN = {t_s:.3g} s, so that the curve's steepest deceleration "
+            "2 v / T stays within the coast's Te / M and the drives never brake the belt: "
+            "braked, it rests sooner than it coasts")
 
 
 #: The last part of the stop window whose change of the mean speed says whether a belt that

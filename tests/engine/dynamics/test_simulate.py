@@ -746,8 +746,10 @@ def test_a_fast_stop_says_its_tensions_and_what_would_slow_it():
     from beltstudy.engine.dynamics.simulate import _fast_stop_words
 
     sysm = SimpleNamespace(wave_loop_time_s=8.2, steady_tension_n=np.array([20e3, 261e3]),
+                           te_n=100e3, v_design=4.0,
                            model=SimpleNamespace(cycle=SimpleNamespace(
-                               stop_mode=C.CONTROLLED, t_stop=30.0)))
+                               stop_mode=C.CONTROLLED, t_stop=30.0),
+                               control=SimpleNamespace(m_tot=50e3)))
     msg = _fast_stop_words(sysm, 25.2, {"t_max_stop_kn": 250.0, "t_min_stop_kn": 15.0},
                            261e3)
     assert "ranged 15 to 250 kN against 20 to 261 kN running" in msg
@@ -791,6 +793,27 @@ def test_a_fast_stop_says_its_tensions_and_what_would_slow_it():
     # 31.6 s, still under 5 loops), so the words send the reader to the controlled run's own
     assert "8.5 s or more" not in msg
     assert "rerun the controlled stop, whose own warning names the time to ask" in msg
+    assert "2 v M / Te" not in msg  # 2 x 4 m/s x 50 t / 100 kN = 4 s, below 8.44 s
+    # a short belt whose coast is gentler than the curve that rests after 5 loops: a 120 m
+    # fabric belt (10.99 t, Te 9.221 kN, 2.5 m/s) coasted to rest in 3.01 s, 5 x 0.629 s =
+    # 3.145 s asked 3.6 s of a curve whose steepest deceleration, 2 v / T = 1.39 m/s2, is
+    # beyond its coast's Te / M = 0.84 m/s2: the drives braked it to rest in 2.70 s. Asked at
+    # least 2 v M / Te = 5.96 s, they push only, and it rested in 4.78 s
+    short = SimpleNamespace(wave_loop_time_s=0.629, steady_tension_n=np.array([11.76e3, 21.57e3]),
+                            te_n=9.221e3, v_design=2.5,
+                            model=SimpleNamespace(cycle=SimpleNamespace(stop_mode=C.COAST,
+                                                                        t_stop=0.0),
+                                                  control=SimpleNamespace(m_tot=10.99e3)))
+    msg = _fast_stop_words(short, 3.01, {}, 21.57e3)
+    assert ("would be slower than that, with stop.time_s at least 6 s (enough for a belt that "
+            "follows its s-curve, at rest from 0.884 of it, and at least 2 v M / Te = 2 x 2.5 "
+            "m/s x 10.99 t / 9.221 kN = 5.96 s") in msg, msg
+    # the controlled stop that followed the first advice (3.6 s, rested in 2.70 s): scaled,
+    # 3.6 x 3.145 / 2.70 = 4.2 s; the floor asks 6 s
+    short.model.cycle.stop_mode, short.model.cycle.t_stop = C.CONTROLLED, 3.6
+    msg = _fast_stop_words(short, 2.70, {}, 21.57e3)
+    assert "a controlled stop of stop.time_s 6 s or more" in msg, msg
+    assert "and at least 2 v M / Te = 2 x 2.5 m/s x 10.99 t / 9.221 kN = 5.96 s" in msg
     # a brake stop asked in 3 s that took 2.5 s: an auto brake for 7.465 x 3 / 2.5 = 8.96 s
     # (a belt that coasts with its brakes off for M v / Te = 500 t x 4 m/s / 100 kN = 20 s,
     # longer than 5 loops: less brake force would make the stop slower)
@@ -807,7 +830,7 @@ def test_a_fast_stop_says_its_tensions_and_what_would_slow_it():
     assert "less brake force" not in msg and "stop.time_s at least 8.5 s" in msg
     # the times at three figures: at 0.1 s a 1.519 s stop of a 200 m belt at 0.2 m/s against
     # 5 x 0.3333 s = 1.667 s read 'stop in 1.5 s ... (5 x 0.3 s)', the two equal as shown
-    sysm.wave_loop_time_s = 1.0 / 3.0
+    sysm.wave_loop_time_s, sysm.v_design = 1.0 / 3.0, 0.2
     sysm.model.cycle.stop_mode, sysm.model.cycle.t_stop = C.CONTROLLED, 1.9
     msg = _fast_stop_words(sysm, 1.519, {}, 261e3)
     assert msg.startswith("stop in 1.52 s is faster than 5 wave loop times (5 x 0.333 s = "
