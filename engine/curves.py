@@ -259,6 +259,34 @@ def _start_liftoff(c: Curve, loop: Loop, el: np.ndarray, lim: np.ndarray, T: np.
         "lowers the start-up tension (simulate gives the transient figure, liftoff_*)"]
 
 
+def _rest_liftoff(c: Curve, loop: Loop, el: np.ndarray, lim: np.ndarray,
+                  T_rest: np.ndarray | None, lifts_running: bool) -> list[str]:
+    """A concave curve where the belt held at rest lifts off its idlers (``T_rest > R m'_G g
+    cos a``), in words ([] where it does not, or where running lifts it: that warning names the
+    radius). At rest no resistance holds the tension down: the take-up's tension and the
+    weight of the belt above it (a 6 km overland's empty belt held 210.4 kN at its 600 m
+    curve, 10 m above its tail take-up, against 202.6 kN of lift-off tension, and only the
+    transient run said so, as lift-off in the start). The radius that keeps it down at rest
+    is ``R max(T_rest / T_lift)``; no start or stop time changes it."""
+    if T_rest is None or lifts_running:
+        return []
+    tr = T_rest[el]
+    over = tr - lim
+    j = int(np.argmax(over))
+    if not over[j] > 0.0:
+        return []
+    r_need = float(np.max(tr * c.radius_m / lim))
+    strand = "carry" if loop.strand[el[j]] == CARRY else "return"
+    return [
+        f"curve {c.k} (concave, R {c.radius_m:g} m at {c.at_m:.0f} m): held at rest the empty "
+        f"belt lifts off its {strand} idlers, at-rest tension {tr[j] / 1e3:.1f} kN (the "
+        "take-up's and the belt's weight, no running resistance: an estimate the transient "
+        f"run's lift-off at rest replaces) above the lift-off tension {lim[j] / 1e3:.1f} kN "
+        f"(R m'_G g cos a); a radius of at least {math.ceil(r_need):.0f} m (R x T_rest / "
+        "T_lift; rerun to confirm) or less tension there at rest (a lighter take-up, where "
+        "its slip checks allow) keeps it on them; no start or stop time changes it"]
+
+
 def _convex_words(k: int, c: Curve, belt, ic, sf_min: float, t_low: float, t_high: float,
                   r_min: float) -> str:
     """The warning of a convex curve below its radius (:func:`convex_radius_min_m`): which
@@ -294,7 +322,8 @@ def _convex_words(k: int, c: Curve, belt, ic, sf_min: float, t_low: float, t_hig
 
 
 def steady_checks(conv, loop: Loop, T: np.ndarray, sf_min: float,
-                  T_start: np.ndarray | None = None) -> tuple[dict, list[str]]:
+                  T_start: np.ndarray | None = None,
+                  T_rest: np.ndarray | None = None) -> tuple[dict, list[str]]:
     """Per curve k: ``curve{k}_*`` fields and warnings (concave: lift-off running and at
     start-up; convex: radius).
 
@@ -311,6 +340,9 @@ def steady_checks(conv, loop: Loop, T: np.ndarray, sf_min: float,
         Start-up boundary tensions [N] (:func:`beltstudy.engine.statics.startup_tensions`):
         a concave curve's lift-off at start-up (:func:`_start_liftoff`); None leaves its
         fields null.
+    T_rest : ndarray, optional
+        Tensions held at rest [N] (:func:`beltstudy.engine.statics.rest_tensions`): a
+        concave curve where the stopped belt lifts is warned of (:func:`_rest_liftoff`).
     """
     out: dict = {}
     warnings: list[str] = []
@@ -339,6 +371,7 @@ def steady_checks(conv, loop: Loop, T: np.ndarray, sf_min: float,
             started, start_words = _start_liftoff(c, loop, el, lim, T, T_start, lifts)
             out.update(started)
             warnings += start_words
+            warnings += _rest_liftoff(c, loop, el, lim, T_rest, lifts)
             if lifts:
                 strand = "carry" if loop.strand[el[j]] == CARRY else "return"
                 r_start = started[f"curve{k}_radius_min_start_m"]
@@ -378,7 +411,7 @@ def transient_liftoff(loop: Loop, segs, t_start_end_s: float, t_stop_cmd_s: floa
                       softer_start: str | None = None,
                       softer_stop: str = "a softer stop (stop time, brake force)",
                       survey: list[dict] | tuple = (), t_start_cmd_s: float = 0.0,
-                      ) -> tuple[dict, list[str]]:
+                      t_rested_s: float | None = None) -> tuple[dict, list[str]]:
     """Lift-off at concave curves during the cycle: ``liftoff_*`` fields and one warning per
     phase in which the belt leaves its idlers.
 
@@ -412,6 +445,12 @@ def transient_liftoff(loop: Loop, segs, t_start_end_s: float, t_stop_cmd_s: floa
         The start command [s]: ``liftoff_over_start_kn`` is of the segments from it to the
         stop command (SPEC 6.4's start phase; the kernel cuts a segment there), the rest
         before it counting in the whole cycle's figure only.
+    t_rested_s : float, optional
+        When the belt came to rest in its stop [s] (None: it did not). A peak before the start
+        command or after this is the belt at rest: said as lift-off at rest, whose levers are
+        the radius and the tension at rest, not the start or the stop (a 6 km overland's
+        empty belt lifted at its concave curve at t = 0.1 s, 22.7 kN over, and was told a
+        start of 266 s, then 616 s, avoids it).
 
     Returns
     -------
@@ -481,11 +520,23 @@ def transient_liftoff(loop: Loop, segs, t_start_end_s: float, t_stop_cmd_s: floa
         out["liftoff_at_m"] = float(s_end[el[j]])
         out["liftoff_time_s"] = float(hi_t[kseg, j])
     phase = np.where(hi_t <= t_start_end_s, 0, np.where(hi_t <= t_stop_cmd_s, 1, 2))
+    # the belt at rest: before the start command, and once it rested in its stop
+    at_rest = hi_t < t_start_cmd_s - 1e-9
+    if t_rested_s is not None and t_rested_s >= 0.0:
+        at_rest |= hi_t >= t_rested_s
+    # a later peak no higher than the rest's before the start command is that rest state (the
+    # start's segment holds it from its first step: a peak at t = 2.0 s, the start command,
+    # before the start's front reached the curve)
+    pre = np.array([s[0] < t_start_cmd_s - 1e-9 for s in segs])  # the kernel cuts there
+    if pre.any() and t_start_cmd_s > 0.0:
+        rest_hi = np.where(np.isfinite(hi[pre]), hi[pre], -np.inf).max(axis=0)
+        at_rest |= np.isfinite(hi) & (hi <= rest_hi + 1e-4 * np.abs(lim))
+    phase = np.where(at_rest, 3, phase)
     steady_over = steady_n[el] - lim  # what running lifts at its steady tension
     warnings = []
     curves = {c.k: c for c in concave}
     curves.update({b["k"]: b for b in bends})
-    for p, name in enumerate(("the start", "steady running", "the stop")):
+    for p, name in enumerate(("the start", "steady running", "the stop", "rest")):
         masked = np.where(phase == p, over, -np.inf)
         kseg, j = np.unravel_index(int(np.argmax(masked)), masked.shape)
         at_steady = p == 1 and steady_over.max() > max(masked[kseg, j], 0.0)
@@ -537,6 +588,10 @@ def transient_liftoff(loop: Loop, segs, t_start_end_s: float, t_stop_cmd_s: floa
                             f"{100.0 * room / lim_c[lifts][i_need]:.3g} %)")
         elif p == 2 and not runs_over:
             fixes.insert(0, softer_stop)
+        elif p == 3:
+            # held at rest no start or stop acts: the radius or the tension at rest
+            fixes.append("less tension there at rest (a lighter take-up, where its slip "
+                         "checks allow; no start or stop time changes the tension at rest)")
         elif runs_over:
             fixes.append("less tension there in running (a lighter take-up, the curve nearer "
                          "the slack side)")
@@ -545,7 +600,8 @@ def transient_liftoff(loop: Loop, segs, t_start_end_s: float, t_stop_cmd_s: floa
         where = (f"curve {c.k} (concave, R {c.radius_m:g} m" if k_c > 0 else
                  _survey_where(c, float(radius[j])))
         warnings.append(
-            f"lift-off in {name}: the belt leaves its {strand} idlers at {where}, "
+            f"lift-off {'at' if p == 3 else 'in'} {name}: the belt leaves its {strand} "
+            f"idlers at {where}, "
             f"at {s_end[e]:.0f} m round the loop) {when}, "
             f"{(t_peak - t_lim) / 1e3:.1f} kN over its lift-off "
             f"tension {t_lim / 1e3:.1f} kN; " + " or ".join(fixes) + " avoids it")

@@ -497,7 +497,8 @@ def _complete(prep: _Prepared, scenario, system, tr, model, params, opts, remedy
         max(cyc.t_start, tr.summary.get("start_time_s") or 0.0), system.steady_tension_n,
         None if reads_start_time(conveyor) else " or ".join(start_levers(system)),
         " or ".join(stop_levers(system)), survey_liftoff_limits_n(conveyor, steady.loop),
-        t_start_cmd_s=cyc.t_pre)
+        t_start_cmd_s=cyc.t_pre,
+        t_rested_s=float(tr.raw["t_stopped"]) if tr.raw.get("stopped") else None)
     summary.update(lifted)
     if lift_warnings:
         messages.append("; ".join(lift_warnings))

@@ -902,7 +902,8 @@ def _summarise(res: SteadyResult, drives, hs_adm, bounds, shortfall_n: float,
     warnings += check_warnings
     if loop.curves:  # vertical curves: lift-off running and at start-up (the start-up
         # walk of slip_margin_start, T_start above), convex radius (beltstudy.engine.curves)
-        checked, check_warnings = curve_checks(conv, loop, T, sf_min, T_start)
+        checked, check_warnings = curve_checks(conv, loop, T, sf_min, T_start,
+                                               rest_tensions(conv, loop, T))
         res.summary.update(checked)
         warnings += check_warnings
     # grade changes without curve_radius_m, read as the circle through their survey points
@@ -1098,6 +1099,17 @@ def _safety_words(loop: Loop, belt, sf: float, sf_min: float, t_max: float, s_m:
             f"belt rated at least {math.ceil(need_kn_m)} kN/m at this width ({pick}), or a "
             f"lower largest tension ({lower}) "
             "would avoid it")
+
+
+def rest_tensions(conv: Conveyor, loop: Loop, T: np.ndarray) -> np.ndarray:
+    """Tensions held at rest [N], an estimate: the at-rest walk (:func:`rest_walk`: no
+    running resistance, the pulley holding the belt, :func:`rest_hold_element`, taking the
+    net gravity pull) levelled as the start-up walk is (:func:`start_level`: a gravity
+    take-up's mean tension, a fixed one's loop length, elastic only; the transient run's rest
+    state takes the chord length with the spans' sag for a fixed take-up)."""
+    fixed = conv.takeup.type == "fixed"
+    Wr = rest_walk(loop, rest_hold_element(conv, loop), loop.gravity_n)
+    return Wr + (start_level(loop, T, fixed) - start_level(loop, Wr, fixed))
 
 
 def startup_tensions(res: SteadyResult) -> np.ndarray:

@@ -371,7 +371,7 @@ def _sagged(runs: pd.DataFrame, phase: str | None = None) -> pd.Series:
 #: radius or past its idlers' rating, a grade change without a curve judged as its survey
 #: circle, and a horizontal curve the belt runs out of or to the inside of; not the notes
 #: that name curve_radius_m (``note: profile.2.curve_radius_m ...``).
-_ROUTE = (r"lift-off in |lifts off its|^curve \d+ \((?:concave|convex), R |grade change without "
+_ROUTE = (r"lift-off (?:in|at rest)|lifts off its|^curve \d+ \((?:concave|convex), R |grade change without "
           r"a vertical curve|^horizontal curve \d+ \(profile(?: section |\.\d)")
 
 

@@ -825,3 +825,76 @@ def test_a_convex_radius_set_by_its_centre_is_said_so_at_every_tension():
         assert "centre line" in words and "more tension there" in words, (t_low, words)
         said += 1
     assert said > 1000
+
+
+def test_a_lift_off_while_the_belt_is_at_rest_is_said_at_rest_without_a_start_or_stop():
+    """A 6 km overland's empty belt lifted at its concave curve at t = 0.1 s, before its start
+    command, 22.7 kN over (held at rest the tension there is the take-up's plus the belt's
+    weight above it), and was told a start of about 266 s avoids it; followed, the same
+    excess at t = 0.1 s asked 616 s. The same after the belt rested in its stop ('a softer
+    stop'). A peak before the start command or after the rest began is lift-off at rest: its
+    levers are the radius and the tension at rest, no start or stop time. On the hand valley
+    (R 250 m): a peak 5 kN over at t = 1 s (the start command at 2 s) and one 3 kN over at
+    t = 95 s (at rest from 90 s); the start (2 to 62 s) and the stop keep below."""
+    st = solve_steady(curved(250.0, 50.0), model="din", n_elements=200)
+    loop, run = st.loop, st.tension_n
+    (c,) = loop.curves
+    el, lim = liftoff_limits_n(loop, c)
+    first = int(c.carry[0])
+    lim_first = float(dict(zip(el.tolist(), lim, strict=True))[first])
+    rest = run.copy()
+    rest[first] = lim_first + 5000.0
+    later = run.copy()
+    later[first] = lim_first + 3000.0
+    segs = [(0.0, 2.0, rest, np.full_like(run, 1.0), run.copy(), np.full_like(run, 1.0)),
+            (2.0, 80.0, run.copy(), np.full_like(run, 30.0), run.copy(), np.full_like(run, 30.0)),
+            (80.0, 120.0, later, np.full_like(run, 95.0), run.copy(), np.full_like(run, 95.0))]
+    out, warnings = transient_liftoff(loop, segs, 62.0, 80.0, 60.0, run, t_start_cmd_s=2.0,
+                                      t_rested_s=90.0)
+    assert out["liftoff_max_kn_over"] == pytest.approx(5.0, abs=1e-9)
+    (w,) = warnings
+    assert w.startswith("lift-off at rest: the belt leaves its carry idlers at curve 1 "), w
+    assert "at t = 1.0 s, 5.0 kN over its lift-off tension" in w
+    assert "a curve radius of at least" in w and "less tension there at rest" in w
+    assert "start.time_s" not in w and "softer stop" not in w
+    # without the rest times the same peaks are the start's and the stop's, with their levers
+    _, said = transient_liftoff(loop, segs, 62.0, 80.0, 60.0, run)
+    assert [m.split(":")[0] for m in said] == ["lift-off in the start", "lift-off in the stop"]
+
+
+def test_a_belt_that_lifts_held_at_rest_is_told_by_the_steady_check():
+    """At rest no running resistance holds the tension at a concave curve down: the take-up's
+    tension and the belt's weight above it. A 6 km overland's empty belt held 225.3 kN at rest
+    at its 600 m curve against 202.6 kN of lift-off tension, and only the transient run said so
+    (as lift-off in the start). The steady check now judges the at-rest tensions
+    (:func:`~beltstudy.engine.statics.rest_tensions`): on the hand valley (R 250 m), at-rest
+    tensions 4 kN over at the curve's first carry element are told, with the radius R max
+    (T_rest / T_lift) and no start or stop; where running lifts too, its warning stands alone.
+    """
+    from beltstudy.engine.curves import steady_checks
+    from beltstudy.engine.statics import rest_tensions, rest_walk
+
+    st = solve_steady(curved(250.0, 50.0), model="din", n_elements=200)
+    loop, run, conv = st.loop, st.tension_n, st.conveyor
+    (c,) = loop.curves
+    el, lim = liftoff_limits_n(loop, c)
+    rest = run.copy()
+    first = int(c.carry[0])
+    lim_first = float(dict(zip(el.tolist(), lim, strict=True))[first])
+    rest[first] = lim_first + 4000.0
+    _, words = steady_checks(conv, loop, run, 6.7, None, rest)
+    (w,) = [m for m in words if "held at rest" in m]
+    r_need = math.ceil(250.0 * float(np.max(rest[el] / lim)))
+    assert w.startswith("curve 1 (concave, R 250 m at 500 m): held at rest the empty belt "
+                        "lifts off its carry idlers"), w
+    assert f"above the lift-off tension {lim_first / 1e3:.1f} kN" in w
+    assert f"a radius of at least {r_need} m" in w and "no start or stop time changes it" in w
+    assert not [m for m in steady_checks(conv, loop, run, 6.7, None, run)[1]
+                if "held at rest" in m]
+    # the at-rest tensions: gravity alone element by element (the holding pulley takes the
+    # net pull), at the take-up's mean tension as running (a gravity take-up)
+    t_rest = rest_tensions(conv, loop, run)
+    walk = rest_walk(loop, int(loop.drive_elements[0]), loop.gravity_n)
+    assert np.allclose(np.diff(t_rest), np.diff(walk), rtol=0, atol=1e-6)
+    k = loop.i_takeup
+    assert t_rest[k - 1] + t_rest[k] == pytest.approx(run[k - 1] + run[k], rel=1e-12)
