@@ -1240,8 +1240,18 @@ def _slip_warnings(sys: System, r: dict, out, conveyor=None) -> list[str]:
             unbroken = slip_s >= 0.99 * (t1 - t0)
             when, fix = slip_words(_run_phase(sys, t0, t_stop_cmd),
                                    _run_phase(sys, t1, t_stop_cmd), sys, unbroken)
+            rested = float(r["t_stopped"]) if r["stopped"] else -1.0
             past = (_brake_past_full(sys, i, t1)
                     if _run_phase(sys, t0, t_stop_cmd) == "stop" else None)
+            if 0.0 <= rested <= t0:
+                # slipping once the belt rested: the pulley holding the stopped belt's net pull
+                # slides, which no softer or longer stop changes (a 350 m incline's braked head
+                # pulley slid at t = 63.5 s, after its 10 s stop, and was offered a longer stop)
+                when = f"at rest (the belt stopped at t = {rested:.1f} s)"
+                fix = (f"{heavier_takeup(sys, 'more slack-side tension')} or a brake or "
+                       "holdback on another pulley holding the stopped belt (no stop setting "
+                       "changes what holds it at rest)")
+                past = None
             why = ""
             if past is not None:
                 fix, why = past
