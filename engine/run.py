@@ -19,6 +19,7 @@ from dataclasses import dataclass, replace
 import numpy as np
 import pandas as pd
 
+from beltstudy.engine import beltselect, catalog
 from beltstudy.engine.beltselect import resolve_auto_belt, run_cases, run_message
 from beltstudy.engine.checks import design_holding_words, transient_checks
 from beltstudy.engine.conveyor import Conveyor, Scenario, section_loads
@@ -240,7 +241,66 @@ def run_one(
     tr = simulate(system, steady_summary=prep.steady.summary, conveyor=prep.conveyor,
                   safety_factor_min=transient_safety_min(prep.conveyor,
                                                          prep.steady.loop.belt.kind))
-    return _complete(prep, scenario, system, tr, model, params, opts, remedy, check, t0, say)
+    result = _complete(prep, scenario, system, tr, model, params, opts, remedy, check, t0, say)
+    if conveyor.belt.type == catalog.AUTO:
+        result = _transient_belt(conveyor, scenario, result, t0, say, model=model,
+                                 params=params, options=opts, remedy=remedy, check=check,
+                                 auto_brakes=auto_brakes, governed=governed)
+    return result
+
+
+def _transient_belt(conveyor: Conveyor, scenario: Scenario, result: RunResult, t0: float,
+                    say: Callable[[str], None] | None = None, **run) -> RunResult:
+    """``belt.type: auto`` past the transient (SPEC 7.1: the lightest catalogue belt that
+    passes the steady and transient safety factors): where the steady choice's run falls
+    below the transient minimum (``safety_factor_dyn``; its stress waves are the transient
+    run's to see, :mod:`beltstudy.engine.beltselect`), the heavier catalogue belts of its kind
+    are run in turn, from the first whose rating meets the minimum at this run's peak, to the
+    first that passes; the run is of that belt, its words say why. A 500 m incline on a dol
+    drive picked ST1000 by its steady checks and ran at a transient safety factor of 2.93
+    against 4.47, its note calling ST1000 the lightest belt that passes. None passing, the
+    steady choice's run is kept and its warning says so."""
+    s = result.summary
+    sf, chosen = s.get("safety_factor_dyn"), s.get("belt_type_used")
+    kind = catalog.resolve_belt(beltselect.with_belt(conveyor, chosen).belt).kind         if chosen else None
+    need = transient_safety_min(conveyor, kind) if kind else None
+    if sf is None or need is None or sf >= need * (1.0 - beltselect.RTOL):
+        return result
+    cands = beltselect.candidates(conveyor)
+    ids = [c[0] for c in cands]
+    if chosen not in ids:
+        return result
+    now_kn = cands[ids.index(chosen)][2]
+    # the run's peak at least scales with the belt's rating: a heavier belt raises it
+    heavier = [c for c in cands[ids.index(chosen) + 1:] if c[2] >= now_kn * need / sf]
+    tried = []
+    for belt_id, mass, rating in heavier:
+        if say is not None:
+            say(f"belt.type auto: {chosen} runs at a transient safety factor of {sf:.3g} "
+                f"against {need:.3g}: rerunning the cycle with {belt_id}")
+        trial = run_one(beltselect.with_belt(conveyor, belt_id), scenario,
+                        **{**run, "remedy": False, "check": False})
+        sf_t = trial.summary.get("safety_factor_dyn")
+        tried.append(f"{belt_id} {sf_t:.3g}" if sf_t is not None else belt_id)
+        if sf_t is None or sf_t < need * (1.0 - beltselect.RTOL):
+            continue
+        final = (trial if not (run["remedy"] or run["check"]) else
+                 run_one(beltselect.with_belt(conveyor, belt_id), scenario, say=say, **run))
+        f = final.summary
+        note = (f"note: belt.type auto ({conveyor.belt.kind}): {chosen}, the lightest "
+                f"catalogue belt that passes the steady checks, ran at a transient safety "
+                f"factor of {sf:.3g} against the minimum {need:.3g}; {belt_id} ({mass:.3g} "
+                f"kg/m, {rating:.4g} kN), the lightest heavier one whose run passes it "
+                f"({'; '.join(tried)}), is the belt of this run")
+        f["message"] = "; ".join(m for m in (f.get("message"), note) if m)
+        f["elapsed_s"] = time.perf_counter() - t0
+        return final
+    said = (f"; belt.type auto ({conveyor.belt.kind}): no heavier catalogue belt of this kind "
+            f"passes the transient minimum {need:.3g} either"
+            + (f" (rerun with {', '.join(tried)})" if tried else "")
+            + ": a wider belt (belt.width_m) or a softer start and stop would avoid it")
+    s["message"] = (s.get("message") or "") + said
+    return result
 
 
 def _brake_grip(prep: _Prepared, system, scenario: Scenario) -> functools.partial | None:
