@@ -1209,6 +1209,13 @@ def _brake_past_full(sys: System, i: int, t_last: float) -> tuple[str, str] | No
                 + (f" of at least {up3(least_kn):g} kN, which with the others holds the loaded "
                    f"belt at rest, {HOLD_MARGIN:g} x its net gravity pull)" if least_kn > 0.0
                    else ")"))
+    elif others_kn > 0.0:
+        # with the other brakes: their sum is the holding size, not this brake's own force (a
+        # 1.8 km decline's head and tail brakes of 122.6 kN each: 'its 122.6 kN is ... 1.2 x
+        # its net gravity pull', which was 204.4 kN)
+        less = (f" (not less force on this one: its {force_kn:.4g} kN with the others' "
+                f"{others_kn:.4g} kN is what holds the loaded belt at rest, {HOLD_MARGIN:g} x "
+                "its net gravity pull)")
     else:
         less = (f" (not less force on this one: its {force_kn:.4g} kN is what holds the loaded "
                 f"belt at rest, {HOLD_MARGIN:g} x its net gravity pull)")

@@ -65,3 +65,25 @@ def test_less_force_offered_only_down_to_what_the_grip_passes():
     system.brake_grip = None  # not known: offered as before
     levers, _why = _brake_past_full(system, 0, t_late)
     assert f"a given force_kn of at least {up3(floor_kn):g} kN" in levers, levers
+
+
+def test_a_brake_that_holds_with_the_others_says_their_sum_is_the_holding_force():
+    """A 1.8 km decline's head and tail brakes of 122.6 kN each, together 1.2 x its net gravity
+    pull of 204.4 kN, were told 'its 122.6 kN is what holds the loaded belt at rest, 1.2 x its
+    net gravity pull': that is their sum, not this brake's own force. Two brakes here, head and
+    tail, each half the holding size: the head's words name both forces."""
+    conv = _lift(20.0)
+    steady = solve_steady(conv, model="din", n_elements=80)
+    pull_kn = float(np.sum(build_system(conv, BRAKE, steady, DynamicsOptions())
+                           .model.nodes.gravity)) / 1e3
+    half = up3(HOLD_MARGIN * pull_kn) / 2.0
+    two = conv.model_copy(update={"brakes": [
+        conv.brakes[0].model_copy(update={"force_kn": half}),
+        conv.brakes[0].model_copy(update={"position": "tail", "force_kn": half})]})
+    steady = solve_steady(two, model="din", n_elements=80)
+    system = build_system(two, BRAKE, steady, DynamicsOptions())
+    system.brake_grip = None
+    levers, _why = _brake_past_full(system, 0, system.stop_command_s + 60.0)
+    assert (f"(not less force on this one: its {half:.4g} kN with the others' {half:.4g} kN "
+            f"is what holds the loaded belt at rest, {HOLD_MARGIN:g} x its net gravity pull)"
+            ) in levers, levers
