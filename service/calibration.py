@@ -27,7 +27,7 @@ from beltstudy.engine import (
 )
 from beltstudy.engine.calibration import time_column_hint
 from beltstudy.engine.conveyor import strict_validate
-from beltstudy.service.door.messages import describe
+from beltstudy.service.door.messages import describe, with_type_fixes
 from beltstudy.service.door.study import ConveyorRef, ModelName
 from beltstudy.service.door.studyfile import conveyor_from_path
 from beltstudy.service.errors import Invalid, shown_path
@@ -154,7 +154,11 @@ def run_calibration(body: CalibrationIn, *, base_dir: Path | None = None,
             catalog.check_conveyor(conv, "conveyor.")
         else:
             data, _ = conveyor_from_path(body.conveyor, base_dir, studies_dir)
-            conv = parse_conveyor(data, prefix=f"conveyor: {shown_path(body.conveyor)}: ")
+            where = f"conveyor: {shown_path(body.conveyor)}: "
+            try:
+                conv = parse_conveyor(data, prefix=where)
+            except InputError as exc:  # a wrong type with its fix (with_type_fixes)
+                raise InputError(with_type_fixes(str(exc), data, Conveyor, where)) from None
         rows = measurements_from_rows([r.model_dump(exclude_none=True) for r in body.measured])
         result = calibrate(conv, rows, body.model, names, fixed=body.params, starts=starts)
     except InputError as exc:

@@ -2,7 +2,7 @@
 
 | variable | default | meaning |
 |---|---|---|
-| ``BELTSTUDY_DATA_DIR`` | ``./data`` | root of the Parquet store |
+| ``BELTSTUDY_DATA_DIR`` | ``./data`` | root of the Parquet store (empty: ``./data``) |
 | ``BELTSTUDY_SCHEDULER`` | empty | ``tcp://host:port`` of a Dask scheduler; empty = LocalCluster |
 | ``BELTSTUDY_WORKERS`` | cores | LocalCluster worker processes (one thread each) |
 | ``BELTSTUDY_TOKEN`` | empty | bearer token every route but ``/health`` requires when set |
@@ -29,9 +29,11 @@ from pydantic_settings import BaseSettings, SettingsConfigDict
 from beltstudy.service.errors import Invalid, file_reason, shown_path
 
 __all__ = ["Settings", "get_settings", "load_settings", "check_data_dir", "ENV_PREFIX",
-           "unknown_variables"]
+           "unknown_variables", "data_dir_setting", "DEFAULT_DATA_DIR"]
 
 ENV_PREFIX = "BELTSTUDY_"
+#: The store's folder when ``BELTSTUDY_DATA_DIR`` is not set or empty.
+DEFAULT_DATA_DIR = Path("./data")
 
 
 class Settings(BaseSettings):
@@ -39,7 +41,8 @@ class Settings(BaseSettings):
 
     model_config = SettingsConfigDict(env_prefix=ENV_PREFIX, extra="ignore")
 
-    data_dir: Path = Field(Path("./data"), description="root of the Parquet store")
+    data_dir: Path = Field(DEFAULT_DATA_DIR, description="root of the Parquet store (empty: "
+                           "the default, ./data)")
     scheduler: str = Field(
         "", description="Dask scheduler address tcp://host:port; empty starts a LocalCluster"
     )
@@ -123,6 +126,17 @@ class Settings(BaseSettings):
     @classmethod
     def _empty_is_default(cls, value):
         return None if value in ("", None) else value
+
+    @field_validator("data_dir", mode="before")
+    @classmethod
+    def _empty_data_dir_is_default(cls, value):
+        # empty means not set, as for BELTSTUDY_SCHEDULER and BELTSTUDY_TOKEN: an
+        # ``export BELTSTUDY_DATA_DIR=$UNSET`` was read as Path(""), the current folder, and a
+        # 'beltstudy run' in a project folder put studies/<id>/ and bodies/ among the
+        # user's own study files
+        if isinstance(value, str) and not value.strip():
+            return DEFAULT_DATA_DIR
+        return value
 
     @property
     def n_local_workers(self) -> int:
@@ -216,6 +230,18 @@ def check_data_dir(path: str | os.PathLike, *, write: bool = True) -> Path:
     except OSError as exc:  # a name over the file system's limits, a folder we may not read
         raise Invalid(f"{where}: {file_reason(exc)}") from None
     return root
+
+
+def data_dir_setting() -> Path:
+    """The store's folder the environment names (``BELTSTUDY_DATA_DIR``, empty or unset:
+    ``./data``), for a command that writes files the user names and must keep them out of
+    the store (:func:`beltstudy.service.cli.common.check_output`). Another setting being bad
+    does not stop it: ``beltstudy static`` reads no other, and the commands that do say it."""
+    try:
+        return load_settings().data_dir
+    except Invalid:
+        raw = os.environ.get(f"{ENV_PREFIX}DATA_DIR", "")
+        return Path(raw) if raw.strip() else DEFAULT_DATA_DIR
 
 
 @lru_cache(maxsize=1)

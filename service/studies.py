@@ -387,8 +387,20 @@ class StudyService:
 
     # ---------------------------------------------------------------- reading
     def status(self, study_id: str) -> dict:
-        """State and progress of a study (live while it runs)."""
+        """State and progress of a study (live while it runs). A document with the keys of
+        one (:meth:`Store.read`) but not their contents (``"study": {}``, edited by hand) is
+        :class:`Damaged` as an unreadable one is, so :meth:`list` lists it as damaged rather
+        than failing for every study."""
         doc = self.store.read(study_id)
+        try:
+            return self._status(study_id, doc)
+        except (KeyError, TypeError, AttributeError) as exc:
+            what = (f"no {exc.args[0]!r} where a study's document has one"
+                    if isinstance(exc, KeyError) else f"a value of the wrong type ({exc})")
+            raise Damaged(study_id, self.store.study_dir(study_id) / "study.json",
+                          f"it is not a study's document: {what}") from None
+
+    def _status(self, study_id: str, doc: dict) -> dict:
         job = self._jobs.get(study_id)
         out = {
             "id": doc["id"],
@@ -673,8 +685,9 @@ class StudyService:
             self._deleting.add(study_id)
         job = None
         try:
-            try:
-                was = self.store.read(study_id).get("state", "")
+            try:  # the state the list shows (a document with a study's keys, not its
+                # contents, is listed damaged: said so here too, not its stored state)
+                was = self.status(study_id)["state"]
             except Damaged:  # its document is unreadable: the rest of it goes all the same
                 was = "damaged"
             with self._lock:

@@ -8,6 +8,7 @@ from fastapi import APIRouter, Depends, Request
 from fastapi.concurrency import run_in_threadpool
 
 from beltstudy.service.api.deps import (
+    CALIBRATION_BODY_FIX,
     ERROR_RESPONSES,
     _error,
     get_service,
@@ -43,7 +44,8 @@ async def post_calibration(request: Request,
     """Values, standard errors and 95 % intervals (``fit.<name>.value``, ``.se``, ``.ci95``),
     residuals, the names the data cannot identify (``not_identifiable``) and a ``models``
     block for a study. The body is read as ``POST /studies`` reads a study: JSON or YAML."""
-    data = await read_data(request, service.settings.max_body_bytes, "a calibration")
+    data = await read_data(request, service.settings.max_body_bytes, "a calibration",
+                           CALIBRATION_BODY_FIX)
     body = await run_in_threadpool(read_calibration, data)
     return await run_in_threadpool(partial(run_calibration, body,
                                            studies_dir=service.settings.studies_dir))

@@ -12,6 +12,7 @@ from fastapi.concurrency import run_in_threadpool
 from fastapi.security import HTTPAuthorizationCredentials, HTTPBearer
 
 from beltstudy.service.api.models import ErrorOut
+from beltstudy.service.calibration import MAX_ROWS
 from beltstudy.service.door.parse import YAML_TYPES, parse_body
 from beltstudy.service.errors import Invalid, TooLarge, Unauthorized, UnsupportedMedia
 from beltstudy.service.studies import StudyService
@@ -77,19 +78,25 @@ def check_query(request: Request) -> None:
 BODY_FIX = ("; give the conveyor as a path in the service's studies folder "
             "(BELTSTUDY_STUDIES_DIR) rather than inline, shorten the description, or raise "
             "the service's BELTSTUDY_MAX_BODY_BYTES")
+#: The 413's fix for a calibration: its bytes are its ``measured`` rows (it has no
+#: description, and its conveyor is most often a path already). It was told the study's fix,
+#: which cannot bring 60 000 measured rows within the limit.
+CALIBRATION_BODY_FIX = (f"; send fewer measured rows (a calibration takes at most {MAX_ROWS}), "
+                        "or averages of repeated readings at the same load and temperature, "
+                        "or raise the service's BELTSTUDY_MAX_BODY_BYTES")
 
 
-async def _read_body(request: Request, limit: int) -> bytes:
+async def _read_body(request: Request, limit: int, fix: str = BODY_FIX) -> bytes:
     declared = request.headers.get("content-length")
     if declared and declared.isdigit() and int(declared) > limit:
         raise TooLarge(f"body: {declared} bytes; the limit is {limit} "
-                       f"(BELTSTUDY_MAX_BODY_BYTES){BODY_FIX}")
+                       f"(BELTSTUDY_MAX_BODY_BYTES){fix}")
     chunks, size = [], 0
     async for chunk in request.stream():
         size += len(chunk)
         if size > limit:
             raise TooLarge(f"body: more than {limit} bytes, the limit "
-                           f"(BELTSTUDY_MAX_BODY_BYTES){BODY_FIX}")
+                           f"(BELTSTUDY_MAX_BODY_BYTES){fix}")
         chunks.append(chunk)
     return b"".join(chunks)
 
@@ -124,15 +131,16 @@ def _check_encoding(content_type: str, content_encoding: str, what: str) -> None
                 "(charset=utf-8, or no charset)")
 
 
-async def read_data(request: Request, limit: int, what: str) -> Any:
+async def read_data(request: Request, limit: int, what: str, fix: str = BODY_FIX) -> Any:
     """The request's body as data, one way for every route that takes a document (``what``:
     ``a study``, ``a calibration``): JSON or YAML by ``Content-Type`` (415 for any other), at
-    most ``limit`` bytes (413), syntax errors with their line and column (422). Parsing runs
-    in a worker thread: the event loop, and so /health, keeps answering meanwhile."""
+    most ``limit`` bytes (413, ``fix`` saying how that document gets smaller), syntax errors
+    with their line and column (422). Parsing runs in a worker thread: the event loop, and so
+    /health, keeps answering meanwhile."""
     content_type = request.headers.get("content-type", "")
     _check_media_type(content_type, what)
     _check_encoding(content_type, request.headers.get("content-encoding", ""), what)
-    body = await _read_body(request, limit)
+    body = await _read_body(request, limit, fix)
     return await run_in_threadpool(parse_body, body, content_type, what)
 
 

@@ -83,11 +83,17 @@ def read_measured(path: str, lines: list[int] | None = None) -> list[dict]:
         raise InputError(f"{path}: empty: give a header line (load,temperature_c,power_kw) and "
                          "one row per measured steady state below it")
     header = [name.strip() for name in records[0]]
-    if len(header) == 1 and ";" in records[0][0]:
+    # one column holding the names: another separator. A spreadsheet's copy and paste gives
+    # tabs ('load<TAB>temperature_c<TAB>power_kw' was told "unknown column ...; did you mean
+    # 'temperature_c'?", a rename that cannot help); a European CSV export gives ';'
+    sep = next((said for s, said in ((";", "';'"), ("\t", "tabs"))
+                if len(header) == 1 and s in records[0][0]), None)
+    if sep is not None:
         raise InputError(
-            f"{path}: line 1: the columns are separated by ';'; the file must be "
-            "comma-separated with a decimal point (e.g. 'load,temperature_c,power_kw' then "
-            "'0.5,12,417.5'): export it as CSV with ',' between columns")
+            f"{path}: line 1: the columns are separated by {sep}; "
+            "the file must be comma-separated with a decimal point (e.g. "
+            "'load,temperature_c,power_kw' then '0.5,12,417.5'): export it as CSV with ',' "
+            "between columns")
     valid = list(MeasuredRow.model_fields)
     if not any(name in valid or difflib.get_close_matches(name, valid, n=1, cutoff=0.5)
                for name in header):

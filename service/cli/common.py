@@ -14,6 +14,7 @@ from beltstudy.engine import LOAD_MAX, InputError, get_model, parse_scenario, se
 from beltstudy.engine.drives import GIVEN
 from beltstudy.engine.friction import canonical_name
 from beltstudy.service.errors import file_reason, shown_path
+from beltstudy.service.settings import data_dir_setting
 
 LOAD_HELP = ("full, empty, inclines, declines, a fraction of the design load up to 1.3 (a "
              "surge above 1), or one fraction per carry profile section: 1,0,0.5")
@@ -72,13 +73,18 @@ def check_scenario_fields(conveyor=None, **fields):
 def read_conveyor(path: str | os.PathLike):
     """A conveyor file as the door reads it (:func:`beltstudy.service.door.parse.load_mapping`:
     size, depth and alias limits, finite numbers, every key once), then parsed; a file the door
-    refuses is an :class:`~beltstudy.service.errors.Invalid` naming it."""
-    from beltstudy.engine import parse_conveyor
+    refuses is an :class:`~beltstudy.service.errors.Invalid` naming it, a value of the wrong
+    type gets its fix (:func:`~beltstudy.service.door.messages.with_type_fixes`)."""
+    from beltstudy.engine import Conveyor, parse_conveyor
+    from beltstudy.service.door.messages import with_type_fixes
     from beltstudy.service.door.parse import expect_kind, load_mapping
 
     data = load_mapping(path)
     expect_kind(data, "conveyor", str(path))
-    return parse_conveyor(data, prefix=f"{path}: ")
+    try:
+        return parse_conveyor(data, prefix=f"{path}: ")
+    except InputError as exc:  # a wrong type with its fix, as the study door says it
+        raise InputError(with_type_fixes(str(exc), data, Conveyor, f"{path}: ")) from None
 
 
 def with_sag_at_rest(conv, on: bool | None):
@@ -216,10 +222,38 @@ def dumps(obj: Any) -> str:
     return json.dumps(jsonable(obj), indent=2)
 
 
-def check_output(path: str | os.PathLike) -> Path:
+#: What the store keeps in the data folder: an output path within one of these is refused.
+STORE_PARTS = ("studies", "bodies", ".beltstudy.lock")
+
+
+def outside_store(path: str | os.PathLike, option: str, what: str = "file") -> None:
+    """Refuse an output ``path`` that resolves (symbolic links followed) into the store's own
+    part of the data folder, ``BELTSTUDY_DATA_DIR`` (:data:`STORE_PARTS`: its studies, bodies
+    and lock): :class:`InputError` ``OPTION PATH: inside the data folder DIR (beltstudy's
+    store); write the file elsewhere``. The store's files are the service's
+    own: ``results -o data/studies/<id>/study.json`` replaced the study's document with its
+    runs (the study lost, GET /studies a 500), and a file dropped into ``studies/<id>/runs/``
+    was read as part of the table (``pd.read_parquet`` of the folder gave 170 rows of 85)."""
+    root = data_dir_setting()
+    try:
+        full, base = Path(path).resolve(), root.resolve()
+        part = full.relative_to(base).parts if full.is_relative_to(base) else ()
+    except (OSError, RuntimeError):  # a name over the limits, a symlink loop: said on writing
+        return
+    # the store's own: its studies, the bodies of records, its lock (a file beside them in
+    # the data folder's root is the user's, as a script or a log kept there)
+    if part and part[0] in STORE_PARTS:
+        raise InputError(f"{option} {shown_path(path)}: inside the data folder "
+                         f"{shown_path(root.resolve())} (beltstudy's store); write the {what} "
+                         "elsewhere")
+
+
+def check_output(path: str | os.PathLike, option: str) -> Path:
     """``path`` as an output file the command can write, checked before any work starts:
     :class:`InputError` ``cannot write PATH: the folder DIR does not exist`` (or it is a
-    folder itself, or the folder is not writable)."""
+    folder itself, or the folder is not writable), or ``OPTION PATH: inside the data folder``
+    (:func:`outside_store`; ``option`` names the option that gave it: ``-o``, ``--plot``)."""
+    outside_store(path, option)
     out = Path(path)
     folder = out.parent
     try:

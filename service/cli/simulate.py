@@ -31,6 +31,7 @@ from beltstudy.service.cli.common import (
     write_table,
     writing,
 )
+from beltstudy.service.door.messages import with_type_fixes
 from beltstudy.service.door.parse import expect_kind
 from beltstudy.service.door.parse import load_mapping as door_load_mapping
 
@@ -141,7 +142,7 @@ def build_scenario(args: argparse.Namespace):
     if any(k in data and not isinstance(data[k], dict) for k in ("start", "stop")):
         # 'start: null' or 'stop: [1]': refused naming the field, as POST /studies refuses it
         # (it was read as no start, or the command line's --start-time-s written into it)
-        return parse_scenario(data, prefix="scenario.")
+        return _parse_scenario(data)
     start = data.setdefault("start", {})
     stop = data.setdefault("stop", {})
     over = {
@@ -167,7 +168,16 @@ def build_scenario(args: argparse.Namespace):
         data.pop("start")
     if not stop:
         data.pop("stop")
-    return parse_scenario(data, prefix="scenario.")
+    return _parse_scenario(data)
+
+
+def _parse_scenario(data: dict):
+    """The scenario validated; a value of the wrong type with its fix (``temperature_c: 20
+    C``: write the number alone, in C), as the study door says it."""
+    try:
+        return parse_scenario(data, prefix="scenario.")
+    except InputError as exc:
+        raise InputError(with_type_fixes(str(exc), data, Scenario, "scenario.")) from None
 
 
 def traces_long(traces: pd.DataFrame) -> pd.DataFrame:
@@ -190,11 +200,12 @@ def run(args: argparse.Namespace) -> int:
     conv = with_sag_at_rest(read_conveyor(args.conveyor), args.sag_at_rest)
     fm = model_option(args.model)
     params = fm.params(parse_params(args.param, fm.name))
-    for path, exts in ((args.timeseries, (".csv", ".parquet")), (args.plot, (".png",))):
+    for option, path, exts in (("--timeseries", args.timeseries, (".csv", ".parquet")),
+                               ("--plot", args.plot, (".png",))):
         if path and not path.endswith(exts):
             raise InputError(f"{path}: give a file ending in {' or '.join(exts)}")
         if path:
-            check_output(path)
+            check_output(path, option)
     scn = build_scenario(args)
     from beltstudy.engine.warmth import COMPILE_LINE, kernel_cold
 

@@ -87,11 +87,12 @@ def run(args: argparse.Namespace) -> int:
     load = parse_load(args.load)
     scn = check_scenario_fields(conv, temperature_c=args.temperature_c, load=load,
                                 elements=args.elements)
-    for path, exts in ((args.profile, (".csv", ".parquet")), (args.plot, (".png",))):
+    for option, path, exts in (("--profile", args.profile, (".csv", ".parquet")),
+                               ("--plot", args.plot, (".png",))):
         if path and not path.endswith(exts):
             raise InputError(f"{path}: give a file ending in {' or '.join(exts)}")
         if path:
-            check_output(path)
+            check_output(path, option)
     t0 = time.perf_counter()
     given = drives_given(conv)
     conv, choice = _belt(conv, fm.name, params, args, load)

@@ -432,7 +432,7 @@ def cmd_results(args) -> int:
     fmt = {".parquet": "parquet", ".csv": "csv", ".json": "json"}.get(out.suffix.lower())
     if fmt is None:
         raise Invalid(f"-o {out}: use a .parquet, .csv or .json file name")
-    check_output(out)
+    check_output(out, "-o")
 
     def local(service):
         if fmt == "parquet":
@@ -474,7 +474,7 @@ def cmd_report(args) -> int:
     out = Path(args.output)
     if out.suffix.lower() not in (".html", ".htm"):
         raise Invalid(f"-o {out}: the report is HTML; use a .html file name")
-    check_output(out)
+    check_output(out, "-o")
 
     def local(service):
         # deferred: the report's pages load the service's Dask stack

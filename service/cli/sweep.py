@@ -32,6 +32,7 @@ from beltstudy.service.cli.common import (
     ELEMENTS_HELP,
     check_scenario_fields,
     model_option,
+    outside_store,
     parse_load,
     parse_model_params,
     read_conveyor,
@@ -232,6 +233,7 @@ def run(args: argparse.Namespace) -> int:
         fm.params(values)  # validate now: unknown names fail before any solving
         params[fm.name] = values
     out = Path(args.out)
+    outside_store(out, "--out", "files")  # before the folder is made: none in the store
     if out.exists() and not out.is_dir():
         raise InputError(f"--out {out}: exists and is not a directory")
     try:

@@ -20,17 +20,25 @@ from __future__ import annotations
 import dataclasses
 import functools
 import json
+import re
 from collections import defaultdict
 from typing import Any
 
 import yaml
 from pydantic import BaseModel, TypeAdapter, ValidationError
 
-from beltstudy.engine import ALIASES, MODELS, Conveyor, Scenario, format_validation_error
-from beltstudy.engine.conveyor import JSON_TYPES, as_json, nearest_word, type_hint
+from beltstudy.engine import (
+    ALIASES,
+    MODELS,
+    Conveyor,
+    InputError,
+    Scenario,
+    format_validation_error,
+)
+from beltstudy.engine.conveyor import JSON_TYPES, as_json, nearest_word, strict_validate, type_hint
 from beltstudy.service.door.study import AXIS_TARGETS, StudyIn, axis_types, unfold_axis
 
-__all__ = ["describe", "MAX_PROBLEMS"]
+__all__ = ["describe", "MAX_PROBLEMS", "type_fix", "with_type_fixes"]
 
 #: Problems named in one message; the rest are counted.
 MAX_PROBLEMS = 5
@@ -123,8 +131,126 @@ def _as_json_type(errors: list[dict]) -> str:
           and not isinstance(got, bool)):
         # the share of runs written alone: the block that holds it
         hint = f"write the share of runs to check as accuracy: {{sample: {as_json(got)}}}"
+    hint = hint or next((f for e in errors if (f := type_fix(e["input"], e["type"], path))), "")
     text += f": {hint}" if hint else ""
     return f"{_dotted(errors[0]['path'])}: {text}"
+
+
+#: A field's unit by the suffix of its name (the longest first), as a fix writes it.
+UNIT_OF_SUFFIX = (("_kg_m2", "kg m2"), ("_t_m3", "t/m3"), ("_m_s2", "m/s2"), ("_m_s", "m/s"),
+                  ("_t_h", "t/h"), ("_kn_m", "kN/m"), ("_knm", "kNm"), ("_kg_m", "kg/m"),
+                  ("_kg", "kg"), ("_kn", "kN"), ("_kw", "kW"), ("_pct", "%"), ("_deg", "deg"),
+                  ("_mm", "mm"), ("_m", "m"), ("_c", "C"), ("_s", "s"))
+#: Units written after a number, folded (lower case, no blanks), to the
+#: field's unit they convert to and the factor: ``2 km`` in a ``_m`` field is 2000.
+_CONVERSIONS = {
+    "km": ("m", 1000.0), "cm": ("m", 0.01), "mm": ("m", 0.001),
+    "t": ("kg", 1000.0), "g": ("kg", 0.001),
+    "m/min": ("m/s", 1 / 60), "km/h": ("m/s", 1 / 3.6),
+    "kg/s": ("t/h", 3.6), "mw": ("kW", 1000.0), "w": ("kW", 0.001), "n": ("kN", 0.001),
+}
+#: Ways of writing a field's own unit after a number (folded as :data:`_CONVERSIONS`).
+_SAME_UNIT = {"deg": ("degrees", "°"), "C": ("degc", "°c", "celsius", "°"),
+              "%": ("%", "pct", "percent"), "m/s": ("m/s", "mps"), "t/h": ("t/h", "tph")}
+#: A number and what follows it: ``4.5 m/s``, ``2km``, ``1.5%``, ``210°``, ``4,5``.
+_NUMBER_AND_TEXT = re.compile(r"^([-+]?(?:\d+(?:[.,]\d*)?|[.,]\d+)(?:[eE][-+]?\d+)?)\s*(.*)$")
+_DECIMAL_COMMA = re.compile(r"^[-+]?\d+,\d+$")
+_NUMBER_TYPES = {"float_type", "float_parsing", "int_type", "int_parsing", "int_from_float"}
+_LIST_TYPES = {"list_type", "tuple_type"}
+_MAPPING_TYPES = {"dict_type", "model_type", "model_attributes_type"}
+
+
+def field_unit(path: tuple) -> str:
+    """The unit of the field at ``path`` by its name's suffix (``speed_m_s``: ``m/s``), the
+    nearest named part that has one (``sag_limit_pct.carry``: ``%``; a grid axis
+    ``belt.width_m``: ``m``); "" when none says."""
+    for part in reversed(path):
+        for name in reversed(str(part).split(".")) if isinstance(part, str) else ():
+            unit = next((u for suffix, u in UNIT_OF_SUFFIX if name.lower().endswith(suffix)),
+                        "")
+            if unit:
+                return unit
+    return ""
+
+
+def _figure(value: float) -> str:
+    return f"{value:.12g}"
+
+
+def type_fix(got: Any, error_type: str, path: tuple) -> str:
+    """What to write for a value of the wrong type that no other hint covers: a number
+    written with its unit or a sign (``4.5 m/s``, ``2 km``, ``1.5%``, ``210°``: the number
+    alone, in the field's unit, converted where the unit says how: ``2 km`` -> 2000), a
+    decimal comma (``4,5``), an empty value (null), 0 or 1 for a boolean, and a mapping where
+    a list goes or a list where a mapping goes. These named the field and the type, not the
+    fix ("``drives: {...} is not of type "array"``"); "" for any other value."""
+    last = path[-1] if path else None
+    if got is None and error_type in JSON_TYPES and error_type != "none_required":
+        return f"give a value or remove the {'item' if isinstance(last, int) else 'key'}"
+    if (error_type in ("bool_type", "bool_parsing") and isinstance(got, int)
+            and not isinstance(got, bool) and got in (0, 1)):
+        return "write true or false"
+    if error_type in _LIST_TYPES and isinstance(got, dict):
+        return "write a list: one `- {...}` item per entry"
+    if error_type in _MAPPING_TYPES and not isinstance(got, dict):  # a list, belt: ST2000
+        return "write a mapping `{key: value, ...}`"
+    if error_type not in _NUMBER_TYPES or not isinstance(got, str):
+        return ""
+    text = got.strip()
+    if _DECIMAL_COMMA.match(text):
+        point = text.replace(",", ".")
+        if len(text.partition(",")[2]) == 3:  # 1,200: a thousands separator as likely
+            return (f"write {point}: a decimal point, or {text.replace(',', '')} if the comma "
+                    "separates thousands")
+        return f"write {point}: a decimal point"
+    m = _NUMBER_AND_TEXT.match(text)
+    if not m or not m.group(2) or m.group(2)[0].isdigit():
+        return ""
+    number, written = m.group(1).replace(",", "."), m.group(2).strip()
+    unit = field_unit(path)
+    if not unit:
+        return f"write the number alone: {number}"
+    folded = written.lower().replace(" ", "")
+    if folded == unit.lower() or folded in _SAME_UNIT.get(unit, ()):
+        return f"write the number alone, in {unit}: {number}"
+    to, factor = _CONVERSIONS.get(folded, (None, 1.0))
+    if to == unit:
+        return (f"write the number alone, in {unit}: {_figure(float(number) * factor)} "
+                f"({number} {written})")
+    return f"write the number alone, in {unit} (convert {number} {written} to {unit})"
+
+
+def with_type_fixes(message: str, data: Any, model: type[BaseModel], prefix: str = "") -> str:
+    """``message``, the engine's for ``data`` as ``model`` (:func:`beltstudy.engine.parse_conveyor`
+    of a conveyor file, ``parse_scenario`` of a scenario file; its paths after ``prefix``),
+    with :func:`type_fix`'s fix after each wrong-type problem that has none: a conveyor file
+    is said by the engine's words, and ``speed_m_s: 4.5 m/s`` there got the field and the
+    type only, where a study's door gives the fix."""
+    if "is not of type" not in message:
+        return message
+    try:
+        strict_validate(model, data)
+        return message
+    except ValidationError as exc:
+        errors = exc.errors()
+    except InputError:  # not JSON data: said otherwise
+        return message
+    for e in errors:
+        if e["type"] not in JSON_TYPES or type_hint(e["input"], e["type"]):
+            continue
+        path = _walk(tuple(e["loc"]), data, e["type"])
+        fix = type_fix(e["input"], e["type"], path)
+        shown = ".".join(str(p) for p in path) or "(top level)"
+        head = f"{prefix}{shown}: {as_json(e['input'])} is not of type "
+        at = message.find(head)
+        if not fix or at < 0:
+            continue
+        end = message.find(f"; {prefix}", at + len(head))
+        end = len(message) if end < 0 else end
+        if ": " in message[at + len(head):end]:  # a fix there already (did you mean ...?)
+            continue
+        message = f"{message[:end]}: {fix}{message[end:]}"
+    return message
 
 
 @functools.cache

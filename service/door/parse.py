@@ -418,6 +418,8 @@ def load_mapping(path: str | Path, what: str | None = None) -> dict:
 #: scenario's own (SPEC 2): a file given in the wrong place is named for what it is.
 _CONVEYOR_KEYS = ("speed_m_s", "belt", "material", "profile", "idlers", "drives")
 _STUDY_KEYS = ("conveyor", "grid", "zip", "design", "models", "sample", "dynamics")
+_SCENARIO_KEYS = ("scenario", "load", "temperature_c", "start", "run_s", "stop", "formulation",
+                  "elements", "dt_s", "record_dt_s")
 _FILE_USE = {
     "conveyor": "a conveyor file (SPEC 1: name, speed_m_s, belt, material, profile, idlers, "
                 "drives)",
@@ -428,28 +430,36 @@ _FILE_USE = {
 
 def file_kind(data: Any) -> str | None:
     """What a top-level mapping looks like: ``conveyor`` (three or more of a conveyor's own
-    keys), ``study`` (a ``conveyor:`` key, or two of a study's own keys), or None."""
+    keys), ``study`` (a ``conveyor:`` key, or two of a study's own keys), ``scenario`` (only a
+    scenario's keys: its ``scenario:`` wrapper or two of its fields), or None."""
     if not isinstance(data, dict):
         return None
     if sum(k in data for k in _CONVEYOR_KEYS) >= 3 and "conveyor" not in data:
         return "conveyor"
     if "conveyor" in data or sum(k in data for k in _STUDY_KEYS) >= 2:
         return "study"
+    if data and all(k in _SCENARIO_KEYS for k in data) and (
+            "scenario" in data or len(data) >= 2):
+        return "scenario"
     return None
 
 
 def expect_kind(data: Any, kind: str, what: str) -> None:
-    """Refuse a conveyor file given as a study or scenario, or a study file given as a
-    conveyor or scenario, in one line naming what the file is and where it goes (instead of
+    """Refuse a conveyor file given as a study or scenario, a study file given as a
+    conveyor or scenario, or a scenario file given as a conveyor or study, in one line naming what the file is and where it goes (instead of
     one unknown key after another)."""
     got = file_kind(data)
     if got is None or got == kind:
         return
-    keys = ", ".join(k for k in (_CONVEYOR_KEYS if got == "conveyor" else _STUDY_KEYS)
-                     if k in data)
+    own = {"conveyor": _CONVEYOR_KEYS, "study": _STUDY_KEYS, "scenario": _SCENARIO_KEYS}[got]
+    keys = ", ".join(k for k in own if k in data)
+    # a scenario file given as the conveyor ('beltstudy simulate sc.yaml --scenario conv.yaml')
+    # was refused with every conveyor field missing and 'unknown key scenario'
     where = {"conveyor": "give it as the conveyor (a study names it under conveyor:)",
              "study": "run it as a study (beltstudy run FILE, or POST /studies); its conveyor: "
-                      "names the conveyor file"}[got]
+                      "names the conveyor file",
+             "scenario": "give it with --scenario (beltstudy simulate CONVEYOR --scenario "
+                         "FILE; a study writes it under scenario:)"}[got]
     raise Invalid(f"{what}: this is a {got} file (it has {keys}), not {_FILE_USE[kind]}: "
                   f"{where}")
 

@@ -26,10 +26,10 @@ from typing import Any
 from pydantic import ValidationError
 
 from beltstudy import engine
-from beltstudy.engine import InputError, get_model, parse_conveyor
+from beltstudy.engine import Conveyor, InputError, get_model, parse_conveyor
 from beltstudy.engine.conveyor import json_numbers
 from beltstudy.engine.reads import STEADY_FIELDS
-from beltstudy.service.door.messages import describe
+from beltstudy.service.door.messages import describe, with_type_fixes
 from beltstudy.service.door.parse import check_tree, expect_kind, load_mapping
 from beltstudy.service.door.sample import (
     SampleIn,
@@ -309,7 +309,11 @@ def _conveyor(study: StudyIn, base_dir: Path | None, studies_dir: Path | None
     try:
         if isinstance(study.conveyor, str):
             conv_data, source = conveyor_from_path(study.conveyor, base_dir, studies_dir)
-            conveyor = parse_conveyor(conv_data, prefix=f"conveyor: {shown_path(source)}: ")
+            where = f"conveyor: {shown_path(source)}: "
+            try:
+                conveyor = parse_conveyor(conv_data, prefix=where)
+            except InputError as exc:  # a wrong type with its fix, as an inline one gets
+                raise InputError(with_type_fixes(str(exc), conv_data, Conveyor, where)) from None
         else:
             # the same checks as a file's (catalogue, fill): the Pydantic model alone lets an
             # over-filled belt through to the grid, which would fail there on every variant

@@ -57,6 +57,9 @@ log = logging.getLogger(__name__)
 __all__ = ["Store", "STATES", "TABLES", "PART_TABLES", "write_part_to"]
 
 STATES = ("queued", "running", "done", "failed", "cancelled")
+#: The keys every study's document has (:meth:`Store.read` refuses a ``study.json`` without
+#: them as damaged): what the list and a study's status read.
+DOC_KEYS = ("id", "name", "state", "total", "study")
 TABLES = ("runs", "timeseries", "surface", "profile", "accuracy")
 #: The tables a batch writes before its ``runs`` part (which commits them).
 PART_TABLES = ("surface", "timeseries", "profile", "accuracy")
@@ -225,8 +228,12 @@ class Store:
 
     def read(self, study_id: str) -> dict:
         """The study's ``study.json``; :class:`NotFound` for an unknown id, :class:`Damaged`
-        (a 500 naming the file and the way out) for one that is not a JSON object (edited or
-        truncated by hand: this store writes it atomically)."""
+        (a 500 naming the file and the way out) for one that is not a study's document (edited
+        or truncated by hand, or overwritten: this store writes it atomically): not a JSON
+        object, an object without the keys every document has (:data:`DOC_KEYS`), or the
+        document of another study (its ``id`` not its folder's). A runs download written over
+        it (``{"study_id": ..., "runs": [...]}``) passed as a document, and every reader then
+        failed on ``doc["id"]``: ``GET /studies`` a 500 for all studies, the CLI a traceback."""
         path = self.study_dir(study_id) / "study.json"
         try:
             doc = json.loads(path.read_text(encoding="utf-8"))
@@ -236,6 +243,16 @@ class Store:
             raise Damaged(study_id, path, str(exc)) from None
         if not isinstance(doc, dict):
             raise Damaged(study_id, path, f"it holds a JSON {type(doc).__name__}, not an object")
+        missing = [k for k in DOC_KEYS if k not in doc]
+        if missing:
+            raise Damaged(study_id, path, "it is a JSON object but not a study's document: "
+                          f"it has no {', '.join(missing)} (a study's document has "
+                          f"{', '.join(DOC_KEYS)})")
+        if doc["id"] != study_id:
+            raise Damaged(study_id, path, f"it is the document of study {str(doc['id'])[:40]!r}, "
+                          "not of this folder's")
+        if not isinstance(doc["study"], dict):
+            raise Damaged(study_id, path, "its study is not a JSON object")
         return doc
 
     def update(self, study_id: str, **fields: Any) -> dict:

@@ -215,6 +215,24 @@ def test_oversize_body_is_413(api, data_dir, make_study):
     assert _written(data_dir) == []
 
 
+@pytest.mark.parametrize("chunked", [False, True])
+def test_an_oversize_calibration_is_told_to_send_fewer_measured_rows(api, chunked):
+    """A calibration's bytes are its measured rows: it was told the study's fix (the conveyor
+    as a path, which it was already, and a shorter description, which it has none of)."""
+    row = {"load": "full", "temperature_c": 20.0, "power_kw": 741.9}
+    body = json.dumps({"conveyor": "conveyors/slope-5pct.yaml", "model": "din",
+                       "fit": ["f_carry"], "measured": [row] * 200}).encode()
+    content = iter([body]) if chunked else body  # no Content-Length: counted as it arrives
+    response = api(max_body_bytes=2048).post(
+        "/calibrations", content=content, headers={"Content-Type": "application/json"})
+    assert response.status_code == 413
+    said = response.json()["message"]
+    assert said.startswith("body: ") and "(BELTSTUDY_MAX_BODY_BYTES); send fewer measured rows " \
+        "(a calibration takes at most 200), or averages of repeated readings at the same load " \
+        "and temperature, or raise the service's BELTSTUDY_MAX_BODY_BYTES" in said, said
+    assert "conveyor" not in said and "description" not in said
+
+
 def test_not_json_and_empty_bodies(api, data_dir):
     client = api()
     r = client.post("/studies", content=b"{not json", headers={"Content-Type": "application/json"})

@@ -166,6 +166,11 @@ def test_csv_from_excel_or_notepad_reads_as_utf8(tmp_path, encoding):
     (b"load;temperature_c;power_kw\n0,5;12;417,5\n",
      "line 1: the columns are separated by ';'; the file must be comma-separated with a "
      "decimal point"),
+    # a spreadsheet's copy and paste: tabs (was "unknown column 'load\ttemperature_c\t...';
+    # did you mean 'temperature_c'?")
+    (b"load\ttemperature_c\tpower_kw\n0.5\t12\t417.5\n",
+     "line 1: the columns are separated by tabs; the file must be comma-separated with a "
+     "decimal point"),
     (b"load,temperature_c,power_kw,power_kw\n0.5,12,417,9999\n",
      "line 1: column 'power_kw' given twice (columns 3 and 4); give each column once"),
     (b"load,temp_c,power_kw\n0.5,12,417\n",

@@ -270,6 +270,33 @@ def test_a_file_in_the_wrong_place_is_named_for_what_it_is(monkeypatch, capsys, 
     assert len(err.strip().splitlines()) == 1 and "unknown key" not in err
 
 
+@pytest.mark.parametrize("text", [
+    "scenario:\n  load: full\n  temperature_c: 20\n  run_s: 10\n",  # the wrapper
+    "load: full\ntemperature_c: 20\nrun_s: 10\n",  # the fields alone
+])
+@pytest.mark.parametrize("command", ["simulate", "static"])
+def test_a_scenario_file_given_as_the_conveyor_says_to_give_it_with_scenario(
+        monkeypatch, capsys, tmp_path, text, command):
+    """``beltstudy simulate sc.yaml --scenario conveyor.yaml``: every conveyor field was
+    'required field is missing' and 'scenario: unknown key', where the reverse mix-up (a
+    conveyor given as --scenario) is named for what it is."""
+    from tests.conftest import ROOT
+
+    scenario = tmp_path / "sc.yaml"
+    scenario.write_text(text, encoding="utf-8")
+    monkeypatch.setenv("BELTSTUDY_DATA_DIR", str(tmp_path / "data"))
+    argv = [command, str(scenario)]
+    if command == "simulate":
+        argv += ["--scenario", str(ROOT / "studies" / "conveyors" / "fabric-1km.yaml")]
+    assert cli.main(argv) == 2
+    err = capsys.readouterr().err
+    keys = "scenario" if text.startswith("scenario:") else "load, temperature_c, run_s"
+    assert err == (f"error: {scenario}: this is a scenario file (it has {keys}), not a "
+                   "conveyor file (SPEC 1: name, speed_m_s, belt, material, profile, idlers, "
+                   "drives): give it with --scenario (beltstudy simulate CONVEYOR --scenario "
+                   "FILE; a study writes it under scenario:)\n"), err
+
+
 def test_a_conveyor_posted_as_a_study_is_a_422_saying_so(tmp_path):
     from fastapi.testclient import TestClient
 

@@ -68,7 +68,9 @@ def test_a_grip_held_design_brake_is_within_the_grip_at_its_own_case():
 #: take-up along the return and auto brakes at the head and the tail: the holding force, 1.2 x
 #: the net gravity pull 25.89 kN = 31.07 kN, is beyond the head pulley's grip as an even share,
 #: so the engine gives the head its grip (15.385 kN) and the tail the rest (15.680 kN), both
-#: ``holding``.
+#: ``holding``. Its take-up is given at 6 710.93 kg, the auto size (``sag_at_rest``) before
+#: the auto take-up let the braked head pulley hold the whole pull at rest (7 331.7 kg,
+#: ``slip_breakaway``), at which the even share is within the head's grip.
 DECLINE = {
     "name": "decline-two-brakes", "speed_m_s": 3.0,
     "belt": {"type": "EP630/4", "width_m": 1.0},
@@ -88,8 +90,8 @@ DECLINE = {
                {"position": "return", "at_m": 250, "wrap_deg": 190, "friction": 0.35,
                 "share": 0.4, "pulley_diameter_m": 0.8, "inertia_kg_m2": 100,
                 "torque_limit": 1.5}],
-    "takeup": {"type": "gravity", "position": "return", "at_m": 850, "mass_kg": "auto",
-               "travel_m": 10},
+    "takeup": {"type": "gravity", "position": "return", "at_m": 850,
+               "mass_kg": 6710.932853668639, "travel_m": 10},
     "brakes": [{"position": "head", "force_kn": "auto", "delay_s": 0.5, "ramp_s": 1.5},
                {"position": "tail", "force_kn": "auto", "delay_s": 0.5}],
     "accessories": {"head_kn": 0.5, "tail_kn": 0.5},

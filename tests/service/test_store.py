@@ -18,6 +18,13 @@ from beltstudy.service.store.columns import (
 from beltstudy.service.store.parquet import Store
 
 
+def _doc(sid: str, **over) -> dict:
+    """The least a study's document holds (:data:`~beltstudy.service.store.parquet.DOC_KEYS`:
+    the store reads an object without them as damaged)."""
+    return {"id": sid, "name": "x", "state": "queued", "total": 0, "study": {"axes": []},
+            **over}
+
+
 def test_finished_study_reads_back_with_pandas(data_dir, make_study, finished_study):
     sid = finished_study(data_dir, make_study())
     d = data_dir / "studies" / sid
@@ -50,7 +57,7 @@ def test_empty_study_has_the_full_schema(data_dir, make_study):
 
 def test_parts_are_written_under_a_temporary_name(tmp_path, monkeypatch):
     store = Store(tmp_path)
-    store.create("0123456789abcdef", {"id": "0123456789abcdef", "study": {"axes": []}})
+    store.create("0123456789abcdef", _doc("0123456789abcdef"))
     seen = []
     import pyarrow.parquet as pq
 
@@ -71,7 +78,7 @@ def test_parts_are_written_under_a_temporary_name(tmp_path, monkeypatch):
 def test_clean_removes_orphans_and_temporaries(tmp_path):
     sid = "0123456789abcdef"
     store = Store(tmp_path)
-    store.create(sid, {"id": sid, "study": {"axes": []}})
+    store.create(sid, _doc(sid))
     ts = rows_to_table([{"run_id": "r", "t_s": 0.0}], timeseries_schema())
     runs = rows_to_table([{"run_id": "r"}], runs_schema([]))
     store.write_part(sid, "timeseries", "done", ts)
@@ -93,7 +100,7 @@ def test_sweep_removes_what_a_killed_process_left_and_keeps_the_rest(tmp_path):
 
     store = Store(tmp_path)
     sid = "0123456789abcdef"
-    store.create(sid, {"id": sid, "study": {"axes": []}})
+    store.create(sid, _doc(sid))
     before = store.read(sid)
     root = tmp_path / "studies"
     (root / f".{'a' * 16}.1234abcd.deleted" / "runs").mkdir(parents=True)
@@ -118,7 +125,7 @@ def test_a_study_json_write_a_killed_process_cut_short_is_removed_on_resume(tmp_
 
     sid = "0123456789abcdef"
     store = Store(tmp_path)
-    store.create(sid, {"id": sid, "study": {"axes": []}})
+    store.create(sid, _doc(sid))
     store.update(sid, state="running")
     folder = store.study_dir(sid)
     dead = folder / ".study.json.0badf00d-12345678.tmp"
@@ -146,7 +153,7 @@ def test_ids_that_are_not_hashes_are_not_found(tmp_path, bad):
 def test_update_list_delete(tmp_path):
     store = Store(tmp_path)
     for i, sid in enumerate(["a" * 16, "b" * 16]):
-        store.create(sid, {"id": sid, "created_at": i, "state": "queued"})
+        store.create(sid, _doc(sid, created_at=i, state="queued"))
     store.update("a" * 16, state="done")
     assert [d["state"] for d in store.list_studies()] == ["done", "queued"]
     store.delete("a" * 16)
@@ -179,7 +186,7 @@ def test_workers_write_parts_only_into_the_study_they_were_given(tmp_path):
 
     sid = "0123456789abcdef"
     store = Store(tmp_path)
-    store.create(sid, {"id": sid, "store_token": "t0k", "study": {"axes": []}})
+    store.create(sid, _doc(sid, store_token="t0k"))
     ts = rows_to_table([{"run_id": "r", "t_s": 0.0}], timeseries_schema())
     d = store.study_dir(sid)
     assert not write_part_to(d, "wrong", "timeseries", "k", ts)
