@@ -900,10 +900,13 @@ def _summarise(res: SteadyResult, drives, hs_adm, bounds, shortfall_n: float,
     checked, check_warnings = design_checks(conv, loop, T, sf_min, friction_n)
     res.summary.update(checked)
     warnings += check_warnings
+    # held at rest, the pulley holding the stopped belt takes its whole net pull: a given
+    # take-up too light for it is said here, not only by the transient run's rest state
+    T_rest = rest_tensions(conv, loop, T)
+    warnings += rest_grip_words(loop, rest_hold_element(conv, loop), T_rest, conv)
     if loop.curves:  # vertical curves: lift-off running and at start-up (the start-up
         # walk of slip_margin_start, T_start above), convex radius (beltstudy.engine.curves)
-        checked, check_warnings = curve_checks(conv, loop, T, sf_min, T_start,
-                                               rest_tensions(conv, loop, T))
+        checked, check_warnings = curve_checks(conv, loop, T, sf_min, T_start, T_rest)
         res.summary.update(checked)
         warnings += check_warnings
     # grade changes without curve_radius_m, read as the circle through their survey points
@@ -1099,6 +1102,34 @@ def _safety_words(loop: Loop, belt, sf: float, sf_min: float, t_max: float, s_m:
             f"belt rated at least {math.ceil(need_kn_m)} kN/m at this width ({pick}), or a "
             f"lower largest tension ({lower}) "
             "would avoid it")
+
+
+def rest_grip_words(loop: Loop, hold: int, T_rest: np.ndarray, conv=None) -> list[str]:
+    """The pulley holding the belt at rest passes at most ``T_slack (e^(mu theta) - 1)``
+    (Euler-Eytelwein, PHYSICS 5.1, static friction): a rest state that asks more of it cannot
+    stand (the belt would creep over the held pulley). In words, with the take-up lever of
+    ``conv`` (:func:`beltstudy.engine.design.takeup_lever`: a fixed take-up has no
+    counterweight to make heavier); [] where it holds. The steady check says it of a given
+    take-up (an auto one is sized to hold, :func:`_rest_grip_bound`), the transient run of its
+    own rest state."""
+    from beltstudy.engine.design import takeup_lever
+
+    pulley = next((p for p in loop.pulleys if p.element == hold), None)
+    if pulley is None:
+        return []
+    t_in, t_out = float(T_rest[hold - 1]), float(T_rest[hold])
+    slack = max(min(t_in, t_out), 0.0)
+    grip = slack * math.expm1(pulley.friction * math.radians(pulley.wrap_deg))
+    held = abs(t_out - t_in)
+    if held <= grip * (1.0 + 1e-9):  # a take-up sized to the grip holds (rounding aside)
+        return []
+    need = held / math.expm1(pulley.friction * math.radians(pulley.wrap_deg))
+    more = takeup_lever(conv) if conv is not None else "a heavier take-up"
+    return [f"at rest the {pulley.where} pulley holding the belt passes {held / 1e3:.4g} kN, "
+            f"beyond its grip of {grip / 1e3:.4g} kN (slack side {slack / 1e3:.4g} kN, mu "
+            f"{pulley.friction:g}, wrap {pulley.wrap_deg:g} deg): the belt would creep over it; "
+            f"a slack-side tension of {need / 1e3:.4g} kN ({more}) or a brake or "
+            "holdback on another pulley would hold it"]
 
 
 def rest_tensions(conv: Conveyor, loop: Loop, T: np.ndarray) -> np.ndarray:

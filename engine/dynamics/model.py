@@ -108,7 +108,12 @@ from beltstudy.engine.dynamics.records import (
 )
 from beltstudy.engine.law import ResistanceLaw
 from beltstudy.engine.loop import G, Loop, rotating_parts, shell_floor_notes
-from beltstudy.engine.statics import master_drive, rest_hold_element, rest_walk
+from beltstudy.engine.statics import (
+    master_drive,
+    rest_grip_words,
+    rest_hold_element,
+    rest_walk,
+)
 
 __all__ = [
     "DynamicsOptions",
@@ -942,28 +947,9 @@ def _rest(conv, loop, springs: Springs, gravity, T_run, tu_weight) -> tuple[int,
 
 
 def _rest_grip(loop, hold: int, T_rest: np.ndarray, conv=None) -> list[str]:
-    """The pulley holding the belt at rest passes at most ``T_slack (e^(mu theta) - 1)``
-    (Euler-Eytelwein, PHYSICS 5.1, static friction): a rest state that asks more of it cannot
-    stand (the belt would creep over the held pulley). The transient model starts from it
-    all the same (the hold is taken as given), so the run says so, with the take-up lever of
-    ``conv`` (:func:`beltstudy.engine.design.takeup_lever`: a fixed take-up has no
-    counterweight to make heavier)."""
-    pulley = next((p for p in loop.pulleys if p.element == hold), None)
-    if pulley is None:
-        return []
-    t_in, t_out = float(T_rest[hold - 1]), float(T_rest[hold])
-    slack = max(min(t_in, t_out), 0.0)
-    grip = slack * math.expm1(pulley.friction * math.radians(pulley.wrap_deg))
-    held = abs(t_out - t_in)
-    if held <= grip * (1.0 + 1e-9):  # a take-up sized to the grip holds (rounding aside)
-        return []
-    need = held / math.expm1(pulley.friction * math.radians(pulley.wrap_deg))
-    more = design.takeup_lever(conv) if conv is not None else "a heavier take-up"
-    return [f"at rest the {pulley.where} pulley holding the belt passes {held / 1e3:.4g} kN, "
-            f"beyond its grip of {grip / 1e3:.4g} kN (slack side {slack / 1e3:.4g} kN, mu "
-            f"{pulley.friction:g}, wrap {pulley.wrap_deg:g} deg): the belt would creep over it; "
-            f"a slack-side tension of {need / 1e3:.4g} kN ({more}) or a brake or "
-            "holdback on another pulley would hold it"]
+    """:func:`beltstudy.engine.statics.rest_grip_words` of the run's rest state: the transient
+    model starts from it all the same (the hold is taken as given), so the run says so."""
+    return rest_grip_words(loop, hold, T_rest, conv)
 
 
 def _takeup(conv, loop, steady, springs: Springs, T_rest, T_run) -> Takeup:

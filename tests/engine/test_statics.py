@@ -766,3 +766,32 @@ def test_an_incline_s_take_up_lets_the_pulley_holding_it_at_rest_hold_the_whole_
     assert res.takeup_governed_by == "slip_breakaway"
     # the drives' own start-up and breakaway checks ask less: each passes its share only
     assert res.summary["slip_margin_start"] > 1.0
+
+
+def test_a_given_take_up_too_light_to_hold_the_belt_at_rest_is_told_by_the_steady_check():
+    """The incline of the test above with its take-up given at 0.9 x the hand size: held at
+    rest the braked head pulley passes the whole pull m'_L g H against a grip of (m g / 2 +
+    m'_G g H)(e^(mu theta) - 1); only the transient run said the belt would creep over it. At
+    the hand size itself the steady check says nothing."""
+    drive = {"position": "head", "wrap_deg": 200, "friction": 0.35, "share": 0.5,
+             "pulley_diameter_m": 1.0}
+    H = 96.47
+    e = math.exp(0.35 * math.radians(200.0))
+    m_l = 2000.0 / (3.6 * 2.0)
+    hand = 2.0 * (m_l * H / (e - 1.0) - 20.0 * H)
+
+    def steady(mass):
+        return solve_steady(parse_conveyor(hand_conveyor_dict(
+            speed_m_s=2.0, material={"capacity_t_h": 2000, "density_t_m3": 1.0},
+            profile=[{"length_m": 350, "lift_m": H}], drives=[dict(drive), dict(drive)],
+            brakes=[{"position": "head", "force_kn": "auto"}], holdback=True,
+            takeup={"type": "gravity", "position": "tail", "mass_kg": mass})), model="din")
+
+    light = steady(0.9 * hand)
+    (w,) = [m for m in light.warnings if m.startswith("at rest the head pulley")]
+    slack = (0.9 * hand * G / 2.0 + 20.0 * G * H) / 1e3
+    assert (f"passes {m_l * G * H / 1e3:.4g} kN, beyond its grip of "
+            f"{slack * (e - 1.0):.4g} kN (slack side {slack:.4g} kN") in w, w
+    assert f"a slack-side tension of {m_l * G * H / (e - 1.0) / 1e3:.4g} kN (a heavier " \
+        "take-up)" in w
+    assert not [m for m in steady(hand * (1 + 1e-6)).warnings if "holding the belt" in m]
