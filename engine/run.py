@@ -233,6 +233,7 @@ def run_one(
         prep.done.summary["elapsed_s"] = time.perf_counter() - t0
         return prep.done
     system = build_system(prep.conveyor, scenario, prep.steady, opts)
+    _unsaid(system, prep.steady)
     system.auto_brakes = _auto_brakes(conveyor, auto_brakes)
     system.brakes_timed = _brakes_timed(prep, system.auto_brakes)
     system.brakes_gripped = _brakes_gripped(prep)
@@ -301,6 +302,13 @@ def _transient_belt(conveyor: Conveyor, scenario: Scenario, result: RunResult, t
             + ": a wider belt (belt.width_m) or a softer start and stop would avoid it")
     s["message"] = (s.get("message") or "") + said
     return result
+
+
+def _unsaid(system, steady) -> None:
+    """Leave out of the transient's warnings those of its rest state that the steady check
+    said already, word for word (the pulley holding the stopped belt beyond its grip, which
+    both judge on a gravity take-up's at-rest tensions): the run's message said it twice."""
+    system.warnings = [w for w in system.warnings if w not in steady.warnings]
 
 
 def _brake_grip(prep: _Prepared, system, scenario: Scenario) -> functools.partial | None:
@@ -431,6 +439,7 @@ def run_group(
             continue
         preps[i] = prep
         systems.append(build_system(prep.conveyor, scn, prep.steady, opts))
+        _unsaid(systems[-1], prep.steady)
         systems[-1].auto_brakes = _auto_brakes(
             convs[i], None if auto_brakes is None else auto_brakes[i])
         systems[-1].motor_cases = _motor_cases(prep, scn, model, params)
