@@ -502,6 +502,7 @@ def _prepare(conveyor, scenario, model, params, dynamics, opts, solved=None, gov
             params=params,
             temperature_c=scenario.temperature_c,
             load=scenario.load,
+            settle=True,
             n_elements=n,
         )
         if solved is not None:  # the caller holds every conveyor meanwhile: ids stay theirs

@@ -448,7 +448,7 @@ def solve_steady(
     load: float | str = 1.0,
     n_elements: int | None = None,
     target_dx_m: float | None = None,
-    settle: bool = True,
+    settle: bool = False,
 ) -> SteadyResult:
     """Steady running tensions of a conveyor for one friction model.
 
@@ -466,8 +466,9 @@ def solve_steady(
     n_elements, target_dx_m : optional
         Element count round the loop or target element length [m].
     settle : bool
-        Settle a convex curve's advised radius by solving again at it (:func:`_settle_radii`);
-        False for those solves themselves.
+        Settle a convex curve's advised radius by solving again at it (:func:`_settle_radii`):
+        the run's own steady state (``beltstudy static``, a transient run's), not the solves
+        of a search (belt candidates, take-up sizes, calibration fits), which read figures.
 
     Returns
     -------

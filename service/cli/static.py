@@ -99,7 +99,7 @@ def run(args: argparse.Namespace) -> int:
     # auto motors and brakes installed for the full load too, as a run installs them
     conv, installed = installed_at_full_load(conv, scn, model=fm.name, params=params)
     res = solve_steady(conv, model=fm.name, params=params, temperature_c=args.temperature_c,
-                       load=load, n_elements=args.elements)
+                       load=load, n_elements=args.elements, settle=True)
     s = dict(res.summary)
     s.update(summary_fields(auto_sizes(conv, scn, model=fm.name, params=params, steady=res)))
     s.update(installed)
