@@ -96,8 +96,20 @@ class _NoMatch(Exception):
     """A filter value no row of that column can equal (text for a number column)."""
 
 
-def _coerce(series: pd.Series, text: str) -> Any:
+def _boolean(series: pd.Series) -> bool:
+    """A yes/no column: boolean, or one whose values but its nulls are all booleans (a failed
+    run's null makes ``pulley1_diameter_min_ok`` an object column of True and None, where
+    ``filter=pulley1_diameter_min_ok=true``, the value as the JSON rows show it, matched
+    nothing: it was compared as text with 'True')."""
     if pd.api.types.is_bool_dtype(series):
+        return True
+    values = series.dropna()
+    return (series.dtype == object and len(values) > 0
+            and all(isinstance(v, bool | np.bool_) for v in values))
+
+
+def _coerce(series: pd.Series, text: str) -> Any:
+    if _boolean(series):
         if text.lower() not in ("true", "false"):
             raise _NoMatch
         return text.lower() == "true"
@@ -290,8 +302,10 @@ def apply_filters(df: pd.DataFrame, filters: list[str]) -> pd.DataFrame:
             df = df[np.isclose(df[column].astype(float), value, rtol=1e-9, atol=1e-12)]
         elif isinstance(value, str):
             df = df[_text_matches(df[column], value)]
-        else:
-            df = df[df[column] == value]
+        else:  # a yes/no value: a null is neither
+            df = df[df[column].map(lambda v, want=value: v is not None and v is not pd.NA
+                                   and not (isinstance(v, float) and math.isnan(v))
+                                   and bool(v) == want)]
     return df
 
 

@@ -13,6 +13,7 @@ import numpy as np
 import pandas as pd
 
 from beltstudy.service.uncertainty import index_text, runs_text, summarise
+from beltstudy.service.web.numbers import eng
 
 __all__ = ["uncertainty_section", "histograms_figure", "ranking_figure", "FIGURE_COLUMNS"]
 
@@ -27,9 +28,17 @@ def _e(value: Any) -> str:
 
 
 def _g(value: Any, digits: int = 4) -> str:
-    if value is None or (isinstance(value, float) and not np.isfinite(value)):
-        return "-"
-    return f"{value:.{digits}g}"
+    """A number as the report writes numbers (:func:`~beltstudy.service.web.numbers.eng`:
+    ``17 000``, ``6.3 × 10⁻⁵``, never ``1.7e+04``), ``-`` for none."""
+    return eng(value, "", digits, empty="-")
+
+
+def _index(value: Any, digits: int = 2) -> str:
+    """A sensitivity index or rank correlation as the report writes numbers: ``0`` for
+    round-off of zero (:func:`~beltstudy.service.uncertainty.index_text`), else :func:`_g`
+    (a ranking read ``(6.3e-05)``)."""
+    text = index_text(value, digits)
+    return text if text in ("0", "-") else _g(value, digits)
 
 
 def histograms_figure(cell: dict, runs: pd.DataFrame, title: str):
@@ -90,7 +99,7 @@ def _cell_tables(cell: dict, table, n_cell) -> str:
         q = d["quantiles"]
         sens = cell["sensitivity"][col]
         key = "ST" if sens["method"].startswith("sobol") else "rho"
-        rank = ", ".join(f"{n} ({index_text(sens['axes'][n][key], 2)})"
+        rank = ", ".join(f"{n} ({_index(sens['axes'][n][key])})"
                         for n in sens["ranking"][:3])
         rows.append([f"<code>{_e(col)}</code>", _e(d["unit"]), n_cell(d["mean"]),
                      n_cell(d["sd"]), n_cell(q["p05"]), n_cell(q["p50"]), n_cell(q["p95"]),

@@ -267,3 +267,21 @@ def test_the_default_metrics_of_a_steady_study_are_its_power_alone(asked):
     runs["t_min_stop_kn"] = runs["power_kw"]
     out = compare(runs, ["friction_model", "temperature_c", "load"], "cema", "nonlin", asked)
     assert out["metrics"] == ["power_kw", "t_max_stop_kn", "t_min_stop_kn"]
+
+
+def test_a_yes_no_column_with_nulls_filters_by_true_and_false():
+    """A failed run's null makes a yes/no column an object column of True, False and None;
+    ``filter=pulley1_diameter_min_ok=true`` (the value as the JSON rows show it) compared
+    text with 'True' and kept no row, while ``=True`` kept them. Either spelling now keeps
+    the rows with that value, and a null row neither."""
+    runs = pd.DataFrame({"run_id": list("abcd"),
+                         "pulley1_diameter_min_ok": [True, None, False, True]})
+    assert runs["pulley1_diameter_min_ok"].dtype == object
+    for text in ("true", "True", "TRUE"):
+        assert list(apply_filters(runs, [f"pulley1_diameter_min_ok={text}"])["run_id"]) == [
+            "a", "d"]
+    assert list(apply_filters(runs, ["pulley1_diameter_min_ok=false"])["run_id"]) == ["c"]
+    assert len(apply_filters(runs, ["pulley1_diameter_min_ok=yes"])) == 0
+    # a boolean column without nulls, as before
+    full = pd.DataFrame({"run_id": list("ab"), "ok": [True, False]})
+    assert list(apply_filters(full, ["ok=true"])["run_id"]) == ["a"]

@@ -247,3 +247,15 @@ def test_a_missing_rho_of_a_latin_hypercube_says_why():
     sens = summarise(study, runs.iloc[:2], figures=("stop_time_s",))["cells"][0]["sensitivity"]
     assert sens["stop_time_s"]["axes"]["models.din.f_carry"]["rho"] is None
     assert sens["stop_time_s"]["note"] == "2 points with a value: a rank correlation needs 3"
+
+
+def test_the_report_writes_the_sample_s_numbers_without_e_notation():
+    """The report's uncertainty section printed ``takeup.mass_kg normal(mean 1.7e+04, sd 500)``
+    and a ranking ``(6.3e-05)``: docs/web.md says numbers are never ``1.689e+4``. They are
+    written as the rest of the report writes them."""
+    from beltstudy.service.web.uncertainty import _g, _index
+
+    assert _g(17000.0) == "17\u202f000" and _g(500.0) == "500" and _g(None) == "-"
+    assert _index(6.3e-05) == "6.3 × 10⁻⁵"
+    assert _index(0.4231) == "0.42" and _index(2e-30) == "0" and _index(None) == "-"
+    assert "e+" not in _g(1.689e4) and "e-" not in _index(1.2e-7)
