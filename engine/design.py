@@ -48,7 +48,7 @@ from beltstudy.engine.loop import (
     pulley_reduced_mass_kg,
     rotating_parts,
 )
-from beltstudy.engine.statics import SteadyResult, solve_steady
+from beltstudy.engine.statics import SteadyResult, lever_words, solve_steady
 from beltstudy.engine.stopgrip import (
     StopWalk,
     _bisect_up,
@@ -519,13 +519,6 @@ def takeup_lever(conv: Conveyor, why: str = "") -> str:
     :func:`beltstudy.engine.dynamics.simulate.heavier_takeup`); ``why`` goes in the
     brackets."""
     return lever_words(conv.takeup.type == "gravity", why)
-
-
-def lever_words(gravity: bool, why: str = "") -> str:
-    """:func:`takeup_lever` of a take-up that is ``gravity`` or not."""
-    if not gravity:
-        return "a higher take-up pretension (takeup.pretension_kn" + (f", {why})" if why else ")")
-    return "a heavier take-up" + (f" ({why})" if why else "")
 
 
 def _hold_fix(conv: Conveyor, steady: SteadyResult, none_passes: bool = False) -> str:

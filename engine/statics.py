@@ -1161,16 +1161,24 @@ def _settle_radii(res: SteadyResult, case: dict) -> None:
         res.summary["message"] = res.message
 
 
+def lever_words(gravity: bool, why: str = "") -> str:
+    """The take-up lever in words (:func:`beltstudy.engine.design.takeup_lever`) of a take-up
+    that is ``gravity`` or not: ``a heavier take-up``, or for a fixed (screw or winch) one,
+    which has no counterweight, ``a higher take-up pretension (takeup.pretension_kn)``;
+    ``why`` goes in the brackets."""
+    if not gravity:
+        return "a higher take-up pretension (takeup.pretension_kn" + (f", {why})" if why else ")")
+    return "a heavier take-up" + (f" ({why})" if why else "")
+
+
 def rest_grip_words(loop: Loop, hold: int, T_rest: np.ndarray, conv=None) -> list[str]:
     """The pulley holding the belt at rest passes at most ``T_slack (e^(mu theta) - 1)``
     (Euler-Eytelwein, PHYSICS 5.1, static friction): a rest state that asks more of it cannot
     stand (the belt would creep over the held pulley). In words, with the take-up lever of
-    ``conv`` (:func:`beltstudy.engine.design.takeup_lever`: a fixed take-up has no
-    counterweight to make heavier); [] where it holds. The steady check says it of a given
+    ``conv`` (:func:`lever_words`: a fixed take-up has no counterweight to make heavier); []
+    where it holds. The steady check says it of a given
     take-up (an auto one is sized to hold, :func:`_rest_grip_bound`), the transient run of its
     own rest state."""
-    from beltstudy.engine.design import takeup_lever
-
     pulley = next((p for p in loop.pulleys if p.element == hold), None)
     if pulley is None:
         return []
@@ -1181,7 +1189,8 @@ def rest_grip_words(loop: Loop, hold: int, T_rest: np.ndarray, conv=None) -> lis
     if held <= grip * (1.0 + 1e-9):  # a take-up sized to the grip holds (rounding aside)
         return []
     need = held / math.expm1(pulley.friction * math.radians(pulley.wrap_deg))
-    more = takeup_lever(conv) if conv is not None else "a heavier take-up"
+    more = (lever_words(conv.takeup.type == "gravity") if conv is not None
+            else "a heavier take-up")
     return [f"at rest the {pulley.where} pulley holding the belt passes {held / 1e3:.4g} kN, "
             f"beyond its grip of {grip / 1e3:.4g} kN (slack side {slack / 1e3:.4g} kN, mu "
             f"{pulley.friction:g}, wrap {pulley.wrap_deg:g} deg): the belt would creep over it; "

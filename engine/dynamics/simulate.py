@@ -430,9 +430,15 @@ def runaway_words(sys: System, t_s: float, v_mean: float, t_stop_cmd: float,
             pull = (f" (the belt pulls {-sys.te_n / 1e3:.4g} kN forwards at speed, -Te, and "
                     f"{max(-sys.hold_force_n, 0.0) / 1e3:.4g} kN at rest, its net gravity "
                     "pull: what the brakes and drives must take at the belt line)")
+        # brakes act in a brake stop only (and hold once the belt rests): in a coast or a
+        # controlled stop more force on brakes that never act changes nothing (a 3 km decline
+        # doubled to 800 kN ran away in its coast at the same t = 110.2 s)
+        brake_stop = getattr(getattr(sys.model, "cycle", None), "stop_mode", C.BRAKE) == C.BRAKE
+        levers = ("more brake force, brakes that act in this stop (stop.mode: brake, hold)"
+                  if brake_stop else "brakes that act in the stop (stop.mode: brake: in this "
+                  "stop no brake acts, so more brake force would not)")
         what = ("the belt ran away forwards", "the drives and brakes could not hold it back"
-                f"{pull}: more brake force, brakes that act in this stop (stop.mode: brake, "
-                f"hold), or, where a drive pulley slipped, {more}")
+                f"{pull}: {levers}, or, where a drive pulley slipped, {more}")
         hold = getattr(getattr(sys.model, "brakes", None), "hold", None)
         loose = ([f"brakes.{int(b)}" for b in np.flatnonzero(np.asarray(hold) == 0)]
                  if hold is not None else [])

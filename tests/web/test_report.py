@@ -1073,3 +1073,21 @@ def test_a_high_stress_stop_has_its_verdict_row_and_its_group(web):
     group = s2[s2.find("Stopped faster than 5 wave loop times"):]
     group = group[:group.find("</table>")]
     assert "a2" in group and ">ns<" not in group and fast in group
+
+
+def test_a_start_short_of_design_speed_has_its_group(web):
+    """Four runs of a 900 m belt on dol drives said 'the belt never reached 99 % of design
+    speed during the start' beside a slip; the report listed them under the slip only, with
+    the slip's words, and the shortfall showed in the last section alone. It now has its own
+    group (a belt that never got going keeps its own)."""
+    short = ("the belt never reached 99 % of design speed during the start (its mean speed was "
+             "4.2 m/s, 93 % of design speed, at the stop command at t = 82.0 s)")
+    runs = _runs()
+    runs.loc[runs.run_id == "sl", "message"] = SLIP + "; " + short
+    html = report_html(_doc(web), runs, {"state": "done", "done": 8, "total": 8})
+    s2 = _section(html, 2)
+    assert "never reached design speed in the start (stopped from below it)" in s2
+    group = s2[s2.find("Never reached design speed in the start"):]
+    group = group[:group.find("</table>")]
+    assert ">sl<" in group and short in group
+    assert ">ns<" not in group  # did not stop: its own group, no shortfall said

@@ -343,6 +343,11 @@ def test_a_decline_the_drive_cannot_hold_runs_away_as_a_rigid_body():
     assert said, r.message
     assert float(said.group(1)) == pytest.approx(-st.te_n / 1e3, rel=1e-3)
     assert float(said.group(2)) == pytest.approx(50.0 * 9.81 * 150.0 / 1e3, rel=1e-3)
+    # a coast: no brake acts, so more brake force is no lever (a 3 km decline doubled to
+    # 800 kN ran away at the same time); a brake stop is
+    assert "more brake force, brakes" not in r.message
+    assert ("brakes that act in the stop (stop.mode: brake: in this stop no brake acts, so more "
+            "brake force would not)") in r.message
     ts = r.timeseries
     t, v = ts["t_s"].to_numpy(), ts["v_mean_m_s"].to_numpy()
     assert v[-1] == pytest.approx(2.0 * 4.0, rel=0.01)
