@@ -973,10 +973,12 @@ def running_warnings(sys: System, r: dict, out, names=None) -> list[str]:
                  f"but {'; '.join(swings)}, from t = {t0:.0f} s to the stop command at "
                  f"{t1:.0f} s: more than +-{100.0 * SETTLE_FORCE:.0f} % of the rated force "
                  "takes a drive out of the uniform duty its gear is rated for (application "
-                 "factor 1.25 against 1.00); drives that follow the master's torque from a "
-                 "wave's travel away run in such a limit cycle under a fast speed loop, and a "
-                 f"slower one ({_loop_field(sys)}) settles them (docs/dynamics.md, "
-                 f"Settling and overspeed){short}")
+                 "factor 1.25 against 1.00); "
+                 + ("drives that follow the master's torque from a wave's travel away run in "
+                    "such a limit cycle under a fast speed loop, and a slower one "
+                    f"({_loop_field(sys)}) settles them"
+                    if getattr(sys.model.control, "vfd", True) else _settle_levers(sys))
+                 + f" (docs/dynamics.md, Settling and overspeed){short}")
     return w
 
 
@@ -1113,6 +1115,22 @@ def _settle_levers(sys: System) -> str:
     3.5 % and 11.9 %, a 10 km one with a booster 5.5 % and 8.4 %), so the words say that and
     name what shows it: a rerun with another loop speed, a longer running phase (a swing that
     decays)."""
+    if not getattr(sys.model.control, "vfd", True):
+        # dol drives run no speed loop (drives[].speed_loop_rad_s is refused for them): their
+        # motors' curves and couplings set their force, and a coupling still filling at the
+        # stop command keeps it changing (a 900 m head-and-tail belt on fill-controlled
+        # couplings of 120 s, stopped at 82 s, was told a slower speed loop; with run_s 120 s
+        # it settled)
+        fill = getattr(sys.model.drives, "fill_s", None)
+        filling = float(np.max(fill)) if fill is not None and len(fill) else 0.0
+        cyc = sys.model.cycle
+        t_cmd = float(cyc.t_start) + float(cyc.t_run)
+        late = (f"; the couplings fill over {filling:.3g} s, past the stop command "
+                f"{t_cmd:.3g} s after the start command, so their force is still changing: a "
+                f"run_s of at least {_up_s(filling - float(cyc.t_start) + 4.0 * sys.wave_loop_time_s)} "
+                "s lets them fill (rerun to check that it settles)" if filling > t_cmd else "")
+        return ("the drives are dol, without a speed loop (their motor curves and couplings "
+                "set their force): a longer run_s shows whether the swing decays" + late)
     pos = sys.s_end_m[np.asarray(sys.model.drives.node, dtype=np.int64)]
     loop = float(sys.s_end_m[-1])
     if len(pos) > 1 and float(pos.max() - pos.min()) > SPREAD_FRACTION * loop:

@@ -1111,3 +1111,29 @@ def test_a_stop_overspeed_offers_a_dol_conveyor_vfd_drives_for_a_controlled_stop
         (said,) = _stop_overspeed(vfd, r, out)
         assert "a controlled stop (stop.mode: controlled, the drives holding" in said, said
         assert "vfd drives" not in said, said
+
+
+def test_a_swing_on_dol_drives_is_not_offered_a_speed_loop():
+    """A 900 m head-and-tail belt on dol drives whose fill-controlled couplings fill over
+    120 s swung 44 % of design speed at its stop command, 80 s after the start command, and
+    was told to 'rerun to check drives.0.speed_loop_rad_s', a field refused for a dol drive
+    (no speed loop); with run_s 120 s it settled. The words now say the drives run no loop
+    and, where the couplings still fill at the stop command, the run_s that lets them fill:
+    120 s - 60 s of start + 4 wave loop times of 1.75 s = 67 s."""
+    from types import SimpleNamespace
+
+    from beltstudy.engine.dynamics.simulate import _settle_levers
+
+    dol = SimpleNamespace(
+        wave_loop_time_s=1.75, s_end_m=np.array([0.0, 900.0, 1800.0]),
+        model=SimpleNamespace(control=SimpleNamespace(vfd=False, master=0, bandwidth=5.0),
+                              drives=SimpleNamespace(node=np.array([1, 2]),
+                                                     fill_s=np.array([120.0, 120.0])),
+                              cycle=SimpleNamespace(t_start=60.0, t_run=20.0)))
+    words = _settle_levers(dol)
+    assert "speed_loop_rad_s" not in words
+    assert words.startswith("the drives are dol, without a speed loop")
+    assert ("the couplings fill over 120 s, past the stop command 80 s after the start "
+            "command, so their force is still changing: a run_s of at least 67 s") in words
+    dol.model.drives.fill_s = np.array([20.0, 20.0])  # filled long before the stop command
+    assert "couplings fill" not in _settle_levers(dol)
