@@ -467,8 +467,10 @@ CAUSES: tuple[Cause, ...] = (
     Cause("end_stop", "reached a take-up end stop", _end_stop,
           ("takeup_endstop_speed_m_s", "takeup_endstop_gap_m", "takeup_travel_m"),
           r"take-up carriage reached|end stop"),
+    # a pulley's slack side is no slack span: the at-rest grip clause ("slack side 0 kN ...
+    # slack-side tension") was shown as what a slack run says, before its slack clause
     Cause("slack", "went slack", _slack, ("slack_max_m", "slack_duration_s", "t_min_dyn_kn"),
-          r"slack"),
+          r"slack(?![ -]side)"),
     Cause("sag", "sagged past its limit", _sagged, ("sag_max_pct", "sag_max_dyn_pct"),
           _SAG + r"|the sag goes as"),
     Cause("route", "left its idlers or its line at a curve (vertical or horizontal)", _route,

@@ -1091,3 +1091,22 @@ def test_a_start_short_of_design_speed_has_its_group(web):
     group = group[:group.find("</table>")]
     assert ">sl<" in group and short in group
     assert ">ns<" not in group  # did not stop: its own group, no shortfall said
+
+
+def test_a_slack_run_shows_its_slack_words_not_a_pulley_s_slack_side():
+    """A run that went slack also said 'at rest the head pulley holding the belt passes 5.886
+    kN, beyond its grip of 0 kN (slack side 0 kN ...)'; the slack group showed that clause, a
+    pulley's slack side, as what the run says of its slack spans. The group's words now skip
+    a slack side."""
+    from beltstudy.service.web.verdicts import CAUSES, finding_clauses
+
+    grip = ("at rest the head pulley holding the belt passes 5.886 kN, beyond its grip of 0 kN "
+            "(slack side 0 kN, mu 0.35, wrap 210 deg): the belt would creep over it; a "
+            "slack-side tension of 2.258 kN (a heavier take-up) or a brake or holdback on "
+            "another pulley would hold it")
+    slack = ("belt went slack: up to 1.43 m of belt gathered by slack spans near 12 m from the "
+             "tail on the return at t = 3.2 s; a heavier take-up would avoid it")
+    words = next(c.words for c in CAUSES if c.key == "slack")
+    said = finding_clauses(f"{grip}; {slack}", words)
+    assert said and all("holding the belt" not in c for c in said)
+    assert any(c.startswith("belt went slack") for c in said)
