@@ -263,7 +263,8 @@ def _transient_belt(conveyor: Conveyor, scenario: Scenario, result: RunResult, t
     steady choice's run is kept and its warning says so."""
     s = result.summary
     sf, chosen = s.get("safety_factor_dyn"), s.get("belt_type_used")
-    kind = catalog.resolve_belt(beltselect.with_belt(conveyor, chosen).belt).kind         if chosen else None
+    kind = (catalog.resolve_belt(beltselect.with_belt(conveyor, chosen).belt).kind
+            if chosen else None)
     need = transient_safety_min(conveyor, kind) if kind else None
     if sf is None or need is None or sf >= need * (1.0 - beltselect.RTOL):
         return result

@@ -446,7 +446,8 @@ def runaway_words(sys: System, t_s: float, v_mean: float, t_stop_cmd: float,
             # at rest, then off again: the brakes that let go at rest (hold: false), or too
             # little holding force for the net gravity pull
             why = (f"{', '.join(loose)} without hold let go once it rested" if loose else
-                   "its brakes could not hold it at rest")
+                   "its brakes could not hold it at rest" if hold is not None and len(hold)
+                   else "nothing held it at rest (it has no brakes)")
             need = HOLD_MARGIN * max(-sys.hold_force_n, 0.0)
             what = (f"the belt came to rest at t = {rested_s:.4g} s and then ran away "
                     "forwards", f"{why}{pull}: brakes that hold once the belt rests "
