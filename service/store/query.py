@@ -302,10 +302,8 @@ def apply_filters(df: pd.DataFrame, filters: list[str]) -> pd.DataFrame:
             df = df[np.isclose(df[column].astype(float), value, rtol=1e-9, atol=1e-12)]
         elif isinstance(value, str):
             df = df[_text_matches(df[column], value)]
-        else:  # a yes/no value: a null is neither
-            df = df[df[column].map(lambda v, want=value: v is not None and v is not pd.NA
-                                   and not (isinstance(v, float) and math.isnan(v))
-                                   and bool(v) == want)]
+        else:  # a yes/no value: a null equals neither
+            df = df[df[column] == value]
     return df
 
 
