@@ -600,11 +600,12 @@ def transient_liftoff(loop: Loop, segs, t_start_end_s: float, t_stop_cmd_s: floa
         where = (f"curve {c.k} (concave, R {c.radius_m:g} m" if k_c > 0 else
                  _survey_where(c, float(radius[j])))
         warnings.append(
-            f"lift-off {'at' if p == 3 else 'in'} {name}: the belt leaves its {strand} "
-            f"idlers at {where}, "
+            f"lift-off {'at' if p == 3 else 'in'} {name}: the empty belt leaves its "
+            f"{strand} idlers at {where}, "
             f"at {s_end[e]:.0f} m round the loop) {when}, "
             f"{(t_peak - t_lim) / 1e3:.1f} kN over its lift-off "
-            f"tension {t_lim / 1e3:.1f} kN; " + " or ".join(fixes) + " avoids it")
+            f"tension {t_lim / 1e3:.1f} kN (R m'_G g cos a: the belt's own weight; a stretch "
+            "carrying material holds more); " + " or ".join(fixes) + " avoids it")
     return out, warnings
 
 

@@ -264,7 +264,8 @@ def comparison_figure(df, x: str, y: str, others: list[str], xlabel: str, ylabel
     ``others``, in small multiples when there are many (one colour per combination in every
     panel, one legend). Axes that change neither ``y`` nor ``y2`` (:func:`unchanging`, with
     ``inputs`` the input columns behind ``x``, default ``x`` itself) are drawn once and named
-    under the figure with the ``notes``."""
+    under the figure with the ``notes``. A combination with more than one point at one ``x``
+    (a sampled study's runs at one temperature) is drawn as points, not joined."""
 
     plt = _plt()
     inputs = [x] if inputs is None else [c for c in inputs if c in df.columns]
@@ -302,6 +303,10 @@ def comparison_figure(df, x: str, y: str, others: list[str], xlabel: str, ylabel
             for key, xs, ys in series(part, x, col, cols):
                 kk = tuple(str(key[c]) for c in cols)
                 marker, dash = look.get(kk[1:], ("o", "-"))
+                if len(np.unique(xs)) < len(xs):
+                    # several points at one x on one line (a sampled study's runs share
+                    # their temperature): a line would zigzag up and down between them
+                    dash = "none"
                 (line,) = ax.plot(xs, ys, marker=marker, ms=4, color=colours.get(kk[:1], "0.3"),
                                   linestyle=dash, label=_label(key))
                 line.set_gid(repr(sorted((kk_, _text(vv)) for kk_, vv in key.items())))

@@ -853,7 +853,7 @@ def test_a_lift_off_while_the_belt_is_at_rest_is_said_at_rest_without_a_start_or
                                       t_rested_s=90.0)
     assert out["liftoff_max_kn_over"] == pytest.approx(5.0, abs=1e-9)
     (w,) = warnings
-    assert w.startswith("lift-off at rest: the belt leaves its carry idlers at curve 1 "), w
+    assert w.startswith("lift-off at rest: the empty belt leaves its carry idlers at curve 1 "), w
     assert "at t = 1.0 s, 5.0 kN over its lift-off tension" in w
     assert "a curve radius of at least" in w and "less tension there at rest" in w
     assert "start.time_s" not in w and "softer stop" not in w

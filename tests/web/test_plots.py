@@ -111,6 +111,25 @@ def test_the_join_check_catches_a_joined_line():
             fig, runs, "temperature_c", "power_kw", ["friction_model", "stop_time_target_s"])
 
 
+def test_points_that_share_a_temperature_on_one_line_are_not_joined():
+    """A sampled study's runs (friction factor drawn per run) share their temperatures: the
+    points of one friction model at one temperature are drawn as points, while a line with
+    one point per temperature stays a line."""
+    rng = np.random.default_rng(3)
+    rows = [{"run_id": f"s{i}", "friction_model": "din", "temperature_c": temp,
+             "status": "ok", "power_kw": 100.0 + rng.normal()}
+            for i, temp in enumerate([-10.0, 20.0] * 4)]
+    runs = pd.DataFrame(rows)
+    fig = charts.power_temperature_figure(runs, axes=["friction_model", "temperature_c"])
+    lines = [ln for ax in fig.axes for ln in ax.get_lines() if len(ln.get_xdata())]
+    assert len(lines) == 1 and len(lines[0].get_xdata()) == 8
+    assert lines[0].get_linestyle() == "None"
+    assert lines[0].get_marker() not in (None, "", "None")
+    fig = charts.power_temperature_figure(_runs(), axes=AXES)
+    assert all(ln.get_linestyle() != "None" for ax in fig.axes for ln in ax.get_lines()
+               if len(ln.get_xdata()) > 1)
+
+
 def test_power_temperature_without_a_temperature_axis_uses_the_scenario_value():
     runs = _runs().drop(columns=["temperature_c"])
     fig = charts.power_temperature_figure(runs, temperature_c=5.0,
