@@ -572,9 +572,13 @@ def _phase_panels(df: pd.DataFrame) -> list[tuple[str, str]]:
     return out
 
 
+#: The dashes of the allowed-tension lines of :func:`phase_peaks_figure`, one per belt.
+_ALLOWED_DASHES = ("--", (0, (6, 2, 1, 2)), ":", "-.", (0, (1, 4)))
+
+
 def phase_peaks_figure(runs, title: str = "", axes: list[str] | None = None,
                        groups: list[list[str]] | None = None,
-                       allowed_kn: float | None = None,
+                       allowed_kn: float | list | None = None,
                        never_going: pd.Series | None = None):
     """Peak and lowest belt tension [kN] of the start and of the stop against a study axis.
 
@@ -590,12 +594,16 @@ def phase_peaks_figure(runs, title: str = "", axes: list[str] | None = None,
     time; it ran away, or did not stop in its window), not one that never got going
     (``never_going``, a mask over ``runs``: the report's
     :func:`~beltstudy.service.web.verdicts.never_going`; it made no stop); a dashed line the
-    tension the belt allows (``allowed_kn``: rating over the transient safety factor) and
-    zero (slack).
+    tension the belt allows (``allowed_kn``: rating over the transient safety factor; a list
+    of ``(kN, belts)`` for runs on belts that allow different tensions, a line each) and zero
+    (slack).
     """
     plt = _plt()
     from matplotlib.lines import Line2D
 
+    allowed = ([(float(allowed_kn), "")] if isinstance(allowed_kn, (int, float))
+               else list(allowed_kn or []))
+    allowed = [(v, b) for v, b in allowed if v and math.isfinite(v)]
     title = title or "peak and lowest tension of the start and the stop"
     df = _ok_rows(runs).copy()
     panels = _phase_panels(df)
@@ -668,8 +676,9 @@ def phase_peaks_figure(runs, title: str = "", axes: list[str] | None = None,
                                marker="o", facecolors="none", edgecolors="red",
                                linewidths=1.4, zorder=2)
                     unstopped_drawn = True
-        if col.startswith("t_max") and allowed_kn:
-            ax.axhline(allowed_kn, color="0.3", linestyle="--", linewidth=0.9)
+        if col.startswith("t_max"):
+            for (value, _), dash in zip(allowed, _ALLOWED_DASHES, strict=False):
+                ax.axhline(value, color="0.3", linestyle=dash, linewidth=0.9)
         if col.startswith("t_min"):
             ax.axhline(0.0, color="0.3", linestyle="--", linewidth=0.9)
         ax.set_title(ptitle, fontsize=10)
@@ -704,9 +713,10 @@ def phase_peaks_figure(runs, title: str = "", axes: list[str] | None = None,
         handles.append(Line2D([], [], linestyle="none", marker="o", markersize=11,
                               markerfacecolor="none", markeredgecolor="red"))
         labels.append("did not stop")
-    if allowed_kn:
-        handles.append(Line2D([], [], color="0.3", linestyle="--"))
-        labels.append(f"allowed {allowed_kn:.0f} kN / slack 0")
+    for k, ((value, belts), dash) in enumerate(zip(allowed, _ALLOWED_DASHES, strict=False)):
+        handles.append(Line2D([], [], color="0.3", linestyle=dash))
+        labels.append(f"allowed {value:.0f} kN" + (f" ({belts})" if belts else "")
+                      + (" / slack 0" if k == 0 else ""))
     if handles:
         fig.legend(handles, labels, loc="upper right", fontsize=8, frameon=True,
                    bbox_to_anchor=(0.995, 0.93))

@@ -449,6 +449,29 @@ def _sf_min(study: dict) -> float:
     return float(conv.get("safety_factor_min") or SAFETY_FACTOR_MIN.get(kind, 6.7))
 
 
+def _sf_of_runs(study: dict):
+    """The belt safety factor each run is judged against: the conveyor's
+    ``safety_factor_min`` (a grid axis of it: the run's own), else DIN 22101's minimum for
+    the kind of the belt the run used (``belt_type_used``: a ``belt_type`` axis mixing steel
+    cord and fabric judges each run by its own belt, 6.7 or 10, as the engine's warnings do),
+    else the conveyor's (:func:`_sf_min`). Returns ``runs -> Series``."""
+    given = study["conveyor"].get("safety_factor_min")
+    default = _sf_min(study)
+    kinds = {k: b.kind for k, b in catalog.belts().items()}
+
+    def of(runs: pd.DataFrame) -> pd.Series:
+        out = pd.Series(default, index=runs.index, dtype=float)
+        if not given and "belt_type_used" in runs:
+            kind = runs["belt_type_used"].map(lambda t: kinds.get(t) if isinstance(t, str)
+                                              else None)
+            known = kind.notna()
+            out[known] = kind[known].map(lambda k: SAFETY_FACTOR_MIN.get(k, default))
+        own = (pd.to_numeric(runs["safety_factor_min"], errors="coerce")
+               if "safety_factor_min" in runs else None)
+        return out if own is None else own.fillna(out)
+    return of
+
+
 def _axes(study: dict, runs: pd.DataFrame) -> list[str]:
     """The axis columns that name a run: the study's axes, the friction model first."""
     axes = [a["column"] for a in study.get("axes", [])]
@@ -533,7 +556,8 @@ def _verdicts_section(study: dict, runs: pd.DataFrame, bars: pd.DataFrame | None
     sf = _sf_min(study)
     words = ("the conveyor's minimum" if study["conveyor"].get("safety_factor_min")
              else "DIN 22101 minimum")
-    rows_ = verdict_rows(runs, study_limits(study, sf, TRANSIENT_SAFETY_RATIO, words))
+    rows_ = verdict_rows(runs, study_limits(study, sf, TRANSIENT_SAFETY_RATIO, words,
+                                            sf_of=_sf_of_runs(study)))
     if not rows_:
         # every run failed: no figure to judge (not 'yet': the study may be done)
         failed = int((runs["status"] == "failed").sum()) if "status" in runs else 0
@@ -814,11 +838,7 @@ def _figures(doc: dict, runs: pd.DataFrame, study: dict) -> tuple[str, str]:
     """The start and stop peaks (section 3) and the comparison figures (section 7)."""
     peaks = ""
     if study.get("dynamics"):
-        sf = _sf_min(study)
-        rating = pd.to_numeric(runs.get("belt_rating_kn"), errors="coerce") \
-            if "belt_rating_kn" in runs else None
-        allowed = (float(rating.min()) / (TRANSIENT_SAFETY_RATIO * sf)
-                   if rating is not None and rating.notna().any() else None)
+        allowed = _allowed_lines(study, runs)
         axes = [a["column"] for a in study.get("axes", [])]
         groups: dict[int, list[str]] = {}
         for a in study.get("axes", []):
@@ -851,6 +871,31 @@ def _figures(doc: dict, runs: pd.DataFrame, study: dict) -> tuple[str, str]:
             continue
         figs.append(_figure(_png(figures.figure_of(doc, runs, plot)), caption, plot))
     return peaks, "".join(figs)
+
+
+def _allowed_lines(study: dict, runs: pd.DataFrame) -> list[tuple[float, str]]:
+    """The tensions the belts of ``runs`` allow in a transient [kN], each with its label: the
+    rating over the transient safety factor of each run's belt (:func:`_sf_of_runs`), one
+    line per distinct value, named by its belts where the runs used more than one
+    (a ``belt_type`` axis of ST1000 and EP800/4: 224 kN and 120 kN, not one line of the
+    weaker rating over the steel factor)."""
+    if "belt_rating_kn" not in runs:
+        return []
+    ok = runs[runs["status"] != "failed"] if "status" in runs else runs
+    rating = pd.to_numeric(ok["belt_rating_kn"], errors="coerce")
+    allowed = (rating / (TRANSIENT_SAFETY_RATIO * _sf_of_runs(study)(ok))).round(6)
+    keep = allowed.notna()
+    if not keep.any():
+        return []
+    belt = (ok["belt_type_used"].astype(str) if "belt_type_used" in ok
+            else pd.Series("", index=ok.index))
+    lines = []
+    for value, part in allowed[keep].groupby(allowed[keep]):
+        names = sorted(set(belt.loc[part.index]) - {"", "nan", "None"})
+        lines.append((float(value), ", ".join(names)))
+    if len(lines) == 1:
+        return [(lines[0][0], "")]
+    return lines
 
 
 def _single_temperature(runs: pd.DataFrame) -> bool:

@@ -585,16 +585,19 @@ Limit = Callable[..., tuple[pd.Series | None, str]]
 
 
 def study_limits(study: dict, sf_min: float, sf_ratio: float,
-                 sf_words: str = "DIN 22101 minimum") -> dict[str, Limit]:
+                 sf_words: str = "DIN 22101 minimum",
+                 sf_of: Callable[[pd.DataFrame], pd.Series] | None = None
+                 ) -> dict[str, Limit]:
     """The study's named limits (:attr:`Verdict.limit` names them): the belt safety factor
     ``sf_min`` steady and ``sf_ratio * sf_min`` transient, the tension they allow
-    (``belt_rating_kn`` / safety factor), the sag limits and the take-up travel."""
+    (``belt_rating_kn`` / safety factor), the sag limits and the take-up travel. ``sf_of``:
+    each run's own minimum (``runs -> Series``; a study whose runs use belts of both kinds
+    judges each by its own), ``sf_min`` where it gives none."""
     conv = study.get("conveyor") or {}
     sag = conv.get("sag_limit_pct") or {}
     carry, ret = sag.get("carry"), sag.get("return")
     length = sum(p.get("length_m", 0.0) for p in conv.get("profile", []))
     travel = (conv.get("takeup") or {}).get("travel_m") or 0.015 * length
-    sf_dyn = sf_ratio * sf_min
 
     def per_run(runs: pd.DataFrame, axis: str, value: float | None) -> pd.Series:
         """``value`` for every run, or the run's own where a conveyor axis sets it (a
@@ -606,10 +609,33 @@ def study_limits(study: dict, sf_min: float, sf_ratio: float,
     def const(value: float, words: str, axis: str = "") -> Limit:
         return lambda runs, **_: (per_run(runs, axis, value), words)
 
-    def allow(sf: float, words: str) -> Limit:
+    def run_sf(runs: pd.DataFrame) -> pd.Series:
+        own = sf_of(runs) if sf_of is not None else None
+        base = pd.Series(sf_min, index=runs.index, dtype=float)
+        return base if own is None else pd.to_numeric(own, errors="coerce").fillna(base)
+
+    def mixed(sf: pd.Series) -> bool:
+        return sf.round(9).nunique() > 1
+
+    def sf_limit(ratio: float, words: str) -> Limit:
+        def f(runs, **_):
+            sf = run_sf(runs)
+            if mixed(sf):
+                return ratio * sf, (f"{words}, of each run's belt: " + ", ".join(
+                    f"{ratio * v:.3g}" for v in sorted(sf.unique())))
+            return ratio * sf, words
+        return f
+
+    def allow(ratio: float) -> Limit:
         def f(runs, **_):
             rating = numeric(runs, "belt_rating_kn")
-            return (None, "") if rating is None else (rating / sf, words)
+            if rating is None:
+                return None, ""
+            sf = ratio * run_sf(runs)
+            if mixed(sf):
+                return rating / sf, ("belt rating / the safety factor of each run's belt ("
+                                     + ", ".join(f"{v:.3g}" for v in sorted(sf.unique())) + ")")
+            return rating / sf, f"belt rating / {float(sf.iloc[0]) if len(sf) else 0:.3g}"
         return f
 
     def rated_force(runs, i: str = "1", **_):
@@ -666,10 +692,10 @@ def study_limits(study: dict, sf_min: float, sf_ratio: float,
 
     return {
         "rated_at_pulleys": rated_at_pulleys,
-        "sf_steady": const(sf_min, sf_words),
-        "sf_dyn": const(sf_dyn, f"{sf_ratio:.3g} x the minimum, transient"),
-        "t_allow_steady": allow(sf_min, f"belt rating / {sf_min:.3g}"),
-        "t_allow_dyn": allow(sf_dyn, f"belt rating / {sf_dyn:.3g}"),
+        "sf_steady": sf_limit(1.0, sf_words),
+        "sf_dyn": sf_limit(sf_ratio, f"{sf_ratio:.3g} x the minimum, transient"),
+        "t_allow_steady": allow(1.0),
+        "t_allow_dyn": allow(sf_ratio),
         "sag": sag_limit,
         "travel": const(travel, "carriage travel", "takeup.travel_m"),
         "rated_force": rated_force,
