@@ -302,3 +302,20 @@ def test_the_command_table_names_each_commands_module():
         found.update(dict.fromkeys(sub.choices, name))
     assert found == cli.COMMANDS
     assert list(found) == list(cli.COMMANDS)  # the order of --help
+
+
+def test_elements_auto_is_the_engines_count(capsys):
+    """``--elements auto`` (the help's default) is read, and gives the count of no option;
+    a word that is neither a number nor auto is refused naming the option and the fix."""
+    from beltstudy.service.cli import main
+
+    slope = str(CONVEYORS / "slope-5pct.yaml")
+    assert main(["static", slope, "--json"]) == 0
+    plain = json.loads(capsys.readouterr().out)
+    assert main(["static", slope, "--json", "--elements", "auto"]) == 0
+    auto = json.loads(capsys.readouterr().out)
+    assert auto["te_kn"] == plain["te_kn"]
+    with pytest.raises(SystemExit):
+        main(["static", slope, "--elements", "many"])
+    err = capsys.readouterr().err
+    assert "--elements" in err and "or auto" in err

@@ -18,7 +18,44 @@ from beltstudy.service.settings import data_dir_setting
 
 LOAD_HELP = ("full, empty, inclines, declines, a fraction of the design load up to 1.3 (a "
              "surge above 1), or one fraction per carry profile section: 1,0,0.5")
-ELEMENTS_HELP = "belt elements round the loop, at least 8 (default: auto, the engine's count)"
+ELEMENTS_HELP = ("belt elements round the loop, at least 8, or auto (default: auto, the "
+                 "engine's count)")
+
+
+def elements_option(text: str) -> int | str:
+    """``--elements``: a whole number of elements, or ``auto`` (the engine's count; on
+    ``simulate`` it overrides a scenario file's fixed count). The scenario's own checks
+    judge the number (at least 8)."""
+    import argparse
+
+    if text.strip().lower() == "auto":
+        return "auto"
+    try:
+        return int(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(
+            f"'{text}' is not a whole number of elements: give one such as 400, or auto"
+        ) from None
+
+
+def step_option(text: str) -> float | str:
+    """``--dt-s``: a time step in seconds, or ``auto`` (half the stability limit; on
+    ``simulate`` it overrides a scenario file's fixed step)."""
+    import argparse
+
+    if text.strip().lower() == "auto":
+        return "auto"
+    try:
+        return float(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(
+            f"'{text}' is not a time step in seconds: give one such as 0.002, or auto"
+        ) from None
+
+
+def auto_elements(value: int | str | None) -> int | None:
+    """An ``--elements`` value for the steady commands: None for auto (the engine's)."""
+    return None if value == "auto" else value
 
 
 def model_option(name: str, option: str = "--model"):

@@ -23,10 +23,12 @@ from beltstudy.service.cli.common import (
     design_lines,
     drives_given,
     dumps,
+    elements_option,
     model_option,
     parse_load,
     parse_params,
     read_conveyor,
+    step_option,
     with_sag_at_rest,
     write_table,
     writing,
@@ -102,10 +104,10 @@ def register(sub) -> None:
     p.add_argument("--formulation", choices=["relative", "support"], default=None,
                    help="relative (drive force from a speed controller) or support (drive "
                         f"pulley motion imposed) {_scenario_default(scn.formulation)}")
-    p.add_argument("--elements", type=int, default=None,
+    p.add_argument("--elements", type=elements_option, default=None,
                    help=ELEMENTS_HELP.replace("(default:", "(default: the scenario file's, "
                                               "else"))
-    p.add_argument("--dt-s", type=float, default=None, help="fixed time step [s] "
+    p.add_argument("--dt-s", type=step_option, default=None, help="fixed time step [s] or auto "
                    "(default: the scenario file's, else automatic, half the stability limit)")
     p.add_argument("--record-dt-s", type=float, default=None, help="time-series spacing [s] "
                    + _scenario_default(f"{DEFAULT_SCENARIO.record_dt_s:g}"))

@@ -27,11 +27,13 @@ from beltstudy.service.charts import steady_profile_figure
 from beltstudy.service.cli.common import (
     ELEMENTS_HELP,
     LOAD_HELP,
+    auto_elements,
     check_output,
     check_scenario_fields,
     design_lines,
     drives_given,
     dumps,
+    elements_option,
     model_option,
     parse_load,
     parse_params,
@@ -61,7 +63,7 @@ def register(sub) -> None:
     p.add_argument("--param", action="append", metavar="NAME=VALUE",
                    help="friction model parameter, repeatable (e.g. f_carry=0.010)")
     p.add_argument("--load", default="full", help=f"{LOAD_HELP} (default: %(default)s)")
-    p.add_argument("--elements", type=int, default=None, help=ELEMENTS_HELP)
+    p.add_argument("--elements", type=elements_option, default=None, help=ELEMENTS_HELP)
     p.add_argument("--no-sag-at-rest", dest="sag_at_rest", action="store_const",
                    const=False, default=None,
                    help="size an auto take-up for the sag limits running only (default: also "
@@ -80,6 +82,7 @@ def register(sub) -> None:
 
 
 def run(args: argparse.Namespace) -> int:
+    args.elements = auto_elements(args.elements)
     conv = with_sag_at_rest(read_conveyor(args.conveyor), args.sag_at_rest)
     auto = conv.belt.type == BELT_AUTO
     fm = model_option(args.model)

@@ -30,7 +30,9 @@ from beltstudy.engine import (
 )
 from beltstudy.service.cli.common import (
     ELEMENTS_HELP,
+    auto_elements,
     check_scenario_fields,
+    elements_option,
     model_option,
     outside_store,
     parse_load,
@@ -68,7 +70,7 @@ def register(sub) -> None:
     p.add_argument("--load", default="full", help="full, empty, inclines, declines, a "
                    "fraction up to 1.3 or one fraction per carry section (1,0,0.5) (default: "
                    "%(default)s)")
-    p.add_argument("--elements", type=int, default=None, help=ELEMENTS_HELP)
+    p.add_argument("--elements", type=elements_option, default=None, help=ELEMENTS_HELP)
     p.add_argument("-o", "--out", "--output", dest="out", required=True, metavar="DIR",
                    help="output directory (made when missing)")
     p.set_defaults(func=run)
@@ -216,6 +218,7 @@ def figure(df, title: str):
 
 
 def run(args: argparse.Namespace) -> int:
+    args.elements = auto_elements(args.elements)
     conv = read_conveyor(args.conveyor)
     models = _model_list(args.models)
     temps = temperatures(args.t_from, args.t_to, args.step)
