@@ -517,13 +517,29 @@ _OPENS_FINDING = re.compile(
     r"(?:take-up carriage reached|belt safety factor [\d.]+ |(?:transient )?sag on the \w+ "
     r"strand|the belt (?:goes slack|ran |did not stop|never )|drive \d+ \([^)]*\) "
     r"(?:slipped|needs|was above)|slip at drive|overspeed in the|stop in [\d.]+ s is faster"
-    r"|brake stop missed|the holding brakes cannot hold|the \w+ brake's pulley slipped)")
+    r"|brake stop missed|the holding brakes cannot hold|the \w+ brake's pulley slipped"
+    r"|not settled while running|the speed loop did not track|the running phase is short"
+    r"|lift-off (?:in|at) |curve \d+ \((?:concave|convex)|grade change without)")
+
+#: The opening words of a clause that goes on with the clause before it: what the finding
+#: before it would take (``a longer start``, ``less brake force``, ``a controlled stop ...
+#: would be slower``, ``or more inertia``), or more of its figures (``its tensions ranged``,
+#: ``19.4 kN there keeps it within``). A warning's remedies without AVOID at their end were
+#: left as clauses of their own: the report's overspeed group showed the settling warning's
+#: "a longer run_s shows whether the swing decays (docs/dynamics.md, Settling and overspeed)"
+#: for the overspeed and dropped its "a gentler start stretches it less: a longer start", and
+#: a high-stress stop's group showed no fix at all.
+_GOES_ON = re.compile(
+    r"(?:a |an |or |less |more |no |its |with |at least |that, |so |the start then "
+    r"|CEMA's |-?\d)")
 
 
 def said_clauses(message: Any) -> list[tuple[str, str]]:
     """The clauses of a run's message (:func:`clauses`) as ``(finding, what it says)``: a
     clause naming what would avoid a finding (``... would avoid it``) joins the clause before
-    it, when that one has no fix of its own. A warning cuts its finding from its fix with
+    it, when that one has no fix of its own, and so does a clause that goes on with the one
+    before it (:data:`_GOES_ON`: a remedy without AVOID at its end, or more of the finding's
+    figures). A warning cuts its finding from its fix with
     "; " as the message cuts warnings, so a failure group showed a slip without the take-up
     or start time that avoids it, and the last section listed the fix as a clause of its
     own. A clause that opens a finding of its own (:data:`_OPENS_FINDING`) is never joined:
@@ -534,7 +550,9 @@ def said_clauses(message: Any) -> list[tuple[str, str]]:
     for part in clauses(message, ""):
         # a note or a marginal verdict is a sentence of its own, whatever it ends with
         opens = part.startswith(("note: ", "marginal: ")) or bool(_OPENS_FINDING.match(part))
-        if out and AVOID in part and AVOID not in out[-1][1] and not opens:
+        joins = (AVOID in part and AVOID not in out[-1][1]) or bool(_GOES_ON.match(part)) \
+            if out else False
+        if joins and not opens:
             out[-1] = (out[-1][0], f"{out[-1][1]}; {part}")
         else:
             out.append((part, part))

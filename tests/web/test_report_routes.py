@@ -100,7 +100,9 @@ def test_runs_that_lift_the_belt_are_a_group_with_the_radius_that_avoids_it(vall
     # the fix names the radius the run needs, curve1_radius_min_m rounded up (about 215 m)
     need = math.ceil(part.iloc[0]["curve1_radius_min_m"])
     assert 200 < need < 230
-    assert any(c.startswith(f"a radius of at least {need} m") for c in said), said
+    # with its finding, as one entry (the finding's fix goes on in the clause after it)
+    assert any("lifts off its carry idlers" in c and f"; a radius of at least {need} m" in c
+               for c in said), said
     # the run-back note the runs also carry is not a route finding
     assert not any(c.startswith("note: ") for c in said)
 
@@ -120,8 +122,8 @@ def test_horizontal_curve_rows_count_each_side_of_the_one_verdict():
     cause, part = {c.key: (c, p) for c, p, _ in cause_groups(runs)}["route"]
     assert list(part["run_id"]) == ["in", "out"]
     said = finding_clauses(part.iloc[1]["message"], cause.words)
-    assert any("runs out of the curve" in c for c in said)
-    assert any(c.startswith("less superelevation") for c in said)
+    # the finding with its fix, one entry
+    assert any("runs out of the curve" in c and "; less superelevation" in c for c in said)
 
 
 def test_the_report_shows_the_route_verdicts(web, valley_runs):
