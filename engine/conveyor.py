@@ -1706,13 +1706,23 @@ def type_hint(got: Any, error_type: str) -> str:
     return ""
 
 
+#: The union member tags Pydantic adds to an error's location (``literal['auto']``,
+#: ``function-after[...]``, ``constrained-float``): a user's key with a bracket in it
+#: (``speed_m_s [m/s]``, a unit written into the name) is none of them.
+_PYDANTIC_TAG = re.compile(
+    r"^(?:literal|function-(?:after|before|wrap|plain)|json-or-python|lax-or-strict|"
+    r"is-instance|chain|definition-ref|nullable|tagged-union|union|list|dict|tuple|set|"
+    r"frozenset|model|dataclass|default|constrained-[a-z]+)\[|^constrained-[a-z]+$")
+
+
 def _clean_loc(loc: tuple) -> tuple:
     """A location without the union member tags Pydantic adds (``literal['auto']``,
-    ``float``)."""
+    ``float``); a key of the input with a bracket in it is kept (``speed_m_s [m/s]``: it was
+    taken for a tag, and a top-level one left no location at all, a traceback)."""
     return tuple(
         p for p in loc
-        if not (isinstance(p, str) and ("[" in p or p in {"float", "int", "str", "list"}
-                                        or p.startswith("constrained-")))
+        if not (isinstance(p, str) and (p in {"float", "int", "str", "list", "bool", "dict"}
+                                        or _PYDANTIC_TAG.match(p)))
     )
 
 

@@ -47,3 +47,23 @@ def test_a_conveyor_key_in_mw_is_refused_with_the_conversion():
     msg = str(exc.value)
     assert "drives.0.rated_power_MW: unknown key" in msg
     assert "did you mean 'rated_power_kw'? (in kW: MW x 1000)" in msg
+
+
+@pytest.mark.parametrize("where", ["top", "belt"])
+def test_a_unit_in_brackets_in_a_key_is_named_not_a_traceback(where):
+    """``"speed_m_s [m/s]": 4.5`` (a unit written into the key, as a spreadsheet's header
+    has it): the bracket was taken for one of Pydantic's union tags and dropped, leaving a
+    top-level key no location at all (an IndexError, a 500 over REST) and a nested one the
+    name of its parent ("belt: unknown key 'belt'")."""
+    d = hand_conveyor_dict()
+    if where == "top":
+        d["speed_m_s [m/s]"] = d.pop("speed_m_s")
+        key, field = "speed_m_s [m/s]", "speed_m_s"
+    else:
+        d["belt"] = dict(d["belt"])
+        d["belt"]["width [m]"] = d["belt"].pop("width_m")
+        key, field = "width [m]", "belt.width_m"
+    with pytest.raises(InputError) as err:
+        parse_conveyor(d)
+    text = str(err.value)
+    assert f"unknown key '{key}'" in text and f"{field}: required field is missing" in text
