@@ -32,7 +32,13 @@ def _where(data: bytes, start: int) -> tuple[int, int]:
 def decode_text(data: bytes, what: str) -> str:
     """``data`` as text: UTF-8 (a leading byte order mark dropped) or UTF-16 with its byte
     order mark; :class:`InputError` ``WHAT: not UTF-8 text (...): save it as UTF-8``
-    otherwise. Line ends are kept as they are."""
+    otherwise. Line ends are kept as they are. UTF-32 (its byte order mark, read before
+    UTF-16's, whose mark begins it) and text with NUL bytes (UTF-16 or UTF-32 without a mark,
+    which decodes as UTF-8 with a NUL between letters: the user was told of an unknown column
+    ``'l\\0o\\0a\\0d\\0'``) are refused naming the encoding."""
+    if data.startswith((codecs.BOM_UTF32_LE, codecs.BOM_UTF32_BE)):
+        raise InputError(f"{what}: UTF-32 text (it starts with a UTF-32 byte order mark): "
+                         "save it as UTF-8")
     if data.startswith(_UTF16_BOMS):
         try:
             return data.decode("utf-16")
@@ -41,6 +47,14 @@ def decode_text(data: bytes, what: str) -> str:
                 f"{what}: not valid UTF-16 text (it starts with a UTF-16 byte order mark, but "
                 f"byte {exc.start} does not decode): save it as UTF-8"
             ) from None
+    nul = data.find(b"\x00")
+    if nul >= 0:
+        line, column = _where(data, nul)
+        wide = ("UTF-16 or UTF-32 without a byte order mark, by the NUL bytes between its "
+                "letters" if data[1::2].count(0) > len(data) // 4 or data[::2].count(0)
+                > len(data) // 4 else "binary data, not text")
+        raise InputError(f"{what}: a NUL byte at line {line}, column {column}: {wide}; "
+                         "save it as UTF-8")
     try:
         return data.decode("utf-8-sig")
     except UnicodeDecodeError as exc:

@@ -354,6 +354,22 @@ def test_utf8_with_bom_and_utf16_with_bom_read_as_utf8(tmp_path, encoding):
     assert load_conveyor(path).name == "slope-5pct"
 
 
+@pytest.mark.parametrize("encoding, words", [
+    ("utf-16-le", "UTF-16 or UTF-32 without a byte order mark"),
+    ("utf-32-be", "UTF-16 or UTF-32 without a byte order mark"),
+    ("utf-32", "UTF-32 text (it starts with a UTF-32 byte order mark)"),
+])
+def test_wide_text_without_its_mark_or_utf32_names_the_encoding(tmp_path, encoding, words):
+    """UTF-16 or UTF-32 without a byte order mark decodes as UTF-8 with NUL bytes between
+    its letters (the key 'n\\0a\\0m\\0e\\0' was then unknown); UTF-32's mark begins with
+    UTF-16's."""
+    path = tmp_path / "conv.yaml"
+    path.write_bytes(_small_yaml().encode(encoding))
+    with pytest.raises(InputError) as ei:
+        load_mapping(path)
+    assert words in str(ei.value) and str(ei.value).endswith("save it as UTF-8")
+
+
 def test_a_key_given_twice_is_refused_with_both_lines(tmp_path):
     path = tmp_path / "twice.yaml"
     path.write_text("name: x\nbelt:\n  width_m: 1.2\nspeed_m_s: 2.5\nspeed_m_s: 25\n")
