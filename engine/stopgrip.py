@@ -264,7 +264,8 @@ def grip_remedies(conv, steady, walk: StopWalk, nodes: list[int], fixed: dict,
                   asked: list[float], sized: list[float]) -> str:
     """What would let the brakes pass the forces ``asked`` [N] (one per auto brake on
     ``nodes``; ``sized``: the grip-limited ones), in words: a brake on another pulley, a
-    heavier take-up (its mass or pretension), more wrap on the braked pulleys."""
+    heavier take-up (its mass or pretension), more wrap on the braked pulleys (drive pulleys
+    only: a plain pulley has no wrap field)."""
     loop = walk.loop
     acting = dict(fixed)
     for node, f in zip(nodes, asked, strict=True):
@@ -302,17 +303,19 @@ def grip_remedies(conv, steady, walk: StopWalk, nodes: list[int], fixed: dict,
             out.append(f"a take-up of {takeup_at_least(t_need, G)} (takeup.mass_kg)")
         else:
             out.append(f"a take-up pretension of {takeup_at_least(t_need)}")
-    # more wrap on each braked pulley
+    # more wrap on each braked pulley: a drive pulley's (drives[i].wrap_deg); a plain pulley
+    # has no wrap field (it is taken as 180 deg), so no wrap is offered where one is braked
     wraps = []
     for node in dict.fromkeys(nodes):
         p = loop.pulley_at(node)
         low, f = walk.slack_n(node, acting)
-        if low <= 0.0:
+        if low <= 0.0 or p.drive < 0:
             wraps = []
             break
         e = 1.0 + abs(f) * BRAKE_GRIP_MARGIN / low
         wraps.append(f"{math.degrees(math.log(e) / p.friction):.0f} deg on "
-                     f"{pulley_name(conv, loop, node)} (now {p.wrap_deg:g})")
+                     f"{pulley_name(conv, loop, node)} (drives.{p.drive}.wrap_deg, now "
+                     f"{p.wrap_deg:g})")
     if wraps:
         out.append("a wrap of " + ", ".join(wraps))
     said = "; or ".join(out) if out else "none of a heavier take-up or more wrap"

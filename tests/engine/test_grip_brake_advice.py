@@ -131,3 +131,26 @@ def test_a_pulley_slipping_through_steady_running_is_offered_its_grip_not_a_long
     assert ("more grip on that pulley (a lagged pulley, drives[].friction, or a snub pulley, "
             "drives[].wrap_deg) or a smaller share of the drive force on it "
             "(drives[].share)") in fix
+
+
+def test_more_wrap_is_offered_for_a_drive_pulley_only():
+    """A plain pulley has no wrap field (it is taken as 180 deg): a grip-held brake on the
+    tail pulley of a 3 km, -150 m decline (take-up at the head, an 8 s brake stop) was
+    offered "a wrap of 222 deg on the tail pulley (now 180)", which no file can give."""
+    conv = {**DECLINE, "speed_m_s": 4.5, "belt": {"type": "ST2000", "width_m": 1.2},
+            "material": {"capacity_t_h": 2000, "density_t_m3": 1.5, "loading_speed_m_s": 0},
+            "profile": [{"length_m": 1500, "lift_m": -60}, {"length_m": 1500, "lift_m": -90}],
+            "drives": [{"position": "head", "wrap_deg": 210, "friction": 0.35, "share": 1.0,
+                        "pulley_diameter_m": 1.25, "inertia_kg_m2": 1200,
+                        "torque_limit": 1.5}],
+            "takeup": {"type": "gravity", "position": "head", "mass_kg": "auto",
+                       "travel_m": 15},
+            "brakes": [{"position": "tail", "force_kn": "auto", "delay_s": 0.5,
+                        "ramp_s": 1.0}]}
+    scn = Scenario(elements=60, start={"time_s": 30}, run_s=10,
+                   stop={"mode": "brake", "time_s": 8})
+    s = run_one(parse_conveyor(conv), scn, model="din").summary
+    assert s["brake_governed_by"].startswith("grip"), s["brake_governed_by"]
+    said = re.search(r"would be met by ([^;]*(?:; or [^;]*)*)", s["message"]).group(1)
+    assert "(takeup.mass_kg)" in said  # the premise: the remedies are said
+    assert "wrap" not in said, said
