@@ -23,6 +23,7 @@ from urllib.parse import urlsplit, urlunsplit
 import dask
 from distributed import Client, LocalCluster
 
+from beltstudy import engine
 from beltstudy.service.dask.tasks import LowerPriority, warm_up
 from beltstudy.service.errors import Unavailable
 from beltstudy.service.settings import Settings
@@ -150,10 +151,22 @@ class Executor:
             with self._lock:
                 if self._closed.is_set():
                     return
-                self.state, self.error = "ready", ""
+                self.state, self.error = "ready", self._other_engines()
                 self.failing_since = None
                 self._ready.set()
             return
+
+    def _other_engines(self) -> str:
+        """The workers warmed on another engine version than this service's, in words ("" for
+        none): every run sent to one fails, and ``/health`` said ``ready`` without a word."""
+        other = sorted({f"{w.get('engine_version')} ({a})" for a, w in self.warm.items()
+                        if w.get("engine_version") not in (None, engine.__version__)})
+        if not other:
+            return ""
+        log.warning("workers on another engine version: %s", ", ".join(other))
+        return (f"workers on another engine than this service's {engine.__version__}: "
+                f"{', '.join(other)}; install the service's beltstudy on them and restart them "
+                "(their runs fail until then)")
 
     def _failed(self, exc: Exception, where: str, last_error: str) -> str:
         error = exc.message if isinstance(exc, Unavailable) else f"{type(exc).__name__}: {exc}"

@@ -155,7 +155,10 @@ def run_spec(spec: RunSpec, study_id: str = "") -> tuple[dict, Any]:
         if engine.__version__ != spec.engine_version:
             raise RuntimeError(
                 f"this worker runs engine {engine.__version__}, the study needs "
-                f"{spec.engine_version}"
+                f"{spec.engine_version}: install the service's beltstudy on every worker "
+                "(the same version; `pip install` of the same checkout or image) and restart "
+                "them, then DELETE /studies/<id> and POST the study again (a resubmitted "
+                "study with failed runs is not rerun)"
             )
         # deferred: the transient engine (numba) loads on the worker's first run, not
         # in the API process that imports this module for its table builders
@@ -414,6 +417,7 @@ def warm_up() -> dict:
 
     return {
         "pid": os.getpid(),
+        "engine_version": engine.__version__,
         "models": models,
         "seconds": time.perf_counter() - t0,
         "errors": errors,
