@@ -604,7 +604,7 @@ def transient_liftoff(loop: Loop, segs, t_start_end_s: float, t_stop_cmd_s: floa
             f"{strand} idlers at {where}, "
             f"at {s_end[e]:.0f} m round the loop) {when}, "
             f"{(t_peak - t_lim) / 1e3:.1f} kN over its lift-off "
-            f"tension {t_lim / 1e3:.1f} kN (R m'_G g cos a: the belt's own weight; a stretch "
+            f"tension {t_lim / 1e3:.1f} kN (R m'_G g cos a, the belt's own weight: a stretch "
             "carrying material holds more); " + " or ".join(fixes) + " avoids it")
     return out, warnings
 

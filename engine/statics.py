@@ -605,8 +605,10 @@ def solve_steady(
         result.summary["status"] = result.status
         result.summary["message"] = result.message
     if settle and result.status != "failed":
-        _settle_radii(result, dict(model=model, params=params, temperature_c=temperature_c,
-                                   load=load, n_elements=n_elements, target_dx_m=target_dx_m))
+        case = dict(model=model, params=params, temperature_c=temperature_c, load=load,
+                    n_elements=n_elements, target_dx_m=target_dx_m)
+        _settle_radii(result, case)
+        _settle_concave(result, case)
     return result
 
 
@@ -1119,6 +1121,65 @@ _AT_THESE = re.compile(r"curve (\d+) \(convex, .*?a radius of at least (\d+) m \
                        r"tensions, which a larger radius moves a little: rerun to confirm\)")
 #: Solves at most, settling one radius.
 SETTLE_MAX = 6
+#: The words of a concave curve's radius at the tensions of the run's own arc
+#: (:func:`beltstudy.engine.curves.steady_curve_checks` and ``_start_liftoff``), each with the
+#: summary field that names the radius it needs: running, and at start-up.
+_CONCAVE_AT = (
+    (re.compile(r"curve (\d+) \(concave, .*?a radius of at least (\d+) m keeps it on them "
+                r"at these tensions"), "curve{k}_radius_min_m"),
+    (re.compile(r"curve (\d+) \(concave, .*?, and at start-up \([\d.]+ kN there\) at least "
+                r"(\d+) m"), "curve{k}_radius_min_start_m"),
+    (re.compile(r"curve (\d+) \(concave, .*?a radius of at least (\d+) m \(R x T_start / "
+                r"T_lift"), "curve{k}_radius_min_start_m"),
+)
+
+
+def _settled_radius(res: SteadyResult, case: dict, k: int, r_try: int, key: str
+                    ) -> int | None:
+    """Curve ``k``'s radius solved again from ``r_try`` [m] until the radius its summary field
+    ``key`` names holds at that radius (the least whole metre found so); None where a radius
+    does not fit its sections or does not settle within :data:`SETTLE_MAX` solves."""
+    curve = next((c for c in res.loop.curves if c.k == k), None)
+    if curve is None:
+        return None
+    for _ in range(SETTLE_MAX):
+        data = res.conveyor.model_dump(mode="json", by_alias=True, exclude_none=True)
+        data["profile"][curve.section]["curve_radius_m"] = r_try
+        try:
+            trial = solve_steady(Conveyor.model_validate(data), settle=False, **case)
+        except (ValueError, InputError):
+            return None
+        need = trial.summary.get(key.format(k=k))
+        if need is None or not math.isfinite(need):
+            return None
+        if need <= r_try:
+            return r_try
+        r_try = math.ceil(need)
+    return None
+
+
+def _settle_concave(res: SteadyResult, case: dict) -> None:
+    """A concave curve's advised radius (running, and at start-up) solved again at that radius
+    until it holds there, as :func:`_settle_radii` does for a convex one: a 400 m belt's tight
+    concave curve near its tail was told 167 m, and lifted at 167 m (176 m needed); a 3 km
+    route's 661 m needed 666 m, its start-up 824 m needed 833 m."""
+    for pattern, key in _CONCAVE_AT:
+        for w in list(res.warnings):
+            m = pattern.search(w)
+            if m is None:
+                continue
+            k, r_asked = int(m.group(1)), int(m.group(2))
+            settled = _settled_radius(res, case, k, r_asked, key)
+            if settled is None or settled == r_asked:
+                continue
+            old = m.group(0)
+            head, _, _ = old.rpartition(f"{r_asked} m")
+            new = (f"{head}{settled} m (solved again at that radius: its longer arc moves the "
+                   f"tensions, and {r_asked} m at this run's own falls short)"
+                   + old[len(head) + len(f"{r_asked} m"):])
+            res.warnings = [x.replace(old, new) for x in res.warnings]
+            res.message = res.message.replace(old, new)
+            res.summary["message"] = res.message
 
 
 def _settle_radii(res: SteadyResult, case: dict) -> None:

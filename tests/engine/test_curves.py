@@ -898,3 +898,40 @@ def test_a_belt_that_lifts_held_at_rest_is_told_by_the_steady_check():
     assert np.allclose(np.diff(t_rest), np.diff(walk), rtol=0, atol=1e-6)
     k = loop.i_takeup
     assert t_rest[k - 1] + t_rest[k] == pytest.approx(run[k - 1] + run[k], rel=1e-12)
+
+
+#: A 400 m belt whose tail curve (R 60 m) turns a flat 30 m into a 15 % climb: its longer arc
+#: at the advised radius reaches further up the grade, and the tension there rises with it.
+TIGHT_TAIL = {
+    "name": "tight-tail", "speed_m_s": 2.5,
+    "belt": {"type": "EP630/4", "width_m": 0.8, "mass_kg_m": 12.0},
+    "material": {"capacity_t_h": 400, "density_t_m3": 1.5},
+    "profile": [{"length_m": 30, "lift_m": 0, "curve_radius_m": 60},
+                {"length_m": 370, "lift_m": 55.5}],
+    "idlers": {"carry": {"spacing_m": 1.0, "roll_diameter_m": 0.108, "rolls": 3,
+                         "trough_deg": 35, "rotating_mass_kg": 9.0, "seal_drag_n": 1.0,
+                         "roll_length_m": 0.315},
+               "return": {"spacing_m": 3.0, "roll_diameter_m": 0.108, "rolls": 1,
+                          "rotating_mass_kg": 7.0, "seal_drag_n": 0.8}},
+    "drives": [{"position": "head", "wrap_deg": 210, "friction": 0.35, "share": 1.0,
+                "pulley_diameter_m": 0.63, "inertia_kg_m2": 60, "rated_power_kw": 110,
+                "torque_limit": 1.5}],
+    "takeup": {"type": "gravity", "position": "tail", "mass_kg": "auto"},
+    "holdback": True}
+
+
+def test_a_concave_radius_advised_holds_when_followed():
+    """The concave radius (running and at start-up) is solved again at the advised radius
+    until it holds there, as the convex one is: at R 60 m the run's own arc asks 156 m
+    running and 167 m at start-up (hand: T / (m'_G g cos a), 18.1 kN and 19.3 kN over
+    0.1164 kN/m), and at 167 m the belt lifted at start-up (176 m needed)."""
+    res = solve_steady(parse_conveyor(TIGHT_TAIL), model="din", settle=True)
+    words = next(w for w in res.warnings if w.startswith("curve 1 (concave"))
+    running = int(re.search(r"a radius of at least (\d+) m", words).group(1))
+    start = int(re.search(r"at start-up \([\d.]+ kN there\) at least (\d+) m", words).group(1))
+    assert running > 156 and start > 167, words  # beyond the run's own-arc figures
+    for radius, field in ((running, "curve1_liftoff"), (start, "curve1_liftoff_start")):
+        d = {**TIGHT_TAIL, "profile": [{**TIGHT_TAIL["profile"][0], "curve_radius_m": radius},
+                                       TIGHT_TAIL["profile"][1]]}
+        followed = solve_steady(parse_conveyor(d), model="din")
+        assert not followed.summary[field], (radius, field)
