@@ -524,6 +524,10 @@ def _prepare(conveyor, scenario, model, params, dynamics, opts, solved=None, gov
                          warnings=[design_holding_words(w, held_by) for w in steady.warnings])
         summary["message"] = design_holding_words(summary.get("message") or "", held_by)
     prep = _Prepared(conveyor, belt_choice, steady, summary)
+    if not dynamics and steady.status != "failed" and scenario.start != Scenario().start:
+        # the study's start, not the default one, in a steady-only run's start-time note
+        summary["message"] = _start_note_for(steady, conveyor, scenario,
+                                             summary.get("message") or "")
     if not dynamics or steady.status == "failed":
         run_message(summary, belt_choice)
         check_summary(summary)
@@ -531,23 +535,25 @@ def _prepare(conveyor, scenario, model, params, dynamics, opts, solved=None, gov
     return prep
 
 
-def _start_note_for(steady, conveyor, scenario) -> str:
-    """The steady run's message with its start-time note (:func:`beltstudy.engine.statics.
-    start_time_note`, which judges the transient's default start) said of the run's own start
-    instead: added where only the run's start is beyond the start-up checks, left out where
-    only the default one is."""
+def _start_note_for(steady, conveyor, scenario, message: str | None = None) -> str:
+    """The steady run's message (``message``, default ``steady.message``) with its start-time
+    note (:func:`beltstudy.engine.statics.start_time_note`, which judges the transient's
+    default start) said of the run's own start instead: added where only the run's start is
+    beyond the start-up checks, left out where only the default one is. A steady-only run of a
+    study whose scenario gives a 45 s start was told of "the default 60 s s-curve"."""
     from beltstudy.engine.statics import start_time_note
 
+    text = steady.message if message is None else message
     default = start_time_note(conveyor, steady.loop, steady.te_n)
     own = start_time_note(conveyor, steady.loop, steady.te_n, scenario.start)
     if not default:
-        return "; ".join(m for m in (steady.message, own) if m)
+        return "; ".join(m for m in (text, own) if m)
     if own:
-        return steady.message.replace(default, own)
+        return text.replace(default, own)
     for cut in ("; " + default, default + "; ", default):
-        if cut in steady.message:
-            return steady.message.replace(cut, "", 1)
-    return steady.message
+        if cut in text:
+            return text.replace(cut, "", 1)
+    return text
 
 
 def _complete(prep: _Prepared, scenario, system, tr, model, params, opts, remedy, check,

@@ -81,3 +81,19 @@ def test_no_note_where_the_default_start_is_within_the_checks():
     d = hand_conveyor_dict(profile=[{"length_m": 1000, "lift_m": 0}])
     d["drives"] = [{**d["drives"][0], "control": "dol"}]
     assert "start-up checks" not in solve_steady(parse_conveyor(d), model="din").message
+
+
+def test_a_steady_only_run_judges_the_scenarios_start_not_the_default():
+    """A study without dynamics still gives its scenario's start: its rows were told of "the
+    default 60 s s-curve" where the study's start was 45 s. The flat belt's default note
+    (from start.time_s above 60 s) is said of the 54 s start asked, and a steep belt within
+    the checks at 60 s is told of its own 10 s start."""
+    flat = _flat()
+    own = run_one(flat, Scenario(start={"time_s": 54}), model="din", dynamics=False)
+    msg = own.summary["message"]
+    assert "this run's 54 s s-curve asks" in msg and "the default" not in msg, msg
+    plain = run_one(flat, Scenario(), model="din", dynamics=False).summary["message"]
+    assert "the default 60 s s-curve asks" in plain
+    steep = run_one(parse_conveyor(hand_conveyor_dict()), Scenario(start={"time_s": 10}),
+                    model="din", dynamics=False)
+    assert "this run's 10 s s-curve asks" in steep.summary["message"]
