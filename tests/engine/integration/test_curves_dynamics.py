@@ -254,3 +254,33 @@ def test_a_stop_lift_off_under_the_start_s_margin_is_barred_by_its_phase():
     assert abs(fine["liftoff_over_stop_kn"] - stop) <= s["liftoff_over_stop_kn_err"]
     assert fine["liftoff_max_kn_over"] == max(fine["liftoff_over_start_kn"],
                                               fine["liftoff_over_stop_kn"])
+
+
+def test_the_lift_off_radius_within_the_error_bar():
+    """The transient's radius advice, ``R (T_lift + over) / T_lift``, is of the run's own
+    mesh; with an error bar the run also names the radius at the bar's top (or the converged
+    estimate, the larger): a 3 km route told 642 m lifted at that radius on twice the
+    elements. Hand: R 400 m, T_lift = R m'_G g cos(a) at the point, over 10 kN +- 20 kN:
+    400 (T_lift + 30) / T_lift; nothing where the bar adds nothing or the belt stays down."""
+    from beltstudy.engine.accuracy import FigureError
+    from beltstudy.engine.curves import liftoff_limits_n
+    from beltstudy.engine.run import _radius_within_bar
+
+    loop = solve_steady(valley_conveyor(), model="din").loop
+    curve = next(c for c in loop.curves if c.concave)
+    el, lim = liftoff_limits_n(loop, curve)
+    at, t_lift = float(loop.s_end_m[el[0]]), float(lim[0]) / 1e3
+    assert 70.0 < t_lift < 80.0  # about R m'_G g = 78.5 kN
+    summary = {"liftoff_max_kn_over": 10.0, "liftoff_at_m": at}
+
+    def bar(err, conv=None):
+        return FigureError("liftoff_max_kn_over", 10.0, err, conv, "gci3", 1.0, (5, 10, 14))
+
+    words = _radius_within_bar(loop, summary, bar(20.0))
+    need = math.ceil(400.0 * (t_lift + 30.0) / t_lift)
+    assert f"curve 1 needs a radius of at least {need} m" in words, words
+    assert f"({math.ceil(400.0 * (t_lift + 10.0) / t_lift)} m at this run's own mesh)" in words
+    conv = _radius_within_bar(loop, summary, bar(5.0, conv=40.0))  # the estimate beyond it
+    assert f"at least {math.ceil(400.0 * (t_lift + 40.0) / t_lift)} m" in conv, conv
+    assert _radius_within_bar(loop, summary, bar(0.0)) == ""
+    assert _radius_within_bar(loop, {**summary, "liftoff_max_kn_over": -1.0}, bar(20.0)) == ""
