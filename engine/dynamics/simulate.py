@@ -730,6 +730,7 @@ def decode(sys: System, kr: KernelRun, wall_s: float, *, steady_summary=None, co
                integrator=r["integ"], drive_force=kr.model.drives.force.copy(),
                shaft_speed=kr.model.shafts.vs.copy(), shaft_slip=kr.model.shafts.slip.copy(),
                drive_slip_last_s=np.array(out.drv["slip_last"], dtype=np.float64),
+               drive_slip_first_s=np.array(out.drv["slip_first"], dtype=np.float64),
                wall_s=wall_s, element_steps=float(r["steps"]) * sys.n, segments=segs)
     return TransientResult(status=status, message=message, warnings=warnings, summary=summary,
                            series=cols, system=sys, raw=raw, trace_data=trace_data,
