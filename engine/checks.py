@@ -66,6 +66,7 @@ __all__ = [
     "middle_roll_share",
     "pitch_within_m",
     "bearing_l10_h",
+    "idler_ratings",
     "holdback_torque_nm",
     "pulley_name",
     "steady_checks",
@@ -137,6 +138,14 @@ def _idler_ratings() -> dict[str, dict[str, float]]:
     return {r["cema_class"]: {k: float(r[k]) for k in ("carry_rating_n", "return_rating_n",
                                                        "bearing_c_n", "l10_min_h")}
             for r in _rows("idler_ratings.csv")}
+
+
+def idler_ratings() -> dict[str, dict[str, float]]:
+    """The idler catalogue by CEMA class (``engine/data/idler_ratings.csv``, its header names
+    the sources): ``carry_rating_n`` and ``return_rating_n``, the load rating of a set [N];
+    ``bearing_c_n``, the roll bearing's dynamic rating [N]; ``l10_min_h``, the L10 life [h]
+    the rating holds at (CEMA 502). A copy: the caller may change it."""
+    return {k: dict(v) for k, v in _idler_ratings().items()}
 
 
 # ------------------------------------------------------------------ pulley diameters

@@ -130,6 +130,8 @@ MAX_RUN_ROWS = 400
 MAX_CAUSE_ROWS = 60
 #: Characters of a message shown before the rest folds into a <details> element.
 MESSAGE_CHARS = 90
+#: What a folded message of the runs table says in print, where its fold stays closed.
+SAID_POINTER = "(the rest: every clause in the run's own words in section 10)"
 #: Result columns of the runs table (the first six the runs carry, so the table fits a page):
 #: the transient's per phase when the study ran it, else the steady ones.
 RUN_COLUMNS = ("power_kw", "t_max_start_kn", "t_max_stop_kn", "t_min_stop_kn",
@@ -220,12 +222,14 @@ def _unit(column: str) -> str:
     return ""
 
 
-def _message_cell(message: Any, chars: int = MESSAGE_CHARS, print_full: bool = False) -> str:
+def _message_cell(message: Any, chars: int = MESSAGE_CHARS, print_full: bool = False,
+                  pointer: str = "") -> str:
     """A message that keeps its row short: the first ``chars`` characters, the rest folded
     into a ``<details>`` element. A closed ``<details>`` does not print, so with
     ``print_full`` the whole text is also given in a span that only print shows (the report
     has no script to open the folds): what would avoid a limit, at the end of a long clause,
-    is on the PDF too."""
+    is on the PDF too. ``pointer``: where else the report has the whole text, said after a
+    fold in print only (the runs table's section 8 points to section 10)."""
     text = "" if message is None or (isinstance(message, float) and math.isnan(message)) \
         else str(message)
     if len(text) <= chars:
@@ -235,7 +239,8 @@ def _message_cell(message: Any, chars: int = MESSAGE_CHARS, print_full: bool = F
     if print_full:
         return (f"<details class=fold-print><summary>{_e(text[:cut])} …</summary>"
                 f"{_e(text[cut:])}</details><span class=print-full>{_e(text)}</span>")
-    return (f"<details><summary>{_e(text[:cut])} …</summary>{_e(text[cut:])}</details>")
+    return (f"<details><summary>{_e(text[:cut])} …</summary>{_e(text[cut:])}</details>"
+            + (f"<span class=print-full>{_e(pointer)}</span>" if pointer else ""))
 
 
 def _png(make) -> str:
@@ -626,7 +631,8 @@ def _verdicts_section(study: dict, runs: pd.DataFrame, bars: pd.DataFrame | None
             f"{eng(TRANSIENT_SAFETY_RATIO * sf, '', 3)} transient (DIN 22101), the tension "
             "they allow from the belt's rating, no slack (lowest tension above 0), a slip "
             "margin of at least 1, the rated power of the drives, the conveyor's sag limits "
-            "and take-up travel.</p>")
+            "and take-up travel, the CEMA rating and L10 basis of the carry idlers' class "
+            "(docs/checks.md).</p>")
 
 
 def _cause_table(cause, part: pd.DataFrame, cols: list[str], axes: list[str]) -> str:
@@ -678,7 +684,13 @@ def _causes_section(study: dict, runs: pd.DataFrame) -> str:
 
 
 def _runs_section(study: dict, runs: pd.DataFrame) -> str:
+    """The runs (the first :data:`MAX_RUN_ROWS`), their axis values, first results, status
+    and message. A message folds past :data:`MESSAGE_CHARS`; a closed fold does not print,
+    so in print the fold points to section 10, which has every clause of the run in its own
+    words (:func:`said_whole`), or, for a run whose clauses section 10 does not list, prints
+    the message whole."""
     axes = _axes(study, runs)
+    whole = said_whole(runs)
     results = [c for c in RUN_COLUMNS if c in runs
                and pd.to_numeric(runs[c], errors="coerce").notna().any()]
     if "t_max_start_kn" in results:  # the phases say more than the whole cycle
@@ -689,7 +701,10 @@ def _runs_section(study: dict, runs: pd.DataFrame) -> str:
     for _, r in shown.iterrows():
         rows.append([f"<code class=id>{_e(r['run_id'])}</code>"] + ["\x01ax\x01" + _e(_text(r.get(a))) for a in axes]
                     + [_n(r.get(c)) for c in results]
-                    + [f"<b>{_e(r.get('status'))}</b> " + _message_cell(r.get("message"))])
+                    + [f"<b>{_e(r.get('status'))}</b> " + (
+                        _message_cell(r.get("message"), pointer=SAID_POINTER)
+                        if r.get("run_id") in whole
+                        else _message_cell(r.get("message"), print_full=True))])
         classes.append(r.get("status"))
     head = ["run", *axes, *[f"{c} [{_unit(c)}]" if _unit(c) else c for c in results],
             "status and message"]
@@ -704,44 +719,86 @@ def _runs_section(study: dict, runs: pd.DataFrame) -> str:
 #: A number inside a message clause (``12.3``, ``-0.5``, ``1,234``, ``2.5e-05``): the kind of a
 #: clause is its words with every number replaced.
 _NUMBER = re.compile(r"[-+]?\d[\d,]*(?:\.\d+)?(?:e[-+]?\d+)?", re.IGNORECASE)
-#: Kinds of clause listed (the rest counted); run ids shown per kind.
+#: Kinds of clause listed (the rest counted).
 MAX_KINDS = 300
-KIND_RUNS = 5
+#: Run ids per row of the last section: a wording said by more runs goes on in rows below it,
+#: so that no row outgrows a quarter of an A4 page in print (docs/report_pdf.py, 250 px).
+IDS_PER_ROW = 24
 
 
-def clause_kinds(runs: pd.DataFrame) -> list[tuple[str, list[str], str]]:
-    """Every clause of every run's message, by kind (its words with the numbers as ``#``),
-    most runs first: ``(kind, run ids, the first run's clause)``. Nothing a run says is left
-    out, however many runs the study has."""
-    kinds: dict[str, tuple[list[str], str]] = {}
+def clause_wordings(runs: pd.DataFrame) -> list[tuple[str, list[str], list[tuple[str, list]]]]:
+    """Every clause of every run's message (:func:`said_clauses`: a finding with its fix), by
+    kind (its words with the numbers as ``#``), most runs first: ``(kind, run ids, wordings)``,
+    the wordings each run's own words with the runs that say exactly them, most runs first
+    (a brake stop's 'at most about 15.7 kN in all' of one run and '7.81 kN' of another are
+    one kind and two wordings). Nothing a run says is left out, however many runs the study
+    has."""
+    kinds: dict[str, tuple[list, dict[str, list]]] = {}
     if not len(runs) or "message" not in runs:
         return []
     for run_id, message in zip(runs["run_id"], runs["message"], strict=True):
         for _finding, clause in said_clauses(message):
-            key = _NUMBER.sub("#", clause.strip())
-            ids, first = kinds.setdefault(key, ([], clause.strip()))
+            text = clause.strip()
+            ids, texts = kinds.setdefault(_NUMBER.sub("#", text), ([], {}))
             if not ids or ids[-1] != run_id:
                 ids.append(run_id)
-    return sorted(((k, ids, first) for k, (ids, first) in kinds.items()),
-                  key=lambda item: (-len(item[1]), item[0]))
+            said_by = texts.setdefault(text, [])
+            if not said_by or said_by[-1] != run_id:
+                said_by.append(run_id)
+    out = [(key, ids, sorted(texts.items(), key=lambda tw: -len(tw[1])))  # stable: first said
+           for key, (ids, texts) in kinds.items()]
+    return sorted(out, key=lambda item: (-len(item[1]), item[0]))
+
+
+def clause_kinds(runs: pd.DataFrame) -> list[tuple[str, list[str], str]]:
+    """Every clause of every run's message, by kind (:func:`clause_wordings`), most runs
+    first: ``(kind, run ids, the first run's clause)``."""
+    return [(key, ids, next(t for t, part in wordings if ids[0] in part))
+            for key, ids, wordings in clause_wordings(runs)]
+
+
+def said_whole(runs: pd.DataFrame) -> set:
+    """The runs whose every clause the last section lists with the run's own words (the
+    kinds within :data:`MAX_KINDS`): the runs table may fold their messages in print too."""
+    wordings = clause_wordings(runs)
+    if len(wordings) <= MAX_KINDS:
+        return set(runs["run_id"]) if len(runs) and "run_id" in runs else set()
+    cut = {i for _, ids, _ in wordings[MAX_KINDS:] for i in ids}
+    return set(runs["run_id"]) - cut
 
 
 def _said_section(runs: pd.DataFrame) -> str:
-    """Every kind of warning, note and failure the runs' messages hold, with its count and
-    runs: the part of the messages the runs table (its first rows) and the failure groups
-    (their causes) do not show."""
-    kinds = clause_kinds(runs)
+    """Every kind of warning, note and failure the runs' messages hold, and under it every
+    run's own words with every run that says them: the part of the messages the runs table
+    (its folds, its first rows) and the failure groups (their causes) do not show. The
+    printed report showed each kind in its first run's words with five run ids ('and 3
+    more'), so another run's figures (the brake force of 7.81 kN that would have met its
+    stop) were on no page of the PDF: a wording is now a row of its own, its runs all named
+    (:data:`IDS_PER_ROW` to a row), its text whole in print."""
+    kinds = clause_wordings(runs)
     if not kinds:
         return f"<p>None of the {len(runs)} runs has a warning, a note or a failure.</p>"
     rows = []
-    for _key, ids, first in kinds[:MAX_KINDS]:
-        more = f" and {len(ids) - KIND_RUNS} more" if len(ids) > KIND_RUNS else ""
-        rows.append([NUM + str(len(ids)),
-                     " ".join(f"<code class=id>{_e(i)}</code>" for i in ids[:KIND_RUNS]) + more,
-                     _message_cell(first, 2 * MESSAGE_CHARS, print_full=True)])
+    every = set(runs["run_id"])
+    for _key, ids, wordings in kinds[:MAX_KINDS]:
+        for text, said_by in wordings:
+            count = (str(len(said_by)) if len(wordings) == 1
+                     else f"{len(said_by)} of {len(ids)}")
+            if len(every) > 1 and set(said_by) == every:
+                chunks = [f"every run ({len(said_by)})"]
+            else:
+                chunks = [" ".join(f"<code class=id>{_e(i)}</code>"
+                                   for i in said_by[k:k + IDS_PER_ROW])
+                          for k in range(0, len(said_by), IDS_PER_ROW)]
+            rows.append([NUM + count, chunks[0],
+                         _message_cell(text, 2 * MESSAGE_CHARS, print_full=True)])
+            rows += [[NUM, more, "<span class=muted>(the same words: more runs)</span>"]
+                     for more in chunks[1:]]
     out = [f"<p>Each kind of clause in the {len(runs)} runs' messages (the same words with "
-           "other numbers), how many runs say it, and the first run's words.</p>",
-           _table(["runs", "run ids", "what the first run says"], rows, "causes")]
+           "other numbers), each in every run's own words: runs that say the same words "
+           "share a row, which names them all; <em>3 of 12</em>: three of the twelve runs "
+           "that say this kind of clause say it in these words.</p>",
+           _table(["runs", "run ids", "what they say"], rows, "causes")]
     if len(kinds) > MAX_KINDS:
         rest = sum(len(ids) for _, ids, _ in kinds[MAX_KINDS:])
         out.append(f"<p class=muted>The {MAX_KINDS} kinds said by most runs of {len(kinds)}; "

@@ -52,7 +52,10 @@ class Verdict:
     ``magnitude``: judged by its size whatever its sign (a regenerating drive's power is
     negative); the governing run's value is shown with its sign. ``judged_only``: the runs
     whose limit is missing are not judged and their values not shown (a stop's ratio to the
-    wave loop time of a belt that never reached its running speed).
+    wave loop time of a belt that never reached its running speed). ``said``: a regular
+    expression of the engine's own warning for the quantity; a run whose message says it is
+    past the limit whatever the number (the run's verdict in words, where the runs carry no
+    verdict column: a carry idler set above its CEMA rating).
     """
 
     group: str
@@ -67,6 +70,7 @@ class Verdict:
     null_worst: str = ""
     magnitude: bool = False
     judged_only: bool = False
+    said: str = ""
 
 
 #: The limit of a concave vertical curve's tensions: the empty belt's lift-off tension, which
@@ -155,8 +159,14 @@ VERDICTS: tuple[Verdict, ...] = (
             "pulley{j}_resultant_dyn_kn", "max", "kN"),
     Verdict("Pulleys", "transition length, head", "transition_head_m", "max", "m"),
     Verdict("Pulleys", "transition length, tail", "transition_tail_m", "max", "m"),
-    Verdict("Idlers", "idler load per carry set", "idler_load_carry_n", "max", "N"),
-    Verdict("Idlers", "idler bearing life L10", "idler_l10_h", "min", "h"),
+    # the carry set's load against the CEMA rating of its class, and its middle roll's
+    # bearing life against the class's L10 basis (engine/checks.py ``_idlers``,
+    # docs/checks.md "Idler load and bearing life"); judged only where the file gives a
+    # cema_class, as the engine judges it
+    Verdict("Idlers", "idler load per carry set", "idler_load_carry_n", "max", "N",
+            "idler_rating", said=r"(?:^|; )carry idler load \d+ N per set [^;]*exceeds the CEMA"),
+    Verdict("Idlers", "idler bearing life L10", "idler_l10_h", "min", "h", "idler_l10",
+            said=r"(?:^|; )carry idler bearing life L10 \d+ h [^;]*is below the CEMA"),
     # routes (docs/routes.md): a concave curve lifts the empty belt off its idlers above its
     # lift-off tension R m'_G g cos(a); a convex curve's radius is judged by the edge strain
     # (the run's message names a curve below it); a horizontal curve holds the belt between
@@ -418,6 +428,27 @@ def _high_stress(runs: pd.DataFrame) -> pd.Series:
     return _message(runs).str.contains(_HIGH_STRESS, regex=True)
 
 
+#: The engine's words for carry idlers past their CEMA class (engine/checks.py ``_idlers``:
+#: a set's load above the class's rating, its middle roll's bearing life L10 below the
+#: class's basis; engine/curves.py ``convex_idler_warnings``: the same on a convex curve,
+#: where the tension pressing round it adds to the load).
+_IDLERS = (r"(?:exceeds|above) the CEMA \w+ rating \d+ N|is below the CEMA \w+ basis \d+ h")
+#: The findings the idler group shows: the straight run's two warnings and a convex curve's
+#: (whose clause opens with the curve and names the idler set).
+_IDLER_WORDS = (r"^carry idler (?:load|bearing life)|each carry idler set carries .*(?:"
+                + _IDLERS + ")")
+
+
+def _idlers(runs: pd.DataFrame) -> pd.Series:
+    """Runs whose carry idlers are past their CEMA class: the engine's warning of a set's
+    load above the rating or a bearing life below the L10 basis (straight run or convex
+    curve). The engine judges only a set with a ``cema_class``, and says so in words: the
+    runs carry no rating column."""
+    said = _message(runs).map(lambda m: any(
+        not c.startswith("note: ") and re.search(_IDLERS, c) for c in clauses(m, "")))
+    return said.astype(bool)
+
+
 @dataclass(frozen=True)
 class Cause:
     """One way a run does not pass: ``detect(runs)`` flags its rows; ``columns`` (patterns
@@ -490,6 +521,10 @@ CAUSES: tuple[Cause, ...] = (
           ("safety_factor", "safety_factor_dyn"), r"safety factor"),
     Cause("pulley", "pulley below its minimum diameter", _pulleys,
           ("pulley{j}_diameter_min_m",), r"pulley"),
+    Cause("idlers", "overloaded its carry idlers (a set above its CEMA rating or a bearing "
+          "life below the L10 basis)", _idlers,
+          ("idler_load_carry_n", "idler_load_roll_n", "idler_l10_h",
+           "curve{k}_idler_load_extra_n"), _IDLER_WORDS),
 )
 
 
@@ -519,7 +554,8 @@ _OPENS_FINDING = re.compile(
     r"(?:slipped|needs|was above)|slip at drive|overspeed in the|stop in [\d.]+ s is faster"
     r"|brake stop missed|the holding brakes cannot hold|the \w+ brake's pulley slipped"
     r"|not settled while running|the speed loop did not track|the running phase is short"
-    r"|lift-off (?:in|at) |curve \d+ \((?:concave|convex)|grade change without)")
+    r"|lift-off (?:in|at) |curve \d+ \((?:concave|convex)|grade change without"
+    r"|carry idler (?:load|bearing life) )")
 
 #: The opening words of a clause that goes on with the clause before it: what the finding
 #: before it would take (``a longer start``, ``less brake force``, ``a controlled stop ...
@@ -597,6 +633,24 @@ def cause_groups(runs: pd.DataFrame) -> list[tuple[Cause, pd.DataFrame, list[str
 
 
 # ---------------------------------------------------------------------- verdict rows
+def idler_ratings() -> dict[str, dict[str, float]]:
+    """The engine's idler catalogue by CEMA class (:func:`beltstudy.engine.checks.
+    idler_ratings`): ``{"B": {"carry_rating_n": 1824.0, "l10_min_h": 30000.0, ...}, ...}``,
+    the load rating of a troughing set [N] and the L10 life [h] the rating holds at."""
+    from beltstudy.engine.checks import idler_ratings as engine_ratings
+
+    return engine_ratings()
+
+
+#: The rating a run's own warning names (``... exceeds the CEMA B rating 1824 N``) [N] and
+#: the L10 basis (``... is below the CEMA B basis 30000 h``) [h]: the limit of a run whose
+#: class this catalogue does not hold.
+_SAID_RATING = re.compile(r"carry idler load \d+ N per set [^;]*exceeds the CEMA \w+ rating "
+                          r"(\d+) N")
+_SAID_BASIS = re.compile(r"carry idler bearing life L10 \d+ h [^;]*is below the CEMA \w+ "
+                         r"basis (\d+) h")
+
+
 #: A named limit: ``(runs, **numbers) -> (the limit per row [unit of the quantity] or None,
 #: words)``; ``numbers`` the drive or pulley number of the verdict's column (``i="1"``).
 Limit = Callable[..., tuple[pd.Series | None, str]]
@@ -700,6 +754,31 @@ def study_limits(study: dict, sf_min: float, sf_ratio: float,
                 "5 wave loop times (Harrison after Funke 1973; judged where the belt reached "
                 "its running speed)")
 
+    def idler_limit(key: str, said: re.Pattern, unit: str, words: str) -> Limit:
+        # each run's carry class (the file's, or a grid axis's idlers.carry.cema_class), its
+        # catalogue value; none without a class (the engine judges no class-less set, and
+        # leaves idler_l10_h null); a class this catalogue lacks: the value its warning names
+        carry_set = (conv.get("idlers") or {}).get("carry") or {}
+
+        def f(runs, **_):
+            cls = pd.Series(carry_set.get("cema_class"), index=runs.index, dtype=object)
+            axis = "idlers.carry.cema_class"
+            if axis in runs.columns:
+                cls = runs[axis].where(runs[axis].notna(), cls)
+            table = idler_ratings()
+            out = pd.to_numeric(cls.map(lambda c: (table.get(c) or {}).get(key)
+                                        if isinstance(c, str) else None), errors="coerce")
+            named = pd.to_numeric(_message(runs).str.extract(said, expand=False),
+                                  errors="coerce")
+            out = out.fillna(named).astype(float)
+            if not out.notna().any():
+                return None, ""
+            classes = sorted({c for c in cls.dropna().astype(str)})
+            values = ", ".join(f"{c} {eng(table[c][key], unit)}" for c in classes if c in table)
+            return out, (f"{words} of the carry class, {values or 'as each run says'} "
+                         "(engine/data/idler_ratings.csv)")
+        return f
+
     def rated_at_pulleys(runs, **_):
         # the motor power needed (efficiency included) is judged per drive where the runs
         # carry it; the power at the pulleys against the rating would disagree with it
@@ -719,6 +798,9 @@ def study_limits(study: dict, sf_min: float, sf_ratio: float,
         "rated_force": rated_force,
         "curve_radius": curve_radius,
         "wave": wave_rule,
+        "idler_rating": idler_limit("carry_rating_n", _SAID_RATING, "N",
+                                    "CEMA 502 load rating"),
+        "idler_l10": idler_limit("l10_min_h", _SAID_BASIS, "h", "CEMA 502-2004 L10 basis"),
     }
 
 
@@ -788,6 +870,8 @@ def _past(v: Verdict, values: pd.Series, runs: pd.DataFrame, lim: pd.Series | No
         past |= _sagged(runs, "transient" if v.column == "sag_max_dyn_pct" else "steady")
     if v.null_worst:
         past |= transient_ran(runs) & values.isna()
+    if v.said:  # the engine's own warning of the quantity: past, whatever the number
+        past |= _message(runs).str.contains(v.said, regex=True)
     return past
 
 
