@@ -9,6 +9,7 @@ notes); an input problem is an :class:`~beltstudy.service.errors.Invalid` naming
 
 from __future__ import annotations
 
+import re
 from pathlib import Path
 from typing import Any
 
@@ -30,15 +31,46 @@ from beltstudy.engine.conveyor import strict_validate
 from beltstudy.service.door.messages import describe, with_type_fixes
 from beltstudy.service.door.study import ConveyorRef, ModelName
 from beltstudy.service.door.studyfile import conveyor_from_path
-from beltstudy.service.errors import Invalid, shown_path
+from beltstudy.service.errors import Invalid, TooLarge, shown_path
 
 __all__ = ["CalibrationIn", "read_calibration", "run_calibration", "check_params", "split_fit", "MAX_ROWS",
-           "MAX_FIT"]
+           "MAX_FIT", "NO_ROWS", "ROWS_FIX", "too_many_rows", "with_row_fixes"]
 
 #: Measurements and fitted names a request may hold (the fit runs in the request: each
 #: measurement is a steady solve per evaluation, about 5 ms on a 2 km conveyor).
 MAX_ROWS = 200
 MAX_FIT = 12
+
+#: A calibration without measured rows, said alike by the command line (a CSV with a header
+#: only) and ``POST /calibrations`` (``"measured": []``), with its fix.
+ROWS_FIX = ("give one row per measured steady state (load, temperature_c, and power_kw or "
+            "te_kn)")
+NO_ROWS = f"no measured rows; {ROWS_FIX}"
+#: What a row's required column is, said after ``required field is missing`` (Pydantic's
+#: words named the field but not what to give).
+_REQUIRED = {"load": "give the load case of the measurement (full, empty or a fraction of "
+                     "the design load)",
+             "temperature_c": "give the ambient temperature of the measurement [C]"}
+_MISSING = re.compile(r"\b(measured\.\d+\.(" + "|".join(_REQUIRED) + r")): required field is "
+                      r"missing(?=;|$)")
+
+
+def too_many_rows(count: int | None = None) -> str:
+    """More measured rows than a calibration takes (``count`` of them, where known), with the
+    fix: one wording for the command line and ``POST /calibrations`` (HTTP 413, as the README's
+    limits)."""
+    counted = f" ({count})" if count is not None else ""
+    return (f"more than {MAX_ROWS} measured rows{counted}; a calibration takes at most "
+            f"{MAX_ROWS} (each costs a steady solve per step of the fit): give fewer steady "
+            "states, or averages of repeated readings at the same load and temperature")
+
+
+def with_row_fixes(message: str) -> str:
+    """``message`` with what to give after each measured row's missing required column
+    (``measured.1.temperature_c: required field is missing: give the ambient temperature of
+    the measurement [C]``), the words the engine's own check of the rows uses."""
+    return _MISSING.sub(lambda m: f"{m[1]}: required field is missing: {_REQUIRED[m[2]]}",
+                        message)
 
 
 class MeasuredRow(BaseModel):
@@ -83,11 +115,18 @@ def read_calibration(data: Any) -> CalibrationIn:
     valid one, an inline conveyor's fields as the engine names them)."""
     if not isinstance(data, dict):
         raise Invalid("body: expected a mapping with conveyor, measured, model, fit")
-    _refuse_time_keys(data.get("measured"))
+    measured = data.get("measured")
+    if isinstance(measured, list):  # the command line's words, not Pydantic's list lengths
+        if len(measured) > MAX_ROWS:
+            raise TooLarge(f"measured: {too_many_rows(len(measured))}")
+        if not measured:
+            raise Invalid(f"measured: {NO_ROWS}")
+    _refuse_time_keys(measured)
     try:  # JSON's types exactly, as a study's (``"4.5"`` is no number, ``"yes"`` no boolean)
         return strict_validate(CalibrationIn, data)
     except ValidationError as exc:
-        raise Invalid(describe(exc, data, model=CalibrationIn, json_types=True)) from None
+        raise Invalid(with_row_fixes(describe(exc, data, model=CalibrationIn,
+                                              json_types=True))) from None
     except InputError as exc:
         raise Invalid(f"body: {exc}") from None
 

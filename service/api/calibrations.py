@@ -31,7 +31,8 @@ CALIBRATION_BODY_SCHEMA_REF = {"$ref": "#/components/schemas/CalibrationIn"}
 @router.post(
     "",
     summary="Fit friction model parameters to measured power (SPEC 7.3), JSON or YAML",
-    responses={413: _error("body over the limit"),
+    responses={413: _error("body over the limit, or more measured rows than a calibration "
+                           "takes (200)"),
                415: _error("Content-Type other than JSON or YAML, a charset other than "
                            "UTF-8, or a compressed body (Content-Encoding)")},
     openapi_extra={"requestBody": {"required": True, "content": {

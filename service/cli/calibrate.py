@@ -16,8 +16,17 @@ from beltstudy.engine import InputError, format_validation_error
 from beltstudy.engine.calibration import time_column_hint
 from beltstudy.engine.conveyor import unit_twin
 from beltstudy.engine.textfile import read_text
-from beltstudy.service.calibration import MAX_ROWS, CalibrationIn, MeasuredRow, run_calibration
+from beltstudy.service.calibration import (
+    MAX_ROWS,
+    ROWS_FIX,
+    CalibrationIn,
+    MeasuredRow,
+    run_calibration,
+    too_many_rows,
+    with_row_fixes,
+)
 from beltstudy.service.cli.common import dumps, model_option, parse_params
+from beltstudy.service.door.messages import with_type_fixes
 from beltstudy.service.errors import Invalid
 
 
@@ -71,10 +80,12 @@ def read_measured(path: str, lines: list[int] | None = None) -> list[dict]:
     text = read_text(p, path)
     reader = csv.reader(io.StringIO(text, newline=""))
     records = []
+    cut = False  # whether the file holds more records than were read
     try:
         for record in reader:
             records.append(record)
             if len(records) > MAX_ROWS + 1 + _BLANK_ALLOWANCE:
+                cut = True
                 break  # more rows than a calibration takes: said below by the row count
     except csv.Error as exc:
         raise InputError(f"{path}: line {reader.line_num}: not a CSV row ({exc}); give one "
@@ -119,13 +130,10 @@ def read_measured(path: str, lines: list[int] | None = None) -> list[dict]:
         raise InputError("; ".join(problems))
     rows = []
     data = [r for r in records[1:] if any(cell.strip() for cell in r)]
-    if not data:
-        raise InputError(f"{path}: no measured rows below the header (line 1); give one row "
-                         "per measured steady state")
+    if not data:  # POST /calibrations' words (NO_ROWS), with where the rows would be
+        raise InputError(f"{path}: no measured rows below the header (line 1); {ROWS_FIX}")
     if len(data) > MAX_ROWS:
-        raise InputError(f"{path}: more than {MAX_ROWS} measured rows; a calibration takes at "
-                         f"most {MAX_ROWS} (each costs a steady solve per step of the fit): "
-                         "give fewer steady states")
+        raise InputError(f"{path}: {too_many_rows(None if cut else len(data))}")
     for line, record in enumerate(records[1:], start=2):
         if not any(cell.strip() for cell in record):
             continue  # a blank line
@@ -230,8 +238,11 @@ def run(args: argparse.Namespace) -> int:
     try:
         body = CalibrationIn.model_validate(data)
     except ValidationError as exc:
-        raise InputError(_by_source(format_validation_error(exc, CalibrationIn),
-                                    args.measured, lines)) from None
+        # each problem with the fix POST /calibrations gives ("580 kW": the number alone; a
+        # missing temperature: what to give)
+        message = with_type_fixes(format_validation_error(exc, CalibrationIn), data,
+                                  CalibrationIn)
+        raise InputError(_by_source(with_row_fixes(message), args.measured, lines)) from None
     try:
         out = run_calibration(body, params_field="--param ")
     except Invalid as exc:

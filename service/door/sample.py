@@ -16,9 +16,11 @@ Methods:
   of dimension 2 D from ``scipy.stats.qmc.Sobol``, seeded): base samples A and B of N points
   and the D matrices AB_i (A with column i from B), N (D + 2) points in all, in SALib's order.
   ``n`` is that total when N = n / (D + 2) is a power of two (the Sobol' sequence's balance);
-  another ``n`` draws the nearest such size (SPEC 7.2's ``n: 512`` over 3 axes draws 640,
-  N = 128), which the study's uncertainty summary states (``points``). First-order and total
-  indices then come from ``SALib.analyze.sobol`` on the runs' results.
+  another ``n`` of at least the smallest design, 2 (D + 2) (N = 2), draws the nearest such
+  size (SPEC 7.2's ``n: 512`` over 3 axes draws 640, N = 128), which the study's uncertainty
+  summary states (``points``); an ``n`` below 2 (D + 2) is refused, not rounded up (over 4
+  axes ``n: 10`` is refused, though 12 is the nearest size: :func:`sobol_base`). First-order
+  and total indices then come from ``SALib.analyze.sobol`` on the runs' results.
 
 Distributions (parameters as scipy.stats names them in brackets):
 
@@ -131,7 +133,7 @@ class SampleIn(BaseModel):
 
     n: int = Field(..., ge=2, le=MAX_SAMPLE, description="points drawn (runs before the grid "
                    "crosses them); method sobol draws the nearest N (D + 2) with N a power of "
-                   "two")
+                   "two, from 2 (D + 2) up: a smaller n is refused, not rounded up")
     method: Literal["sobol", "lhs"] = Field(
         "sobol", description="sobol: Saltelli's design on a scrambled Sobol' sequence "
         "(SALib; Sobol' indices) | lhs: Latin hypercube (rank correlations)")
@@ -161,7 +163,9 @@ class SampleIn(BaseModel):
 def sobol_base(n: int, d: int) -> int:
     """N of the Saltelli design drawn for ``n`` points over ``d`` inputs: N (d + 2) points with
     N a power of two (the Sobol' sequence's balance), the nearest to ``n`` (the smaller on a
-    tie); ``n`` itself when it is such a size. ValueError below the smallest (N = 2)."""
+    tie); ``n`` itself when it is such a size. ValueError below the smallest, 2 (d + 2)
+    (N = 2), even where that is the nearest size (n = 10 over d = 4: not rounded up to 12;
+    docs/uncertainty.md says so)."""
     per = d + 2
     if n < 2 * per:
         raise ValueError(f"n = {n}: method sobol draws N (D + 2) points for D = {d} axes with N "

@@ -192,7 +192,7 @@ def test_csv_from_excel_or_notepad_reads_as_utf8(tmp_path, encoding):
     (b"load,temperature_c,power_kw\n1.0,22," + b"7" * 200_000 + b"\n",
      "line 2: not a CSV row (field larger than field limit (131072))"),
     (b"load,temperature_c,power_kw\n" + b"0.5,12,417.5\n" * 201,
-     "more than 200 measured rows; a calibration takes at most 200"),
+     "more than 200 measured rows (201); a calibration takes at most 200"),
     (b"load,temperature_c,power_kw\n" + b"0.5,12,417.5\n" * 80_000, "MB; a calibration reads "
      "at most 200 rows"),
     # a row's problem names the row's line (blank lines counted)
@@ -209,7 +209,8 @@ def test_csv_from_excel_or_notepad_reads_as_utf8(tmp_path, encoding):
      "line 1: no column 'temperature_c'; every row needs its ambient temperature [C]"),
     (b"load,temperature_c\n0.2,5\n0.5,10\n",
      "line 1: no column 'power_kw' or 'te_kn'; give the measured power at the drive pulleys"),
-    (b"load,temperature_c,power_kw\n", "no measured rows below the header (line 1)"),
+    (b"load,temperature_c,power_kw\n", "no measured rows below the header (line 1); give one "
+     "row per measured steady state (load, temperature_c, and power_kw or te_kn)"),
     (b"", "empty: give a header line (load,temperature_c,power_kw) and one row per measured"),
 ])
 def test_csv_problems_are_one_line_naming_the_file(tmp_path, capsys, text, message):
