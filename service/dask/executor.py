@@ -15,6 +15,7 @@ or a shutdown.
 from __future__ import annotations
 
 import logging
+import re
 import threading
 import time
 import uuid
@@ -96,8 +97,12 @@ class Executor:
         self.settings = settings
         self.state = "idle"  # idle | starting | warming | ready | error | closed
         self.error = ""
-        #: When Dask first failed to start since it was last ready (monotonic) [s], or None
+        #: When Dask first failed to start since it was last ready (monotonic) [s], or None;
+        #: also set when a ready client is found reconnecting to a lost scheduler
         self.failing_since: float | None = None
+        #: When the ready client was first found reconnecting to its lost scheduler
+        #: (monotonic) [s], or None: cleared when it reconnects or a new client is ready
+        self._lost_at: float | None = None
         self.warm: dict[str, dict] = {}
         self.dashboard: str | None = None
         self._client = None
@@ -122,7 +127,8 @@ class Executor:
         where = self.settings.scheduler or "a LocalCluster"
         last_error = ""
         while not self._closed.is_set():
-            self.state = "starting"
+            if self.failing_since is None:  # a retry keeps saying the failure ("error"), not
+                self.state = "starting"  # "starting" every other 5 s
             try:
                 client, cluster = self._connect()
             except Exception as exc:
@@ -141,6 +147,7 @@ class Executor:
             # workers that are compiling, and fail a waiting study 12 s after it)
             with self._lock:
                 self.state, self.error, self.failing_since = WARMING, "", None
+                self._lost_at = None
             try:
                 self._warm_up(client)
             except Exception as exc:
@@ -168,8 +175,25 @@ class Executor:
                 f"{', '.join(other)}; install the service's beltstudy on them and restart them "
                 "(their runs fail until then)")
 
+    def _start_fix(self) -> str:
+        """How to bring an external scheduler and its workers back, in words."""
+        address = self.settings.scheduler
+        port = re.search(r":(\d+)/?$", address)
+        scheduler = (f"'dask scheduler --port {port[1]}' on its host" if port
+                     else "'dask scheduler' on its host")
+        return f"start it ({scheduler}) and its workers ('dask worker {address}')"
+
+    def unreachable(self, why: str) -> str:
+        """Why the external scheduler cannot be used (``why``) and the fix, naming it: what a
+        study waiting for it and ``/health`` say (Dask's own ``OSError: Timed out trying to
+        connect to ...`` named neither what to do nor that it was the scheduler)."""
+        return (f"cannot reach the Dask scheduler {self.settings.scheduler} ({why}): "
+                f"{self._start_fix()}")
+
     def _failed(self, exc: Exception, where: str, last_error: str) -> str:
         error = exc.message if isinstance(exc, Unavailable) else f"{type(exc).__name__}: {exc}"
+        if self.settings.scheduler and not isinstance(exc, Unavailable):
+            error = self.unreachable(error)  # no scheduler there (Unavailable: no worker)
         if not self._closed.is_set():
             self.state, self.error = "error", error
             if self.failing_since is None:
@@ -282,31 +306,74 @@ class Executor:
             ).start()
 
     # ---------------------------------------------------------------- use
-    def _live_client(self):
+    def _lost_words(self) -> str:
+        """What ``error`` says while the scheduler is lost and the client reconnects."""
+        if not self.settings.scheduler:
+            return "lost the Dask scheduler of the service's LocalCluster; reconnecting"
+        return (f"lost the Dask scheduler {self.settings.scheduler}: {self._start_fix()} "
+                "(the service reconnects when it is back)")
+
+    def _note_client(self, client) -> str:
+        """The ready ``client``'s status, noted in ``state`` and ``error``: a client
+        reconnecting to its lost scheduler is a failure of Dask from when it was first seen
+        (``failing_since``: a study that has not started fails after ``NO_WORKER_FAIL_S`` of
+        it, as when the service cannot reach the scheduler at its start), and that note is
+        cleared when it is connected again."""
+        status = client.status
+        with self._lock:
+            if self._client is not client or self._closed.is_set():
+                return status
+            if status == "connecting" and self._lost_at is None:
+                log.warning("lost the Dask scheduler %s; reconnecting",
+                            self.settings.scheduler or "of the LocalCluster")
+                self._lost_at = time.monotonic()
+                self.state, self.error = "error", self._lost_words()
+                if self.failing_since is None:
+                    self.failing_since = self._lost_at
+            elif status == "running" and self._lost_at is not None:
+                log.info("reconnected to the Dask scheduler")
+                self._lost_at = self.failing_since = None
+                self.state, self.error = "ready", ""
+        return status
+
+    def _live_client(self, connected: bool = False):
         """The ready client, or None; a client that closed itself (its scheduler was gone
-        longer than the connect timeout) is dropped and a new connection started."""
+        longer than the connect timeout) is dropped and a new connection started.
+        ``connected``: not a client reconnecting to a lost scheduler either (a study that has
+        not started waits for a scheduler that is there)."""
         if not self._ready.is_set():
             return None
         client = self._client
-        if client is not None and client.status in LIVE_CLIENT_STATES:
-            return client
+        if client is not None:
+            status = self._note_client(client)
+            if status == "running" or (status in LIVE_CLIENT_STATES and not connected):
+                return client
+            if status in LIVE_CLIENT_STATES:  # reconnecting: not for a study to start on
+                return None
         if self._closed.is_set():
             return None
         log.warning("lost the Dask scheduler; reconnecting")
-        self.state, self.error = "error", "lost the Dask scheduler; reconnecting"
+        with self._lock:
+            self.state, self.error = "error", self._lost_words()
+            if self.failing_since is None:  # the loss is a failure from when it was seen
+                self.failing_since = self._lost_at or time.monotonic()
+            self._lost_at = None
         self._drop()
         self.start_background()
         return None
 
-    def client(self, timeout: float | None = None, halt: threading.Event | None = None):
+    def client(self, timeout: float | None = None, halt: threading.Event | None = None,
+               connected: bool = False):
         """The connected, warmed client; starts connecting on first use.
 
         Waits at most ``timeout`` seconds (None: until ready), and returns None as soon as
         ``halt`` is set. Raises :class:`Unavailable` when closed or out of time.
+        ``connected``: a client reconnecting to its lost scheduler is waited for too (what a
+        study that has not started asks: one that has keeps its tasks through a reconnect).
         """
         deadline = None if timeout is None else time.monotonic() + timeout
         while True:
-            client = self._live_client()
+            client = self._live_client(connected)
             if client is not None:
                 return client
             if self._closed.is_set():
@@ -319,7 +386,8 @@ class Executor:
                 where = self.settings.scheduler or "a LocalCluster"
                 detail = self.error or ("its workers are compiling the transient engine "
                                         "(first run only)" if self.state == WARMING
-                                        else "still starting")
+                                        else f"connecting to the scheduler {where}"
+                                        if self.settings.scheduler else "still starting")
                 raise Unavailable(f"Dask on {where} is not ready: {detail}")
             self._ready.wait(0.1 if left is None else min(0.1, left))
 
@@ -352,6 +420,9 @@ class Executor:
                 f"'dask worker {address}'")
 
     def info(self) -> dict:
+        client = self._client
+        if client is not None and self._ready.is_set():
+            self._note_client(client)  # a scheduler lost while nothing asked for the client
         return {
             "state": self.state,
             "error": self.error or self.no_workers(),

@@ -350,6 +350,9 @@ class StudyJob:
         while not self.halted:
             t0 = time.monotonic()
             try:
+                if self.session_start is None:  # not on a client reconnecting to a lost
+                    return self.executor.client(  # scheduler: that is no Dask to start on
+                        timeout=WAIT_FOR_DASK_S, halt=self._stop, connected=True)
                 return self.executor.client(timeout=WAIT_FOR_DASK_S, halt=self._stop)
             except Unavailable as exc:
                 if self.halted:

@@ -113,7 +113,7 @@ def test_a_study_back_from_a_lost_scheduler_drops_its_waiting_message(monkeypatc
     class FakeExecutor:
         failing_since = None
 
-        def client(self, timeout, halt):
+        def client(self, timeout, halt, connected=False):
             answer = next(answers)
             if isinstance(answer, Exception):
                 raise answer
@@ -169,7 +169,7 @@ def test_a_study_waiting_for_a_lost_scheduler_has_no_time_left(monkeypatch):
         failing_since = None
         answers = iter(["client", "down", "client"])
 
-        def client(self, timeout, halt):
+        def client(self, timeout, halt, connected=False):
             if next(self.answers) == "down":
                 clock.t += 60.0  # a minute without a scheduler
                 etas_waiting.append(job.eta_s())
@@ -252,7 +252,7 @@ def test_a_stopped_study_stores_the_runs_it_kept(monkeypatch):
     saved = store.saved
 
     class FakeExecutor:
-        def client(self, timeout, halt):
+        def client(self, timeout, halt, connected=False):
             return "client"
 
         def n_workers(self):
