@@ -931,7 +931,8 @@ def _radius_within_bar(loop, summary: dict, fe) -> str:
         return (f"within its error bar (liftoff_max_kn_over {over:.3g} +- {fe.err:.3g} kN"
                 + (f", converged estimate {fe.converged:.3g} kN" if len(tops) > 1 else "")
                 + f"), curve {c.k} needs a radius of at least {r_bar} m to keep the belt on "
-                f"its idlers on a finer mesh too ({r_run} m at this run's own mesh)")
+                f"its idlers on a finer mesh too (the excess on this run's own mesh asks {r_run} m "
+                "there)")
     return ""
 
 

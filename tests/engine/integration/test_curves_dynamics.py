@@ -279,7 +279,7 @@ def test_the_lift_off_radius_within_the_error_bar():
     words = _radius_within_bar(loop, summary, bar(20.0))
     need = math.ceil(400.0 * (t_lift + 30.0) / t_lift)
     assert f"curve 1 needs a radius of at least {need} m" in words, words
-    assert f"({math.ceil(400.0 * (t_lift + 10.0) / t_lift)} m at this run's own mesh)" in words
+    assert f"asks {math.ceil(400.0 * (t_lift + 10.0) / t_lift)} m there)" in words
     conv = _radius_within_bar(loop, summary, bar(5.0, conv=40.0))  # the estimate beyond it
     assert f"at least {math.ceil(400.0 * (t_lift + 40.0) / t_lift)} m" in conv, conv
     assert _radius_within_bar(loop, summary, bar(0.0)) == ""
