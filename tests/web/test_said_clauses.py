@@ -51,3 +51,26 @@ def test_a_settling_warning_keeps_its_own_fixes():
     parts = said_clauses(OVERSPEED)
     settle = next(s for f, s in parts if f.startswith("not settled while running"))
     assert "a slower speed loop" in settle and "a longer run_s" in settle
+
+
+def test_a_run_that_slipped_is_past_the_transient_slip_margin_whatever_its_margin():
+    """The transient slip margin is read from the springs beside the pulley: a run that
+    slipped 1.92 s reported 1.000011. The row counts it past the limit, as the time slipping
+    does."""
+    import pandas as pd
+
+    from beltstudy.service.web.verdicts import study_limits, verdict_rows
+
+    runs = pd.DataFrame([
+        {"run_id": "a", "status": "warning", "slip_margin_min_dyn": 1.000011,
+         "drive1_slip_s": 1.92,
+         "message": "drive 1 (head) slipped on its pulley during the start: from t = 3.0 to "
+                    "4.9 s, 1.92 s in all, 2.3 m of belt slipped (lowest slip margin 1.00)"},
+        {"run_id": "b", "status": "ok", "slip_margin_min_dyn": 1.4, "drive1_slip_s": 0.0,
+         "message": ""},
+        {"run_id": "c", "status": "warning", "slip_margin_min_dyn": 0.97,
+         "drive1_slip_s": 0.5, "message": "drive 1 (head) slipped on its pulley ..."}])
+    rows = {r["column"]: r for r in verdict_rows(runs, study_limits({"conveyor": {}}, 6.7,
+                                                                     2 / 3))}
+    row = rows["slip_margin_min_dyn"]
+    assert row["past"] == 2 and row["row"]["run_id"] == "c"
