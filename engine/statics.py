@@ -1189,28 +1189,9 @@ def _settle_radii(res: SteadyResult, case: dict) -> None:
     crest was told 3 738 m, which failed at 3 835 m, which failed at 3 838 m. Each solve is
     this case's (``case``); the words are left as they were where a radius does not fit its
     sections or does not settle within :data:`SETTLE_MAX` solves."""
-    conv = res.conveyor
-    text = res.message
-    for m in list(_AT_THESE.finditer(text)):
-        k, r_try = int(m.group(1)), int(m.group(2))
-        curve = next((c for c in res.loop.curves if c.k == k), None)
-        if curve is None:
-            continue
-        settled = None
-        for _ in range(SETTLE_MAX):
-            data = conv.model_dump(mode="json", by_alias=True, exclude_none=True)
-            data["profile"][curve.section]["curve_radius_m"] = r_try
-            try:
-                trial = solve_steady(Conveyor.model_validate(data), settle=False, **case)
-            except (ValueError, InputError):
-                break
-            need = trial.summary.get(f"curve{k}_radius_min_m")
-            if need is None or not math.isfinite(need):
-                break
-            if need <= r_try:
-                settled = r_try
-                break
-            r_try = math.ceil(need)
+    for m in list(_AT_THESE.finditer(res.message)):
+        settled = _settled_radius(res, case, int(m.group(1)), int(m.group(2)),
+                                  "curve{k}_radius_min_m")
         if settled is None or settled == int(m.group(2)):
             continue
         said = (f"a radius of at least {settled} m (solved again at that radius: its longer arc "

@@ -22,35 +22,30 @@ ELEMENTS_HELP = ("belt elements round the loop, at least 8, or auto (default: au
                  "engine's count)")
 
 
-def elements_option(text: str) -> int | str:
-    """``--elements``: a whole number of elements, or ``auto`` (the engine's count; on
-    ``simulate`` it overrides a scenario file's fixed count). The scenario's own checks
-    judge the number (at least 8)."""
+def _auto_or(number, text: str, fix: str) -> int | float | str:
+    """``auto``, or ``text`` read by ``number`` (an :class:`argparse.ArgumentTypeError` with
+    ``fix`` where it is neither)."""
     import argparse
 
     if text.strip().lower() == "auto":
         return "auto"
     try:
-        return int(text)
+        return number(text)
     except ValueError:
-        raise argparse.ArgumentTypeError(
-            f"'{text}' is not a whole number of elements: give one such as 400, or auto"
-        ) from None
+        raise argparse.ArgumentTypeError(f"'{text}' is not {fix}, or auto") from None
+
+
+def elements_option(text: str) -> int | str:
+    """``--elements``: a whole number of elements, or ``auto`` (the engine's count; on
+    ``simulate`` it overrides a scenario file's fixed count). The scenario's own checks
+    judge the number (at least 8)."""
+    return _auto_or(int, text, "a whole number of elements: give one such as 400")
 
 
 def step_option(text: str) -> float | str:
     """``--dt-s``: a time step in seconds, or ``auto`` (half the stability limit; on
     ``simulate`` it overrides a scenario file's fixed step)."""
-    import argparse
-
-    if text.strip().lower() == "auto":
-        return "auto"
-    try:
-        return float(text)
-    except ValueError:
-        raise argparse.ArgumentTypeError(
-            f"'{text}' is not a time step in seconds: give one such as 0.002, or auto"
-        ) from None
+    return _auto_or(float, text, "a time step in seconds: give one such as 0.002")
 
 
 def auto_elements(value: int | str | None) -> int | None:
