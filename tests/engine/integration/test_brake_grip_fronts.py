@@ -1,0 +1,105 @@
+"""A braked pulley's slack side in a brake stop: the stop's loads one at a time.
+
+A 3 km, -150 m regenerating decline (head drive and take-up, a tail brake held to its pulley's
+grip in an 8 s stop). The drives' trip raises the tail's slack side (the return arriving at the
+tail: with the regenerating drive gone the belt is no longer held back), but the trip's front
+takes 1.4 s down the return while the brake acts 0.5 s after the command. Setting that
+rise against the brake's fall sized the brake at 393.1 kN with the slack side at 197.6 kN,
+where the simulated stop dipped to 193 kN as the brake came on and the tail pulley slid. The
+rise now counts only where its front is there before the brake acts (PHYSICS 5.1; the walk in
+``beltstudy.engine.stopgrip``).
+"""
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+
+from beltstudy.engine.conveyor import Scenario, parse_conveyor
+from beltstudy.engine.design import brake_grip_kn
+from beltstudy.engine.dynamics import DynamicsOptions, build_system, simulate
+from beltstudy.engine.dynamics.model import with_probes
+from beltstudy.engine.statics import solve_steady
+from beltstudy.engine.stopgrip import FRONT_FACTOR, StopWalk
+
+DECLINE = {
+    "name": "decline3k", "speed_m_s": 4.5,
+    "belt": {"type": "ST2000", "width_m": 1.2, "compound": "standard"},
+    "material": {"capacity_t_h": 2000, "density_t_m3": 1.5, "loading_speed_m_s": 0.0},
+    "profile": [{"length_m": 1500, "lift_m": -60}, {"length_m": 1500, "lift_m": -90}],
+    "idlers": {"carry": {"spacing_m": 1.2, "roll_diameter_m": 0.152, "rolls": 3,
+                         "trough_deg": 35, "cema_class": "D"},
+               "return": {"spacing_m": 3.0, "roll_diameter_m": 0.152, "rolls": 1,
+                          "cema_class": "C"}},
+    "drives": [{"position": "head", "wrap_deg": 210, "friction": 0.35, "share": 1.0,
+                "pulley_diameter_m": 1.25, "inertia_kg_m2": 1200, "torque_limit": 1.5,
+                "speed_loop_rad_s": 1}],
+    "takeup": {"type": "gravity", "position": "head", "mass_kg": 51245, "travel_m": 15},
+    "brakes": [{"position": "tail", "force_kn": "auto", "delay_s": 0.5, "ramp_s": 1.0}],
+    "holdback": False,
+    "accessories": {"head_kn": 1.5, "tail_kn": 0.5}}
+
+
+def _walk(delay_s: float = 0.5):
+    conv = parse_conveyor({**DECLINE, "brakes": [{**DECLINE["brakes"][0], "delay_s": delay_s}]})
+    steady = solve_steady(conv, model="din", settle=True)
+    return conv, steady, StopWalk.of(conv, steady)
+
+
+def test_a_rise_whose_front_comes_after_the_brake_is_not_set_against_its_fall():
+    _conv, steady, walk = _walk()
+    loop = steady.loop
+    tail, head = loop.i_tail, loop.i_head
+    force = 300e3
+    r_in = walk.running[tail - 1]
+    trip_in = walk.pulley(tail, {})[0]
+    braked_in = walk.pulley(tail, {tail: force})[0]
+    assert trip_in > r_in  # the premise: the trip raises the tail's slack side
+    # the trip's front down the return, by hand: the route's length over the return's wave
+    # speed sqrt(E_dyn B / m'), m' the belt with its return rolls (the loop's own masses)
+    length = math.hypot(3000.0, 150.0)
+    ret = slice(head, tail)
+    rho = float(loop.mass_kg[ret].sum() / loop.dx_m[ret].sum())
+    c = math.sqrt(loop.belt.dynamic_stiffness_n / rho)
+    assert walk.travel_s(head, tail) == pytest.approx(length / c, rel=0.03)
+    assert walk.travel_s(tail, head) == walk.travel_s(head, tail)
+    assert walk.travel_s(head, tail) > 0.5  # after the brake begins to act
+    # the rise is dropped: the running tension less twice the brake's own fall
+    low, _f = walk.slack_n(tail, {tail: force})
+    assert low == pytest.approx(r_in - FRONT_FACTOR * (trip_in - braked_in), rel=1e-9)
+    # a brake that acts after the trip's front is there: the rise counts (the net fall doubled)
+    _c, _s, late = _walk(delay_s=walk.travel_s(head, tail) + 0.1)
+    low_late, _f = late.slack_n(tail, {tail: force})
+    assert low_late == pytest.approx(
+        braked_in - (FRONT_FACTOR - 1.0) * (r_in - braked_in), rel=1e-9)
+    assert low_late > low
+
+
+def test_the_grip_sized_brake_holds_its_pulley_through_the_stops_fronts():
+    conv = parse_conveyor(DECLINE)
+    steady = solve_steady(conv, model="din", settle=True)
+    grip_kn = brake_grip_kn(conv, steady)
+    sized = parse_conveyor({**DECLINE, "brakes": [{**DECLINE["brakes"][0],
+                                                   "force_kn": grip_kn}]})
+    steady = solve_steady(sized, model="din", settle=True)
+    walk = StopWalk.of(sized, steady)
+    tail = steady.loop.i_tail
+    bound, _f = walk.slack_n(tail, {tail: grip_kn * 1e3})
+    scn = Scenario(start={"control": "s-curve", "time_s": 60}, run_s=30,
+                   stop={"mode": "brake", "time_s": 8}, record_dt_s=0.01)
+    sys = with_probes(build_system(sized, scn, steady, DynamicsOptions()), [tail - 1])
+    res = simulate(sys, steady_summary=steady.summary, conveyor=sized)
+    t = res.traces["t_s"].to_numpy()
+    slack = res.traces.iloc[:, 1].to_numpy() * 1e3
+    brake = res.timeseries["f_brake_kn"].to_numpy()
+    on = np.flatnonzero(brake > 0.0)
+    t_on = float(res.timeseries["t_s"].to_numpy()[on[0]])
+    # one wave loop from the brake's first force: its front and the trip's, and their
+    # reflections once round
+    window = (t >= t_on) & (t <= t_on + float(sys.wave_loop_time_s))
+    lowest = float(slack[window].min())
+    assert lowest >= bound, (lowest, bound)
+    # and the pulley passes the brake there: the capstan limit at the lowest slack side
+    euler = steady.loop.pulley_at(tail).euler
+    assert lowest * (euler - 1.0) >= grip_kn * 1e3
