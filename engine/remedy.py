@@ -453,3 +453,71 @@ def sag_remedy(conveyor: Conveyor, scenario: Scenario, *, model: str, params=Non
                                                   fine_opts), float(tu), max(top, float(tu)))
             reruns += k
     return SagRemedy(takeup=tu, reruns=reruns, run_takeup=run_tu, finer_elements=fine_n)
+
+
+def brake_pulley_slid(tr, brakes: list[int]) -> bool:
+    """Whether the pulley of the brakes ``brakes`` (indices in the file's ``brakes``) slid
+    after the stop command in the transient ``tr`` (``raw["brake_pulley_slip"]``; a run that
+    failed counts as a slide)."""
+    if tr.status == "failed":
+        return True
+    t_cmd = tr.system.stop_command_s
+    return any(set(slid["brakes"]) & set(brakes) and slid["last_s"] >= t_cmd
+               for slid in tr.raw.get("brake_pulley_slip", ()))
+
+
+def brake_force_remedy(conveyor: Conveyor, scenario: Scenario, *, model: str, params=None,
+                       options: DynamicsOptions | None = None, elements: int | str,
+                       forces_n: list[float], brakes: list[int],
+                       takeup_mass_kg: float | None = None,
+                       takeup_tension_kn: float | None = None
+                       ) -> tuple[float | None, float | None, int]:
+    """The largest force of the brakes ``brakes`` on one pulley with which that pulley does
+    not slide in the stop, the whole cycle rerun on the run's mesh (``elements``, as
+    :func:`slip_remedy`): their forces ``forces_n`` [N] (every brake of the file, as the run
+    applied them; auto sizes in) scaled together by a factor lowered by :data:`GROW` from 1
+    until the pulley holds, then bisected to :data:`REL_TOL`; the other brakes and the take-up
+    (``takeup_mass_kg`` or ``takeup_tension_kn``, the run's) as they were. A smaller brake
+    force lowers the slack side's fall in the stop (the brake's own front and the stop's
+    deceleration), so the pulley passes it. Returns ``(force [N], the stop time that force
+    makes [s], reruns)``; force None where even 1/20 of it slides."""
+    opts = options or DynamicsOptions()
+    scn = scenario.model_copy(update={"elements": elements if elements == "auto"
+                                      else int(elements)})
+    tu = conveyor.takeup
+    if tu.type == "gravity" and takeup_mass_kg is not None:
+        tu = tu.model_copy(update={"mass_kg": float(takeup_mass_kg)})
+    elif tu.type != "gravity" and takeup_tension_kn is not None:
+        tu = tu.model_copy(update={"pretension_kn": float(takeup_tension_kn)})
+    part = sum(forces_n[b] for b in brakes)
+    stop_s: dict[float, float | None] = {}
+
+    def holds(scale: float) -> bool:
+        given = [b.model_copy(update={"force_kn": forces_n[i] * (scale if i in brakes else 1.0)
+                                      / 1e3}) for i, b in enumerate(conveyor.brakes)]
+        c = conveyor.model_copy(update={"brakes": given, "takeup": tu})
+        steady = _steady(c, scn, model, params)
+        if steady.status == "failed":
+            return False
+        tr = simulate(build_system(c, scn, steady, opts), conveyor=c)
+        stop_s[scale] = tr.summary.get("stop_time_s")
+        return not brake_pulley_slid(tr, brakes)
+
+    hi, scale, calls = 1.0, 1.0 / GROW, 0
+    while True:
+        calls += 1
+        if holds(scale):
+            break
+        hi = scale
+        if scale < 0.05:
+            return None, None, calls
+        scale /= GROW
+    lo = scale
+    while hi - lo > REL_TOL * hi:
+        mid = 0.5 * (lo + hi)
+        calls += 1
+        if holds(mid):
+            lo = mid
+        else:
+            hi = mid
+    return lo * part, stop_s.get(lo), calls

@@ -624,6 +624,9 @@ def _complete(prep: _Prepared, scenario, system, tr, model, params, opts, remedy
                 messages.append(stop_found[0])
                 _unfound_stop_levers(conveyor, system, tr, messages, stop_found[1],
                                      stop_found[2])
+    if remedy and tr.status != "failed" and scenario.stop.mode == "brake":
+        messages.extend(_brake_slide_remedies(conveyor, scenario, model, params, opts, summary,
+                                              system, tr, say))
     if remedy and tr.status != "failed" and any(w.startswith(SAG_WARNING) for w in tr.warnings):
         messages.append(_sag_remedy(
             conveyor, scenario, model, params, opts, summary, say,
@@ -1205,6 +1208,51 @@ def _stop_slip_remedy(conveyor, scenario, model, params, opts, summary, say=None
                 else "; the brake stop's own levers (its brakes' force and ramp, an auto "
                 "brake's stop.time_s) were not searched")
     return remedy_sentence(searched, how, phase="stop") + safety, rem, timed
+
+
+def _brake_slide_remedies(conveyor, scenario, model, params, opts, summary, system, tr,
+                          say=None) -> list[str]:
+    """For each braked pulley without a drive that slid in the brake stop (not once the belt
+    rested: no stop force changes what holds it then), the brake force with which it holds
+    (:func:`beltstudy.engine.remedy.brake_force_remedy`, the whole cycle rerun on the run's
+    mesh), in words. The slide's warning says "a smaller brake force would avoid it"; an auto
+    brake held to its pulley's grip is sized by the quasi-static walk of the stop
+    (:mod:`beltstudy.engine.stopgrip`), which a stop's end can pass (docs/dynamics.md,
+    *Brakes within their grip*)."""
+    from beltstudy.engine.remedy import brake_force_remedy
+
+    rested = float(tr.raw["t_stopped"]) if tr.raw.get("stopped") else math.inf
+    t_cmd = system.stop_command_s
+    forces = [float(f) for f in system.model.brakes.force]
+    gravity = conveyor.takeup.type == "gravity"
+    said = []
+    for slid in tr.raw.get("brake_pulley_slip", ()):
+        if slid["last_s"] < t_cmd or slid["first_s"] >= rested:
+            continue
+        ids = [int(b) for b in slid["brakes"]]
+        where = conveyor.brakes[ids[0]].where
+        fields = ", ".join(f"brakes.{b}.force_kn" for b in ids)
+        now = sum(forces[b] for b in ids)
+        if say is not None:
+            say(f"searching the brake force that keeps the {where} pulley from sliding in the "
+                "stop (a whole cycle per rerun)")
+        force, stop_s, reruns = brake_force_remedy(
+            conveyor, scenario, model=model, params=params, options=opts,
+            elements=scenario.elements, forces_n=forces, brakes=ids,
+            takeup_mass_kg=summary.get("takeup_mass_kg") if gravity else None,
+            takeup_tension_kn=None if gravity else summary.get("takeup_tension_kn"))
+        how = f"found by rerunning the cycle {reruns} times on the same mesh, to 2 %"
+        share = " in all, in their proportions" if len(ids) > 1 else ""
+        if force is None:
+            said.append(f"no {where} brake force down to 1/20 of its {now / 1e3:.4g} kN keeps "
+                        f"its pulley from sliding in the stop ({how}): more tension on that "
+                        "pulley (take-up position or mass) would")
+            continue
+        then = (f"; the stop then takes {stop_s:.3g} s" if stop_s is not None else "")
+        said.append(f"a {where} brake force of {force / 1e3:.4g} kN{share} ({fields}; now "
+                    f"{now / 1e3:.4g} kN) keeps its pulley from sliding in the stop ({how})"
+                    f"{then}")
+    return said
 
 
 def _sag_remedy(conveyor, scenario, model, params, opts, summary, say=None,

@@ -731,10 +731,30 @@ def decode(sys: System, kr: KernelRun, wall_s: float, *, steady_summary=None, co
                shaft_speed=kr.model.shafts.vs.copy(), shaft_slip=kr.model.shafts.slip.copy(),
                drive_slip_last_s=np.array(out.drv["slip_last"], dtype=np.float64),
                drive_slip_first_s=np.array(out.drv["slip_first"], dtype=np.float64),
-               wall_s=wall_s, element_steps=float(r["steps"]) * sys.n, segments=segs)
+               wall_s=wall_s, element_steps=float(r["steps"]) * sys.n, segments=segs,
+               brake_pulley_slip=_brake_pulley_slips(sys, out))
     return TransientResult(status=status, message=message, warnings=warnings, summary=summary,
                            series=cols, system=sys, raw=raw, trace_data=trace_data,
                            surface_data=surface_data, envelope_data=(s_end, whole))
+
+
+def _brake_pulley_slips(sys: System, out) -> list[dict]:
+    """Each braked pulley without a drive that slid: its brakes (indices in the file's
+    ``brakes``), the time it slid [s] and its first and last time [s] (a drive pulley's slip is
+    the drive's, ``drive{i}_slip_*``)."""
+    brakes = sys.model.brakes
+    slid: dict[int, dict] = {}
+    if brakes is None:
+        return []
+    for b in range(brakes.shaft.shape[0]):
+        k = int(brakes.shaft[b])
+        h = out.shs[k]
+        if sys.model.shafts.drive[k] >= 0 or h["slip_s"] <= 0.0:
+            continue
+        slid.setdefault(k, {"brakes": [], "slip_s": float(h["slip_s"]),
+                            "first_s": float(h["first"]), "last_s": float(h["last"])})
+        slid[k]["brakes"].append(b)
+    return list(slid.values())
 
 
 def holdback_notes(sys: System, summary: dict, steady_summary: dict | None, conveyor,
