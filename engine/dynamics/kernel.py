@@ -450,9 +450,16 @@ def _drive_results(model, st, out, rs):
         if not rs.stopped:
             d.f2_int += fa * fa * dt
             d.rms_s += dt
+        # the margin of the force the pulley passes (its capstan law's): e^(mu theta) T_slack
+        # over T_slack + |F_belt|, 1 at the grip; the tensions of the springs beside it add
+        # the pulley element's own inertia (a breakaway's spike, resolved higher the shorter
+        # the step), so a sliding pulley is 1 at most
         hi_ = max(tt[j], tt[jm])
         lo_ = max(min(tt[j], tt[jm]), 1.0)
-        mg = (shafts.cs[s] + 1.0) * lo_ / hi_ if hi_ > 0.0 else 1e300
+        mg = ((shafts.cs[s] + 1.0) * lo_ / (lo_ + abs(drives.ft[dk])) if hi_ > 0.0
+              else 1e300)
+        if shafts.slip[s] != 0.0 and mg > 1.0:
+            mg = 1.0
         if mg < d.slip_min:
             d.slip_min = mg
             d.slip_min_t = t

@@ -96,18 +96,20 @@ class KernelRun:
 
     def slip_margin_now(self) -> float:
         """The smallest slip margin of the drive pulleys in the present state, ``e^(mu theta)
-        T_slack / T_tight`` with the tensions on both sides of each pulley, read as the kernel
-        reads it after every step (1e300 without drives)."""
+        T_slack / (T_slack + |F_belt|)`` with the lower tension beside each pulley and the force
+        it passes (the capstan law's ratio, 1 at the grip; a sliding pulley 1 at most), read as
+        the kernel reads it after every step (1e300 without drives)."""
         m, tt = self.model, self.state.tt
         n = tt.shape[0]
         best = 1e300
-        for s in m.drives.shaft:
+        for dk, s in enumerate(m.drives.shaft):
             j = int(m.shafts.node[s])
             jm = j - 1 if j > 0 else n - 1
             hi = max(tt[j], tt[jm])
             lo = max(min(tt[j], tt[jm]), 1.0)
             if hi > 0.0:
-                best = min(best, (m.shafts.cs[s] + 1.0) * lo / hi)
+                mg = (m.shafts.cs[s] + 1.0) * lo / (lo + abs(m.drives.ft[dk]))
+                best = min(best, 1.0 if m.shafts.slip[s] != 0.0 and mg > 1.0 else mg)
         return best
 
     def merge_slip(self, kept: tuple) -> None:
