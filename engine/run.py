@@ -46,7 +46,7 @@ from beltstudy.engine.statics import (
     SteadyResult,
     solve_steady,
 )
-from beltstudy.engine.stopgrip import brake_grip_n
+from beltstudy.engine.stopgrip import brake_grip_n, kn_figure
 
 __all__ = ["RunResult", "run_one", "run_group", "check_scenario", "TRANSIENT_SAFETY_RATIO",
            "transient_safety_min"]
@@ -1249,7 +1249,7 @@ def _brake_slide_remedies(conveyor, scenario, model, params, opts, summary, syst
                         "pulley (take-up position or mass) would")
             continue
         then = (f"; the stop then takes {stop_s:.3g} s" if stop_s is not None else "")
-        said.append(f"a {where} brake force of {force / 1e3:.4g} kN{share} ({fields}; now "
+        said.append(f"a {where} brake force of {kn_figure(force, up=False)} kN{share} ({fields}; now "
                     f"{now / 1e3:.4g} kN) keeps its pulley from sliding in the stop ({how})"
                     f"{then}")
     return said

@@ -37,7 +37,7 @@ import numpy as np
 from beltstudy.engine.loop import G, Loop, rotating_parts
 
 __all__ = ["BRAKE_GRIP_MARGIN", "FRONT_FACTOR", "StopWalk", "brake_grip_n", "grip_limits",
-           "grip_remedies", "pulley_name", "takeup_at_least"]
+           "grip_remedies", "kn_figure", "pulley_name", "takeup_at_least"]
 
 #: Dynamic factor on the fall of a braked pulley's slack-side tension [-]. The walk above is
 #: quasi-static; the stop's fronts (the drives' trip, the brake) are suddenly applied loads,
@@ -311,14 +311,16 @@ def pulley_name(conv, loop: Loop, node: int) -> str:
     return f"the {p.where} pulley"
 
 
-def _kn_up(force_n: float) -> str:
-    """A force [N] in kN to 4 significant figures, rounded up: a brake given the figure said
-    (rounded down it could fall short of the whole by the rounding)."""
+def kn_figure(force_n: float, *, up: bool) -> str:
+    """A force [N] in kN to 4 significant figures, rounded ``up`` (a brake force that must make
+    up a whole: rounded down it could fall short by the rounding) or down (a force found to
+    hold its pulley: a smaller one holds too, a larger one might not)."""
     kn = force_n / 1e3
     if kn <= 0.0:
         return "0"
     q = 10.0 ** (math.floor(math.log10(kn)) - 3)
-    return f"{math.ceil(kn / q - 1e-9) * q:.4g}"
+    n = math.ceil(kn / q - 1e-9) if up else math.floor(kn / q + 1e-9)
+    return f"{n * q:.4g}"
 
 
 def _bisect_up(ok, lo: float, hi: float, rel: float = 0.0) -> float | None:
@@ -377,7 +379,7 @@ def grip_remedies(conv, steady, walk: StopWalk, nodes: list[int], fixed: dict,
         held, auto = beside(node, x)
         extra = walk.grip_n(node, held)
         if extra >= x:
-            out.append(f"{name} of {_kn_up(x)} kN beside these (its pulley passes up "
+            out.append(f"{name} of {kn_figure(x, up=True)} kN beside these (its pulley passes up "
                        f"to {extra / 1e3:.4g} kN; the auto brakes then {auto / 1e3:.4g} kN, "
                        "sized again within their grip beside it)")
             break
