@@ -453,13 +453,18 @@ def _drive_results(model, st, out, rs):
         # the margin of the force the pulley passes (its capstan law's): e^(mu theta) T_slack
         # over T_slack + |F_belt|, 1 at the grip; the tensions of the springs beside it add
         # the pulley element's own inertia (a breakaway's spike, resolved higher the shorter
-        # the step), so a sliding pulley is 1 at most
+        # the step), so a sliding pulley is 1 at most, and 0 with its slack side slack (no
+        # grip at all); a sticking pulley slack on both sides has no reading (1e300)
         hi_ = max(tt[j], tt[jm])
-        lo_ = max(min(tt[j], tt[jm]), 1.0)
-        mg = ((shafts.cs[s] + 1.0) * lo_ / (lo_ + abs(drives.ft[dk])) if hi_ > 0.0
-              else 1e300)
-        if shafts.slip[s] != 0.0 and mg > 1.0:
-            mg = 1.0
+        lo_t = min(tt[j], tt[jm])
+        if shafts.slip[s] != 0.0:
+            mg = (0.0 if lo_t <= 0.0 else
+                  min((shafts.cs[s] + 1.0) * lo_t / (lo_t + abs(drives.ft[dk])), 1.0))
+        elif hi_ > 0.0:
+            lo_ = max(lo_t, 1.0)
+            mg = (shafts.cs[s] + 1.0) * lo_ / (lo_ + abs(drives.ft[dk]))
+        else:
+            mg = 1e300
         if mg < d.slip_min:
             d.slip_min = mg
             d.slip_min_t = t

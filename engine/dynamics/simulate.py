@@ -97,8 +97,9 @@ class KernelRun:
     def slip_margin_now(self) -> float:
         """The smallest slip margin of the drive pulleys in the present state, ``e^(mu theta)
         T_slack / (T_slack + |F_belt|)`` with the lower tension beside each pulley and the force
-        it passes (the capstan law's ratio, 1 at the grip; a sliding pulley 1 at most), read as
-        the kernel reads it after every step (1e300 without drives)."""
+        it passes (the capstan law's ratio, 1 at the grip; a sliding pulley 1 at most, 0 with
+        its slack side slack), read as the kernel reads it after every step (1e300 without
+        drives, or with every pulley sticking slack on both sides)."""
         m, tt = self.model, self.state.tt
         n = tt.shape[0]
         best = 1e300
@@ -106,10 +107,13 @@ class KernelRun:
             j = int(m.shafts.node[s])
             jm = j - 1 if j > 0 else n - 1
             hi = max(tt[j], tt[jm])
-            lo = max(min(tt[j], tt[jm]), 1.0)
-            if hi > 0.0:
-                mg = (m.shafts.cs[s] + 1.0) * lo / (lo + abs(m.drives.ft[dk]))
-                best = min(best, 1.0 if m.shafts.slip[s] != 0.0 and mg > 1.0 else mg)
+            lo_t = min(tt[j], tt[jm])
+            e, ft = m.shafts.cs[s] + 1.0, abs(m.drives.ft[dk])
+            if m.shafts.slip[s] != 0.0:
+                best = min(best, 0.0 if lo_t <= 0.0 else min(e * lo_t / (lo_t + ft), 1.0))
+            elif hi > 0.0:
+                lo = max(lo_t, 1.0)
+                best = min(best, e * lo / (lo + ft))
         return best
 
     def merge_slip(self, kept: tuple) -> None:
@@ -1311,8 +1315,17 @@ def _slip_warnings(sys: System, r: dict, out, conveyor=None) -> list[str]:
             if past is not None:
                 fix, why = past
             sm = float(drv[i]["slip_min"])
-            margin = (f"lowest slip margin {sm:.2f}" if sm < 1e299 else
-                      "the belt slack on both sides of the pulley while it slipped")
+            if sm >= 1e299:
+                margin = "the belt slack on both sides of the pulley while it slipped"
+            elif sm <= 0.0:
+                margin = ("its slack side went slack while it slipped: no grip, slip margin 0")
+            elif abs(sm - 1.0) <= 1e-9:
+                # a sliding pulley's margin is 1 (at its grip), whatever the slide: its time
+                # and the belt slipped say how much
+                margin = "at its grip while it slid"
+            else:
+                margin = f"lowest slip margin {sm:.2f}"
+
             w.append(f"{names[i]} slipped on its pulley {when}: from t = {t0:.1f} "
                      f"to {t1:.1f} s, {slip_s:.2f} s in all, {drv[i]['slip_m']:.3g} m of belt "
                      f"slipped ({margin}); {fix} would avoid it{why}")

@@ -68,3 +68,18 @@ def test_a_drive_that_slides_never_reads_a_margin_above_one():
     for i in slid:
         assert s[f"drive{i}_slip_margin_min"] <= 1.0 + 1e-12
     assert s["slip_margin_min_dyn"] <= 1.0 + 1e-12
+
+
+def test_a_pulley_sliding_with_its_slack_side_slack_reads_no_grip():
+    """downhill-regen on a 3 t take-up: its drive slides with the belt slack over its pulley
+    (both sides 0 N, the belt gathering at the head). The capstan grip is then 0: margin 0,
+    said as such, not the 1 of a pulley sliding at its grip."""
+    conv = parse_conveyor({**load_mapping(CONVEYORS / "downhill-regen.yaml"),
+                           "takeup": {**load_mapping(CONVEYORS / "downhill-regen.yaml")["takeup"],
+                                      "mass_kg": 3000}})
+    res = run_one(conv, Scenario(stop={"mode": "coast"}), model="din")
+    s = res.summary
+    assert (s["drive1_slip_s"] or 0.0) > 0.0, s
+    assert s["drive1_slip_margin_min"] == 0.0
+    assert s["slip_margin_min_dyn"] == 0.0
+    assert "its slack side went slack while it slipped: no grip, slip margin 0" in s["message"]
