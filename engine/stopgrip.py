@@ -21,16 +21,15 @@ take-up loses the whole carry strand's inertia force, ``T_in = T_tu + sum (R + G
 
 The stop's fronts (the drives' trip, the brake's application) are suddenly applied loads: the
 slack side is taken at the running tension less :data:`FRONT_FACTOR` x its quasi-static fall,
-a load's rise (the trip's, another brake's) set against the others' falls only where its
-front reaches the pulley before the pulley's brake acts (:meth:`StopWalk.slack_n`), and the
-largest force a pulley passes, ``f = T_slack (e^(mu theta) - 1)``, is found by bisection on
+the falls of the stop's loads (the trip, each brake) counted one by one and a load's rise
+not set against them (:meth:`StopWalk.slack_n`), and the largest force a pulley passes, ``f = T_slack (e^(mu theta) - 1)``, is found by bisection on
 the brake force (the slack side falls as the force grows).
 """
 
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, field
+from dataclasses import dataclass
 
 import numpy as np
 
@@ -71,11 +70,6 @@ class StopWalk:
         Mean tension of the take-up's two strands [N].
     running : ndarray
         Steady running boundary tensions [N], the level the stop's fronts start from.
-    delay : dict
-        Element -> the earliest ``delay_s`` of the conveyor's brakes on that pulley [s]: when
-        each brake begins to act after the stop command.
-    drives : tuple
-        Elements of the drive pulleys, where the drives' trip acts at the stop command.
     """
 
     loop: Loop
@@ -84,8 +78,6 @@ class StopWalk:
     shaft: dict
     takeup_n: float
     running: np.ndarray
-    delay: dict = field(default_factory=dict)
-    drives: tuple = ()
 
     @classmethod
     def of(cls, conv, steady) -> StopWalk:
@@ -99,35 +91,8 @@ class StopWalk:
         for node, i in parts.shaft_drive.items():
             shaft[node] += parts.motor_mass[i]
         base = np.asarray(steady.resistance_n, dtype=float) + loop.gravity_n
-        delay: dict = {}
-        for b in conv.brakes:
-            node = loop.brake_element(b)
-            delay[node] = min(delay.get(node, math.inf), float(b.delay_s))
         return cls(loop, base, inertia, shaft, float(steady.takeup_tension_n),
-                   np.asarray(steady.tension_n, dtype=float), delay,
-                   tuple(int(n) for n in loop.drive_elements))
-
-    def travel_s(self, start: int, node: int) -> float:
-        """Time a front takes from the pulley element ``start`` to the pulley element ``node``
-        round the shorter way [s], at each element's wave speed ``sqrt(E_dyn B / m'_j)``
-        (``m'_j`` with the idler rolls, as the walk's inertia)."""
-        if start == node:
-            return 0.0
-        loop = self.loop
-        c = np.sqrt(float(loop.belt.dynamic_stiffness_n or loop.belt.stiffness_n)
-                    / (self.inertia / loop.dx_m))
-        dt = loop.dx_m / c
-        a, b = sorted((start, node))
-        inner = float(dt[a:b].sum())
-        return min(inner, float(dt.sum()) - inner)
-
-    def _acts_s(self, node: int) -> float:
-        """When the brake at ``node`` begins to act after the stop command [s]: its file's
-        ``delay_s``; a brake the conveyor has not (one a remedy proposes) as the earliest of
-        the conveyor's brakes, else at once."""
-        if node in self.delay:
-            return self.delay[node]
-        return min(self.delay.values()) if self.delay else 0.0
+                   np.asarray(steady.tension_n, dtype=float))
 
     @property
     def mass_kg(self) -> float:
@@ -170,41 +135,35 @@ class StopWalk:
 
     def slack_n(self, node: int, forces: dict, takeup_n: float | None = None,
                 front: float = FRONT_FACTOR) -> tuple[float, float]:
-        """``(T_slack, f)`` at a pulley [N]: the lower of its two tensions in the stop, where it
-        falls below the running one lowered by ``front`` x that fall (:data:`FRONT_FACTOR`),
-        and the force it passes against the motion.
+        """``(T_slack, f)`` at a pulley [N]: the lower of its two tensions in the stop, each the
+        running one less ``front`` (:data:`FRONT_FACTOR`) x the falls the stop's loads bring
+        it, and the force it passes against the motion.
 
-        The stop's loads (the drives' trip, each brake) change the pulley's tensions one by
-        one (the walk is linear in them). A load's fall always counts; a load's rise counts
-        against the others' falls only where it is there before the pulley's own brake acts:
-        the load begins (the trip at the command, a brake after its ``delay_s``) and its front
-        travels to the pulley (:meth:`travel_s`; the trip from its farthest drive) no later
-        than the pulley's brake begins. On a regenerating 3 km decline with a head drive and a
-        tail brake the trip raises the tail's slack side by 8.8 kN, but its front takes 1.4 s
-        down the return while the brake acts after 0.5 s: counting the rise left the slack
-        side at 197.6 kN, where the simulated stop dipped to 193 kN as the brake came on and
-        the pulley slid."""
+        The walk is linear in the stop's loads (the drives' trip, each brake), and each is a
+        suddenly applied load whose undamped response swings between 0 and ``front`` x its
+        static change. A load's fall therefore counts doubled and a load's rise counts for
+        nothing: at the moment another load's fall peaks, a rise's own swing may be back at
+        0. Netting the rise against the fall is the unsafe side of the same bound. On a 3 km
+        regenerating decline with a head drive and a tail brake, the trip raises the tail's
+        slack side by 8.8 kN while the brake lowers it by 74.2 kN; the net fall doubled left
+        the slack side at 197.6 kN, where the simulated stop dipped to 193 kN as the brake
+        came on and the pulley slid. Counting a rise once its front has arrived (engine
+        0.6.25's first rule) let a 2.2 km decline's tail brake grow from 576.5 to 638.2 kN as
+        its delay passed the trip's arrival, and that brake slid 2.2-2.8 m."""
         shift = 0.0 if takeup_n is None else takeup_n - self.takeup_n
         r_in = float(self.running[node - 1]) + shift
         r_out = float(self.running[node]) + shift
-        acts = self._acts_s(node)
         b_in, b_out, _ = self.pulley(node, {}, takeup_n)  # the drives' trip alone
-        trip_s = max((self.travel_s(d, node) for d in self.drives), default=0.0)
-        change = [(b_in - r_in, b_out - r_out, trip_s <= acts)]
+        fall_in = max(r_in - b_in, 0.0)
+        fall_out = max(r_out - b_out, 0.0)
         for where, force in forces.items():
             if force == 0.0:
                 continue
             o_in, o_out, _ = self.pulley(node, {where: force}, takeup_n)
-            there = (where == node
-                     or self._acts_s(where) + self.travel_s(where, node) <= acts)
-            change.append((o_in - b_in, o_out - b_out, there))
-        t_in = r_in + sum(c_in if (c_in < 0.0 or there) else 0.0 for c_in, _, there in change)
-        t_out = r_out + sum(c_out if (c_out < 0.0 or there) else 0.0
-                            for _, c_out, there in change)
+            fall_in += max(b_in - o_in, 0.0)
+            fall_out += max(b_out - o_out, 0.0)
         f = self.pulley(node, forces, takeup_n)[2]
-        low_in = t_in - (front - 1.0) * max(r_in - t_in, 0.0)
-        low_out = t_out - (front - 1.0) * max(r_out - t_out, 0.0)
-        return min(low_in, low_out), f
+        return min(r_in - front * fall_in, r_out - front * fall_out), f
 
     def room_n(self, node: int, forces: dict, *, euler: float | None = None,
                takeup_n: float | None = None, margin: float = BRAKE_GRIP_MARGIN) -> float:
@@ -377,19 +336,25 @@ def grip_remedies(conv, steady, walk: StopWalk, nodes: list[int], fixed: dict,
                        short, wanted, rel=1e-5)
         x = wanted if x is None else x
         held, auto = beside(node, x)
+        # what the pulley passes in all, a given brake already acting through it included
+        # (a 60 kN head brake beside 86.03 kN offered on the head drive's shaft: 146 kN
+        # through a pulley that passes 103.2 kN, which slid 3.5 s when followed)
         extra = walk.grip_n(node, held)
-        if extra >= x:
+        there = fixed.get(node, 0.0)
+        given = (f" in all ({there / 1e3:.4g} kN is given there already)" if there > 0.0
+                 else "")
+        if extra >= x + there:
             out.append(f"{name} of {kn_figure(x, up=True)} kN beside these (its pulley passes up "
-                       f"to {extra / 1e3:.4g} kN; the auto brakes then {auto / 1e3:.4g} kN, "
-                       "sized again within their grip beside it)")
+                       f"to {extra / 1e3:.4g} kN{given}; the auto brakes then "
+                       f"{auto / 1e3:.4g} kN, sized again within their grip beside it)")
             break
-        if best is None or extra - x > best[1] - best[2]:
-            best = (name, extra, x)
+        if best is None or extra - x - there > best[1] - best[2] - best[3]:
+            best = (name, extra, x, there, given)
     else:
         best = best and (f" (not by a brake on another pulley alone: {best[0]} would need "
                          f"{best[2] / 1e3:.4g} kN beside the auto brakes, sized again within "
                          f"their grip beside it, and its pulley passes at most "
-                         f"{best[1] / 1e3:.4g} kN)")
+                         f"{best[1] / 1e3:.4g} kN{best[4]})")
     # a heavier take-up: every tension rises with it
     t0 = walk.takeup_n
     t_need = _bisect_up(lambda t: all(walk.room_n(n, acting, takeup_n=t) >= 0.0
@@ -398,7 +363,7 @@ def grip_remedies(conv, steady, walk: StopWalk, nodes: list[int], fixed: dict,
         if conv.takeup.type == "gravity":
             out.append(f"a take-up of {takeup_at_least(t_need, G)} (takeup.mass_kg)")
         else:
-            out.append(f"a take-up pretension of {takeup_at_least(t_need)}")
+            out.append(f"a take-up pretension of {takeup_at_least(t_need)} (takeup.pretension_kn)")
     # more wrap on each braked pulley: a drive pulley's (drives[i].wrap_deg); a plain pulley
     # has no wrap field (it is taken as 180 deg), so no wrap is offered where one is braked
     wraps = []

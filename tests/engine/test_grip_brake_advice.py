@@ -31,7 +31,7 @@ DECLINE = {
     "drives": [{"position": "head", "wrap_deg": 210, "friction": 0.35, "share": 1.0,
                 "pulley_diameter_m": 1.0, "inertia_kg_m2": 300, "rated_power_kw": 400,
                 "torque_limit": 1.5}],
-    "takeup": {"type": "gravity", "position": "tail", "mass_kg": 62408, "travel_m": 6},
+    "takeup": {"type": "gravity", "position": "tail", "mass_kg": 88982, "travel_m": 6},
     "brakes": [{"position": "head", "force_kn": "auto", "delay_s": 0.5}],
     "holdback": False}
 
