@@ -493,7 +493,7 @@ def _holding_grip(conv: Conveyor, steady: SteadyResult, each: list[float]) -> st
         acting[node] = acting.get(node, 0.0) + f
     # each pulley's own grip against the force set on it (the other brakes as set), not the
     # braked pulleys' total, which may exceed the whole holding force; beyond it by more
-    # than the grip sharing's convergence (1e-6 of the force)
+    # than the grip sharing leaves (it converges to 1e-9 of the whole)
     grips = {n: walk.grip_n(n, acting) for n in dict.fromkeys(nodes)}
     short = [n for n, grip in grips.items() if acting[n] > grip * (1.0 + 1e-6) + 1e-3]
     if not short:

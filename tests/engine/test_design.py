@@ -322,10 +322,11 @@ def test_auto_holding_brakes_are_shared_by_their_pulleys_grip():
     with the tail's share set) while the tail pulley has room: both together pass 287.7 kN.
     An auto size is sized within its pulley's grip (issue 26, brakes within their grip), so
     the holding force is now shared by grip: the head brake at most its pulley's grip, the tail
-    the rest, the total still 196.2 kN, and no pulley beyond its grip. With a 30 t take-up
-    the two together pass 150.8 kN, less than the holding force: the equal share stays, and the
-    note quotes each short pulley's own grip against the force set on it (not the braked
-    pulleys' total, which may exceed the whole)."""
+    the rest, the total still 196.2 kN, and no pulley beyond its grip. With a 40 t take-up
+    the two together pass 131.9 kN, less than the holding force: the equal share stays, and the
+    note quotes the short head pulley's own grip against the force set on it (not the braked
+    pulleys' total, which may exceed the whole). (Engine 0.6.25 counts no brake's rise against
+    another's fall, so the 30 t take-up this test had leaves the head pulley no grip at all.)"""
     conv = _decline_two_auto_brakes()
     scn = Scenario(stop={"mode": "brake", "time_s": 30.0})
     sizes = auto_sizes(conv, scn, model="din")
@@ -339,15 +340,13 @@ def test_auto_holding_brakes_are_shared_by_their_pulleys_grip():
     assert "shared by the braked pulleys' grip in the stop" in note
     assert "beyond the grip" not in note  # each pulley within its grip (1e-6)
 
-    light = conv.model_copy(update={"takeup": conv.takeup.model_copy(update={"mass_kg": 30000})})
+    light = conv.model_copy(update={"takeup": conv.takeup.model_copy(update={"mass_kg": 40000})})
     sizes = auto_sizes(light, scn, model="din")
     assert sizes["brake_force_kn"] == pytest.approx([hold / 2, hold / 2], rel=1e-3)
     assert sizes["brake_grip_kn"] < hold
     note = sizes["brake_note"]
     m = re.search(r"beyond the grip of drive 1's pulley \(head\) \(it passes at most ([0-9.]+) "
-                  r"kN against the ([0-9.]+) kN set on it\) and of the tail pulley \(it passes "
-                  r"at most [0-9.]+ kN against the [0-9.]+ kN set on it\) in the stop \(with ",
-                  note)
+                  r"kN against the ([0-9.]+) kN set on it\) in the stop \(with ", note)
     assert m, note
     assert float(m.group(2)) == pytest.approx(hold / 2, rel=1e-3)
     assert float(m.group(1)) < float(m.group(2))  # the claim 'beyond' holds for the figure
