@@ -147,9 +147,9 @@ class StopWalk:
         regenerating decline with a head drive and a tail brake, the trip raises the tail's
         slack side by 8.8 kN while the brake lowers it by 74.2 kN; the net fall doubled left
         the slack side at 197.6 kN, where the simulated stop dipped to 193 kN as the brake
-        came on and the pulley slid. Counting a rise once its front has arrived (engine
-        0.6.25's first rule) let a 2.2 km decline's tail brake grow from 576.5 to 638.2 kN as
-        its delay passed the trip's arrival, and that brake slid 2.2-2.8 m."""
+        came on and the pulley slid. Counting a rise once its front has arrived (a rule tried
+        before this one) let a 2.2 km decline's tail brake grow from 576.5 to 638.2 kN as its
+        delay passed the trip's arrival, and that brake slid 2.2-2.8 m."""
         shift = 0.0 if takeup_n is None else takeup_n - self.takeup_n
         r_in = float(self.running[node - 1]) + shift
         r_out = float(self.running[node]) + shift
