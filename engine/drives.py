@@ -198,25 +198,27 @@ def kw_at_least(kw: float) -> int:
     return math.ceil(kw * (1.0 - 1e-9))
 
 
-def up3(x: float) -> float:
-    """``x`` rounded up at three significant figures, for a least value a warning advises (a
-    tension, a pretension): rounded to the nearest, a sag short of 804.25 N was advised as
-    "0.804 kN more per strand", which left the span 0.25 N short and warned again. The 1e-9
-    keeps a value already of three figures (up to float noise) as it is."""
+def up3(x: float, digits: int = 3) -> float:
+    """``x`` rounded up at three (``digits``) significant figures, for a least value a warning
+    advises (a tension, a pretension, a brake force that must make up a whole): rounded to the
+    nearest, a sag short of 804.25 N was advised as "0.804 kN more per strand", which left the
+    span 0.25 N short and warned again. The 1e-9 keeps a value already of that many figures
+    (up to float noise) as it is."""
     if not math.isfinite(x) or x <= 0.0:
         return x
-    step = 10.0 ** (math.floor(math.log10(x)) - 2)
-    return float(f"{math.ceil(x / step - 1e-9) * step:.3g}")
+    step = 10.0 ** (math.floor(math.log10(x)) - (digits - 1))
+    return float(f"{math.ceil(x / step - 1e-9) * step:.{digits}g}")
 
 
-def down3(x: float) -> float:
-    """``x`` rounded down at three significant figures, for a largest value a warning or an
-    error advises (a capacity, a design load): taken, it passes. The 1e-9 keeps a value
-    already of three figures (up to float noise) as it is."""
+def down3(x: float, digits: int = 3) -> float:
+    """``x`` rounded down at three (``digits``) significant figures, for a largest value a
+    warning or an error advises (a capacity, a design load, a brake force found to hold its
+    pulley): taken, it passes. The 1e-9 keeps a value already of that many figures (up to
+    float noise) as it is."""
     if not math.isfinite(x) or x <= 0.0:
         return x
-    step = 10.0 ** (math.floor(math.log10(x)) - 2)
-    return float(f"{math.floor(x / step + 1e-9) * step:.3g}")
+    step = 10.0 ** (math.floor(math.log10(x)) - (digits - 1))
+    return float(f"{math.floor(x / step + 1e-9) * step:.{digits}g}")
 
 
 def figures(value: float, thousands: bool = False) -> str:

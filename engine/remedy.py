@@ -475,12 +475,13 @@ def brake_force_remedy(conveyor: Conveyor, scenario: Scenario, *, model: str, pa
     """The largest force of the brakes ``brakes`` on one pulley with which that pulley does
     not slide in the stop, the whole cycle rerun on the run's mesh (``elements``, as
     :func:`slip_remedy`): their forces ``forces_n`` [N] (every brake of the file, as the run
-    applied them; auto sizes in) scaled together by a factor lowered by :data:`GROW` from 1
+    applied them; auto sizes in) divided together by a factor grown by :data:`GROW` from 1
     until the pulley holds, then bisected to :data:`REL_TOL`; the other brakes and the take-up
     (``takeup_mass_kg`` or ``takeup_tension_kn``, the run's) as they were. A smaller brake
     force lowers the slack side's fall in the stop (the brake's own front and the stop's
-    deceleration), so the pulley passes it. Returns ``(force [N], the stop time that force
-    makes [s], reruns)``; force None where even 1/20 of it slides."""
+    deceleration), so the pulley passes it. Searched by :func:`_smallest` on the divisor of
+    the forces. Returns ``(force [N], the stop time that force makes [s], reruns)``; force
+    None where even 1/20 of it slides."""
     opts = options or DynamicsOptions()
     scn = scenario.model_copy(update={"elements": elements if elements == "auto"
                                       else int(elements)})
@@ -503,21 +504,8 @@ def brake_force_remedy(conveyor: Conveyor, scenario: Scenario, *, model: str, pa
         stop_s[scale] = tr.summary.get("stop_time_s")
         return not brake_pulley_slid(tr, brakes)
 
-    hi, scale, calls = 1.0, 1.0 / GROW, 0
-    while True:
-        calls += 1
-        if holds(scale):
-            break
-        hi = scale
-        if scale < 0.05:
-            return None, None, calls
-        scale /= GROW
-    lo = scale
-    while hi - lo > REL_TOL * hi:
-        mid = 0.5 * (lo + hi)
-        calls += 1
-        if holds(mid):
-            lo = mid
-        else:
-            hi = mid
-    return lo * part, stop_s.get(lo), calls
+    # the force divided by x: the least x that holds is the largest force (_smallest's search)
+    x, calls = _smallest(lambda x: holds(1.0 / x), 1.0, 20.0)
+    if x is None:
+        return None, None, calls
+    return part / x, stop_s.get(1.0 / x), calls

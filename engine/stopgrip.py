@@ -33,6 +33,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from beltstudy.engine.drives import down3, up3
 from beltstudy.engine.loop import G, Loop, rotating_parts
 
 __all__ = ["BRAKE_GRIP_MARGIN", "FRONT_FACTOR", "StopWalk", "brake_grip_n", "grip_limits",
@@ -276,13 +277,12 @@ def pulley_name(conv, loop: Loop, node: int) -> str:
 def kn_figure(force_n: float, *, up: bool) -> str:
     """A force [N] in kN to 4 significant figures, rounded ``up`` (a brake force that must make
     up a whole: rounded down it could fall short by the rounding) or down (a force found to
-    hold its pulley: a smaller one holds too, a larger one might not)."""
+    hold its pulley: a smaller one holds too, a larger one might not);
+    :func:`beltstudy.engine.drives.up3` and ``down3`` at 4 figures."""
     kn = force_n / 1e3
     if kn <= 0.0:
         return "0"
-    q = 10.0 ** (math.floor(math.log10(kn)) - 3)
-    n = math.ceil(kn / q - 1e-9) if up else math.floor(kn / q + 1e-9)
-    return f"{n * q:.4g}"
+    return f"{(up3 if up else down3)(kn, 4):.4g}"
 
 
 def _bisect_up(ok, lo: float, hi: float, rel: float = 0.0) -> float | None:
