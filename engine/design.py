@@ -278,7 +278,7 @@ def brake_forces(conv: Conveyor, scenario: Scenario, total_mass_kg: float, te_n:
     if not conv.brakes:
         return [], [], ""
     auto = [b for b in conv.brakes if b.force_kn == "auto"]
-    each, why, note = [0.0] * len(auto), GIVEN, ""
+    each, why, note, asked = [0.0] * len(auto), GIVEN, "", 0.0
     if auto:
         fixed_n = sum(b.force_kn * 1e3 for b in conv.brakes if b.force_kn != "auto")
         delay = max(b.delay_s for b in auto)
@@ -295,6 +295,7 @@ def brake_forces(conv: Conveyor, scenario: Scenario, total_mass_kg: float, te_n:
         if stop_n >= hold_n:
             total_n, why = stop_n, "stop_time"
             each = [max(total_n - fixed_n, 0.0) / len(auto)] * len(auto)
+            asked = sum(each)
             if scenario.stop.mode == "brake" and total_n <= 0.0:
                 note = (f"auto brake force 0 kN: the belt coasts to rest within the stop time "
                         f"{scenario.stop.time_s:g} s on its own resistances and nothing pulls it "
@@ -305,6 +306,7 @@ def brake_forces(conv: Conveyor, scenario: Scenario, total_mass_kg: float, te_n:
         else:
             total_n, why = hold_n, "holding"
             each = [max(total_n - fixed_n, 0.0) / len(auto)] * len(auto)
+            asked = sum(each)
             if scenario.stop.mode == "brake":
                 t_gives = brake_stop_time(total_mass_kg, v, te_n, hold_n, delay, ramp, curve)
                 shared = False
@@ -324,8 +326,9 @@ def brake_forces(conv: Conveyor, scenario: Scenario, total_mass_kg: float, te_n:
                         + f": the rigid-body brake stop then takes about {t_gives:.3g} s")
                 if steady is not None:
                     note += _holding_grip(conv, steady, each)
-    if not auto and scenario.stop.mode == "brake" and steady is not None:
-        note = _given_grip(conv, steady)
+    if scenario.stop.mode == "brake" and steady is not None:
+        given = _given_grip(conv, steady, each, asked)
+        note = f"{note}; {given}" if note and given else note or given
     shares = iter(each)
     kn = [next(shares) / 1e3 if b.force_kn == "auto" else float(b.force_kn)
           for b in conv.brakes]
@@ -413,9 +416,27 @@ def brake_kn_within_grip(conv: Conveyor, steady: SteadyResult, total_kn: float
             for b in conv.brakes]
 
 
-def _given_grip(conv: Conveyor, steady: SteadyResult) -> str:
+def _given_room_n(walk: StopWalk, node: int, given: dict, nodes: list[int],
+                  auto_wanted: float) -> float:
+    """:meth:`~beltstudy.engine.stopgrip.StopWalk.room_n` of a given brake's pulley with the
+    auto brakes on ``nodes`` sized again on this walk (:func:`grip_limits`, sharing
+    ``auto_wanted`` [N]), as they would be on a conveyor with the walk's take-up."""
+    acting = dict(given)
+    if nodes and auto_wanted > 0.0:
+        forces, _capped = grip_limits(walk, nodes, given, auto_wanted)
+        for n, f in zip(nodes, forces, strict=True):
+            acting[n] = acting.get(n, 0.0) + f
+    return walk.room_n(node, acting)
+
+
+def _given_grip(conv: Conveyor, steady: SteadyResult, auto_n: list[float] | None = None,
+                auto_wanted: float = 0.0) -> str:
     """The note of brake forces beyond their pulleys' grip in a brake stop ("" when within):
-    per such pulley, the largest force it passes with the other brakes as set
+    per pulley with a given brake, the largest force it passes with the other brakes as set
+    (the auto brakes at their sizes ``auto_n`` [N], file order of the auto brakes: an auto
+    brake is sized within its own pulley's grip, but a given one beside it is not; the
+    take-up advised sizes them again, sharing ``auto_wanted`` [N], what the stop or holding
+    asks of them, as the design does on a conveyor with that take-up)
     (:meth:`~beltstudy.engine.stopgrip.StopWalk.grip_n`, the same undamped bound as an auto
     brake's) and the take-up that would let it pass its force, so the run's slip warning
     comes with the force that avoids it. The force is the file's ``force_kn``: given there,
@@ -423,10 +444,16 @@ def _given_grip(conv: Conveyor, steady: SteadyResult) -> str:
     which ``brake_governed_by`` names. A pulley that passes nothing is said as what it is:
     unbraked, the stop's fall of its slack side already leaves too little tension to slow its
     own shell, so the belt slides on it at any brake force."""
+    nodes, given = _brake_nodes(conv, steady.loop)
+    if not given:
+        return ""
     walk = StopWalk.of(conv, steady)
-    _nodes, fixed = _brake_nodes(conv, steady.loop)
+    fixed = dict(given)
+    for node, force in zip(nodes, auto_n or [0.0] * len(nodes), strict=True):
+        fixed[node] = fixed.get(node, 0.0) + force
     parts, slides_any = [], False
-    for node, force in fixed.items():
+    for node in given:
+        force = fixed[node]
         if walk.room_n(node, fixed) >= 0.0:
             continue
         grip = walk.grip_n(node, fixed)
@@ -445,7 +472,8 @@ def _given_grip(conv: Conveyor, steady: SteadyResult) -> str:
         else:
             said = (f"{name} passes at most {grip / 1e3:.4g} kN of brake force in the stop "
                     f"against the {force / 1e3:.4g} kN set ({field})")
-        need = _bisect_up(lambda t, n=node: walk.room_n(n, fixed, takeup_n=t) >= 0.0,
+        need = _bisect_up(lambda t, n=node: _given_room_n(walk.at_takeup(t), n, given, nodes,
+                                                           auto_wanted) >= 0.0,
                           walk.takeup_n, 100.0 * walk.takeup_n + 1e6)
         if need is not None:
             said += (f" (a take-up of {takeup_at_least(need, G)}, takeup.mass_kg,"

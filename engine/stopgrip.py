@@ -29,7 +29,7 @@ the brake force (the slack side falls as the force grows).
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 import numpy as np
 
@@ -94,6 +94,12 @@ class StopWalk:
         base = np.asarray(steady.resistance_n, dtype=float) + loop.gravity_n
         return cls(loop, base, inertia, shaft, float(steady.takeup_tension_n),
                    np.asarray(steady.tension_n, dtype=float))
+
+    def at_takeup(self, takeup_n: float) -> StopWalk:
+        """The same walk with the take-up at ``takeup_n`` [N]: a take-up's tension adds to
+        every running tension of the loop alike (the shift :meth:`slack_n` applies)."""
+        return replace(self, takeup_n=float(takeup_n),
+                       running=self.running + (float(takeup_n) - self.takeup_n))
 
     @property
     def mass_kg(self) -> float:

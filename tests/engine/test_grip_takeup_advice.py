@@ -61,3 +61,47 @@ def test_take_up_figures_are_rounded_up():
     assert takeup_at_least(147_372.2) == "147.4 kN"
     assert takeup_at_least(147_300.0) == "147.3 kN"
     assert takeup_at_least(9_000.01) == "9.001 kN"
+
+
+def _two_brakes(mass_kg) -> Conveyor:
+    """A 2 km, -150 m decline: head drive, tail take-up, a given 60 kN head brake beside an
+    auto tail brake."""
+    return Conveyor.model_validate({
+        "name": "decline-2k", "speed_m_s": 4.0,
+        "belt": {"type": "ST2500", "width_m": 1.2},
+        "material": {"capacity_t_h": 2200, "density_t_m3": 1.7},
+        "profile": [{"length_m": 1000, "lift_m": -40}, {"length_m": 1000, "lift_m": -110}],
+        "idlers": {"carry": {"spacing_m": 1.2, "roll_diameter_m": 0.152, "rolls": 3,
+                             "trough_deg": 35},
+                   "return": {"spacing_m": 3.0, "roll_diameter_m": 0.152, "rolls": 1}},
+        "drives": [{"position": "head", "wrap_deg": 210, "friction": 0.35, "share": 1.0,
+                    "pulley_diameter_m": 1.25, "inertia_kg_m2": 1500, "torque_limit": 1.5}],
+        "takeup": {"type": "gravity", "position": "tail", "mass_kg": mass_kg, "travel_m": 12},
+        "brakes": [{"position": "head", "force_kn": 60, "delay_s": 0.5},
+                   {"position": "tail", "force_kn": "auto", "delay_s": 0.5}],
+    })
+
+
+def test_a_given_brake_beside_an_auto_one_is_checked_against_its_grip():
+    # the auto tail brake is sized within the tail pulley's grip; the given 60 kN head brake
+    # acts through drive 1's pulley, whose slack side (the return leaving the head) falls in
+    # the stop: the note says it is beyond that pulley's grip, as it does with no auto brake
+    scenario = Scenario.model_validate({"stop": {"mode": "brake", "time_s": 9.0}})
+    conv = _two_brakes("auto")
+    st = solve_steady(conv, model="din", temperature_c=20.0, load="full")
+    sizes = auto_sizes(conv, scenario, model="din", steady=st)
+    note = sizes["brake_note"]
+    assert sizes["brake_governed_by"][0] == "given"
+    assert "drive 1's pulley (head) passes at most" in note, note
+    assert "against the 60 kN set (brakes.0.force_kn)" in note, note
+    # the take-up advised is found with the auto brake sized again beside it (a heavier
+    # take-up lets the tail brake grow toward the stop's need, which lowers the head's slack
+    # side too); followed, the head pulley passes its 60 kN and the note is gone
+    said = re.search(r"beyond the grip in the stop.*a take-up of ([\d,]+) kg, takeup\.mass_kg",
+                     note)
+    advised = int(said.group(1).replace(",", ""))
+    conv = _two_brakes(advised)
+    st = solve_steady(conv, model="din", temperature_c=20.0, load="full")
+    after = auto_sizes(conv, scenario, model="din", steady=st)
+    assert after["brake_force_kn"][1] > sizes["brake_force_kn"][1]  # the auto brake grew
+    assert "beyond the grip in the stop" not in after["brake_note"], after["brake_note"]
