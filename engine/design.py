@@ -376,7 +376,10 @@ def _within_grip(conv: Conveyor, scenario: Scenario, steady: SteadyResult, each:
             f"the stop ({total / 1e3:.4g} kN with the fall of its slack side doubled, the "
             "undamped bound), and held to that grip it would fall below the holding force; "
             f"the holding force {hold_n / 1e3:.4g} kN is beyond the grip too, so the pulley "
-            "may slide (the run's slip check says): " + _hold_fix(conv, steady))
+            "may slide (the run's slip check says): "
+            + _hold_fix(conv, steady, takeup=_takeup_words(conv, walk, lambda w: sum(
+                grip_limits(w, nodes, fixed, wanted)[0]) + sum(fixed.values())
+                >= hold_n * (1.0 - 1e-9))))
     t_gives = brake_stop_time(m, v, te, total, delay, ramp, curve)
     asked = float(scenario.stop.time_s)
     where = ", ".join(dict.fromkeys(pulley_name(conv, steady.loop, n) for n in nodes))
@@ -537,7 +540,26 @@ def _holding_grip(conv: Conveyor, steady: SteadyResult, each: list[float]) -> st
     said = (f"; this force is beyond the grip of {' and of '.join(parts)} in the stop (with "
             "the fall of the slack side doubled, the undamped bound), which may slide (the "
             "run's slip check says): ")
-    return said + _hold_fix(conv, steady, any(grips[n] <= 0.0 for n in short))
+    # the take-up with which every braked pulley passes an even share of the holding force
+    # (the design shares it evenly where that fits), the holding force itself not moving
+    even = dict(fixed)
+    for node in nodes:
+        even[node] = even.get(node, 0.0) + sum(each) / len(each)
+    takeup = _takeup_words(conv, walk, lambda w: all(w.room_n(n, even) >= 0.0 for n in nodes))
+    return said + _hold_fix(conv, steady, any(grips[n] <= 0.0 for n in short), takeup)
+
+
+def _takeup_words(conv: Conveyor, walk: StopWalk, passes) -> str:
+    """The least take-up with which ``passes(walk at that take-up)`` holds, in the words of
+    the take-up lever's brackets: a counterweight in kg (``takeup.mass_kg``), or a
+    pretension; "" when none up to 100 x today's does (bisection, rounded up)."""
+    need = _bisect_up(lambda t: passes(walk.at_takeup(t)), walk.takeup_n,
+                      100.0 * walk.takeup_n + 1e6, rel=1e-7)
+    if need is None:
+        return ""
+    if conv.takeup.type == "gravity":
+        return f"{takeup_at_least(need, G)}, takeup.mass_kg, by that bound"
+    return f"{takeup_at_least(need)} by that bound"
 
 
 def takeup_lever(conv: Conveyor, why: str = "") -> str:
@@ -549,12 +571,14 @@ def takeup_lever(conv: Conveyor, why: str = "") -> str:
     return lever_words(conv.takeup.type == "gravity", why)
 
 
-def _hold_fix(conv: Conveyor, steady: SteadyResult, none_passes: bool = False) -> str:
+def _hold_fix(conv: Conveyor, steady: SteadyResult, none_passes: bool = False,
+              takeup: str = "") -> str:
     """What lets a holding-sized brake's pulley keep its grip in the stop, in words: on an
     incline a holdback holds the belt at rest instead (where it has one, the brake need not
     hold it: a given force within the grip, not offered where a pulley passes no brake force,
-    ``none_passes``); on a decline only more tension or another braked pulley do."""
-    more = takeup_lever(conv)
+    ``none_passes``); on a decline only more tension or another braked pulley do. ``takeup``:
+    the take-up figure (:func:`_takeup_words`) the lever names."""
+    more = takeup_lever(conv, takeup)
     if float(steady.loop.gravity_n.sum()) > 0.0:
         if conv.holdback and none_passes:
             return (f"{more} or the brake on another pulley (its holdback, holdback: true, "

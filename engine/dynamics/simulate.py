@@ -971,6 +971,14 @@ def running_warnings(sys: System, r: dict, out, names=None) -> list[str]:
     # judged from one wave loop time after the ramp on (what the stop starts from)
     t_ok = cyc.t_pre + cyc.t_start + t_loop
     t0 = max(t1 - max(SETTLE_LOOPS * t_loop, 0.5 * cyc.t_run), t_ok)
+    # a belt still climbing to design speed at its drives' force limit is not swinging: the
+    # swing is judged from the time the mean speed first reached 99 % of design speed, and a
+    # belt that never did is said so by the start's words (a 30 m belt at its torque limit,
+    # 1.27 to 2.0 m/s over the window, was told its speed "still swings by 0.724 m/s" and to
+    # try a slower speed loop)
+    reached = float(r["start_ach"]) if "start_ach" in r else None  # None: not recorded
+    if reached is not None and reached >= 0.0:
+        t0 = max(t0, cyc.t_pre + reached)
     rec = out.rec[:int(r["nrec"])]
     t_end = float(rec["t"][-1]) if len(rec) else 0.0
     if t1 - t0 < 0.5 * t_loop or (int(r["status"]) != C.OK and t_end < t1):
@@ -985,7 +993,9 @@ def running_warnings(sys: System, r: dict, out, names=None) -> list[str]:
                  "times) shows whether it settles")
     m = (rec["t"] >= t0) & (rec["t"] <= t1)
     swing, period = swing_and_period(rec["t"][m], rec["v_mean"][m])
-    if swing > SETTLE_SWING * v_d:
+    climbing = (reached is not None and reached < 0.0
+                and bool(np.all(np.diff(rec["v_mean"][m]) >= 0.0)))
+    if swing > SETTLE_SWING * v_d and not climbing:
         per = (f"a period of {period:.3g} s" if period
                else "a period longer than the window")
         w.append(f"not settled while running: the mean belt speed still swings by {swing:.3g} "
@@ -1677,6 +1687,22 @@ def _speed_at(out, r: dict, t_s: float) -> float | None:
     return float(rec["v_mean"][before[-1]]) if before.size else None
 
 
+def drives_force_limit(dr, master: int) -> float:
+    """The most the vfd drives give the belt together [N]: the master's force limit
+    (``torque_limit`` x its rated force, ``lim0``) and each drive that follows the master's
+    torque at its share of what the master gives at its limit, within its own limit:
+    ``sum_k min(share_k lim_m / share_m, lim_k)`` (the kernel's ``_saturate_master`` and
+    ``_share_force``). Summing every drive's own limit overstates it wherever a follower's
+    limit over its share is the larger: a 5 km overland's 0.4-share booster, limit 133.3 kN,
+    gives 0.4 / 0.6 x 166.7 = 111.1 kN beside its 166.7 kN master, 277.8 kN in all, not 300."""
+    lim0 = np.asarray(dr.lim0, dtype=float)
+    share = np.asarray(dr.share, dtype=float)
+    if share[master] <= 0.0:
+        return float(np.sum(lim0))
+    u = lim0[master] / share[master]
+    return float(np.sum(np.minimum(share * u, lim0)))
+
+
 def _short_of_speed_words(sys: System, v_cmd: float, t_stop_cmd: float,
                           limited: bool = True, grip: str = "") -> str:
     """The warning of a start that never reached 99 % of design speed: the mean speed the belt
@@ -1699,13 +1725,14 @@ def _short_of_speed_words(sys: System, v_cmd: float, t_stop_cmd: float,
     dr = sys.model.drives
     fluid = (dr.control == C.DOL) & (dr.coupling != COUPLING_CODES["none"])
     te = float(getattr(sys, "te_n", 0.0) or 0.0)
-    lim = float(np.sum(dr.lim0)) if hasattr(dr, "lim0") else math.nan
+    lim = drives_force_limit(dr, sys.model.control.master) if hasattr(dr, "lim0") else math.nan
     vfd = bool((dr.control == C.VFD).all()) and te > 0.0 and math.isfinite(lim)
     if vfd and lim <= te:
         # the drives cannot hold design speed at all (the steady check names the torque limit)
         words += (f"; the drives' force limit, {lim / 1e3:.4g} kN in all (torque_limit x the "
-                  f"rated force), is not above the running resistance Te {te / 1e3:.4g} kN, so "
-                  "no start reaches design speed: a higher torque_limit or larger motors "
+                  "rated force, a drive following the master's torque at its share of the "
+                  f"master's limit), is not above the running resistance Te {te / 1e3:.4g} kN, "
+                  "so no start reaches design speed: a higher torque_limit or larger motors "
                   "(drives[].rated_power_kw) would")
     elif grip:
         words += grip

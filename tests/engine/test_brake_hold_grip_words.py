@@ -42,3 +42,63 @@ def test_holding_set_by_the_grip_says_the_stop_force_is_beyond_the_grip():
     assert float(said.group(2)) < hold / 1e3
     assert "held to that grip it would fall below the holding force" in note
     assert "the holding force 35.32 kN is beyond the grip too" in note
+
+
+def _takeup_said(note: str) -> int:
+    said = re.search(r"a heavier take-up \(([\d,]+) kg, takeup\.mass_kg, by that bound\)", note)
+    assert said, note
+    return int(said.group(1).replace(",", ""))
+
+
+def test_the_holding_floor_names_the_take_up_that_lets_its_pulley_pass_it():
+    """The same decline: the take-up named (the least with which the grip walk passes the
+    holding force), followed, takes the brake off the holding floor: it is then sized within
+    the grip, and the note no longer says the pulley may slide."""
+    scenario = Scenario(stop={"mode": "brake", "time_s": 10.0})
+    brakes = [{"position": "head", "force_kn": "auto", "delay_s": 0.5, "ramp_s": 1.0}]
+    conv = hand_conv(profile=[{"length_m": 1000, "lift_m": -60}], brakes=brakes)
+    mass = _takeup_said(auto_sizes(conv, scenario, model="din")["brake_note"])
+    conv = hand_conv(profile=[{"length_m": 1000, "lift_m": -60}], brakes=brakes,
+                     takeup={**conv.takeup.model_dump(), "mass_kg": mass})
+    after = auto_sizes(conv, scenario, model="din")
+    assert after["brake_governed_by"] != ["holding"], after
+    assert after["brake_force_kn"][0] >= 1.2 * 50.0 * G * 60.0 / 1e3 * (1 - 1e-9)
+    assert "may slide" not in after["brake_note"], after["brake_note"]
+
+
+def _fabric_decline(mass_kg) -> dict:
+    """A 300 m, -30 m fabric decline (EP630/4, 400 t/h at 2 m/s), head drive and auto
+    holding brake on the head pulley, gravity take-up at the tail."""
+    return {
+        "name": "fabric-decline", "speed_m_s": 2.0,
+        "belt": {"type": "EP630/4", "width_m": 0.8},
+        "material": {"capacity_t_h": 400, "density_t_m3": 1.5},
+        "profile": [{"length_m": 300, "lift_m": -30}],
+        "idlers": {"carry": {"spacing_m": 1.2, "roll_diameter_m": 0.127, "rolls": 3,
+                             "trough_deg": 30},
+                   "return": {"spacing_m": 3.0, "roll_diameter_m": 0.127, "rolls": 1}},
+        "drives": [{"position": "head", "wrap_deg": 200, "friction": 0.30, "share": 1.0,
+                    "pulley_diameter_m": 0.63, "inertia_kg_m2": 40, "rated_power_kw": 30}],
+        "takeup": {"type": "gravity", "position": "tail", "mass_kg": mass_kg, "travel_m": 3},
+        "brakes": [{"position": "head", "force_kn": "auto", "delay_s": 0.5}],
+    }
+
+
+def test_a_holding_brake_on_the_auto_take_ups_pulley_is_told_the_take_up_that_holds_it():
+    """The auto take-up holds the loaded belt at rest at a slip margin of 1 on the head
+    pulley; the holding brake (1.2 x the pull) on that pulley slid 8.6 m in the stop, and the
+    note said 'a heavier take-up' with no figure (by trial 8 t still slid, 12 t did not). The
+    figure named, followed, stops without a slip."""
+    from beltstudy.engine.conveyor import parse_conveyor
+    from beltstudy.engine.run import run_one
+
+    scenario = Scenario(elements=60, run_s=5.0, start={"time_s": 20.0},
+                        stop={"mode": "brake", "time_s": 30.0})
+    slid = run_one(parse_conveyor(_fabric_decline("auto")), scenario, model="din").summary
+    assert "slipped on its pulley during the stop" in slid["message"]
+    mass = _takeup_said(slid["message"])
+    held = run_one(parse_conveyor(_fabric_decline(mass)), scenario, model="din").summary
+    assert held["brake_governed_by"] == "holding"
+    assert "slipped" not in held["message"], held["message"]
+    assert "may slide" not in held["message"]
+    assert held["slip_margin_min_stop_dyn"] > 1.0
