@@ -239,14 +239,25 @@ def check_fill(conv: Conveyor, prefix: str = "") -> None:
             "(leave it out for ISO 5048 / DIN 22101's 0.05 B + 0.025 m up to B = 2 m)")
     fill = fill_pct(conv)
     if fill > FILL_MAX_PCT:
+        # a speed beyond speed_m_s's own bound is no lever (a 0.1 m belt, a width typed in
+        # the wrong unit, was told 'a speed of at least 1210 m/s', which is then refused)
+        speed = up3(conv.speed_m_s * fill / FILL_MAX_PCT)
+        top = type(conv).model_fields["speed_m_s"].metadata
+        v_max = min((float(m.le) for m in top if getattr(m, "le", None) is not None),
+                    default=math.inf)
+        cap = f"a capacity of at most {down3(conv.material.capacity_t_h * FILL_MAX_PCT / fill):g} t/h"
+        if speed <= v_max:
+            levers = (f"{cap}, a speed of at least {speed:g} m/s (the fill falls as 1 / speed) "
+                      "or a wider belt")
+        else:
+            levers = (f"{cap} or a wider belt (belt.width_m, now {conv.belt.width_m:g} m); no "
+                      f"speed within speed_m_s's bound of {v_max:g} m/s would do (it would take "
+                      f"{speed:g} m/s)")
         raise InputError(
             f"{prefix}material.capacity_t_h: {conv.material.capacity_t_h:g} t/h fills the "
             f"belt's cross-section to {fill:.3g} % at {conv.speed_m_s:g} m/s; at most "
             f"{FILL_MAX_PCT:g} % (beyond that the material heaps far above the belt's edges, "
-            "no belt carries it): a capacity of at most "
-            f"{down3(conv.material.capacity_t_h * FILL_MAX_PCT / fill):g} t/h, a speed of "
-            f"at least {up3(conv.speed_m_s * fill / FILL_MAX_PCT):g} m/s (the fill falls "
-            "as 1 / speed) or a wider belt")
+            f"no belt carries it): {levers}")
 
 
 register_check(check_fill)

@@ -646,6 +646,12 @@ def lump_notes(conv, width_m: float) -> list[str]:
     return notes
 
 
+#: A drive train efficiency below which a note says it is no conveyor gear unit's [-]: the
+#: least efficient gear units in use, worm gears, run from about 0.5 up (a self-locking worm
+#: is below 0.5); helical and bevel-helical units are 0.94-0.98.
+EFFICIENCY_LOW = 0.5
+
+
 def input_notes(conv, loop: Loop, feed_n: float, c_factor: float | None = None) -> list[str]:
     """Notes on inputs the run reads beyond its tables or in an unusual sense (SPEC: a value
     the engine takes in place of one it has not got is said): an idler roll diameter between
@@ -666,6 +672,16 @@ def input_notes(conv, loop: Loop, feed_n: float, c_factor: float | None = None) 
         n = catalog.idler_note(getattr(conv.idlers, strand), width, f"idlers.{name}")
         if n:
             notes.append(n)
+    for i, d in enumerate(conv.drives):
+        if d.efficiency < EFFICIENCY_LOW:
+            # below any gear unit a conveyor drive uses: a typo reads as a huge auto motor
+            # (0.1 sized a 13,327 kW motor for a 1.2 MW belt, said as ok)
+            notes.append(f"note: drives.{i}.efficiency {d.efficiency:g} is below a conveyor "
+                         "drive train's (0.85-0.97: helical or bevel-helical gear units and a "
+                         f"coupling; docs/drives.md), so the motor takes {1.0 / d.efficiency:.3g} "
+                         "x its pulley's power" + (
+                             " (and the auto rated power grows by as much)"
+                             if d.rated_power_kw is None else ""))
     v = loop.speed_m_s
     loaded = loop.design_load_kg_m > 0.0
     for field, v0 in _loading_speeds(conv) if loaded else []:

@@ -1305,12 +1305,15 @@ def _curve_fit_fix(profile: list[ProfileSection], j: int, pitch_m: float) -> str
 
 class StartSpec(_Model):
     control: Literal["s-curve", "linear", "torque"] = "s-curve"
-    time_s: PositiveFloat = Field(60.0, description="start (acceleration) time [s]")
+    time_s: PositiveFloat = Field(60.0, le=LAW_TIME_MAX_S,
+                                  description="start (acceleration) time [s], at most an hour "
+                                              "(a transient run simulates every step)")
 
 
 class StopSpec(_Model):
     mode: Literal["coast", "brake", "controlled"] = "coast"
-    time_s: PositiveFloat = Field(30.0, description="target stop time [s]")
+    time_s: PositiveFloat = Field(30.0, le=LAW_TIME_MAX_S,
+                                  description="target stop time [s], at most an hour")
 
 
 #: Largest load as a fraction of the design load: a surge up to 30 % above the design
@@ -1405,7 +1408,9 @@ class Scenario(_Model):
     temperature_c: float = Field(20.0, ge=TEMPERATURE_MIN_C, le=TEMPERATURE_MAX_C,
                                  description="ambient temperature [C]")
     start: StartSpec = StartSpec()
-    run_s: NonNegFloat = Field(30.0, description="steady running between start and stop [s]")
+    run_s: NonNegFloat = Field(30.0, le=LAW_TIME_MAX_S,
+                               description="steady running between start and stop [s], at most "
+                                           "an hour (a transient run simulates every step)")
     stop: StopSpec = StopSpec()
     formulation: Literal["relative", "support"] = "relative"
     elements: Literal["auto"] | Annotated[int, Field(ge=8, le=200_000)] = "auto"
@@ -1566,6 +1571,15 @@ UNIT_SLIPS = {
        for name in ("force_kn", "pretension_kn", "head_kn", "tail_kn")},
     "speed_m_s": (lambda v: v > 30.0,
                   lambda v: f"in metres per second, {v / 60:g} m/s if {v:g} is m/min"),
+    # a start, stop or running time in milliseconds
+    **{name: (lambda v: LAW_TIME_MAX_S < v <= 1000.0 * LAW_TIME_MAX_S,
+              lambda v: f"in seconds, {v / 1000:g} s if {v:g} is ms")
+       for name in ("time_s", "run_s")},
+    # a load or a sampled share of runs in per cent
+    "load": (lambda v: 1.3 < v <= 130.0,
+             lambda v: f"a fraction of the design load, {v / 100:g} if {v:g} is %"),
+    "sample": (lambda v: 1.0 < v <= 100.0,
+               lambda v: f"a fraction of the runs, {v / 100:g} if {v:g} is %"),
 }
 
 

@@ -39,7 +39,7 @@ import math
 import numpy as np
 
 from beltstudy.engine.checks import HOLD_MARGIN
-from beltstudy.engine.conveyor import Conveyor, Scenario
+from beltstudy.engine.conveyor import FORCE_MAX_KN, Conveyor, Scenario
 from beltstudy.engine.drives import GIVEN, RATED_POWER_FACTOR, rated_power_kw
 from beltstudy.engine.loop import (
     MOTOR_INERTIA_SHARE,
@@ -333,6 +333,15 @@ def brake_forces(conv: Conveyor, scenario: Scenario, total_mass_kg: float, te_n:
     kn = [next(shares) / 1e3 if b.force_kn == "auto" else float(b.force_kn)
           for b in conv.brakes]
     gov = [why if b.force_kn == "auto" else GIVEN for b in conv.brakes]
+    beyond = [f"brakes.{i}.force_kn {f:,.0f} kN" for i, (b, f) in enumerate(
+        zip(conv.brakes, kn, strict=True)) if b.force_kn == "auto" and f > FORCE_MAX_KN]
+    if beyond:
+        # as the take-up's and the motors' auto sizes beyond a file's bound are said
+        note = (f"{note}; " if note else "") + (
+            f"the auto brake force ({', '.join(beyond)}) is beyond the breaking force of any "
+            f"catalogue belt (a file may give at most {FORCE_MAX_KN:,.0f} kN): no belt "
+            "passes it, so the brakes must share it over more pulleys, or the route be split "
+            "into flights")
     return kn, gov, note
 
 

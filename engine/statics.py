@@ -54,10 +54,18 @@ import numpy as np
 from beltstudy.engine import catalog, rubber
 from beltstudy.engine.capacity import capacity as capacity_check
 from beltstudy.engine.capacity import incline_warning
-from beltstudy.engine.checks import holding_warning, input_notes, lump_notes, runback_note
+from beltstudy.engine.checks import (
+    HOLD_MARGIN,
+    holding_warning,
+    input_notes,
+    lump_notes,
+    runback_note,
+)
 from beltstudy.engine.checks import steady_checks as design_checks
 from beltstudy.engine.chord import LEVEL_RTOL, chord_springs, length_level
 from beltstudy.engine.conveyor import (
+    FORCE_MAX_KN,
+    POWER_MAX_KW,
     PRETENSION_MAX_KN,
     SAG_LIMIT_RTOL,
     TAKEUP_MASS_MAX_KG,
@@ -740,6 +748,43 @@ def _grip_levers(conv, k: int, ratio: float) -> str:
     return f" on its own pulley {' or '.join(levers)}{share}"
 
 
+def _brake_beyond_words(conv, loop) -> list[str]:
+    """Auto brakes whose holding size (``HOLD_MARGIN`` x the loaded belt's net gravity pull,
+    less the given brakes, shared evenly) is beyond what a file may give (``FORCE_MAX_KN``,
+    the breaking force of the strongest catalogue belt), in words. A brake stop's size is
+    said by the transient run's brake note."""
+    auto = [i for i, b in enumerate(conv.brakes) if b.force_kn == "auto"]
+    if not auto:
+        return []
+    fixed = sum(float(b.force_kn) for b in conv.brakes if b.force_kn != "auto") * 1e3
+    each = (HOLD_MARGIN * abs(float(loop.gravity_n.sum())) - fixed) / len(auto) / 1e3
+    if each <= FORCE_MAX_KN:
+        return []
+    return [f"the auto brakes' holding size ({HOLD_MARGIN:g} x the loaded belt's net gravity "
+            f"pull, {each:,.0f} kN on each of {', '.join(f'brakes.{i}' for i in auto)}) is "
+            "beyond the breaking force of any catalogue belt (a file may give at most "
+            f"{FORCE_MAX_KN:,.0f} kN): no belt passes it, so the route must be split into "
+            "flights or the pull held on more pulleys"]
+
+
+def _power_beyond_words(conv, rated_kw: list[float]) -> list[str]:
+    """An auto rated power beyond what a file may give (``POWER_MAX_KW``, three times the
+    largest conveyor drives built), in words with what sets it: the drive's share of the
+    power over its drive train's efficiency. A drive train of efficiency 1e-6 sized a 1.3 TW
+    motor that `static` reported as ``ok`` and a study's runs failed on."""
+    out = []
+    for i, (d, kw) in enumerate(zip(conv.drives, rated_kw, strict=True)):
+        if d.rated_power_kw is not None or kw <= POWER_MAX_KW:
+            continue
+        out.append(f"drive {i + 1}'s auto rated power {kw:,.0f} kW is beyond any conveyor "
+                   f"motor (a file may give at most {POWER_MAX_KW:,.0f} kW): it is its share "
+                   f"{d.share:g} of the running power over its drive train's efficiency "
+                   f"(drives.{i}.efficiency {d.efficiency:g}); a drive train's efficiency is "
+                   "0.85-0.97 (check drives[].efficiency), else more drives along the belt "
+                   "(a booster) share the power")
+    return out
+
+
 def _takeup_beyond_words(res: SteadyResult, drives) -> list[str]:
     """An auto take-up beyond what a file may give: what sets it and what avoids it (no
     warning otherwise)."""
@@ -879,6 +924,7 @@ def _summarise(res: SteadyResult, drives, hs_adm, bounds, shortfall_n: float,
     warnings += _takeup_beyond_words(res, drives)
     # ---- each drive's motor power against its rating (SPEC 7.4, beltstudy.engine.drives)
     rated_kw, _ = rated_power_kw(conv, res.te_n, float(np.sum(res.resistance_n)))
+    warnings += _power_beyond_words(conv, rated_kw)
     fields, short = drive_checks(conv, [share * res.te_n for _i, share, _e in drives], v,
                                   res.te_n, rated_kw)
     res.summary.update(fields)
@@ -929,6 +975,7 @@ def _summarise(res: SteadyResult, drives, hs_adm, bounds, shortfall_n: float,
     held = holding_warning(conv, loop, friction_n)
     if held:
         warnings.append(held)
+    warnings += _brake_beyond_words(conv, loop)
     res.warnings = warnings
     res.status = "warning" if warnings else "ok"
     res.message = "; ".join(warnings + _notes(res, friction_n, comps.get("feed", 0.0)))

@@ -78,8 +78,10 @@ def parse_load(text: str) -> str | float | list[float]:
         raise InputError(f"--load: expected {LOAD_HELP}; got {text!r}") from None
     for val in values:
         if not 0.0 <= val <= LOAD_MAX:
+            pct = (f": {val / 100:g} if {val:g} is %" if LOAD_MAX < val <= 100.0 * LOAD_MAX
+                   else "")
             raise InputError(f"--load: fractions run from 0 to {LOAD_MAX:g} of the design load "
-                             f"(got {val:g})")
+                             f"(got {val:g}){pct}")
     return values if "," in text else values[0]
 
 

@@ -159,18 +159,36 @@ def build_scenario(args: argparse.Namespace):
         ("dt_s",): args.dt_s,
         ("record_dt_s",): args.record_dt_s,
     }
+    flags = {}  # the scenario field -> the option that set it
     for path, value in over.items():
         if value is None:
             continue
         target = {"start": start, "stop": stop}.get(path[0], data) if len(path) == 2 else data
         target[path[-1]] = value
+        flags["scenario." + ".".join(path)] = _option(path)
     if args.load is not None:
         data["load"] = parse_load(args.load)
+        flags["scenario.load"] = "--load"
     if not start:
         data.pop("start")
     if not stop:
         data.pop("stop")
-    return _parse_scenario(data)
+    try:
+        return _parse_scenario(data)
+    except InputError as exc:
+        # a value the command line gave is named by its option, as `static` names it (the
+        # scenario file's own fields keep their scenario path)
+        text = str(exc)
+        for field, option in flags.items():
+            text = text.replace(f"{field}:", f"{option}:")
+        raise InputError(text) from None
+
+
+def _option(path: tuple) -> str:
+    """The command-line option of a scenario field path: ``--start-time-s`` for
+    ``("start", "time_s")``, ``--run-s`` for ``("run_s",)``, ``--stop-mode`` for
+    ``("stop", "mode")``."""
+    return "--" + "-".join(path).replace("_", "-")
 
 
 def _parse_scenario(data: dict):

@@ -58,7 +58,12 @@ from beltstudy.engine import (
     size_over_cases,
     with_belt,
 )
-from beltstudy.engine.conveyor import PRETENSION_MAX_KN, TAKEUP_MASS_MAX_KG
+from beltstudy.engine.conveyor import (
+    FORCE_MAX_KN,
+    POWER_MAX_KW,
+    PRETENSION_MAX_KN,
+    TAKEUP_MASS_MAX_KG,
+)
 from beltstudy.service.errors import Invalid
 
 __all__ = ["DesignIn", "has_auto", "size_design", "apply_sizes", "round_up", "round_down",
@@ -352,14 +357,19 @@ def apply_sizes(conv: dict, sizes: dict | None, scenario: dict, dynamics: bool
             TAKEUP_MASS_MAX_KG if tu["field"] == "mass_kg" else PRETENSION_MAX_KN):
         out["takeup"][tu["field"]] = tu["value"]
         governed["takeup_governed_by"] = governed_at(tu["governed_by"], tu.get("at", ""))
-    why = []
+    why, kept = [], False
     for drive, size in zip(out["drives"], sizes.get("drives") or [], strict=False):
+        # a size beyond what a file may give stays auto, as the take-up's does: the run sizes
+        # its own and says what sets it (and its own *_governed_by then names it)
         if size is not None and drive.get("rated_power_kw") is None:
+            if size["rated_power_kw"] > POWER_MAX_KW:
+                kept = True
+                continue
             drive["rated_power_kw"] = size["rated_power_kw"]
             why.append(governed_at(size["governed_by"], size.get("at", "")))
         else:
             why.append(GIVEN)
-    if any(w != GIVEN for w in why):
+    if any(w != GIVEN for w in why) and not kept:
         governed["rated_power_governed_by"] = "+".join(dict.fromkeys(why))
     brakes = sizes.get("brakes")
     if brakes is not None:
@@ -367,13 +377,16 @@ def apply_sizes(conv: dict, sizes: dict | None, scenario: dict, dynamics: bool
         stop_s = brake_sizing_stop_time(scenario, dynamics=dynamics)
         if stop_s is not None:
             entry = brakes["stop_time_s"].get(f"{stop_s:g}", entry)
-        why = []
+        why, kept = [], False
         for brake, force, reason in zip(out["brakes"], entry["force_kn"], entry["governed_by"],
                                         strict=True):
-            if brake["force_kn"] == "auto":
+            if brake["force_kn"] == "auto" and force > FORCE_MAX_KN:
+                kept = True  # stays auto, as a motor beyond its bound does
+            elif brake["force_kn"] == "auto":
                 brake["force_kn"] = force
                 why.append(governed_at(reason, entry.get("at", "")))
             else:
                 why.append(GIVEN)
-        governed["brake_governed_by"] = "+".join(dict.fromkeys(why))
+        if not kept:
+            governed["brake_governed_by"] = "+".join(dict.fromkeys(why))
     return out, governed

@@ -33,3 +33,20 @@ def test_the_refusal_names_a_capacity_and_a_speed_that_pass():
     assert fill_pct(parse_conveyor(taken)) <= FILL_MAX_PCT
     faster = dict(data, speed_m_s=speed)
     assert fill_pct(parse_conveyor(faster)) <= FILL_MAX_PCT
+
+
+def test_a_speed_beyond_speed_m_s_bound_is_not_offered():
+    """A 0.1 m belt (a width typed in the wrong unit) was told 'a speed of at least 1210 m/s',
+    which speed_m_s's own bound (30 m/s) then refuses: the refusal says no speed within it
+    would do, and offers the capacity and a wider belt."""
+    data = load_mapping(CONVEYORS / "slope-5pct.yaml")
+    data["belt"]["width_m"] = 0.1
+    with pytest.raises(InputError) as err:
+        parse_conveyor(data)
+    text = str(err.value)
+    assert "speed of at least" not in text, text
+    assert "no speed within speed_m_s's bound of 30 m/s would do" in text
+    assert "a wider belt (belt.width_m, now 0.1 m)" in text
+    cap = float(re.search(r"capacity of at most ([0-9.]+) t/h", text).group(1))
+    taken = dict(data, material=dict(data["material"], capacity_t_h=cap))
+    assert fill_pct(parse_conveyor(taken)) <= FILL_MAX_PCT

@@ -590,3 +590,22 @@ def test_takeup_at_m_at_an_end_names_return_only():
     drive = {"position": "head", "at_m": 100, "wrap_deg": 200, "friction": 0.35, "share": 1.0,
              "pulley_diameter_m": 1.0}
     assert "goes with position carry or return" in _err(hand_conveyor_dict(drives=[drive]))
+
+
+def test_a_load_or_a_sampled_share_in_per_cent_gets_the_fraction():
+    """A load of 80 (per cent) and an accuracy sample of 5 (per cent) named the bound only; the
+    friction coefficient and efficiency already said '0.35 if 35 is %'."""
+    from beltstudy.engine.conveyor import parse_scenario
+    from service.cli.common import parse_load
+
+    with pytest.raises(InputError) as ei:
+        parse_scenario({"load": 80})
+    assert "scenario.load" in str(ei.value) or "load" in str(ei.value)
+    assert "a fraction of the design load, 0.8 if 80 is %" in str(ei.value), str(ei.value)
+    with pytest.raises(InputError, match=r"--load: .*\(got 80\): 0\.8 if 80 is %"):
+        parse_load("80")
+    # a load in range (a surge of 1.2) and one beyond any per cent reading get no such hint
+    assert parse_scenario({"load": 1.2}).load == 1.2
+    with pytest.raises(InputError) as ei:
+        parse_scenario({"load": 500})
+    assert "if 500 is %" not in str(ei.value)

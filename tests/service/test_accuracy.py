@@ -141,3 +141,11 @@ def test_a_sampled_runs_detail_carries_its_error_bars_for_the_run_page(
     assert bars["accuracy_elements"] == acc["accuracy_elements"].iloc[0]
     assert bars["accuracy_methods"] == acc["accuracy_methods"].iloc[0]
     assert client.get(f"/studies/{sid}/runs/{other}").json()["accuracy"] is None
+
+
+def test_a_share_in_per_cent_is_told_the_fraction(make_study):
+    """'accuracy: {sample: 5}' named the bound only ('less than or equal to 1 (got 5)')."""
+    with pytest.raises(Invalid, match=r"accuracy\.sample: .*\(got 5\): a fraction of the runs, "
+                                      r"0\.05 if 5 is %"):
+        resolve_study(_dynamic(make_study, "acc-pct", accuracy={"sample": 5}),
+                      studies_dir=ROOT / "studies")
