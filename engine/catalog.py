@@ -53,7 +53,7 @@ def _unknown(kind: str, value: str, valid: list[str], field: str = "") -> str:
     close = difflib.get_close_matches(str(value), valid, n=1, cutoff=0.4)
     hint = f"; did you mean '{close[0]}'?" if close else ""
     where = f"{field}: " if field else ""
-    return f"{where}unknown {kind} '{value}'{hint} valid: {', '.join(valid)}"
+    return f"{where}unknown {kind} '{value}'{hint}{' ' if hint else '; '}valid: {', '.join(valid)}"
 
 
 @dataclass(frozen=True)
@@ -191,6 +191,12 @@ def belt(belt_id: str, field: str = "belt.type") -> BeltData:
                  f"{covers.group(3)}" if covers else "")
         raise InputError(f"{where}unknown belt type '{belt_id}'; did you mean "
                          f"'{same[0]}'{extra}? valid: {', '.join(table)}")
+    # a fabric belt's rating without its plies (EP630 for EP630/4): the catalogue's ply counts
+    plies = [k for k in table if "/" in k and _belt_key(k.split("/")[0]) == _belt_key(named)]
+    if plies:
+        raise InputError(
+            f"{where}unknown belt type '{belt_id}': a fabric belt's type names its plies too; "
+            f"did you mean {' or '.join(repr(k) for k in plies)}? valid: {', '.join(table)}")
     raise InputError(
         f"{where}unknown belt type '{belt_id}': not in the catalogue ({', '.join(table)}); "
         "for a belt of its own, leave out type and give its data from the belt maker's "

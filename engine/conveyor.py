@@ -559,7 +559,8 @@ class Drive(_Model):
         description="power failure: motor torque falls to zero over this time [s] (at most "
         "3600)")
     speed_loop_rad_s: float | None = Field(
-        None, description="vfd: bandwidth of the speed loop closed on this pulley's own speed "
+        None, json_schema_extra={"minimum": SPEED_LOOP_RAD_S[0], "maximum": SPEED_LOOP_RAD_S[1]},
+        description="vfd: bandwidth of the speed loop closed on this pulley's own speed "
         "[rad/s], 0.1 to 50 (the master drive's is used; default: "
         "beltstudy.engine.dynamics.model.DEFAULT_SPEED_LOOP_RAD_S)")
     efficiency: float = Field(
@@ -572,6 +573,16 @@ class Drive(_Model):
     def _wrap_in_degrees(cls, v: float) -> float:
         return degrees_not_radians(v, RADIANS_WRAP_MAX, "wrap angle",
                                    "a drive pulley takes about 180-240 deg")
+
+    @field_validator("speed_loop_rad_s")
+    @classmethod
+    def _loop_in_range(cls, v: float | None) -> float | None:
+        if v is not None and not SPEED_LOOP_RAD_S[0] <= v <= SPEED_LOOP_RAD_S[1]:
+            raise ValueError(
+                f"speed_loop_rad_s {v:g} is outside {SPEED_LOOP_RAD_S[0]:g} to "
+                f"{SPEED_LOOP_RAD_S[1]:g} rad/s (large conveyor drives run their speed "
+                "loops at a few rad/s)")
+        return v
 
     @field_validator("rated_power_kw", mode="before")
     @classmethod
@@ -612,11 +623,6 @@ class Drive(_Model):
             if self.control != "vfd":
                 raise ValueError(f"speed_loop_rad_s {bw:g} needs control: vfd (a dol motor "
                                  "runs on the line without a speed loop)")
-            if not SPEED_LOOP_RAD_S[0] <= bw <= SPEED_LOOP_RAD_S[1]:
-                raise ValueError(
-                    f"speed_loop_rad_s {bw:g} is outside {SPEED_LOOP_RAD_S[0]:g} to "
-                    f"{SPEED_LOOP_RAD_S[1]:g} rad/s (large conveyor drives run their speed "
-                    "loops at a few rad/s)")
         if self.motor_curve is not None:
             check_motor_curve(self.motor_curve)
             if self.control != "dol":

@@ -77,6 +77,10 @@ class UnreadablePart(BaseModel):
 
 class RunsPage(BaseModel):
     study_id: str
+    state: State | None = Field(None, description="the study's state: while it is queued or "
+                                "running the rows are those stored so far")
+    done: int | None = Field(None, description="the study's runs finished so far")
+    study_runs: int | None = Field(None, description="the study's runs in all")
     total: int = Field(..., description="rows matching the filters")
     offset: int
     limit: int | None
@@ -94,6 +98,8 @@ class RunsPage(BaseModel):
 
 class AccuracyOut(BaseModel):
     study_id: str
+    state: State | None = Field(None, description="the study's state: while it is queued or "
+                                "running the table holds the sampled runs stored so far")
     sample: dict[str, Any] | None = Field(
         None, description="the study's accuracy: {sample, seed} (null: none asked)")
     total: int = Field(..., description="sampled runs with error bars so far")

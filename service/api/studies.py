@@ -215,12 +215,17 @@ def get_runs(
         df = query.sort_rows(df, *order)
     if names is not None:
         df = df[names]
+    # the study's state beside its rows: while it runs the table is partial (a file says it
+    # in X-Study-State, a JSON page in state, done and study_runs)
+    st = service.status(study_id)
     if format != "json":
         schema = service.store.runs_schema(study_id) if format == "parquet" else None
-        return _download(df, format, f"{study_id}-runs", schema=schema)
+        return _download(df, format, f"{study_id}-runs", schema=schema, headers={
+            "X-Study-State": f"{st['state']}; done={st['done']}; total={st['total']}"})
     page = df.iloc[offset : offset + limit if limit else None]
-    head = {"study_id": study_id, "total": int(len(df)), "offset": offset, "limit": limit,
-            **query.unreadable_fields(study_id, bad)}
+    head = {"study_id": study_id, "state": st["state"], "done": st["done"],
+            "study_runs": st["total"], "total": int(len(df)), "offset": offset,
+            "limit": limit, **query.unreadable_fields(study_id, bad)}
     to_json = query.rows_to_json if names is None else query.records_to_json
     if len(page) > STREAM_ROWS:
         return StreamingResponse(_streamed_runs(head, page, to_json),
@@ -330,11 +335,14 @@ def get_accuracy(
     service: StudyService = Depends(get_service),
 ):
     acc, cols = service.accuracy(study_id)
+    st = service.status(study_id)
     if format != "json":
-        return _download(acc, format, f"{study_id}-accuracy")
+        return _download(acc, format, f"{study_id}-accuracy", headers={
+            "X-Study-State": f"{st['state']}; done={st['done']}; total={st['total']}"})
     study = service.study_doc(study_id).get("study") or {}
     return {
         "study_id": study_id,
+        "state": st["state"],
         "sample": study.get("accuracy"),
         "total": int(len(acc)),
         "columns": query.records_to_json(cols),

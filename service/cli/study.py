@@ -443,7 +443,9 @@ def cmd_results(args) -> int:
         # readable parts, naming any damaged one), as the service writes it: a file made
         # without a service reads as one made with it
         df, bad = service.store.read_runs_readable(args.id)
-        doc = {"study_id": args.id, "total": int(len(df)), "offset": 0, "limit": None,
+        st = service.status(args.id)
+        doc = {"study_id": args.id, "state": st["state"], "done": st["done"],
+               "study_runs": st["total"], "total": int(len(df)), "offset": 0, "limit": None,
                "runs": query.rows_to_json(df), **query.unreadable_fields(args.id, bad)}
         return json.dumps(doc, ensure_ascii=False, allow_nan=False,
                           separators=(",", ":")).encode()

@@ -192,6 +192,11 @@ def type_fix(got: Any, error_type: str, path: tuple) -> str:
         return "write true or false"
     if error_type in _LIST_TYPES and isinstance(got, dict):
         return "write a list: one `- {...}` item per entry"
+    if (error_type in _MAPPING_TYPES and isinstance(got, str) and last == "scenario"
+            and got.strip().lower().endswith((".yaml", ".yml", ".json"))):
+        # a study's conveyor may be a file, its scenario is written in the study
+        return ("a study's scenario is written in the study, not read from a file (the "
+                "conveyor is): copy the scenario file's fields under scenario:")
     if error_type in _MAPPING_TYPES and not isinstance(got, dict):  # a list, belt: ST2000
         return "write a mapping `{key: value, ...}`"
     if error_type not in _NUMBER_TYPES or not isinstance(got, str):

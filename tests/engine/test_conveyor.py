@@ -301,7 +301,7 @@ def test_speed_loop_bandwidth_is_checked_where_it_is_set():
     assert hand_conv(drives=[hand_drive(speed_loop_rad_s=3.0)]).drives[0].speed_loop_rad_s == 3.0
     with pytest.raises(InputError, match="needs control: vfd"):
         hand_conv(drives=[hand_drive(control="dol", speed_loop_rad_s=3.0)])
-    with pytest.raises(InputError, match=r"outside 0.1 to 50 rad/s"):
+    with pytest.raises(InputError, match=r"drives.0.speed_loop_rad_s: .*outside 0.1 to 50 rad/s"):
         hand_conv(drives=[hand_drive(speed_loop_rad_s=0.01)])
     with pytest.raises(InputError, match=r"drives.1.speed_loop_rad_s: drive 2 follows"):
         hand_conv(drives=[hand_drive(share=0.6), hand_drive(share=0.4, speed_loop_rad_s=3.0)])
@@ -609,3 +609,20 @@ def test_a_load_or_a_sampled_share_in_per_cent_gets_the_fraction():
     with pytest.raises(InputError) as ei:
         parse_scenario({"load": 500})
     assert "if 500 is %" not in str(ei.value)
+
+
+def test_a_fabric_rating_without_its_plies_is_offered_the_catalogues_type():
+    """'EP630' listed the catalogue but offered nothing ('st2000' got 'did you mean
+    ST2000?'); an unknown compound ran 'arctic' into 'valid:' without a separator."""
+    import re
+
+    from beltstudy.engine import catalog
+
+    with pytest.raises(InputError, match=r"unknown belt type 'EP630': a fabric belt's type names "
+                                         r"its plies too; did you mean 'EP630/4'\?"):
+        catalog.belt("EP630")
+    with pytest.raises(InputError) as ei:
+        parse_conveyor({**hand_conveyor_dict(),
+                        "belt": {**hand_conveyor_dict()["belt"], "compound": "arctic"}})
+    assert re.search(r"unknown compound 'arctic'(; did you mean '[^']+'\? |; )valid: ",
+                     str(ei.value)), str(ei.value)

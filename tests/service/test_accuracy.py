@@ -118,7 +118,8 @@ def test_a_study_without_accuracy_has_an_empty_table(data_dir, make_study, make_
     assert len(Store(data_dir).read_accuracy(sid)) == 0
     client = TestClient(create_app(make_settings(data_dir)))
     body = client.get(f"/studies/{sid}/accuracy").json()
-    assert body == {"study_id": sid, "sample": None, "total": 0, "columns": [], "runs": []}
+    assert body == {"study_id": sid, "state": "done", "sample": None, "total": 0, "columns": [],
+                    "runs": []}
     assert "No error bars" in client.get(f"/studies/{sid}/report").text
 
 

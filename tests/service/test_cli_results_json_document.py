@@ -34,7 +34,9 @@ def test_local_results_json_is_the_rest_document(
     assert rest.status_code == 200
 
     doc = json.loads(out.read_bytes())
-    assert list(doc) == ["study_id", "total", "offset", "limit", "runs"]
+    assert list(doc) == ["study_id", "state", "done", "study_runs", "total", "offset", "limit",
+                         "runs"]
+    assert doc["state"] == "done" and doc["done"] == doc["study_runs"] == 6
     assert doc["study_id"] == sid and doc["total"] == 6 and doc["offset"] == 0
     assert doc["limit"] is None and len(doc["runs"]) == 6
     assert "te_components_kn" in doc["runs"][0]

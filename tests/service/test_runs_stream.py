@@ -29,4 +29,5 @@ def test_a_streamed_page_is_the_same_document_as_a_whole_one(
     assert streamed.headers["content-type"] == "application/json"
     body = json.loads(streamed.content)
     assert body == whole.json() and len(body["runs"]) > 1
-    assert list(body) == ["study_id", "total", "offset", "limit", "runs"]
+    assert list(body) == ["study_id", "state", "done", "study_runs", "total", "offset", "limit",
+                          "runs"]

@@ -7,6 +7,7 @@ Studies are submitted over HTTP, polled to completion, and read back from Parque
 from __future__ import annotations
 
 import os
+import re
 import signal
 import subprocess
 import sys
@@ -164,6 +165,12 @@ def test_two_studies_at_once_and_a_failing_run(live_service, make_study):
     c, _ = svc.client.submit(long)
     st = svc.wait(c["id"], until=lambda st: st["done"] >= 2)
     assert st["state"] == "running"
+    # its rows so far come with its state: a partial table says it is one
+    page = svc.client._http.get(f"/studies/{c['id']}/runs?columns=run_id").json()
+    assert page["state"] in ("running", "done") and page["study_runs"] == 41
+    assert page["done"] >= 2 and page["total"] >= 2
+    got = svc.client._http.get(f"/studies/{c['id']}/runs?format=csv")
+    assert re.fullmatch(r"(running|done); done=\d+; total=41", got.headers["X-Study-State"])
     assert svc.client.delete(c["id"]) == {"id": c["id"], "state": "deleted", "deleted": True,
                                           "cancelled": True, "was": "running"}
     assert not (svc.data_dir / "studies" / c["id"]).exists()

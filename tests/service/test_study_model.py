@@ -750,3 +750,12 @@ def test_a_range_over_the_run_limit_names_the_step_that_fits(make_study):
     wild = {"temperature_c": {"start": -1e308, "stop": 1e308, "step": 1e-300}}
     with pytest.raises(TooLarge, match=r"runs: a larger step or a shorter range$"):
         resolve_study(make_study(grid=wild))
+
+
+def test_a_scenario_given_as_a_file_is_told_to_write_it_in_the_study(make_study):
+    """A study's conveyor may be a file name, so users write its scenario as one too: that
+    said only 'is not of type "object": write a mapping'."""
+    study = make_study(scenario="scenarios/slow-start.yaml")
+    with pytest.raises(Invalid, match=r'^scenario: "scenarios/slow-start\.yaml" is not of type '
+                                      r'"object": a study\'s scenario is written in the study'):
+        resolve_study(study, studies_dir=ROOT / "studies")
