@@ -290,7 +290,17 @@ def check_port(host: str, port: int) -> None:
 def cmd_submit(args) -> int:
     body = study_body(args.study)
     with _client(args) as client:
-        st, created = client.submit(body)
+        try:
+            st, created = client.submit(body)
+        except ServiceError as exc:
+            # the conveyor file went inlined, so the service names its fields as conveyor.*;
+            # said as `run` says them, with the file the study names
+            ref = _conveyor_ref(args.study)
+            if ref and exc.status_code == 422 and exc.message.startswith("conveyor."):
+                rest = exc.message[len("conveyor."):].replace("; conveyor.", "; ")
+                exc.message = f"conveyor: {ref}: {rest}"
+                exc.args = (exc.message,)
+            raise
         print(
             f"{'submitted' if created else 'already submitted'}: {st['id']} "
             f"({_runs_text(st)}) {client.url}{st['status_url']}"
@@ -300,6 +310,16 @@ def cmd_submit(args) -> int:
         st = _poll(lambda: client.status(st["id"]), ProgressBar())
         _print_final(st)
     return 0 if st["state"] == "done" else 1
+
+
+def _conveyor_ref(path) -> str:
+    """The conveyor file a study file names ("" for an inline conveyor or an unreadable
+    study)."""
+    try:
+        ref = load_mapping(Path(path)).get("conveyor")
+    except (ServiceError, OSError, AttributeError):
+        return ""
+    return ref if isinstance(ref, str) else ""
 
 
 def _print_final(st: dict) -> None:

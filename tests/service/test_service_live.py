@@ -20,6 +20,8 @@ import yaml
 
 pytestmark = pytest.mark.slow
 
+ROOT = Path(__file__).resolve().parents[2]
+
 
 def _dynamic_study(make_study, name: str, **over) -> dict:
     """A dynamic study of the 60 m conveyor with few elements (fast runs)."""
@@ -126,7 +128,7 @@ def test_surface_is_stored_on_request_and_recomputed_otherwise(live_service, mak
     assert "recomputed in the service" not in log
 
 
-def test_two_studies_at_once_and_a_failing_run(live_service, make_study):
+def test_two_studies_at_once_and_a_failing_run(live_service, make_study, capsys):
     svc = live_service()
     # a fixed step of 5 s is above the stability limit of this conveyor's loop: the engine
     # refuses that run when it runs (the limit needs the loop cut into elements), so those
@@ -177,6 +179,22 @@ def test_two_studies_at_once_and_a_failing_run(live_service, make_study):
     r = svc.client._http.get(f"/studies/{c['id']}")
     assert r.status_code == 404
     assert {s["id"] for s in svc.client.list()} == {a["id"], b["id"]}
+
+    # a study whose conveyor file has a typo: `submit` names the file as `run` does (the
+    # service sees the conveyor inlined and said 'conveyor.belt.widht_m')
+    from beltstudy.service.cli import main
+
+    conv = yaml.safe_load((ROOT / "studies" / "conveyors" / "slope-5pct.yaml").read_text())
+    conv["belt"]["widht_m"] = conv["belt"].pop("width_m")
+    folder = svc.data_dir.parent / "typo"
+    folder.mkdir()
+    (folder / "typo.yaml").write_text(yaml.safe_dump(conv))
+    (folder / "study.yaml").write_text(yaml.safe_dump(
+        {"name": "typo", "conveyor": "typo.yaml", "grid": {"temperature_c": [0, 20]}}))
+    assert main(["submit", str(folder / "study.yaml"), "--url", svc.url]) == 2
+    err = capsys.readouterr().err
+    assert err.startswith("error: conveyor: typo.yaml: belt.width_m: required field is "
+                          "missing; belt.widht_m: unknown key 'widht_m'"), err
 
 
 def test_killing_a_worker_mid_study_still_completes(live_service, make_study):
