@@ -20,6 +20,7 @@ from __future__ import annotations
 import dataclasses
 import functools
 import json
+import math
 import re
 from collections import defaultdict
 from typing import Any
@@ -199,6 +200,10 @@ def type_fix(got: Any, error_type: str, path: tuple) -> str:
                 "conveyor is): copy the scenario file's fields under scenario:")
     if error_type in _MAPPING_TYPES and not isinstance(got, dict):  # a list, belt: ST2000
         return "write a mapping `{key: value, ...}`"
+    if error_type in ("int_from_float", "int_type") and isinstance(got, float):
+        # rolls: 2.5, a count given with a fraction
+        return (f"write a whole number ({math.floor(got):g} or {math.ceil(got):g})"
+                if math.isfinite(got) else "write a whole number")
     if error_type not in _NUMBER_TYPES or not isinstance(got, str):
         return ""
     text = got.strip()
@@ -209,7 +214,11 @@ def type_fix(got: Any, error_type: str, path: tuple) -> str:
                     "separates thousands")
         return f"write {point}: a decimal point"
     m = _NUMBER_AND_TEXT.match(text)
-    if not m or not m.group(2) or m.group(2)[0].isdigit():
+    if not m:
+        # words where a number goes (capacity_t_h: lots): the number, in the field's unit
+        unit = field_unit(path)
+        return f"write a number{f', in {unit}' if unit else ''}" if text else ""
+    if not m.group(2) or m.group(2)[0].isdigit():
         return ""
     number, written = m.group(1).replace(",", "."), m.group(2).strip()
     unit = field_unit(path)

@@ -133,7 +133,7 @@ CASES = [
         "'nan' as text",
         {"conveyor": {**TINY_CONVEYOR, "speed_m_s": "nan"}},
         422,
-        r'^conveyor.speed_m_s: "nan" is not of type "number"$',
+        r'^conveyor.speed_m_s: "nan" is not of type "number": write a number, in m/s$',
     ),
     (
         "a run time no transient run can simulate",

@@ -56,6 +56,11 @@ def _conveyor(**over) -> dict:
      "the key"),
     ({"belt": "ST2000"}, 'belt: "ST2000" is not of type "object": write a mapping `{key: '
      "value, ...}`"),
+    # words where a number goes, and a count with a fraction
+    ({"material.capacity_t_h": "lots"}, 'material.capacity_t_h: "lots" is not of type '
+     '"number": write a number, in t/h'),
+    ({"idlers.carry.rolls": 2.5}, 'idlers.carry.rolls: 2.5 is not of type "integer": write a '
+     "whole number (2 or 3)"),
     # the fixes a value had keep their words
     ({"speed_m_s": "4.5"}, 'speed_m_s: "4.5" is not of type "number": write 4.5 without '
      "quotes"),
@@ -143,7 +148,8 @@ def test_post_calibrations_gives_the_fix_for_a_measured_value_with_its_unit(clie
     (None, "float_type", ("grid", "temperature_c", 1), "give a value or remove the item"),
     (1, "bool_type", ("holdback",), "write true or false"),
     (2, "bool_type", ("holdback",), ""),
-    ("fast", "float_type", ("speed_m_s",), ""),
+    ("fast", "float_type", ("speed_m_s",), "write a number, in m/s"),
+    ("lots", "float_type", ("holdback_factor",), "write a number"),
 ])
 def test_the_fix_by_the_value_and_the_field(got, error_type, path, fix):
     from beltstudy.service.door.messages import type_fix
