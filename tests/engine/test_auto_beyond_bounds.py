@@ -1,6 +1,6 @@
 """An auto size beyond what a file may give is said, as the take-up's already was, and a
-study keeps it auto so its runs size their own and say it instead of failing on a field the
-user never wrote.
+study keeps it auto (tests/service/test_basis_beyond_bounds.py) so its runs size their own
+and say it instead of failing on a field the user never wrote.
 
 valley-booster with ``drives.0.efficiency: 1e-6`` sized a 1.3 TW motor that ``static`` called
 ``ok``; in a study every run failed on ``drives.0.rated_power_kw`` (which the file leaves
@@ -12,7 +12,6 @@ from __future__ import annotations
 from beltstudy.engine.conveyor import FORCE_MAX_KN, POWER_MAX_KW, load_mapping, parse_conveyor
 from beltstudy.engine.loop import G
 from beltstudy.engine.statics import solve_steady
-from beltstudy.service.grid.basis import apply_sizes
 from tests.conftest import CONVEYORS
 
 
@@ -46,20 +45,3 @@ def test_an_auto_holding_brake_beyond_any_belt_is_said():
     assert f"a file may give at most {FORCE_MAX_KN:,.0f} kN" in res.message
     # by hand: 1.2 x the load's pull alone is already beyond the bound
     assert 1.2 * m_l * G * 15000 / 1e3 > FORCE_MAX_KN
-
-
-def test_a_study_keeps_a_size_beyond_the_bound_auto():
-    conv = {"takeup": {"type": "gravity", "mass_kg": "auto"},
-            "drives": [{"rated_power_kw": None}, {"rated_power_kw": None}],
-            "brakes": [{"force_kn": "auto"}], "belt": {"type": "ST2000"}}
-    sizes = {"drives": [{"rated_power_kw": 2 * POWER_MAX_KW, "governed_by": "peripheral_force"},
-                        {"rated_power_kw": 500.0, "governed_by": "peripheral_force"}],
-             "brakes": {"holding": {"force_kn": [2 * FORCE_MAX_KN],
-                                    "governed_by": ["holding"]}, "stop_time_s": {}}}
-    out, governed = apply_sizes(conv, sizes, {}, dynamics=False)
-    assert out["drives"][0]["rated_power_kw"] is None  # beyond: the run sizes its own
-    assert out["drives"][1]["rated_power_kw"] == 500.0
-    assert out["brakes"][0]["force_kn"] == "auto"
-    # what set a size kept auto is the run's own to say, not the design's
-    assert "rated_power_governed_by" not in governed
-    assert "brake_governed_by" not in governed

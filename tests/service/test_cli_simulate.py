@@ -56,7 +56,7 @@ def test_cli_scenario_file_with_overrides(tmp_path, capsys):
 
 @pytest.mark.parametrize("argv,expect", [
     (["--stop-mode", "brake"], "scenario.stop.mode"),
-    (["--run-s", "-3"], "scenario.run_s"),
+    (["--run-s", "-3"], "--run-s"),
     (["--dt-s", "2", "--elements", "40"], "scenario.dt_s"),
     (["--model", "nonlinn"], "unknown model"),
 ])
