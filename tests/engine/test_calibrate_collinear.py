@@ -56,3 +56,23 @@ def test_readings_over_ten_degrees_separate_them():
     assert sv[0] / sv[-1] <= COLLINEAR_INDEX
     for name, value in TRUTH.items():  # exact data: the truth, to the fit's tolerance
         assert abs(cal.fit[name]["value"] - value) <= 0.02 * value
+
+
+def test_a_law_computed_name_fitted_over_temperatures_is_said_to_be_pinned():
+    """CEMA's Kt is a law of the row's temperature (1.30 at -20 C, 1 from 0 C up). Fitted on
+    exact CEMA data at -20, 0 and 20 C it became one value, 1.089, at a 3.6 % misfit and
+    status ok, and the models block pinned it for every run. A note says so; at one
+    temperature there is no such note."""
+    conv = load_conveyor(CONVEYORS / "slope-5pct.yaml")
+
+    def rows(temperatures):
+        return [Measurement(load, t, {"power_kw": solve_steady(
+            conv, model="cema", temperature_c=t, load=load).summary["power_kw"]})
+            for load in (0.3, 0.6, 1.0) for t in temperatures]
+
+    said = [n for n in calibrate(conv, rows((-20.0, 0.0, 20.0)), "cema", ["kt"]).notes
+            if n.startswith("kt is computed by model cema for each row")]
+    assert len(said) == 1 and "fit it on rows at one temperature" in said[0]
+    one = calibrate(conv, rows((20.0,)), "cema", ["kt"])
+    assert not [n for n in one.notes if n.startswith("kt is computed")]
+    assert abs(one.fit["kt"]["value"] - 1.0) < 1e-3  # the law's own value at 20 C
