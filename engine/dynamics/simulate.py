@@ -1533,7 +1533,8 @@ def transient_summary(sys: System, r: dict, out, segs, *, steady_summary=None, c
                                             and v_cmd >= RUNNING_FRACTION * sys.v_design)
     if (summary["stop_wave_ratio"] is not None and summary["stop_wave_ratio"] < 5.0
             and at_speed):
-        w.append(_fast_stop_words(sys, t_stop_ach, summary, steady_tmax, conveyor, v_cmd))
+        w.append(_fast_stop_words(sys, t_stop_ach, summary, steady_tmax, conveyor,
+                                  _running_low(sys, out, r, v_cmd)))
     w += _cycle_end_words(sys, r, out, t_start_ach, v_cmd, steady_summary=steady_summary,
                           conveyor=conveyor)
     return summary, w
@@ -2316,6 +2317,24 @@ def _brake_impulse_ns(sys: System, t_s: float) -> float:
         t_s - float(np.max(br.delay)), ramp, curve)
 
 
+def _running_low(sys: System, out, r: dict, v_cmd: float | None) -> float | None:
+    """The speed a stop's inertia advice starts from [m/s]: the mean belt speed at the stop
+    command, or the lowest of the running phase's judged window (:func:`running_warnings`'
+    window) where it swings below that. A coast from the crest of a 0.231 m/s swing (4.107
+    m/s) sized flywheels that, given, met the stop at 3.954 m/s and fell 0.2 s short of 5
+    wave loop times; from the swing's low the rigid body asks the most any phase asks."""
+    if v_cmd is None:
+        return None
+    rec = out.rec[:int(r["nrec"])]
+    cyc, t1, t_loop = sys.model.cycle, sys.stop_command_s, sys.wave_loop_time_s
+    t0 = max(t1 - max(SETTLE_LOOPS * t_loop, 0.5 * cyc.t_run),
+             cyc.t_pre + cyc.t_start + t_loop)
+    m = (rec["t"] >= min(t0, t1)) & (rec["t"] <= t1)
+    if not m.any():
+        return v_cmd
+    return min(float(v_cmd), float(rec["v_mean"][m].min()))
+
+
 def _coast_inertia_words(sys: System, need_s: float, conveyor=None, v_run: float | None = None,
                          t_stop: float | None = None, braked: bool = False) -> str:
     """How much inertia on the drive shafts makes a coast last ``need_s`` [s] (5 wave loop
@@ -2350,10 +2369,16 @@ def _coast_inertia_words(sys: System, need_s: float, conveyor=None, v_run: float
         return "more inertia on the drive shafts"
     if impulse > 0.0:
         now = (f" (the stop as it is, {t_stop:.4g} s measured)" if t_stop is not None else "")
+        auto = [f"brakes.{i}.force_kn" for i, b in enumerate(conveyor.brakes)
+                if b.force_kn == "auto"] if conveyor is not None else []
+        # an auto brake is sized again with the inertia (it grows with the moving mass): the
+        # advice holds with the brakes as they are, so it names them to be given
+        pin = (f" (give {', '.join(auto)} their present forces: auto, they are sized again "
+               "with the inertia and the stop is shorter)" if auto else "")
         head = (f"more inertia on the drive shafts: a rigid-body brake stop from the running "
                 f"speed {v0:.4g} m/s to rest ({100.0 * REST_FRACTION:g} % of design speed, "
                 f"{REST_FRACTION * v:.3g} m/s, where the stop time ends) with the brakes as "
-                f"they are, M (v_run - v_rest) = Te t + the brakes' impulse I_b(t), of "
+                f"they are{pin}, M (v_run - v_rest) = Te t + the brakes' impulse I_b(t), of "
                 f"{target:.4g} s (5 wave loop times and {100.0 * COAST_MARGIN:g} % for the "
                 f"elastic belt's swing about the rigid body) needs M = ({target:.4g} s x "
                 f"{te / 1e3:.4g} kN + {impulse / 1e3:.4g} kN s) / {dv:.4g} m/s = "
