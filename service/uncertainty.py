@@ -328,11 +328,14 @@ def small_sample_note(sample: dict, points: int, with_run: int | None = None) ->
 
 
 def _figures(runs: pd.DataFrame, figures: Sequence[str]) -> list[str]:
+    """The figures with a value in some run, or none in any because every run lies beyond
+    every bound (a transient sag where every run went slack: it was left out, so the reader
+    never saw that the sag was unbounded everywhere)."""
     out = []
     for pattern in figures:
         for col, _ in expand(pattern, runs.columns):
             v = pd.to_numeric(runs[col], errors="coerce")
-            if v.notna().any():
+            if v.notna().any() or (len(runs) and no_value(col, runs)[1].any()):
                 out.append(col)
     return out
 
@@ -447,10 +450,19 @@ def _cell(sample: dict, grid: dict, rows: pd.DataFrame, s_cols: list[str],
         vals = pd.to_numeric(rows[col], errors="coerce").to_numpy(dtype=float)
         y = np.array([vals[i] if i is not None else np.nan for i in at])
         dist = distribution(pd.Series(y))
+        without = _without(at, *no_value(col, rows), 0 if dist is None else dist["n"])
         if dist is None:
+            if not without["unbounded"]:
+                continue
+            # no point has a value and some lie beyond every bound: said, every quantile
+            # unbounded (or of none)
+            dist = {"n": 0, "mean": None, "sd": None, "min": None, "max": None,
+                    "quantiles": {f"p{round(100 * q):02d}": None for q in QUANTILES}}
+            cell["figures"][col] = {"unit": unit, **dist, **without}
+            cell["sensitivity"][col] = {"method": "none", "axes": {}, "ranking": [],
+                                        "note": "no sample point has a value to rank"}
             continue
-        cell["figures"][col] = {"unit": unit, **dist,
-                                **_without(at, *no_value(col, rows), dist["n"])}
+        cell["figures"][col] = {"unit": unit, **dist, **without}
         cell["sensitivity"][col] = sensitivity(sample, points, y)
     return cell
 
@@ -497,6 +509,8 @@ def without_text(d: dict) -> str:
     if not d.get("without_value"):
         return ""
     text = f"n {d['n']} of {d['points']}; {d['without_value']} without a value: {d['why']}"
+    if not d["n"]:
+        return text + " (past every bound: every quantile of all of them is unbounded)"
     if d.get("unbounded"):
         m = d["n"] + d["unbounded"]
         qs = d["unbounded_quantiles"]
@@ -528,6 +542,11 @@ def format_text(result: dict) -> str:
         for col, d in cell["figures"].items():
             q = d["quantiles"]
             sens = cell["sensitivity"][col]
+            if not d["n"]:  # no value at any point: beyond every bound
+                lines.append(f"  {col:<30} {d['unit']:<5} {'-':>8} {'-':>8} {'-':>8} "
+                             f"{'-':>8} {'-':>8}")
+                lines.append(f"    {without_text(d)}")
+                continue
             key = "ST" if sens["method"].startswith("sobol") else "rho"
             rank = ", ".join(f"{n} {index_text(sens['axes'][n][key])}"
                              for n in sens["ranking"][:3])

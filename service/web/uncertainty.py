@@ -12,7 +12,7 @@ from typing import Any
 import numpy as np
 import pandas as pd
 
-from beltstudy.service.uncertainty import index_text, runs_text, summarise
+from beltstudy.service.uncertainty import index_text, runs_text, summarise, without_text
 from beltstudy.service.web.numbers import eng
 
 __all__ = ["uncertainty_section", "histograms_figure", "ranking_figure", "FIGURE_COLUMNS"]
@@ -45,7 +45,8 @@ def histograms_figure(cell: dict, runs: pd.DataFrame, title: str):
     """Histograms of up to six deciding figures of one cell's runs, p05/p50/p95 marked."""
     import matplotlib.pyplot as plt
 
-    cols = [c for c in FIGURE_COLUMNS if c in cell["figures"]][:6]
+    # a figure no point has a value of (every run beyond every bound) has no histogram
+    cols = [c for c in FIGURE_COLUMNS if c in cell["figures"] and cell["figures"][c]["n"]][:6]
     fig, axs = plt.subplots(2, 3, figsize=(11, 6), squeeze=False)
     for ax, col in zip(axs.flat, cols, strict=False):
         v = pd.to_numeric(runs[col], errors="coerce").dropna().to_numpy()
@@ -70,7 +71,8 @@ def ranking_figure(cell: dict, title: str):
     |rho| for a rank ranking)."""
     import matplotlib.pyplot as plt
 
-    cols = [c for c in FIGURE_COLUMNS if c in cell["sensitivity"]][:6]
+    cols = [c for c in FIGURE_COLUMNS if c in cell["sensitivity"]
+            and cell["sensitivity"][c]["axes"]][:6]
     names = list(cell["sensitivity"][cols[0]]["axes"]) if cols else []
     fig, ax = plt.subplots(figsize=(11, 4))
     width = 0.8 / max(len(names), 1)
@@ -100,7 +102,7 @@ def _cell_tables(cell: dict, table, n_cell) -> str:
         sens = cell["sensitivity"][col]
         key = "ST" if sens["method"].startswith("sobol") else "rho"
         rank = ", ".join(f"{n} ({_index(sens['axes'][n][key])})"
-                        for n in sens["ranking"][:3])
+                        for n in sens["ranking"][:3]) if d["n"] else without_text(d)
         rows.append([f"<code>{_e(col)}</code>", _e(d["unit"]), n_cell(d["mean"]),
                      n_cell(d["sd"]), n_cell(q["p05"]), n_cell(q["p50"]), n_cell(q["p95"]),
                      _e(rank)])

@@ -282,3 +282,27 @@ def test_a_figure_equal_to_round_off_is_not_ranked():
     varied = sensitivity(lhs, points[:n], 100.0 + points[:n, 0])
     assert varied["ranking"][0] == "models.nonlin.seal_drag_factor"
     assert varied["axes"]["models.nonlin.seal_drag_factor"]["rho"] == pytest.approx(1.0)
+
+
+def test_a_figure_every_run_lacks_beyond_every_bound_is_still_listed(data_dir):
+    """Every point slack (a take-up of 1 to 3 kg on the 60 m conveyor): the sag has no value
+    in any run, and the figure was left out of the distributions, so the reader never saw
+    that it was unbounded everywhere. It is listed with n 0 and the reason."""
+    from beltstudy.service.store.parquet import Store
+    from tests.service.conftest import store_finished
+
+    data = tiny_study("all-slack", grid={"friction_model": ["din"]}, sample={
+        "n": 8, "method": "lhs", "seed": 5,
+        "axes": {"takeup.mass_kg": {"dist": "uniform", "low": 1, "high": 3}}})
+    sid = store_finished(data_dir, data)
+    store = Store(data_dir)
+    runs = store.read_runs(sid)
+    assert runs["sag_max_pct"].isna().all() and (runs["t_min_kn"] <= 0).all()
+    out = summarise(store.read(sid)["study"], runs)
+    (cell,) = out["cells"]
+    sag = cell["figures"]["sag_max_pct"]
+    assert (sag["n"], sag["points"], sag["without_value"], sag["unbounded"]) == (0, 8, 8, 8)
+    assert sag["mean"] is None and sag["why"] == "slack, sag unbounded"
+    text = format_text(out).splitlines()
+    assert ("    n 0 of 8; 8 without a value: slack, sag unbounded (past every bound: every "
+            "quantile of all of them is unbounded)") in text
