@@ -1820,9 +1820,15 @@ def format_validation_error(exc: ValidationError, model: type[BaseModel], prefix
             if isinstance(got, float) and not math.isfinite(got):
                 msg = "Input should be a finite number"  # not a bound a NaN fails
             slip = UNIT_SLIPS.get(str(clean[-1])) if clean else None
-            if (slip is not None and isinstance(got, int | float) and not isinstance(got, bool)
-                    and math.isfinite(got) and slip[0](got)):
-                shown += f": {slip[1](got)}"
+            num = got
+            if isinstance(got, str):  # a CSV's cells are text: '253.15' under temperature_c
+                try:
+                    num = float(got)
+                except ValueError:
+                    num = None
+            if (slip is not None and isinstance(num, int | float) and not isinstance(num, bool)
+                    and math.isfinite(num) and slip[0](num)):
+                shown += f": {slip[1](num)}"
             hint = yaml11_hint(got, err["type"])
             if not hint and clean and isinstance(got, str):
                 hint = VALUE_HINTS.get((str(clean[-1]), got.strip().lower()), "")

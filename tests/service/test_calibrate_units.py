@@ -65,3 +65,18 @@ def test_a_load_with_a_decimal_comma_is_named_as_such(tmp_path, cell, number):
     ok = tmp_path / "ok.csv"
     ok.write_text('load,temperature_c,power_kw\n"1,0",10,378.8\n0.6,12,419\n')
     assert measurements_from_rows(read_measured(str(ok)))[0].load == [1.0, 0.0]
+
+
+def test_a_temperature_in_kelvin_under_its_celsius_header_is_told_the_celsius(tmp_path,
+                                                                            capsys):
+    """253.15 under temperature_c named the bound only ('less than or equal to 80 (got
+    '253.15')'): a CSV's cells are text, which the unit hint did not read."""
+    from beltstudy.service.cli import main
+    from tests.conftest import CONVEYORS
+
+    path = tmp_path / "plant.csv"
+    path.write_text("load,temperature_c,power_kw\n0.5,253.15,300\n1.0,293.15,600\n")
+    assert main(["calibrate", str(CONVEYORS / "slope-5pct.yaml"), "--measured", str(path),
+                 "--model", "din", "--fit", "f_carry"]) == 2
+    err = capsys.readouterr().err
+    assert "(got '253.15'): in degrees Celsius, -20 C if 253.15 is K" in err, err
