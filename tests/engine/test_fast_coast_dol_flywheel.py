@@ -81,8 +81,12 @@ def test_a_dol_coast_told_a_flywheel_coasts_five_wave_loops_with_it():
     t_cmd = t[np.flatnonzero(f > 0.5 * s["te_kn"])[-1]]
     v_run = float(np.mean(v[(t > t_cmd - 10.0) & (t <= t_cmd)]))
     assert v_run < 0.997 * 3.5  # below design speed by the coupling's and motor's slip
-    # the words take the mean speed at the command, which still swings a little about it
-    assert float(m.group(1)) == pytest.approx(v_run, rel=2e-3)
+    # the words take the running phase's low over the judged window (the last max(3 wave
+    # loop times, half the 30 s run) before the command), a little below the mean
+    window = (t >= t_cmd - max(3.0 * s["wave_loop_time_s"], 15.0)) & (t <= t_cmd + 0.05)
+    assert float(m.group(1)) == pytest.approx(float(v[window].min()), rel=5e-4)
+    assert float(m.group(1)) == pytest.approx(v_run, rel=1e-2)
+    v_run = float(m.group(1))
     target = 5.0 * loop_s * 1.02
     assert float(m.group(2)) == pytest.approx(target, rel=2e-3)  # pulley wraps add a little
     te = s["te_kn"] * 1e3

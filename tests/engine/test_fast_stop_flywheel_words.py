@@ -57,7 +57,14 @@ def test_a_fast_coast_names_the_flywheel_that_makes_it_five_wave_loops_long():
     # the vfd's speed loop runs the belt near design speed; the rigid-body coast runs from it to
     # 1 % of it (where the stop time ends) and is sized for 5 loops and 2 %
     v_run = float(m.group(1))
-    assert v_run == pytest.approx(3.0, rel=5e-3)  # the mean speed swings a little about it
+    assert v_run == pytest.approx(3.0, rel=1e-2)  # the mean speed swings a little about it
+    # it is the running phase's low over the judged window (the last max(3 wave loop times,
+    # half the 30 s run) before the stop command), not the crest the command may fall on
+    ts = r.timeseries
+    t, v = ts["t_s"].to_numpy(), ts["v_mean_m_s"].to_numpy()
+    t_cmd = 2.0 + 60.0 + 30.0  # rest, start, run (the defaults)
+    low = float(v[(t >= t_cmd - max(3.0 * s["wave_loop_time_s"], 15.0)) & (t <= t_cmd)].min())
+    assert v_run == pytest.approx(low, rel=5e-4)
     target = 1.02 * need
     m_need = target * te / (v_run - 0.03)
     assert float(m.group(2)) == pytest.approx(target, rel=2e-3)  # pulley wraps add a little
