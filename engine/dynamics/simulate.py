@@ -2329,6 +2329,9 @@ def _running_low(sys: System, out, r: dict, v_cmd: float | None) -> float | None
     cyc, t1, t_loop = sys.model.cycle, sys.stop_command_s, sys.wave_loop_time_s
     t0 = max(t1 - max(SETTLE_LOOPS * t_loop, 0.5 * cyc.t_run),
              cyc.t_pre + cyc.t_start + t_loop)
+    reached = float(r["start_ach"]) if "start_ach" in r else -1.0
+    if reached >= 0.0:  # a belt still climbing to design speed is not running yet
+        t0 = max(t0, cyc.t_pre + reached)
     m = (rec["t"] >= min(t0, t1)) & (rec["t"] <= t1)
     if not m.any():
         return v_cmd

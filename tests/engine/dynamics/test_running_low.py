@@ -38,3 +38,11 @@ def test_a_settled_belt_keeps_its_speed_at_the_command():
     sys, out, r = _run(lambda t: np.full_like(t, 4.0))
     assert _running_low(sys, out, r, 4.0) == 4.0
     assert _running_low(sys, out, r, None) is None
+
+
+def test_a_belt_still_climbing_is_read_from_the_time_it_reached_speed():
+    # climbing from 3.6 to 4.0 m/s until t = 95 s, then at 4.0: the climb is not running
+    sys, out, r = _run(lambda t: np.minimum(3.6 + 0.4 * (t - 85.0) / 10.0, 4.0))
+    assert _running_low(sys, out, r, 4.0) < 3.9  # without the reach time, the climb counts
+    r["start_ach"] = 95.0 - 2.0  # reached 99 % at 95 s (start_ach counts from the rest's end)
+    assert _running_low(sys, out, r, 4.0) > 0.99 * 4.0
