@@ -32,7 +32,7 @@ from beltstudy.service.api.models import (
     StudyStatus,
 )
 from beltstudy.service.door.parse import expect_kind
-from beltstudy.service.errors import DamagedParts, Invalid, Unavailable
+from beltstudy.service.errors import Damaged, DamagedParts, Invalid, Unavailable
 from beltstudy.service.store import query
 from beltstudy.service.studies import StudyService
 
@@ -66,6 +66,22 @@ def _download(df, format: str, name: str, headers: dict | None = None,
         return Response(query.to_csv(df), media_type="text/csv; charset=utf-8",
                         headers=headers)
     return Response(query.to_parquet(df, schema), media_type=PARQUET_TYPE, headers=headers)
+
+
+def _state(service: StudyService, study_id: str) -> dict:
+    """The study's status for a table's answer; {} where its document cannot be read (its
+    rows are still served, as before the state was added to them)."""
+    try:
+        return service.status(study_id)
+    except Damaged:
+        return {}
+
+
+def _state_header(st: dict) -> dict:
+    """``X-Study-State: running; done=2; total=4`` for a download ({} without a state)."""
+    if not st:
+        return {}
+    return {"X-Study-State": f"{st['state']}; done={st['done']}; total={st['total']}"}
 
 
 def _with_urls(status: dict) -> dict:
@@ -217,14 +233,14 @@ def get_runs(
         df = df[names]
     # the study's state beside its rows: while it runs the table is partial (a file says it
     # in X-Study-State, a JSON page in state, done and study_runs)
-    st = service.status(study_id)
+    st = _state(service, study_id)
     if format != "json":
         schema = service.store.runs_schema(study_id) if format == "parquet" else None
-        return _download(df, format, f"{study_id}-runs", schema=schema, headers={
-            "X-Study-State": f"{st['state']}; done={st['done']}; total={st['total']}"})
+        return _download(df, format, f"{study_id}-runs", schema=schema,
+                         headers=_state_header(st))
     page = df.iloc[offset : offset + limit if limit else None]
-    head = {"study_id": study_id, "state": st["state"], "done": st["done"],
-            "study_runs": st["total"], "total": int(len(df)), "offset": offset,
+    head = {"study_id": study_id, "state": st.get("state"), "done": st.get("done"),
+            "study_runs": st.get("total"), "total": int(len(df)), "offset": offset,
             "limit": limit, **query.unreadable_fields(study_id, bad)}
     to_json = query.rows_to_json if names is None else query.records_to_json
     if len(page) > STREAM_ROWS:
@@ -335,14 +351,13 @@ def get_accuracy(
     service: StudyService = Depends(get_service),
 ):
     acc, cols = service.accuracy(study_id)
-    st = service.status(study_id)
+    st = _state(service, study_id)
     if format != "json":
-        return _download(acc, format, f"{study_id}-accuracy", headers={
-            "X-Study-State": f"{st['state']}; done={st['done']}; total={st['total']}"})
+        return _download(acc, format, f"{study_id}-accuracy", headers=_state_header(st))
     study = service.study_doc(study_id).get("study") or {}
     return {
         "study_id": study_id,
-        "state": st["state"],
+        "state": st.get("state"),
         "sample": study.get("accuracy"),
         "total": int(len(acc)),
         "columns": query.records_to_json(cols),

@@ -23,7 +23,7 @@ from beltstudy.service.cli.console import ProgressBar, format_compare, format_st
 from beltstudy.service.cli.demo import run_demo
 from beltstudy.service.door.parse import expect_kind, load_mapping
 from beltstudy.service.door.studyfile import study_body
-from beltstudy.service.errors import Invalid, ServiceError, Unavailable
+from beltstudy.service.errors import Damaged, Invalid, ServiceError, Unavailable
 from beltstudy.service.settings import load_settings
 from beltstudy.service.store import query
 from beltstudy.service.store.parquet import Store
@@ -463,9 +463,13 @@ def cmd_results(args) -> int:
         # readable parts, naming any damaged one), as the service writes it: a file made
         # without a service reads as one made with it
         df, bad = service.store.read_runs_readable(args.id)
-        st = service.status(args.id)
-        doc = {"study_id": args.id, "state": st["state"], "done": st["done"],
-               "study_runs": st["total"], "total": int(len(df)), "offset": 0, "limit": None,
+        try:
+            st = service.status(args.id)
+        except Damaged:  # the rows are still written, as before the state was added
+            st = {}
+        doc = {"study_id": args.id, "state": st.get("state"), "done": st.get("done"),
+               "study_runs": st.get("total"), "total": int(len(df)), "offset": 0,
+               "limit": None,
                "runs": query.rows_to_json(df), **query.unreadable_fields(args.id, bad)}
         return json.dumps(doc, ensure_ascii=False, allow_nan=False,
                           separators=(",", ":")).encode()
