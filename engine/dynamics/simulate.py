@@ -947,6 +947,23 @@ def _stop_overspeed(sys: System, r: dict, out) -> list[str]:
             f"records): gravity outpulled what held it back; {fix} would avoid it"]
 
 
+def judged_from(sys: System, r: dict) -> tuple[float, float | None]:
+    """Where the running phase's judged window starts [s] and the time from the rest's end
+    the mean belt speed first reached 99 % of design speed (``start_ach``; negative: never;
+    None: not recorded). The window is the running phase's last half, at least its last
+    :data:`SETTLE_LOOPS` wave loop times, from one wave loop time after the ramp at the
+    earliest; and from the time the belt reached design speed, since a belt still climbing to
+    it at its drives' force limit is not running yet (a 30 m belt climbing from 1.27 to 2.0
+    m/s over the window was told its speed "still swings by 0.724 m/s"). The settling check
+    (:func:`running_warnings`) and the stop's flywheel (:func:`_running_low`) read it."""
+    cyc, t1, t_loop = sys.model.cycle, sys.stop_command_s, sys.wave_loop_time_s
+    t0 = max(t1 - max(SETTLE_LOOPS * t_loop, 0.5 * cyc.t_run), cyc.t_pre + cyc.t_start + t_loop)
+    reached = float(r["start_ach"]) if "start_ach" in r else None
+    if reached is not None and reached >= 0.0:
+        t0 = max(t0, cyc.t_pre + reached)
+    return t0, reached
+
+
 def running_warnings(sys: System, r: dict, out, names=None) -> list[str]:
     """The start's overspeed (the mean belt speed above :data:`OVERSPEED_FRACTION` of design
     speed before the stop command), the stop's (:func:`_stop_overspeed`) and a running phase
@@ -969,16 +986,7 @@ def running_warnings(sys: System, r: dict, out, names=None) -> list[str]:
     t_loop = sys.wave_loop_time_s
     # the judged window; a running phase shorter than SETTLE_LOOPS + 1 wave loop times is
     # judged from one wave loop time after the ramp on (what the stop starts from)
-    t_ok = cyc.t_pre + cyc.t_start + t_loop
-    t0 = max(t1 - max(SETTLE_LOOPS * t_loop, 0.5 * cyc.t_run), t_ok)
-    # a belt still climbing to design speed at its drives' force limit is not swinging: the
-    # swing is judged from the time the mean speed first reached 99 % of design speed, and a
-    # belt that never did is said so by the start's words (a 30 m belt at its torque limit,
-    # 1.27 to 2.0 m/s over the window, was told its speed "still swings by 0.724 m/s" and to
-    # try a slower speed loop)
-    reached = float(r["start_ach"]) if "start_ach" in r else None  # None: not recorded
-    if reached is not None and reached >= 0.0:
-        t0 = max(t0, cyc.t_pre + reached)
+    t0, reached = judged_from(sys, r)
     rec = out.rec[:int(r["nrec"])]
     t_end = float(rec["t"][-1]) if len(rec) else 0.0
     if t1 - t0 < 0.5 * t_loop or (int(r["status"]) != C.OK and t_end < t1):
@@ -2326,13 +2334,8 @@ def _running_low(sys: System, out, r: dict, v_cmd: float | None) -> float | None
     if v_cmd is None:
         return None
     rec = out.rec[:int(r["nrec"])]
-    cyc, t1, t_loop = sys.model.cycle, sys.stop_command_s, sys.wave_loop_time_s
-    t0 = max(t1 - max(SETTLE_LOOPS * t_loop, 0.5 * cyc.t_run),
-             cyc.t_pre + cyc.t_start + t_loop)
-    reached = float(r["start_ach"]) if "start_ach" in r else -1.0
-    if reached >= 0.0:  # a belt still climbing to design speed is not running yet
-        t0 = max(t0, cyc.t_pre + reached)
-    m = (rec["t"] >= min(t0, t1)) & (rec["t"] <= t1)
+    t1 = sys.stop_command_s
+    m = (rec["t"] >= min(judged_from(sys, r)[0], t1)) & (rec["t"] <= t1)
     if not m.any():
         return v_cmd
     return min(float(v_cmd), float(rec["v_mean"][m].min()))
