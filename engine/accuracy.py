@@ -49,6 +49,7 @@ from dataclasses import dataclass, field, replace
 from beltstudy.engine.conveyor import InputError, Scenario
 from beltstudy.engine.dynamics import DynamicsOptions
 from beltstudy.engine.results import DECIDING
+from beltstudy.engine.wording import gnum
 
 __all__ = [
     "RATIO", "FS_THREE", "FS_TWO", "FS_SPREAD", "P_FORMAL", "P_CLOSE", "P_MIN", "P_ASSUMED",
@@ -476,18 +477,18 @@ def _marginal(fe: FigureError | None, limit: float, unit: str, higher_passes: bo
     said = ["the verdict may flip with the mesh"]
     fine = fe.values[-1] if fe.values else None
     if fine is not None and finest:
-        said.append(f"{fine:.4g}{u} on {finest} elements")
+        said.append(f"{gnum(fine)}{u} on {finest} elements")
     conv = fe.converged
     if conv is not None and math.isfinite(conv):
         side = ("at the limit" if conv == limit else
                 "which passes" if (conv > limit) == higher_passes else "which fails")
-        said.append(f"converged estimate {conv:.4g}{u}, {side}")
+        said.append(f"converged estimate {gnum(conv)}{u}, {side}")
     if finest and finest_dt_s:
         said.append(f"a finer mesh and step (scenario.elements {2 * finest}, scenario.dt_s "
-                    f"{finest_dt_s / 2:.3g}) narrow the bar")
+                    f"{gnum(finest_dt_s / 2, 3)}) narrow the bar")
     elif finest:
         said.append(f"a finer mesh (scenario.elements {2 * finest}) narrows the bar")
-    return (f"marginal: {fe.name} {fe.value:.4g} against limit {limit:g} +- {fe.err:.3g}{u} "
+    return (f"marginal: {fe.name} {gnum(fe.value)} against limit {limit:g} +- {gnum(fe.err, 3)}{u} "
             f"({'; '.join(said)})")
 
 

@@ -57,6 +57,7 @@ from beltstudy.engine.conveyor import LOAD_MAX, Conveyor, parse_conveyor, sectio
 from beltstudy.engine.errors import InputError
 from beltstudy.engine.friction import get_model
 from beltstudy.engine.statics import solve_steady
+from beltstudy.engine.wording import gnum
 
 __all__ = ["Measurement", "Calibration", "calibrate", "measurements_from_rows", "RCOND",
            "MEASURED", "time_column_hint"]
@@ -258,7 +259,7 @@ def _check_rows(conv: Conveyor, rows: Sequence[Measurement]) -> list[str]:
             at = _at_speed(conv, m.speed_m_s, f"measured.{i}.")
         if m.speed_m_s is not None and m.speed_m_s > SPEED_OVER_DESIGN * conv.speed_m_s:
             raise InputError(
-                f"{m.speed_m_s:g} m/s is {m.speed_m_s / conv.speed_m_s:.3g} x the conveyor's "
+                f"{m.speed_m_s:g} m/s is {gnum(m.speed_m_s / conv.speed_m_s, 3)} x the conveyor's "
                 f"design speed {conv.speed_m_s:g} m/s, beyond the {SPEED_OVER_DESIGN:g} x no plant "
                 "runs a belt at: give the speed in m/s (1 ft/s = 0.3048 "
                 "m/s, 1 km/h = 1/3.6 m/s), or the conveyor's own speed_m_s",
@@ -309,12 +310,12 @@ def _row_fill(at: Conveyor, m: Measurement, i: int, load: float) -> list[str]:
     where = f"load {m.load if isinstance(m.load, str) else _load_text(m.load)} at {at.speed_m_s:g} m/s"
     if fill > FILL_MAX_PCT:
         raise InputError(
-            f"{where} fills the belt's cross-section to {fill:.3g} % (ISO 5048), beyond the "
+            f"{where} fills the belt's cross-section to {gnum(fill, 3)} % (ISO 5048), beyond the "
             f"{FILL_MAX_PCT:g} % no belt carries: check the row's load (a fraction of the "
             f"design {at.material.capacity_t_h:g} t/h) and speed [m/s]",
             field=f"measured.{i}.{'speed_m_s' if m.speed_m_s is not None else 'load'}")
     if fill > 100.0:
-        return [f"row {i} ({where}) fills the belt's cross-section to {fill:.3g} % (ISO 5048): "
+        return [f"row {i} ({where}) fills the belt's cross-section to {gnum(fill, 3)} % (ISO 5048): "
                 "the material spills past the belt's edges, so the belt did not carry that load "
                 "at that speed; check the row's load (a fraction of the design "
                 f"{at.material.capacity_t_h:g} t/h) and speed"]
@@ -356,14 +357,14 @@ def _check_magnitudes(conv: Conveyor, m: Measurement, i: int) -> None:
         for col in ("te_kn", "t_tight_kn"):
             if col in vals and abs(vals[col]) > fb:
                 raise InputError(
-                    f"{vals[col]:g} kN is more than the belt's breaking force {fb:.4g} kN "
+                    f"{vals[col]:g} kN is more than the belt's breaking force {gnum(fb)} kN "
                     f"({belt}): no belt carries it; give the force in kN (1 kN = 1000 N), "
                     "or the plant's belt in the conveyor file", field=f"measured.{i}.{col}")
         if "power_kw" in vals and abs(vals["power_kw"]) / v > fb:
             p = vals["power_kw"]
             raise InputError(
-                f"{p:g} kW at {v:g} m/s needs a peripheral force of {abs(p) / v:.4g} kN, more "
-                f"than the belt's breaking force {fb:.4g} kN ({belt}): no belt carries it; "
+                f"{p:g} kW at {v:g} m/s needs a peripheral force of {gnum(abs(p) / v)} kN, more "
+                f"than the belt's breaking force {gnum(fb)} kN ({belt}): no belt carries it; "
                 "give the power at the drive pulleys in kW (1 kW = 1000 W, 1 MW = 1000 kW)",
                 field=f"measured.{i}.power_kw")
     if "power_kw" in vals and "te_kn" in vals:
@@ -371,7 +372,7 @@ def _check_magnitudes(conv: Conveyor, m: Measurement, i: int) -> None:
         if abs(p / (te * v) - 1.0) > POWER_FORCE_MISMATCH:
             raise InputError(
                 f"{p:g} kW and te_kn {te:g} kN disagree: at {v:g} m/s the peripheral force "
-                f"{te:g} kN is {te * v:.4g} kW at the drive pulleys (P = Te v), "
+                f"{te:g} kN is {gnum(te * v)} kW at the drive pulleys (P = Te v), "
                 f"{100.0 * (p / (te * v) - 1.0):+.3g} % off, more than the "
                 f"{100.0 * POWER_FORCE_MISMATCH:g} % two plant readings differ by: check the "
                 "row (the same steady state, power at the pulleys not at the motors), or give "
@@ -659,7 +660,7 @@ def calibrate(conv: Conveyor, measured: Sequence[Measurement], model: str,
     notes = [(f"{', '.join(g)}: only act together on these data; " if len(g) > 1 else
               f"{g[0]}: changes {_INERT}; ") + "; ".join(
         f"{x} held at the value model {fm.name} computes for each row, its default "
-        f"({held_values[x]:.4g} at row 0)" if x in computed else f"{x} held at the start value"
+        f"({gnum(held_values[x])} at row 0)" if x in computed else f"{x} held at the start value"
         for x in g if x in held) for g in groups]
     if held_takeup:
         notes.append(held_takeup)
@@ -693,7 +694,7 @@ def calibrate(conv: Conveyor, measured: Sequence[Measurement], model: str,
     slips = _sign_slips(rows, cols, y, values)
     x_start = x0[[names.index(n) for n in free]]
     unit = _unit_slip(cols, y, model_values(x_start, free) if p else values, ", ".join(
-        f"{n} {v:.4g}" for n, v in zip(free, x_start, strict=True)) or "as given")
+        f"{n} {gnum(v)}" for n, v in zip(free, x_start, strict=True)) or "as given")
     if unit:
         notes.append(unit)
     first = [ks[0] for ks in obs]  # each reading's first value (a row's power before its Te)
@@ -749,7 +750,7 @@ def _collinear_note(free: Sequence[str], jac: np.ndarray) -> list[str]:
         return []
     a, b = (free[k] for k in np.argsort(-np.abs(vt[-1]))[:2])
     return [f"these data hardly tell {a} from {b}: the condition index of the fit's "
-            f"scaled sensitivities is {sv[0] / sv[-1]:.3g}, beyond {COLLINEAR_INDEX:g} (Belsley, "
+            f"scaled sensitivities is {gnum(sv[0] / sv[-1], 3)}, beyond {COLLINEAR_INDEX:g} (Belsley, "
             "Kuh and Welsch 1980: columns that strong a dependency joins), so a change of one "
             "is nearly made up by the other and their values and errors are loose together; "
             "readings over a wider range of what sets them (temperature, load, speed) "
@@ -824,11 +825,11 @@ def _value_notes(model: str, free: Sequence[str], x: np.ndarray, se: Sequence[fl
             continue
         if s is not None and s > abs(v):
             notes.append(f"{name} is poorly determined by these data: its standard error "
-                         f"({s:.3g}) exceeds its value ({v:.3g})")
+                         f"({gnum(s, 3)}) exceeds its value ({gnum(v, 3)})")
         lo, hi, src = PUBLISHED.get(model, {}).get(name, (-math.inf, math.inf, ""))
         if not lo <= v <= hi:
             notes.append(
-                f"{name} {v:.4g} lies {'above' if v > hi else 'below'} the published range "
+                f"{name} {gnum(v)} lies {'above' if v > hi else 'below'} the published range "
                 f"({src}; model {model}'s own check quotes it): a conveyor file whose "
                 "length or lift is not the plant's (a plant "
                 f"{'longer or higher' if v > hi else 'shorter or lower'} than the file) asks "
@@ -949,8 +950,8 @@ def _sign_slips(rows: Sequence[Measurement], cols: Sequence[tuple[int, str]], y:
         if abs(values[k]) < MISFIT_PCT / 100.0 * abs(y[k]):
             continue
         runs = "regenerates" if values[k] < 0 else "motors"
-        out.append(f"row {i} ({_state_text(rows[i])}): measured {col} {y[k]:.4g} has the "
-                   f"other sign than the fit's {values[k]:.4g} (the belt {runs} in that state "
+        out.append(f"row {i} ({_state_text(rows[i])}): measured {col} {gnum(y[k])} has the "
+                   f"other sign than the fit's {gnum(values[k])} (the belt {runs} in that state "
                    "by the model; power and Te are negative only where the drives "
                    "regenerate): check the row's sign (a meter or a column the other way "
                    "round) and fit again")
@@ -1030,7 +1031,7 @@ def _contradictions(rows: Sequence[Measurement], cols: Sequence[tuple[int, str]]
             i_lo, i_hi = sorted((cols[lo][0], cols[hi][0]))
             out.append(
                 f"rows {i_lo} and {i_hi} read one steady state ({_state_text(rows[i_lo])}) "
-                f"but their {col} differ by {100 * spread:.3g} % ({y[lo]:.4g} and {y[hi]:.4g}), "
+                f"but their {col} differ by {gnum(100 * spread, 3)} % ({gnum(y[lo])} and {gnum(y[hi])}), "
                 f"more than the {100 * REPLICATE_SPREAD:g} % two readings each good to "
                 f"{MISFIT_PCT:g} % can: at least one is not that state (its load, temperature, "
                 "speed or units); no parameter value meets both")
@@ -1068,12 +1069,12 @@ def _outliers(rows: Sequence[Measurement], cols: Sequence[tuple[int, str]], y: n
         if tk <= limit:
             continue
         side = "above" if y[k] > values[k] else "below"
-        shown = f"{tk:.3g}" if math.isfinite(tk) else "unbounded"
+        shown = f"{gnum(tk, 3)}" if math.isfinite(tk) else "unbounded"
         out.append(
-            f"row {i} ({_state_text(rows[i])}): measured {col} {y[k]:.4g} lies "
-            f"{100 * abs(y[k] - values[k]) / abs(values[k]):.3g} % {side} the fit "
-            f"({values[k]:.4g}; externally studentized residual {shown}, "
-            f"where {n} readings as consistent as the rest pass {limit:.3g} only 1 time in "
+            f"row {i} ({_state_text(rows[i])}): measured {col} {gnum(y[k])} lies "
+            f"{gnum(100 * abs(y[k] - values[k]) / abs(values[k]), 3)} % {side} the fit "
+            f"({gnum(values[k])}; externally studentized residual {shown}, "
+            f"where {n} readings as consistent as the rest pass {gnum(limit, 3)} only 1 time in "
             f"{1 / OUTLIER_ALPHA:.0f}): an outlier, and it pulls the fitted values; check the "
             "row (a steady state? its load, temperature, speed and units) and fit again "
             "without it if it is wrong")
@@ -1106,10 +1107,10 @@ def _leverage_notes(rows: Sequence[Measurement], cols: Sequence[tuple[int, str]]
         if h[k] <= max(LEVERAGE_HIGH, 2.0 * p / n):
             continue
         out.append(
-            f"row {i} ({_state_text(rows[i])}): its {col} {y[k]:.4g} carries a leverage of "
+            f"row {i} ({_state_text(rows[i])}): its {col} {gnum(y[k])} carries a leverage of "
             f"{h[k]:.2f} (the {n} readings' leverages sum to {p}, one per fitted name); the "
             "residuals are relative to each reading, so a small one (the largest reading is "
-            f"{big:.4g} in size) weighs most "
+            f"{gnum(big)} in size) weighs most "
             "and a meter error of a share of its full scale there moves the fitted values "
             "most, beyond their standard errors: check that reading, add readings at other "
             "loads or temperatures, or fit again without it to see how far the values move")
@@ -1198,7 +1199,7 @@ def _verdict(sol, at_bound: list[str], r: np.ndarray, model: str,
     suspect, exact, few, slips = doubts.suspect, doubts.exact, doubts.few, doubts.slips
     held = held.values
     rms = 100 * math.sqrt(float(r @ r) / len(r))
-    rms_text = f"{rms:.3g}" if rms < 1000 else f"{rms:.0f}"
+    rms_text = f"{gnum(rms, 3)}" if rms < 1000 else f"{rms:.0f}"
     check = ("Check the measured values (power at the drive pulleys [kW] or peripheral force "
              "[kN], negative only where the drives regenerate; each row's load and temperature) "
              "and the conveyor file "
@@ -1207,7 +1208,7 @@ def _verdict(sol, at_bound: list[str], r: np.ndarray, model: str,
         # readings a prefix step off (MW in a kW column): the likeliest cause, said first
         check = f"{doubts.unit} {check}"
     kept = "; ".join(f"{n} at the value model {model} computes for each row, its default"
-                     if n in computed else f"{n} at {v:.4g}" for n, v in (held or {}).items())
+                     if n in computed else f"{n} at {gnum(v)}" for n, v in (held or {}).items())
     together = "; ".join(" and ".join(g) for g in groups if len(g) > 1)
     inert = [g[0] for g in groups if len(g) == 1]
     cannot = "; ".join(([f"these data cannot tell {together} apart"] if together else []) + (

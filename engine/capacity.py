@@ -52,6 +52,7 @@ import numpy as np
 from beltstudy.engine.conveyor import FILL_MAX_PCT, Conveyor, register_check
 from beltstudy.engine.drives import down3, up3
 from beltstudy.engine.errors import InputError
+from beltstudy.engine.wording import gnum
 
 __all__ = [
     "check_fill",
@@ -255,7 +256,7 @@ def check_fill(conv: Conveyor, prefix: str = "") -> None:
                       f"{speed:g} m/s)")
         raise InputError(
             f"{prefix}material.capacity_t_h: {conv.material.capacity_t_h:g} t/h fills the "
-            f"belt's cross-section to {fill:.3g} % at {conv.speed_m_s:g} m/s; at most "
+            f"belt's cross-section to {gnum(fill, 3)} % at {conv.speed_m_s:g} m/s; at most "
             f"{FILL_MAX_PCT:g} % (beyond that the material heaps far above the belt's edges, "
             f"no belt carries it): {levers}")
 
@@ -281,7 +282,7 @@ def check_middle_roll(conv: Conveyor, prefix: str = "") -> None:
             f"not shorter than the {width:g} m belt (belt.width_m): the belt lies flat on it "
             f"and never reaches the wing rolls, so the set troughs nothing at trough_deg "
             f"{ic.trough_deg:g}; give the set's middle roll (leave it out for "
-            f"{usual:.3g} m, DIN 22107 for this width), or a wider belt, or rolls: 1 with "
+            f"{gnum(usual, 3)} m, DIN 22107 for this width), or a wider belt, or rolls: 1 with "
             "trough_deg: 0 for a flat belt")
 
 
@@ -320,7 +321,7 @@ def incline_warning(conv: Conveyor, loop) -> str:
             fix = (f"at least {math.ceil(need):.0f} m for that lift" if math.isfinite(need)
                    else "a level section")
             steep.append(f"profile.{i} {'climbs' if p.lift_m > 0 else 'falls'} {delta:.1f} deg "
-                         f"({p.lift_m:.4g} m over {p.length_m:.4g} m, {x0:.0f} to {x1:.0f} m from "
+                         f"({gnum(p.lift_m)} m over {gnum(p.length_m)} m, {x0:.0f} to {x1:.0f} m from "
                          f"the tail; length_m {fix})")
         x0 = x1
     if not steep:

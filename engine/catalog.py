@@ -14,6 +14,7 @@ from functools import cache
 from importlib import resources
 
 from beltstudy.engine.errors import InputError
+from beltstudy.engine.wording import gnum
 
 __all__ = [
     "BeltData",
@@ -310,16 +311,16 @@ def _class_note(idler_set, row: IdlerData, width_m: float, field: str) -> str:
                              idler_set.roll_diameter_m)) is not None]
     cols = []  # (column, words with the value taken, unit of the classes' range)
     if idler_set.set_rotating_mass_kg is None:
-        cols.append(("rotating_mass_kg_m", f"rotating mass {row.rotating_mass_kg_m * width_m:.3g}"
-                     f" kg a set ({row.rotating_mass_kg_m:.3g} kg per m of belt width", "kg/m"))
+        cols.append(("rotating_mass_kg_m", f"rotating mass {gnum(row.rotating_mass_kg_m * width_m, 3)}"
+                     f" kg a set ({gnum(row.rotating_mass_kg_m, 3)} kg per m of belt width", "kg/m"))
     if idler_set.seal_drag_n is None:
-        cols.append(("seal_drag_n", f"seal drag {row.seal_drag_n:.3g} N a set (", "N"))
+        cols.append(("seal_drag_n", f"seal drag {gnum(row.seal_drag_n, 3)} N a set (", "N"))
     said, differ = [], False
     for col, taken, unit in cols:
         values = [getattr(r, col) for r in rows]
         differ |= max(values) - min(values) > CLASS_SPREAD_NOTE * getattr(row, col)
         sep = "; " if taken.endswith("width") else ""
-        said.append(f"{taken}{sep}{min(values):.3g} to {max(values):.3g} {unit} over the "
+        said.append(f"{taken}{sep}{gnum(min(values), 3)} to {gnum(max(values), 3)} {unit} over the "
                     "classes)")
     if not differ:
         return ""
@@ -343,11 +344,11 @@ def idler_note(idler_set, width_m: float, field: str) -> str:
         return "" if idler_set.cema_class else _class_note(idler_set, row, width_m, field)
     took = []
     if idler_set.set_rotating_mass_kg is None:
-        took.append(f"rotating mass {row.rotating_mass_kg_m * width_m:.3g} kg a set "
-                    f"({row.rotating_mass_kg_m:.3g} kg per m of belt width, the shell's "
+        took.append(f"rotating mass {gnum(row.rotating_mass_kg_m * width_m, 3)} kg a set "
+                    f"({gnum(row.rotating_mass_kg_m, 3)} kg per m of belt width, the shell's "
                     "mass linear in D)")
     if idler_set.seal_drag_n is None:
-        took.append(f"seal drag {row.seal_drag_n:.3g} N a set (the seals' torque A_i D "
+        took.append(f"seal drag {gnum(row.seal_drag_n, 3)} N a set (the seals' torque A_i D "
                     "linear in D)")
     return (f"note: {field}.roll_diameter_m {idler_set.roll_diameter_m:g} m is no catalogue "
             f"row: {' and '.join(took)} {row.source} (engine/data/idlers.csv), "

@@ -42,6 +42,7 @@ import numpy as np
 from beltstudy.engine.catalog import _rows
 from beltstudy.engine.drives import apart
 from beltstudy.engine.loop import G, Loop, Pulley
+from beltstudy.engine.wording import gnum
 
 __all__ = [
     "LUMP_MAX_KN_M",
@@ -553,11 +554,11 @@ def runback_note(conv, loop: Loop, friction_n: float) -> str:
     torque = holdback_torque_nm(pull, friction_n, loop.pulley_at(loop.i_head).diameter_m)
     if torque <= 0.0:
         return ""
-    return (f"note: the loaded belt can run back when it stops: its lift pulls {pull / 1e3:.3g} kN "
-            f"back against {HOLDBACK_FRICTION_SHARE * friction_n / 1e3:.3g} kN (half its "
+    return (f"note: the loaded belt can run back when it stops: its lift pulls {gnum(pull / 1e3, 3)} kN "
+            f"back against {gnum(HOLDBACK_FRICTION_SHARE * friction_n / 1e3, 3)} kN (half its "
             "running resistance without the feed, CEMA's backstop rule) and nothing holds it "
             "(holdback: false, no brake with hold: true): a holdback on the head pulley of at "
-            f"least {torque / 1e3:.3g} kNm (holdback: true) or a holding brake would avoid it")
+            f"least {gnum(torque / 1e3, 3)} kNm (holdback: true) or a holding brake would avoid it")
 
 
 def holding_warning(conv, loop: Loop, friction_n: float) -> str:
@@ -582,11 +583,11 @@ def holding_warning(conv, loop: Loop, friction_n: float) -> str:
     way = "forward (downhill)" if pull < 0.0 else "back"
     names = ", ".join(f"brakes.{i} {float(b.force_kn):g} kN" for i, b in holding)
     return (f"the holding brakes cannot hold the loaded belt at rest: {names} give "
-            f"{given / 1e3:.4g} kN in all against its net gravity pull {abs(pull) / 1e3:.4g} kN "
-            f"less {credit / 1e3:.3g} kN (half its running resistance without the feed, CEMA's "
-            f"backstop rule), {need / 1e3:.4g} kN, so it would creep {way} once stopped; "
+            f"{gnum(given / 1e3)} kN in all against its net gravity pull {gnum(abs(pull) / 1e3)} kN "
+            f"less {gnum(credit / 1e3, 3)} kN (half its running resistance without the feed, CEMA's "
+            f"backstop rule), {gnum(need / 1e3)} kN, so it would creep {way} once stopped; "
             f"holding brakes of at least {math.ceil(need / 1e2) / 10:g} kN in all (force_kn: "
-            f"auto sizes them {HOLD_MARGIN:g} x the pull, {HOLD_MARGIN * abs(pull) / 1e3:.4g} kN)"
+            f"auto sizes them {HOLD_MARGIN:g} x the pull, {gnum(HOLD_MARGIN * abs(pull) / 1e3)} kN)"
             + (" or a holdback (holdback: true)" if pull > 0.0 else "") + " would avoid it")
 
 
@@ -678,7 +679,7 @@ def input_notes(conv, loop: Loop, feed_n: float, c_factor: float | None = None) 
             # (0.1 sized a 13,327 kW motor for a 1.2 MW belt, said as ok)
             notes.append(f"note: drives.{i}.efficiency {d.efficiency:g} is below a conveyor "
                          "drive train's (0.85-0.97: helical or bevel-helical gear units and a "
-                         f"coupling; docs/drives.md), so the motor takes {1.0 / d.efficiency:.3g} "
+                         f"coupling; docs/drives.md), so the motor takes {gnum(1.0 / d.efficiency, 3)} "
                          "x its pulley's power" + (
                              " (and the auto rated power grows by as much)"
                              if d.rated_power_kw is None else ""))
@@ -687,18 +688,18 @@ def input_notes(conv, loop: Loop, feed_n: float, c_factor: float | None = None) 
     for field, v0 in _loading_speeds(conv) if loaded else []:
         if c_factor is not None and v0 != 0.0:
             notes.append(f"note: {field} {v0:g} m/s is not read: DIN 22101's secondary "
-                         f"resistance factor C = {c_factor:.3g} holds the feed as a usual "
+                         f"resistance factor C = {gnum(c_factor, 3)} holds the feed as a usual "
                          "loading at rest (the models that sum the feed, cema, cmod, nonlin "
                          "and visco, read it; din does below 80 m without models.din.c)")
         elif v0 > v:
             notes.append(f"note: {field} {v0:g} m/s is above the belt speed {v:g} m/s: the "
                          "material fed pushes the belt (DIN 22101 F_bA = I_m (v - v0) below "
-                         f"0: the feed part of Te is {feed_n / 1e3:.3g} kN)")
+                         f"0: the feed part of Te is {gnum(feed_n / 1e3, 3)} kN)")
         elif v0 < 0.0:
             skirts = any(f.skirt_length_m > 0.0 for f in conv.material.feed or [])
             notes.append(f"note: {field} {v0:g} m/s is against the belt's travel: the belt "
                          "stops the material, then accelerates it (F_bA = I_m (v - v0), the "
-                         f"feed part of Te {feed_n / 1e3:.3g} kN)" + (
+                         f"feed part of Te {gnum(feed_n / 1e3, 3)} kN)" + (
                              ", and the skirts' friction while it accelerates (ISO 5048 F_f, "
                              "for 0 <= v0 < v, summed by din below 80 m) is that from rest, "
                              "a lower bound" if skirts else ""))
@@ -767,14 +768,14 @@ def _short_curve_notes(conv) -> list[str]:
         room = min(sec.length_m - (0.5 * curve_arc_m(judged, i - 1) if i else 0.0),
                    nxt.length_m - 0.5 * curve_arc_m(judged, i + 1))
         head = (f"note: profile.{i}.curve_radius_m {sec.curve_radius_m:g} m: the grades turn "
-                f"by {math.degrees(turn):.3g} deg ({grades}), so its arc is {arc:.3g} m, "
+                f"by {gnum(math.degrees(turn), 3)} deg ({grades}), so its arc is {gnum(arc, 3)} m, "
                 f"shorter than the idler pitch {pitch:g} m: at most one idler set stands on it "
                 "and the belt bends there as at a kink, not round R, so ")
         radius = judged[i].curve_radius_m
         if radius is not None:
             # judged as the tightest bend the sets give (Conveyor.short_curve_radius_m)
             notes.append(
-                head + f"it is judged as a curve of S / |delta| = {radius:.4g} m, whose arc "
+                head + f"it is judged as a curve of S / |delta| = {gnum(radius)} m, whose arc "
                 "spans one pitch (the turn taken on one idler set: its resultant T |delta| "
                 "against the belt's weight over a pitch, as that radius judges it); a radius "
                 f"of at least {r_span:.0f} m is a curve of its own")
@@ -782,7 +783,7 @@ def _short_curve_notes(conv) -> list[str]:
         if r_span > CURVE_RADIUS_MAX_M:
             fix = (f"the turn is too small for any curve: no radius up to "
                    f"{CURVE_RADIUS_MAX_M:.0f} m spans a pitch (S / |delta| = "
-                   f"{pitch / turn:.3g} m; if the grades should differ, check lift_m)")
+                   f"{gnum(pitch / turn, 3)} m; if the grades should differ, check lift_m)")
         elif 0.5 * r_span * turn > room:
             fix = (f"the turn is too small for any curve on these sections: one whose arc "
                    f"spans a pitch, R >= {r_span:.0f} m (S / |delta|), does not fit them")

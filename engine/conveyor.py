@@ -32,6 +32,7 @@ from pydantic import (
 from beltstudy.engine.errors import InputError
 from beltstudy.engine.results import MAX_CURVES, MAX_DRIVES, MAX_HCURVES
 from beltstudy.engine.textfile import read_text
+from beltstudy.engine.wording import gnum
 
 __all__ = [
     "InputError",
@@ -358,10 +359,10 @@ class ProfileSection(_Model):
             if turn_deg > HCURVE_TURN_MAX_DEG:
                 raise ValueError(
                     f"horizontal_radius_m ({self.horizontal_radius_m:g} m) over length_m "
-                    f"({self.length_m:g} m) turns the belt {turn_deg:.4g} deg (L / R), more "
+                    f"({self.length_m:g} m) turns the belt {gnum(turn_deg)} deg (L / R), more "
                     f"than a full turn ({HCURVE_TURN_MAX_DEG:g} deg): an arc of constant "
                     "radius longer than 2 pi R comes back over itself; give a radius of at "
-                    f"least {self.length_m / math.radians(HCURVE_TURN_MAX_DEG):.4g} m "
+                    f"least {gnum(self.length_m / math.radians(HCURVE_TURN_MAX_DEG))} m "
                     "(length_m / 2 pi) or a shorter section")
         return self
 
@@ -379,7 +380,7 @@ def degrees_not_radians(v: float, bound: float, what: str, practice: str) -> flo
     if 0.0 < v < bound:
         # as radians, a value whose degrees are under the bound too is no real angle either
         # (wrap_deg 1e-300 was told to write 5.73e-299 deg)
-        hint = (f"{v:g} reads as radians, {math.degrees(v):.4g} deg: write that"
+        hint = (f"{v:g} reads as radians, {gnum(math.degrees(v))} deg: write that"
                 if math.degrees(v) >= bound else f"give the {what} in degrees")
         raise ValueError(
             f"the {what} is in degrees ({practice}): {v:g} deg is no real {what}; {hint}")
@@ -930,7 +931,7 @@ class Conveyor(_Model):
             if s.count is not None and not 0.1 <= s.pitch_m(self.length_m) <= 20.0:
                 raise ValueError(
                     f"idlers.{strand}.count: {s.count} sets over {self.length_m:g} m is a pitch "
-                    f"of {s.pitch_m(self.length_m):.3g} m, outside 0.1 to 20 m: count the sets "
+                    f"of {gnum(s.pitch_m(self.length_m), 3)} m, outside 0.1 to 20 m: count the sets "
                     f"along the whole route ({self.length_m / 20.0:.0f} to "
                     f"{self.length_m / 0.1:.0f} here)")
         return self
@@ -1060,7 +1061,7 @@ def _check_feed(conv: Conveyor) -> None:
                              f"the skirt boards is not less than the belt width "
                              f"{conv.belt.width_m:g} m: the boards stand on the belt, inside its "
                              f"edges; give less (leave it out for two thirds of the width, "
-                             f"{SKIRT_WIDTH_SHARE * conv.belt.width_m:.3g} m)")
+                             f"{gnum(SKIRT_WIDTH_SHARE * conv.belt.width_m, 3)} m)")
         if f.skirt_width_m is not None and f.skirt_length_m == 0.0:
             raise ValueError(f"material.feed.{i}.skirt_width_m: give skirt_length_m too (no "
                              "skirts without a length)")
@@ -1077,7 +1078,7 @@ def _check_feed(conv: Conveyor) -> None:
                     f"material.feed.{i}.skirt_width_m: {f.skirt_width_m:g} m between the skirt "
                     "boards makes their friction infinite (ISO 5048: F_gL grows as 1 / b_1^2); "
                     "give the clear width between the boards (leave it out for two thirds of "
-                    f"the belt width, {SKIRT_WIDTH_SHARE * conv.belt.width_m:.3g} m)")
+                    f"the belt width, {gnum(SKIRT_WIDTH_SHARE * conv.belt.width_m, 3)} m)")
         for j in range(i):
             if abs(feed[j].at_m - f.at_m) < 1e-6:
                 raise ValueError(f"material.feed.{i}.at_m: {f.at_m:g} m is also "
@@ -1116,7 +1117,7 @@ def _check_along(conv: Conveyor) -> None:
                          f"{2.0 * tu.travel_m:g} m of belt in the take-up loop, more than the "
                          f"whole belt loop ({2.0 * L:g} m, twice the {L:g} m route); give at "
                          f"most {L:g} m (or leave it out: 1.5 % of the length, "
-                         f"{0.015 * L:.3g} m)")
+                         f"{gnum(0.015 * L, 3)} m)")
 
 
 def _drives_off_hcurves(conv: Conveyor) -> None:
@@ -1562,7 +1563,7 @@ UNIT_SLIPS = {
                    lambda v: f"a fraction, {v / 100:g} if {v:g} is %"),
     # a temperature in kelvin that is one in the range read in degrees Celsius
     "temperature_c": (lambda v: TEMPERATURE_MIN_C + 273.15 <= v <= TEMPERATURE_MAX_C + 273.15,
-                      lambda v: f"in degrees Celsius, {v - 273.15:.4g} C if {v:g} is K"),
+                      lambda v: f"in degrees Celsius, {gnum(v - 273.15)} C if {v:g} is K"),
     **{name: (lambda v: 0.0 < v < COVER_MIN_MM,
               lambda v: f"in millimetres, {v * 1000:g} mm if {v:g} is m")
        for name in ("top_cover_mm", "bottom_cover_mm")},

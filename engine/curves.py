@@ -50,6 +50,7 @@ import numpy as np
 from beltstudy.engine import checks
 from beltstudy.engine.capacity import middle_roll_length_m, trough_segments
 from beltstudy.engine.loop import CARRY, RETURN, Curve, G, Loop
+from beltstudy.engine.wording import gnum
 
 __all__ = ["liftoff_tension_n", "liftoff_limits_n", "convex_radius_min_m",
            "convex_idler_warnings", "steady_checks", "transient_liftoff"]
@@ -583,9 +584,9 @@ def transient_liftoff(loop: Loop, segs, t_start_end_s: float, t_stop_cmd_s: floa
             t_need = start_time_s * float(need[i_need])
             room = float(lim_c[lifts][i_need] - run_c[lifts][i_need])
             fixes.insert(0, f"a start of about {t_need:.0f} s (start.time_s; rigid-body "
-                            f"estimate: running leaves {room / 1e3:.4g} kN below the lift-off "
-                            f"tension {lim_c[lifts][i_need] / 1e3:.4g} kN there, "
-                            f"{100.0 * room / lim_c[lifts][i_need]:.3g} %)")
+                            f"estimate: running leaves {gnum(room / 1e3)} kN below the lift-off "
+                            f"tension {gnum(lim_c[lifts][i_need] / 1e3)} kN there, "
+                            f"{gnum(100.0 * room / lim_c[lifts][i_need], 3)} %)")
         elif p == 2 and not runs_over:
             fixes.insert(0, softer_stop)
         elif p == 3:
@@ -721,7 +722,7 @@ def _junction_words(group: list[dict]) -> str:
              f"profile[{first['i']}] to profile[{last['i'] + 1}]; the tightest at "
              f"{worst['at_m']:.0f} m")
     head = (f"grade change without a vertical curve {where}, {worst['kind']}, the grade "
-            f"turning by {math.degrees(abs(worst['turn'])):.3g} deg): read as the circle through "
+            f"turning by {gnum(math.degrees(abs(worst['turn'])), 3)} deg): read as the circle through "
             f"the survey points there, radius {worst['radius_m']:.0f} m, ")
     need = ("a lower tension there (no radius keeps the edge within it)"
             if not math.isfinite(worst["need_m"]) else

@@ -57,6 +57,7 @@ from beltstudy.engine.stopgrip import (
     pulley_name,
     takeup_at_least,
 )
+from beltstudy.engine.wording import gnum
 
 __all__ = ["auto_sizes", "summary_fields", "RATED_POWER_FACTOR", "HOLD_MARGIN",
            "MOTOR_INERTIA_SHARE", "moving_mass_kg", "rotating_parts", "RotatingParts",
@@ -312,18 +313,18 @@ def brake_forces(conv: Conveyor, scenario: Scenario, total_mass_kg: float, te_n:
                 shared = False
                 if steady is not None:
                     each, shared = _hold_shared_by_grip(conv, steady, each)
-                note = (f"auto brake force {hold_n / 1e3:.4g} kN is set by holding the loaded "
+                note = (f"auto brake force {gnum(hold_n / 1e3)} kN is set by holding the loaded "
                         f"belt at rest ({HOLD_MARGIN:g} x the net gravity pull "
-                        f"{pull_n / 1e3:.4g} kN), not by the stop time "
+                        f"{gnum(pull_n / 1e3)} kN), not by the stop time "
                         f"{scenario.stop.time_s:g} s ("
-                        + (f"which needs {stop_n / 1e3:.4g} kN" if stop_n > 0.0 else
+                        + (f"which needs {gnum(stop_n / 1e3)} kN" if stop_n > 0.0 else
                            "which needs none: the belt coasts to rest within it on its own "
                            "resistances")
                         + ")"
                         + (", shared by the braked pulleys' grip in the stop (an equal share "
                            "is beyond one pulley's grip, the others have room)" if shared
                            else "")
-                        + f": the rigid-body brake stop then takes about {t_gives:.3g} s")
+                        + f": the rigid-body brake stop then takes about {gnum(t_gives, 3)} s")
                 if steady is not None:
                     note += _holding_grip(conv, steady, each)
     if scenario.stop.mode == "brake" and steady is not None:
@@ -378,13 +379,13 @@ def _within_grip(conv: Conveyor, scenario: Scenario, steady: SteadyResult, each:
         # holding floor sets the force, which is said as that chain, not as a stop force
         # smaller than the holding one
         return forces, "holding", (
-            f"auto brake force {hold_n / 1e3:.4g} kN is set by holding the loaded belt at rest "
+            f"auto brake force {gnum(hold_n / 1e3)} kN is set by holding the loaded belt at rest "
             f"({HOLD_MARGIN:g} x the net gravity pull), not by the stop time "
             f"{scenario.stop.time_s:g} s: that needs "
-            f"{(wanted + sum(fixed.values())) / 1e3:.4g} kN, beyond the grip of {where} in "
-            f"the stop ({total / 1e3:.4g} kN with the fall of its slack side doubled, the "
+            f"{gnum((wanted + sum(fixed.values())) / 1e3)} kN, beyond the grip of {where} in "
+            f"the stop ({gnum(total / 1e3)} kN with the fall of its slack side doubled, the "
             "undamped bound), and held to that grip it would fall below the holding force; "
-            f"the holding force {hold_n / 1e3:.4g} kN is beyond the grip too, so the pulley "
+            f"the holding force {gnum(hold_n / 1e3)} kN is beyond the grip too, so the pulley "
             "may slide (the run's slip check says): "
             + _hold_fix(conv, steady, takeup=_takeup_words(conv, walk, lambda w: sum(
                 grip_limits(w, nodes, fixed, wanted)[0]) + sum(fixed.values())
@@ -392,11 +393,11 @@ def _within_grip(conv: Conveyor, scenario: Scenario, steady: SteadyResult, each:
     t_gives = brake_stop_time(m, v, te, total, delay, ramp, curve)
     asked = float(scenario.stop.time_s)
     where = ", ".join(dict.fromkeys(pulley_name(conv, steady.loop, n) for n in nodes))
-    note = (f"auto brake force {total / 1e3:.4g} kN is set by the grip of {where} in the "
+    note = (f"auto brake force {gnum(total / 1e3)} kN is set by the grip of {where} in the "
             f"stop (the capstan limit at the slack-side tension of the stop, its fall "
             f"doubled for the stop's fronts), not by the stop time {asked:g} s (which needs "
-            f"{(wanted + sum(fixed.values())) / 1e3:.4g} kN): "
-            + (f"the rigid-body brake stop then takes about {t_gives:.3g} s"
+            f"{gnum((wanted + sum(fixed.values())) / 1e3)} kN): "
+            + (f"the rigid-body brake stop then takes about {gnum(t_gives, 3)} s"
                if math.isfinite(t_gives) else "the belt does not stop on it")
             + f"; the stop time {asked:g} s would be met by "
             + grip_remedies(conv, steady, walk, nodes, fixed, each, forces))
@@ -476,14 +477,14 @@ def _given_grip(conv: Conveyor, steady: SteadyResult, auto_n: list[float] | None
             low, f = walk.slack_n(node, {**fixed, node: 0.0})
             euler = steady.loop.pulley_at(node).euler
             said = (f"{name} passes no brake force in the stop: unbraked, its slack side "
-                    f"already falls to {low / 1e3:.3g} kN (its fall doubled), a grip of "
-                    f"{max(low, 0.0) * (euler - 1.0) / 1e3:.3g} kN against the "
-                    f"{abs(f) / 1e3:.3g} kN that slows its own shell and shaft, so by that bound "
-                    f"the belt slides on it at any brake force, the {force / 1e3:.4g} kN set "
+                    f"already falls to {gnum(low / 1e3, 3)} kN (its fall doubled), a grip of "
+                    f"{gnum(max(low, 0.0) * (euler - 1.0) / 1e3, 3)} kN against the "
+                    f"{gnum(abs(f) / 1e3, 3)} kN that slows its own shell and shaft, so by that bound "
+                    f"the belt slides on it at any brake force, the {gnum(force / 1e3)} kN set "
                     f"({field}) too")
         else:
-            said = (f"{name} passes at most {grip / 1e3:.4g} kN of brake force in the stop "
-                    f"against the {force / 1e3:.4g} kN set ({field})")
+            said = (f"{name} passes at most {gnum(grip / 1e3)} kN of brake force in the stop "
+                    f"against the {gnum(force / 1e3)} kN set ({field})")
         need = _bisect_up(lambda t, n=node: _given_room_n(walk.at_takeup(t), n, given, nodes,
                                                            auto_wanted) >= 0.0,
                           walk.takeup_n, 100.0 * walk.takeup_n + 1e6)
@@ -541,11 +542,11 @@ def _holding_grip(conv: Conveyor, steady: SteadyResult, each: list[float]) -> st
     parts = []
     for n in short:
         grip = grips[n]
-        passes = (f"it passes at most {grip / 1e3:.4g} kN" if grip > 0.0 else
+        passes = (f"it passes at most {gnum(grip / 1e3)} kN" if grip > 0.0 else
                   "unbraked, its slack side already falls so far that it passes no brake "
                   "force")
         parts.append(f"{pulley_name(conv, steady.loop, n)} ({passes} against the "
-                     f"{acting[n] / 1e3:.4g} kN set on it)")
+                     f"{gnum(acting[n] / 1e3)} kN set on it)")
     said = (f"; this force is beyond the grip of {' and of '.join(parts)} in the stop (with "
             "the fall of the slack side doubled, the undamped bound), which may slide (the "
             "run's slip check says): ")

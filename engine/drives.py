@@ -47,6 +47,8 @@ from __future__ import annotations
 import math
 from typing import TYPE_CHECKING
 
+from beltstudy.engine.wording import gnum
+
 if TYPE_CHECKING:  # the conveyor model, for the annotations only
     from beltstudy.engine.conveyor import Conveyor
 
@@ -155,7 +157,7 @@ def watts_notes(conv: Conveyor, te_n: float, resistance_n: float) -> list[str]:
                 f"is {ratio:,.0f} x the {figures(need)} kW an auto size installs for drive "
                 f"{i + 1} ({d.where}: {RATED_POWER_FACTOR:g} x the motor power of its share "
                 f"{d.share:g} of the larger of |Te| and the running resistance, "
-                f"{max(abs(te_n), resistance_n) / 1e3:.3g} kN, x {conv.speed_m_s:g} m/s "
+                f"{gnum(max(abs(te_n), resistance_n) / 1e3, 3)} kN, x {conv.speed_m_s:g} m/s "
                 f"through its efficiency {float(d.efficiency):g}); "
                 f"rated_power_kw is in kW: if it was written in W, it is "
                 f"{figures(float(d.rated_power_kw) / 1e3)} kW")
@@ -234,7 +236,7 @@ def figures(value: float, thousands: bool = False) -> str:
 def _rating(kw: float) -> str:
     """A rated power in words [kW]: as :func:`figures`, with three significant figures below
     10 kW, so a rating given as 1.25 reads 1.25 (it read 1.2)."""
-    return f"{kw:.3g}" if 0.0 < abs(kw) < 10.0 else figures(kw)
+    return f"{gnum(kw, 3)}" if 0.0 < abs(kw) < 10.0 else figures(kw)
 
 
 def apart(value: float, limit: float, decimals: int = 2, rtol: float = 1e-9
@@ -325,7 +327,7 @@ def _rate_within(motor: str, what: str, force_n: float) -> str:
     the belt's waves and swing, which a longer start or stop would not remove."""
     longer = "start" if what.startswith("start") else "stop"
     # inside the motor's brackets, so the caller's "would avoid it" follows the motor
-    return (f"{motor[:-1]}; the {what} ({force_n / 1e3:.3g} kN on this drive) keeps within "
+    return (f"{motor[:-1]}; the {what} ({gnum(force_n / 1e3, 3)} kN on this drive) keeps within "
             "the rating, so the force above it comes from the belt's waves and swing, which a "
             f"longer {longer} would not remove)")
 
@@ -359,7 +361,7 @@ def _swung_start(start_s: float, fmax: float, f_run: float, f_acc: float, rated:
     if swung <= need:
         return ""
     return (f", about {swung} s with the run's own peak above its running force "
-            f"({(fmax - f_run) / 1e3:.4g} kN against the rigid body's {f_acc / 1e3:.4g} kN) "
+            f"({gnum((fmax - f_run) / 1e3)} kN against the rigid body's {gnum(f_acc / 1e3)} kN) "
             "scaled as 1 / t: the belt's swing about the rigid body, which that estimate "
             "leaves out, unless the peak is the hand-over from rest (its time above); rerun "
             "to check")
@@ -433,19 +435,19 @@ def transient_checks(names, drv, rated_n, limit_n, vfd, speed_m_s: float, start_
         split = (f" ({over_s - over_stop:.1f} s in the start and run, {over_stop:.1f} s in the "
                  "stop)" if over_stop > 0.0 else "")
         if fmax > rated:
-            said = (f"{name} was above its rated force ({rated / 1e3:.4g} kN) for {_seconds(over_s)} "
+            said = (f"{name} was above its rated force ({gnum(rated / 1e3)} kN) for {_seconds(over_s)} "
                     f"of the cycle{split}, at most {pct:.0f} % over its rating "
-                    f"({fmax / 1e3:.4g} kN at t = {float(d['fmax_t']):.1f} s)")
+                    f"({gnum(fmax / 1e3)} kN at t = {float(d['fmax_t']):.1f} s)")
             if at_limit:
-                said += (f", at its torque limit ({float(limit_n[k]) / 1e3:.4g} kN) for "
+                said += (f", at its torque limit ({gnum(float(limit_n[k]) / 1e3)} kN) for "
                          f"{_seconds(lim_s)}")
         else:  # a torque limit below the rating: never above the rating, held at the limit
-            said = (f"{name} was held at its torque limit ({float(limit_n[k]) / 1e3:.4g} kN, "
+            said = (f"{name} was held at its torque limit ({gnum(float(limit_n[k]) / 1e3)} kN, "
                     f"{100.0 * float(limit_n[k]) / rated:.0f} % of its rated force "
-                    f"{rated / 1e3:.4g} kN) for {_seconds(lim_s)} of the cycle (first at t = "
+                    f"{gnum(rated / 1e3)} kN) for {_seconds(lim_s)} of the cycle (first at t = "
                     f"{float(d['fmax_t']):.1f} s)")
         if hot:
-            said += (f"; its RMS force over the cycle, {rms / 1e3:.4g} kN, is above the "
+            said += (f"; its RMS force over the cycle, {gnum(rms / 1e3)} kN, is above the "
                      "rating (the motor overheats when the cycle repeats)")
         f_run = float(running_n[k]) if running_n is not None else None
         # the force the motor must give is at least the largest reached and the running
@@ -465,7 +467,7 @@ def transient_checks(names, drv, rated_n, limit_n, vfd, speed_m_s: float, start_
             # running (or holding back) itself needs more than the rating: no start or stop
             # keeps the force within it
             fix = (f"{motor}, or the load shared by more drives (its running force, "
-                   f"{f_run / 1e3:.4g} kN, is itself above the rating: no {phase} avoids it)")
+                   f"{gnum(f_run / 1e3)} kN, is itself above the rating: no {phase} avoids it)")
         elif in_stop and not (vfd[k] and stop_s is not None):
             fix = motor  # the drives are off in a coast or brake stop
         elif in_stop and f_run is not None and f_dec is not None and f_dec <= rated + f_run:

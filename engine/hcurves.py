@@ -34,6 +34,7 @@ import numpy as np
 from beltstudy.engine.capacity import middle_roll_length_m, trough_segments
 from beltstudy.engine.conveyor import HCURVE_TURN_MAX_DEG
 from beltstudy.engine.loop import CARRY, G
+from beltstudy.engine.wording import gnum
 
 __all__ = ["restoring_force_n_m", "drift_limit_m", "tension_limits_n", "garland_limits_n",
            "HCurve",
@@ -214,7 +215,7 @@ def _load_case(m_load: float, m_full: float) -> str:
     where it is all on [kg/m]."""
     m = float(m_load)
     return "empty" if m == 0.0 else "loaded" if m == m_full else (
-        f"partly loaded ({m:.3g} kg/m of material)")
+        f"partly loaded ({gnum(m, 3)} kg/m of material)")
 
 
 def hcurve_checks(conv, loop, T: np.ndarray) -> tuple[dict, list[str]]:

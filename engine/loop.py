@@ -29,6 +29,7 @@ from beltstudy.engine.conveyor import (
     route_points,
     section_loads,
 )
+from beltstudy.engine.wording import gnum
 
 __all__ = ["G", "Loop", "Pulley", "build_loop", "CARRY", "RETURN", "HEAD", "TAIL", "TAKEUP",
            "BOOSTER", "route_cuts",
@@ -821,18 +822,18 @@ def shell_floor_notes(conv: Conveyor, loop: Loop) -> list[str]:
         red = (2.0 / d.pulley_diameter_m) ** 2
         given, j_m = _drive_given_kg(d)
         motor = ("" if j_m is None else
-                 f", less the motor's {j_m:.4g} kg m2 behind the fluid coupling")
+                 f", less the motor's {gnum(j_m)} kg m2 behind the fluid coupling")
         shell = pulley_reduced_mass_kg(d.pulley_diameter_m, width)
         if given >= shell:
             continue
         out.append(
             f"drive {i + 1}'s given inertia (drives.{i}.inertia_kg_m2 {d.inertia_kg_m2:g} kg m2"
             + (f" + flywheel_kg_m2 {d.flywheel_kg_m2:g}" if d.flywheel_kg_m2 else "")
-            + f"{motor}) is {given:.4g} kg at the belt line (x (2 / D)^2, D "
+            + f"{motor}) is {gnum(given)} kg at the belt line (x (2 / D)^2, D "
             f"{d.pulley_diameter_m:g} m), below the estimate of its pulley's own shell, "
-            f"{shell:.4g} kg (a steel drum of D {d.pulley_diameter_m:g} m, face B + 0.2 m, wall "
+            f"{gnum(shell)} kg (a steel drum of D {d.pulley_diameter_m:g} m, face B + 0.2 m, wall "
             "12 mm + 1 % of D, + 30 % for the end discs: pulley_reduced_mass_kg), so the run "
-            f"used {shell:.4g} kg on that shaft ({shell / red:.4g} kg m2 at the pulley); an "
+            f"used {gnum(shell)} kg on that shaft ({gnum(shell / red)} kg m2 at the pulley); an "
             "inertia_kg_m2 with the pulley, gearbox and motor in it, from the drive's data, "
             "sets it")
     return out

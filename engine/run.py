@@ -47,6 +47,7 @@ from beltstudy.engine.statics import (
     solve_steady,
 )
 from beltstudy.engine.stopgrip import brake_grip_n, kn_figure
+from beltstudy.engine.wording import gnum
 
 __all__ = ["RunResult", "run_one", "run_group", "check_scenario", "TRANSIENT_SAFETY_RATIO",
            "transient_safety_min"]
@@ -278,12 +279,12 @@ def _transient_belt(conveyor: Conveyor, scenario: Scenario, result: RunResult, t
     tried = []
     for belt_id, mass, rating in heavier:
         if say is not None:
-            say(f"belt.type auto: {chosen} runs at a transient safety factor of {sf:.3g} "
-                f"against {need:.3g}: rerunning the cycle with {belt_id}")
+            say(f"belt.type auto: {chosen} runs at a transient safety factor of {gnum(sf, 3)} "
+                f"against {gnum(need, 3)}: rerunning the cycle with {belt_id}")
         trial = run_one(beltselect.with_belt(conveyor, belt_id), scenario,
                         **{**run, "remedy": False, "check": False})
         sf_t = trial.summary.get("safety_factor_dyn")
-        tried.append(f"{belt_id} {sf_t:.3g}" if sf_t is not None else belt_id)
+        tried.append(f"{belt_id} {gnum(sf_t, 3)}" if sf_t is not None else belt_id)
         if sf_t is None or sf_t < need * (1.0 - beltselect.RTOL):
             continue
         final = (trial if not (run["remedy"] or run["check"]) else
@@ -291,14 +292,14 @@ def _transient_belt(conveyor: Conveyor, scenario: Scenario, result: RunResult, t
         f = final.summary
         note = (f"note: belt.type auto ({conveyor.belt.kind}): {chosen}, the lightest "
                 f"catalogue belt that passes the steady checks, ran at a transient safety "
-                f"factor of {sf:.3g} against the minimum {need:.3g}; {belt_id} ({mass:.3g} "
-                f"kg/m, {rating:.4g} kN), the lightest heavier one whose run passes it "
+                f"factor of {gnum(sf, 3)} against the minimum {gnum(need, 3)}; {belt_id} ({gnum(mass, 3)} "
+                f"kg/m, {gnum(rating)} kN), the lightest heavier one whose run passes it "
                 f"({'; '.join(tried)}), is the belt of this run")
         f["message"] = "; ".join(m for m in (f.get("message"), note) if m)
         f["elapsed_s"] = time.perf_counter() - t0
         return final
     said = (f"; belt.type auto ({conveyor.belt.kind}): no heavier catalogue belt of this kind "
-            f"passes the transient minimum {need:.3g} either"
+            f"passes the transient minimum {gnum(need, 3)} either"
             + (f" (rerun with {', '.join(tried)})" if tried else "")
             + ": a wider belt (belt.width_m) or a softer start and stop would avoid it")
     s["message"] = (s.get("message") or "") + said
@@ -686,11 +687,11 @@ def _fill_estimates(conveyor: Conveyor, system, tr, messages: list[str], summary
             need = (2.0 * share * system.model.control.m_tot * system.v_design * STALL * rated
                     / (f_grip - f_run) ** 2)
             est = (f"about {math.ceil(need):.0f} s keeps the start force within the pulley's "
-                   f"grip ({f_grip / 1e3:.4g} kN passed where it slipped, {f_run / 1e3:.4g} kN "
+                   f"grip ({gnum(f_grip / 1e3)} kN passed where it slipped, {gnum(f_run / 1e3)} kN "
                    "running): a rigid-body estimate, rerun to confirm")
         else:
             est = (f"no fill keeps the start force within the pulley's grip: it slipped at "
-                   f"{f_grip / 1e3:.4g} kN, not above the running force {f_run / 1e3:.4g} kN")
+                   f"{gnum(f_grip / 1e3)} kN, not above the running force {gnum(f_run / 1e3)} kN")
         words = f"a slower coupling fill (drives.{i}.coupling_fill_s, now {d.coupling_fill_s:g} s; {est})"
         name = f"drive {i + 1} ({d.where}) slipped on its pulley "
         for k, w in enumerate(tr.warnings):
@@ -735,7 +736,7 @@ def _time_top_words(phase: str, top_s: float | None, t0: float) -> str:
     what, most = ("start", START_MAX) if phase == "start" else ("stop.time_s", STOP_MAX)
     if top_s is None or top_s <= most * t0 * (1.0 + 1e-9):
         return f"no {what} up to {most:g} x this one"
-    return f"no {what} up to {top_s:.3g} s"
+    return f"no {what} up to {gnum(top_s, 3)} s"
 
 
 def _drop_unfound(system, tr, messages: list[str], phase: str, gravity: bool, tu_found: bool,
@@ -804,7 +805,7 @@ def _late_brakes(conveyor: Conveyor, scenario: Scenario, stop_time_s: float | No
         out.append(
             f"brake {i + 1} never acted in the stop: its delay (brakes.{i}.delay_s "
             f"{b.delay_s:g} s from the stop command) is not shorter than the stop itself "
-            f"({stop_time_s:.3g} s to rest), so it only holds the belt at rest: a shorter "
+            f"({gnum(stop_time_s, 3)} s to rest), so it only holds the belt at rest: a shorter "
             f"delay_s (a brake comes on in about a second{ms}), or stop.mode: coast for the "
             "stop this was")
     return out
@@ -839,7 +840,7 @@ def missed_brake_stop(scenario: Scenario, stop_time_s: float | None,
     asked = _missed_asked(scenario, "brake", stop_time_s) if auto else None
     if asked is None:
         return []
-    said = (f"brake stop missed its stop.time_s: {stop_time_s:.3g} s from the stop command to "
+    said = (f"brake stop missed its stop.time_s: {gnum(stop_time_s, 3)} s from the stop command to "
             f"rest against the {asked:g} s asked of the auto brakes "
             f"({stop_time_s / asked:.2f} x)")
     gov = str(governed_by or "")
@@ -851,7 +852,7 @@ def missed_brake_stop(scenario: Scenario, stop_time_s: float | None,
                 "did not set it and what would let its pulleys pass the force)"]
     return [said + " (sized by it as a rigid body): the run's slip and end-stop warnings, "
             "where it has them, say what held it back; else the elastic belt's swing did, "
-            f"and an auto brake asked for about {asked * asked / stop_time_s:.3g} s (the "
+            f"and an auto brake asked for about {gnum(asked * asked / stop_time_s, 3)} s (the "
             "rigid-body force goes about as 1 / t; rerun to check) or a given "
             "brakes[].force_kn would stop it nearer the time asked"]
 
@@ -867,7 +868,7 @@ def missed_controlled_stop(scenario: Scenario, stop_time_s: float | None) -> lis
     asked = _missed_asked(scenario, "controlled", stop_time_s)
     if asked is None:
         return []
-    return [f"controlled stop missed its stop.time_s: {stop_time_s:.3g} s from the stop "
+    return [f"controlled stop missed its stop.time_s: {gnum(stop_time_s, 3)} s from the stop "
             f"command to rest against the {asked:g} s asked of the drives "
             f"({stop_time_s / asked:.2f} x): the belt did not follow the drives' stop curve; "
             "the run's slip, torque-limit and overload warnings, where it has them, say what "
@@ -931,8 +932,8 @@ def _radius_within_bar(loop, summary: dict, fe) -> str:
         r_run = math.ceil(c.radius_m * (t_lift + over) / t_lift)
         if r_bar <= r_run:
             return ""
-        return (f"within its error bar (liftoff_max_kn_over {over:.3g} +- {fe.err:.3g} kN"
-                + (f", converged estimate {fe.converged:.3g} kN" if len(tops) > 1 else "")
+        return (f"within its error bar (liftoff_max_kn_over {gnum(over, 3)} +- {gnum(fe.err, 3)} kN"
+                + (f", converged estimate {gnum(fe.converged, 3)} kN" if len(tops) > 1 else "")
                 + f"), curve {c.k} needs a radius of at least {r_bar} m to keep the belt on "
                 f"its idlers on a finer mesh too (the excess on this run's own mesh asks {r_run} m "
                 "there)")
@@ -1018,18 +1019,18 @@ def _takeup_safety_words(summary: dict, tu_fig: float | None, gravity: bool,
     if width_m:
         need = math.ceil(sf_min * (float(t_max) + rise_kn) / float(width_m))
         both = (f"; with it, a belt rated at least {need} kN/m at this width "
-                f"({float(rating) / float(width_m):.4g} kN/m now) keeps the minimum")
+                f"({gnum(float(rating) / float(width_m))} kN/m now) keeps the minimum")
     marginal = ""
     lighter = max(float(base), tu_fig * (1.0 - REL_TOL))
     sf_light = float(rating) / (float(t_max) + rise(lighter))
     if sf_light >= sf_min:
         noun, amount = (("take-up", f"{lighter:,.0f} kg") if gravity
-                        else ("pretension", f"{lighter:.4g} kN"))
+                        else ("pretension", f"{gnum(lighter)} kN"))
         marginal = (f" (marginal: the {noun} is found to {100 * REL_TOL:g} %, and "
                     f"{100 * REL_TOL:g} % less, {amount}, keeps {sf_light:.2f}: the verdict "
                     "may flip with the mesh or the step)")
-    return (f" lifts the largest running tension by {rise_kn:.3g} kN, to "
-            f"{float(t_max) + rise_kn:.4g} kN: the belt safety factor falls to about {sf:.2f}, "
+    return (f" lifts the largest running tension by {gnum(rise_kn, 3)} kN, to "
+            f"{gnum(float(t_max) + rise_kn)} kN: the belt safety factor falls to about {sf:.2f}, "
             f"below the minimum {sf_min:.2f}{marginal}{both}")
 
 
@@ -1244,13 +1245,13 @@ def _brake_slide_remedies(conveyor, scenario, model, params, opts, summary, syst
         how = f"found by rerunning the cycle {reruns} times on the same mesh, to 2 %"
         share = " in all, in their proportions" if len(ids) > 1 else ""
         if force is None:
-            said.append(f"no {where} brake force down to 1/20 of its {now / 1e3:.4g} kN keeps "
+            said.append(f"no {where} brake force down to 1/20 of its {gnum(now / 1e3)} kN keeps "
                         f"its pulley from sliding in the stop ({how}): more tension on that "
                         "pulley (take-up position or mass) would")
             continue
-        then = (f"; the stop then takes {stop_s:.3g} s" if stop_s is not None else "")
+        then = (f"; the stop then takes {gnum(stop_s, 3)} s" if stop_s is not None else "")
         said.append(f"a {where} brake force of {kn_figure(force, up=False)} kN{share} ({fields}; now "
-                    f"{now / 1e3:.4g} kN) keeps its pulley from sliding in the stop ({how})"
+                    f"{gnum(now / 1e3)} kN) keeps its pulley from sliding in the stop ({how})"
                     f"{then}")
     return said
 
@@ -1276,7 +1277,7 @@ def _sag_remedy(conveyor, scenario, model, params, opts, summary, say=None,
         return ""
 
     def amount(x):
-        return f"{x:,.0f} {unit}" if gravity else f"{x:.4g} {unit}"
+        return f"{x:,.0f} {unit}" if gravity else f"{gnum(x)} {unit}"
 
     how = (f"found by rerunning the whole cycle {rem.reruns} times, to 2 %; steps of "
            f"x {GROW:g}")

@@ -93,6 +93,7 @@ from beltstudy.engine.loop import (
     build_loop,
     rotating_parts,
 )
+from beltstudy.engine.wording import gnum
 
 __all__ = ["SteadyResult", "solve_steady", "STARTUP_FACTOR", "SAFETY_FACTOR_MIN",
            "TRANSIENT_SAFETY_RATIO", "SPEC_PARTS", "rest_hold_element", "rest_walk",
@@ -243,7 +244,7 @@ def start_time_note(conv: Conveyor, loop: Loop, te: float, start=None) -> str:
         return ""
     which = "the default" if start is None else "this run's"
     return (f"note: the start-up checks (slip_margin_start, the auto take-up) take the drives at "
-            f"{STARTUP_FACTOR:g} x Te, which accelerates this belt at {a:.3g} m/s2 (the force "
+            f"{STARTUP_FACTOR:g} x Te, which accelerates this belt at {gnum(a, 3)} m/s2 (the force "
             f"above Te shared out by every moving mass): an s-curve start asks no more of a "
             f"rigid belt from start.time_s {math.ceil(2.0 * v / a):.0f} s (peak acceleration "
             f"2 v / T, a linear one from {math.ceil(v / a):.0f} s), and {which} "
@@ -695,7 +696,7 @@ def _slip_words(res: SteadyResult, drives, slip_margins, start_margins, breakawa
             zip(drives, slip_margins, start_margins, breakaway, strict=True), start=1):
         where = f"drive {i} ({conv.drives[i - 1].where})"
         if m_run < 1.0 - 1e-6 or m_start < 1.0 - 1e-6:
-            start = (f"breakaway (the drives hold the net gravity pull {abs(pull_kn):.4g} kN at "
+            start = (f"breakaway (the drives hold the net gravity pull {gnum(abs(pull_kn))} kN at "
                      "standstill, no running resistance yet)" if at_hold
                      else f"start-up (force x {STARTUP_FACTOR})")
             # each phase that slips with its own margin: running first, then the start
@@ -711,7 +712,7 @@ def _slip_words(res: SteadyResult, drives, slip_margins, start_margins, breakawa
                        "or more")
             elif shortfall_n > 0:
                 need_kn = up3((res.takeup_tension_n + shortfall_n) / 1e3)
-                fix = (f"; pretension {res.takeup_tension_n / 1e3:.3g} kN is below the "
+                fix = (f"; pretension {gnum(res.takeup_tension_n / 1e3, 3)} kN is below the "
                        f"{need_kn:g} kN needed: a takeup.pretension_kn of {need_kn:g} kN or "
                        "more")
             # two decimals, and two figures below 0.1 (not "0.00 < 1")
@@ -805,7 +806,7 @@ def _takeup_beyond_words(res: SteadyResult, drives) -> list[str]:
         d = conv.drives[k]
         fix = (f"drive {k + 1} ({d.where}) grips too little for its share of Te (friction "
                f"{d.friction:g}, wrap {d.wrap_deg:g} deg, e^(mu theta) = "
-               f"{drives[k][2]:.3g}): more friction (a lagged pulley), more wrap "
+               f"{gnum(drives[k][2], 3)}): more friction (a lagged pulley), more wrap "
                "(a snub pulley) or a smaller share on it would avoid it")
     else:
         fix = ("closer idlers (idlers.*.spacing_m) or a higher sag limit would lower it")
@@ -903,7 +904,7 @@ def _summarise(res: SteadyResult, drives, hs_adm, bounds, shortfall_n: float,
         most = down3(most)  # down at three figures: at most
         spill = (f", beyond its capacity ({figures(cap.capacity_m3_h)} m3/h, ISO 5048): the "
                  f"material heaps past the belt's edges and spills; a design load of at most "
-                 f"{most:.3g} t/h "
+                 f"{gnum(most, 3)} t/h "
                  "(material.capacity_t_h) leaves room for it, or a wider or deeper-troughed belt"
                  if surge_fill > 100.0 else "")
         warnings.append(f"surge: load {surge:g} x the design load (material.capacity_t_h)"
@@ -1037,10 +1038,10 @@ def takeup_place_note(res: SteadyResult) -> str:
     gravity = res.conveyor.takeup.type == "gravity"
     size = (f"a counterweight of about {2.0 * t_low / G:.0f} kg (2 T / g there, now "
             f"{res.takeup_mass_kg:.0f} kg), and mass_kg: auto" if gravity else
-            f"a pretension of about {t_low / 1e3:.3g} kN (now {t_tu / 1e3:.3g} kN), and "
+            f"a pretension of about {gnum(t_low / 1e3, 3)} kN (now {gnum(t_tu / 1e3, 3)} kN), and "
             "pretension_kn: auto")
-    return (f"note: the take-up holds {t_tu / 1e3:.3g} kN where it sits, {t_tu / t_low:.1f} x "
-            f"the slackest running tension of the return ({t_low / 1e3:.3g} kN "
+    return (f"note: the take-up holds {gnum(t_tu / 1e3, 3)} kN where it sits, {t_tu / t_low:.1f} x "
+            f"the slackest running tension of the return ({gnum(t_low / 1e3, 3)} kN "
             f"{place_words(loop, float(loop.s_end_m[j]))}): a take-up there ({field}) holds "
             f"about the same running tensions with {size} there sizes it with its own pulleys "
             "and every check")
@@ -1083,13 +1084,13 @@ def _sag_words(loop: Loop, strand: str, sag: float, limit: float, j: int, t_low:
     need = float(loop.sag_w_n[j]) / limit
     where = place_words(loop, float(loop.s_end_m[j]))
     if t_low <= 0.0:  # w / max(T, 1 N) is a number, not a sag: the strand lies slack there
-        head = (f"the {strand} strand is slack (tension {t_low / 1e3:.3g} kN {where}): its sag "
+        head = (f"the {strand} strand is slack (tension {gnum(t_low / 1e3, 3)} kN {where}): its sag "
                 f"there has no bound, far beyond sag_limit_pct.{strand} = {limit * 100:.2f} %")
     else:
         # a sag past its limit by less than the rounding printed as it: '1.50 % exceeds 1.50 %'
         shown, lim = apart(sag * 100, limit * 100, rtol=SAG_LIMIT_RTOL)
         head = (f"sag on the {strand} strand {shown} % exceeds sag_limit_pct.{strand} "
-                f"= {lim} % (tension {t_low / 1e3:.3g} kN {where})")
+                f"= {lim} % (tension {gnum(t_low / 1e3, 3)} kN {where})")
     return (f"{head}; {up3(need / 1e3):g} kN there keeps "
             f"it within (the sag goes as 1 / T), so the take-up must hold at least "
             f"{up3((need - t_low) / 1e3):g} kN more per strand; that, closer idlers "
@@ -1280,10 +1281,10 @@ def rest_grip_words(loop: Loop, hold: int, T_rest: np.ndarray, conv=None) -> lis
     need = held / math.expm1(pulley.friction * math.radians(pulley.wrap_deg))
     more = (lever_words(conv.takeup.type == "gravity") if conv is not None
             else "a heavier take-up")
-    return [f"at rest the {pulley.where} pulley holding the belt passes {held / 1e3:.4g} kN, "
-            f"beyond its grip of {grip / 1e3:.4g} kN (slack side {slack / 1e3:.4g} kN, mu "
+    return [f"at rest the {pulley.where} pulley holding the belt passes {gnum(held / 1e3)} kN, "
+            f"beyond its grip of {gnum(grip / 1e3)} kN (slack side {gnum(slack / 1e3)} kN, mu "
             f"{pulley.friction:g}, wrap {pulley.wrap_deg:g} deg): the belt would creep over it; "
-            f"a slack-side tension of {need / 1e3:.4g} kN ({more}) or a brake or "
+            f"a slack-side tension of {gnum(need / 1e3)} kN ({more}) or a brake or "
             "holdback on another pulley would hold it"]
 
 

@@ -35,6 +35,7 @@ import numpy as np
 
 from beltstudy.engine.drives import down3, up3
 from beltstudy.engine.loop import G, Loop, rotating_parts
+from beltstudy.engine.wording import gnum
 
 __all__ = ["BRAKE_GRIP_MARGIN", "FRONT_FACTOR", "StopWalk", "brake_grip_n", "grip_limits",
            "grip_remedies", "kn_figure", "pulley_name", "takeup_at_least"]
@@ -266,9 +267,9 @@ def takeup_at_least(tension_n: float, g: float | None = None) -> str:
         return f"{math.ceil(2.0 * tension_n / g * (1.0 - 1e-12)):,} kg"
     kn = tension_n / 1e3
     if not (kn > 0.0) or not math.isfinite(kn):
-        return f"{kn:.4g} kN"
+        return f"{gnum(kn)} kN"
     step = 10.0 ** (math.floor(math.log10(kn)) - 3)
-    return f"{float(f'{math.ceil(kn / step * (1.0 - 1e-12)) * step:.4g}'):g} kN"
+    return f"{float(f'{gnum(math.ceil(kn / step * (1.0 - 1e-12)) * step)}'):g} kN"
 
 
 def pulley_name(conv, loop: Loop, node: int) -> str:
@@ -288,7 +289,7 @@ def kn_figure(force_n: float, *, up: bool) -> str:
     kn = force_n / 1e3
     if kn <= 0.0:
         return "0"
-    return f"{(up3 if up else down3)(kn, 4):.4g}"
+    return f"{gnum((up3 if up else down3)(kn, 4))}"
 
 
 def _bisect_up(ok, lo: float, hi: float, rel: float = 0.0) -> float | None:
@@ -350,20 +351,20 @@ def grip_remedies(conv, steady, walk: StopWalk, nodes: list[int], fixed: dict,
         # through a pulley that passes 103.2 kN, which slid 3.5 s when followed)
         extra = walk.grip_n(node, held)
         there = fixed.get(node, 0.0)
-        given = (f" in all ({there / 1e3:.4g} kN is given there already)" if there > 0.0
+        given = (f" in all ({gnum(there / 1e3)} kN is given there already)" if there > 0.0
                  else "")
         if extra >= x + there:
             out.append(f"{name} of {kn_figure(x, up=True)} kN beside these (its pulley passes up "
-                       f"to {extra / 1e3:.4g} kN{given}; the auto brakes then "
-                       f"{auto / 1e3:.4g} kN, sized again within their grip beside it)")
+                       f"to {gnum(extra / 1e3)} kN{given}; the auto brakes then "
+                       f"{gnum(auto / 1e3)} kN, sized again within their grip beside it)")
             break
         if best is None or extra - x - there > best[1] - best[2] - best[3]:
             best = (name, extra, x, there, given)
     else:
         best = best and (f" (not by a brake on another pulley alone: {best[0]} would need "
-                         f"{best[2] / 1e3:.4g} kN beside the auto brakes, sized again within "
+                         f"{gnum(best[2] / 1e3)} kN beside the auto brakes, sized again within "
                          f"their grip beside it, and its pulley passes at most "
-                         f"{best[1] / 1e3:.4g} kN{best[4]})")
+                         f"{gnum(best[1] / 1e3)} kN{best[4]})")
     # a heavier take-up: every tension rises with it
     t0 = walk.takeup_n
     t_need = _bisect_up(lambda t: all(walk.room_n(n, acting, takeup_n=t) >= 0.0

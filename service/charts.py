@@ -13,6 +13,8 @@ import textwrap
 import numpy as np
 import pandas as pd
 
+from beltstudy.engine.wording import gnum
+
 #: Plot names of a study, with what they show.
 STUDY_PLOTS = {
     "power-temperature": "power against temperature, a line per combination of the other "
@@ -873,7 +875,7 @@ def transient_figure(timeseries, surface=None, title: str = "", extremes: dict |
                 # (1.3 s on a 30 m belt), and a peak of a fraction of a second between two
                 # samples is not on it
                 ax1.plot([when], [value], color=color, marker="o", markersize=6,
-                         linestyle="none", label=f"{name} {value:.4g} kN at t = {when:.4g} s")
+                         linestyle="none", label=f"{name} {gnum(value)} kN at t = {gnum(when)} s")
     else:
         ts = timeseries.sort_values("t_s")
         for column, label in _KEY_POINTS:

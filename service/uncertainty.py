@@ -61,6 +61,7 @@ import numpy as np
 import pandas as pd
 
 from beltstudy.engine import results as result_fields
+from beltstudy.engine.wording import gnum
 from beltstudy.service.door.sample import sobol_base
 from beltstudy.service.web.verdicts import (
     CAUSES,
@@ -468,7 +469,7 @@ def _cell(sample: dict, grid: dict, rows: pd.DataFrame, s_cols: list[str],
 
 
 def _g(value: Any) -> str:
-    return "-" if value is None else f"{value:.4g}"
+    return "-" if value is None else f"{gnum(value)}"
 
 
 #: An index or rank correlation smaller than this in magnitude is round-off of zero (SALib's
@@ -489,7 +490,7 @@ def sd_text(sd: float, mean: float) -> str:
     """A standard deviation as text: 3 significant figures, ``0`` for the round-off of a
     figure that does not vary (below :data:`ROUND_OFF` times |mean|: a lowest tension of
     39.97 kN equal in every run gave sd 7.29e-15). The JSON keeps the float."""
-    return "0" if abs(sd) < ROUND_OFF * abs(mean) else f"{sd:.3g}"
+    return "0" if abs(sd) < ROUND_OFF * abs(mean) else f"{gnum(sd, 3)}"
 
 
 def runs_text(cell: dict) -> str:

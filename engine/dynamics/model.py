@@ -114,6 +114,7 @@ from beltstudy.engine.statics import (
     rest_hold_element,
     rest_walk,
 )
+from beltstudy.engine.wording import gnum
 
 __all__ = [
     "DynamicsOptions",
@@ -539,10 +540,10 @@ def check_scenario(scn: Scenario, conv: Conveyor, opts: DynamicsOptions | None =
         if t_cycle / Scenario.model_fields["record_dt_s"].default <= MAX_SAMPLES:
             raise InputError(
                 f"scenario.record_dt_s: {scn.record_dt_s:g} s over a cycle of {t_cycle:g} s "
-                f"(start, run and stop) is {samples:.3g} time-series samples, more than "
-                f"{MAX_SAMPLES:.0e}; use a spacing of at least {t_cycle / MAX_SAMPLES:.3g} s")
+                f"(start, run and stop) is {gnum(samples, 3)} time-series samples, more than "
+                f"{MAX_SAMPLES:.0e}; use a spacing of at least {gnum(t_cycle / MAX_SAMPLES, 3)} s")
         raise InputError(
-            f"{name}: {longest:g} s makes a cycle of {t_cycle:g} s, {samples:.3g} time-series "
+            f"{name}: {longest:g} s makes a cycle of {t_cycle:g} s, {gnum(samples, 3)} time-series "
             f"samples at scenario.record_dt_s {scn.record_dt_s:g} s, more than "
             f"{MAX_SAMPLES:.0e}: a transient run simulates every step of it; give the "
             "start, run and stop times in seconds (a start takes seconds to minutes)")
@@ -560,9 +561,9 @@ def check_scenario(scn: Scenario, conv: Conveyor, opts: DynamicsOptions | None =
         if steps * n_least > 5e10:
             of = f" of {n_least} elements" if scn.elements != "auto" else ""
             raise InputError(
-                f"scenario.dt_s: {float(scn.dt_s):g} s makes at least {steps:.3g} steps{of}, "
+                f"scenario.dt_s: {float(scn.dt_s):g} s makes at least {gnum(steps, 3)} steps{of}, "
                 "too much work for one run (over 5e10 element-steps; "
-                f"a cycle of at least {t_least:.4g} s: start {float(scn.start.time_s):g} s, "
+                f"a cycle of at least {gnum(t_least)} s: start {float(scn.start.time_s):g} s, "
                 f"run {float(scn.run_s):g} s, up to {opts.stop_window_s:g} s for the stop, "
                 "the rests); use dt_s: auto (the stability limit's step), or a larger step")
     if scn.stop.mode == "brake":
@@ -850,9 +851,9 @@ def _step(mass, springs, implicit, damping, scn, opts, n) -> tuple[float, float]
     dt = float(scn.dt_s)
     if dt > dt_lim:
         raise InputError(
-            f"scenario.dt_s: {dt:g} s is above the stability limit {dt_lim:.4g} s of this "
-            f"model ({n} elements, shortest spring {springs.len_m.min():.3g} m); use 'auto' or a "
-            f"step below {dt_lim:.4g} s")
+            f"scenario.dt_s: {dt:g} s is above the stability limit {gnum(dt_lim)} s of this "
+            f"model ({n} elements, shortest spring {gnum(springs.len_m.min(), 3)} m); use 'auto' or a "
+            f"step below {gnum(dt_lim)} s")
     return dt, dt_lim
 
 
@@ -863,13 +864,13 @@ def _drive_train_step(conv, scn, parts, rated, v_d, dt, notes) -> tuple[float, f
     t_train, k_train = drive_train_time_s(conv, parts, rated, v_d)
     if t_train / DRIVE_STEPS < dt:
         if scn.dt_s == "auto":
-            notes.append(f"the step is {t_train / DRIVE_STEPS:.3g} s, not {dt:.3g} s: it resolves "
-                         f"the fastest dol drive train ({t_train:.3g} s to reach design speed "
+            notes.append(f"the step is {gnum(t_train / DRIVE_STEPS, 3)} s, not {gnum(dt, 3)} s: it resolves "
+                         f"the fastest dol drive train ({gnum(t_train, 3)} s to reach design speed "
                          "unloaded at rated force): a heavier inertia_kg_m2 allows a longer step")
             dt = t_train / DRIVE_STEPS
         else:
-            notes.append(f"scenario.dt_s {dt:.3g} s is longer than the fastest dol drive train "
-                         f"({t_train:.3g} s to reach design speed unloaded at rated force): its "
+            notes.append(f"scenario.dt_s {gnum(dt, 3)} s is longer than the fastest dol drive train "
+                         f"({gnum(t_train, 3)} s to reach design speed unloaded at rated force): its "
                          "shaft and motor speeds may not be resolved, 'auto' resolves them")
     return dt, t_train, k_train
 
@@ -940,7 +941,7 @@ def _rest(conv, loop, springs: Springs, gravity, T_run, tu_weight) -> tuple[int,
     if T_rest.min() < 0.0:
         k = int(np.argmin(T_rest))
         warns.append(f"held at rest the belt is slack at {loop.s_m[k] + loop.dx_m[k]:.0f} m "
-                     f"(the take-up leaves {T_rest[k] / 1e3:.3g} kN there): raise the take-up "
+                     f"(the take-up leaves {gnum(T_rest[k] / 1e3, 3)} kN there): raise the take-up "
                      "tension")
     warns += _rest_grip(loop, hold, T_rest, conv)
     return hold, T_rest, warns
@@ -1029,7 +1030,7 @@ def short_element(conv, loop: Loop) -> tuple[str, str] | None:
     # places to a tenth of the element: enough to tell its two ends apart, no more
     nd = max(0, min(6, 1 - math.floor(math.log10(dx)))) if dx > 0.0 else 6
     where = " and ".join(f"{words} ({_places(a, nd)} m)" for _, words, a in near)
-    said = (f"the automatic step follows the shortest belt element, {dx:.3g} m long between "
+    said = (f"the automatic step follows the shortest belt element, {gnum(dx, 3)} m long between "
             f"{where} from the tail: ")
     ended = {c[0] for c in near}
     tiny = [i for i in range(1, len(prof)) if f"profile.{i}.length_m" in ended
@@ -1039,7 +1040,7 @@ def short_element(conv, loop: Loop) -> tuple[str, str] | None:
         # (moving the section before shifts both its ends alike)
         i = tiny[0]
         return f"profile.{i}.length_m", (
-            f"{said}profile.{i} is {prof[i].length_m:.3g} m long; give it "
+            f"{said}profile.{i} is {gnum(prof[i].length_m, 3)} m long; give it "
             f"{math.ceil(apart * 10.0) / 10.0:g} m or more (a tenth of the median element) or "
             "join it to a neighbouring section")
     i = int(field.split(".")[1]) if field.endswith(".curve_radius_m") else -1
@@ -1049,7 +1050,7 @@ def short_element(conv, loop: Loop) -> tuple[str, str] | None:
         r = float(prof[i].curve_radius_m)
         need = math.ceil(r * apart / (0.5 * curve_arc_m(prof, i)) / 10.0) * 10.0
         return field, (f"{said}a radius of {need:g} m or more ({field}, now {r:g} m) makes "
-                       f"each half of the curve's {curve_arc_m(prof, i):.3g} m arc a tenth of "
+                       f"each half of the curve's {gnum(curve_arc_m(prof, i), 3)} m arc a tenth of "
                        "the median element or more")
     return field, (f"{said}move {field} onto the other point or "
                    f"{math.ceil(apart * 10.0) / 10.0:g} m or more away from it (a tenth of "
@@ -1075,20 +1076,20 @@ def _cycle(conv, scn, opts, n, dt, t_loop, v_d, hold, drive_train,
     if steps * n > 5e10:
         if scn.dt_s == "auto" and t_train / DRIVE_STEPS <= dt:
             raise InputError(
-                f"drives.{k_train}.inertia_kg_m2: {steps:.3g} steps of {n} elements is too much "
-                f"work for one run; the step, {dt:.3g} s, resolves the fastest dol drive train "
-                f"({t_train:.3g} s to reach design speed unloaded at rated force): give the "
+                f"drives.{k_train}.inertia_kg_m2: {gnum(steps, 3)} steps of {n} elements is too much "
+                f"work for one run; the step, {gnum(dt, 3)} s, resolves the fastest dol drive train "
+                f"({gnum(t_train, 3)} s to reach design speed unloaded at rated force): give the "
                 "drives their real inertia (motor, coupling, gear and pulley reduced to the "
                 "pulley shaft)")
         if scn.dt_s == "auto" and short is not None:
             raise InputError(
-                f"{short[0]}: {steps:.3g} steps of {n} elements is too much work for one run "
-                f"(over 5e10 element-steps) at a step of {dt:.3g} s; {short[1]}")
+                f"{short[0]}: {gnum(steps, 3)} steps of {n} elements is too much work for one run "
+                f"(over 5e10 element-steps) at a step of {gnum(dt, 3)} s; {short[1]}")
         raise InputError(
-            f"scenario.dt_s / scenario.elements: {steps:.3g} steps of {n} elements is too much "
-            f"work for one run (over 5e10 element-steps): a cycle of {t_total:.4g} s (start "
-            f"{start_s:g} s, run {scn.run_s:g} s, up to {stop_max:.4g} s for the stop, the "
-            f"rests) at a step of {dt:.3g} s; use fewer elements or a larger step, or shorter "
+            f"scenario.dt_s / scenario.elements: {gnum(steps, 3)} steps of {n} elements is too much "
+            f"work for one run (over 5e10 element-steps): a cycle of {gnum(t_total)} s (start "
+            f"{start_s:g} s, run {scn.run_s:g} s, up to {gnum(stop_max)} s for the stop, the "
+            f"rests) at a step of {gnum(dt, 3)} s; use fewer elements or a larger step, or shorter "
             "times")
     return Cycle(
         dt=dt, t_pre=float(opts.pre_rest_s), t_start=start_s, t_run=float(scn.run_s),
@@ -1187,7 +1188,7 @@ def build_system(conv: Conveyor, scn: Scenario, steady, options: DynamicsOptions
     short = short_element(conv, loop)
     if short is not None and scn.dt_s == "auto":
         # the run is right, only slow: say what makes it so
-        notes.append(f"{short[1]} (a step of {dt:.3g} s)")
+        notes.append(f"{short[1]} (a step of {gnum(dt, 3)} s)")
     cycle = _cycle(conv, scn, opts, n, dt, t_loop, v_d, hold, train,
                    handover_time_s(conv, loop, scn, opts, hold), short)
     model = Model(

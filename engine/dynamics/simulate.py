@@ -36,6 +36,7 @@ from beltstudy.engine.dynamics.model import COUPLING_CODES, System, chord_strain
 from beltstudy.engine.dynamics.profiles import LINEAR, S_CURVE, start_reference, stop_reference
 from beltstudy.engine.loop import DEFAULT_PULLEY_DIAMETER_M, G, _drive_given_kg
 from beltstudy.engine.statics import up3
+from beltstudy.engine.wording import gnum
 
 __all__ = ["TransientResult", "KernelRun", "fresh_run", "fresh_model", "simulate", "decode",
            "span_sag_pct", "not_stopped_words",
@@ -416,7 +417,7 @@ def diverged_words(sys: System, where_code: int, t_s: float, conveyor=None) -> s
         what = f"the motor of {drive_name(-2 - where_code)} behind its coupling"
         fix = "more motor inertia (motor_inertia_kg_m2) or " + fix
     return (f"diverged: {what} became non-finite or passed {V_FAIL_FACTOR:g} x the design speed "
-            f"at t = {t_s:.4g} s with dt = {sys.dt_s:.3g} s; the run was stopped; {fix} may "
+            f"at t = {gnum(t_s)} s with dt = {gnum(sys.dt_s, 3)} s; the run was stopped; {fix} may "
             "avoid it")
 
 
@@ -433,8 +434,8 @@ def runaway_words(sys: System, t_s: float, v_mean: float, t_stop_cmd: float,
         # resistance), at rest its net gravity pull (the hold force, negative downhill)
         pull = ""
         if sys.te_n < 0.0:
-            pull = (f" (the belt pulls {-sys.te_n / 1e3:.4g} kN forwards at speed, -Te, and "
-                    f"{max(-sys.hold_force_n, 0.0) / 1e3:.4g} kN at rest, its net gravity "
+            pull = (f" (the belt pulls {gnum(-sys.te_n / 1e3)} kN forwards at speed, -Te, and "
+                    f"{gnum(max(-sys.hold_force_n, 0.0) / 1e3)} kN at rest, its net gravity "
                     "pull: what the brakes and drives must take at the belt line)")
         # brakes act in a brake stop only (and hold once the belt rests): in a coast or a
         # controlled stop more force on brakes that never act changes nothing (a 3 km decline
@@ -455,20 +456,20 @@ def runaway_words(sys: System, t_s: float, v_mean: float, t_stop_cmd: float,
                    "its brakes could not hold it at rest" if hold is not None and len(hold)
                    else "nothing held it at rest (it has no brakes)")
             need = HOLD_MARGIN * max(-sys.hold_force_n, 0.0)
-            what = (f"the belt came to rest at t = {rested_s:.4g} s and then ran away "
+            what = (f"the belt came to rest at t = {gnum(rested_s)} s and then ran away "
                     "forwards", f"{why}{pull}: brakes that hold once the belt rests "
                     "(brakes[].hold: true)"
-                    + (f" of at least {need / 1e3:.4g} kN in all ({HOLD_MARGIN:g} x the net "
+                    + (f" of at least {gnum(need / 1e3)} kN in all ({HOLD_MARGIN:g} x the net "
                        "gravity pull; force_kn: auto sizes them so)" if need > 0.0 else ""))
     else:
         pull = ""
         if sys.hold_force_n > 0.0:
-            pull = (f" (at rest the belt pulls {sys.hold_force_n / 1e3:.4g} kN back, its net "
+            pull = (f" (at rest the belt pulls {gnum(sys.hold_force_n / 1e3)} kN back, its net "
                     "gravity pull: what a holdback or brakes must take at the belt line)")
         what = ("the belt ran back", f"nothing held it against the lift{pull}: a holdback "
                 f"(holdback: true), brakes that hold, or, where a drive pulley slipped, {more}")
-    return (f"{what[0]} {phase}: its mean speed reached {abs(v_mean):.3g} m/s "
-            f"({C.RUNAWAY_FACTOR:g} x the design speed) at t = {t_s:.4g} s and the run was "
+    return (f"{what[0]} {phase}: its mean speed reached {gnum(abs(v_mean), 3)} m/s "
+            f"({C.RUNAWAY_FACTOR:g} x the design speed) at t = {gnum(t_s)} s and the run was "
             f"ended there; {what[1]}")
 
 
@@ -539,8 +540,8 @@ def _motor_case_words(case: tuple[float, float], why: str, full: bool, v: float,
     regenerating)."""
     te, res = case
     regen = why == "peripheral_force" and te < 0.0
-    force = (f"regenerating {-te / 1e3:.3g} kN" if regen else f"{te / 1e3:.3g} kN"
-             if why == "peripheral_force" else f"running resistance {res / 1e3:.3g} kN")
+    force = (f"regenerating {gnum(-te / 1e3, 3)} kN" if regen else f"{gnum(te / 1e3, 3)} kN"
+             if why == "peripheral_force" else f"running resistance {gnum(res / 1e3, 3)} kN")
     if full:
         what = f"the full load's {force} x {v:g} m/s, the case it sizes motors for"
     elif why == "peripheral_force":
@@ -789,11 +790,11 @@ def holdback_notes(sys: System, summary: dict, steady_summary: dict | None, conv
     heads = [d for d in conveyor.drives if d.position == "head"]
     d_m = float(heads[0].pulley_diameter_m) if heads else DEFAULT_PULLEY_DIAMETER_M
     torque = f_kn * d_m / 2.0
-    cema = (f"; CEMA's static rule (holdback_torque_knm) sizes it for {float(rule):.3g} kNm, "
+    cema = (f"; CEMA's static rule (holdback_torque_knm) sizes it for {gnum(float(rule), 3)} kNm, "
             "crediting half the running resistance against the pull" if rule else "")
-    return [f"the holdback took up to {f_kn:.4g} kN at the belt line after the stop (t = "
-            f"{t_peak:.4g} s, read at the records; {torque:.3g} kNm on the {d_m:g} m head "
-            f"pulley), {f_kn / pull_kn:.2f} x the loaded belt's pull at rest ({pull_kn:.4g} kN): "
+    return [f"the holdback took up to {gnum(f_kn)} kN at the belt line after the stop (t = "
+            f"{gnum(t_peak)} s, read at the records; {gnum(torque, 3)} kNm on the {d_m:g} m head "
+            f"pulley), {f_kn / pull_kn:.2f} x the loaded belt's pull at rest ({gnum(pull_kn)} kN): "
             f"the belt's stretch swinging back onto it{cema}; a holdback rated for the "
             "larger, with its maker's service factor on top"]
 
@@ -826,9 +827,9 @@ def rollback_notes(sys: System, conveyor, cols: dict) -> list[str]:
     timing = ", ".join(dict.fromkeys(f"delay_s {b.delay_s:g}, ramp_s {b.ramp_s:g}"
                                      for b in held))
     return [f"the belt rolled back after it stopped until its holding brake held it: its mean "
-            f"speed was below -{limit:.3g} m/s from t = {t[back[0]]:.4g} to "
-            f"{t[back[-1]]:.4g} s, at most {-v[k]:.3g} m/s backwards (t = {t[k]:.4g} s), "
-            f"about {dist:.3g} m of belt and its load run back while the brake set "
+            f"speed was below -{gnum(limit, 3)} m/s from t = {gnum(t[back[0]])} to "
+            f"{gnum(t[back[-1]])} s, at most {gnum(-v[k], 3)} m/s backwards (t = {gnum(t[k])} s), "
+            f"about {gnum(dist, 3)} m of belt and its load run back while the brake set "
             f"({timing}); a holdback on the head pulley (holdback: true), which takes the "
             "pull as the belt stops, would avoid it"]
 
@@ -940,7 +941,7 @@ def _stop_overspeed(sys: System, r: dict, out) -> list[str]:
                "brakes")
     else:
         fix = f"{controlled} or a brake stop (stop.mode: brake)"
-    return [f"overspeed in the stop: the mean belt speed reached {v_hi:.3g} m/s, "
+    return [f"overspeed in the stop: the mean belt speed reached {gnum(v_hi, 3)} m/s, "
             f"{100.0 * v_hi / v_d:.0f} % of design speed, at t = {float(rec['t'][k]):.1f} s, "
             f"{float(rec['t'][k]) - sys.stop_command_s:.1f} s after the stop command (plant "
             f"overspeed switches trip at {100.0 * OVERSPEED_FRACTION:.0f} %; read at the "
@@ -975,7 +976,7 @@ def running_warnings(sys: System, r: dict, out, names=None) -> list[str]:
     v_d = sys.v_design
     cyc = sys.model.cycle
     if float(r["vmean_hi"]) > OVERSPEED_FRACTION * v_d:
-        w.append(f"overspeed in the start: the mean belt speed reached {r['vmean_hi']:.3g} m/s, "
+        w.append(f"overspeed in the start: the mean belt speed reached {gnum(r['vmean_hi'], 3)} m/s, "
                  f"{100.0 * r['vmean_hi'] / v_d:.0f} % of design speed, at t = "
                  f"{r['vmean_hi_t']:.1f} s (plant overspeed switches trip at "
                  f"{100.0 * OVERSPEED_FRACTION:.0f} %): the belt released the stretch of "
@@ -996,7 +997,7 @@ def running_warnings(sys: System, r: dict, out, names=None) -> list[str]:
         return w
     short = ""
     if t0 > t1 - SETTLE_LOOPS * t_loop + 1e-9:
-        short = (f"; the running phase is short (run_s {cyc.t_run:.3g} s): a run_s of at least "
+        short = (f"; the running phase is short (run_s {gnum(cyc.t_run, 3)} s): a run_s of at least "
                  f"{_up_s((SETTLE_LOOPS + 1.0) * t_loop)} s ({SETTLE_LOOPS + 1.0:g} wave loop "
                  "times) shows whether it settles")
     m = (rec["t"] >= t0) & (rec["t"] <= t1)
@@ -1004,9 +1005,9 @@ def running_warnings(sys: System, r: dict, out, names=None) -> list[str]:
     climbing = (reached is not None and reached < 0.0
                 and bool(np.all(np.diff(rec["v_mean"][m]) >= 0.0)))
     if swing > SETTLE_SWING * v_d and not climbing:
-        per = (f"a period of {period:.3g} s" if period
+        per = (f"a period of {gnum(period, 3)} s" if period
                else "a period longer than the window")
-        w.append(f"not settled while running: the mean belt speed still swings by {swing:.3g} "
+        w.append(f"not settled while running: the mean belt speed still swings by {gnum(swing, 3)} "
                  f"m/s ({100.0 * swing / v_d:.1f} % of design speed, {per}) from t = "
                  f"{t0:.0f} s to the stop command at {t1:.0f} s, so the stop starts from a "
                  f"swinging belt; {_settle_levers(sys)} (docs/dynamics.md, Settling and "
@@ -1015,7 +1016,7 @@ def running_warnings(sys: System, r: dict, out, names=None) -> list[str]:
     rec_d = getattr(out, "rec_d", None)
     swings = [] if rec_d is None else _force_swings(sys, rec, rec_d[:len(rec)], m, names)
     if swings:
-        w.append(f"not settled while running: the mean belt speed holds (within {swing:.3g} m/s) "
+        w.append(f"not settled while running: the mean belt speed holds (within {gnum(swing, 3)} m/s) "
                  f"but {'; '.join(swings)}, from t = {t0:.0f} s to the stop command at "
                  f"{t1:.0f} s: more than +-{100.0 * SETTLE_FORCE:.0f} % of the rated force "
                  "takes a drive out of the uniform duty its gear is rated for (application "
@@ -1069,7 +1070,7 @@ def tracking_warnings(sys: System, r: dict, out, names=None) -> list[str]:
     t_err = float(r["verr_t"])
     lag = ""
     if err > TRACK_FRACTION * v_d and not float(out.drv[m]["lim_s"]) > 0.0:
-        lag = (f"the master pulley ({names[m]}) was {err:.3g} m/s ({100.0 * err / v_d:.1f} % of "
+        lag = (f"the master pulley ({names[m]}) was {gnum(err, 3)} m/s ({100.0 * err / v_d:.1f} % of "
                f"design speed) off its reference at t = {t_err:.1f} s")
     ahead = _ahead_at_release(sys, r, out, names)
     if ahead:
@@ -1091,7 +1092,7 @@ def tracking_warnings(sys: System, r: dict, out, names=None) -> list[str]:
         lever = f"a faster speed loop ({_loop_field(sys)})"
         when = "while running"
     return [f"the speed loop did not track its reference: {lag}, {when} (criterion: within "
-            f"{100.0 * TRACK_FRACTION:.0f} % from one wave loop time, {t_loop:.3g} s, after the "
+            f"{100.0 * TRACK_FRACTION:.0f} % from one wave loop time, {gnum(t_loop, 3)} s, after the "
             f"start command; docs/dynamics.md, Tracking): {lever}"]
 
 
@@ -1124,7 +1125,7 @@ def _ahead_at_release(sys: System, r: dict, out, names) -> str:
         share = float(sum(float(drives.share[i]) for i in held))
         where = (f"the pulley of {', '.join(names[i] for i in held)}" if held
                  else "a braked pulley without a drive")
-        cause = (f"; {where} held the belt at rest ({abs(float(r['hold_f'])) / 1e3:.4g} kN) and "
+        cause = (f"; {where} held the belt at rest ({gnum(abs(float(r['hold_f'])) / 1e3)} kN) and "
                  f"its drives took {100.0 * share:.0f} % of that at the hand-over: the rest "
                  f"must come from the master's loop on {names[m]}, about {travel:.2g} s of wave "
                  "travel away, and the belt runs until it arrives; the belt held at rest on the "
@@ -1132,7 +1133,7 @@ def _ahead_at_release(sys: System, r: dict, out, names) -> str:
                  "at rest: the run warns when it does not) or the held pulley's drive made the "
                  "master (the largest drives[i].share) hands the hold over on one shaft")
     return (f"the belt ran ahead of the start as its hold let go (t = {t_rel:.1f} s): the mean "
-            f"belt speed reached {rec['v_mean'][win][k]:.3g} m/s at t = {rec['t'][win][k]:.1f} s "
+            f"belt speed reached {gnum(rec['v_mean'][win][k], 3)} m/s at t = {rec['t'][win][k]:.1f} s "
             f"against a reference of {rec['v_ref'][win][k]:.2g} m/s, "
             f"{100.0 * ahead[k] / v_d:.1f} % of design speed ahead (criterion: within "
             f"{100.0 * TRACK_FRACTION:.0f} %; docs/dynamics.md, The start from rest){cause}")
@@ -1149,7 +1150,7 @@ def _loop_field(sys: System) -> str:
     warning's lever names what to change and from what: ``drives.0.speed_loop_rad_s, now 5
     rad/s``."""
     ctl = sys.model.control
-    return f"drives.{int(ctl.master)}.speed_loop_rad_s, now {float(ctl.bandwidth):.3g} rad/s"
+    return f"drives.{int(ctl.master)}.speed_loop_rad_s, now {gnum(float(ctl.bandwidth), 3)} rad/s"
 
 
 def _settle_levers(sys: System) -> str:
@@ -1171,8 +1172,8 @@ def _settle_levers(sys: System) -> str:
         filling = float(np.max(fill)) if fill is not None and len(fill) else 0.0
         cyc = sys.model.cycle
         t_cmd = float(cyc.t_start) + float(cyc.t_run)
-        late = (f"; the couplings fill over {filling:.3g} s, past the stop command "
-                f"{t_cmd:.3g} s after the start command, so their force is still changing: a "
+        late = (f"; the couplings fill over {gnum(filling, 3)} s, past the stop command "
+                f"{gnum(t_cmd, 3)} s after the start command, so their force is still changing: a "
                 f"run_s of at least {_up_s(filling - float(cyc.t_start) + 4.0 * sys.wave_loop_time_s)} "
                 "s lets them fill (rerun to check that it settles)" if filling > t_cmd else "")
         return ("the drives are dol, without a speed loop (their motor curves and couplings "
@@ -1210,10 +1211,10 @@ def _force_swings(sys: System, rec, rec_d, m, names=None) -> list[str]:
         swing, period = swing_and_period(t, f)
         if 0.5 * swing > SETTLE_FORCE * rated:
             name = names[i] if names else f"drive {i + 1}"
-            per = (f"a period of {period:.3g} s" if period
+            per = (f"a period of {gnum(period, 3)} s" if period
                    else "a period longer than the window")
-            out.append(f"the force of {name} swings between {f.min() / 1e3:.3g} and "
-                       f"{f.max() / 1e3:.3g} kN (rated {rated / 1e3:.3g} kN, {per})")
+            out.append(f"the force of {name} swings between {gnum(f.min() / 1e3, 3)} and "
+                       f"{gnum(f.max() / 1e3, 3)} kN (rated {gnum(rated / 1e3, 3)} kN, {per})")
     return out
 
 
@@ -1272,10 +1273,10 @@ def _brake_past_full(sys: System, i: int, t_last: float) -> tuple[str, str] | No
                 "no brake force at all, as the note on the brake grip says)")
     elif grip_kn is not None and grip_kn < least_kn:
         less = (f" (not less force on this one: by the stop's undamped bound its pulley passes "
-                f"at most {grip_kn:.3g} kN, below the {up3(least_kn):g} kN that with the "
+                f"at most {gnum(grip_kn, 3)} kN, below the {up3(least_kn):g} kN that with the "
                 f"others holds the loaded belt at rest, {HOLD_MARGIN:g} x its net gravity pull)")
     elif (up3(least_kn) if least_kn > 0.0 else 0.0) < force_kn * (1.0 - 1e-6):
-        less = (f" or less brake force on this one (now {force_kn:.4g} kN; a given force_kn"
+        less = (f" or less brake force on this one (now {gnum(force_kn)} kN; a given force_kn"
                 + (f" of at least {up3(least_kn):g} kN, which with the others holds the loaded "
                    f"belt at rest, {HOLD_MARGIN:g} x its net gravity pull)" if least_kn > 0.0
                    else ")"))
@@ -1283,11 +1284,11 @@ def _brake_past_full(sys: System, i: int, t_last: float) -> tuple[str, str] | No
         # with the other brakes: their sum is the holding size, not this brake's own force (a
         # 1.8 km decline's head and tail brakes of 122.6 kN each: 'its 122.6 kN is ... 1.2 x
         # its net gravity pull', which was 204.4 kN)
-        less = (f" (not less force on this one: its {force_kn:.4g} kN with the others' "
-                f"{others_kn:.4g} kN is what holds the loaded belt at rest, {HOLD_MARGIN:g} x "
+        less = (f" (not less force on this one: its {gnum(force_kn)} kN with the others' "
+                f"{gnum(others_kn)} kN is what holds the loaded belt at rest, {HOLD_MARGIN:g} x "
                 "its net gravity pull)")
     else:
-        less = (f" (not less force on this one: its {force_kn:.4g} kN is what holds the loaded "
+        less = (f" (not less force on this one: its {gnum(force_kn)} kN is what holds the loaded "
                 f"belt at rest, {HOLD_MARGIN:g} x its net gravity pull)")
     return (f"{heavier_takeup(sys, 'more slack-side tension')} or part of the brake force on a "
             f"brake on another pulley (brakes[].position or drive){less}",
@@ -1345,7 +1346,7 @@ def _slip_warnings(sys: System, r: dict, out, conveyor=None) -> list[str]:
                 margin = f"lowest slip margin {sm:.2f}"
 
             w.append(f"{names[i]} slipped on its pulley {when}: from t = {t0:.1f} "
-                     f"to {t1:.1f} s, {slip_s:.2f} s in all, {drv[i]['slip_m']:.3g} m of belt "
+                     f"to {t1:.1f} s, {slip_s:.2f} s in all, {gnum(drv[i]['slip_m'], 3)} m of belt "
                      f"slipped ({margin}); {fix} would avoid it{why}")
             if _run_phase(sys, t0, t_stop_cmd) == "start":
                 w.extend(oversized_motor_words(sys, {i}))
@@ -1358,7 +1359,7 @@ def _slip_warnings(sys: System, r: dict, out, conveyor=None) -> list[str]:
         h = shs[k]
         w.append(f"the {name} brake's pulley slipped: the brake held it while the belt slid "
                  f"over it from t = {h['first']:.1f} to {h['last']:.1f} s, {h['slip_s']:.2f} s "
-                 f"in all, {h['slip_m']:.3g} m of belt slipped; more tension on that pulley "
+                 f"in all, {gnum(h['slip_m'], 3)} m of belt slipped; more tension on that pulley "
                  "(take-up position or mass) or a smaller brake force would avoid it")
     return w
 
@@ -1604,13 +1605,13 @@ def runon_words(sys: System, out, r: dict, conveyor=None) -> list[str]:
     held = [b for b in brakes if b.hold and b.force_kn != "auto"]
     why = (f"{', '.join(loose)} without hold let go once it rested" if loose else
            "its holding brakes give less than that" if held else "nothing holds it")
-    need = (f" of at least {HOLD_MARGIN * pull / 1e3:.4g} kN in all ({HOLD_MARGIN:g} x the "
+    need = (f" of at least {gnum(HOLD_MARGIN * pull / 1e3)} kN in all ({HOLD_MARGIN:g} x the "
             "pull; force_kn: auto sizes them so)" if pull > 0.0 else "")
-    return [f"the belt runs on after its stop: it came to rest at t = {t_rest:.4g} s, its "
-            f"mean speed has been above {limit:.3g} m/s ({100.0 * REST_FRACTION:g} % of "
-            f"design speed) since t = {t[k0]:.4g} s and was {v[-1]:.3g} m/s forwards at the "
-            f"run's end (t = {t[-1]:.4g} s), about {dist:.3g} m of belt run on by then (its "
-            f"net gravity pull at rest, {pull / 1e3:.4g} kN at the belt line, outpulls the "
+    return [f"the belt runs on after its stop: it came to rest at t = {gnum(t_rest)} s, its "
+            f"mean speed has been above {gnum(limit, 3)} m/s ({100.0 * REST_FRACTION:g} % of "
+            f"design speed) since t = {gnum(t[k0])} s and was {gnum(v[-1], 3)} m/s forwards at the "
+            f"run's end (t = {gnum(t[-1])} s), about {gnum(dist, 3)} m of belt run on by then (its "
+            f"net gravity pull at rest, {gnum(pull / 1e3)} kN at the belt line, outpulls the "
             f"resistances and {why}); brakes that hold once the belt rests (brakes[].hold: "
             f"true){need} would avoid it"]
 
@@ -1663,16 +1664,16 @@ def runback_words(sys: System, out, r: dict, steady_summary: dict | None = None,
     dist = float(-np.sum(0.5 * (neg[1:] + neg[:-1]) * np.diff(t))) if t.size > 1 else 0.0
     torque = (steady_summary or {}).get("holdback_torque_knm")
     # how much: the net gravity pull a holdback or a holding brake must take at the belt line
-    pull = f"{sys.hold_force_n / 1e3:.4g} kN at the belt line"
+    pull = f"{gnum(sys.hold_force_n / 1e3)} kN at the belt line"
     holdback = ("a holdback on the head pulley (holdback: true)"
-                + (f" of at least {torque:.3g} kNm (CEMA's static backstop rule, "
+                + (f" of at least {gnum(torque, 3)} kNm (CEMA's static backstop rule, "
                    "holdback_torque_knm; the stop's roll-back onto it can take more, which "
                    "the rerun with holdback: true names)" if torque else ""))
-    return [f"the belt runs back after the stop: its mean speed has been below -{limit:.3g} "
-            f"m/s (-{100.0 * REST_FRACTION:g} % of design speed) since t = {t[k0]:.4g} s, "
-            f"{t[k0] - sys.stop_command_s:.3g} s after the stop command, reached "
-            f"{-v[k]:.3g} m/s backwards at t = {t[k]:.4g} s and was still {-v[-1]:.3g} m/s "
-            f"backwards at the run's end (t = {t[-1]:.4g} s), about {dist:.3g} m of belt run "
+    return [f"the belt runs back after the stop: its mean speed has been below -{gnum(limit, 3)} "
+            f"m/s (-{100.0 * REST_FRACTION:g} % of design speed) since t = {gnum(t[k0])} s, "
+            f"{gnum(t[k0] - sys.stop_command_s, 3)} s after the stop command, reached "
+            f"{gnum(-v[k], 3)} m/s backwards at t = {gnum(t[k])} s and was still {gnum(-v[-1], 3)} m/s "
+            f"backwards at the run's end (t = {gnum(t[-1])} s), about {gnum(dist, 3)} m of belt run "
             f"back by then (the lift's pull at rest, {pull}, outpulls the resistances and "
             "nothing holds it); "
             f"{holdback} or a brake that holds once the belt rests (brakes[].hold: true) "
@@ -1729,7 +1730,7 @@ def _short_of_speed_words(sys: System, v_cmd: float, t_stop_cmd: float,
     if abs(v_cmd) < 1e-9 * v_d:  # round-off about rest: said as 0, not as -8.6e-20, -0.0 %
         v_cmd = 0.0
     words = (f"the belt never reached 99 % of design speed during the start (its mean speed "
-             f"was {v_cmd:.4g} m/s, {100.0 * v_cmd / v_d:.1f} % of design speed, at the stop "
+             f"was {gnum(v_cmd)} m/s, {100.0 * v_cmd / v_d:.1f} % of design speed, at the stop "
              f"command at t = {t_stop_cmd:.1f} s)")
     dr = sys.model.drives
     fluid = (dr.control == C.DOL) & (dr.coupling != COUPLING_CODES["none"])
@@ -1738,9 +1739,9 @@ def _short_of_speed_words(sys: System, v_cmd: float, t_stop_cmd: float,
     vfd = bool((dr.control == C.VFD).all()) and te > 0.0 and math.isfinite(lim)
     if vfd and lim <= te:
         # the drives cannot hold design speed at all (the steady check names the torque limit)
-        words += (f"; the drives' force limit, {lim / 1e3:.4g} kN in all (torque_limit x the "
+        words += (f"; the drives' force limit, {gnum(lim / 1e3)} kN in all (torque_limit x the "
                   "rated force, a drive following the master's torque at its share of the "
-                  f"master's limit), is not above the running resistance Te {te / 1e3:.4g} kN, "
+                  f"master's limit), is not above the running resistance Te {gnum(te / 1e3)} kN, "
                   "so no start reaches design speed: a higher torque_limit or larger motors "
                   "(drives[].rated_power_kw) would")
     elif grip:
@@ -1756,8 +1757,8 @@ def _short_of_speed_words(sys: System, v_cmd: float, t_stop_cmd: float,
         # still accelerating at the stop command: the time it still needed at the drives'
         # force limit, rigid body (the waves add to it)
         more = sys.model.control.m_tot * (v_d - v_cmd) / (lim - te)
-        words += (f"; at the drives' force limit ({lim / 1e3:.4g} kN in all against Te "
-                  f"{te / 1e3:.4g} kN) a rigid body needs about {more:.3g} s more to reach it: "
+        words += (f"; at the drives' force limit ({gnum(lim / 1e3)} kN in all against Te "
+                  f"{gnum(te / 1e3)} kN) a rigid body needs about {gnum(more, 3)} s more to reach it: "
                   f"a run_s of at least {_up_s(sys.model.cycle.t_run + more)} s, a longer "
                   "start.time_s that the drives can follow, or more drive force (a higher "
                   "torque_limit or larger motors) would let it get there (rerun to check)")
@@ -1789,7 +1790,7 @@ def _grip_words(sys: System, r: dict, out, names: list[str]) -> str:
         before = slip_s - max(t1 - t_cmd, 0.0)
         if before >= 0.5 * (t_cmd - t0):
             held.append(f"{names[i]} slipped on its pulley from t = {t0:.1f} s to the stop "
-                        f"command ({min(before, t_cmd - t0):.3g} s of those {t_cmd - t0:.3g} s)")
+                        f"command ({gnum(min(before, t_cmd - t0), 3)} s of those {gnum(t_cmd - t0, 3)} s)")
     if not held:
         return ""
     words = (f"; {' and '.join(held)}, so the pulley's grip (its slack-side tension times "
@@ -1803,8 +1804,8 @@ def _grip_words(sys: System, r: dict, out, names: list[str]) -> str:
     rise = v_cmd - v_then
     v_d = sys.v_design
     more = (v_d - v_cmd) * t_run / rise if rise > 0.0 else math.inf
-    pace = (f"its mean speed rose {rise:.3g} m/s over the {t_run:g} s run before the stop "
-            f"command" + (f", a pace that reaches design speed in about {more:.3g} s more"
+    pace = (f"its mean speed rose {gnum(rise, 3)} m/s over the {t_run:g} s run before the stop "
+            f"command" + (f", a pace that reaches design speed in about {gnum(more, 3)} s more"
                           if rise > 0.0 else ""))
     if more <= 10.0 * (t_run + float(sys.model.cycle.t_start)):
         return words + f"; {pace}: a run_s of at least {_up_s(t_run + more)} s would too"
@@ -1954,11 +1955,11 @@ def endstop_words(sys: System, r: dict, out=None) -> str:
     short = tu.x_run > tu.hi - tol if run_end == "hi" else tu.x_run < tu.lo + tol
     need = ""
     if short:
-        need = (f", the running stretch alone needs {abs(tu.x_run):.3g} m" +
+        need = (f", the running stretch alone needs {gnum(abs(tu.x_run), 3)} m" +
                 (" (the belt runs shorter than at rest)" if run_end == "lo" else ""))
     return (f"take-up carriage reached {which} at up to {r['endstop_speed']:.2f} m/s: its "
-            f"travel is {tu.hi - tu.lo:.3g} m (takeup.travel_m; from {tu.lo:.3g} to "
-            f"{tu.hi:.3g} m about the rest position, running position {tu.x_run:.3g} m{need}): "
+            f"travel is {gnum(tu.hi - tu.lo, 3)} m (takeup.travel_m; from {gnum(tu.lo, 3)} to "
+            f"{gnum(tu.hi, 3)} m about the rest position, running position {gnum(tu.x_run, 3)} m{need}): "
             "a longer takeup.travel_m (rerun until no end stop is reached: how far the carriage "
             "would have run is not known from this run)"
             + _endstop_levers(sys, reach, run_end, short) + " would avoid it")
@@ -1992,7 +1993,7 @@ def _sag_at_rest_too(sys: System, j: int, limit_pct: float) -> str:
         return ""
     # three figures, more where they would read as the limit it passed (1.5005 % read '1.5 %'
     # against 1.5 %)
-    shown = f"{worst:.3g}"
+    shown = f"{gnum(worst, 3)}"
     if float(shown) <= limit_pct:
         shown = past_limit(worst, limit_pct)
     return (f"; the strand sags {shown} % at rest too (before the start), which only the "
@@ -2027,7 +2028,7 @@ def _sag_words(sys: System, strand: str, sag_pct: float, limit_pct: float, j: in
         # rounded up to 10 N: the least pretension that adds add_kn
         least = math.ceil((pretension_kn + add_kn) * 100.0 - 1e-9) / 100.0
         mass = (f" (a pretension of at least {least:g} kN, "
-                f"takeup.pretension_kn, now {pretension_kn:.4g} kN)")
+                f"takeup.pretension_kn, now {gnum(pretension_kn)} kN)")
     more = heavier_takeup(sys)
     fixes = {"start": _or([more] + start_levers(sys)),
              "running": f"{heavier_takeup(sys, 'more tension at the take-up')} or closer idlers",
@@ -2041,7 +2042,7 @@ def _sag_words(sys: System, strand: str, sag_pct: float, limit_pct: float, j: in
     rest_too = "" if at_rest else _sag_at_rest_too(sys, j, limit_pct)
     shown = past_limit(sag_pct, limit_pct)
     return (f"transient sag on the {strand} strand {shown} % exceeds the limit "
-            f"{limit_pct:g} % (low tension {t_low_n / 1e3:.3g} kN near {where(sys, j)} at t = "
+            f"{limit_pct:g} % (low tension {gnum(t_low_n / 1e3, 3)} kN near {where(sys, j)} at t = "
             f"{t_at:.1f} s, {when}); {up3(need_kn):g} kN there keeps it within "
             f"(the sag goes as 1 / T), so the take-up must add at least "
             f"{add_kn:g} kN{mass}, more where the transient passes only part of "
@@ -2080,7 +2081,7 @@ def _slack_words(sys: System, r: dict, j: int) -> str:
     # tenths of a second, or two significant figures below 0.05 s, which tenths read as 0.0
     # (an 18 deg incline's coast held by its holdback was slack for 0.041 s: "0.0 s in all")
     dur_words = f"{dur:.1f}" if dur >= 0.05 else f"{dur:.2g}"
-    return (f"the belt goes slack: its slack spans gather up to {r['slack_max']:.3g} m of belt "
+    return (f"the belt goes slack: its slack spans gather up to {gnum(r['slack_max'], 3)} m of belt "
             f"near {where(sys, j)} at t = {t_max:.1f} s, slack for {dur_words} s in "
             "all (the one-dimensional model does not follow the belt leaving the idlers or "
             "piling up; a slack span's sag is past every sag limit and has no value, so "
@@ -2110,16 +2111,16 @@ def _transient_safety_words(sys: System, conveyor, sf: float, sf_min: float, t_m
                   "stop": stop_levers(sys)}[phase]
     fix = f": {_or(fixes)} would avoid it" if fixes else ""
     if running_short:
-        fix += (f" (the running tension alone, {run_kn:.4g} kN, gives "
-                f"{belt.rating_n / 1e3 / run_kn:.2f}, below {sf_min:.3g}: no start or stop "
+        fix += (f" (the running tension alone, {gnum(run_kn)} kN, gives "
+                f"{belt.rating_n / 1e3 / run_kn:.2f}, below {gnum(sf_min, 3)}: no start or stop "
                 "setting meets it)")
     # below 1 the peak is past the belt's breaking strength: said as what it is, not only as
     # a factor below the minimum
     broken = (f"; below 1, the peak is above the belt's breaking strength "
-              f"({belt.rating_n / 1e3:.4g} kN): the belt would break"
+              f"({gnum(belt.rating_n / 1e3)} kN): the belt would break"
               if belt is not None and sf < 1.0 else "")
-    return (f"belt safety factor {sf:.2f} during the transient is below {sf_min:.3g} (peak "
-            f"{t_max_n / 1e3:.4g} kN near {where(sys, j)} at t = {t_at:.1f} s, "
+    return (f"belt safety factor {sf:.2f} during the transient is below {gnum(sf_min, 3)} (peak "
+            f"{gnum(t_max_n / 1e3)} kN near {where(sys, j)} at t = {t_at:.1f} s, "
             f"{_PHASE_WORDS[phase]}){broken}{fix}")
 
 
@@ -2276,10 +2277,10 @@ def _given_brake_words(sys: System, need_s: float, t_stop: float, auto: bool = F
         return lever
     how = (f"{delay:g} s delay and their force curve (full at {ramp:g} s)" if curve is not None
            else f"{delay:g} s delay and {ramp:g} s ramp")
-    said = (f"{lever}: at most about {force / 1e3:.3g} kN in all, now "
-            f"{now_n / 1e3:.4g} kN (rigid body, {m / 1e3:.4g} t from {v:g} m/s against Te "
-            f"{te / 1e3:.4g} kN with the brakes' {how}, a stop "
-            f"of {need_s:.3g} s against {t_stop:.3g} s now; ")
+    said = (f"{lever}: at most about {gnum(force / 1e3, 3)} kN in all, now "
+            f"{gnum(now_n / 1e3)} kN (rigid body, {gnum(m / 1e3)} t from {v:g} m/s against Te "
+            f"{gnum(te / 1e3)} kN with the brakes' {how}, a stop "
+            f"of {gnum(need_s, 3)} s against {gnum(t_stop, 3)} s now; ")
     pull = _gravity_pull_n(sys)
     hold = HOLD_MARGIN * abs(pull)
     if pull < 0.0 and force < hold:
@@ -2295,10 +2296,10 @@ def _given_brake_words(sys: System, need_s: float, t_stop: float, auto: bool = F
         rise = ramp if ramp > 0.0 else 1.0
         start = f"[0, 0], [{ramp:g}, {frac:.2f}]" if ramp > 0.0 else f"[0, {frac:.2f}]"
         curve = f"[{start}, [{t_held:g}, {frac:.2f}], [{t_held + rise:g}, 1]]"
-        keep = (f"keep a holding force of {hold / 1e3:.4g} kN ({HOLD_MARGIN:g} x the pull)"
-                if now_n < hold else f"keep its {now_n / 1e3:.4g} kN for holding")
+        keep = (f"keep a holding force of {gnum(hold / 1e3)} kN ({HOLD_MARGIN:g} x the pull)"
+                if now_n < hold else f"keep its {gnum(now_n / 1e3)} kN for holding")
         return (said + f"so light a brake does not hold the loaded belt at rest on this "
-                f"decline, whose net gravity pull is {abs(pull) / 1e3:.4g} kN: {keep} and ease "
+                f"decline, whose net gravity pull is {gnum(abs(pull) / 1e3)} kN: {keep} and ease "
                 f"the stop with brakes[].force_curve {curve}, about {frac:.2f} of it, reached "
                 "over the brake's ramp, until the belt has stopped, then all of it)")
     return said + "a holdback or a holding brake set at rest holds the belt once stopped)"
@@ -2374,7 +2375,7 @@ def _coast_inertia_words(sys: System, need_s: float, conveyor=None, v_run: float
     if dm <= 0.0:
         return "more inertia on the drive shafts"
     if impulse > 0.0:
-        now = (f" (the stop as it is, {t_stop:.4g} s measured)" if t_stop is not None else "")
+        now = (f" (the stop as it is, {gnum(t_stop)} s measured)" if t_stop is not None else "")
         auto = [f"brakes.{i}.force_kn" for i, b in enumerate(conveyor.brakes)
                 if b.force_kn == "auto"] if conveyor is not None else []
         # an auto brake is sized again with the inertia (it grows with the moving mass): the
@@ -2382,26 +2383,26 @@ def _coast_inertia_words(sys: System, need_s: float, conveyor=None, v_run: float
         pin = (f" (give {', '.join(auto)} their present forces: auto, they are sized again "
                "with the inertia and the stop is shorter)" if auto else "")
         head = (f"more inertia on the drive shafts: a rigid-body brake stop from the running "
-                f"speed {v0:.4g} m/s to rest ({100.0 * REST_FRACTION:g} % of design speed, "
-                f"{REST_FRACTION * v:.3g} m/s, where the stop time ends) with the brakes as "
+                f"speed {gnum(v0)} m/s to rest ({100.0 * REST_FRACTION:g} % of design speed, "
+                f"{gnum(REST_FRACTION * v, 3)} m/s, where the stop time ends) with the brakes as "
                 f"they are{pin}, M (v_run - v_rest) = Te t + the brakes' impulse I_b(t), of "
-                f"{target:.4g} s (5 wave loop times and {100.0 * COAST_MARGIN:g} % for the "
-                f"elastic belt's swing about the rigid body) needs M = ({target:.4g} s x "
-                f"{te / 1e3:.4g} kN + {impulse / 1e3:.4g} kN s) / {dv:.4g} m/s = "
-                f"{m_need / 1e3:.4g} t moving, {dm / 1e3:.4g} t more than the "
-                f"{m_now / 1e3:.4g} t now at the belt line{now}")
+                f"{gnum(target)} s (5 wave loop times and {100.0 * COAST_MARGIN:g} % for the "
+                f"elastic belt's swing about the rigid body) needs M = ({gnum(target)} s x "
+                f"{gnum(te / 1e3)} kN + {gnum(impulse / 1e3)} kN s) / {gnum(dv)} m/s = "
+                f"{gnum(m_need / 1e3)} t moving, {gnum(dm / 1e3)} t more than the "
+                f"{gnum(m_now / 1e3)} t now at the belt line{now}")
     else:
-        now = (f" (the stop as it is: {m_now / 1e3:.4g} t x {dv:.4g} m/s / {te / 1e3:.4g} kN = "
-               f"{m_now * dv / te:.4g} s rigid, {t_stop:.4g} s measured)" if t_stop is not None
+        now = (f" (the stop as it is: {gnum(m_now / 1e3)} t x {gnum(dv)} m/s / {gnum(te / 1e3)} kN = "
+               f"{gnum(m_now * dv / te)} s rigid, {gnum(t_stop)} s measured)" if t_stop is not None
                else "")
         head = (f"more inertia on the drive shafts: a rigid-body coast from the running speed "
-                f"{v0:.4g} m/s to rest ({100.0 * REST_FRACTION:g} % of design speed, "
-                f"{REST_FRACTION * v:.3g} m/s, "
-                f"where the stop time ends), M (v_run - v_rest) / Te, of {target:.4g} s (5 wave "
+                f"{gnum(v0)} m/s to rest ({100.0 * REST_FRACTION:g} % of design speed, "
+                f"{gnum(REST_FRACTION * v, 3)} m/s, "
+                f"where the stop time ends), M (v_run - v_rest) / Te, of {gnum(target)} s (5 wave "
                 f"loop times and {100.0 * COAST_MARGIN:g} % for the elastic belt's swing about "
-                f"the rigid body) needs M = {target:.4g} s x {te / 1e3:.4g} kN / {dv:.4g} m/s = "
-                f"{m_need / 1e3:.4g} t moving, {dm / 1e3:.4g} t more than the "
-                f"{m_now / 1e3:.4g} t now at the belt line{now}")
+                f"the rigid body) needs M = {gnum(target)} s x {gnum(te / 1e3)} kN / {gnum(dv)} m/s = "
+                f"{gnum(m_need / 1e3)} t moving, {gnum(dm / 1e3)} t more than the "
+                f"{gnum(m_now / 1e3)} t now at the belt line{now}")
     if conveyor is None:
         return head
     dr = sys.model.drives
@@ -2415,7 +2416,7 @@ def _coast_inertia_words(sys: System, need_s: float, conveyor=None, v_run: float
         given = _drive_given_kg(d)[0]
         j_fw = d.flywheel_kg_m2 + (m_shaft + share * dm - given) / red
         parts.append(f"drives.{k}.flywheel_kg_m2 {math.ceil(j_fw):,} kg m2 (now "
-                     f"{d.flywheel_kg_m2:,.0f}; {share * dm / 1e3:.4g} t at the belt line, x "
+                     f"{d.flywheel_kg_m2:,.0f}; {gnum(share * dm / 1e3)} t at the belt line, x "
                      f"(D / 2)^2, D {d.pulley_diameter_m:g} m)")
     return head + (f", a flywheel of {' and '.join(parts)}" if parts else "") + _start_cost(
         sys, dm)
@@ -2429,14 +2430,14 @@ def _start_cost(sys: System, dm: float) -> str:
     conveyor's start by 12 % (33.07 against 29.57 kN rated) without a word."""
     cyc = sys.model.cycle
     if cyc.start_ctrl not in (S_CURVE, LINEAR) or (sys.model.drives.control == C.DOL).all():
-        return (f"; the start then takes longer (the same force accelerates {dm / 1e3:.4g} t "
+        return (f"; the start then takes longer (the same force accelerates {gnum(dm / 1e3)} t "
                 "more)")
     a = abs(start_reference(cyc.start_ctrl, 0.5 * cyc.t_start, cyc.t_start, cyc.v_d)[1])
     rated = float(np.sum(sys.model.drives.rated))
-    against = (f", against the drives' {rated / 1e3:.4g} kN rated in all" if rated > 0.0
+    against = (f", against the drives' {gnum(rated / 1e3)} kN rated in all" if rated > 0.0
                else "")
-    return (f"; the start then accelerates it too: {dm / 1e3:.4g} t x {a:.3g} m/s2 (its peak "
-            f"acceleration) = {dm * a / 1e3:.3g} kN more drive force{against}")
+    return (f"; the start then accelerates it too: {gnum(dm / 1e3)} t x {gnum(a, 3)} m/s2 (its peak "
+            f"acceleration) = {gnum(dm * a / 1e3, 3)} kN more drive force{against}")
 
 
 def _fast_stop_words(sys: System, t_stop: float, summary: dict, steady_tmax: float,
@@ -2452,8 +2453,8 @@ def _fast_stop_words(sys: System, t_stop: float, summary: dict, steady_tmax: flo
     hi, lo = summary.get("t_max_stop_kn"), summary.get("t_min_stop_kn")
     seen = ""
     if hi is not None and lo is not None:
-        ranges = (f"{lo:.4g} to {hi:.4g} kN against {t_min_run:.4g} to "
-                  f"{steady_tmax / 1e3:.4g} kN running")
+        ranges = (f"{gnum(lo)} to {gnum(hi)} kN against {gnum(t_min_run)} to "
+                  f"{gnum(steady_tmax / 1e3)} kN running")
         # the rule is of thumb: where this stop's tensions stayed within the running range
         # (an empty belt's stop), it is said beside the name, not left to contradict it
         calm = (lo >= t_min_run * (1.0 - 1e-3) and hi <= steady_tmax / 1e3 * (1.0 + 1e-3))
@@ -2495,7 +2496,7 @@ def _fast_stop_words(sys: System, t_stop: float, summary: dict, steady_tmax: flo
             t_grip, t_hold, hold = gripped
             asked = need * t_grip / t_stop
             grip = (f"the auto brake is held to its pulley's grip, whose rigid-body stop takes "
-                    f"{t_grip:.3g} s")
+                    f"{gnum(t_grip, 3)} s")
             if asked <= t_hold:
                 fix = (f"less brake force would be slower than that: {given}, or a stop.time_s "
                        f"of {_up_s(asked)} s or more ({grip}: a stop.time_s below that leaves "
@@ -2503,8 +2504,8 @@ def _fast_stop_words(sys: System, t_stop: float, summary: dict, steady_tmax: flo
             else:
                 fix = (f"less brake force would be slower than that: {given} (no stop.time_s "
                        f"would: {grip}, and no auto brake falls below the holding force "
-                       f"{hold / 1e3:.4g} kN, {HOLD_MARGIN:g} x the net gravity pull, whose "
-                       f"rigid-body stop takes about {t_hold:.3g} s)")
+                       f"{gnum(hold / 1e3)} kN, {HOLD_MARGIN:g} x the net gravity pull, whose "
+                       f"rigid-body stop takes about {gnum(t_hold, 3)} s)")
         elif auto and not held:
             # an auto brake's stop scales with its asked time as a controlled one's does
             asked = need * cyc.t_stop / t_stop if cyc.t_stop > 0.0 else need
@@ -2526,8 +2527,8 @@ def _fast_stop_words(sys: System, t_stop: float, summary: dict, steady_tmax: flo
         if cyc.stop_mode == C.BRAKE:
             coast = (f"no brake setting makes it slower: with the brakes off the belt coasts "
                      f"to rest in about {_coast_s(sys):.2g} s (rigid body, M v / Te = "
-                     f"{sys.model.control.m_tot / 1e3:.4g} t x {sys.v_design:g} m/s / "
-                     f"{sys.te_n / 1e3:.4g} kN), itself faster than 5 wave loop times; ")
+                     f"{gnum(sys.model.control.m_tot / 1e3)} t x {sys.v_design:g} m/s / "
+                     f"{gnum(sys.te_n / 1e3)} kN), itself faster than 5 wave loop times; ")
         # a belt that follows the s-curve rests at ramp_rest_fraction() of stop.time_s; a long
         # or soft belt's mass-weighted mean speed rests sooner (a 1.5 km fabric belt at 0.78,
         # a 7 km steel-cord overland at 0.81 of the ramp), so this is the least to ask, not
@@ -2557,8 +2558,8 @@ def _fast_stop_words(sys: System, t_stop: float, summary: dict, steady_tmax: flo
     asked_fast = (f" (the stop.time_s asked, {cyc.t_stop:g} s, is itself shorter than "
                   f"that)" if cyc.stop_mode in (C.BRAKE, C.CONTROLLED)
                   and 0.0 < cyc.t_stop < need else "")
-    return (f"stop in {t_stop:.3g} s is faster than 5 wave loop times (5 x "
-            f"{sys.wave_loop_time_s:.3g} s = {need:.3g} s){asked_fast}: a high-stress "
+    return (f"stop in {gnum(t_stop, 3)} s is faster than 5 wave loop times (5 x "
+            f"{gnum(sys.wave_loop_time_s, 3)} s = {gnum(need, 3)} s){asked_fast}: a high-stress "
             f"stop{seen}; {fix}")
 
 
@@ -2577,8 +2578,8 @@ def _unbraked_stop_s(sys: System) -> float:
 
 def _unbraked_words(sys: System, t_s: float) -> str:
     """:func:`_unbraked_stop_s` in words, with its figures."""
-    return (f"2 v M / Te = 2 x {sys.v_design:g} m/s x {sys.model.control.m_tot / 1e3:.4g} t / "
-            f"{sys.te_n / 1e3:.4g} kN = {t_s:.3g} s, so that the curve's steepest deceleration "
+    return (f"2 v M / Te = 2 x {sys.v_design:g} m/s x {gnum(sys.model.control.m_tot / 1e3)} t / "
+            f"{gnum(sys.te_n / 1e3)} kN = {gnum(t_s, 3)} s, so that the curve's steepest deceleration "
             "2 v / T stays within the coast's Te / M and the drives never brake the belt: "
             "braked, it rests sooner than it coasts")
 
@@ -2615,13 +2616,13 @@ def _coasts_on_words(sys: System, v_end: float, late: tuple[float, float] | None
     if coast > window:
         # resistance above the pull, barely: it slows, too slowly for the window, not kept
         # moving by gravity
-        return (f"its resistance exceeds gravity's pull by only Te = {te / 1e3:.3g} kN, so "
+        return (f"its resistance exceeds gravity's pull by only Te = {gnum(te / 1e3, 3)} kN, so "
                 f"it slows at about Te / M = {te / m:.2g} m/s2: a rigid-body coast to rest "
-                f"takes about {coast:.3g} s (M v / Te), beyond the window; a brake would stop it "
+                f"takes about {gnum(coast, 3)} s (M v / Te), beyond the window; a brake would stop it "
                 "sooner (brakes with force_kn: auto sizes one for stop.mode brake and its "
                 "stop.time_s)")
-    rigid = (f"a rigid body at its design-speed resistance (Te = {te / 1e3:.3g} kN above "
-             f"gravity's pull) would coast to rest in about {coast:.3g} s (M v / Te), within "
+    rigid = (f"a rigid body at its design-speed resistance (Te = {gnum(te / 1e3, 3)} kN above "
+             f"gravity's pull) would coast to rest in about {gnum(coast, 3)} s (M v / Te), within "
              "the window, but its resistances fall as it slows")
     if late is None:
         return f"{rigid}; {brake}"
@@ -2631,9 +2632,9 @@ def _coasts_on_words(sys: System, v_end: float, late: tuple[float, float] | None
     if abs(dv) > 0.01 * abs(v_end):
         return f"{rigid}, so it slows far more slowly than a rigid body ({change}); {brake}"
     pull = -_gravity_pull_n(sys)
-    down = (f"its pull down the decline, {pull / 1e3:.4g} kN ({change})" if pull > 0.0 else
+    down = (f"its pull down the decline, {gnum(pull / 1e3)} kN ({change})" if pull > 0.0 else
             f"gravity's pull ({change})")
-    return (f"{rigid}: it coasts on at about {v_end:.3g} m/s, where they match {down}, so "
+    return (f"{rigid}: it coasts on at about {gnum(v_end, 3)} m/s, where they match {down}, so "
             f"gravity keeps it moving: {brake}")
 
 
@@ -2657,16 +2658,16 @@ def not_stopped_words(sys: System, v_end: float, sliding: bool = False,
         fix = ("gravity keeps it moving against its resistance: a brake would stop it (brakes "
                "with force_kn: auto sizes one for stop.mode brake and its stop.time_s)")
     elif sliding:
-        fix = (f"its brakes ({total_kn:.4g} kN in all) are beyond the grip of their pulley, "
+        fix = (f"its brakes ({gnum(total_kn)} kN in all) are beyond the grip of their pulley, "
                f"which slid in the stop: more slack-side tension there ({heavier_takeup(sys)}) "
                "or part of the brake force on another pulley would let them stop it")
     elif cyc.stop_mode != C.BRAKE:
-        fix = (f"its brakes ({total_kn:.4g} kN) act only once it rests: a brake stop "
+        fix = (f"its brakes ({gnum(total_kn)} kN) act only once it rests: a brake stop "
                "(stop.mode: brake) would stop it")
     else:
-        fix = (f"its brakes ({total_kn:.4g} kN in all) do not stop it: a larger brake force "
+        fix = (f"its brakes ({gnum(total_kn)} kN in all) do not stop it: a larger brake force "
                "(brakes[].force_kn, auto sizes it for the stop time) would")
     return (f"the belt did not stop within the stop window of {cyc.stop_max:.0f} s after the "
             f"stop command (the same for every run, docs/dynamics.md): its mean speed was "
-            f"still {v_end:.3g} m/s ({100.0 * v_end / cyc.v_d:.0f} % of design speed) at the "
+            f"still {gnum(v_end, 3)} m/s ({100.0 * v_end / cyc.v_d:.0f} % of design speed) at the "
             f"window's end; {fix}")

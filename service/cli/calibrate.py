@@ -16,6 +16,7 @@ from beltstudy.engine import InputError, format_validation_error
 from beltstudy.engine.calibration import time_column_hint
 from beltstudy.engine.conveyor import unit_twin
 from beltstudy.engine.textfile import read_text
+from beltstudy.engine.wording import gnum
 from beltstudy.service.calibration import (
     MAX_ROWS,
     ROWS_FIX,
@@ -74,7 +75,7 @@ def read_measured(path: str, lines: list[int] | None = None) -> list[dict]:
     size = p.stat().st_size
     if size > MEASURED_MAX_BYTES:
         raise InputError(
-            f"{path}: {size / 1e6:.3g} MB; a calibration reads at most {MAX_ROWS} rows, "
+            f"{path}: {gnum(size / 1e6, 3)} MB; a calibration reads at most {MAX_ROWS} rows, "
             f"far less than {MEASURED_MAX_BYTES / 1e6:g} MB: give the steady states to fit "
             "(one row each)")
     text = read_text(p, path)
@@ -288,9 +289,9 @@ def format_calibration(out: dict) -> str:
              "of freedom)", f"  {out['message']}", "",
              "  parameter                 value          se      start   95 % interval"]
     for name, f in out["fit"].items():
-        se = f"{f['se']:.4g}" if f["se"] is not None else "-"
+        se = f"{gnum(f['se'])}" if f["se"] is not None else "-"
         ci = f.get("ci95")
-        ci = f"{ci[0]:.4g} to {ci[1]:.4g}" if ci else "-"
+        ci = f"{gnum(ci[0])} to {gnum(ci[1])}" if ci else "-"
         lines.append(f"  {name:<22} {f['value']:>10.6g} {se:>11} {f['start']:>10.4g}   {ci}")
     lines += ["", "  row  line  measured      value      model   residual [%]"]
     for r in out["residuals"]:

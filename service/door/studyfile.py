@@ -29,6 +29,7 @@ from beltstudy import engine
 from beltstudy.engine import Conveyor, InputError, get_model, parse_conveyor
 from beltstudy.engine.conveyor import json_numbers
 from beltstudy.engine.reads import STEADY_FIELDS
+from beltstudy.engine.wording import gnum
 from beltstudy.service.door.messages import describe, with_type_fixes
 from beltstudy.service.door.parse import check_tree, expect_kind, load_mapping
 from beltstudy.service.door.sample import (
@@ -225,7 +226,7 @@ def _range_fix(spec: RangeSpec, max_runs: int) -> str:
                         "multiply it), or a shorter range")
     scale = 10.0 ** (math.floor(math.log10(least)) - 2)
     least = math.ceil(least / scale * (1 - 1e-12)) * scale
-    return (f"a step of at least {least:.3g} (that keeps this axis alone within the limit), "
+    return (f"a step of at least {gnum(least, 3)} (that keeps this axis alone within the limit), "
             "or a shorter range")
 
 

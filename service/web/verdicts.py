@@ -27,6 +27,7 @@ from typing import Any
 import pandas as pd
 
 from beltstudy.engine import OVERLOAD_S_MAX
+from beltstudy.engine.wording import gnum
 from beltstudy.service.web.numbers import eng
 
 __all__ = ["Verdict", "VERDICTS", "Cause", "CAUSES", "verdict_rows", "cause_groups",
@@ -699,7 +700,7 @@ def study_limits(study: dict, sf_min: float, sf_ratio: float,
             sf = run_sf(runs)
             if mixed(sf):
                 return ratio * sf, (f"{words}, of each run's belt: " + ", ".join(
-                    f"{ratio * v:.3g}" for v in sorted(sf.unique())))
+                    f"{gnum(ratio * v, 3)}" for v in sorted(sf.unique())))
             return ratio * sf, words
         return f
 
@@ -711,8 +712,8 @@ def study_limits(study: dict, sf_min: float, sf_ratio: float,
             sf = ratio * run_sf(runs)
             if mixed(sf):
                 return rating / sf, ("belt rating / the safety factor of each run's belt ("
-                                     + ", ".join(f"{v:.3g}" for v in sorted(sf.unique())) + ")")
-            return rating / sf, f"belt rating / {float(sf.iloc[0]) if len(sf) else 0:.3g}"
+                                     + ", ".join(f"{gnum(v, 3)}" for v in sorted(sf.unique())) + ")")
+            return rating / sf, f"belt rating / {gnum(float(sf.iloc[0]) if len(sf) else 0, 3)}"
         return f
 
     def rated_force(runs, i: str = "1", **_):
@@ -795,7 +796,7 @@ def study_limits(study: dict, sf_min: float, sf_ratio: float,
     return {
         "rated_at_pulleys": rated_at_pulleys,
         "sf_steady": sf_limit(1.0, sf_words),
-        "sf_dyn": sf_limit(sf_ratio, f"{sf_ratio:.3g} x the minimum, transient"),
+        "sf_dyn": sf_limit(sf_ratio, f"{gnum(sf_ratio, 3)} x the minimum, transient"),
         "t_allow_steady": allow(1.0),
         "t_allow_dyn": allow(sf_ratio),
         "sag": sag_limit,

@@ -1,0 +1,27 @@
+"""Numbers in words: the engine's messages, warnings and notes print a figure to a few
+significant figures without an exponent, so 19 740 t reads ``19740``, not ``1.974e+04`` as
+``:.4g`` gives it (a leaf module: every engine and service module can import it)."""
+
+from __future__ import annotations
+
+import math
+
+__all__ = ["gnum"]
+
+#: Largest power of ten written out in full; beyond it the exponent stays (1e+20 is read
+#: more easily than twenty-one digits).
+PLAIN_MAX_EXP = 15
+
+
+def gnum(value: float, digits: int = 4) -> str:
+    """``value`` to ``digits`` significant figures [any unit], as ``f"{value:.{digits}g}"``
+    but with the exponent of a large number written out (``gnum(19740.3)`` is ``19740``,
+    ``gnum(1210.4, 3)`` is ``1210``); small numbers and non-finite ones as ``:g`` gives them.
+    The text parses back with ``float`` to the rounded value."""
+    text = f"{value:.{digits}g}"
+    if "e+" not in text:
+        return text
+    rounded = float(text)
+    if not math.isfinite(rounded) or abs(rounded) >= 10.0 ** (PLAIN_MAX_EXP + 1):
+        return text
+    return f"{rounded:.0f}"
