@@ -477,19 +477,33 @@ def _marginal(fe: FigureError | None, limit: float, unit: str, higher_passes: bo
     said = ["the verdict may flip with the mesh"]
     fine = fe.values[-1] if fe.values else None
     if fine is not None and finest:
-        said.append(f"{gnum(fine)}{u} on {finest} elements")
+        said.append(f"{_beside(fine, limit)}{u} on {finest} elements")
     conv = fe.converged
     if conv is not None and math.isfinite(conv):
         side = ("at the limit" if conv == limit else
                 "which passes" if (conv > limit) == higher_passes else "which fails")
-        said.append(f"converged estimate {gnum(conv)}{u}, {side}")
+        said.append(f"converged estimate {_beside(conv, limit)}{u}, {side}")
     if finest and finest_dt_s:
         said.append(f"a finer mesh and step (scenario.elements {2 * finest}, scenario.dt_s "
                     f"{gnum(finest_dt_s / 2, 3)}) narrow the bar")
     elif finest:
         said.append(f"a finer mesh (scenario.elements {2 * finest}) narrows the bar")
-    return (f"marginal: {fe.name} {gnum(fe.value)} against limit {limit:g} +- {gnum(fe.err, 3)}{u} "
+    return (f"marginal: {fe.name} {_beside(fe.value, limit)} against limit {limit:g} +- "
+            f"{gnum(fe.err, 3)}{u} "
             f"({'; '.join(said)})")
+
+
+def _beside(value: float, limit: float) -> str:
+    """``value`` beside the ``limit`` it is judged against [any unit]: four significant
+    figures, more (up to ten) where four print it as the limit though it differs (a slip
+    margin of 1.00003 against 1 read "1 against limit 1", and its converged estimate 0.99996
+    "1, which fails")."""
+    for digits in range(4, 11):
+        text = gnum(value, digits)
+        if (text != f"{limit:.{digits}g}"
+                or abs(value - limit) <= 1e-9 * max(abs(value), abs(limit))):
+            return text
+    return text
 
 
 def marginal_verdicts(summary: dict, figures: dict, *, sag_limit_pct: float | None = None,

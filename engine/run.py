@@ -22,7 +22,7 @@ import pandas as pd
 from beltstudy.engine import beltselect, catalog
 from beltstudy.engine.beltselect import resolve_auto_belt, run_cases, run_message
 from beltstudy.engine.checks import design_holding_words, transient_checks
-from beltstudy.engine.conveyor import Conveyor, Scenario, section_loads
+from beltstudy.engine.conveyor import Conveyor, Drive, Scenario, section_loads
 from beltstudy.engine.curves import survey_liftoff_limits_n, transient_liftoff
 from beltstudy.engine.design import auto_sizes, summary_fields
 from beltstudy.engine.dynamics import DynamicsOptions, TransientResult, build_system, simulate
@@ -655,8 +655,11 @@ def _complete(prep: _Prepared, scenario, system, tr, model, params, opts, remedy
 
 def _fill_estimates(conveyor: Conveyor, system, tr, messages: list[str], summary: dict
                     ) -> None:
-    """A dol drive through a fill-controlled coupling that slipped in the start was offered "a
-    slower coupling fill (a longer coupling_fill_s)" with no amount. Its force at the stalled
+    """A dol drive through a fluid coupling that slipped in the start gets the fill time that
+    keeps its start force within its pulley's grip. Through a fill-controlled coupling it was
+    offered "a slower coupling fill (a longer coupling_fill_s)" with no amount; through a
+    constant-fill one, "a fill-controlled coupling", whose default 20 s fill still slipped a
+    600 m incline for 4.7 s (an 85 s fill held). The force of a stalled fill-controlled
     coupling rises with the fill, ``STALL F_rated t / t_fill``; a rigid belt starts to move
     once it passes the running force ``F_run`` (the drive's share of Te) and, for the force
     to stay within the pulley's grip ``F_grip`` (the largest force the pulley passed to the
@@ -674,9 +677,9 @@ def _fill_estimates(conveyor: Conveyor, system, tr, messages: list[str], summary
     cyc = system.model.cycle
     t = np.asarray(tr.series["t_s"])
     start = (t >= cyc.t_pre) & (t <= system.stop_command_s)
-    lever = "a slower coupling fill (a longer coupling_fill_s)"
+    default_fill = Drive.model_fields["coupling_fill_s"].default
     for i, d in enumerate(conveyor.drives):
-        if (d.control != "dol" or d.coupling != "fluid_fill_controlled"
+        if (d.control != "dol" or d.coupling not in ("fluid", "fluid_fill_controlled")
                 or not (summary.get(f"drive{i + 1}_slip_s") or 0.0) > 0.0 or not start.any()):
             continue
         share = float(drives.share[i])
@@ -684,15 +687,23 @@ def _fill_estimates(conveyor: Conveyor, system, tr, messages: list[str], summary
         f_grip = float(np.max(np.asarray(tr.series[f"f_belt{i + 1}_kn"])[start])) * 1e3
         rated = float(drives.rated[i])
         if f_grip > f_run:
-            need = (2.0 * share * system.model.control.m_tot * system.v_design * STALL * rated
-                    / (f_grip - f_run) ** 2)
-            est = (f"about {math.ceil(need):.0f} s keeps the start force within the pulley's "
+            need = math.ceil(2.0 * share * system.model.control.m_tot * system.v_design * STALL
+                             * rated / (f_grip - f_run) ** 2)
+            est = (f"about {need:.0f} s keeps the start force within the pulley's "
                    f"grip ({gnum(f_grip / 1e3)} kN passed where it slipped, {gnum(f_run / 1e3)} kN "
                    "running): a rigid-body estimate, rerun to confirm")
         else:
             est = (f"no fill keeps the start force within the pulley's grip: it slipped at "
                    f"{gnum(f_grip / 1e3)} kN, not above the running force {gnum(f_run / 1e3)} kN")
-        words = f"a slower coupling fill (drives.{i}.coupling_fill_s, now {d.coupling_fill_s:g} s; {est})"
+        if d.coupling == "fluid_fill_controlled":
+            lever = "a slower coupling fill (a longer coupling_fill_s)"
+            words = (f"a slower coupling fill (drives.{i}.coupling_fill_s, now "
+                     f"{d.coupling_fill_s:g} s; {est})")
+        else:
+            lever = "a fill-controlled coupling (coupling: fluid_fill_controlled)"
+            words = (f"a fill-controlled coupling (drives.{i}.coupling: fluid_fill_controlled; "
+                     f"its fill, drives.{i}.coupling_fill_s, {default_fill:g} s if not given: "
+                     f"{est})")
         name = f"drive {i + 1} ({d.where}) slipped on its pulley "
         for k, w in enumerate(tr.warnings):
             if w.startswith(name) and lever in w:

@@ -503,3 +503,16 @@ def test_a_stop_within_its_bar_of_five_wave_loops_is_marginal():
     far = A.FigureError("stop_time_s", 25.0, 0.0067, None, "spread", None, (25.0,) * 3)
     assert A.marginal_verdicts(dict(summary, stop_time_s=25.0), {"stop_time_s": far}) == []
     assert A.marginal_verdicts(dict(summary, start_time_s=None), {"stop_time_s": fe}) == []
+
+
+def test_a_marginal_figure_next_to_its_limit_is_printed_to_the_figure_that_tells_them_apart():
+    """A decline's slip margin of 1.00003 on 1 645 elements, converging to 0.99996 against the
+    limit 1, read "slip_margin_min_dyn 1 against limit 1 ... converged estimate 1, which
+    fails": four figures print both as the limit. They are printed to the figure that tells
+    them from it, so the side of the limit reads as the verdict says."""
+    fe = A.FigureError("slip_margin_min_dyn", 1.00003, 0.001, 0.99996, "richardson", 1.0,
+                       (1.0007, 1.00018, 1.00003))
+    (w,) = A.marginal_verdicts({}, {"slip_margin_min_dyn": fe}, finest=1645)
+    assert w.startswith("marginal: slip_margin_min_dyn 1.00003 against limit 1 +- 0.001"), w
+    assert "converged estimate 0.99996, which fails" in w, w
+    assert "1.00003 on 1645 elements" in w, w
