@@ -199,6 +199,20 @@ def rest_state(sys: System) -> R.State:
     return R.State(v=np.zeros(n), te=t0.copy(), ts=s0, td=np.zeros(n), tt=t0.copy())
 
 
+def brake_hold_kn(sys: System, r) -> float:
+    """The force the brakes give holding the belt at rest before the start command [kN]: the
+    reaction at the held element (the first brake's pulley, :func:`~beltstudy.engine.statics.
+    rest_hold_element`) within the set force of the brakes on it; 0 without brakes. The
+    kernel holds that element by the rest's constraint, not by a brake's Coulomb law, so its
+    brake total read 0 there: a 1.8 km decline's brake held 204.4 kN for the 2 s before the
+    start while ``f_brake_kn`` read 0 in the series and the summary."""
+    brakes = sys.model.brakes
+    if not len(brakes.force):
+        return 0.0
+    on = np.asarray(brakes.node) == int(sys.model.cycle.hold_node)
+    return min(abs(float(r["hold_f"])), float(np.sum(np.asarray(brakes.force)[on]))) / 1e3
+
+
 def output_buffers(sys: System) -> R.Out:
     """The output buffers of a run, sized by the cycle; the run record holds the belt at rest
     (take-up at its rest position, holding force)."""
@@ -702,6 +716,11 @@ def decode(sys: System, kr: KernelRun, wall_s: float, *, steady_summary=None, co
 
     rc = rec[:nrec]
     cols = {name: np.ascontiguousarray(rc[field]) / scale for name, field, scale in _SERIES}
+    held_kn = brake_hold_kn(sys, r)
+    if held_kn > 0.0:
+        before = np.asarray(rc["t"]) < sys.model.cycle.t_pre
+        cols["f_brake_kn"] = np.where(before, np.maximum(cols["f_brake_kn"], held_kn),
+                                      cols["f_brake_kn"])
     rec_d = out.rec_d[:nrec]
     for i in range(sys.model.drives.share.shape[0]):
         cols[f"f_drive{i + 1}_kn"] = np.ascontiguousarray(rec_d["f"][:, i]) / 1e3
@@ -1463,7 +1482,8 @@ def transient_summary(sys: System, r: dict, out, segs, *, steady_summary=None, c
         "stop_window_s": float(sys.model.cycle.stop_max),
         "f_holdback_kn": (float(r["fhb_max"]) / 1e3 if (sys.model.shafts.hb == 1).any()
                           else None),
-        "f_brake_kn": float(r["fbr_max"]) / 1e3 if len(brakes.force) else None,
+        "f_brake_kn": (max(float(r["fbr_max"]) / 1e3, brake_hold_kn(sys, r))
+                       if len(brakes.force) else None),
         "wave_loop_time_s": sys.wave_loop_time_s,
         "stop_wave_ratio": (t_stop_ach / sys.wave_loop_time_s
                             if t_stop_ach is not None else None),
