@@ -291,8 +291,8 @@ TRANSIENT = ResultGroup("transient", "Transient: the start, run and stop cycle (
        "pulley) gives over the run, apart from the brakes' (null without a holdback)",
        "holdback force (largest)"),
     _f("f_brake_kn", "kN", "largest force the brakes give together over the run (their sum "
-       "on every shaft; the time series' f_brake_kn at every step), apart from the holdback's "
-       "(null without brakes)", "brake force (largest)"),
+       "on every shaft; the time series' f_brake_kn at every step), at rest before the start "
+       "included, apart from the holdback's (null without brakes)", "brake force (largest)"),
     _f("wave_loop_time_s", "s", "time a stress wave takes once round the loop",
        "wave loop time"),
     _f("stop_wave_ratio", "-", "stop_time_s / wave_loop_time_s (null when the belt did not "
