@@ -37,6 +37,7 @@ from beltstudy.engine.dynamics.simulate import (
     stop_levers,
 )
 from beltstudy.engine.loop import G
+from beltstudy.engine.reads import unread_brakes
 from beltstudy.engine.remedy import REL_TOL, SAG_WARNING, reads_start_time, slipped_in_stop
 from beltstudy.engine.results import check_summary
 from beltstudy.engine.sizing import installed_at_full_load
@@ -513,11 +514,13 @@ def _prepare(conveyor, scenario, model, params, dynamics, opts, solved=None, gov
         conveyor, belt_choice, steady, installed = solved[key]
     summary = dict(steady.summary)
     # the sizes this run used (take-up, rated power, brakes) and what set each auto one
-    summary.update(summary_fields(auto_sizes(conveyor, scenario, model=model, params=params,
-                                             steady=steady)))
+    summary.update(summary_fields(_as_applied(
+        auto_sizes(conveyor, scenario, model=model, params=params, steady=steady),
+        conveyor, scenario, dynamics)))
     summary.update(installed)
     # a study's design: the run sees its sizes as given numbers, the caller knows what set them
-    summary.update({k: v for k, v in (governed or {}).items() if k.endswith("_governed_by")})
+    summary.update({k: v for k, v in (governed or {}).items() if k.endswith("_governed_by")
+                    and not (k == "brake_governed_by" and summary.get("brake_force_kn") is None)})
     held_by = (governed or {}).get("brake_governed_by")
     if held_by and "force_kn: auto sizes them" in steady.message:
         # a holding brake short at a case outside the design: its fix is the design's list
@@ -534,6 +537,25 @@ def _prepare(conveyor, scenario, model, params, dynamics, opts, solved=None, gov
         check_summary(summary)
         prep.done = RunResult(summary=summary, steady=steady)
     return prep
+
+
+def _as_applied(sizes: dict, conveyor: Conveyor, scenario: Scenario, dynamics: bool) -> dict:
+    """The sizes a transient run used: without the brakes it never applies (a coast or
+    controlled stop's brakes without ``hold``, :func:`~beltstudy.engine.reads.unread_brakes`),
+    whose law the run does not read, so that runs of a study that differ only in it are one
+    run (``conveyor_as_read``). Their force in the row was the first merged grid point's: one
+    run of two studies read 150 kN in one and 80 kN in the other. ``brake_force_kn`` is then
+    the total of the brakes applied, null where none is. A steady-only run keeps every
+    brake's size: the design's holding brake, which the statics place."""
+    if not dynamics or not conveyor.brakes:
+        return sizes
+    unread = set(unread_brakes({"brakes": [{"hold": b.hold} for b in conveyor.brakes]},
+                               {"stop": {"mode": scenario.stop.mode}}, dynamics=True))
+    if not unread:
+        return sizes
+    keep = [i for i in range(len(conveyor.brakes)) if i not in unread]
+    return {**sizes, "brake_force_kn": [sizes["brake_force_kn"][i] for i in keep],
+            "brake_governed_by": [sizes["brake_governed_by"][i] for i in keep]}
 
 
 def _start_note_for(steady, conveyor, scenario, message: str | None = None) -> str:

@@ -720,33 +720,65 @@ def _slip_words(res: SteadyResult, drives, slip_margins, start_margins, breakawa
                                     f"{w}: slip margin {m:.2g} < 1" for w, m in cases)
             # a margin of 0 is a slack side of no tension: no grip passes a force from it
             least = min(m for _, m in cases)
-            grip = _grip_levers(conv, i - 1, e / least) if least > 0.0 else ""
+            grip, aside = _grip_levers(conv, i - 1, e / least) if least > 0.0 else ("", "")
             avoid = (f"{fix}, or{grip}" if fix and grip else fix or (f";{grip}" if grip else ""))
             warnings.append(f"slip at {where} at {said} (e^(mu theta) = {e:.2f}){avoid}"
-                            + (" would avoid it" if avoid else ""))
+                            + (" would avoid it" if avoid else "") + aside)
     return warnings
 
 
-def _grip_levers(conv, k: int, ratio: float) -> str:
+#: Belt-pulley friction of a rubber-lagged pulley, dry, at the top of the range DIN 22101
+#: gives (0.35-0.4): a lever asking more is said to be beyond lagging.
+LAGGED_FRICTION_MAX = 0.4
+
+
+def _grip_levers(conv, k: int, ratio: float) -> tuple[str, str]:
     """The levers on the slipping drive's own pulley, beside the take-up: more friction (a
     lagged pulley), more wrap (a snub pulley), each at least what makes ``e^(mu theta)`` the
     tension ratio ``ratio`` it must pass (T1 / T2 of the slipping phase, the same tensions:
     the margin is e^(mu theta) / (T1 / T2)), and, where the conveyor has other drives, a
     smaller share of Te on it. A carry booster of wrap 90 deg slipping at a margin of 0.70
     was offered only a counterweight nearly twice as heavy (9 000 to 17 528 kg), which raises
-    the belt's tension everywhere (92 to 134 kN peak)."""
+    the belt's tension everywhere (92 to 134 kN peak).
+
+    A friction beyond 1 or a wrap of 360 deg or more, which no file may give (and no pulley
+    has), is said to be out of reach, not offered (a slope's head drive was told "friction at
+    least 1.08" and "wrap_deg at least 644 deg"); a friction beyond
+    :data:`LAGGED_FRICTION_MAX` is said to be beyond rubber lagging. The smaller share is
+    the one whose force the pulley passes at the same slack side, ``share (e^(mu theta) - 1)
+    / (T1 / T2 - 1)``: the words gave the drive's present share, which read as the target.
+    Returns (the levers, starting with a space; what is out of reach, after a semicolon)."""
     d = conv.drives[k]
-    share = (f", or a smaller share of Te on it (drives.{k}.share {d.share:g}; the others then "
-             "take more: rerun to check)" if len(conv.drives) > 1 else "")
+    grip = math.exp(d.friction * math.radians(d.wrap_deg))
     log_r = math.log(ratio)
-    levers = [f"more friction (a lagged pulley: drives.{k}.friction at least "
-              f"{math.ceil(100.0 * log_r / math.radians(d.wrap_deg)) / 100.0:g} at this wrap, "
-              f"now {d.friction:g})"]
-    if d.friction > 0.0:
-        levers.append(f"more wrap (a snub pulley: drives.{k}.wrap_deg at least "
-                      f"{math.ceil(math.degrees(log_r / d.friction)):g} deg at this friction, "
-                      f"now {d.wrap_deg:g})")
-    return f" on its own pulley {' or '.join(levers)}{share}"
+    mu = math.ceil(100.0 * log_r / math.radians(d.wrap_deg)) / 100.0
+    wrap = math.ceil(math.degrees(log_r / d.friction)) if d.friction > 0.0 else math.inf
+    levers, beyond = [], []
+    if mu <= 1.0:
+        lagged = (f", beyond the 0.35-{LAGGED_FRICTION_MAX:g} of a rubber-lagged pulley, "
+                  "DIN 22101" if mu > LAGGED_FRICTION_MAX else "")
+        levers.append(f"more friction (a lagged pulley: drives.{k}.friction at least {mu:g} "
+                      f"at this wrap, now {d.friction:g}{lagged})")
+    else:
+        beyond.append(f"no friction at this wrap (it needs {mu:g}, beyond 1; DIN 22101 gives "
+                      f"0.35-{LAGGED_FRICTION_MAX:g} for a lagged pulley)")
+    if wrap < 360:
+        levers.append(f"more wrap (a snub pulley: drives.{k}.wrap_deg at least {wrap:g} deg "
+                      f"at this friction, now {d.wrap_deg:g})")
+    elif math.isfinite(wrap):
+        beyond.append(f"no wrap of one pulley at this friction (it needs {wrap:g} deg)")
+    if len(conv.drives) > 1 and ratio > 1.0:
+        most = math.floor(100.0 * d.share * (grip - 1.0) / (ratio - 1.0)) / 100.0
+        levers.append(f"a smaller share of Te on it (drives.{k}.share at most {most:g}, now "
+                      f"{d.share:g}; the others then take more: rerun to check)")
+    said = ""
+    if levers:
+        on_own = [w for w in levers if not w.startswith("a smaller share")]
+        said = (f" on its own pulley {' or '.join(on_own)}" if on_own else "")
+        said += (f"{', or ' if on_own else ' '}{levers[-1]}"
+                 if levers[-1].startswith("a smaller share") else "")
+    aside = f"; {' and '.join(beyond)} passes it" if beyond else ""
+    return said, aside
 
 
 def _brake_beyond_words(conv, loop) -> list[str]:

@@ -1439,12 +1439,20 @@ def transient_summary(sys: System, r: dict, out, segs, *, steady_summary=None, c
     t_stop_cmd = sys.stop_command_s
     t_stop_ach = r["stop_ach"] if r["stop_ach"] >= 0 else None
     t_start_ach = r["start_ach"] if r["start_ach"] >= 0 else None
+    if (t_start_ach is not None
+            and sys.model.cycle.t_pre + t_start_ach > t_stop_cmd + 0.5 * sys.dt_s):
+        # the start phase ends at the stop command (SPEC 6.4): a belt that first reached 99 %
+        # of design speed after it (running away in the stop: a 1.47 km route read a start of
+        # 38.4 s, 16 s into its coast) made no start
+        t_start_ach = None
     # a stop is achieved when the mean speed *falls* below REST_FRACTION of design speed: a
-    # belt already below it at the stop command (it never got going) made no stop, and has no
-    # stop time, distance or wave ratio (the kernel marks it achieved at the first step)
+    # belt already below it at the stop command (it never got going, or it runs backwards:
+    # an incline running back at -4.4 % of design speed read "stopped in 0.006 s") made no
+    # stop, and has no stop time, distance or wave ratio (the kernel, which tests the signed
+    # mean speed, marks it achieved at the first step)
     v_cmd = _speed_at(out, r, t_stop_cmd)  # the first record is at t = 0: never None here
     if (t_stop_ach is not None and v_cmd is not None
-            and abs(v_cmd) < C.REST_FRACTION * sys.v_design):
+            and v_cmd < C.REST_FRACTION * sys.v_design):
         t_stop_ach = None
     rating = None
     if conveyor is not None:
