@@ -36,7 +36,7 @@ def test_a_start_first_at_speed_after_the_stop_command_is_no_start():
     -22.6 C) with too little pretension on its fixed take-up: at the stop command its mean
     speed is about two thirds of design speed, and in the coast it runs away down the decline,
     passing 99 % of design speed on the way. The start phase ends at the stop command (SPEC
-    6.4), so it has no start time; the run says the runaway.""" 
+    6.4), so it has no start time; the run says the runaway."""
     d = {
         "name": "decline-runaway", "speed_m_s": 7.01,
         "belt": {"type": "ST5400", "width_m": 2.2, "compound": "standard"},
