@@ -31,3 +31,24 @@ def test_a_decline_s_brake_gives_the_net_gravity_pull_at_rest_before_the_start()
     assert before.sum() >= 5
     assert np.allclose(fb[before], pull_kn, rtol=0.01), (fb[before], pull_kn)
     assert s["f_brake_kn"] == pytest.approx(pull_kn, rel=0.01)
+
+
+def test_a_brake_a_coast_stop_never_applies_is_not_in_the_run_s_brake_force():
+    """A brake without ``hold`` is never applied in a coast stop, and its law is not read:
+    runs that differ only in it are one run (engine/reads.py, ``conveyor_as_read``). Its
+    force in the row was the first merged grid point's (one run of two studies read 150 kN
+    in one and 80 kN in the other). The row now gives the brakes applied: none, so null; in
+    a brake stop the same brake's force."""
+    d = load_mapping(CONVEYORS / "slope-5pct.yaml")
+    d["profile"] = [{"length_m": 300, "lift_m": 15}]
+    rows = {}
+    for kn in (150.0, 80.0):
+        d["brakes"] = [{"position": "head", "force_kn": kn, "hold": False}]
+        for mode in ("coast", "brake"):
+            scn = Scenario(elements=30, run_s=5, stop={"mode": mode})
+            rows[kn, mode] = run_one(parse_conveyor(d), scn, model="din").summary
+    assert rows[150.0, "coast"]["brake_force_kn"] is None
+    assert rows[80.0, "coast"]["brake_force_kn"] is None
+    assert rows[150.0, "coast"]["brake_governed_by"] is None
+    assert rows[150.0, "brake"]["brake_force_kn"] == 150.0
+    assert rows[80.0, "brake"]["brake_force_kn"] == 80.0
