@@ -205,11 +205,18 @@ def brake_hold_kn(sys: System, r) -> float:
     rest_hold_element`) within the set force of the brakes on it; 0 without brakes. The
     kernel holds that element by the rest's constraint, not by a brake's Coulomb law, so its
     brake total read 0 there: a 1.8 km decline's brake held 204.4 kN for the 2 s before the
-    start while ``f_brake_kn`` read 0 in the series and the summary."""
+    start while ``f_brake_kn`` read 0 in the series and the summary. A brake the run never
+    applies (without ``hold``, in a coast or controlled stop) holds nothing here either."""
     brakes = sys.model.brakes
     if not len(brakes.force):
         return 0.0
     on = np.asarray(brakes.node) == int(sys.model.cycle.hold_node)
+    if sys.model.cycle.stop_mode != C.BRAKE:
+        # a run that does not stop on its brakes applies only those with ``hold`` (the others'
+        # law it does not read: engine/reads.py, unread_brakes)
+        on &= np.asarray(brakes.hold) == 1
+    if not on.any():
+        return 0.0
     return min(abs(float(r["hold_f"])), float(np.sum(np.asarray(brakes.force)[on]))) / 1e3
 
 
