@@ -1556,8 +1556,10 @@ VALUE_HINTS = {
 #: value and the hint.
 UNIT_SLIPS = {
     "density_t_m3": (lambda v: v > 25.0, lambda v: f"{v / 1000:g} t/m3 if {v:g} is kg/m3"),
-    "friction": (lambda v: v > 1.0, lambda v: f"a coefficient, {v / 100:g} if {v:g} is %"),
-    "friction_kinetic": (lambda v: v > 1.0,
+    # a friction coefficient in per cent: from 5 (0.05, below the wet bare pulley's 0.1 of
+    # DIN 22101) up; 1.08 is no per cent anyone writes (it read "0.0108 if 1.08 is %")
+    "friction": (lambda v: v >= 5.0, lambda v: f"a coefficient, {v / 100:g} if {v:g} is %"),
+    "friction_kinetic": (lambda v: v >= 5.0,
                          lambda v: f"a coefficient, {v / 100:g} if {v:g} is %"),
     "efficiency": (lambda v: 1.0 < v <= 100.0,
                    lambda v: f"a fraction, {v / 100:g} if {v:g} is %"),
@@ -1583,7 +1585,9 @@ UNIT_SLIPS = {
               lambda v: f"in seconds, {v / 1000:g} s if {v:g} is ms")
        for name in ("time_s", "run_s")},
     # a load or a sampled share of runs in per cent
-    "load": (lambda v: 1.3 < v <= 130.0,
+    # from twice the design load, as _fraction_problem reads it (1.3 to 2 is a surge past
+    # the largest, not a per cent: 1.5 read "0.015 if 1.5 is %")
+    "load": (lambda v: 2.0 <= v <= 130.0,
              lambda v: f"a fraction of the design load, {v / 100:g} if {v:g} is %"),
     "sample": (lambda v: 1.0 < v <= 100.0,
                lambda v: f"a fraction of the runs, {v / 100:g} if {v:g} is %"),

@@ -314,7 +314,18 @@ def hcurve_checks(conv, loop, T: np.ndarray) -> tuple[dict, list[str]]:
                 f"belt holds there; {radius}, more superelevation, a deeper trough or "
                 "less tension there (a take-up with less tension, the curve nearer the slack "
                 "side)")
-        if outside:
+        if outside and t_run[j_out] <= 0.0:
+            # a slack belt: no radius holds it (the tension's pull to the inside, T / R, is
+            # gone) and no tilt does (the least tension it needs there is itself 0 or more):
+            # a 6.5 km decline's curve was told "a tighter radius (at most inf m ...)", another
+            # "at most -821 m"
+            warnings.append(
+                f"{where}: the {_load_case(m_el[j_out], m_full)} belt runs out of the curve: "
+                f"tension {t_run[j_out] / 1e3:.1f} kN at {x_at[j_out]:.0f} m from the tail, "
+                f"below the {lo[j_out] / 1e3:.1f} kN it needs there; the belt is slack there, "
+                "and no radius or superelevation holds a belt without tension in a curve: "
+                "more take-up tension would avoid it")
+        elif outside:
             if holds:
                 radius = (f"a tighter radius (at most {r_hi:.0f} m at this superelevation "
                           "and these tensions: the tension's pull to the inside, T / R, grows "

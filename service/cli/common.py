@@ -78,7 +78,9 @@ def parse_load(text: str) -> str | float | list[float]:
         raise InputError(f"--load: expected {LOAD_HELP}; got {text!r}") from None
     for val in values:
         if not 0.0 <= val <= LOAD_MAX:
-            pct = (f": {val / 100:g} if {val:g} is %" if LOAD_MAX < val <= 100.0 * LOAD_MAX
+            # from twice the design load, as the conveyor's own check reads a per cent (1.3
+            # to 2 is a surge past the largest: 1.5 read "0.015 if 1.5 is %")
+            pct = (f": {val / 100:g} if {val:g} is %" if 2.0 <= val <= 100.0 * LOAD_MAX
                    else "")
             raise InputError(f"--load: fractions run from 0 to {LOAD_MAX:g} of the design load "
                              f"(got {val:g}){pct}")

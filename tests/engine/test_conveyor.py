@@ -626,3 +626,26 @@ def test_a_fabric_rating_without_its_plies_is_offered_the_catalogues_type():
                         "belt": {**hand_conveyor_dict()["belt"], "compound": "arctic"}})
     assert re.search(r"unknown compound 'arctic'(; did you mean '[^']+'\? |; )valid: ",
                      str(ei.value)), str(ei.value)
+
+
+def test_a_value_just_past_its_bound_is_not_read_as_a_per_cent():
+    """A load of 1.5 (a surge past the largest, 1.3) was told "0.015 if 1.5 is %", and a
+    friction of 1.08 "0.0108 if 1.08 is %": no one writes those per cents, and the conveyor's
+    own check reads a load as a per cent only from 2. The per cent reading starts at 2 for a
+    load and at 5 for a friction coefficient (5 % = 0.05, below DIN 22101's 0.1 for a wet
+    bare pulley); the bound is still named."""
+    from beltstudy.engine.conveyor import parse_scenario
+    from service.cli.common import parse_load
+
+    with pytest.raises(InputError) as ei:
+        parse_scenario({"load": 1.5})
+    assert "is %" not in str(ei.value) and "1.3" in str(ei.value), str(ei.value)
+    with pytest.raises(InputError) as ei:
+        parse_load("1.5")
+    assert "is %" not in str(ei.value) and "1.3" in str(ei.value), str(ei.value)
+    drive = {"position": "head", "wrap_deg": 200, "friction": 1.08, "share": 1.0,
+             "pulley_diameter_m": 1.0}
+    said = _err(hand_conveyor_dict(drives=[drive]))
+    assert "friction" in said and "is %" not in said, said
+    said = _err(hand_conveyor_dict(drives=[{**drive, "friction": 35}]))
+    assert "0.35 if 35 is %" in said, said
