@@ -199,6 +199,24 @@ def rest_state(sys: System) -> R.State:
     return R.State(v=np.zeros(n), te=t0.copy(), ts=s0, td=np.zeros(n), tt=t0.copy())
 
 
+def _applied(sys: System) -> np.ndarray:
+    """Which brakes the run applies: every one in a brake stop, else those with ``hold`` (a
+    coast or controlled stop never applies the others, and does not read their law:
+    engine/reads.py, ``unread_brakes``)."""
+    brakes = sys.model.brakes
+    if sys.model.cycle.stop_mode == C.BRAKE:
+        return np.ones(len(brakes.force), dtype=bool)
+    return np.asarray(brakes.hold) == 1
+
+
+def _applied_brake_kn(sys: System) -> float | None:
+    """The force of the brakes the run applies together [kN] (:func:`_applied`); None where
+    it applies none (a coast stop's brake without ``hold`` read the first merged grid point's
+    force: one run of two studies gave 150 kN in one and 80 kN in the other)."""
+    on = _applied(sys)
+    return float(np.asarray(sys.model.brakes.force)[on].sum()) / 1e3 if on.any() else None
+
+
 def brake_hold_kn(sys: System, r) -> float:
     """The force the brakes give holding the belt at rest before the start command [kN]: the
     reaction at the held element (the first brake's pulley, :func:`~beltstudy.engine.statics.
@@ -210,11 +228,7 @@ def brake_hold_kn(sys: System, r) -> float:
     brakes = sys.model.brakes
     if not len(brakes.force):
         return 0.0
-    on = np.asarray(brakes.node) == int(sys.model.cycle.hold_node)
-    if sys.model.cycle.stop_mode != C.BRAKE:
-        # a run that does not stop on its brakes applies only those with ``hold`` (the others'
-        # law it does not read: engine/reads.py, unread_brakes)
-        on &= np.asarray(brakes.hold) == 1
+    on = (np.asarray(brakes.node) == int(sys.model.cycle.hold_node)) & _applied(sys)
     if not on.any():
         return 0.0
     return min(abs(float(r["hold_f"])), float(np.sum(np.asarray(brakes.force)[on]))) / 1e3
@@ -1526,7 +1540,7 @@ def transient_summary(sys: System, r: dict, out, segs, *, steady_summary=None, c
         "slip_free_takeup_mass_kg": None,
         "slip_free_takeup_kn": None,
         "slip_free_start_time_s": None,
-        "brake_force_kn": float(brakes.force.sum()) / 1e3 if len(brakes.force) else None,
+        "brake_force_kn": _applied_brake_kn(sys),
         "rated_power_kw": float(sys.model.drives.rated.sum()) * sys.v_design / 1e3,
         "dt_used_s": sys.dt_s,
         "elements_used": sys.n,

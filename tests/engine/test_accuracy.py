@@ -498,7 +498,7 @@ def test_a_stop_within_its_bar_of_five_wave_loops_is_marginal():
                        (18.7230, 18.7215, 18.7203))
     words = A.marginal_verdicts(summary, {"stop_time_s": fe}, finest=406)
     assert len(words) == 1
-    assert words[0].startswith("marginal: stop_time_s 18.72 against limit 18.7209 +- 0.0067 s")
+    assert words[0].startswith("marginal: stop_time_s 18.7215 against limit 18.7209 +- 0.0067 s")
     # well clear of it: nothing said
     far = A.FigureError("stop_time_s", 25.0, 0.0067, None, "spread", None, (25.0,) * 3)
     assert A.marginal_verdicts(dict(summary, stop_time_s=25.0), {"stop_time_s": far}) == []

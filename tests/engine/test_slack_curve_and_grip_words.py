@@ -71,7 +71,10 @@ def test_grip_levers_name_only_values_a_file_may_hold_and_the_share_that_passes(
         for k, most, now in re.findall(r"drives\.(\d)\.share at most ([\d.]+), now ([\d.]+)", w):
             d = conv.drives[int(k)]
             assert float(now) == d.share and float(most) < d.share, w
-            margin = float(re.search(r"slip margin ([\d.]+) < 1", w).group(1))
+            # the levers are for the least margin of the phases said
+            margin = min(float(m) for m in re.findall(r"slip margin ([\d.]+) < 1", w))
             e = math.exp(d.friction * math.radians(d.wrap_deg))
             ratio = e / margin
-            assert float(most) == math.floor(100 * d.share * (e - 1) / (ratio - 1)) / 100, w
+            # the margin is printed to two figures: the share to within that rounding
+            hand = d.share * (e - 1) / (ratio - 1)
+            assert abs(float(most) - hand) <= 0.01 + 0.05 * hand, (w, hand)

@@ -15,6 +15,7 @@ import beltstudy.engine.statics as statics
 from beltstudy.engine.conveyor import parse_conveyor
 from beltstudy.engine.loop import CARRY, G
 from beltstudy.engine.statics import STARTUP_FACTOR, TAKEUP_CONSTRAINTS, solve_steady
+from beltstudy.engine.wording import gnum
 from tests.conftest import CONVEYORS, hand_conveyor_dict
 from tests.engine.conftest import DIN, H1, H2, L1, L2, MG, ML, MRC, MRR, F, dual_head, two_sections
 from tests.engine.friction.conftest import nl_dict
@@ -486,7 +487,7 @@ def test_a_surge_that_overfills_the_cross_section_says_so_and_what_leaves_room()
     assert "fills the belt's cross-section to 108 % at 4 m/s (the design load 90 %)" in big
     most = q_belt / 1.2
     step = 10.0 ** (math.floor(math.log10(most)) - 2)
-    assert f"a design load of at most {math.floor(most / step) * step:.3g} t/h" in big
+    assert f"a design load of at most {gnum(math.floor(most / step) * step, 3)} t/h" in big
     assert "spills" in big
     (small,) = [w for w in solve_steady(conv, model="din", load=1.1).warnings if "surge" in w]
     assert "fills the belt's cross-section to 99 % at 4 m/s" in small
@@ -562,8 +563,10 @@ def test_a_regenerating_decline_sizes_its_take_up_for_breakaway():
     ratio = e / res.summary["slip_margin_start"]
     mu = math.ceil(100 * math.log(ratio) / math.radians(d.wrap_deg)) / 100
     wrap = math.ceil(math.degrees(math.log(ratio) / d.friction))
+    # a friction above DIN 22101's 0.35-0.4 for a lagged pulley is said to be beyond it
+    lagged = ", beyond the 0.35-0.4 of a rubber-lagged pulley, DIN 22101" if mu > 0.4 else ""
     assert (f"more friction (a lagged pulley: drives.0.friction at least {mu:g} at this wrap, "
-            f"now {d.friction:g}) or more wrap (a snub pulley: drives.0.wrap_deg at least "
+            f"now {d.friction:g}{lagged}) or more wrap (a snub pulley: drives.0.wrap_deg at least "
             f"{wrap:g} deg at this friction, now {d.wrap_deg:g}) would avoid it") in res.message
     for more in ({"friction": mu}, {"wrap_deg": wrap}):  # each, followed, avoids it
         gripped = parse_conveyor(hand_conveyor_dict(
