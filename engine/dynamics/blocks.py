@@ -334,11 +334,12 @@ def _side_tensions(wk, sp, blocks, tt, x, p0, k, m, car):
 
 
 @njit(inline="always", **OPTS)
-def _belt_force(wk, blocks, x, p0, k, inv_veps, tl, tr):
+def _belt_force(wk, blocks, x, p0, k, inv_veps, tl, tr, zone):
     """Force the pulley passes to the belt element ``k`` at the solution: what its momentum
-    balance needs besides the belt's own forces [N]."""
+    balance needs besides the belt's own forces [N], with the resistance in the ``zone`` the
+    solution was found in."""
     xk = x[k]
-    rk = wk.rpos[k] * (xk * inv_veps if wk.fz[k] == 0.0 else wk.fz[k])
+    rk = wk.rpos[k] * (xk * inv_veps if zone == 0.0 else zone)
     return blocks.mdt[p0 + k] * (xk - wk.v_old[k]) - (tr - tl) + rk - wk.fexp[k]
 
 
@@ -722,7 +723,7 @@ def _row_consistent(model, wk, k, m, car, U):
 
 
 @njit(inline="always", **OPTS)
-def _shaft_consistent(model, st, wk, rs, p0, k, m, car, U):
+def _shaft_consistent(model, st, wk, rs, p0, k, m, car, U, zone):
     """Row ``k``'s shaft against the solution: a sticking shaft that would pass more than its
     capstan grip starts to slip; a slipping one whose speed crosses the belt's sticks again
     (the exact outcome of the step, as in time stepping of friction at the velocity level,
@@ -730,7 +731,11 @@ def _shaft_consistent(model, st, wk, rs, p0, k, m, car, U):
     force). A shaft that sticks again this way and would then need more than its grip in the
     direction it slipped slides on at the belt's speed to the step's end, with the sliding
     force: without it the pair of states alternates to the last pass of the active set.
-    Returns whether anything changed."""
+    ``zone``: the resistance zone the solution was found in (the row's check before this one
+    may have moved it: a braked element turning round within the step goes to the linear
+    band, where ``rpos x / v_eps`` at the solution's 0.1 m/s read 1.3 MN, and a braked tail
+    pulley was said to slip, then chattered at +-100 m/s). Returns whether anything
+    changed."""
     shafts = model.shafts
     blocks = model.blocks
     hold_node = rs.hold
@@ -742,7 +747,7 @@ def _shaft_consistent(model, st, wk, rs, p0, k, m, car, U):
     if sl == 0.0:
         if j == hold_node or shafts.cs[s] < 0.0:
             return False  # held at rest, or slip switched off (verification)
-        ft = _belt_force(wk, blocks, x, p0, k, 1.0 / model.cycle.v_eps, tl, tr)
+        ft = _belt_force(wk, blocks, x, p0, k, 1.0 / model.cycle.v_eps, tl, tr, zone)
         cap = shafts.cs[s] * max(min(tl, tr), 0.0)
         if abs(ft) > cap * (1.0 + 1e-9) + 1e-9:
             shafts.slip[s] = 1.0 if ft > 0.0 else -1.0
@@ -854,7 +859,7 @@ def _write_back(model, st, wk, rs, p0, m, car, U):
         sl = shafts.slip[s]
         if sl == 0.0:
             vsn = xk
-            ft = _belt_force(wk, blocks, x, p0, k, inv_veps, tl, tr)
+            ft = _belt_force(wk, blocks, x, p0, k, inv_veps, tl, tr, wk.fz[k])
             shafts.fb_out[s] = 0.0
         else:
             vsn = wk.vsn[k]
@@ -945,9 +950,11 @@ def block_step(bk, model, st, wk, rs):
                 car_hit = abs(x[m])
                 again = True
         for k in range(m):
+            zone = wk.fz[k]  # the zone of this solution, before its row's check moves it
             if _row_consistent(model, wk, k, m, car, U):
                 again = True
-            if wk.shk[k] >= 0 and _shaft_consistent(model, st, wk, rs, p0, k, m, car, U):
+            if wk.shk[k] >= 0 and _shaft_consistent(model, st, wk, rs, p0, k, m, car, U,
+                                                    zone):
                 again = True
         if not again:
             break

@@ -556,9 +556,10 @@ def _side_tensions(bk, x, k):
     return tl, tr
 
 
-def _belt_force(bk, x, k, tl, tr):
-    """Force the pulley passes to belt element k: its momentum balance's remainder [N]."""
-    rk = bk.rpos[k] * (x[k] / bk.v_eps if bk.zone[k] == 0.0 else bk.zone[k])
+def _belt_force(bk, x, k, tl, tr, zone):
+    """Force the pulley passes to belt element k: its momentum balance's remainder [N], with
+    the resistance in the ``zone`` the solution was found in."""
+    rk = bk.rpos[k] * (x[k] / bk.v_eps if zone == 0.0 else zone)
     return bk.mass[k] / bk.dt * (x[k] - bk.vo[k]) - (tr - tl) + rk - bk.fexp[k]
 
 
@@ -821,7 +822,7 @@ def _shaft_speed(model: Model, sh, dr, rs, s, U, f_slide):
     return v
 
 
-def _shaft_consistent(model: Model, bk, sh, dr, rs, k, U):
+def _shaft_consistent(model: Model, bk, sh, dr, rs, k, U, zone):
     """Row k's shaft against the solution: a sticking shaft that would pass more than its
     capstan grip ``T_slack (e^(mu theta) - 1)`` starts to slip; a slipping one whose speed
     crosses the belt's sticks again, and if it then needs more than its grip the way it
@@ -838,7 +839,7 @@ def _shaft_consistent(model: Model, bk, sh, dr, rs, k, U):
         if bk.nodes[k] == rs.hold or cs < 0.0:
             return False  # holding the belt at rest, or slip switched off (verification)
         # capstan: what the pulley passes within T_slack (e^(mu theta) - 1)
-        ft = _belt_force(bk, x, k, tl, tr)
+        ft = _belt_force(bk, x, k, tl, tr, zone)  # the zone the solution was found in
         cap = cs * max(min(tl, tr), 0.0)
         if abs(ft) > cap * (1.0 + 1e-9) + 1e-9:
             sh.slip[s] = 1.0 if ft > 0.0 else -1.0
@@ -928,7 +929,7 @@ def _write_back(model: Model, bk, st, sh, dr, rs, U):
         tl, tr = _side_tensions(bk, x, k)
         vs_old, sl = sh.vs[s], sh.slip[s]
         if sl == 0.0:
-            vs_new, ft = x[k], _belt_force(bk, x, k, tl, tr)
+            vs_new, ft = x[k], _belt_force(bk, x, k, tl, tr, bk.zone[k])
         else:
             vs_new = bk.vsn[k]
             ft = sl * model.shafts.ck[s] * max(tr if sl > 0.0 else tl, 0.0)
@@ -971,9 +972,10 @@ def _block_step(model: Model, ref, nodes, st, sh, dr, rs, R0):
         # the active set against the solution
         again = _carriage_consistent(model, bk, rs)
         for k in range(bk.m):
+            zone = bk.zone[k]  # the zone of this solution, before its row's check moves it
             if _row_consistent(model, bk, dr, k, U):
                 again = True
-            if _shaft_consistent(model, bk, sh, dr, rs, k, U):
+            if _shaft_consistent(model, bk, sh, dr, rs, k, U, zone):
                 again = True
         if not again:
             break
