@@ -848,10 +848,13 @@ def rollback_notes(sys: System, conveyor, cols: dict) -> list[str]:
     trapezoidal integral of the negative mean speed over the records after the command) and
     the holdback that avoids it. A loaded 2 km, 5 % incline without a holdback, coasting to
     rest on a head brake with hold (0.5 s delay, 1 s ramp), ran back at up to 0.14 m/s for
-    about 1.7 s, some 0.2 m of belt and its load, and the run said nothing."""
+    about 1.7 s, some 0.2 m of belt and its load, and the run said nothing. On a decline,
+    where the loaded belt pulls forwards at rest, the backward speed is the stop's elastic
+    rebound, said so, without the holdback."""
     if conveyor is None or conveyor.holdback or not any(
             b.hold for b in getattr(conveyor, "brakes", None) or []):
         return []
+    pull_kn = float(sys.hold_force_n) / 1e3  # the loaded belt's pull at rest, back positive
     t = np.asarray(cols["t_s"], float)
     v = np.asarray(cols["v_mean_m_s"], float)
     after = t > sys.stop_command_s + 1e-9
@@ -866,6 +869,18 @@ def rollback_notes(sys: System, conveyor, cols: dict) -> list[str]:
     held = [b for b in conveyor.brakes if b.hold]
     timing = ", ".join(dict.fromkeys(f"delay_s {b.delay_s:g}, ramp_s {b.ramp_s:g}"
                                      for b in held))
+    if sys.hold_force_n <= 0.0:
+        # a decline (or level) belt: gravity pulls it forwards at rest, so a backward mean
+        # speed is the stop's elastic rebound (the stretch relaxing), which a holdback, taking
+        # a backward pull, would not avoid (downhill-regen was offered one for 0.06 m/s)
+        return [f"the belt rebounded after it stopped until its holding brake held it: its mean "
+                f"speed was below -{gnum(limit, 3)} m/s from t = {gnum(t[back[0]])} to "
+                f"{gnum(t[back[-1]])} s, at most {gnum(-v[k], 3)} m/s backwards (t = "
+                f"{gnum(t[k])} s), about {gnum(dist, 3)} m of belt while the brake set "
+                f"({timing}): the belt's stretch relaxing after the stop, not a run-back (at "
+                f"rest the loaded belt pulls {gnum(-pull_kn)} kN forwards, so a holdback would "
+                "take nothing); a holding brake that sets sooner (a shorter delay_s or "
+                "ramp_s) holds its pulley sooner"]
     return [f"the belt rolled back after it stopped until its holding brake held it: its mean "
             f"speed was below -{gnum(limit, 3)} m/s from t = {gnum(t[back[0]])} to "
             f"{gnum(t[back[-1]])} s, at most {gnum(-v[k], 3)} m/s backwards (t = {gnum(t[k])} s), "

@@ -52,3 +52,24 @@ def test_a_brake_a_coast_stop_never_applies_is_not_in_the_run_s_brake_force():
     assert rows[150.0, "coast"]["brake_governed_by"] is None
     assert rows[150.0, "brake"]["brake_force_kn"] == 150.0
     assert rows[80.0, "brake"]["brake_force_kn"] == 80.0
+
+
+def test_a_decline_s_rebound_after_its_stop_is_not_offered_a_holdback():
+    """downhill-regen (a loaded decline: at rest the belt pulls forwards) with a 225 t take-up,
+    brake stop: after the stop its mean speed dips backwards (about 0.06 m/s) until the
+    holding brake holds, the stretch relaxing. It was told "a holdback on the head pulley ...
+    which takes the pull as the belt stops, would avoid it": on a decline there is no backward
+    pull for a holdback to take. It is said as the stop's rebound, without the holdback."""
+    d = load_mapping(CONVEYORS / "downhill-regen.yaml")
+    d["takeup"] = {**d["takeup"], "mass_kg": 225348}
+    scn = Scenario(elements=200, start={"control": "s-curve", "time_s": 60}, run_s=30,
+                   stop={"mode": "brake", "time_s": 20})
+    res = run_one(parse_conveyor(d), scn, model="nonlin")
+    s, ts = res.summary, res.timeseries
+    t, v = ts["t_s"].to_numpy(), ts["v_mean_m_s"].to_numpy()
+    after = t > 2.0 + 60.0 + 30.0
+    assert v[after].min() < -0.01 * 4.0 < v[-1] + 0.01 * 4.0, (v[after].min(), v[-1])
+    msg = s["message"]
+    assert "the belt rebounded after it stopped until its holding brake held it" in msg, msg
+    assert "rolled back after it stopped" not in msg
+    assert "holdback: true" not in msg and "takes the pull as the belt stops" not in msg
