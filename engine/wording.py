@@ -8,9 +8,10 @@ import math
 
 __all__ = ["gnum"]
 
-#: Largest power of ten written out in full; beyond it the exponent stays (1e+20 is read
-#: more easily than twenty-one digits).
-PLAIN_MAX_EXP = 15
+#: Largest power of ten written out in full; beyond it the exponent stays (3.97e+11 steps
+#: is read more easily than 397000000000: a figure of ten million or more is no quantity a
+#: conveyor's words give in full).
+PLAIN_MAX_EXP = 6
 
 
 def gnum(value: float, digits: int = 4) -> str:

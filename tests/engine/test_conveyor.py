@@ -649,3 +649,18 @@ def test_a_value_just_past_its_bound_is_not_read_as_a_per_cent():
     assert "friction" in said and "is %" not in said, said
     said = _err(hand_conveyor_dict(drives=[{**drive, "friction": 35}]))
     assert "0.35 if 35 is %" in said, said
+
+
+def test_a_large_figure_in_words_has_no_exponent_below_ten_million():
+    """Words printed ``:.4g`` wrote 19 740 t as "1.974e+04 t" and a fill of 80 400 % as
+    "8.04e+04 %". ``gnum`` writes a figure below ten million out to its significant figures
+    (and back to the same number by float), and keeps the exponent above."""
+    from beltstudy.engine.wording import gnum
+
+    assert gnum(19740.3) == "19740" and float(gnum(19740.3)) == 19740.0
+    assert gnum(80412.0, 3) == "80400"
+    assert gnum(1234.5) == "1234" or gnum(1234.5) == "1235"
+    assert gnum(0.000123456) == f"{0.000123456:.4g}"
+    assert gnum(3.97e11, 3) == "3.97e+11"
+    assert gnum(-19740.3) == "-19740"
+    assert gnum(float("inf")) == "inf"

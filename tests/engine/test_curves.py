@@ -356,7 +356,7 @@ def test_a_curve_of_negligible_turn_is_judged_as_a_grade_change_without_it():
     note = _short_curve_note(
         0, 100, "1.15e-07", "profile.0 lifts 0 m over 500 m, profile.1 1e-06 m over 500 m",
         "2e-07", "the turn is too small for any curve: no radius up to 1000000 m spans a "
-        "pitch (S / |delta| = 625000000 m; if the grades should differ, check lift_m)")
+        "pitch (S / |delta| = 6.25e+08 m; if the grades should differ, check lift_m)")
     del prof[0]["curve_radius_m"]
     plain = solve_steady(parse_conveyor(hand_conveyor_dict(profile=prof)), model="din",
                          n_elements=200)
