@@ -278,9 +278,11 @@ TRANSIENT = ResultGroup("transient", "Transient: the start, run and stop cycle (
     _f("takeup_travel_stop_m", "m", "take-up carriage travel within the stop phase (stop "
        "command to the end), largest less smallest position", "  in the stop"),
     _f("start_time_s", "s", "start time achieved: start command until the mass-weighted mean "
-       "speed first reaches 99 % of design speed (null if never)", "start time achieved"),
+       "speed first reaches 99 % of design speed, by the stop command (null if never)",
+       "start time achieved"),
     _f("stop_time_s", "s", "stop time achieved: stop command until the mean speed falls below "
-       "1 % of design speed (null if never)", "stop time achieved"),
+       "1 % of design speed (null if never, or if it was below that, backwards included, at "
+       "the stop command)", "stop time achieved"),
     _f("stop_distance_m", "m", "stopping distance: the belt's travel (the mass-weighted mean "
        "speed integrated) from the stop command until the stop is achieved (null if never)",
        "stopping distance"),
