@@ -1308,7 +1308,10 @@ def rest_grip_words(loop: Loop, hold: int, T_rest: np.ndarray, conv=None) -> lis
     slack = max(min(t_in, t_out), 0.0)
     grip = slack * math.expm1(pulley.friction * math.radians(pulley.wrap_deg))
     held = abs(t_out - t_in)
-    if held <= grip * (1.0 + 1e-9):  # a take-up sized to the grip holds (rounding aside)
+    # a take-up sized to the grip holds (rounding aside); and round-off beside tensions of
+    # any size is no force (a belt slack at rest read "passes 1.819e-15 kN, beyond its grip
+    # of 0 kN ... a slack-side tension of 8.405e-16 kN would hold it")
+    if held <= grip * (1.0 + 1e-9) + 1e-9 * max(abs(t_in), abs(t_out), 1.0):
         return []
     need = held / math.expm1(pulley.friction * math.radians(pulley.wrap_deg))
     more = (lever_words(conv.takeup.type == "gravity") if conv is not None

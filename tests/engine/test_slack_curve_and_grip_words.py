@@ -78,3 +78,38 @@ def test_grip_levers_name_only_values_a_file_may_hold_and_the_share_that_passes(
             # the margin is printed to two figures: the share to within that rounding
             hand = d.share * (e - 1) / (ratio - 1)
             assert abs(float(most) - hand) <= 0.01 + 0.05 * hand, (w, hand)
+
+
+def test_round_off_at_a_held_pulley_is_no_force_it_fails_to_hold():
+    """A 316 m incline whose 594 kg take-up leaves the belt slack at rest (loaded declines,
+    none here, so the belt is empty): its at-rest words said the tail pulley "passes
+    1.819e-15 kN, beyond its grip of 0 kN ... a slack-side tension of 8.405e-16 kN would hold
+    it", round-off against a grip clamped to 0. Round-off beside the tensions is no force."""
+    d = {
+        "name": "slack-at-rest", "speed_m_s": 3.15,
+        "belt": {"type": "ST2500", "width_m": 0.8, "compound": "lrr"},
+        "material": {"capacity_t_h": 835.0, "density_t_m3": 1.73, "loading_speed_m_s": 0.0},
+        "profile": [{"length_m": 316.0, "lift_m": 43.77, "horizontal_radius_m": 3950.0}],
+        "idlers": {"carry": {"spacing_m": 1.28, "roll_diameter_m": 0.127, "rolls": 3,
+                             "trough_deg": 45, "cema_class": "C"},
+                   "return": {"spacing_m": 4.06, "roll_diameter_m": 0.152, "rolls": 2,
+                              "trough_deg": 10, "cema_class": "C"}},
+        "drives": [
+            {"position": "head", "wrap_deg": 240, "friction": 0.27, "share": 0.415,
+             "pulley_diameter_m": 0.63, "inertia_kg_m2": 202.0, "torque_limit": 1.86,
+             "control": "vfd"},
+            {"position": "tail", "wrap_deg": 200, "friction": 0.33, "share": 0.333,
+             "pulley_diameter_m": 0.63, "inertia_kg_m2": 2350.0, "torque_limit": 1.21,
+             "control": "vfd"},
+            {"position": "head", "wrap_deg": 210, "friction": 0.31, "share": 0.252,
+             "pulley_diameter_m": 0.63, "inertia_kg_m2": 5000.0, "torque_limit": 1.74,
+             "control": "vfd", "rated_power_kw": 219.0, "trip_s": 0.09}],
+        "takeup": {"type": "gravity", "position": "return", "at_m": 153.6, "mass_kg": 594.0,
+                   "carriage_mass_kg": 267.0},
+        "brakes": [{"force_kn": "auto", "delay_s": 1.72, "position": "tail"}],
+        "holdback": True,
+        "accessories": {"head_kn": 1.4, "tail_kn": 0.5},
+    }
+    res = solve_steady(parse_conveyor(d), model="nonlin", temperature_c=-7.7, load="declines")
+    assert "holding the belt passes" not in res.message, res.message
+    assert "e-15" not in res.message and "e-16" not in res.message
