@@ -326,7 +326,23 @@ def brake_forces(conv: Conveyor, scenario: Scenario, total_mass_kg: float, te_n:
                            else "")
                         + f": the rigid-body brake stop then takes about {gnum(t_gives, 3)} s")
                 if steady is not None:
-                    note += _holding_grip(conv, steady, each)
+                    said, passed_n = _holding_grip(conv, steady, each)
+                    note += said
+                    if said and passed_n > 0.0:
+                        # the force the pulleys pass lies between that bound and the holding
+                        # force, so the stop between their two rigid-body times (a 1.2 km
+                        # decline was told 14.8 s alone, and took 23.8 s as its pulley slid)
+                        t_grip = brake_stop_time(total_mass_kg, v, te_n, passed_n, delay,
+                                                 ramp, curve)
+                        note += (f"; held to that bound ({gnum(passed_n / 1e3)} kN; the "
+                                 "sliding pulley passes more) the rigid-body brake stop takes "
+                                 f"about {gnum(t_grip, 3)} s, so as the pulley slides the stop "
+                                 f"lies between about {gnum(t_gives, 3)} and "
+                                 f"{gnum(t_grip, 3)} s" if math.isfinite(t_grip) else
+                                 f"; held to that bound ({gnum(passed_n / 1e3)} kN; the sliding "
+                                 "pulley passes more) the rigid belt would not stop at all, so "
+                                 "the rigid-body time above is no figure for this stop: the "
+                                 "run's stop time is")
     if scenario.stop.mode == "brake" and steady is not None:
         given = _given_grip(conv, steady, each, asked)
         note = f"{note}; {given}" if note and given else note or given
@@ -524,9 +540,11 @@ def _hold_shared_by_grip(conv: Conveyor, steady: SteadyResult, each: list[float]
     return each, False
 
 
-def _holding_grip(conv: Conveyor, steady: SteadyResult, each: list[float]) -> str:
+def _holding_grip(conv: Conveyor, steady: SteadyResult, each: list[float]
+                  ) -> tuple[str, float]:
     """The clause a holding-set note gains when the holding force is beyond the braked
-    pulleys' grip in the stop ("" when within)."""
+    pulleys' grip in the stop ("" when within), and the brake force the braked pulleys pass
+    then [N]: each pulley's set force held to its grip, the fixed brakes' as set."""
     walk = StopWalk.of(conv, steady)
     nodes, fixed = _brake_nodes(conv, steady.loop)
     acting = dict(fixed)
@@ -538,7 +556,8 @@ def _holding_grip(conv: Conveyor, steady: SteadyResult, each: list[float]) -> st
     grips = {n: walk.grip_n(n, acting) for n in dict.fromkeys(nodes)}
     short = [n for n, grip in grips.items() if acting[n] > grip * (1.0 + 1e-6) + 1e-3]
     if not short:
-        return ""
+        return "", 0.0
+    passed = sum(min(f, max(grips[n], 0.0)) if n in grips else f for n, f in acting.items())
     parts = []
     for n in short:
         grip = grips[n]
@@ -556,7 +575,7 @@ def _holding_grip(conv: Conveyor, steady: SteadyResult, each: list[float]) -> st
     for node in nodes:
         even[node] = even.get(node, 0.0) + sum(each) / len(each)
     takeup = _takeup_words(conv, walk, lambda w: all(w.room_n(n, even) >= 0.0 for n in nodes))
-    return said + _hold_fix(conv, steady, any(grips[n] <= 0.0 for n in short), takeup)
+    return said + _hold_fix(conv, steady, any(grips[n] <= 0.0 for n in short), takeup), passed
 
 
 def _takeup_words(conv: Conveyor, walk: StopWalk, passes) -> str:

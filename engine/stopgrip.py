@@ -359,12 +359,18 @@ def grip_remedies(conv, steady, walk: StopWalk, nodes: list[int], fixed: dict,
                        f"{gnum(auto / 1e3)} kN, sized again within their grip beside it)")
             break
         if best is None or extra - x - there > best[1] - best[2] - best[3]:
-            best = (name, extra, x, there, given)
+            best = (name, extra, x, there, given, auto)
     else:
+        # the auto brakes' own figure beside it, so the reader tells the share from the whole
+        # (a decline's tail brake "would need 652 kN beside the auto brakes", 652 kN being
+        # the whole stop force, the auto brakes then 0 kN)
         best = best and (f" (not by a brake on another pulley alone: {best[0]} would need "
-                         f"{gnum(best[2] / 1e3)} kN beside the auto brakes, sized again within "
-                         f"their grip beside it, and its pulley passes at most "
-                         f"{gnum(best[1] / 1e3)} kN{best[4]})")
+                         + (f"{gnum(best[2] / 1e3)} kN beside the auto brakes, then "
+                            f"{gnum(best[5] / 1e3)} kN sized again within their grip beside it"
+                            if best[5] > 0.0 else
+                            f"the whole {gnum(best[2] / 1e3)} kN itself, the auto brakes then "
+                            "none")
+                         + f", and its pulley passes at most {gnum(best[1] / 1e3)} kN{best[4]})")
     # a heavier take-up: every tension rises with it
     t0 = walk.takeup_n
     t_need = _bisect_up(lambda t: all(walk.room_n(n, acting, takeup_n=t) >= 0.0
@@ -384,6 +390,10 @@ def grip_remedies(conv, steady, walk: StopWalk, nodes: list[int], fixed: dict,
             wraps = []
             break
         e = 1.0 + abs(f) * BRAKE_GRIP_MARGIN / low
+        if math.degrees(math.log(e) / p.friction) >= 359.5:
+            # no pulley wraps a full turn (a file refuses it): a decline was offered 377 deg
+            wraps = []
+            break
         wraps.append(f"{math.degrees(math.log(e) / p.friction):.0f} deg on "
                      f"{pulley_name(conv, loop, node)} (drives.{p.drive}.wrap_deg, now "
                      f"{p.wrap_deg:g})")

@@ -102,3 +102,85 @@ def test_a_holding_brake_on_the_auto_take_ups_pulley_is_told_the_take_up_that_ho
     assert "slipped" not in held["message"], held["message"]
     assert "may slide" not in held["message"]
     assert held["slip_margin_min_stop_dyn"] > 1.0
+
+
+def test_a_holding_brake_beyond_its_grip_brackets_its_stop_time():
+    """A 700 m, +70 m incline whose auto brake on the drive's shaft is set by holding the
+    loaded belt (98.1 kN) far beyond what the pulley passes in the stop (4.86 kN by the
+    undamped bound): the note gave only the rigid-body stop at the holding force, 2.54 s. The
+    sliding pulley passes between the bound and the set force, so the stop lies between the
+    rigid-body times at the two; the note now gives both, and the run's stop lies between."""
+    import re
+
+    from beltstudy.engine.conveyor import Scenario, parse_conveyor
+    from beltstudy.engine.run import run_one
+
+    d = {
+        "name": "incline-700", "speed_m_s": 3.5,
+        "belt": {"type": "ST1600", "width_m": 1.0, "compound": "standard"},
+        "material": {"capacity_t_h": 1500, "density_t_m3": 1.6, "loading_speed_m_s": 0.0},
+        "profile": [{"length_m": 700, "lift_m": 70}],
+        "idlers": {"carry": {"spacing_m": 1.2, "roll_diameter_m": 0.152, "rolls": 3,
+                             "trough_deg": 35, "cema_class": "D"},
+                   "return": {"spacing_m": 3.0, "roll_diameter_m": 0.152, "rolls": 1,
+                              "cema_class": "C"}},
+        "drives": [{"position": "head", "wrap_deg": 200, "friction": 0.35, "share": 1.0,
+                    "pulley_diameter_m": 1.0, "inertia_kg_m2": 600, "rated_power_kw": 500,
+                    "torque_limit": 1.5}],
+        "takeup": {"type": "gravity", "position": "tail", "mass_kg": "auto", "travel_m": 6},
+        "brakes": [{"drive": 1, "force_kn": "auto", "delay_s": 0.3, "ramp_s": 0.5}],
+        "holdback": True,
+        "sag_limit_pct": {"carry": 1.5, "return": 3.0},
+        "accessories": {"head_kn": 2.0, "tail_kn": 1.0},
+    }
+    s = run_one(parse_conveyor(d), Scenario(stop={"mode": "brake", "time_s": 6}),
+                model="din").summary
+    assert s["brake_governed_by"] == "holding"
+    m = re.search(r"held to that bound \(([\d.]+) kN; the sliding pulley passes more\) the "
+                  r"rigid-body brake stop takes about ([\d.]+) s, so as the pulley slides the "
+                  r"stop lies between about ([\d.]+) and ([\d.]+) s", s["message"])
+    assert m, s["message"]
+    lo, hi = float(m.group(3)), float(m.group(4))
+    assert float(m.group(1)) < s["brake_force_kn"] and lo < hi
+    assert lo <= s["stop_time_s"] <= hi, (lo, s["stop_time_s"], hi)
+
+
+def test_a_grip_remedy_tells_a_brake_s_share_from_the_whole_and_offers_no_full_turn_wrap():
+    """A 1.2 km, -90 m decline with a 90 t take-up and an auto head brake asked to stop in
+    3 s: the grip sets the brake, and the remedies said "a brake on the tail pulley would need
+    652 kN beside the auto brakes", 652 kN being the whole stop force with the auto brakes
+    then at 0; at 10 s a remedy was "a wrap of 377 deg on drive 1's pulley", no pulley's
+    wrap. The whole force is said as such, and no wrap of a full turn or more is offered."""
+    import re
+
+    from beltstudy.engine.conveyor import Scenario, parse_conveyor
+    from beltstudy.engine.run import run_one
+
+    d = {
+        "name": "decline-1200", "speed_m_s": 4.0,
+        "belt": {"type": "ST1600", "width_m": 1.2, "compound": "standard"},
+        "material": {"capacity_t_h": 2000, "density_t_m3": 1.7, "loading_speed_m_s": 0.0},
+        "profile": [{"length_m": 1200, "lift_m": -90}],
+        "idlers": {"carry": {"spacing_m": 1.2, "roll_diameter_m": 0.152, "rolls": 3,
+                             "trough_deg": 35, "cema_class": "D"},
+                   "return": {"spacing_m": 3.0, "roll_diameter_m": 0.152, "rolls": 1,
+                              "cema_class": "C"}},
+        "drives": [{"position": "head", "wrap_deg": 200, "friction": 0.35, "share": 1.0,
+                    "pulley_diameter_m": 1.0, "inertia_kg_m2": 800, "rated_power_kw": 500,
+                    "torque_limit": 1.5}],
+        "takeup": {"type": "gravity", "position": "tail", "mass_kg": 90000, "travel_m": 8},
+        "brakes": [{"position": "head", "force_kn": "auto", "delay_s": 0.5, "ramp_s": 1.0}],
+        "holdback": False,
+        "accessories": {"head_kn": 2.0, "tail_kn": 1.0},
+    }
+    words = {}
+    for t in (3, 10):
+        s = run_one(parse_conveyor(d), Scenario(stop={"mode": "brake", "time_s": t}),
+                    model="din").summary
+        assert s["brake_governed_by"] == "grip", s["message"]
+        words[t] = s["message"]
+        for deg in re.findall(r"a wrap of ([\d.]+) deg", s["message"]):
+            assert float(deg) < 360.0, s["message"]
+    assert "would need the whole" in words[3] and "the auto brakes then none" in words[3], \
+        words[3]
+    assert "beside the auto brakes, then 0 kN" not in words[3]
