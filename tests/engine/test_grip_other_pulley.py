@@ -52,8 +52,9 @@ def test_a_pulley_that_cannot_pass_the_whole_is_named_with_both_figures():
     s = _run(8.0)
     msg = s["message"]
     said = re.search(r"not by a brake on another pulley alone: a brake on drive 1's shaft "
-                     r"\(head\) would need ([\d.]+) kN beside the auto brakes, sized again "
-                     r"within their grip beside it, and its pulley passes at most ([\d.]+) kN",
+                     r"\(head\) would need ([\d.]+) kN beside the auto brakes, then [\d.]+ kN "
+                     r"sized again within their grip beside it, and its pulley passes at most "
+                     r"([\d.]+) kN",
                      msg)
     assert said, msg
     need, passes = float(said[1]), float(said[2])
@@ -114,7 +115,8 @@ def test_a_brake_offered_on_a_pulley_counts_the_brake_already_given_there():
     msg = run_one(parse_conveyor(GIVEN_HEAD), scn, model="din").summary["message"]
     assert "drive 1's shaft (head) of" not in msg, msg
     said = re.search(r"a brake on drive 1's shaft \(head\) would need ([\d.]+) kN beside the "
-                     r"auto brakes, sized again within their grip beside it, and its pulley "
-                     r"passes at most ([\d.]+) kN in all \(60 kN is given there already\)", msg)
+                     r"auto brakes, then [\d.]+ kN sized again within their grip beside it, and "
+                     r"its pulley passes at most ([\d.]+) kN in all \(60 kN is given there "
+                     r"already\)", msg)
     assert said, msg
     assert float(said[1]) + 60.0 > float(said[2])
