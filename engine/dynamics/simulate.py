@@ -35,6 +35,7 @@ from beltstudy.engine.dynamics.kernel import PAUSED, run_cycle
 from beltstudy.engine.dynamics.model import COUPLING_CODES, System, chord_strain
 from beltstudy.engine.dynamics.profiles import LINEAR, S_CURVE, start_reference, stop_reference
 from beltstudy.engine.loop import DEFAULT_PULLEY_DIAMETER_M, G, _drive_given_kg
+from beltstudy.engine.reads import unread_brakes
 from beltstudy.engine.statics import up3
 from beltstudy.engine.wording import gnum
 
@@ -200,13 +201,14 @@ def rest_state(sys: System) -> R.State:
 
 
 def _applied(sys: System) -> np.ndarray:
-    """Which brakes the run applies: every one in a brake stop, else those with ``hold`` (a
-    coast or controlled stop never applies the others, and does not read their law:
-    engine/reads.py, ``unread_brakes``)."""
+    """Which brakes the run applies: those whose law it reads (engine/reads.py,
+    ``unread_brakes``, the one rule: every brake in a brake stop, else those with ``hold``)."""
     brakes = sys.model.brakes
-    if sys.model.cycle.stop_mode == C.BRAKE:
-        return np.ones(len(brakes.force), dtype=bool)
-    return np.asarray(brakes.hold) == 1
+    unread = set(unread_brakes(
+        {"brakes": [{"hold": bool(h)} for h in np.asarray(brakes.hold)]},
+        {"stop": {"mode": "brake" if sys.model.cycle.stop_mode == C.BRAKE else "coast"}},
+        dynamics=True))
+    return np.array([i not in unread for i in range(len(brakes.force))], dtype=bool)
 
 
 def _applied_brake_kn(sys: System) -> float | None:
