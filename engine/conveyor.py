@@ -260,6 +260,10 @@ SKIRT_FRICTION = 0.6
 #: ``skirt_width_m`` is not given: CEMA's rule of thumb, skirt boards two thirds of the belt
 #: width apart (CEMA Belt Conveyors for Bulk Materials, 7th ed., ch. 12; unverified).
 SKIRT_WIDTH_SHARE = 2.0 / 3.0
+#: Friction coefficient mu_1 between the material and the belt in the acceleration zone [-]:
+#: ISO 5048:1989 gives 0.5 to 0.7 (the middle taken, as for ``SKIRT_FRICTION``); it sets the
+#: acceleration length l_b = (v^2 - v_0^2) / (2 g mu_1) of DIN 22101's skirt friction F_f.
+FEED_BELT_FRICTION = 0.6
 
 
 class FeedPoint(_Model):
@@ -279,6 +283,11 @@ class FeedPoint(_Model):
     skirt_friction: float = Field(
         SKIRT_FRICTION, ge=0.0, le=1.5, description="friction coefficient mu_2 material / "
         "skirt [-] (ISO 5048: 0.5 to 0.7)")
+    belt_friction: float = Field(
+        FEED_BELT_FRICTION, gt=0.0, le=1.5, description="friction coefficient mu_1 material "
+        "/ belt while the belt accelerates the material fed here [-] (ISO 5048: 0.5 to 0.7); "
+        "sets the acceleration length (v^2 - v_0^2) / (2 g mu_1) over which DIN's skirt "
+        "friction F_f acts")
     loading_speed_m_s: float | None = Field(
         None, ge=-30.0, le=30.0, description="along-belt speed of the material fed here "
         "[m/s]; default material.loading_speed_m_s")

@@ -28,7 +28,11 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from beltstudy.engine.conveyor import SKIRT_WIDTH_SHARE, Conveyor, InputError
+from beltstudy.engine.conveyor import (
+    SKIRT_WIDTH_SHARE,
+    Conveyor,
+    InputError,
+)
 from beltstudy.engine.friction.base import FrictionModel, param
 from beltstudy.engine.friction.common import (
     add_accessories,
@@ -53,11 +57,6 @@ def c_factor(length_m: float) -> float:
     return float(np.interp(length_m, C_TABLE_L_M, C_TABLE_C))
 
 
-#: Friction coefficient mu_1 between the material and the belt in the acceleration zone [-]:
-#: ISO 5048:1989 gives 0.5 to 0.7 (the middle taken, as for the belt cleaners' mu_3); it sets
-#: the acceleration length l_b = (v^2 - v_0^2) / (2 g mu_1).
-MU1_MATERIAL_BELT = 0.6
-
 
 def acceleration_skirt_forces(loop: Loop, conv: Conveyor,
                               mu1: float | None = None) -> np.ndarray:
@@ -69,8 +68,8 @@ def acceleration_skirt_forces(loop: Loop, conv: Conveyor,
     on the element each feed point with skirts starts. I_V = m'_L v / rho is the volume flow
     on the belt there (the load case's; every feed upstream included), mu_2 the feed point's
     ``skirt_friction``, b_1 its ``skirt_width_m`` (default ``SKIRT_WIDTH_SHARE`` of the belt
-    width), v_0 its along-belt loading speed (0 for one against the travel) and mu_1
-    ``MU1_MATERIAL_BELT`` unless given. ``I_V / ((v + v_0) / 2)`` is the material's
+    width), v_0 its along-belt loading speed (0 for one against the travel) and mu_1 its
+    ``belt_friction`` unless ``mu1`` is given. ``I_V / ((v + v_0) / 2)`` is the material's
     cross-section in the zone, which sets its pressure on the skirts; at a feed point with
     feeds upstream only the flow fed there speeds up, the rest already runs at v, so the
     cross-section is ``I_V,up / v + I_V,here / ((v + v_0) / 2)`` (the feed's ``share`` of the
@@ -78,7 +77,6 @@ def acceleration_skirt_forces(loop: Loop, conv: Conveyor,
     taken at the mean speed, 72.3 N of skirt friction where its material gives 30.6 N. The friction beyond l_b is the skirts' F_gL (:func:`beltstudy.engine.friction.common.skirt_forces`,
     an accessory).
     """
-    mu1 = MU1_MATERIAL_BELT if mu1 is None else mu1
     out = np.zeros(loop.n)
     v = loop.speed_m_s
     rho = conv.material.density_t_m3 * 1e3
@@ -97,7 +95,8 @@ def acceleration_skirt_forces(loop: Loop, conv: Conveyor,
         iv = float(loop.mL_kg_m[j]) * v / rho  # [m3/s]
         b1 = f.skirt_width_m if f.skirt_width_m is not None \
             else SKIRT_WIDTH_SHARE * loop.belt.width_m
-        lb = min((v * v - v0 * v0) / (2.0 * G * mu1), f.skirt_length_m)
+        m1 = f.belt_friction if mu1 is None else mu1
+        lb = min((v * v - v0 * v0) / (2.0 * G * m1), f.skirt_length_m)
         # the share of the flow there that is fed there (the rest came from upstream at v)
         fed = sum(g.share for g in conv.material.feed if g.at_m <= f.at_m)
         here = f.share / fed if fed > 0.0 else 1.0

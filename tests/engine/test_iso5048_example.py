@@ -95,22 +95,26 @@ def test_drive_grip_against_euler_eytelwein(example):
     assert s["slip_margin"] == pytest.approx(e / (t1 / t2), rel=1e-9)
 
 
-def test_a_short_conveyor_adds_the_skirt_friction_of_the_acceleration_zone(monkeypatch):
+def test_a_short_conveyor_adds_the_skirt_friction_of_the_acceleration_zone():
     """Below 80 m DIN 22101 sums the secondary resistances one by one. ISO 5048's friction
     between the material and the skirt plates while it is accelerated, F_f = mu_2 I_V^2 rho g
     l_b / (((v + v_0) / 2)^2 b_1^2) with l_b = (v^2 - v_0^2) / (2 g mu_1), is 2390.38 N in the
     example (mu_1 = 0.5, l_b = 2.35 m within its 4.8 m of skirts). The example's conveyor cut to
     60 m: secondary = F_f + the pulley allowances (drive 200 lbf, tail take-up 150 lbf), feed
-    F_bA = I_V rho (v - v_0) = 3066.7 N, each within 0.05 %; without skirts no F_f."""
+    F_bA = I_V rho (v - v_0) = 3066.7 N, each within 0.05 %; without skirts no F_f. The
+    example's mu_1 is the feed point's ``belt_friction``; at the default 0.6 the zone is
+    shorter and F_f is 0.5 / 0.6 of it."""
     import yaml
 
     from beltstudy.engine.conveyor import parse_conveyor
-    from beltstudy.engine.friction import din
 
-    monkeypatch.setattr(din, "MU1_MATERIAL_BELT", 0.5)
     lbf = 4.4482216
     d = yaml.safe_load(EXAMPLE.read_text())
     d["profile"] = [{"length_m": 60.0, "lift_m": 0.0}]
+    parts = solve_steady(parse_conveyor(d), model="din").summary["te_components_kn"]
+    assert parts["secondary"] * 1e3 == pytest.approx(2390.38 * 0.5 / 0.6 + 350 * lbf,
+                                                     rel=5e-4)
+    d["material"]["feed"][0]["belt_friction"] = 0.5
     lb = V_M_S ** 2 / (2 * G * 0.5)
     iv = Q_T_H / 3.6 / RHO
     f_f = 0.7 * iv ** 2 * RHO * G * lb / ((V_M_S / 2) ** 2 * 0.75 ** 2)
