@@ -528,7 +528,14 @@ def _verdict_words(r: dict) -> str:
         return (f"\x01fails\x01the whole travel used (the carriage at its end stops) in "
                 f"{r['past']} of {r['n']} runs")
     if r["past"]:
-        return f"\x01fails\x01past the limit in {r['past']} of {r['n']} runs"
+        # a pulley that slips holds its margin at the limit itself (it passes all its grip):
+        # "1 against 1, past the limit" read as a contradiction without the why
+        held = (v.said and isinstance(r["value"], float) and isinstance(r["limit"], float)
+                and (r["value"] >= r["limit"] if v.worst == "min" else r["value"] <= r["limit"]))
+        return (f"\x01fails\x01past the limit in {r['past']} of {r['n']} runs"
+                + (": a drive pulley slipped in each (while it slips its margin reads the "
+                   "limit itself, the grip all used; the time slipping rows say how long)"
+                   if held else ""))
     if r["limit"] is None and v.limit == "sag" and not r.get("ok_col"):
         return "\x01passes\x01within the limits of each strand (no run warns)"
     return f"\x01passes\x01within ({r['n']} runs)"

@@ -115,6 +115,17 @@ def _cell_tables(cell: dict, table, n_cell) -> str:
                          "interval (Wilson, 95 %)"], ex, "runs")
 
 
+def _ranking_notes(cell: dict) -> list[str]:
+    """Each figure's ranking note once, with the figures it is about (a note is per figure:
+    the first figure's alone hid a power index of 1.2 outside [0, 1] that ``beltstudy
+    uncertainty`` names)."""
+    by_note: dict[str, list[str]] = {}
+    for col, sens in cell["sensitivity"].items():
+        if sens.get("note"):
+            by_note.setdefault(sens["note"], []).append(col)
+    return [f"{', '.join(cols)}: {note}" for note, cols in by_note.items()]
+
+
 def uncertainty_section(study: dict, runs: pd.DataFrame, table, n_cell, png, figure) -> str:
     """The section's markup; ``table``, ``n_cell``, ``png`` and ``figure`` are the report's
     own helpers (so its tables and figures look like the rest)."""
@@ -142,7 +153,7 @@ def uncertainty_section(study: dict, runs: pd.DataFrame, table, n_cell, png, fig
         sens = next(iter(cell["sensitivity"].values()), None)
         if sens is not None:
             out.append(f"<p class=muted>ranking: {_e(sens['method'])}"
-                       + (f"; {_e(sens['note'])}" if sens["note"] else "") + "</p>")
+                       + "".join(f"; {_e(t)}" for t in _ranking_notes(cell)) + "</p>")
         out.append(_cell_tables(cell, table, n_cell))
         if cell["figures"] and len(part):
             out.append(figure(png(lambda c=cell, p=part, w=where: histograms_figure(

@@ -306,3 +306,21 @@ def test_a_figure_every_run_lacks_beyond_every_bound_is_still_listed(data_dir):
     text = format_text(out).splitlines()
     assert ("    n 0 of 8; 8 without a value: slack, sag unbounded (past every bound: every "
             "quantile of all of them is unbounded)") in text
+
+
+def test_the_report_names_every_figure_s_ranking_note_not_the_first_alone():
+    """A ranking note is per figure. The report printed the first figure's only, so a power
+    index of 1.2 outside [0, 1] (a share of the variance cannot be: sampling error), which
+    ``beltstudy uncertainty`` names, went unsaid where ``power_kw`` was not first."""
+    from beltstudy.service.web.uncertainty import _ranking_notes
+
+    method = "sobol (SALib)"
+    cell = {"sensitivity": {
+        "safety_factor": {"method": method, "note": "", "axes": {}, "ranking": []},
+        "power_kw": {"method": method, "note": "ST of temperature_c 1.2: outside [0, 1]",
+                     "axes": {}, "ranking": []},
+        "te_kn": {"method": method, "note": "ST of temperature_c 1.2: outside [0, 1]",
+                  "axes": {}, "ranking": []}}}
+    assert _ranking_notes(cell) == ["power_kw, te_kn: ST of temperature_c 1.2: outside [0, 1]"]
+    cell["sensitivity"]["power_kw"]["note"] = cell["sensitivity"]["te_kn"]["note"] = ""
+    assert _ranking_notes(cell) == []

@@ -74,3 +74,27 @@ def test_a_run_that_slipped_is_past_the_transient_slip_margin_whatever_its_margi
                                                                      2 / 3))}
     row = rows["slip_margin_min_dyn"]
     assert row["past"] == 2 and row["row"]["run_id"] == "c"
+
+
+def test_a_transient_slip_margin_at_its_limit_says_the_pulley_slipped():
+    """While a pulley slips it passes its whole grip, so its margin reads the limit itself:
+    the report's row read '1 | 1 | past the limit in 4 of 6 runs', a contradiction without
+    the why. A margin below the limit needs no such words."""
+    import pandas as pd
+
+    from beltstudy.service.web.report import _verdict_words
+    from beltstudy.service.web.verdicts import study_limits, verdict_rows
+
+    def words(margin):
+        runs = pd.DataFrame([
+            {"run_id": "a", "status": "warning", "slip_margin_min_dyn": margin,
+             "drive1_slip_s": 6.64, "message": "drive 1 (head) slipped on its pulley during "
+                                               "the start"},
+            {"run_id": "b", "status": "ok", "slip_margin_min_dyn": 1.4, "drive1_slip_s": 0.0,
+             "message": ""}])
+        rows = {r["column"]: r for r in verdict_rows(runs, study_limits({"conveyor": {}}, 6.7,
+                                                                         2 / 3))}
+        return _verdict_words(rows["slip_margin_min_dyn"])
+
+    assert "past the limit in 1 of 2 runs: a drive pulley slipped" in words(1.0)
+    assert "slipped" not in words(0.97) and "past the limit in 1 of 2 runs" in words(0.97)
