@@ -261,24 +261,38 @@ def _start_liftoff(c: Curve, loop: Loop, el: np.ndarray, lim: np.ndarray, T: np.
 
 
 def _rest_liftoff(c: Curve, loop: Loop, el: np.ndarray, lim: np.ndarray,
-                  T_rest: np.ndarray | None, lifts_running: bool) -> list[str]:
+                  T_rest: np.ndarray | None, lifts_running: bool) -> tuple[dict, list[str]]:
     """A concave curve where the belt held at rest lifts off its idlers (``T_rest > R m'_G g
-    cos a``), in words ([] where it does not, or where running lifts it: that warning names the
-    radius). At rest no resistance holds the tension down: the take-up's tension and the
-    weight of the belt above it (a 6 km overland's empty belt held 210.4 kN at its 600 m
-    curve, 10 m above its tail take-up, against 202.6 kN of lift-off tension, and only the
-    transient run said so, as lift-off in the start). The radius that keeps it down at rest
-    is ``R max(T_rest / T_lift)``; no start or stop time changes it."""
-    if T_rest is None or lifts_running:
-        return []
+    cos a``): ``curve{k}_*_rest`` fields and a warning ([] where it does not lift, or where
+    running lifts it: that warning names the radius at rest too). At rest no resistance holds
+    the tension down: the take-up's tension and the weight of the belt above it (a 6 km
+    overland's empty belt held 210.4 kN at its 600 m curve, 10 m above its tail take-up,
+    against 202.6 kN of lift-off tension, and only the transient run said so, as lift-off in
+    the start). The radius that keeps it down at rest is ``R max(T_rest / T_lift)``; no start
+    or stop time changes it.
+
+    Returns
+    -------
+    dict, list of str
+        ``curve{k}_tension_rest_kn`` (highest at-rest tension on the curve, either strand),
+        ``curve{k}_liftoff_rest`` and ``curve{k}_radius_min_rest_m`` (all null without
+        at-rest tensions); one warning when the belt at rest lifts and running does not.
+    """
+    k = c.k
+    if T_rest is None:
+        return {f"curve{k}_tension_rest_kn": None, f"curve{k}_liftoff_rest": None,
+                f"curve{k}_radius_min_rest_m": None}, []
     tr = T_rest[el]
     over = tr - lim
     j = int(np.argmax(over))
-    if not over[j] > 0.0:
-        return []
+    lifts = bool(over[j] > 0.0)
     r_need = float(np.max(tr * c.radius_m / lim))
+    out = {f"curve{k}_tension_rest_kn": float(tr.max()) / 1e3,
+           f"curve{k}_liftoff_rest": lifts, f"curve{k}_radius_min_rest_m": r_need}
+    if not lifts or lifts_running:
+        return out, []
     strand = "carry" if loop.strand[el[j]] == CARRY else "return"
-    return [
+    return out, [
         f"curve {c.k} (concave, R {c.radius_m:g} m at {c.at_m:.0f} m): held at rest the empty "
         f"belt lifts off its {strand} idlers, at-rest tension {tr[j] / 1e3:.1f} kN (the "
         "take-up's and the belt's weight, no running resistance: an estimate the transient "
@@ -372,26 +386,38 @@ def steady_checks(conv, loop: Loop, T: np.ndarray, sf_min: float,
             started, start_words = _start_liftoff(c, loop, el, lim, T, T_start, lifts)
             out.update(started)
             warnings += start_words
-            warnings += _rest_liftoff(c, loop, el, lim, T_rest, lifts)
+            rested, rest_words = _rest_liftoff(c, loop, el, lim, T_rest, lifts)
+            out.update(rested)
+            warnings += rest_words
             if lifts:
                 strand = "carry" if loop.strand[el[j]] == CARRY else "return"
                 r_start = started[f"curve{k}_radius_min_start_m"]
                 at_start = (f", and at start-up ({started[f'curve{k}_tension_start_kn']:.1f} "
                             f"kN there) at least {math.ceil(r_start):.0f} m"
                             if r_start is not None and r_start > r_need else "")
+                # held at rest the tension can be higher still (no resistance holds it down):
+                # a 5 km route told 455 m for its start lifted at rest on 455 m, and 469 m held
+                r_rest = rested[f"curve{k}_radius_min_rest_m"]
+                at_rest = (f", and held at rest ({rested[f'curve{k}_tension_rest_kn']:.1f} kN "
+                           f"there, an estimate) at least {math.ceil(r_rest):.0f} m"
+                           if r_rest is not None and r_rest > max(r_need, r_start or 0.0)
+                           else "")
                 warnings.append(
                     f"curve {k} (concave, R {c.radius_m:g} m at {c.at_m:.0f} m): the empty belt "
                     f"lifts off its {strand} idlers, steady tension {T[el[j]] / 1e3:.1f} kN "
                     f"above the lift-off tension {lim[j] / 1e3:.1f} kN (R m'_G g cos a); a "
                     f"radius of at least {math.ceil(r_need):.0f} m keeps it on them at these "
-                    f"tensions{at_start} (a larger radius lengthens the curve and moves them a "
-                    "little: rerun to confirm)")
+                    f"tensions{at_start}{at_rest} (a larger radius lengthens the curve and moves "
+                    "them a little: rerun to confirm)")
         else:
             out[f"curve{k}_liftoff_tension_kn"] = None
             out[f"curve{k}_liftoff"] = False
             out[f"curve{k}_tension_start_kn"] = None
             out[f"curve{k}_liftoff_start"] = False
             out[f"curve{k}_radius_min_start_m"] = None
+            out[f"curve{k}_tension_rest_kn"] = None
+            out[f"curve{k}_liftoff_rest"] = False
+            out[f"curve{k}_radius_min_rest_m"] = None
             warnings += convex_idler_warnings(conv, loop, c, t_carry)
             # the edge strain is largest at the arc's highest tension, the centre's relief
             # at its lowest: the radius meets both

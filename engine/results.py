@@ -501,6 +501,16 @@ CURVES = ResultGroup("curves", "Vertical curves, steady (CEMA, DIN 22101; docs/r
     _f("curve{k}_radius_min_start_m", "m", "concave: the smallest radius that keeps the belt "
        "down at start-up, max T_start / (m'_G g cos a) over the curve, both strands (R x "
        "T_start / T_lift); null for a convex curve", "R min at start"),
+    _f("curve{k}_tension_rest_kn", "kN", "concave: highest tension on curve k with the belt "
+       "held at rest, either strand (the take-up's tension and the belt's weight, no running "
+       "resistance: an estimate, the transient's lift-off at rest is liftoff_*); null for a "
+       "convex curve", "T at rest"),
+    _f("curve{k}_liftoff_rest", "bool", "concave: the at-rest tension on either strand is "
+       "above the lift-off tension of the empty belt somewhere on curve k (no start or stop "
+       "time changes it); false for a convex curve", "lifts at rest"),
+    _f("curve{k}_radius_min_rest_m", "m", "concave: the smallest radius that keeps the belt "
+       "down held at rest, max T_rest / (m'_G g cos a) over the curve, both strands (R x "
+       "T_rest / T_lift); null for a convex curve", "R min at rest"),
     _f("curve{k}_idler_load_extra_n", "N", "load the belt's tension adds to each carry idler "
        "set on curve k, T S / R (convex; on a concave curve it is taken off)",
        "idler load from the curve"),

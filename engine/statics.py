@@ -1202,8 +1202,9 @@ _AT_THESE = re.compile(r"curve (\d+) \(convex, .*?a radius of at least (\d+) m \
 #: Solves at most, settling one radius.
 SETTLE_MAX = 6
 #: The words of a concave curve's radius at the tensions of the run's own arc
-#: (:func:`beltstudy.engine.curves.steady_curve_checks` and ``_start_liftoff``), each with the
-#: summary field that names the radius it needs: running, and at start-up.
+#: (:func:`beltstudy.engine.curves.steady_curve_checks`, ``_start_liftoff`` and
+#: ``_rest_liftoff``), each with the summary field that names the radius it needs: running, at
+#: start-up and held at rest.
 _CONCAVE_AT = (
     (re.compile(r"curve (\d+) \(concave, .*?a radius of at least (\d+) m keeps it on them "
                 r"at these tensions"), "curve{k}_radius_min_m"),
@@ -1211,6 +1212,10 @@ _CONCAVE_AT = (
                 r"(\d+) m"), "curve{k}_radius_min_start_m"),
     (re.compile(r"curve (\d+) \(concave, .*?a radius of at least (\d+) m \(R x T_start / "
                 r"T_lift"), "curve{k}_radius_min_start_m"),
+    (re.compile(r"curve (\d+) \(concave, .*?, and held at rest \([\d.]+ kN there, an "
+                r"estimate\) at least (\d+) m"), "curve{k}_radius_min_rest_m"),
+    (re.compile(r"curve (\d+) \(concave, .*?a radius of at least (\d+) m \(R x T_rest / "
+                r"T_lift"), "curve{k}_radius_min_rest_m"),
 )
 
 

@@ -300,6 +300,13 @@ def _curve_lines(s: dict) -> list[str]:
                          f"{lift:>17.1f} "
                          f"{'YES' if s[f'curve{k}_liftoff_start'] else 'no':>7} "
                          f"{math.ceil(r_start):>11.0f}")
+        t_rest = s.get(f"curve{k}_tension_rest_kn")
+        if t_rest is not None and lift is not None:
+            r_rest = s[f"curve{k}_radius_min_rest_m"]
+            lines.append(f"      held at rest (estimate)           {t_rest:>8.1f} "
+                         f"{lift:>17.1f} "
+                         f"{'YES' if s[f'curve{k}_liftoff_rest'] else 'no':>7} "
+                         f"{math.ceil(r_rest):>11.0f}")
         k += 1
     lines.append("")
     return lines

@@ -183,10 +183,15 @@ VERDICTS: tuple[Verdict, ...] = (
     Verdict("Routes", "highest start-up tension, vertical curve {k} (concave, rigid-body "
             "estimate)", "curve{k}_tension_start_kn", "max", "kN",
             LIFTOFF_LIMIT, bad="curve{k}_liftoff_start"),
+    Verdict("Routes", "highest at-rest tension, vertical curve {k} (concave, an estimate: "
+            "the take-up's tension and the belt's weight)", "curve{k}_tension_rest_kn", "max",
+            "kN", LIFTOFF_LIMIT, bad="curve{k}_liftoff_rest"),
     Verdict("Routes", "smallest radius vertical curve {k} needs, steady",
             "curve{k}_radius_min_m", "max", "m", "curve_radius"),
     Verdict("Routes", "smallest radius vertical curve {k} needs at start-up (concave)",
             "curve{k}_radius_min_start_m", "max", "m", "curve_radius"),
+    Verdict("Routes", "smallest radius vertical curve {k} needs held at rest (concave)",
+            "curve{k}_radius_min_rest_m", "max", "m", "curve_radius"),
     Verdict("Routes", "tension over the lift-off tension at the concave curves, transient "
             "(negative: the margin left)", "liftoff_max_kn_over", "max", "kN", 0.0,
             at="liftoff_at_m"),
@@ -399,11 +404,12 @@ _ROUTE_FIX = (r"^a radius of at least \d+ m|^no radius holds it|^a tighter radiu
 
 def _route(runs: pd.DataFrame) -> pd.Series:
     """Runs whose belt leaves its idlers or its line at a curve: a lift-off verdict
-    (``curve{k}_liftoff``, ``curve{k}_liftoff_start``, ``liftoff_max_kn_over`` above 0), a
+    (``curve{k}_liftoff``, ``curve{k}_liftoff_start``, ``curve{k}_liftoff_rest``,
+    ``liftoff_max_kn_over`` above 0), a
     horizontal curve's ``hcurve{k}_ok`` false, or a route warning in the message."""
     out = _any_over(runs, "liftoff_max_kn_over", 0.0)
     for pattern, bad in (("curve{k}_liftoff", True), ("curve{k}_liftoff_start", True),
-                         ("hcurve{k}_ok", False)):
+                         ("curve{k}_liftoff_rest", True), ("hcurve{k}_ok", False)):
         for c, _ in expand(pattern, runs.columns):
             out |= runs[c].astype("boolean").eq(bad).fillna(False).astype(bool)
     said = _message(runs).map(lambda m: any(
