@@ -26,6 +26,11 @@ each deciding figure ``f`` (``f3, f2, f1`` on the coarse, the run's and the fine
   is not in the asymptotic range; the bar is the spread, ``Fs = 3`` x the largest distance
   of the other meshes' values from ``f2`` (method ``spread``), with no converged estimate.
 - all three equal: method ``unchanged``.
+- a run whose drive pulley slipped or whose belt went slack (at an automatic step) is also run
+  on its own mesh at half its step: where three times its move is wider than the mesh bar,
+  that is the bar (method ``step``, :func:`step_bar`), and a start time that moves with the
+  step is said as a marginal verdict (the meshes keep the Courant number, which can itself
+  set such an event's time).
 
 No bar is below what the run resolves of the figure (:func:`resolution`: the step for a
 time, the resistance law's relative accuracy for the rest).
@@ -54,7 +59,7 @@ from beltstudy.engine.wording import gnum
 __all__ = [
     "RATIO", "FS_THREE", "FS_TWO", "FS_SPREAD", "P_FORMAL", "P_CLOSE", "P_MIN", "P_ASSUMED",
     "NON_NEGATIVE", "DECIDING", "FigureError", "Accuracy", "deciding_figures", "figure_error",
-    "resolution", "bars", "error_bars", "marginal_verdicts",
+    "resolution", "bars", "error_bars", "marginal_verdicts", "step_bar",
 ]
 
 #: Refinement ratio of the meshes (Roache: 2 is usual; at least 1.3).
@@ -112,9 +117,11 @@ class FigureError:
     converged : the Richardson estimate (None where not extrapolated)
     method : ``richardson`` (three meshes, observed order near the formal one, Fs 1.25),
         ``gci3`` (three meshes, order bounded, Fs 3), ``gci2`` (two meshes, assumed order,
-        Fs 3), ``spread`` (not in the asymptotic range), ``unchanged`` or ``none``
+        Fs 3), ``spread`` (not in the asymptotic range), ``step`` (the run's own mesh at half
+        its step set the bar: :func:`step_bar`), ``unchanged`` or ``none``
     order : the observed order p (None where not observed)
     values : the figure on each mesh, coarse to fine (None where a mesh gave none)
+    half_step : the figure on the run's mesh at half its step (None where not run)
     """
 
     name: str
@@ -124,6 +131,7 @@ class FigureError:
     method: str
     order: float | None
     values: tuple
+    half_step: float | None = None
 
 
 def _order(e32: float, e21: float, r21: float, r32: float) -> float:
@@ -201,7 +209,27 @@ CYCLE_PHASES = (
 )
 
 
-def bars(runs: list, elements: tuple, rtol: float) -> dict:
+def step_bar(fe: FigureError, half: float | None) -> FigureError:
+    """``fe`` with the step's error where it is the larger: ``half`` the figure on the run's
+    own mesh at half its step. The explicit scheme is first order in the step at a fixed
+    mesh, so the run's value is off by about ``f(dt) - f(dt / 2)`` (Richardson, p = 1) and
+    the converged estimate is ``2 f(dt / 2) - f(dt)``; two runs, so Fs 3 (:data:`FS_TWO`,
+    Roache). The mesh bars refine the step with the mesh (the Courant number stays) and
+    cannot see an error set by the Courant number itself: a 100 m incline whose tail drive
+    slipped against a slack fixed take-up read a start of 14.18 s at the automatic step,
+    12.17, 10.54, 10.14 and 10.16 s at a half, a quarter, an eighth and a sixteenth of it,
+    and 10.57 s on twice the elements at a quarter."""
+    if not _finite(half) or not math.isfinite(fe.err):
+        return fe
+    d = fe.value - float(half)
+    err = FS_TWO * abs(d)
+    if err <= fe.err:
+        return replace(fe, half_step=float(half))
+    return replace(fe, err=err, converged=float(half) - d, method="step", order=None,
+                   half_step=float(half))
+
+
+def bars(runs: list, elements: tuple, rtol: float, half: dict | None = None) -> dict:
     """The bar of every deciding figure of the run ``runs[1]`` from its summaries on three
     meshes (coarse, the run's, fine; None for a mesh that gave none) of ``elements``.
 
@@ -210,11 +238,14 @@ def bars(runs: list, elements: tuple, rtol: float) -> dict:
     other phase's converges (a 1.6 km decline's slip margin: 1.31, the rest's, on 103 and 205
     elements, 1.26 on 409, while the stop's fell 1.51, 1.44, 1.26 and on to 0.96 on 3 279).
     The cycle's bar therefore also covers each phase's range, ``min(v_p - e_p)`` to
-    ``min(v_p + e_p)`` (``max`` for a highest figure), where it is wider."""
+    ``min(v_p + e_p)`` (``max`` for a highest figure), where it is wider. ``half``: the
+    run's summary on its own mesh at half its step, where it was run (:func:`step_bar`)."""
     out = {}
     for name in deciding_figures(runs[1]):
         vals = tuple(None if s is None else s.get(name) for s in runs)
         fe = figure_error(name, vals, elements, resolution(name, runs[1], rtol))
+        if fe is not None and half is not None:
+            fe = step_bar(fe, half.get(name))
         if fe is not None:
             out[name] = fe
     for cycle, phases, pick in CYCLE_PHASES:
@@ -322,6 +353,8 @@ class Accuracy:
         groups: dict[str, list[str]] = {}
         for name, fe in self.figures.items():
             words = name if fe.order is None else f"{name} (p {fe.order:.2g})"
+            if fe.method == "step":
+                words = f"{name} ({gnum(fe.half_step, 4)} at half the step)"
             if fe.method == "gci3":
                 used = min(max(P_MIN, fe.order), P_FORMAL)
                 if f"{used:.2g}" != f"{fe.order:.2g}":
@@ -432,11 +465,67 @@ def error_bars(scenario: Scenario, summary: dict, rerun, *,
                          f"{used[0]} with the pulleys; the fewest is {ELEMENTS_MIN} belt elements)")
     used = tuple(None if s is None else u for s, u in zip(runs, used, strict=True))
     acc.elements = used
-    acc.figures = bars(runs, used, rtol)
+    half = _half_step(scenario, summary, rerun, acc)
+    acc.figures = bars(runs, used, rtol, half)
     acc.marginal = marginal_verdicts(summary, acc.figures, sag_limit_pct=sag_limit_pct,
                                      safety_factor_min=safety_factor_min, finest=used[-1],
                                      finest_dt_s=fine_dt if runs[-1] is not None else None)
+    if half is not None:
+        acc.marginal += _start_with_the_step(summary, half)
     return acc
+
+
+#: A drive pulley that slips or a belt gone slack: events a force crossing a grip or a
+#: tension crossing zero decides, whose time the step moves at a fixed mesh.
+_STEP_EVENTS = re.compile(r"^drive\d+_slip_s$")
+
+
+def _step_events(summary: dict) -> bool:
+    """The run had a drive pulley slip or the belt go slack (:data:`_STEP_EVENTS`)."""
+    if _finite(summary.get("slack_max_m")) and summary["slack_max_m"] > 0.0:
+        return True
+    return any(_STEP_EVENTS.match(k) and _finite(v) and v > 0.0 for k, v in summary.items())
+
+
+def _half_step(scenario: Scenario, summary: dict, rerun, acc: Accuracy) -> dict | None:
+    """The run on its own mesh at half its automatic step, where a drive pulley slipped or
+    the belt went slack in it (:func:`_step_events`; None otherwise, or for a step the file
+    gives). The meshes refine the step with the mesh and keep the Courant number, which is
+    what sets such an event's time (:func:`step_bar`)."""
+    dt = summary.get("dt_used_s")
+    if scenario.dt_s != "auto" or not _finite(dt) or not _step_events(summary):
+        return None
+    try:
+        half = rerun(scenario.model_copy(update={"dt_s": 0.5 * float(dt)}))
+    except InputError as exc:
+        acc.notes.append(f"half the step not run: {exc}")
+        return None
+    if half.get("status") == "failed":
+        acc.notes.append(f"half the step failed: {half.get('message')}")
+        return None
+    return half
+
+
+def _start_with_the_step(summary: dict, half: dict) -> list[str]:
+    """The start time against the run's at half the step, in words where they differ by more
+    than 1 % (or one reached design speed and the other did not): the start time has no bar
+    of its own, and an event the step moves can move it by seconds."""
+    a, b = summary.get("start_time_s"), half.get("start_time_s")
+    dt = float(summary.get("dt_used_s") or 0.0)
+    step = f"the run's step ({gnum(dt, 3)} s)"
+    why = ("a drive pulley slipping or the belt going slack in it, whose times the step "
+           "moves; a smaller scenario.dt_s settles it")
+    if a is None and b is None:
+        return []
+    if a is None or b is None:
+        at, never = ("half the step", step) if a is None else (step, "half the step")
+        t = b if a is None else a
+        return [f"marginal: start_time_s: the belt reached 99 % of design speed at {at} "
+                f"({gnum(t, 4)} s) and not at {never}: {why}"]
+    if abs(a - b) <= max(0.01 * abs(a), 2.0 * dt):
+        return []
+    return [f"marginal: start_time_s {gnum(a, 4)} s at {step}, {gnum(b, 4)} s at half of it "
+            f"(about {gnum(2.0 * b - a, 4)} s converged, the step's first order): {why}"]
 
 
 def _held_on_a_mesh(fe: FigureError | None) -> bool:
@@ -464,6 +553,9 @@ def _marginal(fe: FigureError | None, limit: float, unit: str, higher_passes: bo
         return None
     if abs(fe.value - limit) > fe.err:
         return None
+    u = f" {unit}" if unit else ""
+    if fe.method == "step":
+        return _marginal_step(fe, limit, u, higher_passes)
     vals = [v for v in (fe.values or ()) if v is not None and math.isfinite(v)]
     side = fe.value - limit
     dist = [abs(v - limit) for v in vals]
@@ -473,7 +565,6 @@ def _marginal(fe: FigureError | None, limit: float, unit: str, higher_passes: bo
         # refining moves away from a flip (a wide spread bar alone, as a sag of 50.8 %
         # +- 133 % against 1.5 % that is 63.7 % on the finer mesh, is no flip)
         return None
-    u = f" {unit}" if unit else ""
     said = ["the verdict may flip with the mesh"]
     fine = fe.values[-1] if fe.values else None
     if fine is not None and finest:
@@ -491,6 +582,23 @@ def _marginal(fe: FigureError | None, limit: float, unit: str, higher_passes: bo
     return (f"marginal: {fe.name} {_beside(fe.value, limit)} against limit {limit:g} +- "
             f"{gnum(fe.err, 3)}{u} "
             f"({'; '.join(said)})")
+
+
+def _marginal_step(fe: FigureError, limit: float, u: str, higher_passes: bool) -> str | None:
+    """:func:`_marginal` of a bar the half step set (method ``step``): None where half the
+    step gives the same verdict further from the limit (refining moves away from a flip)."""
+    side, h = fe.value - limit, fe.half_step
+    if side != 0.0 and (h - limit) * side > 0.0 and abs(h - limit) > abs(side):
+        return None
+    said = ["the verdict may flip with the step", f"{_beside(h, limit)}{u} at half the step"]
+    conv = fe.converged
+    if conv is not None and math.isfinite(conv):
+        where = ("at the limit" if conv == limit else
+                 "which passes" if (conv > limit) == higher_passes else "which fails")
+        said.append(f"converged estimate {_beside(conv, limit)}{u}, {where}")
+    said.append("a smaller step (scenario.dt_s) narrows the bar")
+    return (f"marginal: {fe.name} {_beside(fe.value, limit)} against limit {limit:g} +- "
+            f"{gnum(fe.err, 3)}{u} ({'; '.join(said)})")
 
 
 def _beside(value: float, limit: float) -> str:

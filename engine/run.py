@@ -601,8 +601,13 @@ def _complete(prep: _Prepared, scenario, system, tr, model, params, opts, remedy
         softer = ("a start whose drives do not slip (the slip warning's remedy: while a "
                   "drive pulley slips its grip, not start.time_s, sets the start's peak, so "
                   "rerun the lift-off check after it)")
+    # the start ends when the belt first reached 99 % of design speed, where that is after
+    # the start reference (the slip and run words read the same, System.t_start_end_s)
+    reached = tr.summary.get("start_time_s")
     lifted, lift_warnings = transient_liftoff(
-        steady.loop, tr.raw["segments"], cyc.t_pre + cyc.t_start, system.stop_command_s,
+        steady.loop, tr.raw["segments"],
+        cyc.t_pre + max(cyc.t_start, reached if reached is not None else 0.0),
+        system.stop_command_s,
         max(cyc.t_start, tr.summary.get("start_time_s") or 0.0), system.steady_tension_n,
         softer,
         " or ".join(stop_levers(system)), survey_liftoff_limits_n(conveyor, steady.loop),

@@ -279,6 +279,10 @@ class System:
     #: it runs has its force written in (a study's design basis, a run below full load): the
     #: stop's advice then offers stop.time_s; None: read the conveyor given to the words
     auto_brakes: bool | None = None
+    #: when the start ends for the run's words [s]: the end of the start reference or, later,
+    #: when the belt first reached 99 % of design speed (a belt its slipping drives still pull
+    #: up to speed is starting, not running); None: the end of the start reference
+    t_start_end_s: float | None = None
     #: a longer stop.time_s changes an auto brake's force: its size is set by the stop time
     #: or by its pulley's grip against the stop time's need (``brake_governed_by`` names
     #: ``stop_time`` or ``grip``); False where every brake is set by holding the belt at rest
@@ -1052,6 +1056,20 @@ def short_element(conv, loop: Loop) -> tuple[str, str] | None:
         return field, (f"{said}a radius of {need:g} m or more ({field}, now {r:g} m) makes "
                        f"each half of the curve's {gnum(curve_arc_m(prof, i), 3)} m arc a tenth of "
                        "the median element or more")
+    arc = None
+    if i >= 0:
+        mid = sum(sec.length_m for sec in prof[:i + 1])
+        half = 0.5 * curve_arc_m(prof, i)
+        arc = (mid - half - tol, mid + half + tol)
+    if arc is not None and any(arc[0] <= a and b <= arc[1] for a, b in
+                               ((x0 - dx, x0), (x0, x0 + dx))):
+        # the element is a piece of the curve's arc (a turn of more than CURVE_STEP_DEG is cut
+        # in pieces): a radius cannot be moved onto another point (a 5 km route was told to),
+        # and each piece grows with the radius (R x its turn)
+        r = float(prof[i].curve_radius_m)
+        need = math.ceil(r * apart / dx / 10.0) * 10.0
+        return field, (f"{said}a radius of {need:g} m or more ({field}, now {r:g} m) makes "
+                       "each piece of the curve's arc a tenth of the median element or more")
     return field, (f"{said}move {field} onto the other point or "
                    f"{math.ceil(apart * 10.0) / 10.0:g} m or more away from it (a tenth of "
                    "the median element)")

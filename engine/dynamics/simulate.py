@@ -429,8 +429,13 @@ _PHASE_NAMES = {"start": "the start", "running": "steady running", "stop": "the 
 
 def _run_phase(sys: System, t_s: float, t_stop_cmd: float) -> str:
     """The phase of the cycle at time ``t_s`` [s]: ``start`` (to the end of the start
-    reference, the rest before it included), ``running`` (to the stop command), ``stop``."""
-    if t_s <= sys.model.cycle.t_pre + sys.model.cycle.t_start:
+    reference, the rest before it included, or later to when the belt first reached 99 % of
+    design speed, ``System.t_start_end_s``), ``running`` (to the stop command), ``stop``."""
+    end = sys.model.cycle.t_pre + sys.model.cycle.t_start
+    at_speed = getattr(sys, "t_start_end_s", None)  # (a reader's system may not carry it)
+    if at_speed is not None:
+        end = max(end, min(at_speed, t_stop_cmd))
+    if t_s <= end:
         return "start"
     return "running" if t_s <= t_stop_cmd else "stop"
 
@@ -1483,6 +1488,11 @@ def transient_summary(sys: System, r: dict, out, segs, *, steady_summary=None, c
         # of design speed after it (running away in the stop: a 1.47 km route read a start of
         # 38.4 s, 16 s into its coast) made no start
         t_start_ach = None
+    # the words' start lasts until the belt is at speed (a 2 km route's slipping drives pulled
+    # it up to speed 10 s after its 15 s start reference, and a lift-off at 3.28 of 4 m/s was
+    # said to be in steady running, with only the radius to avoid it)
+    sys.t_start_end_s = (None if t_start_ach is None
+                         else sys.model.cycle.t_pre + t_start_ach)
     # a stop is achieved when the mean speed *falls* below REST_FRACTION of design speed: a
     # belt already below it at the stop command (it never got going, or it runs backwards:
     # an incline running back at -4.4 % of design speed read "stopped in 0.006 s") made no
@@ -1628,7 +1638,9 @@ def _cycle_end_words(sys: System, r: dict, out, t_start_ach: float | None, v_cmd
     if t_start_ach is None and not ran_away:
         w.append(_short_of_speed_words(sys, v_cmd or 0.0, t_stop_cmd,
                                        limited=bool((out.drv["lim_s"] > 0.0).any()),
-                                       grip=_grip_words(sys, r, out, _drive_names(sys, conveyor))))
+                                       grip=_grip_words(sys, r, out, _drive_names(sys, conveyor)),
+                                       rise=_speed_rise(out, r, t_stop_cmd,
+                                                        sys.model.cycle.t_run)))
     # a run cut before its stop window ended (``t_end_s``, verification) is not judged on it
     window_end = t_stop_cmd + sys.model.cycle.stop_max
     if not r["stopped"] and not ran_away and float(r["t"]) >= window_end - 0.5 * sys.dt_s:
@@ -1779,14 +1791,38 @@ def drives_force_limit(dr, master: int) -> float:
     return float(np.sum(np.minimum(share * u, lim0)))
 
 
+#: A start short of design speed whose mean speed rose less than this share of a rigid
+#: body's acceleration at the drives' force limit over the end of the running phase had
+#: stopped gaining: the time a rigid body still needs is then no remedy.
+FLAT_RISE = 0.25
+
+
+def _speed_rise(out, r: dict, t_stop_cmd: float, t_run: float) -> tuple[float, float] | None:
+    """The mean belt speed's least-squares slope [m/s2] over the last ``min(run_s, 10 s)``
+    (at least 1 s) before the stop command, from the records, and that window [s]; None with
+    fewer than 3 records in it. A slope, not two samples: a belt swinging at 92-99 % of
+    design speed reads any rise between two of them."""
+    window = max(min(t_run, 10.0), 1.0)
+    rec = out.rec[:int(r["nrec"])]
+    t = rec["t"]
+    m = (t >= t_stop_cmd - window - 1e-9) & (t <= t_stop_cmd + 1e-9)
+    if int(m.sum()) < 3:
+        return None
+    tt, vv = t[m], rec["v_mean"][m]
+    dt = tt - tt.mean()
+    return float((dt * (vv - vv.mean())).sum() / (dt * dt).sum()), window
+
+
 def _short_of_speed_words(sys: System, v_cmd: float, t_stop_cmd: float,
-                          limited: bool = True, grip: str = "") -> str:
+                          limited: bool = True, grip: str = "",
+                          rise: tuple[float, float] | None = None) -> str:
     """The warning of a start that never reached 99 % of design speed: the mean speed the belt
     ran at when the stop was commanded and, for dol drives behind fluid couplings, that their
     running slip holds the pulleys below the motors' speed, and what would meet design speed;
     for vfd drives the force limit against Te (a limit not above Te never gets there; drives
     that never reached it (``limited`` False) leave the belt's own stretch; else the rigid
-    body's time still needed at the limit, and the run_s that gives it). A drive pulley that
+    body's time still needed at the limit, and the run_s that gives it, unless its mean speed
+    had stopped rising: ``rise``, :func:`_speed_rise`). A drive pulley that
     slipped through the start (``grip``, :func:`_grip_words`) is what held the belt back
     instead, whatever the drives' force: a 400 m belt on a 2 kN screw take-up slipped its
     drive pulley from 9.7 s to the stop command and crawled at 3.1e-5 m/s, and was told the
@@ -1819,6 +1855,19 @@ def _short_of_speed_words(sys: System, v_cmd: float, t_stop_cmd: float,
         words += ("; the drives never reached their force limit, so the belt's own stretch held "
                   "its mean speed back (a slow or long belt pays its running stretch in through "
                   "the take-up): a longer run_s shows when it gets there")
+    elif vfd and v_cmd < v_d and rise is not None and rise[0] < FLAT_RISE * (lim - te) / \
+            sys.model.control.m_tot:
+        # no longer gaining as a body at the force limit would: the time is not what it lacks
+        # (a 200 m incline on a 12 kN screw take-up swung at 92-99 % from 17 s, its tail
+        # drive's slack side going slack, and was told a run_s of 35 s, then 49 s, then 68 s)
+        a_rb = (lim - te) / sys.model.control.m_tot
+        words += (f"; its mean speed had stopped rising: over the last {gnum(rise[1], 3)} s "
+                  f"before the stop command it gained {gnum(rise[0], 2)} m/s2 on average, "
+                  f"against the {gnum(a_rb, 3)} m/s2 of a rigid body at the drives' force limit "
+                  f"({gnum(lim / 1e3)} kN in all against Te {gnum(te / 1e3)} kN), so a longer "
+                  "run_s would not let it get there: what holds it back is in the run's other "
+                  "warnings (a drive pulley that slips, a belt that goes slack, a speed that "
+                  "swings), whose levers would")
     elif vfd and v_cmd < v_d:
         # still accelerating at the stop command: the time it still needed at the drives'
         # force limit, rigid body (the waves add to it)
@@ -1844,9 +1893,9 @@ def _grip_words(sys: System, r: dict, out, names: list[str]) -> str:
     the stop command (what it slipped after the command, at most ``slip_last - t_stop``, is
     taken off its slip time). The force such a pulley passes to the belt is its grip, the
     slack-side tension times ``e^(mu theta) - 1``, whatever the drive's force limit, so more
-    slack-side tension (the slip warning's remedy) is the lever; the mean speed's rise over
-    the run before the stop command (the records), at which rate a longer run_s would reach
-    design speed, says whether time would do it too."""
+    slack-side tension (the slip warning's remedy) is the lever; the mean speed's rise at the
+    end of the run before the stop command (:func:`_speed_rise`), at which rate a longer run_s
+    would reach design speed, says whether time would do it too."""
     t_cmd = sys.stop_command_s
     held = []
     for i, d in enumerate(out.drv):
@@ -1864,15 +1913,20 @@ def _grip_words(sys: System, r: dict, out, names: list[str]) -> str:
              f"belt back: {heavier_takeup(sys, 'more slack-side tension')}, the slip warning's "
              "remedy, would let it grip and reach design speed")
     t_run = float(sys.model.cycle.t_run)
-    v_cmd, v_then = _speed_at(out, r, t_cmd), _speed_at(out, r, t_cmd - t_run)
-    if t_run <= 0.0 or v_cmd is None or v_then is None:
+    v_cmd, slope = _speed_at(out, r, t_cmd), _speed_rise(out, r, t_cmd, t_run)
+    if t_run <= 0.0 or v_cmd is None or slope is None:
         return words
-    rise = v_cmd - v_then
+    # the pace at the end of the run, a least-squares slope (the rise over the whole run read
+    # a 200 m incline, flat at 92-99 % from 17 s, as reaching design speed in 4 s more: told
+    # a run_s of 35 s, then 49 s, then 68 s, it never got there)
+    rate, window = slope
     v_d = sys.v_design
-    more = (v_d - v_cmd) * t_run / rise if rise > 0.0 else math.inf
-    pace = (f"its mean speed rose {gnum(rise, 3)} m/s over the {t_run:g} s run before the stop "
-            f"command" + (f", a pace that reaches design speed in about {gnum(more, 3)} s more"
-                          if rise > 0.0 else ""))
+    more = (v_d - v_cmd) / rate if rate > 0.0 else math.inf
+    pace = (f"its mean speed rose {gnum(rate, 2)} m/s2 on average over the last "
+            f"{gnum(window, 3)} s before the stop command, a pace that reaches design speed "
+            f"in about {gnum(more, 3)} s more" if rate > 0.0 else
+            f"its mean speed did not rise over the last {gnum(window, 3)} s before the stop "
+            f"command ({gnum(rate, 2)} m/s2 on average)")
     if more <= 10.0 * (t_run + float(sys.model.cycle.t_start)):
         return words + f"; {pace}: a run_s of at least {_up_s(t_run + more)} s would too"
     return words + f"; {pace}, so a longer run_s would not"

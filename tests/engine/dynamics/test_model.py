@@ -303,3 +303,26 @@ def test_a_short_section_that_sets_the_step_is_named_by_its_own_length():
     assert 3.0 < need < 4.0  # a tenth of about 1 000 m / 30 carry elements
     assert not any("shortest belt element" in n for n in system(need).notes)
     assert any("profile.1 is" in n for n in system(0.8 * need).notes)
+
+
+def test_a_short_piece_of_a_curves_arc_is_given_the_radius_that_lengthens_it():
+    """A curve turning more than a degree each side of its middle is cut in pieces, and a
+    piece far shorter than the median element sets the step. The note said "move
+    profile.0.curve_radius_m onto the other point or ... away from it": there is no other
+    point, and a radius is not moved. Each piece is ``R x its turn``, so the note names the
+    radius that makes it a tenth of the median element: +4 % into level on R 208 m is an
+    8.3 m arc (0.04 rad), about 2.1 m a piece; the radius named gives no such note."""
+    def system(radius):
+        conv = hand_conv(profile=[{"length_m": 400, "lift_m": 16, "curve_radius_m": radius},
+                                  {"length_m": 600, "lift_m": 0}])
+        return build_system(conv, Scenario(elements=20), solve_steady(conv, model="din",
+                                                                      n_elements=20))
+    note = " ".join(system(208.0).notes)
+    said = re.search(r"shortest belt element, ([\d.]+) m long .*?: a radius of (\d+) m or more "
+                     r"\(profile\.0\.curve_radius_m, now 208 m\) makes each piece of the "
+                     r"curve's arc a tenth of the median element", note)
+    assert said, note
+    assert "onto the other point" not in note
+    piece, need = float(said.group(1)), float(said.group(2))
+    assert 208.0 * math.atan(16 / 400) / 4 == pytest.approx(piece, rel=0.02)
+    assert "shortest belt element" not in " ".join(system(need).notes)
