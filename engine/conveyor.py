@@ -366,13 +366,20 @@ class ProfileSection(_Model):
         if self.horizontal_radius_m is not None:
             turn_deg = math.degrees(self.length_m / self.horizontal_radius_m)
             if turn_deg > HCURVE_TURN_MAX_DEG:
+                # the turn to the digits that show it past 360 deg, and the least radius
+                # rounded up to a tenth of a metre, which the file then takes (238.7 m for
+                # 1500 m read "turns the belt 360 deg" and was refused again)
+                shown = next((gnum(turn_deg, d) for d in range(4, 12)
+                              if float(gnum(turn_deg, d)) > HCURVE_TURN_MAX_DEG),
+                             repr(turn_deg))
+                least = math.ceil(self.length_m / math.radians(HCURVE_TURN_MAX_DEG) * 10.0
+                                  ) / 10.0
                 raise ValueError(
                     f"horizontal_radius_m ({self.horizontal_radius_m:g} m) over length_m "
-                    f"({self.length_m:g} m) turns the belt {gnum(turn_deg)} deg (L / R), more "
+                    f"({self.length_m:g} m) turns the belt {shown} deg (L / R), more "
                     f"than a full turn ({HCURVE_TURN_MAX_DEG:g} deg): an arc of constant "
                     "radius longer than 2 pi R comes back over itself; give a radius of at "
-                    f"least {gnum(self.length_m / math.radians(HCURVE_TURN_MAX_DEG))} m "
-                    "(length_m / 2 pi) or a shorter section")
+                    f"least {least:g} m (length_m / 2 pi, rounded up) or a shorter section")
         return self
 
 

@@ -306,12 +306,19 @@ def test_horizontal_curve_errors_name_the_field(section, words):
 def test_a_curve_of_more_than_a_full_turn_is_refused():
     """A constant-radius arc turns L / R: 500 m at R 10 m is 50 rad = 2 864.8 deg, a route
     that comes back over itself (more than 2 pi R = 62.8 m of arc); the error names the
-    field, the turn, the bound and the radius that makes one turn (500 / 2 pi = 79.58 m).
-    Just under a full turn (R 80 m: 358.1 deg) is taken."""
+    field, the turn, the bound and the radius that makes one turn (500 / 2 pi = 79.577 m),
+    rounded up to a tenth of a metre so that the file takes it: 1500 m at the 238.7 m that
+    rounding to the nearest gave (1500 / 2 pi = 238.732 m) turns 360.05 deg, and was refused
+    as turning "360 deg" with the same advice. Just under a full turn (R 80 m: 358.1 deg) is
+    taken."""
     curl = {"length_m": 500, "lift_m": 0, "horizontal_radius_m": 10}
     with pytest.raises(InputError, match=r"profile\.0: horizontal_radius_m \(10 m\).*turns "
-                       r"the belt 2865 deg.*full turn \(360 deg\).*at least 79\.58 m"):
+                       r"the belt 2865 deg.*full turn \(360 deg\).*at least 79\.6 m"):
         parse_conveyor(hand_conveyor_dict(profile=[curl]))
+    near = {"length_m": 1500, "lift_m": 0, "horizontal_radius_m": 238.7}
+    with pytest.raises(InputError, match=r"turns the belt 360\.05 deg.*at least 238\.8 m"):
+        parse_conveyor(hand_conveyor_dict(profile=[near]))
+    parse_conveyor(hand_conveyor_dict(profile=[{**near, "horizontal_radius_m": 238.8}]))
     assert math.degrees(500 / 80) < 360.0
     conv = parse_conveyor(hand_conveyor_dict(profile=[{**curl, "horizontal_radius_m": 80}]))
     assert conv.profile[0].horizontal_radius_m == 80
