@@ -225,7 +225,10 @@ def step_bar(fe: FigureError, half: float | None) -> FigureError:
     err = FS_TWO * abs(d)
     if err <= fe.err:
         return replace(fe, half_step=float(half))
-    return replace(fe, err=err, converged=float(half) - d, method="step", order=None,
+    conv = float(half) - d
+    if conv < 0.0 and NON_NEGATIVE.match(fe.name):
+        conv = None  # (as figure_error: no estimate of a figure that cannot be negative)
+    return replace(fe, err=err, converged=conv, method="step", order=None,
                    half_step=float(half))
 
 

@@ -98,3 +98,9 @@ def test_the_step_bar_is_three_times_the_half_step_s_move_where_that_is_larger()
     kept = step_bar(fe, 120.2)
     assert kept.err == 1.2 and kept.method == "gci3" and kept.half_step == 120.2
     assert step_bar(fe, None) is fe and step_bar(fe, math.nan) is fe
+    # a lowest tension of 3.07 kN at the step and 1.17 kN at half of it extrapolates below 0:
+    # a tension cannot be negative, so no estimate is given (as the mesh bars do); the bar
+    # stands
+    low = FigureError("t_min_stop_kn", 3.07, 0.3, None, "growing", -0.3, (3.2, 3.07, 2.9))
+    held = step_bar(low, 1.17)
+    assert held.converged is None and held.err == pytest.approx(5.7) and held.method == "step"
