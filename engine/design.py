@@ -374,6 +374,14 @@ def _brake_nodes(conv: Conveyor, loop) -> tuple[list[int], dict]:
     return nodes, fixed
 
 
+def _rigid_stop_words(t_s: float, at: str, caveat: str) -> str:
+    """'; <at> the rigid-body brake stop takes about T s (<caveat>)', or that the rigid belt
+    does not stop on it (:func:`brake_stop_time` infinite)."""
+    if not math.isfinite(t_s):
+        return f"; {at} the rigid belt does not stop at all"
+    return f"; {at} the rigid-body brake stop takes about {gnum(t_s, 3)} s ({caveat})"
+
+
 def _within_grip(conv: Conveyor, scenario: Scenario, steady: SteadyResult, each: list[float],
                  hold_n: float, rigid: tuple) -> tuple[list[float], str, str]:
     """The auto brakes' forces [N] within their pulleys' grip in the stop
@@ -402,8 +410,10 @@ def _within_grip(conv: Conveyor, scenario: Scenario, steady: SteadyResult, each:
             f"the stop ({gnum(total / 1e3)} kN with the fall of its slack side doubled, the "
             "undamped bound), and held to that grip it would fall below the holding force; "
             f"the holding force {gnum(hold_n / 1e3)} kN is beyond the grip too, so the pulley "
-            "may slide (the run's slip check says): "
-            + _hold_fix(conv, steady, takeup=_takeup_words(conv, walk, lambda w: sum(
+            "may slide (the run's slip check says)"
+            + _rigid_stop_words(brake_stop_time(m, v, te, hold_n, delay, ramp, curve),
+                                "at the holding force", "longer as the pulley slides")
+            + ": " + _hold_fix(conv, steady, takeup=_takeup_words(conv, walk, lambda w: sum(
                 grip_limits(w, nodes, fixed, wanted)[0]) + sum(fixed.values())
                 >= hold_n * (1.0 - 1e-9))))
     t_gives = brake_stop_time(m, v, te, total, delay, ramp, curve)

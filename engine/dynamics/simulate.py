@@ -846,6 +846,24 @@ def holdback_notes(sys: System, summary: dict, steady_summary: dict | None, conv
             "larger, with its maker's service factor on top"]
 
 
+def _brakes_full_at(cols: dict, t0: float) -> tuple[float, float] | None:
+    """The first record time at or after ``t0`` [s] at which the brakes' force together was
+    within 1 % of its largest from ``t0`` on, and that largest [kN]; None without brake force."""
+    if "f_brake_kn" not in cols:
+        return None
+    t = np.asarray(cols["t_s"], float)
+    f = np.asarray(cols["f_brake_kn"], float)
+    after = t >= t0 - 1e-9
+    if not after.any():
+        return None
+    t, f = t[after], f[after]
+    top = float(np.max(f))
+    if not top > 0.0:
+        return None
+    k = int(np.flatnonzero(f >= 0.99 * top)[0])
+    return float(t[k]), top
+
+
 def rollback_notes(sys: System, conveyor, cols: dict) -> list[str]:
     """The note of a belt that rolled back after its stop until its holding brake held it
     (``brakes[].hold``, set once the belt has stopped, through its delay and ramp), on a
@@ -876,6 +894,23 @@ def rollback_notes(sys: System, conveyor, cols: dict) -> list[str]:
     held = [b for b in conveyor.brakes if b.hold]
     timing = ", ".join(dict.fromkeys(f"delay_s {b.delay_s:g}, ramp_s {b.ramp_s:g}"
                                      for b in held))
+    set_at = _brakes_full_at(cols, t[0] if t.size else math.inf)
+    if set_at is not None and set_at[0] <= t[back[0]] + 1e-9:
+        # the brakes were at full force before the belt moved back (a brake stop, its brakes
+        # set as it slowed): the backward speed is the belt's stretch relaxing and its take-up
+        # swinging back about the held pulleys. A 600 m level belt on a 12.7 t take-up, brake
+        # at full force 4.8 s before it stopped, swung back 0.95 m and was told a brake that
+        # sets sooner would hold it sooner; set sooner (delay 0.1 s, ramp 0.2 s) it swung
+        # back 0.99 m
+        swing = ("its take-up carriage swinging back with it"
+                 if conveyor.takeup.type == "gravity" else "its stretch swinging about them")
+        return [f"the belt swung back after it stopped: its mean speed was below "
+                f"-{gnum(limit, 3)} m/s from t = {gnum(t[back[0]])} to {gnum(t[back[-1]])} s, "
+                f"at most {gnum(-v[k], 3)} m/s backwards (t = {gnum(t[k])} s), about "
+                f"{gnum(dist, 3)} m of belt, with its brakes at full force ({gnum(set_at[1])} "
+                f"kN together) since t = {gnum(set_at[0])} s: the belt's stretch relaxing about "
+                f"the braked pulleys, {swing}, not a run-back the brakes let through, so "
+                "neither a holdback nor a brake that sets sooner would avoid it"]
     if sys.hold_force_n <= 0.0:
         # a decline (or level) belt: gravity pulls it forwards at rest, so a backward mean
         # speed is the stop's elastic rebound (the stretch relaxing), which a holdback, taking

@@ -42,6 +42,14 @@ def test_holding_set_by_the_grip_says_the_stop_force_is_beyond_the_grip():
     assert float(said.group(2)) < hold / 1e3
     assert "held to that grip it would fall below the holding force" in note
     assert "the holding force 35.32 kN is beyond the grip too" in note
+    # the stop time the holding force makes, rigid body: after the delay, M v_1 = Te t_b +
+    # F (t_b - r / 2), so t_b = (M v_1 + F r / 2) / (F + Te); the note gave none
+    v1 = 4.0 - te * 0.5 / m
+    t_hold = 0.5 + (m * v1 + hold * 0.5) / (hold + te)
+    said = re.search(r"at the holding force the rigid-body brake stop takes about ([0-9.]+) s "
+                     r"\(longer as the pulley slides\)", note)
+    assert said, note
+    assert float(said.group(1)) == pytest.approx(t_hold, abs=0.051)  # 3 digits said
 
 
 def _takeup_said(note: str) -> int:

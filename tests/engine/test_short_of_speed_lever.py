@@ -122,3 +122,30 @@ def test_a_belt_that_climbs_at_its_force_limit_is_not_said_to_swing():
     assert s["start_time_s"] is not None and s["start_time_s"] > 15.0, s["start_time_s"]
     assert NEVER not in s["message"]
     assert "not settled while running" not in s["message"], s["message"]
+
+
+def test_a_mean_speed_that_stopped_rising_is_not_given_a_run_s():
+    """The words of a vfd start short of design speed at the force limit, weighed by the mean
+    speed's slope over the end of the run (``rise``): a belt gaining as a rigid body at the
+    force limit would is told the run_s it still needs; one gaining less than FLAT_RISE of
+    that is told a longer run_s would not get it there. short30 at torque_limit 0.3: 2.25 kN
+    against Te of about 1.9 kN on about 2.6 t, a rigid body at about 0.13 m/s2."""
+    from beltstudy.engine.dynamics import DynamicsOptions, build_system
+    from beltstudy.engine.dynamics.simulate import FLAT_RISE, _short_of_speed_words
+    from beltstudy.engine.statics import solve_steady
+
+    d = short30_dict()
+    d["drives"] = [{**d["drives"][0], "torque_limit": 0.3}]
+    conv = parse_conveyor(d)
+    scn = Scenario(elements=40, run_s=3.0, start={"control": "linear", "time_s": 2.0})
+    st = solve_steady(conv, model="din", load=scn.load, n_elements=40)
+    sys_ = build_system(conv, scn, st, DynamicsOptions())
+    a_rb = (0.3 * 15e3 / 2.0 - sys_.te_n) / sys_.model.control.m_tot  # [m/s2]
+    assert 0.0 < a_rb
+    v_cmd, t_cmd = 0.9 * sys_.v_design, 5.0
+    climbing = _short_of_speed_words(sys_, v_cmd, t_cmd, rise=(0.5 * a_rb, 3.0))
+    assert "a run_s of at least" in climbing and "stopped rising" not in climbing, climbing
+    flat = _short_of_speed_words(sys_, v_cmd, t_cmd, rise=(0.5 * FLAT_RISE * a_rb, 3.0))
+    assert "its mean speed had stopped rising: over the last 3 s" in flat, flat
+    assert "a longer run_s would not let it get there" in flat
+    assert "a run_s of at least" not in flat
