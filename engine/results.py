@@ -410,7 +410,8 @@ DESIGN_BASIS = ResultGroup("design_basis", "What set each auto size (text)", (
     _f("takeup_governed_by", "text", "the take-up: slip_start, slip_breakaway, slip_running, "
        "sag_running, sag_at_rest or positive; given when the file gives it; in a study, "
        "' @ <case>' names the design case that set it by what varies among the design's "
-       "cases (load, model, temperature: 'slip_breakaway @ declines', SPEC 7.2)"),
+       "cases (load, model, temperature: 'slip_breakaway @ declines', SPEC 7.2), and its "
+       "model wherever design.friction_model gives it ('slip_start @ visco, -20 C')"),
     _f("rated_power_governed_by", "text", "the rated power: peripheral_force or "
        "running_resistance; given when the file gives it (several joined by +); in a study "
        "with ' @ <case>' as for takeup_governed_by"),

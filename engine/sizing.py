@@ -69,6 +69,9 @@ class DesignCase:
     temperature_c: float = 20.0  # [C]
     elements: Any = "auto"  # element count, or "auto"
     load: Any = "full"  # full | empty | inclines | declines | a fraction | per-section tuple
+    #: name the model in ``at`` even where every case has it: a study whose ``design:`` pins
+    #: the model sizes its runs of other models by it (not part of the case's identity)
+    name_model: bool = dataclasses.field(default=False, compare=False)
 
     def __post_init__(self) -> None:
         if isinstance(self.load, list):
@@ -95,13 +98,15 @@ class DesignCase:
         temperature, in that order), "" when nothing varies (one case). ``tied``: the cases
         that need as much as this one; what varies among them is not named (a holding brake
         needs the same at every temperature: ``holding @ declines``, not ``@ declines, -20
-        C``)."""
+        C``). The model is named wherever ``name_model`` is set (a model the study's
+        ``design:`` pins, which its runs of other models are sized by)."""
         group = [self, *tied]
         parts = []
-        for key, name in ((lambda c: c.load, load_label(self.load)),
-                          (lambda c: (c.model, c.params), self._model_label()),
-                          (lambda c: c.temperature_c, f"{self.temperature_c:g} C")):
-            if len({key(c) for c in cases}) > 1 and len({key(c) for c in group}) == 1:
+        for key, name, always in (
+                (lambda c: c.load, load_label(self.load), False),
+                (lambda c: (c.model, c.params), self._model_label(), self.name_model),
+                (lambda c: c.temperature_c, f"{self.temperature_c:g} C", False)):
+            if (always or len({key(c) for c in cases}) > 1) and len({key(c) for c in group}) == 1:
                 parts.append(name)
         return ", ".join(parts)
 

@@ -753,7 +753,7 @@ def _add_cases(cases: dict, stops: set, study, scn: dict, run_model: str, overri
         for temp in temps if temps is not None else [scn["temperature_c"]]:
             for load in loads:
                 cases[DesignCase(model, tuple(sorted(over.items())), float(temp),
-                                 scn["elements"], load)] = None
+                                 scn["elements"], load, name_model=models is not None)] = None
     stop_s = brake_sizing_stop_time(scn, dynamics=study.dynamics)
     if stop_s is not None:
         stops.add(stop_s)

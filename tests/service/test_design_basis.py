@@ -84,8 +84,13 @@ def test_a_given_design_case_sizes_every_run(make_study, finished_study, data_di
     assert runs["takeup_mass_kg"].iloc[0] == pytest.approx(case["takeup_mass_kg"], rel=1e-5)
     (entry,) = study.designs
     assert entry["sizes"]["takeup"]["case"] == "full, din, -20 C"
-    assert entry["sizes"]["takeup"]["at"] == ""  # one design case: the constraint alone
-    assert all(r.design["takeup_governed_by"] == case["takeup_governed_by"] for r in study.runs)
+    # one design case, but its model is not the runs' own: the model is named, so a reader of
+    # the cema and nonlin rows sees that din sized their take-up (the column said
+    # 'slip_start @ -20 C' where design.friction_model pinned visco with a temperature axis)
+    assert entry["sizes"]["takeup"]["at"] == "din"
+    assert all(r.design["takeup_governed_by"] == f"{case['takeup_governed_by']} @ din"
+               for r in study.runs)
+    assert set(runs["takeup_governed_by"]) == {f"{case['takeup_governed_by']} @ din"}
     with pytest.raises(Invalid, match=r"design.friction_model: unknown model 'dinn'"):
         resolve_study(make_study(grid=grid, design={"friction_model": "dinn"}))
     with pytest.raises(Invalid, match=r"design.temperature: unknown key 'temperature'; did you mean "
