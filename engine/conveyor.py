@@ -1327,14 +1327,20 @@ def _curve_fit_fix(profile: list[ProfileSection], j: int, pitch_m: float) -> str
 
 
 class StartSpec(_Model):
-    control: Literal["s-curve", "linear", "torque"] = "s-curve"
+    control: Literal["s-curve", "linear", "torque"] = Field(
+        "s-curve", description="start law of vfd drives: an s-curve (cycloid) or linear speed "
+        "reference over time_s, or torque (design speed at once, the force limit ramping up "
+        "from the holding force over time_s) [-]; dol drives switch on the line")
     time_s: PositiveFloat = Field(60.0, le=LAW_TIME_MAX_S,
                                   description="start (acceleration) time [s], at most an hour "
                                               "(a transient run simulates every step)")
 
 
 class StopSpec(_Model):
-    mode: Literal["coast", "brake", "controlled"] = "coast"
+    mode: Literal["coast", "brake", "controlled"] = Field(
+        "coast", description="coast (power failure: the drive force drops to zero), brake "
+        "(coast plus the brakes after their delay) or controlled (the vfd drives follow a "
+        "reverse s-curve to rest over time_s) [-]")
     time_s: PositiveFloat = Field(30.0, le=LAW_TIME_MAX_S,
                                   description="target stop time [s], at most an hour")
 
@@ -1430,14 +1436,22 @@ class Scenario(_Model):
     )
     temperature_c: float = Field(20.0, ge=TEMPERATURE_MIN_C, le=TEMPERATURE_MAX_C,
                                  description="ambient temperature [C]")
-    start: StartSpec = StartSpec()
+    start: StartSpec = Field(default_factory=StartSpec,
+                             description="the start: control law and time_s [s]")
     run_s: NonNegFloat = Field(30.0, le=LAW_TIME_MAX_S,
                                description="steady running between start and stop [s], at most "
                                            "an hour (a transient run simulates every step)")
-    stop: StopSpec = StopSpec()
-    formulation: Literal["relative", "support"] = "relative"
-    elements: Literal["auto"] | Annotated[int, Field(ge=8, le=200_000)] = "auto"
-    dt_s: Literal["auto"] | PositiveFloat = "auto"
+    stop: StopSpec = Field(default_factory=StopSpec,
+                           description="the stop: mode and target time_s [s]")
+    formulation: Literal["relative", "support"] = Field(
+        "relative", description="relative (paper Eq. 2: the drive force from a speed "
+        "controller) or support (paper Eq. 3: the drive pulley's motion imposed) [-]")
+    elements: Literal["auto"] | Annotated[int, Field(ge=8, le=200_000)] = Field(
+        "auto", description="belt elements around the loop [-], 8 to 200 000, or auto (the "
+        "mesh of docs/dynamics.md, about 200)")
+    dt_s: Literal["auto"] | PositiveFloat = Field(
+        "auto", description="time step [s], or auto (a fraction of the stability limit, "
+        "docs/dynamics.md)")
     # at most a minute: the start's fronts, the waves and the stop happen within seconds, and a
     # spacing beyond the cycle would leave a time series of its two ends
     record_dt_s: PositiveFloat = Field(0.1, le=60.0, description="time-series sample spacing "

@@ -57,8 +57,8 @@ class Uniform(_Dist):
     """Uniform on [low, high]."""
 
     dist: Literal["uniform"]
-    low: float
-    high: float
+    low: float = Field(..., description="lower bound, in the axis's unit")
+    high: float = Field(..., description="upper bound, in the axis's unit")
 
     @model_validator(mode="after")
     def _order(self):
@@ -74,8 +74,8 @@ class Normal(_Dist):
     """Normal with mean and standard deviation sd > 0."""
 
     dist: Literal["normal"]
-    mean: float
-    sd: float = Field(..., gt=0, description="standard deviation (> 0)")
+    mean: float = Field(..., description="mean, in the axis's unit")
+    sd: float = Field(..., gt=0, description="standard deviation (> 0), in the axis's unit")
 
     def ppf(self, u: np.ndarray) -> np.ndarray:
         from scipy.stats import norm
@@ -100,9 +100,9 @@ class Triangular(_Dist):
     """Triangular on [low, high] with its mode between."""
 
     dist: Literal["triangular"]
-    low: float
-    mode: float
-    high: float
+    low: float = Field(..., description="lower bound, in the axis's unit")
+    mode: float = Field(..., description="most likely value, in the axis's unit")
+    high: float = Field(..., description="upper bound, in the axis's unit")
 
     @model_validator(mode="after")
     def _order(self):

@@ -456,6 +456,16 @@ def test_openapi_documents_the_study_body(api):
     comps = schema["components"]["schemas"]
     assert {"StudyDoc", "Conveyor", "Scenario", "ErrorOut"} <= set(comps)
     assert "grid" in comps["StudyDoc"]["properties"]
+    # every scenario field and every sample distribution's parameter says what it is (and its
+    # unit): dt_s, elements, formulation, start, stop, stop.mode, start.control and the
+    # distributions' low/high/mean/mode had no description
+    for name in ("Scenario", "StartSpec", "StopSpec", "Uniform", "Normal", "Lognormal",
+                 "Triangular"):
+        for field, prop in comps[name]["properties"].items():
+            if field != "dist":
+                assert prop.get("description"), f"{name}.{field} has no description"
+    for field in ("dt_s", "start", "stop"):
+        assert "[s]" in comps["Scenario"]["properties"][field]["description"], field
 
 
 def test_compare_and_queries_take_model_aliases_and_pair_a_models_only_study(
