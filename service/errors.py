@@ -159,7 +159,8 @@ def damaged_parts_message(study_id: str, table: str, parts: list[tuple[object, s
     """What :class:`DamagedParts` says: the study, each damaged file (the first
     :data:`SHOWN_PARTS`) with why it cannot be read, that nothing was changed, and what to
     do: restore the file, or move it out of the folder (the study then reads without the rows
-    it held), or delete the study and submit it again (every run anew)."""
+    it held, and submitted again runs them anew), or delete the study and submit it again
+    (every run anew)."""
     sid = shown_id(study_id)
     named = "; ".join(f"{path} ({why})" for path, why in parts[:SHOWN_PARTS])
     more = (f"; and {len(parts) - SHOWN_PARTS} more"
@@ -171,7 +172,8 @@ def damaged_parts_message(study_id: str, table: str, parts: list[tuple[object, s
             "damaged on disk afterwards; nothing of the study was changed by the service: "
             f"restore the {files} from a backup, or move {'it' if len(parts) == 1 else 'them'}"
             f" out of {folder} (the study is then read without the rows "
-            f"{'it holds' if len(parts) == 1 else 'they hold'}), or delete the study "
+            f"{'it holds' if len(parts) == 1 else 'they hold'}, and the same study submitted "
+            "again runs those runs anew), or delete the study "
             f"(DELETE /studies/{sid}) and submit it again to run every run anew")
 
 

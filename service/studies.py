@@ -217,7 +217,17 @@ class StudyService:
             else:
                 doc = self.store.read(study.id)
                 active = doc.get("state") in ACTIVE_STATES
-                if _waits_for_workers(doc) and not self._closing:
+                lost = self._rows_lost(study.id, doc)
+                if lost and not self._closing:
+                    # a done study whose rows were moved out of its folder (a damaged part,
+                    # docs say so): submitted again, it runs the runs it no longer has
+                    doc = self.store.update(
+                        study.id, state="queued", finished_at=None,
+                        message=f"{lost} of its {doc['total']} runs' rows are no longer "
+                                "stored (a part file moved out of the study's folder): "
+                                "running them again")
+                    active = True
+                elif _waits_for_workers(doc) and not self._closing:
                     # failed for want of Dask workers: submitted again, it goes on
                     doc = self.store.update(study.id, state="queued", message="",
                                             finished_at=None)
@@ -230,6 +240,17 @@ class StudyService:
                 self._jobs[study.id] = job
                 job.start()
         return created
+
+    def _rows_lost(self, study_id: str, doc: dict) -> int:
+        """How many runs a done study no longer has rows for (0 otherwise, and while a part
+        file cannot be read: its 500 says what to do first)."""
+        if doc.get("state") != "done":
+            return 0
+        try:
+            have = self.store.done_runs(study_id)
+        except ServiceError:
+            return 0
+        return max(int(doc.get("total") or 0) - len(have), 0)
 
     def _job_ended(self, job: StudyJob) -> None:
         """Called by a job's thread as it ends: forget it (and its resolved runs)."""
@@ -370,7 +391,8 @@ class StudyService:
         try:
             doc = self.store.read(study_id)
             if study_id not in self._jobs and (doc.get("state") in ACTIVE_STATES
-                                               or _waits_for_workers(doc)):
+                                               or _waits_for_workers(doc)
+                                               or self._rows_lost(study_id, doc)):
                 return None
             return self.status(study_id)
         except NotFound:  # deleted since it was looked for

@@ -5,6 +5,7 @@ from __future__ import annotations
 import json
 
 import pandas as pd
+import pyarrow.parquet as pq
 import pytest
 import yaml
 
@@ -160,6 +161,20 @@ def test_run_uses_the_executor_and_store_in_process(env, capsys, tmp_path, make_
     assert len(pd.read_parquet(env / "studies" / sid / "runs")) == 6
     assert main(["run", str(path)]) == 0  # already done: nothing is run again
     assert "existing study" in capsys.readouterr().err
+    # a part file moved out of the study's folder (what a damaged part's message offers):
+    # the same study submitted again runs the runs it no longer has, and only those
+    runs = env / "studies" / sid / "runs"
+    (part,) = list(runs.glob("*.parquet"))
+    table = pq.read_table(part)
+    kept = pq.read_table(part).slice(0, 2)
+    part.unlink()
+    kept_path = Store(env).write_part(sid, "runs", "kept", kept)
+    assert main(["run", str(path)]) == 0
+    again = pd.read_parquet(runs)
+    assert sorted(again["run_id"]) == sorted(table.column("run_id").to_pylist())
+    assert len(again) == 6 and again["run_id"].is_unique
+    assert kept_path.exists()  # the rows it had are kept, not run again
+    assert pq.read_table(kept_path).equals(kept)
 
 
 def test_an_output_in_a_missing_folder_is_one_line_before_any_work(env, capsys, tmp_path):
