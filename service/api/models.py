@@ -93,7 +93,9 @@ class RunsPage(BaseModel):
         "file and why; their rows are not in runs (a CSV or Parquet download is refused: 500 "
         "naming them)")
     message: str | None = Field(None, description="only with unreadable_parts: what they "
-                                "mean and the way out")
+                                "mean and the way out; or, when no row matched, a filter that "
+                                "names a study axis stored under another column "
+                                "(stop_time_s is stop_time_target_s)")
 
 
 class AccuracyOut(BaseModel):

@@ -242,6 +242,8 @@ def get_runs(
     head = {"study_id": study_id, "state": st.get("state"), "done": st.get("done"),
             "study_runs": st.get("total"), "total": int(len(df)), "offset": offset,
             "limit": limit, **query.unreadable_fields(study_id, bad)}
+    if not len(df) and "message" not in head:  # a filter on an axis's name, not its column
+        head.update(query.axis_hint(wanted, st.get("axes") or {}))
     to_json = query.rows_to_json if names is None else query.records_to_json
     if len(page) > STREAM_ROWS:
         return StreamingResponse(_streamed_runs(head, page, to_json),

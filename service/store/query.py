@@ -92,6 +92,22 @@ def unreadable_fields(study_id: str, bad: list[tuple[Any, str]]) -> dict:
     }
 
 
+def axis_hint(filters: list[str], axes: dict[str, str]) -> dict:
+    """A ``message`` for a runs page no row matched where a filter names a study axis by its
+    name and the axis is stored under another column (the stop-time axis ``stop_time_s`` is
+    the column ``stop_time_target_s``; ``stop_time_s`` is the stop time each run achieved):
+    ``{}`` otherwise. ``axes``: ``{axis name: column}`` of the study's status."""
+    said = []
+    for item in filters:
+        name, eq, value = item.partition("=")
+        column = axes.get(name)
+        if eq and column and column != name:
+            said.append(f"filter {item} matched no row: the study's axis {name} is the column "
+                        f"{column} (filter={column}={value}); the column {name} holds each "
+                        "run's own figure")
+    return {"message": "; ".join(said)} if said else {}
+
+
 class _NoMatch(Exception):
     """A filter value no row of that column can equal (text for a number column)."""
 

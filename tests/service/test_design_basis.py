@@ -193,7 +193,7 @@ def test_an_axis_that_changes_no_run_is_named(make_study, finished_study, data_d
 
 
 def test_a_coast_crossed_with_four_stop_times_stores_one_coast_run(make_study, finished_study,
-                                                                   data_dir):
+                                                                   data_dir, make_settings):
     """The stop time is no input of a coast stop: a coast crossed with four stop times stores
     one coast run (one per temperature with a temperature axis). The auto brake is sized per
     stop time and held over the temperatures (the largest of them)."""
@@ -205,6 +205,20 @@ def test_a_coast_crossed_with_four_stop_times_stores_one_coast_run(make_study, f
     assert len(runs) == 5
     coast = runs[runs["scenario.stop.mode"] == "coast"]
     assert len(coast) == 1 and coast["stop_time_target_s"].isna().all()
+    # the axis stop_time_s is the column stop_time_target_s; the column stop_time_s is each
+    # run's achieved stop: a filter on the axis's name that matches nothing says so
+    from fastapi.testclient import TestClient
+
+    from beltstudy.service.api.app import create_app
+
+    client = TestClient(create_app(make_settings(data_dir)))
+    page = client.get(f"/studies/{sid}/runs", params={"filter": "stop_time_s=20"}).json()
+    assert page["total"] == 0
+    assert page["message"].startswith("filter stop_time_s=20 matched no row: the study's axis "
+                                      "stop_time_s is the column stop_time_target_s "
+                                      "(filter=stop_time_target_s=20)"), page
+    page = client.get(f"/studies/{sid}/runs", params={"filter": "stop_time_target_s=20"}).json()
+    assert page["total"] == 1 and page.get("message") is None
 
     grid = {**stops, "temperature_c": [-20, 20]}
     body = make_study(conveyor=braked, dynamics=True, grid=grid)
