@@ -631,8 +631,8 @@ def phase_peaks_figure(runs, title: str = "", axes: list[str] | None = None,
     # x positions: numbers as they are, categories side by side; a small spread per series
     if x is None:
         xs_base, ticks = pd.Series(0.0, index=df.index), None
-    elif _numeric(df, x) is not None and df[x].notna().all():
-        xs_base, ticks = pd.to_numeric(df[x]), None
+    elif (num := _numeric(df, x)) is not None and num.notna().all():
+        xs_base, ticks = num, None  # every value a number ('auto' beside 3000: categories)
     else:
         cats = sorted(df[x].map(_text).unique())
         xs_base, ticks = df[x].map(_text).map({c: i for i, c in enumerate(cats)}), cats

@@ -406,3 +406,17 @@ def test_a_stop_whose_lowest_tension_is_zero_is_drawn_whole_inside_the_frame():
                 assert y_px - radius_px >= box.y0, "the point at zero tension is clipped"
         assert ax.get_ylim()[0] < 0.0 < ax.get_ylim()[1]
     assert zero_points == 1
+
+
+def test_an_axis_of_auto_beside_numbers_is_drawn_as_categories():
+    """A dynamic study with ``takeup.mass_kg: [auto, 3000]``: the stop figure read the axis
+    as numbers (any value was one) and the report stopped on "Unable to parse string 'auto'".
+    The axis is drawn as its two categories."""
+    runs = pd.DataFrame({
+        "run_id": ["a", "b"], "status": ["ok", "ok"], "friction_model": ["din", "din"],
+        "takeup.mass_kg": ["auto", 3000], "t_max_start_kn": [50.0, 48.0],
+        "t_max_stop_kn": [40.0, 39.0], "stop_time_s": [9.0, 9.5]})
+    fig = charts.phase_peaks_figure(runs, axes=["takeup.mass_kg"])
+    fig.canvas.draw()
+    labels = {t.get_text() for ax in fig.axes for t in ax.get_xticklabels()}
+    assert {"auto", "3000"} <= labels, labels
