@@ -226,6 +226,25 @@ def fill_pct(conv: Conveyor) -> float:
     return capacity(conv).fill_pct
 
 
+def fill_levers(conv: Conveyor, fill: float, limit_pct: float) -> str:
+    """What brings a cross-section filled to ``fill`` [%] down to ``limit_pct`` [%], in words:
+    a capacity of at most ..., a speed of at least ... (the fill falls as 1 / speed, the
+    area being the belt's, ISO 5048) or a wider belt. A speed beyond speed_m_s's own bound
+    is no lever (a 0.1 m belt, a width typed in the wrong unit, was told 'a speed of at least
+    1210 m/s', which is then refused)."""
+    speed = up3(conv.speed_m_s * fill / limit_pct)
+    top = type(conv).model_fields["speed_m_s"].metadata
+    v_max = min((float(m.le) for m in top if getattr(m, "le", None) is not None),
+                default=math.inf)
+    cap = f"a capacity of at most {down3(conv.material.capacity_t_h * limit_pct / fill):g} t/h"
+    if speed <= v_max:
+        return (f"{cap} (material.capacity_t_h), a speed of at least {speed:g} m/s (speed_m_s; "
+                "the fill falls as 1 / speed) or a wider or deeper-troughed belt")
+    return (f"{cap} (material.capacity_t_h) or a wider belt (belt.width_m, now "
+            f"{conv.belt.width_m:g} m); no speed within speed_m_s's bound of {v_max:g} m/s "
+            f"would do (it would take {speed:g} m/s)")
+
+
 def check_fill(conv: Conveyor, prefix: str = "") -> None:
     """Refuse a capacity that fills the belt's cross-section more than
     :data:`~beltstudy.engine.conveyor.FILL_MAX_PCT` at the design speed (ISO 5048 geometry,
@@ -240,20 +259,7 @@ def check_fill(conv: Conveyor, prefix: str = "") -> None:
             "(leave it out for ISO 5048 / DIN 22101's 0.05 B + 0.025 m up to B = 2 m)")
     fill = fill_pct(conv)
     if fill > FILL_MAX_PCT:
-        # a speed beyond speed_m_s's own bound is no lever (a 0.1 m belt, a width typed in
-        # the wrong unit, was told 'a speed of at least 1210 m/s', which is then refused)
-        speed = up3(conv.speed_m_s * fill / FILL_MAX_PCT)
-        top = type(conv).model_fields["speed_m_s"].metadata
-        v_max = min((float(m.le) for m in top if getattr(m, "le", None) is not None),
-                    default=math.inf)
-        cap = f"a capacity of at most {down3(conv.material.capacity_t_h * FILL_MAX_PCT / fill):g} t/h"
-        if speed <= v_max:
-            levers = (f"{cap}, a speed of at least {speed:g} m/s (the fill falls as 1 / speed) "
-                      "or a wider belt")
-        else:
-            levers = (f"{cap} or a wider belt (belt.width_m, now {conv.belt.width_m:g} m); no "
-                      f"speed within speed_m_s's bound of {v_max:g} m/s would do (it would take "
-                      f"{speed:g} m/s)")
+        levers = fill_levers(conv, fill, FILL_MAX_PCT)
         raise InputError(
             f"{prefix}material.capacity_t_h: {conv.material.capacity_t_h:g} t/h fills the "
             f"belt's cross-section to {gnum(fill, 3)} % at {conv.speed_m_s:g} m/s; at most "

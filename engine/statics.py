@@ -53,7 +53,7 @@ import numpy as np
 
 from beltstudy.engine import catalog, rubber
 from beltstudy.engine.capacity import capacity as capacity_check
-from beltstudy.engine.capacity import incline_warning
+from beltstudy.engine.capacity import fill_levers, incline_warning
 from beltstudy.engine.checks import (
     HOLD_MARGIN,
     holding_warning,
@@ -948,8 +948,8 @@ def _summarise(res: SteadyResult, drives, hs_adm, bounds, shortfall_n: float,
         warnings.append(
             f"fill_pct {cap.fill_pct:.0f} %: the design volume flow "
             f"({figures(cap.volume_flow_m3_h)} m3/h) exceeds what the belt's cross-section carries "
-            f"at {v:g} m/s ({figures(cap.capacity_m3_h)} m3/h, ISO 5048); widen or trough the belt "
-            "deeper, or run faster")
+            f"at {v:g} m/s ({figures(cap.capacity_m3_h)} m3/h, ISO 5048): "
+            f"{fill_levers(conv, cap.fill_pct, 100.0)} would avoid it")
     steep = incline_warning(conv, loop)
     if steep:
         warnings.append(steep)

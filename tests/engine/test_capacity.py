@@ -50,6 +50,17 @@ def test_three_roll_35_deg_trough_by_hand():
     res = solve_steady(conv, model="din")
     assert res.summary["fill_pct"] == pytest.approx(fill_hand, rel=0.01)
     assert res.status == "warning" and "fill_pct 132 %" in res.message
+    # the levers it names (the warning said 'run faster' with no figure), each followed
+    # alone, bring the fill to 100 % or below: the fill falls as 1 / speed
+    import re
+
+    cap_t_h = float(re.search(r"a capacity of at most ([\d.]+) t/h \(material\.capacity_t_h\)",
+                              res.message).group(1))
+    speed = float(re.search(r"a speed of at least ([\d.]+) m/s \(speed_m_s",
+                            res.message).group(1))
+    assert speed == pytest.approx(4.5 * fill_hand / 100, rel=0.01)
+    assert capacity(conveyor(1.2, 3, 35, cap_t_h, 0.85, 4.5)).fill_pct <= 100.0
+    assert capacity(conveyor(1.2, 3, 35, 3000, 0.85, speed)).fill_pct <= 100.0
 
 
 def test_flat_belt_by_hand():
