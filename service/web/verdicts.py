@@ -125,6 +125,10 @@ VERDICTS: tuple[Verdict, ...] = (
             at="slack_at_m"),
     Verdict("Belt", "largest sag, steady", "sag_max_pct", "max", "%", "sag"),
     Verdict("Belt", "largest sag, transient", "sag_max_dyn_pct", "max", "%", "sag"),
+    # the design load's volume flow over what the cross-section carries at design speed
+    # (engine/capacity.py, ISO 5048): above 100 % the load does not fit the belt
+    Verdict("Belt", "cross-section fill at design speed (ISO 5048)", "fill_pct", "max", "%",
+            100.0),
     # take-up
     Verdict("Take-up", "take-up mass", "takeup_mass_kg", "max", "kg"),
     Verdict("Take-up", "take-up pretension", "takeup_pretension_kn", "max", "kN"),
@@ -533,6 +537,9 @@ CAUSES: tuple[Cause, ...] = (
           ("safety_factor", "safety_factor_dyn"), r"safety factor"),
     Cause("pulley", "pulley below its minimum diameter", _pulleys,
           ("pulley{j}_diameter_min_m",), r"pulley"),
+    Cause("fill", "over-filled its belt's cross-section (the design load does not fit it, "
+          "ISO 5048)", lambda r: _any_over(r, "fill_pct", 100.0), ("fill_pct",),
+          r"^fill_pct \d+ %"),
     Cause("idlers", "overloaded its carry idlers (a set above its CEMA rating or a bearing "
           "life below the L10 basis)", _idlers,
           ("idler_load_carry_n", "idler_load_roll_n", "idler_l10_h",
