@@ -357,7 +357,14 @@ def _design_section(study: dict, runs: pd.DataFrame | None = None) -> str:
            "holding size.</p>"]
     designs = study.get("designs") or []
     if not designs:
-        out.append("<p>The conveyor has no auto sizes: every size is given in the file.</p>")
+        # a grid axis of an auto field (takeup.mass_kg: [4100, 3000]) gives that size per run
+        set_by = [a.get("name", "") for a in study.get("axes") or []
+                  if str(a.get("name", "")).split(".")[0] in ("takeup", "drives", "brakes",
+                                                               "belt")]
+        given = (f"given in the file or set per run by the study's grid axes "
+                 f"({', '.join(set_by)}: each run's own value is in its row)" if set_by
+                 else "given in the file")
+        out.append(f"<p>The conveyor has no auto sizes: every size is {_e(given)}.</p>")
         return "".join(out)
     rows = []
     for d in designs:

@@ -157,7 +157,8 @@ VERDICTS: tuple[Verdict, ...] = (
     # is read from the springs beside the pulley, whose element's inertia is in them (a run
     # that slipped 1.92 s reported 1.000011, and the row counted 22 runs where the time
     # slipping counted 24)
-    Verdict("Slip", "slip margin, transient", "slip_margin_min_dyn", "min", "-", 1.0,
+    Verdict("Slip", "slip margin, transient (1 while a drive pulley slips: the time slipping "
+            "says how long)", "slip_margin_min_dyn", "min", "-", 1.0,
             said=r"drive \d+ \([^)]*\) slipped on its pulley"),
     Verdict("Slip", "time slipping, drive {i}", "drive{i}_slip_s", "max", "s", 0.0),
     # pulleys and idlers

@@ -76,3 +76,22 @@ def test_the_fill_row_and_group_judge_the_cross_section(web):
     group = re.search(r"<h3>Over-filled its belt's cross-section.*?</table>", s2, re.S).group(0)
     assert sorted(re.findall(r"<code class=id>(\w+)</code>", group)) == ["c1", "c2"]
     assert "a speed of at least" in group  # each run's own fix beside it
+
+
+def test_sizes_a_grid_axis_gives_are_not_said_to_be_the_files(web):
+    """A study whose grid sets ``takeup.mass_kg`` (the file: auto) said 'every size is given
+    in the file', and its conveyor section 'mass auto': each run's mass came from the axis."""
+    from beltstudy.service.web.report import _design_section
+
+    conv = web.tiny_conveyor("given")
+    conv["takeup"] = {"type": "gravity", "position": "tail", "mass_kg": "auto"}
+    conv["drives"] = [{**d, "rated_power_kw": 50} for d in conv["drives"]]
+    study = resolve_study(web.tiny_study(name="given", conveyor=conv,
+                                         grid={"takeup.mass_kg": [4100, 3000]}),
+                          studies_dir=web.ROOT / "studies")
+    said = unescape(_design_section(study.to_json()))
+    assert "set per run by the study's grid axes (takeup.mass_kg" in said, said
+    plain = resolve_study(web.tiny_study(name="plain", conveyor={
+        **conv, "takeup": {"type": "gravity", "position": "tail", "mass_kg": 4000}}),
+        studies_dir=web.ROOT / "studies")
+    assert "every size is given in the file." in _design_section(plain.to_json())
