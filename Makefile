@@ -24,9 +24,12 @@ run: $(STAMP)
 serve: $(STAMP)
 	$(BIN)/beltstudy serve
 
+# The tests on TEST_WORKERS processes (pytest-xdist); the live services, clusters and the
+# browser one after another on one of them (tests/conftest.py).
+TEST_WORKERS ?= 2
 test: $(STAMP)
 	$(BIN)/ruff check .
-	$(BIN)/python -m pytest -q
+	$(BIN)/python -m pytest -q -n $(TEST_WORKERS) --dist loadgroup
 
 bench: $(STAMP)
 	$(BIN)/python benchmarks/bench_statics.py

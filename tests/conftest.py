@@ -153,6 +153,17 @@ def numba_kernel_compiled():
     yield
 
 
+def pytest_collection_modifyitems(config, items):
+    """With pytest-xdist (``make test``: ``-n 2 --dist loadgroup``), the tests that start
+    services, clusters or a browser (``slow``, ``browser``) run one after another on one
+    worker, while the other worker takes the rest: two live services at once on a 2-core
+    machine would put the tests that time a shutdown or a failure against CPU they do not
+    get. Without xdist the mark does nothing."""
+    for item in items:
+        if item.get_closest_marker("slow") or item.get_closest_marker("browser"):
+            item.add_marker(pytest.mark.xdist_group("live"))
+
+
 def pytest_terminal_summary(terminalreporter):
     if "seconds" not in _warm_up:
         return
