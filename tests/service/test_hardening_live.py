@@ -334,12 +334,14 @@ def test_a_finished_study_releases_its_job_memory(data_dir, make_settings, make_
     import tracemalloc
 
     from beltstudy.service.door.studyfile import resolve_study
+
+    n_runs = 300  # the grid below: 100 to 249.5 t/h in steps of 0.5 (about 1.3 MB of runs)
     from beltstudy.service.studies import StudyService
 
     body = {
         "name": "memory",
         "conveyor": make_conveyor(),
-        "grid": {"material.capacity_t_h": {"start": 100, "stop": 249.9, "step": 0.1},
+        "grid": {"material.capacity_t_h": {"start": 100, "stop": 249.5, "step": 0.5},
                  "friction_model": ["din"]},
         "dynamics": False,
     }
@@ -347,7 +349,7 @@ def test_a_finished_study_releases_its_job_memory(data_dir, make_settings, make_
     study = resolve_study(body)
     study_bytes = tracemalloc.get_traced_memory()[0]
     tracemalloc.stop()
-    assert len(study.runs) == 1500 and study_bytes > 1_000_000
+    assert len(study.runs) == n_runs and study_bytes > 1_000_000
     del study
     service = StudyService(make_settings(data_dir).model_copy(update={"warm_start": True}))
     service.start()
@@ -358,10 +360,10 @@ def test_a_finished_study_releases_its_job_memory(data_dir, make_settings, make_
         # from here
         before = _runs_alive()
         st, created = service.submit(body, confine=False)
-        assert created and st["total"] == 1500
-        assert _runs_alive() >= before + 1500  # the job holds them while it runs
+        assert created and st["total"] == n_runs
+        assert _runs_alive() >= before + n_runs  # the job holds them while it runs
         st = service.wait(st["id"], poll_s=0.2, timeout_s=240)
-        assert st["state"] == "done" and st["done"] == 1500, st
+        assert st["state"] == "done" and st["done"] == n_runs, st
         deadline = time.monotonic() + 30
         while service.running_count() and time.monotonic() < deadline:
             time.sleep(0.05)
@@ -374,7 +376,7 @@ def test_a_finished_study_releases_its_job_memory(data_dir, make_settings, make_
             left = _runs_alive() - before
         assert left <= 0, (
             f"a finished study still holds {left} resolved runs, about "
-            f"{study_bytes * left / 1500 / 1e6:.1f} MB (the study's runs take "
+            f"{study_bytes * left / n_runs / 1e6:.1f} MB (the study's runs take "
             f"{study_bytes / 1e6:.1f} MB)"
         )
     finally:
