@@ -319,3 +319,28 @@ def test_elements_auto_is_the_engines_count(capsys):
         main(["static", slope, "--elements", "many"])
     err = capsys.readouterr().err
     assert "--elements" in err and "or auto" in err
+
+
+@pytest.mark.parametrize("radius_m, tight", [(40.0, True), (400.0, False)])
+def test_static_table_marks_a_convex_curve_below_its_radius(tmp_path, capsys, radius_m, tight):
+    """A crest (flat, then falling 4 %) of R 40 m needs about 111 m for its centre line: its
+    row says so beside the radius it needs; at R 400 m the row has no mark. A convex curve
+    has no lift-off verdict ("-")."""
+    import yaml
+
+    from beltstudy.service.cli import main
+    from tests.conftest import hand_conveyor_dict
+
+    d = hand_conveyor_dict(profile=[{"length_m": 500, "lift_m": 0, "curve_radius_m": radius_m},
+                                    {"length_m": 500, "lift_m": -20}])
+    path = tmp_path / "crest.yaml"
+    path.write_text(yaml.safe_dump(d))
+    assert main(["static", str(path), "--json"]) == 0
+    out = json.loads(capsys.readouterr().out)
+    assert main(["static", str(path)]) == 0
+    (row,) = [ln for ln in capsys.readouterr().out.splitlines()
+              if ln.strip().startswith("curve 1: convex")]
+    assert row.split()[6] == "-"  # no lift-off verdict on a crest
+    assert row.split()[7] == f"{math.ceil(out['curve1_radius_min_m']):.0f}"
+    assert (out["curve1_radius_min_m"] > radius_m) is tight
+    assert (f"TOO TIGHT: R {radius_m:g} m" in row) is tight

@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import argparse
 import math
+import re
 import time
 
 from beltstudy.engine import (
@@ -277,10 +278,20 @@ def _check_lines(s: dict) -> list[str]:
     return lines
 
 
+def _convex_too_tight(s: dict, k: int) -> str | None:
+    """The radius of convex curve k as its warning gives it, where the run warns that it is
+    below the radius its edge strain or centre line needs (``curves._convex_words``); None
+    where it is not warned of."""
+    found = re.search(rf"curve {k} \(convex, R ([^ ]+) m at [^)]*\): the troughed belt's",
+                      s.get("message") or "")
+    return None if found is None else found.group(1)
+
+
 def _curve_lines(s: dict) -> list[str]:
     """The vertical curves (docs/routes.md, part (c)): per curve its kind, place, steady
-    tension, lift-off tension (concave) and the radius it needs; under a concave curve the
-    same at start-up (the steady start-up walk of ``slip_margin_start``)."""
+    tension, lift-off tension (concave) and the radius it needs, a convex curve whose radius is
+    below that marked; under a concave curve the same at start-up (the steady start-up walk of
+    ``slip_margin_start``)."""
     lines, k = [], 1
     if "curve1_kind" not in s:
         return lines
@@ -288,11 +299,16 @@ def _curve_lines(s: dict) -> list[str]:
                  "   lifts   R min [m]")
     while f"curve{k}_kind" in s:
         lift, r_min = s[f"curve{k}_liftoff_tension_kn"], s[f"curve{k}_radius_min_m"]
+        convex = s[f"curve{k}_kind"] == "convex"
+        lifts = "-" if convex else ("YES" if s[f"curve{k}_liftoff"] else "no")
+        tight = _convex_too_tight(s, k) if convex else None
         lines.append(f"    curve {k}: {s[f'curve{k}_kind']:<21} {s[f'curve{k}_at_m']:>8.0f} "
                      f"{s[f'curve{k}_tension_kn']:>8.1f} "
                      f"{'-' if lift is None else f'{lift:.1f}':>17} "
-                     f"{'YES' if s[f'curve{k}_liftoff'] else 'no':>7} "
-                     f"{'-' if r_min is None else f'{math.ceil(r_min):.0f}':>11}")
+                     f"{lifts:>7} "
+                     f"{'-' if r_min is None else f'{math.ceil(r_min):.0f}':>11}"
+                     + ("" if tight is None else f"   TOO TIGHT: R {tight} m (edge strain or "
+                        "centre slack, see status)"))
         t_start = s.get(f"curve{k}_tension_start_kn")
         if t_start is not None and lift is not None:
             r_start = s[f"curve{k}_radius_min_start_m"]

@@ -204,11 +204,15 @@ def test_convex_curve_warns_below_its_radius():
 def test_a_convex_radius_meets_the_centre_at_the_arcs_lowest_tension():
     """The centre's criterion z_mean / eps is largest where the arc's tension is lowest, the
     edge's (h - z_mean) / (eps_adm - eps) where it is highest: the minimum radius is the
-    larger of the two criteria over the arc's tensions, by hand from the steady walk."""
+    larger of the two criteria over the arc's tensions, by hand from the steady walk. The
+    arc's points are where the belt enters it and each arc element's end: here the belt is
+    slackest where it enters (a 4 % decline after the crest), so the entry sets the radius
+    (111.40 m against 111.39 m at the lowest element end)."""
     conv = curved(40.0, lift2_m=-20.0, safety_factor_min=8.0)
     st = solve_steady(conv, model="din", n_elements=200)
     (c,) = st.loop.curves
-    t_arc = st.tension_n[c.carry]
+    t_arc = st.tension_n[np.r_[c.carry[0] - 1, c.carry]]
+    assert t_arc[0] < st.tension_n[c.carry].min()  # the entry is the slackest point
     belt = st.loop.belt
     adm = belt.rating_n / 8.0
     by_hand = max(convex_radius_min_m(t, belt.stiffness_n, adm, belt.width_m, 3, 35.0)
@@ -552,7 +556,9 @@ def test_a_valley_on_a_regenerating_decline_is_judged_at_its_tighter_return():
     # the tension printed and the radius agree: T / (m'_G g cos a) at the arc's slopes
     assert s["curve1_radius_min_m"] == pytest.approx(
         s["curve1_tension_kn"] * 1e3 / (20 * 9.81 * math.cos(math.asin(0.1))), rel=6e-3)
-    # the carry's own tension stays the convex curves' (edge strain, idler load)
+    # the carry's own tension stays the convex curves' (edge strain, idler load), its
+    # highest on the arc, where the belt enters it included
+    t_carry = st.tension_n[np.r_[c.carry[0] - 1, c.carry]].max()
     assert s["curve1_idler_load_extra_n"] == pytest.approx(t_carry * 1.25 / 100.0, rel=1e-12)
 
 
@@ -625,6 +631,60 @@ def test_a_valley_given_as_survey_points_gets_the_curves_verdict():
                                         rel=5e-3)
             need = float(words.split("at least ")[1].split(" m")[0])
             assert need == pytest.approx(st.summary["curve1_radius_min_start_m"], rel=0.02)
+
+
+def _loaded_incline_valley(profile) -> dict:
+    """A 3 km loaded incline from a flat tail run (1200 t/h at 4 m/s, 1 m ST1600, gravity
+    take-up at the tail, head drive), profile as given: the tension rises along the 8 %
+    grade, so a valley's curve reaches higher tensions the larger its radius."""
+    return {
+        "name": "incline-valley", "speed_m_s": 4.0,
+        "belt": {"type": "ST1600", "width_m": 1.0, "compound": "standard"},
+        "material": {"capacity_t_h": 1200, "density_t_m3": 1.0, "loading_speed_m_s": 0.0},
+        "profile": profile,
+        "idlers": {"carry": {"spacing_m": 1.5, "roll_diameter_m": 0.152, "rolls": 3,
+                             "trough_deg": 35, "cema_class": "D"},
+                   "return": {"spacing_m": 3.0, "roll_diameter_m": 0.152, "rolls": 1,
+                              "cema_class": "C"}},
+        "drives": [{"position": "head", "wrap_deg": 210, "friction": 0.35, "share": 1.0,
+                    "pulley_diameter_m": 1.0, "inertia_kg_m2": 800, "torque_limit": 1.5}],
+        "takeup": {"type": "gravity", "position": "tail", "mass_kg": "auto", "travel_m": 20},
+        "holdback": True,
+        "accessories": {"head_kn": 1.0, "tail_kn": 0.5}}
+
+
+def test_the_radius_a_survey_valley_is_told_holds_as_a_curve_and_as_survey_points():
+    """A valley given as five survey chords on R 250 m, at the foot of an 8 % incline: the
+    empty belt lifts there (DIN 22101 / CEMA: T > R m'_G g cos a). The radius it is told is
+    judged over the arc that radius gives (about R x 0.08 long about the valley, reaching
+    42 m of the loaded grade's rising tension at 538 m), not at the valley's own point only:
+    told that way a 530 m curve still lifted at start-up (144.0 kN against 142.0 kN).
+    Followed either way, as curve_radius_m or as survey points on it, nothing lifts, running
+    or at start-up; the running radius it names keeps the running belt down. (The crest at
+    1600 m is over its edge strain whatever its radius: the belt is under-rated here, and
+    that warning is not this test's.)"""
+    tail = [{"length_m": 400, "lift_m": 0, "curve_radius_m": 250.0},
+            {"length_m": 1200, "lift_m": 96}, {"length_m": 1400, "lift_m": 14}]
+    as_points = _as_survey_points(parse_conveyor(_loaded_incline_valley(tail)))
+    st = solve_steady(parse_conveyor(_loaded_incline_valley(as_points)), model="din")
+    (w,) = [x for x in st.warnings if "grade change" in x and "concave" in x]
+    assert "the empty belt lifts off its carry idlers" in w
+    need = float(w.split("needs a vertical curve of at least ")[1].split(" m")[0])
+    need_run = float(w.split(" m at the running tensions")[0].rsplit("(", 1)[1])
+    assert 250.0 < need_run < need
+    for radius, start_holds in ((need, True), (need_run, False)):
+        route = [{**tail[0], "curve_radius_m": radius}, *tail[1:]]
+        curve = solve_steady(parse_conveyor(_loaded_incline_valley(route)), model="din")
+        assert curve.summary["curve1_liftoff"] is False, radius  # running: held down
+        assert curve.summary["curve1_liftoff_start"] is not start_holds, radius
+        points = _as_survey_points(parse_conveyor(_loaded_incline_valley(route)))
+        sv = solve_steady(parse_conveyor(_loaded_incline_valley(points)), model="din")
+        told = [x for x in sv.warnings if "grade change" in x and "concave" in x]
+        assert (told == []) is start_holds, (radius, told)
+    # one metre less than the radius told lifts as a curve: the advice is the least radius
+    route = [{**tail[0], "curve_radius_m": need - 1.0}, *tail[1:]]
+    curve = solve_steady(parse_conveyor(_loaded_incline_valley(route)), model="din")
+    assert curve.summary["curve1_liftoff_start"] is True
 
 
 def test_a_sharp_grade_change_without_a_curve_by_hand():
