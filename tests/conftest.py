@@ -135,8 +135,9 @@ def numba_kernel_compiled():
     inside whichever dynamic test comes first. numba's ``cache=True`` keeps the compiled code
     beside the sources: a fresh clone compiles for a minute or more, later sessions load it in
     well under a second. A failure here is reported, not raised: the tests that run the
-    kernel fail on their own. Runs in each process (pytest-xdist workers too); imports the
-    engine only."""
+    kernel fail on their own. Runs in each process (pytest-xdist workers too): on a cold cache
+    one of them compiles while the others wait and load what it wrote
+    (``beltstudy.engine.warmth.first_compile``); imports the engine only."""
     t0 = time.perf_counter()
     try:
         from beltstudy.engine.conveyor import Scenario, parse_conveyor

@@ -37,6 +37,7 @@ from beltstudy.engine.dynamics.profiles import LINEAR, S_CURVE, start_reference,
 from beltstudy.engine.loop import DEFAULT_PULLEY_DIAMETER_M, G, _drive_given_kg
 from beltstudy.engine.reads import unread_brakes
 from beltstudy.engine.statics import up3
+from beltstudy.engine.warmth import first_compile
 from beltstudy.engine.wording import gnum
 
 __all__ = ["TransientResult", "KernelRun", "fresh_run", "fresh_model", "simulate", "decode",
@@ -83,7 +84,8 @@ class KernelRun:
     def call(self, t_pause: float = -1.0) -> int:
         """Run the cycle (on from where it paused); ``t_pause`` >= 0 pauses before the first
         step past it (:data:`~beltstudy.engine.dynamics.kernel.PAUSED` returned)."""
-        return int(run_cycle(self.model, self.state, self.out, self.work, float(t_pause)))
+        with first_compile():  # one process compiles a cold kernel, the others load it
+            return int(run_cycle(self.model, self.state, self.out, self.work, float(t_pause)))
 
     def pause_slip(self) -> tuple:
         """At the stop command (paused there): keep the run's and each drive's smallest slip
