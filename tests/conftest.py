@@ -137,7 +137,7 @@ def numba_kernel_compiled():
     well under a second. A failure here is reported, not raised: the tests that run the
     kernel fail on their own. Runs in each process (pytest-xdist workers too): on a cold cache
     one of them compiles while the others wait and load what it wrote
-    (``beltstudy.engine.warmth.first_compile``); imports the engine only."""
+    (``beltstudy.engine.dynamics.cache.first_compile``); imports the engine only."""
     t0 = time.perf_counter()
     try:
         from beltstudy.engine.conveyor import Scenario, parse_conveyor

@@ -31,13 +31,13 @@ from beltstudy.engine.drives import (
 )
 from beltstudy.engine.dynamics import codes as C
 from beltstudy.engine.dynamics import records as R
+from beltstudy.engine.dynamics.cache import first_compile
 from beltstudy.engine.dynamics.kernel import PAUSED, run_cycle
 from beltstudy.engine.dynamics.model import COUPLING_CODES, System, chord_strain
 from beltstudy.engine.dynamics.profiles import LINEAR, S_CURVE, start_reference, stop_reference
 from beltstudy.engine.loop import DEFAULT_PULLEY_DIAMETER_M, G, _drive_given_kg
 from beltstudy.engine.reads import unread_brakes
 from beltstudy.engine.statics import up3
-from beltstudy.engine.warmth import first_compile
 from beltstudy.engine.wording import gnum
 
 __all__ = ["TransientResult", "KernelRun", "fresh_run", "fresh_model", "simulate", "decode",
@@ -84,7 +84,7 @@ class KernelRun:
     def call(self, t_pause: float = -1.0) -> int:
         """Run the cycle (on from where it paused); ``t_pause`` >= 0 pauses before the first
         step past it (:data:`~beltstudy.engine.dynamics.kernel.PAUSED` returned)."""
-        with first_compile():  # one process compiles a cold kernel, the others load it
+        with first_compile(run_cycle):  # one process compiles a cold kernel, others load it
             return int(run_cycle(self.model, self.state, self.out, self.work, float(t_pause)))
 
     def pause_slip(self) -> tuple:

@@ -1,4 +1,4 @@
-"""One compile between processes that start cold together (``engine/warmth.py``)."""
+"""One compile between processes that start cold together (``engine/dynamics/cache.py``)."""
 
 from __future__ import annotations
 
@@ -10,18 +10,19 @@ from pathlib import Path
 
 import pytest
 
-from beltstudy.engine import warmth
+from beltstudy.engine.dynamics import cache
+from beltstudy.engine.dynamics.kernel import run_cycle
 
-pytestmark = pytest.mark.skipif(warmth.fcntl is None, reason="flock is POSIX")
+pytestmark = pytest.mark.skipif(cache.fcntl is None, reason="flock is POSIX")
 
 #: Holds the lock, writes "A", waits for the go file, writes "B" and lets go.
 _HOLDER = textwrap.dedent('''
     import sys, time
     from pathlib import Path
-    from beltstudy.engine import warmth
+    from beltstudy.engine.dynamics import cache
 
     lock, log, go = sys.argv[1:4]
-    with warmth._file_lock(lock):
+    with cache.file_lock(lock):
         Path(log).write_text("A")
         while not Path(go).exists():
             time.sleep(0.01)
@@ -42,7 +43,7 @@ def test_second_process_waits_for_the_first(tmp_path: Path):
             assert holder.returncode is None, "the lock holder ended early"
             time.sleep(0.01)
         go.touch()
-        with warmth._file_lock(str(lock)):  # waits for the holder to let go
+        with cache.file_lock(str(lock)):  # waits for the holder to let go
             with open(log, "a") as f:
                 f.write("C")
     finally:
@@ -51,24 +52,26 @@ def test_second_process_waits_for_the_first(tmp_path: Path):
 
 
 def test_no_lock_where_none_can_be_taken(tmp_path: Path):
-    with warmth._file_lock(None):
+    with cache.file_lock(None):
         pass
-    with warmth._file_lock(str(tmp_path / "no such folder" / "x.lock")):
+    with cache.file_lock(str(tmp_path / "no such folder" / "x.lock")):
         pass  # cannot be created: runs unlocked rather than failing
 
 
 def test_lock_beside_the_kernel_cache():
-    path = warmth._lock_path()
+    path = cache.lock_path(run_cycle)
     assert path is not None
-    assert Path(path).name == warmth.LOCK_NAME
-    from beltstudy.engine.dynamics.kernel import run_cycle
-
+    assert Path(path).name == cache.LOCK_NAME
     assert Path(path).parent == Path(run_cycle._cache._cache_path)
 
 
 def test_warm_kernel_takes_no_lock(monkeypatch):
     """Once the kernel has run in a process (the session's warm-up), no lock is looked for."""
-    assert warmth._ready  # tests/conftest.py ran the kernel before the first test
-    monkeypatch.setattr(warmth, "_lock_path", lambda: pytest.fail("lock looked for"))
-    with warmth.first_compile():
+    assert cache._ready  # tests/conftest.py ran the kernel before the first test
+    monkeypatch.setattr(cache, "lock_path", lambda d: pytest.fail("lock looked for"))
+    with cache.first_compile(run_cycle):
         pass
+
+
+def test_a_compiled_kernel_is_not_cold():
+    assert run_cycle.signatures and not cache._cold(run_cycle)
