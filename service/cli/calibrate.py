@@ -300,6 +300,13 @@ def format_calibration(out: dict) -> str:
     if out["not_identifiable"]:
         lines += ["", "not identifiable: " + ", ".join(out["not_identifiable"])]
     lines += [f"note: {n}" for n in out["notes"]]
-    lines += ["", "models block for a study:",
-              yaml.safe_dump({"models": out["models"]}, sort_keys=False).rstrip()]
+    # a fit that warns (readings in MW, a parameter at its bound, not identified) is not a
+    # block to paste as it is: a 5.2e-17 f_carry from readings in MW was offered as one
+    head = ("models block for a study:" if out["status"] == "ok" else
+            f"models block for a study (the fit's status is {out['status']}: read the message "
+            "and notes above before you use it):")
+    block = yaml.safe_dump({"models": out["models"]}, sort_keys=False).rstrip()
+    if out["status"] != "ok":
+        block = "\n".join("# " + ln for ln in block.splitlines())
+    lines += ["", head, block]
     return "\n".join(lines)

@@ -49,6 +49,28 @@ def test_cli_json_answer(tmp_path):
     assert "models:\n  din:\n    f_carry: 0.02" in text
 
 
+def test_a_fit_that_warns_offers_its_models_block_commented_out(tmp_path):
+    """Readings written in MW (the model computes about 1000 x each): the fit ends at its
+    bound, f_carry about 0, status warning, the notes say the readings look written in MW.
+    Its models block is not one to paste as it is: it is printed commented out, under a
+    heading that names the status; a fit that is ok prints it plain (test above)."""
+    csv = tmp_path / "plant_mw.csv"
+    csv.write_text("load,temperature_c,power_kw\n" + "".join(
+        f"{r['load']},{r['temperature_c']},{r['power_kw'] / 1000:.4f}\n" for r in _rows()))
+    from beltstudy.service.cli.calibrate import format_calibration
+
+    p = subprocess.run([*EXE, "calibrate", str(CONVEYORS / "overland-4km.yaml"), "--measured",
+                        str(csv), "--model", "din", "--fit", "f_carry", "--json"],
+                       capture_output=True, text=True, timeout=120)
+    out = json.loads(p.stdout)
+    assert out["status"] == "warning" and any("MW" in n for n in out["notes"])
+    text = format_calibration(out)
+    head, block = text.split("models block for a study", 1)[1].split("\n", 1)
+    assert "status is warning" in head
+    assert block.splitlines()[:2] == ["# models:", "#   din:"]
+    assert "\nmodels:" not in text
+
+
 def test_cli_unknown_name_exits_2(tmp_path):
     csv = tmp_path / "plant.csv"
     csv.write_text("load,temperature_c,power_kw\nfull,5,900\n")
