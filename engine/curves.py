@@ -538,8 +538,9 @@ def transient_liftoff(loop: Loop, segs, t_start_end_s: float, t_stop_cmd_s: floa
     el, lim, ks = np.concatenate(els), np.concatenate(lims), np.asarray(ks)
     radius = np.concatenate([np.full(len(e), np.nan) for e in els[:len(concave)]]
                             + [b["r"] for b in bends]) if bends else None
-    hi = np.array([s[2] for s in segs])[:, el]
-    hi_t = np.array([s[3] for s in segs])[:, el]
+    hi_all = np.array([s[2] for s in segs])
+    hi_t_all = np.array([s[3] for s in segs])
+    hi, hi_t = hi_all[:, el], hi_t_all[:, el]
     over = np.where(np.isfinite(hi), hi - lim, -np.inf)
     kseg, j = np.unravel_index(int(np.argmax(over)), over.shape)
     worst = float(over[kseg, j])
@@ -571,6 +572,17 @@ def transient_liftoff(loop: Loop, segs, t_start_end_s: float, t_stop_cmd_s: floa
         at_rest |= np.isfinite(hi) & (hi <= rest_hi + 1e-4 * np.abs(lim))
     phase = np.where(at_rest, 3, phase)
     steady_over = steady_n[el] - lim  # what running lifts at its steady tension
+    # every spring's phase alike (the radius told is judged over the arc it gives, which a
+    # larger radius reaches beyond this arc's springs: _liftoff_radius)
+    phase_all = np.where(hi_t_all <= t_start_end_s, 0,
+                         np.where(hi_t_all <= t_stop_cmd_s, 1, 2))
+    rest_all = hi_t_all < t_start_cmd_s - 1e-9
+    if t_rested_s is not None and t_rested_s >= 0.0:
+        rest_all |= hi_t_all >= t_rested_s
+    if pre.any() and t_start_cmd_s > 0.0:
+        rest_hi_all = np.where(np.isfinite(hi_all[pre]), hi_all[pre], -np.inf).max(axis=0)
+        rest_all |= np.isfinite(hi_all) & (hi_all <= rest_hi_all + 1e-4 * np.abs(hi_all))
+    phase_all = np.where(rest_all, 3, phase_all)
     warnings = []
     curves = {c.k: c for c in concave}
     curves.update({b["k"]: b for b in bends})
@@ -597,15 +609,19 @@ def transient_liftoff(loop: Loop, segs, t_start_end_s: float, t_stop_cmd_s: floa
         if not at_steady:
             ratio = max(ratio, float((scale * np.where(phase == p, hi, -np.inf)[:, on_c]
                                       / lim[on_c]).max()))
+        peaks = steady_n if at_steady else np.maximum(
+            steady_n, np.where(phase_all == p, hi_all, -np.inf).max(axis=0))
+        r_told = _liftoff_radius(loop, c, k_c, peaks,
+                                 c.radius_m * ratio if k_c > 0 else ratio)
         if k_c > 0:
-            fixes = [f"a curve radius of at least {math.ceil(c.radius_m * ratio):.0f} m (at "
-                     "this run's tensions, which a larger radius moves a little: rerun to "
-                     "confirm)"]
+            fixes = [f"a curve radius of at least {math.ceil(r_told):.0f} m (at "
+                     "this run's tensions over the arc it gives, which a larger radius moves a "
+                     "little: rerun to confirm)"]
         else:
-            fixes = [f"a vertical curve of at least {math.ceil(ratio):.0f} m there "
+            fixes = [f"a vertical curve of at least {math.ceil(r_told):.0f} m there "
                      "(curve_radius_m on the section before the grade change, or survey "
-                     "points on that radius; at this run's tensions, which a larger radius "
-                     "moves a little: rerun to confirm)"]
+                     "points on that radius; at this run's tensions over the arc it gives, "
+                     "which a larger radius moves a little: rerun to confirm)"]
         runs_over = bool((steady_over[on_c] > 0.0).any())  # running lifts there as it is
         t_run = float(steady_n[e])
         if p == 0 and not runs_over and softer_start is not None:
@@ -645,6 +661,33 @@ def transient_liftoff(loop: Loop, segs, t_start_end_s: float, t_stop_cmd_s: floa
             f"tension {t_lim / 1e3:.1f} kN (R m'_G g cos a, the belt's own weight: a stretch "
             "carrying material holds more); " + " or ".join(fixes) + " avoids it")
     return out, warnings
+
+
+def _liftoff_radius(loop: Loop, c, k: int, peaks_n: np.ndarray, radius_m: float) -> float:
+    """The radius a concave curve (``k`` > 0, a :class:`Curve`) or survey bend (``k`` < 0,
+    :func:`_survey_bends`) needs to keep the empty belt down at the peak tensions ``peaks_n``
+    [N] (per spring, a phase's with running's), judged over the arc that radius gives: from
+    ``radius_m``, the radius the present arc's own points need, to the fixed point of ``R =
+    max T / (m'_G g cos a)`` over the span ``R |delta|`` about the curve's junction, on either
+    strand (:func:`_radius_over_own_arc`; ``cos a`` of the steeper grade, the tension at the
+    span's ends read along the strand). A larger radius reaches further up a loaded grade: a
+    coast stop's 538 m curve was told 710 m from its own arc's peaks, and lifted at 710 m,
+    0.7 kN over, on the same mesh."""
+    if k > 0:
+        turn, at_m = c.delta_rad, c.at_m
+        cos_a = min(math.cos(c.angle_in_rad), math.cos(c.angle_in_rad + c.delta_rad))
+        m_g = float(loop.mG_kg_m[c.carry[0]])
+    else:
+        turn = sum(jn["turn"] for jn in c["changes"])
+        at_m = 0.5 * (c["changes"][0]["at_m"] + c["changes"][-1]["at_m"])
+        cos_a = min(jn["cos"] for jn in c["changes"])
+        m_g = float(loop.mG_kg_m[int(c["el"][0])])
+    w = m_g * G * cos_a
+
+    def need(lo_m: float, hi_m: float) -> float:
+        return max(hi for _s, hi, _lo in _span_tensions(loop, peaks_n, lo_m, hi_m)) / w
+
+    return _radius_over_own_arc(need, radius_m, turn, at_m)
 
 
 # ------------------------------------------------- grade changes without a vertical curve
