@@ -336,6 +336,17 @@ def _convex_words(k: int, c: Curve, belt, ic, sf_min: float, t_low: float, t_hig
             f"tensions, which a larger radius moves a little: rerun to confirm) or {other}")
 
 
+def _convex_radius_over(belt, ic, sf_min: float, t_high_n: float, t_low_n: float
+                        ) -> float | None:
+    """A convex arc's least radius over its tensions (:func:`convex_radius_min_m`): the edge
+    term at the highest, the centre's at the lowest; None where no radius keeps the edges
+    within the admissible strain (or the belt is flat)."""
+    radii = [convex_radius_min_m(t, belt.stiffness_n, belt.rating_n / sf_min, belt.width_m,
+                                 ic.rolls, ic.trough_deg, ic.roll_length_m)
+             for t in (t_high_n, t_low_n)]
+    return None if radii[0] is None else max(radii)
+
+
 def _carry_points(loop: Loop, curve: Curve) -> np.ndarray:
     """The springs on the curve's carry arc: the one where the belt enters it (before its
     first arc element) and the end of each arc element (``T[j]`` at the end of element j).
@@ -433,10 +444,7 @@ def steady_checks(conv, loop: Loop, T: np.ndarray, sf_min: float,
             # the edge strain is largest at the arc's highest tension, the centre's relief
             # at its lowest: the radius meets both
             t_low = float(T[carry_pts].min())
-            radii = [convex_radius_min_m(t, belt.stiffness_n, belt.rating_n / sf_min,
-                                         belt.width_m, ic.rolls, ic.trough_deg,
-                                         ic.roll_length_m) for t in (t_carry, t_low)]
-            r_min = None if radii[0] is None else max(radii)
+            r_min = _convex_radius_over(belt, ic, sf_min, t_carry, t_low)
             out[f"curve{k}_radius_min_m"] = r_min if r_min is None or math.isfinite(r_min) \
                 else None
             if r_min is not None and c.radius_m < r_min:
@@ -720,17 +728,22 @@ def survey_radius_m(length_in_m: float, length_out_m: float, turn_rad: float) ->
     return chord / (2.0 * s)
 
 
+def _strand_points(loop: Loop, T: np.ndarray):
+    """Per strand with idler elements: (name, route position [m], tension [N]) of each idler
+    element's two ends (``T[j - 1]`` at its start, ``T[j]`` at its end)."""
+    x0 = loop.x_m if loop.x_m is not None else loop.s_m
+    for code, name, sign in ((CARRY, "carry", 1.0), (RETURN, "return", -1.0)):
+        j = np.flatnonzero(loop.strand == code)
+        if j.size:
+            yield (name, np.concatenate((x0[j], x0[j] + sign * loop.dx_m[j])),
+                   np.concatenate((T[j - 1], T[j])))
+
+
 def _node_tensions(loop: Loop, T: np.ndarray, x_m: float) -> list[tuple[str, float]]:
     """(strand, tension [N]) at the idler element ends nearest route position x_m, per strand
     (the sections meet at an element end; a pulley there has idler elements either side)."""
-    x0 = loop.x_m if loop.x_m is not None else loop.s_m
     out = []
-    for code, name, sign in ((CARRY, "carry", 1.0), (RETURN, "return", -1.0)):
-        j = np.flatnonzero(loop.strand == code)
-        if j.size == 0:
-            continue
-        pos = np.concatenate((x0[j], x0[j] + sign * loop.dx_m[j]))
-        ten = np.concatenate((T[j - 1], T[j]))
+    for name, pos, ten in _strand_points(loop, T):
         gap = np.abs(pos - x_m)
         near = gap <= gap.min() + 1e-6 * max(1.0, loop.length_m)
         out.append((name, float(ten[near].max())))
@@ -743,16 +756,10 @@ def _span_tensions(loop: Loop, T: np.ndarray, lo_m: float, hi_m: float
     strand: at the idler element ends within, the ends nearest the span's middle always among
     them (:func:`_node_tensions` where the span is a point), and at the span's two ends,
     interpolated along the strand (the tension is linear along an element)."""
-    x0 = loop.x_m if loop.x_m is not None else loop.s_m
     tol = 1e-6 * max(1.0, loop.length_m)
     mid = 0.5 * (lo_m + hi_m)
     out = []
-    for code, name, sign in ((CARRY, "carry", 1.0), (RETURN, "return", -1.0)):
-        j = np.flatnonzero(loop.strand == code)
-        if j.size == 0:
-            continue
-        pos = np.concatenate((x0[j], x0[j] + sign * loop.dx_m[j]))
-        ten = np.concatenate((T[j - 1], T[j]))
+    for name, pos, ten in _strand_points(loop, T):
         gap = np.abs(pos - mid)
         inside = (gap <= gap.min() + tol) | ((pos >= lo_m - tol) & (pos <= hi_m + tol))
         order = np.argsort(pos, kind="stable")
@@ -863,10 +870,8 @@ def _bend_advice(conv, loop: Loop, bend: list[dict], worst: dict, T: np.ndarray,
 
     def carry_need(lo_m, hi_m):
         ((_s, hi, lo),) = [n for n in _span_tensions(loop, T, lo_m, hi_m) if n[0] == "carry"]
-        radii = [convex_radius_min_m(t, belt.stiffness_n, belt.rating_n / sf_min, belt.width_m,
-                                     ic.rolls, ic.trough_deg, ic.roll_length_m)
-                 for t in (hi, lo)]
-        return math.inf if radii[0] is None else max(radii)
+        r_min = _convex_radius_over(belt, ic, sf_min, hi, lo)
+        return math.inf if r_min is None else r_min
 
     return {"need_m": _radius_over_own_arc(carry_need, worst["need_m"], turn, at_m)}
 

@@ -9,7 +9,6 @@ coming, so it can say so before the wait rather than after.
 from __future__ import annotations
 
 import sys
-from pathlib import Path
 
 __all__ = ["kernel_dispatchers", "kernel_cold", "COMPILE_LINE"]
 
@@ -32,25 +31,18 @@ def kernel_dispatchers() -> list:
     return list(found.values())
 
 
-def _cached(dispatcher) -> bool:
-    """Whether numba's on-disk cache has an index for ``dispatcher`` (numba's private cache
-    object: when its layout is not the one expected, the answer is no)."""
-    try:
-        return Path(dispatcher._cache._cache_file._index_path).is_file()
-    except AttributeError:
-        return False
-
-
 def kernel_cold() -> bool:
     """True when a cached kernel function of the engine is neither compiled in this process nor
     in numba's on-disk cache: the first transient run will compile it. Functions inlined into
     their callers (``inline="always"``) are compiled within them and have no cache entry of
     their own: they are not counted."""
+    from beltstudy.engine.dynamics.cache import index_cached
+
     for d in kernel_dispatchers():
         if d.signatures or d.targetoptions.get("inline", "never") != "never":
             continue
         if type(getattr(d, "_cache", None)).__name__ in ("NullCache", "NoneType"):
             continue
-        if not _cached(d):
+        if not index_cached(d):
             return True
     return False

@@ -97,14 +97,23 @@ def lock_path(dispatcher) -> str | None:
     return os.path.join(folder, LOCK_NAME) if os.path.isdir(folder) else None
 
 
-def _cold(dispatcher) -> bool:
-    """Neither compiled in this process nor in numba's on-disk cache (its index file)."""
-    if dispatcher.signatures:
-        return False
+def index_cached(dispatcher) -> bool:
+    """Whether numba's on-disk cache has an index for ``dispatcher`` (numba's private cache
+    object: when its layout is not the one expected, the answer is no)."""
     try:
-        return not Path(dispatcher._cache._cache_file._index_path).is_file()
+        return Path(dispatcher._cache._cache_file._index_path).is_file()
     except AttributeError:
         return False
+
+
+def _cold(dispatcher) -> bool:
+    """Neither compiled in this process nor in numba's on-disk cache (its index file); a
+    function numba does not cache is not cold (nothing to wait for)."""
+    if dispatcher.signatures or not hasattr(dispatcher, "_cache"):
+        return False
+    if type(dispatcher._cache).__name__ == "NullCache":
+        return False
+    return not index_cached(dispatcher)
 
 
 @contextlib.contextmanager

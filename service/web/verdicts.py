@@ -398,7 +398,7 @@ def _sagged(runs: pd.DataFrame, phase: str | None = None) -> pd.Series:
         if phase not in (None, name):
             continue
         out |= msg.str.contains(words, regex=True)
-        if column in runs.columns:
+        if column in runs.columns:  # not numeric(): a column with no value at all is all slack
             values = pd.to_numeric(runs[column], errors="coerce")
             out |= _slack_no_sag_of(column, runs, values).fillna(False).astype(bool)
     return out
