@@ -800,7 +800,9 @@ def _unread_drive_fields(conv) -> list[str]:
     ``motor_inertia_kg_m2`` splits the shaft's inertia at a fluid coupling only (without one
     the motor turns with the pulley and ``inertia_kg_m2`` holds it all), and ``torque_limit``
     caps a vfd drive's force only (a dol motor gives its curve's torque, through its coupling
-    if it has one: docs/dynamics.md, *Drives*).
+    if it has one: docs/dynamics.md, *Drives*), and ``motor_curve`` is a dol motor's torque
+    only (a vfd drive's speed loop sets its force up to ``torque_limit``; SPEC 6.1's drive
+    block shows the curve beside ``control: vfd``, so it is taken, checked and said).
 
     A field counts as given when it differs from its default, not by Pydantic's
     ``model_fields_set``: a study's runs and a non-full-load run's sized conveyor are
@@ -827,6 +829,12 @@ def _unread_drive_fields(conv) -> list[str]:
                          f"caps a vfd drive's force (control: vfd), and drive {i + 1} is a "
                          f"motor on the line (control: dol), whose force is its motor_curve's "
                          f"torque{through}")
+        if d.motor_curve is not None and d.control == "vfd":
+            notes.append(f"note: drives.{i}.motor_curve is not read: it is the torque of a "
+                         f"motor on the line (control: dol), and drive {i + 1} is a vfd drive, "
+                         f"whose speed loop sets its force up to torque_limit "
+                         f"({d.torque_limit:g} x its rated torque), and control: dol runs the "
+                         f"motor on its curve")
     return notes
 
 

@@ -641,11 +641,9 @@ class Drive(_Model):
                 raise ValueError(f"speed_loop_rad_s {bw:g} needs control: vfd (a dol motor "
                                  "runs on the line without a speed loop)")
         if self.motor_curve is not None:
+            # checked whatever the control: SPEC 6.1's drive block gives a curve beside
+            # control: vfd, which does not read it (checks._unread_drive_fields says so)
             check_motor_curve(self.motor_curve)
-            if self.control != "dol":
-                raise ValueError("motor_curve belongs to a motor on the line (control: dol); a "
-                                 "vfd drive follows its speed loop up to torque_limit and never "
-                                 "reads it: give control: dol, or leave motor_curve out")
         return self
 
     @property

@@ -276,9 +276,8 @@ def test_section_loads_of_each_pattern():
     ({"drives": [hand_drive(control="dol", motor_curve=[[0.0, 1.5], [0.9, 2.0], [1.0, 0.4]])]},
      "zero-torque point"),
     ({"drives": [hand_drive(coupling="fluid")]}, "needs control: dol"),
-    # a vfd drive never reads a motor curve: taken, it would change nothing the run does
-    ({"drives": [hand_drive(motor_curve=[[0.0, 0.3], [1.0, 0.0]])]},
-     "drives.0: motor_curve belongs to a motor on the line (control: dol); a vfd drive"),
+    # a vfd drive's curve is taken (SPEC 6.1) but still checked
+    ({"drives": [hand_drive(motor_curve=[[0.0, 0.3], [0.5, 0.4]])]}, "zero-torque point"),
     ({"drives": [hand_drive(control="dol",
                             motor_curve=[[i / 20, 2.0 - i / 10] for i in range(21)])]},
      "motor_curve: List should have at most 16 items"),

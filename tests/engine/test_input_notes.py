@@ -258,3 +258,33 @@ def test_a_torque_limit_on_a_dol_drive_is_said_to_be_not_read():
     cap_kn = 0.3 * 400.0 / 4.0
     assert summary["te_kn"] > cap_kn + 5.0
     assert summary["drive1_force_max_kn"] > cap_kn + 5.0
+
+
+def test_spec_6_1_s_drive_block_is_taken_and_its_unread_motor_curve_said():
+    """SPEC 6.1 prints one drive block with ``control: vfd`` and a ``motor_curve`` (a dol
+    motor's torque against speed): the contract's own example is taken, the curve checked,
+    and, a vfd drive's speed loop setting its force up to ``torque_limit``, said not to be
+    read. It is not: a run with the curve and one without give the same summary to the last
+    digit (a curve of 0.3 x rated torque, far below what the hand conveyor needs, would stall a
+    motor that read it)."""
+    from beltstudy.engine import parse_scenario, run_one
+
+    spec = {"control": "vfd", "friction_kinetic": 0.30, "coupling": "none",
+            "coupling_fill_s": 20, "flywheel_kg_m2": 0, "trip_s": 0.0,
+            "motor_curve": [[0.0, 1.6], [0.8, 2.2], [0.97, 1.0], [1.0, 0.0]]}
+    notes = _drive_notes(**spec)
+    assert [n for n in notes if "motor_curve" in n] == [
+        "note: drives.0.motor_curve is not read: it is the torque of a motor on the line "
+        "(control: dol), and drive 1 is a vfd drive, whose speed loop sets its force up to "
+        "torque_limit (1.5 x its rated torque), and control: dol runs the motor on its curve"]
+    # read by a dol drive, a curve is not said
+    assert not any("motor_curve" in n for n in _drive_notes(**{**spec, "control": "dol"}))
+    scenario = parse_scenario({"start": {"time_s": 10}, "run_s": 1, "stop": {"mode": "coast"}})
+    rows = []
+    for curve in ([[0.0, 0.3], [0.5, 0.3], [1.0, 0.0]], None):
+        d = hand_conveyor_dict()
+        d["drives"] = [{**d["drives"][0], "rated_power_kw": 400, "motor_curve": curve}]
+        summary = run_one(parse_conveyor(d), scenario, model="din").summary
+        rows.append({k: v for k, v in summary.items() if k not in ("message", "elapsed_s")})
+    assert rows[0] == rows[1]
+    assert rows[0]["drive_force_max_kn"] > 0.3 * 400.0 / 4.0 + 5.0
