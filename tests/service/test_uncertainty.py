@@ -160,19 +160,28 @@ def test_a_small_sobol_sample_and_an_index_outside_0_1_are_noted():
 def test_the_chance_level_of_rho_holds_for_an_input_the_figure_does_not_read():
     """Over 400 seeded 24-point Latin hypercubes of a figure that reads f_carry and f_return
     only, the temperature's |rho| passes the noted chance level (1.96 / sqrt(23) = 0.409) in
-    about 5 % of them (binomial: 20 expected, 95 % of counts within 11-29)."""
+    about 5 % of them (binomial: 20 expected, 95 % of counts within 11-29). The points are
+    the sampler's (``draw``), the ones a resolved study's runs carry (checked on one seed)."""
+    from beltstudy.service.door.sample import SampleIn, draw
     from beltstudy.service.uncertainty import chance_rho
 
     lim = chance_rho(24)
     assert lim == pytest.approx(1.959964 / math.sqrt(23))
     coef = {**COEF, "temperature_c": 0.0}
+
+    def sample(seed: int) -> dict:
+        return {"n": 24, "method": "lhs", "seed": seed,
+                "axes": {k: v[0] for k, v in AXES.items()}}
+
+    study = resolve_study(tiny_study("linear", grid={"friction_model": ["din"]},
+                                     sample=sample(7)))
+    drawn = draw(SampleIn.model_validate(sample(7)))
+    assert sorted(tuple(r.axes[k] for k in AXES) for r in study.runs) == sorted(
+        zip(*(drawn[k] for k in AXES), strict=True))
     past = 0
     for seed in range(400):
-        study = resolve_study(tiny_study(
-            "linear", grid={"friction_model": ["din"]},
-            sample={"n": 24, "method": "lhs", "seed": seed,
-                    "axes": {k: v[0] for k, v in AXES.items()}}))
-        pts = np.array([[r.axes[k] for k in AXES] for r in study.runs])
+        drawn = draw(SampleIn.model_validate(sample(seed)))
+        pts = np.array([drawn[k] for k in AXES]).T
         y = pts @ np.array([coef[k] for k in AXES])
         rho = pd.Series(pts[:, 0]).rank().corr(pd.Series(y).rank())
         past += abs(rho) > lim
