@@ -613,7 +613,11 @@ def _switches(model, st, out, wk, rs):
         lim = min(t + cyc.dt, rs.t_stopcmd + cyc.stop_max)
         rs.t_end_limit = min(lim, cyc.t_end) if cyc.t_end > 0.0 else lim
     nseg = out.seg_time.shape[0]
-    if rs.started and rs.seg == 0 and t - cyc.dt <= cyc.t_pre and nseg > 1:
+    # the step before this one, as its own time was computed (steps x dt): t - dt can round
+    # past it (2.001 - 0.001 = 2.0000000000000004 > 2, the start command at 2 s on a 1 ms
+    # step), and the cut at the start or stop command was then never made
+    t_prev = (rs.steps - 1) * cyc.dt
+    if rs.started and rs.seg == 0 and t_prev <= cyc.t_pre and nseg > 1:
         rs.seg = _cut_segment(rs.seg, t, st.tt, out, wk)
     if rs.tlo <= 0.0 and rs.started:
         rs.slack_dur += cyc.dt
@@ -630,7 +634,7 @@ def _switches(model, st, out, wk, rs):
                 rs.seg = _cut_segment(rs.seg, t, st.tt, out, wk)
     elif rs.slack_m > 0.0:
         rs.slack_m = 0.0
-    if rs.stopping and t - cyc.dt <= rs.t_stopcmd and rs.seg + 1 < nseg:
+    if rs.stopping and t_prev <= rs.t_stopcmd and rs.seg + 1 < nseg:
         rs.seg = _cut_segment(rs.seg, t, st.tt, out, wk)
 
 
