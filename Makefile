@@ -15,13 +15,21 @@ $(STAMP): $(BIN)/python pyproject.toml
 	$(BIN)/python -m pip install --quiet -e '.[test]'
 	touch $(STAMP)
 
+# The package's own bytecode, brought up to date before each command: an editable install does
+# not write it (pip compiles only the dependencies it installs), and where PYTHONDONTWRITEBYTECODE
+# is set every process (each test worker, service, Dask worker and command the tests start)
+# would compile the package's 44 000 lines again (0.6 s a process; 17 % of the command-line tests).
+BYTECODE := $(BIN)/python -m compileall -q engine service >/dev/null
+
 # The main job: start the study service (LocalCluster, data in ./data), submit
 # studies/paper-comparison.yaml, show progress, print CEMA vs Non-Lin, stop the service.
 run: $(STAMP)
+	$(BYTECODE)
 	$(BIN)/beltstudy demo
 
 # The study service on http://127.0.0.1:8000 (docs at /docs) until Ctrl-C.
 serve: $(STAMP)
+	$(BYTECODE)
 	$(BIN)/beltstudy serve
 
 # The tests on TEST_WORKERS processes (pytest-xdist); the live services, clusters and the
@@ -29,6 +37,7 @@ serve: $(STAMP)
 TEST_WORKERS ?= 2
 test: $(STAMP)
 	$(BIN)/ruff check .
+	$(BYTECODE)
 	$(BIN)/python -m pytest -q -n $(TEST_WORKERS) --dist loadgroup
 
 bench: $(STAMP)
