@@ -614,8 +614,8 @@ def _switches(model, st, out, wk, rs):
         rs.t_end_limit = min(lim, cyc.t_end) if cyc.t_end > 0.0 else lim
     nseg = out.seg_time.shape[0]
     # the step before this one, as its own time was computed (steps x dt): t - dt can round
-    # past it (2.001 - 0.001 = 2.0000000000000004 > 2, the start command at 2 s on a 1 ms
-    # step), and the cut at the start or stop command was then never made
+    # past it (a stop command at 62 s on a 1 ms step: t = 62001 x 0.001 = 62.001000000000005,
+    # t - dt = 62.00000000000001 > 62), and the cut at the command was then never made
     t_prev = (rs.steps - 1) * cyc.dt
     if rs.started and rs.seg == 0 and t_prev <= cyc.t_pre and nseg > 1:
         rs.seg = _cut_segment(rs.seg, t, st.tt, out, wk)

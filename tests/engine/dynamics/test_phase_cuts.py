@@ -2,8 +2,8 @@
 
 The kernel cut the envelope at the first step past a command when the step before it, ``t -
 dt``, was not past it; ``t - dt`` rounds differently from that step's own time ``(k - 1) dt``:
-with the stop command at 62 s on a 1 ms step, 62.001 - 0.001 = 62.00000000000001 > 62, the cut
-was never made, the start phase had no figures and the stop's took the start's peak (a 1 km
+with the stop command at 62 s on a 1 ms step, t = 62001 x 0.001 = 62.001000000000005 and t - dt
+= 62.00000000000001 > 62, the cut was never made, the start phase had no figures and the stop's took the start's peak (a 1 km
 fabric belt: ``t_max_stop_kn`` 86.02 kN "at 15.4 s", 47 s before its stop command)."""
 
 from __future__ import annotations
