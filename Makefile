@@ -18,7 +18,8 @@ $(STAMP): $(BIN)/python pyproject.toml
 # The package's own bytecode, brought up to date before each command: an editable install does
 # not write it (pip compiles only the dependencies it installs), and where PYTHONDONTWRITEBYTECODE
 # is set every process (each test worker, service, Dask worker and command the tests start)
-# would compile the package's 44 000 lines again (0.6 s a process; 17 % of the command-line tests).
+# would compile the package's 44 000 lines again (0.43 s a process, benchmarks/bench_bytecode.py;
+# 17 % of the command-line tests' time).
 BYTECODE := $(BIN)/python -m compileall -q engine service >/dev/null
 
 # The main job: start the study service (LocalCluster, data in ./data), submit
