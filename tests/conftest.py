@@ -128,8 +128,37 @@ def _kernel_dispatchers() -> list:
     return kernel_dispatchers()
 
 
+#: The first test this process runs (:func:`pytest_runtest_setup`).
+_first_item: list = []
+
+
+def _is_live(item) -> bool:
+    """A test that starts services, clusters or a browser (marked ``slow`` or ``browser``)."""
+    return bool(item.get_closest_marker("slow") or item.get_closest_marker("browser"))
+
+
+def _leaves_the_compile(config) -> bool:
+    """Whether this process leaves a cold kernel's compile to another (pytest-xdist only): the
+    worker handed the live group (its first test live, :func:`pytest_collection_modifyitems`)
+    compiles at once, since its services' Dask workers need the kernel; another worker whose
+    first test is not live runs the tests that never run the kernel (put first) meanwhile, and
+    waits for the compile at its first test that needs it, instead of idling a core for the
+    whole compile (about two minutes of a fresh clone's suite)."""
+    if not hasattr(config, "workerinput") or not _first_item or _is_live(_first_item[0]):
+        return False
+    from beltstudy.engine.warmth import kernel_cold
+
+    return kernel_cold()
+
+
+@pytest.hookimpl(tryfirst=True)
+def pytest_runtest_setup(item):
+    if not _first_item:
+        _first_item.append(item)
+
+
 @pytest.fixture(scope="session", autouse=True)
-def numba_kernel_compiled():
+def numba_kernel_compiled(request):
     """Compile the transient kernel once, before the first test, so its cost shows as its own
     line (the setup of the first test in ``--durations``, and the terminal summary) instead of
     inside whichever dynamic test comes first. numba's ``cache=True`` keeps the compiled code
@@ -137,8 +166,13 @@ def numba_kernel_compiled():
     well under a second. A failure here is reported, not raised: the tests that run the
     kernel fail on their own. Runs in each process (pytest-xdist workers too): on a cold cache
     one of them compiles while the others wait and load what it wrote
-    (``beltstudy.engine.dynamics.cache.first_compile``); imports the engine only."""
+    (``beltstudy.engine.dynamics.cache.first_compile``), or run the tests that do not need it
+    meanwhile (:func:`_leaves_the_compile`); imports the engine only."""
     t0 = time.perf_counter()
+    if _leaves_the_compile(request.config):
+        _warm_up["left"] = True
+        yield
+        return
     try:
         from beltstudy.engine.conveyor import Scenario, parse_conveyor
         from beltstudy.engine.run import run_one
@@ -154,21 +188,39 @@ def numba_kernel_compiled():
     yield
 
 
+#: Test files none of whose tests runs the transient kernel, in this process or a child one
+#: (``tests/kernel_free.txt``, which says how it was measured).
+KERNEL_FREE = frozenset(
+    line.strip() for line in (ROOT / "tests" / "kernel_free.txt").read_text().splitlines()
+    if line.strip() and not line.startswith("#"))
+
+
 def pytest_collection_modifyitems(config, items):
     """With pytest-xdist (``make test``: ``-n 2 --dist loadgroup``), the tests that start
     services, clusters or a browser (``slow``, ``browser``) run one after another on one
     worker, while the other worker takes the rest: two live services at once on a 2-core
     machine would put the tests that time a shutdown or a failure against CPU they do not
-    get. Without xdist the mark does nothing."""
+    get. Without xdist the mark does nothing.
+
+    The test files that never run the transient kernel (:data:`KERNEL_FREE`) come first, in
+    their own order: on a cold cache the worker that does not take the live group runs them
+    while the other compiles (:func:`_leaves_the_compile`). pytest-xdist hands out the largest
+    group first (the live one, ``loadscopereorder``), then single tests in this order."""
     for item in items:
-        if item.get_closest_marker("slow") or item.get_closest_marker("browser"):
+        if _is_live(item):
             item.add_marker(pytest.mark.xdist_group("live"))
+    items.sort(key=lambda item: item.nodeid.split("::")[0] not in KERNEL_FREE)
 
 
 def pytest_terminal_summary(terminalreporter):
-    if "seconds" not in _warm_up:
-        return
     w = _warm_up
+    if w.get("left"):
+        terminalreporter.write_sep("-", "numba compile")
+        terminalreporter.write_line("transient kernel: cold, left to the process that runs the "
+                                    "live tests; the tests that do not run it went first")
+        return
+    if "seconds" not in w:
+        return
     how = ("compiled (numba's cache was cold)" if w.get("compiled")
            else "loaded from numba's on-disk cache")
     line = f"transient kernel warm-up: {w['seconds']:.1f} s, {how}, once before the first test"
