@@ -25,7 +25,7 @@ from importlib.metadata import PackageNotFoundError, version
 try:
     __version__ = version("beltstudy")
 except PackageNotFoundError:  # pragma: no cover - running from a source tree without install
-    __version__ = "0.6.31"
+    __version__ = "0.6.32"
 
 from beltstudy.engine import catalog, results  # noqa: E402
 from beltstudy.engine.beltselect import (  # noqa: E402

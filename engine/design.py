@@ -341,8 +341,8 @@ def brake_forces(conv: Conveyor, scenario: Scenario, total_mass_kg: float, te_n:
                                  f"{gnum(t_grip, 3)} s" if math.isfinite(t_grip) else
                                  f"; held to that bound ({gnum(passed_n / 1e3)} kN; the sliding "
                                  "pulley passes more) the rigid belt would not stop at all, so "
-                                 "the rigid-body time above is no figure for this stop: the "
-                                 "run's stop time is")
+                                 "the rigid-body time above is no figure for this stop: "
+                                 "read the run's own stop time (stop_time_s)")
     if scenario.stop.mode == "brake" and steady is not None:
         given = _given_grip(conv, steady, each, asked)
         note = f"{note}; {given}" if note and given else note or given

@@ -151,6 +151,18 @@ def _leaves_the_compile(config) -> bool:
     return kernel_cold()
 
 
+@pytest.fixture(scope="session")
+def kernel_ran():
+    """The warm-up run in this process (for a test of what a process that ran the kernel has;
+    a worker that left the compile to another has not run it yet)."""
+    from beltstudy.engine.conveyor import Scenario, parse_conveyor
+    from beltstudy.engine.run import run_one
+
+    run = run_one(parse_conveyor(hand_conveyor_dict()), Scenario(**WARM_UP_SCENARIO),
+                  model="din")
+    assert run.summary["status"] != "failed", run.summary["message"]
+
+
 @pytest.hookimpl(tryfirst=True)
 def pytest_runtest_setup(item):
     if not _first_item:

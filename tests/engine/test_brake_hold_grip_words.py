@@ -192,3 +192,39 @@ def test_a_grip_remedy_tells_a_brake_s_share_from_the_whole_and_offers_no_full_t
     assert "would need the whole" in words[3] and "the auto brakes then none" in words[3], \
         words[3]
     assert "beside the auto brakes, then 0 kN" not in words[3]
+
+
+def test_a_grip_bound_that_would_not_stop_the_belt_points_at_the_run_s_stop_time():
+    """A 1.8 km decline falling 146 m (ST1600, 1200 t/h at 3.5 m/s), an auto holding brake at
+    the head, a brake stop asked in 30 s: the holding force (1.2 x the net pull) sets the
+    brake, beyond the pulley's grip in the stop (51.48 kN), and held to that bound the rigid
+    belt would not stop at all (the net pull, 136.4 kN, is above it). The note's sentence
+    ended "so the rigid-body time above is no figure for this stop: the run's stop time is",
+    with no figure after it; it now says to read the run's own ``stop_time_s``."""
+    from beltstudy.engine.conveyor import Scenario, parse_conveyor
+    from beltstudy.engine.design import auto_sizes
+
+    d = {
+        "name": "decline-1800", "speed_m_s": 3.5,
+        "belt": {"type": "ST1600", "width_m": 1.0, "compound": "standard"},
+        "material": {"capacity_t_h": 1200, "density_t_m3": 1.6, "loading_speed_m_s": 0.0},
+        "profile": [{"length_m": 400, "lift_m": -20}, {"length_m": 1400, "lift_m": -126}],
+        "idlers": {"carry": {"spacing_m": 1.2, "roll_diameter_m": 0.152, "rolls": 3,
+                             "trough_deg": 35, "cema_class": "D"},
+                   "return": {"spacing_m": 3.0, "roll_diameter_m": 0.152, "rolls": 1,
+                              "cema_class": "C"}},
+        "drives": [{"position": "head", "wrap_deg": 210, "friction": 0.35, "share": 1.0,
+                    "pulley_diameter_m": 1.0, "inertia_kg_m2": 500, "rated_power_kw": 450,
+                    "torque_limit": 1.5}],
+        "takeup": {"type": "gravity", "position": "tail", "mass_kg": "auto", "travel_m": 10},
+        "brakes": [{"position": "head", "force_kn": "auto", "delay_s": 0.5, "ramp_s": 1.0,
+                    "hold": True}],
+        "holdback": False,
+        "sag_limit_pct": {"carry": 1.5, "return": 3.0},
+        "accessories": {"head_kn": 1.5, "tail_kn": 1.0},
+    }
+    note = auto_sizes(parse_conveyor(d), Scenario(stop={"mode": "brake", "time_s": 30}),
+                      model="din")["brake_note"]
+    assert "the rigid belt would not stop at all" in note, note
+    assert note.endswith("no figure for this stop: read the run's own stop time "
+                         "(stop_time_s)"), note[-200:]

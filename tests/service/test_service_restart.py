@@ -43,13 +43,13 @@ def test_sigkill_mid_study_then_restart_resumes_without_duplicates(
         body["scenario"] = {**body["scenario"], "elements": 200, "run_s": 30}
         return body
 
-    # size the study from this machine's measured run time: about 8 s of work for each of the
+    # size the study from this machine's measured run time: about 4 s of work for each of the
     # two workers, so the kill (at the first stored rows, about a second in) lands mid-study
     probe = resolve_study(body_with(2))
     specs = probe.runs[:2]
     run_batch(probe.id, specs[:1])  # compiled and warm
     per_run_s = max(run_batch(probe.id, specs)["seconds"] / 2, 1e-3)
-    n_temps = min(max(int(8.0 * 2 / per_run_s / 2), 20), 400)
+    n_temps = min(max(int(4.0 * 2 / per_run_s / 2), 20), 400)
     body = body_with(n_temps)
 
     svc = live_service(data_dir)

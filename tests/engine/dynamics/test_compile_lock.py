@@ -65,13 +65,13 @@ def test_lock_beside_the_kernel_cache():
     assert Path(path).parent == Path(run_cycle._cache._cache_path)
 
 
-def test_warm_kernel_takes_no_lock(monkeypatch):
-    """Once the kernel has run in a process (the session's warm-up), no lock is looked for."""
-    assert cache._ready  # tests/conftest.py ran the kernel before the first test
+def test_warm_kernel_takes_no_lock(monkeypatch, kernel_ran):
+    """Once the kernel has run in a process (the warm-up run), no lock is looked for."""
+    assert cache._ready
     monkeypatch.setattr(cache, "lock_path", lambda d: pytest.fail("lock looked for"))
     with cache.first_compile(run_cycle):
         pass
 
 
-def test_a_compiled_kernel_is_not_cold():
+def test_a_compiled_kernel_is_not_cold(kernel_ran):
     assert run_cycle.signatures and not cache._cold(run_cycle)
