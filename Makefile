@@ -33,8 +33,8 @@ serve: $(STAMP)
 	$(BYTECODE)
 	$(BIN)/beltstudy serve
 
-# The tests on TEST_WORKERS processes (pytest-xdist); the live services that time a failure
-# or a shutdown one after another on one of them, first (tests/conftest.py says the order).
+# The tests on TEST_WORKERS processes (pytest-xdist); the live services, clusters and the
+# browser one after another on one of them (tests/conftest.py).
 TEST_WORKERS ?= 2
 test: $(STAMP)
 	$(BIN)/ruff check .

@@ -139,10 +139,9 @@ def _is_live(item) -> bool:
 
 def _leaves_the_compile(config) -> bool:
     """Whether this process leaves a cold kernel's compile to another (pytest-xdist only): the
-    worker handed the timed live group (its first test live; the order is
-    :func:`pytest_collection_modifyitems`'s) compiles at once, since its services' Dask
-    workers need the kernel; another worker whose first test is not live runs the tests that
-    never run the kernel meanwhile, and
+    worker handed the live group (its first test live, :func:`pytest_collection_modifyitems`)
+    compiles at once, since its services' Dask workers need the kernel; another worker whose
+    first test is not live runs the tests that never run the kernel meanwhile, and
     waits for the compile at its first test that needs it, instead of idling a core for the
     whole compile (about two minutes of a fresh clone's suite)."""
     if not hasattr(config, "workerinput") or not _first_item or _is_live(_first_item[0]):
@@ -208,52 +207,26 @@ KERNEL_FREE = frozenset(
     if line.strip() and not line.startswith("#"))
 
 
-#: Live test files that time what the service does (a failure within 30 s, a shutdown within
-#: 10 s, ...): they run one after another on one worker, the first group handed out.
-TIMED = frozenset({
-    "tests/service/test_hardening_live.py",
-    "tests/service/test_honest_waits.py",
-    "tests/service/test_scheduler_lost_before_start.py",
-    "tests/service/test_external_no_workers.py",
-})
-
-
 def _path(item) -> str:
     return item.nodeid.split("::")[0]
 
 
-def pytest_configure(config):
-    """pytest-xdist hands out its groups in the order :func:`pytest_collection_modifyitems`
-    gives them, not the largest first (``loadscopereorder``)."""
-    if hasattr(config.option, "loadscopereorder"):
-        config.option.loadscopereorder = False
-
-
 def pytest_collection_modifyitems(config, items):
-    """The order of the tests and, with pytest-xdist (``make test``: ``-n 2 --dist
-    loadgroup``), how they are grouped on its workers. Without xdist the groups do nothing.
+    """With pytest-xdist (``make test``: ``-n 2 --dist loadgroup``), the tests that start
+    services, clusters or a browser (``slow``, ``browser``) run one after another on one
+    worker, while the other worker takes the rest: two live services at once on a 2-core
+    machine would put the tests that time a shutdown or a failure against CPU they do not
+    get (with the other live files a group each, beside the timed ones, a fresh clone's suite
+    took 876 s against 823 s). Without xdist the mark does nothing.
 
-    1. The live tests that time what a service does (:data:`TIMED`) are one group, first:
-       one worker runs them one after another (two live services at once on a 2-core machine
-       would put a test that times a shutdown or a failure against CPU it does not get), and,
-       on a cold numba cache, compiles the kernel before them (their services need it).
-    2. The test files that never run the kernel (:data:`KERNEL_FREE`): the other worker runs
-       them meanwhile (:func:`_leaves_the_compile`).
-    3. The other live tests (services, clusters, the browser; marked ``slow`` or ``browser``),
-       a group per file, so a file's service fixtures start once: the longest units, early.
-    4. The rest."""
+    The test files that never run the transient kernel (:data:`KERNEL_FREE`) come first, in
+    their own order: on a cold cache the worker that does not take the live group runs them
+    while the other compiles (:func:`_leaves_the_compile`). pytest-xdist hands out the largest
+    group first (the live one, ``loadscopereorder``), then single tests in this order."""
     for item in items:
         if _is_live(item):
-            path = _path(item)
-            item.add_marker(pytest.mark.xdist_group("live" if path in TIMED else f"live:{path}"))
-
-    def rank(item) -> int:
-        path = _path(item)
-        if _is_live(item):
-            return 0 if path in TIMED else 2
-        return 1 if path in KERNEL_FREE else 3
-
-    items.sort(key=rank)
+            item.add_marker(pytest.mark.xdist_group("live"))
+    items.sort(key=lambda item: _path(item) not in KERNEL_FREE)
 
 
 def pytest_terminal_summary(terminalreporter):
