@@ -684,7 +684,7 @@ def _complete(prep: _Prepared, scenario, system, tr, model, params, opts, remedy
 
 
 #: The coast's high-stress words' controlled stop, the least time a belt that follows its
-#: s-curve needs (:func:`beltstudy.engine.dynamics.simulate.stop_criterion_words`).
+#: s-curve needs (``_fast_stop_words`` in :mod:`beltstudy.engine.dynamics.simulate`).
 _LEAST_CONTROLLED = re.compile(
     r"with stop\.time_s at least (\d+(?:\.\d+)?) s \(enough for a belt that follows its "
     r"s-curve, .*?names the time to ask\)")
