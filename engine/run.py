@@ -639,7 +639,8 @@ def _complete(prep: _Prepared, scenario, system, tr, model, params, opts, remedy
                              finer=_finer_mesh(scenario, summary, system, opts) if check
                              else None,
                              sf_min=conveyor.safety_factor_min
-                             or SAFETY_FACTOR_MIN.get(steady.loop.belt.kind, 6.7), tops=tops)
+                             or SAFETY_FACTOR_MIN.get(steady.loop.belt.kind, 6.7), tops=tops,
+                             had=steady.warnings)
         if found:
             messages.append(found)
             _unfound_levers(conveyor, system, tr, messages, summary, tops.get("start"))
@@ -648,7 +649,8 @@ def _complete(prep: _Prepared, scenario, system, tr, model, params, opts, remedy
                 conveyor, scenario, model, params, opts, summary, say,
                 sf_min=conveyor.safety_factor_min
                 or SAFETY_FACTOR_MIN.get(steady.loop.belt.kind, 6.7),
-                finer=_finer_mesh(scenario, summary, system, opts) if check else None)
+                finer=_finer_mesh(scenario, summary, system, opts) if check else None,
+                had=steady.warnings)
             if stop_found is not None:
                 messages.append(stop_found[0])
                 _unfound_stop_levers(conveyor, system, tr, messages, stop_found[1],
@@ -661,7 +663,7 @@ def _complete(prep: _Prepared, scenario, system, tr, model, params, opts, remedy
             conveyor, scenario, model, params, opts, summary, say,
             finer=_finer_mesh(scenario, summary, system, opts) if check else None,
             sf_min=conveyor.safety_factor_min
-            or SAFETY_FACTOR_MIN.get(steady.loop.belt.kind, 6.7)))
+            or SAFETY_FACTOR_MIN.get(steady.loop.belt.kind, 6.7), had=steady.warnings))
     if remedy and tr.status != "failed" and scenario.stop.mode == "coast":
         _controlled_stop_time(prep, scenario, system, tr, messages, model, params, opts, say)
     # after the remedy's rewrite, which reads the levers' own words
@@ -1179,28 +1181,27 @@ def _warning_kind(words: str) -> str:
 
 
 def _takeup_steady_words(conveyor, scenario, model, params, tu_fig: float | None,
-                         gravity: bool) -> str:
+                         gravity: bool, had: list[str]) -> str:
     """The steady checks a remedy's take-up (``tu_fig``: a mass [kg] for a gravity take-up, a
-    tension per strand [kN] for a fixed one) breaks that the run's did not, as a clause ("";
-    none). The safety factor's is said by :func:`_takeup_safety_words`. A 2.2 km route's sag
-    remedy, a 21,388 kg take-up, named the safety factor it lowered and not its horizontal
-    curve, where the belt then ran to the inside (175.0 kN at the curve's end, above the 141.4
-    kN its loaded weight holds there). One steady solve of each."""
+    tension per strand [kN] for a fixed one) breaks that the run's did not (``had``: the
+    run's own steady warnings), as a clause (""; none). The safety factor's is said by
+    :func:`_takeup_safety_words`. A 2.2 km route's sag remedy, a 21,388 kg take-up, named the
+    safety factor it lowered and not its horizontal curve, where the belt then ran to the
+    inside (175.0 kN at the curve's end, above the 141.4 kN its loaded weight holds there).
+    One steady solve, at the take-up."""
     if tu_fig is None:
         return ""
     field = "mass_kg" if gravity else "pretension_kn"
     trial = conveyor.model_copy(update={"takeup": conveyor.takeup.model_copy(
         update={field: float(tu_fig)})})
     n = None if scenario.elements == "auto" else int(scenario.elements)
-
-    def warnings(conv) -> list[str]:
-        st = solve_steady(conv, model=model, params=params, temperature_c=scenario.temperature_c,
-                          load=scenario.load, n_elements=n)
-        return [] if st.status == "failed" else list(st.warnings)
-
-    had = {_warning_kind(w) for w in warnings(conveyor)}
-    new = [w.split("; ")[0] for w in warnings(trial)
-           if _warning_kind(w) not in had and not w.startswith("belt safety factor")]
+    st = solve_steady(trial, model=model, params=params, temperature_c=scenario.temperature_c,
+                      load=scenario.load, n_elements=n)
+    if st.status == "failed":
+        return ""
+    kinds = {_warning_kind(w) for w in had}
+    new = [w.split("; ")[0] for w in st.warnings
+           if _warning_kind(w) not in kinds and not w.startswith("belt safety factor")]
     if not new:
         return ""
     amount = f"{tu_fig:,.0f} kg" if gravity else f"{gnum(tu_fig)} kN"
@@ -1211,7 +1212,8 @@ def _takeup_steady_words(conveyor, scenario, model, params, tu_fig: float | None
 
 def _slip_remedy(conveyor, scenario, model, params, opts, summary, say=None,
                  finer: tuple[Scenario, DynamicsOptions] | None = None,
-                 sf_min: float | None = None, tops: dict | None = None) -> str:
+                 sf_min: float | None = None, tops: dict | None = None,
+                 had: list[str] = ()) -> str:
     """Search what avoids a start's slip (:func:`beltstudy.engine.remedy.slip_remedy`), put the figures
     into ``summary`` and return the sentence for the message ("" when the start did not
     slip); ``tops``, when given, gets under ``start`` how far the start time search went, in
@@ -1261,7 +1263,8 @@ def _slip_remedy(conveyor, scenario, model, params, opts, summary, say=None,
                                          tu_fig, gravity)
     if safety:
         safety = f"; the {noun} of {amount(tu_fig)}{safety}"
-    safety += _takeup_steady_words(conveyor, scenario, model, params, tu_fig, gravity)
+    safety += _takeup_steady_words(conveyor, scenario, model, params, tu_fig, gravity,
+                                   had)
     not_time = _time_top_words("start", rem.time_top_s, float(scenario.start.time_s))
     if tops is not None:
         tops["start"] = not_time
@@ -1302,7 +1305,8 @@ def _finer_words(fine, n_run: int, takeup_words: str, time_words: str, rerun: st
 
 def _stop_slip_remedy(conveyor, scenario, model, params, opts, summary, say=None,
                       sf_min: float | None = None,
-                      finer: tuple[Scenario, DynamicsOptions] | None = None):
+                      finer: tuple[Scenario, DynamicsOptions] | None = None,
+                      had: list[str] = ()):
     """Search what avoids a slip that reached the stop (:func:`beltstudy.engine.remedy.
     slip_remedy` with ``phase="stop"``: the whole cycle rerun on the run's mesh, the take-up
     and, for a controlled stop, ``stop.time_s``) and return ``(sentence, remedy, timed)``
@@ -1370,7 +1374,8 @@ def _stop_slip_remedy(conveyor, scenario, model, params, opts, summary, say=None
     if safety:
         safety = f"; the {noun} of {amount(tu_fig)}{safety}"
     if not (rem.takeup_shared and not (fine is not None and fine.takeup_moved)):
-        safety += _takeup_steady_words(conveyor, scenario, model, params, tu_fig, gravity)
+        safety += _takeup_steady_words(conveyor, scenario, model, params, tu_fig, gravity,
+                                       had)
     st_up = up(st_fig)
     st = (f"a stop.time_s of {st_up:g} s" if st_up is not None
           else _time_top_words("stop", rem.time_top_s, float(scenario.stop.time_s)))
@@ -1439,7 +1444,7 @@ def _brake_slide_remedies(conveyor, scenario, model, params, opts, summary, syst
 
 def _sag_remedy(conveyor, scenario, model, params, opts, summary, say=None,
                 finer: tuple[Scenario, DynamicsOptions] | None = None,
-                sf_min: float | None = None) -> str:
+                sf_min: float | None = None, had: list[str] = ()) -> str:
     """Search the take-up that keeps the cycle's transient sag within its limits
     (:func:`beltstudy.engine.remedy.sag_remedy`: the whole cycle rerun) and return the
     sentence for the message. The sag warning's "at least" take-up counts the whole change
@@ -1476,7 +1481,8 @@ def _sag_remedy(conveyor, scenario, model, params, opts, summary, say=None,
     safety = _takeup_safety_words(summary, rem.takeup, gravity, sf_min, conveyor.belt.width_m)
     if safety:
         safety = f"; the {noun} of {amount(rem.takeup)}{safety}"
-    safety += _takeup_steady_words(conveyor, scenario, model, params, rem.takeup, gravity)
+    safety += _takeup_steady_words(conveyor, scenario, model, params, rem.takeup, gravity,
+                                   had)
     return (f"transient sag within its limits with a {noun} of {amount(rem.takeup)} (the "
             f"sag warning's least {noun} counts the whole change reaching the sagging span; "
             f"{how}){safety}")

@@ -47,9 +47,10 @@ def test_a_remedy_s_take_up_names_the_horizontal_curve_it_pulls_the_belt_off():
     assert not any(w.startswith("horizontal curve") for w in auto.warnings), auto.warnings
     heavy = solve_steady(parse_conveyor(curved_route(mass_kg=21388)), model="din")
     (curve,) = [w for w in heavy.warnings if w.startswith("horizontal curve 1")]
-    words = _takeup_steady_words(conv, scn, "din", None, 21388.0, True)
+    words = _takeup_steady_words(conv, scn, "din", None, 21388.0, True, auto.warnings)
     assert words.startswith("; with the take-up of 21,388 kg the steady state also warns: "
                             "horizontal curve 1 (profile.1, 600 to 1500 m from the tail"), words
     assert curve.split("; ")[0] in words and "belt safety factor" not in words
     # a take-up the curve still holds breaks nothing new
-    assert _takeup_steady_words(conv, scn, "din", None, auto.takeup_mass_kg * 1.05, True) == ""
+    assert _takeup_steady_words(conv, scn, "din", None, auto.takeup_mass_kg * 1.05, True,
+                                auto.warnings) == ""
